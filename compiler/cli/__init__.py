@@ -1,0 +1,86 @@
+"""The `rmot` command line: the only place with file I/O and exit codes.
+
+Each subcommand lives in its own module and is imported only when it runs, so that
+`rmot --help` stays fast (pinocchio, toppra, cvxpy and numba load only when needed).
+
+Exit codes: 0 clean, 1 findings of severity error, 2 usage or input error.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+import click
+
+__all__ = ["main", "EXIT_OK", "EXIT_FINDINGS", "EXIT_INPUT"]
+
+EXIT_OK = 0
+EXIT_FINDINGS = 1
+EXIT_INPUT = 2
+
+# name -> (module, attribute, one-line help); the module defines a click command.
+COMMANDS: dict[str, tuple[str, str, str]] = {
+    "check": ("rmot.compiler.cli.check_cmd", "check", "Parse, plan and verify programs; report findings."),
+    "compile": ("rmot.compiler.cli.compile_cmd", "compile_", "Verify, then emit vendor programs."),
+    "render": ("rmot.compiler.cli.render_cmd", "render", "Render a program to PNG, GIF, MP4, SVG or HTML."),
+    "plan": ("rmot.compiler.cli.plan_cmd", "plan", "Plan a program; write the sampled trajectory."),
+    "ir": ("rmot.compiler.cli.ir_cmd", "ir", "Dump the checked IR of a program."),
+    "robots": ("rmot.compiler.cli.robots_cmd", "robots", "The robot library: list, show, fk, ik."),
+    "demo": ("rmot.compiler.cli.demo_cmd", "demo", "The main job: compile, verify and render an example."),
+}
+
+
+class LazyGroup(click.Group):
+    """A click group that imports a subcommand's module only when that command runs."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        entry = COMMANDS.get(cmd_name)
+        if entry is None:
+            return None
+        module_name, attr, _ = entry
+        try:
+            module = importlib.import_module(module_name)
+        except ModuleNotFoundError as exc:
+            if exc.name != module_name:
+                raise
+            return _unavailable(cmd_name)
+        return getattr(module, attr)  # type: ignore[no-any-return]
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        rows = [(name, COMMANDS[name][2]) for name in self.list_commands(ctx)]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+def _unavailable(name: str) -> click.Command:
+    @click.command(name=name, help=COMMANDS[name][2])
+    def cmd() -> None:
+        raise click.ClickException(f"'{name}' is not available in this build")
+
+    return cmd
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("rmot")
+    except PackageNotFoundError:  # running from a source tree without an install
+        return "0+unknown"
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(_version(), "--version", prog_name="rmot", message="%(prog)s %(version)s")
+def cli() -> None:
+    """rmot — an off-line robot programming compiler.
+
+    Write a task once in .rmot; check it against the work cell; emit it for every controller.
+    """
+
+
+def main() -> None:
+    """The console-script entry point; click maps usage errors to exit code 2."""
+    cli(prog_name="rmot")

@@ -1,0 +1,532 @@
+"""The IR: what the program means, checked, in SI units, with no modal state left.
+
+This is the contract between the front end (lang + compiler.check), the planner, the
+simulator and the backends. Everything is a frozen dataclass; sequences are tuples.
+
+Units inside the IR are SI, always: metres, radians, seconds, kilograms, m/s, m/s^2, rad/s.
+Ratios are fractions (50 % is 0.5). Orientation is a unit quaternion (w, x, y, z).
+
+Frames:
+  * world     — the cell's frame; robot bases, fixtures and cell frames are placed in it.
+  * base      — a robot's base frame (`RobotInstance.base` is its pose in world).
+  * flange    — the robot's mounting flange (vendor "tool0"), what `Robot.fk(q)` returns.
+  * tcp       — the active tool's centre point: flange * Tool.tcp.
+A Cartesian target's `pose` is the TCP pose in the robot's *base* frame (frame offsets and
+robot placement already composed); `in_frame` is the same target as written, relative to
+the move's active frame (what the backends emit together with the frame declaration).
+
+Every instruction carries `uid`, unique within its Program (assigned in source order by
+the lowering), so the planner's records and the simulator's findings can point back at it
+even when two instructions are otherwise equal; and `span`, excluded from equality.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from enum import Enum, auto
+from typing import TYPE_CHECKING, Union
+
+from rmot.lang.source import Span
+
+if TYPE_CHECKING:
+    import numpy as np
+
+__all__ = [
+    "Box", "Capsule", "Cell", "CartesianTarget", "Config", "Cylinder", "Elbow", "Fixture",
+    "Frame", "FrameRef", "Geometry", "If", "InputCondition", "Instr", "IoDirection",
+    "IoSignal", "JointTarget", "Mesh", "Motion", "MotionKind", "Move", "Native", "Pose",
+    "ProcCall", "Program", "Pulse", "RobotInstance", "RobotSource", "SetAnalog",
+    "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
+    "WaitTime", "Wrist", "Zone", "walk",
+]
+
+
+def _span_field() -> Span | None:
+    return field(default=None, compare=False, hash=False, repr=False)  # type: ignore[return-value]
+
+
+# --------------------------------------------------------------------------- poses
+
+
+@dataclass(frozen=True, slots=True)
+class Pose:
+    """A rigid transform: position in metres and a unit quaternion (w, x, y, z), w >= 0."""
+
+    position: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    quaternion: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        w, x, y, z = self.quaternion
+        norm = math.sqrt(w * w + x * x + y * y + z * z)
+        if not (abs(norm - 1.0) < 1e-6):
+            raise ValueError(f"Pose.quaternion must have unit norm (got {self.quaternion}, norm {norm})")
+
+    @staticmethod
+    def identity() -> Pose:
+        return Pose()
+
+    @staticmethod
+    def from_xyz_rpy(x: float, y: float, z: float, rx: float, ry: float, rz: float) -> Pose:
+        """LANGUAGE.md convention: R = Rz(rz)·Ry(ry)·Rx(rx) (fixed axes X, then Y, then Z)."""
+        cr, sr = math.cos(rx / 2), math.sin(rx / 2)
+        cp, sp = math.cos(ry / 2), math.sin(ry / 2)
+        cy, sy = math.cos(rz / 2), math.sin(rz / 2)
+        q = (
+            cr * cp * cy + sr * sp * sy,
+            sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy,
+        )
+        return Pose((x, y, z), _canonical(q))
+
+    def rpy(self) -> tuple[float, float, float]:
+        """(rx, ry, rz) with R = Rz(rz)·Ry(ry)·Rx(rx); ry in [-pi/2, pi/2]."""
+        w, x, y, z = self.quaternion
+        sinp = max(-1.0, min(1.0, 2 * (w * y - z * x)))
+        rx = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
+        ry = math.asin(sinp)
+        rz = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+        return rx, ry, rz
+
+    def __mul__(self, other: Pose) -> Pose:
+        """Composition: `a * b` is b expressed in a's frame."""
+        rotated = _rotate(self.quaternion, other.position)
+        pos = (
+            self.position[0] + rotated[0],
+            self.position[1] + rotated[1],
+            self.position[2] + rotated[2],
+        )
+        return Pose(pos, _canonical(_qmul(self.quaternion, other.quaternion)))
+
+    def inverse(self) -> Pose:
+        w, x, y, z = self.quaternion
+        conj = (w, -x, -y, -z)
+        p = _rotate(conj, self.position)
+        return Pose((-p[0], -p[1], -p[2]), _canonical(conj))
+
+    def matrix(self) -> np.ndarray:
+        """The (4, 4) homogeneous matrix."""
+        import numpy as np
+
+        w, x, y, z = self.quaternion
+        m = np.eye(4)
+        m[:3, :3] = [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+        m[:3, 3] = self.position
+        return m
+
+    @staticmethod
+    def from_matrix(m: np.ndarray) -> Pose:
+        """From a (4, 4) homogeneous matrix with an orthonormal rotation block."""
+        r = m[:3, :3]
+        tr = r[0, 0] + r[1, 1] + r[2, 2]
+        if tr > 0:
+            s = math.sqrt(tr + 1.0) * 2
+            q = (0.25 * s, (r[2, 1] - r[1, 2]) / s, (r[0, 2] - r[2, 0]) / s, (r[1, 0] - r[0, 1]) / s)
+        elif r[0, 0] > r[1, 1] and r[0, 0] > r[2, 2]:
+            s = math.sqrt(1.0 + r[0, 0] - r[1, 1] - r[2, 2]) * 2
+            q = ((r[2, 1] - r[1, 2]) / s, 0.25 * s, (r[0, 1] + r[1, 0]) / s, (r[0, 2] + r[2, 0]) / s)
+        elif r[1, 1] > r[2, 2]:
+            s = math.sqrt(1.0 + r[1, 1] - r[0, 0] - r[2, 2]) * 2
+            q = ((r[0, 2] - r[2, 0]) / s, (r[0, 1] + r[1, 0]) / s, 0.25 * s, (r[1, 2] + r[2, 1]) / s)
+        else:
+            s = math.sqrt(1.0 + r[2, 2] - r[0, 0] - r[1, 1]) * 2
+            q = ((r[1, 0] - r[0, 1]) / s, (r[0, 2] + r[2, 0]) / s, (r[1, 2] + r[2, 1]) / s, 0.25 * s)
+        n = math.sqrt(sum(c * c for c in q))
+        pos = (float(m[0, 3]), float(m[1, 3]), float(m[2, 3]))
+        return Pose(pos, _canonical(tuple(float(c) / n for c in q)))  # type: ignore[arg-type]
+
+
+def _canonical(q: tuple[float, ...]) -> tuple[float, float, float, float]:
+    """Unit quaternion with w >= 0 (q and -q are the same rotation; one spelling only)."""
+    n = math.sqrt(sum(c * c for c in q))
+    w, x, y, z = (c / n for c in q)
+    if w < 0 or (w == 0 and (x, y, z) < (0.0, 0.0, 0.0)):
+        w, x, y, z = -w, -x, -y, -z
+    return (w + 0.0, x + 0.0, y + 0.0, z + 0.0)
+
+
+def _qmul(a: tuple[float, ...], b: tuple[float, ...]) -> tuple[float, float, float, float]:
+    aw, ax, ay, az = a
+    bw, bx, by, bz = b
+    return (
+        aw * bw - ax * bx - ay * by - az * bz,
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+    )
+
+
+def _rotate(q: tuple[float, ...], v: tuple[float, ...]) -> tuple[float, float, float]:
+    w, x, y, z = q
+    vx, vy, vz = v
+    # v' = v + 2w(u × v) + 2 u × (u × v), u = (x, y, z)
+    cx, cy, cz = y * vz - z * vy, z * vx - x * vz, x * vy - y * vx
+    ccx, ccy, ccz = y * cz - z * cy, z * cx - x * cz, x * cy - y * cx
+    return (vx + 2 * (w * cx + ccx), vy + 2 * (w * cy + ccy), vz + 2 * (w * cz + ccz))
+
+
+# --------------------------------------------------------------------------- geometry
+
+
+@dataclass(frozen=True, slots=True)
+class Box:
+    """Centred on its pose; full edge lengths along local x, y, z (m)."""
+
+    size: tuple[float, float, float]
+
+
+@dataclass(frozen=True, slots=True)
+class Cylinder:
+    """Axis along local z, centred on its pose (as in coal/FCL)."""
+
+    radius: float
+    height: float
+
+
+@dataclass(frozen=True, slots=True)
+class Sphere:
+    radius: float
+
+
+@dataclass(frozen=True, slots=True)
+class Capsule:
+    """Axis along local z, centred on its pose; `length` excludes the two hemispherical caps."""
+
+    radius: float
+    length: float
+
+
+@dataclass(frozen=True, slots=True)
+class Mesh:
+    """A mesh file, already resolved to an absolute path inside the project; `scale` converts
+    the file's unit to metres (unit=mm gives 0.001). Loaded by the sim, not by the compiler."""
+
+    path: str
+    scale: float = 1.0
+    span: Span | None = _span_field()
+
+
+Geometry = Union[Box, Cylinder, Sphere, Capsule, Mesh]
+
+
+# --------------------------------------------------------------------------- cell
+
+
+class RobotSourceKind(Enum):
+    LIBRARY = auto()  # a name from compiler.robots.list_robots()
+    URDF = auto()  # an absolute path to a URDF file
+
+
+@dataclass(frozen=True, slots=True)
+class RobotSource:
+    kind: RobotSourceKind
+    ref: str  # library name, or absolute URDF path
+
+    @property
+    def load_key(self) -> str:
+        """What `compiler.robots.load_robot` takes."""
+        return self.ref
+
+
+@dataclass(frozen=True, slots=True)
+class RobotInstance:
+    name: str
+    source: RobotSource
+    base: Pose  # the robot base frame in world
+    dof: int  # number of joints (from the robot library or the URDF)
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True)
+class Fixture:
+    name: str
+    geometry: Geometry
+    pose: Pose  # in world
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True)
+class Tool:
+    name: str
+    robot: str  # the robot it is mounted on
+    geometry: Geometry | None  # in the flange frame (placed at `geometry_pose`)
+    tcp: Pose  # TCP in the flange frame
+    mass: float = 0.0  # kg (payload of the tool itself)
+    geometry_pose: Pose = Pose()
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True)
+class Frame:
+    name: str
+    pose: Pose  # in world
+    span: Span | None = _span_field()
+
+
+class IoDirection(Enum):
+    DIGITAL_OUT = auto()
+    DIGITAL_IN = auto()
+    ANALOG_OUT = auto()
+    ANALOG_IN = auto()
+
+
+@dataclass(frozen=True, slots=True)
+class IoSignal:
+    direction: IoDirection
+    port: int
+    name: str  # the controller's signal name, e.g. "gripper_close"
+    robot: str | None
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True)
+class Cell:
+    name: str
+    robots: tuple[RobotInstance, ...]
+    fixtures: tuple[Fixture, ...] = ()
+    tools: tuple[Tool, ...] = ()
+    frames: tuple[Frame, ...] = ()
+    io: tuple[IoSignal, ...] = ()
+    allowed_contacts: tuple[tuple[str, str], ...] = ()  # body pairs the checker ignores
+    span: Span | None = _span_field()
+
+    def robot(self, name: str) -> RobotInstance:
+        for r in self.robots:
+            if r.name == name:
+                return r
+        raise KeyError(name)
+
+
+# --------------------------------------------------------------------------- motion
+
+
+class MotionKind(Enum):
+    JOINT = auto()
+    LINEAR = auto()
+    CIRCULAR = auto()
+
+
+class Shoulder(Enum):
+    FRONT = "front"
+    BACK = "back"
+
+
+class Elbow(Enum):
+    UP = "up"
+    DOWN = "down"
+
+
+class Wrist(Enum):
+    FLIP = "flip"
+    NOFLIP = "noflip"
+
+
+@dataclass(frozen=True, slots=True)
+class Config:
+    """An IK branch of a 6R arm; None fields are free (the planner keeps the current one)."""
+
+    shoulder: Shoulder | None = None
+    elbow: Elbow | None = None
+    wrist: Wrist | None = None
+
+    def __str__(self) -> str:
+        parts = [f"{k}={v.value}" for k, v in (("shoulder", self.shoulder), ("elbow", self.elbow), ("wrist", self.wrist)) if v]
+        return ", ".join(parts) or "any"
+
+
+@dataclass(frozen=True, slots=True)
+class Zone:
+    """Blending radius in metres; 0.0 means `fine` (exact stop)."""
+
+    radius: float = 0.0
+
+    @property
+    def is_fine(self) -> bool:
+        return self.radius <= 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Motion:
+    """Every speed-like setting a move needs, resolved from the modal settings (SI)."""
+
+    tcp_speed: float  # m/s, for linear and circular moves
+    tcp_accel: float  # m/s^2
+    joint_speed: float  # fraction of each joint's max speed for joint moves, (0, 1]
+    joint_accel: float  # fraction of each joint's max acceleration, (0, 1]
+    zone: Zone
+    duration: float | None = None  # s: a `time` modifier fixes the move's duration
+
+
+@dataclass(frozen=True, slots=True)
+class ToolRef:
+    """The active tool; name None is the bare flange (tcp identity)."""
+
+    name: str | None
+    tcp: Pose = Pose()
+    mass: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class FrameRef:
+    """The active reference frame; name None is the robot base (pose identity)."""
+
+    name: str | None
+    pose: Pose = Pose()  # the frame in the robot's base frame
+    world: Pose = Pose()  # the frame in world
+
+
+@dataclass(frozen=True, slots=True)
+class CartesianTarget:
+    pose: Pose  # TCP in the robot base frame
+    in_frame: Pose  # the same target relative to the move's frame, as written
+    name: str | None = None  # the `target` name it came from, if any
+
+
+@dataclass(frozen=True, slots=True)
+class JointTarget:
+    values: tuple[float, ...]  # rad for revolute joints, m for prismatic
+    name: str | None = None
+
+
+# --------------------------------------------------------------------------- instructions
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Move:
+    uid: int
+    kind: MotionKind
+    target: CartesianTarget | JointTarget
+    via: CartesianTarget | None = None  # circular moves only
+    motion: Motion
+    tool: ToolRef
+    frame: FrameRef
+    config: Config = Config()
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SetDigital:
+    uid: int
+    port: int
+    value: bool
+    signal: str | None = None  # the cell's name for the port, if declared
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class SetAnalog:
+    uid: int
+    port: int
+    value: float
+    signal: str | None = None
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Pulse:
+    uid: int
+    port: int
+    duration: float  # s
+    signal: str | None = None
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class WaitTime:
+    uid: int
+    duration: float  # s
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class InputCondition:
+    port: int
+    value: bool
+    signal: str | None = None
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class WaitInput:
+    uid: int
+    condition: InputCondition
+    timeout: float | None = None  # s
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class If:
+    """A runtime branch on an input; both arms are planned and verified."""
+
+    uid: int
+    condition: InputCondition
+    then: tuple[Instr, ...]
+    otherwise: tuple[Instr, ...] = ()
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Sync:
+    uid: int
+    name: str
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Native:
+    """Vendor text passed through by that backend only (`vendor` as written: rapid, krl, ...)."""
+
+    uid: int
+    vendor: str
+    text: str
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class ProcCall:
+    """An inlined proc call: `body` is the proc's body with the arguments substituted.
+
+    Kept as a node (not flattened) so backends can show the structure and name routines.
+    """
+
+    uid: int
+    proc: str
+    args: tuple[str, ...]  # the arguments as written, for comments
+    body: tuple[Instr, ...]
+    span: Span | None = _span_field()
+
+
+Instr = Union[Move, SetDigital, SetAnalog, Pulse, WaitTime, WaitInput, If, Sync, Native, ProcCall]
+
+
+@dataclass(frozen=True, slots=True)
+class Task:
+    """One robot's instruction list (a single-robot `program ... on r1` has one task)."""
+
+    name: str
+    robot: str
+    body: tuple[Instr, ...]
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True)
+class Program:
+    name: str
+    cell: Cell
+    tasks: tuple[Task, ...]
+    span: Span | None = _span_field()
+
+
+def walk(body: tuple[Instr, ...]):  # type: ignore[no-untyped-def]
+    """Yield every instruction in source order, descending into If arms and ProcCall bodies."""
+    for instr in body:
+        yield instr
+        if isinstance(instr, If):
+            yield from walk(instr.then)
+            yield from walk(instr.otherwise)
+        elif isinstance(instr, ProcCall):
+            yield from walk(instr.body)

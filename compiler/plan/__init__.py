@@ -1,0 +1,1 @@
+"""rmot.compiler.plan."""

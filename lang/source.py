@@ -1,0 +1,64 @@
+"""Source files and spans: where every AST node, IR node and diagnostic came from.
+
+Lines and columns are 1-based; `end` is exclusive on the same line (a span of one
+character at column 5 has start col 5 and end col 6). Offsets are 0-based indexes into
+`SourceFile.text`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+__all__ = ["Pos", "SourceFile", "Span"]
+
+
+@dataclass(frozen=True, slots=True)
+class SourceFile:
+    """One file's text, kept so a diagnostic can show the offending line."""
+
+    path: str
+    text: str = field(repr=False, compare=False, hash=False)
+
+    def line_text(self, line: int) -> str:
+        """The text of 1-based `line` without its newline ('' past the end)."""
+        lines = self.text.splitlines()
+        return lines[line - 1] if 1 <= line <= len(lines) else ""
+
+    def pos_at(self, offset: int) -> Pos:
+        """The 1-based line and column of a 0-based character offset."""
+        offset = max(0, min(offset, len(self.text)))
+        line = self.text.count("\n", 0, offset) + 1
+        last_nl = self.text.rfind("\n", 0, offset)
+        return Pos(line, offset - last_nl, offset)
+
+
+@dataclass(frozen=True, slots=True, order=True)
+class Pos:
+    line: int
+    col: int
+    offset: int = 0
+
+
+@dataclass(frozen=True, slots=True)
+class Span:
+    """A range of source text. Never part of node equality (fields use compare=False)."""
+
+    file: SourceFile
+    start: Pos
+    end: Pos
+
+    @property
+    def path(self) -> str:
+        return self.file.path
+
+    def __str__(self) -> str:
+        return f"{self.file.path}:{self.start.line}:{self.start.col}"
+
+    @staticmethod
+    def whole(file: SourceFile) -> Span:
+        """A span for a diagnostic about the whole file (points at its first character)."""
+        return Span(file, Pos(1, 1, 0), Pos(1, 2, min(1, len(file.text))))
+
+    @staticmethod
+    def from_offsets(file: SourceFile, start: int, end: int) -> Span:
+        return Span(file, file.pos_at(start), file.pos_at(max(start, end)))
