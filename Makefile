@@ -1,9 +1,12 @@
 # Two commands for a fresh clone:  `make demo` runs the main job, `make test` runs the tests.
 # Each creates .venv on first use and installs what it needs.
-PYTHON ?= python3
-VENV   := .venv
-BIN    := $(VENV)/bin
-STAMP  := $(VENV)/.installed
+PYTHON  ?= python3
+VENV    := .venv
+BIN     := $(VENV)/bin
+STAMP   := $(VENV)/.installed
+EXAMPLE := examples/pick_place.rmot
+OUT     := out
+TARGETS := --target rapid --target krl --target fanuc --target urscript --target inform --target val3 --target csv --target json
 
 .PHONY: demo test bench clean
 
@@ -13,14 +16,19 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
+# The main job: verify the pick-and-place example on the built-in default cell, compile it for
+# every controller, and render a picture of it.
 demo: $(STAMP)
-	$(BIN)/rmot demo
+	$(BIN)/rmot check $(EXAMPLE)
+	$(BIN)/rmot compile $(EXAMPLE) $(TARGETS) -o $(OUT)/pick_place
+	$(BIN)/rmot render $(EXAMPLE) -o $(OUT)/pick_place.png
+	@echo "demo: vendor programs in $(OUT)/pick_place/, picture in $(OUT)/pick_place.png"
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
 bench: $(STAMP)
-	$(BIN)/python -m pytest tests/benchmarks -q --benchmark-columns=median,iqr,rounds -p no:cacheprovider
+	$(BIN)/python -m pytest tests/benchmarks -q -p no:cacheprovider --benchmark-columns=median,iqr,rounds
 
 clean:
-	rm -rf $(VENV) build *.egg-info out
+	rm -rf $(VENV) build *.egg-info $(OUT)

@@ -26,7 +26,6 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "plan": ("rmot.compiler.cli.plan_cmd", "plan", "Plan a program; write the sampled trajectory."),
     "ir": ("rmot.compiler.cli.ir_cmd", "ir", "Dump the checked IR of a program."),
     "robots": ("rmot.compiler.cli.robots_cmd", "robots", "The robot library: list, show, fk, ik."),
-    "demo": ("rmot.compiler.cli.demo_cmd", "demo", "The main job: compile, verify and render an example."),
 }
 
 

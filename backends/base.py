@@ -1,0 +1,325 @@
+"""The Backend base class, the EmitResult type and the formatting helpers every vendor shares.
+
+A backend (sqlglot's dialect generator) is a table plus small formatting methods:
+
+    class RapidBackend(Backend):
+        name = "rapid"; file_ext = ".mod"; COMMENT = "!"
+        LOWERINGS = (lowering.pulse_as_set_wait,)          # IR -> IR, run before printing
+        EMIT = {ir.Move: "move_sql", ir.SetDigital: "set_do_sql", ...}   # node type -> method
+        def emit_task(self, ctx: TaskContext) -> dict[str, str]: ...      # one program per task
+
+Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
+`ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
+unit conversion outside its declared table (`UNITS`), no modal hidden state — each instruction's
+text depends on that instruction and its record only.
+
+Gaps: `self.unsupported(code, message, span)` records an error (the instruction has no faithful
+form); `self.warn(...)` records a warning (an exact or nearest-faithful lowering was applied).
+Nothing is ever dropped without one of them. `emit()` always returns files *and* diagnostics;
+callers (the CLI) refuse to write files when any diagnostic is an error.
+
+The per-emit diagnostics list lives on the instance, which `emit()` resets: create one backend
+object per call or reuse it sequentially (never share one between threads).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from rmot.backends import codes
+from rmot.compiler import ir, planned
+from rmot.lang.diagnostics import Code, Diagnostic, Severity
+from rmot.lang.source import Span
+
+__all__ = [
+    "Backend", "EmitResult", "Lowering", "TaskContext",
+    "fmt", "fmt_list", "source_ref", "header_lines",
+    "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
+    "position_mm", "turn_bits", "axis_quadrant",
+]
+
+Lowering = Callable[[tuple[ir.Instr, ...]], tuple[ir.Instr, ...]]
+"""An IR -> IR transform applied to a task body before printing (see backends/lowering.py)."""
+
+
+@dataclass(frozen=True)
+class EmitResult:
+    """What a backend produces: files in a deterministic order, and what it had to say.
+
+    files: filename -> full text (each ends with a newline). diagnostics: errors mean the
+    files are not faithful and must not be written.
+    """
+
+    files: dict[str, str]
+    diagnostics: tuple[Diagnostic, ...] = ()
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.is_error for d in self.diagnostics)
+
+
+@dataclass(frozen=True)
+class TaskContext:
+    """Everything a backend needs to print one task: the plan, the task's plan, its robot."""
+
+    plan: planned.Plan
+    task_plan: planned.TaskPlan
+    robot: ir.RobotInstance
+    program_name: str  # the legal name of this task's output program
+
+    @property
+    def task(self) -> ir.Task:
+        return self.task_plan.task
+
+    def record(self, instr: ir.Instr) -> planned.InstructionRecord | None:
+        """The planner's record of `instr` (looked up by uid), or None when there is none."""
+        return self.task_plan.record(instr.uid)
+
+
+# --------------------------------------------------------------------------- numbers
+
+
+def fmt(value: float, decimals: int) -> str:
+    """Fixed-point text with `decimals` places; -0 prints as 0 (deterministic output)."""
+    text = f"{float(value):.{decimals}f}"
+    if text.startswith("-") and float(text) == 0.0:
+        text = text[1:]
+    return text
+
+
+def fmt_list(values: Iterable[float], decimals: int, sep: str = ",") -> str:
+    return sep.join(fmt(v, decimals) for v in values)
+
+
+def position_mm(pose: ir.Pose) -> tuple[float, float, float]:
+    """Position in millimetres (the IR is in metres)."""
+    x, y, z = pose.position
+    return (x * 1000.0, y * 1000.0, z * 1000.0)
+
+
+def quaternion_wxyz(pose: ir.Pose) -> tuple[float, float, float, float]:
+    """The unit quaternion, w first, w >= 0 (ABB's q1..q4 order)."""
+    return pose.quaternion
+
+
+def euler_zyx_deg(pose: ir.Pose) -> tuple[float, float, float]:
+    """(A, B, C) in degrees with R = Rz(A)·Ry(B)·Rx(C) (KUKA A B C; Fanuc R P W reversed).
+
+    B in [-90, 90]. At B = ±90 (gimbal lock) C is set to 0 and A carries the whole angle.
+    """
+    r = pose.matrix()[:3, :3]
+    sb = -r[2, 0]
+    b = math.asin(max(-1.0, min(1.0, sb)))
+    if abs(abs(sb) - 1.0) < 1e-12:
+        c = 0.0
+        a = math.atan2(-r[0, 1], r[1, 1])
+    else:
+        a = math.atan2(r[1, 0], r[0, 0])
+        c = math.atan2(r[2, 1], r[2, 2])
+    return (math.degrees(a), math.degrees(b), math.degrees(c))
+
+
+def euler_xyz_moving_deg(pose: ir.Pose) -> tuple[float, float, float]:
+    """(rx, ry, rz) in degrees with R = Rx(rx)·Ry(ry)·Rz(rz) (Stäubli); ry in [-90, 90]."""
+    r = pose.matrix()[:3, :3]
+    sy = r[0, 2]
+    ry = math.asin(max(-1.0, min(1.0, sy)))
+    if abs(abs(sy) - 1.0) < 1e-12:
+        rz = 0.0
+        rx = math.atan2(r[2, 1], r[1, 1])
+    else:
+        rx = math.atan2(-r[1, 2], r[2, 2])
+        rz = math.atan2(-r[0, 1], r[0, 0])
+    return (math.degrees(rx), math.degrees(ry), math.degrees(rz))
+
+
+def rotation_vector(pose: ir.Pose) -> tuple[float, float, float]:
+    """Axis * angle in radians, angle in [0, pi] (UR's rx, ry, rz)."""
+    w, x, y, z = pose.quaternion  # w >= 0 by the IR's canonical form
+    s = math.sqrt(x * x + y * y + z * z)
+    if s < 1e-15:
+        return (0.0, 0.0, 0.0)
+    angle = 2.0 * math.atan2(s, w)
+    return (x / s * angle, y / s * angle, z / s * angle)
+
+
+def axis_quadrant(angle: float) -> int:
+    """floor(angle / 90 deg): ABB cf1/cf4/cf6 (quadrant 0 is [0, 90) deg, -1 is [-90, 0))."""
+    return math.floor(angle / (math.pi / 2) + 1e-12)
+
+
+def turn_bits(q: np.ndarray) -> int:
+    """KUKA Turn: bit i set when axis i+1 is negative (< 0)."""
+    return sum(1 << i for i, v in enumerate(q[:6]) if v < 0.0)
+
+
+# --------------------------------------------------------------------------- source map
+
+
+def source_ref(span: Span | None) -> str | None:
+    """'file.rmot:12' for a comment (file name without directories: the same on every machine)."""
+    if span is None:
+        return None
+    return f"{os.path.basename(span.file.path)}:{span.start.line}"
+
+
+def header_lines(plan: planned.Plan, backend_name: str, findings: bool = False) -> list[str]:
+    """Lines (without the comment marker) every file starts with."""
+    program = plan.program
+    where = source_ref(program.span)
+    lines = [f"generated by rmot from program '{program.name}'" + (f" ({where})" if where else "")]
+    lines.append(f"target: {backend_name}; cell: {program.cell.name}; do not edit by hand")
+    if findings:
+        lines.append("WARNING: verification reported errors; compiled with --allow-findings")
+    return lines
+
+
+# --------------------------------------------------------------------------- base class
+
+
+@dataclass
+class _Emission:
+    """Per-emit scratch: the diagnostics collected so far (reset by Backend.emit)."""
+
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+
+
+class Backend:
+    """Subclass per vendor; override the class constants and the EMIT table.
+
+    Class constants (all documented with the vendor source in each subclass):
+      name      the --target value ("rapid")
+      file_ext  extension of the main program file (".mod")
+      COMMENT   the line-comment marker ("!", ";", "#")
+      UNITS     {"length": "mm", "angle": "deg", ...}: what the vendor's numbers mean
+      MAX_LINES / MAX_NAME_LEN / NAME_RULES: controller limits
+      LOWERINGS IR -> IR transforms applied to each task body before printing
+      EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str]
+    """
+
+    name: ClassVar[str] = ""
+    file_ext: ClassVar[str] = ""
+    COMMENT: ClassVar[str] = "#"
+    UNITS: ClassVar[dict[str, str]] = {}
+    MAX_LINES: ClassVar[int | None] = None
+    LOWERINGS: ClassVar[tuple[Lowering, ...]] = ()
+    EMIT: ClassVar[dict[type, str]] = {}
+    INDENT: ClassVar[str] = "  "
+
+    def __init__(self, *, allow_findings_header: bool = False) -> None:
+        self.findings_header = allow_findings_header
+        self.source_map = True
+        self._emission = _Emission()
+
+    # ------------------------------------------------------------------ entry point
+
+    def emit(self, plan: planned.Plan, *, source_map: bool = True) -> EmitResult:
+        """Format every task of `plan`; one output program (one or more files) per task."""
+        self._emission = _Emission()
+        self.source_map = source_map
+        files: dict[str, str] = {}
+        for task_plan in plan.tasks:
+            ctx = TaskContext(plan, task_plan, plan.program.cell.robot(task_plan.robot),
+                              self.program_name(plan, task_plan))
+            for fname, text in self.emit_task(ctx).items():
+                files[fname] = text
+        return EmitResult(files, tuple(self._emission.diagnostics))
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        """Print one task: filename -> text. Subclasses implement."""
+        raise NotImplementedError
+
+    def program_name(self, plan: planned.Plan, task_plan: planned.TaskPlan) -> str:
+        """Program name for a task: the program's name, suffixed by the task when there are several."""
+        if len(plan.tasks) == 1:
+            return plan.program.name
+        return f"{plan.program.name}_{task_plan.task.name}"
+
+    def lowered_body(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
+        """The task body after this vendor's LOWERINGS (applied in order)."""
+        body = ctx.task.body
+        for lower in self.LOWERINGS:
+            body = lower(body)
+        return body
+
+    # ------------------------------------------------------------------ dispatch
+
+    def instr(self, node: ir.Instr, ctx: TaskContext) -> list[str]:
+        """The lines of one instruction (source comment first), via the EMIT table."""
+        method = self.EMIT.get(type(node))
+        if method is None:
+            self.unsupported(codes.UNSUPPORTED,
+                             f"{type(node).__name__} must be expressible for {self.name} (it is not)",
+                             getattr(node, "span", None))
+            return [self.comment(f"UNSUPPORTED {type(node).__name__}")]
+        lines: list[str] = getattr(self, method)(node, ctx)
+        ref = self.source_comment(node)
+        return ([ref] if ref else []) + lines
+
+    def body(self, nodes: Iterable[ir.Instr], ctx: TaskContext) -> list[str]:
+        out: list[str] = []
+        for node in nodes:
+            out.extend(self.instr(node, ctx))
+        return out
+
+    def record_or_error(self, node: ir.Move, ctx: TaskContext) -> planned.InstructionRecord | None:
+        """The record of a move with its joint solution, or None after reporting E401."""
+        rec = ctx.record(node)
+        if rec is None or rec.q_target is None:
+            self.unsupported(codes.MISSING_RECORD,
+                             f"move (uid {node.uid}) must have a planned joint solution (got none)",
+                             node.span)
+            return None
+        return rec
+
+    # ------------------------------------------------------------------ text helpers
+
+    def comment(self, text: str) -> str:
+        return f"{self.COMMENT} {text}" if text else self.COMMENT
+
+    def source_comment(self, node: ir.Instr) -> str | None:
+        """`! file.rmot:12` above an instruction's text, when source maps are on."""
+        if not self.source_map:
+            return None
+        ref = source_ref(getattr(node, "span", None))
+        return self.comment(ref) if ref else None
+
+    def header(self, ctx: TaskContext) -> list[str]:
+        return [self.comment(line) for line in header_lines(ctx.plan, self.name, self.findings_header)]
+
+    @staticmethod
+    def indent(lines: Iterable[str], prefix: str) -> list[str]:
+        return [prefix + line if line else line for line in lines]
+
+    # ------------------------------------------------------------------ diagnostics
+
+    def unsupported(self, code: Code, message: str, span: Span | None) -> None:
+        """Record an error: the program cannot be expressed faithfully (never dropped silently)."""
+        self._emission.diagnostics.append(Diagnostic(code, Severity.ERROR, f"{self.name}: {message}", span))
+
+    def warn(self, code: Code, message: str, span: Span | None) -> None:
+        """Record a warning: an exact or nearest-faithful lowering was applied."""
+        self._emission.diagnostics.append(Diagnostic(code, Severity.WARNING, f"{self.name}: {message}", span))
+
+    def extend(self, diagnostics: Iterable[Diagnostic]) -> None:
+        self._emission.diagnostics.extend(diagnostics)
+
+    def native_other(self, node: ir.Native) -> list[str]:
+        """A native block for another vendor: not emitted, with a warning and a comment.
+
+        A vendor name no backend knows is an error (a typo would otherwise vanish everywhere).
+        """
+        from rmot.backends import TARGETS
+
+        if node.vendor.lower() not in TARGETS:
+            self.unsupported(codes.NATIVE_OTHER_VENDOR, f"native block vendor must be one of "
+                             f"{', '.join(TARGETS)} (got '{node.vendor}')", node.span)
+            return [self.comment(f"native {node.vendor} block not emitted")]
+        self.warn(codes.NATIVE_SKIPPED, f"native {node.vendor} block is not emitted for {self.name}", node.span)
+        return [self.comment(f"native {node.vendor} block skipped")]

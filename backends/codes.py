@@ -1,0 +1,39 @@
+"""Diagnostic codes of the shared backend machinery and of RAPID, KRL and Fanuc TP.
+
+Range E400–E449 / W400–W449 (the URScript, INFORM, VAL3 and neutral backends use
+E450–E499 / W450–W499 in `codes_b.py`).
+"""
+
+from __future__ import annotations
+
+from rmot.lang.diagnostics import Code
+
+__all__ = [
+    "MISSING_RECORD", "UNSUPPORTED", "NATIVE_OTHER_VENDOR", "BAD_PORT", "SYNC_UNSUPPORTED",
+    "NO_BRANCH", "NOT_SIX_AXIS", "PROGRAM_TOO_LONG", "INPUT_MISSING",
+    "NAME_CHANGED", "NAME_CLASH", "SPEED_ROUNDED", "ZONE_ROUNDED", "LOWERED", "TIMEOUT_LOWERED",
+    "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED",
+]
+
+# errors: the program cannot be expressed faithfully for this vendor
+UNSUPPORTED = Code("E400", "backend-unsupported", "an instruction has no faithful form for this vendor")
+MISSING_RECORD = Code("E401", "missing-plan-record", "a move has no planned joint solution")
+NO_BRANCH = Code("E402", "missing-branch", "a Cartesian target needs configuration data but its branch is unknown")
+NOT_SIX_AXIS = Code("E403", "unsupported-robot", "the vendor format needs a 6-axis arm")
+BAD_PORT = Code("E404", "io-port-out-of-range", "an I/O port number is outside what the vendor accepts")
+SYNC_UNSUPPORTED = Code("E405", "sync-unsupported", "a multi-task barrier has no form for this vendor")
+PROGRAM_TOO_LONG = Code("E406", "program-too-long", "a routine exceeds the controller's size limit")
+INPUT_MISSING = Code("E408", "compile-input-missing", "the program file given to `rmot compile` does not exist")
+NATIVE_OTHER_VENDOR = Code("E407", "native-unknown-vendor", "a native block names an unknown vendor")
+
+# warnings: an exact or nearest-faithful lowering was applied
+NAME_CHANGED = Code("W400", "name-changed", "a name was made legal for the vendor")
+NAME_CLASH = Code("W401", "name-clash", "two names became equal after legalisation; one was renamed")
+SPEED_ROUNDED = Code("W402", "speed-rounded", "the vendor cannot express the exact speed; the nearest was used")
+ZONE_ROUNDED = Code("W403", "zone-rounded", "the vendor cannot express the exact zone; the nearest was used")
+LOWERED = Code("W404", "instruction-lowered", "an instruction was lowered to an exact equivalent")
+TIMEOUT_LOWERED = Code("W405", "timeout-lowered", "a wait with timeout was lowered to a timed loop")
+PROGRAM_SPLIT = Code("W406", "program-split", "a long program was split into parts called from a main")
+NATIVE_SKIPPED = Code("W407", "native-other-vendor", "a native block for another vendor was not emitted")
+ACCEL_IGNORED = Code("W408", "accel-not-expressed", "the vendor cannot express the programmed acceleration")
+DURATION_IGNORED = Code("W409", "duration-not-expressed", "a fixed move duration is expressed as speed only")

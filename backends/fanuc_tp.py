@@ -1,0 +1,346 @@
+"""Fanuc TP backend (.ls ASCII programs, R-30iA/iB; loaded with the ASCII Upload option).
+
+Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
+  * positions in mm; orientation W, P, R in degrees, fixed axes X then Y then Z:
+    R = Rz(R)·Ry(P)·Rx(W); joints J1..J6 in degrees (the controller's values; rmot's robot
+    library already uses Fanuc's J2/J3 convention).
+  * Cartesian positions carry `UF : n, UT : m, CONFIG : 'F|N U|D T|B, t4, t5, t6'`:
+    F = wrist flipped, U = elbow up, T = wrist centre in front of J1 (B = back); t4..t6 are
+    the turn numbers of J4, J5, J6: floor((q + 180 deg) / 360 deg).
+  * joint moves to joint targets use the joint representation (J1= ... deg);
+    joint moves to pose targets use the Cartesian representation with the CONFIG above.
+  * frames: UFRAME 0 is the robot's world (= base) frame; each named rmot frame gets
+    UFRAME 1, 2, ... and each tool (the bare flange included) UTOOL 1, 2, ... in order of
+    first use. The main program writes them at its start through position registers
+    PR[FRAME_PR + k] (`PR[i]=LPOS`, `PR[i,j]=value`, `UFRAME[n]=PR[i]`): those PRs and
+    UFRAME/UTOOL slots are overwritten.
+  * speeds: J moves in % of the maximum joint speed (integer 1..100), L/C moves in mm/sec
+    (integer); a `time` modifier is emitted exactly as `n.nnsec`. Non-integer values are
+    rounded to the nearest (warning W402).
+  * zones: FINE, else CNTn. CNT is not a radius (it scales the corner rounding with speed):
+    rmot emits CNT = round(radius / CNT_MM) clamped to 1..100, the nearest faithful choice
+    (warning W403 on every blended move).
+  * I/O: DO[n]=ON/OFF, DO[n]=PULSE,t sec, AO[n]=value, WAIT t(sec), WAIT DI[n]=ON;
+    with a timeout: $WAITTMOUT (1/100 s) then `WAIT ... TIMEOUT,LBL[k]`, the label aborting
+    the program. Runtime if: `IF DI[n]<>ON,JMP LBL[else]` ... `JMP LBL[end]`.
+  * procs: each routine is its own program (.ls) called with CALL; `sync` has no TP form
+    without multi-arm options (error E405).
+  * names: program names at most 36 characters (R-30iA and later), upper case, a letter
+    first, letters, digits and '_'; comments are cut into pieces of at most 32 characters.
+  * size: a program longer than MAX_INSTRUCTIONS instructions is split into programs
+    NAME_PART1.. called from NAME (warning W406), keeping pendant loading and editing
+    practical; TP itself numbers lines up to 9999.
+"""
+
+from __future__ import annotations
+
+import math
+import textwrap
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from rmot.backends import codes
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.lowering import count_instructions, routine_names, split_body
+from rmot.backends.names import NameRules, NameTable
+from rmot.compiler import ir
+
+__all__ = ["FanucBackend", "FANUC_RULES", "config_string", "turn_number"]
+
+FANUC_RULES = NameRules(max_len=36, upper=True, reserved=frozenset({"MAIN"}), prefix="P")
+COMMENT_MAX = 32
+
+
+def turn_number(angle: float) -> int:
+    """Fanuc turn number: 0 for (-180, 180] deg, 1 for (180, 540], -1 for (-540, -180]."""
+    return math.ceil((angle - math.pi) / (2 * math.pi) - 1e-12)
+
+
+def config_string(branch: ir.Config, q: np.ndarray) -> str:
+    """'N U T, t4, t5, t6' from the planned branch and joints (see the module docstring)."""
+    flip = "F" if branch.wrist is ir.Wrist.FLIP else "N"
+    up = "U" if branch.elbow is ir.Elbow.UP else "D"
+    top = "T" if branch.shoulder is ir.Shoulder.FRONT else "B"
+    turns = ", ".join(str(turn_number(q[i])) for i in (3, 4, 5))
+    return f"{flip} {up} {top}, {turns}"
+
+
+@dataclass
+class _Program:
+    """One .ls program being printed: its numbered positions and labels."""
+
+    positions: list[str] = field(default_factory=list)
+    labels: int = 0
+
+    def label(self) -> int:
+        self.labels += 1
+        return self.labels
+
+
+@dataclass
+class _Frames:
+    """UFRAME / UTOOL numbers of one task, in order of first use."""
+
+    frames: dict[str, ir.Pose] = field(default_factory=dict)
+    tools: dict[str | None, ir.Pose] = field(default_factory=dict)
+
+    def uframe(self, frame: ir.FrameRef) -> int:
+        if frame.name is None:
+            return 0
+        self.frames.setdefault(frame.name, frame.pose)
+        return list(self.frames).index(frame.name) + 1
+
+    def utool(self, tool: ir.ToolRef) -> int:
+        self.tools.setdefault(tool.name, tool.tcp)
+        return list(self.tools).index(tool.name) + 1
+
+
+class FanucBackend(Backend):
+    name = "fanuc"
+    file_ext = ".ls"
+    COMMENT = "!"
+    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/sec",
+                                       "joint_speed": "%", "time": "sec", "wait_timeout": "1/100 s"}
+    MAX_INSTRUCTIONS: ClassVar[int] = 1000
+    FRAME_PR: ClassVar[int] = 90
+    CNT_MM: ClassVar[float] = 1.0  # mm of blend radius per CNT step (documented heuristic)
+    EMIT: ClassVar[dict[type, str]] = {
+        ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
+        ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
+        ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
+    }
+
+    # ------------------------------------------------------------------ programs
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        self._names = NameTable(FANUC_RULES, self.name)
+        self._frames = _Frames()
+        self._files: dict[str, str] = {}
+        main_name = self._names.name(ctx.program_name, ctx.task.span)
+        body = self.lowered_body(ctx)
+        self._routine_of = {uid: self._names.name(r) for uid, r in routine_names(body).items()}
+        if count_instructions(body) > self.MAX_INSTRUCTIONS:
+            parts = split_body(body, self.MAX_INSTRUCTIONS, main_name)
+            self.warn(codes.PROGRAM_SPLIT, f"program has {count_instructions(body)} instructions, more than "
+                      f"{self.MAX_INSTRUCTIONS} per TP program; split into {len(parts)} programs", ctx.task.span)
+            for part in parts:
+                assert isinstance(part, ir.ProcCall)
+                self._routine_of[part.uid] = self._names.name(part.proc)
+            body = parts
+        main = self._program(main_name, body, ctx, is_main=True)
+        self.extend(self._names.diagnostics)
+        return {f"{main_name}.ls": main, **dict(sorted(self._files.items()))}
+
+    def _program(self, name: str, body: tuple[ir.Instr, ...], ctx: TaskContext, *, is_main: bool) -> str:
+        saved = getattr(self, "_p", None)
+        self._p = _Program()
+        lines = [self.comment(piece) for text in header_lines(ctx.plan, self.name, self.findings_header)
+                 for piece in _pieces(text)]
+        main = self.body(body, ctx)
+        if is_main:
+            lines += self._frame_setup()
+        lines += main
+        text = self._ls(name, lines, self._p.positions)
+        self._p = saved  # type: ignore[assignment]
+        return text
+
+    def _ls(self, name: str, lines: list[str], positions: list[str]) -> str:
+        out = [f"/PROG  {name}", "/ATTR", "OWNER\t\t= MNEDITOR;", 'COMMENT\t\t= "rmot";',
+               "PROG_SIZE\t= 0;", "FILE_NAME\t= ;", "VERSION\t\t= 0;", f"LINE_COUNT\t= {sum(not x.startswith(':') for x in lines)};",
+               "MEMORY_SIZE\t= 0;", "PROTECT\t\t= READ_WRITE;",
+               "TCD:  STACK_SIZE\t= 0,", "      TASK_PRIORITY\t= 50,", "      TIME_SLICE\t= 0,",
+               "      BUSY_LAMP_OFF\t= 0,", "      ABORT_REQUEST\t= 0,", "      PAUSE_REQUEST\t= 0;",
+               "DEFAULT_GROUP\t= 1,*,*,*,*;", "CONTROL_CODE\t= 00000000 00000000;", "/MN"]
+        n = 0
+        for line in lines:
+            if line.startswith(":"):  # continuation of a circular move: no line number
+                out.append(f"    {line} ;")
+            else:
+                n += 1
+                out.append(f"{n:>4}:  {line} ;")
+        out += ["/POS"] + positions + ["/END"]
+        return "\n".join(out) + "\n"
+
+    def comment(self, text: str) -> str:
+        return f"!{text}"
+
+    def source_comment(self, node: ir.Instr) -> str | None:
+        from rmot.backends.base import source_ref
+
+        ref = source_ref(node.span) if self.source_map else None
+        return self.comment(ref[-COMMENT_MAX:]) if ref else None
+
+    def _frame_setup(self) -> list[str]:
+        """UTOOL/UFRAME values written through position registers (see the module docstring)."""
+        lines: list[str] = []
+        k = 0
+        for kind, table in (("UTOOL", self._frames.tools), ("UFRAME", self._frames.frames)):
+            for index, (fname, pose) in enumerate(table.items(), start=1):
+                k += 1
+                pr = self.FRAME_PR + k
+                x, y, z = position_mm(pose)
+                w, p, r = reversed(euler_zyx_deg(pose))
+                lines.append(self.comment(f"{kind}[{index}] = {fname or 'flange'}"[:COMMENT_MAX]))
+                lines.append(f"PR[{pr}]=LPOS")
+                lines += [f"PR[{pr},{j}]={fmt(v, 4)}" for j, v in enumerate((x, y, z, w, p, r), start=1)]
+                lines.append(f"{kind}[{index}]=PR[{pr}]")
+        return lines
+
+    # ------------------------------------------------------------------ motion
+
+    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
+        rec = self.record_or_error(node, ctx)
+        if rec is None or rec.q_target is None:
+            return [self.comment(f"move {node.uid} not emitted")]
+        if ctx.robot.dof != 6:
+            self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
+                             f"TP positions (got {ctx.robot.dof})", node.span)
+            return [self.comment("move not emitted: not a 6-axis arm")]
+        uf, ut = self._frames.uframe(node.frame), self._frames.utool(node.tool)
+        zone = self._zone(node)
+        if node.kind is ir.MotionKind.JOINT:
+            speed = self._joint_speed(node)
+            if isinstance(node.target, ir.JointTarget):
+                p = self._joint_position(node.target, uf, ut)
+            else:
+                p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node)
+            return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}"]
+        if isinstance(node.target, ir.JointTarget):
+            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+            return []
+        speed = self._tcp_speed(node)
+        if node.kind is ir.MotionKind.CIRCULAR and node.via is not None:  # P[via] numbered first
+            q_via = rec.q_via if rec.q_via is not None else rec.q_target
+            via = self._cart_position(node.via, q_via, rec.branch, uf, ut, node)
+        to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node)
+        head = [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
+        if node.kind is ir.MotionKind.LINEAR:
+            return head + [f"L P[{to}] {speed} {zone}"]
+        if node.via is None:
+            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+            return head
+        return head + [f"C P[{via}]", f":  P[{to}] {speed} {zone}"]
+
+    def _joint_speed(self, node: ir.Move) -> str:
+        if node.motion.duration is not None:
+            return f"{fmt(node.motion.duration, 2)}sec"
+        pct = node.motion.joint_speed * 100.0
+        n = max(1, min(100, round(pct)))
+        if abs(n - pct) > 1e-9:
+            self.warn(codes.SPEED_ROUNDED, f"joint speed {fmt(pct, 3)} % must be an integer for TP; "
+                      f"emitted as {n}%", node.span)
+        return f"{n}%"
+
+    def _tcp_speed(self, node: ir.Move) -> str:
+        if node.motion.duration is not None:
+            return f"{fmt(node.motion.duration, 2)}sec"
+        v = node.motion.tcp_speed * 1000.0
+        n = max(1, round(v))
+        if abs(n - v) > 1e-9:
+            self.warn(codes.SPEED_ROUNDED, f"TCP speed {fmt(v, 3)} mm/sec must be an integer for TP; "
+                      f"emitted as {n}mm/sec", node.span)
+        return f"{n}mm/sec"
+
+    def _zone(self, node: ir.Move) -> str:
+        zone = node.motion.zone
+        if zone.is_fine:
+            return "FINE"
+        r = zone.radius * 1000.0
+        cnt = max(1, min(100, round(r / self.CNT_MM)))
+        self.warn(codes.ZONE_ROUNDED, f"zone {fmt(r, 3)} mm has no exact TP form (CNT is not a radius); "
+                  f"emitted as CNT{cnt}", node.span)
+        return f"CNT{cnt}"
+
+    def _joint_position(self, target: ir.JointTarget, uf: int, ut: int) -> int:
+        values = [math.degrees(v) for v in target.values]
+        cells = [f"J{i + 1}= {fmt(v, 3):>9} deg" for i, v in enumerate(values)]
+        body = [f"\tUF : {uf}, UT : {ut},", "\t" + ",\t".join(cells[:3]) + ",", "\t" + ",\t".join(cells[3:])]
+        return self._position(body, target.name)
+
+    def _cart_position(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
+                       uf: int, ut: int, node: ir.Move) -> int:
+        assert q is not None
+        if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+            self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
+                             "the CONFIG string (got none)", node.span)
+            branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        x, y, z = position_mm(target.in_frame)
+        w, p, r = reversed(euler_zyx_deg(target.in_frame))
+        body = [f"\tUF : {uf}, UT : {ut},\t\tCONFIG : '{config_string(branch, q)}',",
+                f"\tX = {fmt(x, 3):>9}  mm,\tY = {fmt(y, 3):>9}  mm,\tZ = {fmt(z, 3):>9}  mm,",
+                f"\tW = {fmt(w, 3):>9} deg,\tP = {fmt(p, 3):>9} deg,\tR = {fmt(r, 3):>9} deg"]
+        return self._position(body, target.name)
+
+    def _position(self, body: list[str], name: str | None) -> int:
+        n = len(self._p.positions) + 1
+        label = f':"{name[:16]}"' if name else ""
+        self._p.positions.append("\n".join([f"P[{n}{label}]{{", "   GP1:"] + body + ["};"]))
+        return n
+
+    # ------------------------------------------------------------------ I/O and flow
+
+    @staticmethod
+    def _level(value: bool) -> str:
+        return "ON" if value else "OFF"
+
+    def set_digital(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+        return [f"DO[{node.port}{_sig(node.signal)}]={self._level(node.value)}"]
+
+    def set_analog(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+        return [f"AO[{node.port}{_sig(node.signal)}]={fmt(node.value, 3)}"]
+
+    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+        return [f"DO[{node.port}{_sig(node.signal)}]=PULSE,{fmt(node.duration, 1)}sec"]
+
+    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+        return [f"WAIT {fmt(node.duration, 2)}(sec)"]
+
+    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+        c = node.condition
+        cond = f"DI[{c.port}{_sig(c.signal)}]={self._level(c.value)}"
+        if node.timeout is None:
+            return [f"WAIT {cond}"]
+        timeout, done = self._p.label(), self._p.label()
+        return [f"$WAITTMOUT={int(round(node.timeout * 100))}", f"WAIT {cond} TIMEOUT,LBL[{timeout}]",
+                f"JMP LBL[{done}]", f"LBL[{timeout}]", self.comment("wait timed out"), "ABORT",
+                f"LBL[{done}]"]
+
+    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+        c = node.condition
+        other, done = self._p.label(), self._p.label()
+        lines = [f"IF DI[{c.port}{_sig(c.signal)}]<>{self._level(c.value)},JMP LBL[{other}]"]
+        lines += self.body(node.then, ctx) + [f"JMP LBL[{done}]", f"LBL[{other}]"]
+        return lines + self.body(node.otherwise, ctx) + [f"LBL[{done}]"]
+
+    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' has no TP form without the "
+                         "multi-arm option; use an I/O handshake", node.span)
+        return [self.comment(f"sync {node.name}"[:COMMENT_MAX])]
+
+    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+        if node.vendor.lower() != self.name:
+            return self.native_other(node)
+        return [line.strip().rstrip(";").rstrip() for line in node.text.splitlines() if line.strip()]
+
+    def native_other(self, node: ir.Native) -> list[str]:
+        super().native_other(node)
+        return [self.comment(f"native {node.vendor} skipped"[:COMMENT_MAX])]
+
+    def proc_call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
+        name = self._routine_of[node.uid]
+        if f"{name}.ls" not in self._files:
+            self._files[f"{name}.ls"] = ""  # reserve: a recursive print sees it as taken
+            self._files[f"{name}.ls"] = self._program(name, node.body, ctx, is_main=False)
+        return [f"CALL {name}"]
+
+
+def _sig(signal: str | None) -> str:
+    """The cell's signal name as a TP I/O comment: DO[1:gripper_close]."""
+    return f":{signal[:24]}" if signal else ""
+
+
+def _pieces(text: str) -> list[str]:
+    """Comment text wrapped into lines of at most COMMENT_MAX characters."""
+    return textwrap.wrap(text, COMMENT_MAX, break_long_words=True) or [""]

@@ -1,0 +1,377 @@
+"""Yaskawa Motoman INFORM job files (.JBI) for DX200 / YRC1000 controllers.
+
+Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interface):
+  * file layout: `/JOB`, `//NAME`, `//POS` (`///NPOS C,BC,EC,P,BP,EX`, `///TOOL n`,
+    `///POSTYPE ROBOT`, `///RECTAN`, `///RCONF ...`, `Cxxxxx=X,Y,Z,Rx,Ry,Rz`), `//INST`
+    (`///DATE`, `///ATTR SC,RW`, `///GROUP1 RB1`), `NOP`, instructions, `END`; one job per
+    file, jobs call each other with `CALL JOB:NAME`;
+  * positions are Cartesian in the ROBOT coordinate system (the robot base, as the IR's
+    `CartesianTarget.pose`: frames already composed, so no user frame is needed), X Y Z in mm
+    and Rx Ry Rz in degrees with R = Rz(Rz)·Ry(Ry)·Rx(Rx) (roll, pitch, yaw about fixed axes);
+    the values are the *TCP* of tool file `///TOOL n` — tool n is the n-th tool of the robot
+    in the cell (0 = the flange); the tool data to enter in the tool file is printed as
+    comments at the top of the job;
+  * `///RCONF l,m,n,o,p,q,0,0` from the planned branch and joints: l 0 flip / 1 no-flip,
+    m 0 upper arm (elbow up) / 1 lower arm, n 0 front / 1 rear, o/p/q 1 when |R|, |T|, |S|
+    >= 180 deg (axes 4, 6, 1);
+  * joint targets: a job's joint positions are encoder pulses (`///POSTYPE PULSE`), whose
+    pulses-per-degree are specific to each robot and not in the robot library; a joint move
+    is therefore written as `MOVJ` to the Cartesian position of its planned joints with the
+    full RCONF (manipulator type + turn flags), which selects exactly those joints — an exact
+    lowering, reported as a warning (W450);
+  * speeds: `VJ=` % of max joint speed (0.01 % steps), `V=` mm/s (0.1 mm/s steps);
+    zones: `PL=0..4` positioning levels with the factory distances `PL_DISTANCES_MM`
+    (parameters S1CxG033–036); the nearest level is used with a warning when the blend is
+    not one of them; accelerations are not programmable in mm/s^2 (ACC=/DEC= are % of the
+    controller's maximum): the controller default is used, with one warning per program;
+  * I/O: `DOUT OT#(n) ON`, `PULSE OT#(n) T=s` (runs in the background, 0.01 s steps),
+    `AOUT AO#(n) volts`, `WAIT IN#(n)=ON T=s` (continues after the timeout), `TIMER T=s`;
+  * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per call;
+  * comments: `'file.rmot:12` (a comment line holds at most 32 characters).
+
+Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we keep jobs below
+`MAX_INSTRUCTIONS` (300) top-level IR instructions (~1800 INFORM lines); a longer main body is
+split into parts `NAME_PART1`, ... called from the main job (W406); a part or routine that is
+still too large is an error (E406). Names: job names are upper-case, at most 32 characters
+(DX200/YRC1000). The ///DATE line is fixed (2000/01/01 00:00) so output is deterministic.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rmot.backends import codes, codes_b
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.lowering import routine_names, split_body
+from rmot.backends.names import NameRules, NameTable
+from rmot.compiler import ir, planned
+
+__all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
+
+PL_DISTANCES_MM = (0.0, 12.5, 25.0, 50.0, 100.0)
+MAX_POSITIONS = 999
+MAX_INSTRUCTIONS = 300
+COMMENT_WIDTH = 32
+NAME_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper=True, prefix="J",
+                       reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC"}))
+NATIVE_NAMES = frozenset({"inform", "jbi", "yaskawa", "motoman"})
+DATE = "2000/01/01 00:00"
+
+
+def rconf(branch: ir.Config, q: np.ndarray) -> str:
+    """`l,m,n,o,p,q,0,0`: flip, arm, front/rear from the branch; R, T, S turn flags from q."""
+    turn = [1 if abs(math.degrees(q[i])) >= 180.0 - 1e-9 else 0 for i in (3, 5, 0)]
+    bits = [0 if branch.wrist is ir.Wrist.FLIP else 1,
+            0 if branch.elbow is ir.Elbow.UP else 1,
+            0 if branch.shoulder is ir.Shoulder.FRONT else 1, *turn, 0, 0]
+    return ",".join(str(b) for b in bits)
+
+
+def position_values(pose: ir.Pose) -> str:
+    """`X,Y,Z,Rx,Ry,Rz`: mm with 3 places, degrees with 4 places."""
+    rz, ry, rx = euler_zyx_deg(pose)
+    return ",".join([*(fmt(v, 3) for v in position_mm(pose)), *(fmt(v, 4) for v in (rx, ry, rz))])
+
+
+@dataclass
+class _Position:
+    tool: int
+    conf: str
+    values: str
+
+
+@dataclass
+class _Job:
+    """One job being printed: its taught positions, its label counter, its lines."""
+
+    name: str
+    positions: list[_Position] = field(default_factory=list)
+    labels: int = 0
+
+    def add(self, pos: _Position) -> str:
+        self.positions.append(pos)
+        return f"C{len(self.positions) - 1:05d}"
+
+
+def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
+                 out: dict[int, ir.Move | None] | None = None) -> tuple[dict[int, ir.Move | None], ir.Move | None]:
+    """For each move uid, the move executed just before it (None when unknown statically)."""
+    out = {} if out is None else out
+    for node in body:
+        if isinstance(node, ir.Move):
+            out[node.uid] = last
+            last = node
+        elif isinstance(node, ir.ProcCall):
+            _, last = predecessors(node.body, last, out)
+        elif isinstance(node, ir.If):
+            _, a = predecessors(node.then, last, out)
+            _, b = predecessors(node.otherwise, last, out)
+            last = a if a is b else None
+    return out, last
+
+
+class InformBackend(Backend):
+    name = "inform"
+    file_ext = ".JBI"
+    COMMENT = "'"
+    UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
+             "zone": "PL level", "time": "s", "analog": "V"}
+    MAX_LINES = None
+    EMIT = {
+        ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
+        ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
+        ir.ProcCall: "call", ir.Native: "native", ir.Sync: "sync",
+    }
+
+    # ------------------------------------------------------------------ jobs
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        names = NameTable(NAME_RULES, self.name)
+        main = names.name(ctx.program_name, ctx.task.span)
+        body = self.lowered_body(ctx)
+        split = split_body(body, MAX_INSTRUCTIONS, ctx.program_name)
+        if split is not body:
+            self.warn(codes.PROGRAM_SPLIT, f"job '{main}' must hold at most {MAX_INSTRUCTIONS} "
+                      f"instructions (got more); split into {len(split)} parts", ctx.task.span)
+        self._routines = {uid: names.name(n) for uid, n in routine_names(split).items()}
+        self._preds, _ = predecessors(body)
+        self._tools = self.tool_numbers(ctx)
+        self._files: dict[str, str] = {}
+        self._jobs: list[_Job] = []
+        self._warned_accel = False
+        self.job(main, split, ctx)
+        self.extend(names.diagnostics)
+        return dict(sorted(self._files.items()))
+
+    def job(self, name: str, body: tuple[ir.Instr, ...], ctx: TaskContext) -> None:
+        job = _Job(name)
+        self._jobs.append(job)
+        inst = self.body(body, ctx)
+        self._jobs.pop()
+        if len(job.positions) > MAX_POSITIONS:
+            self.unsupported(codes.PROGRAM_TOO_LONG, f"job '{name}' must hold at most "
+                             f"{MAX_POSITIONS} positions (got {len(job.positions)})", ctx.task.span)
+        head = [c for line in header_lines(ctx.plan, self.name, self.findings_header)
+                for c in self.wrap(line)] + self.tool_comments(ctx)
+        text = (["/JOB", f"//NAME {name}"] + self.pos_section(job) +
+                ["//INST", f"///DATE {DATE}", f"///COMM {ctx.plan.program.name[:32]}",
+                 "///ATTR SC,RW", "///GROUP1 RB1", "NOP"] + head + inst + ["END"])
+        self._files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
+
+    @staticmethod
+    def pos_section(job: _Job) -> list[str]:
+        lines = ["//POS", f"///NPOS {len(job.positions)},0,0,0,0,0"]
+        tool: int | None = None
+        conf: str | None = None
+        for k, pos in enumerate(job.positions):
+            if pos.tool != tool:
+                lines.append(f"///TOOL {pos.tool}")
+                tool = pos.tool
+            if k == 0:
+                lines += ["///POSTYPE ROBOT", "///RECTAN"]
+            if pos.conf != conf:
+                lines.append(f"///RCONF {pos.conf}")
+                conf = pos.conf
+            lines.append(f"C{k:05d}={pos.values}")
+        return lines
+
+    # ------------------------------------------------------------------ text helpers
+
+    def comment(self, text: str) -> str:
+        """`'text`, cut to the controller's 32 characters (the end is kept: `file:line`)."""
+        return "'" + text[-(COMMENT_WIDTH - 1):] if text else "'"
+
+    def wrap(self, text: str) -> list[str]:
+        """A long comment as several 32-character comment lines."""
+        step = COMMENT_WIDTH - 1
+        return ["'" + text[i:i + step] for i in range(0, len(text), step)] or ["'"]
+
+    @staticmethod
+    def tool_numbers(ctx: TaskContext) -> dict[str | None, int]:
+        tools = [t for t in ctx.plan.program.cell.tools if t.robot == ctx.robot.name]
+        return {None: 0, **{t.name: k + 1 for k, t in enumerate(tools)}}
+
+    def tool_comments(self, ctx: TaskContext) -> list[str]:
+        out: list[str] = []
+        for t in ctx.plan.program.cell.tools:
+            if t.robot != ctx.robot.name:
+                continue
+            rz, ry, rx = euler_zyx_deg(t.tcp)
+            x, y, z = position_mm(t.tcp)
+            out += self.wrap(f"TOOL {self._tools[t.name]} = {t.name}")
+            out.append(f"'XYZ {fmt(x, 3)},{fmt(y, 3)},{fmt(z, 3)}"[:COMMENT_WIDTH])
+            out.append(f"'RXYZ {fmt(rx, 4)},{fmt(ry, 4)},{fmt(rz, 4)}"[:COMMENT_WIDTH])
+        return out
+
+    # ------------------------------------------------------------------ motion
+
+    def position(self, rec: planned.InstructionRecord, q: np.ndarray | None, pose: ir.Pose | None,
+                 node: ir.Move) -> str | None:
+        """Register a taught position (TCP pose + RCONF) in the current job; its C name."""
+        branch = rec.branch
+        if pose is None or q is None or branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+            self.unsupported(codes.NO_BRANCH, "INFORM positions must have a TCP pose and a full "
+                             "6-axis branch (got none: not a 6R arm, or no plan)", node.span)
+            return None
+        tool = self._tools.get(node.tool.name, 0)
+        return self._jobs[-1].add(_Position(tool, rconf(branch, q), position_values(pose)))
+
+    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
+        rec = self.record_or_error(node, ctx)
+        if rec is None:
+            return []
+        self.motion_notes(node)
+        pl = self.zone(rec.blend_radius, node)
+        if node.kind is ir.MotionKind.JOINT:
+            c = self.position(rec, rec.q_target, rec.tcp_pose, node)
+            if isinstance(node.target, ir.JointTarget):
+                self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
+                          "position of its planned joints with full RCONF (pulse counts per "
+                          "degree are robot-specific)", node.span)
+            return [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+        v = self.linear_speed(node)
+        if node.kind is ir.MotionKind.LINEAR:
+            c = self.position(rec, rec.q_target, rec.tcp_pose, node)
+            return [f"MOVL {c} V={v}{pl}"] if c else []
+        return self.circular(node, rec, ctx, v, pl)
+
+    def circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: TaskContext,
+                 v: str, pl: str) -> list[str]:
+        """Three MOVC lines: the arc's start (the previous target), the via point, the end."""
+        prev = self._preds.get(node.uid)
+        prev_rec = ctx.record(prev) if prev is not None else None
+        if node.via is None or rec.q_via is None or prev_rec is None or prev_rec.q_target is None:
+            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "an INFORM circular move must follow a "
+                             "move in the same block and carry its planned via point (got none)",
+                             node.span)
+            return []
+        start = self.position(prev_rec, prev_rec.q_target, prev_rec.tcp_pose, node)
+        via = self.position(rec, rec.q_via, node.via.pose, node)
+        end = self.position(rec, rec.q_target, rec.tcp_pose, node)
+        if None in (start, via, end):
+            return []
+        return [f"MOVC {start} V={v}", f"MOVC {via} V={v}", f"MOVC {end} V={v}{pl}"]
+
+    def motion_notes(self, node: ir.Move) -> None:
+        if not self._warned_accel:
+            self._warned_accel = True
+            self.warn(codes.ACCEL_IGNORED, "INFORM sets acceleration only as % of the "
+                      "controller's maximum (ACC=/DEC=); the controller default is used", node.span)
+        if node.motion.duration is not None:
+            self.warn(codes.DURATION_IGNORED, f"INFORM has no fixed-duration move; the duration "
+                      f"{node.motion.duration:g} s is expressed by the speed only", node.span)
+
+    def joint_speed(self, node: ir.Move) -> str:
+        pct = node.motion.joint_speed * 100.0
+        text = fmt(min(100.0, max(0.01, pct)), 2)
+        if abs(float(text) - pct) > 1e-9:
+            self.warn(codes.SPEED_ROUNDED, f"joint speed must be a multiple of 0.01 % in 0.01..100 % "
+                      f"(got {pct:g} %); VJ={text} used", node.span)
+        return text
+
+    def linear_speed(self, node: ir.Move) -> str:
+        mm_s = node.motion.tcp_speed * 1000.0
+        text = fmt(max(0.1, mm_s), 1)
+        if abs(float(text) - mm_s) > 1e-6:
+            self.warn(codes.SPEED_ROUNDED, f"TCP speed must be a multiple of 0.1 mm/s "
+                      f"(got {mm_s:g} mm/s); V={text} used", node.span)
+        return text
+
+    def zone(self, radius: float, node: ir.Move) -> str:
+        mm = radius * 1000.0
+        level = min(range(len(PL_DISTANCES_MM)), key=lambda k: (abs(PL_DISTANCES_MM[k] - mm), k))
+        if abs(PL_DISTANCES_MM[level] - mm) > 1e-6:
+            self.warn(codes.ZONE_ROUNDED, f"blend radius must be one of the PL distances "
+                      f"{', '.join(f'{d:g}' for d in PL_DISTANCES_MM)} mm (got {mm:g} mm); "
+                      f"PL={level} ({PL_DISTANCES_MM[level]:g} mm) used", node.span)
+        return f" PL={level}"
+
+    # ------------------------------------------------------------------ I/O and timing
+
+    def port_ok(self, port: int, low: int, high: int, what: str, span: object) -> bool:
+        if low <= port <= high:
+            return True
+        self.unsupported(codes.BAD_PORT, f"{what} port must be in {low}..{high} (got {port})", span)  # type: ignore[arg-type]
+        return False
+
+    def seconds(self, value: float, node: ir.Instr, what: str) -> str:
+        text = fmt(value, 2)
+        if abs(float(text) - value) > 1e-9:
+            self.warn(codes.LOWERED, f"{what} must be a multiple of 0.01 s (got {value:g} s); "
+                      f"T={text} used", getattr(node, "span", None))
+        return text
+
+    def set_do(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+        if not self.port_ok(node.port, 1, 1024, "digital output", node.span):
+            return []
+        return [f"DOUT OT#({node.port}) {'ON' if node.value else 'OFF'}"]
+
+    def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+        if not self.port_ok(node.port, 1, 40, "analog output", node.span):
+            return []
+        if not -14.0 <= node.value <= 14.0:
+            self.unsupported(codes.BAD_PORT, f"analog output must be in -14..14 V (got {node.value:g} V)", node.span)
+            return []
+        return [f"AOUT AO#({node.port}) {fmt(node.value, 2)}"]
+
+    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+        if not self.port_ok(node.port, 1, 1024, "digital output", node.span):
+            return []
+        return [f"PULSE OT#({node.port}) T={self.seconds(node.duration, node, 'pulse time')}"]
+
+    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+        # TIMER takes at most 655.35 s: longer waits are several TIMERs (exact).
+        out, left = [], node.duration
+        while left > 655.35:
+            out.append("TIMER T=655.35")
+            left -= 655.35
+        return out + [f"TIMER T={self.seconds(left, node, 'wait time')}"]
+
+    def condition(self, cond: ir.InputCondition, span: object, negate: bool = False) -> str | None:
+        if not self.port_ok(cond.port, 1, 1024, "digital input", span):
+            return None
+        return f"IN#({cond.port})={'ON' if cond.value != negate else 'OFF'}"
+
+    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+        test = self.condition(node.condition, node.span)
+        if test is None:
+            return []
+        if node.timeout is None:
+            return [f"WAIT {test}"]
+        return [f"WAIT {test} T={self.seconds(node.timeout, node, 'timeout')}"]
+
+    def label(self) -> str:
+        job = self._jobs[-1]
+        job.labels += 1
+        return f"*L{job.labels:03d}"
+
+    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+        test = self.condition(node.condition, node.span, negate=True)
+        if test is None:
+            return []
+        skip = self.label()
+        then = self.body(node.then, ctx)
+        if not node.otherwise:
+            return [f"JUMP {skip} IF {test}", *then, skip]
+        done = self.label()
+        return [f"JUMP {skip} IF {test}", *then, f"JUMP {done}", skip, *self.body(node.otherwise, ctx), done]
+
+    # ------------------------------------------------------------------ structure
+
+    def call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
+        name = self._routines[node.uid]
+        self.job(name, node.body, ctx)
+        return [f"CALL JOB:{name}"]
+
+    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+        if node.vendor.lower() not in NATIVE_NAMES:
+            return self.native_other(node)
+        return node.text.splitlines()
+
+    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' must have an INFORM form "
+                         "(independent jobs per robot have no barrier; use an I/O handshake)", node.span)
+        return []

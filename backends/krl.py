@@ -1,0 +1,289 @@
+"""KUKA KRL backend (.src + .dat per module; KR C4 / KSS 8 syntax).
+
+Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Integrators"):
+  * positions mm; orientation A, B, C in degrees with R = Rz(A)·Ry(B)·Rx(C); joints A1..A6 in
+    degrees (the controller's zero and direction); E1..E6 written as 0 (no external axes).
+  * Cartesian targets are E6POS in the move's $BASE (= the rmot frame in the robot base frame;
+    $BASE is relative to $WORLD, assumed to coincide with $ROBROOT, KUKA's default floor
+    mounting) with $TOOL = the tool's TCP in the flange frame and $LOAD its mass.
+  * Status S: bit 0 = wrist point behind A1 (overhead area, shoulder back), bit 1 = A3 beyond
+    its stretched angle (elbow up), bit 2 = A5 < 0. Turn T: bit i set when axis i+1 < 0.
+  * joint moves to joint targets: PTP with an E6AXIS; joint moves to pose targets: PTP with an
+    E6POS whose S and T select the planned branch (PTP is the only motion that reads S/T).
+  * speeds: $VEL.CP in m/s, $ACC.CP in m/s^2 (LIN, CIRC); $VEL_AXIS[i] / $ACC_AXIS[i] in % of
+    each axis's maximum (PTP, set by the local routine RMOT_PTP). A fixed move `time` has no
+    KRL form: the programmed speeds are used (warning W409).
+  * zones: exact stop without approximation, else C_DIS with $APO.CDIS in mm (exact).
+  * I/O: $OUT[n]=TRUE, PULSE($OUT[n],TRUE,t), WAIT SEC t, WAIT FOR $IN[n]==TRUE,
+    IF $IN[n]==TRUE THEN; $ANOUT[n] = volts / 10 (KRL's -1.0..1.0 is -10..10 V).
+    KRL's WAIT FOR has no timeout: a timed wait is lowered to a wait on the input OR timer
+    $TIMER[TIMER_INDEX] (ms) followed by HALT when the input did not come (warning W405).
+  * every motion writes the system variables it needs right before it ($TOOL, $LOAD, $BASE,
+    speeds, $APO.CDIS): an instruction never depends on the text of another one.
+  * procs are local DEFs of the module; `sync` has no KRL form without RoboTeam (error E405).
+  * identifiers: at most 24 characters, a letter or '_' first, letters, digits, '_'.
+  * size: a module body longer than MAX_INSTRUCTIONS instructions is split into modules
+    NAME_part1.. called from NAME (each with its own .dat); KRL itself has no line limit,
+    the split keeps programs loadable and editable on the smartPAD (warning W406).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from rmot.backends import codes
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, turn_bits
+from rmot.backends.lowering import count_instructions, routine_names, split_body
+from rmot.backends.names import DataPool, NameRules, NameTable
+from rmot.compiler import ir
+
+__all__ = ["KrlBackend", "KRL_RULES", "status_of"]
+
+RESERVED = frozenset({
+    "AND", "ANIN", "ANOUT", "B_AND", "B_EXOR", "B_NOT", "B_OR", "BOOL", "BRAKE", "C_DIS",
+    "C_ORI", "C_PTP", "C_VEL", "CASE", "CAST_FROM", "CAST_TO", "CHAR", "CIRC", "CIRC_REL",
+    "CONST", "CONTINUE", "DEF", "DEFAULT", "DEFDAT", "DEFFCT", "DELAY", "DECL", "DIV", "DO",
+    "ELSE", "END", "ENDDAT", "ENDFCT", "ENDFOR", "ENDIF", "ENDLOOP", "ENDSWITCH", "ENDWHILE",
+    "ENUM", "EXIT", "EXT", "EXTFCT", "FALSE", "FOR", "GLOBAL", "GOTO", "HALT", "IF", "IMPORT",
+    "INTERRUPT", "INT", "IS", "LIN", "LIN_REL", "LOOP", "MAXIMUM", "MINIMUM", "NOT", "OR",
+    "PRIO", "PTP", "PTP_REL", "PUBLIC", "REAL", "REPEAT", "RESUME", "RETURN", "SEC", "SIGNAL",
+    "STRUC", "SWITCH", "THEN", "TO", "TRIGGER", "TRUE", "UNTIL", "WAIT", "WHEN", "WHILE", "EXOR",
+    "POS", "E6POS", "AXIS", "E6AXIS", "FRAME", "LOAD", "RMOT_PTP",
+})
+KRL_RULES = NameRules(max_len=24, first="A-Za-z_", reserved=RESERVED, prefix="P")
+E_AXES = ",E1 0.0,E2 0.0,E3 0.0,E4 0.0,E5 0.0,E6 0.0"
+PTP_HELPER = [
+    "DEF RMOT_PTP(VEL_PCT:IN, ACC_PCT:IN)",
+    "  ; PTP speed and acceleration in % of each axis's maximum",
+    "  REAL VEL_PCT, ACC_PCT",
+    "  INT I",
+    "  FOR I=1 TO 6",
+    "    $VEL_AXIS[I]=VEL_PCT",
+    "    $ACC_AXIS[I]=ACC_PCT",
+    "  ENDFOR",
+    "END",
+]
+
+
+def status_of(branch: ir.Config, q: np.ndarray) -> int:
+    """KRL Status for a 6-axis arm (see the module docstring)."""
+    return ((1 if branch.shoulder is ir.Shoulder.BACK else 0)
+            | (2 if branch.elbow is ir.Elbow.UP else 0)
+            | (4 if q[4] < 0.0 else 0))
+
+
+def frame_text(pose: ir.Pose) -> str:
+    """{X .., Y .., Z .., A .., B .., C ..} in mm and degrees."""
+    x, y, z = position_mm(pose)
+    a, b, c = euler_zyx_deg(pose)
+    return f"X {fmt(x, 3)},Y {fmt(y, 3)},Z {fmt(z, 3)},A {fmt(a, 4)},B {fmt(b, 4)},C {fmt(c, 4)}"
+
+
+@dataclass
+class _Module:
+    """Data and local routines collected while printing one module."""
+
+    data: DataPool
+    routines: dict[str, list[str]] = field(default_factory=dict)
+    uses_ptp_helper: bool = False
+
+
+class KrlBackend(Backend):
+    name = "krl"
+    file_ext = ".src"
+    COMMENT = ";"
+    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "m/s",
+                                       "tcp_accel": "m/s^2", "joint_speed": "%", "time": "s",
+                                       "analog": "V/10"}
+    MAX_INSTRUCTIONS: ClassVar[int] = 1000
+    TIMER_INDEX: ClassVar[int] = 16
+    EMIT: ClassVar[dict[type, str]] = {
+        ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
+        ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
+        ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
+    }
+
+    # ------------------------------------------------------------------ program
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        self._names = NameTable(KRL_RULES, self.name)
+        main_name = self._names.name(ctx.program_name, ctx.task.span)
+        body = self.lowered_body(ctx)
+        self._routine_of = {uid: self._names.name(r) for uid, r in routine_names(body).items()}
+        files: dict[str, str] = {}
+        if count_instructions(body) > self.MAX_INSTRUCTIONS:
+            parts = split_body(body, self.MAX_INSTRUCTIONS, main_name)
+            self.warn(codes.PROGRAM_SPLIT, f"program has {count_instructions(body)} instructions, more than "
+                      f"{self.MAX_INSTRUCTIONS} per KRL module; split into {len(parts)} modules", ctx.task.span)
+            calls = []
+            for part in parts:
+                assert isinstance(part, ir.ProcCall)
+                pname = self._names.name(part.proc)
+                files.update(self._module(pname, part.body, ctx))
+                calls.append(f"{pname}()")
+            files = {**self._module(main_name, (), ctx, calls=calls), **files}
+        else:
+            files.update(self._module(main_name, body, ctx))
+        self.extend(self._names.diagnostics)
+        return files
+
+    def _module(self, name: str, body: tuple[ir.Instr, ...], ctx: TaskContext,
+                calls: list[str] | None = None) -> dict[str, str]:
+        """The .src and .dat of one module: `body`, or calls to part modules."""
+        self._m = _Module(DataPool(self._names))
+        main = list(calls) if calls is not None else self.body(body, ctx)
+        head = [self.comment(line) for line in self.header(ctx)]
+        src = ["&ACCESS RVP", f"DEF {name}( )"] + self.indent(head + main, "  ") + ["END"]
+        for rname, rlines in self._m.routines.items():
+            src += ["", f"DEF {rname}( )"] + self.indent(rlines, "  ") + ["END"]
+        if self._m.uses_ptp_helper:
+            src += [""] + PTP_HELPER
+        dat = ["&ACCESS RVP", f"DEFDAT {name}"] + self.indent(head, "  ")
+        dat += [f"  DECL {value.split(':', 1)[0]} {dname}={value.split(':', 1)[1]}"
+                for dname, value in self._m.data.items]
+        dat.append("ENDDAT")
+        return {f"{name}.src": "\n".join(src) + "\n", f"{name}.dat": "\n".join(dat) + "\n"}
+
+    def header(self, ctx: TaskContext) -> list[str]:  # type: ignore[override]
+        from rmot.backends.base import header_lines
+
+        return header_lines(ctx.plan, self.name, self.findings_header)
+
+    # ------------------------------------------------------------------ motion
+
+    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
+        rec = self.record_or_error(node, ctx)
+        if rec is None:
+            return [self.comment(f"move (uid {node.uid}) not emitted: no planned joints")]
+        if ctx.robot.dof != 6:
+            self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
+                             f"E6POS/E6AXIS data (got {ctx.robot.dof})", node.span)
+            return [self.comment("move not emitted: robot is not a 6-axis arm")]
+        if node.motion.duration is not None:
+            self.warn(codes.DURATION_IGNORED, f"a fixed move time ({fmt(node.motion.duration, 3)} s) has no "
+                      "KRL form; the programmed speeds are used", node.span)
+        lines = self._tool_base(node)
+        m = node.motion
+        zone = "" if m.zone.is_fine else " C_DIS"
+        if not m.zone.is_fine:
+            lines.append(f"$APO.CDIS={fmt(m.zone.radius * 1000.0, 3)}")
+        if node.kind is ir.MotionKind.JOINT:
+            self._m.uses_ptp_helper = True
+            lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
+            if isinstance(node.target, ir.JointTarget):
+                return lines + [f"PTP {self._axis(node.target)}{zone}"]
+            return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node)}{zone}"]
+        lines += [f"$VEL.CP={fmt(m.tcp_speed, 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
+        if isinstance(node.target, ir.JointTarget):
+            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+            return lines
+        to = self._pos(node.target, rec.q_target, rec.branch, node)
+        if node.kind is ir.MotionKind.LINEAR:
+            return lines + [f"LIN {to}{zone}"]
+        if node.via is None:
+            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+            return lines
+        q_via = rec.q_via if rec.q_via is not None else rec.q_target
+        via = self._pos(node.via, q_via, rec.branch, node, hint="via")
+        return lines + [f"CIRC {via},{to}{zone}"]
+
+    def _tool_base(self, node: ir.Move) -> list[str]:
+        lines = []
+        if node.tool.name is None:
+            lines += ["$TOOL=$NULLFRAME"]
+        else:
+            tname = self._m.data.add(node.tool.name, f"FRAME:{{{frame_text(node.tool.tcp)}}}")
+            mass = node.tool.mass
+            cog = f"X 0.0,Y 0.0,Z {fmt(node.tool.tcp.position[2] * 500.0, 3)},A 0.0,B 0.0,C 0.0"
+            lname = self._m.data.add(f"{node.tool.name}_load", f"LOAD:{{M {fmt(mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}")
+            lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
+        if node.frame.name is None:
+            lines.append("$BASE=$NULLFRAME")
+        else:
+            bname = self._m.data.add(node.frame.name, f"FRAME:{{{frame_text(node.frame.pose)}}}")
+            lines.append(f"$BASE={bname}")
+        return lines
+
+    def _axis(self, target: ir.JointTarget) -> str:
+        values = ",".join(f"A{i + 1} {fmt(math.degrees(v), 4)}" for i, v in enumerate(target.values))
+        return self._m.data.add(target.name or "j", f"E6AXIS:{{{values}{E_AXES}}}")
+
+    def _pos(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
+             node: ir.Move, hint: str | None = None) -> str:
+        assert q is not None
+        if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+            self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
+                             "Status/Turn (got none)", node.span)
+            branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        st = f",S {status_of(branch, q)},T {turn_bits(q)}"
+        return self._m.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}")
+
+    # ------------------------------------------------------------------ I/O and flow
+
+    @staticmethod
+    def _level(value: bool) -> str:
+        return "TRUE" if value else "FALSE"
+
+    def set_digital(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+        return [f"$OUT[{node.port}]={self._level(node.value)}" + self._signal_note(node.signal)]
+
+    def set_analog(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+        if abs(node.value) > 10.0:
+            self.unsupported(codes.BAD_PORT, f"analog value must be within -10..10 V for $ANOUT "
+                             f"(got {fmt(node.value, 3)})", node.span)
+        return [f"$ANOUT[{node.port}]={fmt(node.value / 10.0, 4)}" + self._signal_note(node.signal)]
+
+    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+        return [f"PULSE($OUT[{node.port}],TRUE,{fmt(node.duration, 3)})" + self._signal_note(node.signal)]
+
+    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+        return [f"WAIT SEC {fmt(node.duration, 3)}"]
+
+    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+        c = node.condition
+        cond = f"$IN[{c.port}]=={self._level(c.value)}"
+        if node.timeout is None:
+            return [f"WAIT FOR {cond}" + self._signal_note(c.signal)]
+        self.warn(codes.TIMEOUT_LOWERED, f"KRL WAIT FOR has no timeout; lowered to a wait on $TIMER"
+                  f"[{self.TIMER_INDEX}] and HALT after {fmt(node.timeout, 3)} s", node.span)
+        t = f"$TIMER[{self.TIMER_INDEX}]"
+        return [
+            f"$TIMER_STOP[{self.TIMER_INDEX}]=TRUE", f"{t}=0", f"$TIMER_STOP[{self.TIMER_INDEX}]=FALSE",
+            f"WAIT FOR ({cond}) OR ({t}>={int(round(node.timeout * 1000))})" + self._signal_note(c.signal),
+            f"$TIMER_STOP[{self.TIMER_INDEX}]=TRUE",
+            f"IF NOT ({cond}) THEN", "  HALT ; timeout", "ENDIF",
+        ]
+
+    @staticmethod
+    def _signal_note(signal: str | None) -> str:
+        return f" ; {signal}" if signal else ""
+
+    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+        c = node.condition
+        lines = [f"IF $IN[{c.port}]=={self._level(c.value)} THEN" + self._signal_note(c.signal)]
+        lines += self.indent(self.body(node.then, ctx), "  ")
+        if node.otherwise:
+            lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), "  ")
+        return lines + ["ENDIF"]
+
+    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' has no KRL form without the "
+                         "RoboTeam option; use an I/O handshake", node.span)
+        return [self.comment(f"sync {node.name} not emitted")]
+
+    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+        if node.vendor.lower() != self.name:
+            return self.native_other(node)
+        return node.text.splitlines()
+
+    def proc_call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
+        name = self._routine_of[node.uid]
+        if name not in self._m.routines:
+            self._m.routines[name] = []
+            args = f"({', '.join(node.args)})" if node.args else ""
+            self._m.routines[name] = [self.comment(f"{node.proc}{args}")] + self.body(node.body, ctx)
+        return [f"{name}()"]

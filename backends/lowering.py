@@ -1,0 +1,110 @@
+"""IR -> IR transforms shared by the vendor backends (sqlglot's transforms.py).
+
+Each function takes a task body and returns a new one, keeping every node's uid and span
+(records and diagnostics keep pointing at the source). Nodes a lowering creates that have no
+source instruction get negative uids (never looked up in the plan's records).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterator
+from dataclasses import replace
+
+from rmot.compiler import ir
+
+__all__ = [
+    "count_instructions", "flatten_procs", "iter_proc_calls", "pulse_as_set_wait",
+    "routine_names", "split_body",
+]
+
+
+def flatten_procs(body: tuple[ir.Instr, ...]) -> tuple[ir.Instr, ...]:
+    """Replace every ProcCall by its (already substituted) body, also inside If arms."""
+    out: list[ir.Instr] = []
+    for node in body:
+        if isinstance(node, ir.ProcCall):
+            out.extend(flatten_procs(node.body))
+        elif isinstance(node, ir.If):
+            out.append(replace(node, then=flatten_procs(node.then), otherwise=flatten_procs(node.otherwise)))
+        else:
+            out.append(node)
+    return tuple(out)
+
+
+def pulse_as_set_wait(body: tuple[ir.Instr, ...]) -> tuple[ir.Instr, ...]:
+    """Pulse -> set on, wait, set off (blocking: the program waits out the pulse).
+
+    For vendors without a pulse instruction. Not identical in timing to a controller pulse
+    (which runs in the background), so backends using it must warn.
+    """
+    out: list[ir.Instr] = []
+    for node in body:
+        if isinstance(node, ir.Pulse):
+            out += [
+                ir.SetDigital(uid=node.uid, port=node.port, value=True, signal=node.signal, span=node.span),
+                ir.WaitTime(uid=-node.uid - 1, duration=node.duration, span=node.span),
+                ir.SetDigital(uid=-node.uid - 2, port=node.port, value=False, signal=node.signal, span=node.span),
+            ]
+        elif isinstance(node, ir.If):
+            out.append(replace(node, then=pulse_as_set_wait(node.then), otherwise=pulse_as_set_wait(node.otherwise)))
+        elif isinstance(node, ir.ProcCall):
+            out.append(replace(node, body=pulse_as_set_wait(node.body)))
+        else:
+            out.append(node)
+    return tuple(out)
+
+
+def count_instructions(body: tuple[ir.Instr, ...]) -> int:
+    """Instructions in `body`, counting into If arms but not into ProcCall bodies (own routines)."""
+    n = 0
+    for node in body:
+        n += 1
+        if isinstance(node, ir.If):
+            n += count_instructions(node.then) + count_instructions(node.otherwise)
+    return n
+
+
+def split_body(body: tuple[ir.Instr, ...], max_instructions: int, stem: str) -> tuple[ir.Instr, ...]:
+    """Split a long body into ProcCall parts `stem_part1`, `stem_part2`, ... of at most
+    `max_instructions` top-level instructions each (an If counts with its arms).
+
+    Returns `body` unchanged when it fits. The parts carry the span of their first
+    instruction and negative uids.
+    """
+    if count_instructions(body) <= max_instructions:
+        return body
+    parts: list[list[ir.Instr]] = [[]]
+    size = 0
+    for node in body:
+        n = count_instructions((node,))
+        if parts[-1] and size + n > max_instructions:
+            parts.append([])
+            size = 0
+        parts[-1].append(node)
+        size += n
+    return tuple(
+        ir.ProcCall(uid=-(k + 1) * 1_000_000, proc=f"{stem}_part{k + 1}", args=(), body=tuple(p),
+                    span=getattr(p[0], "span", None))
+        for k, p in enumerate(parts)
+    )
+
+
+def iter_proc_calls(body: tuple[ir.Instr, ...]) -> Iterator[ir.ProcCall]:
+    """Every ProcCall in source order, outer before inner, including those inside If arms."""
+    for node in ir.walk(body):
+        if isinstance(node, ir.ProcCall):
+            yield node
+
+
+def routine_names(body: tuple[ir.Instr, ...]) -> dict[int, str]:
+    """A routine name per ProcCall uid: the proc's name when it is called once, otherwise
+    `name_1`, `name_2`, ... in source order (each call has its own substituted targets)."""
+    calls = list(iter_proc_calls(body))
+    total = Counter(c.proc for c in calls)
+    seen: Counter[str] = Counter()
+    names: dict[int, str] = {}
+    for call in calls:
+        seen[call.proc] += 1
+        names[call.uid] = call.proc if total[call.proc] == 1 else f"{call.proc}_{seen[call.proc]}"
+    return names

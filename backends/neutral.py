@@ -1,0 +1,157 @@
+"""Neutral trajectory files: CSV (the sampled joint trajectory) and JSON (the whole Plan).
+
+CSV, one file per task (`<program>.csv`, `<program>_<task>.csv` with several tasks):
+  header `t,q1..qn,qd1..qdn`, then one row per sample at the plan's fixed step; SI units
+  (s, rad or m, rad/s or m/s); `CSV_DECIMALS` places; -0 printed as 0.
+
+JSON, one file per program (`<program>.json`): the Plan as data —
+  program, cell, step, cycle_time, and per task its robot, dof, cycle_time, instructions
+  (uid, kind, source `file:line`, t_start, t_end, joint solution, branch, TCP pose in mm +
+  quaternion (w, x, y, z), blend in mm, variant), the variants, and the sampled trajectory
+  (t, q, qd). Keys sorted, floats rounded to `JSON_DECIMALS` places, -0 printed as 0, so the
+  same plan always gives the same bytes.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import numpy as np
+
+from rmot.backends import codes_b
+from rmot.backends.base import Backend, EmitResult, TaskContext, fmt, source_ref
+from rmot.compiler import ir, planned
+
+__all__ = ["CSV_DECIMALS", "JSON_DECIMALS", "CsvBackend", "JsonBackend", "plan_document"]
+
+CSV_DECIMALS = 9
+JSON_DECIMALS = 9
+
+
+def _num(x: float, decimals: int = JSON_DECIMALS) -> float:
+    """A float rounded to fixed places, with -0.0 normalised to 0.0."""
+    v = round(float(x), decimals)
+    return 0.0 if v == 0.0 else v
+
+
+def _nums(a: np.ndarray | tuple[float, ...], decimals: int = JSON_DECIMALS) -> list[Any]:
+    arr = np.asarray(a, dtype=float)
+    if arr.ndim == 1:
+        return [_num(v, decimals) for v in arr]
+    return [_nums(row, decimals) for row in arr]
+
+
+class CsvBackend(Backend):
+    """`t,q1..qn,qd1..qdn` per task at the plan's step."""
+
+    name = "csv"
+    file_ext = ".csv"
+    COMMENT = "#"
+    UNITS = {"time": "s", "joint": "rad or m", "joint_speed": "rad/s or m/s"}
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        traj = ctx.task_plan.trajectory
+        if traj.t.size == 0:
+            self.unsupported(codes_b.NEUTRAL_NO_SAMPLES, f"task '{ctx.task.name}' must have a "
+                             "sampled trajectory (got 0 samples)", ctx.task.span)
+            return {}
+        dof = traj.q.shape[1]
+        header = ["t"] + [f"q{j + 1}" for j in range(dof)] + [f"qd{j + 1}" for j in range(dof)]
+        rows = [",".join(header)]
+        for k in range(traj.t.size):
+            values = (traj.t[k], *traj.q[k], *traj.qd[k])
+            rows.append(",".join(fmt(v, CSV_DECIMALS) for v in values))
+        return {f"{ctx.program_name}{self.file_ext}": "\n".join(rows) + "\n"}
+
+
+class JsonBackend(Backend):
+    """The whole Plan as one deterministic JSON document."""
+
+    name = "json"
+    file_ext = ".json"
+    UNITS = {"time": "s", "joint": "rad or m", "length": "mm", "orientation": "quaternion wxyz"}
+
+    def emit(self, plan: planned.Plan, *, source_map: bool = True) -> EmitResult:
+        result = super().emit(plan, source_map=source_map)
+        doc = plan_document(plan)
+        text = json.dumps(doc, sort_keys=True, separators=(",", ":"), ensure_ascii=True) + "\n"
+        return EmitResult({f"{plan.program.name}{self.file_ext}": text}, result.diagnostics)
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        if ctx.task_plan.trajectory.t.size == 0:
+            self.unsupported(codes_b.NEUTRAL_NO_SAMPLES, f"task '{ctx.task.name}' must have a "
+                             "sampled trajectory (got 0 samples)", ctx.task.span)
+        return {}
+
+
+def plan_document(plan: planned.Plan) -> dict[str, Any]:
+    """The Plan as JSON-ready data (see the module docstring for the layout)."""
+    return {
+        "program": plan.program.name,
+        "cell": plan.program.cell.name,
+        "step": _num(plan.step),
+        "cycle_time": _num(plan.cycle_time),
+        "tasks": [_task(tp) for tp in plan.tasks],
+    }
+
+
+def _task(tp: planned.TaskPlan) -> dict[str, Any]:
+    nodes = {n.uid: n for n in ir.walk(tp.task.body)}
+    traj = tp.trajectory
+    return {
+        "name": tp.task.name,
+        "robot": tp.robot,
+        "dof": int(traj.q.shape[1]),
+        "cycle_time": _num(tp.cycle_time),
+        "instructions": [_record(r, nodes.get(r.uid)) for r in tp.records],
+        "variants": [{"index": v.index, "if_uid": v.if_uid, "arm": v.arm,
+                      "trajectory": _trajectory(v.trajectory)} for v in tp.variants],
+        "trajectory": _trajectory(traj),
+    }
+
+
+def _trajectory(traj: planned.Trajectory) -> dict[str, Any]:
+    return {"t": _nums(traj.t), "q": _nums(traj.q), "qd": _nums(traj.qd)}
+
+
+def _kind(node: ir.Instr | None) -> str:
+    if node is None:
+        return "unknown"
+    if isinstance(node, ir.Move):
+        return f"move_{node.kind.name.lower()}"
+    return {ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog", ir.Pulse: "pulse",
+            ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if", ir.Sync: "sync",
+            ir.Native: "native", ir.ProcCall: "proc_call"}[type(node)]
+
+
+def _pose(pose: ir.Pose | None) -> dict[str, Any] | None:
+    if pose is None:
+        return None
+    return {"position_mm": [_num(c * 1000.0) for c in pose.position],
+            "quaternion_wxyz": [_num(c) for c in pose.quaternion]}
+
+
+def _branch(branch: ir.Config | None) -> dict[str, Any] | None:
+    if branch is None:
+        return None
+    return {"shoulder": branch.shoulder.value if branch.shoulder else None,
+            "elbow": branch.elbow.value if branch.elbow else None,
+            "wrist": branch.wrist.value if branch.wrist else None}
+
+
+def _record(rec: planned.InstructionRecord, node: ir.Instr | None) -> dict[str, Any]:
+    return {
+        "uid": rec.uid,
+        "kind": _kind(node),
+        "source": source_ref(rec.span),
+        "t_start": _num(rec.t_start),
+        "t_end": _num(rec.t_end),
+        "q_target": None if rec.q_target is None else _nums(rec.q_target),
+        "q_via": None if rec.q_via is None else _nums(rec.q_via),
+        "branch": _branch(rec.branch),
+        "tcp_pose": _pose(rec.tcp_pose),
+        "flange_pose": _pose(rec.flange_pose),
+        "blend_mm": _num(rec.blend_radius * 1000.0),
+        "variant": rec.variant,
+    }

@@ -1,0 +1,295 @@
+"""ABB RAPID (.mod) backend: one module per task, procs as PROCs, data as CONST/PERS.
+
+Conventions (ABB "Technical reference manual – RAPID Instructions, Functions and Data types"):
+  * positions mm, orientations unit quaternions q1..q4 = w, x, y, z (robtarget.rot);
+    joints in degrees (jointtarget.robax), the controller's zero and direction.
+  * Cartesian targets are written in the move's work object (wobjdata.uframe = the rmot frame
+    in the robot base frame; the controller's world frame is assumed to coincide with the robot
+    base, ABB's default single-robot setup), with the tool declared as tooldata (robhold TRUE).
+  * confdata [cf1, cf4, cf6, cfx]: cf1/cf4/cf6 = quadrant of axis 1/4/6, floor(q / 90 deg)
+    (-1 for [-90, 0) deg); cfx (6-axis serial arms) = 4*(wrist centre behind axis 1)
+    + 2*(wrist centre behind the lower arm) + (axis 5 negative), i.e.
+    shoulder back -> +4, elbow down -> +2, q5 < 0 -> +1.
+  * speeddata: the predefined v5 ... v7000 when the TCP speed is one of them, else a CONST
+    speeddata [v_tcp, 500, 5000, 1000] (exact). Joint moves: `vmax` at a joint speed share of
+    100 %; RAPID has no per-move joint-speed share, so a smaller share is emitted as the planned
+    duration `\T:=` (nearest faithful; warning W402). A `time` modifier is emitted as `\T:=`.
+  * zonedata: `fine`, a predefined z0 ... z200 when the radius matches, else a CONST zonedata
+    with the exact TCP radius (orientation zones scaled like the predefined table).
+  * joint moves to joint targets -> MoveAbsJ; joint moves to pose targets -> MoveJ with
+    the robtarget's confdata (ConfJ\\On, the default, makes the controller take that branch).
+  * I/O: SetDO / SetAO / PulseDO\\PLength / WaitDI ...\\MaxTime (an unhandled
+    ERR_WAIT_MAXTIME stops the program) / IF DInput(..) = 1 THEN; signal names from the cell
+    (else do<n> / di<n> / ao<n>), which must exist in the controller's I/O configuration.
+  * sync -> WaitSyncTask with a `tasks` list T_ROB1..T_ROBn in task order (MultiMove).
+  * identifiers: at most 32 characters, a letter first, letters, digits and '_'.
+  * Program size: RAPID has no line limit (program memory is the limit); nothing is split.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import ClassVar
+
+from rmot.backends import codes
+from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm
+from rmot.backends.lowering import routine_names
+from rmot.backends.names import DataPool, NameRules, NameTable
+from rmot.compiler import ir, planned
+
+__all__ = ["RapidBackend", "RAPID_RULES", "cfx_of"]
+
+RESERVED = frozenset({
+    "ALIAS", "AND", "BACKWARD", "CASE", "CONNECT", "CONST", "DEFAULT", "DIV", "DO", "ELSE",
+    "ELSEIF", "ENDFOR", "ENDFUNC", "ENDIF", "ENDMODULE", "ENDPROC", "ENDRECORD", "ENDTEST",
+    "ENDTRAP", "ENDWHILE", "ERROR", "EXIT", "FALSE", "FOR", "FROM", "FUNC", "GOTO", "IF",
+    "INOUT", "LOCAL", "MOD", "MODULE", "NOSTEPIN", "NOT", "NOVIEW", "OR", "PERS", "PROC",
+    "RAISE", "READONLY", "RECORD", "RETRY", "RETURN", "STEP", "SYSMODULE", "TEST", "THEN",
+    "TO", "TRAP", "TRUE", "TRYNEXT", "UNDO", "VAR", "VIEWONLY", "WHILE", "WITH", "XOR",
+    "MAIN", "TOOL0", "WOBJ0", "LOAD0", "VMAX", "FINE",
+})
+RAPID_RULES = NameRules(max_len=32, reserved=RESERVED, prefix="r")
+
+SPEEDS_MM_S = (5, 10, 20, 30, 40, 50, 60, 80, 100, 150, 200, 300, 400, 500, 600, 800,
+               1000, 1500, 2000, 2500, 3000, 4000, 5000, 6000, 7000)
+ZONES_MM = (0, 1, 5, 10, 15, 20, 30, 40, 50, 60, 80, 100, 150, 200)  # z0 is 0.3 mm: not exact
+DATA_ORDER = ("speeddata", "zonedata", "jointtarget", "robtarget")
+EXTAX = "[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]"
+
+
+def cfx_of(branch: ir.Config, q5: float) -> int:
+    """ABB cfx for 6-axis serial arms (see the module docstring)."""
+    return (4 if branch.shoulder is ir.Shoulder.BACK else 0) + (
+        2 if branch.elbow is ir.Elbow.DOWN else 0) + (1 if q5 < 0.0 else 0)
+
+
+def num_name(x: float) -> str:
+    """A number as part of an identifier: 123.4 -> '123_4', 250.0 -> '250'."""
+    return fmt(x, 1).rstrip("0").rstrip(".").replace(".", "_").replace("-", "m")
+
+
+def pose_text(pose: ir.Pose) -> str:
+    """[[x,y,z],[q1,q2,q3,q4]] in mm and a w-first quaternion."""
+    return f"[[{fmt_list(position_mm(pose), 3)}],[{fmt_list(pose.quaternion, 6)}]]"
+
+
+@dataclass
+class _TaskState:
+    """Declarations collected while printing one task (emitted above the routines)."""
+
+    names: NameTable
+    data: DataPool
+    decls: dict[str, list[str]] = field(default_factory=dict)  # kind -> declaration lines
+    routines: dict[str, list[str]] = field(default_factory=dict)
+    routine_of: dict[int, str] = field(default_factory=dict)
+    accel_warned: bool = False
+
+
+class RapidBackend(Backend):
+    name = "rapid"
+    file_ext = ".mod"
+    COMMENT = "!"
+    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/s",
+                                       "time": "s", "mass": "kg"}
+    EMIT: ClassVar[dict[type, str]] = {
+        ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
+        ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
+        ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
+    }
+    INDENT = "  "
+
+    # ------------------------------------------------------------------ program
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        names = NameTable(RAPID_RULES, self.name)
+        names.reserve("main")
+        module = names.name(ctx.program_name, ctx.task.span)
+        self._st = _TaskState(names, DataPool(names))
+        body = self.lowered_body(ctx)
+        for uid, routine in routine_names(body).items():
+            self._st.routine_of[uid] = names.name(routine)
+        main = self.body(body, ctx)
+        lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
+        for kind in ("tooldata", "wobjdata", "sync"):
+            lines += self.indent(self._st.decls.get(kind, []), self.INDENT)
+        lines += self.indent(self._data_lines(), self.INDENT)
+        lines += [""] + self._routine("main", main)
+        for rname, rlines in self._st.routines.items():
+            lines += [""] + self._routine(rname, rlines)
+        lines.append("ENDMODULE")
+        self.extend(names.diagnostics)
+        return {f"{module}{self.file_ext}": "\n".join(lines) + "\n"}
+
+    def _routine(self, name: str, body: list[str]) -> list[str]:
+        return self.indent([f"PROC {name}()"] + self.indent(body, self.INDENT) + ["ENDPROC"], self.INDENT)
+
+    def _data_lines(self) -> list[str]:
+        """CONST data grouped by type (first-use order within a type)."""
+        rows = [(value.split(":", 1), name) for name, value in self._st.data.items]
+        return [f"CONST {kind} {name}:={literal};" for kind in DATA_ORDER
+                for (k, literal), name in rows if k == kind]
+
+    def _declare(self, kind: str, name: str, line: str) -> None:
+        lines = self._st.decls.setdefault(kind, [])
+        if line not in lines:
+            lines.append(line)
+
+    # ------------------------------------------------------------------ motion
+
+    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
+        rec = self.record_or_error(node, ctx)
+        if rec is None:
+            return [self.comment(f"move (uid {node.uid}) not emitted: no planned joints")]
+        if ctx.robot.dof != 6:
+            self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
+                             f"RAPID robtarget/jointtarget data (got {ctx.robot.dof})", node.span)
+            return [self.comment("move not emitted: robot is not a 6-axis arm")]
+        self._warn_accel(node)
+        tool, wobj = self._tool(node.tool), self._wobj(node.frame)
+        zone = self._zone(node.motion.zone)
+        if isinstance(node.target, ir.JointTarget):
+            target = self._jointtarget(node.target)
+            speed = self._joint_speed(node, rec)
+            return [f"MoveAbsJ {target}\\NoEOffs, {speed}, {zone}, {tool};"]
+        to = self._robtarget(node.target, rec.q_target, rec.branch, node)
+        if node.kind is ir.MotionKind.JOINT:
+            return [f"MoveJ {to}, {self._joint_speed(node, rec)}, {zone}, {tool}{wobj};"]
+        speed = self._tcp_speed(node)
+        if node.kind is ir.MotionKind.LINEAR:
+            return [f"MoveL {to}, {speed}, {zone}, {tool}{wobj};"]
+        if node.via is None:
+            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+            return [self.comment("circular move without via point not emitted")]
+        q_via = rec.q_via if rec.q_via is not None else rec.q_target
+        via = self._robtarget(node.via, q_via, rec.branch, node, hint="via")
+        return [f"MoveC {via}, {to}, {speed}, {zone}, {tool}{wobj};"]
+
+    def _warn_accel(self, node: ir.Move) -> None:
+        if not self._st.accel_warned:
+            self._st.accel_warned = True
+            self.warn(codes.ACCEL_IGNORED, "programmed accelerations are not expressed (AccSet is "
+                      "modal); the controller's own acceleration applies", node.span)
+
+    def _tcp_speed(self, node: ir.Move) -> str:
+        v = node.motion.tcp_speed * 1000.0
+        name = next((f"v{s}" for s in SPEEDS_MM_S if abs(s - v) < 1e-6), None)
+        if name is None:
+            name = self._st.data.add(f"v{num_name(v)}", f"speeddata:[{fmt(v, 3)},500,5000,1000]")
+        if node.motion.duration is not None:
+            return f"{name}\\T:={fmt(node.motion.duration, 3)}"
+        return name
+
+    def _joint_speed(self, node: ir.Move, rec: planned.InstructionRecord) -> str:
+        if node.motion.duration is not None:
+            return f"vmax\\T:={fmt(node.motion.duration, 3)}"
+        if node.motion.joint_speed >= 1.0:
+            return "vmax"
+        duration = rec.t_end - rec.t_start
+        self.warn(codes.SPEED_ROUNDED, f"joint speed {fmt(node.motion.joint_speed * 100, 1)} % has no "
+                  f"RAPID form; emitted as the planned duration \\T:={fmt(duration, 3)} s", node.span)
+        return f"vmax\\T:={fmt(duration, 3)}"
+
+    def _zone(self, zone: ir.Zone) -> str:
+        if zone.is_fine:
+            return "fine"
+        r = zone.radius * 1000.0
+        match = next((z for z in ZONES_MM[1:] if abs(z - r) < 1e-6), None)
+        if match is not None:
+            return f"z{match}"
+        o = 1.5 * r
+        return self._st.data.add(f"z{num_name(r)}", "zonedata:[FALSE," + ",".join(
+            fmt(x, 3) for x in (r, o, o, 0.1 * o, o, 0.1 * o)) + "]")
+
+    def _jointtarget(self, target: ir.JointTarget) -> str:
+        import math
+
+        values = fmt_list((math.degrees(v) for v in target.values), 3)
+        return self._st.data.add(target.name or "j", f"jointtarget:[[{values}],{EXTAX}]")
+
+    def _robtarget(self, target: ir.CartesianTarget, q: object, branch: ir.Config | None,
+                   node: ir.Move, hint: str | None = None) -> str:
+        if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+            self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
+                             "confdata (got none)", node.span)
+            branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch, q[4]))  # type: ignore[index]
+        conf = ",".join(str(c) for c in cf)
+        value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{EXTAX}]"
+        return self._st.data.add(hint or target.name or "p", value)
+
+    def _tool(self, tool: ir.ToolRef) -> str:
+        if tool.name is None:
+            return "tool0"
+        name = self._st.names.name(tool.name)
+        mass = tool.mass if tool.mass > 0 else 0.001  # RAPID rejects a tool load of 0 kg
+        cog = (0.0, 0.0, tool.tcp.position[2] * 500.0)  # half way to the TCP, mm (an estimate)
+        load = f"[{fmt(mass, 3)},[{fmt_list(cog, 3)}],[1,0,0,0],0,0,0]"
+        self._declare("tooldata", name, f"PERS tooldata {name}:=[TRUE,{pose_text(tool.tcp)},{load}];")
+        return name
+
+    def _wobj(self, frame: ir.FrameRef) -> str:
+        if frame.name is None:
+            return ""
+        name = self._st.names.name(frame.name)
+        self._declare("wobjdata", name, f"TASK PERS wobjdata {name}:=[FALSE,TRUE,\"\","
+                      f"{pose_text(frame.pose)},[[0,0,0],[1,0,0,0]]];")
+        return f"\\WObj:={name}"
+
+    # ------------------------------------------------------------------ I/O and flow
+
+    def _signal(self, prefix: str, port: int, signal: str | None) -> str:
+        return self._st.names.name(signal or f"{prefix}{port}")
+
+    def set_digital(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+        return [f"SetDO {self._signal('do', node.port, node.signal)}, {int(node.value)};"]
+
+    def set_analog(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+        return [f"SetAO {self._signal('ao', node.port, node.signal)}, {fmt(node.value, 3)};"]
+
+    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+        return [f"PulseDO\\PLength:={fmt(node.duration, 3)}, {self._signal('do', node.port, node.signal)};"]
+
+    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+        return [f"WaitTime {fmt(node.duration, 3)};"]
+
+    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+        c = node.condition
+        text = f"WaitDI {self._signal('di', c.port, c.signal)}, {int(c.value)}"
+        if node.timeout is not None:
+            text += f"\\MaxTime:={fmt(node.timeout, 3)}"
+        return [text + ";"]
+
+    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+        c = node.condition
+        lines = [f"IF DInput({self._signal('di', c.port, c.signal)}) = {int(c.value)} THEN"]
+        lines += self.indent(self.body(node.then, ctx), self.INDENT)
+        if node.otherwise:
+            lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)
+        return lines + ["ENDIF"]
+
+    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        n = len(ctx.plan.tasks)
+        task_list = ",".join(f'["T_ROB{k + 1}"]' for k in range(n))
+        name = self._st.names.name(node.name, node.span)
+        self._declare("sync", name, f"VAR syncident {name};")
+        self._declare("sync", "all_tasks", f"PERS tasks all_tasks{{{n}}}:=[{task_list}];")
+        return [f"WaitSyncTask {name}, all_tasks;"]
+
+    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+        if node.vendor.lower() != self.name:
+            return self.native_other(node)
+        return node.text.splitlines()
+
+    def proc_call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
+        name = self._st.routine_of[node.uid]
+        ref = f" ({self.source_comment_text(node)})" if self.source_comment_text(node) else ""
+        args = f"({', '.join(node.args)})" if node.args else ""
+        if name not in self._st.routines:
+            self._st.routines[name] = []  # reserve the slot first: routines print in call order
+            self._st.routines[name] = [self.comment(f"{node.proc}{args}{ref}")] + self.body(node.body, ctx)
+        return [f"{name};"]
+
+    def source_comment_text(self, node: ir.Instr) -> str | None:
+        from rmot.backends.base import source_ref
+
+        return source_ref(node.span) if self.source_map else None

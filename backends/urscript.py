@@ -1,0 +1,242 @@
+"""Universal Robots URScript (.script) backend.
+
+Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5):
+  * units: metres, radians, seconds; linear speed m/s, acceleration m/s^2, joint speed rad/s,
+    joint acceleration rad/s^2, blend radius `r` in metres;
+  * a pose is `p[x, y, z, rx, ry, rz]`: position in metres and a rotation vector (axis * angle,
+    rad), always in the robot *base* frame — URScript has no work object, so targets are the
+    IR's `CartesianTarget.pose` (TCP in base, frames already composed);
+  * the tool is `set_tcp(p[...])` (TCP in the flange frame), set at the start of every block
+    and again wherever the move's tool changes within that block;
+  * `movej([q1..q6], a, v, t, r)` for joint moves, always to the *planned* joint values (a pose
+    target of a joint move is never re-solved on the controller), `movel(p, a, v, t, r)`,
+    `movec(p_via, p_to, a, v, r, mode=0)` (mode 0: orientation interpolated to the target, as
+    the IR's SLERP); there is no configuration data: movel/movec follow the path from the
+    current joints, which the plan already fixed;
+  * movej `v`/`a` are the leading axis' speed and acceleration; the IR's fractions of each
+    joint's maximum are multiplied by `JOINT_LIMITS[model]`, the slowest joint's datasheet
+    maximum (exact where all joints share the maximum, otherwise conservative);
+  * I/O: `set_standard_digital_out(n, b)` (n 0..7), `set_configurable_digital_out(n - 8, b)`
+    (n 8..15), `get_standard_digital_in(n)` / `get_configurable_digital_in(n - 8)`;
+    analog out in volts on the 0–10 V domain: `set_analog_outputdomain(n, 1)` then
+    `set_standard_analog_out(n, volts / 10)`;
+  * a pulse runs in a URScript `thread` (set, sleep, reset) started with `run`, so the program
+    does not wait for it — the same timing as a controller pulse instruction;
+  * wait with timeout: a `while` loop counting `get_steptime()` per `sync()`; the program
+    continues after the timeout (as the IR's wait does);
+  * procs: each call becomes a nested `def` before the main body (URScript needs a function
+    defined before it is called);
+  * comments: `# file.rmot:12` above each instruction.
+
+Program size: URScript sets no documented limit on a program's length (the controller
+compiles the whole script on load), so programs are never split.
+
+The file is one `def <program>():` ... `end`: send it to the controller as a program (primary
+interface), or paste it into a Script node and call `<program>()`.
+"""
+
+from __future__ import annotations
+
+import math
+
+from rmot.backends import codes, codes_b
+from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector
+from rmot.backends.lowering import routine_names
+from rmot.backends.names import NameRules, NameTable
+from rmot.compiler import ir
+
+__all__ = ["JOINT_LIMITS", "UrScriptBackend"]
+
+# model -> (slowest joint's max speed rad/s, max joint acceleration rad/s^2).
+# Speeds: UR e-series datasheets (UR3e base/shoulder/elbow 180 deg/s, UR5e all 180 deg/s,
+# UR10e base/shoulder 120 deg/s). Acceleration: PolyScope's joint-acceleration maximum for a
+# Move node (800 deg/s^2).
+JOINT_LIMITS: dict[str, tuple[float, float]] = {
+    "ur3e": (math.radians(180.0), math.radians(800.0)),
+    "ur5e": (math.radians(180.0), math.radians(800.0)),
+    "ur10e": (math.radians(120.0), math.radians(800.0)),
+}
+DEFAULT_LIMITS = (math.radians(180.0), math.radians(800.0))
+
+NAME_RULES = NameRules(
+    max_len=63, allowed="A-Za-z0-9_", first="A-Za-z_", prefix="p_",
+    reserved=frozenset({"DEF", "END", "IF", "ELIF", "ELSE", "WHILE", "THREAD", "RUN", "KILL",
+                        "RETURN", "TRUE", "FALSE", "AND", "OR", "NOT", "XOR", "GLOBAL",
+                        "LOCAL", "HALT", "BREAK", "CONTINUE", "SEC"}),
+)
+NATIVE_NAMES = frozenset({"urscript", "ur"})
+POS_DECIMALS = 6  # metres: 1 micrometre
+ANGLE_DECIMALS = 6  # radians: 0.00006 deg
+RATE_DECIMALS = 6
+
+
+def pose_text(pose: ir.Pose) -> str:
+    """`p[x, y, z, rx, ry, rz]`: metres and a rotation vector in radians."""
+    return "p[" + fmt_list((*pose.position, *rotation_vector(pose)), POS_DECIMALS, ", ") + "]"
+
+
+class UrScriptBackend(Backend):
+    name = "urscript"
+    file_ext = ".script"
+    COMMENT = "#"
+    UNITS = {"length": "m", "angle": "rad", "linear_speed": "m/s", "linear_accel": "m/s^2",
+             "joint_speed": "rad/s", "joint_accel": "rad/s^2", "blend": "m", "time": "s"}
+    MAX_LINES = None
+    EMIT = {
+        ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
+        ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
+        ir.ProcCall: "call", ir.Native: "native", ir.Sync: "sync",
+    }
+
+    # ------------------------------------------------------------------ program
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        names = NameTable(NAME_RULES, self.name)
+        prog = names.name(ctx.program_name, ctx.task.span)
+        body = self.lowered_body(ctx)
+        self._routines = {uid: names.name(n) for uid, n in routine_names(body).items()}
+        self._routine_defs: list[str] = []
+        self._threads: dict[str, list[str]] = {}
+        main = self.block(body, ctx)
+        self.extend(names.diagnostics)
+        lines = self.header(ctx) + [f"def {prog}():"]
+        for thread_lines in self._threads.values():
+            lines += self.indent(thread_lines, self.INDENT)
+        lines += self.indent(self._routine_defs, self.INDENT)
+        lines += self.indent(main, self.INDENT) + ["end"]
+        return {f"{prog}{self.file_ext}": "\n".join(lines) + "\n"}
+
+    def block(self, nodes: tuple[ir.Instr, ...], ctx: TaskContext) -> list[str]:
+        """A body with `set_tcp` at its first move and wherever the tool changes."""
+        out: list[str] = []
+        current: ir.ToolRef | None = None
+        for node in nodes:
+            if isinstance(node, ir.Move) and node.tool != current:
+                current = node.tool
+                out.append(f"set_tcp({pose_text(node.tool.tcp)})")
+            out.extend(self.instr(node, ctx))
+        return out
+
+    # ------------------------------------------------------------------ motion
+
+    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
+        rec = self.record_or_error(node, ctx)
+        if rec is None:
+            return [self.comment(f"move uid {node.uid} has no plan")]
+        m = node.motion
+        r = fmt(rec.blend_radius, POS_DECIMALS)
+        if node.kind is ir.MotionKind.JOINT:
+            v_max, a_max = self.joint_limits(ctx, node)
+            q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"
+            t = self.duration_arg(m)
+            return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
+                    f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{t}, r={r})"]
+        speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
+        to = pose_text(rec.tcp_pose if rec.tcp_pose is not None else self.cartesian(node).pose)
+        if node.kind is ir.MotionKind.LINEAR:
+            return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]
+        if node.via is None:
+            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
+            return [self.comment("circular move without via")]
+        if m.duration is not None:
+            self.warn(codes.DURATION_IGNORED, f"movec has no time argument; the fixed duration "
+                      f"{m.duration:g} s is expressed by the speed only", node.span)
+        return [f"movec({pose_text(node.via.pose)}, {to}, {speed}, r={r}, mode=0)"]
+
+    @staticmethod
+    def duration_arg(m: ir.Motion) -> str:
+        """`, t=...`: URScript's exact fixed-duration argument of movej/movel."""
+        return "" if m.duration is None else f", t={fmt(m.duration, 4)}"
+
+    def cartesian(self, node: ir.Move) -> ir.CartesianTarget:
+        if isinstance(node.target, ir.CartesianTarget):
+            return node.target
+        raise AssertionError("a planned Cartesian move always carries tcp_pose")  # planner invariant
+
+    def joint_limits(self, ctx: TaskContext, node: ir.Move) -> tuple[float, float]:
+        model = ctx.robot.source.ref
+        if model in JOINT_LIMITS:
+            return JOINT_LIMITS[model]
+        self.warn(codes_b.SPEED_TABLE_UNKNOWN, f"robot model '{model}' must be in the URScript "
+                  f"joint speed table (it is not); assumed 180 deg/s and 800 deg/s^2", node.span)
+        return DEFAULT_LIMITS
+
+    # ------------------------------------------------------------------ I/O
+
+    def digital(self, port: int, span: object, kind: str) -> str | None:
+        """`standard_digital_out(3` or `configurable_digital_out(0`; None after an error."""
+        if 0 <= port <= 7:
+            return f"standard_digital_{kind}({port}"
+        if 8 <= port <= 15:
+            return f"configurable_digital_{kind}({port - 8}"
+        self.unsupported(codes.BAD_PORT, f"digital {kind}put port must be in 0..15 (got {port})", span)  # type: ignore[arg-type]
+        return None
+
+    def set_do(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+        sig = self.digital(node.port, node.span, "out")
+        return [f"set_{sig}, {node.value})"] if sig else []
+
+    def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+        if node.port not in (0, 1) or not 0.0 <= node.value <= 10.0:
+            self.unsupported(codes.BAD_PORT, f"analog output must be port 0..1 with 0..10 V "
+                             f"(got port {node.port}, {node.value:g} V)", node.span)
+            return []
+        return [f"set_analog_outputdomain({node.port}, 1)",
+                f"set_standard_analog_out({node.port}, {fmt(node.value / 10.0, 6)})"]
+
+    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+        sig = self.digital(node.port, node.span, "out")
+        if sig is None:
+            return []
+        name = f"rmot_pulse_{node.port}_{round(node.duration * 1000)}ms"
+        if abs(round(node.duration * 1000) - node.duration * 1000) > 1e-9:
+            name = f"rmot_pulse_{node.port}_{round(node.duration * 1e6)}us"
+        self._threads[name] = [f"thread {name}():", f"  set_{sig}, True)",
+                               f"  sleep({fmt(node.duration, 4)})", f"  set_{sig}, False)", "end"]
+        return [f"rmot_thread = run {name}()"]
+
+    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+        return [f"sleep({fmt(node.duration, 4)})"]
+
+    def condition(self, cond: ir.InputCondition, span: object) -> str | None:
+        sig = self.digital(cond.port, span, "in")
+        return f"get_{sig}) == {cond.value}" if sig else None
+
+    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+        test = self.condition(node.condition, node.span)
+        if test is None:
+            return []
+        if node.timeout is None:
+            return [f"while not ({test}):", "  sync()", "end"]
+        return ["rmot_waited = 0.0",
+                f"while not ({test}) and rmot_waited < {fmt(node.timeout, 4)}:",
+                "  sync()", "  rmot_waited = rmot_waited + get_steptime()", "end"]
+
+    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+        test = self.condition(node.condition, node.span)
+        if test is None:
+            return []
+        lines = [f"if {test}:"] + self.indent(self.block(node.then, ctx), self.INDENT)
+        if node.otherwise:
+            lines += ["else:"] + self.indent(self.block(node.otherwise, ctx), self.INDENT)
+        return lines + ["end"]
+
+    # ------------------------------------------------------------------ structure
+
+    def call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
+        name = self._routines[node.uid]
+        body = self.block(node.body, ctx) or ["sleep(0.0)"]
+        args = ", ".join(node.args)
+        self._routine_defs += [self.comment(f"proc {node.proc}({args})"), f"def {name}():"]
+        self._routine_defs += self.indent(body, self.INDENT) + ["end"]
+        return [f"{name}()"]
+
+    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+        if node.vendor.lower() not in NATIVE_NAMES:
+            return self.native_other(node)
+        return node.text.splitlines()
+
+    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' must have a URScript form "
+                         "(URScript has no multi-robot barrier; use an I/O handshake)", node.span)
+        return []

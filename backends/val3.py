@@ -1,0 +1,324 @@
+"""Stäubli VAL3 applications (CS8/CS9 controllers), written as the SRS application folder.
+
+We write the application as the controller stores it (what Stäubli Robotics Suite opens and
+what is copied to `usrapp/`): a folder `<app>/` holding `<app>.pjx` (the project),
+`<app>.dtx` (the global data: points, joints, tools, frames, motion descriptors, I/O) and one
+`.pgx` XML file per program (`start`, `stop`, one per proc call) with the VAL3 code in CDATA.
+
+Vendor conventions (VAL3 reference manual):
+  * lengths mm, angles deg, `trsf` = {x, y, z, rx, ry, rz} with R = Rx(rx)·Ry(ry)·Rz(rz)
+    (rotation about x, then about the new y, then the new z);
+  * `pointRx` = trsf + config {shoulder lefty|righty, elbow epositive|enegative,
+    wrist wpositive|wnegative} from the planned branch (front = lefty, back = righty; elbow up
+    = epositive, down = enegative; no-flip = wpositive, flip = wnegative), linked to a frame:
+    `world` (the robot base) or a cell frame declared as a `frame` datum when the move names
+    one (the point is then the TCP relative to that frame);
+  * `jointRx` in degrees: joint moves go to the planned joints with `movej(jointRx, tool, mdesc)`;
+    linear and circular moves are `movel(point, tool, mdesc)` and `movec(via, target, tool, mdesc)`;
+  * `tool` data = the TCP in the flange (`fatherId="flange[0]"`); the bare flange is `flange`;
+  * `mdesc` {accel, vel, decel (% of nominal joint accel/speed), tmax (mm/s), rmax (deg/s),
+    blend off|joint|Cartesian, leave, reach (mm)}: joint moves take vel/accel/decel from the
+    IR's fractions; linear moves take tmax = the TCP speed; a blend radius r becomes
+    leave = reach = r (blend joint for joint moves, Cartesian otherwise); TCP accelerations in
+    mm/s^2 have no mdesc field (accel stays 100 %, one warning per program);
+  * motion commands are queued: I/O, waits and delays would run before the robot arrives, so
+    a `waitEndMove()` precedes each of them (a blend into it becomes an exact stop: warned);
+  * I/O: `dio` arrays `dOut`/`dIn` linked to `BasicIO-1\\%Qn` / `BasicIO-1\\%In`; set is
+    `dOut[n] = true`; a pulse is set, `delay`, reset (blocking: warned); wait with timeout is
+    `bOk = watch(dIn[n] == true, s)` (continues after the timeout); if is `if ... else ... endIf`;
+    procs are `call name()`; native val3 text is passed through; analog outputs are refused;
+  * comments: `// file.rmot:12`.
+
+Size limits: VAL3 sets no line limit on a program and data arrays grow dynamically, so
+programs are not split. Names: identifiers of letters, digits and `_`, at most 15 characters.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from rmot.backends import codes, codes_b
+from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, header_lines, position_mm
+from rmot.backends.lowering import routine_names
+from rmot.backends.names import NameRules, NameTable
+from rmot.compiler import ir, planned
+
+__all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
+
+NAME_RULES = NameRules(max_len=15, allowed="A-Za-z0-9_", first="A-Za-z", prefix="p",
+                       reserved=frozenset({"BEGIN", "END", "IF", "ELSE", "ENDIF", "WHILE", "CALL",
+                                           "RETURN", "START", "STOP", "WORLD", "FLANGE"}))
+NATIVE_NAMES = frozenset({"val3", "staubli"})
+XSI = 'xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"'
+NO_LIMIT = "9999"
+
+
+def trsf_attrs(pose: ir.Pose) -> str:
+    """`x=".." y=".." z=".." rx=".." ry=".." rz=".."`: mm (3 places), deg (4 places)."""
+    x, y, z = position_mm(pose)
+    rx, ry, rz = euler_xyz_moving_deg(pose)
+    return (f'x="{fmt(x, 3)}" y="{fmt(y, 3)}" z="{fmt(z, 3)}" '
+            f'rx="{fmt(rx, 4)}" ry="{fmt(ry, 4)}" rz="{fmt(rz, 4)}"')
+
+
+def config_attrs(branch: ir.Config) -> str:
+    shoulder = "righty" if branch.shoulder is ir.Shoulder.BACK else "lefty"
+    elbow = "enegative" if branch.elbow is ir.Elbow.DOWN else "epositive"
+    wrist = "wnegative" if branch.wrist is ir.Wrist.FLIP else "wpositive"
+    return f'shoulder="{shoulder}" elbow="{elbow}" wrist="{wrist}"'
+
+
+@dataclass
+class _Data:
+    """The application's global data, collected while printing (values in first-use order)."""
+
+    points: list[str] = field(default_factory=list)
+    joints: list[str] = field(default_factory=list)
+    mdescs: list[str] = field(default_factory=list)
+    frames: dict[str, str] = field(default_factory=dict)  # VAL3 name -> value attributes
+    tools: dict[str, str] = field(default_factory=dict)
+    outputs: int = 0  # size of dOut (highest port + 1)
+    inputs: int = 0
+
+    def index(self, table: list[str], value: str) -> int:
+        if value not in table:
+            table.append(value)
+        return table.index(value)
+
+
+class Val3Backend(Backend):
+    name = "val3"
+    file_ext = ".pgx"
+    COMMENT = "//"
+    UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
+             "blend": "mm", "time": "s"}
+    MAX_LINES = None
+    EMIT = {
+        ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
+        ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
+        ir.ProcCall: "call", ir.Native: "native", ir.Sync: "sync",
+    }
+    WAITS_FOR_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput, ir.If)
+
+    # ------------------------------------------------------------------ application
+
+    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
+        self._names = NameTable(NAME_RULES, self.name)
+        app = self._names.name(ctx.program_name, ctx.task.span)
+        for reserved in ("start", "stop", "dOut", "dIn", "bOk", "pTarget", "jTarget", "mSpeed"):
+            self._names.reserve(reserved)
+        body = self.lowered_body(ctx)
+        self._routines = {uid: self._names.name(n) for uid, n in routine_names(body).items()}
+        self._data = _Data()
+        self._programs: dict[str, list[str]] = {}
+        self._warned_accel = False
+        main = self.block(body, ctx) + ["waitEndMove()"]
+        self._programs["start"] = main
+        self._programs["stop"] = []
+        self.extend(self._names.diagnostics)
+        files = {f"{app}/{app}.pjx": self.project(app), f"{app}/{app}.dtx": self.database()}
+        head = [self.comment(line) for line in header_lines(ctx.plan, self.name, self.findings_header)]
+        for prog, code in sorted(self._programs.items()):
+            files[f"{app}/{prog}.pgx"] = self.program(prog, (head if prog == "start" else []) + code)
+        return dict(sorted(files.items()))
+
+    def project(self, app: str) -> str:
+        programs = "".join(f'    <Program file="{p}.pgx" />\n' for p in sorted(self._programs))
+        return ('<?xml version="1.0" encoding="utf-8"?>\n'
+                '<Project xmlns="http://www.staubli.com/robotics/VAL3/Project/3">\n'
+                '  <Parameters version="s7.11" stackSize="5000" millimeterUnit="true" />\n'
+                f"  <Programs>\n{programs}  </Programs>\n"
+                f'  <Database>\n    <Data file="{app}.dtx" />\n  </Database>\n'
+                "  <Libraries />\n</Project>\n")
+
+    def program(self, name: str, code: list[str]) -> str:
+        text = "\n".join(["begin", *self.indent(code, self.INDENT), "end"]).replace("]]>", "]]]]><![CDATA[>")
+        locals_ = ('    <Locals>\n      <Local name="bOk" type="bool" xsi:type="array" size="1" />\n'
+                   '    </Locals>\n')
+        return ('<?xml version="1.0" encoding="utf-8"?>\n'
+                f'<Programs {XSI} xmlns="http://www.staubli.com/robotics/VAL3/Program/2">\n'
+                f'  <Program name="{name}">\n{locals_}'
+                f"    <Code><![CDATA[{text}]]></Code>\n  </Program>\n</Programs>\n")
+
+    def database(self) -> str:
+        d = self._data
+        entries: dict[str, tuple[str, list[str]]] = {
+            "dIn": ("dio", [f'link="BasicIO-1\\%I{k}"' for k in range(d.inputs)]),
+            "dOut": ("dio", [f'link="BasicIO-1\\%Q{k}"' for k in range(d.outputs)]),
+            "jTarget": ("jointRx", d.joints),
+            "mSpeed": ("mdesc", d.mdescs),
+            "pTarget": ("pointRx", d.points),
+        }
+        entries.update({n: ("frame", [v]) for n, v in d.frames.items()})
+        entries.update({n: ("tool", [v]) for n, v in d.tools.items()})
+        out = ['<?xml version="1.0" encoding="utf-8"?>',
+               f'<Database {XSI} xmlns="http://www.staubli.com/robotics/VAL3/Data/2">', "  <Datas>"]
+        for name, (kind, values) in sorted(entries.items()):
+            if not values:
+                continue
+            out.append(f'    <Data name="{name}" access="private" xsi:type="array" type="{kind}" size="{len(values)}">')
+            out += [f'      <Value key="{k}" {v} />' for k, v in enumerate(values)]
+            out.append("    </Data>")
+        return "\n".join(out + ["  </Datas>", "</Database>"]) + "\n"
+
+    def block(self, nodes: tuple[ir.Instr, ...], ctx: TaskContext) -> list[str]:
+        """A body with `waitEndMove()` before every instruction that must follow the motion."""
+        out: list[str] = []
+        prev: ir.Instr | None = None
+        for node in nodes:
+            if isinstance(node, self.WAITS_FOR_MOTION):
+                self.wait_end_move(prev, node, ctx)
+                out.append("waitEndMove()")
+            out.extend(self.instr(node, ctx))
+            prev = node
+        return out
+
+    def wait_end_move(self, prev: ir.Instr | None, node: ir.Instr, ctx: TaskContext) -> None:
+        rec = ctx.record(prev) if isinstance(prev, ir.Move) else None
+        if rec is not None and rec.blend_radius > 0.0:
+            self.warn(codes_b.WAIT_END_MOVE, "the move before this instruction blends "
+                      f"({rec.blend_radius * 1000:g} mm), but VAL3 must waitEndMove() first: it "
+                      "stops exactly", getattr(node, "span", None))
+
+    # ------------------------------------------------------------------ motion
+
+    def tool(self, ref: ir.ToolRef) -> str:
+        if ref.name is None:
+            return "flange"
+        name = self._names.name("t_" + ref.name)
+        self._data.tools[name] = f'{trsf_attrs(ref.tcp)} fatherId="flange[0]" ioLink="" open="0" close="0"'
+        return name
+
+    def point(self, pose: ir.Pose, branch: ir.Config, frame: ir.FrameRef) -> str:
+        father = "world[0]"
+        if frame.name is not None:
+            fname = self._names.name("f_" + frame.name)
+            self._data.frames[fname] = f'{trsf_attrs(frame.pose)} fatherId="world[0]"'
+            father = f"{fname}[0]"
+            pose = frame.pose.inverse() * pose
+        value = f'{trsf_attrs(pose)} {config_attrs(branch)} fatherId="{father}"'
+        return f"pTarget[{self._data.index(self._data.points, value)}]"
+
+    def mdesc(self, node: ir.Move, blend: float) -> str:
+        m = node.motion
+        if node.kind is ir.MotionKind.JOINT:
+            pct = (fmt(m.joint_accel * 100, 3), fmt(m.joint_speed * 100, 3), fmt(m.joint_accel * 100, 3))
+            tmax, kind = NO_LIMIT, "joint"
+        else:
+            pct, tmax, kind = ("100.000",) * 3, fmt(m.tcp_speed * 1000.0, 3), "Cartesian"
+            if not self._warned_accel:
+                self._warned_accel = True
+                self.warn(codes.ACCEL_IGNORED, "VAL3 mdesc sets accelerations only as % of nominal "
+                          "joint acceleration; this program uses 100 % for TCP moves", node.span)
+        if m.duration is not None:
+            self.warn(codes.DURATION_IGNORED, f"VAL3 has no fixed-duration move; the duration "
+                      f"{m.duration:g} s is expressed by the speed only", node.span)
+        mm = fmt(blend * 1000.0, 3)
+        value = (f'accel="{pct[0]}" vel="{pct[1]}" decel="{pct[2]}" tmax="{tmax}" rmax="{NO_LIMIT}" '
+                 f'blend="{kind if blend > 0 else "off"}" leave="{mm}" reach="{mm}"')
+        return f"mSpeed[{self._data.index(self._data.mdescs, value)}]"
+
+    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
+        rec = self.record_or_error(node, ctx)
+        if rec is None:
+            return []
+        tool, speed = self.tool(node.tool), self.mdesc(node, rec.blend_radius)
+        if node.kind is ir.MotionKind.JOINT:
+            value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
+            return [f"movej(jTarget[{self._data.index(self._data.joints, value)}], {tool}, {speed})"]
+        branch = self.branch(rec, node)
+        if branch is None or rec.tcp_pose is None:
+            return []
+        target = self.point(rec.tcp_pose, branch, node.frame)
+        if node.kind is ir.MotionKind.LINEAR:
+            return [f"movel({target}, {tool}, {speed})"]
+        if node.via is None:
+            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
+            return []
+        via = self.point(node.via.pose, branch, node.frame)
+        return [f"movec({via}, {target}, {tool}, {speed})"]
+
+    def branch(self, rec: planned.InstructionRecord, node: ir.Move) -> ir.Config | None:
+        b = rec.branch
+        if b is None or None in (b.shoulder, b.elbow, b.wrist):
+            self.unsupported(codes.NO_BRANCH, "a VAL3 point must have a full 6-axis configuration "
+                             "(got none: not a 6R arm, or no plan)", node.span)
+            return None
+        return b
+
+    # ------------------------------------------------------------------ I/O and timing
+
+    def port(self, port: int, span: object, output: bool) -> str | None:
+        if not 0 <= port <= 63:
+            self.unsupported(codes.BAD_PORT, f"digital {'output' if output else 'input'} port "
+                             f"must be in 0..63 (got {port})", span)  # type: ignore[arg-type]
+            return None
+        if output:
+            self._data.outputs = max(self._data.outputs, port + 1)
+            return f"dOut[{port}]"
+        self._data.inputs = max(self._data.inputs, port + 1)
+        return f"dIn[{port}]"
+
+    def set_do(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+        sig = self.port(node.port, node.span, True)
+        return [f"{sig} = {'true' if node.value else 'false'}"] if sig else []
+
+    def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+        self.unsupported(codes_b.ANALOG_UNSUPPORTED, f"analog output {node.port} must have a VAL3 "
+                         "form (analog I/O names are controller-specific; use native val3)", node.span)
+        return []
+
+    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+        sig = self.port(node.port, node.span, True)
+        if sig is None:
+            return []
+        self.warn(codes_b.PULSE_INLINE, f"VAL3 has no pulse instruction; out[{node.port}] is set, "
+                  f"held {node.duration:g} s with delay(), then reset (the program waits)", node.span)
+        return [f"{sig} = true", f"delay({fmt(node.duration, 4)})", f"{sig} = false"]
+
+    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+        return [f"delay({fmt(node.duration, 4)})"]
+
+    def condition(self, cond: ir.InputCondition, span: object) -> str | None:
+        sig = self.port(cond.port, span, False)
+        return f"{sig} == {'true' if cond.value else 'false'}" if sig else None
+
+    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+        test = self.condition(node.condition, node.span)
+        if test is None:
+            return []
+        if node.timeout is None:
+            return [f"wait({test})"]
+        return [f"bOk = watch({test}, {fmt(node.timeout, 4)})"]
+
+    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+        test = self.condition(node.condition, node.span)
+        if test is None:
+            return []
+        lines = [f"if {test}"] + self.indent(self.block(node.then, ctx), self.INDENT)
+        if node.otherwise:
+            lines += ["else"] + self.indent(self.block(node.otherwise, ctx), self.INDENT)
+        return lines + ["endIf"]
+
+    # ------------------------------------------------------------------ structure
+
+    def call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
+        name = self._routines[node.uid]
+        self._programs[name] = [self.comment(f"proc {node.proc}({', '.join(node.args)})"),
+                                *self.block(node.body, ctx), "waitEndMove()"]
+        return [f"call {name}()"]
+
+    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+        if node.vendor.lower() not in NATIVE_NAMES:
+            return self.native_other(node)
+        return node.text.splitlines()
+
+    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' must have a VAL3 form "
+                         "(one application per robot has no barrier; use an I/O handshake)", node.span)
+        return []
+
+
+def _degrees(q: object) -> list[float]:
+    return [math.degrees(float(v)) for v in q]  # type: ignore[attr-defined]

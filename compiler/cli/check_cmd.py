@@ -1,0 +1,163 @@
+"""`rmot check PROGRAM...`: load, plan and verify programs; report for people and for CI.
+
+Exit codes: 0 clean (warnings allowed), 1 error findings from planning or verification,
+2 input or usage errors (a front-end error, a missing file, a bad option).
+Output is deterministic: programs are reported in the order given, whatever `--jobs` is.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+
+import click
+
+from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+
+__all__ = ["CheckOutcome", "check", "check_one", "parse_length"]
+
+FORMATS = ("text", "json", "junit", "sarif")
+_LENGTH = re.compile(r"^\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(mm|cm|m)\s*$")
+_UNIT = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
+
+
+@dataclass(frozen=True)
+class CheckOutcome:
+    report: object  # rmot.sim.report.Report
+    input_error: bool
+
+
+def parse_length(text: str) -> float:
+    """'10mm' / '1.5 cm' / '0.01m' -> metres; raises ValueError otherwise."""
+    match = _LENGTH.match(text)
+    if not match:
+        raise ValueError(f"must be a length with a unit, e.g. 10mm (got '{text}')")
+    return float(match.group(1)) * _UNIT[match.group(2)]
+
+
+def check_one(path: str, cell: str | None = None, project_root: str | None = None,
+              clearance: float | None = None, images: str | None = None) -> CheckOutcome:
+    """One program through front end -> planner -> verification (runs in a worker process)."""
+    from rmot.sim import codes
+    from rmot.sim.report import Report
+    from rmot.lang.diagnostics import Diagnostic, Severity
+
+    def failed(message: str) -> CheckOutcome:
+        diag = Diagnostic(codes.PROGRAM_NOT_CHECKED, Severity.ERROR, message, None)
+        return CheckOutcome(Report(path, {}, (diag,)), True)
+
+    if not os.path.isfile(path):
+        return failed(f"program file must exist (got '{path}')")
+    try:
+        from rmot.compiler.frontend import load_program
+        from rmot.compiler.plan import plan_program
+    except ImportError as exc:
+        return failed(f"this build cannot check programs yet: {exc}")
+    front = load_program(path, cell=cell, project_root=project_root)
+    front_diags = tuple(front.diagnostics)
+    if front.program is None or any(d.is_error for d in front_diags):
+        return CheckOutcome(Report(path, {}, front_diags), True)
+    plan = plan_program(front.program)
+    from rmot.sim import verify
+
+    report = verify(plan, clearance=clearance)
+    report = Report(path, report.cycle_times, front_diags + report.diagnostics)
+    if images:
+        report = _render_images(plan, report, images)
+    return CheckOutcome(report, False)
+
+
+def _render_images(plan: object, report: object, directory: str) -> object:
+    """One PNG per error finding with a time; written atomically (temp file + rename)."""
+    from rmot.lang.diagnostics import Diagnostic, Severity
+    from rmot.sim import codes
+    from rmot.sim.report import Report
+
+    try:
+        from rmot.sim.render import render_finding  # type: ignore[attr-defined]
+    except ImportError as exc:
+        note = Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
+                          f"images were not rendered: the renderer is not available ({exc})", None)
+        return Report(report.program_file, report.cycle_times, report.diagnostics + (note,))  # type: ignore[attr-defined]
+    os.makedirs(directory, exist_ok=True)
+    stem = os.path.splitext(os.path.basename(report.program_file))[0]  # type: ignore[attr-defined]
+    extra = []
+    for k, d in enumerate(report.errors, start=1):  # type: ignore[attr-defined]
+        if d.time_s is None:
+            continue
+        final = os.path.join(directory, f"{stem}-{k:02d}-{d.code.id}.png")
+        fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".png", dir=directory)
+        os.close(fd)
+        try:
+            render_finding(plan, d, tmp)
+            os.replace(tmp, final)
+        except Exception as exc:  # a failed picture must not hide the finding itself
+            extra.append(Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
+                                    f"image for {d.code.id} at t={d.time_s:.3f} s was not rendered ({exc})", d.span))
+        finally:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+    return Report(report.program_file, report.cycle_times, report.diagnostics + tuple(extra))  # type: ignore[attr-defined]
+
+
+def _write_atomic(path: str, text: str) -> None:
+    directory = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".rmot-", dir=directory)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _format(fmt: str, reports: list) -> str:
+    from rmot.sim import report as fmt_mod
+
+    return {"text": fmt_mod.format_text, "json": fmt_mod.format_json,
+            "junit": fmt_mod.format_junit, "sarif": fmt_mod.format_sarif}[fmt](reports)
+
+
+@click.command("check")
+@click.argument("programs", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("--cell", type=click.Path(dir_okay=False), default=None, help="Cell file (overrides `use cell`).")
+@click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True, help="Report format.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), default=None, help="Write the report to FILE.")
+@click.option("--clearance", default=None, metavar="LENGTH", help="Also warn about approaches closer than this, e.g. 10mm.")
+@click.option("--jobs", type=click.IntRange(min=1), default=1, show_default=True, help="Programs checked in parallel.")
+@click.option("--images", type=click.Path(file_okay=False), default=None, help="Render a PNG per error finding into DIR.")
+@click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
+def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | None, clearance: str | None,
+          jobs: int, images: str | None, project_root: str | None) -> None:
+    """Parse, plan and verify PROGRAMs; report collisions, limit excesses and cycle times."""
+    clearance_m = None
+    if clearance is not None:
+        try:
+            clearance_m = parse_length(clearance)
+        except ValueError as exc:
+            raise click.BadParameter(str(exc), param_hint="--clearance") from None
+    args = [(p, cell, project_root, clearance_m, images) for p in programs]
+    if jobs > 1 and len(programs) > 1:
+        with ProcessPoolExecutor(max_workers=min(jobs, len(programs))) as pool:
+            outcomes = list(pool.map(_check_args, args))
+    else:
+        outcomes = [_check_args(a) for a in args]
+    reports = [o.report for o in outcomes]
+    text = _format(fmt, reports)
+    if output:
+        _write_atomic(output, text)
+    else:
+        click.echo(text, nl=False)
+    ctx = click.get_current_context()
+    if any(o.input_error for o in outcomes):
+        ctx.exit(EXIT_INPUT)
+    ctx.exit(EXIT_FINDINGS if any(r.has_errors for r in reports) else EXIT_OK)
+
+
+def _check_args(args: tuple) -> CheckOutcome:
+    return check_one(*args)

@@ -1,0 +1,161 @@
+"""`rmot render`: a picture, an animation, a hidden-line drawing or an interactive view.
+
+    rmot render PROGRAM [--cell CELL] -o out.png|out.gif|out.mp4|out.svg|out.html
+                [--at SECONDS] [--size WxH] [--aa K] [--camera "eye=x,y,z;center=x,y,z;fov=40"]
+                [--fps N] [--project-root DIR]
+
+Bad input (the program, the cell, the options) is reported as diagnostics, exit code 2.
+Rendering only draws: its exit code never depends on verification findings.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any
+
+import click
+
+from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+
+__all__ = ["render"]
+
+FORMATS = (".png", ".gif", ".mp4", ".svg", ".html")
+
+
+def _parse_size(ctx: click.Context, param: click.Parameter, value: str | None) -> tuple[int, int] | None:
+    if value is None:
+        return None
+    width, sep, height = value.lower().partition("x")
+    try:
+        size = (int(width), int(height))
+    except ValueError:
+        size = (0, 0)
+    if not sep or not (16 <= size[0] <= 8192 and 16 <= size[1] <= 8192):
+        raise click.BadParameter(f"must be WIDTHxHEIGHT in pixels, each 16..8192 (got {value!r})")
+    return size
+
+
+def _parse_camera(ctx: click.Context, param: click.Parameter, value: str | None) -> Any:
+    if value is None:
+        return None
+    from rmot.sim.render.camera import CameraSpecError, parse_camera
+
+    try:
+        return parse_camera(value)
+    except CameraSpecError as exc:
+        raise click.BadParameter(str(exc)) from None
+
+
+def _output_format(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    if os.path.splitext(value)[1].lower() not in FORMATS:
+        raise click.BadParameter(f"must end in one of {', '.join(FORMATS)} (got {value!r})")
+    return value
+
+
+@click.command(name="render")
+@click.argument("program", type=click.Path(dir_okay=False))
+@click.option("--cell", "cell", default=None, help="The cell to use when the program file declares several.")
+@click.option("-o", "--output", required=True, callback=_output_format,
+              help="Output file: .png (still), .gif/.mp4 (animation), .svg (hidden-line), .html (3D viewer).")
+@click.option("--at", "at", type=float, default=0.0, show_default=True, help="Instant of a still picture, s.")
+@click.option("--size", callback=_parse_size, default=None, help="WIDTHxHEIGHT in pixels [640x480; 480x360 for animations].")
+@click.option("--aa", type=click.IntRange(1, 8), default=None, help="Supersampling factor K (K x K samples per pixel).")
+@click.option("--camera", callback=_parse_camera, default=None, help='e.g. "eye=3,-3,2;center=0.5,0,0.5;fov=40".')
+@click.option("--fps", type=click.IntRange(1, 60), default=25, show_default=True, help="Frames per second of animations.")
+@click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Directory that file paths may not leave.")
+def render(program: str, cell: str | None, output: str, at: float, size: tuple[int, int] | None, aa: int | None,
+           camera: Any, fps: int, project_root: str | None) -> None:
+    """Render a program to PNG, GIF, MP4, SVG or HTML."""
+    plan = _plan(program, cell, project_root)
+    ext = os.path.splitext(output)[1].lower()
+    try:
+        _write(plan, output, ext, at, size, aa, camera, fps)
+    except _InputError as exc:
+        _fail(exc.diagnostic)
+    except OSError as exc:
+        from rmot.lang.diagnostics import Diagnostic, Severity
+        from rmot.sim.render import codes
+
+        _fail(Diagnostic(codes.OUTPUT_FAILED, Severity.ERROR,
+                         f"output file must be writable (got '{output}': {exc.strerror or exc})", None))
+    sys.exit(EXIT_OK)
+
+
+class _InputError(Exception):
+    def __init__(self, diagnostic: Any) -> None:
+        super().__init__(diagnostic.message)
+        self.diagnostic = diagnostic
+
+
+def _fail(*diagnostics: Any) -> None:
+    from rmot.lang.diagnostics import render_all
+
+    click.echo(render_all(list(diagnostics)), err=True)
+    sys.exit(EXIT_INPUT)
+
+
+def _report(diagnostics: Any) -> None:
+    """Print warnings; print errors and exit 2 if there are any."""
+    from rmot.lang.diagnostics import render_all
+
+    diagnostics = tuple(diagnostics or ())
+    if diagnostics:
+        click.echo(render_all(diagnostics), err=True)
+    if any(d.is_error for d in diagnostics):
+        sys.exit(EXIT_INPUT)
+
+
+def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
+    """Front end then planner; any error diagnostics end the command with exit code 2."""
+    from rmot.compiler.frontend import load_program
+    from rmot.compiler.plan import plan_program
+
+    loaded = load_program(program, cell=cell, project_root=project_root)
+    prog, diagnostics = _split(loaded, "program")
+    _report(diagnostics)
+    planned, plan_diagnostics = _split(plan_program(prog), "plan")
+    _report(tuple(plan_diagnostics) + tuple(getattr(planned, "diagnostics", ())))
+    return planned
+
+
+def _split(result: Any, name: str) -> tuple[Any, tuple[Any, ...]]:
+    """(value, diagnostics) from a stage result: a tuple, an object with .diagnostics, or the value."""
+    if isinstance(result, tuple) and len(result) == 2:
+        return result[0], tuple(result[1] or ())
+    value = getattr(result, name, result)
+    diagnostics = tuple(getattr(result, "diagnostics", ())) if value is not result else ()
+    return value, diagnostics
+
+
+def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | None, aa: int | None,
+           camera: Any, fps: int) -> None:
+    from rmot.lang.diagnostics import Diagnostic, Severity
+    from rmot.sim.render import codes
+
+    if ext == ".png":
+        duration = float(plan.cycle_time)
+        if not 0.0 <= at <= duration + 1e-9:
+            raise _InputError(Diagnostic(codes.TIME_OUTSIDE, Severity.ERROR,
+                                         f"--at must be within 0..{duration:.3f} s, the program's duration (got {at:g} s)", None))
+        from rmot.sim.render import render_still
+        from rmot.sim.render.files import write_png
+
+        write_png(output, render_still(plan, time=at, size=size or (640, 480), aa=aa or 2, camera=camera))
+    elif ext in (".gif", ".mp4"):
+        from rmot.sim.render.animate import AnimationError, render_animation
+
+        try:
+            render_animation(plan, output, fps=fps, size=size or (480, 360), aa=aa or 1, camera=camera)
+        except AnimationError as exc:
+            raise _InputError(Diagnostic(codes.FORMAT_UNAVAILABLE, Severity.ERROR, str(exc), None)) from None
+    elif ext == ".svg":
+        from rmot.sim.render.files import write_text
+        from rmot.sim.render.svg import render_svg
+
+        write_text(output, render_svg(plan, time=at, size=size or (640, 480), camera=camera))
+    else:
+        from rmot.sim.render.files import write_text
+        from rmot.sim.render.html import render_html
+
+        write_text(output, render_html(plan, fps=fps))

@@ -1,0 +1,42 @@
+"""Diagnostic codes of the compiler's check stage (E1xx) and the files it reads (E5xx)."""
+
+from __future__ import annotations
+
+from rmot.lang.diagnostics import Code
+
+__all__ = [
+    "UNKNOWN_NAME", "DUPLICATE", "WRONG_TYPE", "WRONG_DIMENSION", "MISSING_UNIT", "MIXED_UNITS",
+    "ARITY", "RECURSION", "IMPORT_CYCLE", "JOINT_COUNT", "UNKNOWN_ROBOT", "TOOL_NOT_ON_ROBOT",
+    "SYNC_UNMATCHED", "SYNC_ORDER", "MISPLACED", "UNKNOWN_VENDOR", "BAD_ARGUMENT",
+    "OUT_OF_RANGE", "NO_PROGRAM", "NO_CELL", "TOO_LARGE_UNROLLED", "BAD_TASK",
+    "FILE_NOT_FOUND", "NOT_UTF8", "FILE_TOO_LARGE", "PATH_ESCAPES", "ROBOT_LOAD",
+]
+
+UNKNOWN_NAME = Code("E101", "unknown-name", "a name is not defined in any visible scope")
+DUPLICATE = Code("E102", "duplicate-definition", "a name is defined twice in one scope")
+WRONG_TYPE = Code("E103", "wrong-type", "a value of the wrong kind (pose, joints, number, ...)")
+WRONG_DIMENSION = Code("E104", "wrong-dimension", "a quantity of the wrong dimension (length, angle, ...)")
+MISSING_UNIT = Code("E105", "missing-unit", "a bare number where a physical quantity is needed")
+MIXED_UNITS = Code("E106", "mixed-units", "arithmetic on quantities of different dimensions")
+ARITY = Code("E107", "wrong-argument-count", "a call with too many or too few arguments")
+RECURSION = Code("E108", "recursion", "a proc calls itself, directly or through others")
+IMPORT_CYCLE = Code("E109", "import-cycle", "files import each other in a cycle")
+JOINT_COUNT = Code("E110", "joint-count", "joints() with a different count than the robot's axes")
+UNKNOWN_ROBOT = Code("E111", "unknown-robot", "a robot name that is neither in the library nor in the cell")
+TOOL_NOT_ON_ROBOT = Code("E112", "tool-not-on-robot", "a tool used by a robot it is not mounted on")
+SYNC_UNMATCHED = Code("E113", "sync-unmatched", "a sync barrier used by only one task")
+SYNC_ORDER = Code("E114", "sync-order", "tasks pass the same sync barriers in different orders")
+MISPLACED = Code("E115", "misplaced-statement", "a statement where it cannot appear")
+UNKNOWN_VENDOR = Code("E116", "unknown-vendor", "native text for a controller rmot does not know")
+BAD_ARGUMENT = Code("E117", "bad-argument", "an unknown, missing or repeated argument")
+OUT_OF_RANGE = Code("E118", "out-of-range", "a value outside what the setting allows")
+NO_PROGRAM = Code("E119", "no-program", "the file holds no program (or more than one)")
+NO_CELL = Code("E120", "no-cell", "no cell, or more than one, where one is needed")
+TOO_LARGE_UNROLLED = Code("E121", "too-large", "loops unroll to more instructions than allowed")
+BAD_TASK = Code("E122", "bad-task", "a task that names no robot of the cell, or names it twice")
+
+FILE_NOT_FOUND = Code("E501", "file-not-found", "a file named by the program does not exist")
+NOT_UTF8 = Code("E502", "not-utf8", "a source file is not UTF-8 text")
+FILE_TOO_LARGE = Code("E503", "file-too-large", "a source file is larger than the limit")
+PATH_ESCAPES = Code("E504", "path-escapes-project", "a path leads outside the project directory")
+ROBOT_LOAD = Code("E505", "robot-load-failed", "a URDF robot could not be loaded")

@@ -1,0 +1,310 @@
+"""Statements -> IR instructions for one task: loops unrolled, procs inlined, settings resolved.
+
+The lowering runs the program at compile time: every value is a constant, so `for` and
+`repeat` are unrolled, proc calls become ir.ProcCall nodes holding their substituted body,
+and each Move gets the modal settings in force where it stands (its own modifiers win).
+Runtime `if` on an input stays an ir.If; both arms are lowered.
+
+Choices (LANGUAGE.md is silent):
+  * `for i in a .. b` is half open (0 .. 3 runs 0, 1, 2), as in LANGUAGE.md's example;
+    bounds are whole numbers; a .. b with b <= a runs no iteration.
+  * A task may hold at most MAX_INSTRUCTIONS instructions after unrolling.
+  * I/O ports are whole numbers >= 0; the cell's `io` declaration (for this robot or
+    cell-wide) gives the signal name. `if`/`wait until` test digital inputs in[n];
+    `a != on` is `a == off`; a bare `in[2]` means `in[2] == on`.
+  * A pose target is the TCP pose in the active frame; the IR's CartesianTarget.pose is
+    inv(robot base) * frame(world) * target. Linear and circular moves need pose targets;
+    a joint move takes joints or a pose.
+  * `time T` fixes a move's duration (Motion.duration); `config(...)` fills ir.Config.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from rmot.compiler import codes, ir
+from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
+from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
+from rmot.compiler.passes.modal import Modal, apply_setting
+from rmot.compiler.passes.procs import bind_call
+from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
+from rmot.compiler.passes.values import ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
+from rmot.lang import ast
+
+__all__ = ["MAX_INSTRUCTIONS", "TaskLowering", "VENDORS"]
+
+MAX_INSTRUCTIONS = 200_000
+VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+_KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circular": ir.MotionKind.CIRCULAR}
+_CONFIG = {"shoulder": ir.Shoulder, "elbow": ir.Elbow, "wrist": ir.Wrist}
+
+
+class _TooLarge(Exception):
+    pass
+
+
+@dataclass
+class TaskLowering:
+    """Lowers the statements of one task (robot `robot`) of the program."""
+
+    robot: str
+    info: RobotInfo
+    base: ir.Pose
+    cell: ir.Cell
+    rep: Reporter
+    procs: list[Entry]
+    count: int = 0
+    stack: list[int] = field(default_factory=list)  # ids of the procs being inlined
+
+    def run(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
+        try:
+            out, _ = self.block(body, scope, modal, where)
+        except _TooLarge:
+            return ()
+        return tuple(out)
+
+    def block(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[list[ir.Instr], Modal]:
+        out: list[ir.Instr] = []
+        declare_procs(body, scope, self.rep, self.procs)
+        for stmt in body:
+            if isinstance(stmt, ast.Setting):
+                modal = apply_setting(modal, stmt, scope, self.robot, self.base, self.rep)
+                continue
+            if isinstance(stmt, ast.For):
+                out += self.for_loop(stmt, scope, modal, where)
+                continue
+            if isinstance(stmt, ast.Repeat):
+                out += self.repeat(stmt, scope, modal, where)
+                continue
+            instr = self.statement(stmt, scope, modal, where)
+            if instr is None:
+                continue
+            self.count += 1
+            if self.count > MAX_INSTRUCTIONS:
+                self.rep.error(codes.TOO_LARGE_UNROLLED, f"a task must have at most {MAX_INSTRUCTIONS} instructions after "
+                               f"unrolling loops and inlining procs (got more at this statement)", stmt.span)
+                raise _TooLarge
+            out.append(instr)
+        return out, modal
+
+    def statement(self, s: ast.Stmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
+        if isinstance(s, ast.Move):
+            return self.move(s, scope, modal)
+        if isinstance(s, (ast.TargetDecl, ast.ConstDecl)):
+            declare_value(s, scope, self.rep)
+        elif isinstance(s, ast.FrameDecl):
+            v = eval_expr(s.value, scope, self.rep)
+            if isinstance(v, PoseV):
+                declare(scope, Entry("frame", s.name.name, PoseV(v.pose, s.name.name), s.name.span), self.rep)
+            elif v is not None:
+                self.rep.error(codes.WRONG_TYPE, f"frame '{s.name.name}' must be a pose (got a {type_name(v)})", s.value.span)
+        elif isinstance(s, ast.ProcDecl):
+            if not where.startswith(("program", "task")):
+                misplaced(s, where, self.rep)
+        elif isinstance(s, ast.SetIo):
+            return self.set_io(s, scope)
+        elif isinstance(s, ast.Pulse):
+            return self.pulse(s, scope)
+        elif isinstance(s, ast.WaitTime):
+            t = self._time(s.duration, scope, "wait time", allow_zero=True)
+            return None if t is None else ir.WaitTime(uid=0, duration=t, span=s.span)
+        elif isinstance(s, ast.WaitUntil):
+            return self.wait_until(s, scope)
+        elif isinstance(s, ast.IfStmt):
+            return self.if_stmt(s, scope, modal, where)
+        elif isinstance(s, ast.SyncStmt):
+            return ir.Sync(uid=0, name=s.name.name, span=s.span)
+        elif isinstance(s, ast.NativeStmt):
+            return self.native(s)
+        elif isinstance(s, ast.CallStmt):
+            return self.call(s, scope, modal, where)
+        else:
+            misplaced(s, where, self.rep)
+        return None
+
+    # ---------------------------------------------------------------- loops and branches
+
+    def for_loop(self, s: ast.For, scope: Scope, modal: Modal, where: str) -> list[ir.Instr]:
+        lo = expect_integer(eval_expr(s.start, scope, self.rep), "loop start", s.start.span, self.rep, minimum=-(10**9))
+        hi = expect_integer(eval_expr(s.stop, scope, self.rep), "loop end", s.stop.span, self.rep, minimum=-(10**9))
+        out: list[ir.Instr] = []
+        if lo is None or hi is None:
+            return out
+        for i in range(lo, hi):
+            inner = scope.child()
+            inner.names[s.var.name] = Entry("var", s.var.name, Quantity(float(i), DIMENSIONLESS, None, float(i)), s.var.span)
+            out += self.block(s.body, inner, modal, where)[0]
+        return out
+
+    def repeat(self, s: ast.Repeat, scope: Scope, modal: Modal, where: str) -> list[ir.Instr]:
+        n = expect_integer(eval_expr(s.count, scope, self.rep), "repeat count", s.count.span, self.rep)
+        out: list[ir.Instr] = []
+        for _ in range(n or 0):
+            out += self.block(s.body, scope.child(), modal, where)[0]
+        return out
+
+    def if_stmt(self, s: ast.IfStmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
+        cond = self.condition(s.condition, scope)
+        then = self.nested(s.then, scope.child(), modal, where)
+        otherwise = self.nested(s.otherwise, scope.child(), modal, where)
+        if cond is None:
+            return None
+        return ir.If(uid=0, condition=cond, then=then, otherwise=otherwise, span=s.span)
+
+    def nested(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
+        return tuple(self.block(body, scope, modal, where)[0])
+
+    # ---------------------------------------------------------------- procs
+
+    def call(self, s: ast.CallStmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
+        entry = scope.lookup(s.name.name)
+        if entry is None:
+            procs = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "proc"]
+            self.rep.unknown(s.name.name, "proc", s.name.span, procs)
+            return None
+        if entry.kind != "proc":
+            self.rep.error(codes.WRONG_TYPE, f"'{s.name.name}' must be a proc to be called (got a {entry.kind})", s.name.span,
+                           ((f"'{s.name.name}' is defined here", entry.span),))
+            return None
+        if id(entry) in self.stack:  # recursion: reported by the check_recursion pass
+            return None
+        inner = bind_call(entry, s, scope, self.rep)
+        if inner is None:
+            return None
+        self.stack.append(id(entry))
+        try:
+            body = self.nested(entry.value.body, inner, modal, f"proc '{entry.name}'")
+        finally:
+            self.stack.pop()
+        text = s.span.file.text
+        args = tuple(text[a.span.start.offset:a.span.end.offset] for a in s.args)
+        return ir.ProcCall(uid=0, proc=entry.name, args=args, body=body, span=s.span)
+
+    # ---------------------------------------------------------------- I/O and timing
+
+    def _time(self, e: ast.Expr, scope: Scope, what: str, allow_zero: bool = False) -> float | None:
+        t = expect_quantity(eval_expr(e, scope, self.rep), TIME, what, e.span, self.rep)
+        if t is not None and (t < 0 or (t == 0 and not allow_zero)):
+            self.rep.error(codes.OUT_OF_RANGE, f"{what} must be {'>= 0' if allow_zero else '> 0'} s (got {t:g} s)", e.span)
+            return None
+        return t
+
+    def port(self, io: ast.IoRef, scope: Scope, allowed: tuple[str, ...], what: str) -> tuple[int, str | None] | None:
+        if io.kind not in allowed:
+            names = " or ".join(f"{k}[n]" for k in allowed)
+            self.rep.error(codes.WRONG_TYPE, f"{what} must use {names} (got {io.kind}[...])", io.span)
+            return None
+        port = expect_integer(eval_expr(io.index, scope, self.rep), "I/O port", io.index.span, self.rep)
+        if port is None:
+            return None
+        from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
+
+        direction = IO_DIRECTIONS[io.kind]
+        for sig in self.cell.io:
+            if sig.direction is direction and sig.port == port and sig.robot in (self.robot, None):
+                return port, sig.name
+        return port, None
+
+    def set_io(self, s: ast.SetIo, scope: Scope) -> ir.Instr | None:
+        p = self.port(s.io, scope, ("out", "aout"), "set")
+        v = eval_expr(s.value, scope, self.rep)
+        if p is None or v is None:
+            return None
+        if s.io.kind == "out":
+            level = expect_bool(v, f"value of out[{p[0]}]", s.value.span, self.rep)
+            return None if level is None else ir.SetDigital(uid=0, port=p[0], value=level, signal=p[1], span=s.span)
+        x = expect_quantity(v, DIMENSIONLESS, f"value of aout[{p[0]}]", s.value.span, self.rep)
+        return None if x is None else ir.SetAnalog(uid=0, port=p[0], value=x, signal=p[1], span=s.span)
+
+    def pulse(self, s: ast.Pulse, scope: Scope) -> ir.Instr | None:
+        p = self.port(s.io, scope, ("out",), "pulse")
+        t = self._time(s.duration, scope, "pulse length")
+        if p is None or t is None:
+            return None
+        return ir.Pulse(uid=0, port=p[0], duration=t, signal=p[1], span=s.span)
+
+    def condition(self, c: ast.Condition, scope: Scope) -> ir.InputCondition | None:
+        p = self.port(c.io, scope, ("in",), "a condition")
+        level = True if c.value is None else expect_bool(eval_expr(c.value, scope, self.rep), "the compared level", c.value.span, self.rep)
+        if p is None or level is None:
+            return None
+        return ir.InputCondition(port=p[0], value=level if c.op == "==" else not level, signal=p[1])
+
+    def wait_until(self, s: ast.WaitUntil, scope: Scope) -> ir.Instr | None:
+        cond = self.condition(s.condition, scope)
+        timeout = self._time(s.timeout, scope, "timeout") if s.timeout is not None else None
+        if cond is None or (s.timeout is not None and timeout is None):
+            return None
+        return ir.WaitInput(uid=0, condition=cond, timeout=timeout, span=s.span)
+
+    def native(self, s: ast.NativeStmt) -> ir.Instr | None:
+        if s.vendor.name not in VENDORS:
+            self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(VENDORS))
+            return None
+        return ir.Native(uid=0, vendor=s.vendor.name, text=s.text.value, span=s.span)
+
+    # ---------------------------------------------------------------- motion
+
+    def move(self, s: ast.Move, scope: Scope, modal: Modal) -> ir.Instr | None:
+        config, duration, ok = ir.Config(), None, True
+        for m in s.modifiers:
+            if m.kind == "config":
+                config = self.config(m) or config
+            elif m.kind == "time":
+                duration = self._time(m.value, scope, "move time")  # type: ignore[arg-type]
+                ok = ok and duration is not None
+            else:
+                modal = apply_setting(modal, m, scope, self.robot, self.base, self.rep)
+        kind = _KINDS[s.kind]
+        target = self.target(s.target, scope, modal, kind, "target")
+        via = self.target(s.via, scope, modal, kind, "via point") if s.via is not None else None
+        if target is None or (s.via is not None and via is None) or not ok:
+            return None
+        motion = ir.Motion(modal.tcp_speed, modal.tcp_accel, modal.joint_speed, modal.joint_accel, modal.zone, duration)
+        return ir.Move(uid=0, kind=kind, target=target, via=via, motion=motion, tool=modal.tool,  # type: ignore[arg-type]
+                       frame=modal.frame, config=config, span=s.span)
+
+    def config(self, m: ast.Setting) -> ir.Config | None:
+        values: dict[str, object] = {}
+        for arg in m.value:  # type: ignore[union-attr]
+            key = arg.name.name if arg.name is not None else None
+            enum = _CONFIG.get(key or "")
+            if enum is None:
+                self.rep.unknown(key or "?", "config field", arg.span, list(_CONFIG))
+                continue
+            word = arg.value.name if isinstance(arg.value, ast.Name) else None
+            choices = [e.value for e in enum]
+            if word not in choices:
+                self.rep.error(codes.BAD_ARGUMENT, f"config {key} must be {' or '.join(choices)} (got '{word or '?'}')", arg.value.span)
+                continue
+            values[key] = enum(word)  # type: ignore[index]
+        return ir.Config(**values)  # type: ignore[arg-type]
+
+    def target(self, e: ast.Expr, scope: Scope, modal: Modal, kind: ir.MotionKind, what: str) -> ir.CartesianTarget | ir.JointTarget | None:
+        v = eval_expr(e, scope, self.rep)
+        if v is None:
+            return None
+        if isinstance(v, PoseV):
+            return ir.CartesianTarget(modal.frame.pose * v.pose, v.pose, v.name)
+        if isinstance(v, JointsV) and kind is ir.MotionKind.JOINT:
+            return self.joints(v, e)
+        wanted = "pose or joints" if kind is ir.MotionKind.JOINT else "pose"
+        self.rep.error(codes.WRONG_TYPE, f"{what} of a {kind.name.lower()} move must be a {wanted} (got a {type_name(v)})", e.span)
+        return None
+
+    def joints(self, v: JointsV, e: ast.Expr) -> ir.JointTarget | None:
+        n = self.info.dof
+        span = v.span or e.span
+        notes = (("used by this move", e.span),) if v.span is not None and v.span != e.span else ()
+        if len(v.values) != n:
+            self.rep.error(codes.JOINT_COUNT, f"joints() must have {n} values for robot '{self.robot}' (got {len(v.values)})", span, notes)
+            return None
+        values = []
+        for i, (q, jt) in enumerate(zip(v.values, self.info.joint_types)):
+            dim = LENGTH if jt == "P" else ANGLE
+            if q.dim != dim:
+                self.rep.error(codes.WRONG_DIMENSION, f"joint {i + 1} of robot '{self.robot}' must be "
+                               f"{'a length' if jt == 'P' else 'an angle'} (got {fmt_quantity(q)})", span, notes)
+                return None
+            values.append(q.value)
+        return ir.JointTarget(tuple(values), v.name)

@@ -1,0 +1,213 @@
+"""Pass 3: the cell block -> ir.Cell, and the cell scope programs resolve names against.
+
+Choices (LANGUAGE.md is silent):
+  * Geometry arguments: box(x, y, z) full edge lengths, cylinder(r, h), sphere(r),
+    capsule(r, length) (length between the cap centres), mesh(path, unit=mm | scale=0.001);
+    by position or by name. Every length must be > 0.
+  * A fixture, robot or frame name used as a pose means its pose in world
+    (`frame table_top = table * pose(z=15mm)`).
+  * `tool t = none tcp ... on r1` is a tool without geometry; `at pose(...)` places the
+    tool's geometry in the flange frame; `mass` defaults to 0 kg, `tcp` to the flange.
+  * `io out[1] = "name"` without `on ROBOT` is a cell-wide signal.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+from rmot.compiler import codes, ir
+from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
+from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
+from rmot.compiler.passes.load_files import resolve_path
+from rmot.compiler.passes.scopes import declare, misplaced
+from rmot.compiler.passes.state import FrontendState
+from rmot.compiler.passes.values import LENGTH, MASS, UNITS, PoseV, Quantity
+from rmot.lang import ast
+
+__all__ = ["lower_cell", "IO_DIRECTIONS"]
+
+IO_DIRECTIONS = {"out": ir.IoDirection.DIGITAL_OUT, "in": ir.IoDirection.DIGITAL_IN,
+                 "aout": ir.IoDirection.ANALOG_OUT, "ain": ir.IoDirection.ANALOG_IN}
+_GEOMETRY_ARGS = {"box": ("x", "y", "z"), "cylinder": ("r", "h"), "sphere": ("r",),
+                  "capsule": ("r", "length"), "mesh": ("path", "unit", "scale")}
+
+
+class _CellBuilder:
+    def __init__(self, state: FrontendState, decl: ast.CellDecl) -> None:
+        self.state = state
+        self.rep: Reporter = state.reporter
+        self.decl = decl
+        self.file = decl.span.file
+        self.scope = Scope()
+        self.robots: list[ir.RobotInstance] = []
+        self.infos: dict[str, RobotInfo] = {}
+        self.fixtures: list[ir.Fixture] = []
+        self.tools: list[ir.Tool] = []
+        self.frames: list[ir.Frame] = []
+        self.io: list[ir.IoSignal] = []
+        self.io_seen: dict[tuple[ir.IoDirection, int, str | None], ast.IoDecl] = {}
+
+    def build(self) -> ir.Cell:
+        for stmt in self.decl.body:
+            handler = getattr(self, f"_{type(stmt).__name__}", None)
+            if handler is None:
+                misplaced(stmt, f"cell '{self.decl.name.name}'", self.rep)
+            else:
+                handler(stmt)
+        return ir.Cell(self.decl.name.name, tuple(self.robots), tuple(self.fixtures), tuple(self.tools),
+                       tuple(self.frames), tuple(self.io), span=self.decl.span)
+
+    def _pose(self, e: ast.Expr | None, what: str) -> ir.Pose | None:
+        if e is None:
+            return ir.Pose()
+        return expect_pose(eval_expr(e, self.scope, self.rep), what, e.span, self.rep)
+
+    def _RobotDecl(self, s: ast.RobotDecl) -> None:
+        base = self._pose(s.at, f"placement of robot '{s.name.name}'")
+        if s.library is not None:
+            key, source = s.library.name, ir.RobotSource(ir.RobotSourceKind.LIBRARY, s.library.name)
+            span = s.library.span
+        else:
+            assert s.urdf is not None
+            span = s.urdf.span
+            path = resolve_path(s.urdf.value, self.file, self.state.roots, span, self.rep, "URDF")
+            if path is None:
+                return
+            key, source = path, ir.RobotSource(ir.RobotSourceKind.URDF, path)
+        try:
+            info = self.state.robot_loader(key)
+        except RobotLookupError as exc:
+            if s.library is not None:
+                self.rep.unknown(key, "robot model", span, list(exc.candidates))
+            else:
+                self.rep.error(codes.ROBOT_LOAD, f"URDF robot must load (got: {exc})", span)
+            return
+        if base is None or not declare(self.scope, Entry("robot", s.name.name, PoseV(base, s.name.name), s.name.span), self.rep):
+            return
+        self.infos[s.name.name] = info
+        self.robots.append(ir.RobotInstance(s.name.name, source, base, info.dof, span=s.span))
+
+    def _geometry(self, g: ast.Geometry) -> ir.Geometry | None:
+        kind = g.kind.name
+        names = _GEOMETRY_ARGS.get(kind)
+        if names is None:
+            self.rep.unknown(kind, "geometry", g.kind.span, list(_GEOMETRY_ARGS))
+            return None
+        if kind == "mesh":
+            return self._mesh(g)
+        bound = match_args(g.args, names, kind, g.span, self.rep, required=len(names))
+        if bound is None:
+            return None
+        sizes = []
+        for n in names:
+            x = expect_quantity(eval_expr(bound[n].value, self.scope, self.rep), LENGTH, f"{kind} '{n}'", bound[n].span, self.rep)
+            if x is not None and x <= 0:
+                self.rep.error(codes.OUT_OF_RANGE, f"{kind} '{n}' must be > 0 mm (got {x * 1000:g} mm)", bound[n].span)
+                x = None
+            sizes.append(x)
+        if any(x is None for x in sizes):
+            return None
+        if kind == "box":
+            return ir.Box((sizes[0], sizes[1], sizes[2]))  # type: ignore[arg-type]
+        if kind == "cylinder":
+            return ir.Cylinder(sizes[0], sizes[1])  # type: ignore[arg-type]
+        if kind == "sphere":
+            return ir.Sphere(sizes[0])  # type: ignore[arg-type]
+        return ir.Capsule(sizes[0], sizes[1])  # type: ignore[arg-type]
+
+    def _mesh(self, g: ast.Geometry) -> ir.Geometry | None:
+        bound = match_args(g.args, _GEOMETRY_ARGS["mesh"], "mesh", g.span, self.rep, required=1)
+        if bound is None:
+            return None
+        path_arg = bound["path"].value
+        if not isinstance(path_arg, ast.String):
+            self.rep.error(codes.WRONG_TYPE, "mesh path must be a string such as \"meshes/part.stl\"", path_arg.span)
+            return None
+        scale = 1.0
+        if "unit" in bound:
+            unit = bound["unit"].value
+            text = unit.name if isinstance(unit, ast.Name) else unit.value if isinstance(unit, ast.String) else None
+            if text not in UNITS or UNITS[text][1] != LENGTH:
+                self.rep.error(codes.WRONG_DIMENSION, "mesh unit must be a length unit: mm, cm, m or in", unit.span)
+                return None
+            scale = UNITS[text][0]
+        if "scale" in bound:
+            v = eval_expr(bound["scale"].value, self.scope, self.rep)
+            if not (isinstance(v, Quantity) and v.unit is None and v.value > 0):
+                self.rep.error(codes.WRONG_TYPE, "mesh scale must be a positive number such as 0.001", bound["scale"].span)
+                return None
+            scale = v.value
+        path = resolve_path(path_arg.value, self.file, self.state.roots, path_arg.span, self.rep, "mesh")
+        return None if path is None else ir.Mesh(path, scale, span=path_arg.span)
+
+    def _FixtureDecl(self, s: ast.FixtureDecl) -> None:
+        geometry = self._geometry(s.geometry)
+        pose = self._pose(s.at, f"placement of fixture '{s.name.name}'")
+        if geometry is None or pose is None:
+            return
+        if declare(self.scope, Entry("fixture", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
+            self.fixtures.append(ir.Fixture(s.name.name, geometry, pose, span=s.span))
+
+    def _ToolDecl(self, s: ast.ToolDecl) -> None:
+        geometry = self._geometry(s.geometry) if s.geometry is not None else None
+        at = self._pose(s.at, f"geometry placement of tool '{s.name.name}'")
+        tcp = self._pose(s.tcp, f"tcp of tool '{s.name.name}'")
+        mass = 0.0
+        if s.mass is not None:
+            mass = expect_quantity(eval_expr(s.mass, self.scope, self.rep), MASS, "tool mass", s.mass.span, self.rep)  # type: ignore[assignment]
+            if mass is not None and mass < 0:
+                self.rep.error(codes.OUT_OF_RANGE, f"tool mass must be >= 0 kg (got {mass:g} kg)", s.mass.span)
+                mass = None  # type: ignore[assignment]
+        if s.robot.name not in self.infos:
+            self.rep.unknown(s.robot.name, "robot", s.robot.span, list(self.infos))
+            return
+        if (s.geometry is not None and geometry is None) or at is None or tcp is None or mass is None:
+            return
+        tool = ir.Tool(s.name.name, s.robot.name, geometry, tcp, mass, at, span=s.span)
+        if declare(self.scope, Entry("tool", s.name.name, tool, s.name.span), self.rep):
+            self.tools.append(tool)
+
+    def _FrameDecl(self, s: ast.FrameDecl) -> None:
+        pose = self._pose(s.value, f"frame '{s.name.name}'")
+        if pose is not None and declare(self.scope, Entry("frame", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
+            self.frames.append(ir.Frame(s.name.name, pose, span=s.span))
+
+    def _IoDecl(self, s: ast.IoDecl) -> None:
+        port = expect_integer(eval_expr(s.io.index, self.scope, self.rep), "I/O port", s.io.index.span, self.rep)
+        robot = s.robot.name if s.robot is not None else None
+        if robot is not None and robot not in self.infos:
+            self.rep.unknown(robot, "robot", s.robot.span, list(self.infos))  # type: ignore[union-attr]
+            return
+        if port is None:
+            return
+        direction = IO_DIRECTIONS[s.io.kind]
+        key = (direction, port, robot)
+        if key in self.io_seen:
+            self.rep.error(codes.DUPLICATE, f"{s.io.kind}[{port}] must be declared once (got it twice)", s.span,
+                           (("first declared here", self.io_seen[key].span),))
+            return
+        self.io_seen[key] = s
+        self.io.append(ir.IoSignal(direction, port, s.signal.value, robot, span=s.span))
+
+    def _ConstDecl(self, s: ast.ConstDecl) -> None:
+        v = eval_expr(s.value, self.scope, self.rep)
+        if v is not None:
+            declare(self.scope, Entry("const", s.name.name, v, s.name.span), self.rep)
+
+
+def lower_cell(state: FrontendState) -> FrontendState:
+    mod = state.cell_module
+    if mod is None:
+        return state
+    cells = [s for s in mod.module.body if isinstance(s, ast.CellDecl)]
+    if not cells:
+        state.reporter.error(codes.NO_CELL, f"cell file must contain a 'cell NAME {{ ... }}' block (got none in {Path(mod.path).name})",
+                             mod.module.body[0].span if mod.module.body else None)
+        return state
+    for extra in cells[1:]:
+        state.reporter.error(codes.NO_CELL, "a file must contain at most one cell (got a second one)", extra.name.span,
+                             (("the first cell is here", cells[0].name.span),))
+    builder = _CellBuilder(state, cells[0])
+    cell = builder.build()
+    return replace(state, cell=cell, cell_scope=builder.scope, robots=builder.infos)

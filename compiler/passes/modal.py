@@ -1,0 +1,140 @@
+"""Modal settings (tool, frame, speed, joint_speed, accel, zone) resolved to values per move.
+
+Choices (LANGUAGE.md is silent; what RAPID/KRL/TP programmers expect):
+  * Defaults when never set: speed 250 mm/s, joint_speed 100 %, accel 2 m/s^2 (TCP),
+    joint acceleration 100 % of each axis' limit, zone fine, tool = the robot flange,
+    frame = the robot base.
+  * `accel` takes an acceleration (TCP, m/s^2) or a ratio (share of each joint's maximum
+    acceleration, used by joint moves): `accel 50 %`.
+  * `speed` is always a TCP speed (mm/s, m/s); joint moves use `joint_speed` (a ratio).
+  * Settings are scoped to their block: a setting inside a proc body, a loop body or an if
+    arm does not leak out of it (an if arm is a runtime branch, so it could not).
+  * Built-in names: `tool flange` is the bare flange, `frame base` the robot base and
+    `frame world` the cell's world frame (each unless the cell defines that name).
+  * A frame can be a cell/program frame, a fixture (its pose) or a robot (its base).
+  * A tool must be mounted (`on ROBOT`) on the robot whose task uses it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from rmot.compiler import codes, ir
+from rmot.compiler.passes.context import Reporter, Scope
+from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
+from rmot.compiler.passes.values import ACCEL, LENGTH, RATIO, SPEED, PoseV, Quantity, fmt_quantity
+from rmot.lang import ast
+
+__all__ = ["DEFAULT_MODAL", "Modal", "apply_setting"]
+
+
+@dataclass(frozen=True, slots=True)
+class Modal:
+    tool: ir.ToolRef
+    frame: ir.FrameRef
+    tcp_speed: float = 0.25  # m/s
+    tcp_accel: float = 2.0  # m/s^2
+    joint_speed: float = 1.0  # fraction
+    joint_accel: float = 1.0  # fraction
+    zone: ir.Zone = ir.Zone(0.0)
+
+
+DEFAULT_MODAL = Modal(ir.ToolRef(None), ir.FrameRef(None))
+
+
+def apply_setting(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
+    """The modal state after setting `s` (unchanged, with a diagnostic, when `s` is wrong)."""
+    if s.kind == "tool":
+        tool = _tool(s.value, scope, robot, rep)  # type: ignore[arg-type]
+        return modal if tool is None else replace(modal, tool=tool)
+    if s.kind == "frame":
+        frame = _frame(s.value, scope, base, rep)  # type: ignore[arg-type]
+        return modal if frame is None else replace(modal, frame=frame)
+    if s.kind == "zone":
+        if s.value is None:
+            return replace(modal, zone=ir.Zone(0.0))
+        r = _positive(s, scope, LENGTH, "zone", rep, allow_zero=True)
+        return modal if r is None else replace(modal, zone=ir.Zone(r))
+    if s.kind == "speed":
+        v = _positive(s, scope, SPEED, "speed", rep)
+        return modal if v is None else replace(modal, tcp_speed=v)
+    if s.kind == "joint_speed":
+        v = _ratio(s, scope, "joint_speed", rep)
+        return modal if v is None else replace(modal, joint_speed=v)
+    if s.kind == "accel":
+        return _accel(modal, s, scope, rep)
+    rep.error(codes.MISPLACED, f"'{s.kind}' must be a modifier of a move (got it as a setting)", s.span)
+    return modal
+
+
+def _tool(name: ast.Ident, scope: Scope, robot: str, rep: Reporter) -> ir.ToolRef | None:
+    entry = scope.lookup(name.name)
+    if entry is None:
+        if name.name == "flange":
+            return ir.ToolRef(None)
+        tools = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "tool"]
+        rep.unknown(name.name, "tool", name.span, [*tools, "flange"])
+        return None
+    if entry.kind != "tool":
+        rep.error(codes.WRONG_TYPE, f"'{name.name}' must be a tool (got a {entry.kind})", name.span,
+                  ((f"'{name.name}' is defined here", entry.span),))
+        return None
+    tool: ir.Tool = entry.value
+    if tool.robot != robot:
+        rep.error(codes.TOOL_NOT_ON_ROBOT, f"tool '{tool.name}' must be mounted on robot '{robot}' to be used in its task "
+                  f"(got a tool on '{tool.robot}')", name.span, ((f"'{tool.name}' is declared here", entry.span),))
+        return None
+    return ir.ToolRef(tool.name, tool.tcp, tool.mass)
+
+
+def _frame(name: ast.Ident, scope: Scope, base: ir.Pose, rep: Reporter) -> ir.FrameRef | None:
+    entry = scope.lookup(name.name)
+    if entry is None:
+        if name.name == "base":
+            return ir.FrameRef(None)
+        if name.name == "world":
+            return ir.FrameRef("world", base.inverse(), ir.Pose())
+        frames = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind in ("frame", "fixture")]
+        rep.unknown(name.name, "frame", name.span, [*frames, "base", "world"])
+        return None
+    if entry.kind not in ("frame", "fixture", "robot") or not isinstance(entry.value, PoseV):
+        rep.error(codes.WRONG_TYPE, f"'{name.name}' must be a frame, a fixture or a robot (got a {entry.kind})", name.span,
+                  ((f"'{name.name}' is defined here", entry.span),))
+        return None
+    world = entry.value.pose
+    return ir.FrameRef(name.name, base.inverse() * world, world)
+
+
+def _positive(s: ast.Setting, scope: Scope, dim: tuple[int, ...], what: str, rep: Reporter, allow_zero: bool = False) -> float | None:
+    e: ast.Expr = s.value  # type: ignore[assignment]
+    v = expect_quantity(eval_expr(e, scope, rep), dim, what, e.span, rep)  # type: ignore[arg-type]
+    if v is None:
+        return None
+    if v < 0 or (v == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        rep.error(codes.OUT_OF_RANGE, f"{what} must be {bound} (got {v:g} in SI units)", e.span)
+        return None
+    return v
+
+
+def _ratio(s: ast.Setting, scope: Scope, what: str, rep: Reporter) -> float | None:
+    e: ast.Expr = s.value  # type: ignore[assignment]
+    v = eval_expr(e, scope, rep)
+    x = expect_quantity(v, RATIO, what, e.span, rep)
+    if x is None:
+        return None
+    if not 0 < x <= 1:
+        shown = fmt_quantity(v) if isinstance(v, Quantity) else f"{x:g}"
+        rep.error(codes.OUT_OF_RANGE, f"{what} must be more than 0 % and at most 100 % (got {shown})", e.span)
+        return None
+    return x
+
+
+def _accel(modal: Modal, s: ast.Setting, scope: Scope, rep: Reporter) -> Modal:
+    e: ast.Expr = s.value  # type: ignore[assignment]
+    v = eval_expr(e, scope, rep)
+    if isinstance(v, Quantity) and v.dim == RATIO:
+        x = _ratio(s, scope, "accel", rep)
+        return modal if x is None else replace(modal, joint_accel=x)
+    x = _positive(s, scope, ACCEL, "accel", rep) if v is not None else None
+    return modal if x is None else replace(modal, tcp_accel=x)

@@ -1,0 +1,119 @@
+"""Compile-time values and the unit table: every quantity is converted to SI here, once.
+
+A Quantity keeps its dimension as exponents of (length, angle, time, mass, percent) and the
+unit text as written (for messages that name both units). A bare number has dimension
+zero and `unit` None, so "missing unit" can be told apart from a dimensionless ratio.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Union
+
+from rmot.compiler import ir
+from rmot.lang.source import Span
+
+__all__ = [
+    "BoolV", "Dim", "DIMENSIONLESS", "JointsV", "LENGTH", "ANGLE", "TIME", "SPEED", "ACCEL",
+    "MASS", "RATIO", "ANGULAR_SPEED", "ANGULAR_ACCEL", "PoseV", "Quantity", "StringV", "UNITS",
+    "Value", "VectorV", "dim_name", "example_unit", "type_name", "fmt_quantity",
+]
+
+Dim = tuple[int, int, int, int, int]  # exponents of length, angle, time, mass, percent
+DIMENSIONLESS: Dim = (0, 0, 0, 0, 0)
+LENGTH: Dim = (1, 0, 0, 0, 0)
+ANGLE: Dim = (0, 1, 0, 0, 0)
+TIME: Dim = (0, 0, 1, 0, 0)
+MASS: Dim = (0, 0, 0, 1, 0)
+RATIO: Dim = (0, 0, 0, 0, 1)
+SPEED: Dim = (1, 0, -1, 0, 0)
+ANGULAR_SPEED: Dim = (0, 1, -1, 0, 0)
+ACCEL: Dim = (1, 0, -2, 0, 0)
+ANGULAR_ACCEL: Dim = (0, 1, -2, 0, 0)
+
+_DEG = math.pi / 180
+# unit as written -> (factor to SI, dimension)
+UNITS: dict[str, tuple[float, Dim]] = {
+    "mm": (1e-3, LENGTH), "cm": (1e-2, LENGTH), "m": (1.0, LENGTH), "in": (0.0254, LENGTH),
+    "deg": (_DEG, ANGLE), "rad": (1.0, ANGLE),
+    "ms": (1e-3, TIME), "s": (1.0, TIME), "min": (60.0, TIME),
+    "mm/s": (1e-3, SPEED), "m/s": (1.0, SPEED), "cm/s": (1e-2, SPEED), "in/s": (0.0254, SPEED),
+    "deg/s": (_DEG, ANGULAR_SPEED), "rad/s": (1.0, ANGULAR_SPEED),
+    "mm/s^2": (1e-3, ACCEL), "m/s^2": (1.0, ACCEL), "cm/s^2": (1e-2, ACCEL), "in/s^2": (0.0254, ACCEL),
+    "deg/s^2": (_DEG, ANGULAR_ACCEL), "rad/s^2": (1.0, ANGULAR_ACCEL),
+    "g": (1e-3, MASS), "kg": (1.0, MASS), "%": (0.01, RATIO),
+}
+_DIM_NAMES = {
+    DIMENSIONLESS: ("number", "3"), LENGTH: ("length", "150 mm"), ANGLE: ("angle", "90 deg"),
+    TIME: ("time", "0.5 s"), MASS: ("mass", "1.2 kg"), RATIO: ("ratio", "50 %"),
+    SPEED: ("speed", "250 mm/s"), ANGULAR_SPEED: ("angular speed", "90 deg/s"),
+    ACCEL: ("acceleration", "2 m/s^2"), ANGULAR_ACCEL: ("angular acceleration", "180 deg/s^2"),
+}
+
+
+def dim_name(dim: Dim) -> str:
+    return _DIM_NAMES.get(dim, ("quantity", ""))[0]
+
+
+def example_unit(dim: Dim) -> str:
+    """'a length such as 150 mm' — how a message names what it wanted."""
+    name, example = _DIM_NAMES.get(dim, ("quantity", ""))
+    article = "an" if name[0] in "aeiou" else "a"
+    return f"{article} {name} such as {example}" if example else f"{article} {name}"
+
+
+@dataclass(frozen=True, slots=True)
+class Quantity:
+    value: float  # SI
+    dim: Dim
+    unit: str | None  # as written (None: a bare number)
+    written: float | None = None  # the number as written, for messages
+
+    def shown(self) -> str:
+        return fmt_quantity(self)
+
+
+def fmt_quantity(q: Quantity) -> str:
+    if q.unit is None:
+        return f"{q.value:g}"
+    factor = UNITS.get(q.unit, (1.0, q.dim))[0]
+    number = q.written if q.written is not None else q.value / factor
+    return f"{number:g} {q.unit}"
+
+
+@dataclass(frozen=True, slots=True)
+class PoseV:
+    pose: ir.Pose
+    name: str | None = None  # the target/frame/fixture it came from
+
+
+@dataclass(frozen=True, slots=True)
+class JointsV:
+    values: tuple[Quantity, ...]
+    span: Span | None = None  # the joints(...) literal, for count errors
+    name: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class VectorV:
+    items: tuple[Value, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class BoolV:
+    value: bool
+
+
+@dataclass(frozen=True, slots=True)
+class StringV:
+    value: str
+
+
+Value = Union[Quantity, PoseV, JointsV, VectorV, BoolV, StringV]
+
+
+def type_name(v: Value) -> str:
+    if isinstance(v, Quantity):
+        return dim_name(v.dim) if v.unit is not None or v.dim != DIMENSIONLESS else "number"
+    return {PoseV: "pose", JointsV: "joints", VectorV: "vector", BoolV: "on/off value", StringV: "string"}[type(v)]

@@ -1,0 +1,161 @@
+"""Zones: a chain of moves joined into one joint path, corners blended inside the zone sphere.
+
+At the corner between move A and move B (A's zone radius r > 0), the radius used is
+min(r, half of A's TCP path length, half of B's). The blend replaces the part of A inside the
+sphere of that radius around the corner (A's target TCP) and the part of B inside it: it
+cross-fades in joint space from A's path to B's path,
+
+    q(l) = (1 - w(l)) qA(l) + w(l) qB(l),  w = 3 l^2 - 2 l^3 (smoothstep),  l in [0, 1],
+
+where qA runs along A from the zone entry to the corner and qB along B from the corner to the
+zone exit. The blend leaves A tangentially and joins B tangentially, and being a convex
+combination of in-limit joints it stays within the joint limits. Its TCP is checked to stay in
+the sphere; if it does not, the radius is halved (up to 3 times) before the corner falls back
+to an exact stop with a warning (W222).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rmot.compiler.plan import codes
+from rmot.compiler.plan.segments import Segment
+from rmot.compiler.plan.targets import Finding
+from rmot.lang.diagnostics import Severity
+
+__all__ = ["ChainPath", "blend_chain"]
+
+_HALVINGS = 3
+_BLEND_STEP = 0.01  # rad between blend samples
+
+
+@dataclass(frozen=True, eq=False)
+class ChainPath:
+    """The joined path: q (M, dof), tcp (M, 3), c (M,) the TCP-time coordinate (s: TCP path
+    length over programmed speed, constant along joint moves). Per segment: `starts`/`ends`
+    chain indexes (end = zone entry when blended), `vias` chain index of a via point,
+    `radii` the blend radius used (m)."""
+
+    q: np.ndarray
+    tcp: np.ndarray
+    c: np.ndarray
+    starts: tuple[int, ...]
+    ends: tuple[int, ...]
+    vias: tuple[int | None, ...]
+    radii: tuple[float, ...]
+    findings: tuple[tuple[int, Finding], ...] = field(default=())
+
+
+def _along(q: np.ndarray, lam: np.ndarray) -> np.ndarray:
+    """Points at fractions lam (N,) of the polyline q (M, dof) by joint-space arc length."""
+    if len(q) == 1:
+        return np.repeat(q, len(lam), axis=0)
+    d = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(q, axis=0), axis=1))])
+    if d[-1] <= 0:
+        return np.repeat(q[:1], len(lam), axis=0)
+    x = lam * d[-1]
+    return np.stack([np.interp(x, d, q[:, j]) for j in range(q.shape[1])], axis=1)
+
+
+def _crossing(robot, tool: np.ndarray, qa: np.ndarray, qb: np.ndarray, corner: np.ndarray, r: float) -> np.ndarray:
+    """Joints on the joint-space segment qa (outside the sphere) -> qb (inside) whose TCP lies
+    on the sphere of radius r around corner (bisection; the segment is short)."""
+    lo, hi = 0.0, 1.0
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        p = (robot.fk(qa + mid * (qb - qa)) @ tool)[:3, 3]
+        lo, hi = (mid, hi) if np.linalg.norm(p - corner) > r else (lo, mid)
+    return qa + hi * (qb - qa)
+
+
+@dataclass(frozen=True, eq=False)
+class _Part:
+    """A segment's remaining path: q (M, dof), tcp (M, 3), via index or None."""
+
+    q: np.ndarray
+    tcp: np.ndarray
+    via: int | None
+
+
+def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: ignore[no-untyped-def]
+    """(A's kept part, blend q (K, dof), blend tcp (K, 3), B's remaining part) or None."""
+    corner = a.tcp[-1]
+    out_a = np.flatnonzero(np.linalg.norm(a.tcp - corner, axis=1) > r)
+    out_b = np.flatnonzero(np.linalg.norm(b.tcp - corner, axis=1) > r)
+    if not out_a.size or not out_b.size:
+        return None
+    k, m = int(out_a[-1]), int(out_b[0])
+    q_in = _crossing(robot, tool, a.q[k], a.q[k + 1], corner, r)
+    q_out = _crossing(robot, tool, b.q[m], b.q[m - 1], corner, r)
+    qa_part = np.vstack([q_in, a.q[k + 1:]])
+    qb_part = np.vstack([b.q[:m], q_out])
+    span = np.linalg.norm(np.diff(qa_part, axis=0), axis=1).sum() + np.linalg.norm(np.diff(qb_part, axis=0), axis=1).sum()
+    lam = np.linspace(0.0, 1.0, max(9, int(span / _BLEND_STEP) + 1))
+    w = (3 * lam**2 - 2 * lam**3)[:, None]
+    q = (1 - w) * _along(qa_part, lam) + w * _along(qb_part, lam)
+    tcp = (robot.fk_batch(q) @ tool)[:, :3, 3]
+    if np.max(np.linalg.norm(tcp - corner, axis=1)) > r * (1 + 1e-6) + 1e-9:
+        return None
+    keep = _Part(np.vstack([a.q[: k + 1], q_in]), np.vstack([a.tcp[: k + 1], tcp[0]]),
+                 a.via if a.via is not None and a.via <= k else None)
+    rest = _Part(np.vstack([q_out, b.q[m:]]), np.vstack([tcp[-1], b.tcp[m:]]),
+                 b.via - m + 1 if b.via is not None and b.via >= m else None)
+    return keep, q[1:-1], tcp[1:-1], rest
+
+
+def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
+    """Join a chain of segments (each starting where the previous one ends) into one path."""
+    qs, tcps, rates = [], [], []
+    ends, vias, radii, findings = [], [], [], []
+    count = 0
+    part = _Part(segments[0].q, segments[0].tcp, segments[0].via_index)
+    for i, seg in enumerate(segments):
+        blend, used, nxt = None, 0.0, None
+        if i + 1 < len(segments):
+            nxt = _Part(segments[i + 1].q, segments[i + 1].tcp, segments[i + 1].via_index)
+            if not seg.move.motion.zone.is_fine:
+                blend, used = _corner(robot, seg, segments[i + 1], part, nxt, findings, i)
+        keep = blend[0] if blend is not None else part
+        qs.append(keep.q if i == 0 else keep.q[1:])
+        tcps.append(keep.tcp if i == 0 else keep.tcp[1:])
+        rates.append(np.full(len(qs[-1]), seg.tcp_rate))
+        vias.append(count + keep.via - (0 if i == 0 else 1) if keep.via is not None else None)
+        count += len(qs[-1])
+        ends.append(count - 1)
+        radii.append(used)
+        if blend is not None:
+            _, qb, tb, nxt = blend
+            qs.append(qb)
+            tcps.append(tb)
+            rates.append(np.full(len(qb), max(seg.tcp_rate, segments[i + 1].tcp_rate)))
+            count += len(qb)
+            # the blend's last point joins the next part, whose first point (q_out) is kept
+            qs.append(nxt.q[:1])
+            tcps.append(nxt.tcp[:1])
+            rates.append(np.full(1, max(seg.tcp_rate, segments[i + 1].tcp_rate)))
+            count += 1
+        part = nxt if nxt is not None else part
+    q, tcp, rate = np.concatenate(qs), np.concatenate(tcps), np.concatenate(rates)
+    step_rate = np.maximum(rate[1:], rate[:-1])
+    c = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(tcp, axis=0), axis=1) * step_rate)])
+    starts = [0] + ends[:-1]  # a move starts where the previous one ends (its zone entry)
+    return ChainPath(q, tcp, c, tuple(starts), tuple(ends), tuple(vias), tuple(radii), tuple(findings))
+
+
+def _corner(robot, a: Segment, b: Segment, pa: _Part, pb: _Part, findings: list, i: int):  # type: ignore[no-untyped-def]
+    """The blend at the corner a -> b, halving the radius if the TCP leaves the sphere."""
+    tool = a.move.tool.tcp.matrix()
+    r = min(a.move.motion.zone.radius, 0.5 * a.tcp_length, 0.5 * b.tcp_length)
+    if r <= 1e-6:
+        return None, 0.0
+    for _ in range(_HALVINGS + 1):
+        blend = _blend(robot, pa, pb, r, tool)
+        if blend is not None:
+            return blend, r
+        r *= 0.5
+    msg = (f"zone {a.move.motion.zone.radius * 1e3:.1f} mm cannot be blended inside its sphere at this "
+           "corner; the robot stops exactly at the target")
+    findings.append((i, Finding(codes.BLEND_REDUCED, Severity.WARNING, msg)))
+    return None, 0.0

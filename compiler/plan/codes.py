@@ -1,0 +1,34 @@
+"""Diagnostic codes of the planner (E220–E299 errors, W220+ warnings).
+
+E200–E219 are left to the kinematics library (compiler/robots); the planner starts at E220.
+"""
+
+from __future__ import annotations
+
+from rmot.lang.diagnostics import Code
+
+__all__ = [
+    "ARC_DEGENERATE", "BLEND_REDUCED", "BRANCH_CHANGE", "BRANCH_CHANGE_JOINT", "IF_ARMS_DIFFER",
+    "JOINT_LIMIT_PATH", "JOINT_TARGET_LIMIT", "PATH_SINGULAR", "SLOWDOWN_SINGULAR",
+    "SYNC_MISMATCH", "TARGET_LIMITS", "TARGET_UNREACHABLE", "TIME_TOO_SHORT",
+    "TIMING_FAILED", "ZONE_DROPPED", "DOF_MISMATCH", "ROBOT_UNAVAILABLE",
+]
+
+TARGET_UNREACHABLE = Code("E220", "target-unreachable", "a pose target is outside the robot's workspace")
+TARGET_LIMITS = Code("E221", "target-out-of-limits", "every IK solution of a target exceeds a joint limit")
+BRANCH_CHANGE = Code("E222", "branch-change", "a move can only be done by changing IK branch")
+JOINT_TARGET_LIMIT = Code("E223", "joint-target-out-of-limits", "a joint target exceeds a joint limit")
+PATH_SINGULAR = Code("E224", "path-singular", "a linear or circular path passes through a singularity")
+JOINT_LIMIT_PATH = Code("E225", "path-joint-limit", "a linear or circular path crosses a joint limit")
+ARC_DEGENERATE = Code("E226", "arc-degenerate", "circular move points are collinear or coincide")
+TIME_TOO_SHORT = Code("E227", "time-too-short", "a `time` modifier is shorter than the fastest feasible motion")
+TIMING_FAILED = Code("E228", "timing-failed", "time parametrisation found no feasible timing")
+SYNC_MISMATCH = Code("E229", "sync-mismatch", "tasks do not pass the same sync barriers in the same order")
+DOF_MISMATCH = Code("E230", "joint-count-mismatch", "a joint target has the wrong number of joints")
+ROBOT_UNAVAILABLE = Code("E231", "robot-unavailable", "the task's robot model cannot be loaded")
+
+BRANCH_CHANGE_JOINT = Code("W220", "branch-change-joint-move", "a joint move changes IK branch (nearest solution)")
+SLOWDOWN_SINGULAR = Code("W221", "singularity-slowdown", "the TCP slows down near a singularity")
+BLEND_REDUCED = Code("W222", "blend-reduced", "a zone was reduced or dropped to keep the blend valid")
+IF_ARMS_DIFFER = Code("W223", "if-arms-end-differently", "the arms of a runtime if end in different joint states")
+ZONE_DROPPED = Code("W224", "zone-dropped", "a zone cannot be used (next instruction stops the robot)")

@@ -1,0 +1,122 @@
+"""Segments: the joint-space geometry of one move, before blending and timing.
+
+A Segment is the dense joint path of a move: q (M, dof) from the start joints to the target
+joints, with the TCP positions (M, 3) along it. Joint moves are the straight line in joint
+space (what a synchronised joint move does), sampled every `_JOINT_STEP` rad so that blends
+and splines can follow it. Linear and circular moves are the dense IK of the TCP path
+(compiler.plan.dense), checked for unreachable points, singularities and joint limits.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rmot.compiler import ir
+from rmot.compiler.plan import codes
+from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path, line_path
+from rmot.compiler.plan.dense import DensePath, PathFailure, follow_path
+from rmot.compiler.plan.targets import Finding, flange_target, solve_target
+from rmot.lang.diagnostics import Severity
+
+__all__ = ["Segment", "build_segment"]
+
+_JOINT_STEP = 0.02  # rad between samples of a joint move
+_SLOWDOWN_WARN = 1.05  # warn when joints force the TCP below 1/1.05 of the programmed speed
+
+
+@dataclass(frozen=True, eq=False)
+class Segment:
+    """One move's joint path. `tcp_rate` is 1 / programmed TCP speed (s/m) for Cartesian moves,
+    0 for joint moves (no TCP speed limit). `via_index`: circular moves, the sample at the via."""
+
+    move: ir.Move
+    q: np.ndarray
+    tcp: np.ndarray
+    tcp_rate: float
+    via_index: int | None = None
+    path: CartesianPath | None = None
+
+    @property
+    def q_end(self) -> np.ndarray:
+        return self.q[-1]
+
+    @property
+    def tcp_length(self) -> float:
+        return float(np.sum(np.linalg.norm(np.diff(self.tcp, axis=0), axis=1)))
+
+    @property
+    def joint_length(self) -> float:
+        return float(np.max(np.abs(self.q[-1] - self.q[0]))) if len(self.q) > 1 else 0.0
+
+
+def _tcp_positions(robot: object, q: np.ndarray, tool: np.ndarray) -> np.ndarray:
+    return (robot.fk_batch(q) @ tool)[:, :3, 3]  # type: ignore[attr-defined]
+
+
+def build_segment(
+    robot: object, move: ir.Move, q_now: np.ndarray
+) -> tuple[Segment | None, list[Finding]]:
+    """The move's Segment from the current joints q_now (dof,), or None and the errors."""
+    q_target, findings = solve_target(robot, move, q_now)
+    if q_target is None:
+        return None, findings
+    tool = move.tool.tcp.matrix()
+    if move.kind is ir.MotionKind.JOINT:
+        n = int(np.ceil(np.max(np.abs(q_target - q_now)) / _JOINT_STEP)) + 1
+        q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
+        return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
+    seg, more = _cartesian_segment(robot, move, q_now, q_target, tool)
+    return seg, findings + more
+
+
+def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-untyped-def]
+    start = robot.fk(q_now) @ tool
+    if isinstance(move.target, ir.JointTarget):
+        end = robot.fk(q_target) @ tool
+    else:
+        end = move.target.pose.matrix()
+    try:
+        if move.kind is ir.MotionKind.CIRCULAR:
+            assert move.via is not None
+            path = arc_path(start, np.asarray(move.via.pose.position), end)
+        else:
+            path = line_path(start, end)
+    except DegenerateArc as exc:
+        return None, [Finding(codes.ARC_DEGENERATE, Severity.ERROR, str(exc))]
+    tool_inv = np.linalg.inv(tool)
+    dense = follow_path(robot, path, tool_inv, q_now)
+    if isinstance(dense, PathFailure):
+        code = {"singular": codes.PATH_SINGULAR, "limit": codes.JOINT_LIMIT_PATH}.get(dense.kind, codes.TARGET_UNREACHABLE)
+        return None, [Finding(code, Severity.ERROR, dense.message)]
+    via_index = None
+    if path.kind == "arc":
+        via_index = int(np.argmin(np.abs(dense.u - path.u_at_via(np.asarray(move.via.pose.position)))))
+    rate = 1.0 / move.motion.tcp_speed
+    seg = Segment(move, dense.q, dense.tcp, rate, via_index, path)
+    return seg, _slowdown(robot, seg, dense)
+
+
+def _slowdown(robot: object, seg: Segment, dense: DensePath) -> list[Finding]:
+    """A warning where joint speed limits force the TCP below its programmed speed."""
+    dl = np.linalg.norm(np.diff(dense.tcp, axis=0), axis=1)
+    ok = dl > 1e-7
+    if not np.any(ok):
+        return []
+    speed = seg.move.motion.tcp_speed
+    qd = np.abs(np.diff(dense.q, axis=0)[ok]) / dl[ok, None] * speed  # joint speed at programmed TCP speed
+    ratio = qd / robot.velocity_limits  # type: ignore[attr-defined]
+    worst = float(np.max(ratio))
+    if worst <= _SLOWDOWN_WARN:
+        return []
+    i, j = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
+    k = int(np.flatnonzero(ok)[i])
+    where = "(" + ", ".join(f"{v * 1e3:.1f}" for v in dense.tcp[k]) + ") mm"
+    cond = float(robot.condition(dense.q[k]))  # type: ignore[attr-defined]
+    manip = float(robot.manipulability(dense.q[k]))  # type: ignore[attr-defined]
+    msg = (f"TCP speed must drop to {speed / worst * 1e3:.0f} mm/s (programmed {speed * 1e3:.0f} mm/s) "
+           f"near {where}: joint {j + 1} would need {np.degrees(qd[i, j]):.0f} deg/s "
+           f"(max {np.degrees(robot.velocity_limits[j]):.0f} deg/s); "  # type: ignore[attr-defined]
+           f"Jacobian condition number {cond:.0f}, manipulability {manip:.2g}")
+    return [Finding(codes.SLOWDOWN_SINGULAR, Severity.WARNING, msg)]

@@ -1,0 +1,189 @@
+"""Targets: one joint solution per move target, with the IK branch chosen as a programmer expects.
+
+Rules (LANGUAGE.md "Motion"):
+* A joint target is used as written (checked against the joint limits).
+* A pose target of a **joint** move takes the branch `config(...)` names (None fields free);
+  among the allowed solutions the one nearest the current joints. If no `config` field is
+  named and the nearest solution lies on another branch than the current joints, the move is
+  planned (the programmer asked for a joint move) but warned about (W220), naming the branch
+  change and the `config(...)` that makes it explicit: never a *silent* flip.
+* A pose target of a **linear or circular** move must lie on the current branch (a Cartesian
+  path cannot change branch); a `config(...)` that differs from the current branch, or a target
+  reachable only on another branch, is an error (E222) saying which branch changes and how to
+  fix it (insert a joint move with that config before the move).
+* The initial joints of a task: the first move's target — its joint values, or its IK solution
+  (respecting config) nearest the "home" joints (all zeros clamped into the joint limits).
+  The first move therefore takes no time: the robot is assumed to start there.
+
+Everything returns values: (q or None, [Finding]) with user-facing messages.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from rmot.compiler import ir
+from rmot.compiler.plan import codes
+from rmot.lang.diagnostics import Code, Severity
+
+__all__ = ["Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "solve_target"]
+
+
+@dataclass(frozen=True)
+class Finding:
+    code: Code
+    severity: Severity
+    message: str
+
+
+def flange_target(move: ir.Move, target: ir.CartesianTarget | None = None) -> np.ndarray:
+    """The flange pose (4, 4) in the robot base for a TCP target: target * inv(tool.tcp)."""
+    t = target if target is not None else move.target
+    assert isinstance(t, ir.CartesianTarget)
+    return t.pose.matrix() @ move.tool.tcp.inverse().matrix()
+
+
+def home_joints(robot: object) -> np.ndarray:
+    """All zeros clamped into the joint limits (dof,)."""
+    lim = robot.joint_limits  # type: ignore[attr-defined]
+    return np.clip(np.zeros(lim.shape[0]), lim[:, 0], lim[:, 1])
+
+
+def branch_changes(old: ir.Config, new: ir.Config) -> list[tuple[str, str, str]]:
+    """[(field, old value, new value)] for every set field that differs."""
+    out = []
+    for name in ("shoulder", "elbow", "wrist"):
+        a, b = getattr(old, name), getattr(new, name)
+        if a is not None and b is not None and a != b:
+            out.append((name, a.value, b.value))
+    return out
+
+
+def _merge(base: ir.Config, override: ir.Config) -> ir.Config:
+    return ir.Config(
+        override.shoulder or base.shoulder, override.elbow or base.elbow, override.wrist or base.wrist
+    )
+
+
+def _config_text(changes: list[tuple[str, str, str]]) -> str:
+    return "config(" + ", ".join(f"{f}={new}" for f, _, new in changes) + ")"
+
+
+def _change_text(changes: list[tuple[str, str, str]]) -> str:
+    return " and ".join(f"the {f} from {old} to {new}" for f, old, new in changes)
+
+
+def check_joint_values(robot: object, values: tuple[float, ...]) -> tuple[np.ndarray | None, list[Finding]]:
+    """A joint target as an array, or a finding for a wrong count or a limit excess."""
+    dof = robot.dof  # type: ignore[attr-defined]
+    if len(values) != dof:
+        msg = f"a joint target must have {dof} values for this robot (got {len(values)})"
+        return None, [Finding(codes.DOF_MISMATCH, Severity.ERROR, msg)]
+    q = np.asarray(values, dtype=float)
+    lim = robot.joint_limits  # type: ignore[attr-defined]
+    for j in range(dof):
+        if not lim[j, 0] - 1e-9 <= q[j] <= lim[j, 1] + 1e-9:
+            rev = robot.joint_types[j] == "R"  # type: ignore[attr-defined]
+            f, unit = (np.degrees, "deg") if rev else ((lambda x: x * 1e3), "mm")
+            msg = (f"joint {j + 1} must be within [{f(lim[j, 0]):.1f}, {f(lim[j, 1]):.1f}] {unit} "
+                   f"(got {f(q[j]):.1f} {unit})")
+            return None, [Finding(codes.JOINT_TARGET_LIMIT, Severity.ERROR, msg)]
+    return q, []
+
+
+def _no_solution(robot: object, flange: np.ndarray, seed: np.ndarray, result: object) -> Finding:
+    """The error for a pose with no solution at all (unreachable or out of limits)."""
+    status = getattr(result, "status", None)
+    name = getattr(status, "name", "")
+    text = getattr(result, "message", "") or "no IK solution"
+    if name == "OUT_OF_LIMITS":
+        return Finding(codes.TARGET_LIMITS, Severity.ERROR, f"target must be reachable within the joint limits ({text})")
+    dist = float(getattr(result, "distance", 0.0) or 0.0)
+    where = f"{dist * 1e3:.1f} mm outside the workspace" if dist > 0 else text
+    return Finding(codes.TARGET_UNREACHABLE, Severity.ERROR, f"target must be within the robot's reach ({where})")
+
+
+def solve_target(
+    robot: object, move: ir.Move, q_now: np.ndarray
+) -> tuple[np.ndarray | None, list[Finding]]:
+    """The joints (dof,) at the move's target, chosen by the branch rules above."""
+    if isinstance(move.target, ir.JointTarget):
+        return check_joint_values(robot, move.target.values)
+    flange = flange_target(move)
+    current = robot.branch(q_now)  # type: ignore[attr-defined]
+    if move.kind is ir.MotionKind.JOINT:
+        return _solve_joint_move(robot, move, flange, q_now, current)
+    return _solve_cartesian(robot, move, flange, q_now, current)
+
+
+def _any_config(c: ir.Config) -> bool:
+    return any(v is not None for v in (c.shoulder, c.elbow, c.wrist))
+
+
+def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
+    wanted = move.config if _any_config(move.config) else None
+    res = robot.ik(flange, seed=q_now, config=wanted)
+    if res.solutions:
+        q = np.asarray(res.solutions[0], dtype=float)
+        changes = [c for c in branch_changes(current, robot.branch(q)) if getattr(move.config, c[0]) is None]
+        if not changes:
+            return q, []
+        msg = (f"joint move changes {_change_text(changes)} (the nearest solution); "
+               f"write {_config_text(changes)} to make the change explicit")
+        return q, [Finding(codes.BRANCH_CHANGE_JOINT, Severity.WARNING, msg)]
+    if wanted is not None:
+        free = robot.ik(flange, seed=q_now, config=None)
+        if free.solutions:
+            other = robot.branch(np.asarray(free.solutions[0]))
+            msg = (f"target must be reachable with config({wanted}) (it is reachable only with "
+                   f"config({other}); change or drop the config)")
+            return None, [Finding(codes.BRANCH_CHANGE, Severity.ERROR, msg)]
+    return None, [_no_solution(robot, flange, q_now, res)]
+
+
+def _solve_cartesian(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
+    kind = move.kind.name.lower()
+    explicit = branch_changes(current, move.config)
+    if explicit:
+        msg = (f"a {kind} move cannot change {_change_text(explicit)}; insert a joint move with "
+               f"{_config_text(explicit)} before it")
+        return None, [Finding(codes.BRANCH_CHANGE, Severity.ERROR, msg)]
+    branch = _merge(current, move.config)
+    res = robot.ik(flange, seed=q_now, config=branch if _any_config(branch) else None)
+    if res.solutions:
+        return np.asarray(res.solutions[0], dtype=float), []
+    free = robot.ik(flange, seed=q_now, config=None)
+    if free.solutions:
+        changes = branch_changes(current, robot.branch(np.asarray(free.solutions[0])))
+        msg = (f"target of a {kind} move must be reachable on the current branch; it needs "
+               f"{_change_text(changes) or 'another branch'}: insert a joint move with "
+               f"{_config_text(changes) if changes else 'config(...)'} before it")
+        return None, [Finding(codes.BRANCH_CHANGE, Severity.ERROR, msg)]
+    return None, [_no_solution(robot, flange, q_now, res)]
+
+
+def initial_joints(robot: object, body: tuple[ir.Instr, ...]) -> np.ndarray:
+    """Where the task starts (see module doc); home if the first target cannot be solved."""
+    home = home_joints(robot)
+    first = next((i for i in _main_line(body) if isinstance(i, ir.Move)), None)
+    if first is None:
+        return home
+    if isinstance(first.target, ir.JointTarget):
+        q, found = check_joint_values(robot, first.target.values)
+        return q if q is not None else home
+    config = first.config if _any_config(first.config) else None
+    res = robot.ik(flange_target(first), seed=home, config=config)  # type: ignore[attr-defined]
+    return np.asarray(res.solutions[0], dtype=float) if res.solutions else home
+
+
+def _main_line(body: tuple[ir.Instr, ...]):  # type: ignore[no-untyped-def]
+    """Instructions on the main timeline in order (then-arms of ifs, proc bodies)."""
+    for instr in body:
+        if isinstance(instr, ir.If):
+            yield from _main_line(instr.then)
+        elif isinstance(instr, ir.ProcCall):
+            yield from _main_line(instr.body)
+        else:
+            yield instr

@@ -1,0 +1,215 @@
+"""A task's timeline: instructions in order, turned into Pieces and InstructionRecords.
+
+* Moves gather into a *chain* while their zones blend; a chain ends at a `fine` zone, at the
+  task's last move, at a move with a `time` modifier (timed on its own: blending into or out of
+  it is not done), and before any instruction that makes the robot wait (`wait`,
+  `wait until`, `sync`, `if`). Then the chain is timed (compiler.plan.chain).
+* `set`, `pulse` and `native` do not stop the robot: they happen at the instant the preceding
+  move ends — its zone entry when it is blended (as RAPID does for a zone point), its stop
+  otherwise. A pulse's record lasts the pulse (t_end = t_start + duration).
+* `wait T` holds the robot for T. `wait until` cannot know the input in simulation: it is
+  assumed to hold at once (zero time; the timeout is in the IR for the simulator to report).
+* A move's record: t_start where it leaves the previous move's path (the previous zone entry),
+  t_end at its own zone entry or stop.
+* Runtime `if`: the main timeline takes the `then` arm; the `otherwise` arm is planned from
+  the `if`'s start state as a Variant (its records carry variant=k). The main timeline
+  continues from the end of the `then` arm; when the two arms end in different joint states a
+  warning (W223) says so, because after the other arm the next move starts elsewhere.
+* A failing move is reported at its span and skipped: the robot holds where it is and the
+  rest of the task is planned from there, so every error in a file is reported at once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from rmot.compiler import ir
+from rmot.compiler.plan import codes
+from rmot.compiler.plan.chain import TimedChain, time_chain
+from rmot.compiler.plan.segments import Segment, build_segment
+from rmot.compiler.plan.targets import Finding
+from rmot.compiler.plan.timing import HoldPiece, Piece
+from rmot.compiler.planned import InstructionRecord
+from rmot.lang.diagnostics import Diagnostic, Severity
+
+__all__ = ["TaskDraft", "VariantDraft", "build_task", "proc_records"]
+
+_EVENTS = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.Native)
+
+
+@dataclass(eq=False)
+class VariantDraft:
+    index: int
+    if_uid: int
+    arm: str
+    t0: float
+    pieces: list[Piece]
+    order: int  # records created before it (for sync shifting)
+
+
+@dataclass(eq=False)
+class TaskDraft:
+    """The unsampled timeline: pieces back to back from t=0, records, sync points, variants."""
+
+    pieces: list[Piece] = field(default_factory=list)
+    records: list[InstructionRecord] = field(default_factory=list)
+    syncs: list[tuple[ir.Sync, int, int]] = field(default_factory=list)  # (sync, piece pos, record idx)
+    variants: list[VariantDraft] = field(default_factory=list)
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    q: np.ndarray | None = None  # the final joints
+
+
+class _Builder:
+    """Walks one instruction list; `variant` > 0 for an if-arm planned off the main timeline."""
+
+    def __init__(self, robot: object, task: str, q0: np.ndarray, t0: float, variant: int,
+                 draft: TaskDraft, counter: list[int]) -> None:
+        self.robot, self.task, self.variant = robot, task, variant
+        self.q, self.t = q0.copy(), t0
+        self.pieces: list[Piece] = []
+        self.draft, self.counter = draft, counter
+        self.chain: list[Segment] = []
+        self.events: list[tuple[ir.Instr, int]] = []
+
+    # ------------------------------------------------------------------ helpers
+    def _diag(self, f: Finding, span, time: float | None = None) -> None:  # type: ignore[no-untyped-def]
+        self.draft.diagnostics.append(
+            Diagnostic(f.code, f.severity, f.message, span, time_s=time, task=self.task))
+
+    def _record(self, instr: ir.Instr, t0: float, t1: float, **extra: object) -> None:
+        self.draft.records.append(InstructionRecord(
+            instr.uid, instr.span, t0, t1, variant=self.variant, **extra))  # type: ignore[arg-type]
+
+    def _q_end(self) -> np.ndarray:
+        return self.chain[-1].q_end if self.chain else self.q
+
+    # ------------------------------------------------------------------ walking
+    def walk(self, body: tuple[ir.Instr, ...]) -> None:
+        for instr in body:
+            if isinstance(instr, ir.Move):
+                self._move(instr)
+            elif isinstance(instr, _EVENTS):
+                self._event(instr)
+            elif isinstance(instr, ir.ProcCall):
+                self.walk(instr.body)
+            elif isinstance(instr, ir.If):
+                self._if(instr)
+            else:
+                self._blocking(instr)
+
+    def _move(self, move: ir.Move) -> None:
+        if move.motion.duration is not None:
+            self.flush()
+        seg, findings = build_segment(self.robot, move, self._q_end())
+        for f in findings:
+            self._diag(f, move.span, self.t if not self.chain else None)
+        if seg is None:
+            self.flush()
+            self._record(move, self.t, self.t)
+            return
+        self.chain.append(seg)
+        if move.motion.zone.is_fine or move.motion.duration is not None:
+            self.flush()
+
+    def _event(self, instr: ir.Instr) -> None:
+        if self.chain:
+            self.events.append((instr, len(self.chain) - 1))
+        else:
+            self._event_record(instr, self.t)
+
+    def _event_record(self, instr: ir.Instr, t: float) -> None:
+        end = t + instr.duration if isinstance(instr, ir.Pulse) else t
+        self._record(instr, t, end)
+
+    def _blocking(self, instr: ir.Instr) -> None:
+        self.flush()
+        t0 = self.t
+        if isinstance(instr, ir.WaitTime) and instr.duration > 0:
+            self._append(HoldPiece(self.q.copy(), instr.duration))
+        self._record(instr, t0, self.t)
+        if isinstance(instr, ir.Sync) and self.variant == 0:
+            self.draft.syncs.append((instr, len(self.pieces), len(self.draft.records) - 1))
+
+    def _append(self, piece: Piece) -> None:
+        self.pieces.append(piece)
+        self.t += piece.duration
+        self.q = piece.end_q()
+
+    # ------------------------------------------------------------------ if
+    def _if(self, instr: ir.If) -> None:
+        self.flush()
+        t0, q0 = self.t, self.q.copy()
+        n_records = len(self.draft.records)
+        self._record(instr, t0, t0)  # placeholder, completed below (keeps record indexes stable)
+        self.walk(instr.then)
+        self.flush()
+        if instr.otherwise:
+            self.counter[0] += 1
+            index = self.counter[0]
+            sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter)
+            sub.walk(instr.otherwise)
+            sub.flush()
+            self.draft.variants.append(VariantDraft(index, instr.uid, "otherwise", t0, sub.pieces, n_records))
+            if float(np.max(np.abs(sub.q - self.q))) > 1e-6:
+                msg = ("the arms of this if must end in the same joint state (they differ by up to "
+                       f"{np.degrees(np.max(np.abs(sub.q - self.q))):.1f} deg); what follows is planned "
+                       "from the end of the first arm")
+                self._diag(Finding(codes.IF_ARMS_DIFFER, Severity.WARNING, msg), instr.span, self.t)
+        self.draft.records[n_records] = replace(self.draft.records[n_records], t_end=self.t)
+
+    # ------------------------------------------------------------------ chains
+    def flush(self) -> None:
+        if not self.chain:
+            return
+        chain, events, t0 = self.chain, self.events, self.t
+        self.chain, self.events = [], []
+        timed = time_chain(self.robot, chain)
+        self._append(timed.piece)
+        for i, seg in enumerate(chain):
+            self._move_record(seg, timed, i, t0)
+        if timed.error is not None:
+            code = codes.TIME_TOO_SHORT if timed.error_is_time else codes.TIMING_FAILED
+            span = chain[0].move.span if timed.error_is_time else chain[-1].move.span
+            self._diag(Finding(code, Severity.ERROR, timed.error), span, t0)
+        for instr, k in events:
+            self._event_record(instr, t0 + timed.ends[k])
+        for k, f in (timed.path.findings if timed.path is not None else ()):
+            self._diag(f, chain[k].move.span, t0 + timed.ends[k])
+
+    def _move_record(self, seg: Segment, timed: TimedChain, i: int, t0: float) -> None:
+        robot, move = self.robot, seg.move
+        flange = robot.fk(seg.q_end)  # type: ignore[attr-defined]
+        tcp = move.target.pose if isinstance(move.target, ir.CartesianTarget) else \
+            ir.Pose.from_matrix(flange @ move.tool.tcp.matrix())
+        branch = robot.branch(seg.q_end)  # type: ignore[attr-defined]
+        self._record(
+            move, t0 + timed.starts[i], t0 + timed.ends[i], q_target=seg.q_end.copy(),
+            branch=branch if branch.shoulder is not None else None, tcp_pose=tcp,
+            flange_pose=ir.Pose.from_matrix(flange), q_via=timed.vias[i], blend_radius=timed.radii[i])
+
+
+def build_task(robot: object, task: ir.Task, q0: np.ndarray) -> TaskDraft:
+    """The timeline of one task from joints q0 (dof,)."""
+    draft = TaskDraft()
+    builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0])
+    builder.walk(task.body)
+    builder.flush()
+    draft.pieces = builder.pieces
+    draft.q = builder.q
+    return draft
+
+
+def proc_records(body: tuple[ir.Instr, ...], records: list[InstructionRecord]) -> list[InstructionRecord]:
+    """Records of proc calls: each spans its body's records (per variant)."""
+    out = []
+    for instr in ir.walk(body):
+        if not isinstance(instr, ir.ProcCall):
+            continue
+        uids = {i.uid for i in ir.walk(instr.body)}
+        for variant in sorted({r.variant for r in records if r.uid in uids}):
+            inner = [r for r in records if r.uid in uids and r.variant == variant]
+            t0, t1 = min(r.t_start for r in inner), max(r.t_end for r in inner)
+            out.append(InstructionRecord(instr.uid, instr.span, t0, t1, variant=variant))
+    return out

@@ -1,0 +1,283 @@
+"""Timing: ruckig for point-to-point joint moves, toppra for geometric paths, as `Piece`s.
+
+A Piece is one stretch of a task's timeline: `duration` (s) and `sample(tl)` giving
+(q, qd, qdd), each (N, dof), at local times tl (N,) in [0, duration].
+
+* Joint moves from rest to rest: ruckig, jerk-limited, *phase*-synchronised (all joints start
+  and stop together and the joint path stays the straight line). The jerk limit is derived from
+  the acceleration limit, jmax = JERK_PER_ACCEL * amax (full acceleration is reached in 0.1 s);
+  controllers publish no jerk limits, so this is a documented estimate.
+  Only the offline `calculate` is used; never ruckig's intermediate positions (its free build
+  sends those to a cloud server).
+* Geometric paths (Cartesian moves, blended chains): toppra with joint velocity and
+  acceleration constraints. toppra holds its limits only at its grid points, so the result is
+  re-checked on a dense time grid; a violated coordinate's limit is tightened and the path
+  re-timed (up to `_RETIME_ROUNDS` times), and whatever excess remains is removed by a uniform
+  time stretch (which scales velocity by 1/k and acceleration by 1/k^2), so every sample ends
+  within the limits.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "ConstAccelTiming", "HoldPiece", "JERK_PER_ACCEL", "PathPiece", "Piece", "RuckigPiece", "TimingError",
+    "joint_move_piece", "path_piece", "stretched",
+]
+
+JERK_PER_ACCEL = 10.0  # 1/s: jmax = 10 * amax
+_RETIME_ROUNDS = 3
+_V_MARGIN = 1e-7  # relative headroom kept below the limits after re-checking
+_A_MARGIN = 1e-4
+
+
+class TimingError(ValueError):
+    """Timing found no solution; the message is user-facing."""
+
+
+class Piece:
+    duration: float
+    dof: int
+
+    def sample(self, tl: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        raise NotImplementedError
+
+    def end_q(self) -> np.ndarray:
+        return self.sample(np.array([self.duration]))[0][0]
+
+
+@dataclass(frozen=True, eq=False)
+class HoldPiece(Piece):
+    """Standing still at q (dof,) for `duration` s."""
+
+    q: np.ndarray
+    duration: float
+
+    @property
+    def dof(self) -> int:  # type: ignore[override]
+        return self.q.shape[0]
+
+    def sample(self, tl: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        n = len(tl)
+        z = np.zeros((n, self.dof))
+        return np.tile(self.q, (n, 1)), z, z.copy()
+
+
+@dataclass(frozen=True, eq=False)
+class RuckigPiece(Piece):
+    trajectory: object  # ruckig.Trajectory
+    duration: float
+    dof: int
+
+    def sample(self, tl: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        out = np.empty((3, len(tl), self.dof))
+        for i, t in enumerate(np.clip(tl, 0.0, self.duration)):
+            p, v, a = self.trajectory.at_time(float(t))  # type: ignore[attr-defined]
+            out[0, i], out[1, i], out[2, i] = p, v, a
+        return out[0], out[1], out[2]
+
+
+@dataclass(frozen=True, eq=False)
+class ConstAccelTiming:
+    """A path timed piecewise at constant path acceleration between grid points (what toppra's
+    ParametrizeConstAccel does), evaluated vectorised and invertible (t at a given s).
+
+    path: a toppra SplineInterpolator over s; ss (K,) grid; sd (K,) path speeds at the grid.
+    """
+
+    path: object
+    ss: np.ndarray
+    sd: np.ndarray
+
+    def __post_init__(self) -> None:
+        ds = np.diff(self.ss)
+        sdd = (self.sd[1:] ** 2 - self.sd[:-1] ** 2) / (2 * ds)
+        dt = 2 * ds / np.maximum(self.sd[1:] + self.sd[:-1], 1e-300)
+        object.__setattr__(self, "sdd", sdd)
+        object.__setattr__(self, "ts", np.concatenate([[0.0], np.cumsum(dt)]))
+
+    @property
+    def duration(self) -> float:
+        return float(self.ts[-1])  # type: ignore[attr-defined]
+
+    def params(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """s, ds/dt, d2s/dt2 at times t (N,)."""
+        ts, sdd = self.ts, self.sdd  # type: ignore[attr-defined]
+        i = np.clip(np.searchsorted(ts, t, side="right") - 1, 0, len(sdd) - 1)
+        dt = t - ts[i]
+        s = np.minimum(self.ss[i] + self.sd[i] * dt + 0.5 * sdd[i] * dt * dt, self.ss[-1])
+        return s, np.maximum(self.sd[i] + sdd[i] * dt, 0.0), sdd[i]
+
+    def __call__(self, t: np.ndarray, order: int = 0) -> np.ndarray:
+        s, v, a = self.params(np.asarray(t, dtype=float))
+        path = self.path
+        if order == 0:
+            return path(s)  # type: ignore[operator]
+        if order == 1:
+            return path(s, 1) * v[:, None]  # type: ignore[operator]
+        return path(s, 2) * (v * v)[:, None] + path(s, 1) * a[:, None]  # type: ignore[operator]
+
+    def time_at(self, s: float) -> float:
+        """The time (s) at which the path parameter reaches s."""
+        ts, sdd = self.ts, self.sdd  # type: ignore[attr-defined]
+        i = int(np.clip(np.searchsorted(self.ss, s, side="right") - 1, 0, len(sdd) - 1))
+        ds, v0, a = s - self.ss[i], self.sd[i], sdd[i]
+        if ds <= 0:
+            return float(ts[i])
+        if abs(a) < 1e-12:
+            return float(ts[i] + ds / max(v0, 1e-300))
+        disc = max(v0 * v0 + 2 * a * ds, 0.0)
+        return float(min(ts[i] + (np.sqrt(disc) - v0) / a, ts[i + 1]))
+
+
+@dataclass(frozen=True, eq=False)
+class PathPiece(Piece):
+    """A timed path, stretched by `scale` >= 1; only the first `dof` coordinates are joints
+    (extra coordinates, such as the TCP-speed coordinate, are dropped)."""
+
+    trajectory: ConstAccelTiming
+    native_duration: float
+    scale: float
+    dof: int
+
+    @property
+    def duration(self) -> float:  # type: ignore[override]
+        return self.native_duration * self.scale
+
+    def sample(self, tl: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        x, xd, xdd = _eval(self.trajectory, np.clip(tl / self.scale, 0.0, self.native_duration))
+        k = self.scale
+        return x[:, : self.dof], xd[:, : self.dof] / k, xdd[:, : self.dof] / (k * k)
+
+    def time_at(self, s: float) -> float:
+        """Local time (s) at which the path parameter reaches s."""
+        return self.trajectory.time_at(s) * self.scale
+
+
+def stretched(piece: PathPiece, duration: float) -> PathPiece:
+    """The same path timed to last exactly `duration` (>= piece.duration)."""
+    return PathPiece(piece.trajectory, piece.native_duration, duration / piece.native_duration, piece.dof)
+
+
+def _eval(traj: object, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    return traj(ts), traj(ts, 1), traj(ts, 2)  # type: ignore[operator]
+
+
+# --------------------------------------------------------------------------- ruckig
+
+
+def joint_move_piece(
+    q0: np.ndarray, q1: np.ndarray, vmax: np.ndarray, amax: np.ndarray, duration: float | None = None
+) -> Piece:
+    """Rest-to-rest, phase-synchronised, jerk-limited joint motion q0 -> q1 (dof,).
+
+    duration: a fixed duration (s) from a `time` modifier; raises TimingError if shorter than
+    the fastest feasible motion.
+    """
+    from ruckig import InputParameter, Result, Ruckig, Synchronization, Trajectory
+
+    dof = q0.shape[0]
+    if float(np.max(np.abs(q1 - q0))) < 1e-12:
+        return HoldPiece(q0.copy(), duration or 0.0)
+    inp = InputParameter(dof)
+    inp.current_position, inp.target_position = q0.tolist(), q1.tolist()
+    inp.current_velocity = inp.current_acceleration = [0.0] * dof
+    inp.target_velocity = inp.target_acceleration = [0.0] * dof
+    inp.max_velocity, inp.max_acceleration = vmax.tolist(), amax.tolist()
+    inp.max_jerk = (JERK_PER_ACCEL * amax).tolist()
+    inp.synchronization = Synchronization.Phase
+    traj = Trajectory(dof)
+    _ruckig_ok(Ruckig(dof).calculate(inp, traj), Result)
+    if duration is not None:
+        if duration < traj.duration * (1 - 1e-9):
+            raise TimingError(
+                f"time must be at least the fastest feasible {traj.duration:.3f} s (got {duration:.3f} s)"
+            )
+        inp.minimum_duration = duration
+        traj = Trajectory(dof)
+        _ruckig_ok(Ruckig(dof).calculate(inp, traj), Result)
+    return RuckigPiece(traj, float(traj.duration), dof)
+
+
+def _ruckig_ok(result: object, Result: type) -> None:  # noqa: N803 - ruckig's enum
+    """Map every ruckig Result to success or a TimingError with a readable reason."""
+    reasons = {
+        Result.Error: "ruckig reported an unspecified error",  # type: ignore[attr-defined]
+        Result.ErrorInvalidInput: "ruckig rejected the input (limits must be positive and finite)",  # type: ignore[attr-defined]
+        Result.ErrorExecutionTimeCalculation: "ruckig could not compute the motion's duration",  # type: ignore[attr-defined]
+        Result.ErrorPositionalLimits: "ruckig's motion would leave the position limits",  # type: ignore[attr-defined]
+        Result.ErrorSynchronizationCalculation: "ruckig could not synchronise the joints",  # type: ignore[attr-defined]
+    }
+    if result in (Result.Working, Result.Finished):  # type: ignore[attr-defined]
+        return
+    raise TimingError(reasons.get(result, f"ruckig returned {result}"))
+
+
+# --------------------------------------------------------------------------- toppra
+
+
+def path_piece(
+    waypoints: np.ndarray, ss: np.ndarray, vlim: np.ndarray, alim: np.ndarray, dof: int,
+    check_dt: float = 0.001,
+) -> PathPiece:
+    """Time-optimal rest-to-rest timing of the path through waypoints (M, n) at ss (M,).
+
+    vlim, alim: (n,) symmetric limits of every coordinate (joints first, then extra
+    coordinates such as the TCP-speed coordinate). Raises TimingError if toppra fails.
+    The result respects the limits at every point of a `check_dt` grid (see module doc).
+    """
+    vlim, alim = vlim.astype(float).copy(), alim.astype(float).copy()
+    path = _spline(ss, waypoints)
+    n_grid = int(np.clip(2 * len(ss), 60, 600))
+    grid = np.linspace(ss[0], ss[-1], n_grid)
+    base_v, base_a = vlim.copy(), alim.copy()
+    traj = None
+    for _ in range(_RETIME_ROUNDS):
+        traj = _toppra(path, grid, vlim, alim)
+        rv, ra = _ratios(traj, base_v, base_a, check_dt)
+        if np.all(rv <= 1 - _V_MARGIN) and np.all(ra <= 1 - _A_MARGIN):
+            break
+        vlim = vlim / np.maximum(1.0, rv * (1 + 10 * _V_MARGIN))
+        alim = alim / np.maximum(1.0, ra * (1 + 10 * _A_MARGIN))
+    assert traj is not None
+    rv, ra = _ratios(traj, base_v, base_a, check_dt)
+    scale = max(1.0, float(np.max(rv)) * (1 + _V_MARGIN), math.sqrt(float(np.max(ra)) * (1 + _A_MARGIN)))
+    return PathPiece(traj, float(traj.duration), scale, dof)
+
+
+def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
+    import toppra
+
+    return toppra.SplineInterpolator(ss, waypoints)
+
+
+def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray) -> ConstAccelTiming:
+    import toppra
+    import toppra.algorithm as algo
+    import toppra.constraint as constraint
+
+    toppra.setup_logging("CRITICAL")
+    cons = [
+        constraint.JointVelocityConstraint(np.stack([-vlim, vlim], axis=1)),
+        constraint.JointAccelerationConstraint(np.stack([-alim, alim], axis=1)),
+    ]
+    instance = algo.TOPPRA(cons, path, gridpoints=grid)
+    result = instance.compute_parameterization(0.0, 0.0)
+    sd_vec = result[1] if result is not None else None
+    if sd_vec is None or not np.all(np.isfinite(sd_vec)):
+        raise TimingError("toppra found no feasible timing for the path (the path may be non-smooth)")
+    sd = np.sqrt(np.maximum(np.asarray(sd_vec, dtype=float) ** 2, 0.0))
+    sd[0] = sd[-1] = 0.0
+    return ConstAccelTiming(path, grid, sd)
+
+
+def _ratios(traj: object, vlim: np.ndarray, alim: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per coordinate: max |velocity| / vlim and max |acceleration| / alim on a dense grid."""
+    duration = float(traj.duration)  # type: ignore[attr-defined]
+    ts = np.linspace(0.0, duration, max(3, int(math.ceil(duration / dt)) + 1))
+    _, xd, xdd = _eval(traj, ts)
+    return np.max(np.abs(xd), axis=0) / vlim, np.max(np.abs(xdd), axis=0) / alim

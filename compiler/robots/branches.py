@@ -1,0 +1,65 @@
+"""Branch names (ir.Config) from joint values: the one definition every backend uses.
+
+For every closed-form 6R arm, computed from the controller joint values q (rad):
+
+shoulder  FRONT when the wrist centre (OPW arms; for UR the wrist point p05, the origin of
+          DH frame 5) lies in front of the J1 axis, measured along the direction in which
+          the arm reaches at J2 = its upright/stretched position, i.e. the J1-rotated
+          forward direction of the arm plane. BACK when it lies behind ("overhead": the arm
+          reaches over its own J1 axis). The boundary (wrist centre on the J1 axis, or on the
+          d4/b cylinder for offset arms) is the shoulder singularity.
+          ABB cfx "wrist centre relative to axis 1 in front/behind"; KUKA Status bit 0
+          (0 = basic area = FRONT); Fanuc T (toward) / B (back).
+elbow     UP when the wrist centre lies in front of the line through the J2 and J3 axes
+          (the lower arm), seen with the arm's forward direction, DOWN when behind. The
+          boundary is the stretched (or folded) arm, the elbow singularity: for OPW arms at
+          θ3 = -ψ3 with θ3 the relative elbow angle from the upright position and
+          ψ3 = atan2(a2, c3); for UR at q3 = 0. UP is the usual pose (ABB and KUKA at their
+          zero/home, Fanuc and Yaskawa at zero, UR with q3 > 0).
+          ABB cfx "relative to lower arm in front" = UP; KUKA Status bit 1 = 1 for UP
+          (A3 >= φ, φ the stretched A3 = -ψ3 in KUKA values, about +4.8° on a KR 6 R900;
+          KUKA's home A3 = 90° gives Status 2 = 'B010'); Fanuc U/D; Yaskawa RCONF upper/lower
+          arm = UP / DOWN. In OPW angles: UP when sin(θ3 + ψ3) > 0.
+wrist     FLIP when sin(J5) < 0 on the controller's own J5 value (J5 < 0 for |J5| < 180°),
+          NOFLIP otherwise; J5 = 0 is the wrist singularity. This is a statement about the
+          controller's J5 sign, not about geometry: ABB cfx "axis 5 negative" = FLIP;
+          KUKA Status bit 2 (A5 <= 0) = FLIP; Fanuc and Yaskawa define their flip bit on
+          their own J5 sign too, so map FLIP/NOFLIP through the vendor's rule.
+
+At a boundary (value exactly 0) the branch is FRONT / UP / NOFLIP.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rmot.compiler import ir
+from rmot.compiler.robots.opw import OpwJointMap, OpwParams, opw_shoulder_elbow
+from rmot.compiler.robots.urik import UrParams, ur_branch_quantities
+
+__all__ = ["config_of", "opw_branch_fn", "ur_branch_fn"]
+
+
+def config_of(shoulder: float, elbow: float, j5_sin: float) -> ir.Config:
+    return ir.Config(
+        ir.Shoulder.FRONT if shoulder >= 0 else ir.Shoulder.BACK,
+        ir.Elbow.UP if elbow >= 0 else ir.Elbow.DOWN,
+        ir.Wrist.FLIP if j5_sin < 0 else ir.Wrist.NOFLIP,
+    )
+
+
+def opw_branch_fn(p: OpwParams, jmap: OpwJointMap):  # type: ignore[no-untyped-def]
+    def branch(q: np.ndarray) -> ir.Config:
+        theta = jmap.to_theta(q)
+        shoulder, elbow = opw_shoulder_elbow(p, theta)
+        return config_of(float(shoulder), float(elbow), float(np.sin(q[4])))
+
+    return branch
+
+
+def ur_branch_fn(p: UrParams):  # type: ignore[no-untyped-def]
+    def branch(q: np.ndarray) -> ir.Config:
+        shoulder, elbow, wrist = ur_branch_quantities(p, q)
+        return config_of(float(shoulder), float(elbow), float(wrist))
+
+    return branch

@@ -1,0 +1,122 @@
+"""Build a Robot from a library spec: pinocchio model, solids, adjacency, closed-form IK."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pinocchio as pin
+
+from rmot.compiler import ir
+from rmot.compiler.robots.branches import opw_branch_fn, ur_branch_fn
+from rmot.compiler.robots.dh import build_model
+from rmot.compiler.robots.opw import OpwJointMap, OpwParams
+from rmot.compiler.robots.robot import LinkSolid, Robot
+from rmot.compiler.robots.spec import RobotSpec, Segment
+from rmot.compiler.robots.urik import UrParams
+
+__all__ = ["build_robot"]
+
+
+def build_robot(spec: RobotSpec) -> Robot:
+    model, fid, _ = build_model(spec.dh, np.array(spec.flange), spec.name)
+    coupling = None if spec.coupling is None else np.array(spec.coupling, dtype=float)
+    solids = _solids(model, spec, coupling)
+    closed_form = branch_fn = distance = None
+    if spec.opw is not None:
+        closed_form, distance = _opw_solver(*spec.opw)
+        branch_fn = opw_branch_fn(*spec.opw)
+    elif spec.ur is not None:
+        closed_form, distance = _ur_solver(spec.ur)
+        branch_fn = ur_branch_fn(spec.ur)
+    return Robot(
+        name=spec.name, vendor=spec.vendor, model_name=spec.model, model=model, flange_frame=fid,
+        joint_limits=np.radians(spec.limits_deg), velocity_limits=np.radians(spec.speed_deg_s),
+        accel_limits=np.radians(spec.accel_deg_s2), reach=spec.reach, solids=solids,
+        adjacent_pairs=_adjacent(solids, spec.extra_adjacent), coupling=coupling,
+        closed_form=closed_form, branch_fn=branch_fn, workspace_distance=distance,
+        source=spec.source, dh_rows=spec.dh.rows, dh_modified=spec.dh.modified,
+    )
+
+
+def _solids(model: pin.Model, spec: RobotSpec, coupling: np.ndarray | None) -> tuple[LinkSolid, ...]:
+    """Each segment, given in the base frame at spec.solid_pose, moved into its joint's frame."""
+    data = model.createData()
+    q = np.array(spec.solid_pose, dtype=float)
+    pin.forwardKinematics(model, data, q if coupling is None else coupling @ q)
+    return tuple(_solid(seg, data.oMi[seg.joint].homogeneous) for seg in spec.segments)
+
+
+def _solid(seg: Segment, joint_frame: np.ndarray) -> LinkSolid:
+    p0, p1 = np.array(seg.p0), np.array(seg.p1)
+    axis = p1 - p0
+    length = float(np.linalg.norm(axis))
+    world = np.eye(4)
+    world[:3, :3] = _frame_with_z(axis / length if length > 1e-12 else np.array([0.0, 0.0, 1.0]))
+    world[:3, 3] = (p0 + p1) / 2
+    local = np.linalg.inv(joint_frame) @ world
+    if seg.joint == 0:  # flat bottom: the base stands on the floor or a fixture
+        geometry: ir.Geometry = ir.Cylinder(radius=seg.radius, height=length)
+    else:
+        geometry = ir.Capsule(radius=seg.radius, length=length)
+    return LinkSolid(seg.name, seg.joint, geometry, ir.Pose.from_matrix(local))
+
+
+def _frame_with_z(z: np.ndarray) -> np.ndarray:
+    helper = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(helper, z)
+    x /= np.linalg.norm(x)
+    return np.column_stack([x, np.cross(z, x), z])
+
+
+def _adjacent(solids: tuple[LinkSolid, ...], extra: tuple[tuple[str, str], ...]) -> tuple[tuple[int, int], ...]:
+    """Solids on the same or on consecutive joints, plus named pairs that touch by design."""
+    names = {s.name: i for i, s in enumerate(solids)}
+    pairs = {
+        (i, j)
+        for i, a in enumerate(solids)
+        for j, b in enumerate(solids)
+        if i < j and abs(a.joint_id - b.joint_id) <= 1
+    }
+    pairs |= {tuple(sorted((names[a], names[b]))) for a, b in extra if a in names and b in names}  # type: ignore[misc]
+    return tuple(sorted(pairs))  # type: ignore[arg-type]
+
+
+def _opw_solver(p: OpwParams, jmap: OpwJointMap):  # type: ignore[no-untyped-def]
+    from rmot.compiler.robots import fastik
+
+    def closed_form(poses: np.ndarray) -> np.ndarray:
+        return jmap.from_theta(fastik.opw_batch(p, poses))
+
+    def distance(pose: np.ndarray) -> float:
+        c = pose[:3, 3] - p.c4 * pose[:3, 2]
+        rho2 = c[0] ** 2 + c[1] ** 2
+        if rho2 < p.b ** 2:
+            return p.b - math.sqrt(rho2)
+        nx1 = math.sqrt(rho2 - p.b ** 2)
+        gaps = []
+        for x in (nx1 - p.a1, nx1 + p.a1):  # J2 in front of / behind the J1 axis
+            s = math.hypot(x, c[2] - p.c1)
+            gaps.append(max(s - (p.c2 + p.forearm), abs(p.c2 - p.forearm) - s, 0.0))
+        return min(gaps)
+
+    return closed_form, distance
+
+
+def _ur_solver(p: UrParams):  # type: ignore[no-untyped-def]
+    from rmot.compiler.robots import fastik
+
+    def closed_form(poses: np.ndarray) -> np.ndarray:
+        return fastik.ur_batch(p, poses)
+
+    def distance(pose: np.ndarray) -> float:
+        p05 = pose[:3, 3] - p.d6 * pose[:3, 2]
+        r = math.hypot(p05[0], p05[1])
+        if r < p.d4:
+            return p.d4 - r
+        reach = abs(p.a2) + abs(p.a3)
+        shoulder = np.array([0.0, 0.0, p.d1])
+        planar = math.sqrt(max(np.sum((p05 - shoulder) ** 2) - p.d4 ** 2, 0.0))
+        return max(planar - reach - p.d5, abs(abs(p.a2) - abs(p.a3)) - planar - p.d5, 0.0)
+
+    return closed_form, distance

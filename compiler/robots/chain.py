@@ -1,0 +1,73 @@
+"""A serial pinocchio model as arrays, for vectorised FK over many configurations.
+
+Pinocchio evaluates one configuration per call; a plan needs thousands. Each joint here is
+its placement in the parent joint frame, a unit axis and a kind, and FK of N
+configurations is one batched matrix product per joint.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+__all__ = ["Chain", "chain_of"]
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Chain:
+    placements: np.ndarray  # (n,4,4) joint i in joint i-1's frame
+    axes: np.ndarray  # (n,3) unit axis in the joint frame
+    prismatic: np.ndarray  # (n,) bool
+
+    def joint_frames(self, q: np.ndarray) -> np.ndarray:
+        """q: (N,n) model values -> (N,n,4,4): each joint's frame (after its motion) in base."""
+        q = np.atleast_2d(q)
+        n_cfg, n = q.shape
+        out = np.empty((n_cfg, n, 4, 4))
+        current = np.broadcast_to(np.eye(4), (n_cfg, 4, 4))
+        for i in range(n):
+            motion = _motion(self.axes[i], q[:, i], bool(self.prismatic[i]))
+            current = (current @ self.placements[i]) @ motion
+            out[:, i] = current
+        return out
+
+
+def _motion(axis: np.ndarray, q: np.ndarray, prismatic: bool) -> np.ndarray:
+    m = np.zeros((len(q), 4, 4))
+    m[:, 3, 3] = 1.0
+    if prismatic:
+        m[:, 0, 0] = m[:, 1, 1] = m[:, 2, 2] = 1.0
+        m[:, :3, 3] = q[:, None] * axis
+        return m
+    c, s = np.cos(q), np.sin(q)
+    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    kk = k @ k
+    m[:, :3, :3] = np.eye(3) + s[:, None, None] * k + (1 - c)[:, None, None] * kk
+    return m
+
+
+_AXES = {"X": (1.0, 0.0, 0.0), "Y": (0.0, 1.0, 0.0), "Z": (0.0, 0.0, 1.0)}
+
+
+def chain_of(model: pin.Model) -> Chain:
+    """The arrays of a serial model of 1-dof revolute/prismatic joints (raises ValueError)."""
+    placements, axes, prismatic = [], [], []
+    for jid in range(1, model.njoints):
+        if model.parents[jid] != jid - 1:
+            raise ValueError("the model is not a serial chain (a joint branches off an earlier link)")
+        joint = model.joints[jid]
+        short = joint.shortname()
+        if joint.nq != 1 or joint.nv != 1:
+            raise ValueError(f"joint '{model.names[jid]}' must have one degree of freedom (got {short})")
+        if short.startswith(("JointModelR", "JointModelP")) and short[-1] in _AXES and "Unaligned" not in short:
+            axis = np.array(_AXES[short[-1]])
+        elif "Unaligned" in short:
+            axis = np.asarray(joint.extract().axis, dtype=float)
+        else:
+            raise ValueError(f"joint '{model.names[jid]}' must be revolute or prismatic (got {short})")
+        placements.append(model.jointPlacements[jid].homogeneous)
+        axes.append(axis / np.linalg.norm(axis))
+        prismatic.append(short.startswith("JointModelP"))
+    return Chain(np.array(placements), np.array(axes), np.array(prismatic))

@@ -1,0 +1,365 @@
+"""The .rmot abstract syntax tree: frozen dataclasses, one per construct.
+
+Every node has a `span` (where it came from) excluded from equality, so two parses of the
+same text compare equal whatever their layout. Values stay as written (numbers with their
+unit text); the compiler checks dimensions and converts to SI.
+
+Node families:
+  Expr  — Number, Name, Call, Joints, Vector, String, BinOp, Neg, Attr (Arg for arguments)
+  Stmt  — file level (UseCell, Import, CellDecl, ProgramDecl, TaskDecl), cell declarations
+          (RobotDecl, FixtureDecl, ToolDecl, FrameDecl, IoDecl), program declarations
+          (TargetDecl, ConstDecl, ProcDecl), settings (Setting), Move, SetIo, Pulse,
+          WaitTime, WaitUntil, For, Repeat, IfStmt, SyncStmt, NativeStmt, CallStmt
+  Module — the statements of one file
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Union
+
+from rmot.lang.source import SourceFile, Span
+
+__all__ = [
+    "Arg", "Attr", "BinOp", "Call", "CallStmt", "CellDecl", "Condition", "ConstDecl", "Expr",
+    "FixtureDecl", "For", "FrameDecl", "Geometry", "Ident", "IfStmt", "Import", "IoDecl",
+    "IoRef", "Joints", "Modifier", "Module", "Move", "Name", "NativeStmt", "Neg", "Number",
+    "Param", "ProcDecl", "ProgramDecl", "Pulse", "Repeat", "RobotDecl", "SetIo", "Setting",
+    "Stmt", "String", "SyncStmt", "TargetDecl", "TaskDecl", "ToolDecl", "UseCell", "Vector",
+    "WaitTime", "WaitUntil",
+]
+
+
+def _span() -> Span:
+    return field(compare=False, hash=False, repr=False)  # type: ignore[no-any-return]
+
+
+@dataclass(frozen=True, slots=True)
+class Ident:
+    """A name as written where something is declared or referred to by name (not an Expr)."""
+
+    name: str
+    span: Span = _span()
+
+
+# --------------------------------------------------------------------------- expressions
+
+
+@dataclass(frozen=True, slots=True)
+class Number:
+    value: float
+    unit: str | None  # as written: "mm", "deg/s", "%"; None for a bare number
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Name:
+    name: str
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Arg:
+    """A call argument, positional (name None) or keyword (`x=10mm`)."""
+
+    name: Ident | None
+    value: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Call:
+    func: Ident
+    args: tuple[Arg, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Joints:
+    """`joints(0, -90, 90, 0, 90, 0) deg`: `unit` applies to the values written without one."""
+
+    args: tuple[Arg, ...]
+    unit: str | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Vector:
+    items: tuple[Arg, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class String:
+    value: str
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class BinOp:
+    op: str  # one of + - * /
+    left: Expr
+    right: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Neg:
+    operand: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Attr:
+    """Component access: `p.x`, `p.rz`."""
+
+    obj: Expr
+    name: Ident
+    span: Span = _span()
+
+
+Expr = Union[Number, Name, Call, Joints, Vector, String, BinOp, Neg, Attr]
+
+
+# --------------------------------------------------------------------------- statements
+
+
+@dataclass(frozen=True, slots=True)
+class UseCell:
+    path: String
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Import:
+    path: String
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class CellDecl:
+    name: Ident
+    body: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class ProgramDecl:
+    name: Ident
+    robot: Ident | None  # `program p on r1`
+    body: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class TaskDecl:
+    robot: Ident
+    body: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class RobotDecl:
+    name: Ident
+    library: Ident | None  # a library name, or None for a URDF
+    urdf: String | None
+    at: Expr | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Geometry:
+    """`box(...)`, `cylinder(...)`, `sphere(...)`, `capsule(...)`, `mesh(...)`, checked later."""
+
+    kind: Ident
+    args: tuple[Arg, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class FixtureDecl:
+    name: Ident
+    geometry: Geometry
+    at: Expr | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class ToolDecl:
+    name: Ident
+    geometry: Geometry | None  # None: `tool t = none ...`
+    at: Expr | None  # where the geometry sits in the flange frame
+    tcp: Expr | None
+    mass: Expr | None
+    robot: Ident
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class FrameDecl:
+    name: Ident
+    value: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class IoRef:
+    kind: str  # in | out | ain | aout
+    index: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class IoDecl:
+    io: IoRef
+    signal: String
+    robot: Ident | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class TargetDecl:
+    name: Ident
+    value: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class ConstDecl:
+    name: Ident
+    value: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Param:
+    name: Ident
+    type: Ident
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class ProcDecl:
+    name: Ident
+    params: tuple[Param, ...]
+    body: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Setting:
+    """A modal setting or a per-move modifier.
+
+    kind: tool | frame | speed | joint_speed | accel | zone | config | time. `value` is an
+    Ident for tool/frame, None for `zone fine`, the argument tuple for config, else an Expr.
+    """
+
+    kind: str
+    value: Expr | Ident | tuple[Arg, ...] | None
+    span: Span = _span()
+
+
+Modifier = Setting
+
+
+@dataclass(frozen=True, slots=True)
+class Move:
+    kind: str  # joint | linear | circular
+    target: Expr
+    via: Expr | None
+    modifiers: tuple[Setting, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class SetIo:
+    io: IoRef
+    value: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Pulse:
+    io: IoRef
+    duration: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class WaitTime:
+    duration: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Condition:
+    io: IoRef
+    op: str  # == or != ; a bare `in[2]` is `in[2] == on`
+    value: Expr | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class WaitUntil:
+    condition: Condition
+    timeout: Expr | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class For:
+    var: Ident
+    start: Expr
+    stop: Expr
+    body: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Repeat:
+    count: Expr
+    body: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class IfStmt:
+    condition: Condition
+    then: tuple[Stmt, ...]
+    otherwise: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class SyncStmt:
+    name: Ident
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class NativeStmt:
+    vendor: Ident
+    text: String
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class CallStmt:
+    name: Ident
+    args: tuple[Arg, ...]
+    span: Span = _span()
+
+
+Stmt = Union[
+    UseCell, Import, CellDecl, ProgramDecl, TaskDecl, RobotDecl, FixtureDecl, ToolDecl,
+    FrameDecl, IoDecl, TargetDecl, ConstDecl, ProcDecl, Setting, Move, SetIo, Pulse, WaitTime,
+    WaitUntil, For, Repeat, IfStmt, SyncStmt, NativeStmt, CallStmt,
+]
+
+
+@dataclass(frozen=True, slots=True)
+class Module:
+    """The statements of one file, in source order."""
+
+    file: SourceFile
+    body: tuple[Stmt, ...]

@@ -1,0 +1,265 @@
+"""Text -> AST: the lark LALR parser (built once) and the one place lark errors become words.
+
+`parse_source(file)` never raises for bad input: it returns the Module (or None) and the
+diagnostics. lark builds its tree with positions; the Transformer in `lang/_build.py` turns
+each rule into one AST node with its span (lark's embedded transformers get no positions).
+
+Parsing is serialised by a lock: the embedded transformer and the post-lexer keep the state
+of the current parse (the file, the brace stack, the last tokens).
+"""
+
+from __future__ import annotations
+
+import difflib
+import threading
+from collections import deque
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from lark import Lark, Token
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken, VisitError
+
+from rmot.lang import ast
+from rmot.lang import codes
+from rmot.lang._build import KEYWORDS, AstBuilder, token_span
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.source import Pos, SourceFile, Span
+
+__all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "UNITS"]
+
+UNITS = ("mm", "cm", "m", "in", "deg", "rad", "ms", "s", "min", "g", "kg", "mm/s", "m/s",
+         "deg/s", "rad/s", "mm/s^2", "m/s^2", "deg/s^2", "rad/s^2", "%")
+
+_GRAMMAR = Path(__file__).with_name("grammar") / "rmot.lark"
+_MAX_EXPECTED = 6
+
+
+@dataclass(frozen=True, slots=True)
+class ParseResult:
+    module: ast.Module | None
+    diagnostics: tuple[Diagnostic, ...]
+
+
+class _PostLexer:
+    """Drops newlines inside ( ) and [ ]; tracks the open braces and the last tokens."""
+
+    always_accept = ("_NL",)
+
+    def __init__(self) -> None:
+        self.braces: list[Token] = []
+        self.unmatched_close: Token | None = None
+        self.history: deque[Token] = deque(maxlen=3)
+
+    def process(self, stream: Iterator[Token]) -> Iterator[Token]:
+        self.braces = []
+        self.unmatched_close = None
+        self.history.clear()
+        depth = 0
+        for tok in stream:
+            kind = tok.type
+            if kind == "_NL" and depth > 0:
+                continue
+            if kind in ("LPAR", "LSQB"):
+                depth += 1
+            elif kind in ("RPAR", "RSQB"):
+                depth = max(0, depth - 1)
+            elif kind == "LBRACE":
+                depth = 0  # a '{' ends any unclosed '(' before it: report there, not at EOF
+                self.braces.append(tok)
+            elif kind == "RBRACE":
+                if self.braces:
+                    self.braces.pop()
+                elif self.unmatched_close is None:
+                    self.unmatched_close = tok
+            self.history.append(tok)
+            yield tok
+
+
+_LOCK = threading.Lock()
+_POSTLEX = _PostLexer()
+_BUILDER = AstBuilder()
+_PARSER = Lark(
+    _GRAMMAR.read_text(encoding="utf-8"),
+    parser="lalr",
+    lexer="contextual",
+    propagate_positions=True,
+    maybe_placeholders=True,
+    postlex=_POSTLEX,
+    cache=False,
+)
+_PATTERNS = {t.name: t.pattern for t in _PARSER.terminals}
+
+
+def parse_text(text: str, path: str = "<input>") -> ParseResult:
+    return parse_source(SourceFile(path, text))
+
+
+def parse_source(file: SourceFile) -> ParseResult:
+    """Parse one file; syntax errors become diagnostics (the first one; LALR stops there)."""
+    binary = _binary_problem(file)
+    if binary is not None:
+        return ParseResult(None, (binary,))
+    if not file.text.strip():
+        msg = "file must contain a cell, a program or declarations (got an empty file)"
+        return ParseResult(None, (_error(codes.EMPTY_FILE, msg, Span.whole(file)),))
+    with _LOCK:
+        _BUILDER.begin(file)
+        try:
+            module: ast.Module = _BUILDER.transform(_PARSER.parse(file.text))
+        except UnexpectedInput as exc:
+            return ParseResult(None, (wrap_syntax_error(exc, file),))
+        except VisitError as exc:  # a builder bug must still not escape as a traceback
+            span = Span.whole(file)
+            return ParseResult(None, (_error(codes.SYNTAX, f"internal parser error: {exc.orig_exc}", span),))
+        problems = tuple(_BUILDER.diagnostics)
+    if not module.body:
+        msg = "file must contain a cell, a program or declarations (got only comments)"
+        problems += (_error(codes.EMPTY_FILE, msg, Span.whole(file)),)
+    return ParseResult(module, problems)
+
+
+def _error(code: codes.Code, message: str, span: Span | None, notes: tuple = ()) -> Diagnostic:  # type: ignore[type-arg]
+    return Diagnostic(code, Severity.ERROR, message, span, notes)
+
+
+def _binary_problem(file: SourceFile) -> Diagnostic | None:
+    """NUL and other C0 control characters (besides tab, newline, CR, FF) mean a binary file."""
+    for i, ch in enumerate(file.text[:65536]):
+        if ch < " " and ch not in "\t\n\r\f":
+            span = Span.from_offsets(file, i, i + 1)
+            return _error(codes.BINARY_INPUT, f"file must be text (got control character {ch!r})", span)
+    return None
+
+
+# --------------------------------------------------------------------------- errors in words
+
+_WORDS = {
+    "NAME": "a name", "NUMBER": "a number", "STRING": "a string", "UNIT": "a unit such as mm or deg",
+    "_NL": "a new line or ';'", "$END": "the end of the file", "MOVE_KIND": "'joint', 'linear' or 'circular'",
+    "IO_KIND": "an I/O port such as in[1] or out[2]", "COMPARE": "'==' or '!='",
+}
+_EXPR_START = {"NAME", "NUMBER", "STRING", "LPAR", "MINUS", "PLUS", "JOINTS"}
+_STMT_START = {"MOVE", "SET", "WAIT", "PULSE", "FOR", "REPEAT", "IF", "SYNC", "NATIVE", "SPEED",
+               "ACCEL", "ZONE", "TOOL", "FRAME", "TARGET", "CONST", "PROC", "JOINT_SPEED"}
+_OPERATORS = {"PLUS", "MINUS", "STAR", "SLASH", "DOT"}
+
+
+def _word(name: str) -> str:
+    if name in _WORDS:
+        return _WORDS[name]
+    pattern = _PATTERNS.get(name)
+    if pattern is not None and pattern.type == "str":
+        return f"'{pattern.value}'"
+    return name.lower()
+
+
+def _keyword_values(expected: set[str]) -> list[str]:
+    words = []
+    for name in expected:
+        pattern = _PATTERNS.get(name)
+        if pattern is not None and pattern.type == "str" and pattern.value.isidentifier():
+            words.append(pattern.value)
+    if "MOVE_KIND" in expected:
+        words += ["joint", "linear"]
+    return words
+
+
+def expected_in_words(expected: set[str]) -> str:
+    """Group terminal names into what a user reads: 'an expression', 'a statement', ..."""
+    items: list[str] = []
+    rest = set(expected)
+    if len(rest & _STMT_START) >= 5:
+        items.append("a statement")
+        rest -= _STMT_START | {"NAME"}
+    if {"NAME", "NUMBER"} <= rest:
+        items.append("an expression")
+        rest -= _EXPR_START
+    if "UNIT" in rest:
+        items.append(_WORDS["UNIT"])
+        rest.discard("UNIT")
+    if len(rest & _OPERATORS) >= 3:
+        items.append("an operator")
+        rest -= _OPERATORS
+    items += sorted(_word(n) for n in rest)
+    if len(items) > _MAX_EXPECTED:
+        items = items[:_MAX_EXPECTED] + ["..."]
+    if len(items) == 1:
+        return items[0]
+    return ", ".join(items[:-1]) + " or " + items[-1]
+
+
+def _shown(tok: Token) -> str:
+    if tok.type == "$END":
+        return "the end of the file"
+    if tok.type == "_NL":
+        return "the end of the line" if not str(tok).startswith(";") else "';'"
+    return f"'{tok}'"
+
+
+def wrap_syntax_error(exc: UnexpectedInput, file: SourceFile) -> Diagnostic:
+    """The single conversion of a lark error into a Diagnostic with words, not token names."""
+    if isinstance(exc, UnexpectedCharacters):
+        return _bad_character(exc, file)
+    if isinstance(exc, UnexpectedToken):
+        return _bad_token(exc.token, set(exc.expected), file)
+    if isinstance(exc, UnexpectedEOF):
+        return _bad_token(Token("$END", "", len(file.text)), set(exc.expected), file)
+    return _error(codes.SYNTAX, str(exc).splitlines()[0], Span.whole(file))
+
+
+def _bad_character(exc: UnexpectedCharacters, file: SourceFile) -> Diagnostic:
+    offset = exc.pos_in_stream
+    ch = file.text[offset] if offset < len(file.text) else ""
+    span = Span(file, Pos(exc.line, exc.column, offset), Pos(exc.line, exc.column + 1, offset + 1))
+    if ch == '"':
+        end = file.text.find("\n", offset)
+        end = len(file.text) if end < 0 else end
+        span = Span(file, span.start, Pos(exc.line, exc.column + (end - offset), end))
+        return _error(codes.UNTERMINATED_STRING, "string must end with '\"' on the same line (got the end of the line)", span)
+    allowed = set(exc.allowed or ())
+    return _error(codes.UNEXPECTED_CHARACTER, f"unexpected character {ch!r}: expected {expected_in_words(allowed)}", span)
+
+
+def _eof_span(file: SourceFile) -> Span:
+    n = len(file.text)
+    start = file.pos_at(max(0, n - 1))
+    return Span(file, start, Pos(start.line, start.col + 1, n))
+
+
+def _bad_token(tok: Token, expected: set[str], file: SourceFile) -> Diagnostic:
+    at_end = tok.type == "$END"
+    span = _eof_span(file) if at_end or tok.line is None else token_span(file, tok)
+    if tok.type == "RBRACE" and _POSTLEX.unmatched_close is not None:
+        span = token_span(file, _POSTLEX.unmatched_close)
+        return _error(codes.UNBALANCED_BRACE, "'}' must close an open '{' (got none open)", span)
+    if at_end and _POSTLEX.braces:
+        opening = token_span(file, _POSTLEX.braces[-1])
+        msg = "'{' must be closed by '}' (got the end of the file)"
+        return _error(codes.UNBALANCED_BRACE, msg, opening, (("the file ends here", span),))
+    misspelt = _misspelt(tok, expected, file)
+    if misspelt is not None:
+        return misspelt
+    code = codes.UNEXPECTED_END if at_end else codes.SYNTAX
+    return _error(code, f"expected {expected_in_words(expected)} (got {_shown(tok)})", span)
+
+
+def _misspelt(tok: Token, expected: set[str], file: SourceFile) -> Diagnostic | None:
+    """A name near a keyword the parser wanted, or a word after a number that is no unit."""
+    prev = _POSTLEX.history[-1] if _POSTLEX.history else None
+    if tok.type == "NAME" and "UNIT" in expected and prev is not None and prev.type == "NUMBER":
+        near = difflib.get_close_matches(str(tok), UNITS, n=1, cutoff=0.5)
+        hint = f"; did you mean '{near[0]}'?" if near else ""
+        return _error(codes.UNKNOWN_UNIT, f"unit must be one of mm, m, deg, rad, s, mm/s, ... (got '{tok}'){hint}", token_span(file, tok))
+    if tok.type == "NAME":
+        near = difflib.get_close_matches(str(tok), _keyword_values(expected), n=1, cutoff=0.7)
+        if near:
+            return _error(codes.MISSPELT_KEYWORD, f"unknown keyword '{tok}'; did you mean '{near[0]}'?", token_span(file, tok))
+    # `mvoe joint home`: the parser took `mvoe` for a call and stumbles on the next token.
+    before = _POSTLEX.history[-2] if len(_POSTLEX.history) >= 2 else None
+    starts_statement = before is None or before.type in ("_NL", "LBRACE")
+    if prev is not None and prev.type == "NAME" and starts_statement and "LPAR" in expected:
+        near = difflib.get_close_matches(str(prev), sorted(KEYWORDS), n=1, cutoff=0.6)
+        if near:
+            return _error(codes.MISSPELT_KEYWORD, f"unknown statement '{prev}'; did you mean '{near[0]}'?", token_span(file, prev))
+    return None

@@ -1,0 +1,36 @@
+"""Diagnostic codes of the verification stage (sim).
+
+E3xx/W3xx are verification findings; E56x/W56x are broken mesh files (the E5xx "files"
+range is shared with the front end, so the sim keeps to the 56x block).
+"""
+
+from __future__ import annotations
+
+from rmot.lang.diagnostics import Code
+
+__all__ = [
+    "COLLISION", "SELF_COLLISION", "ROBOT_COLLISION", "STATIC_CONTACT", "CLEARANCE",
+    "JOINT_POSITION", "JOINT_VELOCITY", "JOINT_ACCEL", "JOINT_TORQUE",
+    "MESH_MISSING", "MESH_UNREADABLE", "MESH_EMPTY", "MESH_TRUNCATED", "MESH_NOT_WATERTIGHT",
+    "ROBOT_UNAVAILABLE", "RENDER_UNAVAILABLE", "PROGRAM_NOT_CHECKED",
+]
+
+COLLISION = Code("E300", "collision", "a robot link or tool touches a fixture")
+SELF_COLLISION = Code("E301", "self-collision", "two non-adjacent solids of one robot (or its tool) touch")
+ROBOT_COLLISION = Code("E302", "robot-collision", "two robots touch on the shared timeline")
+JOINT_POSITION = Code("E310", "joint-position-limit", "a joint leaves its position range")
+JOINT_VELOCITY = Code("E311", "joint-velocity-limit", "a joint moves faster than its velocity limit")
+JOINT_ACCEL = Code("E312", "joint-acceleration-limit", "a joint accelerates beyond its limit")
+JOINT_TORQUE = Code("E313", "joint-torque-limit", "inverse dynamics needs more torque than a joint's limit")
+PROGRAM_NOT_CHECKED = Code("E390", "program-not-checked", "a program could not be loaded, planned or verified")
+ROBOT_UNAVAILABLE = Code("E320", "robot-model-unavailable", "the robot model could not be loaded for verification")
+
+STATIC_CONTACT = Code("W300", "static-contact", "two bodies that never move overlap (a cell modelling issue)")
+CLEARANCE = Code("W301", "clearance", "a body comes closer to another than the requested clearance")
+RENDER_UNAVAILABLE = Code("W310", "render-unavailable", "a finding image could not be rendered")
+
+MESH_MISSING = Code("E560", "mesh-missing", "a mesh file does not exist")
+MESH_UNREADABLE = Code("E561", "mesh-unreadable", "a mesh file cannot be parsed")
+MESH_EMPTY = Code("E562", "mesh-empty", "a mesh file has no triangles")
+MESH_TRUNCATED = Code("E563", "mesh-truncated", "a mesh file ends before its declared points or polygons")
+MESH_NOT_WATERTIGHT = Code("W560", "mesh-not-watertight", "a mesh is not a closed manifold surface")

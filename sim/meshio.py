@@ -1,0 +1,219 @@
+"""Mesh files -> triangle arrays in metres, or a Diagnostic at the span that names the file.
+
+Formats: STL, OBJ, PLY, OFF through trimesh; every other suffix is read as the classic
+"points then polygons" text format (LANGUAGE.md §3):
+
+    <point count> <polygon count>          (on one line or on two)
+    x y z                                  (one line per point)
+    k i1 i2 ... ik                         (one line per polygon, fan-triangulated)
+
+Polygon indices are 0-based; a file whose indices run 1..point count (and never use 0) is
+read as 1-based, as several old tools wrote it. `#` starts a comment.
+
+A missing, unreadable, truncated or empty file is an error; a surface that is not a closed
+manifold is a warning (W560) carried in `MeshData.warnings`: collision checks work on the
+triangles, but a body wholly inside an open surface is not detected as a contact.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from rmot.compiler import ir
+from rmot.lang.diagnostics import Code, Diagnostic, Severity
+from rmot.sim import codes
+
+__all__ = ["MeshData", "load_mesh", "parse_classic"]
+
+_TRIMESH_SUFFIXES = {".stl", ".obj", ".ply", ".off"}
+
+
+@dataclass(frozen=True, eq=False)
+class MeshData:
+    """vertices: (V, 3) float64 in metres (scale applied); faces: (F, 3) int64 vertex indexes."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    warnings: tuple[Diagnostic, ...] = ()
+
+    def __post_init__(self) -> None:
+        self.vertices.setflags(write=False)
+        self.faces.setflags(write=False)
+
+
+class _MeshError(Exception):
+    def __init__(self, code: Code, message: str) -> None:
+        super().__init__(message)
+        self.code = code
+        self.message = message
+
+
+def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
+    """Load `mesh.path`, scaled to metres; a Diagnostic (at `mesh.span`) if it is unusable."""
+    path = mesh.path
+    try:
+        stat = os.stat(path)
+    except OSError:
+        return _error(mesh, codes.MESH_MISSING, f"mesh file must exist (got '{path}')")
+    try:
+        vertices, faces, watertight = _read_cached(path, stat.st_mtime_ns, stat.st_size)
+    except _MeshError as exc:
+        return _error(mesh, exc.code, exc.message)
+    warnings: tuple[Diagnostic, ...] = ()
+    if not watertight:
+        warnings = (
+            Diagnostic(
+                codes.MESH_NOT_WATERTIGHT, Severity.WARNING,
+                f"mesh '{os.path.basename(path)}' should be a closed manifold surface (it has open "
+                "or non-manifold edges); a body wholly inside it is not detected", mesh.span,
+            ),
+        )
+    return MeshData(vertices * float(mesh.scale), faces.copy(), warnings)
+
+
+def _error(mesh: ir.Mesh, code: Code, message: str) -> Diagnostic:
+    return Diagnostic(code, Severity.ERROR, message, mesh.span)
+
+
+@functools.lru_cache(maxsize=64)
+def _read_cached(path: str, mtime_ns: int, size: int) -> tuple[np.ndarray, np.ndarray, bool]:
+    """Parse once per file version (mtime and size are part of the key)."""
+    del mtime_ns, size
+    suffix = os.path.splitext(path)[1].lower()
+    if suffix in _TRIMESH_SUFFIXES:
+        vertices, faces = _read_trimesh(path)
+    else:
+        try:
+            with open(path, encoding="utf-8") as f:
+                text = f.read()
+        except (OSError, UnicodeDecodeError) as exc:
+            raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must be readable text (got {exc.__class__.__name__})") from None
+        vertices, faces = parse_classic(text)
+    _check_nonempty(path, vertices, faces)
+    vertices.setflags(write=False)
+    faces.setflags(write=False)
+    return vertices, faces, _is_watertight(faces)
+
+
+def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
+    import trimesh
+
+    if os.path.getsize(path) == 0:
+        raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain triangles (got an empty file '{os.path.basename(path)}')")
+    try:
+        loaded = trimesh.load(path, force="mesh", process=False)
+    except Exception as exc:  # trimesh raises many types for bad files; all mean "unreadable"
+        raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must be a valid {os.path.splitext(path)[1][1:].upper()} file ({_short(exc)})") from None
+    vertices = np.asarray(getattr(loaded, "vertices", np.empty((0, 3))), dtype=np.float64).reshape(-1, 3)
+    faces = np.asarray(getattr(loaded, "faces", np.empty((0, 3))), dtype=np.int64).reshape(-1, 3)
+    if _looks_truncated_stl(path, faces):
+        raise _MeshError(codes.MESH_TRUNCATED, "binary STL file must hold as many triangles as its header declares (the file is truncated)")
+    if not np.all(np.isfinite(vertices)):
+        raise _MeshError(codes.MESH_UNREADABLE, "mesh vertices must be finite numbers (got NaN or infinity)")
+    return vertices, faces
+
+
+def _looks_truncated_stl(path: str, faces: np.ndarray) -> bool:
+    """A binary STL declares its triangle count at byte 80; check the file is that long."""
+    if not path.lower().endswith(".stl"):
+        return False
+    with open(path, "rb") as f:
+        head = f.read(84)
+    if len(head) < 84 or head[:5].lower() == b"solid":
+        return False
+    declared = int.from_bytes(head[80:84], "little")
+    return os.path.getsize(path) < 84 + 50 * declared
+
+
+def _short(exc: Exception) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0][:120] if text else exc.__class__.__name__
+
+
+def parse_classic(text: str) -> tuple[np.ndarray, np.ndarray]:
+    """The classic text format -> (vertices (V, 3), faces (F, 3)); raises _MeshError."""
+    tokens_by_line = [line.split("#", 1)[0].split() for line in text.splitlines()]
+    tokens = [tok for line in tokens_by_line for tok in line]
+    if not tokens:
+        raise _MeshError(codes.MESH_EMPTY, "mesh file must contain points and polygons (got an empty file)")
+    stream = _Tokens(tokens)
+    n_points = stream.count("point count")
+    n_polys = stream.count("polygon count")
+    vertices = np.array([[stream.number(f"coordinate of point {i + 1}") for _ in range(3)] for i in range(n_points)], dtype=np.float64).reshape(-1, 3)
+    polygons: list[list[int]] = []
+    for p in range(n_polys):
+        k = stream.count(f"vertex count of polygon {p + 1}")
+        if k < 3:
+            raise _MeshError(codes.MESH_UNREADABLE, f"polygon {p + 1} must have at least 3 vertices (got {k})")
+        polygons.append([stream.count(f"index in polygon {p + 1}") for _ in range(k)])
+    if stream.remaining:
+        raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must end after {n_polys} polygons (got {stream.remaining} extra values)")
+    return vertices, _triangulate(polygons, n_points)
+
+
+def _triangulate(polygons: list[list[int]], n_points: int) -> np.ndarray:
+    flat = [i for poly in polygons for i in poly]
+    one_based = bool(flat) and min(flat) >= 1 and max(flat) == n_points
+    triangles: list[tuple[int, int, int]] = []
+    for p, poly in enumerate(polygons):
+        idx = [i - 1 for i in poly] if one_based else poly
+        bad = [i for i in idx if not 0 <= i < n_points]
+        if bad:
+            raise _MeshError(codes.MESH_UNREADABLE, f"polygon {p + 1} must index points 0..{n_points - 1} (got {bad[0]})")
+        triangles += [(idx[0], idx[j], idx[j + 1]) for j in range(1, len(idx) - 1)]
+    return np.array(triangles, dtype=np.int64).reshape(-1, 3)
+
+
+class _Tokens:
+    def __init__(self, tokens: list[str]) -> None:
+        self._tokens = tokens
+        self._pos = 0
+
+    @property
+    def remaining(self) -> int:
+        return len(self._tokens) - self._pos
+
+    def _next(self, what: str) -> str:
+        if self._pos >= len(self._tokens):
+            raise _MeshError(codes.MESH_TRUNCATED, f"mesh file ends early: expected the {what}")
+        tok = self._tokens[self._pos]
+        self._pos += 1
+        return tok
+
+    def count(self, what: str) -> int:
+        tok = self._next(what)
+        try:
+            value = int(tok)
+        except ValueError:
+            raise _MeshError(codes.MESH_UNREADABLE, f"the {what} must be a whole number (got '{tok[:20]}')") from None
+        if value < 0:
+            raise _MeshError(codes.MESH_UNREADABLE, f"the {what} must not be negative (got {value})")
+        return value
+
+    def number(self, what: str) -> float:
+        tok = self._next(what)
+        try:
+            value = float(tok)
+        except ValueError:
+            raise _MeshError(codes.MESH_UNREADABLE, f"the {what} must be a number (got '{tok[:20]}')") from None
+        if not np.isfinite(value):
+            raise _MeshError(codes.MESH_UNREADABLE, f"the {what} must be finite (got '{tok}')")
+        return value
+
+
+def _check_nonempty(path: str, vertices: np.ndarray, faces: np.ndarray) -> None:
+    if len(faces) == 0 or len(vertices) == 0:
+        raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain triangles (got none in '{os.path.basename(path)}')")
+    if faces.min() < 0 or faces.max() >= len(vertices):
+        raise _MeshError(codes.MESH_UNREADABLE, "mesh faces must index its vertices")
+
+
+def _is_watertight(faces: np.ndarray) -> bool:
+    """Closed 2-manifold test: every undirected edge is shared by exactly two triangles."""
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    _, counts = np.unique(edges, axis=0, return_counts=True)
+    return bool(np.all(counts == 2))

@@ -1,0 +1,144 @@
+"""The camera: eye point, centre of interest, up vector and vertical view angle.
+
+A pinhole camera as in the classic graphic simulators: the viewing transform takes world
+points to eye space (right-handed, the camera looks down its -z axis, +y is up on the
+screen); the perspective transform takes eye space to homogeneous clip space, where after
+the divide by w the visible volume is x, y in [-1, 1] and depth in [0, 1] (0 at the near
+plane, 1 at the far plane).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Camera", "CameraSpecError", "parse_camera"]
+
+Vec3 = tuple[float, float, float]
+
+
+class CameraSpecError(ValueError):
+    """A `--camera` text that does not describe a camera (message suitable for users)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Camera:
+    """A perspective camera; distances in metres, `fov_deg` the vertical view angle in degrees."""
+
+    eye: Vec3
+    center: Vec3
+    up: Vec3 = (0.0, 0.0, 1.0)
+    fov_deg: float = 40.0
+    near: float = 0.05
+    far: float = 100.0
+
+    def __post_init__(self) -> None:
+        if not 0.0 < self.fov_deg < 180.0:
+            raise CameraSpecError(f"camera fov must be in (0, 180) degrees (got {self.fov_deg})")
+        if not 0.0 < self.near < self.far:
+            raise CameraSpecError(f"camera near/far must satisfy 0 < near < far (got {self.near}, {self.far})")
+        forward = np.subtract(self.center, self.eye)
+        if np.linalg.norm(forward) < 1e-9:
+            raise CameraSpecError(f"camera eye and center must differ (both {self.eye})")
+        if np.linalg.norm(np.cross(forward, self.up)) < 1e-9 * np.linalg.norm(forward):
+            raise CameraSpecError(f"camera up {self.up} must not be parallel to the view direction")
+
+    def view(self) -> np.ndarray:
+        """(4, 4) world -> eye transform (the 'look-at' viewing transform)."""
+        f = np.subtract(self.center, self.eye).astype(float)
+        f /= np.linalg.norm(f)  # viewing direction
+        s = np.cross(f, self.up)
+        s /= np.linalg.norm(s)  # screen right
+        u = np.cross(s, f)  # screen up, orthogonal to both
+        m = np.eye(4)
+        m[0, :3], m[1, :3], m[2, :3] = s, u, -f  # rows: the eye axes in world coordinates
+        m[:3, 3] = -m[:3, :3] @ np.asarray(self.eye, float)  # move the eye to the origin
+        return m
+
+    def projection(self, aspect: float) -> np.ndarray:
+        """(4, 4) eye -> clip transform; `aspect` = width / height.
+
+        w_clip = -z_eye (distance in front of the eye); after the divide x, y in [-1, 1]
+        and z in [0, 1] inside the view volume (near -> 0, far -> 1).
+        """
+        t = 1.0 / math.tan(math.radians(self.fov_deg) / 2.0)  # cot(fov/2)
+        n, f = self.near, self.far
+        p = np.zeros((4, 4))
+        p[0, 0] = t / aspect
+        p[1, 1] = t
+        p[2, 2] = -f / (f - n)  # z_clip = f(d - n)/(f - n) with d = -z_eye
+        p[2, 3] = -f * n / (f - n)
+        p[3, 2] = -1.0  # w_clip = d
+        return p
+
+    def matrix(self, aspect: float) -> np.ndarray:
+        """(4, 4) world -> clip: projection . view."""
+        return self.projection(aspect) @ self.view()
+
+    @staticmethod
+    def framing(bounds: np.ndarray, *, aspect: float = 4.0 / 3.0, fov_deg: float = 40.0,
+                azimuth_deg: float = -50.0, elevation_deg: float = 28.0, margin: float = 1.08) -> Camera:
+        """The default three-quarter view that frames the whole box `bounds` (2, 3) [min; max].
+
+        The eye sits on a ray from the box centre (azimuth from +x about +z, elevation above
+        the floor) at the distance where the box's bounding sphere fits both view angles.
+        """
+        lo, hi = np.asarray(bounds, float)
+        center = (lo + hi) / 2.0
+        radius = max(float(np.linalg.norm(hi - lo)) / 2.0, 1e-3) * margin
+        half_v = math.radians(fov_deg) / 2.0
+        half_h = math.atan(math.tan(half_v) * aspect)
+        distance = radius / math.sin(min(half_v, half_h))  # the sphere touches the narrower side
+        az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
+        direction = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+        eye = center + distance * direction
+        near = max(distance - radius, 1e-3) * 0.5
+        far = (distance + radius) * 2.0
+        return Camera(_vec(eye), _vec(center), fov_deg=fov_deg, near=near, far=far)
+
+
+def _vec(a: np.ndarray) -> Vec3:
+    return (float(a[0]), float(a[1]), float(a[2]))
+
+
+_KEYS = {"eye", "center", "up", "fov", "near", "far"}
+
+
+def parse_camera(text: str, default: Camera | None = None) -> Camera:
+    """A camera from `eye=x,y,z;center=x,y,z;up=x,y,z;fov=40;near=0.05;far=100` (metres, degrees).
+
+    Missing keys come from `default` (eye and center are required without one).
+    Raises CameraSpecError with a message naming the bad key and value.
+    """
+    fields: dict[str, object] = {}
+    for part in filter(None, (p.strip() for p in text.split(";"))):
+        key, sep, value = part.partition("=")
+        key = key.strip().lower()
+        if not sep or key not in _KEYS:
+            raise CameraSpecError(f"camera setting must be one of {sorted(_KEYS)} as key=value (got {part!r})")
+        numbers = _numbers(key, value)
+        if key in ("eye", "center", "up"):
+            if len(numbers) != 3:
+                raise CameraSpecError(f"camera {key} must be three numbers x,y,z (got {value.strip()!r})")
+            fields[key] = tuple(numbers)
+        else:
+            if len(numbers) != 1:
+                raise CameraSpecError(f"camera {key} must be one number (got {value.strip()!r})")
+            fields["fov_deg" if key == "fov" else key] = numbers[0]
+    if default is None and not {"eye", "center"} <= fields.keys():
+        raise CameraSpecError(f"camera must give eye=x,y,z and center=x,y,z (got {text!r})")
+    base = default or Camera(eye=(1.0, 0.0, 0.0), center=(0.0, 0.0, 0.0))
+    merged = {name: fields.get(name, getattr(base, name)) for name in ("eye", "center", "up", "fov_deg", "near", "far")}
+    return Camera(**merged)  # type: ignore[arg-type]
+
+
+def _numbers(key: str, value: str) -> list[float]:
+    try:
+        numbers = [float(v) for v in value.split(",")]
+    except ValueError:
+        raise CameraSpecError(f"camera {key} must be numbers (got {value.strip()!r})") from None
+    if not all(math.isfinite(v) for v in numbers):
+        raise CameraSpecError(f"camera {key} must be finite numbers (got {value.strip()!r})")
+    return numbers

@@ -1,0 +1,51 @@
+"""A text caption along the bottom of an image, in Pillow's built-in font (no font files)."""
+
+from __future__ import annotations
+
+import numpy as np
+from PIL import Image, ImageDraw, ImageFont
+
+__all__ = ["add_caption"]
+
+BAND = (24, 26, 30)
+TEXT = (250, 250, 250)
+
+
+def _font(height: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
+    size = max(10, min(18, height // 26))
+    try:
+        return ImageFont.load_default(size=size)  # Pillow's bundled font, same on every machine
+    except (TypeError, OSError):  # Pillow without FreeType: the fixed bitmap font
+        return ImageFont.load_default()
+
+
+def _wrap(draw: ImageDraw.ImageDraw, text: str, font: object, width: int) -> list[str]:
+    """Greedy word wrap to `width` pixels; a word longer than a line is cut by characters."""
+    lines: list[str] = []
+    for paragraph in text.splitlines() or [""]:
+        line = ""
+        for word in paragraph.split(" "):
+            trial = f"{line} {word}" if line else word
+            if draw.textlength(trial, font=font) <= width or not line:
+                line = trial
+            else:
+                lines.append(line)
+                line = word
+        lines.append(line)
+    return lines
+
+
+def add_caption(image: np.ndarray, text: str, max_lines: int = 3) -> np.ndarray:
+    """A copy of image (H, W, 3) uint8 with `text` in a dark band at the bottom."""
+    picture = Image.fromarray(np.ascontiguousarray(image))
+    draw = ImageDraw.Draw(picture)
+    font = _font(picture.height)
+    pad = 6
+    lines = _wrap(draw, text, font, picture.width - 2 * pad)[:max_lines]
+    ascent, descent = font.getmetrics() if hasattr(font, "getmetrics") else (11, 3)
+    line_h = ascent + descent + 2
+    band_h = line_h * len(lines) + 2 * pad
+    draw.rectangle((0, picture.height - band_h, picture.width, picture.height), fill=BAND)
+    for i, line in enumerate(lines):
+        draw.text((pad, picture.height - band_h + pad + i * line_h), line, fill=TEXT, font=font)
+    return np.asarray(picture, dtype=np.uint8).copy()

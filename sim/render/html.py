@@ -1,0 +1,64 @@
+"""One self-contained HTML file with an interactive 3D view of the animated program.
+
+Our own small WebGL page (viewer.html + viewer.js in this package), inlined: no CDN, no
+external files, works offline. The file embeds each body's triangles once, in its own
+frame, and per frame only the body poses (3 x 4 floats each), base64 float32.
+"""
+
+from __future__ import annotations
+
+import base64
+import html as html_text
+import json
+from importlib import resources
+
+import numpy as np
+
+from rmot.sim.render.animate import frame_times
+from rmot.sim.render.camera import Camera
+from rmot.sim.render.scene import FLOOR, PATH, RenderScene, body_poses
+from rmot.sim.render.still import default_camera
+
+__all__ = ["render_html"]
+
+
+def _b64(array: np.ndarray) -> str:
+    """Little-endian float32 bytes of an array, base64 text."""
+    return base64.b64encode(np.ascontiguousarray(array, dtype="<f4").tobytes()).decode("ascii")
+
+
+def _color(c: object) -> list[float]:
+    return [round(float(v), 4) for v in np.asarray(c).ravel()[:3]]
+
+
+def scene_data(rs: RenderScene, fps: float = 25.0, camera: Camera | None = None) -> dict[str, object]:
+    """What the viewer needs, as JSON-ready values."""
+    times = frame_times(rs.plan.cycle_time, min(fps, 30.0))
+    poses = body_poses(rs, times)[:, :, :3, :].reshape(len(times), len(rs.names), 12)
+    camera = camera or default_camera(rs, (4, 3))
+    floor = []
+    for k, color in enumerate(FLOOR):
+        mine = np.all(np.isclose(rs.floor_colors, color, atol=1e-3), axis=1) if len(rs.floor_colors) else np.zeros(0, bool)
+        if mine.any():
+            floor.append({"vertices": _b64(rs.floor.vertices[mine]), "normals": _b64(rs.floor.normals[mine]), "color": _color(color)})
+    return {
+        "bodies": [{"name": name, "vertices": _b64(mesh.vertices), "normals": _b64(mesh.normals), "color": _color(color)}
+                   for name, mesh, color in zip(rs.names, rs.meshes, rs.colors)],
+        "floor": floor,
+        "paths": [_b64(p) for p in rs.paths],
+        "pathColor": _color(PATH),
+        "times": [round(float(t), 4) for t in times],
+        "poses": _b64(poses),
+        "camera": {"eye": list(camera.eye), "center": list(camera.center), "fov": camera.fov_deg},
+    }
+
+
+def render_html(rs: RenderScene, *, fps: float = 25.0, camera: Camera | None = None) -> str:
+    """The viewer page as text (the same scene gives the same bytes)."""
+    package = resources.files("rmot.sim.render")
+    page = (package / "viewer.html").read_text(encoding="utf-8")
+    script = (package / "viewer.js").read_text(encoding="utf-8")
+    data = json.dumps(scene_data(rs, fps, camera), sort_keys=True, separators=(",", ":"))
+    data = data.replace("</", "<\\/")  # never close the <script> element early
+    title = html_text.escape(rs.plan.program.name)
+    return page.replace("__TITLE__", title).replace("__SCRIPT__", script).replace("__DATA__", data)

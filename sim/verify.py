@@ -1,0 +1,241 @@
+"""verify(plan) -> Report: collisions, clearance and joint limits over the whole Plan.
+
+Every task's main timeline is checked on one shared clock (robot against robot where tasks
+overlap in time); every `if` variant is checked against the fixtures, its own robot and the
+other robots (on their main timelines at the same times). A robot of the cell without a task
+stands still at its zero configuration (clipped to its limits).
+
+The no-miss guarantee between samples is the distance bound in collide.py: a contact
+deeper than collide.CONTACT_TOL (10 µm) cannot fall between two samples unseen.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from rmot.compiler import ir, planned
+from rmot.lang.diagnostics import Amount, Diagnostic, Severity
+from rmot.lang.source import Span
+from rmot.sim import codes
+from rmot.sim.collide import PairHit, Timeline, candidate_pairs, check_timeline
+from rmot.sim.limits import LimitHit, check_limits
+from rmot.sim.report import Report
+from rmot.sim.scene import Scene, build_scene, flange_in_last_joint
+
+__all__ = ["verify", "verify_with"]
+
+
+def verify(plan: planned.Plan, *, clearance: float | None = None) -> Report:
+    """Check the Plan; `clearance` (m): also report every approach closer than that."""
+    return verify_with(plan, clearance=clearance)
+
+
+def verify_with(plan: planned.Plan, *, clearance: float | None = None,
+                robots: Mapping[str, Any] | None = None) -> Report:
+    """`verify` with the robot models given (tests) instead of loaded from the library."""
+    program = plan.program
+    tools_used = _tools_used(program)
+    scene = build_scene(program.cell, tools_used, robots)
+    findings: list[Diagnostic] = []
+    tasks = [tp for tp in plan.tasks if tp.robot in scene.robots]
+    if tasks:
+        findings += _collisions(scene, plan, tasks, clearance or 0.0)
+    for tp in tasks:
+        findings += _limits(scene, tp)
+    findings.sort(key=_finding_order)
+    diagnostics = tuple(plan.diagnostics) + scene.diagnostics + tuple(findings)
+    cycle_times = {tp.task.name: float(tp.cycle_time) for tp in plan.tasks}
+    return Report(_program_file(program), cycle_times, diagnostics)
+
+
+def _program_file(program: ir.Program) -> str:
+    return program.span.path if program.span is not None else program.name
+
+
+def _finding_order(d: Diagnostic) -> tuple:
+    return (d.time_s if d.time_s is not None else -1.0, d.code.id, d.bodies, d.message)
+
+
+def _tools_used(program: ir.Program) -> dict[str, set[str]]:
+    used: dict[str, set[str]] = {}
+    for task in program.tasks:
+        names = used.setdefault(task.robot, set())
+        for instr in ir.walk(task.body):
+            if isinstance(instr, ir.Move) and instr.tool.name is not None:
+                names.add(instr.tool.name)
+    return used
+
+
+# --------------------------------------------------------------------------- collisions
+
+
+def _collisions(scene: Scene, plan: planned.Plan, tasks: list[planned.TaskPlan], clearance: float) -> list[Diagnostic]:
+    main = {tp.robot: tp.trajectory for tp in tasks}
+    out: list[Diagnostic] = []
+    timeline = _timeline(scene, main, None)
+    by_robot = {tp.robot: tp for tp in tasks}
+    hits = check_timeline(scene, timeline, candidate_pairs(scene), clearance)
+    out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
+    for tp in tasks:
+        for variant in tp.variants:
+            trajs = dict(main)
+            trajs[tp.robot] = variant.trajectory
+            timeline = _timeline(scene, trajs, variant.trajectory.t)
+            hits = check_timeline(scene, timeline, candidate_pairs(scene, only_robot=tp.robot), clearance)
+            out += [_collision_diagnostic(scene, by_robot, h, clearance, variant.index, tp.robot) for h in hits
+                    if h.kind != "static"]
+    return out
+
+
+def _timeline(scene: Scene, trajs: dict[str, planned.Trajectory], grid: np.ndarray | None) -> Timeline:
+    """Every robot on one clock: the union of the sample times (each robot's piecewise-linear
+    path is unchanged by resampling at a superset of its own samples)."""
+    if grid is None:
+        times = np.concatenate([tr.t for tr in trajs.values() if tr.t.size] or [np.zeros(1)])
+        grid = np.unique(np.round(times, 9))
+    q: dict[str, np.ndarray] = {}
+    accel: dict[str, np.ndarray] = {}
+    for name, entry in scene.robots.items():
+        traj = trajs.get(name)
+        if traj is None or traj.t.size == 0:
+            still = np.clip(np.zeros(entry.robot.dof), entry.robot.joint_limits[:, 0], entry.robot.joint_limits[:, 1])
+            q[name] = np.tile(still, (grid.size, 1))
+            accel[name] = np.zeros((grid.size, entry.robot.dof))
+            continue
+        q[name] = _resample(traj.t, traj.q, grid)
+        accel[name] = _resample(traj.t, np.abs(traj.qdd), grid)
+    return Timeline(grid, q, accel)
+
+
+def _resample(t: np.ndarray, values: np.ndarray, grid: np.ndarray) -> np.ndarray:
+    return np.stack([np.interp(grid, t, values[:, j]) for j in range(values.shape[1])], axis=1)
+
+
+def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], hit: PairHit, clearance: float,
+                          variant: int, variant_robot: str | None = None) -> Diagnostic:
+    a, b = scene.body(hit.a), scene.body(hit.b)
+    if a.kind == "fixture" or (b.kind != "fixture" and not a.moves and b.moves):
+        a, b = b, a  # name the moving robot body first
+    robots = [body.robot for body in (a, b) if body.robot is not None and body.moves]
+    robots = sorted(set(robots), key=lambda r: (r != variant_robot, robots.index(r)))
+    owner = robots[0] if robots else (a.robot or b.robot)
+    tp = by_robot.get(owner) if owner else None
+    span = _span_at(tp, hit.t0, variant if owner == variant_robot else 0) if tp else None
+    notes = []
+    for other in robots[1:]:
+        other_tp = by_robot.get(other)
+        if other_tp is not None:
+            notes.append((f"robot '{other}' is executing this move then", _span_at(other_tp, hit.t0, 0)))
+    where = f" (in the '{_arm(tp, variant)}' arm of an if)" if variant and tp else ""
+    names = (a.name, b.name)
+    if hit.kind == "clearance":
+        mm = hit.distance * 1000
+        message = f"'{a.name}' comes within {mm:.1f} mm of '{b.name}'; clearance must be at least {clearance * 1000:.1f} mm{where}"
+        return Diagnostic(codes.CLEARANCE, Severity.WARNING, message, span, tuple(notes), hit.t0, hit.t1,
+                          names, Amount(round(mm, 3), "mm"), tp.task.name if tp else None)
+    depth = max(-hit.distance, 0.0) * 1000
+    if hit.kind == "static":
+        message = f"'{a.name}' and '{b.name}' overlap although neither moves (penetration {depth:.1f} mm); fix the cell or allow the contact"
+        return Diagnostic(codes.STATIC_CONTACT, Severity.WARNING, message, a.span or b.span or span, (), None, None,
+                          names, Amount(round(depth, 3), "mm"), None)
+    code = _collision_code(a, b)
+    message = f"'{a.name}' collides with '{b.name}' (penetration {depth:.1f} mm){where}"
+    return Diagnostic(code, Severity.ERROR, message, span, tuple(notes), hit.t0, hit.t1, names,
+                      Amount(round(depth, 3), "mm"), tp.task.name if tp else None)
+
+
+def _collision_code(a: Any, b: Any) -> Any:
+    if a.kind == "fixture" or b.kind == "fixture":
+        return codes.COLLISION
+    if a.robot == b.robot:
+        return codes.SELF_COLLISION
+    return codes.ROBOT_COLLISION
+
+
+def _arm(tp: planned.TaskPlan | None, variant: int) -> str:
+    for v in tp.variants if tp else ():
+        if v.index == variant:
+            return v.arm
+    return "other"
+
+
+def _span_at(tp: planned.TaskPlan, t: float, variant: int) -> Span | None:
+    """The span of the move the task executes at time t (else of any instruction then)."""
+    moves = {i.uid for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
+    records = [r for r in tp.records if r.variant == variant] or list(tp.records)
+    for want_move in (True, False):
+        chosen = None
+        for r in records:
+            if (r.uid in moves) != want_move and want_move:
+                continue
+            if r.t_start - 1e-9 <= t <= r.t_end + 1e-9:
+                if chosen is None or (r.t_start <= t < r.t_end and not chosen.t_start <= t < chosen.t_end):
+                    chosen = r
+        if chosen is not None:
+            return chosen.span
+    if records:
+        nearest = min(records, key=lambda r: min(abs(t - r.t_start), abs(t - r.t_end)))
+        return nearest.span
+    return tp.task.span
+
+
+# --------------------------------------------------------------------------- limits
+
+
+_UNITS = {  # quantity -> (revolute unit, factor, prismatic unit, factor)
+    "position": ("deg", 180 / np.pi, "mm", 1000.0),
+    "velocity": ("deg/s", 180 / np.pi, "mm/s", 1000.0),
+    "acceleration": ("deg/s^2", 180 / np.pi, "mm/s^2", 1000.0),
+    "torque": ("N·m", 1.0, "N", 1.0),
+}
+_LIMIT_CODES = {"position": codes.JOINT_POSITION, "velocity": codes.JOINT_VELOCITY,
+                "acceleration": codes.JOINT_ACCEL, "torque": codes.JOINT_TORQUE}
+
+
+def _limits(scene: Scene, tp: planned.TaskPlan) -> list[Diagnostic]:
+    entry = scene.robots[tp.robot]
+    payload, payload_at = _payload(scene, tp)
+    out = []
+    runs = [(0, tp.trajectory)] + [(v.index, v.trajectory) for v in tp.variants]
+    for variant, traj in runs:
+        if traj.t.size == 0:
+            continue
+        for hit in check_limits(entry.robot, traj, payload, payload_at):
+            out.append(_limit_diagnostic(tp, hit, variant))
+    return out
+
+
+def _payload(scene: Scene, tp: planned.TaskPlan) -> tuple[float, np.ndarray | None]:
+    """The heaviest tool the task uses, as a point mass at its TCP (in the last joint's frame)."""
+    best: tuple[float, np.ndarray | None] = (0.0, None)
+    for instr in ir.walk(tp.task.body):
+        if isinstance(instr, ir.Move) and instr.tool.mass > best[0]:
+            best = (instr.tool.mass, np.asarray(instr.tool.tcp.position, dtype=float))
+    if best[1] is None:
+        return best
+    flange = flange_in_last_joint(scene.robots[tp.robot].robot)
+    return best[0], flange[:3, :3] @ best[1] + flange[:3, 3]
+
+
+def _limit_diagnostic(tp: planned.TaskPlan, hit: LimitHit, variant: int) -> Diagnostic:
+    unit, factor, p_unit, p_factor = _UNITS[hit.quantity]
+    if hit.prismatic:
+        unit, factor = p_unit, p_factor
+    value, limit = hit.value * factor, hit.limit * factor
+    if hit.quantity == "position":
+        excess = abs(value - limit)
+        side = "upper" if value > limit else "lower"
+        message = f"joint {hit.joint} position {value:.1f} {unit} must stay within its {side} limit {limit:.1f} {unit} (exceeds it by {excess:.2f} {unit})"
+        amount = Amount(round(excess, 4), unit)
+    else:
+        ratio = (abs(value) / abs(limit) - 1) * 100 if limit else float("inf")
+        message = f"joint {hit.joint} {hit.quantity} {abs(value):.1f} {unit} exceeds its limit {abs(limit):.1f} {unit} by {ratio:.0f}%"
+        amount = Amount(round(abs(value) - abs(limit), 4), unit)
+    if variant:
+        message += f" (in the '{_arm(tp, variant)}' arm of an if)"
+    span = _span_at(tp, hit.t0, variant)
+    return Diagnostic(_LIMIT_CODES[hit.quantity], Severity.ERROR, message, span, (), hit.t0, hit.t1,
+                      (f"{tp.robot}/joint{hit.joint}",), amount, tp.task.name)

@@ -1,0 +1,47 @@
+"""Shared fixtures for the backend tests (also used by test_urscript/inform/val3/neutral).
+
+For the other backends helper — the names to reuse:
+  * `plan_from_text` (fixture): a function `(text: str, path: str = "test.rmot") -> planned.Plan`
+    that compiles .rmot text through the real front end (`rmot.compiler.frontend.load_text`)
+    and planner (`rmot.compiler.plan.plan_program`); it fails the test with the rendered
+    diagnostics if either reports an error.
+  * `hand_plan(...)` (plain function, import with `from backend_fixtures import hand_plan`
+    (a plain module in this folder) or use the `hand` fixture): builds a Plan by hand from IR instructions and per-uid joint
+    solutions, for tests that must not depend on the planner.
+  * `span_at(line)`: a Span on a fake file `demo.rmot` at that line.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import pytest
+from backend_fixtures import hand_plan
+
+from rmot.compiler import planned
+
+
+@pytest.fixture
+def hand() -> Callable[..., planned.Plan]:
+    return hand_plan
+
+
+@pytest.fixture
+def plan_from_text() -> Callable[..., planned.Plan]:
+    """Compile .rmot text to a Plan through the real front end and planner."""
+    from rmot.compiler.frontend import load_text
+    from rmot.compiler.plan import plan_program
+    from rmot.lang.diagnostics import render_all
+
+    def build(text: str, path: str = "test.rmot") -> planned.Plan:
+        program, diagnostics = load_text(text, path)
+        errors = [d for d in diagnostics if d.is_error]
+        assert program is not None and not errors, render_all(errors)
+        plan = plan_program(program)
+        errors = [d for d in plan.diagnostics if d.is_error]
+        assert not errors, render_all(errors)
+        return plan
+
+    return build
+
+
