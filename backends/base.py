@@ -114,9 +114,9 @@ def euler_zyx_deg(pose: ir.Pose) -> tuple[float, float, float]:
     B in [-90, 90]. At B = ±90 (gimbal lock) C is set to 0 and A carries the whole angle.
     """
     r = pose.matrix()[:3, :3]
-    sb = -r[2, 0]
-    b = math.asin(max(-1.0, min(1.0, sb)))
-    if abs(abs(sb) - 1.0) < 1e-12:
+    cb = math.hypot(r[0, 0], r[1, 0])
+    b = math.atan2(-r[2, 0], cb)
+    if cb < 1e-9:
         c = 0.0
         a = math.atan2(-r[0, 1], r[1, 1])
     else:
@@ -128,9 +128,9 @@ def euler_zyx_deg(pose: ir.Pose) -> tuple[float, float, float]:
 def euler_xyz_moving_deg(pose: ir.Pose) -> tuple[float, float, float]:
     """(rx, ry, rz) in degrees with R = Rx(rx)·Ry(ry)·Rz(rz) (Stäubli); ry in [-90, 90]."""
     r = pose.matrix()[:3, :3]
-    sy = r[0, 2]
-    ry = math.asin(max(-1.0, min(1.0, sy)))
-    if abs(abs(sy) - 1.0) < 1e-12:
+    cy = math.hypot(r[1, 2], r[2, 2])
+    ry = math.atan2(r[0, 2], cy)
+    if cy < 1e-9:
         rz = 0.0
         rx = math.atan2(r[2, 1], r[1, 1])
     else:
@@ -183,6 +183,18 @@ def header_lines(plan: planned.Plan, backend_name: str, findings: bool = False) 
 # --------------------------------------------------------------------------- base class
 
 
+def _unique(diagnostics: list[Diagnostic]) -> tuple[Diagnostic, ...]:
+    """Diagnostics without repeats: a proc body printed for several calls reports once."""
+    seen: set[tuple[object, ...]] = set()
+    out = []
+    for d in diagnostics:
+        key = (d.code.id, d.severity, d.message, d.span)
+        if key not in seen:
+            seen.add(key)
+            out.append(d)
+    return tuple(out)
+
+
 @dataclass
 class _Emission:
     """Per-emit scratch: the diagnostics collected so far (reset by Backend.emit)."""
@@ -229,7 +241,7 @@ class Backend:
                               self.program_name(plan, task_plan))
             for fname, text in self.emit_task(ctx).items():
                 files[fname] = text
-        return EmitResult(files, tuple(self._emission.diagnostics))
+        return EmitResult(files, _unique(self._emission.diagnostics))
 
     def emit_task(self, ctx: TaskContext) -> dict[str, str]:
         """Print one task: filename -> text. Subclasses implement."""

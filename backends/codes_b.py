@@ -11,18 +11,16 @@ from rmot.lang.diagnostics import Code
 
 __all__ = [
     "ANALOG_UNSUPPORTED", "CIRCULAR_VIA_MISSING", "JOINT_AS_CARTESIAN", "PULSE_INLINE",
-    "SPEED_TABLE_UNKNOWN", "TOO_MANY_POSITIONS", "WAIT_END_MOVE", "NEUTRAL_NO_SAMPLES",
-    "TURN_AMBIGUOUS",
+    "SPEED_TABLE_UNKNOWN", "WAIT_END_MOVE", "NEUTRAL_NO_SAMPLES",
+    "ANALOG_LINK",
 ]
 
 # errors
 ANALOG_UNSUPPORTED = Code("E450", "analog-out-unsupported",
-                          "the vendor backend has no faithful analog output instruction")
+                          "an analog output's port or value has no faithful form for this vendor")
 CIRCULAR_VIA_MISSING = Code("E451", "circular-via-missing",
                             "a circular move must carry its via point and its planned via joints")
-TOO_MANY_POSITIONS = Code("E452", "too-many-positions",
-                          "one instruction needs more position variables than a job may hold")
-NEUTRAL_NO_SAMPLES = Code("E453", "trajectory-empty",
+NEUTRAL_NO_SAMPLES = Code("E452", "trajectory-empty",
                           "a task's trajectory has no samples to write")
 
 # warnings
@@ -37,6 +35,6 @@ SPEED_TABLE_UNKNOWN = Code("W452", "speed-table-unknown",
 WAIT_END_MOVE = Code("W453", "wait-end-move",
                      "the vendor executes I/O asynchronously to motion; a waitEndMove() was "
                      "inserted, so the preceding move stops exactly instead of blending")
-TURN_AMBIGUOUS = Code("W454", "turn-flag-ambiguous",
-                      "a joint lies at exactly +-180 deg, where the vendor's turn flag "
-                      "changes; the controller may pick the other turn")
+ANALOG_LINK = Code("W455", "analog-link-needed",
+                   "an analog output variable is declared unlinked: link it to the controller's "
+                   "physical output before running")

@@ -5,8 +5,12 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     R = Rz(R)·Ry(P)·Rx(W); joints J1..J6 in degrees (the controller's values; rmot's robot
     library already uses Fanuc's J2/J3 convention).
   * Cartesian positions carry `UF : n, UT : m, CONFIG : 'F|N U|D T|B, t4, t5, t6'`:
-    F = wrist flipped, U = elbow up, T = wrist centre in front of J1 (B = back); t4..t6 are
-    the turn numbers of J4, J5, J6: floor((q + 180 deg) / 360 deg).
+    N (no flip) when J5 < 0 and F when J5 > 0 on Fanuc's own J5 (the LR Mate's home with
+    the tool down, J5 = -90 deg, shows 'N U T'); note rmot's branch calls J5 < 0 "flip"
+    (rmot.compiler.robots.branches), so rmot FLIP -> 'N', NOFLIP -> 'F'. U = elbow up,
+    D = down; T = wrist centre in front of J1 (toward), B = behind. t4..t6 are the turn
+    numbers of J4, J5, J6 (as in Fanuc's RMI Turn4..Turn6): 0 for (-180, 180] deg, 1 for
+    (180, 540], -1 for (-540, -180].
   * joint moves to joint targets use the joint representation (J1= ... deg);
     joint moves to pose targets use the Cartesian representation with the CONFIG above.
   * frames: UFRAME 0 is the robot's world (= base) frame; each named rmot frame gets
@@ -23,7 +27,8 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
   * I/O: DO[n]=ON/OFF, DO[n]=PULSE,t sec, AO[n]=value, WAIT t(sec), WAIT DI[n]=ON;
     with a timeout: $WAITTMOUT (1/100 s) then `WAIT ... TIMEOUT,LBL[k]`, the label aborting
     the program. Runtime if: `IF DI[n]<>ON,JMP LBL[else]` ... `JMP LBL[end]`.
-  * procs: each routine is its own program (.ls) called with CALL; `sync` has no TP form
+  * procs: each routine is its own program NAME_PROC.ls (TP program names are global on the
+    controller, hence the prefix) called with CALL; `sync` has no TP form
     without multi-arm options (error E405).
   * names: program names at most 36 characters (R-30iA and later), upper case, a letter
     first, letters, digits and '_'; comments are cut into pieces of at most 32 characters.
@@ -60,7 +65,7 @@ def turn_number(angle: float) -> int:
 
 def config_string(branch: ir.Config, q: np.ndarray) -> str:
     """'N U T, t4, t5, t6' from the planned branch and joints (see the module docstring)."""
-    flip = "F" if branch.wrist is ir.Wrist.FLIP else "N"
+    flip = "N" if branch.wrist is ir.Wrist.FLIP else "F"  # Fanuc: N for J5 < 0 (see docstring)
     up = "U" if branch.elbow is ir.Elbow.UP else "D"
     top = "T" if branch.shoulder is ir.Shoulder.FRONT else "B"
     turns = ", ".join(str(turn_number(q[i])) for i in (3, 4, 5))
@@ -120,7 +125,8 @@ class FanucBackend(Backend):
         self._files: dict[str, str] = {}
         main_name = self._names.name(ctx.program_name, ctx.task.span)
         body = self.lowered_body(ctx)
-        self._routine_of = {uid: self._names.name(r) for uid, r in routine_names(body).items()}
+        # TP programs share one namespace on the controller: routines carry the program's name
+        self._routine_of = {uid: self._names.name(f"{main_name}_{r}") for uid, r in routine_names(body).items()}
         if count_instructions(body) > self.MAX_INSTRUCTIONS:
             parts = split_body(body, self.MAX_INSTRUCTIONS, main_name)
             self.warn(codes.PROGRAM_SPLIT, f"program has {count_instructions(body)} instructions, more than "

@@ -11,9 +11,11 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     the values are the *TCP* of tool file `///TOOL n` — tool n is the n-th tool of the robot
     in the cell (0 = the flange); the tool data to enter in the tool file is printed as
     comments at the top of the job;
-  * `///RCONF l,m,n,o,p,q,0,0` from the planned branch and joints: l 0 flip / 1 no-flip,
-    m 0 upper arm (elbow up) / 1 lower arm, n 0 front / 1 rear, o/p/q 1 when |R|, |T|, |S|
-    >= 180 deg (axes 4, 6, 1);
+  * `///RCONF l,m,n,o,p,q,0,0` from the planned branch and joints: m 0 upper arm (elbow up) /
+    1 lower arm and n 0 front / 1 rear from the branch; l 0 flip / 1 no-flip by Yaskawa's own
+    rule on the R-axis (J4) position (flip when -90 < R <= 90 deg, modulo 360: NX100 manual,
+    "Manipulator Types" — a different cut than ir.Wrist's J5 sign, so it is read from the
+    planned J4); o/p/q 1 when the R, T, S axis (J4, J6, J1) lies outside -180 < a <= 180 deg;
   * joint targets: a job's joint positions are encoder pulses (`///POSTYPE PULSE`), whose
     pulses-per-degree are specific to each robot and not in the robot library; a joint move
     is therefore written as `MOVJ` to the Cartesian position of its planned joints with the
@@ -26,6 +28,8 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     controller's maximum): the controller default is used, with one warning per program;
   * I/O: `DOUT OT#(n) ON`, `PULSE OT#(n) T=s` (runs in the background, 0.01 s steps),
     `AOUT AO#(n) volts`, `WAIT IN#(n)=ON T=s` (continues after the timeout), `TIMER T=s`;
+  * circular moves: `MOVC` start (the previous target), via, end with `FPT` (the arc's final
+    point), so an arc that follows an arc continues from that point with its via and end only;
   * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per call;
   * comments: `'file.rmot:12` (a comment line holds at most 32 characters).
 
@@ -34,6 +38,17 @@ Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we k
 split into parts `NAME_PART1`, ... called from the main job (W406); a part or routine that is
 still too large is an error (E406). Names: job names are upper-case, at most 32 characters
 (DX200/YRC1000). The ///DATE line is fixed (2000/01/01 00:00) so output is deterministic.
+
+Support (checked by tests/backends/test_inform.py):
+  exact     MOVL/MOVC/MOVJ with Cartesian positions and full RCONF, V/VJ on their steps, PL at
+            0/12.5/25/50/100 mm, DOUT, PULSE, AOUT, WAIT (with T), TIMER, if/else, procs as
+            jobs, native inform, source comments;
+  warned    joint targets as Cartesian + RCONF (W450), acceleration (W408, once), fixed
+            duration (W409), speed / zone / time rounding (W402 / W403 / W404), split jobs
+            (W406), legalised names (W400/W401), other vendors' native blocks (W407);
+  refused   sync (E405), ports outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions
+            without a full branch (E402), an arc with no preceding move (E451), a job above
+            999 positions (E406), moves without a planned solution (E401).
 """
 
 from __future__ import annotations
@@ -44,9 +59,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.base import TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
+from rmot.backends.unique import UniqueDiagnostics
 from rmot.compiler import ir, planned
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
@@ -62,9 +78,17 @@ DATE = "2000/01/01 00:00"
 
 
 def rconf(branch: ir.Config, q: np.ndarray) -> str:
-    """`l,m,n,o,p,q,0,0`: flip, arm, front/rear from the branch; R, T, S turn flags from q."""
-    turn = [1 if abs(math.degrees(q[i])) >= 180.0 - 1e-9 else 0 for i in (3, 5, 0)]
-    bits = [0 if branch.wrist is ir.Wrist.FLIP else 1,
+    """`l,m,n,o,p,q,0,0` (NX100/DX100 "manipulator type").
+
+    l: 0 flip / 1 no-flip by Yaskawa's rule on the R axis (J4) position: flip when
+    -90 < R <= 90, 270 < R <= 360 or -360 < R <= -270 (not the J5 sign ir.Wrist uses);
+    m: 0 upper arm (elbow UP) / 1 lower arm; n: 0 front / 1 rear (from the branch);
+    o, p, q: 1 when the R, T, S axis angle lies outside -180 < angle <= 180.
+    """
+    r = math.degrees(q[3])
+    flip = -90.0 < r <= 90.0 or r > 270.0 or r <= -270.0
+    turn = [0 if -180.0 < math.degrees(q[i]) <= 180.0 else 1 for i in (3, 5, 0)]
+    bits = [0 if flip else 1,
             0 if branch.elbow is ir.Elbow.UP else 1,
             0 if branch.shoulder is ir.Shoulder.FRONT else 1, *turn, 0, 0]
     return ",".join(str(b) for b in bits)
@@ -113,7 +137,7 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
     return out, last
 
 
-class InformBackend(Backend):
+class InformBackend(UniqueDiagnostics):
     name = "inform"
     file_ext = ".JBI"
     COMMENT = "'"
@@ -240,7 +264,11 @@ class InformBackend(Backend):
 
     def circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: TaskContext,
                  v: str, pl: str) -> list[str]:
-        """Three MOVC lines: the arc's start (the previous target), the via point, the end."""
+        """MOVC start (the previous target), via, end `FPT`.
+
+        FPT marks the arc's end point, so a following arc starts there: after an arc only the
+        via and end lines are printed (continuous arcs, DX100 circular interpolation rules).
+        """
         prev = self._preds.get(node.uid)
         prev_rec = ctx.record(prev) if prev is not None else None
         if node.via is None or rec.q_via is None or prev_rec is None or prev_rec.q_target is None:
@@ -248,12 +276,15 @@ class InformBackend(Backend):
                              "move in the same block and carry its planned via point (got none)",
                              node.span)
             return []
-        start = self.position(prev_rec, prev_rec.q_target, prev_rec.tcp_pose, node)
+        lines: list[str] = []
+        if prev.kind is not ir.MotionKind.CIRCULAR:  # type: ignore[union-attr]
+            start = self.position(prev_rec, prev_rec.q_target, prev_rec.tcp_pose, node)
+            lines.append(f"MOVC {start} V={v}")
         via = self.position(rec, rec.q_via, node.via.pose, node)
         end = self.position(rec, rec.q_target, rec.tcp_pose, node)
-        if None in (start, via, end):
+        if any(c is None for c in (via, end)) or any("None" in line for line in lines):
             return []
-        return [f"MOVC {start} V={v}", f"MOVC {via} V={v}", f"MOVC {end} V={v}{pl}"]
+        return lines + [f"MOVC {via} V={v}", f"MOVC {end} V={v}{pl} FPT"]
 
     def motion_notes(self, node: ir.Move) -> None:
         if not self._warned_accel:

@@ -6,8 +6,10 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
   * Cartesian targets are E6POS in the move's $BASE (= the rmot frame in the robot base frame;
     $BASE is relative to $WORLD, assumed to coincide with $ROBROOT, KUKA's default floor
     mounting) with $TOOL = the tool's TCP in the flange frame and $LOAD its mass.
-  * Status S: bit 0 = wrist point behind A1 (overhead area, shoulder back), bit 1 = A3 beyond
-    its stretched angle (elbow up), bit 2 = A5 < 0. Turn T: bit i set when axis i+1 < 0.
+  * Status S (from rmot's branch, rmot.compiler.robots.branches): bit 0 = wrist point behind
+    A1 (overhead area = shoulder back), bit 1 = A3 >= its stretched angle (elbow up; KUKA's
+    home A3 = 90 deg gives S 'B010'), bit 2 = A5 < 0 (wrist flip).
+    Turn T: bit i set when axis i+1 < 0.
   * joint moves to joint targets: PTP with an E6AXIS; joint moves to pose targets: PTP with an
     E6POS whose S and T select the planned branch (PTP is the only motion that reads S/T).
   * speeds: $VEL.CP in m/s, $ACC.CP in m/s^2 (LIN, CIRC); $VEL_AXIS[i] / $ACC_AXIS[i] in % of
@@ -19,7 +21,9 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
     KRL's WAIT FOR has no timeout: a timed wait is lowered to a wait on the input OR timer
     $TIMER[TIMER_INDEX] (ms) followed by HALT when the input did not come (warning W405).
   * every motion writes the system variables it needs right before it ($TOOL, $LOAD, $BASE,
-    speeds, $APO.CDIS): an instruction never depends on the text of another one.
+    speeds, $APO.CDIS): an instruction never depends on the text of another one. (A move
+    with the bare flange sets $TOOL=$NULLFRAME and leaves $LOAD as configured: rmot has no
+    load for the flange alone.)
   * procs are local DEFs of the module; `sync` has no KRL form without RoboTeam (error E405).
   * identifiers: at most 24 characters, a letter or '_' first, letters, digits, '_'.
   * size: a module body longer than MAX_INSTRUCTIONS instructions is split into modules
@@ -69,11 +73,11 @@ PTP_HELPER = [
 ]
 
 
-def status_of(branch: ir.Config, q: np.ndarray) -> int:
+def status_of(branch: ir.Config) -> int:
     """KRL Status for a 6-axis arm (see the module docstring)."""
     return ((1 if branch.shoulder is ir.Shoulder.BACK else 0)
             | (2 if branch.elbow is ir.Elbow.UP else 0)
-            | (4 if q[4] < 0.0 else 0))
+            | (4 if branch.wrist is ir.Wrist.FLIP else 0))
 
 
 def frame_text(pose: ir.Pose) -> str:
@@ -188,7 +192,7 @@ class KrlBackend(Backend):
             self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
             return lines
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
-        via = self._pos(node.via, q_via, rec.branch, node, hint="via")
+        via = self._pos(node.via, q_via, rec.branch, node, hint=node.via.name or "via")
         return lines + [f"CIRC {via},{to}{zone}"]
 
     def _tool_base(self, node: ir.Move) -> list[str]:
@@ -219,7 +223,7 @@ class KrlBackend(Backend):
             self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
                              "Status/Turn (got none)", node.span)
             branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
-        st = f",S {status_of(branch, q)},T {turn_bits(q)}"
+        st = f",S {status_of(branch)},T {turn_bits(q)}"
         return self._m.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}")
 
     # ------------------------------------------------------------------ I/O and flow

@@ -1,4 +1,4 @@
-"""ABB RAPID (.mod) backend: one module per task, procs as PROCs, data as CONST/PERS.
+r"""ABB RAPID (.mod) backend: one module per task, procs as PROCs, data as CONST/PERS.
 
 Conventions (ABB "Technical reference manual – RAPID Instructions, Functions and Data types"):
   * positions mm, orientations unit quaternions q1..q4 = w, x, y, z (robtarget.rot);
@@ -8,8 +8,8 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
     base, ABB's default single-robot setup), with the tool declared as tooldata (robhold TRUE).
   * confdata [cf1, cf4, cf6, cfx]: cf1/cf4/cf6 = quadrant of axis 1/4/6, floor(q / 90 deg)
     (-1 for [-90, 0) deg); cfx (6-axis serial arms) = 4*(wrist centre behind axis 1)
-    + 2*(wrist centre behind the lower arm) + (axis 5 negative), i.e.
-    shoulder back -> +4, elbow down -> +2, q5 < 0 -> +1.
+    + 2*(wrist centre behind the lower arm) + (axis 5 negative), i.e. with rmot's branch
+    (rmot.compiler.robots.branches) shoulder back -> +4, elbow down -> +2, wrist flip -> +1.
   * speeddata: the predefined v5 ... v7000 when the TCP speed is one of them, else a CONST
     speeddata [v_tcp, 500, 5000, 1000] (exact). Joint moves: `vmax` at a joint speed share of
     100 %; RAPID has no per-move joint-speed share, so a smaller share is emitted as the planned
@@ -18,6 +18,9 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
     with the exact TCP radius (orientation zones scaled like the predefined table).
   * joint moves to joint targets -> MoveAbsJ; joint moves to pose targets -> MoveJ with
     the robtarget's confdata (ConfJ\\On, the default, makes the controller take that branch).
+  * tooldata: the TCP pose, the tool's mass (0 kg is declared as 0.001 kg, RAPID's minimum,
+    warning W404), the centre of gravity estimated half way to the TCP along the flange z,
+    inertia 0.
   * I/O: SetDO / SetAO / PulseDO\\PLength / WaitDI ...\\MaxTime (an unhandled
     ERR_WAIT_MAXTIME stops the program) / IF DInput(..) = 1 THEN; signal names from the cell
     (else do<n> / di<n> / ao<n>), which must exist in the controller's I/O configuration.
@@ -48,19 +51,20 @@ RESERVED = frozenset({
     "TO", "TRAP", "TRUE", "TRYNEXT", "UNDO", "VAR", "VIEWONLY", "WHILE", "WITH", "XOR",
     "MAIN", "TOOL0", "WOBJ0", "LOAD0", "VMAX", "FINE",
 })
-RAPID_RULES = NameRules(max_len=32, reserved=RESERVED, prefix="r")
-
 SPEEDS_MM_S = (5, 10, 20, 30, 40, 50, 60, 80, 100, 150, 200, 300, 400, 500, 600, 800,
                1000, 1500, 2000, 2500, 3000, 4000, 5000, 6000, 7000)
 ZONES_MM = (0, 1, 5, 10, 15, 20, 30, 40, 50, 60, 80, 100, 150, 200)  # z0 is 0.3 mm: not exact
+# the predefined speed and zone data are global: a user name may not shadow them
+PREDEFINED = frozenset({f"V{s}" for s in SPEEDS_MM_S} | {f"Z{z}" for z in ZONES_MM})
+RAPID_RULES = NameRules(max_len=32, reserved=RESERVED | PREDEFINED, prefix="r")
 DATA_ORDER = ("speeddata", "zonedata", "jointtarget", "robtarget")
 EXTAX = "[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]"
 
 
-def cfx_of(branch: ir.Config, q5: float) -> int:
-    """ABB cfx for 6-axis serial arms (see the module docstring)."""
-    return (4 if branch.shoulder is ir.Shoulder.BACK else 0) + (
-        2 if branch.elbow is ir.Elbow.DOWN else 0) + (1 if q5 < 0.0 else 0)
+def cfx_of(branch: ir.Config) -> int:
+    """ABB cfx for 6-axis serial arms (see the module docstring; rmot's FLIP is axis 5 < 0)."""
+    return ((4 if branch.shoulder is ir.Shoulder.BACK else 0) + (2 if branch.elbow is ir.Elbow.DOWN else 0)
+            + (1 if branch.wrist is ir.Wrist.FLIP else 0))
 
 
 def num_name(x: float) -> str:
@@ -83,6 +87,7 @@ class _TaskState:
     routines: dict[str, list[str]] = field(default_factory=dict)
     routine_of: dict[int, str] = field(default_factory=dict)
     accel_warned: bool = False
+    massless_tools: set[str] = field(default_factory=set)
 
 
 class RapidBackend(Backend):
@@ -145,7 +150,7 @@ class RapidBackend(Backend):
                              f"RAPID robtarget/jointtarget data (got {ctx.robot.dof})", node.span)
             return [self.comment("move not emitted: robot is not a 6-axis arm")]
         self._warn_accel(node)
-        tool, wobj = self._tool(node.tool), self._wobj(node.frame)
+        tool, wobj = self._tool(node.tool, node.span), self._wobj(node.frame)
         zone = self._zone(node.motion.zone)
         if isinstance(node.target, ir.JointTarget):
             target = self._jointtarget(node.target)
@@ -161,7 +166,7 @@ class RapidBackend(Backend):
             self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
             return [self.comment("circular move without via point not emitted")]
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
-        via = self._robtarget(node.via, q_via, rec.branch, node, hint="via")
+        via = self._robtarget(node.via, q_via, rec.branch, node, hint=node.via.name or "via")
         return [f"MoveC {via}, {to}, {speed}, {zone}, {tool}{wobj};"]
 
     def _warn_accel(self, node: ir.Move) -> None:
@@ -186,7 +191,7 @@ class RapidBackend(Backend):
             return "vmax"
         duration = rec.t_end - rec.t_start
         self.warn(codes.SPEED_ROUNDED, f"joint speed {fmt(node.motion.joint_speed * 100, 1)} % has no "
-                  f"RAPID form; emitted as the planned duration \\T:={fmt(duration, 3)} s", node.span)
+                  "RAPID form; emitted as the planned move duration (\\T)", node.span)
         return f"vmax\\T:={fmt(duration, 3)}"
 
     def _zone(self, zone: ir.Zone) -> str:
@@ -212,16 +217,20 @@ class RapidBackend(Backend):
             self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
                              "confdata (got none)", node.span)
             branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
-        cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch, q[4]))  # type: ignore[index]
+        cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
         conf = ",".join(str(c) for c in cf)
         value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{EXTAX}]"
         return self._st.data.add(hint or target.name or "p", value)
 
-    def _tool(self, tool: ir.ToolRef) -> str:
+    def _tool(self, tool: ir.ToolRef, span: object = None) -> str:
         if tool.name is None:
             return "tool0"
         name = self._st.names.name(tool.name)
         mass = tool.mass if tool.mass > 0 else 0.001  # RAPID rejects a tool load of 0 kg
+        if tool.mass <= 0 and name not in self._st.massless_tools:
+            self._st.massless_tools.add(name)
+            self.warn(codes.LOWERED, f"tool '{tool.name}' must have a mass for RAPID tooldata (got 0 kg); "
+                      "declared with 0.001 kg", span)
         cog = (0.0, 0.0, tool.tcp.position[2] * 500.0)  # half way to the TCP, mm (an estimate)
         load = f"[{fmt(mass, 3)},[{fmt_list(cog, 3)}],[1,0,0,0],0,0,0]"
         self._declare("tooldata", name, f"PERS tooldata {name}:=[TRUE,{pose_text(tool.tcp)},{load}];")

@@ -33,6 +33,15 @@ compiles the whole script on load), so programs are never split.
 
 The file is one `def <program>():` ... `end`: send it to the controller as a program (primary
 interface), or paste it into a Script node and call `<program>()`.
+
+Support (checked by tests/backends/test_urscript.py):
+  exact     movej/movel/movec, speeds, accelerations, blend r, fixed duration (t= on movej and
+            movel), set_tcp, digital out 0..15, analog out 0..10 V, pulse, wait, wait for an
+            input with or without timeout, if/else, procs, native urscript, source comments;
+  warned    joint speed of a model missing from JOINT_LIMITS (W452), fixed duration of movec
+            (W409), other vendors' native blocks (W407), legalised names (W400/W401);
+  refused   sync (E405), ports outside 0..15 (E404), analog outside 0..1 / 0..10 V (E450),
+            moves without a planned solution or TCP pose (E401), circular without via (E451).
 """
 
 from __future__ import annotations
@@ -40,9 +49,10 @@ from __future__ import annotations
 import math
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector
+from rmot.backends.base import TaskContext, fmt, fmt_list, rotation_vector
 from rmot.backends.lowering import routine_names
 from rmot.backends.names import NameRules, NameTable
+from rmot.backends.unique import UniqueDiagnostics
 from rmot.compiler import ir
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
@@ -75,7 +85,7 @@ def pose_text(pose: ir.Pose) -> str:
     return "p[" + fmt_list((*pose.position, *rotation_vector(pose)), POS_DECIMALS, ", ") + "]"
 
 
-class UrScriptBackend(Backend):
+class UrScriptBackend(UniqueDiagnostics):
     name = "urscript"
     file_ext = ".script"
     COMMENT = "#"
@@ -97,6 +107,7 @@ class UrScriptBackend(Backend):
         self._routines = {uid: names.name(n) for uid, n in routine_names(body).items()}
         self._routine_defs: list[str] = []
         self._threads: dict[str, list[str]] = {}
+        self._warned_model = False
         main = self.block(body, ctx)
         self.extend(names.diagnostics)
         lines = self.header(ctx) + [f"def {prog}():"]
@@ -132,11 +143,16 @@ class UrScriptBackend(Backend):
             return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
                     f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{t}, r={r})"]
         speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
-        to = pose_text(rec.tcp_pose if rec.tcp_pose is not None else self.cartesian(node).pose)
+        if rec.tcp_pose is None:
+            self.unsupported(codes.MISSING_RECORD, f"a {node.kind.name.lower()} move must have a "
+                             "planned TCP pose (got none)", node.span)
+            return []
+        to = pose_text(rec.tcp_pose)
         if node.kind is ir.MotionKind.LINEAR:
             return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]
         if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
+            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point "
+                             "(got none)", node.span)
             return [self.comment("circular move without via")]
         if m.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"movec has no time argument; the fixed duration "
@@ -148,15 +164,13 @@ class UrScriptBackend(Backend):
         """`, t=...`: URScript's exact fixed-duration argument of movej/movel."""
         return "" if m.duration is None else f", t={fmt(m.duration, 4)}"
 
-    def cartesian(self, node: ir.Move) -> ir.CartesianTarget:
-        if isinstance(node.target, ir.CartesianTarget):
-            return node.target
-        raise AssertionError("a planned Cartesian move always carries tcp_pose")  # planner invariant
-
     def joint_limits(self, ctx: TaskContext, node: ir.Move) -> tuple[float, float]:
         model = ctx.robot.source.ref
         if model in JOINT_LIMITS:
             return JOINT_LIMITS[model]
+        if self._warned_model:
+            return DEFAULT_LIMITS
+        self._warned_model = True
         self.warn(codes_b.SPEED_TABLE_UNKNOWN, f"robot model '{model}' must be in the URScript "
                   f"joint speed table (it is not); assumed 180 deg/s and 800 deg/s^2", node.span)
         return DEFAULT_LIMITS
@@ -169,7 +183,8 @@ class UrScriptBackend(Backend):
             return f"standard_digital_{kind}({port}"
         if 8 <= port <= 15:
             return f"configurable_digital_{kind}({port - 8}"
-        self.unsupported(codes.BAD_PORT, f"digital {kind}put port must be in 0..15 (got {port})", span)  # type: ignore[arg-type]
+        self.unsupported(codes.BAD_PORT, f"digital {kind}put port must be in 0..15 (got {port})",
+                         span)  # type: ignore[arg-type]
         return None
 
     def set_do(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
@@ -178,7 +193,7 @@ class UrScriptBackend(Backend):
 
     def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
         if node.port not in (0, 1) or not 0.0 <= node.value <= 10.0:
-            self.unsupported(codes.BAD_PORT, f"analog output must be port 0..1 with 0..10 V "
+            self.unsupported(codes_b.ANALOG_UNSUPPORTED, "analog output must be port 0..1 with 0..10 V "
                              f"(got port {node.port}, {node.value:g} V)", node.span)
             return []
         return [f"set_analog_outputdomain({node.port}, 1)",

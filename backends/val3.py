@@ -23,14 +23,26 @@ Vendor conventions (VAL3 reference manual):
     mm/s^2 have no mdesc field (accel stays 100 %, one warning per program);
   * motion commands are queued: I/O, waits and delays would run before the robot arrives, so
     a `waitEndMove()` precedes each of them (a blend into it becomes an exact stop: warned);
+    `start` ends with one so the application does not end before the robot;
   * I/O: `dio` arrays `dOut`/`dIn` linked to `BasicIO-1\\%Qn` / `BasicIO-1\\%In`; set is
     `dOut[n] = true`; a pulse is set, `delay`, reset (blocking: warned); wait with timeout is
     `bOk = watch(dIn[n] == true, s)` (continues after the timeout); if is `if ... else ... endIf`;
-    procs are `call name()`; native val3 text is passed through; analog outputs are refused;
+    procs are `call name()`; native val3 text is passed through; an analog output is
+    `aioSet(aOut[n], value)` with `aOut` declared unlinked (no standard physical name: warned);
   * comments: `// file.rmot:12`.
 
 Size limits: VAL3 sets no line limit on a program and data arrays grow dynamically, so
 programs are not split. Names: identifiers of letters, digits and `_`, at most 15 characters.
+
+Support (checked by tests/backends/test_val3.py):
+  exact     movej (planned joints), movel/movec (points with config, in world or a cell
+            frame), tools, mdesc speeds and blends, dio set, delay, wait / watch with timeout,
+            if/else, call, native val3, source comments;
+  warned    TCP acceleration (W408, once), fixed duration (W409), pulse made blocking (W451),
+            a blend stopped by waitEndMove() before I/O (W453), analog out on an unlinked aio
+            (W455), legalised names (W400/W401), other vendors' native blocks (W407);
+  refused   sync (E405), ports outside 0..63 (E404), points without a full branch (E402),
+            moves without a planned solution (E401), circular without via (E451).
 """
 
 from __future__ import annotations
@@ -39,9 +51,10 @@ import math
 from dataclasses import dataclass, field
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, header_lines, position_mm
+from rmot.backends.base import TaskContext, euler_xyz_moving_deg, fmt, header_lines, position_mm
 from rmot.backends.lowering import routine_names
 from rmot.backends.names import NameRules, NameTable
+from rmot.backends.unique import UniqueDiagnostics
 from rmot.compiler import ir, planned
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
@@ -80,6 +93,7 @@ class _Data:
     tools: dict[str, str] = field(default_factory=dict)
     outputs: int = 0  # size of dOut (highest port + 1)
     inputs: int = 0
+    analog: int = 0  # size of aOut
 
     def index(self, table: list[str], value: str) -> int:
         if value not in table:
@@ -87,7 +101,7 @@ class _Data:
         return table.index(value)
 
 
-class Val3Backend(Backend):
+class Val3Backend(UniqueDiagnostics):
     name = "val3"
     file_ext = ".pgx"
     COMMENT = "//"
@@ -100,13 +114,14 @@ class Val3Backend(Backend):
         ir.ProcCall: "call", ir.Native: "native", ir.Sync: "sync",
     }
     WAITS_FOR_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput, ir.If)
+    NO_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput)
 
     # ------------------------------------------------------------------ application
 
     def emit_task(self, ctx: TaskContext) -> dict[str, str]:
         self._names = NameTable(NAME_RULES, self.name)
         app = self._names.name(ctx.program_name, ctx.task.span)
-        for reserved in ("start", "stop", "dOut", "dIn", "bOk", "pTarget", "jTarget", "mSpeed"):
+        for reserved in ("start", "stop", "aOut", "dOut", "dIn", "bOk", "pTarget", "jTarget", "mSpeed"):
             self._names.reserve(reserved)
         body = self.lowered_body(ctx)
         self._routines = {uid: self._names.name(n) for uid, n in routine_names(body).items()}
@@ -144,6 +159,7 @@ class Val3Backend(Backend):
     def database(self) -> str:
         d = self._data
         entries: dict[str, tuple[str, list[str]]] = {
+            "aOut": ("aio", ['link=""'] * d.analog),
             "dIn": ("dio", [f'link="BasicIO-1\\%I{k}"' for k in range(d.inputs)]),
             "dOut": ("dio", [f'link="BasicIO-1\\%Q{k}"' for k in range(d.outputs)]),
             "jTarget": ("jointRx", d.joints),
@@ -162,20 +178,25 @@ class Val3Backend(Backend):
             out.append("    </Data>")
         return "\n".join(out + ["  </Datas>", "</Database>"]) + "\n"
 
-    def block(self, nodes: tuple[ir.Instr, ...], ctx: TaskContext) -> list[str]:
-        """A body with `waitEndMove()` before every instruction that must follow the motion."""
+    def block(self, nodes: tuple[ir.Instr, ...], ctx: TaskContext, settled: bool = False) -> list[str]:
+        """A body with `waitEndMove()` before each instruction that must follow the motion.
+
+        `settled`: no motion is queued when the block starts (an `if` arm: the `if` waited).
+        """
         out: list[str] = []
         prev: ir.Instr | None = None
         for node in nodes:
-            if isinstance(node, self.WAITS_FOR_MOTION):
+            if isinstance(node, self.WAITS_FOR_MOTION) and not settled:
                 self.wait_end_move(prev, node, ctx)
                 out.append("waitEndMove()")
             out.extend(self.instr(node, ctx))
+            settled = isinstance(node, self.NO_MOTION)  # each of these ran with no motion queued
             prev = node
         return out
 
     def wait_end_move(self, prev: ir.Instr | None, node: ir.Instr, ctx: TaskContext) -> None:
-        rec = ctx.record(prev) if isinstance(prev, ir.Move) else None
+        last = _last_move(prev)
+        rec = ctx.record(last) if last is not None else None
         if rec is not None and rec.blend_radius > 0.0:
             self.warn(codes_b.WAIT_END_MOVE, "the move before this instruction blends "
                       f"({rec.blend_radius * 1000:g} mm), but VAL3 must waitEndMove() first: it "
@@ -265,9 +286,14 @@ class Val3Backend(Backend):
         return [f"{sig} = {'true' if node.value else 'false'}"] if sig else []
 
     def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
-        self.unsupported(codes_b.ANALOG_UNSUPPORTED, f"analog output {node.port} must have a VAL3 "
-                         "form (analog I/O names are controller-specific; use native val3)", node.span)
-        return []
+        if not 0 <= node.port <= 63:
+            self.unsupported(codes.BAD_PORT, f"analog output port must be in 0..63 (got {node.port})", node.span)
+            return []
+        if node.port >= self._data.analog:
+            self._data.analog = node.port + 1
+        self.warn(codes_b.ANALOG_LINK, f"analog outputs have no standard VAL3 name: aOut[{node.port}] "
+                  "is declared unlinked; link it to the controller's output in the data file", node.span)
+        return [f"aioSet(aOut[{node.port}], {fmt(node.value, 4)})"]
 
     def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
         sig = self.port(node.port, node.span, True)
@@ -296,9 +322,9 @@ class Val3Backend(Backend):
         test = self.condition(node.condition, node.span)
         if test is None:
             return []
-        lines = [f"if {test}"] + self.indent(self.block(node.then, ctx), self.INDENT)
+        lines = [f"if {test}"] + self.indent(self.block(node.then, ctx, settled=True), self.INDENT)
         if node.otherwise:
-            lines += ["else"] + self.indent(self.block(node.otherwise, ctx), self.INDENT)
+            lines += ["else"] + self.indent(self.block(node.otherwise, ctx, settled=True), self.INDENT)
         return lines + ["endIf"]
 
     # ------------------------------------------------------------------ structure
@@ -306,7 +332,7 @@ class Val3Backend(Backend):
     def call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
         name = self._routines[node.uid]
         self._programs[name] = [self.comment(f"proc {node.proc}({', '.join(node.args)})"),
-                                *self.block(node.body, ctx), "waitEndMove()"]
+                                *self.block(node.body, ctx)]
         return [f"call {name}()"]
 
     def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
@@ -318,6 +344,15 @@ class Val3Backend(Backend):
         self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' must have a VAL3 form "
                          "(one application per robot has no barrier; use an I/O handshake)", node.span)
         return []
+
+
+def _last_move(node: ir.Instr | None) -> ir.Move | None:
+    """The move that ends `node` (itself, or the last of a proc body), if any."""
+    if isinstance(node, ir.Move):
+        return node
+    if isinstance(node, ir.ProcCall) and node.body:
+        return _last_move(node.body[-1])
+    return None
 
 
 def _degrees(q: object) -> list[float]:

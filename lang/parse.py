@@ -237,16 +237,31 @@ def _bad_token(tok: Token, expected: set[str], file: SourceFile) -> Diagnostic:
         opening = token_span(file, _POSTLEX.braces[-1])
         msg = "'{' must be closed by '}' (got the end of the file)"
         return _error(codes.UNBALANCED_BRACE, msg, opening, (("the file ends here", span),))
-    misspelt = _misspelt(tok, expected, file)
+    history = _history_before(tok)
+    if tok.type == "_NL" and history:
+        span = _after(file, history[-1])  # point just past the last word, not past a comment
+    misspelt = _misspelt(tok, expected, file, history)
     if misspelt is not None:
         return misspelt
     code = codes.UNEXPECTED_END if at_end else codes.SYNTAX
     return _error(code, f"expected {expected_in_words(expected)} (got {_shown(tok)})", span)
 
 
-def _misspelt(tok: Token, expected: set[str], file: SourceFile) -> Diagnostic | None:
+def _after(file: SourceFile, tok: Token) -> Span:
+    return Span(file, Pos(tok.end_line, tok.end_column, tok.end_pos), Pos(tok.end_line, tok.end_column + 1, tok.end_pos + 1))
+
+
+def _history_before(tok: Token) -> list[Token]:
+    """The tokens the parser took before `tok` (the post-lexer may or may not have seen tok)."""
+    history = list(_POSTLEX.history)
+    if history and history[-1] is tok:
+        history.pop()
+    return history
+
+
+def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[Token]) -> Diagnostic | None:
     """A name near a keyword the parser wanted, or a word after a number that is no unit."""
-    prev = _POSTLEX.history[-1] if _POSTLEX.history else None
+    prev = history[-1] if history else None
     if tok.type == "NAME" and "UNIT" in expected and prev is not None and prev.type == "NUMBER":
         near = difflib.get_close_matches(str(tok), UNITS, n=1, cutoff=0.5)
         hint = f"; did you mean '{near[0]}'?" if near else ""
@@ -256,7 +271,7 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile) -> Diagnostic | 
         if near:
             return _error(codes.MISSPELT_KEYWORD, f"unknown keyword '{tok}'; did you mean '{near[0]}'?", token_span(file, tok))
     # `mvoe joint home`: the parser took `mvoe` for a call and stumbles on the next token.
-    before = _POSTLEX.history[-2] if len(_POSTLEX.history) >= 2 else None
+    before = history[-2] if len(history) >= 2 else None
     starts_statement = before is None or before.type in ("_NL", "LBRACE")
     if prev is not None and prev.type == "NAME" and starts_statement and "LPAR" in expected:
         near = difflib.get_close_matches(str(prev), sorted(KEYWORDS), n=1, cutoff=0.6)

@@ -13,7 +13,7 @@ __all__ = ["Report", "load_mesh", "verify"]
 
 def __getattr__(name: str) -> Any:
     if name == "verify":
-        from rmot.sim.verify import verify
+        from rmot.sim.verification import verify
 
         return verify
     if name == "Report":

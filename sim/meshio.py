@@ -104,20 +104,22 @@ def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
 
     if os.path.getsize(path) == 0:
         raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain triangles (got an empty file '{os.path.basename(path)}')")
+    if _looks_truncated_stl(path):
+        raise _MeshError(codes.MESH_TRUNCATED, "binary STL file must hold as many triangles as its header declares (the file is truncated)")
     try:
         loaded = trimesh.load(path, force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for bad files; all mean "unreadable"
         raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must be a valid {os.path.splitext(path)[1][1:].upper()} file ({_short(exc)})") from None
+    if hasattr(loaded, "merge_vertices"):  # STL repeats each corner per triangle
+        loaded.merge_vertices()
     vertices = np.asarray(getattr(loaded, "vertices", np.empty((0, 3))), dtype=np.float64).reshape(-1, 3)
     faces = np.asarray(getattr(loaded, "faces", np.empty((0, 3))), dtype=np.int64).reshape(-1, 3)
-    if _looks_truncated_stl(path, faces):
-        raise _MeshError(codes.MESH_TRUNCATED, "binary STL file must hold as many triangles as its header declares (the file is truncated)")
     if not np.all(np.isfinite(vertices)):
         raise _MeshError(codes.MESH_UNREADABLE, "mesh vertices must be finite numbers (got NaN or infinity)")
     return vertices, faces
 
 
-def _looks_truncated_stl(path: str, faces: np.ndarray) -> bool:
+def _looks_truncated_stl(path: str) -> bool:
     """A binary STL declares its triangle count at byte 80; check the file is that long."""
     if not path.lower().endswith(".stl"):
         return False

@@ -68,6 +68,7 @@ class Scene:
     robots: Mapping[str, RobotEntry]
     bodies: tuple[Body, ...]
     diagnostics: tuple[Diagnostic, ...] = ()
+    always_touching: frozenset[frozenset[str]] = frozenset()  # self pairs never checked, see below
 
     def body(self, name: str) -> Body:
         for b in self.bodies:
@@ -82,10 +83,11 @@ class Scene:
         """World poses of the robot's bodies for joint samples q: (N, dof) -> {name: (N, 4, 4)}."""
         entry = self.robots[robot]
         q = np.atleast_2d(np.asarray(q, dtype=np.float64))
+        bodies = self.robot_bodies(robot)
         solids = np.asarray(entry.robot.solid_poses_batch(q))
-        flange = np.asarray(entry.robot.fk_batch(q))
+        flange = np.asarray(entry.robot.fk_batch(q)) if any(b.kind == "tool" for b in bodies) else None
         out: dict[str, np.ndarray] = {}
-        for b in self.robot_bodies(robot):
+        for b in bodies:
             if b.kind == "link":
                 out[b.name] = entry.base @ solids[:, b.solid_index]
             else:
@@ -138,7 +140,36 @@ def build_scene(cell: ir.Cell, tools_used: Mapping[str, set[str]] | None = None,
                 shape = _shape(tool.geometry, diags)
                 if shape is not None:
                     bodies.append(_tool_body(entry, tool, shape))
-    return Scene(cell, entries, tuple(bodies), tuple(diags))
+    touching = frozenset().union(*(_always_touching(e, [b for b in bodies if b.robot == name])
+                                   for name, e in entries.items()))
+    return Scene(cell, entries, tuple(bodies), tuple(diags), touching)
+
+
+_TOUCH_SAMPLES = 64
+
+
+def _always_touching(entry: RobotEntry, bodies: list[Body]) -> frozenset[frozenset[str]]:
+    """Pairs of one robot's solids that touch in every one of a fixed set of configurations
+    within the limits (as MoveIt's setup assistant disables "always in collision" pairs):
+    they overlap by construction (e.g. a forearm capsule reaching into a spherical wrist's
+    flange), so checking them would only report the model, never the program."""
+    from rmot.sim.collide import exact_distance
+
+    robot = entry.robot
+    lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]
+    rng = np.random.default_rng(0)  # fixed: the same cell always gives the same pairs
+    qs = np.vstack([np.clip(np.zeros(robot.dof), lo, hi), lo + rng.random((_TOUCH_SAMPLES, robot.dof)) * (hi - lo)])
+    solids = np.asarray(robot.solid_poses_batch(qs))
+    flange = np.asarray(robot.fk_batch(qs))
+    poses = {b.name: solids[:, b.solid_index] if b.kind == "link" else flange @ b.local for b in bodies}
+    out = set()
+    for i, a in enumerate(bodies):
+        for b in bodies[i + 1:]:
+            if not (a.moves or b.moves):
+                continue
+            if all(exact_distance(a, b, poses[a.name][k], poses[b.name][k]) <= 0.0 for k in range(len(qs))):
+                out.add(frozenset((a.name, b.name)))
+    return frozenset(out)
 
 
 # --------------------------------------------------------------------------- bodies

@@ -16,7 +16,7 @@ from typing import Any
 
 import click
 
-from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+from rmot.compiler.cli import EXIT_INPUT
 
 __all__ = ["render"]
 
@@ -55,7 +55,7 @@ def _output_format(ctx: click.Context, param: click.Parameter, value: str) -> st
 
 @click.command(name="render")
 @click.argument("program", type=click.Path(dir_okay=False))
-@click.option("--cell", "cell", default=None, help="The cell to use when the program file declares several.")
+@click.option("--cell", "cell", type=click.Path(dir_okay=False), default=None, help="The cell file, if not in PROGRAM.")
 @click.option("-o", "--output", required=True, callback=_output_format,
               help="Output file: .png (still), .gif/.mp4 (animation), .svg (hidden-line), .html (3D viewer).")
 @click.option("--at", "at", type=float, default=0.0, show_default=True, help="Instant of a still picture, s.")
@@ -79,7 +79,6 @@ def render(program: str, cell: str | None, output: str, at: float, size: tuple[i
 
         _fail(Diagnostic(codes.OUTPUT_FAILED, Severity.ERROR,
                          f"output file must be writable (got '{output}': {exc.strerror or exc})", None))
-    sys.exit(EXIT_OK)
 
 
 class _InputError(Exception):
@@ -110,52 +109,48 @@ def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
     """Front end then planner; any error diagnostics end the command with exit code 2."""
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
+    from rmot.lang.diagnostics import Diagnostic, Severity
+    from rmot.sim.render import codes
 
     loaded = load_program(program, cell=cell, project_root=project_root)
-    prog, diagnostics = _split(loaded, "program")
-    _report(diagnostics)
-    planned, plan_diagnostics = _split(plan_program(prog), "plan")
-    _report(tuple(plan_diagnostics) + tuple(getattr(planned, "diagnostics", ())))
+    _report(loaded.diagnostics)
+    if loaded.program is None:
+        _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,
+                         f"'{program}' must contain a program to render (got only a cell)", None))
+    planned = plan_program(loaded.program)
+    _report(planned.diagnostics)
     return planned
-
-
-def _split(result: Any, name: str) -> tuple[Any, tuple[Any, ...]]:
-    """(value, diagnostics) from a stage result: a tuple, an object with .diagnostics, or the value."""
-    if isinstance(result, tuple) and len(result) == 2:
-        return result[0], tuple(result[1] or ())
-    value = getattr(result, name, result)
-    diagnostics = tuple(getattr(result, "diagnostics", ())) if value is not result else ()
-    return value, diagnostics
 
 
 def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | None, aa: int | None,
            camera: Any, fps: int) -> None:
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes
+    from rmot.sim.render.files import write_png, write_text
+    from rmot.sim.render.scene import prepare
 
+    duration = float(plan.cycle_time)
+    if ext in (".png", ".svg") and not 0.0 <= at <= duration + 1e-9:
+        raise _InputError(Diagnostic(codes.TIME_OUTSIDE, Severity.ERROR,
+                                     f"--at must be within 0..{duration:.3f} s, the program's duration (got {at:g} s)", None))
+    scene = prepare(plan)
+    _report(scene.diagnostics)  # meshes that do not load: errors stop here, warnings are shown
     if ext == ".png":
-        duration = float(plan.cycle_time)
-        if not 0.0 <= at <= duration + 1e-9:
-            raise _InputError(Diagnostic(codes.TIME_OUTSIDE, Severity.ERROR,
-                                         f"--at must be within 0..{duration:.3f} s, the program's duration (got {at:g} s)", None))
-        from rmot.sim.render import render_still
-        from rmot.sim.render.files import write_png
+        from rmot.sim.render.still import still_image
 
-        write_png(output, render_still(plan, time=at, size=size or (640, 480), aa=aa or 2, camera=camera))
+        write_png(output, still_image(scene, time=at, size=size or (640, 480), aa=aa or 2, camera=camera))
     elif ext in (".gif", ".mp4"):
-        from rmot.sim.render.animate import AnimationError, render_animation
+        from rmot.sim.render.animate import AnimationError, write_animation
 
         try:
-            render_animation(plan, output, fps=fps, size=size or (480, 360), aa=aa or 1, camera=camera)
+            write_animation(scene, output, fps=fps, size=size or (480, 360), aa=aa or 1, camera=camera)
         except AnimationError as exc:
             raise _InputError(Diagnostic(codes.FORMAT_UNAVAILABLE, Severity.ERROR, str(exc), None)) from None
     elif ext == ".svg":
-        from rmot.sim.render.files import write_text
         from rmot.sim.render.svg import render_svg
 
-        write_text(output, render_svg(plan, time=at, size=size or (640, 480), camera=camera))
+        write_text(output, render_svg(scene, time=at, size=size or (640, 480), camera=camera))
     else:
-        from rmot.sim.render.files import write_text
         from rmot.sim.render.html import render_html
 
-        write_text(output, render_html(plan, fps=fps))
+        write_text(output, render_html(scene, fps=fps, camera=camera))

@@ -22,6 +22,7 @@ import math
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.values import (
+    article,
     ANGLE, DIMENSIONLESS, LENGTH, UNITS, BoolV, Dim, JointsV, PoseV, Quantity, StringV, Value,
     VectorV, dim_name, example_unit, fmt_quantity, type_name,
 )
@@ -46,7 +47,7 @@ def eval_expr(e: ast.Expr, scope: Scope, rep: Reporter) -> Value | None:
         v = eval_expr(e.operand, scope, rep)
         if v is None or isinstance(v, Quantity):
             return None if v is None else Quantity(-v.value, v.dim, v.unit, None if v.written is None else -v.written)
-        rep.error(codes.WRONG_TYPE, f"operand of '-' must be a number or quantity (got a {type_name(v)})", e.span)
+        rep.error(codes.WRONG_TYPE, f"operand of '-' must be a number or quantity (got {article(type_name(v))})", e.span)
         return None
     if isinstance(e, ast.Call):
         return _call(e, scope, rep)
@@ -78,7 +79,7 @@ def _name(e: ast.Name, scope: Scope, rep: Reporter) -> Value | None:
         rep.unknown(e.name, "name", e.span, scope.visible())
         return None
     if entry.kind in ("proc", "tool"):
-        rep.error(codes.WRONG_TYPE, f"'{e.name}' must be a value to be used here (got a {entry.kind})", e.span,
+        rep.error(codes.WRONG_TYPE, f"'{e.name}' must be a value to be used here (got {article(entry.kind)})", e.span,
                   ((f"'{e.name}' is defined here", entry.span),))
         return None
     return entry.value  # type: ignore[no-any-return]
@@ -93,12 +94,12 @@ def _binop(e: ast.BinOp, scope: Scope, rep: Reporter) -> Value | None:
         return PoseV(a.pose * b.pose)
     if not (isinstance(a, Quantity) and isinstance(b, Quantity)):
         rep.error(codes.WRONG_TYPE, f"operands of '{e.op}' must be numbers, quantities or (for '*') two poses "
-                  f"(got a {type_name(a)} and a {type_name(b)})", e.span)
+                  f"(got {article(type_name(a))} and {article(type_name(b))})", e.span)
         return None
     if e.op in "+-":
         if a.dim != b.dim:
             rep.error(codes.MIXED_UNITS, f"operands of '{e.op}' must have the same dimension (got {fmt_quantity(a)}, "
-                      f"a {dim_name(a.dim)}, and {fmt_quantity(b)}, a {dim_name(b.dim)})", e.span)
+                      f"{article(dim_name(a.dim))}, and {fmt_quantity(b)}, {article(dim_name(b.dim))})", e.span)
             return None
         value = a.value + b.value if e.op == "+" else a.value - b.value
         unit = a.unit or b.unit
@@ -140,7 +141,7 @@ def _attr(e: ast.Attr, scope: Scope, rep: Reporter) -> Value | None:
         if 0 <= i < len(v.values):
             return v.values[i]
     what = "x, y, z, rx, ry or rz" if isinstance(v, PoseV) else "j1, j2, ..."
-    rep.error(codes.UNKNOWN_NAME, f"component of a {type_name(v)} must be {what} (got '{field}')", e.name.span)
+    rep.error(codes.UNKNOWN_NAME, f"component of {article(type_name(v))} must be {what} (got '{field}')", e.name.span)
     return None
 
 
@@ -157,9 +158,9 @@ def expect_quantity(v: Value | None, dim: Dim, what: str, span: Span, rep: Repor
         if v.unit is None and v.dim == DIMENSIONLESS:
             rep.error(codes.MISSING_UNIT, f"{what} must be {example_unit(dim)} (got {fmt_quantity(v)} without a unit)", span)
             return None
-        rep.error(codes.WRONG_DIMENSION, f"{what} must be {example_unit(dim)} (got {fmt_quantity(v)}, a {dim_name(v.dim)})", span)
+        rep.error(codes.WRONG_DIMENSION, f"{what} must be {example_unit(dim)} (got {fmt_quantity(v)}, {article(dim_name(v.dim))})", span)
         return None
-    rep.error(codes.WRONG_TYPE, f"{what} must be {example_unit(dim)} (got a {type_name(v)})", span)
+    rep.error(codes.WRONG_TYPE, f"{what} must be {example_unit(dim)} (got {article(type_name(v))})", span)
     return None
 
 
@@ -168,7 +169,8 @@ def expect_integer(v: Value | None, what: str, span: Span, rep: Reporter, minimu
     if x is None:
         return None
     if x != int(x) or x < minimum:
-        rep.error(codes.OUT_OF_RANGE, f"{what} must be a whole number >= {minimum} (got {x:g})", span)
+        bound = f" >= {minimum}" if minimum > -(10**6) else ""
+        rep.error(codes.OUT_OF_RANGE, f"{what} must be a whole number{bound} (got {x:g})", span)
         return None
     return int(x)
 
@@ -178,7 +180,7 @@ def expect_pose(v: Value | None, what: str, span: Span, rep: Reporter) -> ir.Pos
         return None
     if isinstance(v, PoseV):
         return v.pose
-    rep.error(codes.WRONG_TYPE, f"{what} must be a pose (got a {type_name(v)})", span)
+    rep.error(codes.WRONG_TYPE, f"{what} must be a pose (got {article(type_name(v))})", span)
     return None
 
 
@@ -187,7 +189,7 @@ def expect_bool(v: Value | None, what: str, span: Span, rep: Reporter) -> bool |
         return None
     if isinstance(v, BoolV):
         return v.value
-    rep.error(codes.WRONG_TYPE, f"{what} must be on or off (got a {type_name(v)})", span)
+    rep.error(codes.WRONG_TYPE, f"{what} must be on or off (got {article(type_name(v))})", span)
     return None
 
 
@@ -273,7 +275,7 @@ def _quaternion(v: Value | None, span: Span, rep: Reporter) -> tuple[float, floa
     if v is None:
         return None
     if not (isinstance(v, VectorV) and len(v.items) == 4 and all(isinstance(i, Quantity) and i.dim == DIMENSIONLESS for i in v.items)):
-        rep.error(codes.WRONG_TYPE, f"pose field 'q' must be four numbers (w, x, y, z) (got a {type_name(v)})", span)
+        rep.error(codes.WRONG_TYPE, f"pose field 'q' must be four numbers (w, x, y, z) (got {article(type_name(v))})", span)
         return None
     w, x, y, z = (i.value for i in v.items)  # type: ignore[union-attr]
     n = math.sqrt(w * w + x * x + y * y + z * z)
@@ -329,7 +331,7 @@ def _joints(e: ast.Joints, scope: Scope, rep: Reporter) -> Value | None:
         if v is None:
             return None
         if not isinstance(v, Quantity):
-            rep.error(codes.WRONG_TYPE, f"joint value must be an angle or a length (got a {type_name(v)})", a.span)
+            rep.error(codes.WRONG_TYPE, f"joint value must be an angle or a length (got {article(type_name(v))})", a.span)
             return None
         if v.unit is None and v.dim == DIMENSIONLESS:
             if e.unit is None:

@@ -28,7 +28,7 @@ from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer
 from rmot.compiler.passes.modal import Modal, apply_setting
 from rmot.compiler.passes.procs import bind_call
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
-from rmot.compiler.passes.values import ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
+from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
 from rmot.lang import ast
 
 __all__ = ["MAX_INSTRUCTIONS", "TaskLowering", "VENDORS"]
@@ -97,7 +97,7 @@ class TaskLowering:
             if isinstance(v, PoseV):
                 declare(scope, Entry("frame", s.name.name, PoseV(v.pose, s.name.name), s.name.span), self.rep)
             elif v is not None:
-                self.rep.error(codes.WRONG_TYPE, f"frame '{s.name.name}' must be a pose (got a {type_name(v)})", s.value.span)
+                self.rep.error(codes.WRONG_TYPE, f"frame '{s.name.name}' must be a pose (got {article(type_name(v))})", s.value.span)
         elif isinstance(s, ast.ProcDecl):
             if not where.startswith(("program", "task")):
                 misplaced(s, where, self.rep)
@@ -163,7 +163,7 @@ class TaskLowering:
             self.rep.unknown(s.name.name, "proc", s.name.span, procs)
             return None
         if entry.kind != "proc":
-            self.rep.error(codes.WRONG_TYPE, f"'{s.name.name}' must be a proc to be called (got a {entry.kind})", s.name.span,
+            self.rep.error(codes.WRONG_TYPE, f"'{s.name.name}' must be a proc to be called (got {article(entry.kind)})", s.name.span,
                            ((f"'{s.name.name}' is defined here", entry.span),))
             return None
         if id(entry) in self.stack:  # recursion: reported by the check_recursion pass
@@ -289,7 +289,7 @@ class TaskLowering:
         if isinstance(v, JointsV) and kind is ir.MotionKind.JOINT:
             return self.joints(v, e)
         wanted = "pose or joints" if kind is ir.MotionKind.JOINT else "pose"
-        self.rep.error(codes.WRONG_TYPE, f"{what} of a {kind.name.lower()} move must be a {wanted} (got a {type_name(v)})", e.span)
+        self.rep.error(codes.WRONG_TYPE, f"{what} of a {kind.name.lower()} move must be a {wanted} (got {article(type_name(v))})", e.span)
         return None
 
     def joints(self, v: JointsV, e: ast.Expr) -> ir.JointTarget | None:

@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
-from rmot.compiler.passes.values import ACCEL, LENGTH, RATIO, SPEED, PoseV, Quantity, fmt_quantity
+from rmot.compiler.passes.values import article, ACCEL, LENGTH, RATIO, SPEED, PoseV, Quantity, fmt_quantity
 from rmot.lang import ast
 
 __all__ = ["DEFAULT_MODAL", "Modal", "apply_setting"]
@@ -76,7 +76,7 @@ def _tool(name: ast.Ident, scope: Scope, robot: str, rep: Reporter) -> ir.ToolRe
         rep.unknown(name.name, "tool", name.span, [*tools, "flange"])
         return None
     if entry.kind != "tool":
-        rep.error(codes.WRONG_TYPE, f"'{name.name}' must be a tool (got a {entry.kind})", name.span,
+        rep.error(codes.WRONG_TYPE, f"'{name.name}' must be a tool (got {article(entry.kind)})", name.span,
                   ((f"'{name.name}' is defined here", entry.span),))
         return None
     tool: ir.Tool = entry.value
@@ -98,7 +98,7 @@ def _frame(name: ast.Ident, scope: Scope, base: ir.Pose, rep: Reporter) -> ir.Fr
         rep.unknown(name.name, "frame", name.span, [*frames, "base", "world"])
         return None
     if entry.kind not in ("frame", "fixture", "robot") or not isinstance(entry.value, PoseV):
-        rep.error(codes.WRONG_TYPE, f"'{name.name}' must be a frame, a fixture or a robot (got a {entry.kind})", name.span,
+        rep.error(codes.WRONG_TYPE, f"'{name.name}' must be a frame, a fixture or a robot (got {article(entry.kind)})", name.span,
                   ((f"'{name.name}' is defined here", entry.span),))
         return None
     world = entry.value.pose

@@ -18,6 +18,7 @@ from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity, match_args
 from rmot.compiler.passes.state import FrontendState
 from rmot.compiler.passes.values import (
+    article,
     ACCEL, ANGLE, ANGULAR_SPEED, DIMENSIONLESS, LENGTH, MASS, RATIO, SPEED, TIME, BoolV, JointsV,
     PoseV, StringV, Value, type_name,
 )
@@ -40,8 +41,7 @@ def _check_type(v: Value | None, type_: str, what: str, span: object, rep: Repor
         return expect_quantity(v, wanted, what, span, rep) is not None  # type: ignore[arg-type]
     if isinstance(v, wanted):  # type: ignore[arg-type]
         return True
-    article = "an" if type_[0] in "aeiou" else "a"
-    rep.error(codes.WRONG_TYPE, f"{what} must be {article} {type_} (got a {type_name(v)})", span)  # type: ignore[arg-type]
+    rep.error(codes.WRONG_TYPE, f"{what} must be {article(type_)} (got {article(type_name(v))})", span)  # type: ignore[arg-type]
     return False
 
 

@@ -16,7 +16,7 @@ from rmot.lang.source import Span
 
 __all__ = [
     "BoolV", "Dim", "DIMENSIONLESS", "JointsV", "LENGTH", "ANGLE", "TIME", "SPEED", "ACCEL",
-    "MASS", "RATIO", "ANGULAR_SPEED", "ANGULAR_ACCEL", "PoseV", "Quantity", "StringV", "UNITS",
+    "MASS", "RATIO", "ANGULAR_SPEED", "ANGULAR_ACCEL", "article", "PoseV", "Quantity", "StringV", "UNITS",
     "Value", "VectorV", "dim_name", "example_unit", "type_name", "fmt_quantity",
 ]
 
@@ -50,6 +50,11 @@ _DIM_NAMES = {
     SPEED: ("speed", "250 mm/s"), ANGULAR_SPEED: ("angular speed", "90 deg/s"),
     ACCEL: ("acceleration", "2 m/s^2"), ANGULAR_ACCEL: ("angular acceleration", "180 deg/s^2"),
 }
+
+
+def article(word: str) -> str:
+    """'an angle', 'a length'."""
+    return f"{'an' if word[:1] in 'aeiou' else 'a'} {word}"
 
 
 def dim_name(dim: Dim) -> str:
@@ -116,4 +121,4 @@ Value = Union[Quantity, PoseV, JointsV, VectorV, BoolV, StringV]
 def type_name(v: Value) -> str:
     if isinstance(v, Quantity):
         return dim_name(v.dim) if v.unit is not None or v.dim != DIMENSIONLESS else "number"
-    return {PoseV: "pose", JointsV: "joints", VectorV: "vector", BoolV: "on/off value", StringV: "string"}[type(v)]
+    return {PoseV: "pose", JointsV: "joints() value", VectorV: "vector", BoolV: "on/off value", StringV: "string"}[type(v)]

@@ -79,8 +79,11 @@ class _Solver:
         self.robot, self.tool_inv, self.path = robot, tool_inv, path
         self.revolute = np.array([t == "R" for t in robot.joint_types])  # type: ignore[attr-defined]
         self.column: int | None = None
+        # The raw closed form (not wrapped into the limits) when the robot offers it: this
+        # module unwraps by 2 pi itself and reports limit crossings as such.
+        self._batch = getattr(robot, "ik_closed_form", None) or robot.ik_batch  # type: ignore[attr-defined]
         if robot.has_closed_form:  # type: ignore[attr-defined]
-            cands = robot.ik_batch(self._flange(np.array([0.0])))[0]  # type: ignore[attr-defined]
+            cands = self._batch(self._flange(np.array([0.0])))[0]
             dist = np.max(np.abs(self._unwrap(cands, q_start[None, :])[:, :] - q_start), axis=1)
             dist = np.where(np.isnan(dist), np.inf, dist)
             if np.min(dist) < 1e-6:
@@ -98,7 +101,7 @@ class _Solver:
         """Joints (N, dof) at path fractions u (N,), each near ref (N, dof); NaN rows: none."""
         poses = self._flange(u)
         if self.column is not None:
-            sols = self.robot.ik_batch(poses)[:, self.column, :]  # type: ignore[attr-defined]
+            sols = self._batch(poses)[:, self.column, :]
             return self._unwrap(sols, ref)
         out = np.full(ref.shape, np.nan)
         for i, (pose, seed) in enumerate(zip(poses, ref)):
@@ -110,7 +113,7 @@ class _Solver:
     def solve_chain(self, u: np.ndarray, q_start: np.ndarray) -> np.ndarray:
         """Joints (N, dof) along increasing u, each solved near its predecessor."""
         if self.column is not None:
-            sols = self.robot.ik_batch(self._flange(u))[:, self.column, :]  # type: ignore[attr-defined]
+            sols = self._batch(self._flange(u))[:, self.column, :]
             out = sols.copy()
             prev = q_start
             for i in range(len(u)):  # sequential unwrap: each joint continues from the last
@@ -197,7 +200,8 @@ def _unreachable(robot: object, path: CartesianPath, tool_inv: np.ndarray, u: fl
     flange = path.poses(np.array([u]))[0] @ tool_inv
     exists = True
     if robot.has_closed_form:  # type: ignore[attr-defined]
-        exists = bool(np.any(~np.isnan(robot.ik_batch(flange[None])[0, :, 0])))  # type: ignore[attr-defined]
+        batch = getattr(robot, "ik_closed_form", None) or robot.ik_batch  # type: ignore[attr-defined]
+        exists = bool(np.any(~np.isnan(batch(flange[None])[0, :, 0])))
     if exists:
         return PathFailure(
             "singular", f"the path leaves the start's IK branch at {_fmt_mm(pos)} ({u:.0%} along the path): "
@@ -219,13 +223,19 @@ def _singular(robot: object, path: CartesianPath, qa: np.ndarray, qb: np.ndarray
 
 
 def _singularity_kind(robot: object, qa: np.ndarray, qb: np.ndarray) -> str:
-    """'wrist', 'elbow' or 'shoulder' from which joints jump (6R arms), else 'kinematic'."""
+    """'shoulder', 'wrist' or 'elbow' from which joints jump (6R arms), else 'kinematic'.
+
+    At a shoulder singularity (wrist centre on the J1 axis) joint 1 turns over, dragging the
+    wrist joints with it; at a wrist singularity (J5 = 0) only joints 4 and 6 jump.
+    """
     if getattr(robot, "dof", 0) != 6:
         return "kinematic"
     jump = np.abs(qb - qa)
-    if jump[3] + jump[5] >= max(jump[0], jump[1], jump[2]):
+    if jump[0] >= max(jump[1], jump[2]) and jump[0] > 0.1 * max(jump[3], jump[5]):
+        return "shoulder"
+    if jump[3] + jump[5] >= max(jump[1], jump[2]):
         return "wrist"
-    return "shoulder" if jump[0] >= max(jump[1], jump[2]) else "elbow"
+    return "elbow"
 
 
 def _limit_failure(robot: object, path: CartesianPath, u: np.ndarray, q: np.ndarray) -> PathFailure | None:

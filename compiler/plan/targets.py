@@ -118,13 +118,35 @@ def solve_target(
     return _solve_cartesian(robot, move, flange, q_now, current)
 
 
+def _ik(robot: object, flange: np.ndarray, seed: np.ndarray, config: ir.Config | None):  # type: ignore[no-untyped-def]
+    """robot.ik, plus (for robots without a closed form) a local Newton solve from the seed when
+    the library's global search finds nothing: the seed is usually close to the target."""
+    res = robot.ik(flange, seed=seed, config=config)  # type: ignore[attr-defined]
+    if res.solutions or robot.has_closed_form:  # type: ignore[attr-defined]
+        return res
+    from rmot.compiler.plan.dense import newton_ik
+
+    q = newton_ik(robot, flange, seed, iters=50)
+    lim = robot.joint_limits  # type: ignore[attr-defined]
+    if q is None or np.any(q < lim[:, 0] - 1e-9) or np.any(q > lim[:, 1] + 1e-9):
+        return res
+    return _Local((q,))
+
+
+@dataclass(frozen=True)
+class _Local:
+    """A stand-in IkResult holding solutions found by the local solve."""
+
+    solutions: tuple[np.ndarray, ...]
+
+
 def _any_config(c: ir.Config) -> bool:
     return any(v is not None for v in (c.shoulder, c.elbow, c.wrist))
 
 
 def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
     wanted = move.config if _any_config(move.config) else None
-    res = robot.ik(flange, seed=q_now, config=wanted)
+    res = _ik(robot, flange, q_now, wanted)
     if res.solutions:
         q = np.asarray(res.solutions[0], dtype=float)
         changes = [c for c in branch_changes(current, robot.branch(q)) if getattr(move.config, c[0]) is None]
@@ -134,7 +156,7 @@ def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-u
                f"write {_config_text(changes)} to make the change explicit")
         return q, [Finding(codes.BRANCH_CHANGE_JOINT, Severity.WARNING, msg)]
     if wanted is not None:
-        free = robot.ik(flange, seed=q_now, config=None)
+        free = _ik(robot, flange, q_now, None)
         if free.solutions:
             other = robot.branch(np.asarray(free.solutions[0]))
             msg = (f"target must be reachable with config({wanted}) (it is reachable only with "
@@ -151,10 +173,10 @@ def _solve_cartesian(robot, move, flange, q_now, current):  # type: ignore[no-un
                f"{_config_text(explicit)} before it")
         return None, [Finding(codes.BRANCH_CHANGE, Severity.ERROR, msg)]
     branch = _merge(current, move.config)
-    res = robot.ik(flange, seed=q_now, config=branch if _any_config(branch) else None)
+    res = _ik(robot, flange, q_now, branch if _any_config(branch) else None)
     if res.solutions:
         return np.asarray(res.solutions[0], dtype=float), []
-    free = robot.ik(flange, seed=q_now, config=None)
+    free = _ik(robot, flange, q_now, None)
     if free.solutions:
         changes = branch_changes(current, robot.branch(np.asarray(free.solutions[0])))
         msg = (f"target of a {kind} move must be reachable on the current branch; it needs "

@@ -1,1 +1,17 @@
-"""rmot.compiler.robots."""
+"""The robot library and kinematics: FK, Jacobians, closed-form and numeric IK, branches.
+
+    from rmot.compiler.robots import load_robot, list_robots
+    r = load_robot("abb_irb120")          # a library name, or a path to a URDF file
+    r.fk(q) -> (4,4); r.ik(T) -> IkResult; r.branch(q) -> ir.Config
+
+See /tmp/team/ROBOT_API.md for the contract and `branches` for the branch definitions.
+"""
+
+from __future__ import annotations
+
+from rmot.compiler.robots.errors import RobotError
+from rmot.compiler.robots.ik import IkResult, IkStatus
+from rmot.compiler.robots.loader import list_robots, load_robot
+from rmot.compiler.robots.robot import LinkSolid, Robot
+
+__all__ = ["IkResult", "IkStatus", "LinkSolid", "Robot", "RobotError", "list_robots", "load_robot"]

@@ -26,10 +26,13 @@ wrist     FLIP when sin(J5) < 0 on the controller's own J5 value (J5 < 0 for |J5
           KUKA Status bit 2 (A5 <= 0) = FLIP; Fanuc and Yaskawa define their flip bit on
           their own J5 sign too, so map FLIP/NOFLIP through the vendor's rule.
 
-At a boundary (value exactly 0) the branch is FRONT / UP / NOFLIP.
+At a boundary (|value| <= 1e-12, the singular configuration itself) the branch is FRONT / UP /
+NOFLIP, so round-off at an exact singularity cannot flicker the name.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -40,19 +43,37 @@ from rmot.compiler.robots.urik import UrParams, ur_branch_quantities
 __all__ = ["config_of", "opw_branch_fn", "ur_branch_fn"]
 
 
+_EPS = 1e-12
+
+
+_CONFIGS = {
+    (s, e, w): ir.Config(s, e, w) for s in ir.Shoulder for e in ir.Elbow for w in ir.Wrist
+}
+
+
 def config_of(shoulder: float, elbow: float, j5_sin: float) -> ir.Config:
-    return ir.Config(
-        ir.Shoulder.FRONT if shoulder >= 0 else ir.Shoulder.BACK,
-        ir.Elbow.UP if elbow >= 0 else ir.Elbow.DOWN,
-        ir.Wrist.FLIP if j5_sin < 0 else ir.Wrist.NOFLIP,
-    )
+    return _CONFIGS[(
+        ir.Shoulder.FRONT if shoulder >= -_EPS else ir.Shoulder.BACK,
+        ir.Elbow.UP if elbow >= -_EPS else ir.Elbow.DOWN,
+        ir.Wrist.FLIP if j5_sin < -_EPS else ir.Wrist.NOFLIP,
+    )]
 
 
 def opw_branch_fn(p: OpwParams, jmap: OpwJointMap):  # type: ignore[no-untyped-def]
+    """Scalar math (this runs once per IK candidate); `opw_shoulder_elbow` is the same formula."""
+    c = jmap._c
+    (s2, s3), (o2, o3) = (jmap.sign[1], jmap.sign[2]), (jmap.offset[1], jmap.offset[2])
+    a1, c2, k, psi = p.a1, p.c2, p.forearm, p.psi3
+
+    row2 = [(j, float(c[1, j])) for j in range(6) if c[1, j] != 0]
+    row3 = [(j, float(c[2, j])) for j in range(6) if c[2, j] != 0]
+
     def branch(q: np.ndarray) -> ir.Config:
-        theta = jmap.to_theta(q)
-        shoulder, elbow = opw_shoulder_elbow(p, theta)
-        return config_of(float(shoulder), float(elbow), float(np.sin(q[4])))
+        v = q.tolist()
+        t2 = s2 * sum(w * v[j] for j, w in row2) + o2
+        t3 = s3 * sum(w * v[j] for j, w in row3) + o3
+        front = a1 + c2 * math.sin(t2) + k * math.sin(t2 + t3 + psi)
+        return config_of(front, math.sin(t3 + psi), math.sin(v[4]))
 
     return branch
 

@@ -24,7 +24,7 @@ def build_robot(spec: RobotSpec) -> Robot:
     solids = _solids(model, spec, coupling)
     closed_form = branch_fn = distance = None
     if spec.opw is not None:
-        closed_form, distance = _opw_solver(*spec.opw)
+        closed_form, distance = _opw_solver(*spec.opw, np.linalg.inv(np.array(spec.flange)))
         branch_fn = opw_branch_fn(*spec.opw)
     elif spec.ur is not None:
         closed_form, distance = _ur_solver(spec.ur)
@@ -82,14 +82,18 @@ def _adjacent(solids: tuple[LinkSolid, ...], extra: tuple[tuple[str, str], ...])
     return tuple(sorted(pairs))  # type: ignore[arg-type]
 
 
-def _opw_solver(p: OpwParams, jmap: OpwJointMap):  # type: ignore[no-untyped-def]
+def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # type: ignore[no-untyped-def]
+    """flange_inv: the vendor flange -> OPW flange transform (identity unless turned)."""
     from rmot.compiler.robots import fastik
 
+    turned = not np.allclose(flange_inv, np.eye(4))
+    args = fastik.opw_kernel_args(p, jmap)
+
     def closed_form(poses: np.ndarray) -> np.ndarray:
-        return jmap.from_theta(fastik.opw_batch(p, poses))
+        return fastik.opw_solve(args, poses @ flange_inv if turned else poses)
 
     def distance(pose: np.ndarray) -> float:
-        c = pose[:3, 3] - p.c4 * pose[:3, 2]
+        c = pose[:3, 3] - p.c4 * pose[:3, 2]  # the flange turn is about z: same axis
         rho2 = c[0] ** 2 + c[1] ** 2
         if rho2 < p.b ** 2:
             return p.b - math.sqrt(rho2)
@@ -106,8 +110,10 @@ def _opw_solver(p: OpwParams, jmap: OpwJointMap):  # type: ignore[no-untyped-def
 def _ur_solver(p: UrParams):  # type: ignore[no-untyped-def]
     from rmot.compiler.robots import fastik
 
+    p_arr = np.array([p.d1, p.a2, p.a3, p.d4, p.d5, p.d6])
+
     def closed_form(poses: np.ndarray) -> np.ndarray:
-        return fastik.ur_batch(p, poses)
+        return fastik.ur_solve(p_arr, poses)
 
     def distance(pose: np.ndarray) -> float:
         p05 = pose[:3, 3] - p.d6 * pose[:3, 2]

@@ -56,6 +56,9 @@ class Robot:
         self.dof = model.nq
         self.joint_types = tuple("P" if model.joints[j].shortname().startswith("JointModelP") else "R" for j in range(1, model.njoints))
         self.joint_limits = _frozen(joint_limits)
+        self._revolute = np.array([t == "R" for t in self.joint_types])
+        self._revolute_list = self._revolute.tolist()
+        self._lo, self._hi = self.joint_limits[:, 0].tolist(), self.joint_limits[:, 1].tolist()
         self.velocity_limits = _frozen(velocity_limits)
         self.accel_limits = _frozen(accel_limits)
         self.reach = float(reach)

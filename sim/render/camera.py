@@ -79,24 +79,42 @@ class Camera:
 
     @staticmethod
     def framing(bounds: np.ndarray, *, aspect: float = 4.0 / 3.0, fov_deg: float = 40.0,
-                azimuth_deg: float = -50.0, elevation_deg: float = 28.0, margin: float = 1.08) -> Camera:
+                azimuth_deg: float = -50.0, elevation_deg: float = 28.0, fill: float = 0.92,
+                points: np.ndarray | None = None) -> Camera:
         """The default three-quarter view that frames the whole box `bounds` (2, 3) [min; max].
 
-        The eye sits on a ray from the box centre (azimuth from +x about +z, elevation above
-        the floor) at the distance where the box's bounding sphere fits both view angles.
+        The eye looks at the box centre from the given azimuth (from +x about +z) and
+        elevation, at the nearest distance where all eight corners (or `points` (K, 3) inside
+        the box, for a tighter fit) project within `fill` of the picture's half width and height.
         """
         lo, hi = np.asarray(bounds, float)
         center = (lo + hi) / 2.0
-        radius = max(float(np.linalg.norm(hi - lo)) / 2.0, 1e-3) * margin
-        half_v = math.radians(fov_deg) / 2.0
-        half_h = math.atan(math.tan(half_v) * aspect)
-        distance = radius / math.sin(min(half_v, half_h))  # the sphere touches the narrower side
+        radius = max(float(np.linalg.norm(hi - lo)) / 2.0, 1e-3)
         az, el = math.radians(azimuth_deg), math.radians(elevation_deg)
         direction = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
-        eye = center + distance * direction
-        near = max(distance - radius, 1e-3) * 0.5
-        far = (distance + radius) * 2.0
-        return Camera(_vec(eye), _vec(center), fov_deg=fov_deg, near=near, far=far)
+        corners = np.array([[(lo, hi)[i][0], (lo, hi)[j][1], (lo, hi)[k][2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+        if points is not None and len(points):
+            corners = np.asarray(points, float).reshape(-1, 3)
+        tan_v = math.tan(math.radians(fov_deg) / 2.0)
+        tan_h = tan_v * aspect
+        right = np.cross(-direction, (0.0, 0.0, 1.0))
+        right /= np.linalg.norm(right)
+        up = np.cross(right, -direction)
+        rel = corners - center  # corner offsets in the view axes: x right, y up, z towards the eye
+        x, y, z = rel @ right, rel @ up, rel @ direction
+
+        def fits(d: float) -> bool:
+            depth = d - z  # distance in front of the eye
+            return bool(np.all(depth > 1e-6) and np.all(np.abs(x) <= fill * tan_h * depth)
+                        and np.all(np.abs(y) <= fill * tan_v * depth))
+
+        near_d, far_d = 0.0, radius / (fill * math.sin(math.atan(min(tan_v, tan_h)))) + radius  # far_d always fits
+        for _ in range(40):  # bisection on the eye distance
+            mid = 0.5 * (near_d + far_d)
+            near_d, far_d = (near_d, mid) if fits(mid) else (mid, far_d)
+        eye = center + far_d * direction
+        return Camera(_vec(eye), _vec(center), fov_deg=fov_deg, near=max(far_d - radius, 1e-3) * 0.5,
+                      far=(far_d + radius) * 2.0)
 
 
 def _vec(a: np.ndarray) -> Vec3:

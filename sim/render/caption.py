@@ -12,7 +12,7 @@ TEXT = (250, 250, 250)
 
 
 def _font(height: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
-    size = max(10, min(18, height // 26))
+    size = max(9, min(18, height // 26))
     try:
         return ImageFont.load_default(size=size)  # Pillow's bundled font, same on every machine
     except (TypeError, OSError):  # Pillow without FreeType: the fixed bitmap font

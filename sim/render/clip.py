@@ -35,6 +35,8 @@ def clip_triangles(clip: np.ndarray, attrs: np.ndarray) -> tuple[np.ndarray, np.
     straddle = np.flatnonzero(status == _STRADDLE)
     keep = np.flatnonzero(status == _INSIDE)
     if straddle.size == 0:
+        if keep.size == len(clip):
+            return clip, attrs, keep  # the usual case: everything in view, nothing to copy
         return clip[keep], attrs[keep], keep
     packed = np.concatenate([clip[straddle], attrs[straddle]], axis=2).astype(np.float64)
     out, src, count = _clip_polygons(np.ascontiguousarray(packed))

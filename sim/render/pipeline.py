@@ -15,7 +15,7 @@ import numpy as np
 
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.clip import clip_triangles
-from rmot.sim.render.raster import Frame, rasterize, resolve
+from rmot.sim.render.raster import Frame, rasterize, resolve, resolve_downsampled
 from rmot.sim.render.shade import DEFAULT_LIGHTS, Light, Material, Shading, shade
 from rmot.sim.render.transform import to_clip, to_screen
 
@@ -119,10 +119,27 @@ def render_triangles(vertices: np.ndarray, normals: np.ndarray | None, colors: n
                      size: tuple[int, int] = (640, 480), aa: int = 1, lights: tuple[Light, ...] = DEFAULT_LIGHTS,
                      *, material: Material = Material(), shading: Shading = Shading.GOURAUD,
                      background: tuple[float, float, float] = BACKGROUND) -> np.ndarray:
-    """The whole pipeline on a triangle soup -> (H, W, 3) uint8 (see `draw` for the arguments)."""
-    picture = draw(vertices, normals, colors, camera, size, aa, lights=lights, material=material,
-                   shading=shading, background=background)
-    return to_uint8(downsample(picture.color, aa))
+    """The whole pipeline on a triangle soup -> (H, W, 3) uint8 (see `draw` for the arguments).
+
+    With vertex or face lighting the interpolation and the k x k box filter run as one
+    pass over the visibility buffer; per-pixel (Phong) lighting goes through `draw`.
+    """
+    if shading is Shading.PHONG:
+        picture = draw(vertices, normals, colors, camera, size, aa, lights=lights, material=material,
+                       shading=shading, background=background)
+        return to_uint8(downsample(picture.color, aa))
+    vertices = np.asarray(vertices, np.float64).reshape(-1, 3, 3)
+    if normals is None:
+        normals = np.repeat(face_normals(vertices)[:, None, :], 3, axis=1)
+    colors = _per_vertex(colors, len(vertices))
+    width, height = size[0] * aa, size[1] * aa
+    matrix = camera.matrix(size[0] / size[1])
+    lit = _vertex_attributes(vertices, np.asarray(normals, np.float32), colors, np.asarray(camera.eye, np.float64),
+                             lights, material, shading)
+    clipped, lit, _ = clip_triangles(to_clip(matrix, vertices), lit)
+    screen, inv_w = to_screen(clipped, width, height)
+    frame = rasterize(screen, inv_w, width, height)
+    return resolve_downsampled(frame, lit, aa, background)
 
 
 def depth_frame(vertices: np.ndarray, camera: Camera, size: tuple[int, int]) -> tuple[Frame, np.ndarray]:

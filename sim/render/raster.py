@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-__all__ = ["Frame", "rasterize", "resolve"]
+__all__ = ["Frame", "rasterize", "resolve", "resolve_downsampled"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,6 +49,48 @@ def resolve(frame: Frame, attrs: np.ndarray) -> np.ndarray:
     out = np.zeros(frame.tri.shape + (attrs.shape[2],), np.float32)
     _resolve(frame.tri, frame.bary, np.ascontiguousarray(attrs, np.float32), out)
     return out
+
+
+def resolve_downsampled(frame: Frame, colors: np.ndarray, k: int, background: tuple[float, float, float]) -> np.ndarray:
+    """Per-vertex colours (T, 3, 3) in 0..1 interpolated, box-filtered k x k and rounded to bytes in
+    one pass -> (H/k, W/k, 3) uint8."""
+    height, width = frame.tri.shape
+    out = np.empty((height // k, width // k, 3), np.uint8)
+    _resolve_down(frame.tri, frame.bary, np.ascontiguousarray(colors, np.float32), k,
+                  np.asarray(background, np.float32), out)
+    return out
+
+
+@njit(cache=True)
+def _resolve_down(tri: np.ndarray, bary: np.ndarray, colors: np.ndarray, k: int, background: np.ndarray,
+                  out: np.ndarray) -> None:
+    weight = 1.0 / (k * k)
+    for r in range(out.shape[0]):
+        for c in range(out.shape[1]):
+            acc0 = acc1 = acc2 = 0.0
+            for dr in range(k):
+                for dc in range(k):
+                    rr, cc = r * k + dr, c * k + dc
+                    t = tri[rr, cc]
+                    if t < 0:
+                        acc0 += background[0]
+                        acc1 += background[1]
+                        acc2 += background[2]
+                        continue
+                    b1, b2 = bary[rr, cc, 0], bary[rr, cc, 1]
+                    b0 = 1.0 - b1 - b2
+                    acc0 += b0 * colors[t, 0, 0] + b1 * colors[t, 1, 0] + b2 * colors[t, 2, 0]
+                    acc1 += b0 * colors[t, 0, 1] + b1 * colors[t, 1, 1] + b2 * colors[t, 2, 1]
+                    acc2 += b0 * colors[t, 0, 2] + b1 * colors[t, 1, 2] + b2 * colors[t, 2, 2]
+            out[r, c, 0] = _byte(acc0 * weight)
+            out[r, c, 1] = _byte(acc1 * weight)
+            out[r, c, 2] = _byte(acc2 * weight)
+
+
+@njit(cache=True, inline="always")
+def _byte(value: float) -> np.uint8:
+    """0..1 -> 0..255, rounded half to even like np.rint (as pipeline.to_uint8)."""
+    return np.uint8(min(max(np.rint(value * 255.0), 0.0), 255.0))
 
 
 @njit(cache=True, inline="always")

@@ -9,7 +9,7 @@ of the picture only needs the (B, 4, 4) body poses at that instant.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -17,7 +17,7 @@ from rmot.compiler import ir
 from rmot.compiler.planned import Plan
 from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.tessellate import TriMesh, merge
-from rmot.sim.render.transform import transform_points
+from rmot.sim.render.transform import rotate_vectors, transform_points
 from rmot.sim.scene import Scene, build_scene
 
 __all__ = ["HIGHLIGHT", "RenderScene", "body_poses", "prepare", "soup"]
@@ -54,6 +54,7 @@ class RenderScene:
     paths: tuple[np.ndarray, ...]
     bounds: np.ndarray
     diagnostics: tuple[Diagnostic, ...] = ()
+    extent: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))  # (K, 3) points the camera must see
 
 
 def _tools_used(program: ir.Program) -> dict[str, set[str]]:
@@ -107,25 +108,23 @@ def soup(rs: RenderScene, poses: np.ndarray, highlight: tuple[str, ...] = ()) ->
     for i, (name, mesh) in enumerate(zip(rs.names, rs.meshes)):
         pose = poses[i]
         verts.append(transform_points(pose, mesh.vertices))
-        norms.append(mesh.normals @ pose[:3, :3].T)  # rigid motion: rotate the normals
+        norms.append(rotate_vectors(pose, mesh.normals))  # rigid motion: rotate the normals
         color = HIGHLIGHT if name in highlight else rs.colors[i]
         cols.append(np.broadcast_to(np.asarray(color, np.float32), (len(mesh), 3)))
     return np.concatenate(verts), np.concatenate(norms), np.concatenate(cols).astype(np.float32)
 
 
-def _bounds(rs_meshes: tuple[TriMesh, ...], poses: np.ndarray) -> np.ndarray:
-    """(2, 3) box containing every body at every pose sample (N, B, 4, 4)."""
-    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
-    for i, mesh in enumerate(rs_meshes):
+def _extent(meshes: tuple[TriMesh, ...], poses: np.ndarray) -> np.ndarray:
+    """(K, 3) world corners of each body's box at every pose sample (N, B, 4, 4): what must be seen."""
+    points = []
+    for i, mesh in enumerate(meshes):
         if len(mesh) == 0:
             continue
         pts = mesh.vertices.reshape(-1, 3)
-        for pose in poses[:, i]:
-            p = transform_points(pose, pts)
-            lo, hi = np.minimum(lo, p.min(axis=0)), np.maximum(hi, p.max(axis=0))
-    if not np.all(np.isfinite(lo)):
-        return np.array([[-1.0, -1.0, 0.0], [1.0, 1.0, 1.0]])
-    return np.stack([lo, hi])
+        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        corners = np.array([[(lo, hi)[a][0], (lo, hi)[b][1], (lo, hi)[c][2]] for a in (0, 1) for b in (0, 1) for c in (0, 1)])
+        points.append((corners @ np.swapaxes(poses[:, i, :3, :3], 1, 2) + poses[:, i, None, :3, 3]).reshape(-1, 3))
+    return np.concatenate(points) if points else np.array([[-1.0, -1.0, 0.0], [1.0, 1.0, 1.0]])
 
 
 def _floor(bounds: np.ndarray, tile: float = 0.25) -> tuple[TriMesh, np.ndarray]:
@@ -188,13 +187,12 @@ def prepare(plan: Plan, samples: int = 24, robots: Mapping[str, object] | None =
     colors = np.array([_body_color(scene, b) for b in scene.bodies], np.float32).reshape(-1, 3)
     partial = RenderScene(plan, scene, names, meshes, colors, merge([]), np.zeros((0, 3)), (), np.zeros((2, 3)))
     times = np.linspace(0.0, max(plan.cycle_time, 0.0), samples)
-    bounds = _bounds(meshes, body_poses(partial, times))
     paths = _tcp_paths(plan, scene)
-    for p in paths:
-        bounds = np.stack([np.minimum(bounds[0], p.min(axis=0)), np.maximum(bounds[1], p.max(axis=0))])
+    extent = np.concatenate([_extent(meshes, body_poses(partial, times)), *paths])
+    bounds = np.stack([extent.min(axis=0), extent.max(axis=0)])
     bounds[0, 2] = min(bounds[0, 2], 0.0)  # the floor is part of the view
     floor, floor_colors = _floor(bounds)
-    return RenderScene(plan, scene, names, meshes, colors, floor, floor_colors, paths, bounds, scene.diagnostics)
+    return RenderScene(plan, scene, names, meshes, colors, floor, floor_colors, paths, bounds, scene.diagnostics, extent)
 
 
 def _body_color(scene: Scene, body: object) -> tuple[float, float, float]:

@@ -18,7 +18,7 @@ __all__ = ["default_camera", "finding_caption", "frame", "render_finding", "rend
 
 def default_camera(rs: RenderScene, size: tuple[int, int]) -> Camera:
     """The three-quarter view framing every body over the whole program."""
-    return Camera.framing(rs.bounds, aspect=size[0] / size[1])
+    return Camera.framing(rs.bounds, aspect=size[0] / size[1], points=rs.extent)
 
 
 def _draw_paths(picture: Picture, rs: RenderScene, camera: Camera) -> None:

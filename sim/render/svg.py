@@ -58,8 +58,11 @@ def feature_edges(vertices: np.ndarray, eye: np.ndarray, crease_deg: float = 30.
     return corner[first[keep]], tri_index[faces_of[keep, 0]]
 
 
+MIN_STROKE = 1.5  # px: shorter runs are the tolerance's stubs where a hidden edge leaves a visible corner
+
+
 def _strokes(xy: np.ndarray, segment: np.ndarray, seen: np.ndarray, scale: float) -> list[str]:
-    """Runs of consecutive visible samples of one segment -> 'M x y L x y' strokes."""
+    """Runs of consecutive visible samples of one segment -> 'M x y L x y' strokes (specks dropped)."""
     if not seen.any():
         return []
     breaks = np.flatnonzero((np.diff(seen.astype(np.int8)) != 0) | (np.diff(segment) != 0)) + 1
@@ -68,6 +71,8 @@ def _strokes(xy: np.ndarray, segment: np.ndarray, seen: np.ndarray, scale: float
     for lo, hi in zip(bounds[:-1], bounds[1:]):
         if seen[lo] and hi - lo >= 2:
             (x0, y0), (x1, y1) = xy[lo] / scale, xy[hi - 1] / scale
+            if np.hypot(x1 - x0, y1 - y0) < MIN_STROKE:
+                continue
             strokes.append(f"M{x0:.2f} {y0:.2f}L{x1:.2f} {y1:.2f}")
     return strokes
 

@@ -1,5 +1,5 @@
-// rmot offline 3D viewer: WebGL 1, no external files. Data comes from the JSON block
-// <script id="rmot-data" type="application/json"> written by rmot.sim.render.html.
+// rmot offline 3D viewer: WebGL 1, no external files. The scene comes from the JSON block
+// with id "rmot-data" that rmot.sim.render.html writes into the page.
 (function () {
   "use strict";
   var data = JSON.parse(document.getElementById("rmot-data").textContent);

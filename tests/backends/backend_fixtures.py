@@ -4,8 +4,6 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-
 import numpy as np
 
 from rmot.compiler import ir, planned
@@ -65,3 +63,60 @@ def deg(*values: float) -> np.ndarray:
     return np.radians(np.array(values, float))
 
 
+
+
+# --------------------------------------------------------------------------- sample programs
+
+GRIPPER = ir.ToolRef("gripper", ir.Pose((0.0, 0.0, 0.15)), 1.2)
+TABLE = ir.FrameRef("table_top", ir.Pose((0.5, 0.0, 0.015)), ir.Pose((0.5, 0.0, 0.015)))
+FLANGE = ir.ToolRef(None)
+BASE = ir.FrameRef(None)
+
+
+def cart(in_frame: ir.Pose, frame: ir.FrameRef = BASE, name: str | None = "p") -> ir.CartesianTarget:
+    """A Cartesian target written in `frame` (pose composed into the robot base frame)."""
+    return ir.CartesianTarget(frame.pose * in_frame, in_frame, name)
+
+
+def move(uid: int, kind: ir.MotionKind, target: ir.CartesianTarget | ir.JointTarget, *,
+         tool: ir.ToolRef = FLANGE, frame: ir.FrameRef = BASE, via: ir.CartesianTarget | None = None,
+         **motion_args: float) -> ir.Move:
+    return ir.Move(uid=uid, kind=kind, target=target, via=via, motion=motion(**motion_args), tool=tool,
+                   frame=frame, span=span_at(10 + uid))
+
+
+def sample_program() -> planned.Plan:
+    """Every instruction kind once (moves of all three kinds, I/O, wait, if, proc, native)."""
+    down = ir.Pose.from_xyz_rpy(0.1, 0.2, 0.15, math.pi, 0, 0)
+    tgt = cart(down, TABLE, "above")
+    via = cart(ir.Pose.from_xyz_rpy(0.15, 0.25, 0.15, math.pi, 0, 0), TABLE, "arc_mid")
+    home = ir.JointTarget(tuple(deg(0, -30, 30, 0, 60, 0)), "home")
+    J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
+    body = (
+        move(1, J, home, joint=0.5),
+        move(2, L, tgt, tool=GRIPPER, frame=TABLE, speed=0.1234, zone=0.0075),
+        ir.SetDigital(uid=3, port=1, value=True, signal="gripper_close", span=span_at(5)),
+        ir.ProcCall(uid=4, proc="pick", args=("above",), span=span_at(6), body=(
+            ir.WaitTime(uid=5, duration=0.3, span=span_at(7)),
+            move(6, C, tgt, via=via, tool=GRIPPER, frame=TABLE, zone=0.01))),
+        ir.If(uid=7, condition=ir.InputCondition(port=2, value=True, signal="part_present"), span=span_at(9),
+              then=(ir.Pulse(uid=8, port=3, duration=0.2, span=span_at(10)),),
+              otherwise=(ir.WaitInput(uid=9, condition=ir.InputCondition(port=2, value=True), timeout=5.0,
+                                      span=span_at(11)),)),
+        ir.SetAnalog(uid=10, port=1, value=4.5, span=span_at(12)),
+        ir.Native(uid=11, vendor="rapid", text='TPWrite "cycle done";', span=span_at(13)),
+        ir.Native(uid=12, vendor="krl", text="HALT", span=span_at(14)),
+        ir.Native(uid=13, vendor="fanuc", text="MESSAGE[done]", span=span_at(15)),
+        move(14, J, cart(down, TABLE, "above"), tool=GRIPPER, frame=TABLE, speed=0.1, duration=2.5),
+    )
+    recs = {1: (deg(0, -30, 30, 0, 60, 0), FRONT_UP_NOFLIP), 2: (deg(10, 20, 30, -100, -50, 200), FRONT_UP_NOFLIP),
+            6: (deg(-10, 20, 30, 40, 50, 60), FRONT_UP_NOFLIP), 14: (deg(10, 20, 30, -100, -50, 200), FRONT_UP_NOFLIP)}
+    return hand_plan(body, recs)
+
+
+def routine_lines(text: str, start: str, end: str) -> list[str]:
+    """The stripped, non-comment lines between the line `start` and the next line `end`."""
+    lines = [ln.strip() for ln in text.splitlines()]
+    i = lines.index(start)
+    j = lines.index(end, i)
+    return [ln for ln in lines[i + 1:j] if ln and not ln.startswith(("!", ";"))]

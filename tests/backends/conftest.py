@@ -26,20 +26,26 @@ def hand() -> Callable[..., planned.Plan]:
     return hand_plan
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def plan_from_text() -> Callable[..., planned.Plan]:
-    """Compile .rmot text to a Plan through the real front end and planner."""
+    """Compile .rmot text to a Plan through the real front end and planner (session-wide, so
+    module-scoped fixtures can use it; each text is planned once per session)."""
     from rmot.compiler.frontend import load_text
     from rmot.compiler.plan import plan_program
     from rmot.lang.diagnostics import render_all
 
+    cache: dict[tuple[str, str], planned.Plan] = {}
+
     def build(text: str, path: str = "test.rmot") -> planned.Plan:
-        program, diagnostics = load_text(text, path)
-        errors = [d for d in diagnostics if d.is_error]
-        assert program is not None and not errors, render_all(errors)
-        plan = plan_program(program)
+        if (text, path) in cache:
+            return cache[(text, path)]
+        front = load_text(text, path)
+        errors = [d for d in front.diagnostics if d.is_error]
+        assert front.program is not None and not errors, render_all(errors)
+        plan = plan_program(front.program)
         errors = [d for d in plan.diagnostics if d.is_error]
         assert not errors, render_all(errors)
+        cache[(text, path)] = plan
         return plan
 
     return build

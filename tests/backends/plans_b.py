@@ -106,7 +106,7 @@ def demo_plan(robot: str = "ur5e") -> planned.Plan:
 
 
 def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> planned.Plan:
-    """Moves cycling joint / linear / circular to FK(q)·tool of each q (circular via: the next q).
+    """Moves cycling joint / linear / circular to FK(q)·tool of each q (circular via: q nudged).
 
     Records carry q, robot.branch(q), the TCP pose and the flange pose, as the planner's do.
     """
@@ -120,7 +120,7 @@ def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> pl
         flange = ir.Pose.from_matrix(robot.fk(q))
         tcp = flange * GRIPPER_TCP
         kind = kinds[k % 3]
-        q_via = qs[(k + 1) % len(qs)] if kind is ir.MotionKind.CIRCULAR else None
+        q_via = q + np.array([0.03, 0.02, -0.02, 0.0, 0.03, 0.0]) if kind is ir.MotionKind.CIRCULAR else None
         via = cart(ir.Pose.from_matrix(robot.fk(q_via)) * GRIPPER_TCP, frame) if q_via is not None else None
         target = ir.JointTarget(tuple(q)) if kind is ir.MotionKind.JOINT else cart(tcp, frame)
         node = move(k + 1, kind, target, k + 3, via=via, frame=frame)

@@ -109,6 +109,11 @@ class TestRefusalsAndWarnings:
         text, _ = emit(self._plan((ir.SetDigital(uid=1, port=9, value=False, span=span_at(5)),)))
         assert blocks(text)[5] == ["set_configurable_digital_out(1, False)", "end"]
 
+    def test_analog_out_of_range_is_refused(self) -> None:
+        """UR analog outputs take 0..10 V on ports 0..1: 12 V is an error (E450)."""
+        _, diags = emit(self._plan((ir.SetAnalog(uid=1, port=0, value=12.0, span=span_at(6)),)))
+        assert diags == ["error:E450:6"]
+
     def test_analog_volts(self) -> None:
         """Analog out in volts becomes the voltage domain and a 0..1 fraction of 10 V."""
         text, _ = emit(self._plan((ir.SetAnalog(uid=1, port=1, value=4.5, span=span_at(6)),)))

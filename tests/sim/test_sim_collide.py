@@ -10,7 +10,7 @@ from simkit import arm3, box, cell, make_plan, source, task_plan
 
 from rmot.compiler import ir
 from rmot.sim import codes
-from rmot.sim.verify import verify_with
+from rmot.sim.verification import verify_with
 
 STEP = 0.004
 

@@ -10,7 +10,7 @@ from simkit import arm3, cell, make_plan, source, task_plan
 from rmot.compiler import planned
 from rmot.sim import codes
 from rmot.sim.limits import check_limits, joint_torques
-from rmot.sim.verify import verify_with
+from rmot.sim.verification import verify_with
 
 
 def _report(robot, waypoints, durations):

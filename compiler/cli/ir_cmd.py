@@ -1,0 +1,38 @@
+"""`rmot ir FILE [--cell CELL] [--json] [--project-root DIR]`: print the checked IR.
+
+Diagnostics go to stderr in compiler style; exit 2 when the input has errors, else 0.
+A file that holds only a cell prints the cell.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+
+__all__ = ["ir"]
+
+
+@click.command(name="ir", help="Dump the checked IR of a program (or of a cell file).")
+@click.argument("file", type=click.Path(dir_okay=False))
+@click.option("--cell", "cell", type=click.Path(dir_okay=False), default=None, help="Use this cell file.")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON instead of the text dump.")
+@click.option("--project-root", type=click.Path(file_okay=False), default=None,
+              help="Directory every path in the sources must stay inside (default: FILE's directory).")
+def ir(file: str, cell: str | None, as_json: bool, project_root: str | None) -> None:
+    from rmot.compiler.frontend import load_program
+    from rmot.compiler.ir_dump import dump_cell, dump_program, to_json
+    from rmot.lang.diagnostics import render
+
+    result = load_program(file, cell=cell, project_root=project_root)
+    for d in result.diagnostics:
+        click.echo(render(d), err=True)
+    if result.has_errors:
+        sys.exit(EXIT_INPUT)
+    if result.program is not None:
+        click.echo(to_json(result.program) if as_json else dump_program(result.program), nl=False)
+    elif result.cell is not None:
+        click.echo(to_json(result.cell) if as_json else dump_cell(result.cell) + "\n", nl=False)
+    sys.exit(EXIT_OK)

@@ -1,0 +1,96 @@
+"""`rmot plan FILE [--cell CELL] [--csv OUT] [--step 4ms]`: plan a program, print cycle times.
+
+Prints every diagnostic (compiler style) and one line per task with its cycle time; with
+--csv, writes the sampled trajectories (atomically). Exit 2 if the input or the planning has
+errors (the CSV is still written when there is a plan), 0 otherwise.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import re
+import tempfile
+
+import click
+
+from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+
+__all__ = ["plan", "parse_step", "trajectory_csv"]
+
+_STEP = re.compile(r"^\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(ms|s)?\s*$")
+
+
+def parse_step(text: str) -> float:
+    """'4ms', '0.004 s' or '0.004' (seconds) -> seconds; raises click.BadParameter."""
+    m = _STEP.match(text)
+    if not m:
+        raise click.BadParameter(f"step must be a time such as 4ms or 0.004s (got {text!r})")
+    value = float(m.group(1)) * (1e-3 if m.group(2) == "ms" else 1.0)
+    if not 1e-4 <= value <= 1.0:
+        raise click.BadParameter(f"step must be between 0.1 ms and 1 s (got {text!r})")
+    return value
+
+
+def trajectory_csv(plan: object) -> str:
+    """One row per sample: task, t (s), q1..qn (rad or m), qd1..qdn, qdd1..qddn."""
+    out = io.StringIO()
+    width = max((tp.trajectory.q.shape[1] for tp in plan.tasks), default=0)  # type: ignore[attr-defined]
+    cols = ["task", "t"] + [f"{k}{j + 1}" for k in ("q", "qd", "qdd") for j in range(width)]
+    out.write(",".join(cols) + "\n")
+    for tp in plan.tasks:  # type: ignore[attr-defined]
+        tr = tp.trajectory
+        for i in range(tr.t.shape[0]):
+            values = [f"{tr.t[i]:.6f}"] + [f"{v:.9g}" for a in (tr.q, tr.qd, tr.qdd) for v in a[i]]
+            out.write(",".join([tp.task.name] + values) + "\n")
+    return out.getvalue()
+
+
+def _write_atomic(path: str, text: str) -> None:
+    folder = os.path.dirname(os.path.abspath(path))
+    fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+def _load(file: str, cell: str | None):  # type: ignore[no-untyped-def]
+    """(program or None, diagnostics) from the front end."""
+    from rmot.compiler import frontend
+
+    result = frontend.load_program(file, cell=cell) if cell else frontend.load_program(file)
+    if isinstance(result, tuple):
+        return result[0], tuple(result[1])
+    return getattr(result, "program", None), tuple(getattr(result, "diagnostics", ()))
+
+
+@click.command(name="plan")
+@click.argument("file", type=click.Path(dir_okay=False))
+@click.option("--cell", type=click.Path(dir_okay=False), default=None, help="The cell file, if not in FILE.")
+@click.option("--csv", "csv_out", type=click.Path(dir_okay=False), default=None, help="Write the sampled trajectory here.")
+@click.option("--step", default="4ms", show_default=True, help="Sampling step of the trajectory.")
+def plan(file: str, cell: str | None, csv_out: str | None, step: str) -> None:
+    """Plan FILE: joint trajectories, cycle time per task, planning diagnostics."""
+    from rmot.lang.diagnostics import render
+
+    step_s = parse_step(step)
+    program, diagnostics = _load(file, cell)
+    for d in diagnostics:
+        click.echo(render(d), err=True)
+    if program is None or any(d.is_error for d in diagnostics):
+        raise SystemExit(EXIT_INPUT)
+    from rmot.compiler.plan import plan_program
+
+    result = plan_program(program, step=step_s)
+    for d in result.diagnostics:
+        click.echo(render(d), err=True)
+    for tp in result.tasks:
+        click.echo(f"task {tp.task.name} ({tp.robot}): cycle time {tp.cycle_time:.3f} s")
+    if csv_out:
+        _write_atomic(csv_out, trajectory_csv(result))
+    raise SystemExit(EXIT_INPUT if any(d.is_error for d in result.diagnostics) else EXIT_OK)

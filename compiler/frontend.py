@@ -1,0 +1,66 @@
+"""The front end's public entry: a .rmot file (or text) -> checked ir.Program + ir.Cell.
+
+    from rmot.compiler.frontend import load_program
+    result = load_program("examples/pick_place.rmot")
+    result.program   # ir.Program, or None when there are errors or the file holds only a cell
+    result.cell      # ir.Cell in use (from --cell, `use cell`, the file itself, or the default)
+    result.diagnostics
+
+Never raises for bad input: every problem is a Diagnostic. When the program neither uses a
+cell nor is given one, the built-in default cell (compiler/default_cell.rmot) is used.
+Paths named in files must stay inside `project_root` (default: the directory of `path`);
+an explicit `cell` file's directory is allowed too.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from rmot.compiler import ir
+from rmot.compiler.passes.context import Reporter, RobotLoader, default_robot_loader
+from rmot.compiler.passes.state import FrontendState
+from rmot.compiler.pipeline import run
+from rmot.lang.diagnostics import Diagnostic
+
+__all__ = ["FrontendResult", "load_program", "load_text"]
+
+
+@dataclass(frozen=True, slots=True)
+class FrontendResult:
+    program: ir.Program | None
+    cell: ir.Cell | None
+    diagnostics: tuple[Diagnostic, ...]
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.is_error for d in self.diagnostics)
+
+
+def load_program(path: str, *, cell: str | None = None, project_root: str | None = None,
+                 robot_loader: RobotLoader | None = None) -> FrontendResult:
+    """Parse, check and lower the program in `path` (see the module docstring)."""
+    return _load(path, None, cell, project_root, robot_loader)
+
+
+def load_text(text: str, path: str = "<input>", *, cell: str | None = None, project_root: str | None = None,
+              robot_loader: RobotLoader | None = None) -> FrontendResult:
+    """As load_program, from a string; relative paths resolve from `path`'s directory."""
+    return _load(path, text, cell, project_root, robot_loader)
+
+
+def _load(path: str, text: str | None, cell: str | None, project_root: str | None,
+          robot_loader: RobotLoader | None) -> FrontendResult:
+    root = os.path.abspath(project_root) if project_root else os.path.dirname(os.path.abspath(path))
+    roots = (root,) if cell is None else (root, os.path.dirname(os.path.abspath(cell)))
+    state = FrontendState(path=path, roots=roots, reporter=Reporter(), robot_loader=robot_loader or default_robot_loader,
+                          text=text, cell_path=cell)
+    try:
+        state = run(state)
+    except RecursionError:  # absurdly deep nesting: still a diagnostic, not a traceback
+        from rmot.compiler import codes
+
+        state.reporter.error(codes.TOO_LARGE_UNROLLED, "nesting must be at most a few hundred levels deep (got deeper)", None)
+    diagnostics = state.reporter.sink.items
+    program = None if any(d.is_error for d in diagnostics) else state.program
+    return FrontendResult(program, state.cell, diagnostics)

@@ -1,0 +1,164 @@
+"""A stable text dump and a JSON form of the IR (for `rmot ir`, golden tests and tooling).
+
+Text: one line per declaration or instruction, SI values with at most 6 decimals, poses
+as [x y z | qw qx qy qz], each instruction's uid first and its source line:col last (no
+paths, so dumps compare across machines). Same IR -> byte-identical text.
+JSON: every dataclass as an object with a "type" (its class name), enums by name, poses
+as {"position": [...], "quaternion": [...]}, spans as {"file", "line", "col"}.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from enum import Enum
+from typing import Any
+
+from rmot.compiler import ir
+from rmot.lang.source import Span
+
+__all__ = ["dump_cell", "dump_program", "to_json", "to_jsonable"]
+
+
+def _f(x: float) -> str:
+    text = f"{x:.6f}".rstrip("0").rstrip(".")
+    return "0" if text in ("-0", "") else text
+
+
+def _pose(p: ir.Pose) -> str:
+    return "[" + " ".join(_f(c) for c in p.position) + " | " + " ".join(_f(c) for c in p.quaternion) + "]"
+
+
+def _geometry(g: ir.Geometry | None) -> str:
+    if g is None:
+        return "none"
+    if isinstance(g, ir.Box):
+        return "box(" + " ".join(_f(c) for c in g.size) + ")"
+    if isinstance(g, ir.Cylinder):
+        return f"cylinder(r={_f(g.radius)} h={_f(g.height)})"
+    if isinstance(g, ir.Sphere):
+        return f"sphere(r={_f(g.radius)})"
+    if isinstance(g, ir.Capsule):
+        return f"capsule(r={_f(g.radius)} length={_f(g.length)})"
+    return f"mesh({g.path.rsplit('/', 1)[-1]!r} scale={_f(g.scale)})"
+
+
+_MAIN: list[str] = [""]  # the program's own file: its spans print without a file name
+
+
+def _at(span: Span | None) -> str:
+    if span is None:
+        return ""
+    where = "" if span.path == _MAIN[0] else span.path.replace("\\", "/").rsplit("/", 1)[-1] + ":"
+    return f"  @{where}{span.start.line}:{span.start.col}"
+
+
+def dump_cell(cell: ir.Cell) -> str:
+    lines = [f"cell {cell.name}"]
+    for r in cell.robots:
+        ref = r.source.ref if r.source.kind is ir.RobotSourceKind.LIBRARY else r.source.ref.rsplit("/", 1)[-1]
+        lines.append(f"  robot {r.name} {r.source.kind.name.lower()}:{ref} dof={r.dof} base={_pose(r.base)}")
+    for f in cell.fixtures:
+        lines.append(f"  fixture {f.name} {_geometry(f.geometry)} at {_pose(f.pose)}")
+    for t in cell.tools:
+        lines.append(f"  tool {t.name} on {t.robot} {_geometry(t.geometry)} at {_pose(t.geometry_pose)} "
+                     f"tcp={_pose(t.tcp)} mass={_f(t.mass)}")
+    for fr in cell.frames:
+        lines.append(f"  frame {fr.name} {_pose(fr.pose)}")
+    for s in cell.io:
+        owner = f" on {s.robot}" if s.robot else ""
+        lines.append(f"  io {s.direction.name.lower()}[{s.port}] {json.dumps(s.name)}{owner}")
+    return "\n".join(lines)
+
+
+def _target(t: ir.CartesianTarget | ir.JointTarget) -> str:
+    name = f" name={t.name}" if t.name else ""
+    if isinstance(t, ir.JointTarget):
+        return "joints(" + " ".join(_f(v) for v in t.values) + ")" + name
+    return f"{_pose(t.pose)} in_frame={_pose(t.in_frame)}{name}"
+
+
+def _move(m: ir.Move) -> str:
+    via = f" via {_target(m.via)}" if m.via is not None else ""
+    mo = m.motion
+    timing = f" time={_f(mo.duration)}" if mo.duration is not None else ""
+    return (f"move {m.kind.name.lower()}{via} to {_target(m.target)} tool={m.tool.name or 'flange'} "
+            f"frame={m.frame.name or 'base'} speed={_f(mo.tcp_speed)} accel={_f(mo.tcp_accel)} "
+            f"joint_speed={_f(mo.joint_speed)} joint_accel={_f(mo.joint_accel)} zone={_f(mo.zone.radius)}{timing} "
+            f"config={m.config}")
+
+
+def _cond(c: ir.InputCondition) -> str:
+    signal = f" ({c.signal})" if c.signal else ""
+    return f"in[{c.port}] == {'on' if c.value else 'off'}{signal}"
+
+
+def _signal(s: str | None) -> str:
+    return f" ({s})" if s else ""
+
+
+def _instr(i: ir.Instr, indent: str, out: list[str]) -> None:
+    head = f"{indent}#{i.uid} "
+    if isinstance(i, ir.Move):
+        out.append(head + _move(i) + _at(i.span))
+    elif isinstance(i, ir.SetDigital):
+        out.append(head + f"set out[{i.port}] = {'on' if i.value else 'off'}{_signal(i.signal)}" + _at(i.span))
+    elif isinstance(i, ir.SetAnalog):
+        out.append(head + f"set aout[{i.port}] = {_f(i.value)}{_signal(i.signal)}" + _at(i.span))
+    elif isinstance(i, ir.Pulse):
+        out.append(head + f"pulse out[{i.port}] for {_f(i.duration)}{_signal(i.signal)}" + _at(i.span))
+    elif isinstance(i, ir.WaitTime):
+        out.append(head + f"wait {_f(i.duration)}" + _at(i.span))
+    elif isinstance(i, ir.WaitInput):
+        timeout = f" timeout {_f(i.timeout)}" if i.timeout is not None else ""
+        out.append(head + f"wait until {_cond(i.condition)}{timeout}" + _at(i.span))
+    elif isinstance(i, ir.Sync):
+        out.append(head + f"sync {i.name}" + _at(i.span))
+    elif isinstance(i, ir.Native):
+        out.append(head + f"native {i.vendor} {json.dumps(i.text)}" + _at(i.span))
+    elif isinstance(i, ir.If):
+        out.append(head + f"if {_cond(i.condition)}" + _at(i.span))
+        out.append(f"{indent}  then:")
+        for j in i.then:
+            _instr(j, indent + "    ", out)
+        out.append(f"{indent}  else:")
+        for j in i.otherwise:
+            _instr(j, indent + "    ", out)
+    elif isinstance(i, ir.ProcCall):
+        out.append(head + f"call {i.proc}({', '.join(i.args)})" + _at(i.span))
+        for j in i.body:
+            _instr(j, indent + "  ", out)
+
+
+def dump_program(prog: ir.Program) -> str:
+    """The whole program: its cell, then each task's instructions."""
+    _MAIN[0] = prog.span.path if prog.span is not None else ""
+    out = [f"program {prog.name}", dump_cell(prog.cell)]
+    for t in prog.tasks:
+        out.append(f"task {t.name} on {t.robot}")
+        for i in t.body:
+            _instr(i, "  ", out)
+    return "\n".join(out) + "\n"
+
+
+def to_jsonable(x: Any) -> Any:
+    if isinstance(x, Span):
+        return {"file": x.path, "line": x.start.line, "col": x.start.col}
+    if isinstance(x, ir.Pose):
+        return {"position": list(x.position), "quaternion": list(x.quaternion)}
+    if isinstance(x, Enum):
+        return x.name.lower()
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        obj: dict[str, Any] = {"type": type(x).__name__}
+        for f in dataclasses.fields(x):
+            value = getattr(x, f.name)
+            if value is not None or f.name != "span":
+                obj[f.name] = to_jsonable(value)
+        return obj
+    if isinstance(x, (tuple, list)):
+        return [to_jsonable(v) for v in x]
+    return x
+
+
+def to_json(prog: ir.Program | ir.Cell) -> str:
+    return json.dumps(to_jsonable(prog), indent=2, ensure_ascii=False) + "\n"

@@ -1,0 +1,185 @@
+"""Compiled closed-form IK kernels (numba): the same algebra as `opw.opw_ik` and
+`urik.ur_ik`, one pose at a time in a loop, writing controller joint values directly.
+
+The numpy versions stay as the readable reference and are tested against these.
+Kernels compile on first use (cache=True keeps them across processes).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rmot.compiler.robots.opw import OpwJointMap, OpwParams
+from rmot.compiler.robots.urik import UrParams
+
+__all__ = ["opw_batch", "ur_batch", "opw_kernel_args", "opw_solve", "ur_solve"]
+
+
+def _acos(x: float) -> float:
+    if x > 1.0:
+        return 0.0 if x <= 1.0 + 1e-12 else math.nan
+    if x < -1.0:
+        return math.pi if x >= -1.0 - 1e-12 else math.nan
+    return math.acos(x)
+
+
+_acos_j = njit(cache=True)(_acos)
+
+
+@njit(cache=True)
+def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
+    a1, a2, b, c1, c2, c3, c4 = p[0], p[1], p[2], p[3], p[4], p[5], p[6]
+    cx, cy, cz = t[0, 3] - c4 * t[0, 2], t[1, 3] - c4 * t[1, 2], t[2, 3] - c4 * t[2, 2]
+    rho2 = cx * cx + cy * cy - b * b
+    nx1 = math.sqrt(rho2) - a1 if rho2 >= 0 else math.nan
+    tmp1, tmp2 = math.atan2(cy, cx), math.atan2(b, nx1 + a1)
+    dz = cz - c1
+    s1_2 = nx1 * nx1 + dz * dz
+    s2_2 = (nx1 + 2 * a1) ** 2 + dz * dz
+    kappa_2 = a2 * a2 + c3 * c3
+    c2_2 = c2 * c2
+    tmp13 = _acos_j((s1_2 + c2_2 - kappa_2) / (2 * math.sqrt(s1_2) * c2))
+    tmp14 = math.atan2(nx1, dz)
+    tmp15 = _acos_j((s2_2 + c2_2 - kappa_2) / (2 * math.sqrt(s2_2) * c2))
+    tmp16 = math.atan2(nx1 + 2 * a1, dz)
+    tmp9 = 2 * c2 * math.sqrt(kappa_2)
+    tmp11 = _acos_j((s1_2 - c2_2 - kappa_2) / tmp9)
+    tmp12 = _acos_j((s2_2 - c2_2 - kappa_2) / tmp9)
+    psi = math.atan2(a2, c3)
+    th1 = (tmp1 - tmp2, tmp1 - tmp2, tmp1 + tmp2 - math.pi, tmp1 + tmp2 - math.pi)
+    th2 = (-tmp13 + tmp14, tmp13 + tmp14, -tmp15 - tmp16, tmp15 - tmp16)
+    th3 = (tmp11 - psi, -tmp11 - psi, tmp12 - psi, -tmp12 - psi)
+    for i in range(4):
+        s1, k1 = math.sin(th1[i]), math.cos(th1[i])
+        s23, k23 = math.sin(th2[i] + th3[i]), math.cos(th2[i] + th3[i])
+        # rce = (Rz(θ1)·Ry(θ2+θ3))ᵀ · R: the columns 0 and 2 are all the wrist needs
+        r00 = k1 * k23 * t[0, 0] + s1 * k23 * t[1, 0] - s23 * t[2, 0]
+        r10 = -s1 * t[0, 0] + k1 * t[1, 0]
+        r20 = k1 * s23 * t[0, 0] + s1 * s23 * t[1, 0] + k23 * t[2, 0]
+        r02 = k1 * k23 * t[0, 2] + s1 * k23 * t[1, 2] - s23 * t[2, 2]
+        r12 = -s1 * t[0, 2] + k1 * t[1, 2]
+        r22 = k1 * s23 * t[0, 2] + s1 * s23 * t[1, 2] + k23 * t[2, 2]
+        t4 = math.atan2(r12, r02)
+        t5 = math.atan2(math.sqrt(r02 * r02 + r12 * r12), r22)
+        for w in range(2):
+            if w == 1:
+                t4 = t4 - math.pi if t4 > 0 else t4 + math.pi
+                t5 = -t5
+            s4, k4 = math.sin(t4), math.cos(t4)
+            a00 = k4 * r00 + s4 * r10
+            a10 = -s4 * r00 + k4 * r10
+            t6 = math.atan2(a10, math.cos(t5) * a00 - math.sin(t5) * r20)
+            _store(out[4 * w + i], (th1[i], th2[i], th3[i], t4, t5, t6), sign, offset, cinv)
+
+
+@njit(cache=True)
+def _store(row, theta, sign, offset, cinv):  # type: ignore[no-untyped-def]
+    """row = cinv @ ((theta - offset) * sign): OPW angles to controller values."""
+    for j in range(6):
+        acc = 0.0
+        for k in range(6):
+            c = cinv[j, k]
+            if c != 0.0:
+                acc += c * (theta[k] - offset[k]) * sign[k]
+        row[j] = acc
+
+
+@njit(cache=True)
+def _opw_many(p, sign, offset, cinv, poses, out):  # type: ignore[no-untyped-def]
+    for n in range(poses.shape[0]):
+        _opw_one(p, sign, offset, cinv, poses[n], out[n])
+
+
+def opw_kernel_args(p: OpwParams, jmap: OpwJointMap) -> tuple[np.ndarray, ...]:
+    return (
+        np.array([p.a1, p.a2, p.b, p.c1, p.c2, p.c3, p.c4]), np.array(jmap.sign, dtype=float),
+        np.array(jmap.offset, dtype=float), np.ascontiguousarray(jmap._cinv),
+    )
+
+
+def opw_solve(args: tuple[np.ndarray, ...], poses: np.ndarray) -> np.ndarray:
+    """poses (N,4,4) -> (N,8,6) controller values (branch rows as in `opw.opw_ik`)."""
+    poses = np.ascontiguousarray(poses, dtype=float)
+    out = np.empty((len(poses), 8, 6))
+    _opw_many(*args, poses, out)
+    return out
+
+
+def opw_batch(p: OpwParams, poses: np.ndarray) -> np.ndarray:
+    """OPW angles (identity joint map), for comparing with the numpy reference."""
+    return opw_solve(opw_kernel_args(p, OpwJointMap()), poses)
+
+
+@njit(cache=True)
+def _dh(theta, d, a, alpha):  # type: ignore[no-untyped-def]
+    c, s, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
+    m = np.zeros((4, 4))
+    m[0, 0], m[0, 1], m[0, 2], m[0, 3] = c, -s * ca, s * sa, a * c
+    m[1, 0], m[1, 1], m[1, 2], m[1, 3] = s, c * ca, -c * sa, a * s
+    m[2, 1], m[2, 2], m[2, 3], m[3, 3] = sa, ca, d, 1.0
+    return m
+
+
+@njit(cache=True)
+def _inv(m):  # type: ignore[no-untyped-def]
+    out = np.zeros((4, 4))
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = m[j, i]
+        out[i, 3] = -(m[0, i] * m[0, 3] + m[1, i] * m[1, 3] + m[2, i] * m[2, 3])
+    out[3, 3] = 1.0
+    return out
+
+
+@njit(cache=True)
+def _wrap(x):  # type: ignore[no-untyped-def]
+    return (x + math.pi) % (2 * math.pi) - math.pi
+
+
+@njit(cache=True)
+def _ur_one(p, t, out):  # type: ignore[no-untyped-def]
+    d1, a2, a3, d4, d5, d6 = p[0], p[1], p[2], p[3], p[4], p[5]
+    h = math.pi / 2
+    px5, py5 = t[0, 3] - d6 * t[0, 2], t[1, 3] - d6 * t[1, 2]
+    psi, r = math.atan2(py5, px5), math.sqrt(px5 * px5 + py5 * py5)
+    phi = _acos_j(d4 / r) if r > 0 else math.nan
+    for si in range(2):
+        q1 = psi + phi + h if si == 0 else psi - phi + h
+        s1, c1 = math.sin(q1), math.cos(q1)
+        a5 = _acos_j((t[0, 3] * s1 - t[1, 3] * c1 - d4) / d6)
+        xz, yz = t[0, 0] * s1 - t[1, 0] * c1, t[0, 1] * s1 - t[1, 1] * c1
+        t01i = _inv(_dh(q1, d1, 0.0, h))
+        for wi in range(2):
+            q5 = a5 if wi == 0 else -a5
+            s5 = math.sin(q5)
+            q6 = 0.0 if abs(s5) < 1e-12 else math.atan2(-yz / s5, xz / s5)
+            t14 = t01i @ t @ _inv(_dh(q5, d5, 0.0, -h) @ _dh(q6, d6, 0.0, 0.0))
+            px, py = t14[0, 3], t14[1, 3]
+            q234 = math.atan2(t14[1, 0], t14[0, 0])
+            a3c = _acos_j((px * px + py * py - a2 * a2 - a3 * a3) / (2 * a2 * a3))
+            for ei in range(2):
+                q3 = a3c if ei == 0 else -a3c
+                q2 = math.atan2(py, px) - math.atan2(a3 * math.sin(q3), a2 + a3 * math.cos(q3))
+                row = 4 * si + 2 * wi + ei
+                out[row, 0], out[row, 1], out[row, 2] = _wrap(q1), _wrap(q2), _wrap(q3)
+                out[row, 3], out[row, 4], out[row, 5] = _wrap(q234 - q2 - q3), _wrap(q5), _wrap(q6)
+
+
+@njit(cache=True)
+def _ur_many(p, poses, out):  # type: ignore[no-untyped-def]
+    for n in range(poses.shape[0]):
+        _ur_one(p, poses[n], out[n])
+
+
+def ur_solve(p_arr: np.ndarray, poses: np.ndarray) -> np.ndarray:
+    poses = np.ascontiguousarray(poses, dtype=float)
+    out = np.empty((len(poses), 8, 6))
+    _ur_many(p_arr, poses, out)
+    return out
+
+
+def ur_batch(p: UrParams, poses: np.ndarray) -> np.ndarray:
+    return ur_solve(np.array([p.d1, p.a2, p.a3, p.d4, p.d5, p.d6]), poses)

@@ -1,0 +1,53 @@
+"""load_robot / list_robots: library names and URDF paths, cached per key."""
+
+from __future__ import annotations
+
+import difflib
+import os
+from functools import lru_cache
+
+from rmot.compiler.robots import codes
+from rmot.compiler.robots.errors import RobotError
+from rmot.compiler.robots.robot import Robot
+
+__all__ = ["list_robots", "load_robot", "suggest"]
+
+
+def list_robots() -> tuple[str, ...]:
+    """The library names, sorted."""
+    from rmot.compiler.robots.library import SPECS
+
+    return tuple(sorted(SPECS))
+
+
+def suggest(name: str) -> str:
+    """"; did you mean 'x'?" for a near miss, else ""."""
+    close = difflib.get_close_matches(name.lower(), list_robots(), n=1, cutoff=0.5)
+    return f"; did you mean '{close[0]}'?" if close else ""
+
+
+def load_robot(name_or_path: str) -> Robot:
+    """A library robot by name, or a URDF file by path (absolute, or ending in .urdf).
+    Raises RobotError (only) for an unknown name or a file that is not a usable arm."""
+    key = str(name_or_path)
+    if key.lower().endswith(".urdf") or os.sep in key:
+        return _load_urdf(os.path.abspath(key))
+    return _load_library(key)
+
+
+@lru_cache(maxsize=None)
+def _load_library(name: str) -> Robot:
+    from rmot.compiler.robots.build import build_robot
+    from rmot.compiler.robots.library import SPECS
+
+    spec = SPECS.get(name)
+    if spec is None:
+        raise RobotError(f"unknown robot '{name}'{suggest(name)} (see `rmot robots list`)", codes.UNKNOWN_ROBOT)
+    return build_robot(spec)
+
+
+@lru_cache(maxsize=None)
+def _load_urdf(path: str) -> Robot:
+    from rmot.compiler.robots.urdf import robot_from_urdf
+
+    return robot_from_urdf(path)

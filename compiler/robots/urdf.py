@@ -1,0 +1,116 @@
+"""URDF robots through pinocchio's parser: a serial arm, its limits and collision solids.
+
+Meshes resolve relative to the file (and `package://` URIs against the file's folder and
+its ancestors). The flange is the frame named tool0, flange or ee_link (in that order),
+else the last body of the chain. Accelerations are not in URDF: 4 × the velocity limit per
+second, as for the library. Reach: the largest distance of the flange from the J1 axis
+over 4096 deterministic random configurations.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+import pinocchio as pin
+
+from rmot.compiler import ir
+from rmot.compiler.robots import codes
+from rmot.compiler.robots.errors import RobotError
+from rmot.compiler.robots.robot import LinkSolid, Robot
+
+__all__ = ["robot_from_urdf"]
+
+_FLANGE_NAMES = ("tool0", "flange", "ee_link")
+
+
+def robot_from_urdf(path: str) -> Robot:
+    if not os.path.isfile(path):
+        raise RobotError(f"URDF file '{path}' does not exist", codes.BAD_URDF)
+    try:
+        model = pin.buildModelFromUrdf(path)
+        geoms = pin.buildGeomFromUrdf(model, path, pin.GeometryType.COLLISION, package_dirs=_package_dirs(path))
+    except Exception as exc:  # pinocchio raises bare RuntimeError/ValueError for any defect
+        raise RobotError(f"cannot load URDF '{path}': {str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__}", codes.BAD_URDF) from None
+    if model.nq == 0:
+        raise RobotError(f"URDF '{path}' has no movable joint", codes.BAD_URDF)
+    try:
+        robot = _robot(model, geoms, path)
+    except ValueError as exc:
+        raise RobotError(f"URDF '{path}' is not a usable serial arm: {exc}", codes.BAD_URDF) from None
+    return robot
+
+
+def _package_dirs(path: str) -> list[str]:
+    folder = os.path.dirname(os.path.abspath(path))
+    dirs = [folder]
+    while os.path.dirname(folder) != folder:
+        folder = os.path.dirname(folder)
+        dirs.append(folder)
+    return dirs
+
+
+def _flange_frame(model: pin.Model) -> int:
+    for name in _FLANGE_NAMES:
+        if model.existFrame(name):
+            return model.getFrameId(name)
+    last_joint = model.njoints - 1
+    bodies = [i for i, f in enumerate(model.frames) if f.parentJoint == last_joint and f.type == pin.FrameType.BODY]
+    return bodies[-1] if bodies else model.addFrame(pin.Frame("flange", last_joint, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
+
+
+def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str) -> Robot:
+    from rmot.compiler.robots.chain import chain_of
+
+    chain_of(model)  # raises ValueError for branched chains and multi-dof joints
+    fid = _flange_frame(model)
+    limits = np.column_stack([model.lowerPositionLimit, model.upperPositionLimit])
+    if not np.all(np.isfinite(limits)) or np.any(limits[:, 0] >= limits[:, 1]):
+        raise ValueError("every joint needs finite lower < upper position limits")
+    velocity = np.where(model.velocityLimit > 0, model.velocityLimit, 1.0)
+    solids = tuple(s for s in (_solid(g) for g in geoms.geometryObjects) if s is not None)
+    name = os.path.splitext(os.path.basename(path))[0]
+    robot = Robot(
+        name=name, vendor="URDF", model_name=model.name or name, model=model, flange_frame=fid,
+        joint_limits=limits, velocity_limits=velocity, accel_limits=4.0 * velocity, reach=0.0,
+        solids=solids, adjacent_pairs=_adjacent(solids), has_inertia=any(i.mass > 0 for i in model.inertias[1:]),
+        source=path,
+    )
+    robot.reach = _reach(robot)
+    return robot
+
+
+def _solid(g: pin.GeometryObject) -> LinkSolid | None:
+    import coal
+
+    shape = g.geometry
+    if isinstance(shape, coal.Box):
+        geom: ir.Geometry = ir.Box(tuple(float(2 * h) for h in shape.halfSide))  # type: ignore[arg-type]
+    elif isinstance(shape, coal.Capsule):
+        geom = ir.Capsule(float(shape.radius), float(2 * shape.halfLength))
+    elif isinstance(shape, coal.Cylinder):
+        geom = ir.Cylinder(float(shape.radius), float(2 * shape.halfLength))
+    elif isinstance(shape, coal.Sphere):
+        geom = ir.Sphere(float(shape.radius))
+    elif g.meshPath:
+        geom = ir.Mesh(os.path.abspath(g.meshPath), float(g.meshScale[0]))
+    else:
+        return None
+    return LinkSolid(g.name, int(g.parentJoint), geom, ir.Pose.from_matrix(g.placement.homogeneous))
+
+
+def _adjacent(solids: tuple[LinkSolid, ...]) -> tuple[tuple[int, int], ...]:
+    return tuple(
+        (i, j) for i, a in enumerate(solids) for j, b in enumerate(solids) if i < j and abs(a.joint_id - b.joint_id) <= 1
+    )
+
+
+def _reach(robot: Robot) -> float:
+    qs = np.random.default_rng(0).uniform(robot.joint_limits[:, 0], robot.joint_limits[:, 1], (4096, robot.dof))
+    flange = robot.fk_batch(qs)[:, :3, 3]
+    first = robot._chain.placements[0]
+    axis = first[:3, :3] @ robot._chain.axes[0]
+    rel = flange - first[:3, 3]
+    radial = rel - np.outer(rel @ axis, axis)
+    return float(math.sqrt(np.max(np.sum(radial * radial, axis=1))))

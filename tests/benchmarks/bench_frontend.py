@@ -1,0 +1,91 @@
+"""Front-end speed: parse + lower a generated 10,000-line program; `rmot --help` wall time.
+
+Run: make bench  (or .venv/bin/python -m pytest tests/benchmarks/bench_frontend.py)
+Targets (issue 2): >= 20,000 lines/s for parse + lower; <= 0.3 s for `rmot --help`.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+
+import pytest
+
+from rmot.compiler.frontend import load_text
+from rmot.lang.parse import parse_text
+
+LINES = 10_000
+
+
+def generated_program(lines: int = LINES) -> str:
+    """A realistic mix: targets, settings, moves with modifiers, I/O, waits; one statement per line."""
+    out = ["program big on r1 {", "  tool gripper", "  frame table_top", "  speed 400 mm/s"]
+    i = 0
+    while len(out) < lines - 1:
+        x, y = (i % 40) * 10, (i % 25) * 12
+        out += [
+            f"  target t{i} = pose(x={x}mm, y={y}mm, z=150mm, rx=180deg)",
+            f"  move joint shift(t{i}, z=50mm) zone 10 mm",
+            f"  move linear t{i} speed 100 mm/s zone fine",
+            "  set out[1] = on",
+            "  wait 200 ms",
+            f"  move linear pose(x={x}mm, y={y}mm, z=200mm, rx=180deg) * pose(rz={i % 90}deg)",
+            "  if in[2] == on { set out[2] = on } else { wait until in[2] == on timeout 5 s }",
+            f"  move joint joints({i % 30}, -20, 30, 0, 60, 0) deg joint_speed 50 %",
+        ]
+        i += 1
+    out = out[: lines - 1] + ["}"]
+    return "\n".join(out) + "\n"
+
+
+def _lines_per_second(benchmark: pytest.FixtureRequest, fn, text: str) -> None:  # type: ignore[no-untyped-def]
+    benchmark(fn, text)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info["lines_per_s"] = round(text.count("\n") / median)
+    print(f"\n{fn.__name__}: {text.count(chr(10))} lines, median {median:.3f} s, {text.count(chr(10)) / median:,.0f} lines/s")
+
+
+def test_parse_and_lower_10k_lines(benchmark) -> None:  # type: ignore[no-untyped-def]
+    """Parse + check + lower 10,000 lines (default cell, robot library warm)."""
+    text = generated_program()
+    first = load_text(text, "/bench/big.rmot")
+    assert not first.has_errors and first.program is not None
+
+    def parse_and_lower(t: str) -> None:
+        load_text(t, "/bench/big.rmot")
+
+    _lines_per_second(benchmark, parse_and_lower, text)
+
+
+def test_parse_only_10k_lines(benchmark) -> None:  # type: ignore[no-untyped-def]
+    """The lark LALR parse + AST build alone."""
+    text = generated_program()
+
+    def parse_only(t: str) -> None:
+        parse_text(t, "big.rmot")
+
+    _lines_per_second(benchmark, parse_only, text)
+
+
+def test_help_wall_time(benchmark) -> None:  # type: ignore[no-untyped-def]
+    """`rmot --help` in a fresh interpreter (what a user waits for)."""
+
+    def run() -> None:
+        subprocess.run([sys.executable, "-c", "from rmot.compiler.cli import main; import sys; sys.argv=['rmot','--help']; main()"],
+                       check=False, capture_output=True)
+
+    benchmark.pedantic(run, rounds=5, iterations=1)
+    print(f"\nrmot --help: median {benchmark.stats.stats.median:.3f} s")
+
+
+def test_ir_of_a_small_file_wall_time(benchmark) -> None:  # type: ignore[no-untyped-def]
+    """`rmot ir examples/pick_place.rmot` in a fresh interpreter, robot library included."""
+    t0 = time.perf_counter()
+
+    def run() -> None:
+        subprocess.run([sys.executable, "-c", "from rmot.compiler.cli import main; import sys; "
+                        "sys.argv=['rmot','ir','examples/pick_place.rmot']; main()"], check=False, capture_output=True)
+
+    benchmark.pedantic(run, rounds=3, iterations=1)
+    print(f"\nrmot ir (small file): median {benchmark.stats.stats.median:.3f} s ({time.perf_counter() - t0:.1f} s total)")

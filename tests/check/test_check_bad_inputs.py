@@ -1,0 +1,121 @@
+"""Malformed inputs: each fixture's `# E:` expectations are exactly the diagnostics reported.
+
+Expectations are read out of the fixtures in tests/data/bad/ (mypy style), in comments:
+  `# E: E101 @14`            an error with code E101 on this line at column 14
+  `# E@file.rmot:3:1: E109`  an error in another file (or on a line that cannot hold a comment)
+  `# E@3:10: E003`           the same for this file
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from rmot.compiler.frontend import load_program, load_text
+from rmot.lang.diagnostics import render
+
+BAD = Path(__file__).resolve().parents[1] / "data" / "bad"
+_SAME_LINE = re.compile(r"#\s*E:\s*((?:E\d{3}\s*@\d+[;,\s]*)+)")
+_ONE = re.compile(r"(E\d{3})\s*@(\d+)")
+_ELSEWHERE = re.compile(r"#\s*E@(?:([\w.]+):)?(\d+):(\d+):\s*(E\d{3})")
+
+
+def fixtures() -> list[Path]:
+    return sorted(BAD.glob("*.rmot"))
+
+
+def expectations(path: Path) -> set[tuple[str, int, int, str]]:
+    """{(file name, line, column, code)} the fixture declares."""
+    out: set[tuple[str, int, int, str]] = set()
+    for lineno, line in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+        for m in _ELSEWHERE.finditer(line):
+            out.add((m.group(1) or path.name, int(m.group(2)), int(m.group(3)), m.group(4)))
+        same = _SAME_LINE.search(line)
+        if same:
+            for code, col in _ONE.findall(same.group(1)):
+                out.add((path.name, lineno, int(col), code))
+    return out
+
+
+def _found(diagnostics: tuple) -> set[tuple[str, int, int, str]]:  # type: ignore[type-arg]
+    return {(Path(d.span.path).name, d.span.start.line, d.span.start.col, d.code.id) for d in diagnostics if d.span is not None}
+
+
+def test_there_are_at_least_forty_fixtures() -> None:
+    """The issue asks for 40+ malformed inputs, each with an expectation."""
+    files = fixtures()
+    assert len(files) >= 40
+    assert all(expectations(f) for f in files)
+
+
+@pytest.mark.parametrize("path", fixtures(), ids=lambda p: p.stem)
+def test_fixture_reports_exactly_its_expected_errors(path: Path) -> None:
+    """(file, line, column, code) of every diagnostic matches the fixture's inline expectations; rendering works."""
+    result = load_program(str(path))
+    assert result.program is None
+    assert _found(result.diagnostics) == expectations(path)
+    for d in result.diagnostics:
+        text = render(d)
+        assert text.startswith(f"{d.span}: error[{d.code.id}]: ")
+
+
+def test_duplicate_definition_has_a_note_at_the_first() -> None:
+    """The duplicate's note points at the first definition's line."""
+    result = load_program(str(fixtures()[0].parent / "duplicate_target.rmot"))
+    (d,) = result.diagnostics
+    (text, span), = d.notes
+    assert "first defined here" in text and span is not None and (span.start.line, span.start.col) == (2, 10)
+
+
+def test_all_semantic_errors_of_a_file_come_in_one_run() -> None:
+    """Four independent mistakes give four diagnostics, in source order."""
+    result = load_program(str(fixtures()[0].parent / "many_errors.rmot"))
+    assert [d.span.start.line for d in result.diagnostics] == [2, 3, 4, 5]  # type: ignore[union-attr]
+
+
+class TestWholeFileProblems:
+    def _one(self, tmp_path: Path, data: bytes) -> tuple[str, int, int]:
+        f = tmp_path / "bad.rmot"
+        f.write_bytes(data)
+        result = load_program(str(f))
+        assert result.program is None and result.diagnostics
+        d = result.diagnostics[0]
+        render(d)
+        line, col = (d.span.start.line, d.span.start.col) if d.span else (0, 0)
+        return d.code.id, line, col
+
+    def test_empty_file(self, tmp_path: Path) -> None:
+        """An empty file is E009 at 1:1."""
+        assert self._one(tmp_path, b"") == ("E009", 1, 1)
+
+    def test_binary_garbage(self, tmp_path: Path) -> None:
+        """Random bytes with NULs are a binary file (E010) or not UTF-8 (E502), never a traceback."""
+        code, _, _ = self._one(tmp_path, bytes(range(256)) * 4)
+        assert code in ("E010", "E502")
+
+    def test_not_utf8(self, tmp_path: Path) -> None:
+        """A Latin-1 byte is E502 at the line and column where it stands."""
+        assert self._one(tmp_path, "program p on r1 {\n  wait 1 s # caf\xe9\n}\n".encode("latin-1")) == ("E502", 2, 17)
+
+    def test_ten_megabyte_file(self, tmp_path: Path) -> None:
+        """A 10 MB source is refused before it is read (E503)."""
+        assert self._one(tmp_path, b"wait 1 s\n" * (10 * 1024 * 1024 // 9))[0] == "E503"
+
+    def test_byte_order_mark_is_accepted(self, tmp_path: Path) -> None:
+        """A UTF-8 BOM (Windows editors) is not an error."""
+        f = tmp_path / "bom.rmot"
+        f.write_bytes("\ufeffprogram p on r1 { wait 1 s }\n".encode())
+        assert load_program(str(f)).diagnostics == ()
+
+    def test_missing_main_file(self, tmp_path: Path) -> None:
+        """A file that does not exist is E501 without a span."""
+        result = load_program(str(tmp_path / "nope.rmot"))
+        assert [d.code.id for d in result.diagnostics] == ["E501"]
+
+    def test_cell_only_file_has_no_program(self) -> None:
+        """A file holding only a cell gives the cell, no program, no error."""
+        result = load_text("cell c { robot r1 = abb_irb120 }", "c.rmot")
+        assert result.diagnostics == () and result.program is None
+        assert result.cell is not None and result.cell.name == "c"

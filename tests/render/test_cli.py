@@ -1,0 +1,77 @@
+"""`rmot render` end to end: front end, planner, picture; bad input is a diagnostic and exit code 2."""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+from PIL import Image
+
+from rmot.compiler.cli import cli
+
+PROGRAM = str(Path(__file__).parent / "data" / "swing.rmot")
+
+
+def _run(*args: str) -> tuple[int, str]:
+    result = CliRunner().invoke(cli, ["render", *args])
+    return result.exit_code, result.output
+
+
+def test_png_still_of_the_program(tmp_path: Path) -> None:
+    """A PNG of the requested size is written atomically (no temporary file left), exit code 0."""
+    out = tmp_path / "swing.png"
+    code, output = _run(PROGRAM, "-o", str(out), "--size", "200x150", "--at", "0.3", "--aa", "1")
+    assert (code, output) == (0, "")
+    assert Image.open(out).size == (200, 150)
+    assert [p.name for p in tmp_path.iterdir()] == ["swing.png"]
+
+
+def test_svg_and_html_outputs(tmp_path: Path) -> None:
+    """-o .svg writes a parseable drawing with a path per body; -o .html a page with the scene inlined."""
+    svg, page = tmp_path / "a.svg", tmp_path / "a.html"
+    assert _run(PROGRAM, "-o", str(svg), "--size", "200x150")[0] == 0
+    ids = {p.get("id") for p in ET.parse(svg).getroot().iter("{http://www.w3.org/2000/svg}path")}
+    assert {"table", "lines"} <= ids and any(i.startswith("r1/") for i in ids)
+    assert _run(PROGRAM, "-o", str(page), "--fps", "5")[0] == 0
+    assert '"name":"table"' in page.read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["-o", "x.bmp"], "Invalid value for '-o' / '--output': must end in one of .png, .gif, .mp4, .svg, .html (got 'x.bmp')"),
+    (["-o", "x.png", "--size", "640by480"], "Invalid value for '--size': must be WIDTHxHEIGHT in pixels, each 16..8192 (got '640by480')"),
+    (["-o", "x.png", "--camera", "eye=1,2"], "Invalid value for '--camera': camera eye must be three numbers x,y,z (got '1,2')"),
+])
+def test_bad_options_are_usage_errors(args: list[str], message: str) -> None:
+    """Option values are checked before any work: a one-line message, exit code 2."""
+    code, output = _run(PROGRAM, *args)
+    assert code == 2
+    assert message in output
+
+
+def test_instant_outside_the_program_is_an_input_error(tmp_path: Path) -> None:
+    """--at beyond the cycle time: error E582 naming the duration, exit 2, nothing written."""
+    out = tmp_path / "late.png"
+    code, output = _run(PROGRAM, "-o", str(out), "--at", "99")
+    assert code == 2
+    assert "error[E582]: --at must be within 0..0." in output and "(got 99 s)" in output
+    assert not out.exists()
+
+
+def test_program_errors_are_rendered_diagnostics(tmp_path: Path) -> None:
+    """A broken program prints file:line:col: error[...] with the source line; exit 2, no picture."""
+    bad = tmp_path / "bad.rmot"
+    bad.write_text(Path(PROGRAM).read_text(encoding="utf-8").replace("move joint joints(40", "move joint jionts(40"))
+    out = tmp_path / "bad.png"
+    code, output = _run(str(bad), "-o", str(out))
+    assert code == 2
+    assert f"{bad}:10:" in output and "error[E" in output and "jionts" in output
+    assert not out.exists()
+
+
+def test_unwritable_output_is_an_error_not_a_traceback(tmp_path: Path) -> None:
+    """Writing into a missing folder reports E580, exit 2."""
+    code, output = _run(PROGRAM, "-o", str(tmp_path / "missing" / "x.png"), "--size", "64x48", "--aa", "1")
+    assert code == 2
+    assert "error[E580]: output file must be writable" in output
