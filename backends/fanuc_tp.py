@@ -19,8 +19,9 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     PR[FRAME_PR + k] (`PR[i]=LPOS`, `PR[i,j]=value`, `UFRAME[n]=PR[i]`): those PRs and
     UFRAME/UTOOL slots are overwritten.
   * speeds: J moves in % of the maximum joint speed (integer 1..100), L/C moves in mm/sec
-    (integer); a `time` modifier is emitted exactly as `n.nnsec`. Non-integer values are
-    rounded to the nearest (warning W402).
+    (integer, at most MAX_TCP_MM_S = 2000); a `time` modifier is emitted exactly as `n.nnsec`.
+    Other values are rounded or clamped to the nearest legal one (warning W402).
+  * times: WAIT in steps of 0.01 s, PULSE in steps of 0.1 s (other values rounded, W404).
   * zones: FINE, else CNTn. CNT is not a radius (it scales the corner rounding with speed):
     rmot emits CNT = round(radius / CNT_MM) clamped to 1..100, the nearest faithful choice
     (warning W403 on every blended move).
@@ -111,6 +112,7 @@ class FanucBackend(Backend):
     MAX_INSTRUCTIONS: ClassVar[int] = 1000
     FRAME_PR: ClassVar[int] = 90
     CNT_MM: ClassVar[float] = 1.0  # mm of blend radius per CNT step (documented heuristic)
+    MAX_TCP_MM_S: ClassVar[int] = 2000  # the L/C speed limit of the R-30iB motion software
     EMIT: ClassVar[dict[type, str]] = {
         ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
         ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
@@ -243,9 +245,10 @@ class FanucBackend(Backend):
         if node.motion.duration is not None:
             return f"{fmt(node.motion.duration, 2)}sec"
         v = node.motion.tcp_speed * 1000.0
-        n = max(1, round(v))
+        n = max(1, min(self.MAX_TCP_MM_S, round(v)))
         if abs(n - v) > 1e-9:
-            self.warn(codes.SPEED_ROUNDED, f"TCP speed {fmt(v, 3)} mm/sec must be an integer for TP; "
+            self.warn(codes.SPEED_ROUNDED, f"TCP speed {fmt(v, 3)} mm/sec must be an integer of at most "
+                      f"{self.MAX_TCP_MM_S} for TP; "
                       f"emitted as {n}mm/sec", node.span)
         return f"{n}mm/sec"
 
@@ -298,10 +301,18 @@ class FanucBackend(Backend):
         return [f"AO[{node.port}{_sig(node.signal)}]={fmt(node.value, 3)}"]
 
     def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
-        return [f"DO[{node.port}{_sig(node.signal)}]=PULSE,{fmt(node.duration, 1)}sec"]
+        return [f"DO[{node.port}{_sig(node.signal)}]=PULSE,{self._seconds(node.duration, 1, 'pulse', node)}sec"]
 
     def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
-        return [f"WAIT {fmt(node.duration, 2)}(sec)"]
+        return [f"WAIT {self._seconds(node.duration, 2, 'wait', node)}(sec)"]
+
+    def _seconds(self, value: float, decimals: int, what: str, node: ir.Instr) -> str:
+        """TP times have a fixed resolution (WAIT 0.01 s, PULSE 0.1 s): round, warn if changed."""
+        text = fmt(value, decimals)
+        if abs(float(text) - value) > 1e-9:
+            self.warn(codes.LOWERED, f"{what} time {fmt(value, 4)} s must be a multiple of "
+                      f"{10.0 ** -decimals:g} s for TP; emitted as {text} s", node.span)
+        return text
 
     def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
         c = node.condition

@@ -190,6 +190,8 @@ class RapidBackend(Backend):
         if node.motion.joint_speed >= 1.0:
             return "vmax"
         duration = rec.t_end - rec.t_start
+        if duration < 0.001:  # a zero-length move (already at the target): any speed is the same
+            return "vmax"
         self.warn(codes.SPEED_ROUNDED, f"joint speed {fmt(node.motion.joint_speed * 100, 1)} % has no "
                   "RAPID form; emitted as the planned move duration (\\T)", node.span)
         return f"vmax\\T:={fmt(duration, 3)}"

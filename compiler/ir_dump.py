@@ -43,13 +43,11 @@ def _geometry(g: ir.Geometry | None) -> str:
     return f"mesh({g.path.rsplit('/', 1)[-1]!r} scale={_f(g.scale)})"
 
 
-_MAIN: list[str] = [""]  # the program's own file: its spans print without a file name
-
-
-def _at(span: Span | None) -> str:
+def _at(span: Span | None, main: str) -> str:
+    """`  @line:col`, with the file's name when it is not the program's own file (`main`)."""
     if span is None:
         return ""
-    where = "" if span.path == _MAIN[0] else span.path.replace("\\", "/").rsplit("/", 1)[-1] + ":"
+    where = "" if span.path == main else span.path.replace("\\", "/").rsplit("/", 1)[-1] + ":"
     return f"  @{where}{span.start.line}:{span.start.col}"
 
 
@@ -97,47 +95,47 @@ def _signal(s: str | None) -> str:
     return f" ({s})" if s else ""
 
 
-def _instr(i: ir.Instr, indent: str, out: list[str]) -> None:
+def _instr(i: ir.Instr, indent: str, out: list[str], main: str) -> None:
     head = f"{indent}#{i.uid} "
     if isinstance(i, ir.Move):
-        out.append(head + _move(i) + _at(i.span))
+        out.append(head + _move(i) + _at(i.span, main))
     elif isinstance(i, ir.SetDigital):
-        out.append(head + f"set out[{i.port}] = {'on' if i.value else 'off'}{_signal(i.signal)}" + _at(i.span))
+        out.append(head + f"set out[{i.port}] = {'on' if i.value else 'off'}{_signal(i.signal)}" + _at(i.span, main))
     elif isinstance(i, ir.SetAnalog):
-        out.append(head + f"set aout[{i.port}] = {_f(i.value)}{_signal(i.signal)}" + _at(i.span))
+        out.append(head + f"set aout[{i.port}] = {_f(i.value)}{_signal(i.signal)}" + _at(i.span, main))
     elif isinstance(i, ir.Pulse):
-        out.append(head + f"pulse out[{i.port}] for {_f(i.duration)}{_signal(i.signal)}" + _at(i.span))
+        out.append(head + f"pulse out[{i.port}] for {_f(i.duration)}{_signal(i.signal)}" + _at(i.span, main))
     elif isinstance(i, ir.WaitTime):
-        out.append(head + f"wait {_f(i.duration)}" + _at(i.span))
+        out.append(head + f"wait {_f(i.duration)}" + _at(i.span, main))
     elif isinstance(i, ir.WaitInput):
         timeout = f" timeout {_f(i.timeout)}" if i.timeout is not None else ""
-        out.append(head + f"wait until {_cond(i.condition)}{timeout}" + _at(i.span))
+        out.append(head + f"wait until {_cond(i.condition)}{timeout}" + _at(i.span, main))
     elif isinstance(i, ir.Sync):
-        out.append(head + f"sync {i.name}" + _at(i.span))
+        out.append(head + f"sync {i.name}" + _at(i.span, main))
     elif isinstance(i, ir.Native):
-        out.append(head + f"native {i.vendor} {json.dumps(i.text)}" + _at(i.span))
+        out.append(head + f"native {i.vendor} {json.dumps(i.text)}" + _at(i.span, main))
     elif isinstance(i, ir.If):
-        out.append(head + f"if {_cond(i.condition)}" + _at(i.span))
+        out.append(head + f"if {_cond(i.condition)}" + _at(i.span, main))
         out.append(f"{indent}  then:")
         for j in i.then:
-            _instr(j, indent + "    ", out)
+            _instr(j, indent + "    ", out, main)
         out.append(f"{indent}  else:")
         for j in i.otherwise:
-            _instr(j, indent + "    ", out)
+            _instr(j, indent + "    ", out, main)
     elif isinstance(i, ir.ProcCall):
-        out.append(head + f"call {i.proc}({', '.join(i.args)})" + _at(i.span))
+        out.append(head + f"call {i.proc}({', '.join(i.args)})" + _at(i.span, main))
         for j in i.body:
-            _instr(j, indent + "  ", out)
+            _instr(j, indent + "  ", out, main)
 
 
 def dump_program(prog: ir.Program) -> str:
     """The whole program: its cell, then each task's instructions."""
-    _MAIN[0] = prog.span.path if prog.span is not None else ""
+    main = prog.span.path if prog.span is not None else ""
     out = [f"program {prog.name}", dump_cell(prog.cell)]
     for t in prog.tasks:
         out.append(f"task {t.name} on {t.robot}")
         for i in t.body:
-            _instr(i, "  ", out)
+            _instr(i, "  ", out, main)
     return "\n".join(out) + "\n"
 
 

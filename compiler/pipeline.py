@@ -13,7 +13,7 @@ from rmot.compiler.passes.check_syncs import check_syncs
 from rmot.compiler.passes.load_files import load_sources
 from rmot.compiler.passes.lower_cell import lower_cell
 from rmot.compiler.passes.lower_program import lower_program
-from rmot.compiler.passes.procs import check_recursion
+from rmot.compiler.passes.procs import check_recursion, check_uncalled_procs
 from rmot.compiler.passes.scopes import declare_file_scopes
 from rmot.compiler.passes.state import FrontendState
 
@@ -26,6 +26,7 @@ PASSES: tuple[Pass, ...] = (
     lower_cell,            # cell -> ir.Cell; robots from the library; cell scope
     declare_file_scopes,   # imports, consts, targets, procs of every file; duplicates
     lower_program,         # settings resolved, loops unrolled, procs inlined, frames composed
+    check_uncalled_procs,  # unknown names in procs no task calls
     check_recursion,       # procs calling themselves (even if never called)
     check_syncs,           # sync barriers pair up across tasks
     assign_uids,           # unique instruction numbers in source order

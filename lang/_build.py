@@ -1,6 +1,10 @@
 """The embedded lark Transformer: each grammar rule becomes one AST node with its span.
 
-Used by `lang.parse` only. `begin(file)` sets the file whose spans are being made; the
+Used by `lang.parse` only, as lark's embedded transformer (no parse tree is built: the
+fast path). Embedded callbacks get no positions, so the rules whose first or last symbol is
+a keyword or a bracket are `!rules` in the grammar: their children keep every token, at
+fixed indexes (optional parts give None placeholders), and a node's span runs from its
+first child to its last. `begin(file)` sets the file whose spans are being made; the
 builder also collects the few diagnostics found while building (a keyword used as a name).
 """
 
@@ -9,7 +13,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from lark import Token, Transformer, v_args
+from lark import Token, Transformer
 
 from rmot.lang import ast
 from rmot.lang import codes
@@ -36,9 +40,14 @@ def _unquote(tok: Token) -> str:
     return _ESCAPE.sub(r"\1", str(tok)[1:-1])
 
 
-@v_args(meta=True)
+class Block(tuple):  # type: ignore[type-arg]
+    """A block's statements plus the span of its braces (nodes store a plain tuple)."""
+
+    span: Span
+
+
 class AstBuilder(Transformer):  # type: ignore[type-arg]
-    """lark rule name -> node constructor; children arrive with anonymous tokens filtered out."""
+    """lark rule name -> node constructor; `c` is the rule's children list."""
 
     def __init__(self) -> None:
         super().__init__(visit_tokens=False)
@@ -50,9 +59,17 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         self.diagnostics = []
 
     # -- helpers
-    def _span(self, meta: Any) -> Span:
-        f = self.file
-        return Span(f, Pos(meta.line, meta.column, meta.start_pos), Pos(meta.end_line, meta.end_column, meta.end_pos))
+    def _span(self, c: list[Any]) -> Span:
+        """From the start of the first child to the end of the last (tokens or nodes)."""
+        first = c[0]
+        if first is None:
+            first = next(x for x in c if x is not None)
+        last = c[-1]
+        if last is None:
+            last = next(x for x in reversed(c) if x is not None)
+        start = Pos(first.line, first.column, first.start_pos) if isinstance(first, Token) else first.span.start
+        end = Pos(last.end_line, last.end_column, last.end_pos) if isinstance(last, Token) else last.span.end
+        return Span(self.file, start, end)
 
     def _ident(self, tok: Token, what: str | None = None) -> ast.Ident:
         span = token_span(self.file, tok)
@@ -64,111 +81,111 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def _string(self, tok: Token) -> ast.String:
         return ast.String(_unquote(tok), token_span(self.file, tok))
 
-    @staticmethod
-    def _body(block: Any) -> tuple[Any, ...]:
-        return tuple(block)
-
     # -- files and blocks
-    def start(self, meta: Any, c: list[Any]) -> ast.Module:
-        return ast.Module(self.file, tuple(c))
+    def start(self, c: list[Any]) -> ast.Module:
+        return ast.Module(self.file, tuple(x for x in c if not isinstance(x, Token)))
 
-    def block(self, meta: Any, c: list[Any]) -> tuple[Any, ...]:
-        return tuple(c)
+    def block(self, c: list[Any]) -> Block:
+        out = Block(x for x in c[1:-1] if not isinstance(x, Token))
+        out.span = self._span(c)
+        return out
 
-    def use_cell(self, meta: Any, c: list[Any]) -> ast.UseCell:
-        return ast.UseCell(self._string(c[0]), self._span(meta))
+    def use_cell(self, c: list[Any]) -> ast.UseCell:
+        return ast.UseCell(self._string(c[2]), self._span(c))
 
-    def import_file(self, meta: Any, c: list[Any]) -> ast.Import:
-        return ast.Import(self._string(c[0]), self._span(meta))
+    def import_file(self, c: list[Any]) -> ast.Import:
+        return ast.Import(self._string(c[1]), self._span(c))
 
-    def cell(self, meta: Any, c: list[Any]) -> ast.CellDecl:
-        return ast.CellDecl(self._ident(c[0], "cell"), c[1], self._span(meta))
+    def cell(self, c: list[Any]) -> ast.CellDecl:
+        return ast.CellDecl(self._ident(c[1], "cell"), tuple(c[2]), self._span(c))
 
-    def program(self, meta: Any, c: list[Any]) -> ast.ProgramDecl:
-        robot = self._ident(c[1]) if c[1] is not None else None
-        return ast.ProgramDecl(self._ident(c[0], "program"), robot, c[2], self._span(meta))
+    def program(self, c: list[Any]) -> ast.ProgramDecl:
+        robot = self._ident(c[3]) if c[3] is not None else None
+        return ast.ProgramDecl(self._ident(c[1], "program"), robot, tuple(c[4]), self._span(c))
 
-    def task(self, meta: Any, c: list[Any]) -> ast.TaskDecl:
-        return ast.TaskDecl(self._ident(c[0]), c[1], self._span(meta))
+    def task(self, c: list[Any]) -> ast.TaskDecl:
+        return ast.TaskDecl(self._ident(c[1]), tuple(c[2]), self._span(c))
 
     # -- cell declarations
-    def robot_decl(self, meta: Any, c: list[Any]) -> ast.RobotDecl:
-        library, urdf = c[1]
-        return ast.RobotDecl(self._ident(c[0], "robot"), library, urdf, c[2], self._span(meta))
+    def robot_decl(self, c: list[Any]) -> ast.RobotDecl:
+        library, urdf = c[3]
+        span = self._span([*c[:3], library or urdf, *c[4:]])
+        return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[5], span)
 
-    def robot_library(self, meta: Any, c: list[Any]) -> tuple[ast.Ident, None]:
+    def robot_library(self, c: list[Any]) -> tuple[ast.Ident, None]:
         return self._ident(c[0]), None
 
-    def robot_urdf(self, meta: Any, c: list[Any]) -> tuple[None, ast.String]:
+    def robot_urdf(self, c: list[Any]) -> tuple[None, ast.String]:
         return None, self._string(c[0])
 
-    def fixture_decl(self, meta: Any, c: list[Any]) -> ast.FixtureDecl:
-        return ast.FixtureDecl(self._ident(c[0], "fixture"), c[1], c[2], self._span(meta))
+    def fixture_decl(self, c: list[Any]) -> ast.FixtureDecl:
+        return ast.FixtureDecl(self._ident(c[1], "fixture"), c[3], c[5], self._span(c))
 
-    def geometry(self, meta: Any, c: list[Any]) -> ast.Geometry:
-        return ast.Geometry(self._ident(c[0]), c[1] or (), self._span(meta))
+    def geometry(self, c: list[Any]) -> ast.Geometry:
+        return ast.Geometry(self._ident(c[0]), c[2] or (), self._span(c))
 
-    def tool_decl(self, meta: Any, c: list[Any]) -> ast.ToolDecl:
-        geometry = None if isinstance(c[1], Token) else c[1]
-        opts = dict(c[2:-1])
-        return ast.ToolDecl(self._ident(c[0], "tool"), geometry, opts.get("at"), opts.get("tcp"),
-                            opts.get("mass"), self._ident(c[-1]), self._span(meta))
+    def tool_decl(self, c: list[Any]) -> ast.ToolDecl:
+        geometry = None if isinstance(c[3], Token) else c[3]
+        opts = dict(c[4:-2])
+        return ast.ToolDecl(self._ident(c[1], "tool"), geometry, opts.get("at"), opts.get("tcp"),
+                            opts.get("mass"), self._ident(c[-1]), self._span(c))
 
-    def tool_at(self, meta: Any, c: list[Any]) -> tuple[str, Any]:
+    def tool_at(self, c: list[Any]) -> tuple[str, Any]:
         return "at", c[0]
 
-    def tool_tcp(self, meta: Any, c: list[Any]) -> tuple[str, Any]:
+    def tool_tcp(self, c: list[Any]) -> tuple[str, Any]:
         return "tcp", c[0]
 
-    def tool_mass(self, meta: Any, c: list[Any]) -> tuple[str, Any]:
+    def tool_mass(self, c: list[Any]) -> tuple[str, Any]:
         return "mass", c[0]
 
-    def frame_decl(self, meta: Any, c: list[Any]) -> ast.FrameDecl:
-        return ast.FrameDecl(self._ident(c[0], "frame"), c[1], self._span(meta))
+    def frame_decl(self, c: list[Any]) -> ast.FrameDecl:
+        return ast.FrameDecl(self._ident(c[1], "frame"), c[3], self._span(c))
 
-    def io_decl(self, meta: Any, c: list[Any]) -> ast.IoDecl:
-        robot = self._ident(c[2]) if c[2] is not None else None
-        return ast.IoDecl(c[0], self._string(c[1]), robot, self._span(meta))
+    def io_decl(self, c: list[Any]) -> ast.IoDecl:
+        robot = self._ident(c[5]) if c[5] is not None else None
+        return ast.IoDecl(c[1], self._string(c[3]), robot, self._span(c))
 
     # -- program declarations
-    def target_decl(self, meta: Any, c: list[Any]) -> ast.TargetDecl:
-        return ast.TargetDecl(self._ident(c[0], "target"), c[1], self._span(meta))
+    def target_decl(self, c: list[Any]) -> ast.TargetDecl:
+        return ast.TargetDecl(self._ident(c[1], "target"), c[3], self._span(c))
 
-    def const_decl(self, meta: Any, c: list[Any]) -> ast.ConstDecl:
-        return ast.ConstDecl(self._ident(c[0], "constant"), c[1], self._span(meta))
+    def const_decl(self, c: list[Any]) -> ast.ConstDecl:
+        return ast.ConstDecl(self._ident(c[1], "constant"), c[3], self._span(c))
 
-    def proc_decl(self, meta: Any, c: list[Any]) -> ast.ProcDecl:
-        return ast.ProcDecl(self._ident(c[0], "proc"), c[1] or (), c[2], self._span(meta))
+    def proc_decl(self, c: list[Any]) -> ast.ProcDecl:
+        return ast.ProcDecl(self._ident(c[1], "proc"), c[3] or (), tuple(c[5]), self._span(c))
 
-    def params(self, meta: Any, c: list[Any]) -> tuple[ast.Param, ...]:
+    def params(self, c: list[Any]) -> tuple[ast.Param, ...]:
         return tuple(c)
 
-    def param(self, meta: Any, c: list[Any]) -> ast.Param:
-        return ast.Param(self._ident(c[0], "parameter"), self._ident(c[1]), self._span(meta))
+    def param(self, c: list[Any]) -> ast.Param:
+        return ast.Param(self._ident(c[0], "parameter"), self._ident(c[1]), self._span(c))
 
-    # -- settings and modifiers
-    def _setting(self, kind: str, meta: Any, value: Any) -> ast.Setting:
+    # -- settings and modifiers: [KEYWORD, value]
+    def _setting(self, kind: str, c: list[Any]) -> ast.Setting:
+        value = c[1]
         if isinstance(value, Token):  # tool/frame NAME, or the FINE keyword
             value = None if value.type == "FINE" else self._ident(value)
-        return ast.Setting(kind, value, self._span(meta))
+        return ast.Setting(kind, value, self._span(c))
 
-    def tool_setting(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return self._setting("tool", meta, c[0])
+    def tool_setting(self, c: list[Any]) -> ast.Setting:
+        return self._setting("tool", c)
 
-    def frame_setting(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return self._setting("frame", meta, c[0])
+    def frame_setting(self, c: list[Any]) -> ast.Setting:
+        return self._setting("frame", c)
 
-    def speed_setting(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return self._setting("speed", meta, c[0])
+    def speed_setting(self, c: list[Any]) -> ast.Setting:
+        return self._setting("speed", c)
 
-    def joint_speed_setting(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return self._setting("joint_speed", meta, c[0])
+    def joint_speed_setting(self, c: list[Any]) -> ast.Setting:
+        return self._setting("joint_speed", c)
 
-    def accel_setting(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return self._setting("accel", meta, c[0])
+    def accel_setting(self, c: list[Any]) -> ast.Setting:
+        return self._setting("accel", c)
 
-    def zone_setting(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return self._setting("zone", meta, c[0])
+    def zone_setting(self, c: list[Any]) -> ast.Setting:
+        return self._setting("zone", c)
 
     mod_speed = speed_setting
     mod_joint_speed = joint_speed_setting
@@ -177,116 +194,118 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     mod_tool = tool_setting
     mod_frame = frame_setting
 
-    def mod_config(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return ast.Setting("config", c[0] or (), self._span(meta))
+    def mod_config(self, c: list[Any]) -> ast.Setting:
+        return ast.Setting("config", c[2] or (), self._span(c))
 
-    def mod_time(self, meta: Any, c: list[Any]) -> ast.Setting:
-        return self._setting("time", meta, c[0])
+    def mod_time(self, c: list[Any]) -> ast.Setting:
+        return self._setting("time", c)
 
     # -- motion
-    def move_simple(self, meta: Any, c: list[Any]) -> ast.Move:
-        return ast.Move(str(c[0]), c[1], None, tuple(c[2:]), self._span(meta))
+    def move_simple(self, c: list[Any]) -> ast.Move:
+        return ast.Move(str(c[1]), c[2], None, tuple(c[3:]), self._span(c))
 
-    def move_circular(self, meta: Any, c: list[Any]) -> ast.Move:
-        return ast.Move("circular", c[1], c[0], tuple(c[2:]), self._span(meta))
+    def move_circular(self, c: list[Any]) -> ast.Move:
+        return ast.Move("circular", c[5], c[3], tuple(c[6:]), self._span(c))
 
     # -- I/O, timing, control flow
-    def io_ref(self, meta: Any, c: list[Any]) -> ast.IoRef:
-        return ast.IoRef(str(c[0]), c[1], self._span(meta))
+    def io_ref(self, c: list[Any]) -> ast.IoRef:
+        return ast.IoRef(str(c[0]), c[2], self._span(c))
 
-    def io_kind(self, meta: Any, c: list[Any]) -> str:
-        return str(c[0])
+    def set_io(self, c: list[Any]) -> ast.SetIo:
+        return ast.SetIo(c[1], c[3], self._span(c))
 
-    def set_io(self, meta: Any, c: list[Any]) -> ast.SetIo:
-        return ast.SetIo(c[0], c[1], self._span(meta))
+    def pulse(self, c: list[Any]) -> ast.Pulse:
+        return ast.Pulse(c[1], c[3], self._span(c))
 
-    def pulse(self, meta: Any, c: list[Any]) -> ast.Pulse:
-        return ast.Pulse(c[0], c[1], self._span(meta))
+    def wait_time(self, c: list[Any]) -> ast.WaitTime:
+        return ast.WaitTime(c[1], self._span(c))
 
-    def wait_time(self, meta: Any, c: list[Any]) -> ast.WaitTime:
-        return ast.WaitTime(c[0], self._span(meta))
+    def wait_until(self, c: list[Any]) -> ast.WaitUntil:
+        return ast.WaitUntil(c[2], c[4], self._span(c))
 
-    def wait_until(self, meta: Any, c: list[Any]) -> ast.WaitUntil:
-        return ast.WaitUntil(c[0], c[1], self._span(meta))
+    def condition(self, c: list[Any]) -> ast.Condition:
+        return ast.Condition(c[0], str(c[1]), c[2], self._span(c))
 
-    def condition(self, meta: Any, c: list[Any]) -> ast.Condition:
-        return ast.Condition(c[0], str(c[1]), c[2], self._span(meta))
+    def condition_bare(self, c: list[Any]) -> ast.Condition:
+        return ast.Condition(c[0], "==", None, self._span(c))
 
-    def condition_bare(self, meta: Any, c: list[Any]) -> ast.Condition:
-        return ast.Condition(c[0], "==", None, self._span(meta))
+    def for_loop(self, c: list[Any]) -> ast.For:
+        return ast.For(self._ident(c[1], "loop variable"), c[3], c[5], tuple(c[6]), self._span(c))
 
-    def for_loop(self, meta: Any, c: list[Any]) -> ast.For:
-        return ast.For(self._ident(c[0], "loop variable"), c[1], c[2], c[3], self._span(meta))
+    def repeat_loop(self, c: list[Any]) -> ast.Repeat:
+        return ast.Repeat(c[1], tuple(c[2]), self._span(c))
 
-    def repeat_loop(self, meta: Any, c: list[Any]) -> ast.Repeat:
-        return ast.Repeat(c[0], c[1], self._span(meta))
-
-    def if_stmt(self, meta: Any, c: list[Any]) -> ast.IfStmt:
-        otherwise = c[2]
+    def if_stmt(self, c: list[Any]) -> ast.IfStmt:
+        otherwise = c[3]
         if otherwise is None:
             otherwise = ()
         elif isinstance(otherwise, ast.IfStmt):  # else if: a nested branch
             otherwise = (otherwise,)
-        return ast.IfStmt(c[0], c[1], otherwise, self._span(meta))
+        return ast.IfStmt(c[1], tuple(c[2]), tuple(otherwise), self._span(c))
 
-    def sync(self, meta: Any, c: list[Any]) -> ast.SyncStmt:
-        return ast.SyncStmt(self._ident(c[0]), self._span(meta))
+    def else_part(self, c: list[Any]) -> Any:
+        return c[0]
 
-    def native(self, meta: Any, c: list[Any]) -> ast.NativeStmt:
-        return ast.NativeStmt(self._ident(c[0]), self._string(c[1]), self._span(meta))
+    def sync(self, c: list[Any]) -> ast.SyncStmt:
+        return ast.SyncStmt(self._ident(c[1]), self._span(c))
 
-    def call(self, meta: Any, c: list[Any]) -> ast.CallStmt:
-        return ast.CallStmt(self._ident(c[0]), c[1] or (), self._span(meta))
+    def native(self, c: list[Any]) -> ast.NativeStmt:
+        return ast.NativeStmt(self._ident(c[1]), self._string(c[2]), self._span(c))
+
+    def call(self, c: list[Any]) -> ast.CallStmt:
+        return ast.CallStmt(self._ident(c[0]), c[2] or (), self._span(c))
 
     # -- expressions
-    def _binop(self, op: str, meta: Any, c: list[Any]) -> ast.BinOp:
-        return ast.BinOp(op, c[0], c[1], self._span(meta))
+    def _binop(self, op: str, c: list[Any]) -> ast.BinOp:
+        return ast.BinOp(op, c[0], c[1], self._span(c))
 
-    def add(self, meta: Any, c: list[Any]) -> ast.BinOp:
-        return self._binop("+", meta, c)
+    def add(self, c: list[Any]) -> ast.BinOp:
+        return self._binop("+", c)
 
-    def sub(self, meta: Any, c: list[Any]) -> ast.BinOp:
-        return self._binop("-", meta, c)
+    def sub(self, c: list[Any]) -> ast.BinOp:
+        return self._binop("-", c)
 
-    def mul(self, meta: Any, c: list[Any]) -> ast.BinOp:
-        return self._binop("*", meta, c)
+    def mul(self, c: list[Any]) -> ast.BinOp:
+        return self._binop("*", c)
 
-    def div(self, meta: Any, c: list[Any]) -> ast.BinOp:
-        return self._binop("/", meta, c)
+    def div(self, c: list[Any]) -> ast.BinOp:
+        return self._binop("/", c)
 
-    def neg(self, meta: Any, c: list[Any]) -> ast.Neg:
-        return ast.Neg(c[0], self._span(meta))
+    def neg(self, c: list[Any]) -> ast.Neg:
+        return ast.Neg(c[1], self._span(c))
 
-    def attr(self, meta: Any, c: list[Any]) -> ast.Attr:
-        return ast.Attr(c[0], self._ident(c[1]), self._span(meta))
+    def unary(self, c: list[Any]) -> Any:  # `+x`
+        return c[1]
 
-    def number(self, meta: Any, c: list[Any]) -> ast.Number:
+    def atom(self, c: list[Any]) -> Any:  # `(x)`
+        return c[1]
+
+    def attr(self, c: list[Any]) -> ast.Attr:
+        return ast.Attr(c[0], self._ident(c[1]), self._span(c))
+
+    def number(self, c: list[Any]) -> ast.Number:
         unit = str(c[1]) if c[1] is not None else None
-        return ast.Number(float(c[0]), unit, self._span(meta))
+        return ast.Number(float(c[0]), unit, self._span(c))
 
-    def name(self, meta: Any, c: list[Any]) -> ast.Name:
-        return ast.Name(str(c[0]), self._span(meta))
+    def name(self, c: list[Any]) -> ast.Name:
+        return ast.Name(str(c[0]), self._span(c))
 
-    def call_expr(self, meta: Any, c: list[Any]) -> ast.Call:
-        return ast.Call(self._ident(c[0]), c[1] or (), self._span(meta))
+    def call_expr(self, c: list[Any]) -> ast.Call:
+        return ast.Call(self._ident(c[0]), c[2] or (), self._span(c))
 
-    def joints(self, meta: Any, c: list[Any]) -> ast.Joints:
-        unit = str(c[1]) if c[1] is not None else None
-        return ast.Joints(c[0] or (), unit, self._span(meta))
+    def joints(self, c: list[Any]) -> ast.Joints:
+        unit = str(c[4]) if c[4] is not None else None
+        return ast.Joints(c[2] or (), unit, self._span(c))
 
-    def vector(self, meta: Any, c: list[Any]) -> ast.Vector:
-        first = ast.Arg(None, c[0], _expr_span(c[0]))
-        return ast.Vector((first, *(c[1] or ())), self._span(meta))
+    def vector(self, c: list[Any]) -> ast.Vector:
+        first = ast.Arg(None, c[1], c[1].span)
+        return ast.Vector((first, *(c[3] or ())), self._span(c))
 
-    def string(self, meta: Any, c: list[Any]) -> ast.String:
+    def string(self, c: list[Any]) -> ast.String:
         return self._string(c[0])
 
-    def args(self, meta: Any, c: list[Any]) -> tuple[ast.Arg, ...]:
-        return tuple(a if isinstance(a, ast.Arg) else ast.Arg(None, a, _expr_span(a)) for a in c)
+    def args(self, c: list[Any]) -> tuple[ast.Arg, ...]:
+        return tuple(a if isinstance(a, ast.Arg) else ast.Arg(None, a, a.span) for a in c)
 
-    def kwarg(self, meta: Any, c: list[Any]) -> ast.Arg:
-        return ast.Arg(self._ident(c[0]), c[1], self._span(meta))
-
-
-def _expr_span(node: Any) -> Span:
-    return node.span  # type: ignore[no-any-return]
+    def kwarg(self, c: list[Any]) -> ast.Arg:
+        return ast.Arg(self._ident(c[0]), c[1], self._span(c))

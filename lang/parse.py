@@ -1,8 +1,8 @@
 """Text -> AST: the lark LALR parser (built once) and the one place lark errors become words.
 
 `parse_source(file)` never raises for bad input: it returns the Module (or None) and the
-diagnostics. lark builds its tree with positions; the Transformer in `lang/_build.py` turns
-each rule into one AST node with its span (lark's embedded transformers get no positions).
+diagnostics. The Transformer in `lang/_build.py` runs embedded in lark's LALR parser, so
+each rule becomes one AST node with its span as it is reduced and no parse tree is built.
 
 Parsing is serialised by a lock: the embedded transformer and the post-lexer keep the state
 of the current parse (the file, the brace stack, the last tokens).
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lark import Lark, Token
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken, VisitError
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from rmot.lang import ast
 from rmot.lang import codes
@@ -86,6 +86,7 @@ _PARSER = Lark(
     propagate_positions=True,
     maybe_placeholders=True,
     postlex=_POSTLEX,
+    transformer=_BUILDER,
     cache=False,
 )
 _PATTERNS = {t.name: t.pattern for t in _PARSER.terminals}
@@ -106,12 +107,12 @@ def parse_source(file: SourceFile) -> ParseResult:
     with _LOCK:
         _BUILDER.begin(file)
         try:
-            module: ast.Module = _BUILDER.transform(_PARSER.parse(file.text))
+            module: ast.Module = _PARSER.parse(file.text)
         except UnexpectedInput as exc:
             return ParseResult(None, (wrap_syntax_error(exc, file),))
-        except VisitError as exc:  # a builder bug must still not escape as a traceback
+        except Exception as exc:  # a builder bug must still not reach the user as a traceback
             span = Span.whole(file)
-            return ParseResult(None, (_error(codes.SYNTAX, f"internal parser error: {exc.orig_exc}", span),))
+            return ParseResult(None, (_error(codes.SYNTAX, f"internal parser error: {exc!r}", span),))
         problems = tuple(_BUILDER.diagnostics)
     if not module.body:
         msg = "file must contain a cell, a program or declarations (got only comments)"

@@ -153,7 +153,7 @@ def _always_touching(entry: RobotEntry, bodies: list[Body]) -> frozenset[frozens
     within the limits (as MoveIt's setup assistant disables "always in collision" pairs):
     they overlap by construction (e.g. a forearm capsule reaching into a spherical wrist's
     flange), so checking them would only report the model, never the program."""
-    from rmot.sim.collide import exact_distance
+    from rmot.sim.exact import exact_distance
 
     robot = entry.robot
     lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]
@@ -162,10 +162,11 @@ def _always_touching(entry: RobotEntry, bodies: list[Body]) -> frozenset[frozens
     solids = np.asarray(robot.solid_poses_batch(qs))
     flange = np.asarray(robot.fk_batch(qs))
     poses = {b.name: solids[:, b.solid_index] if b.kind == "link" else flange @ b.local for b in bodies}
+    adjacent = {frozenset(p) for p in robot.adjacent_pairs}
     out = set()
     for i, a in enumerate(bodies):
         for b in bodies[i + 1:]:
-            if not (a.moves or b.moves):
+            if not (a.moves or b.moves) or frozenset((a.solid_index, b.solid_index)) in adjacent:
                 continue
             if all(exact_distance(a, b, poses[a.name][k], poses[b.name][k]) <= 0.0 for k in range(len(qs))):
                 out.add(frozenset((a.name, b.name)))

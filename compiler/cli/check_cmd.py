@@ -60,10 +60,13 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     front_diags = tuple(front.diagnostics)
     if front.program is None or any(d.is_error for d in front_diags):
         return CheckOutcome(Report(path, {}, front_diags), True)
-    plan = plan_program(front.program)
     from rmot.sim import verify
 
-    report = verify(plan, clearance=clearance)
+    try:
+        plan = plan_program(front.program)
+        report = verify(plan, clearance=clearance)
+    except Exception as exc:  # a bug in a stage: say so in the report, never as a traceback
+        return failed(f"internal error while planning or verifying ({exc.__class__.__name__}: {exc}); please report it")
     report = Report(path, report.cycle_times, front_diags + report.diagnostics)
     if images:
         report = _render_images(plan, report, images)

@@ -35,4 +35,6 @@ def ir(file: str, cell: str | None, as_json: bool, project_root: str | None) -> 
         click.echo(to_json(result.program) if as_json else dump_program(result.program), nl=False)
     elif result.cell is not None:
         click.echo(to_json(result.cell) if as_json else dump_cell(result.cell) + "\n", nl=False)
+    else:
+        click.echo(f"rmot: {file} holds no program and no cell (a library: nothing to dump)", err=True)
     sys.exit(EXIT_OK)

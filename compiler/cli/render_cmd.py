@@ -36,15 +36,30 @@ def _parse_size(ctx: click.Context, param: click.Parameter, value: str | None) -
     return size
 
 
-def _parse_camera(ctx: click.Context, param: click.Parameter, value: str | None) -> Any:
+def _check_camera(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    """Syntax now; the values merge with the default framing once the scene is known."""
     if value is None:
         return None
-    from rmot.sim.render.camera import CameraSpecError, parse_camera
+    from rmot.sim.render.camera import CameraSpecError, camera_fields
 
     try:
-        return parse_camera(value)
+        camera_fields(value)
     except CameraSpecError as exc:
         raise click.BadParameter(str(exc)) from None
+    return value
+
+
+def _camera(text: str | None, scene: Any, size: tuple[int, int]) -> Any:
+    """The --camera settings over the default three-quarter view of the scene."""
+    if text is None:
+        return None
+    from rmot.sim.render.camera import CameraSpecError, parse_camera
+    from rmot.sim.render.still import default_camera
+
+    try:
+        return parse_camera(text, default=default_camera(scene, size))
+    except CameraSpecError as exc:
+        raise click.BadParameter(str(exc), param_hint="'--camera'") from None
 
 
 def _output_format(ctx: click.Context, param: click.Parameter, value: str) -> str:
@@ -61,11 +76,12 @@ def _output_format(ctx: click.Context, param: click.Parameter, value: str) -> st
 @click.option("--at", "at", type=float, default=0.0, show_default=True, help="Instant of a still picture, s.")
 @click.option("--size", callback=_parse_size, default=None, help="WIDTHxHEIGHT in pixels [640x480; 480x360 for animations].")
 @click.option("--aa", type=click.IntRange(1, 8), default=None, help="Supersampling factor K (K x K samples per pixel).")
-@click.option("--camera", callback=_parse_camera, default=None, help='e.g. "eye=3,-3,2;center=0.5,0,0.5;fov=40".')
+@click.option("--camera", callback=_check_camera, default=None,
+              help='e.g. "eye=3,-3,2;center=0.5,0,0.5;fov=40" (m, deg); keys left out keep the default view.')
 @click.option("--fps", type=click.IntRange(1, 60), default=25, show_default=True, help="Frames per second of animations.")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Directory that file paths may not leave.")
 def render(program: str, cell: str | None, output: str, at: float, size: tuple[int, int] | None, aa: int | None,
-           camera: Any, fps: int, project_root: str | None) -> None:
+           camera: str | None, fps: int, project_root: str | None) -> None:
     """Render a program to PNG, GIF, MP4, SVG or HTML."""
     plan = _plan(program, cell, project_root)
     ext = os.path.splitext(output)[1].lower()
@@ -123,7 +139,7 @@ def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
 
 
 def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | None, aa: int | None,
-           camera: Any, fps: int) -> None:
+           camera_text: str | None, fps: int) -> None:
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes
     from rmot.sim.render.files import write_png, write_text
@@ -135,21 +151,23 @@ def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | 
                                      f"--at must be within 0..{duration:.3f} s, the program's duration (got {at:g} s)", None))
     scene = prepare(plan)
     _report(scene.diagnostics)  # meshes that do not load: errors stop here, warnings are shown
+    size = size or ((480, 360) if ext in (".gif", ".mp4") else (640, 480))
+    camera = _camera(camera_text, scene, size)
     if ext == ".png":
         from rmot.sim.render.still import still_image
 
-        write_png(output, still_image(scene, time=at, size=size or (640, 480), aa=aa or 2, camera=camera))
+        write_png(output, still_image(scene, time=at, size=size, aa=aa or 2, camera=camera))
     elif ext in (".gif", ".mp4"):
         from rmot.sim.render.animate import AnimationError, write_animation
 
         try:
-            write_animation(scene, output, fps=fps, size=size or (480, 360), aa=aa or 1, camera=camera)
+            write_animation(scene, output, fps=fps, size=size, aa=aa or 1, camera=camera)
         except AnimationError as exc:
             raise _InputError(Diagnostic(codes.FORMAT_UNAVAILABLE, Severity.ERROR, str(exc), None)) from None
     elif ext == ".svg":
         from rmot.sim.render.svg import render_svg
 
-        write_text(output, render_svg(scene, time=at, size=size or (640, 480), camera=camera))
+        write_text(output, render_svg(scene, time=at, size=size, camera=camera))
     else:
         from rmot.sim.render.html import render_html
 

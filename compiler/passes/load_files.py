@@ -129,7 +129,8 @@ def load_sources(state: FrontendState) -> FrontendState:
 
 
 def _cell_module(main: LoadedModule, state: FrontendState, rep: Reporter) -> tuple[LoadedModule | None, bool]:
-    """--cell beats `use cell`, which beats a cell in the main file, which beats the default."""
+    """--cell beats `use cell`, which beats a cell in the main file, which beats the default
+    (loaded only for a file that holds a program)."""
     uses = [s for s in main.module.body if isinstance(s, ast.UseCell)]
     for extra in uses[1:]:
         rep.error(codes.DUPLICATE, "a file must use at most one cell (got a second 'use cell')", extra.span,
@@ -144,4 +145,6 @@ def _cell_module(main: LoadedModule, state: FrontendState, rep: Reporter) -> tup
         return (read_module(path, uses[0].path.span, rep) if path else None), False
     if any(isinstance(s, ast.CellDecl) for s in main.module.body):
         return main, False
+    if not any(isinstance(s, ast.ProgramDecl) for s in main.module.body):
+        return None, False  # a library of procs/targets/consts: no cell needed
     return read_module(str(DEFAULT_CELL), None, rep), True

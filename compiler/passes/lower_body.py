@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
+from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
 from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
 from rmot.compiler.passes.modal import Modal, apply_setting
 from rmot.compiler.passes.procs import bind_call
@@ -55,6 +56,7 @@ class TaskLowering:
     procs: list[Entry]
     count: int = 0
     stack: list[int] = field(default_factory=list)  # ids of the procs being inlined
+    called: set[int] = field(default_factory=set)  # ids of the ProcDecls inlined at least once
 
     def run(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
         try:
@@ -168,6 +170,7 @@ class TaskLowering:
             return None
         if id(entry) in self.stack:  # recursion: reported by the check_recursion pass
             return None
+        self.called.add(id(entry.value))
         inner = bind_call(entry, s, scope, self.rep)
         if inner is None:
             return None
@@ -197,8 +200,6 @@ class TaskLowering:
         port = expect_integer(eval_expr(io.index, scope, self.rep), "I/O port", io.index.span, self.rep)
         if port is None:
             return None
-        from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
-
         direction = IO_DIRECTIONS[io.kind]
         for sig in self.cell.io:
             if sig.direction is direction and sig.port == port and sig.robot in (self.robot, None):
@@ -297,7 +298,7 @@ class TaskLowering:
         span = v.span or e.span
         notes = (("used by this move", e.span),) if v.span is not None and v.span != e.span else ()
         if len(v.values) != n:
-            self.rep.error(codes.JOINT_COUNT, f"joints() must have {n} values for robot '{self.robot}' (got {len(v.values)})", span, notes)
+            self.rep.error(codes.JOINT_COUNT, f"joints() must have {n} value{'s' * (n != 1)} for robot '{self.robot}' (got {len(v.values)})", span, notes)
             return None
         values = []
         for i, (q, jt) in enumerate(zip(v.values, self.info.joint_types)):

@@ -118,5 +118,6 @@ def _settings(settings: tuple[ast.Setting, ...], scope: Scope, robot: ir.RobotIn
 
 def _task_lowering(robot: ir.RobotInstance, state: FrontendState, procs: list[Entry]) -> TaskLowering:
     assert state.cell is not None
-    return TaskLowering(robot.name, state.robots[robot.name], robot.base, state.cell, state.reporter, procs)
+    called = state.extra.setdefault("called_procs", set())
+    return TaskLowering(robot.name, state.robots[robot.name], robot.base, state.cell, state.reporter, procs, called=called)
 

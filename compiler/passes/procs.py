@@ -6,6 +6,10 @@ angular_speed, accel, mass, ratio, bool, string. Arguments bind by position, the
 the caller's scope; the body sees the proc's defining scope plus its parameters
 (lexical scoping, as in RAPID).
 
+A proc that is never called is still checked for unknown names, proc names and parameter
+types (its body cannot be lowered without arguments, so units and types are checked only
+where it is called).
+
 Recursion (direct or through other procs) is an error even when the proc is never called:
 inlining could not terminate. It is reported at the call that closes the cycle, with the
 chain as notes.
@@ -24,7 +28,7 @@ from rmot.compiler.passes.values import (
 )
 from rmot.lang import ast
 
-__all__ = ["PARAM_TYPES", "bind_call", "check_recursion"]
+__all__ = ["PARAM_TYPES", "bind_call", "check_recursion", "check_uncalled_procs"]
 
 PARAM_TYPES: dict[str, object] = {
     "pose": PoseV, "joints": JointsV, "target": (PoseV, JointsV), "bool": BoolV, "string": StringV,
@@ -113,4 +117,87 @@ def check_recursion(state: FrontendState) -> FrontendState:
 
     for entry in procs:
         visit(entry, [(entry, None)])
+    return state
+
+
+_BUILTIN_NAMES = frozenset({"on", "off", "true", "false"})
+
+
+def _names_in(e: object, out: list[ast.Name]) -> None:
+    """Every Name an expression reads (not config words, not keyword-argument names)."""
+    if isinstance(e, ast.Name):
+        out.append(e)
+    elif isinstance(e, ast.BinOp):
+        _names_in(e.left, out)
+        _names_in(e.right, out)
+    elif isinstance(e, (ast.Neg,)):
+        _names_in(e.operand, out)
+    elif isinstance(e, ast.Attr):
+        _names_in(e.obj, out)
+    elif isinstance(e, (ast.Call, ast.Joints)):
+        for a in e.args:
+            _names_in(a.value, out)
+    elif isinstance(e, ast.Vector):
+        for a in e.items:
+            _names_in(a.value, out)
+
+
+def _check_body(body: tuple[ast.Stmt, ...], known: set[str], scope: Scope, rep: Reporter) -> None:
+    local = set(known)
+    for s in body:
+        if isinstance(s, (ast.TargetDecl, ast.ConstDecl, ast.FrameDecl)):
+            _check_exprs([s.value], local, scope, rep)
+            local.add(s.name.name)
+        elif isinstance(s, ast.Move):
+            mods = [m.value for m in s.modifiers if m.kind not in ("config", "tool", "frame")]
+            _check_exprs([s.target, s.via, *mods], local, scope, rep)
+        elif isinstance(s, ast.Setting) and s.kind not in ("tool", "frame"):
+            _check_exprs([s.value], local, scope, rep)
+        elif isinstance(s, (ast.SetIo, ast.Pulse)):
+            _check_exprs([s.io.index, s.value if isinstance(s, ast.SetIo) else s.duration], local, scope, rep)
+        elif isinstance(s, ast.WaitTime):
+            _check_exprs([s.duration], local, scope, rep)
+        elif isinstance(s, ast.WaitUntil):
+            _check_exprs([s.condition.io.index, s.condition.value, s.timeout], local, scope, rep)
+        elif isinstance(s, ast.For):
+            _check_exprs([s.start, s.stop], local, scope, rep)
+            _check_body(s.body, local | {s.var.name}, scope, rep)
+        elif isinstance(s, ast.Repeat):
+            _check_exprs([s.count], local, scope, rep)
+            _check_body(s.body, local, scope, rep)
+        elif isinstance(s, ast.IfStmt):
+            _check_exprs([s.condition.io.index, s.condition.value], local, scope, rep)
+            _check_body(s.then, local, scope, rep)
+            _check_body(s.otherwise, local, scope, rep)
+        elif isinstance(s, ast.CallStmt):
+            entry = scope.lookup(s.name.name)
+            if entry is None or entry.kind != "proc":
+                procs = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "proc"]
+                rep.unknown(s.name.name, "proc", s.name.span, procs)
+            _check_exprs([a.value for a in s.args], local, scope, rep)
+
+
+def _check_exprs(exprs: list[object], known: set[str], scope: Scope, rep: Reporter) -> None:
+    names: list[ast.Name] = []
+    for e in exprs:
+        if e is not None:
+            _names_in(e, names)
+    for n in names:
+        if n.name not in known and n.name not in _BUILTIN_NAMES and scope.lookup(n.name) is None:
+            rep.unknown(n.name, "name", n.span, [*known, *scope.visible()])
+
+
+def check_uncalled_procs(state: FrontendState) -> FrontendState:
+    """Names in the bodies of procs no task called (called ones were checked by lowering)."""
+    called: set[int] = state.extra.get("called_procs", set())
+    seen: set[int] = set()
+    for entry in state.extra.get("procs", []):
+        decl: ast.ProcDecl = entry.value
+        if id(decl) in called or id(decl) in seen or entry.closure is None:
+            continue
+        seen.add(id(decl))
+        for p in decl.params:
+            if p.type.name not in PARAM_TYPES:
+                state.reporter.unknown(p.type.name, "parameter type", p.type.span, list(PARAM_TYPES))
+        _check_body(decl.body, {p.name.name for p in decl.params}, entry.closure, state.reporter)
     return state

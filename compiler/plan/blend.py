@@ -34,13 +34,16 @@ _BLEND_STEP = 0.01  # rad between blend samples
 @dataclass(frozen=True, eq=False)
 class ChainPath:
     """The joined path: q (M, dof), tcp (M, 3), c (M,) the TCP-time coordinate (s: TCP path
-    length over programmed speed, constant along joint moves). Per segment: `starts`/`ends`
+    length over programmed speed, constant along joint moves), ss (M,) the path parameter
+    (joint-space arc length along the moves; inside a blend, uniform in the blend parameter,
+    so the path stays smooth even where a blend turns back on itself). Per segment: `starts`/`ends`
     chain indexes (end = zone entry when blended), `vias` chain index of a via point,
     `radii` the blend radius used (m)."""
 
     q: np.ndarray
     tcp: np.ndarray
     c: np.ndarray
+    ss: np.ndarray
     starts: tuple[int, ...]
     ends: tuple[int, ...]
     vias: tuple[int | None, ...]
@@ -107,7 +110,7 @@ def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: igno
 
 def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
     """Join a chain of segments (each starting where the previous one ends) into one path."""
-    qs, tcps, rates = [], [], []
+    qs, tcps, rates, uniform = [], [], [], []
     ends, vias, radii, findings = [], [], [], []
     count = 0
     part = _Part(segments[0].q, segments[0].tcp, segments[0].via_index)
@@ -121,6 +124,7 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
         qs.append(keep.q if i == 0 else keep.q[1:])
         tcps.append(keep.tcp if i == 0 else keep.tcp[1:])
         rates.append(np.full(len(qs[-1]), seg.tcp_rate))
+        uniform.append(np.zeros(len(qs[-1]), bool))
         vias.append(count + keep.via - (0 if i == 0 else 1) if keep.via is not None else None)
         count += len(qs[-1])
         ends.append(count - 1)
@@ -130,18 +134,35 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
             qs.append(qb)
             tcps.append(tb)
             rates.append(np.full(len(qb), max(seg.tcp_rate, segments[i + 1].tcp_rate)))
+            uniform.append(np.ones(len(qb), bool))
             count += len(qb)
             # the blend's last point joins the next part, whose first point (q_out) is kept
             qs.append(nxt.q[:1])
             tcps.append(nxt.tcp[:1])
             rates.append(np.full(1, max(seg.tcp_rate, segments[i + 1].tcp_rate)))
+            uniform.append(np.ones(1, bool))
             count += 1
         part = nxt if nxt is not None else part
     q, tcp, rate = np.concatenate(qs), np.concatenate(tcps), np.concatenate(rates)
     step_rate = np.maximum(rate[1:], rate[:-1])
     c = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(tcp, axis=0), axis=1) * step_rate)])
+    ss = _parameter(q, np.concatenate(uniform))
     starts = [0] + ends[:-1]  # a move starts where the previous one ends (its zone entry)
-    return ChainPath(q, tcp, c, tuple(starts), tuple(ends), tuple(vias), tuple(radii), tuple(findings))
+    return ChainPath(q, tcp, c, ss, tuple(starts), tuple(ends), tuple(vias), tuple(radii), tuple(findings))
+
+
+def _parameter(q: np.ndarray, in_blend: np.ndarray) -> np.ndarray:
+    """(M,) path parameter: joint arc length; inside a blend sqrt(|dq|^2 + (eps dl)^2), which
+    stays smooth (and the path with it) even where the blend turns back on itself (|dq| -> 0
+    at a reversal), yet is within 2% of the arc length elsewhere (eps = 0.2 x the blend's
+    mean step). A step belongs to a blend when its end point is a blend point."""
+    step = np.linalg.norm(np.diff(q, axis=0), axis=1)
+    flags = in_blend[1:]
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], flags.astype(int), [0]])))
+    for a, b in zip(edges[::2], edges[1::2]):
+        floor = 0.2 * step[a:b].mean()
+        step[a:b] = np.sqrt(step[a:b] ** 2 + floor**2)
+    return np.concatenate([[0.0], np.cumsum(step)])
 
 
 def _corner(robot, a: Segment, b: Segment, pa: _Part, pb: _Part, findings: list, i: int):  # type: ignore[no-untyped-def]

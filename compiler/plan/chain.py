@@ -67,7 +67,7 @@ def _joint_chain(seg: Segment, vmax: np.ndarray, amax: np.ndarray, duration: flo
 
 def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain:  # type: ignore[no-untyped-def]
     dof = path.q.shape[1]
-    ss = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(path.q, axis=0), axis=1))])
+    ss = path.ss
     vias = tuple(path.q[i] if i is not None else None for i in path.vias)
     if ss[-1] < 1e-9:
         piece = HoldPiece(path.q[-1].copy(), duration or 0.0)

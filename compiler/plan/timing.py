@@ -30,7 +30,8 @@ __all__ = [
 ]
 
 JERK_PER_ACCEL = 10.0  # 1/s: jmax = 10 * amax
-_RETIME_ROUNDS = 3
+_RETIME_ROUNDS = 4
+_REFINE_ROUNDS = 2
 _GRID_PER_WAYPOINT, _GRID_MIN, _GRID_MAX = 1.0, 40, 400
 _V_MARGIN = 1e-6  # relative headroom kept below the limits after re-checking
 _A_MARGIN = 1e-4
@@ -243,12 +244,14 @@ def path_piece(
     grid = np.linspace(ss[0], ss[-1], n_grid)
     for attempt in range(_RETIME_ROUNDS + 1):
         traj = _toppra(path, grid, vlim, alim)
-        rv, ra = _ratios(traj, base_v, base_a, check_dt)
-        ra[dof:] = 0.0  # extra coordinates' accelerations are shaping limits, not hard ones
-        if (np.all(rv <= 1 - _V_MARGIN) and np.all(ra <= 1 - _A_MARGIN)) or attempt == _RETIME_ROUNDS:
+        rv, ra, bad_s = _ratios(traj, base_v, base_a, check_dt, dof)
+        if not bad_s.size or attempt == _RETIME_ROUNDS:
             break
-        vlim = vlim / np.maximum(1.0, rv * (1 + 10 * _V_MARGIN))
-        alim = alim / np.maximum(1.0, ra * (1 + 10 * _A_MARGIN))
+        if attempt < _REFINE_ROUNDS:  # first refine the grid where the limits were exceeded
+            grid = _refined(grid, bad_s)
+        else:  # then tighten the limits of the offending coordinates
+            vlim = vlim / np.maximum(1.0, rv * (1 + 10 * _V_MARGIN))
+            alim = alim / np.maximum(1.0, ra * (1 + 10 * _A_MARGIN))
     scale = max(1.0, float(np.max(rv)) * (1 + _V_MARGIN), math.sqrt(float(np.max(ra)) * (1 + _A_MARGIN)))
     return PathPiece(traj, float(traj.duration), scale, dof)
 
@@ -279,9 +282,27 @@ def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray) 
     return ConstAccelTiming(path, grid, sd)
 
 
-def _ratios(traj: object, vlim: np.ndarray, alim: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray]:
-    """Per coordinate: max |velocity| / vlim and max |acceleration| / alim on a dense grid."""
-    duration = float(traj.duration)  # type: ignore[attr-defined]
+def _ratios(
+    traj: ConstAccelTiming, vlim: np.ndarray, alim: np.ndarray, dt: float, dof: int
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """On a dense time grid, per coordinate: max |velocity| / vlim and max |acceleration| /
+    alim (joints only: extra coordinates' accelerations are shaping limits), and the path
+    parameters s where a limit (less its margin) is exceeded."""
+    duration = traj.duration
     ts = np.linspace(0.0, duration, max(3, int(math.ceil(duration / dt)) + 1))
     _, xd, xdd = _eval(traj, ts)
-    return np.max(np.abs(xd), axis=0) / vlim, np.max(np.abs(xdd), axis=0) / alim
+    rel_v = np.abs(xd) / vlim
+    rel_a = np.abs(xdd[:, :dof]) / alim[:dof]
+    over = np.any(rel_v > 1 - _V_MARGIN, axis=1) | np.any(rel_a > 1 - _A_MARGIN, axis=1)
+    ra = np.zeros(len(vlim))
+    ra[:dof] = np.max(rel_a, axis=0)
+    return np.max(rel_v, axis=0), ra, traj.params(ts[over])[0]
+
+
+def _refined(grid: np.ndarray, bad_s: np.ndarray) -> np.ndarray:
+    """The grid with each interval containing a bad s (and its two neighbours) split in four."""
+    idx = np.unique(np.clip(np.searchsorted(grid, bad_s) - 1, 0, len(grid) - 2))
+    idx = np.unique(np.clip(np.concatenate([idx - 1, idx, idx + 1]), 0, len(grid) - 2))
+    lo, hi = grid[idx], grid[idx + 1]
+    extra = (lo[:, None] + (hi - lo)[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
+    return np.union1d(grid, extra)

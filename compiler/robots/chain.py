@@ -23,6 +23,15 @@ class Chain:
 
     def joint_frames(self, q: np.ndarray) -> np.ndarray:
         """q: (N,n) model values -> (N,n,4,4): each joint's frame (after its motion) in base."""
+        from rmot.compiler.robots.fastdls import joint_frames_batch
+
+        q = np.ascontiguousarray(np.atleast_2d(q), dtype=float)
+        out = np.empty((q.shape[0], q.shape[1], 4, 4))
+        joint_frames_batch(self.placements, self.axes, self.prismatic, q, out)
+        return out
+
+    def joint_frames_numpy(self, q: np.ndarray) -> np.ndarray:
+        """The same product in numpy (the reference the compiled loop is tested against)."""
         q = np.atleast_2d(q)
         n_cfg, n = q.shape
         out = np.empty((n_cfg, n, 4, 4))

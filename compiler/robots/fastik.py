@@ -77,7 +77,13 @@ def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
 
 @njit(cache=True)
 def _store(row, theta, sign, offset, cinv):  # type: ignore[no-untyped-def]
-    """row = cinv @ ((theta - offset) * sign): OPW angles to controller values."""
+    """row = cinv @ ((theta - offset) * sign): OPW angles to controller values (all NaN when
+    the branch does not exist)."""
+    for k in range(6):
+        if math.isnan(theta[k]):
+            for j in range(6):
+                row[j] = math.nan
+            return
     for j in range(6):
         acc = 0.0
         for k in range(6):

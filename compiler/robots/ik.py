@@ -16,7 +16,7 @@ import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.robots import codes
-from rmot.compiler.robots.numeric import dls, restart_seeds
+from rmot.compiler.robots.numeric import dls, dls_fast, restart_seeds
 from rmot.lang.diagnostics import Code
 
 __all__ = ["IkResult", "IkStatus", "solve", "solve_batch", "POS_TOL", "ROT_TOL"]
@@ -121,7 +121,7 @@ def _candidates(robot, target: np.ndarray, seed: np.ndarray) -> list[np.ndarray]
         return [row for row in raw if np.all(np.isfinite(row))]
     found = []
     for start in np.vstack([seed[None], restart_seeds(robot.joint_limits, NUMERIC_RESTARTS)]):
-        q, err = dls(robot, target, start)
+        q, err = dls_fast(robot, target, start)
         if err < 1e-9:
             found.append(q)
             if all(_excess(robot, q)[1] == 0 for q in found[:1]):

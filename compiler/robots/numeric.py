@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-__all__ = ["dls", "restart_seeds"]
+__all__ = ["dls", "dls_fast", "restart_seeds"]
 
 _DAMPING2 = 1e-12
 _MAX_STEP = 0.5
@@ -28,7 +28,8 @@ def dls(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_iter:
     err_norm = np.inf
     for _ in range(max_iter):
         qm = q if coupling is None else coupling @ q
-        jac = pin.computeFrameJacobian(model, data, qm, fid, pin.LOCAL)
+        pin.computeJointJacobians(model, data, qm)  # FK too (computeFrameJacobian leaves oMi stale)
+        jac = pin.getFrameJacobian(model, data, fid, pin.LOCAL)
         err = pin.log6((data.oMi[joint] * placement).actInv(goal)).vector
         err_norm = float(np.sqrt(err @ err))
         if err_norm < tol:
@@ -39,6 +40,20 @@ def dls(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_iter:
         size = float(np.max(np.abs(step)))
         q += step if size <= _MAX_STEP else step * (_MAX_STEP / size)
     return q, err_norm
+
+
+def dls_fast(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_iter: int = 60) -> tuple[np.ndarray, float]:  # type: ignore[no-untyped-def]
+    """The same iteration compiled over the chain arrays (see `fastdls`)."""
+    from rmot.compiler.robots.fastdls import dls_chain
+
+    args = robot._dls_args
+    if args is None:
+        chain = robot._chain
+        coupling = np.eye(robot.dof) if robot._coupling is None else np.array(robot._coupling)
+        args = (chain.placements, chain.axes, chain.prismatic, np.array(robot._flange_in_joint), coupling)
+        robot._dls_args = args
+    q, err = dls_chain(*args, np.asarray(target, dtype=float), np.array(q0, dtype=float), tol, max_iter, _DAMPING2, _MAX_STEP)
+    return q, float(err)
 
 
 def restart_seeds(limits: np.ndarray, count: int, seed: int = 0) -> np.ndarray:

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Camera", "CameraSpecError", "parse_camera"]
+__all__ = ["Camera", "CameraSpecError", "camera_fields", "parse_camera"]
 
 Vec3 = tuple[float, float, float]
 
@@ -124,12 +124,8 @@ def _vec(a: np.ndarray) -> Vec3:
 _KEYS = {"eye", "center", "up", "fov", "near", "far"}
 
 
-def parse_camera(text: str, default: Camera | None = None) -> Camera:
-    """A camera from `eye=x,y,z;center=x,y,z;up=x,y,z;fov=40;near=0.05;far=100` (metres, degrees).
-
-    Missing keys come from `default` (eye and center are required without one).
-    Raises CameraSpecError with a message naming the bad key and value.
-    """
+def camera_fields(text: str) -> dict[str, object]:
+    """The settings of a `--camera` text as Camera field values; raises CameraSpecError on bad syntax."""
     fields: dict[str, object] = {}
     for part in filter(None, (p.strip() for p in text.split(";"))):
         key, sep, value = part.partition("=")
@@ -145,6 +141,16 @@ def parse_camera(text: str, default: Camera | None = None) -> Camera:
             if len(numbers) != 1:
                 raise CameraSpecError(f"camera {key} must be one number (got {value.strip()!r})")
             fields["fov_deg" if key == "fov" else key] = numbers[0]
+    return fields
+
+
+def parse_camera(text: str, default: Camera | None = None) -> Camera:
+    """A camera from `eye=x,y,z;center=x,y,z;up=x,y,z;fov=40;near=0.05;far=100` (metres, degrees).
+
+    Missing keys come from `default` (eye and center are required without one).
+    Raises CameraSpecError with a message naming the bad key and value.
+    """
+    fields = camera_fields(text)
     if default is None and not {"eye", "center"} <= fields.keys():
         raise CameraSpecError(f"camera must give eye=x,y,z and center=x,y,z (got {text!r})")
     base = default or Camera(eye=(1.0, 0.0, 0.0), center=(0.0, 0.0, 0.0))

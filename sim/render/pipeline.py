@@ -65,8 +65,9 @@ def _vertex_attributes(vertices: np.ndarray, normals: np.ndarray, colors: np.nda
     if shading is Shading.FLAT:
         lit = shade(face_normals(vertices), vertices.mean(axis=1), colors.mean(axis=1), eye, lights, material)
         return np.repeat(lit[:, None, :], 3, axis=1)
-    flat = lambda a: a.reshape(n_tri * 3, 3)  # noqa: E731 - one vertex per row
-    return shade(flat(normals), flat(vertices), flat(colors), eye, lights, material).reshape(n_tri, 3, 3)
+    rows = (n_tri * 3, 3)  # Gouraud: light each vertex of each triangle
+    lit = shade(normals.reshape(rows), vertices.reshape(rows), colors.reshape(rows), eye, lights, material)
+    return lit.reshape(n_tri, 3, 3)
 
 
 def draw(vertices: np.ndarray, normals: np.ndarray | None, colors: np.ndarray, camera: Camera,
@@ -87,15 +88,14 @@ def draw(vertices: np.ndarray, normals: np.ndarray | None, colors: np.ndarray, c
     clipped, attrs, source = clip_triangles(to_clip(matrix, vertices), attrs)
     screen, inv_w = to_screen(clipped, width, height)
     frame = rasterize(screen, inv_w, width, height)
-    values = resolve(frame, attrs)
+    if shading is not Shading.PHONG:
+        return Picture(resolve(frame, attrs, background), frame, source, matrix, aa)
+    values = resolve(frame, attrs)  # per-pixel lighting on the interpolated normal
     covered = frame.covered
     image = np.empty((height, width, 3), np.float32)
     image[...] = np.asarray(background, np.float32)
-    if shading is Shading.PHONG:  # per-pixel lighting on the interpolated normal
-        px = values[covered]
-        image[covered] = shade(px[:, 0:3], px[:, 6:9], px[:, 3:6], eye, lights, material)
-    else:
-        image[covered] = values[covered]
+    px = values[covered]
+    image[covered] = shade(px[:, 0:3], px[:, 6:9], px[:, 3:6], eye, lights, material)
     return Picture(image, frame, source, matrix, aa)
 
 

@@ -44,10 +44,13 @@ def rasterize(screen: np.ndarray, inv_w: np.ndarray, width: int, height: int) ->
     return Frame(depth, tri, bary)
 
 
-def resolve(frame: Frame, attrs: np.ndarray) -> np.ndarray:
-    """Interpolate per-vertex attributes (T, 3, A) at every covered pixel -> (H, W, A) float32 (0 where empty)."""
-    out = np.zeros(frame.tri.shape + (attrs.shape[2],), np.float32)
-    _resolve(frame.tri, frame.bary, np.ascontiguousarray(attrs, np.float32), out)
+def resolve(frame: Frame, attrs: np.ndarray, empty: np.ndarray | tuple[float, ...] | None = None) -> np.ndarray:
+    """Interpolate per-vertex attributes (T, 3, A) at every covered pixel -> (H, W, A) float32;
+    pixels with no surface get `empty` (A,) (default 0)."""
+    n_attr = attrs.shape[2]
+    fill = np.zeros(n_attr, np.float32) if empty is None else np.asarray(empty, np.float32).reshape(n_attr)
+    out = np.empty(frame.tri.shape + (n_attr,), np.float32)
+    _resolve(frame.tri, frame.bary, np.ascontiguousarray(attrs, np.float32), fill, out)
     return out
 
 
@@ -169,13 +172,14 @@ def _raster(screen: np.ndarray, inv_w: np.ndarray, depth: np.ndarray, tri: np.nd
 
 
 @njit(cache=True)
-def _resolve(tri: np.ndarray, bary: np.ndarray, attrs: np.ndarray, out: np.ndarray) -> None:
+def _resolve(tri: np.ndarray, bary: np.ndarray, attrs: np.ndarray, fill: np.ndarray, out: np.ndarray) -> None:
     height, width = tri.shape
     n_attr = attrs.shape[2]
     for r in range(height):
         for c in range(width):
             t = tri[r, c]
             if t < 0:
+                out[r, c, :] = fill
                 continue
             b1, b2 = bary[r, c, 0], bary[r, c, 1]
             b0 = 1.0 - b1 - b2

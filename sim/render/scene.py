@@ -16,7 +16,7 @@ import numpy as np
 from rmot.compiler import ir
 from rmot.compiler.planned import Plan
 from rmot.lang.diagnostics import Diagnostic
-from rmot.sim.render.tessellate import TriMesh, merge
+from rmot.sim.render.tessellate import TriMesh, merge, tessellate
 from rmot.sim.render.transform import rotate_vectors, transform_points
 from rmot.sim.scene import Scene, build_scene
 
@@ -179,8 +179,6 @@ def prepare(plan: Plan, samples: int = 24, robots: Mapping[str, object] | None =
 
     robots: robot instance name -> Robot (default: loaded from the robot library).
     """
-    from rmot.sim.render.tessellate import tessellate
-
     scene = build_scene(plan.program.cell, _tools_used(plan.program), robots)
     names = tuple(b.name for b in scene.bodies)
     meshes = tuple(tessellate(b.shape) for b in scene.bodies)

@@ -144,3 +144,17 @@ class TestProgram:
         assert list(result.files) == ["DEMO.ls", "DEMO_PART1.ls", "DEMO_PART2.ls", "DEMO_PART3.ls"]
         assert _mn(result.files["DEMO.ls"]) == ["CALL DEMO_PART1", "CALL DEMO_PART2", "CALL DEMO_PART3"]
         assert [d.code for d in result.diagnostics] == [codes.PROGRAM_SPLIT]
+
+
+class TestResolution:
+    @pytest.mark.parametrize(("instr", "line", "code"), [
+        (ir.WaitTime(uid=1, duration=0.255), "WAIT 0.26(sec)", "W404"),
+        (ir.WaitTime(uid=1, duration=0.25), "WAIT 0.25(sec)", None),
+        (ir.Pulse(uid=1, port=1, duration=0.25), "DO[1]=PULSE,0.2sec", "W404"),
+        (move(1, L, cart(DOWN), speed=3.0), "L P[1] 2000mm/sec FINE", "W402"),
+    ])
+    def test_rounded_values_warn(self, instr: ir.Instr, line: str, code: str | None) -> None:
+        """Values finer than TP's resolution (or beyond its limit) are rounded with a warning."""
+        files, diagnostics = _emit(Row("x", instr, ()))
+        assert line in _mn(files["DEMO.ls"])
+        assert [d.code.id for d in diagnostics] == ([code] if code else [])

@@ -181,3 +181,12 @@ class TestNames:
         text = RapidBackend().emit(plan).files["demo.mod"]
         assert routine_lines(text, "PROC main()", "ENDPROC") == ["WaitSyncTask meet, all_tasks;"]
         assert "VAR syncident meet;" in text and 'PERS tasks all_tasks{1}:=[["T_ROB1"]];' in text
+
+
+def test_zero_length_joint_move_needs_no_time() -> None:
+    """A joint move the plan gives no duration (already there) is plain vmax, without \\T or warning."""
+    node = move(1, J, ir.JointTarget(tuple(deg(0, -30, 30, 0, 60, 0)), "home"), joint=0.5)
+    result = RapidBackend().emit(hand_plan((node,), {1: (Q, FRONT_UP_NOFLIP)}, durations={1: 0.0}))
+    assert routine_lines(result.files["demo.mod"], "PROC main()", "ENDPROC") == [
+        "MoveAbsJ home\\NoEOffs, vmax, fine, tool0;"]
+    assert [d.code.id for d in result.diagnostics] == ["W408"]

@@ -8,6 +8,9 @@ from rmot.sim.render.camera import Camera
 from rmot.sim.render.tessellate import TriMesh, box, capsule, cylinder, sphere
 
 
+LIGHT_DIRECTION = (0.35, -0.55, 0.76)  # towards the one directional light of the benchmark
+
+
 def _place(mesh: TriMesh, pose: np.ndarray) -> TriMesh:
     return TriMesh(mesh.vertices @ pose[:3, :3].T + pose[:3, 3], mesh.normals @ pose[:3, :3].T)
 

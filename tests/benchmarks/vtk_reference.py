@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+import render_cell
 from rmot.sim.render.camera import Camera
 
 
@@ -22,9 +23,10 @@ class VtkScene:
         n_tri = len(vertices)
         points = vtk.vtkPoints()
         points.SetData(numpy_to_vtk(np.ascontiguousarray(vertices.reshape(-1, 3), np.float32), deep=True))
-        cells = np.hstack([np.full((n_tri, 1), 3), np.arange(n_tri * 3).reshape(-1, 3)]).astype(np.int64).ravel()
+        offsets = numpy_to_vtkIdTypeArray(np.arange(0, 3 * n_tri + 1, 3, dtype=np.int64), deep=True)
+        connectivity = numpy_to_vtkIdTypeArray(np.arange(3 * n_tri, dtype=np.int64), deep=True)
         polys = vtk.vtkCellArray()
-        polys.SetCells(n_tri, numpy_to_vtkIdTypeArray(cells, deep=True))
+        polys.SetData(offsets, connectivity)  # triangle i is points 3i, 3i+1, 3i+2
         poly = vtk.vtkPolyData()
         poly.SetPoints(points)
         poly.SetPolys(polys)
@@ -50,7 +52,8 @@ class VtkScene:
         light = vtk.vtkLight()
         light.SetLightTypeToSceneLight()
         light.SetPositional(False)
-        light.SetPosition(0.35, -0.55, 0.76)
+        light.SetPosition(*render_cell.LIGHT_DIRECTION)
+        light.SetIntensity(1.0)
         light.SetFocalPoint(0.0, 0.0, 0.0)
         renderer.AddLight(light)
         cam = renderer.GetActiveCamera()

@@ -78,3 +78,19 @@ class TestIrCommand:
         prog.write_text("program p on r1 { wait 1 s }\n")
         result = CliRunner().invoke(cli, ["ir", str(prog), "--cell", str(ROOT / "examples" / "cells" / "demo.rmot")])
         assert result.exit_code == 0 and "\ncell demo\n" in result.output
+
+    def test_project_root_option(self, tmp_path: Path) -> None:
+        """--project-root widens where named files may be; without it, ../ is refused (exit 2)."""
+        (tmp_path / "sub").mkdir()
+        (tmp_path / "lib.rmot").write_text("const h = 5 mm\n")
+        prog = tmp_path / "sub" / "p.rmot"
+        prog.write_text('import "../lib.rmot"\nprogram p on r1 { wait 1 s }\n')
+        refused = CliRunner().invoke(cli, ["ir", str(prog)])
+        assert refused.exit_code == 2 and "error[E504]" in refused.stderr
+        allowed = CliRunner().invoke(cli, ["ir", str(prog), "--project-root", str(tmp_path)])
+        assert allowed.exit_code == 0 and allowed.stdout.startswith("program p\ncell default_cell\n")
+
+    def test_library_file_dumps_nothing(self) -> None:
+        """A file of procs and consts has no program and no cell: exit 0, a note on stderr."""
+        result = CliRunner().invoke(cli, ["ir", str(ROOT / "examples" / "lib" / "moves.rmot")])
+        assert result.exit_code == 0 and result.stdout == "" and "no program and no cell" in result.stderr

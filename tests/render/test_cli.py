@@ -5,6 +5,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 from PIL import Image
@@ -75,3 +76,21 @@ def test_unwritable_output_is_an_error_not_a_traceback(tmp_path: Path) -> None:
     code, output = _run(PROGRAM, "-o", str(tmp_path / "missing" / "x.png"), "--size", "64x48", "--aa", "1")
     assert code == 2
     assert "error[E580]: output file must be writable" in output
+
+
+def test_partial_camera_keeps_the_default_view_for_keys_left_out(tmp_path: Path) -> None:
+    """--camera "fov=20" narrows the default three-quarter view (same eye and centre), so the picture zooms in."""
+    wide, narrow = tmp_path / "wide.png", tmp_path / "narrow.png"
+    common = ["--size", "120x90", "--aa", "1"]
+    assert _run(PROGRAM, "-o", str(wide), *common)[0] == 0
+    assert _run(PROGRAM, "-o", str(narrow), "--camera", "fov=20", *common)[0] == 0
+    background = np.array([235, 237, 242])
+    sky = lambda p: int(np.all(np.asarray(Image.open(p)) == background, axis=2).sum())  # noqa: E731
+    assert sky(narrow) < 0.7 * sky(wide)  # zoomed in: the cell and floor cover more of the picture
+
+
+def test_camera_that_cannot_be_built_is_a_usage_error(tmp_path: Path) -> None:
+    """Eye on the centre of interest: message names the problem, exit 2."""
+    code, output = _run(PROGRAM, "-o", str(tmp_path / "x.png"), "--camera", "eye=0,0,1;center=0,0,1")
+    assert code == 2
+    assert "Invalid value for '--camera': camera eye and center must differ (both (0.0, 0.0, 1.0))" in output

@@ -107,3 +107,36 @@ def test_render_finding_writes_a_png_with_the_bodies_in_red_and_a_caption(scene,
     top = img[:180]
     assert np.sum((top[..., 0] > 150) & (top[..., 1] < 60) & (top[..., 2] < 60)) > 100  # red bodies
     assert sorted(p.name for p in tmp_path.iterdir()) == ["finding.png"]  # no temporary file left
+
+
+def _cell_with_mesh(path: str) -> object:
+    import dataclasses
+
+    from rmot.compiler import ir
+
+    p = plan()
+    mesh = ir.Fixture("wedge", ir.Mesh(path, scale=0.001), ir.Pose((0.6, -0.5, 0.0)))
+    cell = dataclasses.replace(p.program.cell, fixtures=p.program.cell.fixtures + (mesh,))
+    program = dataclasses.replace(p.program, cell=cell)
+    return dataclasses.replace(p, program=program)
+
+
+def test_mesh_fixture_from_a_file_is_drawn(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """A fixture given as a mesh file (points then polygons, in mm) is loaded, scaled and drawn."""
+    path = tmp_path / "wedge.txt"
+    path.write_text("4 4\n0 0 0\n400 0 0\n0 400 0\n0 0 400\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+    rs = prepare(_cell_with_mesh(str(path)), robots={"r1": arm3()})
+    assert rs.names[2] == "wedge" and rs.diagnostics == ()
+    np.testing.assert_allclose(rs.meshes[2].vertices.reshape(-1, 3).max(axis=0), [0.4, 0.4, 0.4])
+    poses = body_poses(rs, np.array([0.0]))[0]
+    cam = default_camera(rs, SIZE)
+    plain, red = (frame(rs, poses, cam, SIZE, 1, highlight=h).astype(int) for h in ((), ("wedge",)))
+    assert np.any(plain != red, axis=2).sum() > 50
+
+
+def test_missing_mesh_file_is_a_diagnostic_not_a_crash(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """A mesh that does not exist is reported (E560 from the mesh loader) and the rest is still drawn."""
+    rs = prepare(_cell_with_mesh(str(tmp_path / "nowhere.stl")), robots={"r1": arm3()})
+    assert [d.code.id for d in rs.diagnostics] == ["E560"]
+    assert "wedge" not in rs.names
+    assert still_image(rs, size=SIZE, aa=1).shape == (120, 160, 3)

@@ -92,8 +92,9 @@ class TestJunitSarifText:
         assert f"{PROGRAM_PATH}:3:3: error[E300]:" in text
         assert "   |   ^~~~" in text
         lines = text.strip().splitlines()
-        assert lines[-2].startswith(f"{PROGRAM_PATH}: FAILED: cycle time 1.500 s")
-        assert lines[-1] == "clean.rmot: ok: cycle time 1.500 s; 0 errors, 0 warnings"
+        assert lines[-3].startswith(f"{PROGRAM_PATH}: FAILED: cycle time 1.500 s")
+        assert lines[-2] == "clean.rmot: ok: cycle time 1.500 s; 0 errors, 0 warnings"
+        assert lines[-1].startswith("note: collisions are checked along the whole path")
 
 
 class TestCheckCommand:
@@ -134,6 +135,14 @@ class TestCheckCommand:
         result = CliRunner().invoke(check_cmd.check, ["clean.rmot", "--format", "junit", "-o", str(out)])
         assert result.exit_code == 0 and result.output == ""
         assert ET.parse(out).getroot().tag == "testsuites"
+
+
+def test_guarantee_text_matches_the_tolerance() -> None:
+    """The guarantee printed in reports states the tolerance the collision check uses."""
+    from rmot.sim.collide import CONTACT_TOL
+    from rmot.sim.report import GUARANTEE
+
+    assert f"deeper than {CONTACT_TOL * 1000:g} mm" in GUARANTEE
 
 
 def test_parse_length() -> None:

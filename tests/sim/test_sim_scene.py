@@ -8,7 +8,8 @@ from hypothesis import strategies as st
 from simkit import arm3, box, cell
 
 from rmot.compiler import ir
-from rmot.sim.collide import _ExactPair, _lower_bound
+from rmot.sim.bounds import lower_bound
+from rmot.sim.exact import ExactPair
 from rmot.sim.scene import _sphere_cover, build_scene
 
 
@@ -79,9 +80,9 @@ def test_lower_bound_below_exact_distance(q) -> None:
     bodies = scene.robot_bodies("r1")
     for body in bodies:
         if body.moves:
-            exact = _ExactPair(body, table).distance(poses[body.name][0], table.local, np.inf)
-            bound = _lower_bound(body, table, poses[body.name], table.local[None])[0]
+            exact = ExactPair(body, table).distance(poses[body.name][0], table.local, np.inf)
+            bound = lower_bound(body, table, poses[body.name], table.local[None])[0]
             assert bound <= max(exact, 0.0) + 1e-9  # (depths are not bounded, only distances)
     link1, link3 = scene.body("r1/link1"), scene.body("r1/link3")
-    exact = _ExactPair(link1, link3).distance(poses[link1.name][0], poses[link3.name][0], np.inf)
-    assert _lower_bound(link1, link3, poses[link1.name], poses[link3.name])[0] <= max(exact, 0.0) + 1e-9
+    exact = ExactPair(link1, link3).distance(poses[link1.name][0], poses[link3.name][0], np.inf)
+    assert lower_bound(link1, link3, poses[link1.name], poses[link3.name])[0] <= max(exact, 0.0) + 1e-9

@@ -1,0 +1,167 @@
+"""IK: round trips on every library robot, branch counts, statuses, equivalent angles."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from rmot.compiler import ir
+from rmot.compiler.robots import IkStatus, list_robots, load_robot
+from rmot.compiler.robots import codes
+from rmot.compiler.robots.library import SPECS
+from rmot.compiler.robots.numeric import dls
+from rmot.compiler.robots.opw import opw_ik
+
+N_POSES = 10_000
+
+
+def random_q(robot, n: int, seed: int = 0) -> np.ndarray:
+    return np.random.default_rng(seed).uniform(robot.joint_limits[:, 0], robot.joint_limits[:, 1], (n, robot.dof))
+
+
+def errors(robot, qs: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Position and rotation (Frobenius/√2 ≈ angle) errors of FK(qs) against targets."""
+    fk = robot.fk_batch(qs)
+    dp = np.linalg.norm(fk[:, :3, 3] - targets[:, :3, 3], axis=1)
+    dr = np.linalg.norm(fk[:, :3, :3] - targets[:, :3, :3], axis=(1, 2)) / math.sqrt(2)
+    return dp, dr
+
+
+@pytest.mark.parametrize("name", list_robots())
+def test_fk_of_ik_batch_is_the_pose_on_10000_random_poses(name):
+    """Every branch ik_batch returns reproduces the pose to 1e-9 and stays in the limits, and
+    the branch of the joints the pose came from is among them (seeded: it comes back exactly)."""
+    r = load_robot(name)
+    q = random_q(r, N_POSES, seed=7)
+    poses = r.fk_batch(q)
+    sols = r.ik_batch(poses, seed=q)
+    found = np.all(np.isfinite(sols), axis=2)
+    flat = sols[found]
+    dp, dr = errors(r, flat, np.repeat(poses, 8, axis=0)[found.reshape(-1)])
+    assert dp.max() <= 1e-9 and dr.max() <= 1e-9
+    assert np.all((flat >= r.joint_limits[:, 0]) & (flat <= r.joint_limits[:, 1]))
+    assert np.all(np.any(np.all(np.abs(sols - q[:, None]) < 1e-7, axis=2), axis=1))
+
+
+@pytest.mark.parametrize("name", list_robots())
+def test_single_ik_agrees_with_batch_and_starts_at_the_seed(name):
+    """ik(T, seed=q) lists q first; its branches are exactly the finite rows of ik_batch."""
+    r = load_robot(name)
+    qs = random_q(r, 30, seed=11)
+    poses = r.fk_batch(qs)
+    batch = r.ik_batch(poses, seed=qs)
+    for q, pose, rows in zip(qs, poses, batch):
+        res = r.ik(pose, seed=q)
+        assert res.status is IkStatus.OK
+        np.testing.assert_allclose(res.solutions[0], q, atol=1e-7)
+        assert res.branches[0] == r.branch(q)
+        batch_branches = {r.branch(row) for row in rows if np.all(np.isfinite(row))}
+        assert set(res.branches) == batch_branches
+        assert len(res.solutions) == len(res.branches)
+
+
+def distinct_numeric_solutions(robot, pose: np.ndarray, seeds: int) -> list[np.ndarray]:
+    """Distinct joint solutions (mod 2π, no limits) that pinocchio DLS finds from many seeds."""
+    found: list[np.ndarray] = []
+    for start in np.random.default_rng(5).uniform(-np.pi, np.pi, (seeds, robot.dof)):
+        q, err = dls(robot, pose, start, max_iter=100)
+        if err > 1e-10:
+            continue
+        q = np.remainder(q + np.pi, 2 * np.pi) - np.pi
+        if all(np.max(np.abs(np.remainder(q - f + np.pi, 2 * np.pi) - np.pi)) > 1e-6 for f in found):
+            found.append(q)
+    return found
+
+
+@pytest.mark.parametrize("name", ["abb_irb120", "staubli_tx2_60", "ur5e", "fanuc_lrmate200id"])
+def test_closed_form_branch_count_equals_numeric_solution_count(name):
+    """On generic poses the closed form has as many branches as DLS finds distinct solutions
+    from 300 random seeds (limits ignored on both sides)."""
+    r = load_robot(name)
+    for q in random_q(r, 3, seed=21):
+        pose = r.fk(q)
+        closed = r.ik_closed_form(pose)[0]
+        closed = closed[np.all(np.isfinite(closed), axis=1)]
+        numeric = distinct_numeric_solutions(r, pose, 300)
+        assert len(numeric) == len(closed)
+        for n in numeric:  # and they are the same solutions
+            assert min(np.max(np.abs(np.remainder(n - c + np.pi, 2 * np.pi) - np.pi)) for c in closed) < 1e-6
+
+
+def test_numpy_reference_and_compiled_opw_agree():
+    """The compiled OPW kernel equals the numpy reference implementation, NaNs included."""
+    r = load_robot("kuka_kr16")
+    params, jmap = SPECS["kuka_kr16"].opw
+    poses = r.fk_batch(random_q(r, 500, seed=3))
+    poses[::7, 0, 3] += 5.0  # some unreachable
+    ref = jmap.from_theta(opw_ik(params, poses))
+    np.testing.assert_allclose(r.ik_closed_form(poses), ref, atol=1e-9)
+
+
+def test_joint_beyond_180_gives_every_equivalent_nearest_seed_first():
+    """IRB 120 J6 spans ±400°: q6 and q6 ± 360° inside the limits are all solutions."""
+    r = load_robot("abb_irb120")
+    q = np.radians([10, 20, -30, 40, 50, 20])
+    res = r.ik(r.fk(q), seed=np.radians([10, 20, -30, 40, 50, 370]))
+    same_branch = [s for s, b in zip(res.solutions, res.branches) if b == r.branch(q)]
+    j6 = sorted(round(math.degrees(s[5]), 6) for s in same_branch)
+    assert j6 == [-340.0, 20.0, 380.0]
+    assert math.degrees(res.solutions[0][5]) == pytest.approx(380.0)
+
+
+def test_far_pose_is_unreachable_with_its_distance():
+    """A pose 1 m beyond the IRB 120 reach: UNREACHABLE, distance from the wrist annulus."""
+    r = load_robot("abb_irb120")
+    p = SPECS["abb_irb120"].opw[0]
+    pose = np.eye(4)
+    pose[:3, :3] = [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]  # flange axis along +x
+    pose[:3, 3] = (1.5, 0.0, p.c1)
+    res = r.ik(pose)
+    wrist_from_j2 = 1.5 - p.c4 - p.a1
+    expected = wrist_from_j2 - (p.c2 + math.hypot(p.a2, p.c3))
+    assert res.status is IkStatus.UNREACHABLE and res.code is codes.UNREACHABLE and not res.solutions
+    assert res.distance == pytest.approx(expected, abs=1e-12)
+    assert f"{expected * 1000:.1f} mm" in res.message
+
+
+def test_out_of_limits_names_the_joint_and_the_excess():
+    """A KR 210 pose reached only with A2 beyond -5°: OUT_OF_LIMITS on joint index 1 (A2)."""
+    r = load_robot("kuka_kr210")
+    q = np.radians([0, 5, 90, 0, 45, 0])  # A2 = +5° is 10° beyond its -5° limit
+    res = r.ik(r.fk(q))
+    assert res.status is IkStatus.OUT_OF_LIMITS and res.code is codes.OUT_OF_LIMITS
+    assert res.joint == 1 and math.degrees(res.excess) == pytest.approx(10.0, abs=1e-6)
+    assert res.message.startswith("joint 2 exceeds its limit by 10.0 deg")
+
+
+def test_wrist_singular_pose_reports_singular_and_keeps_the_seed_j4():
+    """J5 = 0 aligns J4 and J6: SINGULAR, with solutions, J4 taken from the seed."""
+    r = load_robot("abb_irb120")
+    pose = r.fk(np.radians([0, 10, 10, 30, 0, -10]))
+    res = r.ik(pose, seed=np.radians([0, 10, 10, 25, 0, 0]))
+    assert res.status is IkStatus.SINGULAR and res.code is codes.SINGULAR
+    np.testing.assert_allclose(np.degrees(res.solutions[0]), [0, 10, 10, 25, 0, -5], atol=1e-6)
+
+
+def test_config_filter_keeps_only_that_branch():
+    """config=... keeps matching branches; an impossible one says which branches exist."""
+    r = load_robot("staubli_tx2_60")
+    pose = r.fk(np.radians([10, 30, 60, 20, 40, 10]))
+    down = r.ik(pose, config=ir.Config(elbow=ir.Elbow.DOWN))
+    assert down.solutions and all(b.elbow is ir.Elbow.DOWN for b in down.branches)
+    every = {b for b in r.ik(pose).branches}
+    missing = [ir.Config(s, e, w) for s in ir.Shoulder for e in ir.Elbow for w in ir.Wrist if ir.Config(s, e, w) not in every]
+    if missing:
+        res = r.ik(pose, config=missing[0])
+        assert res.status is IkStatus.UNREACHABLE and res.code is codes.NO_SOLUTION_ON_BRANCH
+
+
+def test_bad_pose_raises_value_error():
+    """A non-rigid or wrongly shaped pose is a programming error: ValueError."""
+    r = load_robot("ur5e")
+    with pytest.raises(ValueError, match="orthonormal"):
+        r.ik(np.diag([2.0, 1.0, 1.0, 1.0]))
+    with pytest.raises(ValueError, match="shape"):
+        r.ik(np.eye(3))

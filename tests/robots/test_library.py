@@ -1,0 +1,149 @@
+"""The robot library against datasheet facts and independent kinematic formulas."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from rmot.compiler import ir
+from rmot.compiler.robots import Robot, RobotError, list_robots, load_robot
+from rmot.compiler.robots.library import SPECS
+from rmot.compiler.robots.opw import opw_fk
+from rmot.compiler.robots.urik import ur_fk
+
+NAMES = (
+    "abb_irb120", "abb_irb1600", "abb_irb4600", "kuka_kr6_r900", "kuka_kr16", "kuka_kr210",
+    "fanuc_lrmate200id", "fanuc_m20ia", "yaskawa_gp8", "staubli_tx2_60", "ur3e", "ur5e", "ur10e", "puma560",
+)
+
+
+def random_q(robot: Robot, n: int, seed: int = 0) -> np.ndarray:
+    return np.random.default_rng(seed).uniform(robot.joint_limits[:, 0], robot.joint_limits[:, 1], (n, robot.dof))
+
+
+def rot_y(deg: float) -> np.ndarray:
+    c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
+    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+
+
+def test_library_names_are_exactly_the_contract():
+    """list_robots() is the 14 contract names, sorted."""
+    assert list_robots() == tuple(sorted(NAMES))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_robot_loads_with_consistent_attributes(name):
+    """Each entry builds: 6 revolute joints, ordered limits, positive speeds, a cited source."""
+    r = load_robot(name)
+    assert r.name == name and r.dof == 6 and r.joint_types == ("R",) * 6
+    assert np.all(r.joint_limits[:, 0] < r.joint_limits[:, 1])
+    assert np.all(r.velocity_limits > 0) and np.all(r.accel_limits > r.velocity_limits)
+    assert r.has_closed_form and len(r.source) > 5 and r.vendor and r.model_name
+    assert load_robot(name) is r  # cached
+
+
+def test_unknown_robot_suggests_the_nearest_name():
+    """An unknown name raises RobotError with a did-you-mean."""
+    with pytest.raises(RobotError, match="did you mean 'abb_irb120'"):
+        load_robot("abb_irb12")
+
+
+# Datasheet facts: the flange at a documented joint position (mm, base frame).
+FLANGE_FACTS = [
+    ("abb_irb120", (0, 0, 0, 0, 0, 0), (374.0, 0.0, 630.0)),  # ABB: tool0 at calibration position
+    ("abb_irb1600", (0, 0, 0, 0, 0, 0), (815.0, 0.0, 1186.5)),
+    ("abb_irb4600", (0, 0, 0, 0, 0, 0), (1270.0, 0.0, 1570.0)),
+    ("kuka_kr6_r900", (0, -90, 90, 0, 0, 0), (525.0, 0.0, 890.0)),  # KUKA HOME
+    ("fanuc_lrmate200id", (0, 0, 0, 0, 0, 0), (465.0, 0.0, 365.0)),  # Fanuc world frame at J2 height
+    ("puma560", (0, 0, 0, 0, 0, 0), (452.1, -150.05, 431.8)),  # Corke: fkine(qz)
+    ("staubli_tx2_60", (0, 0, 0, 0, 0, 0), (0.0, 20.0, 1045.0)),  # candle: 375 + 290 + 310 + 70
+]
+
+
+@pytest.mark.parametrize(("name", "q_deg", "xyz_mm"), FLANGE_FACTS)
+def test_flange_at_documented_pose(name, q_deg, xyz_mm):
+    """FK at the documented pose puts the flange where the datasheet says (0.01 mm)."""
+    t = load_robot(name).fk(np.radians(q_deg))
+    np.testing.assert_allclose(t[:3, 3] * 1000, xyz_mm, atol=0.01)
+
+
+@pytest.mark.parametrize("name", [n for n in NAMES if not n.startswith("ur") and n != "puma560"])
+def test_wrist_centre_reach_matches_datasheet(name):
+    """The largest wrist-centre distance from J1 (a1 + c2 + |J3→wrist|) is the datasheet reach
+    (Stäubli states it at the flange) within 0.1 %."""
+    p = SPECS[name].opw[0]
+    reach = p.a1 + p.c2 + math.hypot(p.a2, p.c3) + (p.c4 if name.startswith("staubli") else 0.0)
+    assert reach == pytest.approx(SPECS[name].reach, rel=1e-3)
+
+
+@pytest.mark.parametrize("name", ["ur3e", "ur5e", "ur10e"])
+def test_ur_reach_is_near_the_stretched_arm(name):
+    """UR's datasheet reach is within 7 % of the shoulder-to-flange distance of the stretched arm."""
+    r = load_robot(name)
+    p = SPECS[name].ur
+    flange = r.fk(np.zeros(6))[:3, 3]
+    stretched = np.linalg.norm(flange - [0, 0, p.d1])
+    assert stretched == pytest.approx(r.reach, rel=0.07)
+
+
+def test_vendor_flange_orientations_at_zero():
+    """ABB tool0 / KUKA $FLANGE at home: z forward, x down (B = 90°); Fanuc faceplate at zero:
+    W P R = (180, -90, 0), i.e. z forward, x up."""
+    down_x = rot_y(90)
+    np.testing.assert_allclose(load_robot("abb_irb120").fk(np.zeros(6))[:3, :3], down_x, atol=1e-12)
+    np.testing.assert_allclose(load_robot("kuka_kr6_r900").fk(np.radians([0, -90, 90, 0, 0, 0]))[:3, :3], down_x, atol=1e-12)
+    wpr = ir.Pose.from_xyz_rpy(0, 0, 0, math.pi, -math.pi / 2, 0).matrix()[:3, :3]
+    np.testing.assert_allclose(load_robot("fanuc_lrmate200id").fk(np.zeros(6))[:3, :3], wpr, atol=1e-12)
+
+
+def test_kuka_a1_positive_turns_clockwise_from_above():
+    """KUKA A1 > 0 turns the arm clockwise seen from above (flange to negative y)."""
+    t = load_robot("kuka_kr6_r900").fk(np.radians([30, -90, 90, 0, 0, 0]))
+    assert t[1, 3] < -0.2
+
+
+def test_fanuc_j3_is_the_forearm_angle_to_the_horizontal():
+    """Fanuc J2/J3 interaction: moving J2 with J3 fixed keeps the forearm (and flange) orientation."""
+    r = load_robot("fanuc_lrmate200id")
+    a = r.fk(np.radians([0, 0, 20, 0, -30, 0]))
+    b = r.fk(np.radians([0, 40, 20, 0, -30, 0]))
+    np.testing.assert_allclose(a[:3, :3], b[:3, :3], atol=1e-12)
+    assert b[0, 3] > a[0, 3] + 0.1  # J2 > 0 tilts the upper arm forward
+
+
+@pytest.mark.parametrize("name", [n for n in NAMES if SPECS[n].opw is not None])
+def test_pinocchio_model_equals_the_opw_formula(name):
+    """The DH table built into pinocchio equals the closed OPW FK formula (independent algebra)."""
+    r = load_robot(name)
+    params, jmap = SPECS[name].opw
+    q = random_q(r, 200, seed=1)
+    flange_turn = np.array(SPECS[name].flange)
+    np.testing.assert_allclose(r.fk_batch(q), opw_fk(params, jmap.to_theta(q)) @ flange_turn, atol=1e-12)
+
+
+def dh_standard(q: np.ndarray, table: list[tuple[float, float, float]]) -> np.ndarray:
+    """A plain standard-DH product, written out for the test."""
+    t = np.eye(4)
+    for theta, (d, a, alpha) in zip(q, table):
+        ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
+        t = t @ np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0, sa, ca, d], [0, 0, 0, 1]])
+    return t
+
+
+def test_puma560_equals_corkes_dh_table():
+    """Puma 560 FK equals Corke's standard DH table on random joint values."""
+    h = math.pi / 2
+    table = [(0, 0, h), (0, 0.4318, 0), (0.15005, 0.0203, -h), (0.4318, 0, h), (0, 0, -h), (0, 0, 0)]
+    r = load_robot("puma560")
+    for q in random_q(r, 50, seed=2):
+        np.testing.assert_allclose(r.fk(q), dh_standard(q, table), atol=1e-12)
+
+
+@pytest.mark.parametrize("name", ["ur3e", "ur5e", "ur10e"])
+def test_ur_equals_its_official_dh_table(name):
+    """UR FK equals the plain product of UR's official DH table."""
+    r = load_robot(name)
+    q = random_q(r, 200, seed=3)
+    np.testing.assert_allclose(r.fk_batch(q), ur_fk(SPECS[name].ur, q), atol=1e-12)
