@@ -27,8 +27,10 @@ demo: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
+# Benchmarks run on their own (never in `make test`): medians and ratios against peers.
 bench: $(STAMP)
-	$(BIN)/python -m pytest tests/benchmarks -q -p no:cacheprovider --benchmark-columns=median,iqr,rounds
+	$(BIN)/python -m pip install --quiet -e '.[bench]'
+	$(BIN)/python -m pytest tests/benchmarks -q -p no:cacheprovider -o python_files='bench_*.py test_*.py' -o addopts='' --benchmark-columns=median,iqr,rounds
 
 clean:
 	rm -rf $(VENV) build *.egg-info $(OUT)

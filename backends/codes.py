@@ -10,9 +10,9 @@ from rmot.lang.diagnostics import Code
 
 __all__ = [
     "MISSING_RECORD", "UNSUPPORTED", "NATIVE_OTHER_VENDOR", "BAD_PORT", "SYNC_UNSUPPORTED",
-    "NO_BRANCH", "NOT_SIX_AXIS", "PROGRAM_TOO_LONG", "INPUT_MISSING",
+    "NO_BRANCH", "NOT_SIX_AXIS", "PROGRAM_TOO_LONG", "INPUT_MISSING", "SYNC_HANDSHAKE_MISSING",
     "NAME_CHANGED", "NAME_CLASH", "SPEED_ROUNDED", "ZONE_ROUNDED", "LOWERED", "TIMEOUT_LOWERED",
-    "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED",
+    "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED", "SYNC_OUTPUT_LEFT_ON",
 ]
 
 # errors: the program cannot be expressed faithfully for this vendor
@@ -22,6 +22,8 @@ NO_BRANCH = Code("E402", "missing-branch", "a Cartesian target needs configurati
 NOT_SIX_AXIS = Code("E403", "unsupported-robot", "the vendor format needs a 6-axis arm")
 BAD_PORT = Code("E404", "io-port-out-of-range", "an I/O port number is outside what the vendor accepts")
 SYNC_UNSUPPORTED = Code("E405", "sync-unsupported", "a multi-task barrier has no form for this vendor")
+SYNC_HANDSHAKE_MISSING = Code("E409", "sync-handshake-missing",
+                              "a barrier needs the robot's \"sync\" I/O handshake signals in the cell")
 PROGRAM_TOO_LONG = Code("E406", "program-too-long", "a routine exceeds the controller's size limit")
 INPUT_MISSING = Code("E408", "compile-input-missing", "the program file given to `rmot compile` does not exist")
 NATIVE_OTHER_VENDOR = Code("E407", "native-unknown-vendor", "a native block names an unknown vendor")
@@ -37,3 +39,5 @@ PROGRAM_SPLIT = Code("W406", "program-split", "a long program was split into par
 NATIVE_SKIPPED = Code("W407", "native-other-vendor", "a native block for another vendor was not emitted")
 ACCEL_IGNORED = Code("W408", "accel-not-expressed", "the vendor cannot express the programmed acceleration")
 DURATION_IGNORED = Code("W409", "duration-not-expressed", "a fixed move duration is expressed as speed only")
+SYNC_OUTPUT_LEFT_ON = Code("W410", "sync-output-left-on",
+                           "an odd number of handshake barriers leaves the robot's sync output on")

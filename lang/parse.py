@@ -24,6 +24,7 @@ from rmot.lang import ast
 from rmot.lang import codes
 from rmot.lang._build import KEYWORDS, AstBuilder, token_span
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.lexer import RmotLexer
 from rmot.lang.source import Pos, SourceFile, Span
 
 __all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "UNITS"]
@@ -82,7 +83,7 @@ _BUILDER = AstBuilder()
 _PARSER = Lark(
     _GRAMMAR.read_text(encoding="utf-8"),
     parser="lalr",
-    lexer="contextual",
+    lexer=RmotLexer,
     propagate_positions=True,
     maybe_placeholders=True,
     postlex=_POSTLEX,
@@ -218,8 +219,8 @@ def _bad_character(exc: UnexpectedCharacters, file: SourceFile) -> Diagnostic:
         end = len(file.text) if end < 0 else end
         span = Span(file, span.start, Pos(exc.line, exc.column + (end - offset), end))
         return _error(codes.UNTERMINATED_STRING, "string must end with '\"' on the same line (got the end of the line)", span)
-    allowed = set(exc.allowed or ())
-    return _error(codes.UNEXPECTED_CHARACTER, f"unexpected character {ch!r}: expected {expected_in_words(allowed)}", span)
+    msg = f"unexpected character {ch!r}: outside strings and comments only names, numbers, units, operators and brackets may appear"
+    return _error(codes.UNEXPECTED_CHARACTER, msg, span)
 
 
 def _eof_span(file: SourceFile) -> Span:

@@ -61,8 +61,8 @@ def check_limits(robot: Any, traj: planned.Trajectory, payload: float = 0.0,
 def joint_torques(robot: Any, traj: planned.Trajectory, payload: float = 0.0,
                   payload_at: np.ndarray | None = None) -> np.ndarray:
     """(N, dof) N·m (N for prismatic) by RNEA; the payload is a point mass on the last joint.
-    Joint values are taken as pinocchio's q (the library keeps the two equal up to offsets
-    that do not change the dynamics' structure)."""
+    Controller joint values go through robot.to_model (a linear map, Fanuc's J2/J3 coupling)
+    when the robot has one; the torques are those of the model's joints."""
     import pinocchio as pin
 
     model = pin.Model(robot.model)  # a copy: the payload must not leak into the shared model
@@ -70,9 +70,11 @@ def joint_torques(robot: Any, traj: planned.Trajectory, payload: float = 0.0,
         at = np.zeros(3) if payload_at is None else np.asarray(payload_at, dtype=float)
         model.inertias[robot.dof] = model.inertias[robot.dof] + pin.Inertia(payload, at, np.zeros((3, 3)))
     data = model.createData()
-    out = np.empty_like(traj.q)
-    for k in range(traj.q.shape[0]):
-        out[k] = pin.rnea(model, data, traj.q[k], traj.qd[k], traj.qdd[k])[: robot.dof]
+    to_model = getattr(robot, "to_model", lambda v: v)
+    q, qd, qdd = (np.asarray(to_model(np.asarray(v)), dtype=float) for v in (traj.q, traj.qd, traj.qdd))
+    out = np.empty_like(q)
+    for k in range(q.shape[0]):
+        out[k] = pin.rnea(model, data, q[k], qd[k], qdd[k])[: robot.dof]
     return out
 
 

@@ -285,7 +285,20 @@ def format_sarif(reports: Sequence[Report]) -> str:
 
 def _sarif_location(d: Diagnostic, program_file: str) -> dict[str, Any]:
     if d.span is None:
-        return {"physicalLocation": {"artifactLocation": {"uri": program_file}}}
+        return {"physicalLocation": {"artifactLocation": {"uri": _uri(program_file)}}}
     s = d.span
     region = {"startLine": s.start.line, "startColumn": s.start.col, "endLine": s.end.line, "endColumn": s.end.col}
-    return {"physicalLocation": {"artifactLocation": {"uri": s.path}, "region": region}}
+    return {"physicalLocation": {"artifactLocation": {"uri": _uri(s.path)}, "region": region}}
+
+
+def _uri(path: str) -> str:
+    """Code-scanning tools want paths relative to the checkout: relative to the working
+    directory when the file is inside it, else an absolute file:// URI."""
+    import os
+    from pathlib import Path
+
+    absolute = Path(os.path.abspath(path))
+    try:
+        return absolute.relative_to(Path.cwd()).as_posix()
+    except ValueError:
+        return absolute.as_uri()

@@ -14,6 +14,7 @@ chain plus the body's own extent), which bounds how far the body can move when q
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -68,7 +69,13 @@ class Scene:
     robots: Mapping[str, RobotEntry]
     bodies: tuple[Body, ...]
     diagnostics: tuple[Diagnostic, ...] = ()
-    always_touching: frozenset[frozenset[str]] = frozenset()  # self pairs never checked, see below
+
+    @functools.cached_property
+    def always_touching(self) -> frozenset[frozenset[str]]:
+        """Self pairs never checked: they touch at every configuration (see _always_touching).
+        Computed on first use (the renderer builds scenes too and never needs it)."""
+        return frozenset().union(*(_always_touching(e, list(self.robot_bodies(name)))
+                                   for name, e in self.robots.items()))
 
     def body(self, name: str) -> Body:
         for b in self.bodies:
@@ -140,9 +147,7 @@ def build_scene(cell: ir.Cell, tools_used: Mapping[str, set[str]] | None = None,
                 shape = _shape(tool.geometry, diags)
                 if shape is not None:
                     bodies.append(_tool_body(entry, tool, shape))
-    touching = frozenset().union(*(_always_touching(e, [b for b in bodies if b.robot == name])
-                                   for name, e in entries.items()))
-    return Scene(cell, entries, tuple(bodies), tuple(diags), touching)
+    return Scene(cell, entries, tuple(bodies), tuple(diags))
 
 
 _TOUCH_SAMPLES = 64

@@ -3,7 +3,9 @@
 Every task's main timeline is checked on one shared clock (robot against robot where tasks
 overlap in time); every `if` variant is checked against the fixtures, its own robot and the
 other robots (on their main timelines at the same times). A robot of the cell without a task
-stands still at its zero configuration (clipped to its limits).
+stands still at its zero configuration (clipped to its limits). Every tool a task names is
+treated as mounted for the whole task (tool changes are not modelled); its mass is the
+payload of the torque check.
 
 The no-miss guarantee between samples is the distance bound in collide.py: a contact
 deeper than collide.CONTACT_TOL (10 µm) cannot fall between two samples unseen.

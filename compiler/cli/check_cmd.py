@@ -12,10 +12,15 @@ import re
 import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+
+if TYPE_CHECKING:  # the heavy stages load only when a check runs
+    from rmot.compiler.planned import Plan
+    from rmot.sim.report import Report
 
 __all__ = ["CheckOutcome", "check", "check_one", "parse_length"]
 
@@ -26,7 +31,7 @@ _UNIT = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
 
 @dataclass(frozen=True)
 class CheckOutcome:
-    report: object  # rmot.sim.report.Report
+    report: Report
     input_error: bool
 
 
@@ -41,9 +46,9 @@ def parse_length(text: str) -> float:
 def check_one(path: str, cell: str | None = None, project_root: str | None = None,
               clearance: float | None = None, images: str | None = None) -> CheckOutcome:
     """One program through front end -> planner -> verification (runs in a worker process)."""
+    from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim import codes
     from rmot.sim.report import Report
-    from rmot.lang.diagnostics import Diagnostic, Severity
 
     def failed(message: str) -> CheckOutcome:
         diag = Diagnostic(codes.PROGRAM_NOT_CHECKED, Severity.ERROR, message, None)
@@ -58,8 +63,10 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
         return failed(f"this build cannot check programs yet: {exc}")
     front = load_program(path, cell=cell, project_root=project_root)
     front_diags = tuple(front.diagnostics)
-    if front.program is None or any(d.is_error for d in front_diags):
+    if any(d.is_error for d in front_diags):
         return CheckOutcome(Report(path, {}, front_diags), True)
+    if front.program is None:
+        return failed("the file must contain a program (got none)")
     from rmot.sim import verify
 
     try:
@@ -73,22 +80,22 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     return CheckOutcome(report, False)
 
 
-def _render_images(plan: object, report: object, directory: str) -> object:
+def _render_images(plan: Plan, report: Report, directory: str) -> Report:
     """One PNG per error finding with a time; written atomically (temp file + rename)."""
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim import codes
     from rmot.sim.report import Report
 
     try:
-        from rmot.sim.render import render_finding  # type: ignore[attr-defined]
+        from rmot.sim.render import render_finding
     except ImportError as exc:
         note = Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                           f"images were not rendered: the renderer is not available ({exc})", None)
-        return Report(report.program_file, report.cycle_times, report.diagnostics + (note,))  # type: ignore[attr-defined]
+        return Report(report.program_file, report.cycle_times, report.diagnostics + (note,))
     os.makedirs(directory, exist_ok=True)
-    stem = os.path.splitext(os.path.basename(report.program_file))[0]  # type: ignore[attr-defined]
+    stem = os.path.splitext(os.path.basename(report.program_file))[0]
     extra = []
-    for k, d in enumerate(report.errors, start=1):  # type: ignore[attr-defined]
+    for k, d in enumerate(report.errors, start=1):
         if d.time_s is None:
             continue
         final = os.path.join(directory, f"{stem}-{k:02d}-{d.code.id}.png")
@@ -103,7 +110,7 @@ def _render_images(plan: object, report: object, directory: str) -> object:
         finally:
             if os.path.exists(tmp):
                 os.unlink(tmp)
-    return Report(report.program_file, report.cycle_times, report.diagnostics + tuple(extra))  # type: ignore[attr-defined]
+    return Report(report.program_file, report.cycle_times, report.diagnostics + tuple(extra))
 
 
 def _write_atomic(path: str, text: str) -> None:
@@ -119,7 +126,7 @@ def _write_atomic(path: str, text: str) -> None:
         raise
 
 
-def _format(fmt: str, reports: list) -> str:
+def _format(fmt: str, reports: list[Report]) -> str:
     from rmot.sim import report as fmt_mod
 
     return {"text": fmt_mod.format_text, "json": fmt_mod.format_json,

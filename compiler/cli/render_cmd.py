@@ -5,7 +5,9 @@
                 [--fps N] [--project-root DIR]
 
 Bad input (the program, the cell, the options) is reported as diagnostics, exit code 2.
-Rendering only draws: its exit code never depends on verification findings.
+Planning errors are reported too (exit 2), but the planned motion is still drawn: seeing
+where a move goes wrong is the point of the picture. Rendering only draws: the exit code
+never depends on verification findings.
 """
 
 from __future__ import annotations
@@ -87,6 +89,8 @@ def render(program: str, cell: str | None, output: str, at: float, size: tuple[i
     ext = os.path.splitext(output)[1].lower()
     try:
         _write(plan, output, ext, at, size, aa, camera, fps)
+        if any(d.is_error for d in plan.diagnostics):
+            sys.exit(EXIT_INPUT)  # drawn anyway (a picture helps to see what failed), but not a success
     except _InputError as exc:
         _fail(exc.diagnostic)
     except OSError as exc:
@@ -110,19 +114,20 @@ def _fail(*diagnostics: Any) -> None:
     sys.exit(EXIT_INPUT)
 
 
-def _report(diagnostics: Any) -> None:
-    """Print warnings; print errors and exit 2 if there are any."""
+def _report(diagnostics: Any, stop_on_error: bool = True) -> None:
+    """Print the diagnostics; exit 2 if any is an error (unless told to go on)."""
     from rmot.lang.diagnostics import render_all
 
     diagnostics = tuple(diagnostics or ())
     if diagnostics:
         click.echo(render_all(diagnostics), err=True)
-    if any(d.is_error for d in diagnostics):
+    if stop_on_error and any(d.is_error for d in diagnostics):
         sys.exit(EXIT_INPUT)
 
 
 def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
-    """Front end then planner; any error diagnostics end the command with exit code 2."""
+    """Front end then planner. Front-end errors end the command (exit 2); planning errors are
+    printed and the plan is still drawn (the planner gives every task a trajectory), exit 2."""
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
     from rmot.lang.diagnostics import Diagnostic, Severity
@@ -134,7 +139,7 @@ def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
         _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,
                          f"'{program}' must contain a program to render (got only a cell)", None))
     planned = plan_program(loaded.program)
-    _report(planned.diagnostics)
+    _report(planned.diagnostics, stop_on_error=False)
     return planned
 
 

@@ -1,13 +1,15 @@
 """`rmot robots`: list the library, show a robot, forward and inverse kinematics by hand.
 
 Angles on the command line are degrees, lengths millimetres; orientation rx ry rz with
-R = Rz(rz)·Ry(ry)·Rx(rx) (LANGUAGE.md). Bad input exits 2 with a message, never a traceback.
+R = Rz(rz)·Ry(ry)·Rx(rx) (LANGUAGE.md). Bad input exits 2 with a message, never a traceback;
+`ik` exits 1 when the pose has no solution (unreachable or out of limits).
 """
 
 from __future__ import annotations
 
 import json
 import math
+import sys
 
 import click
 import numpy as np
@@ -166,7 +168,11 @@ def ik_cmd(name: str, pose: tuple[str, ...], show_all: bool, as_json: bool) -> N
     if as_json:
         _emit({"robot": r.name, "status": result.status.value, "message": result.message,
                "solutions": [{"branch": _branch_dict(b), "joints": [round(v, 6) for v in _display(r, q)]} for q, b in rows]})
+        if not result.solutions:
+            sys.exit(1)
         return
     click.echo(f"status: {result.status.value}" + (f" ({result.message})" if result.message else ""))
     for i, (q, b) in enumerate(rows, 1):
         click.echo(f"{i:>3}  {str(b):<40} {_fmt(_display(r, q))}")
+    if not result.solutions:
+        sys.exit(1)  # a finding about the input pose, not a usage error

@@ -37,34 +37,31 @@ _POSE_FIELDS = ("x", "y", "z", "rx", "ry", "rz")
 
 def eval_expr(e: ast.Expr, scope: Scope, rep: Reporter) -> Value | None:
     """The value of `e` in SI units, or None after reporting why it has none."""
-    if isinstance(e, ast.Number):
-        return _number(e, rep)
-    if isinstance(e, ast.Name):
-        return _name(e, scope, rep)
-    if isinstance(e, ast.BinOp):
-        return _binop(e, scope, rep)
-    if isinstance(e, ast.Neg):
-        v = eval_expr(e.operand, scope, rep)
-        if v is None or isinstance(v, Quantity):
-            return None if v is None else Quantity(-v.value, v.dim, v.unit, None if v.written is None else -v.written)
-        rep.error(codes.WRONG_TYPE, f"operand of '-' must be a number or quantity (got {article(type_name(v))})", e.span)
+    handler = _EVAL.get(type(e))
+    if handler is None:
+        rep.error(codes.WRONG_TYPE, f"expression must be a value (got {type(e).__name__})", getattr(e, "span", None))
         return None
-    if isinstance(e, ast.Call):
-        return _call(e, scope, rep)
-    if isinstance(e, ast.Joints):
-        return _joints(e, scope, rep)
-    if isinstance(e, ast.Vector):
-        items = tuple(eval_expr(a.value, scope, rep) for a in e.items)
-        return None if any(i is None for i in items) else VectorV(items)  # type: ignore[arg-type]
-    if isinstance(e, ast.String):
-        return StringV(e.value)
-    if isinstance(e, ast.Attr):
-        return _attr(e, scope, rep)
-    rep.error(codes.WRONG_TYPE, f"expression must be a value (got {type(e).__name__})", getattr(e, "span", None))
+    return handler(e, scope, rep)  # type: ignore[no-any-return]
+
+
+def _neg(e: ast.Neg, scope: Scope, rep: Reporter) -> Value | None:
+    v = eval_expr(e.operand, scope, rep)
+    if v is None or isinstance(v, Quantity):
+        return None if v is None else Quantity(-v.value, v.dim, v.unit, None if v.written is None else -v.written)
+    rep.error(codes.WRONG_TYPE, f"operand of '-' must be a number or quantity (got {article(type_name(v))})", e.span)
     return None
 
 
-def _number(e: ast.Number, rep: Reporter) -> Quantity | None:
+def _vector(e: ast.Vector, scope: Scope, rep: Reporter) -> Value | None:
+    items = tuple(eval_expr(a.value, scope, rep) for a in e.items)
+    return None if any(i is None for i in items) else VectorV(items)  # type: ignore[arg-type]
+
+
+def _string(e: ast.String, scope: Scope, rep: Reporter) -> Value:
+    return StringV(e.value)
+
+
+def _number(e: ast.Number, scope: Scope, rep: Reporter) -> Quantity | None:
     if e.unit is None:
         return Quantity(e.value, DIMENSIONLESS, None, e.value)
     factor, dim = UNITS[e.unit]
@@ -342,3 +339,9 @@ def _joints(e: ast.Joints, scope: Scope, rep: Reporter) -> Value | None:
             v = Quantity(v.value * factor, dim, e.unit, v.value)
         values.append(v)
     return JointsV(tuple(values), e.span)
+
+
+_EVAL = {
+    ast.Number: _number, ast.Name: _name, ast.BinOp: _binop, ast.Neg: _neg, ast.Call: _call,
+    ast.Joints: _joints, ast.Vector: _vector, ast.String: _string, ast.Attr: _attr,
+}

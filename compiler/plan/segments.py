@@ -17,7 +17,7 @@ from rmot.compiler import ir
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path, line_path
 from rmot.compiler.plan.dense import DensePath, PathFailure, follow_path
-from rmot.compiler.plan.targets import Finding, flange_target, solve_target
+from rmot.compiler.plan.targets import Finding, solve_target
 from rmot.lang.diagnostics import Severity
 
 __all__ = ["Segment", "build_segment"]

@@ -73,17 +73,13 @@ def align(drafts: dict[str, TaskDraft]) -> list[Diagnostic]:
             msg = (f"sync '{key[0]}' must be reached in the same order by every task "
                    "(the tasks would wait for each other forever)")
             return [Diagnostic(codes.SYNC_MISMATCH, Severity.ERROR, msg, sync.span, task=name)]
-        members = [n for n in drafts if key_at(heads, n) == ready]
+        members = [n for n in drafts if heads.get(n) == ready]
         arrive = {n: _arrival(drafts[n], pointer[n]) for n in members}
         leave = max(arrive.values())
         for n in members:
             if leave - arrive[n] > 0:
                 _hold(drafts[n], pointer[n], leave - arrive[n])
             pointer[n] += 1
-
-
-def key_at(heads: dict[str, tuple[str, int]], name: str) -> tuple[str, int] | None:
-    return heads.get(name)
 
 
 def sample(pieces: list[Piece], step: float, t0: float, dof: int, q_rest: np.ndarray) -> Trajectory:

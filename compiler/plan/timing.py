@@ -123,6 +123,13 @@ class ConstAccelTiming:
             return path(s, 1) * v[:, None]  # type: ignore[operator]
         return path(s, 2) * (v * v)[:, None] + path(s, 1) * a[:, None]  # type: ignore[operator]
 
+    def evaluate(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Position, velocity and acceleration (N, n) at times t (N,), in one pass."""
+        s, v, a = self.params(np.asarray(t, dtype=float))
+        path = self.path
+        d1, d2 = path(s, 1), path(s, 2)  # type: ignore[operator]
+        return path(s), d1 * v[:, None], d2 * (v * v)[:, None] + d1 * a[:, None]  # type: ignore[operator]
+
     def time_at(self, s: float) -> float:
         """The time (s) at which the path parameter reaches s."""
         ts, sdd = self.ts, self.sdd  # type: ignore[attr-defined]
@@ -165,8 +172,8 @@ def stretched(piece: PathPiece, duration: float) -> PathPiece:
     return PathPiece(piece.trajectory, piece.native_duration, duration / piece.native_duration, piece.dof)
 
 
-def _eval(traj: object, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    return traj(ts), traj(ts, 1), traj(ts, 2)  # type: ignore[operator]
+def _eval(traj: ConstAccelTiming, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    return traj.evaluate(ts)
 
 
 # --------------------------------------------------------------------------- ruckig
@@ -224,7 +231,7 @@ def _ruckig_ok(result: object, Result: type) -> None:  # noqa: N803 - ruckig's e
 
 def path_piece(
     waypoints: np.ndarray, ss: np.ndarray, vlim: np.ndarray, alim: np.ndarray, dof: int,
-    check_dt: float = 0.001,
+    check_dt: float = 0.00025,
 ) -> PathPiece:
     """Time-optimal rest-to-rest timing of the path through waypoints (M, n) at ss (M,).
 
@@ -289,7 +296,8 @@ def _ratios(
     alim (joints only: extra coordinates' accelerations are shaping limits), and the path
     parameters s where a limit (less its margin) is exceeded."""
     duration = traj.duration
-    ts = np.linspace(0.0, duration, max(3, int(math.ceil(duration / dt)) + 1))
+    dense = np.linspace(0.0, duration, max(3, int(math.ceil(duration / dt)) + 1))
+    ts = np.union1d(dense, traj.ts)  # type: ignore[attr-defined] - and toppra's own grid times
     _, xd, xdd = _eval(traj, ts)
     rel_v = np.abs(xd) / vlim
     rel_a = np.abs(xdd[:, :dof]) / alim[:dof]

@@ -70,14 +70,10 @@ def _frame_with_z(z: np.ndarray) -> np.ndarray:
 
 
 def _adjacent(solids: tuple[LinkSolid, ...], extra: tuple[tuple[str, str], ...]) -> tuple[tuple[int, int], ...]:
-    """Solids on the same or on consecutive joints, plus named pairs that touch by design."""
+    """Consecutive solids of the chain (listed base to flange; they share a joint and touch at
+    every configuration), plus named pairs that touch by design."""
     names = {s.name: i for i, s in enumerate(solids)}
-    pairs = {
-        (i, j)
-        for i, a in enumerate(solids)
-        for j, b in enumerate(solids)
-        if i < j and abs(a.joint_id - b.joint_id) <= 1
-    }
+    pairs = {(i, i + 1) for i in range(len(solids) - 1)}
     pairs |= {tuple(sorted((names[a], names[b]))) for a, b in extra if a in names and b in names}  # type: ignore[misc]
     return tuple(sorted(pairs))  # type: ignore[arg-type]
 

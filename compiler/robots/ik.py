@@ -120,11 +120,18 @@ def _candidates(robot, target: np.ndarray, seed: np.ndarray) -> list[np.ndarray]
         raw = robot.ik_closed_form(target[None])[0]
         return [row for row in raw if np.all(np.isfinite(row))]
     found = []
-    for start in np.vstack([seed[None], restart_seeds(robot.joint_limits, NUMERIC_RESTARTS)]):
+    q, err = dls_fast(robot, target, seed)
+    if err < 1e-9:
+        found.append(q)
+        if len(_equivalents(robot, q)):
+            return found
+    if robot._restarts is None:  # deterministic, drawn once per robot
+        robot._restarts = restart_seeds(robot.joint_limits, NUMERIC_RESTARTS)
+    for start in robot._restarts:
         q, err = dls_fast(robot, target, start)
         if err < 1e-9:
             found.append(q)
-            if all(_excess(robot, q)[1] == 0 for q in found[:1]):
+            if len(_equivalents(robot, q)):
                 break
     return found
 

@@ -11,7 +11,9 @@ import math
 
 from rmot.compiler.robots.dh import DHRow, DHTable
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
-from rmot.compiler.robots.spec import RobotSpec, opw_segments, opw_spec, ur_spec
+import numpy as np
+
+from rmot.compiler.robots.spec import OPW_TOUCHING, RobotSpec, opw_segments, opw_spec, ur_spec
 from rmot.compiler.robots.urik import UrParams
 
 __all__ = ["SPECS"]
@@ -150,8 +152,8 @@ def _puma560() -> RobotSpec:
         dh=DHTable(rows), limits_deg=((-160, 160), (-45, 225), (-225, 45), (-110, 170), (-100, 100), (-266, 266)),
         speed_deg_s=speeds, accel_deg_s2=_acc(speeds), reach=0.864, opw=(params, jmap),
         segments=opw_segments(params, (0.1, 0.09, 0.07, 0.07, 0.05, 0.04, 0.03), floor=-0.672),
-        solid_pose=tuple(jmap.from_theta(__import__("numpy").zeros(6)).tolist()),
-        extra_adjacent=(("upper_arm", "forearm"),),
+        solid_pose=tuple(jmap.from_theta(np.zeros(6)).tolist()),
+        extra_adjacent=OPW_TOUCHING,
     )
 
 

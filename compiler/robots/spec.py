@@ -72,8 +72,14 @@ def opw_spec(
         limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=accel_deg_s2, reach=reach,
         flange=tuple(map(tuple, rot_z(flange_rz))), coupling=jmap.coupling, opw=(params, jmap),
         segments=opw_segments(params, radii, floor), solid_pose=solid_q,
-        extra_adjacent=(("upper_arm", "forearm"),), notes=notes,
+        extra_adjacent=OPW_TOUCHING, notes=notes,
     )
+
+
+# Pairs excluded besides consecutive ones: the elbow housing joins upper arm and forearm (the
+# J3 limits keep those two apart), and around a compact spherical wrist the forearm end and the flange stub overlap at every J5
+# (the J5 limits keep the real flange off the forearm).
+OPW_TOUCHING = (("upper_arm", "forearm"), ("forearm", "flange"))
 
 
 def opw_segments(p: OpwParams, radii: tuple[float, ...], floor: float = 0.0) -> tuple[Segment, ...]:
@@ -131,6 +137,6 @@ def ur_spec(
         name=name, vendor="Universal Robots", model=model, source=source, dh=DHTable(rows),
         limits_deg=limits, speed_deg_s=speed_deg_s, accel_deg_s2=accel_deg_s2, reach=reach,
         ur=params, segments=ur_segments(params, shoulder_off, elbow_off, radii),
-        solid_pose=(0.0,) * 6, extra_adjacent=(("upper_arm", "forearm"), ("wrist_1", "wrist_3")),
+        solid_pose=(0.0,) * 6,
     )
 

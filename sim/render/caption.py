@@ -41,7 +41,10 @@ def add_caption(image: np.ndarray, text: str, max_lines: int = 3) -> np.ndarray:
     draw = ImageDraw.Draw(picture)
     font = _font(picture.height)
     pad = 6
-    lines = _wrap(draw, text, font, picture.width - 2 * pad)[:max_lines]
+    lines = _wrap(draw, text, font, picture.width - 2 * pad)
+    if len(lines) > max_lines:  # say that the text goes on rather than cutting it silently
+        lines = lines[:max_lines]
+        lines[-1] = lines[-1].rstrip()[:-1] + "…" if len(lines[-1]) > 1 else "…"
     ascent, descent = font.getmetrics() if hasattr(font, "getmetrics") else (11, 3)
     line_h = ascent + descent + 2
     band_h = line_h * len(lines) + 2 * pad

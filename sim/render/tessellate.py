@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from rmot.compiler import ir
 
@@ -35,15 +36,39 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.where(n > 0.0, n, 1.0)
 
 
-def from_indexed(points: np.ndarray, faces: np.ndarray, point_normals: np.ndarray | None = None) -> TriMesh:
-    """From points (V, 3), faces (F, 3) and optional per-point normals (V, 3); else face normals."""
-    tris = np.asarray(points, float)[np.asarray(faces)]
-    if point_normals is None:
-        n = _unit(np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]))
-        normals = np.repeat(n[:, None, :], 3, axis=1)
-    else:
-        normals = _unit(np.asarray(point_normals, float)[np.asarray(faces)])
-    return TriMesh(tris, normals)
+def from_indexed(points: np.ndarray, faces: np.ndarray, crease_deg: float = 35.0) -> TriMesh:
+    """From points (V, 3) and faces (F, 3), with crease-aware smooth normals: each corner's
+    normal averages (weighted by corner angle) the faces around its point that turn less than
+    `crease_deg` from its own face, so meshed cylinders look round and CAD edges stay sharp."""
+    points, faces = np.asarray(points, float), np.asarray(faces, np.int64)
+    tris = points[faces]
+    face_n = _unit(np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]))
+    e1 = _unit(np.roll(tris, -1, axis=1) - tris)
+    e2 = _unit(np.roll(tris, 1, axis=1) - tris)
+    angle = np.arccos(np.clip(np.einsum("ijk,ijk->ij", e1, e2), -1.0, 1.0)).ravel()
+    order = np.argsort(faces.ravel(), kind="stable")  # corners grouped by the point they sit on
+    starts = np.r_[0, np.flatnonzero(np.diff(faces.ravel()[order])) + 1, order.size]
+    normals = _crease_normals(order, starts, face_n, angle, float(np.cos(np.radians(crease_deg))))
+    return TriMesh(tris, normals.reshape(-1, 3, 3))
+
+
+@njit(cache=True)
+def _crease_normals(order: np.ndarray, starts: np.ndarray, face_n: np.ndarray, angle: np.ndarray,
+                    cos_crease: float) -> np.ndarray:
+    """(3F, 3) corner normals; corners of one point are order[starts[g]:starts[g + 1]]."""
+    out = np.empty((order.size, 3))
+    for g in range(starts.size - 1):
+        group = order[starts[g]:starts[g + 1]]
+        for a in group:
+            fa = a // 3
+            acc = np.zeros(3)
+            for b in group:
+                fb = b // 3
+                if face_n[fa] @ face_n[fb] >= cos_crease:  # same smooth patch as corner a
+                    acc += angle[b] * face_n[fb]
+            length = np.sqrt(acc @ acc)
+            out[a] = acc / length if length > 0.0 else face_n[fa]
+    return out
 
 
 def merge(meshes: list[TriMesh]) -> TriMesh:

@@ -150,3 +150,41 @@ def test_unknown_robot_is_a_diagnostic_not_an_exception() -> None:
     plan = plan_program(program(p.task(), robots={"r1": "no_such_robot"}))
     assert [d.code.id for d in plan.diagnostics] == ["E231"]
     assert plan.tasks == ()
+
+
+def test_timing_failure_is_a_diagnostic_and_the_robot_holds(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """If toppra finds no timing (it returns None), E228 at the move; the robot holds its place."""
+    import rmot.compiler.plan.timing as timing
+
+    def no_timing(*args, **kwargs):  # type: ignore[no-untyped-def]
+        raise timing.TimingError("toppra found no feasible timing for the path (the path may be non-smooth)")
+
+    monkeypatch.setattr(timing, "_toppra", no_timing)
+    p = Prog()
+    p.joint(pose(300, -150, 300, **TOOL_DOWN))
+    bad = p.linear(pose(300, 100, 300, **TOOL_DOWN))
+    after = p.joint([0, 0, 0, 0, 30, 0])
+    plan = plan_program(program(p.task()))
+    assert _found(plan) == [("E228", bad)]
+    tp = plan.tasks[0]
+    assert tp.record(bad).t_end == tp.record(bad).t_start == 0.0
+    assert tp.record(after).t_end > 0.0
+
+
+def test_codes_are_registered_in_the_planner_range() -> None:
+    """Every planner code is E220-E299 or W220-W299, with a kebab-case name."""
+    from rmot.compiler.plan import codes
+    from rmot.lang.diagnostics import Code
+
+    found = [getattr(codes, n) for n in codes.__all__]
+    assert all(isinstance(c, Code) for c in found)
+    assert all(c.id[0] in "EW" and 220 <= int(c.id[1:]) <= 299 for c in found)
+    assert all(c.name == c.name.lower() and " " not in c.name for c in found)
+    assert len({c.id for c in found}) == len(found)
+
+
+def test_public_api() -> None:
+    """rmot.compiler.plan exports exactly plan_program."""
+    import rmot.compiler.plan as plan
+
+    assert plan.__all__ == ["plan_program"]

@@ -54,3 +54,18 @@ def test_mesh_data_is_turned_into_a_soup_with_face_normals() -> None:
     assert mesh.vertices.shape == (4, 3, 3)
     assert _area_volume(mesh.vertices)[1] == pytest.approx(1 / 6)
     np.testing.assert_allclose(mesh.normals[0], np.tile([0.0, 0.0, -1.0], (3, 1)))
+
+
+def test_meshed_cylinder_gets_smooth_sides_and_sharp_cap_edges() -> None:
+    """An indexed cylinder mesh: side normals are radial (smooth), cap normals stay +-z (crease kept)."""
+    import trimesh
+
+    cyl = trimesh.creation.cylinder(radius=0.1, height=0.4, sections=48)
+    mesh = tessellate(type("Data", (), {"vertices": cyl.vertices, "faces": cyl.faces})())
+    p, n = mesh.vertices.reshape(-1, 3), mesh.normals.reshape(-1, 3)
+    face = np.repeat(np.cross(mesh.vertices[:, 1] - mesh.vertices[:, 0], mesh.vertices[:, 2] - mesh.vertices[:, 0]), 3, axis=0)
+    side = np.abs(face[:, 2]) < 1e-9 * np.linalg.norm(face, axis=1).max()
+    radial = p[side] * [1.0, 1.0, 0.0]
+    radial /= np.linalg.norm(radial, axis=1, keepdims=True)
+    np.testing.assert_allclose(n[side], radial, atol=1e-9)
+    np.testing.assert_allclose(np.abs(n[~side, 2]), 1.0, atol=1e-9)

@@ -1,0 +1,109 @@
+"""The .rmot lexer: one master regex, words typed by what the LALR parser accepts next.
+
+A faster stand-in for lark's contextual lexer (which tries one regex per terminal and
+parser state). It keeps the same contract:
+  * a word is a keyword where the parser accepts that keyword, else a unit where a unit is
+    accepted (`150 mm`), else a move kind / I/O kind where one is accepted, else a NAME —
+    so `on`, `in`, `m`, `s` stay usable as names where no keyword fits;
+  * a word the parser cannot take at all keeps its keyword type (better error messages);
+  * `_NL` is a run of newlines, `;`, blank lines and comments; a newline before `to` or
+    `else` is whitespace, so a circular move and an if/else may span lines.
+Errors: a character that starts no token raises lark's UnexpectedCharacters.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from typing import Any
+
+from lark import Token
+from lark.exceptions import UnexpectedCharacters
+from lark.lexer import Lexer
+
+__all__ = ["RmotLexer"]
+
+_SIMPLE_UNITS = frozenset({"mm", "cm", "min", "ms", "m", "in", "deg", "rad", "s", "kg", "g"})
+_MASTER = re.compile(r"""
+    (?P<ws>[ \t\f\r]+)
+  | (?P<comment>\#[^\n]*)
+  | (?P<nl>(?:;|\r?\n)(?:\s|;|\#[^\n]*)*)
+  | (?P<number>[0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)
+  | (?P<unit>(?:mm|cm|min|ms|m|in|deg|rad|s|kg|g)/s(?:\^2)?(?![A-Za-z0-9_]))
+  | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<string>"(?:[^"\\\n]|\\.)*")
+  | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
+""", re.X)
+_CONTINUES = re.compile(r"\s*(?:to|else)(?![A-Za-z0-9_])")
+_WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout"})))
+
+
+class RmotLexer(Lexer):
+    __future_interface__ = 2
+
+    def __init__(self, lexer_conf: Any) -> None:
+        self.keywords: dict[str, str] = {}
+        self.punct: dict[str, str] = {"==": "COMPARE", "!=": "COMPARE", "%": "UNIT"}
+        for t in lexer_conf.terminals:
+            if t.pattern.type != "str":
+                continue
+            target = self.keywords if t.pattern.value.isidentifier() else self.punct
+            target.setdefault(t.pattern.value, t.name)
+
+    def _word_type(self, word: str, accepts: Any) -> str:
+        kw = self.keywords.get(word)
+        if kw is not None and kw in accepts:
+            return kw
+        if word in _SIMPLE_UNITS and "UNIT" in accepts:
+            return "UNIT"
+        for kind, words in _WORD_KINDS:
+            if word in words and kind in accepts:
+                return kind
+        if "NAME" in accepts or kw is None:
+            return "NAME"
+        return kw
+
+    def lex(self, lexer_state: Any, parser_state: Any) -> Iterator[Token]:
+        text = getattr(lexer_state.text, "text", lexer_state.text)
+        states = parser_state.parse_conf.states
+        pos, line, line_start, n = 0, 1, 0, len(text)
+        match = _MASTER.match
+        while pos < n:
+            m = match(text, pos)
+            if m is None:
+                accepts = states[parser_state.position]
+                raise UnexpectedCharacters(text, pos, line, pos - line_start + 1, allowed=set(accepts), state=parser_state)
+            kind, end, value = m.lastgroup, m.end(), m.group()
+            if kind == "ws" or kind == "comment":
+                pos = end
+                continue
+            col = pos - line_start + 1
+            if kind == "nl":
+                newlines = value.count("\n")
+                end_line, end_col = line + newlines, (end - (value.rfind("\n") + pos)) if newlines else col + len(value)
+                skip = _CONTINUES.match(text, end) is not None
+                tok = None if skip else Token("_NL", value, pos, line, col, end_line, end_col, end)
+                if newlines:
+                    line, line_start = end_line, pos + value.rfind("\n") + 1
+                pos = end
+                if tok is not None:
+                    yield tok
+                continue
+            accepts = states[parser_state.position]
+            if kind == "word":
+                ttype = self._word_type(value, accepts)
+            elif kind == "number":
+                ttype = "NUMBER"
+            elif kind == "string":
+                ttype = "STRING"
+            elif kind == "unit":
+                if "UNIT" in accepts:
+                    ttype = "UNIT"
+                else:  # `m/s` where no unit fits: just the word `m`, then `/` and `s`
+                    value = value[: value.index("/")]
+                    end = pos + len(value)
+                    ttype = self._word_type(value, accepts)
+            else:
+                ttype = self.punct[value]
+            yield Token(ttype, value, pos, line, col, line, col + (end - pos), end)
+            pos = end
