@@ -32,7 +32,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes
+from rmot.backends import codes, handshake
 from rmot.compiler import ir, planned
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
@@ -212,6 +212,8 @@ class Backend:
       UNITS     {"length": "mm", "angle": "deg", ...}: what the vendor's numbers mean
       MAX_LINES / MAX_NAME_LEN / NAME_RULES: controller limits
       LOWERINGS IR -> IR transforms applied to each task body before printing
+      SYNC_HANDSHAKE  True for vendors without a multi-robot barrier: `sync` is lowered to the
+                I/O handshake of backends/handshake.py before the LOWERINGS
       EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str]
     """
 
@@ -221,6 +223,7 @@ class Backend:
     UNITS: ClassVar[dict[str, str]] = {}
     MAX_LINES: ClassVar[int | None] = None
     LOWERINGS: ClassVar[tuple[Lowering, ...]] = ()
+    SYNC_HANDSHAKE: ClassVar[bool] = False
     EMIT: ClassVar[dict[type, str]] = {}
     INDENT: ClassVar[str] = "  "
 
@@ -254,25 +257,50 @@ class Backend:
         return f"{plan.program.name}_{task_plan.task.name}"
 
     def lowered_body(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
-        """The task body after this vendor's LOWERINGS (applied in order)."""
-        body = ctx.task.body
+        """The task body after the sync handshake (SYNC_HANDSHAKE vendors) and this vendor's
+        LOWERINGS (applied in order)."""
+        body = self.sync_handshake(ctx) if self.SYNC_HANDSHAKE else ctx.task.body
         for lower in self.LOWERINGS:
             body = lower(body)
         return body
+
+    def sync_handshake(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
+        """The task body with every sync lowered to the I/O handshake (backends/handshake.py).
+
+        Left unchanged, with the syncs printed by `sync_not_lowered`, when the program has a
+        single task (syncs are no-ops) or the handshake cannot be built (errors reported here).
+        """
+        body = ctx.task.body
+        if len(ctx.plan.program.tasks) < 2:
+            return body
+        found = handshake.check_handshake(body, ctx.plan.program.cell, ctx.robot.name, self.name)
+        self.extend(found)
+        ports = handshake.handshake_ports(ctx.plan.program.cell, ctx.robot.name)
+        if ports is None or any(d.is_error for d in found):
+            return body
+        return handshake.sync_as_handshake(body, ports)
+
+    def sync_not_lowered(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        """A comment for a sync the handshake left in place: a no-op in a single-task program,
+        otherwise one whose error `sync_handshake` has already reported."""
+        if len(ctx.plan.program.tasks) < 2:
+            return [self.comment(f"sync {node.name}: no-op (single task)")]
+        return [self.comment(f"sync {node.name} not emitted (see error)")]
 
     # ------------------------------------------------------------------ dispatch
 
     def instr(self, node: ir.Instr, ctx: TaskContext) -> list[str]:
         """The lines of one instruction (source comment first), via the EMIT table."""
-        method = self.EMIT.get(type(node))
+        # by the node's class or its nearest base (a HandshakeSet prints as a SetDigital)
+        method = next((self.EMIT[c] for c in type(node).__mro__ if c in self.EMIT), None)
         if method is None:
             self.unsupported(codes.UNSUPPORTED,
                              f"{type(node).__name__} must be expressible for {self.name} (it is not)",
                              getattr(node, "span", None))
             return [self.comment(f"UNSUPPORTED {type(node).__name__}")]
         lines: list[str] = getattr(self, method)(node, ctx)
-        ref = self.source_comment(node)
-        return ([ref] if ref else []) + lines
+        notes = [c for c in (self.source_comment(node), self.handshake_comment(node)) if c]
+        return notes + lines
 
     def body(self, nodes: Iterable[ir.Instr], ctx: TaskContext) -> list[str]:
         out: list[str] = []
@@ -301,6 +329,12 @@ class Backend:
             return None
         ref = source_ref(getattr(node, "span", None))
         return self.comment(ref) if ref else None
+
+    def handshake_comment(self, node: ir.Instr) -> str | None:
+        """`! sync meet (handshake 1)` above the first line of a lowered sync (always printed:
+        it names the barrier, which the I/O lines alone do not)."""
+        note = handshake.handshake_note(node)
+        return self.comment(note) if note else None
 
     def header(self, ctx: TaskContext) -> list[str]:
         return [self.comment(line) for line in header_lines(ctx.plan, self.name, self.findings_header)]

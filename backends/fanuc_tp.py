@@ -29,8 +29,12 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     with a timeout: $WAITTMOUT (1/100 s) then `WAIT ... TIMEOUT,LBL[k]`, the label aborting
     the program. Runtime if: `IF DI[n]<>ON,JMP LBL[else]` ... `JMP LBL[end]`.
   * procs: each routine is its own program NAME_PROC.ls (TP program names are global on the
-    controller, hence the prefix) called with CALL; `sync` has no TP form
-    without multi-arm options (error E405).
+    controller, hence the prefix) called with CALL.
+  * sync: TP has no barrier between controllers without the multi-arm option, so the k-th
+    sync of a task is the I/O handshake of backends/handshake.py: `DO[o:sync]=ON` (odd k) or
+    OFF (even k) then `WAIT DI[i:sync]=` the same level, o and i being the robot's
+    `io out[o] = "sync"` / `io in[i] = "sync"` of the cell (r1's DO wired to r2's DI and
+    back). Missing signals: error E409 at the sync; a sync in an if arm: error E405.
   * names: program names at most 36 characters (R-30iA and later), upper case, a letter
     first, letters, digits and '_'; comments are cut into pieces of at most 32 characters.
   * size: a program longer than MAX_INSTRUCTIONS instructions is split into programs
@@ -113,6 +117,7 @@ class FanucBackend(Backend):
     FRAME_PR: ClassVar[int] = 90
     CNT_MM: ClassVar[float] = 1.0  # mm of blend radius per CNT step (documented heuristic)
     MAX_TCP_MM_S: ClassVar[int] = 2000  # the L/C speed limit of the R-30iB motion software
+    SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     EMIT: ClassVar[dict[type, str]] = {
         ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
         ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
@@ -332,9 +337,12 @@ class FanucBackend(Backend):
         return lines + self.body(node.otherwise, ctx) + [f"LBL[{done}]"]
 
     def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' has no TP form without the "
-                         "multi-arm option; use an I/O handshake", node.span)
-        return [self.comment(f"sync {node.name}"[:COMMENT_MAX])]
+        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
+        return [line[:COMMENT_MAX + 1] for line in self.sync_not_lowered(node, ctx)]
+
+    def handshake_comment(self, node: ir.Instr) -> str | None:
+        note = super().handshake_comment(node)
+        return note[:COMMENT_MAX + 1] if note else None
 
     def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
         if node.vendor.lower() != self.name:

@@ -32,6 +32,10 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     point), so an arc that follows an arc continues from that point with its via and end only;
   * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per call;
   * comments: `'file.rmot:12` (a comment line holds at most 32 characters).
+  * sync: independent jobs per controller have no barrier, so the k-th sync of a task is the
+    I/O handshake of backends/handshake.py: `DOUT OT#(o) ON` (odd k) or OFF (even k) then
+    `WAIT IN#(i)=` the same level, o and i being the robot's `io out[o] = "sync"` /
+    `io in[i] = "sync"` of the cell (wired crosswise).
 
 Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we keep jobs below
 `MAX_INSTRUCTIONS` (300) top-level IR instructions (~1800 INFORM lines); a longer main body is
@@ -46,7 +50,8 @@ Support (checked by tests/backends/test_inform.py):
   warned    joint targets as Cartesian + RCONF (W450), acceleration (W408, once), fixed
             duration (W409), speed / zone / time rounding (W402 / W403 / W404), split jobs
             (W406), legalised names (W400/W401), other vendors' native blocks (W407);
-  refused   sync (E405), ports outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions
+  lowered   sync as the I/O handshake (odd count W410);
+  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions
             without a full branch (E402), an arc with no preceding move (E451), a job above
             999 positions (E406), moves without a planned solution (E401).
 """
@@ -144,6 +149,7 @@ class InformBackend(UniqueDiagnostics):
     UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
              "zone": "PL level", "time": "s", "analog": "V"}
     MAX_LINES = None
+    SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     EMIT = {
         ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
         ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
@@ -403,6 +409,5 @@ class InformBackend(UniqueDiagnostics):
         return node.text.splitlines()
 
     def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' must have an INFORM form "
-                         "(independent jobs per robot have no barrier; use an I/O handshake)", node.span)
-        return []
+        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
+        return self.sync_not_lowered(node, ctx)

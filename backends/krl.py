@@ -24,7 +24,12 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
     speeds, $APO.CDIS): an instruction never depends on the text of another one. (A move
     with the bare flange sets $TOOL=$NULLFRAME and leaves $LOAD as configured: rmot has no
     load for the flange alone.)
-  * procs are local DEFs of the module; `sync` has no KRL form without RoboTeam (error E405).
+  * procs are local DEFs of the module.
+  * sync: KRL has no barrier between controllers without the RoboTeam option, so the k-th
+    sync of a task is the I/O handshake of backends/handshake.py: `$OUT[o]=TRUE` (odd k) or
+    FALSE (even k) then `WAIT FOR $IN[i]==` the same level, o and i being the robot's
+    `io out[o] = "sync"` / `io in[i] = "sync"` of the cell (r1's out wired to r2's in and
+    back). Missing signals: error E409 at the sync; a sync in an if arm: error E405.
   * identifiers: at most 24 characters, a letter or '_' first, letters, digits, '_'.
   * size: a module body longer than MAX_INSTRUCTIONS instructions is split into modules
     NAME_part1.. called from NAME (each with its own .dat); KRL itself has no line limit,
@@ -105,6 +110,7 @@ class KrlBackend(Backend):
                                        "analog": "V/10"}
     MAX_INSTRUCTIONS: ClassVar[int] = 1000
     TIMER_INDEX: ClassVar[int] = 16
+    SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     EMIT: ClassVar[dict[type, str]] = {
         ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
         ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
@@ -275,9 +281,8 @@ class KrlBackend(Backend):
         return lines + ["ENDIF"]
 
     def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' has no KRL form without the "
-                         "RoboTeam option; use an I/O handshake", node.span)
-        return [self.comment(f"sync {node.name} not emitted")]
+        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
+        return self.sync_not_lowered(node, ctx)
 
     def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
         if node.vendor.lower() != self.name:

@@ -3,6 +3,10 @@
 Each function takes a task body and returns a new one, keeping every node's uid and span
 (records and diagnostics keep pointing at the source). Nodes a lowering creates that have no
 source instruction get negative uids (never looked up in the plan's records).
+
+`sync` for vendors without a multi-robot barrier is lowered by backends/handshake.py (its
+convention — the cell's "sync" signals and the level-toggling handshake — is documented there);
+it needs the cell and the robot, so Backend.lowered_body runs it before these.
 """
 
 from __future__ import annotations

@@ -27,6 +27,10 @@ Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5
   * procs: each call becomes a nested `def` before the main body (URScript needs a function
     defined before it is called);
   * comments: `# file.rmot:12` above each instruction.
+  * sync: URScript has no multi-robot barrier, so the k-th sync of a task is the I/O
+    handshake of backends/handshake.py: `set_standard_digital_out(o, True)` (odd k) or False
+    (even k) then a `while not (get_standard_digital_in(i) == ...)` loop, o and i being the
+    robot's `io out[o] = "sync"` / `io in[i] = "sync"` of the cell (wired crosswise).
 
 Program size: URScript sets no documented limit on a program's length (the controller
 compiles the whole script on load), so programs are never split.
@@ -40,7 +44,8 @@ Support (checked by tests/backends/test_urscript.py):
             input with or without timeout, if/else, procs, native urscript, source comments;
   warned    joint speed of a model missing from JOINT_LIMITS (W452), fixed duration of movec
             (W409), other vendors' native blocks (W407), legalised names (W400/W401);
-  refused   sync (E405), ports outside 0..15 (E404), analog outside 0..1 / 0..10 V (E450),
+  lowered   sync as the I/O handshake (no warning: exact given the wiring; odd count W410);
+  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports outside 0..15 (E404), analog outside 0..1 / 0..10 V (E450),
             moves without a planned solution or TCP pose (E401), circular without via (E451).
 """
 
@@ -92,6 +97,7 @@ class UrScriptBackend(UniqueDiagnostics):
     UNITS = {"length": "m", "angle": "rad", "linear_speed": "m/s", "linear_accel": "m/s^2",
              "joint_speed": "rad/s", "joint_accel": "rad/s^2", "blend": "m", "time": "s"}
     MAX_LINES = None
+    SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     EMIT = {
         ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
         ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
@@ -252,6 +258,5 @@ class UrScriptBackend(UniqueDiagnostics):
         return node.text.splitlines()
 
     def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' must have a URScript form "
-                         "(URScript has no multi-robot barrier; use an I/O handshake)", node.span)
-        return []
+        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
+        return self.sync_not_lowered(node, ctx)

@@ -30,6 +30,10 @@ Vendor conventions (VAL3 reference manual):
     procs are `call name()`; native val3 text is passed through; an analog output is
     `aioSet(aOut[n], value)` with `aOut` declared unlinked (no standard physical name: warned);
   * comments: `// file.rmot:12`.
+  * sync: one application per controller has no barrier, so the k-th sync of a task is the
+    I/O handshake of backends/handshake.py: `dOut[o] = true` (odd k) or false (even k) then
+    `wait(dIn[i] == ...)`, o and i being the robot's `io out[o] = "sync"` /
+    `io in[i] = "sync"` of the cell (wired crosswise); a waitEndMove() precedes it like any I/O.
 
 Size limits: VAL3 sets no line limit on a program and data arrays grow dynamically, so
 programs are not split. Names: identifiers of letters, digits and `_`, at most 15 characters.
@@ -41,7 +45,8 @@ Support (checked by tests/backends/test_val3.py):
   warned    TCP acceleration (W408, once), fixed duration (W409), pulse made blocking (W451),
             a blend stopped by waitEndMove() before I/O (W453), analog out on an unlinked aio
             (W455), legalised names (W400/W401), other vendors' native blocks (W407);
-  refused   sync (E405), ports outside 0..63 (E404), points without a full branch (E402),
+  lowered   sync as the I/O handshake (odd count W410);
+  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports outside 0..63 (E404), points without a full branch (E402),
             moves without a planned solution (E401), circular without via (E451).
 """
 
@@ -108,6 +113,7 @@ class Val3Backend(UniqueDiagnostics):
     UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
              "blend": "mm", "time": "s"}
     MAX_LINES = None
+    SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     EMIT = {
         ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
         ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
@@ -341,9 +347,8 @@ class Val3Backend(UniqueDiagnostics):
         return node.text.splitlines()
 
     def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        self.unsupported(codes.SYNC_UNSUPPORTED, f"sync '{node.name}' must have a VAL3 form "
-                         "(one application per robot has no barrier; use an I/O handshake)", node.span)
-        return []
+        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
+        return self.sync_not_lowered(node, ctx)
 
 
 def _last_move(node: ir.Instr | None) -> ir.Move | None:

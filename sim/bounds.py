@@ -87,7 +87,7 @@ def lower_bound(a: Body, b: Body, pa: np.ndarray, pb: np.ndarray,
     samples `idx` only. `centres`: world sphere centres already computed, by body name."""
     if b.kind == "fixture":
         a, b, pa, pb = b, a, pb, pa
-    centres = centres or {}
+    centres = {} if centres is None else centres
     centres_b = centres[b.name] if b.name in centres else world_spheres(b, pb)
     if idx is not None:
         centres_b = centres_b[idx]

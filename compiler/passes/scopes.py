@@ -20,6 +20,7 @@ from rmot.compiler import codes
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr
 from rmot.compiler.passes.state import FrontendState, LoadedModule
+from rmot.compiler.passes.values import JointsV, PoseV, article, type_name
 from rmot.lang import ast
 
 __all__ = ["declare", "declare_file_scopes", "misplaced", "STATEMENT_WORDS"]
@@ -73,7 +74,12 @@ def declare_value(stmt: ast.TargetDecl | ast.ConstDecl, scope: Scope, rep: Repor
         declare(scope, Entry(kind, stmt.name.name, None, stmt.name.span), rep)
         return
     if kind == "target":
-        value = _named(value, stmt.name.name)
+        if not isinstance(value, (PoseV, JointsV)):
+            rep.error(codes.WRONG_TYPE, f"target '{stmt.name.name}' must be a pose or joints() (got {article(type_name(value))})",
+                      stmt.value.span)
+            value = None
+        else:
+            value = _named(value, stmt.name.name)
     declare(scope, Entry(kind, stmt.name.name, value, stmt.name.span), rep)
 
 

@@ -37,8 +37,7 @@ class ChainPath:
     length over programmed speed, constant along joint moves), ss (M,) the path parameter
     (joint-space arc length along the moves; inside a blend, uniform in the blend parameter,
     so the path stays smooth even where a blend turns back on itself). Per segment: `starts`/`ends`
-    chain indexes (end = zone entry when blended), `vias` chain index of a via point,
-    `radii` the blend radius used (m)."""
+    chain indexes (end = zone entry when blended), `radii` the blend radius used (m)."""
 
     q: np.ndarray
     tcp: np.ndarray
@@ -46,7 +45,6 @@ class ChainPath:
     ss: np.ndarray
     starts: tuple[int, ...]
     ends: tuple[int, ...]
-    vias: tuple[int | None, ...]
     radii: tuple[float, ...]
     findings: tuple[tuple[int, Finding], ...] = field(default=())
 
@@ -75,11 +73,10 @@ def _crossing(robot, tool: np.ndarray, qa: np.ndarray, qb: np.ndarray, corner: n
 
 @dataclass(frozen=True, eq=False)
 class _Part:
-    """A segment's remaining path: q (M, dof), tcp (M, 3), via index or None."""
+    """A segment's remaining path: q (M, dof), tcp (M, 3)."""
 
     q: np.ndarray
     tcp: np.ndarray
-    via: int | None
 
 
 def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: ignore[no-untyped-def]
@@ -101,23 +98,21 @@ def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: igno
     tcp = (robot.fk_batch(q) @ tool)[:, :3, 3]
     if np.max(np.linalg.norm(tcp - corner, axis=1)) > r * (1 + 1e-6) + 1e-9:
         return None
-    keep = _Part(np.vstack([a.q[: k + 1], q_in]), np.vstack([a.tcp[: k + 1], tcp[0]]),
-                 a.via if a.via is not None and a.via <= k else None)
-    rest = _Part(np.vstack([q_out, b.q[m:]]), np.vstack([tcp[-1], b.tcp[m:]]),
-                 b.via - m + 1 if b.via is not None and b.via >= m else None)
+    keep = _Part(np.vstack([a.q[: k + 1], q_in]), np.vstack([a.tcp[: k + 1], tcp[0]]))
+    rest = _Part(np.vstack([q_out, b.q[m:]]), np.vstack([tcp[-1], b.tcp[m:]]))
     return keep, q[1:-1], tcp[1:-1], rest
 
 
 def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
     """Join a chain of segments (each starting where the previous one ends) into one path."""
     qs, tcps, rates, uniform = [], [], [], []
-    ends, vias, radii, findings = [], [], [], []
+    ends, radii, findings = [], [], []
     count = 0
-    part = _Part(segments[0].q, segments[0].tcp, segments[0].via_index)
+    part = _Part(segments[0].q, segments[0].tcp)
     for i, seg in enumerate(segments):
         blend, used, nxt = None, 0.0, None
         if i + 1 < len(segments):
-            nxt = _Part(segments[i + 1].q, segments[i + 1].tcp, segments[i + 1].via_index)
+            nxt = _Part(segments[i + 1].q, segments[i + 1].tcp)
             if not seg.move.motion.zone.is_fine:
                 blend, used = _corner(robot, seg, segments[i + 1], part, nxt, findings, i)
         keep = blend[0] if blend is not None else part
@@ -125,7 +120,6 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
         tcps.append(keep.tcp if i == 0 else keep.tcp[1:])
         rates.append(np.full(len(qs[-1]), seg.tcp_rate))
         uniform.append(np.zeros(len(qs[-1]), bool))
-        vias.append(count + keep.via - (0 if i == 0 else 1) if keep.via is not None else None)
         count += len(qs[-1])
         ends.append(count - 1)
         radii.append(used)
@@ -148,7 +142,7 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
     c = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(tcp, axis=0), axis=1) * step_rate)])
     ss = _parameter(q, np.concatenate(uniform))
     starts = [0] + ends[:-1]  # a move starts where the previous one ends (its zone entry)
-    return ChainPath(q, tcp, c, ss, tuple(starts), tuple(ends), tuple(vias), tuple(radii), tuple(findings))
+    return ChainPath(q, tcp, c, ss, tuple(starts), tuple(ends), tuple(radii), tuple(findings))
 
 
 def _parameter(q: np.ndarray, in_blend: np.ndarray) -> np.ndarray:

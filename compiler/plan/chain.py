@@ -31,7 +31,6 @@ class TimedChain:
     piece: Piece
     starts: tuple[float, ...]  # s, local time each segment starts
     ends: tuple[float, ...]  # s, local time each segment ends (zone entry when blended)
-    vias: tuple[np.ndarray | None, ...]  # joints at each circular move's via point
     radii: tuple[float, ...]
     path: ChainPath | None
     error: str | None = None  # a timing problem (time too short, toppra failure), user-facing
@@ -62,17 +61,16 @@ def _joint_chain(seg: Segment, vmax: np.ndarray, amax: np.ndarray, duration: flo
     except TimingError as exc:
         error = str(exc)
         piece = joint_move_piece(seg.q[0], seg.q[-1], vmax, amax, None)
-    return TimedChain(piece, (0.0,), (piece.duration,), (None,), (0.0,), None, error, error is not None)
+    return TimedChain(piece, (0.0,), (piece.duration,), (0.0,), None, error, error is not None)
 
 
 def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain:  # type: ignore[no-untyped-def]
     dof = path.q.shape[1]
     ss = path.ss
-    vias = tuple(path.q[i] if i is not None else None for i in path.vias)
     if ss[-1] < 1e-9:
         piece = HoldPiece(path.q[-1].copy(), duration or 0.0)
         zeros = tuple(0.0 for _ in segments)
-        return TimedChain(piece, zeros, tuple(piece.duration for _ in segments), vias, path.radii, path)
+        return TimedChain(piece, zeros, tuple(piece.duration for _ in segments), path.radii, path)
     cartesian = [s for s in segments if s.tcp_rate > 0]
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
     if cartesian:
@@ -85,7 +83,7 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
     try:
         piece = path_piece(wp[keep], ss[keep], vlim, alim, dof)
     except TimingError as exc:
-        return _failed_path(path, segments, vias, str(exc))
+        return _failed_path(path, segments, str(exc))
     if duration is not None:
         if duration < piece.duration * (1 - 1e-9):
             error = f"time must be at least the fastest feasible {piece.duration:.3f} s (got {duration:.3f} s)"
@@ -94,12 +92,12 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
     starts = tuple(piece.time_at(float(ss[i])) for i in path.starts)
     ends = tuple(piece.time_at(float(ss[i])) for i in path.ends)
     ends = ends[:-1] + (piece.duration,)
-    return TimedChain(piece, starts, ends, vias, path.radii, path, error, error is not None)
+    return TimedChain(piece, starts, ends, path.radii, path, error, error is not None)
 
 
-def _failed_path(path: ChainPath, segments, vias, message: str) -> TimedChain:  # type: ignore[no-untyped-def]
+def _failed_path(path: ChainPath, segments, message: str) -> TimedChain:  # type: ignore[no-untyped-def]
     """toppra failed: keep the robot where the chain starts (the failure is reported)."""
     piece = HoldPiece(path.q[0].copy(), 0.0)
     zeros = tuple(0.0 for _ in segments)
-    return TimedChain(piece, zeros, zeros, vias, path.radii, path, message, False)
+    return TimedChain(piece, zeros, zeros, path.radii, path, message, False)
 

@@ -90,6 +90,10 @@ def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-u
     if isinstance(dense, PathFailure):
         code = {"singular": codes.PATH_SINGULAR, "limit": codes.JOINT_LIMIT_PATH}.get(dense.kind, codes.TARGET_UNREACHABLE)
         return None, [Finding(code, Severity.ERROR, dense.message)]
+    if isinstance(move.target, ir.JointTarget) and float(np.max(np.abs(dense.q[-1] - q_target))) > 1e-6:
+        msg = (f"a {move.kind.name.lower()} move to joint values must reach them on the current branch "
+               "(the path ends on other joint values); use a joint move instead")
+        return None, [Finding(codes.BRANCH_CHANGE, Severity.ERROR, msg)]
     via_index = None
     if path.kind == "arc":
         via_index = int(np.argmin(np.abs(dense.u - path.u_at_via(np.asarray(move.via.pose.position)))))

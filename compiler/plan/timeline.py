@@ -187,7 +187,8 @@ class _Builder:
         self._record(
             move, t0 + timed.starts[i], t0 + timed.ends[i], q_target=seg.q_end.copy(),
             branch=branch if branch.shoulder is not None else None, tcp_pose=tcp,
-            flange_pose=ir.Pose.from_matrix(flange), q_via=timed.vias[i], blend_radius=timed.radii[i])
+            flange_pose=ir.Pose.from_matrix(flange), blend_radius=timed.radii[i],
+            q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None)
 
 
 def build_task(robot: object, task: ir.Task, q0: np.ndarray) -> TaskDraft:

@@ -120,33 +120,15 @@ def opw_batch(p: OpwParams, poses: np.ndarray) -> np.ndarray:
 
 
 @njit(cache=True)
-def _dh(theta, d, a, alpha):  # type: ignore[no-untyped-def]
-    c, s, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
-    m = np.zeros((4, 4))
-    m[0, 0], m[0, 1], m[0, 2], m[0, 3] = c, -s * ca, s * sa, a * c
-    m[1, 0], m[1, 1], m[1, 2], m[1, 3] = s, c * ca, -c * sa, a * s
-    m[2, 1], m[2, 2], m[2, 3], m[3, 3] = sa, ca, d, 1.0
-    return m
-
-
-@njit(cache=True)
-def _inv(m):  # type: ignore[no-untyped-def]
-    out = np.zeros((4, 4))
-    for i in range(3):
-        for j in range(3):
-            out[i, j] = m[j, i]
-        out[i, 3] = -(m[0, i] * m[0, 3] + m[1, i] * m[1, 3] + m[2, i] * m[2, 3])
-    out[3, 3] = 1.0
-    return out
-
-
-@njit(cache=True)
 def _wrap(x):  # type: ignore[no-untyped-def]
     return (x + math.pi) % (2 * math.pi) - math.pi
 
 
 @njit(cache=True)
 def _ur_one(p, t, out):  # type: ignore[no-untyped-def]
+    """Frame-1 algebra (no 4x4 products): R16 = Rz(q234)·Ry(-q5)·Rz(q6), so the J6 axis in
+    frame 1 is (-s5·cos q234, -s5·sin q234, c5), and the frame-4 origin is the flange minus
+    d6 along J6 and d5 along z4 = (sin q234, -cos q234, 0)."""
     d1, a2, a3, d4, d5, d6 = p[0], p[1], p[2], p[3], p[4], p[5]
     h = math.pi / 2
     px5, py5 = t[0, 3] - d6 * t[0, 2], t[1, 3] - d6 * t[1, 2]
@@ -155,21 +137,34 @@ def _ur_one(p, t, out):  # type: ignore[no-untyped-def]
     for si in range(2):
         q1 = psi + phi + h if si == 0 else psi - phi + h
         s1, c1 = math.sin(q1), math.cos(q1)
-        a5 = _acos_j((t[0, 3] * s1 - t[1, 3] * c1 - d4) / d6)
-        xz, yz = t[0, 0] * s1 - t[1, 0] * c1, t[0, 1] * s1 - t[1, 1] * c1
-        t01i = _inv(_dh(q1, d1, 0.0, h))
+        p16x, p16y = c1 * t[0, 3] + s1 * t[1, 3], t[2, 3] - d1
+        a5 = _acos_j((s1 * t[0, 3] - c1 * t[1, 3] - d4) / d6)
+        zx, zy = c1 * t[0, 2] + s1 * t[1, 2], t[2, 2]
+        xx, xy, xz = c1 * t[0, 0] + s1 * t[1, 0], t[2, 0], s1 * t[0, 0] - c1 * t[1, 0]
+        yx, yy, yz = c1 * t[0, 1] + s1 * t[1, 1], t[2, 1], s1 * t[0, 1] - c1 * t[1, 1]
         for wi in range(2):
             q5 = a5 if wi == 0 else -a5
             s5 = math.sin(q5)
-            q6 = 0.0 if abs(s5) < 1e-12 else math.atan2(-yz / s5, xz / s5)
-            t14 = t01i @ t @ _inv(_dh(q5, d5, 0.0, -h) @ _dh(q6, d6, 0.0, 0.0))
-            px, py = t14[0, 3], t14[1, 3]
-            q234 = math.atan2(t14[1, 0], t14[0, 0])
-            a3c = _acos_j((px * px + py * py - a2 * a2 - a3 * a3) / (2 * a2 * a3))
+            if abs(s5) < 1e-12:  # wrist singular: only q234 + q6 matters
+                q6 = 0.0
+            else:
+                q6 = math.atan2(-yz, xz) if s5 > 0 else math.atan2(yz, -xz)
+            # first column of Rz(q234) = R16·Rz(-q6)·Ry(q5): exact given q5, q6 (no division)
+            c5, s6, c6 = math.cos(q5), math.sin(q6), math.cos(q6)
+            colx = c6 * c5 * xx - s6 * c5 * yx - s5 * zx
+            coly = c6 * c5 * xy - s6 * c5 * yy - s5 * zy
+            q234 = math.atan2(coly, colx)
+            ox = p16x - d6 * zx - d5 * math.sin(q234)
+            oy = p16y - d6 * zy + d5 * math.cos(q234)
+            a3c = _acos_j((ox * ox + oy * oy - a2 * a2 - a3 * a3) / (2 * a2 * a3))
             for ei in range(2):
                 q3 = a3c if ei == 0 else -a3c
-                q2 = math.atan2(py, px) - math.atan2(a3 * math.sin(q3), a2 + a3 * math.cos(q3))
+                q2 = math.atan2(oy, ox) - math.atan2(a3 * math.sin(q3), a2 + a3 * math.cos(q3))
                 row = 4 * si + 2 * wi + ei
+                if math.isnan(q1 + q2 + q3 + q5 + q6 + q234):
+                    for j in range(6):
+                        out[row, j] = math.nan
+                    continue
                 out[row, 0], out[row, 1], out[row, 2] = _wrap(q1), _wrap(q2), _wrap(q3)
                 out[row, 3], out[row, 4], out[row, 5] = _wrap(q234 - q2 - q3), _wrap(q5), _wrap(q6)
 

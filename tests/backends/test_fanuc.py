@@ -52,7 +52,7 @@ ROWS = [
         ("IF DI[2]<>ON,JMP LBL[1]", "WAIT 1.00(sec)", "JMP LBL[2]", "LBL[1]", "DO[1]=OFF", "LBL[2]")),
     Row("native", ir.Native(uid=1, vendor="fanuc", text="MESSAGE[done] ;\nPAUSE"), ("MESSAGE[done]", "PAUSE")),
     Row("proc_call", ir.ProcCall(uid=1, proc="pick", args=(), body=(ir.WaitTime(uid=2, duration=0.5),)), ("CALL DEMO_PICK",)),
-    Row("sync_refused", ir.Sync(uid=1, name="meet"), ("!sync meet",), ("E405",)),
+    Row("sync_single_task_noop", ir.Sync(uid=1, name="meet"), ("!sync meet: no-op (single task)",)),
 ]
 
 

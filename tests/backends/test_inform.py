@@ -158,11 +158,12 @@ class TestNearestAndRefused:
         _, diags = emit(make_plan(body, [record(body[0], 0.0, np.asarray(HOME_Q), None, PICK_POSE)], "yaskawa_gp8"))
         assert "error:E402:4" in diags
 
-    def test_sync_and_bad_port_are_refused(self) -> None:
-        """Sync (no barrier between jobs) and port 0 (OT# starts at 1) are errors."""
+    def test_single_task_sync_is_noop_and_bad_port_refused(self) -> None:
+        """A single task's sync is a no-op comment (handshakes: test_handshake.py); port 0 (OT# starts at 1) is an error."""
         body = (ir.Sync(uid=1, name="meet", span=span_at(4)), ir.SetDigital(uid=2, port=0, value=True, span=span_at(5)))
-        _, diags = emit(self._plan(body))
-        assert diags == ["error:E405:4", "error:E404:5"]
+        files, diags = emit(self._plan(body))
+        assert diags == ["error:E404:5"]
+        assert "'sync meet: no-op (single task)" in files["DEMO.JBI"].splitlines()
 
     def test_long_wait_is_several_timers(self) -> None:
         """TIMER holds 655.35 s at most: a 700 s wait is two exact TIMERs."""

@@ -94,10 +94,11 @@ class TestRefusalsAndWarnings:
                 for n in ir.walk(body) if isinstance(n, ir.Move)]
         return make_plan(body, recs, robot)
 
-    def test_sync_is_refused(self) -> None:
-        """URScript has no multi-robot barrier: sync is an error at its span."""
-        _, diags = emit(self._plan((ir.Sync(uid=1, name="meet", span=span_at(4)),)))
-        assert diags == ["error:E405:4"]
+    def test_single_task_sync_is_a_noop(self) -> None:
+        """A single task's sync is a no-op comment (two tasks get the I/O handshake: test_handshake.py)."""
+        text, diags = emit(self._plan((ir.Sync(uid=1, name="meet", span=span_at(4)),)))
+        assert diags == []
+        assert "  # sync meet: no-op (single task)" in text.splitlines()
 
     def test_port_out_of_range_is_refused(self) -> None:
         """Digital ports beyond the standard and configurable banks are an error."""

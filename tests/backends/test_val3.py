@@ -122,11 +122,12 @@ class TestRefusedAndWarned:
                 for n in ir.walk(body) if isinstance(n, ir.Move)]
         return make_plan(body, recs, "staubli_tx2_60")
 
-    def test_sync_is_refused_and_analog_warned(self) -> None:
-        """Sync is an error; an analog output is aioSet on an unlinked aOut, with a warning (W455)."""
+    def test_single_task_sync_is_noop_and_analog_warned(self) -> None:
+        """A single task's sync is a no-op comment; an analog output is aioSet on an unlinked aOut (W455)."""
         body = (ir.SetAnalog(uid=1, port=1, value=2.5, span=span_at(4)), ir.Sync(uid=2, name="m", span=span_at(5)))
         files, diags = emit(self._plan(body))
-        assert diags == ["warning:W455:4", "error:E405:5"]
+        assert diags == ["warning:W455:4"]
+        assert "// sync m: no-op (single task)" in code(files["demo/start.pgx"])
         assert blocks(code(files["demo/start.pgx"]))[4] == ["aioSet(aOut[1], 2.5000)"]
         assert data(files["demo/demo.dtx"])["aOut"] == [{"key": "0", "link": ""}, {"key": "1", "link": ""}]
 

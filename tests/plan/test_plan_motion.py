@@ -236,3 +236,15 @@ def test_any_line_is_followed_or_reported(a, b, speed, zone) -> None:  # type: i
     q = tr.q[(t >= tp.record(uid).t_start) & (t <= rec.t_end)]
     pa, pb = np.array(a) / 1e3, np.array(b) / 1e3
     assert np.max(_line_distance(tcp_positions(robot, q), pa, pb)) < 1e-4
+
+
+def test_linear_move_to_joint_values_ends_exactly_there(irb120) -> None:  # type: ignore[no-untyped-def]
+    """`move linear joints(...)`: the TCP goes straight to FK(joints) and ends on those joints."""
+    p = Prog()
+    p.joint([0, 10, 10, 0, 40, 0])
+    uid = p.linear([20, 20, 0, 10, 50, -10])
+    plan = plan_program(program(p.task()))
+    assert plan.diagnostics == ()
+    rec = plan.tasks[0].record(uid)
+    assert np.allclose(rec.q_target, np.radians([20, 20, 0, 10, 50, -10]), atol=1e-9)
+    assert np.allclose(plan.tasks[0].trajectory.q[-1], rec.q_target, atol=1e-9)

@@ -13,6 +13,7 @@ from rmot.compiler.robots import codes
 from rmot.compiler.robots.library import SPECS
 from rmot.compiler.robots.numeric import dls
 from rmot.compiler.robots.opw import opw_ik
+from rmot.compiler.robots.urik import ur_ik
 
 N_POSES = 10_000
 
@@ -90,14 +91,38 @@ def test_closed_form_branch_count_equals_numeric_solution_count(name):
             assert min(np.max(np.abs(np.remainder(n - c + np.pi, 2 * np.pi) - np.pi)) for c in closed) < 1e-6
 
 
-def test_numpy_reference_and_compiled_opw_agree():
-    """The compiled OPW kernel equals the numpy reference implementation, NaNs included."""
-    r = load_robot("kuka_kr16")
-    params, jmap = SPECS["kuka_kr16"].opw
-    poses = r.fk_batch(random_q(r, 500, seed=3))
+@pytest.mark.parametrize("name", ["kuka_kr16", "staubli_tx2_60", "fanuc_m20ia", "ur5e", "ur10e"])
+def test_numpy_reference_and_compiled_kernels_agree(name):
+    """The compiled closed forms equal the numpy reference implementations (mod 2π), and
+    agree on which branches exist."""
+    r = load_robot(name)
+    spec = SPECS[name]
+    q = random_q(r, 500, seed=3)
+    q[::11, 4] = 0.0  # some exactly wrist-singular
+    poses = r.fk_batch(q)
     poses[::7, 0, 3] += 5.0  # some unreachable
-    ref = jmap.from_theta(opw_ik(params, poses))
-    np.testing.assert_allclose(r.ik_closed_form(poses), ref, atol=1e-9)
+    if spec.opw is not None:
+        params, jmap = spec.opw
+        ref = jmap.from_theta(opw_ik(params, poses @ np.linalg.inv(np.array(spec.flange))))
+    else:
+        ref = ur_ik(spec.ur, poses)
+    got = r.ik_closed_form(poses)
+    exists = np.all(np.isfinite(got), axis=2)
+    assert np.array_equal(exists, np.all(np.isfinite(ref), axis=2))
+    diff = np.remainder(got[exists] - ref[exists] + np.pi, 2 * np.pi) - np.pi
+    assert np.abs(diff).max() < 1e-9
+
+
+def test_numeric_robot_batch_returns_one_verified_row():
+    """ik_batch on a robot without closed form: row 0 is a verified solution, rows 1-7 NaN."""
+    import importlib.metadata
+
+    files = importlib.metadata.files("example-robot-data") or []
+    r = load_robot(str(next(f for f in files if f.name == "ur5_robot.urdf").locate()))
+    q = np.random.default_rng(2).uniform(-2.5, 2.5, (5, 6))
+    out = r.ik_batch(r.fk_batch(q), seed=q)
+    assert np.all(np.isnan(out[:, 1:])) and np.all(np.isfinite(out[:, 0]))
+    np.testing.assert_allclose(r.fk_batch(out[:, 0]), r.fk_batch(q), atol=1e-9)
 
 
 def test_joint_beyond_180_gives_every_equivalent_nearest_seed_first():
