@@ -1,7 +1,8 @@
 """Text -> AST: the lark LALR parser (built once) and the one place lark errors become words.
 
 `parse_source(file)` never raises for bad input: it returns the Module (or None) and the
-diagnostics. The Transformer in `lang/_build.py` runs embedded in lark's LALR parser, so
+diagnostics. Tokens come from lang/lexer.py (typed by what the parser accepts next), pass
+the post-lexer below (newlines inside brackets dropped, braces tracked), and the Transformer in `lang/_build.py` runs embedded in lark's LALR parser, so
 each rule becomes one AST node with its span as it is reduced and no parse tree is built.
 
 Parsing is serialised by a lock: the embedded transformer and the post-lexer keep the state

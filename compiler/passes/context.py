@@ -76,10 +76,11 @@ class Reporter:
         self._seen.add(key)
         self.sink.add(Diagnostic(code, Severity.ERROR, message, span, notes))
 
-    def unknown(self, name: str, what: str, span: Span | None, candidates: list[str]) -> None:
+    def unknown(self, name: str, what: str, span: Span | None, candidates: list[str], code: Code = codes.UNKNOWN_NAME) -> None:
+        """`unknown <what> 'x'; did you mean 'y'?` (difflib's closest candidate, if close enough)."""
         near = difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)
         hint = f"; did you mean '{near[0]}'?" if near else ""
-        self.error(codes.UNKNOWN_NAME, f"unknown {what} '{name}'{hint}", span)
+        self.error(code, f"unknown {what} '{name}'{hint}", span)
 
     @property
     def has_errors(self) -> bool:

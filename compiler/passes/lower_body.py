@@ -240,7 +240,7 @@ class TaskLowering:
 
     def native(self, s: ast.NativeStmt) -> ir.Instr | None:
         if s.vendor.name not in VENDORS:
-            self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(VENDORS))
+            self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(VENDORS), codes.UNKNOWN_VENDOR)
             return None
         return ir.Native(uid=0, vendor=s.vendor.name, text=s.text.value, span=s.span)
 

@@ -79,7 +79,7 @@ class _CellBuilder:
             info = self.state.robot_loader(key)
         except RobotLookupError as exc:
             if s.library is not None:
-                self.rep.unknown(key, "robot model", span, list(exc.candidates))
+                self.rep.unknown(key, "robot model", span, list(exc.candidates), codes.UNKNOWN_ROBOT)
             else:
                 self.rep.error(codes.ROBOT_LOAD, f"URDF robot must load (got: {exc})", span)
             return

@@ -36,13 +36,16 @@ class ChainPath:
     """The joined path: q (M, dof), tcp (M, 3), c (M,) the TCP-time coordinate (s: TCP path
     length over programmed speed, constant along joint moves), ss (M,) the path parameter
     (joint-space arc length along the moves; inside a blend, uniform in the blend parameter,
-    so the path stays smooth even where a blend turns back on itself). Per segment: `starts`/`ends`
+    so the path stays smooth even where a blend turns back on itself), vscale (M,) the share of
+    the joint velocity limits at each point (a joint move's joint_speed; the smaller of the two
+    moves' in a blend). Per segment: `starts`/`ends`
     chain indexes (end = zone entry when blended), `radii` the blend radius used (m)."""
 
     q: np.ndarray
     tcp: np.ndarray
     c: np.ndarray
     ss: np.ndarray
+    vscale: np.ndarray
     starts: tuple[int, ...]
     ends: tuple[int, ...]
     radii: tuple[float, ...]
@@ -105,7 +108,7 @@ def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: igno
 
 def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
     """Join a chain of segments (each starting where the previous one ends) into one path."""
-    qs, tcps, rates, uniform = [], [], [], []
+    qs, tcps, rates, uniform, factors = [], [], [], [], []
     ends, radii, findings = [], [], []
     count = 0
     part = _Part(segments[0].q, segments[0].tcp)
@@ -120,6 +123,7 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
         tcps.append(keep.tcp if i == 0 else keep.tcp[1:])
         rates.append(np.full(len(qs[-1]), seg.tcp_rate))
         uniform.append(np.zeros(len(qs[-1]), bool))
+        factors.append(np.full(len(qs[-1]), seg.speed_factor))
         count += len(qs[-1])
         ends.append(count - 1)
         radii.append(used)
@@ -129,6 +133,7 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
             tcps.append(tb)
             rates.append(np.full(len(qb), max(seg.tcp_rate, segments[i + 1].tcp_rate)))
             uniform.append(np.ones(len(qb), bool))
+            factors.append(np.full(len(qb) + 1, min(seg.speed_factor, segments[i + 1].speed_factor)))
             count += len(qb)
             # the blend's last point joins the next part, whose first point (q_out) is kept
             qs.append(nxt.q[:1])
@@ -141,8 +146,9 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
     step_rate = np.maximum(rate[1:], rate[:-1])
     c = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(tcp, axis=0), axis=1) * step_rate)])
     ss = _parameter(q, np.concatenate(uniform))
+    vscale = np.concatenate(factors)
     starts = [0] + ends[:-1]  # a move starts where the previous one ends (its zone entry)
-    return ChainPath(q, tcp, c, ss, tuple(starts), tuple(ends), tuple(radii), tuple(findings))
+    return ChainPath(q, tcp, c, ss, vscale, tuple(starts), tuple(ends), tuple(radii), tuple(findings))
 
 
 def _parameter(q: np.ndarray, in_blend: np.ndarray) -> np.ndarray:

@@ -2,10 +2,10 @@
 
 A single joint move is timed by ruckig (jerk-limited, synchronised); anything else (a Cartesian
 move, or several moves blended together) is one joint path timed by toppra with:
-* joint velocity limits: vmax * joint_speed (the smallest joint_speed among the chain's joint
-  moves; Cartesian moves use the full joint speed) and joint acceleration limits amax *
-  joint_accel (the smallest in the chain) — one constant set per chain, a documented
-  simplification when a chain mixes settings;
+* joint velocity limits: vmax * joint_speed along each joint move, the full vmax along
+  Cartesian moves (their speed is the TCP's), the smaller share inside a blend; joint
+  acceleration limits amax * joint_accel (the smallest in the chain: one constant set per
+  chain, a documented simplification when a chain mixes accel settings);
 * the TCP speed: an extra path coordinate c (TCP path length / programmed speed, see
   blend.ChainPath) limited to dc/dt <= 1, i.e. TCP speed <= the programmed speed of every
   Cartesian move, and d2c/dt2 <= min(tcp_accel / tcp_speed).
@@ -38,10 +38,10 @@ class TimedChain:
 
 
 def _limits(robot: object, segments: list[Segment]) -> tuple[np.ndarray, np.ndarray]:
-    joint = [s.move.motion.joint_speed for s in segments if s.move.kind is ir.MotionKind.JOINT]
-    fv = min(joint, default=1.0)
+    """Joint velocity limits (full; joint_speed applies per point, see ChainPath.vscale) and
+    joint acceleration limits (amax times the smallest joint_accel of the chain)."""
     fa = min(s.move.motion.joint_accel for s in segments)
-    return robot.velocity_limits * fv, robot.accel_limits * fa  # type: ignore[attr-defined]
+    return robot.velocity_limits.copy(), robot.accel_limits * fa  # type: ignore[attr-defined]
 
 
 def time_chain(robot: object, segments: list[Segment]) -> TimedChain:
@@ -49,7 +49,7 @@ def time_chain(robot: object, segments: list[Segment]) -> TimedChain:
     vmax, amax = _limits(robot, segments)
     duration = segments[0].move.motion.duration if len(segments) == 1 else None
     if len(segments) == 1 and segments[0].move.kind is ir.MotionKind.JOINT:
-        return _joint_chain(segments[0], vmax, amax, duration)
+        return _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, duration)
     path = blend_chain(robot, segments)
     return _path_chain(path, segments, vmax, amax, duration)
 
@@ -78,10 +78,14 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
         acc_c = min(s.move.motion.tcp_accel * s.tcp_rate for s in cartesian)
         vlim, alim = np.append(vmax, 1.0), np.append(amax, acc_c)
     else:
-        wp, vlim, alim = path.q, vmax, amax
+        wp, vlim, alim = path.q, vmax.copy(), amax
+    vscale = path.vscale[keep]
+    if np.all(vscale == vscale[0]):  # one share for the whole chain: a plain constant limit
+        vlim[:dof] *= vscale[0]
+        vscale = None
     error = None
     try:
-        piece = path_piece(wp[keep], ss[keep], vlim, alim, dof)
+        piece = path_piece(wp[keep], ss[keep], vlim, alim, dof, vscale)
     except TimingError as exc:
         return _failed_path(path, segments, str(exc))
     if duration is not None:

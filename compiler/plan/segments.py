@@ -43,6 +43,11 @@ class Segment:
         return self.q[-1]
 
     @property
+    def speed_factor(self) -> float:
+        """The share of the joint velocity limits this move may use (joint_speed for joint moves)."""
+        return self.move.motion.joint_speed if self.move.kind is ir.MotionKind.JOINT else 1.0
+
+    @property
     def tcp_length(self) -> float:
         return float(np.sum(np.linalg.norm(np.diff(self.tcp, axis=0), axis=1)))
 

@@ -196,7 +196,7 @@ def initial_joints(robot: object, body: tuple[ir.Instr, ...]) -> np.ndarray:
         q, found = check_joint_values(robot, first.target.values)
         return q if q is not None else home
     config = first.config if _any_config(first.config) else None
-    res = robot.ik(flange_target(first), seed=home, config=config)  # type: ignore[attr-defined]
+    res = _ik(robot, flange_target(first), home, config)
     return np.asarray(res.solutions[0], dtype=float) if res.solutions else home
 
 

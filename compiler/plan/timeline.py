@@ -72,6 +72,7 @@ class _Builder:
         self.draft, self.counter = draft, counter
         self.chain: list[Segment] = []
         self.events: list[tuple[ir.Instr, int]] = []
+        self.pending: list[tuple[Finding, int]] = []  # warnings of chain moves, by chain index
 
     # ------------------------------------------------------------------ helpers
     def _diag(self, f: Finding, span, time: float | None = None) -> None:  # type: ignore[no-untyped-def]
@@ -103,12 +104,13 @@ class _Builder:
         if move.motion.duration is not None:
             self.flush()
         seg, findings = build_segment(self.robot, move, self._q_end())
-        for f in findings:
-            self._diag(f, move.span, self.t if not self.chain else None)
         if seg is None:
             self.flush()
+            for f in findings:
+                self._diag(f, move.span, self.t)
             self._record(move, self.t, self.t)
             return
+        self.pending += [(f, len(self.chain)) for f in findings]  # timed when the chain is
         self.chain.append(seg)
         if move.motion.zone.is_fine or move.motion.duration is not None:
             self.flush()
@@ -163,8 +165,8 @@ class _Builder:
     def flush(self) -> None:
         if not self.chain:
             return
-        chain, events, t0 = self.chain, self.events, self.t
-        self.chain, self.events = [], []
+        chain, events, pending, t0 = self.chain, self.events, self.pending, self.t
+        self.chain, self.events, self.pending = [], [], []
         timed = time_chain(self.robot, chain)
         self._append(timed.piece)
         for i, seg in enumerate(chain):
@@ -173,6 +175,8 @@ class _Builder:
             code = codes.TIME_TOO_SHORT if timed.error_is_time else codes.TIMING_FAILED
             span = chain[0].move.span if timed.error_is_time else chain[-1].move.span
             self._diag(Finding(code, Severity.ERROR, timed.error), span, t0)
+        for f, k in pending:
+            self._diag(f, chain[k].move.span, t0 + timed.starts[k])
         for instr, k in events:
             self._event_record(instr, t0 + timed.ends[k])
         for k, f in (timed.path.findings if timed.path is not None else ()):

@@ -11,10 +11,12 @@ A Piece is one stretch of a task's timeline: `duration` (s) and `sample(tl)` giv
   sends those to a cloud server).
 * Geometric paths (Cartesian moves, blended chains): toppra with joint velocity and
   acceleration constraints. toppra holds its limits only at its grid points, so the result is
-  re-checked on a dense time grid; a violated coordinate's limit is tightened and the path
-  re-timed (up to `_RETIME_ROUNDS` times), and whatever excess remains is removed by a uniform
-  time stretch (which scales velocity by 1/k and acceleration by 1/k^2), so every sample ends
-  within the limits.
+  re-checked on a dense time grid (0.25 ms, plus toppra's own grid times): first the grid is
+  refined where a limit was exceeded (`_REFINE_ROUNDS` times), then the offending limits are
+  tightened (up to `_RETIME_ROUNDS` runs in all), and whatever excess remains is removed by a
+  uniform time stretch (velocity scales by 1/k, acceleration by 1/k^2), so every sample ends
+  within the limits. The parametrisation is toppra's constant-acceleration one, re-implemented
+  here vectorised and invertible (`ConstAccelTiming`: the time at a path point, for records).
 """
 
 from __future__ import annotations
@@ -231,12 +233,14 @@ def _ruckig_ok(result: object, Result: type) -> None:  # noqa: N803 - ruckig's e
 
 def path_piece(
     waypoints: np.ndarray, ss: np.ndarray, vlim: np.ndarray, alim: np.ndarray, dof: int,
-    check_dt: float = 0.00025,
+    vscale: np.ndarray | None = None, check_dt: float = 0.00025,
 ) -> PathPiece:
     """Time-optimal rest-to-rest timing of the path through waypoints (M, n) at ss (M,).
 
     vlim, alim: (n,) symmetric limits of every coordinate (joints first, then extra
-    coordinates such as the TCP-speed coordinate). Raises TimingError if toppra fails.
+    coordinates such as the TCP-speed coordinate); vscale (M,) optional factors on the joint
+    velocity limits per waypoint (a joint move's joint_speed within a chain). Raises
+    TimingError if toppra fails.
     The result respects the joint limits and the extra coordinates' velocity limits at every
     point of a `check_dt` grid (see module doc). The extra coordinates' acceleration limits
     are passed to toppra but not re-checked: the TCP coordinate has a kink where a joint move
@@ -246,12 +250,13 @@ def path_piece(
     base_v, base_a = vlim.astype(float).copy(), alim.astype(float).copy()
     # toppra meets its limits exactly at the grid points: ask for a hair less than allowed
     vlim, alim = base_v * (1 - 2 * _V_MARGIN), base_a * (1 - 2 * _A_MARGIN)
+    scale_at = _scale_function(ss, vscale, len(vlim), dof)
     path = _spline(ss, waypoints)
     n_grid = int(np.clip(_GRID_PER_WAYPOINT * len(ss), _GRID_MIN, _GRID_MAX))
     grid = np.linspace(ss[0], ss[-1], n_grid)
     for attempt in range(_RETIME_ROUNDS + 1):
-        traj = _toppra(path, grid, vlim, alim)
-        rv, ra, bad_s = _ratios(traj, base_v, base_a, check_dt, dof)
+        traj = _toppra(path, grid, vlim, alim, scale_at)
+        rv, ra, bad_s = _ratios(traj, base_v, base_a, check_dt, dof, scale_at)
         if not bad_s.size or attempt == _RETIME_ROUNDS:
             break
         if attempt < _REFINE_ROUNDS:  # first refine the grid where the limits were exceeded
@@ -269,14 +274,38 @@ def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
     return toppra.SplineInterpolator(ss, waypoints)
 
 
-def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray) -> ConstAccelTiming:
+def _scale_function(ss: np.ndarray, vscale: np.ndarray | None, n: int, dof: int):  # type: ignore[no-untyped-def]
+    """s -> (n,) factors on the velocity limits: vscale (M,) per waypoint on the joints (the
+    smaller of the two waypoints around s), 1 on extra coordinates; None if vscale is None."""
+    if vscale is None or np.all(vscale == 1.0):
+        return None
+    lower = np.minimum(vscale[:-1], vscale[1:])
+
+    def scale_at(s: np.ndarray) -> np.ndarray:
+        i = np.clip(np.searchsorted(ss, s, side="right") - 1, 0, len(lower) - 1)
+        out = np.ones((np.size(s), n))
+        out[:, :dof] = lower[i][:, None]
+        return out
+
+    return scale_at
+
+
+def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray, scale_at=None) -> ConstAccelTiming:  # type: ignore[no-untyped-def]
     import toppra
     import toppra.algorithm as algo
     import toppra.constraint as constraint
 
     toppra.setup_logging("CRITICAL")
+    if scale_at is None:
+        velocity = constraint.JointVelocityConstraint(np.stack([-vlim, vlim], axis=1))
+    else:
+        def varying(s: float) -> np.ndarray:
+            v = vlim * scale_at(np.array([s]))[0]
+            return np.stack([-v, v], axis=1)
+
+        velocity = constraint.JointVelocityConstraintVarying(varying)
     cons = [
-        constraint.JointVelocityConstraint(np.stack([-vlim, vlim], axis=1)),
+        velocity,
         constraint.JointAccelerationConstraint(np.stack([-alim, alim], axis=1)),
     ]
     instance = algo.TOPPRA(cons, path, gridpoints=grid)
@@ -290,7 +319,7 @@ def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray) 
 
 
 def _ratios(
-    traj: ConstAccelTiming, vlim: np.ndarray, alim: np.ndarray, dt: float, dof: int
+    traj: ConstAccelTiming, vlim: np.ndarray, alim: np.ndarray, dt: float, dof: int, scale_at=None  # type: ignore[no-untyped-def]
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """On a dense time grid, per coordinate: max |velocity| / vlim and max |acceleration| /
     alim (joints only: extra coordinates' accelerations are shaping limits), and the path
@@ -299,7 +328,7 @@ def _ratios(
     dense = np.linspace(0.0, duration, max(3, int(math.ceil(duration / dt)) + 1))
     ts = np.union1d(dense, traj.ts)  # type: ignore[attr-defined] - and toppra's own grid times
     _, xd, xdd = _eval(traj, ts)
-    rel_v = np.abs(xd) / vlim
+    rel_v = np.abs(xd) / (vlim if scale_at is None else vlim * scale_at(traj.params(ts)[0]))
     rel_a = np.abs(xdd[:, :dof]) / alim[:dof]
     over = np.any(rel_v > 1 - _V_MARGIN, axis=1) | np.any(rel_a > 1 - _A_MARGIN, axis=1)
     ra = np.zeros(len(vlim))

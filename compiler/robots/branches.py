@@ -37,7 +37,7 @@ import math
 import numpy as np
 
 from rmot.compiler import ir
-from rmot.compiler.robots.opw import OpwJointMap, OpwParams, opw_shoulder_elbow
+from rmot.compiler.robots.opw import OpwJointMap, OpwParams
 from rmot.compiler.robots.urik import UrParams, ur_branch_quantities
 
 __all__ = ["config_of", "opw_branch_fn", "ur_branch_fn"]

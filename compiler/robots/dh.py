@@ -58,9 +58,10 @@ def trans(x: float, y: float, z: float) -> np.ndarray:
 
 def _split(table: DHTable) -> tuple[list[np.ndarray], list[np.ndarray]]:
     """Per joint i: T_i(q) = before[i] · Motion(sign·q) · after[i] (Motion = Rz or Tz)."""
-    before, after = [], []
+    before: list[np.ndarray] = []
+    after: list[np.ndarray] = []
     for row in table.rows:
-        fixed_rot = rot_z(row.offset) if row.kind == "R" else rot_z(row.offset)
+        fixed_rot = rot_z(row.offset)  # θ offset (revolute) or the constant θ (prismatic)
         if table.modified:
             before.append(rot_x(row.alpha) @ trans(row.a, 0, 0) @ fixed_rot)
             after.append(trans(0, 0, row.d))

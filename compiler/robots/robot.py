@@ -29,11 +29,29 @@ class LinkSolid:
     placement: ir.Pose
 
 
+class NamedModel(pin.Model):
+    """The pinocchio Model that prints as the vendor's model name.
+
+    The API calls both the vendor model string and the pinocchio Model `model`: this is the
+    real Model (pass it to any pinocchio function) whose str() and format() give the name."""
+
+    def __init__(self, model: pin.Model, label: str) -> None:
+        super().__init__(model)
+        self._label = label
+
+    def __str__(self) -> str:
+        return self._label
+
+    def __format__(self, spec: str) -> str:
+        return format(self._label, spec)
+
+
 class Robot:
     """One arm. Joint values are the controller's (rad / m); poses are (4,4) in metres.
 
-    Attributes: name, vendor, model_name (the vendor's model, e.g. "IRB 120-3/0.58"),
-    model (the pinocchio Model, read-only), dof, joint_types, joint_limits (dof,2),
+    Attributes: name, vendor, model (the pinocchio Model, read-only; str(model) is the
+    vendor's model name), model_name (that name as a plain str, e.g. "IRB 120-3/0.58"),
+    dof, joint_types, joint_limits (dof,2),
     velocity_limits (dof,), accel_limits (dof,), reach (m), has_closed_form, has_inertia,
     solids, adjacent_pairs, source (where the numbers come from).
     """
@@ -48,7 +66,7 @@ class Robot:
         has_inertia: bool = False, source: str = "", dh_rows: tuple = (), dh_modified: bool = False,
     ) -> None:
         self.name, self.vendor, self.model_name, self.source = name, vendor, model_name, source
-        self.model = model
+        self.model = model = NamedModel(model, model_name)
         self._data = model.createData()
         self._fid = flange_frame
         self._flange_joint = model.frames[flange_frame].parentJoint

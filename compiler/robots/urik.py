@@ -63,7 +63,8 @@ def _inv(t: np.ndarray) -> np.ndarray:
 
 def ur_ik(p: UrParams, poses: np.ndarray) -> np.ndarray:
     """All 8 solutions; poses: (N,4,4) -> (N,8,6). Row = 4·shoulder + 2·wrist + elbow with
-    shoulder 0 = front, wrist 0 = noflip (q5 > 0), elbow 0 = up (q3 > 0); NaN where none."""
+    shoulder 0 = front, wrist 0 = noflip (q5 > 0), elbow 0 = up (q3 > 0); NaN where none.
+    The readable reference: `fastik` is the compiled one (and the one exact at q5 = 0)."""
     with np.errstate(invalid="ignore", divide="ignore"):
         return _solve(p, poses)
 
@@ -120,11 +121,8 @@ def ur_branch_quantities(p: UrParams, q: np.ndarray) -> tuple[np.ndarray, np.nda
     wrist: sin(q5) (< 0 flip).
     """
     q = np.asarray(q, dtype=float)
-    c = [np.cos(q[..., i]) for i in range(6)]
-    s = [np.sin(q[..., i]) for i in range(6)]
-    # p05 in frame 1 coordinates, x1 component: a2 c2 + a3 c23 + d5·(x1 component of z4)
-    c23, s23 = np.cos(q[..., 1] + q[..., 2]), np.sin(q[..., 1] + q[..., 2])
-    c234, s234 = np.cos(q[..., 1] + q[..., 2] + q[..., 3]), np.sin(q[..., 1] + q[..., 2] + q[..., 3])
-    x1 = p.a2 * c[1] + p.a3 * c23 + p.d5 * s234
-    del c234
-    return -x1, s[2], s[4]
+    # p05 in frame-1 coordinates, x component: a2·c2 + a3·c23 + d5·(x component of z4 = sin q234)
+    c23 = np.cos(q[..., 1] + q[..., 2])
+    s234 = np.sin(q[..., 1] + q[..., 2] + q[..., 3])
+    x1 = p.a2 * np.cos(q[..., 1]) + p.a3 * c23 + p.d5 * s234
+    return -x1, np.sin(q[..., 2]), np.sin(q[..., 4])

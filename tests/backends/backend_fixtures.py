@@ -120,3 +120,14 @@ def routine_lines(text: str, start: str, end: str) -> list[str]:
     i = lines.index(start)
     j = lines.index(end, i)
     return [ln for ln in lines[i + 1:j] if ln and not ln.startswith(("!", ";"))]
+
+
+def handshake_missing(plan: planned.Plan) -> bool:
+    """A multi-task program whose cell lacks some syncing robot's "sync" signals: the I/O
+    handshake vendors then refuse its syncs (E409)."""
+    from rmot.backends.handshake import handshake_ports
+
+    program = plan.program
+    return len(program.tasks) > 1 and any(
+        handshake_ports(program.cell, t.robot) is None
+        for t in program.tasks if any(isinstance(n, ir.Sync) for n in ir.walk(t.body)))

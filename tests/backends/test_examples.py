@@ -16,7 +16,7 @@ import warnings
 from pathlib import Path
 
 import pytest
-from backend_fixtures import sample_program
+from backend_fixtures import handshake_missing, sample_program
 
 from rmot.backends import BACKENDS
 from rmot.compiler import planned
@@ -26,7 +26,7 @@ GOLDEN = Path(__file__).parent / "golden"
 VENDORS = ("rapid", "krl", "fanuc")
 EXAMPLES = ("inspect", "pick_place", "handover")
 UPDATE = os.environ.get("RMOT_UPDATE_GOLDEN") == "1"
-SYNC_REFUSED = {"krl", "fanuc"}  # E405: no multi-arm barrier without controller options
+HANDSHAKE_VENDORS = {"krl", "fanuc"}  # sync is an I/O handshake (backends/handshake.py)
 
 
 @pytest.fixture(scope="module")
@@ -65,11 +65,12 @@ def test_matches_golden_files(plans: dict[str, planned.Plan], example: str, vend
 @pytest.mark.parametrize("vendor", VENDORS)
 @pytest.mark.parametrize("example", EXAMPLES)
 def test_only_documented_refusals(plans: dict[str, planned.Plan], example: str, vendor: str) -> None:
-    """Errors are only: a move the planner could not solve (E401), sync for KRL/TP (E405); all have spans."""
+    """Errors are only: a move the planner could not solve (E401), sync for KRL/TP in a cell
+    without the handshake signals (E409); all have spans."""
     plan = plans[example]
     result = BACKENDS[vendor]().emit(plan)
     allowed = ({"E401"} if any(d.is_error for d in plan.diagnostics) else set()) | (
-        {"E405"} if vendor in SYNC_REFUSED else set())
+        {"E409"} if vendor in HANDSHAKE_VENDORS and handshake_missing(plan) else set())
     assert {d.code.id for d in result.diagnostics if d.is_error} <= allowed
     assert all(d.span is not None for d in result.diagnostics)
 

@@ -3,7 +3,7 @@
 Reports (pytest-benchmark medians) the planner's time and, in the same run, a plain baseline
 that does what a naive planner would: dense numeric IK (damped Newton from the previous point,
 1 mm steps) along every Cartesian move and uniform timing (every step at the speed of its
-slowest joint, no acceleration phases, no blends). `extra_info` holds instructions, trajectory
+slowest joint or the programmed TCP speed, no acceleration phases, no blends). `extra_info` holds instructions, trajectory
 seconds and the planner/baseline ratio.
 
 Run: .venv/bin/python -m pytest tests/benchmarks/bench_planner.py --benchmark-only -q
@@ -53,7 +53,8 @@ def pick_and_place(n_instructions: int = 100) -> ir.Program:
 
 
 def baseline(prog: ir.Program, step: float = 0.004) -> float:
-    """Dense numeric IK + uniform timing; returns the trajectory duration (s)."""
+    """Dense numeric IK + uniform timing (each step at the speed of its slowest joint or the
+    programmed TCP speed, no acceleration phases); returns the trajectory duration (s)."""
     from rmot.compiler.robots import load_robot
 
     robot = load_robot(prog.cell.robots[0].source.load_key)
@@ -78,7 +79,11 @@ def baseline(prog: ir.Program, step: float = 0.004) -> float:
                 if qs[-1] is None:
                     qs[-1] = qs[-2]
             qs = np.array(qs)
-        dt = np.max(np.abs(np.diff(qs, axis=0)) / robot.velocity_limits, axis=1)
+        vmax = robot.velocity_limits * (instr.motion.joint_speed if instr.kind is ir.MotionKind.JOINT else 1.0)
+        dt = np.max(np.abs(np.diff(qs, axis=0)) / vmax, axis=1)
+        if instr.kind is not ir.MotionKind.JOINT:  # and no faster than the programmed TCP speed
+            tcp = robot.fk_batch(qs)[:, :3, 3]
+            dt = np.maximum(dt, np.linalg.norm(np.diff(tcp, axis=0), axis=1) / instr.motion.tcp_speed)
         total += float(np.sum(dt))
         path.append(qs[-1])
         q = qs[-1]

@@ -119,3 +119,17 @@ class TestWholeFileProblems:
         result = load_text("cell c { robot r1 = abb_irb120 }", "c.rmot")
         assert result.diagnostics == () and result.program is None
         assert result.cell is not None and result.cell.name == "c"
+
+
+def test_unrolling_beyond_the_limit_is_reported_once() -> None:
+    """A loop that unrolls past MAX_INSTRUCTIONS stops with one E121 at the statement that overflows."""
+    result = load_text("program p on r1 {\n  repeat 300000 { wait 1 ms }\n}\n", "/virtual/big.rmot")
+    assert [(d.code.id, d.span.start.line) for d in result.diagnostics] == [("E121", 2)]  # type: ignore[union-attr]
+
+
+def test_broken_urdf_is_a_file_error(tmp_path: Path) -> None:
+    """A URDF the robot library cannot load is E505 at the path."""
+    (tmp_path / "bad.urdf").write_text("<robot")
+    (tmp_path / "c.rmot").write_text('cell c {\n  robot r1 = urdf("bad.urdf")\n}\n')
+    result = load_program(str(tmp_path / "c.rmot"))
+    assert [(d.code.id, d.span.start.line, d.span.start.col) for d in result.diagnostics] == [("E505", 2, 19)]  # type: ignore[union-attr]

@@ -256,3 +256,42 @@ class TestTasksAndCells:
         assert not result.has_errors, [render(d) for d in result.diagnostics]
         (m,) = moves(result.program)  # type: ignore[arg-type]
         assert m.target.in_frame.position == pytest.approx((0, 0, 0.53))  # type: ignore[union-attr]
+
+
+class TestMoreForms:
+    def test_keyword_joints_in_any_order(self) -> None:
+        """joints(j2=..., j1=..., ...) orders the values by joint number."""
+        (m,) = moves(lower("program p on r1 { move joint joints(j2=-90deg, j1=10deg, j3=0rad, j4=0deg, j5=90deg, j6=0deg) }"))
+        assert m.target == ir.JointTarget((D(10), D(-90), 0.0, 0.0, D(90), 0.0))
+
+    def test_program_frame_and_tool_reset(self) -> None:
+        """A frame declared in the program works like a cell frame; `tool flange` and `frame base` reset."""
+        a, b = moves(lower("program p on r1 { frame f = pose(x=1m); tool g; frame f\n move linear pose(z=500mm)\n"
+                           " tool flange; frame base; move linear pose(z=500mm) }"))
+        assert (a.frame.name, a.tool.name, b.frame, b.tool) == ("f", "g", ir.FrameRef(None), ir.ToolRef(None))
+
+    def test_else_if_nests_a_branch(self) -> None:
+        """`else if` is an If inside the else arm."""
+        (outer,) = lower("program p on r1 { if in[1] { wait 1 s } else if in[2] == off { wait 2 s } }").tasks[0].body
+        assert isinstance(outer, ir.If) and isinstance(outer.otherwise[0], ir.If)
+        assert outer.otherwise[0].condition.value is False
+
+    def test_wait_until_without_timeout(self) -> None:
+        """No timeout means wait forever (timeout None)."""
+        (w,) = lower("program p on r1 { wait until in[2] == on }").tasks[0].body
+        assert isinstance(w, ir.WaitInput) and w.timeout is None
+
+    def test_sync_in_a_single_task_program_is_allowed(self) -> None:
+        """A sync with no partner task is a no-op in a one-robot program (kept in the IR)."""
+        assert lower("program p on r1 { sync here }").tasks[0].body == (ir.Sync(uid=1, name="here"),)
+
+    def test_program_without_on_uses_the_only_robot(self) -> None:
+        """`program p { ... }` in a one-robot cell runs on that robot."""
+        result = load_text("program p { wait 1 s }", "/virtual/t.rmot")
+        assert result.program is not None and result.program.tasks[0].robot == "r1"
+
+    def test_spans_point_at_the_source(self) -> None:
+        """Each IR node keeps the span of the statement that produced it (inlined ones: the proc body)."""
+        prog = lower("program p on r1 {\n  proc a() {\n    wait 1 s\n  }\n  a()\n}")
+        (call,) = prog.tasks[0].body
+        assert (call.span.start.line, call.body[0].span.start.line) == (CELL.count("\n") + 5, CELL.count("\n") + 3)  # type: ignore[union-attr]

@@ -248,3 +248,22 @@ def test_linear_move_to_joint_values_ends_exactly_there(irb120) -> None:  # type
     rec = plan.tasks[0].record(uid)
     assert np.allclose(rec.q_target, np.radians([20, 20, 0, 10, 50, -10]), atol=1e-9)
     assert np.allclose(plan.tasks[0].trajectory.q[-1], rec.q_target, atol=1e-9)
+
+
+def test_joint_speed_share_applies_to_the_joint_move_only(irb120) -> None:  # type: ignore[no-untyped-def]
+    """A 5% joint move blended into a linear move: the joint move keeps 5% of vmax, the line
+    still runs at its programmed 250 mm/s."""
+    p = Prog()
+    p.joint([0, 10, 10, 0, 60, 0])
+    j = p.joint(pose(300, -150, 300, **TOOL_DOWN), joint_speed=0.05, zone=10)
+    lin = p.linear(pose(300, 150, 300, **TOOL_DOWN), speed=250)
+    plan = plan_program(program(p.task()))
+    assert not _errors(plan)
+    tp = plan.tasks[0]
+    t = tp.trajectory.t
+    during_joint = (t >= tp.record(j).t_start) & (t <= tp.record(j).t_end)
+    assert np.all(np.abs(tp.trajectory.qd[during_joint]) <= 0.05 * irb120.velocity_limits * (1 + 1e-6))
+    rec = tp.record(lin)
+    mid = (t > rec.t_start + 0.3 * (rec.t_end - rec.t_start)) & (t < rec.t_end - 0.3 * (rec.t_end - rec.t_start))
+    speed = np.linalg.norm(np.diff(tcp_positions(irb120, tp.trajectory.q[mid]), axis=0), axis=1) / plan.step
+    assert np.allclose(speed, 0.25, rtol=0.01)

@@ -79,3 +79,32 @@ def test_bad_urdf_inputs_raise_robot_error(tmp_path):
     )
     with pytest.raises(RobotError, match="not a usable serial arm"):
         load_robot(str(wheel))
+
+
+def test_urdf_meshes_resolve_relative_to_the_file_and_primitives_convert(tmp_path):
+    """A relative mesh path resolves against the URDF's folder; box/cylinder/sphere become ir shapes."""
+    stl = os.path.join(os.path.dirname(ur5_urdf()), "..", "meshes", "ur5", "collision", "base.stl")
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "part.stl").write_bytes(open(stl, "rb").read())
+    (tmp_path / "arm.urdf").write_text(
+        '<robot name="arm">'
+        '<link name="base"><collision><geometry><mesh filename="meshes/part.stl" scale="0.001 0.001 0.001"/></geometry></collision></link>'
+        '<link name="l1"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.1 0.2 0.3"/></geometry></collision></link>'
+        '<link name="l2"><collision><geometry><cylinder radius="0.05" length="0.4"/></geometry></collision>'
+        '<collision><geometry><sphere radius="0.07"/></geometry></collision></link>'
+        '<link name="tool0"/>'
+        '<joint name="j1" type="revolute"><parent link="base"/><child link="l1"/><origin xyz="0 0 0.2"/>'
+        '<axis xyz="0 0 1"/><limit lower="-3" upper="3" velocity="2" effort="1"/></joint>'
+        '<joint name="j2" type="prismatic"><parent link="l1"/><child link="l2"/><origin xyz="0.3 0 0"/>'
+        '<axis xyz="1 0 0"/><limit lower="0" upper="0.5" velocity="0.5" effort="1"/></joint>'
+        '<joint name="f" type="fixed"><parent link="l2"/><child link="tool0"/><origin xyz="0 0 0.05"/></joint>'
+        "</robot>"
+    )
+    r = load_robot(str(tmp_path / "arm.urdf"))
+    assert r.dof == 2 and r.joint_types == ("R", "P")
+    np.testing.assert_allclose(r.fk(np.array([np.pi / 2, 0.2]))[:3, 3], [0.0, 0.5, 0.25], atol=1e-12)
+    kinds = {type(s.geometry).__name__: s for s in r.solids}
+    assert kinds["Mesh"].geometry.path == str(tmp_path / "meshes" / "part.stl") and kinds["Mesh"].geometry.scale == 0.001
+    assert kinds["Box"].geometry.size == (0.1, 0.2, 0.3) and kinds["Box"].placement.position == (0.0, 0.0, 0.1)
+    assert kinds["Cylinder"].geometry == ir.Cylinder(0.05, 0.4) and kinds["Sphere"].geometry == ir.Sphere(0.07)
+    np.testing.assert_allclose(r.velocity_limits, [2.0, 0.5])

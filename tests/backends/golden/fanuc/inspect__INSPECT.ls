@@ -5,7 +5,7 @@ COMMENT		= "rmot";
 PROG_SIZE	= 0;
 FILE_NAME	= ;
 VERSION		= 0;
-LINE_COUNT	= 66;
+LINE_COUNT	= 70;
 MEMORY_SIZE	= 0;
 PROTECT		= READ_WRITE;
 TCD:  STACK_SIZE	= 0,
@@ -72,21 +72,25 @@ CONTROL_CODE	= 00000000 00000000;
   49:  UTOOL_NUM=1 ;
   50:  L P[11] 150mm/sec FINE ;
   51:  !inspect.rmot:21 ;
-  52:  IF DI[2:part_present]<>ON,JMP LBL[1] ;
-  53:  !inspect.rmot:22 ;
-  54:  AO[1:conveyor_speed]=4.500 ;
-  55:  JMP LBL[2] ;
-  56:  LBL[1] ;
+  52:  UFRAME_NUM=1 ;
+  53:  UTOOL_NUM=1 ;
+  54:  L P[12] 150mm/sec FINE ;
+  55:  !inspect.rmot:22 ;
+  56:  IF DI[2:part_present]<>ON,JMP LBL[1] ;
   57:  !inspect.rmot:23 ;
-  58:  IF DI[2:part_present]<>OFF,JMP LBL[3] ;
-  59:  !inspect.rmot:24 ;
-  60:  DO[2:gripper_open]=PULSE,0.2sec ;
-  61:  JMP LBL[4] ;
-  62:  LBL[3] ;
-  63:  LBL[4] ;
-  64:  LBL[2] ;
-  65:  !inspect.rmot:26 ;
-  66:  WAIT 0.50(sec) ;
+  58:  AO[1:conveyor_speed]=4.500 ;
+  59:  JMP LBL[2] ;
+  60:  LBL[1] ;
+  61:  !inspect.rmot:24 ;
+  62:  IF DI[2:part_present]<>OFF,JMP LBL[3] ;
+  63:  !inspect.rmot:25 ;
+  64:  DO[2:gripper_open]=PULSE,0.2sec ;
+  65:  JMP LBL[4] ;
+  66:  LBL[3] ;
+  67:  LBL[4] ;
+  68:  LBL[2] ;
+  69:  !inspect.rmot:27 ;
+  70:  WAIT 0.50(sec) ;
 /POS
 P[1:"start"]{
    GP1:
@@ -149,6 +153,12 @@ P[10]{
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[11]{
+   GP1:
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
+	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+P[12]{
    GP1:
 	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
 	X =    50.000  mm,	Y =   -50.000  mm,	Z =   220.000  mm,

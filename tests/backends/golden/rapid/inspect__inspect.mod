@@ -25,19 +25,21 @@ MODULE inspect
     ! inspect.rmot:19
     MoveL p_2, v150, fine, pointer\WObj:=table_top;
     ! inspect.rmot:20
-    MoveL p_3, v150, fine, pointer\WObj:=table_top;
+    MoveL p_2, v150, fine, pointer\WObj:=table_top;
     ! inspect.rmot:21
+    MoveL p_3, v150, fine, pointer\WObj:=table_top;
+    ! inspect.rmot:22
     IF DInput(part_present) = 1 THEN
-      ! inspect.rmot:22
+      ! inspect.rmot:23
       SetAO conveyor_speed, 4.500;
     ELSE
-      ! inspect.rmot:23
+      ! inspect.rmot:24
       IF DInput(part_present) = 0 THEN
-        ! inspect.rmot:24
+        ! inspect.rmot:25
         PulseDO\PLength:=0.200, gripper_open;
       ENDIF
     ENDIF
-    ! inspect.rmot:26
+    ! inspect.rmot:27
     WaitTime 0.500;
   ENDPROC
 ENDMODULE
