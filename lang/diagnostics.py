@@ -162,6 +162,9 @@ def render(d: Diagnostic) -> str:
     lines = [f"{where}{d.severity.value}[{d.code.id}]: {d.message}{_timing(d)}"]
     if d.span is not None:
         lines += _caret_block(d.span)
+        for site in d.span.expansion_chain():
+            lines.append(f"{site}: note: in the proc call here")
+            lines += _caret_block(site)
     for text, span in d.notes:
         lines.append(f"{span}: note: {text}" if span is not None else f"  note: {text}")
         if span is not None:

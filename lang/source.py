@@ -46,6 +46,26 @@ class Span:
     file: SourceFile
     start: Pos
     end: Pos
+    # Where this text was expanded from: an instruction inlined from a proc keeps its own span
+    # and points at the call site here (Cairo's Location.parent_location), so a diagnostic in
+    # a proc body can say which call it came through.
+    parent: Span | None = field(default=None, compare=False, hash=False, repr=False)
+
+    def with_parent(self, parent: Span | None) -> Span:
+        """This span expanded at `parent` (the innermost call site); chains keep the outer ones."""
+        if parent is None:
+            return self
+        chained = parent if self.parent is None else self.parent.with_parent(parent)
+        return Span(self.file, self.start, self.end, chained)
+
+    def expansion_chain(self) -> tuple[Span, ...]:
+        """The call sites this span was expanded through, innermost first."""
+        chain: list[Span] = []
+        site = self.parent
+        while site is not None and len(chain) < 64:
+            chain.append(site)
+            site = site.parent
+        return tuple(chain)
 
     @property
     def path(self) -> str:

@@ -192,7 +192,8 @@ def _bisect(robot, solver, path, tool_inv, u, q, split):  # type: ignore[no-unty
 
 
 def _fmt_mm(p: np.ndarray) -> str:
-    return "(" + ", ".join(f"{v * 1e3:.1f}" for v in p) + ") mm"
+    """A TCP position (m) as users read it: millimetres in the robot's base frame."""
+    return "(" + ", ".join(f"{v * 1e3:.1f}" for v in p) + ") mm in the robot base frame"
 
 
 def _unreachable(robot: object, path: CartesianPath, tool_inv: np.ndarray, u: float) -> PathFailure:

@@ -121,7 +121,7 @@ def _slowdown(robot: object, seg: Segment, dense: DensePath) -> list[Finding]:
         return []
     i, j = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
     k = int(np.flatnonzero(ok)[i])
-    where = "(" + ", ".join(f"{v * 1e3:.1f}" for v in dense.tcp[k]) + ") mm"
+    where = "(" + ", ".join(f"{v * 1e3:.1f}" for v in dense.tcp[k]) + ") mm in the robot base frame"
     cond = float(robot.condition(dense.q[k]))  # type: ignore[attr-defined]
     manip = float(robot.manipulability(dense.q[k]))  # type: ignore[attr-defined]
     msg = (f"TCP speed must drop to {speed / worst * 1e3:.0f} mm/s (programmed {speed * 1e3:.0f} mm/s) "

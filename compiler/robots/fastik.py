@@ -52,8 +52,10 @@ def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
     th1 = (tmp1 - tmp2, tmp1 - tmp2, tmp1 + tmp2 - math.pi, tmp1 + tmp2 - math.pi)
     th2 = (-tmp13 + tmp14, tmp13 + tmp14, -tmp15 - tmp16, tmp15 - tmp16)
     th3 = (tmp11 - psi, -tmp11 - psi, tmp12 - psi, -tmp12 - psi)
+    sin1 = (math.sin(th1[0]), math.sin(th1[2]))
+    cos1 = (math.cos(th1[0]), math.cos(th1[2]))
     for i in range(4):
-        s1, k1 = math.sin(th1[i]), math.cos(th1[i])
+        s1, k1 = sin1[i // 2], cos1[i // 2]
         s23, k23 = math.sin(th2[i] + th3[i]), math.cos(th2[i] + th3[i])
         # rce = (Rz(θ1)·Ry(θ2+θ3))ᵀ · R: the columns 0 and 2 are all the wrist needs
         r00 = k1 * k23 * t[0, 0] + s1 * k23 * t[1, 0] - s23 * t[2, 0]
@@ -62,16 +64,20 @@ def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
         r02 = k1 * k23 * t[0, 2] + s1 * k23 * t[1, 2] - s23 * t[2, 2]
         r12 = -s1 * t[0, 2] + k1 * t[1, 2]
         r22 = k1 * s23 * t[0, 2] + s1 * s23 * t[1, 2] + k23 * t[2, 2]
-        t4 = math.atan2(r12, r02)
-        t5 = math.atan2(math.sqrt(r02 * r02 + r12 * r12), r22)
+        hyp = math.sqrt(r02 * r02 + r12 * r12)
+        t4 = math.atan2(r12, r02) if hyp > 0 else 0.0
+        t5 = math.atan2(hyp, r22)
+        # sines and cosines from the same numbers, not from the angles (fewer transcendentals)
+        s4, k4 = (r12 / hyp, r02 / hyp) if hyp > 0 else (0.0, 1.0)
+        rho = math.sqrt(hyp * hyp + r22 * r22)
+        s5, k5 = hyp / rho, r22 / rho
         for w in range(2):
-            if w == 1:
+            if w == 1:  # the flipped wrist: θ4 ± π, -θ5 (so sin θ4, cos θ4, sin θ5 change sign)
                 t4 = t4 - math.pi if t4 > 0 else t4 + math.pi
-                t5 = -t5
-            s4, k4 = math.sin(t4), math.cos(t4)
+                t5, s4, k4, s5 = -t5, -s4, -k4, -s5
             a00 = k4 * r00 + s4 * r10
             a10 = -s4 * r00 + k4 * r10
-            t6 = math.atan2(a10, math.cos(t5) * a00 - math.sin(t5) * r20)
+            t6 = math.atan2(a10, k5 * a00 - s5 * r20)
             _store(out[4 * w + i], (th1[i], th2[i], th3[i], t4, t5, t6), sign, offset, cinv)
 
 

@@ -51,3 +51,20 @@ def test_registering_a_code_twice_with_another_name_fails() -> None:
         assert "E999" in str(exc)
     else:
         raise AssertionError("duplicate code id accepted")
+
+
+def test_a_span_inside_an_inlined_proc_names_its_call_sites() -> None:
+    """A diagnostic in a proc body shows each call it was expanded through, innermost first."""
+    lib = SourceFile("lib.rmot", "proc pick(p: pose) {\n  move linear p\n}\n")
+    main = SourceFile("main.rmot", "pick(a)\npick(b)\n")
+    body = Span(lib, Pos(2, 3), Pos(2, 16))
+    outer = Span(main, Pos(2, 1), Pos(2, 8))
+    inner = Span(main, Pos(1, 1), Pos(1, 8)).with_parent(outer)
+    expanded = body.with_parent(inner)
+    assert expanded == body  # the parent never changes equality
+    assert [str(s) for s in expanded.expansion_chain()] == ["main.rmot:1:1", "main.rmot:2:1"]
+    lines = render(Diagnostic(TEST_CODE, Severity.ERROR, "unreachable", expanded)).splitlines()
+    assert lines[0] == "lib.rmot:2:3: error[E999]: unreachable"
+    assert lines[3] == "main.rmot:1:1: note: in the proc call here"
+    assert lines[4] == " 1 | pick(a)"
+    assert lines[6] == "main.rmot:2:1: note: in the proc call here"
