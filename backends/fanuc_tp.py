@@ -70,7 +70,11 @@ def turn_number(angle: float) -> int:
 
 def config_string(branch: ir.Config, q: np.ndarray) -> str:
     """'N U T, t4, t5, t6' from the planned branch and joints (see the module docstring)."""
-    flip = "N" if branch.wrist is ir.Wrist.FLIP else "F"  # Fanuc: N for J5 < 0 (see docstring)
+    # Fanuc's F (flip) is J5 >= 0 and N (no flip) J5 < 0, on Fanuc's own J5: RoboDK's Fanuc
+    # post (Fanuc_R30iA.py, "F means axis 5 >= 0, N means axis 5 < 0") and SwRI's tesseract
+    # (tesseract_motion_planners/robot_config.h: J5 >= 0 -> F.., J5 < 0 -> N..) agree, as does
+    # the usual 'N U T' of a tool-down pose with J5 = -90 deg. rmot's FLIP is J5 < 0 -> 'N'.
+    flip = "N" if branch.wrist is ir.Wrist.FLIP else "F"
     up = "U" if branch.elbow is ir.Elbow.UP else "D"
     top = "T" if branch.shoulder is ir.Shoulder.FRONT else "B"
     turns = ", ".join(str(turn_number(q[i])) for i in (3, 4, 5))

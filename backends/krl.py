@@ -79,7 +79,12 @@ PTP_HELPER = [
 
 
 def status_of(branch: ir.Config) -> int:
-    """KRL Status for a 6-axis arm (see the module docstring)."""
+    """KRL Status for a 6-axis arm (see the module docstring).
+
+    Checked against RoboDK's KUKA KRC4 post (KUKA_KRC4_Config.py, conf_2_str: 'B' + flip +
+    (elbow up) + rear, default 'B010') and KUKA's basic/overhead area definition (wrist root
+    point x < 0 in the A1 frame = overhead = bit 0).
+    """
     return ((1 if branch.shoulder is ir.Shoulder.BACK else 0)
             | (2 if branch.elbow is ir.Elbow.UP else 0)
             | (4 if branch.wrist is ir.Wrist.FLIP else 0))

@@ -62,7 +62,12 @@ EXTAX = "[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]"
 
 
 def cfx_of(branch: ir.Config) -> int:
-    """ABB cfx for 6-axis serial arms (see the module docstring; rmot's FLIP is axis 5 < 0)."""
+    """ABB cfx for 6-axis serial arms (see the module docstring; rmot's FLIP is axis 5 < 0).
+
+    ABB's confdata table (Technical reference manual, RAPID data types, confdata; quoted in
+    RobotComponents' ABB kinematics and ARTE's compute_configuration): cfx 0..7 =
+    4 * (wrist centre behind axis 1) + 2 * (behind the lower arm) + (axis 5 negative).
+    """
     return ((4 if branch.shoulder is ir.Shoulder.BACK else 0) + (2 if branch.elbow is ir.Elbow.DOWN else 0)
             + (1 if branch.wrist is ir.Wrist.FLIP else 0))
 

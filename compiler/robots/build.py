@@ -22,21 +22,37 @@ def build_robot(spec: RobotSpec) -> Robot:
     model, fid, _ = build_model(spec.dh, np.array(spec.flange), spec.name)
     coupling = None if spec.coupling is None else np.array(spec.coupling, dtype=float)
     solids = _solids(model, spec, coupling)
-    closed_form = branch_fn = distance = None
+    closed_form = branch_fn = distance = rows = None
     if spec.opw is not None:
         closed_form, distance = _opw_solver(*spec.opw, np.linalg.inv(np.array(spec.flange)))
         branch_fn = opw_branch_fn(*spec.opw)
+        rows = _row_branches(opw_rows=True, j5_sign=spec.opw[1].sign[4])
     elif spec.ur is not None:
         closed_form, distance = _ur_solver(spec.ur)
         branch_fn = ur_branch_fn(spec.ur)
+        rows = _row_branches(opw_rows=False, j5_sign=1.0)
     return Robot(
         name=spec.name, vendor=spec.vendor, model_name=spec.model, model=model, flange_frame=fid,
         joint_limits=np.radians(spec.limits_deg), velocity_limits=np.radians(spec.speed_deg_s),
         accel_limits=np.radians(spec.accel_deg_s2), reach=spec.reach, solids=solids,
         adjacent_pairs=_adjacent(solids, spec.extra_adjacent), coupling=coupling,
         closed_form=closed_form, branch_fn=branch_fn, workspace_distance=distance,
-        source=spec.source, dh_rows=spec.dh.rows, dh_modified=spec.dh.modified,
+        source=spec.source, dh_rows=spec.dh.rows, dh_modified=spec.dh.modified, batch_branches=rows,
     )
+
+
+def _row_branches(opw_rows: bool, j5_sign: float) -> tuple[ir.Config, ...]:
+    """The branch of each closed-form row. OPW rows: 4·wrist + 2·shoulder + elbow with the
+    first wrist having θ5 >= 0 (J5 = sign5·θ5); UR rows: 4·shoulder + 2·wrist + elbow. Index 0
+    is FRONT, UP and θ5 >= 0."""
+    out = []
+    for row in range(8):
+        w, s, e = (row // 4, (row // 2) % 2, row % 2) if opw_rows else ((row // 2) % 2, row // 4, row % 2)
+        theta5_negative = w == 1
+        flip = theta5_negative if j5_sign > 0 else not theta5_negative
+        out.append(ir.Config(ir.Shoulder.BACK if s else ir.Shoulder.FRONT, ir.Elbow.DOWN if e else ir.Elbow.UP,
+                             ir.Wrist.FLIP if flip else ir.Wrist.NOFLIP))
+    return tuple(out)
 
 
 def _solids(model: pin.Model, spec: RobotSpec, coupling: np.ndarray | None) -> tuple[LinkSolid, ...]:

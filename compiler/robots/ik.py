@@ -167,7 +167,7 @@ def _verify_all(robot, target: np.ndarray, raw: list[np.ndarray]) -> list[np.nda
     """The candidates whose FK matches the target (polishing the near misses)."""
     if not raw:
         return []
-    fk = np.array([robot.fk(q) for q in raw])
+    fk = robot.fk_batch(np.array(raw))
     dp = np.sqrt(np.sum((fk[:, :3, 3] - target[:3, 3]) ** 2, axis=1))
     dr = np.sqrt(np.sum((fk[:, :3, :3] - target[:3, :3]) ** 2, axis=(1, 2)) / 2)  # ≈ angle when small
     out = []
@@ -206,8 +206,9 @@ def _distinct(qs: list[np.ndarray]) -> list[np.ndarray]:
     a singularity); their equivalent angles would be the same set."""
     if len(qs) < 2:
         return qs
-    a = np.array(qs)
-    diff = np.max(np.abs(np.remainder(a[:, None] - a[None] + math.pi, TWO_PI) - math.pi), axis=2)
+    wrapped = np.remainder(np.array(qs), TWO_PI)
+    gap = np.abs(wrapped[:, None] - wrapped[None])
+    diff = np.minimum(gap, TWO_PI - gap).max(axis=2)
     same_as_earlier = np.any(np.tril(diff <= 1e-9, k=-1), axis=1)
     return [q for q, dup in zip(qs, same_as_earlier) if not dup]
 

@@ -1,8 +1,30 @@
 """The built-in robot library: public kinematic data and datasheet limits of real arms.
 
-Joint values are the controller's (pendant) values. Accelerations are not published by the
-vendors: each is an estimate, the max axis speed reached in 0.25 s (4 × speed per second).
-Lengths in m, angles in degrees here (converted by `robot.Robot`).
+Joint values are the controller's (pendant) values; fk() gives the vendor's flange frame in
+the vendor's base frame:
+
+ABB      J1..J6 as in a RAPID jointtarget; all zero = calibration position (upper arm up,
+         forearm horizontal); base frame on the floor at the J1 axis; flange = tool0 (z out
+         of the flange; at zero z along base +x, x down).
+KUKA     A1..A6 as on the KCP: A1 > 0 turns clockwise seen from above, A2 = -90° is the
+         upper arm upright, A3 = +90° then puts the forearm horizontal (HOME = 0,-90,90,0,0,0);
+         A4 and A6 turn the other way round than A1's sense; flange = $FLANGE (at HOME z
+         forward, x down: A B C = 0 90 0); base = $ROBROOT on the floor.
+Fanuc    J1..J6 as the teach pendant's joint display: J3 is the forearm's angle to the
+         horizontal (the J2/J3 interaction), so moving J2 alone keeps the forearm's
+         attitude; J3 > 0 raises the forearm. Base = Fanuc world frame, origin on the J1 axis
+         at the J2 height (the mounting face is below it). Flange = faceplate (at zero z
+         forward, x up: W P R = 180 -90 0).
+Yaskawa  S L U R B T in degrees (pulses / pulse-per-degree); U is relative to L; base on the
+         mounting face; flange = tool0 (at zero z forward, x up).
+Staubli  J1..J6; zero = arm stretched vertically ("candle"); flange z along J6.
+UR       the DH θ of UR's table (what PolyScope shows); base = UR Base frame (DH frame 0);
+         flange = the tool flange (DH frame 6).
+Puma     Corke's joint values (base frame at the shoulder, as the Robotics Toolbox).
+
+Accelerations are not published by the vendors: each is an estimate, the max axis speed
+reached in 0.25 s (4 × speed per second). Lengths in m, angles in degrees here (converted by
+`robot.Robot`).
 """
 
 from __future__ import annotations

@@ -53,7 +53,8 @@ class Robot:
     vendor's model name), model_name (that name as a plain str, e.g. "IRB 120-3/0.58"),
     dof, joint_types, joint_limits (dof,2),
     velocity_limits (dof,), accel_limits (dof,), reach (m), has_closed_form, has_inertia,
-    solids, adjacent_pairs, source (where the numbers come from).
+    solids, adjacent_pairs, source (where the numbers come from), batch_branches (the
+    ir.Config of each of the 8 ik_batch rows, fixed per robot; None without a closed form).
     """
 
     def __init__(
@@ -64,6 +65,7 @@ class Robot:
         branch_fn: Callable[[np.ndarray], ir.Config] | None = None,
         workspace_distance: Callable[[np.ndarray], float] | None = None,
         has_inertia: bool = False, source: str = "", dh_rows: tuple = (), dh_modified: bool = False,
+        batch_branches: tuple[ir.Config, ...] | None = None,
     ) -> None:
         self.name, self.vendor, self.model_name, self.source = name, vendor, model_name, source
         self.model = model = NamedModel(model, model_name)
@@ -95,6 +97,7 @@ class Robot:
         self._solid_joint = np.array([s.joint_id for s in solids], dtype=int)
         self._solid_place = np.array([s.placement.matrix() for s in solids]).reshape(-1, 4, 4)
         self._solid_se3 = [pin.SE3(m) for m in self._solid_place]
+        self.batch_branches = batch_branches
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, dof={self.dof})"

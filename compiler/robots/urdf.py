@@ -26,6 +26,8 @@ _FLANGE_NAMES = ("tool0", "flange", "ee_link")
 
 
 def robot_from_urdf(path: str) -> Robot:
+    if os.path.isdir(path):
+        raise RobotError(f"'{path}' is a directory, not a URDF file", codes.BAD_URDF)
     if not os.path.isfile(path):
         raise RobotError(f"URDF file '{path}' does not exist", codes.BAD_URDF)
     try:

@@ -196,3 +196,17 @@ def test_bad_pose_raises_value_error():
         r.ik(np.diag([2.0, 1.0, 1.0, 1.0]))
     with pytest.raises(ValueError, match="shape"):
         r.ik(np.eye(3))
+
+
+@pytest.mark.parametrize("name", list_robots())
+def test_batch_rows_are_fixed_branches(name):
+    """Row k of ik_batch is the same branch (robot.batch_branches[k]) for every pose, and the
+    eight rows are the eight different branches."""
+    r = load_robot(name)
+    assert len(set(r.batch_branches)) == 8
+    qs = random_q(r, 300, seed=12)
+    raw = r.ik_closed_form(r.fk_batch(qs))
+    for rows in raw:
+        for k, row in enumerate(rows):
+            if np.all(np.isfinite(row)) and abs(math.sin(row[4])) > 1e-6:
+                assert r.branch(row) == r.batch_branches[k]
