@@ -21,10 +21,10 @@ from lark import Token
 from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
 
-__all__ = ["RmotLexer"]
+__all__ = ["CONTINUES", "MASTER", "RmotLexer", "TokenKinds"]
 
 _SIMPLE_UNITS = frozenset({"mm", "cm", "min", "ms", "m", "in", "deg", "rad", "s", "kg", "g"})
-_MASTER = re.compile(r"""
+MASTER = _MASTER = re.compile(r"""
     (?P<ws>[ \t\f\r]+)
   | (?P<comment>\#[^\n]*)
   | (?P<nl>(?:;|\r?\n)(?:\s|;|\#[^\n]*)*)
@@ -34,23 +34,24 @@ _MASTER = re.compile(r"""
   | (?P<string>"(?:[^"\\\n]|\\.)*")
   | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
 """, re.X)
-_CONTINUES = re.compile(r"\s*(?:to|else)(?![A-Za-z0-9_])")
+CONTINUES = _CONTINUES = re.compile(r"\s*(?:to|else)(?![A-Za-z0-9_])")
 _WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout"})))
 
 
-class RmotLexer(Lexer):
-    __future_interface__ = 2
+class TokenKinds:
+    """Token type names from the grammar's terminals: keywords, punctuation, and word typing."""
 
-    def __init__(self, lexer_conf: Any) -> None:
+    def __init__(self, terminals: Any) -> None:
         self.keywords: dict[str, str] = {}
         self.punct: dict[str, str] = {"==": "COMPARE", "!=": "COMPARE", "%": "UNIT"}
-        for t in lexer_conf.terminals:
+        for t in terminals:
             if t.pattern.type != "str":
                 continue
             target = self.keywords if t.pattern.value.isidentifier() else self.punct
             target.setdefault(t.pattern.value, t.name)
 
-    def _word_type(self, word: str, accepts: Any) -> str:
+    def word_type(self, word: str, accepts: Any) -> str:
+        """`accepts`: the terminal names the parser's current state takes (a set or a dict)."""
         kw = self.keywords.get(word)
         if kw is not None and kw in accepts:
             return kw
@@ -62,6 +63,16 @@ class RmotLexer(Lexer):
         if "NAME" in accepts or kw is None:
             return "NAME"
         return kw
+
+
+class RmotLexer(Lexer):
+    """The same lexer as a lark Lexer (lang/_lalr.py fuses it into its parse loop instead)."""
+
+    __future_interface__ = 2
+
+    def __init__(self, lexer_conf: Any) -> None:
+        kinds = TokenKinds(lexer_conf.terminals)
+        self.keywords, self.punct, self._word_type = kinds.keywords, kinds.punct, kinds.word_type
 
     def lex(self, lexer_state: Any, parser_state: Any) -> Iterator[Token]:
         text = getattr(lexer_state.text, "text", lexer_state.text)

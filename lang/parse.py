@@ -23,7 +23,9 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 
 from rmot.lang import ast
 from rmot.lang import codes
+from rmot.lang._gc import gc_paused
 from rmot.lang._build import KEYWORDS, AstBuilder, token_span
+from rmot.lang._lalr import LalrDriver, PostLexState
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.lexer import RmotLexer
 from rmot.lang.source import Pos, SourceFile, Span
@@ -79,18 +81,19 @@ class _PostLexer:
 
 
 _LOCK = threading.Lock()
-_POSTLEX = _PostLexer()
 _BUILDER = AstBuilder()
 _PARSER = Lark(
     _GRAMMAR.read_text(encoding="utf-8"),
     parser="lalr",
     lexer=RmotLexer,
-    propagate_positions=True,
+    propagate_positions=False,  # the builder takes spans from the tokens itself
     maybe_placeholders=True,
-    postlex=_POSTLEX,
+    postlex=_PostLexer(),
     transformer=_BUILDER,
     cache=False,
 )
+_DRIVER = LalrDriver(_PARSER)  # runs _PARSER's tables and callbacks (lark's own loop is the slow part)
+_POSTLEX = PostLexState()  # of the last parse, for the error messages
 _PATTERNS = {t.name: t.pattern for t in _PARSER.terminals}
 
 
@@ -106,10 +109,12 @@ def parse_source(file: SourceFile) -> ParseResult:
     if not file.text.strip():
         msg = "file must contain a cell, a program or declarations (got an empty file)"
         return ParseResult(None, (_error(codes.EMPTY_FILE, msg, Span.whole(file)),))
-    with _LOCK:
+    global _POSTLEX
+    with _LOCK, gc_paused():
         _BUILDER.begin(file)
+        _POSTLEX = PostLexState()
         try:
-            module: ast.Module = _PARSER.parse(file.text)
+            module: ast.Module = _DRIVER.parse(file.text, _POSTLEX)
         except UnexpectedInput as exc:
             return ParseResult(None, (wrap_syntax_error(exc, file),))
         except Exception as exc:  # a builder bug must still not reach the user as a traceback
@@ -256,7 +261,7 @@ def _after(file: SourceFile, tok: Token) -> Span:
 
 def _history_before(tok: Token) -> list[Token]:
     """The tokens the parser took before `tok` (the post-lexer may or may not have seen tok)."""
-    history = list(_POSTLEX.history)
+    history = _POSTLEX.history[-3:]
     if history and history[-1] is tok:
         history.pop()
     return history

@@ -87,6 +87,19 @@ def list_cmd(as_json: bool) -> None:
         click.echo(f"{r.name:<20} {r.vendor:<17} {r.model_name:<20} {r.dof} axes  reach {r.reach * 1000:.0f} mm")
 
 
+def _coupled_terms(robot) -> list[str]:  # type: ignore[no-untyped-def]
+    """Rows of a joint coupling as text, e.g. Fanuc's "q3 = J2 + J3" (empty when uncoupled)."""
+    c = robot._coupling
+    if c is None:
+        return []
+    out = []
+    for i, row in enumerate(c):
+        terms = [f"J{j + 1}" if w == 1 else f"{w:g}*J{j + 1}" for j, w in enumerate(row) if w != 0]
+        if terms != [f"J{i + 1}"]:
+            out.append(f"q{i + 1} = " + " + ".join(terms))
+    return out
+
+
 @robots.command(name="show")
 @click.argument("name")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
@@ -100,16 +113,19 @@ def show_cmd(name: str, as_json: bool) -> None:
          "d_mm": round(row.d * 1000, 4), "a_mm": round(row.a * 1000, 4), "alpha_deg": round(math.degrees(row.alpha), 4)}
         for i, row in enumerate(r.dh_rows)
     ]
+    coupled = _coupled_terms(r)
     if as_json:
         _emit({"name": r.name, "vendor": r.vendor, "model": r.model_name, "dof": r.dof, "reach_mm": round(r.reach * 1000, 1),
                "closed_form": r.has_closed_form, "dh_convention": "modified" if r.dh_modified else "standard",
-               "dh": dh, "limits_deg": limits, "speed_deg_s": speeds, "source": r.source})
+               "dh": dh, "coupling": coupled, "limits_deg": limits, "speed_deg_s": speeds, "source": r.source})
         return
     click.echo(f"{r.name}: {r.vendor} {r.model_name}, {r.dof} axes, reach {r.reach * 1000:.1f} mm")
     click.echo(f"source: {r.source}")
     click.echo(f"ik: {'closed form (8 branches)' if r.has_closed_form else 'numeric'}")
     if dh:
         click.echo(f"DH ({'modified' if r.dh_modified else 'standard'}): theta = sign*q + offset")
+        for text in coupled:
+            click.echo(f"  where {text}")
         click.echo(" joint  type  sign  offset(deg)      d(mm)      a(mm)  alpha(deg)")
         for row in dh:
             click.echo(f" {row['joint']:>5}  {row['type']:>4}  {row['sign']:>4}  {row['theta_offset_deg']:>11.3f}  "

@@ -2,7 +2,14 @@
 
 Every returned solution is within the joint limits and reproduces the pose by FK to 1e-9 m
 and 1e-9 rad. A joint whose range spans more than 360° contributes every equivalent angle
-(q ± 2πk) inside its limits; all are returned, nearest to the seed first.
+(q ± 2πk) inside its limits; all are returned, nearest to the seed first (Euclidean distance
+in joint space; seed None = all zeros). At the wrist singularity (J5 = 0) the seed's J4 is kept.
+
+Statuses: OK; SINGULAR = solutions returned and verified, but the pose lies on a singularity
+(smallest reach-scaled singular value of J < 1e-6 at the first solution: treat it as OK with
+a warning, or refuse a linear move through it); UNREACHABLE = no solution (distance from the
+workspace in m; also used, with code E207, when `config` excludes every existing branch);
+OUT_OF_LIMITS = solutions exist but every one violates a limit (joint index, excess).
 """
 
 from __future__ import annotations
@@ -123,7 +130,7 @@ def _candidates(robot, target: np.ndarray, seed: np.ndarray) -> list[np.ndarray]
     q, err = dls_fast(robot, target, seed)
     if err < 1e-9:
         found.append(q)
-        if len(_equivalents(robot, q)):
+        if _has_equivalent(robot, q):
             return found
     if robot._restarts is None:  # deterministic, drawn once per robot
         robot._restarts = restart_seeds(robot.joint_limits, NUMERIC_RESTARTS)
@@ -131,9 +138,18 @@ def _candidates(robot, target: np.ndarray, seed: np.ndarray) -> list[np.ndarray]
         q, err = dls_fast(robot, target, start)
         if err < 1e-9:
             found.append(q)
-            if len(_equivalents(robot, q)):
+            if _has_equivalent(robot, q):
                 break
     return found
+
+
+def _has_equivalent(robot, q: np.ndarray) -> bool:  # type: ignore[no-untyped-def]
+    """Whether some q + 2πk lies inside the limits (the cheap test of `_equivalents`)."""
+    for v, lo, hi, revolute in zip(q.tolist(), robot._lo, robot._hi, robot._revolute_list):
+        first = v + math.ceil((lo - 1e-12 - v) / TWO_PI) * TWO_PI if revolute else v
+        if not lo - 1e-12 <= first <= hi + 1e-12:
+            return False
+    return True
 
 
 def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Config | None = None) -> IkResult:  # type: ignore[no-untyped-def]
@@ -156,8 +172,9 @@ def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Co
     qs = np.concatenate([e for _, e in kept])
     names = [b for b, e in kept for _ in range(len(e))]
     order = np.argsort(np.linalg.norm(qs - seed_q, axis=1), kind="stable")
+    qs = qs[order]
     qs.setflags(write=False)
-    sols, brs = tuple(qs[i] for i in order), tuple(names[i] for i in order)
+    sols, brs = tuple(qs), tuple(names[i] for i in order.tolist())
     if _is_singular(robot, sols[0]):
         return IkResult(IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity", code=codes.SINGULAR)
     return IkResult(IkStatus.OK, sols, brs)
@@ -167,7 +184,7 @@ def _verify_all(robot, target: np.ndarray, raw: list[np.ndarray]) -> list[np.nda
     """The candidates whose FK matches the target (polishing the near misses)."""
     if not raw:
         return []
-    fk = robot.fk_batch(np.array(raw))
+    fk = robot.fk(raw[0])[None] if len(raw) == 1 else robot.fk_batch(np.array(raw))
     dp = np.sqrt(np.sum((fk[:, :3, 3] - target[:3, 3]) ** 2, axis=1))
     dr = np.sqrt(np.sum((fk[:, :3, :3] - target[:3, :3]) ** 2, axis=(1, 2)) / 2)  # ≈ angle when small
     out = []

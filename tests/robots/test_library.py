@@ -50,12 +50,15 @@ def test_unknown_robot_suggests_the_nearest_name():
         load_robot("abb_irb12")
 
 
-# Datasheet facts: the flange at a documented joint position (mm, base frame).
+# The flange at a documented joint position (mm, base frame). Documented values: IRB 120
+# (ABB product spec), LR Mate 200iD (pendant at all-zero joints), Puma (Corke's fkine(qz)).
+# The others are sums of the dimension-drawing lengths at the vendor's zero/home pose, which
+# still checks the joint zero, direction and DH build against the drawing.
 FLANGE_FACTS = [
     ("abb_irb120", (0, 0, 0, 0, 0, 0), (374.0, 0.0, 630.0)),  # ABB: tool0 at calibration position
-    ("abb_irb1600", (0, 0, 0, 0, 0, 0), (815.0, 0.0, 1186.5)),
-    ("abb_irb4600", (0, 0, 0, 0, 0, 0), (1270.0, 0.0, 1570.0)),
-    ("kuka_kr6_r900", (0, -90, 90, 0, 0, 0), (525.0, 0.0, 890.0)),  # KUKA HOME
+    ("abb_irb1600", (0, 0, 0, 0, 0, 0), (815.0, 0.0, 1186.5)),  # 150 + 600 + 65; 486.5 + 700
+    ("abb_irb4600", (0, 0, 0, 0, 0, 0), (1270.0, 0.0, 1570.0)),  # 175 + 960 + 135; 495 + 900 + 175
+    ("kuka_kr6_r900", (0, -90, 90, 0, 0, 0), (525.0, 0.0, 890.0)),  # HOME: 25 + 420 + 80; 400 + 455 + 35
     ("fanuc_lrmate200id", (0, 0, 0, 0, 0, 0), (465.0, 0.0, 365.0)),  # Fanuc world frame at J2 height
     ("puma560", (0, 0, 0, 0, 0, 0), (452.1, -150.05, 431.8)),  # Corke: fkine(qz)
     ("staubli_tx2_60", (0, 0, 0, 0, 0, 0), (0.0, 20.0, 1045.0)),  # candle: 375 + 290 + 310 + 70
