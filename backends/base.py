@@ -5,13 +5,22 @@ A backend (sqlglot's dialect generator) is a table plus small formatting methods
     class RapidBackend(Backend):
         name = "rapid"; file_ext = ".mod"; COMMENT = "!"
         LOWERINGS = (lowering.pulse_as_set_wait,)          # IR -> IR, run before printing
-        EMIT = {ir.Move: "move_sql", ir.SetDigital: "set_do_sql", ...}   # node type -> method
+        SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"  # moves need a 6-axis arm
         def emit_task(self, ctx: TaskContext) -> dict[str, str]: ...      # one program per task
+        def move(self, node: ir.Move, ctx: RapidContext) -> list[str]: ...  # one per EMIT entry
+
+`Backend.EMIT` maps every IR node type to a method name (`move`, `set_digital`, ..., the same
+for every vendor); a vendor writes those methods and extends the table (`{**Backend.EMIT, ...}`)
+only for node types it prints differently. `native` (passes NATIVE_NAMES blocks through),
+`sync` (the comment for a sync the handshake left in place) and the move preamble
+(`move_record`) have shared defaults.
 
 Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
 `ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
 unit conversion outside its declared table (`UNITS`), no modal hidden state — each instruction's
-text depends on that instruction and its record only.
+text depends on that instruction and its record only. What a vendor collects while printing a
+task (names, data declarations, routines) lives in its subclass of TaskContext, made by
+`ctx.with_state(VendorContext, ...)` in `emit_task` and passed explicitly to every method.
 
 Gaps: `self.unsupported(code, message, span)` records an error (the instruction has no faithful
 form); `self.warn(...)` records a warning (an exact or nearest-faithful lowering was applied).
@@ -27,12 +36,14 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
-from typing import ClassVar
+from dataclasses import dataclass, field, fields
+from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 
 from rmot.backends import codes, handshake
+from rmot.backends.lowering import count_instructions, routine_names, split_body
+from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
@@ -43,6 +54,8 @@ __all__ = [
     "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
     "position_mm", "turn_bits", "axis_quadrant",
 ]
+
+C = TypeVar("C", bound="TaskContext")
 
 Lowering = Callable[[tuple[ir.Instr, ...]], tuple[ir.Instr, ...]]
 """An IR -> IR transform applied to a task body before printing (see backends/lowering.py)."""
@@ -80,6 +93,10 @@ class TaskContext:
     def record(self, instr: ir.Instr) -> planned.InstructionRecord | None:
         """The planner's record of `instr` (looked up by uid), or None when there is none."""
         return self.task_plan.record(instr.uid)
+
+    def with_state(self, cls: type[C], **state: Any) -> C:
+        """This context as the vendor subclass `cls`, carrying that vendor's per-task `state`."""
+        return cls(**{f.name: getattr(self, f.name) for f in fields(TaskContext)}, **state)
 
 
 # --------------------------------------------------------------------------- numbers
@@ -210,11 +227,19 @@ class Backend:
       file_ext  extension of the main program file (".mod")
       COMMENT   the line-comment marker ("!", ";", "#")
       UNITS     {"length": "mm", "angle": "deg", ...}: what the vendor's numbers mean
-      MAX_LINES / MAX_NAME_LEN / NAME_RULES: controller limits
+      MAX_LINES / MAX_NAME_LEN: controller limits
+      NAME_RULES  the legal identifiers (the NameTable that `open_task` starts)
+      MAX_INSTRUCTIONS / SPLIT_UNITS  vendors that split long programs: the most instructions
+                of one program and what its parts are called ("KRL module", "modules")
       LOWERINGS IR -> IR transforms applied to each task body before printing
       SYNC_HANDSHAKE  True for vendors without a multi-robot barrier: `sync` is lowered to the
                 I/O handshake of backends/handshake.py before the LOWERINGS
-      EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str]
+      EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str];
+                the default names one method per node type, the same for every vendor
+      NATIVE_NAMES  vendor names of the native blocks passed through (default: {name})
+      SIX_AXIS_DATA what a vendor's move needs a 6-axis arm for (None: any arm), and the
+      NO_RECORD_NOTE / NOT_SIX_AXIS_NOTE comments printed instead of such a move (see
+                `move_record`)
     """
 
     name: ClassVar[str] = ""
@@ -222,9 +247,20 @@ class Backend:
     COMMENT: ClassVar[str] = "#"
     UNITS: ClassVar[dict[str, str]] = {}
     MAX_LINES: ClassVar[int | None] = None
+    NAME_RULES: ClassVar[NameRules] = NameRules(max_len=32)
+    MAX_INSTRUCTIONS: ClassVar[int | None] = None
+    SPLIT_UNITS: ClassVar[tuple[str, str]] = ("program", "programs")
     LOWERINGS: ClassVar[tuple[Lowering, ...]] = ()
     SYNC_HANDSHAKE: ClassVar[bool] = False
-    EMIT: ClassVar[dict[type, str]] = {}
+    EMIT: ClassVar[dict[type, str]] = {
+        ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
+        ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
+        ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
+    }
+    NATIVE_NAMES: ClassVar[frozenset[str]] = frozenset()
+    SIX_AXIS_DATA: ClassVar[str | None] = None
+    NO_RECORD_NOTE: ClassVar[str | None] = "move (uid {uid}) not emitted: no planned joints"
+    NOT_SIX_AXIS_NOTE: ClassVar[str] = "move not emitted: robot is not a 6-axis arm"
     INDENT: ClassVar[str] = "  "
 
     def __init__(self, *, allow_findings_header: bool = False) -> None:
@@ -255,6 +291,34 @@ class Backend:
         if len(plan.tasks) == 1:
             return plan.program.name
         return f"{plan.program.name}_{task_plan.task.name}"
+
+    def open_task(self, ctx: TaskContext, *, reserved: Iterable[str] = ()
+                  ) -> tuple[NameTable, str, tuple[ir.Instr, ...]]:
+        """What every emit_task starts with: a NameTable under NAME_RULES with the backend's
+        own `reserved` names taken, the task program's legal name, and the lowered body.
+
+        The caller hands `names.diagnostics` to `extend` once the task is printed."""
+        names = NameTable(self.NAME_RULES, self.name)
+        for legal in reserved:
+            names.reserve(legal)
+        return names, names.name(ctx.program_name, ctx.task.span), self.lowered_body(ctx)
+
+    @staticmethod
+    def routine_table(names: NameTable, body: tuple[ir.Instr, ...], prefix: str = "") -> dict[int, str]:
+        """ProcCall uid -> legal routine name (lowering.routine_names, then `prefix` + legalised)."""
+        return {uid: names.name(prefix + routine) for uid, routine in routine_names(body).items()}
+
+    def split_parts(self, body: tuple[ir.Instr, ...], ctx: TaskContext, stem: str) -> tuple[ir.Instr, ...] | None:
+        """`body` as ProcCalls `stem_part1`.. (W406) when it has more than MAX_INSTRUCTIONS
+        instructions; None when it fits (or the vendor never splits)."""
+        n = count_instructions(body)
+        if self.MAX_INSTRUCTIONS is None or n <= self.MAX_INSTRUCTIONS:
+            return None
+        parts = split_body(body, self.MAX_INSTRUCTIONS, stem)
+        unit, units = self.SPLIT_UNITS
+        self.warn(codes.PROGRAM_SPLIT, f"program has {n} instructions, more than {self.MAX_INSTRUCTIONS} "
+                  f"per {unit}; split into {len(parts)} {units}", ctx.task.span)
+        return parts
 
     def lowered_body(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
         """The task body after the sync handshake (SYNC_HANDSHAKE vendors) and this vendor's
@@ -317,6 +381,35 @@ class Backend:
                              node.span)
             return None
         return rec
+
+    def move_record(self, node: ir.Move, ctx: TaskContext) -> planned.InstructionRecord | list[str]:
+        """The preamble of every vendor's `move`: the move's record (with its joint solution),
+        or, after reporting the error, the lines printed instead of the move.
+
+        No record: E401 and NO_RECORD_NOTE (formatted with the uid; None prints nothing).
+        SIX_AXIS_DATA set and the robot has another axis count: E403 and NOT_SIX_AXIS_NOTE.
+        """
+        rec = self.record_or_error(node, ctx)
+        if rec is None:
+            note = self.NO_RECORD_NOTE
+            return [] if note is None else [self.comment(note.format(uid=node.uid))]
+        if self.SIX_AXIS_DATA is not None and ctx.robot.dof != 6:
+            self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
+                             f"{self.SIX_AXIS_DATA} (got {ctx.robot.dof})", node.span)
+            return [self.comment(self.NOT_SIX_AXIS_NOTE)]
+        return rec
+
+    # ------------------------------------------------------------------ shared instructions
+
+    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+        """A native block: its text for this vendor (NATIVE_NAMES, default {name}), else skipped."""
+        if node.vendor.lower() not in (self.NATIVE_NAMES or {self.name}):
+            return self.native_other(node)
+        return node.text.splitlines()
+
+    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
+        return self.sync_not_lowered(node, ctx)
 
     # ------------------------------------------------------------------ text helpers
 

@@ -46,14 +46,13 @@ from __future__ import annotations
 
 import math
 import textwrap
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 import numpy as np
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
-from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir
 
@@ -111,57 +110,61 @@ class _Frames:
         return list(self.tools).index(tool.name) + 1
 
 
+@dataclass(frozen=True)
+class FanucContext(TaskContext):
+    """One task's context plus its names, frame numbers, routine programs and the program
+    being printed."""
+
+    names: NameTable
+    routine_of: dict[int, str]
+    frames: _Frames = field(default_factory=_Frames)
+    files: dict[str, str] = field(default_factory=dict)  # routine programs: file name -> text
+    program: _Program = field(default_factory=_Program)
+
+
 class FanucBackend(Backend):
     name = "fanuc"
     file_ext = ".ls"
     COMMENT = "!"
     UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/sec",
                                        "joint_speed": "%", "time": "sec", "wait_timeout": "1/100 s"}
-    MAX_INSTRUCTIONS: ClassVar[int] = 1000
+    NAME_RULES = FANUC_RULES
+    MAX_INSTRUCTIONS = 1000
+    SPLIT_UNITS = ("TP program", "programs")
     FRAME_PR: ClassVar[int] = 90
     CNT_MM: ClassVar[float] = 1.0  # mm of blend radius per CNT step (documented heuristic)
     MAX_TCP_MM_S: ClassVar[int] = 2000  # the L/C speed limit of the R-30iB motion software
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
-    EMIT: ClassVar[dict[type, str]] = {
-        ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
-        ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
-        ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
-    }
+    SIX_AXIS_DATA = "TP positions"
+    NO_RECORD_NOTE = "move {uid} not emitted"
+    NOT_SIX_AXIS_NOTE = "move not emitted: not a 6-axis arm"
 
     # ------------------------------------------------------------------ programs
 
-    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
-        self._names = NameTable(FANUC_RULES, self.name)
-        self._frames = _Frames()
-        self._files: dict[str, str] = {}
-        main_name = self._names.name(ctx.program_name, ctx.task.span)
-        body = self.lowered_body(ctx)
+    def emit_task(self, task: TaskContext) -> dict[str, str]:
+        names, main_name, body = self.open_task(task)
         # TP programs share one namespace on the controller: routines carry the program's name
-        self._routine_of = {uid: self._names.name(f"{main_name}_{r}") for uid, r in routine_names(body).items()}
-        if count_instructions(body) > self.MAX_INSTRUCTIONS:
-            parts = split_body(body, self.MAX_INSTRUCTIONS, main_name)
-            self.warn(codes.PROGRAM_SPLIT, f"program has {count_instructions(body)} instructions, more than "
-                      f"{self.MAX_INSTRUCTIONS} per TP program; split into {len(parts)} programs", ctx.task.span)
+        routine_of = self.routine_table(names, body, prefix=f"{main_name}_")
+        ctx = task.with_state(FanucContext, names=names, routine_of=routine_of)
+        parts = self.split_parts(body, ctx, main_name)
+        if parts is not None:
             for part in parts:
                 assert isinstance(part, ir.ProcCall)
-                self._routine_of[part.uid] = self._names.name(part.proc)
+                routine_of[part.uid] = names.name(part.proc)
             body = parts
         main = self._program(main_name, body, ctx, is_main=True)
-        self.extend(self._names.diagnostics)
-        return {f"{main_name}.ls": main, **dict(sorted(self._files.items()))}
+        self.extend(names.diagnostics)
+        return {f"{main_name}.ls": main, **dict(sorted(ctx.files.items()))}
 
-    def _program(self, name: str, body: tuple[ir.Instr, ...], ctx: TaskContext, *, is_main: bool) -> str:
-        saved = getattr(self, "_p", None)
-        self._p = _Program()
+    def _program(self, name: str, body: tuple[ir.Instr, ...], task: FanucContext, *, is_main: bool) -> str:
+        ctx = replace(task, program=_Program())
         lines = [self.comment(piece) for text in header_lines(ctx.plan, self.name, self.findings_header)
                  for piece in _pieces(text)]
         main = self.body(body, ctx)
         if is_main:
-            lines += self._frame_setup()
+            lines += self._frame_setup(ctx)
         lines += main
-        text = self._ls(name, lines, self._p.positions)
-        self._p = saved  # type: ignore[assignment]
-        return text
+        return self._ls(name, lines, ctx.program.positions)
 
     def _ls(self, name: str, lines: list[str], positions: list[str]) -> str:
         out = [f"/PROG  {name}", "/ATTR", "OWNER\t\t= MNEDITOR;", 'COMMENT\t\t= "rmot";',
@@ -189,11 +192,11 @@ class FanucBackend(Backend):
         ref = source_ref(node.span) if self.source_map else None
         return self.comment(ref[-COMMENT_MAX:]) if ref else None
 
-    def _frame_setup(self) -> list[str]:
+    def _frame_setup(self, ctx: FanucContext) -> list[str]:
         """UTOOL/UFRAME values written through position registers (see the module docstring)."""
         lines: list[str] = []
         k = 0
-        for kind, table in (("UTOOL", self._frames.tools), ("UFRAME", self._frames.frames)):
+        for kind, table in (("UTOOL", ctx.frames.tools), ("UFRAME", ctx.frames.frames)):
             for index, (fname, pose) in enumerate(table.items(), start=1):
                 k += 1
                 pr = self.FRAME_PR + k
@@ -207,22 +210,18 @@ class FanucBackend(Backend):
 
     # ------------------------------------------------------------------ motion
 
-    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
-        rec = self.record_or_error(node, ctx)
-        if rec is None or rec.q_target is None:
-            return [self.comment(f"move {node.uid} not emitted")]
-        if ctx.robot.dof != 6:
-            self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
-                             f"TP positions (got {ctx.robot.dof})", node.span)
-            return [self.comment("move not emitted: not a 6-axis arm")]
-        uf, ut = self._frames.uframe(node.frame), self._frames.utool(node.tool)
+    def move(self, node: ir.Move, ctx: FanucContext) -> list[str]:
+        rec = self.move_record(node, ctx)
+        if isinstance(rec, list):
+            return rec
+        uf, ut = ctx.frames.uframe(node.frame), ctx.frames.utool(node.tool)
         zone = self._zone(node)
         if node.kind is ir.MotionKind.JOINT:
             speed = self._joint_speed(node)
             if isinstance(node.target, ir.JointTarget):
-                p = self._joint_position(node.target, uf, ut)
+                p = self._joint_position(node.target, uf, ut, ctx)
             else:
-                p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node)
+                p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
             return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}"]
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
@@ -230,8 +229,8 @@ class FanucBackend(Backend):
         speed = self._tcp_speed(node)
         if node.kind is ir.MotionKind.CIRCULAR and node.via is not None:  # P[via] numbered first
             q_via = rec.q_via if rec.q_via is not None else rec.q_target
-            via = self._cart_position(node.via, q_via, rec.branch, uf, ut, node)
-        to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node)
+            via = self._cart_position(node.via, q_via, rec.branch, uf, ut, node, ctx)
+        to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         head = [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
         if node.kind is ir.MotionKind.LINEAR:
             return head + [f"L P[{to}] {speed} {zone}"]
@@ -271,14 +270,14 @@ class FanucBackend(Backend):
                   f"emitted as CNT{cnt}", node.span)
         return f"CNT{cnt}"
 
-    def _joint_position(self, target: ir.JointTarget, uf: int, ut: int) -> int:
+    def _joint_position(self, target: ir.JointTarget, uf: int, ut: int, ctx: FanucContext) -> int:
         values = [math.degrees(v) for v in target.values]
         cells = [f"J{i + 1}= {fmt(v, 3):>9} deg" for i, v in enumerate(values)]
         body = [f"\tUF : {uf}, UT : {ut},", "\t" + ",\t".join(cells[:3]) + ",", "\t" + ",\t".join(cells[3:])]
-        return self._position(body, target.name)
+        return self._position(body, target.name, ctx)
 
     def _cart_position(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
-                       uf: int, ut: int, node: ir.Move) -> int:
+                       uf: int, ut: int, node: ir.Move, ctx: FanucContext) -> int:
         assert q is not None
         if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
             self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
@@ -289,12 +288,13 @@ class FanucBackend(Backend):
         body = [f"\tUF : {uf}, UT : {ut},\t\tCONFIG : '{config_string(branch, q)}',",
                 f"\tX = {fmt(x, 3):>9}  mm,\tY = {fmt(y, 3):>9}  mm,\tZ = {fmt(z, 3):>9}  mm,",
                 f"\tW = {fmt(w, 3):>9} deg,\tP = {fmt(p, 3):>9} deg,\tR = {fmt(r, 3):>9} deg"]
-        return self._position(body, target.name)
+        return self._position(body, target.name, ctx)
 
-    def _position(self, body: list[str], name: str | None) -> int:
-        n = len(self._p.positions) + 1
+    @staticmethod
+    def _position(body: list[str], name: str | None, ctx: FanucContext) -> int:
+        n = len(ctx.program.positions) + 1
         label = f':"{name[:16]}"' if name else ""
-        self._p.positions.append("\n".join([f"P[{n}{label}]{{", "   GP1:"] + body + ["};"]))
+        ctx.program.positions.append("\n".join([f"P[{n}{label}]{{", "   GP1:"] + body + ["};"]))
         return n
 
     # ------------------------------------------------------------------ I/O and flow
@@ -303,16 +303,16 @@ class FanucBackend(Backend):
     def _level(value: bool) -> str:
         return "ON" if value else "OFF"
 
-    def set_digital(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+    def set_digital(self, node: ir.SetDigital, ctx: FanucContext) -> list[str]:
         return [f"DO[{node.port}{_sig(node.signal)}]={self._level(node.value)}"]
 
-    def set_analog(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+    def set_analog(self, node: ir.SetAnalog, ctx: FanucContext) -> list[str]:
         return [f"AO[{node.port}{_sig(node.signal)}]={fmt(node.value, 3)}"]
 
-    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+    def pulse(self, node: ir.Pulse, ctx: FanucContext) -> list[str]:
         return [f"DO[{node.port}{_sig(node.signal)}]=PULSE,{self._seconds(node.duration, 1, 'pulse', node)}sec"]
 
-    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+    def wait_time(self, node: ir.WaitTime, ctx: FanucContext) -> list[str]:
         return [f"WAIT {self._seconds(node.duration, 2, 'wait', node)}(sec)"]
 
     def _seconds(self, value: float, decimals: int, what: str, node: ir.Instr) -> str:
@@ -323,24 +323,24 @@ class FanucBackend(Backend):
                       f"{10.0 ** -decimals:g} s for TP; emitted as {text} s", node.span)
         return text
 
-    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+    def wait_input(self, node: ir.WaitInput, ctx: FanucContext) -> list[str]:
         c = node.condition
         cond = f"DI[{c.port}{_sig(c.signal)}]={self._level(c.value)}"
         if node.timeout is None:
             return [f"WAIT {cond}"]
-        timeout, done = self._p.label(), self._p.label()
+        timeout, done = ctx.program.label(), ctx.program.label()
         return [f"$WAITTMOUT={int(round(node.timeout * 100))}", f"WAIT {cond} TIMEOUT,LBL[{timeout}]",
                 f"JMP LBL[{done}]", f"LBL[{timeout}]", self.comment("wait timed out"), "ABORT",
                 f"LBL[{done}]"]
 
-    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+    def if_(self, node: ir.If, ctx: FanucContext) -> list[str]:
         c = node.condition
-        other, done = self._p.label(), self._p.label()
+        other, done = ctx.program.label(), ctx.program.label()
         lines = [f"IF DI[{c.port}{_sig(c.signal)}]<>{self._level(c.value)},JMP LBL[{other}]"]
         lines += self.body(node.then, ctx) + [f"JMP LBL[{done}]", f"LBL[{other}]"]
         return lines + self.body(node.otherwise, ctx) + [f"LBL[{done}]"]
 
-    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+    def sync(self, node: ir.Sync, ctx: FanucContext) -> list[str]:
         """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
         return [line[:COMMENT_MAX + 1] for line in self.sync_not_lowered(node, ctx)]
 
@@ -348,7 +348,7 @@ class FanucBackend(Backend):
         note = super().handshake_comment(node)
         return note[:COMMENT_MAX + 1] if note else None
 
-    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
+    def native(self, node: ir.Native, ctx: FanucContext) -> list[str]:
         if node.vendor.lower() != self.name:
             return self.native_other(node)
         return [line.strip().rstrip(";").rstrip() for line in node.text.splitlines() if line.strip()]
@@ -357,11 +357,11 @@ class FanucBackend(Backend):
         super().native_other(node)
         return [self.comment(f"native {node.vendor} skipped"[:COMMENT_MAX])]
 
-    def proc_call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
-        name = self._routine_of[node.uid]
-        if f"{name}.ls" not in self._files:
-            self._files[f"{name}.ls"] = ""  # reserve: a recursive print sees it as taken
-            self._files[f"{name}.ls"] = self._program(name, node.body, ctx, is_main=False)
+    def proc_call(self, node: ir.ProcCall, ctx: FanucContext) -> list[str]:
+        name = ctx.routine_of[node.uid]
+        if f"{name}.ls" not in ctx.files:
+            ctx.files[f"{name}.ls"] = ""  # reserve: a recursive print sees it as taken
+            ctx.files[f"{name}.ls"] = self._program(name, node.body, ctx, is_main=False)
         return [f"CALL {name}"]
 
 

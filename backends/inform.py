@@ -59,15 +59,14 @@ Support (checked by tests/backends/test_inform.py):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
-from rmot.backends.lowering import routine_names, split_body
-from rmot.backends.names import NameRules, NameTable
-from rmot.backends.unique import UniqueDiagnostics
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.lowering import split_body
+from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
@@ -76,9 +75,8 @@ PL_DISTANCES_MM = (0.0, 12.5, 25.0, 50.0, 100.0)
 MAX_POSITIONS = 999
 MAX_INSTRUCTIONS = 300
 COMMENT_WIDTH = 32
-NAME_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper=True, prefix="J",
+INFORM_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper=True, prefix="J",
                        reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC"}))
-NATIVE_NAMES = frozenset({"inform", "jbi", "yaskawa", "motoman"})
 DATE = "2000/01/01 00:00"
 
 
@@ -142,45 +140,48 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
     return out, last
 
 
-class InformBackend(UniqueDiagnostics):
+@dataclass(frozen=True)
+class InformContext(TaskContext):
+    """One task's context plus what printing it uses and collects: routine names, each move's
+    predecessor, tool numbers, the finished job files and the job being printed."""
+
+    routine_of: dict[int, str]
+    preds: dict[int, ir.Move | None]
+    tools: dict[str | None, int]
+    files: dict[str, str] = field(default_factory=dict)
+    job: _Job = field(default_factory=lambda: _Job(""))
+    warned: set[str] = field(default_factory=set)  # warnings given once per task
+
+
+class InformBackend(Backend):
     name = "inform"
     file_ext = ".JBI"
     COMMENT = "'"
     UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
              "zone": "PL level", "time": "s", "analog": "V"}
-    MAX_LINES = None
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
-    EMIT = {
-        ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
-        ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
-        ir.ProcCall: "call", ir.Native: "native", ir.Sync: "sync",
-    }
+    NAME_RULES = INFORM_RULES
+    NATIVE_NAMES = frozenset({"inform", "jbi", "yaskawa", "motoman"})
+    NO_RECORD_NOTE = None
 
     # ------------------------------------------------------------------ jobs
 
-    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
-        names = NameTable(NAME_RULES, self.name)
-        main = names.name(ctx.program_name, ctx.task.span)
-        body = self.lowered_body(ctx)
-        split = split_body(body, MAX_INSTRUCTIONS, ctx.program_name)
+    def emit_task(self, task: TaskContext) -> dict[str, str]:
+        names, main, body = self.open_task(task)
+        split = split_body(body, MAX_INSTRUCTIONS, task.program_name)
         if split is not body:
             self.warn(codes.PROGRAM_SPLIT, f"job '{main}' must hold at most {MAX_INSTRUCTIONS} "
-                      f"instructions (got more); split into {len(split)} parts", ctx.task.span)
-        self._routines = {uid: names.name(n) for uid, n in routine_names(split).items()}
-        self._preds, _ = predecessors(body)
-        self._tools = self.tool_numbers(ctx)
-        self._files: dict[str, str] = {}
-        self._jobs: list[_Job] = []
-        self._warned_accel = False
+                      f"instructions (got more); split into {len(split)} parts", task.task.span)
+        ctx = task.with_state(InformContext, routine_of=self.routine_table(names, split),
+                              preds=predecessors(body)[0], tools=self.tool_numbers(task))
         self.job(main, split, ctx)
         self.extend(names.diagnostics)
-        return dict(sorted(self._files.items()))
+        return dict(sorted(ctx.files.items()))
 
-    def job(self, name: str, body: tuple[ir.Instr, ...], ctx: TaskContext) -> None:
-        job = _Job(name)
-        self._jobs.append(job)
+    def job(self, name: str, body: tuple[ir.Instr, ...], task: InformContext) -> None:
+        ctx = replace(task, job=_Job(name))
+        job = ctx.job
         inst = self.body(body, ctx)
-        self._jobs.pop()
         if len(job.positions) > MAX_POSITIONS:
             self.unsupported(codes.PROGRAM_TOO_LONG, f"job '{name}' must hold at most "
                              f"{MAX_POSITIONS} positions (got {len(job.positions)})", ctx.task.span)
@@ -189,7 +190,7 @@ class InformBackend(UniqueDiagnostics):
         text = (["/JOB", f"//NAME {name}"] + self.pos_section(job) +
                 ["//INST", f"///DATE {DATE}", f"///COMM {ctx.plan.program.name[:32]}",
                  "///ATTR SC,RW", "///GROUP1 RB1", "NOP"] + head + inst + ["END"])
-        self._files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
+        ctx.files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
 
     @staticmethod
     def pos_section(job: _Job) -> list[str]:
@@ -224,14 +225,14 @@ class InformBackend(UniqueDiagnostics):
         tools = [t for t in ctx.plan.program.cell.tools if t.robot == ctx.robot.name]
         return {None: 0, **{t.name: k + 1 for k, t in enumerate(tools)}}
 
-    def tool_comments(self, ctx: TaskContext) -> list[str]:
+    def tool_comments(self, ctx: InformContext) -> list[str]:
         out: list[str] = []
         for t in ctx.plan.program.cell.tools:
             if t.robot != ctx.robot.name:
                 continue
             rz, ry, rx = euler_zyx_deg(t.tcp)
             x, y, z = position_mm(t.tcp)
-            out += self.wrap(f"TOOL {self._tools[t.name]} = {t.name}")
+            out += self.wrap(f"TOOL {ctx.tools[t.name]} = {t.name}")
             out.append(f"'XYZ {fmt(x, 3)},{fmt(y, 3)},{fmt(z, 3)}"[:COMMENT_WIDTH])
             out.append(f"'RXYZ {fmt(rx, 4)},{fmt(ry, 4)},{fmt(rz, 4)}"[:COMMENT_WIDTH])
         return out
@@ -239,24 +240,24 @@ class InformBackend(UniqueDiagnostics):
     # ------------------------------------------------------------------ motion
 
     def position(self, rec: planned.InstructionRecord, q: np.ndarray | None, pose: ir.Pose | None,
-                 node: ir.Move) -> str | None:
+                 node: ir.Move, ctx: InformContext) -> str | None:
         """Register a taught position (TCP pose + RCONF) in the current job; its C name."""
         branch = rec.branch
         if pose is None or q is None or branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
             self.unsupported(codes.NO_BRANCH, "INFORM positions must have a TCP pose and a full "
                              "6-axis branch (got none: not a 6R arm, or no plan)", node.span)
             return None
-        tool = self._tools.get(node.tool.name, 0)
-        return self._jobs[-1].add(_Position(tool, rconf(branch, q), position_values(pose)))
+        tool = ctx.tools.get(node.tool.name, 0)
+        return ctx.job.add(_Position(tool, rconf(branch, q), position_values(pose)))
 
-    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
-        rec = self.record_or_error(node, ctx)
-        if rec is None:
-            return []
-        self.motion_notes(node)
+    def move(self, node: ir.Move, ctx: InformContext) -> list[str]:
+        rec = self.move_record(node, ctx)
+        if isinstance(rec, list):
+            return rec
+        self.motion_notes(node, ctx)
         pl = self.zone(rec.blend_radius, node)
         if node.kind is ir.MotionKind.JOINT:
-            c = self.position(rec, rec.q_target, rec.tcp_pose, node)
+            c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
             if isinstance(node.target, ir.JointTarget):
                 self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
                           "position of its planned joints with full RCONF (pulse counts per "
@@ -264,18 +265,18 @@ class InformBackend(UniqueDiagnostics):
             return [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
         v = self.linear_speed(node)
         if node.kind is ir.MotionKind.LINEAR:
-            c = self.position(rec, rec.q_target, rec.tcp_pose, node)
+            c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
             return [f"MOVL {c} V={v}{pl}"] if c else []
         return self.circular(node, rec, ctx, v, pl)
 
-    def circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: TaskContext,
+    def circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
                  v: str, pl: str) -> list[str]:
         """MOVC start (the previous target), via, end `FPT`.
 
         FPT marks the arc's end point, so a following arc starts there: after an arc only the
         via and end lines are printed (continuous arcs, DX100 circular interpolation rules).
         """
-        prev = self._preds.get(node.uid)
+        prev = ctx.preds.get(node.uid)
         prev_rec = ctx.record(prev) if prev is not None else None
         if node.via is None or rec.q_via is None or prev_rec is None or prev_rec.q_target is None:
             self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "an INFORM circular move must follow a "
@@ -284,17 +285,17 @@ class InformBackend(UniqueDiagnostics):
             return []
         lines: list[str] = []
         if prev.kind is not ir.MotionKind.CIRCULAR:  # type: ignore[union-attr]
-            start = self.position(prev_rec, prev_rec.q_target, prev_rec.tcp_pose, node)
+            start = self.position(prev_rec, prev_rec.q_target, prev_rec.tcp_pose, node, ctx)
             lines.append(f"MOVC {start} V={v}")
-        via = self.position(rec, rec.q_via, node.via.pose, node)
-        end = self.position(rec, rec.q_target, rec.tcp_pose, node)
+        via = self.position(rec, rec.q_via, node.via.pose, node, ctx)
+        end = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
         if any(c is None for c in (via, end)) or any("None" in line for line in lines):
             return []
         return lines + [f"MOVC {via} V={v}", f"MOVC {end} V={v}{pl} FPT"]
 
-    def motion_notes(self, node: ir.Move) -> None:
-        if not self._warned_accel:
-            self._warned_accel = True
+    def motion_notes(self, node: ir.Move, ctx: InformContext) -> None:
+        if "accel" not in ctx.warned:
+            ctx.warned.add("accel")
             self.warn(codes.ACCEL_IGNORED, "INFORM sets acceleration only as % of the "
                       "controller's maximum (ACC=/DEC=); the controller default is used", node.span)
         if node.motion.duration is not None:
@@ -341,12 +342,12 @@ class InformBackend(UniqueDiagnostics):
                       f"T={text} used", getattr(node, "span", None))
         return text
 
-    def set_do(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+    def set_digital(self, node: ir.SetDigital, ctx: InformContext) -> list[str]:
         if not self.port_ok(node.port, 1, 1024, "digital output", node.span):
             return []
         return [f"DOUT OT#({node.port}) {'ON' if node.value else 'OFF'}"]
 
-    def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+    def set_analog(self, node: ir.SetAnalog, ctx: InformContext) -> list[str]:
         if not self.port_ok(node.port, 1, 40, "analog output", node.span):
             return []
         if not -14.0 <= node.value <= 14.0:
@@ -354,12 +355,12 @@ class InformBackend(UniqueDiagnostics):
             return []
         return [f"AOUT AO#({node.port}) {fmt(node.value, 2)}"]
 
-    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+    def pulse(self, node: ir.Pulse, ctx: InformContext) -> list[str]:
         if not self.port_ok(node.port, 1, 1024, "digital output", node.span):
             return []
         return [f"PULSE OT#({node.port}) T={self.seconds(node.duration, node, 'pulse time')}"]
 
-    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+    def wait_time(self, node: ir.WaitTime, ctx: InformContext) -> list[str]:
         # TIMER takes at most 655.35 s: longer waits are several TIMERs (exact).
         out, left = [], node.duration
         while left > 655.35:
@@ -372,7 +373,7 @@ class InformBackend(UniqueDiagnostics):
             return None
         return f"IN#({cond.port})={'ON' if cond.value != negate else 'OFF'}"
 
-    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+    def wait_input(self, node: ir.WaitInput, ctx: InformContext) -> list[str]:
         test = self.condition(node.condition, node.span)
         if test is None:
             return []
@@ -380,34 +381,26 @@ class InformBackend(UniqueDiagnostics):
             return [f"WAIT {test}"]
         return [f"WAIT {test} T={self.seconds(node.timeout, node, 'timeout')}"]
 
-    def label(self) -> str:
-        job = self._jobs[-1]
+    @staticmethod
+    def label(ctx: InformContext) -> str:
+        job = ctx.job
         job.labels += 1
         return f"*L{job.labels:03d}"
 
-    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+    def if_(self, node: ir.If, ctx: InformContext) -> list[str]:
         test = self.condition(node.condition, node.span, negate=True)
         if test is None:
             return []
-        skip = self.label()
+        skip = self.label(ctx)
         then = self.body(node.then, ctx)
         if not node.otherwise:
             return [f"JUMP {skip} IF {test}", *then, skip]
-        done = self.label()
+        done = self.label(ctx)
         return [f"JUMP {skip} IF {test}", *then, f"JUMP {done}", skip, *self.body(node.otherwise, ctx), done]
 
     # ------------------------------------------------------------------ structure
 
-    def call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
-        name = self._routines[node.uid]
+    def proc_call(self, node: ir.ProcCall, ctx: InformContext) -> list[str]:
+        name = ctx.routine_of[node.uid]
         self.job(name, node.body, ctx)
         return [f"CALL JOB:{name}"]
-
-    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
-        if node.vendor.lower() not in NATIVE_NAMES:
-            return self.native_other(node)
-        return node.text.splitlines()
-
-    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
-        return self.sync_not_lowered(node, ctx)

@@ -39,14 +39,13 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 import numpy as np
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, turn_bits
-from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir
 
@@ -106,6 +105,15 @@ class _Module:
     uses_ptp_helper: bool = False
 
 
+@dataclass(frozen=True)
+class KrlContext(TaskContext):
+    """One task's context plus its names, its routines' names and the module being printed."""
+
+    names: NameTable
+    routine_of: dict[int, str]
+    module: _Module
+
+
 class KrlBackend(Backend):
     name = "krl"
     file_ext = ".src"
@@ -113,129 +121,122 @@ class KrlBackend(Backend):
     UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "m/s",
                                        "tcp_accel": "m/s^2", "joint_speed": "%", "time": "s",
                                        "analog": "V/10"}
-    MAX_INSTRUCTIONS: ClassVar[int] = 1000
+    NAME_RULES = KRL_RULES
+    MAX_INSTRUCTIONS = 1000
+    SPLIT_UNITS = ("KRL module", "modules")
     TIMER_INDEX: ClassVar[int] = 16
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
-    EMIT: ClassVar[dict[type, str]] = {
-        ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
-        ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
-        ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
-    }
+    SIX_AXIS_DATA = "E6POS/E6AXIS data"
 
     # ------------------------------------------------------------------ program
 
-    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
-        self._names = NameTable(KRL_RULES, self.name)
-        main_name = self._names.name(ctx.program_name, ctx.task.span)
-        body = self.lowered_body(ctx)
-        self._routine_of = {uid: self._names.name(r) for uid, r in routine_names(body).items()}
+    def emit_task(self, task: TaskContext) -> dict[str, str]:
+        names, main_name, body = self.open_task(task)
+        ctx = task.with_state(KrlContext, names=names, module=_Module(DataPool(names)),
+                              routine_of=self.routine_table(names, body))
         files: dict[str, str] = {}
-        if count_instructions(body) > self.MAX_INSTRUCTIONS:
-            parts = split_body(body, self.MAX_INSTRUCTIONS, main_name)
-            self.warn(codes.PROGRAM_SPLIT, f"program has {count_instructions(body)} instructions, more than "
-                      f"{self.MAX_INSTRUCTIONS} per KRL module; split into {len(parts)} modules", ctx.task.span)
+        parts = self.split_parts(body, ctx, main_name)
+        if parts is not None:
             calls = []
             for part in parts:
                 assert isinstance(part, ir.ProcCall)
-                pname = self._names.name(part.proc)
+                pname = names.name(part.proc)
                 files.update(self._module(pname, part.body, ctx))
                 calls.append(f"{pname}()")
             files = {**self._module(main_name, (), ctx, calls=calls), **files}
         else:
             files.update(self._module(main_name, body, ctx))
-        self.extend(self._names.diagnostics)
+        self.extend(names.diagnostics)
         return files
 
-    def _module(self, name: str, body: tuple[ir.Instr, ...], ctx: TaskContext,
+    def _module(self, name: str, body: tuple[ir.Instr, ...], task: KrlContext,
                 calls: list[str] | None = None) -> dict[str, str]:
         """The .src and .dat of one module: `body`, or calls to part modules."""
-        self._m = _Module(DataPool(self._names))
+        ctx = replace(task, module=_Module(DataPool(task.names)))
         main = list(calls) if calls is not None else self.body(body, ctx)
         head = [self.comment(line) for line in self.header(ctx)]
         src = ["&ACCESS RVP", f"DEF {name}( )"] + self.indent(head + main, "  ") + ["END"]
-        for rname, rlines in self._m.routines.items():
+        for rname, rlines in ctx.module.routines.items():
             src += ["", f"DEF {rname}( )"] + self.indent(rlines, "  ") + ["END"]
-        if self._m.uses_ptp_helper:
+        if ctx.module.uses_ptp_helper:
             src += [""] + PTP_HELPER
         dat = ["&ACCESS RVP", f"DEFDAT {name}"] + self.indent(head, "  ")
         dat += [f"  DECL {value.split(':', 1)[0]} {dname}={value.split(':', 1)[1]}"
-                for dname, value in self._m.data.items]
+                for dname, value in ctx.module.data.items]
         dat.append("ENDDAT")
         return {f"{name}.src": "\n".join(src) + "\n", f"{name}.dat": "\n".join(dat) + "\n"}
 
-    def header(self, ctx: TaskContext) -> list[str]:  # type: ignore[override]
+    def header(self, ctx: KrlContext) -> list[str]:  # type: ignore[override]
         from rmot.backends.base import header_lines
 
         return header_lines(ctx.plan, self.name, self.findings_header)
 
     # ------------------------------------------------------------------ motion
 
-    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
-        rec = self.record_or_error(node, ctx)
-        if rec is None:
-            return [self.comment(f"move (uid {node.uid}) not emitted: no planned joints")]
-        if ctx.robot.dof != 6:
-            self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
-                             f"E6POS/E6AXIS data (got {ctx.robot.dof})", node.span)
-            return [self.comment("move not emitted: robot is not a 6-axis arm")]
+    def move(self, node: ir.Move, ctx: KrlContext) -> list[str]:
+        rec = self.move_record(node, ctx)
+        if isinstance(rec, list):
+            return rec
         if node.motion.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"a fixed move time ({fmt(node.motion.duration, 3)} s) has no "
                       "KRL form; the programmed speeds are used", node.span)
-        lines = self._tool_base(node)
+        lines = self._tool_base(node, ctx)
         m = node.motion
         zone = "" if m.zone.is_fine else " C_DIS"
         if not m.zone.is_fine:
             lines.append(f"$APO.CDIS={fmt(m.zone.radius * 1000.0, 3)}")
         if node.kind is ir.MotionKind.JOINT:
-            self._m.uses_ptp_helper = True
+            ctx.module.uses_ptp_helper = True
             lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
             if isinstance(node.target, ir.JointTarget):
-                return lines + [f"PTP {self._axis(node.target)}{zone}"]
-            return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node)}{zone}"]
+                return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
+            return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
         lines += [f"$VEL.CP={fmt(m.tcp_speed, 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
             return lines
-        to = self._pos(node.target, rec.q_target, rec.branch, node)
+        to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
         if node.kind is ir.MotionKind.LINEAR:
             return lines + [f"LIN {to}{zone}"]
         if node.via is None:
             self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
             return lines
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
-        via = self._pos(node.via, q_via, rec.branch, node, hint=node.via.name or "via")
+        via = self._pos(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")
         return lines + [f"CIRC {via},{to}{zone}"]
 
-    def _tool_base(self, node: ir.Move) -> list[str]:
+    @staticmethod
+    def _tool_base(node: ir.Move, ctx: KrlContext) -> list[str]:
         lines = []
         if node.tool.name is None:
             lines += ["$TOOL=$NULLFRAME"]
         else:
-            tname = self._m.data.add(node.tool.name, f"FRAME:{{{frame_text(node.tool.tcp)}}}")
+            tname = ctx.module.data.add(node.tool.name, f"FRAME:{{{frame_text(node.tool.tcp)}}}")
             mass = node.tool.mass
             cog = f"X 0.0,Y 0.0,Z {fmt(node.tool.tcp.position[2] * 500.0, 3)},A 0.0,B 0.0,C 0.0"
-            lname = self._m.data.add(f"{node.tool.name}_load", f"LOAD:{{M {fmt(mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}")
+            lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{{M {fmt(mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}")
             lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
         if node.frame.name is None:
             lines.append("$BASE=$NULLFRAME")
         else:
-            bname = self._m.data.add(node.frame.name, f"FRAME:{{{frame_text(node.frame.pose)}}}")
+            bname = ctx.module.data.add(node.frame.name, f"FRAME:{{{frame_text(node.frame.pose)}}}")
             lines.append(f"$BASE={bname}")
         return lines
 
-    def _axis(self, target: ir.JointTarget) -> str:
+    @staticmethod
+    def _axis(target: ir.JointTarget, ctx: KrlContext) -> str:
         values = ",".join(f"A{i + 1} {fmt(math.degrees(v), 4)}" for i, v in enumerate(target.values))
-        return self._m.data.add(target.name or "j", f"E6AXIS:{{{values}{E_AXES}}}")
+        return ctx.module.data.add(target.name or "j", f"E6AXIS:{{{values}{E_AXES}}}")
 
     def _pos(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
-             node: ir.Move, hint: str | None = None) -> str:
+             node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
         assert q is not None
         if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
             self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
                              "Status/Turn (got none)", node.span)
             branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
         st = f",S {status_of(branch)},T {turn_bits(q)}"
-        return self._m.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}")
+        return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}")
 
     # ------------------------------------------------------------------ I/O and flow
 
@@ -243,22 +244,22 @@ class KrlBackend(Backend):
     def _level(value: bool) -> str:
         return "TRUE" if value else "FALSE"
 
-    def set_digital(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+    def set_digital(self, node: ir.SetDigital, ctx: KrlContext) -> list[str]:
         return [f"$OUT[{node.port}]={self._level(node.value)}" + self._signal_note(node.signal)]
 
-    def set_analog(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+    def set_analog(self, node: ir.SetAnalog, ctx: KrlContext) -> list[str]:
         if abs(node.value) > 10.0:
             self.unsupported(codes.BAD_PORT, f"analog value must be within -10..10 V for $ANOUT "
                              f"(got {fmt(node.value, 3)})", node.span)
         return [f"$ANOUT[{node.port}]={fmt(node.value / 10.0, 4)}" + self._signal_note(node.signal)]
 
-    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+    def pulse(self, node: ir.Pulse, ctx: KrlContext) -> list[str]:
         return [f"PULSE($OUT[{node.port}],TRUE,{fmt(node.duration, 3)})" + self._signal_note(node.signal)]
 
-    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+    def wait_time(self, node: ir.WaitTime, ctx: KrlContext) -> list[str]:
         return [f"WAIT SEC {fmt(node.duration, 3)}"]
 
-    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+    def wait_input(self, node: ir.WaitInput, ctx: KrlContext) -> list[str]:
         c = node.condition
         cond = f"$IN[{c.port}]=={self._level(c.value)}"
         if node.timeout is None:
@@ -277,7 +278,7 @@ class KrlBackend(Backend):
     def _signal_note(signal: str | None) -> str:
         return f" ; {signal}" if signal else ""
 
-    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+    def if_(self, node: ir.If, ctx: KrlContext) -> list[str]:
         c = node.condition
         lines = [f"IF $IN[{c.port}]=={self._level(c.value)} THEN" + self._signal_note(c.signal)]
         lines += self.indent(self.body(node.then, ctx), "  ")
@@ -285,19 +286,10 @@ class KrlBackend(Backend):
             lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), "  ")
         return lines + ["ENDIF"]
 
-    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
-        return self.sync_not_lowered(node, ctx)
-
-    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
-        if node.vendor.lower() != self.name:
-            return self.native_other(node)
-        return node.text.splitlines()
-
-    def proc_call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
-        name = self._routine_of[node.uid]
-        if name not in self._m.routines:
-            self._m.routines[name] = []
+    def proc_call(self, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
+        name = ctx.routine_of[node.uid]
+        if name not in ctx.module.routines:
+            ctx.module.routines[name] = []
             args = f"({', '.join(node.args)})" if node.args else ""
-            self._m.routines[name] = [self.comment(f"{node.proc}{args}")] + self.body(node.body, ctx)
+            ctx.module.routines[name] = [self.comment(f"{node.proc}{args}")] + self.body(node.body, ctx)
         return [f"{name}()"]

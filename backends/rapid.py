@@ -36,7 +36,6 @@ from typing import ClassVar
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm
-from rmot.backends.lowering import routine_names
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir, planned
 
@@ -82,16 +81,17 @@ def pose_text(pose: ir.Pose) -> str:
     return f"[[{fmt_list(position_mm(pose), 3)}],[{fmt_list(pose.quaternion, 6)}]]"
 
 
-@dataclass
-class _TaskState:
-    """Declarations collected while printing one task (emitted above the routines)."""
+@dataclass(frozen=True)
+class RapidContext(TaskContext):
+    """One task's context plus the declarations collected while printing it (emitted above
+    the routines)."""
 
     names: NameTable
     data: DataPool
     decls: dict[str, list[str]] = field(default_factory=dict)  # kind -> declaration lines
     routines: dict[str, list[str]] = field(default_factory=dict)
     routine_of: dict[int, str] = field(default_factory=dict)
-    accel_warned: bool = False
+    warned: set[str] = field(default_factory=set)  # warnings given once per task
     massless_tools: set[str] = field(default_factory=set)
 
 
@@ -101,30 +101,22 @@ class RapidBackend(Backend):
     COMMENT = "!"
     UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/s",
                                        "time": "s", "mass": "kg"}
-    EMIT: ClassVar[dict[type, str]] = {
-        ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
-        ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
-        ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
-    }
-    INDENT = "  "
+    NAME_RULES = RAPID_RULES
+    SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"
 
     # ------------------------------------------------------------------ program
 
-    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
-        names = NameTable(RAPID_RULES, self.name)
-        names.reserve("main")
-        module = names.name(ctx.program_name, ctx.task.span)
-        self._st = _TaskState(names, DataPool(names))
-        body = self.lowered_body(ctx)
-        for uid, routine in routine_names(body).items():
-            self._st.routine_of[uid] = names.name(routine)
+    def emit_task(self, task: TaskContext) -> dict[str, str]:
+        names, module, body = self.open_task(task, reserved=("main",))
+        ctx = task.with_state(RapidContext, names=names, data=DataPool(names),
+                              routine_of=self.routine_table(names, body))
         main = self.body(body, ctx)
         lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
         for kind in ("tooldata", "wobjdata", "sync"):
-            lines += self.indent(self._st.decls.get(kind, []), self.INDENT)
-        lines += self.indent(self._data_lines(), self.INDENT)
+            lines += self.indent(ctx.decls.get(kind, []), self.INDENT)
+        lines += self.indent(self._data_lines(ctx), self.INDENT)
         lines += [""] + self._routine("main", main)
-        for rname, rlines in self._st.routines.items():
+        for rname, rlines in ctx.routines.items():
             lines += [""] + self._routine(rname, rlines)
         lines.append("ENDMODULE")
         self.extend(names.diagnostics)
@@ -133,58 +125,56 @@ class RapidBackend(Backend):
     def _routine(self, name: str, body: list[str]) -> list[str]:
         return self.indent([f"PROC {name}()"] + self.indent(body, self.INDENT) + ["ENDPROC"], self.INDENT)
 
-    def _data_lines(self) -> list[str]:
+    @staticmethod
+    def _data_lines(ctx: RapidContext) -> list[str]:
         """CONST data grouped by type (first-use order within a type)."""
-        rows = [(value.split(":", 1), name) for name, value in self._st.data.items]
+        rows = [(value.split(":", 1), name) for name, value in ctx.data.items]
         return [f"CONST {kind} {name}:={literal};" for kind in DATA_ORDER
                 for (k, literal), name in rows if k == kind]
 
-    def _declare(self, kind: str, name: str, line: str) -> None:
-        lines = self._st.decls.setdefault(kind, [])
+    @staticmethod
+    def _declare(ctx: RapidContext, kind: str, line: str) -> None:
+        lines = ctx.decls.setdefault(kind, [])
         if line not in lines:
             lines.append(line)
 
     # ------------------------------------------------------------------ motion
 
-    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
-        rec = self.record_or_error(node, ctx)
-        if rec is None:
-            return [self.comment(f"move (uid {node.uid}) not emitted: no planned joints")]
-        if ctx.robot.dof != 6:
-            self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
-                             f"RAPID robtarget/jointtarget data (got {ctx.robot.dof})", node.span)
-            return [self.comment("move not emitted: robot is not a 6-axis arm")]
-        self._warn_accel(node)
-        tool, wobj = self._tool(node.tool, node.span), self._wobj(node.frame)
-        zone = self._zone(node.motion.zone)
+    def move(self, node: ir.Move, ctx: RapidContext) -> list[str]:
+        rec = self.move_record(node, ctx)
+        if isinstance(rec, list):
+            return rec
+        self._warn_accel(node, ctx)
+        tool, wobj = self._tool(node.tool, node.span, ctx), self._wobj(node.frame, ctx)
+        zone = self._zone(node.motion.zone, ctx)
         if isinstance(node.target, ir.JointTarget):
-            target = self._jointtarget(node.target)
+            target = self._jointtarget(node.target, ctx)
             speed = self._joint_speed(node, rec)
             return [f"MoveAbsJ {target}\\NoEOffs, {speed}, {zone}, {tool};"]
-        to = self._robtarget(node.target, rec.q_target, rec.branch, node)
+        to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         if node.kind is ir.MotionKind.JOINT:
             return [f"MoveJ {to}, {self._joint_speed(node, rec)}, {zone}, {tool}{wobj};"]
-        speed = self._tcp_speed(node)
+        speed = self._tcp_speed(node, ctx)
         if node.kind is ir.MotionKind.LINEAR:
             return [f"MoveL {to}, {speed}, {zone}, {tool}{wobj};"]
         if node.via is None:
             self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
             return [self.comment("circular move without via point not emitted")]
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
-        via = self._robtarget(node.via, q_via, rec.branch, node, hint=node.via.name or "via")
+        via = self._robtarget(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")
         return [f"MoveC {via}, {to}, {speed}, {zone}, {tool}{wobj};"]
 
-    def _warn_accel(self, node: ir.Move) -> None:
-        if not self._st.accel_warned:
-            self._st.accel_warned = True
+    def _warn_accel(self, node: ir.Move, ctx: RapidContext) -> None:
+        if "accel" not in ctx.warned:
+            ctx.warned.add("accel")
             self.warn(codes.ACCEL_IGNORED, "programmed accelerations are not expressed (AccSet is "
                       "modal); the controller's own acceleration applies", node.span)
 
-    def _tcp_speed(self, node: ir.Move) -> str:
+    def _tcp_speed(self, node: ir.Move, ctx: RapidContext) -> str:
         v = node.motion.tcp_speed * 1000.0
         name = next((f"v{s}" for s in SPEEDS_MM_S if abs(s - v) < 1e-6), None)
         if name is None:
-            name = self._st.data.add(f"v{num_name(v)}", f"speeddata:[{fmt(v, 3)},500,5000,1000]")
+            name = ctx.data.add(f"v{num_name(v)}", f"speeddata:[{fmt(v, 3)},500,5000,1000]")
         if node.motion.duration is not None:
             return f"{name}\\T:={fmt(node.motion.duration, 3)}"
         return name
@@ -201,7 +191,7 @@ class RapidBackend(Backend):
                   "RAPID form; emitted as the planned move duration (\\T)", node.span)
         return f"vmax\\T:={fmt(duration, 3)}"
 
-    def _zone(self, zone: ir.Zone) -> str:
+    def _zone(self, zone: ir.Zone, ctx: RapidContext) -> str:
         if zone.is_fine:
             return "fine"
         r = zone.radius * 1000.0
@@ -209,17 +199,17 @@ class RapidBackend(Backend):
         if match is not None:
             return f"z{match}"
         o = 1.5 * r
-        return self._st.data.add(f"z{num_name(r)}", "zonedata:[FALSE," + ",".join(
+        return ctx.data.add(f"z{num_name(r)}", "zonedata:[FALSE," + ",".join(
             fmt(x, 3) for x in (r, o, o, 0.1 * o, o, 0.1 * o)) + "]")
 
-    def _jointtarget(self, target: ir.JointTarget) -> str:
+    def _jointtarget(self, target: ir.JointTarget, ctx: RapidContext) -> str:
         import math
 
         values = fmt_list((math.degrees(v) for v in target.values), 3)
-        return self._st.data.add(target.name or "j", f"jointtarget:[[{values}],{EXTAX}]")
+        return ctx.data.add(target.name or "j", f"jointtarget:[[{values}],{EXTAX}]")
 
     def _robtarget(self, target: ir.CartesianTarget, q: object, branch: ir.Config | None,
-                   node: ir.Move, hint: str | None = None) -> str:
+                   node: ir.Move, ctx: RapidContext, hint: str | None = None) -> str:
         if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
             self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
                              "confdata (got none)", node.span)
@@ -227,82 +217,78 @@ class RapidBackend(Backend):
         cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
         conf = ",".join(str(c) for c in cf)
         value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{EXTAX}]"
-        return self._st.data.add(hint or target.name or "p", value)
+        return ctx.data.add(hint or target.name or "p", value)
 
-    def _tool(self, tool: ir.ToolRef, span: object = None) -> str:
+    def _tool(self, tool: ir.ToolRef, span: object, ctx: RapidContext) -> str:
         if tool.name is None:
             return "tool0"
-        name = self._st.names.name(tool.name)
+        name = ctx.names.name(tool.name)
         mass = tool.mass if tool.mass > 0 else 0.001  # RAPID rejects a tool load of 0 kg
-        if tool.mass <= 0 and name not in self._st.massless_tools:
-            self._st.massless_tools.add(name)
+        if tool.mass <= 0 and name not in ctx.massless_tools:
+            ctx.massless_tools.add(name)
             self.warn(codes.LOWERED, f"tool '{tool.name}' must have a mass for RAPID tooldata (got 0 kg); "
                       "declared with 0.001 kg", span)
         cog = (0.0, 0.0, tool.tcp.position[2] * 500.0)  # half way to the TCP, mm (an estimate)
         load = f"[{fmt(mass, 3)},[{fmt_list(cog, 3)}],[1,0,0,0],0,0,0]"
-        self._declare("tooldata", name, f"PERS tooldata {name}:=[TRUE,{pose_text(tool.tcp)},{load}];")
+        self._declare(ctx, "tooldata", f"PERS tooldata {name}:=[TRUE,{pose_text(tool.tcp)},{load}];")
         return name
 
-    def _wobj(self, frame: ir.FrameRef) -> str:
+    def _wobj(self, frame: ir.FrameRef, ctx: RapidContext) -> str:
         if frame.name is None:
             return ""
-        name = self._st.names.name(frame.name)
-        self._declare("wobjdata", name, f"TASK PERS wobjdata {name}:=[FALSE,TRUE,\"\","
+        name = ctx.names.name(frame.name)
+        self._declare(ctx, "wobjdata", f"TASK PERS wobjdata {name}:=[FALSE,TRUE,\"\","
                       f"{pose_text(frame.pose)},[[0,0,0],[1,0,0,0]]];")
         return f"\\WObj:={name}"
 
     # ------------------------------------------------------------------ I/O and flow
 
-    def _signal(self, prefix: str, port: int, signal: str | None) -> str:
-        return self._st.names.name(signal or f"{prefix}{port}")
+    @staticmethod
+    def _signal(ctx: RapidContext, prefix: str, port: int, signal: str | None) -> str:
+        return ctx.names.name(signal or f"{prefix}{port}")
 
-    def set_digital(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
-        return [f"SetDO {self._signal('do', node.port, node.signal)}, {int(node.value)};"]
+    def set_digital(self, node: ir.SetDigital, ctx: RapidContext) -> list[str]:
+        return [f"SetDO {self._signal(ctx, 'do', node.port, node.signal)}, {int(node.value)};"]
 
-    def set_analog(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
-        return [f"SetAO {self._signal('ao', node.port, node.signal)}, {fmt(node.value, 3)};"]
+    def set_analog(self, node: ir.SetAnalog, ctx: RapidContext) -> list[str]:
+        return [f"SetAO {self._signal(ctx, 'ao', node.port, node.signal)}, {fmt(node.value, 3)};"]
 
-    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
-        return [f"PulseDO\\PLength:={fmt(node.duration, 3)}, {self._signal('do', node.port, node.signal)};"]
+    def pulse(self, node: ir.Pulse, ctx: RapidContext) -> list[str]:
+        return [f"PulseDO\\PLength:={fmt(node.duration, 3)}, {self._signal(ctx, 'do', node.port, node.signal)};"]
 
-    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+    def wait_time(self, node: ir.WaitTime, ctx: RapidContext) -> list[str]:
         return [f"WaitTime {fmt(node.duration, 3)};"]
 
-    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+    def wait_input(self, node: ir.WaitInput, ctx: RapidContext) -> list[str]:
         c = node.condition
-        text = f"WaitDI {self._signal('di', c.port, c.signal)}, {int(c.value)}"
+        text = f"WaitDI {self._signal(ctx, 'di', c.port, c.signal)}, {int(c.value)}"
         if node.timeout is not None:
             text += f"\\MaxTime:={fmt(node.timeout, 3)}"
         return [text + ";"]
 
-    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+    def if_(self, node: ir.If, ctx: RapidContext) -> list[str]:
         c = node.condition
-        lines = [f"IF DInput({self._signal('di', c.port, c.signal)}) = {int(c.value)} THEN"]
+        lines = [f"IF DInput({self._signal(ctx, 'di', c.port, c.signal)}) = {int(c.value)} THEN"]
         lines += self.indent(self.body(node.then, ctx), self.INDENT)
         if node.otherwise:
             lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)
         return lines + ["ENDIF"]
 
-    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
+    def sync(self, node: ir.Sync, ctx: RapidContext) -> list[str]:
         n = len(ctx.plan.tasks)
         task_list = ",".join(f'["T_ROB{k + 1}"]' for k in range(n))
-        name = self._st.names.name(node.name, node.span)
-        self._declare("sync", name, f"VAR syncident {name};")
-        self._declare("sync", "all_tasks", f"PERS tasks all_tasks{{{n}}}:=[{task_list}];")
+        name = ctx.names.name(node.name, node.span)
+        self._declare(ctx, "sync", f"VAR syncident {name};")
+        self._declare(ctx, "sync", f"PERS tasks all_tasks{{{n}}}:=[{task_list}];")
         return [f"WaitSyncTask {name}, all_tasks;"]
 
-    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
-        if node.vendor.lower() != self.name:
-            return self.native_other(node)
-        return node.text.splitlines()
-
-    def proc_call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
-        name = self._st.routine_of[node.uid]
+    def proc_call(self, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
+        name = ctx.routine_of[node.uid]
         ref = f" ({self.source_comment_text(node)})" if self.source_comment_text(node) else ""
         args = f"({', '.join(node.args)})" if node.args else ""
-        if name not in self._st.routines:
-            self._st.routines[name] = []  # reserve the slot first: routines print in call order
-            self._st.routines[name] = [self.comment(f"{node.proc}{args}{ref}")] + self.body(node.body, ctx)
+        if name not in ctx.routines:
+            ctx.routines[name] = []  # reserve the slot first: routines print in call order
+            ctx.routines[name] = [self.comment(f"{node.proc}{args}{ref}")] + self.body(node.body, ctx)
         return [f"{name};"]
 
     def source_comment_text(self, node: ir.Instr) -> str | None:

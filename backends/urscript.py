@@ -52,12 +52,11 @@ Support (checked by tests/backends/test_urscript.py):
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import TaskContext, fmt, fmt_list, rotation_vector
-from rmot.backends.lowering import routine_names
-from rmot.backends.names import NameRules, NameTable
-from rmot.backends.unique import UniqueDiagnostics
+from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector
+from rmot.backends.names import NameRules
 from rmot.compiler import ir
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
@@ -73,13 +72,12 @@ JOINT_LIMITS: dict[str, tuple[float, float]] = {
 }
 DEFAULT_LIMITS = (math.radians(180.0), math.radians(800.0))
 
-NAME_RULES = NameRules(
+UR_RULES = NameRules(
     max_len=63, allowed="A-Za-z0-9_", first="A-Za-z_", prefix="p_",
     reserved=frozenset({"DEF", "END", "IF", "ELIF", "ELSE", "WHILE", "THREAD", "RUN", "KILL",
                         "RETURN", "TRUE", "FALSE", "AND", "OR", "NOT", "XOR", "GLOBAL",
                         "LOCAL", "HALT", "BREAK", "CONTINUE", "SEC"}),
 )
-NATIVE_NAMES = frozenset({"urscript", "ur"})
 POS_DECIMALS = 6  # metres: 1 micrometre
 ANGLE_DECIMALS = 6  # radians: 0.00006 deg
 RATE_DECIMALS = 6
@@ -90,40 +88,43 @@ def pose_text(pose: ir.Pose) -> str:
     return "p[" + fmt_list((*pose.position, *rotation_vector(pose)), POS_DECIMALS, ", ") + "]"
 
 
-class UrScriptBackend(UniqueDiagnostics):
+@dataclass(frozen=True)
+class UrContext(TaskContext):
+    """One task's context plus what printing it collects: routine names and definitions,
+    pulse threads, warnings given once."""
+
+    routine_of: dict[int, str]
+    routine_defs: list[str] = field(default_factory=list)
+    threads: dict[str, list[str]] = field(default_factory=dict)
+    warned: set[str] = field(default_factory=set)
+
+
+class UrScriptBackend(Backend):
     name = "urscript"
     file_ext = ".script"
     COMMENT = "#"
     UNITS = {"length": "m", "angle": "rad", "linear_speed": "m/s", "linear_accel": "m/s^2",
              "joint_speed": "rad/s", "joint_accel": "rad/s^2", "blend": "m", "time": "s"}
-    MAX_LINES = None
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
-    EMIT = {
-        ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
-        ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
-        ir.ProcCall: "call", ir.Native: "native", ir.Sync: "sync",
-    }
+    NAME_RULES = UR_RULES
+    NATIVE_NAMES = frozenset({"urscript", "ur"})
+    NO_RECORD_NOTE = "move uid {uid} has no plan"
 
     # ------------------------------------------------------------------ program
 
-    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
-        names = NameTable(NAME_RULES, self.name)
-        prog = names.name(ctx.program_name, ctx.task.span)
-        body = self.lowered_body(ctx)
-        self._routines = {uid: names.name(n) for uid, n in routine_names(body).items()}
-        self._routine_defs: list[str] = []
-        self._threads: dict[str, list[str]] = {}
-        self._warned_model = False
+    def emit_task(self, task: TaskContext) -> dict[str, str]:
+        names, prog, body = self.open_task(task)
+        ctx = task.with_state(UrContext, routine_of=self.routine_table(names, body))
         main = self.block(body, ctx)
         self.extend(names.diagnostics)
         lines = self.header(ctx) + [f"def {prog}():"]
-        for thread_lines in self._threads.values():
+        for thread_lines in ctx.threads.values():
             lines += self.indent(thread_lines, self.INDENT)
-        lines += self.indent(self._routine_defs, self.INDENT)
+        lines += self.indent(ctx.routine_defs, self.INDENT)
         lines += self.indent(main, self.INDENT) + ["end"]
         return {f"{prog}{self.file_ext}": "\n".join(lines) + "\n"}
 
-    def block(self, nodes: tuple[ir.Instr, ...], ctx: TaskContext) -> list[str]:
+    def block(self, nodes: tuple[ir.Instr, ...], ctx: UrContext) -> list[str]:
         """A body with `set_tcp` at its first move and wherever the tool changes."""
         out: list[str] = []
         current: ir.ToolRef | None = None
@@ -136,10 +137,10 @@ class UrScriptBackend(UniqueDiagnostics):
 
     # ------------------------------------------------------------------ motion
 
-    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
-        rec = self.record_or_error(node, ctx)
-        if rec is None:
-            return [self.comment(f"move uid {node.uid} has no plan")]
+    def move(self, node: ir.Move, ctx: UrContext) -> list[str]:
+        rec = self.move_record(node, ctx)
+        if isinstance(rec, list):
+            return rec
         m = node.motion
         r = fmt(rec.blend_radius, POS_DECIMALS)
         if node.kind is ir.MotionKind.JOINT:
@@ -170,13 +171,13 @@ class UrScriptBackend(UniqueDiagnostics):
         """`, t=...`: URScript's exact fixed-duration argument of movej/movel."""
         return "" if m.duration is None else f", t={fmt(m.duration, 4)}"
 
-    def joint_limits(self, ctx: TaskContext, node: ir.Move) -> tuple[float, float]:
+    def joint_limits(self, ctx: UrContext, node: ir.Move) -> tuple[float, float]:
         model = ctx.robot.source.ref
         if model in JOINT_LIMITS:
             return JOINT_LIMITS[model]
-        if self._warned_model:
+        if "model" in ctx.warned:
             return DEFAULT_LIMITS
-        self._warned_model = True
+        ctx.warned.add("model")
         self.warn(codes_b.SPEED_TABLE_UNKNOWN, f"robot model '{model}' must be in the URScript "
                   f"joint speed table (it is not); assumed 180 deg/s and 800 deg/s^2", node.span)
         return DEFAULT_LIMITS
@@ -193,11 +194,11 @@ class UrScriptBackend(UniqueDiagnostics):
                          span)  # type: ignore[arg-type]
         return None
 
-    def set_do(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
+    def set_digital(self, node: ir.SetDigital, ctx: UrContext) -> list[str]:
         sig = self.digital(node.port, node.span, "out")
         return [f"set_{sig}, {node.value})"] if sig else []
 
-    def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+    def set_analog(self, node: ir.SetAnalog, ctx: UrContext) -> list[str]:
         if node.port not in (0, 1) or not 0.0 <= node.value <= 10.0:
             self.unsupported(codes_b.ANALOG_UNSUPPORTED, "analog output must be port 0..1 with 0..10 V "
                              f"(got port {node.port}, {node.value:g} V)", node.span)
@@ -205,25 +206,25 @@ class UrScriptBackend(UniqueDiagnostics):
         return [f"set_analog_outputdomain({node.port}, 1)",
                 f"set_standard_analog_out({node.port}, {fmt(node.value / 10.0, 6)})"]
 
-    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
+    def pulse(self, node: ir.Pulse, ctx: UrContext) -> list[str]:
         sig = self.digital(node.port, node.span, "out")
         if sig is None:
             return []
         name = f"rmot_pulse_{node.port}_{round(node.duration * 1000)}ms"
         if abs(round(node.duration * 1000) - node.duration * 1000) > 1e-9:
             name = f"rmot_pulse_{node.port}_{round(node.duration * 1e6)}us"
-        self._threads[name] = [f"thread {name}():", f"  set_{sig}, True)",
+        ctx.threads[name] = [f"thread {name}():", f"  set_{sig}, True)",
                                f"  sleep({fmt(node.duration, 4)})", f"  set_{sig}, False)", "end"]
         return [f"rmot_thread = run {name}()"]
 
-    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+    def wait_time(self, node: ir.WaitTime, ctx: UrContext) -> list[str]:
         return [f"sleep({fmt(node.duration, 4)})"]
 
     def condition(self, cond: ir.InputCondition, span: object) -> str | None:
         sig = self.digital(cond.port, span, "in")
         return f"get_{sig}) == {cond.value}" if sig else None
 
-    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
+    def wait_input(self, node: ir.WaitInput, ctx: UrContext) -> list[str]:
         test = self.condition(node.condition, node.span)
         if test is None:
             return []
@@ -233,7 +234,7 @@ class UrScriptBackend(UniqueDiagnostics):
                 f"while not ({test}) and rmot_waited < {fmt(node.timeout, 4)}:",
                 "  sync()", "  rmot_waited = rmot_waited + get_steptime()", "end"]
 
-    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
+    def if_(self, node: ir.If, ctx: UrContext) -> list[str]:
         test = self.condition(node.condition, node.span)
         if test is None:
             return []
@@ -244,19 +245,10 @@ class UrScriptBackend(UniqueDiagnostics):
 
     # ------------------------------------------------------------------ structure
 
-    def call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
-        name = self._routines[node.uid]
+    def proc_call(self, node: ir.ProcCall, ctx: UrContext) -> list[str]:
+        name = ctx.routine_of[node.uid]
         body = self.block(node.body, ctx) or ["sleep(0.0)"]
         args = ", ".join(node.args)
-        self._routine_defs += [self.comment(f"proc {node.proc}({args})"), f"def {name}():"]
-        self._routine_defs += self.indent(body, self.INDENT) + ["end"]
+        ctx.routine_defs.extend([self.comment(f"proc {node.proc}({args})"), f"def {name}():"])
+        ctx.routine_defs.extend(self.indent(body, self.INDENT) + ["end"])
         return [f"{name}()"]
-
-    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
-        if node.vendor.lower() not in NATIVE_NAMES:
-            return self.native_other(node)
-        return node.text.splitlines()
-
-    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
-        return self.sync_not_lowered(node, ctx)

@@ -56,18 +56,15 @@ import math
 from dataclasses import dataclass, field
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import TaskContext, euler_xyz_moving_deg, fmt, header_lines, position_mm
-from rmot.backends.lowering import routine_names
+from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, header_lines, position_mm
 from rmot.backends.names import NameRules, NameTable
-from rmot.backends.unique import UniqueDiagnostics
 from rmot.compiler import ir, planned
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
 
-NAME_RULES = NameRules(max_len=15, allowed="A-Za-z0-9_", first="A-Za-z", prefix="p",
+VAL3_RULES = NameRules(max_len=15, allowed="A-Za-z0-9_", first="A-Za-z", prefix="p",
                        reserved=frozenset({"BEGIN", "END", "IF", "ELSE", "ENDIF", "WHILE", "CALL",
                                            "RETURN", "START", "STOP", "WORLD", "FLANGE"}))
-NATIVE_NAMES = frozenset({"val3", "staubli"})
 XSI = 'xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"'
 NO_LIMIT = "9999"
 
@@ -106,46 +103,51 @@ class _Data:
         return table.index(value)
 
 
-class Val3Backend(UniqueDiagnostics):
+@dataclass(frozen=True)
+class Val3Context(TaskContext):
+    """One task's context plus what printing it collects: names, routine names, the global
+    data, the programs' code, warnings given once."""
+
+    names: NameTable
+    routine_of: dict[int, str]
+    data: _Data = field(default_factory=_Data)
+    programs: dict[str, list[str]] = field(default_factory=dict)  # program name -> code lines
+    warned: set[str] = field(default_factory=set)
+
+
+class Val3Backend(Backend):
     name = "val3"
     file_ext = ".pgx"
     COMMENT = "//"
     UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
              "blend": "mm", "time": "s"}
-    MAX_LINES = None
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
-    EMIT = {
-        ir.Move: "move", ir.SetDigital: "set_do", ir.SetAnalog: "set_ao", ir.Pulse: "pulse",
-        ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
-        ir.ProcCall: "call", ir.Native: "native", ir.Sync: "sync",
-    }
+    NAME_RULES = VAL3_RULES
+    NATIVE_NAMES = frozenset({"val3", "staubli"})
+    NO_RECORD_NOTE = None
     WAITS_FOR_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput, ir.If)
     NO_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput)
 
     # ------------------------------------------------------------------ application
 
-    def emit_task(self, ctx: TaskContext) -> dict[str, str]:
-        self._names = NameTable(NAME_RULES, self.name)
-        app = self._names.name(ctx.program_name, ctx.task.span)
+    def emit_task(self, task: TaskContext) -> dict[str, str]:
+        names, app, body = self.open_task(task)
         for reserved in ("start", "stop", "aOut", "dOut", "dIn", "bOk", "pTarget", "jTarget", "mSpeed"):
-            self._names.reserve(reserved)
-        body = self.lowered_body(ctx)
-        self._routines = {uid: self._names.name(n) for uid, n in routine_names(body).items()}
-        self._data = _Data()
-        self._programs: dict[str, list[str]] = {}
-        self._warned_accel = False
+            names.reserve(reserved)  # taken after the app is named (the order decides a clash)
+        ctx = task.with_state(Val3Context, names=names, routine_of=self.routine_table(names, body))
         main = self.block(body, ctx) + ["waitEndMove()"]
-        self._programs["start"] = main
-        self._programs["stop"] = []
-        self.extend(self._names.diagnostics)
-        files = {f"{app}/{app}.pjx": self.project(app), f"{app}/{app}.dtx": self.database()}
+        ctx.programs["start"] = main
+        ctx.programs["stop"] = []
+        self.extend(names.diagnostics)
+        files = {f"{app}/{app}.pjx": self.project(app, ctx), f"{app}/{app}.dtx": self.database(ctx)}
         head = [self.comment(line) for line in header_lines(ctx.plan, self.name, self.findings_header)]
-        for prog, code in sorted(self._programs.items()):
+        for prog, code in sorted(ctx.programs.items()):
             files[f"{app}/{prog}.pgx"] = self.program(prog, (head if prog == "start" else []) + code)
         return dict(sorted(files.items()))
 
-    def project(self, app: str) -> str:
-        programs = "".join(f'    <Program file="{p}.pgx" />\n' for p in sorted(self._programs))
+    @staticmethod
+    def project(app: str, ctx: Val3Context) -> str:
+        programs = "".join(f'    <Program file="{p}.pgx" />\n' for p in sorted(ctx.programs))
         return ('<?xml version="1.0" encoding="utf-8"?>\n'
                 '<Project xmlns="http://www.staubli.com/robotics/VAL3/Project/3">\n'
                 '  <Parameters version="s7.11" stackSize="5000" millimeterUnit="true" />\n'
@@ -162,8 +164,9 @@ class Val3Backend(UniqueDiagnostics):
                 f'  <Program name="{name}">\n{locals_}'
                 f"    <Code><![CDATA[{text}]]></Code>\n  </Program>\n</Programs>\n")
 
-    def database(self) -> str:
-        d = self._data
+    @staticmethod
+    def database(ctx: Val3Context) -> str:
+        d = ctx.data
         entries: dict[str, tuple[str, list[str]]] = {
             "aOut": ("aio", ['link=""'] * d.analog),
             "dIn": ("dio", [f'link="BasicIO-1\\%I{k}"' for k in range(d.inputs)]),
@@ -184,7 +187,7 @@ class Val3Backend(UniqueDiagnostics):
             out.append("    </Data>")
         return "\n".join(out + ["  </Datas>", "</Database>"]) + "\n"
 
-    def block(self, nodes: tuple[ir.Instr, ...], ctx: TaskContext, settled: bool = False) -> list[str]:
+    def block(self, nodes: tuple[ir.Instr, ...], ctx: Val3Context, settled: bool = False) -> list[str]:
         """A body with `waitEndMove()` before each instruction that must follow the motion.
 
         `settled`: no motion is queued when the block starts (an `if` arm: the `if` waited).
@@ -210,32 +213,34 @@ class Val3Backend(UniqueDiagnostics):
 
     # ------------------------------------------------------------------ motion
 
-    def tool(self, ref: ir.ToolRef) -> str:
+    @staticmethod
+    def tool(ref: ir.ToolRef, ctx: Val3Context) -> str:
         if ref.name is None:
             return "flange"
-        name = self._names.name("t_" + ref.name)
-        self._data.tools[name] = f'{trsf_attrs(ref.tcp)} fatherId="flange[0]" ioLink="" open="0" close="0"'
+        name = ctx.names.name("t_" + ref.name)
+        ctx.data.tools[name] = f'{trsf_attrs(ref.tcp)} fatherId="flange[0]" ioLink="" open="0" close="0"'
         return name
 
-    def point(self, pose: ir.Pose, branch: ir.Config, frame: ir.FrameRef) -> str:
+    @staticmethod
+    def point(pose: ir.Pose, branch: ir.Config, frame: ir.FrameRef, ctx: Val3Context) -> str:
         father = "world[0]"
         if frame.name is not None:
-            fname = self._names.name("f_" + frame.name)
-            self._data.frames[fname] = f'{trsf_attrs(frame.pose)} fatherId="world[0]"'
+            fname = ctx.names.name("f_" + frame.name)
+            ctx.data.frames[fname] = f'{trsf_attrs(frame.pose)} fatherId="world[0]"'
             father = f"{fname}[0]"
             pose = frame.pose.inverse() * pose
         value = f'{trsf_attrs(pose)} {config_attrs(branch)} fatherId="{father}"'
-        return f"pTarget[{self._data.index(self._data.points, value)}]"
+        return f"pTarget[{ctx.data.index(ctx.data.points, value)}]"
 
-    def mdesc(self, node: ir.Move, blend: float) -> str:
+    def mdesc(self, node: ir.Move, blend: float, ctx: Val3Context) -> str:
         m = node.motion
         if node.kind is ir.MotionKind.JOINT:
             pct = (fmt(m.joint_accel * 100, 3), fmt(m.joint_speed * 100, 3), fmt(m.joint_accel * 100, 3))
             tmax, kind = NO_LIMIT, "joint"
         else:
             pct, tmax, kind = ("100.000",) * 3, fmt(m.tcp_speed * 1000.0, 3), "Cartesian"
-            if not self._warned_accel:
-                self._warned_accel = True
+            if "accel" not in ctx.warned:
+                ctx.warned.add("accel")
                 self.warn(codes.ACCEL_IGNORED, "VAL3 mdesc sets accelerations only as % of nominal "
                           "joint acceleration; this program uses 100 % for TCP moves", node.span)
         if m.duration is not None:
@@ -244,26 +249,26 @@ class Val3Backend(UniqueDiagnostics):
         mm = fmt(blend * 1000.0, 3)
         value = (f'accel="{pct[0]}" vel="{pct[1]}" decel="{pct[2]}" tmax="{tmax}" rmax="{NO_LIMIT}" '
                  f'blend="{kind if blend > 0 else "off"}" leave="{mm}" reach="{mm}"')
-        return f"mSpeed[{self._data.index(self._data.mdescs, value)}]"
+        return f"mSpeed[{ctx.data.index(ctx.data.mdescs, value)}]"
 
-    def move(self, node: ir.Move, ctx: TaskContext) -> list[str]:
-        rec = self.record_or_error(node, ctx)
-        if rec is None:
-            return []
-        tool, speed = self.tool(node.tool), self.mdesc(node, rec.blend_radius)
+    def move(self, node: ir.Move, ctx: Val3Context) -> list[str]:
+        rec = self.move_record(node, ctx)
+        if isinstance(rec, list):
+            return rec
+        tool, speed = self.tool(node.tool, ctx), self.mdesc(node, rec.blend_radius, ctx)
         if node.kind is ir.MotionKind.JOINT:
             value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
-            return [f"movej(jTarget[{self._data.index(self._data.joints, value)}], {tool}, {speed})"]
+            return [f"movej(jTarget[{ctx.data.index(ctx.data.joints, value)}], {tool}, {speed})"]
         branch = self.branch(rec, node)
         if branch is None or rec.tcp_pose is None:
             return []
-        target = self.point(rec.tcp_pose, branch, node.frame)
+        target = self.point(rec.tcp_pose, branch, node.frame, ctx)
         if node.kind is ir.MotionKind.LINEAR:
             return [f"movel({target}, {tool}, {speed})"]
         if node.via is None:
             self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
             return []
-        via = self.point(node.via.pose, branch, node.frame)
+        via = self.point(node.via.pose, branch, node.frame, ctx)
         return [f"movec({via}, {target}, {tool}, {speed})"]
 
     def branch(self, rec: planned.InstructionRecord, node: ir.Move) -> ir.Config | None:
@@ -276,56 +281,56 @@ class Val3Backend(UniqueDiagnostics):
 
     # ------------------------------------------------------------------ I/O and timing
 
-    def port(self, port: int, span: object, output: bool) -> str | None:
+    def port(self, port: int, span: object, output: bool, ctx: Val3Context) -> str | None:
         if not 0 <= port <= 63:
             self.unsupported(codes.BAD_PORT, f"digital {'output' if output else 'input'} port "
                              f"must be in 0..63 (got {port})", span)  # type: ignore[arg-type]
             return None
         if output:
-            self._data.outputs = max(self._data.outputs, port + 1)
+            ctx.data.outputs = max(ctx.data.outputs, port + 1)
             return f"dOut[{port}]"
-        self._data.inputs = max(self._data.inputs, port + 1)
+        ctx.data.inputs = max(ctx.data.inputs, port + 1)
         return f"dIn[{port}]"
 
-    def set_do(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
-        sig = self.port(node.port, node.span, True)
+    def set_digital(self, node: ir.SetDigital, ctx: Val3Context) -> list[str]:
+        sig = self.port(node.port, node.span, True, ctx)
         return [f"{sig} = {'true' if node.value else 'false'}"] if sig else []
 
-    def set_ao(self, node: ir.SetAnalog, ctx: TaskContext) -> list[str]:
+    def set_analog(self, node: ir.SetAnalog, ctx: Val3Context) -> list[str]:
         if not 0 <= node.port <= 63:
             self.unsupported(codes.BAD_PORT, f"analog output port must be in 0..63 (got {node.port})", node.span)
             return []
-        if node.port >= self._data.analog:
-            self._data.analog = node.port + 1
+        if node.port >= ctx.data.analog:
+            ctx.data.analog = node.port + 1
         self.warn(codes_b.ANALOG_LINK, f"analog outputs have no standard VAL3 name: aOut[{node.port}] "
                   "is declared unlinked; link it to the controller's output in the data file", node.span)
         return [f"aioSet(aOut[{node.port}], {fmt(node.value, 4)})"]
 
-    def pulse(self, node: ir.Pulse, ctx: TaskContext) -> list[str]:
-        sig = self.port(node.port, node.span, True)
+    def pulse(self, node: ir.Pulse, ctx: Val3Context) -> list[str]:
+        sig = self.port(node.port, node.span, True, ctx)
         if sig is None:
             return []
         self.warn(codes_b.PULSE_INLINE, f"VAL3 has no pulse instruction; out[{node.port}] is set, "
                   f"held {node.duration:g} s with delay(), then reset (the program waits)", node.span)
         return [f"{sig} = true", f"delay({fmt(node.duration, 4)})", f"{sig} = false"]
 
-    def wait_time(self, node: ir.WaitTime, ctx: TaskContext) -> list[str]:
+    def wait_time(self, node: ir.WaitTime, ctx: Val3Context) -> list[str]:
         return [f"delay({fmt(node.duration, 4)})"]
 
-    def condition(self, cond: ir.InputCondition, span: object) -> str | None:
-        sig = self.port(cond.port, span, False)
+    def condition(self, cond: ir.InputCondition, span: object, ctx: Val3Context) -> str | None:
+        sig = self.port(cond.port, span, False, ctx)
         return f"{sig} == {'true' if cond.value else 'false'}" if sig else None
 
-    def wait_input(self, node: ir.WaitInput, ctx: TaskContext) -> list[str]:
-        test = self.condition(node.condition, node.span)
+    def wait_input(self, node: ir.WaitInput, ctx: Val3Context) -> list[str]:
+        test = self.condition(node.condition, node.span, ctx)
         if test is None:
             return []
         if node.timeout is None:
             return [f"wait({test})"]
         return [f"bOk = watch({test}, {fmt(node.timeout, 4)})"]
 
-    def if_(self, node: ir.If, ctx: TaskContext) -> list[str]:
-        test = self.condition(node.condition, node.span)
+    def if_(self, node: ir.If, ctx: Val3Context) -> list[str]:
+        test = self.condition(node.condition, node.span, ctx)
         if test is None:
             return []
         lines = [f"if {test}"] + self.indent(self.block(node.then, ctx, settled=True), self.INDENT)
@@ -335,20 +340,11 @@ class Val3Backend(UniqueDiagnostics):
 
     # ------------------------------------------------------------------ structure
 
-    def call(self, node: ir.ProcCall, ctx: TaskContext) -> list[str]:
-        name = self._routines[node.uid]
-        self._programs[name] = [self.comment(f"proc {node.proc}({', '.join(node.args)})"),
+    def proc_call(self, node: ir.ProcCall, ctx: Val3Context) -> list[str]:
+        name = ctx.routine_of[node.uid]
+        ctx.programs[name] = [self.comment(f"proc {node.proc}({', '.join(node.args)})"),
                                 *self.block(node.body, ctx)]
         return [f"call {name}()"]
-
-    def native(self, node: ir.Native, ctx: TaskContext) -> list[str]:
-        if node.vendor.lower() not in NATIVE_NAMES:
-            return self.native_other(node)
-        return node.text.splitlines()
-
-    def sync(self, node: ir.Sync, ctx: TaskContext) -> list[str]:
-        """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
-        return self.sync_not_lowered(node, ctx)
 
 
 def _last_move(node: ir.Instr | None) -> ir.Move | None:

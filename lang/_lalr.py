@@ -16,18 +16,18 @@ UnexpectedToken with the expected terminal names, `$END` at the end of the file)
 
 from __future__ import annotations
 
+from collections import deque
+from functools import partial
 from typing import Any
 
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedToken
+from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders
 from lark.parsers.lalr_analysis import Shift
 
-from rmot.lang.lexer import CONTINUES, MASTER, TokenKinds
+from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
 
 __all__ = ["LalrDriver", "PostLexState"]
-
-_new_token = Token._future_new  # skips Token.__new__'s deprecated-keyword checks
-
 
 class PostLexState:
     """What the error messages need after a parse: open braces, a stray '}', the last tokens."""
@@ -37,7 +37,7 @@ class PostLexState:
     def __init__(self) -> None:
         self.braces: list[Token] = []
         self.unmatched_close: Token | None = None
-        self.history: list[Token] = []
+        self.history: deque[Token] = deque(maxlen=3)  # only the last few: tokens are not kept alive
 
 
 class LalrDriver:
@@ -58,19 +58,23 @@ class LalrDriver:
             for name, (action, arg) in row.items():
                 # str(): lark's names may be Tokens, whose Python-level __eq__ slows every lookup
                 out[str(name)] = arg if action is Shift else self._reduction(arg, callbacks[arg])
+        # (state below, state on top, lookahead) -> the top state after a chain of unit reductions
+        self.unit_chains: dict[tuple[int, int, str], int] = {}
         # Terminal names a state accepts (the lexer types words by them; errors list them).
         self.accepts = [frozenset(str(n) for n in table.states[s] if n.isupper()) for s in range(len(self.actions))]
 
     @staticmethod
     def _reduction(rule: Any, callback: Any) -> tuple[int, str, Any]:
         size = len(rule.expansion)
-        return size, str(rule.origin.name), None if _is_unit(rule) else callback
+        return size, str(rule.origin.name), None if _is_unit(rule) else _lean(callback)
 
     def parse(self, text: str, post: PostLexState) -> Any:
         """The start rule's value (the Module); lark's exceptions on bad input."""
         actions, accepts, kinds = self.actions, self.accepts, self.kinds
         keywords, punct, word_cache = kinds.keywords, kinds.punct, [dict() for _ in actions]
-        match, continues = MASTER.match, CONTINUES.match
+        match, continues, blanks = TOKEN.match, CONTINUES.match, BLANKS.match
+        new_str = str.__new__
+        unit_chains = self.unit_chains
         states: list[int] = [self.start_state]
         values: list[Any] = []
         history = post.history
@@ -80,64 +84,81 @@ class LalrDriver:
         tok: Token | None = None
         while pos < n:
             m = match(text, pos)
-            if m is None:
+            if m is None:  # only blanks and a comment left, or a character that starts no token
+                pos = blanks(text, pos).end()
+                if pos >= n:
+                    break
                 raise UnexpectedCharacters(text, pos, line, pos - line_start + 1, allowed=set(accepts[states[-1]]))
             kind, end = m.lastgroup, m.end()
-            if kind == "ws" or kind == "comment":
-                pos = end
-                continue
-            value = m.group()
-            col = pos - line_start + 1
-            if kind == "nl":
+            value = m.group(kind)
+            start = end - len(value)
+            col = start - line_start + 1
+            # branches in order of frequency: words, punctuation, numbers, newlines
+            if kind == "word":
+                state = states[-1]
+                cache = word_cache[state]
+                ttype = cache.get(value)
+                if ttype is None:
+                    ttype = cache[value] = kinds.word_type(value, accepts[state])
+                start_line = end_line = line
+                end_col = col + (end - start)
+            elif kind == "punct":
+                ttype = punct[value]
+                if ttype == "LPAR" or ttype == "LSQB":
+                    depth += 1
+                elif ttype == "RPAR" or ttype == "RSQB":
+                    if depth > 0:
+                        depth -= 1
+                elif ttype == "LBRACE":
+                    depth = 0  # a '{' ends any unclosed '(' before it: report there, not at EOF
+                start_line = end_line = line
+                end_col = col + (end - start)
+            elif kind == "number":
+                ttype = "NUMBER"
+                start_line = end_line = line
+                end_col = col + (end - start)
+            elif kind == "nl":
                 newlines = value.count("\n")
+                start_line = line
                 if newlines:
                     last_nl = value.rfind("\n")
-                    end_line, end_col = line + newlines, end - (last_nl + pos)
+                    end_line, end_col = line + newlines, end - (last_nl + start)
+                    line, line_start = end_line, start + last_nl + 1
                 else:
                     end_line, end_col = line, col + len(value)
-                tok_pos = pos
-                if newlines:
-                    line, line_start = end_line, pos + last_nl + 1
-                pos = end
                 if depth > 0 or continues(text, end) is not None:
+                    pos = end
                     continue  # a newline inside ( ) or [ ], or before `to` / `else`
                 ttype = "_NL"
-                tok = _new_token(ttype, value, tok_pos, end_line - newlines, col, end_line, end_col, end)
             else:
-                state = states[-1]
-                if kind == "word":
-                    cache = word_cache[state]
-                    ttype = cache.get(value)
-                    if ttype is None:
-                        ttype = cache[value] = kinds.word_type(value, accepts[state])
-                elif kind == "number":
-                    ttype = "NUMBER"
-                elif kind == "punct":
-                    ttype = punct[value]
-                elif kind == "string":
+                if kind == "string":
                     ttype = "STRING"
-                elif "UNIT" in accepts[state]:  # kind == "unit"
+                elif "UNIT" in accepts[states[-1]]:  # kind == "unit"
                     ttype = "UNIT"
                 else:  # `m/s` where no unit fits: just the word `m`, then `/` and `s`
                     value = value[: value.index("/")]
-                    end = pos + len(value)
-                    ttype = kinds.word_type(value, accepts[state])
-                tok = _new_token(ttype, value, pos, line, col, line, col + (end - pos), end)
-                if kind == "punct":
-                    if ttype == "LPAR" or ttype == "LSQB":
-                        depth += 1
-                    elif ttype == "RPAR" or ttype == "RSQB":
-                        if depth > 0:
-                            depth -= 1
-                    elif ttype == "LBRACE":
-                        depth = 0  # a '{' ends any unclosed '(' before it: report there, not at EOF
-                        braces.append(tok)
-                    elif ttype == "RBRACE":
-                        if braces:
-                            braces.pop()
-                        elif post.unmatched_close is None:
-                            post.unmatched_close = tok
-                pos = end
+                    end = start + len(value)
+                    ttype = kinds.word_type(value, accepts[states[-1]])
+                start_line = end_line = line
+                end_col = col + (end - start)
+            pos = end
+            # a lark Token, built without Token.__new__'s keyword checks
+            tok = new_str(Token, value)
+            tok.type = ttype
+            tok.value = value
+            tok.start_pos = start
+            tok.line = start_line
+            tok.column = col
+            tok.end_line = end_line
+            tok.end_column = end_col
+            tok.end_pos = end
+            if ttype == "LBRACE":
+                braces.append(tok)
+            elif ttype == "RBRACE":
+                if braces:
+                    braces.pop()
+                elif post.unmatched_close is None:
+                    post.unmatched_close = tok
             history.append(tok)
             # -- feed the token: reduce while the table says so, then shift
             while True:
@@ -150,8 +171,12 @@ class LalrDriver:
                     values.append(tok)
                     break
                 size, origin, callback = act
-                if callback is None:  # unit reduction: the value stays, the state moves
-                    states[-1] = actions[states[-2]][origin]
+                if callback is None:  # unit reduction(s): the value stays, the state moves
+                    key = (states[-2], state, ttype)
+                    top = unit_chains.get(key)
+                    if top is None:
+                        top = unit_chains[key] = self._unit_chain(*key)
+                    states[-1] = top
                     continue
                 if size:
                     children = values[-size:]
@@ -162,6 +187,15 @@ class LalrDriver:
                 values.append(callback(children))
                 states.append(actions[states[-1]][origin])
         return self._finish(tok, states, values)
+
+    def _unit_chain(self, below: int, top: int, ttype: str) -> int:
+        """The state after every unit reduction `ttype` triggers on `top` (they never touch `below`)."""
+        actions = self.actions
+        while True:
+            act = actions[top].get(ttype)
+            if act is None or act.__class__ is int or act[2] is not None:
+                return top
+            top = actions[below][act[1]]
 
     def _finish(self, last: Token | None, states: list[int], values: list[Any]) -> Any:
         """Feed `$END` (positioned at the last token, as lark does) until the start rule is reduced."""
@@ -197,3 +231,60 @@ def _is_unit(rule: Any) -> bool:
     if sym.is_term:
         return options.keep_all_tokens or not sym.filter_out
     return not sym.name.startswith("_")
+
+
+class _Inlined:
+    """What an `_rule` (inlined into its parent) reduces to: lark's filters only read `.children`."""
+
+    __slots__ = ("children",)
+
+    def __init__(self, children: list[Any]) -> None:
+        self.children = children
+
+
+def _lean(callback: Any) -> Any:
+    """lark's callback for a rule, with its generic child filter replaced by a direct one.
+
+    lark's ChildFilter walks a (index, inline?, placeholders) list on every reduction; most
+    rules only pick fixed children or add trailing `None` placeholders, which one list
+    expression does. `_rule` helpers build a `_Inlined` instead of a parse-tree node.
+    Anything else keeps lark's callback.
+    """
+    if _is_tree_builder(callback):
+        return _Inlined
+    kind = type(callback)
+    if kind is ChildFilterLALR_NoPlaceholders:
+        build = callback.node_builder
+        if _is_tree_builder(build):
+            build = _Inlined
+        picks = tuple(i for i, _ in callback.to_include)
+        inline = [i for i, expand in callback.to_include if expand]
+        if not inline:
+            return lambda c: build([c[i] for i in picks])
+        if inline == [0] and picks[0] == 0:  # left recursion: extend the first child's list, as lark does
+            rest = picks[1:]
+
+            def extend(c: list[Any]) -> Any:
+                out = c[0].children
+                out += [c[i] for i in rest]
+                return build(out)
+
+            return extend
+    elif kind is ChildFilterLALR and not any(expand for _, expand, _ in callback.to_include):
+        build = callback.node_builder
+        if _is_tree_builder(build):
+            return callback
+        template: list[int | None] = []
+        for i, _, nones in callback.to_include:
+            template += [None] * nones + [i]
+        template += [None] * callback.append_none
+        if template[: len(template) - callback.append_none] == list(range(len(template) - callback.append_none)):
+            tail = [None] * callback.append_none
+            return lambda c: build(c[: len(template) - len(tail)] + tail)
+        return lambda c: build([None if i is None else c[i] for i in template])
+    return callback
+
+
+def _is_tree_builder(f: Any) -> bool:
+    """lark's default callback (no AstBuilder method for the rule): a parse-tree node."""
+    return isinstance(f, partial) and getattr(f.func, "__name__", "") == "default_callback"

@@ -21,7 +21,7 @@ from lark import Token
 from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
 
-__all__ = ["CONTINUES", "MASTER", "RmotLexer", "TokenKinds"]
+__all__ = ["BLANKS", "CONTINUES", "MASTER", "TOKEN", "RmotLexer", "TokenKinds"]
 
 _SIMPLE_UNITS = frozenset({"mm", "cm", "min", "ms", "m", "in", "deg", "rad", "s", "kg", "g"})
 MASTER = _MASTER = re.compile(r"""
@@ -34,6 +34,19 @@ MASTER = _MASTER = re.compile(r"""
   | (?P<string>"(?:[^"\\\n]|\\.)*")
   | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
 """, re.X)
+# The parse loop (lang/_lalr.py) takes the blanks and a comment before a token in the same
+# match (possessive, so a failed match never gives back part of a comment as a token).
+TOKEN = re.compile(r"""
+    [ \t\f\r]*+(?:\#[^\n]*+)?+
+    (?: (?P<nl>(?:;|\r?\n)(?:\s|;|\#[^\n]*)*)
+      | (?P<number>[0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)
+      | (?P<unit>(?:mm|cm|min|ms|m|in|deg|rad|s|kg|g)/s(?:\^2)?(?![A-Za-z0-9_]))
+      | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
+      | (?P<string>"(?:[^"\\\n]|\\.)*")
+      | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
+    )
+""", re.X)
+BLANKS = re.compile(r"[ \t\f\r]*+(?:\#[^\n]*+)?+")
 CONTINUES = _CONTINUES = re.compile(r"\s*(?:to|else)(?![A-Za-z0-9_])")
 _WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout"})))
 

@@ -261,7 +261,7 @@ def _after(file: SourceFile, tok: Token) -> Span:
 
 def _history_before(tok: Token) -> list[Token]:
     """The tokens the parser took before `tok` (the post-lexer may or may not have seen tok)."""
-    history = _POSTLEX.history[-3:]
+    history = list(_POSTLEX.history)
     if history and history[-1] is tok:
         history.pop()
     return history

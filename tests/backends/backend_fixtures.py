@@ -4,9 +4,17 @@
 from __future__ import annotations
 
 import math
+import os
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
 import numpy as np
 
+from rmot.backends.base import Backend, EmitResult
 from rmot.compiler import ir, planned
+from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.source import Pos, SourceFile, Span
 
 DEMO_FILE = SourceFile("demo.rmot", "\n" * 200)
@@ -63,6 +71,29 @@ def deg(*values: float) -> np.ndarray:
     return np.radians(np.array(values, float))
 
 
+# --------------------------------------------------------------------------- instruction tables
+
+J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
+DOWN = ir.Pose.from_xyz_rpy(0.4, -0.1, 0.3, math.pi, 0, 0)  # the TCP pointing down
+Q = deg(10, 20, 30, -100, -50, 200)  # the planned joints of every move of a table row
+
+
+@dataclass(frozen=True)
+class Row:
+    """One row of a vendor's instruction table: an IR instruction alone in a program, the lines
+    it prints, the declarations it adds and the diagnostic codes it reports (in order)."""
+
+    name: str
+    instr: ir.Instr
+    lines: tuple[str, ...]
+    decls: tuple[str, ...] = ()
+    codes: tuple[str, ...] = ()
+
+
+def emit_row(backend: type[Backend], row: Row) -> EmitResult:
+    """`backend`'s output for `row.instr` alone, every move in it planned at Q, FRONT_UP_NOFLIP."""
+    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk((row.instr,)) if isinstance(n, ir.Move)}
+    return backend().emit(hand_plan((row.instr,), records))
 
 
 # --------------------------------------------------------------------------- sample programs
@@ -131,3 +162,67 @@ def handshake_missing(plan: planned.Plan) -> bool:
     return len(program.tasks) > 1 and any(
         handshake_ports(program.cell, t.robot) is None
         for t in program.tasks if any(isinstance(n, ir.Sync) for n in ir.walk(t.body)))
+
+
+# --------------------------------------------------------------------------- reading output back
+
+
+def diagnostic_keys(diagnostics: Iterable[Diagnostic]) -> list[str]:
+    """`severity:code:line` per diagnostic (line 0 without a span), in order."""
+    return [f"{d.severity.value}:{d.code.id}:{d.span.start.line if d.span else 0}" for d in diagnostics]
+
+
+def blocks(text: str, marker: str, *, skip: tuple[str, ...] = (), drop: tuple[str, ...] = (),
+           stop: str | None = None, strip: bool = True) -> dict[int, list[str]]:
+    """Source line -> the lines printed under its `<marker>demo.rmot:N` source comment.
+
+    Left out: empty lines, other comments (starting with `marker`), lines starting with one of
+    `skip` and lines equal to one of `drop`; a line equal to `stop` ends the block. `strip`:
+    compare lines without their indentation.
+    """
+    pattern = re.escape(marker) + r"demo\.rmot:(\d+)"
+    out: dict[int, list[str]] = {}
+    current: list[str] | None = None
+    for raw in text.splitlines():
+        line = raw.strip() if strip else raw
+        m = re.fullmatch(pattern, line)
+        if m:
+            current = out.setdefault(int(m.group(1)), [])
+        elif stop is not None and line == stop:
+            current = None
+        elif (current is not None and line and not line.startswith((marker.strip(), *skip))
+              and line not in drop):
+            current.append(line)
+    return out
+
+
+# --------------------------------------------------------------------------- shipped examples and golden files
+
+ROOT = Path(__file__).resolve().parents[2]
+GOLDEN = Path(__file__).parent / "golden"
+UPDATE_GOLDEN = os.environ.get("RMOT_UPDATE_GOLDEN") == "1"
+
+
+def example_plans(names: Iterable[str]) -> dict[str, planned.Plan]:
+    """examples/<name>.rmot through the real front end and planner, per name."""
+    from rmot.compiler.frontend import load_program
+    from rmot.compiler.plan import plan_program
+
+    out = {}
+    for name in names:
+        front = load_program(str(ROOT / "examples" / f"{name}.rmot"))
+        assert front.program is not None, [d.message for d in front.diagnostics]
+        out[name] = plan_program(front.program)
+    return out
+
+
+def check_golden(vendor: str, example: str, files: dict[str, str]) -> None:
+    """Each file equals golden/<vendor>/<example>__<file> ('/' in a file name as '__');
+    RMOT_UPDATE_GOLDEN=1 rewrites the golden files instead (review the diff by hand)."""
+    folder = GOLDEN / vendor
+    for name, text in files.items():
+        path = folder / f"{example}__{name.replace('/', '__')}"
+        if UPDATE_GOLDEN:
+            folder.mkdir(parents=True, exist_ok=True)
+            path.write_text(text, encoding="utf-8")
+        assert path.read_text(encoding="utf-8") == text, f"{path.name} differs (regenerate: see check_golden)"

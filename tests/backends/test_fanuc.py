@@ -4,35 +4,25 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
-from backend_fixtures import FRONT_UP_NOFLIP, GRIPPER, TABLE, cart, deg, hand_plan, move, sample_program, span_at
+from backend_fixtures import (
+    DOWN, GRIPPER, TABLE, C, J, L, Row, cart, deg, emit_row, hand_plan, move, sample_program, span_at,
+)
 
 from rmot.backends import codes
 from rmot.backends.fanuc_tp import FanucBackend, config_string, turn_number
 from rmot.compiler import ir
 
-J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
-DOWN = ir.Pose.from_xyz_rpy(0.4, -0.1, 0.3, math.pi, 0, 0)
-Q = deg(10, 20, 30, -100, -50, 200)
 FRAMES = ("UFRAME_NUM=0", "UTOOL_NUM=1")
-
-
-@dataclass(frozen=True)
-class Row:
-    name: str
-    instr: ir.Instr
-    lines: tuple[str, ...]
-    codes: tuple[str, ...] = ()
 
 
 ROWS = [
     Row("j_joint", move(1, J, ir.JointTarget(tuple(deg(0, 0, 0, 0, -90, 0)), "home"), joint=0.5),
         FRAMES + ("J P[1] 50% FINE",)),
-    Row("j_pose", move(1, J, cart(DOWN, name="p1"), zone=0.01), FRAMES + ("J P[1] 100% CNT10",), ("W403",)),
-    Row("j_rounded", move(1, J, cart(DOWN, name="p1"), joint=0.333), FRAMES + ("J P[1] 33% FINE",), ("W402",)),
+    Row("j_pose", move(1, J, cart(DOWN, name="p1"), zone=0.01), FRAMES + ("J P[1] 100% CNT10",), codes=("W403",)),
+    Row("j_rounded", move(1, J, cart(DOWN, name="p1"), joint=0.333), FRAMES + ("J P[1] 33% FINE",), codes=("W402",)),
     Row("l_speed", move(1, L, cart(DOWN, name="p1"), speed=0.5), FRAMES + ("L P[1] 500mm/sec FINE",)),
     Row("l_time", move(1, L, cart(DOWN, name="p1"), duration=2.5), FRAMES + ("L P[1] 2.50sec FINE",)),
     Row("l_frames", move(1, L, cart(DOWN, TABLE), tool=GRIPPER, frame=TABLE, speed=0.1),
@@ -65,8 +55,7 @@ def _mn(text: str) -> list[str]:
 
 
 def _emit(row: Row) -> tuple[dict[str, str], tuple]:
-    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk((row.instr,)) if isinstance(n, ir.Move)}
-    result = FanucBackend().emit(hand_plan((row.instr,), records))
+    result = emit_row(FanucBackend, row)
     return result.files, result.diagnostics
 
 

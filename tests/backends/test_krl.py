@@ -2,32 +2,19 @@
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
 
 import pytest
 from backend_fixtures import (
-    FRONT_UP_NOFLIP, GRIPPER, TABLE, cart, deg, hand_plan, move, routine_lines, sample_program, span_at,
+    DOWN, GRIPPER, TABLE, C, J, L, Row, cart, deg, emit_row, hand_plan, move, routine_lines, sample_program,
+    span_at,
 )
 
 from rmot.backends import codes
 from rmot.backends.krl import KrlBackend
 from rmot.compiler import ir
 
-J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
-DOWN = ir.Pose.from_xyz_rpy(0.4, -0.1, 0.3, math.pi, 0, 0)
-Q = deg(10, 20, 30, -100, -50, 200)
 NULL = ("$TOOL=$NULLFRAME", "$BASE=$NULLFRAME")
 E = ",E1 0.0,E2 0.0,E3 0.0,E4 0.0,E5 0.0,E6 0.0"
-
-
-@dataclass(frozen=True)
-class Row:
-    name: str
-    instr: ir.Instr
-    lines: tuple[str, ...]
-    decls: tuple[str, ...] = ()
-    codes: tuple[str, ...] = ()
 
 
 ROWS = [
@@ -68,8 +55,7 @@ ROWS = [
 
 
 def _emit(row: Row) -> tuple[dict[str, str], tuple]:
-    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk((row.instr,)) if isinstance(n, ir.Move)}
-    result = KrlBackend().emit(hand_plan((row.instr,), records))
+    result = emit_row(KrlBackend, row)
     return result.files, result.diagnostics
 
 

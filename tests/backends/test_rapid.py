@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
 
 import pytest
 from backend_fixtures import (
-    FRONT_UP_NOFLIP, GRIPPER, TABLE, cart, deg, hand_plan, move, routine_lines, sample_program, span_at,
+    DOWN, FRONT_UP_NOFLIP, GRIPPER, TABLE, C, J, L, Q, Row, cart, deg, emit_row, hand_plan, move, routine_lines,
+    sample_program, span_at,
 )
 
 from rmot.backends import codes
@@ -26,19 +25,7 @@ def check_file(text: str) -> list[object]:
 
         return rapid_check(text)  # type: ignore[no-any-return]
 
-J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
-DOWN = ir.Pose.from_xyz_rpy(0.4, -0.1, 0.3, math.pi, 0, 0)
-Q = deg(10, 20, 30, -100, -50, 200)
 EXT = "[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]"
-
-
-@dataclass(frozen=True)
-class Row:
-    name: str
-    instr: ir.Instr
-    lines: tuple[str, ...]
-    decls: tuple[str, ...] = ()
-    codes: tuple[str, ...] = field(default=())
 
 
 ROWS = [
@@ -84,8 +71,7 @@ ROWS = [
 
 
 def _emit(row: Row) -> tuple[str, tuple]:
-    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk((row.instr,)) if isinstance(n, ir.Move)}
-    result = RapidBackend().emit(hand_plan((row.instr,), records))
+    result = emit_row(RapidBackend, row)
     (text,) = result.files.values()
     return text, result.diagnostics
 

@@ -1,0 +1,227 @@
+"""The fused parse loop (lang/_lalr.py) behaves exactly as lark's own LALR loop with RmotLexer.
+
+The reference is a second Lark built from the same grammar, lexer (RmotLexer, its own
+regex), post-lexer and AST builder, run through `Lark.parse`: both must give the same AST,
+spans included, and fail on the same token with the same expected terminals.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import gc
+from pathlib import Path
+from typing import Any
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from lark import Lark
+from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
+
+from rmot.lang import _build, parse
+from rmot.lang._gc import gc_paused
+from rmot.lang._lalr import PostLexState
+from rmot.lang.lexer import RmotLexer
+from rmot.lang.source import Pos, SourceFile, Span
+
+ROOT = Path(__file__).resolve().parents[2]
+_REFERENCE_BUILDER = _build.AstBuilder()
+_REFERENCE_POSTLEX = parse._PostLexer()
+_REFERENCE = Lark(parse._GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer=RmotLexer, maybe_placeholders=True,
+                  postlex=_REFERENCE_POSTLEX, transformer=_REFERENCE_BUILDER, cache=False)
+
+
+def _tree(x: Any) -> Any:
+    """A node as nested tuples, spans (line, col, offset of both ends) included."""
+    if isinstance(x, Span):
+        return ("span", x.start.line, x.start.col, x.start.offset, x.end.line, x.end.col, x.end.offset)
+    if isinstance(x, SourceFile):
+        return ("file", x.path)
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return (type(x).__name__, *(_tree(getattr(x, f.name)) for f in dataclasses.fields(x)))
+    if isinstance(x, tuple):
+        return ("tuple", *(_tree(y) for y in x), _tree(getattr(x, "span", None)))
+    return x
+
+
+def _outcome(run: Any, text: str) -> Any:
+    """The AST, or the failure: exception type, position, token type and expected terminals."""
+    try:
+        return _tree(run(text))
+    except UnexpectedToken as exc:
+        return ("token", exc.token.type, exc.token.start_pos, exc.line, exc.column, sorted(exc.expected))
+    except UnexpectedCharacters as exc:
+        return ("character", exc.pos_in_stream, exc.line, exc.column)
+    except UnexpectedInput as exc:  # pragma: no cover - neither loop raises another kind
+        return ("input", type(exc).__name__)
+
+
+_OURS_POSTLEX = [PostLexState()]
+
+
+def _ours(text: str) -> Any:
+    parse._BUILDER.begin(SourceFile("t.rmot", text))
+    _OURS_POSTLEX[0] = PostLexState()
+    return parse._DRIVER.parse(text, _OURS_POSTLEX[0])
+
+
+def _lark(text: str) -> Any:
+    _REFERENCE_BUILDER.begin(SourceFile("t.rmot", text))
+    return _REFERENCE.parse(text)
+
+
+def _tokens(tokens: Any) -> list[Any]:
+    return [None if t is None else (t.type, str(t), t.start_pos, t.line, t.column, t.end_line, t.end_column, t.end_pos)
+            for t in tokens]
+
+
+def _same(text: str) -> None:
+    """Same AST or error, and the same post-lexer state the error messages read (last tokens, braces)."""
+    ours, reference = _outcome(_ours, text), _outcome(_lark, text)
+    assert ours == reference
+    mine, theirs = _OURS_POSTLEX[0], _REFERENCE_POSTLEX
+    assert _tokens(mine.history) == _tokens(theirs.history)
+    assert _tokens(mine.braces) == _tokens(theirs.braces)
+    assert _tokens([mine.unmatched_close]) == _tokens([theirs.unmatched_close])
+
+
+def _corpus() -> list[Path]:
+    return sorted([*ROOT.glob("examples/**/*.rmot"), *ROOT.glob("tests/data/**/*.rmot")])
+
+
+def _readable(path: Path) -> str | None:
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        return None
+    return text if len(text) < 200_000 else None
+
+
+@pytest.mark.parametrize("path", _corpus(), ids=lambda p: str(p.relative_to(ROOT)))
+def test_every_shipped_file_parses_as_with_larks_loop(path: Path) -> None:
+    """Examples and fixtures (good and bad) give the same AST, spans included, or the same error."""
+    text = _readable(path)
+    if text is None:
+        text = "move linear p\n"  # binary or huge fixtures: parse.py rejects them before the parser
+    _same(text)
+
+
+def test_a_generated_program_parses_as_with_larks_loop() -> None:
+    """The benchmark's kind of program: every statement kind, many lines."""
+    lines = ["program big on r1 {", "  tool gripper", "  speed 400 mm/s"]
+    for i in range(40):
+        lines += [f"  target t{i} = pose(x={i}mm, y=2mm, z=150mm, rx=180deg)", f"  move joint shift(t{i}, z=50mm) zone 10 mm",
+                  "  if in[2] == on { set out[2] = on } else { wait until in[2] == on timeout 5 s }",
+                  f"  move joint joints({i}, -20, 30, 0, 60, 0) deg joint_speed 50 %  # c", "  wait 200 ms; pulse out[1] for 1 s"]
+    _same("\n".join(lines + ["}"]) + "\n")
+
+
+@pytest.mark.parametrize("text", [
+    "move linear p speed 1 m/s\n", "x = 1 m/s\n", "move linear p speed 1 m/s^2 zone 1 m/s\n", "speed 1 m/s^3\n",
+    "move circular via a\n  to b\n", "if in[1] { wait 1 s }\n  else { wait 2 s }\n", "move joint f(1,\n 2)\n",
+    "program p {\n  move linear p\n", "}\n", "move linear \"abc\n", "move @\n", "  # only a comment", "a\r\nb\r\n",
+    "target t = pose(x=1mm) # end", "wait 1 s   ", "move linear p\t\f;;\n\n# c\n;move joint q", "set out[1] = on;",
+], ids=repr)
+def test_edge_cases_parse_as_with_larks_loop(text: str) -> None:
+    """Units that do not fit, continued lines, unclosed braces, bad characters, trailing blanks."""
+    _same(text)
+
+
+_WORDS = ["move", "linear", "joint", "circular", "via", "to", "p", "pose", "(", ")", "x", "=", "1", "mm", "m/s", ",", "{",
+          "}", "[", "]", "\n", ";", "if", "in", "else", "wait", "until", "set", "out", "on", "#c\n", "\"s\"", "speed", "fine",
+          "zone", "joints", "deg", "%", "-", "*", ".", "..", "for", "program", "task", "cell", "@", "\t", "  "]
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.sampled_from(_WORDS), max_size=30))
+def test_random_token_soup_parses_as_with_larks_loop(words: list[str]) -> None:
+    """Any sequence of words, brackets, blanks and bad characters: same AST or the same error."""
+    _same(" ".join(words))
+
+
+def test_positions_made_without_init_equal_ordinary_ones() -> None:
+    """The builder's fast Pos/Span equal constructed ones in every field (defaults included) and stay frozen."""
+    f = SourceFile("a", "xyz")
+    pairs = [(_build._make_pos(2, 3, 9), Pos(2, 3, 9)),
+             (_build._make_span(f, Pos(1, 1, 0), Pos(1, 2, 1)), Span(f, Pos(1, 1, 0), Pos(1, 2, 1)))]
+    for fast, ordinary in pairs:
+        assert type(fast) is type(ordinary) and fast == ordinary and hash(fast) == hash(ordinary)
+        for field in dataclasses.fields(ordinary):
+            assert getattr(fast, field.name) == getattr(ordinary, field.name), field.name
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        _build._make_pos(1, 1, 0).line = 2  # type: ignore[misc]
+
+
+def test_fast_constructor_falls_back_where_init_matters() -> None:
+    """A class that validates in __post_init__ or has a field without default keeps its own constructor."""
+
+    @dataclasses.dataclass(frozen=True, slots=True)
+    class Checked:
+        a: int
+        b: int
+        c: int
+
+        def __post_init__(self) -> None:
+            if self.a < 0:
+                raise ValueError
+
+    @dataclasses.dataclass(frozen=True, slots=True)
+    class Wider:
+        a: int
+        b: int
+        c: int
+        d: int
+
+    assert _build._fast_constructor(Checked, ("a", "b", "c")) is Checked
+    assert _build._fast_constructor(Wider, ("a", "b", "c")) is Wider
+
+
+def test_gc_paused_restores_the_collector_state() -> None:
+    """Enabled before -> enabled after (even on error); disabled before -> still disabled after."""
+    assert gc.isenabled()
+    with pytest.raises(ValueError), gc_paused():
+        assert not gc.isenabled()
+        raise ValueError
+    assert gc.isenabled() and gc.get_freeze_count() == 0
+    gc.disable()
+    try:
+        with gc_paused():
+            pass
+        assert not gc.isenabled()
+    finally:
+        gc.enable()
+
+
+def test_gc_paused_leaves_objects_the_program_froze_frozen() -> None:
+    """The tenuring step (freeze + unfreeze) is skipped when something else froze objects."""
+    gc.freeze()
+    try:
+        frozen = gc.get_freeze_count()
+        with gc_paused():
+            kept = [[i] for i in range(1000)]
+        assert gc.get_freeze_count() == frozen and len(kept) == 1000
+    finally:
+        gc.unfreeze()
+
+
+def test_gc_paused_lets_cycles_made_meanwhile_be_collected() -> None:
+    """A garbage cycle made while paused is still found by the next full collection."""
+    import weakref
+
+    class Node:
+        pass
+
+    with gc_paused():
+        a, b = Node(), Node()
+        a.other, b.other = b, a  # type: ignore[attr-defined]
+        probe = weakref.ref(a)
+        del a, b
+    assert probe() is not None  # a cycle: reference counting alone cannot free it
+    gc.collect()
+    assert probe() is None
+
+
+def test_the_parse_keeps_no_tokens_alive() -> None:
+    """Only the last few tokens stay referenced after a parse (for the error messages)."""
+    parse.parse_text("move linear p\n" * 200, "t.rmot")
+    assert len(parse._POSTLEX.history) <= 3
