@@ -5,6 +5,7 @@ A backend (sqlglot's dialect generator) is a table plus small formatting methods
     class RapidBackend(Backend):
         name = "rapid"; file_ext = ".mod"; COMMENT = "!"
         LOWERINGS = (lowering.pulse_as_set_wait,)          # IR -> IR, run before printing
+        NAME_RULES = RAPID_RULES                           # legal identifiers
         SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"  # moves need a 6-axis arm
         def emit_task(self, ctx: TaskContext) -> dict[str, str]: ...      # one program per task
         def move(self, node: ir.Move, ctx: RapidContext) -> list[str]: ...  # one per EMIT entry
@@ -12,8 +13,9 @@ A backend (sqlglot's dialect generator) is a table plus small formatting methods
 `Backend.EMIT` maps every IR node type to a method name (`move`, `set_digital`, ..., the same
 for every vendor); a vendor writes those methods and extends the table (`{**Backend.EMIT, ...}`)
 only for node types it prints differently. `native` (passes NATIVE_NAMES blocks through),
-`sync` (the comment for a sync the handshake left in place) and the move preamble
-(`move_record`) have shared defaults.
+`sync` (the comment for a sync the handshake left in place), the move preamble
+(`move_record`) and the opening of `emit_task` (`open_task`, `routine_table`, `split_parts`)
+are shared.
 
 Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
 `ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
@@ -85,6 +87,7 @@ class TaskContext:
     task_plan: planned.TaskPlan
     robot: ir.RobotInstance
     program_name: str  # the legal name of this task's output program
+    source_map: bool = field(default=True, kw_only=True)  # print `file:line` comments
 
     @property
     def task(self) -> ir.Task:
@@ -93,6 +96,10 @@ class TaskContext:
     def record(self, instr: ir.Instr) -> planned.InstructionRecord | None:
         """The planner's record of `instr` (looked up by uid), or None when there is none."""
         return self.task_plan.record(instr.uid)
+
+    def source_ref(self, node: ir.Instr) -> str | None:
+        """'file.rmot:12' for `node` when source maps are on (see `source_ref`), else None."""
+        return source_ref(getattr(node, "span", None)) if self.source_map else None
 
     def with_state(self, cls: type[C], **state: Any) -> C:
         """This context as the vendor subclass `cls`, carrying that vendor's per-task `state`."""
@@ -237,9 +244,8 @@ class Backend:
       EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str];
                 the default names one method per node type, the same for every vendor
       NATIVE_NAMES  vendor names of the native blocks passed through (default: {name})
-      SIX_AXIS_DATA what a vendor's move needs a 6-axis arm for (None: any arm), and the
-      NO_RECORD_NOTE / NOT_SIX_AXIS_NOTE comments printed instead of such a move (see
-                `move_record`)
+      SIX_AXIS_DATA / NO_RECORD_NOTE / NOT_SIX_AXIS_NOTE  see `move_record`
+      BRANCH_DATA  what a Cartesian target needs its IK branch for (see `branch_or_default`)
     """
 
     name: ClassVar[str] = ""
@@ -261,11 +267,11 @@ class Backend:
     SIX_AXIS_DATA: ClassVar[str | None] = None
     NO_RECORD_NOTE: ClassVar[str | None] = "move (uid {uid}) not emitted: no planned joints"
     NOT_SIX_AXIS_NOTE: ClassVar[str] = "move not emitted: robot is not a 6-axis arm"
+    BRANCH_DATA: ClassVar[str] = "the configuration data"
     INDENT: ClassVar[str] = "  "
 
     def __init__(self, *, allow_findings_header: bool = False) -> None:
         self.findings_header = allow_findings_header
-        self.source_map = True
         self._emission = _Emission()
 
     # ------------------------------------------------------------------ entry point
@@ -273,11 +279,10 @@ class Backend:
     def emit(self, plan: planned.Plan, *, source_map: bool = True) -> EmitResult:
         """Format every task of `plan`; one output program (one or more files) per task."""
         self._emission = _Emission()
-        self.source_map = source_map
         files: dict[str, str] = {}
         for task_plan in plan.tasks:
             ctx = TaskContext(plan, task_plan, plan.program.cell.robot(task_plan.robot),
-                              self.program_name(plan, task_plan))
+                              self.program_name(plan, task_plan), source_map=source_map)
             for fname, text in self.emit_task(ctx).items():
                 files[fname] = text
         return EmitResult(files, _unique(self._emission.diagnostics))
@@ -363,7 +368,7 @@ class Backend:
                              getattr(node, "span", None))
             return [self.comment(f"UNSUPPORTED {type(node).__name__}")]
         lines: list[str] = getattr(self, method)(node, ctx)
-        notes = [c for c in (self.source_comment(node), self.handshake_comment(node)) if c]
+        notes = [c for c in (self.source_comment(node, ctx), self.handshake_comment(node)) if c]
         return notes + lines
 
     def body(self, nodes: Iterable[ir.Instr], ctx: TaskContext) -> list[str]:
@@ -372,25 +377,15 @@ class Backend:
             out.extend(self.instr(node, ctx))
         return out
 
-    def record_or_error(self, node: ir.Move, ctx: TaskContext) -> planned.InstructionRecord | None:
-        """The record of a move with its joint solution, or None after reporting E401."""
+    def move_record(self, node: ir.Move, ctx: TaskContext) -> planned.InstructionRecord | list[str]:
+        """The preamble of every vendor's `move`: the move's record (with its joint solution),
+        or, after reporting the error, the lines printed instead of the move: NO_RECORD_NOTE
+        (E401; None prints nothing) or, when SIX_AXIS_DATA is set, NOT_SIX_AXIS_NOTE (E403)."""
         rec = ctx.record(node)
         if rec is None or rec.q_target is None:
             self.unsupported(codes.MISSING_RECORD,
                              f"move (uid {node.uid}) must have a planned joint solution (got none)",
                              node.span)
-            return None
-        return rec
-
-    def move_record(self, node: ir.Move, ctx: TaskContext) -> planned.InstructionRecord | list[str]:
-        """The preamble of every vendor's `move`: the move's record (with its joint solution),
-        or, after reporting the error, the lines printed instead of the move.
-
-        No record: E401 and NO_RECORD_NOTE (formatted with the uid; None prints nothing).
-        SIX_AXIS_DATA set and the robot has another axis count: E403 and NOT_SIX_AXIS_NOTE.
-        """
-        rec = self.record_or_error(node, ctx)
-        if rec is None:
             note = self.NO_RECORD_NOTE
             return [] if note is None else [self.comment(note.format(uid=node.uid))]
         if self.SIX_AXIS_DATA is not None and ctx.robot.dof != 6:
@@ -398,6 +393,15 @@ class Backend:
                              f"{self.SIX_AXIS_DATA} (got {ctx.robot.dof})", node.span)
             return [self.comment(self.NOT_SIX_AXIS_NOTE)]
         return rec
+
+    def branch_or_default(self, branch: ir.Config | None, node: ir.Move) -> ir.Config:
+        """`branch` when it names shoulder, elbow and wrist; else E402 and front/up/no-flip
+        (the text stays well-formed; the error keeps it from being written)."""
+        if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+            self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
+                             f"{self.BRANCH_DATA} (got none)", node.span)
+            return ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        return branch
 
     # ------------------------------------------------------------------ shared instructions
 
@@ -416,11 +420,9 @@ class Backend:
     def comment(self, text: str) -> str:
         return f"{self.COMMENT} {text}" if text else self.COMMENT
 
-    def source_comment(self, node: ir.Instr) -> str | None:
+    def source_comment(self, node: ir.Instr, ctx: TaskContext) -> str | None:
         """`! file.rmot:12` above an instruction's text, when source maps are on."""
-        if not self.source_map:
-            return None
-        ref = source_ref(getattr(node, "span", None))
+        ref = ctx.source_ref(node)
         return self.comment(ref) if ref else None
 
     def handshake_comment(self, node: ir.Instr) -> str | None:

@@ -136,6 +136,7 @@ class FanucBackend(Backend):
     MAX_TCP_MM_S: ClassVar[int] = 2000  # the L/C speed limit of the R-30iB motion software
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     SIX_AXIS_DATA = "TP positions"
+    BRANCH_DATA = "the CONFIG string"
     NO_RECORD_NOTE = "move {uid} not emitted"
     NOT_SIX_AXIS_NOTE = "move not emitted: not a 6-axis arm"
 
@@ -186,10 +187,8 @@ class FanucBackend(Backend):
     def comment(self, text: str) -> str:
         return f"!{text}"
 
-    def source_comment(self, node: ir.Instr) -> str | None:
-        from rmot.backends.base import source_ref
-
-        ref = source_ref(node.span) if self.source_map else None
+    def source_comment(self, node: ir.Instr, ctx: TaskContext) -> str | None:
+        ref = ctx.source_ref(node)
         return self.comment(ref[-COMMENT_MAX:]) if ref else None
 
     def _frame_setup(self, ctx: FanucContext) -> list[str]:
@@ -279,10 +278,7 @@ class FanucBackend(Backend):
     def _cart_position(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
                        uf: int, ut: int, node: ir.Move, ctx: FanucContext) -> int:
         assert q is not None
-        if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
-            self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
-                             "the CONFIG string (got none)", node.span)
-            branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        branch = self.branch_or_default(branch, node)
         x, y, z = position_mm(target.in_frame)
         w, p, r = reversed(euler_zyx_deg(target.in_frame))
         body = [f"\tUF : {uf}, UT : {ut},\t\tCONFIG : '{config_string(branch, q)}',",

@@ -76,7 +76,7 @@ MAX_POSITIONS = 999
 MAX_INSTRUCTIONS = 300
 COMMENT_WIDTH = 32
 INFORM_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper=True, prefix="J",
-                       reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC"}))
+                         reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC"}))
 DATE = "2000/01/01 00:00"
 
 

@@ -127,6 +127,7 @@ class KrlBackend(Backend):
     TIMER_INDEX: ClassVar[int] = 16
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     SIX_AXIS_DATA = "E6POS/E6AXIS data"
+    BRANCH_DATA = "Status/Turn"
 
     # ------------------------------------------------------------------ program
 
@@ -154,7 +155,7 @@ class KrlBackend(Backend):
         """The .src and .dat of one module: `body`, or calls to part modules."""
         ctx = replace(task, module=_Module(DataPool(task.names)))
         main = list(calls) if calls is not None else self.body(body, ctx)
-        head = [self.comment(line) for line in self.header(ctx)]
+        head = self.header(ctx)
         src = ["&ACCESS RVP", f"DEF {name}( )"] + self.indent(head + main, "  ") + ["END"]
         for rname, rlines in ctx.module.routines.items():
             src += ["", f"DEF {rname}( )"] + self.indent(rlines, "  ") + ["END"]
@@ -165,11 +166,6 @@ class KrlBackend(Backend):
                 for dname, value in ctx.module.data.items]
         dat.append("ENDDAT")
         return {f"{name}.src": "\n".join(src) + "\n", f"{name}.dat": "\n".join(dat) + "\n"}
-
-    def header(self, ctx: KrlContext) -> list[str]:  # type: ignore[override]
-        from rmot.backends.base import header_lines
-
-        return header_lines(ctx.plan, self.name, self.findings_header)
 
     # ------------------------------------------------------------------ motion
 
@@ -231,10 +227,7 @@ class KrlBackend(Backend):
     def _pos(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
              node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
         assert q is not None
-        if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
-            self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
-                             "Status/Turn (got none)", node.span)
-            branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        branch = self.branch_or_default(branch, node)
         st = f",S {status_of(branch)},T {turn_bits(q)}"
         return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}")
 

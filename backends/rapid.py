@@ -103,6 +103,7 @@ class RapidBackend(Backend):
                                        "time": "s", "mass": "kg"}
     NAME_RULES = RAPID_RULES
     SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"
+    BRANCH_DATA = "confdata"
 
     # ------------------------------------------------------------------ program
 
@@ -210,10 +211,7 @@ class RapidBackend(Backend):
 
     def _robtarget(self, target: ir.CartesianTarget, q: object, branch: ir.Config | None,
                    node: ir.Move, ctx: RapidContext, hint: str | None = None) -> str:
-        if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
-            self.unsupported(codes.NO_BRANCH, "Cartesian target must have a planned IK branch for "
-                             "confdata (got none)", node.span)
-            branch = ir.Config(ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        branch = self.branch_or_default(branch, node)
         cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
         conf = ",".join(str(c) for c in cf)
         value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{EXTAX}]"
@@ -284,14 +282,9 @@ class RapidBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
         name = ctx.routine_of[node.uid]
-        ref = f" ({self.source_comment_text(node)})" if self.source_comment_text(node) else ""
+        ref = f" ({ctx.source_ref(node)})" if ctx.source_ref(node) else ""
         args = f"({', '.join(node.args)})" if node.args else ""
         if name not in ctx.routines:
             ctx.routines[name] = []  # reserve the slot first: routines print in call order
             ctx.routines[name] = [self.comment(f"{node.proc}{args}{ref}")] + self.body(node.body, ctx)
         return [f"{name};"]
-
-    def source_comment_text(self, node: ir.Instr) -> str | None:
-        from rmot.backends.base import source_ref
-
-        return source_ref(node.span) if self.source_map else None

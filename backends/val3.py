@@ -56,15 +56,15 @@ import math
 from dataclasses import dataclass, field
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, header_lines, position_mm
+from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
 
 VAL3_RULES = NameRules(max_len=15, allowed="A-Za-z0-9_", first="A-Za-z", prefix="p",
-                       reserved=frozenset({"BEGIN", "END", "IF", "ELSE", "ENDIF", "WHILE", "CALL",
-                                           "RETURN", "START", "STOP", "WORLD", "FLANGE"}))
+                      reserved=frozenset({"BEGIN", "END", "IF", "ELSE", "ENDIF", "WHILE", "CALL",
+                                          "RETURN", "START", "STOP", "WORLD", "FLANGE"}))
 XSI = 'xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"'
 NO_LIMIT = "9999"
 
@@ -140,7 +140,7 @@ class Val3Backend(Backend):
         ctx.programs["stop"] = []
         self.extend(names.diagnostics)
         files = {f"{app}/{app}.pjx": self.project(app, ctx), f"{app}/{app}.dtx": self.database(ctx)}
-        head = [self.comment(line) for line in header_lines(ctx.plan, self.name, self.findings_header)]
+        head = self.header(ctx)
         for prog, code in sorted(ctx.programs.items()):
             files[f"{app}/{prog}.pgx"] = self.program(prog, (head if prog == "start" else []) + code)
         return dict(sorted(files.items()))

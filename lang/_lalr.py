@@ -29,6 +29,7 @@ from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
 
 __all__ = ["LalrDriver", "PostLexState"]
 
+
 class PostLexState:
     """What the error messages need after a parse: open braces, a stray '}', the last tokens."""
 
@@ -66,12 +67,17 @@ class LalrDriver:
     @staticmethod
     def _reduction(rule: Any, callback: Any) -> tuple[int, str, Any]:
         size = len(rule.expansion)
-        return size, str(rule.origin.name), None if _is_unit(rule) else _lean(callback)
+        return size, str(rule.origin.name), None if _is_unit(rule) else _lean(rule, callback)
 
     def parse(self, text: str, post: PostLexState) -> Any:
-        """The start rule's value (the Module); lark's exceptions on bad input."""
+        """The start rule's value (the Module); lark's exceptions on bad input.
+
+        One long function on purpose: it runs once per token (~18 per line), and every
+        call or generator step it does not make is time saved. Sections: match a token,
+        type it, build the lark Token, track brackets, then feed it (reduce*, shift).
+        """
         actions, accepts, kinds = self.actions, self.accepts, self.kinds
-        keywords, punct, word_cache = kinds.keywords, kinds.punct, [dict() for _ in actions]
+        punct, word_cache = kinds.punct, [dict() for _ in actions]  # per state: word -> type
         match, continues, blanks = TOKEN.match, CONTINUES.match, BLANKS.match
         new_str = str.__new__
         unit_chains = self.unit_chains
@@ -242,20 +248,23 @@ class _Inlined:
         self.children = children
 
 
-def _lean(callback: Any) -> Any:
+def _lean(rule: Any, callback: Any) -> Any:
     """lark's callback for a rule, with its generic child filter replaced by a direct one.
 
     lark's ChildFilter walks a (index, inline?, placeholders) list on every reduction; most
     rules only pick fixed children or add trailing `None` placeholders, which one list
-    expression does. `_rule` helpers build a `_Inlined` instead of a parse-tree node.
-    Anything else keeps lark's callback.
+    expression does. `_rule` helpers (always inlined into their parent) build a `_Inlined`
+    instead of a parse-tree node. Anything else keeps lark's callback.
     """
-    if _is_tree_builder(callback):
+    inlined = str(rule.origin.name).startswith("_")
+    if inlined and _is_tree_builder(callback):
         return _Inlined
     kind = type(callback)
     if kind is ChildFilterLALR_NoPlaceholders:
         build = callback.node_builder
         if _is_tree_builder(build):
+            if not inlined:
+                return callback
             build = _Inlined
         picks = tuple(i for i, _ in callback.to_include)
         inline = [i for i, expand in callback.to_include if expand]
@@ -278,9 +287,10 @@ def _lean(callback: Any) -> Any:
         for i, _, nones in callback.to_include:
             template += [None] * nones + [i]
         template += [None] * callback.append_none
-        if template[: len(template) - callback.append_none] == list(range(len(template) - callback.append_none)):
+        keep = len(template) - callback.append_none
+        if template[:keep] == list(range(keep)):  # the first `keep` children, then placeholders
             tail = [None] * callback.append_none
-            return lambda c: build(c[: len(template) - len(tail)] + tail)
+            return lambda c: build(c[:keep] + tail)
         return lambda c: build([None if i is None else c[i] for i in template])
     return callback
 

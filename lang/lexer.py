@@ -9,6 +9,10 @@ parser state). It keeps the same contract:
   * `_NL` is a run of newlines, `;`, blank lines and comments; a newline before `to` or
     `else` is whitespace, so a circular move and an if/else may span lines.
 Errors: a character that starts no token raises lark's UnexpectedCharacters.
+
+Two forms of the same lexer: `RmotLexer`, a lark Lexer (lark's own loop runs it; the tests
+keep it as the reference), and `TOKEN` + `TokenKinds`, which lang/_lalr.py fuses into its
+parse loop (one match per token, blanks and comments included).
 """
 
 from __future__ import annotations
@@ -21,10 +25,10 @@ from lark import Token
 from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
 
-__all__ = ["BLANKS", "CONTINUES", "MASTER", "TOKEN", "RmotLexer", "TokenKinds"]
+__all__ = ["BLANKS", "CONTINUES", "TOKEN", "RmotLexer", "TokenKinds"]
 
 _SIMPLE_UNITS = frozenset({"mm", "cm", "min", "ms", "m", "in", "deg", "rad", "s", "kg", "g"})
-MASTER = _MASTER = re.compile(r"""
+_MASTER = re.compile(r"""
     (?P<ws>[ \t\f\r]+)
   | (?P<comment>\#[^\n]*)
   | (?P<nl>(?:;|\r?\n)(?:\s|;|\#[^\n]*)*)
@@ -47,7 +51,7 @@ TOKEN = re.compile(r"""
     )
 """, re.X)
 BLANKS = re.compile(r"[ \t\f\r]*+(?:\#[^\n]*+)?+")
-CONTINUES = _CONTINUES = re.compile(r"\s*(?:to|else)(?![A-Za-z0-9_])")
+CONTINUES = re.compile(r"\s*(?:to|else)(?![A-Za-z0-9_])")
 _WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout"})))
 
 
@@ -105,7 +109,7 @@ class RmotLexer(Lexer):
             if kind == "nl":
                 newlines = value.count("\n")
                 end_line, end_col = line + newlines, (end - (value.rfind("\n") + pos)) if newlines else col + len(value)
-                skip = _CONTINUES.match(text, end) is not None
+                skip = CONTINUES.match(text, end) is not None
                 tok = None if skip else Token("_NL", value, pos, line, col, end_line, end_col, end)
                 if newlines:
                     line, line_start = end_line, pos + value.rfind("\n") + 1

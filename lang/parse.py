@@ -1,12 +1,15 @@
 """Text -> AST: the lark LALR parser (built once) and the one place lark errors become words.
 
 `parse_source(file)` never raises for bad input: it returns the Module (or None) and the
-diagnostics. Tokens come from lang/lexer.py (typed by what the parser accepts next), pass
-the post-lexer below (newlines inside brackets dropped, braces tracked), and the Transformer in `lang/_build.py` runs embedded in lark's LALR parser, so
-each rule becomes one AST node with its span as it is reduced and no parse tree is built.
+diagnostics. lark builds the LALR tables and the rule callbacks from rmot.lark, with the
+Transformer in `lang/_build.py` embedded, so each rule becomes one AST node with its span as
+it is reduced and no parse tree is built. lang/_lalr.py runs those tables and callbacks over
+the tokens of lang/lexer.py with the post-lexer fused in (newlines inside brackets dropped,
+braces tracked): lark's own loop (`Lark.parse` with RmotLexer and _PostLexer below, which
+tests/lang/test_lang_driver.py keeps as the reference) does the same in twice the time.
 
-Parsing is serialised by a lock: the embedded transformer and the post-lexer keep the state
-of the current parse (the file, the brace stack, the last tokens).
+Parsing is serialised by a lock: the embedded transformer keeps the state of the current
+parse (the file), and the error messages read the post-lexer state of the last parse.
 """
 
 from __future__ import annotations
@@ -46,7 +49,11 @@ class ParseResult:
 
 
 class _PostLexer:
-    """Drops newlines inside ( ) and [ ]; tracks the open braces and the last tokens."""
+    """Drops newlines inside ( ) and [ ]; tracks the open braces and the last tokens.
+
+    lark's post-lexer interface, for lark's own loop (the reference in the tests);
+    lang/_lalr.py does the same inline.
+    """
 
     always_accept = ("_NL",)
 

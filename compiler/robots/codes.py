@@ -9,7 +9,7 @@ __all__ = [
     "SINGULAR", "NO_SOLUTION_ON_BRANCH", "BAD_NUMBER",
 ]
 
-UNKNOWN_ROBOT = Code("E201", "unknown-robot", "a robot name is not in the library and is not a URDF file")
+UNKNOWN_ROBOT = Code("E201", "robot-not-in-library", "a robot name is not in the library and is not a URDF file")
 BAD_URDF = Code("E202", "bad-urdf", "a URDF file cannot be loaded as a serial arm")
 WRONG_JOINT_COUNT = Code("E203", "wrong-joint-count", "a joint vector has the wrong number of values")
 UNREACHABLE = Code("E204", "ik-unreachable", "a pose lies outside the robot's workspace")

@@ -1,4 +1,5 @@
-"""The shared backend helpers: number formatting, orientation conventions, config helpers."""
+"""The shared backend helpers: number formatting, orientation conventions, config helpers, the
+Backend defaults every vendor shares (EMIT table, native blocks, TaskContext.with_state)."""
 
 from __future__ import annotations
 
@@ -115,3 +116,47 @@ class TestRegistry:
         err = Diagnostic(codes.UNSUPPORTED, Severity.ERROR, "e", None)
         assert not EmitResult({}, (warn,)).has_errors
         assert EmitResult({}, (warn, err)).has_errors
+
+
+VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+
+
+class TestSharedDefaults:
+    @pytest.mark.parametrize("target", VENDORS)
+    def test_every_ir_instruction_has_a_method(self, target: str) -> None:
+        """Every vendor prints every IR instruction type through a method named in its EMIT table."""
+        cls = BACKENDS[target]
+        assert set(cls.EMIT) == {ir.Move, ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime,
+                                 ir.WaitInput, ir.If, ir.Sync, ir.Native, ir.ProcCall}
+        assert all(callable(getattr(cls, method, None)) for method in cls.EMIT.values())
+
+    @pytest.mark.parametrize("target", VENDORS)
+    def test_own_native_block_passes_through(self, target: str) -> None:
+        """A native block for the vendor's own name is printed as written (no warning)."""
+        from backend_fixtures import Row, emit_row
+
+        text = "first_line\nsecond_line"
+        result = emit_row(BACKENDS[target], Row("native", ir.Native(uid=1, vendor=target, text=text), ()))
+        printed = "\n".join(result.files.values())
+        assert "first_line" in printed and "second_line" in printed
+        assert not [d for d in result.diagnostics if d.code.id == "W407"]
+
+    def test_with_state_keeps_the_task_and_adds_the_vendor_state(self) -> None:
+        """TaskContext.with_state copies every TaskContext field and sets the subclass's own."""
+        from dataclasses import dataclass, fields
+
+        from backend_fixtures import sample_program
+
+        from rmot.backends.base import TaskContext
+
+        @dataclass(frozen=True)
+        class Extra(TaskContext):
+            notes: list[str]
+
+        plan = sample_program()
+        task = TaskContext(plan, plan.tasks[0], plan.program.cell.robots[0], "demo", source_map=False)
+        extra = task.with_state(Extra, notes=["x"])
+        assert all(getattr(extra, f.name) == getattr(task, f.name) for f in fields(TaskContext))
+        first_move = plan.tasks[0].task.body[0]
+        assert extra.notes == ["x"]
+        assert extra.record(first_move) is task.record(first_move) and extra.record(first_move).uid == first_move.uid

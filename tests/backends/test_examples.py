@@ -11,46 +11,22 @@ of the front end, planner or backend, regenerate with
 
 from __future__ import annotations
 
-import os
 import warnings
-from pathlib import Path
 
 import pytest
-from backend_fixtures import handshake_missing, sample_program
+from backend_fixtures import check_golden, example_plans, handshake_missing, sample_program
 
 from rmot.backends import BACKENDS
 from rmot.compiler import planned
 
-ROOT = Path(__file__).resolve().parents[2]
-GOLDEN = Path(__file__).parent / "golden"
 VENDORS = ("rapid", "krl", "fanuc")
 EXAMPLES = ("inspect", "pick_place", "handover")
-UPDATE = os.environ.get("RMOT_UPDATE_GOLDEN") == "1"
 HANDSHAKE_VENDORS = {"krl", "fanuc"}  # sync is an I/O handshake (backends/handshake.py)
 
 
 @pytest.fixture(scope="module")
 def plans() -> dict[str, planned.Plan]:
-    from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
-
-    out = {}
-    for name in EXAMPLES:
-        front = load_program(str(ROOT / "examples" / f"{name}.rmot"))
-        assert front.program is not None, [d.message for d in front.diagnostics]
-        out[name] = plan_program(front.program)
-    out["sample"] = sample_program()
-    return out
-
-
-def _check_golden(vendor: str, example: str, files: dict[str, str]) -> None:
-    folder = GOLDEN / vendor
-    for name, text in files.items():
-        path = folder / f"{example}__{name}"
-        if UPDATE:
-            folder.mkdir(parents=True, exist_ok=True)
-            path.write_text(text, encoding="utf-8")
-        assert path.read_text(encoding="utf-8") == text, f"{path.name} differs (see module docstring)"
+    return {**example_plans(EXAMPLES), "sample": sample_program()}
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
@@ -59,7 +35,7 @@ def test_matches_golden_files(plans: dict[str, planned.Plan], example: str, vend
     """The inspect example and the all-instructions sample equal the reviewed golden files."""
     result = BACKENDS[vendor]().emit(plans[example])
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
-    _check_golden(vendor, example, result.files)
+    check_golden(vendor, example, result.files)
 
 
 @pytest.mark.parametrize("vendor", VENDORS)

@@ -8,33 +8,19 @@ change of the front end, planner or backend, regenerate them with
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import pytest
-from backend_fixtures import handshake_missing
+from backend_fixtures import check_golden, example_plans, handshake_missing
 
 from rmot.backends import BACKENDS
 from rmot.compiler import planned
 
-ROOT = Path(__file__).resolve().parents[2]
-GOLDEN = Path(__file__).parent / "golden"
 VENDORS = ("urscript", "inform", "val3", "csv", "json")
 EXAMPLES = ("inspect", "pick_place", "handover")
-UPDATE = os.environ.get("RMOT_UPDATE_GOLDEN") == "1"
 
 
 @pytest.fixture(scope="module")
 def plans() -> dict[str, planned.Plan]:
-    from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
-
-    out = {}
-    for name in EXAMPLES:
-        front = load_program(str(ROOT / "examples" / f"{name}.rmot"))
-        assert front.program is not None, [d.message for d in front.diagnostics]
-        out[name] = plan_program(front.program)
-    return out
+    return example_plans(EXAMPLES)
 
 
 def _allowed_errors(plan: planned.Plan, vendor: str) -> set[str]:
@@ -71,9 +57,4 @@ def test_inspect_matches_golden_files(plans: dict[str, planned.Plan], vendor: st
     """The inspect example's programs equal the reviewed golden files."""
     result = BACKENDS[vendor]().emit(plans["inspect"])
     assert not result.has_errors
-    folder = GOLDEN / vendor
-    for name, text in result.files.items():
-        path = folder / f"inspect__{name.replace('/', '__')}"
-        if UPDATE:
-            path.write_text(text, encoding="utf-8")
-        assert path.read_text(encoding="utf-8") == text, f"{path.name} differs (see module docstring)"
+    check_golden(vendor, "inspect", result.files)

@@ -54,23 +54,18 @@ def _mn(text: str) -> list[str]:
     return [ln for ln in out if not ln.startswith("!'") and not ln.startswith("!do") and not ln.startswith("!hand")]
 
 
-def _emit(row: Row) -> tuple[dict[str, str], tuple]:
-    result = emit_row(FanucBackend, row)
-    return result.files, result.diagnostics
-
-
 @pytest.mark.parametrize("row", ROWS, ids=lambda r: r.name)
 def test_instruction_table(row: Row) -> None:
     """Each IR instruction prints as the numbered TP lines of the table."""
-    files, diagnostics = _emit(row)
-    assert tuple(ln for ln in _mn(files["DEMO.ls"]) if not ln.startswith("!native")) == row.lines
-    assert tuple(d.code.id for d in diagnostics) == row.codes
+    result = emit_row(FanucBackend, row)
+    assert tuple(ln for ln in _mn(result.files["DEMO.ls"]) if not ln.startswith("!native")) == row.lines
+    assert tuple(d.code.id for d in result.diagnostics) == row.codes
 
 
 class TestPositions:
     def test_cartesian_position_record(self) -> None:
         """A Cartesian P[] has UF/UT, the CONFIG string and X Y Z W P R."""
-        files, _ = _emit(Row("x", move(1, L, cart(DOWN, name="p1")), ()))
+        files = emit_row(FanucBackend, Row("x", move(1, L, cart(DOWN, name="p1")), ())).files
         pos = files["DEMO.ls"].split("/POS\n")[1]
         assert pos.startswith('P[1:"p1"]{\n   GP1:\n\tUF : 0, UT : 1,\t\tCONFIG : \'F U T, 0, 0, 1\',\n')
         assert "\tX =   400.000  mm,\tY =  -100.000  mm,\tZ =   300.000  mm,\n" in pos
@@ -78,7 +73,7 @@ class TestPositions:
 
     def test_joint_position_record(self) -> None:
         """A joint target uses the joint representation."""
-        files, _ = _emit(Row("x", move(1, J, ir.JointTarget(tuple(deg(1, 2, 3, 4, -90, 6)))), ()))
+        files = emit_row(FanucBackend, Row("x", move(1, J, ir.JointTarget(tuple(deg(1, 2, 3, 4, -90, 6)))), ())).files
         assert "\tJ4=     4.000 deg,\tJ5=   -90.000 deg,\tJ6=     6.000 deg\n" in files["DEMO.ls"]
 
     @pytest.mark.parametrize(("deg_value", "turn"), [(0, 0), (180, 0), (181, 1), (540, 1), (-179, 0), (-180, -1),
@@ -144,6 +139,6 @@ class TestResolution:
     ])
     def test_rounded_values_warn(self, instr: ir.Instr, line: str, code: str | None) -> None:
         """Values finer than TP's resolution (or beyond its limit) are rounded with a warning."""
-        files, diagnostics = _emit(Row("x", instr, ()))
-        assert line in _mn(files["DEMO.ls"])
-        assert [d.code.id for d in diagnostics] == ([code] if code else [])
+        result = emit_row(FanucBackend, Row("x", instr, ()))
+        assert line in _mn(result.files["DEMO.ls"])
+        assert [d.code.id for d in result.diagnostics] == ([code] if code else [])

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from backend_fixtures import FRONT_UP_NOFLIP, motion, span_at
+from backend_fixtures import FRONT_UP_NOFLIP, diagnostic_keys, motion, span_at
+from backend_fixtures import blocks as shared_blocks
 from plans_b import HOME_Q, PICK_POSE, cart, demo_plan, fk_plan, make_plan, move, record, sample_joints
 
 from rmot.backends.inform import InformBackend
@@ -20,23 +21,12 @@ J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
 
 def emit(plan: object) -> tuple[dict[str, str], list[str]]:
     result = InformBackend().emit(plan)  # type: ignore[arg-type]
-    diags = [f"{d.severity.value}:{d.code.id}:{d.span.start.line if d.span else 0}" for d in result.diagnostics]
-    return result.files, diags
+    return result.files, diagnostic_keys(result.diagnostics)
 
 
 def blocks(text: str) -> dict[int, list[str]]:
-    """Source line -> the instruction lines printed under its `'demo.rmot:N` comment."""
-    out: dict[int, list[str]] = {}
-    current: list[str] | None = None
-    for line in text.splitlines():
-        m = re.fullmatch(r"'demo\.rmot:(\d+)", line)
-        if m:
-            current = out.setdefault(int(m.group(1)), [])
-        elif line == "END":
-            current = None
-        elif current is not None and not line.startswith("'"):
-            current.append(line)
-    return out
+    """Source line -> the instruction lines printed under its `'demo.rmot:N` comment (to END)."""
+    return shared_blocks(text, "'", stop="END", strip=False)
 
 
 def positions(text: str) -> dict[str, tuple[int, str, list[float]]]:

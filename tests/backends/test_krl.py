@@ -54,20 +54,16 @@ ROWS = [
 ]
 
 
-def _emit(row: Row) -> tuple[dict[str, str], tuple]:
-    result = emit_row(KrlBackend, row)
-    return result.files, result.diagnostics
-
-
 @pytest.mark.parametrize("row", ROWS, ids=lambda r: r.name)
 def test_instruction_table(row: Row) -> None:
     """Each IR instruction prints as the KRL lines of the table, with its data in the .dat."""
-    files, diagnostics = _emit(row)
+    result = emit_row(KrlBackend, row)
+    files = result.files
     assert tuple(routine_lines(files["demo.src"], "DEF demo( )", "END")) == row.lines
     dat = [ln.strip() for ln in files["demo.dat"].splitlines()]
     for decl in row.decls:
         assert decl in dat
-    assert tuple(d.code.id for d in diagnostics) == row.codes
+    assert tuple(d.code.id for d in result.diagnostics) == row.codes
 
 
 class TestModule:

@@ -51,6 +51,12 @@ def _close(a: np.ndarray, b: np.ndarray) -> None:
     assert math.degrees(Rotation.from_matrix(a[:3, :3].T @ b[:3, :3]).magnitude()) < 1e-3
 
 
+def _flange(target: np.ndarray) -> np.ndarray:
+    """The flange in the robot base for a TCP `target` written in the table frame (z 15 mm up,
+    500 mm out) with the 150 mm tool of _plan."""
+    return _h(np.eye(3), [500, 0, 15]) @ target @ np.linalg.inv(_h(np.eye(3), [0, 0, 150]))
+
+
 def _q(robot, f: list[float]) -> np.ndarray:  # type: ignore[no-untyped-def]
     lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]
     q = lo + np.array(f) * (hi - lo)
@@ -67,10 +73,7 @@ def test_rapid_any_branch(f: list[float]) -> None:
     nums = lambda s: [float(v) for v in s.split(",")]  # noqa: E731
     x, quat, conf = re.search(r"robtarget t:=\[\[(.*?)\],\[(.*?)\],\[(.*?)\]", text).groups()
     w, qx, qy, qz = nums(quat)
-    target = _h(Rotation.from_quat([qx, qy, qz, w]).as_matrix(), nums(x))
-    tool = _h(np.eye(3), [0, 0, 150])
-    wobj = _h(np.eye(3), [500, 0, 15])
-    _close(wobj @ target @ np.linalg.inv(tool), robot.fk(q))
+    _close(_flange(_h(Rotation.from_quat([qx, qy, qz, w]).as_matrix(), nums(x))), robot.fk(q))
     cf1, cf4, cf6, cfx = (int(v) for v in conf.split(","))
     for c, i in ((cf1, 0), (cf4, 3), (cf6, 5)):
         assert c * 90 - 1e-6 <= math.degrees(q[i]) < (c + 1) * 90 + 1e-6
@@ -87,7 +90,7 @@ def test_krl_any_branch(f: list[float]) -> None:
     body = re.search(r"DECL E6POS t=\{(.*)\}", dat).group(1)
     v = {k: float(x) for k, x in re.findall(r"([A-Z]\d?) (-?[\d.]+)", body)}
     target = _h(Rotation.from_euler("ZYX", [v["A"], v["B"], v["C"]], degrees=True).as_matrix(), [v["X"], v["Y"], v["Z"]])
-    _close(_h(np.eye(3), [500, 0, 15]) @ target @ np.linalg.inv(_h(np.eye(3), [0, 0, 150])), robot.fk(q))
+    _close(_flange(target), robot.fk(q))
     s, t = int(v["S"]), int(v["T"])
     assert ir.Config(BACK if s & 1 else FRONT, UP if s & 2 else DOWN, FLIP if s & 4 else NOFLIP) == robot.branch(q)
     assert [bool(t >> i & 1) for i in range(6)] == [x < 0 for x in q]
@@ -103,7 +106,7 @@ def test_fanuc_any_branch(f: list[float]) -> None:
     config = re.search(r"CONFIG : '(.*?)'", text).group(1)
     vals = [float(x) for x in re.findall(r"[XYZWPR] =\s*(-?[\d.]+)", text)]
     target = _h(Rotation.from_euler("xyz", vals[3:], degrees=True).as_matrix(), vals[:3])
-    _close(_h(np.eye(3), [500, 0, 15]) @ target @ np.linalg.inv(_h(np.eye(3), [0, 0, 150])), robot.fk(q))
+    _close(_flange(target), robot.fk(q))
     flags, *turns = [c.strip() for c in config.split(",")]
     fl, up, top = flags.split()
     decoded = ir.Config(FRONT if top == "T" else BACK, UP if up == "U" else DOWN, FLIP if fl == "N" else NOFLIP)

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from backend_fixtures import FRONT_UP_NOFLIP, motion, span_at
+from backend_fixtures import FRONT_UP_NOFLIP, diagnostic_keys, motion, span_at
+from backend_fixtures import blocks as shared_blocks
 from plans_b import (GRIPPER_TCP, HOME_Q, PICK_POSE, cart, demo_plan, fk_plan, make_plan, move,
                      record, sample_joints)
 from scipy.spatial.transform import Rotation
@@ -22,23 +23,14 @@ J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
 
 
 def blocks(text: str) -> dict[int, list[str]]:
-    """Source line -> the stripped lines printed under its `# demo.rmot:N` comment."""
-    out: dict[int, list[str]] = {}
-    current: list[str] | None = None
-    for raw in text.splitlines():
-        line = raw.strip()
-        m = re.fullmatch(r"# demo\.rmot:(\d+)", line)
-        if m:
-            current = out.setdefault(int(m.group(1)), [])
-        elif current is not None and line and not line.startswith(("#", "set_tcp")):
-            current.append(line)
-    return out
+    """Source line -> the stripped lines printed under its `# demo.rmot:N` comment (no set_tcp)."""
+    return shared_blocks(text, "# ", skip=("set_tcp",))
 
 
 def emit(plan: object) -> tuple[str, list[str]]:
     result = UrScriptBackend().emit(plan)  # type: ignore[arg-type]
     (text,) = result.files.values()
-    return text, [f"{d.severity.value}:{d.code.id}:{d.span.start.line if d.span else 0}" for d in result.diagnostics]
+    return text, diagnostic_keys(result.diagnostics)
 
 
 # rows: source line of demo_body() -> the URScript printed for it

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from backend_fixtures import FRONT_UP_NOFLIP, motion, span_at
+from backend_fixtures import FRONT_UP_NOFLIP, diagnostic_keys, motion, span_at
+from backend_fixtures import blocks as shared_blocks
 from plans_b import (HOME_Q, PICK_POSE, TABLE, cart, demo_plan, fk_plan, make_plan,
                      move, record, sample_joints)
 
@@ -23,8 +24,7 @@ J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
 
 def emit(plan: object) -> tuple[dict[str, str], list[str]]:
     result = Val3Backend().emit(plan)  # type: ignore[arg-type]
-    diags = [f"{d.severity.value}:{d.code.id}:{d.span.start.line if d.span else 0}" for d in result.diagnostics]
-    return result.files, diags
+    return result.files, diagnostic_keys(result.diagnostics)
 
 
 def code(pgx: str) -> str:
@@ -41,16 +41,8 @@ def data(dtx: str) -> dict[str, list[dict[str, str]]]:
 
 
 def blocks(text: str) -> dict[int, list[str]]:
-    out: dict[int, list[str]] = {}
-    current: list[str] | None = None
-    for raw in text.splitlines():
-        line = raw.strip()
-        m = re.fullmatch(r"// demo\.rmot:(\d+)", line)
-        if m:
-            current = out.setdefault(int(m.group(1)), [])
-        elif current is not None and line and not line.startswith("//") and line != "end":
-            current.append(line)
-    return out
+    """Source line -> the stripped code lines printed under its `// demo.rmot:N` comment."""
+    return shared_blocks(text, "// ", drop=("end",))
 
 
 TABLE_ROWS = [
