@@ -20,6 +20,7 @@ Choices (LANGUAGE.md is silent):
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 from rmot.compiler import codes, ir
@@ -28,6 +29,7 @@ from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
 from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
 from rmot.compiler.passes.modal import Modal, apply_setting
 from rmot.compiler.passes.procs import bind_call
+from rmot.lang.source import Span
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
 from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
 from rmot.lang import ast
@@ -181,6 +183,7 @@ class TaskLowering:
             self.stack.pop()
         text = s.span.file.text
         args = tuple(text[a.span.start.offset:a.span.end.offset] for a in s.args)
+        body = tuple(_expanded_at(instr, s.span) for instr in body)
         return ir.ProcCall(uid=0, proc=entry.name, args=args, body=body, span=s.span)
 
     # ---------------------------------------------------------------- I/O and timing
@@ -309,3 +312,19 @@ class TaskLowering:
                 return None
             values.append(q.value)
         return ir.JointTarget(tuple(values), v.name)
+
+
+def _expanded_at(instr: ir.Instr, call_site: Span | None) -> ir.Instr:
+    """`instr` inlined at `call_site`: its span (and its children's) records the call, so a
+    finding in a proc body can say which call it came through (Span.parent)."""
+    if call_site is None:
+        return instr
+    changes: dict[str, object] = {}
+    if instr.span is not None:
+        changes["span"] = instr.span.with_parent(call_site)
+    if isinstance(instr, ir.If):
+        changes["then"] = tuple(_expanded_at(i, call_site) for i in instr.then)
+        changes["otherwise"] = tuple(_expanded_at(i, call_site) for i in instr.otherwise)
+    elif isinstance(instr, ir.ProcCall):
+        changes["body"] = tuple(_expanded_at(i, call_site) for i in instr.body)
+    return dataclasses.replace(instr, **changes)  # type: ignore[arg-type]
