@@ -132,34 +132,43 @@ def quaternion_wxyz(pose: ir.Pose) -> tuple[float, float, float, float]:
     return pose.quaternion
 
 
+def _rot(axis: int, angle: float) -> np.ndarray:
+    """The elementary rotation about x (0), y (1) or z (2)."""
+    c, s = math.cos(angle), math.sin(angle)
+    i, j = [(1, 2), (2, 0), (0, 1)][axis]
+    m = np.eye(3)
+    m[i, i], m[i, j], m[j, i], m[j, j] = c, -s, s, c
+    return m
+
+
 def euler_zyx_deg(pose: ir.Pose) -> tuple[float, float, float]:
     """(A, B, C) in degrees with R = Rz(A)·Ry(B)·Rx(C) (KUKA A B C; Fanuc R P W reversed).
 
-    B in [-90, 90]. At B = ±90 (gimbal lock) C is set to 0 and A carries the whole angle.
+    B in [-90, 90]. B comes from a well-conditioned atan2; C from the last row; A is then
+    solved from what is left of R, so the three angles rebuild R exactly even near gimbal
+    lock (B = ±90), where C is set to 0 and A carries the whole turn.
     """
     r = pose.matrix()[:3, :3]
     cb = math.hypot(r[0, 0], r[1, 0])
     b = math.atan2(-r[2, 0], cb)
-    if cb < 1e-9:
-        c = 0.0
-        a = math.atan2(-r[0, 1], r[1, 1])
-    else:
-        a = math.atan2(r[1, 0], r[0, 0])
-        c = math.atan2(r[2, 1], r[2, 2])
+    c = math.atan2(r[2, 1], r[2, 2]) if cb > 1e-12 else 0.0
+    rest = r @ _rot(0, c).T @ _rot(1, b).T  # = Rz(A)
+    a = math.atan2(rest[1, 0], rest[0, 0])
     return (math.degrees(a), math.degrees(b), math.degrees(c))
 
 
 def euler_xyz_moving_deg(pose: ir.Pose) -> tuple[float, float, float]:
-    """(rx, ry, rz) in degrees with R = Rx(rx)·Ry(ry)·Rz(rz) (Stäubli); ry in [-90, 90]."""
+    """(rx, ry, rz) in degrees with R = Rx(rx)·Ry(ry)·Rz(rz) (Stäubli); ry in [-90, 90].
+
+    Solved like euler_zyx_deg: ry well-conditioned, rx from the last column, rz from what is
+    left, so the angles rebuild R exactly near ry = ±90 too.
+    """
     r = pose.matrix()[:3, :3]
     cy = math.hypot(r[1, 2], r[2, 2])
     ry = math.atan2(r[0, 2], cy)
-    if cy < 1e-9:
-        rz = 0.0
-        rx = math.atan2(r[2, 1], r[1, 1])
-    else:
-        rx = math.atan2(-r[1, 2], r[2, 2])
-        rz = math.atan2(-r[0, 1], r[0, 0])
+    rx = math.atan2(-r[1, 2], r[2, 2]) if cy > 1e-12 else 0.0
+    rest = _rot(1, ry).T @ _rot(0, rx).T @ r  # = Rz(rz)
+    rz = math.atan2(rest[1, 0], rest[0, 0])
     return (math.degrees(rx), math.degrees(ry), math.degrees(rz))
 
 
