@@ -6,9 +6,11 @@ move, or several moves blended together) is one joint path timed by toppra with:
   Cartesian moves (their speed is the TCP's), the smaller share inside a blend; joint
   acceleration limits amax * joint_accel (the smallest in the chain: one constant set per
   chain, a documented simplification when a chain mixes accel settings);
-* the TCP speed: an extra path coordinate c (TCP path length / programmed speed, see
-  blend.ChainPath) limited to dc/dt <= 1, i.e. TCP speed <= the programmed speed of every
-  Cartesian move, and d2c/dt2 <= min(tcp_accel / tcp_speed).
+* the TCP speed: with c the TCP time (TCP path length / programmed speed, see
+  blend.ChainPath), dc/dt <= 1, i.e. TCP speed <= the programmed speed of every Cartesian
+  move, as a limit on the path speed ds/dt <= 1 / (dc/ds) with dc/ds exact per waypoint
+  interval (timing.path_piece's `rate`); c is also an extra spline coordinate with
+  d2c/dt2 <= min(tcp_accel / tcp_speed), to shape the TCP acceleration.
 `times` gives each segment's start and end on the piece's local clock (end = zone entry).
 """
 
@@ -24,6 +26,8 @@ from rmot.compiler.plan.segments import Segment
 from rmot.compiler.plan.timing import HoldPiece, Piece, TimingError, joint_move_piece, path_piece, stretched
 
 __all__ = ["TimedChain", "time_chain"]
+
+_UNLIMITED = 1e9  # the TCP-time coordinate's velocity bound: its limit is `rate` (see _path_chain)
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,10 +77,16 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
         return TimedChain(piece, zeros, tuple(piece.duration for _ in segments), path.radii, path)
     cartesian = [s for s in segments if s.tcp_rate > 0]
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
+    rate = None
     if cartesian:
+        # The TCP speed limit is a limit on the path speed, ds/dt <= 1 / (dc/ds), with dc/ds
+        # exact per waypoint interval. c itself stays a coordinate only to shape the TCP
+        # acceleration: as a spline its slope rings where dc/ds jumps (an arc starting to turn
+        # the tool), which as a speed limit slowed whole chains down (issue 4).
         wp = np.hstack([path.q, path.c[:, None]])
         acc_c = min(s.move.motion.tcp_accel * s.tcp_rate for s in cartesian)
-        vlim, alim = np.append(vmax, 1.0), np.append(amax, acc_c)
+        vlim, alim = np.append(vmax, _UNLIMITED), np.append(amax, acc_c)
+        rate = _tcp_rate(path.c[keep], ss[keep])
     else:
         wp, vlim, alim = path.q, vmax.copy(), amax
     vscale = path.vscale[keep]
@@ -85,7 +95,7 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
         vscale = None
     error = None
     try:
-        piece = path_piece(wp[keep], ss[keep], vlim, alim, dof, vscale)
+        piece = path_piece(wp[keep], ss[keep], vlim, alim, dof, vscale, rate=rate)
     except TimingError as exc:
         return _failed_path(path, segments, str(exc))
     if duration is not None:
@@ -97,6 +107,19 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
     ends = tuple(piece.time_at(float(ss[i])) for i in path.ends)
     ends = ends[:-1] + (piece.duration,)
     return TimedChain(piece, starts, ends, path.radii, path, error, error is not None)
+
+
+def _tcp_rate(c: np.ndarray, ss: np.ndarray) -> np.ndarray:
+    """(M,) dc/ds at the waypoints: the three-point (parabola) estimate inside, the end
+    intervals' slope at the ends. The secant slopes of neighbouring intervals differ by a few
+    percent where the TCP-per-joint ratio changes along an arc; a limit taking the larger of
+    the two at every waypoint made the TCP that much slower than programmed."""
+    h = np.diff(ss)
+    slope = np.diff(c) / h
+    if len(slope) == 1:
+        return np.repeat(slope, 2)
+    inner = (slope[:-1] * h[1:] + slope[1:] * h[:-1]) / (h[:-1] + h[1:])
+    return np.concatenate([slope[:1], inner, slope[-1:]])
 
 
 def _failed_path(path: ChainPath, segments, message: str) -> TimedChain:  # type: ignore[no-untyped-def]

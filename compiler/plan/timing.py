@@ -37,6 +37,7 @@ _REFINE_ROUNDS = 2
 _GRID_PER_WAYPOINT, _GRID_MIN, _GRID_MAX = 1.0, 40, 400
 _V_MARGIN = 1e-6  # relative headroom kept below the limits after re-checking
 _A_MARGIN = 1e-4
+_NO_LIMIT = 1e9  # a bound that never binds (toppra needs finite limits)
 
 
 class TimingError(ValueError):
@@ -233,30 +234,37 @@ def _ruckig_ok(result: object, Result: type) -> None:  # noqa: N803 - ruckig's e
 
 def path_piece(
     waypoints: np.ndarray, ss: np.ndarray, vlim: np.ndarray, alim: np.ndarray, dof: int,
-    vscale: np.ndarray | None = None, check_dt: float = 0.00025,
+    vscale: np.ndarray | None = None, check_dt: float = 0.00025, rate: np.ndarray | None = None,
 ) -> PathPiece:
     """Time-optimal rest-to-rest timing of the path through waypoints (M, n) at ss (M,).
 
     vlim, alim: (n,) symmetric limits of every coordinate (joints first, then extra
-    coordinates such as the TCP-speed coordinate); vscale (M,) optional factors on the joint
-    velocity limits per waypoint (a joint move's joint_speed within a chain). Raises
-    TimingError if toppra fails.
-    The result respects the joint limits and the extra coordinates' velocity limits at every
-    point of a `check_dt` grid (see module doc). The extra coordinates' acceleration limits
-    are passed to toppra but not re-checked: the TCP coordinate has a kink where a joint move
-    meets a Cartesian one, which the spline rounds off into acceleration spikes that are not
-    physical; re-timing for them would slow the whole chain for nothing.
+    coordinates such as the TCP-time coordinate); vscale (M,) optional factors on the joint
+    velocity limits per waypoint (a joint move's joint_speed within a chain). rate (M,)
+    optional: a limit on the path speed itself, ds/dt <= 1 / rate(s), rate given at the
+    waypoints and linear between them (the TCP speed: rate = TCP time per unit of s, s/m
+    over the programmed speed; 0 = no limit). Raises TimingError if toppra fails.
+    The result respects the joint limits, the path-speed limit and the extra coordinates'
+    velocity limits at every point of a `check_dt` grid (see module doc). The path-speed limit
+    is evaluated from `rate` itself, not from a spline coordinate (whose slope rings where the
+    TCP-per-joint ratio changes abruptly, e.g. where an arc starts to turn the tool), and
+    toppra's grid holds every waypoint (see _initial_grid). The extra coordinates'
+    acceleration limits are passed to toppra but not re-checked: the TCP coordinate has a kink
+    where a joint move meets a Cartesian one, which the spline rounds off into acceleration
+    spikes that are not physical; re-timing for them would slow the whole chain for nothing.
     """
+    if rate is not None:  # the path parameter itself as a last coordinate (slope 1), limited by rate
+        waypoints = np.hstack([waypoints, ss[:, None]])
+        vlim, alim = np.append(vlim, 1.0), np.append(alim, _NO_LIMIT)
     base_v, base_a = vlim.astype(float).copy(), alim.astype(float).copy()
     # toppra meets its limits exactly at the grid points: ask for a hair less than allowed
     vlim, alim = base_v * (1 - 2 * _V_MARGIN), base_a * (1 - 2 * _A_MARGIN)
-    scale_at = _scale_function(ss, vscale, len(vlim), dof)
+    grid_scale, exact_scale = _speed_limits(ss, vscale, rate, len(vlim), dof)
     path = _spline(ss, waypoints)
-    n_grid = int(np.clip(_GRID_PER_WAYPOINT * len(ss), _GRID_MIN, _GRID_MAX))
-    grid = np.linspace(ss[0], ss[-1], n_grid)
+    grid = _initial_grid(ss)
     for attempt in range(_RETIME_ROUNDS + 1):
-        traj = _toppra(path, grid, vlim, alim, scale_at)
-        rv, ra, bad_s = _ratios(traj, base_v, base_a, check_dt, dof, scale_at)
+        traj = _toppra(path, grid, vlim, alim, grid_scale(grid) if grid_scale else None)
+        rv, ra, bad_s = _ratios(traj, base_v, base_a, check_dt, dof, exact_scale)
         if not bad_s.size or attempt == _RETIME_ROUNDS:
             break
         if attempt < _REFINE_ROUNDS:  # first refine the grid where the limits were exceeded
@@ -274,20 +282,84 @@ def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
     return toppra.SplineInterpolator(ss, waypoints)
 
 
-def _scale_function(ss: np.ndarray, vscale: np.ndarray | None, n: int, dof: int):  # type: ignore[no-untyped-def]
-    """s -> (n,) factors on the velocity limits: vscale (M,) per waypoint on the joints (the
-    smaller of the two waypoints around s), 1 on extra coordinates; None if vscale is None."""
-    if vscale is None or np.all(vscale == 1.0):
-        return None
-    lower = np.minimum(vscale[:-1], vscale[1:])
+def _initial_grid(ss: np.ndarray) -> np.ndarray:
+    """toppra's grid: the waypoints (every k-th one beyond _GRID_MAX of them) and as many
+    uniform points (_GRID_MIN to _GRID_MAX). Waypoints are where a limit may change slope or
+    jump (the path-speed limit is linear between them) and are dense where the path is
+    detailed; the uniform points keep the grid fine where waypoints are sparse (a straight
+    line needs few), so that toppra's piecewise-constant acceleration stays near optimal."""
+    k = max(1, int(math.ceil(len(ss) / (_GRID_PER_WAYPOINT * _GRID_MAX))))
+    n = int(np.clip(_GRID_PER_WAYPOINT * len(ss), _GRID_MIN, _GRID_MAX))
+    return np.union1d(np.union1d(ss[::k], ss[-1:]), np.linspace(ss[0], ss[-1], n))
 
-    def scale_at(s: np.ndarray) -> np.ndarray:
-        i = np.clip(np.searchsorted(ss, s, side="right") - 1, 0, len(lower) - 1)
-        out = np.ones((np.size(s), n))
-        out[:, :dof] = lower[i][:, None]
+
+def _interval_factors(ss: np.ndarray, vscale: np.ndarray | None, n: int, dof: int) -> np.ndarray:
+    """(M-1, n) factors on the velocity limits inside each waypoint interval: the smaller
+    vscale of its two waypoints on the joints, 1 elsewhere."""
+    out = np.ones((len(ss) - 1, n))
+    if vscale is not None:
+        out[:, :dof] = np.minimum(vscale[:-1], vscale[1:])[:, None]
+    return out
+
+
+def _speed_limits(ss: np.ndarray, vscale: np.ndarray | None, rate: np.ndarray | None, n: int, dof: int):  # type: ignore[no-untyped-def]
+    """(for toppra: grid (K,) -> s -> (n,) factors, exact: s (N,) -> (N, n) factors) on the
+    velocity limits, or (None, None) when every factor is 1. The joints' factors are constant
+    per waypoint interval; the path-speed limit (last coordinate, when rate is given) is
+    1 / rate with rate linear between waypoints."""
+    if (vscale is None or np.all(vscale == 1.0)) and rate is None:
+        return None, None
+    factors = _interval_factors(ss, vscale, n, dof)
+    last = len(factors) - 1
+
+    def exact(s: np.ndarray) -> np.ndarray:
+        out = factors[np.clip(np.searchsorted(ss, s, side="right") - 1, 0, last)]
+        if rate is not None:
+            out = out.copy()
+            out[:, -1] = 1.0 / np.maximum(np.interp(s, ss, rate), 1.0 / _NO_LIMIT)
         return out
 
-    return scale_at
+    def for_grid(grid: np.ndarray):  # type: ignore[no-untyped-def]
+        per_point = _grid_factors(ss, factors, grid)
+        if rate is not None:
+            per_point[:, -1] = 1.0 / np.maximum(_grid_rate(ss, rate, grid), 1.0 / _NO_LIMIT)
+        tol = 1e-12 * max(1.0, abs(float(grid[-1])))
+
+        def at(s: np.ndarray) -> np.ndarray:
+            return per_point[np.clip(np.searchsorted(grid, s - tol), 0, len(grid) - 1)]
+
+        return at
+
+    return for_grid, exact
+
+
+def _grid_factors(ss: np.ndarray, factors: np.ndarray, grid: np.ndarray) -> np.ndarray:
+    """(K, n) factors for toppra at the grid points (K,): the smallest over every waypoint
+    interval that meets [previous grid point, next grid point]. Between two grid points
+    toppra's path speed squared is linear in s, so its speed stays below the larger end value,
+    and both end values are then below every limit inside the interval: the limits hold
+    everywhere, not only at the grid points, even where a limit jumps between grid points."""
+    last = len(factors) - 1
+    lo = np.clip(np.searchsorted(ss, grid[:-1], side="right") - 1, 0, last)  # interval holding each cell's start
+    hi = np.clip(np.searchsorted(ss, grid[1:], side="left") - 1, lo, last)  # ... and its end
+    # reduceat takes the min over [lo[i], lo[i+1]) (just lo[i] where they are equal); hi[i] is
+    # lo[i+1] or the one before it
+    cell = np.minimum(np.minimum.reduceat(factors, lo, axis=0), factors[hi])
+    return np.vstack([cell[:1], np.minimum(cell[:-1], cell[1:]), cell[-1:]])
+
+
+def _grid_rate(ss: np.ndarray, rate: np.ndarray, grid: np.ndarray) -> np.ndarray:
+    """(K,) the path-speed rate toppra must respect at each grid point: its value there, or
+    the largest at a waypoint strictly between the neighbouring grid points (where the grid
+    skips waypoints, a peak of the rate between grid points must not be missed)."""
+    at = np.interp(grid, ss, rate)
+    inner = np.full(len(grid) - 1, -np.inf)  # per cell, the largest rate at a waypoint inside
+    lo = np.searchsorted(ss, grid[:-1], side="right")
+    hi = np.searchsorted(ss, grid[1:], side="left")
+    has = hi > lo
+    if np.any(has):  # only where the grid skips waypoints (long paths): a few hundred cells at most
+        inner[has] = [rate[a:b].max() for a, b in zip(lo[has], hi[has])]
+    return np.maximum(at, np.maximum(np.append(-np.inf, inner), np.append(inner, -np.inf)))
 
 
 def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray, scale_at=None) -> ConstAccelTiming:  # type: ignore[no-untyped-def]

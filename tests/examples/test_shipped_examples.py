@@ -251,9 +251,6 @@ class TestPromisesInTheComments:
         assert middle == pytest.approx(np.median(middle), rel=0.02)
         assert np.median(middle) <= 0.012 * 1.02
 
-    @pytest.mark.xfail(strict=True, reason="planner bug (reported with a reproduction): a chain of moves "
-                       "blended with a zone is timed at ~2/3 of the programmed TCP speed (7.9 of 12 mm/s); "
-                       "remove this mark when it passes")
     def test_weld_seam_runs_at_the_programmed_travel_speed(self) -> None:
         """The steady seam speed is the programmed 12 mm/s (within 2 %)."""
         _, travelled, speed = self._weld_seam_samples()
