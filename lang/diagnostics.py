@@ -102,6 +102,7 @@ class Diagnostic:
     bodies: tuple[str, ...] = ()
     amount: Amount | None = None
     task: str | None = field(default=None)
+    peak_time_s: float | None = None  # the instant of the worst amount within [time_s, end_time_s]
 
     @property
     def is_error(self) -> bool:

@@ -67,6 +67,7 @@ class PairHit:
     t0: float
     t1: float
     distance: float  # m: the smallest signed distance found (negative = penetration)
+    t_worst: float | None = None  # s: when that smallest distance was found
 
 
 # --------------------------------------------------------------------------- pairs
@@ -312,5 +313,8 @@ def _runs(a: Body, b: Body, times: np.ndarray, dists: np.ndarray, free_t: np.nda
 def _runs_below(a: Body, b: Body, t: np.ndarray, d: np.ndarray, threshold: float, kind: str) -> list[PairHit]:
     below = d <= threshold if kind == "collision" else d < threshold
     edges = np.flatnonzero(np.diff(np.concatenate([[0], below.astype(np.int8), [0]])))
-    return [PairHit(kind, a.name, b.name, float(t[start]), float(t[stop - 1]), float(np.min(d[start:stop])))
-            for start, stop in zip(edges[::2], edges[1::2], strict=True)]
+    hits = []
+    for start, stop in zip(edges[::2], edges[1::2], strict=True):
+        worst = start + int(np.argmin(d[start:stop]))
+        hits.append(PairHit(kind, a.name, b.name, float(t[start]), float(t[stop - 1]), float(d[worst]), float(t[worst])))
+    return hits

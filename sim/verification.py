@@ -137,7 +137,7 @@ def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], h
         mm = hit.distance * 1000
         message = f"'{a.name}' comes within {mm:.1f} mm of '{b.name}'; clearance must be at least {clearance * 1000:.1f} mm{where}"
         return Diagnostic(codes.CLEARANCE, Severity.WARNING, message, span, tuple(notes), hit.t0, hit.t1,
-                          names, Amount(round(mm, 3), "mm"), tp.task.name if tp else None)
+                          names, Amount(round(mm, 3), "mm"), tp.task.name if tp else None, hit.t_worst)
     depth = max(-hit.distance, 0.0) * 1000
     if hit.kind == "static":
         message = f"'{a.name}' and '{b.name}' overlap although neither moves (penetration {depth:.1f} mm); fix the cell or allow the contact"
@@ -146,7 +146,7 @@ def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], h
     code = _collision_code(a, b)
     message = f"'{a.name}' collides with '{b.name}' (penetration {depth:.1f} mm){where}"
     return Diagnostic(code, Severity.ERROR, message, span, tuple(notes), hit.t0, hit.t1, names,
-                      Amount(round(depth, 3), "mm"), tp.task.name if tp else None)
+                      Amount(round(depth, 3), "mm"), tp.task.name if tp else None, hit.t_worst)
 
 
 def _collision_code(a: Any, b: Any) -> Any:

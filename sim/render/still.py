@@ -70,13 +70,20 @@ def finding_caption(diagnostic: Diagnostic) -> str:
     parts = [diagnostic.code.id]
     if diagnostic.span is not None:
         parts.append(f"line {diagnostic.span.start.line}")
-    if diagnostic.time_s is not None:
-        parts.append(f"t={diagnostic.time_s:.2f} s")
+    instant = worst_instant(diagnostic)
+    if instant is not None:
+        parts.append(f"t={instant:.2f} s")
     return " ".join(parts) + f": {diagnostic.message}"
 
 
+def worst_instant(diagnostic: Diagnostic) -> float | None:
+    """When the finding is worst: the deepest contact or closest approach where the checker
+    recorded it (peak_time_s), else the start of its interval."""
+    return diagnostic.peak_time_s if diagnostic.peak_time_s is not None else diagnostic.time_s
+
+
 def render_finding(plan: Plan, diagnostic: Diagnostic, path: str, size: tuple[int, int] = (640, 480)) -> None:
-    """A PNG of the finding's worst instant (diagnostic.time_s), its bodies in red, with a caption."""
-    image = render_still(plan, time=diagnostic.time_s or 0.0, size=size, highlight=tuple(diagnostic.bodies),
+    """A PNG of the finding's worst instant, its bodies in red, with a caption."""
+    image = render_still(plan, time=worst_instant(diagnostic) or 0.0, size=size, highlight=tuple(diagnostic.bodies),
                          caption=finding_caption(diagnostic))
     write_png(path, image)

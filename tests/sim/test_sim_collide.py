@@ -65,6 +65,16 @@ class TestFixtureCollision:
         assert abs(hit.time_s - ref[0]) <= STEP
         assert abs(hit.end_time_s - ref[-1]) <= STEP
 
+    def test_worst_instant_is_the_deepest_contact(self) -> None:
+        """peak_time_s lies in the interval, and the reference depth there is the reported amount."""
+        hit = _findings(self.report, codes.COLLISION)[0]
+        assert hit.time_s <= hit.peak_time_s <= hit.end_time_s
+        traj = self.tp.trajectory
+        q = np.array([np.interp(hit.peak_time_s, traj.t, traj.q[:, j]) for j in range(traj.q.shape[1])])
+        geom = self.robot.solids[3].geometry
+        d = _capsule_box_distance(self.robot.solid_poses(q)[3], geom.length, geom.radius, self.centre, self.size)
+        assert abs(-d * 1000 - hit.amount.value) < 0.5  # mm, the reference samples the axis at 400 points
+
 
 class TestClearance:
     def _plan(self, gap: float):
