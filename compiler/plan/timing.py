@@ -15,8 +15,11 @@ A Piece is one stretch of a task's timeline: `duration` (s) and `sample(tl)` giv
   refined where a limit was exceeded (`_REFINE_ROUNDS` times), then the offending limits are
   tightened (up to `_RETIME_ROUNDS` runs in all), and whatever excess remains is removed by a
   uniform time stretch (velocity scales by 1/k, acceleration by 1/k^2), so every sample ends
-  within the limits. The parametrisation is toppra's constant-acceleration one, re-implemented
-  here vectorised and invertible (`ConstAccelTiming`: the time at a path point, for records).
+  within the limits. The TCP speed is a limit on the path speed itself (`rate`, linear
+  between waypoints, which are all on toppra's grid), not a spline coordinate: a spline's
+  slope rings where the TCP-per-joint ratio jumps, and the re-timing then slowed whole chains
+  (issue 4: a weld seam at 7.9 of 12 mm/s). The parametrisation is toppra's
+  constant-acceleration one, re-implemented here vectorised and invertible (`ConstAccelTiming`: the time at a path point, for records).
 """
 
 from __future__ import annotations
@@ -37,6 +40,7 @@ _REFINE_ROUNDS = 2
 _GRID_PER_WAYPOINT, _GRID_MIN, _GRID_MAX = 1.0, 40, 400
 _V_MARGIN = 1e-6  # relative headroom kept below the limits after re-checking
 _A_MARGIN = 1e-4
+_MIN_CELL = 0.05  # smallest grid cell, as a share of the uniform spacing
 _NO_LIMIT = 1e9  # a bound that never binds (toppra needs finite limits)
 
 
@@ -290,7 +294,12 @@ def _initial_grid(ss: np.ndarray) -> np.ndarray:
     line needs few), so that toppra's piecewise-constant acceleration stays near optimal."""
     k = max(1, int(math.ceil(len(ss) / (_GRID_PER_WAYPOINT * _GRID_MAX))))
     n = int(np.clip(_GRID_PER_WAYPOINT * len(ss), _GRID_MIN, _GRID_MAX))
-    return np.union1d(np.union1d(ss[::k], ss[-1:]), np.linspace(ss[0], ss[-1], n))
+    grid = np.union1d(np.union1d(ss[::k], ss[-1:]), np.linspace(ss[0], ss[-1], n))
+    # no sliver cells: toppra's constant acceleration across a near-zero interval is unbounded
+    # (a limit jump inside a merged cell is still seen, see _grid_factors and _grid_rate)
+    grid = grid[np.concatenate([[True], np.diff(grid) >= _MIN_CELL * (ss[-1] - ss[0]) / n])]
+    grid[-1] = ss[-1]
+    return grid
 
 
 def _interval_factors(ss: np.ndarray, vscale: np.ndarray | None, n: int, dof: int) -> np.ndarray:
