@@ -23,16 +23,14 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
 
-# Example -> approximate cycle time (s) from `rmot check`; a change beyond +-35 % means the
-# program, the cell or the planner changed and the comments should be re-read. (The margin is
-# wide on purpose: the planner is known to time blended chains too slowly, see the weld test,
-# and its fix will shorten these times.)
+# Example -> approximate cycle time (s) from `rmot check`; a change beyond +-25 % means the
+# program, the cell or the planner changed and the comments should be re-read.
 CLEAN = {
-    "pick_place.rmot": 40.5,
-    "palletizing.rmot": 119.0,
-    "weld_seam.rmot": 40.0,
-    "handover.rmot": 15.7,
-    "inspect.rmot": 6.8,
+    "pick_place.rmot": 39.2,
+    "palletizing.rmot": 115.9,
+    "weld_seam.rmot": 31.0,
+    "handover.rmot": 15.6,
+    "inspect.rmot": 6.9,
     "urdf_cell/load_jig.rmot": 9.7,
 }
 # Warnings the compile of an example may give, each explained in pick_place.rmot's header:
@@ -81,7 +79,7 @@ class TestCheck:
         assert result.exit_code == 0, result.output
         report = json.loads(result.stdout)["programs"][0]
         assert report["diagnostics"] == []
-        assert report["cycle_time_s"] == pytest.approx(CLEAN[name], rel=0.35)
+        assert report["cycle_time_s"] == pytest.approx(CLEAN[name], rel=0.25)
 
     def test_collision_example_fails_at_the_documented_line(self) -> None:
         """collision.rmot exits 1 with one E300: the gripper in the table, at line 41 (the
