@@ -20,6 +20,7 @@ from rmot.lang import ast
 from rmot.lang import codes
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
+from rmot.lang.units import UNIT_TABLE, unknown_unit
 
 __all__ = ["AstBuilder", "KEYWORDS", "token_span"]
 
@@ -110,6 +111,13 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
             msg = f"{what} name must not be a keyword (got '{tok}')"
             self.diagnostics.append(Diagnostic(codes.RESERVED_KEYWORD, Severity.ERROR, msg, span))
         return ast.Ident(str(tok), span)
+
+    def _unit(self, tok: Token) -> str:
+        """The unit text; an E007 when the lexer's compound shape (`kg/s`) is no known unit."""
+        text = str(tok)
+        if text not in UNIT_TABLE:
+            self.diagnostics.append(unknown_unit(text, self._token_span(tok)))
+        return text
 
     def _string(self, tok: Token) -> ast.String:
         return ast.String(_unquote(tok), self._token_span(tok))
@@ -321,7 +329,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         last = num if unit is None else unit
         start, end = _make_pos(num.line, num.column, num.start_pos), _make_pos(last.end_line, last.end_column, last.end_pos)
         span = _make_span(self.file, start, end)
-        return ast.Number(float(num), None if unit is None else str(unit), span)
+        return ast.Number(float(num), None if unit is None else self._unit(unit), span)
 
     def name(self, c: list[Any]) -> ast.Name:
         return ast.Name(str(c[0]), self._token_span(c[0]))
@@ -330,7 +338,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return ast.Call(self._ident(c[0]), c[2] or (), self._span(c))
 
     def joints(self, c: list[Any]) -> ast.Joints:
-        unit = str(c[4]) if c[4] is not None else None
+        unit = self._unit(c[4]) if c[4] is not None else None
         return ast.Joints(c[2] or (), unit, self._span(c))
 
     def vector(self, c: list[Any]) -> ast.Vector:

@@ -25,15 +25,17 @@ from lark import Token
 from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
 
+from rmot.lang.units import BASE_UNITS, COMPOUND_UNIT
+
 __all__ = ["BLANKS", "CONTINUES", "TOKEN", "RmotLexer", "TokenKinds"]
 
-_SIMPLE_UNITS = frozenset({"mm", "cm", "min", "ms", "m", "in", "deg", "rad", "s", "kg", "g"})
+_SIMPLE_UNITS = frozenset(BASE_UNITS)
 _MASTER = re.compile(r"""
     (?P<ws>[ \t\f\r]+)
   | (?P<comment>\#[^\n]*)
   | (?P<nl>(?:;|\r?\n)(?:\s|;|\#[^\n]*)*)
   | (?P<number>[0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)
-  | (?P<unit>(?:mm|cm|min|ms|m|in|deg|rad|s|kg|g)/s(?:\^2)?(?![A-Za-z0-9_]))
+  | (?P<unit>""" + COMPOUND_UNIT + r""")
   | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<string>"(?:[^"\\\n]|\\.)*")
   | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
@@ -44,7 +46,7 @@ TOKEN = re.compile(r"""
     [ \t\f\r]*+(?:\#[^\n]*+)?+
     (?: (?P<nl>(?:;|\r?\n)(?:\s|;|\#[^\n]*)*)
       | (?P<number>[0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)
-      | (?P<unit>(?:mm|cm|min|ms|m|in|deg|rad|s|kg|g)/s(?:\^2)?(?![A-Za-z0-9_]))
+      | (?P<unit>""" + COMPOUND_UNIT + r""")
       | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
       | (?P<string>"(?:[^"\\\n]|\\.)*")
       | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])

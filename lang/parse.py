@@ -32,11 +32,11 @@ from rmot.lang._lalr import LalrDriver, PostLexState
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.lexer import RmotLexer
 from rmot.lang.source import Pos, SourceFile, Span
+from rmot.lang.units import UNIT_NAMES, unknown_unit
 
 __all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "UNITS"]
 
-UNITS = ("mm", "cm", "m", "in", "deg", "rad", "ms", "s", "min", "g", "kg", "mm/s", "m/s",
-         "deg/s", "rad/s", "mm/s^2", "m/s^2", "deg/s^2", "rad/s^2", "%")
+UNITS = UNIT_NAMES  # every unit the language knows (lang/units.py is the one table)
 
 _GRAMMAR = Path(__file__).with_name("grammar") / "rmot.lark"
 _MAX_EXPECTED = 6
@@ -278,9 +278,7 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[To
     """A name near a keyword the parser wanted, or a word after a number that is no unit."""
     prev = history[-1] if history else None
     if tok.type == "NAME" and "UNIT" in expected and prev is not None and prev.type == "NUMBER":
-        near = difflib.get_close_matches(str(tok), UNITS, n=1, cutoff=0.5)
-        hint = f"; did you mean '{near[0]}'?" if near else ""
-        return _error(codes.UNKNOWN_UNIT, f"unit must be one of mm, m, deg, rad, s, mm/s, ... (got '{tok}'){hint}", token_span(file, tok))
+        return unknown_unit(str(tok), token_span(file, tok))
     if tok.type == "NAME":
         near = difflib.get_close_matches(str(tok), _keyword_values(expected), n=1, cutoff=0.7)
         if near:

@@ -64,7 +64,10 @@ def _string(e: ast.String, scope: Scope, rep: Reporter) -> Value:
 def _number(e: ast.Number, scope: Scope, rep: Reporter) -> Quantity | None:
     if e.unit is None:
         return Quantity(e.value, DIMENSIONLESS, None, e.value)
-    factor, dim = UNITS[e.unit]
+    known = UNITS.get(e.unit)
+    if known is None:  # not silent: the parser reported this unit (E007, lang/_build.py) at the unit
+        return None
+    factor, dim = known
     return Quantity(e.value * factor, dim, e.unit, e.value)
 
 
@@ -334,6 +337,8 @@ def _joints(e: ast.Joints, scope: Scope, rep: Reporter) -> Value | None:
             if e.unit is None:
                 rep.error(codes.MISSING_UNIT, f"joint value must be an angle such as 90 deg (got {fmt_quantity(v)} without a unit; "
                           "write joints(...) deg to give them all one)", a.span)
+                return None
+            if e.unit not in UNITS:  # reported by the parser (E007)
                 return None
             factor, dim = UNITS[e.unit]
             v = Quantity(v.value * factor, dim, e.unit, v.value)

@@ -7,12 +7,12 @@ zero and `unit` None, so "missing unit" can be told apart from a dimensionless r
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Union
 
 from rmot.compiler import ir
 from rmot.lang.source import Span
+from rmot.lang.units import UNIT_TABLE
 
 __all__ = [
     "BoolV", "Dim", "DIMENSIONLESS", "JointsV", "LENGTH", "ANGLE", "TIME", "SPEED", "ACCEL",
@@ -32,18 +32,8 @@ ANGULAR_SPEED: Dim = (0, 1, -1, 0, 0)
 ACCEL: Dim = (1, 0, -2, 0, 0)
 ANGULAR_ACCEL: Dim = (0, 1, -2, 0, 0)
 
-_DEG = math.pi / 180
-# unit as written -> (factor to SI, dimension)
-UNITS: dict[str, tuple[float, Dim]] = {
-    "mm": (1e-3, LENGTH), "cm": (1e-2, LENGTH), "m": (1.0, LENGTH), "in": (0.0254, LENGTH),
-    "deg": (_DEG, ANGLE), "rad": (1.0, ANGLE),
-    "ms": (1e-3, TIME), "s": (1.0, TIME), "min": (60.0, TIME),
-    "mm/s": (1e-3, SPEED), "m/s": (1.0, SPEED), "cm/s": (1e-2, SPEED), "in/s": (0.0254, SPEED),
-    "deg/s": (_DEG, ANGULAR_SPEED), "rad/s": (1.0, ANGULAR_SPEED),
-    "mm/s^2": (1e-3, ACCEL), "m/s^2": (1.0, ACCEL), "cm/s^2": (1e-2, ACCEL), "in/s^2": (0.0254, ACCEL),
-    "deg/s^2": (_DEG, ANGULAR_ACCEL), "rad/s^2": (1.0, ANGULAR_ACCEL),
-    "g": (1e-3, MASS), "kg": (1.0, MASS), "%": (0.01, RATIO),
-}
+# unit as written -> (factor to SI, dimension): the language's one table (lang/units.py)
+UNITS: dict[str, tuple[float, Dim]] = UNIT_TABLE
 _DIM_NAMES = {
     DIMENSIONLESS: ("number", "3"), LENGTH: ("length", "150 mm"), ANGLE: ("angle", "90 deg"),
     TIME: ("time", "0.5 s"), MASS: ("mass", "1.2 kg"), RATIO: ("ratio", "50 %"),
