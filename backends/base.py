@@ -29,6 +29,21 @@ form); `self.warn(...)` records a warning (an exact or nearest-faithful lowering
 Nothing is ever dropped without one of them. `emit()` always returns files *and* diagnostics;
 callers (the CLI) refuse to write files when any diagnostic is an error.
 
+Conventions every vendor follows (so one program means the same on every controller):
+  * wait with timeout: when `wait until in[n] == v timeout T` runs out, the program STOPS
+    with a message naming the input (RAPID's default ERR_WAIT_MAXTIME without \\TimeFlag).
+    Each vendor prints its own stop: RAPID WaitDI\\MaxTime, KRL HALT, Fanuc ABORT, URScript
+    popup(error) + halt, INFORM MSG + PAUSE, VAL3 popUpMsg + stopMove/resetMotion + return.
+  * acceleration: the front end's defaults (DEFAULT_TCP_ACCEL, DEFAULT_JOINT_ACCEL, from
+    compiler/passes/modal.py) mean "the controller's own"; a vendor that cannot express a
+    programmed acceleration warns W408 once per task, only when a move sets a non-default one.
+  * I/O ports: each vendor declares DIGITAL_PORTS (inclusive range, with its source); every
+    port goes through `port_ok` (E404 outside it).
+  * tool payload: the tool's mass with its centre of gravity half way along the flange->TCP
+    vector (`tool_cog`; the verification's torque check uses the same point). A vendor whose
+    program cannot carry a payload warns W411 once per tool and task, naming what the
+    integrator must set on the controller.
+
 The per-emit diagnostics list lives on the instance, which `emit()` resets: create one backend
 object per call or reuse it sequentially (never share one between threads).
 """
@@ -47,6 +62,7 @@ from rmot.backends import codes, handshake
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
+from rmot.compiler.passes.modal import DEFAULT_MODAL
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
 
@@ -54,8 +70,18 @@ __all__ = [
     "Backend", "EmitResult", "Lowering", "TaskContext",
     "fmt", "fmt_list", "source_ref", "header_lines",
     "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
-    "position_mm", "turn_bits", "axis_quadrant",
+    "position_mm", "turn_bits", "axis_quadrant", "tool_cog",
+    "CONTROLLERS", "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL",
 ]
+
+# The controller languages a native block can name (compiler/passes/lower_body.VENDORS: the
+# front end refuses any other with E116, so a backend only tells "mine" from "another's").
+CONTROLLERS: tuple[str, ...] = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+
+# The front end's accelerations when a program never sets `accel` (compiler/passes/modal.py):
+# a move carrying them asks for nothing a vendor must express.
+DEFAULT_TCP_ACCEL: float = DEFAULT_MODAL.tcp_accel  # m/s^2
+DEFAULT_JOINT_ACCEL: float = DEFAULT_MODAL.joint_accel  # fraction of each joint's maximum
 
 C = TypeVar("C", bound="TaskContext")
 
@@ -88,6 +114,7 @@ class TaskContext:
     robot: ir.RobotInstance
     program_name: str  # the legal name of this task's output program
     source_map: bool = field(default=True, kw_only=True)  # print `file:line` comments
+    warned: set[str] = field(default_factory=set, kw_only=True)  # warnings given once per task
 
     @property
     def task(self) -> ir.Task:
@@ -182,6 +209,21 @@ def rotation_vector(pose: ir.Pose) -> tuple[float, float, float]:
     return (x / s * angle, y / s * angle, z / s * angle)
 
 
+def tool_cog(tool: ir.ToolRef | ir.Tool) -> tuple[float, float, float]:
+    """The tool's centre of gravity in the flange frame, metres: half way along the
+    flange->TCP vector (ir.payload_cog, the convention sim/verification.py's torque check
+    uses too)."""
+    return ir.payload_cog(tool.tcp)
+
+
+def accel_is_default(motion: ir.Motion, kind: ir.MotionKind) -> bool:
+    """True when the move's acceleration is the front end's default for its kind (joint moves
+    use joint_accel, linear/circular moves tcp_accel): nothing programmed to express."""
+    if kind is ir.MotionKind.JOINT:
+        return math.isclose(motion.joint_accel, DEFAULT_JOINT_ACCEL)
+    return math.isclose(motion.tcp_accel, DEFAULT_TCP_ACCEL)
+
+
 def axis_quadrant(angle: float) -> int:
     """floor(angle / 90 deg): ABB cf1/cf4/cf6 (quadrant 0 is [0, 90) deg, -1 is [-90, 0))."""
     return math.floor(angle / (math.pi / 2) + 1e-12)
@@ -255,6 +297,7 @@ class Backend:
       NATIVE_NAMES  vendor names of the native blocks passed through (default: {name})
       SIX_AXIS_DATA / NO_RECORD_NOTE / NOT_SIX_AXIS_NOTE  see `move_record`
       BRANCH_DATA  what a Cartesian target needs its IK branch for (see `branch_or_default`)
+      DIGITAL_PORTS  the digital I/O numbers the vendor accepts, inclusive (see `port_ok`)
     """
 
     name: ClassVar[str] = ""
@@ -278,6 +321,7 @@ class Backend:
     NOT_SIX_AXIS_NOTE: ClassVar[str] = "move not emitted: robot is not a 6-axis arm"
     BRANCH_DATA: ClassVar[str] = "the configuration data"
     INDENT: ClassVar[str] = "  "
+    DIGITAL_PORTS: ClassVar[tuple[int, int]] = (1, 4096)
 
     def __init__(self, *, allow_findings_header: bool = False) -> None:
         self.findings_header = allow_findings_header
@@ -460,16 +504,40 @@ class Backend:
     def extend(self, diagnostics: Iterable[Diagnostic]) -> None:
         self._emission.diagnostics.extend(diagnostics)
 
+    def warn_once(self, ctx: TaskContext, key: str, code: Code, message: str, span: Span | None) -> None:
+        """`warn`, only the first time `key` comes up in this task."""
+        if key not in ctx.warned:
+            ctx.warned.add(key)
+            self.warn(code, message, span)
+
+    def warn_accel(self, node: ir.Move, ctx: TaskContext, how: str) -> None:
+        """W408 once per task when `node` sets a non-default acceleration the vendor cannot
+        express (`how`: what the controller does instead)."""
+        if not accel_is_default(node.motion, node.kind):
+            self.warn_once(ctx, "accel", codes.ACCEL_IGNORED,
+                           f"programmed accelerations are not expressed ({how})", node.span)
+
+    def port_ok(self, port: int, what: str, span: Span | None, ports: tuple[int, int] | None = None) -> bool:
+        """True when `port` is in `ports` (default DIGITAL_PORTS); else E404 and False."""
+        low, high = ports or self.DIGITAL_PORTS
+        if low <= port <= high:
+            return True
+        self.unsupported(codes.BAD_PORT, f"{what} port must be in {low}..{high} (got {port})", span)
+        return False
+
+    def warn_payload(self, node: ir.Move, ctx: TaskContext, where: str) -> None:
+        """W411 once per tool and task: the tool's mass cannot be carried by this vendor's
+        program; `where` names the controller setting the integrator must fill in."""
+        tool = node.tool
+        if tool.mass <= 0.0:
+            return
+        cog = fmt_list((c * 1000.0 for c in tool_cog(tool)), 1)
+        self.warn_once(ctx, f"payload:{tool.name}", codes.PAYLOAD_NOT_EXPRESSED,
+                       f"tool '{tool.name}' payload ({fmt(tool.mass, 3)} kg, centre of gravity "
+                       f"[{cog}] mm in the flange frame) must be set in {where}", node.span)
+
     def native_other(self, node: ir.Native) -> list[str]:
-        """A native block for another vendor: not emitted, with a warning and a comment.
-
-        A vendor name no backend knows is an error (a typo would otherwise vanish everywhere).
-        """
-        from rmot.backends import TARGETS
-
-        if node.vendor.lower() not in TARGETS:
-            self.unsupported(codes.NATIVE_OTHER_VENDOR, f"native block vendor must be one of "
-                             f"{', '.join(TARGETS)} (got '{node.vendor}')", node.span)
-            return [self.comment(f"native {node.vendor} block not emitted")]
+        """A native block for another controller: not emitted, with a warning and a comment
+        (the front end refuses unknown vendors with E116)."""
         self.warn(codes.NATIVE_SKIPPED, f"native {node.vendor} block is not emitted for {self.name}", node.span)
         return [self.comment(f"native {node.vendor} block skipped")]

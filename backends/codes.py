@@ -9,10 +9,11 @@ from __future__ import annotations
 from rmot.lang.diagnostics import Code
 
 __all__ = [
-    "MISSING_RECORD", "UNSUPPORTED", "NATIVE_OTHER_VENDOR", "BAD_PORT", "SYNC_UNSUPPORTED",
+    "MISSING_RECORD", "UNSUPPORTED", "BAD_PORT", "SYNC_UNSUPPORTED",
     "NO_BRANCH", "NOT_SIX_AXIS", "PROGRAM_TOO_LONG", "INPUT_MISSING", "SYNC_HANDSHAKE_MISSING",
     "NAME_CHANGED", "NAME_CLASH", "SPEED_ROUNDED", "ZONE_ROUNDED", "LOWERED", "TIMEOUT_LOWERED",
     "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED", "SYNC_OUTPUT_LEFT_ON",
+    "TIME_ROUNDED", "MASS_RAISED", "PAYLOAD_NOT_EXPRESSED",
 ]
 
 # errors: the program cannot be expressed faithfully for this vendor
@@ -26,7 +27,6 @@ SYNC_HANDSHAKE_MISSING = Code("E409", "sync-handshake-missing",
                               "a barrier needs the robot's \"sync\" I/O handshake signals in the cell")
 PROGRAM_TOO_LONG = Code("E406", "program-too-long", "a routine exceeds the controller's size limit")
 INPUT_MISSING = Code("E408", "compile-input-missing", "the program file given to `rmot compile` does not exist")
-NATIVE_OTHER_VENDOR = Code("E407", "native-unknown-vendor", "a native block names an unknown vendor")
 
 # warnings: an exact or nearest-faithful lowering was applied
 NAME_CHANGED = Code("W400", "name-changed", "a name was made legal for the vendor")
@@ -34,6 +34,10 @@ NAME_CLASH = Code("W401", "name-clash", "two names became equal after legalisati
 SPEED_ROUNDED = Code("W402", "speed-rounded", "the vendor cannot express the exact speed; the nearest was used")
 ZONE_ROUNDED = Code("W403", "zone-rounded", "the vendor cannot express the exact zone; the nearest was used")
 LOWERED = Code("W404", "instruction-lowered", "an instruction was lowered to an exact equivalent")
+TIME_ROUNDED = Code("W412", "time-rounded",
+                    "the vendor cannot express the exact time (wait, pulse, timeout); the nearest was used")
+MASS_RAISED = Code("W413", "tool-mass-raised",
+                   "a massless tool was declared with the vendor's smallest accepted mass")
 TIMEOUT_LOWERED = Code("W405", "timeout-lowered", "a wait with timeout was lowered to a timed loop")
 PROGRAM_SPLIT = Code("W406", "program-split", "a long program was split into parts called from a main")
 NATIVE_SKIPPED = Code("W407", "native-other-vendor", "a native block for another vendor was not emitted")
@@ -41,3 +45,5 @@ ACCEL_IGNORED = Code("W408", "accel-not-expressed", "the vendor cannot express t
 DURATION_IGNORED = Code("W409", "duration-not-expressed", "a fixed move duration is expressed as speed only")
 SYNC_OUTPUT_LEFT_ON = Code("W410", "sync-output-left-on",
                            "an odd number of handshake barriers leaves the robot's sync output on")
+PAYLOAD_NOT_EXPRESSED = Code("W411", "payload-not-expressed",
+                             "the vendor's program cannot carry the tool's payload; set it on the controller")

@@ -21,13 +21,20 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
   * speeds: J moves in % of the maximum joint speed (integer 1..100), L/C moves in mm/sec
     (integer, at most MAX_TCP_MM_S = 2000); a `time` modifier is emitted exactly as `n.nnsec`.
     Other values are rounded or clamped to the nearest legal one (warning W402).
-  * times: WAIT in steps of 0.01 s, PULSE in steps of 0.1 s (other values rounded, W404).
+  * times: WAIT in steps of 0.01 s, PULSE in steps of 0.1 s (other values rounded, W412).
+  * acceleration: TP's ACC is a % of the motion's own profile, not m/s^2 or a share of each
+    axis's maximum: a non-default programmed acceleration is not expressed (W408 once per task).
+  * payload: a .ls program can only select a payload schedule (PAYLOAD[i]) whose mass and
+    centre of gravity live on the controller ($PLST_GRP1[i]): a tool with a mass warns W411
+    once, giving the mass and rmot's centre of gravity (half way flange->TCP, base.tool_cog).
+  * digital ports: DI[n] / DO[n] with n in DIGITAL_PORTS = 1..512 (the R-30iA/iB standard
+    DI[1]-DI[512] / DO[1]-DO[512] logical range); E404 outside.
   * zones: FINE, else CNTn. CNT is not a radius (it scales the corner rounding with speed):
     rmot emits CNT = round(radius / CNT_MM) clamped to 1..100, the nearest faithful choice
     (warning W403 on every blended move).
   * I/O: DO[n]=ON/OFF, DO[n]=PULSE,t sec, AO[n]=value, WAIT t(sec), WAIT DI[n]=ON;
     with a timeout: $WAITTMOUT (1/100 s) then `WAIT ... TIMEOUT,LBL[k]`, the label aborting
-    the program. Runtime if: `IF DI[n]<>ON,JMP LBL[else]` ... `JMP LBL[end]`.
+    the program (rmot's timeout semantics: the program stops, see base.py). Runtime if: `IF DI[n]<>ON,JMP LBL[else]` ... `JMP LBL[end]`.
   * procs: each routine is its own program NAME_PROC.ls (TP program names are global on the
     controller, hence the prefix) called with CALL.
   * sync: TP has no barrier between controllers without the multi-arm option, so the k-th
@@ -124,6 +131,7 @@ class FanucContext(TaskContext):
 
 class FanucBackend(Backend):
     name = "fanuc"
+    DIGITAL_PORTS = (1, 512)  # DI / DO logical numbers, R-30iA/iB
     file_ext = ".ls"
     COMMENT = "!"
     UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/sec",
@@ -213,6 +221,8 @@ class FanucBackend(Backend):
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
+        self.warn_accel(node, ctx, "TP's ACC is a % of the motion profile; the controller's own applies")
+        self.warn_payload(node, ctx, "the controller's payload schedule ($PLST_GRP1) selected by PAYLOAD[i]")
         uf, ut = ctx.frames.uframe(node.frame), ctx.frames.utool(node.tool)
         zone = self._zone(node)
         if node.kind is ir.MotionKind.JOINT:
@@ -300,12 +310,16 @@ class FanucBackend(Backend):
         return "ON" if value else "OFF"
 
     def set_digital(self, node: ir.SetDigital, ctx: FanucContext) -> list[str]:
+        if not self.port_ok(node.port, "digital output", node.span):
+            return []
         return [f"DO[{node.port}{_sig(node.signal)}]={self._level(node.value)}"]
 
     def set_analog(self, node: ir.SetAnalog, ctx: FanucContext) -> list[str]:
         return [f"AO[{node.port}{_sig(node.signal)}]={fmt(node.value, 3)}"]
 
     def pulse(self, node: ir.Pulse, ctx: FanucContext) -> list[str]:
+        if not self.port_ok(node.port, "digital output", node.span):
+            return []
         return [f"DO[{node.port}{_sig(node.signal)}]=PULSE,{self._seconds(node.duration, 1, 'pulse', node)}sec"]
 
     def wait_time(self, node: ir.WaitTime, ctx: FanucContext) -> list[str]:
@@ -315,12 +329,14 @@ class FanucBackend(Backend):
         """TP times have a fixed resolution (WAIT 0.01 s, PULSE 0.1 s): round, warn if changed."""
         text = fmt(value, decimals)
         if abs(float(text) - value) > 1e-9:
-            self.warn(codes.LOWERED, f"{what} time {fmt(value, 4)} s must be a multiple of "
+            self.warn(codes.TIME_ROUNDED, f"{what} time {fmt(value, 4)} s must be a multiple of "
                       f"{10.0 ** -decimals:g} s for TP; emitted as {text} s", node.span)
         return text
 
     def wait_input(self, node: ir.WaitInput, ctx: FanucContext) -> list[str]:
         c = node.condition
+        if not self.port_ok(c.port, "digital input", node.span):
+            return []
         cond = f"DI[{c.port}{_sig(c.signal)}]={self._level(c.value)}"
         if node.timeout is None:
             return [f"WAIT {cond}"]
@@ -331,6 +347,7 @@ class FanucBackend(Backend):
 
     def if_(self, node: ir.If, ctx: FanucContext) -> list[str]:
         c = node.condition
+        self.port_ok(c.port, "digital input", node.span)
         other, done = ctx.program.label(), ctx.program.label()
         lines = [f"IF DI[{c.port}{_sig(c.signal)}]<>{self._level(c.value)},JMP LBL[{other}]"]
         lines += self.body(node.then, ctx) + [f"JMP LBL[{done}]", f"LBL[{other}]"]

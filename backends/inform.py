@@ -25,9 +25,18 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     zones: `PL=0..4` positioning levels with the factory distances `PL_DISTANCES_MM`
     (parameters S1CxG033–036); the nearest level is used with a warning when the blend is
     not one of them; accelerations are not programmable in mm/s^2 (ACC=/DEC= are % of the
-    controller's maximum): the controller default is used, with one warning per program;
+    controller's maximum): the controller default is used, with one warning per program
+    when the program set a non-default acceleration;
   * I/O: `DOUT OT#(n) ON`, `PULSE OT#(n) T=s` (runs in the background, 0.01 s steps),
-    `AOUT AO#(n) volts`, `WAIT IN#(n)=ON T=s` (continues after the timeout), `TIMER T=s`;
+    `AOUT AO#(n) volts`, `TIMER T=s`; a wait with timeout is `WAIT IN#(n)=ON T=s` then
+    `JUMP *Lk IF IN#(n)=ON`, `MSG "..."`, `PAUSE`, `*Lk`: when the input did not come the job
+    stops with a message on the pendant (rmot's timeout semantics, see base.py; WAIT with T=
+    alone would continue: NX100/DX100 INFORM manual, WAIT and PAUSE instructions);
+  * digital ports: OT#(n) / IN#(n) with n in DIGITAL_PORTS = 1..1024 (general-purpose I/O of
+    DX200/YRC1000), AO#(n) in 1..40;
+  * payload: a job cannot carry a load: the tool file's weight W and centre of gravity
+    Xg/Yg/Zg are printed as comments with the tool data and a tool with a mass warns W411
+    once (rmot's centre of gravity: half way flange->TCP, base.tool_cog);
   * circular moves: `MOVC` start (the previous target), via, end with `FPT` (the arc's final
     point), so an arc that follows an arc continues from that point with its via and end only;
   * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per call;
@@ -48,7 +57,7 @@ Support (checked by tests/backends/test_inform.py):
             0/12.5/25/50/100 mm, DOUT, PULSE, AOUT, WAIT (with T), TIMER, if/else, procs as
             jobs, native inform, source comments;
   warned    joint targets as Cartesian + RCONF (W450), acceleration (W408, once), fixed
-            duration (W409), speed / zone / time rounding (W402 / W403 / W404), split jobs
+            duration (W409), speed / zone / time rounding (W402 / W403 / W412), tool payload (W411), split jobs
             (W406), legalised names (W400/W401), other vendors' native blocks (W407);
   lowered   sync as the I/O handshake (odd count W410);
   refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions
@@ -64,7 +73,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.lowering import split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
@@ -150,7 +159,6 @@ class InformContext(TaskContext):
     tools: dict[str | None, int]
     files: dict[str, str] = field(default_factory=dict)
     job: _Job = field(default_factory=lambda: _Job(""))
-    warned: set[str] = field(default_factory=set)  # warnings given once per task
 
 
 class InformBackend(Backend):
@@ -161,7 +169,8 @@ class InformBackend(Backend):
              "zone": "PL level", "time": "s", "analog": "V"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = INFORM_RULES
-    NATIVE_NAMES = frozenset({"inform", "jbi", "yaskawa", "motoman"})
+    DIGITAL_PORTS = (1, 1024)  # OT# / IN# general-purpose I/O
+    ANALOG_PORTS = (1, 40)  # AO#
     NO_RECORD_NOTE = None
 
     # ------------------------------------------------------------------ jobs
@@ -235,6 +244,9 @@ class InformBackend(Backend):
             out += self.wrap(f"TOOL {ctx.tools[t.name]} = {t.name}")
             out.append(f"'XYZ {fmt(x, 3)},{fmt(y, 3)},{fmt(z, 3)}"[:COMMENT_WIDTH])
             out.append(f"'RXYZ {fmt(rx, 4)},{fmt(ry, 4)},{fmt(rz, 4)}"[:COMMENT_WIDTH])
+            if t.mass > 0:
+                cog = fmt_list((c * 1000.0 for c in tool_cog(t)), 1)
+                out.append(f"'W {fmt(t.mass, 3)} G {cog}"[:COMMENT_WIDTH])
         return out
 
     # ------------------------------------------------------------------ motion
@@ -294,10 +306,9 @@ class InformBackend(Backend):
         return lines + [f"MOVC {via} V={v}", f"MOVC {end} V={v}{pl} FPT"]
 
     def motion_notes(self, node: ir.Move, ctx: InformContext) -> None:
-        if "accel" not in ctx.warned:
-            ctx.warned.add("accel")
-            self.warn(codes.ACCEL_IGNORED, "INFORM sets acceleration only as % of the "
-                      "controller's maximum (ACC=/DEC=); the controller default is used", node.span)
+        self.warn_accel(node, ctx, "INFORM sets acceleration only as % of the controller's "
+                        "maximum (ACC=/DEC=); the controller default is used")
+        self.warn_payload(node, ctx, f"tool file {ctx.tools.get(node.tool.name, 0)} (W, Xg, Yg, Zg)")
         if node.motion.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"INFORM has no fixed-duration move; the duration "
                       f"{node.motion.duration:g} s is expressed by the speed only", node.span)
@@ -329,26 +340,20 @@ class InformBackend(Backend):
 
     # ------------------------------------------------------------------ I/O and timing
 
-    def port_ok(self, port: int, low: int, high: int, what: str, span: object) -> bool:
-        if low <= port <= high:
-            return True
-        self.unsupported(codes.BAD_PORT, f"{what} port must be in {low}..{high} (got {port})", span)  # type: ignore[arg-type]
-        return False
-
     def seconds(self, value: float, node: ir.Instr, what: str) -> str:
         text = fmt(value, 2)
         if abs(float(text) - value) > 1e-9:
-            self.warn(codes.LOWERED, f"{what} must be a multiple of 0.01 s (got {value:g} s); "
+            self.warn(codes.TIME_ROUNDED, f"{what} must be a multiple of 0.01 s (got {value:g} s); "
                       f"T={text} used", getattr(node, "span", None))
         return text
 
     def set_digital(self, node: ir.SetDigital, ctx: InformContext) -> list[str]:
-        if not self.port_ok(node.port, 1, 1024, "digital output", node.span):
+        if not self.port_ok(node.port, "digital output", node.span):
             return []
         return [f"DOUT OT#({node.port}) {'ON' if node.value else 'OFF'}"]
 
     def set_analog(self, node: ir.SetAnalog, ctx: InformContext) -> list[str]:
-        if not self.port_ok(node.port, 1, 40, "analog output", node.span):
+        if not self.port_ok(node.port, "analog output", node.span, self.ANALOG_PORTS):
             return []
         if not -14.0 <= node.value <= 14.0:
             self.unsupported(codes.BAD_PORT, f"analog output must be in -14..14 V (got {node.value:g} V)", node.span)
@@ -356,7 +361,7 @@ class InformBackend(Backend):
         return [f"AOUT AO#({node.port}) {fmt(node.value, 2)}"]
 
     def pulse(self, node: ir.Pulse, ctx: InformContext) -> list[str]:
-        if not self.port_ok(node.port, 1, 1024, "digital output", node.span):
+        if not self.port_ok(node.port, "digital output", node.span):
             return []
         return [f"PULSE OT#({node.port}) T={self.seconds(node.duration, node, 'pulse time')}"]
 
@@ -369,7 +374,7 @@ class InformBackend(Backend):
         return out + [f"TIMER T={self.seconds(left, node, 'wait time')}"]
 
     def condition(self, cond: ir.InputCondition, span: object, negate: bool = False) -> str | None:
-        if not self.port_ok(cond.port, 1, 1024, "digital input", span):
+        if not self.port_ok(cond.port, "digital input", span):  # type: ignore[arg-type]
             return None
         return f"IN#({cond.port})={'ON' if cond.value != negate else 'OFF'}"
 
@@ -379,7 +384,10 @@ class InformBackend(Backend):
             return []
         if node.timeout is None:
             return [f"WAIT {test}"]
-        return [f"WAIT {test} T={self.seconds(node.timeout, node, 'timeout')}"]
+        done, c = self.label(ctx), node.condition
+        message = f"IN#({c.port}) TIMEOUT"  # MSG holds at most 32 characters
+        return [f"WAIT {test} T={self.seconds(node.timeout, node, 'timeout')}",
+                f"JUMP {done} IF {test}", f'MSG "{message}"', "PAUSE", done]
 
     @staticmethod
     def label(ctx: InformContext) -> str:

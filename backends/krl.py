@@ -5,7 +5,8 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
     degrees (the controller's zero and direction); E1..E6 written as 0 (no external axes).
   * Cartesian targets are E6POS in the move's $BASE (= the rmot frame in the robot base frame;
     $BASE is relative to $WORLD, assumed to coincide with $ROBROOT, KUKA's default floor
-    mounting) with $TOOL = the tool's TCP in the flange frame and $LOAD its mass.
+    mounting) with $TOOL = the tool's TCP in the flange frame and $LOAD its mass, centre of
+    gravity half way along the flange->TCP vector (rmot's payload convention, base.tool_cog).
   * Status S (from rmot's branch, rmot.compiler.robots.branches): bit 0 = wrist point behind
     A1 (overhead area = shoulder back), bit 1 = A3 >= its stretched angle (elbow up; KUKA's
     home A3 = 90 deg gives S 'B010'), bit 2 = A5 < 0 (wrist flip).
@@ -19,7 +20,10 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
   * I/O: $OUT[n]=TRUE, PULSE($OUT[n],TRUE,t), WAIT SEC t, WAIT FOR $IN[n]==TRUE,
     IF $IN[n]==TRUE THEN; $ANOUT[n] = volts / 10 (KRL's -1.0..1.0 is -10..10 V).
     KRL's WAIT FOR has no timeout: a timed wait is lowered to a wait on the input OR timer
-    $TIMER[TIMER_INDEX] (ms) followed by HALT when the input did not come (warning W405).
+    $TIMER[TIMER_INDEX] (ms) followed by HALT when the input did not come (warning W405):
+    the program stops, rmot's timeout semantics (base.py).
+  * digital ports: $IN[n] / $OUT[n] with n in DIGITAL_PORTS = 1..4096 (KSS 8.1-8.3 "System
+    Variables": $IN[1]..$IN[4096], $OUT[1]..$OUT[4096]); E404 outside.
   * every motion writes the system variables it needs right before it ($TOOL, $LOAD, $BASE,
     speeds, $APO.CDIS): an instruction never depends on the text of another one. (A move
     with the bare flange sets $TOOL=$NULLFRAME and leaves $LOAD as configured: rmot has no
@@ -45,7 +49,7 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes
-from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, turn_bits
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir
 
@@ -116,6 +120,7 @@ class KrlContext(TaskContext):
 
 class KrlBackend(Backend):
     name = "krl"
+    DIGITAL_PORTS = (1, 4096)  # $IN / $OUT, KSS 8.x System Variables
     file_ext = ".src"
     COMMENT = ";"
     UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "m/s",
@@ -209,7 +214,8 @@ class KrlBackend(Backend):
         else:
             tname = ctx.module.data.add(node.tool.name, f"FRAME:{{{frame_text(node.tool.tcp)}}}")
             mass = node.tool.mass
-            cog = f"X 0.0,Y 0.0,Z {fmt(node.tool.tcp.position[2] * 500.0, 3)},A 0.0,B 0.0,C 0.0"
+            cx, cy, cz = (fmt(c * 1000.0, 3) for c in tool_cog(node.tool))
+            cog = f"X {cx},Y {cy},Z {cz},A 0.0,B 0.0,C 0.0"
             lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{{M {fmt(mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}")
             lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
         if node.frame.name is None:
@@ -238,6 +244,8 @@ class KrlBackend(Backend):
         return "TRUE" if value else "FALSE"
 
     def set_digital(self, node: ir.SetDigital, ctx: KrlContext) -> list[str]:
+        if not self.port_ok(node.port, "digital output", node.span):
+            return []
         return [f"$OUT[{node.port}]={self._level(node.value)}" + self._signal_note(node.signal)]
 
     def set_analog(self, node: ir.SetAnalog, ctx: KrlContext) -> list[str]:
@@ -247,6 +255,8 @@ class KrlBackend(Backend):
         return [f"$ANOUT[{node.port}]={fmt(node.value / 10.0, 4)}" + self._signal_note(node.signal)]
 
     def pulse(self, node: ir.Pulse, ctx: KrlContext) -> list[str]:
+        if not self.port_ok(node.port, "digital output", node.span):
+            return []
         return [f"PULSE($OUT[{node.port}],TRUE,{fmt(node.duration, 3)})" + self._signal_note(node.signal)]
 
     def wait_time(self, node: ir.WaitTime, ctx: KrlContext) -> list[str]:
@@ -254,6 +264,8 @@ class KrlBackend(Backend):
 
     def wait_input(self, node: ir.WaitInput, ctx: KrlContext) -> list[str]:
         c = node.condition
+        if not self.port_ok(c.port, "digital input", node.span):
+            return []
         cond = f"$IN[{c.port}]=={self._level(c.value)}"
         if node.timeout is None:
             return [f"WAIT FOR {cond}" + self._signal_note(c.signal)]
@@ -273,6 +285,7 @@ class KrlBackend(Backend):
 
     def if_(self, node: ir.If, ctx: KrlContext) -> list[str]:
         c = node.condition
+        self.port_ok(c.port, "digital input", node.span)
         lines = [f"IF $IN[{c.port}]=={self._level(c.value)} THEN" + self._signal_note(c.signal)]
         lines += self.indent(self.body(node.then, ctx), "  ")
         if node.otherwise:

@@ -19,12 +19,17 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
   * joint moves to joint targets -> MoveAbsJ; joint moves to pose targets -> MoveJ with
     the robtarget's confdata (ConfJ\\On, the default, makes the controller take that branch).
   * tooldata: the TCP pose, the tool's mass (0 kg is declared as 0.001 kg, RAPID's minimum,
-    warning W404), the centre of gravity estimated half way to the TCP along the flange z,
-    inertia 0.
+    warning W413), the centre of gravity half way along the flange->TCP vector (rmot's payload
+    convention, base.tool_cog), inertia 0.
+  * acceleration: AccSet is modal, so a programmed (non-default) acceleration is not expressed
+    (warning W408 once per task); the controller's own acceleration applies.
   * I/O: SetDO / SetAO / PulseDO\\PLength / WaitDI ...\\MaxTime (an unhandled
-    ERR_WAIT_MAXTIME stops the program) / IF DInput(..) = 1 THEN; signal names from the cell
+    ERR_WAIT_MAXTIME stops the program with its message: rmot's timeout semantics, see
+    base.py) / IF DInput(..) = 1 THEN; signal names from the cell
     (else do<n> / di<n> / ao<n>), which must exist in the controller's I/O configuration.
   * sync -> WaitSyncTask with a `tasks` list T_ROB1..T_ROBn in task order (MultiMove).
+  * I/O ports: RAPID addresses signals by name; the port only builds the default name do<n>,
+    so any non-negative n is accepted (DIGITAL_PORTS; E404 below 0).
   * identifiers: at most 32 characters, a letter first, letters, digits and '_'.
   * Program size: RAPID has no line limit (program memory is the limit); nothing is split.
 """
@@ -35,7 +40,7 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 from rmot.backends import codes
-from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm
+from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir, planned
 
@@ -91,12 +96,12 @@ class RapidContext(TaskContext):
     decls: dict[str, list[str]] = field(default_factory=dict)  # kind -> declaration lines
     routines: dict[str, list[str]] = field(default_factory=dict)
     routine_of: dict[int, str] = field(default_factory=dict)
-    warned: set[str] = field(default_factory=set)  # warnings given once per task
     massless_tools: set[str] = field(default_factory=set)
 
 
 class RapidBackend(Backend):
     name = "rapid"
+    DIGITAL_PORTS = (0, 2**31 - 1)  # signals are named (do<n>): any non-negative number
     file_ext = ".mod"
     COMMENT = "!"
     UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/s",
@@ -166,10 +171,7 @@ class RapidBackend(Backend):
         return [f"MoveC {via}, {to}, {speed}, {zone}, {tool}{wobj};"]
 
     def _warn_accel(self, node: ir.Move, ctx: RapidContext) -> None:
-        if "accel" not in ctx.warned:
-            ctx.warned.add("accel")
-            self.warn(codes.ACCEL_IGNORED, "programmed accelerations are not expressed (AccSet is "
-                      "modal); the controller's own acceleration applies", node.span)
+        self.warn_accel(node, ctx, "AccSet is modal; the controller's own acceleration applies")
 
     def _tcp_speed(self, node: ir.Move, ctx: RapidContext) -> str:
         v = node.motion.tcp_speed * 1000.0
@@ -224,9 +226,9 @@ class RapidBackend(Backend):
         mass = tool.mass if tool.mass > 0 else 0.001  # RAPID rejects a tool load of 0 kg
         if tool.mass <= 0 and name not in ctx.massless_tools:
             ctx.massless_tools.add(name)
-            self.warn(codes.LOWERED, f"tool '{tool.name}' must have a mass for RAPID tooldata (got 0 kg); "
+            self.warn(codes.MASS_RAISED, f"tool '{tool.name}' must have a mass for RAPID tooldata (got 0 kg); "
                       "declared with 0.001 kg", span)
-        cog = (0.0, 0.0, tool.tcp.position[2] * 500.0)  # half way to the TCP, mm (an estimate)
+        cog = tuple(c * 1000.0 for c in tool_cog(tool))  # mm, half way to the TCP (base.tool_cog)
         load = f"[{fmt(mass, 3)},[{fmt_list(cog, 3)}],[1,0,0,0],0,0,0]"
         self._declare(ctx, "tooldata", f"PERS tooldata {name}:=[TRUE,{pose_text(tool.tcp)},{load}];")
         return name
@@ -241,32 +243,33 @@ class RapidBackend(Backend):
 
     # ------------------------------------------------------------------ I/O and flow
 
-    @staticmethod
-    def _signal(ctx: RapidContext, prefix: str, port: int, signal: str | None) -> str:
+    def _signal(self, ctx: RapidContext, prefix: str, port: int, signal: str | None, span: object = None) -> str:
+        if signal is None:  # a named signal does not use the number
+            self.port_ok(port, "analog" if prefix == "ao" else "digital", span)  # type: ignore[arg-type]
         return ctx.names.name(signal or f"{prefix}{port}")
 
     def set_digital(self, node: ir.SetDigital, ctx: RapidContext) -> list[str]:
-        return [f"SetDO {self._signal(ctx, 'do', node.port, node.signal)}, {int(node.value)};"]
+        return [f"SetDO {self._signal(ctx, 'do', node.port, node.signal, node.span)}, {int(node.value)};"]
 
     def set_analog(self, node: ir.SetAnalog, ctx: RapidContext) -> list[str]:
-        return [f"SetAO {self._signal(ctx, 'ao', node.port, node.signal)}, {fmt(node.value, 3)};"]
+        return [f"SetAO {self._signal(ctx, 'ao', node.port, node.signal, node.span)}, {fmt(node.value, 3)};"]
 
     def pulse(self, node: ir.Pulse, ctx: RapidContext) -> list[str]:
-        return [f"PulseDO\\PLength:={fmt(node.duration, 3)}, {self._signal(ctx, 'do', node.port, node.signal)};"]
+        return [f"PulseDO\\PLength:={fmt(node.duration, 3)}, {self._signal(ctx, 'do', node.port, node.signal, node.span)};"]
 
     def wait_time(self, node: ir.WaitTime, ctx: RapidContext) -> list[str]:
         return [f"WaitTime {fmt(node.duration, 3)};"]
 
     def wait_input(self, node: ir.WaitInput, ctx: RapidContext) -> list[str]:
         c = node.condition
-        text = f"WaitDI {self._signal(ctx, 'di', c.port, c.signal)}, {int(c.value)}"
+        text = f"WaitDI {self._signal(ctx, 'di', c.port, c.signal, node.span)}, {int(c.value)}"
         if node.timeout is not None:
             text += f"\\MaxTime:={fmt(node.timeout, 3)}"
         return [text + ";"]
 
     def if_(self, node: ir.If, ctx: RapidContext) -> list[str]:
         c = node.condition
-        lines = [f"IF DInput({self._signal(ctx, 'di', c.port, c.signal)}) = {int(c.value)} THEN"]
+        lines = [f"IF DInput({self._signal(ctx, 'di', c.port, c.signal, node.span)}) = {int(c.value)} THEN"]
         lines += self.indent(self.body(node.then, ctx), self.INDENT)
         if node.otherwise:
             lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)

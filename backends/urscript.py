@@ -17,13 +17,18 @@ Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5
     joint's maximum are multiplied by `JOINT_LIMITS[model]`, the slowest joint's datasheet
     maximum (exact where all joints share the maximum, otherwise conservative);
   * I/O: `set_standard_digital_out(n, b)` (n 0..7), `set_configurable_digital_out(n - 8, b)`
-    (n 8..15), `get_standard_digital_in(n)` / `get_configurable_digital_in(n - 8)`;
+    (n 8..15), `get_standard_digital_in(n)` / `get_configurable_digital_in(n - 8)`
+    (DIGITAL_PORTS = 0..15: the control box's 8 standard + 8 configurable I/O);
     analog out in volts on the 0–10 V domain: `set_analog_outputdomain(n, 1)` then
     `set_standard_analog_out(n, volts / 10)`;
   * a pulse runs in a URScript `thread` (set, sleep, reset) started with `run`, so the program
     does not wait for it — the same timing as a controller pulse instruction;
-  * wait with timeout: a `while` loop counting `get_steptime()` per `sync()`; the program
-    continues after the timeout (as the IR's wait does);
+  * wait with timeout: a `while` loop counting `get_steptime()` per `sync()`; when the input
+    still does not match, `popup(..., error=True, blocking=True)` names the input and `halt`
+    stops the program (rmot's timeout semantics, see base.py);
+  * payload: `set_payload(m, [cx, cy, cz])` (kg, m in the flange frame) next to `set_tcp` for
+    every named tool, the centre of gravity half way along the flange->TCP vector
+    (base.tool_cog); the bare flange leaves the installation's payload as configured;
   * procs: each call becomes a nested `def` before the main body (URScript needs a function
     defined before it is called);
   * comments: `# file.rmot:12` above each instruction.
@@ -55,7 +60,7 @@ import math
 from dataclasses import dataclass, field
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector
+from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
 from rmot.backends.names import NameRules
 from rmot.compiler import ir
 
@@ -96,7 +101,6 @@ class UrContext(TaskContext):
     routine_of: dict[int, str]
     routine_defs: list[str] = field(default_factory=list)
     threads: dict[str, list[str]] = field(default_factory=dict)
-    warned: set[str] = field(default_factory=set)
 
 
 class UrScriptBackend(Backend):
@@ -107,7 +111,7 @@ class UrScriptBackend(Backend):
              "joint_speed": "rad/s", "joint_accel": "rad/s^2", "blend": "m", "time": "s"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = UR_RULES
-    NATIVE_NAMES = frozenset({"urscript", "ur"})
+    DIGITAL_PORTS = (0, 15)  # standard 0..7, configurable 8..15 (control box)
     NO_RECORD_NOTE = "move uid {uid} has no plan"
 
     # ------------------------------------------------------------------ program
@@ -132,6 +136,9 @@ class UrScriptBackend(Backend):
             if isinstance(node, ir.Move) and node.tool != current:
                 current = node.tool
                 out.append(f"set_tcp({pose_text(node.tool.tcp)})")
+                if node.tool.name is not None:
+                    cog = fmt_list(tool_cog(node.tool), POS_DECIMALS, ", ")
+                    out.append(f"set_payload({fmt(node.tool.mass, 3)}, [{cog}])")
             out.extend(self.instr(node, ctx))
         return out
 
@@ -186,13 +193,11 @@ class UrScriptBackend(Backend):
 
     def digital(self, port: int, span: object, kind: str) -> str | None:
         """`standard_digital_out(3` or `configurable_digital_out(0`; None after an error."""
-        if 0 <= port <= 7:
+        if not self.port_ok(port, f"digital {kind}put", span):  # type: ignore[arg-type]
+            return None
+        if port <= 7:
             return f"standard_digital_{kind}({port}"
-        if 8 <= port <= 15:
-            return f"configurable_digital_{kind}({port - 8}"
-        self.unsupported(codes.BAD_PORT, f"digital {kind}put port must be in 0..15 (got {port})",
-                         span)  # type: ignore[arg-type]
-        return None
+        return f"configurable_digital_{kind}({port - 8}"
 
     def set_digital(self, node: ir.SetDigital, ctx: UrContext) -> list[str]:
         sig = self.digital(node.port, node.span, "out")
@@ -230,9 +235,15 @@ class UrScriptBackend(Backend):
             return []
         if node.timeout is None:
             return [f"while not ({test}):", "  sync()", "end"]
+        c = node.condition
+        message = (f"wait for input {c.port} == {c.value} timed out after "
+                   f"{fmt(node.timeout, 3)} s; program stopped")
         return ["rmot_waited = 0.0",
                 f"while not ({test}) and rmot_waited < {fmt(node.timeout, 4)}:",
-                "  sync()", "  rmot_waited = rmot_waited + get_steptime()", "end"]
+                "  sync()", "  rmot_waited = rmot_waited + get_steptime()", "end",
+                f"if not ({test}):",
+                f'  popup("{message}", title="rmot", error=True, blocking=True)',
+                "  halt", "end"]
 
     def if_(self, node: ir.If, ctx: UrContext) -> list[str]:
         test = self.condition(node.condition, node.span)

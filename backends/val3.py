@@ -20,13 +20,22 @@ Vendor conventions (VAL3 reference manual):
     blend off|joint|Cartesian, leave, reach (mm)}: joint moves take vel/accel/decel from the
     IR's fractions; linear moves take tmax = the TCP speed; a blend radius r becomes
     leave = reach = r (blend joint for joint moves, Cartesian otherwise); TCP accelerations in
-    mm/s^2 have no mdesc field (accel stays 100 %, one warning per program);
+    mm/s^2 have no mdesc field (accel stays 100 %, one warning per program when a non-default
+    TCP acceleration was programmed);
+  * payload: VAL3 `tool` data carries no mass, so a tool with a mass warns W411 once: its mass
+    and centre of gravity (half way flange->TCP, base.tool_cog) must be entered in the arm's
+    payload settings on the controller;
   * motion commands are queued: I/O, waits and delays would run before the robot arrives, so
     a `waitEndMove()` precedes each of them (a blend into it becomes an exact stop: warned);
     `start` ends with one so the application does not end before the robot;
   * I/O: `dio` arrays `dOut`/`dIn` linked to `BasicIO-1\\%Qn` / `BasicIO-1\\%In`; set is
-    `dOut[n] = true`; a pulse is set, `delay`, reset (blocking: warned); wait with timeout is
-    `bOk = watch(dIn[n] == true, s)` (continues after the timeout); if is `if ... else ... endIf`;
+    `dOut[n] = true` (n in DIGITAL_PORTS = 0..63, the size rmot declares for the arrays);
+    a pulse is set, `delay`, reset (blocking: warned); wait with timeout is
+    `bOk = watch(dIn[n] == true, s)` then, when it timed out, `popUpMsg` and `logMsg` name the
+    input and `stopMove()`, `resetMotion()`, `return` stop the program (rmot's timeout
+    semantics, see base.py; VAL3 reference manual: watch, popUpMsg, logMsg, stopMove,
+    resetMotion — `return` ends the current program: inside a proc the caller continues, so
+    procs check the same way); if is `if ... else ... endIf`;
     procs are `call name()`; native val3 text is passed through; an analog output is
     `aioSet(aOut[n], value)` with `aOut` declared unlinked (no standard physical name: warned);
   * comments: `// file.rmot:12`.
@@ -112,7 +121,6 @@ class Val3Context(TaskContext):
     routine_of: dict[int, str]
     data: _Data = field(default_factory=_Data)
     programs: dict[str, list[str]] = field(default_factory=dict)  # program name -> code lines
-    warned: set[str] = field(default_factory=set)
 
 
 class Val3Backend(Backend):
@@ -123,7 +131,7 @@ class Val3Backend(Backend):
              "blend": "mm", "time": "s"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = VAL3_RULES
-    NATIVE_NAMES = frozenset({"val3", "staubli"})
+    DIGITAL_PORTS = (0, 63)  # dIn / dOut arrays linked to BasicIO-1\%I / %Q
     NO_RECORD_NOTE = None
     WAITS_FOR_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput, ir.If)
     NO_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput)
@@ -239,10 +247,8 @@ class Val3Backend(Backend):
             tmax, kind = NO_LIMIT, "joint"
         else:
             pct, tmax, kind = ("100.000",) * 3, fmt(m.tcp_speed * 1000.0, 3), "Cartesian"
-            if "accel" not in ctx.warned:
-                ctx.warned.add("accel")
-                self.warn(codes.ACCEL_IGNORED, "VAL3 mdesc sets accelerations only as % of nominal "
-                          "joint acceleration; this program uses 100 % for TCP moves", node.span)
+            self.warn_accel(node, ctx, "VAL3 mdesc sets accelerations only as % of nominal "
+                            "joint acceleration; this program uses 100 % for TCP moves")
         if m.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"VAL3 has no fixed-duration move; the duration "
                       f"{m.duration:g} s is expressed by the speed only", node.span)
@@ -255,6 +261,7 @@ class Val3Backend(Backend):
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
+        self.warn_payload(node, ctx, "the arm's payload settings on the controller (VAL3 tool data has no mass)")
         tool, speed = self.tool(node.tool, ctx), self.mdesc(node, rec.blend_radius, ctx)
         if node.kind is ir.MotionKind.JOINT:
             value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
@@ -282,9 +289,7 @@ class Val3Backend(Backend):
     # ------------------------------------------------------------------ I/O and timing
 
     def port(self, port: int, span: object, output: bool, ctx: Val3Context) -> str | None:
-        if not 0 <= port <= 63:
-            self.unsupported(codes.BAD_PORT, f"digital {'output' if output else 'input'} port "
-                             f"must be in 0..63 (got {port})", span)  # type: ignore[arg-type]
+        if not self.port_ok(port, f"digital {'output' if output else 'input'}", span):  # type: ignore[arg-type]
             return None
         if output:
             ctx.data.outputs = max(ctx.data.outputs, port + 1)
@@ -297,8 +302,7 @@ class Val3Backend(Backend):
         return [f"{sig} = {'true' if node.value else 'false'}"] if sig else []
 
     def set_analog(self, node: ir.SetAnalog, ctx: Val3Context) -> list[str]:
-        if not 0 <= node.port <= 63:
-            self.unsupported(codes.BAD_PORT, f"analog output port must be in 0..63 (got {node.port})", node.span)
+        if not self.port_ok(node.port, "analog output", node.span):
             return []
         if node.port >= ctx.data.analog:
             ctx.data.analog = node.port + 1
@@ -327,7 +331,11 @@ class Val3Backend(Backend):
             return []
         if node.timeout is None:
             return [f"wait({test})"]
-        return [f"bOk = watch({test}, {fmt(node.timeout, 4)})"]
+        c = node.condition
+        message = f'"wait for dIn[{c.port}] == {str(c.value).lower()} timed out after {fmt(node.timeout, 3)} s"'
+        return [f"bOk = watch({test}, {fmt(node.timeout, 4)})", "if !bOk",
+                *self.indent([f"popUpMsg({message})", f"logMsg({message})", "stopMove()",
+                              "resetMotion()", "return"], self.INDENT), "endIf"]
 
     def if_(self, node: ir.If, ctx: Val3Context) -> list[str]:
         test = self.condition(node.condition, node.span, ctx)

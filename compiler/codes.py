@@ -9,7 +9,7 @@ __all__ = [
     "ARITY", "RECURSION", "IMPORT_CYCLE", "JOINT_COUNT", "UNKNOWN_ROBOT", "TOOL_NOT_ON_ROBOT",
     "SYNC_UNMATCHED", "SYNC_ORDER", "MISPLACED", "UNKNOWN_VENDOR", "BAD_ARGUMENT",
     "OUT_OF_RANGE", "NO_PROGRAM", "NO_CELL", "TOO_LARGE_UNROLLED", "BAD_TASK",
-    "FILE_NOT_FOUND", "NOT_UTF8", "FILE_TOO_LARGE", "PATH_ESCAPES", "ROBOT_LOAD",
+    "CONFIG_IGNORED", "FILE_NOT_FOUND", "NOT_UTF8", "FILE_TOO_LARGE", "PATH_ESCAPES", "ROBOT_LOAD",
 ]
 
 UNKNOWN_NAME = Code("E101", "unknown-name", "a name is not defined in any visible scope")
@@ -24,8 +24,8 @@ IMPORT_CYCLE = Code("E109", "import-cycle", "files import each other in a cycle"
 JOINT_COUNT = Code("E110", "joint-count", "joints() with a different count than the robot's axes")
 UNKNOWN_ROBOT = Code("E111", "unknown-robot", "a robot name that is neither in the library nor in the cell")
 TOOL_NOT_ON_ROBOT = Code("E112", "tool-not-on-robot", "a tool used by a robot it is not mounted on")
-SYNC_UNMATCHED = Code("E113", "sync-unmatched", "a sync barrier used by only one task")
-SYNC_ORDER = Code("E114", "sync-order", "tasks pass the same sync barriers in different orders")
+SYNC_UNMATCHED = Code("E113", "sync-unmatched", "a sync barrier that some task of a multi-task program lacks")
+SYNC_ORDER = Code("E114", "sync-order", "tasks pass their sync barriers in different orders or counts")
 MISPLACED = Code("E115", "misplaced-statement", "a statement where it cannot appear")
 UNKNOWN_VENDOR = Code("E116", "unknown-vendor", "native text for a controller rmot does not know")
 BAD_ARGUMENT = Code("E117", "bad-argument", "an unknown, missing or repeated argument")
@@ -34,6 +34,7 @@ NO_PROGRAM = Code("E119", "no-program", "the file holds no program (or more than
 NO_CELL = Code("E120", "no-cell", "no cell, or more than one, where one is needed")
 TOO_LARGE_UNROLLED = Code("E121", "too-large", "loops unroll to more instructions than allowed")
 BAD_TASK = Code("E122", "bad-task", "a task that names no robot of the cell, or names it twice")
+CONFIG_IGNORED = Code("W123", "config-ignored", "config(...) on a joint target, which has no IK branch to choose")
 
 FILE_NOT_FOUND = Code("E501", "file-not-found", "a file named by the program does not exist")
 NOT_UTF8 = Code("E502", "not-utf8", "a source file is not UTF-8 text")

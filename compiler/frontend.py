@@ -39,19 +39,23 @@ class FrontendResult:
 
 
 def load_program(path: str, *, cell: str | None = None, project_root: str | None = None,
-                 robot_loader: RobotLoader | None = None) -> FrontendResult:
-    """Parse, check and lower the program in `path` (see the module docstring)."""
-    return _load(path, None, cell, project_root, robot_loader)
+                 robot_loader: RobotLoader | None = None, require_program: bool = False) -> FrontendResult:
+    """Parse, check and lower the program in `path` (see the module docstring).
+
+    A missing file is E501. `require_program`: a file without a program (only a cell or
+    declarations) is an error, E119 — what every command that plans a program wants.
+    """
+    return _load(path, None, cell, project_root, robot_loader, require_program)
 
 
 def load_text(text: str, path: str = "<input>", *, cell: str | None = None, project_root: str | None = None,
-              robot_loader: RobotLoader | None = None) -> FrontendResult:
+              robot_loader: RobotLoader | None = None, require_program: bool = False) -> FrontendResult:
     """As load_program, from a string; relative paths resolve from `path`'s directory."""
-    return _load(path, text, cell, project_root, robot_loader)
+    return _load(path, text, cell, project_root, robot_loader, require_program)
 
 
 def _load(path: str, text: str | None, cell: str | None, project_root: str | None,
-          robot_loader: RobotLoader | None) -> FrontendResult:
+          robot_loader: RobotLoader | None, require_program: bool = False) -> FrontendResult:
     root = os.path.abspath(project_root) if project_root else os.path.dirname(os.path.abspath(path))
     roots = (root,) if cell is None else (root, os.path.dirname(os.path.abspath(cell)))
     state = FrontendState(path=path, roots=roots, reporter=Reporter(), robot_loader=robot_loader or default_robot_loader,
@@ -63,6 +67,10 @@ def _load(path: str, text: str | None, cell: str | None, project_root: str | Non
         from rmot.compiler import codes
 
         state.reporter.error(codes.TOO_LARGE_UNROLLED, "nesting must be at most a few hundred levels deep (got deeper)", None)
+    if require_program and state.program is None and not state.reporter.has_errors:
+        from rmot.compiler import codes
+
+        state.reporter.error(codes.NO_PROGRAM, f"'{path}' must contain a program (got none: only a cell or declarations)", None)
     diagnostics = state.reporter.sink.items
     program = None if any(d.is_error for d in diagnostics) else state.program
     return FrontendResult(program, state.cell, diagnostics)

@@ -38,7 +38,7 @@ __all__ = [
     "IoSignal", "JointTarget", "Mesh", "Motion", "MotionKind", "Move", "Native", "Pose",
     "ProcCall", "Program", "Pulse", "RobotInstance", "RobotSource", "SetAnalog",
     "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
-    "WaitTime", "Wrist", "Zone", "walk",
+    "WaitTime", "Wrist", "Zone", "payload_cog", "walk",
 ]
 
 
@@ -519,6 +519,15 @@ class Program:
     cell: Cell
     tasks: tuple[Task, ...]
     span: Span | None = _span_field()
+
+
+def payload_cog(tcp: Pose) -> tuple[float, float, float]:
+    """A tool's centre of gravity in the flange frame (m), given its TCP (in the flange frame):
+    half way along the flange->TCP vector, rmot's one payload convention (a gripper's mass
+    sits between flange and fingers). Used by the verification's torque check and by every
+    backend that writes a payload."""
+    x, y, z = tcp.position
+    return (0.5 * x, 0.5 * y, 0.5 * z)
 
 
 def walk(body: tuple[Instr, ...]):  # type: ignore[no-untyped-def]

@@ -22,7 +22,7 @@ from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.units import UNIT_TABLE, unknown_unit
 
-__all__ = ["AstBuilder", "KEYWORDS", "token_span"]
+__all__ = ["AstBuilder", "KEYWORDS", "RESERVED", "reserved_statement", "token_span"]
 
 KEYWORDS = frozenset({
     "move", "joint", "linear", "circular", "via", "to", "speed", "accel", "zone", "fine",
@@ -31,6 +31,8 @@ KEYWORDS = frozenset({
     "task", "sync", "native", "on", "off", "config", "at", "robot", "fixture", "io",
     "joint_speed", "joints", "time",
 })
+# keywords that start no statement yet, kept for the language's future (see reserved_statement)
+RESERVED = {"return": "procs end at their closing brace"}
 _ESCAPE = re.compile(r'\\(["\\])')
 
 def _fast_constructor(cls: type, names: tuple[str, str, str]) -> Any:
@@ -61,6 +63,12 @@ def _fast_constructor(cls: type, names: tuple[str, str, str]) -> Any:
 
 _make_pos = _fast_constructor(Pos, ("line", "col", "offset"))
 _make_span = _fast_constructor(Span, ("file", "start", "end"))
+
+
+def reserved_statement(word: str, span: Span) -> Diagnostic:
+    """E008 for a reserved word written as a statement (`return`)."""
+    msg = f"'{word}' is reserved for future use: {RESERVED[word]} (got '{word}' as a statement)"
+    return Diagnostic(codes.RESERVED_KEYWORD, Severity.ERROR, msg, span)
 
 
 def token_span(file: SourceFile, tok: Token) -> Span:
@@ -294,6 +302,8 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return ast.NativeStmt(self._ident(c[1]), self._string(c[2]), self._span(c))
 
     def call(self, c: list[Any]) -> ast.CallStmt:
+        if str(c[0]) in RESERVED:  # `return()`: the word is reserved, not an unknown proc
+            self.diagnostics.append(reserved_statement(str(c[0]), self._token_span(c[0])))
         return ast.CallStmt(self._ident(c[0]), c[2] or (), self._span(c))
 
     # -- expressions

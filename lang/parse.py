@@ -27,14 +27,14 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 from rmot.lang import ast
 from rmot.lang import codes
 from rmot.lang._gc import gc_paused
-from rmot.lang._build import KEYWORDS, AstBuilder, token_span
+from rmot.lang._build import KEYWORDS, RESERVED, AstBuilder, reserved_statement, token_span
 from rmot.lang._lalr import LalrDriver, PostLexState
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.lexer import RmotLexer
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.units import UNIT_NAMES, unknown_unit
 
-__all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "UNITS"]
+__all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "RESERVED", "UNITS"]
 
 UNITS = UNIT_NAMES  # every unit the language knows (lang/units.py is the one table)
 
@@ -286,6 +286,8 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[To
     # `mvoe joint home`: the parser took `mvoe` for a call and stumbles on the next token.
     before = history[-2] if len(history) >= 2 else None
     starts_statement = before is None or before.type in ("_NL", "LBRACE")
+    if prev is not None and prev.type == "NAME" and starts_statement and str(prev) in RESERVED:
+        return reserved_statement(str(prev), token_span(file, prev))
     if prev is not None and prev.type == "NAME" and starts_statement and "LPAR" in expected:
         near = difflib.get_close_matches(str(prev), sorted(KEYWORDS), n=1, cutoff=0.6)
         if near:

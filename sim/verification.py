@@ -4,8 +4,8 @@ Every task's main timeline is checked on one shared clock (robot against robot w
 overlap in time); every `if` variant is checked against the fixtures, its own robot and the
 other robots (on their main timelines at the same times). A robot of the cell without a task
 stands still at its zero configuration (clipped to its limits). Every tool a task names is
-treated as mounted for the whole task (tool changes are not modelled); its mass is the
-payload of the torque check.
+treated as mounted for the whole task (tool changes are not modelled); its mass, at its centre
+of gravity half way along the flange->TCP vector (ir.payload_cog), is the torque check's payload.
 
 The no-miss guarantee between samples is the distance bound in collide.py: a contact
 deeper than collide.CONTACT_TOL (10 µm) cannot fall between two samples unseen.
@@ -211,11 +211,13 @@ def _limits(scene: Scene, tp: planned.TaskPlan) -> list[Diagnostic]:
 
 
 def _payload(scene: Scene, tp: planned.TaskPlan) -> tuple[float, np.ndarray | None]:
-    """The heaviest tool the task uses, as a point mass at its TCP (in the last joint's frame)."""
+    """The heaviest tool the task uses, as a point mass at its centre of gravity (in the last
+    joint's frame): half way along the flange->TCP vector, ir.payload_cog, the point every
+    backend writes as the tool's payload."""
     best: tuple[float, np.ndarray | None] = (0.0, None)
     for instr in ir.walk(tp.task.body):
         if isinstance(instr, ir.Move) and instr.tool.mass > best[0]:
-            best = (instr.tool.mass, np.asarray(instr.tool.tcp.position, dtype=float))
+            best = (instr.tool.mass, np.asarray(ir.payload_cog(instr.tool.tcp), dtype=float))
     if best[1] is None:
         return best
     flange = flange_in_last_joint(scene.robots[tp.robot].robot)

@@ -54,19 +54,16 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
         diag = Diagnostic(codes.PROGRAM_NOT_CHECKED, Severity.ERROR, message, None)
         return CheckOutcome(Report(path, {}, (diag,)), True)
 
-    if not os.path.isfile(path):
-        return failed(f"program file must exist (got '{path}')")
     try:
         from rmot.compiler.frontend import load_program
         from rmot.compiler.plan import plan_program
     except ImportError as exc:
         return failed(f"this build cannot check programs yet: {exc}")
-    front = load_program(path, cell=cell, project_root=project_root)
+    # the front end reports a missing file (E501) and a file without a program (E119)
+    front = load_program(path, cell=cell, project_root=project_root, require_program=True)
     front_diags = tuple(front.diagnostics)
-    if any(d.is_error for d in front_diags):
+    if any(d.is_error for d in front_diags) or front.program is None:
         return CheckOutcome(Report(path, {}, front_diags), True)
-    if front.program is None:
-        return failed("the file must contain a program (got none)")
     from rmot.sim import verify
 
     try:

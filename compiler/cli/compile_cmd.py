@@ -45,13 +45,12 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     """Run the pipeline in memory; nothing is written here."""
     from rmot.backends import BACKENDS
 
-    if not os.path.isfile(path):
-        return CompileOutcome({}, (_input_error(f"program file must exist (got '{path}')"),), EXIT_INPUT)
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
     from rmot.sim import verify
 
-    front = load_program(path, cell=cell, project_root=project_root)
+    # the front end reports a missing file (E501) and a file without a program (E119)
+    front = load_program(path, cell=cell, project_root=project_root, require_program=True)
     diagnostics = tuple(front.diagnostics)
     if front.program is None or any(d.is_error for d in diagnostics):
         return CompileOutcome({}, diagnostics, EXIT_INPUT)
@@ -71,13 +70,6 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     if backend_errors:
         return CompileOutcome({}, diagnostics, EXIT_FINDINGS)
     return CompileOutcome(files, diagnostics, EXIT_OK)
-
-
-def _input_error(message: str) -> object:
-    from rmot.backends import codes
-    from rmot.lang.diagnostics import Diagnostic, Severity
-
-    return Diagnostic(codes.INPUT_MISSING, Severity.ERROR, message, None)
 
 
 def write_all(outdir: str, files: dict[str, str]) -> list[str]:

@@ -1,8 +1,9 @@
-"""`rmot plan FILE [--cell CELL] [--csv OUT] [--step 4ms]`: plan a program, print cycle times.
+"""`rmot plan FILE [--cell CELL] [--csv OUT] [--step 4ms] [--project-root DIR]`: plan a program.
 
 Prints every diagnostic (compiler style) and one line per task with its cycle time; with
---csv, writes the sampled trajectories (atomically). Exit 2 if the input or the planning has
-errors (the CSV is still written when there is a plan), 0 otherwise.
+--csv, writes the sampled trajectories (atomically). Exit codes as in `rmot check`: 2 for
+input errors (front end: a missing file is E501, a file without a program E119), 1 for
+planning errors (the CSV is still written), 0 otherwise.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ import tempfile
 
 import click
 
-from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["plan", "parse_step", "trajectory_csv"]
 
@@ -62,14 +63,12 @@ def _write_atomic(path: str, text: str) -> None:
         raise
 
 
-def _load(file: str, cell: str | None):  # type: ignore[no-untyped-def]
+def _load(file: str, cell: str | None, project_root: str | None):  # type: ignore[no-untyped-def]
     """(program or None, diagnostics) from the front end."""
     from rmot.compiler import frontend
 
-    result = frontend.load_program(file, cell=cell) if cell else frontend.load_program(file)
-    if isinstance(result, tuple):
-        return result[0], tuple(result[1])
-    return getattr(result, "program", None), tuple(getattr(result, "diagnostics", ()))
+    result = frontend.load_program(file, cell=cell, project_root=project_root, require_program=True)
+    return result.program, tuple(result.diagnostics)
 
 
 @click.command(name="plan")
@@ -77,12 +76,13 @@ def _load(file: str, cell: str | None):  # type: ignore[no-untyped-def]
 @click.option("--cell", type=click.Path(dir_okay=False), default=None, help="The cell file, if not in FILE.")
 @click.option("--csv", "csv_out", type=click.Path(dir_okay=False), default=None, help="Write the sampled trajectory here.")
 @click.option("--step", default="4ms", show_default=True, help="Sampling step of the trajectory.")
-def plan(file: str, cell: str | None, csv_out: str | None, step: str) -> None:
+@click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
+def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_root: str | None) -> None:
     """Plan FILE: joint trajectories, cycle time per task, planning diagnostics."""
     from rmot.lang.diagnostics import render
 
     step_s = parse_step(step)
-    program, diagnostics = _load(file, cell)
+    program, diagnostics = _load(file, cell, project_root)
     for d in diagnostics:
         click.echo(render(d), err=True)
     if program is None or any(d.is_error for d in diagnostics):
@@ -96,4 +96,4 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str) -> None:
         click.echo(f"task {tp.task.name} ({tp.robot}): cycle time {tp.cycle_time:.3f} s")
     if csv_out:
         _write_atomic(csv_out, trajectory_csv(result))
-    raise SystemExit(EXIT_INPUT if any(d.is_error for d in result.diagnostics) else EXIT_OK)
+    raise SystemExit(EXIT_FINDINGS if any(d.is_error for d in result.diagnostics) else EXIT_OK)

@@ -5,7 +5,7 @@
                 [--fps N] [--project-root DIR]
 
 Bad input (the program, the cell, the options) is reported as diagnostics, exit code 2.
-Planning errors are reported too (exit 2), but the planned motion is still drawn: seeing
+Planning errors are reported too (exit 1, as in `rmot check`), but the planned motion is still drawn: seeing
 where a move goes wrong is the point of the picture. Rendering only draws: the exit code
 never depends on verification findings.
 """
@@ -18,7 +18,7 @@ from typing import Any
 
 import click
 
-from rmot.compiler.cli import EXIT_INPUT
+from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
 
 __all__ = ["render"]
 
@@ -90,7 +90,7 @@ def render(program: str, cell: str | None, output: str, at: float, size: tuple[i
     try:
         _write(plan, output, ext, at, size, aa, camera, fps)
         if any(d.is_error for d in plan.diagnostics):
-            sys.exit(EXIT_INPUT)  # drawn anyway (a picture helps to see what failed), but not a success
+            sys.exit(EXIT_FINDINGS)  # drawn anyway (a picture helps to see what failed), but not a success
     except _InputError as exc:
         _fail(exc.diagnostic)
     except OSError as exc:
@@ -126,14 +126,14 @@ def _report(diagnostics: Any, stop_on_error: bool = True) -> None:
 
 
 def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
-    """Front end then planner. Front-end errors end the command (exit 2); planning errors are
-    printed and the plan is still drawn (the planner gives every task a trajectory), exit 2."""
+    """Front end then planner. Front-end errors end the command (exit 2; a missing file is E501, a
+    file without a program E119); planning errors are printed and the plan is still drawn, exit 1."""
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes
 
-    loaded = load_program(program, cell=cell, project_root=project_root)
+    loaded = load_program(program, cell=cell, project_root=project_root, require_program=True)
     _report(loaded.diagnostics)
     if loaded.program is None:
         _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,

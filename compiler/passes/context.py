@@ -76,6 +76,14 @@ class Reporter:
         self._seen.add(key)
         self.sink.add(Diagnostic(code, Severity.ERROR, message, span, notes))
 
+    def warning(self, code: Code, message: str, span: Span | None, notes: tuple[tuple[str, Span | None], ...] = ()) -> None:
+        key = (code.id, span.path if span else "", span.start.offset if span else -1,
+               span.end.offset if span else -1, message)
+        if key in self._seen:
+            return
+        self._seen.add(key)
+        self.sink.add(Diagnostic(code, Severity.WARNING, message, span, notes))
+
     def unknown(self, name: str, what: str, span: Span | None, candidates: list[str], code: Code = codes.UNKNOWN_NAME) -> None:
         """`unknown <what> 'x'; did you mean 'y'?` (difflib's closest candidate, if close enough)."""
         near = difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)

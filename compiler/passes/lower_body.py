@@ -33,6 +33,7 @@ from rmot.lang.source import Span
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
 from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
 from rmot.lang import ast
+from rmot.lang.parse import RESERVED
 
 __all__ = ["MAX_INSTRUCTIONS", "TaskLowering", "VENDORS"]
 
@@ -163,8 +164,9 @@ class TaskLowering:
     def call(self, s: ast.CallStmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
         entry = scope.lookup(s.name.name)
         if entry is None:
-            procs = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "proc"]
-            self.rep.unknown(s.name.name, "proc", s.name.span, procs)
+            if s.name.name not in RESERVED:  # `return()`: the parser said it is reserved (E008)
+                procs = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "proc"]
+                self.rep.unknown(s.name.name, "proc", s.name.span, procs)
             return None
         if entry.kind != "proc":
             self.rep.error(codes.WRONG_TYPE, f"'{s.name.name}' must be a proc to be called (got {article(entry.kind)})", s.name.span,
@@ -264,6 +266,11 @@ class TaskLowering:
         via = self.target(s.via, scope, modal, kind, "via point") if s.via is not None else None
         if target is None or (s.via is not None and via is None) or not ok:
             return None
+        if isinstance(target, ir.JointTarget):
+            for m in s.modifiers:
+                if m.kind == "config":  # joints fix the branch already: the planner ignores config here
+                    self.rep.warning(codes.CONFIG_IGNORED, "config(...) must go with a pose target (got a joint target: "
+                                     "joints fix the arm's configuration, there is no IK branch to choose); it is ignored", m.span)
         motion = ir.Motion(modal.tcp_speed, modal.tcp_accel, modal.joint_speed, modal.joint_accel, modal.zone, duration)
         return ir.Move(uid=0, kind=kind, target=target, via=via, motion=motion, tool=modal.tool,  # type: ignore[arg-type]
                        frame=modal.frame, config=config, span=s.span)

@@ -107,12 +107,14 @@ def _frame(name: ast.Ident, scope: Scope, base: ir.Pose, rep: Reporter) -> ir.Fr
 
 def _positive(s: ast.Setting, scope: Scope, dim: tuple[int, ...], what: str, rep: Reporter, allow_zero: bool = False) -> float | None:
     e: ast.Expr = s.value  # type: ignore[assignment]
-    v = expect_quantity(eval_expr(e, scope, rep), dim, what, e.span, rep)  # type: ignore[arg-type]
+    value = eval_expr(e, scope, rep)
+    v = expect_quantity(value, dim, what, e.span, rep)  # type: ignore[arg-type]
     if v is None:
         return None
     if v < 0 or (v == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
-        rep.error(codes.OUT_OF_RANGE, f"{what} must be {bound} (got {v:g} in SI units)", e.span)
+        shown = fmt_quantity(value) if isinstance(value, Quantity) else f"{v:g}"  # as the user wrote it
+        rep.error(codes.OUT_OF_RANGE, f"{what} must be {bound} (got {shown})", e.span)
         return None
     return v
 

@@ -27,6 +27,7 @@ from rmot.compiler.passes.values import (
     PoseV, StringV, Value, type_name,
 )
 from rmot.lang import ast
+from rmot.lang.parse import RESERVED
 
 __all__ = ["PARAM_TYPES", "bind_call", "check_recursion", "check_uncalled_procs"]
 
@@ -171,7 +172,7 @@ def _check_body(body: tuple[ast.Stmt, ...], known: set[str], scope: Scope, rep: 
             _check_body(s.otherwise, local, scope, rep)
         elif isinstance(s, ast.CallStmt):
             entry = scope.lookup(s.name.name)
-            if entry is None or entry.kind != "proc":
+            if (entry is None or entry.kind != "proc") and s.name.name not in RESERVED:  # `return()`: E008 already
                 procs = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "proc"]
                 rep.unknown(s.name.name, "proc", s.name.span, procs)
             _check_exprs([a.value for a in s.args], local, scope, rep)

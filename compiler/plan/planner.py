@@ -39,7 +39,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
             continue
         q0 = initial_joints(robot, task.body)
         robots[task.name], starts[task.name] = robot, q0
-        drafts[task.name] = build_task(robot, task, q0)
+        drafts[task.name] = build_task(robot, task, q0, lone=len(program.tasks) == 1)
         diagnostics.extend(drafts[task.name].diagnostics)
     diagnostics.extend(align(drafts))
     tasks = tuple(

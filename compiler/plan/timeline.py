@@ -3,7 +3,9 @@
 * Moves gather into a *chain* while their zones blend; a chain ends at a `fine` zone, at the
   task's last move, at a move with a `time` modifier (timed on its own: blending into or out of
   it is not done), and before any instruction that makes the robot wait (`wait`,
-  `wait until`, `sync`, `if`). Then the chain is timed (compiler.plan.chain).
+  `wait until`, `sync`, `if`). Then the chain is timed (compiler.plan.chain). In a program
+  of one task (`lone`) a `sync` is a no-op: it is recorded at its instant like a `set` and
+  neither stops nor breaks a blend.
 * `set`, `pulse` and `native` do not stop the robot: they happen at the instant the preceding
   move ends — its zone entry when it is blended (as RAPID does for a zone point), its stop
   otherwise. A pulse's record lasts the pulse (t_end = t_start + duration).
@@ -65,8 +67,8 @@ class _Builder:
     """Walks one instruction list; `variant` > 0 for an if-arm planned off the main timeline."""
 
     def __init__(self, robot: object, task: str, q0: np.ndarray, t0: float, variant: int,
-                 draft: TaskDraft, counter: list[int]) -> None:
-        self.robot, self.task, self.variant = robot, task, variant
+                 draft: TaskDraft, counter: list[int], lone: bool = False) -> None:
+        self.robot, self.task, self.variant, self.lone = robot, task, variant, lone
         self.q, self.t = q0.copy(), t0
         self.pieces: list[Piece] = []
         self.draft, self.counter = draft, counter
@@ -91,7 +93,7 @@ class _Builder:
         for instr in body:
             if isinstance(instr, ir.Move):
                 self._move(instr)
-            elif isinstance(instr, _EVENTS):
+            elif isinstance(instr, _EVENTS) or (self.lone and isinstance(instr, ir.Sync)):
                 self._event(instr)
             elif isinstance(instr, ir.ProcCall):
                 self.walk(instr.body)
@@ -150,7 +152,7 @@ class _Builder:
         if instr.otherwise:
             self.counter[0] += 1
             index = self.counter[0]
-            sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter)
+            sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter, self.lone)
             sub.walk(instr.otherwise)
             sub.flush()
             self.draft.variants.append(VariantDraft(index, instr.uid, "otherwise", t0, sub.pieces, n_records))
@@ -195,10 +197,10 @@ class _Builder:
             q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None)
 
 
-def build_task(robot: object, task: ir.Task, q0: np.ndarray) -> TaskDraft:
-    """The timeline of one task from joints q0 (dof,)."""
+def build_task(robot: object, task: ir.Task, q0: np.ndarray, *, lone: bool = False) -> TaskDraft:
+    """The timeline of one task from joints q0 (dof,); `lone`: the program's only task (syncs are no-ops)."""
     draft = TaskDraft()
-    builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0])
+    builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0], lone)
     builder.walk(task.body)
     builder.flush()
     draft.pieces = builder.pieces

@@ -26,7 +26,7 @@ ROWS = [
     Row("l_speed", move(1, L, cart(DOWN, name="p1"), speed=0.5), FRAMES + ("L P[1] 500mm/sec FINE",)),
     Row("l_time", move(1, L, cart(DOWN, name="p1"), duration=2.5), FRAMES + ("L P[1] 2.50sec FINE",)),
     Row("l_frames", move(1, L, cart(DOWN, TABLE), tool=GRIPPER, frame=TABLE, speed=0.1),
-        ("UFRAME_NUM=1", "UTOOL_NUM=1", "L P[1] 100mm/sec FINE")),
+        ("UFRAME_NUM=1", "UTOOL_NUM=1", "L P[1] 100mm/sec FINE"), codes=("W411",)),
     Row("c_move", move(1, C, cart(DOWN, name="p1"), via=cart(DOWN, name="mid")),
         FRAMES + ("C P[1]", ":  P[2] 250mm/sec FINE")),
     Row("do", ir.SetDigital(uid=1, port=1, value=True, signal="gripper_close"), ("DO[1:gripper_close]=ON",)),
@@ -132,9 +132,9 @@ class TestProgram:
 
 class TestResolution:
     @pytest.mark.parametrize(("instr", "line", "code"), [
-        (ir.WaitTime(uid=1, duration=0.255), "WAIT 0.26(sec)", "W404"),
+        (ir.WaitTime(uid=1, duration=0.255), "WAIT 0.26(sec)", "W412"),
         (ir.WaitTime(uid=1, duration=0.25), "WAIT 0.25(sec)", None),
-        (ir.Pulse(uid=1, port=1, duration=0.25), "DO[1]=PULSE,0.2sec", "W404"),
+        (ir.Pulse(uid=1, port=1, duration=0.25), "DO[1]=PULSE,0.2sec", "W412"),
         (move(1, L, cart(DOWN), speed=3.0), "L P[1] 2000mm/sec FINE", "W402"),
     ])
     def test_rounded_values_warn(self, instr: ir.Instr, line: str, code: str | None) -> None:

@@ -50,10 +50,10 @@ TABLE = [
     (6, ["DOUT OT#(1) ON"]),
     (7, ["TIMER T=0.30"]),
     (8, ["PULSE OT#(3) T=0.20"]),
-    (9, ["WAIT IN#(2)=ON T=5.00"]),
-    (10, ["JUMP *L001 IF IN#(2)=OFF"]),
-    (11, ["MOVJ C00003 VJ=100.00 PL=0", "JUMP *L002", "*L001"]),
-    (13, ["WAIT IN#(2)=OFF", "*L002"]),
+    (9, ["WAIT IN#(2)=ON T=5.00", "JUMP *L001 IF IN#(2)=ON", 'MSG "IN#(2) TIMEOUT"', "PAUSE", "*L001"]),
+    (10, ["JUMP *L002 IF IN#(2)=OFF"]),
+    (11, ["MOVJ C00003 VJ=100.00 PL=0", "JUMP *L003", "*L002"]),
+    (13, ["WAIT IN#(2)=OFF", "*L003"]),
     (14, ["CALL JOB:PICK"]),
     (15, ["MOVL C00000 V=100.0 PL=0"]),
     (16, ["DOUT OT#(1) OFF"]),
@@ -89,9 +89,9 @@ class TestTable:
         assert pos["C00004"][2] == positions(files["PICK.JBI"])["C00000"][2]
 
     def test_warnings(self) -> None:
-        """Joint targets as Cartesian (W450), accel once (W408), other vendors' native (W407)."""
+        """Joint targets as Cartesian (W450), other vendors' native (W407); default accel: no W408."""
         _, diags = emit(demo_plan("yaskawa_gp8"))
-        assert diags == ["warning:W408:3", "warning:W450:3", "warning:W450:11",
+        assert diags == ["warning:W450:3", "warning:W450:11",
                          "warning:W407:18", "warning:W407:20"]
 
     def test_matches_golden_files(self) -> None:
@@ -117,7 +117,7 @@ class TestNearestAndRefused:
         """Values INFORM cannot express take the nearest one with a warning at the move."""
         files, diags = emit(self._plan((move(1, L, cart(PICK_POSE), 4, m),)))
         assert blocks(files["DEMO.JBI"])[4] == [expected]
-        assert diags[1:] == ([f"warning:{code}:4"] if code else [])
+        assert diags == ([f"warning:{code}:4"] if code else [])
 
     def test_joint_speed_rounded(self) -> None:
         """VJ has 0.01 % steps: 12.3456 % prints VJ=12.35 with W402."""

@@ -30,7 +30,7 @@ ROWS = [
         ("$TOOL=gripper", "$LOAD=gripper_load", "$BASE=table_top", "$VEL.CP=0.1000", "$ACC.CP=2.0000", "LIN p1"),
         ("DECL FRAME gripper={X 0.000,Y 0.000,Z 150.000,A 0.0000,B 0.0000,C 0.0000}",
          "DECL FRAME table_top={X 500.000,Y 0.000,Z 15.000,A 0.0000,B 0.0000,C 0.0000}",
-         "DECL LOAD gripper_load={M 1.200,CM {X 0.0,Y 0.0,Z 75.000,A 0.0,B 0.0,C 0.0},J {X 0.0,Y 0.0,Z 0.0}}")),
+         "DECL LOAD gripper_load={M 1.200,CM {X 0.000,Y 0.000,Z 75.000,A 0.0,B 0.0,C 0.0},J {X 0.0,Y 0.0,Z 0.0}}")),
     Row("circ", move(1, C, cart(DOWN, name="p1"), via=cart(DOWN, name="mid")),
         NULL + ("$VEL.CP=0.2500", "$ACC.CP=2.0000", "CIRC mid,p1")),
     Row("lin_time_warns", move(1, L, cart(DOWN, name="p1"), duration=2.0),

@@ -23,8 +23,9 @@ J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
 
 
 def blocks(text: str) -> dict[int, list[str]]:
-    """Source line -> the stripped lines printed under its `# demo.rmot:N` comment (no set_tcp)."""
-    return shared_blocks(text, "# ", skip=("set_tcp",))
+    """Source line -> the stripped lines printed under its `# demo.rmot:N` comment (no set_tcp,
+    set_payload: they belong to the next move)."""
+    return shared_blocks(text, "# ", skip=("set_tcp", "set_payload"))
 
 
 def emit(plan: object) -> tuple[str, list[str]]:
@@ -42,7 +43,10 @@ TABLE = [
     (7, ["sleep(0.3000)"]),
     (8, ["rmot_thread = run rmot_pulse_3_200ms()"]),
     (9, ["rmot_waited = 0.0", "while not (get_standard_digital_in(2) == True) and rmot_waited < 5.0000:",
-         "sync()", "rmot_waited = rmot_waited + get_steptime()", "end"]),
+         "sync()", "rmot_waited = rmot_waited + get_steptime()", "end",
+         "if not (get_standard_digital_in(2) == True):",
+         'popup("wait for input 2 == True timed out after 5.000 s; program stopped", title="rmot", '
+         'error=True, blocking=True)', "halt", "end"]),
     (10, ["if get_standard_digital_in(2) == True:"]),
     (13, ["while not (get_standard_digital_in(2) == False):", "sync()", "end", "end"]),
     (14, ["pick()"]),

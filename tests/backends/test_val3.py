@@ -52,7 +52,10 @@ TABLE_ROWS = [
     (6, ["dOut[1] = true"]),
     (7, ["delay(0.3000)"]),
     (8, ["dOut[3] = true", "delay(0.2000)", "dOut[3] = false"]),
-    (9, ["bOk = watch(dIn[2] == true, 5.0000)"]),
+    (9, ["bOk = watch(dIn[2] == true, 5.0000)", "if !bOk",
+         'popUpMsg("wait for dIn[2] == true timed out after 5.000 s")',
+         'logMsg("wait for dIn[2] == true timed out after 5.000 s")',
+         "stopMove()", "resetMotion()", "return", "endIf"]),
     (10, ["if dIn[2] == true"]),
     (11, ["movej(jTarget[0], t_gripper, mSpeed[3])", "else"]),
     (13, ["wait(dIn[2] == false)", "endIf"]),
@@ -97,9 +100,9 @@ class TestTable:
                                    "j4": "0.0000", "j5": "60.0000", "j6": "0.0000"}
 
     def test_warnings(self) -> None:
-        """Accel once (W408), blocking pulse (W451), other vendors' native blocks (W407)."""
+        """Blocking pulse (W451), other vendors' native blocks (W407); default accel: no W408."""
         _, diags = emit(demo_plan("staubli_tx2_60"))
-        assert diags == ["warning:W408:4", "warning:W451:8", "warning:W407:18", "warning:W407:19"]
+        assert diags == ["warning:W451:8", "warning:W407:18", "warning:W407:19"]
 
     def test_matches_golden_files(self) -> None:
         """The demo application equals the hand-reviewed golden files."""

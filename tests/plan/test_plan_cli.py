@@ -52,11 +52,11 @@ def test_csv_holds_every_sample(tmp_path: Path) -> None:
     assert sorted(p.name for p in tmp_path.iterdir()) == ["prog.rmot", "traj.csv"]
 
 
-def test_planning_error_is_rendered_and_exits_2(tmp_path: Path) -> None:
-    """An unreachable target: the diagnostic with file:line:col and carets, exit 2."""
+def test_planning_error_is_rendered_and_exits_1(tmp_path: Path) -> None:
+    """An unreachable target: the diagnostic with file:line:col and carets, exit 1 (a finding, as in check)."""
     text = GOOD.replace("move joint joints(0, -20, 30, 0, 50, 0) deg\n}", "move linear pose(x=5000mm, z=500mm)\n}")
     result = _run(tmp_path, text)
-    assert result.exit_code == 2
+    assert result.exit_code == 1
     assert f"{tmp_path / 'prog.rmot'}:10:3: error[E220]: target must be within the robot's reach" in result.stderr
     assert " 10 |   move linear pose(x=5000mm, z=500mm)" in result.stderr
 

@@ -155,3 +155,22 @@ def test_samples_are_at_the_fixed_step_from_zero() -> None:
     assert t[0] == 0.0 and np.allclose(np.diff(t), 0.01)
     last = max(r.t_end for r in plan.tasks[0].records)
     assert t[-1] >= last > t[-1] - 0.01
+
+
+def test_sync_in_a_lone_task_is_a_no_op_that_keeps_the_blend() -> None:
+    """A one-task `sync` between blended moves neither stops the robot nor changes the timing."""
+    def build(with_sync: bool):  # type: ignore[no-untyped-def]
+        p = Prog()
+        p.joint(pose(300, -150, 300, **TOOL_DOWN))
+        a = p.linear(pose(300, 100, 300, **TOOL_DOWN), zone=20)
+        s = p.sync("meet") if with_sync else None
+        p.linear(pose(450, 100, 300, **TOOL_DOWN))
+        return plan_program(program(p.task())).tasks[0], a, s
+
+    plain, _, _ = build(False)
+    tp, a, s = build(True)
+    assert tp.trajectory.t[-1] == pytest.approx(plain.trajectory.t[-1], abs=1e-9)
+    t = tp.record(s).t_start
+    assert t == tp.record(s).t_end == tp.record(a).t_end
+    i = int(np.argmin(np.abs(tp.trajectory.t - t)))
+    assert np.max(np.abs(tp.trajectory.qd[i])) > 0.1  # still moving through the zone

@@ -97,12 +97,12 @@ def test_camera_that_cannot_be_built_is_a_usage_error(tmp_path: Path) -> None:
 
 
 def test_planning_errors_are_reported_and_the_motion_still_drawn(tmp_path: Path) -> None:
-    """An unreachable target: E220 at its line, exit 2, and the picture of what was planned is written."""
+    """An unreachable target: E220 at its line, exit 1 (a finding, as in check), and the picture of what was planned is written."""
     far = tmp_path / "far.rmot"
     far.write_text(Path(PROGRAM).read_text(encoding="utf-8").replace(
         "move joint joints(40, -70, 80, -100, -90, 0) deg", "move linear pose(x=3000mm, z=300mm, rx=180deg)"))
     out = tmp_path / "far.png"
     code, output = _run(str(far), "-o", str(out), "--size", "64x48", "--aa", "1")
-    assert code == 2
+    assert code == 1
     assert f"{far}:10:3: error[E220]: target must be within the robot's reach" in output
     assert Image.open(out).size == (64, 48)

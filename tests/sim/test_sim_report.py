@@ -155,7 +155,7 @@ def test_parse_length() -> None:
 
 
 def test_missing_program_is_input_error(tmp_path) -> None:
-    """A program path that does not exist is reported (E390) with exit code 2."""
+    """A program path that does not exist is the front end's E501, exit code 2."""
     result = CliRunner().invoke(check_cmd.check, [str(tmp_path / "nope.rmot")])
     assert result.exit_code == 2
-    assert "error[E390]: program file must exist" in result.output
+    assert "error[E501]: file" in result.output and "must be readable" in result.output
