@@ -538,6 +538,9 @@ class Backend:
 
     def native_other(self, node: ir.Native) -> list[str]:
         """A native block for another controller: not emitted, with a warning and a comment
-        (the front end refuses unknown vendors with E116)."""
-        self.warn(codes.NATIVE_SKIPPED, f"native {node.vendor} block is not emitted for {self.name}", node.span)
+        (the front end refuses any vendor outside CONTROLLERS with E116, so only an IR built by
+        hand names another; it is skipped the same way, never printed)."""
+        known = node.vendor in CONTROLLERS
+        self.warn(codes.NATIVE_SKIPPED, f"native {node.vendor} block is not emitted for {self.name}"
+                  + ("" if known else f" (not one of {', '.join(CONTROLLERS)})"), node.span)
         return [self.comment(f"native {node.vendor} block skipped")]

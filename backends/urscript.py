@@ -46,7 +46,7 @@ interface), or paste it into a Script node and call `<program>()`.
 Support (checked by tests/backends/test_urscript.py):
   exact     movej/movel/movec, speeds, accelerations, blend r, fixed duration (t= on movej and
             movel), set_tcp, digital out 0..15, analog out 0..10 V, pulse, wait, wait for an
-            input with or without timeout, if/else, procs, native urscript, source comments;
+            input with or without timeout (a timeout stops the program), payload, if/else, procs, native urscript, source comments;
   warned    joint speed of a model missing from JOINT_LIMITS (W452), fixed duration of movec
             (W409), other vendors' native blocks (W407), legalised names (W400/W401);
   lowered   sync as the I/O handshake (no warning: exact given the wiring; odd count W410);

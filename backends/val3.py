@@ -51,7 +51,7 @@ Support (checked by tests/backends/test_val3.py):
   exact     movej (planned joints), movel/movec (points with config, in world or a cell
             frame), tools, mdesc speeds and blends, dio set, delay, wait / watch with timeout,
             if/else, call, native val3, source comments;
-  warned    TCP acceleration (W408, once), fixed duration (W409), pulse made blocking (W451),
+  warned    programmed TCP acceleration (W408, once), tool payload (W411, once per tool), fixed duration (W409), pulse made blocking (W451),
             a blend stopped by waitEndMove() before I/O (W453), analog out on an unlinked aio
             (W455), legalised names (W400/W401), other vendors' native blocks (W407);
   lowered   sync as the I/O handshake (odd count W410);

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from backend_fixtures import DOWN, FRONT_UP_NOFLIP, Q, cart, deg, hand_plan, span_at
+from backend_fixtures import DOWN, FRONT_UP_NOFLIP, Q, cart, hand_plan, span_at
 
 from rmot.backends import BACKENDS, codes
 from rmot.backends.base import CONTROLLERS, DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, EmitResult
