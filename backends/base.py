@@ -35,7 +35,7 @@ Conventions every vendor follows (so one program means the same on every control
     Each vendor prints its own stop: RAPID WaitDI\\MaxTime, KRL HALT, Fanuc ABORT, URScript
     popup(error) + halt, INFORM MSG + PAUSE, VAL3 popUpMsg + stopMove/resetMotion + return.
   * acceleration: the front end's defaults (DEFAULT_TCP_ACCEL, DEFAULT_JOINT_ACCEL, from
-    compiler/passes/modal.py) mean "the controller's own"; a vendor that cannot express a
+    compiler/ir.py) mean "the controller's own"; a vendor that cannot express a
     programmed acceleration warns W408 once per task, only when a move sets a non-default one.
   * I/O ports: each vendor declares DIGITAL_PORTS (inclusive range, with its source); every
     port goes through `port_ok` (E404 outside it).
@@ -62,7 +62,6 @@ from rmot.backends import codes, handshake
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
-from rmot.compiler.passes.modal import DEFAULT_MODAL
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
 
@@ -78,10 +77,10 @@ __all__ = [
 # front end refuses any other with E116, so a backend only tells "mine" from "another's").
 CONTROLLERS: tuple[str, ...] = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
 
-# The front end's accelerations when a program never sets `accel` (compiler/passes/modal.py):
+# The front end's accelerations when a program never sets `accel` (defined in compiler/ir.py):
 # a move carrying them asks for nothing a vendor must express.
-DEFAULT_TCP_ACCEL: float = DEFAULT_MODAL.tcp_accel  # m/s^2
-DEFAULT_JOINT_ACCEL: float = DEFAULT_MODAL.joint_accel  # fraction of each joint's maximum
+DEFAULT_TCP_ACCEL: float = ir.DEFAULT_TCP_ACCEL  # m/s^2
+DEFAULT_JOINT_ACCEL: float = ir.DEFAULT_JOINT_ACCEL  # fraction of each joint's maximum
 
 C = TypeVar("C", bound="TaskContext")
 

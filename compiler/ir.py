@@ -33,6 +33,7 @@ if TYPE_CHECKING:
     import numpy as np
 
 __all__ = [
+    "DEFAULT_JOINT_ACCEL", "DEFAULT_JOINT_SPEED", "DEFAULT_TCP_ACCEL", "DEFAULT_TCP_SPEED",
     "Box", "Capsule", "Cell", "CartesianTarget", "Config", "Cylinder", "Elbow", "Fixture",
     "Frame", "FrameRef", "Geometry", "If", "InputCondition", "Instr", "IoDirection",
     "IoSignal", "JointTarget", "Mesh", "Motion", "MotionKind", "Move", "Native", "Pose",
@@ -348,6 +349,15 @@ class Zone:
     @property
     def is_fine(self) -> bool:
         return self.radius <= 0.0
+
+
+# The settings a program has when it never sets them (LANGUAGE.md §4). They live in the IR
+# because two stages read them: the front end applies them, and the backends treat a move
+# at the default acceleration as "the controller's own" (nothing to express or warn about).
+DEFAULT_TCP_SPEED = 0.25  # m/s
+DEFAULT_TCP_ACCEL = 2.0  # m/s^2
+DEFAULT_JOINT_SPEED = 1.0  # fraction of each joint's maximum speed
+DEFAULT_JOINT_ACCEL = 1.0  # fraction of each joint's maximum acceleration
 
 
 @dataclass(frozen=True, slots=True)

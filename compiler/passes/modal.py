@@ -32,10 +32,10 @@ __all__ = ["DEFAULT_MODAL", "Modal", "apply_setting"]
 class Modal:
     tool: ir.ToolRef
     frame: ir.FrameRef
-    tcp_speed: float = 0.25  # m/s
-    tcp_accel: float = 2.0  # m/s^2
-    joint_speed: float = 1.0  # fraction
-    joint_accel: float = 1.0  # fraction
+    tcp_speed: float = ir.DEFAULT_TCP_SPEED  # m/s
+    tcp_accel: float = ir.DEFAULT_TCP_ACCEL  # m/s^2
+    joint_speed: float = ir.DEFAULT_JOINT_SPEED  # fraction
+    joint_accel: float = ir.DEFAULT_JOINT_ACCEL  # fraction
     zone: ir.Zone = ir.Zone(0.0)
 
 

@@ -37,11 +37,11 @@ CLEAN = {
 # zones a vendor cannot express exactly (W403), a wait timeout lowered to a timer (W405),
 # accelerations a vendor cannot set per move (W408), INFORM joint targets written as the
 # Cartesian position of their planned joints (W450), a non-UR arm in URScript (W452).
-DOCUMENTED_WARNINGS = {"W403", "W405", "W408", "W450", "W452"}
+DOCUMENTED_WARNINGS = {"W403", "W405", "W408", "W411", "W450", "W452"}
 # inspect.rmot (the front end's feature tour, whose vendor output is a golden file in
-# tests/backends) also shows: RAPID tooldata for its massless pointer (W404), an analog
+# tests/backends) also shows: RAPID tooldata for its massless pointer (W413), an analog
 # output VAL3 must link by hand (W455) and a pulse VAL3 lowers to set/delay/reset (W451).
-EXTRA_WARNINGS = {"inspect.rmot": {"W404", "W451", "W455"}}
+EXTRA_WARNINGS = {"inspect.rmot": {"W413", "W451", "W455"}}
 # The URDF arm has no closed-form IK, so its Cartesian targets carry no branch; the vendors
 # that write configuration data with every Cartesian point refuse them (E402).
 NEEDS_BRANCH = ("rapid", "krl", "fanuc", "inform", "val3")
