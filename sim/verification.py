@@ -140,7 +140,7 @@ def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], h
                           names, Amount(round(mm, 3), "mm"), tp.task.name if tp else None, hit.t_worst)
     depth = max(-hit.distance, 0.0) * 1000
     if hit.kind == "static":
-        message = f"'{a.name}' and '{b.name}' overlap although neither moves (penetration {depth:.1f} mm); fix the cell or allow the contact"
+        message = f"'{a.name}' and '{b.name}' overlap although neither moves (penetration {depth:.1f} mm); move one of them in the cell so they do not overlap"
         return Diagnostic(codes.STATIC_CONTACT, Severity.WARNING, message, a.span or b.span or span, (), None, None,
                           names, Amount(round(depth, 3), "mm"), None)
     code = _collision_code(a, b)
