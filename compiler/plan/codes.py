@@ -11,7 +11,7 @@ __all__ = [
     "ARC_DEGENERATE", "BLEND_REDUCED", "BRANCH_CHANGE", "BRANCH_CHANGE_JOINT", "IF_ARMS_DIFFER",
     "JOINT_LIMIT_PATH", "JOINT_TARGET_LIMIT", "PATH_SINGULAR", "SLOWDOWN_SINGULAR",
     "SYNC_MISMATCH", "TARGET_LIMITS", "TARGET_UNREACHABLE", "TIME_TOO_SHORT",
-    "TIMING_FAILED", "DOF_MISMATCH", "ROBOT_UNAVAILABLE",
+    "TIMING_FAILED", "DOF_MISMATCH", "ROBOT_UNAVAILABLE", "UNKNOWN_START",
 ]
 
 TARGET_UNREACHABLE = Code("E220", "target-unreachable", "a pose target is outside the robot's workspace")
@@ -31,3 +31,4 @@ BRANCH_CHANGE_JOINT = Code("W220", "branch-change-joint-move", "a joint move cha
 SLOWDOWN_SINGULAR = Code("W221", "singularity-slowdown", "the TCP slows down near a singularity")
 BLEND_REDUCED = Code("W222", "blend-reduced", "a zone was reduced or dropped to keep the blend valid")
 IF_ARMS_DIFFER = Code("W223", "if-arms-end-differently", "the arms of a runtime if end in different joint states")
+UNKNOWN_START = Code("W224", "unknown-start", "a task's first move is not a joint move to a joint target")

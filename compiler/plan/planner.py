@@ -7,7 +7,7 @@ import numpy as np
 from rmot.compiler import ir
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.sync import align, sample
-from rmot.compiler.plan.targets import initial_joints
+from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
 from rmot.compiler.planned import Plan, TaskPlan, Variant
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -34,6 +34,8 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     robots: dict[str, object] = {}
     starts: dict[str, np.ndarray] = {}
     for task in program.tasks:
+        diagnostics.extend(Diagnostic(f.code, f.severity, f.message, move.span, time_s=0.0, task=task.name)
+                           for move, f in unknown_starts(task))
         robot = _robot_for(program, task, diagnostics)
         if robot is None:
             continue

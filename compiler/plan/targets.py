@@ -14,6 +14,10 @@ Rules (LANGUAGE.md "Motion"):
 * The initial joints of a task: the first move's target — its joint values, or its IK solution
   (respecting config) nearest the "home" joints (all zeros clamped into the joint limits).
   The first move therefore takes no time: the robot is assumed to start there.
+* The motion *to* that first target is not planned: the vendor program makes it from wherever
+  the robot stands. Only a joint move to a joint target reaches a known joint state from any
+  start (RAPID MoveAbsJ, KRL PTP to an axis position); any other first move (linear, circular,
+  or a joint move to a pose, whose IK branch at the start is a guess) is warned about (W224).
 
 Everything returns values: (q or None, [Finding]) with user-facing messages.
 """
@@ -28,7 +32,10 @@ from rmot.compiler import ir
 from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
 
-__all__ = ["Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "solve_target"]
+__all__ = [
+    "Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "solve_target",
+    "unknown_starts",
+]
 
 
 @dataclass(frozen=True)
@@ -209,3 +216,38 @@ def _main_line(body: tuple[ir.Instr, ...]):  # type: ignore[no-untyped-def]
             yield from _main_line(instr.body)
         else:
             yield instr
+
+
+def unknown_starts(task: ir.Task) -> list[tuple[ir.Move, Finding]]:
+    """W224 for every move that can be the task's first motion and is not a joint move to a
+    joint target (one per path through runtime ifs that reach a move before any other move)."""
+    out = []
+    for move in _first_moves(task.body)[0]:
+        if move.kind is ir.MotionKind.JOINT and isinstance(move.target, ir.JointTarget):
+            continue
+        got = ("a joint move to a pose" if move.kind is ir.MotionKind.JOINT
+               else f"a {move.kind.name.lower()} move")
+        msg = (f"the first move of task '{task.name}' must be a joint move to a joint target (got {got}): "
+               "it starts from wherever the robot stands, which rmot cannot verify; start with e.g. "
+               "`move joint home` and `target home = joints(...)`")
+        out.append((move, Finding(codes.UNKNOWN_START, Severity.WARNING, msg)))
+    return out
+
+
+def _first_moves(body: tuple[ir.Instr, ...]) -> tuple[list[ir.Move], bool]:
+    """The moves that can come first on some path through `body`, and whether every path has one."""
+    found: list[ir.Move] = []
+    for instr in body:
+        if isinstance(instr, ir.Move):
+            return found + [instr], True
+        if isinstance(instr, ir.ProcCall):
+            arms = [instr.body]
+        elif isinstance(instr, ir.If):
+            arms = [instr.then, instr.otherwise]
+        else:
+            continue
+        results = [_first_moves(arm) for arm in arms]
+        found += [m for moves, _ in results for m in moves]
+        if all(done for _, done in results):
+            return found, True
+    return found, False

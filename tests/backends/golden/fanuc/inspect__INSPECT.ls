@@ -5,7 +5,7 @@ COMMENT		= "rmot";
 PROG_SIZE	= 0;
 FILE_NAME	= ;
 VERSION		= 0;
-LINE_COUNT	= 70;
+LINE_COUNT	= 74;
 MEMORY_SIZE	= 0;
 PROTECT		= READ_WRITE;
 TCD:  STACK_SIZE	= 0,
@@ -39,128 +39,138 @@ CONTROL_CODE	= 00000000 00000000;
   20:  PR[92,5]=0.0000 ;
   21:  PR[92,6]=0.0000 ;
   22:  UFRAME[1]=PR[92] ;
-  23:  !inspect.rmot:14 ;
+  23:  !inspect.rmot:15 ;
   24:  UFRAME_NUM=1 ;
   25:  UTOOL_NUM=1 ;
   26:  J P[1] 100% FINE ;
   27:  !inspect.rmot:16 ;
   28:  UFRAME_NUM=1 ;
   29:  UTOOL_NUM=1 ;
-  30:  C P[2] ;
-    :  P[3] 150mm/sec CNT2 ;
-  31:  !inspect.rmot:17 ;
+  30:  J P[2] 100% FINE ;
+  31:  !inspect.rmot:18 ;
   32:  UFRAME_NUM=1 ;
   33:  UTOOL_NUM=1 ;
-  34:  C P[4] ;
-    :  P[5] 150mm/sec CNT2 ;
-  35:  !inspect.rmot:16 ;
+  34:  C P[3] ;
+    :  P[4] 150mm/sec CNT2 ;
+  35:  !inspect.rmot:19 ;
   36:  UFRAME_NUM=1 ;
   37:  UTOOL_NUM=1 ;
-  38:  C P[6] ;
-    :  P[7] 150mm/sec CNT2 ;
-  39:  !inspect.rmot:17 ;
+  38:  C P[5] ;
+    :  P[6] 150mm/sec CNT2 ;
+  39:  !inspect.rmot:18 ;
   40:  UFRAME_NUM=1 ;
   41:  UTOOL_NUM=1 ;
-  42:  C P[8] ;
-    :  P[9] 150mm/sec CNT2 ;
+  42:  C P[7] ;
+    :  P[8] 150mm/sec CNT2 ;
   43:  !inspect.rmot:19 ;
   44:  UFRAME_NUM=1 ;
   45:  UTOOL_NUM=1 ;
-  46:  L P[10] 150mm/sec FINE ;
-  47:  !inspect.rmot:20 ;
+  46:  C P[9] ;
+    :  P[10] 150mm/sec CNT2 ;
+  47:  !inspect.rmot:21 ;
   48:  UFRAME_NUM=1 ;
   49:  UTOOL_NUM=1 ;
   50:  L P[11] 150mm/sec FINE ;
-  51:  !inspect.rmot:21 ;
+  51:  !inspect.rmot:22 ;
   52:  UFRAME_NUM=1 ;
   53:  UTOOL_NUM=1 ;
   54:  L P[12] 150mm/sec FINE ;
-  55:  !inspect.rmot:22 ;
-  56:  IF DI[2:part_present]<>ON,JMP LBL[1] ;
-  57:  !inspect.rmot:23 ;
-  58:  AO[1:conveyor_speed]=4.500 ;
-  59:  JMP LBL[2] ;
-  60:  LBL[1] ;
-  61:  !inspect.rmot:24 ;
-  62:  IF DI[2:part_present]<>OFF,JMP LBL[3] ;
-  63:  !inspect.rmot:25 ;
-  64:  DO[2:gripper_open]=PULSE,0.2sec ;
-  65:  JMP LBL[4] ;
-  66:  LBL[3] ;
-  67:  LBL[4] ;
-  68:  LBL[2] ;
-  69:  !inspect.rmot:27 ;
-  70:  WAIT 0.50(sec) ;
+  55:  !inspect.rmot:23 ;
+  56:  UFRAME_NUM=1 ;
+  57:  UTOOL_NUM=1 ;
+  58:  L P[13] 150mm/sec FINE ;
+  59:  !inspect.rmot:24 ;
+  60:  IF DI[2:part_present]<>ON,JMP LBL[1] ;
+  61:  !inspect.rmot:25 ;
+  62:  AO[1:conveyor_speed]=4.500 ;
+  63:  JMP LBL[2] ;
+  64:  LBL[1] ;
+  65:  !inspect.rmot:26 ;
+  66:  IF DI[2:part_present]<>OFF,JMP LBL[3] ;
+  67:  !inspect.rmot:27 ;
+  68:  DO[2:gripper_open]=PULSE,0.2sec ;
+  69:  JMP LBL[4] ;
+  70:  LBL[3] ;
+  71:  LBL[4] ;
+  72:  LBL[2] ;
+  73:  !inspect.rmot:29 ;
+  74:  WAIT 0.50(sec) ;
 /POS
-P[1:"start"]{
+P[1:"home"]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
-	X =   110.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
-	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+	UF : 1, UT : 1,
+	J1=   -20.000 deg,	J2=    20.000 deg,	J3=    15.000 deg,
+	J4=     0.000 deg,	J5=    55.000 deg,	J6=   -20.000 deg
 };
-P[2]{
+P[2:"start"]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
-	X =    50.000  mm,	Y =    10.000  mm,	Z =   120.000  mm,
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
+	X =   110.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[3]{
    GP1:
 	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
-	X =   -10.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
+	X =    50.000  mm,	Y =    10.000  mm,	Z =   120.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[4]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
+	X =   -10.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+P[5]{
+   GP1:
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
 	X =    50.000  mm,	Y =  -110.000  mm,	Z =   120.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
-P[5:"start"]{
+P[6:"start"]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
 	X =   110.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
-	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
-};
-P[6]{
-   GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
-	X =    50.000  mm,	Y =    10.000  mm,	Z =   120.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[7]{
    GP1:
 	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
-	X =   -10.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
+	X =    50.000  mm,	Y =    10.000  mm,	Z =   120.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[8]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
+	X =   -10.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+P[9]{
+   GP1:
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
 	X =    50.000  mm,	Y =  -110.000  mm,	Z =   120.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
-P[9:"start"]{
+P[10:"start"]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
 	X =   110.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
-	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
-};
-P[10]{
-   GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
-	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[11]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
 	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[12]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
+	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+P[13]{
+   GP1:
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
 	X =    50.000  mm,	Y =   -50.000  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };

@@ -4,42 +4,45 @@ MODULE inspect
   PERS tooldata pointer:=[TRUE,[[10.000,0.000,250.000],[0.991445,0.000000,0.130526,0.000000]],[0.001,[5.000,0.000,125.000],[1,0,0,0],0,0,0]];
   TASK PERS wobjdata table_top:=[FALSE,TRUE,"",[[900.000,0.000,200.000],[1.000000,0.000000,0.000000,0.000000]],[[0,0,0],[1,0,0,0]]];
   CONST zonedata z2:=[FALSE,2.000,3.000,3.000,0.300,3.000,0.300];
-  CONST robtarget start:=[[110.000,-50.000,120.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,1,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-  CONST robtarget p:=[[-10.000,-50.000,120.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,1,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-  CONST robtarget via:=[[50.000,10.000,120.000],[0.000000,1.000000,0.000000,0.000000],[0,0,2,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-  CONST robtarget via_2:=[[50.000,-110.000,120.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,1,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-  CONST robtarget p_2:=[[50.000,-50.000,150.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,1,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
-  CONST robtarget p_3:=[[50.000,-50.000,220.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,1,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+  CONST jointtarget home:=[[-20.000,20.000,15.000,0.000,55.000,-20.000],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+  CONST robtarget start:=[[110.000,-50.000,120.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,-3,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+  CONST robtarget p:=[[-10.000,-50.000,120.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,-3,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+  CONST robtarget via:=[[50.000,10.000,120.000],[0.000000,1.000000,0.000000,0.000000],[0,0,-2,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+  CONST robtarget via_2:=[[50.000,-110.000,120.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,-3,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+  CONST robtarget p_2:=[[50.000,-50.000,150.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,-3,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+  CONST robtarget p_3:=[[50.000,-50.000,220.000],[0.000000,1.000000,0.000000,0.000000],[-1,-1,-3,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
 
   PROC main()
-    ! inspect.rmot:14
+    ! inspect.rmot:15
+    MoveAbsJ home\NoEOffs, vmax, fine, pointer;
+    ! inspect.rmot:16
     MoveJ start, vmax, fine, pointer\WObj:=table_top;
-    ! inspect.rmot:16
+    ! inspect.rmot:18
     MoveC via, p, v150, z2, pointer\WObj:=table_top;
-    ! inspect.rmot:17
-    MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
-    ! inspect.rmot:16
-    MoveC via, p, v150, z2, pointer\WObj:=table_top;
-    ! inspect.rmot:17
-    MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
     ! inspect.rmot:19
-    MoveL p_2, v150, fine, pointer\WObj:=table_top;
-    ! inspect.rmot:20
-    MoveL p_2, v150, fine, pointer\WObj:=table_top;
+    MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
+    ! inspect.rmot:18
+    MoveC via, p, v150, z2, pointer\WObj:=table_top;
+    ! inspect.rmot:19
+    MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
     ! inspect.rmot:21
-    MoveL p_3, v150, fine, pointer\WObj:=table_top;
+    MoveL p_2, v150, fine, pointer\WObj:=table_top;
     ! inspect.rmot:22
+    MoveL p_2, v150, fine, pointer\WObj:=table_top;
+    ! inspect.rmot:23
+    MoveL p_3, v150, fine, pointer\WObj:=table_top;
+    ! inspect.rmot:24
     IF DInput(part_present) = 1 THEN
-      ! inspect.rmot:23
+      ! inspect.rmot:25
       SetAO conveyor_speed, 4.500;
     ELSE
-      ! inspect.rmot:24
+      ! inspect.rmot:26
       IF DInput(part_present) = 0 THEN
-        ! inspect.rmot:25
+        ! inspect.rmot:27
         PulseDO\PLength:=0.200, gripper_open;
       ENDIF
     ENDIF
-    ! inspect.rmot:27
+    ! inspect.rmot:29
     WaitTime 0.500;
   ENDPROC
 ENDMODULE
