@@ -15,7 +15,9 @@ for every vendor); a vendor writes those methods and extends the table (`{**Back
 only for node types it prints differently. `native` (passes NATIVE_NAMES blocks through),
 `sync` (the comment for a sync the handshake left in place), the move preamble
 (`move_record`) and the opening of `emit_task` (`open_task`, `routine_table`, `split_parts`)
-are shared.
+are shared. Proc calls whose routines would print the same text share one routine
+(`routine_table`, keyed by `routine_key`); each call line carries its call site's `file:line`
+and its arguments as written (`call_args_comment`).
 
 Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
 `ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
@@ -52,8 +54,9 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field, fields
+from collections.abc import Callable, Hashable, Iterable
+from dataclasses import dataclass, field, fields, is_dataclass
+from enum import Enum
 from typing import Any, ClassVar, TypeVar
 
 import numpy as np
@@ -70,7 +73,7 @@ __all__ = [
     "fmt", "fmt_list", "source_ref", "header_lines",
     "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
     "position_mm", "turn_bits", "axis_quadrant", "tool_cog",
-    "CONTROLLERS", "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL",
+    "CONTROLLERS", "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL", "key_value",
 ]
 
 # The controller languages a native block can name (compiler/passes/lower_body.VENDORS: the
@@ -360,10 +363,30 @@ class Backend:
             names.reserve(legal)
         return names, names.name(ctx.program_name, ctx.task.span), self.lowered_body(ctx)
 
-    @staticmethod
-    def routine_table(names: NameTable, body: tuple[ir.Instr, ...], prefix: str = "") -> dict[int, str]:
-        """ProcCall uid -> legal routine name (lowering.routine_names, then `prefix` + legalised)."""
-        return {uid: names.name(prefix + routine) for uid, routine in routine_names(body).items()}
+    def routine_table(self, names: NameTable, body: tuple[ir.Instr, ...], ctx: TaskContext,
+                      prefix: str = "") -> dict[int, str]:
+        """ProcCall uid -> legal routine name (lowering.routine_names keyed by `routine_key`,
+        then `prefix` + legalised): calls whose routines would print the same share one."""
+        table = routine_names(body, key=lambda call: self.routine_key(call, ctx))
+        return {uid: names.name(prefix + routine) for uid, routine in table.items()}
+
+    def routine_key(self, call: ir.ProcCall, ctx: TaskContext) -> Hashable:
+        """What the routine printed for `call` depends on: every instruction of its body
+        without uid and span (the source comment's `file:line` instead), with the planner's
+        record of it (floats rounded to 1e-9, far below any printed precision; not its
+        timing, which depends on where the call starts) and `context_key` (what else a vendor
+        prints: RAPID a move's planned duration, INFORM an arc's start point)."""
+        return _fingerprint(call.body, ctx, self.context_key)
+
+    def call_args_comment(self, node: ir.ProcCall) -> list[str]:
+        """A comment with the call's arguments as written, above the call line (the routine
+        may be shared by calls written differently, so its own header names only the proc)."""
+        return [self.comment(f"{node.proc}({', '.join(node.args)})")] if node.args else []
+
+    def context_key(self, node: ir.Instr, ctx: TaskContext) -> Hashable:
+        """What the text of `node` reads beyond its own instruction and its record's geometry
+        (RAPID: the planned duration; INFORM: an arc's start point). None for most vendors."""
+        return None
 
     def split_parts(self, body: tuple[ir.Instr, ...], ctx: TaskContext, stem: str) -> tuple[ir.Instr, ...] | None:
         """`body` as ProcCalls `stem_part1`.. (W406) when it has more than MAX_INSTRUCTIONS
@@ -543,3 +566,47 @@ class Backend:
         self.warn(codes.NATIVE_SKIPPED, f"native {node.vendor} block is not emitted for {self.name}"
                   + ("" if known else f" (not one of {', '.join(CONTROLLERS)})"), node.span)
         return [self.comment(f"native {node.vendor} block skipped")]
+
+
+# --------------------------------------------------------------------------- routine keys
+
+_NESTED = ("body", "then", "otherwise")  # IR fields holding instructions
+_RECORD_FIELDS = ("q_target", "branch", "tcp_pose", "flange_pose", "q_via", "blend_radius")
+
+
+def _fingerprint(nodes: tuple[ir.Instr, ...], ctx: TaskContext,
+                 context_key: Callable[[ir.Instr, TaskContext], Hashable]) -> tuple[Hashable, ...]:
+    """A hashable picture of `nodes` as a backend prints them (see Backend.routine_key)."""
+    out: list[Hashable] = []
+    for node in nodes:
+        own = tuple(_fingerprint(getattr(node, f.name), ctx, context_key) if f.name in _NESTED
+                    else key_value(getattr(node, f.name))
+                    for f in fields(node) if f.name not in ("uid", "span"))
+        rec = ctx.record(node)
+        recorded = None if rec is None else tuple(key_value(getattr(rec, name)) for name in _RECORD_FIELDS)
+        out.append((type(node).__name__, own, source_ref(getattr(node, "span", None)),
+                    recorded, context_key(node, ctx)))
+    return tuple(out)
+
+
+def key_value(v: Any) -> Hashable:
+    """`v` as a hashable value: floats rounded to 1e-9, arrays and dataclasses as tuples,
+    spans left out (they never print beyond `file:line`)."""
+    if v is None or isinstance(v, (str, bool, int, Enum)):
+        return v
+    if isinstance(v, float):
+        return round(v, 9)
+    if isinstance(v, Span):
+        return None
+    if isinstance(v, np.ndarray):
+        return ("array", v.shape, tuple(round(float(x), 9) for x in v.ravel()))
+    if is_dataclass(v):
+        return (type(v).__name__, tuple(key_value(getattr(v, f.name)) for f in fields(v)))
+    if isinstance(v, (tuple, list, frozenset, set)):
+        items = tuple(key_value(x) for x in v)
+        return tuple(sorted(items, key=repr)) if isinstance(v, (set, frozenset)) else items
+    if isinstance(v, dict):
+        return tuple(sorted(((key_value(k), key_value(x)) for k, x in v.items()), key=repr))
+    if isinstance(v, (np.floating, np.integer)):
+        return key_value(v.item())
+    return repr(v)

@@ -153,7 +153,7 @@ class FanucBackend(Backend):
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, main_name, body = self.open_task(task)
         # TP programs share one namespace on the controller: routines carry the program's name
-        routine_of = self.routine_table(names, body, prefix=f"{main_name}_")
+        routine_of = self.routine_table(names, body, task, prefix=f"{main_name}_")
         ctx = task.with_state(FanucContext, names=names, routine_of=routine_of)
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:

@@ -68,12 +68,13 @@ Support (checked by tests/backends/test_inform.py):
 from __future__ import annotations
 
 import math
+from collections.abc import Hashable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from rmot.backends import codes, codes_b
-from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
+from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.lowering import split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
@@ -181,8 +182,9 @@ class InformBackend(Backend):
         if split is not body:
             self.warn(codes.PROGRAM_SPLIT, f"job '{main}' must hold at most {MAX_INSTRUCTIONS} "
                       f"instructions (got more); split into {len(split)} parts", task.task.span)
-        ctx = task.with_state(InformContext, routine_of=self.routine_table(names, split),
+        ctx = task.with_state(InformContext, routine_of={},
                               preds=predecessors(body)[0], tools=self.tool_numbers(task))
+        ctx.routine_of.update(self.routine_table(names, split, ctx))  # its keys read ctx.preds
         self.job(main, split, ctx)
         self.extend(names.diagnostics)
         return dict(sorted(ctx.files.items()))
@@ -280,6 +282,16 @@ class InformBackend(Backend):
             c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
             return [f"MOVL {c} V={v}{pl}"] if c else []
         return self.circular(node, rec, ctx, v, pl)
+
+    def context_key(self, node: ir.Instr, ctx: TaskContext) -> Hashable:
+        """An arc's printed start point is the move before it (maybe outside the proc)."""
+        if not isinstance(node, ir.Move) or node.kind is not ir.MotionKind.CIRCULAR:
+            return None
+        prev = ctx.preds.get(node.uid)  # type: ignore[attr-defined]
+        rec = ctx.record(prev) if prev is not None else None
+        if prev is None or rec is None:
+            return ("no-start",)
+        return (prev.kind, key_value(rec.q_target), key_value(rec.tcp_pose), key_value(prev.tool))
 
     def circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
                  v: str, pl: str) -> list[str]:
@@ -410,5 +422,6 @@ class InformBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: InformContext) -> list[str]:
         name = ctx.routine_of[node.uid]
-        self.job(name, node.body, ctx)
+        if f"{name}{self.file_ext}" not in ctx.files:  # calls printing the same job share it
+            self.job(name, node.body, ctx)
         return [f"CALL JOB:{name}"]

@@ -139,7 +139,7 @@ class KrlBackend(Backend):
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, main_name, body = self.open_task(task)
         ctx = task.with_state(KrlContext, names=names, module=_Module(DataPool(names)),
-                              routine_of=self.routine_table(names, body))
+                              routine_of=self.routine_table(names, body, task))
         files: dict[str, str] = {}
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:
@@ -294,8 +294,7 @@ class KrlBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
         name = ctx.routine_of[node.uid]
-        if name not in ctx.module.routines:
+        if name not in ctx.module.routines:  # calls printing the same routine share it
             ctx.module.routines[name] = []
-            args = f"({', '.join(node.args)})" if node.args else ""
-            ctx.module.routines[name] = [self.comment(f"{node.proc}{args}")] + self.body(node.body, ctx)
-        return [f"{name}()"]
+            ctx.module.routines[name] = [self.comment(f"proc {node.proc}")] + self.body(node.body, ctx)
+        return self.call_args_comment(node) + [f"{name}()"]

@@ -11,8 +11,7 @@ it needs the cell and the robot, so Backend.lowered_body runs it before these.
 
 from __future__ import annotations
 
-from collections import Counter
-from collections.abc import Iterator
+from collections.abc import Callable, Hashable, Iterator
 from dataclasses import replace
 
 from rmot.compiler import ir
@@ -101,14 +100,17 @@ def iter_proc_calls(body: tuple[ir.Instr, ...]) -> Iterator[ir.ProcCall]:
             yield node
 
 
-def routine_names(body: tuple[ir.Instr, ...]) -> dict[int, str]:
-    """A routine name per ProcCall uid: the proc's name when it is called once, otherwise
-    `name_1`, `name_2`, ... in source order (each call has its own substituted targets)."""
+def routine_names(body: tuple[ir.Instr, ...],
+                  key: Callable[[ir.ProcCall], Hashable] | None = None) -> dict[int, str]:
+    """A routine name per ProcCall uid. Calls of one proc with equal `key` (the text their
+    routine would print: see Backend.routine_key) share one routine; without `key` every call
+    is its own. A proc whose calls all share one routine keeps the proc's name; otherwise its
+    routines are `name_1`, `name_2`, ... in the source order of their first call."""
     calls = list(iter_proc_calls(body))
-    total = Counter(c.proc for c in calls)
-    seen: Counter[str] = Counter()
-    names: dict[int, str] = {}
+    variant: dict[int, tuple[str, int]] = {}  # uid -> (proc, variant number from 1)
+    seen: dict[str, dict[Hashable, int]] = {}
     for call in calls:
-        seen[call.proc] += 1
-        names[call.uid] = call.proc if total[call.proc] == 1 else f"{call.proc}_{seen[call.proc]}"
-    return names
+        keys = seen.setdefault(call.proc, {})
+        k = key(call) if key is not None else call.uid
+        variant[call.uid] = (call.proc, keys.setdefault(k, len(keys) + 1))
+    return {uid: proc if len(seen[proc]) == 1 else f"{proc}_{n}" for uid, (proc, n) in variant.items()}

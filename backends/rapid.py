@@ -36,6 +36,7 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
 
 from __future__ import annotations
 
+from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import ClassVar
 
@@ -115,7 +116,7 @@ class RapidBackend(Backend):
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, module, body = self.open_task(task, reserved=("main",))
         ctx = task.with_state(RapidContext, names=names, data=DataPool(names),
-                              routine_of=self.routine_table(names, body))
+                              routine_of=self.routine_table(names, body, task))
         main = self.body(body, ctx)
         lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
         for kind in ("tooldata", "wobjdata", "sync"):
@@ -181,6 +182,15 @@ class RapidBackend(Backend):
         if node.motion.duration is not None:
             return f"{name}\\T:={fmt(node.motion.duration, 3)}"
         return name
+
+    def context_key(self, node: ir.Instr, ctx: TaskContext) -> Hashable:
+        """A joint move without a RAPID speed prints its planned duration (see _joint_speed)."""
+        rec = ctx.record(node)
+        if (isinstance(node, ir.Move) and rec is not None and node.motion.duration is None
+                and node.motion.joint_speed < 1.0
+                and (node.kind is ir.MotionKind.JOINT or isinstance(node.target, ir.JointTarget))):
+            return round(rec.t_end - rec.t_start, 9)
+        return None
 
     def _joint_speed(self, node: ir.Move, rec: planned.InstructionRecord) -> str:
         if node.motion.duration is not None:
@@ -285,9 +295,7 @@ class RapidBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
         name = ctx.routine_of[node.uid]
-        ref = f" ({ctx.source_ref(node)})" if ctx.source_ref(node) else ""
-        args = f"({', '.join(node.args)})" if node.args else ""
-        if name not in ctx.routines:
+        if name not in ctx.routines:  # calls printing the same routine share it (routine_table)
             ctx.routines[name] = []  # reserve the slot first: routines print in call order
-            ctx.routines[name] = [self.comment(f"{node.proc}{args}{ref}")] + self.body(node.body, ctx)
-        return [f"{name};"]
+            ctx.routines[name] = [self.comment(f"proc {node.proc}")] + self.body(node.body, ctx)
+        return self.call_args_comment(node) + [f"{name};"]

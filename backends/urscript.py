@@ -100,6 +100,7 @@ class UrContext(TaskContext):
 
     routine_of: dict[int, str]
     routine_defs: list[str] = field(default_factory=list)
+    defined: set[str] = field(default_factory=set)  # routine names already in routine_defs
     threads: dict[str, list[str]] = field(default_factory=dict)
 
 
@@ -118,7 +119,7 @@ class UrScriptBackend(Backend):
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, prog, body = self.open_task(task)
-        ctx = task.with_state(UrContext, routine_of=self.routine_table(names, body))
+        ctx = task.with_state(UrContext, routine_of=self.routine_table(names, body, task))
         main = self.block(body, ctx)
         self.extend(names.diagnostics)
         lines = self.header(ctx) + [f"def {prog}():"]
@@ -258,8 +259,9 @@ class UrScriptBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: UrContext) -> list[str]:
         name = ctx.routine_of[node.uid]
-        body = self.block(node.body, ctx) or ["sleep(0.0)"]
-        args = ", ".join(node.args)
-        ctx.routine_defs.extend([self.comment(f"proc {node.proc}({args})"), f"def {name}():"])
-        ctx.routine_defs.extend(self.indent(body, self.INDENT) + ["end"])
-        return [f"{name}()"]
+        if name not in ctx.defined:  # calls printing the same routine share it (routine_table)
+            ctx.defined.add(name)
+            body = self.block(node.body, ctx) or ["sleep(0.0)"]
+            ctx.routine_defs.extend([self.comment(f"proc {node.proc}"), f"def {name}():"])
+            ctx.routine_defs.extend(self.indent(body, self.INDENT) + ["end"])
+        return self.call_args_comment(node) + [f"{name}()"]

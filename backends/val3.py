@@ -142,7 +142,7 @@ class Val3Backend(Backend):
         names, app, body = self.open_task(task)
         for reserved in ("start", "stop", "aOut", "dOut", "dIn", "bOk", "pTarget", "jTarget", "mSpeed"):
             names.reserve(reserved)  # taken after the app is named (the order decides a clash)
-        ctx = task.with_state(Val3Context, names=names, routine_of=self.routine_table(names, body))
+        ctx = task.with_state(Val3Context, names=names, routine_of=self.routine_table(names, body, task))
         main = self.block(body, ctx) + ["waitEndMove()"]
         ctx.programs["start"] = main
         ctx.programs["stop"] = []
@@ -350,9 +350,10 @@ class Val3Backend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: Val3Context) -> list[str]:
         name = ctx.routine_of[node.uid]
-        ctx.programs[name] = [self.comment(f"proc {node.proc}({', '.join(node.args)})"),
-                                *self.block(node.body, ctx)]
-        return [f"call {name}()"]
+        if name not in ctx.programs:  # calls printing the same routine share it (routine_table)
+            ctx.programs[name] = []  # reserve the slot first: programs keep call order
+            ctx.programs[name] = [self.comment(f"proc {node.proc}"), *self.block(node.body, ctx)]
+        return self.call_args_comment(node) + [f"call {name}()"]
 
 
 def _last_move(node: ir.Instr | None) -> ir.Move | None:

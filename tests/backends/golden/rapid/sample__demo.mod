@@ -19,6 +19,7 @@ MODULE demo
     ! demo.rmot:5
     SetDO gripper_close, 1;
     ! demo.rmot:6
+    ! pick(above)
     pick;
     ! demo.rmot:9
     IF DInput(part_present) = 1 THEN
@@ -41,7 +42,7 @@ MODULE demo
   ENDPROC
 
   PROC pick()
-    ! pick(above) (demo.rmot:6)
+    ! proc pick
     ! demo.rmot:7
     WaitTime 0.300;
     ! demo.rmot:16
