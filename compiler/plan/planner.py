@@ -6,7 +6,7 @@ import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.plan import codes
-from rmot.compiler.plan.sync import align, sample
+from rmot.compiler.plan.sync import align, hold_variants, sample
 from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
 from rmot.compiler.planned import Plan, TaskPlan, Variant
@@ -44,6 +44,8 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
         drafts[task.name] = build_task(robot, task, q0, lone=len(program.tasks) == 1)
         diagnostics.extend(drafts[task.name].diagnostics)
     diagnostics.extend(align(drafts))
+    for draft in drafts.values():
+        hold_variants(draft)
     tasks = tuple(
         _task_plan(task, drafts[task.name], robots[task.name], starts[task.name], step)
         for task in program.tasks if task.name in drafts

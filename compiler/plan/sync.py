@@ -21,7 +21,7 @@ from rmot.compiler.plan.timing import HoldPiece, Piece
 from rmot.compiler.planned import Trajectory
 from rmot.lang.diagnostics import Diagnostic, Severity
 
-__all__ = ["align", "sample"]
+__all__ = ["align", "hold_variants", "sample"]
 
 
 def _keys(draft: TaskDraft) -> list[tuple[str, int]]:
@@ -80,6 +80,30 @@ def align(drafts: dict[str, TaskDraft]) -> list[Diagnostic]:
             if leave - arrive[n] > 0:
                 _hold(drafts[n], pointer[n], leave - arrive[n])
             pointer[n] += 1
+
+
+def hold_variants(draft: TaskDraft) -> None:
+    """Hold each variant at the syncs of its continuation until the main timeline leaves them
+    (in place; after `align`). A variant that arrives later than the main timeline leaves when
+    it arrives: the other tasks are not re-aligned to it (documented limitation)."""
+    for v in draft.variants:
+        for i, (pos, rec) in enumerate(v.syncs):
+            k = v.sync_base + i
+            if k >= len(draft.syncs):
+                continue
+            leave = draft.records[draft.syncs[k][2]].t_end
+            arrive = v.t0 + float(sum(p.duration for p in v.pieces[:pos]))
+            hold = leave - arrive
+            if hold <= 1e-12:
+                continue
+            q = v.pieces[pos - 1].end_q() if pos > 0 else v.q0
+            v.pieces.insert(pos, HoldPiece(q, hold))
+            v.syncs[i + 1:] = [(p + 1, r) for p, r in v.syncs[i + 1:]]
+            draft.records[rec] = replace(draft.records[rec], t_end=draft.records[rec].t_end + hold)
+            for j in range(rec + 1, len(draft.records)):
+                r = draft.records[j]
+                if r.variant == v.index:
+                    draft.records[j] = replace(r, t_start=r.t_start + hold, t_end=r.t_end + hold)
 
 
 def sample(pieces: list[Piece], step: float, t0: float, dof: int, q_rest: np.ndarray) -> Trajectory:

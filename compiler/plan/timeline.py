@@ -14,9 +14,18 @@
 * A move's record: t_start where it leaves the previous move's path (the previous zone entry),
   t_end at its own zone entry or stop.
 * Runtime `if`: the main timeline takes the `then` arm; the `otherwise` arm is planned from
-  the `if`'s start state as a Variant (its records carry variant=k). The main timeline
-  continues from the end of the `then` arm; when the two arms end in different joint states a
-  warning (W223) says so, because after the other arm the next move starts elsewhere.
+  the `if`'s start state as a Variant k, *followed by the rest of the task* (the instructions
+  after the `if`, up the enclosing arms and proc calls, to the task's end), planned from the
+  end of the `otherwise` arm; all its records carry variant=k. In that continuation later
+  `if`s take their `then` arm: each `if` with an `otherwise` arm gets exactly one variant
+  (linear in the number of ifs, not 2^k paths); an `if` nested in an `otherwise` arm gets its
+  own variant, started from that arm's state. Diagnostics found only on a variant's path carry
+  a note naming the `if`; the same finding as on the main timeline is not repeated.
+  W223: a move after the `if` whose target joints differ on the `otherwise` path from the main
+  timeline's (e.g. another IK branch, chosen nearest to a different start) — the controller
+  program is written from the main timeline's solution, so the verified path would not be the
+  one the robot drives. A `sync` in a continuation is recorded in VariantDraft.syncs and held
+  to the main timeline's barrier time after alignment (sync.hold_variants).
 * A failing move is reported at its span and skipped: the robot holds where it is and the
   rest of the task is planned from there, so every error in a file is reported at once.
 """
@@ -49,6 +58,9 @@ class VariantDraft:
     t0: float
     pieces: list[Piece]
     order: int  # records created before it (for sync shifting)
+    q0: np.ndarray | None = None  # joints at the if's start (dof,)
+    sync_base: int = 0  # main-timeline syncs before the if: the variant's i-th sync is main's sync_base+i
+    syncs: list[tuple[int, int]] = field(default_factory=list)  # (piece pos, record idx) of its syncs
 
 
 @dataclass(eq=False)
@@ -59,6 +71,7 @@ class TaskDraft:
     records: list[InstructionRecord] = field(default_factory=list)
     syncs: list[tuple[ir.Sync, int, int]] = field(default_factory=list)  # (sync, piece pos, record idx)
     variants: list[VariantDraft] = field(default_factory=list)
+    continuations: list[tuple[int, int]] = field(default_factory=list)  # (variant, first record idx after its arm)
     diagnostics: list[Diagnostic] = field(default_factory=list)
     q: np.ndarray | None = None  # the final joints
 
@@ -69,6 +82,9 @@ class _Builder:
     def __init__(self, robot: object, task: str, q0: np.ndarray, t0: float, variant: int,
                  draft: TaskDraft, counter: list[int], lone: bool = False) -> None:
         self.robot, self.task, self.variant, self.lone = robot, task, variant, lone
+        self.spawn = True  # False while walking a variant's continuation: later ifs belong to main
+        self.note: tuple[str, object] | None = None  # set on variants: which if's otherwise path
+        self.syncs: list[tuple[int, int]] = []  # a variant's syncs (piece pos, record idx)
         self.q, self.t = q0.copy(), t0
         self.pieces: list[Piece] = []
         self.draft, self.counter = draft, counter
@@ -78,8 +94,14 @@ class _Builder:
 
     # ------------------------------------------------------------------ helpers
     def _diag(self, f: Finding, span, time: float | None = None) -> None:  # type: ignore[no-untyped-def]
+        if self.note is not None:  # a variant: only what the main timeline did not already report
+            if any((d.code, d.span, d.message) == (f.code, span, f.message) for d in self.draft.diagnostics):
+                return
+            notes: tuple = (self.note,)  # type: ignore[type-arg]
+        else:
+            notes = ()
         self.draft.diagnostics.append(
-            Diagnostic(f.code, f.severity, f.message, span, time_s=time, task=self.task))
+            Diagnostic(f.code, f.severity, f.message, span, notes, time_s=time, task=self.task))
 
     def _record(self, instr: ir.Instr, t0: float, t1: float, **extra: object) -> None:
         self.draft.records.append(InstructionRecord(
@@ -89,18 +111,25 @@ class _Builder:
         return self.chain[-1].q_end if self.chain else self.q
 
     # ------------------------------------------------------------------ walking
-    def walk(self, body: tuple[ir.Instr, ...]) -> None:
-        for instr in body:
+    def walk(self, body: tuple[ir.Instr, ...], rest: tuple[tuple[ir.Instr, ...], ...] = ()) -> None:
+        """Walk `body`; `rest`: what runs after it (enclosing bodies' tails, innermost first),
+        the continuation a variant of an `if` inside `body` is planned along."""
+        for i, instr in enumerate(body):
+            after = (body[i + 1:],) + rest
             if isinstance(instr, ir.Move):
                 self._move(instr)
             elif isinstance(instr, _EVENTS) or (self.lone and isinstance(instr, ir.Sync)):
                 self._event(instr)
             elif isinstance(instr, ir.ProcCall):
-                self.walk(instr.body)
+                self.walk(instr.body, after)
             elif isinstance(instr, ir.If):
-                self._if(instr)
+                self._if(instr, after)
             else:
                 self._blocking(instr)
+
+    def walk_rest(self, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
+        for j, body in enumerate(rest):
+            self.walk(body, rest[j + 1:])
 
     def _move(self, move: ir.Move) -> None:
         if move.motion.duration is not None:
@@ -133,8 +162,12 @@ class _Builder:
         if isinstance(instr, ir.WaitTime) and instr.duration > 0:
             self._append(HoldPiece(self.q.copy(), instr.duration))
         self._record(instr, t0, self.t)
-        if isinstance(instr, ir.Sync) and self.variant == 0:
-            self.draft.syncs.append((instr, len(self.pieces), len(self.draft.records) - 1))
+        if isinstance(instr, ir.Sync):
+            entry = (len(self.pieces), len(self.draft.records) - 1)
+            if self.variant == 0:
+                self.draft.syncs.append((instr, *entry))
+            else:  # held at the main timeline's barrier time after alignment (sync.hold_variants)
+                self.syncs.append(entry)
 
     def _append(self, piece: Piece) -> None:
         self.pieces.append(piece)
@@ -142,26 +175,34 @@ class _Builder:
         self.q = piece.end_q()
 
     # ------------------------------------------------------------------ if
-    def _if(self, instr: ir.If) -> None:
+    def _if(self, instr: ir.If, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
         self.flush()
         t0, q0 = self.t, self.q.copy()
         n_records = len(self.draft.records)
         self._record(instr, t0, t0)  # placeholder, completed below (keeps record indexes stable)
-        self.walk(instr.then)
+        self.walk(instr.then, rest)
         self.flush()
-        if instr.otherwise:
-            self.counter[0] += 1
-            index = self.counter[0]
-            sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter, self.lone)
-            sub.walk(instr.otherwise)
-            sub.flush()
-            self.draft.variants.append(VariantDraft(index, instr.uid, "otherwise", t0, sub.pieces, n_records))
-            if float(np.max(np.abs(sub.q - self.q))) > 1e-6:
-                msg = ("the arms of this if must end in the same joint state (they differ by up to "
-                       f"{np.degrees(np.max(np.abs(sub.q - self.q))):.1f} deg); what follows is planned "
-                       "from the end of the first arm")
-                self._diag(Finding(codes.IF_ARMS_DIFFER, Severity.WARNING, msg), instr.span, self.t)
         self.draft.records[n_records] = replace(self.draft.records[n_records], t_end=self.t)
+        if instr.otherwise and self.spawn:
+            self._variant(instr, rest, t0, q0, n_records)
+
+    def _variant(self, instr: ir.If, rest: tuple[tuple[ir.Instr, ...], ...], t0: float, q0: np.ndarray,
+                 n_records: int) -> None:
+        """The otherwise arm from (t0, q0), then the rest of the task from the arm's end."""
+        self.counter[0] += 1
+        index = self.counter[0]
+        sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter, self.lone)
+        line = instr.span.start.line if instr.span is not None else "?"
+        sub.note = (f"on the path through the 'otherwise' arm of the if at line {line}", instr.span)
+        sub.walk(instr.otherwise, rest)
+        sub.flush()
+        n_if = len(self.draft.records)
+        sub.spawn = False
+        sub.walk_rest(rest)
+        sub.flush()
+        self.draft.variants.append(VariantDraft(index, instr.uid, "otherwise", t0, sub.pieces, n_records,
+                                                q0, len(self.draft.syncs), sub.syncs))
+        self.draft.continuations.append((index, n_if))
 
     # ------------------------------------------------------------------ chains
     def flush(self) -> None:
@@ -205,7 +246,38 @@ def build_task(robot: object, task: ir.Task, q0: np.ndarray, *, lone: bool = Fal
     builder.flush()
     draft.pieces = builder.pieces
     draft.q = builder.q
+    draft.diagnostics += _continuations_apart(draft, task.name)
     return draft
+
+
+def _continuations_apart(draft: TaskDraft, task: str) -> list[Diagnostic]:
+    """W223 at each move after an if whose target joints on the otherwise path differ from every
+    main-timeline solution of that move (the controller program is written from the main one)."""
+    main: dict[int, list[np.ndarray]] = {}
+    for r in draft.records:
+        if r.variant == 0 and r.q_target is not None:
+            main.setdefault(r.uid, []).append(r.q_target)
+    variants = {v.index: v for v in draft.variants}
+    out = []
+    for index, first in draft.continuations:
+        for r in draft.records[first:]:
+            if r.variant != index or r.q_target is None or r.uid not in main:
+                continue
+            apart = min(float(np.max(np.abs(r.q_target - q))) for q in main[r.uid])
+            if apart <= 1e-4:
+                continue
+            span = next((x.span for x in draft.records if x.uid == variants[index].if_uid), None)
+            line = span.start.line if span is not None else "?"
+            main_branch = next(x.branch for x in draft.records if x.uid == r.uid and x.variant == 0)
+            fix = ("give the move a config(...)" if r.branch != main_branch
+                   else "end both arms in the same joint state")  # same branch: a turn of a joint
+            msg = (f"after the 'otherwise' arm of the if at line {line} this move must reach the same joints "
+                   f"as after the 'then' arm (they differ by up to {np.degrees(apart):.1f} deg); the controller "
+                   f"program uses the 'then' path's solution: {fix}")
+            out.append(Diagnostic(codes.IF_ARMS_DIFFER, Severity.WARNING, msg, r.span, ((
+                "the if", span),), time_s=r.t_end, task=task))
+            break  # one warning per variant: later moves follow from this one
+    return out
 
 
 def proc_records(body: tuple[ir.Instr, ...], records: list[InstructionRecord]) -> list[InstructionRecord]:
