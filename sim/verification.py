@@ -131,7 +131,7 @@ def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], h
         other_tp = by_robot.get(other)
         if other_tp is not None:
             notes.append((f"robot '{other}' is executing this move then", _span_at(other_tp, hit.t0, 0)))
-    where = f" (in the '{_arm(tp, variant)}' arm of an if)" if variant and tp else ""
+    where = _variant_path(tp, variant) if variant and tp else ""
     names = (a.name, b.name)
     if hit.kind == "clearance":
         mm = hit.distance * 1000
@@ -157,11 +157,15 @@ def _collision_code(a: Any, b: Any) -> Any:
     return codes.ROBOT_COLLISION
 
 
-def _arm(tp: planned.TaskPlan | None, variant: int) -> str:
-    for v in tp.variants if tp else ():
+def _variant_path(tp: planned.TaskPlan, variant: int) -> str:
+    """' (on the path through the 'otherwise' arm of the if at line N)': a variant covers the
+    arm and everything after the if, so the finding may be in either."""
+    for v in tp.variants:
         if v.index == variant:
-            return v.arm
-    return "other"
+            span = next((i.span for i in ir.walk(tp.task.body) if i.uid == v.if_uid), None)
+            at = f" at line {span.start.line}" if span is not None else ""
+            return f" (on the path through the '{v.arm}' arm of the if{at})"
+    return " (on another path through a runtime if)"
 
 
 def _span_at(tp: planned.TaskPlan, t: float, variant: int) -> Span | None:
@@ -239,7 +243,7 @@ def _limit_diagnostic(tp: planned.TaskPlan, hit: LimitHit, variant: int) -> Diag
         message = f"joint {hit.joint} {hit.quantity} {abs(value):.1f} {unit} exceeds its limit {abs(limit):.1f} {unit} by {ratio:.0f}%"
         amount = Amount(round(abs(value) - abs(limit), 4), unit)
     if variant:
-        message += f" (in the '{_arm(tp, variant)}' arm of an if)"
+        message += _variant_path(tp, variant)
     span = _span_at(tp, hit.t0, variant)
     return Diagnostic(_LIMIT_CODES[hit.quantity], Severity.ERROR, message, span, (), hit.t0, hit.t1,
                       (f"{tp.robot}/joint{hit.joint}",), amount, tp.task.name)
