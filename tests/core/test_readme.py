@@ -70,3 +70,14 @@ def test_console_transcripts_match_the_real_output(command: str, code: str, expe
     assert result.exit_code == int(code), result.output
     shown = [line for line in result.output.splitlines() if not line.startswith("note: collisions are checked")]
     assert shown == [line for line in expected if not line.startswith("note: collisions are checked")]
+
+
+def test_the_program_in_the_tour_compiles_beside_the_examples() -> None:
+    """The README's .rmot program is real: it loads without a diagnostic next to examples/."""
+    from rmot.compiler.frontend import load_text
+
+    (block,) = re.findall(r"```rmot\n(.*?)```", README, flags=re.S)
+    result = load_text(block, str(ROOT / "examples" / "readme_tour.rmot"), project_root=str(ROOT / "examples"))
+    assert result.program is not None
+    assert [d.message for d in result.diagnostics] == []
+    assert result.program.name == "pick_place"
