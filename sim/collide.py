@@ -21,6 +21,10 @@ THE GUARANTEE — no contact between two samples is missed:
     interval until the accumulated motion bound reaches d_i (conservative advancement);
     an interval it cannot certify is bisected — all such intervals of a pair at once per
     level — until the motion bound of a piece is below CONTACT_TOL (10 µm).
+    Inside a contact nothing needs proving: for convex pairs (a true signed distance, which
+    changes by at most the motion bound) a depth p at sample i proves every later sample
+    within motion p in contact, so those are skipped; a skipped sample is measured only if
+    it could be deeper than its run's deepest exact value by more than DEPTH_TOL (10 µm).
 Every bound is a lower bound on the true distance (tests/sim/test_sim_scene.py checks the
 covers, the reach bound and the broad-phase bounds against coal), so a contact is found
 unless it is shallower than CONTACT_TOL; with a clearance c the same test against d - c
@@ -191,7 +195,8 @@ def _moving_pair(scene: Scene, timeline: Timeline, a: Body, b: Body, poses: dict
     exact = ExactPair(a, b)
     pose_a, pose_b = _per_sample(pa, exact), _per_sample(pb, exact)
     evaluated, dists_at, split = _advance(flagged, need, move, clearance,
-                                          lambda i: exact.distance(pose_a(i), pose_b(i), float(need[i])))
+                                          lambda i: exact.distance(pose_a(i), pose_b(i), float(need[i])),
+                                          lipschitz=exact.convex)
     times, dists = [timeline.t[evaluated]], [dists_at]
     if split.size:
         sub_t, sub_d = _bisect(scene, timeline, exact, a, b, reach, split, dists_at[np.searchsorted(evaluated, split)],
@@ -206,15 +211,22 @@ def _moving_pair(scene: Scene, timeline: Timeline, a: Body, b: Body, poses: dict
 
 
 def _advance(flagged: np.ndarray, need: np.ndarray, move: np.ndarray, clearance: float,
-             distance_at) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+             distance_at, lipschitz: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
     """Conservative advancement over the flagged samples: an exact distance d at sample i
     certifies every following interval up to where the accumulated motion bound reaches
     d - clearance, so those samples need no evaluation of their own.
+
+    With `lipschitz` (a true signed distance, which moves by at most the motion bound), a
+    contact of depth p at sample i also proves every following sample within motion p to be
+    in contact: those are skipped too (the interval is already a finding), carrying the upper
+    bound d_i + motion as their distance, and only where the pair could be deeper than the
+    deepest exact value of its run by more than DEPTH_TOL are they evaluated (_refine_depth).
     Returns (evaluated samples, their distances, intervals that still need splitting)."""
     cum = np.concatenate([[0.0], np.cumsum(move)])  # cum[k]: motion bound from sample 0 to k
     evaluated: list[int] = []
     dists: list[float] = []
     split: list[int] = []
+    skipped: list[tuple[int, int]] = []  # (i, e): samples i+1..e proved in contact by sample i
     k = 0
     m = need.shape[0]
     while k < flagged.size:
@@ -222,12 +234,62 @@ def _advance(flagged: np.ndarray, need: np.ndarray, move: np.ndarray, clearance:
         d = distance_at(i)
         evaluated.append(i)
         dists.append(d)
+        if lipschitz and d < 0.0:
+            # samples j with cum[j] - cum[i] < -d are in contact: d_j <= d + (cum[j] - cum[i]) < 0
+            e = min(int(np.searchsorted(cum, cum[i] - d, side="left")) - 1, m - 1)
+            if e > i:
+                skipped.append((i, e))
+            k = int(np.searchsorted(flagged, e + 1, side="left"))
+            continue
         # intervals i..J are safe while cum[J+1] <= cum[i] + d - clearance
         last_safe = int(np.searchsorted(cum, cum[i] + d - clearance, side="right")) - 2
         if last_safe < i and d > 0.0 and i + 1 < m:
             split.append(i)  # not certified by its own start: look inside (a contact needs no look)
         k = int(np.searchsorted(flagged, max(last_safe + 1, i + 1), side="left"))
-    return np.array(evaluated, dtype=int), np.array(dists), np.array(split, dtype=int)
+    ev, dv = np.array(evaluated, dtype=int), np.array(dists)
+    if skipped:
+        ev, dv = _refine_depth(ev, dv, skipped, cum, m, distance_at)
+    return ev, dv, np.array(split, dtype=int)
+
+
+DEPTH_TOL = 1e-5  # m: a run's reported depth is within this of its deepest sample
+
+
+def _refine_depth(ev: np.ndarray, dv: np.ndarray, skipped: list[tuple[int, int]], cum: np.ndarray, m: int,
+                  distance_at) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+    """Add the skipped contact samples (upper-bound distances) and evaluate exactly those that
+    could be deeper than their run's deepest exact value by more than DEPTH_TOL. One pass is
+    enough: evaluating only lowers that deepest value, so the rest stay within tolerance."""
+    exact = np.full(m, np.nan)
+    exact[ev] = dv
+    starts = np.array([i for i, _ in skipped])
+    counts = np.array([e - i for i, e in skipped])
+    owner = np.repeat(starts, counts)  # the sample whose contact proved each skipped one
+    j = owner + (np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)) + 1
+    d_owner = exact[owner]
+    upper = d_owner + (cum[j] - cum[owner])
+    lower = d_owner - (cum[j] - cum[owner])
+    nxt = np.repeat(np.array([e for _, e in skipped]) + 1, counts)  # the sample after the gap
+    d_next = np.where(nxt < m, exact[np.minimum(nxt, m - 1)], np.nan)
+    has_next = ~np.isnan(d_next)
+    jn, kn = j[has_next], nxt[has_next]
+    lower[has_next] = np.maximum(lower[has_next], d_next[has_next] - (cum[kn] - cum[jn]))
+    # runs of contact over all samples: exact contacts and skipped ones
+    dist = np.where(np.isnan(exact), np.inf, exact)
+    dist[j] = upper
+    contact = dist <= 0.0
+    run = np.cumsum(np.concatenate([[contact[0]], contact[1:] & ~contact[:-1]]))
+    best = np.full(run[-1] + 1, np.inf)
+    exact_contact = ~np.isnan(exact) & contact
+    np.minimum.at(best, run[exact_contact], exact[exact_contact])
+    check = j[lower < best[run[j]] - DEPTH_TOL]
+    for s in check:
+        dist[s] = distance_at(int(s))
+    keep = np.zeros(m, dtype=bool)
+    keep[ev] = True
+    keep[j] = True
+    idx = np.flatnonzero(keep)
+    return idx, dist[idx]
 
 
 def _at(poses: np.ndarray, i: int) -> np.ndarray:

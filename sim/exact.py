@@ -32,12 +32,23 @@ class ExactPair:
         self.req = coal.DistanceRequest()
         self.res = coal.DistanceResult()
         self._fixed: tuple[np.ndarray, coal.Transform3s] | None = None  # a fixture's pose, built once
+        # reused: building a transform costs more than setting one
+        self._scratch = (coal.Transform3s(), coal.Transform3s())
 
-    def _tf(self, pose: np.ndarray) -> coal.Transform3s:
+    def _tf(self, pose: np.ndarray, slot: int) -> coal.Transform3s:
         fixed = self._fixed
         if fixed is not None and fixed[0] is pose:
             return fixed[1]
-        return _transform(pose)
+        tf = self._scratch[slot]
+        tf.setRotation(pose[:3, :3])
+        tf.setTranslation(pose[:3, 3])
+        return tf
+
+    @property
+    def convex(self) -> bool:
+        """Both bodies convex: the distance is a true signed distance (GJK/EPA), which changes
+        by at most how far any point of a body moves (1-Lipschitz), penetration included."""
+        return self.a[1] is None and self.b[1] is None
 
     @property
     def fixed_pose(self) -> np.ndarray | None:
@@ -48,7 +59,7 @@ class ExactPair:
         self._fixed = (pose, _transform(pose))
 
     def distance(self, pose_a: np.ndarray, pose_b: np.ndarray, need: float) -> float:
-        ta, tb = self._tf(pose_a), self._tf(pose_b)
+        ta, tb = self._tf(pose_a, 0), self._tf(pose_b, 1)
         (hull_a, mesh_a), (hull_b, mesh_b) = self.a, self.b
         self.res.clear()
         d = coal.distance(hull_a, ta, hull_b, tb, self.req, self.res)
