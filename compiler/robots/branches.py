@@ -26,6 +26,9 @@ wrist     FLIP when sin(J5) < 0 on the controller's own J5 value (J5 < 0 for |J5
           KUKA Status bit 2 (A5 <= 0) = FLIP; Fanuc and Yaskawa define their flip bit on
           their own J5 sign too, so map FLIP/NOFLIP through the vendor's rule.
 
+URDF arms have no DH table: `wrist_branches` applies these definitions to the joint axes
+and frames of 6R URDF arms with a spherical wrist.
+
 At a boundary (|value| <= 1e-12, the singular configuration itself) the branch is FRONT / UP /
 NOFLIP, so round-off at an exact singularity cannot flicker the name.
 """

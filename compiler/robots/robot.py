@@ -144,8 +144,9 @@ class Robot:
         return float(s[0] / s[-1]) if s[-1] > 0 else float("inf")
 
     def branch(self, q: np.ndarray) -> ir.Config:
-        """The configuration of q (all fields set for closed-form 6R arms, all None otherwise).
-        See `rmot.compiler.robots.branches` for the exact definitions."""
+        """The configuration of q (all fields set for closed-form 6R arms and for URDF 6R arms
+        with a spherical wrist, all None otherwise). See `rmot.compiler.robots.branches` and
+        `rmot.compiler.robots.wrist_branches` for the exact definitions."""
         if self._branch_fn is None:
             return ir.Config()
         return self._branch_fn(np.asarray(q, dtype=float))

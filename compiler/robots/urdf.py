@@ -4,7 +4,8 @@ Meshes resolve relative to the file (and `package://` URIs against the file's fo
 its ancestors). The flange is the frame named tool0, flange or ee_link (in that order),
 else the last body of the chain. Accelerations are not in URDF: 4 × the velocity limit per
 second, as for the library. Reach: the largest distance of the flange from the J1 axis
-over 4096 deterministic random configurations.
+over 4096 deterministic random configurations. Branch names: 6R arms with a spherical wrist
+get them from their geometry (`wrist_branches`); other arms have none.
 """
 
 from __future__ import annotations
@@ -65,7 +66,9 @@ def _flange_frame(model: pin.Model) -> int:
 def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str) -> Robot:
     from rmot.compiler.robots.chain import chain_of
 
-    chain_of(model)  # raises ValueError for branched chains and multi-dof joints
+    from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
+
+    chain = chain_of(model)  # raises ValueError for branched chains and multi-dof joints
     fid = _flange_frame(model)
     limits = np.column_stack([model.lowerPositionLimit, model.upperPositionLimit])
     if not np.all(np.isfinite(limits)) or np.any(limits[:, 0] >= limits[:, 1]):
@@ -78,6 +81,7 @@ def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str) -> Robot:
         joint_limits=limits, velocity_limits=velocity, accel_limits=4.0 * velocity, reach=0.0,
         solids=solids, adjacent_pairs=_adjacent(solids), has_inertia=any(i.mass > 0 for i in model.inertias[1:]),
         source=path,
+        branch_fn=spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits),
     )
     robot.reach = _reach(robot)
     return robot

@@ -1,6 +1,6 @@
 """The shipped examples, end to end through the real command line (click's CliRunner on
 rmot.compiler.cli.cli): each checks exactly as its header comment says, compiles for every
-vendor that can express it (or fails with the documented diagnostic), and keeps the promises
+vendor (or fails with the documented diagnostic), and keeps the promises
 its comments make (reach of the default cell, constant weld speed, the farthest pallet slot).
 
 (Named test_shipped_examples.py: tests/backends/test_examples.py already owns the module name
@@ -42,8 +42,9 @@ DOCUMENTED_WARNINGS = {"W403", "W405", "W408", "W411", "W450", "W452"}
 # tests/backends) also shows: RAPID tooldata for its massless pointer (W413), an analog
 # output VAL3 must link by hand (W455) and a pulse VAL3 lowers to set/delay/reset (W451).
 EXTRA_WARNINGS = {"inspect.rmot": {"W413", "W451", "W455"}}
-# The URDF arm has no closed-form IK, so its Cartesian targets carry no branch; the vendors
-# that write configuration data with every Cartesian point refuse them (E402).
+# The vendors that write configuration data with every Cartesian point (E402 without a
+# branch). The URDF arm has no closed-form IK but a spherical wrist, so its branches are named
+# from its geometry and these vendors accept it too.
 NEEDS_BRANCH = ("rapid", "krl", "fanuc", "inform", "val3")
 
 
@@ -64,7 +65,7 @@ def compiled(tmp_path_factory: pytest.TempPathFactory) -> dict[str, tuple[Result
     """Every example compiled once for every vendor that can express it."""
     out: dict[str, tuple[Result, Path]] = {}
     for name in CLEAN:
-        vendors = VENDORS if not name.startswith("urdf_cell/") else ("urscript", "csv", "json")
+        vendors = VENDORS
         outdir = tmp_path_factory.mktemp(name.replace("/", "_").removesuffix(".rmot"))
         out[name] = (_run("compile", str(EXAMPLES / name), *_targets(vendors), "-o", str(outdir)), outdir)
     return out
@@ -128,18 +129,25 @@ class TestCompile:
         assert result.exit_code == 0, result.stderr
         written = [Path(line.removeprefix("wrote ")) for line in result.stdout.splitlines()]
         assert written and all(p.is_file() and p.stat().st_size > 0 for p in written)
-        assert {p.relative_to(outdir).parts[0] for p in written} == (
-            set(VENDORS) if not name.startswith("urdf_cell/") else {"urscript", "csv", "json"})
+        assert {p.relative_to(outdir).parts[0] for p in written} == set(VENDORS)
         assert _codes(result.stderr, "warning") <= DOCUMENTED_WARNINGS | EXTRA_WARNINGS.get(name, set())
 
-    def test_urdf_example_is_refused_where_a_branch_is_needed(self, tmp_path: Path) -> None:
-        """The URDF arm's Cartesian targets have no IK branch: RAPID, KRL, TP, INFORM and VAL3
-        refuse them with E402 (one message per vendor and move), exit 1, no file written."""
-        result = _run("compile", str(EXAMPLES / "urdf_cell/load_jig.rmot"), *_targets(NEEDS_BRANCH), "-o", str(tmp_path))
-        assert result.exit_code == 1
-        assert _codes(result.stderr, "error") == {"E402"}
-        assert {m for m in re.findall(r"error\[E402\]: (\w+):", result.stderr)} == set(NEEDS_BRANCH)
-        assert list(tmp_path.iterdir()) == []
+    def test_urdf_example_carries_geometric_branches_to_every_vendor(self, tmp_path: Path) -> None:
+        """The URDF arm (spherical wrist) compiles for RAPID, KRL, TP, INFORM and VAL3 without
+        E402, and every planned move's branch in the JSON is the arm's branch of its joints."""
+        result = _run("compile", str(EXAMPLES / "urdf_cell/load_jig.rmot"), *_targets(NEEDS_BRANCH + ("json",)), "-o", str(tmp_path))
+        assert result.exit_code == 0, result.stderr
+        assert _codes(result.stderr, "error") == set()
+        assert {p.name for p in tmp_path.iterdir()} == set(NEEDS_BRANCH) | {"json"}
+        from rmot.compiler.robots import load_robot
+
+        arm = load_robot(str(EXAMPLES / "urdf_cell/arm6.urdf"))
+        listing = json.loads(next((tmp_path / "json").iterdir()).read_text())
+        moves = [i for task in listing["tasks"] for i in task["instructions"] if i.get("q_target") is not None]
+        assert moves
+        for move in moves:
+            branch = arm.branch(np.asarray(move["q_target"], dtype=float))
+            assert move["branch"] == {"shoulder": branch.shoulder.value, "elbow": branch.elbow.value, "wrist": branch.wrist.value}
 
     def test_collision_example_blocks_compile(self, tmp_path: Path) -> None:
         """A program with findings writes nothing (exit 1) unless --allow-findings is given;
