@@ -4,6 +4,9 @@ Every returned solution is within the joint limits and reproduces the pose by FK
 and 1e-9 rad. A joint whose range spans more than 360° contributes every equivalent angle
 (q ± 2πk) inside its limits; all are returned, nearest to the seed first (Euclidean distance
 in joint space; seed None = all zeros). At the wrist singularity (J5 = 0) the seed's J4 is kept.
+Only the distinct solutions are checked by FK: their 2π-equivalents reproduce the same pose
+exactly (a revolute joint's transform is 2π-periodic), so they are verified by that invariance
+and share their solution's branch (every branch quantity is 2π-periodic too).
 
 Statuses: OK; SINGULAR = solutions returned and verified, but the pose lies on a singularity
 (smallest reach-scaled singular value of J < 1e-6 at the first solution: treat it as OK with
@@ -64,11 +67,15 @@ class IkResult:
         return bool(self.solutions)
 
 
+_EYE3 = np.eye(3)
+
+
 def _check_pose(pose: np.ndarray) -> np.ndarray:
     t = np.asarray(pose, dtype=float)
-    if t.shape != (4, 4) or not np.all(np.isfinite(t)):
+    if t.shape != (4, 4) or not np.isfinite(t).all():
         raise ValueError(f"pose must be a finite (4,4) matrix (got shape {t.shape})")
-    if np.abs(t[:3, :3] @ t[:3, :3].T - np.eye(3)).max() > 1e-6:
+    r = t[:3, :3]
+    if np.abs(r @ r.T - _EYE3).max() > 1e-6:
         raise ValueError("pose rotation must be orthonormal")
     return t
 
@@ -95,20 +102,39 @@ def _verified(robot, target: np.ndarray, q: np.ndarray) -> np.ndarray | None:  #
 
 
 def _equivalents(robot, q: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
-    """(k,dof): every q + 2πk (per revolute joint) inside the limits (k may be 0)."""
-    options, multiple = [], False
+    """(k,dof): every q + 2πk (per revolute joint) inside the limits (k may be 0), in
+    itertools.product order over the joints (last joint fastest)."""
+    flat, counts, multiple = [], [], False
     for v, lo, hi, revolute in zip(q.tolist(), robot._lo, robot._hi, robot._revolute_list):
         first = v + math.ceil((lo - 1e-12 - v) / TWO_PI) * TWO_PI if revolute else v
         if not lo - 1e-12 <= first <= hi + 1e-12:
             return np.empty((0, len(q)))
-        values = [min(max(first, lo), hi)]
-        while revolute and values[-1] + TWO_PI <= hi + 1e-12:
-            values.append(min(values[-1] + TWO_PI, hi))
+        value = min(max(first, lo), hi)
+        flat.append(value)
+        n = 1
+        while revolute and value + TWO_PI <= hi + 1e-12:
+            value = min(value + TWO_PI, hi)
+            flat.append(value)
+            n += 1
             multiple = True
-        options.append(values)
+        counts.append(n)
     if not multiple:
-        return np.array([[o[0] for o in options]])
-    return np.array(list(itertools.product(*options)))
+        return np.array([flat])
+    return np.array(flat)[_product_index(tuple(counts))]
+
+
+_PRODUCT_INDEX: dict[tuple[int, ...], np.ndarray] = {}
+
+
+def _product_index(counts: tuple[int, ...]) -> np.ndarray:
+    """(prod(counts), len(counts)) indices into the joints' concatenated options, rows in
+    itertools.product order; cached per count pattern (a handful per robot)."""
+    index = _PRODUCT_INDEX.get(counts)
+    if index is None:
+        starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        index = np.array(list(itertools.product(*(range(n) for n in counts))), dtype=np.intp) + starts
+        _PRODUCT_INDEX[counts] = index
+    return index
 
 
 def _excess(robot, q: np.ndarray) -> tuple[int, float]:  # type: ignore[no-untyped-def]
@@ -169,12 +195,17 @@ def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Co
         found = ", ".join(sorted({str(b) for b, _ in groups}))
         return IkResult(IkStatus.UNREACHABLE, message=f"no IK solution with {config} (solutions exist with: {found})",
                         code=codes.NO_SOLUTION_ON_BRANCH)
-    qs = np.concatenate([e for _, e in kept])
-    names = [b for b, e in kept for _ in range(len(e))]
-    order = np.argsort(np.linalg.norm(qs - seed_q, axis=1), kind="stable")
+    qs = kept[0][1] if len(kept) == 1 else np.concatenate([e for _, e in kept])
+    delta = qs - seed_q
+    order = np.argsort(np.sqrt(np.add.reduce(delta * delta, axis=1)), kind="stable")  # = norm(delta, axis=1)
     qs = qs[order]
     qs.setflags(write=False)
-    sols, brs = tuple(qs), tuple(names[i] for i in order.tolist())
+    sols = tuple(qs)
+    if len(kept) == 1:
+        brs = (kept[0][0],) * len(sols)
+    else:
+        names = [b for b, e in kept for _ in range(len(e))]
+        brs = tuple(names[i] for i in order.tolist())
     if _is_singular(robot, sols[0]):
         return IkResult(IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity", code=codes.SINGULAR)
     return IkResult(IkStatus.OK, sols, brs)
@@ -185,8 +216,9 @@ def _verify_all(robot, target: np.ndarray, raw: list[np.ndarray]) -> list[np.nda
     if not raw:
         return []
     fk = robot.fk(raw[0])[None] if len(raw) == 1 else robot.fk_batch(np.array(raw))
-    dp = np.sqrt(np.sum((fk[:, :3, 3] - target[:3, 3]) ** 2, axis=1))
-    dr = np.sqrt(np.sum((fk[:, :3, :3] - target[:3, :3]) ** 2, axis=(1, 2)) / 2)  # ≈ angle when small
+    # np.add.reduce is what np.sum calls, minus its Python wrapper.
+    dp = np.sqrt(np.add.reduce((fk[:, :3, 3] - target[:3, 3]) ** 2, axis=1))
+    dr = np.sqrt(np.add.reduce((fk[:, :3, :3] - target[:3, :3]) ** 2, axis=(1, 2)) / 2)  # ≈ angle when small
     out = []
     for q, p_err, r_err in zip(raw, dp.tolist(), dr.tolist()):
         if p_err <= POS_TOL and r_err <= ROT_TOL:

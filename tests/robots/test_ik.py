@@ -210,3 +210,26 @@ def test_batch_rows_are_fixed_branches(name):
         for k, row in enumerate(rows):
             if np.all(np.isfinite(row)) and abs(math.sin(row[4])) > 1e-6:
                 assert r.branch(row) == r.batch_branches[k]
+
+
+def test_equivalents_are_every_in_limit_shift_in_product_order_and_reproduce_the_pose():
+    """UR5 URDF (±2π limits): the equivalents of a solution are exactly the in-limit q + 2πk,
+    in itertools.product order, and each reproduces the solution's FK to 1e-9 (the invariance
+    that lets `ik` verify only the distinct solutions)."""
+    import importlib.metadata
+    import itertools
+
+    from rmot.compiler.robots.ik import _equivalents
+
+    files = importlib.metadata.files("example-robot-data") or []
+    r = load_robot(str(next(f for f in files if f.name == "ur5_robot.urdf").locate()))
+    lo, hi = r.joint_limits[:, 0], r.joint_limits[:, 1]
+    for q in np.random.default_rng(3).uniform(lo, hi, (50, r.dof)):
+        options = [[v + k * 2 * math.pi for k in range(-3, 4) if lo[j] - 1e-12 <= v + k * 2 * math.pi <= hi[j] + 1e-12]
+                   for j, v in enumerate(q)]
+        expected = np.array(list(itertools.product(*options)))
+        got = _equivalents(r, q)
+        assert got.shape == expected.shape
+        np.testing.assert_allclose(got, expected, atol=1e-12)
+        fk = r.fk_batch(got)
+        np.testing.assert_allclose(fk, np.broadcast_to(r.fk(q), fk.shape), atol=1e-9)
