@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import json
 from enum import Enum
+from collections.abc import Callable
 from typing import Any
 
 from rmot.compiler import ir
@@ -95,27 +96,28 @@ def _signal(s: str | None) -> str:
     return f" ({s})" if s else ""
 
 
+def _timeout(t: float | None) -> str:
+    return f" timeout {_f(t)}" if t is not None else ""
+
+
+# One line per instruction kind: its text after `#uid ` and before the source location.
+_HEADS: dict[type, Callable[[Any], str]] = {
+    ir.Move: _move,
+    ir.SetDigital: lambda i: f"set out[{i.port}] = {'on' if i.value else 'off'}{_signal(i.signal)}",
+    ir.SetAnalog: lambda i: f"set aout[{i.port}] = {_f(i.value)}{_signal(i.signal)}",
+    ir.Pulse: lambda i: f"pulse out[{i.port}] for {_f(i.duration)}{_signal(i.signal)}",
+    ir.WaitTime: lambda i: f"wait {_f(i.duration)}",
+    ir.WaitInput: lambda i: f"wait until {_cond(i.condition)}{_timeout(i.timeout)}",
+    ir.Sync: lambda i: f"sync {i.name}",
+    ir.Native: lambda i: f"native {i.vendor} {json.dumps(i.text)}",
+    ir.If: lambda i: f"if {_cond(i.condition)}",
+    ir.ProcCall: lambda i: f"call {i.proc}({', '.join(i.args)})",
+}
+
+
 def _instr(i: ir.Instr, indent: str, out: list[str], main: str) -> None:
-    head = f"{indent}#{i.uid} "
-    if isinstance(i, ir.Move):
-        out.append(head + _move(i) + _at(i.span, main))
-    elif isinstance(i, ir.SetDigital):
-        out.append(head + f"set out[{i.port}] = {'on' if i.value else 'off'}{_signal(i.signal)}" + _at(i.span, main))
-    elif isinstance(i, ir.SetAnalog):
-        out.append(head + f"set aout[{i.port}] = {_f(i.value)}{_signal(i.signal)}" + _at(i.span, main))
-    elif isinstance(i, ir.Pulse):
-        out.append(head + f"pulse out[{i.port}] for {_f(i.duration)}{_signal(i.signal)}" + _at(i.span, main))
-    elif isinstance(i, ir.WaitTime):
-        out.append(head + f"wait {_f(i.duration)}" + _at(i.span, main))
-    elif isinstance(i, ir.WaitInput):
-        timeout = f" timeout {_f(i.timeout)}" if i.timeout is not None else ""
-        out.append(head + f"wait until {_cond(i.condition)}{timeout}" + _at(i.span, main))
-    elif isinstance(i, ir.Sync):
-        out.append(head + f"sync {i.name}" + _at(i.span, main))
-    elif isinstance(i, ir.Native):
-        out.append(head + f"native {i.vendor} {json.dumps(i.text)}" + _at(i.span, main))
-    elif isinstance(i, ir.If):
-        out.append(head + f"if {_cond(i.condition)}" + _at(i.span, main))
+    out.append(f"{indent}#{i.uid} " + _HEADS[type(i)](i) + _at(i.span, main))
+    if isinstance(i, ir.If):
         out.append(f"{indent}  then:")
         for j in i.then:
             _instr(j, indent + "    ", out, main)
@@ -123,7 +125,6 @@ def _instr(i: ir.Instr, indent: str, out: list[str], main: str) -> None:
         for j in i.otherwise:
             _instr(j, indent + "    ", out, main)
     elif isinstance(i, ir.ProcCall):
-        out.append(head + f"call {i.proc}({', '.join(i.args)})" + _at(i.span, main))
         for j in i.body:
             _instr(j, indent + "  ", out, main)
 
