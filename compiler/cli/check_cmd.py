@@ -139,9 +139,18 @@ def _format(fmt: str, reports: list[Report]) -> str:
 @click.option("--jobs", type=click.IntRange(min=1), default=1, show_default=True, help="Programs checked in parallel.")
 @click.option("--images", type=click.Path(file_okay=False), default=None, help="Render a PNG per error finding into DIR.")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
+@click.option("--shard", default=None, metavar="K/N",
+              help="Check only shard K of N: a deterministic, size-balanced share of PROGRAMs (CI matrices).")
 def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | None, clearance: str | None,
-          jobs: int, images: str | None, project_root: str | None) -> None:
+          jobs: int, images: str | None, project_root: str | None, shard: str | None) -> None:
     """Parse, plan and verify PROGRAMs; report collisions, limit excesses and cycle times."""
+    if shard is not None:
+        from rmot.compiler.cli.shard import parse_shard, select_shard
+
+        try:
+            programs = tuple(select_shard(programs, parse_shard(shard)))
+        except ValueError as exc:
+            raise click.BadParameter(str(exc), param_hint="--shard") from None
     clearance_m = None
     if clearance is not None:
         try:

@@ -1,0 +1,222 @@
+"""`rmot merge-reports REPORT... -o FILE`: one report from the shards of a CI matrix.
+
+Each runner of an N-way matrix writes its share (`rmot check --shard K/N --format junit|sarif|json`);
+a final job merges them. The format is read from the files themselves, and all must agree:
+
+- JUnit XML: every <testcase> in one <testsuite>, ordered by program, counts recomputed.
+- SARIF 2.1.0: one run; the rules are the union (by id, sorted) and every result's ruleIndex
+  is recomputed; results keep their order within a shard, shards ordered by program.
+- rmot JSON (`--format json`): the programs of every report, ordered by file; the version and
+  every other top-level member must be equal.
+
+Ordering by program makes the merged file independent of the order the shards are given in
+and equal to an unsharded `rmot check` of the programs sorted by path.
+
+Reports are data: XML with a DOCTYPE or entity declaration is refused (no entity expansion),
+JSON with NaN/Infinity is refused, and a file over 64 MiB is refused before it is read.
+Exit codes: 0 merged, 2 an input could not be read or the inputs do not fit together.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import xml.etree.ElementTree as ET
+from typing import Any
+
+import click
+
+from rmot.compiler.cli import EXIT_INPUT
+
+__all__ = ["MergeError", "merge_documents", "merge_reports"]
+
+MAX_REPORT_BYTES = 64 * 1024 * 1024
+_FORBIDDEN_XML = (b"<!DOCTYPE", b"<!ENTITY")
+
+
+class MergeError(Exception):
+    """A report that cannot be merged; `code` is one of rmot.compiler.cli.codes."""
+
+    def __init__(self, code: Any, message: str) -> None:
+        super().__init__(message)
+        self.code = code
+
+
+def _codes() -> Any:
+    from rmot.compiler.cli import codes
+
+    return codes
+
+
+def _read(path: str) -> bytes:
+    codes = _codes()
+    try:
+        size = os.path.getsize(path)
+        if size > MAX_REPORT_BYTES:
+            raise MergeError(codes.REPORT_UNREADABLE,
+                             f"report '{path}' has {size} bytes, more than the {MAX_REPORT_BYTES} allowed")
+        with open(path, "rb") as f:
+            return f.read(MAX_REPORT_BYTES + 1)
+    except OSError as exc:
+        raise MergeError(codes.REPORT_UNREADABLE, f"cannot read report '{path}': {exc.strerror or exc}") from None
+
+
+def _reject_constant(name: str) -> Any:
+    raise ValueError(f"non-finite number {name}")
+
+
+def parse_document(path: str, data: bytes) -> tuple[str, Any]:
+    """('junit', Element) | ('sarif', dict) | ('json', dict); MergeError otherwise."""
+    codes = _codes()
+    head = data.lstrip()[:1]
+    if head == b"<":
+        if any(marker in data for marker in _FORBIDDEN_XML):
+            raise MergeError(codes.REPORT_FORMAT, f"report '{path}' declares a DOCTYPE or entities; refused")
+        try:
+            root = ET.fromstring(data)
+        except ET.ParseError as exc:
+            raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is not well-formed XML ({exc})") from None
+        if root.tag != "testsuites":
+            raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is XML but not JUnit (root <{root.tag}>)")
+        return "junit", root
+    try:
+        doc = json.loads(data.decode("utf-8"), parse_constant=_reject_constant)
+    except (UnicodeDecodeError, ValueError) as exc:
+        raise MergeError(codes.REPORT_FORMAT,
+                         f"report '{path}' is neither JUnit XML nor JSON ({exc.__class__.__name__}: {exc})") from None
+    if isinstance(doc, dict) and doc.get("version") == "2.1.0" and isinstance(doc.get("runs"), list):
+        if len(doc["runs"]) != 1 or not isinstance(doc["runs"][0], dict):
+            raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is SARIF with {len(doc['runs'])} runs; rmot writes one")
+        return "sarif", doc
+    if isinstance(doc, dict) and isinstance(doc.get("programs"), list) and "version" in doc:
+        return "json", doc
+    raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is JSON but neither SARIF 2.1.0 nor an rmot check report")
+
+
+# --------------------------------------------------------------------------- JUnit
+
+
+def _merge_junit(roots: list[ET.Element]) -> str:
+    cases = [case for root in roots for suite in root.iter("testsuite") for case in suite.findall("testcase")]
+    cases.sort(key=lambda c: c.get("name", ""))
+    failures = sum(len(c.findall("failure")) for c in cases)
+    suites = ET.Element("testsuites", name="rmot check", tests=str(len(cases)), failures=str(failures))
+    suite = ET.SubElement(suites, "testsuite", name="rmot check", tests=str(len(cases)),
+                          failures=str(failures), errors="0", skipped="0")
+    suite.extend(cases)
+    ET.indent(suites)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n"
+
+
+# --------------------------------------------------------------------------- SARIF
+
+
+def _first_uri(doc: dict[str, Any]) -> str:
+    for result in doc["runs"][0].get("results", []):
+        for loc in result.get("locations", []):
+            uri = loc.get("physicalLocation", {}).get("artifactLocation", {}).get("uri")
+            if isinstance(uri, str):
+                return uri
+    return ""
+
+
+def _merge_sarif(docs: list[dict[str, Any]]) -> str:
+    codes = _codes()
+    rules: dict[str, dict[str, Any]] = {}
+    for doc in docs:
+        for rule in doc["runs"][0].get("tool", {}).get("driver", {}).get("rules", []):
+            known = rules.setdefault(rule["id"], rule)
+            if known != rule:
+                raise MergeError(codes.REPORTS_MISMATCH,
+                                 f"rule {rule['id']} is described differently in two reports (different rmot versions?)")
+    order = sorted(rules)
+    index = {rule_id: k for k, rule_id in enumerate(order)}
+    results = []
+    for doc in sorted(docs, key=_first_uri):
+        for result in doc["runs"][0].get("results", []):
+            results.append({**result, "ruleIndex": index[result["ruleId"]]})
+    run0 = docs[0]["runs"][0]
+    driver = {**run0["tool"]["driver"], "rules": [rules[r] for r in order]}
+    run = {**run0, "tool": {**run0["tool"], "driver": driver}, "results": results}
+    merged = {**docs[0], "runs": [run]}
+    return json.dumps(merged, indent=2, ensure_ascii=False) + "\n"
+
+
+# --------------------------------------------------------------------------- rmot JSON
+
+
+def _merge_json(docs: list[dict[str, Any]]) -> str:
+    codes = _codes()
+    base = {k: v for k, v in docs[0].items() if k != "programs"}
+    for doc in docs[1:]:
+        other = {k: v for k, v in doc.items() if k != "programs"}
+        if other != base:
+            differing = sorted(k for k in set(base) | set(other) if base.get(k) != other.get(k))
+            raise MergeError(codes.REPORTS_MISMATCH, f"reports differ in {', '.join(differing)}; "
+                             "they were written by different rmot versions or options")
+    programs = [p for doc in docs for p in doc["programs"]]
+    programs.sort(key=lambda p: str(p.get("file", "")) if isinstance(p, dict) else "")
+    return json.dumps({**docs[0], "programs": programs}, indent=2, ensure_ascii=False) + "\n"
+
+
+_MERGERS = {"junit": _merge_junit, "sarif": _merge_sarif, "json": _merge_json}
+
+
+def merge_documents(parsed: list[tuple[str, str, Any]]) -> tuple[str, str]:
+    """[(path, format, document)] -> (format, merged text)."""
+    codes = _codes()
+    formats = {fmt for _, fmt, _ in parsed}
+    if len(formats) != 1:
+        listing = ", ".join(f"{path} ({fmt})" for path, fmt, _ in parsed)
+        raise MergeError(codes.REPORTS_MISMATCH, f"reports must all have one format; got {listing}")
+    fmt = formats.pop()
+    return fmt, _MERGERS[fmt]([doc for _, _, doc in parsed])
+
+
+def merge_reports(paths: list[str]) -> tuple[str, str]:
+    parsed = []
+    for path in paths:
+        fmt, doc = parse_document(path, _read(path))
+        parsed.append((path, fmt, doc))
+    return merge_documents(parsed)
+
+
+@click.command("merge-reports")
+@click.argument("reports", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("-o", "--output", type=click.Path(dir_okay=False), default=None, help="Write the merged report to FILE.")
+def merge_reports_cmd(reports: tuple[str, ...], output: str | None) -> None:
+    """Merge the JUnit, SARIF or JSON reports of `rmot check --shard K/N` runs into one."""
+    from rmot.lang.diagnostics import Diagnostic, Severity, render
+
+    try:
+        _, text = merge_reports(list(reports))
+        if output:
+            _write_atomic(output, text)
+        else:
+            click.echo(text, nl=False)
+    except MergeError as exc:
+        click.echo(render(Diagnostic(exc.code, Severity.ERROR, str(exc), None)), err=True)
+        click.get_current_context().exit(EXIT_INPUT)
+
+
+def _write_atomic(path: str, text: str) -> None:
+    """Temporary file beside the target, then rename; permissions as the umask says."""
+    import tempfile
+
+    directory = os.path.dirname(os.path.abspath(path))
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=".rmot-", dir=directory)
+    except OSError as exc:
+        raise MergeError(_codes().REPORT_UNWRITABLE,
+                         f"cannot write '{path}': {exc.strerror or exc}") from None
+    try:
+        umask = os.umask(0)
+        os.umask(umask)
+        os.fchmod(fd, 0o666 & ~umask)
+        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except OSError as exc:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise MergeError(_codes().REPORT_UNWRITABLE, f"cannot write '{path}': {exc.strerror or exc}") from None
