@@ -221,16 +221,22 @@ Geometry = Union[Box, Cylinder, Sphere, Capsule, Mesh]
 class RobotSourceKind(Enum):
     LIBRARY = auto()  # a name from compiler.robots.list_robots()
     URDF = auto()  # an absolute path to a URDF file
+    MODEL = auto()  # a `model` block of the cell: ref is its load key (compiler/model_spec.py)
 
 
 @dataclass(frozen=True, slots=True)
 class RobotSource:
     kind: RobotSourceKind
-    ref: str  # library name, or absolute URDF path
+    ref: str  # library name, absolute URDF path, or a model's load key
+    chain: tuple[str, str] | None = None  # URDF only: (base link, tip link) chosen in the cell
 
     @property
     def load_key(self) -> str:
         """What `compiler.robots.load_robot` takes."""
+        if self.chain is not None:  # "urdf-chain:" + JSON [path, base, tip] (compiler/robots/loader.py)
+            import json
+
+            return "urdf-chain:" + json.dumps([self.ref, *self.chain])
         return self.ref
 
 

@@ -1,0 +1,163 @@
+"""Robots defined in a cell: a `model` block's DH chain as data, and the Robot built from it.
+
+A `ModelSpec` is plain data in SI units (the front end makes it from the cell's text, see
+compiler/passes/lower_model.py). It travels in the IR as a load key, "model:" + canonical
+JSON (floats written with repr, so the round trip is exact), and `load_robot` builds the
+Robot from that key once per distinct model.
+
+Conventions (lang/REFERENCE.md, "Robot models"):
+  * Standard DH (Spong; the convention of the reference article): frame i from frame i-1 is
+    Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i). Modified DH (Craig), `mdh(...)`: Rx(α_{i-1})
+    Tx(a_{i-1}) Rz(θ_i) Tz(d_i), the row of joint i holding α_{i-1}, a_{i-1}.
+  * The joint value q is the DH variable minus the written constant: a revolute joint turns
+    θ_i = q_i + theta, a prismatic joint slides d_i = d + q_i. The base frame is DH frame 0,
+    the flange is `flange` (default identity) in the last DH frame.
+  * IK: a 6R arm whose geometry is ortho-parallel with a spherical wrist gets the closed-form
+    OPW solver with the library's branch rows (compiler/robots/model_opw.py derives the
+    parameters and proves them by FK before using them); any other 6R arm with a spherical
+    wrist gets the numeric IK and geometric branch names (wrist_branches), as URDF arms do;
+    every other chain the numeric IK without branch names.
+  * Solids: one capsule per link from its joint's axis point to the next joint's (a short one
+    along the joint axis where they coincide), and a flat-bottomed cylinder for the base.
+    Radii are 6 % of the summed link lengths (at least 15 mm, at most 120 mm), tapering to
+    60 % at the flange; an estimate for display and a conservative collision envelope, not
+    the vendor's shape. Solids that overlap at the model's zero configuration touch by
+    design and are not checked against each other (as consecutive solids are not).
+  * Accelerations and speeds are the model's own; there are no inertias.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rmot.compiler import ir
+from rmot.compiler.model_spec import MAX_JOINTS, MODEL_PREFIX, ModelJointSpec, ModelSpec, model_key, spec_from_key
+from rmot.compiler.robots.dh import DHRow, DHTable, build_model
+from rmot.compiler.robots.robot import LinkSolid, Robot
+
+__all__ = ["MAX_JOINTS", "ModelJointSpec", "ModelSpec", "MODEL_PREFIX", "model_key", "robot_from_key", "robot_from_model",
+           "spec_from_key", "dh_table"]
+
+def dh_table(spec: ModelSpec) -> DHTable:
+    rows = tuple(DHRow(d=j.d, a=j.a, alpha=j.alpha, offset=j.theta, kind=j.kind) for j in spec.joints)
+    return DHTable(rows, modified=spec.modified)
+
+
+def robot_from_key(key: str) -> Robot:
+    return robot_from_model(spec_from_key(key))
+
+
+def robot_from_model(spec: ModelSpec) -> Robot:
+    from rmot.compiler.robots.model_opw import opw_solver_for
+    from rmot.compiler.robots.urdf import _reach
+    from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
+
+    if not 1 <= len(spec.joints) <= MAX_JOINTS:
+        raise ValueError(f"a model must have 1 to {MAX_JOINTS} joints (got {len(spec.joints)})")
+    flange = np.array(spec.flange, dtype=float).reshape(4, 4)
+    model, fid, _ = build_model(dh_table(spec), flange, spec.name)
+    limits = np.array([(j.lo, j.hi) for j in spec.joints], dtype=float)
+    velocity = np.array([j.speed for j in spec.joints], dtype=float)
+    accel = np.array([j.accel for j in spec.joints], dtype=float)
+    solids = _solids(model, limits)
+    common = dict(
+        name=spec.name, vendor="cell model", model_name=spec.name, model=model, flange_frame=fid,
+        joint_limits=limits, velocity_limits=velocity, accel_limits=accel, reach=0.0, solids=solids,
+        adjacent_pairs=_adjacent(model, solids, limits), source="model block in the cell",
+        dh_rows=dh_table(spec).rows, dh_modified=spec.modified,
+    )
+    probe = Robot(**common)  # type: ignore[arg-type]
+    opw = opw_solver_for(probe) if len(spec.joints) == 6 else None
+    if opw is not None:
+        closed_form, branch_fn, rows = opw
+        robot = Robot(**common, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)  # type: ignore[arg-type]
+    else:
+        chain = probe._chain
+        branch_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
+        robot = Robot(**common, branch_fn=branch_fn)  # type: ignore[arg-type]
+    robot.reach = _reach(robot)
+    robot.rated_payload_kg = spec.payload_kg
+    return robot
+
+
+# --------------------------------------------------------------------------- solids
+
+
+def _joint_points(model, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+    """Joint origins (n+1,3) with the flange last, joint frames (n+1,4,4) (index 0 = base)."""
+    import pinocchio as pin
+
+    data = model.createData()
+    pin.forwardKinematics(model, data, q)
+    frames = [np.eye(4)] + [data.oMi[j].homogeneous for j in range(1, model.njoints)]
+    flange = pin.updateFramePlacement(model, data, model.nframes - 1).homogeneous
+    pts = np.array([f[:3, 3] for f in frames[1:]] + [flange[:3, 3]])
+    return pts, np.array(frames), flange
+
+
+def _zero_in_limits(limits: np.ndarray) -> np.ndarray:
+    return np.clip(0.0, limits[:, 0], limits[:, 1])
+
+
+def _solids(model, limits: np.ndarray) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def]
+    q0 = _zero_in_limits(limits)
+    pts, frames, _ = _joint_points(model, q0)
+    total = float(sum(np.linalg.norm(pts[i + 1] - pts[i]) for i in range(len(pts) - 1))) + float(np.linalg.norm(pts[0]))
+    r0 = min(max(0.06 * total, 0.015), 0.12)
+    n = model.nq
+    out = []
+    # the base: from the floor of DH frame 0 (z = 0 or the first axis point below it) to J1's origin
+    base_top = pts[0]
+    height = float(np.linalg.norm(base_top))
+    if height > 2 * r0:
+        out.append(_capsule("base", 0, np.zeros(3), base_top, r0, np.eye(4), cylinder=True))
+    else:
+        out.append(_capsule("base", 0, np.array([0, 0, -r0]), np.array([0, 0, r0]), r0, np.eye(4), cylinder=True))
+    for i in range(n):
+        r = r0 * (1.0 - 0.4 * (i + 1) / n)
+        p0, p1 = pts[i], pts[i + 1]
+        frame = frames[i + 1]
+        if np.linalg.norm(p1 - p0) < 1e-6:  # a joint on the next one's origin: a stub along its axis
+            z = frame[:3, 2]
+            p0, p1 = p0 - r * z, p0 + r * z
+        out.append(_capsule(f"link_{i + 1}", i + 1, p0, p1, r, frame))
+    return tuple(out)
+
+
+def _capsule(name: str, joint: int, p0: np.ndarray, p1: np.ndarray, radius: float, joint_frame: np.ndarray,
+             cylinder: bool = False) -> LinkSolid:
+    from rmot.compiler.robots.build import _frame_with_z
+
+    axis = p1 - p0
+    length = float(np.linalg.norm(axis))
+    world = np.eye(4)
+    world[:3, :3] = _frame_with_z(axis / length)
+    world[:3, 3] = (p0 + p1) / 2
+    local = np.linalg.inv(joint_frame) @ world
+    geom: ir.Geometry = ir.Cylinder(radius=radius, height=length) if cylinder else ir.Capsule(radius=radius, length=length)
+    return LinkSolid(name, joint, geom, ir.Pose.from_matrix(local))
+
+
+def _segment_distance(a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.ndarray) -> float:
+    """The smallest distance between segments a0-a1 and b0-b1 (sampled finely; display use)."""
+    s = np.linspace(0.0, 1.0, 33)
+    pa = a0 + s[:, None] * (a1 - a0)
+    pb = b0 + s[:, None] * (b1 - b0)
+    return float(np.min(np.linalg.norm(pa[:, None] - pb[None], axis=-1)))
+
+
+def _adjacent(model, solids: tuple[LinkSolid, ...], limits: np.ndarray) -> tuple[tuple[int, int], ...]:  # type: ignore[no-untyped-def]
+    """Consecutive solids, and those that overlap at the zero configuration (they touch by design)."""
+    q0 = _zero_in_limits(limits)
+    _, frames, _ = _joint_points(model, q0)
+    ends = []
+    for s in solids:
+        m = frames[s.joint_id] @ s.placement.matrix()
+        half = (s.geometry.length if isinstance(s.geometry, ir.Capsule) else s.geometry.height) / 2  # type: ignore[union-attr]
+        ends.append((m[:3, 3] - half * m[:3, 2], m[:3, 3] + half * m[:3, 2], s.geometry.radius))  # type: ignore[union-attr]
+    pairs = {(i, i + 1) for i in range(len(solids) - 1)}
+    for i in range(len(solids)):
+        for j in range(i + 2, len(solids)):
+            if _segment_distance(ends[i][0], ends[i][1], ends[j][0], ends[j][1]) < ends[i][2] + ends[j][2] + 1e-9:
+                pairs.add((i, j))
+    return tuple(sorted(pairs))
