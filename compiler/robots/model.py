@@ -100,27 +100,30 @@ def _zero_in_limits(limits: np.ndarray) -> np.ndarray:
 
 
 def _solids(model, limits: np.ndarray) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def]
+    """Per link i: a capsule along joint i's axis to the foot of the next joint origin (the DH
+    d), then one from there to the next joint origin (the DH a); a stub along the axis where
+    both are zero. The base: a cylinder standing on z = 0 of DH frame 0."""
     q0 = _zero_in_limits(limits)
     pts, frames, _ = _joint_points(model, q0)
     total = float(sum(np.linalg.norm(pts[i + 1] - pts[i]) for i in range(len(pts) - 1))) + float(np.linalg.norm(pts[0]))
-    r0 = min(max(0.06 * total, 0.015), 0.12)
+    r0 = min(max(0.05 * total, 0.015), 0.10)
     n = model.nq
-    out = []
-    # the base: from the floor of DH frame 0 (z = 0 or the first axis point below it) to J1's origin
-    base_top = pts[0]
-    height = float(np.linalg.norm(base_top))
-    if height > 2 * r0:
-        out.append(_capsule("base", 0, np.zeros(3), base_top, r0, np.eye(4), cylinder=True))
-    else:
-        out.append(_capsule("base", 0, np.array([0, 0, -r0]), np.array([0, 0, r0]), r0, np.eye(4), cylinder=True))
+    out = [_capsule("base", 0, np.zeros(3), np.array([0.0, 0.0, 2 * r0]), r0, np.eye(4), cylinder=True)]
     for i in range(n):
         r = r0 * (1.0 - 0.4 * (i + 1) / n)
-        p0, p1 = pts[i], pts[i + 1]
         frame = frames[i + 1]
-        if np.linalg.norm(p1 - p0) < 1e-6:  # a joint on the next one's origin: a stub along its axis
-            z = frame[:3, 2]
-            p0, p1 = p0 - r * z, p0 + r * z
-        out.append(_capsule(f"link_{i + 1}", i + 1, p0, p1, r, frame))
+        z = frame[:3, 2] if model.joints[i + 1].shortname().endswith("Z") else frame[:3, :3] @ np.array([0.0, 0.0, 1.0])
+        p0, p1 = pts[i], pts[i + 1]
+        foot = p0 + ((p1 - p0) @ z) * z
+        pieces = [(p0, foot), (foot, p1)]
+        if i == 0 and abs(p0[2]) < r + 0.002:  # the first link starts at the floor: keep its cap 2 mm above it
+            p0 = p0 + (r + 0.002 - p0[2]) * np.array([0.0, 0.0, 1.0])
+            pieces[0] = (p0, foot)
+        kept = [(a, b) for a, b in pieces if np.linalg.norm(b - a) > 1e-6]
+        if not kept:  # a joint on the next one's origin: a stub along its axis
+            kept = [(pts[i] - r * z, pts[i] + r * z)]
+        for k, (a, b) in enumerate(kept):
+            out.append(_capsule(f"link_{i + 1}" + ("" if k == 0 else "_offset"), i + 1, a, b, r, frame))
     return tuple(out)
 
 
