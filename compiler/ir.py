@@ -222,21 +222,17 @@ class RobotSourceKind(Enum):
     LIBRARY = auto()  # a name from compiler.robots.list_robots()
     URDF = auto()  # an absolute path to a URDF file
     MODEL = auto()  # a `model` block of the cell: ref is its load key (compiler/model_spec.py)
+    URDF_CHAIN = auto()  # urdf(path, base=, tip=): ref is "urdf-chain:" + JSON [path, base, tip]
 
 
 @dataclass(frozen=True, slots=True)
 class RobotSource:
     kind: RobotSourceKind
-    ref: str  # library name, absolute URDF path, or a model's load key
-    chain: tuple[str, str] | None = None  # URDF only: (base link, tip link) chosen in the cell
+    ref: str  # library name, absolute URDF path, or the load key of a model / URDF chain
 
     @property
     def load_key(self) -> str:
         """What `compiler.robots.load_robot` takes."""
-        if self.chain is not None:  # "urdf-chain:" + JSON [path, base, tip] (compiler/robots/loader.py)
-            import json
-
-            return "urdf-chain:" + json.dumps([self.ref, *self.chain])
         return self.ref
 
 

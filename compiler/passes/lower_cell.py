@@ -87,8 +87,10 @@ class _CellBuilder:
                 chain = urdf_chain(s, path, self.rep)
                 if chain is None:
                     return
-                source = ir.RobotSource(ir.RobotSourceKind.URDF, path, chain)
-                key = source.load_key
+                import json
+
+                key = "urdf-chain:" + json.dumps([path, *chain])  # compiler/robots/loader.py
+                source = ir.RobotSource(ir.RobotSourceKind.URDF_CHAIN, key)
         try:
             info = self.state.robot_loader(key)
         except RobotLookupError as exc:

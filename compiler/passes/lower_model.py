@@ -124,13 +124,13 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
         fields[slot] = part
         if slot == "dh":
             conventions.setdefault(key, part.span)
+    if not ok:  # an unknown or repeated field, reported: do not also call the line incomplete
+        return None
     missing = [f for f in _FIELDS if f not in fields]
     if missing:
         shown = {"dh": "dh(...) or mdh(...)", "range": "range(lo, hi)", "speed": "speed", "accel": "accel"}
         rep.error(codes.MODEL_JOINT_FIELD, f"a model joint must have {', '.join(shown[m] for m in missing)} "
                   f"(got {', '.join(fields) or 'no field'})", j.span)
-        return None
-    if not ok:
         return None
     joint_dim = ANGLE if kind == "R" else LENGTH
     dh = _dh(fields["dh"], scope, rep)  # type: ignore[arg-type]

@@ -201,7 +201,7 @@ def test_panda_with_fingers_loads_as_a_seven_axis_arm_between_base_and_tip() -> 
 
 def test_urdf_chain_ignores_fingers_and_rebases_on_the_base_link() -> None:
     plain = load_robot(str(DATA.parents[1] / "examples/urdf_cell/arm6.urdf"))
-    text = 'cell c {\n  robot r1 = urdf("urdf/arm6_gripper.urdf", base="base_link", tip="tool0")\n}\n'
+    text = 'cell c {\n  robot r1 = urdf("bad/arm6_gripper.urdf", base="base_link", tip="tool0")\n}\n'
     result = load_text(text, str(DATA / "model_cell.rmot"))
     assert not result.has_errors, [str(d) for d in result.diagnostics]
     robot = load_robot(result.cell.robot("r1").source.load_key)  # type: ignore[union-attr]
@@ -212,7 +212,7 @@ def test_urdf_chain_ignores_fingers_and_rebases_on_the_base_link() -> None:
 
 
 def test_urdf_unknown_link_suggests_the_nearest() -> None:
-    text = 'cell c {\n  robot r1 = urdf("urdf/arm6_gripper.urdf", base="base_lnk", tip="tool0")\n}\n'
+    text = 'cell c {\n  robot r1 = urdf("bad/arm6_gripper.urdf", base="base_lnk", tip="tool0")\n}\n'
     result = load_text(text, str(DATA / "model_cell.rmot"))
     [d] = result.diagnostics
     assert d.code.id == "E506" and "did you mean 'base_link'" in d.message
