@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass
 
-__all__ = ["MAX_JOINTS", "MODEL_PREFIX", "ModelJointSpec", "ModelSpec", "model_key", "model_name", "spec_from_key"]
+__all__ = ["MAX_JOINTS", "MODEL_PREFIX", "ModelJointSpec", "ModelSolid", "ModelSpec", "model_key", "model_name", "spec_from_key"]
 
 MAX_JOINTS = 12  # a bound on the chain, far above any serial arm a controller drives
 MODEL_PREFIX = "model:"
@@ -41,6 +41,18 @@ class ModelSpec:
     joints: tuple[ModelJointSpec, ...]
     flange: tuple[float, ...] = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)  # (4,4) row-major
     payload_kg: float | None = None
+    # solids given in the cell: (joint 1..n, kind, numbers, pose (4,4) row-major in DH frame i);
+    # kind box (x, y, z) | cylinder (r, h) | sphere (r,) | capsule (r, length) | mesh (scale,) with `path`
+    solids: tuple[ModelSolid, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class ModelSolid:
+    joint: int
+    kind: str
+    numbers: tuple[float, ...]
+    pose: tuple[float, ...]
+    path: str = ""
 
 
 def model_key(spec: ModelSpec) -> str:
@@ -48,6 +60,7 @@ def model_key(spec: ModelSpec) -> str:
     data = {
         "name": spec.name, "modified": spec.modified, "flange": list(spec.flange), "payload_kg": spec.payload_kg,
         "joints": [[j.kind, j.a, j.alpha, j.d, j.theta, j.lo, j.hi, j.speed, j.accel] for j in spec.joints],
+        "solids": [[g.joint, g.kind, list(g.numbers), list(g.pose), g.path] for g in spec.solids],
     }
     return MODEL_PREFIX + json.dumps(data, sort_keys=True, separators=(",", ":"))
 
@@ -59,8 +72,10 @@ def spec_from_key(key: str) -> ModelSpec:
     data = json.loads(key[len(MODEL_PREFIX):])
     joints = tuple(ModelJointSpec(str(k), *(float(x) for x in rest)) for k, *rest in data["joints"])
     payload = data["payload_kg"]
+    solids = tuple(ModelSolid(int(j), str(k), tuple(float(x) for x in n), tuple(float(x) for x in p), str(path))
+                   for j, k, n, p, path in data.get("solids", ()))
     return ModelSpec(str(data["name"]), bool(data["modified"]), joints, tuple(float(x) for x in data["flange"]),
-                     None if payload is None else float(payload))
+                     None if payload is None else float(payload), solids)
 
 
 def model_name(key: str) -> str:

@@ -217,7 +217,7 @@ class _CellBuilder:
                            s.name.span, ((f"'{name}' is first defined here", first.name.span),))
             return
         check_model_name(s, self.rep)
-        spec = lower_model(s, self.scope, self.rep)
+        spec = lower_model(s, self.scope, self.rep, self._geometry)
         self.models[name] = (None if spec is None else model_key(spec), s)
 
     def _ConstDecl(self, s: ast.ConstDecl) -> None:

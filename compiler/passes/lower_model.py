@@ -1,7 +1,8 @@
 """A cell's `model NAME { ... }` block -> a ModelSpec (plain SI data), or diagnostics.
 
 Each joint line is `joint revolute|prismatic dh(a=, alpha=, d=, theta=) | mdh(...)
-range(lo, hi) speed V accel A`, every field once, in any order. Revolute joints take
+range(lo, hi) speed V accel A`, every field once (the calls before speed/accel), plus any
+number of `solid(GEOMETRY, at=POSE)` fields placing a link solid in DH frame i. Revolute joints take
 angles for range, angular speeds and accelerations (deg/s, deg/s^2); prismatic joints take
 lengths (mm, mm/s, mm/s^2). `flange POSE` (default identity) and `payload MASS` (rated
 payload, default none) may appear once each. Every number must be finite; speeds and
@@ -13,12 +14,14 @@ from __future__ import annotations
 
 import math
 
-from rmot.compiler import codes
+from collections.abc import Callable
+
+from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, MASS, SPEED, Dim,
                                          example_unit)
-from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSpec
+from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
 from rmot.lang import ast
 from rmot.lang.source import Span
 
@@ -29,19 +32,31 @@ _KINDS = {"revolute": "R", "prismatic": "P"}
 _FIELDS = ("dh", "range", "speed", "accel")  # dh stands for dh or mdh
 
 
-def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter) -> ModelSpec | None:
+GeometryFn = Callable[[ast.Geometry], "ir.Geometry | None"]
+
+
+def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: GeometryFn | None = None) -> ModelSpec | None:
+    """geometry: the cell's evaluator of `box(...)` etc. (for `solid(...)` fields)."""
     name = decl.name.name
     joints: list[ModelJointSpec] = []
+    solids: list[ModelSolid] = []
     conventions: dict[str, Span] = {}
     flange: ast.Setting | None = None
     payload: ast.Setting | None = None
     ok = True
     for item in decl.items:
         if isinstance(item, ast.ModelJoint):
+            index = sum(1 for x in decl.items[:decl.items.index(item) + 1] if isinstance(x, ast.ModelJoint))
             j = _joint(item, scope, rep, conventions)
             ok &= j is not None
             if j is not None:
                 joints.append(j)
+            for part in item.parts:
+                if isinstance(part, ast.Call) and part.func.name == "solid":
+                    given = _solid(part, index, scope, rep, geometry)
+                    ok &= given is not None
+                    if given is not None:
+                        solids.append(given)
         elif item.kind == "flange":
             ok &= _once(item, flange, name, rep)
             flange = flange or item
@@ -73,7 +88,7 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter) -> ModelSpec |
         ok &= payload_kg is not None
     if not ok:
         return None
-    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg)
+    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids))
 
 
 def _once(item: ast.Setting, first: ast.Setting | None, name: str, rep: Reporter) -> bool:
@@ -110,10 +125,12 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
     ok = True
     for part in j.parts:
         key = part.kind if isinstance(part, ast.Setting) else part.func.name
+        if key == "solid":  # any number of them, lowered by _solid
+            continue
         slot = "dh" if key in ("dh", "mdh") else key
         if slot not in _FIELDS:
             rep.unknown(key, "joint field", part.func.span if isinstance(part, ast.Call) else part.span,  # type: ignore[union-attr]
-                        ["dh", "mdh", "range"], codes.MODEL_JOINT_FIELD)
+                        ["dh", "mdh", "range", "solid"], codes.MODEL_JOINT_FIELD)
             ok = False
             continue
         if slot in fields:
@@ -142,6 +159,34 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
         return None
     a, alpha, d, theta = dh
     return ModelJointSpec(kind, a, alpha, d, theta, rng[0], rng[1], speed, accel)
+
+
+def _solid(call: ast.Call, joint: int, scope: Scope, rep: Reporter, geometry: GeometryFn | None) -> ModelSolid | None:
+    """`solid(box(...), at=POSE)`: a solid of link `joint`, placed in DH frame `joint`."""
+    bound = match_args(call.args, ("shape", "at"), "solid", call.span, rep, required=1)
+    if bound is None:
+        return None
+    shape = bound["shape"].value
+    if not isinstance(shape, ast.Call) or geometry is None:
+        rep.error(codes.MODEL_JOINT_FIELD, "solid() must hold a geometry such as capsule(r=40mm, length=300mm)", shape.span)
+        return None
+    g = geometry(ast.Geometry(shape.func, shape.args, shape.span))
+    pose = ir.Pose()
+    if "at" in bound:
+        pose = expect_pose(eval_expr(bound["at"].value, scope, rep), "solid placement", bound["at"].value.span, rep)  # type: ignore[assignment]
+    if g is None or pose is None:
+        return None
+    m = tuple(float(x) for x in pose.matrix().flat)
+    if isinstance(g, ir.Box):
+        return ModelSolid(joint, "box", tuple(g.size), m)
+    if isinstance(g, ir.Cylinder):
+        return ModelSolid(joint, "cylinder", (g.radius, g.height), m)
+    if isinstance(g, ir.Sphere):
+        return ModelSolid(joint, "sphere", (g.radius,), m)
+    if isinstance(g, ir.Capsule):
+        return ModelSolid(joint, "capsule", (g.radius, g.length), m)
+    assert isinstance(g, ir.Mesh)
+    return ModelSolid(joint, "mesh", (g.scale,), m, g.path)
 
 
 def _dh(call: ast.Call, scope: Scope, rep: Reporter) -> tuple[float, float, float, float] | None:

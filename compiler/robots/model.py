@@ -17,12 +17,14 @@ Conventions (lang/REFERENCE.md, "Robot models"):
     parameters and proves them by FK before using them); any other 6R arm with a spherical
     wrist gets the numeric IK and geometric branch names (wrist_branches), as URDF arms do;
     every other chain the numeric IK without branch names.
-  * Solids: one capsule per link from its joint's axis point to the next joint's (a short one
-    along the joint axis where they coincide), and a flat-bottomed cylinder for the base.
-    Radii are 6 % of the summed link lengths (at least 15 mm, at most 120 mm), tapering to
+  * Solids: those the cell gives (`solid(...)`, placed in DH frame i) replace the generated
+    ones of their link. Generated: per link a capsule along its joint axis to the foot of the
+    next joint's origin (the DH d) and one from there to that origin (the DH a), a short one
+    along the axis where both vanish, and a cylinder standing on z = 0 for the base.
+    Radii are 5 % of the summed link lengths (at least 15 mm, at most 100 mm), tapering to
     60 % at the flange; an estimate for display and a conservative collision envelope, not
-    the vendor's shape. Solids that overlap at the model's zero configuration touch by
-    design and are not checked against each other (as consecutive solids are not).
+    the vendor's shape. Solids of the same or neighbouring joints, and solids that overlap at
+    the model's zero configuration, touch by design and are not checked against each other.
   * Accelerations and speeds are the model's own; there are no inertias.
 """
 
@@ -55,11 +57,11 @@ def robot_from_model(spec: ModelSpec) -> Robot:
     if not 1 <= len(spec.joints) <= MAX_JOINTS:
         raise ValueError(f"a model must have 1 to {MAX_JOINTS} joints (got {len(spec.joints)})")
     flange = np.array(spec.flange, dtype=float).reshape(4, 4)
-    model, fid, _ = build_model(dh_table(spec), flange, spec.name)
+    model, fid, link_frames = build_model(dh_table(spec), flange, spec.name)
     limits = np.array([(j.lo, j.hi) for j in spec.joints], dtype=float)
     velocity = np.array([j.speed for j in spec.joints], dtype=float)
     accel = np.array([j.accel for j in spec.joints], dtype=float)
-    solids = _solids(model, limits)
+    solids = _solids(model, limits, {g.joint for g in spec.solids}) + _given_solids(spec, link_frames)
     common = dict(
         name=spec.name, vendor="cell model", model_name=spec.name, model=model, flange_frame=fid,
         joint_limits=limits, velocity_limits=velocity, accel_limits=accel, reach=0.0, solids=solids,
@@ -99,7 +101,30 @@ def _zero_in_limits(limits: np.ndarray) -> np.ndarray:
     return np.clip(0.0, limits[:, 0], limits[:, 1])
 
 
-def _solids(model, limits: np.ndarray) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def]
+def _given_solids(spec: ModelSpec, link_frames: list[np.ndarray]) -> tuple[LinkSolid, ...]:
+    """The cell's `solid(...)` fields: placed in DH frame i, which moves with joint i."""
+    out = []
+    for k, g in enumerate(spec.solids):
+        n = g.numbers
+        geom: ir.Geometry
+        if g.kind == "box":
+            geom = ir.Box((n[0], n[1], n[2]))
+        elif g.kind == "cylinder":
+            geom = ir.Cylinder(n[0], n[1])
+        elif g.kind == "sphere":
+            geom = ir.Sphere(n[0])
+        elif g.kind == "capsule":
+            geom = ir.Capsule(n[0], n[1])
+        elif g.kind == "mesh":
+            geom = ir.Mesh(g.path, n[0])
+        else:
+            raise ValueError(f"unknown solid kind '{g.kind}'")
+        placement = link_frames[g.joint - 1] @ np.array(g.pose, dtype=float).reshape(4, 4)
+        out.append(LinkSolid(f"link_{g.joint}_solid_{k + 1}", g.joint, geom, ir.Pose.from_matrix(placement)))
+    return tuple(out)
+
+
+def _solids(model, limits: np.ndarray, given: set[int] = frozenset()) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def,assignment]
     """Per link i: a capsule along joint i's axis to the foot of the next joint origin (the DH
     d), then one from there to the next joint origin (the DH a); a stub along the axis where
     both are zero. The base: a cylinder standing on z = 0 of DH frame 0."""
@@ -110,6 +135,8 @@ def _solids(model, limits: np.ndarray) -> tuple[LinkSolid, ...]:  # type: ignore
     n = model.nq
     out = [_capsule("base", 0, np.zeros(3), np.array([0.0, 0.0, 2 * r0]), r0, np.eye(4), cylinder=True)]
     for i in range(n):
+        if i + 1 in given:  # the cell gives this link's solids
+            continue
         r = r0 * (1.0 - 0.4 * (i + 1) / n)
         frame = frames[i + 1]
         z = frame[:3, 2] if model.joints[i + 1].shortname().endswith("Z") else frame[:3, :3] @ np.array([0.0, 0.0, 1.0])
@@ -150,17 +177,30 @@ def _segment_distance(a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.nda
 
 
 def _adjacent(model, solids: tuple[LinkSolid, ...], limits: np.ndarray) -> tuple[tuple[int, int], ...]:  # type: ignore[no-untyped-def]
-    """Consecutive solids, and those that overlap at the zero configuration (they touch by design)."""
+    """Solids of the same or neighbouring joints (they meet at the joint between them), and
+    those whose bounding capsules overlap at the zero configuration (they touch by design)."""
     q0 = _zero_in_limits(limits)
     _, frames, _ = _joint_points(model, q0)
-    ends = []
-    for s in solids:
-        m = frames[s.joint_id] @ s.placement.matrix()
-        half = (s.geometry.length if isinstance(s.geometry, ir.Capsule) else s.geometry.height) / 2  # type: ignore[union-attr]
-        ends.append((m[:3, 3] - half * m[:3, 2], m[:3, 3] + half * m[:3, 2], s.geometry.radius))  # type: ignore[union-attr]
-    pairs = {(i, i + 1) for i in range(len(solids) - 1)}
+    ends = [_bounding_segment(frames[s.joint_id] @ s.placement.matrix(), s.geometry) for s in solids]
+    pairs = set()
     for i in range(len(solids)):
-        for j in range(i + 2, len(solids)):
-            if _segment_distance(ends[i][0], ends[i][1], ends[j][0], ends[j][1]) < ends[i][2] + ends[j][2] + 1e-9:
+        for j in range(i + 1, len(solids)):
+            near = abs(solids[i].joint_id - solids[j].joint_id) <= 1
+            a, b = ends[i], ends[j]
+            if near or (a is not None and b is not None and _segment_distance(a[0], a[1], b[0], b[1]) < a[2] + b[2] + 1e-9):
                 pairs.add((i, j))
     return tuple(sorted(pairs))
+
+
+def _bounding_segment(m: np.ndarray, g: ir.Geometry) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """A segment and radius whose capsule holds the solid (None for a mesh: unknown extent)."""
+    centre, z = m[:3, 3], m[:3, 2]
+    if isinstance(g, ir.Capsule):
+        return centre - g.length / 2 * z, centre + g.length / 2 * z, g.radius
+    if isinstance(g, ir.Cylinder):
+        return centre - g.height / 2 * z, centre + g.height / 2 * z, g.radius
+    if isinstance(g, ir.Sphere):
+        return centre, centre, g.radius
+    if isinstance(g, ir.Box):
+        return centre, centre, float(np.linalg.norm(g.size)) / 2
+    return None

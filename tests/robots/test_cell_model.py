@@ -217,3 +217,20 @@ def test_urdf_unknown_link_suggests_the_nearest() -> None:
     [d] = result.diagnostics
     assert d.code.id == "E506" and "did you mean 'base_link'" in d.message
     assert (d.span.start.line, d.span.start.col) == (2, text.splitlines()[1].index('"base_lnk"') + 1)
+
+
+def test_given_solids_replace_the_generated_ones_of_their_link() -> None:
+    """`solid(GEOMETRY, at=POSE)` sits at POSE in DH frame i: its pose is the witness's frame i times POSE."""
+    solid = " solid(box(100mm, 60mm, 40mm), at=pose(x=-150mm, rz=90deg)) solid(sphere(r=30mm))"
+    text = _cell(PUMA, False).replace("alpha=0.0deg, d=0.0mm, theta=0.0deg)", "alpha=0.0deg, d=0.0mm, theta=0.0deg)" + solid, 1)
+    assert solid in text
+    robot = _robot(text)
+    mine = [k for k, s in enumerate(robot.solids) if s.joint_id == 2]
+    assert [type(robot.solids[k].geometry).__name__ for k in mine] == ["Box", "Sphere"]
+    assert robot.solids[mine[0]].geometry == ir.Box((0.1, 0.06, 0.04))
+    q = np.array([0.4, -0.7, 0.3, 0.1, 0.2, 0.3])
+    frame2 = witness_fk(PUMA[:2], q[:2], False)
+    at = _tr(-0.15, 0, 0) @ _rz(D(90))
+    poses = robot.solid_poses(q)
+    np.testing.assert_allclose(poses[mine[0]], frame2 @ at, atol=1e-12)
+    np.testing.assert_allclose(poses[mine[1]], frame2, atol=1e-12)
