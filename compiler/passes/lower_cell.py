@@ -94,10 +94,11 @@ class _CellBuilder:
         try:
             info = self.state.robot_loader(key)
         except RobotLookupError as exc:
-            if s.library is not None:
+            if source.kind is ir.RobotSourceKind.LIBRARY:
                 self.rep.unknown(key, "robot model", span, list(exc.candidates), codes.UNKNOWN_ROBOT)
             else:
-                self.rep.error(codes.ROBOT_LOAD, f"URDF robot must load (got: {exc})", span)
+                what = "model" if source.kind is ir.RobotSourceKind.MODEL else "URDF"
+                self.rep.error(codes.ROBOT_LOAD, f"{what} robot must load (got: {exc})", span)
             return
         if base is None or not declare(self.scope, Entry("robot", s.name.name, PoseV(base, s.name.name), s.name.span), self.rep):
             return
