@@ -84,7 +84,7 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
             flange_m = tuple(float(x) for x in m.flat)
     payload_kg = None
     if payload is not None:
-        payload_kg = _number(payload.value, MASS, f"payload of model '{name}'", rep, minimum=0.0)  # type: ignore[arg-type]
+        payload_kg = _number(payload.value, MASS, f"payload of model '{name}'", rep, scope, minimum=0.0)  # type: ignore[arg-type]
         ok &= payload_kg is not None
     if not ok:
         return None

@@ -256,3 +256,13 @@ def test_random_opw_form_tables_get_a_closed_form_that_the_witness_confirms() ->
             assert len(result.solutions) >= 1
             for sol in result.solutions:
                 np.testing.assert_allclose(witness_fk(rows, sol, False), target, atol=1e-8)
+
+
+def test_cell_constants_are_usable_in_a_model() -> None:
+    text = _cell(PUMA, False, extra="    payload rated\n").replace("cell c {\n", "cell c {\n  const upper = 431.8 mm\n  const rated = 2.5 kg\n")
+    text = text.replace("a=431.8mm", "a=upper")
+    assert "a=upper" in text
+    robot = _robot(text)
+    assert robot.rated_payload_kg == 2.5
+    q = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
+    np.testing.assert_allclose(robot.fk(q), witness_fk(PUMA, q, False), atol=1e-12)
