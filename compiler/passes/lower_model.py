@@ -20,7 +20,7 @@ from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, MASS, SPEED, Dim,
-                                         example_unit)
+                                         Quantity, example_unit, fmt_quantity)
 from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
 from rmot.lang import ast
 from rmot.lang.source import Span
@@ -101,17 +101,19 @@ def _once(item: ast.Setting, first: ast.Setting | None, name: str, rep: Reporter
 
 def _number(e: ast.Expr, dim: Dim, what: str, rep: Reporter, scope: Scope | None = None, minimum: float | None = None,
             positive: bool = False) -> float | None:
-    x = expect_quantity(eval_expr(e, scope or Scope(), rep), dim, what, e.span, rep)
+    v = eval_expr(e, scope or Scope(), rep)
+    x = expect_quantity(v, dim, what, e.span, rep)
     if x is None:
         return None
+    shown = fmt_quantity(v) if isinstance(v, Quantity) else f"{x:g}"
     if not math.isfinite(x):
-        rep.error(codes.MODEL_BAD_VALUE, f"{what} must be a finite number (got {x})", e.span)
+        rep.error(codes.MODEL_BAD_VALUE, f"{what} must be a finite number (got {shown})", e.span)
         return None
     if positive and x <= 0:
-        rep.error(codes.MODEL_BAD_VALUE, f"{what} must be > 0 (got {x:g} in SI units)", e.span)
+        rep.error(codes.MODEL_BAD_VALUE, f"{what} must be > 0 (got {shown})", e.span)
         return None
     if minimum is not None and x < minimum:
-        rep.error(codes.MODEL_BAD_VALUE, f"{what} must be >= {minimum:g} (got {x:g} in SI units)", e.span)
+        rep.error(codes.MODEL_BAD_VALUE, f"{what} must be >= {minimum:g} (got {shown})", e.span)
         return None
     return x
 
@@ -214,7 +216,8 @@ def _range(call: ast.Call, dim: Dim, scope: Scope, rep: Reporter) -> tuple[float
     if lo is None or hi is None:
         return None
     if lo >= hi:
-        rep.error(codes.MODEL_BAD_VALUE, f"range must have lo < hi (got lo {lo:g} >= hi {hi:g} in SI units)", call.span)
+        scale, unit = (180 / math.pi, "deg") if dim == ANGLE else (1000.0, "mm")
+        rep.error(codes.MODEL_BAD_VALUE, f"range must have lo < hi (got lo {lo * scale:g} {unit} >= hi {hi * scale:g} {unit})", call.span)
         return None
     return lo, hi
 
