@@ -266,3 +266,17 @@ def test_cell_constants_are_usable_in_a_model() -> None:
     assert robot.rated_payload_kg == 2.5
     q = np.array([0.1, 0.2, 0.3, 0.4, 0.5, 0.6])
     np.testing.assert_allclose(robot.fk(q), witness_fk(PUMA, q, False), atol=1e-12)
+
+
+def test_spherical_wrist_without_opw_base_gets_numeric_ik_and_branch_names() -> None:
+    """J1 tilted 60 deg against J2 (not ortho-parallel) but a spherical wrist: numeric IK, and
+    branch names from the geometry, so vendors needing configuration data accept it."""
+    rows = [("revolute", 0.05, D(60), 0.4, 0.0)] + PUMA[1:]
+    robot = _robot(_cell(rows, False))
+    assert not robot.has_closed_form
+    q = np.array([0.2, -0.4, 0.3, 0.5, 0.6, 0.7])
+    assert all(f is not None for f in (robot.branch(q).shoulder, robot.branch(q).elbow, robot.branch(q).wrist))
+    result = robot.ik(witness_fk(rows, q, False), seed=q)
+    assert result.solutions
+    np.testing.assert_allclose(witness_fk(rows, result.solutions[0], False), witness_fk(rows, q, False), atol=1e-8)
+    assert robot.branch(result.solutions[0]) == result.branches[0]
