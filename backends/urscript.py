@@ -181,6 +181,10 @@ class UrScriptBackend(Backend):
 
     def joint_limits(self, ctx: UrContext, node: ir.Move) -> tuple[float, float]:
         model = ctx.robot.source.ref
+        if ctx.robot.source.kind is ir.RobotSourceKind.MODEL:  # a cell's model: name it, not its key
+            from rmot.compiler.model_spec import model_name
+
+            model = f"{model_name(model)}' (a cell model"
         if model in JOINT_LIMITS:
             return JOINT_LIMITS[model]
         if "model" in ctx.warned:

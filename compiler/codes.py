@@ -41,3 +41,16 @@ NOT_UTF8 = Code("E502", "not-utf8", "a source file is not UTF-8 text")
 FILE_TOO_LARGE = Code("E503", "file-too-large", "a source file is larger than the limit")
 PATH_ESCAPES = Code("E504", "path-escapes-project", "a path leads outside the project directory")
 ROBOT_LOAD = Code("E505", "robot-load-failed", "a URDF robot could not be loaded")
+
+# --- robots defined in the cell (`model` blocks, compiler/passes/lower_model.py) and URDF
+# chains chosen by `urdf(..., base=, tip=)`
+MODEL_JOINT_FIELD = Code("E135", "model-joint-field", "a model joint line lacks, repeats or misspells a field (dh/mdh, range, speed, accel)")
+MODEL_CHAIN_LENGTH = Code("E136", "model-chain-length", "a model with no joints or more than the allowed number")
+MODEL_BAD_VALUE = Code("E137", "model-bad-value", "a model number out of its domain: range lo >= hi, speed/accel <= 0, not finite")
+MODEL_MIXED_DH = Code("E138", "model-mixed-dh", "a model mixing standard dh(...) and modified mdh(...) rows")
+MODEL_SHADOWS_LIBRARY = Code("W135", "model-shadows-library", "a model named like a library robot: the cell's model is used")
+URDF_UNKNOWN_LINK = Code("E506", "urdf-unknown-link", "urdf(base=, tip=) names a link the URDF file does not have")
+URDF_BAD_CHAIN = Code("E507", "urdf-bad-chain", "the URDF links base= and tip= do not bound a serial chain of joints")
+
+__all__ += ["MODEL_JOINT_FIELD", "MODEL_CHAIN_LENGTH", "MODEL_BAD_VALUE", "MODEL_MIXED_DH", "MODEL_SHADOWS_LIBRARY",
+            "URDF_UNKNOWN_LINK", "URDF_BAD_CHAIN"]

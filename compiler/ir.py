@@ -221,12 +221,14 @@ Geometry = Union[Box, Cylinder, Sphere, Capsule, Mesh]
 class RobotSourceKind(Enum):
     LIBRARY = auto()  # a name from compiler.robots.list_robots()
     URDF = auto()  # an absolute path to a URDF file
+    MODEL = auto()  # a `model` block of the cell: ref is its load key (compiler/model_spec.py)
+    URDF_CHAIN = auto()  # urdf(path, base=, tip=): ref is "urdf-chain:" + JSON [path, base, tip]
 
 
 @dataclass(frozen=True, slots=True)
 class RobotSource:
     kind: RobotSourceKind
-    ref: str  # library name, or absolute URDF path
+    ref: str  # library name, absolute URDF path, or the load key of a model / URDF chain
 
     @property
     def load_key(self) -> str:

@@ -56,6 +56,13 @@ def dump_cell(cell: ir.Cell) -> str:
     lines = [f"cell {cell.name}"]
     for r in cell.robots:
         ref = r.source.ref if r.source.kind is ir.RobotSourceKind.LIBRARY else r.source.ref.rsplit("/", 1)[-1]
+        if r.source.kind is ir.RobotSourceKind.MODEL:
+            from rmot.compiler.model_spec import model_name
+
+            ref = model_name(r.source.ref)
+        elif r.source.kind is ir.RobotSourceKind.URDF_CHAIN:
+            path, base, tip = json.loads(r.source.ref.split(":", 1)[1])
+            ref = f"{path.rsplit('/', 1)[-1]}[{base}..{tip}]"
         lines.append(f"  robot {r.name} {r.source.kind.name.lower()}:{ref} dof={r.dof} base={_pose(r.base)}")
     for f in cell.fixtures:
         lines.append(f"  fixture {f.name} {_geometry(f.geometry)} at {_pose(f.pose)}")

@@ -157,15 +157,19 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     # -- cell declarations
     def robot_decl(self, c: list[Any]) -> ast.RobotDecl:
-        library, urdf = c[3]
+        library, urdf, *urdf_args = c[3]
         span = self._span([*c[:3], library or urdf, *c[4:]])
-        return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[5], span)
+        return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[5], span,
+                             urdf_args=urdf_args[0] if urdf_args else ())
 
     def robot_library(self, c: list[Any]) -> tuple[ast.Ident, None]:
         return self._ident(c[0]), None
 
     def robot_urdf(self, c: list[Any]) -> tuple[None, ast.String]:
         return None, self._string(c[0])
+
+    def robot_urdf_chain(self, c: list[Any]) -> tuple[None, ast.String, tuple[ast.Arg, ...]]:
+        return None, self._string(c[0]), c[1]
 
     def fixture_decl(self, c: list[Any]) -> ast.FixtureDecl:
         return ast.FixtureDecl(self._ident(c[1], "fixture"), c[3], c[5], self._span(c))
@@ -363,3 +367,29 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def kwarg(self, c: list[Any]) -> ast.Arg:
         return ast.Arg(self._ident(c[0]), c[1], self._span(c))
+
+    # -- robot models (appended; lowered by compiler/passes/lower_model.py)
+    def model_decl(self, c: list[Any]) -> ast.ModelDecl:
+        items = tuple(x for x in c[3:-1] if x is not None and not isinstance(x, Token))
+        return ast.ModelDecl(self._ident(c[1], "model"), items, self._span(c))
+
+    def model_joint(self, c: list[Any]) -> ast.ModelJoint:
+        if str(c[0]) != "joint":  # `linear ...`: the word shares the move-kind token
+            msg = f"a model line must start with 'joint', 'flange' or 'payload' (got '{c[0]}')"
+            self.diagnostics.append(Diagnostic(codes.SYNTAX, Severity.ERROR, msg, self._token_span(c[0])))
+        return ast.ModelJoint(self._ident(c[1]), tuple(c[2:]), self._span(c))
+
+    def model_call(self, c: list[Any]) -> ast.Call:
+        return ast.Call(self._ident(c[0]), c[2] or (), self._span(c))
+
+    def model_speed(self, c: list[Any]) -> ast.Setting:
+        return ast.Setting("speed", c[1], self._span(c))
+
+    def model_accel(self, c: list[Any]) -> ast.Setting:
+        return ast.Setting("accel", c[1], self._span(c))
+
+    def model_flange(self, c: list[Any]) -> ast.Setting:
+        return ast.Setting("flange", c[1], self._span(c))
+
+    def model_payload(self, c: list[Any]) -> ast.Setting:
+        return ast.Setting("payload", c[1], self._span(c))

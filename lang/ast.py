@@ -165,6 +165,7 @@ class RobotDecl:
     urdf: String | None
     at: Expr | None
     span: Span = _span()
+    urdf_args: tuple[Arg, ...] = ()  # `urdf("f.urdf", base="base_link", tip="tool0")`
 
 
 @dataclass(frozen=True, slots=True)
@@ -363,3 +364,31 @@ class Module:
 
     file: SourceFile
     body: tuple[Stmt, ...]
+
+
+# --------------------------------------------------------------------------- robot models
+
+
+@dataclass(frozen=True, slots=True)
+class ModelJoint:
+    """`joint revolute dh(...) range(...) speed ... accel ...`: `parts` are the Calls
+    (dh/mdh/range) and Settings (speed/accel) as written, checked by the compiler."""
+
+    kind: Ident  # revolute | prismatic as written (checked later)
+    parts: tuple[Call | Setting, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class ModelDecl:
+    """`model NAME { joint ... ; flange pose(...) ; payload 5 kg }` in a cell.
+
+    items: ModelJoint lines and Settings of kind flange / payload, in source order."""
+
+    name: Ident
+    items: tuple[ModelJoint | Setting, ...]
+    span: Span = _span()
+
+
+__all__ += ["ModelDecl", "ModelJoint"]
+Stmt = Union[Stmt, ModelDecl]  # type: ignore[misc]

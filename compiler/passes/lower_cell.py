@@ -47,6 +47,7 @@ class _CellBuilder:
         self.frames: list[ir.Frame] = []
         self.io: list[ir.IoSignal] = []
         self.io_seen: dict[tuple[ir.IoDirection, int, str | None], ast.IoDecl] = {}
+        self.models: dict[str, tuple[str | None, ast.ModelDecl]] = {}  # name -> (load key or None if bad, decl)
 
     def build(self) -> ir.Cell:
         for stmt in self.decl.body:
@@ -65,7 +66,12 @@ class _CellBuilder:
 
     def _RobotDecl(self, s: ast.RobotDecl) -> None:
         base = self._pose(s.at, f"placement of robot '{s.name.name}'")
-        if s.library is not None:
+        if s.library is not None and s.library.name in self.models:  # a model of this cell
+            key, span = self.models[s.library.name][0], s.library.span
+            if key is None:  # the model block has errors, reported there
+                return
+            source = ir.RobotSource(ir.RobotSourceKind.MODEL, key)
+        elif s.library is not None:
             key, source = s.library.name, ir.RobotSource(ir.RobotSourceKind.LIBRARY, s.library.name)
             span = s.library.span
         else:
@@ -75,13 +81,24 @@ class _CellBuilder:
             if path is None:
                 return
             key, source = path, ir.RobotSource(ir.RobotSourceKind.URDF, path)
+            if s.urdf_args:
+                from rmot.compiler.passes.lower_model import urdf_chain
+
+                chain = urdf_chain(s, path, self.rep)
+                if chain is None:
+                    return
+                import json
+
+                key = "urdf-chain:" + json.dumps([path, *chain])  # compiler/robots/loader.py
+                source = ir.RobotSource(ir.RobotSourceKind.URDF_CHAIN, key)
         try:
             info = self.state.robot_loader(key)
         except RobotLookupError as exc:
-            if s.library is not None:
+            if source.kind is ir.RobotSourceKind.LIBRARY:
                 self.rep.unknown(key, "robot model", span, list(exc.candidates), codes.UNKNOWN_ROBOT)
             else:
-                self.rep.error(codes.ROBOT_LOAD, f"URDF robot must load (got: {exc})", span)
+                what = "model" if source.kind is ir.RobotSourceKind.MODEL else "URDF"
+                self.rep.error(codes.ROBOT_LOAD, f"{what} robot must load (got: {exc})", span)
             return
         if base is None or not declare(self.scope, Entry("robot", s.name.name, PoseV(base, s.name.name), s.name.span), self.rep):
             return
@@ -189,6 +206,20 @@ class _CellBuilder:
             return
         self.io_seen[key] = s
         self.io.append(ir.IoSignal(direction, port, s.signal.value, robot, span=s.span))
+
+    def _ModelDecl(self, s: ast.ModelDecl) -> None:
+        from rmot.compiler.passes.lower_model import check_model_name, lower_model
+        from rmot.compiler.model_spec import model_key
+
+        name = s.name.name
+        if name in self.models:
+            first = self.models[name][1]
+            self.rep.error(codes.DUPLICATE, f"model '{name}' must be defined once in this cell (got a second one)",
+                           s.name.span, ((f"'{name}' is first defined here", first.name.span),))
+            return
+        check_model_name(s, self.rep)
+        spec = lower_model(s, self.scope, self.rep, self._geometry)
+        self.models[name] = (None if spec is None else model_key(spec), s)
 
     def _ConstDecl(self, s: ast.ConstDecl) -> None:
         v = eval_expr(s.value, self.scope, self.rep)

@@ -34,6 +34,7 @@ STATEMENT_WORDS = {
     "For": "a for loop", "Repeat": "'repeat'", "IfStmt": "'if'", "SyncStmt": "'sync'",
     "NativeStmt": "'native'", "CallStmt": "a proc call",
 }
+STATEMENT_WORDS["ModelDecl"] = "a robot model (it belongs in a cell)"
 _ALLOWED_IN = {
     "file": "a file holds use cell, import, cell, program, const, target and proc",
     "cell": "a cell holds robot, fixture, tool, frame, io and const",

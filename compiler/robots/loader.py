@@ -30,6 +30,8 @@ def load_robot(name_or_path: str) -> Robot:
     """A library robot by name, or a URDF file by path (absolute, or ending in .urdf).
     Raises RobotError (only) for an unknown name or a file that is not a usable arm."""
     key = str(name_or_path)
+    if key.startswith(("model:", "urdf-chain:")):  # a cell's model block, a URDF chain between two links
+        return _load_keyed(key)
     if key.lower().endswith(".urdf") or os.sep in key:
         return _load_urdf(os.path.abspath(key))
     return _load_library(key)
@@ -51,3 +53,20 @@ def _load_urdf(path: str) -> Robot:
     from rmot.compiler.robots.urdf import robot_from_urdf
 
     return robot_from_urdf(path)
+
+
+@lru_cache(maxsize=None)
+def _load_keyed(key: str) -> Robot:
+    import json
+
+    if key.startswith("model:"):
+        from rmot.compiler.robots.model import robot_from_key
+
+        try:
+            return robot_from_key(key)
+        except ValueError as exc:
+            raise RobotError(f"model cannot be built: {exc}", codes.BAD_URDF) from None
+    from rmot.compiler.robots.urdf import robot_from_urdf
+
+    path, base, tip = json.loads(key[len("urdf-chain:"):])
+    return robot_from_urdf(os.path.abspath(path), base=base, tip=tip)

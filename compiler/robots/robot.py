@@ -57,6 +57,8 @@ class Robot:
     ir.Config of each of the 8 ik_batch rows, fixed per robot; None without a closed form).
     """
 
+    rated_payload_kg: float | None = None  # the rated payload (kg), where known
+
     def __init__(
         self, *, name: str, vendor: str, model_name: str, model: pin.Model, flange_frame: int,
         joint_limits: np.ndarray, velocity_limits: np.ndarray, accel_limits: np.ndarray,

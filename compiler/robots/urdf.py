@@ -21,12 +21,15 @@ from rmot.compiler.robots import codes
 from rmot.compiler.robots.errors import RobotError
 from rmot.compiler.robots.robot import LinkSolid, Robot
 
-__all__ = ["robot_from_urdf"]
+__all__ = ["robot_from_urdf", "urdf_links"]
 
 _FLANGE_NAMES = ("tool0", "flange", "ee_link")
 
 
-def robot_from_urdf(path: str) -> Robot:
+def robot_from_urdf(path: str, base: str | None = None, tip: str | None = None) -> Robot:
+    """base/tip: the links bounding the arm (`urdf("f.urdf", base=, tip=)`); joints outside
+    the chain between them (fingers, a rail before the base) are locked at 0 (within their
+    limits) and the base link's frame becomes the robot's base frame; the flange is the tip."""
     if os.path.isdir(path):
         raise RobotError(f"'{path}' is a directory, not a URDF file", codes.BAD_URDF)
     if not os.path.isfile(path):
@@ -36,10 +39,19 @@ def robot_from_urdf(path: str) -> Robot:
         geoms = pin.buildGeomFromUrdf(model, path, pin.GeometryType.COLLISION, package_dirs=_package_dirs(path))
     except Exception as exc:  # pinocchio raises bare RuntimeError/ValueError for any defect
         raise RobotError(f"cannot load URDF '{path}': {str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__}", codes.BAD_URDF) from None
+    flange_name = None
+    if base is not None or tip is not None:
+        from rmot.compiler.robots.urdf_chain import reduce_to_chain
+
+        try:
+            model, geoms = reduce_to_chain(model, geoms, base, tip)
+        except ValueError as exc:
+            raise RobotError(f"URDF '{path}': {exc}", codes.BAD_URDF) from None
+        flange_name = tip
     if model.nq == 0:
         raise RobotError(f"URDF '{path}' has no movable joint", codes.BAD_URDF)
     try:
-        robot = _robot(model, geoms, path)
+        robot = _robot(model, geoms, path, flange_name)
     except ValueError as exc:
         raise RobotError(f"URDF '{path}' is not a usable serial arm: {exc}", codes.BAD_URDF) from None
     return robot
@@ -54,8 +66,8 @@ def _package_dirs(path: str) -> list[str]:
     return dirs
 
 
-def _flange_frame(model: pin.Model) -> int:
-    for name in _FLANGE_NAMES:
+def _flange_frame(model: pin.Model, first: str | None = None) -> int:
+    for name in ((first,) if first else _FLANGE_NAMES):
         if model.existFrame(name):
             return model.getFrameId(name)
     last_joint = model.njoints - 1
@@ -63,13 +75,13 @@ def _flange_frame(model: pin.Model) -> int:
     return bodies[-1] if bodies else model.addFrame(pin.Frame("flange", last_joint, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
 
 
-def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str) -> Robot:
+def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: str | None = None) -> Robot:
     from rmot.compiler.robots.chain import chain_of
 
     from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
 
     chain = chain_of(model)  # raises ValueError for branched chains and multi-dof joints
-    fid = _flange_frame(model)
+    fid = _flange_frame(model, flange_name)
     limits = np.column_stack([model.lowerPositionLimit, model.upperPositionLimit])
     if not np.all(np.isfinite(limits)) or np.any(limits[:, 0] >= limits[:, 1]):
         raise ValueError("every joint needs finite lower < upper position limits")
@@ -120,3 +132,24 @@ def _reach(robot: Robot) -> float:
     rel = flange - first[:3, 3]
     radial = rel - np.outer(rel @ axis, axis)
     return float(math.sqrt(np.max(np.sum(radial * radial, axis=1))))
+
+
+def urdf_links(path: str) -> tuple[str, ...]:
+    """The link names of a URDF file, in file order (raises RobotError when it cannot load)."""
+    try:
+        model = pin.buildModelFromUrdf(path)
+    except Exception as exc:  # pinocchio raises bare RuntimeError/ValueError for any defect
+        raise RobotError(f"cannot load URDF '{path}': {type(exc).__name__}", codes.BAD_URDF) from None
+    return tuple(f.name for f in model.frames if f.type == pin.FrameType.BODY)
+
+
+def urdf_chain_error(path: str, base: str, tip: str) -> str | None:
+    """Why base..tip is no chain of joints in the URDF (tip not below base, no joint), else None."""
+    from rmot.compiler.robots.urdf_chain import chain_joints
+
+    model = pin.buildModelFromUrdf(path)
+    try:
+        joints = chain_joints(model, base, tip)
+    except ValueError as exc:
+        return str(exc)
+    return None if joints else f"no movable joint between links '{base}' and '{tip}'"

@@ -1,0 +1,206 @@
+"""Robots defined in a cell: a `model` block's DH chain as data, and the Robot built from it.
+
+A `ModelSpec` is plain data in SI units (the front end makes it from the cell's text, see
+compiler/passes/lower_model.py). It travels in the IR as a load key, "model:" + canonical
+JSON (floats written with repr, so the round trip is exact), and `load_robot` builds the
+Robot from that key once per distinct model.
+
+Conventions (lang/REFERENCE.md, "Robot models"):
+  * Standard DH (Spong; the convention of the reference article): frame i from frame i-1 is
+    Rz(θ_i) Tz(d_i) Tx(a_i) Rx(α_i). Modified DH (Craig), `mdh(...)`: Rx(α_{i-1})
+    Tx(a_{i-1}) Rz(θ_i) Tz(d_i), the row of joint i holding α_{i-1}, a_{i-1}.
+  * The joint value q is the DH variable minus the written constant: a revolute joint turns
+    θ_i = q_i + theta, a prismatic joint slides d_i = d + q_i. The base frame is DH frame 0,
+    the flange is `flange` (default identity) in the last DH frame.
+  * IK: a 6R arm whose geometry is ortho-parallel with a spherical wrist gets the closed-form
+    OPW solver with the library's branch rows (compiler/robots/model_opw.py derives the
+    parameters and proves them by FK before using them); any other 6R arm with a spherical
+    wrist gets the numeric IK and geometric branch names (wrist_branches), as URDF arms do;
+    every other chain the numeric IK without branch names.
+  * Solids: those the cell gives (`solid(...)`, placed in DH frame i) replace the generated
+    ones of their link. Generated: per link a capsule along its joint axis to the foot of the
+    next joint's origin (the DH d) and one from there to that origin (the DH a), a short one
+    along the axis where both vanish, and a cylinder standing on z = 0 for the base.
+    Radii are 5 % of the summed link lengths (at least 15 mm, at most 100 mm), tapering to
+    60 % at the flange; an estimate for display and a conservative collision envelope, not
+    the vendor's shape. Solids of the same or neighbouring joints, and solids that overlap at
+    the model's zero configuration, touch by design and are not checked against each other.
+  * Accelerations and speeds are the model's own; there are no inertias.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rmot.compiler import ir
+from rmot.compiler.model_spec import MAX_JOINTS, MODEL_PREFIX, ModelJointSpec, ModelSpec, model_key, spec_from_key
+from rmot.compiler.robots.dh import DHRow, DHTable, build_model
+from rmot.compiler.robots.robot import LinkSolid, Robot
+
+__all__ = ["MAX_JOINTS", "ModelJointSpec", "ModelSpec", "MODEL_PREFIX", "model_key", "robot_from_key", "robot_from_model",
+           "spec_from_key", "dh_table"]
+
+def dh_table(spec: ModelSpec) -> DHTable:
+    rows = tuple(DHRow(d=j.d, a=j.a, alpha=j.alpha, offset=j.theta, kind=j.kind) for j in spec.joints)
+    return DHTable(rows, modified=spec.modified)
+
+
+def robot_from_key(key: str) -> Robot:
+    return robot_from_model(spec_from_key(key))
+
+
+def robot_from_model(spec: ModelSpec) -> Robot:
+    from rmot.compiler.robots.model_opw import opw_solver_for
+    from rmot.compiler.robots.urdf import _reach
+    from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
+
+    if not 1 <= len(spec.joints) <= MAX_JOINTS:
+        raise ValueError(f"a model must have 1 to {MAX_JOINTS} joints (got {len(spec.joints)})")
+    flange = np.array(spec.flange, dtype=float).reshape(4, 4)
+    model, fid, link_frames = build_model(dh_table(spec), flange, spec.name)
+    limits = np.array([(j.lo, j.hi) for j in spec.joints], dtype=float)
+    velocity = np.array([j.speed for j in spec.joints], dtype=float)
+    accel = np.array([j.accel for j in spec.joints], dtype=float)
+    solids = _solids(model, limits, {g.joint for g in spec.solids}) + _given_solids(spec, link_frames)
+    common = dict(
+        name=spec.name, vendor="cell model", model_name=spec.name, model=model, flange_frame=fid,
+        joint_limits=limits, velocity_limits=velocity, accel_limits=accel, reach=0.0, solids=solids,
+        adjacent_pairs=_adjacent(model, solids, limits), source="model block in the cell",
+        dh_rows=dh_table(spec).rows, dh_modified=spec.modified,
+    )
+    probe = Robot(**common)  # type: ignore[arg-type]
+    opw = opw_solver_for(probe) if len(spec.joints) == 6 else None
+    if opw is not None:
+        closed_form, branch_fn, rows = opw
+        robot = Robot(**common, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)  # type: ignore[arg-type]
+    else:
+        chain = probe._chain
+        branch_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
+        robot = Robot(**common, branch_fn=branch_fn)  # type: ignore[arg-type]
+    robot.reach = _reach(robot)
+    robot.rated_payload_kg = spec.payload_kg
+    return robot
+
+
+# --------------------------------------------------------------------------- solids
+
+
+def _joint_points(model, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+    """Joint origins (n+1,3) with the flange last, joint frames (n+1,4,4) (index 0 = base)."""
+    import pinocchio as pin
+
+    data = model.createData()
+    pin.forwardKinematics(model, data, q)
+    frames = [np.eye(4)] + [data.oMi[j].homogeneous for j in range(1, model.njoints)]
+    flange = pin.updateFramePlacement(model, data, model.nframes - 1).homogeneous
+    pts = np.array([f[:3, 3] for f in frames[1:]] + [flange[:3, 3]])
+    return pts, np.array(frames), flange
+
+
+def _zero_in_limits(limits: np.ndarray) -> np.ndarray:
+    return np.clip(0.0, limits[:, 0], limits[:, 1])
+
+
+def _given_solids(spec: ModelSpec, link_frames: list[np.ndarray]) -> tuple[LinkSolid, ...]:
+    """The cell's `solid(...)` fields: placed in DH frame i, which moves with joint i."""
+    out = []
+    for k, g in enumerate(spec.solids):
+        n = g.numbers
+        geom: ir.Geometry
+        if g.kind == "box":
+            geom = ir.Box((n[0], n[1], n[2]))
+        elif g.kind == "cylinder":
+            geom = ir.Cylinder(n[0], n[1])
+        elif g.kind == "sphere":
+            geom = ir.Sphere(n[0])
+        elif g.kind == "capsule":
+            geom = ir.Capsule(n[0], n[1])
+        elif g.kind == "mesh":
+            geom = ir.Mesh(g.path, n[0])
+        else:
+            raise ValueError(f"unknown solid kind '{g.kind}'")
+        placement = link_frames[g.joint - 1] @ np.array(g.pose, dtype=float).reshape(4, 4)
+        out.append(LinkSolid(f"link_{g.joint}_solid_{k + 1}", g.joint, geom, ir.Pose.from_matrix(placement)))
+    return tuple(out)
+
+
+def _solids(model, limits: np.ndarray, given: set[int] = frozenset()) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def,assignment]
+    """Per link i: a capsule along joint i's axis to the foot of the next joint origin (the DH
+    d), then one from there to the next joint origin (the DH a); a stub along the axis where
+    both are zero. The base: a cylinder standing on z = 0 of DH frame 0."""
+    q0 = _zero_in_limits(limits)
+    pts, frames, _ = _joint_points(model, q0)
+    total = float(sum(np.linalg.norm(pts[i + 1] - pts[i]) for i in range(len(pts) - 1))) + float(np.linalg.norm(pts[0]))
+    r0 = min(max(0.05 * total, 0.015), 0.10)
+    n = model.nq
+    out = [_capsule("base", 0, np.zeros(3), np.array([0.0, 0.0, 2 * r0]), r0, np.eye(4), cylinder=True)]
+    for i in range(n):
+        if i + 1 in given:  # the cell gives this link's solids
+            continue
+        r = r0 * (1.0 - 0.4 * (i + 1) / n)
+        frame = frames[i + 1]
+        z = frame[:3, 2] if model.joints[i + 1].shortname().endswith("Z") else frame[:3, :3] @ np.array([0.0, 0.0, 1.0])
+        p0, p1 = pts[i], pts[i + 1]
+        foot = p0 + ((p1 - p0) @ z) * z
+        pieces = [(p0, foot), (foot, p1)]
+        if i == 0 and abs(p0[2]) < r + 0.002:  # the first link starts at the floor: keep its cap 2 mm above it
+            p0 = p0 + (r + 0.002 - p0[2]) * np.array([0.0, 0.0, 1.0])
+            pieces[0] = (p0, foot)
+        kept = [(a, b) for a, b in pieces if np.linalg.norm(b - a) > 1e-6]
+        if not kept:  # a joint on the next one's origin: a stub along its axis
+            kept = [(pts[i] - r * z, pts[i] + r * z)]
+        for k, (a, b) in enumerate(kept):
+            out.append(_capsule(f"link_{i + 1}" + ("" if k == 0 else "_offset"), i + 1, a, b, r, frame))
+    return tuple(out)
+
+
+def _capsule(name: str, joint: int, p0: np.ndarray, p1: np.ndarray, radius: float, joint_frame: np.ndarray,
+             cylinder: bool = False) -> LinkSolid:
+    from rmot.compiler.robots.build import _frame_with_z
+
+    axis = p1 - p0
+    length = float(np.linalg.norm(axis))
+    world = np.eye(4)
+    world[:3, :3] = _frame_with_z(axis / length)
+    world[:3, 3] = (p0 + p1) / 2
+    local = np.linalg.inv(joint_frame) @ world
+    geom: ir.Geometry = ir.Cylinder(radius=radius, height=length) if cylinder else ir.Capsule(radius=radius, length=length)
+    return LinkSolid(name, joint, geom, ir.Pose.from_matrix(local))
+
+
+def _segment_distance(a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.ndarray) -> float:
+    """The smallest distance between segments a0-a1 and b0-b1 (sampled finely; display use)."""
+    s = np.linspace(0.0, 1.0, 33)
+    pa = a0 + s[:, None] * (a1 - a0)
+    pb = b0 + s[:, None] * (b1 - b0)
+    return float(np.min(np.linalg.norm(pa[:, None] - pb[None], axis=-1)))
+
+
+def _adjacent(model, solids: tuple[LinkSolid, ...], limits: np.ndarray) -> tuple[tuple[int, int], ...]:  # type: ignore[no-untyped-def]
+    """Solids of the same or neighbouring joints (they meet at the joint between them), and
+    those whose bounding capsules overlap at the zero configuration (they touch by design)."""
+    q0 = _zero_in_limits(limits)
+    _, frames, _ = _joint_points(model, q0)
+    ends = [_bounding_segment(frames[s.joint_id] @ s.placement.matrix(), s.geometry) for s in solids]
+    pairs = set()
+    for i in range(len(solids)):
+        for j in range(i + 1, len(solids)):
+            near = abs(solids[i].joint_id - solids[j].joint_id) <= 1
+            a, b = ends[i], ends[j]
+            if near or (a is not None and b is not None and _segment_distance(a[0], a[1], b[0], b[1]) < a[2] + b[2] + 1e-9):
+                pairs.add((i, j))
+    return tuple(sorted(pairs))
+
+
+def _bounding_segment(m: np.ndarray, g: ir.Geometry) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """A segment and radius whose capsule holds the solid (None for a mesh: unknown extent)."""
+    centre, z = m[:3, 3], m[:3, 2]
+    if isinstance(g, ir.Capsule):
+        return centre - g.length / 2 * z, centre + g.length / 2 * z, g.radius
+    if isinstance(g, ir.Cylinder):
+        return centre - g.height / 2 * z, centre + g.height / 2 * z, g.radius
+    if isinstance(g, ir.Sphere):
+        return centre, centre, g.radius
+    if isinstance(g, ir.Box):
+        return centre, centre, float(np.linalg.norm(g.size)) / 2
+    return None
