@@ -35,6 +35,7 @@ limits: see `dynamics`. Lengths in m, angles in degrees here (converted by `robo
 from __future__ import annotations
 
 import math
+import re
 
 from rmot.compiler.robots.dh import DHRow, DHTable
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
@@ -142,20 +143,21 @@ def _abb_kuka() -> list[RobotSpec]:
                 accel=ACC_EST, reach="ABB 3HAC035960-001: 580 mm", mass=f"ABB 3HAC035960-001: arm 25 kg; {SPREAD}",
                 inertia=INERTIA, effort=EFFORT, payload="ABB 3HAC035960-001: 3 kg (the model name IRB 120-3/0.58)"),
         ),
-        # ABB IRB 1600, the 1.45 m arm. Geometry, limits and speeds as the ROS-I package of
-        # the 1.45 m arm (irb1600_8_145): J2 max +120° there, where rmot had +150° (the
-        # 1.2 m arm's figure is +110°): the reference for this reach is taken.
+        # ABB IRB 1600, the 1.45 m arm. Geometry and limits as the ROS-I package of the 1.45 m
+        # arm (irb1600_8_145): J2 max +120° there, where rmot had +150° (the 1.2 m arm's figure
+        # is +110°): the reference for this reach is taken.
         opw_spec(
             name="abb_irb1600", vendor="ABB", model="IRB 1600-6/1.45", source=f"ABB 3HAC023604-001; {ROSI_ABB} irb1600_8_145",
             params=OpwParams(a1=0.150, a2=0.0, b=0.0, c1=0.4865, c2=0.700, c3=0.600, c4=0.065), jmap=ABB,
             limits_deg=((-180, 180), (-90, 120), (-245, 65), (-200, 200), (-115, 115), (-400, 400)),
-            speed_deg_s=(180, 180, 200, 400, 400, 460), accel_deg_s2=_acc((180, 180, 200, 400, 400, 460)),
+            speed_deg_s=(150, 160, 170, 320, 400, 460), accel_deg_s2=_acc((150, 160, 170, 320, 400, 460)),
             reach=1.450, radii=(0.15, 0.12, 0.09, 0.09, 0.07, 0.06, 0.045),
             rated_payload_kg=6.0, arm_mass_kg=250.0, conventions=ABB_CONV,
             sources=_sources(
                 geometry=f"{ROSI_ABB} abb_irb1600_support/urdf/irb1600_8_145_macro.xacro (150/486.5/700/600/65 mm)",
                 limits=f"{ROSI_ABB} abb_irb1600_support/urdf/irb1600_8_145_macro.xacro (J2 -90..+120 deg)",
-                speed=f"{ROSI_ABB} abb_irb1600_support/urdf/irb1600_8_145_macro.xacro", accel=ACC_EST,
+                speed=("ABB 3HAC023604-001 (= ROS-I irb1600_6_12_macro.xacro; ROS-I's 1.45 m file has 180/180/200/400/400/460 "
+                       "deg/s: a disagreement not resolved here, the lower figures kept)"), accel=ACC_EST,
                 reach="ABB 3HAC023604-001: 1.45 m", mass=f"ABB 3HAC023604-001: arm 250 kg; {SPREAD}",
                 inertia=INERTIA, effort=EFFORT, payload="ABB 3HAC023604-001: 6 kg (the model name IRB 1600-6/1.45)"),
         ),
@@ -375,7 +377,155 @@ def _ur() -> list[RobotSpec]:
                 reach=1.300, shoulder_off=0.176, elbow_off=0.137, radii=(0.095, 0.08, 0.065, 0.055, 0.05),
                 rated_payload_kg=12.5, link_mass_kg=(7.778, 12.93, 3.87, 1.96, 1.96, 0.202), effort_nm=(330.0, 330.0, 150.0, 56.0, 56.0, 56.0),
                 conventions=UR_CONV, sources=src("UR10e", 1300, "12.5 kg")),
+        ur_spec(name="ur16e", model="UR16e", source="UR DH table; UR16e data sheet",
+                params=UrParams(0.1807, -0.4784, -0.36, 0.17415, 0.11985, 0.11655),
+                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=_acc((120, 120, 180, 180, 180, 180)),
+                reach=0.900, shoulder_off=0.176, elbow_off=0.136, radii=(0.095, 0.08, 0.065, 0.055, 0.05),
+                rated_payload_kg=16.0, link_mass_kg=(7.369, 10.45, 4.321, 2.18, 2.033, 0.907), effort_nm=(330.0, 330.0, 150.0, 56.0, 56.0, 56.0),
+                conventions=UR_CONV, sources=src("UR16e", 900, "16 kg")),
+        # CB3 series (UR3, UR5, UR10): the same conventions; numbers from ur_description's CB3 configs.
+        ur_spec(name="ur3", model="UR3", source="UR DH table; UR3 data sheet",
+                params=UrParams(0.1519, -0.24365, -0.21325, 0.11235, 0.08535, 0.0819),
+                speed_deg_s=(180, 180, 180, 360, 360, 360), accel_deg_s2=_acc((180, 180, 180, 360, 360, 360)),
+                reach=0.500, shoulder_off=0.1198, elbow_off=0.0923, radii=(0.065, 0.05, 0.045, 0.04, 0.035),
+                rated_payload_kg=3.0, link_mass_kg=(2.0, 3.42, 1.26, 0.8, 0.8, 0.35), effort_nm=(56.0, 56.0, 28.0, 12.0, 12.0, 12.0),
+                conventions=UR_CONV, sources=src("UR3", 500, "3 kg")),
+        ur_spec(name="ur5", model="UR5", source="UR DH table; UR5 data sheet",
+                params=UrParams(0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823),
+                speed_deg_s=(180,) * 6, accel_deg_s2=_acc((180,) * 6),
+                reach=0.850, shoulder_off=0.13585, elbow_off=0.11935, radii=(0.075, 0.04, 0.055, 0.045, 0.045),  # CB3: d1 89 mm
+                rated_payload_kg=5.0, link_mass_kg=(3.7, 8.393, 2.275, 1.219, 1.219, 0.1879), effort_nm=(150.0, 150.0, 150.0, 28.0, 28.0, 28.0),
+                conventions=UR_CONV, sources=src("UR5", 850, "5 kg")),
+        ur_spec(name="ur10", model="UR10", source="UR DH table; UR10 data sheet",
+                params=UrParams(0.1273, -0.612, -0.5723, 0.163941, 0.1157, 0.0922),
+                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=_acc((120, 120, 180, 180, 180, 180)),
+                reach=1.300, shoulder_off=0.220941, elbow_off=0.171899, radii=(0.095, 0.06, 0.065, 0.055, 0.05),  # CB3: d1 127 mm
+                rated_payload_kg=10.0, link_mass_kg=(7.778, 12.93, 3.87, 1.96, 1.96, 0.202), effort_nm=(330.0, 330.0, 150.0, 56.0, 56.0, 56.0),
+                conventions=UR_CONV, sources=src("UR10", 1300, "10 kg")),
     ]
 
 
-SPECS: dict[str, RobotSpec] = {s.name: s for s in _abb_kuka() + _fanuc_yaskawa_staubli() + [_puma560()] + _ur()}
+def _kroshu(name: str, model: str, pkg: str, stem: str, params: OpwParams, *, limits_deg: tuple[tuple[float, float], ...],
+            speed_deg_s: tuple[float, ...], accel_deg_s2: tuple[float, ...], link_mass_kg: tuple[float, ...],
+            effort_nm: tuple[float, ...], radii: tuple[float, ...]) -> RobotSpec:
+    """A KUKA arm with every number from KUKA's own description (kroshu/kuka_robot_descriptions):
+    geometry, limits, speeds and torques from `<pkg>/urdf/<stem>_macro.xacro`, accelerations
+    from `<pkg>/config/<stem>_joint_limits.yaml`, link masses from the URDF's <inertial>; the
+    rated payload and the nominal reach are the product name's (kroshu README: kr{payload}_r{reach})."""
+    from rmot.compiler.robots.dynamics import INERTIA_METHOD
+
+    found = re.match(r"KR (\d+) R(\d+)", model)
+    assert found, model
+    payload, reach_mm = float(found.group(1)), float(found.group(2))
+    urdf, limits = f"{KROSHU} {pkg}/urdf/{stem}_macro.xacro", f"{KROSHU} {pkg}/config/{stem}_joint_limits.yaml"
+    return opw_spec(
+        name=name, vendor="KUKA", model=model, source=f"{KROSHU} {stem}", params=params, jmap=KUKA,
+        limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=accel_deg_s2, reach=reach_mm / 1000, radii=radii,
+        rated_payload_kg=payload, link_mass_kg=link_mass_kg, effort_nm=effort_nm, conventions=KUKA_CONV,
+        sources=_sources(
+            geometry=f"{urdf} joint origins", limits=f"{urdf} joint <limit lower/upper>", speed=f"{urdf} joint <limit velocity>",
+            accel=f"KUKA: {limits} max_acceleration (rad/s^2 -> deg/s^2)",
+            reach=f"the product name {model}: nominal {reach_mm:g} mm", mass=f"{urdf} link_1..link_6 <mass>",
+            inertia=INERTIA_METHOD, effort=f"{urdf} joint <limit effort>", payload=f"the product name {model}: {payload:g} kg"),
+    )
+
+
+def _kroshu_arms() -> list[RobotSpec]:
+    """More KUKA arms, each from KUKA's own description; see `_kroshu`."""
+    return [
+        _kroshu("kuka_kr4_r600", "KR 4 R600", "kuka_agilus_support", "kr4_r600",
+                OpwParams(a1=0.0, a2=-0.02, b=0.0, c1=0.33, c2=0.29, c3=0.31, c4=0.075),
+                limits_deg=((-170.0, 170.0), (-195.0, 40.0), (-115.0, 150.0), (-185.0, 185.0), (-120.0, 120.0), (-350.0, 350.0)),
+                speed_deg_s=(336.0, 336.0, 487.5, 600.0, 529.1, 800.0), accel_deg_s2=(1674.0, 570.2, 1143.1, 1723.0, 2019.1, 4392.5),
+                link_mass_kg=(4.389, 7.3011, 2.6794, 2.3085, 1.2008, 0.2348), effort_nm=(119.016, 105.851498, 54.314962, 11.811609, 12.327795, 6.916321),
+                radii=(0.075, 0.06, 0.041, 0.041, 0.034, 0.026, 0.02)),
+        _kroshu("kuka_kr6_r700_2", "KR 6 R700-2", "kuka_agilus_support", "kr6_r700_2",
+                OpwParams(a1=0.025, a2=-0.025, b=0.0, c1=0.4, c2=0.335, c3=0.365, c4=0.09),
+                limits_deg=((-170.0, 170.0), (-190.0, 45.0), (-120.0, 156.0), (-185.0, 185.0), (-120.0, 120.0), (-350.0, 350.0)),
+                speed_deg_s=(360.0, 300.0, 360.0, 450.0, 450.0, 540.0), accel_deg_s2=(1132.1, 274.4, 651.4, 8228.8, 6733.1, 13587.7),
+                link_mass_kg=(8.416, 15.5659, 5.303, 4.613, 1.6128, 0.734), effort_nm=(186.0, 168.9373, 81.493186, 48.879868, 40.135638, 27.358196),
+                radii=(0.09, 0.072, 0.05, 0.05, 0.041, 0.032, 0.023)),
+        _kroshu("kuka_kr6_r900_2", "KR 6 R900-2", "kuka_agilus_support", "kr6_r900_2",
+                OpwParams(a1=0.025, a2=-0.025, b=0.0, c1=0.4, c2=0.455, c3=0.42, c4=0.09),
+                limits_deg=((-170.0, 170.0), (-190.0, 45.0), (-120.0, 156.0), (-185.0, 185.0), (-120.0, 120.0), (-350.0, 350.0)),
+                speed_deg_s=(360.0, 300.0, 360.0, 450.0, 450.0, 540.0), accel_deg_s2=(1305.9, 379.3, 1399.3, 7026.7, 6817.6, 13587.7),
+                link_mass_kg=(8.416, 16.7929, 5.988, 4.699853, 1.6128, 0.734), effort_nm=(334.8, 260.65653, 137.827375, 43.282069, 45.669607, 23.293921),
+                radii=(0.112, 0.09, 0.062, 0.062, 0.05, 0.039, 0.028)),
+        _kroshu("kuka_kr10_r900_2", "KR 10 R900-2", "kuka_agilus_support", "kr10_r900_2",
+                OpwParams(a1=0.025, a2=-0.025, b=0.0, c1=0.4, c2=0.455, c3=0.42, c4=0.09),
+                limits_deg=((-170.0, 170.0), (-190.0, 45.0), (-120.0, 156.0), (-185.0, 185.0), (-120.0, 120.0), (-350.0, 350.0)),
+                speed_deg_s=(300.0, 225.0, 330.0, 360.0, 360.0, 433.0), accel_deg_s2=(924.0, 118.5, 821.5, 3830.0, 2825.1, 7188.0),
+                link_mass_kg=(8.416, 16.7929, 6.075, 4.586853, 1.6128, 0.734), effort_nm=(318.06, 251.505808, 154.907041, 50.640398, 41.613521, 28.03861),
+                radii=(0.112, 0.09, 0.062, 0.062, 0.05, 0.039, 0.028)),
+        _kroshu("kuka_kr10_r1100_2", "KR 10 R1100-2", "kuka_agilus_support", "kr10_r1100_2",
+                OpwParams(a1=0.025, a2=-0.025, b=0.0, c1=0.4, c2=0.56, c3=0.515, c4=0.09),
+                limits_deg=((-170.0, 170.0), (-190.0, 45.0), (-120.0, 156.0), (-185.0, 185.0), (-120.0, 120.0), (-350.0, 350.0)),
+                speed_deg_s=(300.0, 225.0, 330.0, 360.0, 360.0, 433.0), accel_deg_s2=(576.7, 98.8, 153.9, 3236.9, 2820.9, 7188.0),
+                link_mass_kg=(8.416, 17.8369, 6.075, 5.162381, 1.6128, 0.734), effort_nm=(288.36, 311.99662, 119.758982, 46.080276, 41.613521, 28.03861),
+                radii=(0.137, 0.109, 0.075, 0.075, 0.062, 0.048, 0.034)),
+        _kroshu("kuka_kr16_r1610_2", "KR 16 R1610-2", "kuka_cybertech_support", "kr16_r1610_2",
+                OpwParams(a1=0.16, a2=-0.15, b=0.0, c1=0.52, c2=0.78, c3=0.655, c4=0.153),
+                limits_deg=((-185.0, 185.0), (-185.0, 65.0), (-138.0, 175.0), (-350.0, 350.0), (-130.0, 130.0), (-350.0, 350.0)),
+                speed_deg_s=(200.0, 175.0, 190.0, 430.0, 430.0, 630.0), accel_deg_s2=(623.1, 257.7, 1178.3, 5318.1, 5115.4, 6878.3),
+                link_mass_kg=(84.207, 55.581, 35.648, 14.628, 1e-06, 1e-06), effort_nm=(1844.4, 1634.537111, 814.412882, 251.630433, 241.424767, 105.58296),
+                radii=(0.2, 0.16, 0.11, 0.11, 0.09, 0.07, 0.05)),
+        _kroshu("kuka_kr20_r1810_2", "KR 20 R1810-2", "kuka_cybertech_support", "kr20_r1810_2",
+                OpwParams(a1=0.16, a2=-0.15, b=0.0, c1=0.52, c2=0.78, c3=0.86, c4=0.153),
+                limits_deg=((-185.0, 185.0), (-185.0, 65.0), (-138.0, 175.0), (-350.0, 350.0), (-130.0, 130.0), (-350.0, 350.0)),
+                speed_deg_s=(200.0, 171.59, 190.0, 430.0, 430.0, 630.0), accel_deg_s2=(487.0, 125.0, 520.8, 4083.7, 3905.8, 6385.1),
+                link_mass_kg=(84.207, 55.407, 35.648, 16.428, 1e-06, 1e-06), effort_nm=(1809.6, 1569.10108, 792.65294, 249.072792, 238.867125, 104.6412),
+                radii=(0.225, 0.18, 0.124, 0.124, 0.101, 0.079, 0.056)),
+        _kroshu("kuka_kr30_r2100", "KR 30 R2100", "kuka_iontec_support", "kr30_r2100",
+                OpwParams(a1=0.175, a2=-0.05, b=0.0, c1=0.575, c2=0.89, c3=1.035, c4=0.185),
+                limits_deg=((-185.0, 185.0), (-175.0, 60.0), (-120.0, 165.0), (-180.0, 180.0), (-125.0, 125.0), (-350.0, 350.0)),
+                speed_deg_s=(180.0, 165.0, 180.0, 250.0, 250.0, 360.0), accel_deg_s2=(476.9, 161.0, 221.3, 1255.9, 1135.7, 932.6),
+                link_mass_kg=(172.735, 108.86, 76.987, 36.937065, 16.209, 3.62), effort_nm=(5640.0, 4203.66504, 1426.51367, 483.452545, 441.424347, 259.541595),
+                radii=(0.261, 0.209, 0.144, 0.144, 0.117, 0.091, 0.065)),
+        _kroshu("kuka_kr50_r2500", "KR 50 R2500", "kuka_iontec_support", "kr50_r2500",
+                OpwParams(a1=0.175, a2=-0.05, b=0.0, c1=0.575, c2=1.29, c3=1.035, c4=0.185),
+                limits_deg=((-185.0, 185.0), (-175.0, 60.0), (-120.0, 170.0), (-180.0, 180.0), (-125.0, 125.0), (-350.0, 350.0)),
+                speed_deg_s=(175.0, 157.98, 175.0, 250.0, 250.0, 360.0), accel_deg_s2=(284.0, 44.3, 77.2, 984.1, 849.5, 1021.5),
+                link_mass_kg=(175.205, 131.16, 76.987, 36.937065, 16.209, 3.62), effort_nm=(5528.892, 5104.349811, 1441.877917, 535.609199, 483.521522, 338.503348),
+                radii=(0.311, 0.249, 0.171, 0.171, 0.14, 0.109, 0.078)),
+        _kroshu("kuka_kr210_r3100_2", "KR 210 R3100-2", "kuka_quantec_support", "kr210_r3100_2",
+                OpwParams(a1=0.33, a2=-0.115, b=0.0, c1=0.645, c2=1.35, c3=1.42, c4=0.24),
+                limits_deg=((-185.0, 185.0), (-140.0, -5.0), (-120.0, 168.0), (-350.0, 350.0), (-122.5, 122.5), (-350.0, 350.0)),
+                speed_deg_s=(105.0, 94.0, 100.0, 136.0, 129.0, 206.0), accel_deg_s2=(83.9, 29.6, 75.3, 396.7, 402.3, 453.4),
+                link_mass_kg=(367.37, 250.56, 206.53, 47.942846, 23.687645, 12.245719), effort_nm=(7290.0, 8910.0, 7251.2876, 2356.12598, 2358.44531, 1508.75476),
+                radii=(0.386, 0.309, 0.212, 0.212, 0.174, 0.135, 0.096)),
+        _kroshu("kuka_kr8_r1440_2_arc_hw", "KR 8 R1440-2 arc HW", "kuka_cybertech_support", "kr8_r1440_2_arc_hw",
+                OpwParams(a1=0.17, a2=-0.21, b=0.0, c1=0.425, c2=0.61, c3=0.627, c4=0.08),
+                limits_deg=((-170.0, 170.0), (-185.0, 65.0), (-119.0, 181.0), (-165.0, 165.0), (-115.0, 140.0), (-350.0, 350.0)),
+                speed_deg_s=(220.0, 210.0, 270.0, 430.0, 430.0, 628.57), accel_deg_s2=(731.6, 568.8, 399.3, 2732.4, 2804.8, 12314.9),
+                link_mass_kg=(67.4, 29.18, 28.122242, 17.669, 2.75, 0.8), effort_nm=(1296.0, 1275.587216, 248.615275, 44.044316, 34.357459, 36.6552),
+                radii=(0.179, 0.143, 0.098, 0.098, 0.081, 0.063, 0.045)),
+        _kroshu("kuka_kr150_r3100_2", "KR 150 R3100-2", "kuka_quantec_support", "kr150_r3100_2",
+                OpwParams(a1=0.33, a2=-0.115, b=0.0, c1=0.645, c2=1.35, c3=1.42, c4=0.215),
+                limits_deg=((-185.0, 185.0), (-140.0, -5.0), (-120.0, 168.0), (-350.0, 350.0), (-125.0, 125.0), (-350.0, 350.0)),
+                speed_deg_s=(105.0, 107.0, 114.0, 190.0, 180.0, 260.0), accel_deg_s2=(106.2, 66.3, 223.4, 748.7, 323.7, 330.1),
+                link_mass_kg=(363.07, 250.56, 199.93, 42.411795, 16.991732, 6.6), effort_nm=(7290.0, 8910.0, 7538.746234, 2431.250529, 1460.560852, 892.539),
+                radii=(0.386, 0.309, 0.212, 0.212, 0.174, 0.135, 0.096)),
+        _kroshu("kuka_kr240_r2900_2", "KR 240 R2900-2", "kuka_quantec_support", "kr240_r2900_2",
+                OpwParams(a1=0.33, a2=-0.115, b=0.0, c1=0.645, c2=1.35, c3=1.22, c4=0.24),
+                limits_deg=((-185.0, 185.0), (-140.0, -5.0), (-120.0, 168.0), (-350.0, 350.0), (-122.5, 122.5), (-350.0, 350.0)),
+                speed_deg_s=(103.0, 94.0, 100.0, 170.0, 129.0, 206.0), accel_deg_s2=(86.4, 36.9, 97.8, 290.0, 294.7, 357.1),
+                link_mass_kg=(367.37, 250.56, 191.53, 47.942846, 23.687645, 12.245719), effort_nm=(7290.0, 9240.0, 7295.422365, 2323.710367, 2326.033088, 1492.86251),
+                radii=(0.361, 0.289, 0.199, 0.199, 0.162, 0.126, 0.09)),
+        _kroshu("kuka_kr300_r2700_2", "KR 300 R2700-2", "kuka_quantec_support", "kr300_r2700_2",
+                OpwParams(a1=0.33, a2=-0.115, b=0.0, c1=0.645, c2=1.15, c3=1.22, c4=0.24),
+                limits_deg=((-185.0, 185.0), (-140.0, -5.0), (-120.0, 168.0), (-350.0, 350.0), (-122.5, 122.5), (-350.0, 350.0)),
+                speed_deg_s=(105.0, 101.0, 107.0, 140.0, 113.0, 180.0), accel_deg_s2=(86.3, 34.4, 23.8, 140.3, 143.8, 222.1),
+                link_mass_kg=(367.37, 232.06, 191.53, 47.942846, 23.687645, 12.245719), effort_nm=(7290.0, 9600.03, 7087.143423, 2258.878887, 2261.206601, 1461.07811),
+                radii=(0.336, 0.269, 0.185, 0.185, 0.151, 0.118, 0.084)),
+        _kroshu("kuka_kr500_r2800_2", "KR 500 R2800-2", "kuka_fortec_support", "kr500_r2800_2",
+                OpwParams(a1=0.5, a2=-0.15, b=0.0, c1=0.8, c2=1.25, c3=1.0395, c4=0.286),
+                limits_deg=((-185.0, 185.0), (-130.0, 5.0), (-110.0, 162.0), (-350.0, 350.0), (-120.0, 120.0), (-350.0, 350.0)),
+                speed_deg_s=(100.0, 79.54, 90.0, 90.0, 100.0, 163.0), accel_deg_s2=(80.6, 44.7, 36.0, 225.0, 227.3, 258.7),
+                link_mass_kg=(587.48, 318.2, 287.76, 91.737, 46.6909, 23.3927), effort_nm=(13440.0, 18360.0, 11026.99304, 5359.094619, 5363.939646, 3112.650243),
+                radii=(0.348, 0.278, 0.191, 0.191, 0.157, 0.122, 0.087)),
+    ]
+
+
+SPECS: dict[str, RobotSpec] = {
+    s.name: s for s in _abb_kuka() + _fanuc_yaskawa_staubli() + [_puma560()] + _ur() + _kroshu_arms()
+}

@@ -12,10 +12,17 @@ from rmot.compiler.robots import Robot, RobotError, list_robots, load_robot
 from rmot.compiler.robots.library import SPECS
 from rmot.compiler.robots.opw import opw_fk
 
-NAMES = (
+ORIGINAL = (
     "abb_irb120", "abb_irb1600", "abb_irb4600", "kuka_kr6_r900", "kuka_kr16", "kuka_kr210",
     "fanuc_lrmate200id", "fanuc_m20ia", "yaskawa_gp8", "staubli_tx2_60", "ur3e", "ur5e", "ur10e", "puma560",
 )
+ADDED = (  # issue 12: each with its independent reference in reference_arms.py
+    "kuka_kr4_r600", "kuka_kr6_r700_2", "kuka_kr6_r900_2", "kuka_kr10_r900_2", "kuka_kr10_r1100_2",
+    "kuka_kr16_r1610_2", "kuka_kr20_r1810_2", "kuka_kr30_r2100", "kuka_kr50_r2500", "kuka_kr210_r3100_2",
+    "kuka_kr8_r1440_2_arc_hw", "kuka_kr150_r3100_2", "kuka_kr240_r2900_2", "kuka_kr300_r2700_2",
+    "kuka_kr500_r2800_2", "ur16e", "ur3", "ur5", "ur10",
+)
+NAMES = ORIGINAL + ADDED
 
 
 def random_q(robot: Robot, n: int, seed: int = 0) -> np.ndarray:
@@ -28,7 +35,7 @@ def rot_y(deg: float) -> np.ndarray:
 
 
 def test_library_names_are_exactly_the_contract():
-    """list_robots() is the 14 contract names, sorted."""
+    """list_robots() is the 33 contract names, sorted."""
     assert list_robots() == tuple(sorted(NAMES))
 
 
@@ -84,7 +91,7 @@ def test_flange_at_documented_pose(name, q_deg, xyz_mm):
     np.testing.assert_allclose(t[:3, 3] * 1000, xyz_mm, atol=0.01)
 
 
-@pytest.mark.parametrize("name", [n for n in NAMES if not n.startswith("ur") and n != "puma560"])
+@pytest.mark.parametrize("name", [n for n in ORIGINAL if not n.startswith("ur") and n != "puma560"])
 def test_wrist_centre_reach_matches_datasheet(name):
     """The largest wrist-centre distance from J1 (a1 + c2 + |J3→wrist|) is the datasheet reach
     (Stäubli states it at the flange) within 0.1 % (KR 210 R2700-2: the product name's
@@ -94,7 +101,7 @@ def test_wrist_centre_reach_matches_datasheet(name):
     assert reach == pytest.approx(SPECS[name].reach, rel=2.5e-3 if name == "kuka_kr210" else 1e-3)
 
 
-@pytest.mark.parametrize("name", ["ur3e", "ur5e", "ur10e"])
+@pytest.mark.parametrize("name", ["ur3e", "ur5e", "ur10e", "ur16e", "ur3", "ur5", "ur10"])
 def test_ur_reach_is_near_the_stretched_arm(name):
     """UR's datasheet reach is within 7 % of the shoulder-to-flange distance of the stretched arm."""
     r = load_robot(name)
