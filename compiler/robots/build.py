@@ -54,7 +54,11 @@ def _add_dynamics(model: pin.Model, fid: int, spec: RobotSpec, coupling: np.ndar
     q = np.array(spec.solid_pose, dtype=float)
     pin.forwardKinematics(model, data, q if coupling is None else coupling @ q)
     frames = [data.oMi[j].homogeneous for j in range(1, model.njoints)]
-    for j, inertia in enumerate(dynamics.link_inertias(spec.segments, spec.link_mass_kg, frames), start=1):
+    if spec.link_inertia:
+        inertias = dynamics.given_inertias(spec.link_inertia, spec.link_mass_kg, frames)
+    else:
+        inertias = dynamics.link_inertias(spec.segments, spec.link_mass_kg, frames)
+    for j, inertia in enumerate(inertias, start=1):
         model.inertias[j] = inertia
     if spec.effort_nm:
         effort = np.array(spec.effort_nm, dtype=float)

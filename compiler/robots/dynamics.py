@@ -22,7 +22,8 @@ import pinocchio as pin
 
 from rmot.compiler.robots.spec import Segment
 
-__all__ = ["EFFORT_METHOD", "INERTIA_METHOD", "SPREAD_METHOD", "estimate_effort", "link_inertias", "spread_mass"]
+__all__ = ["EFFORT_METHOD", "INERTIA_METHOD", "SPREAD_METHOD", "estimate_effort", "given_inertias", "link_inertias",
+           "spread_mass"]
 
 SPREAD_METHOD = "estimate: the data sheet's arm mass spread over the link capsules by volume (uniform density)"
 INERTIA_METHOD = "estimate: uniform solid over each link's capsules (centre of mass and inertia tensor)"
@@ -78,6 +79,18 @@ def link_inertias(segments: tuple[Segment, ...], masses: tuple[float, ...],
             inertia += i + m * (float(d @ d) * np.eye(3) - np.outer(d, d))
         rot, pos = frame[:3, :3], frame[:3, 3]
         out.append(pin.Inertia(mass, rot.T @ (com - pos), rot.T @ inertia @ rot))
+    return out
+
+
+def given_inertias(values: tuple[tuple[float, ...], ...], masses: tuple[float, ...],
+                   joint_frames: list[np.ndarray]) -> list[pin.Inertia]:
+    """Inertias given in the base frame (centre of mass, tensor Ixx Ixy Ixz Iyy Iyz Izz about it,
+    at the pose `joint_frames` were taken in) moved into each joint's frame."""
+    out = []
+    for (x, y, z, ixx, ixy, ixz, iyy, iyz, izz), mass, frame in zip(values, masses, joint_frames):
+        rot, pos = frame[:3, :3], frame[:3, 3]
+        tensor = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
+        out.append(pin.Inertia(mass, rot.T @ (np.array([x, y, z]) - pos), rot.T @ tensor @ rot))
     return out
 
 

@@ -123,6 +123,7 @@ STAUBLI = OpwJointMap()  # zero = arm stretched vertically (the "candle")
 
 
 def _abb_kuka() -> list[RobotSpec]:
+    from rmot.compiler.robots.kuka_inertia import KUKA_INERTIA
     from rmot.compiler.robots.dynamics import INERTIA_METHOD as INERTIA
     from rmot.compiler.robots.dynamics import SPREAD_METHOD as SPREAD
     from rmot.compiler.robots.dynamics import EFFORT_METHOD as EFFORT
@@ -218,12 +219,14 @@ def _abb_kuka() -> list[RobotSpec]:
             reach=2.700, radii=(0.35, 0.3, 0.2, 0.22, 0.17, 0.13, 0.09),
             rated_payload_kg=210.0, link_mass_kg=(363.07, 232.06, 190.33, 42.411794929, 16.991732133, 6.6),
             effort_nm=(7290.0, 8910.0, 6988.84717, 2274.29199, 1398.30298, 781.554626), conventions=KUKA_CONV,
+            link_inertia=KUKA_INERTIA["kuka_kr210"],
             sources=_sources(
                 geometry=f"{KROSHU} kuka_quantec_support/urdf/kr210_r2700_2_macro.xacro (330/645/1150/115/1220/215 mm)",
                 limits=f"{KROSHU} kr210_r2700_2_macro.xacro", speed=f"{KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml",
                 accel=f"KUKA: {KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml (rad/s^2 -> deg/s^2)",
                 reach="the product name KR 210 R2700-2: 2700 mm (wrist centre 2705 mm)",
-                mass=f"{KROSHU} kr210_r2700_2_macro.xacro link_1..link_6 <mass>", inertia=INERTIA,
+                mass=f"{KROSHU} kr210_r2700_2_macro.xacro link_1..link_6 <mass>",
+                inertia=f"{KROSHU} kr210_r2700_2_macro.xacro link_1..link_6 <inertial> (rmot.compiler.robots.kuka_inertia)",
                 effort=f"{KROSHU} kr210_r2700_2_macro.xacro joint <limit effort>",
                 payload="the product name KR 210 R2700-2: 210 kg (kroshu README: kr{payload}_r{reach})"),
         ),
@@ -412,21 +415,23 @@ def _kroshu(name: str, model: str, pkg: str, stem: str, params: OpwParams, *, li
     geometry, limits, speeds and torques from `<pkg>/urdf/<stem>_macro.xacro`, accelerations
     from `<pkg>/config/<stem>_joint_limits.yaml`, link masses from the URDF's <inertial>; the
     rated payload and the nominal reach are the product name's (kroshu README: kr{payload}_r{reach})."""
-    from rmot.compiler.robots.dynamics import INERTIA_METHOD
-
     found = re.match(r"KR (\d+) R(\d+)", model)
     assert found, model
     payload, reach_mm = float(found.group(1)), float(found.group(2))
+    from rmot.compiler.robots.kuka_inertia import KUKA_INERTIA
+
     urdf, limits = f"{KROSHU} {pkg}/urdf/{stem}_macro.xacro", f"{KROSHU} {pkg}/config/{stem}_joint_limits.yaml"
     return opw_spec(
         name=name, vendor="KUKA", model=model, source=f"{KROSHU} {stem}", params=params, jmap=KUKA,
         limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=accel_deg_s2, reach=reach_mm / 1000, radii=radii,
         rated_payload_kg=payload, link_mass_kg=link_mass_kg, effort_nm=effort_nm, conventions=KUKA_CONV,
+        link_inertia=KUKA_INERTIA[name],
         sources=_sources(
             geometry=f"{urdf} joint origins", limits=f"{urdf} joint <limit lower/upper>", speed=f"{urdf} joint <limit velocity>",
             accel=f"KUKA: {limits} max_acceleration (rad/s^2 -> deg/s^2)",
             reach=f"the product name {model}: nominal {reach_mm:g} mm", mass=f"{urdf} link_1..link_6 <mass>",
-            inertia=INERTIA_METHOD, effort=f"{urdf} joint <limit effort>", payload=f"the product name {model}: {payload:g} kg"),
+            inertia=f"{urdf} link_1..link_6 <inertial> (centre of mass, tensor; rmot.compiler.robots.kuka_inertia)",
+            effort=f"{urdf} joint <limit effort>", payload=f"the product name {model}: {payload:g} kg"),
     )
 
 

@@ -51,6 +51,9 @@ class RobotSpec:
     rated_payload_kg: float | None = None  # the data sheet's rated payload
     link_mass_kg: tuple[float, ...] = ()  # per moving link 1..n; () = no inertias
     effort_nm: tuple[float, ...] = ()  # per joint torque limit; () = estimated by `dynamics`
+    # per moving link: centre of mass (3) and inertia tensor about it (Ixx Ixy Ixz Iyy Iyz Izz),
+    # base frame at `solid_pose`; () = estimated from the capsules (`dynamics.link_inertias`)
+    link_inertia: tuple[tuple[float, ...], ...] = ()
     sources: tuple[tuple[str, str], ...] = ()  # (quantity, where its numbers come from)
     conventions: tuple[tuple[str, str], ...] = ()  # (base / flange / zero / signs / coupling, text)
 

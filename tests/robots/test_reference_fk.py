@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from rmot.compiler.robots import list_robots, load_robot
-from reference_arms import ARMS, BY_NAME, RefArm
+from reference_arms import ARMS, BY_NAME, KUKA_INERTIALS, RefArm
 
 
 def _rpy(r: float, p: float, y: float) -> np.ndarray:
@@ -69,7 +69,8 @@ def _errors(arm: RefArm, n: int, seed: int) -> tuple[float, float]:
         a, b = r.fk(q), reference_fk(arm, q)
         pos = max(pos, float(np.linalg.norm(a[:3, 3] - b[:3, 3])) * 1000)
         rel = a[:3, :3].T @ b[:3, :3]
-        ang = max(ang, math.acos(max(-1.0, min(1.0, (np.trace(rel) - 1) / 2))))
+        skew = np.array([rel[2, 1] - rel[1, 2], rel[0, 2] - rel[2, 0], rel[1, 0] - rel[0, 1]]) / 2
+        ang = max(ang, math.atan2(float(np.linalg.norm(skew)), (np.trace(rel) - 1) / 2))  # rotation angle
     return pos, ang
 
 
@@ -85,3 +86,40 @@ def test_library_fk_equals_the_reference_chain(arm):
     pos, ang = _errors(arm, 60, seed=12)
     assert pos < 0.01, f"{arm.name}: {pos:.4f} mm off {arm.source}"
     assert ang < 1e-6, f"{arm.name}: {ang:.2e} rad off {arm.source}"
+
+
+def _link_frames(arm: RefArm, q_pendant: np.ndarray) -> list[np.ndarray]:
+    """Each moving link's URDF frame in the controller frame."""
+    m = arm.mapping
+    q = np.asarray(m.sign) * q_pendant + np.radians(m.offset_deg)
+    q[2] += m.j23 * q_pendant[1]
+    t = np.eye(4)
+    for xyz, rpy in arm.pre:
+        t = t @ _origin(xyz, rpy)
+    c = np.eye(4) if arm.controller is None else np.linalg.inv(_origin(*arm.controller))
+    out = []
+    for (xyz, rpy, axis), qi in zip(arm.joints, q):
+        t = t @ _origin(xyz, rpy) @ _about(axis, qi)
+        out.append(c @ t)
+    return out
+
+
+@pytest.mark.parametrize("name", sorted(KUKA_INERTIALS))
+def test_kuka_link_inertias_equal_kukas_urdf_inertials(name):
+    """Each link's mass, centre of mass and inertia tensor in the base frame (library model at
+    random joint values) equal the kroshu URDF's <inertial> carried through its chain."""
+    import pinocchio as pin
+
+    arm, r = BY_NAME[name], load_robot(name)
+    data = r.model.createData()
+    for q in np.random.default_rng(5).uniform(r.joint_limits[:, 0], r.joint_limits[:, 1], (8, r.dof)):
+        pin.forwardKinematics(r.model, data, r.to_model(q))
+        for j, (frame, (mass, xyz, rpy, i6)) in enumerate(zip(_link_frames(arm, q), KUKA_INERTIALS[name]), start=1):
+            ref = frame @ _origin(xyz, rpy)
+            xx, xy, xz, yy, yz, zz = i6
+            tensor = ref[:3, :3] @ np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]) @ ref[:3, :3].T
+            lib = r.model.inertias[j]
+            place = data.oMi[j]
+            assert lib.mass == pytest.approx(mass, rel=1e-6)  # the library keeps 6 decimals of kg
+            np.testing.assert_allclose(place.act(lib.lever), ref[:3, 3], atol=1e-6)
+            np.testing.assert_allclose(place.rotation @ lib.inertia @ place.rotation.T, tensor, atol=1e-6 * max(1.0, mass))
