@@ -15,9 +15,11 @@ Fanuc    J1..J6 as the teach pendant's joint display: J3 is the forearm's angle 
          attitude; J3 > 0 raises the forearm. Base = Fanuc world frame, origin on the J1 axis
          at the J2 height (the mounting face is below it). Flange = faceplate (at zero z
          forward, x up: W P R = 180 -90 0).
-Yaskawa  S L U R B T in degrees (pulses / pulse-per-degree); U is relative to L; base on the
-         mounting face; flange = tool0 (at zero z forward, x up).
-Staubli  J1..J6; zero = arm stretched vertically ("candle"); flange z along J6.
+Yaskawa  S L U R B T in degrees (pulses / pulse-per-degree); U is relative to L; base = the
+         robot frame on the S axis at the L-axis height (330 mm above the mounting face for
+         the GP8: ROS-I motoman `base`); flange = tool0 (at zero z forward, x up).
+Staubli  J1..J6; zero = arm stretched vertically ("candle"); base = world frame at the J1/J2
+         intersection (375 mm above the mounting face for the TX2-60); flange z along J6.
 UR       the DH θ of UR's table (what PolyScope shows); base = UR Base frame (DH frame 0);
          flange = the tool flange (DH frame 6).
 Puma     Corke's joint values (base frame at the shoulder, as the Robotics Toolbox).
