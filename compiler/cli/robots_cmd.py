@@ -104,7 +104,8 @@ def _coupled_terms(robot) -> list[str]:  # type: ignore[no-untyped-def]
 @click.argument("name")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 def show_cmd(name: str, as_json: bool) -> None:
-    """Show a robot's DH table, joint limits and reach."""
+    """Show a robot's DH table, limits, speeds, accelerations, masses, torque limits, rated
+    payload, conventions, and the source of every number."""
     r = _load(name)
     limits = [[round(v, 3) for v in _display(r, row)] for row in r.joint_limits]
     speeds = [round(v, 3) for v in _display(r, r.velocity_limits)]
@@ -114,10 +115,14 @@ def show_cmd(name: str, as_json: bool) -> None:
         for i, row in enumerate(r.dh_rows)
     ]
     coupled = _coupled_terms(r)
+    accels = [round(v, 3) for v in _display(r, r.accel_limits)]
+    dyn = _dynamics(r)
     if as_json:
         _emit({"name": r.name, "vendor": r.vendor, "model": r.model_name, "dof": r.dof, "reach_mm": round(r.reach * 1000, 1),
                "closed_form": r.has_closed_form, "dh_convention": "modified" if r.dh_modified else "standard",
-               "dh": dh, "coupling": coupled, "limits_deg": limits, "speed_deg_s": speeds, "source": r.source})
+               "dh": dh, "coupling": coupled, "limits_deg": limits, "speed_deg_s": speeds, "accel_deg_s2": accels,
+               "source": r.source, "rated_payload_kg": getattr(r, "rated_payload_kg", None), **dyn,
+               "sources": dict(getattr(r, "sources", ())), "conventions": dict(getattr(r, "conventions", ()))})
         return
     click.echo(f"{r.name}: {r.vendor} {r.model_name}, {r.dof} axes, reach {r.reach * 1000:.1f} mm")
     click.echo(f"source: {r.source}")
@@ -130,9 +135,33 @@ def show_cmd(name: str, as_json: bool) -> None:
         for row in dh:
             click.echo(f" {row['joint']:>5}  {row['type']:>4}  {row['sign']:>4}  {row['theta_offset_deg']:>11.3f}  "
                        f"{row['d_mm']:>9.3f}  {row['a_mm']:>9.3f}  {row['alpha_deg']:>10.3f}")
-    click.echo(" joint        min        max   speed(/s)")
-    for i, ((lo, hi), sp) in enumerate(zip(limits, speeds), 1):
-        click.echo(f" {i:>5}  {lo:>9.2f}  {hi:>9.2f}  {sp:>10.1f}")
+    click.echo(" joint        min        max   speed(/s)   accel(/s²)   mass(kg)  torque(N·m)")
+    masses, torques = dyn.get("link_mass_kg") or [None] * r.dof, dyn.get("torque_limit_nm") or [None] * r.dof
+    for i, ((lo, hi), sp, ac, m, t) in enumerate(zip(limits, speeds, accels, masses, torques), 1):
+        extra = f"  {m:>9.2f}  {t:>11.1f}" if m is not None and t is not None else ""
+        click.echo(f" {i:>5}  {lo:>9.2f}  {hi:>9.2f}  {sp:>10.1f}  {ac:>11.1f}{extra}")
+    payload = getattr(r, "rated_payload_kg", None)
+    if payload is not None:
+        click.echo(f"rated payload: {payload:g} kg")
+    conventions = getattr(r, "conventions", ())
+    if conventions:
+        click.echo("conventions:")
+        for topic, text in conventions:
+            click.echo(f"  {topic}: {text}")
+    sources = getattr(r, "sources", ())
+    if sources:
+        click.echo("sources:")
+        for quantity, text in sources:
+            click.echo(f"  {quantity}: {text}")
+
+
+def _dynamics(robot) -> dict[str, list[float] | None]:  # type: ignore[no-untyped-def]
+    """Link masses and torque limits of a robot with inertias (None without)."""
+    if not getattr(robot, "has_inertia", False):
+        return {"link_mass_kg": None, "torque_limit_nm": None}
+    model = robot.model
+    return {"link_mass_kg": [round(float(model.inertias[j].mass), 4) for j in range(1, robot.dof + 1)],
+            "torque_limit_nm": [round(float(v), 2) for v in model.effortLimit[: robot.dof]]}
 
 
 @robots.command(name="fk", context_settings=_ARGS)

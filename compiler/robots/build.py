@@ -22,6 +22,8 @@ def build_robot(spec: RobotSpec) -> Robot:
     model, fid, _ = build_model(spec.dh, np.array(spec.flange), spec.name)
     coupling = None if spec.coupling is None else np.array(spec.coupling, dtype=float)
     solids = _solids(model, spec, coupling)
+    if spec.link_mass_kg:
+        _add_dynamics(model, fid, spec, coupling)
     closed_form = branch_fn = distance = rows = None
     if spec.opw is not None:
         closed_form, distance = _opw_solver(*spec.opw, np.linalg.inv(np.array(spec.flange)))
@@ -38,7 +40,33 @@ def build_robot(spec: RobotSpec) -> Robot:
         adjacent_pairs=_adjacent(solids, spec.extra_adjacent), coupling=coupling,
         closed_form=closed_form, branch_fn=branch_fn, workspace_distance=distance,
         source=spec.source, dh_rows=spec.dh.rows, dh_modified=spec.dh.modified, batch_branches=rows,
+        has_inertia=bool(spec.link_mass_kg), rated_payload_kg=spec.rated_payload_kg,
+        sources=spec.sources, conventions=spec.conventions,
     )
+
+
+def _add_dynamics(model: pin.Model, fid: int, spec: RobotSpec, coupling: np.ndarray | None) -> None:
+    """Link inertias (dynamics.link_inertias) and joint torque limits (the spec's, else
+    dynamics.estimate_effort) written into the model."""
+    from rmot.compiler.robots import dynamics
+
+    data = model.createData()
+    q = np.array(spec.solid_pose, dtype=float)
+    pin.forwardKinematics(model, data, q if coupling is None else coupling @ q)
+    frames = [data.oMi[j].homogeneous for j in range(1, model.njoints)]
+    if spec.link_inertia:
+        inertias = dynamics.given_inertias(spec.link_inertia, spec.link_mass_kg, frames)
+    else:
+        inertias = dynamics.link_inertias(spec.segments, spec.link_mass_kg, frames)
+    for j, inertia in enumerate(inertias, start=1):
+        model.inertias[j] = inertia
+    if spec.effort_nm:
+        effort = np.array(spec.effort_nm, dtype=float)
+    else:
+        effort = dynamics.estimate_effort(model, coupling, np.radians(spec.limits_deg), np.radians(spec.accel_deg_s2),
+                                          spec.rated_payload_kg or 0.0,
+                                          model.frames[fid].placement.homogeneous)
+    model.effortLimit = effort
 
 
 def _row_branches(opw_rows: bool, j5_sign: float) -> tuple[ir.Config, ...]:

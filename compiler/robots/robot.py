@@ -54,7 +54,10 @@ class Robot:
     dof, joint_types, joint_limits (dof,2),
     velocity_limits (dof,), accel_limits (dof,), reach (m), has_closed_form, has_inertia,
     solids, adjacent_pairs, source (where the numbers come from), batch_branches (the
-    ir.Config of each of the 8 ik_batch rows, fixed per robot; None without a closed form).
+    ir.Config of each of the 8 ik_batch rows, fixed per robot; None without a closed form),
+    rated_payload_kg (the data sheet's rated payload, kg; None when unknown), sources
+    ((quantity, source) pairs: where each number comes from), conventions ((topic, text)
+    pairs: base frame, flange frame, joint zero, signs, couplings).
     """
 
     rated_payload_kg: float | None = None  # the rated payload (kg), where known
@@ -67,7 +70,8 @@ class Robot:
         branch_fn: Callable[[np.ndarray], ir.Config] | None = None,
         workspace_distance: Callable[[np.ndarray], float] | None = None,
         has_inertia: bool = False, source: str = "", dh_rows: tuple = (), dh_modified: bool = False,
-        batch_branches: tuple[ir.Config, ...] | None = None,
+        batch_branches: tuple[ir.Config, ...] | None = None, rated_payload_kg: float | None = None,
+        sources: tuple[tuple[str, str], ...] = (), conventions: tuple[tuple[str, str], ...] = (),
     ) -> None:
         self.name, self.vendor, self.model_name, self.source = name, vendor, model_name, source
         self.model = model = NamedModel(model, model_name)
@@ -100,6 +104,8 @@ class Robot:
         self._solid_place = np.array([s.placement.matrix() for s in solids]).reshape(-1, 4, 4)
         self._solid_se3 = [pin.SE3(m) for m in self._solid_place]
         self.batch_branches = batch_branches
+        self.rated_payload_kg = None if rated_payload_kg is None else float(rated_payload_kg)
+        self.sources, self.conventions = sources, conventions
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, dof={self.dof})"

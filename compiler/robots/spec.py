@@ -47,6 +47,15 @@ class RobotSpec:
     solid_pose: tuple[float, ...] = ()  # controller q (rad) at which `segments` are given
     extra_adjacent: tuple[tuple[str, str], ...] = ()  # solid-name pairs that touch by design
     notes: str = ""
+    # --- provenance and dynamics (issue 12) ---
+    rated_payload_kg: float | None = None  # the data sheet's rated payload
+    link_mass_kg: tuple[float, ...] = ()  # per moving link 1..n; () = no inertias
+    effort_nm: tuple[float, ...] = ()  # per joint torque limit; () = estimated by `dynamics`
+    # per moving link: centre of mass (3) and inertia tensor about it (Ixx Ixy Ixz Iyy Iyz Izz),
+    # base frame at `solid_pose`; () = estimated from the capsules (`dynamics.link_inertias`)
+    link_inertia: tuple[tuple[float, ...], ...] = ()
+    sources: tuple[tuple[str, str], ...] = ()  # (quantity, where its numbers come from)
+    conventions: tuple[tuple[str, str], ...] = ()  # (base / flange / zero / signs / coupling, text)
 
 
 def _deg(values: tuple[float, ...]) -> tuple[float, ...]:
@@ -57,7 +66,8 @@ def opw_spec(
     *, name: str, vendor: str, model: str, source: str, params: OpwParams, jmap: OpwJointMap,
     limits_deg: tuple[tuple[float, float], ...], speed_deg_s: tuple[float, ...],
     accel_deg_s2: tuple[float, ...], reach: float, radii: tuple[float, ...],
-    flange_rz: float = 0.0, floor: float = 0.0, notes: str = "",
+    flange_rz: float = 0.0, floor: float = 0.0, notes: str = "", arm_mass_kg: float | None = None,
+    **extra: object,
 ) -> RobotSpec:
     """A spherical-wrist arm from its OPW lengths and the vendor's joint map.
 
@@ -65,14 +75,21 @@ def opw_spec(
     flange_rz: the vendor flange frame turned about the flange axis from the OPW one (rad).
     floor: z of the mounting face in the base frame (m; below 0 when the vendor's base frame
     sits at the J2 height, as Fanuc's does).
+    arm_mass_kg: the data sheet's arm mass, spread over the capsules (`dynamics.spread_mass`)
+    unless `link_mass_kg` is given in `extra`.
     """
     solid_q = tuple(jmap.from_theta(np.zeros(6)).tolist())
+    segments = opw_segments(params, radii, floor)
+    if arm_mass_kg is not None and "link_mass_kg" not in extra:
+        from rmot.compiler.robots.dynamics import spread_mass
+
+        extra["link_mass_kg"] = spread_mass(segments, arm_mass_kg, 6)
     return RobotSpec(
         name=name, vendor=vendor, model=model, source=source, dh=opw_dh_table(params, jmap),
         limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=accel_deg_s2, reach=reach,
         flange=tuple(map(tuple, rot_z(flange_rz))), coupling=jmap.coupling, opw=(params, jmap),
-        segments=opw_segments(params, radii, floor), solid_pose=solid_q,
-        extra_adjacent=OPW_TOUCHING, notes=notes,
+        segments=segments, solid_pose=solid_q,
+        extra_adjacent=OPW_TOUCHING, notes=notes, **extra,  # type: ignore[arg-type]
     )
 
 
@@ -127,6 +144,7 @@ def ur_spec(
     *, name: str, model: str, source: str, params: UrParams, speed_deg_s: tuple[float, ...],
     accel_deg_s2: tuple[float, ...], reach: float, shoulder_off: float, elbow_off: float,
     radii: tuple[float, ...], limits_deg: tuple[tuple[float, float], ...] | None = None,
+    **extra: object,
 ) -> RobotSpec:
     """A Universal Robots arm: joint values are UR's DH θ (no offsets, no sign changes)."""
     from rmot.compiler.robots.dh import DHRow
@@ -137,6 +155,6 @@ def ur_spec(
         name=name, vendor="Universal Robots", model=model, source=source, dh=DHTable(rows),
         limits_deg=limits, speed_deg_s=speed_deg_s, accel_deg_s2=accel_deg_s2, reach=reach,
         ur=params, segments=ur_segments(params, shoulder_off, elbow_off, radii),
-        solid_pose=(0.0,) * 6,
+        solid_pose=(0.0,) * 6, **extra,  # type: ignore[arg-type]
     )
 

@@ -16,7 +16,9 @@ HOME_DEG = {"kuka_kr6_r900": (0, -90, 90, 0, 45, 0), "kuka_kr16": (0, -90, 90, 0
 
 
 def home(name: str) -> np.ndarray:
-    return np.radians(HOME_DEG.get(name, (0, 0, 0, 0, 45, 0)))
+    """The vendor's home: KUKA (0, -90, 90, 0, 45, 0), UR (0, -90, 90, -90, -90, 0), else 45° on J5."""
+    family = HOME_DEG["kuka_kr16"] if name.startswith("kuka_") else HOME_DEG["ur5e"] if name.startswith("ur") else None
+    return np.radians(HOME_DEG.get(name, family or (0, 0, 0, 0, 45, 0)))
 
 
 def segment(pose: np.ndarray, geometry: ir.Geometry) -> tuple[np.ndarray, np.ndarray, float]:
