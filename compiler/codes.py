@@ -41,3 +41,11 @@ NOT_UTF8 = Code("E502", "not-utf8", "a source file is not UTF-8 text")
 FILE_TOO_LARGE = Code("E503", "file-too-large", "a source file is larger than the limit")
 PATH_ESCAPES = Code("E504", "path-escapes-project", "a path leads outside the project directory")
 ROBOT_LOAD = Code("E505", "robot-load-failed", "a URDF robot could not be loaded")
+
+# parts that tools pick up and put down (issue #14)
+UNKNOWN_PART = Code("E140", "unknown-part", "attach or detach names no part of the cell")
+PART_ALREADY_HELD = Code("E141", "part-already-held", "attach of a part the task already holds")
+PART_NOT_HELD = Code("E142", "part-not-held", "detach of a part the task does not hold")
+PART_ARMS_DIFFER = Code("E143", "part-arms-differ", "the arms of a runtime if leave different parts held")
+PART_HELD_AT_END = Code("W140", "part-held-at-end", "a task ends still holding a part")
+__all__ += ["UNKNOWN_PART", "PART_ALREADY_HELD", "PART_NOT_HELD", "PART_ARMS_DIFFER", "PART_HELD_AT_END"]

@@ -14,6 +14,7 @@ import pinocchio as pin
 
 from rmot.compiler import ir
 from rmot.compiler.robots.chain import Chain, chain_of
+from rmot.compiler.robots.payloads import RATED_PAYLOAD_KG
 
 __all__ = ["LinkSolid", "Robot"]
 
@@ -98,6 +99,7 @@ class Robot:
         self._solid_place = np.array([s.placement.matrix() for s in solids]).reshape(-1, 4, 4)
         self._solid_se3 = [pin.SE3(m) for m in self._solid_place]
         self.batch_branches = batch_branches
+        self.rated_payload_kg: float | None = RATED_PAYLOAD_KG.get(name)
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, dof={self.dof})"
