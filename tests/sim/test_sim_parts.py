@@ -1,0 +1,146 @@
+"""Parts in the verification (issue #14): held parts are bodies of their robot, placed parts
+are fixtures, two parts must keep a gap, the payload is checked.
+
+Every program runs in tests/data/parts/cell.rmot: a UR10e (rated payload 12.5 kg) on a 400 mm
+pedestal, 100 mm cubes on an infeed table, a 1 kg gripper whose end face is the TCP. The
+expected numbers come from the cell's geometry, worked out by hand in each test.
+"""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rmot.compiler.frontend import load_program
+from rmot.compiler.plan import plan_program
+from rmot.compiler.robots import load_robot
+from rmot.sim.verification import verify
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "parts"
+
+
+def _check(tmp_path: Path, program: str, cell_extra: str = "", name: str = "prog.rmot"):  # type: ignore[no-untyped-def]
+    cell = (DATA / "cell.rmot").read_text(encoding="utf-8")
+    if cell_extra:
+        cell = cell.rstrip().rstrip("}") + cell_extra + "\n}\n"
+    (tmp_path / "cell.rmot").write_text(cell, encoding="utf-8")
+    (tmp_path / name).write_text(program, encoding="utf-8")
+    result = load_program(str(tmp_path / name), require_program=True)
+    assert not result.has_errors, [str(d) for d in result.diagnostics]
+    plan = plan_program(result.program)
+    return plan, verify(plan)
+
+
+def _errors(report):  # type: ignore[no-untyped-def]
+    return [d for d in report.diagnostics if d.is_error]
+
+
+def _stack(gap_mm: float) -> str:
+    return (DATA / "stack.rmot").read_text(encoding="utf-8").replace("const gap = 10 mm", f"const gap = {gap_mm} mm")
+
+
+class TestStacking:
+    def test_ten_millimetre_gap_is_clean(self, tmp_path: Path) -> None:
+        _, report = _check(tmp_path, _stack(10))
+        assert _errors(report) == []
+
+    def test_zero_gap_is_a_collision_between_the_two_parts(self, tmp_path: Path) -> None:
+        """Centres 100 mm apart, cubes 100 mm: the faces touch while b2 goes down beside b1."""
+        _, report = _check(tmp_path, _stack(0))
+        (d,) = _errors(report)
+        assert d.code.id == "E300" and set(d.bodies) == {"b1", "b2"}
+        assert "'b2'" in d.message and "'b1'" in d.message
+        assert d.span.start.line == 26  # `move linear shift(place, y=100mm + gap)`: b2 goes down beside b1
+
+    def test_overlap_is_a_collision_as_deep_as_the_overlap(self, tmp_path: Path) -> None:
+        """Centres 90 mm apart: b2 enters b1 by 10 mm."""
+        _, report = _check(tmp_path, _stack(-10))
+        (d,) = _errors(report)
+        assert set(d.bodies) == {"b1", "b2"}
+        assert d.amount is not None and d.amount.value == pytest.approx(10.0, abs=0.05)
+
+
+CARRY = """use cell "cell.rmot"
+program carry on r1 {
+  tool gripper
+  frame world
+  speed 250 mm/s
+  target down = pose(rx=180deg)
+  move joint joints(0, -90, 90, -90, -90, 0) deg
+  move joint b1 * pose(z=150mm) * down
+  move linear b1 * pose(z=50mm) * down zone fine
+  attach b1
+  move linear b1 * pose(z=150mm) * down zone fine
+  move linear b1 * pose(y=-300mm, z=150mm) * down zone fine
+  detach b1
+}
+"""
+
+
+def test_part_carried_through_a_fixture_is_found_at_the_move_and_time(tmp_path: Path) -> None:
+    """A 20 mm wall across the path (y -310..-290 mm, top at z = 330 mm): the carried cube
+    (centre z = 350 mm, bottom 300 mm) hits it, the gripper (from z = 400 mm up) passes over.
+    The cube's leading face (centre - 50 mm) reaches the wall at y = -290 mm, so contact
+    starts with the TCP (over the cube's centre) at y = -240 mm."""
+    wall = "\n  fixture wall = box(300mm, 20mm, 130mm) at pose(x=650mm, y=-300mm, z=265mm)"
+    plan, report = _check(tmp_path, CARRY, wall)
+    (d,) = _errors(report)
+    assert d.code.id == "E300" and set(d.bodies) == {"b1", "wall"}
+    assert d.span.start.line == 12
+    tp = plan.tasks[0]
+    rec = next(r for r in tp.records if r.span is not None and r.span.start.line == 12)
+    assert rec.t_start <= d.time_s <= rec.t_end
+    # where the TCP is at the reported start, by forward kinematics (not the collision code)
+    robot = load_robot("ur10e")
+    base = np.eye(4)
+    base[:3, :3] = [[-1, 0, 0], [0, -1, 0], [0, 0, 1]]  # rz = 180 deg
+    base[2, 3] = 0.4
+    tcp = base @ np.asarray(robot.fk(tp.trajectory.at(d.time_s)))
+    tcp = tcp @ np.array([0, 0, 0.1, 1.0])
+    assert tcp[1] == pytest.approx(-0.240, abs=0.002)
+    assert d.amount is not None and d.amount.value > 0
+
+
+def test_attach_far_from_the_tool_is_an_error_with_the_distance(tmp_path: Path) -> None:
+    """At home the TCP is far from b1: E330 at the attach, and the distance is the TCP's."""
+    program = CARRY.replace("  move joint b1 * pose(z=150mm) * down\n  move linear b1 * pose(z=50mm) * down zone fine\n", "")
+    plan, report = _check(tmp_path, program)
+    e330 = [d for d in _errors(report) if d.code.id == "E330"]
+    assert len(e330) == 1 and e330[0].span.start.line == 8
+    # independent: distance from the TCP at home to the cube (axis-aligned box, 100 mm)
+    robot = load_robot("ur10e")
+    base = np.eye(4)
+    base[:3, :3] = [[-1, 0, 0], [0, -1, 0], [0, 0, 1]]
+    base[2, 3] = 0.4
+    q = np.radians([0, -90, 90, -90, -90, 0])
+    flange = base @ np.asarray(robot.fk(q))
+    # points of the gripper's solid (60 x 60 x 100 mm from the flange to the TCP) every 5 mm, and the TCP
+    g = np.stack(np.meshgrid(np.linspace(-0.03, 0.03, 13), np.linspace(-0.03, 0.03, 13), np.linspace(0, 0.1, 21)), -1).reshape(-1, 3)
+    points = (flange @ np.c_[g, np.ones(len(g))].T).T[:, :3]
+    centre = np.array([0.65, -0.15, 0.25])
+    outside = np.maximum(np.abs(points - centre) - 0.05, 0.0)  # to the axis-aligned 100 mm cube
+    nearest = float(np.min(np.linalg.norm(outside, axis=1))) * 1000
+    assert e330[0].amount.value == pytest.approx(nearest, abs=4.0)
+
+
+def test_overweight_tool_is_an_error_with_both_masses(tmp_path: Path) -> None:
+    """An 80 kg tool on a UR10e (rated 12.5 kg, UR10e datasheet): E332 at the first move."""
+    program = "use cell \"cell.rmot\"\nprogram heavy on r1 {\n  tool big\n  move joint joints(0, -90, 90, -90, -90, 0) deg\n}\n"
+    _, report = _check(tmp_path, program, "\n  tool big = none tcp pose(z=100mm) mass 80 kg on r1")
+    (d,) = [d for d in _errors(report) if d.code.id == "E332"]
+    assert "80 kg" in d.message and "12.5 kg" in d.message and d.span.start.line == 4
+
+
+def test_part_making_the_load_too_heavy_is_found_at_the_first_move_carrying_it(tmp_path: Path) -> None:
+    """1 kg tool + a 12 kg part = 13 kg > 12.5 kg: E332 at the first move after the attach,
+    not before it."""
+    program = CARRY.replace("part", "part")
+    extra = "\n  part heavy = box(100mm, 100mm, 100mm) at pose(x=650mm, y=150mm, z=250mm) mass 12 kg"
+    program = program.replace("b1", "heavy")
+    plan, report = _check(tmp_path, program, extra)
+    (d,) = [d for d in _errors(report) if d.code.id == "E332"]
+    assert d.span.start.line == 11
+    assert "13 kg" in d.message and "12.5 kg" in d.message and "'heavy' 12 kg" in d.message
