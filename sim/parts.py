@@ -52,6 +52,7 @@ class PartEvent:
     robot: str
     instr: ir.Attach | ir.Detach
     variant: int = 0
+    barriers: int = 0  # `sync`s its task passed before it: orders events of one instant
 
     @property
     def attach(self) -> bool:
@@ -79,11 +80,20 @@ class _Replay:
 
 
 def part_events(plan: planned.Plan, variant: tuple[str, planned.Variant] | None = None) -> list[PartEvent]:
-    """Attach/detach events in time order (detach before attach at one instant: a hand-over).
+    """Attach/detach events in time order. At one instant (the simulation takes no time for
+    `wait until`, `set` or a sync both tasks reach together) the `sync` barriers decide: an
+    event after more barriers of its task comes later; then detach before attach.
     `variant` (robot, Variant): that robot's events follow the variant's path."""
     out: list[PartEvent] = []
     for tp in plan.tasks:
-        instrs = {i.uid: i for i in ir.walk(tp.task.body) if isinstance(i, (ir.Attach, ir.Detach))}
+        instrs: dict[int, ir.Instr] = {}
+        barriers: dict[int, int] = {}
+        passed = 0
+        for i in ir.walk(tp.task.body):
+            if isinstance(i, ir.Sync):
+                passed += 1
+            elif isinstance(i, (ir.Attach, ir.Detach)):
+                instrs[i.uid], barriers[i.uid] = i, passed
         if not instrs:
             continue
         if variant is not None and variant[0] == tp.robot:
@@ -95,8 +105,8 @@ def part_events(plan: planned.Plan, variant: tuple[str, planned.Variant] | None 
             recs = [r for r in tp.records if r.variant == 0]
         for r in recs:
             if r.uid in instrs:
-                out.append(PartEvent(float(r.t_start), tp.robot, instrs[r.uid], r.variant))  # type: ignore[arg-type]
-    out.sort(key=lambda e: (e.t, e.attach, e.instr.uid))
+                out.append(PartEvent(float(r.t_start), tp.robot, instrs[r.uid], r.variant, barriers[r.uid]))  # type: ignore[arg-type]
+    out.sort(key=lambda e: (round(e.t, 9), e.barriers, e.attach, e.instr.uid))
     return out
 
 
@@ -122,6 +132,7 @@ def phases(scene: Scene, plan: planned.Plan, variant: tuple[str, planned.Variant
     events. Attach/detach problems only the plan can show go to `diagnostics` (E330, E331)."""
     parts = {p.name: p for p in scene.cell.parts}
     trajs = _trajectories(plan, variant)
+    main = _trajectories(plan, None)
     end = max([float(tr.t[-1]) for tr in trajs.values() if tr.t.size] or [0.0])
     start = float(variant[1].trajectory.t[0]) if variant is not None and variant[1].trajectory.t.size else 0.0
     placed = {name: p.pose.matrix() for name, p in parts.items()}
@@ -135,7 +146,8 @@ def phases(scene: Scene, plan: planned.Plan, variant: tuple[str, planned.Variant
         if ev.t > t_prev:
             out.append(Phase(t_prev, ev.t, dict(placed), dict(held)))
             t_prev = ev.t
-        flange = _flange(scene, ev.robot, trajs.get(ev.robot), ev.t)
+        # before a variant starts its robot follows the main timeline
+        flange = _flange(scene, ev.robot, (main if ev.variant == 0 else trajs).get(ev.robot), ev.t)
         if ev.attach:
             if name in held:  # another robot holds it (the front end refuses a task's own, E141)
                 if diagnostics is not None:
@@ -252,7 +264,7 @@ def part_hits(scene: Scene, timeline: Timeline, phase_list: list[Phase], clearan
         for h in check_timeline(pscene, sub, part_part, max(clearance, CONTACT_TOL)):
             if h.kind == "static" or h.distance < CONTACT_TOL:
                 kind = h.kind if h.kind == "static" else "collision"
-                out.append((pscene, replace(h, kind=kind, distance=min(h.distance, 0.0))))
+                out.append((pscene, replace(h, kind=kind, distance=min(h.distance, -0.0))))
             elif h.distance < clearance:
                 out.append((pscene, h))
         out += [(pscene, h) for h in hits]

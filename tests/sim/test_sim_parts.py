@@ -144,3 +144,61 @@ def test_part_making_the_load_too_heavy_is_found_at_the_first_move_carrying_it(t
     (d,) = [d for d in _errors(report) if d.code.id == "E332"]
     assert d.span.start.line == 11
     assert "13 kg" in d.message and "12.5 kg" in d.message and "'heavy' 12 kg" in d.message
+
+
+WALL = "\n  fixture wall = box(300mm, 20mm, 130mm) at pose(x=650mm, y=-300mm, z=265mm)"
+
+
+def test_runtime_if_arm_carrying_the_part_into_the_wall_is_found_on_that_path(tmp_path: Path) -> None:
+    """The `then` arm carries b1 away from the wall (+y), the `otherwise` arm through it: one
+    finding, on the otherwise path, naming the part and the wall."""
+    program = CARRY.replace(
+        "  move linear b1 * pose(y=-300mm, z=150mm) * down zone fine\n",
+        "  if in[3] == on {\n    move linear b1 * pose(x=-100mm, z=150mm) * down zone fine\n  } else {\n"
+        "    move linear b1 * pose(y=-300mm, z=150mm) * down zone fine\n  }\n")
+    _, report = _check(tmp_path, program, WALL)
+    (d,) = _errors(report)
+    assert set(d.bodies) == {"b1", "wall"} and "otherwise" in d.message and d.span.start.line == 15
+
+
+HANDOVER = Path(__file__).resolve().parents[2] / "examples" / "handover.rmot"
+
+
+def test_handover_example_part_moves_from_r1_to_r2_and_ends_on_the_outfeed() -> None:
+    """examples/handover.rmot: the block is held by r1, then by r2, and is left on r2's
+    outfeed (top at z = 700 mm, 400 x 400 mm around (1450, -600) mm)."""
+    from rmot.sim.parts import phases
+    from rmot.sim.scene import build_scene
+
+    front = load_program(str(HANDOVER))
+    assert front.program is not None
+    plan = plan_program(front.program)
+    report = verify(plan)
+    assert _errors(report) == []
+    scene = build_scene(front.program.cell)
+    found: list = []
+    states = phases(scene, plan, None, found)
+    assert found == []
+    holders = []
+    for ph in states:
+        holder = ph.held["block"][0] if "block" in ph.held else None
+        if not holders or holders[-1] != holder:
+            holders.append(holder)
+    assert holders == [None, "r1", None, "r2", None]
+    final = states[-1].placed["block"][:3, 3]
+    assert 1.25 < final[0] < 1.65 and -0.8 < final[1] < -0.4 and final[2] > 0.7
+
+
+def test_attach_while_another_robot_holds_the_part_is_an_error() -> None:
+    """r2 attaching before the barrier after which r1 lets go (`sync gripped`): E331 at r2's attach."""
+    text = HANDOVER.read_text(encoding="utf-8")
+    moved = text.replace("    sync gripped\n    sync released\n    attach block", "    attach block\n    sync gripped\n    sync released", 1)
+    assert moved != text
+    from rmot.compiler.frontend import load_text
+
+    front = load_text(moved, str(HANDOVER))
+    assert front.program is not None
+    report = verify(plan_program(front.program))
+    (d,) = [d for d in _errors(report) if d.code.id == "E331"]
+    assert "'block'" in d.message and "'r1'" in d.message
+    assert moved.splitlines()[d.span.start.line - 1].strip() == "attach block"
