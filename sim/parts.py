@@ -382,3 +382,46 @@ def _centre(part: ir.Part) -> np.ndarray:
     if shape is None:
         return np.zeros(3)
     return _local_box(shape)[0]
+
+
+# --------------------------------------------------------------------------- pictures
+
+
+def with_part_bodies(scene: Scene) -> Scene:
+    """`scene` plus every part as a body at its starting pose (what a picture draws; where it
+    is at an instant comes from part_poses)."""
+    start = Phase(0.0, 0.0, {p.name: p.pose.matrix() for p in scene.cell.parts}, {})
+    return replace(scene, bodies=scene.bodies + tuple(part_bodies(scene, start)))
+
+
+_PHASES: dict[tuple[int, int], tuple[Scene, planned.Plan, list[Phase]]] = {}
+
+
+def part_poses(scene: Scene, plan: planned.Plan, times: np.ndarray,
+               q: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """part name -> (N, 4, 4) world poses at `times` (N,): placed where they lie, held ones on
+    their robot's flange (q: robot -> (N, dof) joint values at `times`)."""
+    if not scene.cell.parts:
+        return {}
+    key = (id(scene), id(plan))
+    cached = _PHASES.get(key)
+    if cached is None or cached[0] is not scene or cached[1] is not plan:
+        _PHASES.clear()  # one program at a time: keep the cache small
+        cached = (scene, plan, phases(scene, plan))
+        _PHASES[key] = cached
+    phase_list = cached[2]
+    n = len(times)
+    starts = np.array([ph.t0 for ph in phase_list])
+    which = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(phase_list) - 1)
+    flanges = {r: scene.robots[r].base @ np.asarray(scene.robots[r].robot.fk_batch(v)) for r, v in q.items()
+               if r in scene.robots and any(r == h[0] for ph in phase_list for h in ph.held.values())}
+    out = {p.name: np.tile(p.pose.matrix(), (n, 1, 1)) for p in scene.cell.parts}
+    for k, ph in enumerate(phase_list):
+        mask = which == k
+        if not mask.any():
+            continue
+        for name, world in ph.placed.items():
+            out[name][mask] = world
+        for name, (robot, local) in ph.held.items():
+            out[name][mask] = flanges[robot][mask] @ local
+    return out
