@@ -256,6 +256,9 @@ def part_hits(scene: Scene, timeline: Timeline, phase_list: list[Phase], clearan
         pscene = phase_scene(scene, phase)
         pairs = [(a, b) for a, b in candidate_pairs(pscene, only_robot=only_robot)
                  if (a.name in names or b.name in names) and (k == 0 or a.moves or b.moves)]
+        if k == 0 and only_robot is None:  # where the parts start: overlaps with fixtures or each other (W300)
+            still = [b for b in pscene.bodies if b.kind == "fixture"]
+            pairs += [(a, b) for i, a in enumerate(still) for b in still[i + 1:] if a.name in names or b.name in names]
         part_part = [(a, b) for a, b in pairs if a.name in names and b.name in names]
         others = [(a, b) for a, b in pairs if not (a.name in names and b.name in names)]
         hits = check_timeline(pscene, sub, others, clearance)
@@ -264,7 +267,8 @@ def part_hits(scene: Scene, timeline: Timeline, phase_list: list[Phase], clearan
         for h in check_timeline(pscene, sub, part_part, max(clearance, CONTACT_TOL)):
             if h.kind == "static" or h.distance < CONTACT_TOL:
                 kind = h.kind if h.kind == "static" else "collision"
-                out.append((pscene, replace(h, kind=kind, distance=min(h.distance, -0.0))))
+                depth = h.distance if h.distance < 0.0 else -0.0  # touching: a collision of depth 0
+                out.append((pscene, replace(h, kind=kind, distance=depth)))
             elif h.distance < clearance:
                 out.append((pscene, h))
         out += [(pscene, h) for h in hits]
