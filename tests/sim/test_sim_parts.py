@@ -202,3 +202,21 @@ def test_attach_while_another_robot_holds_the_part_is_an_error() -> None:
     (d,) = [d for d in _errors(report) if d.code.id == "E331"]
     assert "'block'" in d.message and "'r1'" in d.message
     assert moved.splitlines()[d.span.start.line - 1].strip() == "attach block"
+
+
+def test_torque_check_payload_is_tool_plus_held_part_at_their_centres() -> None:
+    """stack.rmot: 1 kg gripper at 50 mm (half its 100 mm TCP offset) plus the 2 kg cube whose
+    centre is 150 mm from the flange (held by its top face, 50 mm beyond the TCP): 3 kg at
+    (1 * 50 + 2 * 150) / 3 = 116.67 mm along the flange z axis."""
+    from rmot.sim.scene import build_scene, flange_in_last_joint
+    from rmot.sim.verification import _payload
+
+    front = load_program(str(DATA / "stack.rmot"))
+    assert front.program is not None
+    plan = plan_program(front.program)
+    scene = build_scene(front.program.cell)
+    mass, at = _payload(scene, plan.tasks[0], plan)
+    assert mass == pytest.approx(3.0)
+    flange = flange_in_last_joint(scene.robots["r1"].robot)
+    expected = flange[:3, :3] @ np.array([0.0, 0.0, 0.35 / 3]) + flange[:3, 3]
+    np.testing.assert_allclose(at, expected, atol=2e-5)  # the planned stop is within microns of the target
