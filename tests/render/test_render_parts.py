@@ -107,3 +107,24 @@ def test_vector_and_viewer_outputs_name_the_parts(plan, suffix: str, tmp_path: P
     text = out.read_text(encoding="utf-8")
     for name in ("b1", "b2", "b3"):
         assert f'"{name}"' in text or f">{name}<" in text or f"'{name}'" in text
+
+
+def test_animation_frames_move_the_parts(tmp_path: Path) -> None:
+    """A GIF of the stack program: the cardboard pixels' centre moves between the first and the
+    last frame (b1 and b2 went from the infeed to the outfeed), and every frame shows cardboard."""
+    import imageio.v3 as iio
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli.render_cmd import render
+
+    out = tmp_path / "stack.gif"
+    result = CliRunner().invoke(render, [str(STACK), "-o", str(out), "--fps", "1", "--size", "240x180"])
+    assert result.exit_code == 0, result.output
+    frames = iio.imread(str(out), index=None)
+
+    def centre(img: np.ndarray) -> np.ndarray:
+        mask = np.array([[_is_cardboard(px) for px in row] for row in img[::2, ::2]])
+        assert mask.any()
+        return np.argwhere(mask).mean(axis=0)
+
+    assert np.linalg.norm(centre(frames[0]) - centre(frames[-1])) > 3.0
