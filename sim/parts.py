@@ -40,7 +40,7 @@ from rmot.sim.exact import ExactPair
 from rmot.sim.scene import Body, Scene, _local_box, _reach, _shape, _sphere_cover, flange_in_last_joint
 
 __all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "heaviest_held", "part_bodies", "part_events", "part_hits",
-           "payload_findings", "phase_scene", "phases"]
+           "payload_findings", "phase_scene", "phases", "shape_diagnostics"]
 
 GRIP_TOL = 0.002  # m: a tool may touch the part it grips this deep, and must be this close to attach it
 REST_TOL = 1e-4  # m: a part may rest on a fixture (collide.STATIC_TOL)
@@ -174,7 +174,7 @@ def _grip_check(scene: Scene, ev: PartEvent, flange: np.ndarray, world: np.ndarr
     """E330: at its attach the part must be within GRIP_TOL of the tool's solid or its TCP;
     E300: the tool must not be inside it deeper than GRIP_TOL."""
     tool_ref = ev.instr.tool
-    shape = _shape(part.geometry, [])
+    shape = _part_shape(part)
     if shape is None:
         return []
     pbody = Body(part.name, "fixture", None, shape, world)
@@ -229,11 +229,25 @@ def part_bodies(scene: Scene, phase: Phase) -> list[Body]:
 _SHAPES: dict[int, Any] = {}
 
 
-def _part_shape(part: ir.Part) -> Any:
+def _part_shape(part: ir.Part, diags: list[Diagnostic] | None = None) -> Any:
+    """The part's solid (a mesh is loaded once); problems loading it go to `diags`."""
     key = id(part)
-    if key not in _SHAPES:
-        _SHAPES[key] = (part, _shape(part.geometry, []))
-    return _SHAPES[key][1]
+    cached = _SHAPES.get(key)
+    if cached is None or cached[0] is not part:
+        found: list[Diagnostic] = []
+        cached = (part, _shape(part.geometry, found), tuple(found))
+        _SHAPES[key] = cached
+    if diags is not None:
+        diags += cached[2]
+    return cached[1]
+
+
+def shape_diagnostics(cell: ir.Cell) -> list[Diagnostic]:
+    """Mesh problems of the cell's parts (E560-E563, W560), as for fixtures."""
+    out: list[Diagnostic] = []
+    for part in cell.parts:
+        _part_shape(part, out)
+    return out
 
 
 def phase_scene(scene: Scene, phase: Phase) -> Scene:

@@ -47,6 +47,7 @@ def verify_with(plan: planned.Plan, *, clearance: float | None = None,
     if tasks:
         findings += _collisions(scene, plan, tasks, clearance or 0.0)
         if program.cell.parts:
+            findings += parts.shape_diagnostics(program.cell)
             findings += _part_collisions(scene, plan, tasks, clearance or 0.0)
             findings += parts.payload_findings(scene, plan)
     for tp in tasks:

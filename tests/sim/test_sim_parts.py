@@ -220,3 +220,16 @@ def test_torque_check_payload_is_tool_plus_held_part_at_their_centres() -> None:
     flange = flange_in_last_joint(scene.robots["r1"].robot)
     expected = flange[:3, :3] @ np.array([0.0, 0.0, 0.35 / 3]) + flange[:3, 3]
     np.testing.assert_allclose(at, expected, atol=2e-5)  # the planned stop is within microns of the target
+
+
+def test_mesh_part_overlapping_a_fixture_where_it_starts_is_w300(tmp_path: Path) -> None:
+    """A mesh part (the 300 x 200 x 80 mm jig of examples/urdf_cell) declared 40 mm into a
+    table: the overlap is reported once, as for two fixtures (W300), naming the part."""
+    shutil.copy(Path(__file__).resolve().parents[2] / "examples" / "urdf_cell" / "meshes" / "jig.stl", tmp_path / "jig.stl")
+    program = "use cell \"cell.rmot\"\nprogram p on r1 {\n  move joint joints(0, -90, 90, -90, -90, 0) deg\n}\n"
+    extra = ('\n  fixture slab = box(400mm, 400mm, 100mm) at pose(x=-600mm, z=50mm)'
+             '\n  part jig = mesh("jig.stl", unit=mm) at pose(x=-600mm, z=60mm)')
+    _, report = _check(tmp_path, program, extra)
+    w300 = [d for d in report.diagnostics if d.code.id == "W300"]
+    assert [set(d.bodies) for d in w300] == [{"jig", "slab"}]
+    assert _errors(report) == []
