@@ -353,31 +353,38 @@ def load_at(plan: planned.Plan, tp: planned.TaskPlan, t: float, parts: dict[str,
 def payload_findings(scene: Scene, plan: planned.Plan) -> list[Diagnostic]:
     """E332: the tool's mass plus the held parts' beyond the robot's rated payload, at the
     first move of each run of moves that carry too much (`rated_payload_kg` on the robot;
-    None = unknown, not checked)."""
+    None = unknown, not checked), on the main timeline and on each `if` variant's path."""
     parts = {p.name: p for p in scene.cell.parts}
-    events = part_events(plan)
+    main_events = part_events(plan)
     out: list[Diagnostic] = []
+    seen: set[tuple[int, str]] = set()
     for tp in plan.tasks:
         entry = scene.robots.get(tp.robot)
         rated = getattr(entry.robot, "rated_payload_kg", None) if entry is not None else None
         if rated is None:
             continue
         moves = {i.uid: i for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
-        over_before = False
-        for r in sorted((r for r in tp.records if r.variant == 0 and r.uid in moves), key=lambda r: r.t_start):
-            move = moves[r.uid]
-            parts_mass, held = load_at(plan, tp, r.t_start, parts, events)
-            total = move.tool.mass + parts_mass
-            over = total > rated + 1e-9
-            if over and not over_before:
-                what = [f"tool '{move.tool.name}' {move.tool.mass:g} kg"] if move.tool.name else []
-                what += [f"part '{n}' {parts[n].mass:g} kg" for n in held]
-                out.append(Diagnostic(
-                    codes.PAYLOAD_EXCEEDED, Severity.ERROR,
-                    f"payload {total:g} kg ({' + '.join(what)}) must not exceed robot '{tp.robot}''s rated payload "
-                    f"{rated:g} kg", move.span, (), r.t_start, r.t_end, (tp.robot,),
-                    Amount(round(total - rated, 6), "kg"), tp.task.name))
-            over_before = over
+        paths = [(0, main_events, None)] + [(v.index, part_events(plan, (tp.robot, v)), v) for v in tp.variants]
+        for index, events, variant in paths:
+            recs = [r for r in tp.records if r.uid in moves and r.variant == index]
+            over_before = False
+            for r in sorted(recs, key=lambda r: r.t_start):
+                move = moves[r.uid]
+                parts_mass, held = load_at(plan, tp, r.t_start, parts, events)
+                total = move.tool.mass + parts_mass
+                over = total > rated + 1e-9
+                if over and not over_before:
+                    what = [f"tool '{move.tool.name}' {move.tool.mass:g} kg"] if move.tool.name else []
+                    what += [f"part '{n}' {parts[n].mass:g} kg" for n in held]
+                    message = (f"payload {total:g} kg ({' + '.join(what)}) must not exceed robot '{tp.robot}''s "
+                               f"rated payload {rated:g} kg")
+                    if variant is not None:
+                        message += f" (on the path through the '{variant.arm}' arm of an if)"
+                    if (r.uid, message.split(" (on the path")[0]) not in seen:
+                        seen.add((r.uid, message.split(" (on the path")[0]))
+                        out.append(Diagnostic(codes.PAYLOAD_EXCEEDED, Severity.ERROR, message, move.span, (), r.t_start,
+                                              r.t_end, (tp.robot,), Amount(round(total - rated, 6), "kg"), tp.task.name))
+                over_before = over
     return out
 
 

@@ -137,9 +137,8 @@ def test_overweight_tool_is_an_error_with_both_masses(tmp_path: Path) -> None:
 def test_part_making_the_load_too_heavy_is_found_at_the_first_move_carrying_it(tmp_path: Path) -> None:
     """1 kg tool + a 12 kg part = 13 kg > 12.5 kg: E332 at the first move after the attach,
     not before it."""
-    program = CARRY.replace("part", "part")
     extra = "\n  part heavy = box(100mm, 100mm, 100mm) at pose(x=650mm, y=150mm, z=250mm) mass 12 kg"
-    program = program.replace("b1", "heavy")
+    program = CARRY.replace("b1", "heavy")
     plan, report = _check(tmp_path, program, extra)
     (d,) = [d for d in _errors(report) if d.code.id == "E332"]
     assert d.span.start.line == 11
@@ -233,3 +232,31 @@ def test_mesh_part_overlapping_a_fixture_where_it_starts_is_w300(tmp_path: Path)
     w300 = [d for d in report.diagnostics if d.code.id == "W300"]
     assert [set(d.bodies) for d in w300] == [{"jig", "slab"}]
     assert _errors(report) == []
+
+
+def test_overweight_only_on_an_if_arm_is_found_on_that_path(tmp_path: Path) -> None:
+    """The `otherwise` arm lifts a 12 kg part (1 kg tool + 12 kg > 12.5 kg): E332 at that arm's
+    first move carrying it, said to be on the otherwise path; the `then` arm only waits."""
+    program = """use cell "cell.rmot"
+program p on r1 {
+  tool gripper
+  frame world
+  target down = pose(rx=180deg)
+  move joint joints(0, -90, 90, -90, -90, 0) deg
+  move joint heavy * pose(z=150mm) * down
+  move linear heavy * pose(z=50mm) * down zone fine
+  if in[3] == on {
+    wait 1 s
+  } else {
+    attach heavy
+    move linear heavy * pose(z=80mm) * down zone fine
+    move linear heavy * pose(z=50mm) * down zone fine
+    detach heavy
+  }
+  move linear heavy * pose(z=150mm) * down
+}
+"""
+    extra = "\n  part heavy = box(100mm, 100mm, 100mm) at pose(x=650mm, y=300mm, z=250mm) mass 12 kg"
+    _, report = _check(tmp_path, program, extra)
+    (d,) = [d for d in _errors(report) if d.code.id == "E332"]
+    assert d.span.start.line == 13 and "otherwise" in d.message and "13 kg" in d.message
