@@ -276,7 +276,8 @@ def part_hits(scene: Scene, timeline: Timeline, phase_list: list[Phase], clearan
         part_part = [(a, b) for a, b in pairs if a.name in names and b.name in names]
         others = [(a, b) for a, b in pairs if not (a.name in names and b.name in names)]
         hits = check_timeline(pscene, sub, others, clearance)
-        hits = [h for h in hits if _counts(pscene, h)]
+        ends = (float(sub.t[0]), float(sub.t[-1]))
+        hits = [h for h in hits if _counts(pscene, h) and not _resting_approach(pscene, h, ends)]
         # two parts must not touch: closer than CONTACT_TOL is a collision
         for h in check_timeline(pscene, sub, part_part, max(clearance, CONTACT_TOL)):
             if h.kind == "static" or h.distance < CONTACT_TOL:
@@ -301,6 +302,24 @@ def _counts(scene: Scene, hit: PairHit) -> bool:
     if other.kind == "fixture" and other.name not in names:
         return hit.distance < -REST_TOL if hit.kind != "static" else True
     return True
+
+
+def _resting_approach(scene: Scene, hit: PairHit, ends: tuple[float, float]) -> bool:
+    """A clearance approach that is the pick or the place itself: a tool near a part (it grips
+    it), or a part near a fixture in a run that starts or ends at the phase's first or last
+    sample, its attach or detach (it is lifted off or set down on its support). Not reported
+    under --clearance."""
+    if hit.kind != "clearance":
+        return False
+    names = {p.name for p in scene.cell.parts}
+    a, b = scene.body(hit.a), scene.body(hit.b)
+    part, other = (a, b) if a.name in names else (b, a)
+    if other.name in names:
+        return False
+    if other.kind == "tool":
+        return True
+    at_event = hit.t0 <= ends[0] + 1e-9 or hit.t1 >= ends[1] - 1e-9  # the phase's first or last sample
+    return other.kind == "fixture" and at_event
 
 
 def _slice(timeline: Timeline, t0: float, t1: float) -> Timeline | None:

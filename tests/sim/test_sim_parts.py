@@ -260,3 +260,15 @@ program p on r1 {
     _, report = _check(tmp_path, program, extra)
     (d,) = [d for d in _errors(report) if d.code.id == "E332"]
     assert d.span.start.line == 13 and "otherwise" in d.message and "13 kg" in d.message
+
+
+def test_clearance_reports_part_gaps_but_not_the_pick_and_place_themselves(tmp_path: Path) -> None:
+    """With 10 mm between the cubes: a 5 mm clearance gives nothing (the gripper on its cube
+    and a cube on its table are the pick and place, not approaches); 20 mm names the cubes."""
+    from rmot.sim.verification import verify as verify_
+
+    plan, _ = _check(tmp_path, _stack(10))
+    assert [d for d in verify_(plan, clearance=0.005).diagnostics if d.code.id == "W301"] == []
+    near = [d for d in verify_(plan, clearance=0.020).diagnostics if d.code.id == "W301"]
+    assert near and all(set(d.bodies) == {"b1", "b2"} for d in near)
+    assert near[0].amount.value == pytest.approx(10.0, abs=0.05)
