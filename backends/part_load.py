@@ -17,7 +17,7 @@ import numpy as np
 
 from rmot.compiler import ir
 
-__all__ = ["held_load", "part_centres"]
+__all__ = ["held_load", "part_centres", "state_at_moves"]
 
 
 def part_centres(ctx: Any) -> dict[int, np.ndarray]:
@@ -74,3 +74,31 @@ def held_load(node: ir.Attach | ir.Detach, ctx: Any) -> tuple[float, np.ndarray,
     total = node.tool.mass + mass
     total_cog = (node.tool.mass * tool_cog + moment) / total if total > 0 else tool_cog
     return mass, cog, total, total_cog
+
+
+def state_at_moves(ctx: Any) -> dict[int, ir.Attach | ir.Detach | None]:
+    """Move uid -> the attach or detach whose held parts the move carries (None: none yet),
+    through `if` arms (each arm starts from the state before the `if`; both end alike, E143)
+    and proc calls, for vendors that write the load with every motion (KRL)."""
+    cache = getattr(ctx, "_part_state", None)
+    if cache is not None:
+        return cache
+    out: dict[int, ir.Attach | ir.Detach | None] = {}
+
+    def walk(nodes: tuple[ir.Instr, ...], cur: ir.Attach | ir.Detach | None) -> ir.Attach | ir.Detach | None:
+        for n in nodes:
+            if isinstance(n, (ir.Attach, ir.Detach)):
+                cur = n
+            elif isinstance(n, ir.Move):
+                out[n.uid] = cur
+            elif isinstance(n, ir.If):
+                after = walk(n.then, cur)
+                walk(n.otherwise, cur)
+                cur = after
+            elif isinstance(n, ir.ProcCall):
+                cur = walk(n.body, cur)
+        return cur
+
+    walk(ctx.task.body, None)
+    object.__setattr__(ctx, "_part_state", out)
+    return out

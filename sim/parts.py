@@ -27,7 +27,7 @@ the `if` and the variant's own after it; it is checked for the pairs of its robo
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -68,12 +68,6 @@ class Phase:
     t1: float
     placed: dict[str, np.ndarray]
     held: dict[str, tuple[str, np.ndarray]]
-
-
-@dataclass
-class _Replay:
-    diagnostics: list[Diagnostic] = field(default_factory=list)
-    phases: list[Phase] = field(default_factory=list)
 
 
 # --------------------------------------------------------------------------- events

@@ -97,3 +97,39 @@ def test_vendors_without_payload_instructions_warn_once_per_part_with_the_number
     w = [d for d in _emit(plan, vendor).diagnostics if d.code.id == "W460"]
     assert len(w) == 2  # b1 and b2, each once
     assert all("3.000 kg" in d.message and "[0.0,0.0,116.7] mm" in d.message for d in w)
+
+
+def test_krl_proc_called_empty_handed_and_holding_prints_two_routines(tmp_path: Path) -> None:
+    """The same proc (fixed joint targets) before the attach and while holding b1: KRL writes
+    it twice, with the tool's load and with tool + b1; a shared routine would carry one."""
+    import shutil
+
+    shutil.copy(STACK.parent / "cell.rmot", tmp_path / "cell.rmot")
+    (tmp_path / "p.rmot").write_text("""use cell "cell.rmot"
+proc wiggle() {
+  move joint joints(0, -90, 90, -90, -90, 0) deg zone fine
+  move joint joints(10, -90, 90, -90, -90, 0) deg zone fine
+}
+program p on r1 {
+  tool gripper
+  frame world
+  move joint joints(0, -90, 90, -90, -90, 0) deg
+  wiggle()
+  move joint b1 * pose(z=150mm, rx=180deg)
+  move linear b1 * pose(z=50mm, rx=180deg) zone fine
+  attach b1
+  move linear b1 * pose(z=150mm, rx=180deg) zone fine
+  wiggle()
+  move joint b1 * pose(z=150mm, rx=180deg)
+  move linear b1 * pose(z=50mm, rx=180deg) zone fine
+  detach b1
+}
+""", encoding="utf-8")
+    front = load_program(str(tmp_path / "p.rmot"))
+    assert front.program is not None, [str(d) for d in front.diagnostics]
+    files = BACKENDS["krl"]().emit(plan_program(front.program)).files
+    src = next(t for n, t in files.items() if n.endswith(".src"))
+    routines = re.findall(r"DEF (wiggle\w*)\(", src)
+    assert len(routines) == 2
+    bodies = [src.split(f"DEF {r}(")[1].split("END")[0] for r in routines]
+    assert {frozenset(re.findall(r"\$LOAD=(\w+)", b)) for b in bodies} == {frozenset({"gripper_load"}), frozenset({"gripper_load_b1"})}
