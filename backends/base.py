@@ -230,6 +230,7 @@ class Backend:
         ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
         ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
         ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
+        ir.Attach: "attach", ir.Detach: "detach",
     }
     NATIVE_NAMES: ClassVar[frozenset[str]] = frozenset()
     SIX_AXIS_DATA: ClassVar[str | None] = None
@@ -524,3 +525,28 @@ def key_value(v: Any) -> Hashable:
     if isinstance(v, (np.floating, np.integer)):
         return key_value(v.item())
     return repr(v)
+
+
+# --------------------------------------------------------------------------- parts (issue #14)
+# Appended here (not in the class body above) to keep this change apart from other work on
+# the vendor modules: the default for `attach`/`detach` is a comment plus W460 once per part
+# and task with the numbers to enter; RAPID, KRL and URScript override `attach`/`detach`.
+
+
+def _part_payload_default(self: Backend, node: ir.Attach | ir.Detach, ctx: TaskContext) -> list[str]:
+    from rmot.backends.codes_b import PART_PAYLOAD_NOT_EXPRESSED
+    from rmot.backends.part_load import held_load
+
+    _, _, total, cog = held_load(node, ctx)
+    word = "attach" if isinstance(node, ir.Attach) else "detach"
+    if isinstance(node, ir.Attach):
+        cog_mm = fmt_list((c * 1000.0 for c in cog), 1)
+        self.warn_once(ctx, f"part-payload:{node.part}", PART_PAYLOAD_NOT_EXPRESSED,
+                       f"part '{node.part}' held: the payload ({fmt(total, 3)} kg with the tool, centre of gravity "
+                       f"[{cog_mm}] mm in the flange frame) must be set on the controller while it is held "
+                       f"({self.name} programs cannot carry it)", node.span)
+    return [self.comment(f"{word} {node.part}: payload {fmt(total, 3)} kg")]
+
+
+Backend.attach = _part_payload_default  # type: ignore[attr-defined]
+Backend.detach = _part_payload_default  # type: ignore[attr-defined]

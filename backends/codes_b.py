@@ -38,3 +38,9 @@ WAIT_END_MOVE = Code("W453", "wait-end-move",
 ANALOG_LINK = Code("W455", "analog-link-needed",
                    "an analog output variable is declared unlinked: link it to the controller's "
                    "physical output before running")
+
+# parts held by the tool (issue #14)
+PART_PAYLOAD_NOT_EXPRESSED = Code("W460", "part-payload-not-expressed",
+                                  "the payload of held parts cannot be set by this vendor's program: "
+                                  "enter the numbers given on the controller")
+__all__ += ["PART_PAYLOAD_NOT_EXPRESSED"]

@@ -217,6 +217,9 @@ class KrlBackend(Backend):
             cx, cy, cz = (fmt(c * 1000.0, 3) for c in tool_cog(node.tool))
             cog = f"X {cx},Y {cy},Z {cz},A 0.0,B 0.0,C 0.0"
             lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{{M {fmt(mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}")
+            held = _held_load_name(node, ctx)  # parts held (issue #14): tool + parts, see _part_load
+            if held is not None:
+                lname = held
             lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
         if node.frame.name is None:
             lines.append("$BASE=$NULLFRAME")
@@ -298,3 +301,67 @@ class KrlBackend(Backend):
             ctx.module.routines[name] = []
             ctx.module.routines[name] = [self.comment(f"proc {node.proc}")] + self.body(node.body, ctx)
         return self.call_args_comment(node) + [f"{name}()"]
+
+
+# --------------------------------------------------------------------------- parts (issue #14)
+
+
+def _part_load(self: KrlBackend, node: ir.Attach | ir.Detach, ctx: KrlContext) -> list[str]:
+    """`$LOAD=...` after an attach or detach: tool + held parts as one load on the flange, and
+    every later motion of the same tool writes that load instead of the tool's alone.
+
+    KUKA System Software 8.x, Operating and Programming Instructions for System Integrators,
+    system variable $LOAD: the load on the flange, {M mass kg, CM centre of mass in the flange
+    coordinate system (mm, A/B/C deg), J inertia}. ($LOAD_A3 is a supplementary load on axis 3,
+    not a gripped part.) Inertia is written as 0 (a point mass, as for tools)."""
+    if node.tool.name is None:
+        return _part_payload_fallback(self, node, ctx)
+    return [f"$LOAD={_load_data(node, ctx)}"]
+
+
+def _load_data(node: ir.Attach | ir.Detach, ctx: KrlContext) -> str:
+    """The LOAD data (tool + parts held after `node`) in the .dat file: its name."""
+    from rmot.backends.part_load import held_load
+
+    _, _, total, cog = held_load(node, ctx)
+    cx, cy, cz = (fmt(c * 1000.0, 3) for c in cog)
+    hint = f"{node.tool.name}_load" + "".join(f"_{p}" for p in node.held)
+    value = f"LOAD:{{M {fmt(total, 3)},CM {{X {cx},Y {cy},Z {cz},A 0.0,B 0.0,C 0.0}},J {{X 0.0,Y 0.0,Z 0.0}}}}"
+    return ctx.module.data.add(hint, value)
+
+
+def _held_load_name(node: ir.Move, ctx: KrlContext) -> str | None:
+    """The load a motion writes while parts are held (None: the tool's own): the state after
+    the last attach/detach before it on its path (backends/part_load.state_at_moves)."""
+    from rmot.backends.part_load import state_at_moves
+
+    event = state_at_moves(ctx).get(node.uid)
+    if event is None or not event.held or event.tool.name != node.tool.name:
+        return None
+    return _load_data(event, ctx)
+
+
+def _part_payload_fallback(self: KrlBackend, node: ir.Attach | ir.Detach, ctx: KrlContext) -> list[str]:
+    return Backend.attach(self, node, ctx)  # type: ignore[attr-defined]
+
+
+KrlBackend.attach = _part_load  # type: ignore[attr-defined]
+KrlBackend.detach = _part_load  # type: ignore[attr-defined]
+
+
+_context_key_without_parts = KrlBackend.context_key
+
+
+def _context_key_with_parts(self: KrlBackend, node: ir.Instr, ctx: TaskContext) -> object:
+    """A motion's routine key also depends on the parts held then (its `$LOAD` line), so a
+    proc called once empty-handed and once holding a part prints two routines."""
+    from rmot.backends.part_load import state_at_moves
+
+    key = _context_key_without_parts(self, node, ctx)
+    if isinstance(node, ir.Move) and ctx.plan.program.cell.parts:
+        event = state_at_moves(ctx).get(node.uid)
+        return (key, None if event is None else (event.held, event.tool.name))
+    return key
+
+
+KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign]

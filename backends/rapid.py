@@ -119,7 +119,7 @@ class RapidBackend(Backend):
                               routine_of=self.routine_table(names, body, task))
         main = self.body(body, ctx)
         lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
-        for kind in ("tooldata", "wobjdata", "sync"):
+        for kind in ("tooldata", "wobjdata", "loaddata", "sync"):
             lines += self.indent(ctx.decls.get(kind, []), self.INDENT)
         lines += self.indent(self._data_lines(ctx), self.INDENT)
         lines += [""] + self._routine("main", main)
@@ -299,3 +299,31 @@ class RapidBackend(Backend):
             ctx.routines[name] = []  # reserve the slot first: routines print in call order
             ctx.routines[name] = [self.comment(f"proc {node.proc}")] + self.body(node.body, ctx)
         return self.call_args_comment(node) + [f"{name};"]
+
+
+# --------------------------------------------------------------------------- parts (issue #14)
+
+
+def _grip_load(self: RapidBackend, node: ir.Attach | ir.Detach, ctx: RapidContext) -> list[str]:
+    """`GripLoad piece;` after an attach or detach: the held parts' payload (the tool's own mass
+    stays in its tooldata), `GripLoad load0;` once nothing is held.
+
+    ABB, Technical reference manual "RAPID Instructions, Functions and Data types": GripLoad
+    ("defines the payload which the robot holds in its gripper"; load0 = no payload) and
+    loaddata [mass kg, cog [x,y,z] mm, aom, ix, iy, iz], the payload's centre of gravity in the
+    tool coordinate system when the robot holds the tool. Inertia is written as 0 (a point
+    mass, as rmot's torque check assumes for tools)."""
+    from rmot.backends.part_load import held_load
+
+    mass, cog, _, _ = held_load(node, ctx)
+    if mass <= 0.0:
+        return ["GripLoad load0;"]
+    in_tool = (node.tool.tcp.inverse() * ir.Pose(tuple(float(c) for c in cog))).position  # type: ignore[arg-type]
+    name = ctx.names.name("load_" + "_".join(node.held))
+    cog_mm = fmt_list((c * 1000.0 for c in in_tool), 3)
+    self._declare(ctx, "loaddata", f"PERS loaddata {name}:=[{fmt(mass, 3)},[{cog_mm}],[1,0,0,0],0,0,0];")
+    return [f"GripLoad {name};"]
+
+
+RapidBackend.attach = _grip_load  # type: ignore[attr-defined]
+RapidBackend.detach = _grip_load  # type: ignore[attr-defined]

@@ -269,3 +269,22 @@ class UrScriptBackend(Backend):
             ctx.routine_defs.extend([self.comment(f"proc {node.proc}"), f"def {name}():"])
             ctx.routine_defs.extend(self.indent(body, self.INDENT) + ["end"])
         return self.call_args_comment(node) + [f"{name}()"]
+
+
+# --------------------------------------------------------------------------- parts (issue #14)
+
+
+def _set_payload(self: UrScriptBackend, node: ir.Attach | ir.Detach, ctx: UrContext) -> list[str]:
+    """`set_payload(m, [cx, cy, cz])` after an attach or detach: tool + held parts.
+
+    Universal Robots, "The URScript Programming Language" (e-Series), set_payload(m, cog):
+    m the payload mass in kg, cog the centre of gravity's displacement from the tool flange
+    in metres. The bare flange with parts held writes the parts alone."""
+    from rmot.backends.part_load import held_load
+
+    _, _, total, cog = held_load(node, ctx)
+    return [f"set_payload({fmt(total, 3)}, [{fmt_list(cog, POS_DECIMALS, ', ')}])"]
+
+
+UrScriptBackend.attach = _set_payload  # type: ignore[attr-defined]
+UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]

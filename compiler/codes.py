@@ -54,3 +54,11 @@ URDF_BAD_CHAIN = Code("E507", "urdf-bad-chain", "the URDF links base= and tip= d
 
 __all__ += ["MODEL_JOINT_FIELD", "MODEL_CHAIN_LENGTH", "MODEL_BAD_VALUE", "MODEL_MIXED_DH", "MODEL_SHADOWS_LIBRARY",
             "URDF_UNKNOWN_LINK", "URDF_BAD_CHAIN"]
+
+# parts that tools pick up and put down (issue #14)
+UNKNOWN_PART = Code("E140", "unknown-part", "attach or detach names no part of the cell")
+PART_ALREADY_HELD = Code("E141", "part-already-held", "attach of a part the task already holds")
+PART_NOT_HELD = Code("E142", "part-not-held", "detach of a part the task does not hold")
+PART_ARMS_DIFFER = Code("E143", "part-arms-differ", "the arms of a runtime if leave different parts held")
+PART_HELD_AT_END = Code("W140", "part-held-at-end", "a task ends still holding a part")
+__all__ += ["UNKNOWN_PART", "PART_ALREADY_HELD", "PART_NOT_HELD", "PART_ARMS_DIFFER", "PART_HELD_AT_END"]

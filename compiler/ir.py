@@ -40,6 +40,7 @@ __all__ = [
     "ProcCall", "Program", "Pulse", "RobotInstance", "RobotSource", "SetAnalog",
     "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
     "WaitTime", "Wrist", "Zone", "payload_cog", "walk",
+    "Attach", "Detach", "Part", "load_cog",
 ]
 
 
@@ -297,6 +298,7 @@ class Cell:
     io: tuple[IoSignal, ...] = ()
     allowed_contacts: tuple[tuple[str, str], ...] = ()  # body pairs the checker ignores
     span: Span | None = _span_field()
+    parts: tuple[Part, ...] = ()  # movable objects (issue #14), at their starting poses
 
     def robot(self, name: str) -> RobotInstance:
         for r in self.robots:
@@ -512,7 +514,49 @@ class ProcCall:
     span: Span | None = _span_field()
 
 
-Instr = Union[Move, SetDigital, SetAnalog, Pulse, WaitTime, WaitInput, If, Sync, Native, ProcCall]
+# --------------------------------------------------------------------------- parts (issue #14)
+
+
+@dataclass(frozen=True, slots=True)
+class Part:
+    """A movable object: where it starts (world), its solid and its mass (kg). A tool picks it
+    up with `attach` and puts it down with `detach`; where it is at any time follows from the
+    Plan (sim/parts.py)."""
+
+    name: str
+    geometry: Geometry
+    pose: Pose  # in world, before any task runs
+    mass: float = 0.0
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Attach:
+    """`attach part`: the part is fixed to the active tool at its current relative pose.
+    `held`: the parts this task holds after the instruction; `load`: the mass the flange then
+    carries (tool + held parts, kg), what a backend writes as the payload."""
+
+    uid: int
+    part: str
+    tool: ToolRef
+    held: tuple[str, ...]
+    load: float
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Detach:
+    """`detach part`: the part stays where it is in the world (an obstacle from then on)."""
+
+    uid: int
+    part: str
+    tool: ToolRef
+    held: tuple[str, ...]
+    load: float
+    span: Span | None = _span_field()
+
+
+Instr = Union[Move, SetDigital, SetAnalog, Pulse, WaitTime, WaitInput, If, Sync, Native, ProcCall, Attach, Detach]
 
 
 @dataclass(frozen=True, slots=True)
@@ -551,3 +595,16 @@ def walk(body: tuple[Instr, ...]):  # type: ignore[no-untyped-def]
             yield from walk(instr.otherwise)
         elif isinstance(instr, ProcCall):
             yield from walk(instr.body)
+
+
+def load_cog(tool: ToolRef, load: float) -> tuple[float, float, float]:
+    """The centre of gravity (flange frame, m) of the load a backend writes while parts are
+    held: the tool's mass at payload_cog and the held parts' mass (load - tool mass) at the
+    TCP, where the gripper holds them (the verification's torque check uses each part's true
+    centroid instead, sim/parts.py)."""
+    parts = max(load - tool.mass, 0.0)
+    if load <= 0.0:
+        return payload_cog(tool.tcp)
+    t = payload_cog(tool.tcp)
+    p = tool.tcp.position
+    return tuple((tool.mass * a + parts * b) / load for a, b in zip(t, p))  # type: ignore[return-value]

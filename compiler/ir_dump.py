@@ -119,6 +119,8 @@ _HEADS: dict[type, Callable[[Any], str]] = {
     ir.Native: lambda i: f"native {i.vendor} {json.dumps(i.text)}",
     ir.If: lambda i: f"if {_cond(i.condition)}",
     ir.ProcCall: lambda i: f"call {i.proc}({', '.join(i.args)})",
+    ir.Attach: lambda i: f"attach {i.part} (load {_f(i.load)} kg)",
+    ir.Detach: lambda i: f"detach {i.part} (load {_f(i.load)} kg)",
 }
 
 

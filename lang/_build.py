@@ -393,3 +393,21 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def model_payload(self, c: list[Any]) -> ast.Setting:
         return ast.Setting("payload", c[1], self._span(c))
+
+    # -- parts (issue #14)
+    def part_decl(self, c: list[Any]) -> ast.PartDecl:
+        opts = dict(c[4:])
+        span = self._span([*c[:4], *(value for _, value in c[4:])])
+        return ast.PartDecl(self._ident(c[1], "part"), c[3], opts.get("at"), opts.get("mass"), span)
+
+    def part_at(self, c: list[Any]) -> tuple[str, Any]:
+        return "at", c[0]
+
+    def part_mass(self, c: list[Any]) -> tuple[str, Any]:
+        return "mass", c[0]
+
+    def attach(self, c: list[Any]) -> ast.AttachStmt:
+        return ast.AttachStmt(self._ident(c[1]), True, self._span(c))
+
+    def detach(self, c: list[Any]) -> ast.AttachStmt:
+        return ast.AttachStmt(self._ident(c[1]), False, self._span(c))

@@ -27,6 +27,7 @@ __all__ = [
     "Param", "ProcDecl", "ProgramDecl", "Pulse", "Repeat", "RobotDecl", "SetIo", "Setting",
     "Stmt", "String", "SyncStmt", "TargetDecl", "TaskDecl", "ToolDecl", "UseCell", "Vector",
     "WaitTime", "WaitUntil",
+    "PartDecl", "AttachStmt",
 ]
 
 
@@ -351,10 +352,30 @@ class CallStmt:
     span: Span = _span()
 
 
+@dataclass(frozen=True, slots=True)
+class PartDecl:
+    """`part NAME = GEOMETRY [at POSE] [mass M]`: a movable object of the cell (issue #14)."""
+
+    name: Ident
+    geometry: Geometry
+    at: Expr | None
+    mass: Expr | None
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class AttachStmt:
+    """`attach NAME` (attach=True) or `detach NAME` (attach=False)."""
+
+    part: Ident
+    attach: bool
+    span: Span = _span()
+
+
 Stmt = Union[
     UseCell, Import, CellDecl, ProgramDecl, TaskDecl, RobotDecl, FixtureDecl, ToolDecl,
     FrameDecl, IoDecl, TargetDecl, ConstDecl, ProcDecl, Setting, Move, SetIo, Pulse, WaitTime,
-    WaitUntil, For, Repeat, IfStmt, SyncStmt, NativeStmt, CallStmt,
+    WaitUntil, For, Repeat, IfStmt, SyncStmt, NativeStmt, CallStmt, PartDecl, AttachStmt,
 ]
 
 

@@ -26,6 +26,7 @@ from rmot.sim.collide import PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.limits import LimitHit, check_limits
 from rmot.sim.report import Report
 from rmot.sim.scene import Scene, build_scene, flange_in_last_joint
+from rmot.sim import parts
 
 __all__ = ["verify", "verify_with"]
 
@@ -45,8 +46,12 @@ def verify_with(plan: planned.Plan, *, clearance: float | None = None,
     tasks = [tp for tp in plan.tasks if tp.robot in scene.robots]
     if tasks:
         findings += _collisions(scene, plan, tasks, clearance or 0.0)
+        if program.cell.parts:
+            findings += parts.shape_diagnostics(program.cell)
+            findings += _part_collisions(scene, plan, tasks, clearance or 0.0)
+            findings += parts.payload_findings(scene, plan)
     for tp in tasks:
-        findings += _limits(scene, tp)
+        findings += _limits(scene, tp, plan)
     findings.sort(key=_finding_order)
     diagnostics = tuple(plan.diagnostics) + scene.diagnostics + tuple(findings)
     cycle_times = {tp.task.name: float(tp.cycle_time) for tp in plan.tasks}
@@ -89,6 +94,30 @@ def _collisions(scene: Scene, plan: planned.Plan, tasks: list[planned.TaskPlan],
             hits = check_timeline(scene, timeline, candidate_pairs(scene, only_robot=tp.robot), clearance)
             out += [_collision_diagnostic(scene, by_robot, h, clearance, variant.index, tp.robot) for h in hits
                     if h.kind != "static"]
+    return out
+
+
+def _part_collisions(scene: Scene, plan: planned.Plan, tasks: list[planned.TaskPlan], clearance: float) -> list[Diagnostic]:
+    """The pairs with a part (sim/parts.py), phase by phase, on the main timeline and each variant."""
+    main = {tp.robot: tp.trajectory for tp in tasks}
+    by_robot = {tp.robot: tp for tp in tasks}
+    out: list[Diagnostic] = []
+    timeline = _timeline(scene, main, None)
+    phase_list = parts.phases(scene, plan, None, out)
+    for pscene, h in parts.part_hits(scene, timeline, phase_list, clearance):
+        out.append(_collision_diagnostic(pscene, by_robot, h, clearance, 0))
+    for tp in tasks:
+        for variant in tp.variants:
+            trajs = dict(main)
+            trajs[tp.robot] = variant.trajectory
+            timeline = _timeline(scene, trajs, variant.trajectory.t)
+            extra: list[Diagnostic] = []
+            phase_list = parts.phases(scene, plan, (tp.robot, variant), extra)
+            seen = {(d.code, d.span, d.message) for d in out}
+            out += [d for d in extra if (d.code, d.span, d.message) not in seen]
+            for pscene, h in parts.part_hits(scene, timeline, phase_list, clearance, only_robot=tp.robot):
+                if h.kind != "static":
+                    out.append(_collision_diagnostic(pscene, by_robot, h, clearance, variant.index, tp.robot))
     return out
 
 
@@ -201,9 +230,9 @@ _LIMIT_CODES = {"position": codes.JOINT_POSITION, "velocity": codes.JOINT_VELOCI
                 "acceleration": codes.JOINT_ACCEL, "torque": codes.JOINT_TORQUE}
 
 
-def _limits(scene: Scene, tp: planned.TaskPlan) -> list[Diagnostic]:
+def _limits(scene: Scene, tp: planned.TaskPlan, plan: planned.Plan | None = None) -> list[Diagnostic]:
     entry = scene.robots[tp.robot]
-    payload, payload_at = _payload(scene, tp)
+    payload, payload_at = _payload(scene, tp, plan)
     out = []
     runs = [(0, tp.trajectory)] + [(v.index, v.trajectory) for v in tp.variants]
     for variant, traj in runs:
@@ -214,7 +243,7 @@ def _limits(scene: Scene, tp: planned.TaskPlan) -> list[Diagnostic]:
     return out
 
 
-def _payload(scene: Scene, tp: planned.TaskPlan) -> tuple[float, np.ndarray | None]:
+def _payload(scene: Scene, tp: planned.TaskPlan, plan: planned.Plan | None = None) -> tuple[float, np.ndarray | None]:
     """The heaviest tool the task uses, as a point mass at its centre of gravity (in the last
     joint's frame): half way along the flange->TCP vector, ir.payload_cog, the point every
     backend writes as the tool's payload."""
@@ -222,6 +251,12 @@ def _payload(scene: Scene, tp: planned.TaskPlan) -> tuple[float, np.ndarray | No
     for instr in ir.walk(tp.task.body):
         if isinstance(instr, ir.Move) and instr.tool.mass > best[0]:
             best = (instr.tool.mass, np.asarray(ir.payload_cog(instr.tool.tcp), dtype=float))
+    if scene.cell.parts and plan is not None:  # the heaviest parts it holds, at their own centroids, with the heaviest tool
+        held, held_at = parts.heaviest_held(scene, plan, tp)
+        if held_at is not None:
+            mass = best[0] + held
+            tool_at = best[1] if best[1] is not None else np.zeros(3)
+            best = (mass, (best[0] * tool_at + held * held_at) / mass)
     if best[1] is None:
         return best
     flange = flange_in_last_joint(scene.robots[tp.robot].robot)

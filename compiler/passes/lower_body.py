@@ -60,12 +60,16 @@ class TaskLowering:
     count: int = 0
     stack: list[int] = field(default_factory=list)  # ids of the procs being inlined
     called: set[int] = field(default_factory=set)  # ids of the ProcDecls inlined at least once
+    held: dict[str, Span | None] = field(default_factory=dict)  # parts held now -> where attached (issue #14)
 
     def run(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
         try:
             out, _ = self.block(body, scope, modal, where)
         except _TooLarge:
             return ()
+        for name, span in self.held.items():
+            self.rep.warning(codes.PART_HELD_AT_END, f"part '{name}' is still held when task '{self.robot}' ends; "
+                             f"detach it before the end", span)
         return tuple(out)
 
     def block(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[list[ir.Instr], Modal]:
@@ -123,6 +127,8 @@ class TaskLowering:
             return self.native(s)
         elif isinstance(s, ast.CallStmt):
             return self.call(s, scope, modal, where)
+        elif isinstance(s, ast.AttachStmt):
+            return self.attach(s, modal)
         else:
             misplaced(s, where, self.rep)
         return None
@@ -150,8 +156,15 @@ class TaskLowering:
 
     def if_stmt(self, s: ast.IfStmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
         cond = self.condition(s.condition, scope)
+        before = dict(self.held)
         then = self.nested(s.then, scope.child(), modal, where)
+        after_then, self.held = self.held, dict(before)
         otherwise = self.nested(s.otherwise, scope.child(), modal, where)
+        if set(after_then) != set(self.held):
+            differ = sorted(set(after_then) ^ set(self.held))
+            self.rep.error(codes.PART_ARMS_DIFFER, f"both arms of an if must leave the same parts held (part "
+                           f"{', '.join(repr(p) for p in differ)} is held after one arm only)", s.span)
+        self.held = after_then
         if cond is None:
             return None
         return ir.If(uid=0, condition=cond, then=then, otherwise=otherwise, span=s.span)
@@ -248,6 +261,36 @@ class TaskLowering:
             self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(VENDORS), codes.UNKNOWN_VENDOR)
             return None
         return ir.Native(uid=0, vendor=s.vendor.name, text=s.text.value, span=s.span)
+
+    # ---------------------------------------------------------------- parts (issue #14)
+
+    def attach(self, s: ast.AttachStmt, modal: Modal) -> ir.Instr | None:
+        """`attach NAME` / `detach NAME` (issue #14): the part must be a part of the cell, not held
+        yet for attach, held by this task for detach. Whether the tool touches it is known only
+        once the motion is planned (sim/parts.py, E330)."""
+        name = s.part.name
+        part = next((p for p in self.cell.parts if p.name == name), None)
+        word = "attach" if s.attach else "detach"
+        if part is None:
+            self.rep.unknown(name, "part", s.part.span, [p.name for p in self.cell.parts], codes.UNKNOWN_PART)
+            return None
+        if s.attach and name in self.held:
+            self.rep.error(codes.PART_ALREADY_HELD, f"part '{name}' must not be held already to attach it "
+                           f"(task '{self.robot}' holds it)", s.part.span, (("attached here", self.held[name]),))
+            return None
+        if not s.attach and name not in self.held:
+            self.rep.error(codes.PART_NOT_HELD, f"part '{name}' must be held by task '{self.robot}' to {word} it "
+                           f"(got no attach before)", s.part.span)
+            return None
+        if s.attach:
+            self.held[name] = s.span
+        else:
+            del self.held[name]
+        masses = {p.name: p.mass for p in self.cell.parts}
+        held = tuple(self.held)
+        load = modal.tool.mass + sum(masses[p] for p in held)
+        cls = ir.Attach if s.attach else ir.Detach
+        return cls(uid=0, part=name, tool=modal.tool, held=held, load=load, span=s.span)
 
     # ---------------------------------------------------------------- motion
 

@@ -48,6 +48,7 @@ class _CellBuilder:
         self.io: list[ir.IoSignal] = []
         self.io_seen: dict[tuple[ir.IoDirection, int, str | None], ast.IoDecl] = {}
         self.models: dict[str, tuple[str | None, ast.ModelDecl]] = {}  # name -> (load key or None if bad, decl)
+        self.parts: list[ir.Part] = []
 
     def build(self) -> ir.Cell:
         for stmt in self.decl.body:
@@ -57,7 +58,7 @@ class _CellBuilder:
             else:
                 handler(stmt)
         return ir.Cell(self.decl.name.name, tuple(self.robots), tuple(self.fixtures), tuple(self.tools),
-                       tuple(self.frames), tuple(self.io), span=self.decl.span)
+                       tuple(self.frames), tuple(self.io), span=self.decl.span, parts=tuple(self.parts))
 
     def _pose(self, e: ast.Expr | None, what: str) -> ir.Pose | None:
         if e is None:
@@ -220,6 +221,22 @@ class _CellBuilder:
         check_model_name(s, self.rep)
         spec = lower_model(s, self.scope, self.rep, self._geometry)
         self.models[name] = (None if spec is None else model_key(spec), s)
+
+    def _PartDecl(self, s: ast.PartDecl) -> None:
+        """`part box1 = box(...) at pose(...) mass 2kg` (issue #14): its name used as a pose is
+        where it starts (`move linear box1 * pose(z=100mm)`)."""
+        geometry = self._geometry(s.geometry)
+        pose = self._pose(s.at, f"placement of part '{s.name.name}'")
+        mass: float | None = 0.0
+        if s.mass is not None:
+            mass = expect_quantity(eval_expr(s.mass, self.scope, self.rep), MASS, "part mass", s.mass.span, self.rep)
+            if mass is not None and mass < 0:
+                self.rep.error(codes.OUT_OF_RANGE, f"part mass must be >= 0 kg (got {mass:g} kg)", s.mass.span)
+                mass = None
+        if geometry is None or pose is None or mass is None:
+            return
+        if declare(self.scope, Entry("part", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
+            self.parts.append(ir.Part(s.name.name, geometry, pose, mass, span=s.span))
 
     def _ConstDecl(self, s: ast.ConstDecl) -> None:
         v = eval_expr(s.value, self.scope, self.rep)

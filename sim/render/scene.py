@@ -18,6 +18,7 @@ from rmot.compiler.planned import Plan
 from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.tessellate import TriMesh, merge, tessellate
 from rmot.sim.render.transform import rotate_vectors, transform_points
+from rmot.sim.parts import part_poses, with_part_bodies
 from rmot.sim.scene import Scene, build_scene
 
 __all__ = ["HIGHLIGHT", "RenderScene", "body_poses", "prepare", "soup"]
@@ -33,6 +34,7 @@ ROBOT_BY_VENDOR = {  # the colours the vendors paint their arms, roughly
     "ur": (0.62, 0.75, 0.85),
 }
 ROBOT_DEFAULT = (0.85, 0.55, 0.15)
+PART = (0.78, 0.56, 0.30)  # cardboard: parts that tools pick up and put down (issue #14)
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,6 +98,7 @@ def body_poses(rs: RenderScene, times: np.ndarray) -> np.ndarray:
     moving: dict[str, np.ndarray] = {}
     for robot, values in q.items():
         moving.update(rs.scene.poses(robot, values))
+    moving.update(part_poses(rs.scene, rs.plan, times, q))  # parts: placed or on a flange (issue #14)
     poses = np.empty((len(times), len(rs.names), 4, 4))
     for i, body in enumerate(rs.scene.bodies):
         poses[:, i] = moving[body.name] if body.name in moving else body.local
@@ -179,7 +182,7 @@ def prepare(plan: Plan, samples: int = 24, robots: Mapping[str, object] | None =
 
     robots: robot instance name -> Robot (default: loaded from the robot library).
     """
-    scene = build_scene(plan.program.cell, _tools_used(plan.program), robots)
+    scene = with_part_bodies(build_scene(plan.program.cell, _tools_used(plan.program), robots))
     names = tuple(b.name for b in scene.bodies)
     meshes = tuple(tessellate(b.shape) for b in scene.bodies)
     colors = np.array([_body_color(scene, b) for b in scene.bodies], np.float32).reshape(-1, 3)
@@ -194,6 +197,8 @@ def prepare(plan: Plan, samples: int = 24, robots: Mapping[str, object] | None =
 
 
 def _body_color(scene: Scene, body: object) -> tuple[float, float, float]:
+    if any(p.name == getattr(body, "name") for p in scene.cell.parts):
+        return PART
     kind = getattr(body, "kind")
     if kind == "fixture":
         return FIXTURE
