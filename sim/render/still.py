@@ -24,6 +24,7 @@ def default_camera(rs: RenderScene, size: tuple[int, int]) -> Camera:
 def _draw_paths(picture: Picture, rs: RenderScene, camera: Camera) -> None:
     """The TCP paths over the picture: solid where seen, faint where a body hides them."""
     height, width = picture.frame.depth.shape
+    camera = picture.camera or camera  # the near/far planes the z-buffer was drawn with
     for path in rs.paths:
         samples = sample_segments(path[:-1], path[1:], camera, (width, height))
         seen = visible(picture.frame, samples, camera)

@@ -91,7 +91,9 @@ def wireframe_svg(vertices: np.ndarray, camera: Camera, size: tuple[int, int] = 
     groups = np.zeros(len(vertices), int) if groups is None else np.asarray(groups)
     hidden_by = vertices if occluders is None else np.concatenate([vertices, occluders])
     big = (size[0] * _SCALE, size[1] * _SCALE)
-    frame, _ = depth_frame(hidden_by, camera, big)
+    camera = camera.fitted(np.concatenate([hidden_by.reshape(-1, 3)] + [np.concatenate([a, b]).reshape(-1, 3)
+                                                                         for a, b, _ in lines]))
+    frame, _ = depth_frame(hidden_by, camera, big)  # the same planes for the surfaces and the lines
     edges, tri = feature_edges(vertices, np.asarray(camera.eye, float))
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{size[0]}" height="{size[1]}" '
            f'viewBox="0 0 {size[0]} {size[1]}">',
