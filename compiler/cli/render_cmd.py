@@ -158,22 +158,25 @@ def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | 
     _report(scene.diagnostics)  # meshes that do not load: errors stop here, warnings are shown
     size = size or ((480, 360) if ext in (".gif", ".mp4") else (640, 480))
     camera = _camera(camera_text, scene, size)
+    from rmot.sim.render.findings import verified_markings
+
+    marks, _ = verified_markings(scene)  # findings are marked in every kind of picture
     if ext == ".png":
         from rmot.sim.render.still import still_image
 
-        write_png(output, still_image(scene, time=at, size=size, aa=aa or 2, camera=camera))
+        write_png(output, still_image(scene, time=at, size=size, aa=aa or 2, camera=camera, marks=marks))
     elif ext in (".gif", ".mp4"):
         from rmot.sim.render.animate import AnimationError, write_animation
 
         try:
-            write_animation(scene, output, fps=fps, size=size, aa=aa or 1, camera=camera)
+            write_animation(scene, output, fps=fps, size=size, aa=aa or 1, camera=camera, marks=marks)
         except AnimationError as exc:
             raise _InputError(Diagnostic(codes.FORMAT_UNAVAILABLE, Severity.ERROR, str(exc), None)) from None
     elif ext == ".svg":
         from rmot.sim.render.svg import render_svg
 
-        write_text(output, render_svg(scene, time=at, size=size, camera=camera))
+        write_text(output, render_svg(scene, time=at, size=size, camera=camera, marks=marks))
     else:
         from rmot.sim.render.html import render_html
 
-        write_text(output, render_html(scene, fps=fps, camera=camera))
+        write_text(output, render_html(scene, fps=fps, camera=camera, marks=marks))

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 
 import numpy as np
 from PIL import Image
@@ -16,6 +16,7 @@ from PIL import Image
 from rmot.compiler.planned import Plan
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.files import write_atomic
+from rmot.sim.render.findings import Marking, active
 from rmot.sim.render.scene import RenderScene, body_poses, prepare
 from rmot.sim.render.still import default_camera, frame
 
@@ -49,13 +50,13 @@ def stderr_progress(done: int, total: int) -> None:
 
 
 def _frames(rs: RenderScene, fps: float, size: tuple[int, int], aa: int, camera: Camera | None,
-            progress: Progress | None) -> Iterator[np.ndarray]:
+            progress: Progress | None, marks: Sequence[Marking] = ()) -> Iterator[np.ndarray]:
     plan = rs.plan
     camera = camera or default_camera(rs, size)
     times = frame_times(plan.cycle_time, fps)
     poses = body_poses(rs, times)
     for i in range(len(times)):
-        yield frame(rs, poses[i], camera, size, aa)
+        yield frame(rs, poses[i], camera, size, aa, marks=active(marks, float(times[i])))
         if progress is not None:
             progress(i + 1, len(times))
 
@@ -71,15 +72,17 @@ def render_animation(plan: Plan, path: str, *, fps: int = 25, size: tuple[int, i
 
 
 def write_animation(rs: RenderScene, path: str, *, fps: int = 25, size: tuple[int, int] = (480, 360), aa: int = 1,
-                    camera: Camera | None = None, progress: Progress | None | bool = None) -> None:
-    """render_animation on an already prepared scene."""
+                    camera: Camera | None = None, progress: Progress | None | bool = None,
+                    marks: Sequence[Marking] = ()) -> None:
+    """render_animation on an already prepared scene; `marks` (findings.markings) are marked in
+    the frames around their intervals."""
     plan = rs.plan
     ext = os.path.splitext(path)[1].lower()
     if ext not in (".gif", ".mp4"):
         raise AnimationError(f"animation file must end in .gif or .mp4 (got '{path}')")
     if progress is None:
         progress = stderr_progress if plan.cycle_time > 2.0 else False
-    frames = _frames(rs, fps, size, aa, camera, progress or None)
+    frames = _frames(rs, fps, size, aa, camera, progress or None, marks)
     writer = _write_gif if ext == ".gif" else _write_mp4
     write_atomic(path, lambda temp: writer(temp, frames, fps))
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from rmot.compiler.planned import Plan
@@ -9,11 +11,12 @@ from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.caption import add_caption
 from rmot.sim.render.files import write_png
+from rmot.sim.render.findings import Marking, active, finding_caption, mark_picture, markings, worst_instant
 from rmot.sim.render.overlay import sample_segments, stamp, visible
 from rmot.sim.render.pipeline import Picture, downsample, draw, to_uint8
 from rmot.sim.render.scene import PATH, RenderScene, body_poses, prepare, soup
 
-__all__ = ["default_camera", "finding_caption", "frame", "render_finding", "render_still", "still_image"]
+__all__ = ["default_camera", "finding_caption", "frame", "render_finding", "render_still", "still_image", "worst_instant"]
 
 
 def default_camera(rs: RenderScene, size: tuple[int, int]) -> Camera:
@@ -34,13 +37,18 @@ def _draw_paths(picture: Picture, rs: RenderScene, camera: Camera) -> None:
 
 
 def frame(rs: RenderScene, poses: np.ndarray, camera: Camera, size: tuple[int, int], aa: int,
-          highlight: tuple[str, ...] = (), paths: bool = True) -> np.ndarray:
-    """One picture (H, W, 3) uint8 of the scene with bodies at poses (B, 4, 4)."""
+          highlight: tuple[str, ...] = (), paths: bool = True, marks: Sequence[Marking] = ()) -> np.ndarray:
+    """One picture (H, W, 3) uint8 of the scene with bodies at poses (B, 4, 4); `marks` are the
+    findings to mark in it (bodies in red, the contact region strongest, captions below)."""
     vertices, normals, colors = soup(rs, poses, highlight)
     picture = draw(vertices, normals, colors, camera, size, aa)
+    mark_picture(picture, rs, marks)
     if paths:
         _draw_paths(picture, rs, camera)
-    return to_uint8(downsample(picture.color, aa))
+    image = to_uint8(downsample(picture.color, aa))
+    if marks:
+        image = add_caption(image, "\n".join(m.caption for m in marks), max_lines=2 * len(marks) + 1)
+    return image
 
 
 def _check_size(size: tuple[int, int], aa: int) -> None:
@@ -52,39 +60,32 @@ def _check_size(size: tuple[int, int], aa: int) -> None:
 
 def render_still(plan: Plan, *, time: float = 0.0, size: tuple[int, int] = (640, 480), aa: int = 2,
                  camera: Camera | None = None, highlight: tuple[str, ...] = (),
-                 caption: str | None = None) -> np.ndarray:
-    """The cell at `time` s of the program: (H, W, 3) uint8, `highlight` bodies in red."""
-    return still_image(prepare(plan), time=time, size=size, aa=aa, camera=camera, highlight=highlight, caption=caption)
+                 caption: str | None = None, findings: Sequence[Diagnostic] = ()) -> np.ndarray:
+    """The cell at `time` s of the program: (H, W, 3) uint8, `highlight` bodies in red, the
+    `findings` active at that instant marked (see still_image)."""
+    rs = prepare(plan)
+    return still_image(rs, time=time, size=size, aa=aa, camera=camera, highlight=highlight, caption=caption,
+                       marks=markings(rs, findings))
 
 
 def still_image(rs: RenderScene, *, time: float = 0.0, size: tuple[int, int] = (640, 480), aa: int = 2,
-                camera: Camera | None = None, highlight: tuple[str, ...] = (), caption: str | None = None) -> np.ndarray:
-    """render_still on an already prepared scene."""
+                camera: Camera | None = None, highlight: tuple[str, ...] = (), caption: str | None = None,
+                marks: Sequence[Marking] = ()) -> np.ndarray:
+    """render_still on an already prepared scene; `marks` (findings.markings) whose interval
+    (widened by findings.WINDOW) holds `time` are marked and captioned."""
     _check_size(size, aa)
     camera = camera or default_camera(rs, size)
-    image = frame(rs, body_poses(rs, np.array([time]))[0], camera, size, aa, highlight)
+    image = frame(rs, body_poses(rs, np.array([time]))[0], camera, size, aa, highlight, marks=active(marks, time))
     return add_caption(image, caption) if caption else image
 
 
-def finding_caption(diagnostic: Diagnostic) -> str:
-    """'E301 line 12 t=3.21 s: message' (parts without data are left out)."""
-    parts = [diagnostic.code.id]
-    if diagnostic.span is not None:
-        parts.append(f"line {diagnostic.span.start.line}")
-    instant = worst_instant(diagnostic)
-    if instant is not None:
-        parts.append(f"t={instant:.2f} s")
-    return " ".join(parts) + f": {diagnostic.message}"
-
-
-def worst_instant(diagnostic: Diagnostic) -> float | None:
-    """When the finding is worst: the deepest contact or closest approach where the checker
-    recorded it (peak_time_s), else the start of its interval."""
-    return diagnostic.peak_time_s if diagnostic.peak_time_s is not None else diagnostic.time_s
-
-
-def render_finding(plan: Plan, diagnostic: Diagnostic, path: str, size: tuple[int, int] = (640, 480)) -> None:
-    """A PNG of the finding's worst instant, its bodies in red, with a caption."""
-    image = render_still(plan, time=worst_instant(diagnostic) or 0.0, size=size, highlight=tuple(diagnostic.bodies),
-                         caption=finding_caption(diagnostic))
+def render_finding(plan: Plan, diagnostic: Diagnostic, path: str, size: tuple[int, int] = (640, 480),
+                   camera: Camera | None = None) -> None:
+    """A PNG of the finding's worst instant: its bodies marked (the contact region strongest), with a caption."""
+    rs = prepare(plan)
+    marks = markings(rs, [diagnostic])
+    time = marks[0].worst if marks else (worst_instant(diagnostic) or 0.0)
+    image = still_image(rs, time=time, size=size, camera=camera, marks=marks)
+    if not marks:  # no time or no bodies of this scene: the caption alone says what happened
+        image = add_caption(image, finding_caption(diagnostic))
     write_png(path, image)
