@@ -238,7 +238,7 @@ def _timeline(data: PlotData) -> Any:
     for kind, color in colors.items():
         ax.plot([], [], color=color, linewidth=6, label={"move": "move", "wait": "wait (time / input)",
                                                            "sync": "sync (waiting for the other task)", "io": "I/O"}[kind])
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.35), ncol=4, frameon=False)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.5), ncol=4, frameon=False)
     ax.set_xlabel("time [s]", fontsize=8)
     ax.tick_params(labelsize=7)
     fig.suptitle(f"{data.program}: per-instruction timeline", fontsize=10)

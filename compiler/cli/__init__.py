@@ -27,6 +27,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "ir": ("rmot.compiler.cli.ir_cmd", "ir", "Dump the checked IR of a program."),
     "robots": ("rmot.compiler.cli.robots_cmd", "robots", "The robot library: list, show, fk, ik."),
     "plot": ("rmot.compiler.cli.plot_cmd", "plot", "Plot joints, speeds, torques, TCP speed or the timeline."),
+    "report": ("rmot.compiler.cli.report_cmd", "report", "Verify programs; write one HTML page with findings, plots, 3D view."),
 }
 
 

@@ -54,8 +54,9 @@ def scene_data(rs: RenderScene, fps: float = 25.0, camera: Camera | None = None,
         if mine.any():
             floor.append({"vertices": _b64(rs.floor.vertices[mine]), "normals": _b64(rs.floor.normals[mine]), "color": _color(color)})
     return {
-        "bodies": [{"name": name, "vertices": _b64(mesh.vertices), "normals": _b64(mesh.normals), "color": _color(color)}
-                   for name, mesh, color in zip(rs.names, rs.meshes, rs.colors)],
+        "bodies": [{"name": name, "vertices": _b64(mesh.vertices), "normals": _b64(mesh.normals), "color": _color(color),
+                    "kind": str(getattr(body, "kind", ""))}
+                   for name, mesh, color, body in zip(rs.names, rs.meshes, rs.colors, rs.scene.bodies)],
         "floor": floor,
         "paths": [_b64(p) for p in rs.paths],
         "pathColor": _color(PATH),

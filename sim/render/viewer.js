@@ -35,13 +35,14 @@
   var VS = "attribute vec3 p; attribute vec3 n; uniform mat4 model, view, proj;" +
     "varying vec3 wp; varying vec3 wn;" +
     "void main(){ vec4 w = model * vec4(p,1.0); wp = w.xyz; wn = mat3(model) * n; gl_Position = proj * view * w; }";
-  var FS = "precision mediump float; varying vec3 wp; varying vec3 wn; uniform vec3 color, eye; uniform float lit;" +
+  var FS = "precision mediump float; varying vec3 wp; varying vec3 wn; uniform vec3 color, eye, hl, contact; uniform float lit, mark, radius;" +
     "void main(){ if (lit < 0.5) { gl_FragColor = vec4(color,1.0); return; }" +
+    " vec3 base = color; if (mark > 1.5 && distance(wp, contact) > radius) base = mix(color, hl, 0.4); else if (mark > 0.5) base = hl;" +
     " vec3 nn = normalize(wn); vec3 v = normalize(eye - wp); if (dot(nn,v) < 0.0) nn = -nn;" +
     " vec3 l1 = normalize(vec3(0.35,-0.55,0.76)); vec3 l2 = normalize(vec3(-0.6,0.5,0.3));" +
     " float d = 0.85*max(dot(nn,l1),0.0) + 0.3*max(dot(nn,l2),0.0);" +
     " float s = dot(nn,l1) > 0.0 ? 0.85*pow(max(dot(nn,normalize(l1+v)),0.0),24.0) : 0.0;" +
-    " gl_FragColor = vec4(min(color*(0.28+0.72*d) + 0.22*s, 1.0), 1.0); }";
+    " gl_FragColor = vec4(min(base*(0.28+0.72*d) + 0.22*s, 1.0), 1.0); }";
   function compile(type, src) {
     var s = gl.createShader(type); gl.shaderSource(s, src); gl.compileShader(s);
     if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
@@ -51,7 +52,7 @@
   gl.attachShader(prog, compile(gl.VERTEX_SHADER, VS)); gl.attachShader(prog, compile(gl.FRAGMENT_SHADER, FS));
   gl.linkProgram(prog); gl.useProgram(prog);
   var loc = {};
-  ["model", "view", "proj", "color", "eye", "lit"].forEach(function (k) { loc[k] = gl.getUniformLocation(prog, k); });
+  ["model", "view", "proj", "color", "eye", "lit", "hl", "contact", "mark", "radius"].forEach(function (k) { loc[k] = gl.getUniformLocation(prog, k); });
   var aP = gl.getAttribLocation(prog, "p"), aN = gl.getAttribLocation(prog, "n");
 
   function buffer(array) { var b = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, b); gl.bufferData(gl.ARRAY_BUFFER, array, gl.STATIC_DRAW); return b; }
@@ -110,12 +111,16 @@
     playing = false; button.textContent = "play"; tShown = Math.max(0, Math.min(t, duration));
     slider.value = String(frameAt(tShown));
   }
+  window.rmotJump = jumpTo;  // the report page's links call this
   function activeAt(t) {
     var marked = {};
     findings.forEach(function (f, k) {
       var on = t >= f.t0 - data.window - 1e-9 && t <= f.t1 + data.window + 1e-9;
       items[k].className = on ? "finding on" : "finding";
-      if (on) f.bodies.forEach(function (i) { marked[i] = true; });
+      if (on) f.bodies.forEach(function (i) {  // fixtures: the contact region strong, the rest tinted
+        var region = f.contact && data.bodies[i].kind === "fixture";
+        if (!marked[i] || !region) marked[i] = region ? { contact: f.contact, radius: f.radius } : { contact: null };
+      });
     });
     return marked;
   }
@@ -176,7 +181,14 @@
     }
     gl.clearColor(0.92, 0.93, 0.95, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     floors.forEach(function (d) { drawOne(d, identity, d.color, 1, gl.TRIANGLES); });
-    bodies.forEach(function (d, i) { drawOne(d, modelAt(frame, i), marked[i] ? data.highlight : d.color, 1, gl.TRIANGLES); });
+    gl.uniform3fv(loc.hl, data.highlight);
+    bodies.forEach(function (d, i) {
+      var m = marked[i];
+      gl.uniform1f(loc.mark, m ? (m.contact ? 2 : 1) : 0);
+      if (m && m.contact) { gl.uniform3fv(loc.contact, m.contact); gl.uniform1f(loc.radius, m.radius); }
+      drawOne(d, modelAt(frame, i), d.color, 1, gl.TRIANGLES);
+    });
+    gl.uniform1f(loc.mark, 0);
     paths.forEach(function (d) { drawOne(d, identity, data.pathColor, 0, gl.LINE_STRIP); });
     requestAnimationFrame(render);
   }
