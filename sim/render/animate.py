@@ -88,11 +88,35 @@ def write_animation(rs: RenderScene, path: str, *, fps: int = 25, size: tuple[in
 
 
 def _write_gif(path: str, frames: Iterator[np.ndarray], fps: float) -> None:
-    palettised = [Image.fromarray(f).quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
-                  for f in frames]
+    """All frames on one palette (made from the first frames), without dithering: the parts
+    that do not move keep the same bytes from frame to frame, so the GIF writer stores only
+    the changed rectangle of each frame and the file stays small."""
+    first = [next(frames, None)]
+    if first[0] is None:
+        raise AnimationError("an animation needs at least one frame")
+    palette = _palette(first[0])
+    palettised = [_on_palette(f, palette) for f in first]
+    palettised += [_on_palette(f, palette) for f in frames]
     duration = int(round(1000.0 / fps))  # ms per frame (GIF counts in 10 ms steps)
     palettised[0].save(path, format="GIF", save_all=True, append_images=palettised[1:], duration=duration,
                        loop=0, optimize=False)
+
+
+_FINDING_COLORS = np.array([[219, 20, 15], [175, 60, 60], [24, 26, 30], [250, 250, 250]], np.uint8)  # red, tint, caption
+
+
+def _palette(image: np.ndarray) -> Image.Image:
+    """A 256-colour palette for the whole animation: the first frame's colours plus the
+    colours that appear later (finding reds, the caption band and its text)."""
+    extra = np.repeat(np.repeat(_FINDING_COLORS[None], 8, axis=0), 8, axis=1)  # small blocks of each
+    board = np.concatenate([image.reshape(-1, 3), extra.reshape(-1, 3)])
+    side = int(np.ceil(np.sqrt(len(board))))
+    padded = np.concatenate([board, np.repeat(board[-1:], side * side - len(board), axis=0)]).reshape(side, side, 3)
+    return Image.fromarray(padded).quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+
+
+def _on_palette(frame_rgb: np.ndarray, palette: Image.Image) -> Image.Image:
+    return Image.fromarray(frame_rgb).quantize(palette=palette, dither=Image.Dither.NONE)
 
 
 def _write_mp4(path: str, frames: Iterator[np.ndarray], fps: float) -> None:

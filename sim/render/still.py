@@ -13,15 +13,88 @@ from rmot.sim.render.caption import add_caption
 from rmot.sim.render.files import write_png
 from rmot.sim.render.findings import Marking, active, finding_caption, mark_picture, markings, worst_instant
 from rmot.sim.render.overlay import sample_segments, stamp, visible
-from rmot.sim.render.pipeline import Picture, downsample, draw, to_uint8
+from rmot.sim.render.pipeline import Picture, depth_frame, downsample, draw, to_uint8
 from rmot.sim.render.scene import PATH, RenderScene, body_poses, prepare, soup
 
 __all__ = ["default_camera", "finding_caption", "frame", "render_finding", "render_still", "still_image", "worst_instant"]
 
 
+# Candidate views (azimuth offset from the direction the robots face, elevation), in order
+# of preference: three-quarter views from the working side first, then the sides, the back,
+# and higher views. The first one that shows the most of the robots and their TCP paths wins.
+CANDIDATES = ((-40.0, 28.0), (40.0, 28.0), (0.0, 22.0), (-80.0, 28.0), (80.0, 28.0), (-130.0, 28.0), (130.0, 28.0),
+              (180.0, 28.0), (-40.0, 55.0), (40.0, 55.0), (0.0, 75.0))
+PRESETS = {"front": (0.0, 12.0), "side": (90.0, 12.0), "top": (0.0, 89.0), "iso": (-45.0, 35.26)}
+_PROBE = (64, 48)  # px: the size at which candidate views are compared
+
+
+def facing_deg(rs: RenderScene) -> float:
+    """Azimuth (deg, from +x about +z) of the side the robots work on: from their bases towards
+    their TCP paths (the bases' x axes when there is no path)."""
+    bases = np.array([np.asarray(e.base)[:3, 3] for e in rs.scene.robots.values()]).reshape(-1, 3)
+    paths = [p for p in rs.paths if len(p)]
+    direction = np.zeros(2)
+    if len(bases) and paths:
+        direction = np.concatenate(paths)[:, :2].mean(axis=0) - bases[:, :2].mean(axis=0)
+    if np.linalg.norm(direction) < 0.05:
+        direction = sum((np.asarray(e.base)[:2, 0] for e in rs.scene.robots.values()), np.zeros(2))
+    if np.linalg.norm(direction) < 0.05 and len(bases) >= 2:  # robots facing each other: look across
+        line = bases[1, :2] - bases[0, :2]
+        direction = np.array([-line[1], line[0]])
+    if np.linalg.norm(direction) < 1e-9:
+        return -50.0  # nothing to go by: the classic three-quarter view
+    return float(np.degrees(np.arctan2(direction[1], direction[0])))
+
+
+def preset_camera(rs: RenderScene, name: str, size: tuple[int, int]) -> Camera:
+    """A named view (front, side, top, iso) relative to the side the robots work on."""
+    azimuth, elevation = PRESETS[name]
+    return Camera.framing(rs.bounds, aspect=size[0] / size[1], azimuth_deg=facing_deg(rs) + azimuth,
+                          elevation_deg=elevation, points=rs.extent)
+
+
+def _visibility(rs: RenderScene, camera: Camera, poses: np.ndarray, work: np.ndarray) -> float:
+    """How much of the robots (share of their pixels not hidden by fixtures) and of their TCP
+    paths (share of samples in view and unhidden) a camera shows, 0..2."""
+    vertices, _, _ = soup(rs, poses)
+    owner = np.concatenate([np.full(len(rs.floor), -1)] + [np.full(len(m), i) for i, m in enumerate(rs.meshes)])
+    mine = np.isin(owner, work)
+    frame_all, source = depth_frame(vertices, camera.fitted(vertices), _PROBE)
+    seen = np.isin(owner[source][np.maximum(frame_all.tri, 0)], work) & (frame_all.tri >= 0)
+    alone, _ = depth_frame(vertices[mine], camera.fitted(vertices), _PROBE)
+    robots = seen.sum() / max(int((alone.tri >= 0).sum()), 1)
+    path_score = 0.0
+    paths = [p for p in rs.paths if len(p) > 1]
+    if paths:
+        fitted = camera.fitted(vertices)
+        a = np.concatenate([p[:-1] for p in paths])
+        b = np.concatenate([p[1:] for p in paths])
+        samples = sample_segments(a, b, fitted, _PROBE, step=2.0)
+        total = sum(len(p) - 1 for p in paths)
+        path_score = float(visible(frame_all, samples, fitted).sum()) / max(len(samples.depth), 1) if total else 0.0
+    return float(robots) + path_score
+
+
 def default_camera(rs: RenderScene, size: tuple[int, int]) -> Camera:
-    """The three-quarter view framing every body over the whole program."""
-    return Camera.framing(rs.bounds, aspect=size[0] / size[1], points=rs.extent)
+    """A view that frames every body over the whole program and shows the work: of the
+    CANDIDATES views around the side the robots face, the first that shows the most of the
+    robots and their TCP paths unhidden by fixtures (compared on small pictures at 20, 50 and
+    80 % of the program; a later candidate must be clearly better to win)."""
+    aspect = size[0] / size[1]
+    facing = facing_deg(rs)
+    work = np.array([i for i, b in enumerate(rs.scene.bodies) if getattr(b, "kind", "") != "fixture"], int)
+    instants = body_poses(rs, np.array([0.2, 0.5, 0.8]) * float(rs.plan.cycle_time))
+    best: tuple[float, Camera] | None = None
+    for d_az, elevation in CANDIDATES:
+        camera = Camera.framing(rs.bounds, aspect=aspect, azimuth_deg=facing + d_az, elevation_deg=elevation,
+                                points=rs.extent)
+        if len(work) == 0:
+            return camera
+        score = sum(_visibility(rs, camera, poses, work) for poses in instants) / len(instants)
+        if best is None or score > best[0] + 0.05:  # a clearly better view, else keep the preferred one
+            best = (score, camera)
+    assert best is not None
+    return best[1]
 
 
 def _draw_paths(picture: Picture, rs: RenderScene, camera: Camera) -> None:

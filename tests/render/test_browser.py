@@ -82,7 +82,7 @@ def test_viewer_draws_the_scene_and_the_finding(pages: dict[str, object]) -> Non
     canvas = img[:-40]  # above the control bar
     colours = len(np.unique(canvas.reshape(-1, 3), axis=0))
     assert colours > 200  # shaded bodies and floor, not a blank canvas
-    assert red(canvas[100:]).sum() > 200  # the gripper and the bench's contact region (below the findings panel)
+    assert red(canvas[100:]).sum() > 80  # the gripper and the bench's contact region (below the findings panel)
 
 
 def test_viewer_lists_the_findings(pages: dict[str, object]) -> None:
