@@ -256,7 +256,7 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
     from rmot.sim.render.findings import markings
     from rmot.sim.render.html import render_html
     from rmot.sim.render.scene import prepare
-    from rmot.sim.render.still import still_image
+    from rmot.sim.render.still import finding_camera, still_image
 
     cache: dict[str, Any] = {}
 
@@ -275,7 +275,8 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
 
         from PIL import Image
 
-        image = still_image(scene(), time=m.worst, size=PICTURE, aa=2, marks=(m,))
+        camera = finding_camera(scene(), m, PICTURE)
+        image = still_image(scene(), time=m.worst, size=PICTURE, aa=2, marks=(m,), camera=camera)
         buffer = io.BytesIO()
         Image.fromarray(image).save(buffer, format="PNG", optimize=False)
         return buffer.getvalue()

@@ -152,12 +152,42 @@ def still_image(rs: RenderScene, *, time: float = 0.0, size: tuple[int, int] = (
     return add_caption(image, caption) if caption else image
 
 
+def finding_camera(rs: RenderScene, mark: Marking, size: tuple[int, int]) -> Camera:
+    """The default view's direction, closer: framing the finding's bodies at its worst instant
+    and 0.3 m around the contact point, so the contact fills the picture."""
+    base = default_camera(rs, size)
+    poses = body_poses(rs, np.array([mark.worst]))[0]
+    points = []
+    for name in mark.bodies:
+        i = rs.names.index(name)
+        if len(rs.meshes[i]):
+            pts = rs.meshes[i].vertices.reshape(-1, 3) @ poses[i, :3, :3].T + poses[i, :3, 3]
+            points.append(np.stack([pts.min(axis=0), pts.max(axis=0)]))
+    if mark.contact is not None:
+        points.append(np.stack([mark.contact - 0.3, mark.contact + 0.3]))
+    if not points:
+        return base
+    box = np.concatenate(points)
+    lo, hi = box.min(axis=0), box.max(axis=0)
+    if mark.contact is not None:  # a large fixture: keep to 1 m around the contact
+        lo, hi = np.maximum(lo, mark.contact - 1.0), np.minimum(hi, mark.contact + 1.0)
+    corners = np.array([[(lo, hi)[a][0], (lo, hi)[b][1], (lo, hi)[c][2]] for a in (0, 1) for b in (0, 1) for c in (0, 1)])
+    d = np.subtract(base.eye, base.center)
+    d /= np.linalg.norm(d)
+    azimuth, elevation = np.degrees(np.arctan2(d[1], d[0])), np.degrees(np.arcsin(np.clip(d[2], -1.0, 1.0)))
+    return Camera.framing(np.stack([lo, hi]), aspect=size[0] / size[1], fov_deg=base.fov_deg, azimuth_deg=float(azimuth),
+                          elevation_deg=float(elevation), points=corners, fill=0.8)
+
+
 def render_finding(plan: Plan, diagnostic: Diagnostic, path: str, size: tuple[int, int] = (640, 480),
                    camera: Camera | None = None) -> None:
-    """A PNG of the finding's worst instant: its bodies marked (the contact region strongest), with a caption."""
+    """A PNG of the finding's worst instant: its bodies marked (the contact region strongest),
+    with a caption, seen from the default direction framing the finding (finding_camera)."""
     rs = prepare(plan)
     marks = markings(rs, [diagnostic])
     time = marks[0].worst if marks else (worst_instant(diagnostic) or 0.0)
+    if camera is None and marks:
+        camera = finding_camera(rs, marks[0], size)
     image = still_image(rs, time=time, size=size, camera=camera, marks=marks)
     if not marks:  # no time or no bodies of this scene: the caption alone says what happened
         image = add_caption(image, finding_caption(diagnostic))

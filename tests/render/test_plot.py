@@ -92,5 +92,7 @@ def test_cli_writes_png_and_reports_bad_output(tmp_path: Path) -> None:
     assert bad.exit_code == 2
     missing = runner.invoke(cli, ["plot", str(tmp_path / "none.rmot"), "-o", str(out)])
     assert missing.exit_code == 2 and "E501" in missing.output
+    unwritable = runner.invoke(cli, ["plot", str(EXAMPLES / "handover.rmot"), "-o", str(tmp_path / "no" / "dir" / "t.png")])
+    assert unwritable.exit_code == 2 and "E600" in unwritable.output
     cell_only = runner.invoke(cli, ["plot", str(EXAMPLES / "cells" / "demo.rmot"), "-o", str(out)])
     assert cell_only.exit_code == 2 and "E119" in cell_only.output
