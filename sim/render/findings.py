@@ -6,8 +6,8 @@ of the closest pair of surface points of the first two bodies, from points sampl
 posed meshes) and a caption "E300 line 41 t=3.41 s 29.4 mm: message".
 
 Findings of one event are merged first (`events`): the same code and bodies over intervals
-that touch or nearly touch are one event (the checker may report a long contact in pieces),
-so a picture is made per event, not per sample interval.
+that touch or nearly touch are one event (the checker may report a long contact in pieces,
+e.g. one per move it spans), so a picture is made per event, not per sample interval.
 
 Marking a picture: pixels of a marked body are tinted red; within `radius` of the contact
 point they are painted strongly red, so a large fixture shows where it is hit rather than
@@ -82,7 +82,7 @@ def events(diagnostics: Iterable[Diagnostic]) -> tuple[Diagnostic, ...]:
         prev = out[-1] if out else None
         end = lambda x: x.end_time_s if x.end_time_s is not None else x.time_s  # noqa: E731
         if (prev is not None and prev.code == d.code and sorted(prev.bodies) == sorted(d.bodies)
-                and d.time_s <= end(prev) + GAP and prev.span == d.span):
+                and d.time_s <= end(prev) + GAP):
             worst = d if _amount(d) > _amount(prev) else prev
             merged = replace(worst, time_s=prev.time_s, end_time_s=max(end(prev), end(d)),
                              peak_time_s=worst_instant(worst))

@@ -22,6 +22,7 @@ from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
 from rmot.lang.diagnostics import Amount, Code, Diagnostic, Severity
+from rmot.lang.source import Pos, SourceFile, Span
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.findings import events, unproject, verified_markings
 from rmot.sim.render.pipeline import draw
@@ -52,6 +53,9 @@ def test_one_event_from_pieces() -> None:
               for k in range(11)]
     other = Diagnostic(ROBOT_HIT, Severity.ERROR, "other pair", None, time_s=1.5, end_time_s=1.6, bodies=("r1/link5", "r2/link4"))
     later = dataclasses.replace(pieces[0], time_s=9.0, end_time_s=9.1, peak_time_s=9.05)
+    source = SourceFile("two.rmot", "\n" * 30)
+    for k in range(11):  # the contact spans two moves: pieces on lines 12 and 13 are still one event
+        pieces[k] = dataclasses.replace(pieces[k], span=Span(source, Pos(12 + k // 6, 3), Pos(12 + k // 6, 9)))
     out = events(pieces + [other, later])
     assert len(out) == 3
     first = out[0]
