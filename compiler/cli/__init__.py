@@ -27,6 +27,8 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "ir": ("rmot.compiler.cli.ir_cmd", "ir", "Dump the checked IR of a program."),
     "robots": ("rmot.compiler.cli.robots_cmd", "robots", "The robot library: list, show, fk, ik."),
     "merge-reports": ("rmot.compiler.cli.merge_cmd", "merge_reports_cmd", "Merge the reports of `check --shard` runs."),
+    "plot": ("rmot.compiler.cli.plot_cmd", "plot", "Plot joints, speeds, torques, TCP speed or the timeline."),
+    "report": ("rmot.compiler.cli.report_cmd", "report", "Verify programs; write one HTML page with findings, plots, 3D view."),
 }
 
 

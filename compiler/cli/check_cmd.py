@@ -78,13 +78,14 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
 
 
 def _render_images(plan: Plan, report: Report, directory: str) -> Report:
-    """One PNG per error finding with a time; written atomically (temp file + rename)."""
+    """One PNG per error event (findings.events) with a time; written atomically (temp file + rename)."""
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim import codes
     from rmot.sim.report import Report
 
     try:
         from rmot.sim.render import render_finding
+        from rmot.sim.render.findings import events
     except ImportError as exc:
         note = Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                           f"images were not rendered: the renderer is not available ({exc})", None)
@@ -92,7 +93,7 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
     os.makedirs(directory, exist_ok=True)
     stem = os.path.splitext(os.path.basename(report.program_file))[0]
     extra = []
-    for k, d in enumerate(report.errors, start=1):
+    for k, d in enumerate(events(report.errors), start=1):  # one picture per event, not per piece of it
         if d.time_s is None:
             continue
         final = os.path.join(directory, f"{stem}-{k:02d}-{d.code.id}.png")

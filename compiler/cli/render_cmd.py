@@ -40,8 +40,8 @@ def _parse_size(ctx: click.Context, param: click.Parameter, value: str | None) -
 
 def _check_camera(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
     """Syntax now; the values merge with the default framing once the scene is known."""
-    if value is None:
-        return None
+    if value is None or value.strip().lower() in ("front", "side", "top", "iso"):
+        return value
     from rmot.sim.render.camera import CameraSpecError, camera_fields
 
     try:
@@ -56,7 +56,10 @@ def _camera(text: str | None, scene: Any, size: tuple[int, int]) -> Any:
     if text is None:
         return None
     from rmot.sim.render.camera import CameraSpecError, parse_camera
-    from rmot.sim.render.still import default_camera
+    from rmot.sim.render.still import PRESETS, default_camera, preset_camera
+
+    if text.strip().lower() in PRESETS:  # a named view: front, side, top, iso
+        return preset_camera(scene, text.strip().lower(), size)
 
     try:
         return parse_camera(text, default=default_camera(scene, size))
@@ -79,14 +82,15 @@ def _output_format(ctx: click.Context, param: click.Parameter, value: str) -> st
 @click.option("--size", callback=_parse_size, default=None, help="WIDTHxHEIGHT in pixels [640x480; 480x360 for animations].")
 @click.option("--aa", type=click.IntRange(1, 8), default=None, help="Supersampling factor K (K x K samples per pixel).")
 @click.option("--camera", callback=_check_camera, default=None,
-              help='e.g. "eye=3,-3,2;center=0.5,0,0.5;fov=40" (m, deg); keys left out keep the default view.')
-@click.option("--fps", type=click.IntRange(1, 60), default=25, show_default=True, help="Frames per second of animations.")
+              help='front|side|top|iso, or e.g. "eye=3,-3,2;center=0.5,0,0.5;fov=40" (m, deg); keys left out keep the default view.')
+@click.option("--fps", type=click.IntRange(1, 60), default=None, help="Frames per second of animations [GIF 10, MP4 and HTML 25].")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Directory that file paths may not leave.")
 def render(program: str, cell: str | None, output: str, at: float, size: tuple[int, int] | None, aa: int | None,
-           camera: str | None, fps: int, project_root: str | None) -> None:
+           camera: str | None, fps: int | None, project_root: str | None) -> None:
     """Render a program to PNG, GIF, MP4, SVG or HTML."""
     plan = _plan(program, cell, project_root)
     ext = os.path.splitext(output)[1].lower()
+    fps = fps or (10 if ext == ".gif" else 25)  # GIF: fewer frames keep the file small
     try:
         _write(plan, output, ext, at, size, aa, camera, fps)
         if any(d.is_error for d in plan.diagnostics):
@@ -158,22 +162,25 @@ def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | 
     _report(scene.diagnostics)  # meshes that do not load: errors stop here, warnings are shown
     size = size or ((480, 360) if ext in (".gif", ".mp4") else (640, 480))
     camera = _camera(camera_text, scene, size)
+    from rmot.sim.render.findings import verified_markings
+
+    marks, _ = verified_markings(scene)  # findings are marked in every kind of picture
     if ext == ".png":
         from rmot.sim.render.still import still_image
 
-        write_png(output, still_image(scene, time=at, size=size, aa=aa or 2, camera=camera))
+        write_png(output, still_image(scene, time=at, size=size, aa=aa or 2, camera=camera, marks=marks))
     elif ext in (".gif", ".mp4"):
         from rmot.sim.render.animate import AnimationError, write_animation
 
         try:
-            write_animation(scene, output, fps=fps, size=size, aa=aa or 1, camera=camera)
+            write_animation(scene, output, fps=fps, size=size, aa=aa or 1, camera=camera, marks=marks)
         except AnimationError as exc:
             raise _InputError(Diagnostic(codes.FORMAT_UNAVAILABLE, Severity.ERROR, str(exc), None)) from None
     elif ext == ".svg":
         from rmot.sim.render.svg import render_svg
 
-        write_text(output, render_svg(scene, time=at, size=size, camera=camera))
+        write_text(output, render_svg(scene, time=at, size=size, camera=camera, marks=marks))
     else:
         from rmot.sim.render.html import render_html
 
-        write_text(output, render_html(scene, fps=fps, camera=camera))
+        write_text(output, render_html(scene, fps=fps, camera=camera, marks=marks))

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 
 import numpy as np
 from PIL import Image
@@ -16,6 +16,7 @@ from PIL import Image
 from rmot.compiler.planned import Plan
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.files import write_atomic
+from rmot.sim.render.findings import Marking, active
 from rmot.sim.render.scene import RenderScene, body_poses, prepare
 from rmot.sim.render.still import default_camera, frame
 
@@ -49,13 +50,13 @@ def stderr_progress(done: int, total: int) -> None:
 
 
 def _frames(rs: RenderScene, fps: float, size: tuple[int, int], aa: int, camera: Camera | None,
-            progress: Progress | None) -> Iterator[np.ndarray]:
+            progress: Progress | None, marks: Sequence[Marking] = ()) -> Iterator[np.ndarray]:
     plan = rs.plan
     camera = camera or default_camera(rs, size)
     times = frame_times(plan.cycle_time, fps)
     poses = body_poses(rs, times)
     for i in range(len(times)):
-        yield frame(rs, poses[i], camera, size, aa)
+        yield frame(rs, poses[i], camera, size, aa, marks=active(marks, float(times[i])))
         if progress is not None:
             progress(i + 1, len(times))
 
@@ -71,25 +72,51 @@ def render_animation(plan: Plan, path: str, *, fps: int = 25, size: tuple[int, i
 
 
 def write_animation(rs: RenderScene, path: str, *, fps: int = 25, size: tuple[int, int] = (480, 360), aa: int = 1,
-                    camera: Camera | None = None, progress: Progress | None | bool = None) -> None:
-    """render_animation on an already prepared scene."""
+                    camera: Camera | None = None, progress: Progress | None | bool = None,
+                    marks: Sequence[Marking] = ()) -> None:
+    """render_animation on an already prepared scene; `marks` (findings.markings) are marked in
+    the frames around their intervals."""
     plan = rs.plan
     ext = os.path.splitext(path)[1].lower()
     if ext not in (".gif", ".mp4"):
         raise AnimationError(f"animation file must end in .gif or .mp4 (got '{path}')")
     if progress is None:
         progress = stderr_progress if plan.cycle_time > 2.0 else False
-    frames = _frames(rs, fps, size, aa, camera, progress or None)
+    frames = _frames(rs, fps, size, aa, camera, progress or None, marks)
     writer = _write_gif if ext == ".gif" else _write_mp4
     write_atomic(path, lambda temp: writer(temp, frames, fps))
 
 
 def _write_gif(path: str, frames: Iterator[np.ndarray], fps: float) -> None:
-    palettised = [Image.fromarray(f).quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
-                  for f in frames]
+    """All frames on one palette (made from the first frames), without dithering: the parts
+    that do not move keep the same bytes from frame to frame, so the GIF writer stores only
+    the changed rectangle of each frame and the file stays small."""
+    first = [next(frames, None)]
+    if first[0] is None:
+        raise AnimationError("an animation needs at least one frame")
+    palette = _palette(first[0])
+    palettised = [_on_palette(f, palette) for f in first]
+    palettised += [_on_palette(f, palette) for f in frames]
     duration = int(round(1000.0 / fps))  # ms per frame (GIF counts in 10 ms steps)
     palettised[0].save(path, format="GIF", save_all=True, append_images=palettised[1:], duration=duration,
                        loop=0, optimize=False)
+
+
+_FINDING_COLORS = np.array([[219, 20, 15], [175, 60, 60], [24, 26, 30], [250, 250, 250]], np.uint8)  # red, tint, caption
+
+
+def _palette(image: np.ndarray) -> Image.Image:
+    """A 256-colour palette for the whole animation: the first frame's colours plus the
+    colours that appear later (finding reds, the caption band and its text)."""
+    extra = np.repeat(np.repeat(_FINDING_COLORS[None], 8, axis=0), 8, axis=1)  # small blocks of each
+    board = np.concatenate([image.reshape(-1, 3), extra.reshape(-1, 3)])
+    side = int(np.ceil(np.sqrt(len(board))))
+    padded = np.concatenate([board, np.repeat(board[-1:], side * side - len(board), axis=0)]).reshape(side, side, 3)
+    return Image.fromarray(padded).quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+
+
+def _on_palette(frame_rgb: np.ndarray, palette: Image.Image) -> Image.Image:
+    return Image.fromarray(frame_rgb).quantize(palette=palette, dither=Image.Dither.NONE)
 
 
 def _write_mp4(path: str, frames: Iterator[np.ndarray], fps: float) -> None:

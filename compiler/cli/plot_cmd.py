@@ -1,0 +1,91 @@
+"""`rmot plot PROGRAM -o FILE.png|.svg [--what KIND]`: the planned motion as a chart.
+
+    joints    joint positions against their limits      speeds  joint speeds against theirs
+    accels    joint accelerations against theirs        torque  joint torques (inverse dynamics)
+    tcp       TCP speed against the programmed speed, W221 slowdowns shaded
+    timeline  each task's instructions side by side: moves, waits, syncs, I/O
+
+Exit codes as `rmot render`: 2 bad input (missing file E501, no program E119), 1 planning
+errors (the motion is still plotted), else 0. Plotting never depends on verification.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any
+
+import click
+
+from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
+
+__all__ = ["load_plan", "plot"]
+
+KINDS = ("joints", "speeds", "accels", "torque", "tcp", "timeline")
+
+
+def _output(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    if os.path.splitext(value)[1].lower() not in (".png", ".svg"):
+        raise click.BadParameter(f"must end in .png or .svg (got {value!r})")
+    return value
+
+
+def fail(*diagnostics: Any) -> None:
+    from rmot.lang.diagnostics import render_all
+
+    click.echo(render_all(list(diagnostics)), err=True)
+    sys.exit(EXIT_INPUT)
+
+
+def load_plan(program: str, cell: str | None, project_root: str | None) -> Any:
+    """Front end then planner: front-end errors end the command (exit 2); planning errors are
+    printed and the plan is returned (the caller exits 1 after writing its file)."""
+    from rmot.compiler.frontend import load_program
+    from rmot.compiler.plan import plan_program
+    from rmot.lang.diagnostics import Diagnostic, Severity, render_all
+    from rmot.sim.render import codes
+
+    loaded = load_program(program, cell=cell, project_root=project_root, require_program=True)
+    if loaded.diagnostics:
+        click.echo(render_all(tuple(loaded.diagnostics)), err=True)
+    if any(d.is_error for d in loaded.diagnostics):
+        sys.exit(EXIT_INPUT)
+    if loaded.program is None:
+        fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR, f"'{program}' must contain a program (got only a cell)", None))
+    planned = plan_program(loaded.program)
+    if planned.diagnostics:
+        click.echo(render_all(tuple(planned.diagnostics)), err=True)
+    return planned
+
+
+def write_or_fail(path: str, data: bytes) -> None:
+    from rmot.lang.diagnostics import Diagnostic, Severity
+    from rmot.sim.render import codes_views
+    from rmot.sim.render.files import write_atomic
+
+    def _write(temp: str) -> None:
+        with open(temp, "wb") as f:
+            f.write(data)
+
+    try:
+        write_atomic(path, _write)
+    except OSError as exc:
+        fail(Diagnostic(codes_views.OUTPUT_FAILED, Severity.ERROR,
+                        f"output file must be writable (got '{path}': {exc.strerror or exc})", None))
+
+
+@click.command(name="plot")
+@click.argument("program", type=click.Path(dir_okay=False))
+@click.option("-o", "--output", required=True, callback=_output, help="Output file: .png or .svg.")
+@click.option("--what", type=click.Choice(KINDS), default="joints", show_default=True, help="What to plot.")
+@click.option("--cell", type=click.Path(dir_okay=False), default=None, help="The cell file, if not in PROGRAM.")
+@click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Directory that file paths may not leave.")
+def plot(program: str, output: str, what: str, cell: str | None, project_root: str | None) -> None:
+    """Plot a program's joints, speeds, torques, TCP speed or timeline to PNG or SVG."""
+    plan = load_plan(program, cell, project_root)
+    from rmot.sim.plots import figure_bytes, plot_data
+
+    fmt = os.path.splitext(output)[1].lower().lstrip(".")
+    write_or_fail(output, figure_bytes(plot_data(plan), what, fmt))
+    if any(d.is_error for d in plan.diagnostics):
+        sys.exit(EXIT_FINDINGS)

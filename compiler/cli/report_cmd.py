@@ -1,0 +1,62 @@
+"""`rmot report PROGRAM... -o report.html`: one self-contained, offline HTML page.
+
+For each program: verdict, cycle times, model assumptions, every finding with its source
+line, a picture and a link into the embedded 3D viewer at its worst instant, the plots, the
+cycle-time breakdown, and the robot and cell data used (rmot.sim.report_html).
+
+Exit codes as `rmot check`: 0 every program verifies, 1 findings of severity error, 2 input
+errors (the page is still written, with the programs that could be read).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
+
+__all__ = ["report"]
+
+
+def _output(ctx: click.Context, param: click.Parameter, value: str) -> str:
+    if os.path.splitext(value)[1].lower() not in (".html", ".htm"):
+        raise click.BadParameter(f"must end in .html (got {value!r})")
+    return value
+
+
+@click.command(name="report")
+@click.argument("programs", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@click.option("-o", "--output", required=True, callback=_output, help="The HTML page to write.")
+@click.option("--cell", type=click.Path(dir_okay=False), default=None, help="Cell file (overrides `use cell`).")
+@click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
+def report(programs: tuple[str, ...], output: str, cell: str | None, project_root: str | None) -> None:
+    """Verify PROGRAMs and write one HTML page: findings with pictures, plots, 3D view, data."""
+    from rmot.compiler.cli.plot_cmd import write_or_fail
+    from rmot.compiler.frontend import load_program
+    from rmot.compiler.plan import plan_program
+    from rmot.lang.diagnostics import render_all
+    from rmot.sim import verify
+    from rmot.sim.report_html import ProgramResult, render_report
+
+    results, input_error = [], False
+    for path in programs:
+        loaded = load_program(path, cell=cell, project_root=project_root, require_program=True)
+        front = tuple(loaded.diagnostics)
+        if any(d.is_error for d in front) or loaded.program is None:
+            input_error = True
+            results.append(ProgramResult(path, None, front))
+            continue
+        plan = plan_program(loaded.program)
+        checked = verify(plan)
+        results.append(ProgramResult(path, plan, front + tuple(checked.diagnostics), dict(checked.cycle_times)))
+    page, problems = render_report(results)
+    write_or_fail(output, page.encode("utf-8"))
+    shown = [d for r in results for d in r.diagnostics] + list(problems)
+    if shown:
+        click.echo(render_all(shown), err=True)
+    if input_error:
+        sys.exit(EXIT_INPUT)
+    if any(d.is_error for r in results for d in r.diagnostics):
+        sys.exit(EXIT_FINDINGS)
