@@ -383,6 +383,14 @@ class Backend:
             return [self.comment(self.NOT_SIX_AXIS_NOTE)]
         return rec
 
+    @staticmethod
+    def planned_zone(node: ir.Move, rec: planned.InstructionRecord) -> ir.Zone:
+        """The zone a vendor prints for `node`: `fine` where the plan stops (record's
+        blend_radius 0: before a wait, wait until, if, sync, at a timed move, at the task's
+        end, wherever a blend could not be built), else the programmed zone. The controller
+        then stops exactly where the verified path stops (lang/REFERENCE.md §8, stop points)."""
+        return node.motion.zone if rec.blend_radius > 0.0 else ir.Zone(0.0)
+
     def branch_or_default(self, branch: ir.Config | None, node: ir.Move) -> ir.Config:
         """`branch` when it names shoulder, elbow and wrist; else E402 and front/up/no-flip
         (the text stays well-formed; the error keeps it from being written)."""

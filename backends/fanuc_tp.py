@@ -183,12 +183,16 @@ class FanucBackend(Backend):
                "      BUSY_LAMP_OFF\t= 0,", "      ABORT_REQUEST\t= 0,", "      PAUSE_REQUEST\t= 0;",
                "DEFAULT_GROUP\t= 1,*,*,*,*;", "CONTROL_CODE\t= 00000000 00000000;", "/MN"]
         n = 0
-        for line in lines:
+        for k, line in enumerate(lines):
             if line.startswith(":"):  # continuation of a circular move: no line number
                 out.append(f"    {line} ;")
-            else:
-                n += 1
-                out.append(f"{n:>4}:  {line} ;")
+                continue
+            n += 1
+            # `C P[via]` is not a complete instruction: only its `: P[to] speed zone ;`
+            # continuation ends with ';' (R-30iB Operator's Manual, circular motion; RoboDK
+            # Fanuc_R30iA.py writes `C P[n]` then `:  P[m] ... ;`)
+            continued = k + 1 < len(lines) and lines[k + 1].startswith(":")
+            out.append(f"{n:>4}:  {line}" + ("" if continued else " ;"))
         out += ["/POS"] + positions + ["/END"]
         return "\n".join(out) + "\n"
 
@@ -224,7 +228,7 @@ class FanucBackend(Backend):
         self.warn_accel(node, ctx, "TP's ACC is a % of the motion profile; the controller's own applies")
         self.warn_payload(node, ctx, "the controller's payload schedule ($PLST_GRP1) selected by PAYLOAD[i]")
         uf, ut = ctx.frames.uframe(node.frame), ctx.frames.utool(node.tool)
-        zone = self._zone(node)
+        zone = self._zone(node, self.planned_zone(node, rec))
         if node.kind is ir.MotionKind.JOINT:
             speed = self._joint_speed(node)
             if isinstance(node.target, ir.JointTarget):
@@ -269,8 +273,8 @@ class FanucBackend(Backend):
                       f"emitted as {n}mm/sec", node.span)
         return f"{n}mm/sec"
 
-    def _zone(self, node: ir.Move) -> str:
-        zone = node.motion.zone
+    def _zone(self, node: ir.Move, zone: ir.Zone) -> str:
+        """FINE where the plan stops (Backend.planned_zone), else CNTn."""
         if zone.is_fine:
             return "FINE"
         r = zone.radius * 1000.0

@@ -39,7 +39,8 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     once (rmot's centre of gravity: half way flange->TCP, base.tool_cog);
   * circular moves: `MOVC` start (the previous target), via, end with `FPT` (the arc's final
     point), so an arc that follows an arc continues from that point with its via and end only;
-  * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per call;
+  * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per routine, named
+    `<PROGRAM>_<PROC>` (job names are global on the controller);
   * comments: `'file.rmot:12` (a comment line holds at most 32 characters).
   * sync: independent jobs per controller have no barrier, so the k-th sync of a task is the
     I/O handshake of backends/handshake.py: `DOUT OT#(o) ON` (odd k) or OFF (even k) then
@@ -75,7 +76,7 @@ import numpy as np
 
 from rmot.backends import codes, codes_b
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
-from rmot.backends.lowering import split_body
+from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
 
@@ -184,7 +185,13 @@ class InformBackend(Backend):
                       f"instructions (got more); split into {len(split)} parts", task.task.span)
         ctx = task.with_state(InformContext, routine_of={},
                               preds=predecessors(body)[0], tools=self.tool_numbers(task))
-        ctx.routine_of.update(self.routine_table(names, split, ctx))  # its keys read ctx.preds
+        # job names are global on the controller: a proc's job carries the program's name
+        # (MAIN_APPROACH), so two programs' procs of one name never overwrite each other; the
+        # split parts already do (NAME_PART1)
+        parts = {p.uid for p in split} if split is not body else set()
+        table = routine_names(split, key=lambda call: self.routine_key(call, ctx))  # keys read ctx.preds
+        ctx.routine_of.update({uid: names.name(r if uid in parts else f"{main}_{r}")
+                               for uid, r in table.items()})
         self.job(main, split, ctx)
         self.extend(names.diagnostics)
         return dict(sorted(ctx.files.items()))

@@ -16,7 +16,9 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
   * speeds: $VEL.CP in m/s, $ACC.CP in m/s^2 (LIN, CIRC); $VEL_AXIS[i] / $ACC_AXIS[i] in % of
     each axis's maximum (PTP, set by the local routine RMOT_PTP). A fixed move `time` has no
     KRL form: the programmed speeds are used (warning W409).
-  * zones: exact stop without approximation, else C_DIS with $APO.CDIS in mm (exact).
+  * zones: exact stop without approximation wherever the plan stops (Backend.planned_zone:
+    before WAIT FOR, IF, a handshake, at the end); LIN/CIRC: C_DIS with $APO.CDIS in mm
+    (exact); PTP: C_PTP with $APO.CPTP in % (1 % per mm, clamped 1..100: no exact form, W403).
   * I/O: $OUT[n]=TRUE, PULSE($OUT[n],TRUE,t), WAIT SEC t, WAIT FOR $IN[n]==TRUE,
     IF $IN[n]==TRUE THEN; $ANOUT[n] = volts / 10 (KRL's -1.0..1.0 is -10..10 V).
     KRL's WAIT FOR has no timeout: a timed wait is lowered to a wait on the input OR timer
@@ -65,6 +67,13 @@ RESERVED = frozenset({
     "PRIO", "PTP", "PTP_REL", "PUBLIC", "REAL", "REPEAT", "RESUME", "RETURN", "SEC", "SIGNAL",
     "STRUC", "SWITCH", "THEN", "TO", "TRIGGER", "TRUE", "UNTIL", "WAIT", "WHEN", "WHILE", "EXOR",
     "POS", "E6POS", "AXIS", "E6AXIS", "FRAME", "LOAD", "RMOT_PTP",
+    # further KRL keywords (KSS 8.x Operating and Programming Instructions for System
+    # Integrators, "KRL syntax": signal and interrupt declarations, spline blocks, time
+    # blocks; the keyword list krllint checks the case of): a datum named `start` or `path`
+    # is read as the keyword
+    "IN", "OUT", "ON", "OFF", "ENABLE", "DISABLE", "DISTANCE", "PATH", "ONSTART", "SPLINE",
+    "ENDSPLINE", "SPL", "SPTP", "SLIN", "SCIRC", "TIME_BLOCK", "START", "PART", "STEP",
+    "GLOBAL", "STRUC", "ENUM", "PULSE", "SWITCH", "BOOL", "SIGNAL",
 })
 KRL_RULES = NameRules(max_len=24, first="A-Za-z_", reserved=RESERVED, prefix="P")
 E_AXES = ",E1 0.0,E2 0.0,E3 0.0,E4 0.0,E5 0.0,E6 0.0"
@@ -130,6 +139,7 @@ class KrlBackend(Backend):
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("KRL module", "modules")
     TIMER_INDEX: ClassVar[int] = 16
+    CPTP_MM: ClassVar[float] = 1.0  # mm of blend radius per % of $APO.CPTP (documented heuristic)
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     SIX_AXIS_DATA = "E6POS/E6AXIS data"
     BRANCH_DATA = "Status/Turn"
@@ -183,15 +193,17 @@ class KrlBackend(Backend):
                       "KRL form; the programmed speeds are used", node.span)
         lines = self._tool_base(node, ctx)
         m = node.motion
-        zone = "" if m.zone.is_fine else " C_DIS"
-        if not m.zone.is_fine:
-            lines.append(f"$APO.CDIS={fmt(m.zone.radius * 1000.0, 3)}")
+        stop = self.planned_zone(node, rec)
         if node.kind is ir.MotionKind.JOINT:
             ctx.module.uses_ptp_helper = True
             lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
+            zone = self._ptp_zone(node, stop, lines)
             if isinstance(node.target, ir.JointTarget):
                 return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
             return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
+        zone = "" if stop.is_fine else " C_DIS"
+        if not stop.is_fine:
+            lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
         lines += [f"$VEL.CP={fmt(m.tcp_speed, 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
@@ -205,6 +217,22 @@ class KrlBackend(Backend):
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._pos(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")
         return lines + [f"CIRC {via},{to}{zone}"]
+
+    def _ptp_zone(self, node: ir.Move, zone: ir.Zone, lines: list[str]) -> str:
+        """` C_PTP` with `$APO.CPTP=n` appended to `lines` for an approximated PTP, "" for an
+        exact stop. KRL approximates PTP only with C_PTP, whose distance $APO.CPTP is a % (1..100)
+        of the axis-specific maximum in machine data ($APO_DIS_PTP), not a TCP radius
+        (KSS 8.x Operating and Programming Instructions for System Integrators, "PTP",
+        "Approximation parameters": C_DIS is for CP motions only): rmot writes
+        n = round(radius / CPTP_MM) clamped to 1..100, the nearest faithful choice, warning W403."""
+        if zone.is_fine:
+            return ""
+        r = zone.radius * 1000.0
+        pct = max(1, min(100, round(r / self.CPTP_MM)))
+        self.warn(codes.ZONE_ROUNDED, f"zone {fmt(r, 3)} mm has no exact KRL PTP form ($APO.CPTP is a % "
+                  f"of the axes' approximation distance, not a radius); emitted as $APO.CPTP={pct}", node.span)
+        lines.append(f"$APO.CPTP={pct}")
+        return " C_PTP"
 
     @staticmethod
     def _tool_base(node: ir.Move, ctx: KrlContext) -> list[str]:
@@ -235,7 +263,7 @@ class KrlBackend(Backend):
         assert q is not None
         branch = self.branch_or_default(branch, node)
         st = f",S {status_of(branch)},T {turn_bits(q)}"
-        return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}")
+        return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}", node.span)
 
     # ------------------------------------------------------------------ I/O and flow
 

@@ -40,8 +40,8 @@ Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5
 Program size: URScript sets no documented limit on a program's length (the controller
 compiles the whole script on load), so programs are never split.
 
-The file is one `def <program>():` ... `end`: send it to the controller as a program (primary
-interface), or paste it into a Script node and call `<program>()`.
+The file is one `def <program>():` ... `end` followed by the call `<program>()`: send it to the
+controller as a program (primary interface) or load it in a Script node; it runs as it is.
 
 Support (checked by tests/backends/test_urscript.py):
   exact     movej/movel/movec, speeds, accelerations, blend r, fixed duration (t= on movej and
@@ -126,7 +126,10 @@ class UrScriptBackend(Backend):
         for thread_lines in ctx.threads.values():
             lines += self.indent(thread_lines, self.INDENT)
         lines += self.indent(ctx.routine_defs, self.INDENT)
-        lines += self.indent(main, self.INDENT) + ["end"]
+        # the call after the def: a .script run as a program (primary interface) or pasted in a
+        # Script node executes its top level, so without it nothing would move (UR Script
+        # Manual, "The structure of a URScript program"; RoboDK's UR post ends with the call)
+        lines += self.indent(main, self.INDENT) + ["end", f"{prog}()"]
         return {f"{prog}{self.file_ext}": "\n".join(lines) + "\n"}
 
     def block(self, nodes: tuple[ir.Instr, ...], ctx: UrContext) -> list[str]:

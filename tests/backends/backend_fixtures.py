@@ -45,7 +45,8 @@ def hand_plan(body: tuple[ir.Instr, ...], records: dict[int, tuple[np.ndarray, i
               durations: dict[int, float] | None = None) -> planned.Plan:
     """A Plan built by hand: `records` maps a move's uid to (q_target (dof,), branch).
 
-    Moves of If arms and proc bodies are looked up the same way. Each record lasts 1 s unless
+    Moves of If arms and proc bodies are looked up the same way; a move's record blends with
+    its programmed zone (a hand plan models no stops). Each record lasts 1 s unless
     `durations` says otherwise; the trajectory is two samples (backends do not read it).
     """
     durations = durations or {}
@@ -58,7 +59,8 @@ def hand_plan(body: tuple[ir.Instr, ...], records: dict[int, tuple[np.ndarray, i
             tcp = node.target.pose if isinstance(node, ir.Move) and isinstance(node.target, ir.CartesianTarget) else None
             recs.append(planned.InstructionRecord(uid=node.uid, span=node.span, t_start=t, t_end=t + d,
                                                   q_target=np.asarray(q, float), branch=branch, tcp_pose=tcp,
-                                                  q_via=np.asarray(q, float) if getattr(node, "via", None) else None))
+                                                  q_via=np.asarray(q, float) if getattr(node, "via", None) else None,
+                                                  blend_radius=node.motion.zone.radius if isinstance(node, ir.Move) else 0.0))
             t += d
     traj = planned.Trajectory(np.array([0.0, max(t, 0.004)]), np.zeros((2, dof)), np.zeros((2, dof)),
                               np.zeros((2, dof)))
