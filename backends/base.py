@@ -61,7 +61,7 @@ from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 
-from rmot.backends import codes, handshake
+from rmot.backends import codes, controller_data, handshake
 from rmot.backends.conventions import (
     axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, fmt_list, position_mm, quaternion_wxyz,
     rotation_vector, tool_cog, turn_bits,
@@ -239,8 +239,11 @@ class Backend:
     INDENT: ClassVar[str] = "  "
     DIGITAL_PORTS: ClassVar[tuple[int, int]] = (1, 4096)
 
-    def __init__(self, *, allow_findings_header: bool = False) -> None:
+    def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False) -> None:
         self.findings_header = allow_findings_header
+        # `--write-frames`: numbered tools and frames are also written into the controller's
+        # stored data (Fanuc UTOOL/UFRAME, KUKA TOOL_DATA/BASE_DATA); off, they are only selected
+        self.write_frames = write_frames
         self._emission = _Emission()
 
     # ------------------------------------------------------------------ entry point
@@ -252,9 +255,19 @@ class Backend:
         for task_plan in plan.tasks:
             ctx = TaskContext(plan, task_plan, plan.program.cell.robot(task_plan.robot),
                               self.program_name(plan, task_plan), source_map=source_map)
+            self.check_brand(ctx.robot)
             for fname, text in self.emit_task(ctx).items():
                 files[fname] = text
         return EmitResult(files, _unique(self._emission.diagnostics))
+
+    def check_brand(self, robot: ir.RobotInstance) -> None:
+        """W415 at the robot's declaration when a library arm is of another brand than this
+        vendor's controller (backends/controller_data.py; URDF arms are not judged)."""
+        mine = controller_data.TARGET_BRANDS.get(self.name)
+        brand = controller_data.brand_of(robot)
+        if mine is not None and brand is not None and brand != mine[0]:
+            self.warn(codes.OTHER_BRAND, f"robot '{robot.name}' ({robot.source.ref}) is made by {brand}; "
+                      f"a {self.name} program runs on a {mine[0]} controller", robot.span)
 
     def emit_task(self, ctx: TaskContext) -> dict[str, str]:
         """Print one task: filename -> text. Subclasses implement."""

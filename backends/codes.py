@@ -15,7 +15,7 @@ __all__ = [
     "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED", "SYNC_OUTPUT_LEFT_ON",
     "TIME_ROUNDED", "MASS_RAISED", "PAYLOAD_NOT_EXPRESSED",
     # issue 13 (vendor programs that load): E410-E419 / W414-W419
-    "RESERVED_RENAMED", "OTHER_BRAND", "STORED_DATA_WRITTEN", "LIMIT_CLAMPED",
+    "RESERVED_RENAMED", "OTHER_BRAND", "STORED_DATA_WRITTEN", "LIMIT_CLAMPED", "NUMBER_OUT_OF_RANGE",
 ]
 
 # errors: the program cannot be expressed faithfully for this vendor
@@ -56,7 +56,10 @@ RESERVED_RENAMED = Code("W414", "reserved-name-renamed",
                         "datum of the vendor's language; it was renamed")
 OTHER_BRAND = Code("W415", "robot-other-brand",
                    "the program is written for a robot of another brand than the vendor's controller")
-STORED_DATA_WRITTEN = Code("W416", "stored-frame-overwritten",
-                           "the program writes tool or frame data stored on the controller (no number given)")
+STORED_DATA_WRITTEN = Code("W416", "stored-frame-unnumbered",
+                           "a tool or frame has no controller number: the program writes (or assumes) "
+                           "the controller's stored tool or frame data at a number it chose")
+NUMBER_OUT_OF_RANGE = Code("E410", "frame-number-out-of-range",
+                           "a tool or frame number is outside the numbers the vendor's controller has")
 LIMIT_CLAMPED = Code("W417", "limit-clamped",
                      "a speed, acceleration or zone is beyond what the vendor accepts; clamped")

@@ -26,6 +26,11 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
     the program stops, rmot's timeout semantics (base.py).
   * digital ports: $IN[n] / $OUT[n] with n in DIGITAL_PORTS = 1..4096 (KSS 8.1-8.3 "System
     Variables": $IN[1]..$IN[4096], $OUT[1]..$OUT[4096]); E404 outside.
+  * numbered tools and frames (the cell's `number n`): `$TOOL=TOOL_DATA[n]`,
+    `$LOAD=LOAD_DATA[n]`, `$BASE=BASE_DATA[n]` select the controller's stored data, which
+    is never written unless --write-frames (then `TOOL_DATA[n]=...` at the module's start);
+    the header comments give the values it must hold. Unnumbered ones are module data (.dat)
+    assigned to $TOOL/$BASE directly: nothing stored on the controller is overwritten.
   * every motion writes the system variables it needs right before it ($TOOL, $LOAD, $BASE,
     speeds, $APO.CDIS): an instruction never depends on the text of another one. (A move
     with the bare flange sets $TOOL=$NULLFRAME and leaves $LOAD as configured: rmot has no
@@ -51,6 +56,7 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes
+from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir
@@ -109,6 +115,13 @@ def frame_text(pose: ir.Pose) -> str:
     return f"X {fmt(x, 3)},Y {fmt(y, 3)},Z {fmt(z, 3)},A {fmt(a, 4)},B {fmt(b, 4)},C {fmt(c, 4)}"
 
 
+def load_text(tool: ir.ToolRef) -> str:
+    """{M kg,CM {..},J {..}}: the tool's mass, centre of gravity half way flange->TCP (base.tool_cog)."""
+    cx, cy, cz = (fmt(c * 1000.0, 3) for c in tool_cog(tool))
+    cog = f"X {cx},Y {cy},Z {cz},A 0.0,B 0.0,C 0.0"
+    return f"{{M {fmt(tool.mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}"
+
+
 @dataclass
 class _Module:
     """Data and local routines collected while printing one module."""
@@ -116,6 +129,9 @@ class _Module:
     data: DataPool
     routines: dict[str, list[str]] = field(default_factory=dict)
     uses_ptp_helper: bool = False
+    # numbered tools/frames used: (array, n) -> (rmot name, value text); selected by number,
+    # written into the controller's arrays only with --write-frames
+    stored: dict[tuple[str, int], tuple[str, str]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -139,6 +155,8 @@ class KrlBackend(Backend):
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("KRL module", "modules")
     TIMER_INDEX: ClassVar[int] = 16
+    MAX_TOOL_DATA: ClassVar[int] = 16  # TOOL_DATA[16] in KSS 8.x $config.dat
+    MAX_BASE_DATA: ClassVar[int] = 32  # BASE_DATA[32] in KSS 8.x $config.dat
     CPTP_MM: ClassVar[float] = 1.0  # mm of blend radius per % of $APO.CPTP (documented heuristic)
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     SIX_AXIS_DATA = "E6POS/E6AXIS data"
@@ -171,6 +189,13 @@ class KrlBackend(Backend):
         ctx = replace(task, module=_Module(DataPool(task.names)))
         main = list(calls) if calls is not None else self.body(body, ctx)
         head = self.header(ctx)
+        stored = []
+        for (array, n), (rname, value) in sorted(ctx.module.stored.items()):
+            if self.write_frames:
+                stored.append(f"{array}[{n}]={value} ; {rname} (--write-frames)")
+            else:
+                head = head + [self.comment(f"{array}[{n}] must hold {rname}: {value}")]
+        main = stored + main
         src = ["&ACCESS RVP", f"DEF {name}( )"] + self.indent(head + main, "  ") + ["END"]
         for rname, rlines in ctx.module.routines.items():
             src += ["", f"DEF {rname}( )"] + self.indent(rlines, "  ") + ["END"]
@@ -234,24 +259,38 @@ class KrlBackend(Backend):
         lines.append(f"$APO.CPTP={pct}")
         return " C_PTP"
 
-    @staticmethod
-    def _tool_base(node: ir.Move, ctx: KrlContext) -> list[str]:
+    def _tool_base(self, node: ir.Move, ctx: KrlContext) -> list[str]:
         lines = []
+        cell, robot = ctx.plan.program.cell, ctx.robot.name
+        tool_n, base_n = tool_number(cell, robot, node.tool.name), frame_number(cell, node.frame.name)
         if node.tool.name is None:
             lines += ["$TOOL=$NULLFRAME"]
+        elif tool_n is not None:
+            self._stored(ctx, "TOOL_DATA", tool_n, node.tool.name, f"{{{frame_text(node.tool.tcp)}}}", node)
+            self._stored(ctx, "LOAD_DATA", tool_n, node.tool.name, load_text(node.tool), node)
+            lines += [f"$TOOL=TOOL_DATA[{tool_n}]", f"$LOAD=LOAD_DATA[{tool_n}]"]
         else:
             tname = ctx.module.data.add(node.tool.name, f"FRAME:{{{frame_text(node.tool.tcp)}}}")
-            mass = node.tool.mass
-            cx, cy, cz = (fmt(c * 1000.0, 3) for c in tool_cog(node.tool))
-            cog = f"X {cx},Y {cy},Z {cz},A 0.0,B 0.0,C 0.0"
-            lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{{M {fmt(mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}")
+            lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{load_text(node.tool)}")
             lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
         if node.frame.name is None:
             lines.append("$BASE=$NULLFRAME")
+        elif base_n is not None:
+            self._stored(ctx, "BASE_DATA", base_n, node.frame.name, f"{{{frame_text(node.frame.pose)}}}", node)
+            lines.append(f"$BASE=BASE_DATA[{base_n}]")
         else:
             bname = ctx.module.data.add(node.frame.name, f"FRAME:{{{frame_text(node.frame.pose)}}}")
             lines.append(f"$BASE={bname}")
         return lines
+
+    def _stored(self, ctx: KrlContext, array: str, n: int, name: str, value: str, node: ir.Move) -> None:
+        """Record a numbered tool/base (E410 outside the controller's array: TOOL_DATA[1..16],
+        BASE_DATA[1..32], KSS 8.x $config.dat)."""
+        limit = self.MAX_BASE_DATA if array == "BASE_DATA" else self.MAX_TOOL_DATA
+        if not 1 <= n <= limit:
+            self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"{'frame' if array == 'BASE_DATA' else 'tool'} "
+                             f"'{name}' number must be in 1..{limit} for {array} (got {n})", node.span)
+        ctx.module.stored[(array, n)] = (name, value)
 
     @staticmethod
     def _axis(target: ir.JointTarget, ctx: KrlContext) -> str:

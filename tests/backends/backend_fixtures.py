@@ -95,7 +95,12 @@ class Row:
 def emit_row(backend: type[Backend], row: Row) -> EmitResult:
     """`backend`'s output for `row.instr` alone, every move in it planned at Q, FRONT_UP_NOFLIP."""
     records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk((row.instr,)) if isinstance(n, ir.Move)}
-    return backend().emit(hand_plan((row.instr,), records))
+    return backend().emit(hand_plan((row.instr,), records, robot=BRAND_ROBOT.get(backend.name, "abb_irb120")))
+
+
+# an arm of each vendor's own brand (no W415 in the instruction tables)
+BRAND_ROBOT = {"rapid": "abb_irb120", "krl": "kuka_kr6_r900", "fanuc": "fanuc_lrmate200id",
+               "urscript": "ur5e", "inform": "yaskawa_gp8", "val3": "staubli_tx2_60"}
 
 
 # --------------------------------------------------------------------------- sample programs

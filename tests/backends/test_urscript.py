@@ -127,7 +127,7 @@ class TestRefusalsAndWarnings:
     def test_unknown_model_uses_default_speed_with_warning(self) -> None:
         """A robot outside the UR speed table gets the default maximum and a warning."""
         body = (move(1, J, ir.JointTarget(HOME_Q), 3),)
-        text, diags = emit(self._plan(body, robot="abb_irb120"))
+        text, diags = emit(self._plan(body, robot="puma560"))  # no UR model, no controller brand
         assert diags == ["warning:W452:3"]
         assert "v=3.141593" in blocks(text)[3][0]
 
