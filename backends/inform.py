@@ -95,7 +95,13 @@ MAX_USER_FRAME = 63  # user coordinates 1..63 (YRC1000 INSTRUCTIONS, "User coord
 MAX_INSTRUCTIONS = 300
 COMMENT_WIDTH = 32
 INFORM_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper=True, prefix="J",
-                         reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC"}))
+                         # INFORM instruction words (YRC1000 INSTRUCTIONS manual, instruction list)
+                         reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC",
+                                             "MOVS", "IMOV", "DOUT", "DIN", "AOUT", "PULSE", "WAIT",
+                                             "TIMER", "PAUSE", "MSG", "RET", "IF", "ENDIF", "ELSE",
+                                             "WHILE", "ENDWHILE", "FOR", "NEXT", "SET", "ADD", "SUB",
+                                             "MUL", "DIV", "INC", "DEC", "GETS", "CLEAR", "SFTON",
+                                             "SFTOF", "TOOLON", "TOOLOF", "SPEED", "LABEL"}))
 DATE = "2000/01/01 00:00"
 
 
