@@ -238,6 +238,10 @@ class Backend:
     BRANCH_DATA: ClassVar[str] = "the configuration data"
     INDENT: ClassVar[str] = "  "
     DIGITAL_PORTS: ClassVar[tuple[int, int]] = (1, 4096)
+    # the fastest TCP speed the vendor's linear/circular instruction takes (m/s), with its
+    # source; None: no documented limit in the language (the controller limits it itself)
+    MAX_TCP_SPEED: ClassVar[float | None] = None
+    MAX_TCP_SPEED_SOURCE: ClassVar[str] = ""
 
     def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False) -> None:
         self.findings_header = allow_findings_header
@@ -473,6 +477,17 @@ class Backend:
         if not accel_is_default(node.motion, node.kind):
             self.warn_once(ctx, "accel", codes.ACCEL_IGNORED,
                            f"programmed accelerations are not expressed ({how})", node.span)
+
+    def tcp_speed_within_limit(self, node: ir.Move) -> float:
+        """The move's TCP speed (m/s), clamped to MAX_TCP_SPEED with W417 at the move."""
+        v = node.motion.tcp_speed
+        limit = self.MAX_TCP_SPEED
+        if limit is None or v <= limit + 1e-12:
+            return v
+        self.warn(codes.LIMIT_CLAMPED, f"TCP speed {fmt(v * 1000.0, 1)} mm/s must be at most "
+                  f"{fmt(limit * 1000.0, 1)} mm/s for {self.name} ({self.MAX_TCP_SPEED_SOURCE}); "
+                  f"clamped to {fmt(limit * 1000.0, 1)} mm/s", node.span)
+        return limit
 
     def port_ok(self, port: int, what: str, span: Span | None, ports: tuple[int, int] | None = None) -> bool:
         """True when `port` is in `ports` (default DIGITAL_PORTS); else E404 and False."""

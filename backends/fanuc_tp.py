@@ -148,6 +148,8 @@ class FanucBackend(Backend):
     MAX_UFRAME: ClassVar[int] = 9  # R-30iB: user frames 1..9 (0 = world; "Setting a user frame")
     CNT_MM: ClassVar[float] = 1.0  # mm of blend radius per CNT step (documented heuristic)
     MAX_TCP_MM_S: ClassVar[int] = 2000  # the L/C speed limit of the R-30iB motion software
+    MAX_TCP_SPEED = 2.0  # m/s, the same limit for the shared clamp (W417)
+    MAX_TCP_SPEED_SOURCE = "R-30iB Operator's Manual, motion instruction speed: L/C 1..2000 mm/sec"
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     SIX_AXIS_DATA = "TP positions"
     BRANCH_DATA = "the CONFIG string"
@@ -297,11 +299,10 @@ class FanucBackend(Backend):
     def _tcp_speed(self, node: ir.Move) -> str:
         if node.motion.duration is not None:
             return f"{fmt(node.motion.duration, 2)}sec"
-        v = node.motion.tcp_speed * 1000.0
+        v = self.tcp_speed_within_limit(node) * 1000.0  # W417 above MAX_TCP_SPEED
         n = max(1, min(self.MAX_TCP_MM_S, round(v)))
         if abs(n - v) > 1e-9:
-            self.warn(codes.SPEED_ROUNDED, f"TCP speed {fmt(v, 3)} mm/sec must be an integer of at most "
-                      f"{self.MAX_TCP_MM_S} for TP; "
+            self.warn(codes.SPEED_ROUNDED, f"TCP speed {fmt(v, 3)} mm/sec must be an integer for TP; "
                       f"emitted as {n}mm/sec", node.span)
         return f"{n}mm/sec"
 

@@ -189,6 +189,8 @@ class InformBackend(Backend):
     NAME_RULES = INFORM_RULES
     DIGITAL_PORTS = (1, 1024)  # OT# / IN# general-purpose I/O
     ANALOG_PORTS = (1, 40)  # AO#
+    MAX_TCP_SPEED = 1.5  # m/s
+    MAX_TCP_SPEED_SOURCE = "DX100/DX200 INFORM manual, MOVL/MOVC: V= 0.1..1500.0 mm/s"
     NO_RECORD_NOTE = None
 
     # ------------------------------------------------------------------ jobs
@@ -382,7 +384,7 @@ class InformBackend(Backend):
         return text
 
     def linear_speed(self, node: ir.Move) -> str:
-        mm_s = node.motion.tcp_speed * 1000.0
+        mm_s = self.tcp_speed_within_limit(node) * 1000.0  # W417 above MAX_TCP_SPEED
         text = fmt(max(0.1, mm_s), 1)
         if abs(float(text) - mm_s) > 1e-6:
             self.warn(codes.SPEED_ROUNDED, f"TCP speed must be a multiple of 0.1 mm/s "

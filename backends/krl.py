@@ -155,6 +155,8 @@ class KrlBackend(Backend):
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("KRL module", "modules")
     TIMER_INDEX: ClassVar[int] = 16
+    MAX_TCP_SPEED = 2.0  # m/s
+    MAX_TCP_SPEED_SOURCE = "KSS 8.x Programming Instructions for System Integrators, LIN/CIRC inline form: velocity 0.001..2 m/s"
     MAX_TOOL_DATA: ClassVar[int] = 16  # TOOL_DATA[16] in KSS 8.x $config.dat
     MAX_BASE_DATA: ClassVar[int] = 32  # BASE_DATA[32] in KSS 8.x $config.dat
     CPTP_MM: ClassVar[float] = 1.0  # mm of blend radius per % of $APO.CPTP (documented heuristic)
@@ -229,7 +231,7 @@ class KrlBackend(Backend):
         zone = "" if stop.is_fine else " C_DIS"
         if not stop.is_fine:
             lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
-        lines += [f"$VEL.CP={fmt(m.tcp_speed, 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
+        lines += [f"$VEL.CP={fmt(self.tcp_speed_within_limit(node), 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
             return lines

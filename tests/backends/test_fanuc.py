@@ -135,7 +135,7 @@ class TestResolution:
         (ir.WaitTime(uid=1, duration=0.255), "WAIT 0.26(sec)", "W412"),
         (ir.WaitTime(uid=1, duration=0.25), "WAIT 0.25(sec)", None),
         (ir.Pulse(uid=1, port=1, duration=0.25), "DO[1]=PULSE,0.2sec", "W412"),
-        (move(1, L, cart(DOWN), speed=3.0), "L P[1] 2000mm/sec FINE", "W402"),
+        (move(1, L, cart(DOWN), speed=3.0), "L P[1] 2000mm/sec FINE", "W417"),
     ])
     def test_rounded_values_warn(self, instr: ir.Instr, line: str, code: str | None) -> None:
         """Values finer than TP's resolution (or beyond its limit) are rounded with a warning."""

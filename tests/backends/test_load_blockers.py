@@ -212,3 +212,30 @@ def test_inform_jobs_of_two_programs_do_not_collide(plan_from_text: Callable[...
     for files in (pick, place):
         calls = re.findall(r"^CALL JOB:(\w+)$", "".join(files.values()), re.M)
         assert calls and all(f"{c}.JBI" in files for c in calls)
+
+
+FAST = """
+program fast on r1 {
+  tool gripper
+  frame table_top
+  target home = joints(0, -20, 30, 0, 50, 0) deg
+  move joint home
+  move linear pose(x=-100mm, y=50mm, z=200mm, rx=180deg) speed 3000 mm/s
+}
+"""
+
+
+@pytest.mark.parametrize(("vendor", "pattern", "limit"), [
+    # the limits as the manuals give them (typed here, not read from the backends)
+    ("fanuc", r"L P\[\d+\] (\d+)mm/sec", 2000.0),     # R-30iB: L/C 1..2000 mm/sec
+    ("krl", r"\$VEL\.CP=([\d.]+)", 2.0),              # KSS 8.x LIN inline form: 0.001..2 m/s
+    ("inform", r"MOVL C\d+ V=([\d.]+)", 1500.0),      # INFORM MOVL V= 0.1..1500.0 mm/s
+])
+def test_tcp_speed_beyond_the_vendor_is_clamped_at_the_move(plan_from_text: Callable[..., planned.Plan],
+                                                            vendor: str, pattern: str, limit: float) -> None:
+    result = BACKENDS[vendor]().emit(plan_from_text(FAST, "fast.rmot"))
+    text = "\n".join(result.files.values())
+    speeds = [float(v) for v in re.findall(pattern, text)]
+    assert speeds == [limit], speeds
+    clamped = [d for d in result.diagnostics if d.code.id == "W417"]
+    assert len(clamped) == 1 and clamped[0].span is not None and clamped[0].span.start.line == 7
