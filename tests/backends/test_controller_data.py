@@ -189,3 +189,22 @@ def test_brand_warning_for_every_library_arm(vendor: str) -> None:
         assert bool(found) == expected, (vendor, name, spec.vendor)
         if found:
             assert found[0].span is robot.span
+
+
+def test_compile_write_frames_flag(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """`rmot compile --write-frames` reaches the backends: KRL writes TOOL_DATA[2] of the
+    tour's numbered gripper; without the flag it only selects it."""
+    from pathlib import Path
+
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+
+    tour = str(Path(__file__).parent / "programs" / "tour.rmot")
+    for flag, written in (([], False), (["--write-frames"], True)):
+        out = tmp_path / ("w" if written else "n")
+        result = CliRunner().invoke(cli, ["compile", tour, "--target", "krl", "-o", str(out), *flag])
+        assert result.exit_code == 0, result.output
+        src = (out / "krl" / "tour.src").read_text(encoding="utf-8")
+        assert "$TOOL=TOOL_DATA[2]" in src
+        assert bool(re.search(r"^\s*TOOL_DATA\[2\]=\{", src, re.M)) == written
