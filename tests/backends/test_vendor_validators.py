@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 from backend_fixtures import GOLDEN, ROOT, example_plans
-from vendor_validators import check_fanuc, check_inform, check_urscript, check_val3
+from vendor_validators import check_fanuc, check_inform, check_krl, check_urscript, check_val3
 
 from rmot.backends import BACKENDS
 
@@ -74,7 +74,7 @@ def findings(vendor: str, files: dict[str, str], tmp: Path) -> list[str]:
     if vendor == "rapid":
         return rapid_findings(files)
     if vendor == "krl":
-        return krl_findings(files, tmp)
+        return krl_findings(files, tmp) + check_krl(files)
     if vendor == "fanuc":
         return check_fanuc(files)
     if vendor == "urscript":
@@ -178,3 +178,13 @@ def test_krllint_flags_a_keyword_used_as_a_name(tmp_path: Path) -> None:
     src = "DEF a( )\n  PTP start\nEND\n"
     assert any("wrong-case-keyword" in f for f in krl_findings({"a.src": src}, tmp_path))
     assert krl_findings({"a.src": "DEF a( )\n  PTP home\nEND\n"}, tmp_path) == []
+
+
+def test_krl_validator_rejects_c_dis_on_ptp_and_undeclared_points() -> None:
+    dat = "&ACCESS RVP\nDEFDAT a\n  DECL E6POS p={X 1}\nENDDAT\n"
+    src = "&ACCESS RVP\nDEF a( )\n  PTP p C_DIS\n  LIN q\nEND\n"
+    found = check_krl({"a.src": src, "a.dat": dat})
+    assert any("PTP cannot be approximated with C_DIS" in f for f in found)
+    assert any("q is not declared" in f for f in found)
+    good = "&ACCESS RVP\nDEF a( )\n  $APO.CPTP=20\n  PTP p C_PTP\n  LIN p C_DIS\nEND\n"
+    assert check_krl({"a.src": good, "a.dat": dat}) == []

@@ -18,6 +18,10 @@ Sources (the rule's comment names the section):
          ///ATTR, ///GROUP1, NOP ... END), MOVJ VJ 0.01..100.00, MOVL V, PL 0..8, circular
          interpolation needs three points, JUMP *label, CALL JOB:, comments 32 characters,
          job names 32 characters (YRC1000), tool files 0..63.
+  [KRL]  KUKA KSS 8.x "Operating and Programming Instructions for System Integrators": 10.2
+         "Programming motions" (PTP approximated with C_PTP only; LIN/CIRC with C_DIS, C_ORI,
+         C_VEL; $APO.CPTP 1..100 %), 11 "KRL syntax" (DEF ... END, DEFDAT ... ENDDAT, IF ...
+         ENDIF, FOR ... ENDFOR, DECL in the .dat, names of at most 24 characters).
   [VAL3] Stäubli VAL3 Reference Manual (s7/s8): 2 "VAL3 language elements" (applications,
          programs begin..end, identifiers of at most 15 characters, if/endIf, while/endWhile,
          for/endFor), motion control (mdesc blend off/joint/Cartesian, leave/reach >= 0),
@@ -29,7 +33,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 
-__all__ = ["check_fanuc", "check_inform", "check_urscript", "check_val3"]
+__all__ = ["check_fanuc", "check_inform", "check_krl", "check_urscript", "check_val3"]
 
 NUM = r"-?\d+(?:\.\d+)?"
 
@@ -375,4 +379,66 @@ def _val3_code(code: str, programs: set[str], sizes: dict[str | None, int]) -> l
                 bad.append(f"{array}[{index}] is beyond the declared size {sizes.get(array, 0)}")
     if stack:
         bad.append(f"unclosed block (missing {stack[-1]})")
+    return bad
+
+
+# --------------------------------------------------------------------------- KRL
+
+_KRL_SYSTEM = {"$NULLFRAME", "HOME"}
+
+
+def check_krl(files: dict[str, str]) -> list[str]:
+    """A module's .src and .dat (file name -> text), structural rules of [KRL]."""
+    bad: list[str] = []
+    for name, text in files.items():
+        if not name.endswith(".src"):
+            continue
+        stem = name[:-4]
+        dat = files.get(f"{stem}.dat", "")
+        declared = set(re.findall(r"^\s*DECL \w+ (\w+)=", dat, re.M))
+        if not re.search(rf"^DEFDAT {re.escape(stem)}$", dat, re.M) or not dat.rstrip().endswith("ENDDAT"):
+            bad.append(f"{stem}.dat: must be DEFDAT {stem} ... ENDDAT")
+        lines = text.splitlines()
+        defs = [m for ln in lines if (m := re.match(r"^DEF (\w+)\((.*)\)$", ln.strip()))]
+        routines = {m.group(1) for m in defs}
+        if not defs or defs[0].group(1) != stem:
+            bad.append(f"{name}: the first DEF must be the module's name")
+        stack: list[str] = []
+        pairs = {"DEF": "END", "IF": "ENDIF", "FOR": "ENDFOR", "WHILE": "ENDWHILE", "LOOP": "ENDLOOP"}
+        for k, raw in enumerate(lines, start=1):
+            ln = raw.split(";", 1)[0].strip()
+            if not ln or ln.startswith("&"):
+                continue
+            word = ln.split(" ")[0].split("(")[0]
+            if word in pairs and not (word == "IF" and "THEN" not in ln):
+                stack.append(pairs[word])
+            elif word in pairs.values():
+                if not stack or stack.pop() != word:
+                    bad.append(f"{name}:{k}: {word} closes no matching block")
+            elif word == "ELSE" and (not stack or stack[-1] != "ENDIF"):
+                bad.append(f"{name}:{k}: ELSE outside an IF")
+            for ident in re.findall(r"\b\w+\b", ln):
+                if len(ident) > 24 and not ident.isdigit():
+                    bad.append(f"{name}:{k}: identifier {ident} is longer than 24 characters")
+            motion = re.match(r"^(PTP|LIN|CIRC) (\w+)(?:,(\w+))?(?: (C_\w+))?$", ln)
+            if word in ("PTP", "LIN", "CIRC"):
+                if motion is None:
+                    bad.append(f"{name}:{k}: a motion is 'PTP|LIN p [C_..]' or 'CIRC aux,p [C_..]'")
+                    continue
+                kind, first, second, apo = motion.groups()
+                if (kind == "CIRC") != (second is not None):
+                    bad.append(f"{name}:{k}: CIRC takes an auxiliary and an end point, PTP/LIN one point")
+                if apo is not None and apo not in (("C_PTP",) if kind == "PTP" else ("C_DIS", "C_ORI", "C_VEL")):
+                    bad.append(f"{name}:{k}: {kind} cannot be approximated with {apo}")
+                for point in filter(None, (first, second)):
+                    if point not in declared and point.upper() not in _KRL_SYSTEM:
+                        bad.append(f"{name}:{k}: {point} is not declared in {stem}.dat")
+            cptp = re.match(r"^\$APO\.CPTP=(\S+)$", ln)
+            if cptp and not 1 <= float(cptp.group(1)) <= 100:
+                bad.append(f"{name}:{k}: $APO.CPTP is 1..100 %")
+            call = re.match(r"^(\w+)\((.*)\)$", ln)
+            if call and word not in pairs and word not in ("PULSE", "WAIT") and call.group(1) not in routines:
+                bad.append(f"{name}:{k}: {call.group(1)}() is no routine of the module")
+        if stack:
+            bad.append(f"{name}: unclosed block (missing {stack[-1]})")
     return bad
