@@ -38,7 +38,8 @@ CLEAN = {
 # accelerations a vendor cannot set per move (W408), INFORM joint targets written as the
 # Cartesian position of their planned joints (W450), a non-UR arm in URScript (W452), a
 # program for another maker's controller (W415), Fanuc UTOOL/UFRAME written for tools and
-# frames without a controller number (W416), a name the vendor's language defines (W414).
+# frames without a controller number (W416) — these two in pick_place.rmot's closing comment
+# — and a name the vendor's language defines, renamed (W414; lang/REFERENCE.md §8).
 DOCUMENTED_WARNINGS = {"W403", "W405", "W408", "W411", "W450", "W452", "W414", "W415", "W416"}
 # inspect.rmot (the front end's feature tour, whose vendor output is a golden file in
 # tests/backends) also shows: RAPID tooldata for its massless pointer (W413), an analog
