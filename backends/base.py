@@ -61,7 +61,7 @@ from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 
-from rmot.backends import codes, handshake
+from rmot.backends import codes, controller_data, handshake
 from rmot.backends.conventions import (
     axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, fmt_list, position_mm, quaternion_wxyz,
     rotation_vector, tool_cog, turn_bits,
@@ -239,9 +239,16 @@ class Backend:
     BRANCH_DATA: ClassVar[str] = "the configuration data"
     INDENT: ClassVar[str] = "  "
     DIGITAL_PORTS: ClassVar[tuple[int, int]] = (1, 4096)
+    # the fastest TCP speed the vendor's linear/circular instruction takes (m/s), with its
+    # source; None: no documented limit in the language (the controller limits it itself)
+    MAX_TCP_SPEED: ClassVar[float | None] = None
+    MAX_TCP_SPEED_SOURCE: ClassVar[str] = ""
 
-    def __init__(self, *, allow_findings_header: bool = False) -> None:
+    def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False) -> None:
         self.findings_header = allow_findings_header
+        # `--write-frames`: numbered tools and frames are also written into the controller's
+        # stored data (Fanuc UTOOL/UFRAME, KUKA TOOL_DATA/BASE_DATA); off, they are only selected
+        self.write_frames = write_frames
         self._emission = _Emission()
 
     # ------------------------------------------------------------------ entry point
@@ -253,9 +260,19 @@ class Backend:
         for task_plan in plan.tasks:
             ctx = TaskContext(plan, task_plan, plan.program.cell.robot(task_plan.robot),
                               self.program_name(plan, task_plan), source_map=source_map)
+            self.check_brand(ctx.robot)
             for fname, text in self.emit_task(ctx).items():
                 files[fname] = text
         return EmitResult(files, _unique(self._emission.diagnostics))
+
+    def check_brand(self, robot: ir.RobotInstance) -> None:
+        """W415 at the robot's declaration when a library arm is of another brand than this
+        vendor's controller (backends/controller_data.py; URDF arms are not judged)."""
+        mine = controller_data.TARGET_BRANDS.get(self.name)
+        brand = controller_data.brand_of(robot)
+        if mine is not None and brand is not None and brand != mine[0]:
+            self.warn(codes.OTHER_BRAND, f"robot '{robot.name}' ({robot.source.ref}) is made by {brand}; "
+                      f"a {self.name} program runs on a {mine[0]} controller", robot.span)
 
     def emit_task(self, ctx: TaskContext) -> dict[str, str]:
         """Print one task: filename -> text. Subclasses implement."""
@@ -384,6 +401,14 @@ class Backend:
             return [self.comment(self.NOT_SIX_AXIS_NOTE)]
         return rec
 
+    @staticmethod
+    def planned_zone(node: ir.Move, rec: planned.InstructionRecord) -> ir.Zone:
+        """The zone a vendor prints for `node`: `fine` where the plan stops (record's
+        blend_radius 0: before a wait, wait until, if, sync, at a timed move, at the task's
+        end, wherever a blend could not be built), else the programmed zone. The controller
+        then stops exactly where the verified path stops (lang/REFERENCE.md §8, stop points)."""
+        return node.motion.zone if rec.blend_radius > 0.0 else ir.Zone(0.0)
+
     def branch_or_default(self, branch: ir.Config | None, node: ir.Move) -> ir.Config:
         """`branch` when it names shoulder, elbow and wrist; else E402 and front/up/no-flip
         (the text stays well-formed; the error keeps it from being written)."""
@@ -453,6 +478,17 @@ class Backend:
         if not accel_is_default(node.motion, node.kind):
             self.warn_once(ctx, "accel", codes.ACCEL_IGNORED,
                            f"programmed accelerations are not expressed ({how})", node.span)
+
+    def tcp_speed_within_limit(self, node: ir.Move) -> float:
+        """The move's TCP speed (m/s), clamped to MAX_TCP_SPEED with W417 at the move."""
+        v = node.motion.tcp_speed
+        limit = self.MAX_TCP_SPEED
+        if limit is None or v <= limit + 1e-12:
+            return v
+        self.warn(codes.LIMIT_CLAMPED, f"TCP speed {fmt(v * 1000.0, 1)} mm/s must be at most "
+                  f"{fmt(limit * 1000.0, 1)} mm/s for {self.name} ({self.MAX_TCP_SPEED_SOURCE}); "
+                  f"clamped to {fmt(limit * 1000.0, 1)} mm/s", node.span)
+        return limit
 
     def port_ok(self, port: int, what: str, span: Span | None, ports: tuple[int, int] | None = None) -> bool:
         """True when `port` is in `ports` (default DIGITAL_PORTS); else E404 and False."""

@@ -14,6 +14,8 @@ __all__ = [
     "NAME_CHANGED", "NAME_CLASH", "SPEED_ROUNDED", "ZONE_ROUNDED", "LOWERED", "TIMEOUT_LOWERED",
     "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED", "SYNC_OUTPUT_LEFT_ON",
     "TIME_ROUNDED", "MASS_RAISED", "PAYLOAD_NOT_EXPRESSED",
+    # issue 13 (vendor programs that load): E410-E419 / W414-W419
+    "RESERVED_RENAMED", "OTHER_BRAND", "STORED_DATA_WRITTEN", "LIMIT_CLAMPED", "NUMBER_OUT_OF_RANGE",
 ]
 
 # errors: the program cannot be expressed faithfully for this vendor
@@ -47,3 +49,17 @@ SYNC_OUTPUT_LEFT_ON = Code("W410", "sync-output-left-on",
                            "an odd number of handshake barriers leaves the robot's sync output on")
 PAYLOAD_NOT_EXPRESSED = Code("W411", "payload-not-expressed",
                              "the vendor's program cannot carry the tool's payload; set it on the controller")
+
+# ---- issue 13: programs that load on the controller (E410-E419, W414-W419)
+RESERVED_RENAMED = Code("W414", "reserved-name-renamed",
+                        "a name is a reserved word, instruction, function, data type or predefined "
+                        "datum of the vendor's language; it was renamed")
+OTHER_BRAND = Code("W415", "robot-other-brand",
+                   "the program is written for a robot of another brand than the vendor's controller")
+STORED_DATA_WRITTEN = Code("W416", "stored-frame-unnumbered",
+                           "a tool or frame has no controller number: the program writes (or assumes) "
+                           "the controller's stored tool or frame data at a number it chose")
+NUMBER_OUT_OF_RANGE = Code("E410", "frame-number-out-of-range",
+                           "a tool or frame number is outside the numbers the vendor's controller has")
+LIMIT_CLAMPED = Code("W417", "limit-clamped",
+                     "a speed, acceleration or zone is beyond what the vendor accepts; clamped")

@@ -13,11 +13,13 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     (180, 540], -1 for (-540, -180].
   * joint moves to joint targets use the joint representation (J1= ... deg);
     joint moves to pose targets use the Cartesian representation with the CONFIG above.
-  * frames: UFRAME 0 is the robot's world (= base) frame; each named rmot frame gets
-    UFRAME 1, 2, ... and each tool (the bare flange included) UTOOL 1, 2, ... in order of
-    first use. The main program writes them at its start through position registers
-    PR[FRAME_PR + k] (`PR[i]=LPOS`, `PR[i,j]=value`, `UFRAME[n]=PR[i]`): those PRs and
-    UFRAME/UTOOL slots are overwritten.
+  * frames: UFRAME 0 is the robot's world (= base) frame. A tool or frame the cell gives a
+    controller number (`number n`) is selected by that number (UTOOL_NUM/UFRAME_NUM) and
+    never written, unless --write-frames: the header comments give the values it must hold.
+    Every other named frame gets the smallest UFRAME 1, 2, ... and every other tool (the
+    bare flange included) the smallest UTOOL no cell item is given, in order of first use;
+    the main program writes those at its start through position registers PR[FRAME_PR + k]
+    (`PR[i]=LPOS`, `PR[i,j]=value`, `UFRAME[n]=PR[i]`), overwriting them (W416 names each).
   * speeds: J moves in % of the maximum joint speed (integer 1..100), L/C moves in mm/sec
     (integer, at most MAX_TCP_MM_S = 2000); a `time` modifier is emitted exactly as `n.nnsec`.
     Other values are rounded or clamped to the nearest legal one (warning W402).
@@ -60,6 +62,7 @@ import numpy as np
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir
 
@@ -99,22 +102,23 @@ class _Program:
         return self.labels
 
 
-@dataclass
 class _Frames:
-    """UFRAME / UTOOL numbers of one task, in order of first use."""
+    """UFRAME / UTOOL numbers of one task: the cell's `number n` where given, else the
+    smallest number no cell tool/frame is given, in order of first use (controller_data)."""
 
-    frames: dict[str, ir.Pose] = field(default_factory=dict)
-    tools: dict[str | None, ir.Pose] = field(default_factory=dict)
+    def __init__(self, cell: ir.Cell, robot: str) -> None:
+        self.cell, self.robot = cell, robot
+        self.frames = NumberedData({f.number for f in cell.frames if f.number is not None}, 1)
+        self.tools = NumberedData({t.number for t in cell.tools
+                                   if t.robot == robot and t.number is not None}, 1)
 
     def uframe(self, frame: ir.FrameRef) -> int:
         if frame.name is None:
             return 0
-        self.frames.setdefault(frame.name, frame.pose)
-        return list(self.frames).index(frame.name) + 1
+        return self.frames.number(frame.name, frame_number(self.cell, frame.name), frame.pose)
 
     def utool(self, tool: ir.ToolRef) -> int:
-        self.tools.setdefault(tool.name, tool.tcp)
-        return list(self.tools).index(tool.name) + 1
+        return self.tools.number(tool.name, tool_number(self.cell, self.robot, tool.name), tool.tcp)
 
 
 @dataclass(frozen=True)
@@ -124,7 +128,7 @@ class FanucContext(TaskContext):
 
     names: NameTable
     routine_of: dict[int, str]
-    frames: _Frames = field(default_factory=_Frames)
+    frames: _Frames
     files: dict[str, str] = field(default_factory=dict)  # routine programs: file name -> text
     program: _Program = field(default_factory=_Program)
 
@@ -140,8 +144,12 @@ class FanucBackend(Backend):
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("TP program", "programs")
     FRAME_PR: ClassVar[int] = 90
+    MAX_UTOOL: ClassVar[int] = 10  # R-30iB: tool frames 1..10 (Operator's Manual, "Setting a tool frame")
+    MAX_UFRAME: ClassVar[int] = 9  # R-30iB: user frames 1..9 (0 = world; "Setting a user frame")
     CNT_MM: ClassVar[float] = 1.0  # mm of blend radius per CNT step (documented heuristic)
     MAX_TCP_MM_S: ClassVar[int] = 2000  # the L/C speed limit of the R-30iB motion software
+    MAX_TCP_SPEED = 2.0  # m/s, the same limit for the shared clamp (W417)
+    MAX_TCP_SPEED_SOURCE = "R-30iB Operator's Manual, motion instruction speed: L/C 1..2000 mm/sec"
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     SIX_AXIS_DATA = "TP positions"
     BRANCH_DATA = "the CONFIG string"
@@ -154,7 +162,8 @@ class FanucBackend(Backend):
         names, main_name, body = self.open_task(task)
         # TP programs share one namespace on the controller: routines carry the program's name
         routine_of = self.routine_table(names, body, task, prefix=f"{main_name}_")
-        ctx = task.with_state(FanucContext, names=names, routine_of=routine_of)
+        ctx = task.with_state(FanucContext, names=names, routine_of=routine_of,
+                              frames=_Frames(task.plan.program.cell, task.robot.name))
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:
             for part in parts:
@@ -183,12 +192,16 @@ class FanucBackend(Backend):
                "      BUSY_LAMP_OFF\t= 0,", "      ABORT_REQUEST\t= 0,", "      PAUSE_REQUEST\t= 0;",
                "DEFAULT_GROUP\t= 1,*,*,*,*;", "CONTROL_CODE\t= 00000000 00000000;", "/MN"]
         n = 0
-        for line in lines:
+        for k, line in enumerate(lines):
             if line.startswith(":"):  # continuation of a circular move: no line number
                 out.append(f"    {line} ;")
-            else:
-                n += 1
-                out.append(f"{n:>4}:  {line} ;")
+                continue
+            n += 1
+            # `C P[via]` is not a complete instruction: only its `: P[to] speed zone ;`
+            # continuation ends with ';' (R-30iB Operator's Manual, circular motion; RoboDK
+            # Fanuc_R30iA.py writes `C P[n]` then `:  P[m] ... ;`)
+            continued = k + 1 < len(lines) and lines[k + 1].startswith(":")
+            out.append(f"{n:>4}:  {line}" + ("" if continued else " ;"))
         out += ["/POS"] + positions + ["/END"]
         return "\n".join(out) + "\n"
 
@@ -200,20 +213,45 @@ class FanucBackend(Backend):
         return self.comment(ref[-COMMENT_MAX:]) if ref else None
 
     def _frame_setup(self, ctx: FanucContext) -> list[str]:
-        """UTOOL/UFRAME values written through position registers (see the module docstring)."""
+        """UTOOL/UFRAME values written through position registers (see the module docstring):
+        tools and frames without a cell number (W416, naming what is overwritten), and numbered
+        ones only with --write-frames. A numbered one not written gets comments with the
+        values the controller's UTOOL/UFRAME must hold."""
         lines: list[str] = []
         k = 0
-        for kind, table in (("UTOOL", ctx.frames.tools), ("UFRAME", ctx.frames.frames)):
-            for index, (fname, pose) in enumerate(table.items(), start=1):
-                k += 1
-                pr = self.FRAME_PR + k
+        for kind, table, limit in (("UTOOL", ctx.frames.tools, self.MAX_UTOOL),
+                                   ("UFRAME", ctx.frames.frames, self.MAX_UFRAME)):
+            for fname, (index, given) in table.numbers.items():
+                pose = table.poses[fname]
                 x, y, z = position_mm(pose)
                 w, p, r = reversed(euler_zyx_deg(pose))
-                lines.append(self.comment(f"{kind}[{index}] = {fname or 'flange'}"[:COMMENT_MAX]))
+                what = "tool" if kind == "UTOOL" else "frame"
+                label = f"{kind}[{index}] = {fname or 'flange'}"[:COMMENT_MAX]
+                if given and not 1 <= index <= limit:
+                    self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"{what} '{fname}' number must be in "
+                                     f"1..{limit} for {kind} (got {index})", self._decl_span(ctx, kind, fname))
+                if given and not self.write_frames:
+                    lines.append(self.comment(f"{label} must hold:"[:COMMENT_MAX]))
+                    lines.append(self.comment(f"X {fmt(x, 1)} Y {fmt(y, 1)} Z {fmt(z, 1)}"[:COMMENT_MAX]))
+                    lines.append(self.comment(f"W {fmt(w, 1)} P {fmt(p, 1)} R {fmt(r, 1)}"[:COMMENT_MAX]))
+                    continue
+                k += 1
+                pr = self.FRAME_PR + k
+                if not given:
+                    self.warn(codes.STORED_DATA_WRITTEN, f"{what} '{fname or 'flange'}' has no controller "
+                              f"number: the program overwrites {kind}[{index}] and PR[{pr}] (give it "
+                              f"`number n` in the cell to select the taught one)", self._decl_span(ctx, kind, fname))
+                lines.append(self.comment(label))
                 lines.append(f"PR[{pr}]=LPOS")
                 lines += [f"PR[{pr},{j}]={fmt(v, 4)}" for j, v in enumerate((x, y, z, w, p, r), start=1)]
                 lines.append(f"{kind}[{index}]=PR[{pr}]")
         return lines
+
+    @staticmethod
+    def _decl_span(ctx: FanucContext, kind: str, name: str | None) -> object:
+        """The cell declaration of a tool or frame (the task's span for the bare flange)."""
+        items = ctx.plan.program.cell.tools if kind == "UTOOL" else ctx.plan.program.cell.frames
+        return next((i.span for i in items if i.name == name), ctx.task.span)
 
     # ------------------------------------------------------------------ motion
 
@@ -224,7 +262,7 @@ class FanucBackend(Backend):
         self.warn_accel(node, ctx, "TP's ACC is a % of the motion profile; the controller's own applies")
         self.warn_payload(node, ctx, "the controller's payload schedule ($PLST_GRP1) selected by PAYLOAD[i]")
         uf, ut = ctx.frames.uframe(node.frame), ctx.frames.utool(node.tool)
-        zone = self._zone(node)
+        zone = self._zone(node, self.planned_zone(node, rec))
         if node.kind is ir.MotionKind.JOINT:
             speed = self._joint_speed(node)
             if isinstance(node.target, ir.JointTarget):
@@ -261,16 +299,15 @@ class FanucBackend(Backend):
     def _tcp_speed(self, node: ir.Move) -> str:
         if node.motion.duration is not None:
             return f"{fmt(node.motion.duration, 2)}sec"
-        v = node.motion.tcp_speed * 1000.0
+        v = self.tcp_speed_within_limit(node) * 1000.0  # W417 above MAX_TCP_SPEED
         n = max(1, min(self.MAX_TCP_MM_S, round(v)))
         if abs(n - v) > 1e-9:
-            self.warn(codes.SPEED_ROUNDED, f"TCP speed {fmt(v, 3)} mm/sec must be an integer of at most "
-                      f"{self.MAX_TCP_MM_S} for TP; "
+            self.warn(codes.SPEED_ROUNDED, f"TCP speed {fmt(v, 3)} mm/sec must be an integer for TP; "
                       f"emitted as {n}mm/sec", node.span)
         return f"{n}mm/sec"
 
-    def _zone(self, node: ir.Move) -> str:
-        zone = node.motion.zone
+    def _zone(self, node: ir.Move, zone: ir.Zone) -> str:
+        """FINE where the plan stops (Backend.planned_zone), else CNTn."""
         if zone.is_fine:
             return "FINE"
         r = zone.radius * 1000.0

@@ -5,7 +5,12 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     `///POSTYPE ROBOT`, `///RECTAN`, `///RCONF ...`, `Cxxxxx=X,Y,Z,Rx,Ry,Rz`), `//INST`
     (`///DATE`, `///ATTR SC,RW`, `///GROUP1 RB1`), `NOP`, instructions, `END`; one job per
     file, jobs call each other with `CALL JOB:NAME`;
-  * positions are Cartesian in the ROBOT coordinate system (the robot base, as the IR's
+  * numbered tools and frames (the cell's `number n`): a tool's number is its tool file
+    (`///TOOL n`); a position moved in a numbered frame is written in that user frame
+    (`///USER n`, `///POSTYPE USER`, the TCP relative to the frame) so the controller's
+    stored user frame is used; nothing stored is ever written (the job has no instruction
+    for it): the header comments give the values the tool files and user frames must hold;
+  * other positions are Cartesian in the ROBOT coordinate system (the robot base, as the IR's
     `CartesianTarget.pose`: frames already composed, so no user frame is needed), X Y Z in mm
     and Rx Ry Rz in degrees with R = Rz(Rz)·Ry(Ry)·Rx(Rx) (roll, pitch, yaw about fixed axes);
     the values are the *TCP* of tool file `///TOOL n` — tool n is the n-th tool of the robot
@@ -39,7 +44,8 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     once (rmot's centre of gravity: half way flange->TCP, base.tool_cog);
   * circular moves: `MOVC` start (the previous target), via, end with `FPT` (the arc's final
     point), so an arc that follows an arc continues from that point with its via and end only;
-  * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per call;
+  * runtime if: `JUMP *Lnnn IF IN#(n)=...` with labels; procs: one job per routine, named
+    `<PROGRAM>_<PROC>` (job names are global on the controller);
   * comments: `'file.rmot:12` (a comment line holds at most 32 characters).
   * sync: independent jobs per controller have no barrier, so the k-th sync of a task is the
     I/O handshake of backends/handshake.py: `DOUT OT#(o) ON` (odd k) or OFF (even k) then
@@ -75,7 +81,8 @@ import numpy as np
 
 from rmot.backends import codes, codes_b
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
-from rmot.backends.lowering import split_body
+from rmot.backends.controller_data import NumberedData, frame_number
+from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
 
@@ -83,10 +90,18 @@ __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
 
 PL_DISTANCES_MM = (0.0, 12.5, 25.0, 50.0, 100.0)
 MAX_POSITIONS = 999
+MAX_TOOL_FILE = 63  # DX200/YRC1000 tool files 0..63 (YRC1000 INSTRUCTIONS, "Tool file")
+MAX_USER_FRAME = 63  # user coordinates 1..63 (YRC1000 INSTRUCTIONS, "User coordinates")
 MAX_INSTRUCTIONS = 300
 COMMENT_WIDTH = 32
 INFORM_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper=True, prefix="J",
-                         reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC"}))
+                         # INFORM instruction words (YRC1000 INSTRUCTIONS manual, instruction list)
+                         reserved=frozenset({"NOP", "END", "CALL", "JUMP", "MOVJ", "MOVL", "MOVC",
+                                             "MOVS", "IMOV", "DOUT", "DIN", "AOUT", "PULSE", "WAIT",
+                                             "TIMER", "PAUSE", "MSG", "RET", "IF", "ENDIF", "ELSE",
+                                             "WHILE", "ENDWHILE", "FOR", "NEXT", "SET", "ADD", "SUB",
+                                             "MUL", "DIV", "INC", "DEC", "GETS", "CLEAR", "SFTON",
+                                             "SFTOF", "TOOLON", "TOOLOF", "SPEED", "LABEL"}))
 DATE = "2000/01/01 00:00"
 
 
@@ -118,6 +133,7 @@ class _Position:
     tool: int
     conf: str
     values: str
+    user: int | None = None  # user frame number (`///USER n`, POSTYPE USER); None: ROBOT
 
 
 @dataclass
@@ -158,6 +174,7 @@ class InformContext(TaskContext):
     routine_of: dict[int, str]
     preds: dict[int, ir.Move | None]
     tools: dict[str | None, int]
+    user_frames: dict[int, tuple[str, ir.Pose]] = field(default_factory=dict)  # numbered frames used
     files: dict[str, str] = field(default_factory=dict)
     job: _Job = field(default_factory=lambda: _Job(""))
 
@@ -172,6 +189,8 @@ class InformBackend(Backend):
     NAME_RULES = INFORM_RULES
     DIGITAL_PORTS = (1, 1024)  # OT# / IN# general-purpose I/O
     ANALOG_PORTS = (1, 40)  # AO#
+    MAX_TCP_SPEED = 1.5  # m/s
+    MAX_TCP_SPEED_SOURCE = "DX100/DX200 INFORM manual, MOVL/MOVC: V= 0.1..1500.0 mm/s"
     NO_RECORD_NOTE = None
 
     # ------------------------------------------------------------------ jobs
@@ -184,7 +203,13 @@ class InformBackend(Backend):
                       f"instructions (got more); split into {len(split)} parts", task.task.span)
         ctx = task.with_state(InformContext, routine_of={},
                               preds=predecessors(body)[0], tools=self.tool_numbers(task))
-        ctx.routine_of.update(self.routine_table(names, split, ctx))  # its keys read ctx.preds
+        # job names are global on the controller: a proc's job carries the program's name
+        # (MAIN_APPROACH), so two programs' procs of one name never overwrite each other; the
+        # split parts already do (NAME_PART1)
+        parts = {p.uid for p in split} if split is not body else set()
+        table = routine_names(split, key=lambda call: self.routine_key(call, ctx))  # keys read ctx.preds
+        ctx.routine_of.update({uid: names.name(r if uid in parts else f"{main}_{r}")
+                               for uid, r in table.items()})
         self.job(main, split, ctx)
         self.extend(names.diagnostics)
         return dict(sorted(ctx.files.items()))
@@ -208,12 +233,18 @@ class InformBackend(Backend):
         lines = ["//POS", f"///NPOS {len(job.positions)},0,0,0,0,0"]
         tool: int | None = None
         conf: str | None = None
+        user: int | None = None
         for k, pos in enumerate(job.positions):
+            if k > 0 and pos.user != user:  # another coordinate system: restate it all
+                tool = conf = None
+            if pos.user is not None and (k == 0 or pos.user != user):
+                lines.append(f"///USER {pos.user}")
             if pos.tool != tool:
                 lines.append(f"///TOOL {pos.tool}")
                 tool = pos.tool
-            if k == 0:
-                lines += ["///POSTYPE ROBOT", "///RECTAN"]
+            if k == 0 or pos.user != user:
+                lines += [f"///POSTYPE {'ROBOT' if pos.user is None else 'USER'}", "///RECTAN"]
+                user = pos.user
             if pos.conf != conf:
                 lines.append(f"///RCONF {pos.conf}")
                 conf = pos.conf
@@ -231,10 +262,16 @@ class InformBackend(Backend):
         step = COMMENT_WIDTH - 1
         return ["'" + text[i:i + step] for i in range(0, len(text), step)] or ["'"]
 
-    @staticmethod
-    def tool_numbers(ctx: TaskContext) -> dict[str | None, int]:
+    def tool_numbers(self, ctx: TaskContext) -> dict[str | None, int]:
+        """Tool file numbers: the cell's `number n` where given (0..MAX_TOOL_FILE, else E410),
+        the others 1, 2, ... in cell order skipping every given number; 0 = the flange."""
         tools = [t for t in ctx.plan.program.cell.tools if t.robot == ctx.robot.name]
-        return {None: 0, **{t.name: k + 1 for k, t in enumerate(tools)}}
+        table = NumberedData({t.number for t in tools if t.number is not None}, 1)
+        for t in tools:
+            if t.number is not None and not 0 <= t.number <= MAX_TOOL_FILE:
+                self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"tool '{t.name}' number must be in "
+                                 f"0..{MAX_TOOL_FILE} for a tool file (got {t.number})", t.span)
+        return {None: 0, **{t.name: table.number(t.name, t.number, t.tcp) for t in tools}}
 
     def tool_comments(self, ctx: InformContext) -> list[str]:
         out: list[str] = []
@@ -249,6 +286,12 @@ class InformBackend(Backend):
             if t.mass > 0:
                 cog = fmt_list((c * 1000.0 for c in tool_cog(t)), 1)
                 out.append(f"'W {fmt(t.mass, 3)} G {cog}"[:COMMENT_WIDTH])
+        for n, (fname, pose) in sorted(ctx.user_frames.items()):
+            rz, ry, rx = euler_zyx_deg(pose)
+            x, y, z = position_mm(pose)
+            out += self.wrap(f"USER {n} = {fname}")
+            out.append(f"'XYZ {fmt(x, 3)},{fmt(y, 3)},{fmt(z, 3)}"[:COMMENT_WIDTH])
+            out.append(f"'RXYZ {fmt(rx, 4)},{fmt(ry, 4)},{fmt(rz, 4)}"[:COMMENT_WIDTH])
         return out
 
     # ------------------------------------------------------------------ motion
@@ -262,7 +305,14 @@ class InformBackend(Backend):
                              "6-axis branch (got none: not a 6R arm, or no plan)", node.span)
             return None
         tool = ctx.tools.get(node.tool.name, 0)
-        return ctx.job.add(_Position(tool, rconf(branch, q), position_values(pose)))
+        user = frame_number(ctx.plan.program.cell, node.frame.name)
+        if user is not None:  # a numbered cell frame: the position in that user frame
+            if not 1 <= user <= MAX_USER_FRAME:
+                self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"frame '{node.frame.name}' number must be "
+                                 f"in 1..{MAX_USER_FRAME} for a user frame (got {user})", node.span)
+            ctx.user_frames[user] = (node.frame.name, node.frame.pose)  # type: ignore[assignment]
+            pose = node.frame.pose.inverse() * pose
+        return ctx.job.add(_Position(tool, rconf(branch, q), position_values(pose), user))
 
     def move(self, node: ir.Move, ctx: InformContext) -> list[str]:
         rec = self.move_record(node, ctx)
@@ -334,7 +384,7 @@ class InformBackend(Backend):
         return text
 
     def linear_speed(self, node: ir.Move) -> str:
-        mm_s = node.motion.tcp_speed * 1000.0
+        mm_s = self.tcp_speed_within_limit(node) * 1000.0  # W417 above MAX_TCP_SPEED
         text = fmt(max(0.1, mm_s), 1)
         if abs(float(text) - mm_s) > 1e-6:
             self.warn(codes.SPEED_ROUNDED, f"TCP speed must be a multiple of 0.1 mm/s "

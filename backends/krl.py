@@ -16,7 +16,9 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
   * speeds: $VEL.CP in m/s, $ACC.CP in m/s^2 (LIN, CIRC); $VEL_AXIS[i] / $ACC_AXIS[i] in % of
     each axis's maximum (PTP, set by the local routine RMOT_PTP). A fixed move `time` has no
     KRL form: the programmed speeds are used (warning W409).
-  * zones: exact stop without approximation, else C_DIS with $APO.CDIS in mm (exact).
+  * zones: exact stop without approximation wherever the plan stops (Backend.planned_zone:
+    before WAIT FOR, IF, a handshake, at the end); LIN/CIRC: C_DIS with $APO.CDIS in mm
+    (exact); PTP: C_PTP with $APO.CPTP in % (1 % per mm, clamped 1..100: no exact form, W403).
   * I/O: $OUT[n]=TRUE, PULSE($OUT[n],TRUE,t), WAIT SEC t, WAIT FOR $IN[n]==TRUE,
     IF $IN[n]==TRUE THEN; $ANOUT[n] = volts / 10 (KRL's -1.0..1.0 is -10..10 V).
     KRL's WAIT FOR has no timeout: a timed wait is lowered to a wait on the input OR timer
@@ -24,6 +26,11 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
     the program stops, rmot's timeout semantics (base.py).
   * digital ports: $IN[n] / $OUT[n] with n in DIGITAL_PORTS = 1..4096 (KSS 8.1-8.3 "System
     Variables": $IN[1]..$IN[4096], $OUT[1]..$OUT[4096]); E404 outside.
+  * numbered tools and frames (the cell's `number n`): `$TOOL=TOOL_DATA[n]`,
+    `$LOAD=LOAD_DATA[n]`, `$BASE=BASE_DATA[n]` select the controller's stored data, which
+    is never written unless --write-frames (then `TOOL_DATA[n]=...` at the module's start);
+    the header comments give the values it must hold. Unnumbered ones are module data (.dat)
+    assigned to $TOOL/$BASE directly: nothing stored on the controller is overwritten.
   * every motion writes the system variables it needs right before it ($TOOL, $LOAD, $BASE,
     speeds, $APO.CDIS): an instruction never depends on the text of another one. (A move
     with the bare flange sets $TOOL=$NULLFRAME and leaves $LOAD as configured: rmot has no
@@ -49,6 +56,7 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes
+from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir
@@ -65,6 +73,13 @@ RESERVED = frozenset({
     "PRIO", "PTP", "PTP_REL", "PUBLIC", "REAL", "REPEAT", "RESUME", "RETURN", "SEC", "SIGNAL",
     "STRUC", "SWITCH", "THEN", "TO", "TRIGGER", "TRUE", "UNTIL", "WAIT", "WHEN", "WHILE", "EXOR",
     "POS", "E6POS", "AXIS", "E6AXIS", "FRAME", "LOAD", "RMOT_PTP",
+    # further KRL keywords (KSS 8.x Operating and Programming Instructions for System
+    # Integrators, "KRL syntax": signal and interrupt declarations, spline blocks, time
+    # blocks; the keyword list krllint checks the case of): a datum named `start` or `path`
+    # is read as the keyword
+    "IN", "OUT", "ON", "OFF", "ENABLE", "DISABLE", "DISTANCE", "PATH", "ONSTART", "SPLINE",
+    "ENDSPLINE", "SPL", "SPTP", "SLIN", "SCIRC", "TIME_BLOCK", "START", "PART", "STEP",
+    "GLOBAL", "STRUC", "ENUM", "PULSE", "SWITCH", "BOOL", "SIGNAL",
 })
 KRL_RULES = NameRules(max_len=24, first="A-Za-z_", reserved=RESERVED, prefix="P")
 E_AXES = ",E1 0.0,E2 0.0,E3 0.0,E4 0.0,E5 0.0,E6 0.0"
@@ -100,6 +115,13 @@ def frame_text(pose: ir.Pose) -> str:
     return f"X {fmt(x, 3)},Y {fmt(y, 3)},Z {fmt(z, 3)},A {fmt(a, 4)},B {fmt(b, 4)},C {fmt(c, 4)}"
 
 
+def load_text(tool: ir.ToolRef) -> str:
+    """{M kg,CM {..},J {..}}: the tool's mass, centre of gravity half way flange->TCP (base.tool_cog)."""
+    cx, cy, cz = (fmt(c * 1000.0, 3) for c in tool_cog(tool))
+    cog = f"X {cx},Y {cy},Z {cz},A 0.0,B 0.0,C 0.0"
+    return f"{{M {fmt(tool.mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}"
+
+
 @dataclass
 class _Module:
     """Data and local routines collected while printing one module."""
@@ -107,6 +129,9 @@ class _Module:
     data: DataPool
     routines: dict[str, list[str]] = field(default_factory=dict)
     uses_ptp_helper: bool = False
+    # numbered tools/frames used: (array, n) -> (rmot name, value text); selected by number,
+    # written into the controller's arrays only with --write-frames
+    stored: dict[tuple[str, int], tuple[str, str]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -130,6 +155,11 @@ class KrlBackend(Backend):
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("KRL module", "modules")
     TIMER_INDEX: ClassVar[int] = 16
+    MAX_TCP_SPEED = 2.0  # m/s
+    MAX_TCP_SPEED_SOURCE = "KSS 8.x Programming Instructions for System Integrators, LIN/CIRC inline form: velocity 0.001..2 m/s"
+    MAX_TOOL_DATA: ClassVar[int] = 16  # TOOL_DATA[16] in KSS 8.x $config.dat
+    MAX_BASE_DATA: ClassVar[int] = 32  # BASE_DATA[32] in KSS 8.x $config.dat
+    CPTP_MM: ClassVar[float] = 1.0  # mm of blend radius per % of $APO.CPTP (documented heuristic)
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     SIX_AXIS_DATA = "E6POS/E6AXIS data"
     BRANCH_DATA = "Status/Turn"
@@ -161,6 +191,13 @@ class KrlBackend(Backend):
         ctx = replace(task, module=_Module(DataPool(task.names)))
         main = list(calls) if calls is not None else self.body(body, ctx)
         head = self.header(ctx)
+        stored = []
+        for (array, n), (rname, value) in sorted(ctx.module.stored.items()):
+            if self.write_frames:
+                stored.append(f"{array}[{n}]={value} ; {rname} (--write-frames)")
+            else:
+                head = head + [self.comment(f"{array}[{n}] must hold {rname}: {value}")]
+        main = stored + main
         src = ["&ACCESS RVP", f"DEF {name}( )"] + self.indent(head + main, "  ") + ["END"]
         for rname, rlines in ctx.module.routines.items():
             src += ["", f"DEF {rname}( )"] + self.indent(rlines, "  ") + ["END"]
@@ -183,16 +220,18 @@ class KrlBackend(Backend):
                       "KRL form; the programmed speeds are used", node.span)
         lines = self._tool_base(node, ctx)
         m = node.motion
-        zone = "" if m.zone.is_fine else " C_DIS"
-        if not m.zone.is_fine:
-            lines.append(f"$APO.CDIS={fmt(m.zone.radius * 1000.0, 3)}")
+        stop = self.planned_zone(node, rec)
         if node.kind is ir.MotionKind.JOINT:
             ctx.module.uses_ptp_helper = True
             lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
+            zone = self._ptp_zone(node, stop, lines)
             if isinstance(node.target, ir.JointTarget):
                 return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
             return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
-        lines += [f"$VEL.CP={fmt(m.tcp_speed, 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
+        zone = "" if stop.is_fine else " C_DIS"
+        if not stop.is_fine:
+            lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
+        lines += [f"$VEL.CP={fmt(self.tcp_speed_within_limit(node), 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
             return lines
@@ -206,27 +245,58 @@ class KrlBackend(Backend):
         via = self._pos(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")
         return lines + [f"CIRC {via},{to}{zone}"]
 
-    @staticmethod
-    def _tool_base(node: ir.Move, ctx: KrlContext) -> list[str]:
+    def _ptp_zone(self, node: ir.Move, zone: ir.Zone, lines: list[str]) -> str:
+        """` C_PTP` with `$APO.CPTP=n` appended to `lines` for an approximated PTP, "" for an
+        exact stop. KRL approximates PTP only with C_PTP, whose distance $APO.CPTP is a % (1..100)
+        of the axis-specific maximum in machine data ($APO_DIS_PTP), not a TCP radius
+        (KSS 8.x Operating and Programming Instructions for System Integrators, "PTP",
+        "Approximation parameters": C_DIS is for CP motions only): rmot writes
+        n = round(radius / CPTP_MM) clamped to 1..100, the nearest faithful choice, warning W403."""
+        if zone.is_fine:
+            return ""
+        r = zone.radius * 1000.0
+        pct = max(1, min(100, round(r / self.CPTP_MM)))
+        self.warn(codes.ZONE_ROUNDED, f"zone {fmt(r, 3)} mm has no exact KRL PTP form ($APO.CPTP is a % "
+                  f"of the axes' approximation distance, not a radius); emitted as $APO.CPTP={pct}", node.span)
+        lines.append(f"$APO.CPTP={pct}")
+        return " C_PTP"
+
+    def _tool_base(self, node: ir.Move, ctx: KrlContext) -> list[str]:
         lines = []
+        cell, robot = ctx.plan.program.cell, ctx.robot.name
+        tool_n, base_n = tool_number(cell, robot, node.tool.name), frame_number(cell, node.frame.name)
         if node.tool.name is None:
             lines += ["$TOOL=$NULLFRAME"]
+        elif tool_n is not None:
+            self._stored(ctx, "TOOL_DATA", tool_n, node.tool.name, f"{{{frame_text(node.tool.tcp)}}}", node)
+            self._stored(ctx, "LOAD_DATA", tool_n, node.tool.name, load_text(node.tool), node)
+            held = _held_load_name(node, ctx)  # holding parts: the stored LOAD_DATA is the tool's alone
+            lines += [f"$TOOL=TOOL_DATA[{tool_n}]", f"$LOAD={held}" if held is not None else f"$LOAD=LOAD_DATA[{tool_n}]"]
         else:
             tname = ctx.module.data.add(node.tool.name, f"FRAME:{{{frame_text(node.tool.tcp)}}}")
-            mass = node.tool.mass
-            cx, cy, cz = (fmt(c * 1000.0, 3) for c in tool_cog(node.tool))
-            cog = f"X {cx},Y {cy},Z {cz},A 0.0,B 0.0,C 0.0"
-            lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{{M {fmt(mass, 3)},CM {{{cog}}},J {{X 0.0,Y 0.0,Z 0.0}}}}")
+            lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{load_text(node.tool)}")
             held = _held_load_name(node, ctx)  # parts held (issue #14): tool + parts, see _part_load
             if held is not None:
                 lname = held
             lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
         if node.frame.name is None:
             lines.append("$BASE=$NULLFRAME")
+        elif base_n is not None:
+            self._stored(ctx, "BASE_DATA", base_n, node.frame.name, f"{{{frame_text(node.frame.pose)}}}", node)
+            lines.append(f"$BASE=BASE_DATA[{base_n}]")
         else:
             bname = ctx.module.data.add(node.frame.name, f"FRAME:{{{frame_text(node.frame.pose)}}}")
             lines.append(f"$BASE={bname}")
         return lines
+
+    def _stored(self, ctx: KrlContext, array: str, n: int, name: str, value: str, node: ir.Move) -> None:
+        """Record a numbered tool/base (E410 outside the controller's array: TOOL_DATA[1..16],
+        BASE_DATA[1..32], KSS 8.x $config.dat)."""
+        limit = self.MAX_BASE_DATA if array == "BASE_DATA" else self.MAX_TOOL_DATA
+        if not 1 <= n <= limit:
+            self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"{'frame' if array == 'BASE_DATA' else 'tool'} "
+                             f"'{name}' number must be in 1..{limit} for {array} (got {n})", node.span)
+        ctx.module.stored[(array, n)] = (name, value)
 
     @staticmethod
     def _axis(target: ir.JointTarget, ctx: KrlContext) -> str:
@@ -238,7 +308,7 @@ class KrlBackend(Backend):
         assert q is not None
         branch = self.branch_or_default(branch, node)
         st = f",S {status_of(branch)},T {turn_bits(q)}"
-        return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}")
+        return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}", node.span)
 
     # ------------------------------------------------------------------ I/O and flow
 

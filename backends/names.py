@@ -80,10 +80,15 @@ class NameTable:
             suffix = f"_{n}"
             legal = base[: self.rules.max_len - len(suffix)] + suffix
             n += 1
-        if legal != base:
+        if legal != base and source.upper() not in self.rules.reserved:
             other = self.taken[_key(base, self.rules)]
             self._warn(codes.NAME_CLASH, f"name '{source}' must be unique for {self.vendor} after "
                        f"legalisation (clashes with '{other}' as '{base}'); renamed to '{legal}'", span)
+        if source.upper() in self.rules.reserved:
+            self._warn(codes.RESERVED_RENAMED, f"name '{source}' is a reserved word, instruction, "
+                       f"function, type or predefined datum of {self.vendor}; renamed to '{legal}'", span)
+        elif legal != base:
+            pass  # the clash warning above
         elif legal != source and legal != source.upper():
             self._warn(codes.NAME_CHANGED, f"name '{source}' is not a legal {self.vendor} name; "
                        f"emitted as '{legal}'", span)
@@ -108,12 +113,18 @@ class DataPool:
     table: NameTable
     items: list[tuple[str, str]] = field(default_factory=list)
     _by_value: dict[tuple[str, str], str] = field(default_factory=dict)
+    warned: set[str] = field(default_factory=set)  # reserved hints already reported
 
-    def add(self, hint: str, value: str) -> str:
+    def add(self, hint: str, value: str, span: Span | None = None) -> str:
         key = (hint, value)
         if key in self._by_value:
             return self._by_value[key]
         base = legalize(hint, self.table.rules)
+        if hint.upper() in self.table.rules.reserved and hint not in self.warned:
+            self.warned.add(hint)
+            self.table._warn(codes.RESERVED_RENAMED, f"name '{hint}' is a reserved word, instruction, "
+                             f"function, type or predefined datum of {self.table.vendor}; declared "
+                             f"as '{base}'", span)
         legal, n = base, 2
         while _key(legal, self.table.rules) in self.table.taken:
             suffix = f"_{n}"

@@ -14,7 +14,8 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
     speeddata [v_tcp, 500, 5000, 1000] (exact). Joint moves: `vmax` at a joint speed share of
     100 %; RAPID has no per-move joint-speed share, so a smaller share is emitted as the planned
     duration `\T:=` (nearest faithful; warning W402). A `time` modifier is emitted as `\T:=`.
-  * zonedata: `fine`, a predefined z0 ... z200 when the radius matches, else a CONST zonedata
+  * zonedata: `fine` wherever the plan stops (Backend.planned_zone: before WaitDI, IF,
+    WaitSyncTask, WaitTime, at the end), else a predefined z0 ... z200 when the radius matches, else a CONST zonedata
     with the exact TCP radius (orientation zones scaled like the predefined table).
   * joint moves to joint targets -> MoveAbsJ; joint moves to pose targets -> MoveJ with
     the robtarget's confdata (ConfJ\\On, the default, makes the controller take that branch).
@@ -56,12 +57,91 @@ RESERVED = frozenset({
     "TO", "TRAP", "TRUE", "TRYNEXT", "UNDO", "VAR", "VIEWONLY", "WHILE", "WITH", "XOR",
     "MAIN", "TOOL0", "WOBJ0", "LOAD0", "VMAX", "FINE",
 })
+# Instructions, functions, data types and predefined data of RAPID: a module-level datum or
+# routine named like one hides it in the whole module (a CONST robtarget `movel` makes every
+# `MoveL` after it a reference to data: the module does not load). From ABB "Technical
+# reference manual – RAPID Instructions, Functions and Data types" (3HAC050917-001, RW 6),
+# chapters 1 (instructions), 2 (functions) and 3 (data types); predefined data from the
+# data types' "Predefined data" sections (tool0, wobj0, load0, v*/z*, fine, vmax, ...).
+RAPID_INSTRUCTIONS = frozenset({
+    "ACCSET", "ACTUNIT", "ADD", "ALIASIO", "BITCLEAR", "BITSET", "BOOKERRNO", "BREAK",
+    "CALLBYVAR", "CANCELLOAD", "CHECKPROGREF", "CIRPATHMODE", "CLEAR", "CLEARIOBUFF",
+    "CLEARPATH", "CLEARRAWBYTES", "CLKRESET", "CLKSTART", "CLKSTOP", "CLOSE", "CLOSEDIR",
+    "COMPACT", "CONFJ", "CONFL", "CONNECT", "COPYFILE", "COPYRAWBYTES", "CORRCLEAR",
+    "CORRCON", "CORRDISCON", "CORRWRITE", "DEACTUNIT", "DECR", "DITHERACT", "DITHERDEACT",
+    "DROPWOBJ", "EOFFSOFF", "EOFFSON", "EOFFSSET", "ERASEMODULE", "ERRLOG", "ERRRAISE",
+    "ERRWRITE", "EXITCYCLE", "GETDATAVAL", "GETSYSDATA", "GETTRAPDATA", "GOTO",
+    "GRIPLOAD", "IDELETE", "IDISABLE", "IENABLE", "IERROR", "INCR", "INVERTDO", "IODISABLE",
+    "IOENABLE", "IPERS", "ISIGNALAI", "ISIGNALAO", "ISIGNALDI", "ISIGNALDO", "ISIGNALGI",
+    "ISIGNALGO", "ISLEEP", "ITIMER", "IVARVAL", "IWATCH", "LOAD", "LOADID", "MAKEDIR",
+    "MECHUNITLOAD", "MOTIONSUP", "MOVEABSJ", "MOVEC", "MOVECDO", "MOVECGO", "MOVECSYNC",
+    "MOVEEXTJ", "MOVEJ", "MOVEJDO", "MOVEJGO", "MOVEJSYNC", "MOVEL", "MOVELDO", "MOVELGO",
+    "MOVELSYNC", "MTOOLRTRAJ", "OPEN", "OPENDIR", "PACKDNHEADER", "PACKRAWBYTES",
+    "PATHACCLIM", "PATHRESOL", "PDISPOFF", "PDISPON", "PDISPSET", "PROCCALL", "PULSEDO",
+    "RAISE", "READANYBIN", "READBLOCK", "READCFGDATA", "READERRDATA", "READRAWBYTES",
+    "REMOVEDIR", "REMOVEFILE", "RENAMEFILE", "RESET", "RESETPPMOVED", "RESETRETRYCOUNT",
+    "RESTOPATH", "RETRY", "RETURN", "REWIND", "SAVE", "SEARCHC", "SEARCHEXTJ", "SEARCHL",
+    "SENDVIAUDP", "SET", "SETAFB", "SETALLDATAVAL", "SETAO", "SETDATASEARCH", "SETDATAVAL",
+    "SETDO", "SETGO", "SETSYSDATA", "SINGAREA", "SKIPWARN", "SOCKETACCEPT", "SOCKETBIND",
+    "SOCKETCLOSE", "SOCKETCONNECT", "SOCKETCREATE", "SOCKETLISTEN", "SOCKETRECEIVE",
+    "SOCKETSEND", "SOFTACT", "SOFTDEACT", "SPEEDREFRESH", "SPYSTART", "SPYSTOP", "STARTLOAD",
+    "STARTMOVE", "STARTMOVERETRY", "STEPBWDPATH", "STOP", "STOPMOVE", "STOPMOVERESET",
+    "STOREPATH", "SYNCMOVEOFF", "SYNCMOVEON", "SYNCMOVEUNDO", "SYSTEMSTOPACTION", "TEST",
+    "TPERASE", "TPREADFK", "TPREADNUM", "TPSHOW", "TPWRITE", "TRIGC", "TRIGEQUIP", "TRIGINT",
+    "TRIGIO", "TRIGJ", "TRIGL", "TRIGSTOPPROC", "TRYINT", "TUNERESET", "TUNESERVO",
+    "UIMSGBOX", "UISHOW", "UNLOAD", "UNPACKRAWBYTES", "VELSET", "WAITAI", "WAITAO",
+    "WAITDI", "WAITDO", "WAITGI", "WAITGO", "WAITLOAD", "WAITROB", "WAITSYNCTASK",
+    "WAITTESTANDSET", "WAITTIME", "WAITUNTIL", "WAITWOBJ", "WARMSTART", "WORLDACCLIM",
+    "WRITE", "WRITEANYBIN", "WRITEBIN", "WRITEBLOCK", "WRITECFGDATA", "WRITERAWBYTES",
+    "WRITESTRBIN", "WRITEVAR", "WZBOXDEF", "WZCYLDEF", "WZDISABLE", "WZDOSET", "WZENABLE",
+    "WZFREE", "WZHOMEJOINTDEF", "WZLIMJOINTDEF", "WZLIMSUP", "WZSPHDEF",
+})
+RAPID_FUNCTIONS = frozenset({
+    "ABS", "ACOS", "AINPUT", "AND", "AOUTPUT", "ARGNAME", "ASIN", "ATAN", "ATAN2", "BITAND",
+    "BITCHECK", "BITLSH", "BITNEG", "BITOR", "BITRSH", "BITXOR", "BYTETOSTR", "CALCJOINTT",
+    "CALCROBT", "CALCROTAXISFRAME", "CALCROTAXFRAMEZ", "CDATE", "CJOINTT", "CLKREAD",
+    "CORRREAD", "COS", "CPOS", "CROBT", "CSPEEDOVERRIDE", "CTIME", "CTOOL", "CWOBJ",
+    "DECTOHEX", "DEFACCFRAME", "DEFDFRAME", "DEFFRAME", "DIM", "DINPUT", "DISTANCE", "DOT",
+    "DOUTPUT", "EULERZYX", "EXP", "FILETIME", "FSSIZE", "GETMECUNITNAME", "GETNEXTMECHUNIT",
+    "GETNEXTSYM", "GETSYSINFO", "GETTASKNAME", "GETTIME", "GINPUT", "GOUTPUT", "HEXTODEC",
+    "ISFILE", "ISMECHUNITACTIVE", "ISPERS", "ISSTOPMOVEACT", "ISSTOPSTATEEVENT", "ISSYSID",
+    "ISVAR", "MAXROBSPEED", "MIRPOS", "MODEXIST", "MODTIME", "NONMOTIONMODE", "NORIENT",
+    "NUMTOSTR", "OFFS", "OPMODE", "ORIENTZYX", "ORIXMUL", "PFRESTART", "POSEINV", "POSEMULT",
+    "POSEVECT", "POW", "PPMOVED", "PRESENT", "PROGMEMFREE", "RAWBYTESLEN", "READBIN",
+    "READDIR", "READMOTOR", "READNUM", "READSTR", "READSTRBIN", "READVAR", "RELTOOL",
+    "REMAINSPACEINBUF", "ROBOS", "ROUND", "RUNMODE", "SIN", "SOCKETGETSTATUS", "SQRT",
+    "STRFIND", "STRLEN", "STRMAP", "STRMATCH", "STRMEMB", "STRORDER", "STRPART", "STRTOBYTE",
+    "STRTOVAL", "TAN", "TASKRUNMEC", "TASKRUNROB", "TESTANDSET", "TESTDI", "TESTSIGNREAD",
+    "TRUNC", "TYPE", "VALTOSTR", "VECTMAGN",
+})
+RAPID_TYPES = frozenset({
+    "ALIASIO", "BOOL", "BTNRES", "BUTTONDATA", "BYTE", "CAMERADEV", "CFGDOMAIN", "CLOCK",
+    "CONFDATA", "CORRDESCR", "DATAPOS", "DIONUM", "DIR", "DNUM", "ERRDOMAIN", "ERRNUM",
+    "ERRSTR", "ERRTYPE", "EVENT_TYPE", "EXEC_LEVEL", "EXTJOINT", "HANDLER_TYPE", "ICONDATA",
+    "IDENTNO", "INTNUM", "IODEV", "IOUNIT_STATE", "JOINTTARGET", "LISTITEM", "LOADDATA",
+    "LOADIDNUM", "LOADSESSION", "MECUNIT", "MOTSETDATA", "NUM", "OPNUM", "ORIENT", "PATHRECID",
+    "POS", "POSE", "RAWBYTES", "RESTARTDATA", "RMQHEADER", "RMQMESSAGE", "RMQSLOT",
+    "ROBJOINT", "ROBTARGET", "SHAPEDATA", "SIGNALAI", "SIGNALAO", "SIGNALDI", "SIGNALDO",
+    "SIGNALGI", "SIGNALGO", "SOCKETDEV", "SOCKETSTATUS", "SPEEDDATA", "STOPPOINTDATA",
+    "STRING", "STRINGDIG", "SYMNUM", "SYNCIDENT", "SYSTEMDATA", "TASKID", "TASKS",
+    "TESTSIGNAL", "TOOLDATA", "TPNUM", "TRAPDATA", "TRIGGDATA", "TUNETYPE", "UISHOWNUM",
+    "WOBJDATA", "WZSTATIONARY", "WZTEMPORARY", "ZONEDATA",
+})
+RAPID_PREDEFINED = frozenset({
+    "TOOL0", "WOBJ0", "LOAD0", "LOAD0", "FINE", "VMAX", "V1000", "VROT1", "VROT2", "VROT5",
+    "VROT10", "VROT20", "VROT50", "VROT100", "VLIN10", "VLIN20", "VLIN50", "VLIN100",
+    "VLIN200", "VLIN500", "VLIN1000", "INPOS20", "INPOS50", "INPOS100", "STOPTIME0_5",
+    "STOPTIME1_0", "STOPTIME1_5", "FLLWTIME0_5", "FLLWTIME1_0", "FLLWTIME1_5", "PI",
+    "DIFFSPEED", "ERRNO", "INTNO", "ROB_ID", "ROB1", "ROB2", "ROB3", "ROB4", "EOF_BIN",
+    "EOF_NUM", "END_OF_LIST", "SPEED_OVR",
+})
 SPEEDS_MM_S = (5, 10, 20, 30, 40, 50, 60, 80, 100, 150, 200, 300, 400, 500, 600, 800,
                1000, 1500, 2000, 2500, 3000, 4000, 5000, 6000, 7000)
 ZONES_MM = (0, 1, 5, 10, 15, 20, 30, 40, 50, 60, 80, 100, 150, 200)  # z0 is 0.3 mm: not exact
 # the predefined speed and zone data are global: a user name may not shadow them
 PREDEFINED = frozenset({f"V{s}" for s in SPEEDS_MM_S} | {f"Z{z}" for z in ZONES_MM})
-RAPID_RULES = NameRules(max_len=32, reserved=RESERVED | PREDEFINED, prefix="r")
+RAPID_RULES = NameRules(max_len=32, reserved=RESERVED | PREDEFINED | RAPID_INSTRUCTIONS | RAPID_FUNCTIONS
+                        | RAPID_TYPES | RAPID_PREDEFINED, prefix="r")
 DATA_ORDER = ("speeddata", "zonedata", "jointtarget", "robtarget")
 EXTAX = "[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]"
 
@@ -153,7 +233,7 @@ class RapidBackend(Backend):
             return rec
         self._warn_accel(node, ctx)
         tool, wobj = self._tool(node.tool, node.span, ctx), self._wobj(node.frame, ctx)
-        zone = self._zone(node.motion.zone, ctx)
+        zone = self._zone(self.planned_zone(node, rec), ctx)
         if isinstance(node.target, ir.JointTarget):
             target = self._jointtarget(node.target, ctx)
             speed = self._joint_speed(node, rec)
@@ -227,7 +307,7 @@ class RapidBackend(Backend):
         cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
         conf = ",".join(str(c) for c in cf)
         value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{EXTAX}]"
-        return ctx.data.add(hint or target.name or "p", value)
+        return ctx.data.add(hint or target.name or "p", value, node.span)
 
     def _tool(self, tool: ir.ToolRef, span: object, ctx: RapidContext) -> str:
         if tool.name is None:

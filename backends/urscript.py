@@ -40,8 +40,8 @@ Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5
 Program size: URScript sets no documented limit on a program's length (the controller
 compiles the whole script on load), so programs are never split.
 
-The file is one `def <program>():` ... `end`: send it to the controller as a program (primary
-interface), or paste it into a Script node and call `<program>()`.
+The file is one `def <program>():` ... `end` followed by the call `<program>()`: send it to the
+controller as a program (primary interface) or load it in a Script node; it runs as it is.
 
 Support (checked by tests/backends/test_urscript.py):
   exact     movej/movel/movec, speeds, accelerations, blend r, fixed duration (t= on movej and
@@ -77,11 +77,32 @@ JOINT_LIMITS: dict[str, tuple[float, float]] = {
 }
 DEFAULT_LIMITS = (math.radians(180.0), math.radians(800.0))
 
+# Built-in functions a program-level `def` of the same name would hide (Universal Robots,
+# "The URScript Programming Language" e-Series 5.x: Module motion, internals, urmath,
+# interfaces, ioconfiguration), and rmot's own helper variables.
+UR_BUILTINS = frozenset(name.upper() for name in (
+    "movej", "movel", "movep", "movec", "servoj", "servoc", "speedj", "speedl", "stopj", "stopl",
+    "set_tcp", "set_payload", "set_payload_cog", "set_payload_mass", "set_gravity", "sleep",
+    "sync", "popup", "textmsg", "get_steptime", "force_mode", "end_force_mode",
+    "freedrive_mode", "end_freedrive_mode", "teach_mode", "end_teach_mode",
+    "get_actual_joint_positions", "get_actual_tcp_pose", "get_target_tcp_pose",
+    "get_target_joint_positions", "get_inverse_kin", "get_forward_kin", "pose_trans",
+    "pose_inv", "pose_add", "pose_sub", "pose_dist", "interpolate_pose", "point_dist",
+    "is_steady", "is_within_safety_limits", "set_standard_digital_out",
+    "set_configurable_digital_out", "set_tool_digital_out", "get_standard_digital_in",
+    "get_configurable_digital_in", "get_tool_digital_in", "get_standard_digital_out",
+    "set_analog_outputdomain", "set_standard_analog_out", "get_standard_analog_in",
+    "set_digital_out", "get_digital_in", "set_analog_out", "socket_open", "socket_close",
+    "socket_send_string", "socket_read_ascii_float", "rpc_factory", "sqrt", "sin", "cos",
+    "tan", "acos", "asin", "atan", "atan2", "pow", "log", "floor", "ceil", "norm", "d2r",
+    "r2d", "length", "to_str", "str_cat", "random", "binary_list_to_integer",
+    "integer_to_binary_list", "get_list_length", "abs", "rmot_waited", "rmot_thread",
+))
 UR_RULES = NameRules(
     max_len=63, allowed="A-Za-z0-9_", first="A-Za-z_", prefix="p_",
     reserved=frozenset({"DEF", "END", "IF", "ELIF", "ELSE", "WHILE", "THREAD", "RUN", "KILL",
                         "RETURN", "TRUE", "FALSE", "AND", "OR", "NOT", "XOR", "GLOBAL",
-                        "LOCAL", "HALT", "BREAK", "CONTINUE", "SEC"}),
+                        "LOCAL", "HALT", "BREAK", "CONTINUE", "SEC"}) | UR_BUILTINS,
 )
 POS_DECIMALS = 6  # metres: 1 micrometre
 ANGLE_DECIMALS = 6  # radians: 0.00006 deg
@@ -126,7 +147,10 @@ class UrScriptBackend(Backend):
         for thread_lines in ctx.threads.values():
             lines += self.indent(thread_lines, self.INDENT)
         lines += self.indent(ctx.routine_defs, self.INDENT)
-        lines += self.indent(main, self.INDENT) + ["end"]
+        # the call after the def: a .script run as a program (primary interface) or pasted in a
+        # Script node executes its top level, so without it nothing would move (UR Script
+        # Manual, "The structure of a URScript program"; RoboDK's UR post ends with the call)
+        lines += self.indent(main, self.INDENT) + ["end", f"{prog}()"]
         return {f"{prog}{self.file_ext}": "\n".join(lines) + "\n"}
 
     def block(self, nodes: tuple[ir.Instr, ...], ctx: UrContext) -> list[str]:

@@ -71,9 +71,27 @@ from rmot.compiler import ir, planned
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
 
+# VAL3 instructions, functions, types and keywords a program or datum of the same name would
+# hide (Stäubli VAL3 Reference Manual, s7: "Instructions", "Simple types", "Motion control",
+# "Input/output", "User interface", "Tasks")
+VAL3_BUILTINS = frozenset(name.upper() for name in (
+    "movej", "movel", "movec", "stopMove", "resetMotion", "restartMove", "waitEndMove",
+    "isEmpty", "isSettled", "autoConnectMove", "getSpeed", "getMoveId", "setMoveId", "delay",
+    "wait", "watch", "call", "return", "popUpMsg", "logMsg", "userPage", "title", "cls", "put",
+    "putln", "get", "getKey", "aioSet", "aioGet", "aioLink", "dioSet", "dioGet", "dioLink",
+    "abs", "sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "min", "max", "limit", "sel",
+    "round", "roundUp", "roundDown", "size", "resize", "taskCreate", "taskKill",
+    "taskSuspend", "taskResume", "taskStatus", "clock", "enablePower", "disablePower",
+    "isPowered", "herej", "here", "appro", "compose", "distance", "interpolateL",
+    "interpolateC", "pointToJoint", "jointToPoint", "position", "setFrame", "bool", "num",
+    "string", "dio", "aio", "sio", "joint", "trsf", "frame", "tool", "point", "config",
+    "mdesc", "screen", "do", "until", "for", "to", "step", "endFor", "endWhile", "switch",
+    "case", "default", "break", "endSwitch", "and", "or", "xor", "not", "true", "false",
+    "local", "global", "begin", "endIf",
+))
 VAL3_RULES = NameRules(max_len=15, allowed="A-Za-z0-9_", first="A-Za-z", prefix="p",
                       reserved=frozenset({"BEGIN", "END", "IF", "ELSE", "ENDIF", "WHILE", "CALL",
-                                          "RETURN", "START", "STOP", "WORLD", "FLANGE"}))
+                                          "RETURN", "START", "STOP", "WORLD", "FLANGE"}) | VAL3_BUILTINS)
 XSI = 'xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"'
 NO_LIMIT = "9999"
 

@@ -263,6 +263,7 @@ class Tool:
     mass: float = 0.0  # kg (payload of the tool itself)
     geometry_pose: Pose = Pose()
     span: Span | None = _span_field()
+    number: int | None = None  # the controller's tool number (`number n`), if the cell gives one
 
 
 @dataclass(frozen=True, slots=True)
@@ -270,6 +271,7 @@ class Frame:
     name: str
     pose: Pose  # in world
     span: Span | None = _span_field()
+    number: int | None = None  # the controller's frame number (`number n`), if the cell gives one
 
 
 class IoDirection(Enum):

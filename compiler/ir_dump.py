@@ -68,9 +68,9 @@ def dump_cell(cell: ir.Cell) -> str:
         lines.append(f"  fixture {f.name} {_geometry(f.geometry)} at {_pose(f.pose)}")
     for t in cell.tools:
         lines.append(f"  tool {t.name} on {t.robot} {_geometry(t.geometry)} at {_pose(t.geometry_pose)} "
-                     f"tcp={_pose(t.tcp)} mass={_f(t.mass)}")
+                     f"tcp={_pose(t.tcp)} mass={_f(t.mass)}" + (f" number={t.number}" if t.number is not None else ""))
     for fr in cell.frames:
-        lines.append(f"  frame {fr.name} {_pose(fr.pose)}")
+        lines.append(f"  frame {fr.name} {_pose(fr.pose)}" + (f" number={fr.number}" if fr.number is not None else ""))
     for s in cell.io:
         owner = f" on {s.robot}" if s.robot else ""
         lines.append(f"  io {s.direction.name.lower()}[{s.port}] {json.dumps(s.name)}{owner}")

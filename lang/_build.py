@@ -181,7 +181,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         geometry = None if isinstance(c[3], Token) else c[3]
         opts = dict(c[4:-2])
         return ast.ToolDecl(self._ident(c[1], "tool"), geometry, opts.get("at"), opts.get("tcp"),
-                            opts.get("mass"), self._ident(c[-1]), self._span(c))
+                            opts.get("mass"), self._ident(c[-1]), self._span(c), opts.get("number"))
 
     def tool_at(self, c: list[Any]) -> tuple[str, Any]:
         return "at", c[0]
@@ -192,8 +192,12 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def tool_mass(self, c: list[Any]) -> tuple[str, Any]:
         return "mass", c[0]
 
+    def tool_number(self, c: list[Any]) -> tuple[str, Any]:
+        return "number", c[0]
+
     def frame_decl(self, c: list[Any]) -> ast.FrameDecl:
-        return ast.FrameDecl(self._ident(c[1], "frame"), c[3], self._span(c))
+        number = c[5] if len(c) > 5 else None
+        return ast.FrameDecl(self._ident(c[1], "frame"), c[3], self._span(c), number)
 
     def io_decl(self, c: list[Any]) -> ast.IoDecl:
         robot = self._ident(c[5]) if c[5] is not None else None

@@ -195,6 +195,7 @@ class ToolDecl:
     mass: Expr | None
     robot: Ident
     span: Span = _span()
+    number: Expr | None = None  # `number n`: the controller's tool number
 
 
 @dataclass(frozen=True, slots=True)
@@ -202,6 +203,7 @@ class FrameDecl:
     name: Ident
     value: Expr
     span: Span = _span()
+    number: Expr | None = None  # `number n`: the controller's frame number
 
 
 @dataclass(frozen=True, slots=True)

@@ -41,7 +41,7 @@ class CompileOutcome:
 
 def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = None,
                     project_root: str | None = None, allow_findings: bool = False,
-                    source_map: bool = True) -> CompileOutcome:
+                    source_map: bool = True, write_frames: bool = False) -> CompileOutcome:
     """Run the pipeline in memory; nothing is written here."""
     from rmot.backends import BACKENDS
 
@@ -63,7 +63,8 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     files: dict[str, str] = {}
     backend_errors = False
     for target in dict.fromkeys(targets):  # each target once, in the order given
-        result = BACKENDS[target](allow_findings_header=findings).emit(plan, source_map=source_map)
+        result = BACKENDS[target](allow_findings_header=findings, write_frames=write_frames).emit(
+            plan, source_map=source_map)
         diagnostics += result.diagnostics
         backend_errors |= result.has_errors
         files.update({f"{target}/{name}": text for name, text in result.files.items()})
@@ -102,13 +103,16 @@ def write_all(outdir: str, files: dict[str, str]) -> list[str]:
 @click.option("--allow-findings", is_flag=True, help="Write files even when verification reports errors.")
 @click.option("--no-source-map", is_flag=True, help="Leave out the `file:line` comments.")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
+@click.option("--write-frames", is_flag=True,
+              help="Also write numbered tools and frames into the controller's stored data (Fanuc, KRL).")
 def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: str, allow_findings: bool,
-             no_source_map: bool, project_root: str | None) -> None:
+             no_source_map: bool, project_root: str | None, write_frames: bool) -> None:
     """Verify PROGRAM, then write it for each --target controller."""
     from rmot.lang.diagnostics import render
 
     outcome = compile_program(program, targets, cell=cell, project_root=project_root,
-                              allow_findings=allow_findings, source_map=not no_source_map)
+                              allow_findings=allow_findings, source_map=not no_source_map,
+                              write_frames=write_frames)
     for d in outcome.diagnostics:
         click.echo(render(d), err=True)
     ctx = click.get_current_context()

@@ -182,14 +182,27 @@ class _CellBuilder:
             return
         if (s.geometry is not None and geometry is None) or at is None or tcp is None or mass is None:
             return
-        tool = ir.Tool(s.name.name, s.robot.name, geometry, tcp, mass, at, span=s.span)
+        number = self._number(s.number, f"tool '{s.name.name}'")
+        tool = ir.Tool(s.name.name, s.robot.name, geometry, tcp, mass, at, span=s.span, number=number)
         if declare(self.scope, Entry("tool", s.name.name, tool, s.name.span), self.rep):
             self.tools.append(tool)
 
     def _FrameDecl(self, s: ast.FrameDecl) -> None:
         pose = self._pose(s.value, f"frame '{s.name.name}'")
         if pose is not None and declare(self.scope, Entry("frame", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
-            self.frames.append(ir.Frame(s.name.name, pose, span=s.span))
+            self.frames.append(ir.Frame(s.name.name, pose, span=s.span,
+                                        number=self._number(s.number, f"frame '{s.name.name}'")))
+
+    def _number(self, e: ast.Expr | None, what: str) -> int | None:
+        """`number n` of a tool or frame: the controller's number, an integer >= 0 (which
+        numbers a vendor accepts is the backend's to check)."""
+        if e is None:
+            return None
+        n = expect_integer(eval_expr(e, self.scope, self.rep), f"number of {what}", e.span, self.rep)
+        if n is not None and n < 0:
+            self.rep.error(codes.OUT_OF_RANGE, f"number of {what} must be >= 0 (got {n})", e.span)
+            return None
+        return n
 
     def _IoDecl(self, s: ast.IoDecl) -> None:
         port = expect_integer(eval_expr(s.io.index, self.scope, self.rep), "I/O port", s.io.index.span, self.rep)

@@ -20,15 +20,15 @@ FRAMES = ("UFRAME_NUM=0", "UTOOL_NUM=1")
 
 ROWS = [
     Row("j_joint", move(1, J, ir.JointTarget(tuple(deg(0, 0, 0, 0, -90, 0)), "home"), joint=0.5),
-        FRAMES + ("J P[1] 50% FINE",)),
-    Row("j_pose", move(1, J, cart(DOWN, name="p1"), zone=0.01), FRAMES + ("J P[1] 100% CNT10",), codes=("W403",)),
-    Row("j_rounded", move(1, J, cart(DOWN, name="p1"), joint=0.333), FRAMES + ("J P[1] 33% FINE",), codes=("W402",)),
-    Row("l_speed", move(1, L, cart(DOWN, name="p1"), speed=0.5), FRAMES + ("L P[1] 500mm/sec FINE",)),
-    Row("l_time", move(1, L, cart(DOWN, name="p1"), duration=2.5), FRAMES + ("L P[1] 2.50sec FINE",)),
+        FRAMES + ("J P[1] 50% FINE",), codes=("W416",)),
+    Row("j_pose", move(1, J, cart(DOWN, name="p1"), zone=0.01), FRAMES + ("J P[1] 100% CNT10",), codes=("W403", "W416")),
+    Row("j_rounded", move(1, J, cart(DOWN, name="p1"), joint=0.333), FRAMES + ("J P[1] 33% FINE",), codes=("W402", "W416")),
+    Row("l_speed", move(1, L, cart(DOWN, name="p1"), speed=0.5), FRAMES + ("L P[1] 500mm/sec FINE",), codes=("W416",)),
+    Row("l_time", move(1, L, cart(DOWN, name="p1"), duration=2.5), FRAMES + ("L P[1] 2.50sec FINE",), codes=("W416",)),
     Row("l_frames", move(1, L, cart(DOWN, TABLE), tool=GRIPPER, frame=TABLE, speed=0.1),
-        ("UFRAME_NUM=1", "UTOOL_NUM=1", "L P[1] 100mm/sec FINE"), codes=("W411",)),
+        ("UFRAME_NUM=1", "UTOOL_NUM=1", "L P[1] 100mm/sec FINE"), codes=("W411", "W416", "W416")),
     Row("c_move", move(1, C, cart(DOWN, name="p1"), via=cart(DOWN, name="mid")),
-        FRAMES + ("C P[1]", ":  P[2] 250mm/sec FINE")),
+        FRAMES + ("C P[1]", ":  P[2] 250mm/sec FINE"), codes=("W416",)),
     Row("do", ir.SetDigital(uid=1, port=1, value=True, signal="gripper_close"), ("DO[1:gripper_close]=ON",)),
     Row("ao", ir.SetAnalog(uid=1, port=2, value=4.5), ("AO[2]=4.500",)),
     Row("pulse", ir.Pulse(uid=1, port=3, duration=0.2), ("DO[3]=PULSE,0.2sec",)),
@@ -124,7 +124,7 @@ class TestProgram:
             MAX_INSTRUCTIONS = 2
 
         body = tuple(ir.WaitTime(uid=i, duration=0.1 * i, span=span_at(i)) for i in range(1, 6))
-        result = Small().emit(hand_plan(body, {}))
+        result = Small().emit(hand_plan(body, {}, robot="fanuc_lrmate200id"))
         assert list(result.files) == ["DEMO.ls", "DEMO_PART1.ls", "DEMO_PART2.ls", "DEMO_PART3.ls"]
         assert _mn(result.files["DEMO.ls"]) == ["CALL DEMO_PART1", "CALL DEMO_PART2", "CALL DEMO_PART3"]
         assert [d.code for d in result.diagnostics] == [codes.PROGRAM_SPLIT]
@@ -135,10 +135,11 @@ class TestResolution:
         (ir.WaitTime(uid=1, duration=0.255), "WAIT 0.26(sec)", "W412"),
         (ir.WaitTime(uid=1, duration=0.25), "WAIT 0.25(sec)", None),
         (ir.Pulse(uid=1, port=1, duration=0.25), "DO[1]=PULSE,0.2sec", "W412"),
-        (move(1, L, cart(DOWN), speed=3.0), "L P[1] 2000mm/sec FINE", "W402"),
+        (move(1, L, cart(DOWN), speed=3.0), "L P[1] 2000mm/sec FINE", "W417"),
     ])
     def test_rounded_values_warn(self, instr: ir.Instr, line: str, code: str | None) -> None:
         """Values finer than TP's resolution (or beyond its limit) are rounded with a warning."""
         result = emit_row(FanucBackend, Row("x", instr, ()))
         assert line in _mn(result.files["DEMO.ls"])
-        assert [d.code.id for d in result.diagnostics] == ([code] if code else [])
+        # the frame setup's W416 (the flange tool has no controller number) is not the point here
+        assert [d.code.id for d in result.diagnostics if d.code.id != "W416"] == ([code] if code else [])

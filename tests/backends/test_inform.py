@@ -54,7 +54,7 @@ TABLE = [
     (10, ["JUMP *L002 IF IN#(2)=OFF"]),
     (11, ["MOVJ C00003 VJ=100.00 PL=0", "JUMP *L003", "*L002"]),
     (13, ["WAIT IN#(2)=OFF", "*L003"]),
-    (14, ["CALL JOB:PICK"]),
+    (14, ["CALL JOB:DEMO_PICK"]),
     (15, ["MOVL C00000 V=100.0 PL=0"]),
     (16, ["DOUT OT#(1) OFF"]),
     (17, ["MOVC C00004 V=100.0", "MOVC C00005 V=100.0", "MOVC C00006 V=100.0 PL=0 FPT"]),
@@ -67,13 +67,13 @@ class TestTable:
     def test_instruction_text(self, line: int, expected: list[str]) -> None:
         """Each IR instruction prints as the INFORM the job-format manual prescribes."""
         files, _ = emit(demo_plan("yaskawa_gp8"))
-        found = {**blocks(files["DEMO.JBI"]), **blocks(files["PICK.JBI"])}
+        found = {**blocks(files["DEMO.JBI"]), **blocks(files["DEMO_PICK.JBI"])}
         assert found[line] == expected
 
     def test_job_layout(self) -> None:
         """Header pseudo-instructions in the documented order; one job per proc call."""
         files, _ = emit(demo_plan("yaskawa_gp8"))
-        assert sorted(files) == ["DEMO.JBI", "PICK.JBI"]
+        assert sorted(files) == ["DEMO.JBI", "DEMO_PICK.JBI"]
         head = files["DEMO.JBI"].splitlines()[:8]
         assert head == ["/JOB", "//NAME DEMO", "//POS", "///NPOS 7,0,0,0,0,0", "///TOOL 1",
                         "///POSTYPE ROBOT", "///RECTAN", "///RCONF 0,0,0,0,0,0,0,0"]
@@ -86,7 +86,7 @@ class TestTable:
         """MOVC's first point is the previous move's target (C00004 repeats line 15's pose)."""
         files, _ = emit(demo_plan("yaskawa_gp8"))
         pos = positions(files["DEMO.JBI"])
-        assert pos["C00004"][2] == positions(files["PICK.JBI"])["C00000"][2]
+        assert pos["C00004"][2] == positions(files["DEMO_PICK.JBI"])["C00000"][2]
 
     def test_warnings(self) -> None:
         """Joint targets as Cartesian (W450), other vendors' native (W407); default accel: no W408."""

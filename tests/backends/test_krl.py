@@ -98,7 +98,7 @@ class TestSplit:
             MAX_INSTRUCTIONS = 2
 
         body = tuple(ir.WaitTime(uid=i, duration=0.1 * i, span=span_at(i)) for i in range(1, 6))
-        result = Small().emit(hand_plan(body, {}))
+        result = Small().emit(hand_plan(body, {}, robot="kuka_kr6_r900"))
         assert list(result.files) == ["demo.src", "demo.dat", "demo_part1.src", "demo_part1.dat",
                                       "demo_part2.src", "demo_part2.dat", "demo_part3.src", "demo_part3.dat"]
         assert routine_lines(result.files["demo.src"], "DEF demo( )", "END") == [
@@ -110,10 +110,10 @@ class TestSplit:
 class TestRefusals:
     def test_missing_record(self) -> None:
         """A move without planned joints is an error at its span."""
-        result = KrlBackend().emit(hand_plan((move(1, L, cart(DOWN)),), {}))
+        result = KrlBackend().emit(hand_plan((move(1, L, cart(DOWN)),), {}, robot="kuka_kr6_r900"))
         assert [(d.code, d.span) for d in result.diagnostics] == [(codes.MISSING_RECORD, span_at(11))]
 
     def test_analog_out_of_range(self) -> None:
         """$ANOUT covers -10..10 V; beyond is an error."""
-        result = KrlBackend().emit(hand_plan((ir.SetAnalog(uid=1, port=1, value=12.0),), {}))
+        result = KrlBackend().emit(hand_plan((ir.SetAnalog(uid=1, port=1, value=12.0),), {}, robot="kuka_kr6_r900"))
         assert [d.code for d in result.diagnostics] == [codes.BAD_PORT]

@@ -46,9 +46,9 @@ def _h(rot: np.ndarray, xyz_mm: list[float]) -> np.ndarray:
     return m
 
 
-def _close(a: np.ndarray, b: np.ndarray) -> None:
+def _close(a: np.ndarray, b: np.ndarray, deg_tol: float = 1e-3) -> None:
     assert np.linalg.norm(a[:3, 3] - b[:3, 3]) < 1e-5  # 0.01 mm
-    assert math.degrees(Rotation.from_matrix(a[:3, :3].T @ b[:3, :3]).magnitude()) < 1e-3
+    assert math.degrees(Rotation.from_matrix(a[:3, :3].T @ b[:3, :3]).magnitude()) < deg_tol
 
 
 def _flange(target: np.ndarray) -> np.ndarray:
@@ -106,7 +106,8 @@ def test_fanuc_any_branch(f: list[float]) -> None:
     config = re.search(r"CONFIG : '(.*?)'", text).group(1)
     vals = [float(x) for x in re.findall(r"[XYZWPR] =\s*(-?[\d.]+)", text)]
     target = _h(Rotation.from_euler("xyz", vals[3:], degrees=True).as_matrix(), vals[:3])
-    _close(_flange(target), robot.fk(q))
+    # W, P, R print with 3 decimals: each within 0.0005 deg, the rotation within their sum
+    _close(_flange(target), robot.fk(q), deg_tol=1.5e-3)
     flags, *turns = [c.strip() for c in config.split(",")]
     fl, up, top = flags.split()
     decoded = ir.Config(FRONT if top == "T" else BACK, UP if up == "U" else DOWN, FLIP if fl == "N" else NOFLIP)

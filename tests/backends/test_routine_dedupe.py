@@ -47,7 +47,7 @@ SHAPES: dict[str, tuple[str, str]] = {
     "krl": (r"^DEF {r}\( \)$", r"^  {r}\(\)$"),
     "fanuc": (r"^/PROG  DEDUPE_{R}$", r"CALL DEDUPE_{R} ;$"),
     "urscript": (r"^  def {r}\(\):$", r"^  {r}\(\)$"),
-    "inform": (r"^//NAME {R}$", r"^CALL JOB:{R}$"),
+    "inform": (r"^//NAME DEDUPE_{R}$", r"^CALL JOB:DEDUPE_{R}$"),
     "val3": (r'^  <Program name="{r}">$', r"^  call {r}\(\)$"),
 }
 

@@ -104,7 +104,7 @@ class TestRefusalsAndWarnings:
     def test_configurable_outputs(self) -> None:
         """Ports 8..15 map to the configurable outputs 0..7."""
         text, _ = emit(self._plan((ir.SetDigital(uid=1, port=9, value=False, span=span_at(5)),)))
-        assert blocks(text)[5] == ["set_configurable_digital_out(1, False)", "end"]
+        assert blocks(text)[5] == ["set_configurable_digital_out(1, False)", "end", "demo()"]
 
     def test_analog_out_of_range_is_refused(self) -> None:
         """UR analog outputs take 0..10 V on ports 0..1: 12 V is an error (E450)."""
@@ -114,7 +114,7 @@ class TestRefusalsAndWarnings:
     def test_analog_volts(self) -> None:
         """Analog out in volts becomes the voltage domain and a 0..1 fraction of 10 V."""
         text, _ = emit(self._plan((ir.SetAnalog(uid=1, port=1, value=4.5, span=span_at(6)),)))
-        assert blocks(text)[6] == ["set_analog_outputdomain(1, 1)", "set_standard_analog_out(1, 0.450000)", "end"]
+        assert blocks(text)[6] == ["set_analog_outputdomain(1, 1)", "set_standard_analog_out(1, 0.450000)", "end", "demo()"]
 
     def test_fixed_duration_is_exact_for_movel_and_warned_for_movec(self) -> None:
         """`time` maps to t= on movel; movec has no t= so it warns (W409)."""
@@ -127,7 +127,7 @@ class TestRefusalsAndWarnings:
     def test_unknown_model_uses_default_speed_with_warning(self) -> None:
         """A robot outside the UR speed table gets the default maximum and a warning."""
         body = (move(1, J, ir.JointTarget(HOME_Q), 3),)
-        text, diags = emit(self._plan(body, robot="abb_irb120"))
+        text, diags = emit(self._plan(body, robot="puma560"))  # no UR model, no controller brand
         assert diags == ["warning:W452:3"]
         assert "v=3.141593" in blocks(text)[3][0]
 

@@ -50,22 +50,22 @@ CONTROL_CODE	= 00000000 00000000;
   31:  !inspect.rmot:18 ;
   32:  UFRAME_NUM=1 ;
   33:  UTOOL_NUM=1 ;
-  34:  C P[3] ;
+  34:  C P[3]
     :  P[4] 150mm/sec CNT2 ;
   35:  !inspect.rmot:19 ;
   36:  UFRAME_NUM=1 ;
   37:  UTOOL_NUM=1 ;
-  38:  C P[5] ;
+  38:  C P[5]
     :  P[6] 150mm/sec CNT2 ;
   39:  !inspect.rmot:18 ;
   40:  UFRAME_NUM=1 ;
   41:  UTOOL_NUM=1 ;
-  42:  C P[7] ;
+  42:  C P[7]
     :  P[8] 150mm/sec CNT2 ;
   43:  !inspect.rmot:19 ;
   44:  UFRAME_NUM=1 ;
   45:  UTOOL_NUM=1 ;
-  46:  C P[9] ;
+  46:  C P[9]
     :  P[10] 150mm/sec CNT2 ;
   47:  !inspect.rmot:21 ;
   48:  UFRAME_NUM=1 ;

@@ -26,7 +26,7 @@ CONTROL_CODE	= 00000000 00000000;
    7:  !demo.rmot:16 ;
    8:  UFRAME_NUM=1 ;
    9:  UTOOL_NUM=2 ;
-  10:  C P[1] ;
+  10:  C P[1]
     :  P[2] 250mm/sec CNT10 ;
 /POS
 P[1:"arc_mid"]{
