@@ -1,0 +1,96 @@
+"""Timing benchmark (issue 11): random pick-and-place programs, cycle time and planning cost.
+
+Programs: alternating `move joint pose(..)` / `move linear pose(..)` to random points of a
+120 x 300 x 100 mm box in front of the robot, tool pointing down, 300 mm/s, one zone for the
+whole program (fine / 2 mm / 10 mm), N moves. For each (arm, zone, N): the planned cycle time,
+the planning time and the diagnostics' error codes (E228 = timing failed). With --verify the
+plan is verified too (sim.verify), with --memory the peak RSS is reported.
+
+Run (one process per configuration keeps the peak-memory figure honest):
+    .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 ur5e --n 10 50 100 200
+    .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 --zones 10 --n 1000 --verify --memory
+The machine the numbers in the issue's closing note came from was shared (2 cores, ~8 jobs).
+"""
+
+from __future__ import annotations
+
+import argparse
+import resource
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
+
+from plan_helpers import Prog, pose, program  # noqa: E402
+
+from rmot.compiler import ir  # noqa: E402
+
+DOWN = dict(rx=180, ry=0, rz=180)
+BOX = {  # (x, y, z) lower corner, mm: a 120 x 300 x 100 mm box in front of each arm
+    "abb_irb120": (300.0, -150.0, 200.0),
+    "ur5e": (350.0, -150.0, 200.0),
+    "kuka_kr6_r900": (450.0, -150.0, 300.0),
+}
+SIZE = (120.0, 300.0, 100.0)
+
+
+def random_program(arm: str, n: int, zone_mm: float, seed: int = 0, speed: float = 300.0) -> ir.Program:
+    """N moves alternating joint / linear to random poses of the box (first move: joints)."""
+    rng = np.random.default_rng(seed)
+    lo = np.array(BOX.get(arm, (350.0, -150.0, 250.0)))
+    p = Prog()
+    p.joint([0, 10, 10, 0, 60, 0] if arm != "ur5e" else [0, -90, 90, -90, -90, 0])
+    for k in range(n):
+        x, y, z = lo + rng.random(3) * np.array(SIZE)
+        target = pose(x, y, z, **DOWN)
+        if k % 2 == 0:
+            p.joint(target, zone=zone_mm, speed=speed)
+        else:
+            p.linear(target, zone=zone_mm, speed=speed)
+    return program(p.task(), robots={"r1": arm})
+
+
+def run(arm: str, n: int, zone_mm: float, seed: int, verify: bool) -> dict:
+    from rmot.compiler.plan import plan_program
+
+    prog = random_program(arm, n, zone_mm, seed)
+    t0 = time.perf_counter()
+    plan = plan_program(prog)
+    t_plan = time.perf_counter() - t0
+    t_verify = 0.0
+    if verify:
+        from rmot.sim import verify as sim_verify
+
+        t1 = time.perf_counter()
+        sim_verify(plan)
+        t_verify = time.perf_counter() - t1
+    errors = sorted({d.code.id for d in plan.diagnostics if d.severity.name == "ERROR"})
+    cycle = max(t.trajectory.t[-1] for t in plan.tasks) if plan.tasks else float("nan")
+    return dict(arm=arm, n=n, zone=zone_mm, seed=seed, cycle=cycle, plan_s=t_plan, verify_s=t_verify,
+                errors=errors, rss_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
+
+
+def main(argv: list[str] | None = None) -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--arms", nargs="+", default=["abb_irb120", "ur5e"])
+    ap.add_argument("--zones", nargs="+", type=float, default=[0.0, 2.0, 10.0])
+    ap.add_argument("--n", nargs="+", type=int, default=[10, 50, 100, 200])
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--verify", action="store_true")
+    ap.add_argument("--memory", action="store_true")
+    args = ap.parse_args(argv)
+    print("arm         zone   N     cycle_s   plan_s  verify_s  peak_MB  errors", flush=True)
+    for arm in args.arms:
+        for n in args.n:
+            for zone in args.zones:
+                r = run(arm, n, zone, args.seed, args.verify)
+                mem = f"{r['rss_mb']:8.0f}" if args.memory else "       -"
+                print(f"{arm:11s} {zone:4.0f}  {n:4d}  {r['cycle']:8.3f}  {r['plan_s']:7.2f}  {r['verify_s']:8.2f} {mem}  "
+                      f"{','.join(r['errors']) or '-'}", flush=True)
+
+
+if __name__ == "__main__":
+    main()
