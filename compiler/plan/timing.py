@@ -34,7 +34,7 @@ __all__ = [
     "joint_move_piece", "path_piece", "stretched",
 ]
 
-_REPAIR_ROUNDS = 8
+_REPAIR_ROUNDS = 12
 _GRID_STEP = 0.004  # largest grid cell in path units (rad of joint arc, or scaled TCP length)
 _GRID_SUB_MAX = 64  # at most this many cells per waypoint interval
 _V_MARGIN = 1e-4  # relative headroom asked below the limits (the check allows the full limit)
@@ -277,12 +277,16 @@ def path_piece(
         rows_a.append(np.where(on, l1, 0.0)[:, None])
         rows_b.append(np.where(on, l2, 0.0)[:, None])
         rows_c.append(np.where(on, ac_pt, np.inf)[:, None])
-        on_c = np.isfinite(ac_cell)
-        chk_a.append(np.where(on_c, l1m, 0.0)[:, None])
-        chk_b.append(np.where(on_c, l2m, 0.0)[:, None])
-        chk_c.append(np.where(on_c, ac_cell, np.inf)[:, None])
-        end_a.append(np.where(on_c, l1[1:], 0.0)[:, None])
-        end_b.append(np.where(on_c, l2[1:], 0.0)[:, None])
+        # the TCP path acceleration is held at the grid points only: between them it is not
+        # re-checked, since where the TCP-per-joint ratio l' changes within a cell (a blend's
+        # edge) the constant path acceleration of a cell cannot follow it, and tightening the
+        # spot only slows it without end (the joints' limits, the physical ones, are checked)
+        off = np.zeros((len(mids), 1))
+        chk_a.append(off)
+        chk_b.append(off)
+        chk_c.append(np.full((len(mids), 1), np.inf))
+        end_a.append(off)
+        end_b.append(off)
         vel_pt = np.hstack([vel_pt, (l1 / sp_pt)[:, None]])
         vel_mid = np.hstack([vel_mid, (l1m / sp_cell)[:, None]])
     a_pt, b_pt, c_full = np.hstack(rows_a), np.hstack(rows_b), np.hstack(rows_c)
@@ -307,15 +311,13 @@ def path_piece(
         bad_v = r_vel > 1 + _CHECK_TOL
         if not (np.any(bad_a) or np.any(bad_v)):
             break
-        # local repair: tighten the exceeded limits at the offending cells' two ends only
-        cells, rows = np.nonzero(bad_a)
-        factor = 1.0 / (r_acc[cells, rows] * (1 + _A_MARGIN))
-        for end in (cells, cells + 1):  # relative to what was asked: each round tightens further
-            np.minimum.at(c_ask, (end, rows), c_ask[end, rows] * factor)
-        vc = np.flatnonzero(bad_v)
-        vf = 1.0 / (r_vel[vc] * (1 + _V_MARGIN)) ** 2
-        for end in (vc, vc + 1):
-            xmax[end] = np.minimum(xmax[end], x[end]) * vf
+        # local repair: lower the speed ceiling at the offending cells' two ends only (as a
+        # time stretch by k would, locally: speed / k, acceleration about / k^2)
+        worst = np.maximum(np.max(r_acc, axis=1), r_vel ** 2)  # per cell, in units of x
+        cells = np.flatnonzero(bad_a.any(axis=1) | bad_v)
+        factor = 1.0 / (worst[cells] * (1 + _A_MARGIN))
+        for end in (cells, cells + 1):
+            np.minimum.at(xmax, end, x[end] * factor)
     worst_a = float(np.max(r_acc, initial=0.0))
     worst_v = float(np.max(r_vel, initial=0.0))
     sd = np.sqrt(np.maximum(x, 0.0))
