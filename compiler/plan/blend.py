@@ -143,15 +143,19 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
             both_acc = min(_tcp_accel(seg), _tcp_accel(segments[i + 1]))
             accels.append(np.full(len(qb), both_acc))
             uniform.append(np.ones(len(qb), bool))
-            factors.append(np.full(len(qb) + 1, min(seg.speed_factor, segments[i + 1].speed_factor)))
+            # the zone exit (the next part's first point) has the next move's limits: limits
+            # apply per interval as the smaller of its two ends (timing.path_piece), so the
+            # blend's limits end exactly at the sphere
+            factors.append(np.full(len(qb), min(seg.speed_factor, segments[i + 1].speed_factor)))
+            factors.append(np.full(1, segments[i + 1].speed_factor))
             both = seg.tcp_rate > 0 and segments[i + 1].tcp_rate > 0
             by_tcp.append(np.full(len(qb) + 1, both))
             count += len(qb)
             # the blend's last point joins the next part, whose first point (q_out) is kept
             qs.append(nxt.q[:1])
             tcps.append(nxt.tcp[:1])
-            rates.append(np.full(1, max(seg.tcp_rate, segments[i + 1].tcp_rate)))
-            accels.append(np.full(1, both_acc))
+            rates.append(np.full(1, segments[i + 1].tcp_rate))
+            accels.append(np.full(1, _tcp_accel(segments[i + 1])))
             uniform.append(np.ones(1, bool))
             count += 1
         part = nxt if nxt is not None else part

@@ -40,6 +40,7 @@ _GRID_SUB_MAX = 64  # at most this many cells per waypoint interval
 _V_MARGIN = 1e-4  # relative headroom asked below the limits (the check allows the full limit)
 _A_MARGIN = 2e-3
 _CHECK_TOL = 1e-6  # relative excess the check accepts
+_CHECK_AT = (0.25, 0.5, 0.75)  # where inside every grid cell the limits are re-checked (and at its end)
 
 
 class TimingError(ValueError):
@@ -250,19 +251,19 @@ def path_piece(
     vlim, alim = np.asarray(vlim[:dof], dtype=float), np.asarray(alim[:dof], dtype=float)
     path = _spline(ss, waypoints)
     grid, cell_of = _grid(ss)
-    mids = 0.5 * (grid[1:] + grid[:-1])
+    lo, h = grid[:-1], np.diff(grid)
     d1, d2 = path(grid, 1), path(grid, 2)  # type: ignore[operator]
-    m1, m2 = path(mids, 1), path(mids, 2)  # type: ignore[operator]
     # per grid point and per cell (cell i = [grid[i], grid[i+1]]) limit factors
     n_int = len(ss) - 1
     f_int = np.ones(n_int) if vscale is None else np.minimum(vscale[:-1], vscale[1:])
     f_cell = f_int[cell_of]
     f_pt = _point_min(f_cell)
-    rows_a, rows_b, rows_c = [d1], [d2], [np.tile(alim, (len(grid), 1))]
-    chk_a, chk_b, chk_c = [m1], [m2], [np.tile(alim, (len(mids), 1))]
-    end_a, end_b = [d1[1:]], [d2[1:]]
+    alim_pt = np.tile(alim, (len(grid), 1))
+    rows_a, rows_b, rows_c = [d1], [d2], [alim_pt]
     vel_pt = np.abs(d1) / (vlim * f_pt[:, None])  # speed per unit sqrt(x) over the limit
-    vel_mid = np.abs(m1) / (vlim * f_cell[:, None])
+    # the re-check inside every cell: joints' derivatives at _CHECK_AT, and the speed ratios
+    inner = [(th, path(lo + th * h, 1), path(lo + th * h, 2)) for th in _CHECK_AT]  # type: ignore[operator]
+    vel_in = [np.max(np.abs(m1) / (vlim * f_cell[:, None]), axis=1) for _, m1, _ in inner]
     if tcp is not None and tcp_speed is not None:
         from scipy.interpolate import CubicSpline
 
@@ -272,49 +273,39 @@ def path_piece(
         sp_cell, ac_cell = speed_int[cell_of], acc_int[cell_of]
         sp_pt, ac_pt = _point_min(sp_cell), _point_min(ac_cell)
         l1, l2 = _arc_rates(spline, grid)
-        l1m, l2m = _arc_rates(spline, mids)
         on = np.isfinite(ac_pt)
-        rows_a.append(np.where(on, l1, 0.0)[:, None])
-        rows_b.append(np.where(on, l2, 0.0)[:, None])
-        rows_c.append(np.where(on, ac_pt, np.inf)[:, None])
         # the TCP path acceleration is held at the grid points only: between them it is not
         # re-checked, since where the TCP-per-joint ratio l' changes within a cell (a blend's
         # edge) the constant path acceleration of a cell cannot follow it, and tightening the
         # spot only slows it without end (the joints' limits, the physical ones, are checked)
-        off = np.zeros((len(mids), 1))
-        chk_a.append(off)
-        chk_b.append(off)
-        chk_c.append(np.full((len(mids), 1), np.inf))
-        end_a.append(off)
-        end_b.append(off)
+        rows_a.append(np.where(on, l1, 0.0)[:, None])
+        rows_b.append(np.where(on, l2, 0.0)[:, None])
+        rows_c.append(np.where(on, ac_pt, np.inf)[:, None])
         vel_pt = np.hstack([vel_pt, (l1 / sp_pt)[:, None]])
-        vel_mid = np.hstack([vel_mid, (l1m / sp_cell)[:, None]])
+        vel_in = [np.maximum(v, _arc_rates(spline, lo + th * h)[0] / sp_cell) for v, (th, _, _) in zip(vel_in, inner)]
     a_pt, b_pt, c_full = np.hstack(rows_a), np.hstack(rows_b), np.hstack(rows_c)
-    a_mid, b_mid, c_mid = np.hstack(chk_a), np.hstack(chk_b), np.hstack(chk_c)
-    a_end, b_end = np.hstack(end_a), np.hstack(end_b)
-    c_end = np.minimum(c_full[:-1], c_full[1:])
     c_ask = c_full * (1 - _A_MARGIN)
+    c_cell = np.minimum(alim_pt[:-1], alim_pt[1:])
     with np.errstate(divide="ignore"):
         xmax = 1.0 / np.max(vel_pt, axis=1) ** 2 * (1 - _V_MARGIN) ** 2
     xmax[~np.isfinite(xmax)] = 1e18
-    ds = np.diff(grid)
     for _ in range(_REPAIR_ROUNDS + 1):
         x = topp.solve(grid, xmax, topp.Rows(a_pt, b_pt, c_ask))
-        u = (x[1:] - x[:-1]) / (2 * ds)
-        xm = 0.5 * (x[1:] + x[:-1])
-        with np.errstate(invalid="ignore", divide="ignore"):
-            r_end = np.abs(a_end * u[:, None] + b_end * x[1:, None]) / c_end
-            r_mid = np.abs(a_mid * u[:, None] + b_mid * xm[:, None]) / c_mid
-        r_acc = np.nan_to_num(np.maximum(r_end, r_mid), nan=0.0, posinf=0.0)
-        r_vel = np.max(vel_mid, axis=1) * np.sqrt(xm)
-        bad_a = r_acc > 1 + _CHECK_TOL
-        bad_v = r_vel > 1 + _CHECK_TOL
-        if not (np.any(bad_a) or np.any(bad_v)):
+        u = (x[1:] - x[:-1]) / (2 * h)
+        # at the cell's end (the cell's u with the next point's derivatives) and inside it
+        r_acc = np.max(np.abs(d1[1:] * u[:, None] + d2[1:] * x[1:, None]) / c_cell, axis=1)
+        r_vel = np.zeros(len(h))
+        for (th, m1, m2), v in zip(inner, vel_in):
+            xt = x[:-1] + th * (x[1:] - x[:-1])
+            r_acc = np.maximum(r_acc, np.max(np.abs(m1 * u[:, None] + m2 * xt[:, None]) / c_cell, axis=1))
+            r_vel = np.maximum(r_vel, v * np.sqrt(np.maximum(xt, 0.0)))
+        bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
+        if not np.any(bad):
             break
         # local repair: lower the speed ceiling at the offending cells' two ends only (as a
         # time stretch by k would, locally: speed / k, acceleration about / k^2)
-        worst = np.maximum(np.max(r_acc, axis=1), r_vel ** 2)  # per cell, in units of x
-        cells = np.flatnonzero(bad_a.any(axis=1) | bad_v)
+        worst = np.maximum(r_acc, r_vel ** 2)  # per cell, in units of x
+        cells = np.flatnonzero(bad)
         factor = 1.0 / (worst[cells] * (1 + _A_MARGIN))
         for end in (cells, cells + 1):
             np.minimum.at(xmax, end, x[end] * factor)
