@@ -35,6 +35,7 @@ __all__ = [
 ]
 
 _REPAIR_ROUNDS = 12
+_REFINE_ROUNDS = 5  # first split the cells where a limit is exceeded, this many times
 _GRID_STEP = 0.004  # largest grid cell in path units (rad of joint arc, or scaled TCP length)
 _GRID_SUB_MAX = 64  # at most this many cells per waypoint interval
 _V_MARGIN = 1e-4  # relative headroom asked below the limits (the check allows the full limit)
@@ -243,78 +244,36 @@ def path_piece(
     ss (the waypoints are the dense IK points, within 0.05 mm of the path).
     Every limit holds at both ends and the middle of every grid cell (see module doc).
     """
-    from rmot.compiler.plan import topp
 
     waypoints = np.asarray(waypoints, dtype=float)
     dof = waypoints.shape[1] if dof is None else dof
     waypoints = waypoints[:, :dof]
     vlim, alim = np.asarray(vlim[:dof], dtype=float), np.asarray(alim[:dof], dtype=float)
     path = _spline(ss, waypoints)
-    grid, cell_of = _grid(ss)
-    lo, h = grid[:-1], np.diff(grid)
-    d1, d2 = path(grid, 1), path(grid, 2)  # type: ignore[operator]
-    # per grid point and per cell (cell i = [grid[i], grid[i+1]]) limit factors
-    n_int = len(ss) - 1
-    f_int = np.ones(n_int) if vscale is None else np.minimum(vscale[:-1], vscale[1:])
-    f_cell = f_int[cell_of]
-    f_pt = _point_min(f_cell)
-    alim_pt = np.tile(alim, (len(grid), 1))
-    rows_a, rows_b, rows_c = [d1], [d2], [alim_pt]
-    vel_pt = np.abs(d1) / (vlim * f_pt[:, None])  # speed per unit sqrt(x) over the limit
-    # the re-check inside every cell: joints' derivatives at _CHECK_AT, and the speed ratios
-    inner = [(th, path(lo + th * h, 1), path(lo + th * h, 2)) for th in _CHECK_AT]  # type: ignore[operator]
-    vel_in = [np.max(np.abs(m1) / (vlim * f_cell[:, None]), axis=1) for _, m1, _ in inner]
+    spline = None
     if tcp is not None and tcp_speed is not None:
         from scipy.interpolate import CubicSpline
 
         spline = CubicSpline(ss, tcp)
-        speed_int = np.minimum(tcp_speed[:-1], tcp_speed[1:])
+    n_int = len(ss) - 1
+    f_int = np.ones(n_int) if vscale is None else np.minimum(vscale[:-1], vscale[1:])
+    tcp_int = None
+    if spline is not None:
         acc_int = np.minimum(tcp_accel[:-1], tcp_accel[1:]) if tcp_accel is not None else np.full(n_int, np.inf)
-        sp_cell, ac_cell = speed_int[cell_of], acc_int[cell_of]
-        sp_pt, ac_pt = _point_min(sp_cell), _point_min(ac_cell)
-        l1, l2 = _arc_rates(spline, grid)
-        on = np.isfinite(ac_pt)
-        # the TCP path acceleration is held at the grid points only: between them it is not
-        # re-checked, since where the TCP-per-joint ratio l' changes within a cell (a blend's
-        # edge) the constant path acceleration of a cell cannot follow it, and tightening the
-        # spot only slows it without end (the joints' limits, the physical ones, are checked)
-        rows_a.append(np.where(on, l1, 0.0)[:, None])
-        rows_b.append(np.where(on, l2, 0.0)[:, None])
-        rows_c.append(np.where(on, ac_pt, np.inf)[:, None])
-        vel_pt = np.hstack([vel_pt, (l1 / sp_pt)[:, None]])
-        vel_in = [np.maximum(v, _arc_rates(spline, lo + th * h)[0] / sp_cell) for v, (th, _, _) in zip(vel_in, inner)]
-    a_pt, b_pt, c_full = np.hstack(rows_a), np.hstack(rows_b), np.hstack(rows_c)
-    c_ask = c_full * (1 - _A_MARGIN)
-    c_cell = np.minimum(alim_pt[:-1], alim_pt[1:])
-    with np.errstate(divide="ignore"):
-        xmax = 1.0 / np.max(vel_pt, axis=1) ** 2 * (1 - _V_MARGIN) ** 2
-    xmax[~np.isfinite(xmax)] = 1e18
-    for _ in range(_REPAIR_ROUNDS + 1):
-        x = topp.solve(grid, xmax, topp.Rows(a_pt, b_pt, c_ask))
-        u = (x[1:] - x[:-1]) / (2 * h)
-        # at the cell's end (the cell's u with the next point's derivatives) and inside it
-        r_acc = np.max(np.abs(d1[1:] * u[:, None] + d2[1:] * x[1:, None]) / c_cell, axis=1)
-        r_vel = np.zeros(len(h))
-        for (th, m1, m2), v in zip(inner, vel_in):
-            xt = x[:-1] + th * (x[1:] - x[:-1])
-            r_acc = np.maximum(r_acc, np.max(np.abs(m1 * u[:, None] + m2 * xt[:, None]) / c_cell, axis=1))
-            r_vel = np.maximum(r_vel, v * np.sqrt(np.maximum(xt, 0.0)))
-        bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
-        if not np.any(bad):
+        tcp_int = (np.minimum(tcp_speed[:-1], tcp_speed[1:]), acc_int)
+    grid, _ = _grid(ss)
+    for attempt in range(_REFINE_ROUNDS + 1):
+        arrays = _Arrays(path, spline, ss, grid, vlim, alim, f_int, tcp_int)
+        x, r_acc, r_vel, bad = arrays.solve(arrays.xmax.copy(), 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS)
+        if not np.any(bad) or attempt == _REFINE_ROUNDS:
             break
-        # local repair: lower the speed ceiling at the offending cells' two ends only (as a
-        # time stretch by k would, locally: speed / k, acceleration about / k^2)
-        worst = np.maximum(r_acc, r_vel ** 2)  # per cell, in units of x
-        cells = np.flatnonzero(bad)
-        factor = 1.0 / (worst[cells] * (1 + _A_MARGIN))
-        for end in (cells, cells + 1):
-            np.minimum.at(xmax, end, x[end] * factor)
+        grid = _refined(grid, np.flatnonzero(bad))  # first split the offending cells
     worst_a = float(np.max(r_acc, initial=0.0))
     worst_v = float(np.max(r_vel, initial=0.0))
     sd = np.sqrt(np.maximum(x, 0.0))
     if not np.all(np.isfinite(sd)) or np.any((sd[1:] + sd[:-1]) <= 0):
         raise TimingError("no feasible timing was found for the path (a speed limit is zero)")
-    traj = ConstAccelTiming(path, grid, sd)
+    traj = ConstAccelTiming(path, arrays.grid, sd)
     scale = max(1.0, worst_v * (1 + _CHECK_TOL), math.sqrt(worst_a * (1 + _CHECK_TOL)))
     return PathPiece(traj, float(traj.duration), scale, dof)
 
@@ -349,3 +308,82 @@ def _grid(ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     frac = (np.arange(len(cell_of)) - first) / np.repeat(n, n)
     grid = np.append(ss[cell_of] + frac * h[cell_of], ss[-1])
     return grid, cell_of
+
+
+class _Arrays:
+    """The limits on one grid: acceleration rows and speed ceilings at its points, and the
+    joints' derivatives and speed ratios inside its cells for the re-check."""
+
+    def __init__(self, path, spline, ss, grid, vlim, alim, f_int, tcp_int) -> None:  # type: ignore[no-untyped-def]
+        self.grid = grid
+        lo, h = grid[:-1], np.diff(grid)
+        self.h = h
+        cell_of = np.clip(np.searchsorted(ss, 0.5 * (lo + grid[1:]), side="right") - 1, 0, len(ss) - 2)
+        d1, d2 = path(grid, 1), path(grid, 2)
+        self.d1, self.d2 = d1, d2
+        f_cell = f_int[cell_of]
+        f_pt = _point_min(f_cell)
+        alim_pt = np.tile(alim, (len(grid), 1))
+        rows_a, rows_b, rows_c = [d1], [d2], [alim_pt]
+        vel_pt = np.abs(d1) / (vlim * f_pt[:, None])  # speed per unit sqrt(x) over the limit
+        # the re-check inside every cell: joints' derivatives at _CHECK_AT, and the speed ratios
+        self.inner = [(th, path(lo + th * h, 1), path(lo + th * h, 2)) for th in _CHECK_AT]
+        self.vel_in = [np.max(np.abs(m1) / (vlim * f_cell[:, None]), axis=1) for _, m1, _ in self.inner]
+        if spline is not None:
+            sp_cell, ac_cell = tcp_int[0][cell_of], tcp_int[1][cell_of]
+            sp_pt, ac_pt = _point_min(sp_cell), _point_min(ac_cell)
+            l1, l2 = _arc_rates(spline, grid)
+            on = np.isfinite(ac_pt)
+            # the TCP path acceleration is held at the grid points only: between them it is not
+            # re-checked, since where the TCP-per-joint ratio l' changes within a cell (a blend's
+            # edge) the constant path acceleration of a cell cannot follow it, and tightening the
+            # spot only slows it without end (the joints' limits, the physical ones, are checked)
+            rows_a.append(np.where(on, l1, 0.0)[:, None])
+            rows_b.append(np.where(on, l2, 0.0)[:, None])
+            rows_c.append(np.where(on, ac_pt, np.inf)[:, None])
+            vel_pt = np.hstack([vel_pt, (l1 / sp_pt)[:, None]])
+            self.vel_in = [np.maximum(v, _arc_rates(spline, lo + th * h)[0] / sp_cell)
+                           for v, (th, _, _) in zip(self.vel_in, self.inner)]
+        self.a_pt, self.b_pt = np.hstack(rows_a), np.hstack(rows_b)
+        self.c_ask = np.hstack(rows_c) * (1 - _A_MARGIN)
+        self.c_cell = np.minimum(alim_pt[:-1], alim_pt[1:])
+        with np.errstate(divide="ignore"):
+            xmax = 1.0 / np.max(vel_pt, axis=1) ** 2 * (1 - _V_MARGIN) ** 2
+        xmax[~np.isfinite(xmax)] = 1e18
+        self.xmax = xmax
+
+    def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]
+        """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad)
+        with per cell the largest acceleration and speed ratio found by the re-check."""
+        from rmot.compiler.plan import topp
+
+        h, d1, d2 = self.h, self.d1, self.d2
+        for _ in range(rounds + 1):
+            x = topp.solve(self.grid, xmax, topp.Rows(self.a_pt, self.b_pt, self.c_ask))
+            u = (x[1:] - x[:-1]) / (2 * h)
+            # at the cell's end (the cell's u with the next point's derivatives) and inside it
+            r_acc = np.max(np.abs(d1[1:] * u[:, None] + d2[1:] * x[1:, None]) / self.c_cell, axis=1)
+            r_vel = np.zeros(len(h))
+            for (th, m1, m2), v in zip(self.inner, self.vel_in):
+                xt = x[:-1] + th * (x[1:] - x[:-1])
+                r_acc = np.maximum(r_acc, np.max(np.abs(m1 * u[:, None] + m2 * xt[:, None]) / self.c_cell, axis=1))
+                r_vel = np.maximum(r_vel, v * np.sqrt(np.maximum(xt, 0.0)))
+            bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
+            if not np.any(bad):
+                break
+            # local repair: lower the speed ceiling at the offending cells' two ends only (as a
+            # time stretch by k would, locally: speed / k, acceleration about / k^2)
+            worst = np.maximum(r_acc, r_vel ** 2)  # per cell, in units of x
+            cells = np.flatnonzero(bad)
+            factor = 1.0 / (worst[cells] * (1 + _A_MARGIN))
+            for end in (cells, cells + 1):
+                np.minimum.at(xmax, end, x[end] * factor)
+        return x, r_acc, r_vel, bad
+
+
+def _refined(grid: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """The grid with each listed cell and its two neighbours split in four."""
+    cells = np.unique(np.clip(np.concatenate([cells - 1, cells, cells + 1]), 0, len(grid) - 2))
+    lo, hi = grid[cells], grid[cells + 1]
+    extra = (lo[:, None] + (hi - lo)[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
+    return np.union1d(grid, extra)

@@ -97,7 +97,7 @@ def reference_time(robot, segs: list) -> float:  # type: ignore[no-untyped-def]
         return np.stack([-v, v], axis=1)
 
     alim = np.append(robot.accel_limits, big)
-    grid = np.linspace(0, ss[-1], max(1500, 6 * len(ss)))
+    grid = np.linspace(0, ss[-1], max(600, 6 * len(ss)))
     cons = [constraint.JointVelocityConstraintVarying(vel),
             constraint.JointAccelerationConstraint(np.stack([-alim, alim], axis=1))]
     traj = algo.TOPPRA(cons, spline, gridpoints=grid).compute_trajectory(0.0, 0.0)
@@ -105,10 +105,10 @@ def reference_time(robot, segs: list) -> float:  # type: ignore[no-untyped-def]
     return float(traj.duration)
 
 
-def _check(arm: str, n: int, seed: int) -> None:
+def _check(arm: str, n: int, seed: int, zones: tuple[float, ...] = (0.0, 10.0)) -> None:
     robot = load_robot(arm)
     times = {}
-    for zone in (0.0, 10.0):
+    for zone in zones:
         prog = random_program(arm, n, zone, seed)
         plan = plan_program(prog)
         errors = [d for d in plan.diagnostics if d.severity is Severity.ERROR]
@@ -122,7 +122,8 @@ def _check(arm: str, n: int, seed: int) -> None:
         assert 0.99 * ref <= rmot <= 1.02 * ref, (zone, rmot, ref)
         times[zone] = rmot
         _tcp_speed_ok(robot, tp, prog)
-    assert times[10.0] <= times[0.0] * (1 + 1e-9)
+    if len(times) == 2:
+        assert times[10.0] <= times[0.0] * (1 + 1e-9)
 
 
 def _tcp_speed_ok(robot, tp, prog: ir.Program) -> None:  # type: ignore[no-untyped-def]
@@ -148,8 +149,9 @@ def test_within_two_percent_of_the_independent_optimum(arm: str, n: int, seed: i
 
 
 def test_two_hundred_moves_within_two_percent() -> None:
-    """One long program: the grid scales with the chain (the old fixed grid was 3-13x off here)."""
-    _check("abb_irb120", 200, 7)
+    """One long blended program: the grid scales with the chain (the old fixed grid was 3-13x
+    off here). Blended only, to keep the suite lean (fine chains are short and covered above)."""
+    _check("abb_irb120", 200, 7, zones=(10.0,))
 
 
 def test_lone_hard_spot_slows_only_that_spot() -> None:
@@ -167,3 +169,37 @@ def test_lone_hard_spot_slows_only_that_spot() -> None:
     ra, rb = blended.tasks[0].record(a), alone.tasks[0].record(b)
     # blended, the joint move ends at its zone entry, before its target: no longer than alone
     assert ra.t_end - ra.t_start <= rb.t_end - rb.t_start
+
+
+def test_irb120_standard_cycle_within_twenty_percent_of_abb() -> None:
+    """ABB's published standard cycle for the IRB 120 (product specification 3HAC035960-001:
+    25 mm up, 300 mm across, 25 mm down and back, 1 kg): 0.58 s. Joint moves, 10 mm corners at
+    the top, exact stops at the bottom, 400 mm in front of the base, 200 mm up."""
+    p = Prog()
+    p.joint(pose(400, -150, 200, **DOWN))
+    for y in (150, -150):
+        p.joint(pose(400, -y, 225, **DOWN), zone=10)
+        p.joint(pose(400, y, 225, **DOWN), zone=10)
+        p.joint(pose(400, y, 200, **DOWN))
+    plan = plan_program(program(p.task()))
+    assert not [d for d in plan.diagnostics if d.severity is Severity.ERROR]
+    cycle = max(r.t_end for r in plan.tasks[0].records)
+    assert 0.8 * 0.58 <= cycle <= 1.2 * 0.58, cycle
+
+
+@pytest.mark.parametrize("miss_mm", [15])
+def test_line_near_a_singularity_slows_down_instead_of_failing(miss_mm: int) -> None:
+    """A line passing a few mm beside the J1 axis (the shoulder singularity): W221, the TCP
+    slows down there, the move is timed (no E228) and the joints stay within their limits."""
+    robot = load_robot("abb_irb120")
+    p = Prog()
+    p.joint(pose(40, miss_mm, 450, **DOWN))  # J1 turns 180 - 2 atan(miss / 40)
+    uid = p.linear(pose(-40, miss_mm, 450, **DOWN))
+    plan = plan_program(program(p.task()))
+    found = {d.code.id for d in plan.diagnostics}
+    assert "W221" in found and "E228" not in found
+    rec = plan.tasks[0].record(uid)
+    assert rec.t_end > rec.t_start
+    tr = plan.tasks[0].trajectory
+    assert np.all(np.abs(tr.qd) <= robot.velocity_limits * (1 + 1e-4))
+    assert np.all(np.abs(tr.qdd) <= robot.accel_limits * (1 + 1e-3))
