@@ -203,3 +203,29 @@ def test_line_near_a_singularity_slows_down_instead_of_failing(miss_mm: int) -> 
     tr = plan.tasks[0].trajectory
     assert np.all(np.abs(tr.qd) <= robot.velocity_limits * (1 + 1e-4))
     assert np.all(np.abs(tr.qdd) <= robot.accel_limits * (1 + 1e-3))
+
+
+def test_report_gives_where_the_time_goes() -> None:
+    """timing_json: moving + waiting + sync add up to the cycle time; a 0.5 s wait is waiting
+    time; every instruction has its start and end; the JSON report validates (version 2)."""
+    import json
+
+    from rmot.sim.report import Report, format_json, validate_json
+    from rmot.sim.timing_report import timing_json
+
+    p = Prog()
+    p.joint(START["abb_irb120"])
+    a = p.joint(pose(350, -100, 250, **DOWN))
+    w = p.wait(0.5)
+    b = p.linear(pose(350, 100, 250, **DOWN), speed=200)
+    plan = plan_program(program(p.task()))
+    (task,) = timing_json(plan)
+    tp = plan.tasks[0]
+    assert task["moving_s"] + task["waiting_s"] + task["sync_s"] == pytest.approx(tp.cycle_time, abs=1e-5)
+    moves = tp.record(b).t_end - tp.record(b).t_start + tp.record(a).t_end - tp.record(a).t_start
+    assert task["moving_s"] == pytest.approx(moves, abs=1e-5)
+    assert task["waiting_s"] == pytest.approx(0.5 + tp.cycle_time - tp.record(b).t_end, abs=1e-5)
+    by_uid = {i["uid"]: i for i in task["instructions"]}
+    assert by_uid[w]["kind"] == "wait" and by_uid[w]["end_s"] - by_uid[w]["start_s"] == pytest.approx(0.5)
+    doc = json.loads(format_json([Report("p.rmot", {"main": tp.cycle_time}, (), (task,))]))
+    assert validate_json(doc) == [] and doc["programs"][0]["tasks"][0]["task"] == "main"
