@@ -6,16 +6,23 @@ whole program (fine / 2 mm / 10 mm), N moves. For each (arm, zone, N): the plann
 the planning time and the diagnostics' error codes (E228 = timing failed). With --verify the
 plan is verified too (sim.verify), with --memory the peak RSS is reported.
 
-Run (one process per configuration keeps the peak-memory figure honest):
+With --reference, also the ratio of rmot's cycle time to an independent time-optimal timing
+of the same path (toppra on a dense uniform grid, tests/plan/test_plan_optimal.reference_time).
+With --memory every configuration runs in its own process (peak RSS of that process alone).
+
+Run:
     .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 ur5e --n 10 50 100 200
-    .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 --zones 10 --n 1000 --verify --memory
+    .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 --zones 10 --n 10 100 1000 --verify --memory
+    .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 ur5e --zones 0 10 --n 10 100 --reference
 The machine the numbers in the issue's closing note came from was shared (2 cores, ~8 jobs).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import resource
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -53,6 +60,19 @@ def random_program(arm: str, n: int, zone_mm: float, seed: int = 0, speed: float
     return program(p.task(), robots={"r1": arm})
 
 
+def reference(arm: str, n: int, zone_mm: float, seed: int) -> float:
+    """The independent optimum of the program's path (sum over its chains)."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
+    from test_plan_optimal import _segments, reference_time
+
+    from rmot.compiler.robots import load_robot
+
+    robot = load_robot(arm)
+    segs = _segments(robot, random_program(arm, n, zone_mm, seed))
+    chains = [segs] if zone_mm > 0 else [[s] for s in segs]
+    return sum(reference_time(robot, c) for c in chains)
+
+
 def run(arm: str, n: int, zone_mm: float, seed: int, verify: bool) -> dict:
     from rmot.compiler.plan import plan_program
 
@@ -68,7 +88,8 @@ def run(arm: str, n: int, zone_mm: float, seed: int, verify: bool) -> dict:
         sim_verify(plan)
         t_verify = time.perf_counter() - t1
     errors = sorted({d.code.id for d in plan.diagnostics if d.severity.name == "ERROR"})
-    cycle = max(t.trajectory.t[-1] for t in plan.tasks) if plan.tasks else float("nan")
+    # the exact end of the last move (the sampled trajectory ends at the next 4 ms step)
+    cycle = max(r.t_end for t in plan.tasks for r in t.records) if plan.tasks else float("nan")
     return dict(arm=arm, n=n, zone=zone_mm, seed=seed, cycle=cycle, plan_s=t_plan, verify_s=t_verify,
                 errors=errors, rss_mb=resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
 
@@ -81,15 +102,26 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--verify", action="store_true")
     ap.add_argument("--memory", action="store_true")
+    ap.add_argument("--reference", action="store_true")
+    ap.add_argument("--single", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
-    print("arm         zone   N     cycle_s   plan_s  verify_s  peak_MB  errors", flush=True)
+    if args.single:  # one configuration, as JSON (the --memory mode's worker)
+        print(json.dumps(run(args.arms[0], args.n[0], args.zones[0], args.seed, args.verify)))
+        return
+    print("arm         zone   N     cycle_s   plan_s  verify_s  peak_MB  ref_ratio  errors", flush=True)
     for arm in args.arms:
         for n in args.n:
             for zone in args.zones:
-                r = run(arm, n, zone, args.seed, args.verify)
+                if args.memory:
+                    cmd = [sys.executable, __file__, "--single", "--arms", arm, "--n", str(n), "--zones", str(zone),
+                           "--seed", str(args.seed)] + (["--verify"] if args.verify else [])
+                    r = json.loads(subprocess.run(cmd, capture_output=True, text=True, check=True).stdout)
+                else:
+                    r = run(arm, n, zone, args.seed, args.verify)
                 mem = f"{r['rss_mb']:8.0f}" if args.memory else "       -"
+                ratio = f"{r['cycle'] / reference(arm, n, zone, args.seed):9.4f}" if args.reference else "        -"
                 print(f"{arm:11s} {zone:4.0f}  {n:4d}  {r['cycle']:8.3f}  {r['plan_s']:7.2f}  {r['verify_s']:8.2f} {mem}  "
-                      f"{','.join(r['errors']) or '-'}", flush=True)
+                      f"{ratio}  {','.join(r['errors']) or '-'}", flush=True)
 
 
 if __name__ == "__main__":
