@@ -315,6 +315,8 @@ class _Arrays:
     joints' derivatives and speed ratios inside its cells for the re-check."""
 
     def __init__(self, path, spline, ss, grid, vlim, alim, f_int, tcp_int) -> None:  # type: ignore[no-untyped-def]
+        from rmot.compiler.plan import topp
+
         self.grid = grid
         lo, h = grid[:-1], np.diff(grid)
         self.h = h
@@ -344,9 +346,13 @@ class _Arrays:
             vel_pt = np.hstack([vel_pt, (l1 / sp_pt)[:, None]])
             self.vel_in = [np.maximum(v, _arc_rates(spline, lo + th * h)[0] / sp_cell)
                            for v, (th, _, _) in zip(self.vel_in, self.inner)]
-        self.a_pt, self.b_pt = np.hstack(rows_a), np.hstack(rows_b)
-        self.c_ask = np.hstack(rows_c) * (1 - _A_MARGIN)
-        self.c_cell = np.minimum(alim_pt[:-1], alim_pt[1:])
+        a_pt, b_pt = np.hstack(rows_a), np.hstack(rows_b)
+        c_ask = np.hstack(rows_c) * (1 - _A_MARGIN)
+        self.rows = topp.Rows(a_pt, b_pt, c_ask).normalised()
+        self.c_cell = np.ascontiguousarray(np.minimum(alim_pt[:-1], alim_pt[1:]))
+        self.m1 = np.ascontiguousarray(np.stack([m1 for _, m1, _ in self.inner]))
+        self.m2 = np.ascontiguousarray(np.stack([m2 for _, _, m2 in self.inner]))
+        self.v_in = np.ascontiguousarray(np.stack(self.vel_in))
         with np.errstate(divide="ignore"):
             xmax = 1.0 / np.max(vel_pt, axis=1) ** 2 * (1 - _V_MARGIN) ** 2
         xmax[~np.isfinite(xmax)] = 1e18
@@ -354,20 +360,14 @@ class _Arrays:
 
     def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]
         """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad)
-        with per cell the largest acceleration and speed ratio found by the re-check."""
+        with per cell the largest acceleration and speed ratio found by the re-check (at the
+        cell's end, with the cell's u and the next point's derivatives, and inside it)."""
         from rmot.compiler.plan import topp
 
-        h, d1, d2 = self.h, self.d1, self.d2
         for _ in range(rounds + 1):
-            x = topp.solve(self.grid, xmax, topp.Rows(self.a_pt, self.b_pt, self.c_ask))
-            u = (x[1:] - x[:-1]) / (2 * h)
-            # at the cell's end (the cell's u with the next point's derivatives) and inside it
-            r_acc = np.max(np.abs(d1[1:] * u[:, None] + d2[1:] * x[1:, None]) / self.c_cell, axis=1)
-            r_vel = np.zeros(len(h))
-            for (th, m1, m2), v in zip(self.inner, self.vel_in):
-                xt = x[:-1] + th * (x[1:] - x[:-1])
-                r_acc = np.maximum(r_acc, np.max(np.abs(m1 * u[:, None] + m2 * xt[:, None]) / self.c_cell, axis=1))
-                r_vel = np.maximum(r_vel, v * np.sqrt(np.maximum(xt, 0.0)))
+            x = topp.solve(self.grid, xmax, self.rows)
+            r_acc, r_vel = topp.check(x, self.h, self.d1, self.d2, self.m1, self.m2, self.v_in,
+                                      _CHECK_AT, self.c_cell)
             bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
             if not np.any(bad):
                 break

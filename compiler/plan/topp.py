@@ -131,13 +131,59 @@ def _numba():  # type: ignore[no-untyped-def]
 _PASSES = None
 
 
-def solve(ss: np.ndarray, xmax: np.ndarray, rows: Rows) -> np.ndarray:
-    """(K,) x = (ds/dt)^2 at the grid points, rest to rest, time-optimal for the grid."""
+def solve(ss: np.ndarray, xmax: np.ndarray, rows: Rows | tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
+    """(K,) x = (ds/dt)^2 at the grid points, rest to rest, time-optimal for the grid.
+    rows: the Rows, or their `normalised()` form (computed once for repeated solves)."""
     global _PASSES
     if _PASSES is None:
         _PASSES = _numba()
-    beta, gamma, ceiling = rows.normalised()
+    beta, gamma, ceiling = rows.normalised() if isinstance(rows, Rows) else rows
     top = np.minimum(xmax, ceiling)
     top = np.where(np.isfinite(top), top, 1e18)
     return _PASSES(np.ascontiguousarray(ss, dtype=float), np.ascontiguousarray(top),
                    np.ascontiguousarray(beta), np.ascontiguousarray(gamma))
+
+
+def _numba_check():  # type: ignore[no-untyped-def]
+    import numba
+
+    @numba.njit(cache=True)
+    def check(x, h, d1, d2, m1, m2, vel_in, thetas, c_cell):  # type: ignore[no-untyped-def]
+        k, n = d1.shape[0] - 1, d1.shape[1]
+        r_acc = np.zeros(k)
+        r_vel = np.zeros(k)
+        for i in range(k):
+            u = (x[i + 1] - x[i]) / (2.0 * h[i])
+            worst = 0.0
+            for j in range(n):
+                r = abs(d1[i + 1, j] * u + d2[i + 1, j] * x[i + 1]) / c_cell[i, j]
+                if r > worst:
+                    worst = r
+            vw = 0.0
+            for t in range(len(thetas)):
+                xt = x[i] + thetas[t] * (x[i + 1] - x[i])
+                for j in range(n):
+                    r = abs(m1[t, i, j] * u + m2[t, i, j] * xt) / c_cell[i, j]
+                    if r > worst:
+                        worst = r
+                v = vel_in[t, i] * np.sqrt(max(xt, 0.0))
+                if v > vw:
+                    vw = v
+            r_acc[i] = worst
+            r_vel[i] = vw
+        return r_acc, r_vel
+
+    return check
+
+
+_CHECK = None
+
+
+def check(x, h, d1, d2, m1, m2, vel_in, thetas, c_cell):  # type: ignore[no-untyped-def]
+    """Per cell: the largest joint acceleration ratio (at the cell's end and at the fractions
+    `thetas` inside it, the cell's constant path acceleration) and the largest speed ratio
+    inside it. m1, m2 (T, K-1, n) the path's derivatives inside the cells, vel_in (T, K-1)."""
+    global _CHECK
+    if _CHECK is None:
+        _CHECK = _numba_check()
+    return _CHECK(x, h, d1, d2, m1, m2, vel_in, np.asarray(thetas, dtype=float), c_cell)
