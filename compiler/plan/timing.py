@@ -262,12 +262,12 @@ def path_piece(
         acc_int = np.minimum(tcp_accel[:-1], tcp_accel[1:]) if tcp_accel is not None else np.full(n_int, np.inf)
         tcp_int = (np.minimum(tcp_speed[:-1], tcp_speed[1:]), acc_int)
     grid, _ = _grid(ss)
+    arrays = _Arrays(_Limits(path, spline, ss, vlim, alim, f_int, tcp_int), grid)
     for attempt in range(_REFINE_ROUNDS + 1):
-        arrays = _Arrays(path, spline, ss, grid, vlim, alim, f_int, tcp_int)
         x, r_acc, r_vel, bad = arrays.solve(arrays.xmax.copy(), 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS)
         if not np.any(bad) or attempt == _REFINE_ROUNDS:
             break
-        grid = _refined(grid, np.flatnonzero(bad))  # first split the offending cells
+        arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells
     worst_a = float(np.max(r_acc, initial=0.0))
     worst_v = float(np.max(r_vel, initial=0.0))
     sd = np.sqrt(np.maximum(x, 0.0))
@@ -310,53 +310,113 @@ def _grid(ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return grid, cell_of
 
 
-class _Arrays:
-    """The limits on one grid: acceleration rows and speed ceilings at its points, and the
-    joints' derivatives and speed ratios inside its cells for the re-check."""
+@dataclass(frozen=True, eq=False)
+class _Limits:
+    """What the limits are made of: the joint path, the TCP spline, per waypoint interval the
+    joint speed share and the TCP speed and acceleration limits."""
 
-    def __init__(self, path, spline, ss, grid, vlim, alim, f_int, tcp_int) -> None:  # type: ignore[no-untyped-def]
-        from rmot.compiler.plan import topp
+    path: object
+    spline: object
+    ss: np.ndarray
+    vlim: np.ndarray
+    alim: np.ndarray
+    f_int: np.ndarray
+    tcp_int: tuple[np.ndarray, np.ndarray] | None
 
-        self.grid = grid
-        lo, h = grid[:-1], np.diff(grid)
-        self.h = h
-        cell_of = np.clip(np.searchsorted(ss, 0.5 * (lo + grid[1:]), side="right") - 1, 0, len(ss) - 2)
-        d1, d2 = path(grid, 1), path(grid, 2)
-        self.d1, self.d2 = d1, d2
-        f_cell = f_int[cell_of]
-        f_pt = _point_min(f_cell)
-        alim_pt = np.tile(alim, (len(grid), 1))
-        rows_a, rows_b, rows_c = [d1], [d2], [alim_pt]
-        vel_pt = np.abs(d1) / (vlim * f_pt[:, None])  # speed per unit sqrt(x) over the limit
-        # the re-check inside every cell: joints' derivatives at _CHECK_AT, and the speed ratios
-        self.inner = [(th, path(lo + th * h, 1), path(lo + th * h, 2)) for th in _CHECK_AT]
-        self.vel_in = [np.max(np.abs(m1) / (vlim * f_cell[:, None]), axis=1) for _, m1, _ in self.inner]
-        if spline is not None:
-            sp_cell, ac_cell = tcp_int[0][cell_of], tcp_int[1][cell_of]
-            sp_pt, ac_pt = _point_min(sp_cell), _point_min(ac_cell)
-            l1, l2 = _arc_rates(spline, grid)
-            on = np.isfinite(ac_pt)
+    def points(self, s: np.ndarray, left: np.ndarray, right: np.ndarray):  # type: ignore[no-untyped-def]
+        """At grid points s with the waypoint intervals on their left and right: the joints'
+        d1, d2, the acceleration rows (a, b, c asked) and the speed ratios per sqrt(x)."""
+        d1, d2 = self.path(s, 1), self.path(s, 2)  # type: ignore[operator]
+        f = np.minimum(self.f_int[left], self.f_int[right])
+        a, b = [d1], [d2]
+        c = [np.tile(self.alim, (len(s), 1))]
+        vel = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
+        if self.spline is not None:
+            sp = np.minimum(self.tcp_int[0][left], self.tcp_int[0][right])
+            ac = np.minimum(self.tcp_int[1][left], self.tcp_int[1][right])
+            l1, l2 = _arc_rates(self.spline, s)
+            on = np.isfinite(ac)
             # the TCP path acceleration is held at the grid points only: between them it is not
             # re-checked, since where the TCP-per-joint ratio l' changes within a cell (a blend's
             # edge) the constant path acceleration of a cell cannot follow it, and tightening the
             # spot only slows it without end (the joints' limits, the physical ones, are checked)
-            rows_a.append(np.where(on, l1, 0.0)[:, None])
-            rows_b.append(np.where(on, l2, 0.0)[:, None])
-            rows_c.append(np.where(on, ac_pt, np.inf)[:, None])
-            vel_pt = np.hstack([vel_pt, (l1 / sp_pt)[:, None]])
-            self.vel_in = [np.maximum(v, _arc_rates(spline, lo + th * h)[0] / sp_cell)
-                           for v, (th, _, _) in zip(self.vel_in, self.inner)]
-        a_pt, b_pt = np.hstack(rows_a), np.hstack(rows_b)
-        c_ask = np.hstack(rows_c) * (1 - _A_MARGIN)
-        self.rows = topp.Rows(a_pt, b_pt, c_ask).normalised()
-        self.c_cell = np.ascontiguousarray(np.minimum(alim_pt[:-1], alim_pt[1:]))
-        self.m1 = np.ascontiguousarray(np.stack([m1 for _, m1, _ in self.inner]))
-        self.m2 = np.ascontiguousarray(np.stack([m2 for _, _, m2 in self.inner]))
-        self.v_in = np.ascontiguousarray(np.stack(self.vel_in))
+            a.append(np.where(on, l1, 0.0)[:, None])
+            b.append(np.where(on, l2, 0.0)[:, None])
+            c.append(np.where(on, ac, np.inf)[:, None])
+            vel = np.maximum(vel, l1 / sp)
+        return d1, d2, np.hstack(a), np.hstack(b), np.hstack(c) * (1 - _A_MARGIN), vel
+
+    def cells(self, lo: np.ndarray, h: np.ndarray, interval: np.ndarray):  # type: ignore[no-untyped-def]
+        """Inside cells [lo, lo + h] of the given waypoint intervals, at _CHECK_AT: the joints'
+        derivatives m1, m2 (T, N, dof) and the speed ratios per sqrt(x) (T, N)."""
+        m1, m2, vel = [], [], []
+        f = self.f_int[interval]
+        for th in _CHECK_AT:
+            s = lo + th * h
+            d1 = self.path(s, 1)  # type: ignore[operator]
+            m1.append(d1)
+            m2.append(self.path(s, 2))  # type: ignore[operator]
+            v = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
+            if self.spline is not None:
+                v = np.maximum(v, _arc_rates(self.spline, s)[0] / self.tcp_int[0][interval])
+            vel.append(v)
+        return np.stack(m1), np.stack(m2), np.stack(vel)
+
+
+class _Arrays:
+    """The limits on one grid: acceleration rows and speed ceilings at its points, and the
+    joints' derivatives and speed ratios inside its cells for the re-check. `refined` splits
+    cells and evaluates only the new points and cells (cost linear in what was added)."""
+
+    def __init__(self, limits: _Limits, grid: np.ndarray, parts=None) -> None:  # type: ignore[no-untyped-def]
+        from rmot.compiler.plan import topp
+
+        self.limits, self.grid = limits, grid
+        self.h = np.diff(grid)
+        if parts is None:
+            last = len(limits.ss) - 2
+            interval = np.clip(np.searchsorted(limits.ss, 0.5 * (grid[:-1] + grid[1:]), side="right") - 1, 0, last)
+            left = np.concatenate([interval[:1], interval])
+            right = np.concatenate([interval, interval[-1:]])
+            pts = limits.points(grid, left, right)
+            parts = (interval, pts, limits.cells(grid[:-1], self.h, interval))
+        self.interval, self.pts, (self.m1, self.m2, self.v_in) = parts[0], parts[1], parts[2]
+        d1, d2, a, b, c, vel = self.pts
+        self.d1, self.d2 = d1, d2
+        self.rows = topp.Rows(a, b, c).normalised()
+        self.c_cell = np.ascontiguousarray(np.tile(limits.alim, (len(self.h), 1)))
         with np.errstate(divide="ignore"):
-            xmax = 1.0 / np.max(vel_pt, axis=1) ** 2 * (1 - _V_MARGIN) ** 2
+            xmax = 1.0 / vel ** 2 * (1 - _V_MARGIN) ** 2
         xmax[~np.isfinite(xmax)] = 1e18
         self.xmax = xmax
+
+    def refined(self, bad: np.ndarray) -> _Arrays:
+        """Each listed cell and its two neighbours split in four."""
+        cells = np.unique(np.clip(np.concatenate([bad - 1, bad, bad + 1]), 0, len(self.h) - 1))
+        lo, h, interval = self.grid[cells], self.h[cells], self.interval[cells]
+        frac = np.array([0.25, 0.5, 0.75])
+        extra = (lo[:, None] + h[:, None] * frac).ravel()
+        extra_int = np.repeat(interval, 3)
+        new_pts = self.limits.points(extra, extra_int, extra_int)
+        sub_lo = (lo[:, None] + h[:, None] * np.array([0.0, 0.25, 0.5, 0.75])).ravel()
+        sub_h = np.repeat(h * 0.25, 4)
+        sub_int = np.repeat(interval, 4)
+        new_cells = self.limits.cells(sub_lo, sub_h, sub_int)
+        # merge points (old ones keep their values) and cells (split ones replaced)
+        grid = np.concatenate([self.grid, extra])
+        order = np.argsort(grid, kind="stable")
+        pts = tuple(np.concatenate([old, new])[order] for old, new in zip(self.pts, new_pts))
+        keep = np.ones(len(self.h), bool)
+        keep[cells] = False
+        cell_lo = np.concatenate([self.grid[:-1][keep], sub_lo])
+        corder = np.argsort(cell_lo, kind="stable")
+        interval_all = np.concatenate([self.interval[keep], sub_int])[corder]
+        m1 = np.concatenate([self.m1[:, keep], new_cells[0]], axis=1)[:, corder]
+        m2 = np.concatenate([self.m2[:, keep], new_cells[1]], axis=1)[:, corder]
+        v_in = np.concatenate([self.v_in[:, keep], new_cells[2]], axis=1)[:, corder]
+        return _Arrays(self.limits, grid[order], (interval_all, pts, (np.ascontiguousarray(m1),
+                                                                      np.ascontiguousarray(m2),
+                                                                      np.ascontiguousarray(v_in))))
 
     def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]
         """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad)
@@ -379,11 +439,3 @@ class _Arrays:
             for end in (cells, cells + 1):
                 np.minimum.at(xmax, end, x[end] * factor)
         return x, r_acc, r_vel, bad
-
-
-def _refined(grid: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """The grid with each listed cell and its two neighbours split in four."""
-    cells = np.unique(np.clip(np.concatenate([cells - 1, cells, cells + 1]), 0, len(grid) - 2))
-    lo, hi = grid[cells], grid[cells + 1]
-    extra = (lo[:, None] + (hi - lo)[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
-    return np.union1d(grid, extra)
