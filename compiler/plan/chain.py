@@ -150,9 +150,7 @@ def time_chain_single(seg: Segment, vmax: np.ndarray, amax: np.ndarray) -> Timed
     at its start with the reason in `error`."""
     if seg.move.kind is ir.MotionKind.JOINT:
         return _joint_chain(seg, vmax * seg.speed_factor, amax, None)
-    from rmot.compiler.plan.blend import blend_chain as _join
-
-    path = _join(None, [seg])
+    path = blend_chain(None, [seg])  # one move: no corner, no robot needed
     try:
         return _path_chain_strict(path, [seg], vmax, amax)
     except TimingError as exc:

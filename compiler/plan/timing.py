@@ -286,11 +286,6 @@ def _arc_rates(spline, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # type:
     return l1, l2
 
 
-def _point_min(per_cell: np.ndarray) -> np.ndarray:
-    """(K,) the smaller value of the (one or two) cells meeting at each grid point."""
-    return np.concatenate([per_cell[:1], np.minimum(per_cell[:-1], per_cell[1:]), per_cell[-1:]])
-
-
 def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
     import toppra
 
