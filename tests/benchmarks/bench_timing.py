@@ -6,8 +6,8 @@ whole program (fine / 2 mm / 10 mm), N moves. For each (arm, zone, N): the plann
 the planning time and the diagnostics' error codes (E228 = timing failed). With --verify the
 plan is verified too (sim.verify), with --memory the peak RSS is reported.
 
-With --reference, also the ratio of rmot's cycle time to an independent time-optimal timing
-of the same path (toppra on a dense uniform grid, tests/plan/test_plan_optimal.reference_time).
+With --reference (programs then use accel 50 m/s^2, see REFERENCE_ACCEL), also the ratio of
+rmot's cycle time to an independent time-optimal timing of the same path (toppra on a dense uniform grid, tests/plan/test_plan_optimal.reference_time).
 With --memory every configuration runs in its own process (peak RSS of that process alone).
 
 Run:
@@ -42,9 +42,13 @@ BOX = {  # (x, y, z) lower corner, mm: a 120 x 300 x 100 mm box in front of each
     "kuka_kr6_r900": (450.0, -150.0, 300.0),
 }
 SIZE = (120.0, 300.0, 100.0)
+# with --reference the TCP acceleration limit is set out of reach (the reference, toppra with
+# joint and TCP-speed limits, has none): both time the same path under the same limits
+REFERENCE_ACCEL = 50.0  # m/s^2
 
 
-def random_program(arm: str, n: int, zone_mm: float, seed: int = 0, speed: float = 300.0) -> ir.Program:
+def random_program(arm: str, n: int, zone_mm: float, seed: int = 0, speed: float = 300.0,
+                   accel: float = 2.0) -> ir.Program:
     """N moves alternating joint / linear to random poses of the box (first move: joints)."""
     rng = np.random.default_rng(seed)
     lo = np.array(BOX.get(arm, (350.0, -150.0, 250.0)))
@@ -54,9 +58,9 @@ def random_program(arm: str, n: int, zone_mm: float, seed: int = 0, speed: float
         x, y, z = lo + rng.random(3) * np.array(SIZE)
         target = pose(x, y, z, **DOWN)
         if k % 2 == 0:
-            p.joint(target, zone=zone_mm, speed=speed)
+            p.joint(target, zone=zone_mm, speed=speed, accel=accel)
         else:
-            p.linear(target, zone=zone_mm, speed=speed)
+            p.linear(target, zone=zone_mm, speed=speed, accel=accel)
     return program(p.task(), robots={"r1": arm})
 
 
@@ -68,15 +72,15 @@ def reference(arm: str, n: int, zone_mm: float, seed: int) -> float:
     from rmot.compiler.robots import load_robot
 
     robot = load_robot(arm)
-    segs = _segments(robot, random_program(arm, n, zone_mm, seed))
+    segs = _segments(robot, random_program(arm, n, zone_mm, seed, accel=REFERENCE_ACCEL))
     chains = [segs] if zone_mm > 0 else [[s] for s in segs]
     return sum(reference_time(robot, c) for c in chains)
 
 
-def run(arm: str, n: int, zone_mm: float, seed: int, verify: bool) -> dict:
+def run(arm: str, n: int, zone_mm: float, seed: int, verify: bool, accel: float = 2.0) -> dict:
     from rmot.compiler.plan import plan_program
 
-    prog = random_program(arm, n, zone_mm, seed)
+    prog = random_program(arm, n, zone_mm, seed, accel=accel)
     t0 = time.perf_counter()
     plan = plan_program(prog)
     t_plan = time.perf_counter() - t0
@@ -117,7 +121,7 @@ def main(argv: list[str] | None = None) -> None:
                            "--seed", str(args.seed)] + (["--verify"] if args.verify else [])
                     r = json.loads(subprocess.run(cmd, capture_output=True, text=True, check=True).stdout)
                 else:
-                    r = run(arm, n, zone, args.seed, args.verify)
+                    r = run(arm, n, zone, args.seed, args.verify, REFERENCE_ACCEL if args.reference else 2.0)
                 mem = f"{r['rss_mb']:8.0f}" if args.memory else "       -"
                 ratio = f"{r['cycle'] / reference(arm, n, zone, args.seed):9.4f}" if args.reference else "        -"
                 print(f"{arm:11s} {zone:4.0f}  {n:4d}  {r['cycle']:8.3f}  {r['plan_s']:7.2f}  {r['verify_s']:8.2f} {mem}  "
