@@ -1,9 +1,15 @@
 """The verification Report and its four forms: text (compiler style), JSON, JUnit XML, SARIF.
 
-JSON (version 1; `JSON_SCHEMA` below is the normative description):
+JSON (version 2; `JSON_SCHEMA` below is the normative description):
 
-    {"version": 1,
+    {"version": 2,
      "programs": [{"file": str, "cycle_time_s": float | null,
+                   "assumptions": {str: str} | null,
+                   "tasks": [{"task": str, "robot": str, "cycle_time_s": float,
+                              "moving_s": float, "waiting_s": float, "sync_s": float,
+                              "instructions": [{"uid": int, "kind": str, "line": int | null,
+                                                "start_s": float, "end_s": float,
+                                                "variant": int}]}],
                    "diagnostics": [{"code": "E300", "severity": "error" | "warning" | "note",
                                     "message": str, "file": str | null,
                                     "line": int | null, "col": int | null,
@@ -14,7 +20,9 @@ JSON (version 1; `JSON_SCHEMA` below is the normative description):
 
 Lines and columns are 1-based, end_col exclusive (as rmot.lang.source.Span). Times are
 seconds on the program's timeline; amounts are in the unit given (mm, deg/s, N·m, ...).
-A program whose cycle time is null did not get through planning.
+A program whose cycle time is null did not get through planning. Version 2 added
+`assumptions` (the timing model behind the cycle time, rmot.sim.timing_report) and `tasks`
+(per task the time moving, waiting and synchronising; per instruction its start and end).
 """
 
 from __future__ import annotations
@@ -30,7 +38,7 @@ from rmot.lang.diagnostics import Diagnostic, Severity, render
 __all__ = ["JSON_SCHEMA", "Report", "format_json", "format_junit", "format_sarif", "format_text",
            "to_json", "validate_json"]
 
-JSON_VERSION = 1
+JSON_VERSION = 2
 
 
 @dataclass(frozen=True)
@@ -40,6 +48,8 @@ class Report:
     program_file: str
     cycle_times: dict[str, float] = field(default_factory=dict)
     diagnostics: tuple[Diagnostic, ...] = ()
+    # where the time goes, per task (rmot.sim.timing_report.timing_json); None: not planned
+    tasks: tuple[dict[str, Any], ...] | None = None
 
     @property
     def errors(self) -> tuple[Diagnostic, ...]:
@@ -82,10 +92,13 @@ GUARANTEE = ("collisions are checked along the whole path, not only at the sampl
 def format_text(reports: Sequence[Report]) -> str:
     """Every diagnostic in compiler style, one summary line per program, then what the
     collision check guarantees (when anything was verified)."""
+    from rmot.sim.timing_report import ASSUMPTIONS_LINE
+
     blocks = [render(d) for r in reports for d in r.diagnostics]
     blocks += [r.summary() for r in reports]
     if any(r.cycle_times for r in reports):
         blocks.append(f"note: {GUARANTEE}")
+        blocks.append(f"note: {ASSUMPTIONS_LINE}")
     return "\n".join(blocks) + "\n"
 
 
@@ -95,10 +108,28 @@ def format_text(reports: Sequence[Report]) -> str:
 _NULL_INT = {"type": ["integer", "null"]}
 _NULL_NUM = {"type": ["number", "null"]}
 
+_NUM = {"type": "number"}
+_TASK: dict[str, Any] = {
+    "type": "object",
+    "required": ["task", "robot", "cycle_time_s", "moving_s", "waiting_s", "sync_s", "instructions"],
+    "additionalProperties": False,
+    "properties": {
+        "task": {"type": "string"}, "robot": {"type": "string"}, "cycle_time_s": _NUM,
+        "moving_s": _NUM, "waiting_s": _NUM, "sync_s": _NUM,
+        "instructions": {"type": "array", "items": {
+            "type": "object",
+            "required": ["uid", "kind", "line", "start_s", "end_s", "variant"],
+            "additionalProperties": False,
+            "properties": {"uid": {"type": "integer"}, "kind": {"type": "string"}, "line": _NULL_INT,
+                           "start_s": _NUM, "end_s": _NUM, "variant": {"type": "integer"}},
+        }},
+    },
+}
+
 JSON_SCHEMA: dict[str, Any] = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",
-    "$id": "https://rmot.dev/schemas/check-report-1.json",
-    "title": "rmot check report, version 1",
+    "$id": "https://rmot.dev/schemas/check-report-2.json",
+    "title": "rmot check report, version 2",
     "type": "object",
     "required": ["version", "programs"],
     "additionalProperties": False,
@@ -108,11 +139,13 @@ JSON_SCHEMA: dict[str, Any] = {
             "type": "array",
             "items": {
                 "type": "object",
-                "required": ["file", "cycle_time_s", "diagnostics"],
+                "required": ["file", "cycle_time_s", "assumptions", "tasks", "diagnostics"],
                 "additionalProperties": False,
                 "properties": {
                     "file": {"type": "string"},
                     "cycle_time_s": _NULL_NUM,
+                    "assumptions": {"type": ["object", "null"]},
+                    "tasks": {"type": "array", "items": _TASK},
                     "diagnostics": {
                         "type": "array",
                         "items": {
@@ -172,10 +205,18 @@ def to_json(reports: Sequence[Report]) -> dict[str, Any]:
         "version": JSON_VERSION,
         "programs": [
             {"file": r.program_file, "cycle_time_s": _round(r.cycle_time),
+             "assumptions": _assumptions() if r.cycle_times else None,
+             "tasks": list(r.tasks or ()),
              "diagnostics": [diagnostic_json(d) for d in r.diagnostics]}
             for r in reports
         ],
     }
+
+
+def _assumptions() -> dict[str, str]:
+    from rmot.sim.timing_report import ASSUMPTIONS
+
+    return dict(ASSUMPTIONS)
 
 
 def format_json(reports: Sequence[Report]) -> str:

@@ -55,7 +55,9 @@ def verify_with(plan: planned.Plan, *, clearance: float | None = None,
     findings.sort(key=_finding_order)
     diagnostics = tuple(plan.diagnostics) + scene.diagnostics + tuple(findings)
     cycle_times = {tp.task.name: float(tp.cycle_time) for tp in plan.tasks}
-    return Report(_program_file(program), cycle_times, diagnostics)
+    from rmot.sim.timing_report import timing_json
+
+    return Report(_program_file(program), cycle_times, diagnostics, tuple(timing_json(plan)))
 
 
 def _program_file(program: ir.Program) -> str:

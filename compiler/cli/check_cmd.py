@@ -71,7 +71,7 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
         report = verify(plan, clearance=clearance)
     except Exception as exc:  # a bug in a stage: say so in the report, never as a traceback
         return failed(f"internal error while planning or verifying ({exc.__class__.__name__}: {exc}); please report it")
-    report = Report(path, report.cycle_times, front_diags + report.diagnostics)
+    report = Report(path, report.cycle_times, front_diags + report.diagnostics, report.tasks)
     if images:
         report = _render_images(plan, report, images)
     return CheckOutcome(report, False)
@@ -89,7 +89,7 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
     except ImportError as exc:
         note = Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                           f"images were not rendered: the renderer is not available ({exc})", None)
-        return Report(report.program_file, report.cycle_times, report.diagnostics + (note,))
+        return Report(report.program_file, report.cycle_times, report.diagnostics + (note,), report.tasks)
     os.makedirs(directory, exist_ok=True)
     stem = os.path.splitext(os.path.basename(report.program_file))[0]
     extra = []
@@ -108,7 +108,7 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
         finally:
             if os.path.exists(tmp):
                 os.unlink(tmp)
-    return Report(report.program_file, report.cycle_times, report.diagnostics + tuple(extra))
+    return Report(report.program_file, report.cycle_times, report.diagnostics + tuple(extra), report.tasks)
 
 
 def _write_atomic(path: str, text: str) -> None:

@@ -51,6 +51,11 @@ class ChainPath:
     ends: tuple[int, ...]
     radii: tuple[float, ...]
     findings: tuple[tuple[int, Finding], ...] = field(default=())
+    # (M,) per point: the TCP speed limit (m/s, inf along joint moves) and the TCP path
+    # acceleration limit (m/s^2, inf along joint moves). Inside a blend the Cartesian move's
+    # (the smaller of the two when both are Cartesian): the TCP never exceeds a programmed speed.
+    tcp_speed: np.ndarray | None = None
+    tcp_accel: np.ndarray | None = None
 
 
 def _along(q: np.ndarray, lam: np.ndarray) -> np.ndarray:
@@ -109,7 +114,7 @@ def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: igno
 
 def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
     """Join a chain of segments (each starting where the previous one ends) into one path."""
-    qs, tcps, rates, uniform, factors, by_tcp = [], [], [], [], [], []
+    qs, tcps, rates, uniform, factors, by_tcp, accels = [], [], [], [], [], [], []
     ends, radii, findings = [], [], []
     count = 0
     part = _Part(segments[0].q, segments[0].tcp)
@@ -123,6 +128,7 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
         qs.append(keep.q if i == 0 else keep.q[1:])
         tcps.append(keep.tcp if i == 0 else keep.tcp[1:])
         rates.append(np.full(len(qs[-1]), seg.tcp_rate))
+        accels.append(np.full(len(qs[-1]), _tcp_accel(seg)))
         uniform.append(np.zeros(len(qs[-1]), bool))
         factors.append(np.full(len(qs[-1]), seg.speed_factor))
         by_tcp.append(np.full(len(qs[-1]), seg.tcp_rate > 0))
@@ -134,15 +140,22 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
             qs.append(qb)
             tcps.append(tb)
             rates.append(np.full(len(qb), max(seg.tcp_rate, segments[i + 1].tcp_rate)))
+            both_acc = min(_tcp_accel(seg), _tcp_accel(segments[i + 1]))
+            accels.append(np.full(len(qb), both_acc))
             uniform.append(np.ones(len(qb), bool))
-            factors.append(np.full(len(qb) + 1, min(seg.speed_factor, segments[i + 1].speed_factor)))
+            # the zone exit (the next part's first point) has the next move's limits: limits
+            # apply per interval as the smaller of its two ends (timing.path_piece), so the
+            # blend's limits end exactly at the sphere
+            factors.append(np.full(len(qb), min(seg.speed_factor, segments[i + 1].speed_factor)))
+            factors.append(np.full(1, segments[i + 1].speed_factor))
             both = seg.tcp_rate > 0 and segments[i + 1].tcp_rate > 0
             by_tcp.append(np.full(len(qb) + 1, both))
             count += len(qb)
             # the blend's last point joins the next part, whose first point (q_out) is kept
             qs.append(nxt.q[:1])
             tcps.append(nxt.tcp[:1])
-            rates.append(np.full(1, max(seg.tcp_rate, segments[i + 1].tcp_rate)))
+            rates.append(np.full(1, segments[i + 1].tcp_rate))
+            accels.append(np.full(1, _tcp_accel(segments[i + 1])))
             uniform.append(np.ones(1, bool))
             count += 1
         part = nxt if nxt is not None else part
@@ -155,7 +168,15 @@ def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
     ss = _parameter(q, tcp, np.concatenate(uniform), np.concatenate(by_tcp) & all_cartesian)
     vscale = np.concatenate(factors)
     starts = [0] + ends[:-1]  # a move starts where the previous one ends (its zone entry)
-    return ChainPath(q, tcp, c, ss, vscale, tuple(starts), tuple(ends), tuple(radii), tuple(findings))
+    with np.errstate(divide="ignore"):
+        speed = np.where(rate > 0, 1.0 / np.where(rate > 0, rate, 1.0), np.inf)
+    return ChainPath(q, tcp, c, ss, vscale, tuple(starts), tuple(ends), tuple(radii), tuple(findings),
+                     speed, np.concatenate(accels))
+
+
+def _tcp_accel(seg: Segment) -> float:
+    """The TCP path acceleration limit of a Cartesian move (m/s^2), inf for a joint move."""
+    return float(seg.move.motion.tcp_accel) if seg.tcp_rate > 0 else float("inf")
 
 
 def _parameter(q: np.ndarray, tcp: np.ndarray, in_blend: np.ndarray, by_tcp: np.ndarray) -> np.ndarray:

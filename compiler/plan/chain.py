@@ -1,16 +1,17 @@
 """Timing one chain: moves joined by zones, from rest to rest, turned into one Piece.
 
-A single joint move is timed by ruckig (jerk-limited, synchronised); anything else (a Cartesian
-move, or several moves blended together) is one joint path timed by toppra with:
+A single joint move is the joint-space line timed exactly (timing.joint_move_piece); anything
+else (a Cartesian move, or several moves blended together) is one joint path timed
+time-optimally (timing.path_piece) under physical limits only:
 * joint velocity limits: vmax * joint_speed along each joint move, the full vmax along
   Cartesian moves (their speed is the TCP's), the smaller share inside a blend; joint
   acceleration limits amax * joint_accel (the smallest in the chain: one constant set per
   chain, a documented simplification when a chain mixes accel settings);
-* the TCP speed: with c the TCP time (TCP path length / programmed speed, see
-  blend.ChainPath), dc/dt <= 1, i.e. TCP speed <= the programmed speed of every Cartesian
-  move, as a limit on the path speed ds/dt <= 1 / (dc/ds) with dc/ds exact per waypoint
-  interval (timing.path_piece's `rate`); c is also an extra spline coordinate with
-  d2c/dt2 <= min(tcp_accel / tcp_speed), to shape the TCP acceleration.
+* on Cartesian moves and in every blend touching one: TCP path speed <= the programmed
+  speed and TCP path acceleration <= the programmed (or default) accel; in a blend between
+  a joint move and a Cartesian move the Cartesian move's limits apply from the blend's start.
+If a chain cannot be timed as a whole, each of its moves is timed on its own with an exact
+stop at every corner (W225 names the corner's move and time): nothing is dropped.
 `times` gives each segment's start and end on the piece's local clock (end = zone entry).
 """
 
@@ -27,7 +28,6 @@ from rmot.compiler.plan.timing import HoldPiece, Piece, TimingError, joint_move_
 
 __all__ = ["TimedChain", "time_chain"]
 
-_UNLIMITED = 1e9  # the TCP-time coordinate's velocity bound: its limit is `rate` (see _path_chain)
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,8 +37,11 @@ class TimedChain:
     ends: tuple[float, ...]  # s, local time each segment ends (zone entry when blended)
     radii: tuple[float, ...]
     path: ChainPath | None
-    error: str | None = None  # a timing problem (time too short, toppra failure), user-facing
+    error: str | None = None  # a timing problem (time too short, no timing found), user-facing
     error_is_time: bool = False
+    stops: tuple[int, ...] = ()  # corners (segment indexes) turned into exact stops because the chain could not be timed
+    error_at: int | None = None  # the segment the error belongs to (None: the chain's last)
+    stop_reason: str = ""  # why the chain could not be timed as a whole (with `stops`)
 
 
 def _limits(robot: object, segments: list[Segment]) -> tuple[np.ndarray, np.ndarray]:
@@ -75,29 +78,20 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
         piece = HoldPiece(path.q[-1].copy(), duration or 0.0)
         zeros = tuple(0.0 for _ in segments)
         return TimedChain(piece, zeros, tuple(piece.duration for _ in segments), path.radii, path)
-    cartesian = [s for s in segments if s.tcp_rate > 0]
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
-    rate = None
-    if cartesian:
-        # The TCP speed limit is a limit on the path speed, ds/dt <= 1 / (dc/ds), with dc/ds
-        # exact per waypoint interval. c itself stays a coordinate only to shape the TCP
-        # acceleration: as a spline its slope rings where dc/ds jumps (an arc starting to turn
-        # the tool), which as a speed limit slowed whole chains down (issue 4).
-        wp = np.hstack([path.q, path.c[:, None]])
-        acc_c = min(s.move.motion.tcp_accel * s.tcp_rate for s in cartesian)
-        vlim, alim = np.append(vmax, _UNLIMITED), np.append(amax, acc_c)
-        rate = _tcp_rate(path.c[keep], ss[keep])
-    else:
-        wp, vlim, alim = path.q, vmax.copy(), amax
+    tcp_kw = {}
+    if any(s.tcp_rate > 0 for s in segments) and path.tcp_speed is not None:
+        tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])
     vscale = path.vscale[keep]
+    vlim = vmax.copy()
     if np.all(vscale == vscale[0]):  # one share for the whole chain: a plain constant limit
-        vlim[:dof] *= vscale[0]
+        vlim *= vscale[0]
         vscale = None
     error = None
     try:
-        piece = path_piece(wp[keep], ss[keep], vlim, alim, dof, vscale, rate=rate)
+        piece = path_piece(path.q[keep], ss[keep], vlim, amax, dof, vscale, **tcp_kw)
     except TimingError as exc:
-        return _failed_path(path, segments, str(exc))
+        return _stopped_chain(segments, vmax, amax, str(exc))
     if duration is not None:
         if duration < piece.duration * (1 - 1e-9):
             error = f"time must be at least the fastest feasible {piece.duration:.3f} s (got {duration:.3f} s)"
@@ -109,22 +103,69 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
     return TimedChain(piece, starts, ends, path.radii, path, error, error is not None)
 
 
-def _tcp_rate(c: np.ndarray, ss: np.ndarray) -> np.ndarray:
-    """(M,) dc/ds at the waypoints: the three-point (parabola) estimate inside, the end
-    intervals' slope at the ends. The secant slopes of neighbouring intervals differ by a few
-    percent where the TCP-per-joint ratio changes along an arc; a limit taking the larger of
-    the two at every waypoint made the TCP that much slower than programmed."""
-    h = np.diff(ss)
-    slope = np.diff(c) / h
-    if len(slope) == 1:
-        return np.repeat(slope, 2)
-    inner = (slope[:-1] * h[1:] + slope[1:] * h[:-1]) / (h[:-1] + h[1:])
-    return np.concatenate([slope[:1], inner, slope[-1:]])
+@dataclass(frozen=True, eq=False)
+class SequencePiece(Piece):
+    """Pieces one after the other (a chain whose corners became exact stops)."""
+
+    pieces: tuple[Piece, ...]
+    dof: int
+
+    @property
+    def duration(self) -> float:  # type: ignore[override]
+        return float(sum(p.duration for p in self.pieces))
+
+    def sample(self, tl: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        bounds = np.concatenate([[0.0], np.cumsum([p.duration for p in self.pieces])])
+        which = np.clip(np.searchsorted(bounds, tl, side="right") - 1, 0, len(self.pieces) - 1)
+        out = [np.empty((len(tl), self.dof)) for _ in range(3)]
+        for k in np.unique(which):
+            sel = which == k
+            for o, v in zip(out, self.pieces[k].sample(np.asarray(tl)[sel] - bounds[k])):
+                o[sel] = v
+        return out[0], out[1], out[2]
 
 
-def _failed_path(path: ChainPath, segments, message: str) -> TimedChain:  # type: ignore[no-untyped-def]
-    """toppra failed: keep the robot where the chain starts (the failure is reported)."""
-    piece = HoldPiece(path.q[0].copy(), 0.0)
-    zeros = tuple(0.0 for _ in segments)
-    return TimedChain(piece, zeros, zeros, path.radii, path, message, False)
+def _stopped_chain(segments, vmax, amax, message: str) -> TimedChain:  # type: ignore[no-untyped-def]
+    """The chain could not be timed as a whole: every move on its own, exact stops at the
+    corners (reported by the caller at each stop's move and time). A move that cannot be
+    timed even on its own keeps its error (E228) at its move; the robot then holds there."""
+    pieces, starts, ends, error, error_at = [], [], [], None, None
+    t = 0.0
+    for k, seg in enumerate(segments):
+        single = time_chain_single(seg, vmax, amax)
+        if single.error is not None and error is None:
+            error, error_at = single.error, k
+        pieces.append(single.piece)
+        starts.append(t)
+        t += single.piece.duration
+        ends.append(t)
+    dof = segments[0].q.shape[1]
+    return TimedChain(SequencePiece(tuple(pieces), dof), tuple(starts), tuple(ends),
+                      tuple(0.0 for _ in segments), None, error, False, tuple(range(len(segments) - 1)),
+                      error_at, message)
 
+
+def time_chain_single(seg: Segment, vmax: np.ndarray, amax: np.ndarray) -> TimedChain:
+    """One move from rest to rest (no zone), never raising: a move that cannot be timed holds
+    at its start with the reason in `error`."""
+    if seg.move.kind is ir.MotionKind.JOINT:
+        return _joint_chain(seg, vmax * seg.speed_factor, amax, None)
+    path = blend_chain(None, [seg])  # one move: no corner, no robot needed
+    try:
+        return _path_chain_strict(path, [seg], vmax, amax)
+    except TimingError as exc:
+        return TimedChain(HoldPiece(seg.q[0].copy(), 0.0), (0.0,), (0.0,), (0.0,), None, str(exc), False)
+
+
+def _path_chain_strict(path: ChainPath, segments, vmax, amax) -> TimedChain:  # type: ignore[no-untyped-def]
+    dof = path.q.shape[1]
+    ss = path.ss
+    if ss[-1] < 1e-9:
+        piece = HoldPiece(path.q[-1].copy(), 0.0)
+        return TimedChain(piece, (0.0,), (0.0,), (0.0,), path)
+    keep = np.concatenate([[True], np.diff(ss) > 1e-10])
+    tcp_kw = {}
+    if path.tcp_speed is not None and np.any(np.isfinite(path.tcp_speed)):
+        tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])
+    piece = path_piece(path.q[keep], ss[keep], vmax * segments[0].speed_factor, amax, dof, None, **tcp_kw)
+    return TimedChain(piece, (0.0,), (piece.duration,), (0.0,), path)

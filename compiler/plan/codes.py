@@ -12,6 +12,7 @@ __all__ = [
     "JOINT_LIMIT_PATH", "JOINT_TARGET_LIMIT", "PATH_SINGULAR", "SLOWDOWN_SINGULAR",
     "SYNC_MISMATCH", "TARGET_LIMITS", "TARGET_UNREACHABLE", "TIME_TOO_SHORT",
     "TIMING_FAILED", "DOF_MISMATCH", "ROBOT_UNAVAILABLE", "UNKNOWN_START",
+    "TIMING_EXACT_STOP",
 ]
 
 TARGET_UNREACHABLE = Code("E220", "target-unreachable", "a pose target is outside the robot's workspace")
@@ -32,3 +33,5 @@ SLOWDOWN_SINGULAR = Code("W221", "singularity-slowdown", "the TCP slows down nea
 BLEND_REDUCED = Code("W222", "blend-reduced", "a zone was reduced or dropped to keep the blend valid")
 IF_ARMS_DIFFER = Code("W223", "if-arms-end-differently", "the arms of a runtime if end in different joint states")
 UNKNOWN_START = Code("W224", "unknown-start", "a task's first move is not a joint move to a joint target")
+TIMING_EXACT_STOP = Code("W225", "timing-exact-stop",
+                         "a blended chain could not be timed as a whole; its corners became exact stops")

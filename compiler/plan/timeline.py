@@ -216,8 +216,12 @@ class _Builder:
             self._move_record(seg, timed, i, t0)
         if timed.error is not None:
             code = codes.TIME_TOO_SHORT if timed.error_is_time else codes.TIMING_FAILED
-            span = chain[0].move.span if timed.error_is_time else chain[-1].move.span
-            self._diag(Finding(code, Severity.ERROR, timed.error), span, t0)
+            at = 0 if timed.error_is_time else (timed.error_at if timed.error_at is not None else len(chain) - 1)
+            self._diag(Finding(code, Severity.ERROR, timed.error), chain[at].move.span, t0 + timed.starts[at])
+        for k in timed.stops:
+            msg = (f"the blended motion through this move could not be timed ({timed.stop_reason}); the robot "
+                   f"stops exactly at this move's target at t = {t0 + timed.ends[k]:.3f} s")
+            self._diag(Finding(codes.TIMING_EXACT_STOP, Severity.WARNING, msg), chain[k].move.span, t0 + timed.ends[k])
         for f, k in pending:
             self._diag(f, chain[k].move.span, t0 + timed.starts[k])
         for instr, k in events:

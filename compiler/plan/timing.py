@@ -1,25 +1,25 @@
-"""Timing: ruckig for point-to-point joint moves, toppra for geometric paths, as `Piece`s.
+"""Timing: one motion model for every motion, as `Piece`s.
 
 A Piece is one stretch of a task's timeline: `duration` (s) and `sample(tl)` giving
 (q, qd, qdd), each (N, dof), at local times tl (N,) in [0, duration].
 
-* Joint moves from rest to rest: ruckig, jerk-limited, *phase*-synchronised (all joints start
-  and stop together and the joint path stays the straight line). The jerk limit is derived from
-  the acceleration limit, jmax = JERK_PER_ACCEL * amax (full acceleration is reached in 0.1 s);
-  controllers publish no jerk limits, so this is a documented estimate.
-  Only the offline `calculate` is used; never ruckig's intermediate positions (its free build
-  sends those to a cloud server).
-* Geometric paths (Cartesian moves, blended chains): toppra with joint velocity and
-  acceleration constraints. toppra holds its limits only at its grid points, so the result is
-  re-checked on a dense time grid (0.25 ms, plus toppra's own grid times): first the grid is
-  refined where a limit was exceeded (`_REFINE_ROUNDS` times), then the offending limits are
-  tightened (up to `_RETIME_ROUNDS` runs in all), and whatever excess remains is removed by a
-  uniform time stretch (velocity scales by 1/k, acceleration by 1/k^2), so every sample ends
-  within the limits. The TCP speed is a limit on the path speed itself (`rate`, linear
-  between waypoints, which are all on toppra's grid), not a spline coordinate: a spline's
-  slope rings where the TCP-per-joint ratio jumps, and the re-timing then slowed whole chains
-  (issue 4: a weld seam at 7.9 of 12 mm/s). The parametrisation is toppra's
-  constant-acceleration one, re-implemented here vectorised and invertible (`ConstAccelTiming`: the time at a path point, for records).
+The motion model (lang/REFERENCE.md section 6) is acceleration-limited, with no jerk limit,
+for every motion alike: the fastest timing of the joint path under the joint velocity and
+acceleration limits and, on linear and circular moves, the TCP path speed and TCP path
+acceleration limits. (Controllers publish no jerk limits; the joint acceleration limits are
+effective values, see compiler/robots/library.py.)
+
+* Joint moves from rest to rest (`joint_move_piece`): a straight line in joint space, all
+  joints starting and stopping together; the fastest timing of a straight line is the
+  trapezoidal (or triangular) speed profile, computed exactly.
+* Geometric paths (Cartesian moves, blended chains, `path_piece`): the time-optimal
+  parametrisation on a dense grid (compiler/plan/topp.py), every waypoint on the grid and
+  every waypoint interval split (`_GRID_STEP`); cost linear in the path's length. The
+  limits are re-checked at the end and the middle of every grid cell; where one is exceeded
+  only that spot's limits are tightened and the passes re-run (`_REPAIR_ROUNDS`); a remaining
+  excess (never seen in practice, kept as a guarantee) is removed by a uniform time stretch.
+The parametrisation is piecewise constant path acceleration (`ConstAccelTiming`: evaluated
+vectorised, invertible for the time at a path point).
 """
 
 from __future__ import annotations
@@ -30,18 +30,18 @@ from dataclasses import dataclass
 import numpy as np
 
 __all__ = [
-    "ConstAccelTiming", "HoldPiece", "JERK_PER_ACCEL", "PathPiece", "Piece", "RuckigPiece", "TimingError",
+    "ConstAccelTiming", "HoldPiece", "PathPiece", "Piece", "TimingError",
     "joint_move_piece", "path_piece", "stretched",
 ]
 
-JERK_PER_ACCEL = 10.0  # 1/s: jmax = 10 * amax
-_RETIME_ROUNDS = 4
-_REFINE_ROUNDS = 2
-_GRID_PER_WAYPOINT, _GRID_MIN, _GRID_MAX = 1.0, 40, 400
-_V_MARGIN = 1e-6  # relative headroom kept below the limits after re-checking
-_A_MARGIN = 1e-4
-_MIN_CELL = 0.05  # smallest grid cell, as a share of the uniform spacing
-_NO_LIMIT = 1e9  # a bound that never binds (toppra needs finite limits)
+_REPAIR_ROUNDS = 12
+_REFINE_ROUNDS = 5  # first split the cells where a limit is exceeded, this many times
+_GRID_STEP = 0.004  # largest grid cell in path units (rad of joint arc, or scaled TCP length)
+_GRID_SUB_MAX = 64  # at most this many cells per waypoint interval
+_V_MARGIN = 1e-4  # relative headroom asked below the limits (the check allows the full limit)
+_A_MARGIN = 2e-3
+_CHECK_TOL = 1e-6  # relative excess the check accepts
+_CHECK_AT = (0.25, 0.5, 0.75)  # where inside every grid cell the limits are re-checked (and at its end)
 
 
 class TimingError(ValueError):
@@ -74,20 +74,6 @@ class HoldPiece(Piece):
         n = len(tl)
         z = np.zeros((n, self.dof))
         return np.tile(self.q, (n, 1)), z, z.copy()
-
-
-@dataclass(frozen=True, eq=False)
-class RuckigPiece(Piece):
-    trajectory: object  # ruckig.Trajectory
-    duration: float
-    dof: int
-
-    def sample(self, tl: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        out = np.empty((3, len(tl), self.dof))
-        for i, t in enumerate(np.clip(tl, 0.0, self.duration)):
-            p, v, a = self.trajectory.at_time(float(t))  # type: ignore[attr-defined]
-            out[0, i], out[1, i], out[2, i] = p, v, a
-        return out[0], out[1], out[2]
 
 
 @dataclass(frozen=True, eq=False)
@@ -183,101 +169,121 @@ def _eval(traj: ConstAccelTiming, ts: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return traj.evaluate(ts)
 
 
-# --------------------------------------------------------------------------- ruckig
+# --------------------------------------------------------------------------- joint moves
+
+
+@dataclass(frozen=True, eq=False)
+class _Line:
+    """The straight joint-space path q0 + s * unit, s in [0, length] (a path for ConstAccelTiming)."""
+
+    q0: np.ndarray
+    unit: np.ndarray
+
+    def __call__(self, s: np.ndarray, order: int = 0) -> np.ndarray:
+        s = np.asarray(s, dtype=float)
+        if order == 0:
+            return self.q0 + s[:, None] * self.unit
+        if order == 1:
+            return np.tile(self.unit, (len(s), 1))
+        return np.zeros((len(s), len(self.unit)))
 
 
 def joint_move_piece(
     q0: np.ndarray, q1: np.ndarray, vmax: np.ndarray, amax: np.ndarray, duration: float | None = None
 ) -> Piece:
-    """Rest-to-rest, phase-synchronised, jerk-limited joint motion q0 -> q1 (dof,).
+    """Rest-to-rest, synchronised joint motion q0 -> q1 (dof,) on the joint-space line: the
+    exact time-optimal trapezoid (triangle when the top speed is not reached).
 
     duration: a fixed duration (s) from a `time` modifier; raises TimingError if shorter than
-    the fastest feasible motion.
+    the fastest feasible motion (the motion is then stretched uniformly).
     """
-    from ruckig import InputParameter, Result, Ruckig, Synchronization, Trajectory
-
     dof = q0.shape[0]
-    if float(np.max(np.abs(q1 - q0))) < 1e-12:
+    delta = q1 - q0
+    length = float(np.linalg.norm(delta))
+    if float(np.max(np.abs(delta))) < 1e-12:
         return HoldPiece(q0.copy(), duration or 0.0)
-    inp = InputParameter(dof)
-    inp.current_position, inp.target_position = q0.tolist(), q1.tolist()
-    inp.current_velocity = inp.current_acceleration = [0.0] * dof
-    inp.target_velocity = inp.target_acceleration = [0.0] * dof
-    inp.max_velocity, inp.max_acceleration = vmax.tolist(), amax.tolist()
-    inp.max_jerk = (JERK_PER_ACCEL * amax).tolist()
-    inp.synchronization = Synchronization.Phase
-    traj = Trajectory(dof)
-    _ruckig_ok(Ruckig(dof).calculate(inp, traj), Result)
+    unit = delta / length
+    moving = np.abs(unit) > 1e-15
+    if not (np.all(vmax[moving] > 0) and np.all(amax[moving] > 0)):
+        raise TimingError("joint speed and acceleration limits must be positive")
+    v = float(np.min(vmax[moving] / np.abs(unit[moving])))  # path speed limit
+    a = float(np.min(amax[moving] / np.abs(unit[moving])))  # path acceleration limit
+    if v * v / a >= length:  # triangle: the top speed is never reached
+        peak = math.sqrt(a * length)
+        ss, sd = np.array([0.0, 0.5 * length, length]), np.array([0.0, peak, 0.0])
+    else:
+        ramp = 0.5 * v * v / a
+        ss, sd = np.array([0.0, ramp, length - ramp, length]), np.array([0.0, v, v, 0.0])
+    traj = ConstAccelTiming(_Line(q0.astype(float).copy(), unit), ss, sd)
+    piece = PathPiece(traj, traj.duration, 1.0, dof)
     if duration is not None:
-        if duration < traj.duration * (1 - 1e-9):
+        if duration < piece.duration * (1 - 1e-9):
             raise TimingError(
-                f"time must be at least the fastest feasible {traj.duration:.3f} s (got {duration:.3f} s)"
+                f"time must be at least the fastest feasible {piece.duration:.3f} s (got {duration:.3f} s)"
             )
-        inp.minimum_duration = duration
-        traj = Trajectory(dof)
-        _ruckig_ok(Ruckig(dof).calculate(inp, traj), Result)
-    return RuckigPiece(traj, float(traj.duration), dof)
+        piece = stretched(piece, duration)
+    return piece
 
 
-def _ruckig_ok(result: object, Result: type) -> None:  # noqa: N803 - ruckig's enum
-    """Map every ruckig Result to success or a TimingError with a readable reason."""
-    reasons = {
-        Result.Error: "ruckig reported an unspecified error",  # type: ignore[attr-defined]
-        Result.ErrorInvalidInput: "ruckig rejected the input (limits must be positive and finite)",  # type: ignore[attr-defined]
-        Result.ErrorExecutionTimeCalculation: "ruckig could not compute the motion's duration",  # type: ignore[attr-defined]
-        Result.ErrorPositionalLimits: "ruckig's motion would leave the position limits",  # type: ignore[attr-defined]
-        Result.ErrorSynchronizationCalculation: "ruckig could not synchronise the joints",  # type: ignore[attr-defined]
-    }
-    if result in (Result.Working, Result.Finished):  # type: ignore[attr-defined]
-        return
-    raise TimingError(reasons.get(result, f"ruckig returned {result}"))
-
-
-# --------------------------------------------------------------------------- toppra
+# --------------------------------------------------------------------------- paths
 
 
 def path_piece(
-    waypoints: np.ndarray, ss: np.ndarray, vlim: np.ndarray, alim: np.ndarray, dof: int,
-    vscale: np.ndarray | None = None, check_dt: float = 0.00025, rate: np.ndarray | None = None,
+    waypoints: np.ndarray, ss: np.ndarray, vlim: np.ndarray, alim: np.ndarray, dof: int | None = None,
+    vscale: np.ndarray | None = None, *, tcp: np.ndarray | None = None, tcp_speed: np.ndarray | None = None,
+    tcp_accel: np.ndarray | None = None,
 ) -> PathPiece:
-    """Time-optimal rest-to-rest timing of the path through waypoints (M, n) at ss (M,).
+    """Time-optimal rest-to-rest timing of the joint path through waypoints (M, dof) at ss (M,).
 
-    vlim, alim: (n,) symmetric limits of every coordinate (joints first, then extra
-    coordinates such as the TCP-time coordinate); vscale (M,) optional factors on the joint
-    velocity limits per waypoint (a joint move's joint_speed within a chain). rate (M,)
-    optional: a limit on the path speed itself, ds/dt <= 1 / rate(s), rate given at the
-    waypoints and linear between them (the TCP speed: rate = TCP time per unit of s, s/m
-    over the programmed speed; 0 = no limit). Raises TimingError if toppra fails.
-    The result respects the joint limits, the path-speed limit and the extra coordinates'
-    velocity limits at every point of a `check_dt` grid (see module doc). The path-speed limit
-    is evaluated from `rate` itself, not from a spline coordinate (whose slope rings where the
-    TCP-per-joint ratio changes abruptly, e.g. where an arc starts to turn the tool), and
-    toppra's grid holds every waypoint (see _initial_grid). The extra coordinates'
-    acceleration limits are passed to toppra but not re-checked: the TCP coordinate has a kink
-    where a joint move meets a Cartesian one, which the spline rounds off into acceleration
-    spikes that are not physical; re-timing for them would slow the whole chain for nothing.
+    vlim, alim (dof,): joint velocity and acceleration limits; vscale (M,) optional factors on
+    the velocity limits per waypoint (a joint move's joint_speed within a chain; inside a
+    waypoint interval the smaller of its two ends applies). TCP limits, optional: tcp (M, 3)
+    the TCP positions at the waypoints, tcp_speed (M,) the programmed TCP speed (m/s, inf =
+    none) and tcp_accel (M,) the TCP path acceleration limit (m/s^2, inf = none); inside an
+    interval the smaller of its ends. The TCP path is the cubic spline through `tcp` over
+    ss (the waypoints are the dense IK points, within 0.05 mm of the path).
+    Every limit holds at both ends and the middle of every grid cell (see module doc).
     """
-    if rate is not None:  # the path parameter itself as a last coordinate (slope 1), limited by rate
-        waypoints = np.hstack([waypoints, ss[:, None]])
-        vlim, alim = np.append(vlim, 1.0), np.append(alim, _NO_LIMIT)
-    base_v, base_a = vlim.astype(float).copy(), alim.astype(float).copy()
-    # toppra meets its limits exactly at the grid points: ask for a hair less than allowed
-    vlim, alim = base_v * (1 - 2 * _V_MARGIN), base_a * (1 - 2 * _A_MARGIN)
-    grid_scale, exact_scale = _speed_limits(ss, vscale, rate, len(vlim), dof)
+
+    waypoints = np.asarray(waypoints, dtype=float)
+    dof = waypoints.shape[1] if dof is None else dof
+    waypoints = waypoints[:, :dof]
+    vlim, alim = np.asarray(vlim[:dof], dtype=float), np.asarray(alim[:dof], dtype=float)
     path = _spline(ss, waypoints)
-    grid = _initial_grid(ss)
-    for attempt in range(_RETIME_ROUNDS + 1):
-        traj = _toppra(path, grid, vlim, alim, grid_scale(grid) if grid_scale else None)
-        rv, ra, bad_s = _ratios(traj, base_v, base_a, check_dt, dof, exact_scale)
-        if not bad_s.size or attempt == _RETIME_ROUNDS:
+    spline = None
+    if tcp is not None and tcp_speed is not None:
+        from scipy.interpolate import CubicSpline
+
+        spline = CubicSpline(ss, tcp)
+    n_int = len(ss) - 1
+    f_int = np.ones(n_int) if vscale is None else np.minimum(vscale[:-1], vscale[1:])
+    tcp_int = None
+    if spline is not None:
+        acc_int = np.minimum(tcp_accel[:-1], tcp_accel[1:]) if tcp_accel is not None else np.full(n_int, np.inf)
+        tcp_int = (np.minimum(tcp_speed[:-1], tcp_speed[1:]), acc_int)
+    grid, _ = _grid(ss)
+    arrays = _Arrays(_Limits(path, spline, ss, vlim, alim, f_int, tcp_int), grid)
+    for attempt in range(_REFINE_ROUNDS + 1):
+        x, r_acc, r_vel, bad = arrays.solve(arrays.xmax.copy(), 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS)
+        if not np.any(bad) or attempt == _REFINE_ROUNDS:
             break
-        if attempt < _REFINE_ROUNDS:  # first refine the grid where the limits were exceeded
-            grid = _refined(grid, bad_s)
-        else:  # then tighten the limits of the offending coordinates
-            vlim = vlim / np.maximum(1.0, rv * (1 + 10 * _V_MARGIN))
-            alim = alim / np.maximum(1.0, ra * (1 + 10 * _A_MARGIN))
-    scale = max(1.0, float(np.max(rv)) * (1 + _V_MARGIN), math.sqrt(float(np.max(ra)) * (1 + _A_MARGIN)))
+        arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells
+    worst_a = float(np.max(r_acc, initial=0.0))
+    worst_v = float(np.max(r_vel, initial=0.0))
+    sd = np.sqrt(np.maximum(x, 0.0))
+    if not np.all(np.isfinite(sd)) or np.any((sd[1:] + sd[:-1]) <= 0):
+        raise TimingError("no feasible timing was found for the path (a speed limit is zero)")
+    traj = ConstAccelTiming(path, arrays.grid, sd)
+    scale = max(1.0, worst_v * (1 + _CHECK_TOL), math.sqrt(worst_a * (1 + _CHECK_TOL)))
     return PathPiece(traj, float(traj.duration), scale, dof)
+
+
+def _arc_rates(spline, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+    """TCP arc length's first and second derivative in s: |p'| and p'.p'' / |p'|."""
+    p1, p2 = spline(s, 1), spline(s, 2)
+    l1 = np.linalg.norm(p1, axis=1)
+    l2 = np.einsum("ij,ij->i", p1, p2) / np.maximum(l1, 1e-15)
+    return l1, l2
 
 
 def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
@@ -286,141 +292,145 @@ def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
     return toppra.SplineInterpolator(ss, waypoints)
 
 
-def _initial_grid(ss: np.ndarray) -> np.ndarray:
-    """toppra's grid: the waypoints (every k-th one beyond _GRID_MAX of them) and as many
-    uniform points (_GRID_MIN to _GRID_MAX). Waypoints are where a limit may change slope or
-    jump (the path-speed limit is linear between them) and are dense where the path is
-    detailed; the uniform points keep the grid fine where waypoints are sparse (a straight
-    line needs few), so that toppra's piecewise-constant acceleration stays near optimal."""
-    k = max(1, int(math.ceil(len(ss) / (_GRID_PER_WAYPOINT * _GRID_MAX))))
-    n = int(np.clip(_GRID_PER_WAYPOINT * len(ss), _GRID_MIN, _GRID_MAX))
-    grid = np.union1d(np.union1d(ss[::k], ss[-1:]), np.linspace(ss[0], ss[-1], n))
-    # no sliver cells: toppra's constant acceleration across a near-zero interval is unbounded
-    # (a limit jump inside a merged cell is still seen, see _grid_factors and _grid_rate)
-    grid = grid[np.concatenate([[True], np.diff(grid) >= _MIN_CELL * (ss[-1] - ss[0]) / n])]
-    grid[-1] = ss[-1]
-    return grid
+def _grid(ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The grid: every waypoint, and each waypoint interval split into equal cells of at most
+    _GRID_STEP (at least 2, at most _GRID_SUB_MAX per interval): its size grows linearly with
+    the path. Returns the grid (K,) and, per cell (K-1,), the waypoint interval holding it."""
+    h = np.diff(ss)
+    n = np.clip(np.ceil(h / _GRID_STEP), 2, _GRID_SUB_MAX).astype(int)
+    cell_of = np.repeat(np.arange(len(h)), n)
+    first = np.repeat(np.cumsum(n) - n, n)
+    frac = (np.arange(len(cell_of)) - first) / np.repeat(n, n)
+    grid = np.append(ss[cell_of] + frac * h[cell_of], ss[-1])
+    return grid, cell_of
 
 
-def _interval_factors(ss: np.ndarray, vscale: np.ndarray | None, n: int, dof: int) -> np.ndarray:
-    """(M-1, n) factors on the velocity limits inside each waypoint interval: the smaller
-    vscale of its two waypoints on the joints, 1 elsewhere."""
-    out = np.ones((len(ss) - 1, n))
-    if vscale is not None:
-        out[:, :dof] = np.minimum(vscale[:-1], vscale[1:])[:, None]
-    return out
+@dataclass(frozen=True, eq=False)
+class _Limits:
+    """What the limits are made of: the joint path, the TCP spline, per waypoint interval the
+    joint speed share and the TCP speed and acceleration limits."""
+
+    path: object
+    spline: object
+    ss: np.ndarray
+    vlim: np.ndarray
+    alim: np.ndarray
+    f_int: np.ndarray
+    tcp_int: tuple[np.ndarray, np.ndarray] | None
+
+    def points(self, s: np.ndarray, left: np.ndarray, right: np.ndarray):  # type: ignore[no-untyped-def]
+        """At grid points s with the waypoint intervals on their left and right: the joints'
+        d1, d2, the acceleration rows (a, b, c asked) and the speed ratios per sqrt(x)."""
+        d1, d2 = self.path(s, 1), self.path(s, 2)  # type: ignore[operator]
+        f = np.minimum(self.f_int[left], self.f_int[right])
+        a, b = [d1], [d2]
+        c = [np.tile(self.alim, (len(s), 1))]
+        vel = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
+        if self.spline is not None:
+            sp = np.minimum(self.tcp_int[0][left], self.tcp_int[0][right])
+            ac = np.minimum(self.tcp_int[1][left], self.tcp_int[1][right])
+            l1, l2 = _arc_rates(self.spline, s)
+            on = np.isfinite(ac)
+            # the TCP path acceleration is held at the grid points only: between them it is not
+            # re-checked, since where the TCP-per-joint ratio l' changes within a cell (a blend's
+            # edge) the constant path acceleration of a cell cannot follow it, and tightening the
+            # spot only slows it without end (the joints' limits, the physical ones, are checked)
+            a.append(np.where(on, l1, 0.0)[:, None])
+            b.append(np.where(on, l2, 0.0)[:, None])
+            c.append(np.where(on, ac, np.inf)[:, None])
+            vel = np.maximum(vel, l1 / sp)
+        return d1, d2, np.hstack(a), np.hstack(b), np.hstack(c) * (1 - _A_MARGIN), vel
+
+    def cells(self, lo: np.ndarray, h: np.ndarray, interval: np.ndarray):  # type: ignore[no-untyped-def]
+        """Inside cells [lo, lo + h] of the given waypoint intervals, at _CHECK_AT: the joints'
+        derivatives m1, m2 (T, N, dof) and the speed ratios per sqrt(x) (T, N)."""
+        m1, m2, vel = [], [], []
+        f = self.f_int[interval]
+        for th in _CHECK_AT:
+            s = lo + th * h
+            d1 = self.path(s, 1)  # type: ignore[operator]
+            m1.append(d1)
+            m2.append(self.path(s, 2))  # type: ignore[operator]
+            v = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
+            if self.spline is not None:
+                v = np.maximum(v, _arc_rates(self.spline, s)[0] / self.tcp_int[0][interval])
+            vel.append(v)
+        return np.stack(m1), np.stack(m2), np.stack(vel)
 
 
-def _speed_limits(ss: np.ndarray, vscale: np.ndarray | None, rate: np.ndarray | None, n: int, dof: int):  # type: ignore[no-untyped-def]
-    """(for toppra: grid (K,) -> s -> (n,) factors, exact: s (N,) -> (N, n) factors) on the
-    velocity limits, or (None, None) when every factor is 1. The joints' factors are constant
-    per waypoint interval; the path-speed limit (last coordinate, when rate is given) is
-    1 / rate with rate linear between waypoints."""
-    if (vscale is None or np.all(vscale == 1.0)) and rate is None:
-        return None, None
-    factors = _interval_factors(ss, vscale, n, dof)
-    last = len(factors) - 1
+class _Arrays:
+    """The limits on one grid: acceleration rows and speed ceilings at its points, and the
+    joints' derivatives and speed ratios inside its cells for the re-check. `refined` splits
+    cells and evaluates only the new points and cells (cost linear in what was added)."""
 
-    def exact(s: np.ndarray) -> np.ndarray:
-        out = factors[np.clip(np.searchsorted(ss, s, side="right") - 1, 0, last)]
-        if rate is not None:
-            out = out.copy()
-            out[:, -1] = 1.0 / np.maximum(np.interp(s, ss, rate), 1.0 / _NO_LIMIT)
-        return out
+    def __init__(self, limits: _Limits, grid: np.ndarray, parts=None) -> None:  # type: ignore[no-untyped-def]
+        from rmot.compiler.plan import topp
 
-    def for_grid(grid: np.ndarray):  # type: ignore[no-untyped-def]
-        per_point = _grid_factors(ss, factors, grid)
-        if rate is not None:
-            per_point[:, -1] = 1.0 / np.maximum(_grid_rate(ss, rate, grid), 1.0 / _NO_LIMIT)
-        tol = 1e-12 * max(1.0, abs(float(grid[-1])))
+        self.limits, self.grid = limits, grid
+        self.h = np.diff(grid)
+        if parts is None:
+            last = len(limits.ss) - 2
+            interval = np.clip(np.searchsorted(limits.ss, 0.5 * (grid[:-1] + grid[1:]), side="right") - 1, 0, last)
+            left = np.concatenate([interval[:1], interval])
+            right = np.concatenate([interval, interval[-1:]])
+            pts = limits.points(grid, left, right)
+            parts = (interval, pts, limits.cells(grid[:-1], self.h, interval))
+        self.interval, self.pts, (self.m1, self.m2, self.v_in) = parts[0], parts[1], parts[2]
+        d1, d2, a, b, c, vel = self.pts
+        self.d1, self.d2 = d1, d2
+        self.rows = topp.Rows(a, b, c).normalised()
+        self.c_cell = np.ascontiguousarray(np.tile(limits.alim, (len(self.h), 1)))
+        with np.errstate(divide="ignore"):
+            xmax = 1.0 / vel ** 2 * (1 - _V_MARGIN) ** 2
+        xmax[~np.isfinite(xmax)] = 1e18
+        self.xmax = xmax
 
-        def at(s: np.ndarray) -> np.ndarray:
-            return per_point[np.clip(np.searchsorted(grid, s - tol), 0, len(grid) - 1)]
+    def refined(self, bad: np.ndarray) -> _Arrays:
+        """Each listed cell and its two neighbours split in four."""
+        cells = np.unique(np.clip(np.concatenate([bad - 1, bad, bad + 1]), 0, len(self.h) - 1))
+        lo, h, interval = self.grid[cells], self.h[cells], self.interval[cells]
+        frac = np.array([0.25, 0.5, 0.75])
+        extra = (lo[:, None] + h[:, None] * frac).ravel()
+        extra_int = np.repeat(interval, 3)
+        new_pts = self.limits.points(extra, extra_int, extra_int)
+        sub_lo = (lo[:, None] + h[:, None] * np.array([0.0, 0.25, 0.5, 0.75])).ravel()
+        sub_h = np.repeat(h * 0.25, 4)
+        sub_int = np.repeat(interval, 4)
+        new_cells = self.limits.cells(sub_lo, sub_h, sub_int)
+        # merge points (old ones keep their values) and cells (split ones replaced)
+        grid = np.concatenate([self.grid, extra])
+        order = np.argsort(grid, kind="stable")
+        pts = tuple(np.concatenate([old, new])[order] for old, new in zip(self.pts, new_pts))
+        keep = np.ones(len(self.h), bool)
+        keep[cells] = False
+        cell_lo = np.concatenate([self.grid[:-1][keep], sub_lo])
+        corder = np.argsort(cell_lo, kind="stable")
+        interval_all = np.concatenate([self.interval[keep], sub_int])[corder]
+        m1 = np.concatenate([self.m1[:, keep], new_cells[0]], axis=1)[:, corder]
+        m2 = np.concatenate([self.m2[:, keep], new_cells[1]], axis=1)[:, corder]
+        v_in = np.concatenate([self.v_in[:, keep], new_cells[2]], axis=1)[:, corder]
+        return _Arrays(self.limits, grid[order], (interval_all, pts, (np.ascontiguousarray(m1),
+                                                                      np.ascontiguousarray(m2),
+                                                                      np.ascontiguousarray(v_in))))
 
-        return at
+    def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]
+        """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad)
+        with per cell the largest acceleration and speed ratio found by the re-check (at the
+        cell's end, with the cell's u and the next point's derivatives, and inside it)."""
+        from rmot.compiler.plan import topp
 
-    return for_grid, exact
-
-
-def _grid_factors(ss: np.ndarray, factors: np.ndarray, grid: np.ndarray) -> np.ndarray:
-    """(K, n) factors for toppra at the grid points (K,): the smallest over every waypoint
-    interval that meets [previous grid point, next grid point]. Between two grid points
-    toppra's path speed squared is linear in s, so its speed stays below the larger end value,
-    and both end values are then below every limit inside the interval: the limits hold
-    everywhere, not only at the grid points, even where a limit jumps between grid points."""
-    last = len(factors) - 1
-    lo = np.clip(np.searchsorted(ss, grid[:-1], side="right") - 1, 0, last)  # interval holding each cell's start
-    hi = np.clip(np.searchsorted(ss, grid[1:], side="left") - 1, lo, last)  # ... and its end
-    # reduceat takes the min over [lo[i], lo[i+1]) (just lo[i] where they are equal); hi[i] is
-    # lo[i+1] or the one before it
-    cell = np.minimum(np.minimum.reduceat(factors, lo, axis=0), factors[hi])
-    return np.vstack([cell[:1], np.minimum(cell[:-1], cell[1:]), cell[-1:]])
-
-
-def _grid_rate(ss: np.ndarray, rate: np.ndarray, grid: np.ndarray) -> np.ndarray:
-    """(K,) the path-speed rate toppra must respect at each grid point: its value there, or
-    the largest at a waypoint strictly between the neighbouring grid points (where the grid
-    skips waypoints, a peak of the rate between grid points must not be missed)."""
-    at = np.interp(grid, ss, rate)
-    inner = np.full(len(grid) - 1, -np.inf)  # per cell, the largest rate at a waypoint inside
-    lo = np.searchsorted(ss, grid[:-1], side="right")
-    hi = np.searchsorted(ss, grid[1:], side="left")
-    has = hi > lo
-    if np.any(has):  # only where the grid skips waypoints (long paths): a few hundred cells at most
-        inner[has] = [rate[a:b].max() for a, b in zip(lo[has], hi[has])]
-    return np.maximum(at, np.maximum(np.append(-np.inf, inner), np.append(inner, -np.inf)))
-
-
-def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray, scale_at=None) -> ConstAccelTiming:  # type: ignore[no-untyped-def]
-    import toppra
-    import toppra.algorithm as algo
-    import toppra.constraint as constraint
-
-    toppra.setup_logging("CRITICAL")
-    if scale_at is None:
-        velocity = constraint.JointVelocityConstraint(np.stack([-vlim, vlim], axis=1))
-    else:
-        def varying(s: float) -> np.ndarray:
-            v = vlim * scale_at(np.array([s]))[0]
-            return np.stack([-v, v], axis=1)
-
-        velocity = constraint.JointVelocityConstraintVarying(varying)
-    cons = [
-        velocity,
-        constraint.JointAccelerationConstraint(np.stack([-alim, alim], axis=1)),
-    ]
-    instance = algo.TOPPRA(cons, path, gridpoints=grid)
-    result = instance.compute_parameterization(0.0, 0.0)
-    sd_vec = result[1] if result is not None else None
-    if sd_vec is None or not np.all(np.isfinite(sd_vec)):
-        raise TimingError("toppra found no feasible timing for the path (the path may be non-smooth)")
-    sd = np.sqrt(np.maximum(np.asarray(sd_vec, dtype=float) ** 2, 0.0))
-    sd[0] = sd[-1] = 0.0
-    return ConstAccelTiming(path, grid, sd)
-
-
-def _ratios(
-    traj: ConstAccelTiming, vlim: np.ndarray, alim: np.ndarray, dt: float, dof: int, scale_at=None  # type: ignore[no-untyped-def]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """On a dense time grid, per coordinate: max |velocity| / vlim and max |acceleration| /
-    alim (joints only: extra coordinates' accelerations are shaping limits), and the path
-    parameters s where a limit (less its margin) is exceeded."""
-    duration = traj.duration
-    dense = np.linspace(0.0, duration, max(3, int(math.ceil(duration / dt)) + 1))
-    ts = np.union1d(dense, traj.ts)  # type: ignore[attr-defined] - and toppra's own grid times
-    _, xd, xdd = _eval(traj, ts)
-    rel_v = np.abs(xd) / (vlim if scale_at is None else vlim * scale_at(traj.params(ts)[0]))
-    rel_a = np.abs(xdd[:, :dof]) / alim[:dof]
-    over = np.any(rel_v > 1 - _V_MARGIN, axis=1) | np.any(rel_a > 1 - _A_MARGIN, axis=1)
-    ra = np.zeros(len(vlim))
-    ra[:dof] = np.max(rel_a, axis=0)
-    return np.max(rel_v, axis=0), ra, traj.params(ts[over])[0]
-
-
-def _refined(grid: np.ndarray, bad_s: np.ndarray) -> np.ndarray:
-    """The grid with each interval containing a bad s (and its two neighbours) split in four."""
-    idx = np.unique(np.clip(np.searchsorted(grid, bad_s) - 1, 0, len(grid) - 2))
-    idx = np.unique(np.clip(np.concatenate([idx - 1, idx, idx + 1]), 0, len(grid) - 2))
-    lo, hi = grid[idx], grid[idx + 1]
-    extra = (lo[:, None] + (hi - lo)[:, None] * np.array([0.25, 0.5, 0.75])).ravel()
-    return np.union1d(grid, extra)
+        for _ in range(rounds + 1):
+            x = topp.solve(self.grid, xmax, self.rows)
+            r_acc, r_vel = topp.check(x, self.h, self.d1, self.d2, self.m1, self.m2, self.v_in,
+                                      _CHECK_AT, self.c_cell)
+            bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
+            if not np.any(bad):
+                break
+            # local repair: lower the speed ceiling at the offending cells' two ends only (as a
+            # time stretch by k would, locally: speed / k, acceleration about / k^2)
+            worst = np.maximum(r_acc, r_vel ** 2)  # per cell, in units of x
+            cells = np.flatnonzero(bad)
+            factor = 1.0 / (worst[cells] * (1 + _A_MARGIN))
+            for end in (cells, cells + 1):
+                np.minimum.at(xmax, end, x[end] * factor)
+        return x, r_acc, r_vel, bad

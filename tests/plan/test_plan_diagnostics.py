@@ -153,13 +153,15 @@ def test_unknown_robot_is_a_diagnostic_not_an_exception() -> None:
 
 
 def test_timing_failure_is_a_diagnostic_and_the_robot_holds(monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    """If toppra finds no timing (it returns None), E228 at the move; the robot holds its place."""
-    import rmot.compiler.plan.timing as timing
+    """If no timing is found for a lone move, E228 at the move and its time; the robot holds its place."""
+    import rmot.compiler.plan.topp as topp
 
     def no_timing(*args, **kwargs):  # type: ignore[no-untyped-def]
-        raise timing.TimingError("toppra found no feasible timing for the path (the path may be non-smooth)")
+        raise timing.TimingError("no feasible timing was found for the path")
 
-    monkeypatch.setattr(timing, "_toppra", no_timing)
+    import rmot.compiler.plan.timing as timing
+
+    monkeypatch.setattr(topp, "solve", no_timing)
     p = Prog()
     first = p.joint(pose(300, -150, 300, **TOOL_DOWN))
     bad = p.linear(pose(300, 100, 300, **TOOL_DOWN))
@@ -169,6 +171,44 @@ def test_timing_failure_is_a_diagnostic_and_the_robot_holds(monkeypatch) -> None
     tp = plan.tasks[0]
     assert tp.record(bad).t_end == tp.record(bad).t_start == 0.0
     assert tp.record(after).t_end > 0.0
+
+
+def test_untimeable_chain_gets_exact_stops_not_dropped(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """A blended chain that cannot be timed as a whole: every corner becomes an exact stop
+    with W225 at its move and time, and the plan lasts as long as the same program with
+    `zone fine` (nothing vanishes, no 0 s hold)."""
+    import rmot.compiler.plan.chain as chain
+
+    real = chain.path_piece
+    calls = []
+
+    def fail_blended(wp, ss, *args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(1)
+        if len(calls) == 1:
+            raise chain.TimingError("no feasible timing was found for the path")
+        return real(wp, ss, *args, **kwargs)
+
+    def build(zone: float):  # type: ignore[no-untyped-def]
+        p = Prog()
+        p.joint([0, 0, 0, 0, 30, 0])
+        uids = [p.joint(pose(350, -100, 300, **TOOL_DOWN), zone=zone),
+                p.linear(pose(350, 100, 300, **TOOL_DOWN), zone=zone),
+                p.linear(pose(400, 100, 250, **TOOL_DOWN))]
+        return program(p.task()), uids
+
+    prog, uids = build(0.0)
+    fine = plan_program(prog)
+    monkeypatch.setattr(chain, "path_piece", fail_blended)
+    prog, uids = build(10.0)
+    plan = plan_program(prog)
+    warned = [(d.code.id, d.span.start.line, d.time_s) for d in plan.diagnostics if d.code.id == "W225"]
+    tp = plan.tasks[0]
+    assert [w[:2] for w in warned] == [("W225", uids[0]), ("W225", uids[1])]
+    for (_, uid, t) in warned:
+        assert t == pytest.approx(tp.record(uid).t_end)
+        assert f"t = {t:.3f} s" in next(d.message for d in plan.diagnostics if d.span.start.line == uid)
+    assert not [d for d in plan.diagnostics if d.severity is Severity.ERROR]
+    assert tp.trajectory.t[-1] == pytest.approx(fine.tasks[0].trajectory.t[-1], abs=0.01)
 
 
 def test_codes_are_registered_in_the_planner_range() -> None:

@@ -9,11 +9,10 @@ from hypothesis import strategies as st
 
 from rmot.compiler import ir
 from rmot.compiler.plan import plan_program
-from rmot.compiler.plan.timing import JERK_PER_ACCEL
 from rmot.lang.diagnostics import Severity
 
 from plan_helpers import Prog, pose, program, tcp_positions
-from test_plan_timing import jerk_limited_time
+from test_plan_timing import trapezoid_time
 
 TOOL_DOWN = dict(rx=180, ry=0, rz=180)  # tool pointing down, a usual work orientation
 
@@ -96,14 +95,14 @@ def test_velocity_is_the_derivative_of_position(line_plan) -> None:  # type: ign
 
 
 def test_single_joint_move_takes_the_analytic_time(irb120) -> None:  # type: ignore[no-untyped-def]
-    """Joint 1 turning 90 deg at 50% speed: the jerk-limited time within 1%."""
+    """Joint 1 turning 90 deg at 50% speed: the trapezoid time within 1%."""
     p = Prog()
     p.joint([0, 0, 0, 0, 30, 0])
     uid = p.joint([90, 0, 0, 0, 30, 0], joint_speed=0.5)
     plan = plan_program(program(p.task()))
     rec = plan.tasks[0].record(uid)
     v, a = irb120.velocity_limits[0] * 0.5, irb120.accel_limits[0]
-    expected = jerk_limited_time(np.pi / 2, v, a, JERK_PER_ACCEL * a)
+    expected = trapezoid_time(np.pi / 2, v, a)
     assert rec.t_end - rec.t_start == pytest.approx(expected, rel=0.01)
     assert np.max(np.abs(plan.tasks[0].trajectory.qd[:, 0])) == pytest.approx(v, rel=1e-6)
 

@@ -1,4 +1,4 @@
-"""ruckig and toppra pieces: exact limits, analytic durations, time stretching."""
+"""Timing pieces (one acceleration-limited model): exact limits, analytic durations, time stretching."""
 
 from __future__ import annotations
 
@@ -7,31 +7,24 @@ import math
 import numpy as np
 import pytest
 
-from rmot.compiler.plan.timing import JERK_PER_ACCEL, TimingError, joint_move_piece, path_piece, stretched
+from rmot.compiler.plan.timing import TimingError, joint_move_piece, path_piece, stretched
 
 
-def jerk_limited_time(dist: float, v: float, a: float, j: float) -> float:
-    """Rest-to-rest time of one axis under |v|, |a|, |j| limits (independent, by bisection)."""
-    def t_acc(vp: float) -> float:  # time to accelerate from 0 to vp
-        return vp / a + a / j if vp >= a * a / j else 2 * math.sqrt(vp / j)
-
-    lo, hi = 0.0, v
-    if hi * t_acc(hi) > dist:  # the peak speed v is not reached: find the peak
-        for _ in range(200):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if mid * t_acc(mid) < dist else (lo, mid)
-    vp = hi
-    return 2 * t_acc(vp) + (dist - vp * t_acc(vp)) / vp
+def trapezoid_time(dist: float, v: float, a: float) -> float:
+    """Rest-to-rest time of one axis under |v|, |a| limits (the textbook trapezoid/triangle)."""
+    if v * v / a >= dist:
+        return 2 * math.sqrt(dist / a)
+    return dist / v + v / a
 
 
 class TestJointMove:
     @pytest.mark.parametrize("dist", [0.05, 0.5, 1.0, 3.0])
-    def test_single_joint_duration_equals_the_jerk_limited_time(self, dist: float) -> None:
-        """One joint moving: ruckig's duration equals the analytic jerk-limited time within 1%."""
+    def test_single_joint_duration_equals_the_trapezoid_time(self, dist: float) -> None:
+        """One joint moving: the duration equals the analytic trapezoid time."""
         v, a = np.array([2.0, 1.0, 1.0]), np.array([6.0, 3.0, 3.0])
         piece = joint_move_piece(np.zeros(3), np.array([dist, 0, 0]), v, a)
-        expected = jerk_limited_time(dist, 2.0, 6.0, JERK_PER_ACCEL * 6.0)
-        assert piece.duration == pytest.approx(expected, rel=0.01)
+        expected = trapezoid_time(dist, 2.0, 6.0)
+        assert piece.duration == pytest.approx(expected, rel=1e-9)
 
     def test_all_joints_start_and_stop_together_on_a_straight_line(self) -> None:
         """Phase synchronisation: q(t) stays on the joint-space line from start to target."""

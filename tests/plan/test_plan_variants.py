@@ -51,7 +51,8 @@ class TestContinuation:
         assert v.trajectory.t[-1] >= mine[uids["wait"]].t_end - 1e-9
         assert mine[uids["wait"]].t_end - mine[uids["wait"]].t_start == pytest.approx(0.3)
         # it turns the base through 150 deg and back: longer than the main timeline after the if
-        assert np.max(v.trajectory.q[:, 0]) == pytest.approx(np.radians(150))
+        # (the 4 ms samples straddle the turning point: within a_max h^2 / 8 of it)
+        assert np.max(v.trajectory.q[:, 0]) == pytest.approx(np.radians(150), abs=2e-4)
         assert v.trajectory.t[-1] > tp.trajectory.t[-1]
         assert np.allclose(mine[uids["after1"]].q_target, np.radians(FINAL))
         target = pose(400, 50, 200, rx=180, rz=180).matrix()
@@ -59,7 +60,7 @@ class TestContinuation:
         assert np.allclose(v.trajectory.q[-1], mine[uids["after2"]].q_target, atol=1e-9)
         # the post-if move in the variant starts where the otherwise arm ended
         at = v.trajectory.at(mine[uids["after1"]].t_start)
-        assert np.allclose(at, np.radians(OTHER_END), atol=1e-6)
+        assert np.allclose(at, np.radians(OTHER_END), atol=2e-4)  # linear interpolation of 4 ms samples
 
     def test_later_ifs_take_their_then_arm_in_a_continuation(self) -> None:
         """Two ifs in a row give two variants (not four); the first one's continuation takes the second's then arm."""
@@ -98,9 +99,9 @@ class TestContinuation:
         assert len(tp.variants) == 2
         inner = next(v for v in tp.variants if v.index == 2)
         assert np.allclose(inner.trajectory.q[0], np.radians(OTHER_END), atol=1e-9)
-        assert np.min(inner.trajectory.q[:, 1]) == pytest.approx(np.radians(-20))
+        assert np.min(inner.trajectory.q[:, 1]) == pytest.approx(np.radians(-20), abs=2e-4)  # 4 ms samples
         rec = next(r for r in tp.records if r.variant == 2 and r.uid == after)
-        assert np.allclose(inner.trajectory.at(rec.t_start), np.radians([150, -20, 0, 0, 30, 0]), atol=1e-6)
+        assert np.allclose(inner.trajectory.at(rec.t_start), np.radians([150, -20, 0, 0, 30, 0]), atol=2e-4)
         assert np.allclose(inner.trajectory.q[-1], np.radians(FINAL), atol=1e-9)
 
 

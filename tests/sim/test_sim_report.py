@@ -35,8 +35,9 @@ class TestJson:
         """The JSON report validates against JSON_SCHEMA, with the documented fields."""
         doc = json.loads(format_json(reports))
         assert validate_json(doc) == []
-        assert doc["version"] == 1
+        assert doc["version"] == 2
         first = doc["programs"][0]
+        assert first["assumptions"]["motion_model"].startswith("acceleration-limited")
         assert first["file"] == PROGRAM_PATH and first["cycle_time_s"] == pytest.approx(1.5)
         hit = next(d for d in first["diagnostics"] if d["code"] == "E300")
         assert hit["line"] == 3 and hit["bodies"] == ["r1/link3", "post"]
@@ -92,9 +93,10 @@ class TestJunitSarifText:
         assert f"{PROGRAM_PATH}:3:3: error[E300]:" in text
         assert "   |   ^~~~" in text
         lines = text.strip().splitlines()
-        assert lines[-3].startswith(f"{PROGRAM_PATH}: FAILED: cycle time 1.500 s")
-        assert lines[-2] == "clean.rmot: ok: cycle time 1.500 s; 0 errors, 0 warnings"
-        assert lines[-1].startswith("note: collisions are checked along the whole path")
+        assert lines[-4].startswith(f"{PROGRAM_PATH}: FAILED: cycle time 1.500 s")
+        assert lines[-3] == "clean.rmot: ok: cycle time 1.500 s; 0 errors, 0 warnings"
+        assert lines[-2].startswith("note: collisions are checked along the whole path")
+        assert lines[-1].startswith("note: timing: acceleration-limited")  # the cycle time's assumptions
 
 
 class TestCheckCommand:

@@ -1,0 +1,88 @@
+"""What a reported cycle time assumes, and where the time goes (issue 11).
+
+`ASSUMPTIONS` is the model behind every cycle time rmot prints (lang/REFERENCE.md section 6);
+`ASSUMPTIONS_LINE` is its one-line form for text reports. `timing_json(plan)` gives per task
+the time spent moving, waiting and synchronising, and per instruction its start and end.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from rmot.compiler import ir, planned
+
+__all__ = ["ASSUMPTIONS", "ASSUMPTIONS_LINE", "timing_json"]
+
+ASSUMPTIONS: dict[str, str] = {
+    "motion_model": "acceleration-limited, no jerk limit; every chain of blended moves timed "
+                    "time-optimally along its planned path",
+    "limits": "joint velocity and acceleration; on linear and circular moves (and the blends "
+              "touching them) TCP path speed <= speed and TCP path acceleration <= accel",
+    "accelerations": "robot library values: estimates (vmax reached in 0.25 s) unless the robot's data "
+                     "cites a source; ABB IRB 120 estimated from ABB's published standard cycle (0.58 s)",
+    "payload": "payload, torque limits and servo lag do not change the timing",
+    "wait_until": "an awaited input arrives at once (timeouts are not simulated)",
+    "first_move": "the motion to a task's first target is not timed (the robot starts there)",
+}
+
+ASSUMPTIONS_LINE = ("timing: acceleration-limited, time-optimal on the planned path (no jerk limit); "
+                    "library accelerations are estimates; payload does not slow the robot; awaited "
+                    "inputs arrive at once; the motion to the first target is not counted")
+
+
+def _round(x: float) -> float:
+    return round(float(x), 6)
+
+
+def _instructions(body: tuple[ir.Instr, ...]) -> dict[int, ir.Instr]:
+    out: dict[int, ir.Instr] = {}
+    for instr in body:
+        out[instr.uid] = instr
+        for nested in ("then", "otherwise", "body"):
+            inner = getattr(instr, nested, None)
+            if isinstance(inner, tuple):
+                out.update(_instructions(inner))
+    return out
+
+
+def _union(intervals: list[tuple[float, float]]) -> float:
+    total, end = 0.0, float("-inf")
+    for a, b in sorted(intervals):
+        if b <= end:
+            continue
+        total += b - max(a, end)
+        end = b
+    return total
+
+
+_KIND = {ir.Move: "move", ir.SetDigital: "set", ir.SetAnalog: "set", ir.Pulse: "pulse",
+         ir.WaitTime: "wait", ir.WaitInput: "wait_until", ir.If: "if", ir.Sync: "sync",
+         ir.Native: "native", ir.ProcCall: "call"}
+
+
+def timing_json(plan: planned.Plan) -> list[dict[str, Any]]:
+    """Per task (main timeline): cycle time, time moving / waiting / synchronising (they add up
+    to the cycle time: waiting is every other instant the robot stands still), and every
+    instruction's start and end (s). Records of `if` variants carry their variant number."""
+    tasks = []
+    for tp in plan.tasks:
+        by_uid = _instructions(tp.task.body)
+        main = [r for r in tp.records if r.variant == 0]
+        kind = {r.uid: _KIND.get(type(by_uid.get(r.uid)), "other") for r in tp.records}
+        moving = _union([(r.t_start, r.t_end) for r in main if kind[r.uid] == "move"])
+        syncing = _union([(r.t_start, r.t_end) for r in main if kind[r.uid] == "sync"])
+        cycle = float(tp.cycle_time)
+        tasks.append({
+            "task": tp.task.name,
+            "robot": tp.robot,
+            "cycle_time_s": _round(cycle),
+            "moving_s": _round(moving),
+            "waiting_s": _round(max(cycle - moving - syncing, 0.0)),
+            "sync_s": _round(syncing),
+            "instructions": [
+                {"uid": r.uid, "kind": kind[r.uid], "line": r.span.start.line if r.span else None,
+                 "start_s": _round(r.t_start), "end_s": _round(r.t_end), "variant": r.variant}
+                for r in sorted(tp.records, key=lambda r: (r.variant, r.t_start, r.uid))
+            ],
+        })
+    return tasks
