@@ -187,8 +187,15 @@ def test_cli_no_cache_leaves_the_cache_folder_alone(cache: Path, tmp_path: Path)
     assert result.exit_code == 0, result.output
     assert len(entries(cache)) == 1
     out = tmp_path / "out"
-    result = CliRunner().invoke(cli, ["compile", str(prog), "--target", "rapid", "-o", str(out), "--no-cache"])
-    assert result.exit_code == 0, result.output
+    fresh = CliRunner().invoke(cli, ["compile", str(prog), "--target", "rapid", "-o", str(out / "a"), "--no-cache"])
+    cached = CliRunner().invoke(cli, ["compile", str(prog), "--target", "rapid", "-o", str(out / "b")])
+    assert fresh.exit_code == cached.exit_code == 0, fresh.output + cached.output
+    assert list((out / "a").rglob("*.mod")) and [p.read_bytes() for p in sorted((out / "a").rglob("*.*"))] == \
+        [p.read_bytes() for p in sorted((out / "b").rglob("*.*"))]  # the cached plan emits the same bytes
+    fresh = CliRunner().invoke(cli, ["plan", str(prog), "--no-cache", "--step", "8ms"])
+    cached = CliRunner().invoke(cli, ["plan", str(prog), "--step", "8ms"])
+    assert fresh.exit_code == cached.exit_code == 0 and fresh.output == cached.output and "cycle time" in fresh.output
+    assert len(entries(cache)) == 2  # --step 8ms is another plan
 
 
 def test_an_unwritable_cache_warns_w700_and_still_plans(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
