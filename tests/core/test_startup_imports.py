@@ -51,6 +51,13 @@ def test_robots_ik_loads_neither_the_parser_nor_the_planner(env: dict[str, str])
     assert not names & {"matplotlib", "toppra", "ruckig", "lark", "cvxpy", "trimesh", "fcl", "PIL"}
 
 
+@pytest.mark.parametrize("args", [["robots", "list"], ["robots", "fk", "abb_irb120", "0", "0", "0", "0", "30", "0"]])
+def test_robot_library_without_ik_loads_no_numba(env: dict[str, str], args: list[str]) -> None:
+    names = imported(args, env)
+    assert "pinocchio" in names
+    assert not names & {"numba", "scipy", "lark", "matplotlib", "toppra"}
+
+
 def test_check_with_a_cached_plan_loads_no_planner_nor_plotting(env: dict[str, str], tmp_path: Path) -> None:
     prog = tmp_path / "three.rmot"
     prog.write_text(THREE, encoding="utf-8")
