@@ -269,3 +269,21 @@ def test_codec_round_trips_plain_values() -> None:
              np.float32(1.5), np.arange(6, dtype=np.int16).reshape(2, 3), ir.MotionKind.LINEAR)
     doc, arrays = encode(value)
     same(value, decode(doc, arrays), "value")
+
+
+def test_concurrent_runs_share_one_valid_entry(cache: Path, tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    prog = tmp_path / "three.rmot"
+    prog.write_text(THREE, encoding="utf-8")
+    cmd = [sys.executable, "-c", "import sys; from rmot.compiler.cli import main; sys.argv[0] = 'rmot'; main()",
+           "check", "--format", "json", str(prog)]
+    env = dict(os.environ, RMOT_CACHE_DIR=str(cache))
+    runs = [subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for _ in range(3)]
+    outputs = [r.communicate() for r in runs]
+    assert [r.returncode for r in runs] == [0, 0, 0], outputs
+    assert len({out for out, _ in outputs}) == 1  # the same report, whoever wrote the entry
+    (entry,) = entries(cache)  # one entry, no temporary file left behind
+    assert not list(cache.glob("plans/*/.tmp-*"))
+    assert plan_cache._read(entry, entry.stem) is not None
