@@ -7,10 +7,38 @@ The grammar is lang/grammar/rmot.lark (lark LALR); `ast` holds the frozen node t
 `codes` the E0xx diagnostic codes; `diagnostics` and `source` the shared Span/Diagnostic types.
 """
 
-from rmot.lang import ast, codes
-from rmot.lang.diagnostics import Code, Diagnostic, DiagnosticSink, Severity, render, render_all
-from rmot.lang.parse import KEYWORDS, UNITS, ParseResult, parse_source, parse_text, wrap_syntax_error
-from rmot.lang.source import Pos, SourceFile, Span
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from rmot.lang import ast, codes
+    from rmot.lang.diagnostics import Code, Diagnostic, DiagnosticSink, Severity, render, render_all
+    from rmot.lang.parse import KEYWORDS, UNITS, ParseResult, parse_source, parse_text, wrap_syntax_error
+    from rmot.lang.source import Pos, SourceFile, Span
+
+# Names load on first use (PEP 562): importing rmot.lang.source or .diagnostics (as the IR, the
+# robot library and every report do) must not build the parser, which only parsing needs.
+_LAZY = {
+    "Code": "diagnostics", "Diagnostic": "diagnostics", "DiagnosticSink": "diagnostics",
+    "Severity": "diagnostics", "render": "diagnostics", "render_all": "diagnostics",
+    "KEYWORDS": "parse", "UNITS": "parse", "ParseResult": "parse", "parse_source": "parse",
+    "parse_text": "parse", "wrap_syntax_error": "parse",
+    "Pos": "source", "SourceFile": "source", "Span": "source",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in ("ast", "codes"):
+        return importlib.import_module(f"rmot.lang.{name}")
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'rmot.lang' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"rmot.lang.{module}"), name)
+    globals()[name] = value
+    return value
+
 
 __all__ = [
     "KEYWORDS", "UNITS", "Code", "Diagnostic", "DiagnosticSink", "ParseResult", "Pos", "Severity",

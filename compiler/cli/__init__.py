@@ -74,8 +74,15 @@ def _version() -> str:
         return "0+unknown"
 
 
+class _LazyVersion:
+    """The installed version, looked up only when --version prints it (importlib.metadata is slow)."""
+
+    def __str__(self) -> str:
+        return _version()
+
+
 @click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(_version(), "--version", prog_name="rmot", message="%(prog)s %(version)s")
+@click.version_option(_LazyVersion(), "--version", prog_name="rmot", message="%(prog)s %(version)s")  # type: ignore[arg-type]
 def cli() -> None:
     """rmot — an off-line robot programming compiler.
 

@@ -44,7 +44,7 @@ def parse_length(text: str) -> float:
 
 
 def check_one(path: str, cell: str | None = None, project_root: str | None = None,
-              clearance: float | None = None, images: str | None = None) -> CheckOutcome:
+              clearance: float | None = None, images: str | None = None, use_cache: bool = True) -> CheckOutcome:
     """One program through front end -> planner -> verification (runs in a worker process)."""
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim import codes
@@ -56,7 +56,7 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
 
     try:
         from rmot.compiler.frontend import load_program
-        from rmot.compiler.plan import plan_program
+        from rmot.compiler.plan_cache import cached_plan
     except ImportError as exc:
         return failed(f"this build cannot check programs yet: {exc}")
     # the front end reports a missing file (E501) and a file without a program (E119)
@@ -67,7 +67,7 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     from rmot.sim import verify
 
     try:
-        plan = plan_program(front.program)
+        plan = cached_plan(front.program, use_cache=use_cache)
         report = verify(plan, clearance=clearance)
     except Exception as exc:  # a bug in a stage: say so in the report, never as a traceback
         return failed(f"internal error while planning or verifying ({exc.__class__.__name__}: {exc}); please report it")
@@ -142,8 +142,9 @@ def _format(fmt: str, reports: list[Report]) -> str:
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
 @click.option("--shard", default=None, metavar="K/N",
               help="Check only shard K of N: a deterministic, size-balanced share of PROGRAMs (CI matrices).")
+@click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
 def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | None, clearance: str | None,
-          jobs: int, images: str | None, project_root: str | None, shard: str | None) -> None:
+          jobs: int, images: str | None, project_root: str | None, shard: str | None, no_cache: bool) -> None:
     """Parse, plan and verify PROGRAMs; report collisions, limit excesses and cycle times."""
     if shard is not None:
         from rmot.compiler.cli.shard import parse_shard, select_shard
@@ -158,7 +159,8 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
             clearance_m = parse_length(clearance)
         except ValueError as exc:
             raise click.BadParameter(str(exc), param_hint="--clearance") from None
-    args = [(p, cell, project_root, clearance_m, images) for p in programs]
+    # use_cache=False is passed only when asked for: check_one's first five arguments stay as they were
+    args = [(p, cell, project_root, clearance_m, images) + ((False,) if no_cache else ()) for p in programs]
     if jobs > 1 and len(programs) > 1:
         with ProcessPoolExecutor(max_workers=min(jobs, len(programs))) as pool:
             outcomes = list(pool.map(_check_args, args))

@@ -41,12 +41,12 @@ class CompileOutcome:
 
 def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = None,
                     project_root: str | None = None, allow_findings: bool = False,
-                    source_map: bool = True, write_frames: bool = False) -> CompileOutcome:
+                    source_map: bool = True, write_frames: bool = False, use_cache: bool = True) -> CompileOutcome:
     """Run the pipeline in memory; nothing is written here."""
     from rmot.backends import BACKENDS
 
     from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan_cache import cached_plan
     from rmot.sim import verify
 
     # the front end reports a missing file (E501) and a file without a program (E119)
@@ -54,7 +54,7 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     diagnostics = tuple(front.diagnostics)
     if front.program is None or any(d.is_error for d in diagnostics):
         return CompileOutcome({}, diagnostics, EXIT_INPUT)
-    plan = plan_program(front.program)
+    plan = cached_plan(front.program, use_cache=use_cache)
     report = verify(plan)
     diagnostics += tuple(report.diagnostics)
     findings = any(d.is_error for d in report.diagnostics)
@@ -105,14 +105,15 @@ def write_all(outdir: str, files: dict[str, str]) -> list[str]:
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
 @click.option("--write-frames", is_flag=True,
               help="Also write numbered tools and frames into the controller's stored data (Fanuc, KRL).")
+@click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
 def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: str, allow_findings: bool,
-             no_source_map: bool, project_root: str | None, write_frames: bool) -> None:
+             no_source_map: bool, project_root: str | None, write_frames: bool, no_cache: bool) -> None:
     """Verify PROGRAM, then write it for each --target controller."""
     from rmot.lang.diagnostics import render
 
     outcome = compile_program(program, targets, cell=cell, project_root=project_root,
                               allow_findings=allow_findings, source_map=not no_source_map,
-                              write_frames=write_frames)
+                              write_frames=write_frames, use_cache=not no_cache)
     for d in outcome.diagnostics:
         click.echo(render(d), err=True)
     ctx = click.get_current_context()

@@ -77,7 +77,8 @@ def _load(file: str, cell: str | None, project_root: str | None):  # type: ignor
 @click.option("--csv", "csv_out", type=click.Path(dir_okay=False), default=None, help="Write the sampled trajectory here.")
 @click.option("--step", default="4ms", show_default=True, help="Sampling step of the trajectory.")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
-def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_root: str | None) -> None:
+@click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
+def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_root: str | None, no_cache: bool) -> None:
     """Plan FILE: joint trajectories, cycle time per task, planning diagnostics."""
     from rmot.lang.diagnostics import render
 
@@ -87,9 +88,9 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
         click.echo(render(d), err=True)
     if program is None or any(d.is_error for d in diagnostics):
         raise SystemExit(EXIT_INPUT)
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan_cache import cached_plan
 
-    result = plan_program(program, step=step_s)
+    result = cached_plan(program, step=step_s, use_cache=not no_cache)
     for d in result.diagnostics:
         click.echo(render(d), err=True)
     for tp in result.tasks:

@@ -85,10 +85,11 @@ def _output_format(ctx: click.Context, param: click.Parameter, value: str) -> st
               help='front|side|top|iso, or e.g. "eye=3,-3,2;center=0.5,0,0.5;fov=40" (m, deg); keys left out keep the default view.')
 @click.option("--fps", type=click.IntRange(1, 60), default=None, help="Frames per second of animations [GIF 10, MP4 and HTML 25].")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Directory that file paths may not leave.")
+@click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
 def render(program: str, cell: str | None, output: str, at: float, size: tuple[int, int] | None, aa: int | None,
-           camera: str | None, fps: int | None, project_root: str | None) -> None:
+           camera: str | None, fps: int | None, project_root: str | None, no_cache: bool) -> None:
     """Render a program to PNG, GIF, MP4, SVG or HTML."""
-    plan = _plan(program, cell, project_root)
+    plan = _plan(program, cell, project_root, use_cache=not no_cache)
     ext = os.path.splitext(output)[1].lower()
     fps = fps or (10 if ext == ".gif" else 25)  # GIF: fewer frames keep the file small
     try:
@@ -129,11 +130,11 @@ def _report(diagnostics: Any, stop_on_error: bool = True) -> None:
         sys.exit(EXIT_INPUT)
 
 
-def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
+def _plan(program: str, cell: str | None, project_root: str | None, use_cache: bool = True) -> Any:
     """Front end then planner. Front-end errors end the command (exit 2; a missing file is E501, a
     file without a program E119); planning errors are printed and the plan is still drawn, exit 1."""
     from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan_cache import cached_plan
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes
 
@@ -142,7 +143,7 @@ def _plan(program: str, cell: str | None, project_root: str | None) -> Any:
     if loaded.program is None:
         _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,
                          f"'{program}' must contain a program to render (got only a cell)", None))
-    planned = plan_program(loaded.program)
+    planned = cached_plan(loaded.program, use_cache=use_cache)
     _report(planned.diagnostics, stop_on_error=False)
     return planned
 

@@ -123,14 +123,18 @@ def _adjacent(solids: tuple[LinkSolid, ...], extra: tuple[tuple[str, str], ...])
 
 
 def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # type: ignore[no-untyped-def]
-    """flange_inv: the vendor flange -> OPW flange transform (identity unless turned)."""
-    from rmot.compiler.robots import fastik
-
+    """flange_inv: the vendor flange -> OPW flange transform (identity unless turned).
+    The numba kernels load on the first IK call, not when the robot is built: `robots list`,
+    `show`, `fk` and the front end never pay for numba."""
     turned = not np.allclose(flange_inv, np.eye(4))
-    args = fastik.opw_kernel_args(p, jmap)
+    kernel: list = []  # [fastik.opw_solve, its parameter arrays], filled on the first call
 
     def closed_form(poses: np.ndarray) -> np.ndarray:
-        return fastik.opw_solve(args, poses @ flange_inv if turned else poses)
+        if not kernel:
+            from rmot.compiler.robots import fastik
+
+            kernel.extend((fastik.opw_solve, fastik.opw_kernel_args(p, jmap)))
+        return kernel[0](kernel[1], poses @ flange_inv if turned else poses)
 
     def distance(pose: np.ndarray) -> float:
         c = pose[:3, 3] - p.c4 * pose[:3, 2]  # the flange turn is about z: same axis
@@ -148,11 +152,11 @@ def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # typ
 
 
 def _ur_solver(p: UrParams):  # type: ignore[no-untyped-def]
-    from rmot.compiler.robots import fastik
-
     p_arr = np.array([p.d1, p.a2, p.a3, p.d4, p.d5, p.d6])
 
     def closed_form(poses: np.ndarray) -> np.ndarray:
+        from rmot.compiler.robots import fastik  # numba loads on the first IK call (see _opw_solver)
+
         return fastik.ur_solve(p_arr, poses)
 
     def distance(pose: np.ndarray) -> float:

@@ -1,0 +1,253 @@
+"""One plan per program: a content-addressed cache of Plans shared by check, compile, render, plan.
+
+    from rmot.compiler.plan_cache import cached_plan
+    plan = cached_plan(front.program, step=0.004, use_cache=not no_cache)
+
+The key (SHA-256) covers everything the plan is a function of:
+- the checked ir.Program, encoded by the plan codec — it holds the text of every source file
+  the front end read (program, imports, cell: each Span keeps its SourceFile), the cell, the
+  robots' load keys (library name, URDF path, or a cell model's full parameters);
+- the bytes of every file the program names by absolute path (URDFs, meshes, a URDF chain's file);
+- rmot's version and a digest of rmot's own files (code, robot library, grammar, data), so any
+  change to the compiler invalidates every entry;
+- the planning options (the sampling step).
+
+Entries live in the user's cache directory, never beside the program: $RMOT_CACHE_DIR, else
+$XDG_CACHE_HOME/rmot, else ~/.cache/rmot; one file per plan, plans/<k[:2]>/<key>.npz (JSON
+document + arrays, read with allow_pickle=False: no pickle anywhere). Writes go to a temporary
+file in the same folder and are renamed into place (atomic, safe under concurrent runs: two
+runs writing the same key write the same bytes). An entry that cannot be read, is truncated or
+was written by another version is deleted and rebuilt, never an error. The cache is bounded
+(MAX_BYTES): after a write the least recently used entries beyond it are removed.
+A directory that cannot be written gives warning W700 in the plan's diagnostics.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib.util
+import io
+import json
+import os
+import tempfile
+import time
+import zipfile
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rmot.compiler.plan_codec import CodecError, decode, encode
+
+if TYPE_CHECKING:
+    from rmot.compiler import ir
+    from rmot.compiler.planned import Plan
+
+__all__ = ["MAX_BYTES", "cache_dir", "cached_plan", "evict", "plan_key", "source_digest"]
+
+FORMAT = "rmot-plan-cache/1"
+MAX_BYTES = 500 * 1024 * 1024  # bound on the plans folder; least recently used entries go first
+_PACKAGES = ("rmot.lang", "rmot.compiler", "rmot.backends", "rmot.sim")
+_KEY_PREFIXES = ("urdf-chain:",)  # load keys that carry a JSON list holding a file path
+_STALE_TEMP_S = 3600.0
+_source_digest: str | None = None
+
+
+def cache_dir() -> Path:
+    """$RMOT_CACHE_DIR, else $XDG_CACHE_HOME/rmot, else ~/.cache/rmot."""
+    explicit = os.environ.get("RMOT_CACHE_DIR")
+    if explicit:
+        return Path(explicit)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache"
+    return base / "rmot"
+
+
+def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = True) -> Plan:
+    """plan_program(program, step=step), read from the cache when the same inputs were planned."""
+    if not use_cache:
+        return _plan(program, step)
+    try:
+        key = plan_key(program, step)
+    except (CodecError, OSError):  # a value the codec does not know: plan without the cache
+        return _plan(program, step)
+    path = cache_dir() / "plans" / key[:2] / f"{key}.npz"
+    plan = _read(path, key)
+    if plan is not None:
+        return plan
+    plan = _plan(program, step)
+    try:
+        _write(path, key, plan)
+    except CodecError:
+        return plan
+    except OSError as exc:
+        return _with_warning(plan, path.parent.parent.parent, exc)
+    try:
+        evict(path.parent.parent, MAX_BYTES)
+    except OSError:
+        pass
+    return plan
+
+
+def _plan(program: ir.Program, step: float) -> Plan:
+    from rmot.compiler.plan import plan_program
+
+    return plan_program(program, step=step)
+
+
+def _with_warning(plan: Plan, folder: Path, exc: OSError) -> Plan:
+    from rmot.compiler import cache_codes
+    from rmot.lang.diagnostics import Diagnostic, Severity
+
+    msg = (f"plan cache directory '{folder}' must be writable (got {exc.strerror or exc}); "
+           "set RMOT_CACHE_DIR or pass --no-cache")
+    note = Diagnostic(cache_codes.CACHE_UNWRITABLE, Severity.WARNING, msg, None)
+    return dataclasses.replace(plan, diagnostics=plan.diagnostics + (note,))
+
+
+# ---------------------------------------------------------------------------- the key
+def plan_key(program: ir.Program, step: float) -> str:
+    """The hex SHA-256 of everything the plan of `program` depends on (see the module doc)."""
+    h = hashlib.sha256()
+    doc, arrays = encode(program)
+    text = json.dumps(doc, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    for part in (FORMAT, _version(), source_digest(), float(step).hex()):
+        h.update(part.encode() + b"\0")
+    h.update(text.encode())
+    for a in arrays:
+        h.update(f"{a.dtype.str}{a.shape}".encode())
+        h.update(np.ascontiguousarray(a).tobytes())
+    for path in sorted(_named_files(doc)):
+        h.update(b"\0file\0" + path.encode() + b"\0")
+        try:
+            h.update(hashlib.sha256(Path(path).read_bytes()).digest())
+        except OSError:
+            h.update(b"<unreadable>")
+    return h.hexdigest()
+
+
+def _named_files(doc: Any) -> set[str]:
+    """Absolute paths of existing files among the strings of a document (and of load keys)."""
+    found: set[str] = set()
+    stack = [doc]
+    while stack:
+        v = stack.pop()
+        if isinstance(v, str):
+            if v.startswith(_KEY_PREFIXES):
+                try:
+                    stack.append(json.loads(v.split(":", 1)[1]))
+                except ValueError:
+                    pass
+            elif 1 < len(v) < 4096 and "\n" not in v and os.path.isabs(v) and os.path.isfile(v):
+                found.add(v)
+        elif isinstance(v, dict):
+            stack.extend(v.values())
+        elif isinstance(v, list):
+            stack.extend(v)
+    return found
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("rmot")
+    except PackageNotFoundError:
+        return "0+unknown"
+
+
+def source_digest() -> str:
+    """SHA-256 over rmot's own files (every file of its four packages but bytecode), once per process."""
+    global _source_digest
+    if _source_digest is None:
+        h = hashlib.sha256()
+        for package in _PACKAGES:
+            spec = importlib.util.find_spec(package)
+            for root in (spec.submodule_search_locations or []) if spec else []:
+                for path in sorted(Path(root).rglob("*")):
+                    if "__pycache__" in path.parts or path.suffix == ".pyc" or not path.is_file():
+                        continue
+                    h.update(f"{package}/{path.relative_to(root).as_posix()}\0".encode())
+                    h.update(hashlib.sha256(path.read_bytes()).digest())
+        _source_digest = h.hexdigest()
+    return _source_digest
+
+
+# ---------------------------------------------------------------------------- entries
+def _read(path: Path, key: str) -> Plan | None:
+    """The Plan stored under `path`, or None (a missing, corrupt or foreign entry is removed)."""
+    from rmot.compiler.planned import Plan
+
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            meta = json.loads(bytes(z["__meta__"]).decode("utf-8"))
+            if meta.get("format") != FORMAT or meta.get("key") != key:
+                raise CodecError("an entry of another format or key")
+            arrays = [z[f"a{i}"] for i in range(int(meta["arrays"]))]
+        plan = decode(meta["doc"], arrays)
+        if not isinstance(plan, Plan):
+            raise CodecError("the entry does not hold a Plan")
+    except FileNotFoundError:
+        return None
+    except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, CodecError, UnicodeDecodeError):
+        _remove(path)
+        return None
+    try:
+        os.utime(path)  # recently used: evicted last
+    except OSError:
+        pass
+    return plan
+
+
+def _write(path: Path, key: str, plan: Plan) -> None:
+    doc, arrays = encode(plan)
+    meta = json.dumps({"format": FORMAT, "key": key, "arrays": len(arrays), "doc": doc},
+                      separators=(",", ":"), allow_nan=False).encode("utf-8")
+    buffer = io.BytesIO()
+    members = {"__meta__": np.frombuffer(meta, dtype=np.uint8)}
+    members.update({f"a{i}": a for i, a in enumerate(arrays)})
+    np.savez(buffer, **members)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".npz", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(buffer.getbuffer())
+        os.replace(tmp, path)
+    except BaseException:
+        _remove(Path(tmp))
+        raise
+
+
+def _remove(path: Path) -> None:
+    try:
+        path.unlink()
+    except OSError:
+        pass
+
+
+def evict(folder: Path, max_bytes: int) -> int:
+    """Remove the least recently used entries until the folder holds at most max_bytes; also
+    temporary files left by killed runs. Returns the number of files removed."""
+    entries = []
+    removed = 0
+    now = time.time()
+    for path in Path(folder).glob("*/*.npz"):
+        try:
+            st = path.stat()
+        except OSError:
+            continue
+        if path.name.startswith(".tmp-"):
+            if now - st.st_mtime > _STALE_TEMP_S:
+                _remove(path)
+                removed += 1
+            continue
+        entries.append((st.st_mtime, st.st_size, path))
+    total = sum(size for _, size, _ in entries)
+    for _, size, path in sorted(entries):
+        if total <= max_bytes:
+            break
+        _remove(path)
+        total -= size
+        removed += 1
+    return removed
