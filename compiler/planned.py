@@ -1,7 +1,7 @@
 """The Plan: what the robots will do, as data — the planner's hand-off to sim and backends.
 
 Lives outside `compiler.plan` on purpose: the backends and the simulator import these
-types, never the planner itself (nor pinocchio, toppra or ruckig).
+types, never the planner itself (nor pinocchio or scipy).
 
 Shapes: `t (N,)`, `q, qd, qdd (N, dof)`; SI units (rad, rad/s, rad/s^2; m for prismatic).
 Arrays are made read-only when a Trajectory is built.

@@ -1,7 +1,7 @@
 """The `rmot` command line: the only place with file I/O and exit codes.
 
 Each subcommand lives in its own module and is imported only when it runs, so that
-`rmot --help` stays fast (pinocchio, toppra, cvxpy and numba load only when needed).
+`rmot --help` stays fast (pinocchio, scipy and numba load only when needed).
 
 Exit codes: 0 clean, 1 findings of severity error, 2 usage or input error.
 """

@@ -81,7 +81,7 @@ class ConstAccelTiming:
     """A path timed piecewise at constant path acceleration between grid points (what toppra's
     ParametrizeConstAccel does), evaluated vectorised and invertible (t at a given s).
 
-    path: a toppra SplineInterpolator over s; ss (K,) grid; sd (K,) path speeds at the grid.
+    path: a cubic spline q(s) (_PathSpline); ss (K,) grid; sd (K,) path speeds at the grid.
     """
 
     path: object
@@ -286,10 +286,31 @@ def _arc_rates(spline, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # type:
     return l1, l2
 
 
-def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
-    import toppra
+class _PathSpline:
+    """q(s) and its first two derivatives: the not-a-knot cubic spline through the waypoints,
+    the same interpolation as toppra's SplineInterpolator default, built on scipy directly so
+    that timing never imports toppra (whose package and algorithm modules import matplotlib:
+    ~1 s of start-up for every command that plans; issue 18)."""
 
-    return toppra.SplineInterpolator(ss, waypoints)
+    def __init__(self, ss: np.ndarray, waypoints: np.ndarray) -> None:
+        from scipy.interpolate import CubicSpline
+
+        self._constant = waypoints[0] if len(ss) == 1 else None
+        if self._constant is None:
+            spline = CubicSpline(ss, waypoints, bc_type="not-a-knot")
+            self._orders = (spline, spline.derivative(), spline.derivative(2))
+
+    def __call__(self, s: np.ndarray, order: int = 0) -> np.ndarray:
+        if order not in (0, 1, 2):
+            raise ValueError(f"derivative order must be 0, 1 or 2 (got {order})")
+        if self._constant is not None:
+            value = self._constant if order == 0 else np.zeros_like(self._constant)
+            return np.broadcast_to(value, (*np.shape(s), len(value))).copy()
+        return self._orders[order](s)  # type: ignore[no-any-return]
+
+
+def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
+    return _PathSpline(ss, waypoints)
 
 
 def _grid(ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -68,9 +68,6 @@ def test_check_with_a_cached_plan_loads_no_planner_nor_plotting(env: dict[str, s
     assert not names & {"matplotlib", "toppra", "ruckig", "cvxpy", "PIL", "imageio"}
 
 
-@pytest.mark.xfail(reason="toppra, imported by compiler/plan/timing.py, imports matplotlib.pyplot in its "
-                          "__init__ and algorithm module; the timing rewrite (issue 11, topp.py) removes it",
-                   strict=True)
 def test_check_without_cache_loads_no_plotting(env: dict[str, str], tmp_path: Path) -> None:
     prog = tmp_path / "three.rmot"
     prog.write_text(THREE, encoding="utf-8")
