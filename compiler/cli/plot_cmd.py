@@ -37,11 +37,11 @@ def fail(*diagnostics: Any) -> None:
     sys.exit(EXIT_INPUT)
 
 
-def load_plan(program: str, cell: str | None, project_root: str | None) -> Any:
+def load_plan(program: str, cell: str | None, project_root: str | None, use_cache: bool = True) -> Any:
     """Front end then planner: front-end errors end the command (exit 2); planning errors are
     printed and the plan is returned (the caller exits 1 after writing its file)."""
     from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan_cache import cached_plan
     from rmot.lang.diagnostics import Diagnostic, Severity, render_all
     from rmot.sim.render import codes
 
@@ -52,7 +52,7 @@ def load_plan(program: str, cell: str | None, project_root: str | None) -> Any:
         sys.exit(EXIT_INPUT)
     if loaded.program is None:
         fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR, f"'{program}' must contain a program (got only a cell)", None))
-    planned = plan_program(loaded.program)
+    planned = cached_plan(loaded.program, use_cache=use_cache)
     if planned.diagnostics:
         click.echo(render_all(tuple(planned.diagnostics)), err=True)
     return planned
@@ -80,9 +80,10 @@ def write_or_fail(path: str, data: bytes) -> None:
 @click.option("--what", type=click.Choice(KINDS), default="joints", show_default=True, help="What to plot.")
 @click.option("--cell", type=click.Path(dir_okay=False), default=None, help="The cell file, if not in PROGRAM.")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Directory that file paths may not leave.")
-def plot(program: str, output: str, what: str, cell: str | None, project_root: str | None) -> None:
+@click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
+def plot(program: str, output: str, what: str, cell: str | None, project_root: str | None, no_cache: bool) -> None:
     """Plot a program's joints, speeds, torques, TCP speed or timeline to PNG or SVG."""
-    plan = load_plan(program, cell, project_root)
+    plan = load_plan(program, cell, project_root, use_cache=not no_cache)
     from rmot.sim.plots import figure_bytes, plot_data
 
     fmt = os.path.splitext(output)[1].lower().lstrip(".")

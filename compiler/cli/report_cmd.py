@@ -31,11 +31,12 @@ def _output(ctx: click.Context, param: click.Parameter, value: str) -> str:
 @click.option("-o", "--output", required=True, callback=_output, help="The HTML page to write.")
 @click.option("--cell", type=click.Path(dir_okay=False), default=None, help="Cell file (overrides `use cell`).")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
-def report(programs: tuple[str, ...], output: str, cell: str | None, project_root: str | None) -> None:
+@click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
+def report(programs: tuple[str, ...], output: str, cell: str | None, project_root: str | None, no_cache: bool) -> None:
     """Verify PROGRAMs and write one HTML page: findings with pictures, plots, 3D view, data."""
     from rmot.compiler.cli.plot_cmd import write_or_fail
     from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan_cache import cached_plan
     from rmot.lang.diagnostics import render_all
     from rmot.sim import verify
     from rmot.sim.report_html import ProgramResult, render_report
@@ -48,7 +49,7 @@ def report(programs: tuple[str, ...], output: str, cell: str | None, project_roo
             input_error = True
             results.append(ProgramResult(path, None, front))
             continue
-        plan = plan_program(loaded.program)
+        plan = cached_plan(loaded.program, use_cache=not no_cache)
         checked = verify(plan)
         results.append(ProgramResult(path, plan, front + tuple(checked.diagnostics), dict(checked.cycle_times)))
     page, problems = render_report(results)
