@@ -106,3 +106,25 @@ def test_report_opens_clean_with_findings_plots_and_viewer(pages: dict[str, obje
     img = np.asarray(Image.open(shot).convert("RGB"))
     assert red(img).sum() > 200  # the verdict badge, the finding's border and its picture
     assert len(np.unique(img.reshape(-1, 3), axis=0)) > 200  # the finding's picture is drawn
+
+
+SHIPPED = sorted(p.relative_to(EXAMPLES).as_posix() for p in [*EXAMPLES.glob("*.rmot"), EXAMPLES / "urdf_cell" / "load_jig.rmot"])
+
+
+@pytest.mark.parametrize("example", SHIPPED)
+def test_every_example_report_opens_clean(example: str, tmp_path: Path) -> None:
+    """`rmot report` of every shipped example is a page Chromium opens without a console
+    message, showing the program and its verdict (collision.rmot is the one that fails)."""
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+
+    page = tmp_path / "report.html"
+    result = CliRunner().invoke(cli, ["report", str(EXAMPLES / example), "-o", str(page)])
+    assert result.exit_code == (1 if example == "collision.rmot" else 0), result.output
+    dom, console = chromium(page.as_uri(), tmp_path / "profile")
+    assert console == []
+    assert Path(example).name in dom
+    verdict = re.search(r'<span class="verdict (ok|bad)">([^<]+)</span>', dom)
+    assert verdict is not None
+    assert verdict.groups() == (("bad", "FAILS") if example == "collision.rmot" else ("ok", "verifies"))
