@@ -26,6 +26,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "plan": ("rmot.compiler.cli.plan_cmd", "plan", "Plan a program; write the sampled trajectory."),
     "ir": ("rmot.compiler.cli.ir_cmd", "ir", "Dump the checked IR of a program."),
     "robots": ("rmot.compiler.cli.robots_cmd", "robots", "The robot library: list, show, fk, ik."),
+    "reach": ("rmot.compiler.cli.reach_cmd", "reach", "Map a robot's reachable workspace and its singularities."),
 }
 
 
