@@ -1,0 +1,101 @@
+"""`rmot compare` gives the numbers separate `rmot check` runs give, and its torques are
+pinocchio's RNEA on the planned samples (computed here from the URDF, not through rmot)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from rmot.compiler.cli import cli
+
+ROOT = Path(__file__).resolve().parents[2]
+PICK = str(ROOT / "examples" / "pick_place.rmot")
+JIG = str(ROOT / "examples" / "urdf_cell" / "load_jig.rmot")
+
+
+def _check_json(program: str, *extra: str) -> dict:
+    result = CliRunner().invoke(cli, ["check", program, "--format", "json", *extra])
+    assert result.exit_code in (0, 1), result.output
+    return json.loads(result.output)["programs"][0]
+
+
+def _compare_json(program: str, *robots: str) -> dict:
+    args = ["compare", program, "--format", "json"]
+    for r in robots:
+        args += ["--robot", r]
+    result = CliRunner().invoke(cli, args)
+    assert result.exit_code in (0, 1), result.output
+    return json.loads(result.output)
+
+
+@pytest.fixture(scope="module")
+def pick_compare() -> dict:
+    return _compare_json(PICK, "abb_irb1600", "ur10e")
+
+
+def test_compare_equals_check_on_the_cells_own_robot(pick_compare: dict) -> None:
+    """The cell's own arm: the same verdict and cycle time as `rmot check`."""
+    check = _check_json(PICK)
+    arm = pick_compare["arms"][0]
+    assert arm["robot"] == "abb_irb1600"
+    assert arm["verified"] == (not any(d["severity"] == "error" for d in check["diagnostics"]))
+    assert arm["cycle_time_s"] == pytest.approx(check["cycle_time_s"], abs=1e-6)
+
+
+def test_compare_equals_check_of_a_cell_edited_to_the_other_arm(pick_compare: dict, tmp_path: Path) -> None:
+    """Another arm: the same verdict, first findings and cycle time as `rmot check` with the cell's
+    robot declaration edited by hand to that arm."""
+    text = (ROOT / "compiler" / "default_cell.rmot").read_text(encoding="utf-8")
+    assert "= abb_irb1600 at" in text
+    cell = tmp_path / "cell.rmot"
+    cell.write_text(text.replace("= abb_irb1600 at", "= ur10e at"), encoding="utf-8")
+    check = _check_json(PICK, "--cell", str(cell))
+    arm = pick_compare["arms"][1]
+    errors = [d for d in check["diagnostics"] if d["severity"] == "error"]
+    assert arm["verified"] is (not errors) and not arm["verified"]
+    assert arm["cycle_time_s"] == pytest.approx(check["cycle_time_s"], abs=1e-6)
+    assert [(f["code"], f["line"], f["message"]) for f in arm["first_findings"]] == \
+        [(d["code"], d["line"], d["message"]) for d in errors[:3]]
+
+
+def test_torques_equal_pinocchio_rnea_on_the_planned_samples() -> None:
+    """Peak and RMS torque and peak power per joint: pinocchio's RNEA on the plan's samples, the
+    model read from the URDF here, the tool's 0.5 kg as a point mass half way to the TCP."""
+    pin = pytest.importorskip("pinocchio")
+    from rmot.compiler.frontend import load_program
+    from rmot.compiler.plan import plan_program
+
+    report = _compare_json(JIG, str(ROOT / "examples" / "urdf_cell" / "arm6.urdf"))["arms"][0]
+    plan = plan_program(load_program(JIG, require_program=True).program)
+    traj = plan.tasks[0].trajectory
+    model = pin.buildModelFromUrdf(str(ROOT / "examples" / "urdf_cell" / "arm6.urdf"))
+    tool0 = model.frames[model.getFrameId("tool0")]
+    cog_in_flange = np.array([0.0, 0.0, 0.120 / 2])  # cell.rmot: tcp pose(z=120mm); mass half way along it
+    lever = tool0.placement.act(cog_in_flange)
+    model.inertias[tool0.parentJoint] += pin.Inertia(0.5, lever, np.zeros((3, 3)))
+    data = model.createData()
+    tau = np.array([pin.rnea(model, data, q, qd, qdd) for q, qd, qdd in zip(traj.q, traj.qd, traj.qdd)])
+    dyn = report["dynamics"]
+    assert [j["joint"] for j in dyn] == [1, 2, 3, 4, 5, 6]
+    np.testing.assert_allclose([j["peak_torque"] for j in dyn], np.abs(tau).max(axis=0), atol=1e-4)
+    np.testing.assert_allclose([j["rms_torque"] for j in dyn], np.sqrt((tau ** 2).mean(axis=0)), atol=1e-4)
+    np.testing.assert_allclose([j["peak_power_w"] for j in dyn], np.abs(tau * traj.qd).max(axis=0), atol=1e-4)
+    np.testing.assert_allclose([j["rated_torque"] for j in dyn], model.effortLimit, atol=1e-9)
+    assert dyn[1]["peak_torque"] > 1.0  # the shoulder holds the arm up: the numbers are not trivially zero
+
+
+def test_a_robot_without_inertias_says_so(pick_compare: dict) -> None:
+    """A library arm without inertia data gets no torque figures and a note saying why."""
+    arm = pick_compare["arms"][0]
+    assert arm["dynamics"] is None and "no inertia data" in arm["note"]
+
+
+def test_unknown_arm_is_a_finding_not_a_traceback() -> None:
+    """An arm that does not load is reported as not verified, with E320."""
+    doc = _compare_json(PICK, "no_such_arm")
+    assert doc["arms"][0]["verified"] is False
+    assert doc["arms"][0]["first_findings"][0]["code"] == "E320"
