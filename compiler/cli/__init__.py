@@ -27,6 +27,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "ir": ("rmot.compiler.cli.ir_cmd", "ir", "Dump the checked IR of a program."),
     "robots": ("rmot.compiler.cli.robots_cmd", "robots", "The robot library: list, show, fk, ik."),
     "reach": ("rmot.compiler.cli.reach_cmd", "reach", "Map a robot's reachable workspace and its singularities."),
+    "place": ("rmot.compiler.cli.place_cmd", "place", "Find the best base pose for a robot in a region."),
     "compare": ("rmot.compiler.cli.compare_cmd", "compare", "Run one program on several arms and compare them."),
 }
 
