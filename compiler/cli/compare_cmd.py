@@ -1,6 +1,7 @@
 """`rmot compare PROGRAM --robot A --robot B ...`: the same program on several arms.
 
-Each arm stands in the place of the program's robot (same base pose; `--place` with
+Without --robot: the cell's own robot (its metrics and dynamics alone). Each arm stands in the
+place of the program's robot (same base pose; `--place` with
 `--region` places each one first, as `rmot place` does) and goes through the planner and
 verifier of `rmot check`. Per arm: verifies or not (with the first findings), cycle time,
 worst joint-limit margin, worst manipulability, peak torque against the rated torque.
@@ -55,7 +56,7 @@ def arm_dict(r: Any) -> dict[str, Any]:
         "joint_margin": _margin(m),
         "manipulability": None if m is None or not math.isfinite(m.manipulability) else round(m.manipulability, 6),
         "dynamics": dyn,
-        "note": (m.dynamics_note if m is not None else "") or r.note,
+        "note": "; ".join(filter(None, (m.dynamics_note if m is not None else "", r.note))),
     }
 
 
@@ -91,6 +92,8 @@ def format_text(path: str, slot: str, results: list[Any]) -> str:
                             + (f" ({j['utilisation'] * 100:.0f}%)" if j["utilisation"] is not None else "")
                             for j in d["dynamics"])
             lines.append(f"{r.key} torque peak/RMS, peak power: {per}")
+        if d["note"]:
+            lines.append(f"{r.key}: {d['note']}")
         for f in d["first_findings"]:
             where = f"{f['file']}:{f['line']}:{f['col']}: " if f["file"] else ""
             lines.append(f"{r.key}: {where}error[{f['code']}]: {f['message']}")
@@ -101,7 +104,7 @@ def format_text(path: str, slot: str, results: list[Any]) -> str:
 
 @click.command(name="compare")
 @click.argument("program", type=click.Path(dir_okay=False))
-@click.option("--robot", "robots", multiple=True, required=True, help="An arm to try: a library robot or a URDF file (repeat).")
+@click.option("--robot", "robots", multiple=True, help="An arm to try: a library robot or a URDF file (repeat) [the cell's own].")
 @click.option("--cell", type=click.Path(dir_okay=False), default=None, help="Cell file (overrides `use cell`).")
 @click.option("--as", "slot", default=None, help="The cell robot the arms replace [the program's first task's robot].")
 @click.option("--format", "fmt", type=click.Choice(("text", "json")), default="text", show_default=True)
@@ -127,11 +130,11 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
     if do_place and region is None:
         _fail("--place needs --region")
     results = []
-    for key in robots:
+    for key in robots or (None,):
         prog = loaded.program
         note = ""
         if do_place:
-            prog, note = _placed(prog, key, name, region or "", program)
+            prog, note = _placed(prog, key or prog.cell.robot(name).source.load_key, name, region or "", program)
         results.append(run_arm(prog, key, name, program))
         if note:
             from dataclasses import replace
