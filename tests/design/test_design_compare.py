@@ -99,3 +99,17 @@ def test_unknown_arm_is_a_finding_not_a_traceback() -> None:
     doc = _compare_json(PICK, "no_such_arm")
     assert doc["arms"][0]["verified"] is False
     assert doc["arms"][0]["first_findings"][0]["code"] == "E320"
+
+
+def test_compare_place_places_each_arm_first() -> None:
+    """--place: an arm that fails at the cell's pose (out of reach) is placed in the region and then verifies,
+    with the pose named in the note; the cycle time is that of the placed check."""
+    data = Path(__file__).resolve().parent / "data"
+    args = ["compare", str(data / "draw.rmot"), "--cell", str(data / "cell_far.rmot"), "--robot", "abb_irb120",
+            "--format", "json"]
+    plain = json.loads(CliRunner().invoke(cli, args).output)["arms"][0]
+    assert plain["verified"] is False and plain["first_findings"][0]["code"] == "E220"
+    result = CliRunner().invoke(cli, args + ["--place", "--region", "x=-600mm..0mm, y=-400mm..400mm"])
+    assert result.exit_code == 0, result.output
+    placed = json.loads(result.output)["arms"][0]
+    assert placed["verified"] is True and "placed at x=" in placed["note"]
