@@ -12,10 +12,12 @@ The search, in three stages (each measured in tests/benchmarks/bench_place.py):
    within the joint limits is out. The survivors are ranked by a motion-time estimate: along
    the targets in program order, the slowest joint's travel over its speed limit (nearest
    solution to the previous one).
-2. Verification: the `VERIFY` best-ranked survivors are planned and verified in full, exactly
-   as `rmot check` does (reach, branches, joint limits, collisions, payload torque).
-3. Refinement, local: a compass search around the best verified pose (each coordinate ± a
-   step, halving the step when nothing improves), every trial screened then verified.
+2. Verification: the survivors are planned and verified in full in ranked order, exactly as
+   `rmot check` does (reach, branches, joint limits, collisions, payload torque), until
+   `VERIFY` of them verify (at most `VERIFY_CAP` × `VERIFY` tried).
+3. Refinement, local: a compass search from each of the `REFINE_STARTS` best verified poses
+   (each coordinate ± a step, halving the step when nothing improves), every trial screened
+   then verified.
 
 Objective: "cycle" (default) = the sum of the programs' cycle times, ties (within 1 ms)
 broken by the larger worst joint-limit margin, then by the larger worst manipulability;
@@ -42,6 +44,8 @@ __all__ = ["Candidate", "Placement", "halton", "place", "rebase", "world_targets
 SCREEN = 256
 VERIFY = 6
 REFINE_ROUNDS = 2
+REFINE_STARTS = 3
+VERIFY_CAP = 4  # at most this many times verify_n poses are checked in full before refining
 TIE_S = 1e-3
 
 
@@ -272,7 +276,11 @@ def place(programs: list[ir.Program], slot: str, region: dict[str, tuple[float, 
             scored.append((est, tuple(u), base))
     t1 = time.perf_counter()
     scored.sort(key=lambda s: (s[0], s[1]))
-    evaluated = [_evaluate(programs, slot, base) for _, _, base in scored[:verify_n]]
+    evaluated: list[Candidate] = []
+    for _, _, base in scored[: VERIFY_CAP * verify_n]:  # down the ranking until verify_n poses verify
+        evaluated.append(_evaluate(programs, slot, base))
+        if sum(c.verified for c in evaluated) >= verify_n:
+            break
     t2 = time.perf_counter()
     evaluated += _refine(programs, slot, region, robot, targets, evaluated, objective, refine_rounds, len(scored), screen_n)
     t3 = time.perf_counter()
@@ -292,33 +300,33 @@ def _distinct(cands: list[Candidate]) -> list[Candidate]:
 
 def _refine(programs: list[ir.Program], slot: str, region: dict[str, tuple[float, float]], robot: Any,
             targets: list[Targets], evaluated: list[Candidate], objective: str, rounds: int,
-            feasible: int, n: int) -> list[Candidate]:
-    """Compass search around the best verified pose: ± step on each axis, halving the step."""
-    good = sorted((c for c in evaluated if c.verified), key=lambda c: c.key(objective))
-    if not good or rounds <= 0:
-        return []
-    best = good[0]
+            feasible: int, n: int, starts: int = REFINE_STARTS) -> list[Candidate]:
+    """Compass search from each of the `starts` best verified poses (the feasible set is often
+    disconnected: one start can sit in a worse pocket): ± step on each axis, halving the step
+    when nothing improves."""
+    good = _distinct(sorted((c for c in evaluated if c.verified), key=lambda c: c.key(objective)))
     out: list[Candidate] = []
     spans = {k: region[k][1] - region[k][0] for k in ("x", "y", "z", "rz") if k in region}
-    step = {k: v / (2 * max(n, 1) ** (1 / max(len(spans), 1))) for k, v in spans.items()}
-    for _ in range(rounds):
-        improved = False
-        for key in spans:
-            if step[key] <= 0:
-                continue
-            for sign in (1, -1):
-                base = _nudge(best.base, key, sign * step[key], region)
-                if base is None or any(np.allclose(base, c.base, atol=1e-9) for c in evaluated + out):
+    for start in good[:starts] if rounds > 0 else []:
+        best = start
+        step = {k: v / (2 * max(n, 1) ** (1 / max(len(spans), 1))) for k, v in spans.items()}
+        for _ in range(rounds):
+            improved = False
+            for key in spans:
+                if step[key] <= 0:
                     continue
-                ok = all(screen(robot, t, base)[0].all() for t in targets)
-                if not ok:
-                    continue
-                cand = _evaluate(programs, slot, base)
-                out.append(cand)
-                if cand.verified and cand.key(objective) < best.key(objective):
-                    best, improved = cand, True
-        if not improved:
-            step = {k: v / 2 for k, v in step.items()}
+                for sign in (1, -1):
+                    base = _nudge(best.base, key, sign * step[key], region)
+                    if base is None or any(np.allclose(base, c.base, atol=1e-9) for c in evaluated + out):
+                        continue
+                    if not all(screen(robot, t, base)[0].all() for t in targets):
+                        continue
+                    cand = _evaluate(programs, slot, base)
+                    out.append(cand)
+                    if cand.verified and cand.key(objective) < best.key(objective):
+                        best, improved = cand, True
+            if not improved:
+                step = {k: v / 2 for k, v in step.items()}
     return out
 
 

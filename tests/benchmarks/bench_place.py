@@ -45,7 +45,7 @@ PROGRAMS = [  # (program text, cell)
     (square_program("small", -50, -50, 100, 1), "cell_far.rmot"),
     (square_program("offset", 100, 100, 80, 1), "cell_far.rmot"),
     (square_program("blocked", -50, -50, 100, 1), "cell_blocked.rmot"),
-    (square_program("wide", -100, -100, 200, 1), "cell_blocked.rmot"),
+    (square_program("wide", -100, -100, 200, 1), "cell_far.rmot"),
 ]
 
 
