@@ -74,7 +74,7 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
         _fail(f"robot '{name}' has no source declaration to edit")
     result = search(loaded, name, bounds, objective=objective, screen_n=samples)
     click.echo(f"screened {result.screened} poses by IK ({result.screen_feasible} reach every target), "
-               f"verified {result.verified_count} in full")
+               f"planned and verified {result.verified_count} in full")
     if result.best is None:
         click.echo(f"no pose of robot '{name}' in the region verifies:")
         for line in result.failures:
