@@ -33,6 +33,7 @@ _UNIT = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
 class CheckOutcome:
     report: Report
     input_error: bool
+    dynamics: str = ""  # --dynamics: per-joint torque lines (rmot.sim.design.dynamics_text)
 
 
 def parse_length(text: str) -> float:
@@ -44,7 +45,7 @@ def parse_length(text: str) -> float:
 
 
 def check_one(path: str, cell: str | None = None, project_root: str | None = None,
-              clearance: float | None = None, images: str | None = None) -> CheckOutcome:
+              clearance: float | None = None, images: str | None = None, dynamics: bool = False) -> CheckOutcome:
     """One program through front end -> planner -> verification (runs in a worker process)."""
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim import codes
@@ -74,6 +75,10 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     report = Report(path, report.cycle_times, front_diags + report.diagnostics)
     if images:
         report = _render_images(plan, report, images)
+    if dynamics:
+        from rmot.sim.design.dynamics_text import dynamics_text
+
+        return CheckOutcome(report, False, dynamics_text(plan))
     return CheckOutcome(report, False)
 
 
@@ -139,8 +144,9 @@ def _format(fmt: str, reports: list[Report]) -> str:
 @click.option("--jobs", type=click.IntRange(min=1), default=1, show_default=True, help="Programs checked in parallel.")
 @click.option("--images", type=click.Path(file_okay=False), default=None, help="Render a PNG per error finding into DIR.")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Paths may not leave this directory.")
+@click.option("--dynamics", is_flag=True, help="Also print per-joint peak/RMS torque and peak power (text format; see `rmot compare --format json`).")
 def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | None, clearance: str | None,
-          jobs: int, images: str | None, project_root: str | None) -> None:
+          jobs: int, images: str | None, project_root: str | None, dynamics: bool = False) -> None:
     """Parse, plan and verify PROGRAMs; report collisions, limit excesses and cycle times."""
     clearance_m = None
     if clearance is not None:
@@ -148,7 +154,7 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
             clearance_m = parse_length(clearance)
         except ValueError as exc:
             raise click.BadParameter(str(exc), param_hint="--clearance") from None
-    args = [(p, cell, project_root, clearance_m, images) for p in programs]
+    args = [(p, cell, project_root, clearance_m, images, dynamics) for p in programs]
     if jobs > 1 and len(programs) > 1:
         with ProcessPoolExecutor(max_workers=min(jobs, len(programs))) as pool:
             outcomes = list(pool.map(_check_args, args))
@@ -156,6 +162,8 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
         outcomes = [_check_args(a) for a in args]
     reports = [o.report for o in outcomes]
     text = _format(fmt, reports)
+    if dynamics and fmt == "text":
+        text += "".join(o.dynamics for o in outcomes)
     if output:
         _write_atomic(output, text)
     else:

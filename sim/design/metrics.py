@@ -33,6 +33,7 @@ class JointDynamics:
     rms_torque: float
     peak_power: float  # W
     rated_torque: float | None  # the model's effort limit, None when unknown
+    prismatic: bool = False  # then the "torques" are forces (N) and power is force x speed
 
     @property
     def utilisation(self) -> float | None:
@@ -106,7 +107,8 @@ def dynamics(robot: Any, tp: planned.TaskPlan, payload: float, payload_at: np.nd
         n += len(tau)
     rms = np.sqrt(sq / max(n, 1))
     rated = [float(e) if np.isfinite(e) and e > 0 else None for e in effort]
-    joints = tuple(JointDynamics(j + 1, float(peak[j]), float(rms[j]), float(power[j]), rated[j]) for j in range(robot.dof))
+    joints = tuple(JointDynamics(j + 1, float(peak[j]), float(rms[j]), float(power[j]), rated[j], robot.joint_types[j] == "P")
+                   for j in range(robot.dof))
     note = "" if all(r is not None for r in rated) else "rated torque unknown for some joints"
     return joints, note
 

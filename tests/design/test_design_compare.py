@@ -62,30 +62,49 @@ def test_compare_equals_check_of_a_cell_edited_to_the_other_arm(pick_compare: di
         [(d["code"], d["line"], d["message"]) for d in errors[:3]]
 
 
-def test_torques_equal_pinocchio_rnea_on_the_planned_samples() -> None:
-    """Peak and RMS torque and peak power per joint: pinocchio's RNEA on the plan's samples, the
-    model read from the URDF here, the tool's 0.5 kg as a point mass half way to the TCP."""
-    pin = pytest.importorskip("pinocchio")
+def _rnea_on_plan(pin):  # type: ignore[no-untyped-def]
+    """(tau (N,6), qd (N,6), effort (6,)) by pinocchio's RNEA on load_jig's planned samples, the model read
+    from the URDF here, the tool's 0.5 kg as a point mass half way to the TCP (cell.rmot: tcp z=120mm)."""
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
 
-    report = _compare_json(JIG, str(ROOT / "examples" / "urdf_cell" / "arm6.urdf"))["arms"][0]
     plan = plan_program(load_program(JIG, require_program=True).program)
     traj = plan.tasks[0].trajectory
     model = pin.buildModelFromUrdf(str(ROOT / "examples" / "urdf_cell" / "arm6.urdf"))
     tool0 = model.frames[model.getFrameId("tool0")]
-    cog_in_flange = np.array([0.0, 0.0, 0.120 / 2])  # cell.rmot: tcp pose(z=120mm); mass half way along it
-    lever = tool0.placement.act(cog_in_flange)
+    lever = tool0.placement.act(np.array([0.0, 0.0, 0.120 / 2]))
     model.inertias[tool0.parentJoint] += pin.Inertia(0.5, lever, np.zeros((3, 3)))
     data = model.createData()
     tau = np.array([pin.rnea(model, data, q, qd, qdd) for q, qd, qdd in zip(traj.q, traj.qd, traj.qdd)])
+    return tau, np.asarray(traj.qd), np.asarray(model.effortLimit)
+
+
+def test_torques_equal_pinocchio_rnea_on_the_planned_samples() -> None:
+    """compare's JSON: peak and RMS torque and peak power per joint are pinocchio's RNEA on the plan's samples."""
+    pin = pytest.importorskip("pinocchio")
+    report = _compare_json(JIG, str(ROOT / "examples" / "urdf_cell" / "arm6.urdf"))["arms"][0]
+    tau, qd, effort = _rnea_on_plan(pin)
     dyn = report["dynamics"]
     assert [j["joint"] for j in dyn] == [1, 2, 3, 4, 5, 6]
     np.testing.assert_allclose([j["peak_torque"] for j in dyn], np.abs(tau).max(axis=0), atol=1e-4)
     np.testing.assert_allclose([j["rms_torque"] for j in dyn], np.sqrt((tau ** 2).mean(axis=0)), atol=1e-4)
-    np.testing.assert_allclose([j["peak_power_w"] for j in dyn], np.abs(tau * traj.qd).max(axis=0), atol=1e-4)
-    np.testing.assert_allclose([j["rated_torque"] for j in dyn], model.effortLimit, atol=1e-9)
+    np.testing.assert_allclose([j["peak_power_w"] for j in dyn], np.abs(tau * qd).max(axis=0), atol=1e-4)
+    np.testing.assert_allclose([j["rated_torque"] for j in dyn], effort, atol=1e-9)
     assert dyn[1]["peak_torque"] > 1.0  # the shoulder holds the arm up: the numbers are not trivially zero
+
+
+def test_check_dynamics_prints_the_rnea_numbers() -> None:
+    """`rmot check --dynamics`: one line per joint with RNEA's peak / RMS torque, peak power and the share of the rating."""
+    pin = pytest.importorskip("pinocchio")
+    result = CliRunner().invoke(cli, ["check", JIG, "--dynamics"])
+    assert result.exit_code == 0, result.output
+    tau, qd, effort = _rnea_on_plan(pin)
+    peak, rms, power = np.abs(tau).max(axis=0), np.sqrt((tau ** 2).mean(axis=0)), np.abs(tau * qd).max(axis=0)
+    expected = [f"  J{j + 1}: {peak[j]:.2f} / {rms[j]:.2f} N·m, {power[j]:.1f} W, {peak[j] / effort[j] * 100:.0f}% of {effort[j]:g} N·m"
+                for j in range(6)]
+    lines = result.output.splitlines()
+    start = lines.index("dynamics: task 'load_jig' (arm6), peak / RMS torque, peak power, peak / rated torque:")
+    assert lines[start + 1:start + 7] == expected
 
 
 def test_a_robot_without_inertias_says_so(pick_compare: dict) -> None:
