@@ -78,15 +78,16 @@ def dense_grid(program, nx: int, ny: int, nrz: int):  # type: ignore[no-untyped-
 
 
 def main(nx: int = 8, ny: int = 8, nrz: int = 8) -> None:
-    times = []
+    times, cpu = [], []
     prog = load(*PROGRAMS[0])
     moves = sum(1 for line in PROGRAMS[0][0].splitlines() if line.strip().startswith("move"))
     for _ in range(3):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         result = place([prog], "r1", REGION)
         times.append(time.perf_counter() - t)
+        cpu.append(time.process_time() - c)
     print(f"place, {moves}-move program, 1 m x 1 m x 360 deg: median {statistics.median(times):.1f} s "
-          f"over {len(times)} runs (screen {result.stats['screen_s']:.1f} s, verify {result.stats['verify_s']:.1f} s, "
+          f"over {len(times)} runs, CPU {statistics.median(cpu):.1f} s (screen {result.stats['screen_s']:.1f} s, verify {result.stats['verify_s']:.1f} s, "
           f"refine {result.stats['refine_s']:.1f} s; {result.screen_feasible}/{result.screened} screen-feasible, "
           f"{result.verified_count} verified in full)")
     found = 0
