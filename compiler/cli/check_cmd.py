@@ -154,7 +154,7 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
             clearance_m = parse_length(clearance)
         except ValueError as exc:
             raise click.BadParameter(str(exc), param_hint="--clearance") from None
-    args = [(p, cell, project_root, clearance_m, images, dynamics) for p in programs]
+    args = [(p, cell, project_root, clearance_m, images) + ((True,) if dynamics else ()) for p in programs]
     if jobs > 1 and len(programs) > 1:
         with ProcessPoolExecutor(max_workers=min(jobs, len(programs))) as pool:
             outcomes = list(pool.map(_check_args, args))
