@@ -29,6 +29,9 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "merge-reports": ("rmot.compiler.cli.merge_cmd", "merge_reports_cmd", "Merge the reports of `check --shard` runs."),
     "plot": ("rmot.compiler.cli.plot_cmd", "plot", "Plot joints, speeds, torques, TCP speed or the timeline."),
     "report": ("rmot.compiler.cli.report_cmd", "report", "Verify programs; write one HTML page with findings, plots, 3D view."),
+    "reach": ("rmot.compiler.cli.reach_cmd", "reach", "Map a robot's reachable workspace and its singularities."),
+    "place": ("rmot.compiler.cli.place_cmd", "place", "Find the best base pose for a robot in a region."),
+    "compare": ("rmot.compiler.cli.compare_cmd", "compare", "Run one program on several arms and compare them."),
 }
 
 

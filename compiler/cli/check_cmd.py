@@ -33,6 +33,7 @@ _UNIT = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
 class CheckOutcome:
     report: Report
     input_error: bool
+    dynamics: str = ""  # --dynamics: per-joint torque lines (rmot.sim.design.dynamics_text)
 
 
 def parse_length(text: str) -> float:
@@ -44,7 +45,8 @@ def parse_length(text: str) -> float:
 
 
 def check_one(path: str, cell: str | None = None, project_root: str | None = None,
-              clearance: float | None = None, images: str | None = None, use_cache: bool = True) -> CheckOutcome:
+              clearance: float | None = None, images: str | None = None, use_cache: bool = True,
+              dynamics: bool = False) -> CheckOutcome:
     """One program through front end -> planner -> verification (runs in a worker process)."""
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim import codes
@@ -74,6 +76,10 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     report = Report(path, report.cycle_times, front_diags + report.diagnostics, report.tasks)
     if images:
         report = _render_images(plan, report, images)
+    if dynamics:
+        from rmot.sim.design.dynamics_text import dynamics_text
+
+        return CheckOutcome(report, False, dynamics_text(plan))
     return CheckOutcome(report, False)
 
 
@@ -143,8 +149,10 @@ def _format(fmt: str, reports: list[Report]) -> str:
 @click.option("--shard", default=None, metavar="K/N",
               help="Check only shard K of N: a deterministic, size-balanced share of PROGRAMs (CI matrices).")
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
+@click.option("--dynamics", is_flag=True, help="Also print per-joint peak/RMS torque and peak power (text format; see `rmot compare --format json`).")
 def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | None, clearance: str | None,
-          jobs: int, images: str | None, project_root: str | None, shard: str | None, no_cache: bool) -> None:
+          jobs: int, images: str | None, project_root: str | None, shard: str | None, no_cache: bool,
+          dynamics: bool = False) -> None:
     """Parse, plan and verify PROGRAMs; report collisions, limit excesses and cycle times."""
     if shard is not None:
         from rmot.compiler.cli.shard import parse_shard, select_shard
@@ -159,8 +167,10 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
             clearance_m = parse_length(clearance)
         except ValueError as exc:
             raise click.BadParameter(str(exc), param_hint="--clearance") from None
-    # use_cache=False is passed only when asked for: check_one's first five arguments stay as they were
-    args = [(p, cell, project_root, clearance_m, images) + ((False,) if no_cache else ()) for p in programs]
+    # options other than the first five are passed only when asked for (tests stand in a
+    # five-argument check_one)
+    options = {**({"use_cache": False} if no_cache else {}), **({"dynamics": True} if dynamics else {})}
+    args = [((p, cell, project_root, clearance_m, images), options) for p in programs]
     if jobs > 1 and len(programs) > 1:
         with ProcessPoolExecutor(max_workers=min(jobs, len(programs))) as pool:
             outcomes = list(pool.map(_check_args, args))
@@ -168,6 +178,8 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
         outcomes = [_check_args(a) for a in args]
     reports = [o.report for o in outcomes]
     text = _format(fmt, reports)
+    if dynamics and fmt == "text":
+        text += "".join(o.dynamics for o in outcomes)
     if output:
         _write_atomic(output, text)
     else:
@@ -178,5 +190,6 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
     ctx.exit(EXIT_FINDINGS if any(r.has_errors for r in reports) else EXIT_OK)
 
 
-def _check_args(args: tuple) -> CheckOutcome:
-    return check_one(*args)
+def _check_args(call: tuple[tuple, dict]) -> CheckOutcome:
+    args, options = call
+    return check_one(*args, **options)

@@ -1,0 +1,139 @@
+"""`rmot reach [CELL] --robot NAME -o map.png|.svg|.html`: the reachable workspace.
+
+    rmot reach examples/cells/demo.rmot --robot r1 --tool gripper --orientation rx=180deg -o reach.png
+    rmot reach --robot abb_irb120 -o irb120.html
+
+PNG / SVG: two slices, a top view at height --z (default: the base's height) and a side
+view through the base (y = the base's y). HTML: the 3-D point cloud, interactive.
+Every point is coloured by manipulability relative to the best on the map (0 = singular).
+Exit codes: 0 written; 2 bad input (cell errors, unknown robot or tool, bad option).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any
+
+import click
+
+from rmot.compiler.cli import EXIT_INPUT
+
+__all__ = ["reach"]
+
+FORMATS = (".png", ".svg", ".html")
+SLICE_SAMPLES = 1_000_000  # joint vectors drawn for an any-orientation slice
+CLOUD_SAMPLES = 200_000  # ... for the 3-D cloud
+
+
+def _fail(message: str) -> None:
+    click.echo(f"error: {message}", err=True)
+    sys.exit(EXIT_INPUT)
+
+
+def load_cell(path: str, project_root: str | None) -> Any:
+    """The cell of a cell file or a program file; front-end errors end the command (exit 2)."""
+    from rmot.compiler.frontend import load_program
+    from rmot.lang.diagnostics import render_all
+
+    loaded = load_program(path, project_root=project_root)
+    if loaded.diagnostics:
+        click.echo(render_all(loaded.diagnostics), err=True)
+    if loaded.has_errors or loaded.cell is None:
+        sys.exit(EXIT_INPUT)
+    return loaded.cell
+
+
+def _map(study: Any, points: Any, step: float, rot: Any, label: str) -> Any:
+    """IK at every point for a fixed orientation; forward sampling for any orientation."""
+    import numpy as np
+
+    from rmot.sim.design.reach import reach_map, sampled_map
+
+    if rot is None:
+        planar = bool(np.ptp(points, axis=0).min() < step / 2)  # a slice catches ~1/40 of the samples: draw more
+        return sampled_map(study.robot, points, step, base=study.base, tcp=study.tcp, name=label,
+                           samples=SLICE_SAMPLES if planar else CLOUD_SAMPLES)
+    return reach_map(study.robot, points, base=study.base, tcp=study.tcp, orientation=rot, name=label)
+
+
+@click.command(name="reach")
+@click.argument("cell", required=False, type=click.Path(dir_okay=False))
+@click.option("--robot", "robot_name", default=None, help="The cell's robot (default: its only one), or a library robot / URDF without CELL.")
+@click.option("-o", "--output", required=True, help="Output file: .png or .svg (slices), .html (interactive 3-D).")
+@click.option("--tool", default=None, help="A tool of the cell: map its TCP instead of the flange.")
+@click.option("--orientation", default="any", show_default=True,
+              help="TCP orientation in world, e.g. 'rx=180deg' (R = Rz·Ry·Rx), or 'any' (sampled joint space).")
+@click.option("--z", "z_text", default=None, help="Height of the top-view slice, e.g. 750mm [the base's height].")
+@click.option("--step", "step_text", default=None, help="Grid step, e.g. 20mm [reach/40 for slices, reach/12 in 3-D].")
+@click.option("--project-root", type=click.Path(file_okay=False), default=None, help="Directory that file paths may not leave.")
+def reach(cell: str | None, robot_name: str | None, output: str, tool: str | None, orientation: str,
+          z_text: str | None, step_text: str | None, project_root: str | None) -> None:
+    """Draw the reachable workspace of a robot, coloured by distance to singularity."""
+    from rmot.compiler.cli.check_cmd import parse_length
+    from rmot.sim.design.reach import reach_bound
+    from rmot.sim.design.study import OptionError, fixture_meshes, parse_angles, rotation_rpy, study_for
+
+    ext = os.path.splitext(output)[1].lower()
+    if ext not in FORMATS:
+        raise click.BadParameter(f"must end in one of {', '.join(FORMATS)} (got {output!r})", param_hint="'-o'")
+    try:
+        rot = None if orientation.strip() == "any" else rotation_rpy(*parse_angles(orientation))
+        z = parse_length(z_text) if z_text is not None else None
+        step = parse_length(step_text) if step_text is not None else None
+        if step is not None and not step > 0:
+            raise OptionError(f"--step must be positive (got {step_text})")
+        study = study_for(load_cell(cell, project_root) if cell else None, robot_name, tool)
+    except (OptionError, ValueError) as exc:
+        _fail(str(exc))
+        return
+    fixtures, diags = fixture_meshes(study.cell)
+    if diags:
+        from rmot.lang.diagnostics import render_all
+
+        click.echo(render_all(diags), err=True)
+    bound = reach_bound(study.robot, study.tcp)
+    label = study.instance.name if study.instance else study.robot.name
+    what = "any orientation (sampled joint vectors: a cell without a sample may still be reachable)" if rot is None else f"orientation {orientation.strip()}"
+    caption = [f"{label} ({study.robot.model_name}): TCP {'of ' + tool if tool else '= flange'}, {what}; "
+               f"colour = manipulability / best on this map (0 = singular)",
+               "reach only: joint limits and IK, not collisions; dashed circle = upper bound on reach from the link lengths"]
+    try:
+        _draw(study, ext, output, step, bound, rot, z, label, caption, fixtures)
+    except OSError as exc:
+        _fail(f"output file must be writable (got '{output}': {exc.strerror or exc})")
+    click.echo(f"wrote {output}")
+
+
+def _draw(study: Any, ext: str, output: str, step: float | None, bound: float, rot: Any, z: float | None,
+          label: str, caption: list[str], fixtures: list[Any]) -> None:
+    from rmot.sim.design.reach import grid_for, slice_grid
+
+    if ext == ".html":
+        grid_step = step or bound / (12 if study.robot.has_closed_form or rot is None else 8)
+        m = _map(study, grid_for(study.base, bound, grid_step), grid_step, rot, label)
+        from rmot.sim.design.reach_draw import reach_html
+        from rmot.sim.render.files import write_text
+
+        caption.append(f"grid step {grid_step * 1000:.0f} mm; {int(m.reached.sum())} of {len(m.points)} points reached")
+        write_text(output, reach_html(m, fixtures, f"rmot reach: {label}", caption))
+    else:
+        from rmot.sim.design.figure import to_png, to_svg
+        from rmot.sim.design.reach_draw import Panel, panels_figure
+        from rmot.sim.render.files import write_png, write_text
+
+        grid_step = step or bound / (40 if study.robot.has_closed_form or rot is None else 20)
+        level_z = float(study.base[2, 3]) if z is None else z
+        level_y = float(study.base[1, 3])
+        top = _map(study, slice_grid(study.base, bound, grid_step, "xy", level_z), grid_step, rot, label)
+        side = _map(study, slice_grid(study.base, bound, grid_step, "xz", level_y), grid_step, rot, label)
+        best = max(top.manipulability_max, side.manipulability_max)
+        top, side = top.rescaled(best), side.rescaled(best)
+        panels = [Panel(f"top view, z = {level_z:.3f} m", "xy", level_z, grid_step, top),
+                  Panel(f"side view, y = {level_y:.3f} m", "xz", level_y, grid_step, side)]
+        caption.append(f"grid step {grid_step * 1000:.0f} mm")
+        fig = panels_figure(panels, fixtures, caption)
+        if ext == ".png":
+            write_png(output, to_png(fig))
+        else:
+            write_text(output, to_svg(fig))
