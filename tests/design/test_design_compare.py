@@ -107,9 +107,19 @@ def test_check_dynamics_prints_the_rnea_numbers() -> None:
     assert lines[start + 1:start + 7] == expected
 
 
-def test_a_robot_without_inertias_says_so(pick_compare: dict) -> None:
-    """A library arm without inertia data gets no torque figures and a note saying why."""
+def test_library_arms_get_torque_figures(pick_compare: dict) -> None:
+    """Library arms carry inertias (issue 12): every joint gets a peak torque below its rated
+    torque on the verified program, and a positive RMS no larger than the peak."""
     arm = pick_compare["arms"][0]
+    assert arm["dynamics"] is not None and len(arm["dynamics"]) == 6
+    for joint in arm["dynamics"]:
+        assert 0 < joint["peak_torque"] <= joint["rated_torque"]
+
+
+def test_a_robot_without_inertias_says_so() -> None:
+    """A `model` robot of a cell has no inertia data: no torque figures, and a note saying why."""
+    doc = _compare_json(str(ROOT / "examples" / "model_arm.rmot"))
+    arm = doc["arms"][0]
     assert arm["dynamics"] is None and "no inertia data" in arm["note"]
 
 
