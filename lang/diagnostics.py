@@ -131,6 +131,13 @@ class DiagnosticSink:
     def items(self) -> tuple[Diagnostic, ...]:
         return tuple(self._items)
 
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def errors_since(self, start: int) -> bool:
+        """Whether an error was added after the first `start` items (no copy of the list)."""
+        return any(self._items[i].is_error for i in range(start, len(self._items)))
+
     @property
     def has_errors(self) -> bool:
         return any(d.is_error for d in self._items)

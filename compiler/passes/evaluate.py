@@ -293,8 +293,8 @@ def _quaternion(v: Value | None, span: Span, rep: Reporter) -> tuple[float, floa
         rep.error(codes.WRONG_TYPE, f"pose field 'q' must be four numbers (w, x, y, z) (got {article(type_name(v))})", span)
         return None
     w, x, y, z = (i.value for i in v.items)  # type: ignore[union-attr]
-    n = math.sqrt(w * w + x * x + y * y + z * z)
-    if n < 1e-12:
+    n = math.hypot(w, x, y, z)  # no overflow for components near 1e200 (issue #20)
+    if n < 1e-12 or not math.isfinite(n):
         rep.error(codes.OUT_OF_RANGE, "pose field 'q' must not be the zero quaternion (got (0, 0, 0, 0))", span)
         return None
     q = (w / n, x / n, y / n, z / n)

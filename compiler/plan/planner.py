@@ -46,12 +46,40 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     diagnostics.extend(align(drafts))
     for draft in drafts.values():
         hold_variants(draft)
+    too_long = _too_many_samples(program, drafts, step)
+    if too_long:  # refused before sampling: the work is bounded before it is done (issue #20)
+        diagnostics.extend(too_long)
+        diagnostics.sort(key=_diagnostic_order)
+        return Plan(program, (), step, tuple(diagnostics))
     tasks = tuple(
         _task_plan(task, drafts[task.name], robots[task.name], starts[task.name], step)
         for task in program.tasks if task.name in drafts
     )
     diagnostics.sort(key=_diagnostic_order)
     return Plan(program, tasks, step, tuple(diagnostics))
+
+
+# Policy: at most a million samples per timeline (4000 s at the default 4 ms step): the
+# trajectory arrays, the verifier's sweep and the renderer's frames all scale with it.
+MAX_SAMPLES = 1_000_000
+
+
+def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: float) -> list[Diagnostic]:
+    from rmot.compiler import codes as check_codes
+
+    out = []
+    for task in program.tasks:
+        draft = drafts.get(task.name)
+        if draft is None:
+            continue
+        for pieces, what in [(draft.pieces, "timeline"), *((v.pieces, f"if-branch variant {v.index}") for v in draft.variants)]:
+            total = float(sum(p.duration for p in pieces))
+            if not total / step <= MAX_SAMPLES:
+                msg = (f"a task's {what} must take at most {MAX_SAMPLES * step:g} s at a step of {step * 1000:g} ms "
+                       f"({MAX_SAMPLES} samples; got {total:.6g} s): split the program or shorten its waits and slow moves")
+                out.append(Diagnostic(check_codes.TOO_MUCH_WORK, Severity.ERROR, msg, task.span, task=task.name))
+                break
+    return out
 
 
 def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]

@@ -194,7 +194,7 @@ def joint_move_piece(
     duration: a fixed duration (s) from a `time` modifier; raises TimingError if shorter than
     the fastest feasible motion.
     """
-    from ruckig import InputParameter, Result, Ruckig, Synchronization, Trajectory
+    from ruckig import InputParameter, Result, Synchronization, Trajectory
 
     dof = q0.shape[0]
     if float(np.max(np.abs(q1 - q0))) < 1e-12:
@@ -207,7 +207,7 @@ def joint_move_piece(
     inp.max_jerk = (JERK_PER_ACCEL * amax).tolist()
     inp.synchronization = Synchronization.Phase
     traj = Trajectory(dof)
-    _ruckig_ok(Ruckig(dof).calculate(inp, traj), Result)
+    _ruckig_ok(_calculate(inp, traj, dof), Result)
     if duration is not None:
         if duration < traj.duration * (1 - 1e-9):
             raise TimingError(
@@ -215,8 +215,25 @@ def joint_move_piece(
             )
         inp.minimum_duration = duration
         traj = Trajectory(dof)
-        _ruckig_ok(Ruckig(dof).calculate(inp, traj), Result)
+        _ruckig_ok(_calculate(inp, traj, dof), Result)
     return RuckigPiece(traj, float(traj.duration), dof)
+
+
+def _calculate(inp: object, traj: object, dof: int) -> object:
+    """Ruckig's calculate; on ruckig's "error in step 1/2" exception (seen at knife-edge
+    distances where the profile just reaches full acceleration, e.g. 12 deg at 150 deg/s,
+    600 deg/s^2, jerk 10x: issue #20) once more with the jerk limit 1e-9 lower, which moves
+    the input off the edge and changes the duration by about 1e-10 s; then a TimingError."""
+    from ruckig import Ruckig, RuckigError
+
+    try:
+        return Ruckig(dof).calculate(inp, traj)
+    except RuckigError:
+        inp.max_jerk = [j * (1 - 1e-9) for j in inp.max_jerk]  # type: ignore[attr-defined]
+    try:
+        return Ruckig(dof).calculate(inp, traj)
+    except RuckigError as exc:
+        raise TimingError(f"ruckig could not compute this joint move ({str(exc).strip().splitlines()[0]})") from None
 
 
 def _ruckig_ok(result: object, Result: type) -> None:  # noqa: N803 - ruckig's enum
