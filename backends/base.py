@@ -71,6 +71,7 @@ from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
+from rmot.backends.safe_text import comment_safe
 
 __all__ = [
     "Backend", "EmitResult", "Lowering", "TaskContext",
@@ -157,7 +158,7 @@ def source_ref(span: Span | None) -> str | None:
     """'file.rmot:12' for a comment (file name without directories: the same on every machine)."""
     if span is None:
         return None
-    return f"{os.path.basename(span.file.path)}:{span.start.line}"
+    return f"{comment_safe(os.path.basename(span.file.path))}:{span.start.line}"
 
 
 def header_lines(plan: planned.Plan, backend_name: str, findings: bool = False) -> list[str]:
@@ -407,7 +408,7 @@ class Backend:
     # ------------------------------------------------------------------ text helpers
 
     def comment(self, text: str) -> str:
-        return f"{self.COMMENT} {text}" if text else self.COMMENT
+        return f"{self.COMMENT} {comment_safe(text)}" if text else self.COMMENT
 
     def source_comment(self, node: ir.Instr, ctx: TaskContext) -> str | None:
         """`! file.rmot:12` above an instruction's text, when source maps are on."""

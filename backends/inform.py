@@ -78,6 +78,7 @@ from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, f
 from rmot.backends.lowering import split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
+from rmot.backends.safe_text import comment_safe
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
 
@@ -224,11 +225,11 @@ class InformBackend(Backend):
 
     def comment(self, text: str) -> str:
         """`'text`, cut to the controller's 32 characters (the end is kept: `file:line`)."""
-        return "'" + text[-(COMMENT_WIDTH - 1):] if text else "'"
+        return "'" + comment_safe(text)[-(COMMENT_WIDTH - 1):] if text else "'"
 
     def wrap(self, text: str) -> list[str]:
         """A long comment as several 32-character comment lines."""
-        step = COMMENT_WIDTH - 1
+        step, text = COMMENT_WIDTH - 1, comment_safe(text)
         return ["'" + text[i:i + step] for i in range(0, len(text), step)] or ["'"]
 
     @staticmethod
