@@ -18,6 +18,7 @@ from pathlib import Path
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
+from rmot.compiler.passes.urdf_paths import check_urdf_files
 from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, within
 from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.load_files import resolve_path
@@ -73,7 +74,7 @@ class _CellBuilder:
             assert s.urdf is not None
             span = s.urdf.span
             path = resolve_path(s.urdf.value, self.file, self.state.roots, span, self.rep, "URDF")
-            if path is None:
+            if path is None or not check_urdf_files(path, self.state.roots, span, self.rep):
                 return
             key, source = path, ir.RobotSource(ir.RobotSourceKind.URDF, path)
         try:
