@@ -161,6 +161,17 @@ def source_ref(span: Span | None) -> str | None:
     return f"{comment_safe(os.path.basename(span.file.path))}:{span.start.line}"
 
 
+def _name_clash(backend: object, fname: str, first: str, task_plan: planned.TaskPlan) -> Diagnostic:
+    """E522: two tasks' programs get one file name on this controller (its name length limit
+    or its case folding made them equal); writing both would lose one."""
+    from rmot.compiler import codes as file_codes
+
+    who = getattr(backend, "name", type(backend).__name__)
+    msg = (f"{who}: task '{task_plan.task.name}' must get its own output file (got '{fname}', "
+           f"the file of task '{first}': the controller's name length or case rules make the names equal); rename a task")
+    return Diagnostic(file_codes.OUTPUT_NAME_CLASH, Severity.ERROR, msg, task_plan.task.span)
+
+
 def header_lines(plan: planned.Plan, backend_name: str, findings: bool = False) -> list[str]:
     """Lines (without the comment marker) every file starts with."""
     program = plan.program
@@ -250,10 +261,18 @@ class Backend:
         """Format every task of `plan`; one output program (one or more files) per task."""
         self._emission = _Emission()
         files: dict[str, str] = {}
+        owner: dict[str, str] = {}  # case-folded file name -> the task that wrote it
+        clashed: set[tuple[str, str]] = set()
         for task_plan in plan.tasks:
             ctx = TaskContext(plan, task_plan, plan.program.cell.robot(task_plan.robot),
                               self.program_name(plan, task_plan), source_map=source_map)
             for fname, text in self.emit_task(ctx).items():
+                first = owner.setdefault(fname.casefold(), task_plan.task.name)
+                if first != task_plan.task.name:  # issue #20: names equal after the vendor's cut or case folding
+                    if (first, task_plan.task.name) not in clashed:
+                        clashed.add((first, task_plan.task.name))
+                        self._emission.diagnostics.append(_name_clash(self, fname, first, task_plan))
+                    continue
                 files[fname] = text
         return EmitResult(files, _unique(self._emission.diagnostics))
 
