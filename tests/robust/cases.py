@@ -110,6 +110,9 @@ CASES: tuple[Case, ...] = (
                              + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n",
                              "part.stl": "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n"},
          ("check", "{d}/p.rmot"), frozenset({2}), ("E125",)),
+    Case("flat_mesh", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"part.stl\") at pose(x=2m)\n}\n"
+                       + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n", "part.stl": "@STL@"},
+         ("check", "{d}/p.rmot"), frozenset({1}), ("E523",)),
     # ---- wrong diagnostics: line breaks, NUL
     Case("linebreak_form_feed", {"p.rmot": "program p on r1 {\f\n  move joint nowhere\n}\n"}, ("ir", "{d}/p.rmot"), frozenset({2}),
          ("p.rmot:2:14", "2 |   move joint nowhere")),
