@@ -18,6 +18,7 @@ import json
 import os
 import resource
 import select
+import signal
 import shutil
 import subprocess
 import sys
@@ -132,8 +133,30 @@ def main() -> None:
         if done % 1000 == 0:
             print(f"{done} inputs, {time.monotonic() - t0:.0f} s: {dict(counts)}", flush=True)
 
+    def stop(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, stop)  # stopped early: the counts so far are still written
+    interrupted = False
+    try:
+        for w in workers:
+            feed(w)
+        _loop(workers, feed, record, args)
+    except KeyboardInterrupt:
+        interrupted = True
     for w in workers:
-        feed(w)
+        w.kill()
+    summary = {"inputs": done, "seconds": round(time.monotonic() - t0, 1), "start": args.start, "interrupted": interrupted,
+               "ok": counts["ok"], "traceback": counts["traceback"], "hang": counts["hang"],
+               "memory": counts["memory"], "crash": counts["crash"], "ok_exit_codes": dict(exits),
+               "inputs_with_files_written": written[0], "failures": failures}
+    with open(args.report, "w", encoding="utf-8") as f:
+        json.dump(summary, f, indent=1)
+    print(json.dumps({k: v for k, v in summary.items() if k != "failures"}))
+    sys.exit(1 if failures else 0)
+
+
+def _loop(workers: list[Worker], feed, record, args) -> None:  # type: ignore[no-untyped-def]
     while any(w.seed is not None for w in workers):
         busy = [w for w in workers if w.seed is not None]
         ready, _, _ = select.select([w.proc.stdout for w in busy], [], [], 0.5)
@@ -154,16 +177,6 @@ def main() -> None:
                 record(w.seed, f"hang: no answer within {args.timeout:g} s")  # type: ignore[arg-type]
                 workers[workers.index(w)] = nw = Worker(args.memory_gb)
                 feed(nw)
-    for w in workers:
-        w.kill()
-    summary = {"inputs": done, "seconds": round(time.monotonic() - t0, 1), "start": args.start,
-               "ok": counts["ok"], "traceback": counts["traceback"], "hang": counts["hang"],
-               "memory": counts["memory"], "crash": counts["crash"], "ok_exit_codes": dict(exits),
-               "inputs_with_files_written": written[0], "failures": failures}
-    with open(args.report, "w", encoding="utf-8") as f:
-        json.dump(summary, f, indent=1)
-    print(json.dumps({k: v for k, v in summary.items() if k != "failures"}))
-    sys.exit(1 if failures else 0)
 
 
 if __name__ == "__main__":
