@@ -4,7 +4,7 @@ A hostile or clumsy program must get a diagnostic at the span of the number, nev
 memory blow-up or a crash deep in the planner, the verifier or a backend. Each bound below
 is either a vendor's own limit (cited) or a *policy* bound, stated as such: far beyond any
 real cell or cycle, small enough that the work it allows stays bounded (the planner samples
-every 4 ms, so an hour is 900,000 samples per task).
+every 4 ms, so 300 s is 75,000 samples per task).
 """
 
 from __future__ import annotations
@@ -18,9 +18,9 @@ __all__ = [
     "MAX_WORK_STEPS", "MAX_ZONE_M", "MIN_RATIO", "MIN_TCP_ACCEL", "MIN_TCP_SPEED", "MAX_MESH_SCALE", "within",
 ]
 
-# Policy: one wait, pulse, timeout or fixed move time of at most an hour; the planner also
-# refuses a task whose whole timeline is longer (compiler/plan/planner.py, E124).
-MAX_DURATION_S = 3600.0
+# Policy: one wait, pulse, timeout or fixed move time of at most 5 minutes; the planner also
+# refuses a task whose whole timeline is longer than 300 s (compiler/plan/planner.py, E124).
+MAX_DURATION_S = 300.0
 # Fanuc TP linear speeds are 1..2000 mm/sec (FANUC R-30iB Operator's Manual, "Motion
 # instruction: feed rate"); slower is a typo, and a slow move is a long one to sample.
 MIN_TCP_SPEED = 0.001

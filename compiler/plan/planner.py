@@ -59,9 +59,12 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     return Plan(program, tasks, step, tuple(diagnostics))
 
 
-# Policy: at most a million samples per timeline (4000 s at the default 4 ms step): the
-# trajectory arrays, the verifier's sweep and the renderer's frames all scale with it.
-MAX_SAMPLES = 1_000_000
+# Policy: at most 75,000 samples per timeline (300 s at the default 4 ms step): the
+# trajectory arrays, the verifier's sweep (about 1 kB per sample for the link transforms) and
+# the renderer's frames all scale with it; measured: a 967 s task took 1.2 GB and 28 s to
+# check, and the CSV and JSON backends format every sample (about 0.1 ms each, 25 s for a
+# 440 s task on a loaded machine): 300 s keeps a compile under 2 GB and 30 s (issue #20).
+MAX_SAMPLES = 75_000
 
 
 def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: float) -> list[Diagnostic]:

@@ -416,6 +416,9 @@ def _toppra(path: object, grid: np.ndarray, vlim: np.ndarray, alim: np.ndarray, 
     return ConstAccelTiming(path, grid, sd)
 
 
+_MAX_CHECK_POINTS = 200_000  # policy: long (slow) moves are checked on a coarser grid than 0.25 ms
+
+
 def _ratios(
     traj: ConstAccelTiming, vlim: np.ndarray, alim: np.ndarray, dt: float, dof: int, scale_at=None  # type: ignore[no-untyped-def]
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -423,7 +426,8 @@ def _ratios(
     alim (joints only: extra coordinates' accelerations are shaping limits), and the path
     parameters s where a limit (less its margin) is exceeded."""
     duration = traj.duration
-    dense = np.linspace(0.0, duration, max(3, int(math.ceil(duration / dt)) + 1))
+    # at most _MAX_CHECK_POINTS: a 10-minute move at 0.25 ms would be 2.4 million (1.3 GB, issue #20)
+    dense = np.linspace(0.0, duration, max(3, min(int(math.ceil(duration / dt)) + 1, _MAX_CHECK_POINTS)))
     ts = np.union1d(dense, traj.ts)  # type: ignore[attr-defined] - and toppra's own grid times
     _, xd, xdd = _eval(traj, ts)
     rel_v = np.abs(xd) / (vlim if scale_at is None else vlim * scale_at(traj.params(ts)[0]))
