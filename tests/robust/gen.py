@@ -145,10 +145,10 @@ def _statement(d: Draw, depth: int, procs: list[str]) -> str:
     if kind < 67:
         t = f" timeout {_num(d, 1, 20)} s" if d.chance(50) else ""
         return f"{pad}wait until in[{_int(d, 1, 3)}] {d.pick(('==', '!='))} {d.pick(('on', 'off'))}{t}"
-    if kind < 71 and depth < 3:
-        return f"{pad}for i in {_int(d, -2, 2)} .. {_int(d, 0, 4)} {{\n{_body(d, depth + 1, procs)}\n{pad}}}"
-    if kind < 74 and depth < 3:
-        return f"{pad}repeat {_int(d, 0, 3)} {{\n{_body(d, depth + 1, procs)}\n{pad}}}"
+    if kind < 71 and depth < 2:  # small loops: a generated program stays a few dozen moves (seconds to plan)
+        return f"{pad}for i in {_int(d, -1, 1)} .. {_int(d, 0, 2)} {{\n{_body(d, depth + 1, procs)}\n{pad}}}"
+    if kind < 74 and depth < 2:
+        return f"{pad}repeat {_int(d, 0, 2)} {{\n{_body(d, depth + 1, procs)}\n{pad}}}"
     if kind < 78 and depth < 3:
         other = f" else {{\n{_body(d, depth + 1, procs)}\n{pad}}}" if d.chance(50) else ""
         return f"{pad}if in[{_int(d, 1, 3)}] == on {{\n{_body(d, depth + 1, procs)}\n{pad}}}{other}"
