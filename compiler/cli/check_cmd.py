@@ -40,7 +40,10 @@ def parse_length(text: str) -> float:
     match = _LENGTH.match(text)
     if not match:
         raise ValueError(f"must be a length with a unit, e.g. 10mm (got '{text}')")
-    return float(match.group(1)) * _UNIT[match.group(2)]
+    value = float(match.group(1)) * _UNIT[match.group(2)]
+    if not value <= 10.0:  # also inf (`1e999mm`): a clearance beyond 10 m says nothing about a cell (issue #20)
+        raise ValueError(f"must be a length of at most 10 m (got '{text}')")
+    return value
 
 
 def check_one(path: str, cell: str | None = None, project_root: str | None = None,

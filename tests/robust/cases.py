@@ -122,6 +122,8 @@ CASES: tuple[Case, ...] = (
          ("p.rmot:2:14", "2 |   move joint nowhere\n")),
     Case("nul_after_64k", {"p.rmot": "# " + "x" * 70000 + "\nprogram p on r1 {\n  wait 1 s\n}\n# \x00\n"}, ("ir", "{d}/p.rmot"),
          frozenset({2}), ("E010",)),
+    Case("clearance_infinite", {"p.rmot": _prog("  move joint home")}, ("check", "{d}/p.rmot", "--clearance", "1e999mm"),
+         frozenset({2}), ("at most 10 m",)),
     # ---- OS errors
     Case("os_check_output_missing_dir", {"p.rmot": _prog("  move joint home")}, ("check", "{d}/p.rmot", "-o", "{d}/nodir/report.txt"),
          frozenset({2}), ("E520", "nodir")),
