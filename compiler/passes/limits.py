@@ -43,11 +43,14 @@ MAX_SIZE_M = 1000.0
 MAX_MESH_SCALE = 1000.0
 # Policy: I/O port numbers fit 16 bits (KUKA $OUT has 1..4096, Fanuc DO[] up to 512 by default).
 MAX_PORT = 65535
-# Loop iterations (all loops of a task together) and statements visited while unrolling:
-# bounded before the work is done, so an empty or settings-only loop of 10^9 rounds is a
-# diagnostic, not a hang. The instruction limit (MAX_INSTRUCTIONS, E121) is 200,000.
-MAX_ITERATIONS = 1_000_000
-MAX_WORK_STEPS = 2_000_000
+# Loop iterations (all loops of a task together) and statements visited while unrolling
+# (inlined proc bodies count once per level they are re-spanned at): bounded before the work
+# is done, so an empty or settings-only loop of 10^9 rounds or a fan-out of empty procs is a
+# diagnostic, not a hang. A round costs 25..100 us: as many rounds as instructions allowed
+# (MAX_INSTRUCTIONS, E121, is 200,000) and twice as many statements keep the front end to
+# seconds.
+MAX_ITERATIONS = 200_000
+MAX_WORK_STEPS = 400_000
 
 
 def within(x: float | None, lo: float, hi: float, what: str, unit: str, factor: float, span: Span,

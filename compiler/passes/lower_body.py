@@ -44,6 +44,9 @@ _KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circula
 _CONFIG = {"shoulder": ir.Shoulder, "elbow": ir.Elbow, "wrist": ir.Wrist}
 
 
+_CALL_STEPS = 4  # measured: a proc call costs about five statements of lowering (issue #20)
+
+
 class _TooLarge(Exception):
     pass
 
@@ -202,6 +205,7 @@ class TaskLowering:
         if id(entry) in self.stack:  # recursion: reported by the check_recursion pass
             return None
         self.called.add(id(entry.value))
+        self.steps += _CALL_STEPS  # binding arguments and a scope: several statements' worth of work
         inner = bind_call(entry, s, scope, self.rep)
         if inner is None:
             return None
@@ -210,6 +214,11 @@ class TaskLowering:
             body = self.nested(entry.value.body, inner, modal, f"proc '{entry.name}'")
         finally:
             self.stack.pop()
+        self.steps += _node_count(body)  # re-spanning the inlined body is work too: a fan-out of empty procs
+        if self.steps > MAX_WORK_STEPS:  # costs one step per nested node per level (issue #20)
+            self.rep.error(codes.TOO_MUCH_WORK, f"a task must make the compiler visit at most {MAX_WORK_STEPS} statements "
+                           "while unrolling loops and inlining procs (got more at this call)", s.span)
+            raise _TooLarge
         text = s.span.file.text
         args = tuple(text[a.span.start.offset:a.span.end.offset] for a in s.args)
         body = tuple(_expanded_at(instr, s.span) for instr in body)
@@ -350,6 +359,17 @@ class TaskLowering:
                 return None
             values.append(q.value)
         return ir.JointTarget(tuple(values), v.name)
+
+
+def _node_count(body: tuple[ir.Instr, ...]) -> int:
+    n = 0
+    for instr in body:
+        n += 1
+        if isinstance(instr, ir.If):
+            n += _node_count(instr.then) + _node_count(instr.otherwise)
+        elif isinstance(instr, ir.ProcCall):
+            n += _node_count(instr.body)
+    return n
 
 
 def _expanded_at(instr: ir.Instr, call_site: Span | None) -> ir.Instr:
