@@ -68,21 +68,25 @@ MAX_SAMPLES = 75_000
 
 
 def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: float) -> list[Diagnostic]:
+    """E124 at the first task when all timelines together (every task, and every if-branch
+    variant, which is sampled on its own) would exceed MAX_SAMPLES samples."""
     from rmot.compiler import codes as check_codes
 
-    out = []
+    total, parts = 0.0, 0
     for task in program.tasks:
         draft = drafts.get(task.name)
         if draft is None:
             continue
-        for pieces, what in [(draft.pieces, "timeline"), *((v.pieces, f"if-branch variant {v.index}") for v in draft.variants)]:
-            total = float(sum(p.duration for p in pieces))
-            if not total / step <= MAX_SAMPLES:
-                msg = (f"a task's {what} must take at most {MAX_SAMPLES * step:g} s at a step of {step * 1000:g} ms "
-                       f"({MAX_SAMPLES} samples; got {total:.6g} s): split the program or shorten its waits and slow moves")
-                out.append(Diagnostic(check_codes.TOO_MUCH_WORK, Severity.ERROR, msg, task.span, task=task.name))
-                break
-    return out
+        for pieces in [draft.pieces, *(v.pieces for v in draft.variants)]:
+            total += float(sum(p.duration for p in pieces))
+            parts += 1
+    if total / step <= MAX_SAMPLES:
+        return []
+    msg = (f"the timelines of a program must take at most {MAX_SAMPLES * step:g} s in all at a step of {step * 1000:g} ms "
+           f"({MAX_SAMPLES} samples; got {total:.6g} s over {parts} timeline{'s' * (parts != 1)}: tasks and if-branch "
+           "variants, each sampled on its own): split the program or shorten its waits and slow moves")
+    first = program.tasks[0]
+    return [Diagnostic(check_codes.TOO_MUCH_WORK, Severity.ERROR, msg, first.span, task=first.name)]
 
 
 def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
