@@ -10,7 +10,7 @@ __all__ = [
     "SYNC_UNMATCHED", "SYNC_ORDER", "MISPLACED", "UNKNOWN_VENDOR", "BAD_ARGUMENT",
     "OUT_OF_RANGE", "NO_PROGRAM", "NO_CELL", "TOO_LARGE_UNROLLED", "BAD_TASK",
     "CONFIG_IGNORED", "NOT_FINITE", "TOO_MUCH_WORK", "PHYSICAL_RANGE", "OUTPUT_FAILED", "UNREADABLE",
-    "OUTPUT_NAME_CLASH", "MESH_FLAT", "FILE_NOT_FOUND", "NOT_UTF8", "FILE_TOO_LARGE", "PATH_ESCAPES", "ROBOT_LOAD",
+    "OUTPUT_NAME_CLASH", "FILE_NOT_FOUND", "NOT_UTF8", "FILE_TOO_LARGE", "PATH_ESCAPES", "ROBOT_LOAD",
 ]
 
 UNKNOWN_NAME = Code("E101", "unknown-name", "a name is not defined in any visible scope")
@@ -50,4 +50,3 @@ PHYSICAL_RANGE = Code("E125", "outside-accepted-range", "a time, speed, zone, si
 OUTPUT_FAILED = Code("E520", "output-failed", "an output file or directory cannot be written")
 UNREADABLE = Code("E521", "unreadable", "a file or folder exists but cannot be read")
 OUTPUT_NAME_CLASH = Code("E522", "output-name-clash", "two output files get the same name on a controller")
-MESH_FLAT = Code("E523", "mesh-flat", "a mesh with no volume: fewer than 4 points or all in one plane")

@@ -70,11 +70,6 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
         vertices, faces, watertight = _read_cached(path, stat.st_mtime_ns, stat.st_size)
     except _MeshError as exc:
         return _error(mesh, exc.code, exc.message)
-    if _is_flat(vertices):  # the collision library's convex hull needs a volume (issue #20: it raised)
-        from rmot.compiler import codes as check_codes
-
-        return _error(mesh, check_codes.MESH_FLAT, f"mesh must enclose a volume (got {len(vertices)} points "
-                      f"{'in one plane or line' if len(vertices) >= 4 else '(a solid needs at least 4)'})")
     extent = float(np.max(np.abs(vertices))) * float(mesh.scale) if vertices.size else 0.0
     if not extent <= _MAX_EXTENT_M:  # also NaN: a scaled mesh of 1e300 m crashed the collision library
         from rmot.compiler import codes as check_codes
@@ -96,7 +91,7 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
 _MAX_EXTENT_M = 1000.0  # policy, as compiler/passes/limits.MAX_SIZE_M: solids up to a kilometre
 
 
-def _is_flat(vertices: np.ndarray) -> bool:
+def is_flat(vertices: np.ndarray) -> bool:
     """Fewer than 4 points, or all within 1e-9 of the size of the mesh of one plane."""
     if len(vertices) < 4:
         return True
