@@ -67,3 +67,12 @@ def test_the_generator_reaches_the_backends() -> None:
         with tempfile.TemporaryDirectory() as d:
             clean += not load_program(_write(d, random_project(seed)), require_program=True).has_errors
     assert clean >= 20, clean
+
+
+def test_inputs_make_fuzz_found_stay_fixed(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """Seeds `make fuzz` reported as tracebacks (a second robot without a task, moving near a
+    fixture: KeyError in the collision bisection) now end in diagnostics."""
+    from tests.robust.fuzz import run_one
+
+    for seed in (11011, 16503):
+        assert run_one(seed, str(tmp_path)).startswith("ok"), seed
