@@ -14,7 +14,7 @@ from rmot.compiler.passes.context import Reporter
 from rmot.lang.source import Span
 
 __all__ = [
-    "MAX_DURATION_S", "MAX_ITERATIONS", "MAX_POSITION_M", "MAX_PORT", "MAX_SIZE_M", "MAX_TCP_SPEED",
+    "MAX_DURATION_S", "MAX_ITERATIONS", "MAX_POSITION_M", "MIN_SIZE_M", "MAX_PORT", "MAX_SIZE_M", "MAX_TCP_SPEED",
     "MAX_WORK_STEPS", "MAX_ZONE_M", "MIN_RATIO", "MIN_TCP_ACCEL", "MIN_TCP_SPEED", "MAX_MESH_SCALE", "within",
 ]
 
@@ -40,6 +40,9 @@ MAX_ZONE_M = 1.0
 MAX_POSITION_M = 100.0
 # Policy: fixture and tool solids up to a kilometre across; a mesh scale up to 1000.
 MAX_SIZE_M = 1000.0
+# Policy: solid dimensions of at least 0.1 mm: a capsule of 1 nm radius made the collision
+# bounds split without end (2 GB, found by `make fuzz`, seed 13338).
+MIN_SIZE_M = 1e-4
 MAX_MESH_SCALE = 1000.0
 # Policy: I/O port numbers fit 16 bits (KUKA $OUT has 1..4096, Fanuc DO[] up to 512 by default).
 MAX_PORT = 65535

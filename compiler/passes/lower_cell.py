@@ -19,7 +19,7 @@ from pathlib import Path
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
 from rmot.compiler.passes.urdf_paths import check_urdf_files
-from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, within
+from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_SIZE_M, within
 from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.load_files import resolve_path
 from rmot.compiler.passes.scopes import declare, misplaced
@@ -107,7 +107,7 @@ class _CellBuilder:
             if x is not None and x <= 0:
                 self.rep.error(codes.OUT_OF_RANGE, f"{kind} '{n}' must be > 0 mm (got {x * 1000:g} mm)", bound[n].span)
                 x = None
-            x = None if x is None else within(x, 0.0, MAX_SIZE_M, f"{kind} '{n}'", "m", 1.0, bound[n].span, self.rep)
+            x = None if x is None else within(x, MIN_SIZE_M, MAX_SIZE_M, f"{kind} '{n}'", "m", 1.0, bound[n].span, self.rep)
             sizes.append(x)
         if any(x is None for x in sizes):
             return None

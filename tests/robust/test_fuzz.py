@@ -70,9 +70,10 @@ def test_the_generator_reaches_the_backends() -> None:
 
 
 def test_inputs_make_fuzz_found_stay_fixed(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    """Seeds `make fuzz` reported as tracebacks (a second robot without a task, moving near a
-    fixture: KeyError in the collision bisection) now end in diagnostics."""
+    """Seeds `make fuzz` reported: tracebacks (a second robot without a task near a fixture:
+    KeyError in the collision bisection) and memory over 2 GB (a capsule of 1 nm radius, now
+    E125) end in diagnostics."""
     from tests.robust.fuzz import run_one
 
-    for seed in (11011, 16503):
+    for seed in (11011, 16503, 13338, 15919):
         assert run_one(seed, str(tmp_path)).startswith("ok"), seed
