@@ -8,7 +8,7 @@ EXAMPLE := examples/pick_place.rmot
 OUT     := out
 TARGETS := --target rapid --target krl --target fanuc --target urscript --target inform --target val3 --target csv --target json
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench clean fuzz
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -31,6 +31,17 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[bench]'
 	$(BIN)/python -m pytest tests/benchmarks -q -p no:cacheprovider -o python_files='bench_*.py test_*.py' -o addopts='' --benchmark-columns=median,iqr,rounds
+
+# Fuzzing (issue #20): FUZZ_N generated projects (tests/robust/gen.py) through the whole
+# pipeline, each under a 2 GB memory cap and a 30 s limit in a worker process; counts of
+# tracebacks / hangs / memory / crashes go to stdout and $(FUZZ_REPORT). `make test` runs a
+# small Hypothesis budget of the same generator (tests/robust/test_fuzz.py).
+FUZZ_N      ?= 100000
+FUZZ_START  ?= 0
+FUZZ_JOBS   ?= 1
+FUZZ_REPORT ?= fuzz-report.json
+fuzz: $(STAMP)
+	$(BIN)/python -m tests.robust.fuzz --n $(FUZZ_N) --start $(FUZZ_START) --jobs $(FUZZ_JOBS) --timeout 30 --memory-gb 2 --report $(FUZZ_REPORT)
 
 clean:
 	rm -rf $(VENV) build *.egg-info $(OUT)

@@ -71,6 +71,7 @@ from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
+from rmot.backends.safe_text import comment_safe
 
 __all__ = [
     "Backend", "EmitResult", "Lowering", "TaskContext",
@@ -157,7 +158,18 @@ def source_ref(span: Span | None) -> str | None:
     """'file.rmot:12' for a comment (file name without directories: the same on every machine)."""
     if span is None:
         return None
-    return f"{os.path.basename(span.file.path)}:{span.start.line}"
+    return f"{comment_safe(os.path.basename(span.file.path))}:{span.start.line}"
+
+
+def _name_clash(backend: object, fname: str, first: str, task_plan: planned.TaskPlan) -> Diagnostic:
+    """E522: two tasks' programs get one file name on this controller (its name length limit
+    or its case folding made them equal); writing both would lose one."""
+    from rmot.compiler import codes as file_codes
+
+    who = getattr(backend, "name", type(backend).__name__)
+    msg = (f"{who}: task '{task_plan.task.name}' must get its own output file (got '{fname}', "
+           f"the file of task '{first}': the controller's name length or case rules make the names equal); rename a task")
+    return Diagnostic(file_codes.OUTPUT_NAME_CLASH, Severity.ERROR, msg, task_plan.task.span)
 
 
 def header_lines(plan: planned.Plan, backend_name: str, findings: bool = False) -> list[str]:
@@ -257,11 +269,19 @@ class Backend:
         """Format every task of `plan`; one output program (one or more files) per task."""
         self._emission = _Emission()
         files: dict[str, str] = {}
+        owner: dict[str, str] = {}  # case-folded file name -> the task that wrote it
+        clashed: set[tuple[str, str]] = set()
         for task_plan in plan.tasks:
             ctx = TaskContext(plan, task_plan, plan.program.cell.robot(task_plan.robot),
                               self.program_name(plan, task_plan), source_map=source_map)
             self.check_brand(ctx.robot)
             for fname, text in self.emit_task(ctx).items():
+                first = owner.setdefault(fname.casefold(), task_plan.task.name)
+                if first != task_plan.task.name:  # issue #20: names equal after the vendor's cut or case folding
+                    if (first, task_plan.task.name) not in clashed:
+                        clashed.add((first, task_plan.task.name))
+                        self._emission.diagnostics.append(_name_clash(self, fname, first, task_plan))
+                    continue
                 files[fname] = text
         return EmitResult(files, _unique(self._emission.diagnostics))
 
@@ -433,7 +453,7 @@ class Backend:
     # ------------------------------------------------------------------ text helpers
 
     def comment(self, text: str) -> str:
-        return f"{self.COMMENT} {text}" if text else self.COMMENT
+        return f"{self.COMMENT} {comment_safe(text)}" if text else self.COMMENT
 
     def source_comment(self, node: ir.Instr, ctx: TaskContext) -> str | None:
         """`! file.rmot:12` above an instruction's text, when source maps are on."""

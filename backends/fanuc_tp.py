@@ -65,6 +65,7 @@ from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir
+from rmot.backends.safe_text import comment_safe, tp_io_comment
 
 __all__ = ["FanucBackend", "FANUC_RULES", "config_string", "turn_number"]
 
@@ -206,7 +207,7 @@ class FanucBackend(Backend):
         return "\n".join(out) + "\n"
 
     def comment(self, text: str) -> str:
-        return f"!{text}"
+        return f"!{comment_safe(text)}"
 
     def source_comment(self, node: ir.Instr, ctx: TaskContext) -> str | None:
         ref = ctx.source_ref(node)
@@ -417,7 +418,7 @@ class FanucBackend(Backend):
 
 def _sig(signal: str | None) -> str:
     """The cell's signal name as a TP I/O comment: DO[1:gripper_close]."""
-    return f":{signal[:24]}" if signal else ""
+    return f":{tp_io_comment(signal)[:24]}" if signal else ""
 
 
 def _pieces(text: str) -> list[str]:

@@ -85,6 +85,7 @@ from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
+from rmot.backends.safe_text import comment_safe
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
 
@@ -255,11 +256,11 @@ class InformBackend(Backend):
 
     def comment(self, text: str) -> str:
         """`'text`, cut to the controller's 32 characters (the end is kept: `file:line`)."""
-        return "'" + text[-(COMMENT_WIDTH - 1):] if text else "'"
+        return "'" + comment_safe(text)[-(COMMENT_WIDTH - 1):] if text else "'"
 
     def wrap(self, text: str) -> list[str]:
         """A long comment as several 32-character comment lines."""
-        step = COMMENT_WIDTH - 1
+        step, text = COMMENT_WIDTH - 1, comment_safe(text)
         return ["'" + text[i:i + step] for i in range(0, len(text), step)] or ["'"]
 
     def tool_numbers(self, ctx: TaskContext) -> dict[str | None, int]:

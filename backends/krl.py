@@ -60,6 +60,7 @@ from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir
+from rmot.backends.safe_text import comment_safe
 
 __all__ = ["KrlBackend", "KRL_RULES", "status_of"]
 
@@ -354,7 +355,7 @@ class KrlBackend(Backend):
 
     @staticmethod
     def _signal_note(signal: str | None) -> str:
-        return f" ; {signal}" if signal else ""
+        return f" ; {comment_safe(signal)}" if signal else ""
 
     def if_(self, node: ir.If, ctx: KrlContext) -> list[str]:
         c = node.condition

@@ -9,7 +9,8 @@ __all__ = [
     "ARITY", "RECURSION", "IMPORT_CYCLE", "JOINT_COUNT", "UNKNOWN_ROBOT", "TOOL_NOT_ON_ROBOT",
     "SYNC_UNMATCHED", "SYNC_ORDER", "MISPLACED", "UNKNOWN_VENDOR", "BAD_ARGUMENT",
     "OUT_OF_RANGE", "NO_PROGRAM", "NO_CELL", "TOO_LARGE_UNROLLED", "BAD_TASK",
-    "CONFIG_IGNORED", "FILE_NOT_FOUND", "NOT_UTF8", "FILE_TOO_LARGE", "PATH_ESCAPES", "ROBOT_LOAD",
+    "CONFIG_IGNORED", "NOT_FINITE", "TOO_MUCH_WORK", "PHYSICAL_RANGE", "OUTPUT_FAILED", "UNREADABLE",
+    "OUTPUT_NAME_CLASH", "FILE_NOT_FOUND", "NOT_UTF8", "FILE_TOO_LARGE", "PATH_ESCAPES", "ROBOT_LOAD",
 ]
 
 UNKNOWN_NAME = Code("E101", "unknown-name", "a name is not defined in any visible scope")
@@ -62,3 +63,11 @@ PART_NOT_HELD = Code("E142", "part-not-held", "detach of a part the task does no
 PART_ARMS_DIFFER = Code("E143", "part-arms-differ", "the arms of a runtime if leave different parts held")
 PART_HELD_AT_END = Code("W140", "part-held-at-end", "a task ends still holding a part")
 __all__ += ["UNKNOWN_PART", "PART_ALREADY_HELD", "PART_NOT_HELD", "PART_ARMS_DIFFER", "PART_HELD_AT_END"]
+
+# issue #20: numbers, work and files a hostile or clumsy input can make absurd
+NOT_FINITE = Code("E123", "not-finite", "a value overflows to infinity or is not a number")
+TOO_MUCH_WORK = Code("E124", "too-much-work", "the program would make the compiler do more work than allowed")
+PHYSICAL_RANGE = Code("E125", "outside-accepted-range", "a time, speed, zone, size or position outside what rmot accepts")
+OUTPUT_FAILED = Code("E520", "output-failed", "an output file or directory cannot be written")
+UNREADABLE = Code("E521", "unreadable", "a file or folder exists but cannot be read")
+OUTPUT_NAME_CLASH = Code("E522", "output-name-clash", "two output files get the same name on a controller")

@@ -347,7 +347,12 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         last = num if unit is None else unit
         start, end = _make_pos(num.line, num.column, num.start_pos), _make_pos(last.end_line, last.end_column, last.end_pos)
         span = _make_span(self.file, start, end)
-        return ast.Number(float(num), None if unit is None else self._unit(unit), span)
+        value = float(num)
+        if value == float("inf"):  # `1e999`: refused where written (issue #20); 0.0 keeps the tree well-typed
+            self.diagnostics.append(Diagnostic(codes.NOT_FINITE_LITERAL, Severity.ERROR, "number must fit a 64-bit "
+                                               f"float, at most about 1.8e308 (got {str(num)[:40]})", span))
+            value = 0.0
+        return ast.Number(value, None if unit is None else self._unit(unit), span)
 
     def name(self, c: list[Any]) -> ast.Name:
         return ast.Name(str(c[0]), self._token_span(c[0]))

@@ -131,14 +131,31 @@ class DiagnosticSink:
     def items(self) -> tuple[Diagnostic, ...]:
         return tuple(self._items)
 
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def errors_since(self, start: int) -> bool:
+        """Whether an error was added after the first `start` items (no copy of the list)."""
+        return any(self._items[i].is_error for i in range(start, len(self._items)))
+
     @property
     def has_errors(self) -> bool:
         return any(d.is_error for d in self._items)
 
 
+# Characters that some text layer (Python's str.splitlines, a terminal) takes as a line break
+# or a cursor move: shown as one visible character each, so the caret stays under its column.
+_INVISIBLE = {ord(c): " " for c in "\t\f\v"} | {ord(c): "\u240d" for c in "\r"} | {
+    ord(c): "\ufffd" for c in "\x1c\x1d\x1e\x85\u2028\u2029"} | {i: "\ufffd" for i in range(0, 32) if i not in (9, 10, 11, 12, 13)}
+
+
+def _visible(text: str) -> str:
+    return text.translate(_INVISIBLE)
+
+
 def _caret_block(span: Span) -> list[str]:
     """The source line and a caret line under the span (`^~~~`)."""
-    text = span.file.line_text(span.start.line).replace("\t", " ")
+    text = _visible(span.file.line_text(span.start.line))
     if not text and span.start.line > 1 and not span.file.text:
         return []
     width = len(str(span.start.line))

@@ -15,6 +15,7 @@ parse (the file), and the error messages read the post-lexer state of the last p
 from __future__ import annotations
 
 import difflib
+import re
 import threading
 from collections import deque
 from collections.abc import Iterator
@@ -110,7 +111,7 @@ def parse_text(text: str, path: str = "<input>") -> ParseResult:
 
 def parse_source(file: SourceFile) -> ParseResult:
     """Parse one file; syntax errors become diagnostics (the first one; LALR stops there)."""
-    binary = _binary_problem(file)
+    binary = _binary_problem(file) or _line_break_problem(file)
     if binary is not None:
         return ParseResult(None, (binary,))
     if not file.text.strip():
@@ -140,11 +141,31 @@ def _error(code: codes.Code, message: str, span: Span | None, notes: tuple = ())
 
 def _binary_problem(file: SourceFile) -> Diagnostic | None:
     """NUL and other C0 control characters (besides tab, newline, CR, FF) mean a binary file."""
-    for i, ch in enumerate(file.text[:65536]):
-        if ch < " " and ch not in "\t\n\r\f":
-            span = Span.from_offsets(file, i, i + 1)
-            return _error(codes.BINARY_INPUT, f"file must be text (got control character {ch!r})", span)
+    found = _CONTROL.search(file.text)  # the whole file: a NUL after 64 KiB is binary too (issue #20)
+    if found is not None:
+        i, ch = found.start(), found.group()
+        span = Span.from_offsets(file, i, i + 1)
+        return _error(codes.BINARY_INPUT, f"file must be text (got control character {ch!r})", span)
     return None
+
+
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0e-\x1f]")
+# Line breaks the lexer does not take as one but other text layers do (Python's splitlines,
+# editors): refused, so that every tool counts the same lines as `file:line:col` (issue #20).
+_ODD_BREAK = re.compile("\r(?!\n)|[\x85\u2028\u2029]")
+
+
+def _line_break_problem(file: SourceFile) -> Diagnostic | None:
+    found = _ODD_BREAK.search(file.text)
+    if found is None:
+        return None
+    span = Span.from_offsets(file, found.start(), found.start() + 1)
+    if found.group() == "\r":
+        return _error(codes.LONE_CR, "lines must end with LF or CRLF (got a carriage return alone: "
+                      "old Mac line endings; convert the file to LF)", span)
+    name = {"\x85": "U+0085 NEXT LINE", "\u2028": "U+2028 LINE SEPARATOR", "\u2029": "U+2029 PARAGRAPH SEPARATOR"}[found.group()]
+    return _error(codes.UNICODE_LINE_BREAK, f"lines must end with LF or CRLF (got {name}, which some editors "
+                  "show as a line break and the compiler does not)", span)
 
 
 # --------------------------------------------------------------------------- errors in words

@@ -20,9 +20,22 @@ class SourceFile:
     text: str = field(repr=False, compare=False, hash=False)
 
     def line_text(self, line: int) -> str:
-        """The text of 1-based `line` without its newline ('' past the end)."""
-        lines = self.text.splitlines()
-        return lines[line - 1] if 1 <= line <= len(lines) else ""
+        """The text of 1-based `line` without its newline ('' past the end).
+
+        Lines end at LF only (a CRLF's CR is dropped), exactly as the lexer and `pos_at` count
+        them: `str.splitlines` would also break at form feed, CR, U+2028 and five more, and
+        then `file:line:col` and the quoted line would disagree (issue #20)."""
+        if line < 1:
+            return ""
+        start = 0
+        for _ in range(line - 1):
+            nl = self.text.find("\n", start)
+            if nl < 0:
+                return ""
+            start = nl + 1
+        end = self.text.find("\n", start)
+        text = self.text[start:] if end < 0 else self.text[start:end]
+        return text[:-1] if text.endswith("\r") else text
 
     def pos_at(self, offset: int) -> Pos:
         """The 1-based line and column of a 0-based character offset."""

@@ -338,7 +338,9 @@ def _bisect(scene: Scene, timeline: Timeline, exact: ExactPair, a: Body, b: Body
         tm = (ta + tb) / 2
         qm = {r: (qa[r] + qb[r]) / 2 for r in robots}
         pm = {r: scene.poses(r, qm[r]) for r in robots}
-        pose = lambda body, k: fixed[body.name] if body.name in fixed else pm[body.robot][body.name][k]  # noqa: E731
+        # a body of a robot without a task stands still: its first pose (issue #20: KeyError, found by make fuzz)
+        pose = lambda body, k: (fixed[body.name] if body.name in fixed else pm[body.robot][body.name][k]  # noqa: E731
+                                if body.robot in pm else poses[body.name][0])
         dm = np.array([exact.distance(pose(a, k), pose(b, k), float(move[k] / 2 + clearance)) for k in range(len(tm))])
         out_t.append(tm)
         out_d.append(dm)

@@ -12,7 +12,7 @@ import coal
 import numpy as np
 
 from rmot.compiler import ir
-from rmot.sim.meshio import MeshData
+from rmot.sim.meshio import MeshData, is_flat
 from rmot.sim.scene import Body
 
 __all__ = ["ExactPair", "coal_shapes", "exact_distance"]
@@ -111,8 +111,23 @@ def _mesh_shapes(mesh: MeshData) -> tuple[object, object]:
     bvh.addVertices(np.ascontiguousarray(mesh.vertices, dtype=np.float64))
     bvh.addTriangles(np.ascontiguousarray(mesh.faces, dtype=np.int64))
     bvh.endModel()
-    bvh.buildConvexHull(True, "Qt")
-    return bvh.convex, bvh
+    if not is_flat(mesh.vertices):
+        bvh.buildConvexHull(True, "Qt")
+        return bvh.convex, bvh
+    # A flat mesh (one triangle, a plane, fewer than 4 points) has no volume and coal's hull
+    # raises on it (issue #20, found by `make fuzz`): its hull is taken of the points and
+    # copies of them 1 um along the plane's normal, a sheet one micrometre thick.
+    pts = np.asarray(mesh.vertices, dtype=np.float64)
+    centred = pts - pts.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred if len(pts) >= 3 else np.vstack([centred, np.eye(3)]))
+    normal, side = vt[-1], vt[-2]
+    padded = np.vstack([pts, pts + 1e-6 * normal, pts + 1e-6 * side])
+    hull = coal.BVHModelOBBRSS()
+    hull.beginModel(0, len(padded))
+    hull.addVertices(np.ascontiguousarray(padded))
+    hull.endModel()
+    hull.buildConvexHull(True, "Qt")
+    return hull.convex, bvh
 
 
 def _transform(pose: np.ndarray) -> coal.Transform3s:

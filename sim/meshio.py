@@ -60,9 +60,22 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
     except OSError:
         return _error(mesh, codes.MESH_MISSING, f"mesh file must exist (got '{path}')")
     try:
+        with open(path, "rb"):  # an unreadable file is said to be unreadable, not "not a valid STL" (issue #20)
+            pass
+    except OSError as exc:
+        from rmot.compiler import codes as check_codes
+
+        return _error(mesh, check_codes.UNREADABLE, f"mesh file must be readable (got {exc.strerror or exc} for '{path}')")
+    try:
         vertices, faces, watertight = _read_cached(path, stat.st_mtime_ns, stat.st_size)
     except _MeshError as exc:
         return _error(mesh, exc.code, exc.message)
+    extent = float(np.max(np.abs(vertices))) * float(mesh.scale) if vertices.size else 0.0
+    if not extent <= _MAX_EXTENT_M:  # also NaN: a scaled mesh of 1e300 m crashed the collision library
+        from rmot.compiler import codes as check_codes
+
+        return _error(mesh, check_codes.PHYSICAL_RANGE, f"mesh must lie within {_MAX_EXTENT_M:g} m of its origin once scaled "
+                      f"(got a vertex {extent:.3g} m away; check its unit or scale)")
     warnings: tuple[Diagnostic, ...] = ()
     if not watertight:
         warnings = (
@@ -73,6 +86,18 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
             ),
         )
     return MeshData(vertices * float(mesh.scale), faces.copy(), warnings)
+
+
+_MAX_EXTENT_M = 1000.0  # policy, as compiler/passes/limits.MAX_SIZE_M: solids up to a kilometre
+
+
+def is_flat(vertices: np.ndarray) -> bool:
+    """Fewer than 4 points, or all within 1e-9 of the size of the mesh of one plane."""
+    if len(vertices) < 4:
+        return True
+    centred = vertices - vertices.mean(axis=0)
+    sv = np.linalg.svd(centred, compute_uv=False)
+    return bool(not np.all(np.isfinite(sv)) or sv[2] <= 1e-9 * max(sv[0], 1e-300))
 
 
 def _error(mesh: ir.Mesh, code: Code, message: str) -> Diagnostic:

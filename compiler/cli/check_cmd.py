@@ -41,7 +41,10 @@ def parse_length(text: str) -> float:
     match = _LENGTH.match(text)
     if not match:
         raise ValueError(f"must be a length with a unit, e.g. 10mm (got '{text}')")
-    return float(match.group(1)) * _UNIT[match.group(2)]
+    value = float(match.group(1)) * _UNIT[match.group(2)]
+    if not value <= 10.0:  # also inf (`1e999mm`): a clearance beyond 10 m says nothing about a cell (issue #20)
+        raise ValueError(f"must be a length of at most 10 m (got '{text}')")
+    return value
 
 
 def check_one(path: str, cell: str | None = None, project_root: str | None = None,
@@ -96,14 +99,26 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
         note = Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                           f"images were not rendered: the renderer is not available ({exc})", None)
         return Report(report.program_file, report.cycle_times, report.diagnostics + (note,), report.tasks)
-    os.makedirs(directory, exist_ok=True)
+    try:
+        os.makedirs(directory, exist_ok=True)
+    except OSError as exc:  # issue #20: a folder that cannot be made is a finding about the option, not a traceback
+        from rmot.compiler import codes as check_codes
+
+        why = Diagnostic(check_codes.OUTPUT_FAILED, Severity.ERROR,
+                         f"images folder '{directory}' must be a folder that can be made (got {exc.strerror or exc})", None)
+        return Report(report.program_file, report.cycle_times, report.diagnostics + (why,), report.tasks)
     stem = os.path.splitext(os.path.basename(report.program_file))[0]
     extra = []
     for k, d in enumerate(events(report.errors), start=1):  # one picture per event, not per piece of it
         if d.time_s is None:
             continue
         final = os.path.join(directory, f"{stem}-{k:02d}-{d.code.id}.png")
-        fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".png", dir=directory)
+        try:
+            fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".png", dir=directory)
+        except OSError as exc:
+            extra.append(Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
+                                    f"image for {d.code.id} was not rendered: '{directory}' is not writable ({exc.strerror or exc})", d.span))
+            continue
         os.close(fd)
         try:
             render_finding(plan, d, tmp)
@@ -181,7 +196,13 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
     if dynamics and fmt == "text":
         text += "".join(o.dynamics for o in outcomes)
     if output:
-        _write_atomic(output, text)
+        try:
+            _write_atomic(output, text)
+        except OSError as exc:
+            from rmot.compiler.cli.oserrors import output_failed
+
+            click.echo(output_failed("report file", output, exc), err=True)
+            click.get_current_context().exit(EXIT_INPUT)
     else:
         click.echo(text, nl=False)
     ctx = click.get_current_context()

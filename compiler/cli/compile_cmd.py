@@ -6,19 +6,21 @@ plan_program) -> verification (rmot.sim.verify) -> one backend per --target
 
 Exit codes:
   0  files written (warnings allowed);
-  1  verification or a backend reported errors: no file is written, unless --allow-findings
-     lets verification errors through (every file then starts with a warning header;
-     backend errors always block: their output would not be faithful);
-  2  input or usage errors (missing file, front-end errors, unknown target).
-Writing is all-or-nothing: every text is built in memory, written to a temporary file in its
-final directory, and only when all of them are written are they renamed into place
-(os.replace), so a failed compile leaves the previous output untouched.
+  1  verification reported errors: no file is written, unless --allow-findings lets them
+     through (every file then starts with a warning header); or a backend refused the
+     program: that vendor's directory is not written (its old output stays), the other
+     vendors are written, and the refusal is reported;
+  2  input or usage errors (missing file, front-end errors, unknown target, an output
+     directory that cannot be written: E520).
+Writing is per vendor and atomic (compiler/cli/output_tree.py): every text is built in
+memory, written into a staging directory beside OUTDIR/<vendor>, and the staging directory
+takes the vendor directory's place in one rename, so OUTDIR/<vendor> is always wholly the
+old or wholly the new output, also when the run is killed (SIGKILL) midway; a failed compile
+leaves the previous output untouched.
 """
 
 from __future__ import annotations
 
-import os
-import tempfile
 from dataclasses import dataclass
 
 import click
@@ -37,6 +39,7 @@ class CompileOutcome:
     files: dict[str, str]
     diagnostics: tuple
     exit_code: int
+    refused: tuple[str, ...] = ()  # targets whose backend reported errors: not written
 
 
 def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = None,
@@ -61,36 +64,57 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     if findings and not allow_findings:
         return CompileOutcome({}, diagnostics, EXIT_FINDINGS)
     files: dict[str, str] = {}
-    backend_errors = False
+    refused: list[str] = []
     for target in dict.fromkeys(targets):  # each target once, in the order given
-        result = BACKENDS[target](allow_findings_header=findings, write_frames=write_frames).emit(
-            plan, source_map=source_map)
+        try:
+            result = BACKENDS[target](allow_findings_header=findings, write_frames=write_frames).emit(
+                plan, source_map=source_map)
+        except Exception as exc:  # a backend bug refuses that vendor only, never a traceback (issue #20)
+            from rmot.compiler import codes
+            from rmot.lang.diagnostics import Diagnostic, Severity
+
+            msg = f"{target}: internal error while writing this vendor ({exc.__class__.__name__}: {exc}); please report it"
+            diagnostics += (Diagnostic(codes.OUTPUT_FAILED, Severity.ERROR, msg, None),)
+            refused.append(target)
+            continue
         diagnostics += result.diagnostics
-        backend_errors |= result.has_errors
+        if result.has_errors:  # this vendor refuses the program: its old output stays, the others are written
+            refused.append(target)
+            continue
+        clash = _case_clash(result.files)
+        if clash:
+            from rmot.compiler import codes
+            from rmot.lang.diagnostics import Diagnostic, Severity
+
+            msg = (f"{target}: output files must have names that differ also without regard to case (got "
+                   f"{' and '.join(repr(n) for n in clash)}, one file on Windows and macOS); rename a task")
+            diagnostics += (Diagnostic(codes.OUTPUT_NAME_CLASH, Severity.ERROR, msg, plan.program.span),)
+            refused.append(target)
+            continue
         files.update({f"{target}/{name}": text for name, text in result.files.items()})
-    if backend_errors:
-        return CompileOutcome({}, diagnostics, EXIT_FINDINGS)
-    return CompileOutcome(files, diagnostics, EXIT_OK)
+    return CompileOutcome(files, diagnostics, EXIT_FINDINGS if refused else EXIT_OK, tuple(refused))
+
+
+def _case_clash(files: dict[str, str]) -> tuple[str, str] | None:
+    seen: dict[str, str] = {}
+    for name in files:
+        folded = name.casefold()
+        if folded in seen:
+            return seen[folded], name
+        seen[folded] = name
+    return None
 
 
 def write_all(outdir: str, files: dict[str, str]) -> list[str]:
-    """Write every file atomically and all-or-nothing; returns the final paths in order."""
-    staged: list[tuple[str, str]] = []
-    try:
-        for rel, text in files.items():
-            final = os.path.join(outdir, *rel.split("/"))
-            os.makedirs(os.path.dirname(final), exist_ok=True)
-            fd, tmp = tempfile.mkstemp(prefix=".rmot-", dir=os.path.dirname(final))
-            staged.append((tmp, final))
-            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-                f.write(text)
-        for tmp, final in staged:
-            os.replace(tmp, final)
-    finally:
-        for tmp, _ in staged:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-    return [final for _, final in staged]
+    """Write every file, grouped by vendor (the first path component); each vendor directory
+    is replaced whole and atomically (compiler/cli/output_tree.py). Returns the final paths."""
+    from rmot.compiler.cli.output_tree import write_vendor_dirs
+
+    vendors: dict[str, dict[str, str]] = {}
+    for rel, text in files.items():
+        vendor, _, name = rel.partition("/")
+        vendors.setdefault(vendor, {})[name] = text
+    return write_vendor_dirs(outdir, vendors)
 
 
 @click.command("compile")
@@ -117,17 +141,22 @@ def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: s
     for d in outcome.diagnostics:
         click.echo(render(d), err=True)
     ctx = click.get_current_context()
-    if outcome.exit_code != EXIT_OK:
+    if not outcome.files:
         click.echo(f"rmot: no files written ({_count(outcome.diagnostics)})", err=True)
-        ctx.exit(outcome.exit_code)
+        ctx.exit(outcome.exit_code if outcome.exit_code != EXIT_OK else EXIT_FINDINGS)
     try:
         written = write_all(outdir, outcome.files)
     except OSError as exc:
-        click.echo(f"rmot: error: output directory must be writable ({exc})", err=True)
+        from rmot.compiler.cli.oserrors import output_failed
+
+        click.echo(output_failed("output directory", outdir, exc), err=True)
         ctx.exit(EXIT_INPUT)
     for path in written:
         click.echo(f"wrote {path}")
-    ctx.exit(EXIT_OK)
+    if outcome.refused:
+        click.echo(f"rmot: not written for {', '.join(outcome.refused)} ({_count(outcome.diagnostics)}); "
+                   "their earlier output, if any, is unchanged", err=True)
+    ctx.exit(outcome.exit_code)
 
 
 def _count(diagnostics: tuple) -> str:

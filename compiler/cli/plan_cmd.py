@@ -96,5 +96,11 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
     for tp in result.tasks:
         click.echo(f"task {tp.task.name} ({tp.robot}): cycle time {tp.cycle_time:.3f} s")
     if csv_out:
-        _write_atomic(csv_out, trajectory_csv(result))
+        try:
+            _write_atomic(csv_out, trajectory_csv(result))
+        except OSError as exc:
+            from rmot.compiler.cli.oserrors import output_failed
+
+            click.echo(output_failed("trajectory file", csv_out, exc), err=True)
+            raise SystemExit(EXIT_INPUT) from None
     raise SystemExit(EXIT_FINDINGS if any(d.is_error for d in result.diagnostics) else EXIT_OK)

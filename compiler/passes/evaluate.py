@@ -41,7 +41,22 @@ def eval_expr(e: ast.Expr, scope: Scope, rep: Reporter) -> Value | None:
     if handler is None:
         rep.error(codes.WRONG_TYPE, f"expression must be a value (got {type(e).__name__})", getattr(e, "span", None))
         return None
-    return handler(e, scope, rep)  # type: ignore[no-any-return]
+    value = handler(e, scope, rep)
+    if isinstance(value, Quantity) and not math.isfinite(value.value):
+        rep.error(codes.NOT_FINITE, "value must be a finite number (got "
+                  f"{'infinity' if math.isinf(value.value) else 'not a number'}: the arithmetic overflows a 64-bit float)", e.span)
+        return None
+    if isinstance(value, Quantity) and abs(value.value) > MAX_MAGNITUDE:
+        rep.error(codes.PHYSICAL_RANGE, f"value must be at most {MAX_MAGNITUDE:g} in size in SI units (got {value.value:.3g}); "
+                  "no cell, time or speed is that large", e.span)
+        return None
+    return value  # type: ignore[no-any-return]
+
+
+# Every quantity of a program, in SI units (m, s, rad, kg, ...), is at most this in size: a
+# policy bound (not a physical constant) far above any cell (metres), cycle (hours) or mass,
+# and far below where float arithmetic loses whole units or overflows (issue #20).
+MAX_MAGNITUDE = 1e9
 
 
 def _neg(e: ast.Neg, scope: Scope, rep: Reporter) -> Value | None:
@@ -278,8 +293,8 @@ def _quaternion(v: Value | None, span: Span, rep: Reporter) -> tuple[float, floa
         rep.error(codes.WRONG_TYPE, f"pose field 'q' must be four numbers (w, x, y, z) (got {article(type_name(v))})", span)
         return None
     w, x, y, z = (i.value for i in v.items)  # type: ignore[union-attr]
-    n = math.sqrt(w * w + x * x + y * y + z * z)
-    if n < 1e-12:
+    n = math.hypot(w, x, y, z)  # no overflow for components near 1e200 (issue #20)
+    if n < 1e-12 or not math.isfinite(n):
         rep.error(codes.OUT_OF_RANGE, "pose field 'q' must not be the zero quaternion (got (0, 0, 0, 0))", span)
         return None
     q = (w / n, x / n, y / n, z / n)

@@ -9,6 +9,7 @@ that closes it, with the chain as notes. A file imported twice (a diamond) is re
 
 from __future__ import annotations
 
+import errno
 import os
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -29,15 +30,27 @@ DEFAULT_CELL = Path(__file__).resolve().parents[1] / "default_cell.rmot"
 def resolve_path(written: str, relative_to: SourceFile, roots: tuple[str, ...], span: Span | None,
                  rep: Reporter, what: str = "file") -> str | None:
     """The absolute path of `written` (relative to the naming file), inside one of `roots`."""
-    base = Path(relative_to.path).resolve().parent
-    target = Path(os.path.normpath(base / written)) if not os.path.isabs(written) else Path(os.path.normpath(written))
-    if roots and not any(_inside(target, Path(r)) for r in roots):
-        rep.error(codes.PATH_ESCAPES, f"{what} path must stay inside the project directory {roots[0]} (got '{written}')", span)
+    try:
+        base = Path(relative_to.path).resolve().parent
+        target = Path(os.path.normpath(base / written)) if not os.path.isabs(written) else Path(os.path.normpath(written))
+        if roots and not any(_inside(target, Path(r)) for r in roots):
+            rep.error(codes.PATH_ESCAPES, f"{what} path must stay inside the project directory {roots[0]} (got '{written}')", span)
+            return None
+        os.stat(target)
+    except OSError as exc:  # a name longer than NAME_MAX, a folder that cannot be searched, ... (issue #20)
+        missing = isinstance(exc, (FileNotFoundError, NotADirectoryError))
+        code = codes.FILE_NOT_FOUND if missing or exc.errno == errno.ENAMETOOLONG else codes.UNREADABLE
+        reason = "no file there" if missing else (exc.strerror or str(exc))
+        rep.error(code, f"{what} '{_short(written)}' must exist and be readable (got {reason})", span)
         return None
     if not target.is_file():
-        rep.error(codes.FILE_NOT_FOUND, f"{what} '{written}' must exist (got no file at {target})", span)
+        rep.error(codes.FILE_NOT_FOUND, f"{what} '{_short(written)}' must exist (got no file at {_short(str(target))})", span)
         return None
     return str(target)
+
+
+def _short(text: str, limit: int = 120) -> str:
+    return text if len(text) <= limit else f"{text[:limit // 2]}...{text[-limit // 2:]} ({len(text)} characters)"
 
 
 def _inside(path: Path, root: Path) -> bool:
@@ -58,7 +71,8 @@ def read_module(path: str, span: Span | None, rep: Reporter) -> LoadedModule | N
             return None
         data = Path(path).read_bytes()
     except OSError as exc:
-        rep.error(codes.FILE_NOT_FOUND, f"file '{path}' must be readable (got {exc.strerror or exc})", span)
+        code = codes.FILE_NOT_FOUND if isinstance(exc, FileNotFoundError) else codes.UNREADABLE
+        rep.error(code, f"file '{_short(path)}' must be readable (got {exc.strerror or exc})", span)
         return None
     try:
         text = data.decode("utf-8")

@@ -27,6 +27,7 @@ from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
 from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
 from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
+from rmot.compiler.passes.limits import MAX_DURATION_S, MAX_ITERATIONS, MAX_PORT, MAX_POSITION_M, MAX_WORK_STEPS, within
 from rmot.compiler.passes.modal import Modal, apply_setting
 from rmot.compiler.passes.procs import bind_call
 from rmot.lang.source import Span
@@ -41,6 +42,9 @@ MAX_INSTRUCTIONS = 200_000
 VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
 _KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circular": ir.MotionKind.CIRCULAR}
 _CONFIG = {"shoulder": ir.Shoulder, "elbow": ir.Elbow, "wrist": ir.Wrist}
+
+
+_CALL_STEPS = 4  # measured: a proc call costs about five statements of lowering (issue #20)
 
 
 class _TooLarge(Exception):
@@ -58,6 +62,8 @@ class TaskLowering:
     rep: Reporter
     procs: list[Entry]
     count: int = 0
+    steps: int = 0  # statements visited and loop rounds begun (bounded: MAX_WORK_STEPS)
+    rounds: int = 0  # loop rounds begun in this task (bounded: MAX_ITERATIONS)
     stack: list[int] = field(default_factory=list)  # ids of the procs being inlined
     called: set[int] = field(default_factory=set)  # ids of the ProcDecls inlined at least once
     held: dict[str, Span | None] = field(default_factory=dict)  # parts held now -> where attached (issue #14)
@@ -76,6 +82,11 @@ class TaskLowering:
         out: list[ir.Instr] = []
         declare_procs(body, scope, self.rep, self.procs)
         for stmt in body:
+            self.steps += 1
+            if self.steps > MAX_WORK_STEPS:
+                self.rep.error(codes.TOO_MUCH_WORK, f"a task must make the compiler visit at most {MAX_WORK_STEPS} statements "
+                               "while unrolling loops and inlining procs (got more at this statement)", stmt.span)
+                raise _TooLarge
             if isinstance(stmt, ast.Setting):
                 modal = apply_setting(modal, stmt, scope, self.robot, self.base, self.rep)
                 continue
@@ -141,18 +152,37 @@ class TaskLowering:
         out: list[ir.Instr] = []
         if lo is None or hi is None:
             return out
+        self._rounds(hi - lo, s)
         for i in range(lo, hi):
             inner = scope.child()
             inner.names[s.var.name] = Entry("var", s.var.name, Quantity(float(i), DIMENSIONLESS, None, float(i)), s.var.span)
+            errors = len(self.rep.sink)
             out += self.block(s.body, inner, modal, where)[0]
+            if self._failed_since(errors):
+                break  # the next rounds would only repeat the same diagnostics
         return out
 
     def repeat(self, s: ast.Repeat, scope: Scope, modal: Modal, where: str) -> list[ir.Instr]:
         n = expect_integer(eval_expr(s.count, scope, self.rep), "repeat count", s.count.span, self.rep)
         out: list[ir.Instr] = []
+        self._rounds(n or 0, s)
         for _ in range(n or 0):
+            errors = len(self.rep.sink)
             out += self.block(s.body, scope.child(), modal, where)[0]
+            if self._failed_since(errors):
+                break
         return out
+
+    def _rounds(self, n: int, s: ast.Stmt) -> None:
+        """Count n loop rounds against the task's budget before running any (issue #20)."""
+        self.rounds += max(0, n)
+        if self.rounds > MAX_ITERATIONS:
+            self.rep.error(codes.TOO_MUCH_WORK, f"loops of a task must run at most {MAX_ITERATIONS} rounds in all "
+                           f"(got {n} more here, {self.rounds} in all)", s.span)
+            raise _TooLarge
+
+    def _failed_since(self, before: int) -> bool:
+        return self.rep.sink.errors_since(before)
 
     def if_stmt(self, s: ast.IfStmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
         cond = self.condition(s.condition, scope)
@@ -188,6 +218,7 @@ class TaskLowering:
         if id(entry) in self.stack:  # recursion: reported by the check_recursion pass
             return None
         self.called.add(id(entry.value))
+        self.steps += _CALL_STEPS  # binding arguments and a scope: several statements' worth of work
         inner = bind_call(entry, s, scope, self.rep)
         if inner is None:
             return None
@@ -196,6 +227,11 @@ class TaskLowering:
             body = self.nested(entry.value.body, inner, modal, f"proc '{entry.name}'")
         finally:
             self.stack.pop()
+        self.steps += _node_count(body)  # re-spanning the inlined body is work too: a fan-out of empty procs
+        if self.steps > MAX_WORK_STEPS:  # costs one step per nested node per level (issue #20)
+            self.rep.error(codes.TOO_MUCH_WORK, f"a task must make the compiler visit at most {MAX_WORK_STEPS} statements "
+                           "while unrolling loops and inlining procs (got more at this call)", s.span)
+            raise _TooLarge
         text = s.span.file.text
         args = tuple(text[a.span.start.offset:a.span.end.offset] for a in s.args)
         body = tuple(_expanded_at(instr, s.span) for instr in body)
@@ -208,7 +244,7 @@ class TaskLowering:
         if t is not None and (t < 0 or (t == 0 and not allow_zero)):
             self.rep.error(codes.OUT_OF_RANGE, f"{what} must be {'>= 0' if allow_zero else '> 0'} s (got {t:g} s)", e.span)
             return None
-        return t
+        return within(t, 0.0, MAX_DURATION_S, what, "s", 1.0, e.span, self.rep)
 
     def port(self, io: ast.IoRef, scope: Scope, allowed: tuple[str, ...], what: str) -> tuple[int, str | None] | None:
         if io.kind not in allowed:
@@ -216,7 +252,7 @@ class TaskLowering:
             self.rep.error(codes.WRONG_TYPE, f"{what} must use {names} (got {io.kind}[...])", io.span)
             return None
         port = expect_integer(eval_expr(io.index, scope, self.rep), "I/O port", io.index.span, self.rep)
-        if port is None:
+        if port is None or within(port, 0, MAX_PORT, "I/O port", "", 1, io.index.span, self.rep) is None:
             return None
         direction = IO_DIRECTIONS[io.kind]
         for sig in self.cell.io:
@@ -339,7 +375,11 @@ class TaskLowering:
         if v is None:
             return None
         if isinstance(v, PoseV):
-            return ir.CartesianTarget(modal.frame.pose * v.pose, v.pose, v.name)
+            pose = modal.frame.pose * v.pose
+            far = sum(c * c for c in pose.position) ** 0.5
+            if within(far, 0.0, MAX_POSITION_M, f"{what} distance from the robot base", "m", 1.0, e.span, self.rep) is None:
+                return None
+            return ir.CartesianTarget(pose, v.pose, v.name)
         if isinstance(v, JointsV) and kind is ir.MotionKind.JOINT:
             return self.joints(v, e)
         wanted = "pose or joints" if kind is ir.MotionKind.JOINT else "pose"
@@ -362,6 +402,17 @@ class TaskLowering:
                 return None
             values.append(q.value)
         return ir.JointTarget(tuple(values), v.name)
+
+
+def _node_count(body: tuple[ir.Instr, ...]) -> int:
+    n = 0
+    for instr in body:
+        n += 1
+        if isinstance(instr, ir.If):
+            n += _node_count(instr.then) + _node_count(instr.otherwise)
+        elif isinstance(instr, ir.ProcCall):
+            n += _node_count(instr.body)
+    return n
 
 
 def _expanded_at(instr: ir.Instr, call_site: Span | None) -> ir.Instr:

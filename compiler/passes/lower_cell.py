@@ -18,6 +18,8 @@ from pathlib import Path
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
+from rmot.compiler.passes.urdf_paths import check_urdf_files
+from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_SIZE_M, within
 from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.load_files import resolve_path
 from rmot.compiler.passes.scopes import declare, misplaced
@@ -79,7 +81,7 @@ class _CellBuilder:
             assert s.urdf is not None
             span = s.urdf.span
             path = resolve_path(s.urdf.value, self.file, self.state.roots, span, self.rep, "URDF")
-            if path is None:
+            if path is None or not check_urdf_files(path, self.state.roots, span, self.rep):
                 return
             key, source = path, ir.RobotSource(ir.RobotSourceKind.URDF, path)
             if s.urdf_args:
@@ -123,6 +125,7 @@ class _CellBuilder:
             if x is not None and x <= 0:
                 self.rep.error(codes.OUT_OF_RANGE, f"{kind} '{n}' must be > 0 mm (got {x * 1000:g} mm)", bound[n].span)
                 x = None
+            x = None if x is None else within(x, MIN_SIZE_M, MAX_SIZE_M, f"{kind} '{n}'", "m", 1.0, bound[n].span, self.rep)
             sizes.append(x)
         if any(x is None for x in sizes):
             return None
@@ -156,6 +159,8 @@ class _CellBuilder:
                 self.rep.error(codes.WRONG_TYPE, "mesh scale must be a positive number such as 0.001", bound["scale"].span)
                 return None
             scale = v.value
+            if within(scale, 0.0, MAX_MESH_SCALE, "mesh scale", "", 1.0, bound["scale"].span, self.rep) is None:
+                return None
         path = resolve_path(path_arg.value, self.file, self.state.roots, path_arg.span, self.rep, "mesh")
         return None if path is None else ir.Mesh(path, scale, span=path_arg.span)
 

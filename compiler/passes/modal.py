@@ -22,6 +22,7 @@ from dataclasses import dataclass, replace
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
+from rmot.compiler.passes.limits import MAX_TCP_SPEED, MAX_ZONE_M, MIN_RATIO, MIN_TCP_ACCEL, MIN_TCP_SPEED, within
 from rmot.compiler.passes.values import article, ACCEL, LENGTH, RATIO, SPEED, PoseV, Quantity, fmt_quantity
 from rmot.lang import ast
 
@@ -54,9 +55,11 @@ def apply_setting(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: 
         if s.value is None:
             return replace(modal, zone=ir.Zone(0.0))
         r = _positive(s, scope, LENGTH, "zone", rep, allow_zero=True)
+        r = None if r is None else within(r, 0.0, MAX_ZONE_M, "zone", "mm", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
         return modal if r is None else replace(modal, zone=ir.Zone(r))
     if s.kind == "speed":
         v = _positive(s, scope, SPEED, "speed", rep)
+        v = None if v is None else within(v, MIN_TCP_SPEED, MAX_TCP_SPEED, "speed", "mm/s", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
         return modal if v is None else replace(modal, tcp_speed=v)
     if s.kind == "joint_speed":
         v = _ratio(s, scope, "joint_speed", rep)
@@ -129,7 +132,7 @@ def _ratio(s: ast.Setting, scope: Scope, what: str, rep: Reporter) -> float | No
         shown = fmt_quantity(v) if isinstance(v, Quantity) else f"{x:g}"
         rep.error(codes.OUT_OF_RANGE, f"{what} must be more than 0 % and at most 100 % (got {shown})", e.span)
         return None
-    return x
+    return within(x, MIN_RATIO, 1.0, what, "%", 0.01, e.span, rep)
 
 
 def _accel(modal: Modal, s: ast.Setting, scope: Scope, rep: Reporter) -> Modal:
@@ -139,4 +142,5 @@ def _accel(modal: Modal, s: ast.Setting, scope: Scope, rep: Reporter) -> Modal:
         x = _ratio(s, scope, "accel", rep)
         return modal if x is None else replace(modal, joint_accel=x)
     x = _positive(s, scope, ACCEL, "accel", rep) if v is not None else None
+    x = None if x is None else within(x, MIN_TCP_ACCEL, float("inf"), "accel", "mm/s^2", 1e-3, e.span, rep)
     return modal if x is None else replace(modal, tcp_accel=x)

@@ -46,12 +46,47 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     diagnostics.extend(align(drafts))
     for draft in drafts.values():
         hold_variants(draft)
+    too_long = _too_many_samples(program, drafts, step)
+    if too_long:  # refused before sampling: the work is bounded before it is done (issue #20)
+        diagnostics.extend(too_long)
+        diagnostics.sort(key=_diagnostic_order)
+        return Plan(program, (), step, tuple(diagnostics))
     tasks = tuple(
         _task_plan(task, drafts[task.name], robots[task.name], starts[task.name], step)
         for task in program.tasks if task.name in drafts
     )
     diagnostics.sort(key=_diagnostic_order)
     return Plan(program, tasks, step, tuple(diagnostics))
+
+
+# Policy: at most 75,000 samples per timeline (300 s at the default 4 ms step): the
+# trajectory arrays, the verifier's sweep (about 1 kB per sample for the link transforms) and
+# the renderer's frames all scale with it; measured: a 967 s task took 1.2 GB and 28 s to
+# check, and the CSV and JSON backends format every sample (about 0.1 ms each, 25 s for a
+# 440 s task on a loaded machine): 300 s keeps a compile under 2 GB and 30 s (issue #20).
+MAX_SAMPLES = 75_000
+
+
+def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: float) -> list[Diagnostic]:
+    """E124 at the first task when all timelines together (every task, and every if-branch
+    variant, which is sampled on its own) would exceed MAX_SAMPLES samples."""
+    from rmot.compiler import codes as check_codes
+
+    total, parts = 0.0, 0
+    for task in program.tasks:
+        draft = drafts.get(task.name)
+        if draft is None:
+            continue
+        for pieces in [draft.pieces, *(v.pieces for v in draft.variants)]:
+            total += float(sum(p.duration for p in pieces))
+            parts += 1
+    if total / step <= MAX_SAMPLES:
+        return []
+    msg = (f"the timelines of a program must take at most {MAX_SAMPLES * step:g} s in all at a step of {step * 1000:g} ms "
+           f"({MAX_SAMPLES} samples; got {total:.6g} s over {parts} timeline{'s' * (parts != 1)}: tasks and if-branch "
+           "variants, each sampled on its own): split the program or shorten its waits and slow moves")
+    first = program.tasks[0]
+    return [Diagnostic(check_codes.TOO_MUCH_WORK, Severity.ERROR, msg, first.span, task=first.name)]
 
 
 def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]

@@ -120,22 +120,21 @@ class TestCompile:
 
 class TestWriteAll:
     def test_all_or_nothing(self, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-        """If renaming fails midway, no temporary file is left behind and earlier files stay as they were."""
+        """If swapping a vendor directory in fails, it keeps its old files and no staging
+        directory is left behind (per-vendor atomic writes: compiler/cli/output_tree.py)."""
+        from rmot.compiler.cli import output_tree
+
         (tmp_path / "rapid").mkdir()
         (tmp_path / "rapid" / "a.mod").write_text("old a\n")
-        real_replace = os.replace
-        calls = []
 
-        def flaky(src: str, dst: str) -> None:
-            calls.append(dst)
-            if len(calls) == 1:
-                raise OSError("disk full")
-            real_replace(src, dst)
+        def broken(a: str, b: str) -> bool:
+            raise OSError(28, "No space left on device", b)
 
-        monkeypatch.setattr(os, "replace", flaky)
+        monkeypatch.setattr(output_tree, "exchange", broken)
         with pytest.raises(OSError):
             write_all(str(tmp_path), {"rapid/a.mod": "new a\n", "rapid/b.mod": "new b\n"})
         assert files_under(tmp_path) == {"rapid/a.mod": b"old a\n"}
+        assert sorted(os.listdir(tmp_path)) == ["rapid"]
 
     def test_writes_nested_paths(self, tmp_path: Path) -> None:
         """Vendor sub-directories are created; texts are written with \\n line ends."""

@@ -1,0 +1,83 @@
+"""The files a URDF names (collision and visual meshes) checked like the cell's own paths (issue #20).
+
+A URDF is a side file of the project: every `<mesh filename="...">` in it must lead to a
+file inside the project root, exactly as `mesh("...")` in a cell must (E504), before the
+URDF is handed to pinocchio (which would read the mesh). Resolution, as ROS tools do it:
+  * `package://PKG/rest`: `<dir>/PKG/rest` for the URDF's folder and its ancestors, *only
+    those inside the project root*, the first that exists (outside the root: not searched);
+  * `file:///abs/path`: the absolute path; a relative name: relative to the URDF's folder;
+  * after resolution (symbolic links followed) the file must lie inside a root.
+Also refused here, with the joint's name: a revolute, continuous or prismatic joint whose
+axis is the zero vector (no direction to move along; E505). The file is parsed with the
+standard library's expat parser, which refuses entity-expansion bombs.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from rmot.compiler import codes
+from rmot.compiler.passes.context import Reporter
+from rmot.lang.source import Span
+
+__all__ = ["check_urdf_files"]
+
+_MOVING = ("revolute", "continuous", "prismatic")
+
+
+def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: Reporter) -> bool:
+    """True when every mesh the URDF names lies inside a root and every moving joint has an axis."""
+    try:
+        tree = ET.parse(urdf)
+    except (ET.ParseError, OSError, ValueError) as exc:
+        rep.error(codes.ROBOT_LOAD, f"URDF robot must be a readable XML file (got: {str(exc)[:200]})", span)
+        return False
+    ok = True
+    folder = Path(urdf).resolve().parent
+    for mesh in tree.iter("mesh"):
+        name = mesh.get("filename") or ""
+        target = _resolve(name, folder, roots)
+        if target is None or not any(_inside(target, Path(r)) for r in roots):
+            rep.error(codes.PATH_ESCAPES, f"mesh named by the URDF must stay inside the project directory {roots[0]} "
+                      f"(got '{name[:200]}' in {os.path.basename(urdf)})", span)
+            ok = False
+    for joint in tree.iter("joint"):
+        if joint.get("type") not in _MOVING:
+            continue
+        axis = joint.find("axis")
+        text = axis.get("xyz", "1 0 0") if axis is not None else "1 0 0"  # URDF's default axis is x
+        try:
+            values = [float(v) for v in text.split()]
+        except ValueError:
+            values = []
+        if len(values) != 3 or not all(math.isfinite(v) for v in values) or math.hypot(*values) < 1e-9:
+            rep.error(codes.ROBOT_LOAD, f"URDF joint '{joint.get('name', '?')[:80]}' must have a non-zero finite axis "
+                      f"(got xyz=\"{text[:60]}\")", span)
+            ok = False
+    return ok
+
+
+def _resolve(name: str, folder: Path, roots: tuple[str, ...]) -> Path | None:
+    if name.startswith("package://"):
+        rest = name[len("package://"):]
+        for d in [folder, *folder.parents]:
+            if not any(_inside(d, Path(r)) for r in roots):
+                continue
+            candidate = Path(os.path.normpath(d / rest))
+            if candidate.exists():
+                return candidate
+        return None
+    if name.startswith("file://"):
+        name = name[len("file://"):]
+    return Path(os.path.normpath(name if os.path.isabs(name) else folder / name))
+
+
+def _inside(path: Path, root: Path) -> bool:
+    try:
+        path.resolve().relative_to(root.resolve())
+    except (ValueError, OSError):
+        return False
+    return True

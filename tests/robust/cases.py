@@ -1,0 +1,172 @@
+"""Reproducers of issue #20, one per failure class ingredient (written anew, same ingredients).
+
+Each case is a small project: files (path -> text or bytes), the `rmot` argument list (`{d}`
+is the project directory) and what must come back: an exit code and the diagnostic codes the
+output must name. Used by tests/robust/test_reproducers.py (in-process, the suite) and by
+tests/robust/survey.py (each in a subprocess under a time and memory cap).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+__all__ = ["CASES", "Case"]
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    files: dict[str, str | bytes]
+    argv: tuple[str, ...]
+    exit_codes: frozenset[int] = frozenset({2})
+    codes: tuple[str, ...] = ()   # each must appear in the output
+    absent: tuple[str, ...] = ()  # text that must not appear in any output file
+    setup: str = ""               # a named extra step (chmod, ...) done by the runner
+    extra: dict[str, str] = field(default_factory=dict)
+
+
+def _prog(body: str, head: str = "") -> str:
+    return f"{head}\nprogram p on r1 {{\n  target home = joints(0, -10, 10, 0, 90, 0) deg\n{body}\n}}\n"
+
+
+def _ir(name: str, body: str, codes: tuple[str, ...], exit_codes: frozenset[int] = frozenset({2}), head: str = "") -> Case:
+    return Case(name, {"p.rmot": _prog(body, head)}, ("ir", "{d}/p.rmot"), exit_codes, codes)
+
+
+def _check(name: str, body: str, codes: tuple[str, ...], exit_codes: frozenset[int] = frozenset({2})) -> Case:
+    return Case(name, {"p.rmot": _prog(body)}, ("check", "{d}/p.rmot"), exit_codes, codes)
+
+
+_CELL2 = """cell c {
+  robot r1 = abb_irb1600 at pose(z=400mm)
+  robot r2 = ur5e at pose(x=1500mm, z=800mm)
+}
+"""
+
+_ALL = ("--target", "rapid", "--target", "krl", "--target", "fanuc", "--target", "urscript", "--target", "inform",
+        "--target", "val3", "--target", "csv", "--target", "json")
+
+
+def _cell2(a: str, b: str) -> str:
+    return _CELL2.replace("r1 =", f"{a} =").replace("r2 =", f"{b} =")
+
+
+_FAN = "\n".join(
+    ["  proc a0() { }"]
+    + [f"  proc a{i}() {{ {'; '.join([f'a{i - 1}()'] * 10)} }}" for i in range(1, 8)]
+    + ["  a7()"])
+
+CASES: tuple[Case, ...] = (
+    # ---- tracebacks
+    Case("traceback_second_robot_without_task", {"p.rmot": _CELL2 + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n"},
+         ("compile", "{d}/p.rmot", "--target", "rapid", "--target", "urscript", "-o", "{d}/out"), frozenset({0})),
+    _check("traceback_joint_move_12deg", "  move joint home\n  move joint joints(12, -10, 10, 0, 90, 0) deg\n"
+           "  move joint joints(0, 2, 10, 0, 90, 0) deg\n  move joint joints(0, -10, 10, 0, 102, 12) deg", (), frozenset({0, 1})),
+    _ir("traceback_joint_speed_tiny", "  joint_speed 1e-9 %\n  move joint home", ("E125",)),
+    _ir("traceback_time_huge_joint_move", "  move joint home time 1e6 s", ("E125",)),
+    # ---- hangs
+    _ir("hang_empty_for_loop", "  for i in 0 .. 1000000000 { }", ("E124",)),
+    _ir("hang_settings_only_loop", "  for i in 0 .. 1000000000 { speed 100 mm/s }", ("E124",)),
+    _ir("hang_loop_body_errors", "  for i in 0 .. 1000000000 { move joint nowhere }", ("E124",)),
+    _ir("slow_loop_body_errors_under_limit", "  for i in 0 .. 190000 { move joint nowhere }", ("E101",)),
+    _ir("slow_many_waits", "  repeat 20000 { wait 10 ms }", (), frozenset({0})),
+    _ir("hang_repeat_empty", "  repeat 1000000000 { zone fine }", ("E124",)),
+    _ir("hang_nested_empty_loops", "  for i in 0 .. 100000 { for j in 0 .. 100000 { } }", ("E124",)),
+    _ir("slow_settings_loop_under_limit", "  for i in 0 .. 150000 { speed 100 mm/s }", (), frozenset({0})),
+    _ir("hang_proc_fan_out", _FAN, ("E124",)),
+    # ---- memory
+    _ir("memory_wait_1e9", "  move joint home\n  wait 1e9 s", ("E125",)),
+    _ir("memory_wait_10000", "  move joint home\n  wait 10000 s", ("E125",)),
+    _check("memory_circular_far_via", "  move joint home\n  move circular via pose(x=100000 m, z=1 m, ry=180deg) "
+           "to pose(x=900mm, z=1000mm, ry=180deg)", ("E125",)),
+    _ir("memory_speed_tiny", "  speed 1e-9 mm/s\n  move linear pose(x=900mm, z=1000mm, ry=180deg)", ("E125",)),
+    _ir("memory_linear_time_huge", "  move linear pose(x=900mm, z=1000mm, ry=180deg) time 1e5 s", ("E125",)),
+    _check("memory_many_hours_of_waits", "  move joint home\n  repeat 3 { wait 150 s }", ("E124",), frozenset({1, 2})),
+    # ---- non-finite numbers
+    _ir("nonfinite_literal", "  move linear pose(x=1e999 mm)", ("E013",)),
+    _ir("nonfinite_nan_rotation", "  const big = 1 deg / 1e-320\n  move linear pose(x=900mm, rx=big - big)", ("E123",)),
+    _ir("nonfinite_nan_difference", "  move linear pose(x=(1 mm / 1e-320) - (1 mm / 1e-320))", ("E123",)),
+    _ir("huge_literal_product", "  const big = 1e308 mm\n  move linear pose(x=(big * 10) - (big * 10))", ("E125",)),
+    _ir("nonfinite_quaternion", "  move linear pose(x=900mm, z=1m, q=((1 / 1e-320), 0, 0, 0))", ("E123",)),
+    _ir("nonfinite_quaternion_huge", "  move linear pose(x=900mm, z=1m, q=(1e200, 1e200, 0, 0))", ("E125",)),
+    _ir("nonfinite_io_port", "  set out[(1 / 1e-320)] = on", ("E123",)),
+    _ir("huge_io_port", "  set out[1e15] = on", ("E125",)),
+    _ir("nonfinite_loop_bound", "  for i in 0 .. (1 / 1e-320) { }", ("E123",)),
+    _ir("nonfinite_wait", "  wait 1 s / 1e-320", ("E123",)),
+    _ir("nonfinite_speed", "  speed 1 mm/s / 1e-320", ("E123",)),
+    _ir("huge_speed", "  speed 1e8 m/s\n  move linear pose(x=900mm, z=1m, ry=180deg)", ("E125",)),
+    _ir("nonfinite_zone", "  zone 1 mm / 1e-320", ("E123",)),
+    _ir("huge_zone", "  zone 5000 m", ("E125",)),
+    _ir("nonfinite_pulse", "  pulse out[1] for 1 s / 1e-320", ("E123",)),
+    _ir("huge_pulse", "  pulse out[1] for 1e7 s", ("E125",)),
+    _ir("nonfinite_timeout", "  wait until in[1] timeout 1 s / 1e-320", ("E123",)),
+    _ir("huge_timeout", "  wait until in[1] timeout 1e7 s", ("E125",)),
+    _ir("huge_position", "  move linear pose(x=500 km)", ("E007",)),
+    _ir("far_position", "  move linear pose(x=1e8 m, z=1m, ry=180deg)", ("E125",)),
+    Case("nonfinite_box", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = box(1 mm / 1e-320, 1 m, 1 m) at pose(x=2m)\n}\n"
+                           + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n"}, ("check", "{d}/p.rmot"), frozenset({2}), ("E123",)),
+    Case("huge_box", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = box(1e8 m, 1 m, 1 m) at pose(x=2m)\n}\n"
+                      + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n"}, ("check", "{d}/p.rmot"), frozenset({2}), ("E125",)),
+    Case("mesh_scale_huge", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"part.stl\", scale=1e300) at pose(x=2m)\n}\n"
+                             + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n",
+                             "part.stl": "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n"},
+         ("check", "{d}/p.rmot"), frozenset({2}), ("E125",)),
+    Case("flat_mesh", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"part.stl\") at pose(x=2m)\n}\n"
+                       + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n", "part.stl": "@STL@"},
+         ("check", "{d}/p.rmot"), frozenset({0, 1}), ()),  # one triangle: a warning (W560), no traceback
+    # ---- wrong diagnostics: line breaks, NUL
+    Case("linebreak_form_feed", {"p.rmot": "program p on r1 {\f\n  move joint nowhere\n}\n"}, ("ir", "{d}/p.rmot"), frozenset({2}),
+         ("p.rmot:2:14", "2 |   move joint nowhere")),
+    Case("linebreak_u2028", {"p.rmot": "program p on r1 {\u2028  move joint home\n}\n"}, ("ir", "{d}/p.rmot"), frozenset({2}), ("E012", "p.rmot:1:18")),
+    Case("linebreak_cr_only", {"p.rmot": "program p on r1 {\r  move joint home\r}\r"}, ("ir", "{d}/p.rmot"), frozenset({2}), ("E011", "p.rmot:1:18")),
+    Case("linebreak_crlf_ok", {"p.rmot": "program p on r1 {\r\n  move joint nowhere\r\n}\r\n"}, ("ir", "{d}/p.rmot"), frozenset({2}),
+         ("p.rmot:2:14", "2 |   move joint nowhere\n")),
+    Case("nul_after_64k", {"p.rmot": "# " + "x" * 70000 + "\nprogram p on r1 {\n  wait 1 s\n}\n# \x00\n"}, ("ir", "{d}/p.rmot"),
+         frozenset({2}), ("E010",)),
+    Case("clearance_infinite", {"p.rmot": _prog("  move joint home")}, ("check", "{d}/p.rmot", "--clearance", "1e999mm"),
+         frozenset({2}), ("at most 10 m",)),
+    # ---- OS errors
+    Case("os_check_output_missing_dir", {"p.rmot": _prog("  move joint home")}, ("check", "{d}/p.rmot", "-o", "{d}/nodir/report.txt"),
+         frozenset({2}), ("E520", "nodir")),
+    Case("os_plan_csv_missing_dir", {"p.rmot": _prog("  move joint home")}, ("plan", "{d}/p.rmot", "--csv", "{d}/nodir/t.csv"),
+         frozenset({2}), ("E520", "nodir")),
+    Case("os_check_images_under_file", {"p.rmot": _prog("  move joint home\n  move linear pose(x=0mm, y=0mm, z=300mm)"), "afile": "x"},
+         ("check", "{d}/p.rmot", "--images", "{d}/afile/imgs"), frozenset({1, 2}), ("afile",)),
+    Case("os_import_name_max", {"p.rmot": _prog("  move joint home", head=f'import "{"a" * 300}.rmot"')}, ("ir", "{d}/p.rmot"),
+         frozenset({2}), ("E501",)),
+    Case("os_import_unreadable_folder", {"p.rmot": _prog("  move joint home", head='import "locked/lib.rmot"'),
+                                         "locked/lib.rmot": "const x = 1 mm\n"}, ("ir", "{d}/p.rmot"), frozenset({2}), ("E521",),
+         setup="lock"),
+    Case("os_unreadable_stl", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"part.stl\") at pose(x=2m)\n}\n"
+                               + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n", "part.stl": "solid t\n"},
+         ("check", "{d}/p.rmot"), frozenset({1}), ("E521",), setup="lock_stl"),  # meshes load in sim: a finding, as E561
+    # ---- output safety
+    Case("inject_file_name_newline", {"p\nMoveL Offs(pHome,0,0,-500), v5000, fine, tool0;\n.rmot": _prog("  move joint home")},
+         ("compile", "{d}/p\nMoveL Offs(pHome,0,0,-500), v5000, fine, tool0;\n.rmot", "--target", "rapid", "--target", "krl",
+          "--target", "fanuc", "--target", "urscript", "--target", "inform", "--target", "val3", "-o", "{d}/out"),
+         frozenset({0}), absent=("\nMoveL Offs",)),
+    Case("inject_signal_name_fanuc", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  io out[1] = \"a]\\\\n=1;\\\" ! x\" on r1\n}\n"
+                                      + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n  set out[1] = on\n}\n"},
+         ("compile", "{d}/p.rmot", "--target", "fanuc", "--target", "rapid", "--target", "krl", "--target", "urscript",
+          "--target", "inform", "--target", "val3", "-o", "{d}/out"), frozenset({0, 2}), ()),
+    Case("task_name_case_clash", {"p.rmot": _cell2("Left", "left") + "program p {\n  task Left {\n    move joint joints(0, -10, 10, 0, 90, 0) deg\n  }\n"
+                                  "  task left {\n    move joint joints(0, -90, 0, -90, 0, 0) deg\n  }\n}\n"},
+         ("compile", "{d}/p.rmot", *_ALL, "-o", "{d}/out"), frozenset({1}), ("E522",)),
+    Case("task_name_truncation_clash", {"p.rmot": _cell2("pick_and_place_number_one", "pick_and_place_number_two")
+                                        + "program p {\n  task pick_and_place_number_one {\n"
+                                        "    move joint joints(0, -10, 10, 0, 90, 0) deg\n  }\n"
+                                        "  task pick_and_place_number_two {\n    move joint joints(0, -90, 0, -90, 0, 0) deg\n  }\n}\n"},
+         ("compile", "{d}/p.rmot", *_ALL, "-o", "{d}/out"), frozenset({1}), ("E522",)),
+    # ---- paths
+    Case("urdf_mesh_outside_project", {"proj/p.rmot": "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n",
+                                       "proj/arm.urdf": "@URDF:../outside.stl@", "outside.stl": "@STL@"},
+         ("ir", "{d}/proj/p.rmot"), frozenset({2}), ("E504",)),
+    Case("urdf_mesh_package_uri", {"proj/p.rmot": "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n",
+                                   "proj/arm.urdf": "@URDF:package://../outside.stl@", "outside.stl": "@STL@"},
+         ("ir", "{d}/proj/p.rmot"), frozenset({2}), ("E504",)),
+    Case("urdf_mesh_absolute", {"proj/p.rmot": "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n",
+                                "proj/arm.urdf": "@URDF:{d}/outside.stl@", "outside.stl": "@STL@"},
+         ("ir", "{d}/proj/p.rmot"), frozenset({2}), ("E504",)),
+    Case("urdf_zero_axis", {"p.rmot": "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n",
+                            "arm.urdf": "@URDF0@"}, ("ir", "{d}/p.rmot"), frozenset({2}), ("E505",)),
+)

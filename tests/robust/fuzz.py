@@ -1,0 +1,183 @@
+"""`make fuzz`: N generated projects (tests/robust/gen.py, by seed) through the whole pipeline
+(front end, planner, verifier, every backend, the compile writer), each in a worker process
+under a 2 GB address-space cap (resource.setrlimit) with a 30 s wall-clock limit per input.
+
+    .venv/bin/python -m tests.robust.fuzz [--n 100000] [--start 0] [--jobs 1] [--timeout 30]
+                                         [--memory-gb 2] [--report fuzz-report.json]
+
+Counted per input: ok (diagnostics or files, exit 0/1/2), traceback (an exception escaped a
+stage), hang (no answer within the timeout: the worker is killed and replaced), memory
+(MemoryError under the cap) and crash (the worker died: a signal such as SIGSEGV). Every
+failure is listed with its seed: `random_project(seed)` rebuilds the input.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import select
+import signal
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import traceback
+from collections import Counter
+
+TARGETS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+
+
+def run_one(seed: int, workdir: str) -> str:
+    """One input through the pipeline; 'ok' or 'traceback: ...'."""
+    from rmot.compiler.cli.compile_cmd import compile_program, write_all
+    from rmot.lang.diagnostics import render
+    from tests.robust.gen import random_project
+
+    proj = os.path.join(workdir, f"p{seed}")
+    os.makedirs(proj)
+    try:
+        for name, text in random_project(seed).items():
+            with open(os.path.join(proj, name), "w", encoding="utf-8", newline="") as f:
+                f.write(text)
+        try:
+            outcome = compile_program(os.path.join(proj, "main.rmot"), TARGETS, allow_findings=seed % 2 == 0)
+            for d in outcome.diagnostics:
+                render(d)
+            if outcome.files:
+                write_all(os.path.join(proj, "out"), outcome.files)
+        except MemoryError:
+            return "memory"
+        except Exception as exc:  # the finding this tool exists for
+            tb = traceback.extract_tb(exc.__traceback__)[-1]
+            return f"traceback: {exc.__class__.__name__}: {str(exc)[:200]} at {os.path.basename(tb.filename)}:{tb.lineno}"
+        return f"ok exit={outcome.exit_code} files={len(outcome.files)}"
+    finally:
+        shutil.rmtree(proj, ignore_errors=True)
+
+
+def worker(memory_gb: float) -> None:
+    cap = int(memory_gb * (1 << 30))
+    resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
+    workdir = tempfile.mkdtemp(prefix="rmot-fuzz-")
+    import rmot.compiler.cli.compile_cmd  # noqa: F401 - warm imports before the first timed input
+    sys.stdout.write("ready\n")
+    sys.stdout.flush()
+    for line in sys.stdin:
+        seed = int(line)
+        sys.stdout.write(json.dumps([seed, run_one(seed, workdir)]) + "\n")
+        sys.stdout.flush()
+
+
+class Worker:
+    def __init__(self, memory_gb: float) -> None:
+        self.proc = subprocess.Popen([sys.executable, "-m", "tests.robust.fuzz", "--worker", "--memory-gb", str(memory_gb)],
+                                     stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, bufsize=1)
+        assert self.proc.stdout is not None
+        self.proc.stdout.readline()  # "ready" (imports are not part of any input's time)
+        self.seed: int | None = None
+        self.started = 0.0
+
+    def send(self, seed: int) -> None:
+        assert self.proc.stdin is not None
+        self.seed, self.started = seed, time.monotonic()
+        self.proc.stdin.write(f"{seed}\n")
+        self.proc.stdin.flush()
+
+    def kill(self) -> None:
+        self.proc.kill()
+        self.proc.wait()
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--n", type=int, default=int(os.environ.get("FUZZ_N", 100_000)))
+    ap.add_argument("--start", type=int, default=int(os.environ.get("FUZZ_START", 0)))
+    ap.add_argument("--jobs", type=int, default=int(os.environ.get("FUZZ_JOBS", 1)))
+    ap.add_argument("--timeout", type=float, default=30.0)
+    ap.add_argument("--memory-gb", type=float, default=2.0)
+    ap.add_argument("--report", default=os.environ.get("FUZZ_REPORT", "fuzz-report.json"))
+    ap.add_argument("--worker", action="store_true")
+    args = ap.parse_args()
+    if args.worker:
+        worker(args.memory_gb)
+        return
+    seeds = iter(range(args.start, args.start + args.n))
+    counts: Counter[str] = Counter()
+    exits: Counter[str] = Counter()  # among ok inputs: how far they got (exit 0 / 1 / 2)
+    written = [0]  # inputs for which vendor files were written
+    failures: list[tuple[int, str]] = []
+    workers = [Worker(args.memory_gb) for _ in range(args.jobs)]
+    t0, done = time.monotonic(), 0
+
+    def feed(w: Worker) -> None:
+        seed = next(seeds, None)
+        if seed is None:
+            w.seed = None
+        else:
+            w.send(seed)
+
+    def record(seed: int, result: str) -> None:
+        nonlocal done
+        kind = result.split(":", 1)[0].split(" ", 1)[0]
+        counts[kind] += 1
+        if kind == "ok":
+            exits[result.split(" ")[1]] += 1
+            written[0] += "files=0" not in result
+        done += 1
+        if kind != "ok":
+            failures.append((seed, result))
+            print(f"seed {seed}: {result}", flush=True)
+        if done % 1000 == 0:
+            print(f"{done} inputs, {time.monotonic() - t0:.0f} s: {dict(counts)}", flush=True)
+
+    def stop(signum: int, frame: object) -> None:
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, stop)  # stopped early: the counts so far are still written
+    interrupted = False
+    try:
+        for w in workers:
+            feed(w)
+        _loop(workers, feed, record, args)
+    except KeyboardInterrupt:
+        interrupted = True
+    for w in workers:
+        w.kill()
+    summary = {"inputs": done, "seconds": round(time.monotonic() - t0, 1), "start": args.start, "interrupted": interrupted,
+               "ok": counts["ok"], "traceback": counts["traceback"], "hang": counts["hang"],
+               "memory": counts["memory"], "crash": counts["crash"], "ok_exit_codes": dict(exits),
+               "inputs_with_files_written": written[0], "failures": failures}
+    with open(args.report, "w", encoding="utf-8") as f:
+        json.dump(summary, f, indent=1)
+    print(json.dumps({k: v for k, v in summary.items() if k != "failures"}))
+    sys.exit(1 if failures else 0)
+
+
+def _loop(workers: list[Worker], feed, record, args) -> None:  # type: ignore[no-untyped-def]
+    while any(w.seed is not None for w in workers):
+        busy = [w for w in workers if w.seed is not None]
+        ready, _, _ = select.select([w.proc.stdout for w in busy], [], [], 0.5)
+        for w in busy:
+            if w.proc.stdout in ready:
+                line = w.proc.stdout.readline()  # type: ignore[union-attr]
+                if line:
+                    seed, result = json.loads(line)
+                    record(seed, result)
+                    feed(w)
+                    continue
+                code = w.proc.wait()  # died: a crash (signal) or an out-of-memory kill
+                record(w.seed, f"crash: worker exited with {code}" if code != -9 else "memory: killed")  # type: ignore[arg-type]
+                workers[workers.index(w)] = nw = Worker(args.memory_gb)
+                feed(nw)
+            elif time.monotonic() - w.started > args.timeout:
+                w.kill()
+                record(w.seed, f"hang: no answer within {args.timeout:g} s")  # type: ignore[arg-type]
+                workers[workers.index(w)] = nw = Worker(args.memory_gb)
+                feed(nw)
+
+
+if __name__ == "__main__":
+    main()
