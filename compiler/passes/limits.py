@@ -4,7 +4,7 @@ A hostile or clumsy program must get a diagnostic at the span of the number, nev
 memory blow-up or a crash deep in the planner, the verifier or a backend. Each bound below
 is either a vendor's own limit (cited) or a *policy* bound, stated as such: far beyond any
 real cell or cycle, small enough that the work it allows stays bounded (the planner samples
-every 4 ms, so 300 s is 75,000 samples per task).
+every 4 ms, so the 900 s the planner accepts are 225,000 samples).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ __all__ = [
 ]
 
 # Policy: one wait, pulse, timeout or fixed move time of at most 5 minutes; the planner also
-# refuses a task whose whole timeline is longer than 300 s (compiler/plan/planner.py, E124).
+# refuses programs whose timelines take more than 900 s in all (compiler/plan/planner.py, E124).
 MAX_DURATION_S = 300.0
 # Fanuc TP linear speeds are 1..2000 mm/sec (FANUC R-30iB Operator's Manual, "Motion
 # instruction: feed rate"); slower is a typo, and a slow move is a long one to sample.

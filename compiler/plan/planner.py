@@ -59,12 +59,14 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     return Plan(program, tasks, step, tuple(diagnostics))
 
 
-# Policy: at most 75,000 samples per timeline (300 s at the default 4 ms step): the
-# trajectory arrays, the verifier's sweep (about 1 kB per sample for the link transforms) and
-# the renderer's frames all scale with it; measured: a 967 s task took 1.2 GB and 28 s to
-# check, and the CSV and JSON backends format every sample (about 0.1 ms each, 25 s for a
-# 440 s task on a loaded machine): 300 s keeps a compile under 2 GB and 30 s (issue #20).
-MAX_SAMPLES = 75_000
+# Policy: at most 225,000 samples in all (900 s at the default 4 ms step): the trajectory
+# arrays, the verifier's sweep (about 1 kB per sample for the link transforms) and the
+# renderer's frames all scale with it. Measured: a 280 s program checks in 2.2 s and 0.49 GB;
+# a 967 s task took 1.2 GB and 28 s on a loaded machine, and the CSV and JSON backends format
+# every sample (about 0.1 ms each). 900 s covers a full pallet or a long seam (a 1000-move
+# pick-and-place plans to 294 s) and keeps a compile under 2 GB (issue #20; first set at 300 s,
+# raised when that refused programs of realistic length).
+MAX_SAMPLES = 225_000
 
 
 def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: float) -> list[Diagnostic]:
