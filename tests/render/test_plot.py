@@ -96,3 +96,21 @@ def test_cli_writes_png_and_reports_bad_output(tmp_path: Path) -> None:
     assert unwritable.exit_code == 2 and "E600" in unwritable.output
     cell_only = runner.invoke(cli, ["plot", str(EXAMPLES / "cells" / "demo.rmot"), "-o", str(out)])
     assert cell_only.exit_code == 2 and "E119" in cell_only.output
+
+
+SHIPPED = sorted(p.relative_to(EXAMPLES).as_posix() for p in [*EXAMPLES.glob("*.rmot"), EXAMPLES / "urdf_cell" / "load_jig.rmot"])
+
+
+@pytest.mark.parametrize("example", SHIPPED)
+def test_cli_plots_every_example(example: str, tmp_path: Path) -> None:
+    """`rmot plot --what timeline` of every shipped example writes a well-formed SVG naming each
+    task of the program, exit 0 (plot shows the plan; collision.rmot's contact is a
+    verification finding, not a planning error)."""
+    out = tmp_path / "plot.svg"
+    result = CliRunner().invoke(cli, ["plot", str(EXAMPLES / example), "--what", "timeline", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    root = ET.fromstring(out.read_bytes())
+    assert root.tag.endswith("svg")
+    program = load_program(str(EXAMPLES / example), require_program=True).program
+    text = out.read_text(encoding="utf-8")
+    assert all(task.name in text for task in program.tasks)
