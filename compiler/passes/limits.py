@@ -15,7 +15,7 @@ from rmot.lang.source import Span
 
 __all__ = [
     "MAX_DURATION_S", "MAX_ITERATIONS", "MAX_POSITION_M", "MIN_SIZE_M", "MAX_PORT", "MAX_SIZE_M", "MAX_TCP_SPEED",
-    "MAX_WORK_STEPS", "MAX_ZONE_M", "MIN_RATIO", "MIN_TCP_ACCEL", "MIN_TCP_SPEED", "MAX_MESH_SCALE", "within",
+    "MAX_WORK_STEPS", "MAX_ZONE_M", "MIN_RATIO", "MIN_TCP_ACCEL", "MIN_TCP_SPEED", "MAX_MESH_SCALE", "MIN_MESH_SCALE", "within",
 ]
 
 # Policy: one wait, pulse, timeout or fixed move time of at most 5 minutes; the planner also
@@ -44,6 +44,10 @@ MAX_SIZE_M = 1000.0
 # bounds split without end (2 GB, found by `make fuzz`, seed 13338).
 MIN_SIZE_M = 1e-4
 MAX_MESH_SCALE = 1000.0
+# Policy: a mesh scale of at least 1e-6 (a file in micrometres, the finest unit a CAD export
+# uses): a scale of 1e-300 squares to zero inside the collision library's bounding volumes and
+# crashed the process with SIGSEGV (found by `make fuzz`, seed 25011).
+MIN_MESH_SCALE = 1e-6
 # Policy: I/O port numbers fit 16 bits (KUKA $OUT has 1..4096, Fanuc DO[] up to 512 by default).
 MAX_PORT = 65535
 # Loop iterations (all loops of a task together) and statements visited while unrolling

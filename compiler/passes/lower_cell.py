@@ -19,7 +19,7 @@ from pathlib import Path
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
 from rmot.compiler.passes.urdf_paths import check_urdf_files
-from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_SIZE_M, within
+from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_MESH_SCALE, MIN_SIZE_M, within
 from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.load_files import resolve_path
 from rmot.compiler.passes.scopes import declare, misplaced
@@ -159,7 +159,7 @@ class _CellBuilder:
                 self.rep.error(codes.WRONG_TYPE, "mesh scale must be a positive number such as 0.001", bound["scale"].span)
                 return None
             scale = v.value
-            if within(scale, 0.0, MAX_MESH_SCALE, "mesh scale", "", 1.0, bound["scale"].span, self.rep) is None:
+            if within(scale, MIN_MESH_SCALE, MAX_MESH_SCALE, "mesh scale", "", 1.0, bound["scale"].span, self.rep) is None:
                 return None
         path = resolve_path(path_arg.value, self.file, self.state.roots, path_arg.span, self.rep, "mesh")
         return None if path is None else ir.Mesh(path, scale, span=path_arg.span)

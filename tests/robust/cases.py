@@ -111,6 +111,10 @@ CASES: tuple[Case, ...] = (
                              + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n",
                              "part.stl": "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n"},
          ("check", "{d}/p.rmot"), frozenset({2}), ("E125",)),
+    Case("mesh_scale_tiny", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"part.stl\", scale=1e-320) at pose(x=2m)\n}\n"
+                             + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n",
+                             "part.stl": "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0 0.1 0\nendloop\nendfacet\nendsolid t\n"},
+         ("check", "{d}/p.rmot"), frozenset({2}), ("E125",)),  # SIGSEGV in coal before (make fuzz, seed 25011)
     Case("flat_mesh", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"part.stl\") at pose(x=2m)\n}\n"
                        + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n", "part.stl": "@STL@"},
          ("check", "{d}/p.rmot"), frozenset({0, 1}), ()),  # one triangle: a warning (W560), no traceback
