@@ -9,7 +9,14 @@ JSON (version 2; `JSON_SCHEMA` below is the normative description):
                               "moving_s": float, "waiting_s": float, "sync_s": float,
                               "instructions": [{"uid": int, "kind": str, "line": int | null,
                                                 "start_s": float, "end_s": float,
-                                                "variant": int}]}],
+                                                "variant": int}],
+                              "dynamics": {"model": str, "note": str,          # only with
+                                           "joints": [{"joint": int,           # check --dynamics
+                                                       "unit": "N·m" | "N",
+                                                       "peak_torque": float, "rms_torque": float,
+                                                       "peak_power_w": float,
+                                                       "rated_torque": float | null,
+                                                       "utilisation": float | null}] | null}}],
                    "diagnostics": [{"code": "E300", "severity": "error" | "warning" | "note",
                                     "message": str, "file": str | null,
                                     "line": int | null, "col": int | null,
@@ -23,6 +30,10 @@ seconds on the program's timeline; amounts are in the unit given (mm, deg/s, N·
 A program whose cycle time is null did not get through planning. Version 2 added
 `assumptions` (the timing model behind the cycle time, rmot.sim.timing_report) and `tasks`
 (per task the time moving, waiting and synchronising; per instruction its start and end).
+A task's `dynamics` (the one optional key; present only with `rmot check --dynamics`) gives
+per joint the peak and RMS torque and the peak power by inverse dynamics on the planned
+samples, against the model's rated torque; `joints` is null (and `note` says why) when the
+model has no inertia data.
 """
 
 from __future__ import annotations
@@ -125,6 +136,25 @@ _TASK: dict[str, Any] = {
         }},
     },
 }
+
+# A task's optional `dynamics` block (`rmot check --dynamics`; rmot.sim.design.dynamics_text).
+_DYNAMICS: dict[str, Any] = {
+    "type": "object",
+    "required": ["model", "joints", "note"],
+    "additionalProperties": False,
+    "properties": {
+        "model": {"type": "string"}, "note": {"type": "string"},
+        "joints": {"type": ["array", "null"], "items": {
+            "type": "object",
+            "required": ["joint", "unit", "peak_torque", "rms_torque", "peak_power_w", "rated_torque", "utilisation"],
+            "additionalProperties": False,
+            "properties": {"joint": {"type": "integer"}, "unit": {"enum": ["N·m", "N"]},
+                           "peak_torque": _NUM, "rms_torque": _NUM, "peak_power_w": _NUM,
+                           "rated_torque": _NULL_NUM, "utilisation": _NULL_NUM},
+        }},
+    },
+}
+_TASK["properties"]["dynamics"] = _DYNAMICS  # optional: not in _TASK["required"]
 
 JSON_SCHEMA: dict[str, Any] = {
     "$schema": "https://json-schema.org/draft/2020-12/schema",

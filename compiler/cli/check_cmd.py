@@ -80,9 +80,15 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     if images:
         report = _render_images(plan, report, images)
     if dynamics:
-        from rmot.sim.design.dynamics_text import dynamics_text
+        from rmot.sim.design.dynamics_text import dynamics_json, dynamics_text
+        from rmot.sim.design.metrics import program_metrics
 
-        return CheckOutcome(report, False, dynamics_text(plan))
+        metrics = program_metrics(plan)
+        blocks = dynamics_json(metrics)  # the JSON report's per-task `dynamics` (schema: sim/report.py)
+        tasks = None if report.tasks is None else tuple(
+            {**t, "dynamics": blocks[t["task"]]} if t["task"] in blocks else t for t in report.tasks)
+        report = Report(path, report.cycle_times, report.diagnostics, tasks)
+        return CheckOutcome(report, False, dynamics_text(plan, metrics))
     return CheckOutcome(report, False)
 
 
@@ -164,7 +170,7 @@ def _format(fmt: str, reports: list[Report]) -> str:
 @click.option("--shard", default=None, metavar="K/N",
               help="Check only shard K of N: a deterministic, size-balanced share of PROGRAMs (CI matrices).")
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
-@click.option("--dynamics", is_flag=True, help="Also print per-joint peak/RMS torque and peak power (text format; see `rmot compare --format json`).")
+@click.option("--dynamics", is_flag=True, help="Also report per-joint peak/RMS torque and peak power (text lines; a per-task `dynamics` block in --format json).")
 def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | None, clearance: str | None,
           jobs: int, images: str | None, project_root: str | None, shard: str | None, no_cache: bool,
           dynamics: bool = False) -> None:

@@ -6,7 +6,8 @@ place of the program's robot (same base pose; `--place` with
 verifier of `rmot check`. Per arm: verifies or not (with the first findings), cycle time,
 worst joint-limit margin, worst manipulability, peak torque against the rated torque.
 
-Exit codes: 0 at least one arm verifies; 1 none does; 2 bad input.
+Exit codes: 0 at least one arm verifies; 1 none does; 2 bad input (E80x diagnostics of
+sim/design/codes.py). An arm that does not load is that arm's finding (E320), not an input error.
 """
 
 from __future__ import annotations
@@ -21,11 +22,6 @@ import click
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["compare", "format_json", "format_text"]
-
-
-def _fail(message: str) -> None:
-    click.echo(f"error: {message}", err=True)
-    sys.exit(EXIT_INPUT)
 
 
 def _margin(m: Any) -> dict[str, Any] | None:
@@ -114,9 +110,12 @@ def format_text(path: str, slot: str, results: list[Any]) -> str:
 def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str | None, fmt: str, do_place: bool,
             region: str | None, project_root: str | None) -> None:
     """Run one program on several arms and compare them."""
+    from rmot.compiler.cli.design_errors import fail, fail_code
     from rmot.compiler.frontend import load_program
     from rmot.lang.diagnostics import render_all
+    from rmot.sim.design import codes
     from rmot.sim.design.compare import run_arm, slot_of
+    from rmot.sim.design.study import OptionError, parse_region
 
     loaded = load_program(program, cell=cell, project_root=project_root, require_program=True)
     if loaded.has_errors or loaded.program is None:
@@ -125,10 +124,20 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
     try:
         name = slot_of(loaded.program, slot)
     except KeyError:
-        _fail(f"--as must name a robot of the cell (got '{slot}')")
-        return
+        names = ", ".join(r.name for r in loaded.program.cell.robots)
+        fail_code(codes.ROBOT_UNKNOWN, f"--as must name a robot of cell '{loaded.program.cell.name}' ({names}) (got '{slot}')")
     if do_place and region is None:
-        _fail("--place needs --region")
+        fail_code(codes.OPTION_MISSING, "--place needs --region")
+    if region is not None:
+        try:
+            parse_region(region)  # checked before any arm is planned
+        except OptionError as exc:
+            fail(exc.diagnostic())
+        if not do_place:
+            from rmot.lang.diagnostics import Diagnostic, Severity, render
+
+            click.echo(render(Diagnostic(codes.OPTION_IGNORED, Severity.WARNING,
+                                         "--region is ignored without --place (the arms stand at the cell's pose)", None)), err=True)
     results = []
     for key in robots or (None,):
         prog = loaded.program
@@ -150,14 +159,11 @@ def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[
     from rmot.compiler.robots import RobotError, load_robot
     from rmot.sim.design.metrics import substitute_robot
     from rmot.sim.design.place import place, rebase
-    from rmot.sim.design.study import OptionError, parse_region
+    from rmot.sim.design.study import parse_region
 
+    bounds = parse_region(region)  # parsed once already in compare()
     try:
-        bounds = parse_region(region)
         robot = load_robot(key)
-    except OptionError as exc:
-        _fail(str(exc))
-        raise
     except RobotError:
         return program, ""
     prog = substitute_robot(program, slot, key, robot.dof)

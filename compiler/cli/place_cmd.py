@@ -5,7 +5,8 @@ Finds a base pose for the cell's robot NAME in the region with which every progr
 of the cell with that `at` pose, prints the pose, the objective and the runners-up. When no
 pose works it says what fails where. See rmot.sim.design.place for the search.
 
-Exit codes: 0 a pose was found and written; 1 no pose in the region verifies; 2 bad input.
+Exit codes: 0 a pose was found and written; 1 no pose in the region verifies; 2 bad input
+(E80x diagnostics of sim/design/codes.py; an unwritable -o file: E520).
 """
 
 from __future__ import annotations
@@ -17,11 +18,6 @@ import click
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
 
 __all__ = ["place"]
-
-
-def _fail(message: str) -> None:
-    click.echo(f"error: {message}", err=True)
-    sys.exit(EXIT_INPUT)
 
 
 def _line(c, objective: str) -> str:  # type: ignore[no-untyped-def]
@@ -43,8 +39,10 @@ def _line(c, objective: str) -> str:  # type: ignore[no-untyped-def]
 def place(programs: tuple[str, ...], slot: str | None, region: str, output: str, objective: str, cell: str | None,
           samples: int, project_root: str | None) -> None:
     """Find the best base pose for a robot in a region; write the cell with it."""
+    from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
     from rmot.compiler.frontend import load_program
     from rmot.lang.diagnostics import render_all
+    from rmot.sim.design import codes
     from rmot.sim.design.cell_edit import with_robot_at
     from rmot.sim.design.place import place as search
     from rmot.sim.design.study import OptionError, parse_region
@@ -53,8 +51,8 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
     try:
         bounds = parse_region(region)
     except OptionError as exc:
-        _fail(str(exc))
-        return
+        fail(exc.diagnostic())
+    require_output_dir("cell file", output)
     loaded = []
     for path in programs:
         result = load_program(path, cell=cell, project_root=project_root, require_program=True)
@@ -68,10 +66,11 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
         try:
             spans.add(p.cell.robot(name).span)
         except KeyError:
-            _fail(f"--robot must name a robot of the cell (got '{name}')")
+            names = ", ".join(r.name for r in p.cell.robots)
+            fail_code(codes.ROBOT_UNKNOWN, f"--robot must name a robot of cell '{p.cell.name}' ({names}) (got '{name}')")
     instance = loaded[0].cell.robot(name)
-    if instance.span is None:
-        _fail(f"robot '{name}' has no source declaration to edit")
+    if instance.span is None:  # lower_cell gives every robot its declaration's span
+        raise RuntimeError(f"internal: robot '{name}' has no source span to rewrite")
     result = search(loaded, name, bounds, objective=objective, screen_n=samples)
     click.echo(f"screened {result.screened} poses by IK ({result.screen_feasible} reach every target), "
                f"planned and verified {result.verified_count} in full")
@@ -90,5 +89,5 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
     try:
         write_text(output, with_robot_at(text, span.start.offset, span.end.offset, best.base))
     except OSError as exc:
-        _fail(f"output file must be writable (got '{output}': {exc.strerror or exc})")
+        fail_output("cell file", output, exc)
     click.echo(f"wrote {output}")

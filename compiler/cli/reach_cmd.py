@@ -6,7 +6,8 @@
 PNG / SVG: two slices, a top view at height --z (default: the base's height) and a side
 view through the base (y = the base's y). HTML: the 3-D point cloud, interactive.
 Every point is coloured by manipulability relative to the best on the map (0 = singular).
-Exit codes: 0 written; 2 bad input (cell errors, unknown robot or tool, bad option).
+Exit codes: 0 written; 2 bad input (cell errors, unknown robot or tool, bad option: E80x
+diagnostics of sim/design/codes.py; an unwritable -o file: E520).
 """
 
 from __future__ import annotations
@@ -24,11 +25,6 @@ __all__ = ["reach"]
 FORMATS = (".png", ".svg", ".html")
 SLICE_SAMPLES = 1_000_000  # joint vectors drawn for an any-orientation slice
 CLOUD_SAMPLES = 200_000  # ... for the 3-D cloud
-
-
-def _fail(message: str) -> None:
-    click.echo(f"error: {message}", err=True)
-    sys.exit(EXIT_INPUT)
 
 
 def load_cell(path: str, project_root: str | None) -> Any:
@@ -70,29 +66,32 @@ def _map(study: Any, points: Any, step: float, rot: Any, label: str) -> Any:
 def reach(cell: str | None, robot_name: str | None, output: str, tool: str | None, orientation: str,
           z_text: str | None, step_text: str | None, project_root: str | None) -> None:
     """Draw the reachable workspace of a robot, coloured by distance to singularity."""
-    from rmot.compiler.cli.check_cmd import parse_length
+    from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
+    from rmot.sim.design import codes
     from rmot.sim.design.reach import reach_bound
     from rmot.sim.design.study import OptionError, fixture_meshes, parse_angles, rotation_rpy, study_for
 
     ext = os.path.splitext(output)[1].lower()
     if ext not in FORMATS:
-        raise click.BadParameter(f"must end in one of {', '.join(FORMATS)} (got {output!r})", param_hint="'-o'")
+        fail_code(codes.OUTPUT_FORMAT, f"-o must end in one of {', '.join(FORMATS)} (got '{output}')")
+    require_output_dir("map file", output)
     try:
         rot = None if orientation.strip() == "any" else rotation_rpy(*parse_angles(orientation))
-        z = parse_length(z_text) if z_text is not None else None
-        step = parse_length(step_text) if step_text is not None else None
+        z = _length("--z", z_text)
+        step = _length("--step", step_text)
         if step is not None and not step > 0:
-            raise OptionError(f"--step must be positive (got {step_text})")
+            raise OptionError(codes.OPTION_RANGE, f"--step must be positive (got '{step_text}')")
         study = study_for(load_cell(cell, project_root) if cell else None, robot_name, tool)
-    except (OptionError, ValueError) as exc:
-        _fail(str(exc))
-        return
+        bound = reach_bound(study.robot, study.tcp)
+        if step is not None:
+            _check_work(ext, step, bound, step_text or "")
+    except OptionError as exc:
+        fail(exc.diagnostic())
     fixtures, diags = fixture_meshes(study.cell)
     if diags:
         from rmot.lang.diagnostics import render_all
 
         click.echo(render_all(diags), err=True)
-    bound = reach_bound(study.robot, study.tcp)
     label = study.instance.name if study.instance else study.robot.name
     what = "any orientation (sampled joint vectors: a cell without a sample may still be reachable)" if rot is None else f"orientation {orientation.strip()}"
     caption = [f"{label} ({study.robot.model_name}): TCP {'of ' + tool if tool else '= flange'}, {what}; "
@@ -101,8 +100,40 @@ def reach(cell: str | None, robot_name: str | None, output: str, tool: str | Non
     try:
         _draw(study, ext, output, step, bound, rot, z, label, caption, fixtures)
     except OSError as exc:
-        _fail(f"output file must be writable (got '{output}': {exc.strerror or exc})")
+        fail_output("map file", output, exc)
     click.echo(f"wrote {output}")
+
+
+# Work bound of one map: grid points IK is solved at (or sampled cells of a slice). A 3-D map at
+# the default step has ~7,000 points, a slice ~6,400; 2,000,000 is ~300 times that (minutes).
+MAX_GRID_POINTS = 2_000_000
+
+
+def _length(option: str, text: str | None) -> float | None:
+    """A length option ('750mm') in metres, or None when not given; raises OptionError (E802)."""
+    from rmot.compiler.cli.check_cmd import parse_length
+    from rmot.sim.design import codes
+    from rmot.sim.design.study import OptionError
+
+    if text is None:
+        return None
+    try:
+        return parse_length(text)
+    except ValueError as exc:
+        raise OptionError(codes.OPTION_NUMBER, f"{option} {exc}") from None
+
+
+def _check_work(ext: str, step: float, bound: float, step_text: str) -> None:
+    """A --step so small that the grid exceeds MAX_GRID_POINTS is refused (E808) before any work."""
+    from rmot.sim.design import codes
+    from rmot.sim.design.study import OptionError
+
+    per_axis = 2 * bound / step + 1
+    points = per_axis ** 3 if ext == ".html" else 2 * per_axis ** 2
+    if points > MAX_GRID_POINTS:
+        least = 2 * bound / ((MAX_GRID_POINTS if ext == ".html" else MAX_GRID_POINTS / 2) ** (1 / (3 if ext == ".html" else 2)) - 1)
+        raise OptionError(codes.OPTION_RANGE, f"--step must be at least {least * 1000:.1f} mm for this map "
+                          f"(got '{step_text}': {points:.3g} grid points, at most {MAX_GRID_POINTS:,})")
 
 
 def _draw(study: Any, ext: str, output: str, step: float | None, bound: float, rot: Any, z: float | None,

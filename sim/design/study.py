@@ -1,7 +1,8 @@
 """What a design study starts from: a robot (from a cell, or bare), its base, tool and fixtures,
 and the small option languages of the design commands (orientations, regions).
 
-Option text errors raise `OptionError` (the CLI turns them into usage errors, exit 2).
+Option text errors raise `OptionError`, which carries its diagnostic code (sim/design/codes.py);
+the CLI renders it as `rmot: error[E80x]: ...` and exits 2.
 """
 
 from __future__ import annotations
@@ -14,12 +15,25 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.sim.design import codes
 
 __all__ = ["OptionError", "Study", "fixture_meshes", "parse_angles", "parse_region", "rotation_rpy", "study_for"]
 
 
 class OptionError(ValueError):
-    """A command-line value that does not parse; the message says what was expected."""
+    """A command-line value that does not parse; the message says what was expected and names
+    the option, `code` is its registered diagnostic code."""
+
+    def __init__(self, code: Any, message: str) -> None:
+        super().__init__(message)
+        self.code = code
+        self.message = message
+
+    def diagnostic(self) -> Any:
+        """The error as a diagnostic value (no span: the value came from the command line)."""
+        from rmot.lang.diagnostics import Diagnostic, Severity
+
+        return Diagnostic(self.code, Severity.ERROR, self.message, None)
 
 
 _NUMBER = r"[-+]?(?:[0-9]*\.?[0-9]+)(?:[eE][-+]?[0-9]+)?"
@@ -27,11 +41,15 @@ _ANGLE_UNITS = {"deg": math.pi / 180, "rad": 1.0}
 _LENGTH_UNITS = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
 
 
-def _value(text: str, key: str, units: dict[str, float]) -> float:
+def _value(text: str, key: str, units: dict[str, float], option: str) -> float:
     m = re.fullmatch(rf"\s*({_NUMBER})\s*([a-z]+)\s*", text)
     if not m or m.group(2) not in units:
-        raise OptionError(f"{key} must be a number with a unit ({', '.join(units)}) (got '{text.strip()}')")
-    return float(m.group(1)) * units[m.group(2)]
+        raise OptionError(codes.OPTION_NUMBER,
+                          f"{option} {key} must be a number with a unit ({', '.join(units)}) (got '{text.strip()}')")
+    value = float(m.group(1)) * units[m.group(2)]
+    if not math.isfinite(value):  # 1e999m parses as inf
+        raise OptionError(codes.OPTION_NUMBER, f"{option} {key} must be a finite number (got '{text.strip()}')")
+    return value
 
 
 def rotation_rpy(rx: float, ry: float, rz: float) -> np.ndarray:
@@ -47,9 +65,10 @@ def parse_angles(text: str) -> tuple[float, float, float]:
         key, eq, value = part.partition("=")
         key = key.strip()
         if not eq or key not in out or key in seen:
-            raise OptionError(f"orientation must be 'any' or keys rx, ry, rz each given once, e.g. rx=180deg (got '{text}')")
+            raise OptionError(codes.ORIENTATION_SYNTAX,
+                              f"--orientation must be 'any' or keys rx, ry, rz each given once, e.g. rx=180deg (got '{text}')")
         seen.add(key)
-        out[key] = _value(value, key, _ANGLE_UNITS)
+        out[key] = _value(value, key, _ANGLE_UNITS, "--orientation")
     return out["rx"], out["ry"], out["rz"]
 
 
@@ -64,17 +83,19 @@ def parse_region(text: str) -> dict[str, tuple[float, float]]:
         key, eq, value = part.partition("=")
         key = key.strip()
         if not eq or key not in _REGION_KEYS or key in out:
-            raise OptionError(f"region must list x=LO..HI, y=LO..HI and optionally z=, rz= each once (got '{part}')")
+            raise OptionError(codes.REGION_SYNTAX,
+                              f"--region must list x=LO..HI, y=LO..HI and optionally z=, rz= each once (got '{part}')")
         lo_text, dots, hi_text = value.partition("..")
         if not dots:
             lo_text = hi_text = value  # a single value: fixed
-        lo, hi = _value(lo_text, key, _REGION_KEYS[key]), _value(hi_text, key, _REGION_KEYS[key])
+        lo = _value(lo_text, key, _REGION_KEYS[key], "--region")
+        hi = _value(hi_text, key, _REGION_KEYS[key], "--region")
         if hi < lo:
-            raise OptionError(f"region {key} must go from low to high (got {value.strip()})")
+            raise OptionError(codes.RANGE_INVERTED, f"--region {key} must go from low to high (got {value.strip()})")
         out[key] = (lo, hi)
     for key in ("x", "y"):
         if key not in out:
-            raise OptionError(f"region must give {key}=LO..HI (got '{text}')")
+            raise OptionError(codes.REGION_SYNTAX, f"--region must give {key}=LO..HI (got '{text}')")
     return out
 
 
@@ -98,33 +119,33 @@ def study_for(cell: ir.Cell | None, robot_name: str | None, tool: str | None) ->
 
     if cell is None:
         if not robot_name:
-            raise OptionError("--robot must name a library robot or a URDF file when no cell is given")
+            raise OptionError(codes.OPTION_MISSING, "--robot must name a library robot or a URDF file when no cell is given")
         if tool:
-            raise OptionError("--tool needs a cell that declares the tool")
+            raise OptionError(codes.OPTION_MISSING, "--tool needs a cell that declares the tool")
         try:
             robot = load_robot(robot_name)
         except RobotError as exc:
-            raise OptionError(exc.message) from None
+            raise OptionError(exc.code or codes.ROBOT_UNKNOWN, f"--robot: {exc.message}") from None
         return Study(robot, None, np.eye(4), np.eye(4), None, None)
     names = [r.name for r in cell.robots]
     if robot_name is None:
         if len(names) != 1:
-            raise OptionError(f"--robot must name one of the cell's robots ({', '.join(names)})")
+            raise OptionError(codes.OPTION_MISSING, f"--robot must name one of the cell's robots ({', '.join(names)})")
         robot_name = names[0]
     if robot_name not in names:
-        raise OptionError(f"--robot must name a robot of cell '{cell.name}' ({', '.join(names)}) (got '{robot_name}')")
+        raise OptionError(codes.ROBOT_UNKNOWN, f"--robot must name a robot of cell '{cell.name}' ({', '.join(names)}) (got '{robot_name}')")
     instance = cell.robot(robot_name)
     try:
         robot = load_robot(instance.source.load_key)
     except RobotError as exc:
-        raise OptionError(exc.message) from None
+        raise OptionError(exc.code or codes.ROBOT_UNKNOWN, f"robot '{robot_name}': {exc.message}") from None
     tcp = np.eye(4)
     if tool is not None:
         tools = {t.name: t for t in cell.tools}
         if tool not in tools:
-            raise OptionError(f"--tool must name a tool of cell '{cell.name}' ({', '.join(tools) or 'none'}) (got '{tool}')")
+            raise OptionError(codes.TOOL_UNKNOWN, f"--tool must name a tool of cell '{cell.name}' ({', '.join(tools) or 'none'}) (got '{tool}')")
         if tools[tool].robot != robot_name:
-            raise OptionError(f"--tool '{tool}' must be mounted on '{robot_name}' (it is on '{tools[tool].robot}')")
+            raise OptionError(codes.TOOL_UNKNOWN, f"--tool '{tool}' must be mounted on '{robot_name}' (it is on '{tools[tool].robot}')")
         tcp = tools[tool].tcp.matrix()
     return Study(robot, instance, instance.base.matrix(), tcp, cell, tool)
 

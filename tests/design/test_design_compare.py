@@ -142,3 +142,68 @@ def test_compare_place_places_each_arm_first() -> None:
     assert result.exit_code == 0, result.output
     placed = json.loads(result.output)["arms"][0]
     assert placed["verified"] is True and "placed at x=" in placed["note"]
+
+
+def _check_dynamics_json(program: str, *extra: str) -> dict:
+    """`rmot check --format json --dynamics`, validated against the report's normative schema."""
+    from rmot.sim.report import validate_json
+
+    result = CliRunner().invoke(cli, ["check", program, "--format", "json", *extra])
+    assert result.exit_code in (0, 1), result.output
+    doc = json.loads(result.output)
+    assert validate_json(doc) == []
+    return doc["programs"][0]
+
+
+def test_check_json_dynamics_equals_pinocchio_rnea() -> None:
+    """`rmot check --format json --dynamics`: each task's `dynamics` block gives per joint pinocchio's RNEA peak
+    and RMS torque and peak power on the planned samples, the URDF's effort limit as rated torque and their ratio."""
+    pin = pytest.importorskip("pinocchio")
+    task = _check_dynamics_json(JIG, "--dynamics")["tasks"][0]
+    tau, qd, effort = _rnea_on_plan(pin)
+    dyn = task["dynamics"]
+    assert dyn["model"] == "arm6" and dyn["note"] == ""
+    joints = dyn["joints"]
+    assert [j["joint"] for j in joints] == [1, 2, 3, 4, 5, 6] and {j["unit"] for j in joints} == {"N·m"}
+    peak = np.abs(tau).max(axis=0)
+    np.testing.assert_allclose([j["peak_torque"] for j in joints], peak, atol=1e-5)
+    np.testing.assert_allclose([j["rms_torque"] for j in joints], np.sqrt((tau ** 2).mean(axis=0)), atol=1e-5)
+    np.testing.assert_allclose([j["peak_power_w"] for j in joints], np.abs(tau * qd).max(axis=0), atol=1e-5)
+    np.testing.assert_allclose([j["rated_torque"] for j in joints], effort, atol=1e-9)
+    np.testing.assert_allclose([j["utilisation"] for j in joints], peak / effort, atol=1e-6)
+    assert joints[1]["peak_torque"] > 1.0
+
+
+def test_check_json_has_dynamics_only_when_asked() -> None:
+    """Without --dynamics the JSON report's tasks carry no `dynamics` key (the version 2 layout is unchanged)."""
+    program = _check_dynamics_json(JIG)
+    assert program["tasks"] and all("dynamics" not in t for t in program["tasks"])
+
+
+def test_check_json_dynamics_of_a_robot_without_inertias() -> None:
+    """A `model` robot has no inertia data: `joints` is null and the note says why."""
+    program = _check_dynamics_json(str(ROOT / "examples" / "model_arm.rmot"), "--dynamics")
+    dyn = program["tasks"][0]["dynamics"]
+    assert dyn["joints"] is None and "no inertia data" in dyn["note"]
+
+
+def test_schema_holds_the_dynamics_block_to_its_keys() -> None:
+    """The schema's `dynamics` block is closed: an unknown key, a missing key or a wrong unit is a violation."""
+    from rmot.sim.report import JSON_SCHEMA, validate_json
+
+    joint = {"joint": 1, "unit": "N·m", "peak_torque": 1.0, "rms_torque": 0.5, "peak_power_w": 2.0,
+             "rated_torque": None, "utilisation": None}
+    task = {"task": "t", "robot": "r1", "cycle_time_s": 1.0, "moving_s": 1.0, "waiting_s": 0.0, "sync_s": 0.0,
+            "instructions": [], "dynamics": {"model": "m", "joints": [joint], "note": ""}}
+
+    def doc(t: dict) -> dict:
+        return {"version": 2, "programs": [{"file": "f", "cycle_time_s": 1.0, "assumptions": None,
+                                            "tasks": [t], "diagnostics": []}]}
+
+    assert validate_json(doc(task), JSON_SCHEMA) == []
+    extra = {**task, "dynamics": {**task["dynamics"], "extra": 1}}
+    assert validate_json(doc(extra), JSON_SCHEMA) == ["$.programs[0].tasks[0].dynamics: must not have key 'extra'"]
+    missing = {**task, "dynamics": {"model": "m", "joints": None}}
+    assert validate_json(doc(missing), JSON_SCHEMA) == ["$.programs[0].tasks[0].dynamics: must have key 'note'"]
+    bad_unit = {**task, "dynamics": {**task["dynamics"], "joints": [{**joint, "unit": "Nm"}]}}
+    assert len(validate_json(doc(bad_unit), JSON_SCHEMA)) == 1
