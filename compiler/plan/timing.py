@@ -267,7 +267,7 @@ def path_piece(
         x, r_acc, r_vel, bad = arrays.solve(arrays.xmax.copy(), 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS)
         if not np.any(bad) or attempt == _REFINE_ROUNDS:
             break
-        arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells
+        arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells (consumes the old)
     worst_a = float(np.max(r_acc, initial=0.0))
     worst_v = float(np.max(r_vel, initial=0.0))
     sd = np.sqrt(np.maximum(x, 0.0))
@@ -404,7 +404,9 @@ class _Arrays:
         self.xmax = xmax
 
     def refined(self, bad: np.ndarray) -> _Arrays:
-        """Each listed cell and its two neighbours split in four."""
+        """Each listed cell and its two neighbours split in four. Consumes this grid: its large
+        arrays are released as they are merged (the caller keeps only the refined grid), so
+        that the old and the new grid are never both held whole (peak memory)."""
         cells = np.unique(np.clip(np.concatenate([bad - 1, bad, bad + 1]), 0, len(self.h) - 1))
         lo, h, interval = self.grid[cells], self.h[cells], self.interval[cells]
         frac = np.array([0.25, 0.5, 0.75])
@@ -421,16 +423,24 @@ class _Arrays:
         grid = np.concatenate([self.grid, extra])
         order = np.argsort(grid, kind="stable")
         place = _places(order, len(self.grid))
-        pts = tuple(_merged(old, new, place, axis=0) for old, new in zip(self.pts, new_pts))
+        old_pts = list(self.pts)
+        self.pts = self.d1 = self.d2 = self.rows = self.xmax = None  # type: ignore[assignment]
+        pts = []
+        for i, new in enumerate(new_pts):
+            pts.append(_merged(old_pts[i], new, place, axis=0))
+            old_pts[i] = None  # type: ignore[call-overload]
         keep = np.ones(len(self.h), bool)
         keep[cells] = False
         cell_lo = np.concatenate([self.grid[:-1][keep], sub_lo])
         cplace = _places(np.argsort(cell_lo, kind="stable"), int(np.count_nonzero(keep)))
-        interval_all = _merged(self.interval[keep], sub_int, cplace, axis=0)
-        m1 = _merged(self.m1[:, keep], new_cells[0], cplace, axis=1)
-        m2 = _merged(self.m2[:, keep], new_cells[1], cplace, axis=1)
-        v_in = _merged(self.v_in[:, keep], new_cells[2], cplace, axis=1)
-        return _Arrays(self.limits, grid[order], (interval_all, pts, (m1, m2, v_in)))
+        interval_all = _merged(self.interval, sub_int, cplace, axis=0, keep=keep)
+        m1 = _merged(self.m1, new_cells[0], cplace, axis=1, keep=keep)
+        self.m1 = None  # type: ignore[assignment]
+        m2 = _merged(self.m2, new_cells[1], cplace, axis=1, keep=keep)
+        self.m2 = None  # type: ignore[assignment]
+        v_in = _merged(self.v_in, new_cells[2], cplace, axis=1, keep=keep)
+        self.v_in = None  # type: ignore[assignment]
+        return _Arrays(self.limits, grid[order], (interval_all, tuple(pts), (m1, m2, v_in)))
 
     def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]
         """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad)
@@ -472,13 +482,19 @@ def _places(order: np.ndarray, n_old: int) -> tuple[np.ndarray, np.ndarray]:
     return place[:n_old], place[n_old:]
 
 
-def _merged(old: np.ndarray, new: np.ndarray, place: tuple[np.ndarray, np.ndarray], axis: int) -> np.ndarray:
-    """concatenate([old, new], axis)[order along axis], written in place (C-contiguous)."""
+def _merged(old: np.ndarray, new: np.ndarray, place: tuple[np.ndarray, np.ndarray], axis: int,
+            keep: np.ndarray | None = None) -> np.ndarray:
+    """concatenate([old (only its `keep` entries along axis, if given), new], axis)[order along
+    axis], written in place (C-contiguous); axis 1: one leading row at a time (smaller temporaries)."""
+    n_old = len(place[0])
     shape = list(old.shape)
-    shape[axis] = old.shape[axis] + new.shape[axis]
+    shape[axis] = n_old + new.shape[axis]
     out = np.empty(shape, dtype=np.result_type(old, new))
     if axis == 0:
-        out[place[0]], out[place[1]] = old, new
+        out[place[0]] = old if keep is None else old[keep]
+        out[place[1]] = new
     else:
-        out[:, place[0]], out[:, place[1]] = old, new
+        for t in range(old.shape[0]):
+            out[t, place[0]] = old[t] if keep is None else old[t, keep]
+            out[t, place[1]] = new[t]
     return out
