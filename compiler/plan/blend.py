@@ -69,36 +69,15 @@ def _along(q: np.ndarray, lam: np.ndarray) -> np.ndarray:
     return np.stack([np.interp(x, d, q[:, j]) for j in range(q.shape[1])], axis=1)
 
 
-_BISECT_STEPS = 30  # halvings of the joint-space segment in _crossings
-_LEVELS = 6  # bisection levels resolved per batched FK call (2^6 - 1 = 63 points per segment)
-
-
-def _crossings(robot, tool: np.ndarray, ends: list[tuple[np.ndarray, np.ndarray]], corner: np.ndarray,
-               r: float) -> list[np.ndarray]:
-    """For each joint-space segment qa (outside the sphere) -> qb (inside) of `ends`, joints on
-    it whose TCP lies on the sphere of radius r around corner: 30 steps of bisection (the
-    segment is short). The bisection is the plain one, step for step, with its FK batched:
-    each call evaluates every midpoint the next _LEVELS steps could ask for (the dyadic points
-    of the current bracket, exact in floating point) for all segments at once."""
-    n, sub = len(ends), 2**_LEVELS
-    qa = np.array([e[0] for e in ends])
-    dq = np.array([e[1] for e in ends]) - qa
-    lo, hi = np.zeros(n), np.ones(n)
-    frac = np.arange(1, sub) / sub
-    for done in range(0, _BISECT_STEPS, _LEVELS):
-        levels = min(_LEVELS, _BISECT_STEPS - done)
-        width = hi - lo
-        mids = lo[:, None] + width[:, None] * frac  # (n, sub - 1)
-        q = qa[:, None, :] + mids[..., None] * dq[:, None, :]
-        p = (robot.fk_batch(q.reshape(-1, qa.shape[1])) @ tool)[:, :3, 3]
-        outside = (np.linalg.norm(p - corner, axis=1) > r).reshape(n, sub - 1)
-        for k in range(n):
-            a, b = 0, sub  # the bracket in units of width / sub
-            for _ in range(levels):
-                m = (a + b) // 2
-                a, b = (m, b) if outside[k, m - 1] else (a, m)
-            lo[k], hi[k] = lo[k] + width[k] * a / sub, lo[k] + width[k] * b / sub
-    return [qa[k] + hi[k] * dq[k] for k in range(n)]
+def _crossing(robot, tool: np.ndarray, qa: np.ndarray, qb: np.ndarray, corner: np.ndarray, r: float) -> np.ndarray:
+    """Joints on the joint-space segment qa (outside the sphere) -> qb (inside) whose TCP lies
+    on the sphere of radius r around corner (bisection; the segment is short)."""
+    lo, hi = 0.0, 1.0
+    for _ in range(30):
+        mid = 0.5 * (lo + hi)
+        p = (robot.fk(qa + mid * (qb - qa)) @ tool)[:3, 3]
+        lo, hi = (mid, hi) if np.linalg.norm(p - corner) > r else (lo, mid)
+    return qa + hi * (qb - qa)
 
 
 @dataclass(frozen=True, eq=False)
@@ -117,7 +96,8 @@ def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: igno
     if not out_a.size or not out_b.size:
         return None
     k, m = int(out_a[-1]), int(out_b[0])
-    q_in, q_out = _crossings(robot, tool, [(a.q[k], a.q[k + 1]), (b.q[m], b.q[m - 1])], corner, r)
+    q_in = _crossing(robot, tool, a.q[k], a.q[k + 1], corner, r)
+    q_out = _crossing(robot, tool, b.q[m], b.q[m - 1], corner, r)
     qa_part = np.vstack([q_in, a.q[k + 1:]])
     qb_part = np.vstack([b.q[:m], q_out])
     span = np.linalg.norm(np.diff(qa_part, axis=0), axis=1).sum() + np.linalg.norm(np.diff(qb_part, axis=0), axis=1).sum()
