@@ -490,11 +490,21 @@ def _merged(old: np.ndarray, new: np.ndarray, place: tuple[np.ndarray, np.ndarra
     shape = list(old.shape)
     shape[axis] = n_old + new.shape[axis]
     out = np.empty(shape, dtype=np.result_type(old, new))
+    if old.ndim == axis + 2:  # rows of m values moved as one m-value record each (~2x faster)
+        old, new, dst = _records(old), _records(new), _records(out)
+    else:
+        dst = out
     if axis == 0:
-        out[place[0]] = old if keep is None else old[keep]
-        out[place[1]] = new
+        dst[place[0]] = old if keep is None else old[keep]
+        dst[place[1]] = new
     else:
         for t in range(old.shape[0]):
-            out[t, place[0]] = old[t] if keep is None else old[t, keep]
-            out[t, place[1]] = new[t]
+            dst[t, place[0]] = old[t] if keep is None else old[t, keep]
+            dst[t, place[1]] = new[t]
     return out
+
+
+def _records(a: np.ndarray) -> np.ndarray:
+    """(..., n, m) floats viewed as (..., n) records of m floats (the same memory)."""
+    a = np.ascontiguousarray(a)
+    return a.view(np.dtype((np.void, a.dtype.itemsize * a.shape[-1])))[..., 0]
