@@ -490,17 +490,17 @@ def _merged(old: np.ndarray, new: np.ndarray, place: tuple[np.ndarray, np.ndarra
     shape = list(old.shape)
     shape[axis] = n_old + new.shape[axis]
     out = np.empty(shape, dtype=np.result_type(old, new))
-    if old.ndim == axis + 2:  # rows of m values moved as one m-value record each (~2x faster)
-        old, new, dst = _records(old), _records(new), _records(out)
-    else:
-        dst = out
+    kept = None if keep is None else np.flatnonzero(keep)  # take is ~4x faster than a mask
+    rows = old.ndim == axis + 2  # rows of m values moved as one m-value record each (~2x faster)
+    wrap = _records if rows else (lambda a: a)
+    dst = wrap(out)
     if axis == 0:
-        dst[place[0]] = old if keep is None else old[keep]
-        dst[place[1]] = new
+        dst[place[0]] = wrap(old if kept is None else old.take(kept, axis=0))
+        dst[place[1]] = wrap(new)
     else:
         for t in range(old.shape[0]):
-            dst[t, place[0]] = old[t] if keep is None else old[t, keep]
-            dst[t, place[1]] = new[t]
+            dst[t, place[0]] = wrap(old[t] if kept is None else old[t].take(kept, axis=0))
+            dst[t, place[1]] = wrap(new[t])
     return out
 
 
