@@ -97,6 +97,23 @@ class _Solver:
         shift = np.round((ref - q) / (2 * np.pi)) * 2 * np.pi
         return np.where(self.revolute, q + shift, q)
 
+    def _unwrap_chain(self, sols: np.ndarray, q_start: np.ndarray) -> np.ndarray:
+        """Sequential unwrap, vectorised: each row shifted by whole turns to continue from the
+        row before (the first from q_start); rows from the first NaN row on are NaN. Row i's
+        shift is a whole number of turns, the previous row's plus the turns nearest to the
+        step between the raw rows: the same integers the row-by-row unwrap finds."""
+        out = sols.copy()
+        nan_rows = np.flatnonzero(np.isnan(sols[:, 0]))
+        n = int(nan_rows[0]) if nan_rows.size else len(sols)
+        out[n:] = np.nan
+        if n == 0:
+            return out
+        raw = sols[:n]
+        prev = np.vstack([q_start[None, :], raw[:-1]])
+        turns = np.cumsum(np.round((prev - raw) / (2 * np.pi)), axis=0)
+        out[:n] = np.where(self.revolute, raw + turns * 2 * np.pi, raw)
+        return out
+
     def solve(self, u: np.ndarray, ref: np.ndarray) -> np.ndarray:
         """Joints (N, dof) at path fractions u (N,), each near ref (N, dof); NaN rows: none."""
         poses = self._flange(u)
@@ -114,15 +131,7 @@ class _Solver:
         """Joints (N, dof) along increasing u, each solved near its predecessor."""
         if self.column is not None:
             sols = self._batch(self._flange(u))[:, self.column, :]
-            out = sols.copy()
-            prev = q_start
-            for i in range(len(u)):  # sequential unwrap: each joint continues from the last
-                if np.isnan(out[i, 0]):
-                    out[i:] = np.nan
-                    break
-                out[i] = self._unwrap(sols[i], prev)
-                prev = out[i]
-            return out
+            return self._unwrap_chain(sols, q_start)
         out = np.full((len(u), q_start.shape[0]), np.nan)
         prev = q_start
         for i, pose in enumerate(self._flange(u)):

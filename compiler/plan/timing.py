@@ -267,7 +267,7 @@ def path_piece(
         x, r_acc, r_vel, bad = arrays.solve(arrays.xmax.copy(), 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS)
         if not np.any(bad) or attempt == _REFINE_ROUNDS:
             break
-        arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells
+        arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells (consumes the old)
     worst_a = float(np.max(r_acc, initial=0.0))
     worst_v = float(np.max(r_vel, initial=0.0))
     sd = np.sqrt(np.maximum(x, 0.0))
@@ -385,8 +385,6 @@ class _Arrays:
     cells and evaluates only the new points and cells (cost linear in what was added)."""
 
     def __init__(self, limits: _Limits, grid: np.ndarray, parts=None) -> None:  # type: ignore[no-untyped-def]
-        from rmot.compiler.plan import topp
-
         self.limits, self.grid = limits, grid
         self.h = np.diff(grid)
         if parts is None:
@@ -394,45 +392,55 @@ class _Arrays:
             interval = np.clip(np.searchsorted(limits.ss, 0.5 * (grid[:-1] + grid[1:]), side="right") - 1, 0, last)
             left = np.concatenate([interval[:1], interval])
             right = np.concatenate([interval, interval[-1:]])
-            pts = limits.points(grid, left, right)
+            pts = _normalised(limits.points(grid, left, right))
             parts = (interval, pts, limits.cells(grid[:-1], self.h, interval))
         self.interval, self.pts, (self.m1, self.m2, self.v_in) = parts[0], parts[1], parts[2]
-        d1, d2, a, b, c, vel = self.pts
+        d1, d2, beta, gamma, ceiling, vel = self.pts
         self.d1, self.d2 = d1, d2
-        self.rows = topp.Rows(a, b, c).normalised()
-        self.c_cell = np.ascontiguousarray(np.tile(limits.alim, (len(self.h), 1)))
+        self.rows = (beta, gamma, ceiling)
         with np.errstate(divide="ignore"):
             xmax = 1.0 / vel ** 2 * (1 - _V_MARGIN) ** 2
         xmax[~np.isfinite(xmax)] = 1e18
         self.xmax = xmax
 
     def refined(self, bad: np.ndarray) -> _Arrays:
-        """Each listed cell and its two neighbours split in four."""
+        """Each listed cell and its two neighbours split in four. Consumes this grid: its large
+        arrays are released as they are merged (the caller keeps only the refined grid), so
+        that the old and the new grid are never both held whole (peak memory)."""
         cells = np.unique(np.clip(np.concatenate([bad - 1, bad, bad + 1]), 0, len(self.h) - 1))
         lo, h, interval = self.grid[cells], self.h[cells], self.interval[cells]
         frac = np.array([0.25, 0.5, 0.75])
         extra = (lo[:, None] + h[:, None] * frac).ravel()
         extra_int = np.repeat(interval, 3)
-        new_pts = self.limits.points(extra, extra_int, extra_int)
+        new_pts = _normalised(self.limits.points(extra, extra_int, extra_int))
         sub_lo = (lo[:, None] + h[:, None] * np.array([0.0, 0.25, 0.5, 0.75])).ravel()
         sub_h = np.repeat(h * 0.25, 4)
         sub_int = np.repeat(interval, 4)
         new_cells = self.limits.cells(sub_lo, sub_h, sub_int)
-        # merge points (old ones keep their values) and cells (split ones replaced)
+        # merge points (old ones keep their values) and cells (split ones replaced), each array
+        # written once into its place (no concatenated copy on the way: these are the planner's
+        # largest arrays)
         grid = np.concatenate([self.grid, extra])
         order = np.argsort(grid, kind="stable")
-        pts = tuple(np.concatenate([old, new])[order] for old, new in zip(self.pts, new_pts))
+        place = _places(order, len(self.grid))
+        old_pts = list(self.pts)
+        self.pts = self.d1 = self.d2 = self.rows = self.xmax = None  # type: ignore[assignment]
+        pts = []
+        for i, new in enumerate(new_pts):
+            pts.append(_merged(old_pts[i], new, place, axis=0))
+            old_pts[i] = None  # type: ignore[call-overload]
         keep = np.ones(len(self.h), bool)
         keep[cells] = False
         cell_lo = np.concatenate([self.grid[:-1][keep], sub_lo])
-        corder = np.argsort(cell_lo, kind="stable")
-        interval_all = np.concatenate([self.interval[keep], sub_int])[corder]
-        m1 = np.concatenate([self.m1[:, keep], new_cells[0]], axis=1)[:, corder]
-        m2 = np.concatenate([self.m2[:, keep], new_cells[1]], axis=1)[:, corder]
-        v_in = np.concatenate([self.v_in[:, keep], new_cells[2]], axis=1)[:, corder]
-        return _Arrays(self.limits, grid[order], (interval_all, pts, (np.ascontiguousarray(m1),
-                                                                      np.ascontiguousarray(m2),
-                                                                      np.ascontiguousarray(v_in))))
+        cplace = _places(np.argsort(cell_lo, kind="stable"), int(np.count_nonzero(keep)))
+        interval_all = _merged(self.interval, sub_int, cplace, axis=0, keep=keep)
+        m1 = _merged(self.m1, new_cells[0], cplace, axis=1, keep=keep)
+        self.m1 = None  # type: ignore[assignment]
+        m2 = _merged(self.m2, new_cells[1], cplace, axis=1, keep=keep)
+        self.m2 = None  # type: ignore[assignment]
+        v_in = _merged(self.v_in, new_cells[2], cplace, axis=1, keep=keep)
+        self.v_in = None  # type: ignore[assignment]
+        return _Arrays(self.limits, grid[order], (interval_all, tuple(pts), (m1, m2, v_in)))
 
     def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]
         """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad)
@@ -443,7 +451,7 @@ class _Arrays:
         for _ in range(rounds + 1):
             x = topp.solve(self.grid, xmax, self.rows)
             r_acc, r_vel = topp.check(x, self.h, self.d1, self.d2, self.m1, self.m2, self.v_in,
-                                      _CHECK_AT, self.c_cell)
+                                      _CHECK_AT, self.limits.alim)
             bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
             if not np.any(bad):
                 break
@@ -455,3 +463,48 @@ class _Arrays:
             for end in (cells, cells + 1):
                 np.minimum.at(xmax, end, x[end] * factor)
         return x, r_acc, r_vel, bad
+
+
+def _normalised(pts):  # type: ignore[no-untyped-def]
+    """A point's (d1, d2, a, b, c, vel) as (d1, d2, beta, gamma, ceiling, vel): the rows in the
+    solver's form (topp.Rows.normalised, row by row), kept instead of a, b, c."""
+    from rmot.compiler.plan import topp
+
+    d1, d2, a, b, c, vel = pts
+    return (d1, d2, *topp.Rows(a, b, c).normalised(), vel)
+
+
+def _places(order: np.ndarray, n_old: int) -> tuple[np.ndarray, np.ndarray]:
+    """Where the old (first n_old) and the new entries of a concatenation go once sorted by
+    `order` (the inverse permutation, split)."""
+    place = np.empty_like(order)
+    place[order] = np.arange(len(order))
+    return place[:n_old], place[n_old:]
+
+
+def _merged(old: np.ndarray, new: np.ndarray, place: tuple[np.ndarray, np.ndarray], axis: int,
+            keep: np.ndarray | None = None) -> np.ndarray:
+    """concatenate([old (only its `keep` entries along axis, if given), new], axis)[order along
+    axis], written in place (C-contiguous); axis 1: one leading row at a time (smaller temporaries)."""
+    n_old = len(place[0])
+    shape = list(old.shape)
+    shape[axis] = n_old + new.shape[axis]
+    out = np.empty(shape, dtype=np.result_type(old, new))
+    kept = None if keep is None else np.flatnonzero(keep)  # take is ~4x faster than a mask
+    rows = old.ndim == axis + 2  # rows of m values moved as one m-value record each (~2x faster)
+    wrap = _records if rows else (lambda a: a)
+    dst = wrap(out)
+    if axis == 0:
+        dst[place[0]] = wrap(old if kept is None else old.take(kept, axis=0))
+        dst[place[1]] = wrap(new)
+    else:
+        for t in range(old.shape[0]):
+            dst[t, place[0]] = wrap(old[t] if kept is None else old[t].take(kept, axis=0))
+            dst[t, place[1]] = wrap(new[t])
+    return out
+
+
+def _records(a: np.ndarray) -> np.ndarray:
+    """(..., n, m) floats viewed as (..., n) records of m floats (the same memory)."""
+    a = np.ascontiguousarray(a)
+    return a.view(np.dtype((np.void, a.dtype.itemsize * a.shape[-1])))[..., 0]

@@ -148,7 +148,7 @@ def _numba_check():  # type: ignore[no-untyped-def]
     import numba
 
     @numba.njit(cache=True)
-    def check(x, h, d1, d2, m1, m2, vel_in, thetas, c_cell):  # type: ignore[no-untyped-def]
+    def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
         k, n = d1.shape[0] - 1, d1.shape[1]
         r_acc = np.zeros(k)
         r_vel = np.zeros(k)
@@ -156,14 +156,14 @@ def _numba_check():  # type: ignore[no-untyped-def]
             u = (x[i + 1] - x[i]) / (2.0 * h[i])
             worst = 0.0
             for j in range(n):
-                r = abs(d1[i + 1, j] * u + d2[i + 1, j] * x[i + 1]) / c_cell[i, j]
+                r = abs(d1[i + 1, j] * u + d2[i + 1, j] * x[i + 1]) / c[j]
                 if r > worst:
                     worst = r
             vw = 0.0
             for t in range(len(thetas)):
                 xt = x[i] + thetas[t] * (x[i + 1] - x[i])
                 for j in range(n):
-                    r = abs(m1[t, i, j] * u + m2[t, i, j] * xt) / c_cell[i, j]
+                    r = abs(m1[t, i, j] * u + m2[t, i, j] * xt) / c[j]
                     if r > worst:
                         worst = r
                 v = vel_in[t, i] * np.sqrt(max(xt, 0.0))
@@ -179,11 +179,12 @@ def _numba_check():  # type: ignore[no-untyped-def]
 _CHECK = None
 
 
-def check(x, h, d1, d2, m1, m2, vel_in, thetas, c_cell):  # type: ignore[no-untyped-def]
+def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
     """Per cell: the largest joint acceleration ratio (at the cell's end and at the fractions
     `thetas` inside it, the cell's constant path acceleration) and the largest speed ratio
-    inside it. m1, m2 (T, K-1, n) the path's derivatives inside the cells, vel_in (T, K-1)."""
+    inside it. m1, m2 (T, K-1, n) the path's derivatives inside the cells, vel_in (T, K-1),
+    c (n,) the joint acceleration limits."""
     global _CHECK
     if _CHECK is None:
         _CHECK = _numba_check()
-    return _CHECK(x, h, d1, d2, m1, m2, vel_in, np.asarray(thetas, dtype=float), c_cell)
+    return _CHECK(x, h, d1, d2, m1, m2, vel_in, np.asarray(thetas, dtype=float), np.ascontiguousarray(c, dtype=float))
