@@ -185,7 +185,7 @@ def test_handover_example_part_moves_from_r1_to_r2_and_ends_on_the_outfeed() -> 
             holders.append(holder)
     assert holders == [None, "r1", None, "r2", None]
     final = states[-1].placed["block"][:3, 3]
-    assert 1.25 < final[0] < 1.65 and -0.8 < final[1] < -0.4 and final[2] > 0.7
+    assert final[0] > 1.25 and final[0] < 1.65 and final[1] > -0.8 and final[1] < -0.4 and final[2] > 0.7
 
 
 def test_attach_while_another_robot_holds_the_part_is_an_error() -> None:
