@@ -19,7 +19,7 @@ import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
 
-__all__ = ["load_plan", "plot"]
+__all__ = ["plot", "write_or_fail"]
 
 KINDS = ("joints", "speeds", "accels", "torque", "tcp", "timeline")
 
@@ -35,27 +35,6 @@ def fail(*diagnostics: Any) -> None:
 
     click.echo(render_all(list(diagnostics)), err=True)
     sys.exit(EXIT_INPUT)
-
-
-def load_plan(program: str, cell: str | None, project_root: str | None, use_cache: bool = True) -> Any:
-    """Front end then planner: front-end errors end the command (exit 2); planning errors are
-    printed and the plan is returned (the caller exits 1 after writing its file)."""
-    from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan_cache import cached_plan
-    from rmot.lang.diagnostics import Diagnostic, Severity, render_all
-    from rmot.sim.render import codes
-
-    loaded = load_program(program, cell=cell, project_root=project_root, require_program=True)
-    if loaded.diagnostics:
-        click.echo(render_all(tuple(loaded.diagnostics)), err=True)
-    if any(d.is_error for d in loaded.diagnostics):
-        sys.exit(EXIT_INPUT)
-    if loaded.program is None:
-        fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR, f"'{program}' must contain a program (got only a cell)", None))
-    planned = cached_plan(loaded.program, use_cache=use_cache)
-    if planned.diagnostics:
-        click.echo(render_all(tuple(planned.diagnostics)), err=True)
-    return planned
 
 
 def write_or_fail(path: str, data: bytes) -> None:
@@ -83,7 +62,9 @@ def write_or_fail(path: str, data: bytes) -> None:
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
 def plot(program: str, output: str, what: str, cell: str | None, project_root: str | None, no_cache: bool) -> None:
     """Plot a program's joints, speeds, torques, TCP speed or timeline to PNG or SVG."""
-    plan = load_plan(program, cell, project_root, use_cache=not no_cache)
+    from rmot.compiler.cli.render_cmd import load_plan
+
+    plan = load_plan(program, cell, project_root, use_cache=not no_cache, purpose="plot")
     from rmot.sim.plots import figure_bytes, plot_data
 
     fmt = os.path.splitext(output)[1].lower().lstrip(".")

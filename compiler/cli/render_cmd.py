@@ -89,7 +89,7 @@ def _output_format(ctx: click.Context, param: click.Parameter, value: str) -> st
 def render(program: str, cell: str | None, output: str, at: float, size: tuple[int, int] | None, aa: int | None,
            camera: str | None, fps: int | None, project_root: str | None, no_cache: bool) -> None:
     """Render a program to PNG, GIF, MP4, SVG or HTML."""
-    plan = _plan(program, cell, project_root, use_cache=not no_cache)
+    plan = load_plan(program, cell, project_root, use_cache=not no_cache)
     ext = os.path.splitext(output)[1].lower()
     fps = fps or (10 if ext == ".gif" else 25)  # GIF: fewer frames keep the file small
     try:
@@ -130,9 +130,11 @@ def _report(diagnostics: Any, stop_on_error: bool = True) -> None:
         sys.exit(EXIT_INPUT)
 
 
-def _plan(program: str, cell: str | None, project_root: str | None, use_cache: bool = True) -> Any:
-    """Front end then planner. Front-end errors end the command (exit 2; a missing file is E501, a
-    file without a program E119); planning errors are printed and the plan is still drawn, exit 1."""
+def load_plan(program: str, cell: str | None, project_root: str | None, use_cache: bool = True,
+              purpose: str = "render") -> Any:
+    """Front end then planner (shared by render and plot). Front-end errors end the command
+    (exit 2; a missing file is E501, a file without a program E119); planning errors are
+    printed and the plan is still returned, so the caller draws it and exits 1."""
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan_cache import cached_plan
     from rmot.lang.diagnostics import Diagnostic, Severity
@@ -142,7 +144,7 @@ def _plan(program: str, cell: str | None, project_root: str | None, use_cache: b
     _report(loaded.diagnostics)
     if loaded.program is None:
         _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,
-                         f"'{program}' must contain a program to render (got only a cell)", None))
+                         f"'{program}' must contain a program to {purpose} (got only a cell)", None))
     planned = cached_plan(loaded.program, use_cache=use_cache)
     _report(planned.diagnostics, stop_on_error=False)
     return planned

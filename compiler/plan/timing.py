@@ -249,7 +249,7 @@ def path_piece(
     dof = waypoints.shape[1] if dof is None else dof
     waypoints = waypoints[:, :dof]
     vlim, alim = np.asarray(vlim[:dof], dtype=float), np.asarray(alim[:dof], dtype=float)
-    path = _spline(ss, waypoints)
+    path = _PathSpline(ss, waypoints)
     spline = None
     if tcp is not None and tcp_speed is not None:
         from scipy.interpolate import CubicSpline
@@ -307,10 +307,6 @@ class _PathSpline:
             value = self._constant if order == 0 else np.zeros_like(self._constant)
             return np.broadcast_to(value, (*np.shape(s), len(value))).copy()
         return self._orders[order](s)  # type: ignore[no-any-return]
-
-
-def _spline(ss: np.ndarray, waypoints: np.ndarray) -> object:
-    return _PathSpline(ss, waypoints)
 
 
 def _grid(ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -30,7 +30,7 @@ def _limits(seed: int) -> timing._Limits:
     tcp = np.stack([np.cos(3 * ss), np.sin(2 * ss), 0.1 * ss], axis=1)
     f_int = rng.uniform(0.3, 1.0, m - 1)
     tcp_int = (rng.uniform(0.1, 0.5, m - 1), np.where(rng.random(m - 1) < 0.5, np.inf, 2.0))
-    return timing._Limits(timing._spline(ss, waypoints), CubicSpline(ss, tcp), ss,
+    return timing._Limits(timing._PathSpline(ss, waypoints), CubicSpline(ss, tcp), ss,
                           np.full(6, 3.0), np.full(6, 20.0), f_int, tcp_int)
 
 
