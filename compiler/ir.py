@@ -41,6 +41,9 @@ __all__ = [
     "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
     "WaitTime", "Wrist", "Zone", "payload_cog", "walk",
     "Attach", "Detach", "Part", "load_cog",
+    "AnalogInput", "Arith", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
+    "Loop", "LoopIteration", "Not", "RtExpr", "Stop", "ValueType", "VarDecl", "VarRef",
+    "WaitCondition", "While",
 ]
 
 
@@ -472,14 +475,17 @@ class WaitInput:
     condition: InputCondition
     timeout: float | None = None  # s
     span: Span | None = _span_field()
+    on_timeout: tuple[Instr, ...] = ()  # `timeout T else { ... }`: runs when T passes first
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class If:
-    """A runtime branch on an input; both arms are planned and verified."""
+    """A runtime branch; both arms are planned and verified. `condition` is an InputCondition
+    for `if in[n] == on|off` (as every backend has always written it) or, since issue #15, any
+    Condition (and/or/not, analog inputs, variables)."""
 
     uid: int
-    condition: InputCondition
+    condition: Condition
     then: tuple[Instr, ...]
     otherwise: tuple[Instr, ...] = ()
     span: Span | None = _span_field()
@@ -558,7 +564,170 @@ class Detach:
     span: Span | None = _span_field()
 
 
-Instr = Union[Move, SetDigital, SetAnalog, Pulse, WaitTime, WaitInput, If, Sync, Native, ProcCall, Attach, Detach]
+# --------------------------------------------------------------------------- runtime logic (issue #15)
+#
+# Runtime state lives in the controller: typed variables a task declares, assigns and tests,
+# conditions over inputs (digital and analog) and variables, loops that stay loops in the
+# vendor program, a timeout branch on `wait until`, and `stop`. The front end lowers each `for`
+# into a `Loop` whose every iteration is lowered with the loop variable bound (what the planner
+# plans and the verifier checks, each instruction with its own uid); the backends decide per
+# vendor whether the iterations can be written as one vendor loop (same structure, Cartesian
+# targets affine in the loop variables, one IK branch and turn) or must be unrolled.
+
+
+class ValueType(Enum):
+    INT = "int"
+    NUM = "num"
+    BOOL = "bool"
+
+
+class CompareOp(Enum):
+    EQ = "=="
+    NE = "!="
+    LT = "<"
+    LE = "<="
+    GT = ">"
+    GE = ">="
+
+
+@dataclass(frozen=True, slots=True)
+class Const:
+    value: int | float | bool
+    type: ValueType
+
+
+@dataclass(frozen=True, slots=True)
+class VarRef:
+    """A task variable (declared by `var`) or, inside a `Loop`, the loop variable (INT)."""
+
+    name: str
+    type: ValueType
+
+
+@dataclass(frozen=True, slots=True)
+class AnalogInput:
+    """`ain[port]`: the controller's analog input value (NUM, in the controller's unit, V)."""
+
+    port: int
+    signal: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Arith:
+    """`left op right`, op one of + - * / ; type INT unless an operand is NUM or op is '/'."""
+
+    op: str
+    left: RtExpr
+    right: RtExpr
+    type: ValueType
+
+
+@dataclass(frozen=True, slots=True)
+class Compare:
+    op: CompareOp
+    left: RtExpr
+    right: RtExpr
+
+
+@dataclass(frozen=True, slots=True)
+class Logic:
+    """`a and b and ...` (op "and") or `a or b ...` (op "or"); operands are conditions."""
+
+    op: str
+    operands: tuple[Condition, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Not:
+    operand: Condition
+
+
+# A value computed at runtime; `InputCondition` (a digital input tested against on/off) is the
+# BOOL leaf every backend already writes, so a plain `if in[1] == on` lowers exactly as before.
+RtExpr = Union[Const, VarRef, AnalogInput, Arith, Compare, Logic, Not, InputCondition]
+Condition = Union[InputCondition, Compare, Logic, Not, VarRef, Const]
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class VarDecl:
+    """`var NAME: type = EXPR`: a task variable with its initial value (a task-level
+    declaration: backends declare it in the task's data section and assign `init` here)."""
+
+    uid: int
+    name: str
+    type: ValueType
+    init: RtExpr
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Assign:
+    uid: int
+    name: str
+    value: RtExpr
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class LoopIteration:
+    """One value of the loop variable and the loop body lowered with it bound."""
+
+    value: int
+    body: tuple[Instr, ...]
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Loop:
+    """`for var in first .. last { }` (var set) or `repeat n { }` (var None, values 0..n-1).
+
+    `iterations` are in execution order, one per value (an empty range has none). The planner
+    and verifier walk every iteration; a backend writes one vendor loop when the iterations
+    allow it (backends/loops.py) and writes them one after another otherwise."""
+
+    uid: int
+    var: str | None
+    first: int
+    last: int
+    iterations: tuple[LoopIteration, ...]
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class While:
+    """`while COND { body }` at runtime. The planner plans the body from the state before the
+    loop until the state at the end of an iteration equals the state at its start (then every
+    further iteration repeats it: REFERENCE.md §7), and the code after the loop from both the
+    state before the loop (no iteration) and that fixed point."""
+
+    uid: int
+    condition: Condition
+    body: tuple[Instr, ...]
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class WaitCondition:
+    """`wait until COND [timeout T [else { ... }]]` for a condition that is not one digital
+    input (those stay `WaitInput`); `on_timeout` runs when T passes first (then the task goes
+    on after the wait)."""
+
+    uid: int
+    condition: Condition
+    timeout: float | None = None  # s
+    on_timeout: tuple[Instr, ...] = ()
+    span: Span | None = _span_field()
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Stop:
+    """`stop`: the task ends here (the controller halts the program)."""
+
+    uid: int
+    span: Span | None = _span_field()
+
+
+Instr = Union[Move, SetDigital, SetAnalog, Pulse, WaitTime, WaitInput, If, Sync, Native, ProcCall, Attach, Detach,
+              VarDecl, Assign, Loop, While, WaitCondition, Stop]
 
 
 @dataclass(frozen=True, slots=True)
@@ -589,14 +758,20 @@ def payload_cog(tcp: Pose) -> tuple[float, float, float]:
 
 
 def walk(body: tuple[Instr, ...]):  # type: ignore[no-untyped-def]
-    """Yield every instruction in source order, descending into If arms and ProcCall bodies."""
+    """Yield every instruction in source order, descending into If arms, ProcCall and While
+    bodies, every Loop iteration and timeout branches."""
     for instr in body:
         yield instr
         if isinstance(instr, If):
             yield from walk(instr.then)
             yield from walk(instr.otherwise)
-        elif isinstance(instr, ProcCall):
+        elif isinstance(instr, (ProcCall, While)):
             yield from walk(instr.body)
+        elif isinstance(instr, Loop):
+            for it in instr.iterations:
+                yield from walk(it.body)
+        elif isinstance(instr, (WaitInput, WaitCondition)):
+            yield from walk(instr.on_timeout)
 
 
 def load_cog(tool: ToolRef, load: float) -> tuple[float, float, float]:
