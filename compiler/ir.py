@@ -343,10 +343,20 @@ class Config:
     shoulder: Shoulder | None = None
     elbow: Elbow | None = None
     wrist: Wrist | None = None
+    # issue #15: fixed turns (joint index from 0, turn n) of joints whose range exceeds 360 deg,
+    # sorted by joint; turn n = q in [n*360 - 180, n*360 + 180) deg (turn_of). Empty = free.
+    turns: tuple[tuple[int, int], ...] = ()
 
     def __str__(self) -> str:
         parts = [f"{k}={v.value}" for k, v in (("shoulder", self.shoulder), ("elbow", self.elbow), ("wrist", self.wrist)) if v]
+        parts += [f"j{j + 1}={n}" for j, n in self.turns]
         return ", ".join(parts) or "any"
+
+
+def turn_of(q: float) -> int:
+    """The turn of a revolute joint value q (rad): n with q in [n*2pi - pi, n*2pi + pi)
+    (lang/REFERENCE.md section 6, "turns"; issue #15)."""
+    return math.floor((q + math.pi) / (2 * math.pi))
 
 
 @dataclass(frozen=True, slots=True)

@@ -28,10 +28,11 @@ from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
 from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
 from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
 from rmot.compiler.passes.limits import MAX_DURATION_S, MAX_ITERATIONS, MAX_PORT, MAX_POSITION_M, MAX_WORK_STEPS, within
-from rmot.compiler.passes.modal import Modal, apply_setting
+from rmot.compiler.passes.modal import Modal, apply_setting, speed_modifier_warnings
 from rmot.compiler.passes.procs import bind_call
 from rmot.lang.source import Span
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
+from rmot.compiler.passes.turns import TURN_KEY, turn_arg
 from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
 from rmot.lang import ast
 from rmot.lang.parse import RESERVED
@@ -334,13 +335,14 @@ class TaskLowering:
         config, duration, ok = ir.Config(), None, True
         for m in s.modifiers:
             if m.kind == "config":
-                config = self.config(m) or config
+                config = self.config(m, scope) or config
             elif m.kind == "time":
                 duration = self._time(m.value, scope, "move time")  # type: ignore[arg-type]
                 ok = ok and duration is not None
             else:
                 modal = apply_setting(modal, m, scope, self.robot, self.base, self.rep)
         kind = _KINDS[s.kind]
+        speed_modifier_warnings(s.modifiers, kind is ir.MotionKind.JOINT, scope, self.rep)
         target = self.target(s.target, scope, modal, kind, "target")
         via = self.target(s.via, scope, modal, kind, "via point") if s.via is not None else None
         if target is None or (s.via is not None and via is None) or not ok:
@@ -354,13 +356,19 @@ class TaskLowering:
         return ir.Move(uid=0, kind=kind, target=target, via=via, motion=motion, tool=modal.tool,  # type: ignore[arg-type]
                        frame=modal.frame, config=config, span=s.span)
 
-    def config(self, m: ast.Setting) -> ir.Config | None:
+    def config(self, m: ast.Setting, scope: Scope) -> ir.Config | None:
         values: dict[str, object] = {}
+        turns: dict[int, int] = {}
         for arg in m.value:  # type: ignore[union-attr]
             key = arg.name.name if arg.name is not None else None
+            if key is not None and TURN_KEY.fullmatch(key):  # config(j6=-1): a joint's turn (issue #15)
+                turn = turn_arg(arg, scope, self.info, self.robot, self.rep)
+                if turn is not None:
+                    turns[turn[0]] = turn[1]
+                continue
             enum = _CONFIG.get(key or "")
             if enum is None:
-                self.rep.unknown(key or "?", "config field", arg.span, list(_CONFIG))
+                self.rep.unknown(key or "?", "config field", arg.span, [*_CONFIG, "j6"])
                 continue
             word = arg.value.name if isinstance(arg.value, ast.Name) else None
             choices = [e.value for e in enum]
@@ -368,7 +376,7 @@ class TaskLowering:
                 self.rep.error(codes.BAD_ARGUMENT, f"config {key} must be {' or '.join(choices)} (got '{word or '?'}')", arg.value.span)
                 continue
             values[key] = enum(word)  # type: ignore[index]
-        return ir.Config(**values)  # type: ignore[arg-type]
+        return ir.Config(**values, turns=tuple(sorted(turns.items())))  # type: ignore[arg-type]
 
     def target(self, e: ast.Expr, scope: Scope, modal: Modal, kind: ir.MotionKind, what: str) -> ir.CartesianTarget | ir.JointTarget | None:
         v = eval_expr(e, scope, self.rep)

@@ -6,7 +6,11 @@ Choices (LANGUAGE.md is silent; what RAPID/KRL/TP programmers expect):
     frame = the robot base.
   * `accel` takes an acceleration (TCP, m/s^2) or a ratio (share of each joint's maximum
     acceleration, used by joint moves): `accel 50 %`.
-  * `speed` is always a TCP speed (mm/s, m/s); joint moves use `joint_speed` (a ratio).
+  * `speed` takes a TCP speed (mm/s, m/s), used by linear and circular moves, or a ratio
+    (share of each joint's maximum speed, used by joint moves): `speed 20 %` is exactly
+    `joint_speed 20 %`, as a setting or a move's modifier (issue #15). A modifier that the move
+    it is on does not use warns: a TCP speed on a joint move W170, a ratio on a linear or
+    circular move W171 (speed_modifier_warnings).
   * Settings are scoped to their block: a setting inside a proc body, a loop body or an if
     arm does not leak out of it (an if arm is a runtime branch, so it could not).
   * Built-in names: `tool flange` is the bare flange, `frame base` the robot base and
@@ -26,7 +30,7 @@ from rmot.compiler.passes.limits import MAX_TCP_SPEED, MAX_ZONE_M, MIN_RATIO, MI
 from rmot.compiler.passes.values import article, ACCEL, LENGTH, RATIO, SPEED, PoseV, Quantity, fmt_quantity
 from rmot.lang import ast
 
-__all__ = ["DEFAULT_MODAL", "Modal", "apply_setting"]
+__all__ = ["DEFAULT_MODAL", "Modal", "apply_setting", "speed_modifier_warnings"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -57,6 +61,9 @@ def apply_setting(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: 
         r = _positive(s, scope, LENGTH, "zone", rep, allow_zero=True)
         r = None if r is None else within(r, 0.0, MAX_ZONE_M, "zone", "mm", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
         return modal if r is None else replace(modal, zone=ir.Zone(r))
+    if s.kind == "speed" and _is_ratio(s.value, scope, rep):  # type: ignore[arg-type]
+        v = _ratio(s, scope, "speed", rep)
+        return modal if v is None else replace(modal, joint_speed=v)
     if s.kind == "speed":
         v = _positive(s, scope, SPEED, "speed", rep)
         v = None if v is None else within(v, MIN_TCP_SPEED, MAX_TCP_SPEED, "speed", "mm/s", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
@@ -144,3 +151,30 @@ def _accel(modal: Modal, s: ast.Setting, scope: Scope, rep: Reporter) -> Modal:
     x = _positive(s, scope, ACCEL, "accel", rep) if v is not None else None
     x = None if x is None else within(x, MIN_TCP_ACCEL, float("inf"), "accel", "mm/s^2", 1e-3, e.span, rep)
     return modal if x is None else replace(modal, tcp_accel=x)
+
+
+def _is_ratio(e: ast.Expr, scope: Scope, rep: Reporter) -> bool:
+    """Whether a speed value is a ratio (%). Evaluating again is harmless: the Reporter drops
+    the exact repeat of an error the setting itself reports."""
+    v = eval_expr(e, scope, rep)
+    return isinstance(v, Quantity) and v.dim == RATIO
+
+
+def speed_modifier_warnings(mods: tuple[ast.Setting, ...], joint_move: bool, scope: Scope, rep: Reporter) -> None:
+    """W170 for a TCP speed on a joint move, W171 for a joint speed share on a linear or
+    circular move: a move's own modifier it does not use is never silently dropped. (Modal
+    settings do not warn: `speed 400 mm/s` before joint moves is for the Cartesian ones.)"""
+    for m in mods:
+        if m.kind not in ("speed", "joint_speed") or m.value is None:
+            continue
+        ratio = m.kind == "joint_speed" or _is_ratio(m.value, scope, rep)  # type: ignore[arg-type]
+        if joint_move and not ratio:
+            v = eval_expr(m.value, scope, rep)  # type: ignore[arg-type]
+            if isinstance(v, Quantity) and v.dim == SPEED:
+                rep.warning(codes.TCP_SPEED_ON_JOINT_MOVE, f"a joint move is timed by its joint speed share, "
+                            f"not a TCP speed (got {fmt_quantity(v)}, which it does not use); write a share "
+                            "of each joint's maximum speed such as `speed 20 %`", m.span)
+        elif ratio and not joint_move:
+            rep.warning(codes.JOINT_SPEED_ON_CARTESIAN_MOVE, f"a linear or circular move is timed by its TCP "
+                        f"speed, not a share of the joint speeds ('{m.kind}' with a ratio, which it does not "
+                        "use); write a TCP speed such as `speed 100 mm/s`", m.span)
