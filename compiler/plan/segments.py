@@ -17,7 +17,7 @@ from rmot.compiler import ir
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path, line_path
 from rmot.compiler.plan.dense import DensePath, PathFailure, follow_path
-from rmot.compiler.plan.targets import Finding, solve_target
+from rmot.compiler.plan.targets import Finding, off_turns, solve_target
 from rmot.lang.diagnostics import Severity
 
 __all__ = ["Segment", "build_segment"]
@@ -73,6 +73,13 @@ def build_segment(
         q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
         return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
     seg, more = _cartesian_segment(robot, move, q_now, q_target, tool)
+    off = off_turns(seg.q_end, move.config.turns) if seg is not None else []
+    if off:  # the path decides the end's turns (issue #15): they must be the ones fixed
+        j, n, got = off[0]
+        msg = (f"a {move.kind.name.lower()} move must end with joint {j + 1} on turn {n} (config(j{j + 1}={n})); "
+               f"its path from the current joints ends at {np.degrees(seg.q_end[j]):.1f} deg, turn {got}: "
+               f"insert a joint move with config(j{j + 1}={n}) before it")
+        return None, findings + more + [Finding(codes.TURN_NOT_REACHED, Severity.ERROR, msg)]
     return seg, findings + more
 
 

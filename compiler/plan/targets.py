@@ -11,6 +11,11 @@ Rules (LANGUAGE.md "Motion"):
   path cannot change branch); a `config(...)` that differs from the current branch, or a target
   reachable only on another branch, is an error (E222) saying which branch changes and how to
   fix it (insert a joint move with that config before the move).
+* `config(jN=n)` fixes joint N's turn at the target (issue #15): turn n = q in
+  [n*360 - 180, n*360 + 180) deg (ir.turn_of). Only on a joint whose range spans more than
+  360 deg (E172) and only a turn that meets the joint's limits (E173). A joint move takes the
+  nearest solution on those turns (E174 when none is); a linear or circular move follows its
+  path, so the path's end must be on them (E174 otherwise, checked in segments.py).
 * The initial joints of a task: the first move's target — its joint values, or its IK solution
   (respecting config) nearest the "home" joints (all zeros clamped into the joint limits).
   The first move therefore takes no time: the robot is assumed to start there.
@@ -33,7 +38,7 @@ from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
 
 __all__ = [
-    "Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "solve_target",
+    "Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "off_turns", "solve_target",
     "unknown_starts",
 ]
 
@@ -118,6 +123,9 @@ def solve_target(
     """The joints (dof,) at the move's target, chosen by the branch rules above."""
     if isinstance(move.target, ir.JointTarget):
         return check_joint_values(robot, move.target.values)
+    bad = turn_range_findings(robot, move.config.turns)
+    if bad:
+        return None, bad
     flange = flange_target(move)
     current = robot.branch(q_now)  # type: ignore[attr-defined]
     if move.kind is ir.MotionKind.JOINT:
@@ -154,8 +162,11 @@ def _any_config(c: ir.Config) -> bool:
 def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
     wanted = move.config if _any_config(move.config) else None
     res = _ik(robot, flange, q_now, wanted)
-    if res.solutions:
-        q = np.asarray(res.solutions[0], dtype=float)
+    on_turns = [q for q in res.solutions if not off_turns(q, move.config.turns)]
+    if res.solutions and not on_turns:
+        return None, [_turn_unreached(move.config.turns, res.solutions)]
+    if on_turns:
+        q = np.asarray(on_turns[0], dtype=float)
         changes = [c for c in branch_changes(current, robot.branch(q)) if getattr(move.config, c[0]) is None]
         if not changes:
             return q, []
@@ -204,7 +215,44 @@ def initial_joints(robot: object, body: tuple[ir.Instr, ...]) -> np.ndarray:
         return q if q is not None else home
     config = first.config if _any_config(first.config) else None
     res = _ik(robot, flange_target(first), home, config)
-    return np.asarray(res.solutions[0], dtype=float) if res.solutions else home
+    on_turns = [q for q in res.solutions if not off_turns(q, first.config.turns)]
+    return np.asarray(on_turns[0], dtype=float) if on_turns else home
+
+
+def turn_range_findings(robot: object, turns: tuple[tuple[int, int], ...]) -> list[Finding]:
+    """E172 for a turn fixed on a joint whose range spans at most 360 deg (its value alone
+    fixes its turn), E173 for a turn whose interval misses the joint's limits."""
+    lim = robot.joint_limits  # type: ignore[attr-defined]
+    out = []
+    for j, n in turns:
+        lo, hi = float(lim[j, 0]), float(lim[j, 1])
+        span = f"[{np.degrees(lo):.1f}, {np.degrees(hi):.1f}] deg"
+        if hi - lo <= 2 * np.pi + 1e-9:
+            msg = (f"joint {j + 1} must span more than 360 deg for config(j{j + 1}=...) (its limits are {span}: "
+                   f"every value has one turn already); drop j{j + 1}={n}")
+            out.append(Finding(codes.TURN_RANGE_TOO_SMALL, Severity.ERROR, msg))
+            continue
+        first, last = ir.turn_of(lo), ir.turn_of(hi)
+        if not first <= n <= last:
+            msg = (f"joint {j + 1} turn {n} must lie within its limits {span} (turn {n} is "
+                   f"[{n * 360 - 180}, {n * 360 + 180}) deg; the limits allow turns {first} to {last})")
+            out.append(Finding(codes.TURN_OUTSIDE_LIMITS, Severity.ERROR, msg))
+    return out
+
+
+def off_turns(q: np.ndarray, turns: tuple[tuple[int, int], ...]) -> list[tuple[int, int, int]]:
+    """[(joint index, wanted turn, actual turn)] for every fixed turn q is not on."""
+    return [(j, n, ir.turn_of(float(q[j]))) for j, n in turns if ir.turn_of(float(q[j])) != n]
+
+
+def _turn_unreached(turns: tuple[tuple[int, int], ...], solutions: tuple[np.ndarray, ...]) -> Finding:
+    wanted = ", ".join(f"joint {j + 1} on turn {n}" for j, n in turns)
+    found = ", ".join(
+        f"joint {j + 1} on turn{'s' * (len(ts) > 1)} {', '.join(str(t) for t in ts)}"
+        for j, _ in turns for ts in [sorted({ir.turn_of(float(q[j])) for q in solutions})])
+    msg = (f"target must be reachable with {wanted} within the joint limits (its solutions have {found}); "
+           "change or drop the turn")
+    return Finding(codes.TURN_NOT_REACHED, Severity.ERROR, msg)
 
 
 def _main_line(body: tuple[ir.Instr, ...]):  # type: ignore[no-untyped-def]
