@@ -74,10 +74,15 @@ OUTPUT_NAME_CLASH = Code("E522", "output-name-clash", "two output files get the 
 
 # issue #15 item 4: joint-move speeds and joint turns (E170-E179, W170-W174 are the front
 # end's and the planner's; the planner's are in compiler/plan/codes.py)
-TURN_BAD_JOINT = Code("E170", "turn-bad-joint", "config(jN=...) names no revolute joint of the task's robot")
-TURN_NOT_WHOLE = Code("E171", "turn-not-whole", "a joint turn in config(jN=...) is not a whole number")
-TCP_SPEED_ON_JOINT_MOVE = Code("W170", "tcp-speed-on-joint-move",
-                               "a TCP speed modifier on a joint move: joint moves are timed by their joint speed share")
-JOINT_SPEED_ON_CARTESIAN_MOVE = Code("W171", "joint-speed-on-cartesian-move",
-                                     "a joint speed share modifier on a linear or circular move, which it does not change")
-__all__ += ["TURN_BAD_JOINT", "TURN_NOT_WHOLE", "TCP_SPEED_ON_JOINT_MOVE", "JOINT_SPEED_ON_CARTESIAN_MOVE"]
+TURN_BAD_JOINT = Code("E170", "turn-bad-joint",
+                      "config(jN=...) names no revolute joint of the task's robot")
+TURN_NOT_WHOLE = Code("E171", "turn-not-whole",
+                      "a joint turn in config(jN=...) is not a whole number")
+TCP_SPEED_ON_JOINT_MOVE = Code(
+    "W170", "tcp-speed-on-joint-move",
+    "a TCP speed modifier on a joint move: joint moves are timed by their joint speed share")
+JOINT_SPEED_ON_CARTESIAN_MOVE = Code(
+    "W171", "joint-speed-on-cartesian-move",
+    "a joint speed share modifier on a linear or circular move, which it does not change")
+__all__ += ["TURN_BAD_JOINT", "TURN_NOT_WHOLE", "TCP_SPEED_ON_JOINT_MOVE",
+            "JOINT_SPEED_ON_CARTESIAN_MOVE"]

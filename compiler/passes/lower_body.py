@@ -361,7 +361,7 @@ class TaskLowering:
         turns: dict[int, int] = {}
         for arg in m.value:  # type: ignore[union-attr]
             key = arg.name.name if arg.name is not None else None
-            if key is not None and TURN_KEY.fullmatch(key):  # config(j6=-1): a joint's turn (issue #15)
+            if key is not None and TURN_KEY.fullmatch(key):  # config(j6=-1): a turn (issue #15)
                 turn = turn_arg(arg, scope, self.info, self.robot, self.rep)
                 if turn is not None:
                     turns[turn[0]] = turn[1]

@@ -160,7 +160,8 @@ def _is_ratio(e: ast.Expr, scope: Scope, rep: Reporter) -> bool:
     return isinstance(v, Quantity) and v.dim == RATIO
 
 
-def speed_modifier_warnings(mods: tuple[ast.Setting, ...], joint_move: bool, scope: Scope, rep: Reporter) -> None:
+def speed_modifier_warnings(mods: tuple[ast.Setting, ...], joint_move: bool, scope: Scope,
+                            rep: Reporter) -> None:
     """W170 for a TCP speed on a joint move, W171 for a joint speed share on a linear or
     circular move: a move's own modifier it does not use is never silently dropped. (Modal
     settings do not warn: `speed 400 mm/s` before joint moves is for the Cartesian ones.)"""
@@ -171,10 +172,12 @@ def speed_modifier_warnings(mods: tuple[ast.Setting, ...], joint_move: bool, sco
         if joint_move and not ratio:
             v = eval_expr(m.value, scope, rep)  # type: ignore[arg-type]
             if isinstance(v, Quantity) and v.dim == SPEED:
-                rep.warning(codes.TCP_SPEED_ON_JOINT_MOVE, f"a joint move is timed by its joint speed share, "
-                            f"not a TCP speed (got {fmt_quantity(v)}, which it does not use); write a share "
-                            "of each joint's maximum speed such as `speed 20 %`", m.span)
+                rep.warning(codes.TCP_SPEED_ON_JOINT_MOVE,
+                            "a joint move is timed by its joint speed share, not a TCP speed "
+                            f"(got {fmt_quantity(v)}, which it does not use); write a share of "
+                            "each joint's maximum speed such as `speed 20 %`", m.span)
         elif ratio and not joint_move:
-            rep.warning(codes.JOINT_SPEED_ON_CARTESIAN_MOVE, f"a linear or circular move is timed by its TCP "
-                        f"speed, not a share of the joint speeds ('{m.kind}' with a ratio, which it does not "
-                        "use); write a TCP speed such as `speed 100 mm/s`", m.span)
+            rep.warning(codes.JOINT_SPEED_ON_CARTESIAN_MOVE,
+                        "a linear or circular move is timed by its TCP speed, not a share of "
+                        f"the joint speeds ('{m.kind}' with a ratio, which it does not use); "
+                        "write a TCP speed such as `speed 100 mm/s`", m.span)

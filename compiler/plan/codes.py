@@ -38,8 +38,11 @@ TIMING_EXACT_STOP = Code("W225", "timing-exact-stop",
 
 # issue #15 item 4: joint turns fixed by config(jN=...) (E170-E179 are the front end's and
 # the planner's; E170/E171 are in compiler/codes.py)
-TURN_RANGE_TOO_SMALL = Code("E172", "turn-joint-range", "a turn is fixed on a joint whose range spans at most 360 deg")
-TURN_OUTSIDE_LIMITS = Code("E173", "turn-outside-limits", "a fixed turn lies outside the joint's limits")
-TURN_NOT_REACHED = Code("E174", "turn-not-reached",
-                        "a target has no solution on its fixed turn, or a linear or circular path ends on another")
+TURN_RANGE_TOO_SMALL = Code("E172", "turn-joint-range",
+                            "a turn is fixed on a joint whose range spans at most 360 deg")
+TURN_OUTSIDE_LIMITS = Code("E173", "turn-outside-limits",
+                           "a fixed turn lies outside the joint's limits")
+TURN_NOT_REACHED = Code(
+    "E174", "turn-not-reached",
+    "a target has no solution on its fixed turn, or a linear or circular path ends on another")
 __all__ += ["TURN_RANGE_TOO_SMALL", "TURN_OUTSIDE_LIMITS", "TURN_NOT_REACHED"]

@@ -76,8 +76,9 @@ def build_segment(
     off = off_turns(seg.q_end, move.config.turns) if seg is not None else []
     if off:  # the path decides the end's turns (issue #15): they must be the ones fixed
         j, n, got = off[0]
-        msg = (f"a {move.kind.name.lower()} move must end with joint {j + 1} on turn {n} (config(j{j + 1}={n})); "
-               f"its path from the current joints ends at {np.degrees(seg.q_end[j]):.1f} deg, turn {got}: "
+        msg = (f"a {move.kind.name.lower()} move must end with joint {j + 1} on turn {n} "
+               f"(config(j{j + 1}={n})); its path from the current joints ends at "
+               f"{np.degrees(seg.q_end[j]):.1f} deg, turn {got}: "
                f"insert a joint move with config(j{j + 1}={n}) before it")
         return None, findings + more + [Finding(codes.TURN_NOT_REACHED, Severity.ERROR, msg)]
     return seg, findings + more

@@ -38,8 +38,8 @@ from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
 
 __all__ = [
-    "Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "off_turns", "solve_target",
-    "unknown_starts",
+    "Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "off_turns",
+    "solve_target", "unknown_starts",
 ]
 
 
@@ -228,14 +228,16 @@ def turn_range_findings(robot: object, turns: tuple[tuple[int, int], ...]) -> li
         lo, hi = float(lim[j, 0]), float(lim[j, 1])
         span = f"[{np.degrees(lo):.1f}, {np.degrees(hi):.1f}] deg"
         if hi - lo <= 2 * np.pi + 1e-9:
-            msg = (f"joint {j + 1} must span more than 360 deg for config(j{j + 1}=...) (its limits are {span}: "
-                   f"every value has one turn already); drop j{j + 1}={n}")
+            msg = (f"joint {j + 1} must span more than 360 deg for config(j{j + 1}=...) "
+                   f"(its limits are {span}: every value has one turn already); "
+                   f"drop j{j + 1}={n}")
             out.append(Finding(codes.TURN_RANGE_TOO_SMALL, Severity.ERROR, msg))
             continue
         first, last = ir.turn_of(lo), ir.turn_of(hi)
         if not first <= n <= last:
             msg = (f"joint {j + 1} turn {n} must lie within its limits {span} (turn {n} is "
-                   f"[{n * 360 - 180}, {n * 360 + 180}) deg; the limits allow turns {first} to {last})")
+                   f"[{n * 360 - 180}, {n * 360 + 180}) deg; "
+                   f"the limits allow turns {first} to {last})")
             out.append(Finding(codes.TURN_OUTSIDE_LIMITS, Severity.ERROR, msg))
     return out
 
@@ -245,13 +247,14 @@ def off_turns(q: np.ndarray, turns: tuple[tuple[int, int], ...]) -> list[tuple[i
     return [(j, n, ir.turn_of(float(q[j]))) for j, n in turns if ir.turn_of(float(q[j])) != n]
 
 
-def _turn_unreached(turns: tuple[tuple[int, int], ...], solutions: tuple[np.ndarray, ...]) -> Finding:
+def _turn_unreached(turns: tuple[tuple[int, int], ...],
+                    solutions: tuple[np.ndarray, ...]) -> Finding:
     wanted = ", ".join(f"joint {j + 1} on turn {n}" for j, n in turns)
     found = ", ".join(
         f"joint {j + 1} on turn{'s' * (len(ts) > 1)} {', '.join(str(t) for t in ts)}"
         for j, _ in turns for ts in [sorted({ir.turn_of(float(q[j])) for q in solutions})])
-    msg = (f"target must be reachable with {wanted} within the joint limits (its solutions have {found}); "
-           "change or drop the turn")
+    msg = (f"target must be reachable with {wanted} within the joint limits "
+           f"(its solutions have {found}); change or drop the turn")
     return Finding(codes.TURN_NOT_REACHED, Severity.ERROR, msg)
 
 

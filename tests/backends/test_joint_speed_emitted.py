@@ -7,13 +7,18 @@ tmax 9999, KRL PTP/Fanuc J/INFORM MOVJ/URScript movej take joint speeds only).""
 from __future__ import annotations
 
 import pytest
-
 from rmot.backends import BACKENDS
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 
-ARMS = {"rapid": "abb_irb120", "krl": "kuka_kr6_r900", "fanuc": "fanuc_lrmate200id",
-        "inform": "yaskawa_gp8", "val3": "staubli_tx2_60", "urscript": "ur5e"}
+ARMS = {
+    "rapid": "abb_irb120",
+    "krl": "kuka_kr6_r900",
+    "fanuc": "fanuc_lrmate200id",
+    "inform": "yaskawa_gp8",
+    "val3": "staubli_tx2_60",
+    "urscript": "ur5e",
+}
 
 
 def emitted(vendor: str, modifier: str) -> dict[str, str]:

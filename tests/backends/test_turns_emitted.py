@@ -35,9 +35,10 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
+from functools import partial
 
 import pytest
-
 from rmot.backends import BACKENDS
 from rmot.compiler import ir
 from rmot.compiler.frontend import load_text
@@ -102,7 +103,7 @@ def turn(q_deg: float) -> int:
     return n
 
 
-def selected(q_deg: float, limits: list[float], rule) -> list[float]:  # type: ignore[no-untyped-def]
+def selected(q_deg: float, limits: list[float], rule: Callable[[float], bool]) -> list[float]:
     """Every q + 360k inside the limits that the decoded configuration data allows."""
     lo, hi = limits
     out = []
@@ -118,28 +119,54 @@ def one_file(files: dict[str, str], suffix: str) -> str:
     return text
 
 
-def rules_rapid(files: dict[str, str]) -> list:  # type: ignore[type-arg]
+def in_quadrant(cf: int, v: float) -> bool:
+    return cf * 90 <= v < cf * 90 + 90
+
+
+def sign_bit(bit: int, v: float) -> bool:
+    return (v < 0) == bool(bit)
+
+
+def fanuc_turn(t: int, v: float) -> bool:
+    return -180 + 360 * t < v <= 180 + 360 * t
+
+
+def beyond_180(flag: int, v: float) -> bool:
+    return (not -180 < v <= 180) == bool(flag)
+
+
+def rules_rapid(files: dict[str, str]) -> list[Callable[[float], bool]]:
     mod = one_file(files, ".mod")
-    cf = {n: int(c6) for n, c6 in re.findall(r"robtarget (\w+):=\[\[[^]]*\],\[[^]]*\],\[-?\d+,-?\d+,(-?\d+),", mod)}
+    cf = {
+        n: int(c6)
+        for n, c6 in re.findall(
+            r"robtarget (\w+):=\[\[[^]]*\],\[[^]]*\],\[-?\d+,-?\d+,(-?\d+),", mod
+        )
+    }
     names = re.findall(r"Move[JL] (\w+),", mod)
-    return [lambda v, c=cf[n]: c * 90 <= v < c * 90 + 90 for n in names]
+    return [partial(in_quadrant, cf[n]) for n in names]
 
 
-def rules_krl(files: dict[str, str]) -> list:  # type: ignore[type-arg]
+def rules_krl(files: dict[str, str]) -> list[Callable[[float], bool]]:
     dat, src = one_file(files, ".dat"), one_file(files, ".src")
     t = {n: int(v) for n, v in re.findall(r"E6POS (\w+)=\{[^}]*,T (\d+)", dat)}
-    names = re.findall(r"^\s*(?:PTP|LIN) (\w+)", src, re.M)
-    return [lambda v, b=(t[n] >> 5) & 1: (v < 0) == bool(b) for n in names]
+    names = re.findall(r"^\s*(?:PTP|LIN) (\w+)", src, re.MULTILINE)
+    return [partial(sign_bit, (t[n] >> 5) & 1) for n in names]
 
 
-def rules_fanuc(files: dict[str, str]) -> list:  # type: ignore[type-arg]
+def rules_fanuc(files: dict[str, str]) -> list[Callable[[float], bool]]:
     ls = one_file(files, ".ls")
-    t6 = {int(n): int(t) for n, t in re.findall(r"P\[(\d+)[^\]]*\]\{\s*GP1:\s*UF[^']*'[^,]*, *-?\d+, *-?\d+, *(-?\d+)'", ls)}
-    order = [int(p) for p in re.findall(r"^\s*\d+:\s*[JL] P\[(\d+)\]", ls, re.M)]
-    return [lambda v, t=t6[p]: -180 + 360 * t < v <= 180 + 360 * t for p in order]
+    t6 = {
+        int(n): int(t)
+        for n, t in re.findall(
+            r"P\[(\d+)[^\]]*\]\{\s*GP1:\s*UF[^']*'[^,]*, *-?\d+, *-?\d+, *(-?\d+)'", ls
+        )
+    }
+    order = [int(p) for p in re.findall(r"^\s*\d+:\s*[JL] P\[(\d+)\]", ls, re.MULTILINE)]
+    return [partial(fanuc_turn, t6[p]) for p in order]
 
 
-def rules_inform(files: dict[str, str]) -> list:  # type: ignore[type-arg]
+def rules_inform(files: dict[str, str]) -> list[Callable[[float], bool]]:
     jbi = one_file(files, ".JBI")
     flag, flags = 0, {}
     for line in jbi.splitlines():
@@ -147,14 +174,18 @@ def rules_inform(files: dict[str, str]) -> list:  # type: ignore[type-arg]
             flag = int(line.split()[1].split(",")[4])
         elif m := re.match(r"(C\d{5})=", line):
             flags[m[1]] = flag
-    order = re.findall(r"^MOV[JLC] (C\d{5})", jbi, re.M)
-    return [lambda v, f=flags[c]: (not -180 < v <= 180) == bool(f) for c in order]
+    order = re.findall(r"^MOV[JLC] (C\d{5})", jbi, re.MULTILINE)
+    return [partial(beyond_180, flags[c]) for c in order]
 
 
 def joint_values_val3(files: dict[str, str]) -> list[float | None]:
     dtx = one_file(files, ".dtx")
-    block = re.search(r'name="jTarget".*?</Data>', dtx, re.S)
-    j6 = {int(k): float(v) for k, v in re.findall(r'key="(\d+)"[^>]*j6="(-?[\d.]+)"', block[0])} if block else {}
+    block = re.search(r'name="jTarget".*?</Data>', dtx, re.DOTALL)
+    j6 = (
+        {int(k): float(v) for k, v in re.findall(r'key="(\d+)"[^>]*j6="(-?[\d.]+)"', block[0])}
+        if block
+        else {}
+    )
     pgx = files[next(n for n in files if n.endswith("start.pgx"))]
     out: list[float | None] = []
     for kind, k in re.findall(r"move([jl])\((?:jTarget|pTarget)\[(\d+)\]", pgx):
@@ -174,7 +205,9 @@ def joint_values_urscript(files: dict[str, str]) -> list[float | None]:
 def test_configuration_data_selects_the_planned_turn(vendor: str) -> None:
     q6, limits, files = planned_and_emitted(vendor)
     assert [turn(q) for q in q6] == list(WANTED)
-    rules = {"rapid": rules_rapid, "krl": rules_krl, "fanuc": rules_fanuc, "inform": rules_inform}[vendor](files)
+    rules = {"rapid": rules_rapid, "krl": rules_krl, "fanuc": rules_fanuc, "inform": rules_inform}[
+        vendor
+    ](files)
     assert len(rules) == len(q6)
     for q, rule in zip(q6, rules):
         chosen = selected(q, limits, rule)

@@ -14,7 +14,6 @@ import math
 from pathlib import Path
 
 import pytest
-
 from rmot.compiler import ir
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
@@ -129,23 +128,31 @@ def _j6(body: str) -> tuple[list[float], list[Diagnostic]]:
     out = []
     for m in (n for n in ir.walk(tp.task.body) if isinstance(n, ir.Move)):
         rec = tp.record(m.uid)
-        out.append(math.nan if rec is None or rec.q_target is None else math.degrees(float(rec.q_target[5])))
+        out.append(
+            math.nan
+            if rec is None or rec.q_target is None
+            else math.degrees(float(rec.q_target[5]))
+        )
     return out, list(plan.diagnostics)
 
 
 def test_joint_move_takes_the_fixed_turn() -> None:
     """IRB 1600 J6 is +-400 deg (ROS-I irb1600 macro, the library's source): a pose with J6 = 90
     deg lies on turn 0 (90) or turn -1 (-270); config(j6=-1) takes -270, config(j6=0) 90."""
-    q6, diags = _j6(START + f"  move joint {POSE} config(wrist=noflip, j6=-1)\n"
-                    f"  move joint {POSE} config(wrist=noflip, j6=0)\n")
+    q6, diags = _j6(
+        START + f"  move joint {POSE} config(wrist=noflip, j6=-1)\n"
+        f"  move joint {POSE} config(wrist=noflip, j6=0)\n"
+    )
     assert diags == []
     assert [_turn_of_deg(q) for q in q6[1:]] == [-1, 0]
     assert q6[1] == pytest.approx(-270, abs=1e-6) and q6[2] == pytest.approx(90, abs=1e-6)
 
 
 def test_linear_move_keeps_the_turn_it_runs_on() -> None:
-    q6, diags = _j6(START + f"  move joint {POSE} config(j6=-1)\n"
-                    f"  move linear shift({POSE}, z=-50mm) config(j6=-1)\n")
+    q6, diags = _j6(
+        START + f"  move joint {POSE} config(j6=-1)\n"
+        f"  move linear shift({POSE}, z=-50mm) config(j6=-1)\n"
+    )
     assert diags == [] and _turn_of_deg(q6[2]) == -1
 
 
@@ -156,8 +163,9 @@ def _codes(body: str) -> list[tuple[str, int]]:
 
 def test_turn_on_a_joint_of_360_deg_or_less_is_e172() -> None:
     """J1 +-180 (exactly 360 deg) and J5 +-115 have one turn for every value."""
-    assert _codes(START + f"  move joint {POSE} config(j1=0)\n  move joint {POSE} config(j5=0)\n") == [
-        ("E172", 5), ("E172", 6)]
+    assert _codes(
+        START + f"  move joint {POSE} config(j1=0)\n  move joint {POSE} config(j5=0)\n"
+    ) == [("E172", 5), ("E172", 6)]
 
 
 def test_turn_outside_the_limits_is_e173() -> None:
@@ -175,18 +183,28 @@ def test_turn_the_pose_cannot_reach_is_e174() -> None:
 
 
 def test_linear_move_that_cannot_keep_the_turn_is_e174() -> None:
-    _, diags = _j6(START + f"  move joint {POSE} config(j6=0)\n"
-                   f"  move linear shift({POSE}, z=-50mm) config(j6=-1)\n")
+    _, diags = _j6(
+        START + f"  move joint {POSE} config(j6=0)\n"
+        f"  move linear shift({POSE}, z=-50mm) config(j6=-1)\n"
+    )
     (d,) = diags
     assert d.code.id == "E174" and d.span.start.line == 6 and "turn -1" in d.message
 
 
 def test_front_end_turn_errors() -> None:
-    """A joint the robot does not have, a prismatic or non-integer turn: E170/E171 at the argument."""
-    found = [(d.code.id, d.span.start.col) for d in _load(
-        f"  move joint {POSE} config(j9=1, j6=1.5, j6=-1 deg, wrist=flip)\n").diagnostics]
+    """A joint the robot does not have, a non-integer turn: E170/E171 at the argument."""
+    found = [
+        (d.code.id, d.span.start.col)
+        for d in _load(
+            f"  move joint {POSE} config(j9=1, j6=1.5, j6=-1 deg, wrist=flip)\n"
+        ).diagnostics
+    ]
     col = len(f"  move joint {POSE} config(") + 1
-    assert found == [("E170", col), ("E171", col + len("j9=1, j6=")), ("E171", col + len("j9=1, j6=1.5, j6="))]
+    assert found == [
+        ("E170", col),
+        ("E171", col + len("j9=1, j6=")),
+        ("E171", col + len("j9=1, j6=1.5, j6=")),
+    ]
 
 
 def test_turn_reached_on_another_wrist_warns_about_the_flip() -> None:
