@@ -79,7 +79,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from rmot.backends import codes, codes_b
+from rmot.backends import codes, codes_b, codes_turns, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.lowering import routine_names, split_body
@@ -313,6 +313,9 @@ class InformBackend(Backend):
                                  f"in 1..{MAX_USER_FRAME} for a user frame (got {user})", node.span)
             ctx.user_frames[user] = (node.frame.name, node.frame.pose)  # type: ignore[assignment]
             pose = node.frame.pose.inverse() * pose
+        if far := turns.beyond_one_turn(q, (0, 3, 5)):  # RCONF's flags (issue #15)
+            self.unsupported(codes_turns.TURN_NOT_EXPRESSIBLE,
+                             turns.message(q, far, "RCONF's R/T/S flags"), node.span)
         return ctx.job.add(_Position(tool, rconf(branch, q), position_values(pose), user))
 
     def move(self, node: ir.Move, ctx: InformContext) -> list[str]:

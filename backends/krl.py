@@ -55,7 +55,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes
+from rmot.backends import codes, codes_turns, turns
 from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
@@ -308,6 +308,9 @@ class KrlBackend(Backend):
              node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
         assert q is not None
         branch = self.branch_or_default(branch, node)
+        if far := turns.beyond_one_turn(q, range(min(6, len(q)))):  # Turn is a sign (issue #15)
+            self.unsupported(codes_turns.TURN_NOT_EXPRESSIBLE,
+                             turns.message(q, far, "KRL's Turn (the sign of each axis)"), node.span)
         st = f",S {status_of(branch)},T {turn_bits(q)}"
         return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}", node.span)
 

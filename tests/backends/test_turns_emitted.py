@@ -231,3 +231,32 @@ def test_turn_definition_matches_the_ir() -> None:
     """ir.turn_of (radians) agrees with the reference's interval, boundaries included."""
     for q in (-540.0, -180.0, -179.999, 0.0, 179.999, 180.0, 359.0, 539.999, 540.0):
         assert ir.turn_of(math.radians(q)) == turn(q), q
+
+
+@pytest.mark.parametrize("vendor", ["krl", "inform"])
+def test_a_turn_beyond_360_the_data_cannot_tell_apart_is_refused(vendor: str) -> None:
+    """An IRB 120 (J6 +-400 deg, ABB 3HAC035960-001) written for KRL or INFORM with J6 at 390
+    deg: a sign bit or a beyond-180 flag fits 30 deg (KRL) or -330 deg (INFORM) as well, both
+    inside the limits, so the backend refuses with E440 rather than write an ambiguous
+    position. The same program for RAPID (cf6 = 4, the quadrant) is written."""
+    text = """cell c {
+  robot r1 = abb_irb120
+}
+program turns on r1 {
+  target home = joints(0, 0, 0, 0, 30, 0) deg
+  move joint home
+  move joint pose(x=400mm, z=300mm, ry=180deg) * pose(rz=30deg) config(wrist=noflip, j6=1)
+}
+"""
+    front = load_text(text, "turns.rmot")
+    assert front.program is not None
+    plan = plan_program(front.program)
+    assert not [d for d in plan.diagnostics if d.is_error], [d.message for d in plan.diagnostics]
+    records = plan.tasks[0].records
+    q6 = [math.degrees(float(r.q_target[5])) for r in records if r.q_target is not None]
+    assert any(q >= 360 for q in q6), q6
+    result = BACKENDS[vendor]().emit(plan)
+    errors = [d for d in result.diagnostics if d.is_error]
+    assert errors and {d.code.id for d in errors} == {"E440"}
+    assert "joint 6 at 390.0 deg" in errors[0].message
+    assert not BACKENDS["rapid"]().emit(plan).has_errors
