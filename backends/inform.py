@@ -313,7 +313,8 @@ class InformBackend(Backend):
                                  f"in 1..{MAX_USER_FRAME} for a user frame (got {user})", node.span)
             ctx.user_frames[user] = (node.frame.name, node.frame.pose)  # type: ignore[assignment]
             pose = node.frame.pose.inverse() * pose
-        if far := turns.beyond_one_turn(q, (0, 3, 5)):  # RCONF's flags (issue #15)
+        far = turns.beyond_one_turn(q, (0, 3, 5))  # RCONF's flags (issue #15)
+        if far and node.kind is ir.MotionKind.JOINT:  # MOVL/MOVC run on from the current joints
             self.unsupported(codes_turns.TURN_NOT_EXPRESSIBLE,
                              turns.message(q, far, "RCONF's R/T/S flags"), node.span)
         return ctx.job.add(_Position(tool, rconf(branch, q), position_values(pose), user))

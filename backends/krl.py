@@ -308,7 +308,8 @@ class KrlBackend(Backend):
              node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
         assert q is not None
         branch = self.branch_or_default(branch, node)
-        if far := turns.beyond_one_turn(q, range(min(6, len(q)))):  # Turn is a sign (issue #15)
+        far = turns.beyond_one_turn(q, range(min(6, len(q))))  # Turn is a sign (issue #15)
+        if far and node.kind is ir.MotionKind.JOINT:  # LIN/CIRC run on from the current joints
             self.unsupported(codes_turns.TURN_NOT_EXPRESSIBLE,
                              turns.message(q, far, "KRL's Turn (the sign of each axis)"), node.span)
         st = f",S {status_of(branch)},T {turn_bits(q)}"

@@ -6,7 +6,8 @@ Turn") and INFORM's RCONF only whether R, T and S lie outside -180 < a <= 180 de
 deg. A planned value of 360 deg or more in magnitude has an equivalent 360 deg nearer zero with
 the same sign and the same flag (390 and 30 deg for KRL; 390 and -330 deg for INFORM), which a
 joint range wide enough for the first holds as well: the controller could take either, so the
-backend refuses (E440) instead of writing a position that may not be the verified one. A
+backend refuses (E440) a joint move to such a position instead of writing one that may not
+be the verified one (a linear or circular move runs on from the current joints). A
 backend sees no joint limits (it never imports the robot library), so this is the bound it can
 check; every KUKA and Yaskawa arm of the library lies within it (A4/A6 <= +-350, T +-360 deg).
 """
