@@ -162,7 +162,7 @@ def _any_config(c: ir.Config) -> bool:
 def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
     wanted = move.config if _any_config(move.config) else None
     res = _ik(robot, flange, q_now, wanted)
-    on_turns = [q for q in res.solutions if not off_turns(q, move.config.turns)]
+    on_turns = _on_turns(robot, res.solutions, move.config.turns, q_now)
     if res.solutions and not on_turns:
         return None, [_turn_unreached(move.config.turns, res.solutions)]
     if on_turns:
@@ -215,7 +215,7 @@ def initial_joints(robot: object, body: tuple[ir.Instr, ...]) -> np.ndarray:
         return q if q is not None else home
     config = first.config if _any_config(first.config) else None
     res = _ik(robot, flange_target(first), home, config)
-    on_turns = [q for q in res.solutions if not off_turns(q, first.config.turns)]
+    on_turns = _on_turns(robot, res.solutions, first.config.turns, home)
     return np.asarray(on_turns[0], dtype=float) if on_turns else home
 
 
@@ -240,6 +240,26 @@ def turn_range_findings(robot: object, turns: tuple[tuple[int, int], ...]) -> li
                    f"the limits allow turns {first} to {last})")
             out.append(Finding(codes.TURN_OUTSIDE_LIMITS, Severity.ERROR, msg))
     return out
+
+
+def _on_turns(robot: object, solutions: tuple[np.ndarray, ...], turns: tuple[tuple[int, int], ...],
+              q_now: np.ndarray) -> list[np.ndarray]:
+    """The solutions on the fixed turns, nearest to q_now first. A solution on another turn is
+    moved onto it by whole turns (a revolute joint is 2 pi periodic) when that stays within
+    the limits: a local IK (URDF arms) returns one equivalent only."""
+    on = [q for q in solutions if not off_turns(q, turns)]
+    if on or not turns:
+        return on
+    lim = robot.joint_limits  # type: ignore[attr-defined]
+    shifted = []
+    for q in solutions:
+        s = np.array(q, dtype=float)
+        for j, n in turns:
+            s[j] += 2 * np.pi * (n - ir.turn_of(float(s[j])))
+        inside = np.all(s >= lim[:, 0] - 1e-9) and np.all(s <= lim[:, 1] + 1e-9)
+        if inside and not off_turns(s, turns):
+            shifted.append(s)
+    return sorted(shifted, key=lambda s: float(np.linalg.norm(s - q_now)))
 
 
 def off_turns(q: np.ndarray, turns: tuple[tuple[int, int], ...]) -> list[tuple[int, int, int]]:

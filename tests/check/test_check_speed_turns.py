@@ -211,3 +211,19 @@ def test_turn_reached_on_another_wrist_warns_about_the_flip() -> None:
     q6, diags = _j6(START + f"  move joint {POSE} config(j6=1)\n")
     assert [d.code.id for d in diags] == ["W220"] and "wrist" in diags[0].message
     assert q6[1] == pytest.approx(270, abs=1e-6)
+
+
+def test_urdf_arm_with_numeric_ik_takes_the_fixed_turn() -> None:
+    """examples/urdf_cell/arm6.urdf: J6 +-6.28 rad (its <limit>), IK numeric (one local solution,
+    moved onto the fixed turn by whole turns): J6 = 60 deg on turn 0, -300 deg on turn -1."""
+    cell_dir = Path(__file__).resolve().parents[2] / "examples" / "urdf_cell"
+    target = "pose(x=400mm, z=800mm, ry=180deg) * pose(rz=60deg)"
+    text = (f'use cell "cell.rmot"\nprogram p on r1 {{\n  move joint {_joints(HOME)}\n'
+            f"  move joint {target} config(j6=-1)\n  move joint {target} config(j6=0)\n}}\n")
+    front = load_text(text, str(cell_dir / "probe.rmot"))
+    assert front.program is not None, [d.message for d in front.diagnostics]
+    plan = plan_program(front.program)
+    assert [d for d in plan.diagnostics if d.is_error] == []
+    records = plan.tasks[0].records
+    q6 = [math.degrees(float(r.q_target[5])) for r in records if r.q_target is not None]
+    assert q6[1:] == [pytest.approx(-300, abs=1e-3), pytest.approx(60, abs=1e-3)]
