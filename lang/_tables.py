@@ -64,7 +64,7 @@ def cache_dir() -> Path:
 def tables_key(grammar: str) -> str:
     import lark
 
-    return hashlib.sha256("\0".join((FORMAT, lark.__version__, grammar)).encode("utf-8")).hexdigest()
+    return hashlib.sha256(f"{FORMAT}\0{lark.__version__}\0{grammar}".encode()).hexdigest()
 
 
 def load_tables(grammar: str | None = None, *, use_cache: bool = True) -> LalrTables:
@@ -136,8 +136,8 @@ def from_data(data: dict[str, Any]) -> LalrTables:
         for name, kind, arg in row:
             if kind not in ("s", "r") or not isinstance(arg, int):
                 raise ValueError("bad action")
-            if kind == "r":
-                rules[arg]  # noqa: B018 - an index out of range is a bad file (IndexError)
+            if kind == "r" and not 0 <= arg < len(rules):
+                raise ValueError("bad rule index")
             out[str(name)] = (kind, arg)
         states.append(out)
     start, end = int(data["start"]), int(data["end"])

@@ -24,7 +24,6 @@ import functools
 import re
 import threading
 from dataclasses import dataclass
-from typing import Any
 
 from lark import Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken

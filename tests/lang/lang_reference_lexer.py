@@ -16,7 +16,6 @@ from typing import Any
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
-
 from rmot.lang import _build
 from rmot.lang._tables import GRAMMAR
 from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds

@@ -8,9 +8,15 @@ from pathlib import Path
 
 import lark
 import pytest
-
 from rmot.lang import _tables, parse
-from rmot.lang._tables import GRAMMAR, LARK_VERSIONS, build_tables, from_data, load_tables, tables_key
+from rmot.lang._tables import (
+    GRAMMAR,
+    LARK_VERSIONS,
+    build_tables,
+    from_data,
+    load_tables,
+    tables_key,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = "program p on r1 {\n  move linear pose(x=1mm) speed 10 mm/s zone fine\n  wait 1 s\n}\n"
