@@ -44,6 +44,12 @@ class Kernel:
         """Whether this process already has the compiled form (then it is the cheaper one)."""
         return self._jit is not None
 
+    def prefer_compiled(self, work: int) -> bool:
+        """Count `work` done through this kernel (by whatever form) and tell whether the compiled
+        form should run it: already compiled, or the work so far reached the threshold."""
+        self._work += work
+        return self._jit is not None or self._work >= self.threshold
+
     def jit(self) -> Any:
         """The numba dispatcher of the same function (compiled, or loaded from numba's cache)."""
         if self._jit is None:
@@ -62,8 +68,7 @@ class Kernel:
         """Run on `args`: compiled when `work` (the caller's measure of the input's size, e.g.
         grid points x rows), added to the work this kernel did in the interpreter so far,
         reaches its threshold (then always), else as plain Python."""
-        self._work += work
-        if self._jit is not None or self._work >= self.threshold:
+        if self.prefer_compiled(work):
             return self.jit()(*args)
         if self.lists:  # read-only array arguments as (nested) lists: 3x faster to index
             args = tuple(a.tolist() if isinstance(a, np.ndarray) else a for a in args)

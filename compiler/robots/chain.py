@@ -25,14 +25,15 @@ class Chain:
     def joint_frames(self, q: np.ndarray) -> np.ndarray:
         """q: (N,n) model values -> (N,n,4,4): each joint's frame (after its motion) in base.
 
-        Up to _VECTOR_ROWS configurations in numpy (`joint_frames_vectorised`), more (or any
-        number once this process has compiled it) with the compiled loop
-        (fastdls.joint_frames_batch, numba): the same arithmetic in the same order, so the
-        same floats; numpy spares a small job numba's ~0.6 s load."""
+        In numpy (`joint_frames_vectorised`) until this process has sent fastdls.JOINT_FRAMES's
+        threshold of work through it, then with the compiled loop (fastdls.joint_frames_batch,
+        numba): the same arithmetic in the same order, so the same floats; numpy spares a
+        small job numba's ~0.6 s load. A call counts as at least _CALL_ROWS configurations
+        (numpy's cost per call)."""
         from rmot.compiler.robots.fastdls import JOINT_FRAMES
 
         q = np.ascontiguousarray(np.atleast_2d(q), dtype=float)
-        if len(q) <= _VECTOR_ROWS and not JOINT_FRAMES.compiled:
+        if not JOINT_FRAMES.prefer_compiled(max(len(q), _CALL_ROWS)):
             return self.joint_frames_vectorised(q)
         out = np.empty((q.shape[0], q.shape[1], 4, 4))
         JOINT_FRAMES.jit()(self.placements, self.axes, self.prismatic, q, out)
@@ -80,7 +81,7 @@ class Chain:
         return out
 
 
-_VECTOR_ROWS = 8192  # configurations per call up to which numpy is used (see joint_frames)
+_CALL_ROWS = 64  # numpy's overhead per call, in configurations (see joint_frames)
 
 
 def _mul4(a: np.ndarray, b: np.ndarray) -> np.ndarray:
