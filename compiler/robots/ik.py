@@ -296,9 +296,36 @@ def solve_batch(robot, poses: np.ndarray, seed: np.ndarray | None = None) -> np.
                 out[i, 0] = res.solutions[0]
         return out
     raw = robot.ik_closed_form(poses)
+    if n >= _BATCH_KERNEL_POSES:
+        return _nearest_verified_compiled(robot, poses, raw, seed_q)
     seeds = np.broadcast_to(seed_q.reshape(-1, 1, robot.dof) if seed_q.ndim == 2 else seed_q, raw.shape)
     q = _nearest_in_limits(robot, raw, seeds)
     return _verify_batch(robot, poses, q)
+
+
+# poses per ik_batch call from which the compiled loop (fastbatch) runs instead of numpy
+_BATCH_KERNEL_POSES = 64
+
+
+def _nearest_verified_compiled(robot, poses: np.ndarray, raw: np.ndarray, seed_q: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
+    """`_nearest_in_limits` + `_verify_batch` in one compiled pass (rmot.compiler.robots.fastbatch)."""
+    from rmot.compiler.robots.fastbatch import NEAREST_VERIFIED
+
+    n, b, dof = raw.shape
+    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (n, dof)), dtype=float)
+    chain = robot._chain
+    coupling = np.eye(dof) if robot._coupling is None else np.ascontiguousarray(robot._coupling, dtype=float)
+    out = np.empty_like(raw)
+    bad = np.zeros((n, b), dtype=np.bool_)
+    NEAREST_VERIFIED.jit()(np.ascontiguousarray(raw), seeds, np.ascontiguousarray(robot.joint_limits[:, 0]),
+                           np.ascontiguousarray(robot.joint_limits[:, 1]), np.array(robot._revolute, dtype=np.bool_),
+                           chain.placements, chain.axes, chain.prismatic, np.array(robot._flange_in_joint),
+                           coupling, robot._coupling is not None, np.ascontiguousarray(poses), POS_TOL, ROT_TOL,
+                           out, bad)
+    for i, j in zip(*np.nonzero(bad)):  # rare: near a singularity the closed form loses digits
+        fixed = _verified(robot, poses[i], out[i, j])
+        out[i, j] = fixed if fixed is not None and not np.any(np.isnan(fixed)) else np.nan
+    return out
 
 
 def _nearest_in_limits(robot, raw: np.ndarray, seeds: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
