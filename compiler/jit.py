@@ -5,8 +5,8 @@ loading its registries and the cached machine code), which is most of what a sma
 check` or `rmot robots ik` waits for. A `Kernel` wraps ONE function body: `kernel.py` is the
 function as written, run by the interpreter; `kernel.jit()` is the same function compiled by
 `numba.njit(cache=True)` on first use (numba is imported only then). Callers pick by the size
-of the work (`kernel(work, *args)`: compiled once the work done by the kernel in this process reaches
-its threshold), so a small job never imports numba while a large one, or a loop of many
+of the work (`kernel(work, *args)`: compiled once the work done by the kernel in this process
+reaches its threshold), so a small job never imports numba while a large one, or a loop of many
 small calls, gets compiled speed. Both forms are one algorithm, the same
 bytecode, so they give the same floats (tests compare them bit for bit on random inputs).
 
@@ -59,8 +59,10 @@ class Kernel:
             scope = dict(fn.__globals__)
             for helper in self.uses:
                 scope[helper.py.__name__] = helper.jit()
-            copy = types.FunctionType(fn.__code__, scope, fn.__name__, fn.__defaults__, fn.__closure__)
-            copy.__qualname__, copy.__module__, copy.__doc__ = fn.__qualname__, fn.__module__, fn.__doc__
+            copy = types.FunctionType(fn.__code__, scope, fn.__name__, fn.__defaults__,
+                                      fn.__closure__)
+            copy.__qualname__, copy.__module__ = fn.__qualname__, fn.__module__
+            copy.__doc__ = fn.__doc__
             self._jit = numba.njit(cache=True)(copy)
         return self._jit
 

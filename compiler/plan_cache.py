@@ -151,7 +151,7 @@ def _named_files(doc: Any) -> set[str]:
 
 @functools.cache
 def source_digest() -> str:
-    """SHA-256 over rmot's own files (every file of its four packages but bytecode), once per process.
+    """SHA-256 over rmot's own files (every file of its four packages but bytecode), once a process.
 
     Reading and hashing them all took ~0.1 s of every cached command, so the digest is kept in
     the cache folder (source/<stamp>) under a stamp of every file's path, size and modification

@@ -1,8 +1,8 @@
 """The parse loop: lang/lexer.py's tokens fed straight into lark's LALR(1) tables.
 
 lark builds the tables (lang/_tables.py, cached as data) and the rule callbacks (child
-filtering, `[x]` placeholders and the embedded AstBuilder); this module only runs them, with the lexer, the post-lexer and the
-shift/reduce loop fused into one function. It is lark's `ParserState.feed_token` loop
+filtering, `[x]` placeholders and the embedded AstBuilder); this module only runs them,
+with the lexer, the post-lexer and the shift/reduce loop fused into one function. It is lark's `ParserState.feed_token` loop
 without its per-token overheads (a generator per stage, a Token built through `__new__`'s
 keyword checks, a dict keyed by `Rule` objects), and the unit reductions of `?rules`
 (`expr -> product -> unary -> postfix -> atom`), which return their single child

@@ -28,7 +28,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-__all__ = ["FORMAT", "LARK_VERSIONS", "LalrTables", "build_tables", "cache_dir", "load_tables", "tables_key"]
+__all__ = ["FORMAT", "LARK_VERSIONS", "LalrTables", "build_tables", "cache_dir", "load_tables",
+           "tables_key"]
 
 FORMAT = "rmot-lalr-tables/1"
 # The lark releases whose internals this module and lang/_lalr.py read (the parse table's
@@ -87,7 +88,7 @@ def load_tables(grammar: str | None = None, *, use_cache: bool = True) -> LalrTa
 
 
 def build_tables(grammar: str) -> dict[str, Any]:
-    """lark's LALR analysis of `grammar`, as JSON-ready data (lists, dicts, str, int, bool, None)."""
+    """lark's LALR analysis of `grammar` as JSON-ready data (lists, dicts, str, int, bool, None)."""
     from lark import Lark
     from lark.lexer import Lexer
     from lark.parsers.lalr_analysis import Shift
@@ -107,7 +108,8 @@ def build_tables(grammar: str) -> dict[str, Any]:
     states = []
     for s in range(len(table.states)):
         row = table.states[s]
-        states.append([[str(name), "s" if action is Shift else "r", arg if action is Shift else index[id(arg)]]
+        states.append([[str(name), "s", arg] if action is Shift
+                       else [str(name), "r", index[id(arg)]]
                        for name, (action, arg) in row.items()])
     return {
         "format": FORMAT,
@@ -127,8 +129,9 @@ def from_data(data: dict[str, Any]) -> LalrTables:
     if data.get("format") != FORMAT:
         raise ValueError("not an rmot LALR table file")
     patterns = {"str": PatternStr, "re": PatternRE}
-    terminals = tuple(TerminalDef(str(name), patterns[kind](str(value), tuple(flags)), int(priority))
-                      for name, kind, value, flags, priority in data["terminals"])
+    terminals = tuple(
+        TerminalDef(str(name), patterns[kind](str(value), tuple(flags)), int(priority))
+        for name, kind, value, flags, priority in data["terminals"])
     rules = tuple(Rule.deserialize(_tupled(r), {}) for r in data["rules"])
     states = []
     for row in data["states"]:
@@ -158,7 +161,8 @@ def _plain(x: Any) -> Any:
 def _tupled(x: Any) -> Any:
     """Back from JSON: `empty_indices` (a tuple in lark) and nested dicts."""
     if isinstance(x, dict):
-        return {k: (tuple(v) if k == "empty_indices" and isinstance(v, list) else _tupled(v)) for k, v in x.items()}
+        return {k: (tuple(v) if k == "empty_indices" and isinstance(v, list) else _tupled(v))
+                for k, v in x.items()}
     if isinstance(x, list):
         return [_tupled(v) for v in x]
     return x

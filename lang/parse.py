@@ -61,12 +61,15 @@ class _Parser:
         tables = load_tables(_GRAMMAR.read_text(encoding="utf-8"))
         self.builder = AstBuilder()
         # as lark's Lark._prepare_callbacks for parser="lalr", maybe_placeholders=True
-        callbacks = ParseTreeBuilder(list(tables.rules), Tree, False, False, True).create_callback(self.builder)
+        rules = list(tables.rules)
+        builder = ParseTreeBuilder(rules, Tree, False, False, True)  # type: ignore[no-untyped-call]
+        callbacks = builder.create_callback(self.builder)  # type: ignore[no-untyped-call]
         self.driver = LalrDriver(tables, callbacks)
         self.patterns = {t.name: t.pattern for t in tables.terminals}
         self.lock = threading.Lock()
 
-    def parse(self, file: SourceFile, post: PostLexState) -> tuple[ast.Module, tuple[Diagnostic, ...]]:
+    def parse(self, file: SourceFile, post: PostLexState
+              ) -> tuple[ast.Module, tuple[Diagnostic, ...]]:
         """The Module and the builder's diagnostics; lark's exceptions on bad input."""
         with self.lock:
             self.builder.begin(file)
@@ -204,7 +207,8 @@ def _shown(tok: Token) -> str:
     return f"'{tok}'"
 
 
-def wrap_syntax_error(exc: UnexpectedInput, file: SourceFile, post: PostLexState | None = None) -> Diagnostic:
+def wrap_syntax_error(exc: UnexpectedInput, file: SourceFile,
+                      post: PostLexState | None = None) -> Diagnostic:
     """The single conversion of a lark error into a Diagnostic with words, not token names.
 
     `post`: the post-lexer state of the parse that failed (open braces, last tokens), which

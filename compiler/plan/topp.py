@@ -1,4 +1,4 @@
-"""Time-optimal path parametrisation on a dense grid (forward/backward passes; numba on large grids).
+"""Time-optimal path parametrisation on a dense grid (forward/backward passes; numba when large).
 
 A path q(s), s in [0, L], is timed by x(s) = (ds/dt)^2 on a grid s_0 < ... < s_K with a
 constant path acceleration u_i = (x_{i+1} - x_i) / (2 (s_{i+1} - s_i)) on each cell (what
@@ -54,7 +54,8 @@ def static_ceiling(beta: np.ndarray, gamma: np.ndarray) -> np.ndarray:
     gamma_j]: for each pair j, k with beta_k > beta_j, x <= (gamma_j + gamma_k) / (beta_k - beta_j)."""
     beta = np.ascontiguousarray(beta, dtype=float)
     gamma = np.ascontiguousarray(gamma, dtype=float)
-    return CEILING(beta.size * beta.shape[-1], beta, gamma)
+    out: np.ndarray = CEILING(beta.size * beta.shape[-1], beta, gamma)
+    return out
 
 
 # The kernels below run as plain Python on small grids and compiled by numba on large ones
@@ -162,8 +163,9 @@ def solve(ss: np.ndarray, xmax: np.ndarray, rows: Rows | tuple[np.ndarray, np.nd
     top = np.minimum(xmax, ceiling)
     top = np.where(np.isfinite(top), top, 1e18)
     beta = np.ascontiguousarray(beta)
-    return PASSES(beta.size * 2, np.ascontiguousarray(ss, dtype=float), np.ascontiguousarray(top),
-                  beta, np.ascontiguousarray(gamma))
+    out: np.ndarray = PASSES(beta.size * 2, np.ascontiguousarray(ss, dtype=float),
+                             np.ascontiguousarray(top), beta, np.ascontiguousarray(gamma))
+    return out
 
 
 def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]

@@ -54,15 +54,20 @@ class Chain:
             x, y, z = (float(v) for v in self.axes[i])
             if self.prismatic[i]:
                 motion[:, :3, :3] = np.eye(3)
-                motion[:, 0, 3], motion[:, 1, 3], motion[:, 2, 3] = x * q[:, i], y * q[:, i], z * q[:, i]
+                motion[:, 0, 3] = x * q[:, i]
+                motion[:, 1, 3] = y * q[:, i]
+                motion[:, 2, 3] = z * q[:, i]
             else:
                 angles = q[:, i].tolist()
                 c = np.array([math.cos(a) for a in angles])
                 s = np.array([math.sin(a) for a in angles])
                 v = 1.0 - c
-                motion[:, 0, 0], motion[:, 0, 1], motion[:, 0, 2] = c + x * x * v, x * y * v - z * s, x * z * v + y * s
-                motion[:, 1, 0], motion[:, 1, 1], motion[:, 1, 2] = y * x * v + z * s, c + y * y * v, y * z * v - x * s
-                motion[:, 2, 0], motion[:, 2, 1], motion[:, 2, 2] = z * x * v - y * s, z * y * v + x * s, c + z * z * v
+                m = motion
+                m[:, 0, 0], m[:, 0, 1] = c + x * x * v, x * y * v - z * s
+                m[:, 0, 2], m[:, 1, 0] = x * z * v + y * s, y * x * v + z * s
+                m[:, 1, 1], m[:, 1, 2] = c + y * y * v, y * z * v - x * s
+                m[:, 2, 0], m[:, 2, 1] = z * x * v - y * s, z * y * v + x * s
+                m[:, 2, 2] = c + z * z * v
                 motion[:, :3, 3] = 0.0
             t = _mul4(t, motion)
             out[:, i] = t
@@ -87,8 +92,9 @@ _CALL_ROWS = 64  # numpy's overhead per call, in configurations (see joint_frame
 def _mul4(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(N,4,4) @ (N,4,4), each entry a[i,0] b[0,j] + a[i,1] b[1,j] + a[i,2] b[2,j] + a[i,3] b[3,j]
     summed left to right (fastdls._mul4's order; numpy's matmul may sum in another)."""
-    return (a[:, :, 0, None] * b[:, None, 0] + a[:, :, 1, None] * b[:, None, 1]
-            + a[:, :, 2, None] * b[:, None, 2] + a[:, :, 3, None] * b[:, None, 3])
+    out: np.ndarray = (a[:, :, 0, None] * b[:, None, 0] + a[:, :, 1, None] * b[:, None, 1]
+                       + a[:, :, 2, None] * b[:, None, 2] + a[:, :, 3, None] * b[:, None, 3])
+    return out
 
 
 def _motion(axis: np.ndarray, q: np.ndarray, prismatic: bool) -> np.ndarray:

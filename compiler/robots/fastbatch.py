@@ -1,10 +1,13 @@
+# mypy: disable-error-code="no-untyped-call"
+# (numba kernels: untyped on purpose, numba types them; they call each other by plain name)
 """`ik_batch`'s limits, seed selection and FK verification in one compiled loop (numba).
 
 For each pose and closed-form branch: the 2π-equivalent of every joint nearest to the seed
 within the limits (as `ik._nearest_in_limits`: k0 = round((seed - q) / 2π), then k0, k0-1,
 k0+1, k0-2, k0+2, the first nearest one kept, clipped into the limits), NaN for the whole row
 when a joint has none; then FK of the row over the chain arrays (fastdls's loop) against the
-pose (no allocation per row), flagging rows beyond POS_TOL / ROT_TOL for the caller to polish (`ik._verified`).
+pose (no allocation per row), flagging rows beyond POS_TOL / ROT_TOL for the caller to polish
+(`ik._verified`).
 
 The same arithmetic as the numpy path in `ik.solve_batch` for the chosen values (so the same
 joint values come out); FK here sums 4x4 products in another order than numpy's matmul, which
@@ -23,8 +26,9 @@ from rmot.compiler.jit import Kernel
 __all__ = ["NEAREST_VERIFIED"]
 
 
-def _nearest_verified(raw, seeds, lo, hi, revolute, placements, axes, prismatic, flange, coupling, coupled,  # type: ignore[no-untyped-def]
-                      poses, pos_tol, rot_tol, out, bad):
+def _nearest_verified(  # type: ignore[no-untyped-def]
+        raw, seeds, lo, hi, revolute, placements, axes, prismatic, flange, coupling, coupled,
+        poses, pos_tol, rot_tol, out, bad):
     n_pose, n_branch, dof = raw.shape
     two_pi = 2 * math.pi
     qm = np.empty(dof)
@@ -78,9 +82,15 @@ def _nearest_verified(raw, seeds, lo, hi, revolute, placements, axes, prismatic,
                 else:  # fastdls._rotation's formula
                     c, s = math.cos(qm[i]), math.sin(qm[i])
                     v = 1.0 - c
-                    motion[0, 0], motion[0, 1], motion[0, 2] = c + x * x * v, x * y * v - z * s, x * z * v + y * s
-                    motion[1, 0], motion[1, 1], motion[1, 2] = y * x * v + z * s, c + y * y * v, y * z * v - x * s
-                    motion[2, 0], motion[2, 1], motion[2, 2] = z * x * v - y * s, z * y * v + x * s, c + z * z * v
+                    motion[0, 0] = c + x * x * v
+                    motion[0, 1] = x * y * v - z * s
+                    motion[0, 2] = x * z * v + y * s
+                    motion[1, 0] = y * x * v + z * s
+                    motion[1, 1] = c + y * y * v
+                    motion[1, 2] = y * z * v - x * s
+                    motion[2, 0] = z * x * v - y * s
+                    motion[2, 1] = z * y * v + x * s
+                    motion[2, 2] = c + z * z * v
                     motion[0, 3] = motion[1, 3] = motion[2, 3] = 0.0
                 _mul4_into(t, motion, tmp, t)
             _mul4_into(t, flange, tmp, t)
@@ -99,7 +109,8 @@ def _mul4_into(a, b, tmp, out):  # type: ignore[no-untyped-def]
     """out = a @ b (4x4, fastdls._mul4's order of sums) without allocating; out may be a."""
     for i in range(4):
         for j in range(4):
-            tmp[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j] + a[i, 3] * b[3, j]
+            tmp[i, j] = (a[i, 0] * b[0, j] + a[i, 1] * b[1, j]
+                         + a[i, 2] * b[2, j] + a[i, 3] * b[3, j])
     for i in range(4):
         for j in range(4):
             out[i, j] = tmp[i, j]

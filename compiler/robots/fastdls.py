@@ -1,3 +1,5 @@
+# mypy: disable-error-code="no-untyped-call"
+# (numba kernels: untyped on purpose, numba types them; they call each other by plain name)
 """A compiled damped-least-squares loop over a serial chain (the arrays of `chain.Chain`).
 
 The same iteration as `numeric.dls` (which calls pinocchio per step); compiled, one step
@@ -163,6 +165,7 @@ def joint_frames_batch(placements, axes, prismatic, qm, out):  # type: ignore[no
 # Compiled once a process has done this much work in the interpreter (compiler/jit.py): a
 # numeric IK run costs ~50 iterations, a configuration of FK one pass over the joints.
 _ROTATION, _MUL4 = Kernel(_rotation), Kernel(_mul4)
-DLS_CHAIN = Kernel(dls_chain, uses=(Kernel(_fk_jac, uses=(_MUL4, _ROTATION)), Kernel(_rot_log)), threshold=0)
+_FK_JAC = Kernel(_fk_jac, uses=(_MUL4, _ROTATION))
+DLS_CHAIN = Kernel(dls_chain, uses=(_FK_JAC, Kernel(_rot_log)), threshold=0)
 # configurations (chain.joint_frames runs them in numpy until then: ~6 µs each, ~0.15 s)
 JOINT_FRAMES = Kernel(joint_frames_batch, uses=(_MUL4, _ROTATION), threshold=25_000)

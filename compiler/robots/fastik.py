@@ -1,3 +1,5 @@
+# mypy: disable-error-code="no-untyped-call"
+# (numba kernels: untyped on purpose, numba types them; they call each other by plain name)
 """Closed-form IK kernels: the same algebra as `opw.opw_ik` and `urik.ur_ik`, one pose at a
 time in a loop, writing controller joint values directly.
 
@@ -105,7 +107,8 @@ def _opw_many(p, sign, offset, cinv, poses, out):  # type: ignore[no-untyped-def
 # poses solved in the interpreter before the compiled form is worth its load (~0.6 s once)
 _PY_POSES = 2000
 _ACOS = Kernel(_acos)
-OPW_MANY = Kernel(_opw_many, uses=(Kernel(_opw_one, uses=(_ACOS, Kernel(_store))),), threshold=_PY_POSES)
+_OPW_ONE = Kernel(_opw_one, uses=(_ACOS, Kernel(_store)))
+OPW_MANY = Kernel(_opw_many, uses=(_OPW_ONE,), threshold=_PY_POSES)
 
 
 def opw_kernel_args(p: OpwParams, jmap: OpwJointMap) -> tuple[np.ndarray, ...]:
@@ -181,7 +184,8 @@ def _ur_many(p, poses, out):  # type: ignore[no-untyped-def]
         _ur_one(p, poses[n], out[n])
 
 
-UR_MANY = Kernel(_ur_many, uses=(Kernel(_ur_one, uses=(_ACOS, Kernel(_wrap))),), threshold=_PY_POSES)
+_UR_ONE = Kernel(_ur_one, uses=(_ACOS, Kernel(_wrap)))
+UR_MANY = Kernel(_ur_many, uses=(_UR_ONE,), threshold=_PY_POSES)
 
 
 def ur_solve(p_arr: np.ndarray, poses: np.ndarray) -> np.ndarray:

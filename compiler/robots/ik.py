@@ -307,21 +307,24 @@ def solve_batch(robot, poses: np.ndarray, seed: np.ndarray | None = None) -> np.
 _BATCH_KERNEL_POSES = 64
 
 
-def _nearest_verified_compiled(robot, poses: np.ndarray, raw: np.ndarray, seed_q: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
-    """`_nearest_in_limits` + `_verify_batch` in one compiled pass (rmot.compiler.robots.fastbatch)."""
+def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
+        robot, poses: np.ndarray, raw: np.ndarray, seed_q: np.ndarray) -> np.ndarray:
+    """`_nearest_in_limits` + `_verify_batch` in one compiled pass (robots/fastbatch.py)."""
     from rmot.compiler.robots.fastbatch import NEAREST_VERIFIED
 
     n, b, dof = raw.shape
     seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (n, dof)), dtype=float)
     chain = robot._chain
-    coupling = np.eye(dof) if robot._coupling is None else np.ascontiguousarray(robot._coupling, dtype=float)
+    coupled = robot._coupling is not None
+    coupling = np.ascontiguousarray(robot._coupling, dtype=float) if coupled else np.eye(dof)
+    limits = np.ascontiguousarray(robot.joint_limits.T)
     out = np.empty_like(raw)
     bad = np.zeros((n, b), dtype=np.bool_)
-    NEAREST_VERIFIED.jit()(np.ascontiguousarray(raw), seeds, np.ascontiguousarray(robot.joint_limits[:, 0]),
-                           np.ascontiguousarray(robot.joint_limits[:, 1]), np.array(robot._revolute, dtype=np.bool_),
-                           chain.placements, chain.axes, chain.prismatic, np.array(robot._flange_in_joint),
-                           coupling, robot._coupling is not None, np.ascontiguousarray(poses), POS_TOL, ROT_TOL,
-                           out, bad)
+    NEAREST_VERIFIED.jit()(
+        np.ascontiguousarray(raw), seeds, limits[0], limits[1],
+        np.array(robot._revolute, dtype=np.bool_), chain.placements, chain.axes, chain.prismatic,
+        np.array(robot._flange_in_joint), coupling, coupled, np.ascontiguousarray(poses), POS_TOL,
+        ROT_TOL, out, bad)
     for i, j in zip(*np.nonzero(bad)):  # rare: near a singularity the closed form loses digits
         fixed = _verified(robot, poses[i], out[i, j])
         out[i, j] = fixed if fixed is not None and not np.any(np.isnan(fixed)) else np.nan
