@@ -2,8 +2,8 @@
 
 lark builds the tables (lang/_tables.py, cached as data) and the rule callbacks (child
 filtering, `[x]` placeholders and the embedded AstBuilder); this module only runs them,
-with the lexer, the post-lexer and the shift/reduce loop fused into one function. It is lark's `ParserState.feed_token` loop
-without its per-token overheads (a generator per stage, a Token built through `__new__`'s
+with the lexer, the post-lexer and the shift/reduce loop fused into one function. It is
+lark's `ParserState.feed_token` loop without its per-token overheads (a generator per stage, a Token built through `__new__`'s
 keyword checks, a dict keyed by `Rule` objects), and the unit reductions of `?rules`
 (`expr -> product -> unary -> postfix -> atom`), which return their single child
 unchanged, only move the parser state instead of calling a wrapper.
