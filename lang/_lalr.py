@@ -3,13 +3,13 @@
 lark builds the tables (lang/_tables.py, cached as data) and the rule callbacks (child
 filtering, `[x]` placeholders and the embedded AstBuilder); this module only runs them,
 with the lexer, the post-lexer and the shift/reduce loop fused into one function. It is
-lark's `ParserState.feed_token` loop without its per-token overheads (a generator per stage, a Token built through `__new__`'s
-keyword checks, a dict keyed by `Rule` objects), and the unit reductions of `?rules`
-(`expr -> product -> unary -> postfix -> atom`), which return their single child
-unchanged, only move the parser state instead of calling a wrapper.
+lark's `ParserState.feed_token` loop without its per-token overheads (a generator per
+stage, a Token built through `__new__`'s keyword checks, a dict keyed by `Rule` objects),
+and the unit reductions of `?rules` (`expr -> product -> unary -> postfix -> atom`), which
+return their single child unchanged, only move the parser state instead of calling a wrapper.
 
 Same contract as `Lark.parse` with a lark Lexer and post-lexer doing the same (the tests keep
-them as the reference: tests/lang/reference_lexer.py): same token
+them as the reference: tests/lang/lang_reference_lexer.py): same token
 types (a word is typed by what the state on top of the stack accepts), same tokens reach
 the callbacks, and the same lark exceptions on bad input (UnexpectedCharacters,
 UnexpectedToken with the expected terminal names, `$END` at the end of the file).
