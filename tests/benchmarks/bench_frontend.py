@@ -106,11 +106,11 @@ def lines_per_second(rounds: int = 5) -> dict[str, float]:
     out: dict[str, float] = {}
     old = gc.get_threshold()
     try:
-        for label, thresholds, fn in (("parse + lower, default GC", old, lambda: load_text(text, "/bench/big.rmot")),
-                                      ("parse + lower, rmot's GC schedule", GC_THRESHOLDS,
-                                       lambda: load_text(text, "/bench/big.rmot")),
-                                      ("parse only, rmot's GC schedule", GC_THRESHOLDS,
-                                       lambda: parse_text(text, "big.rmot"))):
+        runs = (("parse + lower, default GC", old, lambda: load_text(text, "/bench/big.rmot")),
+                ("parse + lower, rmot's GC schedule", GC_THRESHOLDS,
+                 lambda: load_text(text, "/bench/big.rmot")),
+                ("parse only, rmot's GC schedule", GC_THRESHOLDS, lambda: parse_text(text, "big.rmot")))
+        for label, thresholds, fn in runs:
             gc.set_threshold(*thresholds)
             times = []
             for _ in range(rounds):
