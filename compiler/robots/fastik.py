@@ -105,7 +105,7 @@ def _opw_many(p, sign, offset, cinv, poses, out):  # type: ignore[no-untyped-def
 
 
 # poses solved in the interpreter before the compiled form is worth its load (~0.6 s once)
-_PY_POSES = 2000
+_PY_POSES = 500
 _ACOS = Kernel(_acos)
 _OPW_ONE = Kernel(_opw_one, uses=(_ACOS, Kernel(_store)))
 OPW_MANY = Kernel(_opw_many, uses=(_OPW_ONE,), threshold=_PY_POSES)
