@@ -27,8 +27,9 @@ class Chain:
 
         In numpy (`joint_frames_vectorised`) until this process has sent fastdls.JOINT_FRAMES's
         threshold of work through it, then with the compiled loop (fastdls.joint_frames_batch,
-        numba): the same arithmetic in the same order, so the same floats; numpy spares a
-        small job numba's ~0.6 s load. A call counts as at least _CALL_ROWS configurations
+        numba): the same arithmetic in the same order (the same floats but for the last bit
+        of a sine or cosine, numba's vs the interpreter's); numpy spares a small job numba's
+        ~0.6 s load. A call counts as at least _CALL_ROWS configurations
         (numpy's cost per call)."""
         from rmot.compiler.robots.fastdls import JOINT_FRAMES
 
@@ -42,7 +43,7 @@ class Chain:
     def joint_frames_vectorised(self, q: np.ndarray) -> np.ndarray:
         """fastdls.joint_frames_batch's arithmetic over all configurations at once: each 4x4
         product summed left to right as `_mul4` does, each rotation by `_rotation`'s formula
-        with the sine and cosine from `math` (the same libm as the compiled code)."""
+        with the sine and cosine from `math`: the interpreted loop's floats, bit for bit."""
         q = np.atleast_2d(q)
         n_cfg, n = q.shape
         out = np.empty((n_cfg, n, 4, 4))

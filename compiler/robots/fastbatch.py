@@ -6,12 +6,13 @@ For each pose and closed-form branch: the 2π-equivalent of every joint nearest 
 within the limits (as `ik._nearest_in_limits`: k0 = round((seed - q) / 2π), then k0, k0-1,
 k0+1, k0-2, k0+2, the first nearest one kept, clipped into the limits), NaN for the whole row
 when a joint has none; then FK of the row over the chain arrays (fastdls's loop) against the
-pose (no allocation per row), flagging rows beyond POS_TOL / ROT_TOL for the caller to polish
-(`ik._verified`).
+pose (3x4 affine products, rotations as 3x3, no allocation per row), flagging the rows beyond
+the tolerances it is given (half of POS_TOL / ROT_TOL: the caller checks those again exactly as
+its numpy path does, and polishes the failures with `ik._verified`).
 
 The same arithmetic as the numpy path in `ik.solve_batch` for the chosen values (so the same
-joint values come out); FK here sums 4x4 products in another order than numpy's matmul, which
-can only move a row whose error is within ~1e-16 of a tolerance from one side to the other.
+joint values come out); FK here rounds differently from numpy's matmul (another order of
+sums, ~1e-16), so rows near a tolerance are decided by the caller's numpy check.
 Used above `ik._BATCH_KERNEL_POSES` poses per call (numba's load is not worth it below).
 """
 
@@ -32,9 +33,9 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
     n_pose, n_branch, dof = raw.shape
     two_pi = 2 * math.pi
     qm = np.empty(dof)
-    motion = np.eye(4)
-    t = np.empty((4, 4))
-    tmp = np.empty((4, 4))
+    rot = np.empty((3, 3))
+    t = np.empty((3, 4))
+    tmp = np.empty(4)
     for n in range(n_pose):
         target = poses[n]
         for b in range(n_branch):
@@ -68,32 +69,33 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
                     qm[j] = acc
                 else:
                     qm[j] = row[j]
-            t[:, :] = 0.0
-            for i in range(4):
-                t[i, i] = 1.0
+            # FK as 3x4 affine products (the bottom row is always 0 0 0 1)
+            for r3 in range(3):
+                for c3 in range(4):
+                    t[r3, c3] = 1.0 if r3 == c3 else 0.0
             for i in range(dof):
-                _mul4_into(t, placements[i], tmp, t)
+                _affine_into(t, placements[i], tmp)
                 x, y, z = axes[i, 0], axes[i, 1], axes[i, 2]
-                if prismatic[i]:
+                if prismatic[i]:  # a translation along the axis, in the joint frame
                     for r3 in range(3):
-                        for c3 in range(3):
-                            motion[r3, c3] = 1.0 if r3 == c3 else 0.0
-                    motion[0, 3], motion[1, 3], motion[2, 3] = x * qm[i], y * qm[i], z * qm[i]
-                else:  # fastdls._rotation's formula
+                        t[r3, 3] += (t[r3, 0] * x + t[r3, 1] * y + t[r3, 2] * z) * qm[i]
+                else:  # fastdls._rotation's formula; the translation is unchanged
                     c, s = math.cos(qm[i]), math.sin(qm[i])
                     v = 1.0 - c
-                    motion[0, 0] = c + x * x * v
-                    motion[0, 1] = x * y * v - z * s
-                    motion[0, 2] = x * z * v + y * s
-                    motion[1, 0] = y * x * v + z * s
-                    motion[1, 1] = c + y * y * v
-                    motion[1, 2] = y * z * v - x * s
-                    motion[2, 0] = z * x * v - y * s
-                    motion[2, 1] = z * y * v + x * s
-                    motion[2, 2] = c + z * z * v
-                    motion[0, 3] = motion[1, 3] = motion[2, 3] = 0.0
-                _mul4_into(t, motion, tmp, t)
-            _mul4_into(t, flange, tmp, t)
+                    rot[0, 0] = c + x * x * v
+                    rot[0, 1] = x * y * v - z * s
+                    rot[0, 2] = x * z * v + y * s
+                    rot[1, 0] = y * x * v + z * s
+                    rot[1, 1] = c + y * y * v
+                    rot[1, 2] = y * z * v - x * s
+                    rot[2, 0] = z * x * v - y * s
+                    rot[2, 1] = z * y * v + x * s
+                    rot[2, 2] = c + z * z * v
+                    for r3 in range(3):
+                        t0, t1, t2 = t[r3, 0], t[r3, 1], t[r3, 2]
+                        for c3 in range(3):
+                            t[r3, c3] = t0 * rot[0, c3] + t1 * rot[1, c3] + t2 * rot[2, c3]
+            _affine_into(t, flange, tmp)
             dp = 0.0
             for r3 in range(3):
                 dp += (t[r3, 3] - target[r3, 3]) ** 2
@@ -105,15 +107,14 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
                 bad[n, b] = True
 
 
-def _mul4_into(a, b, tmp, out):  # type: ignore[no-untyped-def]
-    """out = a @ b (4x4, fastdls._mul4's order of sums) without allocating; out may be a."""
-    for i in range(4):
-        for j in range(4):
-            tmp[i, j] = (a[i, 0] * b[0, j] + a[i, 1] * b[1, j]
-                         + a[i, 2] * b[2, j] + a[i, 3] * b[3, j])
-    for i in range(4):
-        for j in range(4):
-            out[i, j] = tmp[i, j]
+def _affine_into(t, b, row):  # type: ignore[no-untyped-def]
+    """t = t @ b for a 3x4 affine t and a 4x4 rigid b, in place (row: a 4-float buffer)."""
+    for r3 in range(3):
+        for c3 in range(4):
+            row[c3] = t[r3, 0] * b[0, c3] + t[r3, 1] * b[1, c3] + t[r3, 2] * b[2, c3]
+        row[3] += t[r3, 3]
+        for c3 in range(4):
+            t[r3, c3] = row[c3]
 
 
-NEAREST_VERIFIED = Kernel(_nearest_verified, uses=(Kernel(_mul4_into),))
+NEAREST_VERIFIED = Kernel(_nearest_verified, uses=(Kernel(_affine_into),))

@@ -1,6 +1,7 @@
 """ik_batch's compiled pass (compiler/robots/fastbatch.py, used for many poses per call) gives
-the same joint values as its numpy path (`_nearest_in_limits` + `_verify_batch`), NaN rows
-included, with and without seeds, on reachable, unreachable and out-of-limits poses."""
+the same joint values as its numpy path (`_nearest_in_limits` + `_verify_batch`) from the same
+closed-form rows, NaN rows included, with and without seeds, on reachable, unreachable and
+out-of-limits poses."""
 
 from __future__ import annotations
 
@@ -25,6 +26,8 @@ def test_compiled_pass_equals_the_numpy_path(name: str) -> None:
         seeds = np.zeros_like(raw) if seed is None else np.broadcast_to(
             seed.reshape(-1, 1, robot.dof) if seed.ndim == 2 else seed, raw.shape)
         numpy_path = ik._verify_batch(robot, poses, ik._nearest_in_limits(robot, raw, seeds))
-        compiled = robot.ik_batch(poses, seed=seed)
+        seed_q = np.zeros(robot.dof) if seed is None else seed
+        compiled = ik._nearest_verified_compiled(robot, poses, raw, seed_q)  # on the same raw
+        np.testing.assert_allclose(robot.ik_batch(poses, seed=seed), compiled, rtol=0, atol=1e-12)
         assert np.array_equal(compiled, numpy_path, equal_nan=True)
         assert np.isfinite(compiled).any() and np.isnan(compiled[::17]).all()
