@@ -48,7 +48,7 @@ def test_lark_is_a_version_whose_internals_were_checked() -> None:
 
 def test_pyproject_pins_lark_to_those_versions() -> None:
     text = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
-    pins = re.findall(r'"lark([^"]*)"', text)
+    pins = re.findall(r'"lark\s*([=<>~!][^"]*)"', text)  # requirement strings, not module names
     assert pins == [f"=={v}" for v in LARK_VERSIONS] or pins == [f"=={LARK_VERSIONS[0]}"], pins
 
 
