@@ -21,7 +21,6 @@ from rmot.compiler import ir
 from rmot.compiler.passes.context import Reporter, RobotLoader, default_robot_loader
 from rmot.compiler.passes.state import FrontendState
 from rmot.compiler.pipeline import run
-from rmot.lang._gc import gc_paused
 from rmot.lang.diagnostics import Diagnostic
 
 __all__ = ["FrontendResult", "load_program", "load_text"]
@@ -61,8 +60,7 @@ def _load(path: str, text: str | None, cell: str | None, project_root: str | Non
     state = FrontendState(path=path, roots=roots, reporter=Reporter(), robot_loader=robot_loader or default_robot_loader,
                           text=text, cell_path=cell)
     try:
-        with gc_paused():  # see lang/_gc.py: the front end makes no garbage cycles worth a collection
-            state = run(state)
+        state = run(state)
     except RecursionError:  # absurdly deep nesting: still a diagnostic, not a traceback
         from rmot.compiler import codes
 

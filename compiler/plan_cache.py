@@ -8,8 +8,9 @@ The key (SHA-256) covers everything the plan is a function of:
   the front end read (program, imports, cell: each Span keeps its SourceFile), the cell, the
   robots' load keys (library name, URDF path, or a cell model's full parameters);
 - the bytes of every file the program names by absolute path (URDFs, meshes, a URDF chain's file);
-- rmot's version and a digest of rmot's own files (code, robot library, grammar, data), so any
-  change to the compiler invalidates every entry;
+- a digest of rmot's own files (code, robot library, grammar, data), so any change to the
+  compiler invalidates every entry (rmot's version number adds nothing to it: a release with
+  the same files plans the same);
 - the planning options (the sampling step).
 
 Entries live in the user's cache directory, never beside the program: $RMOT_CACHE_DIR, else
@@ -25,6 +26,7 @@ A directory that cannot be written gives warning W700 in the plan's diagnostics.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import importlib.util
 import io
@@ -51,7 +53,6 @@ MAX_BYTES = 500 * 1024 * 1024  # bound on the plans folder; least recently used 
 _PACKAGES = ("rmot.lang", "rmot.compiler", "rmot.backends", "rmot.sim")
 _KEY_PREFIXES = ("urdf-chain:",)  # load keys that carry a JSON list holding a file path
 _STALE_TEMP_S = 3600.0
-_source_digest: str | None = None
 
 
 def cache_dir() -> Path:
@@ -112,7 +113,7 @@ def plan_key(program: ir.Program, step: float) -> str:
     h = hashlib.sha256()
     doc, arrays = encode(program)
     text = json.dumps(doc, sort_keys=True, separators=(",", ":"), allow_nan=False)
-    for part in (FORMAT, _version(), source_digest(), float(step).hex()):
+    for part in (FORMAT, source_digest(), float(step).hex()):
         h.update(part.encode() + b"\0")
     h.update(text.encode())
     for a in arrays:
@@ -148,30 +149,52 @@ def _named_files(doc: Any) -> set[str]:
     return found
 
 
-def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
-
-    try:
-        return version("rmot")
-    except PackageNotFoundError:
-        return "0+unknown"
-
-
+@functools.cache
 def source_digest() -> str:
-    """SHA-256 over rmot's own files (every file of its four packages but bytecode), once per process."""
-    global _source_digest
-    if _source_digest is None:
-        h = hashlib.sha256()
-        for package in _PACKAGES:
-            spec = importlib.util.find_spec(package)
-            for root in (spec.submodule_search_locations or []) if spec else []:
-                for path in sorted(Path(root).rglob("*")):
-                    if "__pycache__" in path.parts or path.suffix == ".pyc" or not path.is_file():
-                        continue
-                    h.update(f"{package}/{path.relative_to(root).as_posix()}\0".encode())
-                    h.update(hashlib.sha256(path.read_bytes()).digest())
-        _source_digest = h.hexdigest()
-    return _source_digest
+    """SHA-256 over rmot's own files (every file of its four packages but bytecode), once a process.
+
+    Reading and hashing them all took ~0.1 s of every cached command, so the digest is kept in
+    the cache folder (source/<stamp>) under a stamp of every file's path, size and modification
+    time: a changed file changes the stamp, and the contents are hashed again."""
+    files = _source_files()
+    stamp = hashlib.sha256()
+    for name, path in files:
+        st = path.stat()
+        stamp.update(f"{name}\0{st.st_size}\0{st.st_mtime_ns}\0".encode())
+    memo = cache_dir() / "source" / stamp.hexdigest()
+    try:
+        known = memo.read_text(encoding="ascii").strip()
+        if len(known) == 64 and all(c in "0123456789abcdef" for c in known):
+            return known
+    except (OSError, UnicodeDecodeError):
+        pass
+    h = hashlib.sha256()
+    for name, path in files:
+        h.update(f"{name}\0".encode())
+        h.update(hashlib.sha256(path.read_bytes()).digest())
+    digest = h.hexdigest()
+    try:
+        memo.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=memo.parent, prefix=".digest-")
+        with os.fdopen(fd, "w", encoding="ascii") as f:
+            f.write(digest)
+        os.replace(tmp, memo)
+    except OSError:
+        pass  # an unwritable cache folder: hashed again next time
+    return digest
+
+
+def _source_files() -> list[tuple[str, Path]]:
+    """(package/relative path, path) of rmot's own files, sorted."""
+    out = []
+    for package in _PACKAGES:
+        spec = importlib.util.find_spec(package)
+        for root in (spec.submodule_search_locations or []) if spec else []:
+            for path in sorted(Path(root).rglob("*")):
+                if "__pycache__" in path.parts or path.suffix == ".pyc" or not path.is_file():
+                    continue
+                out.append((f"{package}/{path.relative_to(root).as_posix()}", path))
+    return out
 
 
 # ---------------------------------------------------------------------------- entries

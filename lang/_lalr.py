@@ -1,14 +1,15 @@
 """The parse loop: lang/lexer.py's tokens fed straight into lark's LALR(1) tables.
 
-lark builds the tables and the rule callbacks (child filtering, `[x]` placeholders and the
-embedded AstBuilder); this module only runs them, with the lexer, the post-lexer and the
-shift/reduce loop fused into one function. It is lark's `ParserState.feed_token` loop
-without its per-token overheads (a generator per stage, a Token built through `__new__`'s
-keyword checks, a dict keyed by `Rule` objects), and the unit reductions of `?rules`
-(`expr -> product -> unary -> postfix -> atom`), which return their single child
-unchanged, only move the parser state instead of calling a wrapper.
+lark builds the tables (lang/_tables.py, cached as data) and the rule callbacks (child
+filtering, `[x]` placeholders and the embedded AstBuilder); this module only runs them,
+with the lexer, the post-lexer and the shift/reduce loop fused into one function. It is
+lark's `ParserState.feed_token` loop without its per-token overheads (a generator per
+stage, a Token built through `__new__`'s keyword checks, a dict keyed by `Rule` objects),
+and the unit reductions of `?rules` (`expr -> product -> unary -> postfix -> atom`), which
+return their single child unchanged, only move the parser state instead of calling a wrapper.
 
-Same contract as `Lark.parse` with `RmotLexer` and `_PostLexer` (lang/parse.py): same token
+Same contract as `Lark.parse` with a lark Lexer and post-lexer doing the same (the tests keep
+them as the reference: tests/lang/lang_reference_lexer.py): same token
 types (a word is typed by what the state on top of the stack accepts), same tokens reach
 the callbacks, and the same lark exceptions on bad input (UnexpectedCharacters,
 UnexpectedToken with the expected terminal names, `$END` at the end of the file).
@@ -20,11 +21,11 @@ from collections import deque
 from functools import partial
 from typing import Any
 
-from lark import Lark, Token
+from lark import Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders
-from lark.parsers.lalr_analysis import Shift
 
+from rmot.lang._tables import LalrTables
 from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
 
 __all__ = ["LalrDriver", "PostLexState"]
@@ -42,27 +43,24 @@ class PostLexState:
 
 
 class LalrDriver:
-    """Runs one lark LALR parser's tables and callbacks over lang/lexer.py's tokens."""
+    """Runs LALR tables and lark's rule callbacks (keyed by the tables' Rule objects) over
+    lang/lexer.py's tokens."""
 
-    def __init__(self, parser: Lark) -> None:
-        lalr = parser.parser.parser.parser  # ParsingFrontend -> LALR_Parser -> _Parser
-        table = lalr.parse_table
-        callbacks = lalr.callbacks
-        self.kinds = TokenKinds(parser.terminals)
-        self.start_state = table.start_states["start"]
-        self.end_state = table.end_states["start"]
+    def __init__(self, tables: LalrTables, callbacks: dict[Any, Any]) -> None:
+        rules = tables.rules
+        self.kinds = TokenKinds(tables.terminals)
+        self.start_state = tables.start
+        self.end_state = tables.end
         # Per state: terminal or rule name -> next state (a shift or a goto), or a reduction
         # (rule size, rule origin, callback; callback None for a unit reduction).
-        self.actions: list[dict[str, Any]] = [{} for _ in range(len(table.states))]
-        for state, row in table.states.items():
-            out = self.actions[state]
-            for name, (action, arg) in row.items():
-                # str(): lark's names may be Tokens, whose Python-level __eq__ slows every lookup
-                out[str(name)] = arg if action is Shift else self._reduction(arg, callbacks[arg])
+        reductions = [self._reduction(rule, callbacks[rule]) for rule in rules]
+        self.actions: list[dict[str, Any]] = [
+            {name: arg if kind == "s" else reductions[arg] for name, (kind, arg) in row.items()}
+            for row in tables.states]
         # (state below, state on top, lookahead) -> the top state after a chain of unit reductions
         self.unit_chains: dict[tuple[int, int, str], int] = {}
         # Terminal names a state accepts (the lexer types words by them; errors list them).
-        self.accepts = [frozenset(str(n) for n in table.states[s] if n.isupper()) for s in range(len(self.actions))]
+        self.accepts = [frozenset(n for n in row if n.isupper()) for row in tables.states]
 
     @staticmethod
     def _reduction(rule: Any, callback: Any) -> tuple[int, str, Any]:

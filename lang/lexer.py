@@ -10,36 +10,21 @@ parser state). It keeps the same contract:
     `else` is whitespace, so a circular move and an if/else may span lines.
 Errors: a character that starts no token raises lark's UnexpectedCharacters.
 
-Two forms of the same lexer: `RmotLexer`, a lark Lexer (lark's own loop runs it; the tests
-keep it as the reference), and `TOKEN` + `TokenKinds`, which lang/_lalr.py fuses into its
-parse loop (one match per token, blanks and comments included).
+`TOKEN` + `TokenKinds` are what lang/_lalr.py fuses into its parse loop (one match per
+token, blanks and comments included); tests/lang/reference_lexer.py wraps the same rules in
+a lark Lexer for lark's own loop, the reference the fused loop is tested against.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
 from typing import Any
-
-from lark import Token
-from lark.exceptions import UnexpectedCharacters
-from lark.lexer import Lexer
 
 from rmot.lang.units import BASE_UNITS, COMPOUND_UNIT
 
-__all__ = ["BLANKS", "CONTINUES", "TOKEN", "RmotLexer", "TokenKinds"]
+__all__ = ["BLANKS", "CONTINUES", "TOKEN", "TokenKinds"]
 
 _SIMPLE_UNITS = frozenset(BASE_UNITS)
-_MASTER = re.compile(r"""
-    (?P<ws>[ \t\f\r]+)
-  | (?P<comment>\#[^\n]*)
-  | (?P<nl>(?:;|\r?\n)(?:\s|;|\#[^\n]*)*)
-  | (?P<number>[0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)
-  | (?P<unit>""" + COMPOUND_UNIT + r""")
-  | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
-  | (?P<string>"(?:[^"\\\n]|\\.)*")
-  | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
-""", re.X)
 # The parse loop (lang/_lalr.py) takes the blanks and a comment before a token in the same
 # match (possessive, so a failed match never gives back part of a comment as a token).
 TOKEN = re.compile(r"""
@@ -82,58 +67,3 @@ class TokenKinds:
         if "NAME" in accepts or kw is None:
             return "NAME"
         return kw
-
-
-class RmotLexer(Lexer):
-    """The same lexer as a lark Lexer (lang/_lalr.py fuses it into its parse loop instead)."""
-
-    __future_interface__ = 2
-
-    def __init__(self, lexer_conf: Any) -> None:
-        kinds = TokenKinds(lexer_conf.terminals)
-        self.keywords, self.punct, self._word_type = kinds.keywords, kinds.punct, kinds.word_type
-
-    def lex(self, lexer_state: Any, parser_state: Any) -> Iterator[Token]:
-        text = getattr(lexer_state.text, "text", lexer_state.text)
-        states = parser_state.parse_conf.states
-        pos, line, line_start, n = 0, 1, 0, len(text)
-        match = _MASTER.match
-        while pos < n:
-            m = match(text, pos)
-            if m is None:
-                accepts = states[parser_state.position]
-                raise UnexpectedCharacters(text, pos, line, pos - line_start + 1, allowed=set(accepts), state=parser_state)
-            kind, end, value = m.lastgroup, m.end(), m.group()
-            if kind == "ws" or kind == "comment":
-                pos = end
-                continue
-            col = pos - line_start + 1
-            if kind == "nl":
-                newlines = value.count("\n")
-                end_line, end_col = line + newlines, (end - (value.rfind("\n") + pos)) if newlines else col + len(value)
-                skip = CONTINUES.match(text, end) is not None
-                tok = None if skip else Token("_NL", value, pos, line, col, end_line, end_col, end)
-                if newlines:
-                    line, line_start = end_line, pos + value.rfind("\n") + 1
-                pos = end
-                if tok is not None:
-                    yield tok
-                continue
-            accepts = states[parser_state.position]
-            if kind == "word":
-                ttype = self._word_type(value, accepts)
-            elif kind == "number":
-                ttype = "NUMBER"
-            elif kind == "string":
-                ttype = "STRING"
-            elif kind == "unit":
-                if "UNIT" in accepts:
-                    ttype = "UNIT"
-                else:  # `m/s` where no unit fits: just the word `m`, then `/` and `s`
-                    value = value[: value.index("/")]
-                    end = pos + len(value)
-                    ttype = self._word_type(value, accepts)
-            else:
-                ttype = self.punct[value]
-            yield Token(ttype, value, pos, line, col, line, col + (end - pos), end)
-            pos = end

@@ -1,37 +1,40 @@
-"""Text -> AST: the lark LALR parser (built once) and the one place lark errors become words.
+"""Text -> AST: the LALR parser (built on first use) and the one place lark errors become words.
 
 `parse_source(file)` never raises for bad input: it returns the Module (or None) and the
-diagnostics. lark builds the LALR tables and the rule callbacks from rmot.lark, with the
-Transformer in `lang/_build.py` embedded, so each rule becomes one AST node with its span as
-it is reduced and no parse tree is built. lang/_lalr.py runs those tables and callbacks over
-the tokens of lang/lexer.py with the post-lexer fused in (newlines inside brackets dropped,
-braces tracked): lark's own loop (`Lark.parse` with RmotLexer and _PostLexer below, which
-tests/lang/test_lang_driver.py keeps as the reference) does the same in twice the time.
+diagnostics. lark's LALR tables for rmot.lark (lang/_tables.py: computed by lark once, then
+read as JSON data from the user's cache) and lark's rule callbacks with the Transformer in
+`lang/_build.py` embedded make each rule one AST node with its span as it is reduced: no
+parse tree is built. lang/_lalr.py runs those tables and callbacks over the tokens of
+lang/lexer.py with the post-lexer fused in (newlines inside brackets dropped, braces
+tracked); tests/lang/test_lang_driver.py checks it against lark's own loop.
 
 Parsing is serialised by a lock: the embedded transformer keeps the state of the current
-parse (the file), and the error messages read the post-lexer state of the last parse.
+parse (the file). The post-lexer state the error messages read is made per parse and passed
+along, never kept between parses. The garbage collector is left alone here (the command line
+pauses it around its front end: compiler/cli).
+
+lark's internals read here and in _lalr.py / _tables.py are pinned by the lark versions in
+pyproject.toml; tests/lang/test_lang_lark_version.py fails on any other version.
 """
 
 from __future__ import annotations
 
 import difflib
+import functools
 import re
 import threading
-from collections import deque
-from collections.abc import Iterator
 from dataclasses import dataclass
-from pathlib import Path
 
-from lark import Lark, Token
+from lark import Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from rmot.lang import ast
 from rmot.lang import codes
-from rmot.lang._gc import gc_paused
 from rmot.lang._build import KEYWORDS, RESERVED, AstBuilder, reserved_statement, token_span
 from rmot.lang._lalr import LalrDriver, PostLexState
+from rmot.lang._tables import GRAMMAR as _GRAMMAR
+from rmot.lang._tables import load_tables
 from rmot.lang.diagnostics import Diagnostic, Severity
-from rmot.lang.lexer import RmotLexer
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.units import UNIT_NAMES, unknown_unit
 
@@ -39,7 +42,6 @@ __all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KE
 
 UNITS = UNIT_NAMES  # every unit the language knows (lang/units.py is the one table)
 
-_GRAMMAR = Path(__file__).with_name("grammar") / "rmot.lark"
 _MAX_EXPECTED = 6
 
 
@@ -49,60 +51,35 @@ class ParseResult:
     diagnostics: tuple[Diagnostic, ...]
 
 
-class _PostLexer:
-    """Drops newlines inside ( ) and [ ]; tracks the open braces and the last tokens.
-
-    lark's post-lexer interface, for lark's own loop (the reference in the tests);
-    lang/_lalr.py does the same inline.
-    """
-
-    always_accept = ("_NL",)
+class _Parser:
+    """The tables, the embedded builder and the loop that runs them; one per process."""
 
     def __init__(self) -> None:
-        self.braces: list[Token] = []
-        self.unmatched_close: Token | None = None
-        self.history: deque[Token] = deque(maxlen=3)
+        from lark import Tree
+        from lark.parse_tree_builder import ParseTreeBuilder
 
-    def process(self, stream: Iterator[Token]) -> Iterator[Token]:
-        self.braces = []
-        self.unmatched_close = None
-        self.history.clear()
-        depth = 0
-        for tok in stream:
-            kind = tok.type
-            if kind == "_NL" and depth > 0:
-                continue
-            if kind in ("LPAR", "LSQB"):
-                depth += 1
-            elif kind in ("RPAR", "RSQB"):
-                depth = max(0, depth - 1)
-            elif kind == "LBRACE":
-                depth = 0  # a '{' ends any unclosed '(' before it: report there, not at EOF
-                self.braces.append(tok)
-            elif kind == "RBRACE":
-                if self.braces:
-                    self.braces.pop()
-                elif self.unmatched_close is None:
-                    self.unmatched_close = tok
-            self.history.append(tok)
-            yield tok
+        tables = load_tables(_GRAMMAR.read_text(encoding="utf-8"))
+        self.builder = AstBuilder()
+        # as lark's Lark._prepare_callbacks for parser="lalr", maybe_placeholders=True
+        rules = list(tables.rules)
+        builder = ParseTreeBuilder(rules, Tree, False, False, True)  # type: ignore[no-untyped-call]
+        callbacks = builder.create_callback(self.builder)  # type: ignore[no-untyped-call]
+        self.driver = LalrDriver(tables, callbacks)
+        self.patterns = {t.name: t.pattern for t in tables.terminals}
+        self.lock = threading.Lock()
+
+    def parse(self, file: SourceFile, post: PostLexState
+              ) -> tuple[ast.Module, tuple[Diagnostic, ...]]:
+        """The Module and the builder's diagnostics; lark's exceptions on bad input."""
+        with self.lock:
+            self.builder.begin(file)
+            module: ast.Module = self.driver.parse(file.text, post)
+            return module, tuple(self.builder.diagnostics)
 
 
-_LOCK = threading.Lock()
-_BUILDER = AstBuilder()
-_PARSER = Lark(
-    _GRAMMAR.read_text(encoding="utf-8"),
-    parser="lalr",
-    lexer=RmotLexer,
-    propagate_positions=False,  # the builder takes spans from the tokens itself
-    maybe_placeholders=True,
-    postlex=_PostLexer(),
-    transformer=_BUILDER,
-    cache=False,
-)
-_DRIVER = LalrDriver(_PARSER)  # runs _PARSER's tables and callbacks (lark's own loop is the slow part)
-_POSTLEX = PostLexState()  # of the last parse, for the error messages
-_PATTERNS = {t.name: t.pattern for t in _PARSER.terminals}
+@functools.cache
+def _parser() -> _Parser:
+    return _Parser()
 
 
 def parse_text(text: str, path: str = "<input>") -> ParseResult:
@@ -117,18 +94,14 @@ def parse_source(file: SourceFile) -> ParseResult:
     if not file.text.strip():
         msg = "file must contain a cell, a program or declarations (got an empty file)"
         return ParseResult(None, (_error(codes.EMPTY_FILE, msg, Span.whole(file)),))
-    global _POSTLEX
-    with _LOCK, gc_paused():
-        _BUILDER.begin(file)
-        _POSTLEX = PostLexState()
-        try:
-            module: ast.Module = _DRIVER.parse(file.text, _POSTLEX)
-        except UnexpectedInput as exc:
-            return ParseResult(None, (wrap_syntax_error(exc, file),))
-        except Exception as exc:  # a builder bug must still not reach the user as a traceback
-            span = Span.whole(file)
-            return ParseResult(None, (_error(codes.SYNTAX, f"internal parser error: {exc!r}", span),))
-        problems = tuple(_BUILDER.diagnostics)
+    post = PostLexState()
+    try:
+        module, problems = _parser().parse(file, post)
+    except UnexpectedInput as exc:
+        return ParseResult(None, (wrap_syntax_error(exc, file, post),))
+    except Exception as exc:  # a builder bug must still not reach the user as a traceback
+        span = Span.whole(file)
+        return ParseResult(None, (_error(codes.SYNTAX, f"internal parser error: {exc!r}", span),))
     if not module.body:
         msg = "file must contain a cell, a program or declarations (got only comments)"
         problems += (_error(codes.EMPTY_FILE, msg, Span.whole(file)),)
@@ -184,7 +157,7 @@ _OPERATORS = {"PLUS", "MINUS", "STAR", "SLASH", "DOT"}
 def _word(name: str) -> str:
     if name in _WORDS:
         return _WORDS[name]
-    pattern = _PATTERNS.get(name)
+    pattern = _parser().patterns.get(name)
     if pattern is not None and pattern.type == "str":
         return f"'{pattern.value}'"
     return name.lower()
@@ -192,8 +165,9 @@ def _word(name: str) -> str:
 
 def _keyword_values(expected: set[str]) -> list[str]:
     words = []
+    patterns = _parser().patterns
     for name in expected:
-        pattern = _PATTERNS.get(name)
+        pattern = patterns.get(name)
         if pattern is not None and pattern.type == "str" and pattern.value.isidentifier():
             words.append(pattern.value)
     if "MOVE_KIND" in expected:
@@ -233,14 +207,19 @@ def _shown(tok: Token) -> str:
     return f"'{tok}'"
 
 
-def wrap_syntax_error(exc: UnexpectedInput, file: SourceFile) -> Diagnostic:
-    """The single conversion of a lark error into a Diagnostic with words, not token names."""
+def wrap_syntax_error(exc: UnexpectedInput, file: SourceFile,
+                      post: PostLexState | None = None) -> Diagnostic:
+    """The single conversion of a lark error into a Diagnostic with words, not token names.
+
+    `post`: the post-lexer state of the parse that failed (open braces, last tokens), which
+    sharpens the message; without it the message names only the token and what was expected."""
+    post = PostLexState() if post is None else post
     if isinstance(exc, UnexpectedCharacters):
         return _bad_character(exc, file)
     if isinstance(exc, UnexpectedToken):
-        return _bad_token(exc.token, set(exc.expected), file)
+        return _bad_token(exc.token, set(exc.expected), file, post)
     if isinstance(exc, UnexpectedEOF):
-        return _bad_token(Token("$END", "", len(file.text)), set(exc.expected), file)
+        return _bad_token(Token("$END", "", len(file.text)), set(exc.expected), file, post)
     return _error(codes.SYNTAX, str(exc).splitlines()[0], Span.whole(file))
 
 
@@ -263,17 +242,17 @@ def _eof_span(file: SourceFile) -> Span:
     return Span(file, start, Pos(start.line, start.col + 1, n))
 
 
-def _bad_token(tok: Token, expected: set[str], file: SourceFile) -> Diagnostic:
+def _bad_token(tok: Token, expected: set[str], file: SourceFile, post: PostLexState) -> Diagnostic:
     at_end = tok.type == "$END"
     span = _eof_span(file) if at_end or tok.line is None else token_span(file, tok)
-    if tok.type == "RBRACE" and _POSTLEX.unmatched_close is not None:
-        span = token_span(file, _POSTLEX.unmatched_close)
+    if tok.type == "RBRACE" and post.unmatched_close is not None:
+        span = token_span(file, post.unmatched_close)
         return _error(codes.UNBALANCED_BRACE, "'}' must close an open '{' (got none open)", span)
-    if at_end and _POSTLEX.braces:
-        opening = token_span(file, _POSTLEX.braces[-1])
+    if at_end and post.braces:
+        opening = token_span(file, post.braces[-1])
         msg = "'{' must be closed by '}' (got the end of the file)"
         return _error(codes.UNBALANCED_BRACE, msg, opening, (("the file ends here", span),))
-    history = _history_before(tok)
+    history = _history_before(tok, post)
     if tok.type == "_NL" and history:
         span = _after(file, history[-1])  # point just past the last word, not past a comment
     misspelt = _misspelt(tok, expected, file, history)
@@ -287,9 +266,9 @@ def _after(file: SourceFile, tok: Token) -> Span:
     return Span(file, Pos(tok.end_line, tok.end_column, tok.end_pos), Pos(tok.end_line, tok.end_column + 1, tok.end_pos + 1))
 
 
-def _history_before(tok: Token) -> list[Token]:
+def _history_before(tok: Token, post: PostLexState) -> list[Token]:
     """The tokens the parser took before `tok` (the post-lexer may or may not have seen tok)."""
-    history = list(_POSTLEX.history)
+    history = list(post.history)
     if history and history[-1] is tok:
         history.pop()
     return history

@@ -8,6 +8,7 @@ Exit codes: 0 clean, 1 findings of severity error, 2 usage or input error.
 
 from __future__ import annotations
 
+import gc
 import importlib
 
 import click
@@ -93,6 +94,21 @@ def cli() -> None:
     """
 
 
+# The cyclic collector's schedule for an `rmot` process (see main).
+GC_THRESHOLDS = (100_000, 50, 1000)
+
+
 def main() -> None:
     """The console-script entry point; click maps usage errors to exit code 2."""
+    tune_gc()
     cli(prog_name="rmot")
+
+
+def tune_gc() -> None:
+    """Collect cycles rarely: the command's process is the CLI's, so the CLI owns its collector
+    (the library never touches a caller's). Parsing and lowering allocate hundreds of thousands
+    of small acyclic objects (tokens, AST and IR nodes, spans), and Python's default schedule
+    (a young collection every 700 allocations, the older generations walked again and again as
+    those objects age) took half the front end's time on a 10,000-line file. Every object is
+    still freed by reference counting, and garbage cycles by the next collection."""
+    gc.set_threshold(*GC_THRESHOLDS)

@@ -1,4 +1,4 @@
-"""Time-optimal path parametrisation on a dense grid (forward/backward passes, numba).
+"""Time-optimal path parametrisation on a dense grid (forward/backward passes; numba when large).
 
 A path q(s), s in [0, L], is timed by x(s) = (ds/dt)^2 on a grid s_0 < ... < s_K with a
 constant path acceleration u_i = (x_{i+1} - x_i) / (2 (s_{i+1} - s_i)) on each cell (what
@@ -22,7 +22,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["Rows", "solve", "static_ceiling"]
+from rmot.compiler.jit import Kernel
+
+__all__ = ["CEILING", "CHECK", "PASSES", "Rows", "check", "solve", "static_ceiling"]
 
 _TINY = 1e-12
 
@@ -50,133 +52,120 @@ class Rows:
 def static_ceiling(beta: np.ndarray, gamma: np.ndarray) -> np.ndarray:
     """(K,) the largest x at which some u satisfies every row u + beta_j x in [-gamma_j,
     gamma_j]: for each pair j, k with beta_k > beta_j, x <= (gamma_j + gamma_k) / (beta_k - beta_j)."""
-    global _CEILING
-    if _CEILING is None:
-        _CEILING = _numba_ceiling()
-    return _CEILING(np.ascontiguousarray(beta, dtype=float), np.ascontiguousarray(gamma, dtype=float))
+    beta = np.ascontiguousarray(beta, dtype=float)
+    gamma = np.ascontiguousarray(gamma, dtype=float)
+    out: np.ndarray = CEILING(beta.size * beta.shape[-1], beta, gamma)
+    return out
 
 
-def _numba_ceiling():  # type: ignore[no-untyped-def]
-    import numba
+# The kernels below run as plain Python on small grids and compiled by numba on large ones
+# (compiler/jit.py: one function body either way). Thresholds: the work (grid points x rows,
+# times rows again for the pairwise ceiling) at which the compiled form's one-time cost per
+# process (~0.6 s: importing numba, loading its cache) is about what the interpreter would take.
+_PY_WORK = 250_000
 
-    @numba.njit(cache=True)
-    def ceiling(beta, gamma):  # type: ignore[no-untyped-def]
-        k, m = beta.shape
-        out = np.full(k, np.inf)
-        for i in range(k):
-            best = np.inf
-            for j in range(m):
-                if gamma[i, j] == np.inf:
+
+def _ceiling(beta, gamma):  # type: ignore[no-untyped-def]
+    k, m = len(beta), len(beta[0])
+    out = np.full(k, np.inf)
+    for i in range(k):
+        b_i, g_i = beta[i], gamma[i]  # rows: views in numba, lists in the interpreter
+        best = np.inf
+        for j in range(m):
+            if g_i[j] == np.inf:
+                continue
+            for q in range(m):
+                if g_i[q] == np.inf:
                     continue
-                for q in range(m):
-                    if gamma[i, q] == np.inf:
-                        continue
-                    diff = beta[i, q] - beta[i, j]
-                    if diff > 1e-12:
-                        lim = (gamma[i, j] + gamma[i, q]) / diff
-                        if lim < best:
-                            best = lim
-            out[i] = best
-        return out
-
-    return ceiling
+                diff = b_i[q] - b_i[j]
+                if diff > 1e-12:
+                    lim = (g_i[j] + g_i[q]) / diff
+                    if lim < best:
+                        best = lim
+        out[i] = best
+    return out
 
 
-_CEILING = None
+def _passes(ss, xmax, beta, gamma):  # type: ignore[no-untyped-def]
+    k = len(ss)
+    m = len(beta[0])
+    back = np.empty(k)
+    back[k - 1] = 0.0
+    for i in range(k - 2, -1, -1):
+        d = 2.0 * (ss[i + 1] - ss[i])
+        c = back[i + 1]
+        x = xmax[i]
+        b_i, g_i = beta[i], gamma[i]
+        for j in range(m):
+            g = g_i[j]
+            if g == np.inf:
+                continue
+            coef = 1.0 - d * b_i[j]
+            if coef > 0.0:
+                lim = (c + d * g) / coef
+                if lim < x:
+                    x = lim
+        back[i] = max(x, 0.0)
+    out = np.empty(k)
+    out[0] = 0.0
+    for i in range(k - 1):
+        d = 2.0 * (ss[i + 1] - ss[i])
+        x = out[i]
+        umax = np.inf
+        b_i, g_i = beta[i], gamma[i]
+        for j in range(m):
+            g = g_i[j]
+            if g == np.inf:
+                continue
+            u = g - b_i[j] * x
+            if u < umax:
+                umax = u
+        nxt = back[i + 1] if umax == np.inf else min(back[i + 1], x + d * umax)
+        out[i + 1] = max(nxt, 0.0)
+    return out
 
 
-def _numba():  # type: ignore[no-untyped-def]
-    import numba
-
-    @numba.njit(cache=True)
-    def passes(ss, xmax, beta, gamma):  # type: ignore[no-untyped-def]
-        k = len(ss)
-        m = beta.shape[1]
-        back = np.empty(k)
-        back[k - 1] = 0.0
-        for i in range(k - 2, -1, -1):
-            d = 2.0 * (ss[i + 1] - ss[i])
-            c = back[i + 1]
-            x = xmax[i]
-            for j in range(m):
-                g = gamma[i, j]
-                if g == np.inf:
-                    continue
-                coef = 1.0 - d * beta[i, j]
-                if coef > 0.0:
-                    lim = (c + d * g) / coef
-                    if lim < x:
-                        x = lim
-            back[i] = max(x, 0.0)
-        out = np.empty(k)
-        out[0] = 0.0
-        for i in range(k - 1):
-            d = 2.0 * (ss[i + 1] - ss[i])
-            x = out[i]
-            umax = np.inf
-            for j in range(m):
-                g = gamma[i, j]
-                if g == np.inf:
-                    continue
-                u = g - beta[i, j] * x
-                if u < umax:
-                    umax = u
-            nxt = back[i + 1] if umax == np.inf else min(back[i + 1], x + d * umax)
-            out[i + 1] = max(nxt, 0.0)
-        return out
-
-    return passes
+def _check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
+    k, n = d1.shape[0] - 1, d1.shape[1]
+    r_acc = np.zeros(k)
+    r_vel = np.zeros(k)
+    for i in range(k):
+        u = (x[i + 1] - x[i]) / (2.0 * h[i])
+        worst = 0.0
+        for j in range(n):
+            r = abs(d1[i + 1, j] * u + d2[i + 1, j] * x[i + 1]) / c[j]
+            if r > worst:
+                worst = r
+        vw = 0.0
+        for t in range(len(thetas)):
+            xt = x[i] + thetas[t] * (x[i + 1] - x[i])
+            for j in range(n):
+                r = abs(m1[t, i, j] * u + m2[t, i, j] * xt) / c[j]
+                if r > worst:
+                    worst = r
+            v = vel_in[t, i] * np.sqrt(max(xt, 0.0))
+            if v > vw:
+                vw = v
+        r_acc[i] = worst
+        r_vel[i] = vw
+    return r_acc, r_vel
 
 
-_PASSES = None
+CEILING = Kernel(_ceiling, threshold=2 * _PY_WORK, lists=True)
+PASSES = Kernel(_passes, threshold=2 * _PY_WORK, lists=True)
+CHECK = Kernel(_check, threshold=_PY_WORK)
 
 
 def solve(ss: np.ndarray, xmax: np.ndarray, rows: Rows | tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
     """(K,) x = (ds/dt)^2 at the grid points, rest to rest, time-optimal for the grid.
     rows: the Rows, or their `normalised()` form (computed once for repeated solves)."""
-    global _PASSES
-    if _PASSES is None:
-        _PASSES = _numba()
     beta, gamma, ceiling = rows.normalised() if isinstance(rows, Rows) else rows
     top = np.minimum(xmax, ceiling)
     top = np.where(np.isfinite(top), top, 1e18)
-    return _PASSES(np.ascontiguousarray(ss, dtype=float), np.ascontiguousarray(top),
-                   np.ascontiguousarray(beta), np.ascontiguousarray(gamma))
-
-
-def _numba_check():  # type: ignore[no-untyped-def]
-    import numba
-
-    @numba.njit(cache=True)
-    def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
-        k, n = d1.shape[0] - 1, d1.shape[1]
-        r_acc = np.zeros(k)
-        r_vel = np.zeros(k)
-        for i in range(k):
-            u = (x[i + 1] - x[i]) / (2.0 * h[i])
-            worst = 0.0
-            for j in range(n):
-                r = abs(d1[i + 1, j] * u + d2[i + 1, j] * x[i + 1]) / c[j]
-                if r > worst:
-                    worst = r
-            vw = 0.0
-            for t in range(len(thetas)):
-                xt = x[i] + thetas[t] * (x[i + 1] - x[i])
-                for j in range(n):
-                    r = abs(m1[t, i, j] * u + m2[t, i, j] * xt) / c[j]
-                    if r > worst:
-                        worst = r
-                v = vel_in[t, i] * np.sqrt(max(xt, 0.0))
-                if v > vw:
-                    vw = v
-            r_acc[i] = worst
-            r_vel[i] = vw
-        return r_acc, r_vel
-
-    return check
-
-
-_CHECK = None
+    beta = np.ascontiguousarray(beta)
+    out: np.ndarray = PASSES(beta.size * 2, np.ascontiguousarray(ss, dtype=float),
+                             np.ascontiguousarray(top), beta, np.ascontiguousarray(gamma))
+    return out
 
 
 def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
@@ -184,7 +173,6 @@ def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-d
     `thetas` inside it, the cell's constant path acceleration) and the largest speed ratio
     inside it. m1, m2 (T, K-1, n) the path's derivatives inside the cells, vel_in (T, K-1),
     c (n,) the joint acceleration limits."""
-    global _CHECK
-    if _CHECK is None:
-        _CHECK = _numba_check()
-    return _CHECK(x, h, d1, d2, m1, m2, vel_in, np.asarray(thetas, dtype=float), np.ascontiguousarray(c, dtype=float))
+    thetas = np.asarray(thetas, dtype=float)
+    return CHECK(d1.size * (1 + len(thetas)), x, h, d1, d2, m1, m2, vel_in, thetas,
+                 np.ascontiguousarray(c, dtype=float))

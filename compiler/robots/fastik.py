@@ -1,8 +1,13 @@
-"""Compiled closed-form IK kernels (numba): the same algebra as `opw.opw_ik` and
-`urik.ur_ik`, one pose at a time in a loop, writing controller joint values directly.
+# mypy: disable-error-code="no-untyped-call"
+# (numba kernels: untyped on purpose, numba types them; they call each other by plain name)
+"""Closed-form IK kernels: the same algebra as `opw.opw_ik` and `urik.ur_ik`, one pose at a
+time in a loop, writing controller joint values directly.
 
-The numpy versions stay as the readable reference and are tested against these.
-Kernels compile on first use (cache=True keeps them across processes).
+The numpy versions stay as the readable reference and are tested against these. Each kernel
+is one function body that runs as plain Python for a few poses (no numba import: `rmot robots
+ik` answers in the interpreter's time) and compiled by numba for many, or once a process has
+solved enough poses to pay for it (compiler/jit.py; cache=True keeps the compiled code across
+processes). Both forms agree to the last bit of the transcendental functions (1 ulp).
 """
 
 from __future__ import annotations
@@ -10,8 +15,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from rmot.compiler.jit import Kernel
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
 from rmot.compiler.robots.urik import UrParams
 
@@ -26,10 +31,6 @@ def _acos(x: float) -> float:
     return math.acos(x)
 
 
-_acos_j = njit(cache=True)(_acos)
-
-
-@njit(cache=True)
 def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
     a1, a2, b, c1, c2, c3, c4 = p[0], p[1], p[2], p[3], p[4], p[5], p[6]
     cx, cy, cz = t[0, 3] - c4 * t[0, 2], t[1, 3] - c4 * t[1, 2], t[2, 3] - c4 * t[2, 2]
@@ -41,13 +42,13 @@ def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
     s2_2 = (nx1 + 2 * a1) ** 2 + dz * dz
     kappa_2 = a2 * a2 + c3 * c3
     c2_2 = c2 * c2
-    tmp13 = _acos_j((s1_2 + c2_2 - kappa_2) / (2 * math.sqrt(s1_2) * c2))
+    tmp13 = _acos((s1_2 + c2_2 - kappa_2) / (2 * math.sqrt(s1_2) * c2))
     tmp14 = math.atan2(nx1, dz)
-    tmp15 = _acos_j((s2_2 + c2_2 - kappa_2) / (2 * math.sqrt(s2_2) * c2))
+    tmp15 = _acos((s2_2 + c2_2 - kappa_2) / (2 * math.sqrt(s2_2) * c2))
     tmp16 = math.atan2(nx1 + 2 * a1, dz)
     tmp9 = 2 * c2 * math.sqrt(kappa_2)
-    tmp11 = _acos_j((s1_2 - c2_2 - kappa_2) / tmp9)
-    tmp12 = _acos_j((s2_2 - c2_2 - kappa_2) / tmp9)
+    tmp11 = _acos((s1_2 - c2_2 - kappa_2) / tmp9)
+    tmp12 = _acos((s2_2 - c2_2 - kappa_2) / tmp9)
     psi = math.atan2(a2, c3)
     th1 = (tmp1 - tmp2, tmp1 - tmp2, tmp1 + tmp2 - math.pi, tmp1 + tmp2 - math.pi)
     th2 = (-tmp13 + tmp14, tmp13 + tmp14, -tmp15 - tmp16, tmp15 - tmp16)
@@ -81,7 +82,6 @@ def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
             _store(out[4 * w + i], (th1[i], th2[i], th3[i], t4, t5, t6), sign, offset, cinv)
 
 
-@njit(cache=True)
 def _store(row, theta, sign, offset, cinv):  # type: ignore[no-untyped-def]
     """row = cinv @ ((theta - offset) * sign): OPW angles to controller values (all NaN when
     the branch does not exist)."""
@@ -99,10 +99,16 @@ def _store(row, theta, sign, offset, cinv):  # type: ignore[no-untyped-def]
         row[j] = acc
 
 
-@njit(cache=True)
 def _opw_many(p, sign, offset, cinv, poses, out):  # type: ignore[no-untyped-def]
     for n in range(poses.shape[0]):
         _opw_one(p, sign, offset, cinv, poses[n], out[n])
+
+
+# poses solved in the interpreter before the compiled form is worth its load (~0.6 s once)
+_PY_POSES = 500
+_ACOS = Kernel(_acos)
+_OPW_ONE = Kernel(_opw_one, uses=(_ACOS, Kernel(_store)))
+OPW_MANY = Kernel(_opw_many, uses=(_OPW_ONE,), threshold=_PY_POSES)
 
 
 def opw_kernel_args(p: OpwParams, jmap: OpwJointMap) -> tuple[np.ndarray, ...]:
@@ -116,7 +122,7 @@ def opw_solve(args: tuple[np.ndarray, ...], poses: np.ndarray) -> np.ndarray:
     """poses (N,4,4) -> (N,8,6) controller values (branch rows as in `opw.opw_ik`)."""
     poses = np.ascontiguousarray(poses, dtype=float)
     out = np.empty((len(poses), 8, 6))
-    _opw_many(*args, poses, out)
+    OPW_MANY(len(poses), *args, poses, out)
     return out
 
 
@@ -125,12 +131,10 @@ def opw_batch(p: OpwParams, poses: np.ndarray) -> np.ndarray:
     return opw_solve(opw_kernel_args(p, OpwJointMap()), poses)
 
 
-@njit(cache=True)
 def _wrap(x):  # type: ignore[no-untyped-def]
     return (x + math.pi) % (2 * math.pi) - math.pi
 
 
-@njit(cache=True)
 def _ur_one(p, t, out):  # type: ignore[no-untyped-def]
     """Frame-1 algebra (no 4x4 products): R16 = Rz(q234)·Ry(-q5)·Rz(q6), so the J6 axis in
     frame 1 is (-s5·cos q234, -s5·sin q234, c5), and the frame-4 origin is the flange minus
@@ -139,12 +143,12 @@ def _ur_one(p, t, out):  # type: ignore[no-untyped-def]
     h = math.pi / 2
     px5, py5 = t[0, 3] - d6 * t[0, 2], t[1, 3] - d6 * t[1, 2]
     psi, r = math.atan2(py5, px5), math.sqrt(px5 * px5 + py5 * py5)
-    phi = _acos_j(d4 / r) if r > 0 else math.nan
+    phi = _acos(d4 / r) if r > 0 else math.nan
     for si in range(2):
         q1 = psi + phi + h if si == 0 else psi - phi + h
         s1, c1 = math.sin(q1), math.cos(q1)
         p16x, p16y = c1 * t[0, 3] + s1 * t[1, 3], t[2, 3] - d1
-        a5 = _acos_j((s1 * t[0, 3] - c1 * t[1, 3] - d4) / d6)
+        a5 = _acos((s1 * t[0, 3] - c1 * t[1, 3] - d4) / d6)
         zx, zy = c1 * t[0, 2] + s1 * t[1, 2], t[2, 2]
         xx, xy, xz = c1 * t[0, 0] + s1 * t[1, 0], t[2, 0], s1 * t[0, 0] - c1 * t[1, 0]
         yx, yy, yz = c1 * t[0, 1] + s1 * t[1, 1], t[2, 1], s1 * t[0, 1] - c1 * t[1, 1]
@@ -162,7 +166,7 @@ def _ur_one(p, t, out):  # type: ignore[no-untyped-def]
             q234 = math.atan2(coly, colx)
             ox = p16x - d6 * zx - d5 * math.sin(q234)
             oy = p16y - d6 * zy + d5 * math.cos(q234)
-            a3c = _acos_j((ox * ox + oy * oy - a2 * a2 - a3 * a3) / (2 * a2 * a3))
+            a3c = _acos((ox * ox + oy * oy - a2 * a2 - a3 * a3) / (2 * a2 * a3))
             for ei in range(2):
                 q3 = a3c if ei == 0 else -a3c
                 q2 = math.atan2(oy, ox) - math.atan2(a3 * math.sin(q3), a2 + a3 * math.cos(q3))
@@ -175,16 +179,19 @@ def _ur_one(p, t, out):  # type: ignore[no-untyped-def]
                 out[row, 3], out[row, 4], out[row, 5] = _wrap(q234 - q2 - q3), _wrap(q5), _wrap(q6)
 
 
-@njit(cache=True)
 def _ur_many(p, poses, out):  # type: ignore[no-untyped-def]
     for n in range(poses.shape[0]):
         _ur_one(p, poses[n], out[n])
 
 
+_UR_ONE = Kernel(_ur_one, uses=(_ACOS, Kernel(_wrap)))
+UR_MANY = Kernel(_ur_many, uses=(_UR_ONE,), threshold=_PY_POSES)
+
+
 def ur_solve(p_arr: np.ndarray, poses: np.ndarray) -> np.ndarray:
     poses = np.ascontiguousarray(poses, dtype=float)
     out = np.empty((len(poses), 8, 6))
-    _ur_many(p_arr, poses, out)
+    UR_MANY(len(poses), p_arr, poses, out)
     return out
 
 

@@ -296,9 +296,42 @@ def solve_batch(robot, poses: np.ndarray, seed: np.ndarray | None = None) -> np.
                 out[i, 0] = res.solutions[0]
         return out
     raw = robot.ik_closed_form(poses)
+    if n >= _BATCH_KERNEL_POSES:
+        return _nearest_verified_compiled(robot, poses, raw, seed_q)
     seeds = np.broadcast_to(seed_q.reshape(-1, 1, robot.dof) if seed_q.ndim == 2 else seed_q, raw.shape)
     q = _nearest_in_limits(robot, raw, seeds)
     return _verify_batch(robot, poses, q)
+
+
+# poses per ik_batch call from which the compiled loop (fastbatch) runs instead of numpy
+_BATCH_KERNEL_POSES = 64
+
+
+def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
+        robot, poses: np.ndarray, raw: np.ndarray, seed_q: np.ndarray) -> np.ndarray:
+    """`_nearest_in_limits` + `_verify_batch` in one compiled pass (robots/fastbatch.py)."""
+    from rmot.compiler.robots.fastbatch import NEAREST_VERIFIED
+
+    n, b, dof = raw.shape
+    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (n, dof)), dtype=float)
+    chain = robot._chain
+    coupled = robot._coupling is not None
+    coupling = np.ascontiguousarray(robot._coupling, dtype=float) if coupled else np.eye(dof)
+    limits = np.ascontiguousarray(robot.joint_limits.T)
+    out = np.empty_like(raw)
+    bad = np.zeros((n, b), dtype=np.bool_)
+    NEAREST_VERIFIED.jit()(
+        np.ascontiguousarray(raw), seeds, limits[0], limits[1],
+        np.array(robot._revolute, dtype=np.bool_), chain.placements, chain.axes, chain.prismatic,
+        np.array(robot._flange_in_joint), coupling, coupled, np.ascontiguousarray(poses),
+        POS_TOL / 2, ROT_TOL / 2, out, bad)
+    # Rows the kernel's FK put within half a tolerance of failing (a few per thousand) get the
+    # numpy path's own check, so that its rounding, not the kernel's, decides which to polish.
+    rows = np.argwhere(bad)
+    if len(rows):
+        n_i, b_i = rows[:, 0], rows[:, 1]
+        out[n_i, b_i] = _verify_batch(robot, poses[n_i], out[n_i, b_i][:, None])[:, 0]
+    return out
 
 
 def _nearest_in_limits(robot, raw: np.ndarray, seeds: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]

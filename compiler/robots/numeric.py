@@ -44,7 +44,7 @@ def dls(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_iter:
 
 def dls_fast(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_iter: int = 60) -> tuple[np.ndarray, float]:  # type: ignore[no-untyped-def]
     """The same iteration compiled over the chain arrays (see `fastdls`)."""
-    from rmot.compiler.robots.fastdls import dls_chain
+    from rmot.compiler.robots.fastdls import DLS_CHAIN
 
     args = robot._dls_args
     if args is None:
@@ -52,7 +52,8 @@ def dls_fast(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_
         coupling = np.eye(robot.dof) if robot._coupling is None else np.array(robot._coupling)
         args = (chain.placements, chain.axes, chain.prismatic, np.array(robot._flange_in_joint), coupling)
         robot._dls_args = args
-    q, err = dls_chain(*args, np.asarray(target, dtype=float), np.array(q0, dtype=float), tol, max_iter, _DAMPING2, _MAX_STEP)
+    q, err = DLS_CHAIN(max_iter, *args, np.asarray(target, dtype=float), np.array(q0, dtype=float),
+                       tol, max_iter, _DAMPING2, _MAX_STEP)
     return q, float(err)
 
 

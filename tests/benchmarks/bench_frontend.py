@@ -89,3 +89,43 @@ def test_ir_of_a_small_file_wall_time(benchmark) -> None:  # type: ignore[no-unt
 
     benchmark.pedantic(run, rounds=3, iterations=1)
     print(f"\nrmot ir (small file): median {benchmark.stats.stats.median:.3f} s ({time.perf_counter() - t0:.1f} s total)")
+
+
+def lines_per_second(rounds: int = 5) -> dict[str, float]:
+    """Parse + lower of the 10,000-line program, median CPU time per round, three ways: with
+    Python's default collector schedule (what a library caller gets: rmot leaves it alone),
+    with the schedule the `rmot` command sets (compiler/cli.tune_gc), and parse only."""
+    import gc
+    import statistics
+
+    from rmot.compiler.cli import GC_THRESHOLDS
+
+    text = generated_program()
+    load_text(text, "/bench/big.rmot")
+    lines = text.count("\n")
+    out: dict[str, float] = {}
+    old = gc.get_threshold()
+    try:
+        runs = (("parse + lower, default GC", old, lambda: load_text(text, "/bench/big.rmot")),
+                ("parse + lower, rmot's GC schedule", GC_THRESHOLDS,
+                 lambda: load_text(text, "/bench/big.rmot")),
+                ("parse only, rmot's GC schedule", GC_THRESHOLDS, lambda: parse_text(text, "big.rmot")))
+        for label, thresholds, fn in runs:
+            gc.set_threshold(*thresholds)
+            times = []
+            for _ in range(rounds):
+                t0 = time.process_time()
+                fn()
+                times.append(time.process_time() - t0)
+            out[label] = lines / statistics.median(times)
+    finally:
+        gc.set_threshold(*old)
+    return out
+
+
+if __name__ == "__main__":
+    import os
+
+    for label, rate in lines_per_second().items():
+        print(f"{label:36s} {rate:10,.0f} lines/s (CPU time; target >= 20,000 for parse + lower)")
+    print(f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")

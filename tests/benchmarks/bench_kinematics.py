@@ -177,6 +177,9 @@ def summary() -> dict[str, float]:
     out["closed_form_batched_us_per_pose"] = _median_us(lambda: r.ik_closed_form(many), 50) / len(many)
     out["closed_form_single_us"] = _median_us(lambda: r.ik_closed_form(poses[nxt()]), 5000)
     out["full_ik_single_us"] = _median_us(lambda: r.ik(poses[nxt()]), 1000)
+    r.ik_batch(many, seed=q[0])
+    batch_us = _median_us(lambda: r.ik_batch(many, seed=q[0]), 50)
+    out["ik_batch_limits_seed_us_per_pose"] = batch_us / len(many)
     ur = load_robot("ur5e")
     _, ur_poses = targets(ur)
     ur_many = np.concatenate([ur_poses] * 5)
@@ -206,5 +209,15 @@ def summary() -> dict[str, float]:
 
 
 if __name__ == "__main__":
-    for key, value in summary().items():
+    import os
+
+    results = summary()
+    for key, value in results.items():
         print(f"{key:<34} {value:10.3f}")
+    raw = results["closed_form_batched_us_per_pose"]
+    print(f"Robot.ik: {results['full_ik_single_us']:.1f} us per call (target <= 20), "
+          f"{results['full_ik_single_us'] / results['closed_form_single_us']:.0f}x the raw closed form")
+    batch = results["ik_batch_limits_seed_us_per_pose"]
+    print(f"ik_batch with limits and seed: {batch:.2f} us per pose (target <= 2), "
+          f"{batch / raw:.1f}x the raw closed form")
+    print(f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")

@@ -49,6 +49,7 @@ def test_robots_ik_loads_neither_the_parser_nor_the_planner(env: dict[str, str])
     names = imported(["robots", "ik", "abb_irb120", "300", "0", "400", "180", "0", "0"], env)
     assert "pinocchio" in names  # it did run
     assert not names & {"matplotlib", "toppra", "ruckig", "lark", "cvxpy", "trimesh", "fcl", "PIL"}
+    assert "numba" not in names  # one pose: the closed form runs in the interpreter (compiler/jit.py)
 
 
 @pytest.mark.parametrize("args", [["robots", "list"], ["robots", "fk", "abb_irb120", "0", "0", "0", "0", "30", "0"]])
@@ -66,6 +67,7 @@ def test_check_with_a_cached_plan_loads_no_planner_nor_plotting(env: dict[str, s
     names = imported(["check", str(prog)], env)
     assert "pinocchio" in names  # verification ran
     assert not names & {"matplotlib", "toppra", "ruckig", "cvxpy", "PIL", "imageio"}
+    assert not names & {"numba", "scipy"}  # a small job: FK in numpy, no compiled kernel loaded
 
 
 def test_check_without_cache_loads_no_plotting(env: dict[str, str], tmp_path: Path) -> None:
@@ -74,3 +76,4 @@ def test_check_without_cache_loads_no_plotting(env: dict[str, str], tmp_path: Pa
     names = imported(["check", "--no-cache", str(prog)], env)
     assert "pinocchio" in names
     assert "matplotlib" not in names
+    assert "numba" not in names  # a small grid: TOPP and IK kernels run in the interpreter

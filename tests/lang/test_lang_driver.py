@@ -1,8 +1,10 @@
 """The fused parse loop (lang/_lalr.py) behaves exactly as lark's own LALR loop with RmotLexer.
 
-The reference is a second Lark built from the same grammar, lexer (RmotLexer, its own
-regex), post-lexer and AST builder, run through `Lark.parse`: both must give the same AST,
-spans included, and fail on the same token with the same expected terminals.
+The reference (tests/lang/lang_reference_lexer.py) is a second Lark built by lark from the
+grammar text, with a lark Lexer and post-lexer and its own AST builder, run through
+`Lark.parse`; ours runs on the tables read back from the JSON cache (lang/_tables.py). Both
+must give the same AST, spans included, and fail on the same token with the same expected
+terminals.
 """
 
 from __future__ import annotations
@@ -15,20 +17,15 @@ from typing import Any
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from lark import Lark
+from lang_reference_lexer import reference_parser
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 
 from rmot.lang import _build, parse
-from rmot.lang._gc import gc_paused
 from rmot.lang._lalr import PostLexState
-from rmot.lang.lexer import RmotLexer
 from rmot.lang.source import Pos, SourceFile, Span
 
 ROOT = Path(__file__).resolve().parents[2]
-_REFERENCE_BUILDER = _build.AstBuilder()
-_REFERENCE_POSTLEX = parse._PostLexer()
-_REFERENCE = Lark(parse._GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer=RmotLexer, maybe_placeholders=True,
-                  postlex=_REFERENCE_POSTLEX, transformer=_REFERENCE_BUILDER, cache=False)
+_REFERENCE, _REFERENCE_BUILDER, _REFERENCE_POSTLEX = reference_parser()
 
 
 def _tree(x: Any) -> Any:
@@ -60,9 +57,8 @@ _OURS_POSTLEX = [PostLexState()]
 
 
 def _ours(text: str) -> Any:
-    parse._BUILDER.begin(SourceFile("t.rmot", text))
     _OURS_POSTLEX[0] = PostLexState()
-    return parse._DRIVER.parse(text, _OURS_POSTLEX[0])
+    return parse._parser().parse(SourceFile("t.rmot", text), _OURS_POSTLEX[0])[0]
 
 
 def _lark(text: str) -> Any:
@@ -176,52 +172,42 @@ def test_fast_constructor_falls_back_where_init_matters() -> None:
     assert _build._fast_constructor(Wider, ("a", "b", "c")) is Wider
 
 
-def test_gc_paused_restores_the_collector_state() -> None:
-    """Enabled before -> enabled after (even on error); disabled before -> still disabled after."""
-    assert gc.isenabled()
-    with pytest.raises(ValueError), gc_paused():
-        assert not gc.isenabled()
-        raise ValueError
-    assert gc.isenabled() and gc.get_freeze_count() == 0
-    gc.disable()
-    try:
-        with gc_paused():
-            pass
-        assert not gc.isenabled()
-    finally:
-        gc.enable()
-
-
-def test_gc_paused_leaves_objects_the_program_froze_frozen() -> None:
-    """The tenuring step (freeze + unfreeze) is skipped when something else froze objects."""
-    gc.freeze()
-    try:
-        frozen = gc.get_freeze_count()
-        with gc_paused():
-            kept = [[i] for i in range(1000)]
-        assert gc.get_freeze_count() == frozen and len(kept) == 1000
-    finally:
-        gc.unfreeze()
-
-
-def test_gc_paused_lets_cycles_made_meanwhile_be_collected() -> None:
-    """A garbage cycle made while paused is still found by the next full collection."""
-    import weakref
-
-    class Node:
-        pass
-
-    with gc_paused():
-        a, b = Node(), Node()
-        a.other, b.other = b, a  # type: ignore[attr-defined]
-        probe = weakref.ref(a)
-        del a, b
-    assert probe() is not None  # a cycle: reference counting alone cannot free it
-    gc.collect()
-    assert probe() is None
-
-
 def test_the_parse_keeps_no_tokens_alive() -> None:
-    """Only the last few tokens stay referenced after a parse (for the error messages)."""
-    parse.parse_text("move linear p\n" * 200, "t.rmot")
-    assert len(parse._POSTLEX.history) <= 3
+    """Only the last few tokens stay referenced during a parse (for the error messages)."""
+    post = PostLexState()
+    parse._parser().parse(SourceFile("t.rmot", "move linear p\n" * 200), post)
+    assert len(post.history) <= 3 and post.history[-1].type == "_NL"
+
+
+def test_parse_leaves_the_callers_collector_alone() -> None:
+    """A library caller's GC is its own: parse and front end neither pause nor freeze it (only
+    the command line pauses it, compiler/cli): the collector runs while each of them works."""
+    from rmot.compiler.frontend import load_text
+
+    def collections() -> int:
+        return sum(s["collections"] for s in gc.get_stats())
+
+    frozen = gc.get_freeze_count()
+    before = collections()
+    parse.parse_text("move linear p\n" * 2000, "t.rmot")
+    middle = collections()
+    load_text("program p on r1 {\n" + "  wait 1 ms\n" * 2000 + "}\n", "/t/p.rmot")
+    after = collections()
+    assert gc.isenabled() and gc.get_freeze_count() == frozen
+    assert before < middle < after
+
+
+def test_the_command_line_owns_the_collector_schedule(monkeypatch: pytest.MonkeyPatch) -> None:
+    """`rmot` sets a sparse collection schedule for its own process; the library does not."""
+    import sys
+
+    from rmot.compiler import cli
+
+    old = gc.get_threshold()
+    monkeypatch.setattr(sys, "argv", ["rmot", "--help"])
+    try:
+        with pytest.raises(SystemExit):
+            cli.main()
+        assert gc.get_threshold() == cli.GC_THRESHOLDS != old and gc.isenabled()
+    finally:
+        gc.set_threshold(*old)
