@@ -15,7 +15,7 @@ from collections.abc import Iterator
 
 from rmot.compiler import ir
 
-__all__ = ["LEAVES", "children", "describe_iteration", "iteration_paths", "rebuilt", "walk_with_paths"]
+__all__ = ["LEAVES", "bind_loop_variable", "children", "describe_iteration", "iteration_paths", "rebuilt", "walk_with_paths"]
 
 # instructions that hold no other instruction
 LEAVES: tuple[type, ...] = (ir.Move, ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.Sync, ir.Native,
@@ -73,3 +73,32 @@ def iteration_paths(body: tuple[ir.Instr, ...]) -> dict[int, tuple[Step, ...]]:
 def describe_iteration(path: tuple[Step, ...]) -> str:
     """`layer = 2, row = 1, col = 0` (a `repeat` round is `round 3 of repeat`, counted from 1)."""
     return ", ".join(f"{var} = {value}" if var is not None else f"repeat round {value + 1}" for _, var, value in path)
+
+
+def bind_loop_variable(body: tuple[ir.Instr, ...], name: str, value: int) -> tuple[ir.Instr, ...]:
+    """`body` (one Loop iteration) with the loop variable `name` replaced by the constant `value`
+    in every runtime expression: what a backend writes when it unrolls the iterations."""
+    const = ir.Const(value, ir.ValueType.INT)
+
+    def expr(e: ir.RtExpr) -> ir.RtExpr:
+        if isinstance(e, ir.VarRef):
+            return const if e.name == name else e
+        if isinstance(e, (ir.Arith, ir.Compare)):
+            return dataclasses.replace(e, left=expr(e.left), right=expr(e.right))
+        if isinstance(e, ir.Logic):
+            return dataclasses.replace(e, operands=tuple(expr(x) for x in e.operands))  # type: ignore[misc]
+        if isinstance(e, ir.Not):
+            return ir.Not(expr(e.operand))  # type: ignore[arg-type]
+        return e  # Const, AnalogInput, InputCondition
+
+    def instr(i: ir.Instr) -> ir.Instr:
+        changes: dict[str, object] = {}
+        if isinstance(i, (ir.If, ir.While, ir.WaitCondition)):
+            changes["condition"] = expr(i.condition)
+        elif isinstance(i, ir.VarDecl):
+            changes["init"] = expr(i.init)
+        elif isinstance(i, ir.Assign):
+            changes["value"] = expr(i.value)
+        return rebuilt(i, tuple(tuple(instr(x) for x in sub) for sub in children(i)), **changes)
+
+    return tuple(instr(i) for i in body)

@@ -43,7 +43,7 @@ from rmot.compiler.plan.chain import TimedChain, time_chain
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
 from rmot.compiler.plan.timing import HoldPiece, Piece
-from rmot.compiler.planned import InstructionRecord
+from rmot.compiler.planned import InstructionRecord, path_words
 from rmot.lang.diagnostics import Diagnostic, Severity
 
 __all__ = ["TaskDraft", "VariantDraft", "build_task", "proc_records"]
@@ -52,16 +52,6 @@ _EVENTS = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.Native, ir.VarDecl, ir.Assi
 _BLOCKING = (ir.WaitTime, ir.WaitInput, ir.WaitCondition, ir.Sync, ir.Attach, ir.Detach)
 WHILE_BOUND = 3  # iterations of a while planned at most to reach its fixed point (REFERENCE.md §7)
 _SAME_Q = 1e-6  # rad (m): a while iteration ends where it started when every joint is this close
-# how a variant's path is named in messages (VariantDraft.arm -> words; {line}: the instruction's line)
-PATHS = {
-    "otherwise": "the path through the 'otherwise' arm of the if at line {line}",
-    "timeout": "the path where the wait at line {line} times out",
-    "no iteration": "the path where the while at line {line} runs no iteration",
-}
-
-
-def path_words(arm: str, line: object) -> str:
-    return PATHS.get(arm, "the path through the '" + arm + "' arm of the if at line {line}").format(line=line)
 
 
 @dataclass(eq=False)
