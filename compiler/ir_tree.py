@@ -15,7 +15,7 @@ from collections.abc import Iterator
 
 from rmot.compiler import ir
 
-__all__ = ["LEAVES", "bind_loop_variable", "children", "describe_iteration", "iteration_paths", "rebuilt", "walk_with_paths"]
+__all__ = ["LEAVES", "bind_loop_variable", "children", "unroll_loops", "describe_iteration", "iteration_paths", "rebuilt", "walk_with_paths"]
 
 # instructions that hold no other instruction
 LEAVES: tuple[type, ...] = (ir.Move, ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.Sync, ir.Native,
@@ -83,7 +83,9 @@ def bind_loop_variable(body: tuple[ir.Instr, ...], name: str, value: int) -> tup
     def expr(e: ir.RtExpr) -> ir.RtExpr:
         if isinstance(e, ir.VarRef):
             return const if e.name == name else e
-        if isinstance(e, (ir.Arith, ir.Compare)):
+        if isinstance(e, ir.Arith):
+            return _folded(dataclasses.replace(e, left=expr(e.left), right=expr(e.right)))
+        if isinstance(e, ir.Compare):
             return dataclasses.replace(e, left=expr(e.left), right=expr(e.right))
         if isinstance(e, ir.Logic):
             return dataclasses.replace(e, operands=tuple(expr(x) for x in e.operands))  # type: ignore[misc]
@@ -102,3 +104,27 @@ def bind_loop_variable(body: tuple[ir.Instr, ...], name: str, value: int) -> tup
         return rebuilt(i, tuple(tuple(instr(x) for x in sub) for sub in children(i)), **changes)
 
     return tuple(instr(i) for i in body)
+
+
+def unroll_loops(body: tuple[ir.Instr, ...]) -> tuple[ir.Instr, ...]:
+    """`body` with every Loop replaced by its iterations' instructions one after another (each
+    with the loop variable bound to its value), at every depth: the IR as it was before loops
+    stayed loops, for a consumer that writes no loops. uids and spans are kept."""
+    out: list[ir.Instr] = []
+    for instr in body:
+        if isinstance(instr, ir.Loop):
+            for it in instr.iterations:
+                inner = bind_loop_variable(it.body, instr.var, it.value) if instr.var is not None else it.body
+                out.extend(unroll_loops(inner))
+        else:
+            out.append(rebuilt(instr, tuple(unroll_loops(sub) for sub in children(instr))))
+    return tuple(out)
+
+
+def _folded(e: ir.Arith) -> ir.RtExpr:
+    """`e` computed when both operands are constants (a bound loop variable), else `e`."""
+    if not (isinstance(e.left, ir.Const) and isinstance(e.right, ir.Const)) or (e.op == "/" and e.right.value == 0):
+        return e
+    a, b = float(e.left.value), float(e.right.value)
+    value = {"+": a + b, "-": a - b, "*": a * b, "/": a / b if b else 0.0}[e.op]
+    return ir.Const(int(value) if e.type is ir.ValueType.INT else value, e.type)
