@@ -120,7 +120,7 @@ class Plan:
         raise KeyError(name)
 
 
-# --------------------------------------------------------------------------- variant paths (issue #15)
+# ------------------------------------------------------------------ variant paths (issue #15)
 # How a Variant's path is named in messages: Variant.arm -> words ({line}: its instruction's line).
 PATHS = {
     "otherwise": "the path through the 'otherwise' arm of the if at line {line}",
@@ -130,4 +130,5 @@ PATHS = {
 
 
 def path_words(arm: str, line: object) -> str:
-    return PATHS.get(arm, "the path through the '" + arm + "' arm of the if at line {line}").format(line=line)
+    words = PATHS.get(arm, "the path through the '" + arm + "' arm of the if at line {line}")
+    return words.format(line=line)

@@ -128,7 +128,7 @@ class TestSharedDefaults:
     def test_every_ir_instruction_has_a_method(self, target: str) -> None:
         """Every vendor prints every IR instruction type through a method named in its EMIT table."""
         cls = BACKENDS[target]
-        assert set(cls.EMIT) == set(typing.get_args(ir.Instr))  # every kind of the IR (issue #15 added six)
+        assert set(cls.EMIT) == set(typing.get_args(ir.Instr))  # every IR kind (#15 added six)
         assert all(callable(getattr(cls, method, None)) for method in cls.EMIT.values())
 
     @pytest.mark.parametrize("target", VENDORS)

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
 from rmot.compiler import ir
 from rmot.compiler.frontend import load_text
 from rmot.compiler.ir_tree import bind_loop_variable, iteration_paths
@@ -61,18 +61,34 @@ class TestParse:
         cond = stmt.condition
         assert isinstance(cond, ast.Logic) and cond.op == "or"
         right = cond.operands[1]
-        assert isinstance(right, ast.Logic) and right.op == "and" and isinstance(right.operands[1], ast.NotCond)
+        assert (
+            isinstance(right, ast.Logic)
+            and right.op == "and"
+            and isinstance(right.operands[1], ast.NotCond)
+        )
 
     def test_parentheses_group_conditions_and_arithmetic(self) -> None:
         (a, b) = _stmts("if (in[1] or in[2]) and in[3] { stop }\nif (n + 1) * 2 > 3 { stop }")
-        assert isinstance(a, ast.IfStmt) and isinstance(a.condition, ast.Logic) and a.condition.op == "and"
-        assert isinstance(b, ast.IfStmt) and isinstance(b.condition, ast.Compare) and b.condition.op == ">"
+        assert (
+            isinstance(a, ast.IfStmt)
+            and isinstance(a.condition, ast.Logic)
+            and a.condition.op == "and"
+        )
+        assert (
+            isinstance(b, ast.IfStmt)
+            and isinstance(b.condition, ast.Compare)
+            and b.condition.op == ">"
+        )
         assert isinstance(b.condition.left, ast.BinOp) and b.condition.left.op == "*"
 
     def test_unknown_statement_lists_the_language_words(self) -> None:
         result = parse_text("program p on r1 {\n  loop { }\n}\n")
         (d,) = result.diagnostics
-        assert "unknown statement 'loop'" in d.message and "while" in d.message and "repeat" in d.message
+        assert (
+            "unknown statement 'loop'" in d.message
+            and "while" in d.message
+            and "repeat" in d.message
+        )
 
     def test_var_and_let_never_suggest_via(self) -> None:
         for word in ("let x = 1", "dim x = 1", "var x = 1"):
@@ -89,12 +105,15 @@ class TestParse:
 
 class TestLowering:
     def test_conditions_lower_to_the_ir_by_the_rules(self, tmp_path: Path) -> None:
-        body = _body("""
+        body = _body(
+            """
   if in[1] == on and in[2] == off { stop }
   if ain[1] > 4.5 { stop }
   if in[3] == on { stop }
   if not in[4] { stop }
-""", tmp_path)
+""",
+            tmp_path,
+        )
         conds = [i.condition for i in body if isinstance(i, ir.If)]
         assert conds == [
             ir.Logic("and", (_in(1, True, "gripper_closed"), _in(2, False, "part_present"))),
@@ -104,46 +123,72 @@ class TestLowering:
         ]
 
     def test_arithmetic_types(self, tmp_path: Path) -> None:
-        body = _body("""
+        body = _body(
+            """
   var a: int = 2
   var x: num = 1
   var i1 = a * a
   var n1 = a / a
   var n2 = a + x
   var b = a * 2 >= x
-""", tmp_path)
+""",
+            tmp_path,
+        )
         decls = {i.name: i for i in body if isinstance(i, ir.VarDecl)}
         int_t, num_t, bool_t = ir.ValueType.INT, ir.ValueType.NUM, ir.ValueType.BOOL
-        assert {n: d.type for n, d in decls.items()} == {"a": int_t, "x": num_t, "i1": int_t, "n1": num_t,
-                                                           "n2": num_t, "b": bool_t}
+        assert {n: d.type for n, d in decls.items()} == {
+            "a": int_t,
+            "x": num_t,
+            "i1": int_t,
+            "n1": num_t,
+            "n2": num_t,
+            "b": bool_t,
+        }
         assert decls["x"].init == ir.Const(1, int_t)  # an int value widens into the num var
-        assert decls["n1"].init == ir.Arith("/", ir.VarRef("a", int_t), ir.VarRef("a", int_t), num_t)
+        assert decls["n1"].init == ir.Arith(
+            "/", ir.VarRef("a", int_t), ir.VarRef("a", int_t), num_t
+        )
 
     def test_assignment_and_while_and_stop(self, tmp_path: Path) -> None:
-        body = _body("""
+        body = _body(
+            """
   var count = 0
   while in[2] == on and count < 3 {
     count = count + 1
   }
   stop
-""", tmp_path)
+""",
+            tmp_path,
+        )
         decl, loop, stop = body
         assert isinstance(decl, ir.VarDecl) and isinstance(stop, ir.Stop)
         assert isinstance(loop, ir.While)
         int_t = ir.ValueType.INT
-        assert loop.condition == ir.Logic("and", (
-            _in(2, True, "part_present"),
-            ir.Compare(ir.CompareOp.LT, ir.VarRef("count", int_t), ir.Const(3, int_t))))
-        assert loop.body == (ir.Assign(uid=loop.uid + 1, name="count",
-                                       value=ir.Arith("+", ir.VarRef("count", int_t), ir.Const(1, int_t), int_t)),)
+        assert loop.condition == ir.Logic(
+            "and",
+            (
+                _in(2, True, "part_present"),
+                ir.Compare(ir.CompareOp.LT, ir.VarRef("count", int_t), ir.Const(3, int_t)),
+            ),
+        )
+        assert loop.body == (
+            ir.Assign(
+                uid=loop.uid + 1,
+                name="count",
+                value=ir.Arith("+", ir.VarRef("count", int_t), ir.Const(1, int_t), int_t),
+            ),
+        )
 
     def test_wait_until_timeout_branches(self, tmp_path: Path) -> None:
-        body = _body("""
+        body = _body(
+            """
   var ok = on
   wait until in[1] == on timeout 2 s else { set out[1] = off }
   wait until in[1] == on and ok timeout 3 s else { stop }
   wait until in[2] timeout 1 s
-""", tmp_path)
+""",
+            tmp_path,
+        )
         _, plain, general, bare = body
         assert isinstance(plain, ir.WaitInput) and plain.timeout == 2.0
         assert [type(i) for i in plain.on_timeout] == [ir.SetDigital]
@@ -152,7 +197,8 @@ class TestLowering:
         assert isinstance(bare, ir.WaitInput) and bare.on_timeout == ()
 
     def test_nested_for_is_nested_loops_with_every_iteration(self, tmp_path: Path) -> None:
-        body = _body("""
+        body = _body(
+            """
   move joint home
   for layer in 0 .. 2 {
     for row in 1 .. 4 {
@@ -160,9 +206,15 @@ class TestLowering:
     }
   }
   repeat 2 { wait 1 s }
-""", tmp_path)
+""",
+            tmp_path,
+        )
         _, outer, rep = body
-        assert isinstance(outer, ir.Loop) and (outer.var, outer.first, outer.last) == ("layer", 0, 2)
+        assert isinstance(outer, ir.Loop) and (outer.var, outer.first, outer.last) == (
+            "layer",
+            0,
+            2,
+        )
         assert [it.value for it in outer.iterations] == [0, 1]
         for it in outer.iterations:
             (inner,) = it.body
@@ -173,41 +225,55 @@ class TestLowering:
         paths = iteration_paths(body)
         moves = [i for i in ir.walk(outer.iterations[1].body) if isinstance(i, ir.Move)]
         assert [[(v, x) for _, v, x in paths[m.uid]] for m in moves] == [
-            [("layer", 1), ("row", r)] for r in (1, 2, 3)]
+            [("layer", 1), ("row", r)] for r in (1, 2, 3)
+        ]
 
     def test_loop_variable_in_a_condition_is_the_vendor_counter(self, tmp_path: Path) -> None:
-        body = _body("""
+        body = _body(
+            """
   var n = 0
   for i in 0 .. 2 {
     if n > i { stop }
   }
-""", tmp_path)
+""",
+            tmp_path,
+        )
         loop = body[1]
         assert isinstance(loop, ir.Loop)
         int_t = ir.ValueType.INT
         cond = loop.iterations[1].body[0].condition  # type: ignore[union-attr]
         assert cond == ir.Compare(ir.CompareOp.GT, ir.VarRef("n", int_t), ir.VarRef("i", int_t))
         (bound,) = bind_loop_variable(loop.iterations[1].body, "i", 1)
-        assert bound.condition == ir.Compare(ir.CompareOp.GT, ir.VarRef("n", int_t), ir.Const(1, int_t))  # type: ignore[union-attr]
+        assert bound.condition == ir.Compare(
+            ir.CompareOp.GT, ir.VarRef("n", int_t), ir.Const(1, int_t)
+        )  # type: ignore[union-attr]
 
     def test_unreachable_after_stop_and_empty_timeout_branch_warn(self, tmp_path: Path) -> None:
-        _, diags = _program("""
+        _, diags = _program(
+            """
   stop
   wait 1 s
   wait until in[1] == on timeout 1 s else { }
-""", tmp_path)
+""",
+            tmp_path,
+        )
         assert [c for c, _ in diags] == ["W150", "W151"]
 
     def test_the_unrolled_size_bound_counts_loops_in_all(self, tmp_path: Path) -> None:
         """compiler/passes/limits.py still bounds the total: 2000 x 2000 rounds is E124."""
-        prog, diags = _program("for i in 0 .. 2000 {\n for j in 0 .. 2000 { wait 1 ms }\n}", tmp_path)
+        _, diags = _program(
+            "for i in 0 .. 2000 {\n for j in 0 .. 2000 { wait 1 ms }\n}", tmp_path
+        )
         assert "E124" in [c for c, _ in diags]
 
 
 @settings(max_examples=25, deadline=None)
 @given(st.integers(-5, 5), st.integers(-5, 8))
-def test_for_iterations_are_the_half_open_range(tmp_path_factory, first: int, last: int) -> None:  # type: ignore[no-untyped-def]
-    """Every value first, first+1, ..., last-1 in order (none when last <= first), each its own uids."""
+def test_for_iterations_are_the_half_open_range(
+    tmp_path_factory: pytest.TempPathFactory, first: int, last: int
+) -> None:
+    """Every value first, first+1, ..., last-1 in order (none when last <= first), each with
+    its own uids."""
     body = _body(f"for k in {first} .. {last} {{ wait 1 ms }}", tmp_path_factory.mktemp("r"))
     (loop,) = body
     assert isinstance(loop, ir.Loop)

@@ -13,7 +13,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from rmot.compiler import ir
 from rmot.compiler.frontend import load_program, load_text
 from rmot.compiler.plan import timeline
@@ -46,25 +45,46 @@ def test_palletizer_plans_all_36_placements() -> None:
     plan = plan_program(result.program)
     assert [d for d in plan.diagnostics if d.is_error] == []
     (tp,) = plan.tasks
-    reached = np.array([r.tcp_pose.position for r in tp.records
-                        if r.variant == 0 and r.tcp_pose is not None and r.q_target is not None])
-    expected = [(-0.300 + 0.100 + 0.200 * col, -1.300 + 0.050 + 0.100 * row, 0.400 + 0.100 + 0.100 * layer - 0.400)
-                for layer, row, col in itertools.product(range(3), range(4), range(3))]
+    reached = np.array(
+        [
+            r.tcp_pose.position
+            for r in tp.records
+            if r.variant == 0 and r.tcp_pose is not None and r.q_target is not None
+        ]
+    )
+    expected = [
+        (
+            -0.300 + 0.100 + 0.200 * col,
+            -1.300 + 0.050 + 0.100 * row,
+            0.400 + 0.100 + 0.100 * layer - 0.400,
+        )
+        for layer, row, col in itertools.product(range(3), range(4), range(3))
+    ]
     assert len(expected) == 36
     for slot in expected:
         hits = np.flatnonzero(np.linalg.norm(reached - np.array(slot), axis=1) < 1e-4)
         assert len(hits) == 1, (slot, len(hits))
-    down = [r for r in tp.records if r.variant == 0 and r.tcp_pose is not None and r.q_target is not None
-            and any(np.linalg.norm(np.array(r.tcp_pose.position) - np.array(s)) < 1e-4 for s in expected)]
+    down = [
+        r
+        for r in tp.records
+        if r.variant == 0
+        and r.tcp_pose is not None
+        and r.q_target is not None
+        and any(
+            np.linalg.norm(np.array(r.tcp_pose.position) - np.array(s)) < 1e-4 for s in expected
+        )
+    ]
     for r in down:  # tool pointing straight down: the TCP's z axis along -z of the base
         assert r.tcp_pose.matrix()[:3, 2] == pytest.approx([0.0, 0.0, -1.0], abs=1e-6)
     # the placements come in loop order: layer by layer, row by row, column by column
-    order = [int(np.argmin(np.linalg.norm(np.array(expected) - np.array(r.tcp_pose.position), axis=1))) for r in
-             sorted(down, key=lambda r: r.t_start)]
+    order = [
+        int(np.argmin(np.linalg.norm(np.array(expected) - np.array(r.tcp_pose.position), axis=1)))
+        for r in sorted(down, key=lambda r: r.t_start)
+    ]
     assert order == list(range(36))
 
 
-# --------------------------------------------------------------------------- a collision in one iteration
+# ------------------------------------------------------------ a collision in one iteration
 
 _PEG_CELL = """
 cell peg_cell {
@@ -100,20 +120,25 @@ def test_hidden_collision_in_one_iteration_names_it(tmp_path: Path) -> None:
     peg only where |dx| < 20 + 45 and |dy| < 20 + 35 mm; above the grid (TCP at 900 mm) it
     clears the peg's top. The collision must be found and name exactly that iteration."""
     px, py = 850.0, 150.0
-    prog, plan = _plan_text(_PEG_CELL.replace("PX", f"{px:g}").replace("PY", f"{py:g}"), tmp_path)
+    _, plan = _plan_text(_PEG_CELL.replace("PX", f"{px:g}").replace("PY", f"{py:g}"), tmp_path)
     assert [d for d in plan.diagnostics if d.is_error] == []
-    colliding = [(row, col) for row, col in itertools.product(range(3), range(3))
-                 if abs(850 - 150 + 150 * col - px) < 65 and abs(-150 + 150 * row - py) < 55]
+    colliding = [
+        (row, col)
+        for row, col in itertools.product(range(3), range(3))
+        if abs(850 - 150 + 150 * col - px) < 65 and abs(-150 + 150 * row - py) < 55
+    ]
     assert colliding == [(2, 1)]
     report = verify(plan)
     hits = [d for d in report.diagnostics if d.code.id == "E300"]
     assert hits, [d.message for d in report.diagnostics]
     assert all("peg" in d.message for d in hits)
     row, col = colliding[0]
-    assert all(f"(in iteration row = {row}, col = {col})" in d.message for d in hits), [d.message for d in hits]
+    assert all(f"(in iteration row = {row}, col = {col})" in d.message for d in hits), [
+        d.message for d in hits
+    ]
 
 
-# --------------------------------------------------------------------------- while: the fixed-point rule
+# ------------------------------------------------------------ while: the fixed-point rule
 
 _WHILE = """
 program w on r1 {{
@@ -129,7 +154,11 @@ program w on r1 {{
 
 
 def _moves_of(tp, prog: ir.Program, name: str) -> list:  # type: ignore[no-untyped-def]
-    uids = {i.uid for i in ir.walk(prog.tasks[0].body) if isinstance(i, ir.Move) and i.target.name == name}
+    uids = {
+        i.uid
+        for i in ir.walk(prog.tasks[0].body)
+        if isinstance(i, ir.Move) and i.target.name == name
+    }
     return [r for r in tp.records if r.uid in uids and r.variant == 0]
 
 
@@ -138,17 +167,25 @@ def test_while_returning_to_its_start_is_proved_after_one_iteration(tmp_path: Pa
     assert [d.code.id for d in plan.diagnostics if d.is_error] == []
     (tp,) = plan.tasks
     assert len(_moves_of(tp, prog, "a")) == 1  # one iteration ends where it started: done
-    assert [v.arm for v in tp.variants] == ["no iteration"]  # the code after it, from before the loop
+    assert [v.arm for v in tp.variants] == [
+        "no iteration"
+    ]  # the code after it, from before the loop
 
 
-def test_while_ending_elsewhere_reaches_its_fixed_point_in_the_second_iteration(tmp_path: Path) -> None:
+def test_while_ending_elsewhere_reaches_its_fixed_point_in_the_second_iteration(
+    tmp_path: Path,
+) -> None:
     """Starting at home and ending at `a`: iteration 1 goes home -> a, iteration 2 a -> a (the
     state it started from), so two iterations are planned and the rule holds."""
     prog, plan = _plan_text(_WHILE.format(body="    move joint a"), tmp_path)
     assert [d.code.id for d in plan.diagnostics if d.is_error] == []
     (tp,) = plan.tasks
     moves = _moves_of(tp, prog, "a")
-    assert len(moves) == 2 and moves[0].t_end > moves[0].t_start and moves[1].t_end == pytest.approx(moves[1].t_start)
+    assert (
+        len(moves) == 2
+        and moves[0].t_end > moves[0].t_start
+        and moves[1].t_end == pytest.approx(moves[1].t_start)
+    )
 
 
 def test_while_that_drifts_is_e240(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -159,14 +196,20 @@ def test_while_that_drifts_is_e240(tmp_path: Path, monkeypatch: pytest.MonkeyPat
 
     def relative(robot, move, q_start):  # type: ignore[no-untyped-def]
         if move.target.name == "a":
-            move = dataclasses.replace(move, target=ir.JointTarget(tuple(q_start + np.eye(len(q_start))[0] * 0.05), "a"))
+            move = dataclasses.replace(
+                move, target=ir.JointTarget(tuple(q_start + np.eye(len(q_start))[0] * 0.05), "a")
+            )
         return real(robot, move, q_start)
 
     monkeypatch.setattr(timeline, "build_segment", relative)
     prog, plan = _plan_text(_WHILE.format(body="    move joint a"), tmp_path)
     errors = [d for d in plan.diagnostics if d.is_error]
     assert [d.code.id for d in errors] == ["E240"]
-    assert errors[0].span is not None and errors[0].span.start.line == 6 and "line 6" in errors[0].message
+    assert (
+        errors[0].span is not None
+        and errors[0].span.start.line == 6
+        and "line 6" in errors[0].message
+    )
     (tp,) = plan.tasks
     assert len(_moves_of(tp, prog, "a")) == timeline.WHILE_BOUND
 
@@ -175,7 +218,8 @@ def test_while_that_drifts_is_e240(tmp_path: Path, monkeypatch: pytest.MonkeyPat
 
 
 def test_timeout_path_holds_then_runs_its_branch_and_stop_ends_it(tmp_path: Path) -> None:
-    prog, plan = _plan_text("""
+    prog, plan = _plan_text(
+        """
 program t on r1 {
   target home = joints(0, -10, 10, 0, 90, 0) deg
   target a = joints(30, -10, 10, 0, 90, 0) deg
@@ -187,7 +231,9 @@ program t on r1 {
   }
   move joint a
 }
-""", tmp_path)
+""",
+        tmp_path,
+    )
     assert [d for d in plan.diagnostics if d.is_error] == []
     (tp,) = plan.tasks
     (variant,) = tp.variants
@@ -206,7 +252,8 @@ program t on r1 {
 
 
 def test_if_whose_then_arm_stops_plans_the_other_path(tmp_path: Path) -> None:
-    prog, plan = _plan_text("""
+    prog, plan = _plan_text(
+        """
 program t on r1 {
   target home = joints(0, -10, 10, 0, 90, 0) deg
   target a = joints(30, -10, 10, 0, 90, 0) deg
@@ -215,7 +262,9 @@ program t on r1 {
   if n > 2 { stop }
   move joint a
 }
-""", tmp_path)
+""",
+        tmp_path,
+    )
     (tp,) = plan.tasks
     move_a = prog.tasks[0].body[-1]
     assert move_a.uid not in {r.uid for r in tp.records if r.variant == 0}  # the main path stopped
@@ -233,6 +282,8 @@ def test_machine_tending_example_checks_clean() -> None:
 
 
 def test_a_var_used_in_a_pose_is_refused_before_planning(tmp_path: Path) -> None:
-    result = load_text("program p on r1 {\n  var dz = 1\n  move joint pose(x=400mm, z=dz * 1mm)\n}\n",
-                       str(tmp_path / "p.rmot"))
+    result = load_text(
+        "program p on r1 {\n  var dz = 1\n  move joint pose(x=400mm, z=dz * 1mm)\n}\n",
+        str(tmp_path / "p.rmot"),
+    )
     assert [d.code.id for d in result.diagnostics] == ["E154"]
