@@ -329,7 +329,7 @@ class _Builder:
                 "(e.g. return to a joint target)"
             )
             self._diag(Finding(codes.WHILE_NO_FIXED_POINT, Severity.ERROR, msg), instr.span, self.t)
-        if self.spawn and not self.stopped:
+        if self.spawn:  # the loop may run no iteration (also when its body stops)
             self._variant(instr, (), "no iteration", rest, t0, q0, n_records, state0)
 
     # ------------------------------------------------------------------ chains

@@ -287,3 +287,34 @@ def test_a_var_used_in_a_pose_is_refused_before_planning(tmp_path: Path) -> None
         str(tmp_path / "p.rmot"),
     )
     assert [d.code.id for d in result.diagnostics] == ["E154"]
+
+
+def test_first_move_inside_a_loop_is_the_task_start(tmp_path: Path) -> None:
+    """The start of the task is the first move on the main timeline, also inside a loop: a
+    linear first move there is W224 (an unknown start), at that move."""
+    prog, plan = _plan_text(
+        """
+program s on r1 {
+  target a = pose(x=700mm, y=0mm, z=900mm, rx=180deg)
+  for i in 0 .. 2 {
+    move linear shift(a, y=i * 50mm)
+  }
+}
+""",
+        tmp_path,
+    )
+    w224 = [d for d in plan.diagnostics if d.code.id == "W224"]
+    assert [d.span.start.line for d in w224 if d.span is not None] == [5]
+
+
+def test_while_whose_body_stops_still_plans_the_code_after_it(tmp_path: Path) -> None:
+    prog, plan = _plan_text(
+        _WHILE.format(body="    move joint a\n    stop"),
+        tmp_path,
+    )
+    (tp,) = plan.tasks
+    last = prog.tasks[0].body[-1]
+    assert last.uid not in {r.uid for r in tp.records if r.variant == 0}
+    (variant,) = tp.variants
+    assert variant.arm == "no iteration"
+    assert last.uid in {r.uid for r in tp.records if r.variant == variant.index}
