@@ -292,7 +292,7 @@ def test_a_var_used_in_a_pose_is_refused_before_planning(tmp_path: Path) -> None
 def test_first_move_inside_a_loop_is_the_task_start(tmp_path: Path) -> None:
     """The start of the task is the first move on the main timeline, also inside a loop: a
     linear first move there is W224 (an unknown start), at that move."""
-    prog, plan = _plan_text(
+    _, plan = _plan_text(
         """
 program s on r1 {
   target a = pose(x=700mm, y=0mm, z=900mm, rx=180deg)
