@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from rmot.compiler import ir
 from rmot.compiler.frontend import load_text
@@ -261,9 +261,7 @@ class TestLowering:
 
     def test_the_unrolled_size_bound_counts_loops_in_all(self, tmp_path: Path) -> None:
         """compiler/passes/limits.py still bounds the total: 2000 x 2000 rounds is E124."""
-        _, diags = _program(
-            "for i in 0 .. 2000 {\n for j in 0 .. 2000 { wait 1 ms }\n}", tmp_path
-        )
+        _, diags = _program("for i in 0 .. 2000 {\n for j in 0 .. 2000 { wait 1 ms }\n}", tmp_path)
         assert "E124" in [c for c, _ in diags]
 
 
@@ -280,3 +278,37 @@ def test_for_iterations_are_the_half_open_range(
     assert [it.value for it in loop.iterations] == [v for v in range(-10, 10) if first <= v < last]
     uids = [i.uid for i in ir.walk(body)]
     assert len(set(uids)) == len(uids)
+
+
+_LEAVES = st.sampled_from([("a", False), ("x", True), ("2", False), ("1.5", True)])
+
+
+def _exprs() -> st.SearchStrategy[tuple[str, bool]]:
+    """(text, is num) of random arithmetic over int var a, num var x and literals; the type
+    rule computed here on its own: num when any operand is num or the operator is '/'."""
+
+    def combine(
+        children: st.SearchStrategy[tuple[str, bool]],
+    ) -> st.SearchStrategy[tuple[str, bool]]:
+        ops = st.sampled_from(["+", "-", "*", "/"])
+        return st.tuples(children, ops, children).map(
+            lambda t: (f"({t[0][0]} {t[1]} {t[2][0]})", t[0][1] or t[2][1] or t[1] == "/")
+        )
+
+    return st.recursive(_LEAVES, combine, max_leaves=6)
+
+
+@settings(max_examples=20, deadline=None)
+@given(_exprs())
+def test_arithmetic_type_follows_the_rule(
+    tmp_path_factory: pytest.TempPathFactory, expr: tuple[str, bool]
+) -> None:
+    text, is_num = expr
+    prog, diags = _program(
+        f"var a: int = 1\nvar x: num = 1\nvar r = {text}", tmp_path_factory.mktemp("t")
+    )
+    assume("E162" not in [c for c, _ in diags])  # a constant part folded to 0 under a '/'
+    assert prog is not None and [c for c, _ in diags] == []
+    decl = prog.tasks[0].body[-1]
+    assert isinstance(decl, ir.VarDecl)
+    assert decl.type is (ir.ValueType.NUM if is_num else ir.ValueType.INT)
