@@ -100,6 +100,7 @@ class _Builder:
         self.held: tuple[str, ...] = ()  # state a while's iteration must end in to be proved
         self.paths: dict[int, tuple] = {}  # type: ignore[type-arg]  # uid -> loop iterations
         self.repeat_quiet = False  # a while's later iterations: only findings not already reported
+        self.while_round: str | None = None  # "round 2 of the while at line 9" in later rounds
 
     # ------------------------------------------------------------------ helpers
     def _diag(self, f: Finding, span, time: float | None = None,  # type: ignore[no-untyped-def]
@@ -108,9 +109,12 @@ class _Builder:
         if uid is not None and uid in self.paths:  # inside a for/repeat: name the iteration
             message += f" (in iteration {describe_iteration(self.paths[uid])})"
         if self.note is not None or self.repeat_quiet:  # only what was not already reported
-            seen = ((d.code, d.span, d.message) for d in self.draft.diagnostics)
+            seen = ((d.code, d.span, d.message.split(" (in round ")[0])
+                    for d in self.draft.diagnostics)
             if (f.code, span, message) in seen:
                 return
+        if self.while_round is not None:  # found only in a later round of a while
+            message += f" (in {self.while_round}, from where the round before it ends)"
         notes: tuple = (self.note,) if self.note is not None else ()  # type: ignore[type-arg]
         self.draft.diagnostics.append(
             Diagnostic(f.code, f.severity, message, span, notes, time_s=time, task=self.task))
@@ -299,11 +303,14 @@ class _Builder:
         t0, q0, state0 = self.t, self.q.copy(), (self.tool, self.held)
         n_records = len(self.draft.records)
         self._record(instr, t0, t0)
-        quiet = self.repeat_quiet
+        quiet, outer_round = self.repeat_quiet, self.while_round
+        line = instr.span.start.line if instr.span is not None else "?"
         proved = False
         for k in range(WHILE_BOUND):
             start = self._state()
             self.repeat_quiet = quiet or k > 0
+            later = f"round {k + 1} of the while at line {line}"
+            self.while_round = later if k > 0 else outer_round
             self.walk(instr.body, rest)
             self.flush()
             if self.stopped:
@@ -317,7 +324,7 @@ class _Builder:
             ):
                 proved = True
                 break
-        self.repeat_quiet = quiet
+        self.repeat_quiet, self.while_round = quiet, outer_round
         self.draft.records[n_records] = replace(self.draft.records[n_records], t_end=self.t)
         if not proved:
             line = instr.span.start.line if instr.span is not None else "?"

@@ -117,7 +117,8 @@ def test_pick_place_example(project: Path) -> None:
     assert kinds == ["Move", "Loop", "Move", "If", "Pulse", "Native"]
     loop = body[1]
     assert isinstance(loop, ir.Loop) and [it.value for it in loop.iterations] == [0, 1, 2]
-    assert all([type(i).__name__ for i in it.body] == ["ProcCall", "Move"] for it in loop.iterations)
+    kinds_per_iteration = [[type(i).__name__ for i in it.body] for it in loop.iterations]
+    assert kinds_per_iteration == [["ProcCall", "Move"]] * 3
     circular = body[2]
     assert isinstance(circular, ir.Move) and circular.kind is ir.MotionKind.CIRCULAR and circular.via is not None
 

@@ -318,3 +318,25 @@ def test_while_whose_body_stops_still_plans_the_code_after_it(tmp_path: Path) ->
     (variant,) = tp.variants
     assert variant.arm == "no iteration"
     assert last.uid in {r.uid for r in tp.records if r.variant == variant.index}
+
+
+def test_a_finding_only_in_a_later_while_round_names_the_round(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The body's move turns joint 1 by 2 rad further from wherever it starts (a relative move,
+    as in the drift test): round 1 ends at 2 rad (115 deg), inside the IRB 1600's +-180 deg;
+    round 2 would end at 4 rad (229 deg), beyond it. That finding exists only in round 2, and
+    says so."""
+    real = timeline.build_segment
+
+    def relative(robot, move, q_start):  # type: ignore[no-untyped-def]
+        if move.target.name == "a":
+            q = tuple(q_start + np.eye(len(q_start))[0] * 2.0)
+            move = dataclasses.replace(move, target=ir.JointTarget(q, "a"))
+        return real(robot, move, q_start)
+
+    monkeypatch.setattr(timeline, "build_segment", relative)
+    _, plan = _plan_text(_WHILE.format(body="    move joint a"), tmp_path)
+    later = [d for d in plan.diagnostics if "(in round 2 of the while at line 6" in d.message]
+    assert later and all(d.span is not None and d.span.start.line == 7 for d in later)
+    assert not [d for d in plan.diagnostics if "round 1" in d.message]
