@@ -34,7 +34,7 @@ TOKEN = re.compile(r"""
       | (?P<unit>""" + COMPOUND_UNIT + r""")
       | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
       | (?P<string>"(?:[^"\\\n]|\\.)*")
-      | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
+      | (?P<punct>\.\.|==|!=|<=|>=|[-+*/%().,:=\[\]{}<>])
     )
 """, re.X)
 BLANKS = re.compile(r"[ \t\f\r]*+(?:\#[^\n]*+)?+")
@@ -47,7 +47,8 @@ class TokenKinds:
 
     def __init__(self, terminals: Any) -> None:
         self.keywords: dict[str, str] = {}
-        self.punct: dict[str, str] = {"==": "COMPARE", "!=": "COMPARE", "%": "UNIT"}
+        self.punct: dict[str, str] = {"==": "COMPARE", "!=": "COMPARE", "%": "UNIT", "<": "COMPARE",
+                                      "<=": "COMPARE", ">": "COMPARE", ">=": "COMPARE"}
         for t in terminals:
             if t.pattern.type != "str":
                 continue

@@ -46,3 +46,10 @@ TURN_NOT_REACHED = Code(
     "E174", "turn-not-reached",
     "a target has no solution on its fixed turn, or a linear or circular path ends on another")
 __all__ += ["TURN_RANGE_TOO_SMALL", "TURN_OUTSIDE_LIMITS", "TURN_NOT_REACHED"]
+# runtime logic (issue #15)
+WHILE_NO_FIXED_POINT = Code(
+    "E240",
+    "while-no-fixed-point",
+    "a while loop whose iterations do not come back to the state they started from",
+)
+__all__ += ["WHILE_NO_FIXED_POINT"]
