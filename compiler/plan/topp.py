@@ -6,7 +6,11 @@ constant path acceleration u_i = (x_{i+1} - x_i) / (2 (s_{i+1} - s_i)) on each c
 
 * a velocity ceiling x_i <= xmax_i (joint speed: (v_j / |q'_j|)^2; TCP speed: (v / |p'|)^2);
 * an acceleration row |a u + b x| <= c, linear in (u, x): a joint's acceleration
-  q'_j u + q''_j x, the TCP's path acceleration l' u + l'' x (l = TCP arc length).
+  q'_j u + q''_j x, the TCP's path acceleration l' u + l'' x (l = TCP arc length);
+* a one-sided pair lo <= a u + b x <= hi (`Rows.lower`): a joint torque a_j u + b_j x + g_j
+  within +-tau_max, i.e. lo = -tau_max - g_j, hi = tau_max - g_j (gravity g makes it lopsided).
+In the solver's form every row is u + beta x in [lo, hi]; a symmetric row has lo = -hi, and
+is computed exactly as before one-sided rows existed (the same floating-point operations).
 
 Rows are held at the start of each cell (collocation, as toppra does). The passes are the
 classical ones: backward, the largest x_i from which the robot can still brake to the
@@ -22,58 +26,82 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["Rows", "solve", "static_ceiling"]
+__all__ = ["Rows", "check_torque", "solve", "static_ceiling"]
 
 _TINY = 1e-12
 
 
 class Rows:
-    """Acceleration rows |a u + b x| <= c at K grid points, m rows each: arrays (K, m)."""
+    """Acceleration rows at K grid points, m rows each: arrays (K, m). Symmetric rows
+    |a u + b x| <= c, or, with `lower`, lower <= a u + b x <= c (c is then the upper bound)."""
 
-    def __init__(self, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> None:
-        self.a, self.b, self.c = a, b, c
+    def __init__(self, a: np.ndarray, b: np.ndarray, c: np.ndarray, lower: np.ndarray | None = None) -> None:
+        self.a, self.b, self.c, self.lower = a, b, c, lower
 
-    def normalised(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(beta, gamma, ceiling): row j as u + beta_j x in [-gamma_j, gamma_j] (gamma = inf for
+    def normalised(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(beta, lo, hi, ceiling): row j as u + beta_j x in [lo_j, hi_j] (lo = -inf, hi = inf for
         rows without a u term), and the ceiling on x those rows alone impose (K,)."""
+        beta, lo, hi, pure = self.parts()
+        ceiling = np.minimum(static_ceiling(beta, lo, hi), np.min(pure, axis=1, initial=np.inf))
+        return beta, lo, hi, ceiling
+
+    def parts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(beta, lo, hi, pure): the solver's form and, per row, the ceiling on x of a row with no
+        u term (inf for the others); the static ceiling over pairs of rows is not included."""
         a, b, c = self.a, self.b, self.c
         has_u = np.abs(a) > _TINY
         safe = np.where(has_u, a, 1.0)
         beta = np.where(has_u, b / safe, 0.0)
-        gamma = np.where(has_u, c / np.abs(safe), np.inf)
-        # rows with no u term: |b| x <= c
-        pure = np.where(has_u, np.inf, c / np.maximum(np.abs(b), _TINY))
-        ceiling = np.minimum(static_ceiling(beta, gamma), np.min(pure, axis=1, initial=np.inf))
-        return beta, gamma, ceiling
+        if self.lower is None:
+            gamma = np.where(has_u, c / np.abs(safe), np.inf)
+            # rows with no u term: |b| x <= c
+            pure = np.where(has_u, np.inf, c / np.maximum(np.abs(b), _TINY))
+            return beta, -gamma, gamma, pure
+        lower = self.lower
+        up, down = c / safe, lower / safe  # divided by a < 0 the bounds swap
+        lo = np.where(has_u, np.where(a > 0, down, up), -np.inf)
+        hi = np.where(has_u, np.where(a > 0, up, down), np.inf)
+        # rows with no u term: lower <= b x <= c (a speed floor, lower > 0 with b > 0, is not
+        # representable and is left out; lower > 0 with b ~ 0 cannot hold at all: ceiling 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            bound = np.where(b > _TINY, c / np.where(b > _TINY, b, 1.0),
+                             np.where(b < -_TINY, lower / np.where(b < -_TINY, b, -1.0),
+                                      np.where((lower <= 0) & (c >= 0), np.inf, 0.0)))
+        pure = np.where(has_u, np.inf, np.maximum(bound, 0.0))
+        return beta, lo, hi, pure
 
 
-def static_ceiling(beta: np.ndarray, gamma: np.ndarray) -> np.ndarray:
-    """(K,) the largest x at which some u satisfies every row u + beta_j x in [-gamma_j,
-    gamma_j]: for each pair j, k with beta_k > beta_j, x <= (gamma_j + gamma_k) / (beta_k - beta_j)."""
+def static_ceiling(beta: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """(K,) the largest x at which some u satisfies every row u + beta_j x in [lo_j, hi_j]:
+    for each pair j, k with beta_k > beta_j, x <= (hi_k - lo_j) / (beta_k - beta_j); 0 where a
+    row's own interval is empty (lo_j > hi_j: gravity alone exceeds a torque limit)."""
     global _CEILING
     if _CEILING is None:
         _CEILING = _numba_ceiling()
-    return _CEILING(np.ascontiguousarray(beta, dtype=float), np.ascontiguousarray(gamma, dtype=float))
+    return _CEILING(np.ascontiguousarray(beta, dtype=float), np.ascontiguousarray(lo, dtype=float),
+                    np.ascontiguousarray(hi, dtype=float))
 
 
 def _numba_ceiling():  # type: ignore[no-untyped-def]
     import numba
 
     @numba.njit(cache=True)
-    def ceiling(beta, gamma):  # type: ignore[no-untyped-def]
+    def ceiling(beta, lo, hi):  # type: ignore[no-untyped-def]
         k, m = beta.shape
         out = np.full(k, np.inf)
         for i in range(k):
             best = np.inf
             for j in range(m):
-                if gamma[i, j] == np.inf:
+                if hi[i, j] == np.inf:
                     continue
+                if lo[i, j] > hi[i, j]:
+                    best = 0.0
                 for q in range(m):
-                    if gamma[i, q] == np.inf:
+                    if hi[i, q] == np.inf:
                         continue
                     diff = beta[i, q] - beta[i, j]
                     if diff > 1e-12:
-                        lim = (gamma[i, j] + gamma[i, q]) / diff
+                        lim = (hi[i, q] - lo[i, j]) / diff
                         if lim < best:
                             best = lim
             out[i] = best
@@ -89,7 +117,7 @@ def _numba():  # type: ignore[no-untyped-def]
     import numba
 
     @numba.njit(cache=True)
-    def passes(ss, xmax, beta, gamma):  # type: ignore[no-untyped-def]
+    def passes(ss, xmax, beta, lo, hi):  # type: ignore[no-untyped-def]
         k = len(ss)
         m = beta.shape[1]
         back = np.empty(k)
@@ -99,12 +127,11 @@ def _numba():  # type: ignore[no-untyped-def]
             c = back[i + 1]
             x = xmax[i]
             for j in range(m):
-                g = gamma[i, j]
-                if g == np.inf:
+                if hi[i, j] == np.inf:
                     continue
                 coef = 1.0 - d * beta[i, j]
                 if coef > 0.0:
-                    lim = (c + d * g) / coef
+                    lim = (c - d * lo[i, j]) / coef
                     if lim < x:
                         x = lim
             back[i] = max(x, 0.0)
@@ -115,7 +142,7 @@ def _numba():  # type: ignore[no-untyped-def]
             x = out[i]
             umax = np.inf
             for j in range(m):
-                g = gamma[i, j]
+                g = hi[i, j]
                 if g == np.inf:
                     continue
                 u = g - beta[i, j] * x
@@ -131,17 +158,18 @@ def _numba():  # type: ignore[no-untyped-def]
 _PASSES = None
 
 
-def solve(ss: np.ndarray, xmax: np.ndarray, rows: Rows | tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
+def solve(ss: np.ndarray, xmax: np.ndarray,
+          rows: Rows | tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
     """(K,) x = (ds/dt)^2 at the grid points, rest to rest, time-optimal for the grid.
     rows: the Rows, or their `normalised()` form (computed once for repeated solves)."""
     global _PASSES
     if _PASSES is None:
         _PASSES = _numba()
-    beta, gamma, ceiling = rows.normalised() if isinstance(rows, Rows) else rows
+    beta, lo, hi, ceiling = rows.normalised() if isinstance(rows, Rows) else rows
     top = np.minimum(xmax, ceiling)
     top = np.where(np.isfinite(top), top, 1e18)
     return _PASSES(np.ascontiguousarray(ss, dtype=float), np.ascontiguousarray(top),
-                   np.ascontiguousarray(beta), np.ascontiguousarray(gamma))
+                   np.ascontiguousarray(beta), np.ascontiguousarray(lo), np.ascontiguousarray(hi))
 
 
 def _numba_check():  # type: ignore[no-untyped-def]
@@ -188,3 +216,49 @@ def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-d
     if _CHECK is None:
         _CHECK = _numba_check()
     return _CHECK(x, h, d1, d2, m1, m2, vel_in, np.asarray(thetas, dtype=float), np.ascontiguousarray(c, dtype=float))
+
+
+def _numba_check_torque():  # type: ignore[no-untyped-def]
+    import numba
+
+    @numba.njit(cache=True)
+    def check(x, h, ta, tb, tc, thetas, limit):  # type: ignore[no-untyped-def]
+        k, n = len(h), ta.shape[2]
+        out = np.zeros(k)
+        for i in range(k):
+            u = (x[i + 1] - x[i]) / (2.0 * h[i])
+            worst = 0.0
+            for t in range(len(thetas)):
+                xt = x[i] + thetas[t] * (x[i + 1] - x[i])
+                for j in range(n):
+                    dyn = ta[t, i, j] * u + tb[t, i, j] * xt
+                    tau = dyn + tc[t, i, j]
+                    if abs(tau) <= limit[j]:
+                        w = abs(tau) / limit[j]
+                    else:
+                        room = (limit[j] if tau > 0 else -limit[j]) - tc[t, i, j]
+                        w = dyn / room if dyn * room > 0.0 else np.inf
+                    if w > worst:
+                        worst = w
+            out[i] = worst
+        return out
+
+    return check
+
+
+_CHECK_TORQUE = None
+
+
+def check_torque(x: np.ndarray, h: np.ndarray, ta: np.ndarray, tb: np.ndarray, tc: np.ndarray,
+                 thetas: tuple[float, ...], limit: np.ndarray) -> np.ndarray:
+    """Per cell (K-1,): the joint torques a u + b x + c (ta, tb, tc: (T, K-1, n) at the fractions
+    `thetas` of each cell, u the cell's constant path acceleration) against `limit` (n,): where
+    every |tau| is within its limit, the largest |tau| / limit (<= 1); where one is not, the
+    factor w > 1 that u and x must shrink by (a local time stretch by sqrt(w)) for it to hold
+    (inf where gravity alone exceeds the limit)."""
+    global _CHECK_TORQUE
+    if _CHECK_TORQUE is None:
+        _CHECK_TORQUE = _numba_check_torque()
+    return _CHECK_TORQUE(np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(h, dtype=float),
+                         np.ascontiguousarray(ta), np.ascontiguousarray(tb), np.ascontiguousarray(tc),
+                         np.asarray(thetas, dtype=float), np.ascontiguousarray(limit, dtype=float))
