@@ -25,7 +25,7 @@ from lark import Token
 from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
 
-from rmot.lang.units import BASE_UNITS, COMPOUND_UNIT
+from rmot.lang.units import BASE_UNITS, COMPOUND_CUT, COMPOUND_UNIT
 
 __all__ = ["BLANKS", "CONTINUES", "TOKEN", "RmotLexer", "TokenKinds"]
 
@@ -130,7 +130,7 @@ class RmotLexer(Lexer):
                 if "UNIT" in accepts:
                     ttype = "UNIT"
                 else:  # `m/s` where no unit fits: just the word `m`, then `/` and `s`
-                    value = value[: value.index("/")]
+                    value = value[: COMPOUND_CUT.search(value).start()]  # type: ignore[union-attr]
                     end = pos + len(value)
                     ttype = self._word_type(value, accepts)
             else:
