@@ -151,3 +151,15 @@ def test_rating_slows_the_swing_and_the_report_says_the_motor_suffices(tmp_path:
     joints = json.loads(js.output)["programs"][0]["tasks"][0]["dynamics"]["joints"]
     assert [j["suffices"] for j in joints] == [True, True]
     assert joints[1]["rms_utilisation"] == pytest.approx(np.sqrt((tau[:, 1] ** 2).mean()) / 50.0, abs=1e-5)
+
+
+def test_plan_cache_key_follows_ratings_masses_and_payload(tmp_path: Path) -> None:
+    """A rating, a link mass or a tool mass changes the plan, so each changes the cache key."""
+    from rmot.compiler.frontend import load_program
+    from rmot.compiler.plan_cache import plan_key
+
+    keys = set()
+    for j2 in (f"mass {MASS2:g} kg torque 50 N*m", f"mass {MASS2:g} kg torque 51 N*m", "mass 7 kg torque 50 N*m"):
+        result = load_program(_write(tmp_path, j2))
+        keys.add(plan_key(result.program, 0.004))  # type: ignore[arg-type]
+    assert len(keys) == 3
