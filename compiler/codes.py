@@ -71,11 +71,3 @@ PHYSICAL_RANGE = Code("E125", "outside-accepted-range", "a time, speed, zone, si
 OUTPUT_FAILED = Code("E520", "output-failed", "an output file or directory cannot be written")
 UNREADABLE = Code("E521", "unreadable", "a file or folder exists but cannot be read")
 OUTPUT_NAME_CLASH = Code("E522", "output-name-clash", "two output files get the same name on a controller")
-
-# motor ratings and link masses of a cell `model` (issue #16)
-MODEL_MASS_INCOMPLETE = Code("E809", "model-mass-incomplete",
-                             "a model gives link masses on some joint lines but not on all of them")
-MODEL_TORQUE_UNCHECKED = Code("W801", "model-torque-unchecked",
-                              "a model gives torque ratings but no link masses: torques cannot be computed, "
-                              "the ratings are neither checked nor slow the timing")
-__all__ += ["MODEL_MASS_INCOMPLETE", "MODEL_TORQUE_UNCHECKED"]
