@@ -5,7 +5,9 @@ Along a path q(s) timed by x = ds/dt^2 and u = d2s/dt2 the joint torques are aff
 
     tau(s) = a(s) u + b(s) x + c(s),   a = M(q) q',   b = M(q) q'' + C(q, q') q',   c = g(q),
 
-computed by inverse dynamics (pinocchio's RNEA) at each grid point: c = RNEA(q, 0, 0),
+computed by inverse dynamics (the recursive Newton-Euler algorithm on the pinocchio model,
+vectorised over the points: compiler/plan/rnea.py, checked against pinocchio.rnea) at each
+grid point: c = RNEA(q, 0, 0),
 a = RNEA(q, 0, q') - c, b = RNEA(q, q', q'') - c. |tau_j| <= tau_max_j is then one more pair
 of acceleration rows of the time-optimal parametrisation (compiler/plan/topp.py, one-sided:
 gravity makes the interval lopsided) and is re-checked inside every grid cell like the
@@ -60,30 +62,27 @@ class TorqueLimits:
 
     def rows(self, q: np.ndarray, d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(a, b, c) each (N, dof) at path points q (N, dof) with derivatives q', q'' in s."""
-        import pinocchio as pin
-
-        model, data = self.model, self.model.createData()
         qm, v1, v2 = (np.asarray(self.to_model(np.asarray(v, dtype=float)), dtype=float) for v in (q, d1, d2))
-        n, dof = qm.shape[0], self.dof
-        a, b, c = np.empty((n, dof)), np.empty((n, dof)), np.empty((n, dof))
-        zero = np.zeros(model.nv)
-        for k in range(n):
-            g = pin.rnea(model, data, qm[k], zero, zero)[:dof]
-            c[k] = g
-            a[k] = pin.rnea(model, data, qm[k], zero, v1[k])[:dof] - g
-            b[k] = pin.rnea(model, data, qm[k], v1[k], v2[k])[:dof] - g
-        return a, b, c
+        dyn, dof = self.dynamics, self.dof
+        zero = np.zeros_like(qm)
+        c = dyn.rnea(qm, zero, zero)[:, :dof]
+        return dyn.rnea(qm, zero, v1)[:, :dof] - c, dyn.rnea(qm, v1, v2)[:, :dof] - c, c
 
     def torques(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
         """(N, dof) joint torques along sampled motion (controller values)."""
-        import pinocchio as pin
-
-        model, data = self.model, self.model.createData()
         qm, vm, am = (np.asarray(self.to_model(np.asarray(v, dtype=float)), dtype=float) for v in (q, qd, qdd))
-        out = np.empty((qm.shape[0], self.dof))
-        for k in range(qm.shape[0]):
-            out[k] = pin.rnea(model, data, qm[k], vm[k], am[k])[: self.dof]
-        return out
+        return self.dynamics.rnea(qm, vm, am)[:, : self.dof]  # type: ignore[no-any-return]
+
+    @property
+    def dynamics(self) -> Any:
+        """The vectorised RNEA of the payload model (compiler/plan/rnea.py), built on first use."""
+        found = self.__dict__.get("_dynamics")
+        if found is None:
+            from rmot.compiler.plan.rnea import Dynamics
+
+            found = Dynamics(self.model)
+            object.__setattr__(self, "_dynamics", found)
+        return found
 
 
 def task_payload(task: ir.Task, parts: tuple[ir.Part, ...]) -> tuple[float, np.ndarray | None]:
