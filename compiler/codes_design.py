@@ -8,8 +8,14 @@ from rmot.lang.diagnostics import Code
 
 __all__ = ["MODEL_MASS_INCOMPLETE", "MODEL_TORQUE_UNCHECKED"]
 
-MODEL_MASS_INCOMPLETE = Code("E809", "model-mass-incomplete",
-                             "a model gives link masses on some joint lines but not on all of them")
-MODEL_TORQUE_UNCHECKED = Code("W801", "model-torque-unchecked",
-                              "a model gives torque ratings but no link masses: torques cannot be computed, "
-                              "the ratings are neither checked nor slow the timing")
+MODEL_MASS_INCOMPLETE = Code(
+    "E809",
+    "model-mass-incomplete",
+    "a model gives link masses on some joint lines but not on all of them",
+)
+MODEL_TORQUE_UNCHECKED = Code(
+    "W801",
+    "model-torque-unchecked",
+    "a model gives torque ratings but no link masses: torques cannot be computed, "
+    "the ratings are neither checked nor slow the timing",
+)

@@ -10,6 +10,7 @@ end imports this module.
 from __future__ import annotations
 
 import json
+from typing import Any
 from dataclasses import dataclass
 
 __all__ = ["MAX_JOINTS", "MODEL_PREFIX", "ModelJointSpec", "ModelSolid", "ModelSpec", "model_key", "model_name", "spec_from_key"]
@@ -62,11 +63,23 @@ def model_key(spec: ModelSpec) -> str:
     """The load key: "model:" + canonical JSON (sorted keys, repr floats)."""
     data = {
         "name": spec.name, "modified": spec.modified, "flange": list(spec.flange), "payload_kg": spec.payload_kg,
-        "joints": [[j.kind, j.a, j.alpha, j.d, j.theta, j.lo, j.hi, j.speed, j.accel]
-                   + ([j.mass, j.torque] if j.mass is not None or j.torque is not None else []) for j in spec.joints],
+        "joints": [_joint_row(j) for j in spec.joints],
         "solids": [[g.joint, g.kind, list(g.numbers), list(g.pose), g.path] for g in spec.solids],
     }
     return MODEL_PREFIX + json.dumps(data, sort_keys=True, separators=(",", ":"))
+
+
+def _joint_row(j: ModelJointSpec) -> list[object]:
+    """A joint's numbers in the key; mass and torque (issue #16) only when given, so that the
+    key of a model without them is written as before."""
+    row: list[object] = [j.kind, j.a, j.alpha, j.d, j.theta, j.lo, j.hi, j.speed, j.accel]
+    if j.mass is not None or j.torque is not None:
+        row += [j.mass, j.torque]
+    return row
+
+
+def _numbers(values: list[object]) -> list[Any]:
+    return [None if x is None else float(x) for x in values]  # type: ignore[arg-type]
 
 
 def spec_from_key(key: str) -> ModelSpec:
@@ -74,8 +87,7 @@ def spec_from_key(key: str) -> ModelSpec:
     if not key.startswith(MODEL_PREFIX):
         raise ValueError(f"not a model key: {key[:40]!r}")
     data = json.loads(key[len(MODEL_PREFIX):])
-    joints = tuple(ModelJointSpec(str(k), *(None if x is None else float(x) for x in rest))  # type: ignore[arg-type]
-                   for k, *rest in data["joints"])
+    joints = tuple(ModelJointSpec(str(k), *_numbers(rest)) for k, *rest in data["joints"])
     payload = data["payload_kg"]
     solids = tuple(ModelSolid(int(j), str(k), tuple(float(x) for x in n), tuple(float(x) for x in p), str(path))
                    for j, k, n, p, path in data.get("solids", ()))

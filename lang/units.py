@@ -17,13 +17,14 @@ from rmot.lang import codes
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Span
 
-__all__ = ["BASE_UNITS", "COMPOUND_CUT", "COMPOUND_UNIT", "UNIT_TABLE", "UNIT_NAMES", "unknown_unit"]
+__all__ = ["BASE_UNITS", "COMPOUND_CUT", "COMPOUND_UNIT", "UNIT_TABLE", "UNIT_NAMES",
+           "unknown_unit"]
 
 _DEG = math.pi / 180
 _L, _A, _T, _M, _P = (1, 0, 0, 0, 0), (0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0), (0, 0, 0, 0, 1)
 _SPEED, _ANG_SPEED = (1, 0, -1, 0, 0), (0, 1, -1, 0, 0)
 _ACCEL, _ANG_ACCEL = (1, 0, -2, 0, 0), (0, 1, -2, 0, 0)
-_FORCE, _TORQUE = (1, 0, -2, 1, 0), (2, 0, -2, 1, 0)  # N and N·m (a model joint's rating, issue #16)
+_FORCE, _TORQUE = (1, 0, -2, 1, 0), (2, 0, -2, 1, 0)  # N, N·m: a model joint's rating (#16)
 
 UNIT_TABLE: dict[str, tuple[float, tuple[int, int, int, int, int]]] = {
     "mm": (1e-3, _L), "cm": (1e-2, _L), "m": (1.0, _L), "in": (0.0254, _L),
@@ -42,7 +43,8 @@ BASE_UNITS: tuple[str, ...] = tuple(sorted((u for u in UNIT_TABLE if u.isidentif
 _BASES = "|".join(BASE_UNITS)
 # the lexer's shape of a compound unit; whether it is a known one is the builder's question
 COMPOUND_UNIT = rf"(?:(?:{_BASES})/s(?:\^2)?|N\*m)(?![A-Za-z0-9_])"
-# where no unit fits, a compound unit token is cut back to its first word (`m/s` -> `m`, `N*m` -> `N`)
+# where no unit fits, a compound unit token is cut back to its first word (`m/s` -> `m`,
+# `N*m` -> `N`)
 COMPOUND_CUT = re.compile(r"[/*]")
 
 

@@ -169,7 +169,8 @@ def _known_arms(keys: tuple[str, ...]) -> None:
             load_robot(key)
         except RobotError as exc:
             if exc.code is None or exc.code == UNKNOWN_ROBOT:
-                fail_code(codes.ROBOT_UNKNOWN, f"--robot must name a library robot or a URDF file ({exc.message})")
+                fail_code(codes.ROBOT_UNKNOWN,
+                          f"--robot must name a library robot or a URDF file ({exc.message})")
 
 
 def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[Any, str]:

@@ -22,8 +22,9 @@ from collections.abc import Callable
 from rmot.compiler import codes, codes_design, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
-from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH, MASS, SPEED,
-                                         TORQUE, Dim, Quantity, example_unit, fmt_quantity)
+from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
+                                         MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
+                                         fmt_quantity)
 from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
 from rmot.lang import ast
 from rmot.lang.source import Span
@@ -33,7 +34,7 @@ __all__ = ["lower_model"]
 _DH_ARGS = ("a", "alpha", "d", "theta")
 _KINDS = {"revolute": "R", "prismatic": "P"}
 _FIELDS = ("dh", "range", "speed", "accel")  # dh stands for dh or mdh
-_OPTIONAL = ("mass", "torque")  # issue #16: the link's mass, the motor's rated torque (N for prismatic)
+_OPTIONAL = ("mass", "torque")  # issue #16: link mass, motor's rated torque (N for prismatic)
 
 
 GeometryFn = Callable[[ast.Geometry], "ir.Geometry | None"]
@@ -104,14 +105,17 @@ def _dynamics_complete(decl: ast.ModelDecl, joints: list[ModelJointSpec], rep: R
     lines = [i for i in decl.items if isinstance(i, ast.ModelJoint)]
     massless = [k for k, j in enumerate(joints, 1) if j.mass is None]
     if massless and len(massless) < len(joints):
-        rep.error(codes_design.MODEL_MASS_INCOMPLETE, f"model '{name}' must give a link mass on every joint line or on none "
-                  f"(joint {', '.join(map(str, massless))} {'has' if len(massless) == 1 else 'have'} none; write "
+        verb = "has" if len(massless) == 1 else "have"
+        rep.error(codes_design.MODEL_MASS_INCOMPLETE,
+                  f"model '{name}' must give a link mass on every joint line or on none "
+                  f"(joint {', '.join(map(str, massless))} {verb} none; write "
                   "mass 0 kg for a link without mass)", lines[massless[0] - 1].span)
         return False
     rated = [k for k, j in enumerate(joints, 1) if j.torque is not None]
     if rated and massless:
-        rep.warning(codes_design.MODEL_TORQUE_UNCHECKED, f"model '{name}' gives torque ratings but no link masses: the "
-                    "joint torques cannot be computed, so the ratings are neither checked nor slow the motion "
+        rep.warning(codes_design.MODEL_TORQUE_UNCHECKED,
+                    f"model '{name}' gives torque ratings but no link masses: the joint torques "
+                    "cannot be computed, so the ratings are neither checked nor slow the motion "
                     "(give every joint line a mass, e.g. mass 4 kg)", lines[rated[0] - 1].span)
     return True
 
@@ -184,12 +188,16 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
     accel = _number(accel_e, ANGULAR_ACCEL if kind == "R" else ACCEL, "joint accel", rep, scope, positive=True)  # type: ignore[arg-type]
     mass = torque = None
     if "mass" in fields:
-        mass = _number(fields["mass"].value, MASS, "link mass", rep, scope, minimum=0.0)  # type: ignore[arg-type]
+        mass_s = fields["mass"]
+        assert isinstance(mass_s, ast.Setting) and isinstance(mass_s.value, ast.Expr)
+        mass = _number(mass_s.value, MASS, "link mass", rep, scope, minimum=0.0)
         ok &= mass is not None
     if "torque" in fields:
         what = "joint torque rating" if kind == "R" else "joint force rating (prismatic)"
-        torque = _number(fields["torque"].value, TORQUE if kind == "R" else FORCE, what, rep, scope,  # type: ignore[arg-type]
-                         positive=True)
+        torque_s = fields["torque"]
+        assert isinstance(torque_s, ast.Setting) and isinstance(torque_s.value, ast.Expr)
+        dim = TORQUE if kind == "R" else FORCE
+        torque = _number(torque_s.value, dim, what, rep, scope, positive=True)
         ok &= torque is not None
     if dh is None or rng is None or speed is None or accel is None or not ok:
         return None

@@ -16,7 +16,7 @@ from rmot.lang.units import UNIT_TABLE
 
 __all__ = [
     "BoolV", "Dim", "DIMENSIONLESS", "JointsV", "LENGTH", "ANGLE", "TIME", "SPEED", "ACCEL",
-    "MASS", "RATIO", "ANGULAR_SPEED", "ANGULAR_ACCEL", "FORCE", "TORQUE", "article", "PoseV", "Quantity", "StringV", "UNITS",
+    "MASS", "RATIO", "ANGULAR_SPEED", "ANGULAR_ACCEL", "article", "PoseV", "Quantity", "StringV", "UNITS",
     "Value", "VectorV", "dim_name", "example_unit", "type_name", "fmt_quantity",
 ]
 
@@ -33,6 +33,7 @@ ACCEL: Dim = (1, 0, -2, 0, 0)
 ANGULAR_ACCEL: Dim = (0, 1, -2, 0, 0)
 FORCE: Dim = (1, 0, -2, 1, 0)  # N: a prismatic model joint's force rating (issue #16)
 TORQUE: Dim = (2, 0, -2, 1, 0)  # N*m: a revolute model joint's torque rating
+__all__ += ["FORCE", "TORQUE"]
 
 # unit as written -> (factor to SI, dimension): the language's one table (lang/units.py)
 UNITS: dict[str, tuple[float, Dim]] = UNIT_TABLE

@@ -21,14 +21,15 @@ as the joint-space line through path_piece): the motion slows where the motors n
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.plan.blend import ChainPath, blend_chain
 from rmot.compiler.plan.segments import Segment
-from rmot.compiler.plan.timing import (HoldPiece, PathPiece, Piece, TimingError, joint_move_piece, path_piece,
-                                       stretched)
+from rmot.compiler.plan.timing import (HoldPiece, PathPiece, Piece, TimingError, joint_move_piece,
+                                       path_piece, stretched)
 from rmot.compiler.plan.torque import TORQUE, TorqueLimits, exceeds
 
 __all__ = ["TimedChain", "time_chain"]
@@ -80,14 +81,15 @@ def _joint_chain(seg: Segment, vmax: np.ndarray, amax: np.ndarray, duration: flo
             piece, error = slower, None
             if duration is not None:
                 if duration < piece.duration * (1 - 1e-9):
-                    error = f"time must be at least the fastest feasible {piece.duration:.3f} s (got {duration:.3f} s)"
+                    error = (f"time must be at least the fastest feasible {piece.duration:.3f} s "
+                             f"(got {duration:.3f} s)")
                 else:
                     piece = stretched(piece, duration)
     return TimedChain(piece, (0.0,), (piece.duration,), (0.0,), None, error, error is not None)
 
 
-def _line_piece(q0: np.ndarray, q1: np.ndarray, vmax: np.ndarray, amax: np.ndarray, limits: TorqueLimits
-                ) -> PathPiece | None:
+def _line_piece(q0: np.ndarray, q1: np.ndarray, vmax: np.ndarray, amax: np.ndarray,
+                limits: TorqueLimits) -> PathPiece | None:
     """The straight joint-space line q0 -> q1 timed with the torque rows (None: no such timing,
     e.g. the payload's weight alone exceeds a rating; the verification then reports the torque)."""
     length = float(np.linalg.norm(q1 - q0))
@@ -101,7 +103,7 @@ def _line_piece(q0: np.ndarray, q1: np.ndarray, vmax: np.ndarray, amax: np.ndarr
         return None
 
 
-def _torque_limited(piece: PathPiece, args: tuple, kwargs: dict) -> PathPiece:  # type: ignore[type-arg]
+def _torque_limited(piece: PathPiece, args: tuple[Any, ...], kwargs: dict[str, Any]) -> PathPiece:
     """`piece` (path_piece(*args, **kwargs)), or the same path timed again with the task's torque
     limits where its torques exceed them (unchanged if that timing fails)."""
     limits = TORQUE.get()

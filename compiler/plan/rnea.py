@@ -32,21 +32,16 @@ def _joint_axis(joint: Any) -> tuple[str, np.ndarray] | None:
     """('R' | 'P', unit axis in the joint frame) or None for a joint type not handled here."""
     name = joint.shortname()
     for kind, prefix in (("R", "JointModelR"), ("P", "JointModelP")):
-        if name.startswith(prefix) and name[len(prefix):] in _AXES:
-            return kind, np.array(_AXES[name[len(prefix):]])
+        if name.startswith(prefix) and name[len(prefix) :] in _AXES:
+            return kind, np.array(_AXES[name[len(prefix) :]])
     if name in ("JointModelRevoluteUnaligned", "JointModelPrismaticUnaligned"):
         axis = np.asarray(joint.extract().axis, dtype=float)
-        if abs(float(np.linalg.norm(axis)) - 1.0) > 1e-12:  # pinocchio takes it as given: left to it
+        if (
+            abs(float(np.linalg.norm(axis)) - 1.0) > 1e-12
+        ):  # pinocchio takes it as given: left to it
             return None
         return ("R" if "Revolute" in name else "P"), axis
     return None
-
-
-def _rotation(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
-    """(N, 3, 3) rotations by `angle` (N,) about the unit `axis` (Rodrigues)."""
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
-    return np.eye(3) + s * k + (1.0 - c) * (k @ k)
 
 
 class Dynamics:
@@ -57,43 +52,63 @@ class Dynamics:
         self.n = int(model.njoints) - 1
         joints = [_joint_axis(model.joints[i]) for i in range(1, model.njoints)]
         serial = all(int(model.parents[i]) == i - 1 for i in range(1, model.njoints))
-        self.supported = serial and all(j is not None for j in joints) and model.nq == model.nv == self.n
+        self.supported = (
+            serial and all(j is not None for j in joints) and model.nq == model.nv == self.n
+        )
         if not self.supported:
             return
         self.kinds = [j[0] for j in joints]  # type: ignore[index]
         self.axes = [j[1] for j in joints]  # type: ignore[index]
-        self.place_r = [np.asarray(model.jointPlacements[i].rotation) for i in range(1, model.njoints)]
-        self.place_p = [np.asarray(model.jointPlacements[i].translation) for i in range(1, model.njoints)]
+        self.place_r = [
+            np.asarray(model.jointPlacements[i].rotation) for i in range(1, model.njoints)
+        ]
+        self.place_p = [
+            np.asarray(model.jointPlacements[i].translation) for i in range(1, model.njoints)
+        ]
         self.mass = [float(model.inertias[i].mass) for i in range(1, model.njoints)]
         self.com = [np.asarray(model.inertias[i].lever) for i in range(1, model.njoints)]
-        self.inertia = [np.asarray(model.inertias[i].inertia) for i in range(1, model.njoints)]  # about the com
+        self.inertia = [
+            np.asarray(model.inertias[i].inertia) for i in range(1, model.njoints)
+        ]  # about the com
         self.gravity = np.asarray(model.gravity.linear, dtype=float)
 
     def rnea(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
-        """(N, nq) torques (N·m; N for prismatic joints) at (N, nq) positions, speeds, accelerations."""
-        q, qd, qdd = (np.ascontiguousarray(np.atleast_2d(np.asarray(v, dtype=float))) for v in (q, qd, qdd))
+        """(N, nq) torques (N·m; N for prismatic joints) at (N, nq) positions, speeds and
+        accelerations."""
+        q, qd, qdd = (
+            np.ascontiguousarray(np.atleast_2d(np.asarray(v, dtype=float))) for v in (q, qd, qdd)
+        )
         if not self.supported:
             return self._pinocchio(q, qd, qdd)
         global _KERNEL
         if _KERNEL is None:
             _KERNEL = _numba_rnea()
         if not hasattr(self, "_arrays"):
-            self._arrays = (np.array([k == "R" for k in self.kinds]), np.array(self.axes), np.array(self.place_r),
-                            np.array(self.place_p), np.array(self.mass), np.array(self.com), np.array(self.inertia),
-                            self.gravity.copy())
-        return _KERNEL(q, qd, qdd, *self._arrays)  # type: ignore[no-any-return]
+            self._arrays = (
+                np.array([k == "R" for k in self.kinds]),
+                np.array(self.axes),
+                np.array(self.place_r),
+                np.array(self.place_p),
+                np.array(self.mass),
+                np.array(self.com),
+                np.array(self.inertia),
+                self.gravity.copy(),
+            )
+        return np.asarray(_KERNEL(q, qd, qdd, *self._arrays))
 
     def _pinocchio(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
         import pinocchio as pin
 
         data = self.model.createData()
-        return np.array([pin.rnea(self.model, data, a, b, c) for a, b, c in zip(q, qd, qdd)]).reshape(q.shape[0], -1)
+        return np.array(
+            [pin.rnea(self.model, data, a, b, c) for a, b, c in zip(q, qd, qdd)]
+        ).reshape(q.shape[0], -1)
 
 
 _KERNEL = None
 
 
-def _numba_rnea():  # type: ignore[no-untyped-def]
+def _numba_rnea() -> Any:
     import numba
 
     @numba.njit(cache=True, inline="always")
@@ -103,7 +118,8 @@ def _numba_rnea():  # type: ignore[no-untyped-def]
         out[2] = a[0] * b[1] - a[1] * b[0]
 
     @numba.njit(cache=True)
-    def rnea(q, qd, qdd, revolute, axes, place_r, place_p, mass, com, inertia, gravity):  # type: ignore[no-untyped-def]
+    def rnea(q, qd, qdd, revolute, axes, place_r, place_p,  # type: ignore[no-untyped-def]
+             mass, com, inertia, gravity):
         count, n = q.shape
         tau = np.empty((count, n))
         rot = np.empty((n, 3, 3))

@@ -267,7 +267,8 @@ def path_piece(
     grid, _ = _grid(ss)
     arrays = _Arrays(_Limits(path, spline, ss, vlim, alim, f_int, tcp_int, torque), grid)
     for attempt in range(_REFINE_ROUNDS + 1):
-        x, r_acc, r_vel, bad, w_tau = arrays.solve(arrays.xmax.copy(), 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS)
+        rounds = 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS
+        x, r_acc, r_vel, bad, w_tau = arrays.solve(arrays.xmax.copy(), rounds)
         if not np.any(bad) or attempt == _REFINE_ROUNDS:
             break
         arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells (consumes the old)
@@ -278,7 +279,7 @@ def path_piece(
         raise TimingError("no feasible timing was found for the path (a speed limit is zero)")
     traj = ConstAccelTiming(path, arrays.grid, sd)
     scale = max(1.0, worst_v * (1 + _CHECK_TOL), math.sqrt(worst_a * (1 + _CHECK_TOL)))
-    if w_tau is not None:  # a torque excess left after the repairs: x (~ 1 / scale^2) scaled down as needed
+    if w_tau is not None:  # a torque excess left after the repairs: x (~ 1 / scale^2) shrinks
         scale = max(scale, math.sqrt(float(np.max(w_tau, initial=0.0)) * (1 + _CHECK_TOL)))
     return PathPiece(traj, float(traj.duration), scale, dof)
 
@@ -364,7 +365,8 @@ class _Limits:
             vel = np.maximum(vel, l1 / sp)
         trows = None
         if self.torque is not None:  # lo <= a u + b x <= hi with lo, hi = -+tau_max - g
-            ta, tb, tc = self.torque.rows(self.path(s), d1, d2)  # type: ignore[attr-defined, operator]
+            q = self.path(s)  # type: ignore[operator]
+            ta, tb, tc = self.torque.rows(q, d1, d2)  # type: ignore[attr-defined]
             lim = self.torque.limit * (1 - _A_MARGIN)  # type: ignore[attr-defined]
             trows = (ta, tb, lim - tc, -lim - tc)
         return d1, d2, np.hstack(a), np.hstack(b), np.hstack(c) * (1 - _A_MARGIN), vel, trows
@@ -386,10 +388,11 @@ class _Limits:
             vel.append(v)
         if self.torque is None:
             return np.stack(m1), np.stack(m2), np.stack(vel)
-        rows = [self.torque.rows(self.path(s), self.path(s, 1), self.path(s, 2))  # type: ignore[attr-defined, operator]
+        path, torque = self.path, self.torque
+        rows = [torque.rows(path(s), path(s, 1), path(s, 2))  # type: ignore[attr-defined, operator]
                 for s in (lo + th * h for th in (*_CHECK_AT, 1.0))]
-        return (np.stack(m1), np.stack(m2), np.stack(vel),
-                np.stack([r[0] for r in rows]), np.stack([r[1] for r in rows]), np.stack([r[2] for r in rows]))
+        ta, tb, tc = (np.stack([r[k] for r in rows]) for k in range(3))
+        return np.stack(m1), np.stack(m2), np.stack(vel), ta, tb, tc
 
 
 class _Arrays:
@@ -455,7 +458,8 @@ class _Arrays:
         self.m2 = None  # type: ignore[assignment]
         v_in = _merged(self.v_in, new_cells[2], cplace, axis=1, keep=keep)
         self.v_in = None  # type: ignore[assignment]
-        tau = tuple(_merged(old, new, cplace, axis=1, keep=keep) for old, new in zip(self.tau or (), new_cells[3:]))
+        tau = tuple(_merged(old, new, cplace, axis=1, keep=keep)
+                    for old, new in zip(self.tau or (), new_cells[3:]))
         self.tau = None
         return _Arrays(self.limits, grid[order], (interval_all, tuple(pts), (m1, m2, v_in, *tau)))
 
@@ -473,7 +477,8 @@ class _Arrays:
             bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
             w_tau = None
             if self.tau is not None:
-                w_tau = topp.check_torque(x, self.h, *self.tau, (*_CHECK_AT, 1.0),
+                ta, tb, tc = self.tau
+                w_tau = topp.check_torque(x, self.h, ta, tb, tc, (*_CHECK_AT, 1.0),
                                           self.limits.torque.limit)  # type: ignore[attr-defined]
                 bad |= w_tau > 1 + _CHECK_TOL
             if not np.any(bad):
@@ -499,7 +504,8 @@ def _normalised(pts):  # type: ignore[no-untyped-def]
     d1, d2, a, b, c, vel, trows = pts
     if trows is None:
         return (d1, d2, *topp.Rows(a, b, c).normalised(), vel)
-    beta, lo, hi, pure = (np.hstack(p) for p in zip(topp.Rows(a, b, c).parts(), topp.Rows(*trows).parts()))
+    parts = zip(topp.Rows(a, b, c).parts(), topp.Rows(*trows).parts())
+    beta, lo, hi, pure = (np.hstack(p) for p in parts)
     ceiling = np.minimum(topp.static_ceiling(beta, lo, hi), np.min(pure, axis=1, initial=np.inf))
     return d1, d2, beta, lo, hi, ceiling, vel
 

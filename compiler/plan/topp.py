@@ -24,6 +24,8 @@ tightened and the passes re-run: a repair slows that spot, never the whole path.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = ["Rows", "check_torque", "solve", "static_ceiling"]
@@ -35,7 +37,8 @@ class Rows:
     """Acceleration rows at K grid points, m rows each: arrays (K, m). Symmetric rows
     |a u + b x| <= c, or, with `lower`, lower <= a u + b x <= c (c is then the upper bound)."""
 
-    def __init__(self, a: np.ndarray, b: np.ndarray, c: np.ndarray, lower: np.ndarray | None = None) -> None:
+    def __init__(self, a: np.ndarray, b: np.ndarray, c: np.ndarray,
+                 lower: np.ndarray | None = None) -> None:
         self.a, self.b, self.c, self.lower = a, b, c, lower
 
     def normalised(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -218,7 +221,7 @@ def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-d
     return _CHECK(x, h, d1, d2, m1, m2, vel_in, np.asarray(thetas, dtype=float), np.ascontiguousarray(c, dtype=float))
 
 
-def _numba_check_torque():  # type: ignore[no-untyped-def]
+def _numba_check_torque() -> Any:
     import numba
 
     @numba.njit(cache=True)
@@ -238,8 +241,7 @@ def _numba_check_torque():  # type: ignore[no-untyped-def]
                     else:
                         room = (limit[j] if tau > 0 else -limit[j]) - tc[t, i, j]
                         w = dyn / room if dyn * room > 0.0 else np.inf
-                    if w > worst:
-                        worst = w
+                    worst = max(worst, w)
             out[i] = worst
         return out
 
@@ -259,6 +261,7 @@ def check_torque(x: np.ndarray, h: np.ndarray, ta: np.ndarray, tb: np.ndarray, t
     global _CHECK_TORQUE
     if _CHECK_TORQUE is None:
         _CHECK_TORQUE = _numba_check_torque()
-    return _CHECK_TORQUE(np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(h, dtype=float),
-                         np.ascontiguousarray(ta), np.ascontiguousarray(tb), np.ascontiguousarray(tc),
-                         np.asarray(thetas, dtype=float), np.ascontiguousarray(limit, dtype=float))
+    arrays = (np.ascontiguousarray(x, dtype=float), np.ascontiguousarray(h, dtype=float),
+              np.ascontiguousarray(ta), np.ascontiguousarray(tb), np.ascontiguousarray(tc),
+              np.asarray(thetas, dtype=float), np.ascontiguousarray(limit, dtype=float))
+    return np.asarray(_CHECK_TORQUE(*arrays))

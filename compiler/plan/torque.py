@@ -37,12 +37,13 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-
 from rmot.compiler import ir
 
 __all__ = ["CHECK_STEP", "TORQUE", "TorqueLimits", "exceeds", "task_payload", "torque_limits"]
 
-CHECK_STEP = 0.002  # s: the torque of a timed chain is sampled this often to decide whether it binds
+CHECK_STEP = (
+    0.002  # s: the torque of a timed chain is sampled this often to decide whether it binds
+)
 
 # The torque limits of the task being planned (set by planner.plan_program around a task's
 # timeline, read by chain.py): kept out of the timeline builder's signature.
@@ -60,9 +61,13 @@ class TorqueLimits:
     to_model: Any
     dof: int
 
-    def rows(self, q: np.ndarray, d1: np.ndarray, d2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def rows(
+        self, q: np.ndarray, d1: np.ndarray, d2: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(a, b, c) each (N, dof) at path points q (N, dof) with derivatives q', q'' in s."""
-        qm, v1, v2 = (np.asarray(self.to_model(np.asarray(v, dtype=float)), dtype=float) for v in (q, d1, d2))
+        qm, v1, v2 = (
+            np.asarray(self.to_model(np.asarray(v, dtype=float)), dtype=float) for v in (q, d1, d2)
+        )
         dyn, dof = self.dynamics, self.dof
         zero = np.zeros_like(qm)
         c = dyn.rnea(qm, zero, zero)[:, :dof]
@@ -70,7 +75,9 @@ class TorqueLimits:
 
     def torques(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
         """(N, dof) joint torques along sampled motion (controller values)."""
-        qm, vm, am = (np.asarray(self.to_model(np.asarray(v, dtype=float)), dtype=float) for v in (q, qd, qdd))
+        qm, vm, am = (
+            np.asarray(self.to_model(np.asarray(v, dtype=float)), dtype=float) for v in (q, qd, qdd)
+        )
         return self.dynamics.rnea(qm, vm, am)[:, : self.dof]  # type: ignore[no-any-return]
 
     @property
@@ -94,7 +101,10 @@ def task_payload(task: ir.Task, parts: tuple[ir.Part, ...]) -> tuple[float, np.n
     masses = {p.name: p.mass for p in parts}
     for instr in ir.walk(task.body):
         if isinstance(instr, ir.Move) and instr.tool.mass > tool_mass:
-            tool_mass, tool_at = instr.tool.mass, np.asarray(ir.payload_cog(instr.tool.tcp), dtype=float)
+            tool_mass, tool_at = (
+                instr.tool.mass,
+                np.asarray(ir.payload_cog(instr.tool.tcp), dtype=float),
+            )
         elif isinstance(instr, ir.Attach):
             mass = sum(masses.get(name, 0.0) for name in instr.held)
             if mass > held_mass:
@@ -102,7 +112,9 @@ def task_payload(task: ir.Task, parts: tuple[ir.Part, ...]) -> tuple[float, np.n
     if held_at is None:
         return tool_mass, tool_at
     total = tool_mass + held_mass
-    at = (tool_mass * (tool_at if tool_at is not None else np.zeros(3)) + held_mass * held_at) / total
+    at = (
+        tool_mass * (tool_at if tool_at is not None else np.zeros(3)) + held_mass * held_at
+    ) / total
     return total, at
 
 
@@ -121,24 +133,29 @@ def torque_limits(robot: Any, mass: float, at: np.ndarray | None) -> TorqueLimit
     model = pin.Model(robot.model)
     if mass > 0:
         in_joint = flange_in_last_joint(robot) @ np.append(
-            np.zeros(3) if at is None else np.asarray(at, dtype=float), 1.0)
-        model.inertias[dof] = model.inertias[dof] + pin.Inertia(float(mass), in_joint[:3], np.zeros((3, 3)))
+            np.zeros(3) if at is None else np.asarray(at, dtype=float), 1.0
+        )
+        model.inertias[dof] = model.inertias[dof] + pin.Inertia(
+            float(mass), in_joint[:3], np.zeros((3, 3))
+        )
     return TorqueLimits(model, limit.copy(), getattr(robot, "to_model", lambda v: v), dof)
 
 
 def flange_in_last_joint(robot: Any) -> np.ndarray:
-    """(4,4) the flange frame in the last joint's frame (constant; taken at the joints' mid-range)."""
+    """(4,4) the flange frame in the last joint's frame (constant; taken at mid-range)."""
     import pinocchio as pin
 
     q = np.asarray(robot.joint_limits, dtype=float).mean(axis=1)
     model = robot.model
     data = model.createData()
     pin.forwardKinematics(model, data, np.asarray(robot.to_model(q), dtype=float))
-    return np.linalg.inv(data.oMi[int(robot.dof)].homogeneous) @ np.asarray(robot.fk(q))  # type: ignore[no-any-return]
+    joint = np.linalg.inv(data.oMi[int(robot.dof)].homogeneous)
+    return joint @ np.asarray(robot.fk(q))  # type: ignore[no-any-return]
 
 
 def exceeds(limits: TorqueLimits, piece: Any) -> bool:
-    """Whether the timed piece's torques, sampled every CHECK_STEP (and at its end), exceed a limit."""
+    """Whether the timed piece's torques, sampled every CHECK_STEP and at its end, exceed a
+    limit."""
     duration = float(piece.duration)
     if duration <= 0:
         return False

@@ -101,16 +101,19 @@ def _add_dynamics(robot: Robot, spec: ModelSpec) -> None:
         ends = _bounding_segment(s.placement.matrix(), s.geometry)  # in the solid's joint frame
         if ends is not None:
             p0, p1, r = ends
-            segments.append(Segment(s.name, int(s.joint_id), tuple(p0), tuple(p1), float(r)))  # type: ignore[arg-type]
+            segments.append(Segment(s.name, int(s.joint_id), (p0[0], p0[1], p0[2]),
+                                    (p1[0], p1[1], p1[2]), float(r)))
     import pinocchio as pin
 
     masses = tuple(float(j.mass or 0.0) for j in spec.joints)
     # a massless link: computed with 1 kg (no division by zero), then left without inertia
-    inertias = link_inertias(tuple(segments), tuple(m if m > 0 else 1.0 for m in masses), [np.eye(4)] * len(masses))
+    some = tuple(m if m > 0 else 1.0 for m in masses)
+    inertias = link_inertias(tuple(segments), some, [np.eye(4)] * len(masses))
     model = robot.model
     for j, (inertia, mass) in enumerate(zip(inertias, masses), start=1):
         model.inertias[j] = inertia if mass > 0 else pin.Inertia.Zero()
-    model.effortLimit = np.array([np.inf if j.torque is None else j.torque for j in spec.joints], dtype=float)
+    rated = [np.inf if j.torque is None else j.torque for j in spec.joints]
+    model.effortLimit = np.array(rated, dtype=float)
     robot.has_inertia = True
 
 

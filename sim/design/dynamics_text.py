@@ -25,8 +25,8 @@ def dynamics_text(plan: planned.Plan, metrics: dict[str, TaskMetrics] | None = N
             use = "rated torque unknown"
             if j.utilisation is not None and j.rms_utilisation is not None:
                 verdict = "the motor suffices" if j.suffices else "EXCEEDS the motor's rating"
-                use = (f"{j.utilisation * 100:.0f}% of {j.rated_torque:g} {unit} (RMS {j.rms_utilisation * 100:.0f}%): "
-                       f"{verdict}")
+                use = (f"{j.utilisation * 100:.0f}% of {j.rated_torque:g} {unit} "
+                       f"(RMS {j.rms_utilisation * 100:.0f}%): {verdict}")
             lines.append(f"  J{j.joint}: {j.peak_torque:.2f} / {j.rms_torque:.2f} {unit}, {j.peak_power:.1f} W, {use}")
         if m.dynamics_note:
             lines.append(f"  note: {m.dynamics_note}")

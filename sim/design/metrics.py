@@ -46,8 +46,8 @@ class JointDynamics:
 
     @property
     def suffices(self) -> bool | None:
-        """Whether the motor's rating covers the joint's peak torque, and so its RMS (within the torque
-        check's 0.1 % slack, sim/limits.py); None when the joint has no rating."""
+        """Whether the motor's rating covers the joint's peak torque, and so its RMS (within
+        the torque check's 0.1 % slack, sim/limits.py); None when the joint has no rating."""
         if not self.rated_torque:
             return None
         return self.peak_torque <= self.rated_torque * (1 + SUFFICE_SLACK)

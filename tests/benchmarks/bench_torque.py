@@ -24,11 +24,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
 
-from plan_helpers import Prog, pose, program  # noqa: E402
-
-from rmot.compiler import ir  # noqa: E402
-from rmot.compiler.plan import plan_program  # noqa: E402
-from rmot.compiler.plan import torque as torque_mod  # noqa: E402
+from plan_helpers import Prog, pose, program
+from rmot.compiler import ir
+from rmot.compiler.plan import plan_program
+from rmot.compiler.plan import torque as torque_mod
 
 BOX = (350.0, -150.0, 200.0)  # mm, lower corner of a 120 x 300 x 100 mm box in front of the UR5e
 
@@ -71,7 +70,8 @@ def main() -> None:
                 cyc0, t0 = timed(prog, args.repeat)
             finally:
                 torque_mod.torque_limits = original  # type: ignore[assignment]
-            print(f"{n:<3}{mass:<9g}{cyc:<17.3f}{cyc0:<15.3f}{t_lim:<16.3f}{t0:<14.3f}{t_lim / t0:.2f}")
+            cols = f"{n:<3}{mass:<9g}{cyc:<17.3f}{cyc0:<15.3f}{t_lim:<16.3f}{t0:<14.3f}"
+            print(f"{cols}{t_lim / t0:.2f}")
 
 
 if __name__ == "__main__":

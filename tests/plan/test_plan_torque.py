@@ -18,22 +18,26 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 import pytest
-
+from plan_helpers import Prog, pose, program
 from rmot.compiler import ir
-from rmot.compiler.plan import plan_program
-from rmot.compiler.plan import topp
+from rmot.compiler.plan import plan_program, topp
 from rmot.compiler.plan import torque as torque_mod
 from rmot.compiler.robots import load_robot
 from rmot.sim.scene import flange_in_last_joint
 
-from plan_helpers import Prog, pose, program
-
 ARM = "ur5e"
 UR5E_MAX_EFFORT = (150.0, 150.0, 150.0, 28.0, 28.0, 28.0)  # ros-industrial ur5e joint_limits.yaml
-START = [0.0, -160.0, 0.0, -90.0, -90.0, 0.0]  # deg: the arm stretched out, swung up through horizontal
+START = [
+    0.0,
+    -160.0,
+    0.0,
+    -90.0,
+    -90.0,
+    0.0,
+]  # deg: the arm stretched out, swung up through horizontal
 END = [0.0, -20.0, 0.0, -90.0, -90.0, 0.0]
 TCP_Z = 100.0  # mm
-HEAVY = 8.0  # kg (the UR5e is rated for 5 kg): gravity alone stays within the ratings, the swing does not
+HEAVY = 8.0  # kg (UR5e rated 5 kg): gravity alone stays within the ratings, the swing does not
 
 
 def _program(mass: float) -> ir.Program:
@@ -48,7 +52,9 @@ def _payload_model(robot, mass: float):  # type: ignore[no-untyped-def]
     here) in the last joint's frame, by the solids-based flange of sim.scene."""
     model = pin.Model(robot.model)
     at = flange_in_last_joint(robot) @ np.array([0.0, 0.0, TCP_Z / 2e3, 1.0])
-    model.inertias[robot.dof] = model.inertias[robot.dof] + pin.Inertia(mass, at[:3], np.zeros((3, 3)))
+    model.inertias[robot.dof] = model.inertias[robot.dof] + pin.Inertia(
+        mass, at[:3], np.zeros((3, 3))
+    )
     return model
 
 
@@ -62,7 +68,7 @@ def _peak(robot, traj, mass: float) -> np.ndarray:  # type: ignore[no-untyped-de
 def _toppra_duration(robot, mass: float) -> float:  # type: ignore[no-untyped-def]
     import toppra
     import toppra.algorithm as algo
-    import toppra.constraint as constraint
+    from toppra import constraint
 
     toppra.setup_logging("CRITICAL")
     q0, q1 = np.radians(START), np.radians(END)
@@ -77,10 +83,14 @@ def _toppra_duration(robot, mass: float) -> float:  # type: ignore[no-untyped-de
 
     effort = np.array(UR5E_MAX_EFFORT)
     vlim, alim = robot.velocity_limits, robot.accel_limits
-    cons = [constraint.JointVelocityConstraint(np.stack([-vlim, vlim], axis=1)),
-            constraint.JointAccelerationConstraint(np.stack([-alim, alim], axis=1)),
-            constraint.JointTorqueConstraint(inv_dyn, np.stack([-effort, effort], axis=1), np.zeros(6))]
-    traj = algo.TOPPRA(cons, path, gridpoints=np.linspace(0.0, length, 1500)).compute_trajectory(0.0, 0.0)
+    cons = [
+        constraint.JointVelocityConstraint(np.stack([-vlim, vlim], axis=1)),
+        constraint.JointAccelerationConstraint(np.stack([-alim, alim], axis=1)),
+        constraint.JointTorqueConstraint(inv_dyn, np.stack([-effort, effort], axis=1), np.zeros(6)),
+    ]
+    traj = algo.TOPPRA(cons, path, gridpoints=np.linspace(0.0, length, 1500)).compute_trajectory(
+        0.0, 0.0
+    )
     assert traj is not None
     return float(traj.duration)
 
@@ -90,7 +100,9 @@ def test_ur5e_ratings_are_the_cited_ones() -> None:
     assert np.allclose(np.asarray(robot.model.effortLimit)[:6], UR5E_MAX_EFFORT)
 
 
-def test_heavy_payload_slows_the_move_and_stays_within_the_ratings(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_heavy_payload_slows_the_move_and_stays_within_the_ratings(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     robot = load_robot(ARM)
     effort = np.array(UR5E_MAX_EFFORT)
     light, heavy = plan_program(_program(0.0)), plan_program(_program(HEAVY))
@@ -140,7 +152,9 @@ def test_symmetric_rows_given_one_sided_solve_identically() -> None:
     assert np.array_equal(sym, one)
 
 
-@pytest.mark.parametrize("arm", ["ur5e", "abb_irb1600", "fanuc_m20ia", "kuka_kr210", "staubli_tx2_60"])
+@pytest.mark.parametrize(
+    "arm", ["ur5e", "abb_irb1600", "fanuc_m20ia", "kuka_kr210", "staubli_tx2_60"]
+)
 def test_vectorised_rnea_equals_pinocchio(arm: str) -> None:
     """compiler/plan/rnea.py against pinocchio.rnea, one call per sample, with a payload."""
     from rmot.compiler.plan.rnea import Dynamics
@@ -162,8 +176,13 @@ def test_vectorised_rnea_prismatic_and_unaligned_joints() -> None:
 
     model = pin.Model()
     parent = 0
-    joints = [pin.JointModelRZ(), pin.JointModelPX(), pin.JointModelRevoluteUnaligned(np.array([0.48, 0.6, 0.64])),
-              pin.JointModelPrismaticUnaligned(np.array([0.0, 0.6, 0.8])), pin.JointModelRY()]
+    joints = [
+        pin.JointModelRZ(),
+        pin.JointModelPX(),
+        pin.JointModelRevoluteUnaligned(np.array([0.48, 0.6, 0.64])),
+        pin.JointModelPrismaticUnaligned(np.array([0.0, 0.6, 0.8])),
+        pin.JointModelRY(),
+    ]
     rng = np.random.default_rng(2)
     for k, joint in enumerate(joints):
         place = pin.SE3(pin.exp3(rng.normal(size=3)), rng.normal(size=3) * 0.3)
@@ -177,10 +196,14 @@ def test_vectorised_rnea_prismatic_and_unaligned_joints() -> None:
     np.testing.assert_allclose(dyn.rnea(q, qd, qdd), ref, rtol=1e-10, atol=1e-9)
     # an axis that is not a unit vector, or a joint type it does not follow: left to pinocchio
     odd = pin.Model()
-    j = odd.addJoint(0, pin.JointModelRevoluteUnaligned(np.array([0.3, 0.5, 0.8])), pin.SE3.Identity(), "j")
+    j = odd.addJoint(
+        0, pin.JointModelRevoluteUnaligned(np.array([0.3, 0.5, 0.8])), pin.SE3.Identity(), "j"
+    )
     odd.appendBodyToJoint(j, pin.Inertia.Random(), pin.SE3.Identity())
     fallback = Dynamics(odd)
     assert not fallback.supported
     d2 = odd.createData()
-    np.testing.assert_allclose(fallback.rnea(q[:, :1], qd[:, :1], qdd[:, :1]),
-                               np.array([pin.rnea(odd, d2, *x) for x in zip(q[:, :1], qd[:, :1], qdd[:, :1])]))
+    np.testing.assert_allclose(
+        fallback.rnea(q[:, :1], qd[:, :1], qdd[:, :1]),
+        np.array([pin.rnea(odd, d2, *x) for x in zip(q[:, :1], qd[:, :1], qdd[:, :1])]),
+    )

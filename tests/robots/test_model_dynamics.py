@@ -18,7 +18,6 @@ import numpy as np
 import pinocchio as pin
 import pytest
 from click.testing import CliRunner
-
 from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
@@ -28,14 +27,14 @@ G = 9.81  # m/s^2, pinocchio's default gravity (0, 0, -9.81)
 
 # joint 1 about the vertical, alpha 90 deg turns joint 2's axis horizontal; link 2 is 500 mm long
 # and carries a 10 mm sphere of MASS2 at its end (DH frame 2's origin)
-TWO_LINK = """cell two {{
-  model arm {{
-    joint revolute dh(a=0mm, alpha=90deg, d=300mm, theta=0deg) range(-170deg, 170deg) speed 100 deg/s accel 400 deg/s^2 {j1}
-    joint revolute dh(a=500mm, alpha=0deg, d=0mm, theta=0deg) range(-170deg, 170deg) solid(sphere(r=10mm)) speed 400 deg/s accel 2000 deg/s^2 {j2}
-  }}
-  robot r1 = arm
-}}
-"""
+J1_LINE = ("joint revolute dh(a=0mm, alpha=90deg, d=300mm, theta=0deg) range(-170deg, 170deg) "
+           "speed 100 deg/s accel 400 deg/s^2")
+J2_LINE = ("joint revolute dh(a=500mm, alpha=0deg, d=0mm, theta=0deg) range(-170deg, 170deg) "
+           "solid(sphere(r=10mm)) speed 400 deg/s accel 2000 deg/s^2")
+TWO_LINK = (
+    "cell two {{\n  model arm {{\n    " + J1_LINE + " {j1}\n    " + J2_LINE + " {j2}\n  }}\n"
+    "  robot r1 = arm\n}}\n"
+)
 MASS2 = 8.0
 
 
@@ -55,7 +54,9 @@ def test_ratings_and_masses_are_lowered_into_the_robot() -> None:
     assert robot.has_inertia
     assert list(np.asarray(robot.model.effortLimit)) == [120.0, 80.0]
     for q2 in (0.0, 0.4, -1.1):
-        gravity = pin.computeGeneralizedGravity(robot.model, robot.model.createData(), np.array([0.3, q2]))
+        gravity = pin.computeGeneralizedGravity(
+            robot.model, robot.model.createData(), np.array([0.3, q2])
+        )
         assert gravity[1] == pytest.approx(MASS2 * G * 0.5 * math.cos(q2), rel=1e-9, abs=1e-9)
         assert gravity[0] == pytest.approx(0.0, abs=1e-9)  # a vertical axis carries no weight
 
@@ -74,17 +75,32 @@ def test_unrated_joint_is_unknown_not_infinite() -> None:
     assert math.isinf(effort[0]) and effort[1] == 80.0
 
 
-@pytest.mark.parametrize(("j2", "code", "text"), [
-    ("mass 1 kg torque 400 N", "E104", "joint torque rating must be a torque such as 120 N*m (got 400 N, a force)"),
-    ("mass 1 kg torque 0 N*m", "E137", "joint torque rating must be > 0 (got 0 N*m)"),
-    ("mass 1 kg torque -5 N*m", "E137", "joint torque rating must be > 0"),
-    ("mass 1 kg torque 1e999 N*m", "E013", "number must fit a 64-bit float"),
-    ("mass 1 kg torque 120 kg", "E104", "joint torque rating must be a torque such as 120 N*m (got 120 kg, a mass)"),
-    ("mass 1 kg torque 120", "E105", "(got 120 without a unit)"),
-    ("mass 1 kg torque 120 N*m", None, ""),
-    ("mass -1 kg", "E137", "link mass must be >= 0"),
-    ("mass 1 kg torque 5 N*m torque 6 N*m", "E135", "a joint must have one torque field (got two)"),
-])
+@pytest.mark.parametrize(
+    ("j2", "code", "text"),
+    [
+        (
+            "mass 1 kg torque 400 N",
+            "E104",
+            "joint torque rating must be a torque such as 120 N*m (got 400 N, a force)",
+        ),
+        ("mass 1 kg torque 0 N*m", "E137", "joint torque rating must be > 0 (got 0 N*m)"),
+        ("mass 1 kg torque -5 N*m", "E137", "joint torque rating must be > 0"),
+        ("mass 1 kg torque 1e999 N*m", "E013", "number must fit a 64-bit float"),
+        (
+            "mass 1 kg torque 120 kg",
+            "E104",
+            "joint torque rating must be a torque such as 120 N*m (got 120 kg, a mass)",
+        ),
+        ("mass 1 kg torque 120", "E105", "(got 120 without a unit)"),
+        ("mass 1 kg torque 120 N*m", None, ""),
+        ("mass -1 kg", "E137", "link mass must be >= 0"),
+        (
+            "mass 1 kg torque 5 N*m torque 6 N*m",
+            "E135",
+            "a joint must have one torque field (got two)",
+        ),
+    ],
+)
 def test_bad_ratings_are_diagnostics(j2: str, code: str | None, text: str) -> None:
     found = _codes(TWO_LINK.format(j1="mass 1 kg", j2=j2))
     if code is None:  # the good line, for contrast
@@ -120,7 +136,9 @@ program swing on r1 {{
 
 
 def _write(tmp_path: Path, j2: str) -> str:
-    (tmp_path / "cell.rmot").write_text(TWO_LINK.format(j1="mass 2 kg torque 200 N*m", j2=j2), encoding="utf-8")
+    (tmp_path / "cell.rmot").write_text(
+        TWO_LINK.format(j1="mass 2 kg torque 200 N*m", j2=j2), encoding="utf-8"
+    )
     (tmp_path / "swing.rmot").write_text(PROGRAM.format(), encoding="utf-8")
     return str(tmp_path / "swing.rmot")
 
@@ -147,10 +165,14 @@ def test_rating_slows_the_swing_and_the_report_says_the_motor_suffices(tmp_path:
     out = CliRunner().invoke(cli, ["check", "--no-cache", "--dynamics", weak_path])
     assert out.exit_code == 0, out.output
     assert "J2: " in out.output and "of 50 N·m" in out.output and "the motor suffices" in out.output
-    js = CliRunner().invoke(cli, ["check", "--no-cache", "--dynamics", "--format", "json", weak_path])
+    js = CliRunner().invoke(
+        cli, ["check", "--no-cache", "--dynamics", "--format", "json", weak_path]
+    )
     joints = json.loads(js.output)["programs"][0]["tasks"][0]["dynamics"]["joints"]
     assert [j["suffices"] for j in joints] == [True, True]
-    assert joints[1]["rms_utilisation"] == pytest.approx(np.sqrt((tau[:, 1] ** 2).mean()) / 50.0, abs=1e-5)
+    assert joints[1]["rms_utilisation"] == pytest.approx(
+        np.sqrt((tau[:, 1] ** 2).mean()) / 50.0, abs=1e-5
+    )
 
 
 def test_plan_cache_key_follows_ratings_masses_and_payload(tmp_path: Path) -> None:
@@ -159,7 +181,11 @@ def test_plan_cache_key_follows_ratings_masses_and_payload(tmp_path: Path) -> No
     from rmot.compiler.plan_cache import plan_key
 
     keys = set()
-    for j2 in (f"mass {MASS2:g} kg torque 50 N*m", f"mass {MASS2:g} kg torque 51 N*m", "mass 7 kg torque 50 N*m"):
+    for j2 in (
+        f"mass {MASS2:g} kg torque 50 N*m",
+        f"mass {MASS2:g} kg torque 51 N*m",
+        "mass 7 kg torque 50 N*m",
+    ):
         result = load_program(_write(tmp_path, j2))
         keys.add(plan_key(result.program, 0.004))  # type: ignore[arg-type]
     assert len(keys) == 3
