@@ -189,13 +189,15 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
     mass = torque = None
     if "mass" in fields:
         mass_s = fields["mass"]
-        assert isinstance(mass_s, ast.Setting) and isinstance(mass_s.value, ast.Expr)
+        assert isinstance(mass_s, ast.Setting)
+        assert mass_s.value is not None and not isinstance(mass_s.value, (ast.Ident, tuple))
         mass = _number(mass_s.value, MASS, "link mass", rep, scope, minimum=0.0)
         ok &= mass is not None
     if "torque" in fields:
         what = "joint torque rating" if kind == "R" else "joint force rating (prismatic)"
         torque_s = fields["torque"]
-        assert isinstance(torque_s, ast.Setting) and isinstance(torque_s.value, ast.Expr)
+        assert isinstance(torque_s, ast.Setting)
+        assert torque_s.value is not None and not isinstance(torque_s.value, (ast.Ident, tuple))
         dim = TORQUE if kind == "R" else FORCE
         torque = _number(torque_s.value, dim, what, rep, scope, positive=True)
         ok &= torque is not None
