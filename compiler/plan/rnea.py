@@ -111,15 +111,15 @@ _KERNEL = None
 def _numba_rnea() -> Any:
     import numba
 
-    @numba.njit(cache=True, inline="always")
-    def cross(a, b, out):  # type: ignore[no-untyped-def]
-        out[0] = a[1] * b[2] - a[2] * b[1]
-        out[1] = a[2] * b[0] - a[0] * b[2]
-        out[2] = a[0] * b[1] - a[1] * b[0]
-
     @numba.njit(cache=True)
     def rnea(q, qd, qdd, revolute, axes, place_r, place_p,  # type: ignore[no-untyped-def]
              mass, com, inertia, gravity):
+        # (an inner function, not a jitted one from outside: numba then caches the kernel)
+        def cross(a, b, out):  # type: ignore[no-untyped-def]
+            out[0] = a[1] * b[2] - a[2] * b[1]
+            out[1] = a[2] * b[0] - a[0] * b[2]
+            out[2] = a[0] * b[1] - a[1] * b[0]
+
         count, n = q.shape
         tau = np.empty((count, n))
         rot = np.empty((n, 3, 3))
