@@ -10,6 +10,7 @@ end imports this module.
 from __future__ import annotations
 
 import json
+from typing import Any
 from dataclasses import dataclass
 
 __all__ = ["MAX_JOINTS", "MODEL_PREFIX", "ModelJointSpec", "ModelSolid", "ModelSpec", "model_key", "model_name", "spec_from_key"]
@@ -21,7 +22,8 @@ MODEL_PREFIX = "model:"
 @dataclass(frozen=True, slots=True)
 class ModelJointSpec:
     """One joint: kind 'R' or 'P'; DH a, d in m, alpha, theta in rad; limits in rad (R) or m (P);
-    speed in rad/s or m/s; accel in rad/s² or m/s²."""
+    speed in rad/s or m/s; accel in rad/s² or m/s²; optional (issue #16) the link's mass in kg
+    and the motor's rated torque in N·m (N for a prismatic joint), None when not given."""
 
     kind: str
     a: float
@@ -32,6 +34,8 @@ class ModelJointSpec:
     hi: float
     speed: float
     accel: float
+    mass: float | None = None
+    torque: float | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -59,10 +63,23 @@ def model_key(spec: ModelSpec) -> str:
     """The load key: "model:" + canonical JSON (sorted keys, repr floats)."""
     data = {
         "name": spec.name, "modified": spec.modified, "flange": list(spec.flange), "payload_kg": spec.payload_kg,
-        "joints": [[j.kind, j.a, j.alpha, j.d, j.theta, j.lo, j.hi, j.speed, j.accel] for j in spec.joints],
+        "joints": [_joint_row(j) for j in spec.joints],
         "solids": [[g.joint, g.kind, list(g.numbers), list(g.pose), g.path] for g in spec.solids],
     }
     return MODEL_PREFIX + json.dumps(data, sort_keys=True, separators=(",", ":"))
+
+
+def _joint_row(j: ModelJointSpec) -> list[object]:
+    """A joint's numbers in the key; mass and torque (issue #16) only when given, so that the
+    key of a model without them is written as before."""
+    row: list[object] = [j.kind, j.a, j.alpha, j.d, j.theta, j.lo, j.hi, j.speed, j.accel]
+    if j.mass is not None or j.torque is not None:
+        row += [j.mass, j.torque]
+    return row
+
+
+def _numbers(values: list[object]) -> list[Any]:
+    return [None if x is None else float(x) for x in values]  # type: ignore[arg-type]
 
 
 def spec_from_key(key: str) -> ModelSpec:
@@ -70,7 +87,7 @@ def spec_from_key(key: str) -> ModelSpec:
     if not key.startswith(MODEL_PREFIX):
         raise ValueError(f"not a model key: {key[:40]!r}")
     data = json.loads(key[len(MODEL_PREFIX):])
-    joints = tuple(ModelJointSpec(str(k), *(float(x) for x in rest)) for k, *rest in data["joints"])
+    joints = tuple(ModelJointSpec(str(k), *_numbers(rest)) for k, *rest in data["joints"])
     payload = data["payload_kg"]
     solids = tuple(ModelSolid(int(j), str(k), tuple(float(x) for x in n), tuple(float(x) for x in p), str(path))
                    for j, k, n, p, path in data.get("solids", ()))

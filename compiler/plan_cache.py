@@ -6,7 +6,9 @@
 The key (SHA-256) covers everything the plan is a function of:
 - the checked ir.Program, encoded by the plan codec — it holds the text of every source file
   the front end read (program, imports, cell: each Span keeps its SourceFile), the cell, the
-  robots' load keys (library name, URDF path, or a cell model's full parameters);
+  robots' load keys (library name, URDF path, or a cell model's full parameters, its link
+  masses and motor ratings included); the tools' and parts' masses, which the timing's joint
+  torque limits depend on (issue #16), are fields of the program;
 - the bytes of every file the program names by absolute path (URDFs, meshes, a URDF chain's file);
 - a digest of rmot's own files (code, robot library, grammar, data), so any change to the
   compiler invalidates every entry (rmot's version number adds nothing to it: a release with

@@ -393,6 +393,12 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def model_accel(self, c: list[Any]) -> ast.Setting:
         return ast.Setting("accel", c[1], self._span(c))
 
+    def model_torque(self, c: list[Any]) -> ast.Setting:
+        return ast.Setting("torque", c[1], self._span(c))
+
+    def model_mass(self, c: list[Any]) -> ast.Setting:
+        return ast.Setting("mass", c[1], self._span(c))
+
     def model_flange(self, c: list[Any]) -> ast.Setting:
         return ast.Setting("flange", c[1], self._span(c))
 

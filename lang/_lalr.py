@@ -27,6 +27,7 @@ from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlacehold
 
 from rmot.lang._tables import LalrTables
 from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
+from rmot.lang.units import COMPOUND_CUT
 
 __all__ = ["LalrDriver", "PostLexState"]
 
@@ -140,7 +141,7 @@ class LalrDriver:
                 elif "UNIT" in accepts[states[-1]]:  # kind == "unit"
                     ttype = "UNIT"
                 else:  # `m/s` where no unit fits: just the word `m`, then `/` and `s`
-                    value = value[: value.index("/")]
+                    value = value[: COMPOUND_CUT.search(value).start()]  # type: ignore[union-attr]
                     end = start + len(value)
                     ttype = kinds.word_type(value, accepts[states[-1]])
                 start_line = end_line = line

@@ -11,17 +11,20 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 
 from rmot.lang import codes
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Span
 
-__all__ = ["BASE_UNITS", "COMPOUND_UNIT", "UNIT_TABLE", "UNIT_NAMES", "unknown_unit"]
+__all__ = ["BASE_UNITS", "COMPOUND_CUT", "COMPOUND_UNIT", "UNIT_TABLE", "UNIT_NAMES",
+           "unknown_unit"]
 
 _DEG = math.pi / 180
 _L, _A, _T, _M, _P = (1, 0, 0, 0, 0), (0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0), (0, 0, 0, 0, 1)
 _SPEED, _ANG_SPEED = (1, 0, -1, 0, 0), (0, 1, -1, 0, 0)
 _ACCEL, _ANG_ACCEL = (1, 0, -2, 0, 0), (0, 1, -2, 0, 0)
+_FORCE, _TORQUE = (1, 0, -2, 1, 0), (2, 0, -2, 1, 0)  # N, N·m: a model joint's rating (#16)
 
 UNIT_TABLE: dict[str, tuple[float, tuple[int, int, int, int, int]]] = {
     "mm": (1e-3, _L), "cm": (1e-2, _L), "m": (1.0, _L), "in": (0.0254, _L),
@@ -32,13 +35,17 @@ UNIT_TABLE: dict[str, tuple[float, tuple[int, int, int, int, int]]] = {
     "mm/s^2": (1e-3, _ACCEL), "m/s^2": (1.0, _ACCEL), "cm/s^2": (1e-2, _ACCEL), "in/s^2": (0.0254, _ACCEL),
     "deg/s^2": (_DEG, _ANG_ACCEL), "rad/s^2": (1.0, _ANG_ACCEL),
     "g": (1e-3, _M), "kg": (1.0, _M), "%": (0.01, _P),
+    "N": (1.0, _FORCE), "N*m": (1.0, _TORQUE),
 }
 UNIT_NAMES: tuple[str, ...] = tuple(UNIT_TABLE)
 # the words that may start a unit token (longest first, so `mm` is tried before `m`)
 BASE_UNITS: tuple[str, ...] = tuple(sorted((u for u in UNIT_TABLE if u.isidentifier()), key=lambda u: (-len(u), u)))
 _BASES = "|".join(BASE_UNITS)
 # the lexer's shape of a compound unit; whether it is a known one is the builder's question
-COMPOUND_UNIT = rf"(?:{_BASES})/s(?:\^2)?(?![A-Za-z0-9_])"
+COMPOUND_UNIT = rf"(?:(?:{_BASES})/s(?:\^2)?|N\*m)(?![A-Za-z0-9_])"
+# where no unit fits, a compound unit token is cut back to its first word (`m/s` -> `m`,
+# `N*m` -> `N`)
+COMPOUND_CUT = re.compile(r"[/*]")
 
 
 def unknown_unit(text: str, span: Span | None) -> Diagnostic:

@@ -150,7 +150,8 @@ _DYNAMICS: dict[str, Any] = {
             "additionalProperties": False,
             "properties": {"joint": {"type": "integer"}, "unit": {"enum": ["N·m", "N"]},
                            "peak_torque": _NUM, "rms_torque": _NUM, "peak_power_w": _NUM,
-                           "rated_torque": _NULL_NUM, "utilisation": _NULL_NUM},
+                           "rated_torque": _NULL_NUM, "utilisation": _NULL_NUM,
+                           "rms_utilisation": _NULL_NUM, "suffices": {"type": ["boolean", "null"]}},
         }},
     },
 }

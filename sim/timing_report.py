@@ -20,14 +20,17 @@ ASSUMPTIONS: dict[str, str] = {
               "touching them) TCP path speed <= speed and TCP path acceleration <= accel",
     "accelerations": "robot library values: estimates (vmax reached in 0.25 s) unless the robot's data "
                      "cites a source; ABB IRB 120 estimated from ABB's published standard cycle (0.58 s)",
-    "payload": "payload, torque limits and servo lag do not change the timing",
+    "payload": "the payload (heaviest tool and held parts) slows the motion only where a joint "
+               "torque would exceed its rating (robots with inertia data and torque ratings); "
+               "servo lag does not change the timing",
     "wait_until": "an awaited input arrives at once (timeouts are not simulated)",
     "first_move": "the motion to a task's first target is not timed (the robot starts there)",
 }
 
 ASSUMPTIONS_LINE = ("timing: acceleration-limited, time-optimal on the planned path (no jerk limit); "
-                    "library accelerations are estimates; payload does not slow the robot; awaited "
-                    "inputs arrive at once; the motion to the first target is not counted")
+                    "library accelerations are estimates; payload slows the robot only where "
+                    "torque ratings bind; awaited inputs arrive at once; the motion to the first "
+                    "target is not counted")
 
 
 def _round(x: float) -> float:

@@ -138,6 +138,7 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
 
             click.echo(render(Diagnostic(codes.OPTION_IGNORED, Severity.WARNING,
                                          "--region is ignored without --place (the arms stand at the cell's pose)", None)), err=True)
+    _known_arms(robots)
     results = []
     for key in robots or (None,):
         prog = loaded.program
@@ -152,6 +153,24 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
     text = (format_json if fmt == "json" else format_text)(program, name, results)
     click.echo(text, nl=False)
     sys.exit(EXIT_OK if any(r.verified for r in results) else EXIT_FINDINGS)
+
+
+def _known_arms(keys: tuple[str, ...]) -> None:
+    """Before any arm is planned: a --robot that names no library robot and no URDF file ends the
+    command with E804 (as `rmot reach` and `rmot place` do); a file that does not load stays a
+    per-arm finding (E320) in the table."""
+    from rmot.compiler.cli.design_errors import fail_code
+    from rmot.compiler.robots import RobotError, load_robot
+    from rmot.compiler.robots.codes import UNKNOWN_ROBOT
+    from rmot.sim.design import codes
+
+    for key in keys:
+        try:
+            load_robot(key)
+        except RobotError as exc:
+            if exc.code is None or exc.code == UNKNOWN_ROBOT:
+                fail_code(codes.ROBOT_UNKNOWN,
+                          f"--robot must name a library robot or a URDF file ({exc.message})")
 
 
 def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[Any, str]:

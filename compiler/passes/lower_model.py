@@ -8,6 +8,9 @@ lengths (mm, mm/s, mm/s^2). `flange POSE` (default identity) and `payload MASS` 
 payload, default none) may appear once each. Every number must be finite; speeds and
 accelerations > 0; range lo < hi; payload >= 0; 1 to MAX_JOINTS joints; dh and mdh rows
 are not mixed. See compiler/robots/model.py for the conventions.
+Optional per joint (issue #16): `mass M` (the link's mass, >= 0, on every joint line or on
+none: E809) and `torque T` (the motor's rated torque, N*m, > 0; a force in N on a prismatic
+joint); ratings without masses cannot be checked (W801).
 """
 
 from __future__ import annotations
@@ -16,11 +19,12 @@ import math
 
 from collections.abc import Callable
 
-from rmot.compiler import codes, ir
+from rmot.compiler import codes, codes_design, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
-from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, MASS, SPEED, Dim,
-                                         Quantity, example_unit, fmt_quantity)
+from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
+                                         MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
+                                         fmt_quantity)
 from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
 from rmot.lang import ast
 from rmot.lang.source import Span
@@ -30,6 +34,7 @@ __all__ = ["lower_model"]
 _DH_ARGS = ("a", "alpha", "d", "theta")
 _KINDS = {"revolute": "R", "prismatic": "P"}
 _FIELDS = ("dh", "range", "speed", "accel")  # dh stands for dh or mdh
+_OPTIONAL = ("mass", "torque")  # issue #16: link mass, motor's rated torque (N for prismatic)
 
 
 GeometryFn = Callable[[ast.Geometry], "ir.Geometry | None"]
@@ -86,9 +91,33 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
     if payload is not None:
         payload_kg = _number(payload.value, MASS, f"payload of model '{name}'", rep, scope, minimum=0.0)  # type: ignore[arg-type]
         ok &= payload_kg is not None
+    if ok and joints:
+        ok &= _dynamics_complete(decl, joints, rep)
     if not ok:
         return None
     return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids))
+
+
+def _dynamics_complete(decl: ast.ModelDecl, joints: list[ModelJointSpec], rep: Reporter) -> bool:
+    """Link masses on every joint line or on none (E809); torque ratings without masses can be
+    neither checked nor used by the timing (W801)."""
+    name = decl.name.name
+    lines = [i for i in decl.items if isinstance(i, ast.ModelJoint)]
+    massless = [k for k, j in enumerate(joints, 1) if j.mass is None]
+    if massless and len(massless) < len(joints):
+        verb = "has" if len(massless) == 1 else "have"
+        rep.error(codes_design.MODEL_MASS_INCOMPLETE,
+                  f"model '{name}' must give a link mass on every joint line or on none "
+                  f"(joint {', '.join(map(str, massless))} {verb} none; write "
+                  "mass 0 kg for a link without mass)", lines[massless[0] - 1].span)
+        return False
+    rated = [k for k, j in enumerate(joints, 1) if j.torque is not None]
+    if rated and massless:
+        rep.warning(codes_design.MODEL_TORQUE_UNCHECKED,
+                    f"model '{name}' gives torque ratings but no link masses: the joint torques "
+                    "cannot be computed, so the ratings are neither checked nor slow the motion "
+                    "(give every joint line a mass, e.g. mass 4 kg)", lines[rated[0] - 1].span)
+    return True
 
 
 def _once(item: ast.Setting, first: ast.Setting | None, name: str, rep: Reporter) -> bool:
@@ -130,7 +159,7 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
         if key == "solid":  # any number of them, lowered by _solid
             continue
         slot = "dh" if key in ("dh", "mdh") else key
-        if slot not in _FIELDS:
+        if slot not in _FIELDS + _OPTIONAL:
             rep.unknown(key, "joint field", part.func.span if isinstance(part, ast.Call) else part.span,  # type: ignore[union-attr]
                         ["dh", "mdh", "range", "solid"], codes.MODEL_JOINT_FIELD)
             ok = False
@@ -157,10 +186,25 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
     speed_e, accel_e = fields["speed"].value, fields["accel"].value  # type: ignore[union-attr]
     speed = _number(speed_e, ANGULAR_SPEED if kind == "R" else SPEED, "joint speed", rep, scope, positive=True)  # type: ignore[arg-type]
     accel = _number(accel_e, ANGULAR_ACCEL if kind == "R" else ACCEL, "joint accel", rep, scope, positive=True)  # type: ignore[arg-type]
-    if dh is None or rng is None or speed is None or accel is None:
+    mass = torque = None
+    if "mass" in fields:
+        mass_s = fields["mass"]
+        assert isinstance(mass_s, ast.Setting)
+        assert mass_s.value is not None and not isinstance(mass_s.value, (ast.Ident, tuple))
+        mass = _number(mass_s.value, MASS, "link mass", rep, scope, minimum=0.0)
+        ok &= mass is not None
+    if "torque" in fields:
+        what = "joint torque rating" if kind == "R" else "joint force rating (prismatic)"
+        torque_s = fields["torque"]
+        assert isinstance(torque_s, ast.Setting)
+        assert torque_s.value is not None and not isinstance(torque_s.value, (ast.Ident, tuple))
+        dim = TORQUE if kind == "R" else FORCE
+        torque = _number(torque_s.value, dim, what, rep, scope, positive=True)
+        ok &= torque is not None
+    if dh is None or rng is None or speed is None or accel is None or not ok:
         return None
     a, alpha, d, theta = dh
-    return ModelJointSpec(kind, a, alpha, d, theta, rng[0], rng[1], speed, accel)
+    return ModelJointSpec(kind, a, alpha, d, theta, rng[0], rng[1], speed, accel, mass, torque)
 
 
 def _solid(call: ast.Call, joint: int, scope: Scope, rep: Reporter, geometry: GeometryFn | None) -> ModelSolid | None:

@@ -31,6 +31,9 @@ SPEED: Dim = (1, 0, -1, 0, 0)
 ANGULAR_SPEED: Dim = (0, 1, -1, 0, 0)
 ACCEL: Dim = (1, 0, -2, 0, 0)
 ANGULAR_ACCEL: Dim = (0, 1, -2, 0, 0)
+FORCE: Dim = (1, 0, -2, 1, 0)  # N: a prismatic model joint's force rating (issue #16)
+TORQUE: Dim = (2, 0, -2, 1, 0)  # N*m: a revolute model joint's torque rating
+__all__ += ["FORCE", "TORQUE"]
 
 # unit as written -> (factor to SI, dimension): the language's one table (lang/units.py)
 UNITS: dict[str, tuple[float, Dim]] = UNIT_TABLE
@@ -39,6 +42,7 @@ _DIM_NAMES = {
     TIME: ("time", "0.5 s"), MASS: ("mass", "1.2 kg"), RATIO: ("ratio", "50 %"),
     SPEED: ("speed", "250 mm/s"), ANGULAR_SPEED: ("angular speed", "90 deg/s"),
     ACCEL: ("acceleration", "2 m/s^2"), ANGULAR_ACCEL: ("angular acceleration", "180 deg/s^2"),
+    FORCE: ("force", "400 N"), TORQUE: ("torque", "120 N*m"),
 }
 
 

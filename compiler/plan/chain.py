@@ -12,19 +12,25 @@ time-optimally (timing.path_piece) under physical limits only:
   a joint move and a Cartesian move the Cartesian move's limits apply from the blend's start.
 If a chain cannot be timed as a whole, each of its moves is timed on its own with an exact
 stop at every corner (W225 names the corner's move and time): nothing is dropped.
+Joint torque limits (compiler/plan/torque.py, where the robot has ratings): a chain timed as
+above whose torques exceed a rating is timed again with the torque rows (a joint move then
+as the joint-space line through path_piece): the motion slows where the motors need it to.
 `times` gives each segment's start and end on the piece's local clock (end = zone entry).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.plan.blend import ChainPath, blend_chain
 from rmot.compiler.plan.segments import Segment
-from rmot.compiler.plan.timing import HoldPiece, Piece, TimingError, joint_move_piece, path_piece, stretched
+from rmot.compiler.plan.timing import (HoldPiece, PathPiece, Piece, TimingError, joint_move_piece,
+                                       path_piece, stretched)
+from rmot.compiler.plan.torque import TORQUE, TorqueLimits, exceeds
 
 __all__ = ["TimedChain", "time_chain"]
 
@@ -68,7 +74,45 @@ def _joint_chain(seg: Segment, vmax: np.ndarray, amax: np.ndarray, duration: flo
     except TimingError as exc:
         error = str(exc)
         piece = joint_move_piece(seg.q[0], seg.q[-1], vmax, amax, None)
+    limits = TORQUE.get()
+    if limits is not None and exceeds(limits, piece):
+        slower = _line_piece(seg.q[0], seg.q[-1], vmax, amax, limits)
+        if slower is not None:
+            piece, error = slower, None
+            if duration is not None:
+                if duration < piece.duration * (1 - 1e-9):
+                    error = (f"time must be at least the fastest feasible {piece.duration:.3f} s "
+                             f"(got {duration:.3f} s)")
+                else:
+                    piece = stretched(piece, duration)
     return TimedChain(piece, (0.0,), (piece.duration,), (0.0,), None, error, error is not None)
+
+
+def _line_piece(q0: np.ndarray, q1: np.ndarray, vmax: np.ndarray, amax: np.ndarray,
+                limits: TorqueLimits) -> PathPiece | None:
+    """The straight joint-space line q0 -> q1 timed with the torque rows (None: no such timing,
+    e.g. the payload's weight alone exceeds a rating; the verification then reports the torque)."""
+    length = float(np.linalg.norm(q1 - q0))
+    if length < 1e-9:
+        return None
+    ss = np.linspace(0.0, length, max(2, int(np.ceil(length / 0.05)) + 1))
+    waypoints = q0 + (ss / length)[:, None] * (q1 - q0)
+    try:
+        return path_piece(waypoints, ss, vmax, amax, len(q0), torque=limits)
+    except TimingError:
+        return None
+
+
+def _torque_limited(piece: PathPiece, args: tuple[Any, ...], kwargs: dict[str, Any]) -> PathPiece:
+    """`piece` (path_piece(*args, **kwargs)), or the same path timed again with the task's torque
+    limits where its torques exceed them (unchanged if that timing fails)."""
+    limits = TORQUE.get()
+    if limits is None or not exceeds(limits, piece):
+        return piece
+    try:
+        return path_piece(*args, **kwargs, torque=limits)
+    except TimingError:
+        return piece
 
 
 def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain:  # type: ignore[no-untyped-def]
@@ -89,7 +133,8 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
         vscale = None
     error = None
     try:
-        piece = path_piece(path.q[keep], ss[keep], vlim, amax, dof, vscale, **tcp_kw)
+        args = (path.q[keep], ss[keep], vlim, amax, dof, vscale)
+        piece = _torque_limited(path_piece(*args, **tcp_kw), args, tcp_kw)
     except TimingError as exc:
         return _stopped_chain(segments, vmax, amax, str(exc))
     if duration is not None:
@@ -167,5 +212,6 @@ def _path_chain_strict(path: ChainPath, segments, vmax, amax) -> TimedChain:  # 
     tcp_kw = {}
     if path.tcp_speed is not None and np.any(np.isfinite(path.tcp_speed)):
         tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])
-    piece = path_piece(path.q[keep], ss[keep], vmax * segments[0].speed_factor, amax, dof, None, **tcp_kw)
+    args = (path.q[keep], ss[keep], vmax * segments[0].speed_factor, amax, dof, None)
+    piece = _torque_limited(path_piece(*args, **tcp_kw), args, tcp_kw)
     return TimedChain(piece, (0.0,), (piece.duration,), (0.0,), path)

@@ -41,7 +41,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
             continue
         q0 = initial_joints(robot, task.body)
         robots[task.name], starts[task.name] = robot, q0
-        drafts[task.name] = build_task(robot, task, q0, lone=len(program.tasks) == 1)
+        drafts[task.name] = _build_task(robot, task, q0, program)
         diagnostics.extend(drafts[task.name].diagnostics)
     diagnostics.extend(align(drafts))
     for draft in drafts.values():
@@ -94,6 +94,19 @@ def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: f
 def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
     span = d.span
     return (span.path, span.start.offset) if span is not None else ("", -1)
+
+
+def _build_task(robot: object, task: ir.Task, q0: np.ndarray, program: ir.Program) -> TaskDraft:
+    """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
+    robot has no torque ratings), the payload as the verification takes it."""
+    from rmot.compiler.plan.torque import TORQUE, task_payload, torque_limits
+
+    limits = torque_limits(robot, *task_payload(task, program.cell.parts))
+    token = TORQUE.set(limits)
+    try:
+        return build_task(robot, task, q0, lone=len(program.tasks) == 1)
+    finally:
+        TORQUE.reset(token)
 
 
 def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]) -> object | None:

@@ -231,7 +231,7 @@ def joint_move_piece(
 def path_piece(
     waypoints: np.ndarray, ss: np.ndarray, vlim: np.ndarray, alim: np.ndarray, dof: int | None = None,
     vscale: np.ndarray | None = None, *, tcp: np.ndarray | None = None, tcp_speed: np.ndarray | None = None,
-    tcp_accel: np.ndarray | None = None,
+    tcp_accel: np.ndarray | None = None, torque: object | None = None,
 ) -> PathPiece:
     """Time-optimal rest-to-rest timing of the joint path through waypoints (M, dof) at ss (M,).
 
@@ -242,6 +242,9 @@ def path_piece(
     none) and tcp_accel (M,) the TCP path acceleration limit (m/s^2, inf = none); inside an
     interval the smaller of its ends. The TCP path is the cubic spline through `tcp` over
     ss (the waypoints are the dense IK points, within 0.05 mm of the path).
+    torque: optional joint torque limits (compiler/plan/torque.TorqueLimits): |tau_j| <=
+    tau_max_j by inverse dynamics along the path, rows of the parametrisation like the joint
+    accelerations and re-checked and repaired the same way.
     Every limit holds at both ends and the middle of every grid cell (see module doc).
     """
 
@@ -262,9 +265,10 @@ def path_piece(
         acc_int = np.minimum(tcp_accel[:-1], tcp_accel[1:]) if tcp_accel is not None else np.full(n_int, np.inf)
         tcp_int = (np.minimum(tcp_speed[:-1], tcp_speed[1:]), acc_int)
     grid, _ = _grid(ss)
-    arrays = _Arrays(_Limits(path, spline, ss, vlim, alim, f_int, tcp_int), grid)
+    arrays = _Arrays(_Limits(path, spline, ss, vlim, alim, f_int, tcp_int, torque), grid)
     for attempt in range(_REFINE_ROUNDS + 1):
-        x, r_acc, r_vel, bad = arrays.solve(arrays.xmax.copy(), 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS)
+        rounds = 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS
+        x, r_acc, r_vel, bad, w_tau = arrays.solve(arrays.xmax.copy(), rounds)
         if not np.any(bad) or attempt == _REFINE_ROUNDS:
             break
         arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells (consumes the old)
@@ -275,6 +279,8 @@ def path_piece(
         raise TimingError("no feasible timing was found for the path (a speed limit is zero)")
     traj = ConstAccelTiming(path, arrays.grid, sd)
     scale = max(1.0, worst_v * (1 + _CHECK_TOL), math.sqrt(worst_a * (1 + _CHECK_TOL)))
+    if w_tau is not None:  # a torque excess left after the repairs: x (~ 1 / scale^2) shrinks
+        scale = max(scale, math.sqrt(float(np.max(w_tau, initial=0.0)) * (1 + _CHECK_TOL)))
     return PathPiece(traj, float(traj.duration), scale, dof)
 
 
@@ -334,6 +340,7 @@ class _Limits:
     alim: np.ndarray
     f_int: np.ndarray
     tcp_int: tuple[np.ndarray, np.ndarray] | None
+    torque: object | None = None  # compiler/plan/torque.TorqueLimits, or None
 
     def points(self, s: np.ndarray, left: np.ndarray, right: np.ndarray):  # type: ignore[no-untyped-def]
         """At grid points s with the waypoint intervals on their left and right: the joints'
@@ -356,11 +363,18 @@ class _Limits:
             b.append(np.where(on, l2, 0.0)[:, None])
             c.append(np.where(on, ac, np.inf)[:, None])
             vel = np.maximum(vel, l1 / sp)
-        return d1, d2, np.hstack(a), np.hstack(b), np.hstack(c) * (1 - _A_MARGIN), vel
+        trows = None
+        if self.torque is not None:  # lo <= a u + b x <= hi with lo, hi = -+tau_max - g
+            q = self.path(s)  # type: ignore[operator]
+            ta, tb, tc = self.torque.rows(q, d1, d2)  # type: ignore[attr-defined]
+            lim = self.torque.limit * (1 - _A_MARGIN)  # type: ignore[attr-defined]
+            trows = (ta, tb, lim - tc, -lim - tc)
+        return d1, d2, np.hstack(a), np.hstack(b), np.hstack(c) * (1 - _A_MARGIN), vel, trows
 
     def cells(self, lo: np.ndarray, h: np.ndarray, interval: np.ndarray):  # type: ignore[no-untyped-def]
         """Inside cells [lo, lo + h] of the given waypoint intervals, at _CHECK_AT: the joints'
-        derivatives m1, m2 (T, N, dof) and the speed ratios per sqrt(x) (T, N)."""
+        derivatives m1, m2 (T, N, dof) and the speed ratios per sqrt(x) (T, N); with torque
+        limits also the torque rows a, b, c (T + 1, N, dof) at _CHECK_AT and the cell's end."""
         m1, m2, vel = [], [], []
         f = self.f_int[interval]
         for th in _CHECK_AT:
@@ -372,7 +386,13 @@ class _Limits:
             if self.spline is not None:
                 v = np.maximum(v, _arc_rates(self.spline, s)[0] / self.tcp_int[0][interval])
             vel.append(v)
-        return np.stack(m1), np.stack(m2), np.stack(vel)
+        if self.torque is None:
+            return np.stack(m1), np.stack(m2), np.stack(vel)
+        path, torque = self.path, self.torque
+        rows = [torque.rows(path(s), path(s, 1), path(s, 2))  # type: ignore[attr-defined, operator]
+                for s in (lo + th * h for th in (*_CHECK_AT, 1.0))]
+        ta, tb, tc = (np.stack([r[k] for r in rows]) for k in range(3))
+        return np.stack(m1), np.stack(m2), np.stack(vel), ta, tb, tc
 
 
 class _Arrays:
@@ -390,10 +410,12 @@ class _Arrays:
             right = np.concatenate([interval, interval[-1:]])
             pts = _normalised(limits.points(grid, left, right))
             parts = (interval, pts, limits.cells(grid[:-1], self.h, interval))
-        self.interval, self.pts, (self.m1, self.m2, self.v_in) = parts[0], parts[1], parts[2]
-        d1, d2, beta, gamma, ceiling, vel = self.pts
+        self.interval, self.pts = parts[0], parts[1]
+        self.m1, self.m2, self.v_in = parts[2][:3]
+        self.tau = parts[2][3:] or None  # torque rows inside the cells, with torque limits only
+        d1, d2, beta, lo, hi, ceiling, vel = self.pts
         self.d1, self.d2 = d1, d2
-        self.rows = (beta, gamma, ceiling)
+        self.rows = (beta, lo, hi, ceiling)
         with np.errstate(divide="ignore"):
             xmax = 1.0 / vel ** 2 * (1 - _V_MARGIN) ** 2
         xmax[~np.isfinite(xmax)] = 1e18
@@ -436,12 +458,16 @@ class _Arrays:
         self.m2 = None  # type: ignore[assignment]
         v_in = _merged(self.v_in, new_cells[2], cplace, axis=1, keep=keep)
         self.v_in = None  # type: ignore[assignment]
-        return _Arrays(self.limits, grid[order], (interval_all, tuple(pts), (m1, m2, v_in)))
+        tau = tuple(_merged(old, new, cplace, axis=1, keep=keep)
+                    for old, new in zip(self.tau or (), new_cells[3:]))
+        self.tau = None
+        return _Arrays(self.limits, grid[order], (interval_all, tuple(pts), (m1, m2, v_in, *tau)))
 
     def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]
-        """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad)
-        with per cell the largest acceleration and speed ratio found by the re-check (at the
-        cell's end, with the cell's u and the next point's derivatives, and inside it)."""
+        """Time-optimal x on this grid, with up to `rounds` local repairs; (x, r_acc, r_vel, bad,
+        w_tau) with per cell the largest acceleration and speed ratio found by the re-check (at
+        the cell's end, with the cell's u and the next point's derivatives, and inside it) and,
+        with torque limits, the factor x must shrink by for the torques to hold (else None)."""
         from rmot.compiler.plan import topp
 
         for _ in range(rounds + 1):
@@ -449,25 +475,39 @@ class _Arrays:
             r_acc, r_vel = topp.check(x, self.h, self.d1, self.d2, self.m1, self.m2, self.v_in,
                                       _CHECK_AT, self.limits.alim)
             bad = (r_acc > 1 + _CHECK_TOL) | (r_vel > 1 + _CHECK_TOL)
+            w_tau = None
+            if self.tau is not None:
+                ta, tb, tc = self.tau
+                w_tau = topp.check_torque(x, self.h, ta, tb, tc, (*_CHECK_AT, 1.0),
+                                          self.limits.torque.limit)  # type: ignore[attr-defined]
+                bad |= w_tau > 1 + _CHECK_TOL
             if not np.any(bad):
                 break
             # local repair: lower the speed ceiling at the offending cells' two ends only (as a
             # time stretch by k would, locally: speed / k, acceleration about / k^2)
             worst = np.maximum(r_acc, r_vel ** 2)  # per cell, in units of x
+            if w_tau is not None:
+                worst = np.maximum(worst, w_tau)
             cells = np.flatnonzero(bad)
             factor = 1.0 / (worst[cells] * (1 + _A_MARGIN))
             for end in (cells, cells + 1):
                 np.minimum.at(xmax, end, x[end] * factor)
-        return x, r_acc, r_vel, bad
+        return x, r_acc, r_vel, bad, w_tau
 
 
 def _normalised(pts):  # type: ignore[no-untyped-def]
-    """A point's (d1, d2, a, b, c, vel) as (d1, d2, beta, gamma, ceiling, vel): the rows in the
-    solver's form (topp.Rows.normalised, row by row), kept instead of a, b, c."""
+    """A point's (d1, d2, a, b, c, vel, torque rows) as (d1, d2, beta, lo, hi, ceiling, vel): the
+    rows in the solver's form (topp.Rows.normalised, row by row), kept instead of a, b, c; the
+    torque rows (a, b, hi, lo) or None, one-sided, appended after the symmetric ones."""
     from rmot.compiler.plan import topp
 
-    d1, d2, a, b, c, vel = pts
-    return (d1, d2, *topp.Rows(a, b, c).normalised(), vel)
+    d1, d2, a, b, c, vel, trows = pts
+    if trows is None:
+        return (d1, d2, *topp.Rows(a, b, c).normalised(), vel)
+    parts = zip(topp.Rows(a, b, c).parts(), topp.Rows(*trows).parts())
+    beta, lo, hi, pure = (np.hstack(p) for p in parts)
+    ceiling = np.minimum(topp.static_ceiling(beta, lo, hi), np.min(pure, axis=1, initial=np.inf))
+    return d1, d2, beta, lo, hi, ceiling, vel
 
 
 def _places(order: np.ndarray, n_old: int) -> tuple[np.ndarray, np.ndarray]:

@@ -25,7 +25,12 @@ Conventions (lang/REFERENCE.md, "Robot models"):
     60 % at the flange; an estimate for display and a conservative collision envelope, not
     the vendor's shape. Solids of the same or neighbouring joints, and solids that overlap at
     the model's zero configuration, touch by design and are not checked against each other.
-  * Accelerations and speeds are the model's own; there are no inertias.
+  * Accelerations and speeds are the model's own. Dynamics (issue #16) only where every joint
+    line gives its link's `mass`: the mass spread over the link's solids (given or generated)
+    by volume, each a uniform solid over its bounding capsule (compiler/robots/dynamics
+    .link_inertias, the library's estimate); a link with no solid of known extent (a mesh)
+    gets its mass as a small sphere at its joint's origin. `torque` gives the joint's rated
+    torque (the model's effortLimit); a joint without one is unrated (inf).
 """
 
 from __future__ import annotations
@@ -79,7 +84,37 @@ def robot_from_model(spec: ModelSpec) -> Robot:
         robot = Robot(**common, branch_fn=branch_fn)  # type: ignore[arg-type]
     robot.reach = _reach(robot)
     robot.rated_payload_kg = spec.payload_kg
+    if all(j.mass is not None for j in spec.joints):
+        _add_dynamics(robot, spec)
     return robot
+
+
+def _add_dynamics(robot: Robot, spec: ModelSpec) -> None:
+    """Link inertias from the masses and the solids, ratings into effortLimit (module doc)."""
+    from rmot.compiler.robots.dynamics import link_inertias
+    from rmot.compiler.robots.spec import Segment
+
+    segments = []
+    for s in robot.solids:
+        if s.joint_id < 1:
+            continue
+        ends = _bounding_segment(s.placement.matrix(), s.geometry)  # in the solid's joint frame
+        if ends is not None:
+            p0, p1, r = ends
+            segments.append(Segment(s.name, int(s.joint_id), (p0[0], p0[1], p0[2]),
+                                    (p1[0], p1[1], p1[2]), float(r)))
+    import pinocchio as pin
+
+    masses = tuple(float(j.mass or 0.0) for j in spec.joints)
+    # a massless link: computed with 1 kg (no division by zero), then left without inertia
+    some = tuple(m if m > 0 else 1.0 for m in masses)
+    inertias = link_inertias(tuple(segments), some, [np.eye(4)] * len(masses))
+    model = robot.model
+    for j, (inertia, mass) in enumerate(zip(inertias, masses), start=1):
+        model.inertias[j] = inertia if mass > 0 else pin.Inertia.Zero()
+    rated = [np.inf if j.torque is None else j.torque for j in spec.joints]
+    model.effortLimit = np.array(rated, dtype=float)
+    robot.has_inertia = True
 
 
 # --------------------------------------------------------------------------- solids

@@ -22,7 +22,11 @@ def dynamics_text(plan: planned.Plan, metrics: dict[str, TaskMetrics] | None = N
         lines.append(f"dynamics: task '{task}' ({m.model}), peak / RMS torque, peak power, peak / rated torque:")
         for j in m.dynamics:
             unit = "N" if j.prismatic else "N·m"
-            use = f"{j.utilisation * 100:.0f}% of {j.rated_torque:g} {unit}" if j.utilisation is not None else "rated torque unknown"
+            use = "rated torque unknown"
+            if j.utilisation is not None and j.rms_utilisation is not None:
+                verdict = "the motor suffices" if j.suffices else "EXCEEDS the motor's rating"
+                use = (f"{j.utilisation * 100:.0f}% of {j.rated_torque:g} {unit} "
+                       f"(RMS {j.rms_utilisation * 100:.0f}%): {verdict}")
             lines.append(f"  J{j.joint}: {j.peak_torque:.2f} / {j.rms_torque:.2f} {unit}, {j.peak_power:.1f} W, {use}")
         if m.dynamics_note:
             lines.append(f"  note: {m.dynamics_note}")
@@ -36,7 +40,8 @@ def _r(x: float | None) -> float | None:
 def dynamics_json(metrics: dict[str, TaskMetrics]) -> dict[str, dict[str, Any]]:
     """task name -> the `dynamics` block of its JSON report entry (schema: rmot.sim.report._DYNAMICS):
     model, per joint peak / RMS torque (N·m; N for a prismatic joint, `unit` says), peak power (W),
-    rated torque and peak / rated (null when the model gives no rating); `joints` null and `note`
+    rated torque, peak / rated, RMS / rated and whether the motor suffices (peak within the
+    rating; null when the model gives no rating); `joints` null and `note`
     saying why when the model has no inertia data."""
     out = {}
     for task, m in metrics.items():
@@ -45,6 +50,7 @@ def dynamics_json(metrics: dict[str, TaskMetrics]) -> dict[str, dict[str, Any]]:
             joints = [{"joint": j.joint, "unit": "N" if j.prismatic else "N·m",
                        "peak_torque": _r(j.peak_torque), "rms_torque": _r(j.rms_torque),
                        "peak_power_w": _r(j.peak_power), "rated_torque": _r(j.rated_torque),
-                       "utilisation": _r(j.utilisation)} for j in m.dynamics]
+                       "utilisation": _r(j.utilisation), "rms_utilisation": _r(j.rms_utilisation),
+                       "suffices": j.suffices} for j in m.dynamics]
         out[task] = {"model": m.model, "joints": joints, "note": m.dynamics_note}
     return out

@@ -23,6 +23,7 @@ from rmot.sim.report import Report
 
 __all__ = ["JointDynamics", "TaskMetrics", "dynamics", "task_metrics", "program_metrics", "substitute_robot"]
 
+SUFFICE_SLACK = 1e-3  # the verification's torque slack (sim/limits._SLACK["torque"])
 MAX_SAMPLES = 1500  # manipulability is evaluated on at most this many samples per trajectory (evenly spaced)
 
 
@@ -38,6 +39,18 @@ class JointDynamics:
     @property
     def utilisation(self) -> float | None:
         return self.peak_torque / self.rated_torque if self.rated_torque else None
+
+    @property
+    def rms_utilisation(self) -> float | None:
+        return self.rms_torque / self.rated_torque if self.rated_torque else None
+
+    @property
+    def suffices(self) -> bool | None:
+        """Whether the motor's rating covers the joint's peak torque, and so its RMS (within
+        the torque check's 0.1 % slack, sim/limits.py); None when the joint has no rating."""
+        if not self.rated_torque:
+            return None
+        return self.peak_torque <= self.rated_torque * (1 + SUFFICE_SLACK)
 
 
 @dataclass(frozen=True)

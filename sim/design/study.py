@@ -112,6 +112,14 @@ class Study:
     tool: str | None
 
 
+def robot_error_code(exc: Any) -> Any:
+    """The code of a --robot value the loader refused: an unknown library name (the loader's
+    E201) is the design commands' E804; a file that does not load keeps the loader's own code."""
+    from rmot.compiler.robots.codes import UNKNOWN_ROBOT
+
+    return codes.ROBOT_UNKNOWN if exc.code in (None, UNKNOWN_ROBOT) else exc.code
+
+
 def study_for(cell: ir.Cell | None, robot_name: str | None, tool: str | None) -> Study:
     """The robot of `cell` named robot_name (default: the cell's only robot), or, without a
     cell, the library robot / URDF file robot_name at the origin. Raises OptionError."""
@@ -125,7 +133,7 @@ def study_for(cell: ir.Cell | None, robot_name: str | None, tool: str | None) ->
         try:
             robot = load_robot(robot_name)
         except RobotError as exc:
-            raise OptionError(exc.code or codes.ROBOT_UNKNOWN, f"--robot: {exc.message}") from None
+            raise OptionError(robot_error_code(exc), f"--robot: {exc.message}") from None
         return Study(robot, None, np.eye(4), np.eye(4), None, None)
     names = [r.name for r in cell.robots]
     if robot_name is None:

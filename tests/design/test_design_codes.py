@@ -41,6 +41,11 @@ CASES = [
     ("E804", ["reach", DEMO, "--robot", "zz", "-o", "OUT.png"], "--robot must name a robot of cell 'demo' (r1, r2) (got 'zz')"),
     ("E804", [*PLACE, "--robot", "zz", "--region", "x=0m..1m, y=0m..1m", "-o", "OUT.rmot"], "--robot must name a robot of cell"),
     ("E804", [*COMPARE, "--as", "zz"], "--as must name a robot of cell 'place_inside' (r1) (got 'zz')"),
+    # an unknown bare library name is E804 too, not the loader's E201 (issue #16)
+    ("E804", ["reach", "--robot", "no_such_arm", "-o", "OUT.png"],
+     "--robot: unknown robot 'no_such_arm'"),
+    ("E804", [*COMPARE, "--robot", "no_such_arm"],
+     "--robot must name a library robot or a URDF file"),
     ("E805", ["reach", DEMO, "--robot", "r1", "--tool", "zz", "-o", "OUT.png"], "--tool must name a tool of cell 'demo'"),
     ("E806", ["reach", "--robot", "ur5e", "-o", "OUT.jpg"], "-o must end in one of .png, .svg, .html"),
     ("E807", ["reach", "-o", "OUT.png"], "--robot must name a library robot or a URDF file"),

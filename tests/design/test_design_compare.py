@@ -101,6 +101,8 @@ def test_check_dynamics_prints_the_rnea_numbers() -> None:
     tau, qd, effort = _rnea_on_plan(pin)
     peak, rms, power = np.abs(tau).max(axis=0), np.sqrt((tau ** 2).mean(axis=0)), np.abs(tau * qd).max(axis=0)
     expected = [f"  J{j + 1}: {peak[j]:.2f} / {rms[j]:.2f} N·m, {power[j]:.1f} W, {peak[j] / effort[j] * 100:.0f}% of {effort[j]:g} N·m"
+                f" (RMS {rms[j] / effort[j] * 100:.0f}%): "
+                + ("the motor suffices" if peak[j] <= effort[j] * 1.001 else "EXCEEDS the motor's rating")
                 for j in range(6)]
     lines = result.output.splitlines()
     start = lines.index("dynamics: task 'load_jig' (arm6), peak / RMS torque, peak power, peak / rated torque:")
@@ -123,11 +125,14 @@ def test_a_robot_without_inertias_says_so() -> None:
     assert arm["dynamics"] is None and "no inertia data" in arm["note"]
 
 
-def test_unknown_arm_is_a_finding_not_a_traceback() -> None:
-    """An arm that does not load is reported as not verified, with E320."""
-    doc = _compare_json(PICK, "no_such_arm")
+def test_unknown_arm_is_a_finding_not_a_traceback(tmp_path: Path) -> None:
+    """An arm file that does not load is reported as not verified, with E320; a name that is no
+    library robot and no URDF file is a bad option, E804, before anything is planned (issue #16)."""
+    doc = _compare_json(PICK, str(tmp_path / "missing.urdf"))
     assert doc["arms"][0]["verified"] is False
     assert doc["arms"][0]["first_findings"][0]["code"] == "E320"
+    result = CliRunner().invoke(cli, ["compare", PICK, "--robot", "no_such_arm", "--format", "json"])
+    assert result.exit_code == 2 and "error[E804]" in result.output
 
 
 def test_compare_place_places_each_arm_first() -> None:

@@ -19,6 +19,7 @@ from lark.lexer import Lexer
 from rmot.lang import _build
 from rmot.lang._tables import GRAMMAR
 from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
+from rmot.lang.units import COMPOUND_CUT
 
 __all__ = ["PostLexer", "RmotLexer", "reference_parser"]
 
@@ -73,7 +74,7 @@ class RmotLexer(Lexer):
                 if "UNIT" in accepts:
                     ttype = "UNIT"
                 else:  # `m/s` where no unit fits: just the word `m`, then `/` and `s`
-                    value = value[: value.index("/")]
+                    value = value[: COMPOUND_CUT.search(value).start()]  # type: ignore[union-attr]
                     end = start + len(value)
                     ttype = self._word_type(value, accepts)
             else:
