@@ -80,9 +80,6 @@ class Dynamics:
         )
         if not self.supported:
             return self._pinocchio(q, qd, qdd)
-        global _KERNEL
-        if _KERNEL is None:
-            _KERNEL = _numba_rnea()
         if not hasattr(self, "_arrays"):
             self._arrays = (
                 np.array([k == "R" for k in self.kinds]),
@@ -94,7 +91,7 @@ class Dynamics:
                 np.array(self.inertia),
                 self.gravity.copy(),
             )
-        return np.asarray(_KERNEL(q, qd, qdd, *self._arrays))
+        return _rnea(q, qd, qdd, *self._arrays)
 
     def _pinocchio(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
         import pinocchio as pin
@@ -105,140 +102,73 @@ class Dynamics:
         ).reshape(q.shape[0], -1)
 
 
-_KERNEL = None
-
-
-def _numba_rnea() -> Any:
-    import numba
-
-    @numba.njit(cache=True)
-    def rnea(q, qd, qdd, revolute, axes, place_r, place_p,  # type: ignore[no-untyped-def]
-             mass, com, inertia, gravity):
-        # (an inner function, not a jitted one from outside: numba then caches the kernel)
-        def cross(a, b, out):  # type: ignore[no-untyped-def]
-            out[0] = a[1] * b[2] - a[2] * b[1]
-            out[1] = a[2] * b[0] - a[0] * b[2]
-            out[2] = a[0] * b[1] - a[1] * b[0]
-
-        count, n = q.shape
-        tau = np.empty((count, n))
-        rot = np.empty((n, 3, 3))
-        pos = np.empty((n, 3))
-        f_ang = np.empty((n, 3))
-        f_lin = np.empty((n, 3))
-        w, v, dw, dv = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-        t1, t2, t3, t4 = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-        rj = np.empty((3, 3))
-        nw, nv, ndw, ndv = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-        h_ang, a_ang, pl, pa = np.empty(3), np.empty(3), np.empty(3), np.empty(3)
-        for s in range(count):
-            for k in range(3):
-                w[k] = v[k] = dw[k] = 0.0
-                dv[k] = -gravity[k]
-            for i in range(n):
-                ax = axes[i]
-                # the joint's own motion: a rotation about ax by q (Rodrigues) or a translation
-                if revolute[i]:
-                    th = q[s, i]
-                    sn, cs = np.sin(th), np.cos(th)
-                    kx, ky, kz = ax[0], ax[1], ax[2]
-                    c1 = 1.0 - cs
-                    rj[0, 0] = cs + kx * kx * c1
-                    rj[0, 1] = kx * ky * c1 - kz * sn
-                    rj[0, 2] = kx * kz * c1 + ky * sn
-                    rj[1, 0] = ky * kx * c1 + kz * sn
-                    rj[1, 1] = cs + ky * ky * c1
-                    rj[1, 2] = ky * kz * c1 - kx * sn
-                    rj[2, 0] = kz * kx * c1 - ky * sn
-                    rj[2, 1] = kz * ky * c1 + kx * sn
-                    rj[2, 2] = cs + kz * kz * c1
-                    for a in range(3):
-                        pos[i, a] = place_p[i, a]
-                        for b in range(3):
-                            acc = 0.0
-                            for c in range(3):
-                                acc += place_r[i, a, c] * rj[c, b]
-                            rot[i, a, b] = acc
-                else:
-                    for a in range(3):
-                        acc = place_p[i, a]
-                        for c in range(3):
-                            acc += place_r[i, a, c] * ax[c] * q[s, i]
-                        pos[i, a] = acc
-                        for b in range(3):
-                            rot[i, a, b] = place_r[i, a, b]
-                # the parent's motion at the child's origin, in the child's frame
-                cross(w, pos[i], t1)
-                cross(dw, pos[i], t2)
-                for k in range(3):
-                    t1[k] += v[k]
-                    t2[k] += dv[k]
-                for a in range(3):
-                    nw[a] = nv[a] = ndw[a] = ndv[a] = 0.0
-                for a in range(3):
-                    for b in range(3):
-                        r = rot[i, b, a]
-                        nw[a] += r * w[b]
-                        nv[a] += r * t1[b]
-                        ndw[a] += r * dw[b]
-                        ndv[a] += r * t2[b]
-                sq, sqq = qd[s, i], qdd[s, i]
-                for k in range(3):
-                    t3[k] = ax[k] * sq
-                if revolute[i]:
-                    cross(nw, t3, t1)
-                    cross(nv, t3, t2)
-                    for k in range(3):
-                        ndw[k] += ax[k] * sqq + t1[k]
-                        ndv[k] += t2[k]
-                        nw[k] += t3[k]
-                else:
-                    cross(nw, t3, t1)
-                    for k in range(3):
-                        ndv[k] += ax[k] * sqq + t1[k]
-                        nv[k] += t3[k]
-                for k in range(3):
-                    w[k], v[k], dw[k], dv[k] = nw[k], nv[k], ndw[k], ndv[k]
-                # f = I a + v x* (I v), the spatial inertia about the frame's origin
-                m, c = mass[i], com[i]
-                cross(w, c, t1)
-                for k in range(3):
-                    t1[k] = m * (v[k] + t1[k])  # h_lin
-                cross(dw, c, t2)
-                for k in range(3):
-                    t2[k] = m * (dv[k] + t2[k])  # a_lin
-                for a in range(3):
-                    h_ang[a] = a_ang[a] = 0.0
-                    for b in range(3):
-                        h_ang[a] += inertia[i, a, b] * w[b]
-                        a_ang[a] += inertia[i, a, b] * dw[b]
-                cross(c, t1, t3)
-                cross(c, t2, t4)
-                for k in range(3):
-                    h_ang[k] += t3[k]
-                    a_ang[k] += t4[k]
-                cross(w, t1, t3)
-                for k in range(3):
-                    f_lin[i, k] = t2[k] + t3[k]
-                cross(w, h_ang, t3)
-                cross(v, t1, t4)
-                for k in range(3):
-                    f_ang[i, k] = a_ang[k] + t3[k] + t4[k]
-            for i in range(n - 1, -1, -1):
-                acc = 0.0
-                for k in range(3):
-                    acc += (f_ang[i, k] if revolute[i] else f_lin[i, k]) * axes[i, k]
-                tau[s, i] = acc
-                if i > 0:  # the force on the parent, in the parent's frame
-                    for a in range(3):
-                        pl[a] = pa[a] = 0.0
-                        for b in range(3):
-                            pl[a] += rot[i, a, b] * f_lin[i, b]
-                            pa[a] += rot[i, a, b] * f_ang[i, b]
-                    cross(pos[i], pl, t1)
-                    for k in range(3):
-                        f_lin[i - 1, k] += pl[k]
-                        f_ang[i - 1, k] += pa[k] + t1[k]
-        return tau
-
-    return rnea
+def _rnea(q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, revolute: np.ndarray, axes: np.ndarray,
+          place_r: np.ndarray, place_p: np.ndarray, mass: np.ndarray, com: np.ndarray,
+          inertia: np.ndarray, gravity: np.ndarray) -> np.ndarray:
+    """The recursion over joints, each step vectorised over the N samples (numpy, no numba: a
+    short check of a rated arm must not wait ~0.6 s for numba to load, and over samples numpy
+    is within a few times of compiled code)."""
+    count, n = q.shape
+    cross = np.cross
+    w = np.zeros((count, 3))
+    v = np.zeros((count, 3))
+    dw = np.zeros((count, 3))
+    dv = np.broadcast_to(-gravity, (count, 3)).copy()
+    rots, poss, f_lin, f_ang = [], [], [], []
+    for i in range(n):
+        ax = axes[i]
+        if revolute[i]:
+            sn, cs = np.sin(q[:, i]), np.cos(q[:, i])
+            kx, ky, kz = ax
+            c1 = 1.0 - cs
+            rj = np.empty((count, 3, 3))
+            rj[:, 0, 0] = cs + kx * kx * c1
+            rj[:, 0, 1] = kx * ky * c1 - kz * sn
+            rj[:, 0, 2] = kx * kz * c1 + ky * sn
+            rj[:, 1, 0] = ky * kx * c1 + kz * sn
+            rj[:, 1, 1] = cs + ky * ky * c1
+            rj[:, 1, 2] = ky * kz * c1 - kx * sn
+            rj[:, 2, 0] = kz * kx * c1 - ky * sn
+            rj[:, 2, 1] = kz * ky * c1 + kx * sn
+            rj[:, 2, 2] = cs + kz * kz * c1
+            rot = np.einsum("ac,ncb->nab", place_r[i], rj)
+            pos = np.broadcast_to(place_p[i], (count, 3))
+        else:
+            rot = np.broadcast_to(place_r[i], (count, 3, 3))
+            pos = place_p[i] + np.outer(q[:, i], place_r[i] @ ax)
+        # the parent's motion at the child's origin, in the child's frame
+        t1 = v + cross(w, pos)
+        t2 = dv + cross(dw, pos)
+        nw = np.einsum("nba,nb->na", rot, w)
+        nv = np.einsum("nba,nb->na", rot, t1)
+        ndw = np.einsum("nba,nb->na", rot, dw)
+        ndv = np.einsum("nba,nb->na", rot, t2)
+        t3 = np.outer(qd[:, i], ax)
+        along = np.outer(qdd[:, i], ax)
+        if revolute[i]:
+            ndw = ndw + along + cross(nw, t3)
+            ndv = ndv + cross(nv, t3)
+            nw = nw + t3
+        else:
+            ndv = ndv + along + cross(nw, t3)
+            nv = nv + t3
+        w, v, dw, dv = nw, nv, ndw, ndv
+        # f = I a + v x* (I v), the spatial inertia about the frame's origin
+        m, c = mass[i], com[i]
+        h_lin = m * (v + cross(w, c))
+        a_lin = m * (dv + cross(dw, c))
+        h_ang = w @ inertia[i].T + cross(c, h_lin)
+        a_ang = dw @ inertia[i].T + cross(c, a_lin)
+        f_lin.append(a_lin + cross(w, h_lin))
+        f_ang.append(a_ang + cross(w, h_ang) + cross(v, h_lin))
+        rots.append(rot)
+        poss.append(pos)
+    tau = np.empty((count, n))
+    for i in range(n - 1, -1, -1):
+        tau[:, i] = (f_ang[i] if revolute[i] else f_lin[i]) @ axes[i]
+        if i > 0:  # the force on the parent, in the parent's frame
+            pl = np.einsum("nab,nb->na", rots[i], f_lin[i])
+            pa = np.einsum("nab,nb->na", rots[i], f_ang[i])
+            f_lin[i - 1] = f_lin[i - 1] + pl
+            f_ang[i - 1] = f_ang[i - 1] + pa + cross(poss[i], pl)
+    return tau
