@@ -40,7 +40,9 @@ NUM = r"-?\d+(?:\.\d+)?"
 
 # --------------------------------------------------------------------------- Fanuc LS
 
-_TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
+# [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`
+_TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))"
+                        r"(?: Offset,PR\[\d+\])?$")
 _TP_CIRC_HEAD = re.compile(r"^C P\[(\d+)(?::[^\]]*)?\]$")
 _TP_CIRC_TAIL = re.compile(r"^:\s+P\[(\d+)(?::[^\]]*)?\] (\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
 
@@ -238,10 +240,15 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
         pos, inst = lines.index("//POS"), lines.index("//INST")
     except ValueError:
         return bad + [(1, "a job has //POS and //INST sections")]
-    npos = re.fullmatch(r"///NPOS (\d+),0,0,0,0,0", lines[pos + 1])
+    # [INF] job data format: ///NPOS C,BC,EC,P,BP,EX counts; position variables as `Pnnnn=`
+    npos = re.fullmatch(r"///NPOS (\d+),0,0,(\d+),0,0", lines[pos + 1])
     cs = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("C")]
-    if npos is None or int(npos.group(1)) != len(cs):
-        bad.append((pos + 2, f"///NPOS must count the positions ({len(cs)})"))
+    ps = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("P")]
+    if npos is None or int(npos.group(1)) != len(cs) or int(npos.group(2)) != len(ps):
+        bad.append((pos + 2, f"///NPOS must count the positions ({len(cs)}) and variables ({len(ps)})"))
+    for k, ln in ps:
+        if not re.fullmatch(r"P\d{4}=" + ",".join([NUM] * 6), ln):
+            bad.append((k, f"a position variable is Pnnnn=X,Y,Z,Rx,Ry,Rz (got {ln})"))
     for i, (k, ln) in enumerate(cs):
         if not re.fullmatch(rf"C{i:05d}=" + ",".join([NUM] * 6), ln):
             bad.append((k, f"positions are C00000.. in order, each X,Y,Z,Rx,Ry,Rz (got {ln})"))
