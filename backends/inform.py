@@ -541,7 +541,11 @@ class InformBackend(Backend):
         if isinstance(value, ir.Arith) and not _reads(value.right, name):  # in place, no temporary
             lines, a = self._value(value.left, ctx, node)
             more, b = self._value(value.right, ctx, node)
-            return lines + more + [f"SET {target} {a}", f"{_INFORM_OP[value.op]} {target} {b}"]
+            if a != target:
+                lines.append(f"SET {target} {a}")
+            if b == "1" and value.op in "+-" and value.type is ir.ValueType.INT:
+                return lines + more + [f"{'INC' if value.op == '+' else 'DEC'} {target}"]
+            return lines + more + [f"{_INFORM_OP[value.op]} {target} {b}"]
         lines, a = self._value(value, ctx, node)
         return lines + [f"SET {target} {a}"]
 

@@ -489,7 +489,7 @@ class Val3Backend(Backend):
         """`while`: the condition is read with no motion queued (a waitEndMove() ends a body
         that moves, as before the loop), as the plan reads it."""
         body = self.block(node.body, ctx, settled=True)
-        if any(isinstance(n, ir.Move) for n in ir.walk(node.body)):
+        if any(isinstance(n, ir.Move) for n in ir.walk(node.body)) and not isinstance(node.body[-1], self.NO_MOTION):
             body.append("waitEndMove()")
         return [f"while {self.expr(node.condition, node, ctx)}", *self.indent(body, self.INDENT), "endWhile"]
 
