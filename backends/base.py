@@ -606,3 +606,41 @@ def _part_payload_default(self: Backend, node: ir.Attach | ir.Detach, ctx: TaskC
 
 Backend.attach = _part_payload_default  # type: ignore[attr-defined]
 Backend.detach = _part_payload_default  # type: ignore[attr-defined]
+
+
+# --------------------------------------------------------------------------- runtime logic (issue #15)
+# Appended (like the parts block above) as the fallback every vendor starts from: a `for` /
+# `repeat` Loop is written as its iterations one after another (unrolled, the loop variable
+# bound to each value: ir_tree.bind_loop_variable), and the other runtime-logic nodes (var,
+# assignment, while, general wait condition, stop) are E165 until the vendor's own handler
+# (a method of the same name on its Backend subclass) replaces the fallback.
+
+
+def _loop_unrolled(self: Backend, node: ir.Loop, ctx: TaskContext) -> list[str]:
+    from rmot.compiler.ir_tree import bind_loop_variable
+
+    out: list[str] = []
+    for it in node.iterations:
+        body = bind_loop_variable(it.body, node.var, it.value) if node.var is not None else it.body
+        label = f"{node.var} = {it.value}" if node.var is not None else f"repeat round {it.value + 1}"
+        out.append(self.comment(label))
+        out.extend(self.body(body, ctx))
+    return out
+
+
+def _runtime_unsupported(self: Backend, node: ir.Instr, ctx: TaskContext) -> list[str]:
+    from rmot.backends.codes import RUNTIME_UNSUPPORTED
+
+    kind = type(node).__name__
+    self.unsupported(RUNTIME_UNSUPPORTED, f"{kind} must be expressible for {self.name} (its backend writes no "
+                     f"runtime logic for it yet)", node.span)
+    return [self.comment(f"UNSUPPORTED {kind}")]
+
+
+for _cls, _method, _fallback in ((ir.Loop, "loop", _loop_unrolled), (ir.VarDecl, "var_decl", _runtime_unsupported),
+                                 (ir.Assign, "assign", _runtime_unsupported), (ir.While, "while_", _runtime_unsupported),
+                                 (ir.WaitCondition, "wait_condition", _runtime_unsupported),
+                                 (ir.Stop, "stop", _runtime_unsupported)):
+    Backend.EMIT.setdefault(_cls, _method)
+    if not hasattr(Backend, Backend.EMIT[_cls]):
+        setattr(Backend, Backend.EMIT[_cls], _fallback)
