@@ -63,6 +63,7 @@ import numpy as np
 from rmot.backends import codes, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
+from rmot.backends.loop_bounds import analyse_peeled
 from rmot.backends.loops import LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir
@@ -421,6 +422,12 @@ class FanucBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: FanucContext) -> list[str]:
         name = ctx.routine_of[node.uid]
+        shifted = _offset_signature(node.body, ctx.regs.offsets)
+        if shifted is not None:  # issue #15: a call in a loop whose moves take Offset,PR: its own routine
+            key = (name, shifted)
+            if key not in ctx.regs.loop_routines:
+                ctx.regs.loop_routines[key] = ctx.names.name(f"{name}_L{len(ctx.regs.loop_routines) + 1}")
+            name = ctx.regs.loop_routines[key]
         if f"{name}.ls" not in ctx.files:
             ctx.files[f"{name}.ls"] = ""  # reserve: a recursive print sees it as taken
             ctx.files[f"{name}.ls"] = self._program(name, node.body, ctx, is_main=False)
@@ -620,18 +627,21 @@ class FanucBackend(Backend):
 
     def loop(self, node: ir.Loop, ctx: FanucContext) -> list[str]:
         template = ctx.regs.inner.pop(node.uid, None)
-        if template is None:
-            found = analyse(node, ctx.record, config_key=_config_key,
-                            unroll=bool(getattr(self, "unroll", False)))
-            reason = found.message if isinstance(found, Unrolled) else _fanuc_blocker(found)
-            if reason is not None:
-                span = found.span if isinstance(found, Unrolled) else node.span
-                self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, reason, span)
-                return self._unrolled(node, ctx)
-            assert isinstance(found, LoopTemplate)
-            template = found
-            return self._zero_offsets(template, ctx) + self._vendor_loop(template, ctx)
-        return self._vendor_loop(template, ctx)
+        if template is not None:  # a nested loop of a vendor loop being written
+            return self._vendor_loop(template, ctx)
+        found, last, note = analyse_peeled(node, lambda loop: analyse(
+            loop, ctx.record, config_key=_config_key, unroll=bool(getattr(self, "unroll", False))))
+        reason = found.message if isinstance(found, Unrolled) else _fanuc_blocker(found)
+        if reason is not None:
+            span = found.span if isinstance(found, Unrolled) else node.span
+            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, reason, span)
+            return self._unrolled(node, ctx)
+        assert isinstance(found, LoopTemplate)
+        lines = self._zero_offsets(found, ctx) + self._vendor_loop(found, ctx)
+        if last is not None:
+            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, note, node.span)
+            lines += self._unrolled(replace(node, iterations=(last,)), ctx)
+        return lines
 
     def _unrolled(self, node: ir.Loop, ctx: FanucContext) -> list[str]:
         lines: list[str] = []
@@ -747,6 +757,7 @@ class _Registers:
     offsets: dict[tuple[int, str], int] = field(default_factory=dict)
     inner: dict[int, LoopTemplate] = field(default_factory=dict)
     repeat: dict[int, str] = field(default_factory=dict)  # repeat loop uid -> its counter
+    loop_routines: dict[object, str] = field(default_factory=dict)  # (routine, offsets) -> name
     counters: int = 0
 
     def reset(self) -> None:
@@ -811,6 +822,12 @@ def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
         elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
             out += _level_moves(node.on_timeout)
     return out
+
+
+def _offset_signature(body: tuple[ir.Instr, ...], offsets: dict[tuple[int, str], object]) -> tuple[object, ...] | None:
+    """The offsets of a called body's moves in order, or None when none of them takes one."""
+    sig = tuple(offsets.get((m.uid, "target")) for m in ir.walk(body) if isinstance(m, ir.Move))
+    return sig if any(s is not None for s in sig) else None
 
 
 def _fanuc_blocker(template: LoopTemplate) -> str | None:

@@ -83,6 +83,7 @@ import numpy as np
 from rmot.backends import codes, codes_b, codes_logic
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
+from rmot.backends.loop_bounds import analyse_peeled
 from rmot.backends.loops import LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
@@ -168,6 +169,15 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
             _, a = predecessors(node.then, last, out)
             _, b = predecessors(node.otherwise, last, out)
             last = a if a is b else None
+        elif isinstance(node, ir.Loop):  # issue #15: the iterations one after another
+            for it in node.iterations:
+                _, last = predecessors(it.body, last, out)
+        elif isinstance(node, ir.While):  # the body may run zero or more times
+            _, end = predecessors(node.body, last, out)
+            last = last if end is last else None
+        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)) and node.on_timeout:
+            _, end = predecessors(node.on_timeout, last, out)
+            last = last if end is last else None
     return out, last
 
 
@@ -487,6 +497,13 @@ class InformBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: InformContext) -> list[str]:
         name = ctx.routine_of[node.uid]
+        shifted = tuple(ctx.vars.offsets.get((m.uid, "target"), (None,))[0]
+                        for m in ir.walk(node.body) if isinstance(m, ir.Move))
+        if any(s is not None for s in shifted):  # issue #15: a call in a loop with shifted moves
+            key = (name, shifted)
+            if key not in ctx.vars.loop_jobs:
+                ctx.vars.loop_jobs[key] = f"{name}_L{len(ctx.vars.loop_jobs) + 1}"[:32]
+            name = ctx.vars.loop_jobs[key]
         if f"{name}{self.file_ext}" not in ctx.files:  # calls printing the same job share it
             self.job(name, node.body, ctx)
         return [f"CALL JOB:{name}"]
@@ -662,22 +679,29 @@ class InformBackend(Backend):
 
     def loop(self, node: ir.Loop, ctx: InformContext) -> list[str]:
         template = ctx.vars.inner.pop(node.uid, None)
-        if template is None:
-            found = analyse(node, ctx.record, config_key=_rconf_key,
-                            unroll=bool(getattr(self, "unroll", False)))
-            reason = found.message if isinstance(found, Unrolled) else _inform_blocker(found)
-            if reason is not None:
-                span = found.span if isinstance(found, Unrolled) else node.span
-                self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, reason, span)
-                lines: list[str] = []
-                for it in node.iterations:
-                    body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
-                    lines += self.wrap(f"{node.var or 'iteration'} = {it.value}") + self.body(body, ctx)
-                return lines
-            assert isinstance(found, LoopTemplate)
-            template = found
-            self._number_shifts(template, ctx)
-        return self._vendor_loop(template, ctx)
+        if template is not None:  # a nested loop of a vendor loop being written
+            return self._vendor_loop(template, ctx)
+        found, last, note = analyse_peeled(node, lambda loop: analyse(
+            loop, ctx.record, config_key=_rconf_key, unroll=bool(getattr(self, "unroll", False))))
+        reason = found.message if isinstance(found, Unrolled) else _inform_blocker(found)
+        if reason is not None:
+            span = found.span if isinstance(found, Unrolled) else node.span
+            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, reason, span)
+            return self._unrolled(node, ctx)
+        assert isinstance(found, LoopTemplate)
+        self._number_shifts(found, ctx)
+        lines = self._vendor_loop(found, ctx)
+        if last is not None:
+            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, note, node.span)
+            lines += self._unrolled(replace(node, iterations=(last,)), ctx)
+        return lines
+
+    def _unrolled(self, node: ir.Loop, ctx: InformContext) -> list[str]:
+        lines: list[str] = []
+        for it in node.iterations:
+            body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
+            lines += self.wrap(f"{node.var or 'iteration'} = {it.value}") + self.body(body, ctx)
+        return lines
 
     def _number_shifts(self, template: LoopTemplate, ctx: InformContext) -> None:
         """One P variable per distinct shift of the nest (its steps in the coordinates the job
@@ -786,6 +810,7 @@ class _Variables:
     inner: dict[int, LoopTemplate] = field(default_factory=dict)
     repeat: dict[int, str] = field(default_factory=dict)
     counters: int = 0
+    loop_jobs: dict[object, str] = field(default_factory=dict)  # (job, shifts) -> its own job
 
     def reset(self) -> None:
         self.used = {}

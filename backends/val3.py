@@ -62,11 +62,12 @@ Support (checked by tests/backends/test_val3.py):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 from rmot.backends import codes, codes_b, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
+from rmot.backends.loop_bounds import analyse_peeled
 from rmot.backends.loops import LoopTemplate, Unrolled, analyse, bind_loop_var
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
@@ -152,6 +153,7 @@ class Val3Context(TaskContext):
     shifts: dict[object, str] = field(default_factory=dict)
     offsets: dict[tuple[int, str], str] = field(default_factory=dict)
     counters: dict[int, str] = field(default_factory=dict)
+    loop_programs: dict[object, str] = field(default_factory=dict)  # (program, shifts) -> its own
 
 
 class Val3Backend(Backend):
@@ -398,6 +400,12 @@ class Val3Backend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: Val3Context) -> list[str]:
         name = ctx.routine_of[node.uid]
+        shifted = tuple(ctx.offsets.get((m.uid, "target")) for m in ir.walk(node.body) if isinstance(m, ir.Move))
+        if any(s is not None for s in shifted):  # issue #15: a call in a loop with shifted moves
+            key = (name, shifted)
+            if key not in ctx.loop_programs:
+                ctx.loop_programs[key] = ctx.names.name(f"{name}_L{len(ctx.loop_programs) + 1}")
+            name = ctx.loop_programs[key]
         if name not in ctx.programs:  # calls printing the same routine share it (routine_table)
             ctx.programs[name] = []  # reserve the slot first: programs keep call order
             ctx.where.append(name)
@@ -414,7 +422,7 @@ class Val3Backend(Backend):
     # num, bool; operators + - * /, == != < <= > >=, and or !), so the IR's expressions are
     # written as they read. A task's `var`s are global data (`num`/`bool` in the .dtx: a called
     # program must read them); a loop's counter and its shift are locals of the program holding
-    # the loop (<Locals>). `for v = a to b ... endFor` and `while c ... endWhile` are VAL3's own
+    # the loop (<Locals>), its shift (trShiftN) global data a called program reads too. `for v = a to b ... endFor` and `while c ... endWhile` are VAL3's own
     # loops (manual, "Instructions": for, while); a target that moves from one iteration to the
     # next is `compose(point, frame, trShift)` (manual, "Arm positions", compose: the point with
     # the transformation applied, defined relative to the frame; trShift has no rotation, so it
@@ -523,18 +531,25 @@ class Val3Backend(Backend):
 
     def loop(self, node: ir.Loop, ctx: Val3Context) -> list[str]:
         template = ctx.inner.pop(node.uid, None)
-        if template is None:
-            found = analyse(node, ctx.record, extra_key=_blend_key,
-                            unroll=bool(getattr(self, "unroll", False)))
-            if isinstance(found, Unrolled):
-                self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, found.message, found.span)
-                lines: list[str] = []
-                for it in node.iterations:
-                    body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
-                    lines += [self.comment(f"{node.var or 'iteration'} = {it.value}"), *self.block(body, ctx)]
-                return lines
-            template = found
-        return self._vendor_loop(template, ctx)
+        if template is not None:  # a nested loop of a vendor loop being written
+            return self._vendor_loop(template, ctx)
+        found, last, note = analyse_peeled(node, lambda loop: analyse(
+            loop, ctx.record, extra_key=_blend_key, unroll=bool(getattr(self, "unroll", False))))
+        if isinstance(found, Unrolled):
+            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, found.message, found.span)
+            return self._unrolled(node, ctx)
+        lines = self._vendor_loop(found, ctx)
+        if last is not None:
+            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, note, node.span)
+            lines += self._unrolled(replace(node, iterations=(last,)), ctx)
+        return lines
+
+    def _unrolled(self, node: ir.Loop, ctx: Val3Context) -> list[str]:
+        lines: list[str] = []
+        for it in node.iterations:
+            body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
+            lines += [self.comment(f"{node.var or 'iteration'} = {it.value}"), *self.block(body, ctx)]
+        return lines
 
     def _vendor_loop(self, template: LoopTemplate, ctx: Val3Context) -> list[str]:
         var = template.var
@@ -559,8 +574,9 @@ class Val3Backend(Backend):
                     continue
                 key = (tuple(v.uid for v in offset.loops),
                        tuple(tuple(round(c * 1000.0, 3) for c in s) for s in offset.steps))
-                if key not in ctx.shifts:
-                    ctx.shifts[key] = self._local(f"trShift{len(ctx.shifts) + 1}", "trsf", ctx)
+                if key not in ctx.shifts:  # global data: a called program's moves read it too
+                    ctx.shifts[key] = ctx.names.name(f"trShift{len(ctx.shifts) + 1}")
+                    ctx.data.variables[ctx.shifts[key]] = ("trsf", 'x="0" y="0" z="0" rx="0" ry="0" rz="0"')
                 name = ctx.shifts[key]
                 ctx.offsets[(uid, role)] = name
                 if name in done:
