@@ -77,17 +77,20 @@ def test_palletiser_loops_are_a_few_moves_not_144() -> None:
 
 # --------------------------------------------------------------------------- the loop witness
 
-def _fanuc_run(text: str) -> list[tuple[float, float, float]]:
-    """Execute a TP program's registers, PR elements, labels and jumps; the destination of
-    every J/L motion: P[n]'s X, Y, Z plus PR[i]'s when it carries `Offset,PR[i]` (the offset
-    is added element by element in the user frame: HandlingTool manual 7.3.13)."""
+def _fanuc_run(files: dict[str, str], name: str, reg: dict[int, float] | None = None,
+               pr: dict[int, list[float]] | None = None) -> list[tuple[float, float, float] | None]:
+    """Execute a TP program's registers, PR elements, labels, jumps and CALLs (inputs and
+    waits as satisfied: the main timeline); the destination of every J/L motion: P[n]'s X, Y,
+    Z plus PR[i]'s when it carries `Offset,PR[i]` (added element by element in the user frame:
+    HandlingTool manual 7.3.13); None for a position in joints."""
+    text = files[f"{name}.ls"]
+    reg = {} if reg is None else reg
+    pr = {} if pr is None else pr
     mn = text.split("/MN\n")[1].split("/POS\n")[0]
     lines = [re.sub(r"^\s*\d+:\s+", "", ln).removesuffix(" ;") for ln in mn.splitlines()]
     points = {int(n): tuple(float(v) for v in (x, y, z)) for n, x, y, z in re.findall(
         r"P\[(\d+)[^\]]*\]\{.*?X =\s*(\S+)\s+mm,\s*Y =\s*(\S+)\s+mm,\s*Z =\s*(\S+)\s+mm", text, re.S)}
     labels = {int(m.group(1)): k for k, ln in enumerate(lines) if (m := re.fullmatch(r"LBL\[(\d+)\]", ln))}
-    reg: dict[int, float] = {}
-    pr: dict[int, list[float]] = {}
 
     def value(tok: str) -> float:
         m = re.fullmatch(r"R\[(\d+)(?::[^\]]*)?\]", tok)
@@ -104,11 +107,16 @@ def _fanuc_run(text: str) -> list[tuple[float, float, float]]:
         b = value(m.group(3))
         return {"+": a + b, "-": a - b, "*": a * b, "/": a / b}[m.group(2)]
 
-    out, k, steps = [], 0, 0
+    out: list[tuple[float, float, float] | None] = []
+    k, steps = 0, 0
     while k < len(lines):
         ln, k, steps = lines[k], k + 1, steps + 1
         assert steps < 100_000
-        if m := re.fullmatch(r"R\[(\d+)(?::[^\]]*)?\]=(.*)", ln):
+        if ln == "ABORT":
+            break
+        if m := re.fullmatch(r"CALL (\w+)", ln):
+            out += _fanuc_run(files, m.group(1), reg, pr)
+        elif m := re.fullmatch(r"R\[(\d+)(?::[^\]]*)?\]=(.*)", ln):
             reg[int(m.group(1))] = expr(m.group(2))
         elif m := re.fullmatch(r"PR\[(\d+)\]=LPOS-LPOS", ln):
             pr[int(m.group(1))] = [0.0] * 6
@@ -121,22 +129,27 @@ def _fanuc_run(text: str) -> list[tuple[float, float, float]]:
         elif m := re.fullmatch(r"JMP LBL\[(\d+)\]", ln):
             k = labels[int(m.group(1))]
         elif m := re.match(r"[JL] P\[(\d+)[^\]]*\] \S+ \S+(?: Offset,PR\[(\d+)\])?$", ln):
+            if int(m.group(1)) not in points:
+                out.append(None)
+                continue
             p = points[int(m.group(1))]
             d = pr[int(m.group(2))][:3] if m.group(2) else [0.0, 0.0, 0.0]
             out.append((p[0] + d[0], p[1] + d[1], p[2] + d[2]))
     return out
 
 
-def _inform_run(text: str) -> list[tuple[float, float, float]]:
+def _inform_run(files: dict[str, str], name: str, d: dict[str, float] | None = None,
+                p: dict[str, list[float]] | None = None) -> list[tuple[float, float, float]]:
     """Execute a job's D variables (SET/ADD/SUB/MUL/INC), SETE on P variables (0.001 mm),
-    labels and JUMP IF; every MOVJ/MOVL's position plus the active SFTON shift (RF: robot
-    coordinates, the coordinates of the ROBOT positions)."""
+    labels, JUMP IF and CALL JOB (waits as satisfied, PAUSE ends the run); every MOVJ/MOVL's
+    position plus the active SFTON shift (RF: robot coordinates, those of ROBOT positions)."""
+    text = files[f"{name}.JBI"]
+    d = {} if d is None else d
+    p = {} if p is None else p
     body = text.split("NOP\n")[1].splitlines()
     cpos = {m.group(1): tuple(float(v) for v in m.group(2).split(",")[:3])
             for m in re.finditer(r"^(C\d{5})=(.*)$", text, re.M)}
     labels = {ln: k for k, ln in enumerate(body) if re.fullmatch(r"\*L\d+", ln)}
-    d: dict[str, float] = {}
-    p: dict[str, list[float]] = {}
     shift: list[float] | None = None
 
     def val(tok: str) -> float:
@@ -149,7 +162,11 @@ def _inform_run(text: str) -> list[tuple[float, float, float]]:
         w = ln.split()
         if not w or ln.startswith("'"):
             continue
-        if w[0] == "SET" and w[1][0] in "DBR":
+        if w[0] == "PAUSE":
+            break
+        if w[0] == "CALL":
+            out += _inform_run(files, w[1].removeprefix("JOB:"), d, p)
+        elif w[0] == "SET" and w[1][0] in "DBR":
             d[w[1]] = val(w[2])
         elif w[0] in ("ADD", "SUB", "MUL", "DIV"):
             a, b = d[w[1]], val(w[2])
@@ -164,6 +181,10 @@ def _inform_run(text: str) -> list[tuple[float, float, float]]:
         elif w[0] == "SFTOF":
             shift = None
         elif w[0] == "JUMP":
+            if m := re.fullmatch(r"JUMP (\*L\d+) IF IN#\(\d+\)=(ON|OFF)", ln):
+                if m.group(2) == "ON":  # the main timeline: every awaited input comes
+                    k = labels[m.group(1)]
+                continue
             m = re.fullmatch(r"JUMP (\*L\d+)(?: IF (\w+)(<=|<|>=|>|=|<>)(\S+))?", ln)
             assert m, ln
             if m.group(2) is None or {"<=": d[m.group(2)] <= val(m.group(4)), "<": d[m.group(2)] < val(m.group(4)),
@@ -188,8 +209,10 @@ def _val3_run(files: dict[str, str]) -> list[tuple[float, float, float] | None]:
     points = [tuple(float(v.get(a)) for a in "xyz")  # type: ignore[arg-type]
               for data in ET.fromstring(dtx).iterfind("d:Datas/d:Data", ns) if data.get("name") == "pTarget"
               for v in data]
-    code = next(t for n, t in files.items() if n.endswith("/start.pgx"))
-    lines = [ln.strip() for ln in code.split("<![CDATA[")[1].split("]]>")[0].splitlines()]
+    def code(name: str) -> list[str]:
+        text = next(t for n, t in files.items() if n.endswith(f"/{name}.pgx"))
+        return [ln.strip() for ln in text.split("<![CDATA[")[1].split("]]>")[0].splitlines()]
+
     env: dict[str, float] = {}
     out: list[tuple[float, float, float] | None] = []
 
@@ -201,10 +224,19 @@ def _val3_run(files: dict[str, str]) -> list[tuple[float, float, float] | None]:
         name = m.group(1) or m.group(3)
         return (env[name] - float(m.group(2) or 0)) * float(m.group(4))
 
-    def run(start: int, stop: int) -> None:
+    def run(lines: list[str], start: int, stop: int) -> None:
         k = start
         while k < stop:
             ln = lines[k]
+            if ln == "return":
+                raise StopIteration
+            if ln == "if !bOk":  # the timeout branch: not taken on the main timeline
+                depth = 1
+                while depth:
+                    k += 1
+                    depth += lines[k].startswith("if ") - (lines[k] == "endIf")
+            elif m := re.fullmatch(r"call (\w+)\(\)", ln):
+                run(code(m.group(1)), 0, len(code(m.group(1))))
             if m := re.fullmatch(r"for (\w+) = (-?\d+) to (-?\d+)", ln):
                 depth, end = 1, k + 1
                 while depth:
@@ -212,10 +244,10 @@ def _val3_run(files: dict[str, str]) -> list[tuple[float, float, float] | None]:
                     end += 1
                 for v in range(int(m.group(2)), int(m.group(3)) + 1):
                     env[m.group(1)] = v
-                    run(k + 1, end - 1)
+                    run(lines, k + 1, end - 1)
                 k = end
                 continue
-            if m := re.fullmatch(r"(trShift\d+)\.([xyz]) = (.*)", ln):
+            elif m := re.fullmatch(r"(trShift\d+)\.([xyz]) = (.*)", ln):
                 env[f"{m.group(1)}.{m.group(2)}"] = sum(term(t) for t in m.group(3).split(" + "))
             elif m := re.match(r"move[jl]\((?:compose\(pTarget\[(\d+)\], \w+, (trShift\d+)\)|pTarget\[(\d+)\])", ln):
                 base = points[int(m.group(1) or m.group(3))]
@@ -225,7 +257,11 @@ def _val3_run(files: dict[str, str]) -> list[tuple[float, float, float] | None]:
                 out.append(None)
             k += 1
 
-    run(0, len(lines))
+    main = code("start")
+    try:
+        run(main, 0, len(main))
+    except StopIteration:
+        pass
     return out
 
 
@@ -241,10 +277,10 @@ def assert_witness(vendor: str, plan: planned.Plan, loop: ir.Loop, files: dict[s
     want = iteration_poses(loop, plan)
     assert len(want) == PLACEMENTS * 3
     if vendor == "fanuc":  # in the move's frame (user frame), home moves first and last
-        got = _fanuc_run(files["PALLET.ls"])[1:-1]
+        got = _fanuc_run(files, "PALLET")[1:-1]
         expect = [tuple(v * 1000.0 for v in pose.position) for _, pose in want]
     elif vendor == "inform":  # ROBOT coordinates: the base frame
-        got = _inform_run(files["PALLET.JBI"])[1:-1]
+        got = _inform_run(files, "PALLET")[1:-1]
         frame = plan.tasks[0].task.body[0].frame.pose  # type: ignore[union-attr]
         expect = [tuple(v * 1000.0 for v in (frame * pose).position) for _, pose in want]
     else:  # in the frame the points are linked to; joint moves (jTarget) are not compared
@@ -405,3 +441,72 @@ def test_every_iteration_is_planned_the_same_robot_joints() -> None:
     moves = [n for n in ir.walk((loop,)) if isinstance(n, ir.Move)]
     assert all(np.allclose(tp.record(m.uid).q_target, Q) for m in moves)  # type: ignore[union-attr]
     assert all(tp.record(m.uid).branch == FRONT_UP_NOFLIP for m in moves)  # type: ignore[union-attr]
+
+
+# --------------------------------------------------------------------------- from .rmot sources
+
+
+def main_timeline(body: tuple[ir.Instr, ...]) -> list[ir.Move]:
+    """The moves the main timeline runs, in order (every loop iteration, procs inlined, no
+    timeout branch, up to a stop)."""
+    out: list[ir.Move] = []
+    for node in body:
+        if isinstance(node, ir.Stop):
+            break
+        if isinstance(node, ir.Move):
+            out.append(node)
+        elif isinstance(node, ir.Loop):
+            for it in node.iterations:
+                out += main_timeline(it.body)
+        elif isinstance(node, ir.ProcCall):
+            out += main_timeline(node.body)
+    return out
+
+
+@pytest.mark.parametrize("vendor", VENDORS)
+def test_the_palletizing_example_is_loops_that_reach_every_verified_placement(vendor: str) -> None:
+    """examples/palletizing.rmot (3 layers x 4 rows x 3 columns with nested `for`) through the
+    real front end and planner: written as loops (the last iteration, whose final move blends
+    into the way home, after them), valid, and running every placement the plan verified."""
+    from backend_fixtures import example_plans
+
+    plan = example_plans(("palletizing",))["palletizing"]
+    result = emit(vendor, plan)
+    assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
+    assert VALIDATE[vendor](result.files) == []
+    text = "\n".join(result.files.values())
+    assert len(re.findall(r"^\s*\d+:\s+[JL] P\[|^MOV[JL] |^\s*move[jl]\(", text, re.M)) < 80  # not 36 x 8
+    tp = plan.tasks[0]
+    moves = main_timeline(tp.task.body)
+    assert len(moves) == PLACEMENTS * 6 + 2  # per placement: down to the pick, up, down to the slot, up
+    recs = [tp.record(m.uid) for m in moves]
+    base = [r.tcp_pose for r in recs]  # type: ignore[union-attr]
+    framed = [m.frame.pose.inverse() * p for m, p in zip(moves, base)]  # type: ignore[operator]
+    if vendor == "fanuc":
+        ran = _fanuc_run(result.files, "PALLETIZING")
+        expect = framed
+    elif vendor == "inform":
+        ran = _inform_run(result.files, "PALLETIZING")  # type: ignore[assignment]
+        expect = base  # type: ignore[assignment]
+    else:
+        ran = _val3_run(result.files)
+        expect = framed
+    assert len(ran) == len(expect)
+    pairs = [(g, tuple(v * 1000.0 for v in e.position)) for g, e in zip(ran, expect) if g is not None]
+    # VAL3 writes a joint move outside a loop's shift as its planned joints (not compared here)
+    assert len(pairs) >= sum(m.kind is not ir.MotionKind.JOINT for m in moves) + (0 if vendor == "val3" else 70)
+    assert np.allclose([g for g, _ in pairs], [e for _, e in pairs], atol=2e-3)
+
+
+@pytest.mark.parametrize("vendor", VENDORS)
+def test_the_machine_tending_example_compiles(vendor: str) -> None:
+    from backend_fixtures import example_plans
+
+    plan = example_plans(("machine_tending",))["machine_tending"]
+    result = emit(vendor, plan)
+    assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
+    assert VALIDATE[vendor](result.files) == []
+    text = "\n".join(result.files.values())
+    stop = {"fanuc": "ABORT", "inform": "PAUSE", "val3": "bStop = true"}[vendor]
+    loop = {"fanuc": "JMP LBL[", "inform": "JUMP *L", "val3": "while "}[vendor]
+    assert stop in text and loop in text
