@@ -5,23 +5,42 @@ from __future__ import annotations
 
 from rmot.lang.diagnostics import Code
 
-__all__ = ["LOGIC_UNSUPPORTED", "REGISTERS_EXHAUSTED", "LOOP_WRITTEN_UNROLLED", "WAIT_POLLED",
-           "STOP_AS_PAUSE"]
+__all__ = [
+    "LOGIC_UNSUPPORTED",
+    "REGISTERS_EXHAUSTED",
+    "LOOP_WRITTEN_UNROLLED",
+    "WAIT_POLLED",
+    "STOP_AS_PAUSE",
+]
 
 # errors
-LOGIC_UNSUPPORTED = Code("E430", "runtime-value-unsupported",
-                         "a runtime value or condition has no form in this vendor's language")
-REGISTERS_EXHAUSTED = Code("E431", "registers-exhausted",
-                           "the program needs more controller variables or registers than the "
-                           "block rmot writes them to")
+LOGIC_UNSUPPORTED = Code(
+    "E430",
+    "runtime-value-unsupported",
+    "a runtime value or condition has no form in this vendor's language",
+)
+REGISTERS_EXHAUSTED = Code(
+    "E431",
+    "registers-exhausted",
+    "the program needs more controller variables or registers than the block rmot writes them to",
+)
 
 # warnings
-LOOP_WRITTEN_UNROLLED = Code("W430", "loop-written-unrolled",
-                             "a `for` loop is written iteration by iteration for this vendor; the "
-                             "message names the iteration and instruction that prevent one loop")
-WAIT_POLLED = Code("W431", "wait-polled",
-                   "a wait on a condition the vendor's wait instruction cannot test is written as a "
-                   "polling loop (its timeout counted by a timer)")
-STOP_AS_PAUSE = Code("W432", "stop-as-pause",
-                     "`stop` inside a called job is written as a pause: the vendor cannot end the "
-                     "calling job from a called one")
+LOOP_WRITTEN_UNROLLED = Code(
+    "W430",
+    "loop-written-unrolled",
+    "a `for` loop is written iteration by iteration for this vendor; the "
+    "message names the iteration and instruction that prevent one loop",
+)
+WAIT_POLLED = Code(
+    "W431",
+    "wait-polled",
+    "a wait on a condition the vendor's wait instruction cannot test is written as a "
+    "polling loop (its timeout counted by a timer)",
+)
+STOP_AS_PAUSE = Code(
+    "W432",
+    "stop-as-pause",
+    "`stop` inside a called job is written as a pause: the vendor cannot end the "
+    "calling job from a called one",
+)

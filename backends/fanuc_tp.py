@@ -64,7 +64,9 @@ from rmot.backends import codes, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.loop_bounds import analyse_peeled
-from rmot.backends.loops import LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var
+from rmot.backends.loops import (
+    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
+)
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir
 from rmot.backends.safe_text import comment_safe, tp_io_comment
@@ -274,7 +276,8 @@ class FanucBackend(Backend):
                 p = self._joint_position(node.target, uf, ut, ctx)
             else:
                 p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
-            return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}{self._offset(node, ctx)}"]
+            return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}",
+                    f"J P[{p}] {speed} {zone}{self._offset(node, ctx)}"]
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
             return []
@@ -423,10 +426,11 @@ class FanucBackend(Backend):
     def proc_call(self, node: ir.ProcCall, ctx: FanucContext) -> list[str]:
         name = ctx.routine_of[node.uid]
         shifted = _offset_signature(node.body, ctx.regs.offsets)
-        if shifted is not None:  # issue #15: a call in a loop whose moves take Offset,PR: its own routine
+        if shifted is not None:  # issue #15: a call whose moves take Offset,PR: its own routine
             key = (name, shifted)
             if key not in ctx.regs.loop_routines:
-                ctx.regs.loop_routines[key] = ctx.names.name(f"{name}_L{len(ctx.regs.loop_routines) + 1}")
+                k = len(ctx.regs.loop_routines) + 1
+                ctx.regs.loop_routines[key] = ctx.names.name(f"{name}_L{k}")
             name = ctx.regs.loop_routines[key]
         if f"{name}.ls" not in ctx.files:
             ctx.files[f"{name}.ls"] = ""  # reserve: a recursive print sees it as taken
@@ -448,7 +452,7 @@ class FanucBackend(Backend):
     # DI[104]=OFF,JMP LBL[20]`), else a chain of one-condition jumps.
 
     REG_FIRST: ClassVar[int] = 1
-    MAX_REGISTER: ClassVar[int] = 200  # R-30iB: R[1]..R[200] by default (Operator's Manual, registers)
+    MAX_REGISTER: ClassVar[int] = 200  # R-30iB: R[1]..R[200] by default (Operator's Manual)
     LOOP_PR: ClassVar[int] = 60  # loop offsets PR[61..89]: below FRAME_PR + 1
     POLL_TIMER: ClassVar[int] = 10  # TIMER[10] counts a polled wait's timeout (TIMER[1..10])
     MAX_CONDITIONS: ClassVar[int] = 5
@@ -456,16 +460,18 @@ class FanucBackend(Backend):
     def _reg(self, name: str, ctx: FanucContext, span: object) -> str:
         n = ctx.regs.variables.get(name)
         if n is None:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, f"variable '{name}' must be declared in "
-                             "the task (got a reference to an undeclared one)", span)  # type: ignore[arg-type]
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED,
+                             f"variable '{name}' must be declared in the task (got a reference to "
+                             "an undeclared one)", span)  # type: ignore[arg-type]
             n = 0
         return f"R[{n}:{tp_io_comment(name)[:16]}]"
 
     def _temp(self, ctx: FanucContext, span: object) -> str:
         n = ctx.regs.temp()
         if n > self.MAX_REGISTER:
-            self.unsupported(codes_logic.REGISTERS_EXHAUSTED, f"the program must fit registers "
-                             f"R[{self.REG_FIRST}..{self.MAX_REGISTER}] (needs R[{n}])", span)  # type: ignore[arg-type]
+            self.unsupported(codes_logic.REGISTERS_EXHAUSTED,
+                             f"the program must fit registers R[{self.REG_FIRST}.."
+                             f"{self.MAX_REGISTER}] (needs R[{n}])", span)  # type: ignore[arg-type]
         return f"R[{n}:rmot tmp]"
 
     def var_decl(self, node: ir.VarDecl, ctx: FanucContext) -> list[str]:
@@ -563,7 +569,8 @@ class FanucBackend(Backend):
         """`a AND b AND ...` (or OR) for one IF/WAIT line when every operand is one comparison
         and there are at most MAX_CONDITIONS; with `negate`, De Morgan's dual."""
         if len(c.operands) > self.MAX_CONDITIONS or any(
-                isinstance(o, (ir.Logic, ir.Const)) or (isinstance(o, ir.Not) and not _leaf(o.operand))
+                isinstance(o, (ir.Logic, ir.Const))
+                or (isinstance(o, ir.Not) and not _leaf(o.operand))
                 for o in c.operands):
             return None
         tests = [self._test(o, negate, ctx, node) for o in c.operands]
@@ -595,7 +602,8 @@ class FanucBackend(Backend):
         """`$WAITTMOUT` (1/100 s) then `WAIT cond TIMEOUT,LBL[t]`: the label runs the timeout
         branch and goes on after the wait, or aborts when the program gave none."""
         timed_out, done = ctx.program.label(), ctx.program.label()
-        branch = self.body(on_timeout, ctx) if on_timeout else [self.comment("wait timed out"), "ABORT"]
+        branch = (self.body(on_timeout, ctx) if on_timeout
+                  else [self.comment("wait timed out"), "ABORT"])
         return [f"$WAITTMOUT={int(round(timeout * 100))}", f"WAIT {cond} TIMEOUT,LBL[{timed_out}]",
                 f"JMP LBL[{done}]", f"LBL[{timed_out}]", *branch, f"LBL[{done}]"]
 
@@ -609,18 +617,21 @@ class FanucBackend(Backend):
                 return [f"WAIT {one[1]}"]
             return self._timed_wait(one[1], node.timeout, node.on_timeout, ctx)
         self.warn(codes_logic.WAIT_POLLED, "TP's WAIT must test comparisons of one and/or kind, at "
-                  f"most {self.MAX_CONDITIONS}, on registers and I/O; this condition is polled in a "
-                  f"loop{f' with TIMER[{self.POLL_TIMER}] counting the timeout' if node.timeout else ''}",
+                  f"most {self.MAX_CONDITIONS}, on registers and I/O; this condition is polled "
+                  "in a loop" + (f" with TIMER[{self.POLL_TIMER}] counting the timeout"
+                                 if node.timeout else ""),
                   node.span)
         poll, done = ctx.program.label(), ctx.program.label()
         if node.timeout is None:
             return [f"LBL[{poll}]", *self._jump(c, done, True, ctx, node), f"JMP LBL[{poll}]",
                     f"LBL[{done}]"]
         timer = f"TIMER[{self.POLL_TIMER}]"  # seconds (real programs: `R[181]=TIMER[5]`, `>=3`)
-        lines = [f"{timer}=RESET", f"{timer}=START", f"LBL[{poll}]", *self._jump(c, done, True, ctx, node)]
+        lines = [f"{timer}=RESET", f"{timer}=START", f"LBL[{poll}]",
+                 *self._jump(c, done, True, ctx, node)]
         t = self._temp(ctx, node.span)
         lines += [f"{t}={timer}", f"IF {t}<{_tp_number(node.timeout)},JMP LBL[{poll}]"]
-        branch = self.body(node.on_timeout, ctx) if node.on_timeout else [self.comment("wait timed out"), "ABORT"]
+        branch = (self.body(node.on_timeout, ctx) if node.on_timeout
+                  else [self.comment("wait timed out"), "ABORT"])
         return lines + branch + [f"LBL[{done}]", f"{timer}=STOP"]
 
     # ---------------------------------------------------------------- loops
@@ -647,7 +658,8 @@ class FanucBackend(Backend):
         lines: list[str] = []
         for it in node.iterations:
             body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
-            lines += [self.comment(f"{node.var or 'iteration'} = {it.value}"[:COMMENT_MAX])] + self.body(body, ctx)
+            label = f"{node.var or 'iteration'} = {it.value}"[:COMMENT_MAX]
+            lines += [self.comment(label)] + self.body(body, ctx)
         return lines
 
     def _zero_offsets(self, template: LoopTemplate, ctx: FanucContext) -> list[str]:
@@ -662,8 +674,9 @@ class FanucBackend(Backend):
                 ctx.regs.prs[steps] = self.LOOP_PR + len(ctx.regs.prs) + 1
                 pr = ctx.regs.prs[steps]
                 if pr > self.FRAME_PR:
-                    self.unsupported(codes_logic.REGISTERS_EXHAUSTED, f"loop offsets must fit PR["
-                                     f"{self.LOOP_PR + 1}..{self.FRAME_PR}] (needs PR[{pr}])", template.loop.span)
+                    self.unsupported(codes_logic.REGISTERS_EXHAUSTED,
+                                     f"loop offsets must fit PR[{self.LOOP_PR + 1}.."
+                                     f"{self.FRAME_PR}] (needs PR[{pr}])", template.loop.span)
                 lines.append(f"PR[{pr}]=LPOS-LPOS")
             ctx.regs.offsets[key] = ctx.regs.prs[steps]
         return lines
@@ -705,7 +718,8 @@ class FanucBackend(Backend):
                 lines += self._pr_value(pr, offset, ctx, template.loop.span)
         return lines
 
-    def _pr_value(self, pr: int, offset: TargetOffset, ctx: FanucContext, span: object) -> list[str]:
+    def _pr_value(self, pr: int, offset: TargetOffset, ctx: FanucContext,
+                  span: object) -> list[str]:
         lines: list[str] = []
         for axis in range(3):
             terms = [(var, step[axis] * 1000.0) for var, step in zip(offset.loops, offset.steps)
@@ -778,7 +792,8 @@ def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, int]:
     appearance."""
     names: list[str] = []
     for node in ir.walk(body):
-        name = node.name if isinstance(node, ir.VarDecl) else node.var if isinstance(node, ir.Loop) else None
+        name = (node.name if isinstance(node, ir.VarDecl)
+                else node.var if isinstance(node, ir.Loop) else None)
         if name is not None and name not in names:
             names.append(name)
     return {name: FanucBackend.REG_FIRST + k for k, name in enumerate(names)}
@@ -824,7 +839,8 @@ def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
     return out
 
 
-def _offset_signature(body: tuple[ir.Instr, ...], offsets: dict[tuple[int, str], object]) -> tuple[object, ...] | None:
+def _offset_signature(body: tuple[ir.Instr, ...],
+                      offsets: dict[tuple[int, str], int]) -> tuple[object, ...] | None:
     """The offsets of a called body's moves in order, or None when none of them takes one."""
     sig = tuple(offsets.get((m.uid, "target")) for m in ir.walk(body) if isinstance(m, ir.Move))
     return sig if any(s is not None for s in sig) else None
@@ -838,8 +854,9 @@ def _fanuc_blocker(template: LoopTemplate) -> str | None:
         if isinstance(node, ir.Move) and node.kind is ir.MotionKind.CIRCULAR:
             offset = template.targets.get((node.uid, "target"))
             if offset is not None and any(any(s) for s in offset.steps):
-                return (f"{_loop_words(template.loop)} unrolled: a TP circular move takes one Offset,PR "
-                        "for its via and end points (its points move from one iteration to the next)")
+                return (f"{_loop_words(template.loop)} unrolled: a TP circular move takes one "
+                        "Offset,PR for its via and end points (its points move from one "
+                        "iteration to the next)")
     return None
 
 
@@ -847,8 +864,9 @@ def _loop_words(loop: ir.Loop) -> str:
     return f"loop 'for {loop.var} in {loop.first} .. {loop.last}'" if loop.var else "repeat loop"
 
 
-FanucBackend.EMIT = {**FanucBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.Loop: "loop",
-                     ir.While: "while_", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
+FanucBackend.EMIT = {**FanucBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                     ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
+                     ir.Stop: "stop"}
 
 
 def _sig(signal: str | None) -> str:

@@ -84,7 +84,9 @@ from rmot.backends import codes, codes_b, codes_logic
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.loop_bounds import analyse_peeled
-from rmot.backends.loops import LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var
+from rmot.backends.loops import (
+    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
+)
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
@@ -244,7 +246,8 @@ class InformBackend(Backend):
         inst += [job.stop_label] if job.stop_label else []
         text = (["/JOB", f"//NAME {name}"] + self.pos_section(job) +
                 ["//INST", f"///DATE {DATE}", f"///COMM {ctx.plan.program.name[:32]}",
-                 "///ATTR SC,RW", "///GROUP1 RB1", "NOP"] + head + ctx.vars.comments() + inst + ["END"])
+                 "///ATTR SC,RW", "///GROUP1 RB1", "NOP"]
+                + head + ctx.vars.comments() + inst + ["END"])
         ctx.files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
 
     @staticmethod
@@ -348,7 +351,8 @@ class InformBackend(Backend):
                 self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
                           "position of its planned joints with full RCONF (pulse counts per "
                           "degree are robot-specific)", node.span)
-            return self.shifted(node, [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else [], ctx)
+            movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+            return self.shifted(node, movj, ctx)
         v = self.linear_speed(node)
         if node.kind is ir.MotionKind.LINEAR:
             c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
@@ -470,7 +474,8 @@ class InformBackend(Backend):
             return [f"WAIT {test}"]
         done, c = self.label(ctx), node.condition
         message = f"IN#({c.port}) TIMEOUT"  # MSG holds at most 32 characters
-        branch = self.body(node.on_timeout, ctx) if node.on_timeout else [f'MSG "{message}"', "PAUSE"]
+        branch = (self.body(node.on_timeout, ctx) if node.on_timeout
+                  else [f'MSG "{message}"', "PAUSE"])
         return [f"WAIT {test} T={self.seconds(node.timeout, node, 'timeout')}",
                 f"JUMP {done} IF {test}", *branch, done]
 
@@ -531,8 +536,9 @@ class InformBackend(Backend):
     def _var(self, name: str, ctx: InformContext, span: object) -> str:
         found = ctx.vars.variables.get(name)
         if found is None:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, f"variable '{name}' must be declared in "
-                             "the task (got a reference to an undeclared one)", span)  # type: ignore[arg-type]
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED,
+                             f"variable '{name}' must be declared in the task (got a reference to "
+                             "an undeclared one)", span)  # type: ignore[arg-type]
             return "D000"
         return self._numbered(found[0], found[1], span)
 
@@ -649,8 +655,9 @@ class InformBackend(Backend):
         jump to the label before END follows, so a restart ends the job (END: the job's end)
         instead of running on. A called job cannot end its caller: PAUSE only (W432)."""
         if ctx.job.name != ctx.main:
-            self.warn(codes_logic.STOP_AS_PAUSE, f"stop in the called job '{ctx.job.name}' is written "
-                      "as PAUSE (a called job's END returns to its caller); a restart runs on", node.span)
+            self.warn(codes_logic.STOP_AS_PAUSE,
+                      f"stop in the called job '{ctx.job.name}' is written as PAUSE (a called "
+                      "job's END returns to its caller); a restart runs on", node.span)
             return ['MSG "STOP"', "PAUSE"]
         if ctx.job.stop_label is None:
             ctx.job.stop_label = self.label(ctx)
@@ -660,9 +667,10 @@ class InformBackend(Backend):
         """A condition other than one input: polled (`TIMER T=0.01` per test, W431); the timeout
         counts the polls in a D temporary (each poll lasts at least POLL_STEP)."""
         ctx.vars.reset()
-        self.warn(codes_logic.WAIT_POLLED, "INFORM's WAIT must test one signal; this condition is "
-                  f"polled every {self.POLL_STEP:g} s" + (" and its timeout counted in polls (the "
-                  "wait lasts at least the timeout)" if node.timeout is not None else ""), node.span)
+        counted = (" and its timeout counted in polls (the wait lasts at least the timeout)"
+                   if node.timeout is not None else "")
+        self.warn(codes_logic.WAIT_POLLED, "INFORM's WAIT must test one signal; this condition "
+                  f"is polled every {self.POLL_STEP:g} s{counted}", node.span)
         poll, done = self.label(ctx), self.label(ctx)
         test = self._jump(node.condition, done, True, ctx, node)
         step = f"TIMER T={fmt(self.POLL_STEP, 2)}"
@@ -670,7 +678,8 @@ class InformBackend(Backend):
             return [poll, *test, step, f"JUMP {poll}", done]
         ticks = self._temp(ir.ValueType.INT, ctx, node.span)
         limit = max(1, round(node.timeout / self.POLL_STEP))
-        branch = self.body(node.on_timeout, ctx) if node.on_timeout else ['MSG "WAIT TIMEOUT"', "PAUSE"]
+        branch = (self.body(node.on_timeout, ctx) if node.on_timeout
+                  else ['MSG "WAIT TIMEOUT"', "PAUSE"])
         timed_out = self.label(ctx)
         return [f"SET {ticks} 0", poll, *test, f"JUMP {timed_out} IF {ticks}>={limit}", step,
                 f"INC {ticks}", f"JUMP {poll}", timed_out, *branch, done]
@@ -723,7 +732,8 @@ class InformBackend(Backend):
         user = frame_number(ctx.plan.program.cell, node.frame.name)
         rot = np.eye(3) if user is not None else node.frame.pose.matrix()[:3, :3]
         system = f"UF#({user})" if user is not None else "RF"
-        steps = tuple(tuple(int(round(float(v) * 1e6)) for v in rot @ np.array(s)) for s in offset.steps)
+        steps = tuple(tuple(int(round(float(v) * 1e6)) for v in rot @ np.array(s))
+                      for s in offset.steps)
         return system, steps  # type: ignore[return-value]
 
     def _vendor_loop(self, template: LoopTemplate, ctx: InformContext) -> list[str]:
@@ -796,6 +806,10 @@ _MIRROR = {ir.CompareOp.EQ: ir.CompareOp.EQ, ir.CompareOp.NE: ir.CompareOp.NE,
            ir.CompareOp.LE: ir.CompareOp.GE, ir.CompareOp.GE: ir.CompareOp.LE}
 
 
+_Shift = tuple[int, str, tuple[LoopVar, ...], tuple[tuple[int, int, int], ...]]
+"""A shifted target: (P variable, coordinate system, the loops, steps in 0.001 mm per loop)."""
+
+
 @dataclass
 class _Variables:
     """One task's variables: name -> (type, number), fixed for the task (variables are global
@@ -805,8 +819,7 @@ class _Variables:
     variables: dict[str, tuple[ir.ValueType, int]]
     used: dict[ir.ValueType, int] = field(default_factory=dict)
     shifts: dict[object, int] = field(default_factory=dict)
-    offsets: dict[tuple[int, str], tuple[int, str, tuple[LoopVar, ...], tuple[tuple[int, int, int], ...]]] = \
-        field(default_factory=dict)
+    offsets: dict[tuple[int, str], _Shift] = field(default_factory=dict)
     inner: dict[int, LoopTemplate] = field(default_factory=dict)
     repeat: dict[int, str] = field(default_factory=dict)
     counters: int = 0
@@ -906,8 +919,9 @@ def _inform_blocker(template: LoopTemplate) -> str | None:
     starts from the move before it, which a loop's first iteration does not know)."""
     for node in ir.walk(template.body):
         if isinstance(node, ir.Move) and node.kind is ir.MotionKind.CIRCULAR:
-            return (f"loop 'for {template.loop.var} in {template.loop.first} .. {template.loop.last}' "
-                    "unrolled: an INFORM circular move starts from the move before it")
+            loop = template.loop
+            return (f"loop 'for {loop.var} in {loop.first} .. {loop.last}' unrolled: an INFORM "
+                    "circular move starts from the move before it")
     return None
 
 

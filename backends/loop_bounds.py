@@ -30,15 +30,25 @@ def _fix(v: Any) -> Any:
         return inclusive_last(v)
     if isinstance(v, tuple):
         return tuple(_fix(x) for x in v)
-    if is_dataclass(v) and not isinstance(v, type) and any(
-            isinstance(getattr(v, f.name), tuple) for f in fields(v)):
-        return replace(v, **{f.name: _fix(getattr(v, f.name)) for f in fields(v)
-                             if f.init and isinstance(getattr(v, f.name), tuple)})
+    if (
+        is_dataclass(v)
+        and not isinstance(v, type)
+        and any(isinstance(getattr(v, f.name), tuple) for f in fields(v))
+    ):
+        return replace(
+            v,
+            **{
+                f.name: _fix(getattr(v, f.name))
+                for f in fields(v)
+                if f.init and isinstance(getattr(v, f.name), tuple)
+            },
+        )
     return v
 
 
-def analyse_peeled(loop: ir.Loop, analyse_one: Callable[[ir.Loop], LoopTemplate | Unrolled]
-                   ) -> tuple[LoopTemplate | Unrolled, ir.LoopIteration | None, str]:
+def analyse_peeled(
+    loop: ir.Loop, analyse_one: Callable[[ir.Loop], LoopTemplate | Unrolled]
+) -> tuple[LoopTemplate | Unrolled, ir.LoopIteration | None, str]:
     """(template or reason, the last iteration written after the loop or None, the note).
 
     A loop's last iteration often differs from the others only where the task goes on after
@@ -54,5 +64,11 @@ def analyse_peeled(loop: ir.Loop, analyse_one: Callable[[ir.Loop], LoopTemplate 
         return whole, None, ""
     last = loop.iterations[-1]
     name = loop.var or "iteration"
-    return head, last, (f"{whole.message}; written as a loop to {name} = {loop.iterations[-2].value} "
-                        f"and the last iteration ({name} = {last.value}) after it")
+    return (
+        head,
+        last,
+        (
+            f"{whole.message}; written as a loop to {name} = {loop.iterations[-2].value} "
+            f"and the last iteration ({name} = {last.value}) after it"
+        ),
+    )

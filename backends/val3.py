@@ -127,7 +127,7 @@ class _Data:
     inputs: int = 0
     analog: int = 0  # size of aOut
     analog_in: int = 0  # size of aIn (issue #15)
-    variables: dict[str, tuple[str, str]] = field(default_factory=dict)  # task variables: type, value
+    variables: dict[str, tuple[str, str]] = field(default_factory=dict)  # name -> (type, value)
 
     def index(self, table: list[str], value: str) -> int:
         if value not in table:
@@ -166,15 +166,17 @@ class Val3Backend(Backend):
     NAME_RULES = VAL3_RULES
     DIGITAL_PORTS = (0, 63)  # dIn / dOut arrays linked to BasicIO-1\%I / %Q
     NO_RECORD_NOTE = None
-    WAITS_FOR_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput, ir.If)
-    NO_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput)
+    WAITS_FOR_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse,
+                                                    ir.WaitTime, ir.WaitInput, ir.If)
+    NO_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime,
+                                             ir.WaitInput)
 
     # ------------------------------------------------------------------ application
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, app, body = self.open_task(task)
-        for reserved in ("start", "stop", "aOut", "dOut", "dIn", "bOk", "pTarget", "jTarget", "mSpeed",
-                         "aIn", "bStop"):
+        for reserved in ("start", "stop", "aOut", "dOut", "dIn", "bOk", "pTarget", "jTarget",
+                         "mSpeed", "aIn", "bStop"):
             names.reserve(reserved)  # taken after the app is named (the order decides a clash)
         ctx = task.with_state(Val3Context, names=names, routine_of=self.routine_table(names, body, task))
         main = self.block(body, ctx) + ["waitEndMove()"]
@@ -184,8 +186,8 @@ class Val3Backend(Backend):
         files = {f"{app}/{app}.pjx": self.project(app, ctx), f"{app}/{app}.dtx": self.database(ctx)}
         head = self.header(ctx)
         for prog, code in sorted(ctx.programs.items()):
-            files[f"{app}/{prog}.pgx"] = self.program(prog, (head if prog == "start" else []) + code,
-                                                      ctx.locals.get(prog, {}))
+            code = (head if prog == "start" else []) + code
+            files[f"{app}/{prog}.pgx"] = self.program(prog, code, ctx.locals.get(prog, {}))
         return dict(sorted(files.items()))
 
     @staticmethod
@@ -247,7 +249,7 @@ class Val3Backend(Backend):
                 out.append("waitEndMove()")
             out.extend(self.instr(node, ctx))
             if not isinstance(node, (ir.VarDecl, ir.Assign)):  # these leave the motion queue as is
-                settled = isinstance(node, self.NO_MOTION)  # each of these ran with no motion queued
+                settled = isinstance(node, self.NO_MOTION)  # these ran with no motion queued
             prev = node
         return out
 
@@ -303,11 +305,12 @@ class Val3Backend(Backend):
             return rec
         self.warn_payload(node, ctx, "the arm's payload settings on the controller (VAL3 tool data has no mass)")
         tool, speed = self.tool(node.tool, ctx), self.mdesc(node, rec.blend_radius, ctx)
-        if node.kind is ir.MotionKind.JOINT and (node.uid, "target") in ctx.offsets:  # a loop target (#15)
+        if node.kind is ir.MotionKind.JOINT and (node.uid, "target") in ctx.offsets:  # issue #15
             branch = self.branch(rec, node)
             if branch is None or rec.tcp_pose is None:
                 return []
-            point = self._shifted(self.point(rec.tcp_pose, branch, node.frame, ctx), node, "target", ctx)
+            point = self.point(rec.tcp_pose, branch, node.frame, ctx)
+            point = self._shifted(point, node, "target", ctx)
             return [f"movej({point}, {tool}, {speed})"]
         if node.kind is ir.MotionKind.JOINT:
             value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
@@ -315,7 +318,8 @@ class Val3Backend(Backend):
         branch = self.branch(rec, node)
         if branch is None or rec.tcp_pose is None:
             return []
-        target = self._shifted(self.point(rec.tcp_pose, branch, node.frame, ctx), node, "target", ctx)
+        target = self.point(rec.tcp_pose, branch, node.frame, ctx)
+        target = self._shifted(target, node, "target", ctx)
         if node.kind is ir.MotionKind.LINEAR:
             return [f"movel({target}, {tool}, {speed})"]
         if node.via is None:
@@ -400,7 +404,8 @@ class Val3Backend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: Val3Context) -> list[str]:
         name = ctx.routine_of[node.uid]
-        shifted = tuple(ctx.offsets.get((m.uid, "target")) for m in ir.walk(node.body) if isinstance(m, ir.Move))
+        shifted = tuple(ctx.offsets.get((m.uid, "target"))
+                        for m in ir.walk(node.body) if isinstance(m, ir.Move))
         if any(s is not None for s in shifted):  # issue #15: a call in a loop with shifted moves
             key = (name, shifted)
             if key not in ctx.loop_programs:
@@ -421,11 +426,12 @@ class Val3Backend(Backend):
     # VAL3 has typed variables and infix expressions (VAL3 Reference Manual s7, "Simple types":
     # num, bool; operators + - * /, == != < <= > >=, and or !), so the IR's expressions are
     # written as they read. A task's `var`s are global data (`num`/`bool` in the .dtx: a called
-    # program must read them); a loop's counter and its shift are locals of the program holding
-    # the loop (<Locals>), its shift (trShiftN) global data a called program reads too. `for v = a to b ... endFor` and `while c ... endWhile` are VAL3's own
-    # loops (manual, "Instructions": for, while); a target that moves from one iteration to the
-    # next is `compose(point, frame, trShift)` (manual, "Arm positions", compose: the point with
-    # the transformation applied, defined relative to the frame; trShift has no rotation, so it
+    # program must read them); a loop's counter is a local of the program holding the loop
+    # (<Locals>), its shift (trShiftN) global data (a called program's moves read it).
+    # `for v = a to b ... endFor` and `while c ... endWhile` are VAL3's own loops (manual,
+    # "Instructions": for, while); a target that moves from one iteration to the next is
+    # `compose(point, frame, trShift)` (manual, "Arm positions", compose: the point with the
+    # transformation applied, defined relative to the frame; trShift has no rotation, so it
     # translates the point along the frame's axes: the frame the point is linked to). `stop`
     # waits for the queued motion (waitEndMove) and returns from start(), which ends the
     # application's only task (manual 2.1.3 "Start/stop"); in a called program it sets bStop
@@ -433,7 +439,8 @@ class Val3Backend(Backend):
 
     def _global(self, name: str, vtype: ir.ValueType, ctx: Val3Context) -> str:
         legal = ctx.names.name(name)
-        ctx.data.variables[legal] = ("bool", 'value="false"') if vtype is ir.ValueType.BOOL else ("num", 'value="0"')
+        ctx.data.variables[legal] = (("bool", 'value="false"') if vtype is ir.ValueType.BOOL
+                                     else ("num", 'value="0"'))
         return legal
 
     def _local(self, name: str, kind: str, ctx: Val3Context) -> str:
@@ -454,12 +461,15 @@ class Val3Backend(Backend):
     def assign(self, node: ir.Assign, ctx: Val3Context) -> list[str]:
         return [f"{self._ref(node.name, ctx)} = {self.expr(node.value, node, ctx)}"]
 
-    def expr(self, e: ir.RtExpr | ir.Condition, node: ir.Instr, ctx: Val3Context, nested: bool = False) -> str:
+    def expr(self, e: ir.RtExpr | ir.Condition, node: ir.Instr, ctx: Val3Context,
+             nested: bool = False) -> str:
         """`e` as a VAL3 expression (binary operations in parentheses when nested)."""
         if isinstance(e, ir.Const):
             if isinstance(e.value, bool):
                 return "true" if e.value else "false"
-            return str(e.value) if isinstance(e.value, int) else fmt(e.value, 6).rstrip("0").rstrip(".")
+            if isinstance(e.value, int):
+                return str(e.value)
+            return fmt(e.value, 6).rstrip("0").rstrip(".")
         if isinstance(e, ir.VarRef):
             return self._ref(e.name, ctx)
         if isinstance(e, ir.InputCondition):
@@ -469,20 +479,23 @@ class Val3Backend(Backend):
             if not self.port_ok(e.port, "analog input", node.span):
                 return "0"
             ctx.data.analog_in = max(ctx.data.analog_in, e.port + 1)
-            self.warn(codes_b.ANALOG_LINK, f"analog inputs have no standard VAL3 name: aIn[{e.port}] "
-                      "is declared unlinked; link it to the controller's input in the data file", node.span)
+            self.warn(codes_b.ANALOG_LINK, "analog inputs have no standard VAL3 name: "
+                      f"aIn[{e.port}] is declared unlinked; link it to the controller's input in "
+                      "the data file", node.span)
             return f"aioGet(aIn[{e.port}])"
         if isinstance(e, ir.Not):
             return f"!{self.expr(e.operand, node, ctx, True)}"
         if isinstance(e, ir.Arith):
-            text = f"{self.expr(e.left, node, ctx, True)} {e.op} {self.expr(e.right, node, ctx, True)}"
+            left, right = self.expr(e.left, node, ctx, True), self.expr(e.right, node, ctx, True)
+            text = f"{left} {e.op} {right}"
         elif isinstance(e, ir.Compare):
-            text = f"{self.expr(e.left, node, ctx, True)} {_VAL3_CMP[e.op]} {self.expr(e.right, node, ctx, True)}"
+            left, right = self.expr(e.left, node, ctx, True), self.expr(e.right, node, ctx, True)
+            text = f"{left} {_VAL3_CMP[e.op]} {right}"
         elif isinstance(e, ir.Logic):
             text = f" {e.op} ".join(self.expr(o, node, ctx, True) for o in e.operands)
         else:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, f"a value must be a constant, variable, input "
-                             f"or an operation on them (got {type(e).__name__})", node.span)
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, "a value must be a constant, variable, "
+                             f"input or an operation on them (got {type(e).__name__})", node.span)
             return "false"
         return f"({text})" if nested else text
 
@@ -490,16 +503,19 @@ class Val3Backend(Backend):
         lines = [f"if {self.expr(node.condition, node, ctx)}"]
         lines += self.indent(self.block(node.then, ctx, settled=True), self.INDENT)
         if node.otherwise:
-            lines += ["else"] + self.indent(self.block(node.otherwise, ctx, settled=True), self.INDENT)
+            otherwise = self.block(node.otherwise, ctx, settled=True)
+            lines += ["else"] + self.indent(otherwise, self.INDENT)
         return lines + ["endIf"]
 
     def while_(self, node: ir.While, ctx: Val3Context) -> list[str]:
         """`while`: the condition is read with no motion queued (a waitEndMove() ends a body
         that moves, as before the loop), as the plan reads it."""
         body = self.block(node.body, ctx, settled=True)
-        if any(isinstance(n, ir.Move) for n in ir.walk(node.body)) and not isinstance(node.body[-1], self.NO_MOTION):
+        moves = any(isinstance(n, ir.Move) for n in ir.walk(node.body))
+        if moves and not isinstance(node.body[-1], self.NO_MOTION):
             body.append("waitEndMove()")
-        return [f"while {self.expr(node.condition, node, ctx)}", *self.indent(body, self.INDENT), "endWhile"]
+        return [f"while {self.expr(node.condition, node, ctx)}", *self.indent(body, self.INDENT),
+                "endWhile"]
 
     def _timeout_branch(self, test: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
                         message: str, ctx: Val3Context) -> list[str]:
@@ -548,7 +564,8 @@ class Val3Backend(Backend):
         lines: list[str] = []
         for it in node.iterations:
             body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
-            lines += [self.comment(f"{node.var or 'iteration'} = {it.value}"), *self.block(body, ctx)]
+            label = f"{node.var or 'iteration'} = {it.value}"
+            lines += [self.comment(label), *self.block(body, ctx)]
         return lines
 
     def _vendor_loop(self, template: LoopTemplate, ctx: Val3Context) -> list[str]:
@@ -560,7 +577,8 @@ class Val3Backend(Backend):
         shifts = self._shift_lines(template, ctx)
         body = self.block(template.body, ctx)
         ctx.scopes.pop()
-        return [f"for {counter} = {var.first} to {var.last}", *self.indent(shifts + body, self.INDENT), "endFor"]
+        return [f"for {counter} = {var.first} to {var.last}",
+                *self.indent(shifts + body, self.INDENT), "endFor"]
 
     def _shift_lines(self, template: LoopTemplate, ctx: Val3Context) -> list[str]:
         """trShiftN.x/.y/.z = sum over the loops (counter - first) * step (mm) for every shift
@@ -576,7 +594,8 @@ class Val3Backend(Backend):
                        tuple(tuple(round(c * 1000.0, 3) for c in s) for s in offset.steps))
                 if key not in ctx.shifts:  # global data: a called program's moves read it too
                     ctx.shifts[key] = ctx.names.name(f"trShift{len(ctx.shifts) + 1}")
-                    ctx.data.variables[ctx.shifts[key]] = ("trsf", 'x="0" y="0" z="0" rx="0" ry="0" rz="0"')
+                    zero = 'x="0" y="0" z="0" rx="0" ry="0" rz="0"'
+                    ctx.data.variables[ctx.shifts[key]] = ("trsf", zero)
                 name = ctx.shifts[key]
                 ctx.offsets[(uid, role)] = name
                 if name in done:
@@ -646,7 +665,8 @@ def _can_stop(body: tuple[ir.Instr, ...]) -> bool:
     return any(isinstance(n, ir.Stop) for n in ir.walk(body))
 
 
-Val3Backend.EMIT = {**Val3Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.Loop: "loop",
-                    ir.While: "while_", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
+Val3Backend.EMIT = {**Val3Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                    ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
+                    ir.Stop: "stop"}
 Val3Backend.WAITS_FOR_MOTION = (*Val3Backend.WAITS_FOR_MOTION, ir.While, ir.WaitCondition, ir.Stop)
 Val3Backend.NO_MOTION = (*Val3Backend.NO_MOTION, ir.WaitCondition)

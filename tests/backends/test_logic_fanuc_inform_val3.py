@@ -21,7 +21,17 @@ import numpy as np
 import pytest
 from backend_fixtures import BRAND_ROBOT, FRONT_UP_NOFLIP, check_golden, hand_plan, span_at
 from logic_fixtures_d import (
-    BOOL, COLS, INT, LAYERS, Q, ROWS, const, iteration_poses, pallet_program, tending_program, var,
+    BOOL,
+    COLS,
+    INT,
+    LAYERS,
+    Q,
+    ROWS,
+    const,
+    iteration_poses,
+    pallet_program,
+    tending_program,
+    var,
 )
 from vendor_validators import check_fanuc, check_inform, check_val3
 
@@ -68,8 +78,11 @@ def test_tending_golden_and_valid(vendor: str) -> None:
 
 def test_palletiser_loops_are_a_few_moves_not_144() -> None:
     """The 36 placements (4 moves each) are written as one loop nest: each template move once."""
-    for vendor, motion in (("fanuc", r"^\s*\d+:\s+[JL] P\["), ("inform", r"^MOV[JL] "),
-                           ("val3", r"^\s*move[jl]\(")):
+    for vendor, motion in (
+        ("fanuc", r"^\s*\d+:\s+[JL] P\["),
+        ("inform", r"^MOV[JL] "),
+        ("val3", r"^\s*move[jl]\("),
+    ):
         plan, _ = pallet_program(vendor)
         text = "\n".join(emit(vendor, plan).files.values())
         assert len(re.findall(motion, text, re.M)) == 5, vendor  # home, 3 template moves, home
@@ -77,8 +90,13 @@ def test_palletiser_loops_are_a_few_moves_not_144() -> None:
 
 # --------------------------------------------------------------------------- the loop witness
 
-def _fanuc_run(files: dict[str, str], name: str, reg: dict[int, float] | None = None,
-               pr: dict[int, list[float]] | None = None) -> list[tuple[float, float, float] | None]:
+
+def _fanuc_run(
+    files: dict[str, str],
+    name: str,
+    reg: dict[int, float] | None = None,
+    pr: dict[int, list[float]] | None = None,
+) -> list[tuple[float, float, float] | None]:
     """Execute a TP program's registers, PR elements, labels, jumps and CALLs (inputs and
     waits as satisfied: the main timeline); the destination of every J/L motion: P[n]'s X, Y,
     Z plus PR[i]'s when it carries `Offset,PR[i]` (added element by element in the user frame:
@@ -88,9 +106,17 @@ def _fanuc_run(files: dict[str, str], name: str, reg: dict[int, float] | None = 
     pr = {} if pr is None else pr
     mn = text.split("/MN\n")[1].split("/POS\n")[0]
     lines = [re.sub(r"^\s*\d+:\s+", "", ln).removesuffix(" ;") for ln in mn.splitlines()]
-    points = {int(n): tuple(float(v) for v in (x, y, z)) for n, x, y, z in re.findall(
-        r"P\[(\d+)[^\]]*\]\{.*?X =\s*(\S+)\s+mm,\s*Y =\s*(\S+)\s+mm,\s*Z =\s*(\S+)\s+mm", text, re.S)}
-    labels = {int(m.group(1)): k for k, ln in enumerate(lines) if (m := re.fullmatch(r"LBL\[(\d+)\]", ln))}
+    points = {
+        int(n): tuple(float(v) for v in (x, y, z))
+        for n, x, y, z in re.findall(
+            r"P\[(\d+)[^\]]*\]\{.*?X =\s*(\S+)\s+mm,\s*Y =\s*(\S+)\s+mm,\s*Z =\s*(\S+)\s+mm",
+            text,
+            re.S,
+        )
+    }
+    labels = {
+        int(m.group(1)): k for k, ln in enumerate(lines) if (m := re.fullmatch(r"LBL\[(\d+)\]", ln))
+    }
 
     def value(tok: str) -> float:
         m = re.fullmatch(r"R\[(\d+)(?::[^\]]*)?\]", tok)
@@ -99,7 +125,9 @@ def _fanuc_run(files: dict[str, str], name: str, reg: dict[int, float] | None = 
         return float(tok.strip("()"))
 
     def expr(text: str) -> float:
-        m = re.fullmatch(r"(R\[[^\]]*\]|\(?-?[\d.]+\)?)(?:([-+*/])(R\[[^\]]*\]|\(?-?[\d.]+\)?))?", text)
+        m = re.fullmatch(
+            r"(R\[[^\]]*\]|\(?-?[\d.]+\)?)(?:([-+*/])(R\[[^\]]*\]|\(?-?[\d.]+\)?))?", text
+        )
         assert m, text
         a = value(m.group(1))
         if not m.group(2):
@@ -124,7 +152,9 @@ def _fanuc_run(files: dict[str, str], name: str, reg: dict[int, float] | None = 
             pr.setdefault(int(m.group(1)), [0.0] * 6)[int(m.group(2)) - 1] = expr(m.group(3))
         elif m := re.fullmatch(r"IF (R\[[^\]]*\])(<=|<|>=|>|=|<>)([^,]+),JMP LBL\[(\d+)\]", ln):
             a, b = value(m.group(1)), value(m.group(3))
-            if {"<=": a <= b, "<": a < b, ">=": a >= b, ">": a > b, "=": a == b, "<>": a != b}[m.group(2)]:
+            if {"<=": a <= b, "<": a < b, ">=": a >= b, ">": a > b, "=": a == b, "<>": a != b}[
+                m.group(2)
+            ]:
                 k = labels[int(m.group(4))]
         elif m := re.fullmatch(r"JMP LBL\[(\d+)\]", ln):
             k = labels[int(m.group(1))]
@@ -138,8 +168,12 @@ def _fanuc_run(files: dict[str, str], name: str, reg: dict[int, float] | None = 
     return out
 
 
-def _inform_run(files: dict[str, str], name: str, d: dict[str, float] | None = None,
-                p: dict[str, list[float]] | None = None) -> list[tuple[float, float, float]]:
+def _inform_run(
+    files: dict[str, str],
+    name: str,
+    d: dict[str, float] | None = None,
+    p: dict[str, list[float]] | None = None,
+) -> list[tuple[float, float, float]]:
     """Execute a job's D variables (SET/ADD/SUB/MUL/INC), SETE on P variables (0.001 mm),
     labels, JUMP IF and CALL JOB (waits as satisfied, PAUSE ends the run); every MOVJ/MOVL's
     position plus the active SFTON shift (RF: robot coordinates, those of ROBOT positions)."""
@@ -147,8 +181,10 @@ def _inform_run(files: dict[str, str], name: str, d: dict[str, float] | None = N
     d = {} if d is None else d
     p = {} if p is None else p
     body = text.split("NOP\n")[1].splitlines()
-    cpos = {m.group(1): tuple(float(v) for v in m.group(2).split(",")[:3])
-            for m in re.finditer(r"^(C\d{5})=(.*)$", text, re.M)}
+    cpos = {
+        m.group(1): tuple(float(v) for v in m.group(2).split(",")[:3])
+        for m in re.finditer(r"^(C\d{5})=(.*)$", text, re.M)
+    }
     labels = {ln: k for k, ln in enumerate(body) if re.fullmatch(r"\*L\d+", ln)}
     shift: list[float] | None = None
 
@@ -187,10 +223,17 @@ def _inform_run(files: dict[str, str], name: str, d: dict[str, float] | None = N
                 continue
             m = re.fullmatch(r"JUMP (\*L\d+)(?: IF (\w+)(<=|<|>=|>|=|<>)(\S+))?", ln)
             assert m, ln
-            if m.group(2) is None or {"<=": d[m.group(2)] <= val(m.group(4)), "<": d[m.group(2)] < val(m.group(4)),
-                                      ">=": d[m.group(2)] >= val(m.group(4)), ">": d[m.group(2)] > val(m.group(4)),
-                                      "=": d[m.group(2)] == val(m.group(4)),
-                                      "<>": d[m.group(2)] != val(m.group(4))}[m.group(3)]:
+            if (
+                m.group(2) is None
+                or {
+                    "<=": d[m.group(2)] <= val(m.group(4)),
+                    "<": d[m.group(2)] < val(m.group(4)),
+                    ">=": d[m.group(2)] >= val(m.group(4)),
+                    ">": d[m.group(2)] > val(m.group(4)),
+                    "=": d[m.group(2)] == val(m.group(4)),
+                    "<>": d[m.group(2)] != val(m.group(4)),
+                }[m.group(3)]
+            ):
                 k = labels[m.group(1)]
         elif w[0] in ("MOVJ", "MOVL"):
             c = cpos[w[1]]
@@ -206,9 +249,13 @@ def _val3_run(files: dict[str, str]) -> list[tuple[float, float, float] | None]:
     a movej to joints (jTarget: no Cartesian target to compare)."""
     dtx = next(t for n, t in files.items() if n.endswith(".dtx"))
     ns = {"d": "http://www.staubli.com/robotics/VAL3/Data/2"}
-    points = [tuple(float(v.get(a)) for a in "xyz")  # type: ignore[arg-type]
-              for data in ET.fromstring(dtx).iterfind("d:Datas/d:Data", ns) if data.get("name") == "pTarget"
-              for v in data]
+    points = [
+        tuple(float(v.get(a)) for a in "xyz")  # type: ignore[arg-type]
+        for data in ET.fromstring(dtx).iterfind("d:Datas/d:Data", ns)
+        if data.get("name") == "pTarget"
+        for v in data
+    ]
+
     def code(name: str) -> list[str]:
         text = next(t for n, t in files.items() if n.endswith(f"/{name}.pgx"))
         return [ln.strip() for ln in text.split("<![CDATA[")[1].split("]]>")[0].splitlines()]
@@ -249,7 +296,9 @@ def _val3_run(files: dict[str, str]) -> list[tuple[float, float, float] | None]:
                 continue
             elif m := re.fullmatch(r"(trShift\d+)\.([xyz]) = (.*)", ln):
                 env[f"{m.group(1)}.{m.group(2)}"] = sum(term(t) for t in m.group(3).split(" + "))
-            elif m := re.match(r"move[jl]\((?:compose\(pTarget\[(\d+)\], \w+, (trShift\d+)\)|pTarget\[(\d+)\])", ln):
+            elif m := re.match(
+                r"move[jl]\((?:compose\(pTarget\[(\d+)\], \w+, (trShift\d+)\)|pTarget\[(\d+)\])", ln
+            ):
                 base = points[int(m.group(1) or m.group(3))]
                 sh = [env.get(f"{m.group(2)}.{a}", 0.0) for a in "xyz"] if m.group(2) else [0.0] * 3
                 out.append((base[0] + sh[0], base[1] + sh[1], base[2] + sh[2]))
@@ -276,11 +325,12 @@ def test_the_emitted_loop_reaches_every_verified_pose(vendor: str) -> None:
 def assert_witness(vendor: str, plan: planned.Plan, loop: ir.Loop, files: dict[str, str]) -> None:
     want = iteration_poses(loop, plan)
     assert len(want) == PLACEMENTS * 3
+    got: list[tuple[float, float, float] | None]
     if vendor == "fanuc":  # in the move's frame (user frame), home moves first and last
         got = _fanuc_run(files, "PALLET")[1:-1]
         expect = [tuple(v * 1000.0 for v in pose.position) for _, pose in want]
     elif vendor == "inform":  # ROBOT coordinates: the base frame
-        got = _inform_run(files, "PALLET")[1:-1]
+        got = list(_inform_run(files, "PALLET")[1:-1])
         frame = plan.tasks[0].task.body[0].frame.pose  # type: ignore[union-attr]
         expect = [tuple(v * 1000.0 for v in (frame * pose).position) for _, pose in want]
     else:  # in the frame the points are linked to; joint moves (jTarget) are not compared
@@ -293,7 +343,7 @@ def assert_witness(vendor: str, plan: planned.Plan, loop: ir.Loop, files: dict[s
     assert np.allclose(np.array(got), np.array(expect), atol=2e-3), (got[:5], expect[:5])
 
 
-# --------------------------------------------------------------------------- unrolled, with the reason
+# ------------------------------------------------------------------ unrolled, with the reason
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
@@ -334,7 +384,10 @@ def one(vendor: str, *body: ir.Instr) -> EmitResult:
 def main_lines(vendor: str, result: EmitResult) -> list[str]:
     text = next(t for n, t in result.files.items() if n.endswith((".ls", ".JBI", "/start.pgx")))
     if vendor == "fanuc":
-        return [re.sub(r"^\s*\d+:\s+", "", ln).removesuffix(" ;") for ln in text.split("/MN\n")[1].split("/POS")[0].splitlines()]
+        return [
+            re.sub(r"^\s*\d+:\s+", "", ln).removesuffix(" ;")
+            for ln in text.split("/MN\n")[1].split("/POS")[0].splitlines()
+        ]
     if vendor == "inform":
         return text.split("NOP\n")[1].splitlines()
     return [ln.strip() for ln in text.split("<![CDATA[")[1].split("]]>")[0].splitlines()]
@@ -345,39 +398,82 @@ DECL = ir.VarDecl(uid=1, name="n", type=INT, init=const(2), span=span_at(2))
 
 def test_fanuc_arithmetic_is_one_operator_per_line() -> None:
     value = ir.Arith("*", ir.Arith("+", var("n"), const(3), INT), const(-2), INT)
-    lines = main_lines("fanuc", one("fanuc", DECL, ir.Assign(uid=2, name="n", value=value, span=span_at(3))))
+    lines = main_lines(
+        "fanuc", one("fanuc", DECL, ir.Assign(uid=2, name="n", value=value, span=span_at(3)))
+    )
     assert lines[-2:] == ["R[2:rmot tmp]=R[1:n]+3", "R[1:n]=R[2:rmot tmp]*(-2)"]
-    assert all(len(re.findall(r"[-+*/](?![^(]*\))", ln.split("=", 1)[1])) <= 1 for ln in lines if ln.startswith("R["))
+    assert all(
+        len(re.findall(r"[-+*/](?![^(]*\))", ln.split("=", 1)[1])) <= 1
+        for ln in lines
+        if ln.startswith("R[")
+    )
 
 
 def test_fanuc_conditions_stay_in_standard_logic() -> None:
     """One IF line for and-only/or-only conditions of at most five comparisons; a mixed one
     becomes a chain of one-comparison jumps (TP standard logic never mixes AND with OR)."""
     ins = [ir.InputCondition(port=k, value=True) for k in range(1, 4)]
-    mixed = ir.Logic("or", (ir.Logic("and", tuple(ins[:2])), ir.Compare(ir.CompareOp.GT, ir.AnalogInput(1), ir.Const(4.5, ir.ValueType.NUM))))
-    plain = ir.If(uid=2, condition=ir.Logic("and", tuple(ins)), then=(ir.SetDigital(uid=3, port=1, value=True),))
+    mixed = ir.Logic(
+        "or",
+        (
+            ir.Logic("and", tuple(ins[:2])),
+            ir.Compare(ir.CompareOp.GT, ir.AnalogInput(1), ir.Const(4.5, ir.ValueType.NUM)),
+        ),
+    )
+    plain = ir.If(
+        uid=2,
+        condition=ir.Logic("and", tuple(ins)),
+        then=(ir.SetDigital(uid=3, port=1, value=True),),
+    )
     lines = main_lines("fanuc", one("fanuc", plain))
     assert "IF DI[1]=OFF OR DI[2]=OFF OR DI[3]=OFF,JMP LBL[1]" in lines
-    lines = main_lines("fanuc", one("fanuc", ir.If(uid=2, condition=mixed, then=(ir.SetDigital(uid=3, port=1, value=True),))))
+    lines = main_lines(
+        "fanuc",
+        one(
+            "fanuc", ir.If(uid=2, condition=mixed, then=(ir.SetDigital(uid=3, port=1, value=True),))
+        ),
+    )
     ifs = [ln for ln in lines if ln.startswith("IF ")]
     assert ifs and all(not (" AND " in ln and " OR " in ln) for ln in ifs)
     assert any("AI[1]>4.5" in ln or "AI[1]<=4.5" in ln for ln in ifs)
 
 
 def test_fanuc_mixed_wait_is_polled_with_a_timer() -> None:
-    cond = ir.Logic("or", (ir.Logic("and", (ir.InputCondition(port=1, value=True), ir.InputCondition(port=2, value=True))),
-                           ir.InputCondition(port=3, value=True)))
-    result = one("fanuc", ir.WaitCondition(uid=2, condition=cond, timeout=3.0, span=span_at(2),
-                                           on_timeout=(ir.SetDigital(uid=3, port=4, value=True),)))
+    cond = ir.Logic(
+        "or",
+        (
+            ir.Logic(
+                "and",
+                (ir.InputCondition(port=1, value=True), ir.InputCondition(port=2, value=True)),
+            ),
+            ir.InputCondition(port=3, value=True),
+        ),
+    )
+    result = one(
+        "fanuc",
+        ir.WaitCondition(
+            uid=2,
+            condition=cond,
+            timeout=3.0,
+            span=span_at(2),
+            on_timeout=(ir.SetDigital(uid=3, port=4, value=True),),
+        ),
+    )
     assert "W431" in codes(result)
     lines = main_lines("fanuc", result)
-    assert "TIMER[10]=START" in lines and "IF R[1:rmot tmp]<3,JMP LBL[1]" in lines and "DO[4]=ON" in lines
+    assert (
+        "TIMER[10]=START" in lines
+        and "IF R[1:rmot tmp]<3,JMP LBL[1]" in lines
+        and "DO[4]=ON" in lines
+    )
     assert check_fanuc(result.files) == []
 
 
 def test_analog_inputs_per_vendor() -> None:
     cond = ir.Compare(ir.CompareOp.GT, ir.AnalogInput(2), ir.Const(4.5, ir.ValueType.NUM))
-    node = ir.If(uid=2, condition=cond, then=(ir.SetDigital(uid=3, port=1, value=True),), span=span_at(2))
+    node = ir.If(
+        uid=2, condition=cond, then=(ir.SetDigital(uid=3, port=1, value=True),), span=span_at(2)
+    )
     assert "IF AI[2]<=4.5,JMP LBL[1]" in main_lines("fanuc", one("fanuc", node))
     val3 = one("val3", node)
     assert "if aioGet(aIn[2]) > 4.5" in main_lines("val3", val3) and "W455" in codes(val3)
@@ -393,7 +489,9 @@ def test_stop_per_vendor() -> None:
     val3_lines = main_lines("val3", one("val3", stop))
     assert val3_lines[-5:] == ["waitEndMove()", "// demo.rmot:2", "return", "waitEndMove()", "end"]
     # in a called program: INFORM pauses (W432); VAL3 returns through bStop to start()
-    call = ir.ProcCall(uid=3, proc="fault", args=(), body=(ir.Stop(uid=4, span=span_at(5)),), span=span_at(3))
+    call = ir.ProcCall(
+        uid=3, proc="fault", args=(), body=(ir.Stop(uid=4, span=span_at(5)),), span=span_at(3)
+    )
     assert "W432" in codes(one("inform", call))
     val3 = one("val3", call)
     assert main_lines("val3", val3)[-6:-2] == ["call fault()", "if bStop", "return", "endIf"]
@@ -401,25 +499,48 @@ def test_stop_per_vendor() -> None:
 
 
 def test_timeout_branch_runs_and_goes_on() -> None:
-    wait = ir.WaitInput(uid=2, condition=ir.InputCondition(port=1, value=True), timeout=2.0, span=span_at(2),
-                        on_timeout=(ir.SetDigital(uid=3, port=5, value=True),))
+    wait = ir.WaitInput(
+        uid=2,
+        condition=ir.InputCondition(port=1, value=True),
+        timeout=2.0,
+        span=span_at(2),
+        on_timeout=(ir.SetDigital(uid=3, port=5, value=True),),
+    )
     fanuc = main_lines("fanuc", one("fanuc", wait))
     k = fanuc.index("WAIT DI[1]=ON TIMEOUT,LBL[1]")
-    assert fanuc[k - 1] == "$WAITTMOUT=200" and fanuc[k + 1:k + 5] == ["JMP LBL[2]", "LBL[1]", "DO[5]=ON", "LBL[2]"]
+    assert fanuc[k - 1] == "$WAITTMOUT=200" and fanuc[k + 1 : k + 5] == [
+        "JMP LBL[2]",
+        "LBL[1]",
+        "DO[5]=ON",
+        "LBL[2]",
+    ]
     assert "ABORT" not in fanuc
     inform = main_lines("inform", one("inform", wait))
     k = inform.index("WAIT IN#(1)=ON T=2.00")
-    assert inform[k + 1:k + 4] == ["JUMP *L001 IF IN#(1)=ON", "DOUT OT#(5) ON", "*L001"]
+    assert inform[k + 1 : k + 4] == ["JUMP *L001 IF IN#(1)=ON", "DOUT OT#(5) ON", "*L001"]
     val3 = main_lines("val3", one("val3", wait))
     k = val3.index("bOk = watch(dIn[1] == true, 2.0000)")
-    assert val3[k + 1:k + 4] == ["if !bOk", "dOut[5] = true", "endIf"]
+    assert val3[k + 1 : k + 4] == ["if !bOk", "dOut[5] = true", "endIf"]
 
 
 def test_inform_variables_are_typed_and_listed() -> None:
     flag = ir.VarDecl(uid=2, name="ok", type=BOOL, init=const(True), span=span_at(3))
-    num = ir.VarDecl(uid=3, name="level", type=ir.ValueType.NUM, init=ir.Const(1.5, ir.ValueType.NUM), span=span_at(4))
+    num = ir.VarDecl(
+        uid=3,
+        name="level",
+        type=ir.ValueType.NUM,
+        init=ir.Const(1.5, ir.ValueType.NUM),
+        span=span_at(4),
+    )
     lines = main_lines("inform", one("inform", DECL, flag, num))
-    assert {"'D050 = n", "'B050 = ok", "'R050 = level", "SET D050 2", "SET B050 1", "SET R050 1.5"} <= set(lines)
+    assert {
+        "'D050 = n",
+        "'B050 = ok",
+        "'R050 = level",
+        "SET D050 2",
+        "SET B050 1",
+        "SET R050 1.5",
+    } <= set(lines)
 
 
 def test_validators_reject_what_the_new_forms_get_wrong() -> None:
@@ -429,7 +550,9 @@ def test_validators_reject_what_the_new_forms_get_wrong() -> None:
     assert any("J/L line" in f for f in check_fanuc(broken))
     plan, _ = pallet_program("inform")
     files = emit("inform", plan).files
-    broken = {n: re.sub(r"///NPOS (\d+),0,0,1,0,0", r"///NPOS \1,0,0,0,0,0", t) for n, t in files.items()}
+    broken = {
+        n: re.sub(r"///NPOS (\d+),0,0,1,0,0", r"///NPOS \1,0,0,0,0,0", t) for n, t in files.items()
+    }
     assert any("NPOS" in f for f in check_inform(broken))
 
 
@@ -440,7 +563,8 @@ def test_every_iteration_is_planned_the_same_robot_joints() -> None:
     tp = plan.tasks[0]
     moves = [n for n in ir.walk((loop,)) if isinstance(n, ir.Move)]
     assert all(np.allclose(tp.record(m.uid).q_target, Q) for m in moves)  # type: ignore[union-attr]
-    assert all(tp.record(m.uid).branch == FRONT_UP_NOFLIP for m in moves)  # type: ignore[union-attr]
+    branches = [tp.record(m.uid).branch for m in moves]  # type: ignore[union-attr]
+    assert all(b == FRONT_UP_NOFLIP for b in branches)
 
 
 # --------------------------------------------------------------------------- from .rmot sources
@@ -475,10 +599,14 @@ def test_the_palletizing_example_is_loops_that_reach_every_verified_placement(ve
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
     assert VALIDATE[vendor](result.files) == []
     text = "\n".join(result.files.values())
-    assert len(re.findall(r"^\s*\d+:\s+[JL] P\[|^MOV[JL] |^\s*move[jl]\(", text, re.M)) < 80  # not 36 x 8
+    assert (
+        len(re.findall(r"^\s*\d+:\s+[JL] P\[|^MOV[JL] |^\s*move[jl]\(", text, re.M)) < 80
+    )  # not 36 x 8
     tp = plan.tasks[0]
     moves = main_timeline(tp.task.body)
-    assert len(moves) == PLACEMENTS * 6 + 2  # per placement: down to the pick, up, down to the slot, up
+    assert (
+        len(moves) == PLACEMENTS * 6 + 2
+    )  # per placement: down to the pick, up, down to the slot, up
     recs = [tp.record(m.uid) for m in moves]
     base = [r.tcp_pose for r in recs]  # type: ignore[union-attr]
     framed = [m.frame.pose.inverse() * p for m, p in zip(moves, base)]  # type: ignore[operator]
@@ -492,9 +620,13 @@ def test_the_palletizing_example_is_loops_that_reach_every_verified_placement(ve
         ran = _val3_run(result.files)
         expect = framed
     assert len(ran) == len(expect)
-    pairs = [(g, tuple(v * 1000.0 for v in e.position)) for g, e in zip(ran, expect) if g is not None]
+    pairs = [
+        (g, tuple(v * 1000.0 for v in e.position)) for g, e in zip(ran, expect) if g is not None
+    ]
     # VAL3 writes a joint move outside a loop's shift as its planned joints (not compared here)
-    assert len(pairs) >= sum(m.kind is not ir.MotionKind.JOINT for m in moves) + (0 if vendor == "val3" else 70)
+    assert len(pairs) >= sum(m.kind is not ir.MotionKind.JOINT for m in moves) + (
+        0 if vendor == "val3" else 70
+    )
     assert np.allclose([g for g, _ in pairs], [e for _, e in pairs], atol=2e-3)
 
 

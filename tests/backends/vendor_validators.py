@@ -41,8 +41,8 @@ NUM = r"-?\d+(?:\.\d+)?"
 # --------------------------------------------------------------------------- Fanuc LS
 
 # [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`
-_TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))"
-                        r"(?: Offset,PR\[\d+\])?$")
+_TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) "
+                        r"(FINE|CNT(\d+))(?: Offset,PR\[\d+\])?$")
 _TP_CIRC_HEAD = re.compile(r"^C P\[(\d+)(?::[^\]]*)?\]$")
 _TP_CIRC_TAIL = re.compile(r"^:\s+P\[(\d+)(?::[^\]]*)?\] (\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
 
@@ -245,7 +245,8 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
     cs = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("C")]
     ps = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("P")]
     if npos is None or int(npos.group(1)) != len(cs) or int(npos.group(2)) != len(ps):
-        bad.append((pos + 2, f"///NPOS must count the positions ({len(cs)}) and variables ({len(ps)})"))
+        bad.append((pos + 2, f"///NPOS must count the positions ({len(cs)}) and position "
+                             f"variables ({len(ps)})"))
     for k, ln in ps:
         if not re.fullmatch(r"P\d{4}=" + ",".join([NUM] * 6), ln):
             bad.append((k, f"a position variable is Pnnnn=X,Y,Z,Rx,Ry,Rz (got {ln})"))
