@@ -688,7 +688,7 @@ class FanucBackend(Backend):
         counter = self._counter(var, ctx, template.loop.span)
         ctx.regs.inner.update(template.inner)
         top = ctx.program.label()
-        head = [self.comment(f"for {var.name or 'k'} in {var.first} .. {var.last}"[:COMMENT_MAX]),
+        head = [self.comment(_loop_head(var)[:COMMENT_MAX]),
                 f"{counter}={var.first}", f"LBL[{top}]"]
         ctx.regs.reset()
         offsets = self._offset_lines(template, ctx)
@@ -877,3 +877,11 @@ def _sig(signal: str | None) -> str:
 def _pieces(text: str) -> list[str]:
     """Comment text wrapped into lines of at most COMMENT_MAX characters."""
     return textwrap.wrap(text, COMMENT_MAX, break_long_words=True) or [""]
+
+
+def _loop_head(var: LoopVar) -> str:
+    """The comment above a vendor loop: `for layer = 0 .. 2` (the values it runs) or
+    `repeat 2`."""
+    if var.name is None:
+        return f"repeat {var.last - var.first + 1}"
+    return f"for {var.name} = {var.first} .. {var.last}"

@@ -743,7 +743,7 @@ class InformBackend(Backend):
         counter = self._counter(var, ctx, template.loop.span)
         ctx.vars.inner.update(template.inner)
         top = self.label(ctx)
-        head = self.wrap(f"for {var.name or 'k'} in {var.first} .. {var.last}")
+        head = self.wrap(_loop_head(var))
         head += [f"SET {counter} {var.first}", top]
         ctx.vars.reset()
         shifts = self._shift_lines(template, ctx)
@@ -928,3 +928,11 @@ def _inform_blocker(template: LoopTemplate) -> str | None:
 InformBackend.EMIT = {**InformBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
                       ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
                       ir.Stop: "stop"}
+
+
+def _loop_head(var: LoopVar) -> str:
+    """The comment above a vendor loop: `for layer = 0 .. 2` (the values it runs) or
+    `repeat 2`."""
+    if var.name is None:
+        return f"repeat {var.last - var.first + 1}"
+    return f"for {var.name} = {var.first} .. {var.last}"

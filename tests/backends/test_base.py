@@ -127,7 +127,9 @@ class TestSharedDefaults:
         """Every vendor prints every IR instruction type through a method named in its EMIT table."""
         cls = BACKENDS[target]
         assert set(cls.EMIT) == {ir.Move, ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime,
-                                 ir.WaitInput, ir.If, ir.Sync, ir.Native, ir.ProcCall, ir.Attach, ir.Detach}
+                                 ir.WaitInput, ir.If, ir.Sync, ir.Native, ir.ProcCall, ir.Attach, ir.Detach,
+                                 # runtime logic (issue #15)
+                                 ir.VarDecl, ir.Assign, ir.Loop, ir.While, ir.WaitCondition, ir.Stop}
         assert all(callable(getattr(cls, method, None)) for method in cls.EMIT.values())
 
     @pytest.mark.parametrize("target", VENDORS)
