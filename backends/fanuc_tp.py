@@ -46,6 +46,10 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     back). Missing signals: error E409 at the sync; a sync in an if arm: error E405.
   * names: program names at most 36 characters (R-30iA and later), upper case, a letter
     first, letters, digits and '_'; comments are cut into pieces of at most 32 characters.
+  * runtime logic (issue #15, the block at the end of the class): variables as R registers,
+    one operator per line, IF/WAIT conditions in standard logic or as jump chains, while as
+    LBL/JMP, timeout branches at the TIMEOUT label, polled waits with TIMER[10] (W431), stop =
+    ABORT, `for` loops as LBL/JMP with Offset,PR[i] or unrolled (W430).
   * size: a program longer than MAX_INSTRUCTIONS instructions is split into programs
     NAME_PART1.. called from NAME (warning W406), keeping pendant loading and editing
     practical; TP itself numbers lines up to 9999.
@@ -852,8 +856,8 @@ def _fanuc_blocker(template: LoopTemplate) -> str | None:
     variable)."""
     for node in ir.walk(template.body):
         if isinstance(node, ir.Move) and node.kind is ir.MotionKind.CIRCULAR:
-            offset = template.targets.get((node.uid, "target"))
-            if offset is not None and any(any(s) for s in offset.steps):
+            offsets = [template.targets.get((node.uid, role)) for role in ("target", "via")]
+            if any(o is not None and any(any(s) for s in o.steps) for o in offsets):
                 return (f"{_loop_words(template.loop)} unrolled: a TP circular move takes one "
                         "Offset,PR for its via and end points (its points move from one "
                         "iteration to the next)")

@@ -52,6 +52,12 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     `WAIT IN#(i)=` the same level, o and i being the robot's `io out[o] = "sync"` /
     `io in[i] = "sync"` of the cell (wired crosswise).
 
+Runtime logic (issue #15, the block at the end of the class): D/R/B variables from 050 with
+SET/ADD/SUB/MUL/DIV/INC/DEC, one-comparison `JUMP *L IF` chains, while loops with labels, the
+timeout branch by testing the input again after `WAIT ... T=`, polled waits (W431), `stop` =
+PAUSE (+ the job's end in the main job; W432 in a called job), `for` loops with INC and SFTON
+shifts set by SETE in P variables from P050, or unrolled (W430); analog inputs refused (E430).
+
 Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we keep jobs below
 `MAX_INSTRUCTIONS` (300) top-level IR instructions (~1800 INFORM lines); a longer main body is
 split into parts `NAME_PART1`, ... called from the main job (W406); a part or routine that is

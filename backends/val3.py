@@ -44,6 +44,10 @@ Vendor conventions (VAL3 reference manual):
     `wait(dIn[i] == ...)`, o and i being the robot's `io out[o] = "sync"` /
     `io in[i] = "sync"` of the cell (wired crosswise); a waitEndMove() precedes it like any I/O.
 
+Runtime logic (issue #15, the block at the end of the class): task variables as global num/bool
+data, infix expressions, if/while/for, watch() with the timeout branch, `for` loops with
+compose(point, frame, trShift) offsets or unrolled (W430), stop = waitEndMove() + return.
+
 Size limits: VAL3 sets no line limit on a program and data arrays grow dynamically, so
 programs are not split. Names: identifiers of letters, digits and `_`, at most 15 characters.
 
@@ -180,6 +184,8 @@ class Val3Backend(Backend):
             names.reserve(reserved)  # taken after the app is named (the order decides a clash)
         ctx = task.with_state(Val3Context, names=names, routine_of=self.routine_table(names, body, task))
         main = self.block(body, ctx) + ["waitEndMove()"]
+        if "bStop" in ctx.data.variables:  # issue #15: a stop in a called program; clear it first
+            main.insert(0, "bStop = false")
         ctx.programs["start"] = main
         ctx.programs["stop"] = []
         self.extend(names.diagnostics)

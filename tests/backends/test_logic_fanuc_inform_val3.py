@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 from backend_fixtures import BRAND_ROBOT, FRONT_UP_NOFLIP, check_golden, hand_plan, span_at
 from logic_fixtures_d import (
+    DOWN_Q,
     BOOL,
     COLS,
     INT,
@@ -642,3 +643,61 @@ def test_the_machine_tending_example_compiles(vendor: str) -> None:
     stop = {"fanuc": "ABORT", "inform": "PAUSE", "val3": "bStop = true"}[vendor]
     loop = {"fanuc": "JMP LBL[", "inform": "JUMP *L", "val3": "while "}[vendor]
     assert stop in text and loop in text
+
+
+def test_a_moving_arc_in_a_loop_is_unrolled_for_tp_and_inform_and_composed_for_val3() -> None:
+    """TP's Offset,PR shifts one destination per line and INFORM's MOVC starts from the move
+    before it: a loop whose arc moves per iteration is unrolled there (W430, saying why);
+    VAL3 composes both the via and the end point."""
+    from backend_fixtures import GRIPPER, TABLE, cart, motion
+
+    from rmot.compiler.ir import MotionKind
+
+    def body(k: int, uid: int) -> tuple[ir.Instr, ...]:
+        x = 0.1 + 0.05 * k
+        start = ir.Pose((x, 0.0, 0.1), DOWN_Q)
+        via = ir.Pose((x + 0.02, 0.02, 0.1), DOWN_Q)
+        end = ir.Pose((x + 0.04, 0.0, 0.1), DOWN_Q)
+        lin = ir.Move(
+            uid=uid,
+            kind=MotionKind.LINEAR,
+            target=cart(start, TABLE, "s"),
+            motion=motion(),
+            tool=GRIPPER,
+            frame=TABLE,
+            span=span_at(5),
+        )
+        arc = ir.Move(
+            uid=uid + 1,
+            kind=MotionKind.CIRCULAR,
+            target=cart(end, TABLE, "e"),
+            via=cart(via, TABLE, "v"),
+            motion=motion(),
+            tool=GRIPPER,
+            frame=TABLE,
+            span=span_at(6),
+        )
+        return (lin, arc)
+
+    loop = ir.Loop(
+        uid=1,
+        var="k",
+        first=0,
+        last=2,
+        span=span_at(4),
+        iterations=tuple(ir.LoopIteration(value=k, body=body(k, 10 + 2 * k)) for k in range(3)),
+    )
+    for vendor in VENDORS:
+        records = {m.uid: (Q, FRONT_UP_NOFLIP) for m in ir.walk((loop,)) if isinstance(m, ir.Move)}
+        result = emit(vendor, hand_plan((loop,), records, robot=BRAND_ROBOT[vendor]))
+        notes = [d.message for d in result.diagnostics if d.code.id == "W430"]
+        if vendor == "val3":
+            assert notes == []
+            start = main_lines("val3", result)
+            assert any(
+                ln.startswith("movec(compose(pTarget[") and ln.count("compose(") == 2
+                for ln in start
+            )
+        else:
+            assert len(notes) == 1 and "circular" in notes[0], (vendor, notes)
+        assert not result.has_errors and VALIDATE[vendor](result.files) == []
