@@ -20,7 +20,6 @@ from backend_fixtures import (
     motion,
     span_at,
 )
-
 from rmot.compiler import ir, planned
 
 J, L = ir.MotionKind.JOINT, ir.MotionKind.LINEAR

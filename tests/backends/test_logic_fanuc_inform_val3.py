@@ -21,24 +21,23 @@ import numpy as np
 import pytest
 from backend_fixtures import BRAND_ROBOT, FRONT_UP_NOFLIP, check_golden, hand_plan, span_at
 from logic_fixtures_d import (
-    DOWN_Q,
     BOOL,
     COLS,
+    DOWN_Q,
     INT,
     LAYERS,
-    Q,
     ROWS,
+    Q,
     const,
     iteration_poses,
     pallet_program,
     tending_program,
     var,
 )
-from vendor_validators import check_fanuc, check_inform, check_val3
-
 from rmot.backends import BACKENDS
 from rmot.backends.base import EmitResult
 from rmot.compiler import ir, planned
+from vendor_validators import check_fanuc, check_inform, check_val3
 
 VENDORS = ("fanuc", "inform", "val3")
 VALIDATE = {"fanuc": check_fanuc, "inform": check_inform, "val3": check_val3}
@@ -650,7 +649,6 @@ def test_a_moving_arc_in_a_loop_is_unrolled_for_tp_and_inform_and_composed_for_v
     before it: a loop whose arc moves per iteration is unrolled there (W430, saying why);
     VAL3 composes both the via and the end point."""
     from backend_fixtures import GRIPPER, TABLE, cart, motion
-
     from rmot.compiler.ir import MotionKind
 
     def body(k: int, uid: int) -> tuple[ir.Instr, ...]:
