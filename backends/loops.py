@@ -37,6 +37,7 @@ from rmot.compiler import ir, planned
 
 __all__ = [
     "ConfigKey",
+    "MoveConfigKey",
     "ExtraKey",
     "LoopTemplate",
     "LoopVar",
@@ -63,6 +64,10 @@ ORIENTATION_TOL = 1e-12
 ConfigKey = Callable[[np.ndarray, "ir.Config | None"], Hashable]
 """The vendor's configuration data of one joint solution (q, branch): what its program writes
 for a Cartesian target (RAPID confdata, KRL Status/Turn, ...). Equal keys = one target fits."""
+
+MoveConfigKey = Callable[[ir.Move, np.ndarray, "ir.Config | None"], Hashable]
+"""A vendor whose configuration data depends on the motion (KRL: PTP reads Status and Turn,
+LIN and CIRC only follow the current joints) gives this instead of a ConfigKey."""
 
 ExtraKey = Callable[[ir.Instr, "planned.InstructionRecord | None"], Hashable]
 """Anything else a vendor prints from the record of an instruction (RAPID: a joint move's
@@ -173,6 +178,7 @@ class _Run:
     record: Record
     config_key: ConfigKey
     extra_key: ExtraKey | None
+    move_config: MoveConfigKey | None
     # (template uid, role) -> [(loop uid -> value, in_frame pose, instruction, role)]
     slots: dict[tuple[int, str], list[tuple[dict[int, int], ir.Pose, ir.Instr, str]]]
     loop_vars: dict[int, LoopVar]
@@ -191,14 +197,16 @@ def analyse(
     config_key: ConfigKey = branch_and_turns,
     extra_key: ExtraKey | None = None,
     unroll: bool = False,
+    move_config: MoveConfigKey | None = None,
 ) -> LoopTemplate | Unrolled:
     """A template when `loop` (with every loop nested in it) can be one vendor loop, else
-    why not. `unroll` (`rmot compile --unroll`) always answers Unrolled ("--unroll")."""
+    why not. `unroll` (`rmot compile --unroll`) always answers Unrolled ("--unroll").
+    `move_config`, when given, replaces `config_key` (it also sees the move)."""
     if unroll:
         return Unrolled(loop, "", None, "--unroll writes every iteration", loop.span)
     if not loop.iterations:
         return Unrolled(loop, "", None, "the range is empty (no iteration to write)", loop.span)
-    run = _Run(record, config_key, extra_key, {}, {})
+    run = _Run(record, config_key, extra_key, move_config, {}, {})
     holder: dict[int, LoopTemplate] = {}
     try:
         _nested(loop, loop, (), {}, run, holder)
@@ -310,6 +318,12 @@ def _compare_node(
     _compare_record(t, b, run)
 
 
+def _config(run: _Run, node: ir.Move, q: np.ndarray, branch: ir.Config | None) -> Hashable:
+    if run.move_config is not None:
+        return run.move_config(node, q, branch)
+    return run.config_key(q, branch)
+
+
 def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
     rt, rb = run.record(t), run.record(b)
     if isinstance(t, ir.Move):
@@ -319,7 +333,10 @@ def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
             stop = "stops exactly" if rb.blend_radius <= 0.0 else "blends"
             raise _Differs(b.uid, f"the move {stop} here, unlike in the first iteration", b.span)
         if isinstance(t.target, ir.CartesianTarget):
-            kt, kb = run.config_key(rt.q_target, rt.branch), run.config_key(rb.q_target, rb.branch)
+            kt, kb = (
+                _config(run, t, rt.q_target, rt.branch),
+                _config(run, b, rb.q_target, rb.branch),
+            )
             if kt != kb:
                 raise _Differs(
                     b.uid,
@@ -328,7 +345,7 @@ def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
                     b.span,
                 )
             if t.via is not None and rt.q_via is not None and rb.q_via is not None:
-                vt, vb = run.config_key(rt.q_via, rt.branch), run.config_key(rb.q_via, rb.branch)
+                vt, vb = _config(run, t, rt.q_via, rt.branch), _config(run, b, rb.q_via, rb.branch)
                 if vt != vb:
                     raise _Differs(
                         b.uid,

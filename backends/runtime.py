@@ -1,0 +1,214 @@
+"""Runtime logic shared by the vendor backends (issue #15): expressions, loops, unrolling.
+
+A vendor describes its expression syntax with an `ExprDialect` (operators, literals, how a
+variable, a digital input and an analog input read) and `expr_text` prints any `ir.RtExpr`
+with it, every compound operand in parentheses: KRL compares with the LOWEST priority of all
+its operators (KUKA System Software 8.x, Operating and Programming Instructions for System
+Integrators, "Priority of operators": NOT, * /, + -, AND, EXOR, OR, then == <> < > <= >=),
+so `$IN[1]==TRUE AND $IN[2]==FALSE` would read `$IN[1]==(TRUE AND $IN[2])==FALSE`; the
+parentheses make every vendor read the expression as the IR means it.
+
+`LoopState` is what a backend carries while it writes a vendor loop: the Cartesian targets
+of the template with their offsets (backends/loops.py) and each loop's counter name.
+`loop_template` decides (and warns W420 with the reason when a loop is unrolled);
+`unrolled` writes the iterations one after another, each under a comment naming the values.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from rmot.backends import codes_loops, loops
+from rmot.compiler import ir
+
+__all__ = [
+    "ExprDialect",
+    "LoopState",
+    "expr_text",
+    "is_int",
+    "loop_template",
+    "offset_terms",
+    "unrolled",
+    "uses_analog",
+    "var_decls",
+]
+
+
+@dataclass(frozen=True)
+class ExprDialect:
+    """How one vendor writes runtime expressions."""
+
+    true: str
+    false: str
+    and_: str
+    or_: str
+    not_: str  # prefix, e.g. "NOT " or "not "
+    compare: dict[ir.CompareOp, str]
+    var: Callable[[ir.VarRef], str]
+    digital: Callable[[ir.InputCondition], str]  # the whole test `DInput(di1) = 1`
+    analog: Callable[[ir.AnalogInput], str]  # the value in volts
+    real_division: Callable[[str, str], str] = lambda a, b: f"{a} / {b}"  # a/b of two INTs
+    number: Callable[[float], str] = lambda v: repr(float(v))
+
+
+def is_int(e: Any) -> bool:
+    """True when `e` is an INT-valued expression."""
+    return getattr(e, "type", None) is ir.ValueType.INT
+
+
+def expr_text(e: Any, d: ExprDialect) -> str:
+    """`e` (an ir.RtExpr or Condition) in the dialect `d`."""
+    if isinstance(e, ir.Const):
+        if e.type is ir.ValueType.BOOL:
+            return d.true if e.value else d.false
+        if e.type is ir.ValueType.INT:
+            return str(int(e.value))
+        return d.number(float(e.value))
+    if isinstance(e, ir.VarRef):
+        return d.var(e)
+    if isinstance(e, ir.InputCondition):
+        return d.digital(e)
+    if isinstance(e, ir.AnalogInput):
+        return d.analog(e)
+    if isinstance(e, ir.Arith):
+        left, right = _operand(e.left, d), _operand(e.right, d)
+        if e.op == "/" and is_int(e.left) and is_int(e.right):
+            return d.real_division(left, right)
+        return f"{left} {e.op} {right}"
+    if isinstance(e, ir.Compare):
+        return f"{_operand(e.left, d)} {d.compare[e.op]} {_operand(e.right, d)}"
+    if isinstance(e, ir.Logic):
+        word = d.and_ if e.op == "and" else d.or_
+        return f" {word} ".join(_operand(o, d) for o in e.operands)
+    if isinstance(e, ir.Not):
+        return f"{d.not_}{_operand(e.operand, d)}"
+    raise TypeError(f"no runtime expression form for {type(e).__name__}")
+
+
+def _operand(e: Any, d: ExprDialect) -> str:
+    text = expr_text(e, d)
+    compound = isinstance(e, (ir.Arith, ir.Compare, ir.Logic, ir.Not, ir.InputCondition))
+    if isinstance(e, ir.Const) and not isinstance(e.value, bool) and float(e.value) < 0:
+        compound = True
+    return f"({text})" if compound else text
+
+
+# --------------------------------------------------------------------------- loops
+
+
+@dataclass
+class LoopState:
+    """While a vendor loop is written: (template uid, role) -> the target's offsets, and
+    loop uid -> the vendor's counter name."""
+
+    offsets: dict[tuple[int, str], loops.TargetOffset] = field(default_factory=dict)
+    counters: dict[int, str] = field(default_factory=dict)
+
+
+def loop_template(
+    backend: Any,
+    node: ir.Loop,
+    ctx: Any,
+    *,
+    config_key: loops.ConfigKey = loops.branch_and_turns,
+    move_config: loops.MoveConfigKey | None = None,
+    extra_key: loops.ExtraKey | None = None,
+) -> loops.LoopTemplate | loops.Unrolled:
+    """The analysis of `node` for `backend` (its `unroll` option forces unrolling); an
+    unrolled loop gets W420 with the reason (not when --unroll asked for it)."""
+    result = loops.analyse(
+        node,
+        ctx.record,
+        config_key=config_key,
+        move_config=move_config,
+        extra_key=extra_key,
+        unroll=getattr(backend, "unroll", False),
+    )
+    if isinstance(result, loops.Unrolled) and not getattr(backend, "unroll", False):
+        backend.warn(
+            codes_loops.LOOP_UNROLLED,
+            f"{result.message}; written iteration by iteration",
+            result.span,
+        )
+    return result
+
+
+def unrolled(
+    backend: Any, node: ir.Loop, ctx: Any, body: Callable[[tuple[ir.Instr, ...]], list[str]]
+) -> list[str]:
+    """Every iteration of `node` in order, each under a comment `layer = 2`, with reads of
+    the loop variable bound to the iteration's value (bind_loop_var)."""
+    out: list[str] = []
+    for it in node.iterations:
+        nodes = it.body if node.var is None else loops.bind_loop_var(it.body, node.var, it.value)
+        out.append(backend.comment(f"{node.var or 'iteration'} = {it.value}"))
+        out.extend(body(nodes))
+    return out
+
+
+def offset_terms(
+    offset: loops.TargetOffset,
+    counters: dict[int, str],
+    scale: float,
+    fmt_num: Callable[[float], str],
+    frame: np.ndarray | None = None,
+) -> tuple[str, str, str]:
+    """The x, y, z offsets as text: sum over loops of `(counter - first)*step` (`counter*step`
+    when first is 0), steps times `scale` (1000 for mm), rotated by `frame` (3x3) first when
+    given (a vendor that writes targets in another frame than `in_frame`); "0" when none."""
+    out: list[str] = []
+    steps = [np.asarray(s, float) for s in offset.steps]
+    if frame is not None:
+        steps = [frame @ s for s in steps]
+    for axis in range(3):
+        text = ""
+        for var, step in zip(offset.loops, steps, strict=True):
+            value = float(step[axis]) * scale
+            if abs(value) < 1e-9:
+                continue
+            name = counters[var.uid]
+            count = name if var.first == 0 else f"({name} - {var.first})"
+            term = f"{count}*{fmt_num(abs(value))}"
+            if not text:
+                text = term if value > 0 else f"-{term}"
+            else:
+                text += f" + {term}" if value > 0 else f" - {term}"
+        out.append(text or "0")
+    return out[0], out[1], out[2]
+
+
+def var_decls(body: tuple[ir.Instr, ...]) -> list[ir.VarDecl]:
+    """Every VarDecl of a task body (at any depth), in source order, one per name."""
+    seen: dict[str, ir.VarDecl] = {}
+    for node in ir.walk(body):
+        if isinstance(node, ir.VarDecl):
+            seen.setdefault(node.name, node)
+    return list(seen.values())
+
+
+def uses_analog(body: tuple[ir.Instr, ...]) -> list[int]:
+    """The analog input ports read anywhere in `body`, sorted."""
+    ports: set[int] = set()
+
+    def visit(v: Any) -> None:
+        if isinstance(v, ir.AnalogInput):
+            ports.add(v.port)
+        elif isinstance(v, tuple):
+            for x in v:
+                visit(x)
+        elif isinstance(v, (ir.Arith, ir.Compare)):
+            visit(v.left)
+            visit(v.right)
+        elif isinstance(v, ir.Logic):
+            visit(v.operands)
+        elif isinstance(v, ir.Not):
+            visit(v.operand)
+
+    for node in ir.walk(body):
+        for name in ("condition", "value", "init"):
+            visit(getattr(node, name, None))
+    return sorted(ports)
