@@ -609,3 +609,21 @@ def _part_payload_default(self: Backend, node: ir.Attach | ir.Detach, ctx: TaskC
 
 Backend.attach = _part_payload_default  # type: ignore[attr-defined]
 Backend.detach = _part_payload_default  # type: ignore[attr-defined]
+
+
+# --------------------------------------------------------------------------- runtime logic (issue #15)
+# Every vendor's EMIT table names a method for the runtime-logic instructions; the default
+# refuses the instruction (E400, never dropped) until the vendor writes it (RAPID, KRL and
+# URScript in their own modules; the others in theirs).
+
+
+def _runtime_unsupported(self: Backend, node: ir.Instr, ctx: TaskContext) -> list[str]:
+    self.unsupported(codes.UNSUPPORTED, f"{type(node).__name__} must be expressible for {self.name} "
+                     "(it is not yet)", getattr(node, "span", None))
+    return [self.comment(f"UNSUPPORTED {type(node).__name__}")]
+
+
+Backend.EMIT = {**Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.While: "while_",
+                ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
+for _method in ("var_decl", "assign", "while_", "loop", "wait_condition", "stop"):
+    setattr(Backend, _method, _runtime_unsupported)

@@ -107,6 +107,18 @@ class LoopState:
 
     offsets: dict[tuple[int, str], loops.TargetOffset] = field(default_factory=dict)
     counters: dict[int, str] = field(default_factory=dict)
+    templates: dict[int, loops.LoopTemplate] = field(default_factory=dict)  # nested loops
+    pending: list[str] = field(default_factory=list)  # lines a target needs before its motion
+    in_routine: int = 0  # > 0 while a proc's routine is printed
+    extra: dict[str, object] = field(default_factory=dict)  # a vendor's own flags
+    decls: list[str] = field(default_factory=list)  # declarations a vendor prints at the top
+
+    def enter(self, template: loops.LoopTemplate, counter: str) -> None:
+        """`template` is being written with the counter `counter`: its targets take offsets,
+        and its nested loops are written from their templates (not analysed again)."""
+        self.counters[template.var.uid] = counter
+        self.offsets.update(template.targets)
+        self.templates.update(template.inner)
 
 
 def loop_template(
@@ -179,6 +191,13 @@ def offset_terms(
                 text += f" + {term}" if value > 0 else f" - {term}"
         out.append(text or "0")
     return out[0], out[1], out[2]
+
+
+def trimmed(text: str) -> str:
+    """A fixed-point number without trailing zeros: '60.000' -> '60', '4.500' -> '4.5'."""
+    if "." not in text:
+        return text
+    return text.rstrip("0").rstrip(".") or "0"
 
 
 def var_decls(body: tuple[ir.Instr, ...]) -> list[ir.VarDecl]:
