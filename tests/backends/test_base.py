@@ -3,9 +3,8 @@ Backend defaults every vendor shares (EMIT table, native blocks, TaskContext.wit
 
 from __future__ import annotations
 
-from typing import get_args
-
 import math
+from typing import get_args
 
 import numpy as np
 import pytest
