@@ -256,11 +256,8 @@ class Backend:
     MAX_TCP_SPEED: ClassVar[float | None] = None
     MAX_TCP_SPEED_SOURCE: ClassVar[str] = ""
 
-    def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False,
-                 unroll: bool = False) -> None:
+    def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False) -> None:
         self.findings_header = allow_findings_header
-        # `--unroll` (issue #15): every `for` loop written iteration by iteration
-        self.unroll = unroll
         # `--write-frames`: numbered tools and frames are also written into the controller's
         # stored data (Fanuc UTOOL/UFRAME, KUKA TOOL_DATA/BASE_DATA); off, they are only selected
         self.write_frames = write_frames
@@ -612,18 +609,38 @@ Backend.detach = _part_payload_default  # type: ignore[attr-defined]
 
 
 # --------------------------------------------------------------------------- runtime logic (issue #15)
-# Every vendor's EMIT table names a method for the runtime-logic instructions; the default
-# refuses the instruction (E400, never dropped) until the vendor writes it (RAPID, KRL and
-# URScript in their own modules; the others in theirs).
+# Appended (like the parts block above) as the fallback every vendor starts from: a `for` /
+# `repeat` Loop is written as its iterations one after another (unrolled, the loop variable
+# bound to each value: ir_tree.bind_loop_variable), and the other runtime-logic nodes (var,
+# assignment, while, general wait condition, stop) are E165 until the vendor's own handler
+# (a method of the same name on its Backend subclass) replaces the fallback.
+
+
+def _loop_unrolled(self: Backend, node: ir.Loop, ctx: TaskContext) -> list[str]:
+    from rmot.compiler.ir_tree import bind_loop_variable
+
+    out: list[str] = []
+    for it in node.iterations:
+        body = bind_loop_variable(it.body, node.var, it.value) if node.var is not None else it.body
+        label = f"{node.var} = {it.value}" if node.var is not None else f"repeat round {it.value + 1}"
+        out.append(self.comment(label))
+        out.extend(self.body(body, ctx))
+    return out
 
 
 def _runtime_unsupported(self: Backend, node: ir.Instr, ctx: TaskContext) -> list[str]:
-    self.unsupported(codes.UNSUPPORTED, f"{type(node).__name__} must be expressible for {self.name} "
-                     "(it is not yet)", getattr(node, "span", None))
-    return [self.comment(f"UNSUPPORTED {type(node).__name__}")]
+    from rmot.backends.codes import RUNTIME_UNSUPPORTED
+
+    kind = type(node).__name__
+    self.unsupported(RUNTIME_UNSUPPORTED, f"{kind} must be expressible for {self.name} (its backend writes no "
+                     f"runtime logic for it yet)", node.span)
+    return [self.comment(f"UNSUPPORTED {kind}")]
 
 
-Backend.EMIT = {**Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.While: "while_",
-                ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
-for _method in ("var_decl", "assign", "while_", "loop", "wait_condition", "stop"):
-    setattr(Backend, _method, _runtime_unsupported)
+for _cls, _method, _fallback in ((ir.Loop, "loop", _loop_unrolled), (ir.VarDecl, "var_decl", _runtime_unsupported),
+                                 (ir.Assign, "assign", _runtime_unsupported), (ir.While, "while_", _runtime_unsupported),
+                                 (ir.WaitCondition, "wait_condition", _runtime_unsupported),
+                                 (ir.Stop, "stop", _runtime_unsupported)):
+    Backend.EMIT.setdefault(_cls, _method)
+    if not hasattr(Backend, Backend.EMIT[_cls]):
+        setattr(Backend, Backend.EMIT[_cls], _fallback)

@@ -94,9 +94,34 @@ def _move(m: ir.Move) -> str:
             f"config={m.config}")
 
 
-def _cond(c: ir.InputCondition) -> str:
-    signal = f" ({c.signal})" if c.signal else ""
-    return f"in[{c.port}] == {'on' if c.value else 'off'}{signal}"
+def _cond(c: ir.RtExpr) -> str:
+    if isinstance(c, ir.InputCondition):
+        signal = f" ({c.signal})" if c.signal else ""
+        return f"in[{c.port}] == {'on' if c.value else 'off'}{signal}"
+    return rt_text(c)
+
+
+def rt_text(e: ir.RtExpr) -> str:
+    """A runtime expression in rmot's own syntax, fully parenthesised (issue #15)."""
+    if isinstance(e, ir.Const):
+        if e.type is ir.ValueType.BOOL:
+            return "on" if e.value else "off"
+        return str(e.value) if e.type is ir.ValueType.INT else repr(float(e.value))
+    if isinstance(e, ir.VarRef):
+        return e.name
+    if isinstance(e, ir.AnalogInput):
+        return f"ain[{e.port}]"
+    if isinstance(e, ir.InputCondition):
+        return f"in[{e.port}] == {'on' if e.value else 'off'}"
+    if isinstance(e, ir.Arith):
+        return f"({rt_text(e.left)} {e.op} {rt_text(e.right)})"
+    if isinstance(e, ir.Compare):
+        return f"({rt_text(e.left)} {e.op.value} {rt_text(e.right)})"
+    if isinstance(e, ir.Logic):
+        return "(" + f" {e.op} ".join(rt_text(x) for x in e.operands) + ")"
+    if isinstance(e, ir.Not):
+        return f"not {rt_text(e.operand)}"
+    raise TypeError(f"rt_text: {type(e).__name__} is no runtime expression")
 
 
 def _signal(s: str | None) -> str:
@@ -121,6 +146,13 @@ _HEADS: dict[type, Callable[[Any], str]] = {
     ir.ProcCall: lambda i: f"call {i.proc}({', '.join(i.args)})",
     ir.Attach: lambda i: f"attach {i.part} (load {_f(i.load)} kg)",
     ir.Detach: lambda i: f"detach {i.part} (load {_f(i.load)} kg)",
+    ir.VarDecl: lambda i: f"var {i.name}: {i.type.value} = {rt_text(i.init)}",
+    ir.Assign: lambda i: f"{i.name} = {rt_text(i.value)}",
+    ir.Loop: lambda i: (f"for {i.var} in {i.first} .. {i.last}" if i.var is not None else f"repeat {i.last}")
+    + f" ({len(i.iterations)} iterations)",
+    ir.While: lambda i: f"while {_cond(i.condition)}",
+    ir.WaitCondition: lambda i: f"wait until {_cond(i.condition)}{_timeout(i.timeout)}",
+    ir.Stop: lambda i: "stop",
 }
 
 
@@ -133,9 +165,18 @@ def _instr(i: ir.Instr, indent: str, out: list[str], main: str) -> None:
         out.append(f"{indent}  else:")
         for j in i.otherwise:
             _instr(j, indent + "    ", out, main)
-    elif isinstance(i, ir.ProcCall):
+    elif isinstance(i, (ir.ProcCall, ir.While)):
         for j in i.body:
             _instr(j, indent + "  ", out, main)
+    elif isinstance(i, ir.Loop):
+        for it in i.iterations:
+            out.append(f"{indent}  {i.var or 'round'} = {it.value}:")
+            for j in it.body:
+                _instr(j, indent + "    ", out, main)
+    elif isinstance(i, (ir.WaitInput, ir.WaitCondition)) and i.on_timeout:
+        out.append(f"{indent}  on timeout:")
+        for j in i.on_timeout:
+            _instr(j, indent + "    ", out, main)
 
 
 def dump_program(prog: ir.Program) -> str:

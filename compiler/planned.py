@@ -118,3 +118,16 @@ class Plan:
             if tp.task.name == name:
                 return tp
         raise KeyError(name)
+
+
+# --------------------------------------------------------------------------- variant paths (issue #15)
+# How a Variant's path is named in messages: Variant.arm -> words ({line}: its instruction's line).
+PATHS = {
+    "otherwise": "the path through the 'otherwise' arm of the if at line {line}",
+    "timeout": "the path where the wait at line {line} times out",
+    "no iteration": "the path where the while at line {line} runs no iteration",
+}
+
+
+def path_words(arm: str, line: object) -> str:
+    return PATHS.get(arm, "the path through the '" + arm + "' arm of the if at line {line}").format(line=line)

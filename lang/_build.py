@@ -30,6 +30,7 @@ KEYWORDS = frozenset({
     "repeat", "if", "else", "proc", "return", "const", "use", "import", "cell", "program",
     "task", "sync", "native", "on", "off", "config", "at", "robot", "fixture", "io",
     "joint_speed", "joints", "time",
+    "var", "while", "and", "or", "not",  # issue #15 (`stop` stays a usable name: weld_seam's target)
 })
 # keywords that start no statement yet, kept for the language's future (see reserved_statement)
 RESERVED = {"return": "procs end at their closing brace"}
@@ -278,13 +279,8 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return ast.WaitTime(c[1], self._span(c))
 
     def wait_until(self, c: list[Any]) -> ast.WaitUntil:
-        return ast.WaitUntil(c[2], c[4], self._span(c))
-
-    def condition(self, c: list[Any]) -> ast.Condition:
-        return ast.Condition(c[0], str(c[1]), c[2], self._span(c))
-
-    def condition_bare(self, c: list[Any]) -> ast.Condition:
-        return ast.Condition(c[0], "==", None, self._span(c))
+        otherwise = tuple(c[6]) if len(c) > 6 and c[6] is not None else None
+        return ast.WaitUntil(c[2], c[4], self._span(c), otherwise)
 
     def for_loop(self, c: list[Any]) -> ast.For:
         return ast.For(self._ident(c[1], "loop variable"), c[3], c[5], tuple(c[6]), self._span(c))
@@ -420,3 +416,54 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def detach(self, c: list[Any]) -> ast.AttachStmt:
         return ast.AttachStmt(self._ident(c[1]), False, self._span(c))
+
+    # -- runtime logic (issue #15)
+    def var_decl(self, c: list[Any]) -> ast.VarDecl:
+        type_ = self._ident(c[3]) if c[3] is not None else None
+        return ast.VarDecl(self._ident(c[1], "variable"), type_, c[5], self._span(c))
+
+    def assign(self, c: list[Any]) -> ast.AssignStmt:
+        return ast.AssignStmt(self._ident(c[0]), c[2], self._span(c))
+
+    def stop_stmt(self, c: list[Any]) -> ast.StopStmt:
+        return ast.StopStmt(self._span(c))
+
+    def while_loop(self, c: list[Any]) -> ast.While:
+        return ast.While(c[1], tuple(c[2]), self._span(c))
+
+    def while_bare(self, c: list[Any]) -> ast.While:
+        return ast.While(None, tuple(c[1]), self._span(c))
+
+    def for_unbounded(self, c: list[Any]) -> ast.For:
+        return ast.For(self._ident(c[1], "loop variable"), c[3], None, tuple(c[4]), self._span(c))
+
+    def _logic(self, op: str, c: list[Any]) -> ast.Logic:
+        items: list[Any] = []
+        for x in c:
+            items += x.operands if isinstance(x, ast.Logic) and x.op == op else [x]
+        return ast.Logic(op, tuple(items), self._span(c))
+
+    def logic_or(self, c: list[Any]) -> ast.Logic:
+        return self._logic("or", c)
+
+    def logic_and(self, c: list[Any]) -> ast.Logic:
+        return self._logic("and", c)
+
+    def logic_not(self, c: list[Any]) -> ast.NotCond:
+        return ast.NotCond(c[1], self._span(c))
+
+    def compare(self, c: list[Any]) -> ast.Compare:
+        return ast.Compare(str(c[1]), c[0], c[2], self._span(c))
+
+    def io_read(self, c: list[Any]) -> Any:
+        io = c[0]
+        return ast.Condition(io, "==", None, io.span) if io.kind == "in" else io
+
+    def compare_io(self, c: list[Any]) -> Any:
+        op = str(c[1])
+        if c[0].kind == "in" and op in ("==", "!="):  # `in[n] == on`: the Condition every backend writes
+            return ast.Condition(c[0], op, c[2], self._span(c))
+        return ast.Compare(op, c[0], c[2], self._span(c))
+
+    def r_cmp(self, c: list[Any]) -> Any:  # `( cond )`
+        return c[1]

@@ -305,16 +305,17 @@ class Condition:
 
 @dataclass(frozen=True, slots=True)
 class WaitUntil:
-    condition: Condition
+    condition: Condition | RtCond
     timeout: Expr | None
     span: Span = _span()
+    on_timeout: tuple[Stmt, ...] | None = None  # `timeout T else { ... }` (issue #15)
 
 
 @dataclass(frozen=True, slots=True)
 class For:
     var: Ident
     start: Expr
-    stop: Expr
+    stop: Expr | None  # None: `for i in n { }`, written without `a .. b` (an error, E155)
     body: tuple[Stmt, ...]
     span: Span = _span()
 
@@ -328,7 +329,7 @@ class Repeat:
 
 @dataclass(frozen=True, slots=True)
 class IfStmt:
-    condition: Condition
+    condition: Condition | RtCond
     then: tuple[Stmt, ...]
     otherwise: tuple[Stmt, ...]
     span: Span = _span()
@@ -415,3 +416,69 @@ class ModelDecl:
 
 __all__ += ["ModelDecl", "ModelJoint"]
 Stmt = Union[Stmt, ModelDecl]  # type: ignore[misc]
+
+
+# --------------------------------------------------------------------------- runtime logic (issue #15)
+
+
+@dataclass(frozen=True, slots=True)
+class Compare:
+    """`left op right` in a condition, op one of == != < <= > >= (an I/O read may be `left`)."""
+
+    op: str
+    left: Expr | IoRef
+    right: Expr
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class Logic:
+    """`a and b ...` (op "and") or `a or b ...` (op "or"), operands flattened."""
+
+    op: str
+    operands: tuple[RtCond, ...]
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class NotCond:
+    operand: RtCond
+    span: Span = _span()
+
+
+# What `if`, `while`, `wait until`, `var` and assignments take: an expression, an I/O read
+# (`in[1]`, `ain[2]`), a comparison (Condition for `in[n] ==/!= level`), and/or/not.
+RtCond = Union[Expr, IoRef, Condition, Compare, Logic, NotCond]
+
+
+@dataclass(frozen=True, slots=True)
+class VarDecl:
+    """`var NAME[: int|num|bool] = EXPR`: a task variable (runtime state)."""
+
+    name: Ident
+    type: Ident | None
+    value: RtCond
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class AssignStmt:
+    name: Ident
+    value: RtCond
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class StopStmt:
+    span: Span = _span()
+
+
+@dataclass(frozen=True, slots=True)
+class While:
+    condition: RtCond | None  # None: `while { }` (an error, E156)
+    body: tuple[Stmt, ...]
+    span: Span = _span()
+
+
+__all__ += ["AssignStmt", "Compare", "Logic", "NotCond", "RtCond", "StopStmt", "VarDecl", "While"]
+Stmt = Union[Stmt, VarDecl, AssignStmt, StopStmt, While]  # type: ignore[misc]

@@ -38,7 +38,7 @@ _MASTER = re.compile(r"""
   | (?P<unit>""" + COMPOUND_UNIT + r""")
   | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<string>"(?:[^"\\\n]|\\.)*")
-  | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
+  | (?P<punct>\.\.|==|!=|<=|>=|[-+*/%().,:=\[\]{}<>])
 """, re.X)
 # The parse loop (lang/_lalr.py) takes the blanks and a comment before a token in the same
 # match (possessive, so a failed match never gives back part of a comment as a token).
@@ -49,7 +49,7 @@ TOKEN = re.compile(r"""
       | (?P<unit>""" + COMPOUND_UNIT + r""")
       | (?P<word>[A-Za-z_][A-Za-z0-9_]*)
       | (?P<string>"(?:[^"\\\n]|\\.)*")
-      | (?P<punct>\.\.|==|!=|[-+*/%().,:=\[\]{}])
+      | (?P<punct>\.\.|==|!=|<=|>=|[-+*/%().,:=\[\]{}<>])
     )
 """, re.X)
 BLANKS = re.compile(r"[ \t\f\r]*+(?:\#[^\n]*+)?+")
@@ -62,7 +62,8 @@ class TokenKinds:
 
     def __init__(self, terminals: Any) -> None:
         self.keywords: dict[str, str] = {}
-        self.punct: dict[str, str] = {"==": "COMPARE", "!=": "COMPARE", "%": "UNIT"}
+        self.punct: dict[str, str] = {"==": "COMPARE", "!=": "COMPARE", "%": "UNIT", "<": "COMPARE",
+                                      "<=": "COMPARE", ">": "COMPARE", ">=": "COMPARE"}
         for t in terminals:
             if t.pattern.type != "str":
                 continue

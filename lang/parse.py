@@ -173,11 +173,12 @@ def _line_break_problem(file: SourceFile) -> Diagnostic | None:
 _WORDS = {
     "NAME": "a name", "NUMBER": "a number", "STRING": "a string", "UNIT": "a unit such as mm or deg",
     "_NL": "a new line or ';'", "$END": "the end of the file", "MOVE_KIND": "'joint', 'linear' or 'circular'",
-    "IO_KIND": "an I/O port such as in[1] or out[2]", "COMPARE": "'==' or '!='",
+    "IO_KIND": "an I/O port such as in[1] or out[2]", "COMPARE": "a comparison (== != < <= > >=)",
 }
 _EXPR_START = {"NAME", "NUMBER", "STRING", "LPAR", "MINUS", "PLUS", "JOINTS"}
 _STMT_START = {"MOVE", "SET", "WAIT", "PULSE", "FOR", "REPEAT", "IF", "SYNC", "NATIVE", "SPEED",
-               "ACCEL", "ZONE", "TOOL", "FRAME", "TARGET", "CONST", "PROC", "JOINT_SPEED"}
+               "ACCEL", "ZONE", "TOOL", "FRAME", "TARGET", "CONST", "PROC", "JOINT_SPEED",
+               "VAR", "WHILE", "STOP"}
 _OPERATORS = {"PLUS", "MINUS", "STAR", "SLASH", "DOT"}
 
 
@@ -310,7 +311,28 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[To
     if prev is not None and prev.type == "NAME" and starts_statement and str(prev) in RESERVED:
         return reserved_statement(str(prev), token_span(file, prev))
     if prev is not None and prev.type == "NAME" and starts_statement and "LPAR" in expected:
-        near = difflib.get_close_matches(str(prev), sorted(KEYWORDS), n=1, cutoff=0.6)
+        word = str(prev)
+        if word in _OTHER_LANGUAGES:
+            msg = f"unknown statement '{word}'; rmot writes this as {_OTHER_LANGUAGES[word]}"
+            return _error(codes.MISSPELT_KEYWORD, msg, token_span(file, prev))
+        near = difflib.get_close_matches(word, STATEMENT_STARTS, n=1, cutoff=0.6)
         if near:
             return _error(codes.MISSPELT_KEYWORD, f"unknown statement '{prev}'; did you mean '{near[0]}'?", token_span(file, prev))
+        msg = (f"unknown statement '{prev}': a statement starts with {', '.join(STATEMENT_STARTS)}, "
+               "or is a proc call NAME(...) or an assignment NAME = EXPR")
+        return _error(codes.MISSPELT_KEYWORD, msg, token_span(file, prev))
     return None
+
+
+# the words a statement may start with (issue #15: an unknown statement word lists them, and a
+# near miss is matched against these only, so `let` is not taken for `at` nor `var` for `via`)
+STATEMENT_STARTS = ["move", "set", "pulse", "wait", "if", "for", "repeat", "while", "var", "stop",
+                    "sync", "native", "attach", "detach", "speed", "joint_speed", "accel", "zone",
+                    "tool", "frame", "target", "const", "proc", "part"]
+# words of other robot languages for what rmot spells differently
+_OTHER_LANGUAGES = {
+    "let": "'var NAME: int|num|bool = EXPR'", "dim": "'var NAME: int|num|bool = EXPR'",
+    "int": "'var NAME: int = EXPR'", "num": "'var NAME: num = EXPR'", "bool": "'var NAME: bool = EXPR'",
+    "decl": "'var NAME: int|num|bool = EXPR'", "loop": "'while COND { ... }' or 'repeat N { ... }'",
+    "halt": "'stop'", "exit": "'stop'", "end": "'stop'", "goto": "a loop or an if (rmot has no jumps)",
+}

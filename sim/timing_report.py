@@ -35,14 +35,7 @@ def _round(x: float) -> float:
 
 
 def _instructions(body: tuple[ir.Instr, ...]) -> dict[int, ir.Instr]:
-    out: dict[int, ir.Instr] = {}
-    for instr in body:
-        out[instr.uid] = instr
-        for nested in ("then", "otherwise", "body"):
-            inner = getattr(instr, nested, None)
-            if isinstance(inner, tuple):
-                out.update(_instructions(inner))
-    return out
+    return {instr.uid: instr for instr in ir.walk(body)}  # every nested body (loop iterations too)
 
 
 def _union(intervals: list[tuple[float, float]]) -> float:
@@ -57,7 +50,9 @@ def _union(intervals: list[tuple[float, float]]) -> float:
 
 _KIND = {ir.Move: "move", ir.SetDigital: "set", ir.SetAnalog: "set", ir.Pulse: "pulse",
          ir.WaitTime: "wait", ir.WaitInput: "wait_until", ir.If: "if", ir.Sync: "sync",
-         ir.Native: "native", ir.ProcCall: "call"}
+         ir.Native: "native", ir.ProcCall: "call",
+         ir.VarDecl: "var", ir.Assign: "assign", ir.Loop: "loop", ir.While: "while",
+         ir.WaitCondition: "wait_until", ir.Stop: "stop"}  # issue #15
 
 
 def timing_json(plan: planned.Plan) -> list[dict[str, Any]]:

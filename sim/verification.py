@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir, planned
+from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.source import Span
 from rmot.sim import codes
@@ -163,6 +164,7 @@ def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], h
         if other_tp is not None:
             notes.append((f"robot '{other}' is executing this move then", _span_at(other_tp, hit.t0, 0)))
     where = _variant_path(tp, variant) if variant and tp else ""
+    where = _iteration_at(tp, hit.t0, variant if owner == variant_robot else 0) + where
     names = (a.name, b.name)
     if hit.kind == "clearance":
         mm = hit.distance * 1000
@@ -194,13 +196,28 @@ def _variant_path(tp: planned.TaskPlan, variant: int) -> str:
     for v in tp.variants:
         if v.index == variant:
             span = next((i.span for i in ir.walk(tp.task.body) if i.uid == v.if_uid), None)
-            at = f" at line {span.start.line}" if span is not None else ""
-            return f" (on the path through the '{v.arm}' arm of the if{at})"
+            return f" (on {planned.path_words(v.arm, span.start.line if span is not None else '?')})"
     return " (on another path through a runtime if)"
 
 
 def _span_at(tp: planned.TaskPlan, t: float, variant: int) -> Span | None:
     """The span of the move the task executes at time t (else of any instruction then)."""
+    record = _record_at(tp, t, variant)
+    return record.span if record is not None else tp.task.span
+
+
+def _iteration_at(tp: planned.TaskPlan | None, t: float, variant: int) -> str:
+    """' (in iteration layer = 2, row = 1)' when the instruction the task executes at time t lies
+    in a for/repeat loop (issue #15: a finding names the iteration), else ''."""
+    if tp is None:
+        return ""
+    record = _record_at(tp, t, variant)
+    path = iteration_paths(tp.task.body).get(record.uid) if record is not None else None
+    return f" (in iteration {describe_iteration(path)})" if path else ""
+
+
+def _record_at(tp: planned.TaskPlan, t: float, variant: int) -> planned.InstructionRecord | None:
+    """The record of the move the task executes at time t (else of any instruction then)."""
     moves = {i.uid for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
     records = [r for r in tp.records if r.variant == variant] or list(tp.records)
     for want_move in (True, False):
@@ -212,11 +229,10 @@ def _span_at(tp: planned.TaskPlan, t: float, variant: int) -> Span | None:
                 if chosen is None or (r.t_start <= t < r.t_end and not chosen.t_start <= t < chosen.t_end):
                     chosen = r
         if chosen is not None:
-            return chosen.span
+            return chosen
     if records:
-        nearest = min(records, key=lambda r: min(abs(t - r.t_start), abs(t - r.t_end)))
-        return nearest.span
-    return tp.task.span
+        return min(records, key=lambda r: min(abs(t - r.t_start), abs(t - r.t_end)))
+    return None
 
 
 # --------------------------------------------------------------------------- limits
@@ -279,6 +295,7 @@ def _limit_diagnostic(tp: planned.TaskPlan, hit: LimitHit, variant: int) -> Diag
         ratio = (abs(value) / abs(limit) - 1) * 100 if limit else float("inf")
         message = f"joint {hit.joint} {hit.quantity} {abs(value):.1f} {unit} exceeds its limit {abs(limit):.1f} {unit} by {ratio:.0f}%"
         amount = Amount(round(abs(value) - abs(limit), 4), unit)
+    message += _iteration_at(tp, hit.t0, variant)
     if variant:
         message += _variant_path(tp, variant)
     span = _span_at(tp, hit.t0, variant)

@@ -11,6 +11,7 @@ from itertools import count
 from typing import Iterator
 
 from rmot.compiler import ir
+from rmot.compiler.ir_tree import children, rebuilt
 from rmot.compiler.passes.state import FrontendState
 
 __all__ = ["assign_uids", "number"]
@@ -19,15 +20,9 @@ __all__ = ["assign_uids", "number"]
 def number(body: tuple[ir.Instr, ...], counter: Iterator[int]) -> tuple[ir.Instr, ...]:
     out: list[ir.Instr] = []
     for instr in body:
-        uid = next(counter)
-        if isinstance(instr, ir.If):
-            then = number(instr.then, counter)
-            otherwise = number(instr.otherwise, counter)
-            out.append(replace(instr, uid=uid, then=then, otherwise=otherwise))
-        elif isinstance(instr, ir.ProcCall):
-            out.append(replace(instr, uid=uid, body=number(instr.body, counter)))
-        else:
-            out.append(replace(instr, uid=uid))
+        uid = next(counter)  # parent first; then every body in order (each Loop iteration its own uids)
+        bodies = tuple(number(sub, counter) for sub in children(instr))
+        out.append(rebuilt(instr, bodies, uid=uid))
     return tuple(out)
 
 

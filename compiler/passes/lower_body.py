@@ -20,7 +20,6 @@ Choices (LANGUAGE.md is silent):
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, field
 
 from rmot.compiler import codes, ir
@@ -30,6 +29,8 @@ from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer
 from rmot.compiler.passes.limits import MAX_DURATION_S, MAX_ITERATIONS, MAX_PORT, MAX_POSITION_M, MAX_WORK_STEPS, within
 from rmot.compiler.passes.modal import Modal, apply_setting
 from rmot.compiler.passes.procs import bind_call
+from rmot.compiler.passes.runtime import TYPE_NAMES, RtLowering, expr_type, fits
+from rmot.compiler.ir_tree import children, rebuilt
 from rmot.lang.source import Span
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
 from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
@@ -67,6 +68,7 @@ class TaskLowering:
     stack: list[int] = field(default_factory=list)  # ids of the procs being inlined
     called: set[int] = field(default_factory=set)  # ids of the ProcDecls inlined at least once
     held: dict[str, Span | None] = field(default_factory=dict)  # parts held now -> where attached (issue #14)
+    depth: int = 0  # blocks entered below the task's body (a `var` belongs to the body itself, issue #15)
 
     def run(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
         try:
@@ -81,7 +83,13 @@ class TaskLowering:
     def block(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[list[ir.Instr], Modal]:
         out: list[ir.Instr] = []
         declare_procs(body, scope, self.rep, self.procs)
+        stopped = False
         for stmt in body:
+            if stopped and not isinstance(stmt, (ast.ProcDecl, ast.TargetDecl, ast.ConstDecl)):
+                self.rep.warning(codes.UNREACHABLE_AFTER_STOP, "this statement never runs: 'stop' before it in the same "
+                                 "block ends the task", stmt.span)
+                stopped = False  # once per block
+            stopped = stopped or isinstance(stmt, ast.StopStmt)
             self.steps += 1
             if self.steps > MAX_WORK_STEPS:
                 self.rep.error(codes.TOO_MUCH_WORK, f"a task must make the compiler visit at most {MAX_WORK_STEPS} statements "
@@ -91,12 +99,11 @@ class TaskLowering:
                 modal = apply_setting(modal, stmt, scope, self.robot, self.base, self.rep)
                 continue
             if isinstance(stmt, ast.For):
-                out += self.for_loop(stmt, scope, modal, where)
-                continue
-            if isinstance(stmt, ast.Repeat):
-                out += self.repeat(stmt, scope, modal, where)
-                continue
-            instr = self.statement(stmt, scope, modal, where)
+                instr: ir.Instr | None = self.for_loop(stmt, scope, modal, where)
+            elif isinstance(stmt, ast.Repeat):
+                instr = self.repeat(stmt, scope, modal, where)
+            else:
+                instr = self.statement(stmt, scope, modal, where)
             if instr is None:
                 continue
             self.count += 1
@@ -129,7 +136,7 @@ class TaskLowering:
             t = self._time(s.duration, scope, "wait time", allow_zero=True)
             return None if t is None else ir.WaitTime(uid=0, duration=t, span=s.span)
         elif isinstance(s, ast.WaitUntil):
-            return self.wait_until(s, scope)
+            return self.wait_until(s, scope, modal, where)
         elif isinstance(s, ast.IfStmt):
             return self.if_stmt(s, scope, modal, where)
         elif isinstance(s, ast.SyncStmt):
@@ -140,38 +147,64 @@ class TaskLowering:
             return self.call(s, scope, modal, where)
         elif isinstance(s, ast.AttachStmt):
             return self.attach(s, modal)
+        elif isinstance(s, ast.VarDecl):
+            return self.var_decl(s, scope)
+        elif isinstance(s, ast.AssignStmt):
+            return self.assign(s, scope)
+        elif isinstance(s, ast.StopStmt):
+            return ir.Stop(uid=0, span=s.span)
+        elif isinstance(s, ast.While):
+            return self.while_loop(s, scope, modal, where)
         else:
             misplaced(s, where, self.rep)
         return None
 
     # ---------------------------------------------------------------- loops and branches
 
-    def for_loop(self, s: ast.For, scope: Scope, modal: Modal, where: str) -> list[ir.Instr]:
+    def for_loop(self, s: ast.For, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
+        """An ir.Loop with every iteration lowered, the loop variable bound to its value (issue #15)."""
+        if s.stop is None:
+            self.rep.error(codes.FOR_WITHOUT_BOUNDS, f"a for loop must have bounds: 'for {s.var.name} in FIRST .. END' "
+                           "(got no '..'; the end is excluded; use 'while COND' for a loop that runs until a "
+                           "condition)", s.span)
+            return None
         lo = expect_integer(eval_expr(s.start, scope, self.rep), "loop start", s.start.span, self.rep, minimum=-(10**9))
         hi = expect_integer(eval_expr(s.stop, scope, self.rep), "loop end", s.stop.span, self.rep, minimum=-(10**9))
-        out: list[ir.Instr] = []
         if lo is None or hi is None:
-            return out
+            return None
         self._rounds(hi - lo, s)
+        iterations: list[ir.LoopIteration] = []
         for i in range(lo, hi):
             inner = scope.child()
             inner.names[s.var.name] = Entry("var", s.var.name, Quantity(float(i), DIMENSIONLESS, None, float(i)), s.var.span)
             errors = len(self.rep.sink)
-            out += self.block(s.body, inner, modal, where)[0]
+            self.depth += 1
+            try:
+                body = self.block(s.body, inner, modal, where)[0]
+            finally:
+                self.depth -= 1
+            iterations.append(ir.LoopIteration(value=i, body=tuple(body)))
             if self._failed_since(errors):
                 break  # the next rounds would only repeat the same diagnostics
-        return out
+        return ir.Loop(uid=0, var=s.var.name, first=lo, last=hi, iterations=tuple(iterations), span=s.span)
 
-    def repeat(self, s: ast.Repeat, scope: Scope, modal: Modal, where: str) -> list[ir.Instr]:
+    def repeat(self, s: ast.Repeat, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
         n = expect_integer(eval_expr(s.count, scope, self.rep), "repeat count", s.count.span, self.rep)
-        out: list[ir.Instr] = []
-        self._rounds(n or 0, s)
-        for _ in range(n or 0):
+        if n is None:
+            return None
+        self._rounds(n, s)
+        iterations: list[ir.LoopIteration] = []
+        for i in range(n):
             errors = len(self.rep.sink)
-            out += self.block(s.body, scope.child(), modal, where)[0]
+            self.depth += 1
+            try:
+                body = self.block(s.body, scope.child(), modal, where)[0]
+            finally:
+                self.depth -= 1
+            iterations.append(ir.LoopIteration(value=i, body=tuple(body)))
             if self._failed_since(errors):
                 break
-        return out
+        return ir.Loop(uid=0, var=None, first=0, last=n, iterations=tuple(iterations), span=s.span)
 
     def _rounds(self, n: int, s: ast.Stmt) -> None:
         """Count n loop rounds against the task's budget before running any (issue #20)."""
@@ -185,7 +218,7 @@ class TaskLowering:
         return self.rep.sink.errors_since(before)
 
     def if_stmt(self, s: ast.IfStmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
-        cond = self.condition(s.condition, scope)
+        cond = self.any_condition(s.condition, scope, "the condition of an if")
         before = dict(self.held)
         then = self.nested(s.then, scope.child(), modal, where)
         after_then, self.held = self.held, dict(before)
@@ -200,7 +233,11 @@ class TaskLowering:
         return ir.If(uid=0, condition=cond, then=then, otherwise=otherwise, span=s.span)
 
     def nested(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
-        return tuple(self.block(body, scope, modal, where)[0])
+        self.depth += 1
+        try:
+            return tuple(self.block(body, scope, modal, where)[0])
+        finally:
+            self.depth -= 1
 
     # ---------------------------------------------------------------- procs
 
@@ -285,12 +322,115 @@ class TaskLowering:
             return None
         return ir.InputCondition(port=p[0], value=level if c.op == "==" else not level, signal=p[1])
 
-    def wait_until(self, s: ast.WaitUntil, scope: Scope) -> ir.Instr | None:
-        cond = self.condition(s.condition, scope)
+    def wait_until(self, s: ast.WaitUntil, scope: Scope, modal: Modal | None = None, where: str = "") -> ir.Instr | None:
+        cond = self.any_condition(s.condition, scope, "the condition of 'wait until'")
         timeout = self._time(s.timeout, scope, "timeout") if s.timeout is not None else None
+        on_timeout: tuple[ir.Instr, ...] = ()
+        if s.on_timeout is not None and modal is not None:
+            if not s.on_timeout:
+                self.rep.warning(codes.WAIT_ELSE_WITHOUT_TIMEOUT, "the timeout branch is empty: 'timeout T else { }' "
+                                 "is the same as 'timeout T'", s.span)
+            before = dict(self.held)
+            on_timeout = self.nested(s.on_timeout, scope.child(), modal, where)
+            if set(before) != set(self.held):
+                differ = sorted(set(before) ^ set(self.held))
+                self.rep.error(codes.PART_ARMS_DIFFER, f"the timeout branch of 'wait until' must leave the same parts held "
+                               f"as it found (part {', '.join(repr(p) for p in differ)} differs)", s.span)
+            self.held = before
         if cond is None or (s.timeout is not None and timeout is None):
             return None
-        return ir.WaitInput(uid=0, condition=cond, timeout=timeout, span=s.span)
+        if isinstance(cond, ir.InputCondition):
+            return ir.WaitInput(uid=0, condition=cond, timeout=timeout, span=s.span, on_timeout=on_timeout)
+        return ir.WaitCondition(uid=0, condition=cond, timeout=timeout, on_timeout=on_timeout, span=s.span)
+
+    # ---------------------------------------------------------------- runtime state (issue #15)
+
+    def rt(self, scope: Scope) -> RtLowering:
+        return RtLowering(scope, self.rep, lambda io, allowed, what: self.port(io, scope, allowed, what))
+
+    def any_condition(self, c: ast.RtCond, scope: Scope, what: str) -> ir.Condition | None:
+        """`in[n] == on|off` lowers as it always has (an InputCondition); anything else through
+        compiler/passes/runtime.py (and/or/not, ain[n], variables, comparisons)."""
+        if isinstance(c, ast.Condition) and not self._reads_runtime(c.value, scope):
+            return self.condition(c, scope)
+        return self.rt(scope).condition(c, what)
+
+    @staticmethod
+    def _reads_runtime(e: ast.Expr | None, scope: Scope) -> bool:
+        if not isinstance(e, ast.Name):
+            return False
+        entry = scope.lookup(e.name)
+        return entry is not None and entry.kind in ("rtvar", "var")
+
+    def var_decl(self, s: ast.VarDecl, scope: Scope) -> ir.Instr | None:
+        name = s.name.name
+        if self.depth > 0:
+            self.rep.error(codes.VAR_MISPLACED, f"var '{name}' must be declared in the task's own body, not inside a loop, "
+                           "an if arm or a proc (a controller variable lives as long as the task)", s.span)
+            return None
+        wanted: ir.ValueType | None = None
+        if s.type is not None:
+            wanted = TYPE_NAMES.get(s.type.name)
+            if wanted is None:
+                self.rep.unknown(s.type.name, "variable type (int, num or bool)", s.type.span, list(TYPE_NAMES),
+                                 codes.RT_BAD_TYPE_NAME)
+                return None
+        rt = self.rt(scope)
+        init = rt.expr(s.value) if wanted is None else rt.typed(s.value, wanted, f"the initial value of var '{name}'")
+        first = scope.lookup(name)
+        if first is not None:
+            self.rep.error(codes.RT_REDECLARED, f"var '{name}' must have a name of its own (got the name of "
+                           f"{article(first.kind if first.kind != 'rtvar' else 'var')} already declared)", s.name.span,
+                           ((f"'{name}' is first declared here", first.span),))
+            return None
+        if init is None:
+            scope.names[name] = Entry("rtvar", name, wanted or ir.ValueType.NUM, s.name.span)  # no "unknown" later
+            return None
+        vtype = wanted or expr_type(init)
+        scope.names[name] = Entry("rtvar", name, vtype, s.name.span)
+        return ir.VarDecl(uid=0, name=name, type=vtype, init=init, span=s.span)
+
+    def assign(self, s: ast.AssignStmt, scope: Scope) -> ir.Instr | None:
+        name = s.name.name
+        entry = scope.lookup(name)
+        rt = self.rt(scope)
+        if entry is None:
+            known = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "rtvar"]
+            self.rep.unknown(name, "variable", s.name.span, known, codes.RT_UNKNOWN_VAR)
+            rt.expr(s.value)  # its own errors too
+            return None
+        if entry.kind != "rtvar":
+            what = "a loop variable" if entry.kind == "var" else article(entry.kind)
+            self.rep.error(codes.RT_ASSIGN_NOT_VAR, f"only a var can be assigned ('{name}' is {what}, fixed when the "
+                           f"program is compiled; declare 'var NAME = ...' for a value that changes)", s.name.span,
+                           ((f"'{name}' is defined here", entry.span),))
+            return None
+        value = rt.expr(s.value)
+        if value is None:
+            return None
+        if not fits(expr_type(value), entry.value):
+            self.rep.error(codes.RT_WRONG_TYPE, f"the value assigned to var '{name}' must be {entry.value.value} "
+                           f"(got {expr_type(value).value})", s.value.span, ((f"'{name}' is declared here", entry.span),))
+            return None
+        return ir.Assign(uid=0, name=name, value=value, span=s.span)
+
+    def while_loop(self, s: ast.While, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
+        if s.condition is None:
+            self.rep.error(codes.WHILE_WITHOUT_CONDITION, "a while loop must have a condition: 'while COND { ... }' "
+                           "(got none; for a fixed count use 'repeat N' or 'for i in a .. b')", s.span)
+            return None
+        cond = self.rt(scope).condition(s.condition, "the condition of a while")
+        before = dict(self.held)
+        body = self.nested(s.body, scope.child(), modal, where)
+        if set(before) != set(self.held):
+            differ = sorted(set(before) ^ set(self.held))
+            self.rep.error(codes.WHILE_PARTS_DIFFER, f"a while body must end holding the parts it started with (part "
+                           f"{', '.join(repr(p) for p in differ)} differs): every iteration starts where the last "
+                           "ended", s.span)
+        self.held = before
+        if cond is None:
+            return None
+        return ir.While(uid=0, condition=cond, body=body, span=s.span)
 
     def native(self, s: ast.NativeStmt) -> ir.Instr | None:
         if s.vendor.name not in VENDORS:
@@ -408,10 +548,8 @@ def _node_count(body: tuple[ir.Instr, ...]) -> int:
     n = 0
     for instr in body:
         n += 1
-        if isinstance(instr, ir.If):
-            n += _node_count(instr.then) + _node_count(instr.otherwise)
-        elif isinstance(instr, ir.ProcCall):
-            n += _node_count(instr.body)
+        for sub in children(instr):
+            n += _node_count(sub)
     return n
 
 
@@ -423,9 +561,5 @@ def _expanded_at(instr: ir.Instr, call_site: Span | None) -> ir.Instr:
     changes: dict[str, object] = {}
     if instr.span is not None:
         changes["span"] = instr.span.with_parent(call_site)
-    if isinstance(instr, ir.If):
-        changes["then"] = tuple(_expanded_at(i, call_site) for i in instr.then)
-        changes["otherwise"] = tuple(_expanded_at(i, call_site) for i in instr.otherwise)
-    elif isinstance(instr, ir.ProcCall):
-        changes["body"] = tuple(_expanded_at(i, call_site) for i in instr.body)
-    return dataclasses.replace(instr, **changes)  # type: ignore[arg-type]
+    bodies = tuple(tuple(_expanded_at(i, call_site) for i in sub) for sub in children(instr))
+    return rebuilt(instr, bodies, **changes)

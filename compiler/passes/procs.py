@@ -85,10 +85,12 @@ def _calls(body: tuple[ast.Stmt, ...]) -> list[ast.CallStmt]:
     for s in body:
         if isinstance(s, ast.CallStmt):
             out.append(s)
-        elif isinstance(s, (ast.For, ast.Repeat)):
+        elif isinstance(s, (ast.For, ast.Repeat, ast.While)):
             out += _calls(s.body)
         elif isinstance(s, ast.IfStmt):
             out += _calls(s.then) + _calls(s.otherwise)
+        elif isinstance(s, ast.WaitUntil) and s.on_timeout:
+            out += _calls(s.on_timeout)
     return out
 
 
@@ -141,6 +143,18 @@ def _names_in(e: object, out: list[ast.Name]) -> None:
     elif isinstance(e, ast.Vector):
         for a in e.items:
             _names_in(a.value, out)
+    elif isinstance(e, (ast.Condition, ast.IoRef)):  # issue #15: conditions
+        _names_in(e.io.index if isinstance(e, ast.Condition) else e.index, out)
+        if isinstance(e, ast.Condition):
+            _names_in(e.value, out)
+    elif isinstance(e, ast.Compare):
+        _names_in(e.left, out)
+        _names_in(e.right, out)
+    elif isinstance(e, ast.Logic):
+        for x in e.operands:
+            _names_in(x, out)
+    elif isinstance(e, ast.NotCond):
+        _names_in(e.operand, out)
 
 
 def _check_body(body: tuple[ast.Stmt, ...], known: set[str], scope: Scope, rep: Reporter) -> None:
@@ -159,7 +173,8 @@ def _check_body(body: tuple[ast.Stmt, ...], known: set[str], scope: Scope, rep: 
         elif isinstance(s, ast.WaitTime):
             _check_exprs([s.duration], local, scope, rep)
         elif isinstance(s, ast.WaitUntil):
-            _check_exprs([s.condition.io.index, s.condition.value, s.timeout], local, scope, rep)
+            _check_exprs([s.condition, s.timeout], local, scope, rep)
+            _check_body(s.on_timeout or (), local, scope, rep)
         elif isinstance(s, ast.For):
             _check_exprs([s.start, s.stop], local, scope, rep)
             _check_body(s.body, local | {s.var.name}, scope, rep)
@@ -167,9 +182,15 @@ def _check_body(body: tuple[ast.Stmt, ...], known: set[str], scope: Scope, rep: 
             _check_exprs([s.count], local, scope, rep)
             _check_body(s.body, local, scope, rep)
         elif isinstance(s, ast.IfStmt):
-            _check_exprs([s.condition.io.index, s.condition.value], local, scope, rep)
+            _check_exprs([s.condition], local, scope, rep)
             _check_body(s.then, local, scope, rep)
             _check_body(s.otherwise, local, scope, rep)
+        elif isinstance(s, ast.While):
+            _check_exprs([s.condition], local, scope, rep)
+            _check_body(s.body, local, scope, rep)
+        elif isinstance(s, (ast.VarDecl, ast.AssignStmt)):
+            _check_exprs([s.value], local, scope, rep)
+            local.add(s.name.name)
         elif isinstance(s, ast.CallStmt):
             entry = scope.lookup(s.name.name)
             if (entry is None or entry.kind != "proc") and s.name.name not in RESERVED:  # `return()`: E008 already

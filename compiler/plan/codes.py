@@ -35,3 +35,8 @@ IF_ARMS_DIFFER = Code("W223", "if-arms-end-differently", "the arms of a runtime 
 UNKNOWN_START = Code("W224", "unknown-start", "a task's first move is not a joint move to a joint target")
 TIMING_EXACT_STOP = Code("W225", "timing-exact-stop",
                          "a blended chain could not be timed as a whole; its corners became exact stops")
+
+# runtime logic (issue #15)
+WHILE_NO_FIXED_POINT = Code("E240", "while-no-fixed-point",
+                            "a while loop whose iterations do not come back to the state they started from")
+__all__ += ["WHILE_NO_FIXED_POINT"]

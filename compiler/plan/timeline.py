@@ -37,17 +37,21 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.chain import TimedChain, time_chain
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
 from rmot.compiler.plan.timing import HoldPiece, Piece
-from rmot.compiler.planned import InstructionRecord
+from rmot.compiler.planned import InstructionRecord, path_words
 from rmot.lang.diagnostics import Diagnostic, Severity
 
 __all__ = ["TaskDraft", "VariantDraft", "build_task", "proc_records"]
 
-_EVENTS = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.Native)
+_EVENTS = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.Native, ir.VarDecl, ir.Assign)
+_BLOCKING = (ir.WaitTime, ir.WaitInput, ir.WaitCondition, ir.Sync, ir.Attach, ir.Detach)
+WHILE_BOUND = 3  # iterations of a while planned at most to reach its fixed point (REFERENCE.md §7)
+_SAME_Q = 1e-6  # rad (m): a while iteration ends where it started when every joint is this close
 
 
 @dataclass(eq=False)
@@ -91,17 +95,23 @@ class _Builder:
         self.chain: list[Segment] = []
         self.events: list[tuple[ir.Instr, int]] = []
         self.pending: list[tuple[Finding, int]] = []  # warnings of chain moves, by chain index
+        self.stopped = False  # a `stop` ended this path (issue #15): nothing after it is planned
+        self.tool: str | None = None  # the tool of the last move, and the parts held: with q, the
+        self.held: tuple[str, ...] = ()  # state a while's iteration must end in to be proved
+        self.paths: dict[int, tuple] = {}  # type: ignore[type-arg]  # uid -> loop iterations (ir_tree)
+        self.repeat_quiet = False  # a while's later iterations: only findings not already reported
 
     # ------------------------------------------------------------------ helpers
-    def _diag(self, f: Finding, span, time: float | None = None) -> None:  # type: ignore[no-untyped-def]
-        if self.note is not None:  # a variant: only what the main timeline did not already report
-            if any((d.code, d.span, d.message) == (f.code, span, f.message) for d in self.draft.diagnostics):
+    def _diag(self, f: Finding, span, time: float | None = None, uid: int | None = None) -> None:  # type: ignore[no-untyped-def]
+        message = f.message
+        if uid is not None and uid in self.paths:  # inside a for/repeat: name the iteration
+            message += f" (in iteration {describe_iteration(self.paths[uid])})"
+        if self.note is not None or self.repeat_quiet:  # only what was not already reported
+            if any((d.code, d.span, d.message) == (f.code, span, message) for d in self.draft.diagnostics):
                 return
-            notes: tuple = (self.note,)  # type: ignore[type-arg]
-        else:
-            notes = ()
+        notes: tuple = (self.note,) if self.note is not None else ()  # type: ignore[type-arg]
         self.draft.diagnostics.append(
-            Diagnostic(f.code, f.severity, f.message, span, notes, time_s=time, task=self.task))
+            Diagnostic(f.code, f.severity, message, span, notes, time_s=time, task=self.task))
 
     def _record(self, instr: ir.Instr, t0: float, t1: float, **extra: object) -> None:
         self.draft.records.append(InstructionRecord(
@@ -115,6 +125,8 @@ class _Builder:
         """Walk `body`; `rest`: what runs after it (enclosing bodies' tails, innermost first),
         the continuation a variant of an `if` inside `body` is planned along."""
         for i, instr in enumerate(body):
+            if self.stopped:
+                return
             after = (body[i + 1:],) + rest
             if isinstance(instr, ir.Move):
                 self._move(instr)
@@ -124,8 +136,21 @@ class _Builder:
                 self.walk(instr.body, after)
             elif isinstance(instr, ir.If):
                 self._if(instr, after)
-            else:
+            elif isinstance(instr, ir.Loop):  # every iteration in order (issue #15)
+                for k, it in enumerate(instr.iterations):
+                    self.walk(it.body, tuple(x.body for x in instr.iterations[k + 1:]) + after)
+            elif isinstance(instr, ir.While):
+                self._while(instr, after)
+            elif isinstance(instr, (ir.WaitInput, ir.WaitCondition)) and instr.on_timeout:
+                self._wait_branch(instr, after)
+            elif isinstance(instr, ir.Stop):
+                self.flush()
+                self._record(instr, self.t, self.t)
+                self.stopped = True
+            elif isinstance(instr, _BLOCKING):
                 self._blocking(instr)
+            else:
+                raise TypeError(f"timeline: instruction kind {type(instr).__name__} is not planned (add it here)")
 
     def walk_rest(self, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
         for j, body in enumerate(rest):
@@ -134,11 +159,12 @@ class _Builder:
     def _move(self, move: ir.Move) -> None:
         if move.motion.duration is not None:
             self.flush()
+        self.tool = move.tool.name
         seg, findings = build_segment(self.robot, move, self._q_end())
         if seg is None:
             self.flush()
             for f in findings:
-                self._diag(f, move.span, self.t)
+                self._diag(f, move.span, self.t, move.uid)
             self._record(move, self.t, self.t)
             return
         self.pending += [(f, len(self.chain)) for f in findings]  # timed when the chain is
@@ -159,6 +185,8 @@ class _Builder:
     def _blocking(self, instr: ir.Instr) -> None:
         self.flush()
         t0 = self.t
+        if isinstance(instr, (ir.Attach, ir.Detach)):
+            self.held = instr.held
         if isinstance(instr, ir.WaitTime) and instr.duration > 0:
             self._append(HoldPiece(self.q.copy(), instr.duration))
         self._record(instr, t0, self.t)
@@ -180,29 +208,86 @@ class _Builder:
         t0, q0 = self.t, self.q.copy()
         n_records = len(self.draft.records)
         self._record(instr, t0, t0)  # placeholder, completed below (keeps record indexes stable)
+        state = (self.tool, self.held)
         self.walk(instr.then, rest)
         self.flush()
         self.draft.records[n_records] = replace(self.draft.records[n_records], t_end=self.t)
-        if instr.otherwise and self.spawn:
-            self._variant(instr, rest, t0, q0, n_records)
+        if (instr.otherwise or self.stopped) and self.spawn:  # a `stop` in the then arm: the other path goes on
+            self._variant(instr, instr.otherwise, "otherwise", rest, t0, q0, n_records, state)
 
-    def _variant(self, instr: ir.If, rest: tuple[tuple[ir.Instr, ...], ...], t0: float, q0: np.ndarray,
-                 n_records: int) -> None:
-        """The otherwise arm from (t0, q0), then the rest of the task from the arm's end."""
+    def _variant(self, instr: ir.Instr, arm: tuple[ir.Instr, ...], kind: str, rest: tuple[tuple[ir.Instr, ...], ...],
+                 t0: float, q0: np.ndarray, n_records: int, state: tuple[str | None, tuple[str, ...]],
+                 hold: float = 0.0) -> None:
+        """`arm` from (t0, q0) (after a hold of `hold` s: a wait's timeout), then the rest of the
+        task from the arm's end; `kind` names the path (PATHS)."""
         self.counter[0] += 1
         index = self.counter[0]
         sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter, self.lone)
+        sub.paths, (sub.tool, sub.held) = self.paths, state
         line = instr.span.start.line if instr.span is not None else "?"
-        sub.note = (f"on the path through the 'otherwise' arm of the if at line {line}", instr.span)
-        sub.walk(instr.otherwise, rest)
+        sub.note = (f"on {path_words(kind, line)}", instr.span)
+        if hold > 0:
+            sub._append(HoldPiece(q0.copy(), hold))
+            sub._record(instr, t0, sub.t)
+        sub.walk(arm, rest)
         sub.flush()
         n_if = len(self.draft.records)
         sub.spawn = False
         sub.walk_rest(rest)
         sub.flush()
-        self.draft.variants.append(VariantDraft(index, instr.uid, "otherwise", t0, sub.pieces, n_records,
+        self.draft.variants.append(VariantDraft(index, instr.uid, kind, t0, sub.pieces, n_records,
                                                 q0, len(self.draft.syncs), sub.syncs))
         self.draft.continuations.append((index, n_if))
+
+    # ------------------------------------------------------------------ runtime logic (issue #15)
+    def _wait_branch(self, instr: ir.WaitInput | ir.WaitCondition, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
+        """The main timeline: the condition holds at once (as for every `wait until`); a variant:
+        the timeout passes (the robot stands for T), the timeout branch runs, then the rest."""
+        self.flush()
+        t0, q0, state = self.t, self.q.copy(), (self.tool, self.held)
+        n_records = len(self.draft.records)
+        self._record(instr, t0, t0)
+        if self.spawn:
+            self._variant(instr, instr.on_timeout, "timeout", rest, t0, q0, n_records, state, hold=instr.timeout or 0.0)
+
+    def _state(self) -> tuple[np.ndarray, str | None, tuple[str, ...]]:
+        return self.q.copy(), self.tool, tuple(sorted(self.held))
+
+    def _while(self, instr: ir.While, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
+        """The body from the state before the loop, then again from the state at its end, until an
+        iteration ends in the state it started from (joints within _SAME_Q, same tool, same parts
+        held): every later iteration repeats that one. No fixed point in WHILE_BOUND iterations:
+        E240. The code after the loop: on the main timeline from the fixed point, and as a variant
+        from the state before the loop (no iteration)."""
+        self.flush()
+        t0, q0, state0 = self.t, self.q.copy(), (self.tool, self.held)
+        n_records = len(self.draft.records)
+        self._record(instr, t0, t0)
+        quiet = self.repeat_quiet
+        proved = False
+        for k in range(WHILE_BOUND):
+            start = self._state()
+            self.repeat_quiet = quiet or k > 0
+            self.walk(instr.body, rest)
+            self.flush()
+            if self.stopped:
+                proved = True  # the body ends the task: no further iteration
+                break
+            end = self._state()
+            if start[1:] == end[1:] and start[0].shape == end[0].shape and np.max(np.abs(start[0] - end[0]), initial=0.0) <= _SAME_Q:
+                proved = True
+                break
+        self.repeat_quiet = quiet
+        self.draft.records[n_records] = replace(self.draft.records[n_records], t_end=self.t)
+        if not proved:
+            line = instr.span.start.line if instr.span is not None else "?"
+            msg = (f"the while loop at line {line} must reach a repeating state: an iteration must end in the joints, "
+                   f"tool and held parts it started from (got a different end state after each of {WHILE_BOUND} "
+                   "iterations), so its later iterations cannot be verified; make the body end where it starts "
+                   "(e.g. return to a joint target)")
+            self._diag(Finding(codes.WHILE_NO_FIXED_POINT, Severity.ERROR, msg), instr.span, self.t)
+        if self.spawn and not self.stopped:
+            self._variant(instr, (), "no iteration", rest, t0, q0, n_records, state0)
 
     # ------------------------------------------------------------------ chains
     def flush(self) -> None:
@@ -217,17 +302,19 @@ class _Builder:
         if timed.error is not None:
             code = codes.TIME_TOO_SHORT if timed.error_is_time else codes.TIMING_FAILED
             at = 0 if timed.error_is_time else (timed.error_at if timed.error_at is not None else len(chain) - 1)
-            self._diag(Finding(code, Severity.ERROR, timed.error), chain[at].move.span, t0 + timed.starts[at])
+            self._diag(Finding(code, Severity.ERROR, timed.error), chain[at].move.span, t0 + timed.starts[at],
+                       chain[at].move.uid)
         for k in timed.stops:
             msg = (f"the blended motion through this move could not be timed ({timed.stop_reason}); the robot "
                    f"stops exactly at this move's target at t = {t0 + timed.ends[k]:.3f} s")
-            self._diag(Finding(codes.TIMING_EXACT_STOP, Severity.WARNING, msg), chain[k].move.span, t0 + timed.ends[k])
+            self._diag(Finding(codes.TIMING_EXACT_STOP, Severity.WARNING, msg), chain[k].move.span, t0 + timed.ends[k],
+                       chain[k].move.uid)
         for f, k in pending:
-            self._diag(f, chain[k].move.span, t0 + timed.starts[k])
+            self._diag(f, chain[k].move.span, t0 + timed.starts[k], chain[k].move.uid)
         for instr, k in events:
             self._event_record(instr, t0 + timed.ends[k])
         for k, f in (timed.path.findings if timed.path is not None else ()):
-            self._diag(f, chain[k].move.span, t0 + timed.ends[k])
+            self._diag(f, chain[k].move.span, t0 + timed.ends[k], chain[k].move.uid)
 
     def _move_record(self, seg: Segment, timed: TimedChain, i: int, t0: float) -> None:
         robot, move = self.robot, seg.move
@@ -246,6 +333,7 @@ def build_task(robot: object, task: ir.Task, q0: np.ndarray, *, lone: bool = Fal
     """The timeline of one task from joints q0 (dof,); `lone`: the program's only task (syncs are no-ops)."""
     draft = TaskDraft()
     builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0], lone)
+    builder.paths = iteration_paths(task.body)
     builder.walk(task.body)
     builder.flush()
     draft.pieces = builder.pieces
@@ -272,12 +360,12 @@ def _continuations_apart(draft: TaskDraft, task: str) -> list[Diagnostic]:
                 continue
             span = next((x.span for x in draft.records if x.uid == variants[index].if_uid), None)
             line = span.start.line if span is not None else "?"
+            path = path_words(variants[index].arm, line)
             main_branch = next(x.branch for x in draft.records if x.uid == r.uid and x.variant == 0)
             fix = ("give the move a config(...)" if r.branch != main_branch
                    else "end both arms in the same joint state")  # same branch: a turn of a joint
-            msg = (f"after the 'otherwise' arm of the if at line {line} this move must reach the same joints "
-                   f"as after the 'then' arm (they differ by up to {np.degrees(apart):.1f} deg); the controller "
-                   f"program uses the 'then' path's solution: {fix}")
+            msg = (f"on {path} this move must reach the same joints as on the main path (they differ by up "
+                   f"to {np.degrees(apart):.1f} deg); the controller program uses the main path's solution: {fix}")
             out.append(Diagnostic(codes.IF_ARMS_DIFFER, Severity.WARNING, msg, r.span, ((
                 "the if", span),), time_s=r.t_end, task=task))
             break  # one warning per variant: later moves follow from this one
@@ -285,12 +373,14 @@ def _continuations_apart(draft: TaskDraft, task: str) -> list[Diagnostic]:
 
 
 def proc_records(body: tuple[ir.Instr, ...], records: list[InstructionRecord]) -> list[InstructionRecord]:
-    """Records of proc calls: each spans its body's records (per variant)."""
+    """Records of proc calls and for/repeat loops: each spans its body's records (per variant)."""
     out = []
     for instr in ir.walk(body):
-        if not isinstance(instr, ir.ProcCall):
+        if not isinstance(instr, (ir.ProcCall, ir.Loop)):
             continue
-        uids = {i.uid for i in ir.walk(instr.body)}
+        inner = ir.walk(instr.body) if isinstance(instr, ir.ProcCall) else \
+            (i for it in instr.iterations for i in ir.walk(it.body))
+        uids = {i.uid for i in inner}
         for variant in sorted({r.variant for r in records if r.uid in uids}):
             inner = [r for r in records if r.uid in uids and r.variant == variant]
             t0, t1 = min(r.t_start for r in inner), max(r.t_end for r in inner)

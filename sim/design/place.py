@@ -38,6 +38,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.ir_tree import children, rebuilt
 
 __all__ = ["Candidate", "Placement", "halton", "place", "rebase", "world_targets"]
 
@@ -85,11 +86,8 @@ def _rebase_body(body: tuple[Any, ...], slot: str, old: ir.Pose, new: ir.Pose) -
     for instr in body:
         if isinstance(instr, ir.Move):
             instr = _rebase_move(instr, slot, old, new)
-        elif isinstance(instr, ir.If):
-            instr = replace(instr, then=_rebase_body(instr.then, slot, old, new),
-                            otherwise=_rebase_body(instr.otherwise, slot, old, new))
-        elif isinstance(instr, ir.ProcCall):
-            instr = replace(instr, body=_rebase_body(instr.body, slot, old, new))
+        else:  # every body an instruction holds (ir_tree: If arms, proc bodies, loop iterations, ...)
+            instr = rebuilt(instr, tuple(_rebase_body(b, slot, old, new) for b in children(instr)))
         out.append(instr)
     return tuple(out)
 
