@@ -452,11 +452,13 @@ KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign]
 #     compound operand is parenthesised (runtime.py: comparisons have the lowest priority).
 #   * INT / INT is an integer division in KRL ("Arithmetic operators": the result of two INT
 #     operands is INT), so rmot's `/` (always a num) multiplies the left INT by 1.0 first.
-#   * frame arithmetic: the components of an E6POS are assigned one by one (`P.X=BASE.X+...`,
-#     "Structures": access to a component with the point separator); the target is in $BASE,
-#     which is the move's frame, so adding the in-frame step to X, Y, Z offsets it exactly;
-#     S and T are copied from the template point (LIN/CIRC ignore them, PTP reads them: the
-#     loop analysis requires every iteration's S/T to be equal for PTP, S for LIN/CIRC).
+#   * frame arithmetic: the components of an E6POS (or FRAME) are assigned one by one
+#     (`P.X=BASE.X+...`, "Structures": access to a component with the point separator); the
+#     target is in $BASE, which is the move's frame, so adding the in-frame step to X, Y, Z
+#     offsets it exactly. S and T are copied from the template point: LIN/CIRC keep the Status
+#     they start with and ignore the programmed S/T; a PTP in a loop is written to a FRAME
+#     (Status kept, Turn the shortest path: _ptp_key) when that reaches every iteration's
+#     planned joints, else to an E6POS whose S and T every iteration shares.
 #   * $ANIN[n]: analog inputs as -1.0 .. +1.0 for -10 V .. +10 V (KSS 8.x System Variables,
 #     $ANIN[1] .. $ANIN[32]; the same scaling as $ANOUT above), so a value in volts is
 #     $ANIN[n]*10.
@@ -587,6 +589,8 @@ _proc_call_plain = KrlBackend.proc_call
 
 
 def _k_proc_call(self: KrlBackend, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
+    if _rt.inline_call(node, ctx.loops):  # written inline in a vendor loop, like RAPID and URScript
+        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
     ctx.loops.in_routine += 1
     try:
         lines = _proc_call_plain(self, node, ctx)
@@ -600,13 +604,58 @@ def _k_proc_call(self: KrlBackend, node: ir.ProcCall, ctx: KrlContext) -> list[s
 
 
 def krl_config(node: ir.Move, q: np.ndarray, branch: ir.Config | None) -> object:
-    """What KRL reads of a target's configuration: Status and Turn for PTP, the branch
-    (Status) for LIN and CIRC, which follow the current joints."""
+    """What KRL reads of a target's configuration in a loop: the Status (the branch) for every
+    motion (a LIN or CIRC keeps the Status it starts with; a PTP to a FRAME keeps the previous
+    one; a PTP to an E6POS takes the programmed one); the Turn of a PTP is _ptp_key's."""
     if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
         return None
-    if node.kind is ir.MotionKind.JOINT:
-        return (status_of(branch), turn_bits(q))
     return status_of(branch)
+
+
+SHORTEST = "shortest"
+
+
+def _ptp_key(ctx: KrlContext, node: ir.Move, rec: object) -> object:
+    """SHORTEST when a PTP to a FRAME (no Status, no Turn) reaches the planned joints: the
+    controller keeps the previous Status and takes the Turn with the shortest path (KSS 8.x
+    "Status and Turn": "The robot controller retains the previous Status value ... In the case
+    of PTP motions, the robot controller selects the Turn value that results in the shortest
+    possible path", quoted in robot-forum.com thread 42877): true when the branch equals the
+    previous move's and every axis moves by less than 179 degrees. Else ("T", Turn) (an
+    E6POS with that Turn)."""
+    q = getattr(rec, "q_target", None)
+    if q is None:
+        return None
+    bits = ("T", turn_bits(q))
+    if getattr(rec, "variant", 0) != 0:
+        return bits
+    t0 = float(getattr(rec, "t_start", 0.0))
+    before = [r for r in ctx.task_plan.records
+              if r.variant == 0 and r.q_target is not None and r.t_end <= t0 + 1e-9 and r.uid != node.uid]
+    if not before:
+        return bits
+    prev = max(before, key=lambda r: r.t_end)
+    start = ctx.task_plan.trajectory.at(t0)
+    if prev.branch != getattr(rec, "branch", None):
+        return bits
+    if np.all(np.abs(np.asarray(q, float) - start) < np.radians(179.0)):
+        return SHORTEST
+    return bits
+
+
+def _krl_extra(self: KrlBackend, node: ir.Instr, rec: object, ctx: KrlContext) -> object:
+    """A PTP to a Cartesian target in a loop accepts an E6POS with its own Turn, and a FRAME
+    when that reaches its planned joints (_ptp_key): the loop analysis keeps the forms every
+    iteration accepts (LoopTemplate.choices)."""
+    key = self.context_key(node, ctx)
+    if (isinstance(node, ir.Move) and node.kind is ir.MotionKind.JOINT
+            and isinstance(node.target, ir.CartesianTarget)):
+        q = getattr(rec, "q_target", None)
+        forms = {(key, ("T", None if q is None else turn_bits(q)))}
+        if _ptp_key(ctx, node, rec) == SHORTEST:
+            forms.add((key, SHORTEST))
+        return frozenset(forms)
+    return key
 
 
 _pos_plain = KrlBackend._pos
@@ -614,7 +663,15 @@ _pos_plain = KrlBackend._pos
 
 def _k_pos(self: KrlBackend, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
            node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
-    name = _pos_plain(self, target, q, branch, node, ctx, hint)
+    """As KrlBackend._pos; in a vendor loop, a PTP target every iteration reaches only as a
+    FRAME (see _ptp_key) is one, and an offset target is a work copy moved by the counters."""
+    forms = ctx.loops.choices.get(node.uid, frozenset())
+    if node.kind is ir.MotionKind.JOINT and forms and all(f[1] == SHORTEST for f in forms):
+        self.branch_or_default(branch, node)
+        name = ctx.module.data.add(hint or target.name or "p", f"FRAME:{{{frame_text(target.in_frame)}}}",
+                                   node.span)
+    else:
+        name = _pos_plain(self, target, q, branch, node, ctx, hint)
     offset = ctx.loops.offsets.get((node.uid, "via" if target is node.via else "target"))
     if offset is None:
         return name
@@ -643,18 +700,15 @@ def _k_move(self: KrlBackend, node: ir.Move, ctx: KrlContext) -> list[str]:
 
 
 def _k_loop(self: KrlBackend, node: ir.Loop, ctx: KrlContext) -> list[str]:
-    template = ctx.loops.templates.get(node.uid)
-    if template is None:
-        found = _rt.loop_template(self, node, ctx, move_config=krl_config,
-                                  extra_key=lambda n, r: self.context_key(n, ctx))
-        if isinstance(found, _loops.Unrolled):
-            return _rt.unrolled(self, node, ctx, lambda body: self.body(body, ctx))
-        template = found
-    counter = ctx.names.name(template.var.name or f"rep#{node.uid}", node.span)
-    _declare_var(ctx, counter, "INT", "0")
-    ctx.loops.enter(template, counter)
-    head = f"FOR {counter}={template.var.first} TO {template.var.last}"
-    return [head] + self.indent(self.body(template.body, ctx), "  ") + ["ENDFOR"]
+    def write(template: _loops.LoopTemplate) -> list[str]:
+        counter = ctx.names.name(template.var.name or f"rep#{template.loop.uid}", node.span)
+        _declare_var(ctx, counter, "INT", "0")
+        ctx.loops.enter(template, counter)
+        head = f"FOR {counter}={template.var.first} TO {template.var.last}"
+        return [head] + self.indent(self.body(template.body, ctx), "  ") + ["ENDFOR"]
+
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx), move_config=krl_config,
+                          extra_key=lambda n, r: _krl_extra(self, n, r, ctx))
 
 
 KrlBackend.EMIT = {**KrlBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.While: "while_",

@@ -535,18 +535,46 @@ def rapid_conf(q: object, branch: ir.Config | None) -> object:
     return (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
 
 
+def rapid_conf_match(first: object, other: object) -> bool:
+    """The template's confdata (written once for every iteration) reaches another iteration's
+    when cfx (the IK branch) is equal and cf1, cf4, cf6 differ by at most one quadrant.
+
+    ABB's configuration monitoring (ConfJ\On / ConfL\On, the defaults) selects the branch
+    by cfx and checks axes 1, 4 and 6 against the programmed quadrants, stopping when an
+    axis would have to turn by more than 90 degrees to reach them (ABB Technical reference
+    manual RAPID Instructions, ConfJ / ConfL; summarised in "ABB robot ConfL/ConfJ
+    configuration control explained", industrialmonitordirect.com: "generates an error if
+    the configuration changes by more than 90 degrees"). A neighbouring quadrant is the
+    same turn of the axis (the planner's joints differ from the written quadrant by less
+    than 90 degrees beyond its edge); two quadrants apart would be another turn."""
+    if first is None or other is None:
+        return first == other
+    a, b = first, other  # (cf1, cf4, cf6, cfx)
+    return (a[3] == b[3]  # type: ignore[index]
+            and all(abs(a[i] - b[i]) <= 1 for i in range(3)))  # type: ignore[index]
+
+
 def _loop(self: RapidBackend, node: ir.Loop, ctx: RapidContext) -> list[str]:
-    template = ctx.loops.templates.get(node.uid)
-    if template is None:
-        found = _rt.loop_template(self, node, ctx, config_key=rapid_conf,
-                                  extra_key=lambda n, r: self.context_key(n, ctx))
-        if isinstance(found, _loops.Unrolled):
-            return _rt.unrolled(self, node, ctx, lambda body: self.body(body, ctx))
-        template = found
-    counter = ctx.names.name(template.var.name or f"rep#{node.uid}", node.span)
-    ctx.loops.enter(template, counter)
-    head = f"FOR {counter} FROM {template.var.first} TO {template.var.last} DO"
-    return [head] + self.indent(self.body(template.body, ctx), self.INDENT) + ["ENDFOR"]
+    def write(template: _loops.LoopTemplate) -> list[str]:
+        counter = ctx.names.name(template.var.name or f"rep#{template.loop.uid}", node.span)
+        ctx.loops.enter(template, counter)
+        head = f"FOR {counter} FROM {template.var.first} TO {template.var.last} DO"
+        return [head] + self.indent(self.body(template.body, ctx), self.INDENT) + ["ENDFOR"]
+
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
+                          config_key=rapid_conf, config_match=rapid_conf_match,
+                          extra_key=lambda n, r: self.context_key(n, ctx))
+
+
+_proc_call_plain = RapidBackend.proc_call
+
+
+def _r_proc_call(self: RapidBackend, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
+    """A call inside a FOR whose body the loop offsets is written inline (the FOR counter is
+    local to the loop: RAPID overview, "FOR": not known in another routine)."""
+    if _rt.inline_call(node, ctx.loops):
+        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
+    return _proc_call_plain(self, node, ctx)
 
 
 RapidBackend.EMIT = {**RapidBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.While: "while_",
@@ -559,3 +587,4 @@ RapidBackend.loop = _loop  # type: ignore[attr-defined]
 RapidBackend.wait_input = _wait_input  # type: ignore[method-assign]
 RapidBackend.wait_condition = _wait_condition  # type: ignore[attr-defined]
 RapidBackend.stop = _stop  # type: ignore[attr-defined]
+RapidBackend.proc_call = _r_proc_call  # type: ignore[method-assign]

@@ -112,41 +112,75 @@ class LoopState:
     in_routine: int = 0  # > 0 while a proc's routine is printed
     extra: dict[str, object] = field(default_factory=dict)  # a vendor's own flags
     decls: list[str] = field(default_factory=list)  # declarations a vendor prints at the top
+    choices: dict[int, frozenset[Any]] = field(default_factory=dict)  # LoopTemplate.choices
+    loop_names: set[str] = field(default_factory=set)  # the `for` variables of the loops entered
 
     def enter(self, template: loops.LoopTemplate, counter: str) -> None:
         """`template` is being written with the counter `counter`: its targets take offsets,
         and its nested loops are written from their templates (not analysed again)."""
         self.counters[template.var.uid] = counter
+        self.choices.update(template.choices)
+        if template.var.name:
+            self.loop_names.add(template.var.name)
         self.offsets.update(template.targets)
         self.templates.update(template.inner)
 
 
-def loop_template(
-    backend: Any,
-    node: ir.Loop,
-    ctx: Any,
-    *,
-    config_key: loops.ConfigKey = loops.branch_and_turns,
-    move_config: loops.MoveConfigKey | None = None,
-    extra_key: loops.ExtraKey | None = None,
-) -> loops.LoopTemplate | loops.Unrolled:
-    """The analysis of `node` for `backend` (its `unroll` option forces unrolling); an
-    unrolled loop gets W420 with the reason (not when --unroll asked for it)."""
-    result = loops.analyse(
-        node,
-        ctx.record,
-        config_key=config_key,
-        move_config=move_config,
-        extra_key=extra_key,
-        unroll=getattr(backend, "unroll", False),
-    )
-    if isinstance(result, loops.Unrolled) and not getattr(backend, "unroll", False):
-        backend.warn(
-            codes_loops.LOOP_UNROLLED,
-            f"{result.message}; written iteration by iteration",
-            result.span,
-        )
-    return result
+def loop_template(backend: Any, node: ir.Loop, ctx: Any, *,
+                  config_key: loops.ConfigKey = loops.branch_and_turns,
+                  move_config: loops.MoveConfigKey | None = None,
+                  config_match: loops.ConfigMatch | None = None,
+                  extra_key: loops.ExtraKey | None = None,
+                  alternatives: tuple[dict[str, Any], ...] = (),
+                  ) -> tuple[loops.LoopTemplate | loops.Unrolled, int]:
+    """The analysis of `node` for `backend` (its `unroll` option forces unrolling) and which
+    set of keys found it (0: the keyword arguments; k: alternatives[k - 1], tried in turn
+    when the ones before do not give one vendor loop); a loop not written as one vendor loop
+    gets W420 with the first reason (not when --unroll asked for it)."""
+    unroll = bool(getattr(backend, "unroll", False))
+    first = {"config_key": config_key, "move_config": move_config, "config_match": config_match,
+             "extra_key": extra_key}
+    result: loops.Unrolled | None = None
+    best = 0
+    for k, keys in enumerate((first, *({**first, **alt} for alt in alternatives))):
+        found = loops.analyse(node, ctx.record, unroll=unroll, **keys)
+        if isinstance(found, loops.LoopTemplate):
+            return found, k
+        if result is None or (found.peeled is not None and result.peeled is None):
+            result, best = found, k
+        if unroll:
+            break
+    assert result is not None
+    if not unroll and node.iterations:
+        how = "" if result.peeled is not None else "; written iteration by iteration"
+        backend.warn(codes_loops.LOOP_UNROLLED, result.message + how, result.span)
+    return result, best
+
+
+def loop_lines(backend: Any, node: ir.Loop, ctx: Any,
+               write: Callable[[loops.LoopTemplate], list[str]],
+               body: Callable[[tuple[ir.Instr, ...]], list[str]],
+               found: Callable[[loops.LoopTemplate, int], None] | None = None, **keys: Any) -> list[str]:
+    """A Loop as the vendor writes it: `write(template)` for a vendor loop (a nested loop of a
+    template being written uses its own template), else, when all iterations but the last
+    fit, that loop and then the last iteration, else every iteration (`unrolled`).
+    `found(template, k)` hears which keys (loop_template) gave a template before it is written."""
+    template = ctx.loops.templates.get(node.uid)
+    if template is not None:
+        return write(template)
+    result, k = loop_template(backend, node, ctx, **keys)  # k: which keys found a template
+    if isinstance(result, loops.LoopTemplate):
+        if found is not None:
+            found(result, k)
+        return write(result)
+    if result.peeled is None:
+        return unrolled(backend, node, ctx, body)
+    if found is not None:
+        found(result.peeled, k)
+    last = result.last
+    nodes = last.body if node.var is None else loops.bind_loop_var(last.body, node.var, last.value)
+    note = f"{node.var or 'iteration'} = {last.value}: the last iteration, on its own"
+    return write(result.peeled) + [backend.comment(note)] + body(nodes)
 
 
 def unrolled(
@@ -160,6 +194,20 @@ def unrolled(
         out.append(backend.comment(f"{node.var or 'iteration'} = {it.value}"))
         out.extend(body(nodes))
     return out
+
+
+def inline_call(node: ir.ProcCall, state: LoopState) -> bool:
+    """True when a call inside a vendor loop must be written inline (its body, not a call to
+    its routine): its body has a target the loop offsets or reads a loop counter, and a
+    vendor's loop counter is not known inside another routine (RAPID: the FOR counter is
+    local to the loop; URScript: a local of the program's def)."""
+    uids = {n.uid for n in ir.walk(node.body)}
+    moving = {uid for (uid, _), off in state.offsets.items() if any(any(s) for s in off.steps)}
+    if uids & moving:
+        return True
+    names = {v.name for t in state.templates.values() for v in (t.var,) if v.name}
+    names |= {name for name in state.loop_names}
+    return any(loops.uses_loop_var(node.body, name) for name in names)
 
 
 def offset_terms(

@@ -524,18 +524,25 @@ def _ur_extra(node: ir.Instr, rec: object) -> object:
 
 
 def _u_loop(self: UrScriptBackend, node: ir.Loop, ctx: UrContext) -> list[str]:
-    template = ctx.loops.templates.get(node.uid)
-    if template is None:
-        found = _rt.loop_template(self, node, ctx, extra_key=_ur_extra)
-        if isinstance(found, _loops.Unrolled):
-            return _rt.unrolled(self, node, ctx, lambda body: self.block(body, ctx))
-        template = found
-    counter = _uname(ctx, template.var.name or f"rep#{node.uid}", node.span)
-    ctx.loops.enter(template, counter)
-    body = _loop_body(self, template.body, ctx)
-    # the counter steps right after the body's last line (before a trailing sync(), if any)
-    return ([f"{counter} = {template.var.first}", f"while {counter} <= {template.var.last}:"]
-            + self.indent(body + [f"{counter} = {counter} + 1"], self.INDENT) + ["end"])
+    def write(template: _loops.LoopTemplate) -> list[str]:
+        counter = _uname(ctx, template.var.name or f"rep#{template.loop.uid}", node.span)
+        ctx.loops.enter(template, counter)
+        body = _loop_body(self, template.body, ctx)
+        return ([f"{counter} = {template.var.first}", f"while {counter} <= {template.var.last}:"]
+                + self.indent(body + [f"{counter} = {counter} + 1"], self.INDENT) + ["end"])
+
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.block(body, ctx), extra_key=_ur_extra)
+
+
+_u_proc_call_plain = UrScriptBackend.proc_call
+
+
+def _u_proc_call(self: UrScriptBackend, node: ir.ProcCall, ctx: UrContext) -> list[str]:
+    """A call inside a vendor loop whose body the loop offsets is written inline (the counter
+    is a local of the program's def, not known inside the proc's own def)."""
+    if _rt.inline_call(node, ctx.loops):
+        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.block(node.body, ctx)
+    return _u_proc_call_plain(self, node, ctx)
 
 
 UrScriptBackend.EMIT = {**UrScriptBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
@@ -550,3 +557,4 @@ UrScriptBackend.wait_input = _u_wait_input  # type: ignore[method-assign]
 UrScriptBackend.wait_condition = _u_wait_condition  # type: ignore[attr-defined]
 UrScriptBackend.stop = _u_stop  # type: ignore[attr-defined]
 UrScriptBackend.move = _u_move  # type: ignore[method-assign]
+UrScriptBackend.proc_call = _u_proc_call  # type: ignore[method-assign]
