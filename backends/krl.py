@@ -701,7 +701,7 @@ def _k_move(self: KrlBackend, node: ir.Move, ctx: KrlContext) -> list[str]:
 
 def _k_loop(self: KrlBackend, node: ir.Loop, ctx: KrlContext) -> list[str]:
     def write(template: _loops.LoopTemplate) -> list[str]:
-        counter = ctx.names.name(template.var.name or f"rep#{template.loop.uid}", node.span)
+        counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
         _declare_var(ctx, counter, "INT", "0")
         ctx.loops.enter(template, counter)
         head = f"FOR {counter}={template.var.first} TO {template.var.last}"

@@ -422,7 +422,9 @@ RapidBackend.detach = _grip_load  # type: ignore[attr-defined]
 #     rmot's int is a RAPID num (num data type: integers are exact within +-8388608).
 #   * FOR counter FROM a TO b DO ... ENDFOR (instruction FOR: "the loop counter is declared
 #     automatically", an integer counting by 1); WHILE cond DO ... ENDWHILE; IF cond THEN ...
-#     ELSE ... ENDIF; operators AND OR NOT, = <> < <= > >= (RAPID overview, "Expressions").
+#     ELSE ... ENDIF; operators AND OR NOT, = <> < <= > >= (RAPID overview, "Expressions":
+#     comparisons bind tighter than AND, which binds tighter than OR / XOR / NOT, so a
+#     comparison stands bare inside AND/OR and every other compound operand is parenthesised).
 #   * Offs(Point, XOffset, YOffset, ZOffset) (function Offs): "add an offset in the object
 #     coordinate system to a robot position": the robtarget is written in the move's work
 #     object (uframe = the rmot frame, oframe identity), so Offs adds exactly the in-frame step
@@ -463,7 +465,7 @@ def _dialect(self: RapidBackend, ctx: RapidContext, span: object) -> _rt.ExprDia
         var=lambda v: ctx.names.name(v.name),
         digital=lambda c: f"DInput({self._signal(ctx, 'di', c.port, c.signal, span)}) = {int(c.value)}",
         analog=lambda a: f"AInput({self._signal(ctx, 'ai', a.port, a.signal, span)})",
-        number=lambda v: _rt.trimmed(fmt(v, 6)),
+        number=lambda v: _rt.trimmed(fmt(v, 6)), compare_binds_tighter=True,
     )
 
 
@@ -495,7 +497,7 @@ def _while(self: RapidBackend, node: ir.While, ctx: RapidContext) -> list[str]:
 
 
 def _timeout_flag(self: RapidBackend, ctx: RapidContext) -> str:
-    name = ctx.names.name("rmot#timeout")
+    name = ctx.names.name("rmot_timeout")
     self._declare(ctx, "var", f"VAR bool {name};")
     return name
 
@@ -536,7 +538,7 @@ def rapid_conf(q: object, branch: ir.Config | None) -> object:
 
 
 def rapid_conf_match(first: object, other: object) -> bool:
-    """The template's confdata (written once for every iteration) reaches another iteration's
+    r"""The template's confdata (written once for every iteration) reaches another iteration's
     when cfx (the IK branch) is equal and cf1, cf4, cf6 differ by at most one quadrant.
 
     ABB's configuration monitoring (ConfJ\On / ConfL\On, the defaults) selects the branch
@@ -556,7 +558,7 @@ def rapid_conf_match(first: object, other: object) -> bool:
 
 def _loop(self: RapidBackend, node: ir.Loop, ctx: RapidContext) -> list[str]:
     def write(template: _loops.LoopTemplate) -> list[str]:
-        counter = ctx.names.name(template.var.name or f"rep#{template.loop.uid}", node.span)
+        counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
         ctx.loops.enter(template, counter)
         head = f"FOR {counter} FROM {template.var.first} TO {template.var.last} DO"
         return [head] + self.indent(self.body(template.body, ctx), self.INDENT) + ["ENDFOR"]

@@ -53,6 +53,8 @@ class ExprDialect:
     analog: Callable[[ir.AnalogInput], str]  # the value in volts
     real_division: Callable[[str, str], str] = lambda a, b: f"{a} / {b}"  # a/b of two INTs
     number: Callable[[float], str] = lambda v: repr(float(v))
+    # comparisons bind tighter than and/or (RAPID, URScript): written bare inside and/or
+    compare_binds_tighter: bool = False
 
 
 def is_int(e: Any) -> bool:
@@ -83,7 +85,9 @@ def expr_text(e: Any, d: ExprDialect) -> str:
         return f"{_operand(e.left, d)} {d.compare[e.op]} {_operand(e.right, d)}"
     if isinstance(e, ir.Logic):
         word = d.and_ if e.op == "and" else d.or_
-        return f" {word} ".join(_operand(o, d) for o in e.operands)
+        bare = (ir.Compare, ir.InputCondition) if d.compare_binds_tighter else ()
+        return f" {word} ".join(expr_text(o, d) if isinstance(o, bare) else _operand(o, d)
+                                for o in e.operands)
     if isinstance(e, ir.Not):
         return f"{d.not_}{_operand(e.operand, d)}"
     raise TypeError(f"no runtime expression form for {type(e).__name__}")
@@ -194,6 +198,14 @@ def unrolled(
         out.append(backend.comment(f"{node.var or 'iteration'} = {it.value}"))
         out.extend(body(nodes))
     return out
+
+
+def moving_offset(state: LoopState, uid: int, role: str) -> loops.TargetOffset | None:
+    """The offsets of a target the vendor loop being written moves (None: it stays put)."""
+    offset = state.offsets.get((uid, role))
+    if offset is None or not any(any(step) for step in offset.steps):
+        return None
+    return offset
 
 
 def inline_call(node: ir.ProcCall, state: LoopState) -> bool:

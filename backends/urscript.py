@@ -476,7 +476,7 @@ def _u_stop(self: UrScriptBackend, node: ir.Stop, ctx: UrContext) -> list[str]:
 def _offset_pose(self: UrScriptBackend, base: ir.Pose, node: ir.Move, role: str, ctx: UrContext) -> str:
     """`p[...]` or, inside a vendor loop, `pose_add(p[...], p[dx, dy, dz, 0, 0, 0])` (base frame)."""
     text = pose_text(base)
-    offset = ctx.loops.offsets.get((node.uid, role))
+    offset = _rt.moving_offset(ctx.loops, node.uid, role)
     if offset is None:
         return text
     rotation = node.frame.pose.matrix()[:3, :3]
@@ -493,7 +493,8 @@ _u_move_plain = UrScriptBackend.move
 def _u_move(self: UrScriptBackend, node: ir.Move, ctx: UrContext) -> list[str]:
     """As UrScriptBackend.move; a target a vendor loop offsets is written as a pose_add (and a
     joint move to it through get_inverse_kin near the first iteration's joints)."""
-    if (node.uid, "target") not in ctx.loops.offsets or not isinstance(node.target, ir.CartesianTarget):
+    moving = _rt.moving_offset(ctx.loops, node.uid, "target")
+    if moving is None or not isinstance(node.target, ir.CartesianTarget):
         return _u_move_plain(self, node, ctx)
     rec = self.move_record(node, ctx)
     if isinstance(rec, list):
@@ -525,7 +526,7 @@ def _ur_extra(node: ir.Instr, rec: object) -> object:
 
 def _u_loop(self: UrScriptBackend, node: ir.Loop, ctx: UrContext) -> list[str]:
     def write(template: _loops.LoopTemplate) -> list[str]:
-        counter = _uname(ctx, template.var.name or f"rep#{template.loop.uid}", node.span)
+        counter = _uname(ctx, template.var.name or f"rmot_rep{template.loop.uid}", node.span)
         ctx.loops.enter(template, counter)
         body = _loop_body(self, template.body, ctx)
         return ([f"{counter} = {template.var.first}", f"while {counter} <= {template.var.last}:"]
