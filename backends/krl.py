@@ -440,7 +440,7 @@ def _context_key_with_parts(self: KrlBackend, node: ir.Instr, ctx: TaskContext) 
 KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign]
 
 
-# --------------------------------------------------------------------------- runtime logic (issue #15)
+# ----------------------------------------------------------------- runtime logic (issue #15)
 #
 # Sources: KUKA System Software 8.x "Operating and Programming Instructions for System
 # Integrators" (KSS 8.x), chapter "Programming for user group Expert: KRL syntax":
@@ -495,7 +495,8 @@ def _krl_dialect(self: KrlBackend, ctx: KrlContext, span: object) -> _rt.ExprDia
     def analog(a: ir.AnalogInput) -> str:
         low, high = ANALOG_IN_PORTS
         if not low <= a.port <= high:
-            self.unsupported(_codes_loops.ANALOG_IN_PORT, f"analog input port must be in {low}..{high} "
+            self.unsupported(_codes_loops.ANALOG_IN_PORT,
+                             f"analog input port must be in {low}..{high} "
                              f"for $ANIN (got {a.port})", span)  # type: ignore[arg-type]
         return f"$ANIN[{a.port}]*10"
 
@@ -579,8 +580,9 @@ def _k_stop(self: KrlBackend, node: ir.Stop, ctx: KrlContext) -> list[str]:
     if ctx.loops.in_routine == 0:
         return ["RETURN ; stop: ends the program"]
     _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
-    self.warn_once(ctx, "stop-flag", _codes_loops.STOP_IN_ROUTINE, "stop inside a routine: KRL cannot "
-                   f"end the program from a routine; it sets {_STOP_FLAG} and returns, and every call "
+    self.warn_once(ctx, "stop-flag", _codes_loops.STOP_IN_ROUTINE,
+                   "stop inside a routine: KRL cannot end the program from a routine; it sets "
+                   f"{_STOP_FLAG} and returns, and every call "
                    "returns in turn", node.span)
     return [f"{_STOP_FLAG}=TRUE", "RETURN ; stop"]
 
@@ -631,7 +633,8 @@ def _ptp_key(ctx: KrlContext, node: ir.Move, rec: object) -> object:
         return bits
     t0 = float(getattr(rec, "t_start", 0.0))
     before = [r for r in ctx.task_plan.records
-              if r.variant == 0 and r.q_target is not None and r.t_end <= t0 + 1e-9 and r.uid != node.uid]
+              if r.variant == 0 and r.q_target is not None and r.t_end <= t0 + 1e-9
+              and r.uid != node.uid]
     if not before:
         return bits
     prev = max(before, key=lambda r: r.t_end)
@@ -651,7 +654,7 @@ def _krl_extra(self: KrlBackend, node: ir.Instr, rec: object, ctx: KrlContext) -
     if (isinstance(node, ir.Move) and node.kind is ir.MotionKind.JOINT
             and isinstance(node.target, ir.CartesianTarget)):
         q = getattr(rec, "q_target", None)
-        forms = {(key, ("T", None if q is None else turn_bits(q)))}
+        forms: set[tuple[object, object]] = {(key, ("T", None if q is None else turn_bits(q)))}
         if _ptp_key(ctx, node, rec) == SHORTEST:
             forms.add((key, SHORTEST))
         return frozenset(forms)
@@ -661,21 +664,23 @@ def _krl_extra(self: KrlBackend, node: ir.Instr, rec: object, ctx: KrlContext) -
 _pos_plain = KrlBackend._pos
 
 
-def _k_pos(self: KrlBackend, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
+def _k_pos(self: KrlBackend, target: ir.CartesianTarget, q: np.ndarray | None,
+           branch: ir.Config | None,
            node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
     """As KrlBackend._pos; in a vendor loop, a PTP target every iteration reaches only as a
     FRAME (see _ptp_key) is one, and an offset target is a work copy moved by the counters."""
     forms = ctx.loops.choices.get(node.uid, frozenset())
     if node.kind is ir.MotionKind.JOINT and forms and all(f[1] == SHORTEST for f in forms):
         self.branch_or_default(branch, node)
-        name = ctx.module.data.add(hint or target.name or "p", f"FRAME:{{{frame_text(target.in_frame)}}}",
+        frame = f"FRAME:{{{frame_text(target.in_frame)}}}"
+        name = ctx.module.data.add(hint or target.name or "p", frame,
                                    node.span)
     else:
         name = _pos_plain(self, target, q, branch, node, ctx, hint)
     offset = ctx.loops.offsets.get((node.uid, "via" if target is node.via else "target"))
     if offset is None:
         return name
-    terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 3)))
+    terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 6)))
     if terms == ("0", "0", "0"):
         return name
     value = next(v for n, v in ctx.module.data.items if n == name)
@@ -707,11 +712,13 @@ def _k_loop(self: KrlBackend, node: ir.Loop, ctx: KrlContext) -> list[str]:
         head = f"FOR {counter}={template.var.first} TO {template.var.last}"
         return [head] + self.indent(self.body(template.body, ctx), "  ") + ["ENDFOR"]
 
-    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx), move_config=krl_config,
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
+                          move_config=krl_config,
                           extra_key=lambda n, r: _krl_extra(self, n, r, ctx))
 
 
-KrlBackend.EMIT = {**KrlBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.While: "while_",
+KrlBackend.EMIT = {**KrlBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                   ir.While: "while_",
                    ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
 KrlBackend.var_decl = _k_var_decl  # type: ignore[attr-defined]
 KrlBackend.assign = _k_assign  # type: ignore[attr-defined]

@@ -161,8 +161,10 @@ class Unrolled:
         at = f" at {self.iteration}" if self.iteration else ""
         if self.peeled is not None:
             value = f"{self.loop.var or 'iteration'} = {self.last.value}"
-            return (f"{_loop_label(self.loop)}: the last iteration ({value}) is written after the "
-                    f"loop{at}: {self.what}")
+            return (
+                f"{_loop_label(self.loop)}: the last iteration ({value}) is written after the "
+                f"loop{at}: {self.what}"
+            )
         return f"{_loop_label(self.loop)} unrolled{at}: {self.what}"
 
 
@@ -243,8 +245,15 @@ def analyse(
         peeled = None
         if peel and len(loop.iterations) > 2:
             rest = replace(loop, iterations=loop.iterations[:-1], last=loop.last - 1)
-            found = analyse(rest, record, config_key=config_key, extra_key=extra_key,
-                            move_config=move_config, config_match=config_match, peel=False)
+            found = analyse(
+                rest,
+                record,
+                config_key=config_key,
+                extra_key=extra_key,
+                move_config=move_config,
+                config_match=config_match,
+                peel=False,
+            )
             peeled = found if isinstance(found, LoopTemplate) else None
         return Unrolled(loop, d.iteration, d.uid, d.what, d.span or loop.span, peeled)
     return _with_targets(holder[loop.uid], targets)
@@ -396,8 +405,12 @@ def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
         if isinstance(xb, frozenset):  # forms this iteration accepts: one must suit them all
             left = run.options.get(t.uid, xt if isinstance(xt, frozenset) else frozenset()) & xb
             if not left:
-                raise _Differs(b.uid, f"the {_kind(b)} has no written form that suits every "
-                               f"iteration ({_show(sorted(map(repr, xb)))})", b.span)
+                raise _Differs(
+                    b.uid,
+                    f"the {_kind(b)} has no written form that suits every "
+                    f"iteration ({_show(sorted(map(repr, xb)))})",
+                    b.span,
+                )
             run.options[t.uid] = left
             return
         et, eb = _key(xt), _key(xb)
@@ -458,8 +471,11 @@ def _values_label(values: dict[int, int], run: _Run) -> str:
     return iteration_label(tuple((run.loop_vars[uid], v) for uid, v in values.items()))
 
 
-def _with_targets(template: LoopTemplate, targets: dict[tuple[int, str], TargetOffset],
-                  choices: dict[int, frozenset[Hashable]] | None = None) -> LoopTemplate:
+def _with_targets(
+    template: LoopTemplate,
+    targets: dict[tuple[int, str], TargetOffset],
+    choices: dict[int, frozenset[Hashable]] | None = None,
+) -> LoopTemplate:
     """The template and its nested ones with every target's offsets and every choice."""
     choices = template.choices if choices is None else choices
     inner = {uid: _with_targets(sub, targets, choices) for uid, sub in template.inner.items()}

@@ -412,7 +412,7 @@ RapidBackend.attach = _grip_load  # type: ignore[attr-defined]
 RapidBackend.detach = _grip_load  # type: ignore[attr-defined]
 
 
-# --------------------------------------------------------------------------- runtime logic (issue #15)
+# ----------------------------------------------------------------- runtime logic (issue #15)
 #
 # Sources (ABB "Technical reference manual - RAPID Instructions, Functions and Data types",
 # 3HAC050917-001, and "Technical reference manual - RAPID overview" 3HAC050947-001):
@@ -440,6 +440,8 @@ RapidBackend.detach = _grip_load  # type: ignore[attr-defined]
 #     blocked"), which ends the task; `Stop` only pauses it (execution continues at the next
 #     instruction on restart), so it is not `stop`.
 
+from typing import Any  # noqa: E402
+
 from rmot.backends import loops as _loops  # noqa: E402
 from rmot.backends import runtime as _rt  # noqa: E402
 
@@ -453,7 +455,7 @@ def _offs(ctx: RapidContext, node: ir.Move, role: str, name: str) -> str:
     offset = ctx.loops.offsets.get((node.uid, role))
     if offset is None:
         return name
-    terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 3)))
+    terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 6)))
     if terms == ("0", "0", "0"):
         return name
     return f"Offs({name},{','.join(terms)})"
@@ -463,7 +465,8 @@ def _dialect(self: RapidBackend, ctx: RapidContext, span: object) -> _rt.ExprDia
     return _rt.ExprDialect(
         true="TRUE", false="FALSE", and_="AND", or_="OR", not_="NOT ", compare=_RAPID_COMPARE,
         var=lambda v: ctx.names.name(v.name),
-        digital=lambda c: f"DInput({self._signal(ctx, 'di', c.port, c.signal, span)}) = {int(c.value)}",
+        digital=lambda c: (f"DInput({self._signal(ctx, 'di', c.port, c.signal, span)}) "
+                           f"= {int(c.value)}"),
         analog=lambda a: f"AInput({self._signal(ctx, 'ai', a.port, a.signal, span)})",
         number=lambda v: _rt.trimmed(fmt(v, 6)), compare_binds_tighter=True,
     )
@@ -529,15 +532,15 @@ def _stop(self: RapidBackend, node: ir.Stop, ctx: RapidContext) -> list[str]:
     return ["EXIT;"]
 
 
-def rapid_conf(q: object, branch: ir.Config | None) -> object:
+def rapid_conf(q: Any, branch: ir.Config | None) -> Hashable:
     """The confdata RAPID writes for joints `q` on `branch` (cf1, cf4, cf6, cfx): a vendor
     loop's one robtarget must carry every iteration's."""
     if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
         return None
-    return (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
+    return (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))
 
 
-def rapid_conf_match(first: object, other: object) -> bool:
+def rapid_conf_match(first: Any, other: Any) -> bool:
     r"""The template's confdata (written once for every iteration) reaches another iteration's
     when cfx (the IK branch) is equal and cf1, cf4, cf6 differ by at most one quadrant.
 
@@ -552,8 +555,7 @@ def rapid_conf_match(first: object, other: object) -> bool:
     if first is None or other is None:
         return first == other
     a, b = first, other  # (cf1, cf4, cf6, cfx)
-    return (a[3] == b[3]  # type: ignore[index]
-            and all(abs(a[i] - b[i]) <= 1 for i in range(3)))  # type: ignore[index]
+    return bool(a[3] == b[3] and all(abs(a[i] - b[i]) <= 1 for i in range(3)))
 
 
 def _loop(self: RapidBackend, node: ir.Loop, ctx: RapidContext) -> list[str]:
@@ -579,7 +581,8 @@ def _r_proc_call(self: RapidBackend, node: ir.ProcCall, ctx: RapidContext) -> li
     return _proc_call_plain(self, node, ctx)
 
 
-RapidBackend.EMIT = {**RapidBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign", ir.While: "while_",
+RapidBackend.EMIT = {**RapidBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                     ir.While: "while_",
                      ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
 RapidBackend.var_decl = _var_decl  # type: ignore[attr-defined]
 RapidBackend.assign = _assign  # type: ignore[attr-defined]

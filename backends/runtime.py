@@ -33,8 +33,6 @@ __all__ = [
     "loop_template",
     "offset_terms",
     "unrolled",
-    "uses_analog",
-    "var_decls",
 ]
 
 
@@ -86,8 +84,9 @@ def expr_text(e: Any, d: ExprDialect) -> str:
     if isinstance(e, ir.Logic):
         word = d.and_ if e.op == "and" else d.or_
         bare = (ir.Compare, ir.InputCondition) if d.compare_binds_tighter else ()
-        return f" {word} ".join(expr_text(o, d) if isinstance(o, bare) else _operand(o, d)
-                                for o in e.operands)
+        return f" {word} ".join(
+            expr_text(o, d) if isinstance(o, bare) else _operand(o, d) for o in e.operands
+        )
     if isinstance(e, ir.Not):
         return f"{d.not_}{_operand(e.operand, d)}"
     raise TypeError(f"no runtime expression form for {type(e).__name__}")
@@ -130,20 +129,28 @@ class LoopState:
         self.templates.update(template.inner)
 
 
-def loop_template(backend: Any, node: ir.Loop, ctx: Any, *,
-                  config_key: loops.ConfigKey = loops.branch_and_turns,
-                  move_config: loops.MoveConfigKey | None = None,
-                  config_match: loops.ConfigMatch | None = None,
-                  extra_key: loops.ExtraKey | None = None,
-                  alternatives: tuple[dict[str, Any], ...] = (),
-                  ) -> tuple[loops.LoopTemplate | loops.Unrolled, int]:
+def loop_template(
+    backend: Any,
+    node: ir.Loop,
+    ctx: Any,
+    *,
+    config_key: loops.ConfigKey = loops.branch_and_turns,
+    move_config: loops.MoveConfigKey | None = None,
+    config_match: loops.ConfigMatch | None = None,
+    extra_key: loops.ExtraKey | None = None,
+    alternatives: tuple[dict[str, Any], ...] = (),
+) -> tuple[loops.LoopTemplate | loops.Unrolled, int]:
     """The analysis of `node` for `backend` (its `unroll` option forces unrolling) and which
     set of keys found it (0: the keyword arguments; k: alternatives[k - 1], tried in turn
     when the ones before do not give one vendor loop); a loop not written as one vendor loop
     gets W420 with the first reason (not when --unroll asked for it)."""
     unroll = bool(getattr(backend, "unroll", False))
-    first = {"config_key": config_key, "move_config": move_config, "config_match": config_match,
-             "extra_key": extra_key}
+    first = {
+        "config_key": config_key,
+        "move_config": move_config,
+        "config_match": config_match,
+        "extra_key": extra_key,
+    }
     result: loops.Unrolled | None = None
     best = 0
     for k, keys in enumerate((first, *({**first, **alt} for alt in alternatives))):
@@ -161,10 +168,15 @@ def loop_template(backend: Any, node: ir.Loop, ctx: Any, *,
     return result, best
 
 
-def loop_lines(backend: Any, node: ir.Loop, ctx: Any,
-               write: Callable[[loops.LoopTemplate], list[str]],
-               body: Callable[[tuple[ir.Instr, ...]], list[str]],
-               found: Callable[[loops.LoopTemplate, int], None] | None = None, **keys: Any) -> list[str]:
+def loop_lines(
+    backend: Any,
+    node: ir.Loop,
+    ctx: Any,
+    write: Callable[[loops.LoopTemplate], list[str]],
+    body: Callable[[tuple[ir.Instr, ...]], list[str]],
+    found: Callable[[loops.LoopTemplate, int], None] | None = None,
+    **keys: Any,
+) -> list[str]:
     """A Loop as the vendor writes it: `write(template)` for a vendor loop (a nested loop of a
     template being written uses its own template), else, when all iterations but the last
     fit, that loop and then the last iteration, else every iteration (`unrolled`).
@@ -258,36 +270,3 @@ def trimmed(text: str) -> str:
     if "." not in text:
         return text
     return text.rstrip("0").rstrip(".") or "0"
-
-
-def var_decls(body: tuple[ir.Instr, ...]) -> list[ir.VarDecl]:
-    """Every VarDecl of a task body (at any depth), in source order, one per name."""
-    seen: dict[str, ir.VarDecl] = {}
-    for node in ir.walk(body):
-        if isinstance(node, ir.VarDecl):
-            seen.setdefault(node.name, node)
-    return list(seen.values())
-
-
-def uses_analog(body: tuple[ir.Instr, ...]) -> list[int]:
-    """The analog input ports read anywhere in `body`, sorted."""
-    ports: set[int] = set()
-
-    def visit(v: Any) -> None:
-        if isinstance(v, ir.AnalogInput):
-            ports.add(v.port)
-        elif isinstance(v, tuple):
-            for x in v:
-                visit(x)
-        elif isinstance(v, (ir.Arith, ir.Compare)):
-            visit(v.left)
-            visit(v.right)
-        elif isinstance(v, ir.Logic):
-            visit(v.operands)
-        elif isinstance(v, ir.Not):
-            visit(v.operand)
-
-    for node in ir.walk(body):
-        for name in ("condition", "value", "init"):
-            visit(getattr(node, name, None))
-    return sorted(ports)

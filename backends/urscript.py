@@ -143,7 +143,8 @@ class UrScriptBackend(Backend):
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, prog, body = self.open_task(task)
-        ctx = task.with_state(UrContext, routine_of=self.routine_table(names, body, task), names=names)
+        ctx = task.with_state(UrContext, routine_of=self.routine_table(names, body, task),
+                              names=names)
         main = self.block(body, ctx)
         self.extend(names.diagnostics)
         lines = self.header(ctx) + [f"def {prog}():"]
@@ -318,7 +319,7 @@ UrScriptBackend.attach = _set_payload  # type: ignore[attr-defined]
 UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]
 
 
-# --------------------------------------------------------------------------- runtime logic (issue #15)
+# ----------------------------------------------------------------- runtime logic (issue #15)
 #
 # Sources: Universal Robots, "The URScript Programming Language" (e-Series, PolyScope 5.x):
 #   * variables: `global NAME = value` at the top of the program makes NAME visible in every
@@ -365,8 +366,10 @@ def _ur_dialect(self: UrScriptBackend, ctx: UrContext, span: object) -> _rt.Expr
     def analog(a: ir.AnalogInput) -> str:
         low, high = ANALOG_IN_PORTS
         if not low <= a.port <= high:
-            self.unsupported(_codes_loops.ANALOG_IN_PORT, f"analog input port must be in {low}..{high} "
-                             f"for get_standard_analog_in (got {a.port})", span)  # type: ignore[arg-type]
+            self.unsupported(_codes_loops.ANALOG_IN_PORT,
+                             f"analog input port must be in {low}..{high} "
+                             f"for get_standard_analog_in (got {a.port})",
+                             span)  # type: ignore[arg-type]
         domain = f"set_standard_analog_input_domain({a.port}, 1)"
         if domain not in ctx.loops.decls:
             ctx.loops.decls.append(domain)
@@ -473,14 +476,16 @@ def _u_stop(self: UrScriptBackend, node: ir.Stop, ctx: UrContext) -> list[str]:
     return ["halt"]
 
 
-def _offset_pose(self: UrScriptBackend, base: ir.Pose, node: ir.Move, role: str, ctx: UrContext) -> str:
-    """`p[...]` or, inside a vendor loop, `pose_add(p[...], p[dx, dy, dz, 0, 0, 0])` (base frame)."""
+def _offset_pose(self: UrScriptBackend, base: ir.Pose, node: ir.Move, role: str,
+                 ctx: UrContext) -> str:
+    """`p[...]` or, in a vendor loop, `pose_add(p[...], p[dx, dy, dz, 0, 0, 0])` (base frame)."""
     text = pose_text(base)
     offset = _rt.moving_offset(ctx.loops, node.uid, role)
     if offset is None:
         return text
     rotation = node.frame.pose.matrix()[:3, :3]
-    terms = _rt.offset_terms(offset, ctx.loops.counters, 1.0, lambda v: _rt.trimmed(fmt(v, POS_DECIMALS)),
+    terms = _rt.offset_terms(offset, ctx.loops.counters, 1.0,
+                             lambda v: _rt.trimmed(fmt(v, POS_DECIMALS)),
                              frame=rotation)
     if terms == ("0", "0", "0"):
         return text
@@ -507,7 +512,8 @@ def _u_move(self: UrScriptBackend, node: ir.Move, ctx: UrContext) -> list[str]:
     if node.kind is ir.MotionKind.JOINT:
         v_max, a_max = self.joint_limits(ctx, node)
         q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"  # type: ignore[arg-type]
-        return [f"movej(get_inverse_kin({to}, qnear={q}), a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
+        accel = fmt(m.joint_accel * a_max, RATE_DECIMALS)
+        return [f"movej(get_inverse_kin({to}, qnear={q}), a={accel}, "
                 f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{self.duration_arg(m)}, r={r})"]
     speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
     if node.kind is ir.MotionKind.LINEAR:
@@ -532,7 +538,8 @@ def _u_loop(self: UrScriptBackend, node: ir.Loop, ctx: UrContext) -> list[str]:
         return ([f"{counter} = {template.var.first}", f"while {counter} <= {template.var.last}:"]
                 + self.indent(body + [f"{counter} = {counter} + 1"], self.INDENT) + ["end"])
 
-    return _rt.loop_lines(self, node, ctx, write, lambda body: self.block(body, ctx), extra_key=_ur_extra)
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.block(body, ctx),
+                          extra_key=_ur_extra)
 
 
 _u_proc_call_plain = UrScriptBackend.proc_call

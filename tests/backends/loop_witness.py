@@ -49,9 +49,13 @@ def arith(text: str, env: dict[str, float]) -> float:
 def quat_matrix(w: float, x: float, y: float, z: float) -> np.ndarray:
     n = math.sqrt(w * w + x * x + y * y + z * z)
     w, x, y, z = w / n, x / n, y / n, z / n
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
 
 
 def rot(axis: int, deg: float) -> np.ndarray:
@@ -101,12 +105,19 @@ def rapid_targets(text: str) -> list[Pose]:
     points: dict[str, Pose] = {}
     wobjs: dict[str, Pose] = {}
     for ln in lines:
-        m = re.match(rf"CONST robtarget (\w+):=\[\[({num}),({num}),({num})\],\[({num}),({num}),({num}),({num})\]", ln)
+        m = re.match(
+            rf"CONST robtarget (\w+):=\[\[({num}),({num}),({num})\],"
+            rf"\[({num}),({num}),({num}),({num})\]",
+            ln,
+        )
         if m:
             v = [float(g) for g in m.groups()[1:]]
             points[m.group(1)] = (np.array(v[:3]) / 1000.0, quat_matrix(*v[3:]))
-        m = re.match(rf'TASK PERS wobjdata (\w+):=\[FALSE,TRUE,"",\[\[({num}),({num}),({num})\],'
-                     rf"\[({num}),({num}),({num}),({num})\]\]", ln)
+        m = re.match(
+            rf'TASK PERS wobjdata (\w+):=\[FALSE,TRUE,"",\[\[({num}),({num}),({num})\],'
+            rf"\[({num}),({num}),({num}),({num})\]\]",
+            ln,
+        )
         if m:
             v = [float(g) for g in m.groups()[1:]]
             wobjs[m.group(1)] = (np.array(v[:3]) / 1000.0, quat_matrix(*v[3:]))
@@ -114,7 +125,7 @@ def rapid_targets(text: str) -> list[Pose]:
     for i, ln in enumerate(lines):
         m = re.match(r"PROC (\w+)\(\)", ln)
         if m:
-            procs[m.group(1)] = lines[i + 1:lines.index("ENDPROC", i)]
+            procs[m.group(1)] = lines[i + 1 : lines.index("ENDPROC", i)]
     out: list[Pose] = []
     opens, closes = re.compile(r"^(FOR|IF|WHILE) "), re.compile(r"^(ENDFOR|ENDIF|ENDWHILE)$")
 
@@ -126,13 +137,16 @@ def rapid_targets(text: str) -> list[Pose]:
             if m:
                 end = _block_end(body, i, opens, closes)
                 for v in range(int(m.group(2)), int(m.group(3)) + 1):
-                    run(body[i + 1:end], {**env, m.group(1): v})
+                    run(body[i + 1 : end], {**env, m.group(1): v})
                 i = end + 1
                 continue
             if opens.match(ln):  # IF (timeout branches) and WHILE: not on the main timeline here
                 i = _block_end(body, i, opens, closes) + 1
                 continue
-            m = re.match(r"Move[JL] (Offs\((\w+),([^,]+),([^,]+),(.+?)\)|(\w+)), \w.*?(?:\\WObj:=(\w+))?;$", ln)
+            m = re.match(
+                r"Move[JL] (Offs\((\w+),([^,]+),([^,]+),(.+?)\)|(\w+)), \w.*?(?:\\WObj:=(\w+))?;$",
+                ln,
+            )
             if m:
                 name = m.group(2) or m.group(6)
                 pos, r = points[name]
@@ -154,7 +168,9 @@ def rapid_targets(text: str) -> list[Pose]:
 
 def _krl_pose(text: str) -> Pose:
     v = dict(re.findall(r"([XYZABC]) (-?[0-9.]+)", text))
-    r = rot(2, float(v["A"])) @ rot(1, float(v["B"])) @ rot(0, float(v["C"]))  # KSS: Rz(A) Ry(B) Rx(C)
+    r = (
+        rot(2, float(v["A"])) @ rot(1, float(v["B"])) @ rot(0, float(v["C"]))
+    )  # KSS: Rz(A) Ry(B) Rx(C)
     return np.array([float(v["X"]), float(v["Y"]), float(v["Z"])]) / 1000.0, r
 
 
@@ -169,7 +185,7 @@ def krl_targets(src: str, dat: str) -> list[Pose]:
     for i, ln in enumerate(lines):
         m = re.match(r"DEF (\w+)\(", ln)
         if m:
-            routines[m.group(1)] = lines[i + 1:lines.index("END", i)]
+            routines[m.group(1)] = lines[i + 1 : lines.index("END", i)]
     main = next(iter(routines))
     out: list[Pose] = []
     state = {"base": (np.zeros(3), np.eye(3))}
@@ -184,7 +200,7 @@ def krl_targets(src: str, dat: str) -> list[Pose]:
             if m:
                 end = _block_end(body, i, opens, closes)
                 for v in range(int(m.group(2)), int(m.group(3)) + 1):
-                    run(body[i + 1:end], {**env, m.group(1): v})
+                    run(body[i + 1 : end], {**env, m.group(1): v})
                 i = end + 1
                 continue
             if opens.match(ln):
@@ -192,7 +208,9 @@ def krl_targets(src: str, dat: str) -> list[Pose]:
                 continue
             m = re.match(r"\$BASE=(\$?\w+)$", ln)
             if m:
-                state["base"] = (np.zeros(3), np.eye(3)) if m.group(1) == "$NULLFRAME" else data[m.group(1)]
+                state["base"] = (
+                    (np.zeros(3), np.eye(3)) if m.group(1) == "$NULLFRAME" else data[m.group(1)]
+                )
             m = re.match(r"(\w+)=(\w+)$", ln)
             if m and m.group(2) in data:
                 work[m.group(1)] = list(data[m.group(2)][0])
@@ -229,7 +247,7 @@ def ur_targets(text: str) -> list[Pose | None]:
     for i, ln in enumerate(stripped):
         m = re.match(r"def (\w+)\(\):$", ln)
         if m:
-            defs[m.group(1)] = stripped[i + 1:_block_end(stripped, i, opens, closes)]
+            defs[m.group(1)] = stripped[i + 1 : _block_end(stripped, i, opens, closes)]
     program = next(iter(defs))
     num = r"-?[0-9.]+"
     pose_rx = re.compile(rf"p\[({num}), ({num}), ({num}), ({num}), ({num}), ({num})\]")
@@ -254,7 +272,7 @@ def ur_targets(text: str) -> list[Pose | None]:
                 m = re.match(r"while (\w+) <= (-?\d+):$", ln)
                 if m:  # a counted loop: the counter steps inside the body
                     while env[m.group(1)] <= int(m.group(2)):
-                        run(body[i + 1:end], env)
+                        run(body[i + 1 : end], env)
                 i = end + 1
                 continue
             m = re.match(r"(\w+) = (.+)$", ln)
@@ -263,7 +281,9 @@ def ur_targets(text: str) -> list[Pose | None]:
                     env[m.group(1)] = arith(m.group(2), env)
                 except (ValueError, KeyError):
                     pass
-            m = re.match(r"movel\((.*), a=", ln) or re.match(r"movej\(get_inverse_kin\((.*), qnear=", ln)
+            m = re.match(r"movel\((.*), a=", ln) or re.match(
+                r"movej\(get_inverse_kin\((.*), qnear=", ln
+            )
             if m:
                 out.append(pose_of(m.group(1), env))
             elif re.match(r"movej\(\[", ln):

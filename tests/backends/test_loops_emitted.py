@@ -25,13 +25,17 @@ PROGRAMS = Path(__file__).parent / "programs"
 LOOP_VENDORS = ("rapid", "krl", "urscript")
 
 
-def verified_poses(plan: planned.Plan, *, cartesian_only: bool) -> list[tuple[np.ndarray, np.ndarray] | None]:
+def verified_poses(
+    plan: planned.Plan, *, cartesian_only: bool
+) -> list[tuple[np.ndarray, np.ndarray] | None]:
     """The TCP pose (base frame) the planner verified at every move of the main timeline, in
     execution order (None for a joint-target move when not `cartesian_only`)."""
     tp = plan.tasks[0]
     moves = {n.uid: n for n in ir.walk(tp.task.body) if isinstance(n, ir.Move)}
-    recs = sorted((r for r in tp.records if r.variant == 0 and r.uid in moves and r.q_target is not None),
-                  key=lambda r: r.t_start)
+    recs = sorted(
+        (r for r in tp.records if r.variant == 0 and r.uid in moves and r.q_target is not None),
+        key=lambda r: r.t_start,
+    )
     out: list[tuple[np.ndarray, np.ndarray] | None] = []
     for r in recs:
         cart = isinstance(moves[r.uid].target, ir.CartesianTarget)
@@ -52,7 +56,9 @@ def witness(vendor: str, files: dict[str, str]) -> list[tuple[np.ndarray, np.nda
     return ur_targets(next(iter(files.values())))
 
 
-def assert_same_poses(vendor: str, files: dict[str, str], plan: planned.Plan, tol: float = 2e-6) -> None:
+def assert_same_poses(
+    vendor: str, files: dict[str, str], plan: planned.Plan, tol: float = 2e-6
+) -> None:
     got = witness(vendor, files)
     want = verified_poses(plan, cartesian_only=vendor != "urscript")
     assert len(got) == len(want), (len(got), len(want))
@@ -81,7 +87,9 @@ def pallet_plan() -> planned.Plan:
 
 
 @pytest.mark.parametrize("vendor", LOOP_VENDORS)
-def test_palletiser_loops_reach_every_verified_placement(pallet_plan: planned.Plan, vendor: str) -> None:
+def test_palletiser_loops_reach_every_verified_placement(
+    pallet_plan: planned.Plan, vendor: str
+) -> None:
     """The 3x4x3 palletiser: the emitted loops, run by the witness, give the 36 placements'
     verified poses in order (and every pick, approach and retreat between them)."""
     result = emit(vendor, pallet_plan)
@@ -114,9 +122,13 @@ def test_compile_unroll_flag(tmp_path: Path) -> None:
     """`rmot compile --unroll` reaches the backends (threaded through compile_program)."""
     src = PROGRAMS / "rows.rmot"
     looped, unrolled = tmp_path / "a", tmp_path / "b"
-    r1 = CliRunner().invoke(_cli(), ["compile", str(src), "--target", "rapid", "--no-cache", "-o", str(looped)])
-    r2 = CliRunner().invoke(_cli(), ["compile", str(src), "--target", "rapid", "--unroll", "--no-cache",
-                                        "-o", str(unrolled)])
+    r1 = CliRunner().invoke(
+        _cli(), ["compile", str(src), "--target", "rapid", "--no-cache", "-o", str(looped)]
+    )
+    r2 = CliRunner().invoke(
+        _cli(),
+        ["compile", str(src), "--target", "rapid", "--unroll", "--no-cache", "-o", str(unrolled)],
+    )
     assert r1.exit_code == 0 and r2.exit_code == 0, (r1.output, r2.output)
     a, b = (p / "rapid" / "rows.mod" for p in (looped, unrolled))
     assert "FOR layer FROM 1 TO 2 DO" in a.read_text() and "FOR " not in b.read_text()
@@ -170,7 +182,9 @@ def example_rows() -> planned.Plan:
 def test_other_orientation_is_unrolled_with_the_iteration_named(vendor: str) -> None:
     turned = ir.Pose.from_xyz_rpy(0, 0, 0, math.pi, 0, math.pi / 2).quaternion
     down = place(0, 0, 0).quaternion
-    plan, _ = palletiser(2, 3, pose=lambda a, b: place(0.1, 0.06 * b, 0.05 * a, turned if (a, b) == (0, 1) else down))
+    plan, _ = palletiser(
+        2, 3, pose=lambda a, b: place(0.1, 0.06 * b, 0.05 * a, turned if (a, b) == (0, 1) else down)
+    )
     result = emit(vendor, plan)
     messages = w420(result)
     assert any("layer = 0, row = 1" in m and "orientation" in m for m in messages), messages
@@ -217,8 +231,9 @@ def program_plans() -> dict[str, planned.Plan]:
 
 @pytest.mark.parametrize("vendor", LOOP_VENDORS)
 @pytest.mark.parametrize("name", ["rows", "tending"])
-def test_golden_runtime_programs(program_plans: dict[str, planned.Plan], name: str, vendor: str,
-                                 tmp_path: Path) -> None:
+def test_golden_runtime_programs(
+    program_plans: dict[str, planned.Plan], name: str, vendor: str, tmp_path: Path
+) -> None:
     """Hand-reviewed golden files (golden/<vendor>/runtime_<name>__*), each passing the
     vendor's independent validator."""
     result = emit(vendor, program_plans[name])
