@@ -122,7 +122,9 @@ def _kind(node: ir.Instr | None) -> str:
         return f"move_{node.kind.name.lower()}"
     return {ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog", ir.Pulse: "pulse",
             ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if", ir.Sync: "sync",
-            ir.Native: "native", ir.ProcCall: "proc_call", ir.Attach: "attach", ir.Detach: "detach"}[type(node)]
+            ir.Native: "native", ir.ProcCall: "proc_call", ir.Attach: "attach", ir.Detach: "detach",
+            ir.VarDecl: "var", ir.Assign: "assign", ir.Loop: "loop", ir.While: "while",  # issue #15
+            ir.WaitCondition: "wait_condition", ir.Stop: "stop"}[type(node)]
 
 
 def _pose(pose: ir.Pose | None) -> dict[str, Any] | None:
