@@ -570,34 +570,8 @@ def _reads(v: Any, name: str) -> bool:
 
 def bind_loop_var(body: tuple[ir.Instr, ...], name: str, value: int) -> tuple[ir.Instr, ...]:
     """`body` with every read of the loop variable `name` replaced by Const(value) (what an
-    unrolled iteration writes: the vendor has no loop counter there)."""
-    return tuple(_bind(node, name, value) for node in body)
+    unrolled iteration writes: the vendor has no loop counter there); the front end's
+    compiler/ir_tree.bind_loop_variable, the one walker of the IR's nesting."""
+    from rmot.compiler.ir_tree import bind_loop_variable
 
-
-def _bind(v: Any, name: str, value: int) -> Any:
-    if isinstance(v, ir.VarRef):
-        return ir.Const(value, ir.ValueType.INT) if v.name == name else v
-    if isinstance(v, ir.Loop) and v.var == name:
-        return v  # an inner loop of the same name shadows it
-    if isinstance(v, tuple):
-        return tuple(_bind(x, name, value) for x in v)
-    if is_dataclass(v) and not isinstance(
-        v,
-        (
-            ir.Pose,
-            type,
-            ir.CartesianTarget,
-            ir.JointTarget,
-            ir.Motion,
-            ir.ToolRef,
-            ir.FrameRef,
-            ir.Config,
-        ),
-    ):
-        changes = {
-            f.name: _bind(getattr(v, f.name), name, value)
-            for f in fields(v)
-            if f.name != "span" and f.init
-        }
-        return replace(v, **changes)
-    return v
+    return bind_loop_variable(body, name, value)
