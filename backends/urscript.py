@@ -324,7 +324,10 @@ UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]
 # Sources: Universal Robots, "The URScript Programming Language" (e-Series, PolyScope 5.x):
 #   * variables: `global NAME = value` at the top of the program makes NAME visible in every
 #     function defined in it (the procs' `def`s); a plain assignment in a function makes a
-#     local ("Scoping rules"). Types int, float, bool ("Variables and types"); `True`/`False`.
+#     local ("Scoping rules"); PolyScope writes its own programs' variables the same way,
+#     `global Waypoint_1_p=p[...]` right inside `def <program>():` (the .script files PolyScope
+#     saves, e.g. as quoted in public UR/ROS repositories). Types int, float, bool ("Variables
+#     and types"); `True`/`False`.
 #   * flow: `if c:` ... `elif`/`else:` ... `end`, `while c:` ... `end`; operators `and`,
 #     `or`, `not`, `==`, `!=`, `<`, `<=`, `>`, `>=` ("Flow of control", "Operators").
 #     A loop must use up physical time in every iteration (a thread that never does is
