@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Hashable
-from dataclasses import dataclass, fields, is_dataclass, replace
+from dataclasses import dataclass, field, fields, is_dataclass, replace
 from enum import Enum
 from typing import Any
 
@@ -37,6 +37,8 @@ from rmot.compiler import ir, planned
 
 __all__ = [
     "ConfigKey",
+    "ConfigMatch",
+    "MoveConfigKey",
     "ExtraKey",
     "LoopTemplate",
     "LoopVar",
@@ -64,6 +66,14 @@ ConfigKey = Callable[[np.ndarray, "ir.Config | None"], Hashable]
 """The vendor's configuration data of one joint solution (q, branch): what its program writes
 for a Cartesian target (RAPID confdata, KRL Status/Turn, ...). Equal keys = one target fits."""
 
+MoveConfigKey = Callable[[ir.Move, np.ndarray, "ir.Config | None"], Hashable]
+"""A vendor whose configuration data depends on the motion (KRL: PTP reads Status and Turn,
+LIN and CIRC only follow the current joints) gives this instead of a ConfigKey."""
+
+ConfigMatch = Callable[[Hashable, Hashable], bool]
+"""(the first iteration's configuration key, another iteration's) -> True when the one target
+the vendor loop writes (with the first iteration's configuration data) reaches the other's."""
+
 ExtraKey = Callable[[ir.Instr, "planned.InstructionRecord | None"], Hashable]
 """Anything else a vendor prints from the record of an instruction (RAPID: a joint move's
 planned duration): the iterations must agree on it too."""
@@ -80,7 +90,8 @@ def branch_and_turns(q: np.ndarray, branch: ir.Config | None) -> Hashable:
 @dataclass(frozen=True)
 class LoopVar:
     """One loop of the analysed nest: `name` is the `for` variable (None for `repeat n`);
-    the vendor loop counts from `first` to `last`."""
+    the vendor loop counts from `first` to `last`, both run (`last` is the Loop's exclusive
+    end minus one: `for i in 0 .. 3` runs 0, 1, 2, so first 0 and last 2)."""
 
     uid: int
     name: str | None
@@ -120,6 +131,9 @@ class LoopTemplate:
     body: tuple[ir.Instr, ...]
     targets: dict[tuple[int, str], TargetOffset]
     inner: dict[int, LoopTemplate]
+    # template uid -> the forms every iteration accepts, where the vendor's extra_key gave a
+    # frozenset of acceptable forms (their intersection over the iterations, never empty)
+    choices: dict[int, frozenset[Hashable]] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -133,16 +147,30 @@ class Unrolled:
     uid: int | None
     what: str
     span: Any = None
+    # every iteration but the last fits one vendor loop (typically: the last iteration's final
+    # move blends into what follows the loop where the others stop): the vendor may write
+    # this template and then the last iteration on its own (`Unrolled.last`)
+    peeled: LoopTemplate | None = None
+
+    @property
+    def last(self) -> ir.LoopIteration:
+        return self.loop.iterations[-1]
 
     @property
     def message(self) -> str:
         at = f" at {self.iteration}" if self.iteration else ""
+        if self.peeled is not None:
+            value = f"{self.loop.var or 'iteration'} = {self.last.value}"
+            return (
+                f"{_loop_label(self.loop)}: the last iteration ({value}) is written after the "
+                f"loop{at}: {self.what}"
+            )
         return f"{_loop_label(self.loop)} unrolled{at}: {self.what}"
 
 
 def _loop_label(loop: ir.Loop) -> str:
     if loop.var is None:
-        return f"repeat loop (0 .. {loop.last})"
+        return f"repeat {loop.last - loop.first} loop"
     return f"loop 'for {loop.var} in {loop.first} .. {loop.last}'"
 
 
@@ -173,9 +201,12 @@ class _Run:
     record: Record
     config_key: ConfigKey
     extra_key: ExtraKey | None
+    move_config: MoveConfigKey | None
     # (template uid, role) -> [(loop uid -> value, in_frame pose, instruction, role)]
     slots: dict[tuple[int, str], list[tuple[dict[int, int], ir.Pose, ir.Instr, str]]]
     loop_vars: dict[int, LoopVar]
+    config_match: ConfigMatch | None = None
+    options: dict[int, frozenset[Hashable]] = field(default_factory=dict)
 
 
 class _Differs(Exception):
@@ -191,20 +222,40 @@ def analyse(
     config_key: ConfigKey = branch_and_turns,
     extra_key: ExtraKey | None = None,
     unroll: bool = False,
+    move_config: MoveConfigKey | None = None,
+    config_match: ConfigMatch | None = None,
+    peel: bool = True,
 ) -> LoopTemplate | Unrolled:
     """A template when `loop` (with every loop nested in it) can be one vendor loop, else
-    why not. `unroll` (`rmot compile --unroll`) always answers Unrolled ("--unroll")."""
+    why not. `unroll` (`rmot compile --unroll`) always answers Unrolled ("--unroll").
+    `move_config`, when given, replaces `config_key` (it also sees the move); `config_match`
+    (first iteration's key, this iteration's key) -> bool replaces key equality. With `peel`,
+    an Unrolled whose iterations but the last fit one loop carries that loop (`peeled`)."""
     if unroll:
         return Unrolled(loop, "", None, "--unroll writes every iteration", loop.span)
     if not loop.iterations:
         return Unrolled(loop, "", None, "the range is empty (no iteration to write)", loop.span)
-    run = _Run(record, config_key, extra_key, {}, {})
+    run = _Run(record, config_key, extra_key, move_config, {}, {}, config_match)
     holder: dict[int, LoopTemplate] = {}
     try:
         _nested(loop, loop, (), {}, run, holder)
         targets = {key: _fit(samples, run) for key, samples in run.slots.items()}
+        holder[loop.uid] = replace(holder[loop.uid], choices=dict(run.options))
     except _Differs as d:
-        return Unrolled(loop, d.iteration, d.uid, d.what, d.span or loop.span)
+        peeled = None
+        if peel and len(loop.iterations) > 2:
+            rest = replace(loop, iterations=loop.iterations[:-1], last=loop.last - 1)
+            found = analyse(
+                rest,
+                record,
+                config_key=config_key,
+                extra_key=extra_key,
+                move_config=move_config,
+                config_match=config_match,
+                peel=False,
+            )
+            peeled = found if isinstance(found, LoopTemplate) else None
+        return Unrolled(loop, d.iteration, d.uid, d.what, d.span or loop.span, peeled)
     return _with_targets(holder[loop.uid], targets)
 
 
@@ -218,18 +269,18 @@ def _nested(
 ) -> None:
     """Compare loop `b` (in some iteration of the enclosing loops) with its template `t`, every
     iteration of `b` with the first iteration of `t`; file the template in `inner`."""
-    expected = list(range(t.first, t.last + 1))
+    expected = list(range(t.first, t.last))  # Loop.last is the exclusive end
     got = [it.value for it in b.iterations]
     if (b.var, b.first, b.last) != (t.var, t.first, t.last) or got != expected:
         raise _Differs(
             b.uid,
-            f"the nested loop runs {got} where the first iteration's runs {t.first} .. {t.last}",
+            f"the nested loop runs {got} where the first iteration's runs {expected}",
             b.span,
             _values_label(values, run),
         )
     if not t.iterations:
         raise _Differs(b.uid, "a nested range is empty", b.span, _values_label(values, run))
-    var = run.loop_vars.setdefault(t.uid, LoopVar(t.uid, t.var, t.first, t.last))
+    var = run.loop_vars.setdefault(t.uid, LoopVar(t.uid, t.var, t.first, t.last - 1))
     sub: dict[int, LoopTemplate] = {}
     for k, b_it in enumerate(b.iterations):
         at = {**values, var.uid: b_it.value}
@@ -310,6 +361,16 @@ def _compare_node(
     _compare_record(t, b, run)
 
 
+def _matches(run: _Run, first: Hashable, other: Hashable) -> bool:
+    return run.config_match(first, other) if run.config_match is not None else first == other
+
+
+def _config(run: _Run, node: ir.Move, q: np.ndarray, branch: ir.Config | None) -> Hashable:
+    if run.move_config is not None:
+        return run.move_config(node, q, branch)
+    return run.config_key(q, branch)
+
+
 def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
     rt, rb = run.record(t), run.record(b)
     if isinstance(t, ir.Move):
@@ -319,8 +380,11 @@ def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
             stop = "stops exactly" if rb.blend_radius <= 0.0 else "blends"
             raise _Differs(b.uid, f"the move {stop} here, unlike in the first iteration", b.span)
         if isinstance(t.target, ir.CartesianTarget):
-            kt, kb = run.config_key(rt.q_target, rt.branch), run.config_key(rb.q_target, rb.branch)
-            if kt != kb:
+            kt, kb = (
+                _config(run, t, rt.q_target, rt.branch),
+                _config(run, b, rb.q_target, rb.branch),
+            )
+            if not _matches(run, kt, kb):
                 raise _Differs(
                     b.uid,
                     f"the move needs configuration {_show_key(kb)} where the first "
@@ -328,8 +392,8 @@ def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
                     b.span,
                 )
             if t.via is not None and rt.q_via is not None and rb.q_via is not None:
-                vt, vb = run.config_key(rt.q_via, rt.branch), run.config_key(rb.q_via, rb.branch)
-                if vt != vb:
+                vt, vb = _config(run, t, rt.q_via, rt.branch), _config(run, b, rb.q_via, rb.branch)
+                if not _matches(run, vt, vb):
                     raise _Differs(
                         b.uid,
                         f"the via point needs configuration {_show_key(vb)} where "
@@ -337,7 +401,19 @@ def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
                         b.span,
                     )
     if run.extra_key is not None:
-        et, eb = _key(run.extra_key(t, rt)), _key(run.extra_key(b, rb))
+        xt, xb = run.extra_key(t, rt), run.extra_key(b, rb)
+        if isinstance(xb, frozenset):  # forms this iteration accepts: one must suit them all
+            left = run.options.get(t.uid, xt if isinstance(xt, frozenset) else frozenset()) & xb
+            if not left:
+                raise _Differs(
+                    b.uid,
+                    f"the {_kind(b)} has no written form that suits every "
+                    f"iteration ({_show(sorted(map(repr, xb)))})",
+                    b.span,
+                )
+            run.options[t.uid] = left
+            return
+        et, eb = _key(xt), _key(xb)
         if et != eb:
             raise _Differs(b.uid, f"the {_kind(b)} is written differently ({eb} vs {et})", b.span)
 
@@ -396,10 +472,14 @@ def _values_label(values: dict[int, int], run: _Run) -> str:
 
 
 def _with_targets(
-    template: LoopTemplate, targets: dict[tuple[int, str], TargetOffset]
+    template: LoopTemplate,
+    targets: dict[tuple[int, str], TargetOffset],
+    choices: dict[int, frozenset[Hashable]] | None = None,
 ) -> LoopTemplate:
-    inner = {uid: _with_targets(sub, targets) for uid, sub in template.inner.items()}
-    return replace(template, targets=targets, inner=inner)
+    """The template and its nested ones with every target's offsets and every choice."""
+    choices = template.choices if choices is None else choices
+    inner = {uid: _with_targets(sub, targets, choices) for uid, sub in template.inner.items()}
+    return replace(template, targets=targets, inner=inner, choices=choices)
 
 
 # --------------------------------------------------------------------------- words
@@ -490,34 +570,8 @@ def _reads(v: Any, name: str) -> bool:
 
 def bind_loop_var(body: tuple[ir.Instr, ...], name: str, value: int) -> tuple[ir.Instr, ...]:
     """`body` with every read of the loop variable `name` replaced by Const(value) (what an
-    unrolled iteration writes: the vendor has no loop counter there)."""
-    return tuple(_bind(node, name, value) for node in body)
+    unrolled iteration writes: the vendor has no loop counter there); the front end's
+    compiler/ir_tree.bind_loop_variable, the one walker of the IR's nesting."""
+    from rmot.compiler.ir_tree import bind_loop_variable
 
-
-def _bind(v: Any, name: str, value: int) -> Any:
-    if isinstance(v, ir.VarRef):
-        return ir.Const(value, ir.ValueType.INT) if v.name == name else v
-    if isinstance(v, ir.Loop) and v.var == name:
-        return v  # an inner loop of the same name shadows it
-    if isinstance(v, tuple):
-        return tuple(_bind(x, name, value) for x in v)
-    if is_dataclass(v) and not isinstance(
-        v,
-        (
-            ir.Pose,
-            type,
-            ir.CartesianTarget,
-            ir.JointTarget,
-            ir.Motion,
-            ir.ToolRef,
-            ir.FrameRef,
-            ir.Config,
-        ),
-    ):
-        changes = {
-            f.name: _bind(getattr(v, f.name), name, value)
-            for f in fields(v)
-            if f.name != "span" and f.init
-        }
-        return replace(v, **changes)
-    return v
+    return bind_loop_variable(body, name, value)

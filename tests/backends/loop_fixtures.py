@@ -89,7 +89,7 @@ def palletiser(
             uid=inner_uid,
             var="row",
             first=0,
-            last=rows - 1,
+            last=rows,
             span=span_at(19),
             iterations=tuple(
                 ir.LoopIteration(value=b, body=iteration_body(a, b)) for b in range(rows)
@@ -100,7 +100,7 @@ def palletiser(
         uid=outer_uid,
         var="layer",
         first=0,
-        last=layers - 1,
+        last=layers,
         iterations=tuple(iterations),
         span=span_at(18),
     )

@@ -155,8 +155,13 @@ _UR_MIDDLE = re.compile(r"^(elif .+:|else:)$")
 _POSE = rf"p\[{NUM}(?:, {NUM}){{5}}\]"
 _JOINTS = rf"\[{NUM}(?:, {NUM}){{5}}\]"
 _KW = rf"a={NUM}, v={NUM}(?:, t={NUM})?, r=({NUM})"
-_UR_MOVES = [re.compile(rf"^movej\({_JOINTS}, {_KW}\)$"), re.compile(rf"^movel\({_POSE}, {_KW}\)$"),
-             re.compile(rf"^movec\({_POSE}, {_POSE}, a={NUM}, v={NUM}, r=({NUM}), mode=[01]\)$")]
+# [URS] pose_add(p_1, p_2) (a pose expression: p_2 a translation written with loop counters) and
+# get_inverse_kin(x, qnear=[6]) (joint positions for movej) are pose / joint-list expressions
+_TERM = r"[\w.*+\- ()]+"
+_POSE_EXPR = rf"(?:{_POSE}|pose_add\({_POSE}, p\[{_TERM}, {_TERM}, {_TERM}, 0, 0, 0\]\))"
+_UR_MOVES = [re.compile(rf"^movej\({_JOINTS}, {_KW}\)$"), re.compile(rf"^movel\({_POSE_EXPR}, {_KW}\)$"),
+             re.compile(rf"^movej\(get_inverse_kin\({_POSE_EXPR}, qnear={_JOINTS}\), {_KW}\)$"),
+             re.compile(rf"^movec\({_POSE_EXPR}, {_POSE_EXPR}, a={NUM}, v={NUM}, r=({NUM}), mode=[01]\)$")]
 # [URS] built-in functions a user `def` must not redefine (a sample of the motion and I/O modules)
 _UR_BUILTINS = {"movej", "movel", "movec", "movep", "sleep", "sync", "set_tcp", "set_payload", "popup",
                 "halt", "textmsg", "get_steptime", "set_standard_digital_out", "get_standard_digital_in"}
