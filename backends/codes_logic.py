@@ -8,7 +8,6 @@ from rmot.lang.diagnostics import Code
 __all__ = [
     "LOGIC_UNSUPPORTED",
     "REGISTERS_EXHAUSTED",
-    "LOOP_WRITTEN_UNROLLED",
     "WAIT_POLLED",
     "STOP_AS_PAUSE",
 ]
@@ -26,12 +25,6 @@ REGISTERS_EXHAUSTED = Code(
 )
 
 # warnings
-LOOP_WRITTEN_UNROLLED = Code(
-    "W430",
-    "loop-written-unrolled",
-    "a `for` loop is written iteration by iteration for this vendor; the "
-    "message names the iteration and instruction that prevent one loop",
-)
 WAIT_POLLED = Code(
     "W431",
     "wait-polled",

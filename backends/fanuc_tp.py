@@ -49,7 +49,7 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
   * runtime logic (issue #15, the block at the end of the class): variables as R registers,
     one operator per line, IF/WAIT conditions in standard logic or as jump chains, while as
     LBL/JMP, timeout branches at the TIMEOUT label, polled waits with TIMER[10] (W431), stop =
-    ABORT, `for` loops as LBL/JMP with Offset,PR[i] or unrolled (W430).
+    ABORT, `for` loops as LBL/JMP with Offset,PR[i] or unrolled (W420).
   * size: a program longer than MAX_INSTRUCTIONS instructions is split into programs
     NAME_PART1.. called from NAME (warning W406), keeping pendant loading and editing
     practical; TP itself numbers lines up to 9999.
@@ -67,7 +67,7 @@ import numpy as np
 from rmot.backends import codes, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
-from rmot.backends.loop_bounds import analyse_peeled
+from rmot.backends.codes_loops import LOOP_UNROLLED
 from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
 )
@@ -644,18 +644,18 @@ class FanucBackend(Backend):
         template = ctx.regs.inner.pop(node.uid, None)
         if template is not None:  # a nested loop of a vendor loop being written
             return self._vendor_loop(template, ctx)
-        found, last, note = analyse_peeled(node, lambda loop: analyse(
-            loop, ctx.record, config_key=_config_key, unroll=bool(getattr(self, "unroll", False))))
-        reason = found.message if isinstance(found, Unrolled) else _fanuc_blocker(found)
-        if reason is not None:
-            span = found.span if isinstance(found, Unrolled) else node.span
-            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, reason, span)
+        found = analyse(node, ctx.record, config_key=_config_key,
+                        unroll=bool(getattr(self, "unroll", False)))
+        loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
+        reason = _fanuc_blocker(loop) if loop is not None else None
+        if loop is None or reason is not None:
+            self.warn(LOOP_UNROLLED, reason or found.message,
+                      found.span if isinstance(found, Unrolled) and reason is None else node.span)
             return self._unrolled(node, ctx)
-        assert isinstance(found, LoopTemplate)
-        lines = self._zero_offsets(found, ctx) + self._vendor_loop(found, ctx)
-        if last is not None:
-            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, note, node.span)
-            lines += self._unrolled(replace(node, iterations=(last,)), ctx)
+        lines = self._zero_offsets(loop, ctx) + self._vendor_loop(loop, ctx)
+        if isinstance(found, Unrolled):  # the last iteration on its own, after the loop
+            self.warn(LOOP_UNROLLED, found.message, found.span)
+            lines += self._unrolled(replace(node, iterations=(found.last,)), ctx)
         return lines
 
     def _unrolled(self, node: ir.Loop, ctx: FanucContext) -> list[str]:

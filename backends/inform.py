@@ -56,7 +56,7 @@ Runtime logic (issue #15, the block at the end of the class): D/R/B variables fr
 SET/ADD/SUB/MUL/DIV/INC/DEC, one-comparison `JUMP *L IF` chains, while loops with labels, the
 timeout branch by testing the input again after `WAIT ... T=`, polled waits (W431), `stop` =
 PAUSE (+ the job's end in the main job; W432 in a called job), `for` loops with INC and SFTON
-shifts set by SETE in P variables from P050, or unrolled (W430); analog inputs refused (E430).
+shifts set by SETE in P variables from P050, or unrolled (W420); analog inputs refused (E430).
 
 Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we keep jobs below
 `MAX_INSTRUCTIONS` (300) top-level IR instructions (~1800 INFORM lines); a longer main body is
@@ -89,7 +89,7 @@ import numpy as np
 from rmot.backends import codes, codes_b, codes_logic
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
-from rmot.backends.loop_bounds import analyse_peeled
+from rmot.backends.codes_loops import LOOP_UNROLLED
 from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
 )
@@ -696,19 +696,19 @@ class InformBackend(Backend):
         template = ctx.vars.inner.pop(node.uid, None)
         if template is not None:  # a nested loop of a vendor loop being written
             return self._vendor_loop(template, ctx)
-        found, last, note = analyse_peeled(node, lambda loop: analyse(
-            loop, ctx.record, config_key=_rconf_key, unroll=bool(getattr(self, "unroll", False))))
-        reason = found.message if isinstance(found, Unrolled) else _inform_blocker(found)
-        if reason is not None:
-            span = found.span if isinstance(found, Unrolled) else node.span
-            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, reason, span)
+        found = analyse(node, ctx.record, config_key=_rconf_key,
+                        unroll=bool(getattr(self, "unroll", False)))
+        loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
+        reason = _inform_blocker(loop) if loop is not None else None
+        if loop is None or reason is not None:
+            self.warn(LOOP_UNROLLED, reason or found.message,
+                      found.span if isinstance(found, Unrolled) and reason is None else node.span)
             return self._unrolled(node, ctx)
-        assert isinstance(found, LoopTemplate)
-        self._number_shifts(found, ctx)
-        lines = self._vendor_loop(found, ctx)
-        if last is not None:
-            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, note, node.span)
-            lines += self._unrolled(replace(node, iterations=(last,)), ctx)
+        self._number_shifts(loop, ctx)
+        lines = self._vendor_loop(loop, ctx)
+        if isinstance(found, Unrolled):  # the last iteration on its own, after the loop
+            self.warn(LOOP_UNROLLED, found.message, found.span)
+            lines += self._unrolled(replace(node, iterations=(found.last,)), ctx)
         return lines
 
     def _unrolled(self, node: ir.Loop, ctx: InformContext) -> list[str]:

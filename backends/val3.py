@@ -46,7 +46,7 @@ Vendor conventions (VAL3 reference manual):
 
 Runtime logic (issue #15, the block at the end of the class): task variables as global num/bool
 data, infix expressions, if/while/for, watch() with the timeout branch, `for` loops with
-compose(point, frame, trShift) offsets or unrolled (W430), stop = waitEndMove() + return.
+compose(point, frame, trShift) offsets or unrolled (W420), stop = waitEndMove() + return.
 
 Size limits: VAL3 sets no line limit on a program and data arrays grow dynamically, so
 programs are not split. Names: identifiers of letters, digits and `_`, at most 15 characters.
@@ -71,10 +71,11 @@ from typing import ClassVar
 
 from rmot.backends import codes, codes_b, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
-from rmot.backends.loop_bounds import analyse_peeled
+from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
 from rmot.backends.loops import LoopTemplate, Unrolled, analyse, bind_loop_var
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
+from rmot.lang.source import Span
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
 
@@ -393,7 +394,7 @@ class Val3Backend(Backend):
             return [f"bOk = watch({test}, {fmt(node.timeout, 4)})", "if !bOk",
                     *self.indent([f"popUpMsg({message})", f"logMsg({message})", "stopMove()",
                                   "resetMotion()", "return"], self.INDENT), "endIf"]
-        return self._timeout_branch(test, node.timeout, node.on_timeout, message, ctx)
+        return self._timeout_branch(test, node.timeout, node.on_timeout, message, ctx, node.span)
 
     def if_(self, node: ir.If, ctx: Val3Context) -> list[str]:
         if not isinstance(node.condition, ir.InputCondition):  # issue #15: any condition
@@ -425,7 +426,8 @@ class Val3Backend(Backend):
         after = []
         if _can_stop(node.body):  # issue #15: a stop in the called program ends this one too
             ctx.data.variables["bStop"] = ("bool", 'value="false"')
-            after = ["if bStop", *self.indent(self._stop_return(ctx), self.INDENT), "endIf"]
+            back = self._stop_return(ctx, node.span)
+            after = ["if bStop", *self.indent(back, self.INDENT), "endIf"]
         return self.call_args_comment(node) + [f"call {name}()"] + after
 
     # ------------------------------------------------------------------ runtime logic (issue #15)
@@ -524,10 +526,10 @@ class Val3Backend(Backend):
                 "endWhile"]
 
     def _timeout_branch(self, test: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
-                        message: str, ctx: Val3Context) -> list[str]:
+                        message: str, ctx: Val3Context, span: Span | None) -> list[str]:
         if not on_timeout:
             branch = [f"popUpMsg({message})", f"logMsg({message})", "stopMove()", "resetMotion()",
-                      *self._stop_return(ctx)]
+                      *self._stop_return(ctx, span)]
         else:
             branch = self.block(on_timeout, ctx, settled=True)
         return [f"bOk = watch({test}, {fmt(timeout, 4)})", "if !bOk",
@@ -538,15 +540,18 @@ class Val3Backend(Backend):
         if node.timeout is None:
             return [f"wait({test})"]
         message = f'"wait until timed out after {fmt(node.timeout, 3)} s"'
-        return self._timeout_branch(test, node.timeout, node.on_timeout, message, ctx)
+        return self._timeout_branch(test, node.timeout, node.on_timeout, message, ctx, node.span)
 
     def stop(self, node: ir.Stop, ctx: Val3Context) -> list[str]:
-        return self._stop_return(ctx)  # the waitEndMove() before it: WAITS_FOR_MOTION
+        return self._stop_return(ctx, node.span)  # the waitEndMove() before it: WAITS_FOR_MOTION
 
-    def _stop_return(self, ctx: Val3Context) -> list[str]:
+    def _stop_return(self, ctx: Val3Context, span: Span | None) -> list[str]:
         if ctx.where[-1] == "start":
             return ["return"]
         ctx.data.variables["bStop"] = ("bool", 'value="false"')
+        self.warn_once(ctx, f"stop:{ctx.where[-1]}", STOP_IN_ROUTINE, "stop in the called program "
+                       f"'{ctx.where[-1]}' sets bStop and returns; each caller returns when bStop "
+                       "is set (a VAL3 program cannot end its caller)", span)
         return ["bStop = true", "return"]
 
     # ---------------------------------------------------------------- loops
@@ -555,16 +560,15 @@ class Val3Backend(Backend):
         template = ctx.inner.pop(node.uid, None)
         if template is not None:  # a nested loop of a vendor loop being written
             return self._vendor_loop(template, ctx)
-        found, last, note = analyse_peeled(node, lambda loop: analyse(
-            loop, ctx.record, extra_key=_blend_key, unroll=bool(getattr(self, "unroll", False))))
-        if isinstance(found, Unrolled):
-            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, found.message, found.span)
+        found = analyse(node, ctx.record, extra_key=_blend_key,
+                        unroll=bool(getattr(self, "unroll", False)))
+        if isinstance(found, LoopTemplate):
+            return self._vendor_loop(found, ctx)
+        self.warn(LOOP_UNROLLED, found.message, found.span)
+        if found.peeled is None:
             return self._unrolled(node, ctx)
-        lines = self._vendor_loop(found, ctx)
-        if last is not None:
-            self.warn(codes_logic.LOOP_WRITTEN_UNROLLED, note, node.span)
-            lines += self._unrolled(replace(node, iterations=(last,)), ctx)
-        return lines
+        return (self._vendor_loop(found.peeled, ctx)  # then the last iteration on its own
+                + self._unrolled(replace(node, iterations=(found.last,)), ctx))
 
     def _unrolled(self, node: ir.Loop, ctx: Val3Context) -> list[str]:
         lines: list[str] = []

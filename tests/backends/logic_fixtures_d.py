@@ -75,7 +75,7 @@ def pallet_program(
                 uid=next(uid),
                 var="col",
                 first=0,
-                last=COLS - 1,
+                last=COLS,
                 span=span_at(5),
                 iterations=tuple(
                     ir.LoopIteration(value=c, body=body(a, b, c)) for c in range(COLS)
@@ -86,7 +86,7 @@ def pallet_program(
             uid=next(uid),
             var="row",
             first=0,
-            last=ROWS - 1,
+            last=ROWS,
             span=span_at(4),
             iterations=tuple(rows),
         )
@@ -98,7 +98,7 @@ def pallet_program(
         uid=loop_uid,
         var="layer",
         first=0,
-        last=LAYERS - 1,
+        last=LAYERS,
         span=span_at(3),
         iterations=tuple(ir.LoopIteration(value=a, body=(nest(a),)) for a in range(LAYERS)),
     )

@@ -9,7 +9,7 @@
   shift arithmetic, re-expands every move's target per iteration and compares it with the
   TCP pose the plan verified for that iteration;
 * the unrolled path: a loop whose iterations need another IK branch is written iteration by
-  iteration with W430 naming the iteration, and `unroll` forces it.
+  iteration with W420 naming the iteration, and `unroll` forces it.
 """
 
 from __future__ import annotations
@@ -63,7 +63,7 @@ def test_palletiser_golden_and_valid(vendor: str) -> None:
     plan, _ = pallet_program(vendor)
     result = emit(vendor, plan)
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
-    assert "W430" not in codes(result)  # written as loops
+    assert "W420" not in codes(result)  # written as loops
     assert VALIDATE[vendor](result.files) == []
     check_golden(vendor, "logic_pallet", result.files)
 
@@ -354,7 +354,7 @@ def test_a_loop_needing_another_branch_is_unrolled_naming_the_iteration(vendor: 
     other = ir.Config(ir.Shoulder.FRONT, ir.Elbow.DOWN, ir.Wrist.NOFLIP)
     plan, loop = pallet_program(vendor, branch_of={(1, 2, 0): other})
     result = emit(vendor, plan)
-    notes = [d.message for d in result.diagnostics if d.code.id == "W430"]
+    notes = [d.message for d in result.diagnostics if d.code.id == "W420"]
     assert len(notes) == 3 and "layer = 1, row = 2, col = 0" in notes[0]
     assert all("unrolled" in n for n in notes)
     assert not result.has_errors
@@ -370,7 +370,7 @@ def test_a_loop_needing_another_branch_is_unrolled_naming_the_iteration(vendor: 
 def test_unroll_forces_every_iteration(vendor: str) -> None:
     plan, _ = pallet_program(vendor)
     result = emit(vendor, plan, unroll=True)
-    assert any(d.code.id == "W430" and "--unroll" in d.message for d in result.diagnostics)
+    assert any(d.code.id == "W420" and "--unroll" in d.message for d in result.diagnostics)
     assert not re.search(r"for \w+ = |Offset,PR|SFTON", "\n".join(result.files.values()))
 
 
@@ -646,7 +646,7 @@ def test_the_machine_tending_example_compiles(vendor: str) -> None:
 
 def test_a_moving_arc_in_a_loop_is_unrolled_for_tp_and_inform_and_composed_for_val3() -> None:
     """TP's Offset,PR shifts one destination per line and INFORM's MOVC starts from the move
-    before it: a loop whose arc moves per iteration is unrolled there (W430, saying why);
+    before it: a loop whose arc moves per iteration is unrolled there (W420, saying why);
     VAL3 composes both the via and the end point."""
     from backend_fixtures import GRIPPER, TABLE, cart, motion
     from rmot.compiler.ir import MotionKind
@@ -681,14 +681,14 @@ def test_a_moving_arc_in_a_loop_is_unrolled_for_tp_and_inform_and_composed_for_v
         uid=1,
         var="k",
         first=0,
-        last=2,
+        last=3,
         span=span_at(4),
         iterations=tuple(ir.LoopIteration(value=k, body=body(k, 10 + 2 * k)) for k in range(3)),
     )
     for vendor in VENDORS:
         records = {m.uid: (Q, FRONT_UP_NOFLIP) for m in ir.walk((loop,)) if isinstance(m, ir.Move)}
         result = emit(vendor, hand_plan((loop,), records, robot=BRAND_ROBOT[vendor]))
-        notes = [d.message for d in result.diagnostics if d.code.id == "W430"]
+        notes = [d.message for d in result.diagnostics if d.code.id == "W420"]
         if vendor == "val3":
             assert notes == []
             start = main_lines("val3", result)
