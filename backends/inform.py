@@ -942,3 +942,5 @@ def _loop_head(var: LoopVar) -> str:
     if var.name is None:
         return f"repeat {var.last - var.first + 1}"
     return f"for {var.name} = {var.first} .. {var.last}"
+# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
+InformBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

@@ -680,3 +680,5 @@ Val3Backend.EMIT = {**Val3Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assi
                     ir.Stop: "stop"}
 Val3Backend.WAITS_FOR_MOTION = (*Val3Backend.WAITS_FOR_MOTION, ir.While, ir.WaitCondition, ir.Stop)
 Val3Backend.NO_MOTION = (*Val3Backend.NO_MOTION, ir.WaitCondition)
+# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
+Val3Backend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]
