@@ -256,8 +256,11 @@ class Backend:
     MAX_TCP_SPEED: ClassVar[float | None] = None
     MAX_TCP_SPEED_SOURCE: ClassVar[str] = ""
 
-    def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False) -> None:
+    def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False,
+                 unroll: bool = False) -> None:
         self.findings_header = allow_findings_header
+        # `--unroll` (issue #15): every `for` loop written iteration by iteration
+        self.unroll = unroll
         # `--write-frames`: numbered tools and frames are also written into the controller's
         # stored data (Fanuc UTOOL/UFRAME, KUKA TOOL_DATA/BASE_DATA); off, they are only selected
         self.write_frames = write_frames

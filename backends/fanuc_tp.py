@@ -46,6 +46,10 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     back). Missing signals: error E409 at the sync; a sync in an if arm: error E405.
   * names: program names at most 36 characters (R-30iA and later), upper case, a letter
     first, letters, digits and '_'; comments are cut into pieces of at most 32 characters.
+  * runtime logic (issue #15, the block at the end of the class): variables as R registers,
+    one operator per line, IF/WAIT conditions in standard logic or as jump chains, while as
+    LBL/JMP, timeout branches at the TIMEOUT label, polled waits with TIMER[10] (W431), stop =
+    ABORT, `for` loops as LBL/JMP with Offset,PR[i] or unrolled (W420).
   * size: a program longer than MAX_INSTRUCTIONS instructions is split into programs
     NAME_PART1.. called from NAME (warning W406), keeping pendant loading and editing
     practical; TP itself numbers lines up to 9999.
@@ -60,9 +64,13 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes
+from rmot.backends import codes, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
+from rmot.backends.codes_loops import LOOP_UNROLLED
+from rmot.backends.loops import (
+    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
+)
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir
 from rmot.backends.safe_text import comment_safe, tp_io_comment
@@ -132,6 +140,7 @@ class FanucContext(TaskContext):
     frames: _Frames
     files: dict[str, str] = field(default_factory=dict)  # routine programs: file name -> text
     program: _Program = field(default_factory=_Program)
+    regs: _Registers = field(default_factory=lambda: _Registers({}))  # runtime logic (issue #15)
 
 
 class FanucBackend(Backend):
@@ -164,7 +173,8 @@ class FanucBackend(Backend):
         # TP programs share one namespace on the controller: routines carry the program's name
         routine_of = self.routine_table(names, body, task, prefix=f"{main_name}_")
         ctx = task.with_state(FanucContext, names=names, routine_of=routine_of,
-                              frames=_Frames(task.plan.program.cell, task.robot.name))
+                              frames=_Frames(task.plan.program.cell, task.robot.name),
+                              regs=_Registers(task_variables(body)))
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:
             for part in parts:
@@ -270,7 +280,8 @@ class FanucBackend(Backend):
                 p = self._joint_position(node.target, uf, ut, ctx)
             else:
                 p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
-            return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}"]
+            return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}",
+                    f"J P[{p}] {speed} {zone}{self._offset(node, ctx)}"]
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
             return []
@@ -281,11 +292,20 @@ class FanucBackend(Backend):
         to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         head = [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
         if node.kind is ir.MotionKind.LINEAR:
-            return head + [f"L P[{to}] {speed} {zone}"]
+            return head + [f"L P[{to}] {speed} {zone}{self._offset(node, ctx)}"]
         if node.via is None:
             self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
             return head
         return head + [f"C P[{via}]", f":  P[{to}] {speed} {zone}"]
+
+    @staticmethod
+    def _offset(node: ir.Move, ctx: FanucContext) -> str:
+        """` Offset,PR[i]` on a move of a loop whose target moves per iteration (issue #15):
+        the destination shifted by PR[i] in the selected user frame (HandlingTool V9.40
+        Operator's Manual sec 7.3.13, "Offset,PR[i]"; real programs: `L P[2] 2000mm/sec FINE
+        Offset,PR[100]`)."""
+        pr = ctx.regs.offsets.get((node.uid, "target"))
+        return f" Offset,PR[{pr}]" if pr is not None else ""
 
     def _joint_speed(self, node: ir.Move) -> str:
         if node.motion.duration is not None:
@@ -378,13 +398,12 @@ class FanucBackend(Backend):
         cond = f"DI[{c.port}{_sig(c.signal)}]={self._level(c.value)}"
         if node.timeout is None:
             return [f"WAIT {cond}"]
-        timeout, done = ctx.program.label(), ctx.program.label()
-        return [f"$WAITTMOUT={int(round(node.timeout * 100))}", f"WAIT {cond} TIMEOUT,LBL[{timeout}]",
-                f"JMP LBL[{done}]", f"LBL[{timeout}]", self.comment("wait timed out"), "ABORT",
-                f"LBL[{done}]"]
+        return self._timed_wait(cond, node.timeout, node.on_timeout, ctx)
 
     def if_(self, node: ir.If, ctx: FanucContext) -> list[str]:
         c = node.condition
+        if not isinstance(c, ir.InputCondition):  # issue #15: any condition
+            return self._if_condition(node, ctx)
         self.port_ok(c.port, "digital input", node.span)
         other, done = ctx.program.label(), ctx.program.label()
         lines = [f"IF DI[{c.port}{_sig(c.signal)}]<>{self._level(c.value)},JMP LBL[{other}]"]
@@ -410,10 +429,448 @@ class FanucBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: FanucContext) -> list[str]:
         name = ctx.routine_of[node.uid]
+        shifted = _offset_signature(node.body, ctx.regs.offsets)
+        if shifted is not None:  # issue #15: a call whose moves take Offset,PR: its own routine
+            key = (name, shifted)
+            if key not in ctx.regs.loop_routines:
+                k = len(ctx.regs.loop_routines) + 1
+                ctx.regs.loop_routines[key] = ctx.names.name(f"{name}_L{k}")
+            name = ctx.regs.loop_routines[key]
         if f"{name}.ls" not in ctx.files:
             ctx.files[f"{name}.ls"] = ""  # reserve: a recursive print sees it as taken
             ctx.files[f"{name}.ls"] = self._program(name, node.body, ctx, is_main=False)
         return [f"CALL {name}"]
+
+    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # Variables are numeric registers R[n:name] (R-30iB Operator's Manual B-83284EN, "Register
+    # instructions": a register holds an integer or a real); a bool is R 0/1 (one register type
+    # for every variable, so conditions and assignments read alike). Numbering: the task's
+    # variables R[REG_FIRST..] in order of first declaration, then the temporaries of the
+    # current statement; loop offsets are PR[LOOP_PR + 1 ..] (below FRAME_PR + 1, where the
+    # frame setup starts); labels count per program with the backend's own (no collision).
+    # Arithmetic is one operator per line (standard register instruction `R[i]=(value)
+    # (operator)(value)`; mixing + - with * / or AND with OR in one line needs the Mixed Logic
+    # option: Fanuc America "Advanced TPP" ch. 7, which also gives "in standard logic a maximum
+    # of five logical conditions"). Conditions: `IF a AND b ...,JMP LBL[n]` with up to
+    # MAX_CONDITIONS leaves of one operator (real programs: `IF DI[101]=ON AND UO[3]=OFF AND
+    # DI[104]=OFF,JMP LBL[20]`), else a chain of one-condition jumps.
+
+    REG_FIRST: ClassVar[int] = 1
+    MAX_REGISTER: ClassVar[int] = 200  # R-30iB: R[1]..R[200] by default (Operator's Manual)
+    LOOP_PR: ClassVar[int] = 60  # loop offsets PR[61..89]: below FRAME_PR + 1
+    POLL_TIMER: ClassVar[int] = 10  # TIMER[10] counts a polled wait's timeout (TIMER[1..10])
+    MAX_CONDITIONS: ClassVar[int] = 5
+
+    def _reg(self, name: str, ctx: FanucContext, span: object) -> str:
+        n = ctx.regs.variables.get(name)
+        if n is None:
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED,
+                             f"variable '{name}' must be declared in the task (got a reference to "
+                             "an undeclared one)", span)  # type: ignore[arg-type]
+            n = 0
+        return f"R[{n}:{tp_io_comment(name)[:16]}]"
+
+    def _temp(self, ctx: FanucContext, span: object) -> str:
+        n = ctx.regs.temp()
+        if n > self.MAX_REGISTER:
+            self.unsupported(codes_logic.REGISTERS_EXHAUSTED,
+                             f"the program must fit registers R[{self.REG_FIRST}.."
+                             f"{self.MAX_REGISTER}] (needs R[{n}])", span)  # type: ignore[arg-type]
+        return f"R[{n}:rmot tmp]"
+
+    def var_decl(self, node: ir.VarDecl, ctx: FanucContext) -> list[str]:
+        return self._store(node.name, node.init, node, ctx)
+
+    def assign(self, node: ir.Assign, ctx: FanucContext) -> list[str]:
+        return self._store(node.name, node.value, node, ctx)
+
+    def _store(self, name: str, value: ir.RtExpr, node: ir.Instr, ctx: FanucContext) -> list[str]:
+        ctx.regs.reset()
+        target = self._reg(name, ctx, node.span)
+        if isinstance(value, ir.Arith):  # one operator straight into the variable
+            lines, a = self._operand(value.left, ctx, node)
+            more, b = self._operand(value.right, ctx, node)
+            return lines + more + [f"{target}={a}{value.op}{b}"]
+        lines, a = self._operand(value, ctx, node)
+        return lines + [f"{target}={a}"]
+
+    def _operand(self, e: ir.RtExpr, ctx: FanucContext, node: ir.Instr) -> tuple[list[str], str]:
+        """(lines computing it, the operand text): a constant, R[n], AI[n] or a temporary."""
+        if isinstance(e, ir.Const):
+            return [], _tp_number(e.value)
+        if isinstance(e, ir.VarRef):
+            return [], self._reg(e.name, ctx, node.span)
+        if isinstance(e, ir.AnalogInput):
+            return [], f"AI[{e.port}{_sig(e.signal)}]"
+        if isinstance(e, ir.Arith):
+            lines, a = self._operand(e.left, ctx, node)
+            more, b = self._operand(e.right, ctx, node)
+            t = self._temp(ctx, node.span)
+            return lines + more + [f"{t}={a}{e.op}{b}"], t
+        t, skip = self._temp(ctx, node.span), ctx.program.label()  # a condition's value, 0 or 1
+        return [f"{t}=0", *self._jump(e, skip, False, ctx, node), f"{t}=1", f"LBL[{skip}]"], t
+
+    def _test(self, c: ir.Condition | ir.RtExpr, negate: bool, ctx: FanucContext,
+              node: ir.Instr) -> tuple[list[str], str] | None:
+        """One comparison for IF/WAIT (`DI[1]=ON`, `R[2]>=3`, `AI[1]>4.5`): its lines and text,
+        or None when `c` is not a single comparison."""
+        if isinstance(c, ir.Not):
+            return self._test(c.operand, not negate, ctx, node)
+        if isinstance(c, ir.InputCondition):
+            self.port_ok(c.port, "digital input", node.span)
+            return [], f"DI[{c.port}{_sig(c.signal)}]={self._level(c.value != negate)}"
+        if isinstance(c, ir.VarRef):
+            return [], f"{self._reg(c.name, ctx, node.span)}{'=' if negate else '<>'}0"
+        if not isinstance(c, ir.Compare):
+            return None
+        op, left, right = c.op, c.left, c.right
+        if isinstance(left, ir.Const) and not isinstance(right, ir.Const):  # register on the left
+            op, left, right = _MIRROR[op], right, left
+        lines: list[str] = []
+        if isinstance(left, (ir.VarRef, ir.AnalogInput)):
+            a = self._operand(left, ctx, node)[1]
+        else:
+            lines, value = self._operand(left, ctx, node)
+            a = self._temp(ctx, node.span)
+            lines.append(f"{a}={value}")
+        if isinstance(right, (ir.Const, ir.VarRef)):
+            b = self._operand(right, ctx, node)[1]
+        else:  # the right of a TP comparison is a constant or a register
+            more, value = self._operand(right, ctx, node)
+            b = self._temp(ctx, node.span)
+            lines += more + [f"{b}={value}"]
+        return lines, f"{a}{_TP_OP[_NEGATED[op] if negate else op]}{b}"
+
+    def _jump(self, c: ir.Condition | ir.RtExpr, label: int, when: bool, ctx: FanucContext,
+              node: ir.Instr) -> list[str]:
+        """Lines that jump to LBL[label] when `c` evaluates to `when` and fall through otherwise."""
+        if isinstance(c, ir.Not):
+            return self._jump(c.operand, label, not when, ctx, node)
+        if isinstance(c, ir.Const):
+            return [f"JMP LBL[{label}]"] if bool(c.value) == when else []
+        if isinstance(c, ir.Logic):
+            one = self._one_line(c, not when, ctx, node)
+            if one is not None:
+                return one[0] + [f"IF {one[1]},JMP LBL[{label}]"]
+            out: list[str] = []
+            if (c.op == "and") == when:  # every operand must hold: skip out at the first that fails
+                skip = ctx.program.label()
+                for operand in c.operands[:-1]:
+                    out += self._jump(operand, skip, not when, ctx, node)
+                return out + self._jump(c.operands[-1], label, when, ctx, node) + [f"LBL[{skip}]"]
+            for operand in c.operands:  # any operand decides
+                out += self._jump(operand, label, when, ctx, node)
+            return out
+        test = self._test(c, not when, ctx, node)
+        if test is None:
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, f"a condition must be a comparison, an "
+                             f"input, a variable or and/or/not (got {type(c).__name__})", node.span)
+            return []
+        return test[0] + [f"IF {test[1]},JMP LBL[{label}]"]
+
+    def _one_line(self, c: ir.Logic, negate: bool, ctx: FanucContext,
+                  node: ir.Instr) -> tuple[list[str], str] | None:
+        """`a AND b AND ...` (or OR) for one IF/WAIT line when every operand is one comparison
+        and there are at most MAX_CONDITIONS; with `negate`, De Morgan's dual."""
+        if len(c.operands) > self.MAX_CONDITIONS or any(
+                isinstance(o, (ir.Logic, ir.Const))
+                or (isinstance(o, ir.Not) and not _leaf(o.operand))
+                for o in c.operands):
+            return None
+        tests = [self._test(o, negate, ctx, node) for o in c.operands]
+        if any(t is None for t in tests):
+            return None
+        joiner = " AND " if (c.op == "and") != negate else " OR "
+        return [line for t in tests if t for line in t[0]], joiner.join(t[1] for t in tests if t)
+
+    def _if_condition(self, node: ir.If, ctx: FanucContext) -> list[str]:
+        ctx.regs.reset()
+        other, done = ctx.program.label(), ctx.program.label()
+        lines = self._jump(node.condition, other, False, ctx, node)
+        lines += self.body(node.then, ctx) + [f"JMP LBL[{done}]", f"LBL[{other}]"]
+        return lines + self.body(node.otherwise, ctx) + [f"LBL[{done}]"]
+
+    def while_(self, node: ir.While, ctx: FanucContext) -> list[str]:
+        ctx.regs.reset()
+        top, end = ctx.program.label(), ctx.program.label()
+        lines = [f"LBL[{top}]", *self._jump(node.condition, end, False, ctx, node)]
+        return lines + self.body(node.body, ctx) + [f"JMP LBL[{top}]", f"LBL[{end}]"]
+
+    def stop(self, node: ir.Stop, ctx: FanucContext) -> list[str]:
+        # ABORT ends the program and every program that called it; it cannot be resumed
+        # (R-30iB Operator's Manual B-83284EN, "Program control instructions": ABORT)
+        return ["ABORT"]
+
+    def _timed_wait(self, cond: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
+                    ctx: FanucContext) -> list[str]:
+        """`$WAITTMOUT` (1/100 s) then `WAIT cond TIMEOUT,LBL[t]`: the label runs the timeout
+        branch and goes on after the wait, or aborts when the program gave none."""
+        timed_out, done = ctx.program.label(), ctx.program.label()
+        branch = (self.body(on_timeout, ctx) if on_timeout
+                  else [self.comment("wait timed out"), "ABORT"])
+        return [f"$WAITTMOUT={int(round(timeout * 100))}", f"WAIT {cond} TIMEOUT,LBL[{timed_out}]",
+                f"JMP LBL[{done}]", f"LBL[{timed_out}]", *branch, f"LBL[{done}]"]
+
+    def wait_condition(self, node: ir.WaitCondition, ctx: FanucContext) -> list[str]:
+        ctx.regs.reset()
+        c = node.condition
+        one = (self._one_line(c, False, ctx, node) if isinstance(c, ir.Logic)
+               else self._test(c, False, ctx, node) if _leaf(c) else None)
+        if one is not None and not one[0]:  # one WAIT line tests it (no value computed before)
+            if node.timeout is None:
+                return [f"WAIT {one[1]}"]
+            return self._timed_wait(one[1], node.timeout, node.on_timeout, ctx)
+        self.warn(codes_logic.WAIT_POLLED, "TP's WAIT must test comparisons of one and/or kind, at "
+                  f"most {self.MAX_CONDITIONS}, on registers and I/O; this condition is polled "
+                  "in a loop" + (f" with TIMER[{self.POLL_TIMER}] counting the timeout"
+                                 if node.timeout else ""),
+                  node.span)
+        poll, done = ctx.program.label(), ctx.program.label()
+        if node.timeout is None:
+            return [f"LBL[{poll}]", *self._jump(c, done, True, ctx, node), f"JMP LBL[{poll}]",
+                    f"LBL[{done}]"]
+        timer = f"TIMER[{self.POLL_TIMER}]"  # seconds (real programs: `R[181]=TIMER[5]`, `>=3`)
+        lines = [f"{timer}=RESET", f"{timer}=START", f"LBL[{poll}]",
+                 *self._jump(c, done, True, ctx, node)]
+        t = self._temp(ctx, node.span)
+        lines += [f"{t}={timer}", f"IF {t}<{_tp_number(node.timeout)},JMP LBL[{poll}]"]
+        branch = (self.body(node.on_timeout, ctx) if node.on_timeout
+                  else [self.comment("wait timed out"), "ABORT"])
+        return lines + branch + [f"LBL[{done}]", f"{timer}=STOP"]
+
+    # ---------------------------------------------------------------- loops
+
+    def loop(self, node: ir.Loop, ctx: FanucContext) -> list[str]:
+        template = ctx.regs.inner.pop(node.uid, None)
+        if template is not None:  # a nested loop of a vendor loop being written
+            return self._vendor_loop(template, ctx)
+        found = analyse(node, ctx.record, config_key=_config_key,
+                        unroll=bool(getattr(self, "unroll", False)))
+        loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
+        reason = _fanuc_blocker(loop) if loop is not None else None
+        if loop is None or reason is not None:
+            self.warn(LOOP_UNROLLED, reason or found.message,
+                      found.span if isinstance(found, Unrolled) and reason is None else node.span)
+            return self._unrolled(node, ctx)
+        lines = self._zero_offsets(loop, ctx) + self._vendor_loop(loop, ctx)
+        if isinstance(found, Unrolled):  # the last iteration on its own, after the loop
+            self.warn(LOOP_UNROLLED, found.message, found.span)
+            lines += self._unrolled(replace(node, iterations=(found.last,)), ctx)
+        return lines
+
+    def _unrolled(self, node: ir.Loop, ctx: FanucContext) -> list[str]:
+        lines: list[str] = []
+        for it in node.iterations:
+            body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
+            label = f"{node.var or 'iteration'} = {it.value}"[:COMMENT_MAX]
+            lines += [self.comment(label)] + self.body(body, ctx)
+        return lines
+
+    def _zero_offsets(self, template: LoopTemplate, ctx: FanucContext) -> list[str]:
+        """Number the PR of every offset of the nest (one per distinct set of steps) and clear
+        them: `PR[i]=LPOS-LPOS` is a Cartesian zero (as in real programs)."""
+        lines = []
+        for key, offset in sorted(template.targets.items()):
+            if not any(any(s) for s in offset.steps):
+                continue
+            steps = (tuple(v.uid for v in offset.loops), _rounded(offset.steps))
+            if steps not in ctx.regs.prs:
+                ctx.regs.prs[steps] = self.LOOP_PR + len(ctx.regs.prs) + 1
+                pr = ctx.regs.prs[steps]
+                if pr > self.FRAME_PR:
+                    self.unsupported(codes_logic.REGISTERS_EXHAUSTED,
+                                     f"loop offsets must fit PR[{self.LOOP_PR + 1}.."
+                                     f"{self.FRAME_PR}] (needs PR[{pr}])", template.loop.span)
+                lines.append(f"PR[{pr}]=LPOS-LPOS")
+            ctx.regs.offsets[key] = ctx.regs.prs[steps]
+        return lines
+
+    def _vendor_loop(self, template: LoopTemplate, ctx: FanucContext) -> list[str]:
+        """`R[v]=first`, `LBL[top]`, this level's offsets, the body, `R[v]=R[v]+1`,
+        `IF R[v]<=last,JMP LBL[top]` (the range is never empty here: loops.analyse)."""
+        var = template.var
+        counter = self._counter(var, ctx, template.loop.span)
+        ctx.regs.inner.update(template.inner)
+        top = ctx.program.label()
+        head = [self.comment(_loop_head(var)[:COMMENT_MAX]),
+                f"{counter}={var.first}", f"LBL[{top}]"]
+        ctx.regs.reset()
+        offsets = self._offset_lines(template, ctx)
+        return head + offsets + self.body(template.body, ctx) + [
+            f"{counter}={counter}+1", f"IF {counter}<={_tp_number(var.last)},JMP LBL[{top}]"]
+
+    def _counter(self, var: LoopVar, ctx: FanucContext, span: object) -> str:
+        """The loop's counter: its variable's register, or one of its own for `repeat`."""
+        if var.name is not None:
+            return self._reg(var.name, ctx, span)
+        if var.uid not in ctx.regs.repeat:
+            ctx.regs.repeat[var.uid] = f"R[{ctx.regs.counter()}:rmot repeat]"
+        return ctx.regs.repeat[var.uid]
+
+    def _offset_lines(self, template: LoopTemplate, ctx: FanucContext) -> list[str]:
+        """PR[i,j] for every offset used by this level's own moves (not those of nested
+        loops): sum over the loops (R[v] - first) * step, one operator per line."""
+        done: set[int] = set()
+        lines: list[str] = []
+        for uid in _level_moves(template.body):
+            for role in ("target", "via"):
+                offset = template.targets.get((uid, role))
+                pr = ctx.regs.offsets.get((uid, role))
+                if offset is None or pr is None or pr in done:
+                    continue
+                done.add(pr)
+                lines += self._pr_value(pr, offset, ctx, template.loop.span)
+        return lines
+
+    def _pr_value(self, pr: int, offset: TargetOffset, ctx: FanucContext,
+                  span: object) -> list[str]:
+        lines: list[str] = []
+        for axis in range(3):
+            terms = [(var, step[axis] * 1000.0) for var, step in zip(offset.loops, offset.steps)
+                     if abs(step[axis]) > 1e-12]
+            if not terms:
+                continue
+            acc: str | None = None
+            for var, mm in terms:
+                source = self._counter(var, ctx, span)
+                if var.first != 0:
+                    t = self._temp(ctx, span)
+                    lines.append(f"{t}={source}-{_tp_number(var.first)}")
+                    source = t
+                if len(terms) == 1:
+                    lines.append(f"PR[{pr},{axis + 1}]={source}*{_tp_number(round(mm, 3))}")
+                    break
+                t = self._temp(ctx, span)
+                lines.append(f"{t}={source}*{_tp_number(round(mm, 3))}")
+                if acc is None:
+                    acc = t
+                else:
+                    lines.append(f"{acc}={acc}+{t}")
+            if acc is not None:
+                lines.append(f"PR[{pr},{axis + 1}]={acc}")
+        return lines
+
+
+# ---------------------------------------------------------------- runtime logic helpers (issue #15)
+
+_TP_OP = {ir.CompareOp.EQ: "=", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<", ir.CompareOp.LE: "<=",
+          ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
+_NEGATED = {ir.CompareOp.EQ: ir.CompareOp.NE, ir.CompareOp.NE: ir.CompareOp.EQ,
+            ir.CompareOp.LT: ir.CompareOp.GE, ir.CompareOp.GE: ir.CompareOp.LT,
+            ir.CompareOp.GT: ir.CompareOp.LE, ir.CompareOp.LE: ir.CompareOp.GT}
+_MIRROR = {ir.CompareOp.EQ: ir.CompareOp.EQ, ir.CompareOp.NE: ir.CompareOp.NE,
+           ir.CompareOp.LT: ir.CompareOp.GT, ir.CompareOp.GT: ir.CompareOp.LT,
+           ir.CompareOp.LE: ir.CompareOp.GE, ir.CompareOp.GE: ir.CompareOp.LE}
+
+
+@dataclass
+class _Registers:
+    """One task's registers: variable name -> R number (fixed for the task: registers are
+    global on the controller, so routines read the same ones), the current statement's
+    temporaries above them, and the loop offsets (PR per (move uid, role))."""
+
+    variables: dict[str, int]
+    used: int = 0
+    prs: dict[object, int] = field(default_factory=dict)
+    offsets: dict[tuple[int, str], int] = field(default_factory=dict)
+    inner: dict[int, LoopTemplate] = field(default_factory=dict)
+    repeat: dict[int, str] = field(default_factory=dict)  # repeat loop uid -> its counter
+    loop_routines: dict[object, str] = field(default_factory=dict)  # (routine, offsets) -> name
+    counters: int = 0
+
+    def reset(self) -> None:
+        self.used = 0
+
+    def temp(self) -> int:
+        self.used += 1
+        return FanucBackend.REG_FIRST + len(self.variables) + self.counters + self.used - 1
+
+    def counter(self) -> int:
+        """A register of its own for a `repeat` loop's count (never reused as a temporary)."""
+        self.counters += 1
+        return FanucBackend.REG_FIRST + len(self.variables) + self.counters - 1
+
+
+def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, int]:
+    """Every variable and loop variable of a task, numbered from REG_FIRST in order of first
+    appearance."""
+    names: list[str] = []
+    for node in ir.walk(body):
+        name = (node.name if isinstance(node, ir.VarDecl)
+                else node.var if isinstance(node, ir.Loop) else None)
+        if name is not None and name not in names:
+            names.append(name)
+    return {name: FanucBackend.REG_FIRST + k for k, name in enumerate(names)}
+
+
+def _tp_number(value: float | int | bool) -> str:
+    """A TP constant: bool as 1/0, integers as written, reals without trailing zeros; a
+    negative constant in parentheses (`R[1]=R[1]*(-1)`, as the pendant writes it)."""
+    if isinstance(value, bool):
+        return "1" if value else "0"
+    text = str(value) if isinstance(value, int) else (fmt(value, 6).rstrip("0").rstrip(".") or "0")
+    return f"({text})" if text.startswith("-") else text
+
+
+def _leaf(c: object) -> bool:
+    return isinstance(c, (ir.InputCondition, ir.VarRef, ir.Compare)) or (
+        isinstance(c, ir.Not) and _leaf(c.operand))
+
+
+def _config_key(q: np.ndarray, branch: ir.Config | None) -> object:
+    """What a TP position stores of the configuration: the CONFIG string (branch + turns)."""
+    if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+        return None
+    return config_string(branch, q)
+
+
+def _rounded(steps: tuple[tuple[float, float, float], ...]) -> tuple[tuple[float, ...], ...]:
+    return tuple(tuple(round(v * 1000.0, 3) for v in s) for s in steps)
+
+
+def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
+    """Uids of the moves of `body` outside nested loops (in If arms, whiles, procs too)."""
+    out: list[int] = []
+    for node in body:
+        if isinstance(node, ir.Move):
+            out.append(node.uid)
+        elif isinstance(node, ir.If):
+            out += _level_moves(node.then) + _level_moves(node.otherwise)
+        elif isinstance(node, (ir.While, ir.ProcCall)):
+            out += _level_moves(node.body)
+        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
+            out += _level_moves(node.on_timeout)
+    return out
+
+
+def _offset_signature(body: tuple[ir.Instr, ...],
+                      offsets: dict[tuple[int, str], int]) -> tuple[object, ...] | None:
+    """The offsets of a called body's moves in order, or None when none of them takes one."""
+    sig = tuple(offsets.get((m.uid, "target")) for m in ir.walk(body) if isinstance(m, ir.Move))
+    return sig if any(s is not None for s in sig) else None
+
+
+def _fanuc_blocker(template: LoopTemplate) -> str | None:
+    """Why a loop the analysis accepts still cannot be one TP loop: a circular move whose
+    points move (`Offset,PR[i]` shifts one destination per line), or a `repeat` loop (no
+    variable)."""
+    for node in ir.walk(template.body):
+        if isinstance(node, ir.Move) and node.kind is ir.MotionKind.CIRCULAR:
+            offsets = [template.targets.get((node.uid, role)) for role in ("target", "via")]
+            if any(o is not None and any(any(s) for s in o.steps) for o in offsets):
+                return (f"{_loop_words(template.loop)} unrolled: a TP circular move takes one "
+                        "Offset,PR for its via and end points (its points move from one "
+                        "iteration to the next)")
+    return None
+
+
+def _loop_words(loop: ir.Loop) -> str:
+    return f"loop 'for {loop.var} in {loop.first} .. {loop.last}'" if loop.var else "repeat loop"
+
+
+FanucBackend.EMIT = {**FanucBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                     ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
+                     ir.Stop: "stop"}
 
 
 def _sig(signal: str | None) -> str:
@@ -424,3 +881,13 @@ def _sig(signal: str | None) -> str:
 def _pieces(text: str) -> list[str]:
     """Comment text wrapped into lines of at most COMMENT_MAX characters."""
     return textwrap.wrap(text, COMMENT_MAX, break_long_words=True) or [""]
+
+
+def _loop_head(var: LoopVar) -> str:
+    """The comment above a vendor loop: `for layer = 0 .. 2` (the values it runs) or
+    `repeat 2`."""
+    if var.name is None:
+        return f"repeat {var.last - var.first + 1}"
+    return f"for {var.name} = {var.first} .. {var.last}"
+# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
+FanucBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

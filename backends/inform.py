@@ -52,6 +52,12 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     `WAIT IN#(i)=` the same level, o and i being the robot's `io out[o] = "sync"` /
     `io in[i] = "sync"` of the cell (wired crosswise).
 
+Runtime logic (issue #15, the block at the end of the class): D/R/B variables from 050 with
+SET/ADD/SUB/MUL/DIV/INC/DEC, one-comparison `JUMP *L IF` chains, while loops with labels, the
+timeout branch by testing the input again after `WAIT ... T=`, polled waits (W431), `stop` =
+PAUSE (+ the job's end in the main job; W432 in a called job), `for` loops with INC and SFTON
+shifts set by SETE in P variables from P050, or unrolled (W420); analog inputs refused (E430).
+
 Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we keep jobs below
 `MAX_INSTRUCTIONS` (300) top-level IR instructions (~1800 INFORM lines); a longer main body is
 split into parts `NAME_PART1`, ... called from the main job (W406); a part or routine that is
@@ -76,12 +82,17 @@ from __future__ import annotations
 import math
 from collections.abc import Hashable
 from dataclasses import dataclass, field, replace
+from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_b, codes_turns, turns
+from rmot.backends import codes, codes_b, codes_logic, codes_turns, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
+from rmot.backends.codes_loops import LOOP_UNROLLED
+from rmot.backends.loops import (
+    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
+)
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, planned
@@ -144,6 +155,8 @@ class _Job:
     name: str
     positions: list[_Position] = field(default_factory=list)
     labels: int = 0
+    shifts: list[int] = field(default_factory=list)  # P variables the job declares (issue #15)
+    stop_label: str | None = None  # `*Lnnn` before END, where a main job's `stop` jumps
 
     def add(self, pos: _Position) -> str:
         self.positions.append(pos)
@@ -164,6 +177,15 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
             _, a = predecessors(node.then, last, out)
             _, b = predecessors(node.otherwise, last, out)
             last = a if a is b else None
+        elif isinstance(node, ir.Loop):  # issue #15: the iterations one after another
+            for it in node.iterations:
+                _, last = predecessors(it.body, last, out)
+        elif isinstance(node, ir.While):  # the body may run zero or more times
+            _, end = predecessors(node.body, last, out)
+            last = last if end is last else None
+        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)) and node.on_timeout:
+            _, end = predecessors(node.on_timeout, last, out)
+            last = last if end is last else None
     return out, last
 
 
@@ -178,6 +200,8 @@ class InformContext(TaskContext):
     user_frames: dict[int, tuple[str, ir.Pose]] = field(default_factory=dict)  # numbered frames used
     files: dict[str, str] = field(default_factory=dict)
     job: _Job = field(default_factory=lambda: _Job(""))
+    main: str = ""  # the main job's name (issue #15: where `stop` can end the program)
+    vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic (issue #15)
 
 
 class InformBackend(Backend):
@@ -203,7 +227,8 @@ class InformBackend(Backend):
             self.warn(codes.PROGRAM_SPLIT, f"job '{main}' must hold at most {MAX_INSTRUCTIONS} "
                       f"instructions (got more); split into {len(split)} parts", task.task.span)
         ctx = task.with_state(InformContext, routine_of={},
-                              preds=predecessors(body)[0], tools=self.tool_numbers(task))
+                              preds=predecessors(body)[0], tools=self.tool_numbers(task),
+                              main=main, vars=_Variables(task_variables(body)))
         # job names are global on the controller: a proc's job carries the program's name
         # (MAIN_APPROACH), so two programs' procs of one name never overwrite each other; the
         # split parts already do (NAME_PART1)
@@ -224,14 +249,16 @@ class InformBackend(Backend):
                              f"{MAX_POSITIONS} positions (got {len(job.positions)})", ctx.task.span)
         head = [c for line in header_lines(ctx.plan, self.name, self.findings_header)
                 for c in self.wrap(line)] + self.tool_comments(ctx)
+        inst += [job.stop_label] if job.stop_label else []
         text = (["/JOB", f"//NAME {name}"] + self.pos_section(job) +
                 ["//INST", f"///DATE {DATE}", f"///COMM {ctx.plan.program.name[:32]}",
-                 "///ATTR SC,RW", "///GROUP1 RB1", "NOP"] + head + inst + ["END"])
+                 "///ATTR SC,RW", "///GROUP1 RB1", "NOP"]
+                + head + ctx.vars.comments() + inst + ["END"])
         ctx.files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
 
     @staticmethod
     def pos_section(job: _Job) -> list[str]:
-        lines = ["//POS", f"///NPOS {len(job.positions)},0,0,0,0,0"]
+        lines = ["//POS", f"///NPOS {len(job.positions)},0,0,{len(job.shifts)},0,0"]
         tool: int | None = None
         conf: str | None = None
         user: int | None = None
@@ -250,6 +277,9 @@ class InformBackend(Backend):
                 lines.append(f"///RCONF {pos.conf}")
                 conf = pos.conf
             lines.append(f"C{k:05d}={pos.values}")
+        if job.shifts:  # issue #15: the loop shifts, Cartesian zeros the job sets per iteration
+            lines += ["///POSTYPE ROBOT", "///RECTAN"]
+            lines += [f"P{n:04d}=0.000,0.000,0.000,0.0000,0.0000,0.0000" for n in job.shifts]
         return lines
 
     # ------------------------------------------------------------------ text helpers
@@ -331,11 +361,12 @@ class InformBackend(Backend):
                 self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
                           "position of its planned joints with full RCONF (pulse counts per "
                           "degree are robot-specific)", node.span)
-            return [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+            movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+            return self.shifted(node, movj, ctx)
         v = self.linear_speed(node)
         if node.kind is ir.MotionKind.LINEAR:
             c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
-            return [f"MOVL {c} V={v}{pl}"] if c else []
+            return self.shifted(node, [f"MOVL {c} V={v}{pl}"] if c else [], ctx)
         return self.circular(node, rec, ctx, v, pl)
 
     def context_key(self, node: ir.Instr, ctx: TaskContext) -> Hashable:
@@ -453,8 +484,10 @@ class InformBackend(Backend):
             return [f"WAIT {test}"]
         done, c = self.label(ctx), node.condition
         message = f"IN#({c.port}) TIMEOUT"  # MSG holds at most 32 characters
+        branch = (self.body(node.on_timeout, ctx) if node.on_timeout
+                  else [f'MSG "{message}"', "PAUSE"])
         return [f"WAIT {test} T={self.seconds(node.timeout, node, 'timeout')}",
-                f"JUMP {done} IF {test}", f'MSG "{message}"', "PAUSE", done]
+                f"JUMP {done} IF {test}", *branch, done]
 
     @staticmethod
     def label(ctx: InformContext) -> str:
@@ -463,6 +496,8 @@ class InformBackend(Backend):
         return f"*L{job.labels:03d}"
 
     def if_(self, node: ir.If, ctx: InformContext) -> list[str]:
+        if not isinstance(node.condition, ir.InputCondition):  # issue #15: any condition
+            return self._if_condition(node, ctx)
         test = self.condition(node.condition, node.span, negate=True)
         if test is None:
             return []
@@ -477,6 +512,439 @@ class InformBackend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: InformContext) -> list[str]:
         name = ctx.routine_of[node.uid]
+        shifted = tuple(ctx.vars.offsets.get((m.uid, "target"), (None,))[0]
+                        for m in ir.walk(node.body) if isinstance(m, ir.Move))
+        if any(s is not None for s in shifted):  # issue #15: a call in a loop with shifted moves
+            key = (name, shifted)
+            if key not in ctx.vars.loop_jobs:
+                ctx.vars.loop_jobs[key] = f"{name}_L{len(ctx.vars.loop_jobs) + 1}"[:32]
+            name = ctx.vars.loop_jobs[key]
         if f"{name}{self.file_ext}" not in ctx.files:  # calls printing the same job share it
             self.job(name, node.body, ctx)
         return [f"CALL JOB:{name}"]
+
+    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # Variables are the controller's numbered variables (YRC1000 INSTRUCTIONS manual, "Variables";
+    # the arithmetic instructions SET, ADD, SUB, MUL, DIV, INC work in place on their first
+    # operand): int -> D (32-bit integer), num -> R (real), bool -> B (0/1), from VAR_FIRST in
+    # order of first declaration, then the current statement's temporaries (a job cannot name
+    # them: a comment lists them at the top of each job). `JUMP *L IF` takes one comparison
+    # (variable on the left, variable or constant on the right; =, <>, <, <=, >, >=), so
+    # and/or/not become chains of jumps. Loop shifts are P variables from PVAR_FIRST, declared
+    # in //POS (`///NPOS c,0,0,p,0,0`, `Pnnnn=` lines, as real jobs carry them) and set per
+    # iteration with SETE (elements in 0.001 mm); a shifted move is wrapped in `SFTON Pnnn RF`
+    # (or `UF#(n)` for a numbered user frame) ... `SFTOF` (YRC1000 INSTRUCTIONS, SFTON/SFTOF,
+    # SETE; real jobs: `SFTON P013` / `CALL JOB:..` / `SFTOF`, `SETE P000 (3) D000`).
+
+    VAR_FIRST: ClassVar[int] = 50
+    MAX_VAR: ClassVar[int] = 99  # B/I/D/R/P000..099: the default variable counts of DX200/YRC1000
+    PVAR_FIRST: ClassVar[int] = 50
+    POLL_STEP: ClassVar[float] = 0.01  # s, the TIMER step of a polled wait
+    LETTER: ClassVar[dict[ir.ValueType, str]] = {ir.ValueType.INT: "D", ir.ValueType.NUM: "R",
+                                                 ir.ValueType.BOOL: "B"}
+
+    def _var(self, name: str, ctx: InformContext, span: object) -> str:
+        found = ctx.vars.variables.get(name)
+        if found is None:
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED,
+                             f"variable '{name}' must be declared in the task (got a reference to "
+                             "an undeclared one)", span)  # type: ignore[arg-type]
+            return "D000"
+        return self._numbered(found[0], found[1], span)
+
+    def _numbered(self, vtype: ir.ValueType, n: int, span: object) -> str:
+        if n > self.MAX_VAR:
+            self.unsupported(codes_logic.REGISTERS_EXHAUSTED, f"the program must fit variables "
+                             f"{self.VAR_FIRST:03d}..{self.MAX_VAR:03d} of each type (needs "
+                             f"{self.LETTER[vtype]}{n:03d})", span)  # type: ignore[arg-type]
+        return f"{self.LETTER[vtype]}{n:03d}"
+
+    def _temp(self, vtype: ir.ValueType, ctx: InformContext, span: object) -> str:
+        return self._numbered(vtype, ctx.vars.temp(vtype), span)
+
+    def var_decl(self, node: ir.VarDecl, ctx: InformContext) -> list[str]:
+        return self._store(node.name, node.init, node, ctx)
+
+    def assign(self, node: ir.Assign, ctx: InformContext) -> list[str]:
+        return self._store(node.name, node.value, node, ctx)
+
+    def _store(self, name: str, value: ir.RtExpr, node: ir.Instr, ctx: InformContext) -> list[str]:
+        ctx.vars.reset()
+        target = self._var(name, ctx, node.span)
+        if isinstance(value, ir.Arith) and not _reads(value.right, name):  # in place, no temporary
+            lines, a = self._value(value.left, ctx, node)
+            more, b = self._value(value.right, ctx, node)
+            if a != target:
+                lines.append(f"SET {target} {a}")
+            if b == "1" and value.op in "+-" and value.type is ir.ValueType.INT:
+                return lines + more + [f"{'INC' if value.op == '+' else 'DEC'} {target}"]
+            return lines + more + [f"{_INFORM_OP[value.op]} {target} {b}"]
+        lines, a = self._value(value, ctx, node)
+        return lines + [f"SET {target} {a}"]
+
+    def _value(self, e: ir.RtExpr, ctx: InformContext, node: ir.Instr) -> tuple[list[str], str]:
+        """(lines computing it, the operand): a constant, a variable or a temporary."""
+        if isinstance(e, ir.Const):
+            return [], _inform_number(e.value)
+        if isinstance(e, ir.VarRef):
+            return [], self._var(e.name, ctx, node.span)
+        if isinstance(e, ir.Arith):
+            lines, a = self._value(e.left, ctx, node)
+            more, b = self._value(e.right, ctx, node)
+            t = self._temp(e.type, ctx, node.span)
+            return lines + more + [f"SET {t} {a}", f"{_INFORM_OP[e.op]} {t} {b}"], t
+        if isinstance(e, ir.AnalogInput):
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, f"analog input ain[{e.port}] must be "
+                             "readable by a job (INFORM reads analog inputs only through the "
+                             "optional analog I/O functions; rmot does not write them)", node.span)
+            return [], "0"
+        t, skip = self._temp(ir.ValueType.BOOL, ctx, node.span), self.label(ctx)
+        return [f"SET {t} 0", *self._jump(e, skip, False, ctx, node), f"SET {t} 1", skip], t
+
+    def _test(self, c: ir.Condition | ir.RtExpr, negate: bool, ctx: InformContext,
+              node: ir.Instr) -> tuple[list[str], str] | None:
+        """One comparison for `JUMP *L IF`: its lines and text, None when `c` is not one."""
+        if isinstance(c, ir.Not):
+            return self._test(c.operand, not negate, ctx, node)
+        if isinstance(c, ir.InputCondition):
+            test = self.condition(c, node.span, negate)
+            return ([], test) if test is not None else None
+        if isinstance(c, ir.VarRef):
+            return [], f"{self._var(c.name, ctx, node.span)}{'=' if negate else '<>'}0"
+        if not isinstance(c, ir.Compare):
+            return None
+        op, left, right = c.op, c.left, c.right
+        if isinstance(left, ir.Const) and not isinstance(right, ir.Const):
+            op, left, right = _MIRROR[op], right, left
+        lines, a = self._value(left, ctx, node)
+        if not isinstance(left, ir.VarRef) and not a.startswith(("D", "R", "B")):
+            t = self._temp(_value_type(left), ctx, node.span)
+            lines, a = lines + [f"SET {t} {a}"], t
+        more, b = self._value(right, ctx, node)
+        return lines + more, f"{a}{_INFORM_CMP[_NEGATED[op] if negate else op]}{b}"
+
+    def _jump(self, c: ir.Condition | ir.RtExpr, label: str, when: bool, ctx: InformContext,
+              node: ir.Instr) -> list[str]:
+        """Lines that jump to `label` when `c` evaluates to `when` and fall through otherwise."""
+        if isinstance(c, ir.Not):
+            return self._jump(c.operand, label, not when, ctx, node)
+        if isinstance(c, ir.Const):
+            return [f"JUMP {label}"] if bool(c.value) == when else []
+        if isinstance(c, ir.Logic):
+            out: list[str] = []
+            if (c.op == "and") == when:  # every operand must hold: skip out at the first that fails
+                skip = self.label(ctx)
+                for operand in c.operands[:-1]:
+                    out += self._jump(operand, skip, not when, ctx, node)
+                return out + self._jump(c.operands[-1], label, when, ctx, node) + [skip]
+            for operand in c.operands:
+                out += self._jump(operand, label, when, ctx, node)
+            return out
+        test = self._test(c, not when, ctx, node)
+        if test is None:
+            return []
+        return test[0] + [f"JUMP {label} IF {test[1]}"]
+
+    def _if_condition(self, node: ir.If, ctx: InformContext) -> list[str]:
+        ctx.vars.reset()
+        skip = self.label(ctx)
+        lines = self._jump(node.condition, skip, False, ctx, node) + self.body(node.then, ctx)
+        if not node.otherwise:
+            return lines + [skip]
+        done = self.label(ctx)
+        return lines + [f"JUMP {done}", skip, *self.body(node.otherwise, ctx), done]
+
+    def while_(self, node: ir.While, ctx: InformContext) -> list[str]:
+        ctx.vars.reset()
+        top, end = self.label(ctx), self.label(ctx)
+        lines = [top, *self._jump(node.condition, end, False, ctx, node)]
+        return lines + self.body(node.body, ctx) + [f"JUMP {top}", end]
+
+    def stop(self, node: ir.Stop, ctx: InformContext) -> list[str]:
+        """PAUSE holds the job where it is (YRC1000 INSTRUCTIONS, PAUSE); in the main job a
+        jump to the label before END follows, so a restart ends the job (END: the job's end)
+        instead of running on. A called job cannot end its caller: PAUSE only (W432)."""
+        if ctx.job.name != ctx.main:
+            self.warn(codes_logic.STOP_AS_PAUSE,
+                      f"stop in the called job '{ctx.job.name}' is written as PAUSE (a called "
+                      "job's END returns to its caller); a restart runs on", node.span)
+            return ['MSG "STOP"', "PAUSE"]
+        if ctx.job.stop_label is None:
+            ctx.job.stop_label = self.label(ctx)
+        return ['MSG "STOP"', "PAUSE", f"JUMP {ctx.job.stop_label}"]
+
+    def wait_condition(self, node: ir.WaitCondition, ctx: InformContext) -> list[str]:
+        """A condition other than one input: polled (`TIMER T=0.01` per test, W431); the timeout
+        counts the polls in a D temporary (each poll lasts at least POLL_STEP)."""
+        ctx.vars.reset()
+        counted = (" and its timeout counted in polls (the wait lasts at least the timeout)"
+                   if node.timeout is not None else "")
+        self.warn(codes_logic.WAIT_POLLED, "INFORM's WAIT must test one signal; this condition "
+                  f"is polled every {self.POLL_STEP:g} s{counted}", node.span)
+        poll, done = self.label(ctx), self.label(ctx)
+        test = self._jump(node.condition, done, True, ctx, node)
+        step = f"TIMER T={fmt(self.POLL_STEP, 2)}"
+        if node.timeout is None:
+            return [poll, *test, step, f"JUMP {poll}", done]
+        ticks = self._temp(ir.ValueType.INT, ctx, node.span)
+        limit = max(1, round(node.timeout / self.POLL_STEP))
+        branch = (self.body(node.on_timeout, ctx) if node.on_timeout
+                  else ['MSG "WAIT TIMEOUT"', "PAUSE"])
+        timed_out = self.label(ctx)
+        return [f"SET {ticks} 0", poll, *test, f"JUMP {timed_out} IF {ticks}>={limit}", step,
+                f"INC {ticks}", f"JUMP {poll}", timed_out, *branch, done]
+
+    # ---------------------------------------------------------------- loops
+
+    def loop(self, node: ir.Loop, ctx: InformContext) -> list[str]:
+        template = ctx.vars.inner.pop(node.uid, None)
+        if template is not None:  # a nested loop of a vendor loop being written
+            return self._vendor_loop(template, ctx)
+        found = analyse(node, ctx.record, config_key=_rconf_key,
+                        unroll=bool(getattr(self, "unroll", False)))
+        loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
+        reason = _inform_blocker(loop) if loop is not None else None
+        if loop is None or reason is not None:
+            self.warn(LOOP_UNROLLED, reason or found.message,
+                      found.span if isinstance(found, Unrolled) and reason is None else node.span)
+            return self._unrolled(node, ctx)
+        self._number_shifts(loop, ctx)
+        lines = self._vendor_loop(loop, ctx)
+        if isinstance(found, Unrolled):  # the last iteration on its own, after the loop
+            self.warn(LOOP_UNROLLED, found.message, found.span)
+            lines += self._unrolled(replace(node, iterations=(found.last,)), ctx)
+        return lines
+
+    def _unrolled(self, node: ir.Loop, ctx: InformContext) -> list[str]:
+        lines: list[str] = []
+        for it in node.iterations:
+            body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
+            lines += self.wrap(f"{node.var or 'iteration'} = {it.value}") + self.body(body, ctx)
+        return lines
+
+    def _number_shifts(self, template: LoopTemplate, ctx: InformContext) -> None:
+        """One P variable per distinct shift of the nest (its steps in the coordinates the job
+        writes the position in: the robot frame, or the numbered user frame)."""
+        for (uid, role), offset in sorted(template.targets.items()):
+            node = next(n for n in ir.walk(template.body) if n.uid == uid)
+            assert isinstance(node, ir.Move)
+            system, steps = self._shift_steps(node, offset, ctx)
+            if not any(any(s) for s in steps):
+                continue
+            key = (system, tuple(v.uid for v in offset.loops), steps)
+            if key not in ctx.vars.shifts:
+                ctx.vars.shifts[key] = self.PVAR_FIRST + len(ctx.vars.shifts)
+            ctx.vars.offsets[(uid, role)] = (ctx.vars.shifts[key], system, offset.loops, steps)
+
+    def _shift_steps(self, node: ir.Move, offset: TargetOffset,
+                     ctx: InformContext) -> tuple[str, tuple[tuple[int, int, int], ...]]:
+        """(coordinate system, integer steps in 0.001 mm per loop variable)."""
+        user = frame_number(ctx.plan.program.cell, node.frame.name)
+        rot = np.eye(3) if user is not None else node.frame.pose.matrix()[:3, :3]
+        system = f"UF#({user})" if user is not None else "RF"
+        steps = tuple(tuple(int(round(float(v) * 1e6)) for v in rot @ np.array(s))
+                      for s in offset.steps)
+        return system, steps  # type: ignore[return-value]
+
+    def _vendor_loop(self, template: LoopTemplate, ctx: InformContext) -> list[str]:
+        """`SET Dv first`, `*Ltop`, this level's shifts, the body, `INC Dv`,
+        `JUMP *Ltop IF Dv<=last` (the range is never empty here: loops.analyse)."""
+        var = template.var
+        counter = self._counter(var, ctx, template.loop.span)
+        ctx.vars.inner.update(template.inner)
+        top = self.label(ctx)
+        head = self.wrap(_loop_head(var))
+        head += [f"SET {counter} {var.first}", top]
+        ctx.vars.reset()
+        shifts = self._shift_lines(template, ctx)
+        return head + shifts + self.body(template.body, ctx) + [
+            f"INC {counter}", f"JUMP {top} IF {counter}<={var.last}"]
+
+    def _counter(self, var: LoopVar, ctx: InformContext, span: object) -> str:
+        if var.name is not None:
+            return self._var(var.name, ctx, span)
+        if var.uid not in ctx.vars.repeat:
+            ctx.vars.repeat[var.uid] = self._numbered(ir.ValueType.INT, ctx.vars.counter(), span)
+        return ctx.vars.repeat[var.uid]
+
+    def _shift_lines(self, template: LoopTemplate, ctx: InformContext) -> list[str]:
+        """SETE Pnnn (axis) D.. for every shift this level's own moves use: the sum over the
+        loops of (counter - first) * step, in 0.001 mm."""
+        done: set[int] = set()
+        lines: list[str] = []
+        for uid in _level_moves(template.body):
+            for role in ("target", "via"):
+                found = ctx.vars.offsets.get((uid, role))
+                if found is None or found[0] in done:
+                    continue
+                pvar, _, loops, steps = found
+                done.add(pvar)
+                if pvar not in ctx.job.shifts:
+                    ctx.job.shifts.append(pvar)
+                for axis in range(3):
+                    terms = [(v, s[axis]) for v, s in zip(loops, steps) if s[axis]]
+                    if not terms:
+                        continue
+                    acc = self._temp(ir.ValueType.INT, ctx, template.loop.span)
+                    for k, (v, step) in enumerate(terms):
+                        t = acc if k == 0 else self._temp(ir.ValueType.INT, ctx, template.loop.span)
+                        lines.append(f"SET {t} {self._counter(v, ctx, template.loop.span)}")
+                        lines += [f"SUB {t} {v.first}"] if v.first else []
+                        lines.append(f"MUL {t} {step}")
+                        lines += [f"ADD {acc} {t}"] if k else []
+                    lines.append(f"SETE P{pvar:03d} ({axis + 1}) {acc}")
+        return lines
+
+    def shifted(self, node: ir.Move, lines: list[str], ctx: InformContext) -> list[str]:
+        """A loop move whose target shifts per iteration, inside SFTON ... SFTOF."""
+        found = ctx.vars.offsets.get((node.uid, "target"))
+        if found is None or not lines:
+            return lines
+        return [f"SFTON P{found[0]:03d} {found[1]}", *lines, "SFTOF"]
+
+
+# ---------------------------------------------------------------- runtime logic helpers (issue #15)
+
+_INFORM_OP = {"+": "ADD", "-": "SUB", "*": "MUL", "/": "DIV"}
+_INFORM_CMP = {ir.CompareOp.EQ: "=", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<",
+               ir.CompareOp.LE: "<=", ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
+_NEGATED = {ir.CompareOp.EQ: ir.CompareOp.NE, ir.CompareOp.NE: ir.CompareOp.EQ,
+            ir.CompareOp.LT: ir.CompareOp.GE, ir.CompareOp.GE: ir.CompareOp.LT,
+            ir.CompareOp.GT: ir.CompareOp.LE, ir.CompareOp.LE: ir.CompareOp.GT}
+_MIRROR = {ir.CompareOp.EQ: ir.CompareOp.EQ, ir.CompareOp.NE: ir.CompareOp.NE,
+           ir.CompareOp.LT: ir.CompareOp.GT, ir.CompareOp.GT: ir.CompareOp.LT,
+           ir.CompareOp.LE: ir.CompareOp.GE, ir.CompareOp.GE: ir.CompareOp.LE}
+
+
+_Shift = tuple[int, str, tuple[LoopVar, ...], tuple[tuple[int, int, int], ...]]
+"""A shifted target: (P variable, coordinate system, the loops, steps in 0.001 mm per loop)."""
+
+
+@dataclass
+class _Variables:
+    """One task's variables: name -> (type, number), fixed for the task (variables are global
+    on the controller, so called jobs read the same ones); temporaries of the current
+    statement above them per type; loop shifts (P variables) and repeat counters."""
+
+    variables: dict[str, tuple[ir.ValueType, int]]
+    used: dict[ir.ValueType, int] = field(default_factory=dict)
+    shifts: dict[object, int] = field(default_factory=dict)
+    offsets: dict[tuple[int, str], _Shift] = field(default_factory=dict)
+    inner: dict[int, LoopTemplate] = field(default_factory=dict)
+    repeat: dict[int, str] = field(default_factory=dict)
+    counters: int = 0
+    loop_jobs: dict[object, str] = field(default_factory=dict)  # (job, shifts) -> its own job
+
+    def reset(self) -> None:
+        self.used = {}
+
+    def _top(self, vtype: ir.ValueType) -> int:
+        n = sum(1 for t, _ in self.variables.values() if t is vtype)
+        return InformBackend.VAR_FIRST + n + (self.counters if vtype is ir.ValueType.INT else 0)
+
+    def temp(self, vtype: ir.ValueType) -> int:
+        self.used[vtype] = self.used.get(vtype, 0) + 1
+        return self._top(vtype) + self.used[vtype] - 1
+
+    def counter(self) -> int:
+        self.counters += 1
+        return self._top(ir.ValueType.INT) - 1
+
+    def comments(self) -> list[str]:
+        return [f"'{InformBackend.LETTER[t]}{n:03d} = {name}"[:COMMENT_WIDTH]
+                for name, (t, n) in self.variables.items()]
+
+
+def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, tuple[ir.ValueType, int]]:
+    """Every variable and loop variable of a task with its type and number (per type from
+    VAR_FIRST, in order of first appearance)."""
+    out: dict[str, tuple[ir.ValueType, int]] = {}
+    for node in ir.walk(body):
+        if isinstance(node, ir.VarDecl):
+            name, vtype = node.name, node.type
+        elif isinstance(node, ir.Loop) and node.var is not None:
+            name, vtype = node.var, ir.ValueType.INT
+        else:
+            continue
+        if name not in out:
+            n = sum(1 for t, _ in out.values() if t is vtype)
+            out[name] = (vtype, InformBackend.VAR_FIRST + n)
+    return out
+
+
+def _inform_number(value: float | bool) -> str:
+    if isinstance(value, bool):
+        return "1" if value else "0"
+    return str(value) if isinstance(value, int) else (fmt(value, 6).rstrip("0").rstrip(".") or "0")
+
+
+def _value_type(e: ir.RtExpr) -> ir.ValueType:
+    if isinstance(e, ir.Const):
+        return e.type
+    if isinstance(e, (ir.VarRef, ir.Arith)):
+        return e.type
+    if isinstance(e, ir.AnalogInput):
+        return ir.ValueType.NUM
+    return ir.ValueType.BOOL
+
+
+def _reads(e: object, name: str) -> bool:
+    if isinstance(e, ir.VarRef):
+        return e.name == name
+    if isinstance(e, ir.Arith):
+        return _reads(e.left, name) or _reads(e.right, name)
+    if isinstance(e, ir.Compare):
+        return _reads(e.left, name) or _reads(e.right, name)
+    if isinstance(e, ir.Logic):
+        return any(_reads(o, name) for o in e.operands)
+    if isinstance(e, ir.Not):
+        return _reads(e.operand, name)
+    return False
+
+
+def _rconf_key(q: np.ndarray, branch: ir.Config | None) -> object:
+    """What an INFORM position stores of the configuration: its RCONF flags."""
+    if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+        return None
+    return rconf(branch, q)
+
+
+def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
+    """Uids of the moves of `body` outside nested loops (in If arms, whiles, procs too)."""
+    out: list[int] = []
+    for node in body:
+        if isinstance(node, ir.Move):
+            out.append(node.uid)
+        elif isinstance(node, ir.If):
+            out += _level_moves(node.then) + _level_moves(node.otherwise)
+        elif isinstance(node, (ir.While, ir.ProcCall)):
+            out += _level_moves(node.body)
+        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
+            out += _level_moves(node.on_timeout)
+    return out
+
+
+def _inform_blocker(template: LoopTemplate) -> str | None:
+    """Why a loop the analysis accepts still cannot be one INFORM loop: a circular move (MOVC
+    starts from the move before it, which a loop's first iteration does not know)."""
+    for node in ir.walk(template.body):
+        if isinstance(node, ir.Move) and node.kind is ir.MotionKind.CIRCULAR:
+            loop = template.loop
+            return (f"loop 'for {loop.var} in {loop.first} .. {loop.last}' unrolled: an INFORM "
+                    "circular move starts from the move before it")
+    return None
+
+
+InformBackend.EMIT = {**InformBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                      ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
+                      ir.Stop: "stop"}
+
+
+def _loop_head(var: LoopVar) -> str:
+    """The comment above a vendor loop: `for layer = 0 .. 2` (the values it runs) or
+    `repeat 2`."""
+    if var.name is None:
+        return f"repeat {var.last - var.first + 1}"
+    return f"for {var.name} = {var.first} .. {var.last}"
+# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
+InformBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

@@ -59,6 +59,7 @@ from rmot.backends import codes, codes_turns, turns
 from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
+from rmot.backends.runtime import LoopState
 from rmot.compiler import ir
 from rmot.backends.safe_text import comment_safe
 
@@ -142,6 +143,7 @@ class KrlContext(TaskContext):
     names: NameTable
     routine_of: dict[int, str]
     module: _Module
+    loops: LoopState = field(default_factory=LoopState)  # issue #15: the vendor loop being written
 
 
 class KrlBackend(Backend):
@@ -440,3 +442,296 @@ def _context_key_with_parts(self: KrlBackend, node: ir.Instr, ctx: TaskContext) 
 
 
 KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign]
+
+
+# ----------------------------------------------------------------- runtime logic (issue #15)
+#
+# Sources: KUKA System Software 8.x "Operating and Programming Instructions for System
+# Integrators" (KSS 8.x), chapter "Programming for user group Expert: KRL syntax":
+#   * DECL INT / REAL / BOOL: data declared in the module's data list (.dat) is known in every
+#     routine of the module (.src DEF and its local DEFs); its value in the .dat persists
+#     between runs, so the `var` statement assigns the initial value where the program runs it.
+#   * FOR counter = a TO b ... ENDFOR (counter: a declared INT, step 1); WHILE cond ...
+#     ENDWHILE; IF cond THEN ... ELSE ... ENDIF; operators AND OR NOT, == <> < <= > >=; every
+#     compound operand is parenthesised (runtime.py: comparisons have the lowest priority).
+#   * INT / INT is an integer division in KRL ("Arithmetic operators": the result of two INT
+#     operands is INT), so rmot's `/` (always a num) multiplies the left INT by 1.0 first.
+#   * frame arithmetic: the components of an E6POS (or FRAME) are assigned one by one
+#     (`P.X=BASE.X+...`, "Structures": access to a component with the point separator); the
+#     target is in $BASE, which is the move's frame, so adding the in-frame step to X, Y, Z
+#     offsets it exactly. S and T are copied from the template point: LIN/CIRC keep the Status
+#     they start with and ignore the programmed S/T; a PTP in a loop is written to a FRAME
+#     (Status kept, Turn the shortest path: _ptp_key) when that reaches every iteration's
+#     planned joints, else to an E6POS whose S and T every iteration shares.
+#   * $ANIN[n]: analog inputs as -1.0 .. +1.0 for -10 V .. +10 V (KSS 8.x System Variables,
+#     $ANIN[1] .. $ANIN[32]; the same scaling as $ANOUT above), so a value in volts is
+#     $ANIN[n]*10.
+#   * WAIT FOR has no timeout: the timed wait waits on the condition OR the timer
+#     $TIMER[TIMER_INDEX] (ms) as KrlBackend.wait_input does, then runs the timeout branch
+#     when the condition still does not hold.
+#   * stop: KRL has no instruction that ends the program from anywhere: HALT only pauses (the
+#     Start key resumes at the next line) and an interpreter cannot cancel itself (CWRITE
+#     "CANCEL 1" works from the Submit interpreter only; summarised in "KUKA robot program
+#     abort: stopping execution like Fanuc ABORT", industrialmonitordirect.com knowledge base).
+#     RETURN leaves the current DEF: in the main program it ends the program (its END is
+#     reached: $PRO_STATE1 #P_END). A stop inside a routine sets RMOT_STOP and returns; every
+#     call of such a routine is followed by `IF RMOT_STOP THEN RETURN ENDIF` (warning W421).
+
+from rmot.backends import codes_loops as _codes_loops  # noqa: E402
+from rmot.backends import loops as _loops  # noqa: E402
+from rmot.backends import runtime as _rt  # noqa: E402
+
+_KRL_TYPES = {ir.ValueType.INT: ("INT", "0"), ir.ValueType.NUM: ("REAL", "0.0"),
+              ir.ValueType.BOOL: ("BOOL", "FALSE")}
+_KRL_COMPARE = {ir.CompareOp.EQ: "==", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<",
+                ir.CompareOp.LE: "<=", ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
+ANALOG_IN_PORTS = (1, 32)  # $ANIN[1..32], KSS 8.x System Variables
+_STOP_FLAG = "RMOT_STOP"
+
+
+def _declare_var(ctx: KrlContext, name: str, krl_type: str, value: str) -> None:
+    """`DECL type name=value` in the module's .dat (once per module)."""
+    if all(n != name for n, _ in ctx.module.data.items):
+        ctx.module.data.items.append((name, f"{krl_type}:{value}"))
+
+
+def _krl_dialect(self: KrlBackend, ctx: KrlContext, span: object) -> _rt.ExprDialect:
+    def analog(a: ir.AnalogInput) -> str:
+        low, high = ANALOG_IN_PORTS
+        if not low <= a.port <= high:
+            self.unsupported(_codes_loops.ANALOG_IN_PORT,
+                             f"analog input port must be in {low}..{high} "
+                             f"for $ANIN (got {a.port})", span)  # type: ignore[arg-type]
+        return f"$ANIN[{a.port}]*10"
+
+    def digital(c: ir.InputCondition) -> str:
+        self.port_ok(c.port, "digital input", span)  # type: ignore[arg-type]
+        return f"$IN[{c.port}]=={self._level(c.value)}"
+
+    return _rt.ExprDialect(
+        true="TRUE", false="FALSE", and_="AND", or_="OR", not_="NOT ", compare=_KRL_COMPARE,
+        var=lambda v: ctx.names.name(v.name), digital=digital, analog=analog,
+        real_division=lambda a, b: f"({a}*1.0)/{b}", number=lambda v: _rt.trimmed(fmt(v, 6)),
+    )
+
+
+def _kexpr(self: KrlBackend, e: object, ctx: KrlContext, span: object) -> str:
+    return _rt.expr_text(e, _krl_dialect(self, ctx, span))
+
+
+def _k_var_decl(self: KrlBackend, node: ir.VarDecl, ctx: KrlContext) -> list[str]:
+    name = ctx.names.name(node.name, node.span)
+    krl_type, zero = _KRL_TYPES[node.type]
+    _declare_var(ctx, name, krl_type, zero)
+    return [f"{name}={_kexpr(self, node.init, ctx, node.span)}"]
+
+
+def _k_assign(self: KrlBackend, node: ir.Assign, ctx: KrlContext) -> list[str]:
+    return [f"{ctx.names.name(node.name, node.span)}={_kexpr(self, node.value, ctx, node.span)}"]
+
+
+_if_input = KrlBackend.if_
+
+
+def _k_if(self: KrlBackend, node: ir.If, ctx: KrlContext) -> list[str]:
+    if isinstance(node.condition, ir.InputCondition):
+        return _if_input(self, node, ctx)
+    lines = [f"IF {_kexpr(self, node.condition, ctx, node.span)} THEN"]
+    lines += self.indent(self.body(node.then, ctx), "  ")
+    if node.otherwise:
+        lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), "  ")
+    return lines + ["ENDIF"]
+
+
+def _k_while(self: KrlBackend, node: ir.While, ctx: KrlContext) -> list[str]:
+    return ([f"WHILE {_kexpr(self, node.condition, ctx, node.span)}"]
+            + self.indent(self.body(node.body, ctx), "  ") + ["ENDWHILE"])
+
+
+def _k_timed(self: KrlBackend, cond: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
+             ctx: KrlContext, span: object) -> list[str]:
+    """A wait on `cond` for at most `timeout` s, then the timeout branch (or HALT without one)."""
+    self.warn(codes.TIMEOUT_LOWERED, f"KRL WAIT FOR has no timeout; lowered to a wait on $TIMER"
+              f"[{self.TIMER_INDEX}] for {fmt(timeout, 3)} s", span)  # type: ignore[arg-type]
+    t, n = f"$TIMER[{self.TIMER_INDEX}]", self.TIMER_INDEX
+    branch = self.body(on_timeout, ctx) if on_timeout else ["HALT ; timeout"]
+    return [f"$TIMER_STOP[{n}]=TRUE", f"{t}=0", f"$TIMER_STOP[{n}]=FALSE",
+            f"WAIT FOR ({cond}) OR ({t}>={int(round(timeout * 1000))})", f"$TIMER_STOP[{n}]=TRUE",
+            f"IF NOT ({cond}) THEN"] + self.indent(branch, "  ") + ["ENDIF"]
+
+
+_wait_input_plain = KrlBackend.wait_input
+
+
+def _k_wait_input(self: KrlBackend, node: ir.WaitInput, ctx: KrlContext) -> list[str]:
+    if node.timeout is None or not node.on_timeout:
+        return _wait_input_plain(self, node, ctx)
+    c = node.condition
+    if not self.port_ok(c.port, "digital input", node.span):
+        return []
+    cond = f"$IN[{c.port}]=={self._level(c.value)}"
+    return _k_timed(self, cond, node.timeout, node.on_timeout, ctx, node.span)
+
+
+def _k_wait_condition(self: KrlBackend, node: ir.WaitCondition, ctx: KrlContext) -> list[str]:
+    cond = _kexpr(self, node.condition, ctx, node.span)
+    if node.timeout is None:
+        return [f"WAIT FOR {cond}"]
+    return _k_timed(self, cond, node.timeout, node.on_timeout, ctx, node.span)
+
+
+def _k_stop(self: KrlBackend, node: ir.Stop, ctx: KrlContext) -> list[str]:
+    if ctx.loops.in_routine == 0:
+        return ["RETURN ; stop: ends the program"]
+    _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
+    self.warn_once(ctx, "stop-flag", _codes_loops.STOP_IN_ROUTINE,
+                   "stop inside a routine: KRL cannot end the program from a routine; it sets "
+                   f"{_STOP_FLAG} and returns, and every call "
+                   "returns in turn", node.span)
+    return [f"{_STOP_FLAG}=TRUE", "RETURN ; stop"]
+
+
+_proc_call_plain = KrlBackend.proc_call
+
+
+def _k_proc_call(self: KrlBackend, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
+    if _rt.inline_call(node, ctx.loops):  # written inline in a vendor loop, like RAPID and URScript
+        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
+    ctx.loops.in_routine += 1
+    try:
+        lines = _proc_call_plain(self, node, ctx)
+    finally:
+        ctx.loops.in_routine -= 1
+    if any(isinstance(n, ir.Stop) for n in ir.walk(node.body)):
+        _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
+        ret = "RETURN ; stop: ends the program" if ctx.loops.in_routine == 0 else "RETURN ; stop"
+        lines += [f"IF {_STOP_FLAG} THEN", f"  {ret}", "ENDIF"]
+    return lines
+
+
+def krl_config(node: ir.Move, q: np.ndarray, branch: ir.Config | None) -> object:
+    """What KRL reads of a target's configuration in a loop: the Status (the branch) for every
+    motion (a LIN or CIRC keeps the Status it starts with; a PTP to a FRAME keeps the previous
+    one; a PTP to an E6POS takes the programmed one); the Turn of a PTP is _ptp_key's."""
+    if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+        return None
+    return status_of(branch)
+
+
+SHORTEST = "shortest"
+
+
+def _ptp_key(ctx: KrlContext, node: ir.Move, rec: object) -> object:
+    """SHORTEST when a PTP to a FRAME (no Status, no Turn) reaches the planned joints: the
+    controller keeps the previous Status and takes the Turn with the shortest path (KSS 8.x
+    "Status and Turn": "The robot controller retains the previous Status value ... In the case
+    of PTP motions, the robot controller selects the Turn value that results in the shortest
+    possible path", quoted in robot-forum.com thread 42877): true when the branch equals the
+    previous move's and every axis moves by less than 179 degrees. Else ("T", Turn) (an
+    E6POS with that Turn)."""
+    q = getattr(rec, "q_target", None)
+    if q is None:
+        return None
+    bits = ("T", turn_bits(q))
+    if getattr(rec, "variant", 0) != 0:
+        return bits
+    t0 = float(getattr(rec, "t_start", 0.0))
+    before = [r for r in ctx.task_plan.records
+              if r.variant == 0 and r.q_target is not None and r.t_end <= t0 + 1e-9
+              and r.uid != node.uid]
+    if not before:
+        return bits
+    prev = max(before, key=lambda r: r.t_end)
+    start = ctx.task_plan.trajectory.at(t0)
+    if prev.branch != getattr(rec, "branch", None):
+        return bits
+    if np.all(np.abs(np.asarray(q, float) - start) < np.radians(179.0)):
+        return SHORTEST
+    return bits
+
+
+def _krl_extra(self: KrlBackend, node: ir.Instr, rec: object, ctx: KrlContext) -> object:
+    """A PTP to a Cartesian target in a loop accepts an E6POS with its own Turn, and a FRAME
+    when that reaches its planned joints (_ptp_key): the loop analysis keeps the forms every
+    iteration accepts (LoopTemplate.choices)."""
+    key = self.context_key(node, ctx)
+    if (isinstance(node, ir.Move) and node.kind is ir.MotionKind.JOINT
+            and isinstance(node.target, ir.CartesianTarget)):
+        q = getattr(rec, "q_target", None)
+        forms: set[tuple[object, object]] = {(key, ("T", None if q is None else turn_bits(q)))}
+        if _ptp_key(ctx, node, rec) == SHORTEST:
+            forms.add((key, SHORTEST))
+        return frozenset(forms)
+    return key
+
+
+_pos_plain = KrlBackend._pos
+
+
+def _k_pos(self: KrlBackend, target: ir.CartesianTarget, q: np.ndarray | None,
+           branch: ir.Config | None,
+           node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
+    """As KrlBackend._pos; in a vendor loop, a PTP target every iteration reaches only as a
+    FRAME (see _ptp_key) is one, and an offset target is a work copy moved by the counters."""
+    forms = ctx.loops.choices.get(node.uid, frozenset())
+    if node.kind is ir.MotionKind.JOINT and forms and all(f[1] == SHORTEST for f in forms):
+        self.branch_or_default(branch, node)
+        frame = f"FRAME:{{{frame_text(target.in_frame)}}}"
+        name = ctx.module.data.add(hint or target.name or "p", frame,
+                                   node.span)
+    else:
+        name = _pos_plain(self, target, q, branch, node, ctx, hint)
+    offset = ctx.loops.offsets.get((node.uid, "via" if target is node.via else "target"))
+    if offset is None:
+        return name
+    terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 6)))
+    if terms == ("0", "0", "0"):
+        return name
+    value = next(v for n, v in ctx.module.data.items if n == name)
+    work = ctx.module.data.add(f"{name}_loop", value)
+    ctx.loops.pending.append(f"{work}={name}")
+    for axis, term in zip("XYZ", terms, strict=True):
+        if term != "0":
+            sign = "" if term.startswith("-") else "+"
+            ctx.loops.pending.append(f"{work}.{axis}={name}.{axis}{sign}{term}")
+    return work
+
+
+_move_plain = KrlBackend.move
+
+
+def _k_move(self: KrlBackend, node: ir.Move, ctx: KrlContext) -> list[str]:
+    lines = _move_plain(self, node, ctx)
+    if ctx.loops.pending and lines:
+        lines = lines[:-1] + ctx.loops.pending + lines[-1:]
+    ctx.loops.pending.clear()
+    return lines
+
+
+def _k_loop(self: KrlBackend, node: ir.Loop, ctx: KrlContext) -> list[str]:
+    def write(template: _loops.LoopTemplate) -> list[str]:
+        counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
+        _declare_var(ctx, counter, "INT", "0")
+        ctx.loops.enter(template, counter)
+        head = f"FOR {counter}={template.var.first} TO {template.var.last}"
+        return [head] + self.indent(self.body(template.body, ctx), "  ") + ["ENDFOR"]
+
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
+                          move_config=krl_config,
+                          extra_key=lambda n, r: _krl_extra(self, n, r, ctx))
+
+
+KrlBackend.EMIT = {**KrlBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                   ir.While: "while_",
+                   ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
+KrlBackend.var_decl = _k_var_decl  # type: ignore[attr-defined]
+KrlBackend.assign = _k_assign  # type: ignore[attr-defined]
+KrlBackend.if_ = _k_if  # type: ignore[method-assign]
+KrlBackend.while_ = _k_while  # type: ignore[attr-defined]
+KrlBackend.loop = _k_loop  # type: ignore[attr-defined]
+KrlBackend.wait_input = _k_wait_input  # type: ignore[method-assign]
+KrlBackend.wait_condition = _k_wait_condition  # type: ignore[attr-defined]
+KrlBackend.stop = _k_stop  # type: ignore[attr-defined]
+KrlBackend.proc_call = _k_proc_call  # type: ignore[method-assign]
+KrlBackend._pos = _k_pos  # type: ignore[method-assign]
+KrlBackend.move = _k_move  # type: ignore[method-assign]

@@ -44,6 +44,7 @@ from typing import ClassVar
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
+from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, planned
 
 __all__ = ["RapidBackend", "RAPID_RULES", "cfx_of"]
@@ -178,6 +179,7 @@ class RapidContext(TaskContext):
     routines: dict[str, list[str]] = field(default_factory=dict)
     routine_of: dict[int, str] = field(default_factory=dict)
     massless_tools: set[str] = field(default_factory=set)
+    loops: LoopState = field(default_factory=LoopState)  # issue #15: the vendor loop being written
 
 
 class RapidBackend(Backend):
@@ -199,7 +201,7 @@ class RapidBackend(Backend):
                               routine_of=self.routine_table(names, body, task))
         main = self.body(body, ctx)
         lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
-        for kind in ("tooldata", "wobjdata", "loaddata", "sync"):
+        for kind in ("tooldata", "wobjdata", "loaddata", "sync", "var"):
             lines += self.indent(ctx.decls.get(kind, []), self.INDENT)
         lines += self.indent(self._data_lines(ctx), self.INDENT)
         lines += [""] + self._routine("main", main)
@@ -307,7 +309,8 @@ class RapidBackend(Backend):
         cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
         conf = ",".join(str(c) for c in cf)
         value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{EXTAX}]"
-        return ctx.data.add(hint or target.name or "p", value, node.span)
+        name = ctx.data.add(hint or target.name or "p", value, node.span)
+        return _offs(ctx, node, "via" if target is node.via else "target", name)
 
     def _tool(self, tool: ir.ToolRef, span: object, ctx: RapidContext) -> str:
         if tool.name is None:
@@ -407,3 +410,186 @@ def _grip_load(self: RapidBackend, node: ir.Attach | ir.Detach, ctx: RapidContex
 
 RapidBackend.attach = _grip_load  # type: ignore[attr-defined]
 RapidBackend.detach = _grip_load  # type: ignore[attr-defined]
+
+
+# ----------------------------------------------------------------- runtime logic (issue #15)
+#
+# Sources (ABB "Technical reference manual - RAPID Instructions, Functions and Data types",
+# 3HAC050917-001, and "Technical reference manual - RAPID overview" 3HAC050947-001):
+#   * VAR num / VAR bool: program data declared at module level; a VAR's initial value is set
+#     only when the module is loaded or reset (RAPID overview, "Variables"), so the declaration
+#     carries no value and the `var` statement assigns it where the program runs it (`:=`).
+#     rmot's int is a RAPID num (num data type: integers are exact within +-8388608).
+#   * FOR counter FROM a TO b DO ... ENDFOR (instruction FOR: "the loop counter is declared
+#     automatically", an integer counting by 1); WHILE cond DO ... ENDWHILE; IF cond THEN ...
+#     ELSE ... ENDIF; operators AND OR NOT, = <> < <= > >= (RAPID overview, "Expressions":
+#     comparisons bind tighter than AND, which binds tighter than OR / XOR / NOT, so a
+#     comparison stands bare inside AND/OR and every other compound operand is parenthesised).
+#   * Offs(Point, XOffset, YOffset, ZOffset) (function Offs): "add an offset in the object
+#     coordinate system to a robot position": the robtarget is written in the move's work
+#     object (uframe = the rmot frame, oframe identity), so Offs adds exactly the in-frame step
+#     that backends/loops.py found, in mm; orientation and confdata stay the robtarget's.
+#   * AInput(Signal) (function AInput): the analog input's current logical value; rmot's
+#     `ain[n]` is in volts, so the signal (default name ai<n>) must be configured with its
+#     logical value in volts (the I/O configuration's default, logical = physical).
+#   * WaitDI / WaitUntil ...\MaxTime:=T\TimeFlag:=flag (instructions WaitDI, WaitUntil): with
+#     \TimeFlag, running out of time is not an error: the flag is TRUE and execution goes on,
+#     so `IF flag THEN <timeout branch> ENDIF` follows; without \TimeFlag an unhandled
+#     ERR_WAIT_MAXTIME stops the program (rmot's plain `timeout T`, base.py).
+#   * stop -> EXIT (instruction EXIT: "terminate program execution. Program restart is then
+#     blocked"), which ends the task; `Stop` only pauses it (execution continues at the next
+#     instruction on restart), so it is not `stop`.
+
+from typing import Any  # noqa: E402
+
+from rmot.backends import loops as _loops  # noqa: E402
+from rmot.backends import runtime as _rt  # noqa: E402
+
+_RAPID_TYPES = {ir.ValueType.INT: "num", ir.ValueType.NUM: "num", ir.ValueType.BOOL: "bool"}
+_RAPID_COMPARE = {ir.CompareOp.EQ: "=", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<",
+                  ir.CompareOp.LE: "<=", ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
+
+
+def _offs(ctx: RapidContext, node: ir.Move, role: str, name: str) -> str:
+    """`Offs(name, dx, dy, dz)` (mm, work object frame) for a target a vendor loop offsets."""
+    offset = ctx.loops.offsets.get((node.uid, role))
+    if offset is None:
+        return name
+    terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 6)))
+    if terms == ("0", "0", "0"):
+        return name
+    return f"Offs({name},{','.join(terms)})"
+
+
+def _dialect(self: RapidBackend, ctx: RapidContext, span: object) -> _rt.ExprDialect:
+    return _rt.ExprDialect(
+        true="TRUE", false="FALSE", and_="AND", or_="OR", not_="NOT ", compare=_RAPID_COMPARE,
+        var=lambda v: ctx.names.name(v.name),
+        digital=lambda c: (f"DInput({self._signal(ctx, 'di', c.port, c.signal, span)}) "
+                           f"= {int(c.value)}"),
+        analog=lambda a: f"AInput({self._signal(ctx, 'ai', a.port, a.signal, span)})",
+        number=lambda v: _rt.trimmed(fmt(v, 6)), compare_binds_tighter=True,
+    )
+
+
+def _expr(self: RapidBackend, e: object, ctx: RapidContext, span: object) -> str:
+    return _rt.expr_text(e, _dialect(self, ctx, span))
+
+
+def _var_decl(self: RapidBackend, node: ir.VarDecl, ctx: RapidContext) -> list[str]:
+    name = ctx.names.name(node.name, node.span)
+    self._declare(ctx, "var", f"VAR {_RAPID_TYPES[node.type]} {name};")
+    return [f"{name} := {_expr(self, node.init, ctx, node.span)};"]
+
+
+def _assign(self: RapidBackend, node: ir.Assign, ctx: RapidContext) -> list[str]:
+    return [f"{ctx.names.name(node.name, node.span)} := {_expr(self, node.value, ctx, node.span)};"]
+
+
+def _if(self: RapidBackend, node: ir.If, ctx: RapidContext) -> list[str]:
+    lines = [f"IF {_expr(self, node.condition, ctx, node.span)} THEN"]
+    lines += self.indent(self.body(node.then, ctx), self.INDENT)
+    if node.otherwise:
+        lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)
+    return lines + ["ENDIF"]
+
+
+def _while(self: RapidBackend, node: ir.While, ctx: RapidContext) -> list[str]:
+    lines = [f"WHILE {_expr(self, node.condition, ctx, node.span)} DO"]
+    return lines + self.indent(self.body(node.body, ctx), self.INDENT) + ["ENDWHILE"]
+
+
+def _timeout_flag(self: RapidBackend, ctx: RapidContext) -> str:
+    name = ctx.names.name("rmot_timeout")
+    self._declare(ctx, "var", f"VAR bool {name};")
+    return name
+
+
+def _timed(self: RapidBackend, head: str, timeout: float | None, on_timeout: tuple[ir.Instr, ...],
+           ctx: RapidContext) -> list[str]:
+    if timeout is None:
+        return [head + ";"]
+    head += f"\\MaxTime:={fmt(timeout, 3)}"
+    if not on_timeout:
+        return [head + ";"]
+    flag = _timeout_flag(self, ctx)
+    return [f"{head}\\TimeFlag:={flag};", f"IF {flag} THEN"] + self.indent(
+        self.body(on_timeout, ctx), self.INDENT) + ["ENDIF"]
+
+
+def _wait_input(self: RapidBackend, node: ir.WaitInput, ctx: RapidContext) -> list[str]:
+    c = node.condition
+    head = f"WaitDI {self._signal(ctx, 'di', c.port, c.signal, node.span)}, {int(c.value)}"
+    return _timed(self, head, node.timeout, node.on_timeout, ctx)
+
+
+def _wait_condition(self: RapidBackend, node: ir.WaitCondition, ctx: RapidContext) -> list[str]:
+    head = f"WaitUntil {_expr(self, node.condition, ctx, node.span)}"
+    return _timed(self, head, node.timeout, node.on_timeout, ctx)
+
+
+def _stop(self: RapidBackend, node: ir.Stop, ctx: RapidContext) -> list[str]:
+    return ["EXIT;"]
+
+
+def rapid_conf(q: Any, branch: ir.Config | None) -> Hashable:
+    """The confdata RAPID writes for joints `q` on `branch` (cf1, cf4, cf6, cfx): a vendor
+    loop's one robtarget must carry every iteration's."""
+    if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
+        return None
+    return (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))
+
+
+def rapid_conf_match(first: Any, other: Any) -> bool:
+    r"""The template's confdata (written once for every iteration) reaches another iteration's
+    when cfx (the IK branch) is equal and cf1, cf4, cf6 differ by at most one quadrant.
+
+    ABB's configuration monitoring (ConfJ\On / ConfL\On, the defaults) selects the branch
+    by cfx and checks axes 1, 4 and 6 against the programmed quadrants, stopping when an
+    axis would have to turn by more than 90 degrees to reach them (ABB Technical reference
+    manual RAPID Instructions, ConfJ / ConfL; summarised in "ABB robot ConfL/ConfJ
+    configuration control explained", industrialmonitordirect.com: "generates an error if
+    the configuration changes by more than 90 degrees"). A neighbouring quadrant is the
+    same turn of the axis (the planner's joints differ from the written quadrant by less
+    than 90 degrees beyond its edge); two quadrants apart would be another turn."""
+    if first is None or other is None:
+        return first == other
+    a, b = first, other  # (cf1, cf4, cf6, cfx)
+    return bool(a[3] == b[3] and all(abs(a[i] - b[i]) <= 1 for i in range(3)))
+
+
+def _loop(self: RapidBackend, node: ir.Loop, ctx: RapidContext) -> list[str]:
+    def write(template: _loops.LoopTemplate) -> list[str]:
+        counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
+        ctx.loops.enter(template, counter)
+        head = f"FOR {counter} FROM {template.var.first} TO {template.var.last} DO"
+        return [head] + self.indent(self.body(template.body, ctx), self.INDENT) + ["ENDFOR"]
+
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
+                          config_key=rapid_conf, config_match=rapid_conf_match,
+                          extra_key=lambda n, r: self.context_key(n, ctx))
+
+
+_proc_call_plain = RapidBackend.proc_call
+
+
+def _r_proc_call(self: RapidBackend, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
+    """A call inside a FOR whose body the loop offsets is written inline (the FOR counter is
+    local to the loop: RAPID overview, "FOR": not known in another routine)."""
+    if _rt.inline_call(node, ctx.loops):
+        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
+    return _proc_call_plain(self, node, ctx)
+
+
+RapidBackend.EMIT = {**RapidBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                     ir.While: "while_",
+                     ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
+RapidBackend.var_decl = _var_decl  # type: ignore[attr-defined]
+RapidBackend.assign = _assign  # type: ignore[attr-defined]
+RapidBackend.if_ = _if  # type: ignore[method-assign]
+RapidBackend.while_ = _while  # type: ignore[attr-defined]
+RapidBackend.loop = _loop  # type: ignore[attr-defined]
+RapidBackend.wait_input = _wait_input  # type: ignore[method-assign]
+RapidBackend.wait_condition = _wait_condition  # type: ignore[attr-defined]
+RapidBackend.stop = _stop  # type: ignore[attr-defined]
+RapidBackend.proc_call = _r_proc_call  # type: ignore[method-assign]

@@ -61,7 +61,8 @@ from dataclasses import dataclass, field
 
 from rmot.backends import codes, codes_b
 from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
-from rmot.backends.names import NameRules
+from rmot.backends.names import NameRules, NameTable
+from rmot.backends.runtime import LoopState
 from rmot.compiler import ir
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
@@ -123,6 +124,8 @@ class UrContext(TaskContext):
     routine_defs: list[str] = field(default_factory=list)
     defined: set[str] = field(default_factory=set)  # routine names already in routine_defs
     threads: dict[str, list[str]] = field(default_factory=dict)
+    names: NameTable | None = None  # issue #15: variables and loop counters
+    loops: LoopState = field(default_factory=LoopState)  # issue #15: the vendor loop being written
 
 
 class UrScriptBackend(Backend):
@@ -140,10 +143,12 @@ class UrScriptBackend(Backend):
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, prog, body = self.open_task(task)
-        ctx = task.with_state(UrContext, routine_of=self.routine_table(names, body, task))
+        ctx = task.with_state(UrContext, routine_of=self.routine_table(names, body, task),
+                              names=names)
         main = self.block(body, ctx)
         self.extend(names.diagnostics)
         lines = self.header(ctx) + [f"def {prog}():"]
+        lines += self.indent(ctx.loops.decls, self.INDENT)  # globals and input domains (issue #15)
         for thread_lines in ctx.threads.values():
             lines += self.indent(thread_lines, self.INDENT)
         lines += self.indent(ctx.routine_defs, self.INDENT)
@@ -312,3 +317,255 @@ def _set_payload(self: UrScriptBackend, node: ir.Attach | ir.Detach, ctx: UrCont
 
 UrScriptBackend.attach = _set_payload  # type: ignore[attr-defined]
 UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]
+
+
+# ----------------------------------------------------------------- runtime logic (issue #15)
+#
+# Sources: Universal Robots, "The URScript Programming Language" (e-Series, PolyScope 5.x):
+#   * variables: `global NAME = value` at the top of the program makes NAME visible in every
+#     function defined in it (the procs' `def`s); a plain assignment in a function makes a
+#     local ("Scoping rules"); PolyScope writes its own programs' variables the same way,
+#     `global Waypoint_1_p=p[...]` right inside `def <program>():` (the .script files PolyScope
+#     saves, e.g. as quoted in public UR/ROS repositories). Types int, float, bool ("Variables
+#     and types"); `True`/`False`.
+#   * flow: `if c:` ... `elif`/`else:` ... `end`, `while c:` ... `end`; operators `and`,
+#     `or`, `not`, `==`, `!=`, `<`, `<=`, `>`, `>=` ("Flow of control", "Operators").
+#     A loop must use up physical time in every iteration (a thread that never does is
+#     stopped by the controller, "Threads" / the "Runtime too much behind" protective stop
+#     of Module internals sync()): a loop body that may not move or wait ends with `sync()`.
+#   * `for` loops: a counter and `while counter <= last:` (URScript has no for statement);
+#     targets are `pose_add(p_base, p[dx, dy, dz, 0, 0, 0])`: pose_add adds the positions and
+#     composes the rotations (Module urmath, pose_add(p_1, p_2): p_3.P = p_1.P + p_2.P,
+#     p_3.R = p_1.R * p_2.R), so a zero rotation gives the base pose moved by (dx, dy, dz) in
+#     the robot base frame; the in-frame step of backends/loops.py is turned into the base
+#     frame by the move's frame rotation first (URScript targets are in the base frame).
+#   * a joint move to a Cartesian target in a loop: `movej(get_inverse_kin(pose, qnear=q0))`
+#     (Module urmath, get_inverse_kin(x, qnear, ...): the solution closest to qnear), q0 the
+#     joints planned for the first iteration: the loop analysis requires every iteration's
+#     branch and turns to be q0's, so the closest solution is the planned one.
+#   * `get_standard_analog_in(n)` (Module interfaces): the control box analog input n in 0..1,
+#     in volts after `set_standard_analog_input_domain(n, 1)` (domain 1 = voltage).
+#   * stop -> `halt` (Module internals, halt(): terminates the program).
+#   * wait with a timeout branch: the same counted loop as wait_input above, then
+#     `if not (cond):` runs the branch instead of popup + halt.
+
+from rmot.backends import codes_loops as _codes_loops  # noqa: E402
+from rmot.backends import loops as _loops  # noqa: E402
+from rmot.backends import runtime as _rt  # noqa: E402
+
+_UR_ZERO = {ir.ValueType.INT: "0", ir.ValueType.NUM: "0.0", ir.ValueType.BOOL: "False"}
+_UR_COMPARE = {ir.CompareOp.EQ: "==", ir.CompareOp.NE: "!=", ir.CompareOp.LT: "<",
+               ir.CompareOp.LE: "<=", ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
+ANALOG_IN_PORTS = (0, 1)  # control box standard analog inputs AI0, AI1
+_TIMED = (ir.Move, ir.WaitTime, ir.WaitInput, ir.WaitCondition, ir.Stop)
+
+
+def _uname(ctx: UrContext, name: str, span: object = None) -> str:
+    assert ctx.names is not None
+    return ctx.names.name(name, span)  # type: ignore[arg-type]
+
+
+def _ur_dialect(self: UrScriptBackend, ctx: UrContext, span: object) -> _rt.ExprDialect:
+    def analog(a: ir.AnalogInput) -> str:
+        low, high = ANALOG_IN_PORTS
+        if not low <= a.port <= high:
+            self.unsupported(_codes_loops.ANALOG_IN_PORT,
+                             f"analog input port must be in {low}..{high} "
+                             f"for get_standard_analog_in (got {a.port})",
+                             span)  # type: ignore[arg-type]
+        domain = f"set_standard_analog_input_domain({a.port}, 1)"
+        if domain not in ctx.loops.decls:
+            ctx.loops.decls.append(domain)
+        return f"get_standard_analog_in({a.port})"
+
+    def digital(c: ir.InputCondition) -> str:
+        return self.condition(c, span) or "False"
+
+    return _rt.ExprDialect(
+        true="True", false="False", and_="and", or_="or", not_="not ", compare=_UR_COMPARE,
+        var=lambda v: _uname(ctx, v.name), digital=digital, analog=analog,
+        real_division=lambda a, b: f"({a} * 1.0) / {b}", number=lambda v: _rt.trimmed(fmt(v, 6)),
+    )
+
+
+def _uexpr(self: UrScriptBackend, e: object, ctx: UrContext, span: object) -> str:
+    return _rt.expr_text(e, _ur_dialect(self, ctx, span))
+
+
+def _u_var_decl(self: UrScriptBackend, node: ir.VarDecl, ctx: UrContext) -> list[str]:
+    name = _uname(ctx, node.name, node.span)
+    decl = f"global {name} = {_UR_ZERO[node.type]}"
+    if decl not in ctx.loops.decls:
+        ctx.loops.decls.append(decl)
+    return [f"{name} = {_uexpr(self, node.init, ctx, node.span)}"]
+
+
+def _u_assign(self: UrScriptBackend, node: ir.Assign, ctx: UrContext) -> list[str]:
+    return [f"{_uname(ctx, node.name, node.span)} = {_uexpr(self, node.value, ctx, node.span)}"]
+
+
+_u_if_input = UrScriptBackend.if_
+
+
+def _u_if(self: UrScriptBackend, node: ir.If, ctx: UrContext) -> list[str]:
+    if isinstance(node.condition, ir.InputCondition):
+        return _u_if_input(self, node, ctx)
+    lines = [f"if {_uexpr(self, node.condition, ctx, node.span)}:"]
+    lines += self.indent(self.block(node.then, ctx), self.INDENT)
+    if node.otherwise:
+        lines += ["else:"] + self.indent(self.block(node.otherwise, ctx), self.INDENT)
+    return lines + ["end"]
+
+
+def _uses_time(body: tuple[ir.Instr, ...]) -> bool:
+    """True when running `body` surely moves or waits (every if arm does, a loop runs)."""
+    for node in body:
+        if isinstance(node, _TIMED):
+            return True
+        if isinstance(node, ir.If) and _uses_time(node.then) and _uses_time(node.otherwise):
+            return True
+        if isinstance(node, ir.ProcCall) and _uses_time(node.body):
+            return True
+        if isinstance(node, ir.Loop) and node.iterations and _uses_time(node.iterations[0].body):
+            return True
+    return False
+
+
+def _loop_body(self: UrScriptBackend, body: tuple[ir.Instr, ...], ctx: UrContext) -> list[str]:
+    """A loop body, ending with `sync()` unless it surely moves or waits."""
+    lines = self.block(body, ctx)
+    if not _uses_time(body):
+        lines.append("sync()")
+    return lines
+
+
+def _u_while(self: UrScriptBackend, node: ir.While, ctx: UrContext) -> list[str]:
+    return ([f"while {_uexpr(self, node.condition, ctx, node.span)}:"]
+            + self.indent(_loop_body(self, node.body, ctx), self.INDENT) + ["end"])
+
+
+def _u_timed(self: UrScriptBackend, test: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
+             ctx: UrContext) -> list[str]:
+    return ["rmot_waited = 0.0",
+            f"while not ({test}) and rmot_waited < {fmt(timeout, 4)}:",
+            "  sync()", "  rmot_waited = rmot_waited + get_steptime()", "end",
+            f"if not ({test}):"] + self.indent(self.block(on_timeout, ctx), self.INDENT) + ["end"]
+
+
+_u_wait_input_plain = UrScriptBackend.wait_input
+
+
+def _u_wait_input(self: UrScriptBackend, node: ir.WaitInput, ctx: UrContext) -> list[str]:
+    if node.timeout is None or not node.on_timeout:
+        return _u_wait_input_plain(self, node, ctx)
+    test = self.condition(node.condition, node.span)
+    if test is None:
+        return []
+    return _u_timed(self, test, node.timeout, node.on_timeout, ctx)
+
+
+def _u_wait_condition(self: UrScriptBackend, node: ir.WaitCondition, ctx: UrContext) -> list[str]:
+    test = _uexpr(self, node.condition, ctx, node.span)
+    if node.timeout is None:
+        return [f"while not ({test}):", "  sync()", "end"]
+    if node.on_timeout:
+        return _u_timed(self, test, node.timeout, node.on_timeout, ctx)
+    message = f"wait until timed out after {fmt(node.timeout, 3)} s; program stopped"
+    return _u_timed(self, test, node.timeout, (), ctx)[:-1] + [
+        f'  popup("{message}", title="rmot", error=True, blocking=True)', "  halt", "end"]
+
+
+def _u_stop(self: UrScriptBackend, node: ir.Stop, ctx: UrContext) -> list[str]:
+    return ["halt"]
+
+
+def _offset_pose(self: UrScriptBackend, base: ir.Pose, node: ir.Move, role: str,
+                 ctx: UrContext) -> str:
+    """`p[...]` or, in a vendor loop, `pose_add(p[...], p[dx, dy, dz, 0, 0, 0])` (base frame)."""
+    text = pose_text(base)
+    offset = _rt.moving_offset(ctx.loops, node.uid, role)
+    if offset is None:
+        return text
+    rotation = node.frame.pose.matrix()[:3, :3]
+    terms = _rt.offset_terms(offset, ctx.loops.counters, 1.0,
+                             lambda v: _rt.trimmed(fmt(v, POS_DECIMALS)),
+                             frame=rotation)
+    if terms == ("0", "0", "0"):
+        return text
+    return f"pose_add({text}, p[{', '.join(terms)}, 0, 0, 0])"
+
+
+_u_move_plain = UrScriptBackend.move
+
+
+def _u_move(self: UrScriptBackend, node: ir.Move, ctx: UrContext) -> list[str]:
+    """As UrScriptBackend.move; a target a vendor loop offsets is written as a pose_add (and a
+    joint move to it through get_inverse_kin near the first iteration's joints)."""
+    moving = _rt.moving_offset(ctx.loops, node.uid, "target")
+    if moving is None or not isinstance(node.target, ir.CartesianTarget):
+        return _u_move_plain(self, node, ctx)
+    rec = self.move_record(node, ctx)
+    if isinstance(rec, list):
+        return rec
+    if rec.tcp_pose is None:
+        return _u_move_plain(self, node, ctx)
+    m = node.motion
+    r = fmt(rec.blend_radius, POS_DECIMALS)
+    to = _offset_pose(self, rec.tcp_pose, node, "target", ctx)
+    if node.kind is ir.MotionKind.JOINT:
+        v_max, a_max = self.joint_limits(ctx, node)
+        q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"  # type: ignore[arg-type]
+        accel = fmt(m.joint_accel * a_max, RATE_DECIMALS)
+        return [f"movej(get_inverse_kin({to}, qnear={q}), a={accel}, "
+                f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{self.duration_arg(m)}, r={r})"]
+    speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
+    if node.kind is ir.MotionKind.LINEAR:
+        return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]
+    if node.via is None:
+        return _u_move_plain(self, node, ctx)
+    via = _offset_pose(self, node.via.pose, node, "via", ctx)
+    return [f"movec({via}, {to}, {speed}, r={r}, mode=0)"]
+
+
+def _ur_extra(node: ir.Instr, rec: object) -> object:
+    """URScript prints each move's planned blend radius (r=): iterations must agree on it."""
+    radius = getattr(rec, "blend_radius", None)
+    return None if radius is None else fmt(radius, POS_DECIMALS)
+
+
+def _u_loop(self: UrScriptBackend, node: ir.Loop, ctx: UrContext) -> list[str]:
+    def write(template: _loops.LoopTemplate) -> list[str]:
+        counter = _uname(ctx, template.var.name or f"rmot_rep{template.loop.uid}", node.span)
+        ctx.loops.enter(template, counter)
+        body = _loop_body(self, template.body, ctx)
+        return ([f"{counter} = {template.var.first}", f"while {counter} <= {template.var.last}:"]
+                + self.indent(body + [f"{counter} = {counter} + 1"], self.INDENT) + ["end"])
+
+    return _rt.loop_lines(self, node, ctx, write, lambda body: self.block(body, ctx),
+                          extra_key=_ur_extra)
+
+
+_u_proc_call_plain = UrScriptBackend.proc_call
+
+
+def _u_proc_call(self: UrScriptBackend, node: ir.ProcCall, ctx: UrContext) -> list[str]:
+    """A call inside a vendor loop whose body the loop offsets is written inline (the counter
+    is a local of the program's def, not known inside the proc's own def)."""
+    if _rt.inline_call(node, ctx.loops):
+        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.block(node.body, ctx)
+    return _u_proc_call_plain(self, node, ctx)
+
+
+UrScriptBackend.EMIT = {**UrScriptBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                        ir.While: "while_", ir.Loop: "loop", ir.WaitCondition: "wait_condition",
+                        ir.Stop: "stop"}
+UrScriptBackend.var_decl = _u_var_decl  # type: ignore[attr-defined]
+UrScriptBackend.assign = _u_assign  # type: ignore[attr-defined]
+UrScriptBackend.if_ = _u_if  # type: ignore[method-assign]
+UrScriptBackend.while_ = _u_while  # type: ignore[attr-defined]
+UrScriptBackend.loop = _u_loop  # type: ignore[attr-defined]
+UrScriptBackend.wait_input = _u_wait_input  # type: ignore[method-assign]
+UrScriptBackend.wait_condition = _u_wait_condition  # type: ignore[attr-defined]
+UrScriptBackend.stop = _u_stop  # type: ignore[attr-defined]
+UrScriptBackend.move = _u_move  # type: ignore[method-assign]
+UrScriptBackend.proc_call = _u_proc_call  # type: ignore[method-assign]

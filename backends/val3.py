@@ -44,6 +44,10 @@ Vendor conventions (VAL3 reference manual):
     `wait(dIn[i] == ...)`, o and i being the robot's `io out[o] = "sync"` /
     `io in[i] = "sync"` of the cell (wired crosswise); a waitEndMove() precedes it like any I/O.
 
+Runtime logic (issue #15, the block at the end of the class): task variables as global num/bool
+data, infix expressions, if/while/for, watch() with the timeout branch, `for` loops with
+compose(point, frame, trShift) offsets or unrolled (W420), stop = waitEndMove() + return.
+
 Size limits: VAL3 sets no line limit on a program and data arrays grow dynamically, so
 programs are not split. Names: identifiers of letters, digits and `_`, at most 15 characters.
 
@@ -62,12 +66,16 @@ Support (checked by tests/backends/test_val3.py):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from typing import ClassVar
 
-from rmot.backends import codes, codes_b
+from rmot.backends import codes, codes_b, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
+from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
+from rmot.backends.loops import LoopTemplate, Unrolled, analyse, bind_loop_var
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
+from rmot.lang.source import Span
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
 
@@ -123,6 +131,8 @@ class _Data:
     outputs: int = 0  # size of dOut (highest port + 1)
     inputs: int = 0
     analog: int = 0  # size of aOut
+    analog_in: int = 0  # size of aIn (issue #15)
+    variables: dict[str, tuple[str, str]] = field(default_factory=dict)  # name -> (type, value)
 
     def index(self, table: list[str], value: str) -> int:
         if value not in table:
@@ -139,6 +149,16 @@ class Val3Context(TaskContext):
     routine_of: dict[int, str]
     data: _Data = field(default_factory=_Data)
     programs: dict[str, list[str]] = field(default_factory=dict)  # program name -> code lines
+    # runtime logic (issue #15): each program's locals, the program being printed, the loop
+    # counters in scope (IR name -> VAL3 name), nested loop templates, shifts
+    locals: dict[str, dict[str, str]] = field(default_factory=dict)
+    where: list[str] = field(default_factory=lambda: ["start"])
+    scopes: list[dict[str, str]] = field(default_factory=list)
+    inner: dict[int, LoopTemplate] = field(default_factory=dict)
+    shifts: dict[object, str] = field(default_factory=dict)
+    offsets: dict[tuple[int, str], str] = field(default_factory=dict)
+    counters: dict[int, str] = field(default_factory=dict)
+    loop_programs: dict[object, str] = field(default_factory=dict)  # (program, shifts) -> its own
 
 
 class Val3Backend(Backend):
@@ -151,24 +171,30 @@ class Val3Backend(Backend):
     NAME_RULES = VAL3_RULES
     DIGITAL_PORTS = (0, 63)  # dIn / dOut arrays linked to BasicIO-1\%I / %Q
     NO_RECORD_NOTE = None
-    WAITS_FOR_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput, ir.If)
-    NO_MOTION = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime, ir.WaitInput)
+    WAITS_FOR_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse,
+                                                    ir.WaitTime, ir.WaitInput, ir.If)
+    NO_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime,
+                                             ir.WaitInput)
 
     # ------------------------------------------------------------------ application
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, app, body = self.open_task(task)
-        for reserved in ("start", "stop", "aOut", "dOut", "dIn", "bOk", "pTarget", "jTarget", "mSpeed"):
+        for reserved in ("start", "stop", "aOut", "dOut", "dIn", "bOk", "pTarget", "jTarget",
+                         "mSpeed", "aIn", "bStop"):
             names.reserve(reserved)  # taken after the app is named (the order decides a clash)
         ctx = task.with_state(Val3Context, names=names, routine_of=self.routine_table(names, body, task))
         main = self.block(body, ctx) + ["waitEndMove()"]
+        if "bStop" in ctx.data.variables:  # issue #15: a stop in a called program; clear it first
+            main.insert(0, "bStop = false")
         ctx.programs["start"] = main
         ctx.programs["stop"] = []
         self.extend(names.diagnostics)
         files = {f"{app}/{app}.pjx": self.project(app, ctx), f"{app}/{app}.dtx": self.database(ctx)}
         head = self.header(ctx)
         for prog, code in sorted(ctx.programs.items()):
-            files[f"{app}/{prog}.pgx"] = self.program(prog, (head if prog == "start" else []) + code)
+            code = (head if prog == "start" else []) + code
+            files[f"{app}/{prog}.pgx"] = self.program(prog, code, ctx.locals.get(prog, {}))
         return dict(sorted(files.items()))
 
     @staticmethod
@@ -181,10 +207,12 @@ class Val3Backend(Backend):
                 f'  <Database>\n    <Data file="{app}.dtx" />\n  </Database>\n'
                 "  <Libraries />\n</Project>\n")
 
-    def program(self, name: str, code: list[str]) -> str:
+    def program(self, name: str, code: list[str], extra: dict[str, str] | None = None) -> str:
         text = "\n".join(["begin", *self.indent(code, self.INDENT), "end"]).replace("]]>", "]]]]><![CDATA[>")
+        more = "".join(f'      <Local name="{n}" type="{t}" xsi:type="array" size="1" />\n'
+                       for n, t in sorted((extra or {}).items()))
         locals_ = ('    <Locals>\n      <Local name="bOk" type="bool" xsi:type="array" size="1" />\n'
-                   '    </Locals>\n')
+                   f'{more}    </Locals>\n')
         return ('<?xml version="1.0" encoding="utf-8"?>\n'
                 f'<Programs {XSI} xmlns="http://www.staubli.com/robotics/VAL3/Program/2">\n'
                 f'  <Program name="{name}">\n{locals_}'
@@ -195,6 +223,7 @@ class Val3Backend(Backend):
         d = ctx.data
         entries: dict[str, tuple[str, list[str]]] = {
             "aOut": ("aio", ['link=""'] * d.analog),
+            "aIn": ("aio", ['link=""'] * d.analog_in),
             "dIn": ("dio", [f'link="BasicIO-1\\%I{k}"' for k in range(d.inputs)]),
             "dOut": ("dio", [f'link="BasicIO-1\\%Q{k}"' for k in range(d.outputs)]),
             "jTarget": ("jointRx", d.joints),
@@ -202,6 +231,7 @@ class Val3Backend(Backend):
             "pTarget": ("pointRx", d.points),
         }
         entries.update({n: ("frame", [v]) for n, v in d.frames.items()})
+        entries.update({n: (kind, [v]) for n, (kind, v) in d.variables.items()})
         entries.update({n: ("tool", [v]) for n, v in d.tools.items()})
         out = ['<?xml version="1.0" encoding="utf-8"?>',
                f'<Database {XSI} xmlns="http://www.staubli.com/robotics/VAL3/Data/2">', "  <Datas>"]
@@ -225,7 +255,8 @@ class Val3Backend(Backend):
                 self.wait_end_move(prev, node, ctx)
                 out.append("waitEndMove()")
             out.extend(self.instr(node, ctx))
-            settled = isinstance(node, self.NO_MOTION)  # each of these ran with no motion queued
+            if not isinstance(node, (ir.VarDecl, ir.Assign)):  # these leave the motion queue as is
+                settled = isinstance(node, self.NO_MOTION)  # these ran with no motion queued
             prev = node
         return out
 
@@ -281,6 +312,13 @@ class Val3Backend(Backend):
             return rec
         self.warn_payload(node, ctx, "the arm's payload settings on the controller (VAL3 tool data has no mass)")
         tool, speed = self.tool(node.tool, ctx), self.mdesc(node, rec.blend_radius, ctx)
+        if node.kind is ir.MotionKind.JOINT and (node.uid, "target") in ctx.offsets:  # issue #15
+            branch = self.branch(rec, node)
+            if branch is None or rec.tcp_pose is None:
+                return []
+            point = self.point(rec.tcp_pose, branch, node.frame, ctx)
+            point = self._shifted(point, node, "target", ctx)
+            return [f"movej({point}, {tool}, {speed})"]
         if node.kind is ir.MotionKind.JOINT:
             value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
             return [f"movej(jTarget[{ctx.data.index(ctx.data.joints, value)}], {tool}, {speed})"]
@@ -288,12 +326,13 @@ class Val3Backend(Backend):
         if branch is None or rec.tcp_pose is None:
             return []
         target = self.point(rec.tcp_pose, branch, node.frame, ctx)
+        target = self._shifted(target, node, "target", ctx)
         if node.kind is ir.MotionKind.LINEAR:
             return [f"movel({target}, {tool}, {speed})"]
         if node.via is None:
             self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
             return []
-        via = self.point(node.via.pose, branch, node.frame, ctx)
+        via = self._shifted(self.point(node.via.pose, branch, node.frame, ctx), node, "via", ctx)
         return [f"movec({via}, {target}, {tool}, {speed})"]
 
     def branch(self, rec: planned.InstructionRecord, node: ir.Move) -> ir.Config | None:
@@ -351,11 +390,15 @@ class Val3Backend(Backend):
             return [f"wait({test})"]
         c = node.condition
         message = f'"wait for dIn[{c.port}] == {str(c.value).lower()} timed out after {fmt(node.timeout, 3)} s"'
-        return [f"bOk = watch({test}, {fmt(node.timeout, 4)})", "if !bOk",
-                *self.indent([f"popUpMsg({message})", f"logMsg({message})", "stopMove()",
-                              "resetMotion()", "return"], self.INDENT), "endIf"]
+        if not node.on_timeout and ctx.where[-1] == "start":
+            return [f"bOk = watch({test}, {fmt(node.timeout, 4)})", "if !bOk",
+                    *self.indent([f"popUpMsg({message})", f"logMsg({message})", "stopMove()",
+                                  "resetMotion()", "return"], self.INDENT), "endIf"]
+        return self._timeout_branch(test, node.timeout, node.on_timeout, message, ctx, node.span)
 
     def if_(self, node: ir.If, ctx: Val3Context) -> list[str]:
+        if not isinstance(node.condition, ir.InputCondition):  # issue #15: any condition
+            return self._if_condition(node, ctx)
         test = self.condition(node.condition, node.span, ctx)
         if test is None:
             return []
@@ -368,10 +411,225 @@ class Val3Backend(Backend):
 
     def proc_call(self, node: ir.ProcCall, ctx: Val3Context) -> list[str]:
         name = ctx.routine_of[node.uid]
+        shifted = tuple(ctx.offsets.get((m.uid, "target"))
+                        for m in ir.walk(node.body) if isinstance(m, ir.Move))
+        if any(s is not None for s in shifted):  # issue #15: a call in a loop with shifted moves
+            key = (name, shifted)
+            if key not in ctx.loop_programs:
+                ctx.loop_programs[key] = ctx.names.name(f"{name}_L{len(ctx.loop_programs) + 1}")
+            name = ctx.loop_programs[key]
         if name not in ctx.programs:  # calls printing the same routine share it (routine_table)
             ctx.programs[name] = []  # reserve the slot first: programs keep call order
+            ctx.where.append(name)
             ctx.programs[name] = [self.comment(f"proc {node.proc}"), *self.block(node.body, ctx)]
-        return self.call_args_comment(node) + [f"call {name}()"]
+            ctx.where.pop()
+        after = []
+        if _can_stop(node.body):  # issue #15: a stop in the called program ends this one too
+            ctx.data.variables["bStop"] = ("bool", 'value="false"')
+            back = self._stop_return(ctx, node.span)
+            after = ["if bStop", *self.indent(back, self.INDENT), "endIf"]
+        return self.call_args_comment(node) + [f"call {name}()"] + after
+
+    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # VAL3 has typed variables and infix expressions (VAL3 Reference Manual s7, "Simple types":
+    # num, bool; operators + - * /, == != < <= > >=, and or !), so the IR's expressions are
+    # written as they read. A task's `var`s are global data (`num`/`bool` in the .dtx: a called
+    # program must read them); a loop's counter is a local of the program holding the loop
+    # (<Locals>), its shift (trShiftN) global data (a called program's moves read it).
+    # `for v = a to b ... endFor` and `while c ... endWhile` are VAL3's own loops (manual,
+    # "Instructions": for, while); a target that moves from one iteration to the next is
+    # `compose(point, frame, trShift)` (manual, "Arm positions", compose: the point with the
+    # transformation applied, defined relative to the frame; trShift has no rotation, so it
+    # translates the point along the frame's axes: the frame the point is linked to). `stop`
+    # waits for the queued motion (waitEndMove) and returns from start(), which ends the
+    # application's only task (manual 2.1.3 "Start/stop"); in a called program it sets bStop
+    # and returns, and every caller returns when bStop is set.
+
+    def _global(self, name: str, vtype: ir.ValueType, ctx: Val3Context) -> str:
+        legal = ctx.names.name(name)
+        ctx.data.variables[legal] = (("bool", 'value="false"') if vtype is ir.ValueType.BOOL
+                                     else ("num", 'value="0"'))
+        return legal
+
+    def _local(self, name: str, kind: str, ctx: Val3Context) -> str:
+        legal = ctx.names.name(name)
+        ctx.locals.setdefault(ctx.where[-1], {})[legal] = kind
+        return legal
+
+    def _ref(self, name: str, ctx: Val3Context) -> str:
+        """A variable's VAL3 name: a loop counter in scope, else the task variable."""
+        for scope in reversed(ctx.scopes):
+            if name in scope:
+                return scope[name]
+        return ctx.names.name(name)
+
+    def var_decl(self, node: ir.VarDecl, ctx: Val3Context) -> list[str]:
+        return [f"{self._global(node.name, node.type, ctx)} = {self.expr(node.init, node, ctx)}"]
+
+    def assign(self, node: ir.Assign, ctx: Val3Context) -> list[str]:
+        return [f"{self._ref(node.name, ctx)} = {self.expr(node.value, node, ctx)}"]
+
+    def expr(self, e: ir.RtExpr | ir.Condition, node: ir.Instr, ctx: Val3Context,
+             nested: bool = False) -> str:
+        """`e` as a VAL3 expression (binary operations in parentheses when nested)."""
+        if isinstance(e, ir.Const):
+            if isinstance(e.value, bool):
+                return "true" if e.value else "false"
+            if isinstance(e.value, int):
+                return str(e.value)
+            return fmt(e.value, 6).rstrip("0").rstrip(".")
+        if isinstance(e, ir.VarRef):
+            return self._ref(e.name, ctx)
+        if isinstance(e, ir.InputCondition):
+            test = self.condition(e, node.span, ctx) or "false"
+            return f"({test})" if nested else test
+        if isinstance(e, ir.AnalogInput):
+            if not self.port_ok(e.port, "analog input", node.span):
+                return "0"
+            ctx.data.analog_in = max(ctx.data.analog_in, e.port + 1)
+            self.warn(codes_b.ANALOG_LINK, "analog inputs have no standard VAL3 name: "
+                      f"aIn[{e.port}] is declared unlinked; link it to the controller's input in "
+                      "the data file", node.span)
+            return f"aioGet(aIn[{e.port}])"
+        if isinstance(e, ir.Not):
+            return f"!{self.expr(e.operand, node, ctx, True)}"
+        if isinstance(e, ir.Arith):
+            left, right = self.expr(e.left, node, ctx, True), self.expr(e.right, node, ctx, True)
+            text = f"{left} {e.op} {right}"
+        elif isinstance(e, ir.Compare):
+            left, right = self.expr(e.left, node, ctx, True), self.expr(e.right, node, ctx, True)
+            text = f"{left} {_VAL3_CMP[e.op]} {right}"
+        elif isinstance(e, ir.Logic):
+            text = f" {e.op} ".join(self.expr(o, node, ctx, True) for o in e.operands)
+        else:
+            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, "a value must be a constant, variable, "
+                             f"input or an operation on them (got {type(e).__name__})", node.span)
+            return "false"
+        return f"({text})" if nested else text
+
+    def _if_condition(self, node: ir.If, ctx: Val3Context) -> list[str]:
+        lines = [f"if {self.expr(node.condition, node, ctx)}"]
+        lines += self.indent(self.block(node.then, ctx, settled=True), self.INDENT)
+        if node.otherwise:
+            otherwise = self.block(node.otherwise, ctx, settled=True)
+            lines += ["else"] + self.indent(otherwise, self.INDENT)
+        return lines + ["endIf"]
+
+    def while_(self, node: ir.While, ctx: Val3Context) -> list[str]:
+        """`while`: the condition is read with no motion queued (a waitEndMove() ends a body
+        that moves, as before the loop), as the plan reads it."""
+        body = self.block(node.body, ctx, settled=True)
+        moves = any(isinstance(n, ir.Move) for n in ir.walk(node.body))
+        if moves and not isinstance(node.body[-1], self.NO_MOTION):
+            body.append("waitEndMove()")
+        return [f"while {self.expr(node.condition, node, ctx)}", *self.indent(body, self.INDENT),
+                "endWhile"]
+
+    def _timeout_branch(self, test: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
+                        message: str, ctx: Val3Context, span: Span | None) -> list[str]:
+        if not on_timeout:
+            branch = [f"popUpMsg({message})", f"logMsg({message})", "stopMove()", "resetMotion()",
+                      *self._stop_return(ctx, span)]
+        else:
+            branch = self.block(on_timeout, ctx, settled=True)
+        return [f"bOk = watch({test}, {fmt(timeout, 4)})", "if !bOk",
+                *self.indent(branch, self.INDENT), "endIf"]
+
+    def wait_condition(self, node: ir.WaitCondition, ctx: Val3Context) -> list[str]:
+        test = self.expr(node.condition, node, ctx)
+        if node.timeout is None:
+            return [f"wait({test})"]
+        message = f'"wait until timed out after {fmt(node.timeout, 3)} s"'
+        return self._timeout_branch(test, node.timeout, node.on_timeout, message, ctx, node.span)
+
+    def stop(self, node: ir.Stop, ctx: Val3Context) -> list[str]:
+        return self._stop_return(ctx, node.span)  # the waitEndMove() before it: WAITS_FOR_MOTION
+
+    def _stop_return(self, ctx: Val3Context, span: Span | None) -> list[str]:
+        if ctx.where[-1] == "start":
+            return ["return"]
+        ctx.data.variables["bStop"] = ("bool", 'value="false"')
+        self.warn_once(ctx, f"stop:{ctx.where[-1]}", STOP_IN_ROUTINE, "stop in the called program "
+                       f"'{ctx.where[-1]}' sets bStop and returns; each caller returns when bStop "
+                       "is set (a VAL3 program cannot end its caller)", span)
+        return ["bStop = true", "return"]
+
+    # ---------------------------------------------------------------- loops
+
+    def loop(self, node: ir.Loop, ctx: Val3Context) -> list[str]:
+        template = ctx.inner.pop(node.uid, None)
+        if template is not None:  # a nested loop of a vendor loop being written
+            return self._vendor_loop(template, ctx)
+        found = analyse(node, ctx.record, extra_key=_blend_key,
+                        unroll=bool(getattr(self, "unroll", False)))
+        if isinstance(found, LoopTemplate):
+            return self._vendor_loop(found, ctx)
+        self.warn(LOOP_UNROLLED, found.message, found.span)
+        if found.peeled is None:
+            return self._unrolled(node, ctx)
+        return (self._vendor_loop(found.peeled, ctx)  # then the last iteration on its own
+                + self._unrolled(replace(node, iterations=(found.last,)), ctx))
+
+    def _unrolled(self, node: ir.Loop, ctx: Val3Context) -> list[str]:
+        lines: list[str] = []
+        for it in node.iterations:
+            body = bind_loop_var(it.body, node.var, it.value) if node.var else it.body
+            label = f"{node.var or 'iteration'} = {it.value}"
+            lines += [self.comment(label), *self.block(body, ctx)]
+        return lines
+
+    def _vendor_loop(self, template: LoopTemplate, ctx: Val3Context) -> list[str]:
+        var = template.var
+        counter = self._local(f"l_{var.name}" if var.name else "l_repeat", "num", ctx)
+        ctx.counters[var.uid] = counter
+        ctx.scopes.append({var.name: counter} if var.name else {})
+        ctx.inner.update(template.inner)
+        shifts = self._shift_lines(template, ctx)
+        body = self.block(template.body, ctx)
+        ctx.scopes.pop()
+        return [f"for {counter} = {var.first} to {var.last}",
+                *self.indent(shifts + body, self.INDENT), "endFor"]
+
+    def _shift_lines(self, template: LoopTemplate, ctx: Val3Context) -> list[str]:
+        """trShiftN.x/.y/.z = sum over the loops (counter - first) * step (mm) for every shift
+        this level's own moves use (one local trsf per distinct shift)."""
+        lines: list[str] = []
+        done: set[str] = set()
+        for uid in _level_moves(template.body):
+            for role in ("target", "via"):
+                offset = template.targets.get((uid, role))
+                if offset is None or not any(any(s) for s in offset.steps):
+                    continue
+                key = (tuple(v.uid for v in offset.loops),
+                       tuple(tuple(round(c * 1000.0, 3) for c in s) for s in offset.steps))
+                if key not in ctx.shifts:  # global data: a called program's moves read it too
+                    ctx.shifts[key] = ctx.names.name(f"trShift{len(ctx.shifts) + 1}")
+                    zero = 'x="0" y="0" z="0" rx="0" ry="0" rz="0"'
+                    ctx.data.variables[ctx.shifts[key]] = ("trsf", zero)
+                name = ctx.shifts[key]
+                ctx.offsets[(uid, role)] = name
+                if name in done:
+                    continue
+                done.add(name)
+                for axis, field_name in enumerate("xyz"):
+                    terms = []
+                    for v, s in zip(offset.loops, offset.steps):
+                        mm = round(s[axis] * 1000.0, 3)
+                        if mm == 0:
+                            continue
+                        count = ctx.counters[v.uid]
+                        base = f"({count} - {v.first})" if v.first else count
+                        terms.append(f"{base} * {fmt(mm, 3).rstrip('0').rstrip('.')}")
+                    lines.append(f"{name}.{field_name} = {' + '.join(terms) if terms else '0'}")
+        return lines
+
+    def _shifted(self, point: str, node: ir.Move, role: str, ctx: Val3Context) -> str:
+        """`compose(point, frame, trShift)` for a loop target that moves per iteration."""
+        name = ctx.offsets.get((node.uid, role))
+        if name is None:
+            return point
+        frame = "world" if node.frame.name is None else ctx.names.name("f_" + node.frame.name)
+        return f"compose({point}, {frame}, {name})"
 
 
 def _last_move(node: ir.Instr | None) -> ir.Move | None:
@@ -385,3 +643,42 @@ def _last_move(node: ir.Instr | None) -> ir.Move | None:
 
 def _degrees(q: object) -> list[float]:
     return [math.degrees(float(v)) for v in q]  # type: ignore[attr-defined]
+
+
+# ---------------------------------------------------------------- runtime logic helpers (issue #15)
+
+_VAL3_CMP = {ir.CompareOp.EQ: "==", ir.CompareOp.NE: "!=", ir.CompareOp.LT: "<",
+             ir.CompareOp.LE: "<=", ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
+
+
+def _blend_key(node: ir.Instr, rec: planned.InstructionRecord | None) -> object:
+    """What VAL3 prints from a move's record beyond its target: the blend (mdesc leave/reach)."""
+    return None if rec is None or not isinstance(node, ir.Move) else round(rec.blend_radius, 6)
+
+
+def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
+    """Uids of the moves of `body` outside nested loops (in If arms, whiles, procs too)."""
+    out: list[int] = []
+    for node in body:
+        if isinstance(node, ir.Move):
+            out.append(node.uid)
+        elif isinstance(node, ir.If):
+            out += _level_moves(node.then) + _level_moves(node.otherwise)
+        elif isinstance(node, (ir.While, ir.ProcCall)):
+            out += _level_moves(node.body)
+        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
+            out += _level_moves(node.on_timeout)
+    return out
+
+
+def _can_stop(body: tuple[ir.Instr, ...]) -> bool:
+    return any(isinstance(n, ir.Stop) for n in ir.walk(body))
+
+
+Val3Backend.EMIT = {**Val3Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
+                    ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
+                    ir.Stop: "stop"}
+Val3Backend.WAITS_FOR_MOTION = (*Val3Backend.WAITS_FOR_MOTION, ir.While, ir.WaitCondition, ir.Stop)
+Val3Backend.NO_MOTION = (*Val3Backend.NO_MOTION, ir.WaitCondition)
+# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
+Val3Backend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

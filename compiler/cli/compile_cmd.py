@@ -44,7 +44,8 @@ class CompileOutcome:
 
 def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = None,
                     project_root: str | None = None, allow_findings: bool = False,
-                    source_map: bool = True, write_frames: bool = False, use_cache: bool = True) -> CompileOutcome:
+                    source_map: bool = True, write_frames: bool = False, use_cache: bool = True,
+                    unroll: bool = False) -> CompileOutcome:
     """Run the pipeline in memory; nothing is written here."""
     from rmot.backends import BACKENDS
 
@@ -67,8 +68,9 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     refused: list[str] = []
     for target in dict.fromkeys(targets):  # each target once, in the order given
         try:
-            result = BACKENDS[target](allow_findings_header=findings, write_frames=write_frames).emit(
-                plan, source_map=source_map)
+            backend = BACKENDS[target](allow_findings_header=findings, write_frames=write_frames,
+                                       unroll=unroll)
+            result = backend.emit(plan, source_map=source_map)
         except Exception as exc:  # a backend bug refuses that vendor only, never a traceback (issue #20)
             from rmot.compiler import codes
             from rmot.lang.diagnostics import Diagnostic, Severity
@@ -130,14 +132,17 @@ def write_all(outdir: str, files: dict[str, str]) -> list[str]:
 @click.option("--write-frames", is_flag=True,
               help="Also write numbered tools and frames into the controller's stored data (Fanuc, KRL).")
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
+@click.option("--unroll", is_flag=True,
+              help="Write every `for` loop iteration by iteration (default: vendor loops where they fit).")
 def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: str, allow_findings: bool,
-             no_source_map: bool, project_root: str | None, write_frames: bool, no_cache: bool) -> None:
+             no_source_map: bool, project_root: str | None, write_frames: bool, no_cache: bool,
+             unroll: bool = False) -> None:
     """Verify PROGRAM, then write it for each --target controller."""
     from rmot.lang.diagnostics import render
 
     outcome = compile_program(program, targets, cell=cell, project_root=project_root,
                               allow_findings=allow_findings, source_map=not no_source_map,
-                              write_frames=write_frames, use_cache=not no_cache)
+                              write_frames=write_frames, use_cache=not no_cache, unroll=unroll)
     for d in outcome.diagnostics:
         click.echo(render(d), err=True)
     ctx = click.get_current_context()

@@ -40,7 +40,9 @@ NUM = r"-?\d+(?:\.\d+)?"
 
 # --------------------------------------------------------------------------- Fanuc LS
 
-_TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
+# [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`
+_TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) "
+                        r"(FINE|CNT(\d+))(?: Offset,PR\[\d+\])?$")
 _TP_CIRC_HEAD = re.compile(r"^C P\[(\d+)(?::[^\]]*)?\]$")
 _TP_CIRC_TAIL = re.compile(r"^:\s+P\[(\d+)(?::[^\]]*)?\] (\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
 
@@ -153,8 +155,13 @@ _UR_MIDDLE = re.compile(r"^(elif .+:|else:)$")
 _POSE = rf"p\[{NUM}(?:, {NUM}){{5}}\]"
 _JOINTS = rf"\[{NUM}(?:, {NUM}){{5}}\]"
 _KW = rf"a={NUM}, v={NUM}(?:, t={NUM})?, r=({NUM})"
-_UR_MOVES = [re.compile(rf"^movej\({_JOINTS}, {_KW}\)$"), re.compile(rf"^movel\({_POSE}, {_KW}\)$"),
-             re.compile(rf"^movec\({_POSE}, {_POSE}, a={NUM}, v={NUM}, r=({NUM}), mode=[01]\)$")]
+# [URS] pose_add(p_1, p_2) (a pose expression: p_2 a translation written with loop counters) and
+# get_inverse_kin(x, qnear=[6]) (joint positions for movej) are pose / joint-list expressions
+_TERM = r"[\w.*+\- ()]+"
+_POSE_EXPR = rf"(?:{_POSE}|pose_add\({_POSE}, p\[{_TERM}, {_TERM}, {_TERM}, 0, 0, 0\]\))"
+_UR_MOVES = [re.compile(rf"^movej\({_JOINTS}, {_KW}\)$"), re.compile(rf"^movel\({_POSE_EXPR}, {_KW}\)$"),
+             re.compile(rf"^movej\(get_inverse_kin\({_POSE_EXPR}, qnear={_JOINTS}\), {_KW}\)$"),
+             re.compile(rf"^movec\({_POSE_EXPR}, {_POSE_EXPR}, a={NUM}, v={NUM}, r=({NUM}), mode=[01]\)$")]
 # [URS] built-in functions a user `def` must not redefine (a sample of the motion and I/O modules)
 _UR_BUILTINS = {"movej", "movel", "movec", "movep", "sleep", "sync", "set_tcp", "set_payload", "popup",
                 "halt", "textmsg", "get_steptime", "set_standard_digital_out", "get_standard_digital_in"}
@@ -238,10 +245,16 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
         pos, inst = lines.index("//POS"), lines.index("//INST")
     except ValueError:
         return bad + [(1, "a job has //POS and //INST sections")]
-    npos = re.fullmatch(r"///NPOS (\d+),0,0,0,0,0", lines[pos + 1])
+    # [INF] job data format: ///NPOS C,BC,EC,P,BP,EX counts; position variables as `Pnnnn=`
+    npos = re.fullmatch(r"///NPOS (\d+),0,0,(\d+),0,0", lines[pos + 1])
     cs = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("C")]
-    if npos is None or int(npos.group(1)) != len(cs):
-        bad.append((pos + 2, f"///NPOS must count the positions ({len(cs)})"))
+    ps = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("P")]
+    if npos is None or int(npos.group(1)) != len(cs) or int(npos.group(2)) != len(ps):
+        bad.append((pos + 2, f"///NPOS must count the positions ({len(cs)}) and position "
+                             f"variables ({len(ps)})"))
+    for k, ln in ps:
+        if not re.fullmatch(r"P\d{4}=" + ",".join([NUM] * 6), ln):
+            bad.append((k, f"a position variable is Pnnnn=X,Y,Z,Rx,Ry,Rz (got {ln})"))
     for i, (k, ln) in enumerate(cs):
         if not re.fullmatch(rf"C{i:05d}=" + ",".join([NUM] * 6), ln):
             bad.append((k, f"positions are C00000.. in order, each X,Y,Z,Rx,Ry,Rz (got {ln})"))

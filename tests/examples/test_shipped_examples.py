@@ -49,6 +49,11 @@ DOCUMENTED_WARNINGS |= {"W460"}
 # tests/backends) also shows: RAPID tooldata for its massless pointer (W413), an analog
 # output VAL3 must link by hand (W455) and a pulse VAL3 lowers to set/delay/reset (W451).
 EXTRA_WARNINGS = {"inspect.rmot": {"W413", "W451", "W455"}}
+# Loops (issue #15): a `for` loop written iteration by iteration, or its last iteration after the
+# loop (W420 names the iteration: in the shipped examples the last placement, whose final move
+# blends into the way home instead of stopping); a stop inside a routine ends the program
+# through a flag tested after each call (W421: KRL, VAL3).
+DOCUMENTED_WARNINGS |= {"W420", "W421"}
 # The vendors that write configuration data with every Cartesian point (E402 without a
 # branch). The URDF arm has no closed-form IK but a spherical wrist, so its branches are named
 # from its geometry and these vendors accept it too.

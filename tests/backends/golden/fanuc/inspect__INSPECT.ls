@@ -5,7 +5,7 @@ COMMENT		= "rmot";
 PROG_SIZE	= 0;
 FILE_NAME	= ;
 VERSION		= 0;
-LINE_COUNT	= 74;
+LINE_COUNT	= 72;
 MEMORY_SIZE	= 0;
 PROTECT		= READ_WRITE;
 TCD:  STACK_SIZE	= 0,
@@ -47,54 +47,50 @@ CONTROL_CODE	= 00000000 00000000;
   28:  UFRAME_NUM=1 ;
   29:  UTOOL_NUM=1 ;
   30:  J P[2] 100% FINE ;
-  31:  !inspect.rmot:18 ;
-  32:  UFRAME_NUM=1 ;
-  33:  UTOOL_NUM=1 ;
-  34:  C P[3]
-    :  P[4] 150mm/sec CNT2 ;
-  35:  !inspect.rmot:19 ;
+  31:  !inspect.rmot:17 ;
+  32:  !repeat 2 ;
+  33:  R[1:rmot repeat]=0 ;
+  34:  LBL[1] ;
+  35:  !inspect.rmot:18 ;
   36:  UFRAME_NUM=1 ;
   37:  UTOOL_NUM=1 ;
-  38:  C P[5]
-    :  P[6] 150mm/sec CNT2 ;
-  39:  !inspect.rmot:18 ;
+  38:  C P[3]
+    :  P[4] 150mm/sec CNT2 ;
+  39:  !inspect.rmot:19 ;
   40:  UFRAME_NUM=1 ;
   41:  UTOOL_NUM=1 ;
-  42:  C P[7]
-    :  P[8] 150mm/sec CNT2 ;
-  43:  !inspect.rmot:19 ;
-  44:  UFRAME_NUM=1 ;
-  45:  UTOOL_NUM=1 ;
-  46:  C P[9]
-    :  P[10] 150mm/sec CNT2 ;
-  47:  !inspect.rmot:21 ;
-  48:  UFRAME_NUM=1 ;
-  49:  UTOOL_NUM=1 ;
-  50:  L P[11] 150mm/sec FINE ;
-  51:  !inspect.rmot:22 ;
-  52:  UFRAME_NUM=1 ;
-  53:  UTOOL_NUM=1 ;
-  54:  L P[12] 150mm/sec FINE ;
-  55:  !inspect.rmot:23 ;
-  56:  UFRAME_NUM=1 ;
-  57:  UTOOL_NUM=1 ;
-  58:  L P[13] 150mm/sec FINE ;
-  59:  !inspect.rmot:24 ;
-  60:  IF DI[2:part_present]<>ON,JMP LBL[1] ;
-  61:  !inspect.rmot:25 ;
-  62:  AO[1:conveyor_speed]=4.500 ;
-  63:  JMP LBL[2] ;
-  64:  LBL[1] ;
-  65:  !inspect.rmot:26 ;
-  66:  IF DI[2:part_present]<>OFF,JMP LBL[3] ;
-  67:  !inspect.rmot:27 ;
-  68:  DO[2:gripper_open]=PULSE,0.2sec ;
-  69:  JMP LBL[4] ;
+  42:  C P[5]
+    :  P[6] 150mm/sec CNT2 ;
+  43:  R[1:rmot repeat]=R[1:rmot repeat]+1 ;
+  44:  IF R[1:rmot repeat]<=1,JMP LBL[1] ;
+  45:  !inspect.rmot:21 ;
+  46:  UFRAME_NUM=1 ;
+  47:  UTOOL_NUM=1 ;
+  48:  L P[7] 150mm/sec FINE ;
+  49:  !inspect.rmot:22 ;
+  50:  UFRAME_NUM=1 ;
+  51:  UTOOL_NUM=1 ;
+  52:  L P[8] 150mm/sec FINE ;
+  53:  !inspect.rmot:23 ;
+  54:  UFRAME_NUM=1 ;
+  55:  UTOOL_NUM=1 ;
+  56:  L P[9] 150mm/sec FINE ;
+  57:  !inspect.rmot:24 ;
+  58:  IF DI[2:part_present]<>ON,JMP LBL[2] ;
+  59:  !inspect.rmot:25 ;
+  60:  AO[1:conveyor_speed]=4.500 ;
+  61:  JMP LBL[3] ;
+  62:  LBL[2] ;
+  63:  !inspect.rmot:26 ;
+  64:  IF DI[2:part_present]<>OFF,JMP LBL[4] ;
+  65:  !inspect.rmot:27 ;
+  66:  DO[2:gripper_open]=PULSE,0.2sec ;
+  67:  JMP LBL[5] ;
+  68:  LBL[4] ;
+  69:  LBL[5] ;
   70:  LBL[3] ;
-  71:  LBL[4] ;
-  72:  LBL[2] ;
-  73:  !inspect.rmot:29 ;
-  74:  WAIT 0.50(sec) ;
+  71:  !inspect.rmot:29 ;
+  72:  WAIT 0.50(sec) ;
 /POS
 P[1:"home"]{
    GP1:
@@ -134,41 +130,17 @@ P[6:"start"]{
 };
 P[7]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 0',
-	X =    50.000  mm,	Y =    10.000  mm,	Z =   120.000  mm,
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
+	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[8]{
    GP1:
 	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
-	X =   -10.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
+	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[9]{
-   GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
-	X =    50.000  mm,	Y =  -110.000  mm,	Z =   120.000  mm,
-	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
-};
-P[10:"start"]{
-   GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
-	X =   110.000  mm,	Y =   -50.000  mm,	Z =   120.000  mm,
-	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
-};
-P[11]{
-   GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
-	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
-	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
-};
-P[12]{
-   GP1:
-	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
-	X =    50.000  mm,	Y =   -50.000  mm,	Z =   150.000  mm,
-	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
-};
-P[13]{
    GP1:
 	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, -1',
 	X =    50.000  mm,	Y =   -50.000  mm,	Z =   220.000  mm,

@@ -17,14 +17,13 @@ MODULE inspect
     MoveAbsJ home\NoEOffs, vmax, fine, pointer;
     ! inspect.rmot:16
     MoveJ start, vmax, fine, pointer\WObj:=table_top;
-    ! inspect.rmot:18
-    MoveC via, p, v150, z2, pointer\WObj:=table_top;
-    ! inspect.rmot:19
-    MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
-    ! inspect.rmot:18
-    MoveC via, p, v150, z2, pointer\WObj:=table_top;
-    ! inspect.rmot:19
-    MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
+    ! inspect.rmot:17
+    FOR rmot_rep3 FROM 0 TO 1 DO
+      ! inspect.rmot:18
+      MoveC via, p, v150, z2, pointer\WObj:=table_top;
+      ! inspect.rmot:19
+      MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
+    ENDFOR
     ! inspect.rmot:21
     MoveL p_2, v150, fine, pointer\WObj:=table_top;
     ! inspect.rmot:22
