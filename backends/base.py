@@ -611,7 +611,7 @@ Backend.attach = _part_payload_default  # type: ignore[attr-defined]
 Backend.detach = _part_payload_default  # type: ignore[attr-defined]
 
 
-# --------------------------------------------------------------------------- runtime logic (issue #15)
+# ------------------------------------------------------------------ runtime logic (issue #15)
 # Appended (like the parts block above) as the fallback every vendor starts from: a `for` /
 # `repeat` Loop is written as its iterations one after another (unrolled, the loop variable
 # bound to each value: ir_tree.bind_loop_variable), and the other runtime-logic nodes (var,
@@ -622,11 +622,9 @@ Backend.detach = _part_payload_default  # type: ignore[attr-defined]
 def _loop_unrolled(self: Backend, node: ir.Loop, ctx: TaskContext) -> list[str]:
     from rmot.compiler.ir_tree import bind_loop_variable
 
-    out: list[str] = []
+    out: list[str] = []  # exactly what the unrolled program was before issue #15: no added lines
     for it in node.iterations:
         body = bind_loop_variable(it.body, node.var, it.value) if node.var is not None else it.body
-        label = f"{node.var} = {it.value}" if node.var is not None else f"repeat round {it.value + 1}"
-        out.append(self.comment(label))
         out.extend(self.body(body, ctx))
     return out
 
@@ -635,15 +633,76 @@ def _runtime_unsupported(self: Backend, node: ir.Instr, ctx: TaskContext) -> lis
     from rmot.backends.codes import RUNTIME_UNSUPPORTED
 
     kind = type(node).__name__
-    self.unsupported(RUNTIME_UNSUPPORTED, f"{kind} must be expressible for {self.name} (its backend writes no "
-                     f"runtime logic for it yet)", node.span)
+    what = {"If": "an if on a general condition", "WaitInput": "a wait with a timeout branch"}.get(
+        kind, kind
+    )
+    self.unsupported(
+        RUNTIME_UNSUPPORTED,
+        f"{what} must be expressible for {self.name} (its backend writes no "
+        f"runtime logic for it yet)",
+        node.span,
+    )
     return [self.comment(f"UNSUPPORTED {kind}")]
 
 
-for _cls, _method, _fallback in ((ir.Loop, "loop", _loop_unrolled), (ir.VarDecl, "var_decl", _runtime_unsupported),
-                                 (ir.Assign, "assign", _runtime_unsupported), (ir.While, "while_", _runtime_unsupported),
-                                 (ir.WaitCondition, "wait_condition", _runtime_unsupported),
-                                 (ir.Stop, "stop", _runtime_unsupported)):
+_dispatch = Backend.instr
+
+
+def _instr_with_fallbacks(self: Backend, node: ir.Instr, ctx: TaskContext) -> list[str]:
+    """Backend.instr, except: a Loop the vendor leaves to the fallback is its iterations' lines
+    only (no source comment of its own: the unrolled text is what it was before issue #15); and
+    unless the vendor sets RUNTIME_CONDITIONS (it writes and/or/not, analog inputs, variables
+    and timeout branches itself), an `if` on such a condition or a wait with a timeout branch is
+    E165 instead of a condition or branch silently dropped."""
+    if (
+        isinstance(node, ir.Loop)
+        and getattr(type(self), self.EMIT[ir.Loop], None) is _loop_unrolled
+    ):
+        return _loop_unrolled(self, node, ctx)
+    if not getattr(self, "RUNTIME_CONDITIONS", False) and (
+        (isinstance(node, ir.If) and not isinstance(node.condition, ir.InputCondition))
+        or (isinstance(node, ir.WaitInput) and node.on_timeout)
+    ):
+        return _runtime_unsupported(self, node, ctx)
+    return _dispatch(self, node, ctx)
+
+
+Backend.instr = _instr_with_fallbacks  # type: ignore[method-assign]
+_emit = Backend.emit
+
+
+def _emit_loops_unrolled(
+    self: Backend, plan: planned.Plan, *, source_map: bool = True
+) -> EmitResult:
+    """Backend.emit; a vendor that leaves loops to the fallback gets every task body with its
+    loops unrolled (ir_tree.unroll_loops) before anything of it runs, so its own walkers
+    (routines, predecessors, lowerings, handshake) see the instruction lists they always have."""
+    if getattr(type(self), self.EMIT[ir.Loop], None) is _loop_unrolled:
+        import dataclasses
+
+        from rmot.compiler.ir_tree import unroll_loops
+
+        tasks = tuple(
+            dataclasses.replace(
+                tp, task=dataclasses.replace(tp.task, body=unroll_loops(tp.task.body))
+            )
+            for tp in plan.tasks
+        )
+        plan = dataclasses.replace(plan, tasks=tasks)
+    return _emit(self, plan, source_map=source_map)
+
+
+Backend.emit = _emit_loops_unrolled  # type: ignore[method-assign]
+Backend.RUNTIME_CONDITIONS = False  # type: ignore[attr-defined]
+
+for _cls, _method, _fallback in (
+    (ir.Loop, "loop", _loop_unrolled),
+    (ir.VarDecl, "var_decl", _runtime_unsupported),
+    (ir.Assign, "assign", _runtime_unsupported),
+    (ir.While, "while_", _runtime_unsupported),
+    (ir.WaitCondition, "wait_condition", _runtime_unsupported),
+    (ir.Stop, "stop", _runtime_unsupported),
+):
     Backend.EMIT.setdefault(_cls, _method)
     if not hasattr(Backend, Backend.EMIT[_cls]):
         setattr(Backend, Backend.EMIT[_cls], _fallback)

@@ -65,6 +65,9 @@ LIMIT_CLAMPED = Code("W417", "limit-clamped",
                      "a speed, acceleration or zone is beyond what the vendor accepts; clamped")
 
 # issue #15 (runtime logic): the base fallback until a vendor writes these nodes itself
-RUNTIME_UNSUPPORTED = Code("E165", "runtime-logic-unsupported",
-                           "a var, assignment, while, stop or general wait condition this vendor's backend cannot write yet")
+RUNTIME_UNSUPPORTED = Code(
+    "E165",
+    "runtime-logic-unsupported",
+    "a var, assignment, while, stop or general condition the vendor's backend cannot write yet",
+)
 __all__ += ["RUNTIME_UNSUPPORTED"]

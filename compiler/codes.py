@@ -73,23 +73,78 @@ UNREADABLE = Code("E521", "unreadable", "a file or folder exists but cannot be r
 OUTPUT_NAME_CLASH = Code("E522", "output-name-clash", "two output files get the same name on a controller")
 
 # runtime logic (issue #15): task variables, conditions, loops that stay loops, while, stop
-RT_UNKNOWN_VAR = Code("E150", "unknown-variable", "a runtime expression or assignment names no variable, constant or loop variable")
-RT_WRONG_TYPE = Code("E151", "runtime-wrong-type", "a runtime value of the wrong type (int, num, bool) for its use")
-RT_ASSIGN_NOT_VAR = Code("E152", "assign-not-variable", "an assignment to a target, const, loop variable or anything else that is not a var")
-RT_REDECLARED = Code("E153", "variable-redeclared", "a var whose name is already declared (var, const, target, ...)")
-RT_IN_COMPILE_TIME = Code("E154", "runtime-value-in-pose", "a runtime variable in a pose, target, speed or other value the compiler must bound")
-FOR_WITHOUT_BOUNDS = Code("E155", "for-without-bounds", "a for loop written without 'a .. b' bounds")
-WHILE_WITHOUT_CONDITION = Code("E156", "while-without-condition", "a while loop written without a condition")
-VAR_MISPLACED = Code("E157", "var-misplaced", "a var declared inside a block (loop, if arm, proc) instead of a task's body")
+RT_UNKNOWN_VAR = Code(
+    "E150",
+    "unknown-variable",
+    "a runtime expression or assignment names no variable, constant or loop variable",
+)
+RT_WRONG_TYPE = Code(
+    "E151", "runtime-wrong-type", "a runtime value of the wrong type (int, num, bool) for its use"
+)
+RT_ASSIGN_NOT_VAR = Code(
+    "E152",
+    "assign-not-variable",
+    "an assignment to a target, const, loop variable or anything else that is not a var",
+)
+RT_REDECLARED = Code(
+    "E153", "variable-redeclared", "a var whose name is already declared (var, const, target, ...)"
+)
+RT_IN_COMPILE_TIME = Code(
+    "E154",
+    "runtime-value-in-pose",
+    "a runtime variable in a pose, target, speed or other value the compiler must bound",
+)
+FOR_WITHOUT_BOUNDS = Code(
+    "E155", "for-without-bounds", "a for loop written without 'a .. b' bounds"
+)
+WHILE_WITHOUT_CONDITION = Code(
+    "E156", "while-without-condition", "a while loop written without a condition"
+)
+VAR_MISPLACED = Code(
+    "E157",
+    "var-misplaced",
+    "a var declared inside a block (loop, if arm, proc) instead of a task's body",
+)
 RT_BAD_TYPE_NAME = Code("E158", "unknown-variable-type", "a var type that is not int, num or bool")
-RT_UNIT = Code("E159", "runtime-unit", "a quantity with a unit, a pose or a string in a runtime expression (plain numbers only)")
-WHILE_PARTS_DIFFER = Code("E160", "while-parts-differ", "a while body that ends holding other parts than it started with")
-RT_BAD_IO = Code("E161", "runtime-bad-io", "a condition reads an output (out[n]/aout[n]); conditions read in[n] and ain[n]")
-RT_DIVISION_BY_ZERO = Code("E162", "division-by-zero", "a runtime expression divides by the constant 0")
-UNREACHABLE_AFTER_STOP = Code("W150", "unreachable-after-stop", "statements after 'stop' in the same block never run")
-WAIT_ELSE_WITHOUT_TIMEOUT = Code("W151", "timeout-branch-empty", "'timeout T else { }' with an empty branch: the same as 'timeout T'")
+RT_UNIT = Code(
+    "E159",
+    "runtime-unit",
+    "a quantity with a unit, a pose or a string in a runtime expression (plain numbers only)",
+)
+WHILE_PARTS_DIFFER = Code(
+    "E160", "while-parts-differ", "a while body that ends holding other parts than it started with"
+)
+RT_BAD_IO = Code(
+    "E161",
+    "runtime-bad-io",
+    "a condition reads an output (out[n]/aout[n]); conditions read in[n] and ain[n]",
+)
+RT_DIVISION_BY_ZERO = Code(
+    "E162", "division-by-zero", "a runtime expression divides by the constant 0"
+)
+UNREACHABLE_AFTER_STOP = Code(
+    "W150", "unreachable-after-stop", "statements after 'stop' in the same block never run"
+)
+WAIT_ELSE_WITHOUT_TIMEOUT = Code(
+    "W151",
+    "timeout-branch-empty",
+    "'timeout T else { }' with an empty branch: the same as 'timeout T'",
+)
 
-__all__ += ["RT_UNKNOWN_VAR", "RT_WRONG_TYPE", "RT_ASSIGN_NOT_VAR", "RT_REDECLARED", "RT_IN_COMPILE_TIME",
-            "FOR_WITHOUT_BOUNDS", "WHILE_WITHOUT_CONDITION", "VAR_MISPLACED", "RT_BAD_TYPE_NAME", "RT_UNIT",
-            "WHILE_PARTS_DIFFER", "RT_BAD_IO", "RT_DIVISION_BY_ZERO", "UNREACHABLE_AFTER_STOP",
-            "WAIT_ELSE_WITHOUT_TIMEOUT"]
+__all__ += [
+    "RT_UNKNOWN_VAR",
+    "RT_WRONG_TYPE",
+    "RT_ASSIGN_NOT_VAR",
+    "RT_REDECLARED",
+    "RT_IN_COMPILE_TIME",
+    "FOR_WITHOUT_BOUNDS",
+    "WHILE_WITHOUT_CONDITION",
+    "VAR_MISPLACED",
+    "RT_BAD_TYPE_NAME",
+    "RT_UNIT",
+    "WHILE_PARTS_DIFFER",
+    "RT_BAD_IO",
+    "RT_DIVISION_BY_ZERO",
+    "UNREACHABLE_AFTER_STOP",
+    "WAIT_ELSE_WITHOUT_TIMEOUT",
+]

@@ -148,7 +148,8 @@ _HEADS: dict[type, Callable[[Any], str]] = {
     ir.Detach: lambda i: f"detach {i.part} (load {_f(i.load)} kg)",
     ir.VarDecl: lambda i: f"var {i.name}: {i.type.value} = {rt_text(i.init)}",
     ir.Assign: lambda i: f"{i.name} = {rt_text(i.value)}",
-    ir.Loop: lambda i: (f"for {i.var} in {i.first} .. {i.last}" if i.var is not None else f"repeat {i.last}")
+    ir.Loop: lambda i: (f"for {i.var} in {i.first} .. {i.last}" if i.var is not None
+                        else f"repeat {i.last}")
     + f" ({len(i.iterations)} iterations)",
     ir.While: lambda i: f"while {_cond(i.condition)}",
     ir.WaitCondition: lambda i: f"wait until {_cond(i.condition)}{_timeout(i.timeout)}",

@@ -120,14 +120,16 @@ class Plan:
         raise KeyError(name)
 
 
-# --------------------------------------------------------------------------- variant paths (issue #15)
-# How a Variant's path is named in messages: Variant.arm -> words ({line}: its instruction's line).
+# ------------------------------------------------------------------ variant paths (issue #15)
+# How a Variant's path is named in messages: Variant.arm -> words ({at}: " at line N", or "" when
+# the instruction has no source position).
 PATHS = {
-    "otherwise": "the path through the 'otherwise' arm of the if at line {line}",
-    "timeout": "the path where the wait at line {line} times out",
-    "no iteration": "the path where the while at line {line} runs no iteration",
+    "otherwise": "the path through the 'otherwise' arm of the if{at}",
+    "timeout": "the path where the wait{at} times out",
+    "no iteration": "the path where the while{at} runs no iteration",
 }
 
 
-def path_words(arm: str, line: object) -> str:
-    return PATHS.get(arm, "the path through the '" + arm + "' arm of the if at line {line}").format(line=line)
+def path_words(arm: str, line: object | None) -> str:
+    words = PATHS.get(arm, "the path through the '" + arm + "' arm of the if{at}")
+    return words.format(at=f" at line {line}" if line is not None else "")

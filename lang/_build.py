@@ -30,7 +30,7 @@ KEYWORDS = frozenset({
     "repeat", "if", "else", "proc", "return", "const", "use", "import", "cell", "program",
     "task", "sync", "native", "on", "off", "config", "at", "robot", "fixture", "io",
     "joint_speed", "joints", "time",
-    "var", "while", "and", "or", "not",  # issue #15 (`stop` stays a usable name: weld_seam's target)
+    "var", "while", "and", "or", "not",  # issue #15 (`stop` stays a name: weld_seam's target)
 })
 # keywords that start no statement yet, kept for the language's future (see reserved_statement)
 RESERVED = {"return": "procs end at their closing brace"}
@@ -461,7 +461,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def compare_io(self, c: list[Any]) -> Any:
         op = str(c[1])
-        if c[0].kind == "in" and op in ("==", "!="):  # `in[n] == on`: the Condition every backend writes
+        if c[0].kind == "in" and op in ("==", "!="):  # `in[n] == on`: what every backend writes
             return ast.Condition(c[0], op, c[2], self._span(c))
         return ast.Compare(op, c[0], c[2], self._span(c))
 

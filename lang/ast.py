@@ -418,7 +418,7 @@ __all__ += ["ModelDecl", "ModelJoint"]
 Stmt = Union[Stmt, ModelDecl]  # type: ignore[misc]
 
 
-# --------------------------------------------------------------------------- runtime logic (issue #15)
+# ------------------------------------------------------------------ runtime logic (issue #15)
 
 
 @dataclass(frozen=True, slots=True)

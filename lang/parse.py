@@ -318,7 +318,8 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[To
         near = difflib.get_close_matches(word, STATEMENT_STARTS, n=1, cutoff=0.6)
         if near:
             return _error(codes.MISSPELT_KEYWORD, f"unknown statement '{prev}'; did you mean '{near[0]}'?", token_span(file, prev))
-        msg = (f"unknown statement '{prev}': a statement starts with {', '.join(STATEMENT_STARTS)}, "
+        words = ", ".join(STATEMENT_STARTS)
+        msg = (f"unknown statement '{prev}': a statement starts with {words}, "
                "or is a proc call NAME(...) or an assignment NAME = EXPR")
         return _error(codes.MISSPELT_KEYWORD, msg, token_span(file, prev))
     return None
@@ -326,13 +327,43 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[To
 
 # the words a statement may start with (issue #15: an unknown statement word lists them, and a
 # near miss is matched against these only, so `let` is not taken for `at` nor `var` for `via`)
-STATEMENT_STARTS = ["move", "set", "pulse", "wait", "if", "for", "repeat", "while", "var", "stop",
-                    "sync", "native", "attach", "detach", "speed", "joint_speed", "accel", "zone",
-                    "tool", "frame", "target", "const", "proc", "part"]
+STATEMENT_STARTS = [
+    "move",
+    "set",
+    "pulse",
+    "wait",
+    "if",
+    "for",
+    "repeat",
+    "while",
+    "var",
+    "stop",
+    "sync",
+    "native",
+    "attach",
+    "detach",
+    "speed",
+    "joint_speed",
+    "accel",
+    "zone",
+    "tool",
+    "frame",
+    "target",
+    "const",
+    "proc",
+    "part",
+]
 # words of other robot languages for what rmot spells differently
 _OTHER_LANGUAGES = {
-    "let": "'var NAME: int|num|bool = EXPR'", "dim": "'var NAME: int|num|bool = EXPR'",
-    "int": "'var NAME: int = EXPR'", "num": "'var NAME: num = EXPR'", "bool": "'var NAME: bool = EXPR'",
-    "decl": "'var NAME: int|num|bool = EXPR'", "loop": "'while COND { ... }' or 'repeat N { ... }'",
-    "halt": "'stop'", "exit": "'stop'", "end": "'stop'", "goto": "a loop or an if (rmot has no jumps)",
+    "let": "'var NAME: int|num|bool = EXPR'",
+    "dim": "'var NAME: int|num|bool = EXPR'",
+    "int": "'var NAME: int = EXPR'",
+    "num": "'var NAME: num = EXPR'",
+    "bool": "'var NAME: bool = EXPR'",
+    "decl": "'var NAME: int|num|bool = EXPR'",
+    "loop": "'while COND { ... }' or 'repeat N { ... }'",
+    "halt": "'stop'",
+    "exit": "'stop'",
+    "end": "'stop'",
+    "goto": "a loop or an if (rmot has no jumps)",
 }

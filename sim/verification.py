@@ -196,7 +196,8 @@ def _variant_path(tp: planned.TaskPlan, variant: int) -> str:
     for v in tp.variants:
         if v.index == variant:
             span = next((i.span for i in ir.walk(tp.task.body) if i.uid == v.if_uid), None)
-            return f" (on {planned.path_words(v.arm, span.start.line if span is not None else '?')})"
+            line = span.start.line if span is not None else None
+            return f" (on {planned.path_words(v.arm, line)})"
     return " (on another path through a runtime if)"
 
 

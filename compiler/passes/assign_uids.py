@@ -20,7 +20,7 @@ __all__ = ["assign_uids", "number"]
 def number(body: tuple[ir.Instr, ...], counter: Iterator[int]) -> tuple[ir.Instr, ...]:
     out: list[ir.Instr] = []
     for instr in body:
-        uid = next(counter)  # parent first; then every body in order (each Loop iteration its own uids)
+        uid = next(counter)  # parent first, then every body in order (each Loop iteration too)
         bodies = tuple(number(sub, counter) for sub in children(instr))
         out.append(rebuilt(instr, bodies, uid=uid))
     return tuple(out)

@@ -28,10 +28,10 @@ def _syncs(body: tuple[ir.Instr, ...], conditional: list[ir.Sync]) -> list[ir.Sy
             conditional.extend(i for i in ir.walk(instr.then + instr.otherwise) if isinstance(i, ir.Sync))
         elif isinstance(instr, ir.ProcCall):
             out.extend(_syncs(instr.body, conditional))
-        elif isinstance(instr, ir.Loop):  # every iteration runs: its syncs are unconditional (issue #15)
+        elif isinstance(instr, ir.Loop):  # issue #15: every iteration runs, its syncs count
             for it in instr.iterations:
                 out.extend(_syncs(it.body, conditional))
-        elif isinstance(instr, (ir.While, ir.WaitInput, ir.WaitCondition)):  # runs a runtime-dependent count
+        elif isinstance(instr, (ir.While, ir.WaitInput, ir.WaitCondition)):  # runs 0..n times
             bodies = instr.body if isinstance(instr, ir.While) else instr.on_timeout
             conditional.extend(i for i in ir.walk(bodies) if isinstance(i, ir.Sync))
     return out

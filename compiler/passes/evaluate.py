@@ -97,10 +97,13 @@ def _name(e: ast.Name, scope: Scope, rep: Reporter) -> Value | None:
         rep.error(codes.WRONG_TYPE, f"'{e.name}' must be a value to be used here (got {article(entry.kind)})", e.span,
                   ((f"'{e.name}' is defined here", entry.span),))
         return None
-    if entry.kind == "rtvar":  # issue #15: a task variable's value is known only when the program runs
-        rep.error(codes.RT_IN_COMPILE_TIME, f"var '{e.name}' must not be used here: a pose, target, speed, time or "
-                  "loop bound must be known when the program is compiled (the value of a var is known only at "
-                  "runtime, so the compiler cannot bound or verify it)", e.span, ((f"'{e.name}' is declared here", entry.span),))
+    if entry.kind == "rtvar":  # issue #15: a task variable's value is known only at runtime
+        rep.error(codes.RT_IN_COMPILE_TIME,
+                  f"var '{e.name}' must not be used here: a pose, target, speed, time or loop "
+                  "bound "
+                  "must be known when the program is compiled (the value of a var is known only at "
+                  "runtime, so the compiler cannot bound or verify it)", e.span,
+                  ((f"'{e.name}' is declared here", entry.span),))
         return None
     return entry.value  # type: ignore[no-any-return]
 

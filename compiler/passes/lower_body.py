@@ -68,7 +68,7 @@ class TaskLowering:
     stack: list[int] = field(default_factory=list)  # ids of the procs being inlined
     called: set[int] = field(default_factory=set)  # ids of the ProcDecls inlined at least once
     held: dict[str, Span | None] = field(default_factory=dict)  # parts held now -> where attached (issue #14)
-    depth: int = 0  # blocks entered below the task's body (a `var` belongs to the body itself, issue #15)
+    depth: int = 0  # blocks entered below the task's body (a `var` belongs to the body, #15)
 
     def run(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
         try:
@@ -86,8 +86,11 @@ class TaskLowering:
         stopped = False
         for stmt in body:
             if stopped and not isinstance(stmt, (ast.ProcDecl, ast.TargetDecl, ast.ConstDecl)):
-                self.rep.warning(codes.UNREACHABLE_AFTER_STOP, "this statement never runs: 'stop' before it in the same "
-                                 "block ends the task", stmt.span)
+                self.rep.warning(
+                    codes.UNREACHABLE_AFTER_STOP,
+                    "this statement never runs: 'stop' before it in the same block ends the task",
+                    stmt.span,
+                )
                 stopped = False  # once per block
             stopped = stopped or isinstance(stmt, ast.StopStmt)
             self.steps += 1
@@ -162,21 +165,35 @@ class TaskLowering:
     # ---------------------------------------------------------------- loops and branches
 
     def for_loop(self, s: ast.For, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
-        """An ir.Loop with every iteration lowered, the loop variable bound to its value (issue #15)."""
+        """An ir.Loop with every iteration lowered, the loop variable bound to its value (#15)."""
         if s.stop is None:
-            self.rep.error(codes.FOR_WITHOUT_BOUNDS, f"a for loop must have bounds: 'for {s.var.name} in FIRST .. END' "
-                           "(got no '..'; the end is excluded; use 'while COND' for a loop that runs until a "
-                           "condition)", s.span)
+            self.rep.error(
+                codes.FOR_WITHOUT_BOUNDS,
+                f"a for loop must have bounds: 'for {s.var.name} in FIRST .. END' "
+                "(got no '..'; the end is excluded; use 'while COND' for a loop that runs until a "
+                "condition)",
+                s.span,
+            )
             return None
-        lo = expect_integer(eval_expr(s.start, scope, self.rep), "loop start", s.start.span, self.rep, minimum=-(10**9))
-        hi = expect_integer(eval_expr(s.stop, scope, self.rep), "loop end", s.stop.span, self.rep, minimum=-(10**9))
+        lo = expect_integer(
+            eval_expr(s.start, scope, self.rep),
+            "loop start",
+            s.start.span,
+            self.rep,
+            minimum=-(10**9),
+        )
+        hi = expect_integer(
+            eval_expr(s.stop, scope, self.rep), "loop end", s.stop.span, self.rep, minimum=-(10**9)
+        )
         if lo is None or hi is None:
             return None
         self._rounds(hi - lo, s)
         iterations: list[ir.LoopIteration] = []
         for i in range(lo, hi):
             inner = scope.child()
-            inner.names[s.var.name] = Entry("var", s.var.name, Quantity(float(i), DIMENSIONLESS, None, float(i)), s.var.span)
+            inner.names[s.var.name] = Entry(
+                "var", s.var.name, Quantity(float(i), DIMENSIONLESS, None, float(i)), s.var.span
+            )
             errors = len(self.rep.sink)
             self.depth += 1
             try:
@@ -186,10 +203,14 @@ class TaskLowering:
             iterations.append(ir.LoopIteration(value=i, body=tuple(body)))
             if self._failed_since(errors):
                 break  # the next rounds would only repeat the same diagnostics
-        return ir.Loop(uid=0, var=s.var.name, first=lo, last=hi, iterations=tuple(iterations), span=s.span)
+        return ir.Loop(
+            uid=0, var=s.var.name, first=lo, last=hi, iterations=tuple(iterations), span=s.span
+        )
 
     def repeat(self, s: ast.Repeat, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
-        n = expect_integer(eval_expr(s.count, scope, self.rep), "repeat count", s.count.span, self.rep)
+        n = expect_integer(
+            eval_expr(s.count, scope, self.rep), "repeat count", s.count.span, self.rep
+        )
         if n is None:
             return None
         self._rounds(n, s)
@@ -322,31 +343,46 @@ class TaskLowering:
             return None
         return ir.InputCondition(port=p[0], value=level if c.op == "==" else not level, signal=p[1])
 
-    def wait_until(self, s: ast.WaitUntil, scope: Scope, modal: Modal | None = None, where: str = "") -> ir.Instr | None:
+    def wait_until(
+        self, s: ast.WaitUntil, scope: Scope, modal: Modal | None = None, where: str = ""
+    ) -> ir.Instr | None:
         cond = self.any_condition(s.condition, scope, "the condition of 'wait until'")
         timeout = self._time(s.timeout, scope, "timeout") if s.timeout is not None else None
         on_timeout: tuple[ir.Instr, ...] = ()
         if s.on_timeout is not None and modal is not None:
             if not s.on_timeout:
-                self.rep.warning(codes.WAIT_ELSE_WITHOUT_TIMEOUT, "the timeout branch is empty: 'timeout T else { }' "
-                                 "is the same as 'timeout T'", s.span)
+                self.rep.warning(
+                    codes.WAIT_ELSE_WITHOUT_TIMEOUT,
+                    "the timeout branch is empty: 'timeout T else { }' is the same as 'timeout T'",
+                    s.span,
+                )
             before = dict(self.held)
             on_timeout = self.nested(s.on_timeout, scope.child(), modal, where)
             if set(before) != set(self.held):
                 differ = sorted(set(before) ^ set(self.held))
-                self.rep.error(codes.PART_ARMS_DIFFER, f"the timeout branch of 'wait until' must leave the same parts held "
-                               f"as it found (part {', '.join(repr(p) for p in differ)} differs)", s.span)
+                self.rep.error(
+                    codes.PART_ARMS_DIFFER,
+                    f"the timeout branch of 'wait until' must leave the same parts held "
+                    f"as it found (part {', '.join(repr(p) for p in differ)} differs)",
+                    s.span,
+                )
             self.held = before
         if cond is None or (s.timeout is not None and timeout is None):
             return None
         if isinstance(cond, ir.InputCondition):
-            return ir.WaitInput(uid=0, condition=cond, timeout=timeout, span=s.span, on_timeout=on_timeout)
-        return ir.WaitCondition(uid=0, condition=cond, timeout=timeout, on_timeout=on_timeout, span=s.span)
+            return ir.WaitInput(
+                uid=0, condition=cond, timeout=timeout, span=s.span, on_timeout=on_timeout
+            )
+        return ir.WaitCondition(
+            uid=0, condition=cond, timeout=timeout, on_timeout=on_timeout, span=s.span
+        )
 
     # ---------------------------------------------------------------- runtime state (issue #15)
 
     def rt(self, scope: Scope) -> RtLowering:
-        return RtLowering(scope, self.rep, lambda io, allowed, what: self.port(io, scope, allowed, what))
+        return RtLowering(
+            scope, self.rep, lambda io, allowed, what: self.port(io, scope, allowed, what)
+        )
 
     def any_condition(self, c: ast.RtCond, scope: Scope, what: str) -> ir.Condition | None:
         """`in[n] == on|off` lowers as it always has (an InputCondition); anything else through
@@ -365,26 +401,45 @@ class TaskLowering:
     def var_decl(self, s: ast.VarDecl, scope: Scope) -> ir.Instr | None:
         name = s.name.name
         if self.depth > 0:
-            self.rep.error(codes.VAR_MISPLACED, f"var '{name}' must be declared in the task's own body, not inside a loop, "
-                           "an if arm or a proc (a controller variable lives as long as the task)", s.span)
+            self.rep.error(
+                codes.VAR_MISPLACED,
+                f"var '{name}' must be declared in the task's own body, not inside a loop, "
+                "an if arm or a proc (a controller variable lives as long as the task)",
+                s.span,
+            )
             return None
         wanted: ir.ValueType | None = None
         if s.type is not None:
             wanted = TYPE_NAMES.get(s.type.name)
             if wanted is None:
-                self.rep.unknown(s.type.name, "variable type (int, num or bool)", s.type.span, list(TYPE_NAMES),
-                                 codes.RT_BAD_TYPE_NAME)
+                self.rep.unknown(
+                    s.type.name,
+                    "variable type (int, num or bool)",
+                    s.type.span,
+                    list(TYPE_NAMES),
+                    codes.RT_BAD_TYPE_NAME,
+                )
                 return None
         rt = self.rt(scope)
-        init = rt.expr(s.value) if wanted is None else rt.typed(s.value, wanted, f"the initial value of var '{name}'")
+        init = (
+            rt.expr(s.value)
+            if wanted is None
+            else rt.typed(s.value, wanted, f"the initial value of var '{name}'")
+        )
         first = scope.lookup(name)
         if first is not None:
-            self.rep.error(codes.RT_REDECLARED, f"var '{name}' must have a name of its own (got the name of "
-                           f"{article(first.kind if first.kind != 'rtvar' else 'var')} already declared)", s.name.span,
-                           ((f"'{name}' is first declared here", first.span),))
+            self.rep.error(
+                codes.RT_REDECLARED,
+                f"var '{name}' must have a name of its own (got the name of "
+                f"{article(first.kind if first.kind != 'rtvar' else 'var')} already declared)",
+                s.name.span,
+                ((f"'{name}' is first declared here", first.span),),
+            )
             return None
         if init is None:
-            scope.names[name] = Entry("rtvar", name, wanted or ir.ValueType.NUM, s.name.span)  # no "unknown" later
+            scope.names[name] = Entry(
+                "rtvar", name, wanted or ir.ValueType.NUM, s.name.span
+            )  # no "unknown" later
             return None
         vtype = wanted or expr_type(init)
         scope.names[name] = Entry("rtvar", name, vtype, s.name.span)
@@ -395,38 +450,60 @@ class TaskLowering:
         entry = scope.lookup(name)
         rt = self.rt(scope)
         if entry is None:
-            known = [n for n in scope.visible() if (e := scope.lookup(n)) is not None and e.kind == "rtvar"]
+            known = [
+                n
+                for n in scope.visible()
+                if (e := scope.lookup(n)) is not None and e.kind == "rtvar"
+            ]
             self.rep.unknown(name, "variable", s.name.span, known, codes.RT_UNKNOWN_VAR)
             rt.expr(s.value)  # its own errors too
             return None
         if entry.kind != "rtvar":
             what = "a loop variable" if entry.kind == "var" else article(entry.kind)
-            self.rep.error(codes.RT_ASSIGN_NOT_VAR, f"only a var can be assigned ('{name}' is {what}, fixed when the "
-                           f"program is compiled; declare 'var NAME = ...' for a value that changes)", s.name.span,
-                           ((f"'{name}' is defined here", entry.span),))
+            self.rep.error(
+                codes.RT_ASSIGN_NOT_VAR,
+                f"only a var can be assigned ('{name}' is {what}, fixed when the "
+                f"program is compiled; declare 'var NAME = ...' for a value that changes)",
+                s.name.span,
+                ((f"'{name}' is defined here", entry.span),),
+            )
             return None
         value = rt.expr(s.value)
         if value is None:
             return None
         if not fits(expr_type(value), entry.value):
-            self.rep.error(codes.RT_WRONG_TYPE, f"the value assigned to var '{name}' must be {entry.value.value} "
-                           f"(got {expr_type(value).value})", s.value.span, ((f"'{name}' is declared here", entry.span),))
+            self.rep.error(
+                codes.RT_WRONG_TYPE,
+                f"the value assigned to var '{name}' must be {entry.value.value} "
+                f"(got {expr_type(value).value})",
+                s.value.span,
+                ((f"'{name}' is declared here", entry.span),),
+            )
             return None
         return ir.Assign(uid=0, name=name, value=value, span=s.span)
 
     def while_loop(self, s: ast.While, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
         if s.condition is None:
-            self.rep.error(codes.WHILE_WITHOUT_CONDITION, "a while loop must have a condition: 'while COND { ... }' "
-                           "(got none; for a fixed count use 'repeat N' or 'for i in a .. b')", s.span)
+            self.rep.error(
+                codes.WHILE_WITHOUT_CONDITION,
+                "a while loop must have a condition: 'while COND { ... }' "
+                "(got none; for a fixed count use 'repeat N' or 'for i in a .. b')",
+                s.span,
+            )
             return None
         cond = self.rt(scope).condition(s.condition, "the condition of a while")
         before = dict(self.held)
         body = self.nested(s.body, scope.child(), modal, where)
         if set(before) != set(self.held):
             differ = sorted(set(before) ^ set(self.held))
-            self.rep.error(codes.WHILE_PARTS_DIFFER, f"a while body must end holding the parts it started with (part "
-                           f"{', '.join(repr(p) for p in differ)} differs): every iteration starts where the last "
-                           "ended", s.span)
+            self.rep.error(
+                codes.WHILE_PARTS_DIFFER,
+                f"a while body must end holding the parts it started with (part "
+                f"{', '.join(repr(p) for p in differ)} differs): every iteration starts where "
+                "the last "
+                "ended",
+                s.span,
+            )
         self.held = before
         if cond is None:
             return None

@@ -22,7 +22,7 @@ from rmot.compiler.passes.values import DIMENSIONLESS, BoolV, Quantity, article,
 from rmot.lang import ast
 from rmot.lang.source import Span
 
-__all__ = ["RtLowering", "TYPE_NAMES", "expr_type", "fits"]
+__all__ = ["TYPE_NAMES", "RtLowering", "expr_type", "fits"]
 
 TYPE_NAMES = {"int": ir.ValueType.INT, "num": ir.ValueType.NUM, "bool": ir.ValueType.BOOL}
 _CMP = {op.value: op for op in ir.CompareOp}
@@ -44,12 +44,13 @@ def fits(value: ir.ValueType, wanted: ir.ValueType) -> bool:
 
 
 def _literal_is_int(e: ast.Number) -> bool:
-    text = e.span.file.text[e.span.start.offset:e.span.end.offset] if e.span is not None else ""
+    text = e.span.file.text[e.span.start.offset : e.span.end.offset] if e.span is not None else ""
     return float(e.value).is_integer() and not any(ch in text for ch in ".eE")
 
 
 class RtLowering:
-    """Lowers runtime expressions of one task; `port` resolves an I/O reference (TaskLowering.port)."""
+    """Lowers runtime expressions of one task; `port` resolves an I/O reference
+    (TaskLowering.port)."""
 
     def __init__(self, scope: Scope, rep: Reporter, port: Port) -> None:
         self.scope, self.rep, self.port = scope, rep, port
@@ -64,8 +65,12 @@ class RtLowering:
         if out is None:
             return None
         if expr_type(out) is not ir.ValueType.BOOL:
-            self._err(codes.RT_WRONG_TYPE, f"{what} must be a condition (bool) (got {expr_type(out).value}: compare it, "
-                      f"e.g. '... > 0')", e.span)
+            self._err(
+                codes.RT_WRONG_TYPE,
+                f"{what} must be a condition (bool) (got {expr_type(out).value}: compare it, "
+                f"e.g. '... > 0')",
+                e.span,
+            )
             return None
         return out  # type: ignore[return-value]
 
@@ -75,7 +80,9 @@ class RtLowering:
             return None
         got = expr_type(out)
         if not fits(got, wanted):
-            self._err(codes.RT_WRONG_TYPE, f"{what} must be {wanted.value} (got {got.value})", e.span)
+            self._err(
+                codes.RT_WRONG_TYPE, f"{what} must be {wanted.value} (got {got.value})", e.span
+            )
             return None
         return out
 
@@ -83,8 +90,12 @@ class RtLowering:
     def expr(self, e: ast.RtCond) -> ir.RtExpr | None:
         if isinstance(e, ast.Number):
             if e.unit is not None:
-                self._err(codes.RT_UNIT, f"a runtime expression takes plain numbers (got {e.value:g} {e.unit}: "
-                          "a controller variable has no unit)", e.span)
+                self._err(
+                    codes.RT_UNIT,
+                    f"a runtime expression takes plain numbers (got {e.value:g} {e.unit}: "
+                    "a controller variable has no unit)",
+                    e.span,
+                )
                 return None
             if _literal_is_int(e):
                 return ir.Const(int(e.value), ir.ValueType.INT)
@@ -98,7 +109,11 @@ class RtLowering:
             if inner is None:
                 return None
             if expr_type(inner) is ir.ValueType.BOOL:
-                self._err(codes.RT_WRONG_TYPE, "'-' must be applied to a number (got bool; use 'not')", e.span)
+                self._err(
+                    codes.RT_WRONG_TYPE,
+                    "'-' must be applied to a number (got bool; use 'not')",
+                    e.span,
+                )
                 return None
             if isinstance(inner, ir.Const):
                 return ir.Const(-inner.value, inner.type)
@@ -117,10 +132,16 @@ class RtLowering:
         if isinstance(e, ast.NotCond):
             inner_c = self.condition(e.operand, "the operand of 'not'")
             if isinstance(inner_c, ir.InputCondition):  # `not in[1]` is `in[1] == off`
-                return ir.InputCondition(port=inner_c.port, value=not inner_c.value, signal=inner_c.signal)
+                return ir.InputCondition(
+                    port=inner_c.port, value=not inner_c.value, signal=inner_c.signal
+                )
             return None if inner_c is None else ir.Not(inner_c)
-        self._err(codes.RT_UNIT, f"a runtime expression takes numbers, bools, variables and inputs (got "
-                  f"{type(e).__name__.lower()})", e.span)
+        self._err(
+            codes.RT_UNIT,
+            f"a runtime expression takes numbers, bools, variables and inputs (got "
+            f"{type(e).__name__.lower()})",
+            e.span,
+        )
         return None
 
     def name(self, e: ast.Name) -> ir.RtExpr | None:
@@ -128,8 +149,12 @@ class RtLowering:
         if entry is None:
             if e.name in BOOL_NAMES:
                 return ir.Const(BOOL_NAMES[e.name], ir.ValueType.BOOL)
-            known = [n for n in self.scope.visible() if (x := self.scope.lookup(n)) is not None
-                     and x.kind in ("rtvar", "var", "const", "param")]
+            known = [
+                n
+                for n in self.scope.visible()
+                if (x := self.scope.lookup(n)) is not None
+                and x.kind in ("rtvar", "var", "const", "param")
+            ]
             self.rep.unknown(e.name, "variable", e.span, known, codes.RT_UNKNOWN_VAR)
             return None
         if entry.kind == "rtvar":
@@ -145,9 +170,17 @@ class RtLowering:
             return ir.Const(float(v.value), ir.ValueType.NUM)
         if v is None:  # its definition failed and was reported
             return None
-        got = article(type_name(v)) if not isinstance(v, Quantity) else f"a quantity in {v.unit or 'SI units'}"
-        self._err(codes.RT_UNIT, f"'{e.name}' must be a plain number or on/off to be used in a runtime expression "
-                  f"(got {got})", e.span)
+        got = (
+            article(type_name(v))
+            if not isinstance(v, Quantity)
+            else f"a quantity in {v.unit or 'SI units'}"
+        )
+        self._err(
+            codes.RT_UNIT,
+            f"'{e.name}' must be a plain number or on/off to be used in a runtime expression "
+            f"(got {got})",
+            e.span,
+        )
         return None
 
     def arith(self, e: ast.BinOp) -> ir.RtExpr | None:
@@ -156,14 +189,22 @@ class RtLowering:
             return None
         lt, rt = expr_type(left), expr_type(right)
         if ir.ValueType.BOOL in (lt, rt):
-            self._err(codes.RT_WRONG_TYPE, f"'{e.op}' must be applied to numbers (got {lt.value} {e.op} {rt.value})", e.span)
+            self._err(
+                codes.RT_WRONG_TYPE,
+                f"'{e.op}' must be applied to numbers (got {lt.value} {e.op} {rt.value})",
+                e.span,
+            )
             return None
         if e.op == "/" and isinstance(right, ir.Const) and right.value == 0:
-            self._err(codes.RT_DIVISION_BY_ZERO, "a runtime expression must not divide by 0", e.right.span)
+            self._err(
+                codes.RT_DIVISION_BY_ZERO, "a runtime expression must not divide by 0", e.right.span
+            )
             return None
         num = e.op == "/" or ir.ValueType.NUM in (lt, rt)
         t = ir.ValueType.NUM if num else ir.ValueType.INT
-        if isinstance(left, ir.Const) and isinstance(right, ir.Const):  # folded: what a reader expects
+        if isinstance(left, ir.Const) and isinstance(
+            right, ir.Const
+        ):  # folded: what a reader expects
             a, b = float(left.value), float(right.value)
             value = {"+": a + b, "-": a - b, "*": a * b, "/": a / b if b else 0.0}[e.op]
             return ir.Const(int(value) if t is ir.ValueType.INT else value, t)
@@ -171,7 +212,11 @@ class RtLowering:
 
     def io_read(self, io: ast.IoRef) -> ir.RtExpr | None:
         if io.kind in ("out", "aout"):
-            self._err(codes.RT_BAD_IO, f"a condition must read in[n] or ain[n] (got {io.kind}[...]: an output)", io.span)
+            self._err(
+                codes.RT_BAD_IO,
+                f"a condition must read in[n] or ain[n] (got {io.kind}[...]: an output)",
+                io.span,
+            )
             return None
         p = self.port(io, ("in", "ain"), "a condition")
         if p is None:
@@ -191,11 +236,17 @@ class RtLowering:
         if level is None:
             return None
         if expr_type(level) is not ir.ValueType.BOOL:
-            self._err(codes.RT_WRONG_TYPE, f"the level compared with {c.io.kind}[...] must be on or off (got "
-                      f"{expr_type(level).value})", c.value.span)
+            self._err(
+                codes.RT_WRONG_TYPE,
+                f"the level compared with {c.io.kind}[...] must be on or off (got "
+                f"{expr_type(level).value})",
+                c.value.span,
+            )
             return None
         if isinstance(level, ir.Const) and isinstance(read, ir.InputCondition):
-            return ir.InputCondition(port=read.port, value=bool(level.value) == (c.op == "=="), signal=read.signal)
+            return ir.InputCondition(
+                port=read.port, value=bool(level.value) == (c.op == "=="), signal=read.signal
+            )
         return ir.Compare(_CMP[c.op], read, level)
 
     def compare(self, e: ast.Compare) -> ir.RtExpr | None:
@@ -206,10 +257,17 @@ class RtLowering:
         lt, rt = expr_type(left), expr_type(right)
         op = _CMP[e.op]
         if (lt is ir.ValueType.BOOL) != (rt is ir.ValueType.BOOL):
-            self._err(codes.RT_WRONG_TYPE, f"'{e.op}' must compare two numbers or two bools (got {lt.value} and "
-                      f"{rt.value})", e.span)
+            self._err(
+                codes.RT_WRONG_TYPE,
+                f"'{e.op}' must compare two numbers or two bools (got {lt.value} and {rt.value})",
+                e.span,
+            )
             return None
         if lt is ir.ValueType.BOOL and op not in (ir.CompareOp.EQ, ir.CompareOp.NE):
-            self._err(codes.RT_WRONG_TYPE, f"'{e.op}' must compare numbers (got bools: use == or !=)", e.span)
+            self._err(
+                codes.RT_WRONG_TYPE,
+                f"'{e.op}' must compare numbers (got bools: use == or !=)",
+                e.span,
+            )
             return None
         return ir.Compare(op, left, right)

@@ -37,6 +37,9 @@ TIMING_EXACT_STOP = Code("W225", "timing-exact-stop",
                          "a blended chain could not be timed as a whole; its corners became exact stops")
 
 # runtime logic (issue #15)
-WHILE_NO_FIXED_POINT = Code("E240", "while-no-fixed-point",
-                            "a while loop whose iterations do not come back to the state they started from")
+WHILE_NO_FIXED_POINT = Code(
+    "E240",
+    "while-no-fixed-point",
+    "a while loop whose iterations do not come back to the state they started from",
+)
 __all__ += ["WHILE_NO_FIXED_POINT"]

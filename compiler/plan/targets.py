@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.ir_tree import children
 from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
 
@@ -214,7 +215,13 @@ def _main_line(body: tuple[ir.Instr, ...]):  # type: ignore[no-untyped-def]
             yield from _main_line(instr.then)
         elif isinstance(instr, ir.ProcCall):
             yield from _main_line(instr.body)
+        elif isinstance(instr, (ir.Loop, ir.While)):  # issue #15: the main timeline enters them
+            for sub in children(instr):
+                yield from _main_line(sub)
+        elif isinstance(instr, ir.Stop):
+            return
         else:
+            children(instr)  # a kind ir_tree does not know raises; timeout branches are not main
             yield instr
 
 
@@ -244,7 +251,16 @@ def _first_moves(body: tuple[ir.Instr, ...]) -> tuple[list[ir.Move], bool]:
             arms = [instr.body]
         elif isinstance(instr, ir.If):
             arms = [instr.then, instr.otherwise]
+        elif isinstance(instr, ir.Loop):  # issue #15: its iterations run one after another
+            arms = [tuple(i for it in instr.iterations for i in it.body)]
+        elif isinstance(instr, ir.While):  # runs zero or more times
+            arms = [instr.body, ()]
+        elif isinstance(instr, (ir.WaitInput, ir.WaitCondition)) and instr.on_timeout:
+            arms = [instr.on_timeout, ()]
+        elif isinstance(instr, ir.Stop):
+            return found, True  # this path ends without a move
         else:
+            children(instr)  # a kind ir_tree does not know raises
             continue
         results = [_first_moves(arm) for arm in arms]
         found += [m for moves, _ in results for m in moves]

@@ -98,16 +98,18 @@ class _Builder:
         self.stopped = False  # a `stop` ended this path (issue #15): nothing after it is planned
         self.tool: str | None = None  # the tool of the last move, and the parts held: with q, the
         self.held: tuple[str, ...] = ()  # state a while's iteration must end in to be proved
-        self.paths: dict[int, tuple] = {}  # type: ignore[type-arg]  # uid -> loop iterations (ir_tree)
+        self.paths: dict[int, tuple] = {}  # type: ignore[type-arg]  # uid -> loop iterations
         self.repeat_quiet = False  # a while's later iterations: only findings not already reported
 
     # ------------------------------------------------------------------ helpers
-    def _diag(self, f: Finding, span, time: float | None = None, uid: int | None = None) -> None:  # type: ignore[no-untyped-def]
+    def _diag(self, f: Finding, span, time: float | None = None,  # type: ignore[no-untyped-def]
+              uid: int | None = None) -> None:
         message = f.message
         if uid is not None and uid in self.paths:  # inside a for/repeat: name the iteration
             message += f" (in iteration {describe_iteration(self.paths[uid])})"
         if self.note is not None or self.repeat_quiet:  # only what was not already reported
-            if any((d.code, d.span, d.message) == (f.code, span, message) for d in self.draft.diagnostics):
+            seen = ((d.code, d.span, d.message) for d in self.draft.diagnostics)
+            if (f.code, span, message) in seen:
                 return
         notes: tuple = (self.note,) if self.note is not None else ()  # type: ignore[type-arg]
         self.draft.diagnostics.append(
@@ -150,7 +152,8 @@ class _Builder:
             elif isinstance(instr, _BLOCKING):
                 self._blocking(instr)
             else:
-                raise TypeError(f"timeline: instruction kind {type(instr).__name__} is not planned (add it here)")
+                kind = type(instr).__name__
+                raise TypeError(f"timeline: instruction kind {kind} is not planned (add it here)")
 
     def walk_rest(self, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
         for j, body in enumerate(rest):
@@ -212,12 +215,22 @@ class _Builder:
         self.walk(instr.then, rest)
         self.flush()
         self.draft.records[n_records] = replace(self.draft.records[n_records], t_end=self.t)
-        if (instr.otherwise or self.stopped) and self.spawn:  # a `stop` in the then arm: the other path goes on
+        # a `stop` in the then arm: the other path goes on, planned as a variant
+        if (instr.otherwise or self.stopped) and self.spawn:
             self._variant(instr, instr.otherwise, "otherwise", rest, t0, q0, n_records, state)
 
-    def _variant(self, instr: ir.Instr, arm: tuple[ir.Instr, ...], kind: str, rest: tuple[tuple[ir.Instr, ...], ...],
-                 t0: float, q0: np.ndarray, n_records: int, state: tuple[str | None, tuple[str, ...]],
-                 hold: float = 0.0) -> None:
+    def _variant(
+        self,
+        instr: ir.Instr,
+        arm: tuple[ir.Instr, ...],
+        kind: str,
+        rest: tuple[tuple[ir.Instr, ...], ...],
+        t0: float,
+        q0: np.ndarray,
+        n_records: int,
+        state: tuple[str | None, tuple[str, ...]],
+        hold: float = 0.0,
+    ) -> None:
         """`arm` from (t0, q0) (after a hold of `hold` s: a wait's timeout), then the rest of the
         task from the arm's end; `kind` names the path (PATHS)."""
         self.counter[0] += 1
@@ -235,12 +248,25 @@ class _Builder:
         sub.spawn = False
         sub.walk_rest(rest)
         sub.flush()
-        self.draft.variants.append(VariantDraft(index, instr.uid, kind, t0, sub.pieces, n_records,
-                                                q0, len(self.draft.syncs), sub.syncs))
+        self.draft.variants.append(
+            VariantDraft(
+                index,
+                instr.uid,
+                kind,
+                t0,
+                sub.pieces,
+                n_records,
+                q0,
+                len(self.draft.syncs),
+                sub.syncs,
+            )
+        )
         self.draft.continuations.append((index, n_if))
 
     # ------------------------------------------------------------------ runtime logic (issue #15)
-    def _wait_branch(self, instr: ir.WaitInput | ir.WaitCondition, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
+    def _wait_branch(
+        self, instr: ir.WaitInput | ir.WaitCondition, rest: tuple[tuple[ir.Instr, ...], ...]
+    ) -> None:
         """The main timeline: the condition holds at once (as for every `wait until`); a variant:
         the timeout passes (the robot stands for T), the timeout branch runs, then the rest."""
         self.flush()
@@ -248,7 +274,17 @@ class _Builder:
         n_records = len(self.draft.records)
         self._record(instr, t0, t0)
         if self.spawn:
-            self._variant(instr, instr.on_timeout, "timeout", rest, t0, q0, n_records, state, hold=instr.timeout or 0.0)
+            self._variant(
+                instr,
+                instr.on_timeout,
+                "timeout",
+                rest,
+                t0,
+                q0,
+                n_records,
+                state,
+                hold=instr.timeout or 0.0,
+            )
 
     def _state(self) -> tuple[np.ndarray, str | None, tuple[str, ...]]:
         return self.q.copy(), self.tool, tuple(sorted(self.held))
@@ -274,19 +310,26 @@ class _Builder:
                 proved = True  # the body ends the task: no further iteration
                 break
             end = self._state()
-            if start[1:] == end[1:] and start[0].shape == end[0].shape and np.max(np.abs(start[0] - end[0]), initial=0.0) <= _SAME_Q:
+            if (
+                start[1:] == end[1:]
+                and start[0].shape == end[0].shape
+                and np.max(np.abs(start[0] - end[0]), initial=0.0) <= _SAME_Q
+            ):
                 proved = True
                 break
         self.repeat_quiet = quiet
         self.draft.records[n_records] = replace(self.draft.records[n_records], t_end=self.t)
         if not proved:
             line = instr.span.start.line if instr.span is not None else "?"
-            msg = (f"the while loop at line {line} must reach a repeating state: an iteration must end in the joints, "
-                   f"tool and held parts it started from (got a different end state after each of {WHILE_BOUND} "
-                   "iterations), so its later iterations cannot be verified; make the body end where it starts "
-                   "(e.g. return to a joint target)")
+            msg = (
+                f"the while loop at line {line} must reach a repeating state: an iteration must "
+                "end in the joints, tool and held parts it started from (got a different end state "
+                f"after each of {WHILE_BOUND} iterations), so its later iterations cannot be "
+                "verified; make the body end where it starts "
+                "(e.g. return to a joint target)"
+            )
             self._diag(Finding(codes.WHILE_NO_FIXED_POINT, Severity.ERROR, msg), instr.span, self.t)
-        if self.spawn and not self.stopped:
+        if self.spawn:  # the loop may run no iteration (also when its body stops)
             self._variant(instr, (), "no iteration", rest, t0, q0, n_records, state0)
 
     # ------------------------------------------------------------------ chains
@@ -302,13 +345,13 @@ class _Builder:
         if timed.error is not None:
             code = codes.TIME_TOO_SHORT if timed.error_is_time else codes.TIMING_FAILED
             at = 0 if timed.error_is_time else (timed.error_at if timed.error_at is not None else len(chain) - 1)
-            self._diag(Finding(code, Severity.ERROR, timed.error), chain[at].move.span, t0 + timed.starts[at],
-                       chain[at].move.uid)
+            self._diag(Finding(code, Severity.ERROR, timed.error), chain[at].move.span,
+                       t0 + timed.starts[at], chain[at].move.uid)
         for k in timed.stops:
             msg = (f"the blended motion through this move could not be timed ({timed.stop_reason}); the robot "
                    f"stops exactly at this move's target at t = {t0 + timed.ends[k]:.3f} s")
-            self._diag(Finding(codes.TIMING_EXACT_STOP, Severity.WARNING, msg), chain[k].move.span, t0 + timed.ends[k],
-                       chain[k].move.uid)
+            self._diag(Finding(codes.TIMING_EXACT_STOP, Severity.WARNING, msg), chain[k].move.span,
+                       t0 + timed.ends[k], chain[k].move.uid)
         for f, k in pending:
             self._diag(f, chain[k].move.span, t0 + timed.starts[k], chain[k].move.uid)
         for instr, k in events:
@@ -364,8 +407,9 @@ def _continuations_apart(draft: TaskDraft, task: str) -> list[Diagnostic]:
             main_branch = next(x.branch for x in draft.records if x.uid == r.uid and x.variant == 0)
             fix = ("give the move a config(...)" if r.branch != main_branch
                    else "end both arms in the same joint state")  # same branch: a turn of a joint
-            msg = (f"on {path} this move must reach the same joints as on the main path (they differ by up "
-                   f"to {np.degrees(apart):.1f} deg); the controller program uses the main path's solution: {fix}")
+            msg = (f"on {path} this move must reach the same joints as on the main path (they "
+                   f"differ by up to {np.degrees(apart):.1f} deg); the controller program uses the "
+                   f"main path's solution: {fix}")
             out.append(Diagnostic(codes.IF_ARMS_DIFFER, Severity.WARNING, msg, r.span, ((
                 "the if", span),), time_s=r.t_end, task=task))
             break  # one warning per variant: later moves follow from this one

@@ -86,7 +86,7 @@ def _rebase_body(body: tuple[Any, ...], slot: str, old: ir.Pose, new: ir.Pose) -
     for instr in body:
         if isinstance(instr, ir.Move):
             instr = _rebase_move(instr, slot, old, new)
-        else:  # every body an instruction holds (ir_tree: If arms, proc bodies, loop iterations, ...)
+        else:  # every body an instruction holds (ir_tree: if arms, proc bodies, loops, ...)
             instr = rebuilt(instr, tuple(_rebase_body(b, slot, old, new) for b in children(instr)))
         out.append(instr)
     return tuple(out)

@@ -35,6 +35,6 @@ def test_most_codes_have_a_fixture() -> None:
     generated |= {"W123"}  # a warning (fixtures declare errors): tested in test_check_config_and_ranges
     generated |= {"W135"}  # a warning: tested in tests/robots/test_cell_model.py
     generated |= {"W140"}  # a warning: tested in test_check_parts
-    generated |= {"W150", "W151"}  # warnings: tested in tests/runtime/test_runtime_frontend.py (issue #15)
+    generated |= {"W150", "W151"}  # warnings: tested in tests/runtime/test_runtime_frontend.py
     missing = [c.id for c in _codes(lang_codes) + _codes(check_codes) if c.id not in text and c.id not in generated]
     assert missing == [], missing

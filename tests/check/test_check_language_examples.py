@@ -107,14 +107,18 @@ def test_cell_example(project: Path) -> None:
 
 
 def test_pick_place_example(project: Path) -> None:
-    """The program: 3 unrolled picks, a circular move, a runtime if, a pulse and native text."""
+    """The program: a loop of 3 picks (each iteration lowered), a circular move, a runtime if, a
+    pulse and native text."""
     (project / "pick_place.rmot").write_text(PICK_PLACE)
     prog = _load(project / "pick_place.rmot")
     assert isinstance(prog, ir.Program)
     body = prog.tasks[0].body
     kinds = [type(i).__name__ for i in body]
-    assert kinds == ["Move"] + ["ProcCall", "Move"] * 3 + ["Move", "If", "Pulse", "Native"]
-    circular = body[7]
+    assert kinds == ["Move", "Loop", "Move", "If", "Pulse", "Native"]
+    loop = body[1]
+    assert isinstance(loop, ir.Loop) and [it.value for it in loop.iterations] == [0, 1, 2]
+    assert all([type(i).__name__ for i in it.body] == ["ProcCall", "Move"] for it in loop.iterations)
+    circular = body[2]
     assert isinstance(circular, ir.Move) and circular.kind is ir.MotionKind.CIRCULAR and circular.via is not None
 
 
