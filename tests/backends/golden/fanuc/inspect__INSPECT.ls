@@ -5,7 +5,7 @@ COMMENT		= "rmot";
 PROG_SIZE	= 0;
 FILE_NAME	= ;
 VERSION		= 0;
-LINE_COUNT	= 77;
+LINE_COUNT	= 74;
 MEMORY_SIZE	= 0;
 PROTECT		= READ_WRITE;
 TCD:  STACK_SIZE	= 0,
@@ -47,57 +47,54 @@ CONTROL_CODE	= 00000000 00000000;
   28:  UFRAME_NUM=1 ;
   29:  UTOOL_NUM=1 ;
   30:  J P[2] 100% FINE ;
-  31:  !inspect.rmot:17 ;
-  32:  !repeat round 1 ;
-  33:  !inspect.rmot:18 ;
-  34:  UFRAME_NUM=1 ;
-  35:  UTOOL_NUM=1 ;
-  36:  C P[3]
+  31:  !inspect.rmot:18 ;
+  32:  UFRAME_NUM=1 ;
+  33:  UTOOL_NUM=1 ;
+  34:  C P[3]
     :  P[4] 150mm/sec CNT2 ;
-  37:  !inspect.rmot:19 ;
-  38:  UFRAME_NUM=1 ;
-  39:  UTOOL_NUM=1 ;
-  40:  C P[5]
+  35:  !inspect.rmot:19 ;
+  36:  UFRAME_NUM=1 ;
+  37:  UTOOL_NUM=1 ;
+  38:  C P[5]
     :  P[6] 150mm/sec CNT2 ;
-  41:  !repeat round 2 ;
-  42:  !inspect.rmot:18 ;
-  43:  UFRAME_NUM=1 ;
-  44:  UTOOL_NUM=1 ;
-  45:  C P[7]
+  39:  !inspect.rmot:18 ;
+  40:  UFRAME_NUM=1 ;
+  41:  UTOOL_NUM=1 ;
+  42:  C P[7]
     :  P[8] 150mm/sec CNT2 ;
-  46:  !inspect.rmot:19 ;
-  47:  UFRAME_NUM=1 ;
-  48:  UTOOL_NUM=1 ;
-  49:  C P[9]
+  43:  !inspect.rmot:19 ;
+  44:  UFRAME_NUM=1 ;
+  45:  UTOOL_NUM=1 ;
+  46:  C P[9]
     :  P[10] 150mm/sec CNT2 ;
-  50:  !inspect.rmot:21 ;
-  51:  UFRAME_NUM=1 ;
-  52:  UTOOL_NUM=1 ;
-  53:  L P[11] 150mm/sec FINE ;
-  54:  !inspect.rmot:22 ;
-  55:  UFRAME_NUM=1 ;
-  56:  UTOOL_NUM=1 ;
-  57:  L P[12] 150mm/sec FINE ;
-  58:  !inspect.rmot:23 ;
-  59:  UFRAME_NUM=1 ;
-  60:  UTOOL_NUM=1 ;
-  61:  L P[13] 150mm/sec FINE ;
-  62:  !inspect.rmot:24 ;
-  63:  IF DI[2:part_present]<>ON,JMP LBL[1] ;
-  64:  !inspect.rmot:25 ;
-  65:  AO[1:conveyor_speed]=4.500 ;
-  66:  JMP LBL[2] ;
-  67:  LBL[1] ;
-  68:  !inspect.rmot:26 ;
-  69:  IF DI[2:part_present]<>OFF,JMP LBL[3] ;
-  70:  !inspect.rmot:27 ;
-  71:  DO[2:gripper_open]=PULSE,0.2sec ;
-  72:  JMP LBL[4] ;
-  73:  LBL[3] ;
-  74:  LBL[4] ;
-  75:  LBL[2] ;
-  76:  !inspect.rmot:29 ;
-  77:  WAIT 0.50(sec) ;
+  47:  !inspect.rmot:21 ;
+  48:  UFRAME_NUM=1 ;
+  49:  UTOOL_NUM=1 ;
+  50:  L P[11] 150mm/sec FINE ;
+  51:  !inspect.rmot:22 ;
+  52:  UFRAME_NUM=1 ;
+  53:  UTOOL_NUM=1 ;
+  54:  L P[12] 150mm/sec FINE ;
+  55:  !inspect.rmot:23 ;
+  56:  UFRAME_NUM=1 ;
+  57:  UTOOL_NUM=1 ;
+  58:  L P[13] 150mm/sec FINE ;
+  59:  !inspect.rmot:24 ;
+  60:  IF DI[2:part_present]<>ON,JMP LBL[1] ;
+  61:  !inspect.rmot:25 ;
+  62:  AO[1:conveyor_speed]=4.500 ;
+  63:  JMP LBL[2] ;
+  64:  LBL[1] ;
+  65:  !inspect.rmot:26 ;
+  66:  IF DI[2:part_present]<>OFF,JMP LBL[3] ;
+  67:  !inspect.rmot:27 ;
+  68:  DO[2:gripper_open]=PULSE,0.2sec ;
+  69:  JMP LBL[4] ;
+  70:  LBL[3] ;
+  71:  LBL[4] ;
+  72:  LBL[2] ;
+  73:  !inspect.rmot:29 ;
+  74:  WAIT 0.50(sec) ;
 /POS
 P[1:"home"]{
    GP1:
