@@ -735,3 +735,4 @@ KrlBackend.stop = _k_stop  # type: ignore[attr-defined]
 KrlBackend.proc_call = _k_proc_call  # type: ignore[method-assign]
 KrlBackend._pos = _k_pos  # type: ignore[method-assign]
 KrlBackend.move = _k_move  # type: ignore[method-assign]
+KrlBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]  # writes and/or/not, ain, vars

@@ -593,3 +593,4 @@ RapidBackend.wait_input = _wait_input  # type: ignore[method-assign]
 RapidBackend.wait_condition = _wait_condition  # type: ignore[attr-defined]
 RapidBackend.stop = _stop  # type: ignore[attr-defined]
 RapidBackend.proc_call = _r_proc_call  # type: ignore[method-assign]
+RapidBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]  # writes and/or/not, ain, vars

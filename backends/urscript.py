@@ -569,3 +569,4 @@ UrScriptBackend.wait_condition = _u_wait_condition  # type: ignore[attr-defined]
 UrScriptBackend.stop = _u_stop  # type: ignore[attr-defined]
 UrScriptBackend.move = _u_move  # type: ignore[method-assign]
 UrScriptBackend.proc_call = _u_proc_call  # type: ignore[method-assign]
+UrScriptBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]  # and/or/not, ain, vars

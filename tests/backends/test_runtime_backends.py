@@ -77,7 +77,8 @@ COND = ir.Logic(
             [
                 "count = 0",
                 "level = (count * 1.0) / 2",
-                "if (get_standard_digital_in(1) == True) and (not (get_standard_analog_in(1) > 4.5)):",
+                "if (get_standard_digital_in(1) == True) and "
+                "(not (get_standard_analog_in(1) > 4.5)):",
                 "while not (count >= 3):",
             ],
         ),
