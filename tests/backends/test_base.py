@@ -4,6 +4,7 @@ Backend defaults every vendor shares (EMIT table, native blocks, TaskContext.wit
 from __future__ import annotations
 
 import math
+from typing import get_args
 
 import numpy as np
 import pytest
