@@ -69,6 +69,7 @@ from rmot.backends.conventions import (
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
+from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
 from rmot.backends.safe_text import comment_safe
@@ -78,12 +79,8 @@ __all__ = [
     "fmt", "fmt_list", "source_ref", "header_lines",
     "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
     "position_mm", "turn_bits", "axis_quadrant", "tool_cog",
-    "CONTROLLERS", "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL", "key_value",
+    "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL", "key_value",
 ]
-
-# The controller languages a native block can name (compiler/passes/lower_body.VENDORS: the
-# front end refuses any other with E116, so a backend only tells "mine" from "another's").
-CONTROLLERS: tuple[str, ...] = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
 
 # The front end's accelerations when a program never sets `accel` (defined in compiler/ir.py):
 # a move carrying them asks for nothing a vendor must express.
@@ -222,6 +219,9 @@ class Backend:
                 I/O handshake of backends/handshake.py before the LOWERINGS
       EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str];
                 the default names one method per node type, the same for every vendor
+      MOVES     ir.MotionKind -> name of the method printing a move of that kind (the vendor's
+                `move` prints the shared preamble, then calls `self.by_kind(node)(...)`); every
+                kind needs one, checked when the class is created (`validate_kinds`)
       NATIVE_NAMES  vendor names of the native blocks passed through (default: {name})
       SIX_AXIS_DATA / NO_RECORD_NOTE / NOT_SIX_AXIS_NOTE  see `move_record`
       BRANCH_DATA  what a Cartesian target needs its IK branch for (see `branch_or_default`)
@@ -244,6 +244,10 @@ class Backend:
         ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
         ir.Attach: "attach", ir.Detach: "detach",
     }
+    MOVES: ClassVar[dict[ir.MotionKind, str]] = {
+        ir.MotionKind.JOINT: "move_joint", ir.MotionKind.LINEAR: "move_linear",
+        ir.MotionKind.CIRCULAR: "move_circular",
+    }
     NATIVE_NAMES: ClassVar[frozenset[str]] = frozenset()
     SIX_AXIS_DATA: ClassVar[str | None] = None
     NO_RECORD_NOTE: ClassVar[str | None] = "move (uid {uid}) not emitted: no planned joints"
@@ -255,6 +259,28 @@ class Backend:
     # source; None: no documented limit in the language (the controller limits it itself)
     MAX_TCP_SPEED: ClassVar[float | None] = None
     MAX_TCP_SPEED_SOURCE: ClassVar[str] = ""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if cls.name:  # a concrete backend: a motion kind without a handler fails at import
+            cls.validate_kinds()
+
+    @classmethod
+    def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:
+        """The tables keyed by motion kind this backend prints by (MOVES; the neutral
+        backends, which print no moves, their row labels)."""
+        return {"MOVES": cls.MOVES}
+
+    @classmethod
+    def validate_kinds(cls, kinds: Iterable[Enum] = ir.MotionKind) -> None:
+        """MissingMotionHandler unless every kind has an entry in each of `kind_tables`, and
+        every MOVES entry names a method of this class."""
+        for table_name, table in cls.kind_tables().items():
+            require_handlers(f"backend {cls.__name__}.{table_name}", table, kinds)
+        absent = sorted(m for m in cls.MOVES.values() if not callable(getattr(cls, m, None)))
+        if absent and "MOVES" in cls.kind_tables():
+            raise MissingMotionHandler(f"backend {cls.__name__}.MOVES names no method "
+                                       f"{', '.join(absent)}")
 
     def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False) -> None:
         self.findings_header = allow_findings_header
@@ -398,6 +424,11 @@ class Backend:
         notes = [c for c in (self.source_comment(node, ctx), self.handshake_comment(node)) if c]
         return notes + lines
 
+    def by_kind(self, node: ir.Move) -> Callable[..., list[str]]:
+        """The method printing a move of `node.kind` (MOVES; complete by `validate_kinds`)."""
+        method: Callable[..., list[str]] = getattr(self, self.MOVES[node.kind])
+        return method
+
     def body(self, nodes: Iterable[ir.Instr], ctx: TaskContext) -> list[str]:
         out: list[str] = []
         for node in nodes:
@@ -531,11 +562,13 @@ class Backend:
 
     def native_other(self, node: ir.Native) -> list[str]:
         """A native block for another controller: not emitted, with a warning and a comment
-        (the front end refuses any vendor outside CONTROLLERS with E116, so only an IR built by
-        hand names another; it is skipped the same way, never printed)."""
-        known = node.vendor in CONTROLLERS
+        (the front end refuses any vendor outside the registry's `controllers()` with E116, so
+        only an IR built by hand names another; it is skipped the same way, never printed)."""
+        from rmot.backends import controllers
+
+        known = node.vendor in controllers()
         self.warn(codes.NATIVE_SKIPPED, f"native {node.vendor} block is not emitted for {self.name}"
-                  + ("" if known else f" (not one of {', '.join(CONTROLLERS)})"), node.span)
+                  + ("" if known else f" (not one of {', '.join(controllers())})"), node.span)
         return [self.comment(f"native {node.vendor} block skipped")]
 
 

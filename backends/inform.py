@@ -320,19 +320,26 @@ class InformBackend(Backend):
         if isinstance(rec, list):
             return rec
         self.motion_notes(node, ctx)
-        pl = self.zone(rec.blend_radius, node)
-        if node.kind is ir.MotionKind.JOINT:
-            c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
-            if isinstance(node.target, ir.JointTarget):
-                self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
-                          "position of its planned joints with full RCONF (pulse counts per "
-                          "degree are robot-specific)", node.span)
-            return [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+        return self.by_kind(node)(node, rec, ctx, self.zone(rec.blend_radius, node))
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+                   pl: str) -> list[str]:
+        c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
+        if isinstance(node.target, ir.JointTarget):
+            self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
+                      "position of its planned joints with full RCONF (pulse counts per "
+                      "degree are robot-specific)", node.span)
+        return [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+                    pl: str) -> list[str]:
         v = self.linear_speed(node)
-        if node.kind is ir.MotionKind.LINEAR:
-            c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
-            return [f"MOVL {c} V={v}{pl}"] if c else []
-        return self.circular(node, rec, ctx, v, pl)
+        c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
+        return [f"MOVL {c} V={v}{pl}"] if c else []
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+                      pl: str) -> list[str]:
+        return self.circular(node, rec, ctx, self.linear_speed(node), pl)
 
     def context_key(self, node: ir.Instr, ctx: TaskContext) -> Hashable:
         """An arc's printed start point is the move before it (maybe outside the proc)."""

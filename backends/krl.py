@@ -59,7 +59,7 @@ from rmot.backends import codes
 from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
-from rmot.compiler import ir
+from rmot.compiler import ir, planned
 from rmot.backends.safe_text import comment_safe
 
 __all__ = ["KrlBackend", "KRL_RULES", "status_of"]
@@ -220,25 +220,47 @@ class KrlBackend(Backend):
             self.warn(codes.DURATION_IGNORED, f"a fixed move time ({fmt(node.motion.duration, 3)} s) has no "
                       "KRL form; the programmed speeds are used", node.span)
         lines = self._tool_base(node, ctx)
+        return self.by_kind(node)(node, rec, ctx, lines)
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+                   lines: list[str]) -> list[str]:
         m = node.motion
         stop = self.planned_zone(node, rec)
-        if node.kind is ir.MotionKind.JOINT:
-            ctx.module.uses_ptp_helper = True
-            lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
-            zone = self._ptp_zone(node, stop, lines)
-            if isinstance(node.target, ir.JointTarget):
-                return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
-            return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
+        ctx.module.uses_ptp_helper = True
+        lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
+        zone = self._ptp_zone(node, stop, lines)
+        if isinstance(node.target, ir.JointTarget):
+            return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
+        return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
+
+    def _cp_head(self, node: ir.Move, rec: planned.InstructionRecord, lines: list[str]) -> str:
+        """What LIN and CIRC share: the approximation and $VEL.CP/$ACC.CP lines (appended to
+        `lines`); returns the zone suffix."""
+        m = node.motion
+        stop = self.planned_zone(node, rec)
         zone = "" if stop.is_fine else " C_DIS"
         if not stop.is_fine:
             lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
         lines += [f"$VEL.CP={fmt(self.tcp_speed_within_limit(node), 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
+        return zone
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+                    lines: list[str]) -> list[str]:
+        zone = self._cp_head(node, rec, lines)
         if isinstance(node.target, ir.JointTarget):
             self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
             return lines
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
-        if node.kind is ir.MotionKind.LINEAR:
-            return lines + [f"LIN {to}{zone}"]
+        return lines + [f"LIN {to}{zone}"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+                      lines: list[str]) -> list[str]:
+        zone = self._cp_head(node, rec, lines)
+        if isinstance(node.target, ir.JointTarget):
+            self.unsupported(codes.UNSUPPORTED, "a circular move must have a Cartesian target (got joints)",
+                             node.span)
+            return lines
+        to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
         if node.via is None:
             self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
             return lines

@@ -234,16 +234,33 @@ class RapidBackend(Backend):
         self._warn_accel(node, ctx)
         tool, wobj = self._tool(node.tool, node.span, ctx), self._wobj(node.frame, ctx)
         zone = self._zone(self.planned_zone(node, rec), ctx)
+        return self.by_kind(node)(node, rec, ctx, zone, tool, wobj)
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+                   zone: str, tool: str, wobj: str) -> list[str]:
         if isinstance(node.target, ir.JointTarget):
             target = self._jointtarget(node.target, ctx)
             speed = self._joint_speed(node, rec)
             return [f"MoveAbsJ {target}\\NoEOffs, {speed}, {zone}, {tool};"]
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
-        if node.kind is ir.MotionKind.JOINT:
-            return [f"MoveJ {to}, {self._joint_speed(node, rec)}, {zone}, {tool}{wobj};"]
+        return [f"MoveJ {to}, {self._joint_speed(node, rec)}, {zone}, {tool}{wobj};"]
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+                    zone: str, tool: str, wobj: str) -> list[str]:
+        if isinstance(node.target, ir.JointTarget):
+            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+            return []
+        to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
+        return [f"MoveL {to}, {self._tcp_speed(node, ctx)}, {zone}, {tool}{wobj};"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+                      zone: str, tool: str, wobj: str) -> list[str]:
+        if isinstance(node.target, ir.JointTarget):
+            self.unsupported(codes.UNSUPPORTED, "a circular move must have a Cartesian target (got joints)",
+                             node.span)
+            return []
+        to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         speed = self._tcp_speed(node, ctx)
-        if node.kind is ir.MotionKind.LINEAR:
-            return [f"MoveL {to}, {speed}, {zone}, {tool}{wobj};"]
         if node.via is None:
             self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
             return [self.comment("circular move without via point not emitted")]

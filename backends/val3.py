@@ -281,20 +281,31 @@ class Val3Backend(Backend):
             return rec
         self.warn_payload(node, ctx, "the arm's payload settings on the controller (VAL3 tool data has no mass)")
         tool, speed = self.tool(node.tool, ctx), self.mdesc(node, rec.blend_radius, ctx)
-        if node.kind is ir.MotionKind.JOINT:
-            value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
-            return [f"movej(jTarget[{ctx.data.index(ctx.data.joints, value)}], {tool}, {speed})"]
+        return self.by_kind(node)(node, rec, ctx, f"{tool}, {speed}")
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+                   tail: str) -> list[str]:
+        value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
+        return [f"movej(jTarget[{ctx.data.index(ctx.data.joints, value)}], {tail})"]
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+                    tail: str) -> list[str]:
+        branch = self.branch(rec, node)
+        if branch is None or rec.tcp_pose is None:
+            return []
+        return [f"movel({self.point(rec.tcp_pose, branch, node.frame, ctx)}, {tail})"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+                      tail: str) -> list[str]:
         branch = self.branch(rec, node)
         if branch is None or rec.tcp_pose is None:
             return []
         target = self.point(rec.tcp_pose, branch, node.frame, ctx)
-        if node.kind is ir.MotionKind.LINEAR:
-            return [f"movel({target}, {tool}, {speed})"]
         if node.via is None:
             self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
             return []
         via = self.point(node.via.pose, branch, node.frame, ctx)
-        return [f"movec({via}, {target}, {tool}, {speed})"]
+        return [f"movec({via}, {target}, {tail})"]
 
     def branch(self, rec: planned.InstructionRecord, node: ir.Move) -> ir.Config | None:
         b = rec.branch

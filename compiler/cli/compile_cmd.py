@@ -25,11 +25,23 @@ from dataclasses import dataclass
 
 import click
 
+from rmot.backends import targets as registered_targets
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
 
-TARGETS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+
+
+class _Targets(click.Choice):  # type: ignore[type-arg]
+    """click.Choice over the backend registry (rmot/backends/__init__.py) as it is when the
+    option is read, so a backend registered after import is a valid --target."""
+
+    def __init__(self) -> None:
+        super().__init__(registered_targets())
+
+    def convert(self, value: object, param: click.Parameter | None, ctx: click.Context | None) -> object:
+        self.choices = registered_targets()
+        return super().convert(value, param, ctx)
 
 
 @dataclass(frozen=True)
@@ -120,7 +132,7 @@ def write_all(outdir: str, files: dict[str, str]) -> list[str]:
 @click.command("compile")
 @click.argument("program", type=click.Path(dir_okay=False))
 @click.option("--cell", type=click.Path(dir_okay=False), default=None, help="Cell file (overrides `use cell`).")
-@click.option("--target", "targets", multiple=True, required=True, type=click.Choice(TARGETS),
+@click.option("--target", "targets", multiple=True, required=True, type=_Targets(),
               help="Vendor to emit (repeatable).")
 @click.option("-o", "--output", "outdir", required=True, type=click.Path(file_okay=False),
               help="Output directory; files go to OUTDIR/<vendor>/.")

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.motion_kinds import require_handlers
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path, line_path
 from rmot.compiler.plan.dense import DensePath, PathFailure, follow_path
@@ -67,27 +68,51 @@ def build_segment(
     q_target, findings = solve_target(robot, move, q_now)
     if q_target is None:
         return None, findings
-    tool = move.tool.tcp.matrix()
-    if move.kind is ir.MotionKind.JOINT:
-        n = int(np.ceil(np.max(np.abs(q_target - q_now)) / _JOINT_STEP)) + 1
-        q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
-        return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
-    seg, more = _cartesian_segment(robot, move, q_now, q_target, tool)
+    return _BUILDERS[move.kind](robot, move, q_now, q_target, move.tool.tcp.matrix(), findings)
+
+
+def _joint_segment(robot, move, q_now, q_target, tool, findings):  # type: ignore[no-untyped-def]
+    """The straight line in joint space (what a synchronised joint move does)."""
+    n = int(np.ceil(np.max(np.abs(q_target - q_now)) / _JOINT_STEP)) + 1
+    q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
+    return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
+
+
+def _linear_segment(robot, move, q_now, q_target, tool, findings):  # type: ignore[no-untyped-def]
+    """The TCP on a straight line from the current pose to the target."""
+    seg, more = _cartesian_segment(robot, move, q_now, q_target, tool,
+                                   lambda start, end: line_path(start, end))
     return seg, findings + more
 
 
-def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-untyped-def]
+def _circular_segment(robot, move, q_now, q_target, tool, findings):  # type: ignore[no-untyped-def]
+    """The TCP on the arc from the current pose through the via point to the target."""
+    if move.via is None:
+        return None, findings + [Finding(codes.ARC_DEGENERATE, Severity.ERROR,
+                                         "circular move must have a via point (got none)")]
+    via = np.asarray(move.via.pose.position)
+    seg, more = _cartesian_segment(robot, move, q_now, q_target, tool,
+                                   lambda start, end: arc_path(start, via, end))
+    return seg, findings + more
+
+
+# how each motion kind's joint path is built (a kind without an entry fails at import)
+_BUILDERS = {
+    ir.MotionKind.JOINT: _joint_segment,
+    ir.MotionKind.LINEAR: _linear_segment,
+    ir.MotionKind.CIRCULAR: _circular_segment,
+}
+require_handlers("planner (compiler/plan/segments.py)", _BUILDERS)
+
+
+def _cartesian_segment(robot, move, q_now, q_target, tool, make_path):  # type: ignore[no-untyped-def]
     start = robot.fk(q_now) @ tool
     if isinstance(move.target, ir.JointTarget):
         end = robot.fk(q_target) @ tool
     else:
         end = move.target.pose.matrix()
     try:
-        if move.kind is ir.MotionKind.CIRCULAR:
-            assert move.via is not None
-            path = arc_path(start, np.asarray(move.via.pose.position), end)
-        else:
-            path = line_path(start, end)
+        path = make_path(start, end)
     except DegenerateArc as exc:
         return None, [Finding(codes.ARC_DEGENERATE, Severity.ERROR, str(exc))]
     tool_inv = np.linalg.inv(tool)

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from rmot.backends import BACKENDS, TARGETS
+from rmot.backends import BACKENDS, TARGETS, controllers, targets
 from rmot.backends.base import (
     EmitResult, axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, rotation_vector, turn_bits,
 )
@@ -98,7 +98,7 @@ class TestConfigHelpers:
 class TestRegistry:
     def test_every_target_has_a_lazy_entry(self) -> None:
         """The registry lists every --target name in the documented order."""
-        assert TARGETS == ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+        assert TARGETS == targets() and set(controllers()) | {"csv", "json"} == set(TARGETS)
         assert list(BACKENDS) == list(TARGETS)
 
     @pytest.mark.parametrize("target", ["rapid", "krl", "fanuc"])
@@ -118,7 +118,7 @@ class TestRegistry:
         assert EmitResult({}, (warn, err)).has_errors
 
 
-VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+VENDORS = controllers()
 
 
 class TestSharedDefaults:
