@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import click
 
-from rmot.backends import targets as registered_targets
+from rmot.compiler.vendors import targets as registered_targets
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
@@ -33,7 +33,7 @@ __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
 
 
 class _Targets(click.Choice):  # type: ignore[type-arg]
-    """click.Choice over the backend registry (rmot/backends/__init__.py) as it is when the
+    """click.Choice over the target registry (compiler/vendors.py) as it is when the
     option is read, so a backend registered after import is a valid --target."""
 
     def __init__(self) -> None:

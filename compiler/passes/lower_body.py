@@ -23,7 +23,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 
-from rmot.backends import controllers
+from rmot.compiler.vendors import controllers
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
 from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
@@ -293,7 +293,7 @@ class TaskLowering:
         return ir.WaitInput(uid=0, condition=cond, timeout=timeout, span=s.span)
 
     def native(self, s: ast.NativeStmt) -> ir.Instr | None:
-        vendors = controllers()  # the backend registry (rmot/backends/__init__.py)
+        vendors = controllers()  # the target registry (compiler/vendors.py)
         if s.vendor.name not in vendors:
             self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(vendors), codes.UNKNOWN_VENDOR)
             return None

@@ -112,7 +112,7 @@ class TestRegistry:
         from rmot.backends import codes
         from rmot.lang.diagnostics import Diagnostic, Severity
 
-        warn = Diagnostic(codes.LOWERED, Severity.WARNING, "w", None)
+        warn = Diagnostic(codes.SPEED_ROUNDED, Severity.WARNING, "w", None)
         err = Diagnostic(codes.UNSUPPORTED, Severity.ERROR, "e", None)
         assert not EmitResult({}, (warn,)).has_errors
         assert EmitResult({}, (warn, err)).has_errors

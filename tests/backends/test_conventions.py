@@ -181,21 +181,21 @@ def test_massless_tool_needs_no_payload_warning(target: str) -> None:
     ("fanuc", ir.WaitTime(uid=1, duration=0.255)), ("fanuc", ir.Pulse(uid=1, port=1, duration=0.25)),
     ("inform", ir.WaitTime(uid=1, duration=0.255)), ("inform", ir.Pulse(uid=1, port=1, duration=0.255)),
 ])
-def test_time_rounding_is_w412_not_w404(target: str, instr: ir.Instr) -> None:
-    """Rounded times are W412 time-rounded; W404 stays "exact equivalent"."""
+def test_time_rounding_is_w412(target: str, instr: ir.Instr) -> None:
+    """Rounded times are W412 time-rounded."""
     assert ids(emit(target, (instr,))) == ["W412"]
 
 
 def test_rapid_massless_tool_is_w413() -> None:
-    """RAPID's 0.001 kg stand-in for a massless tool is W413 tool-mass-raised, not W404."""
+    """RAPID's 0.001 kg stand-in for a massless tool is W413 tool-mass-raised."""
     result = emit("rapid", (move(1, tool=ir.ToolRef("pen", ir.Pose((0, 0, 0.1)))),))
     assert ids(result) == ["W413"]
 
 
 def test_new_codes_mean_one_thing() -> None:
-    """W404, W411, W412, W413 are distinct codes with distinct names."""
-    found = [codes.LOWERED, codes.PAYLOAD_NOT_EXPRESSED, codes.TIME_ROUNDED, codes.MASS_RAISED]
-    assert len({c.id for c in found}) == len({c.name for c in found}) == 4
+    """W411, W412, W413 are distinct codes with distinct names."""
+    found = [codes.PAYLOAD_NOT_EXPRESSED, codes.TIME_ROUNDED, codes.MASS_RAISED]
+    assert len({c.id for c in found}) == len({c.name for c in found}) == 3
 
 
 # --------------------------------------------------------------------------- 6. native vendors
