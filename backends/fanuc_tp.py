@@ -60,7 +60,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes
+from rmot.backends import codes, codes_b
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.names import NameRules, NameTable
@@ -291,7 +291,8 @@ class FanucBackend(Backend):
                              node.span)
             return []
         if node.via is None:
-            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)",
+                             node.span)
             return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
         speed = self._tcp_speed(node)
         q_via = rec.q_via if rec.q_via is not None else rec.q_target

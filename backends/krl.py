@@ -55,7 +55,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes
+from rmot.backends import codes, codes_b
 from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
@@ -262,7 +262,8 @@ class KrlBackend(Backend):
             return lines
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
         if node.via is None:
-            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)",
+                             node.span)
             return lines
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._pos(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")

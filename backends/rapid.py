@@ -41,7 +41,7 @@ from collections.abc import Hashable
 from dataclasses import dataclass, field
 from typing import ClassVar
 
-from rmot.backends import codes
+from rmot.backends import codes, codes_b
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir, planned
@@ -262,7 +262,8 @@ class RapidBackend(Backend):
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         speed = self._tcp_speed(node, ctx)
         if node.via is None:
-            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)",
+                             node.span)
             return [self.comment("circular move without via point not emitted")]
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._robtarget(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")

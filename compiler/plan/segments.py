@@ -9,6 +9,7 @@ and splines can follow it. Linear and circular moves are the dense IK of the TCP
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -68,51 +69,23 @@ def build_segment(
     q_target, findings = solve_target(robot, move, q_now)
     if q_target is None:
         return None, findings
-    return _BUILDERS[move.kind](robot, move, q_now, q_target, move.tool.tcp.matrix(), findings)
-
-
-def _joint_segment(robot, move, q_now, q_target, tool, findings):  # type: ignore[no-untyped-def]
-    """The straight line in joint space (what a synchronised joint move does)."""
-    n = int(np.ceil(np.max(np.abs(q_target - q_now)) / _JOINT_STEP)) + 1
-    q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
-    return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
-
-
-def _linear_segment(robot, move, q_now, q_target, tool, findings):  # type: ignore[no-untyped-def]
-    """The TCP on a straight line from the current pose to the target."""
-    seg, more = _cartesian_segment(robot, move, q_now, q_target, tool,
-                                   lambda start, end: line_path(start, end))
+    tool = move.tool.tcp.matrix()
+    if _TCP_PATHS[move.kind] is None:  # the straight line in joint space
+        n = int(np.ceil(np.max(np.abs(q_target - q_now)) / _JOINT_STEP)) + 1
+        q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
+        return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
+    seg, more = _cartesian_segment(robot, move, q_now, q_target, tool)
     return seg, findings + more
 
 
-def _circular_segment(robot, move, q_now, q_target, tool, findings):  # type: ignore[no-untyped-def]
-    """The TCP on the arc from the current pose through the via point to the target."""
-    if move.via is None:
-        return None, findings + [Finding(codes.ARC_DEGENERATE, Severity.ERROR,
-                                         "circular move must have a via point (got none)")]
-    via = np.asarray(move.via.pose.position)
-    seg, more = _cartesian_segment(robot, move, q_now, q_target, tool,
-                                   lambda start, end: arc_path(start, via, end))
-    return seg, findings + more
-
-
-# how each motion kind's joint path is built (a kind without an entry fails at import)
-_BUILDERS = {
-    ir.MotionKind.JOINT: _joint_segment,
-    ir.MotionKind.LINEAR: _linear_segment,
-    ir.MotionKind.CIRCULAR: _circular_segment,
-}
-require_handlers("planner (compiler/plan/segments.py)", _BUILDERS)
-
-
-def _cartesian_segment(robot, move, q_now, q_target, tool, make_path):  # type: ignore[no-untyped-def]
+def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-untyped-def]
     start = robot.fk(q_now) @ tool
     if isinstance(move.target, ir.JointTarget):
         end = robot.fk(q_target) @ tool
     else:
         end = move.target.pose.matrix()
     try:
-        path = make_path(start, end)
+        path = _TCP_PATHS[move.kind](start, move.via, end)  # type: ignore[misc]
     except DegenerateArc as exc:
         return None, [Finding(codes.ARC_DEGENERATE, Severity.ERROR, str(exc))]
     tool_inv = np.linalg.inv(tool)
@@ -130,6 +103,28 @@ def _cartesian_segment(robot, move, q_now, q_target, tool, make_path):  # type: 
     rate = 1.0 / move.motion.tcp_speed
     seg = Segment(move, dense.q, dense.tcp, rate, via_index, path)
     return seg, _slowdown(robot, seg, dense)
+
+
+def _line(start: np.ndarray, via: ir.CartesianTarget | None, end: np.ndarray) -> CartesianPath:
+    return line_path(start, end)
+
+
+def _arc(start: np.ndarray, via: ir.CartesianTarget | None, end: np.ndarray) -> CartesianPath:
+    if via is None:
+        raise DegenerateArc("circular move must have a via point (got none)")
+    return arc_path(start, np.asarray(via.pose.position), end)
+
+
+# Per motion kind, the TCP path (start, via, end) a move follows by dense IK, or None for the
+# straight line in joint space (a synchronised joint move). A kind without an entry fails at
+# import (issue #19), never a silent default.
+_TCP_PATHS: dict[ir.MotionKind, Callable[[np.ndarray, ir.CartesianTarget | None, np.ndarray],
+                                         CartesianPath] | None] = {
+    ir.MotionKind.JOINT: None,
+    ir.MotionKind.LINEAR: _line,
+    ir.MotionKind.CIRCULAR: _arc,
+}
+require_handlers("planner (compiler/plan/segments.py _TCP_PATHS)", _TCP_PATHS)
 
 
 def _slowdown(robot: object, seg: Segment, dense: DensePath) -> list[Finding]:

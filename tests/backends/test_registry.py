@@ -14,7 +14,9 @@ from collections.abc import Callable, Iterator
 from enum import Enum
 from pathlib import Path
 
+import numpy as np
 import pytest
+from backend_fixtures import FRONT_UP_NOFLIP, hand_plan, motion
 from click.testing import CliRunner
 
 from rmot import backends
@@ -194,9 +196,9 @@ def test_new_kind_without_handler_fails_in_every_backend(target: str) -> None:
 def test_new_kind_without_handler_fails_in_the_planner() -> None:
     from rmot.compiler.plan import segments
 
-    require_handlers("planner", segments._BUILDERS)
+    require_handlers("planner", segments._TCP_PATHS)
     with pytest.raises(MissingMotionHandler, match="planner.*SPLINE"):
-        require_handlers("planner", segments._BUILDERS, Extended)
+        require_handlers("planner", segments._TCP_PATHS, Extended)
 
 
 def test_a_backend_missing_a_handler_fails_when_defined() -> None:
@@ -209,3 +211,19 @@ def test_a_backend_missing_a_handler_fails_when_defined() -> None:
 
             def move_linear(self) -> list[str]:
                 return []
+
+
+@pytest.mark.parametrize("target", _printing_targets())
+def test_circular_without_via_is_e451_everywhere(target: str) -> None:
+    """One meaning, one code: a circular move built without its via point (only an IR made by
+    hand can be) is E451 circular-via-missing for every vendor, never printed."""
+    lead = ir.Move(uid=1, kind=ir.MotionKind.JOINT, target=ir.JointTarget((0.0, -0.3, 0.5, 0.0, 0.9, 0.0)),
+                   via=None, motion=motion(), tool=ir.ToolRef("t0", ir.Pose((0, 0, 0.1))),
+                   frame=ir.FrameRef("world", ir.Pose()))
+    pose = ir.Pose((0.4, 0.0, 0.3), (0.0, 1.0, 0.0, 0.0))
+    arc = ir.Move(uid=2, kind=ir.MotionKind.CIRCULAR, target=ir.CartesianTarget(pose, pose, "p2"),
+                  via=None, motion=motion(), tool=lead.tool, frame=lead.frame)
+    q = np.array([0.0, -0.3, 0.5, 0.0, 0.9, 0.0])
+    plan = hand_plan((lead, arc), {1: (q, FRONT_UP_NOFLIP), 2: (q, FRONT_UP_NOFLIP)})
+    result = BACKENDS[target]().emit(plan)
+    assert "E451" in {d.code.id for d in result.diagnostics if d.is_error}
