@@ -4,7 +4,6 @@ A backend (sqlglot's dialect generator) is a table plus small formatting methods
 
     class RapidBackend(Backend):
         name = "rapid"; file_ext = ".mod"; COMMENT = "!"
-        LOWERINGS = (lowering.pulse_as_set_wait,)          # IR -> IR, run before printing
         NAME_RULES = RAPID_RULES                           # legal identifiers
         SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"  # moves need a 6-axis arm
         def emit_task(self, ctx: TaskContext) -> dict[str, str]: ...      # one program per task
@@ -21,7 +20,8 @@ and its arguments as written (`call_args_comment`).
 
 Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
 `ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
-unit conversion outside its declared table (`UNITS`), no modal hidden state — each instruction's
+unit conversion beyond the vendor's documented units (named in each module's docstring), no
+modal hidden state — each instruction's
 text depends on that instruction and its record only. What a vendor collects while printing a
 task (names, data declarations, routines) lives in its subclass of TaskContext, made by
 `ctx.with_state(VendorContext, ...)` in `emit_task` and passed explicitly to every method.
@@ -61,7 +61,7 @@ from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 
-from rmot.backends import codes, controller_data, handshake
+from rmot.backends import codes, codes_b, controller_data, handshake
 from rmot.backends.conventions import (
     axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, fmt_list, position_mm, quaternion_wxyz,
     rotation_vector, tool_cog, turn_bits,
@@ -75,7 +75,7 @@ from rmot.lang.source import Span
 from rmot.backends.safe_text import comment_safe
 
 __all__ = [
-    "Backend", "EmitResult", "Lowering", "TaskContext",
+    "Backend", "EmitResult", "TaskContext",
     "fmt", "fmt_list", "source_ref", "header_lines",
     "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
     "position_mm", "turn_bits", "axis_quadrant", "tool_cog",
@@ -88,9 +88,6 @@ DEFAULT_TCP_ACCEL: float = ir.DEFAULT_TCP_ACCEL  # m/s^2
 DEFAULT_JOINT_ACCEL: float = ir.DEFAULT_JOINT_ACCEL  # fraction of each joint's maximum
 
 C = TypeVar("C", bound="TaskContext")
-
-Lowering = Callable[[tuple[ir.Instr, ...]], tuple[ir.Instr, ...]]
-"""An IR -> IR transform applied to a task body before printing (see backends/lowering.py)."""
 
 
 @dataclass(frozen=True)
@@ -209,14 +206,11 @@ class Backend:
       name      the --target value ("rapid")
       file_ext  extension of the main program file (".mod")
       COMMENT   the line-comment marker ("!", ";", "#")
-      UNITS     {"length": "mm", "angle": "deg", ...}: what the vendor's numbers mean
-      MAX_LINES / MAX_NAME_LEN: controller limits
       NAME_RULES  the legal identifiers (the NameTable that `open_task` starts)
       MAX_INSTRUCTIONS / SPLIT_UNITS  vendors that split long programs: the most instructions
                 of one program and what its parts are called ("KRL module", "modules")
-      LOWERINGS IR -> IR transforms applied to each task body before printing
       SYNC_HANDSHAKE  True for vendors without a multi-robot barrier: `sync` is lowered to the
-                I/O handshake of backends/handshake.py before the LOWERINGS
+                I/O handshake of backends/handshake.py before printing
       EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str];
                 the default names one method per node type, the same for every vendor
       MOVES     ir.MotionKind -> name of the method printing a move of that kind (the vendor's
@@ -231,12 +225,9 @@ class Backend:
     name: ClassVar[str] = ""
     file_ext: ClassVar[str] = ""
     COMMENT: ClassVar[str] = "#"
-    UNITS: ClassVar[dict[str, str]] = {}
-    MAX_LINES: ClassVar[int | None] = None
     NAME_RULES: ClassVar[NameRules] = NameRules(max_len=32)
     MAX_INSTRUCTIONS: ClassVar[int | None] = None
     SPLIT_UNITS: ClassVar[tuple[str, str]] = ("program", "programs")
-    LOWERINGS: ClassVar[tuple[Lowering, ...]] = ()
     SYNC_HANDSHAKE: ClassVar[bool] = False
     EMIT: ClassVar[dict[type, str]] = {
         ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
@@ -379,12 +370,8 @@ class Backend:
         return parts
 
     def lowered_body(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
-        """The task body after the sync handshake (SYNC_HANDSHAKE vendors) and this vendor's
-        LOWERINGS (applied in order)."""
-        body = self.sync_handshake(ctx) if self.SYNC_HANDSHAKE else ctx.task.body
-        for lower in self.LOWERINGS:
-            body = lower(body)
-        return body
+        """The task body as printed: after the sync handshake for SYNC_HANDSHAKE vendors."""
+        return self.sync_handshake(ctx) if self.SYNC_HANDSHAKE else ctx.task.body
 
     def sync_handshake(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
         """The task body with every sync lowered to the I/O handshake (backends/handshake.py).
@@ -428,6 +415,23 @@ class Backend:
         """The method printing a move of `node.kind` (MOVES; complete by `validate_kinds`)."""
         method: Callable[..., list[str]] = getattr(self, self.MOVES[node.kind])
         return method
+
+    def joint_target_refused(self, node: ir.Move) -> bool:
+        """True, after E400, when a linear or circular move has a joint target (the front end
+        never builds one; only an IR made by hand has)."""
+        if not isinstance(node.target, ir.JointTarget):
+            return False
+        self.unsupported(codes.UNSUPPORTED, f"a {node.kind.name.lower()} move must have a "
+                         "Cartesian target (got joints)", node.span)
+        return True
+
+    def via_refused(self, node: ir.Move) -> bool:
+        """True, after E451, when a circular move has no via point."""
+        if node.via is not None:
+            return False
+        self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point "
+                         "(got none)", node.span)
+        return True
 
     def body(self, nodes: Iterable[ir.Instr], ctx: TaskContext) -> list[str]:
         out: list[str] = []

@@ -60,7 +60,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_b
+from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.names import NameRules, NameTable
@@ -139,8 +139,6 @@ class FanucBackend(Backend):
     DIGITAL_PORTS = (1, 512)  # DI / DO logical numbers, R-30iA/iB
     file_ext = ".ls"
     COMMENT = "!"
-    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/sec",
-                                       "joint_speed": "%", "time": "sec", "wait_timeout": "1/100 s"}
     NAME_RULES = FANUC_RULES
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("TP program", "programs")
@@ -277,8 +275,7 @@ class FanucBackend(Backend):
 
     def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
                     uf: int, ut: int, zone: str) -> list[str]:
-        if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+        if self.joint_target_refused(node):
             return []
         speed = self._tcp_speed(node)
         to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
@@ -286,17 +283,14 @@ class FanucBackend(Backend):
 
     def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
                       uf: int, ut: int, zone: str) -> list[str]:
-        if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a circular move must have a Cartesian target (got joints)",
-                             node.span)
+        if self.joint_target_refused(node):
             return []
-        if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)",
-                             node.span)
+        if self.via_refused(node):
             return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
         speed = self._tcp_speed(node)
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
-        via = self._cart_position(node.via, q_via, rec.branch, uf, ut, node, ctx)  # P[via] numbered first
+        # P[via] numbered first
+        via = self._cart_position(node.via, q_via, rec.branch, uf, ut, node, ctx)
         to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"C P[{via}]", f":  P[{to}] {speed} {zone}"]
 

@@ -184,8 +184,6 @@ class InformBackend(Backend):
     name = "inform"
     file_ext = ".JBI"
     COMMENT = "'"
-    UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
-             "zone": "PL level", "time": "s", "analog": "V"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = INFORM_RULES
     DIGITAL_PORTS = (1, 1024)  # OT# / IN# general-purpose I/O

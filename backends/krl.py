@@ -55,7 +55,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_b
+from rmot.backends import codes
 from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
@@ -149,9 +149,6 @@ class KrlBackend(Backend):
     DIGITAL_PORTS = (1, 4096)  # $IN / $OUT, KSS 8.x System Variables
     file_ext = ".src"
     COMMENT = ";"
-    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "m/s",
-                                       "tcp_accel": "m/s^2", "joint_speed": "%", "time": "s",
-                                       "analog": "V/10"}
     NAME_RULES = KRL_RULES
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("KRL module", "modules")
@@ -247,8 +244,7 @@ class KrlBackend(Backend):
     def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
                     lines: list[str]) -> list[str]:
         zone = self._cp_head(node, rec, lines)
-        if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+        if self.joint_target_refused(node):
             return lines
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
         return lines + [f"LIN {to}{zone}"]
@@ -256,14 +252,10 @@ class KrlBackend(Backend):
     def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
                       lines: list[str]) -> list[str]:
         zone = self._cp_head(node, rec, lines)
-        if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a circular move must have a Cartesian target (got joints)",
-                             node.span)
+        if self.joint_target_refused(node):
             return lines
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
-        if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)",
-                             node.span)
+        if self.via_refused(node):
             return lines
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._pos(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")

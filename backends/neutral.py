@@ -56,7 +56,6 @@ class CsvBackend(Backend):
     name = "csv"
     file_ext = ".csv"
     COMMENT = "#"
-    UNITS = {"time": "s", "joint": "rad or m", "joint_speed": "rad/s or m/s"}
 
     @classmethod
     def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:
@@ -83,7 +82,6 @@ class JsonBackend(Backend):
 
     name = "json"
     file_ext = ".json"
-    UNITS = {"time": "s", "joint": "rad or m", "length": "mm", "orientation": "quaternion wxyz"}
 
     @classmethod
     def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:

@@ -39,9 +39,8 @@ from __future__ import annotations
 
 from collections.abc import Hashable
 from dataclasses import dataclass, field
-from typing import ClassVar
 
-from rmot.backends import codes, codes_b
+from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.compiler import ir, planned
@@ -185,8 +184,6 @@ class RapidBackend(Backend):
     DIGITAL_PORTS = (0, 2**31 - 1)  # signals are named (do<n>): any non-negative number
     file_ext = ".mod"
     COMMENT = "!"
-    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/s",
-                                       "time": "s", "mass": "kg"}
     NAME_RULES = RAPID_RULES
     SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"
     BRANCH_DATA = "confdata"
@@ -247,23 +244,18 @@ class RapidBackend(Backend):
 
     def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
                     zone: str, tool: str, wobj: str) -> list[str]:
-        if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+        if self.joint_target_refused(node):
             return []
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         return [f"MoveL {to}, {self._tcp_speed(node, ctx)}, {zone}, {tool}{wobj};"]
 
     def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
                       zone: str, tool: str, wobj: str) -> list[str]:
-        if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a circular move must have a Cartesian target (got joints)",
-                             node.span)
+        if self.joint_target_refused(node):
             return []
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         speed = self._tcp_speed(node, ctx)
-        if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)",
-                             node.span)
+        if self.via_refused(node):
             return [self.comment("circular move without via point not emitted")]
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._robtarget(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")

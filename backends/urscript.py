@@ -129,8 +129,6 @@ class UrScriptBackend(Backend):
     name = "urscript"
     file_ext = ".script"
     COMMENT = "#"
-    UNITS = {"length": "m", "angle": "rad", "linear_speed": "m/s", "linear_accel": "m/s^2",
-             "joint_speed": "rad/s", "joint_accel": "rad/s^2", "blend": "m", "time": "s"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = UR_RULES
     DIGITAL_PORTS = (0, 15)  # standard 0..7, configurable 8..15 (control box)
@@ -175,7 +173,8 @@ class UrScriptBackend(Backend):
             return rec
         return self.by_kind(node)(node, rec, ctx, fmt(rec.blend_radius, POS_DECIMALS))
 
-    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext, r: str) -> list[str]:
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+                   r: str) -> list[str]:
         m = node.motion
         v_max, a_max = self.joint_limits(ctx, node)
         q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"
@@ -190,24 +189,25 @@ class UrScriptBackend(Backend):
             self.unsupported(codes.MISSING_RECORD, f"a {node.kind.name.lower()} move must have a "
                              "planned TCP pose (got none)", node.span)
             return None
-        return f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}", pose_text(rec.tcp_pose)
+        speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
+        return speed, pose_text(rec.tcp_pose)
 
-    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext, r: str) -> list[str]:
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+                    r: str) -> list[str]:
         args = self._tcp_args(node, rec)
         if args is None:
             return []
         speed, to = args
         return [f"movel({to}, {speed}{self.duration_arg(node.motion)}, r={r})"]
 
-    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext, r: str) -> list[str]:
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+                      r: str) -> list[str]:
         m = node.motion
         args = self._tcp_args(node, rec)
         if args is None:
             return []
         speed, to = args
-        if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point "
-                             "(got none)", node.span)
+        if self.via_refused(node):
             return [self.comment("circular move without via")]
         if m.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"movec has no time argument; the fixed duration "

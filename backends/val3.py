@@ -145,8 +145,6 @@ class Val3Backend(Backend):
     name = "val3"
     file_ext = ".pgx"
     COMMENT = "//"
-    UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
-             "blend": "mm", "time": "s"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = VAL3_RULES
     DIGITAL_PORTS = (0, 63)  # dIn / dOut arrays linked to BasicIO-1\%I / %Q
@@ -301,8 +299,7 @@ class Val3Backend(Backend):
         if branch is None or rec.tcp_pose is None:
             return []
         target = self.point(rec.tcp_pose, branch, node.frame, ctx)
-        if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
+        if self.via_refused(node):
             return []
         via = self.point(node.via.pose, branch, node.frame, ctx)
         return [f"movec({via}, {target}, {tail})"]

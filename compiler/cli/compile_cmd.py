@@ -39,7 +39,8 @@ class _Targets(click.Choice):  # type: ignore[type-arg]
     def __init__(self) -> None:
         super().__init__(registered_targets())
 
-    def convert(self, value: object, param: click.Parameter | None, ctx: click.Context | None) -> object:
+    def convert(self, value: object, param: click.Parameter | None,
+                ctx: click.Context | None) -> object:
         self.choices = registered_targets()
         return super().convert(value, param, ctx)
 

@@ -295,7 +295,8 @@ class TaskLowering:
     def native(self, s: ast.NativeStmt) -> ir.Instr | None:
         vendors = controllers()  # the target registry (compiler/vendors.py)
         if s.vendor.name not in vendors:
-            self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(vendors), codes.UNKNOWN_VENDOR)
+            self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(vendors),
+                             codes.UNKNOWN_VENDOR)
             return None
         return ir.Native(uid=0, vendor=s.vendor.name, text=s.text.value, span=s.span)
 

@@ -270,7 +270,8 @@ def _unreachable(robot, target: np.ndarray) -> IkResult:  # type: ignore[no-unty
     else:
         dist = float("nan")
     where = f"{dist * 1000:.1f} mm outside the workspace" if math.isfinite(dist) else "outside the workspace"
-    return IkResult(IkStatus.UNREACHABLE, message=f"the pose is {where} of {robot.name}", distance=dist)
+    return IkResult(IkStatus.UNREACHABLE, message=f"the pose is {where} of {robot.name}",
+                    distance=dist)
 
 
 def _out_of_limits(robot, verified: list[np.ndarray]) -> IkResult:  # type: ignore[no-untyped-def]

@@ -19,7 +19,7 @@ from rmot.backends.handshake import (
     handshake_ports, sync_as_handshake,
 )
 from rmot.compiler import ir, planned
-from rmot.backends import BACKENDS, controllers
+from rmot.backends import controllers
 
 PORTS = HandshakePorts(out=3, inp=4)
 R1_PORTS, R2_PORTS = (3, 4), (5, 6)

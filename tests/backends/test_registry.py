@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from backend_fixtures import FRONT_UP_NOFLIP, hand_plan, motion
-from click.testing import CliRunner
+from click.testing import CliRunner, Result
 
 from rmot import backends
 from rmot.backends import BACKENDS, controllers, targets
@@ -66,11 +66,16 @@ program toy_demo on r1 {
   speed 250 mm/s
   move joint joints(0, -20, 30, 0, 50, 0) deg
   move linear pose(x=100mm, y=-50mm, z=150mm, rx=180deg)
-  move circular via pose(x=150mm, y=0mm, z=150mm, rx=180deg) to pose(x=100mm, y=50mm, z=150mm, rx=180deg)
+  move circular via pose(x=150mm, y=0mm, z=150mm, rx=180deg)
+    to pose(x=100mm, y=50mm, z=150mm, rx=180deg)
   set out[1] = on
   native toy "BEEP"
 }
 """
+
+
+def _compile(src: Path, out: Path) -> Result:
+    return CliRunner().invoke(cli, ["compile", str(src), "--target", "toy", "-o", str(out)])
 
 
 @pytest.fixture
@@ -86,7 +91,7 @@ class TestToyBackend:
         block, and the file holds one line per move, its kind's letter first."""
         src = tmp_path / "toy_demo.rmot"
         src.write_text(PROGRAM, encoding="utf-8")
-        result = CliRunner().invoke(cli, ["compile", str(src), "--target", "toy", "-o", str(tmp_path / "out")])
+        result = _compile(src, tmp_path / "out")
         assert result.exit_code == 0, result.output
         lines = (tmp_path / "out" / "toy" / "toy_demo.toy").read_text().splitlines()
         words = [ln.split()[0] for ln in lines if not ln.startswith("#")]
@@ -103,7 +108,7 @@ class TestToyBackend:
         """Unregistered, the same program is refused by the front end (E116) and the CLI."""
         src = tmp_path / "toy_demo.rmot"
         src.write_text(PROGRAM, encoding="utf-8")
-        result = CliRunner().invoke(cli, ["compile", str(src), "--target", "toy", "-o", str(tmp_path / "out")])
+        result = _compile(src, tmp_path / "out")
         assert result.exit_code == 2 and "toy" in result.output
         result = CliRunner().invoke(cli, ["check", str(src)])
         assert "E116" in result.output
@@ -164,17 +169,19 @@ def test_vendor_prints_each_kind_with_its_handler(
     for k, method in cls.MOVES.items():
         real = getattr(cls, method)
 
-        def spy(self: Backend, *args: object, _k: ir.MotionKind = k, _real: object = real) -> list[str]:
+        def spy(self: Backend, *args: object, _k: ir.MotionKind = k,
+                _real: object = real) -> list[str]:
             calls.append(_k)
             return _real(self, *args)  # type: ignore[operator, no-any-return]
 
         monkeypatch.setattr(cls, method, spy)
     result = cls().emit(plan_from_text(_kind_program(kind), f"kinds_{kind.name.lower()}.rmot"))
     assert not result.has_errors, [d.message for d in result.diagnostics]
-    assert sorted(calls, key=lambda k: k.name) == sorted([ir.MotionKind.JOINT, kind], key=lambda k: k.name)
+    by_name = sorted(calls, key=lambda k: k.name)
+    assert by_name == sorted([ir.MotionKind.JOINT, kind], key=lambda k: k.name)
 
 
-# --------------------------------------------------------------------------- a kind without handlers
+# ------------------------------------------------------------------ a kind without handlers
 
 Extended = Enum("Extended", [*(k.name for k in ir.MotionKind), "SPLINE"])  # type: ignore[misc]
 
@@ -217,13 +224,13 @@ def test_a_backend_missing_a_handler_fails_when_defined() -> None:
 def test_circular_without_via_is_e451_everywhere(target: str) -> None:
     """One meaning, one code: a circular move built without its via point (only an IR made by
     hand can be) is E451 circular-via-missing for every vendor, never printed."""
-    lead = ir.Move(uid=1, kind=ir.MotionKind.JOINT, target=ir.JointTarget((0.0, -0.3, 0.5, 0.0, 0.9, 0.0)),
+    q = np.array([0.0, -0.3, 0.5, 0.0, 0.9, 0.0])
+    lead = ir.Move(uid=1, kind=ir.MotionKind.JOINT, target=ir.JointTarget(tuple(q)),
                    via=None, motion=motion(), tool=ir.ToolRef("t0", ir.Pose((0, 0, 0.1))),
                    frame=ir.FrameRef("world", ir.Pose()))
     pose = ir.Pose((0.4, 0.0, 0.3), (0.0, 1.0, 0.0, 0.0))
     arc = ir.Move(uid=2, kind=ir.MotionKind.CIRCULAR, target=ir.CartesianTarget(pose, pose, "p2"),
                   via=None, motion=motion(), tool=lead.tool, frame=lead.frame)
-    q = np.array([0.0, -0.3, 0.5, 0.0, 0.9, 0.0])
     plan = hand_plan((lead, arc), {1: (q, FRONT_UP_NOFLIP), 2: (q, FRONT_UP_NOFLIP)})
     result = BACKENDS[target]().emit(plan)
     assert "E451" in {d.code.id for d in result.diagnostics if d.is_error}

@@ -17,7 +17,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-PACKAGES = {"lang": "rmot.lang", "compiler": "rmot.compiler", "sim": "rmot.sim", "backends": "rmot.backends"}
+PACKAGES = {"lang": "rmot.lang", "compiler": "rmot.compiler", "sim": "rmot.sim",
+            "backends": "rmot.backends"}
 
 
 def _sources() -> dict[str, str]:
@@ -26,12 +27,14 @@ def _sources() -> dict[str, str]:
     for folder, package in PACKAGES.items():
         for path in sorted((ROOT / folder).rglob("*.py")):
             rel = path.relative_to(ROOT / folder).with_suffix("")
-            out[".".join((package, *rel.parts)).removesuffix(".__init__")] = path.read_text(encoding="utf-8")
+            name = ".".join((package, *rel.parts)).removesuffix(".__init__")
+            out[name] = path.read_text(encoding="utf-8")
     return out
 
 
 SOURCES = _sources()
-CODE_MODULES = sorted(m for m, text in SOURCES.items() if re.search(r'^\w+ = Code\(\s*"', text, re.M))
+_DEFINES = re.compile(r'^\w+ = Code\(\s*"', re.M)
+CODE_MODULES = sorted(m for m, text in SOURCES.items() if _DEFINES.search(text))
 
 
 def _registered() -> list[tuple[str, str, str]]:
@@ -39,7 +42,8 @@ def _registered() -> list[tuple[str, str, str]]:
     out = []
     for module in CODE_MODULES:
         for name, value in vars(importlib.import_module(module)).items():
-            if type(value).__name__ == "Code" and re.search(rf"^{name} = Code\(", SOURCES[module], re.M):
+            defined_here = re.search(rf"^{name} = Code\(", SOURCES[module], re.M)
+            if type(value).__name__ == "Code" and defined_here:
                 out.append((module, name, value.id))
     return out
 
@@ -51,7 +55,8 @@ WORDS = {m: set(re.findall(r"\b[A-Z][A-Z0-9_]*\b", text)) for m, text in SOURCES
 def _importers(module: str) -> tuple[str, ...]:
     """The modules that import `module` (by its dotted name or `from parent import leaf`)."""
     parent, _, leaf = module.rpartition(".")
-    imports = re.compile(rf"\b{re.escape(module)}\b|from {re.escape(parent)} import [^\n]*\b{leaf}\b")
+    imports = re.compile(rf"\b{re.escape(module)}\b"
+                         rf"|from {re.escape(parent)} import [^\n]*\b{leaf}\b")
     return tuple(m for m, text in SOURCES.items() if m != module and imports.search(text))
 
 
@@ -61,7 +66,8 @@ def _users(module: str, name: str) -> list[str]:
 
 def test_the_scan_sees_every_codes_module() -> None:
     """The codes modules are found (a broken pattern would make the test below vacuous)."""
-    assert {"rmot.lang.codes", "rmot.compiler.codes", "rmot.backends.codes", "rmot.sim.codes"} <= set(CODE_MODULES)
+    main = {"rmot.lang.codes", "rmot.compiler.codes", "rmot.backends.codes", "rmot.sim.codes"}
+    assert main <= set(CODE_MODULES)
     assert len(_registered()) > 100
 
 
