@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import click
 
+from rmot.compiler.atomic import write_atomic, write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 if TYPE_CHECKING:  # the heavy stages load only when a check runs
@@ -120,35 +120,14 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
             continue
         final = os.path.join(directory, f"{stem}-{k:02d}-{d.code.id}.png")
         try:
-            fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".png", dir=directory)
+            write_atomic(final, lambda tmp, d=d: render_finding(plan, d, tmp))  # type: ignore[misc]
         except OSError as exc:
             extra.append(Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                                     f"image for {d.code.id} was not rendered: '{directory}' is not writable ({exc.strerror or exc})", d.span))
-            continue
-        os.close(fd)
-        try:
-            render_finding(plan, d, tmp)
-            os.replace(tmp, final)
         except Exception as exc:  # a failed picture must not hide the finding itself
             extra.append(Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                                     f"image for {d.code.id} at t={d.time_s:.3f} s was not rendered ({exc})", d.span))
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
     return Report(report.program_file, report.cycle_times, report.diagnostics + tuple(extra), report.tasks)
-
-
-def _write_atomic(path: str, text: str) -> None:
-    directory = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".rmot-", dir=directory)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def _format(fmt: str, reports: list[Report]) -> str:
@@ -203,7 +182,7 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
         text += "".join(o.dynamics for o in outcomes)
     if output:
         try:
-            _write_atomic(output, text)
+            write_text(output, text)
         except OSError as exc:
             from rmot.compiler.cli.oserrors import output_failed
 

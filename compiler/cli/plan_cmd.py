@@ -9,12 +9,11 @@ planning errors (the CSV is still written), 0 otherwise.
 from __future__ import annotations
 
 import io
-import os
 import re
-import tempfile
 
 import click
 
+from rmot.compiler.atomic import write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["plan", "parse_step", "trajectory_csv"]
@@ -45,22 +44,6 @@ def trajectory_csv(plan: object) -> str:
             values = [f"{tr.t[i]:.6f}"] + [f"{v:.9g}" for a in (tr.q, tr.qd, tr.qdd) for v in a[i]]
             out.write(",".join([tp.task.name] + values) + "\n")
     return out.getvalue()
-
-
-def _write_atomic(path: str, text: str) -> None:
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".tmp", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the file the usual mode
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def _load(file: str, cell: str | None, project_root: str | None):  # type: ignore[no-untyped-def]
@@ -97,7 +80,7 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
         click.echo(f"task {tp.task.name} ({tp.robot}): cycle time {tp.cycle_time:.3f} s")
     if csv_out:
         try:
-            _write_atomic(csv_out, trajectory_csv(result))
+            write_text(csv_out, trajectory_csv(result))
         except OSError as exc:
             from rmot.compiler.cli.oserrors import output_failed
 
