@@ -51,31 +51,23 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
               clearance: float | None = None, images: str | None = None, use_cache: bool = True,
               dynamics: bool = False) -> CheckOutcome:
     """One program through front end -> planner -> verification (runs in a worker process)."""
-    from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.sim import codes
+    from rmot.compiler.cli import stages
     from rmot.sim.report import Report
 
-    def failed(message: str) -> CheckOutcome:
-        diag = Diagnostic(codes.PROGRAM_NOT_CHECKED, Severity.ERROR, message, None)
-        return CheckOutcome(Report(path, {}, (diag,)), True)
-
+    # the front end reports a missing file (E501) and a file without a program (E119); a stage
+    # failing unexpectedly is E550 in this program's report (compiler/cli/stages.py)
     try:
-        from rmot.compiler.frontend import load_program
-        from rmot.compiler.plan_cache import cached_plan
-    except ImportError as exc:
-        return failed(f"this build cannot check programs yet: {exc}")
-    # the front end reports a missing file (E501) and a file without a program (E119)
-    front = load_program(path, cell=cell, project_root=project_root, require_program=True)
+        front = stages.load(path, cell=cell, project_root=project_root)
+    except stages.StageError as exc:
+        return CheckOutcome(Report(path, {}, (exc.diagnostic,)), True)
     front_diags = tuple(front.diagnostics)
     if any(d.is_error for d in front_diags) or front.program is None:
         return CheckOutcome(Report(path, {}, front_diags), True)
-    from rmot.sim import verify
-
     try:
-        plan = cached_plan(front.program, use_cache=use_cache)
-        report = verify(plan, clearance=clearance)
-    except Exception as exc:  # a bug in a stage: say so in the report, never as a traceback
-        return failed(f"internal error while planning or verifying ({exc.__class__.__name__}: {exc}); please report it")
+        plan = stages.plan(front.program, use_cache=use_cache)
+        report = stages.verify(plan, clearance=clearance)
+    except stages.StageError as exc:
+        return CheckOutcome(Report(path, {}, front_diags + (exc.diagnostic,)), True)
     report = Report(path, report.cycle_times, front_diags + report.diagnostics, report.tasks)
     if images:
         report = _render_images(plan, report, images)

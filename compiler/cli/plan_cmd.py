@@ -48,9 +48,9 @@ def trajectory_csv(plan: object) -> str:
 
 def _load(file: str, cell: str | None, project_root: str | None):  # type: ignore[no-untyped-def]
     """(program or None, diagnostics) from the front end."""
-    from rmot.compiler import frontend
+    from rmot.compiler.cli import stages
 
-    result = frontend.load_program(file, cell=cell, project_root=project_root, require_program=True)
+    result = stages.load(file, cell=cell, project_root=project_root)
     return result.program, tuple(result.diagnostics)
 
 
@@ -71,9 +71,9 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
         click.echo(render(d), err=True)
     if program is None or any(d.is_error for d in diagnostics):
         raise SystemExit(EXIT_INPUT)
-    from rmot.compiler.plan_cache import cached_plan
+    from rmot.compiler.cli import stages
 
-    result = cached_plan(program, step=step_s, use_cache=not no_cache)
+    result = stages.plan(program, step=step_s, use_cache=not no_cache)
     for d in result.diagnostics:
         click.echo(render(d), err=True)
     for tp in result.tasks:
