@@ -20,9 +20,8 @@ and its arguments as written (`call_args_comment`).
 
 Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
 `ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
-unit conversion beyond the vendor's documented units (named in each module's docstring), no
-modal hidden state — each instruction's
-text depends on that instruction and its record only. What a vendor collects while printing a
+unit conversion beyond the vendor's units (named in each module's docstring), no modal hidden
+state — each instruction's text depends on that instruction and its record only. What a vendor collects while printing a
 task (names, data declarations, routines) lives in its subclass of TaskContext, made by
 `ctx.with_state(VendorContext, ...)` in `emit_task` and passed explicitly to every method.
 
