@@ -80,3 +80,17 @@ def test_an_unused_code_is_found() -> None:
     """The scan fails on a code nothing names (a constant only its own module mentions)."""
     assert not _users("rmot.compiler.robots.codes", "NO_SUCH_CONSTANT")
     assert _users("rmot.compiler.robots.codes", "BAD_URDF")
+
+
+@pytest.mark.parametrize(("robot", "code"), [("no_such_arm", "E201"), ("broken.urdf", "E202")])
+def test_robot_load_codes_reach_the_user(robot: str, code: str, tmp_path: Path) -> None:
+    """E201/E202 (a RobotError's code) are reported as they are by the design commands (the
+    front end and the planner report a robot that does not load under their own codes)."""
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+
+    (tmp_path / "broken.urdf").write_text('<robot name="x"></robot>\n', encoding="utf-8")
+    arg = str(tmp_path / robot) if robot.endswith(".urdf") else robot
+    result = CliRunner().invoke(cli, ["reach", "--robot", arg, "-o", str(tmp_path / "m.png")])
+    assert result.exit_code == 2 and f"error[{code}]" in result.output, result.output
