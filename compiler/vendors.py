@@ -39,6 +39,7 @@ class Target:
         if getattr(cls, "name", None) != self.name:
             raise TypeError(f"backend '{self.name}' is registered as {self.where}, whose name is "
                             f"'{getattr(cls, 'name', None)}'")
+        cls.validate_kinds()  # type: ignore[attr-defined]  # every motion kind has a handler
         return cls
 
 

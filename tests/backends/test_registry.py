@@ -208,16 +208,24 @@ def test_new_kind_without_handler_fails_in_the_planner() -> None:
         require_handlers("planner", segments._TCP_PATHS, Extended)
 
 
-def test_a_backend_missing_a_handler_fails_when_defined() -> None:
-    with pytest.raises(MissingMotionHandler, match="move_circular"):
-        class Half(Backend):  # noqa: F841 (defining it is the test)
-            name = "half"
+def test_a_backend_missing_a_handler_fails_when_looked_up() -> None:
+    """A backend outside rmot.backends (the package's own fail at import) is checked when the
+    registry hands it out."""
+    class Half(Backend):
+        name = "half"
 
-            def move_joint(self) -> list[str]:
-                return []
+        def move_joint(self) -> list[str]:
+            return []
 
-            def move_linear(self) -> list[str]:
-                return []
+        def move_linear(self) -> list[str]:
+            return []
+
+    backends.register("half", Half)
+    try:
+        with pytest.raises(MissingMotionHandler, match="move_circular"):
+            BACKENDS["half"]
+    finally:
+        backends.unregister("half")
 
 
 @pytest.mark.parametrize("target", _printing_targets())
