@@ -1,7 +1,9 @@
 """rmot.backends: vendor program writers (text only; no planning here).
 
-`BACKENDS` maps a --target name to its Backend class; each vendor module is imported only
-when its entry is looked up, so loading one backend never loads the others.
+`BACKENDS` maps a --target name to its Backend class, read from the one registry of targets
+(compiler/vendors.py, re-exported here: `register`, `targets`, `controllers`); each vendor
+module is imported only when its entry is looked up, so loading one backend never loads the
+others.
 
     from rmot.backends import BACKENDS
     result = BACKENDS["rapid"]().emit(plan)      # EmitResult(files, diagnostics)
@@ -9,42 +11,32 @@ when its entry is looked up, so loading one backend never loads the others.
 
 from __future__ import annotations
 
-import importlib
 from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING
+
+from rmot.compiler.vendors import Target, controllers, lookup, register, targets, unregister
 
 if TYPE_CHECKING:
     from rmot.backends.base import Backend
 
-__all__ = ["BACKENDS", "TARGETS"]
+__all__ = ["BACKENDS", "TARGETS", "Target", "controllers", "register", "targets", "unregister"]
 
-# --target name -> (module, class name)
-_REGISTRY: dict[str, tuple[str, str]] = {
-    "rapid": ("rmot.backends.rapid", "RapidBackend"),
-    "krl": ("rmot.backends.krl", "KrlBackend"),
-    "fanuc": ("rmot.backends.fanuc_tp", "FanucBackend"),
-    "urscript": ("rmot.backends.urscript", "UrScriptBackend"),
-    "inform": ("rmot.backends.inform", "InformBackend"),
-    "val3": ("rmot.backends.val3", "Val3Backend"),
-    "csv": ("rmot.backends.neutral", "CsvBackend"),
-    "json": ("rmot.backends.neutral", "JsonBackend"),
-}
-
-TARGETS: tuple[str, ...] = tuple(_REGISTRY)
+TARGETS: tuple[str, ...] = targets()
+"""The targets registered when this package is imported (`targets()` is the live list)."""
 
 
 class _LazyBackends(Mapping[str, "type[Backend]"]):
     """A read-only mapping that imports a vendor module on first lookup."""
 
     def __getitem__(self, key: str) -> type[Backend]:
-        module_name, cls_name = _REGISTRY[key]
-        return getattr(importlib.import_module(module_name), cls_name)  # type: ignore[no-any-return]
+        cls: type[Backend] = lookup(key).backend()
+        return cls
 
     def __iter__(self) -> Iterator[str]:
-        return iter(_REGISTRY)
+        return iter(targets())
 
     def __len__(self) -> int:
-        return len(_REGISTRY)
+        return len(targets())
 
 
 BACKENDS: Mapping[str, type[Backend]] = _LazyBackends()

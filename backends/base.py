@@ -4,7 +4,6 @@ A backend (sqlglot's dialect generator) is a table plus small formatting methods
 
     class RapidBackend(Backend):
         name = "rapid"; file_ext = ".mod"; COMMENT = "!"
-        LOWERINGS = (lowering.pulse_as_set_wait,)          # IR -> IR, run before printing
         NAME_RULES = RAPID_RULES                           # legal identifiers
         SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"  # moves need a 6-axis arm
         def emit_task(self, ctx: TaskContext) -> dict[str, str]: ...      # one program per task
@@ -21,8 +20,8 @@ and its arguments as written (`call_args_comment`).
 
 Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
 `ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
-unit conversion outside its declared table (`UNITS`), no modal hidden state — each instruction's
-text depends on that instruction and its record only. What a vendor collects while printing a
+unit conversion beyond the vendor's units (named in each module's docstring), no modal hidden
+state — each instruction's text depends on that instruction and its record only. What a vendor collects while printing a
 task (names, data declarations, routines) lives in its subclass of TaskContext, made by
 `ctx.with_state(VendorContext, ...)` in `emit_task` and passed explicitly to every method.
 
@@ -61,7 +60,7 @@ from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 
-from rmot.backends import codes, controller_data, handshake
+from rmot.backends import codes, codes_b, controller_data, handshake
 from rmot.backends.conventions import (
     axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, fmt_list, position_mm, quaternion_wxyz,
     rotation_vector, tool_cog, turn_bits,
@@ -69,21 +68,18 @@ from rmot.backends.conventions import (
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
+from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
 from rmot.backends.safe_text import comment_safe
 
 __all__ = [
-    "Backend", "EmitResult", "Lowering", "TaskContext",
+    "Backend", "EmitResult", "TaskContext",
     "fmt", "fmt_list", "source_ref", "header_lines",
     "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
     "position_mm", "turn_bits", "axis_quadrant", "tool_cog",
-    "CONTROLLERS", "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL", "key_value",
+    "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL", "key_value",
 ]
-
-# The controller languages a native block can name (compiler/passes/lower_body.VENDORS: the
-# front end refuses any other with E116, so a backend only tells "mine" from "another's").
-CONTROLLERS: tuple[str, ...] = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
 
 # The front end's accelerations when a program never sets `accel` (defined in compiler/ir.py):
 # a move carrying them asks for nothing a vendor must express.
@@ -91,9 +87,6 @@ DEFAULT_TCP_ACCEL: float = ir.DEFAULT_TCP_ACCEL  # m/s^2
 DEFAULT_JOINT_ACCEL: float = ir.DEFAULT_JOINT_ACCEL  # fraction of each joint's maximum
 
 C = TypeVar("C", bound="TaskContext")
-
-Lowering = Callable[[tuple[ir.Instr, ...]], tuple[ir.Instr, ...]]
-"""An IR -> IR transform applied to a task body before printing (see backends/lowering.py)."""
 
 
 @dataclass(frozen=True)
@@ -212,16 +205,16 @@ class Backend:
       name      the --target value ("rapid")
       file_ext  extension of the main program file (".mod")
       COMMENT   the line-comment marker ("!", ";", "#")
-      UNITS     {"length": "mm", "angle": "deg", ...}: what the vendor's numbers mean
-      MAX_LINES / MAX_NAME_LEN: controller limits
       NAME_RULES  the legal identifiers (the NameTable that `open_task` starts)
       MAX_INSTRUCTIONS / SPLIT_UNITS  vendors that split long programs: the most instructions
                 of one program and what its parts are called ("KRL module", "modules")
-      LOWERINGS IR -> IR transforms applied to each task body before printing
       SYNC_HANDSHAKE  True for vendors without a multi-robot barrier: `sync` is lowered to the
-                I/O handshake of backends/handshake.py before the LOWERINGS
+                I/O handshake of backends/handshake.py before printing
       EMIT      IR node type -> name of the method printing it: method(node, ctx) -> list[str];
                 the default names one method per node type, the same for every vendor
+      MOVES     ir.MotionKind -> name of the method printing a move of that kind (the vendor's
+                `move` prints the shared preamble, then calls `self.by_kind(node)(...)`); every
+                kind needs one, checked when the class is created (`validate_kinds`)
       NATIVE_NAMES  vendor names of the native blocks passed through (default: {name})
       SIX_AXIS_DATA / NO_RECORD_NOTE / NOT_SIX_AXIS_NOTE  see `move_record`
       BRANCH_DATA  what a Cartesian target needs its IK branch for (see `branch_or_default`)
@@ -231,18 +224,19 @@ class Backend:
     name: ClassVar[str] = ""
     file_ext: ClassVar[str] = ""
     COMMENT: ClassVar[str] = "#"
-    UNITS: ClassVar[dict[str, str]] = {}
-    MAX_LINES: ClassVar[int | None] = None
     NAME_RULES: ClassVar[NameRules] = NameRules(max_len=32)
     MAX_INSTRUCTIONS: ClassVar[int | None] = None
     SPLIT_UNITS: ClassVar[tuple[str, str]] = ("program", "programs")
-    LOWERINGS: ClassVar[tuple[Lowering, ...]] = ()
     SYNC_HANDSHAKE: ClassVar[bool] = False
     EMIT: ClassVar[dict[type, str]] = {
         ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog",
         ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
         ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
         ir.Attach: "attach", ir.Detach: "detach",
+    }
+    MOVES: ClassVar[dict[ir.MotionKind, str]] = {
+        ir.MotionKind.JOINT: "move_joint", ir.MotionKind.LINEAR: "move_linear",
+        ir.MotionKind.CIRCULAR: "move_circular",
     }
     NATIVE_NAMES: ClassVar[frozenset[str]] = frozenset()
     SIX_AXIS_DATA: ClassVar[str | None] = None
@@ -255,6 +249,30 @@ class Backend:
     # source; None: no documented limit in the language (the controller limits it itself)
     MAX_TCP_SPEED: ClassVar[float | None] = None
     MAX_TCP_SPEED_SOURCE: ClassVar[str] = ""
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        # a backend of this package fails at import when a motion kind has no handler; any
+        # other (a test's, a plug-in's) when the target registry hands it out (compiler/vendors)
+        if cls.name and cls.__module__.startswith("rmot.backends."):
+            cls.validate_kinds()
+
+    @classmethod
+    def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:
+        """The tables keyed by motion kind this backend prints by (MOVES; the neutral
+        backends, which print no moves, their row labels)."""
+        return {"MOVES": cls.MOVES}
+
+    @classmethod
+    def validate_kinds(cls, kinds: Iterable[Enum] = ir.MotionKind) -> None:
+        """MissingMotionHandler unless every kind has an entry in each of `kind_tables`, and
+        every MOVES entry names a method of this class."""
+        for table_name, table in cls.kind_tables().items():
+            require_handlers(f"backend {cls.__name__}.{table_name}", table, kinds)
+        absent = sorted(m for m in cls.MOVES.values() if not callable(getattr(cls, m, None)))
+        if absent and "MOVES" in cls.kind_tables():
+            raise MissingMotionHandler(f"backend {cls.__name__}.MOVES names no method "
+                                       f"{', '.join(absent)}")
 
     def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False,
                  unroll: bool = False) -> None:
@@ -356,12 +374,8 @@ class Backend:
         return parts
 
     def lowered_body(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
-        """The task body after the sync handshake (SYNC_HANDSHAKE vendors) and this vendor's
-        LOWERINGS (applied in order)."""
-        body = self.sync_handshake(ctx) if self.SYNC_HANDSHAKE else ctx.task.body
-        for lower in self.LOWERINGS:
-            body = lower(body)
-        return body
+        """The task body as printed: after the sync handshake for SYNC_HANDSHAKE vendors."""
+        return self.sync_handshake(ctx) if self.SYNC_HANDSHAKE else ctx.task.body
 
     def sync_handshake(self, ctx: TaskContext) -> tuple[ir.Instr, ...]:
         """The task body with every sync lowered to the I/O handshake (backends/handshake.py).
@@ -400,6 +414,28 @@ class Backend:
         lines: list[str] = getattr(self, method)(node, ctx)
         notes = [c for c in (self.source_comment(node, ctx), self.handshake_comment(node)) if c]
         return notes + lines
+
+    def by_kind(self, node: ir.Move) -> Callable[..., list[str]]:
+        """The method printing a move of `node.kind` (MOVES; complete by `validate_kinds`)."""
+        method: Callable[..., list[str]] = getattr(self, self.MOVES[node.kind])
+        return method
+
+    def joint_target_refused(self, node: ir.Move) -> bool:
+        """True, after E400, when a linear or circular move has a joint target (the front end
+        never builds one; only an IR made by hand has)."""
+        if not isinstance(node.target, ir.JointTarget):
+            return False
+        self.unsupported(codes.UNSUPPORTED, f"a {node.kind.name.lower()} move must have a "
+                         "Cartesian target (got joints)", node.span)
+        return True
+
+    def via_refused(self, node: ir.Move) -> bool:
+        """True, after E451, when a circular move has no via point."""
+        if node.via is not None:
+            return False
+        self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point "
+                         "(got none)", node.span)
+        return True
 
     def body(self, nodes: Iterable[ir.Instr], ctx: TaskContext) -> list[str]:
         out: list[str] = []
@@ -534,11 +570,13 @@ class Backend:
 
     def native_other(self, node: ir.Native) -> list[str]:
         """A native block for another controller: not emitted, with a warning and a comment
-        (the front end refuses any vendor outside CONTROLLERS with E116, so only an IR built by
-        hand names another; it is skipped the same way, never printed)."""
-        known = node.vendor in CONTROLLERS
+        (the front end refuses any vendor outside the registry's `controllers()` with E116, so
+        only an IR built by hand names another; it is skipped the same way, never printed)."""
+        from rmot.backends import controllers
+
+        known = node.vendor in controllers()
         self.warn(codes.NATIVE_SKIPPED, f"native {node.vendor} block is not emitted for {self.name}"
-                  + ("" if known else f" (not one of {', '.join(CONTROLLERS)})"), node.span)
+                  + ("" if known else f" (not one of {', '.join(controllers())})"), node.span)
         return [self.comment(f"native {node.vendor} block skipped")]
 
 

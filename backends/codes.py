@@ -10,8 +10,8 @@ from rmot.lang.diagnostics import Code
 
 __all__ = [
     "MISSING_RECORD", "UNSUPPORTED", "BAD_PORT", "SYNC_UNSUPPORTED",
-    "NO_BRANCH", "NOT_SIX_AXIS", "PROGRAM_TOO_LONG", "INPUT_MISSING", "SYNC_HANDSHAKE_MISSING",
-    "NAME_CHANGED", "NAME_CLASH", "SPEED_ROUNDED", "ZONE_ROUNDED", "LOWERED", "TIMEOUT_LOWERED",
+    "NO_BRANCH", "NOT_SIX_AXIS", "PROGRAM_TOO_LONG", "SYNC_HANDSHAKE_MISSING",
+    "NAME_CHANGED", "NAME_CLASH", "SPEED_ROUNDED", "ZONE_ROUNDED", "TIMEOUT_LOWERED",
     "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED", "SYNC_OUTPUT_LEFT_ON",
     "TIME_ROUNDED", "MASS_RAISED", "PAYLOAD_NOT_EXPRESSED",
     # issue 13 (vendor programs that load): E410-E419 / W414-W419
@@ -28,14 +28,12 @@ SYNC_UNSUPPORTED = Code("E405", "sync-unsupported", "a multi-task barrier has no
 SYNC_HANDSHAKE_MISSING = Code("E409", "sync-handshake-missing",
                               "a barrier needs the robot's \"sync\" I/O handshake signals in the cell")
 PROGRAM_TOO_LONG = Code("E406", "program-too-long", "a routine exceeds the controller's size limit")
-INPUT_MISSING = Code("E408", "compile-input-missing", "the program file given to `rmot compile` does not exist")
 
 # warnings: an exact or nearest-faithful lowering was applied
 NAME_CHANGED = Code("W400", "name-changed", "a name was made legal for the vendor")
 NAME_CLASH = Code("W401", "name-clash", "two names became equal after legalisation; one was renamed")
 SPEED_ROUNDED = Code("W402", "speed-rounded", "the vendor cannot express the exact speed; the nearest was used")
 ZONE_ROUNDED = Code("W403", "zone-rounded", "the vendor cannot express the exact zone; the nearest was used")
-LOWERED = Code("W404", "instruction-lowered", "an instruction was lowered to an exact equivalent")
 TIME_ROUNDED = Code("W412", "time-rounded",
                     "the vendor cannot express the exact time (wait, pulse, timeout); the nearest was used")
 MASS_RAISED = Code("W413", "tool-mass-raised",

@@ -72,7 +72,7 @@ from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
 )
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir
+from rmot.compiler import ir, planned
 from rmot.backends.safe_text import comment_safe, tp_io_comment
 
 __all__ = ["FanucBackend", "FANUC_RULES", "config_string", "turn_number"]
@@ -148,8 +148,6 @@ class FanucBackend(Backend):
     DIGITAL_PORTS = (1, 512)  # DI / DO logical numbers, R-30iA/iB
     file_ext = ".ls"
     COMMENT = "!"
-    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/sec",
-                                       "joint_speed": "%", "time": "sec", "wait_timeout": "1/100 s"}
     NAME_RULES = FANUC_RULES
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("TP program", "programs")
@@ -274,29 +272,37 @@ class FanucBackend(Backend):
         self.warn_payload(node, ctx, "the controller's payload schedule ($PLST_GRP1) selected by PAYLOAD[i]")
         uf, ut = ctx.frames.uframe(node.frame), ctx.frames.utool(node.tool)
         zone = self._zone(node, self.planned_zone(node, rec))
-        if node.kind is ir.MotionKind.JOINT:
-            speed = self._joint_speed(node)
-            if isinstance(node.target, ir.JointTarget):
-                p = self._joint_position(node.target, uf, ut, ctx)
-            else:
-                p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
-            return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}",
-                    f"J P[{p}] {speed} {zone}{self._offset(node, ctx)}"]
+        return self.by_kind(node)(node, rec, ctx, uf, ut, zone)
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
+                   uf: int, ut: int, zone: str) -> list[str]:
+        speed = self._joint_speed(node)
         if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+            p = self._joint_position(node.target, uf, ut, ctx)
+        else:
+            p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
+        return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}{self._offset(node, ctx)}"]
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
+                    uf: int, ut: int, zone: str) -> list[str]:
+        if self.joint_target_refused(node):
             return []
         speed = self._tcp_speed(node)
-        if node.kind is ir.MotionKind.CIRCULAR and node.via is not None:  # P[via] numbered first
-            q_via = rec.q_via if rec.q_via is not None else rec.q_target
-            via = self._cart_position(node.via, q_via, rec.branch, uf, ut, node, ctx)
         to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
-        head = [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
-        if node.kind is ir.MotionKind.LINEAR:
-            return head + [f"L P[{to}] {speed} {zone}{self._offset(node, ctx)}"]
-        if node.via is None:
-            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
-            return head
-        return head + [f"C P[{via}]", f":  P[{to}] {speed} {zone}"]
+        return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"L P[{to}] {speed} {zone}{self._offset(node, ctx)}"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
+                      uf: int, ut: int, zone: str) -> list[str]:
+        if self.joint_target_refused(node):
+            return []
+        if self.via_refused(node):
+            return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
+        speed = self._tcp_speed(node)
+        q_via = rec.q_via if rec.q_via is not None else rec.q_target
+        # P[via] numbered first
+        via = self._cart_position(node.via, q_via, rec.branch, uf, ut, node, ctx)
+        to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
+        return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"C P[{via}]", f":  P[{to}] {speed} {zone}"]
 
     @staticmethod
     def _offset(node: ir.Move, ctx: FanucContext) -> str:

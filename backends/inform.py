@@ -208,8 +208,6 @@ class InformBackend(Backend):
     name = "inform"
     file_ext = ".JBI"
     COMMENT = "'"
-    UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
-             "zone": "PL level", "time": "s", "analog": "V"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = INFORM_RULES
     DIGITAL_PORTS = (1, 1024)  # OT# / IN# general-purpose I/O
@@ -354,20 +352,27 @@ class InformBackend(Backend):
         if isinstance(rec, list):
             return rec
         self.motion_notes(node, ctx)
-        pl = self.zone(rec.blend_radius, node)
-        if node.kind is ir.MotionKind.JOINT:
-            c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
-            if isinstance(node.target, ir.JointTarget):
-                self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
-                          "position of its planned joints with full RCONF (pulse counts per "
-                          "degree are robot-specific)", node.span)
-            movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
-            return self.shifted(node, movj, ctx)
+        return self.by_kind(node)(node, rec, ctx, self.zone(rec.blend_radius, node))
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+                   pl: str) -> list[str]:
+        c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
+        if isinstance(node.target, ir.JointTarget):
+            self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
+                      "position of its planned joints with full RCONF (pulse counts per "
+                      "degree are robot-specific)", node.span)
+        movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+        return self.shifted(node, movj, ctx)
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+                    pl: str) -> list[str]:
         v = self.linear_speed(node)
-        if node.kind is ir.MotionKind.LINEAR:
-            c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
-            return self.shifted(node, [f"MOVL {c} V={v}{pl}"] if c else [], ctx)
-        return self.circular(node, rec, ctx, v, pl)
+        c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
+        return self.shifted(node, [f"MOVL {c} V={v}{pl}"] if c else [], ctx)
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+                      pl: str) -> list[str]:
+        return self.circular(node, rec, ctx, self.linear_speed(node), pl)
 
     def context_key(self, node: ir.Instr, ctx: TaskContext) -> Hashable:
         """An arc's printed start point is the move before it (maybe outside the proc)."""

@@ -60,7 +60,7 @@ from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir
+from rmot.compiler import ir, planned
 from rmot.backends.safe_text import comment_safe
 
 __all__ = ["KrlBackend", "KRL_RULES", "status_of"]
@@ -151,9 +151,6 @@ class KrlBackend(Backend):
     DIGITAL_PORTS = (1, 4096)  # $IN / $OUT, KSS 8.x System Variables
     file_ext = ".src"
     COMMENT = ";"
-    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "m/s",
-                                       "tcp_accel": "m/s^2", "joint_speed": "%", "time": "s",
-                                       "analog": "V/10"}
     NAME_RULES = KRL_RULES
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("KRL module", "modules")
@@ -222,27 +219,45 @@ class KrlBackend(Backend):
             self.warn(codes.DURATION_IGNORED, f"a fixed move time ({fmt(node.motion.duration, 3)} s) has no "
                       "KRL form; the programmed speeds are used", node.span)
         lines = self._tool_base(node, ctx)
+        return self.by_kind(node)(node, rec, ctx, lines)
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+                   lines: list[str]) -> list[str]:
         m = node.motion
         stop = self.planned_zone(node, rec)
-        if node.kind is ir.MotionKind.JOINT:
-            ctx.module.uses_ptp_helper = True
-            lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
-            zone = self._ptp_zone(node, stop, lines)
-            if isinstance(node.target, ir.JointTarget):
-                return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
-            return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
+        ctx.module.uses_ptp_helper = True
+        lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
+        zone = self._ptp_zone(node, stop, lines)
+        if isinstance(node.target, ir.JointTarget):
+            return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
+        return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
+
+    def _cp_head(self, node: ir.Move, rec: planned.InstructionRecord, lines: list[str]) -> str:
+        """What LIN and CIRC share: the approximation and $VEL.CP/$ACC.CP lines (appended to
+        `lines`); returns the zone suffix."""
+        m = node.motion
+        stop = self.planned_zone(node, rec)
         zone = "" if stop.is_fine else " C_DIS"
         if not stop.is_fine:
             lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
         lines += [f"$VEL.CP={fmt(self.tcp_speed_within_limit(node), 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
-        if isinstance(node.target, ir.JointTarget):
-            self.unsupported(codes.UNSUPPORTED, "a linear move must have a Cartesian target (got joints)", node.span)
+        return zone
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+                    lines: list[str]) -> list[str]:
+        zone = self._cp_head(node, rec, lines)
+        if self.joint_target_refused(node):
             return lines
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
-        if node.kind is ir.MotionKind.LINEAR:
-            return lines + [f"LIN {to}{zone}"]
-        if node.via is None:
-            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+        return lines + [f"LIN {to}{zone}"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+                      lines: list[str]) -> list[str]:
+        zone = self._cp_head(node, rec, lines)
+        if self.joint_target_refused(node):
+            return lines
+        to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
+        if self.via_refused(node):
             return lines
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._pos(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")

@@ -6,56 +6,18 @@ source instruction get negative uids (never looked up in the plan's records).
 
 `sync` for vendors without a multi-robot barrier is lowered by backends/handshake.py (its
 convention — the cell's "sync" signals and the level-toggling handshake — is documented there);
-it needs the cell and the robot, so Backend.lowered_body runs it before these.
+it needs the cell and the robot (Backend.lowered_body).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Iterator
-from dataclasses import replace
 
 from rmot.compiler import ir
 
 __all__ = [
-    "count_instructions", "flatten_procs", "iter_proc_calls", "pulse_as_set_wait",
-    "routine_names", "split_body",
+    "count_instructions", "iter_proc_calls", "routine_names", "split_body",
 ]
-
-
-def flatten_procs(body: tuple[ir.Instr, ...]) -> tuple[ir.Instr, ...]:
-    """Replace every ProcCall by its (already substituted) body, also inside If arms."""
-    out: list[ir.Instr] = []
-    for node in body:
-        if isinstance(node, ir.ProcCall):
-            out.extend(flatten_procs(node.body))
-        elif isinstance(node, ir.If):
-            out.append(replace(node, then=flatten_procs(node.then), otherwise=flatten_procs(node.otherwise)))
-        else:
-            out.append(node)
-    return tuple(out)
-
-
-def pulse_as_set_wait(body: tuple[ir.Instr, ...]) -> tuple[ir.Instr, ...]:
-    """Pulse -> set on, wait, set off (blocking: the program waits out the pulse).
-
-    For vendors without a pulse instruction. Not identical in timing to a controller pulse
-    (which runs in the background), so backends using it must warn.
-    """
-    out: list[ir.Instr] = []
-    for node in body:
-        if isinstance(node, ir.Pulse):
-            out += [
-                ir.SetDigital(uid=node.uid, port=node.port, value=True, signal=node.signal, span=node.span),
-                ir.WaitTime(uid=-node.uid - 1, duration=node.duration, span=node.span),
-                ir.SetDigital(uid=-node.uid - 2, port=node.port, value=False, signal=node.signal, span=node.span),
-            ]
-        elif isinstance(node, ir.If):
-            out.append(replace(node, then=pulse_as_set_wait(node.then), otherwise=pulse_as_set_wait(node.otherwise)))
-        elif isinstance(node, ir.ProcCall):
-            out.append(replace(node, body=pulse_as_set_wait(node.body)))
-        else:
-            out.append(node)
-    return tuple(out)
 
 
 def count_instructions(body: tuple[ir.Instr, ...]) -> int:

@@ -29,6 +29,14 @@ CSV_DECIMALS = 9
 JSON_DECIMALS = 9
 
 
+# a move's "kind" in the JSON document, one per motion kind (checked at import: a new kind
+# without a label fails loudly, see compiler/motion_kinds.py)
+MOVE_LABELS: dict[ir.MotionKind, str] = {
+    ir.MotionKind.JOINT: "move_joint", ir.MotionKind.LINEAR: "move_linear",
+    ir.MotionKind.CIRCULAR: "move_circular",
+}
+
+
 def _num(x: float, decimals: int = JSON_DECIMALS) -> float:
     """A float rounded to fixed places, with -0.0 normalised to 0.0."""
     v = round(float(x), decimals)
@@ -48,7 +56,11 @@ class CsvBackend(Backend):
     name = "csv"
     file_ext = ".csv"
     COMMENT = "#"
-    UNITS = {"time": "s", "joint": "rad or m", "joint_speed": "rad/s or m/s"}
+
+    @classmethod
+    def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:
+        """None: the sampled trajectory is the same whatever kind of move made it."""
+        return {}
 
     def emit_task(self, ctx: TaskContext) -> dict[str, str]:
         traj = ctx.task_plan.trajectory
@@ -70,7 +82,11 @@ class JsonBackend(Backend):
 
     name = "json"
     file_ext = ".json"
-    UNITS = {"time": "s", "joint": "rad or m", "length": "mm", "orientation": "quaternion wxyz"}
+
+    @classmethod
+    def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:
+        """A move's label in the document (MOVE_LABELS)."""
+        return {"MOVE_LABELS": MOVE_LABELS}
 
     def emit(self, plan: planned.Plan, *, source_map: bool = True) -> EmitResult:
         result = super().emit(plan, source_map=source_map)
@@ -119,7 +135,7 @@ def _kind(node: ir.Instr | None) -> str:
     if node is None:
         return "unknown"
     if isinstance(node, ir.Move):
-        return f"move_{node.kind.name.lower()}"
+        return MOVE_LABELS[node.kind]
     return {ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog", ir.Pulse: "pulse",
             ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if", ir.Sync: "sync",
             ir.Native: "native", ir.ProcCall: "proc_call", ir.Attach: "attach", ir.Detach: "detach",

@@ -39,7 +39,6 @@ from __future__ import annotations
 
 from collections.abc import Hashable
 from dataclasses import dataclass, field
-from typing import ClassVar
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
@@ -187,8 +186,6 @@ class RapidBackend(Backend):
     DIGITAL_PORTS = (0, 2**31 - 1)  # signals are named (do<n>): any non-negative number
     file_ext = ".mod"
     COMMENT = "!"
-    UNITS: ClassVar[dict[str, str]] = {"length": "mm", "angle": "deg", "tcp_speed": "mm/s",
-                                       "time": "s", "mass": "kg"}
     NAME_RULES = RAPID_RULES
     SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"
     BRANCH_DATA = "confdata"
@@ -236,18 +233,31 @@ class RapidBackend(Backend):
         self._warn_accel(node, ctx)
         tool, wobj = self._tool(node.tool, node.span, ctx), self._wobj(node.frame, ctx)
         zone = self._zone(self.planned_zone(node, rec), ctx)
+        return self.by_kind(node)(node, rec, ctx, zone, tool, wobj)
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+                   zone: str, tool: str, wobj: str) -> list[str]:
         if isinstance(node.target, ir.JointTarget):
             target = self._jointtarget(node.target, ctx)
             speed = self._joint_speed(node, rec)
             return [f"MoveAbsJ {target}\\NoEOffs, {speed}, {zone}, {tool};"]
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
-        if node.kind is ir.MotionKind.JOINT:
-            return [f"MoveJ {to}, {self._joint_speed(node, rec)}, {zone}, {tool}{wobj};"]
+        return [f"MoveJ {to}, {self._joint_speed(node, rec)}, {zone}, {tool}{wobj};"]
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+                    zone: str, tool: str, wobj: str) -> list[str]:
+        if self.joint_target_refused(node):
+            return []
+        to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
+        return [f"MoveL {to}, {self._tcp_speed(node, ctx)}, {zone}, {tool}{wobj};"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+                      zone: str, tool: str, wobj: str) -> list[str]:
+        if self.joint_target_refused(node):
+            return []
+        to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         speed = self._tcp_speed(node, ctx)
-        if node.kind is ir.MotionKind.LINEAR:
-            return [f"MoveL {to}, {speed}, {zone}, {tool}{wobj};"]
-        if node.via is None:
-            self.unsupported(codes.UNSUPPORTED, "circular move must have a via point (got none)", node.span)
+        if self.via_refused(node):
             return [self.comment("circular move without via point not emitted")]
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._robtarget(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")

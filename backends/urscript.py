@@ -63,7 +63,7 @@ from rmot.backends import codes, codes_b
 from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir
+from rmot.compiler import ir, planned
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
 
@@ -132,8 +132,6 @@ class UrScriptBackend(Backend):
     name = "urscript"
     file_ext = ".script"
     COMMENT = "#"
-    UNITS = {"length": "m", "angle": "rad", "linear_speed": "m/s", "linear_accel": "m/s^2",
-             "joint_speed": "rad/s", "joint_accel": "rad/s^2", "blend": "m", "time": "s"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = UR_RULES
     DIGITAL_PORTS = (0, 15)  # standard 0..7, configurable 8..15 (control box)
@@ -178,25 +176,43 @@ class UrScriptBackend(Backend):
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
+        return self.by_kind(node)(node, rec, ctx, fmt(rec.blend_radius, POS_DECIMALS))
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+                   r: str) -> list[str]:
         m = node.motion
-        r = fmt(rec.blend_radius, POS_DECIMALS)
-        if node.kind is ir.MotionKind.JOINT:
-            v_max, a_max = self.joint_limits(ctx, node)
-            q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"
-            t = self.duration_arg(m)
-            return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
-                    f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{t}, r={r})"]
-        speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
+        v_max, a_max = self.joint_limits(ctx, node)
+        q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"
+        t = self.duration_arg(m)
+        return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
+                f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{t}, r={r})"]
+
+    def _tcp_args(self, node: ir.Move, rec: planned.InstructionRecord) -> tuple[str, str] | None:
+        """(speed arguments, target pose) of movel/movec; None (E401) without a TCP pose."""
+        m = node.motion
         if rec.tcp_pose is None:
             self.unsupported(codes.MISSING_RECORD, f"a {node.kind.name.lower()} move must have a "
                              "planned TCP pose (got none)", node.span)
+            return None
+        speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
+        return speed, pose_text(rec.tcp_pose)
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+                    r: str) -> list[str]:
+        args = self._tcp_args(node, rec)
+        if args is None:
             return []
-        to = pose_text(rec.tcp_pose)
-        if node.kind is ir.MotionKind.LINEAR:
-            return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]
-        if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point "
-                             "(got none)", node.span)
+        speed, to = args
+        return [f"movel({to}, {speed}{self.duration_arg(node.motion)}, r={r})"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+                      r: str) -> list[str]:
+        m = node.motion
+        args = self._tcp_args(node, rec)
+        if args is None:
+            return []
+        speed, to = args
+        if self.via_refused(node):
             return [self.comment("circular move without via")]
         if m.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"movec has no time argument; the fixed duration "

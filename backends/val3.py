@@ -165,8 +165,6 @@ class Val3Backend(Backend):
     name = "val3"
     file_ext = ".pgx"
     COMMENT = "//"
-    UNITS = {"length": "mm", "angle": "deg", "linear_speed": "mm/s", "joint_speed": "%",
-             "blend": "mm", "time": "s"}
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = VAL3_RULES
     DIGITAL_PORTS = (0, 63)  # dIn / dOut arrays linked to BasicIO-1\%I / %Q
@@ -312,28 +310,39 @@ class Val3Backend(Backend):
             return rec
         self.warn_payload(node, ctx, "the arm's payload settings on the controller (VAL3 tool data has no mass)")
         tool, speed = self.tool(node.tool, ctx), self.mdesc(node, rec.blend_radius, ctx)
-        if node.kind is ir.MotionKind.JOINT and (node.uid, "target") in ctx.offsets:  # issue #15
+        return self.by_kind(node)(node, rec, ctx, f"{tool}, {speed}")
+
+    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+                   tail: str) -> list[str]:
+        if (node.uid, "target") in ctx.offsets:  # issue #15: a joint move of a vendor loop
             branch = self.branch(rec, node)
             if branch is None or rec.tcp_pose is None:
                 return []
             point = self.point(rec.tcp_pose, branch, node.frame, ctx)
             point = self._shifted(point, node, "target", ctx)
-            return [f"movej({point}, {tool}, {speed})"]
-        if node.kind is ir.MotionKind.JOINT:
-            value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
-            return [f"movej(jTarget[{ctx.data.index(ctx.data.joints, value)}], {tool}, {speed})"]
+            return [f"movej({point}, {tail})"]
+        value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
+        return [f"movej(jTarget[{ctx.data.index(ctx.data.joints, value)}], {tail})"]
+
+    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+                    tail: str) -> list[str]:
+        branch = self.branch(rec, node)
+        if branch is None or rec.tcp_pose is None:
+            return []
+        target = self._shifted(self.point(rec.tcp_pose, branch, node.frame, ctx), node, "target", ctx)
+        return [f"movel({target}, {tail})"]
+
+    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+                      tail: str) -> list[str]:
         branch = self.branch(rec, node)
         if branch is None or rec.tcp_pose is None:
             return []
         target = self.point(rec.tcp_pose, branch, node.frame, ctx)
         target = self._shifted(target, node, "target", ctx)
-        if node.kind is ir.MotionKind.LINEAR:
-            return [f"movel({target}, {tool}, {speed})"]
-        if node.via is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point (got none)", node.span)
+        if self.via_refused(node):
             return []
         via = self._shifted(self.point(node.via.pose, branch, node.frame, ctx), node, "via", ctx)
-        return [f"movec({via}, {target}, {tool}, {speed})"]
+        return [f"movec({via}, {target}, {tail})"]
 
     def branch(self, rec: planned.InstructionRecord, node: ir.Move) -> ir.Config | None:
         b = rec.branch

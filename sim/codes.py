@@ -12,7 +12,7 @@ __all__ = [
     "COLLISION", "SELF_COLLISION", "ROBOT_COLLISION", "STATIC_CONTACT", "CLEARANCE",
     "JOINT_POSITION", "JOINT_VELOCITY", "JOINT_ACCEL", "JOINT_TORQUE",
     "MESH_MISSING", "MESH_UNREADABLE", "MESH_EMPTY", "MESH_TRUNCATED", "MESH_NOT_WATERTIGHT",
-    "ROBOT_UNAVAILABLE", "RENDER_UNAVAILABLE", "PROGRAM_NOT_CHECKED",
+    "ROBOT_UNAVAILABLE", "RENDER_UNAVAILABLE",
 ]
 
 COLLISION = Code("E300", "collision", "a robot link or tool touches a fixture")
@@ -22,7 +22,6 @@ JOINT_POSITION = Code("E310", "joint-position-limit", "a joint leaves its positi
 JOINT_VELOCITY = Code("E311", "joint-velocity-limit", "a joint moves faster than its velocity limit")
 JOINT_ACCEL = Code("E312", "joint-acceleration-limit", "a joint accelerates beyond its limit")
 JOINT_TORQUE = Code("E313", "joint-torque-limit", "inverse dynamics needs more torque than a joint's limit")
-PROGRAM_NOT_CHECKED = Code("E390", "program-not-checked", "a program could not be loaded, planned or verified")
 ROBOT_UNAVAILABLE = Code("E320", "robot-model-unavailable", "the robot model could not be loaded for verification")
 
 STATIC_CONTACT = Code("W300", "static-contact", "two bodies that never move overlap (a cell modelling issue)")

@@ -55,6 +55,22 @@ class LazyGroup(click.Group):
             return _unavailable(cmd_name)
         return getattr(module, attr)  # type: ignore[no-any-return]
 
+    def invoke(self, ctx: click.Context) -> object:
+        """Run the subcommand; an exception it does not handle (a bug, not the input) is the
+        one internal-error diagnostic E550 and exit 2, never a traceback (stages.py)."""
+        try:
+            return super().invoke(ctx)
+        except (click.exceptions.ClickException, click.exceptions.Exit, click.exceptions.Abort):
+            raise
+        except Exception as exc:
+            from rmot.compiler.cli.stages import StageError, internal_error
+            from rmot.lang.diagnostics import render
+
+            where = f"`rmot {ctx.invoked_subcommand}`" if ctx.invoked_subcommand else "rmot"
+            diag = exc.diagnostic if isinstance(exc, StageError) else internal_error(where, exc)
+            click.echo(render(diag), err=True)
+            ctx.exit(EXIT_INPUT)
+
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         rows = [(name, COMMANDS[name][2]) for name in self.list_commands(ctx)]
         with formatter.section("Commands"):

@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import click
 
+from rmot.compiler.atomic import write_atomic, write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 if TYPE_CHECKING:  # the heavy stages load only when a check runs
@@ -51,31 +51,23 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
               clearance: float | None = None, images: str | None = None, use_cache: bool = True,
               dynamics: bool = False) -> CheckOutcome:
     """One program through front end -> planner -> verification (runs in a worker process)."""
-    from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.sim import codes
+    from rmot.compiler.cli import stages
     from rmot.sim.report import Report
 
-    def failed(message: str) -> CheckOutcome:
-        diag = Diagnostic(codes.PROGRAM_NOT_CHECKED, Severity.ERROR, message, None)
-        return CheckOutcome(Report(path, {}, (diag,)), True)
-
+    # the front end reports a missing file (E501) and a file without a program (E119); a stage
+    # failing unexpectedly is E550 in this program's report (compiler/cli/stages.py)
     try:
-        from rmot.compiler.frontend import load_program
-        from rmot.compiler.plan_cache import cached_plan
-    except ImportError as exc:
-        return failed(f"this build cannot check programs yet: {exc}")
-    # the front end reports a missing file (E501) and a file without a program (E119)
-    front = load_program(path, cell=cell, project_root=project_root, require_program=True)
+        front = stages.load(path, cell=cell, project_root=project_root)
+    except stages.StageError as exc:
+        return CheckOutcome(Report(path, {}, (exc.diagnostic,)), True)
     front_diags = tuple(front.diagnostics)
     if any(d.is_error for d in front_diags) or front.program is None:
         return CheckOutcome(Report(path, {}, front_diags), True)
-    from rmot.sim import verify
-
     try:
-        plan = cached_plan(front.program, use_cache=use_cache)
-        report = verify(plan, clearance=clearance)
-    except Exception as exc:  # a bug in a stage: say so in the report, never as a traceback
-        return failed(f"internal error while planning or verifying ({exc.__class__.__name__}: {exc}); please report it")
+        plan = stages.plan(front.program, use_cache=use_cache)
+        report = stages.verify(plan, clearance=clearance)
+    except stages.StageError as exc:
+        return CheckOutcome(Report(path, {}, front_diags + (exc.diagnostic,)), True)
     report = Report(path, report.cycle_times, front_diags + report.diagnostics, report.tasks)
     if images:
         report = _render_images(plan, report, images)
@@ -120,35 +112,14 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
             continue
         final = os.path.join(directory, f"{stem}-{k:02d}-{d.code.id}.png")
         try:
-            fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".png", dir=directory)
+            write_atomic(final, lambda tmp, d=d: render_finding(plan, d, tmp))  # type: ignore[misc]
         except OSError as exc:
             extra.append(Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                                     f"image for {d.code.id} was not rendered: '{directory}' is not writable ({exc.strerror or exc})", d.span))
-            continue
-        os.close(fd)
-        try:
-            render_finding(plan, d, tmp)
-            os.replace(tmp, final)
         except Exception as exc:  # a failed picture must not hide the finding itself
             extra.append(Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                                     f"image for {d.code.id} at t={d.time_s:.3f} s was not rendered ({exc})", d.span))
-        finally:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
     return Report(report.program_file, report.cycle_times, report.diagnostics + tuple(extra), report.tasks)
-
-
-def _write_atomic(path: str, text: str) -> None:
-    directory = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".rmot-", dir=directory)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def _format(fmt: str, reports: list[Report]) -> str:
@@ -203,7 +174,7 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
         text += "".join(o.dynamics for o in outcomes)
     if output:
         try:
-            _write_atomic(output, text)
+            write_text(output, text)
         except OSError as exc:
             from rmot.compiler.cli.oserrors import output_failed
 

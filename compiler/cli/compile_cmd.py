@@ -25,11 +25,24 @@ from dataclasses import dataclass
 
 import click
 
+from rmot.compiler.vendors import targets as registered_targets
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
 
-TARGETS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+
+
+class _Targets(click.Choice):  # type: ignore[type-arg]
+    """click.Choice over the target registry (compiler/vendors.py) as it is when the
+    option is read, so a backend registered after import is a valid --target."""
+
+    def __init__(self) -> None:
+        super().__init__(registered_targets())
+
+    def convert(self, value: object, param: click.Parameter | None,
+                ctx: click.Context | None) -> object:
+        self.choices = registered_targets()
+        return super().convert(value, param, ctx)
 
 
 @dataclass(frozen=True)
@@ -46,20 +59,22 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
                     project_root: str | None = None, allow_findings: bool = False,
                     source_map: bool = True, write_frames: bool = False, use_cache: bool = True,
                     unroll: bool = False) -> CompileOutcome:
-    """Run the pipeline in memory; nothing is written here."""
-    from rmot.backends import BACKENDS
-
-    from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan_cache import cached_plan
-    from rmot.sim import verify
+    """Run the pipeline in memory (compiler/cli/stages.py); nothing is written here."""
+    from rmot.compiler.cli import stages
 
     # the front end reports a missing file (E501) and a file without a program (E119)
-    front = load_program(path, cell=cell, project_root=project_root, require_program=True)
+    try:
+        front = stages.load(path, cell=cell, project_root=project_root)
+    except stages.StageError as exc:
+        return CompileOutcome({}, (exc.diagnostic,), EXIT_INPUT)
     diagnostics = tuple(front.diagnostics)
     if front.program is None or any(d.is_error for d in diagnostics):
         return CompileOutcome({}, diagnostics, EXIT_INPUT)
-    plan = cached_plan(front.program, use_cache=use_cache)
-    report = verify(plan)
+    try:
+        plan = stages.plan(front.program, use_cache=use_cache)
+        report = stages.verify(plan)
+    except stages.StageError as exc:
+        return CompileOutcome({}, diagnostics + (exc.diagnostic,), EXIT_INPUT)
     diagnostics += tuple(report.diagnostics)
     findings = any(d.is_error for d in report.diagnostics)
     if findings and not allow_findings:
@@ -68,15 +83,10 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     refused: list[str] = []
     for target in dict.fromkeys(targets):  # each target once, in the order given
         try:
-            backend = BACKENDS[target](allow_findings_header=findings, write_frames=write_frames,
-                                       unroll=unroll)
-            result = backend.emit(plan, source_map=source_map)
-        except Exception as exc:  # a backend bug refuses that vendor only, never a traceback (issue #20)
-            from rmot.compiler import codes
-            from rmot.lang.diagnostics import Diagnostic, Severity
-
-            msg = f"{target}: internal error while writing this vendor ({exc.__class__.__name__}: {exc}); please report it"
-            diagnostics += (Diagnostic(codes.OUTPUT_FAILED, Severity.ERROR, msg, None),)
+            result = stages.emit(target, plan, source_map=source_map,
+                                 allow_findings_header=findings, write_frames=write_frames, unroll=unroll)
+        except stages.StageError as exc:  # a backend bug refuses that vendor only (issue #20)
+            diagnostics += (exc.diagnostic,)
             refused.append(target)
             continue
         diagnostics += result.diagnostics
@@ -122,7 +132,7 @@ def write_all(outdir: str, files: dict[str, str]) -> list[str]:
 @click.command("compile")
 @click.argument("program", type=click.Path(dir_okay=False))
 @click.option("--cell", type=click.Path(dir_okay=False), default=None, help="Cell file (overrides `use cell`).")
-@click.option("--target", "targets", multiple=True, required=True, type=click.Choice(TARGETS),
+@click.option("--target", "targets", multiple=True, required=True, type=_Targets(),
               help="Vendor to emit (repeatable).")
 @click.option("-o", "--output", "outdir", required=True, type=click.Path(file_okay=False),
               help="Output directory; files go to OUTDIR/<vendor>/.")

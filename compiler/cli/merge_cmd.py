@@ -200,23 +200,10 @@ def merge_reports_cmd(reports: tuple[str, ...], output: str | None) -> None:
 
 
 def _write_atomic(path: str, text: str) -> None:
-    """Temporary file beside the target, then rename; permissions as the umask says."""
-    import tempfile
+    """The one atomic writer (compiler/atomic.py); a failure is a MergeError (REPORT_UNWRITABLE)."""
+    from rmot.compiler.atomic import write_text
 
-    directory = os.path.dirname(os.path.abspath(path))
     try:
-        fd, tmp = tempfile.mkstemp(prefix=".rmot-", dir=directory)
+        write_text(path, text)
     except OSError as exc:
-        raise MergeError(_codes().REPORT_UNWRITABLE,
-                         f"cannot write '{path}': {exc.strerror or exc}") from None
-    try:
-        umask = os.umask(0)
-        os.umask(umask)
-        os.fchmod(fd, 0o666 & ~umask)
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except OSError as exc:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
         raise MergeError(_codes().REPORT_UNWRITABLE, f"cannot write '{path}': {exc.strerror or exc}") from None

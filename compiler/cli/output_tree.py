@@ -21,6 +21,8 @@ import itertools
 import os
 import shutil
 
+from rmot.compiler.atomic import write_new
+
 __all__ = ["write_vendor_dirs"]
 
 _SEQ = itertools.count()
@@ -113,10 +115,7 @@ def write_vendor_dirs(outdir: str, vendors: dict[str, dict[str, str]]) -> list[s
             for rel, text in files.items():
                 path = os.path.join(stage, *rel.split("/"))
                 os.makedirs(os.path.dirname(path), exist_ok=True)
-                with open(path, "w", encoding="utf-8", newline="\n") as f:
-                    f.write(text)
-                    f.flush()
-                    os.fsync(f.fileno())
+                write_new(path, text)  # the one writer (compiler/atomic.py): umask mode, fsync
             _fsync_dir(stage)
             _swap(stage, final, outdir, vendor)
         finally:

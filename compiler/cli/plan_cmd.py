@@ -9,12 +9,11 @@ planning errors (the CSV is still written), 0 otherwise.
 from __future__ import annotations
 
 import io
-import os
 import re
-import tempfile
 
 import click
 
+from rmot.compiler.atomic import write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["plan", "parse_step", "trajectory_csv"]
@@ -47,27 +46,11 @@ def trajectory_csv(plan: object) -> str:
     return out.getvalue()
 
 
-def _write_atomic(path: str, text: str) -> None:
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".rmot-", suffix=".tmp", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the file the usual mode
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-
-
 def _load(file: str, cell: str | None, project_root: str | None):  # type: ignore[no-untyped-def]
     """(program or None, diagnostics) from the front end."""
-    from rmot.compiler import frontend
+    from rmot.compiler.cli import stages
 
-    result = frontend.load_program(file, cell=cell, project_root=project_root, require_program=True)
+    result = stages.load(file, cell=cell, project_root=project_root)
     return result.program, tuple(result.diagnostics)
 
 
@@ -88,16 +71,16 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
         click.echo(render(d), err=True)
     if program is None or any(d.is_error for d in diagnostics):
         raise SystemExit(EXIT_INPUT)
-    from rmot.compiler.plan_cache import cached_plan
+    from rmot.compiler.cli import stages
 
-    result = cached_plan(program, step=step_s, use_cache=not no_cache)
+    result = stages.plan(program, step=step_s, use_cache=not no_cache)
     for d in result.diagnostics:
         click.echo(render(d), err=True)
     for tp in result.tasks:
         click.echo(f"task {tp.task.name} ({tp.robot}): cycle time {tp.cycle_time:.3f} s")
     if csv_out:
         try:
-            _write_atomic(csv_out, trajectory_csv(result))
+            write_text(csv_out, trajectory_csv(result))
         except OSError as exc:
             from rmot.compiler.cli.oserrors import output_failed
 

@@ -40,14 +40,10 @@ def fail(*diagnostics: Any) -> None:
 def write_or_fail(path: str, data: bytes) -> None:
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes_views
-    from rmot.sim.render.files import write_atomic
-
-    def _write(temp: str) -> None:
-        with open(temp, "wb") as f:
-            f.write(data)
+    from rmot.compiler.atomic import write_bytes
 
     try:
-        write_atomic(path, _write)
+        write_bytes(path, data)
     except OSError as exc:
         fail(Diagnostic(codes_views.OUTPUT_FAILED, Severity.ERROR,
                         f"output file must be writable (got '{path}': {exc.strerror or exc})", None))

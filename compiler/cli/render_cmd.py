@@ -135,17 +135,16 @@ def load_plan(program: str, cell: str | None, project_root: str | None, use_cach
     """Front end then planner (shared by render and plot). Front-end errors end the command
     (exit 2; a missing file is E501, a file without a program E119); planning errors are
     printed and the plan is still returned, so the caller draws it and exits 1."""
-    from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan_cache import cached_plan
+    from rmot.compiler.cli import stages
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes
 
-    loaded = load_program(program, cell=cell, project_root=project_root, require_program=True)
+    loaded = stages.load(program, cell=cell, project_root=project_root)
     _report(loaded.diagnostics)
     if loaded.program is None:
         _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,
                          f"'{program}' must contain a program to {purpose} (got only a cell)", None))
-    planned = cached_plan(loaded.program, use_cache=use_cache)
+    planned = stages.plan(loaded.program, use_cache=use_cache)
     _report(planned.diagnostics, stop_on_error=False)
     return planned
 

@@ -35,22 +35,26 @@ def _output(ctx: click.Context, param: click.Parameter, value: str) -> str:
 def report(programs: tuple[str, ...], output: str, cell: str | None, project_root: str | None, no_cache: bool) -> None:
     """Verify PROGRAMs and write one HTML page: findings with pictures, plots, 3D view, data."""
     from rmot.compiler.cli.plot_cmd import write_or_fail
-    from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan_cache import cached_plan
+    from rmot.compiler.cli import stages
     from rmot.lang.diagnostics import render_all
-    from rmot.sim import verify
     from rmot.sim.report_html import ProgramResult, render_report
 
     results, input_error = [], False
     for path in programs:
-        loaded = load_program(path, cell=cell, project_root=project_root, require_program=True)
-        front = tuple(loaded.diagnostics)
-        if any(d.is_error for d in front) or loaded.program is None:
+        front: tuple = ()
+        try:  # a stage failing unexpectedly is E550 for this program (compiler/cli/stages.py)
+            loaded = stages.load(path, cell=cell, project_root=project_root)
+            front = tuple(loaded.diagnostics)
+            if any(d.is_error for d in front) or loaded.program is None:
+                input_error = True
+                results.append(ProgramResult(path, None, front))
+                continue
+            plan = stages.plan(loaded.program, use_cache=not no_cache)
+            checked = stages.verify(plan)
+        except stages.StageError as exc:
             input_error = True
-            results.append(ProgramResult(path, None, front))
+            results.append(ProgramResult(path, None, front + (exc.diagnostic,)))
             continue
-        plan = cached_plan(loaded.program, use_cache=not no_cache)
-        checked = verify(plan)
         results.append(ProgramResult(path, plan, front + tuple(checked.diagnostics), dict(checked.cycle_times)))
     page, problems = render_report(results)
     write_or_fail(output, page.encode("utf-8"))

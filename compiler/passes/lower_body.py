@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from rmot.compiler.vendors import controllers
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
 from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
@@ -38,10 +39,9 @@ from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, T
 from rmot.lang import ast
 from rmot.lang.parse import RESERVED
 
-__all__ = ["MAX_INSTRUCTIONS", "TaskLowering", "VENDORS"]
+__all__ = ["MAX_INSTRUCTIONS", "TaskLowering"]
 
 MAX_INSTRUCTIONS = 200_000
-VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
 _KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circular": ir.MotionKind.CIRCULAR}
 _CONFIG = {"shoulder": ir.Shoulder, "elbow": ir.Elbow, "wrist": ir.Wrist}
 
@@ -511,8 +511,10 @@ class TaskLowering:
         return ir.While(uid=0, condition=cond, body=body, span=s.span)
 
     def native(self, s: ast.NativeStmt) -> ir.Instr | None:
-        if s.vendor.name not in VENDORS:
-            self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(VENDORS), codes.UNKNOWN_VENDOR)
+        vendors = controllers()  # the target registry (compiler/vendors.py)
+        if s.vendor.name not in vendors:
+            self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(vendors),
+                             codes.UNKNOWN_VENDOR)
             return None
         return ir.Native(uid=0, vendor=s.vendor.name, text=s.text.value, span=s.span)
 

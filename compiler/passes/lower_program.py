@@ -37,8 +37,9 @@ def lower_program(state: FrontendState) -> FrontendState:
         return state
     prog = programs[0]
     file_scope = state.module_scopes.get(state.main.path, Scope(state.cell_scope))
-    procs: list[Entry] = state.extra.setdefault("procs", [])
+    procs: list[Entry] = list(state.procs)
     tasks = _lower_tasks(prog, state, Scope(file_scope), procs)
+    state = replace(state, procs=tuple(procs))  # with the procs declared inside the program
     if tasks is None:
         return state
     return replace(state, program=ir.Program(prog.name.name, state.cell, tuple(tasks), span=prog.span))
@@ -118,6 +119,6 @@ def _settings(settings: tuple[ast.Setting, ...], scope: Scope, robot: ir.RobotIn
 
 def _task_lowering(robot: ir.RobotInstance, state: FrontendState, procs: list[Entry]) -> TaskLowering:
     assert state.cell is not None
-    called = state.extra.setdefault("called_procs", set())
+    called = state.called_procs
     return TaskLowering(robot.name, state.robots[robot.name], robot.base, state.cell, state.reporter, procs, called=called)
 

@@ -96,7 +96,7 @@ def _calls(body: tuple[ast.Stmt, ...]) -> list[ast.CallStmt]:
 
 def check_recursion(state: FrontendState) -> FrontendState:
     """Depth-first search over the call graph of every declared proc; report each cycle once."""
-    procs: list[Entry] = state.extra.get("procs", [])
+    procs = state.procs
     rep = state.reporter
     done: set[int] = set()
 
@@ -211,9 +211,9 @@ def _check_exprs(exprs: list[object], known: set[str], scope: Scope, rep: Report
 
 def check_uncalled_procs(state: FrontendState) -> FrontendState:
     """Names in the bodies of procs no task called (called ones were checked by lowering)."""
-    called: set[int] = state.extra.get("called_procs", set())
+    called = state.called_procs
     seen: set[int] = set()
-    for entry in state.extra.get("procs", []):
+    for entry in state.procs:
         decl: ast.ProcDecl = entry.value
         if id(decl) in called or id(decl) in seen or entry.closure is None:
             continue

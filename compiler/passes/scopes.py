@@ -113,10 +113,10 @@ def _file_scope(mod: LoadedModule, state: FrontendState, procs: list[Entry]) -> 
 
 def declare_file_scopes(state: FrontendState) -> FrontendState:
     """Libraries first (dependencies before dependents), then the main file."""
-    procs: list[Entry] = list(state.extra.get("procs", []))
+    procs: list[Entry] = list(state.procs)
     scopes = dict(state.module_scopes)
     for lib in state.libraries:
         scopes[lib.path] = _file_scope(lib, replace(state, module_scopes=scopes), procs)
     if state.main is not None:
         scopes[state.main.path] = _file_scope(state.main, replace(state, module_scopes=scopes), procs)
-    return replace(state, module_scopes=scopes, extra={**state.extra, "procs": procs})
+    return replace(state, module_scopes=scopes, procs=tuple(procs))

@@ -6,10 +6,8 @@ The Reporter (diagnostics) and the robot loader are shared services, not results
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
-
 from rmot.compiler import ir
-from rmot.compiler.passes.context import Reporter, RobotInfo, RobotLoader, Scope
+from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLoader, Scope
 from rmot.lang import ast
 
 __all__ = ["FrontendState", "LoadedModule"]
@@ -40,4 +38,5 @@ class FrontendState:
     robots: dict[str, RobotInfo] = field(default_factory=dict)
     module_scopes: dict[str, Scope] = field(default_factory=dict)  # path -> its top-level scope
     program: ir.Program | None = None
-    extra: dict[str, Any] = field(default_factory=dict)
+    procs: tuple[Entry, ...] = ()  # every proc declared in a module (scopes.declare_module_procs)
+    called_procs: set[int] = field(default_factory=set)  # id() of procs some task calls (lowering)

@@ -9,11 +9,13 @@ and splines can follow it. Linear and circular moves are the dense IK of the TCP
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.motion_kinds import require_handlers
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path, line_path
 from rmot.compiler.plan.dense import DensePath, PathFailure, follow_path
@@ -68,7 +70,7 @@ def build_segment(
     if q_target is None:
         return None, findings
     tool = move.tool.tcp.matrix()
-    if move.kind is ir.MotionKind.JOINT:
+    if _TCP_PATHS[move.kind] is None:  # the straight line in joint space
         n = int(np.ceil(np.max(np.abs(q_target - q_now)) / _JOINT_STEP)) + 1
         q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
         return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
@@ -91,11 +93,7 @@ def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-u
     else:
         end = move.target.pose.matrix()
     try:
-        if move.kind is ir.MotionKind.CIRCULAR:
-            assert move.via is not None
-            path = arc_path(start, np.asarray(move.via.pose.position), end)
-        else:
-            path = line_path(start, end)
+        path = _TCP_PATHS[move.kind](start, move.via, end)  # type: ignore[misc]
     except DegenerateArc as exc:
         return None, [Finding(codes.ARC_DEGENERATE, Severity.ERROR, str(exc))]
     tool_inv = np.linalg.inv(tool)
@@ -113,6 +111,28 @@ def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-u
     rate = 1.0 / move.motion.tcp_speed
     seg = Segment(move, dense.q, dense.tcp, rate, via_index, path)
     return seg, _slowdown(robot, seg, dense)
+
+
+def _line(start: np.ndarray, via: ir.CartesianTarget | None, end: np.ndarray) -> CartesianPath:
+    return line_path(start, end)
+
+
+def _arc(start: np.ndarray, via: ir.CartesianTarget | None, end: np.ndarray) -> CartesianPath:
+    if via is None:
+        raise DegenerateArc("circular move must have a via point (got none)")
+    return arc_path(start, np.asarray(via.pose.position), end)
+
+
+# Per motion kind, the TCP path (start, via, end) a move follows by dense IK, or None for the
+# straight line in joint space (a synchronised joint move). A kind without an entry fails at
+# import (issue #19), never a silent default.
+_TCP_PATHS: dict[ir.MotionKind, Callable[[np.ndarray, ir.CartesianTarget | None, np.ndarray],
+                                         CartesianPath] | None] = {
+    ir.MotionKind.JOINT: None,
+    ir.MotionKind.LINEAR: _line,
+    ir.MotionKind.CIRCULAR: _arc,
+}
+require_handlers("planner (compiler/plan/segments.py _TCP_PATHS)", _TCP_PATHS)
 
 
 def _slowdown(robot: object, seg: Segment, dense: DensePath) -> list[Finding]:

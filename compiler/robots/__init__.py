@@ -4,7 +4,9 @@
     r = load_robot("abb_irb120")          # a library name, or a path to a URDF file
     r.fk(q) -> (4,4); r.ik(T) -> IkResult; r.branch(q) -> ir.Config
 
-See /tmp/team/ROBOT_API.md for the contract and `branches` for the branch definitions.
+The contract is the Robot class (robot.py: fk, fk_batch, jacobian, ik, ik_batch, branch,
+limits, solids; units SI, joints in rad or m); `branches` defines the IK branches, `ik` the
+statuses of an IkResult, `library` the built-in arms with the sources of their numbers.
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ and share their solution's branch (every branch quantity is 2π-periodic too).
 Statuses: OK; SINGULAR = solutions returned and verified, but the pose lies on a singularity
 (smallest reach-scaled singular value of J < 1e-6 at the first solution: treat it as OK with
 a warning, or refuse a linear move through it); UNREACHABLE = no solution (distance from the
-workspace in m; also used, with code E207, when `config` excludes every existing branch);
+workspace in m; also used when `config` excludes every existing branch);
 OUT_OF_LIMITS = solutions exist but every one violates a limit (joint index, excess).
 """
 
@@ -19,15 +19,13 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
 
 from rmot.compiler import ir
-from rmot.compiler.robots import codes
 from rmot.compiler.robots.numeric import dls, dls_fast, restart_seeds
-from rmot.lang.diagnostics import Code
 
 __all__ = ["IkResult", "IkStatus", "solve", "solve_batch", "POS_TOL", "ROT_TOL"]
 
@@ -49,8 +47,7 @@ class IkStatus(Enum):
 class IkResult:
     """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them.
     UNREACHABLE: `distance` (m) from the workspace. OUT_OF_LIMITS: `joint` (0-based index),
-    `excess` (rad or m) of the least-violating solution. `code` is the diagnostic code for
-    a non-OK status (None when OK); `message` a sentence for users."""
+    `excess` (rad or m) of the least-violating solution; `message` a sentence for users."""
 
     status: IkStatus
     solutions: tuple[np.ndarray, ...] = ()
@@ -59,7 +56,6 @@ class IkResult:
     distance: float = 0.0
     joint: int | None = None
     excess: float = 0.0
-    code: Code | None = field(default=None)
 
     @property
     def ok(self) -> bool:
@@ -194,7 +190,7 @@ def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Co
     if not kept:
         found = ", ".join(sorted({str(b) for b, _ in groups}))
         return IkResult(IkStatus.UNREACHABLE, message=f"no IK solution with {config} (solutions exist with: {found})",
-                        code=codes.NO_SOLUTION_ON_BRANCH)
+)
     qs = kept[0][1] if len(kept) == 1 else np.concatenate([e for _, e in kept])
     delta = qs - seed_q
     order = np.argsort(np.sqrt(np.add.reduce(delta * delta, axis=1)), kind="stable")  # = norm(delta, axis=1)
@@ -207,7 +203,7 @@ def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Co
         names = [b for b, e in kept for _ in range(len(e))]
         brs = tuple(names[i] for i in order.tolist())
     if _is_singular(robot, sols[0]):
-        return IkResult(IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity", code=codes.SINGULAR)
+        return IkResult(IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
     return IkResult(IkStatus.OK, sols, brs)
 
 
@@ -274,14 +270,15 @@ def _unreachable(robot, target: np.ndarray) -> IkResult:  # type: ignore[no-unty
     else:
         dist = float("nan")
     where = f"{dist * 1000:.1f} mm outside the workspace" if math.isfinite(dist) else "outside the workspace"
-    return IkResult(IkStatus.UNREACHABLE, message=f"the pose is {where} of {robot.name}", distance=dist, code=codes.UNREACHABLE)
+    return IkResult(IkStatus.UNREACHABLE, message=f"the pose is {where} of {robot.name}",
+                    distance=dist)
 
 
 def _out_of_limits(robot, verified: list[np.ndarray]) -> IkResult:  # type: ignore[no-untyped-def]
     joint, amount = min((_excess(robot, q) for q in verified), key=lambda e: e[1])
     unit, shown = ("mm", amount * 1000) if robot.joint_types[joint] == "P" else ("deg", math.degrees(amount))
     msg = f"joint {joint + 1} exceeds its limit by {shown:.1f} {unit} in the best of {len(verified)} IK solutions"
-    return IkResult(IkStatus.OUT_OF_LIMITS, message=msg, joint=joint, excess=amount, code=codes.OUT_OF_LIMITS)
+    return IkResult(IkStatus.OUT_OF_LIMITS, message=msg, joint=joint, excess=amount)
 
 
 def solve_batch(robot, poses: np.ndarray, seed: np.ndarray | None = None) -> np.ndarray:  # type: ignore[no-untyped-def]

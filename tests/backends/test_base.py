@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
-from rmot.backends import BACKENDS, TARGETS
+from rmot.backends import BACKENDS, TARGETS, controllers, targets
 from rmot.backends.base import (
     EmitResult, axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, rotation_vector, turn_bits,
 )
@@ -99,7 +99,7 @@ class TestConfigHelpers:
 class TestRegistry:
     def test_every_target_has_a_lazy_entry(self) -> None:
         """The registry lists every --target name in the documented order."""
-        assert TARGETS == ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+        assert TARGETS == targets() and set(controllers()) | {"csv", "json"} == set(TARGETS)
         assert list(BACKENDS) == list(TARGETS)
 
     @pytest.mark.parametrize("target", ["rapid", "krl", "fanuc"])
@@ -113,13 +113,13 @@ class TestRegistry:
         from rmot.backends import codes
         from rmot.lang.diagnostics import Diagnostic, Severity
 
-        warn = Diagnostic(codes.LOWERED, Severity.WARNING, "w", None)
+        warn = Diagnostic(codes.SPEED_ROUNDED, Severity.WARNING, "w", None)
         err = Diagnostic(codes.UNSUPPORTED, Severity.ERROR, "e", None)
         assert not EmitResult({}, (warn,)).has_errors
         assert EmitResult({}, (warn, err)).has_errors
 
 
-VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+VENDORS = controllers()
 
 
 class TestSharedDefaults:

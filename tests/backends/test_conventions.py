@@ -9,10 +9,9 @@ import re
 import pytest
 from backend_fixtures import DOWN, FRONT_UP_NOFLIP, Q, cart, hand_plan, span_at
 
-from rmot.backends import BACKENDS, codes
-from rmot.backends.base import CONTROLLERS, DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, EmitResult
+from rmot.backends import BACKENDS, codes, controllers, targets
+from rmot.backends.base import DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, EmitResult
 from rmot.compiler import ir
-from rmot.compiler.passes.lower_body import VENDORS
 from rmot.compiler.passes.modal import DEFAULT_MODAL
 
 ROBOT = {"rapid": "abb_irb120", "krl": "kuka_kr16", "fanuc": "fanuc_lrmate200id", "urscript": "ur5e",
@@ -60,7 +59,7 @@ STOPS = {
 }
 
 
-@pytest.mark.parametrize("target", CONTROLLERS)
+@pytest.mark.parametrize("target", controllers())
 def test_timed_out_wait_stops_the_program(target: str) -> None:
     """A wait that times out stops the program (with a message where the vendor has one)."""
     lines = [ln.strip() for ln in text(emit(target, (WAIT,))).splitlines()]
@@ -77,7 +76,7 @@ def test_default_accelerations_are_the_front_ends() -> None:
     assert (DEFAULT_TCP_ACCEL, DEFAULT_JOINT_ACCEL) == (DEFAULT_MODAL.tcp_accel, DEFAULT_MODAL.joint_accel)
 
 
-@pytest.mark.parametrize("target", CONTROLLERS)
+@pytest.mark.parametrize("target", controllers())
 def test_default_acceleration_gives_no_warning(target: str) -> None:
     """Moves at the default accelerations ask for nothing: no W408 on any vendor."""
     result = emit(target, (move(1, J), move(2, L)))
@@ -109,21 +108,21 @@ def _port_instrs(port: int) -> tuple[ir.Instr, ...]:
             ir.If(uid=4, condition=cond, then=(ir.WaitTime(uid=5, duration=1.0),), span=span_at(6)))
 
 
-@pytest.mark.parametrize("target", CONTROLLERS)
+@pytest.mark.parametrize("target", controllers())
 def test_every_vendor_documents_a_port_range(target: str) -> None:
     """DIGITAL_PORTS is the vendor's own (inclusive, non-empty) range."""
     low, high = BACKENDS[target].DIGITAL_PORTS
     assert 0 <= low < high
 
 
-@pytest.mark.parametrize("target", CONTROLLERS)
+@pytest.mark.parametrize("target", controllers())
 def test_ports_at_the_bounds_are_accepted(target: str) -> None:
     """The first and last port of DIGITAL_PORTS print without E404."""
     for port in BACKENDS[target].DIGITAL_PORTS:
         assert "E404" not in ids(emit(target, _port_instrs(port)))
 
 
-@pytest.mark.parametrize("target", CONTROLLERS)
+@pytest.mark.parametrize("target", controllers())
 def test_ports_outside_the_range_are_refused(target: str) -> None:
     """One past either bound is E404 for every I/O instruction (set, pulse, wait, if)."""
     low, high = BACKENDS[target].DIGITAL_PORTS
@@ -170,7 +169,7 @@ def test_payload_the_program_cannot_carry_warns_once(target: str) -> None:
     assert "2.000 kg" in found[0].message and "[10.0,-20.0,100.0] mm" in found[0].message
 
 
-@pytest.mark.parametrize("target", CONTROLLERS)
+@pytest.mark.parametrize("target", controllers())
 def test_massless_tool_needs_no_payload_warning(target: str) -> None:
     """A tool without mass has nothing to set: no W411."""
     assert "W411" not in ids(emit(target, (move(1, tool=ir.ToolRef("pen", ir.Pose((0, 0, 0.1)))),)))
@@ -182,31 +181,37 @@ def test_massless_tool_needs_no_payload_warning(target: str) -> None:
     ("fanuc", ir.WaitTime(uid=1, duration=0.255)), ("fanuc", ir.Pulse(uid=1, port=1, duration=0.25)),
     ("inform", ir.WaitTime(uid=1, duration=0.255)), ("inform", ir.Pulse(uid=1, port=1, duration=0.255)),
 ])
-def test_time_rounding_is_w412_not_w404(target: str, instr: ir.Instr) -> None:
-    """Rounded times are W412 time-rounded; W404 stays "exact equivalent"."""
+def test_time_rounding_is_w412(target: str, instr: ir.Instr) -> None:
+    """Rounded times are W412 time-rounded."""
     assert ids(emit(target, (instr,))) == ["W412"]
 
 
 def test_rapid_massless_tool_is_w413() -> None:
-    """RAPID's 0.001 kg stand-in for a massless tool is W413 tool-mass-raised, not W404."""
+    """RAPID's 0.001 kg stand-in for a massless tool is W413 tool-mass-raised."""
     result = emit("rapid", (move(1, tool=ir.ToolRef("pen", ir.Pose((0, 0, 0.1)))),))
     assert ids(result) == ["W413"]
 
 
 def test_new_codes_mean_one_thing() -> None:
-    """W404, W411, W412, W413 are distinct codes with distinct names."""
-    found = [codes.LOWERED, codes.PAYLOAD_NOT_EXPRESSED, codes.TIME_ROUNDED, codes.MASS_RAISED]
-    assert len({c.id for c in found}) == len({c.name for c in found}) == 4
+    """W411, W412, W413 are distinct codes with distinct names."""
+    found = [codes.PAYLOAD_NOT_EXPRESSED, codes.TIME_ROUNDED, codes.MASS_RAISED]
+    assert len({c.id for c in found}) == len({c.name for c in found}) == 3
 
 
 # --------------------------------------------------------------------------- 6. native vendors
 
-def test_controllers_are_the_front_ends_vendors() -> None:
-    """Backends know exactly the controller names the front end accepts (not csv/json)."""
-    assert CONTROLLERS == VENDORS
+@pytest.mark.parametrize("vendor", targets())
+def test_front_end_accepts_exactly_the_registrys_controllers(vendor: str) -> None:
+    """The front end's `native` check reads the backend registry: every controller is
+    accepted, a target that is not a controller language (csv, json) is E116."""
+    from rmot.compiler.frontend import load_text
+
+    text = f'program p on r1 {{\n  native {vendor} "x"\n}}\n'
+    found = {d.code.id for d in load_text(text, "native.rmot").diagnostics if d.is_error}
+    assert found == (set() if vendor in controllers() else {"E116"})
 
 
-@pytest.mark.parametrize("target", CONTROLLERS)
+@pytest.mark.parametrize("target", controllers())
 def test_native_block_only_for_its_own_name(target: str) -> None:
     """A native block prints only under its own controller name; the old aliases are gone."""
     for alias in ("ur", "jbi", "yaskawa", "motoman", "staubli"):

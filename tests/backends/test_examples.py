@@ -21,7 +21,8 @@ from rmot.compiler import planned
 
 VENDORS = ("rapid", "krl", "fanuc")
 EXAMPLES = ("inspect", "pick_place", "handover")
-HANDSHAKE_VENDORS = {"krl", "fanuc"}  # sync is an I/O handshake (backends/handshake.py)
+# sync is an I/O handshake there (backends/handshake.py)
+HANDSHAKE_VENDORS = {v for v in VENDORS if BACKENDS[v].SYNC_HANDSHAKE}
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ from __future__ import annotations
 import pytest
 from backend_fixtures import check_golden, example_plans, handshake_missing
 
-from rmot.backends import BACKENDS
+from rmot.backends import BACKENDS, controllers
 from rmot.compiler import planned
 
 VENDORS = ("urscript", "inform", "val3", "csv", "json")
@@ -26,7 +26,7 @@ def plans() -> dict[str, planned.Plan]:
 def _allowed_errors(plan: planned.Plan, vendor: str) -> set[str]:
     """Sync needs the cell's handshake signals in these vendors (E409, until the example's cell
     declares them); a move the planner failed on has no record (E401)."""
-    allowed = {"E409"} if vendor not in ("csv", "json") and handshake_missing(plan) else set()
+    allowed = {"E409"} if vendor in controllers() and handshake_missing(plan) else set()
     if any(d.is_error for d in plan.diagnostics):
         allowed.add("E401")
     return allowed

@@ -16,9 +16,10 @@ from backend_fixtures import check_golden
 
 from rmot.backends import BACKENDS
 from rmot.compiler import planned
+from rmot.backends import controllers
 
 TOUR = Path(__file__).parent / "programs" / "tour.rmot"
-VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+VENDORS = controllers()
 
 
 @pytest.fixture(scope="module")

@@ -19,6 +19,7 @@ from rmot.backends.handshake import (
     handshake_ports, sync_as_handshake,
 )
 from rmot.compiler import ir, planned
+from rmot.backends import controllers
 
 PORTS = HandshakePorts(out=3, inp=4)
 R1_PORTS, R2_PORTS = (3, 4), (5, 6)
@@ -58,7 +59,7 @@ program meet {
 }
 """
 SYNC_LINES = {"r1": [15, 17, 19, 20], "r2": [24, 26, 27, 28]}  # in duo.rmot (CELL + SIGNALS + PROGRAM)
-VENDORS = ("krl", "fanuc", "urscript", "inform", "val3")
+VENDORS = tuple(t for t in controllers() if BACKENDS[t].SYNC_HANDSHAKE)  # RAPID has a barrier
 MAIN_FILE = {"krl": "meet_{t}.src", "fanuc": "MEET_{T}.ls", "urscript": "meet_{t}.script",
              "inform": "MEET_{T}.JBI", "val3": "meet_{t}/start.pgx"}
 # (set, wait) patterns per vendor: groups (port, level)

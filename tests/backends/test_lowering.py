@@ -5,7 +5,7 @@ from __future__ import annotations
 from backend_fixtures import span_at
 
 from rmot.backends.lowering import (
-    count_instructions, flatten_procs, pulse_as_set_wait, routine_names, split_body,
+    count_instructions, routine_names, split_body,
 )
 from rmot.compiler import ir
 
@@ -16,29 +16,6 @@ def _wait(uid: int) -> ir.WaitTime:
 
 def _call(uid: int, proc: str, body: tuple[ir.Instr, ...]) -> ir.ProcCall:
     return ir.ProcCall(uid=uid, proc=proc, args=(), body=body, span=span_at(uid))
-
-
-class TestFlatten:
-    def test_inlines_nested_calls_and_if_arms(self) -> None:
-        """ProcCalls disappear (also inside If arms and other calls); order, uids and spans stay."""
-        inner = _call(3, "inner", (_wait(4),))
-        cond = ir.InputCondition(port=1, value=True)
-        body = (_wait(1), _call(2, "outer", (inner, _wait(5))),
-                ir.If(uid=6, condition=cond, then=(_call(7, "x", (_wait(8),)),), span=span_at(6)))
-        flat = flatten_procs(body)
-        assert [n.uid for n in flat] == [1, 4, 5, 6]
-        assert [n.uid for n in flat[3].then] == [8]
-        assert flat[1].span == span_at(4)
-
-
-class TestPulse:
-    def test_pulse_becomes_set_wait_reset(self) -> None:
-        """A pulse is set on, wait the duration, set off, all at the pulse's span."""
-        body = (ir.Pulse(uid=5, port=3, duration=0.2, signal="blow", span=span_at(9)),)
-        out = pulse_as_set_wait(body)
-        assert [type(n).__name__ for n in out] == ["SetDigital", "WaitTime", "SetDigital"]
-        assert (out[0].value, out[1].duration, out[2].value) == (True, 0.2, False)
-        assert all(n.span == span_at(9) for n in out) and out[0].uid == 5 and out[1].uid < 0
 
 
 class TestSplit:

@@ -11,6 +11,7 @@ import pytest
 from rmot.backends import BACKENDS
 from rmot.backends.lowering import routine_names
 from rmot.compiler import ir, planned
+from rmot.backends import controllers
 
 PROGRAM = """
 proc beep() {
@@ -39,7 +40,7 @@ program dedupe on r1 {
   beep()
 }
 """
-VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+VENDORS = controllers()
 
 # vendor -> (regex of a routine's definition, regex of a call line), {r} = the routine name
 SHAPES: dict[str, tuple[str, str]] = {

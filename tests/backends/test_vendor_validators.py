@@ -16,9 +16,10 @@ from backend_fixtures import GOLDEN, ROOT, example_plans
 from vendor_validators import check_fanuc, check_inform, check_krl, check_urscript, check_val3
 
 from rmot.backends import BACKENDS
+from rmot.backends import controllers
 
 EXAMPLES = tuple(sorted(p.stem for p in (ROOT / "examples").glob("*.rmot")))
-VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3")
+VENDORS = controllers()
 
 
 def rapid_findings(files: dict[str, str]) -> list[str]:

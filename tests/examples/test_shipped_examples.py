@@ -18,10 +18,11 @@ import pytest
 from click.testing import CliRunner, Result
 
 from rmot.compiler.cli import cli
+from rmot.backends import targets
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
-VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+VENDORS = targets()
 
 # Example -> approximate cycle time (s) from `rmot check`; a change beyond +-25 % means the
 # program, the cell or the planner changed and the comments should be re-read.

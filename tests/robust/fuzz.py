@@ -25,9 +25,10 @@ import sys
 import tempfile
 import time
 import traceback
+from rmot.backends import targets
 from collections import Counter
 
-TARGETS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+TARGETS = targets()
 
 
 def run_one(seed: int, workdir: str) -> str:

@@ -13,6 +13,7 @@ bytes (line breaks of every convention, NUL, unicode) spliced in.
 from __future__ import annotations
 
 import random
+from rmot.backends import controllers
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -24,7 +25,7 @@ LIBRARY_ROBOTS = ("abb_irb1600", "ur5e", "kuka_kr16", "fanuc_m20ia", "abb_irb460
 _ODD_NUMBERS = ("0", "1e308", "1e999", "1e-320", "123456789012", "9e15", "0.000001", "4294967296", "1e9")
 _BREAKS = ("\n", "\r\n", "\r", "\f", "\v", "\u2028", "\u2029", "\x85", "\x00", "\t", ";", "\ufeff", "\u00e9", "\U0001f600")
 _LENGTH_UNITS = ("mm", "cm", "m", "in")
-_VENDORS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "cobol")
+_VENDORS = (*controllers(), "cobol")  # the last one is absurd
 _NATIVE = ("WaitTime 1;", "x\\\\y", 'a\\"b')
 _NAMES = ("home", "a", "b", "p1", "t", "x", "on", "in", "s", "m", "pose", "world", "base", "tool0", "move", "r1")
 
@@ -161,7 +162,7 @@ def _statement(d: Draw, depth: int, procs: list[str]) -> str:
     if kind < 91:
         return f"{pad}frame {d.pick(('table_top', 'pallet', 'base', 'world') + (('nope',) if d.absurd else ()))}"
     if kind < 93:
-        vendor, text = d.pick(_VENDORS[:6 + d.absurd]), d.pick(_NATIVE)
+        vendor, text = d.pick(_VENDORS[:len(_VENDORS) - 1 + d.absurd]), d.pick(_NATIVE)
         return f'{pad}native {vendor} "{text}"'
     if kind < 95:
         return f"{pad}sync s{d.integer(0, 2)}"

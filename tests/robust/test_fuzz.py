@@ -12,9 +12,10 @@ from hypothesis import HealthCheck, given, settings
 from rmot.compiler.cli.compile_cmd import compile_program, write_all
 from rmot.compiler.frontend import load_program
 from rmot.lang.diagnostics import render
+from rmot.backends import targets
 from tests.robust.gen import hypothesis_project, random_project
 
-TARGETS = ("rapid", "krl", "fanuc", "urscript", "inform", "val3", "csv", "json")
+TARGETS = targets()
 _FEW = settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 _MORE = settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 

@@ -1,0 +1,86 @@
+"""The one pipeline the commands run (issue #19): front end -> planner -> verification ->
+backends, each stage called through `run`, so that a stage failing unexpectedly (a bug, not
+the input) becomes the same diagnostic in every command:
+
+    rmot: error[E550]: internal error in the planner (KeyError: 'q'); please report it
+
+exit code 2, never a Python traceback. `check` and `report` put it in the failing program's
+report and go on with the other programs; `compile` refuses only the failing vendor; every
+other command stops with it. An exception no stage caught (in a command's own code) gets the
+same diagnostic from the command group (compiler/cli/__init__.py `LazyGroup.invoke`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, TypeVar
+
+if TYPE_CHECKING:
+    from rmot.compiler.frontend import FrontendResult
+    from rmot.compiler.planned import Plan
+    from rmot.lang.diagnostics import Diagnostic
+    from rmot.sim.report import Report
+
+__all__ = ["StageError", "emit", "internal_error", "load", "plan", "run", "verify"]
+
+T = TypeVar("T")
+
+
+class StageError(Exception):
+    """A stage failed unexpectedly; `diagnostic` is the E550 that says so."""
+
+    def __init__(self, diagnostic: Diagnostic) -> None:
+        super().__init__(diagnostic.message)
+        self.diagnostic = diagnostic
+
+
+def internal_error(stage: str, exc: BaseException) -> Diagnostic:
+    """E550 for `exc` raised inside `stage` ("the planner", "backend rapid", "rmot plot")."""
+    from rmot.compiler.cli import codes
+    from rmot.lang.diagnostics import Diagnostic, Severity
+
+    message = f"internal error in {stage} ({type(exc).__name__}: {exc}); please report it"
+    return Diagnostic(codes.INTERNAL_ERROR, Severity.ERROR, message, None)
+
+
+def run(stage: str, fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
+    """fn(*args, **kwargs); an Exception escaping it becomes StageError(E550)."""
+    try:
+        return fn(*args, **kwargs)
+    except Exception as exc:  # a bug in a stage: one diagnostic, never a traceback
+        raise StageError(internal_error(stage, exc)) from exc
+
+
+def load(path: str, *, cell: str | None = None, project_root: str | None = None,
+         require_program: bool = True) -> FrontendResult:
+    """The front end (input errors are diagnostics in the result, not exceptions)."""
+    from rmot.compiler import frontend
+
+    return run("the front end", frontend.load_program, path, cell=cell, project_root=project_root,
+               require_program=require_program)
+
+
+def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> Plan:
+    """The planner, through the plan cache."""
+    from rmot.compiler import plan_cache
+
+    kwargs: dict[str, Any] = {"use_cache": use_cache}
+    if step is not None:
+        kwargs["step"] = step
+    return run("the planner", plan_cache.cached_plan, program, **kwargs)
+
+
+def verify(planned: Plan, *, clearance: float | None = None) -> Report:
+    """The verification (collisions, limits) of a plan."""
+    from rmot import sim
+
+    kwargs: dict[str, Any] = {} if clearance is None else {"clearance": clearance}
+    return run("the verification", sim.verify, planned, **kwargs)
+
+
+def emit(target: str, planned: Plan, *, source_map: bool = True, **options: Any) -> Any:
+    """One backend's EmitResult (its module is imported on first use)."""
+    from rmot.backends import BACKENDS
+
+    return run(f"backend {target}",
+               lambda: BACKENDS[target](**options).emit(planned, source_map=source_map))
