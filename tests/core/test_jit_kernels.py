@@ -30,27 +30,39 @@ def _same(a: object, b: object) -> bool:
     return np.array_equal(np.asarray(a), np.asarray(b), equal_nan=True)
 
 
-def _rows(rng: np.random.Generator, k: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+def _rows(rng: np.random.Generator, k: int, m: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(beta, lo, hi): symmetric rows (lo = -hi), rows without a u term (hi = inf) and
+    one-sided rows shifted by a constant, as a joint torque with gravity gives (some of them
+    empty, lo > hi: gravity alone beyond the limit)."""
     beta = rng.normal(size=(k, m)) * rng.choice([1e-3, 1.0, 1e3])
-    gamma = np.abs(rng.normal(size=(k, m))) + 1e-3
-    gamma[rng.random((k, m)) < 0.2] = np.inf  # rows without a u term
-    return beta, gamma
+    hi = np.abs(rng.normal(size=(k, m))) + 1e-3
+    hi[rng.random((k, m)) < 0.2] = np.inf  # rows without a u term
+    lo = -hi
+    shifted = rng.random((k, m)) < 0.3
+    shift = rng.normal(size=(k, m)) * 2.0
+    lo = np.where(shifted & np.isfinite(hi), lo + shift, lo)
+    hi = np.where(shifted & np.isfinite(hi), hi + shift, hi)
+    return beta, lo, hi
 
 
 @settings(max_examples=25, deadline=None)
 @given(_SEEDS, st.integers(2, 60), st.integers(1, 8))
 def test_topp_kernels_interpreted_equal_compiled(seed: int, k: int, m: int) -> None:
     rng = np.random.default_rng(seed)
-    beta, gamma = _rows(rng, k, m)
+    beta, lo, hi = _rows(rng, k, m)
     ss = np.cumsum(rng.random(k) + 1e-3)
     xmax = np.where(rng.random(k) < 0.1, 1e18, rng.random(k) * 10)
-    assert _same(*_both(topp.CEILING, beta, gamma))
-    assert _same(*_both(topp.PASSES, ss, xmax, beta, gamma))
+    assert _same(*_both(topp.CEILING, beta, lo, hi))
+    assert _same(*_both(topp.PASSES, ss, xmax, beta, lo, hi))
     n, t = m, 3
     args = (rng.random(k), rng.random(k - 1) + 1e-2, rng.normal(size=(k, n)), rng.normal(size=(k, n)),
             rng.normal(size=(t, k - 1, n)), rng.normal(size=(t, k - 1, n)), rng.random((t, k - 1)),
             np.array([0.25, 0.5, 0.75]), rng.random(n) + 0.5)
     assert _same(*_both(topp.CHECK, *args))
+    t_args = (rng.random(k), rng.random(k - 1) + 1e-2, rng.normal(size=(t, k - 1, n)),
+              rng.normal(size=(t, k - 1, n)), rng.normal(size=(t, k - 1, n)) * 3,
+              np.array([0.25, 0.5, 0.75]), rng.random(n) * 3 + 0.5)
+    assert _same(*_both(topp.CHECK_TORQUE, *t_args))
 
 
 def _poses(rng: np.random.Generator, n: int, reach: float) -> np.ndarray:
