@@ -123,8 +123,10 @@ def _modifiers(d: Draw) -> str:
 
 
 def _statement(d: Draw, depth: int, procs: list[str]) -> str:
-    kind = d.integer(0, 99)
     pad = "  " * (depth + 1)
+    if d.chance(12):
+        return _runtime_statement(d, depth, procs, pad)
+    kind = d.integer(0, 99)
     if kind < 22:
         return f"{pad}move joint {_target(d)}{_modifiers(d)}"
     if kind < 38:
@@ -169,6 +171,41 @@ def _statement(d: Draw, depth: int, procs: list[str]) -> str:
     return f"{pad}tool {d.pick(('gripper', 'flange', 'table') if d.absurd else ('gripper', 'flange'))}"
 
 
+def _condition(d: Draw) -> str:
+    """A runtime condition (issue #15): inputs, analog inputs, variables, and/or/not."""
+    leaves = (f"in[{_int(d, 1, 3)}] {d.pick(('==', '!='))} {d.pick(('on', 'off'))}",
+              f"ain[{_int(d, 1, 2)}] {d.pick(('<', '<=', '>', '>='))} {_num(d, -1, 10)}",
+              f"n {d.pick(('<', '==', '!=', '>='))} {_int(d, -2, 5)}", "flag", "not flag")
+    out = d.pick(leaves)
+    for _ in range(d.integer(0, 2)):
+        out = f"{out} {d.pick(('and', 'or'))} {d.pick(leaves)}"
+    return f"not ({out})" if d.chance(10) else out
+
+
+def _runtime_statement(d: Draw, depth: int, procs: list[str], pad: str) -> str:
+    """Runtime logic (issue #15): assignments, while, wait with a timeout branch, stop, if on a
+    general condition, joint-move speed shares and fixed turns. `var n` and `var flag` are
+    declared at the top of every generated program; absurd draws assign to the wrong things."""
+    kind = d.integer(0, 9)
+    if kind < 2:
+        if d.absurd:
+            return f"{pad}{d.pick(('n', 'flag', 't', 'home', 'nope', 'i'))} = {d.pick(('n + 1', 'on', '2.5', 'n / 0', 'p'))}"
+        return pad + d.pick(("n = n + 1", "n = n * 2 - 1", "flag = not flag", f"flag = n > {_int(d, 0, 3)}"))
+    if kind < 4 and depth < 2:
+        return f"{pad}while {_condition(d)} {{\n{_body(d, depth + 1, procs)}\n{pad}}}"
+    if kind < 6 and depth < 3:
+        other = f" else {{\n{_body(d, depth + 1, procs)}\n{pad}}}" if d.chance(70) else ""
+        return f"{pad}wait until {_condition(d)} timeout {_num(d, 0.1, 20)} s{other}"
+    if kind < 7:
+        return f"{pad}stop"
+    if kind < 8 and depth < 3:
+        return f"{pad}if {_condition(d)} {{\n{_body(d, depth + 1, procs)}\n{pad}}}"
+    if kind < 9:
+        return f"{pad}move joint {_target(d)} speed {_num(d, 1, 100)} %"
+    joint = d.pick(("j4", "j6", "j1", "j9") if d.absurd else ("j4", "j6"))
+    return f"{pad}move joint {_target(d)} config({joint}={_int(d, -2, 2)})"
+
+
 def _body(d: Draw, depth: int, procs: list[str]) -> str:
     return "\n".join(_statement(d, depth, procs) for _ in range(d.integer(0, 6 if depth == 0 else 3)))
 
@@ -209,7 +246,8 @@ def project(d: Draw) -> dict[str, str]:
         head.append('use cell "cell.rmot"')
     if d.absurd and d.chance(10):
         head.append(d.pick(('import "../outside.rmot"', 'use cell "/etc/passwd"', 'import "' + "n" * 300 + '"', 'import "lib.rmot"')))
-    body = (f"  tool gripper\n  target home = {_joints(d)}\n  target t = {_pose(d)}\n  move joint home\n"
+    body = (f"  tool gripper\n  target home = {_joints(d)}\n  target t = {_pose(d)}\n"
+            "  var n: int = 0\n  var flag: bool = off\n  move joint home\n"
             + _body(d, 0, procs))
     files["main.rmot"] = "\n".join(head) + f"\nprogram fuzz on r1 {{\n{body}\n}}\n"
     if d.absurd and d.chance(20):  # hostile bytes spliced in anywhere
