@@ -37,7 +37,7 @@ def pair_reach(scene: Scene, a: Body, b: Body) -> dict[str, np.ndarray]:
         low, high = (a, b) if a.joint <= b.joint else (b, a)
         mask = np.zeros(scene.robots[a.robot].robot.dof)
         mask[low.joint:high.joint] = 1.0  # joints low.joint+1 .. high.joint (1-based)
-        out[a.robot] = high.reach * mask  # type: ignore[operator]
+        out[a.robot] = high.reach * mask
         return out
     for body in (a, b):
         if body.moves:
@@ -115,7 +115,7 @@ class LazyCentres(dict):
         self._scene, self._poses = scene, poses
 
     def __contains__(self, name: object) -> bool:
-        return name in self._poses and self._poses[name].shape[0] > 1  # type: ignore[index]
+        return name in self._poses and self._poses[name].shape[0] > 1
 
     def __missing__(self, name: str) -> np.ndarray:
         value = world_spheres(self._scene.body(name), self._poses[name])

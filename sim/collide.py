@@ -211,7 +211,7 @@ def _moving_pair(scene: Scene, timeline: Timeline, a: Body, b: Body, poses: dict
 
 
 def _advance(flagged: np.ndarray, need: np.ndarray, move: np.ndarray, clearance: float,
-             distance_at, lipschitz: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+             distance_at, lipschitz: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Conservative advancement over the flagged samples: an exact distance d at sample i
     certifies every following interval up to where the accumulated motion bound reaches
     d - clearance, so those samples need no evaluation of their own.
@@ -256,7 +256,7 @@ DEPTH_TOL = 1e-5  # m: a run's reported depth is within this of its deepest samp
 
 
 def _refine_depth(ev: np.ndarray, dv: np.ndarray, skipped: list[tuple[int, int]], cum: np.ndarray, m: int,
-                  distance_at) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+                  distance_at) -> tuple[np.ndarray, np.ndarray]:
     """Add the skipped contact samples (upper-bound distances) and evaluate exactly those that
     could be deeper than their run's deepest exact value by more than DEPTH_TOL. One pass is
     enough: evaluating only lowers that deepest value, so the rest stay within tolerance."""

@@ -306,7 +306,7 @@ class _PathSpline:
         if self._constant is not None:
             value = self._constant if order == 0 else np.zeros_like(self._constant)
             return np.broadcast_to(value, (*np.shape(s), len(value))).copy()
-        return self._orders[order](s)  # type: ignore[no-any-return]
+        return self._orders[order](s)
 
 
 def _grid(ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -424,18 +424,18 @@ class _Arrays:
         pts = []
         for i, new in enumerate(new_pts):
             pts.append(_merged(old_pts[i], new, place, axis=0))
-            old_pts[i] = None  # type: ignore[call-overload]
+            old_pts[i] = None
         keep = np.ones(len(self.h), bool)
         keep[cells] = False
         cell_lo = np.concatenate([self.grid[:-1][keep], sub_lo])
         cplace = _places(np.argsort(cell_lo, kind="stable"), int(np.count_nonzero(keep)))
         interval_all = _merged(self.interval, sub_int, cplace, axis=0, keep=keep)
         m1 = _merged(self.m1, new_cells[0], cplace, axis=1, keep=keep)
-        self.m1 = None  # type: ignore[assignment]
+        self.m1 = None
         m2 = _merged(self.m2, new_cells[1], cplace, axis=1, keep=keep)
-        self.m2 = None  # type: ignore[assignment]
+        self.m2 = None
         v_in = _merged(self.v_in, new_cells[2], cplace, axis=1, keep=keep)
-        self.v_in = None  # type: ignore[assignment]
+        self.v_in = None
         return _Arrays(self.limits, grid[order], (interval_all, tuple(pts), (m1, m2, v_in)))
 
     def solve(self, xmax: np.ndarray, rounds: int):  # type: ignore[no-untyped-def]

@@ -119,7 +119,7 @@ def _adjacent(solids: tuple[LinkSolid, ...], extra: tuple[tuple[str, str], ...])
     names = {s.name: i for i, s in enumerate(solids)}
     pairs = {(i, i + 1) for i in range(len(solids) - 1)}
     pairs |= {tuple(sorted((names[a], names[b]))) for a, b in extra if a in names and b in names}  # type: ignore[misc]
-    return tuple(sorted(pairs))  # type: ignore[arg-type]
+    return tuple(sorted(pairs))
 
 
 def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # type: ignore[no-untyped-def]
