@@ -62,6 +62,7 @@ def _stage(name: str, out: Path) -> Path:
         "",
         "[tool.mutmut]",
         'source_paths = ["src"]',
+        'also_copy = ["examples"]',
         f'only_mutate = ["src/rmot/{source}"]',
         f"pytest_add_cli_args_test_selection = {json.dumps(present)}",
         "use_git_change_detection = false",
