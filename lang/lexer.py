@@ -102,7 +102,8 @@ class RmotLexer(Lexer):
             m = match(text, pos)
             if m is None:
                 accepts = states[parser_state.position]
-                raise UnexpectedCharacters(text, pos, line, pos - line_start + 1, allowed=set(accepts), state=parser_state)
+                raise UnexpectedCharacters(  # type: ignore[no-untyped-call]  # lark's are untyped
+                    text, pos, line, pos - line_start + 1, allowed=set(accepts), state=parser_state)
             kind, end, value = m.lastgroup, m.end(), m.group()
             if kind == "ws" or kind == "comment":
                 pos = end

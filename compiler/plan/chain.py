@@ -78,7 +78,7 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
     if ss[-1] < 1e-9:
         hold = HoldPiece(path.q[-1].copy(), duration or 0.0)
         zeros = tuple(0.0 for _ in segments)
-        return TimedChain(hold, zeros, tuple(piece.duration for _ in segments), path.radii, path)
+        return TimedChain(hold, zeros, tuple(hold.duration for _ in segments), path.radii, path)
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
     tcp_kw: dict[str, np.ndarray] = {}
     if any(s.tcp_rate > 0 for s in segments) and path.tcp_speed is not None \

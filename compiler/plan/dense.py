@@ -188,7 +188,8 @@ def _intervals_to_split(
     return (jump > _MAX_JUMP) | (path.distance(tcp) > tol)
 
 
-def _bisect(robot, solver, path, tool_inv, u, q, split):  # type: ignore[no-untyped-def]
+def _bisect(robot: RobotModel, solver: _Solver, path: CartesianPath, tool_inv: np.ndarray, u: np.ndarray,
+            q: np.ndarray, split: np.ndarray) -> tuple[np.ndarray, np.ndarray, PathFailure | None]:
     """Insert the midpoints of the split intervals; returns (u, q, failure or None)."""
     idx = np.flatnonzero(split)
     u_mid = 0.5 * (u[idx] + u[idx + 1])

@@ -16,7 +16,7 @@ from rmot.compiler.plan.robot_model import RobotModel
 __all__ = ["plan_program"]
 
 
-def _load(key: str) -> object:
+def _load(key: str) -> RobotModel:
     from rmot.compiler.robots import load_robot
 
     return load_robot(key)

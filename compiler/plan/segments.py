@@ -77,7 +77,8 @@ def build_segment(
     return seg, findings + more
 
 
-def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-untyped-def]
+def _cartesian_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray, q_target: np.ndarray,
+                       tool: np.ndarray) -> tuple[Segment | None, list[Finding]]:
     start = robot.fk(q_now) @ tool
     if isinstance(move.target, ir.JointTarget):
         end = robot.fk(q_target) @ tool
@@ -102,6 +103,7 @@ def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-u
         return None, [Finding(codes.BRANCH_CHANGE, Severity.ERROR, msg)]
     via_index = None
     if path.kind == "arc":
+        assert move.via is not None  # a circular move has its via point
         via_index = int(np.argmin(np.abs(dense.u - path.u_at_via(np.asarray(move.via.pose.position)))))
     rate = 1.0 / move.motion.tcp_speed
     seg = Segment(move, dense.q, dense.tcp, rate, via_index, path)

@@ -152,7 +152,8 @@ def _any_config(c: ir.Config) -> bool:
     return any(v is not None for v in (c.shoulder, c.elbow, c.wrist))
 
 
-def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
+def _solve_joint_move(robot: RobotModel, move: ir.Move, flange: np.ndarray, q_now: np.ndarray,
+                      current: ir.Config) -> tuple[np.ndarray | None, list[Finding]]:
     wanted = move.config if _any_config(move.config) else None
     res = _ik(robot, flange, q_now, wanted)
     if res.solutions:
@@ -173,7 +174,8 @@ def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-u
     return None, [_no_solution(robot, flange, q_now, res)]
 
 
-def _solve_cartesian(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
+def _solve_cartesian(robot: RobotModel, move: ir.Move, flange: np.ndarray, q_now: np.ndarray,
+                     current: ir.Config) -> tuple[np.ndarray | None, list[Finding]]:
     kind = move.kind.name.lower()
     explicit = branch_changes(current, move.config)
     if explicit:

@@ -259,6 +259,7 @@ def path_piece(
     f_int = np.ones(n_int) if vscale is None else np.minimum(vscale[:-1], vscale[1:])
     tcp_int = None
     if spline is not None:
+        assert tcp_speed is not None  # a TCP spline comes with its speed limits
         acc_int = np.minimum(tcp_accel[:-1], tcp_accel[1:]) if tcp_accel is not None else np.full(n_int, np.inf)
         tcp_int = (np.minimum(tcp_speed[:-1], tcp_speed[1:]), acc_int)
     grid, _ = _grid(ss)
@@ -344,6 +345,7 @@ class _Limits:
         c = [np.tile(self.alim, (len(s), 1))]
         vel = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
         if self.spline is not None:
+            assert self.tcp_int is not None
             sp = np.minimum(self.tcp_int[0][left], self.tcp_int[0][right])
             ac = np.minimum(self.tcp_int[1][left], self.tcp_int[1][right])
             l1, l2 = _arc_rates(self.spline, s)
@@ -370,6 +372,7 @@ class _Limits:
             m2.append(self.path(s, 2))  # type: ignore[operator]
             v = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
             if self.spline is not None:
+                assert self.tcp_int is not None
                 v = np.maximum(v, _arc_rates(self.spline, s)[0] / self.tcp_int[0][interval])
             vel.append(v)
         return np.stack(m1), np.stack(m2), np.stack(vel)
@@ -461,7 +464,7 @@ class _Arrays:
         return x, r_acc, r_vel, bad
 
 
-def _normalised(pts):  # type: ignore[no-untyped-def]
+def _normalised(pts: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
     """A point's (d1, d2, a, b, c, vel) as (d1, d2, beta, gamma, ceiling, vel): the rows in the
     solver's form (topp.Rows.normalised, row by row), kept instead of a, b, c."""
     from rmot.compiler.plan import topp

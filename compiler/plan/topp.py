@@ -20,6 +20,8 @@ tightened and the passes re-run: a repair slows that spot, never the whole path.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 __all__ = ["Rows", "solve", "static_ceiling"]
@@ -56,7 +58,7 @@ def static_ceiling(beta: np.ndarray, gamma: np.ndarray) -> np.ndarray:
     return _CEILING(np.ascontiguousarray(beta, dtype=float), np.ascontiguousarray(gamma, dtype=float))
 
 
-def _numba_ceiling():  # type: ignore[no-untyped-def]
+def _numba_ceiling() -> Any:  # a numba dispatcher (numba is untyped)
     import numba
 
     @numba.njit(cache=True)
@@ -85,7 +87,7 @@ def _numba_ceiling():  # type: ignore[no-untyped-def]
 _CEILING = None
 
 
-def _numba():  # type: ignore[no-untyped-def]
+def _numba() -> Any:  # a numba dispatcher (numba is untyped)
     import numba
 
     @numba.njit(cache=True)
@@ -144,7 +146,7 @@ def solve(ss: np.ndarray, xmax: np.ndarray, rows: Rows | tuple[np.ndarray, np.nd
                    np.ascontiguousarray(beta), np.ascontiguousarray(gamma))
 
 
-def _numba_check():  # type: ignore[no-untyped-def]
+def _numba_check() -> Any:  # a numba dispatcher (numba is untyped)
     import numba
 
     @numba.njit(cache=True)
@@ -179,7 +181,8 @@ def _numba_check():  # type: ignore[no-untyped-def]
 _CHECK = None
 
 
-def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
+def check(x: np.ndarray, h: np.ndarray, d1: np.ndarray, d2: np.ndarray, m1: np.ndarray, m2: np.ndarray,
+          vel_in: np.ndarray, thetas: tuple[float, ...], c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per cell: the largest joint acceleration ratio (at the cell's end and at the fractions
     `thetas` inside it, the cell's constant path acceleration) and the largest speed ratio
     inside it. m1, m2 (T, K-1, n) the path's derivatives inside the cells, vel_in (T, K-1),
