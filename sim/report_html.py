@@ -262,6 +262,7 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
 
     def scene() -> Any:
         if "rs" not in cache:
+            assert result.plan is not None  # a report with pictures has a plan
             cache["rs"] = prepare(result.plan, robots=result.robots)
         return cache["rs"]
 
@@ -283,6 +284,7 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
 
     def plot(what: str) -> bytes:
         if "plots" not in cache:
+            assert result.plan is not None
             cache["plots"] = plot_data(result.plan)
         return figure_bytes(cache["plots"], what, "svg")
 

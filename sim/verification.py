@@ -64,7 +64,7 @@ def _program_file(program: ir.Program) -> str:
     return program.span.path if program.span is not None else program.name
 
 
-def _finding_order(d: Diagnostic) -> tuple:
+def _finding_order(d: Diagnostic) -> tuple[Any, ...]:
     return (d.time_s if d.time_s is not None else -1.0, d.code.id, d.bodies, d.message)
 
 

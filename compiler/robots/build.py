@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -127,7 +128,7 @@ def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # typ
     The numba kernels load on the first IK call, not when the robot is built: `robots list`,
     `show`, `fk` and the front end never pay for numba."""
     turned = not np.allclose(flange_inv, np.eye(4))
-    kernel: list = []  # [fastik.opw_solve, its parameter arrays], filled on the first call
+    kernel: list[Any] = []  # [fastik.opw_solve, its parameter arrays], filled on the first call
 
     def closed_form(poses: np.ndarray) -> np.ndarray:
         if not kernel:

@@ -116,7 +116,7 @@ def opw_solve(args: tuple[np.ndarray, ...], poses: np.ndarray) -> np.ndarray:
     """poses (N,4,4) -> (N,8,6) controller values (branch rows as in `opw.opw_ik`)."""
     poses = np.ascontiguousarray(poses, dtype=float)
     out = np.empty((len(poses), 8, 6))
-    _opw_many(*args, poses, out)
+    _opw_many(*args, poses, out)  # type: ignore[call-arg]  # numba types a dispatcher call wrongly
     return out
 
 

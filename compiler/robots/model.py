@@ -75,8 +75,8 @@ def robot_from_model(spec: ModelSpec) -> Robot:
         robot = Robot(**common, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
     else:
         chain = probe._chain
-        branch_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
-        robot = Robot(**common, branch_fn=branch_fn)
+        wrist_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
+        robot = Robot(**common, branch_fn=wrist_fn)
     robot.reach = _reach(robot)
     robot.rated_payload_kg = spec.payload_kg
     return robot

@@ -52,7 +52,9 @@ def dls_fast(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_
         coupling = np.eye(robot.dof) if robot._coupling is None else np.array(robot._coupling)
         args = (chain.placements, chain.axes, chain.prismatic, np.array(robot._flange_in_joint), coupling)
         robot._dls_args = args
-    q, err = dls_chain(*args, np.asarray(target, dtype=float), np.array(q0, dtype=float), tol, max_iter, _DAMPING2, _MAX_STEP)
+    q, err = dls_chain(*args,  # type: ignore[call-arg]  # numba types a dispatcher call wrongly
+                    np.asarray(target, dtype=float), np.array(q0, dtype=float), tol, max_iter,
+                    _DAMPING2, _MAX_STEP)
     return q, float(err)
 
 
