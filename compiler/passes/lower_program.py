@@ -98,8 +98,8 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
         seen[t.robot.name] = t
         lowering = _task_lowering(robot, state, procs)
         modal = _settings(settings, scope, robot, rep)
-        body = lowering.run(t.body, scope.child(), modal, f"task '{t.robot.name}'")
-        tasks.append(ir.Task(t.robot.name, robot.name, body, span=t.span))
+        instrs = lowering.run(t.body, scope.child(), modal, f"task '{t.robot.name}'")
+        tasks.append(ir.Task(t.robot.name, robot.name, instrs, span=t.span))
     return tasks
 
 
