@@ -66,9 +66,10 @@ Support (checked by tests/backends/test_inform.py):
             duration (W409), speed / zone / time rounding (W402 / W403 / W412), tool payload (W411), split jobs
             (W406), legalised names (W400/W401), other vendors' native blocks (W407);
   lowered   sync as the I/O handshake (odd count W410);
-  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions
-            without a full branch (E402), an arc with no preceding move (E451), a job above
-            999 positions (E406), moves without a planned solution (E401).
+  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports
+            outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions without a full branch
+            (E402), an arc with no preceding move (E451), a job above 999 positions (E406), moves
+            without a planned solution (E401).
 """
 
 from __future__ import annotations
@@ -459,7 +460,12 @@ class InformBackend(Backend):
         return f"*L{job.labels:03d}"
 
     def if_(self, node: ir.If, ctx: InformContext) -> list[str]:
-        test = self.condition(node.condition, node.span, negate=True)
+        c = node.condition
+        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
+            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
+                             f"for {self.name} (it is not yet)", node.span)
+            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
+        test = self.condition(c, node.span, negate=True)
         if test is None:
             return []
         skip = self.label(ctx)

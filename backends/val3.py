@@ -356,7 +356,12 @@ class Val3Backend(Backend):
                               "resetMotion()", "return"], self.INDENT), "endIf"]
 
     def if_(self, node: ir.If, ctx: Val3Context) -> list[str]:
-        test = self.condition(node.condition, node.span, ctx)
+        c = node.condition
+        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
+            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
+                             f"for {self.name} (it is not yet)", node.span)
+            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
+        test = self.condition(c, node.span, ctx)
         if test is None:
             return []
         lines = [f"if {test}"] + self.indent(self.block(node.then, ctx, settled=True), self.INDENT)

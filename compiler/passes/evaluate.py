@@ -339,7 +339,8 @@ def _joints(e: ast.Joints, scope: Scope, rep: Reporter) -> Value | None:
                 return None
             index[int(name[1:])] = a
         if sorted(index) != list(range(1, len(index) + 1)):
-            rep.error(codes.BAD_ARGUMENT, f"joints() must name j1 to j{len(index)} without gaps (got {', '.join(f'j{i}' for i in sorted(index))})", e.span)
+            named = ", ".join(f"j{i}" for i in sorted(index))
+            rep.error(codes.BAD_ARGUMENT, f"joints() must name j1 to j{len(index)} without gaps (got {named})", e.span)
             return None
         order = [index[i] for i in sorted(index)]
     values: list[Quantity] = []
