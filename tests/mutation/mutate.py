@@ -99,8 +99,8 @@ def run(name: str, out: Path, children: int) -> dict[str, int]:
     score = 100.0 * killed / total if total else 0.0
     print(f"{name}: {counts}; score {killed}/{total} = {score:.1f} % (killed incl. timeouts, "
           f"over mutants reached by the tests)")
-    for mutant in survivors:
-        print(f"  survived: {mutant}")
+    (stage / "survivors.txt").write_text("".join(f"{m}\n" for m in survivors), encoding="utf-8")
+    print(f"  survivors listed in {stage / 'survivors.txt'} (`mutmut show NAME` there shows one)")
     return counts
 
 
