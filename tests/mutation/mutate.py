@@ -41,6 +41,21 @@ TARGETS: dict[str, tuple[str, tuple[str, ...]]] = {
 }
 
 
+# mutmut runs each test more than once in one process (stats, then the clean run, then the
+# mutants in forks): hypothesis then sees a test method called from several class instances
+# and fails its differing_executors health check; a fixed derandomized profile without the
+# example database also keeps every mutant's verdict reproducible.
+_HYPOTHESIS_PROFILE = """
+
+# --- appended by tests/mutation/mutate.py for the mutation run only
+from hypothesis import HealthCheck as _HealthCheck, settings as _settings
+
+_settings.register_profile("mutation", derandomize=True, database=None,
+                           suppress_health_check=list(_HealthCheck))
+_settings.load_profile("mutation")
+"""
+
+
 def _stage(name: str, out: Path) -> Path:
     """A fresh staging directory for `name`: sources as src/rmot/*, tests, examples, config."""
     source, tests = TARGETS[name]
@@ -52,6 +67,8 @@ def _stage(name: str, out: Path) -> Path:
         shutil.copytree(ROOT / pkg, stage / "src" / "rmot" / pkg, ignore=ignore)
     for extra in ("tests", "examples"):
         shutil.copytree(ROOT / extra, stage / extra, ignore=ignore)
+    with (stage / "tests" / "conftest.py").open("a", encoding="utf-8") as conftest:
+        conftest.write(_HYPOTHESIS_PROFILE)
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
     pytest_opts = project["tool"]["pytest"]["ini_options"]
     present = [t for t in tests if (ROOT / t).exists()]
