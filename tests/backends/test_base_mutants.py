@@ -1,0 +1,184 @@
+"""backends/base.py behaviour that mutation testing (issue #19, `make mutation`) found untested:
+de-duplication of diagnostics, hashable keys, the shared limits and warnings. A toy vendor
+with its own limits stands in for a controller; expected values are written out here."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+import numpy as np
+import pytest
+
+from rmot.backends import codes
+from rmot.backends.base import (
+    DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, Backend, _unique, accel_is_default, key_value, source_ref,
+)
+from rmot.compiler import ir
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.source import Pos, SourceFile, Span
+
+_FILE = SourceFile("/some/dir/cell.rmot", "a\nb\nc\n")
+
+
+def _span(line: int) -> Span:
+    return Span(_FILE, Pos(line, 1, 2 * (line - 1)), Pos(line, 2, 2 * (line - 1) + 1))
+
+
+class Toy(Backend):
+    name = "toy"
+    COMMENT = ";"
+    DIGITAL_PORTS = (1, 16)
+    MAX_TCP_SPEED = 2.0
+    MAX_TCP_SPEED_SOURCE = "the toy manual"
+
+
+@dataclass
+class _Ctx:  # the part of a TaskContext that warn_once reads
+    warned: set[str] = field(default_factory=set)
+
+
+def _motion(tcp_speed: float = 0.5, tcp_accel: float = DEFAULT_TCP_ACCEL,
+            joint_accel: float = DEFAULT_JOINT_ACCEL) -> ir.Motion:
+    return ir.Motion(tcp_speed, tcp_accel, 1.0, joint_accel, ir.Zone(0.0))
+
+
+def _move(speed: float = 0.5) -> ir.Move:
+    return ir.Move(uid=7, kind=ir.MotionKind.LINEAR, target=ir.JointTarget((0.0,) * 6), motion=_motion(speed),
+                   tool=ir.ToolRef(None), frame=ir.FrameRef(None))
+
+
+def _native(uid: int, vendor: str, text: str) -> ir.Native:
+    return ir.Native(uid=uid, vendor=vendor, text=text)
+
+
+def _diag(message: str = "m", span: Span | None = None, severity: Severity = Severity.ERROR,
+          code: object = codes.UNSUPPORTED) -> Diagnostic:
+    return Diagnostic(code, severity, message, span)  # type: ignore[arg-type]
+
+
+class TestUnique:
+    def test_exact_repeats_are_dropped_in_order(self) -> None:
+        a, b = _diag("a", _span(1)), _diag("b", _span(1))
+        assert _unique([a, b, a, _diag("a", _span(1)), b]) == (a, b)
+
+    @pytest.mark.parametrize("other", [
+        _diag("a", _span(2)), _diag("a (more)", _span(1)), _diag("a", _span(1), Severity.WARNING),
+        _diag("a", _span(1), code=codes.BAD_PORT), _diag("a", None),
+    ])
+    def test_anything_different_is_kept(self, other: Diagnostic) -> None:
+        first = _diag("a", _span(1))
+        assert _unique([first, other]) == (first, other)
+
+
+class TestKeyValue:
+    class Colour(Enum):
+        RED = 1
+
+    def test_plain_values_stay(self) -> None:
+        for v in (None, "s", True, 3, TestKeyValue.Colour.RED):
+            assert key_value(v) == v
+        assert key_value(0.1 + 0.2) == 0.3  # rounded to 1e-9
+
+    def test_spans_are_left_out(self) -> None:
+        assert key_value(_span(1)) is None
+
+    def test_arrays_keep_shape_and_rounded_values(self) -> None:
+        assert key_value(np.array([[1.0, 2.0000000001]])) == ("array", (1, 2), (1.0, 2.0))
+        assert key_value(np.array([1.0, 2.0])) != key_value(np.array([[1.0, 2.0]]))
+        assert key_value(np.float64(1.5)) == 1.5 and key_value(np.int64(4)) == 4
+
+    def test_containers(self) -> None:
+        assert key_value([1.0, "a"]) == (1.0, "a") == key_value((1.0, "a"))
+        assert key_value({3, 1, 2}) == key_value({2, 3, 1}) == (1, 2, 3)
+        assert key_value({"b": 1, "a": 2}) == (("a", 2), ("b", 1))
+
+    def test_dataclasses_by_type_and_fields(self) -> None:
+        assert key_value(ir.Zone(0.1)) == ("Zone", (0.1,))
+        assert key_value(ir.Zone(0.1)) != key_value(ir.Zone(0.2))
+
+    def test_anything_else_by_its_repr(self) -> None:
+        class Thing:
+            def __repr__(self) -> str:
+                return "<thing>"
+
+        assert key_value(Thing()) == "<thing>"
+
+
+class TestSettings:
+    def test_source_ref_is_the_file_name_and_line(self) -> None:
+        assert source_ref(_span(3)) == "cell.rmot:3"
+        assert source_ref(None) is None
+
+    @pytest.mark.parametrize(("kind", "motion", "default"), [
+        (ir.MotionKind.JOINT, _motion(), True),
+        (ir.MotionKind.JOINT, _motion(joint_accel=0.5 * DEFAULT_JOINT_ACCEL), False),
+        (ir.MotionKind.JOINT, _motion(tcp_accel=2 * DEFAULT_TCP_ACCEL), True),  # not a joint setting
+        (ir.MotionKind.LINEAR, _motion(), True),
+        (ir.MotionKind.LINEAR, _motion(tcp_accel=2 * DEFAULT_TCP_ACCEL), False),
+        (ir.MotionKind.LINEAR, _motion(joint_accel=0.5 * DEFAULT_JOINT_ACCEL), True),
+    ])
+    def test_accel_is_default_reads_the_setting_of_the_move_kind(
+            self, kind: ir.MotionKind, motion: ir.Motion, default: bool) -> None:
+        assert accel_is_default(motion, kind) is default
+
+
+class TestLimits:
+    @pytest.mark.parametrize(("port", "ok"), [(0, False), (1, True), (16, True), (17, False)])
+    def test_port_range_is_inclusive(self, port: int, ok: bool) -> None:
+        toy = Toy()
+        assert toy.port_ok(port, "digital output", _span(1)) is ok
+        found = toy._emission.diagnostics
+        assert [d.code for d in found] == ([] if ok else [codes.BAD_PORT])
+        if not ok:
+            assert found[0].message == f"toy: digital output port must be in 1..16 (got {port})"
+            assert found[0].severity is Severity.ERROR
+
+    def test_port_range_of_the_call_wins(self) -> None:
+        toy = Toy()
+        assert toy.port_ok(20, "analog output", None, (17, 24)) and not toy.port_ok(16, "x", None, (17, 24))
+
+    def test_tcp_speed_up_to_the_limit_passes_and_above_is_clamped_with_a_warning(self) -> None:
+        toy = Toy()
+        assert toy.tcp_speed_within_limit(_move(2.0)) == 2.0 and not toy._emission.diagnostics
+        assert toy.tcp_speed_within_limit(_move(2.5)) == 2.0
+        (d,) = toy._emission.diagnostics
+        assert d.code is codes.LIMIT_CLAMPED and d.severity is Severity.WARNING
+        assert d.message == ("toy: TCP speed 2500.0 mm/s must be at most 2000.0 mm/s for toy "
+                             "(the toy manual); clamped to 2000.0 mm/s")
+
+    def test_warn_once_per_key(self) -> None:
+        toy, ctx = Toy(), _Ctx()
+        for key in ("a", "a", "b", "a"):
+            toy.warn_once(ctx, key, codes.ACCEL_IGNORED, f"w {key}", None)  # type: ignore[arg-type]
+        assert [d.message for d in toy._emission.diagnostics] == ["toy: w a", "toy: w b"]
+        assert all(d.severity is Severity.WARNING for d in toy._emission.diagnostics)
+
+    def test_branch_or_default_needs_all_three_fields(self) -> None:
+        toy = Toy()
+        move = _move()
+        full = ir.Config(ir.Shoulder.BACK, ir.Elbow.DOWN, ir.Wrist.FLIP)
+        assert toy.branch_or_default(full, move) == full and not toy._emission.diagnostics
+        partial = ir.Config(ir.Shoulder.BACK, ir.Elbow.DOWN, None)
+        for branch in (None, partial):
+            assert toy.branch_or_default(branch, move) == ir.Config(
+                ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
+        assert [d.code for d in toy._emission.diagnostics] == [codes.NO_BRANCH, codes.NO_BRANCH]
+
+
+class TestText:
+    def test_comment_and_indent(self) -> None:
+        toy = Toy()
+        assert toy.comment("hello") == "; hello" and toy.comment("") == ";"
+        assert Toy.indent(["a", "", "b"], "  ") == ["  a", "", "  b"]
+
+    def test_native_blocks_of_another_vendor_are_skipped_with_a_warning(self) -> None:
+        toy = Toy()
+        assert toy.native(_native(1, "TOY", "line 1\nline 2"), None) == ["line 1", "line 2"]  # type: ignore[arg-type]
+        assert toy.native(_native(2, "rapid", "MoveJ ..."), None) == [  # type: ignore[arg-type]
+            "; native rapid block skipped"]
+        assert toy.native(_native(3, "cobol", "x"), None) == ["; native cobol block skipped"]  # type: ignore[arg-type]
+        first, second = toy._emission.diagnostics
+        assert first.code is codes.NATIVE_SKIPPED and first.severity is Severity.WARNING
+        assert first.message == "toy: native rapid block is not emitted for toy"
+        assert second.message.startswith("toy: native cobol block is not emitted for toy (not one of rapid, ")
