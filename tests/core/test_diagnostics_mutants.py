@@ -7,7 +7,9 @@ from __future__ import annotations
 import pytest
 
 from rmot.lang import codes
-from rmot.lang.diagnostics import Code, Diagnostic, DiagnosticSink, Severity, all_codes, render
+from rmot.lang.diagnostics import (
+    Code, Diagnostic, DiagnosticSink, Severity, all_codes, render, render_all,
+)
 from rmot.lang.source import Pos, SourceFile, Span
 
 
@@ -89,3 +91,19 @@ class TestSink:
         warn_only.warning(codes.SYNTAX, "w1", None)
         warn_only.warning(codes.SYNTAX, "w2", None)
         assert not warn_only.errors_since(0)
+
+    def test_sink_keeps_code_span_and_extra_fields(self) -> None:
+        src = SourceFile("f.rmot", "abc\n")
+        span = Span(src, Pos(1, 1, 0), Pos(1, 2, 1))
+        sink = DiagnosticSink()
+        sink.error(codes.SYNTAX, "e", span, time_s=1.0)
+        sink.warning(codes.UNKNOWN_UNIT, "w", span, time_s=2.0, bodies=("a",))
+        e, w = sink.items
+        assert (e.code, e.span, e.time_s) == (codes.SYNTAX, span, 1.0)
+        assert (w.code, w.span, w.time_s, w.bodies) == (codes.UNKNOWN_UNIT, span, 2.0, ("a",))
+
+
+def test_render_all_is_one_diagnostic_after_the_other() -> None:
+    a, b = _d(None, "first"), _d(None, "second")
+    assert render_all([a, b]) == "rmot: error[E001]: first\nrmot: error[E001]: second"
+    assert render_all(()) == ""
