@@ -111,12 +111,21 @@ class TestStretch:
         assert slow.time_at(0.5) == pytest.approx(piece.time_at(0.5) * k, rel=1e-12)
 
     def test_time_at_inverts_the_path_parameter(self) -> None:
-        """time_at(s) is the instant the path reaches s (checked against the sampled path)."""
-        q1 = np.array([2.0, 0.0])
-        piece = joint_move_piece(np.zeros(2), q1, np.ones(2), np.ones(2))
+        """time_at(s) is the instant the path reaches s: the trapezoid's closed form (speed
+        0.5, acceleration 2: ramps of 0.0625 over 0.25 s each), and the sampled path there."""
+        v, a = 0.5, 2.0
+        piece = joint_move_piece(np.zeros(2), np.array([2.0, 0.0]), np.full(2, v), np.full(2, a))
         assert isinstance(piece, PathPiece)
-        for s in (0.0, 0.1, 0.5, 1.0, 1.5, 1.99, 2.0):  # joint 1 is the path parameter here
+        ramp, t_ramp = v * v / (2 * a), v / a
+        for s in (0.0, 0.03, 0.0625, 1.0, 1.9375, 1.97, 2.0):  # joint 1 is the path parameter here
+            if s <= ramp:
+                expected = math.sqrt(2 * s / a)
+            elif s <= 2.0 - ramp:
+                expected = t_ramp + (s - ramp) / v
+            else:
+                expected = piece.duration - math.sqrt(2 * (2.0 - s) / a)
             t = piece.time_at(s)
+            assert t == pytest.approx(expected, abs=1e-9)
             assert piece.sample(np.array([t]))[0][0, 0] == pytest.approx(s, abs=1e-9)
 
 
