@@ -92,6 +92,8 @@ class TestKeyValue:
     def test_containers(self) -> None:
         assert key_value([1.0, "a"]) == (1.0, "a") == key_value((1.0, "a"))
         assert key_value({3, 1, 2}) == key_value({2, 3, 1}) == (1, 2, 3)
+        assert list({8, 1}) == [8, 1] and key_value({8, 1}) == (1, 8)  # sorted, not set order
+        assert key_value({8: "a", 1: "b"}) == ((1, "b"), (8, "a"))
         assert key_value({"b": 1, "a": 2}) == (("a", 2), ("b", 1))
 
     def test_dataclasses_by_type_and_fields(self) -> None:
@@ -133,7 +135,7 @@ class TestLimits:
         assert [d.code for d in found] == ([] if ok else [codes.BAD_PORT])
         if not ok:
             assert found[0].message == f"toy: digital output port must be in 1..16 (got {port})"
-            assert found[0].severity is Severity.ERROR
+            assert found[0].severity is Severity.ERROR and found[0].span == _span(1)
 
     def test_port_range_of_the_call_wins(self) -> None:
         toy = Toy()
@@ -156,8 +158,10 @@ class TestLimits:
         assert all(d.severity is Severity.WARNING for d in toy._emission.diagnostics)
 
     def test_branch_or_default_needs_all_three_fields(self) -> None:
+        from dataclasses import replace
+
         toy = Toy()
-        move = _move()
+        move = replace(_move(), span=_span(2))
         full = ir.Config(ir.Shoulder.BACK, ir.Elbow.DOWN, ir.Wrist.FLIP)
         assert toy.branch_or_default(full, move) == full and not toy._emission.diagnostics
         partial = ir.Config(ir.Shoulder.BACK, ir.Elbow.DOWN, None)
@@ -165,6 +169,9 @@ class TestLimits:
             assert toy.branch_or_default(branch, move) == ir.Config(
                 ir.Shoulder.FRONT, ir.Elbow.UP, ir.Wrist.NOFLIP)
         assert [d.code for d in toy._emission.diagnostics] == [codes.NO_BRANCH, codes.NO_BRANCH]
+        assert toy._emission.diagnostics[0].message == (
+            "toy: Cartesian target must have a planned IK branch for the configuration data (got none)")
+        assert toy._emission.diagnostics[0].span == move.span
 
 
 class TestText:
