@@ -8,7 +8,7 @@ EXAMPLE := examples/pick_place.rmot
 OUT     := out
 TARGETS := --target rapid --target krl --target fanuc --target urscript --target inform --target val3 --target csv --target json
 
-.PHONY: demo test bench clean fuzz
+.PHONY: demo test lint bench clean fuzz mutation
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -24,8 +24,21 @@ demo: $(STAMP)
 	$(BIN)/rmot render $(EXAMPLE) -o $(OUT)/pick_place.png
 	@echo "demo: vendor programs in $(OUT)/pick_place/, picture in $(OUT)/pick_place.png"
 
-test: $(STAMP)
+# lint and types first (issue #19; settings in pyproject.toml, how to fix: lint19.md), then the tests
+test: lint
 	$(BIN)/python -m pytest -q
+
+lint: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/mypy
+
+# Mutation testing (issue #19), never part of `make test`: mutmut over backends/base.py,
+# lang/diagnostics.py and compiler/plan/timing.py, each with only its own test files
+# (tests/mutation/mutate.py; MUTATE=base|diagnostics|timing for one). Prints each score.
+MUTATE ?= all
+mutation: $(STAMP)
+	$(BIN)/python -m pip install --quiet -e '.[mutation]'
+	nice -n 10 $(BIN)/python -m tests.mutation.mutate $(MUTATE)
 
 # Benchmarks run on their own (never in `make test`): medians and ratios against peers.
 bench: $(STAMP)

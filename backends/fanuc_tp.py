@@ -74,6 +74,7 @@ from rmot.backends.loops import (
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
 from rmot.backends.safe_text import comment_safe, tp_io_comment
+from rmot.lang.source import Span
 
 __all__ = ["FanucBackend", "FANUC_RULES", "config_string", "turn_number"]
 
@@ -257,7 +258,7 @@ class FanucBackend(Backend):
         return lines
 
     @staticmethod
-    def _decl_span(ctx: FanucContext, kind: str, name: str | None) -> object:
+    def _decl_span(ctx: FanucContext, kind: str, name: str | None) -> Span | None:
         """The cell declaration of a tool or frame (the task's span for the bare flange)."""
         items = ctx.plan.program.cell.tools if kind == "UTOOL" else ctx.plan.program.cell.frames
         return next((i.span for i in items if i.name == name), ctx.task.span)
@@ -416,7 +417,7 @@ class FanucBackend(Backend):
         lines += self.body(node.then, ctx) + [f"JMP LBL[{done}]", f"LBL[{other}]"]
         return lines + self.body(node.otherwise, ctx) + [f"LBL[{done}]"]
 
-    def sync(self, node: ir.Sync, ctx: FanucContext) -> list[str]:
+    def sync(self, node: ir.Sync, ctx: FanucContext) -> list[str]:  # type: ignore[override]
         """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
         return [line[:COMMENT_MAX + 1] for line in self.sync_not_lowered(node, ctx)]
 
@@ -424,7 +425,7 @@ class FanucBackend(Backend):
         note = super().handshake_comment(node)
         return note[:COMMENT_MAX + 1] if note else None
 
-    def native(self, node: ir.Native, ctx: FanucContext) -> list[str]:
+    def native(self, node: ir.Native, ctx: FanucContext) -> list[str]:  # type: ignore[override]
         if node.vendor.lower() != self.name:
             return self.native_other(node)
         return [line.strip().rstrip(";").rstrip() for line in node.text.splitlines() if line.strip()]

@@ -72,9 +72,10 @@ Support (checked by tests/backends/test_inform.py):
             duration (W409), speed / zone / time rounding (W402 / W403 / W412), tool payload (W411), split jobs
             (W406), legalised names (W400/W401), other vendors' native blocks (W407);
   lowered   sync as the I/O handshake (odd count W410);
-  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions
-            without a full branch (E402), an arc with no preceding move (E451), a job above
-            999 positions (E406), moves without a planned solution (E401).
+  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports
+            outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions without a full branch
+            (E402), an arc with no preceding move (E451), a job above 999 positions (E406), moves
+            without a planned solution (E401).
 """
 
 from __future__ import annotations

@@ -81,7 +81,7 @@ RESERVED = frozenset({
     # is read as the keyword
     "IN", "OUT", "ON", "OFF", "ENABLE", "DISABLE", "DISTANCE", "PATH", "ONSTART", "SPLINE",
     "ENDSPLINE", "SPL", "SPTP", "SLIN", "SCIRC", "TIME_BLOCK", "START", "PART", "STEP",
-    "GLOBAL", "STRUC", "ENUM", "PULSE", "SWITCH", "BOOL", "SIGNAL",
+    "PULSE",
 })
 KRL_RULES = NameRules(max_len=24, first="A-Za-z_", reserved=RESERVED, prefix="P")
 E_AXES = ",E1 0.0,E2 0.0,E3 0.0,E4 0.0,E5 0.0,E6 0.0"
@@ -380,6 +380,10 @@ class KrlBackend(Backend):
 
     def if_(self, node: ir.If, ctx: KrlContext) -> list[str]:
         c = node.condition
+        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
+            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
+                             f"for {self.name} (it is not yet)", node.span)
+            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
         self.port_ok(c.port, "digital input", node.span)
         lines = [f"IF $IN[{c.port}]=={self._level(c.value)} THEN" + self._signal_note(c.signal)]
         lines += self.indent(self.body(node.then, ctx), "  ")

@@ -45,6 +45,7 @@ from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_lis
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, planned
+from rmot.lang.source import Span
 
 __all__ = ["RapidBackend", "RAPID_RULES", "cfx_of"]
 
@@ -128,7 +129,7 @@ RAPID_TYPES = frozenset({
     "WOBJDATA", "WZSTATIONARY", "WZTEMPORARY", "ZONEDATA",
 })
 RAPID_PREDEFINED = frozenset({
-    "TOOL0", "WOBJ0", "LOAD0", "LOAD0", "FINE", "VMAX", "V1000", "VROT1", "VROT2", "VROT5",
+    "TOOL0", "WOBJ0", "LOAD0", "FINE", "VMAX", "V1000", "VROT1", "VROT2", "VROT5",
     "VROT10", "VROT20", "VROT50", "VROT100", "VLIN10", "VLIN20", "VLIN50", "VLIN100",
     "VLIN200", "VLIN500", "VLIN1000", "INPOS20", "INPOS50", "INPOS100", "STOPTIME0_5",
     "STOPTIME1_0", "STOPTIME1_5", "FLLWTIME0_5", "FLLWTIME1_0", "FLLWTIME1_5", "PI",
@@ -322,7 +323,7 @@ class RapidBackend(Backend):
         name = ctx.data.add(hint or target.name or "p", value, node.span)
         return _offs(ctx, node, "via" if target is node.via else "target", name)
 
-    def _tool(self, tool: ir.ToolRef, span: object, ctx: RapidContext) -> str:
+    def _tool(self, tool: ir.ToolRef, span: Span | None, ctx: RapidContext) -> str:
         if tool.name is None:
             return "tool0"
         name = ctx.names.name(tool.name)
@@ -372,13 +373,17 @@ class RapidBackend(Backend):
 
     def if_(self, node: ir.If, ctx: RapidContext) -> list[str]:
         c = node.condition
+        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
+            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
+                             f"for {self.name} (it is not yet)", node.span)
+            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
         lines = [f"IF DInput({self._signal(ctx, 'di', c.port, c.signal, node.span)}) = {int(c.value)} THEN"]
         lines += self.indent(self.body(node.then, ctx), self.INDENT)
         if node.otherwise:
             lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)
         return lines + ["ENDIF"]
 
-    def sync(self, node: ir.Sync, ctx: RapidContext) -> list[str]:
+    def sync(self, node: ir.Sync, ctx: RapidContext) -> list[str]:  # type: ignore[override]
         n = len(ctx.plan.tasks)
         task_list = ",".join(f'["T_ROB{k + 1}"]' for k in range(n))
         name = ctx.names.name(node.name, node.span)

@@ -50,7 +50,8 @@ Support (checked by tests/backends/test_urscript.py):
   warned    joint speed of a model missing from JOINT_LIMITS (W452), fixed duration of movec
             (W409), other vendors' native blocks (W407), legalised names (W400/W401);
   lowered   sync as the I/O handshake (no warning: exact given the wiring; odd count W410);
-  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports outside 0..15 (E404), analog outside 0..1 / 0..10 V (E450),
+  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports
+            outside 0..15 (E404), analog outside 0..1 / 0..10 V (E450),
             moves without a planned solution or TCP pose (E401), circular without via (E451).
 """
 
@@ -296,7 +297,12 @@ class UrScriptBackend(Backend):
                 "  halt", "end"]
 
     def if_(self, node: ir.If, ctx: UrContext) -> list[str]:
-        test = self.condition(node.condition, node.span)
+        c = node.condition
+        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
+            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
+                             f"for {self.name} (it is not yet)", node.span)
+            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
+        test = self.condition(c, node.span)
         if test is None:
             return []
         lines = [f"if {test}:"] + self.indent(self.block(node.then, ctx), self.INDENT)

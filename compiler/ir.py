@@ -48,7 +48,7 @@ __all__ = [
 
 
 def _span_field() -> Span | None:
-    return field(default=None, compare=False, hash=False, repr=False)  # type: ignore[return-value]
+    return field(default=None, compare=False, hash=False, repr=False)
 
 
 # --------------------------------------------------------------------------- poses
@@ -143,7 +143,7 @@ class Pose:
             q = ((r[1, 0] - r[0, 1]) / s, (r[0, 2] + r[2, 0]) / s, (r[1, 2] + r[2, 1]) / s, 0.25 * s)
         n = math.sqrt(sum(c * c for c in q))
         pos = (float(m[0, 3]), float(m[1, 3]), float(m[2, 3]))
-        return Pose(pos, _canonical(tuple(float(c) / n for c in q)))  # type: ignore[arg-type]
+        return Pose(pos, _canonical(tuple(float(c) / n for c in q)))
 
 
 def _canonical(q: tuple[float, ...]) -> tuple[float, float, float, float]:

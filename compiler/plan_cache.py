@@ -230,7 +230,7 @@ def _write(path: Path, key: str, plan: Plan) -> None:
     meta = json.dumps({"format": FORMAT, "key": key, "arrays": len(arrays), "doc": doc},
                       separators=(",", ":"), allow_nan=False).encode("utf-8")
     buffer = io.BytesIO()
-    members = {"__meta__": np.frombuffer(meta, dtype=np.uint8)}
+    members: dict[str, Any] = {"__meta__": np.frombuffer(meta, dtype=np.uint8)}
     members.update({f"a{i}": a for i, a in enumerate(arrays)})
     np.savez(buffer, **members)
     path.parent.mkdir(parents=True, exist_ok=True)

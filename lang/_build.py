@@ -51,7 +51,7 @@ def _fast_constructor(cls: type, names: tuple[str, str, str]) -> Any:
     new = object.__new__
 
     def make(x: Any, y: Any, z: Any) -> Any:
-        obj = new(cls)
+        obj: Any = new(cls)
         set_x(obj, x)
         set_y(obj, y)
         set_z(obj, z)
@@ -73,7 +73,10 @@ def reserved_statement(word: str, span: Span) -> Diagnostic:
 
 
 def token_span(file: SourceFile, tok: Token) -> Span:
-    return Span(file, Pos(tok.line, tok.column, tok.start_pos), Pos(tok.end_line, tok.end_column, tok.end_pos))
+    # lark types a token's position as int | None; tokens of a parse always carry one (no
+    # cast: this runs once per token)
+    return Span(file, Pos(tok.line, tok.column, tok.start_pos),  # type: ignore[arg-type]
+                Pos(tok.end_line, tok.end_column, tok.end_pos))  # type: ignore[arg-type]
 
 
 def _unquote(tok: Token) -> str:

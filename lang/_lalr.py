@@ -76,7 +76,8 @@ class LalrDriver:
         type it, build the lark Token, track brackets, then feed it (reduce*, shift).
         """
         actions, accepts, kinds = self.actions, self.accepts, self.kinds
-        punct, word_cache = kinds.punct, [dict() for _ in actions]  # per state: word -> type
+        punct = kinds.punct
+        word_cache: list[dict[str, str]] = [{} for _ in actions]  # per state: word -> type
         match, continues, blanks = TOKEN.match, CONTINUES.match, BLANKS.match
         new_str = str.__new__
         unit_chains = self.unit_chains
@@ -90,12 +91,15 @@ class LalrDriver:
         while pos < n:
             m = match(text, pos)
             if m is None:  # only blanks and a comment left, or a character that starts no token
-                pos = blanks(text, pos).end()
+                blank = blanks(text, pos)
+                assert blank is not None  # BLANKS matches the empty string
+                pos = blank.end()
                 if pos >= n:
                     break
-                raise UnexpectedCharacters(text, pos, line, pos - line_start + 1, allowed=set(accepts[states[-1]]))
+                raise UnexpectedCharacters(  # type: ignore[no-untyped-call]  # lark's are untyped
+                    text, pos, line, pos - line_start + 1, allowed=set(accepts[states[-1]]))
             kind, end = m.lastgroup, m.end()
-            value = m.group(kind)
+            value = m.group(kind)  # type: ignore[arg-type]  # every TOKEN alternative is named
             start = end - len(value)
             col = start - line_start + 1
             # branches in order of frequency: words, punctuation, numbers, newlines
@@ -170,7 +174,7 @@ class LalrDriver:
                 state = states[-1]
                 act = actions[state].get(ttype)
                 if act is None:
-                    raise UnexpectedToken(tok, set(accepts[state]))
+                    raise UnexpectedToken(tok, set(accepts[state]))  # type: ignore[no-untyped-call]
                 if act.__class__ is int:
                     states.append(act)
                     values.append(tok)
@@ -213,7 +217,7 @@ class LalrDriver:
             state = states[-1]
             act = actions[state].get("$END")
             if act is None or act.__class__ is int:
-                raise UnexpectedToken(tok, set(self.accepts[state]))
+                raise UnexpectedToken(tok, set(self.accepts[state]))  # type: ignore[no-untyped-call]
             size, origin, callback = act
             if callback is None:
                 states[-1] = actions[states[-2]][origin]

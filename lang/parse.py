@@ -24,6 +24,7 @@ import functools
 import re
 import threading
 from dataclasses import dataclass
+from typing import cast
 
 from lark import Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
@@ -34,7 +35,7 @@ from rmot.lang._build import KEYWORDS, RESERVED, AstBuilder, reserved_statement,
 from rmot.lang._lalr import LalrDriver, PostLexState
 from rmot.lang._tables import GRAMMAR as _GRAMMAR
 from rmot.lang._tables import load_tables
-from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.units import UNIT_NAMES, unknown_unit
 
@@ -108,7 +109,8 @@ def parse_source(file: SourceFile) -> ParseResult:
     return ParseResult(module, problems)
 
 
-def _error(code: codes.Code, message: str, span: Span | None, notes: tuple = ()) -> Diagnostic:  # type: ignore[type-arg]
+def _error(code: Code, message: str, span: Span | None,
+           notes: tuple[tuple[str, Span | None], ...] = ()) -> Diagnostic:
     return Diagnostic(code, Severity.ERROR, message, span, notes)
 
 
@@ -225,13 +227,14 @@ def wrap_syntax_error(exc: UnexpectedInput, file: SourceFile,
 
 
 def _bad_character(exc: UnexpectedCharacters, file: SourceFile) -> Diagnostic:
-    offset = exc.pos_in_stream
+    # lark types a position as int | None; an UnexpectedCharacters always has one
+    offset, line, column = cast(int, exc.pos_in_stream), exc.line, exc.column
     ch = file.text[offset] if offset < len(file.text) else ""
-    span = Span(file, Pos(exc.line, exc.column, offset), Pos(exc.line, exc.column + 1, offset + 1))
+    span = Span(file, Pos(line, column, offset), Pos(line, column + 1, offset + 1))
     if ch == '"':
         end = file.text.find("\n", offset)
         end = len(file.text) if end < 0 else end
-        span = Span(file, span.start, Pos(exc.line, exc.column + (end - offset), end))
+        span = Span(file, span.start, Pos(line, column + (end - offset), end))
         return _error(codes.UNTERMINATED_STRING, "string must end with '\"' on the same line (got the end of the line)", span)
     msg = f"unexpected character {ch!r}: outside strings and comments only names, numbers, units, operators and brackets may appear"
     return _error(codes.UNEXPECTED_CHARACTER, msg, span)
@@ -264,7 +267,8 @@ def _bad_token(tok: Token, expected: set[str], file: SourceFile, post: PostLexSt
 
 
 def _after(file: SourceFile, tok: Token) -> Span:
-    return Span(file, Pos(tok.end_line, tok.end_column, tok.end_pos), Pos(tok.end_line, tok.end_column + 1, tok.end_pos + 1))
+    line, col, pos = cast(int, tok.end_line), cast(int, tok.end_column), cast(int, tok.end_pos)
+    return Span(file, Pos(line, col, pos), Pos(line, col + 1, pos + 1))
 
 
 def _history_before(tok: Token, post: PostLexState) -> list[Token]:

@@ -9,9 +9,14 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from rmot.sim.scene import Body, Scene
+
+if TYPE_CHECKING:
+    from rmot.sim.collide import Timeline
 
 __all__ = ["BLOCK", "LazyCentres", "block_bound", "block_spheres", "joint_motion", "lower_bound", "model_abs",
            "model_q", "pair_reach", "world_spheres"]
@@ -37,11 +42,12 @@ def pair_reach(scene: Scene, a: Body, b: Body) -> dict[str, np.ndarray]:
         low, high = (a, b) if a.joint <= b.joint else (b, a)
         mask = np.zeros(scene.robots[a.robot].robot.dof)
         mask[low.joint:high.joint] = 1.0  # joints low.joint+1 .. high.joint (1-based)
-        out[a.robot] = high.reach * mask  # type: ignore[operator]
+        out[a.robot] = high.reach * mask
         return out
     for body in (a, b):
         if body.moves:
-            out[body.robot] = out.get(body.robot, 0.0) + body.reach  # type: ignore[index, operator]
+            assert body.robot is not None and body.reach is not None  # a moving body is a robot's
+            out[body.robot] = out.get(body.robot, 0.0) + body.reach
     return out
 
 _GRAM_SLACK = 1e-6  # m: covers the rounding of the squared-distance expansion in lower_bound
@@ -51,6 +57,7 @@ BLOCK = 16  # samples per block of the coarse (block) broad phase
 def block_spheres(body: Body, poses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per block of BLOCK samples, one sphere holding the body at every sample of the block:
     (nB, 3) centres, (nB,) radii (built on the body's single bounding sphere)."""
+    assert body.spheres is not None  # moving bodies carry their sphere cover
     centre = body.spheres[:, :3].mean(axis=0)
     radius = float(np.max(np.linalg.norm(body.spheres[:, :3] - centre, axis=1) + body.spheres[:, 3]))
     track = poses[:, :3, :3] @ centre + poses[:, :3, 3]  # (M, 3)
@@ -90,11 +97,13 @@ def lower_bound(a: Body, b: Body, pa: np.ndarray, pb: np.ndarray,
     if b.kind == "fixture":
         a, b, pa, pb = b, a, pb, pa
     centres = {} if centres is None else centres
+    assert b.spheres is not None  # b moves (of a pair, the fixture is a)
     centres_b = centres[b.name] if b.name in centres else world_spheres(b, pb)
     if idx is not None:
         centres_b = centres_b[idx]
     if a.kind == "fixture":
         return np.min(point_box_distance(a, centres_b) - b.spheres[:, 3], axis=-1)
+    assert a.spheres is not None
     centres_a = centres[a.name] if a.name in centres else world_spheres(a, pa)
     if idx is not None:
         centres_a = centres_a[idx]
@@ -107,7 +116,7 @@ def lower_bound(a: Body, b: Body, pa: np.ndarray, pb: np.ndarray,
     return np.min(dist.reshape(dist.shape[0], -1), axis=1) - _GRAM_SLACK
 
 
-class LazyCentres(dict):
+class LazyCentres(dict[str, np.ndarray]):
     """name -> (M, K, 3) world sphere centres, computed for a body when first asked for."""
 
     def __init__(self, scene: Scene, poses: dict[str, np.ndarray]) -> None:
@@ -115,7 +124,7 @@ class LazyCentres(dict):
         self._scene, self._poses = scene, poses
 
     def __contains__(self, name: object) -> bool:
-        return name in self._poses and self._poses[name].shape[0] > 1  # type: ignore[index]
+        return name in self._poses and self._poses[name].shape[0] > 1
 
     def __missing__(self, name: str) -> np.ndarray:
         value = world_spheres(self._scene.body(name), self._poses[name])
@@ -125,6 +134,7 @@ class LazyCentres(dict):
 
 def world_spheres(body: Body, poses: np.ndarray) -> np.ndarray:
     """(M, K, 3) sphere centres in world."""
+    assert body.spheres is not None
     return np.matmul(body.spheres[None, :, :3], poses[:, :3, :3].transpose(0, 2, 1)) + poses[:, None, :3, 3]
 
 

@@ -33,8 +33,9 @@ finds every approach closer than c.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -142,7 +143,7 @@ def check_timeline(scene: Scene, timeline: Timeline, pairs: Iterable[tuple[Body,
     return hits
 
 
-class _Margins(dict):
+class _Margins(dict[tuple[tuple[str, bytes], ...], tuple[np.ndarray, np.ndarray]]):
     """reach key -> (motion bound per interval (M-1,), its maximum per block (nB,)); every
     fixture pair of one body shares them, so they are computed once per body."""
 
@@ -174,7 +175,7 @@ def _sample_poses(scene: Scene, timeline: Timeline) -> dict[str, np.ndarray]:
 
 
 def _moving_pair(scene: Scene, timeline: Timeline, a: Body, b: Body, poses: dict[str, np.ndarray],
-                 bounds: tuple[dict, dict, _Margins], motion: dict[str, tuple[np.ndarray, np.ndarray]],
+                 bounds: tuple[dict[str, np.ndarray], dict[str, Any], _Margins], motion: dict[str, tuple[np.ndarray, np.ndarray]],
                  clearance: float) -> list[PairHit]:
     pa, pb = poses[a.name], poses[b.name]
     centres, blocks, margins = bounds
@@ -211,7 +212,8 @@ def _moving_pair(scene: Scene, timeline: Timeline, a: Body, b: Body, poses: dict
 
 
 def _advance(flagged: np.ndarray, need: np.ndarray, move: np.ndarray, clearance: float,
-             distance_at, lipschitz: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+             distance_at: Callable[[int], float], lipschitz: bool = False
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Conservative advancement over the flagged samples: an exact distance d at sample i
     certifies every following interval up to where the accumulated motion bound reaches
     d - clearance, so those samples need no evaluation of their own.
@@ -256,7 +258,7 @@ DEPTH_TOL = 1e-5  # m: a run's reported depth is within this of its deepest samp
 
 
 def _refine_depth(ev: np.ndarray, dv: np.ndarray, skipped: list[tuple[int, int]], cum: np.ndarray, m: int,
-                  distance_at) -> tuple[np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
+                  distance_at: Callable[[int], float]) -> tuple[np.ndarray, np.ndarray]:
     """Add the skipped contact samples (upper-bound distances) and evaluate exactly those that
     could be deeper than their run's deepest exact value by more than DEPTH_TOL. One pass is
     enough: evaluating only lowers that deepest value, so the rest stay within tolerance."""
@@ -339,8 +341,13 @@ def _bisect(scene: Scene, timeline: Timeline, exact: ExactPair, a: Body, b: Body
         qm = {r: (qa[r] + qb[r]) / 2 for r in robots}
         pm = {r: scene.poses(r, qm[r]) for r in robots}
         # a body of a robot without a task stands still: its first pose (issue #20: KeyError, found by make fuzz)
-        pose = lambda body, k: (fixed[body.name] if body.name in fixed else pm[body.robot][body.name][k]  # noqa: E731
-                                if body.robot in pm else poses[body.name][0])
+        def pose(body: Body, k: int, pm: dict[str, dict[str, np.ndarray]] = pm) -> np.ndarray:
+            if body.name in fixed:
+                return fixed[body.name]  # type: ignore[return-value]  # set for a body of one pose
+            if body.robot is not None and body.robot in pm:
+                return pm[body.robot][body.name][k]
+            return poses[body.name][0]
+
         dm = np.array([exact.distance(pose(a, k), pose(b, k), float(move[k] / 2 + clearance)) for k in range(len(tm))])
         out_t.append(tm)
         out_d.append(dm)

@@ -227,7 +227,7 @@ def _timeline(data: PlotData) -> Any:
     colors = {"move": MOVE, "wait": WAIT, "sync": SYNC, "io": IO}
     for r, td in enumerate(data.tasks):
         y = len(data.tasks) - 1 - r
-        for t0, t1, kind, label in td.bars:
+        for t0, t1, kind, _label in td.bars:
             width = max(t1 - t0, 0.0)
             if width > 0.0:
                 ax.broken_barh([(t0, width)], (y - 0.35, 0.7), facecolors=colors[kind], edgecolors="white", linewidth=0.5)

@@ -254,7 +254,7 @@ def format_json(reports: Sequence[Report]) -> str:
     return json.dumps(to_json(reports), indent=2, ensure_ascii=False) + "\n"
 
 
-_TYPES = {"object": dict, "array": list, "string": str, "integer": int, "number": (int, float),
+_TYPES: dict[str, type | tuple[type, ...]] = {"object": dict, "array": list, "string": str, "integer": int, "number": (int, float),
           "null": type(None), "boolean": bool}
 
 

@@ -243,7 +243,7 @@ def _safe(parts: dict[Any, Callable[[], Any]], key: Any, problems: list[Diagnost
         return None
     try:
         return make(*key[1:]) if isinstance(key, tuple) else make()
-    except Exception as exc:  # noqa: BLE001 - a missing picture must not lose the report
+    except Exception as exc:
         what = key if isinstance(key, str) else f"{key[0]} {getattr(key[1], 'caption', key[1])}"
         problems.append(Diagnostic(PART_MISSING, Severity.WARNING, f"the report's {what} was not made ({exc.__class__.__name__}: {exc})", None))
         return None
@@ -262,6 +262,7 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
 
     def scene() -> Any:
         if "rs" not in cache:
+            assert result.plan is not None  # a report with pictures has a plan
             cache["rs"] = prepare(result.plan, robots=result.robots)
         return cache["rs"]
 
@@ -283,6 +284,7 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
 
     def plot(what: str) -> bytes:
         if "plots" not in cache:
+            assert result.plan is not None
             cache["plots"] = plot_data(result.plan)
         return figure_bytes(cache["plots"], what, "svg")
 

@@ -65,7 +65,7 @@ def _program_file(program: ir.Program) -> str:
     return program.span.path if program.span is not None else program.name
 
 
-def _finding_order(d: Diagnostic) -> tuple:
+def _finding_order(d: Diagnostic) -> tuple[Any, ...]:
     return (d.time_s if d.time_s is not None else -1.0, d.code.id, d.bodies, d.message)
 
 
@@ -173,7 +173,8 @@ def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], h
                           names, Amount(round(mm, 3), "mm"), tp.task.name if tp else None, hit.t_worst)
     depth = max(-hit.distance, 0.0) * 1000
     if hit.kind == "static":
-        message = f"'{a.name}' and '{b.name}' overlap although neither moves (penetration {depth:.1f} mm); move one of them in the cell so they do not overlap"
+        message = (f"'{a.name}' and '{b.name}' overlap although neither moves (penetration {depth:.1f} mm); "
+                   "move one of them in the cell so they do not overlap")
         return Diagnostic(codes.STATIC_CONTACT, Severity.WARNING, message, a.span or b.span or span, (), None, None,
                           names, Amount(round(depth, 3), "mm"), None)
     code = _collision_code(a, b)
@@ -290,7 +291,8 @@ def _limit_diagnostic(tp: planned.TaskPlan, hit: LimitHit, variant: int) -> Diag
     if hit.quantity == "position":
         excess = abs(value - limit)
         side = "upper" if value > limit else "lower"
-        message = f"joint {hit.joint} position {value:.1f} {unit} must stay within its {side} limit {limit:.1f} {unit} (exceeds it by {excess:.2f} {unit})"
+        message = (f"joint {hit.joint} position {value:.1f} {unit} must stay within its {side} limit "
+                   f"{limit:.1f} {unit} (exceeds it by {excess:.2f} {unit})")
         amount = Amount(round(excess, 4), unit)
     else:
         ratio = (abs(value) / abs(limit) - 1) * 100 if limit else float("inf")

@@ -11,7 +11,7 @@ import os
 import re
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -141,7 +141,8 @@ def _format(fmt: str, reports: list[Report]) -> str:
 @click.option("--shard", default=None, metavar="K/N",
               help="Check only shard K of N: a deterministic, size-balanced share of PROGRAMs (CI matrices).")
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
-@click.option("--dynamics", is_flag=True, help="Also report per-joint peak/RMS torque and peak power (text lines; a per-task `dynamics` block in --format json).")
+@click.option("--dynamics", is_flag=True, help="Also report per-joint peak/RMS torque and peak power "
+              "(text lines; a per-task `dynamics` block in --format json).")
 def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | None, clearance: str | None,
           jobs: int, images: str | None, project_root: str | None, shard: str | None, no_cache: bool,
           dynamics: bool = False) -> None:
@@ -188,6 +189,6 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
     ctx.exit(EXIT_FINDINGS if any(r.has_errors for r in reports) else EXIT_OK)
 
 
-def _check_args(call: tuple[tuple, dict]) -> CheckOutcome:
+def _check_args(call: tuple[tuple[Any, ...], dict[str, Any]]) -> CheckOutcome:
     args, options = call
     return check_one(*args, **options)

@@ -22,11 +22,15 @@ leaves the previous output untouched.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import click
 
 from rmot.compiler.vendors import targets as registered_targets
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+
+if TYPE_CHECKING:
+    from rmot.lang.diagnostics import Diagnostic
 
 __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
 
@@ -50,7 +54,7 @@ class CompileOutcome:
     """What a compile produced: files (relative path -> text), diagnostics, and the exit code."""
 
     files: dict[str, str]
-    diagnostics: tuple
+    diagnostics: tuple[Diagnostic, ...]
     exit_code: int
     refused: tuple[str, ...] = ()  # targets whose backend reported errors: not written
 
@@ -174,6 +178,6 @@ def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: s
     ctx.exit(outcome.exit_code)
 
 
-def _count(diagnostics: tuple) -> str:
+def _count(diagnostics: tuple[Diagnostic, ...]) -> str:
     errors = sum(1 for d in diagnostics if d.is_error)
     return f"{errors} error{'s' if errors != 1 else ''}"

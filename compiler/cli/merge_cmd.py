@@ -22,6 +22,7 @@ from __future__ import annotations
 import json
 import os
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from typing import Any
 
 import click
@@ -159,7 +160,7 @@ def _merge_json(docs: list[dict[str, Any]]) -> str:
     return json.dumps({**docs[0], "programs": programs}, indent=2, ensure_ascii=False) + "\n"
 
 
-_MERGERS = {"junit": _merge_junit, "sarif": _merge_sarif, "json": _merge_json}
+_MERGERS: dict[str, Callable[[list[Any]], str]] = {"junit": _merge_junit, "sarif": _merge_sarif, "json": _merge_json}
 
 
 def merge_documents(parsed: list[tuple[str, str, Any]]) -> tuple[str, str]:

@@ -71,17 +71,17 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
     instance = loaded[0].cell.robot(name)
     if instance.span is None:  # lower_cell gives every robot its declaration's span
         raise RuntimeError(f"internal: robot '{name}' has no source span to rewrite")
-    result = search(loaded, name, bounds, objective=objective, screen_n=samples)
-    click.echo(f"screened {result.screened} poses by IK ({result.screen_feasible} reach every target), "
-               f"planned and verified {result.verified_count} in full")
-    if result.best is None:
+    found = search(loaded, name, bounds, objective=objective, screen_n=samples)
+    click.echo(f"screened {found.screened} poses by IK ({found.screen_feasible} reach every target), "
+               f"planned and verified {found.verified_count} in full")
+    if found.best is None:
         click.echo(f"no pose of robot '{name}' in the region verifies:")
-        for line in result.failures:
+        for line in found.failures:
             click.echo(f"  {line}")
         sys.exit(EXIT_FINDINGS)
-    best = result.best
+    best = found.best
     click.echo(f"best ({objective}): {_line(best, objective)}")
-    for k, c in enumerate(result.runners_up, 2):
+    for k, c in enumerate(found.runners_up, 2):
         click.echo(f"  #{k}: {_line(c, objective)}")
     span = instance.span
     with open(span.path, encoding="utf-8") as f:

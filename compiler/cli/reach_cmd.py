@@ -93,7 +93,8 @@ def reach(cell: str | None, robot_name: str | None, output: str, tool: str | Non
 
         click.echo(render_all(diags), err=True)
     label = study.instance.name if study.instance else study.robot.name
-    what = "any orientation (sampled joint vectors: a cell without a sample may still be reachable)" if rot is None else f"orientation {orientation.strip()}"
+    what = ("any orientation (sampled joint vectors: a cell without a sample may still be reachable)"
+            if rot is None else f"orientation {orientation.strip()}")
     caption = [f"{label} ({study.robot.model_name}): TCP {'of ' + tool if tool else '= flange'}, {what}; "
                f"colour = manipulability / best on this map (0 = singular)",
                "reach only: joint limits and IK, not collisions; dashed circle = upper bound on reach from the link lengths"]

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import os
 import sys
-from typing import Any
+from typing import Any, NoReturn
 
 import click
 
@@ -112,7 +112,7 @@ class _InputError(Exception):
         self.diagnostic = diagnostic
 
 
-def _fail(*diagnostics: Any) -> None:
+def _fail(*diagnostics: Any) -> NoReturn:
     from rmot.lang.diagnostics import render_all
 
     click.echo(render_all(list(diagnostics)), err=True)

@@ -136,7 +136,8 @@ def show_cmd(name: str, as_json: bool) -> None:
             click.echo(f" {row['joint']:>5}  {row['type']:>4}  {row['sign']:>4}  {row['theta_offset_deg']:>11.3f}  "
                        f"{row['d_mm']:>9.3f}  {row['a_mm']:>9.3f}  {row['alpha_deg']:>10.3f}")
     click.echo(" joint        min        max   speed(/s)   accel(/s²)   mass(kg)  torque(N·m)")
-    masses, torques = dyn.get("link_mass_kg") or [None] * r.dof, dyn.get("torque_limit_nm") or [None] * r.dof
+    none: list[float | None] = [None] * r.dof
+    masses, torques = dyn.get("link_mass_kg") or none, dyn.get("torque_limit_nm") or none
     for i, ((lo, hi), sp, ac, m, t) in enumerate(zip(limits, speeds, accels, masses, torques), 1):
         extra = f"  {m:>9.2f}  {t:>11.1f}" if m is not None and t is not None else ""
         click.echo(f" {i:>5}  {lo:>9.2f}  {hi:>9.2f}  {sp:>10.1f}  {ac:>11.1f}{extra}")

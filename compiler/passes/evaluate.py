@@ -18,6 +18,8 @@ Choices (LANGUAGE.md is silent):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
@@ -50,7 +52,7 @@ def eval_expr(e: ast.Expr, scope: Scope, rep: Reporter) -> Value | None:
         rep.error(codes.PHYSICAL_RANGE, f"value must be at most {MAX_MAGNITUDE:g} in size in SI units (got {value.value:.3g}); "
                   "no cell, time or speed is that large", e.span)
         return None
-    return value  # type: ignore[no-any-return]
+    return value
 
 
 # Every quantity of a program, in SI units (m, s, rad, kg, ...), is at most this in size: a
@@ -126,8 +128,8 @@ def _binop(e: ast.BinOp, scope: Scope, rep: Reporter) -> Value | None:
             return None
         value = a.value + b.value if e.op == "+" else a.value - b.value
         unit = a.unit or b.unit
-        written = value / UNITS[unit][0] if unit in UNITS else value
-        return Quantity(value, a.dim, unit, written)
+        total = value / UNITS[unit][0] if unit in UNITS else value
+        return Quantity(value, a.dim, unit, total)
     if e.op == "/" and b.value == 0:
         rep.error(codes.OUT_OF_RANGE, "divisor must not be zero (got 0)", e.right.span)
         return None
@@ -300,7 +302,7 @@ def _quaternion(v: Value | None, span: Span, rep: Reporter) -> tuple[float, floa
     if not (isinstance(v, VectorV) and len(v.items) == 4 and all(isinstance(i, Quantity) and i.dim == DIMENSIONLESS for i in v.items)):
         rep.error(codes.WRONG_TYPE, f"pose field 'q' must be four numbers (w, x, y, z) (got {article(type_name(v))})", span)
         return None
-    w, x, y, z = (i.value for i in v.items)  # type: ignore[union-attr]
+    w, x, y, z = (i.value for i in v.items if isinstance(i, Quantity))  # all four are (checked above)
     n = math.hypot(w, x, y, z)  # no overflow for components near 1e200 (issue #20)
     if n < 1e-12 or not math.isfinite(n):
         rep.error(codes.OUT_OF_RANGE, "pose field 'q' must not be the zero quaternion (got (0, 0, 0, 0))", span)
@@ -345,7 +347,8 @@ def _joints(e: ast.Joints, scope: Scope, rep: Reporter) -> Value | None:
                 return None
             index[int(name[1:])] = a
         if sorted(index) != list(range(1, len(index) + 1)):
-            rep.error(codes.BAD_ARGUMENT, f"joints() must name j1 to j{len(index)} without gaps (got {', '.join(f'j{i}' for i in sorted(index))})", e.span)
+            named = ", ".join(f"j{i}" for i in sorted(index))
+            rep.error(codes.BAD_ARGUMENT, f"joints() must name j1 to j{len(index)} without gaps (got {named})", e.span)
             return None
         order = [index[i] for i in sorted(index)]
     values: list[Quantity] = []
@@ -369,7 +372,7 @@ def _joints(e: ast.Joints, scope: Scope, rep: Reporter) -> Value | None:
     return JointsV(tuple(values), e.span)
 
 
-_EVAL = {
+_EVAL: dict[type, Callable[[Any, Scope, Reporter], Value | None]] = {
     ast.Number: _number, ast.Name: _name, ast.BinOp: _binop, ast.Neg: _neg, ast.Call: _call,
     ast.Joints: _joints, ast.Vector: _vector, ast.String: _string, ast.Attr: _attr,
 }

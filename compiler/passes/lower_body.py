@@ -618,7 +618,8 @@ class TaskLowering:
         span = v.span or e.span
         notes = (("used by this move", e.span),) if v.span is not None and v.span != e.span else ()
         if len(v.values) != n:
-            self.rep.error(codes.JOINT_COUNT, f"joints() must have {n} value{'s' * (n != 1)} for robot '{self.robot}' (got {len(v.values)})", span, notes)
+            self.rep.error(codes.JOINT_COUNT, f"joints() must have {n} value{'s' * (n != 1)} for robot "
+                           f"'{self.robot}' (got {len(v.values)})", span, notes)
             return None
         values = []
         for i, (q, jt) in enumerate(zip(v.values, self.info.joint_types)):

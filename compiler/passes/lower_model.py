@@ -76,9 +76,9 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
     if n == 0 or n > MAX_JOINTS:
         rep.error(codes.MODEL_CHAIN_LENGTH, f"model '{name}' must have 1 to {MAX_JOINTS} joint lines (got {n})", decl.name.span)
         ok = False
-    flange_m = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+    flange_m: tuple[float, ...] = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)
     if flange is not None:
-        pose = expect_pose(eval_expr(flange.value, scope, rep), f"flange of model '{name}'", flange.value.span, rep)  # type: ignore[arg-type]
+        pose = expect_pose(eval_expr(flange.value, scope, rep), f"flange of model '{name}'", flange.value.span, rep)  # type: ignore[arg-type, union-attr]
         if pose is None:
             ok = False
         else:

@@ -61,7 +61,7 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
     where = f"program '{prog.name.name}'"
     if prog.robot is not None or not task_decls:
         for t in task_decls:
-            rep.error(codes.MISPLACED, f"a task must not appear in a program on one robot ({where} runs on '{prog.robot.name}')"  # type: ignore[union-attr]
+            rep.error(codes.MISPLACED, f"a task must not appear in a program on one robot ({where} runs on '{prog.robot.name}')"
                       if prog.robot else "a task must not appear here", t.span)
         robot_name = prog.robot
         if robot_name is None:
@@ -99,8 +99,8 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
         seen[t.robot.name] = t
         lowering = _task_lowering(robot, state, procs)
         modal = _settings(settings, scope, robot, rep)
-        body = lowering.run(t.body, scope.child(), modal, f"task '{t.robot.name}'")
-        tasks.append(ir.Task(t.robot.name, robot.name, body, span=t.span))
+        instrs = lowering.run(t.body, scope.child(), modal, f"task '{t.robot.name}'")
+        tasks.append(ir.Task(t.robot.name, robot.name, instrs, span=t.span))
     return tasks
 
 

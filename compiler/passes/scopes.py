@@ -86,9 +86,9 @@ def declare_value(stmt: ast.TargetDecl | ast.ConstDecl, scope: Scope, rep: Repor
     declare(scope, Entry(kind, stmt.name.name, value, stmt.name.span), rep)
 
 
-def _named(value: object, name: str) -> object:
+def _named(value: PoseV | JointsV, name: str) -> PoseV | JointsV:
     if hasattr(value, "name") and hasattr(value, "__dataclass_fields__"):
-        return replace(value, name=name)  # type: ignore[type-var]
+        return replace(value, name=name)
     return value
 
 

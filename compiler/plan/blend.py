@@ -25,6 +25,7 @@ from rmot.compiler.plan import codes
 from rmot.compiler.plan.segments import Segment
 from rmot.compiler.plan.targets import Finding
 from rmot.lang.diagnostics import Severity
+from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["ChainPath", "blend_chain"]
 
@@ -70,7 +71,7 @@ def _along(q: np.ndarray, lam: np.ndarray) -> np.ndarray:
     return np.stack([np.interp(x, d, q[:, j]) for j in range(q.shape[1])], axis=1)
 
 
-def _crossing(robot, tool: np.ndarray, qa: np.ndarray, qb: np.ndarray, corner: np.ndarray, r: float) -> np.ndarray:
+def _crossing(robot: RobotModel, tool: np.ndarray, qa: np.ndarray, qb: np.ndarray, corner: np.ndarray, r: float) -> np.ndarray:
     """Joints on the joint-space segment qa (outside the sphere) -> qb (inside) whose TCP lies
     on the sphere of radius r around corner (bisection; the segment is short). Single FK calls
     (pinocchio, ~2 us) with the TCP and its distance computed without 4x4 products: a batched
@@ -119,10 +120,12 @@ def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: igno
     return keep, q[1:-1], tcp[1:-1], rest
 
 
-def blend_chain(robot: object, segments: list[Segment]) -> ChainPath:
+def blend_chain(robot: RobotModel | None, segments: list[Segment]) -> ChainPath:
     """Join a chain of segments (each starting where the previous one ends) into one path."""
     qs, tcps, rates, uniform, factors, by_tcp, accels = [], [], [], [], [], [], []
-    ends, radii, findings = [], [], []
+    ends: list[int] = []
+    radii: list[float] = []
+    findings: list[tuple[int, Finding]] = []
     count = 0
     part = _Part(segments[0].q, segments[0].tcp)
     for i, seg in enumerate(segments):
@@ -219,7 +222,7 @@ def _parameter(q: np.ndarray, tcp: np.ndarray, in_blend: np.ndarray, by_tcp: np.
     return np.concatenate([[0.0], np.cumsum(step)])
 
 
-def _corner(robot, a: Segment, b: Segment, pa: _Part, pb: _Part, findings: list, i: int):  # type: ignore[no-untyped-def]
+def _corner(robot, a: Segment, b: Segment, pa: _Part, pb: _Part, findings: list[tuple[int, Finding]], i: int):  # type: ignore[no-untyped-def]
     """The blend at the corner a -> b, halving the radius if the TCP leaves the sphere."""
     tool = a.move.tool.tcp.matrix()
     r = min(a.move.motion.zone.radius, 0.5 * a.tcp_length, 0.5 * b.tcp_length)

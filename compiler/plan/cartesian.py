@@ -121,6 +121,7 @@ class CartesianPath:
             u = np.clip(((points - self.p0) @ d) / n2, 0, 1) if n2 > 0 else np.zeros(len(points))
             return np.linalg.norm(points - (self.p0 + u[:, None] * d), axis=1)
         rel = points - self.center
+        assert self.e1 is not None and self.e2 is not None  # an arc has its plane's axes
         normal = np.cross(self.e1, self.e2)
         h = rel @ normal
         rho = np.linalg.norm(rel - h[:, None] * normal, axis=1)

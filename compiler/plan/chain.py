@@ -31,6 +31,7 @@ from rmot.compiler.plan.segments import Segment
 from rmot.compiler.plan.timing import (HoldPiece, PathPiece, Piece, TimingError, joint_move_piece,
                                        path_piece, stretched)
 from rmot.compiler.plan.torque import TORQUE, TorqueLimits, exceeds
+from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["TimedChain", "time_chain"]
 
@@ -50,14 +51,14 @@ class TimedChain:
     stop_reason: str = ""  # why the chain could not be timed as a whole (with `stops`)
 
 
-def _limits(robot: object, segments: list[Segment]) -> tuple[np.ndarray, np.ndarray]:
+def _limits(robot: RobotModel, segments: list[Segment]) -> tuple[np.ndarray, np.ndarray]:
     """Joint velocity limits (full; joint_speed applies per point, see ChainPath.vscale) and
     joint acceleration limits (amax times the smallest joint_accel of the chain)."""
     fa = min(s.move.motion.joint_accel for s in segments)
-    return robot.velocity_limits.copy(), robot.accel_limits * fa  # type: ignore[attr-defined]
+    return robot.velocity_limits.copy(), robot.accel_limits * fa
 
 
-def time_chain(robot: object, segments: list[Segment]) -> TimedChain:
+def time_chain(robot: RobotModel, segments: list[Segment]) -> TimedChain:
     """Time segments (len >= 1) joined by their zones; segments[-1] ends at rest."""
     vmax, amax = _limits(robot, segments)
     duration = segments[0].move.motion.duration if len(segments) == 1 else None
@@ -119,12 +120,13 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
     dof = path.q.shape[1]
     ss = path.ss
     if ss[-1] < 1e-9:
-        piece = HoldPiece(path.q[-1].copy(), duration or 0.0)
+        hold = HoldPiece(path.q[-1].copy(), duration or 0.0)
         zeros = tuple(0.0 for _ in segments)
-        return TimedChain(piece, zeros, tuple(piece.duration for _ in segments), path.radii, path)
+        return TimedChain(hold, zeros, tuple(hold.duration for _ in segments), path.radii, path)
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
-    tcp_kw = {}
-    if any(s.tcp_rate > 0 for s in segments) and path.tcp_speed is not None:
+    tcp_kw: dict[str, np.ndarray] = {}
+    if any(s.tcp_rate > 0 for s in segments) and path.tcp_speed is not None \
+            and path.tcp_accel is not None:
         tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])
     vscale = path.vscale[keep]
     vlim = vmax.copy()
@@ -206,11 +208,12 @@ def _path_chain_strict(path: ChainPath, segments, vmax, amax) -> TimedChain:  # 
     dof = path.q.shape[1]
     ss = path.ss
     if ss[-1] < 1e-9:
-        piece = HoldPiece(path.q[-1].copy(), 0.0)
-        return TimedChain(piece, (0.0,), (0.0,), (0.0,), path)
+        hold = HoldPiece(path.q[-1].copy(), 0.0)
+        return TimedChain(hold, (0.0,), (0.0,), (0.0,), path)
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
-    tcp_kw = {}
-    if path.tcp_speed is not None and np.any(np.isfinite(path.tcp_speed)):
+    tcp_kw: dict[str, np.ndarray] = {}
+    if path.tcp_speed is not None and path.tcp_accel is not None \
+            and np.any(np.isfinite(path.tcp_speed)):
         tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])
     args = (path.q[keep], ss[keep], vmax * segments[0].speed_factor, amax, dof, None)
     piece = _torque_limited(path_piece(*args, **tcp_kw), args, tcp_kw)

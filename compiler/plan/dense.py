@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from rmot.compiler.plan.cartesian import CartesianPath
+from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["DensePath", "PathFailure", "follow_path", "newton_ik"]
 
@@ -50,16 +51,16 @@ class PathFailure:
     position: np.ndarray  # TCP (3,) m where it happens
 
 
-def newton_ik(robot: object, target: np.ndarray, seed: np.ndarray, iters: int = 20) -> np.ndarray | None:
+def newton_ik(robot: RobotModel, target: np.ndarray, seed: np.ndarray, iters: int = 20) -> np.ndarray | None:
     """Damped-least-squares Newton iterations from seed to the flange pose target (4, 4)."""
     q = seed.astype(float).copy()
     for _ in range(iters):
-        err = _pose_error(robot.fk(q), target)  # type: ignore[attr-defined]
+        err = _pose_error(robot.fk(q), target)
         if np.max(np.abs(err)) < 1e-11:
             return q
-        jac = robot.jacobian(q)  # type: ignore[attr-defined]
+        jac = robot.jacobian(q)
         q = q + jac.T @ np.linalg.solve(jac @ jac.T + 1e-10 * np.eye(6), err)
-    err = _pose_error(robot.fk(q), target)  # type: ignore[attr-defined]
+    err = _pose_error(robot.fk(q), target)
     return q if np.max(np.abs(err)) < 1e-8 else None
 
 
@@ -75,14 +76,14 @@ def _pose_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
 class _Solver:
     """Solves flange poses near a reference solution on one branch."""
 
-    def __init__(self, robot: object, tool_inv: np.ndarray, path: CartesianPath, q_start: np.ndarray):
+    def __init__(self, robot: RobotModel, tool_inv: np.ndarray, path: CartesianPath, q_start: np.ndarray):
         self.robot, self.tool_inv, self.path = robot, tool_inv, path
-        self.revolute = np.array([t == "R" for t in robot.joint_types])  # type: ignore[attr-defined]
+        self.revolute = np.array([t == "R" for t in robot.joint_types])
         self.column: int | None = None
         # The raw closed form (not wrapped into the limits) when the robot offers it: this
         # module unwraps by 2 pi itself and reports limit crossings as such.
-        self._batch = getattr(robot, "ik_closed_form", None) or robot.ik_batch  # type: ignore[attr-defined]
-        if robot.has_closed_form:  # type: ignore[attr-defined]
+        self._batch = getattr(robot, "ik_closed_form", None) or robot.ik_batch
+        if robot.has_closed_form:
             cands = self._batch(self._flange(np.array([0.0])))[0]
             dist = np.max(np.abs(self._unwrap(cands, q_start[None, :])[:, :] - q_start), axis=1)
             dist = np.where(np.isnan(dist), np.inf, dist)
@@ -143,7 +144,7 @@ class _Solver:
 
 
 def follow_path(
-    robot: object, path: CartesianPath, tool_inv: np.ndarray, q_start: np.ndarray, tol: float = 5e-5
+    robot: RobotModel, path: CartesianPath, tool_inv: np.ndarray, q_start: np.ndarray, tol: float = 5e-5
 ) -> DensePath | PathFailure:
     """Joints along `path` from q_start (dof,) on its branch; tool_inv = inv(tool.tcp) (4, 4)."""
     solver = _Solver(robot, tool_inv, path, q_start)
@@ -178,16 +179,17 @@ def _first_nan(q: np.ndarray) -> int | None:
 
 
 def _intervals_to_split(
-    robot: object, path: CartesianPath, tool_inv: np.ndarray, u: np.ndarray, q: np.ndarray, tol: float
+    robot: RobotModel, path: CartesianPath, tool_inv: np.ndarray, u: np.ndarray, q: np.ndarray, tol: float
 ) -> np.ndarray:
     """(M-1,) bool: intervals whose joint jump or midpoint path deviation is too large."""
     jump = np.max(np.abs(np.diff(q, axis=0)), axis=1)
     mid = 0.5 * (q[1:] + q[:-1])
-    tcp = (robot.fk_batch(mid) @ np.linalg.inv(tool_inv))[:, :3, 3]  # type: ignore[attr-defined]
+    tcp = (robot.fk_batch(mid) @ np.linalg.inv(tool_inv))[:, :3, 3]
     return (jump > _MAX_JUMP) | (path.distance(tcp) > tol)
 
 
-def _bisect(robot, solver, path, tool_inv, u, q, split):  # type: ignore[no-untyped-def]
+def _bisect(robot: RobotModel, solver: _Solver, path: CartesianPath, tool_inv: np.ndarray, u: np.ndarray,
+            q: np.ndarray, split: np.ndarray) -> tuple[np.ndarray, np.ndarray, PathFailure | None]:
     """Insert the midpoints of the split intervals; returns (u, q, failure or None)."""
     idx = np.flatnonzero(split)
     u_mid = 0.5 * (u[idx] + u[idx + 1])
@@ -205,12 +207,12 @@ def _fmt_mm(p: np.ndarray) -> str:
     return "(" + ", ".join(f"{v * 1e3:.1f}" for v in p) + ") mm in the robot base frame"
 
 
-def _unreachable(robot: object, path: CartesianPath, tool_inv: np.ndarray, u: float) -> PathFailure:
+def _unreachable(robot: RobotModel, path: CartesianPath, tool_inv: np.ndarray, u: float) -> PathFailure:
     pos = path.positions(np.array([u]))[0]
     flange = path.poses(np.array([u]))[0] @ tool_inv
     exists = True
-    if robot.has_closed_form:  # type: ignore[attr-defined]
-        batch = getattr(robot, "ik_closed_form", None) or robot.ik_batch  # type: ignore[attr-defined]
+    if robot.has_closed_form:
+        batch = getattr(robot, "ik_closed_form", None) or robot.ik_batch
         exists = bool(np.any(~np.isnan(batch(flange[None])[0, :, 0])))
     if exists:
         return PathFailure(
@@ -219,7 +221,7 @@ def _unreachable(robot: object, path: CartesianPath, tool_inv: np.ndarray, u: fl
     return PathFailure("unreachable", f"the path leaves the workspace at {_fmt_mm(pos)} ({u:.0%} along the path)", u, pos)
 
 
-def _singular(robot: object, path: CartesianPath, qa: np.ndarray, qb: np.ndarray, u: float) -> PathFailure:
+def _singular(robot: RobotModel, path: CartesianPath, qa: np.ndarray, qb: np.ndarray, u: float) -> PathFailure:
     pos = path.positions(np.array([u]))[0]
     names = _singularity_kind(robot, qa, qb)
     jump = np.degrees(np.abs(qb - qa))
@@ -232,7 +234,7 @@ def _singular(robot: object, path: CartesianPath, qa: np.ndarray, qb: np.ndarray
     )
 
 
-def _singularity_kind(robot: object, qa: np.ndarray, qb: np.ndarray) -> str:
+def _singularity_kind(robot: RobotModel, qa: np.ndarray, qb: np.ndarray) -> str:
     """'shoulder', 'wrist' or 'elbow' from which joints jump (6R arms), else 'kinematic'.
 
     At a shoulder singularity (wrist centre on the J1 axis) joint 1 turns over, dragging the
@@ -248,14 +250,14 @@ def _singularity_kind(robot: object, qa: np.ndarray, qb: np.ndarray) -> str:
     return "elbow"
 
 
-def _limit_failure(robot: object, path: CartesianPath, u: np.ndarray, q: np.ndarray) -> PathFailure | None:
-    lim = robot.joint_limits  # type: ignore[attr-defined]
+def _limit_failure(robot: RobotModel, path: CartesianPath, u: np.ndarray, q: np.ndarray) -> PathFailure | None:
+    lim = robot.joint_limits
     over = np.maximum(q - lim[:, 1], lim[:, 0] - q)
     if np.all(over <= 1e-9):
         return None
     row, j = _first_over(over)
     pos = path.positions(np.array([u[row]]))[0]
-    rev = robot.joint_types[j] == "R"  # type: ignore[attr-defined]
+    rev = robot.joint_types[j] == "R"
     conv, unit = (np.degrees, "deg") if rev else ((lambda x: x * 1e3), "mm")
     bound = lim[j, 1] if q[row, j] > lim[j, 1] else lim[j, 0]
     return PathFailure(

@@ -11,11 +11,12 @@ from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
 from rmot.compiler.planned import Plan, TaskPlan, Variant
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["plan_program"]
 
 
-def _load(key: str) -> object:
+def _load(key: str) -> RobotModel:
     from rmot.compiler.robots import load_robot
 
     return load_robot(key)
@@ -31,7 +32,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
         raise ValueError(f"step must be positive (got {step})")
     diagnostics: list[Diagnostic] = []
     drafts: dict[str, TaskDraft] = {}
-    robots: dict[str, object] = {}
+    robots: dict[str, RobotModel] = {}
     starts: dict[str, np.ndarray] = {}
     for task in program.tasks:
         diagnostics.extend(Diagnostic(f.code, f.severity, f.message, move.span, time_s=0.0, task=task.name)
@@ -96,7 +97,7 @@ def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
     return (span.path, span.start.offset) if span is not None else ("", -1)
 
 
-def _build_task(robot: object, task: ir.Task, q0: np.ndarray, program: ir.Program) -> TaskDraft:
+def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program) -> TaskDraft:
     """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
     robot has no torque ratings), the payload as the verification takes it."""
     from rmot.compiler.plan.torque import TORQUE, task_payload, torque_limits
@@ -109,7 +110,7 @@ def _build_task(robot: object, task: ir.Task, q0: np.ndarray, program: ir.Progra
         TORQUE.reset(token)
 
 
-def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]) -> object | None:
+def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]) -> RobotModel | None:
     try:
         instance = program.cell.robot(task.robot)
     except KeyError:
@@ -124,8 +125,8 @@ def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]
         return None
 
 
-def _task_plan(task: ir.Task, draft: TaskDraft, robot: object, q0: np.ndarray, step: float) -> TaskPlan:
-    dof = robot.dof  # type: ignore[attr-defined]
+def _task_plan(task: ir.Task, draft: TaskDraft, robot: RobotModel, q0: np.ndarray, step: float) -> TaskPlan:
+    dof = robot.dof
     trajectory = sample(draft.pieces, step, 0.0, dof, q0)
     variants = []
     for v in draft.variants:

@@ -21,6 +21,7 @@ from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path,
 from rmot.compiler.plan.dense import DensePath, PathFailure, follow_path
 from rmot.compiler.plan.targets import Finding, off_turns, solve_target
 from rmot.lang.diagnostics import Severity
+from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["Segment", "build_segment"]
 
@@ -58,12 +59,12 @@ class Segment:
         return float(np.max(np.abs(self.q[-1] - self.q[0]))) if len(self.q) > 1 else 0.0
 
 
-def _tcp_positions(robot: object, q: np.ndarray, tool: np.ndarray) -> np.ndarray:
-    return (robot.fk_batch(q) @ tool)[:, :3, 3]  # type: ignore[attr-defined]
+def _tcp_positions(robot: RobotModel, q: np.ndarray, tool: np.ndarray) -> np.ndarray:
+    return (robot.fk_batch(q) @ tool)[:, :3, 3]
 
 
 def build_segment(
-    robot: object, move: ir.Move, q_now: np.ndarray
+    robot: RobotModel, move: ir.Move, q_now: np.ndarray
 ) -> tuple[Segment | None, list[Finding]]:
     """The move's Segment from the current joints q_now (dof,), or None and the errors."""
     q_target, findings = solve_target(robot, move, q_now)
@@ -86,7 +87,8 @@ def build_segment(
     return seg, findings + more
 
 
-def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-untyped-def]
+def _cartesian_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray, q_target: np.ndarray,
+                       tool: np.ndarray) -> tuple[Segment | None, list[Finding]]:
     start = robot.fk(q_now) @ tool
     if isinstance(move.target, ir.JointTarget):
         end = robot.fk(q_target) @ tool
@@ -107,6 +109,7 @@ def _cartesian_segment(robot, move, q_now, q_target, tool):  # type: ignore[no-u
         return None, [Finding(codes.BRANCH_CHANGE, Severity.ERROR, msg)]
     via_index = None
     if path.kind == "arc":
+        assert move.via is not None  # a circular move has its via point
         via_index = int(np.argmin(np.abs(dense.u - path.u_at_via(np.asarray(move.via.pose.position)))))
     rate = 1.0 / move.motion.tcp_speed
     seg = Segment(move, dense.q, dense.tcp, rate, via_index, path)
@@ -135,7 +138,7 @@ _TCP_PATHS: dict[ir.MotionKind, Callable[[np.ndarray, ir.CartesianTarget | None,
 require_handlers("planner (compiler/plan/segments.py _TCP_PATHS)", _TCP_PATHS)
 
 
-def _slowdown(robot: object, seg: Segment, dense: DensePath) -> list[Finding]:
+def _slowdown(robot: RobotModel, seg: Segment, dense: DensePath) -> list[Finding]:
     """A warning where joint speed limits force the TCP below its programmed speed."""
     dl = np.linalg.norm(np.diff(dense.tcp, axis=0), axis=1)
     ok = dl > 1e-7
@@ -143,17 +146,17 @@ def _slowdown(robot: object, seg: Segment, dense: DensePath) -> list[Finding]:
         return []
     speed = seg.move.motion.tcp_speed
     qd = np.abs(np.diff(dense.q, axis=0)[ok]) / dl[ok, None] * speed  # joint speed at programmed TCP speed
-    ratio = qd / robot.velocity_limits  # type: ignore[attr-defined]
+    ratio = qd / robot.velocity_limits
     worst = float(np.max(ratio))
     if worst <= _SLOWDOWN_WARN:
         return []
     i, j = np.unravel_index(int(np.argmax(ratio)), ratio.shape)
     k = int(np.flatnonzero(ok)[i])
     where = "(" + ", ".join(f"{v * 1e3:.1f}" for v in dense.tcp[k]) + ") mm in the robot base frame"
-    cond = float(robot.condition(dense.q[k]))  # type: ignore[attr-defined]
-    manip = float(robot.manipulability(dense.q[k]))  # type: ignore[attr-defined]
+    cond = float(robot.condition(dense.q[k]))
+    manip = float(robot.manipulability(dense.q[k]))
     msg = (f"TCP speed must drop to {speed / worst * 1e3:.0f} mm/s (programmed {speed * 1e3:.0f} mm/s) "
            f"near {where}: joint {j + 1} would need {np.degrees(qd[i, j]):.0f} deg/s "
-           f"(max {np.degrees(robot.velocity_limits[j]):.0f} deg/s); "  # type: ignore[attr-defined]
+           f"(max {np.degrees(robot.velocity_limits[j]):.0f} deg/s); "
            f"Jacobian condition number {cond:.0f}, manipulability {manip:.2g}")
     return [Finding(codes.SLOWDOWN_SINGULAR, Severity.WARNING, msg)]

@@ -97,6 +97,7 @@ def hold_variants(draft: TaskDraft) -> None:
             if hold <= 1e-12:
                 continue
             q = v.pieces[pos - 1].end_q() if pos > 0 else v.q0
+            assert q is not None
             v.pieces.insert(pos, HoldPiece(q, hold))
             v.syncs[i + 1:] = [(p + 1, r) for p, r in v.syncs[i + 1:]]
             draft.records[rec] = replace(draft.records[rec], t_end=draft.records[rec].t_end + hold)

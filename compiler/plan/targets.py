@@ -37,6 +37,7 @@ from rmot.compiler import ir
 from rmot.compiler.ir_tree import children
 from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
+from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = [
     "Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "off_turns",
@@ -58,9 +59,9 @@ def flange_target(move: ir.Move, target: ir.CartesianTarget | None = None) -> np
     return t.pose.matrix() @ move.tool.tcp.inverse().matrix()
 
 
-def home_joints(robot: object) -> np.ndarray:
+def home_joints(robot: RobotModel) -> np.ndarray:
     """All zeros clamped into the joint limits (dof,)."""
-    lim = robot.joint_limits  # type: ignore[attr-defined]
+    lim = robot.joint_limits
     return np.clip(np.zeros(lim.shape[0]), lim[:, 0], lim[:, 1])
 
 
@@ -88,17 +89,17 @@ def _change_text(changes: list[tuple[str, str, str]]) -> str:
     return " and ".join(f"the {f} from {old} to {new}" for f, old, new in changes)
 
 
-def check_joint_values(robot: object, values: tuple[float, ...]) -> tuple[np.ndarray | None, list[Finding]]:
+def check_joint_values(robot: RobotModel, values: tuple[float, ...]) -> tuple[np.ndarray | None, list[Finding]]:
     """A joint target as an array, or a finding for a wrong count or a limit excess."""
-    dof = robot.dof  # type: ignore[attr-defined]
+    dof = robot.dof
     if len(values) != dof:
         msg = f"a joint target must have {dof} values for this robot (got {len(values)})"
         return None, [Finding(codes.DOF_MISMATCH, Severity.ERROR, msg)]
     q = np.asarray(values, dtype=float)
-    lim = robot.joint_limits  # type: ignore[attr-defined]
+    lim = robot.joint_limits
     for j in range(dof):
         if not lim[j, 0] - 1e-9 <= q[j] <= lim[j, 1] + 1e-9:
-            rev = robot.joint_types[j] == "R"  # type: ignore[attr-defined]
+            rev = robot.joint_types[j] == "R"
             f, unit = (np.degrees, "deg") if rev else ((lambda x: x * 1e3), "mm")
             msg = (f"joint {j + 1} must be within [{f(lim[j, 0]):.1f}, {f(lim[j, 1]):.1f}] {unit} "
                    f"(got {f(q[j]):.1f} {unit})")
@@ -106,7 +107,7 @@ def check_joint_values(robot: object, values: tuple[float, ...]) -> tuple[np.nda
     return q, []
 
 
-def _no_solution(robot: object, flange: np.ndarray, seed: np.ndarray, result: object) -> Finding:
+def _no_solution(robot: RobotModel, flange: np.ndarray, seed: np.ndarray, result: object) -> Finding:
     """The error for a pose with no solution at all (unreachable or out of limits)."""
     status = getattr(result, "status", None)
     name = getattr(status, "name", "")
@@ -119,7 +120,7 @@ def _no_solution(robot: object, flange: np.ndarray, seed: np.ndarray, result: ob
 
 
 def solve_target(
-    robot: object, move: ir.Move, q_now: np.ndarray
+    robot: RobotModel, move: ir.Move, q_now: np.ndarray
 ) -> tuple[np.ndarray | None, list[Finding]]:
     """The joints (dof,) at the move's target, chosen by the branch rules above."""
     if isinstance(move.target, ir.JointTarget):
@@ -128,22 +129,22 @@ def solve_target(
     if bad:
         return None, bad
     flange = flange_target(move)
-    current = robot.branch(q_now)  # type: ignore[attr-defined]
+    current = robot.branch(q_now)
     if move.kind is ir.MotionKind.JOINT:
         return _solve_joint_move(robot, move, flange, q_now, current)
     return _solve_cartesian(robot, move, flange, q_now, current)
 
 
-def _ik(robot: object, flange: np.ndarray, seed: np.ndarray, config: ir.Config | None):  # type: ignore[no-untyped-def]
+def _ik(robot: RobotModel, flange: np.ndarray, seed: np.ndarray, config: ir.Config | None):  # type: ignore[no-untyped-def]
     """robot.ik, plus (for robots without a closed form) a local Newton solve from the seed when
     the library's global search finds nothing: the seed is usually close to the target."""
-    res = robot.ik(flange, seed=seed, config=config)  # type: ignore[attr-defined]
-    if res.solutions or robot.has_closed_form:  # type: ignore[attr-defined]
+    res = robot.ik(flange, seed=seed, config=config)
+    if res.solutions or robot.has_closed_form:
         return res
     from rmot.compiler.plan.dense import newton_ik
 
     q = newton_ik(robot, flange, seed, iters=50)
-    lim = robot.joint_limits  # type: ignore[attr-defined]
+    lim = robot.joint_limits
     if q is None or np.any(q < lim[:, 0] - 1e-9) or np.any(q > lim[:, 1] + 1e-9):
         return res
     return _Local((q,))
@@ -160,7 +161,8 @@ def _any_config(c: ir.Config) -> bool:
     return any(v is not None for v in (c.shoulder, c.elbow, c.wrist))
 
 
-def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
+def _solve_joint_move(robot: RobotModel, move: ir.Move, flange: np.ndarray, q_now: np.ndarray,
+                      current: ir.Config) -> tuple[np.ndarray | None, list[Finding]]:
     wanted = move.config if _any_config(move.config) else None
     res = _ik(robot, flange, q_now, wanted)
     on_turns = _on_turns(robot, res.solutions, move.config.turns, q_now)
@@ -184,7 +186,8 @@ def _solve_joint_move(robot, move, flange, q_now, current):  # type: ignore[no-u
     return None, [_no_solution(robot, flange, q_now, res)]
 
 
-def _solve_cartesian(robot, move, flange, q_now, current):  # type: ignore[no-untyped-def]
+def _solve_cartesian(robot: RobotModel, move: ir.Move, flange: np.ndarray, q_now: np.ndarray,
+                     current: ir.Config) -> tuple[np.ndarray | None, list[Finding]]:
     kind = move.kind.name.lower()
     explicit = branch_changes(current, move.config)
     if explicit:
@@ -205,7 +208,7 @@ def _solve_cartesian(robot, move, flange, q_now, current):  # type: ignore[no-un
     return None, [_no_solution(robot, flange, q_now, res)]
 
 
-def initial_joints(robot: object, body: tuple[ir.Instr, ...]) -> np.ndarray:
+def initial_joints(robot: RobotModel, body: tuple[ir.Instr, ...]) -> np.ndarray:
     """Where the task starts (see module doc); home if the first target cannot be solved."""
     home = home_joints(robot)
     first = next((i for i in _main_line(body) if isinstance(i, ir.Move)), None)

@@ -45,6 +45,7 @@ from rmot.compiler.plan.targets import Finding
 from rmot.compiler.plan.timing import HoldPiece, Piece
 from rmot.compiler.planned import InstructionRecord, path_words
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["TaskDraft", "VariantDraft", "build_task", "proc_records"]
 
@@ -83,7 +84,7 @@ class TaskDraft:
 class _Builder:
     """Walks one instruction list; `variant` > 0 for an if-arm planned off the main timeline."""
 
-    def __init__(self, robot: object, task: str, q0: np.ndarray, t0: float, variant: int,
+    def __init__(self, robot: RobotModel, task: str, q0: np.ndarray, t0: float, variant: int,
                  draft: TaskDraft, counter: list[int], lone: bool = False) -> None:
         self.robot, self.task, self.variant, self.lone = robot, task, variant, lone
         self.spawn = True  # False while walking a variant's continuation: later ifs belong to main
@@ -368,10 +369,10 @@ class _Builder:
 
     def _move_record(self, seg: Segment, timed: TimedChain, i: int, t0: float) -> None:
         robot, move = self.robot, seg.move
-        flange = robot.fk(seg.q_end)  # type: ignore[attr-defined]
+        flange = robot.fk(seg.q_end)
         tcp = move.target.pose if isinstance(move.target, ir.CartesianTarget) else \
             ir.Pose.from_matrix(flange @ move.tool.tcp.matrix())
-        branch = robot.branch(seg.q_end)  # type: ignore[attr-defined]
+        branch = robot.branch(seg.q_end)
         self._record(
             move, t0 + timed.starts[i], t0 + timed.ends[i], q_target=seg.q_end.copy(),
             branch=branch if branch.shoulder is not None else None, tcp_pose=tcp,
@@ -379,7 +380,7 @@ class _Builder:
             q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None)
 
 
-def build_task(robot: object, task: ir.Task, q0: np.ndarray, *, lone: bool = False) -> TaskDraft:
+def build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, *, lone: bool = False) -> TaskDraft:
     """The timeline of one task from joints q0 (dof,); `lone`: the program's only task (syncs are no-ops)."""
     draft = TaskDraft()
     builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0], lone)

@@ -262,6 +262,7 @@ def path_piece(
     f_int = np.ones(n_int) if vscale is None else np.minimum(vscale[:-1], vscale[1:])
     tcp_int = None
     if spline is not None:
+        assert tcp_speed is not None  # a TCP spline comes with its speed limits
         acc_int = np.minimum(tcp_accel[:-1], tcp_accel[1:]) if tcp_accel is not None else np.full(n_int, np.inf)
         tcp_int = (np.minimum(tcp_speed[:-1], tcp_speed[1:]), acc_int)
     grid, _ = _grid(ss)
@@ -312,7 +313,7 @@ class _PathSpline:
         if self._constant is not None:
             value = self._constant if order == 0 else np.zeros_like(self._constant)
             return np.broadcast_to(value, (*np.shape(s), len(value))).copy()
-        return self._orders[order](s)  # type: ignore[no-any-return]
+        return self._orders[order](s)
 
 
 def _grid(ss: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -351,6 +352,7 @@ class _Limits:
         c = [np.tile(self.alim, (len(s), 1))]
         vel = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
         if self.spline is not None:
+            assert self.tcp_int is not None
             sp = np.minimum(self.tcp_int[0][left], self.tcp_int[0][right])
             ac = np.minimum(self.tcp_int[1][left], self.tcp_int[1][right])
             l1, l2 = _arc_rates(self.spline, s)
@@ -384,6 +386,7 @@ class _Limits:
             m2.append(self.path(s, 2))  # type: ignore[operator]
             v = np.max(np.abs(d1) / (self.vlim * f[:, None]), axis=1)
             if self.spline is not None:
+                assert self.tcp_int is not None
                 v = np.maximum(v, _arc_rates(self.spline, s)[0] / self.tcp_int[0][interval])
             vel.append(v)
         if self.torque is None:
@@ -446,16 +449,16 @@ class _Arrays:
         pts = []
         for i, new in enumerate(new_pts):
             pts.append(_merged(old_pts[i], new, place, axis=0))
-            old_pts[i] = None  # type: ignore[call-overload]
+            old_pts[i] = None
         keep = np.ones(len(self.h), bool)
         keep[cells] = False
         cell_lo = np.concatenate([self.grid[:-1][keep], sub_lo])
         cplace = _places(np.argsort(cell_lo, kind="stable"), int(np.count_nonzero(keep)))
         interval_all = _merged(self.interval, sub_int, cplace, axis=0, keep=keep)
         m1 = _merged(self.m1, new_cells[0], cplace, axis=1, keep=keep)
-        self.m1 = None  # type: ignore[assignment]
+        self.m1 = None
         m2 = _merged(self.m2, new_cells[1], cplace, axis=1, keep=keep)
-        self.m2 = None  # type: ignore[assignment]
+        self.m2 = None
         v_in = _merged(self.v_in, new_cells[2], cplace, axis=1, keep=keep)
         self.v_in = None  # type: ignore[assignment]
         tau = tuple(_merged(old, new, cplace, axis=1, keep=keep)

@@ -24,6 +24,8 @@ tightened and the passes re-run: a repair slows that spot, never the whole path.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from rmot.compiler.jit import Kernel
@@ -222,7 +224,8 @@ def solve(ss: np.ndarray, xmax: np.ndarray,
     return out
 
 
-def check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
+def check(x: np.ndarray, h: np.ndarray, d1: np.ndarray, d2: np.ndarray, m1: np.ndarray, m2: np.ndarray,
+          vel_in: np.ndarray, thetas: tuple[float, ...], c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per cell: the largest joint acceleration ratio (at the cell's end and at the fractions
     `thetas` inside it, the cell's constant path acceleration) and the largest speed ratio
     inside it. m1, m2 (T, K-1, n) the path's derivatives inside the cells, vel_in (T, K-1),

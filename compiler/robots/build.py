@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -119,7 +120,7 @@ def _adjacent(solids: tuple[LinkSolid, ...], extra: tuple[tuple[str, str], ...])
     names = {s.name: i for i, s in enumerate(solids)}
     pairs = {(i, i + 1) for i in range(len(solids) - 1)}
     pairs |= {tuple(sorted((names[a], names[b]))) for a, b in extra if a in names and b in names}  # type: ignore[misc]
-    return tuple(sorted(pairs))  # type: ignore[arg-type]
+    return tuple(sorted(pairs))
 
 
 def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # type: ignore[no-untyped-def]
@@ -127,7 +128,7 @@ def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # typ
     The numba kernels load on the first IK call, not when the robot is built: `robots list`,
     `show`, `fk` and the front end never pay for numba."""
     turned = not np.allclose(flange_inv, np.eye(4))
-    kernel: list = []  # [fastik.opw_solve, its parameter arrays], filled on the first call
+    kernel: list[Any] = []  # [fastik.opw_solve, its parameter arrays], filled on the first call
 
     def closed_form(poses: np.ndarray) -> np.ndarray:
         if not kernel:

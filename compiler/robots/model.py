@@ -73,15 +73,15 @@ def robot_from_model(spec: ModelSpec) -> Robot:
         adjacent_pairs=_adjacent(model, solids, limits), source="model block in the cell",
         dh_rows=dh_table(spec).rows, dh_modified=spec.modified,
     )
-    probe = Robot(**common)  # type: ignore[arg-type]
+    probe = Robot(**common)
     opw = opw_solver_for(probe) if len(spec.joints) == 6 else None
     if opw is not None:
         closed_form, branch_fn, rows = opw
-        robot = Robot(**common, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)  # type: ignore[arg-type]
+        robot = Robot(**common, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
     else:
         chain = probe._chain
-        branch_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
-        robot = Robot(**common, branch_fn=branch_fn)  # type: ignore[arg-type]
+        wrist_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
+        robot = Robot(**common, branch_fn=wrist_fn)
     robot.reach = _reach(robot)
     robot.rated_payload_kg = spec.payload_kg
     if all(j.mass is not None for j in spec.joints):

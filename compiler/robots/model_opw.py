@@ -23,11 +23,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
+
+if TYPE_CHECKING:
+    from rmot.compiler.robots.robot import Robot
+
+_Opw = tuple[OpwParams, OpwJointMap, np.ndarray, np.ndarray]  # params, joint map, base, flange
 
 __all__ = ["derive_opw", "opw_solver_for"]
 
@@ -93,7 +99,8 @@ def _names_agree(robot, found, geometric_branch) -> bool:  # type: ignore[no-unt
     return all(branch(q) == geometric_branch(q) for q in qs)
 
 
-def _candidate(robot, pts, dirs, flange0, centre, z_sign, y_sign, u_sign):  # type: ignore[no-untyped-def]
+def _candidate(robot: Robot, pts: np.ndarray, dirs: np.ndarray, flange0: np.ndarray, centre: np.ndarray,
+               z_sign: float, y_sign: float, u_sign: float) -> _Opw | None:
     z = z_sign * dirs[0]
     y = y_sign * dirs[1]
     x = np.cross(y, z)
@@ -170,7 +177,8 @@ def _verified(robot, params: OpwParams, jmap: OpwJointMap, b_mat: np.ndarray, f_
     return True
 
 
-def opw_solver_for(robot):  # type: ignore[no-untyped-def]
+def opw_solver_for(robot: Robot) -> tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], ir.Config],
+                                          tuple[ir.Config, ...]] | None:
     """(closed_form, branch_fn, batch rows) for a verified OPW chain, else None."""
     from rmot.compiler.robots.branches import opw_branch_fn
     from rmot.compiler.robots.build import _row_branches

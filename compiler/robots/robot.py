@@ -8,12 +8,16 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pinocchio as pin
 
 from rmot.compiler import ir
 from rmot.compiler.robots.chain import Chain, chain_of
+
+if TYPE_CHECKING:
+    from rmot.compiler.robots.ik import IkResult
 
 __all__ = ["LinkSolid", "Robot"]
 
@@ -29,7 +33,7 @@ class LinkSolid:
     placement: ir.Pose
 
 
-class NamedModel(pin.Model):
+class NamedModel(pin.Model):  # type: ignore[misc]  # pinocchio has no type information
     """The pinocchio Model that prints as the vendor's model name.
 
     The API calls both the vendor model string and the pinocchio Model `model`: this is the
@@ -69,7 +73,7 @@ class Robot:
         coupling: np.ndarray | None = None, closed_form: Callable[[np.ndarray], np.ndarray] | None = None,
         branch_fn: Callable[[np.ndarray], ir.Config] | None = None,
         workspace_distance: Callable[[np.ndarray], float] | None = None,
-        has_inertia: bool = False, source: str = "", dh_rows: tuple = (), dh_modified: bool = False,
+        has_inertia: bool = False, source: str = "", dh_rows: tuple[Any, ...] = (), dh_modified: bool = False,
         batch_branches: tuple[ir.Config, ...] | None = None, rated_payload_kg: float | None = None,
         sources: tuple[tuple[str, str], ...] = (), conventions: tuple[tuple[str, str], ...] = (),
     ) -> None:
@@ -98,7 +102,7 @@ class Robot:
         self._branch_fn = branch_fn
         self._workspace_distance = workspace_distance
         self._chain: Chain = chain_of(model)
-        self._dls_args: tuple | None = None  # filled on first numeric IK
+        self._dls_args: tuple[Any, ...] | None = None  # filled on first numeric IK
         self._restarts: np.ndarray | None = None  # numeric IK restart seeds, drawn once
         self._solid_joint = np.array([s.joint_id for s in solids], dtype=int)
         self._solid_place = np.array([s.placement.matrix() for s in solids]).reshape(-1, 4, 4)
@@ -176,7 +180,8 @@ class Robot:
         return all_frames[:, self._solid_joint] @ self._solid_place
 
     # ----------------------------------------------------------------- IK
-    def ik(self, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Config | None = None):  # type: ignore[no-untyped-def]
+    def ik(self, pose: np.ndarray, seed: np.ndarray | None = None,
+           config: ir.Config | None = None) -> IkResult:
         """Every solution of the flange pose within limits, nearest to seed first -> IkResult."""
         from rmot.compiler.robots.ik import solve
 

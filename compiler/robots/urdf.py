@@ -38,7 +38,8 @@ def robot_from_urdf(path: str, base: str | None = None, tip: str | None = None) 
         model = pin.buildModelFromUrdf(path)
         geoms = pin.buildGeomFromUrdf(model, path, pin.GeometryType.COLLISION, package_dirs=_package_dirs(path))
     except Exception as exc:  # pinocchio raises bare RuntimeError/ValueError for any defect
-        raise RobotError(f"cannot load URDF '{path}': {str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__}", codes.BAD_URDF) from None
+        why = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise RobotError(f"cannot load URDF '{path}': {why}", codes.BAD_URDF) from None
     flange_name = None
     if base is not None or tip is not None:
         from rmot.compiler.robots.urdf_chain import reduce_to_chain

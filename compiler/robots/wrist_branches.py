@@ -94,7 +94,8 @@ def _branch_fn(model: pin.Model, data: pin.Data, axes: np.ndarray) -> Callable[[
     pts, dirs = _axis_lines(model, data, axes, np.zeros(6))
     p1, z1 = pts[0], dirs[0]
     centre0 = _closest_point(pts[3:], dirs[3:])[0]  # type: ignore[index]
-    flat = lambda v: v - (v @ z1) * z1  # noqa: E731  (component ⊥ the J1 axis)
+    def flat(v: np.ndarray) -> np.ndarray:  # the component ⊥ the J1 axis
+        return v - (v @ z1) * z1
     # J2 axis point nearest the J1 axis: its offset from J1 is the shoulder offset a1.
     shoulder_pt = _nearest_on_line(pts[1], dirs[1], p1, z1)
     f0 = np.cross(dirs[1], z1)

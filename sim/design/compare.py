@@ -9,7 +9,6 @@ its own placed pose) and goes through the same planner and verifier as `rmot che
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 from rmot.compiler import ir
 from rmot.lang.diagnostics import Diagnostic

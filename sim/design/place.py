@@ -128,9 +128,13 @@ def world_targets(program: ir.Program, slot: str) -> Targets:
             for t in (m.target,) + ((m.via,) if m.via is not None else ()):
                 flange = t.pose * tcp_inv
                 if m.frame.name is None or m.frame.name == slot:
-                    rel.append(flange.matrix()), cfg_r.append(m.config), span_r.append(m.span)
+                    rel.append(flange.matrix())
+                    cfg_r.append(m.config)
+                    span_r.append(m.span)
                 else:
-                    world.append((base * flange).matrix()), cfg_w.append(m.config), span_w.append(m.span)
+                    world.append((base * flange).matrix())
+                    cfg_w.append(m.config)
+                    span_w.append(m.span)
     return Targets(np.array(world).reshape(-1, 4, 4), np.array(rel).reshape(-1, 4, 4),
                    tuple(cfg_w + cfg_r), tuple(span_w + span_r))
 

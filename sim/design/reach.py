@@ -203,7 +203,8 @@ def sampled_map(robot: Any, points: np.ndarray, step: float, *, base: np.ndarray
     ref = points[0] if n else np.zeros(3)
     keys = np.round((points - ref) / step).astype(np.int64)
     shift = int(np.abs(keys).max()) + 2 if n else 2
-    code = lambda k: ((k[:, 0] + shift) * (2 * shift + 1) + (k[:, 1] + shift)) * (2 * shift + 1) + (k[:, 2] + shift)  # noqa: E731
+    def code(k: np.ndarray) -> np.ndarray:
+        return ((k[:, 0] + shift) * (2 * shift + 1) + (k[:, 1] + shift)) * (2 * shift + 1) + (k[:, 2] + shift)
     lattice = code(keys)
     order = np.argsort(lattice)
     sorted_codes = lattice[order]

@@ -94,7 +94,7 @@ def _draw_panel(fig: Figure, x0: float, y0: float, panel: Panel, fixtures: list[
     w = panel.step * scale
     for p, c in zip(m.points[m.reached], colors):
         cx, cy = px(p[iu], p[iv])
-        fig.cell(cx - w / 2, cy - w / 2, w, w, tuple(int(v) for v in c))
+        fig.cell(cx - w / 2, cy - w / 2, w, w, (int(c[0]), int(c[1]), int(c[2])))
     ring = np.linspace(0, 2 * math.pi, 97)
     for a, b in zip(ring[:-1:2], ring[1::2]):  # dashed: every other arc piece
         p0 = px(centre[iu] + m.bound * math.cos(a), centre[iv] + m.bound * math.sin(a))
@@ -123,7 +123,7 @@ def panels_figure(panels: list[Panel], fixtures: list[FixtureMesh], caption: lis
     steps = 64
     colors = colormap(np.linspace(1, 0, steps))
     for i, c in enumerate(colors):
-        fig.cell(bar_x, 40 + i * PANEL / steps, 16, PANEL / steps + 1, tuple(int(v) for v in c))
+        fig.cell(bar_x, 40 + i * PANEL / steps, 16, PANEL / steps + 1, (int(c[0]), int(c[1]), int(c[2])))
     fig.text(bar_x + 20, 36, "1", 11)
     fig.text(bar_x + 20, 40 + PANEL - 10, "0", 11)
     fig.text(bar_x - 4, 40 + PANEL + 3, "quality", 10)

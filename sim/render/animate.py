@@ -82,7 +82,7 @@ def write_animation(rs: RenderScene, path: str, *, fps: int = 25, size: tuple[in
         raise AnimationError(f"animation file must end in .gif or .mp4 (got '{path}')")
     if progress is None:
         progress = stderr_progress if plan.cycle_time > 2.0 else False
-    frames = _frames(rs, fps, size, aa, camera, progress or None, marks)
+    frames = _frames(rs, fps, size, aa, camera, progress if callable(progress) else None, marks)
     writer = _write_gif if ext == ".gif" else _write_mp4
     write_atomic(path, lambda temp: writer(temp, frames, fps))
 
@@ -91,10 +91,11 @@ def _write_gif(path: str, frames: Iterator[np.ndarray], fps: float) -> None:
     """All frames on one palette (made from the first frames), without dithering: the parts
     that do not move keep the same bytes from frame to frame, so the GIF writer stores only
     the changed rectangle of each frame and the file stays small."""
-    first = [next(frames, None)]
-    if first[0] is None:
+    head = next(frames, None)
+    if head is None:
         raise AnimationError("an animation needs at least one frame")
-    palette = _palette(first[0])
+    first = [head]
+    palette = _palette(head)
     palettised = [_on_palette(f, palette) for f in first]
     palettised += [_on_palette(f, palette) for f in frames]
     duration = int(round(1000.0 / fps))  # ms per frame (GIF counts in 10 ms steps)

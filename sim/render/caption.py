@@ -19,7 +19,8 @@ def _font(height: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
         return ImageFont.load_default()
 
 
-def _wrap(draw: ImageDraw.ImageDraw, text: str, font: object, width: int) -> list[str]:
+def _wrap(draw: ImageDraw.ImageDraw, text: str, font: ImageFont.ImageFont | ImageFont.FreeTypeFont,
+          width: int) -> list[str]:
     """Greedy word wrap to `width` pixels; a word longer than a line is cut by characters."""
     lines: list[str] = []
     for paragraph in text.splitlines() or [""]:

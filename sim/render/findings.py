@@ -79,8 +79,10 @@ def events(diagnostics: Iterable[Diagnostic]) -> tuple[Diagnostic, ...]:
                    key=lambda d: (d.code.id, tuple(sorted(d.bodies)), d.time_s))
     out: list[Diagnostic] = []
     for d in timed:
+        assert d.time_s is not None  # `timed` holds timed findings only
         prev = out[-1] if out else None
-        end = lambda x: x.end_time_s if x.end_time_s is not None else x.time_s  # noqa: E731
+        def end(x: Diagnostic) -> float:
+            return x.end_time_s if x.end_time_s is not None else x.time_s  # type: ignore[return-value]
         if (prev is not None and prev.code == d.code and sorted(prev.bodies) == sorted(d.bodies)
                 and d.time_s <= end(prev) + GAP):
             worst = d if _amount(d) > _amount(prev) else prev
@@ -132,7 +134,8 @@ def markings(rs: RenderScene, diagnostics: Iterable[Diagnostic]) -> tuple[Markin
     out = []
     for d in events(diagnostics):
         bodies = tuple(b for b in d.bodies if b in rs.names)
-        t0 = float(d.time_s)  # events() keeps timed findings only
+        assert d.time_s is not None  # events() keeps timed findings only
+        t0 = float(d.time_s)
         t1 = float(d.end_time_s) if d.end_time_s is not None else t0
         worst = float(worst_instant(d) or t0)
         contact = None
@@ -205,6 +208,6 @@ def verified_markings(rs: RenderScene) -> tuple[tuple[Marking, ...], tuple[Diagn
         from rmot.sim import verify
 
         found = tuple(verify(rs.plan).diagnostics)
-    except Exception:  # noqa: BLE001 - a picture without marks beats no picture
+    except Exception:
         return (), ()
     return markings(rs, found), found

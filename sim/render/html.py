@@ -49,7 +49,7 @@ def scene_data(rs: RenderScene, fps: float = 25.0, camera: Camera | None = None,
     poses = body_poses(rs, times)[:, :, :3, :].reshape(len(times), len(rs.names), 12)
     camera = camera or default_camera(rs, (4, 3))
     floor = []
-    for k, color in enumerate(FLOOR):
+    for color in FLOOR:
         mine = np.all(np.isclose(rs.floor_colors, color, atol=1e-3), axis=1) if len(rs.floor_colors) else np.zeros(0, bool)
         if mine.any():
             floor.append({"vertices": _b64(rs.floor.vertices[mine]), "normals": _b64(rs.floor.normals[mine]), "color": _color(color)})

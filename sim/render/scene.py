@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,7 +20,10 @@ from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.tessellate import TriMesh, merge, tessellate
 from rmot.sim.render.transform import rotate_vectors, transform_points
 from rmot.sim.parts import part_poses, with_part_bodies
-from rmot.sim.scene import Scene, build_scene
+from rmot.sim.scene import Body, Scene, build_scene
+
+if TYPE_CHECKING:
+    from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["HIGHLIGHT", "RenderScene", "body_poses", "prepare", "soup"]
 
@@ -73,8 +77,8 @@ def _robot_color(robot: object) -> tuple[float, float, float]:
     return next((c for key, c in ROBOT_BY_VENDOR.items() if vendor.startswith(key)), ROBOT_DEFAULT)
 
 
-def _home(robot: object) -> np.ndarray:
-    limits = np.asarray(getattr(robot, "joint_limits"))
+def _home(robot: RobotModel) -> np.ndarray:
+    limits = np.asarray(robot.joint_limits)
     return np.clip(np.zeros(len(limits)), limits[:, 0], limits[:, 1])
 
 
@@ -196,12 +200,13 @@ def prepare(plan: Plan, samples: int = 24, robots: Mapping[str, object] | None =
     return RenderScene(plan, scene, names, meshes, colors, floor, floor_colors, paths, bounds, scene.diagnostics, extent)
 
 
-def _body_color(scene: Scene, body: object) -> tuple[float, float, float]:
-    if any(p.name == getattr(body, "name") for p in scene.cell.parts):
+def _body_color(scene: Scene, body: Body) -> tuple[float, float, float]:
+    if any(p.name == body.name for p in scene.cell.parts):
         return PART
-    kind = getattr(body, "kind")
+    kind = body.kind
     if kind == "fixture":
         return FIXTURE
     if kind == "tool":
         return TOOL
-    return _robot_color(scene.robots[getattr(body, "robot")].robot)
+    assert body.robot is not None  # neither a fixture nor a tool: a robot's link
+    return _robot_color(scene.robots[body.robot].robot)

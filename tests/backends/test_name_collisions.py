@@ -70,7 +70,9 @@ def test_routines_unique_and_never_builtins(plan: planned.Plan, vendor: str) -> 
     text = "\n".join(result.files.values())
     defined = re.findall(define, text, re.M)
     calls = re.findall(call, text, re.M)
-    key = (lambda n: n.upper())  # every one of these controllers compares names case-insensitively
+    def key(n: str) -> str:  # every one of these controllers compares names case-insensitively
+        return n.upper()
+
     routines = [d for d in defined if key(d) != key(defined[0])] if vendor in ("fanuc", "inform", "krl") else defined
     assert len({key(d) for d in defined}) == len(defined), defined
     assert len(calls) == 5 and {key(c) for c in calls} <= {key(d) for d in defined}, (calls, defined)

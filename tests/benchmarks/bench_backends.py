@@ -17,10 +17,10 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "backends"))
 
-from backend_fixtures import FRONT_UP_NOFLIP, GRIPPER, TABLE, cart, deg, hand_plan, move  # noqa: E402
+from backend_fixtures import FRONT_UP_NOFLIP, GRIPPER, TABLE, cart, deg, hand_plan, move
 
-from rmot.backends import BACKENDS  # noqa: E402
-from rmot.compiler import ir, planned  # noqa: E402
+from rmot.backends import BACKENDS
+from rmot.compiler import ir, planned
 
 
 def long_plan(cycles: int = 250) -> planned.Plan:

@@ -87,7 +87,8 @@ def main(nx: int = 8, ny: int = 8, nrz: int = 8) -> None:
         times.append(time.perf_counter() - t)
         cpu.append(time.process_time() - c)
     print(f"place, {moves}-move program, 1 m x 1 m x 360 deg: median {statistics.median(times):.1f} s "
-          f"over {len(times)} runs, CPU {statistics.median(cpu):.1f} s (screen {result.stats['screen_s']:.1f} s, verify {result.stats['verify_s']:.1f} s, "
+          f"over {len(times)} runs, CPU {statistics.median(cpu):.1f} s (screen {result.stats['screen_s']:.1f} s, "
+          f"verify {result.stats['verify_s']:.1f} s, "
           f"refine {result.stats['refine_s']:.1f} s; {result.screen_feasible}/{result.screened} screen-feasible, "
           f"{result.verified_count} verified in full)")
     found = 0

@@ -20,11 +20,11 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
 
-from plan_helpers import Prog, pose, program  # noqa: E402
+from plan_helpers import Prog, pose, program
 
-from rmot.compiler import ir  # noqa: E402
-from rmot.compiler.plan import plan_program  # noqa: E402
-from rmot.compiler.plan.dense import newton_ik  # noqa: E402
+from rmot.compiler import ir
+from rmot.compiler.plan import plan_program
+from rmot.compiler.plan.dense import newton_ik
 
 DOWN = dict(rx=180, ry=0, rz=180)
 

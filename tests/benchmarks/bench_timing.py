@@ -7,7 +7,8 @@ the planning time and the diagnostics' error codes (E228 = timing failed). With 
 plan is verified too (sim.verify), with --memory the peak RSS is reported.
 
 With --reference (programs then use accel 50 m/s^2, see REFERENCE_ACCEL), also the ratio of
-rmot's cycle time to an independent time-optimal timing of the same path (toppra on a dense uniform grid, tests/plan/test_plan_optimal.reference_time).
+rmot's cycle time to an independent time-optimal timing of the same path (toppra on a dense uniform
+grid, tests/plan/test_plan_optimal.reference_time).
 With --memory every configuration runs in its own process (peak RSS of that process alone).
 
 Run:
@@ -31,9 +32,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
 
-from plan_helpers import Prog, pose, program  # noqa: E402
+from plan_helpers import Prog, pose, program
 
-from rmot.compiler import ir  # noqa: E402
+from rmot.compiler import ir
 
 DOWN = dict(rx=180, ry=0, rz=180)
 BOX = {  # (x, y, z) lower corner, mm: a 120 x 300 x 100 mm box in front of each arm

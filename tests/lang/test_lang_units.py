@@ -6,7 +6,7 @@ import math
 from pathlib import Path
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from rmot.compiler.frontend import load_text
@@ -70,12 +70,30 @@ class TestUnknownCompound:
         assert _codes(text) == ["E007"]
 
 
+# the speed units and their SI factors, written out here (not read from lang/units.py): the
+# inch is 25.4 mm exactly (international yard and pound agreement, 1959)
+_SPEED_SI = {"mm/s": 1e-3, "cm/s": 1e-2, "m/s": 1.0, "in/s": 0.0254}
+_SPEED_RANGE = (1e-3, 10.0)  # m/s: `speed` accepts 1 mm/s .. 10000 mm/s (E125 outside, inclusive)
+
+
 @_SETTINGS
-@given(st.floats(0, 1e4, allow_nan=False).map(lambda x: f"{x:g}"), _WORDS, _WORDS)
-def test_number_word_over_word_never_raises(number: str, a: str, b: str) -> None:
-    """Any `<number> <word>/<word>` gives diagnostics or a program, never an exception."""
-    result = load_text(_program(f"{number} {a}/{b}"), _PATH)
-    assert result.program is not None or result.has_errors
+@given(st.floats(0, 1e4, allow_nan=False).map(lambda x: f"{x:g}"),
+       st.sampled_from(sorted(_SPEED_SI)) | st.tuples(_WORDS, _WORDS).map("/".join))
+def test_number_word_over_word_is_a_speed_or_an_error(number: str, unit: str) -> None:
+    """`speed <number> <word>/<word>` never raises, and it is accepted exactly when the word
+    pair is a speed unit and the value lies in the accepted range; the move then runs at the
+    value in m/s (an independent conversion), otherwise there is an error and no program."""
+    result = load_text(_program(f"{number} {unit}"), _PATH)
+    si = float(number) * _SPEED_SI[unit] if unit in _SPEED_SI else None
+    lo, hi = _SPEED_RANGE
+    assume(si is None or not (math.isclose(si, lo) or math.isclose(si, hi)))  # no boundary ties
+    if si is not None and lo <= si <= hi:
+        assert not result.has_errors, [d.message for d in result.diagnostics]
+        assert result.program is not None
+        move = result.program.tasks[0].body[0]
+        assert math.isclose(move.motion.tcp_speed, si, rel_tol=1e-12)
+    else:
+        assert result.has_errors and result.program is None
 
 
 @_SETTINGS

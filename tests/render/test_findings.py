@@ -8,7 +8,6 @@ its elements, its animation frame by frame. `events` is checked on hand-made fin
 from __future__ import annotations
 
 import dataclasses
-import io
 import json
 import re
 from pathlib import Path

@@ -160,7 +160,6 @@ CLOSE_VIEW = cli_camera("eye=1.0,-0.9,1.4;center=0.42,0,0.82;fov=70", [TABLE, RO
 
 class TestIssueScenes:
     def test_box_near_the_eye_with_the_robot_far_away(self) -> None:
-        eye = np.array([0.0, 0.0, 1.0])
         near_box = Box((1.2 + 0.3, 0.0, 0.45), (0.6, 0.8, 0.9))  # front face 1.2 m in front of the eye
         robot = Box((6.0, 0.5, 0.6), (0.4, 0.4, 1.2))  # the robot 6 m away
         camera = cli_camera("eye=0,0,1;center=6,0,0.6;fov=50", [near_box, robot])

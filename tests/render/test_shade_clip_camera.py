@@ -26,8 +26,8 @@ class TestLambert:
         img = render_triangles(quad, np.broadcast_to(n, quad.shape), np.ones((2, 3)), camera, (64, 48),
                                lights=(Light(light, 1.0),), material=LAMBERT_ONLY, shading=Shading.PHONG,
                                background=(0.5, 0.5, 0.5))
-        l = np.asarray(light) / np.linalg.norm(light)
-        expected = 255 * max(0.0, float(n @ l))
+        to_light = np.asarray(light) / np.linalg.norm(light)
+        expected = 255 * max(0.0, float(n @ to_light))
         assert np.all(np.abs(img[8:40, 8:56].astype(float) - expected) <= 1.0)
 
     def test_surface_is_lit_on_the_side_the_eye_sees(self) -> None:

@@ -10,23 +10,23 @@ import pinocchio as pin
 from rmot.compiler.robots.dh import DHRow, DHTable, build_model
 
 
-def rz(t):  # noqa: ANN001
+def rz(t):
     c, s = math.cos(t), math.sin(t)
     return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
 
 
-def rx(t):  # noqa: ANN001
+def rx(t):
     c, s = math.cos(t), math.sin(t)
     return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
 
 
-def tz(d):  # noqa: ANN001
+def tz(d):
     m = np.eye(4)
     m[2, 3] = d
     return m
 
 
-def tx(a):  # noqa: ANN001
+def tx(a):
     m = np.eye(4)
     m[0, 3] = a
     return m

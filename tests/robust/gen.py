@@ -216,14 +216,19 @@ def _cell(d: Draw) -> str:
     for i, r in enumerate(robots):
         lines.append(f"  robot {r} = {d.pick(LIBRARY_ROBOTS) if d.chance(40) else 'abb_irb1600'} at pose(x={i * 1500}mm, z={_len(d, 0, 500)})")
     for k in range(d.integer(0, 3)):
-        shape = d.pick((f"box({_len(d, 10, 500)}, {_len(d, 10, 500)}, {_len(d, 10, 500)})", f"cylinder(r={_len(d, 10, 200)}, h={_len(d, 10, 800)})",
-                        f"sphere({_len(d, 10, 300)})", f"capsule(r={_len(d, 10, 100)}, length={_len(d, 10, 300)})", 'mesh("part.stl", scale=' + _num(d, 0.001, 2) + ")"))
+        shape = d.pick((f"box({_len(d, 10, 500)}, {_len(d, 10, 500)}, {_len(d, 10, 500)})",
+                        f"cylinder(r={_len(d, 10, 200)}, h={_len(d, 10, 800)})",
+                        f"sphere({_len(d, 10, 300)})", f"capsule(r={_len(d, 10, 100)}, length={_len(d, 10, 300)})",
+                        'mesh("part.stl", scale=' + _num(d, 0.001, 2) + ")"))
         lines.append(f"  fixture f{k} = {shape} at pose(x={_len(d, 500, 1500)}, y={_len(d, -1500, 1500)}, z={_len(d, 0, 400)})")
     lines.append(f"  tool gripper = box(90mm, 70mm, 120mm) at pose(z=100mm) tcp pose(z={_len(d, 50, 250)}) mass {_num(d, 0, 5)} kg on r1")
     lines.append("  frame table_top = pose(x=850mm, z=750mm)")
     lines.append(f"  frame pallet = pose(y={_len(d, -1200, -800)}, z=400mm)")
     for p in range(d.integer(0, 3)):
-        lines.append(f'  io {d.pick(("out", "in"))}[{_int(d, 1, 4) if d.absurd else p + 1}] = "{d.pick(("sig", "a b", "x]y", "s" * 40, "sync"))}{p}" on r1')
+        direction = d.pick(("out", "in"))  # the draws in the order of the original one-line f-string
+        port = _int(d, 1, 4) if d.absurd else p + 1
+        name = d.pick(("sig", "a b", "x]y", "s" * 40, "sync"))
+        lines.append(f'  io {direction}[{port}] = "{name}{p}" on r1')
     lines.append("}")
     return "\n".join(lines) + "\n"
 
