@@ -696,7 +696,8 @@ def _instr_with_fallbacks(self: Backend, node: ir.Instr, ctx: TaskContext) -> li
         isinstance(node, ir.Loop)
         and getattr(type(self), self.EMIT[ir.Loop], None) is _loop_unrolled
     ):
-        return _loop_unrolled(self, node, ctx)
+        unrolled: list[str] = _loop_unrolled(self, node, ctx)
+        return unrolled
     if not getattr(self, "RUNTIME_CONDITIONS", False) and (
         (isinstance(node, ir.If) and not isinstance(node.condition, ir.InputCondition))
         or (isinstance(node, ir.WaitInput) and node.on_timeout)

@@ -288,6 +288,7 @@ class FanucBackend(Backend):
                     uf: int, ut: int, zone: str) -> list[str]:
         if self.joint_target_refused(node):
             return []
+        assert isinstance(node.target, ir.CartesianTarget)  # refused above otherwise
         speed = self._tcp_speed(node)
         to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"L P[{to}] {speed} {zone}{self._offset(node, ctx)}"]
@@ -296,8 +297,10 @@ class FanucBackend(Backend):
                       uf: int, ut: int, zone: str) -> list[str]:
         if self.joint_target_refused(node):
             return []
+        assert isinstance(node.target, ir.CartesianTarget)  # refused above otherwise
         if self.via_refused(node):
             return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
+        assert node.via is not None  # refused above otherwise
         speed = self._tcp_speed(node)
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         # P[via] numbered first
@@ -656,7 +659,7 @@ class FanucBackend(Backend):
         loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
         reason = _fanuc_blocker(loop) if loop is not None else None
         if loop is None or reason is not None:
-            self.warn(LOOP_UNROLLED, reason or found.message,
+            self.warn(LOOP_UNROLLED, reason or (found.message if isinstance(found, Unrolled) else ""),
                       found.span if isinstance(found, Unrolled) and reason is None else node.span)
             return self._unrolled(node, ctx)
         lines = self._zero_offsets(loop, ctx) + self._vendor_loop(loop, ctx)

@@ -711,7 +711,7 @@ class InformBackend(Backend):
         loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
         reason = _inform_blocker(loop) if loop is not None else None
         if loop is None or reason is not None:
-            self.warn(LOOP_UNROLLED, reason or found.message,
+            self.warn(LOOP_UNROLLED, reason or (found.message if isinstance(found, Unrolled) else ""),
                       found.span if isinstance(found, Unrolled) and reason is None else node.span)
             return self._unrolled(node, ctx)
         self._number_shifts(loop, ctx)

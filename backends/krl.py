@@ -248,6 +248,7 @@ class KrlBackend(Backend):
         zone = self._cp_head(node, rec, lines)
         if self.joint_target_refused(node):
             return lines
+        assert isinstance(node.target, ir.CartesianTarget)  # refused above otherwise
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
         return lines + [f"LIN {to}{zone}"]
 
@@ -256,9 +257,11 @@ class KrlBackend(Backend):
         zone = self._cp_head(node, rec, lines)
         if self.joint_target_refused(node):
             return lines
+        assert isinstance(node.target, ir.CartesianTarget)  # refused above otherwise
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
         if self.via_refused(node):
             return lines
+        assert node.via is not None  # refused above otherwise
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._pos(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")
         return lines + [f"CIRC {via},{to}{zone}"]
@@ -460,7 +463,7 @@ def _context_key_with_parts(self: KrlBackend, node: ir.Instr, ctx: TaskContext) 
     return key
 
 
-KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign]
+KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign, assignment]
 
 
 # ----------------------------------------------------------------- runtime logic (issue #15)

@@ -379,6 +379,7 @@ def _compare_record(t: ir.Instr, b: ir.Instr, run: _Run) -> None:
         if (rt.blend_radius > 0.0) != (rb.blend_radius > 0.0):
             stop = "stops exactly" if rb.blend_radius <= 0.0 else "blends"
             raise _Differs(b.uid, f"the move {stop} here, unlike in the first iteration", b.span)
+        assert isinstance(t, ir.Move) and isinstance(b, ir.Move)  # checked as moves above
         if isinstance(t.target, ir.CartesianTarget):
             kt, kb = (
                 _config(run, t, rt.q_target, rt.branch),

@@ -249,6 +249,7 @@ class RapidBackend(Backend):
                     zone: str, tool: str, wobj: str) -> list[str]:
         if self.joint_target_refused(node):
             return []
+        assert isinstance(node.target, ir.CartesianTarget)  # refused above otherwise
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         return [f"MoveL {to}, {self._tcp_speed(node, ctx)}, {zone}, {tool}{wobj};"]
 
@@ -256,10 +257,12 @@ class RapidBackend(Backend):
                       zone: str, tool: str, wobj: str) -> list[str]:
         if self.joint_target_refused(node):
             return []
+        assert isinstance(node.target, ir.CartesianTarget)  # refused above otherwise
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         speed = self._tcp_speed(node, ctx)
         if self.via_refused(node):
             return [self.comment("circular move without via point not emitted")]
+        assert node.via is not None  # refused above otherwise
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._robtarget(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")
         return [f"MoveC {via}, {to}, {speed}, {zone}, {tool}{wobj};"]
@@ -568,7 +571,7 @@ def rapid_conf_match(first: Any, other: Any) -> bool:
     same turn of the axis (the planner's joints differ from the written quadrant by less
     than 90 degrees beyond its edge); two quadrants apart would be another turn."""
     if first is None or other is None:
-        return first == other
+        return bool(first == other)
     a, b = first, other  # (cf1, cf4, cf6, cfx)
     return bool(a[3] == b[3] and all(abs(a[i] - b[i]) <= 1 for i in range(3)))
 

@@ -183,6 +183,7 @@ class UrScriptBackend(Backend):
                    r: str) -> list[str]:
         m = node.motion
         v_max, a_max = self.joint_limits(ctx, node)
+        assert rec.q_target is not None  # move_record returns a record with joints
         q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"
         t = self.duration_arg(m)
         return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
@@ -215,6 +216,7 @@ class UrScriptBackend(Backend):
         speed, to = args
         if self.via_refused(node):
             return [self.comment("circular move without via")]
+        assert node.via is not None  # refused above otherwise
         if m.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"movec has no time argument; the fixed duration "
                       f"{m.duration:g} s is expressed by the speed only", node.span)

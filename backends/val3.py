@@ -72,7 +72,7 @@ from typing import ClassVar
 from rmot.backends import codes, codes_b, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
 from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
-from rmot.backends.loops import LoopTemplate, Unrolled, analyse, bind_loop_var
+from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, planned
 from rmot.lang.source import Span
@@ -341,6 +341,7 @@ class Val3Backend(Backend):
         target = self._shifted(target, node, "target", ctx)
         if self.via_refused(node):
             return []
+        assert node.via is not None  # refused above otherwise
         via = self._shifted(self.point(node.via.pose, branch, node.frame, ctx), node, "via", ctx)
         return [f"movec({via}, {target}, {tail})"]
 

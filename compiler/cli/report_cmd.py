@@ -36,12 +36,12 @@ def report(programs: tuple[str, ...], output: str, cell: str | None, project_roo
     """Verify PROGRAMs and write one HTML page: findings with pictures, plots, 3D view, data."""
     from rmot.compiler.cli.plot_cmd import write_or_fail
     from rmot.compiler.cli import stages
-    from rmot.lang.diagnostics import render_all
+    from rmot.lang.diagnostics import Diagnostic, render_all
     from rmot.sim.report_html import ProgramResult, render_report
 
     results, input_error = [], False
     for path in programs:
-        front: tuple = ()
+        front: tuple[Diagnostic, ...] = ()
         try:  # a stage failing unexpectedly is E550 for this program (compiler/cli/stages.py)
             loaded = stages.load(path, cell=cell, project_root=project_root)
             front = tuple(loaded.diagnostics)

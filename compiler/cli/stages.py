@@ -75,7 +75,8 @@ def verify(planned: Plan, *, clearance: float | None = None) -> Report:
     from rmot import sim
 
     kwargs: dict[str, Any] = {} if clearance is None else {"clearance": clearance}
-    return run("the verification", sim.verify, planned, **kwargs)
+    report: Report = run("the verification", sim.verify, planned, **kwargs)
+    return report
 
 
 def emit(target: str, planned: Plan, *, source_map: bool = True, **options: Any) -> Any:

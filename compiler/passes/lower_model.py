@@ -160,7 +160,7 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
             continue
         slot = "dh" if key in ("dh", "mdh") else key
         if slot not in _FIELDS + _OPTIONAL:
-            rep.unknown(key, "joint field", part.func.span if isinstance(part, ast.Call) else part.span,  # type: ignore[union-attr]
+            rep.unknown(key, "joint field", part.func.span if isinstance(part, ast.Call) else part.span,
                         ["dh", "mdh", "range", "solid"], codes.MODEL_JOINT_FIELD)
             ok = False
             continue

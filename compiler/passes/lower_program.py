@@ -33,7 +33,8 @@ def lower_program(state: FrontendState) -> FrontendState:
     for extra in programs[1:]:
         state.reporter.error(codes.NO_PROGRAM, "a file must contain at most one program (got a second one)", extra.name.span,
                              (("the first program is here", programs[0].name.span),))
-    if not programs or state.cell is None:
+    cell = state.cell
+    if not programs or cell is None:
         return state
     prog = programs[0]
     file_scope = state.module_scopes.get(state.main.path, Scope(state.cell_scope))
@@ -42,7 +43,7 @@ def lower_program(state: FrontendState) -> FrontendState:
     state = replace(state, procs=tuple(procs))  # with the procs declared inside the program
     if tasks is None:
         return state
-    return replace(state, program=ir.Program(prog.name.name, state.cell, tuple(tasks), span=prog.span))
+    return replace(state, program=ir.Program(prog.name.name, cell, tuple(tasks), span=prog.span))
 
 
 def _robot(name: ast.Ident, state: FrontendState) -> ir.RobotInstance | None:

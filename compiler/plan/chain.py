@@ -124,7 +124,7 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
         zeros = tuple(0.0 for _ in segments)
         return TimedChain(hold, zeros, tuple(hold.duration for _ in segments), path.radii, path)
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
-    tcp_kw: dict[str, np.ndarray] = {}
+    tcp_kw: dict[str, Any] = {}
     if any(s.tcp_rate > 0 for s in segments) and path.tcp_speed is not None \
             and path.tcp_accel is not None:
         tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])
@@ -211,7 +211,7 @@ def _path_chain_strict(path: ChainPath, segments, vmax, amax) -> TimedChain:  # 
         hold = HoldPiece(path.q[-1].copy(), 0.0)
         return TimedChain(hold, (0.0,), (0.0,), (0.0,), path)
     keep = np.concatenate([[True], np.diff(ss) > 1e-10])
-    tcp_kw: dict[str, np.ndarray] = {}
+    tcp_kw: dict[str, Any] = {}
     if path.tcp_speed is not None and path.tcp_accel is not None \
             and np.any(np.isfinite(path.tcp_speed)):
         tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])

@@ -78,6 +78,7 @@ def build_segment(
     seg, more = _cartesian_segment(robot, move, q_now, q_target, tool)
     off = off_turns(seg.q_end, move.config.turns) if seg is not None else []
     if off:  # the path decides the end's turns (issue #15): they must be the ones fixed
+        assert seg is not None  # off_turns is empty without a segment
         j, n, got = off[0]
         msg = (f"a {move.kind.name.lower()} move must end with joint {j + 1} on turn {n} "
                f"(config(j{j + 1}={n})); its path from the current joints ends at "

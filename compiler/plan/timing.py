@@ -24,6 +24,7 @@ vectorised, invertible for the time at a path point).
 
 from __future__ import annotations
 
+from typing import Any
 import math
 from dataclasses import dataclass
 
@@ -460,7 +461,7 @@ class _Arrays:
         m2 = _merged(self.m2, new_cells[1], cplace, axis=1, keep=keep)
         self.m2 = None
         v_in = _merged(self.v_in, new_cells[2], cplace, axis=1, keep=keep)
-        self.v_in = None  # type: ignore[assignment]
+        self.v_in = None
         tau = tuple(_merged(old, new, cplace, axis=1, keep=keep)
                     for old, new in zip(self.tau or (), new_cells[3:]))
         self.tau = None
@@ -498,7 +499,7 @@ class _Arrays:
         return x, r_acc, r_vel, bad, w_tau
 
 
-def _normalised(pts):  # type: ignore[no-untyped-def]
+def _normalised(pts: tuple[Any, ...]) -> tuple[Any, ...]:
     """A point's (d1, d2, a, b, c, vel, torque rows) as (d1, d2, beta, lo, hi, ceiling, vel): the
     rows in the solver's form (topp.Rows.normalised, row by row), kept instead of a, b, c; the
     torque rows (a, b, hi, lo) or None, one-sided, appended after the symmetric ones."""

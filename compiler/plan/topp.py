@@ -24,7 +24,6 @@ tightened and the passes re-run: a repair slows that spot, never the whole path.
 
 from __future__ import annotations
 
-from typing import Any
 
 import numpy as np
 
@@ -230,8 +229,8 @@ def check(x: np.ndarray, h: np.ndarray, d1: np.ndarray, d2: np.ndarray, m1: np.n
     `thetas` inside it, the cell's constant path acceleration) and the largest speed ratio
     inside it. m1, m2 (T, K-1, n) the path's derivatives inside the cells, vel_in (T, K-1),
     c (n,) the joint acceleration limits."""
-    thetas = np.asarray(thetas, dtype=float)
-    return CHECK(d1.size * (1 + len(thetas)), x, h, d1, d2, m1, m2, vel_in, thetas,
+    fractions = np.asarray(thetas, dtype=float)
+    return CHECK(d1.size * (1 + len(fractions)), x, h, d1, d2, m1, m2, vel_in, fractions,
                  np.ascontiguousarray(c, dtype=float))
 
 
