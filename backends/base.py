@@ -18,7 +18,7 @@ are shared. Proc calls whose routines would print the same text share one routin
 (`routine_table`, keyed by `routine_key`); each call line carries its call site's `file:line`
 and its arguments as written (`call_args_comment`).
 
-Input is a `planned.Plan`: every target's joints, branch and TCP pose come from
+Input is a `plan_types.Plan`: every target's joints, branch and TCP pose come from
 `ctx.record(instr)` (the planner's `InstructionRecord`). A backend only formats: no IK, no
 unit conversion beyond the vendor's units (named in each module's docstring), no modal hidden
 state — each instruction's text depends on that instruction and its record only. What a vendor collects while printing a
@@ -60,14 +60,14 @@ from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_b, controller_data, handshake
+from rmot.backends import codes, controller_data, handshake
 from rmot.backends.conventions import (
     axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, fmt_list, position_mm, quaternion_wxyz,
     rotation_vector, tool_cog, turn_bits,
 )
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
@@ -109,8 +109,8 @@ class EmitResult:
 class TaskContext:
     """Everything a backend needs to print one task: the plan, the task's plan, its robot."""
 
-    plan: planned.Plan
-    task_plan: planned.TaskPlan
+    plan: plan_types.Plan
+    task_plan: plan_types.TaskPlan
     robot: ir.RobotInstance
     program_name: str  # the legal name of this task's output program
     source_map: bool = field(default=True, kw_only=True)  # print `file:line` comments
@@ -120,7 +120,7 @@ class TaskContext:
     def task(self) -> ir.Task:
         return self.task_plan.task
 
-    def record(self, instr: ir.Instr) -> planned.InstructionRecord | None:
+    def record(self, instr: ir.Instr) -> plan_types.InstructionRecord | None:
         """The planner's record of `instr` (looked up by uid), or None when there is none."""
         return self.task_plan.record(instr.uid)
 
@@ -154,7 +154,7 @@ def source_ref(span: Span | None) -> str | None:
     return f"{comment_safe(os.path.basename(span.file.path))}:{span.start.line}"
 
 
-def _name_clash(backend: object, fname: str, first: str, task_plan: planned.TaskPlan) -> Diagnostic:
+def _name_clash(backend: object, fname: str, first: str, task_plan: plan_types.TaskPlan) -> Diagnostic:
     """E522: two tasks' programs get one file name on this controller (its name length limit
     or its case folding made them equal); writing both would lose one."""
     from rmot.compiler import codes as file_codes
@@ -165,7 +165,7 @@ def _name_clash(backend: object, fname: str, first: str, task_plan: planned.Task
     return Diagnostic(file_codes.OUTPUT_NAME_CLASH, Severity.ERROR, msg, task_plan.task.span)
 
 
-def header_lines(plan: planned.Plan, backend_name: str, findings: bool = False) -> list[str]:
+def header_lines(plan: plan_types.Plan, backend_name: str, findings: bool = False) -> list[str]:
     """Lines (without the comment marker) every file starts with."""
     program = plan.program
     where = source_ref(program.span)
@@ -286,7 +286,7 @@ class Backend:
 
     # ------------------------------------------------------------------ entry point
 
-    def emit(self, plan: planned.Plan, *, source_map: bool = True) -> EmitResult:
+    def emit(self, plan: plan_types.Plan, *, source_map: bool = True) -> EmitResult:
         """Format every task of `plan`; one output program (one or more files) per task."""
         self._emission = _Emission()
         files: dict[str, str] = {}
@@ -319,7 +319,7 @@ class Backend:
         """Print one task: filename -> text. Subclasses implement."""
         raise NotImplementedError
 
-    def program_name(self, plan: planned.Plan, task_plan: planned.TaskPlan) -> str:
+    def program_name(self, plan: plan_types.Plan, task_plan: plan_types.TaskPlan) -> str:
         """Program name for a task: the program's name, suffixed by the task when there are several."""
         if len(plan.tasks) == 1:
             return plan.program.name
@@ -433,7 +433,7 @@ class Backend:
         """True, after E451, when a circular move has no via point."""
         if node.via is not None:
             return False
-        self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "circular move must have a via point "
+        self.unsupported(codes.CIRCULAR_VIA_MISSING, "circular move must have a via point "
                          "(got none)", node.span)
         return True
 
@@ -443,7 +443,7 @@ class Backend:
             out.extend(self.instr(node, ctx))
         return out
 
-    def move_record(self, node: ir.Move, ctx: TaskContext) -> planned.InstructionRecord | list[str]:
+    def move_record(self, node: ir.Move, ctx: TaskContext) -> plan_types.InstructionRecord | list[str]:
         """The preamble of every vendor's `move`: the move's record (with its joint solution),
         or, after reporting the error, the lines printed instead of the move: NO_RECORD_NOTE
         (E401; None prints nothing) or, when SIX_AXIS_DATA is set, NOT_SIX_AXIS_NOTE (E403)."""
@@ -461,7 +461,7 @@ class Backend:
         return rec
 
     @staticmethod
-    def planned_zone(node: ir.Move, rec: planned.InstructionRecord) -> ir.Zone:
+    def planned_zone(node: ir.Move, rec: plan_types.InstructionRecord) -> ir.Zone:
         """The zone a vendor prints for `node`: `fine` where the plan stops (record's
         blend_radius 0: before a wait, wait until, if, sync, at a timed move, at the task's
         end, wherever a blend could not be built), else the programmed zone. The controller
@@ -631,7 +631,7 @@ def key_value(v: Any) -> Hashable:
 
 
 def _part_payload_default(self: Backend, node: ir.Attach | ir.Detach, ctx: TaskContext) -> list[str]:
-    from rmot.backends.codes_b import PART_PAYLOAD_NOT_EXPRESSED
+    from rmot.backends.codes import PART_PAYLOAD_NOT_EXPRESSED
     from rmot.backends.part_load import held_load
 
     _, _, total, cog = held_load(node, ctx)
@@ -711,7 +711,7 @@ _emit = Backend.emit
 
 
 def _emit_loops_unrolled(
-    self: Backend, plan: planned.Plan, *, source_map: bool = True
+    self: Backend, plan: plan_types.Plan, *, source_map: bool = True
 ) -> EmitResult:
     """Backend.emit; a vendor that leaves loops to the fallback gets every task body with its
     loops unrolled (ir_tree.unroll_loops) before anything of it runs, so its own walkers

@@ -1,7 +1,7 @@
 """Diagnostic codes of the shared backend machinery and of RAPID, KRL and Fanuc TP.
 
 Range E400–E449 / W400–W449 (the URScript, INFORM, VAL3 and neutral backends use
-E450–E499 / W450–W499 in `codes_b.py`).
+E450–E499 / W450–W499 in the section at the end of this module).
 """
 
 from __future__ import annotations
@@ -69,3 +69,50 @@ RUNTIME_UNSUPPORTED = Code(
     "a var, assignment, while, stop or general condition the vendor's backend cannot write yet",
 )
 __all__ += ["RUNTIME_UNSUPPORTED"]
+
+
+# ------------------------------------------------------------------ URScript, INFORM,
+# VAL3 and the neutral (CSV/JSON) backends: E450-E499 / W450-W499 (a module of their own
+# until issue #19; the generic codes above - speed or zone rounded, program split,
+# native skipped, name changed - are theirs too)
+
+# errors
+ANALOG_UNSUPPORTED = Code("E450", "analog-out-unsupported",
+                          "an analog output's port or value has no faithful form for this vendor")
+CIRCULAR_VIA_MISSING = Code("E451", "circular-via-missing",
+                            "a circular move must carry its via point and its planned via joints")
+NEUTRAL_NO_SAMPLES = Code("E452", "trajectory-empty",
+                          "a task's trajectory has no samples to write")
+
+# warnings
+JOINT_AS_CARTESIAN = Code("W450", "joint-target-as-cartesian",
+                          "a joint target was written as a Cartesian position with full "
+                          "configuration data (an exact lowering)")
+PULSE_INLINE = Code("W451", "pulse-blocking",
+                    "a pulse was lowered to set, delay, reset (the program waits for it)")
+SPEED_TABLE_UNKNOWN = Code("W452", "speed-table-unknown",
+                           "the robot model has no entry in the vendor's speed table; the "
+                           "vendor default maximum was assumed")
+WAIT_END_MOVE = Code("W453", "wait-end-move",
+                     "the vendor executes I/O asynchronously to motion; a waitEndMove() was "
+                     "inserted, so the preceding move stops exactly instead of blending")
+ANALOG_LINK = Code("W455", "analog-link-needed",
+                   "an analog output variable is declared unlinked: link it to the controller's "
+                   "physical output before running")
+
+# parts held by the tool (issue #14)
+PART_PAYLOAD_NOT_EXPRESSED = Code("W460", "part-payload-not-expressed",
+                                  "the payload of held parts cannot be set by this vendor's program: "
+                                  "enter the numbers given on the controller")
+
+__all__ += [
+    "ANALOG_UNSUPPORTED",
+    "CIRCULAR_VIA_MISSING",
+    "NEUTRAL_NO_SAMPLES",
+    "JOINT_AS_CARTESIAN",
+    "PULSE_INLINE",
+    "SPEED_TABLE_UNKNOWN",
+    "WAIT_END_MOVE",
+    "ANALOG_LINK",
+    "PART_PAYLOAD_NOT_EXPRESSED",
+]

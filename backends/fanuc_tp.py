@@ -72,7 +72,7 @@ from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
 )
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.backends.safe_text import comment_safe, tp_io_comment
 from rmot.lang.source import Span
 
@@ -275,7 +275,7 @@ class FanucBackend(Backend):
         zone = self._zone(node, self.planned_zone(node, rec))
         return self.by_kind(node)(node, rec, ctx, uf, ut, zone)
 
-    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
+    def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: FanucContext,
                    uf: int, ut: int, zone: str) -> list[str]:
         speed = self._joint_speed(node)
         if isinstance(node.target, ir.JointTarget):
@@ -284,7 +284,7 @@ class FanucBackend(Backend):
             p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}{self._offset(node, ctx)}"]
 
-    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
+    def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: FanucContext,
                     uf: int, ut: int, zone: str) -> list[str]:
         if self.joint_target_refused(node):
             return []
@@ -293,7 +293,7 @@ class FanucBackend(Backend):
         to = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"L P[{to}] {speed} {zone}{self._offset(node, ctx)}"]
 
-    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: FanucContext,
+    def move_circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: FanucContext,
                       uf: int, ut: int, zone: str) -> list[str]:
         if self.joint_target_refused(node):
             return []

@@ -87,7 +87,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_b, codes_logic, codes_turns, turns
+from rmot.backends import codes, codes_logic, codes_turns, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.codes_loops import LOOP_UNROLLED
@@ -96,7 +96,7 @@ from rmot.backends.loops import (
 )
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.backends.safe_text import comment_safe
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
@@ -326,7 +326,7 @@ class InformBackend(Backend):
 
     # ------------------------------------------------------------------ motion
 
-    def position(self, rec: planned.InstructionRecord, q: np.ndarray | None, pose: ir.Pose | None,
+    def position(self, rec: plan_types.InstructionRecord, q: np.ndarray | None, pose: ir.Pose | None,
                  node: ir.Move, ctx: InformContext) -> str | None:
         """Register a taught position (TCP pose + RCONF) in the current job; its C name."""
         branch = rec.branch
@@ -355,23 +355,23 @@ class InformBackend(Backend):
         self.motion_notes(node, ctx)
         return self.by_kind(node)(node, rec, ctx, self.zone(rec.blend_radius, node))
 
-    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+    def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                    pl: str) -> list[str]:
         c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
         if isinstance(node.target, ir.JointTarget):
-            self.warn(codes_b.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
+            self.warn(codes.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
                       "position of its planned joints with full RCONF (pulse counts per "
                       "degree are robot-specific)", node.span)
         movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
         return self.shifted(node, movj, ctx)
 
-    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+    def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                     pl: str) -> list[str]:
         v = self.linear_speed(node)
         c = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
         return self.shifted(node, [f"MOVL {c} V={v}{pl}"] if c else [], ctx)
 
-    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+    def move_circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                       pl: str) -> list[str]:
         return self.circular(node, rec, ctx, self.linear_speed(node), pl)
 
@@ -385,7 +385,7 @@ class InformBackend(Backend):
             return ("no-start",)
         return (prev.kind, key_value(rec.q_target), key_value(rec.tcp_pose), key_value(prev.tool))
 
-    def circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: InformContext,
+    def circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                  v: str, pl: str) -> list[str]:
         """MOVC start (the previous target), via, end `FPT`.
 
@@ -395,7 +395,7 @@ class InformBackend(Backend):
         prev = ctx.preds.get(node.uid)
         prev_rec = ctx.record(prev) if prev is not None else None
         if node.via is None or rec.q_via is None or prev_rec is None or prev_rec.q_target is None:
-            self.unsupported(codes_b.CIRCULAR_VIA_MISSING, "an INFORM circular move must follow a "
+            self.unsupported(codes.CIRCULAR_VIA_MISSING, "an INFORM circular move must follow a "
                              "move in the same block and carry its planned via point (got none)",
                              node.span)
             return []

@@ -60,7 +60,7 @@ from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.backends.safe_text import comment_safe
 
 __all__ = ["KrlBackend", "KRL_RULES", "status_of"]
@@ -221,7 +221,7 @@ class KrlBackend(Backend):
         lines = self._tool_base(node, ctx)
         return self.by_kind(node)(node, rec, ctx, lines)
 
-    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+    def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: KrlContext,
                    lines: list[str]) -> list[str]:
         m = node.motion
         stop = self.planned_zone(node, rec)
@@ -232,7 +232,7 @@ class KrlBackend(Backend):
             return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
         return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
 
-    def _cp_head(self, node: ir.Move, rec: planned.InstructionRecord, lines: list[str]) -> str:
+    def _cp_head(self, node: ir.Move, rec: plan_types.InstructionRecord, lines: list[str]) -> str:
         """What LIN and CIRC share: the approximation and $VEL.CP/$ACC.CP lines (appended to
         `lines`); returns the zone suffix."""
         m = node.motion
@@ -243,7 +243,7 @@ class KrlBackend(Backend):
         lines += [f"$VEL.CP={fmt(self.tcp_speed_within_limit(node), 4)}", f"$ACC.CP={fmt(m.tcp_accel, 4)}"]
         return zone
 
-    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+    def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: KrlContext,
                     lines: list[str]) -> list[str]:
         zone = self._cp_head(node, rec, lines)
         if self.joint_target_refused(node):
@@ -252,7 +252,7 @@ class KrlBackend(Backend):
         to = self._pos(node.target, rec.q_target, rec.branch, node, ctx)
         return lines + [f"LIN {to}{zone}"]
 
-    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: KrlContext,
+    def move_circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: KrlContext,
                       lines: list[str]) -> list[str]:
         zone = self._cp_head(node, rec, lines)
         if self.joint_target_refused(node):

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 __all__ = [
     "ConfigKey",
@@ -74,7 +74,7 @@ ConfigMatch = Callable[[Hashable, Hashable], bool]
 """(the first iteration's configuration key, another iteration's) -> True when the one target
 the vendor loop writes (with the first iteration's configuration data) reaches the other's."""
 
-ExtraKey = Callable[[ir.Instr, "planned.InstructionRecord | None"], Hashable]
+ExtraKey = Callable[[ir.Instr, "plan_types.InstructionRecord | None"], Hashable]
 """Anything else a vendor prints from the record of an instruction (RAPID: a joint move's
 planned duration): the iterations must agree on it too."""
 
@@ -190,7 +190,7 @@ def offset_at(offset: TargetOffset, values: dict[int, int]) -> ir.Pose:
 
 # --------------------------------------------------------------------------- analysis
 
-Record = Callable[[ir.Instr], "planned.InstructionRecord | None"]
+Record = Callable[[ir.Instr], "plan_types.InstructionRecord | None"]
 _NESTED = ("body", "then", "otherwise", "on_timeout")
 
 

@@ -19,9 +19,9 @@ from typing import Any
 
 import numpy as np
 
-from rmot.backends import codes_b
+from rmot.backends import codes
 from rmot.backends.base import Backend, EmitResult, TaskContext, fmt, source_ref
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 __all__ = ["CSV_DECIMALS", "JSON_DECIMALS", "CsvBackend", "JsonBackend", "plan_document"]
 
@@ -65,7 +65,7 @@ class CsvBackend(Backend):
     def emit_task(self, ctx: TaskContext) -> dict[str, str]:
         traj = ctx.task_plan.trajectory
         if traj.t.size == 0:
-            self.unsupported(codes_b.NEUTRAL_NO_SAMPLES, f"task '{ctx.task.name}' must have a "
+            self.unsupported(codes.NEUTRAL_NO_SAMPLES, f"task '{ctx.task.name}' must have a "
                              "sampled trajectory (got 0 samples)", ctx.task.span)
             return {}
         dof = traj.q.shape[1]
@@ -88,7 +88,7 @@ class JsonBackend(Backend):
         """A move's label in the document (MOVE_LABELS)."""
         return {"MOVE_LABELS": MOVE_LABELS}
 
-    def emit(self, plan: planned.Plan, *, source_map: bool = True) -> EmitResult:
+    def emit(self, plan: plan_types.Plan, *, source_map: bool = True) -> EmitResult:
         result = super().emit(plan, source_map=source_map)
         doc = plan_document(plan)
         text = json.dumps(doc, sort_keys=True, separators=(",", ":"), ensure_ascii=True) + "\n"
@@ -96,12 +96,12 @@ class JsonBackend(Backend):
 
     def emit_task(self, ctx: TaskContext) -> dict[str, str]:
         if ctx.task_plan.trajectory.t.size == 0:
-            self.unsupported(codes_b.NEUTRAL_NO_SAMPLES, f"task '{ctx.task.name}' must have a "
+            self.unsupported(codes.NEUTRAL_NO_SAMPLES, f"task '{ctx.task.name}' must have a "
                              "sampled trajectory (got 0 samples)", ctx.task.span)
         return {}
 
 
-def plan_document(plan: planned.Plan) -> dict[str, Any]:
+def plan_document(plan: plan_types.Plan) -> dict[str, Any]:
     """The Plan as JSON-ready data (see the module docstring for the layout)."""
     return {
         "program": plan.program.name,
@@ -112,7 +112,7 @@ def plan_document(plan: planned.Plan) -> dict[str, Any]:
     }
 
 
-def _task(tp: planned.TaskPlan) -> dict[str, Any]:
+def _task(tp: plan_types.TaskPlan) -> dict[str, Any]:
     nodes = {n.uid: n for n in ir.walk(tp.task.body)}
     traj = tp.trajectory
     return {
@@ -127,7 +127,7 @@ def _task(tp: planned.TaskPlan) -> dict[str, Any]:
     }
 
 
-def _trajectory(traj: planned.Trajectory) -> dict[str, Any]:
+def _trajectory(traj: plan_types.Trajectory) -> dict[str, Any]:
     return {"t": _nums(traj.t), "q": _nums(traj.q), "qd": _nums(traj.qd)}
 
 
@@ -158,7 +158,7 @@ def _branch(branch: ir.Config | None) -> dict[str, Any] | None:
             "wrist": branch.wrist.value if branch.wrist else None}
 
 
-def _record(rec: planned.InstructionRecord, node: ir.Instr | None) -> dict[str, Any]:
+def _record(rec: plan_types.InstructionRecord, node: ir.Instr | None) -> dict[str, Any]:
     return {
         "uid": rec.uid,
         "kind": _kind(node),

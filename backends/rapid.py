@@ -44,7 +44,7 @@ from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.lang.source import Span
 
 __all__ = ["RapidBackend", "RAPID_RULES", "cfx_of"]
@@ -236,7 +236,7 @@ class RapidBackend(Backend):
         zone = self._zone(self.planned_zone(node, rec), ctx)
         return self.by_kind(node)(node, rec, ctx, zone, tool, wobj)
 
-    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+    def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: RapidContext,
                    zone: str, tool: str, wobj: str) -> list[str]:
         if isinstance(node.target, ir.JointTarget):
             target = self._jointtarget(node.target, ctx)
@@ -245,7 +245,7 @@ class RapidBackend(Backend):
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         return [f"MoveJ {to}, {self._joint_speed(node, rec)}, {zone}, {tool}{wobj};"]
 
-    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+    def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: RapidContext,
                     zone: str, tool: str, wobj: str) -> list[str]:
         if self.joint_target_refused(node):
             return []
@@ -253,7 +253,7 @@ class RapidBackend(Backend):
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
         return [f"MoveL {to}, {self._tcp_speed(node, ctx)}, {zone}, {tool}{wobj};"]
 
-    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: RapidContext,
+    def move_circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: RapidContext,
                       zone: str, tool: str, wobj: str) -> list[str]:
         if self.joint_target_refused(node):
             return []
@@ -288,7 +288,7 @@ class RapidBackend(Backend):
             return round(rec.t_end - rec.t_start, 9)
         return None
 
-    def _joint_speed(self, node: ir.Move, rec: planned.InstructionRecord) -> str:
+    def _joint_speed(self, node: ir.Move, rec: plan_types.InstructionRecord) -> str:
         if node.motion.duration is not None:
             return f"vmax\\T:={fmt(node.motion.duration, 3)}"
         if node.motion.joint_speed >= 1.0:

@@ -60,11 +60,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from rmot.backends import codes, codes_b
+from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
 
@@ -179,7 +179,7 @@ class UrScriptBackend(Backend):
             return rec
         return self.by_kind(node)(node, rec, ctx, fmt(rec.blend_radius, POS_DECIMALS))
 
-    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+    def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: UrContext,
                    r: str) -> list[str]:
         m = node.motion
         v_max, a_max = self.joint_limits(ctx, node)
@@ -189,7 +189,7 @@ class UrScriptBackend(Backend):
         return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
                 f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{t}, r={r})"]
 
-    def _tcp_args(self, node: ir.Move, rec: planned.InstructionRecord) -> tuple[str, str] | None:
+    def _tcp_args(self, node: ir.Move, rec: plan_types.InstructionRecord) -> tuple[str, str] | None:
         """(speed arguments, target pose) of movel/movec; None (E401) without a TCP pose."""
         m = node.motion
         if rec.tcp_pose is None:
@@ -199,7 +199,7 @@ class UrScriptBackend(Backend):
         speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
         return speed, pose_text(rec.tcp_pose)
 
-    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+    def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: UrContext,
                     r: str) -> list[str]:
         args = self._tcp_args(node, rec)
         if args is None:
@@ -207,7 +207,7 @@ class UrScriptBackend(Backend):
         speed, to = args
         return [f"movel({to}, {speed}{self.duration_arg(node.motion)}, r={r})"]
 
-    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: UrContext,
+    def move_circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: UrContext,
                       r: str) -> list[str]:
         m = node.motion
         args = self._tcp_args(node, rec)
@@ -238,7 +238,7 @@ class UrScriptBackend(Backend):
         if "model" in ctx.warned:
             return DEFAULT_LIMITS
         ctx.warned.add("model")
-        self.warn(codes_b.SPEED_TABLE_UNKNOWN, f"robot model '{model}' must be in the URScript "
+        self.warn(codes.SPEED_TABLE_UNKNOWN, f"robot model '{model}' must be in the URScript "
                   f"joint speed table (it is not); assumed 180 deg/s and 800 deg/s^2", node.span)
         return DEFAULT_LIMITS
 
@@ -258,7 +258,7 @@ class UrScriptBackend(Backend):
 
     def set_analog(self, node: ir.SetAnalog, ctx: UrContext) -> list[str]:
         if node.port not in (0, 1) or not 0.0 <= node.value <= 10.0:
-            self.unsupported(codes_b.ANALOG_UNSUPPORTED, "analog output must be port 0..1 with 0..10 V "
+            self.unsupported(codes.ANALOG_UNSUPPORTED, "analog output must be port 0..1 with 0..10 V "
                              f"(got port {node.port}, {node.value:g} V)", node.span)
             return []
         return [f"set_analog_outputdomain({node.port}, 1)",

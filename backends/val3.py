@@ -69,12 +69,12 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
-from rmot.backends import codes, codes_b, codes_logic
+from rmot.backends import codes, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
 from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
 from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.lang.source import Span
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
@@ -262,7 +262,7 @@ class Val3Backend(Backend):
         last = _last_move(prev)
         rec = ctx.record(last) if last is not None else None
         if rec is not None and rec.blend_radius > 0.0:
-            self.warn(codes_b.WAIT_END_MOVE, "the move before this instruction blends "
+            self.warn(codes.WAIT_END_MOVE, "the move before this instruction blends "
                       f"({rec.blend_radius * 1000:g} mm), but VAL3 must waitEndMove() first: it "
                       "stops exactly", getattr(node, "span", None))
 
@@ -312,7 +312,7 @@ class Val3Backend(Backend):
         tool, speed = self.tool(node.tool, ctx), self.mdesc(node, rec.blend_radius, ctx)
         return self.by_kind(node)(node, rec, ctx, f"{tool}, {speed}")
 
-    def move_joint(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+    def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: Val3Context,
                    tail: str) -> list[str]:
         if (node.uid, "target") in ctx.offsets:  # issue #15: a joint move of a vendor loop
             branch = self.branch(rec, node)
@@ -324,7 +324,7 @@ class Val3Backend(Backend):
         value = " ".join(f'j{k + 1}="{fmt(v, 4)}"' for k, v in enumerate(_degrees(rec.q_target)))
         return [f"movej(jTarget[{ctx.data.index(ctx.data.joints, value)}], {tail})"]
 
-    def move_linear(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+    def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: Val3Context,
                     tail: str) -> list[str]:
         branch = self.branch(rec, node)
         if branch is None or rec.tcp_pose is None:
@@ -332,7 +332,7 @@ class Val3Backend(Backend):
         target = self._shifted(self.point(rec.tcp_pose, branch, node.frame, ctx), node, "target", ctx)
         return [f"movel({target}, {tail})"]
 
-    def move_circular(self, node: ir.Move, rec: planned.InstructionRecord, ctx: Val3Context,
+    def move_circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: Val3Context,
                       tail: str) -> list[str]:
         branch = self.branch(rec, node)
         if branch is None or rec.tcp_pose is None:
@@ -345,7 +345,7 @@ class Val3Backend(Backend):
         via = self._shifted(self.point(node.via.pose, branch, node.frame, ctx), node, "via", ctx)
         return [f"movec({via}, {target}, {tail})"]
 
-    def branch(self, rec: planned.InstructionRecord, node: ir.Move) -> ir.Config | None:
+    def branch(self, rec: plan_types.InstructionRecord, node: ir.Move) -> ir.Config | None:
         b = rec.branch
         if b is None or None in (b.shoulder, b.elbow, b.wrist):
             self.unsupported(codes.NO_BRANCH, "a VAL3 point must have a full 6-axis configuration "
@@ -373,7 +373,7 @@ class Val3Backend(Backend):
             return []
         if node.port >= ctx.data.analog:
             ctx.data.analog = node.port + 1
-        self.warn(codes_b.ANALOG_LINK, f"analog outputs have no standard VAL3 name: aOut[{node.port}] "
+        self.warn(codes.ANALOG_LINK, f"analog outputs have no standard VAL3 name: aOut[{node.port}] "
                   "is declared unlinked; link it to the controller's output in the data file", node.span)
         return [f"aioSet(aOut[{node.port}], {fmt(node.value, 4)})"]
 
@@ -381,7 +381,7 @@ class Val3Backend(Backend):
         sig = self.port(node.port, node.span, True, ctx)
         if sig is None:
             return []
-        self.warn(codes_b.PULSE_INLINE, f"VAL3 has no pulse instruction; out[{node.port}] is set, "
+        self.warn(codes.PULSE_INLINE, f"VAL3 has no pulse instruction; out[{node.port}] is set, "
                   f"held {node.duration:g} s with delay(), then reset (the program waits)", node.span)
         return [f"{sig} = true", f"delay({fmt(node.duration, 4)})", f"{sig} = false"]
 
@@ -497,7 +497,7 @@ class Val3Backend(Backend):
             if not self.port_ok(e.port, "analog input", node.span):
                 return "0"
             ctx.data.analog_in = max(ctx.data.analog_in, e.port + 1)
-            self.warn(codes_b.ANALOG_LINK, "analog inputs have no standard VAL3 name: "
+            self.warn(codes.ANALOG_LINK, "analog inputs have no standard VAL3 name: "
                       f"aIn[{e.port}] is declared unlinked; link it to the controller's input in "
                       "the data file", node.span)
             return f"aioGet(aIn[{e.port}])"
@@ -661,7 +661,7 @@ _VAL3_CMP = {ir.CompareOp.EQ: "==", ir.CompareOp.NE: "!=", ir.CompareOp.LT: "<",
              ir.CompareOp.LE: "<=", ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
 
 
-def _blend_key(node: ir.Instr, rec: planned.InstructionRecord | None) -> object:
+def _blend_key(node: ir.Instr, rec: plan_types.InstructionRecord | None) -> object:
     """What VAL3 prints from a move's record beyond its target: the blend (mdesc leave/reach)."""
     return None if rec is None or not isinstance(node, ir.Move) else round(rec.blend_radius, 6)
 

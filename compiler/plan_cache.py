@@ -46,7 +46,7 @@ from rmot.compiler.plan_codec import CodecError, decode, encode
 
 if TYPE_CHECKING:
     from rmot.compiler import ir
-    from rmot.compiler.planned import Plan
+    from rmot.compiler.plan_types import Plan
 
 __all__ = ["MAX_BYTES", "cache_dir", "cached_plan", "evict", "plan_key", "source_digest"]
 
@@ -202,7 +202,7 @@ def _source_files() -> list[tuple[str, Path]]:
 # ---------------------------------------------------------------------------- entries
 def _read(path: Path, key: str) -> Plan | None:
     """The Plan stored under `path`, or None (a missing, corrupt or foreign entry is removed)."""
-    from rmot.compiler.planned import Plan
+    from rmot.compiler.plan_types import Plan
 
     try:
         with np.load(path, allow_pickle=False) as z:

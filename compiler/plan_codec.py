@@ -29,7 +29,7 @@ __all__ = ["ALLOWED_MODULES", "CodecError", "decode", "encode", "allowed_types"]
 
 # The modules whose dataclasses and enums may appear in a Plan (the Plan, the IR, spans, diagnostics).
 ALLOWED_MODULES = (
-    "rmot.compiler.planned",
+    "rmot.compiler.plan_types",
     "rmot.compiler.ir",
     "rmot.lang.source",
     "rmot.lang.diagnostics",

@@ -15,15 +15,16 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from rmot.lang import ast, codes
     from rmot.lang.diagnostics import Code, Diagnostic, DiagnosticSink, Severity, render, render_all
-    from rmot.lang.parse import KEYWORDS, UNITS, ParseResult, parse_source, parse_text, wrap_syntax_error
+    from rmot.lang.parse import KEYWORDS, ParseResult, parse_source, parse_text, wrap_syntax_error
     from rmot.lang.source import Pos, SourceFile, Span
+    from rmot.lang.units import UNIT_NAMES
 
 # Names load on first use (PEP 562): importing rmot.lang.source or .diagnostics (as the IR, the
 # robot library and every report do) must not build the parser, which only parsing needs.
 _LAZY = {
     "Code": "diagnostics", "Diagnostic": "diagnostics", "DiagnosticSink": "diagnostics",
     "Severity": "diagnostics", "render": "diagnostics", "render_all": "diagnostics",
-    "KEYWORDS": "parse", "UNITS": "parse", "ParseResult": "parse", "parse_source": "parse",
+    "KEYWORDS": "parse", "UNIT_NAMES": "units", "ParseResult": "parse", "parse_source": "parse",
     "parse_text": "parse", "wrap_syntax_error": "parse",
     "Pos": "source", "SourceFile": "source", "Span": "source",
 }
@@ -41,7 +42,7 @@ def __getattr__(name: str) -> Any:
 
 
 __all__ = [
-    "KEYWORDS", "UNITS", "Code", "Diagnostic", "DiagnosticSink", "ParseResult", "Pos", "Severity",
+    "KEYWORDS", "UNIT_NAMES", "Code", "Diagnostic", "DiagnosticSink", "ParseResult", "Pos", "Severity",
     "SourceFile", "Span", "ast", "codes", "parse_source", "parse_text", "render", "render_all",
     "wrap_syntax_error",
 ]

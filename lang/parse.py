@@ -37,11 +37,10 @@ from rmot.lang._tables import GRAMMAR as _GRAMMAR
 from rmot.lang._tables import load_tables
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
-from rmot.lang.units import UNIT_NAMES, unknown_unit
+from rmot.lang.units import unknown_unit
 
-__all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "RESERVED", "UNITS"]
+__all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "RESERVED"]
 
-UNITS = UNIT_NAMES  # every unit the language knows (lang/units.py is the one table)
 
 _MAX_EXPECTED = 6
 

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 
 __all__ = ["LimitHit", "check_limits", "joint_torques"]
 
@@ -32,7 +32,7 @@ class LimitHit:
     prismatic: bool
 
 
-def check_limits(robot: Any, traj: planned.Trajectory, payload: float = 0.0,
+def check_limits(robot: Any, traj: plan_types.Trajectory, payload: float = 0.0,
                  payload_at: np.ndarray | None = None) -> list[LimitHit]:
     """Every run of samples over a limit. payload: kg at `payload_at` (3,) in the last joint's frame."""
     hits: list[LimitHit] = []
@@ -58,7 +58,7 @@ def check_limits(robot: Any, traj: planned.Trajectory, payload: float = 0.0,
     return sorted(hits, key=lambda h: (h.t0, h.joint, h.quantity))
 
 
-def joint_torques(robot: Any, traj: planned.Trajectory, payload: float = 0.0,
+def joint_torques(robot: Any, traj: plan_types.Trajectory, payload: float = 0.0,
                   payload_at: np.ndarray | None = None) -> np.ndarray:
     """(N, dof) N·m (N for prismatic) by RNEA; the payload is a point mass on the last joint.
     Controller joint values go through robot.to_model (a linear map, Fanuc's J2/J3 coupling)
@@ -78,7 +78,7 @@ def joint_torques(robot: Any, traj: planned.Trajectory, payload: float = 0.0,
     return out
 
 
-def _runs(quantity: str, traj: planned.Trajectory, values: np.ndarray, over: np.ndarray,
+def _runs(quantity: str, traj: plan_types.Trajectory, values: np.ndarray, over: np.ndarray,
           bounds: np.ndarray, prismatic: np.ndarray) -> list[LimitHit]:
     hits = []
     for j in np.nonzero(over.any(axis=0))[0]:

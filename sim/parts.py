@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.collide import CONTACT_TOL, PairHit, Timeline, candidate_pairs, check_timeline
@@ -73,7 +73,7 @@ class Phase:
 # --------------------------------------------------------------------------- events
 
 
-def part_events(plan: planned.Plan, variant: tuple[str, planned.Variant] | None = None) -> list[PartEvent]:
+def part_events(plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] | None = None) -> list[PartEvent]:
     """Attach/detach events in time order. At one instant (the simulation takes no time for
     `wait until`, `set` or a sync both tasks reach together) the `sync` barriers decide: an
     event after more barriers of its task comes later; then detach before attach.
@@ -104,14 +104,14 @@ def part_events(plan: planned.Plan, variant: tuple[str, planned.Variant] | None 
     return out
 
 
-def _trajectories(plan: planned.Plan, variant: tuple[str, planned.Variant] | None) -> dict[str, planned.Trajectory]:
+def _trajectories(plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] | None) -> dict[str, plan_types.Trajectory]:
     trajs = {tp.robot: tp.trajectory for tp in plan.tasks}
     if variant is not None:
         trajs[variant[0]] = variant[1].trajectory
     return trajs
 
 
-def _flange(scene: Scene, robot: str, traj: planned.Trajectory | None, t: float) -> np.ndarray:
+def _flange(scene: Scene, robot: str, traj: plan_types.Trajectory | None, t: float) -> np.ndarray:
     entry = scene.robots[robot]
     if traj is None or traj.t.size == 0:
         q = np.clip(np.zeros(entry.robot.dof), entry.robot.joint_limits[:, 0], entry.robot.joint_limits[:, 1])
@@ -120,7 +120,7 @@ def _flange(scene: Scene, robot: str, traj: planned.Trajectory | None, t: float)
     return entry.base @ np.asarray(entry.robot.fk(q))
 
 
-def phases(scene: Scene, plan: planned.Plan, variant: tuple[str, planned.Variant] | None = None,
+def phases(scene: Scene, plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] | None = None,
            diagnostics: list[Diagnostic] | None = None) -> list[Phase]:
     """The phases of the program's time (or of one variant's path): the parts' states between
     events. Attach/detach problems only the plan can show go to `diagnostics` (E330, E331)."""
@@ -347,7 +347,7 @@ def _merge(hits: list[tuple[Scene, PairHit]]) -> list[tuple[Scene, PairHit]]:
 # --------------------------------------------------------------------------- payload
 
 
-def load_at(plan: planned.Plan, tp: planned.TaskPlan, t: float, parts: dict[str, ir.Part],
+def load_at(plan: plan_types.Plan, tp: plan_types.TaskPlan, t: float, parts: dict[str, ir.Part],
             events: list[PartEvent]) -> tuple[float, list[str]]:
     """(mass of the parts robot tp.robot holds at time t, their names)."""
     held: list[str] = []
@@ -363,7 +363,7 @@ def load_at(plan: planned.Plan, tp: planned.TaskPlan, t: float, parts: dict[str,
     return sum(parts[n].mass for n in held if n in parts), held
 
 
-def payload_findings(scene: Scene, plan: planned.Plan) -> list[Diagnostic]:
+def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
     """E332: the tool's mass plus the held parts' beyond the robot's rated payload, at the
     first move of each run of moves that carry too much (`rated_payload_kg` on the robot;
     None = unknown, not checked), on the main timeline and on each `if` variant's path."""
@@ -401,7 +401,7 @@ def payload_findings(scene: Scene, plan: planned.Plan) -> list[Diagnostic]:
     return out
 
 
-def heaviest_held(scene: Scene, plan: planned.Plan, tp: planned.TaskPlan) -> tuple[float, np.ndarray | None]:
+def heaviest_held(scene: Scene, plan: plan_types.Plan, tp: plan_types.TaskPlan) -> tuple[float, np.ndarray | None]:
     """(mass, centre of gravity in the flange frame (3,)) of the heaviest set of parts the task's
     robot holds in any phase of the main timeline (each part at its own centroid)."""
     best: tuple[float, np.ndarray | None] = (0.0, None)
@@ -432,10 +432,10 @@ def with_part_bodies(scene: Scene) -> Scene:
     return replace(scene, bodies=scene.bodies + tuple(part_bodies(scene, start)))
 
 
-_PHASES: dict[tuple[int, int], tuple[Scene, planned.Plan, list[Phase]]] = {}
+_PHASES: dict[tuple[int, int], tuple[Scene, plan_types.Plan, list[Phase]]] = {}
 
 
-def part_poses(scene: Scene, plan: planned.Plan, times: np.ndarray,
+def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
                q: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """part name -> (N, 4, 4) world poses at `times` (N,): placed where they lie, held ones on
     their robot's flange (q: robot -> (N, dof) joint values at `times`)."""

@@ -26,7 +26,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir
-from rmot.compiler.planned import Plan, TaskPlan
+from rmot.compiler.plan_types import Plan, TaskPlan
 
 __all__ = ["KINDS", "PlotData", "figure_bytes", "plot_data"]
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 __all__ = ["ASSUMPTIONS", "ASSUMPTIONS_LINE", "timing_json"]
 
@@ -58,7 +58,7 @@ _KIND = {ir.Move: "move", ir.SetDigital: "set", ir.SetAnalog: "set", ir.Pulse: "
          ir.WaitCondition: "wait_until", ir.Stop: "stop"}  # issue #15
 
 
-def timing_json(plan: planned.Plan) -> list[dict[str, Any]]:
+def timing_json(plan: plan_types.Plan) -> list[dict[str, Any]]:
     """Per task (main timeline): cycle time, time moving / waiting / synchronising (they add up
     to the cycle time: waiting is every other instant the robot stands still), and every
     instruction's start and end (s). Records of `if` variants carry their variant number."""

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.source import Span
@@ -32,12 +32,12 @@ from rmot.sim import parts
 __all__ = ["verify", "verify_with"]
 
 
-def verify(plan: planned.Plan, *, clearance: float | None = None) -> Report:
+def verify(plan: plan_types.Plan, *, clearance: float | None = None) -> Report:
     """Check the Plan; `clearance` (m): also report every approach closer than that."""
     return verify_with(plan, clearance=clearance)
 
 
-def verify_with(plan: planned.Plan, *, clearance: float | None = None,
+def verify_with(plan: plan_types.Plan, *, clearance: float | None = None,
                 robots: Mapping[str, Any] | None = None) -> Report:
     """`verify` with the robot models given (tests) instead of loaded from the library."""
     program = plan.program
@@ -82,7 +82,7 @@ def _tools_used(program: ir.Program) -> dict[str, set[str]]:
 # --------------------------------------------------------------------------- collisions
 
 
-def _collisions(scene: Scene, plan: planned.Plan, tasks: list[planned.TaskPlan], clearance: float) -> list[Diagnostic]:
+def _collisions(scene: Scene, plan: plan_types.Plan, tasks: list[plan_types.TaskPlan], clearance: float) -> list[Diagnostic]:
     main = {tp.robot: tp.trajectory for tp in tasks}
     out: list[Diagnostic] = []
     timeline = _timeline(scene, main, None)
@@ -100,7 +100,7 @@ def _collisions(scene: Scene, plan: planned.Plan, tasks: list[planned.TaskPlan],
     return out
 
 
-def _part_collisions(scene: Scene, plan: planned.Plan, tasks: list[planned.TaskPlan], clearance: float) -> list[Diagnostic]:
+def _part_collisions(scene: Scene, plan: plan_types.Plan, tasks: list[plan_types.TaskPlan], clearance: float) -> list[Diagnostic]:
     """The pairs with a part (sim/parts.py), phase by phase, on the main timeline and each variant."""
     main = {tp.robot: tp.trajectory for tp in tasks}
     by_robot = {tp.robot: tp for tp in tasks}
@@ -124,7 +124,7 @@ def _part_collisions(scene: Scene, plan: planned.Plan, tasks: list[planned.TaskP
     return out
 
 
-def _timeline(scene: Scene, trajs: dict[str, planned.Trajectory], grid: np.ndarray | None) -> Timeline:
+def _timeline(scene: Scene, trajs: dict[str, plan_types.Trajectory], grid: np.ndarray | None) -> Timeline:
     """Every robot on one clock: the union of the sample times (each robot's piecewise-linear
     path is unchanged by resampling at a superset of its own samples)."""
     if grid is None:
@@ -148,7 +148,7 @@ def _resample(t: np.ndarray, values: np.ndarray, grid: np.ndarray) -> np.ndarray
     return np.stack([np.interp(grid, t, values[:, j]) for j in range(values.shape[1])], axis=1)
 
 
-def _collision_diagnostic(scene: Scene, by_robot: dict[str, planned.TaskPlan], hit: PairHit, clearance: float,
+def _collision_diagnostic(scene: Scene, by_robot: dict[str, plan_types.TaskPlan], hit: PairHit, clearance: float,
                           variant: int, variant_robot: str | None = None) -> Diagnostic:
     a, b = scene.body(hit.a), scene.body(hit.b)
     if a.kind == "fixture" or (b.kind != "fixture" and not a.moves and b.moves):
@@ -191,24 +191,24 @@ def _collision_code(a: Any, b: Any) -> Any:
     return codes.ROBOT_COLLISION
 
 
-def _variant_path(tp: planned.TaskPlan, variant: int) -> str:
+def _variant_path(tp: plan_types.TaskPlan, variant: int) -> str:
     """' (on the path through the 'otherwise' arm of the if at line N)': a variant covers the
     arm and everything after the if, so the finding may be in either."""
     for v in tp.variants:
         if v.index == variant:
             span = next((i.span for i in ir.walk(tp.task.body) if i.uid == v.if_uid), None)
             line = span.start.line if span is not None else None
-            return f" (on {planned.path_words(v.arm, line)})"
+            return f" (on {plan_types.path_words(v.arm, line)})"
     return " (on another path through a runtime if)"
 
 
-def _span_at(tp: planned.TaskPlan, t: float, variant: int) -> Span | None:
+def _span_at(tp: plan_types.TaskPlan, t: float, variant: int) -> Span | None:
     """The span of the move the task executes at time t (else of any instruction then)."""
     record = _record_at(tp, t, variant)
     return record.span if record is not None else tp.task.span
 
 
-def _iteration_at(tp: planned.TaskPlan | None, t: float, variant: int) -> str:
+def _iteration_at(tp: plan_types.TaskPlan | None, t: float, variant: int) -> str:
     """' (in iteration layer = 2, row = 1)' when the instruction the task executes at time t lies
     in a for/repeat loop (issue #15: a finding names the iteration), else ''."""
     if tp is None:
@@ -218,7 +218,7 @@ def _iteration_at(tp: planned.TaskPlan | None, t: float, variant: int) -> str:
     return f" (in iteration {describe_iteration(path)})" if path else ""
 
 
-def _record_at(tp: planned.TaskPlan, t: float, variant: int) -> planned.InstructionRecord | None:
+def _record_at(tp: plan_types.TaskPlan, t: float, variant: int) -> plan_types.InstructionRecord | None:
     """The record of the move the task executes at time t (else of any instruction then)."""
     moves = {i.uid for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
     records = [r for r in tp.records if r.variant == variant] or list(tp.records)
@@ -250,7 +250,7 @@ _LIMIT_CODES = {"position": codes.JOINT_POSITION, "velocity": codes.JOINT_VELOCI
                 "acceleration": codes.JOINT_ACCEL, "torque": codes.JOINT_TORQUE}
 
 
-def _limits(scene: Scene, tp: planned.TaskPlan, plan: planned.Plan | None = None) -> list[Diagnostic]:
+def _limits(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> list[Diagnostic]:
     entry = scene.robots[tp.robot]
     payload, payload_at = _payload(scene, tp, plan)
     out = []
@@ -263,7 +263,7 @@ def _limits(scene: Scene, tp: planned.TaskPlan, plan: planned.Plan | None = None
     return out
 
 
-def _payload(scene: Scene, tp: planned.TaskPlan, plan: planned.Plan | None = None) -> tuple[float, np.ndarray | None]:
+def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> tuple[float, np.ndarray | None]:
     """The heaviest tool the task uses, as a point mass at its centre of gravity (in the last
     joint's frame): half way along the flange->TCP vector, ir.payload_cog, the point every
     backend writes as the tool's payload."""
@@ -283,7 +283,7 @@ def _payload(scene: Scene, tp: planned.TaskPlan, plan: planned.Plan | None = Non
     return best[0], flange[:3, :3] @ best[1] + flange[:3, 3]
 
 
-def _limit_diagnostic(tp: planned.TaskPlan, hit: LimitHit, variant: int) -> Diagnostic:
+def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int) -> Diagnostic:
     unit, factor, p_unit, p_factor = _UNITS[hit.quantity]
     if hit.prismatic:
         unit, factor = p_unit, p_factor

@@ -19,7 +19,7 @@ from rmot.compiler.atomic import write_atomic, write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 if TYPE_CHECKING:  # the heavy stages load only when a check runs
-    from rmot.compiler.planned import Plan
+    from rmot.compiler.plan_types import Plan
     from rmot.sim.report import Report
 
 __all__ = ["CheckOutcome", "check", "check_one", "parse_length"]

@@ -25,7 +25,7 @@ from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.values import (
     article,
-    ANGLE, DIMENSIONLESS, LENGTH, UNITS, BoolV, Dim, JointsV, PoseV, Quantity, StringV, Value,
+    ANGLE, DIMENSIONLESS, LENGTH, UNIT_TABLE, BoolV, Dim, JointsV, PoseV, Quantity, StringV, Value,
     VectorV, dim_name, example_unit, fmt_quantity, type_name,
 )
 from rmot.lang import ast
@@ -81,7 +81,7 @@ def _string(e: ast.String, scope: Scope, rep: Reporter) -> Value:
 def _number(e: ast.Number, scope: Scope, rep: Reporter) -> Quantity | None:
     if e.unit is None:
         return Quantity(e.value, DIMENSIONLESS, None, e.value)
-    known = UNITS.get(e.unit)
+    known = UNIT_TABLE.get(e.unit)
     if known is None:  # not silent: the parser reported this unit (E007, lang/_build.py) at the unit
         return None
     factor, dim = known
@@ -128,7 +128,7 @@ def _binop(e: ast.BinOp, scope: Scope, rep: Reporter) -> Value | None:
             return None
         value = a.value + b.value if e.op == "+" else a.value - b.value
         unit = a.unit or b.unit
-        total = value / UNITS[unit][0] if unit in UNITS else value
+        total = value / UNIT_TABLE[unit][0] if unit in UNIT_TABLE else value
         return Quantity(value, a.dim, unit, total)
     if e.op == "/" and b.value == 0:
         rep.error(codes.OUT_OF_RANGE, "divisor must not be zero (got 0)", e.right.span)
@@ -137,7 +137,7 @@ def _binop(e: ast.BinOp, scope: Scope, rep: Reporter) -> Value | None:
     dim: Dim = tuple(x + sign * y for x, y in zip(a.dim, b.dim))  # type: ignore[assignment]
     value = a.value * b.value if e.op == "*" else a.value / b.value
     unit = _product_unit(a, b, e.op)
-    written = value / UNITS[unit][0] if unit in UNITS and UNITS[unit][1] == dim else None
+    written = value / UNIT_TABLE[unit][0] if unit in UNIT_TABLE and UNIT_TABLE[unit][1] == dim else None
     return Quantity(value, dim, unit, written)
 
 
@@ -147,7 +147,7 @@ def _product_unit(a: Quantity, b: Quantity, op: str) -> str | None:
     if a.dim == DIMENSIONLESS and op == "*":
         return b.unit
     combined = f"{a.unit or 1}{op}{b.unit or 1}"
-    return combined if combined in UNITS else None
+    return combined if combined in UNIT_TABLE else None
 
 
 def _attr(e: ast.Attr, scope: Scope, rep: Reporter) -> Value | None:
@@ -364,9 +364,9 @@ def _joints(e: ast.Joints, scope: Scope, rep: Reporter) -> Value | None:
                 rep.error(codes.MISSING_UNIT, f"joint value must be an angle such as 90 deg (got {fmt_quantity(v)} without a unit; "
                           "write joints(...) deg to give them all one)", a.span)
                 return None
-            if e.unit not in UNITS:  # reported by the parser (E007)
+            if e.unit not in UNIT_TABLE:  # reported by the parser (E007)
                 return None
-            factor, dim = UNITS[e.unit]
+            factor, dim = UNIT_TABLE[e.unit]
             v = Quantity(v.value * factor, dim, e.unit, v.value)
         values.append(v)
     return JointsV(tuple(values), e.span)

@@ -24,7 +24,7 @@ from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose
 from rmot.compiler.passes.load_files import resolve_path
 from rmot.compiler.passes.scopes import declare, misplaced
 from rmot.compiler.passes.state import FrontendState
-from rmot.compiler.passes.values import LENGTH, MASS, UNITS, PoseV, Quantity
+from rmot.compiler.passes.values import LENGTH, MASS, UNIT_TABLE, PoseV, Quantity
 from rmot.lang import ast
 
 __all__ = ["lower_cell", "IO_DIRECTIONS"]
@@ -149,10 +149,10 @@ class _CellBuilder:
         if "unit" in bound:
             unit = bound["unit"].value
             text = unit.name if isinstance(unit, ast.Name) else unit.value if isinstance(unit, ast.String) else None
-            if text not in UNITS or UNITS[text][1] != LENGTH:
+            if text not in UNIT_TABLE or UNIT_TABLE[text][1] != LENGTH:
                 self.rep.error(codes.WRONG_DIMENSION, "mesh unit must be a length unit: mm, cm, m or in", unit.span)
                 return None
-            scale = UNITS[text][0]
+            scale = UNIT_TABLE[text][0]
         if "scale" in bound:
             v = eval_expr(bound["scale"].value, self.scope, self.rep)
             if not (isinstance(v, Quantity) and v.unit is None and v.value > 0):

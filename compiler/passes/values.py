@@ -16,7 +16,7 @@ from rmot.lang.units import UNIT_TABLE
 
 __all__ = [
     "BoolV", "Dim", "DIMENSIONLESS", "JointsV", "LENGTH", "ANGLE", "TIME", "SPEED", "ACCEL",
-    "MASS", "RATIO", "ANGULAR_SPEED", "ANGULAR_ACCEL", "article", "PoseV", "Quantity", "StringV", "UNITS",
+    "MASS", "RATIO", "ANGULAR_SPEED", "ANGULAR_ACCEL", "article", "PoseV", "Quantity", "StringV", "UNIT_TABLE",
     "Value", "VectorV", "dim_name", "example_unit", "type_name", "fmt_quantity",
 ]
 
@@ -36,7 +36,6 @@ TORQUE: Dim = (2, 0, -2, 1, 0)  # N*m: a revolute model joint's torque rating
 __all__ += ["FORCE", "TORQUE"]
 
 # unit as written -> (factor to SI, dimension): the language's one table (lang/units.py)
-UNITS: dict[str, tuple[float, Dim]] = UNIT_TABLE
 _DIM_NAMES = {
     DIMENSIONLESS: ("number", "3"), LENGTH: ("length", "150 mm"), ANGLE: ("angle", "90 deg"),
     TIME: ("time", "0.5 s"), MASS: ("mass", "1.2 kg"), RATIO: ("ratio", "50 %"),
@@ -76,7 +75,7 @@ class Quantity:
 def fmt_quantity(q: Quantity) -> str:
     if q.unit is None:
         return f"{q.value:g}"
-    factor = UNITS.get(q.unit, (1.0, q.dim))[0]
+    factor = UNIT_TABLE.get(q.unit, (1.0, q.dim))[0]
     number = q.written if q.written is not None else q.value / factor
     return f"{number:g} {q.unit}"
 

@@ -9,7 +9,7 @@ from rmot.compiler.plan import codes
 from rmot.compiler.plan.sync import align, hold_variants, sample
 from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
-from rmot.compiler.planned import Plan, TaskPlan, Variant
+from rmot.compiler.plan_types import Plan, TaskPlan, Variant
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.compiler.plan.robot_model import RobotModel
 

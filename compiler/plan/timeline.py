@@ -3,7 +3,7 @@
 * Moves gather into a *chain* while their zones blend; a chain ends at a `fine` zone, at the
   task's last move, at a move with a `time` modifier (timed on its own: blending into or out of
   it is not done), and before any instruction that makes the robot wait (`wait`,
-  `wait until`, `sync`, `if`). Then the chain is timed (compiler.plan.chain). In a program
+  `wait until`, `sync`, `if`). Then the chain is timed (compiler.plan.move_chain). In a program
   of one task (`lone`) a `sync` is a no-op: it is recorded at its instant like a `set` and
   neither stops nor breaks a blend.
 * `set`, `pulse` and `native` do not stop the robot: they happen at the instant the preceding
@@ -39,11 +39,11 @@ import numpy as np
 from rmot.compiler import ir
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.compiler.plan import codes
-from rmot.compiler.plan.chain import TimedChain, time_chain
+from rmot.compiler.plan.move_chain import TimedChain, time_chain
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
 from rmot.compiler.plan.timing import HoldPiece, Piece
-from rmot.compiler.planned import InstructionRecord, path_words
+from rmot.compiler.plan_types import InstructionRecord, path_words
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.compiler.plan.robot_model import RobotModel
 

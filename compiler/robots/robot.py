@@ -14,7 +14,7 @@ import numpy as np
 import pinocchio as pin
 
 from rmot.compiler import ir
-from rmot.compiler.robots.chain import Chain, chain_of
+from rmot.compiler.robots.kinematic_chain import Chain, chain_of
 
 if TYPE_CHECKING:
     from rmot.compiler.robots.ik import IkResult

@@ -77,7 +77,7 @@ def _flange_frame(model: pin.Model, first: str | None = None) -> int:
 
 
 def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: str | None = None) -> Robot:
-    from rmot.compiler.robots.chain import chain_of
+    from rmot.compiler.robots.kinematic_chain import chain_of
 
     from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
 

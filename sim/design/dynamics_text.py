@@ -5,13 +5,13 @@ from __future__ import annotations
 
 from typing import Any
 
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 from rmot.sim.design.metrics import TaskMetrics, program_metrics
 
 __all__ = ["dynamics_json", "dynamics_text"]
 
 
-def dynamics_text(plan: planned.Plan, metrics: dict[str, TaskMetrics] | None = None) -> str:
+def dynamics_text(plan: plan_types.Plan, metrics: dict[str, TaskMetrics] | None = None) -> str:
     """One block per task: peak / RMS torque, peak power and use of the rated torque per joint,
     or the reason there are none (no inertia data). `metrics`: program_metrics(plan) if known."""
     lines = []

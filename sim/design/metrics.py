@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.sim.report import Report
 
 __all__ = ["JointDynamics", "TaskMetrics", "dynamics", "task_metrics", "program_metrics", "substitute_robot"]
@@ -67,11 +67,11 @@ class TaskMetrics:
     dynamics_note: str = ""
 
 
-def _trajectories(tp: planned.TaskPlan) -> list[planned.Trajectory]:
+def _trajectories(tp: plan_types.TaskPlan) -> list[plan_types.Trajectory]:
     return [tp.trajectory] + [v.trajectory for v in tp.variants]
 
 
-def _margin(robot: Any, trajs: list[planned.Trajectory]) -> tuple[float, int]:
+def _margin(robot: Any, trajs: list[plan_types.Trajectory]) -> tuple[float, int]:
     lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]
     best, joint = np.inf, 1
     for tr in trajs:
@@ -84,7 +84,7 @@ def _margin(robot: Any, trajs: list[planned.Trajectory]) -> tuple[float, int]:
     return best, joint
 
 
-def _manipulability(robot: Any, trajs: list[planned.Trajectory]) -> float:
+def _manipulability(robot: Any, trajs: list[plan_types.Trajectory]) -> float:
     worst = np.inf
     scale = max(float(robot.reach), 1e-3)
     for tr in trajs:
@@ -98,7 +98,7 @@ def _manipulability(robot: Any, trajs: list[planned.Trajectory]) -> float:
     return worst
 
 
-def dynamics(robot: Any, tp: planned.TaskPlan, payload: float, payload_at: np.ndarray | None
+def dynamics(robot: Any, tp: plan_types.TaskPlan, payload: float, payload_at: np.ndarray | None
              ) -> tuple[tuple[JointDynamics, ...] | None, str]:
     """Per joint peak / RMS torque and peak power over every trajectory of the task."""
     if not getattr(robot, "has_inertia", False):
@@ -126,7 +126,7 @@ def dynamics(robot: Any, tp: planned.TaskPlan, payload: float, payload_at: np.nd
     return joints, note
 
 
-def task_metrics(robot: Any, tp: planned.TaskPlan, payload: float = 0.0, payload_at: np.ndarray | None = None) -> TaskMetrics:
+def task_metrics(robot: Any, tp: plan_types.TaskPlan, payload: float = 0.0, payload_at: np.ndarray | None = None) -> TaskMetrics:
     trajs = _trajectories(tp)
     margin, joint = _margin(robot, trajs)
     dyn, note = dynamics(robot, tp, payload, payload_at)
@@ -134,7 +134,7 @@ def task_metrics(robot: Any, tp: planned.TaskPlan, payload: float = 0.0, payload
                        robot.joint_types[joint - 1] == "P", _manipulability(robot, trajs), dyn, note)
 
 
-def program_metrics(plan: planned.Plan, robots: dict[str, Any] | None = None) -> dict[str, TaskMetrics]:
+def program_metrics(plan: plan_types.Plan, robots: dict[str, Any] | None = None) -> dict[str, TaskMetrics]:
     """task name -> TaskMetrics, the payload taken as verification takes it."""
     from rmot.sim.scene import build_scene
     from rmot.sim.verification import _payload, _tools_used

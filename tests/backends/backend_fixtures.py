@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from rmot.backends.base import Backend, EmitResult
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.source import Pos, SourceFile, Span
 
@@ -42,7 +42,7 @@ def cell(robot: str = "abb_irb120", dof: int = 6) -> ir.Cell:
 
 def hand_plan(body: tuple[ir.Instr, ...], records: dict[int, tuple[np.ndarray, ir.Config | None]],
               *, robot: str = "abb_irb120", dof: int = 6, name: str = "demo",
-              durations: dict[int, float] | None = None) -> planned.Plan:
+              durations: dict[int, float] | None = None) -> plan_types.Plan:
     """A Plan built by hand: `records` maps a move's uid to (q_target (dof,), branch).
 
     Moves of If arms and proc bodies are looked up the same way; a move's record blends with
@@ -57,16 +57,16 @@ def hand_plan(body: tuple[ir.Instr, ...], records: dict[int, tuple[np.ndarray, i
             q, branch = records[node.uid]
             d = durations.get(node.uid, 1.0)
             tcp = node.target.pose if isinstance(node, ir.Move) and isinstance(node.target, ir.CartesianTarget) else None
-            recs.append(planned.InstructionRecord(uid=node.uid, span=node.span, t_start=t, t_end=t + d,
+            recs.append(plan_types.InstructionRecord(uid=node.uid, span=node.span, t_start=t, t_end=t + d,
                                                   q_target=np.asarray(q, float), branch=branch, tcp_pose=tcp,
                                                   q_via=np.asarray(q, float) if getattr(node, "via", None) else None,
                                                   blend_radius=node.motion.zone.radius if isinstance(node, ir.Move) else 0.0))
             t += d
-    traj = planned.Trajectory(np.array([0.0, max(t, 0.004)]), np.zeros((2, dof)), np.zeros((2, dof)),
+    traj = plan_types.Trajectory(np.array([0.0, max(t, 0.004)]), np.zeros((2, dof)), np.zeros((2, dof)),
                               np.zeros((2, dof)))
     task = ir.Task("main", "r1", body, span=span_at(1))
     program = ir.Program(name, cell(robot, dof), (task,), span=span_at(1))
-    return planned.Plan(program, (planned.TaskPlan(task, "r1", traj, tuple(recs)),))
+    return plan_types.Plan(program, (plan_types.TaskPlan(task, "r1", traj, tuple(recs)),))
 
 
 def deg(*values: float) -> np.ndarray:
@@ -123,7 +123,7 @@ def move(uid: int, kind: ir.MotionKind, target: ir.CartesianTarget | ir.JointTar
                    frame=frame, span=span_at(10 + uid))
 
 
-def sample_program() -> planned.Plan:
+def sample_program() -> plan_types.Plan:
     """Every instruction kind once (moves of all three kinds, I/O, wait, if, proc, native)."""
     down = ir.Pose.from_xyz_rpy(0.1, 0.2, 0.15, math.pi, 0, 0)
     tgt = cart(down, TABLE, "above")
@@ -160,7 +160,7 @@ def routine_lines(text: str, start: str, end: str) -> list[str]:
     return [ln for ln in lines[i + 1:j] if ln and not ln.startswith(("!", ";"))]
 
 
-def handshake_missing(plan: planned.Plan) -> bool:
+def handshake_missing(plan: plan_types.Plan) -> bool:
     """A multi-task program whose cell lacks some syncing robot's "sync" signals: the I/O
     handshake vendors then refuse its syncs (E409)."""
     from rmot.backends.handshake import handshake_ports
@@ -210,7 +210,7 @@ GOLDEN = Path(__file__).parent / "golden"
 UPDATE_GOLDEN = os.environ.get("RMOT_UPDATE_GOLDEN") == "1"
 
 
-def example_plans(names: Iterable[str]) -> dict[str, planned.Plan]:
+def example_plans(names: Iterable[str]) -> dict[str, plan_types.Plan]:
     """examples/<name>.rmot through the real front end and planner, per name."""
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
@@ -225,7 +225,7 @@ def example_plans(names: Iterable[str]) -> dict[str, planned.Plan]:
     return out
 
 
-_PLANNED: dict[str, planned.Plan] = {}
+_PLANNED: dict[str, plan_types.Plan] = {}
 
 
 def check_golden(vendor: str, example: str, files: dict[str, str]) -> None:

@@ -1,7 +1,7 @@
 """Shared fixtures for the backend tests (also used by test_urscript/inform/val3/neutral).
 
 For the other backends helper — the names to reuse:
-  * `plan_from_text` (fixture): a function `(text: str, path: str = "test.rmot") -> planned.Plan`
+  * `plan_from_text` (fixture): a function `(text: str, path: str = "test.rmot") -> plan_types.Plan`
     that compiles .rmot text through the real front end (`rmot.compiler.frontend.load_text`)
     and planner (`rmot.compiler.plan.plan_program`); it fails the test with the rendered
     diagnostics if either reports an error.
@@ -18,25 +18,25 @@ from collections.abc import Callable
 import pytest
 from backend_fixtures import hand_plan
 
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 
 
 @pytest.fixture
-def hand() -> Callable[..., planned.Plan]:
+def hand() -> Callable[..., plan_types.Plan]:
     return hand_plan
 
 
 @pytest.fixture(scope="session")
-def plan_from_text() -> Callable[..., planned.Plan]:
+def plan_from_text() -> Callable[..., plan_types.Plan]:
     """Compile .rmot text to a Plan through the real front end and planner (session-wide, so
     module-scoped fixtures can use it; each text is planned once per session)."""
     from rmot.compiler.frontend import load_text
     from rmot.compiler.plan import plan_program
     from rmot.lang.diagnostics import render_all
 
-    cache: dict[tuple[str, str], planned.Plan] = {}
+    cache: dict[tuple[str, str], plan_types.Plan] = {}
 
-    def build(text: str, path: str = "test.rmot") -> planned.Plan:
+    def build(text: str, path: str = "test.rmot") -> plan_types.Plan:
         if (text, path) in cache:
             return cache[(text, path)]
         front = load_text(text, path)

@@ -20,7 +20,7 @@ from backend_fixtures import (
     motion,
     span_at,
 )
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 J, L = ir.MotionKind.JOINT, ir.MotionKind.LINEAR
 DOWN_Q = ir.Pose.from_xyz_rpy(0, 0, 0, math.pi, 0, 0).quaternion
@@ -50,7 +50,7 @@ def _move(
 
 def pallet_program(
     vendor: str, *, branch_of: dict[tuple[int, int, int], ir.Config] | None = None
-) -> tuple[planned.Plan, ir.Loop]:
+) -> tuple[plan_types.Plan, ir.Loop]:
     """home; for layer in 0..2 { for row in 0..3 { for col in 0..2 { above; place; release;
     above } } }; home. `branch_of` gives some iterations another planned IK branch."""
     uid = count(10)
@@ -115,7 +115,7 @@ def const(value: int | bool) -> ir.Const:
     return ir.Const(value, BOOL if isinstance(value, bool) else INT)
 
 
-def tending_program(vendor: str) -> planned.Plan:
+def tending_program(vendor: str) -> plan_types.Plan:
     """var count = 0; var done = false
     while not done and in[2] == off {
       move joint above; wait until in[1] == on timeout 10 s else { set out[3] on; stop }
@@ -203,7 +203,7 @@ def tending_program(vendor: str) -> planned.Plan:
     return hand_plan(body, records, robot=BRAND_ROBOT[vendor], name="tending")
 
 
-def iteration_poses(loop: ir.Loop, plan: planned.Plan) -> list[tuple[str, ir.Pose]]:
+def iteration_poses(loop: ir.Loop, plan: plan_types.Plan) -> list[tuple[str, ir.Pose]]:
     """(target name, the planned TCP in the move's frame) of every move of every iteration,
     in execution order: what the plan verified, from its records."""
     out: list[tuple[str, ir.Pose]] = []

@@ -24,7 +24,7 @@ from backend_fixtures import (
     span_at,
 )
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 L_KIND, J_KIND = ir.MotionKind.LINEAR, ir.MotionKind.JOINT
 DOWN_Q = ir.Pose.from_xyz_rpy(0, 0, 0, math.pi, 0, 0).quaternion
@@ -45,7 +45,7 @@ def palletiser(
     branch: Callable[[int, int], ir.Config] | None = None,
     q: Callable[[int, int], np.ndarray] | None = None,
     frame: ir.FrameRef = TABLE,
-) -> tuple[planned.Plan, ir.Loop]:
+) -> tuple[plan_types.Plan, ir.Loop]:
     """A two-level loop nest: per (layer, row) an approach move, a place move and a gripper
     set. `pose(layer, row)` gives the place pose in `frame` (default: base + row*60 mm in y +
     layer*50 mm in z); `branch`/`q` the planned branch and joints of each move."""

@@ -13,7 +13,7 @@ import math
 import numpy as np
 from backend_fixtures import FRONT_UP_NOFLIP, deg, motion, span_at
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 GRIPPER_TCP = ir.Pose.from_xyz_rpy(0.01, -0.02, 0.15, 0.0, math.radians(10.0), math.radians(30.0))
 GRIPPER = ir.ToolRef("gripper", GRIPPER_TCP)
@@ -42,20 +42,20 @@ def make_cell(robot: str, tools: tuple[ir.ToolRef, ...] = (GRIPPER,)) -> ir.Cell
         ir.Tool(t.name, "r1", None, t.tcp) for t in tools if t.name is not None))
 
 
-def make_plan(body: tuple[ir.Instr, ...], records: list[planned.InstructionRecord], robot: str,
-              name: str = "demo") -> planned.Plan:
+def make_plan(body: tuple[ir.Instr, ...], records: list[plan_types.InstructionRecord], robot: str,
+              name: str = "demo") -> plan_types.Plan:
     t_end = max((r.t_end for r in records), default=0.0)
     t = np.array([0.0, max(t_end, 0.004)])
     q = np.zeros((2, 6))
-    traj = planned.Trajectory(t, q, q.copy(), q.copy())
+    traj = plan_types.Trajectory(t, q, q.copy(), q.copy())
     task = ir.Task("main", "r1", body, span=span_at(1))
     program = ir.Program(name, make_cell(robot), (task,), span=span_at(1))
-    return planned.Plan(program, (planned.TaskPlan(task, "r1", traj, tuple(records)),))
+    return plan_types.Plan(program, (plan_types.TaskPlan(task, "r1", traj, tuple(records)),))
 
 
 def record(node: ir.Move, t0: float, q: np.ndarray, branch: ir.Config | None,
-           tcp: ir.Pose | None, blend: float = 0.0, q_via: np.ndarray | None = None) -> planned.InstructionRecord:
-    return planned.InstructionRecord(uid=node.uid, span=node.span, t_start=t0, t_end=t0 + 1.0,
+           tcp: ir.Pose | None, blend: float = 0.0, q_via: np.ndarray | None = None) -> plan_types.InstructionRecord:
+    return plan_types.InstructionRecord(uid=node.uid, span=node.span, t_start=t0, t_end=t0 + 1.0,
                                      q_target=np.asarray(q, float), branch=branch, tcp_pose=tcp,
                                      q_via=None if q_via is None else np.asarray(q_via, float),
                                      blend_radius=blend)
@@ -89,7 +89,7 @@ def demo_body() -> tuple[ir.Instr, ...]:
     )
 
 
-def demo_plan(robot: str = "ur5e") -> planned.Plan:
+def demo_plan(robot: str = "ur5e") -> plan_types.Plan:
     """demo_body() with fixed joints (not FK-consistent: for text tables and golden files)."""
     body = demo_body()
     qs = {1: HOME_Q, 2: deg(10, -40, 50, 0, 80, 10), 3: deg(-20, -45, 60, 5, 75, 30),
@@ -105,7 +105,7 @@ def demo_plan(robot: str = "ur5e") -> planned.Plan:
     return make_plan(body, recs, robot)
 
 
-def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> planned.Plan:
+def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> plan_types.Plan:
     """Moves cycling joint / linear / circular to FK(q)·tool of each q (circular via: q nudged).
 
     Records carry q, robot.branch(q), the TCP pose and the flange pose, as the planner's do.
@@ -115,7 +115,7 @@ def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> pl
     robot = load_robot(robot_name)
     kinds = (ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR)
     body: list[ir.Instr] = []
-    recs: list[planned.InstructionRecord] = []
+    recs: list[plan_types.InstructionRecord] = []
     for k, q in enumerate(qs):
         flange = ir.Pose.from_matrix(robot.fk(q))
         tcp = flange * GRIPPER_TCP
@@ -126,7 +126,7 @@ def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> pl
         node = move(k + 1, kind, target, k + 3, via=via, frame=frame)
         body.append(node)
         rec = record(node, float(k), q, robot.branch(q), tcp, q_via=q_via)
-        recs.append(planned.InstructionRecord(**{**{f: getattr(rec, f) for f in (
+        recs.append(plan_types.InstructionRecord(**{**{f: getattr(rec, f) for f in (
             "uid", "span", "t_start", "t_end", "q_target", "branch", "tcp_pose", "q_via", "blend_radius")},
             "flange_pose": flange}))
     return make_plan(tuple(body), recs, robot_name)

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.compiler.robots.library import SPECS
 from rmot.lang.source import SourceFile
 
@@ -45,12 +45,12 @@ def _text(robot: str = "fanuc_m20ia", tool_number: str = "number 3", frame_numbe
 
 
 @pytest.fixture(scope="module")
-def numbered(plan_from_text: Callable[..., planned.Plan]) -> planned.Plan:
+def numbered(plan_from_text: Callable[..., plan_types.Plan]) -> plan_types.Plan:
     return plan_from_text(_text(), "numbered.rmot")
 
 
 @pytest.fixture(scope="module")
-def unnumbered(plan_from_text: Callable[..., planned.Plan]) -> planned.Plan:
+def unnumbered(plan_from_text: Callable[..., plan_types.Plan]) -> plan_types.Plan:
     return plan_from_text(_text(tool_number="", frame_number=""), "unnumbered.rmot")
 
 
@@ -60,7 +60,7 @@ def _codes(result) -> list[str]:  # type: ignore[no-untyped-def]
 
 # --------------------------------------------------------------------------- Fanuc
 
-def test_fanuc_selects_numbered_tool_and_frame_and_writes_nothing(numbered: planned.Plan) -> None:
+def test_fanuc_selects_numbered_tool_and_frame_and_writes_nothing(numbered: plan_types.Plan) -> None:
     result = BACKENDS["fanuc"]().emit(numbered)
     text = result.files["FIXT.ls"]
     assert "UTOOL_NUM=3 ;" in text and "UFRAME_NUM=2 ;" in text
@@ -74,13 +74,13 @@ def test_fanuc_selects_numbered_tool_and_frame_and_writes_nothing(numbered: plan
                     "PR[91] (give it `number n` in the cell to select the taught one)"]
 
 
-def test_fanuc_write_frames_writes_numbered_data(numbered: planned.Plan) -> None:
+def test_fanuc_write_frames_writes_numbered_data(numbered: plan_types.Plan) -> None:
     text = BACKENDS["fanuc"](write_frames=True).emit(numbered).files["FIXT.ls"]
     assert "UTOOL[3]=PR[" in text and "UFRAME[2]=PR[" in text
     assert "must hold" not in text
 
 
-def test_fanuc_without_numbers_overwrites_and_warns(unnumbered: planned.Plan) -> None:
+def test_fanuc_without_numbers_overwrites_and_warns(unnumbered: plan_types.Plan) -> None:
     result = BACKENDS["fanuc"]().emit(unnumbered)
     text = result.files["FIXT.ls"]
     writes = re.findall(r"(UTOOL|UFRAME)\[(\d+)\]=PR\[(\d+)\]", text)
@@ -94,7 +94,7 @@ def test_fanuc_without_numbers_overwrites_and_warns(unnumbered: planned.Plan) ->
 
 # --------------------------------------------------------------------------- KRL
 
-def test_krl_selects_numbered_data(numbered: planned.Plan) -> None:
+def test_krl_selects_numbered_data(numbered: plan_types.Plan) -> None:
     src = BACKENDS["krl"]().emit(numbered).files["fixt.src"]
     assert "$TOOL=TOOL_DATA[3]" in src and "$LOAD=LOAD_DATA[3]" in src and "$BASE=BASE_DATA[2]" in src
     assert not re.search(r"^\s*(TOOL|BASE|LOAD)_DATA\[\d+\]=", src, re.M)
@@ -124,7 +124,7 @@ def _positions(job: str) -> dict[str, list[float]]:
     return {k: [float(v) for v in vals.split(",")] for k, vals in re.findall(r"^(C\d{5})=(.*)$", job, re.M)}
 
 
-def test_inform_numbered_tool_file_and_user_frame(numbered: planned.Plan, unnumbered: planned.Plan) -> None:
+def test_inform_numbered_tool_file_and_user_frame(numbered: plan_types.Plan, unnumbered: plan_types.Plan) -> None:
     """Positions in a numbered frame are written in `///USER n`; composed with the frame's
     pose (from the cell: x 700, y 100, z 250 mm, rz 30 deg) they are the ROBOT positions
     the same program gets without numbers."""
@@ -152,7 +152,7 @@ def test_inform_numbered_tool_file_and_user_frame(numbered: planned.Plan, unnumb
     ("inform", "number 64", "number 2", "0..63 for a tool file"),
     ("inform", "number 3", "number 64", "1..63 for a user frame"),
 ])
-def test_numbers_outside_the_controller_are_refused(plan_from_text: Callable[..., planned.Plan], vendor: str,
+def test_numbers_outside_the_controller_are_refused(plan_from_text: Callable[..., plan_types.Plan], vendor: str,
                                                     tool: str, frame: str, what: str) -> None:
     plan = plan_from_text(_text(tool_number=tool, frame_number=frame), f"range_{vendor}.rmot")
     errors = [d for d in BACKENDS[vendor]().emit(plan).diagnostics if d.is_error]

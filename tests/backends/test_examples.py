@@ -17,7 +17,7 @@ import pytest
 from backend_fixtures import check_golden, example_plans, handshake_missing, sample_program
 
 from rmot.backends import BACKENDS
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 
 VENDORS = ("rapid", "krl", "fanuc")
 EXAMPLES = ("inspect", "pick_place", "handover")
@@ -26,13 +26,13 @@ HANDSHAKE_VENDORS = {v for v in VENDORS if BACKENDS[v].SYNC_HANDSHAKE}
 
 
 @pytest.fixture(scope="module")
-def plans() -> dict[str, planned.Plan]:
+def plans() -> dict[str, plan_types.Plan]:
     return {**example_plans(EXAMPLES), "sample": sample_program()}
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
 @pytest.mark.parametrize("example", ["inspect", "sample"])
-def test_matches_golden_files(plans: dict[str, planned.Plan], example: str, vendor: str) -> None:
+def test_matches_golden_files(plans: dict[str, plan_types.Plan], example: str, vendor: str) -> None:
     """The inspect example and the all-instructions sample equal the reviewed golden files."""
     result = BACKENDS[vendor]().emit(plans[example])
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
@@ -41,7 +41,7 @@ def test_matches_golden_files(plans: dict[str, planned.Plan], example: str, vend
 
 @pytest.mark.parametrize("vendor", VENDORS)
 @pytest.mark.parametrize("example", EXAMPLES)
-def test_only_documented_refusals(plans: dict[str, planned.Plan], example: str, vendor: str) -> None:
+def test_only_documented_refusals(plans: dict[str, plan_types.Plan], example: str, vendor: str) -> None:
     """Errors are only: a move the planner could not solve (E401), sync for KRL/TP in a cell
     without the handshake signals (E409); all have spans."""
     plan = plans[example]
@@ -54,13 +54,13 @@ def test_only_documented_refusals(plans: dict[str, planned.Plan], example: str, 
 
 @pytest.mark.parametrize("vendor", VENDORS)
 @pytest.mark.parametrize("example", EXAMPLES)
-def test_two_emits_are_byte_identical(plans: dict[str, planned.Plan], example: str, vendor: str) -> None:
+def test_two_emits_are_byte_identical(plans: dict[str, plan_types.Plan], example: str, vendor: str) -> None:
     """The same plan gives the same files, byte for byte."""
     assert BACKENDS[vendor]().emit(plans[example]).files == BACKENDS[vendor]().emit(plans[example]).files
 
 
 @pytest.mark.parametrize("example", EXAMPLES)
-def test_every_rapid_module_passes_rapidchecker(plans: dict[str, planned.Plan], example: str) -> None:
+def test_every_rapid_module_passes_rapidchecker(plans: dict[str, plan_types.Plan], example: str) -> None:
     """Every emitted RAPID module parses with rapidchecker (syntax, indentation, whitespace)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", DeprecationWarning)

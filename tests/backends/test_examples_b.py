@@ -12,18 +12,18 @@ import pytest
 from backend_fixtures import check_golden, example_plans, handshake_missing
 
 from rmot.backends import BACKENDS, controllers
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 
 VENDORS = ("urscript", "inform", "val3", "csv", "json")
 EXAMPLES = ("inspect", "pick_place", "handover")
 
 
 @pytest.fixture(scope="module")
-def plans() -> dict[str, planned.Plan]:
+def plans() -> dict[str, plan_types.Plan]:
     return example_plans(EXAMPLES)
 
 
-def _allowed_errors(plan: planned.Plan, vendor: str) -> set[str]:
+def _allowed_errors(plan: plan_types.Plan, vendor: str) -> set[str]:
     """Sync needs the cell's handshake signals in these vendors (E409, until the example's cell
     declares them); a move the planner failed on has no record (E401)."""
     allowed = {"E409"} if vendor in controllers() and handshake_missing(plan) else set()
@@ -34,7 +34,7 @@ def _allowed_errors(plan: planned.Plan, vendor: str) -> set[str]:
 
 @pytest.mark.parametrize("vendor", VENDORS)
 @pytest.mark.parametrize("example", EXAMPLES)
-def test_only_documented_refusals(plans: dict[str, planned.Plan], example: str, vendor: str) -> None:
+def test_only_documented_refusals(plans: dict[str, plan_types.Plan], example: str, vendor: str) -> None:
     """Every example emits with no error but the documented ones (sync without the handshake
     signals; moves the planner could not plan)."""
     result = BACKENDS[vendor]().emit(plans[example])
@@ -45,7 +45,7 @@ def test_only_documented_refusals(plans: dict[str, planned.Plan], example: str, 
 
 @pytest.mark.parametrize("vendor", VENDORS)
 @pytest.mark.parametrize("example", EXAMPLES)
-def test_two_emits_are_byte_identical(plans: dict[str, planned.Plan], example: str, vendor: str) -> None:
+def test_two_emits_are_byte_identical(plans: dict[str, plan_types.Plan], example: str, vendor: str) -> None:
     """The same plan gives the same files, byte for byte."""
     a = BACKENDS[vendor]().emit(plans[example]).files
     b = BACKENDS[vendor]().emit(plans[example]).files
@@ -53,7 +53,7 @@ def test_two_emits_are_byte_identical(plans: dict[str, planned.Plan], example: s
 
 
 @pytest.mark.parametrize("vendor", ("urscript", "inform", "val3"))
-def test_inspect_matches_golden_files(plans: dict[str, planned.Plan], vendor: str) -> None:
+def test_inspect_matches_golden_files(plans: dict[str, plan_types.Plan], vendor: str) -> None:
     """The inspect example's programs equal the reviewed golden files."""
     result = BACKENDS[vendor]().emit(plans["inspect"])
     assert not result.has_errors

@@ -15,7 +15,7 @@ import pytest
 from backend_fixtures import check_golden
 
 from rmot.backends import BACKENDS
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 from rmot.backends import controllers
 
 TOUR = Path(__file__).parent / "programs" / "tour.rmot"
@@ -23,7 +23,7 @@ VENDORS = controllers()
 
 
 @pytest.fixture(scope="module")
-def tour() -> planned.Plan:
+def tour() -> plan_types.Plan:
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
 
@@ -35,14 +35,14 @@ def tour() -> planned.Plan:
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
-def test_tour_matches_golden_files(tour: planned.Plan, vendor: str) -> None:
+def test_tour_matches_golden_files(tour: plan_types.Plan, vendor: str) -> None:
     result = BACKENDS[vendor]().emit(tour)
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
     check_golden(vendor, "tour", result.files)
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
-def test_tour_diagnostics(tour: planned.Plan, vendor: str) -> None:
+def test_tour_diagnostics(tour: plan_types.Plan, vendor: str) -> None:
     """The tour's warnings are the documented ones: the brand (an ABB arm) for every other
     vendor, Fanuc's overwritten UTOOL/UFRAME for the unnumbered pointer, flange and side frame."""
     codes = {d.code.id for d in BACKENDS[vendor]().emit(tour).diagnostics}

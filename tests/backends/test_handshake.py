@@ -18,7 +18,7 @@ from rmot.backends.handshake import (
     SYNC_SIGNAL, HandshakePorts, HandshakeSet, HandshakeWait, check_handshake, handshake_note,
     handshake_ports, sync_as_handshake,
 )
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.backends import controllers
 
 PORTS = HandshakePorts(out=3, inp=4)
@@ -196,11 +196,11 @@ class TestPortsAndChecks:
 
 
 @pytest.fixture(scope="module")
-def duo(plan_from_text) -> planned.Plan:  # type: ignore[no-untyped-def]
+def duo(plan_from_text) -> plan_types.Plan:  # type: ignore[no-untyped-def]
     return plan_from_text(CELL % SIGNALS + PROGRAM, "duo.rmot")
 
 
-def _without_signals(plan: planned.Plan, keep_robot: str | None = None) -> planned.Plan:
+def _without_signals(plan: plan_types.Plan, keep_robot: str | None = None) -> plan_types.Plan:
     """The same plan in a cell whose "sync" signals are gone (except `keep_robot`'s)."""
     cell = plan.program.cell
     io = tuple(s for s in cell.io if s.name != SYNC_SIGNAL or s.robot == keep_robot)
@@ -226,7 +226,7 @@ def _handshake_io(lines: list[str], vendor: str) -> list[tuple[str, int, bool]]:
 
 @pytest.mark.parametrize("vendor", VENDORS)
 class TestVendors:
-    def test_two_programs_with_alternating_set_wait_pairs(self, duo: planned.Plan, vendor: str) -> None:
+    def test_two_programs_with_alternating_set_wait_pairs(self, duo: plan_types.Plan, vendor: str) -> None:
         """One program per robot; its syncs are set own out / wait own in, levels on, off, on, off."""
         result = BACKENDS[vendor]().emit(duo)
         assert not result.has_errors, [d.message for d in result.diagnostics]
@@ -238,13 +238,13 @@ class TestVendors:
             assert [re.search(r"sync (\w+) \(handshake (\d)\)", n).groups() for n in notes] == [  # type: ignore[union-attr]
                 ("meet", "1"), ("part", "2"), ("done", "3"), ("meet", "4")]
 
-    def test_first_handshake_matches_golden_snippet(self, duo: planned.Plan, vendor: str) -> None:
+    def test_first_handshake_matches_golden_snippet(self, duo: plan_types.Plan, vendor: str) -> None:
         """The first barrier of r1 prints exactly as reviewed (comment, set, source ref, wait)."""
         lines = _main(BACKENDS[vendor]().emit(duo).files, vendor, "r1")
         start = lines.index(GOLDEN_FIRST[vendor][0])
         assert lines[start:start + len(GOLDEN_FIRST[vendor])] == GOLDEN_FIRST[vendor]
 
-    def test_missing_signals_are_errors_at_the_sync_lines(self, duo: planned.Plan, vendor: str) -> None:
+    def test_missing_signals_are_errors_at_the_sync_lines(self, duo: plan_types.Plan, vendor: str) -> None:
         """Without the cell's "sync" signals every sync is E409 at its own line, naming the vendor."""
         result = BACKENDS[vendor]().emit(_without_signals(duo))
         errors = [d for d in result.diagnostics if d.is_error]
@@ -252,20 +252,20 @@ class TestVendors:
         assert sorted(d.span.start.line for d in errors) == sorted(SYNC_LINES["r1"] + SYNC_LINES["r2"])  # type: ignore[union-attr]
         assert all(f"needs an I/O handshake on {vendor}" in d.message for d in errors)
 
-    def test_only_the_robot_without_signals_is_refused(self, duo: planned.Plan, vendor: str) -> None:
+    def test_only_the_robot_without_signals_is_refused(self, duo: plan_types.Plan, vendor: str) -> None:
         """r1 keeps its signals: only r2's syncs are errors, and r1's program still has its handshakes."""
         result = BACKENDS[vendor]().emit(_without_signals(duo, keep_robot="r1"))
         errors = [d for d in result.diagnostics if d.is_error]
         assert sorted(d.span.start.line for d in errors) == SYNC_LINES["r2"]  # type: ignore[union-attr]
         assert len(_handshake_io(_main(result.files, vendor, "r1"), vendor)) == 8
 
-    def test_deterministic(self, duo: planned.Plan, vendor: str) -> None:
+    def test_deterministic(self, duo: plan_types.Plan, vendor: str) -> None:
         """Two emits of the two-task program are byte-identical."""
         assert BACKENDS[vendor]().emit(duo).files == BACKENDS[vendor]().emit(duo).files
 
 
 class TestRapidKeepsWaitSyncTask:
-    def test_multimove_declarations_and_rapidchecker(self, duo: planned.Plan) -> None:
+    def test_multimove_declarations_and_rapidchecker(self, duo: plan_types.Plan) -> None:
         """RAPID needs no signals: WaitSyncTask with a syncident per barrier and the tasks list;
         every module passes rapidchecker."""
         files = BACKENDS["rapid"]().emit(_without_signals(duo)).files

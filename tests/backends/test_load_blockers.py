@@ -23,7 +23,7 @@ from collections.abc import Callable
 import pytest
 
 from rmot.backends import BACKENDS
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 
 STOPS = """
 program stops on r1 {
@@ -97,11 +97,11 @@ program {name} on r1 {{
 
 
 @pytest.fixture(scope="module")
-def stops(plan_from_text: Callable[..., planned.Plan]) -> planned.Plan:
+def stops(plan_from_text: Callable[..., plan_types.Plan]) -> plan_types.Plan:
     return plan_from_text(STOPS, "stops.rmot")
 
 
-def _text(vendor: str, plan: planned.Plan) -> list[str]:
+def _text(vendor: str, plan: plan_types.Plan) -> list[str]:
     result = BACKENDS[vendor]().emit(plan)
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
     return [line.strip() for name, text in sorted(result.files.items()) for line in text.splitlines()]
@@ -125,7 +125,7 @@ def _move_before(lines: list[str], where: str, move: str) -> str:
 
 
 @pytest.mark.parametrize("vendor", sorted(SHAPES))
-def test_move_before_wait_until_is_a_stop_point(stops: planned.Plan, vendor: str) -> None:
+def test_move_before_wait_until_is_a_stop_point(stops: plan_types.Plan, vendor: str) -> None:
     """The plan stops before `wait until`: the move printed before the wait stops exactly."""
     move, wait, _, is_stop = SHAPES[vendor]
     line = _move_before(_text(vendor, stops), wait, move)
@@ -133,7 +133,7 @@ def test_move_before_wait_until_is_a_stop_point(stops: planned.Plan, vendor: str
 
 
 @pytest.mark.parametrize("vendor", sorted(SHAPES))
-def test_move_before_if_is_a_stop_point(stops: planned.Plan, vendor: str) -> None:
+def test_move_before_if_is_a_stop_point(stops: plan_types.Plan, vendor: str) -> None:
     """The plan stops before a runtime `if`: the move printed before it stops exactly."""
     move, _, cond, is_stop = SHAPES[vendor]
     line = _move_before(_text(vendor, stops), cond, move)
@@ -141,7 +141,7 @@ def test_move_before_if_is_a_stop_point(stops: planned.Plan, vendor: str) -> Non
 
 
 @pytest.mark.parametrize("vendor", sorted(SHAPES))
-def test_move_before_set_stays_blended(stops: planned.Plan, vendor: str) -> None:
+def test_move_before_set_stays_blended(stops: plan_types.Plan, vendor: str) -> None:
     """A `set` does not stop the plan: the move before it keeps its zone (no over-stopping)."""
     move, _, _, is_stop = SHAPES[vendor]
     out = {"rapid": r"^SetDO ", "krl": r"^\$OUT\[1\]", "fanuc": r"DO\[1", "urscript": r"^set_standard_digital_out\(1",
@@ -150,7 +150,7 @@ def test_move_before_set_stays_blended(stops: planned.Plan, vendor: str) -> None
     assert not is_stop(line), line
 
 
-def test_val3_waits_for_the_motion_before_wait_and_if(stops: planned.Plan) -> None:
+def test_val3_waits_for_the_motion_before_wait_and_if(stops: plan_types.Plan) -> None:
     """VAL3 queues motion: waitEndMove() comes right before the wait and the if."""
     lines = [line for line in _text("val3", stops) if not line.startswith("//")]
     for pattern in (r"^wait\(dIn\[2\]", r"^if dIn\[2\]"):
@@ -158,7 +158,7 @@ def test_val3_waits_for_the_motion_before_wait_and_if(stops: planned.Plan) -> No
         assert lines[k - 1] == "waitEndMove()", lines[k - 2:k + 1]
 
 
-def test_fanuc_circular_line_is_continued_not_terminated(plan_from_text: Callable[..., planned.Plan]) -> None:
+def test_fanuc_circular_line_is_continued_not_terminated(plan_from_text: Callable[..., plan_types.Plan]) -> None:
     """`C P[via]` carries no ';': the instruction ends on its `: P[to] ... ;` continuation."""
     text = BACKENDS["fanuc"]().emit(plan_from_text(ARCS, "arcs.rmot")).files["ARCS.ls"]
     lines = text.splitlines()
@@ -169,7 +169,7 @@ def test_fanuc_circular_line_is_continued_not_terminated(plan_from_text: Callabl
         assert re.match(r"^\s+:\s+P\[\d+\] \d+mm/sec (FINE|CNT\d+) ;$", lines[k + 1]), lines[k + 1]
 
 
-def test_krl_blended_ptp_is_c_ptp_with_apo_cptp(plan_from_text: Callable[..., planned.Plan]) -> None:
+def test_krl_blended_ptp_is_c_ptp_with_apo_cptp(plan_from_text: Callable[..., plan_types.Plan]) -> None:
     """A blended joint move is `PTP p C_PTP` after `$APO.CPTP=n` (1..100); never PTP .. C_DIS."""
     result = BACKENDS["krl"]().emit(plan_from_text(ARCS, "arcs.rmot"))
     lines = [line.strip() for line in result.files["arcs.src"].splitlines()]
@@ -183,7 +183,7 @@ def test_krl_blended_ptp_is_c_ptp_with_apo_cptp(plan_from_text: Callable[..., pl
     assert "W403" in {d.code.id for d in result.diagnostics}
 
 
-def test_rapid_target_named_like_an_instruction_is_renamed(plan_from_text: Callable[..., planned.Plan]) -> None:
+def test_rapid_target_named_like_an_instruction_is_renamed(plan_from_text: Callable[..., plan_types.Plan]) -> None:
     """No datum of the module is named like an instruction the module uses (W414 says so)."""
     result = BACKENDS["rapid"]().emit(plan_from_text(RESERVED_TARGETS, "names.rmot"))
     text = result.files["names.mod"]
@@ -194,7 +194,7 @@ def test_rapid_target_named_like_an_instruction_is_renamed(plan_from_text: Calla
     assert [d.code.id for d in result.diagnostics].count("W414") == 2
 
 
-def test_urscript_calls_its_program(plan_from_text: Callable[..., planned.Plan]) -> None:
+def test_urscript_calls_its_program(plan_from_text: Callable[..., plan_types.Plan]) -> None:
     """The last line of the .script calls the program its top-level def defines."""
     (text,) = BACKENDS["urscript"]().emit(plan_from_text(ARCS, "arcs.rmot")).files.values()
     top = re.findall(r"^def (\w+)\(\):$", text, re.M)
@@ -202,7 +202,7 @@ def test_urscript_calls_its_program(plan_from_text: Callable[..., planned.Plan])
     assert text.splitlines()[-1] == f"{top[0]}()"
 
 
-def test_inform_jobs_of_two_programs_do_not_collide(plan_from_text: Callable[..., planned.Plan]) -> None:
+def test_inform_jobs_of_two_programs_do_not_collide(plan_from_text: Callable[..., plan_types.Plan]) -> None:
     """pick and place both call a proc `approach` (different positions): their job files
     have different names, so both programs can be loaded on one controller."""
     pick = BACKENDS["inform"]().emit(plan_from_text(_proc_program("pick", "40mm"), "pick.rmot")).files
@@ -231,7 +231,7 @@ program fast on r1 {
     ("krl", r"\$VEL\.CP=([\d.]+)", 2.0),              # KSS 8.x LIN inline form: 0.001..2 m/s
     ("inform", r"MOVL C\d+ V=([\d.]+)", 1500.0),      # INFORM MOVL V= 0.1..1500.0 mm/s
 ])
-def test_tcp_speed_beyond_the_vendor_is_clamped_at_the_move(plan_from_text: Callable[..., planned.Plan],
+def test_tcp_speed_beyond_the_vendor_is_clamped_at_the_move(plan_from_text: Callable[..., plan_types.Plan],
                                                             vendor: str, pattern: str, limit: float) -> None:
     result = BACKENDS[vendor]().emit(plan_from_text(FAST, "fast.rmot"))
     text = "\n".join(result.files.values())

@@ -36,7 +36,7 @@ from logic_fixtures_d import (
 )
 from rmot.backends import BACKENDS
 from rmot.backends.base import EmitResult
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from vendor_validators import check_fanuc, check_inform, check_val3
 
 VENDORS = ("fanuc", "inform", "val3")
@@ -44,7 +44,7 @@ VALIDATE = {"fanuc": check_fanuc, "inform": check_inform, "val3": check_val3}
 PLACEMENTS = LAYERS * ROWS * COLS  # 36
 
 
-def emit(vendor: str, plan: planned.Plan, **attrs: object) -> EmitResult:
+def emit(vendor: str, plan: plan_types.Plan, **attrs: object) -> EmitResult:
     backend = BACKENDS[vendor]()
     for k, v in attrs.items():
         setattr(backend, k, v)
@@ -322,7 +322,7 @@ def test_the_emitted_loop_reaches_every_verified_pose(vendor: str) -> None:
     assert_witness(vendor, plan, loop, emit(vendor, plan).files)
 
 
-def assert_witness(vendor: str, plan: planned.Plan, loop: ir.Loop, files: dict[str, str]) -> None:
+def assert_witness(vendor: str, plan: plan_types.Plan, loop: ir.Loop, files: dict[str, str]) -> None:
     want = iteration_poses(loop, plan)
     assert len(want) == PLACEMENTS * 3
     got: list[tuple[float, float, float] | None]

@@ -19,14 +19,14 @@ from loop_witness import krl_targets, rapid_targets, ur_targets
 from test_vendor_validators import findings
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 PROGRAMS = Path(__file__).parent / "programs"
 LOOP_VENDORS = ("rapid", "krl", "urscript")
 
 
 def verified_poses(
-    plan: planned.Plan, *, cartesian_only: bool
+    plan: plan_types.Plan, *, cartesian_only: bool
 ) -> list[tuple[np.ndarray, np.ndarray] | None]:
     """The TCP pose (base frame) the planner verified at every move of the main timeline, in
     execution order (None for a joint-target move when not `cartesian_only`)."""
@@ -57,7 +57,7 @@ def witness(vendor: str, files: dict[str, str]) -> list[tuple[np.ndarray, np.nda
 
 
 def assert_same_poses(
-    vendor: str, files: dict[str, str], plan: planned.Plan, tol: float = 2e-6
+    vendor: str, files: dict[str, str], plan: plan_types.Plan, tol: float = 2e-6
 ) -> None:
     got = witness(vendor, files)
     want = verified_poses(plan, cartesian_only=vendor != "urscript")
@@ -70,7 +70,7 @@ def assert_same_poses(
         assert np.abs(g[1] - w[1]).max() < 1e-5, (k, g[1], w[1])
 
 
-def emit(vendor: str, plan: planned.Plan, **kw: bool):  # type: ignore[no-untyped-def]
+def emit(vendor: str, plan: plan_types.Plan, **kw: bool):  # type: ignore[no-untyped-def]
     return BACKENDS[vendor](**kw).emit(plan)
 
 
@@ -82,13 +82,13 @@ def w420(result) -> list[str]:  # type: ignore[no-untyped-def]
 
 
 @pytest.fixture(scope="module")
-def pallet_plan() -> planned.Plan:
+def pallet_plan() -> plan_types.Plan:
     return example_plans(("palletizing",))["palletizing"]
 
 
 @pytest.mark.parametrize("vendor", LOOP_VENDORS)
 def test_palletiser_loops_reach_every_verified_placement(
-    pallet_plan: planned.Plan, vendor: str
+    pallet_plan: plan_types.Plan, vendor: str
 ) -> None:
     """The 3x4x3 palletiser: the emitted loops, run by the witness, give the 36 placements'
     verified poses in order (and every pick, approach and retreat between them)."""
@@ -97,7 +97,7 @@ def test_palletiser_loops_reach_every_verified_placement(
     assert_same_poses(vendor, result.files, pallet_plan)
 
 
-def test_palletiser_rapid_is_a_few_dozen_moves(pallet_plan: planned.Plan) -> None:
+def test_palletiser_rapid_is_a_few_dozen_moves(pallet_plan: plan_types.Plan) -> None:
     """Issue #15 'Done when': RAPID with no more than a few dozen moves (216 unrolled), nested FOR
     loops with Offs on the slot targets."""
     text = next(iter(emit("rapid", pallet_plan).files.values()))
@@ -109,7 +109,7 @@ def test_palletiser_rapid_is_a_few_dozen_moves(pallet_plan: planned.Plan) -> Non
 
 
 @pytest.mark.parametrize("vendor", LOOP_VENDORS)
-def test_palletiser_unroll_option(pallet_plan: planned.Plan, vendor: str) -> None:
+def test_palletiser_unroll_option(pallet_plan: plan_types.Plan, vendor: str) -> None:
     """--unroll writes every iteration: no vendor loop, no W420, the same verified poses."""
     result = emit(vendor, pallet_plan, unroll=True)
     text = "\n".join(result.files.values())
@@ -169,7 +169,7 @@ def test_loop_not_starting_at_zero() -> None:
     assert_same_poses("rapid", emit("rapid", plan).files, plan)
 
 
-def example_rows() -> planned.Plan:
+def example_rows() -> plan_types.Plan:
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
 
@@ -217,7 +217,7 @@ def test_rapid_other_turn_of_axis_6_is_unrolled() -> None:
 
 
 @pytest.fixture(scope="module")
-def program_plans() -> dict[str, planned.Plan]:
+def program_plans() -> dict[str, plan_types.Plan]:
     from rmot.compiler.frontend import load_program
     from rmot.compiler.plan import plan_program
 
@@ -232,7 +232,7 @@ def program_plans() -> dict[str, planned.Plan]:
 @pytest.mark.parametrize("vendor", LOOP_VENDORS)
 @pytest.mark.parametrize("name", ["rows", "tending"])
 def test_golden_runtime_programs(
-    program_plans: dict[str, planned.Plan], name: str, vendor: str, tmp_path: Path
+    program_plans: dict[str, plan_types.Plan], name: str, vendor: str, tmp_path: Path
 ) -> None:
     """Hand-reviewed golden files (golden/<vendor>/runtime_<name>__*), each passing the
     vendor's independent validator."""

@@ -11,7 +11,7 @@ from collections.abc import Callable
 import pytest
 
 from rmot.backends import BACKENDS
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 
 PROGRAM = """
 proc movel() {
@@ -58,12 +58,12 @@ BUILTINS = {"rapid": {"movel"}, "krl": set(), "fanuc": set(), "urscript": {"move
 
 
 @pytest.fixture(scope="module")
-def plan(plan_from_text: Callable[..., planned.Plan]) -> planned.Plan:
+def plan(plan_from_text: Callable[..., plan_types.Plan]) -> plan_types.Plan:
     return plan_from_text(PROGRAM, "names.rmot")
 
 
 @pytest.mark.parametrize("vendor", sorted(SHAPES))
-def test_routines_unique_and_never_builtins(plan: planned.Plan, vendor: str) -> None:
+def test_routines_unique_and_never_builtins(plan: plan_types.Plan, vendor: str) -> None:
     result = BACKENDS[vendor]().emit(plan)
     assert not result.has_errors
     define, call = SHAPES[vendor]

@@ -14,20 +14,20 @@ from plans_b import demo_plan
 
 from rmot.backends import BACKENDS
 from rmot.backends.neutral import CSV_DECIMALS, CsvBackend, JsonBackend
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 GOLDEN = Path(__file__).parent / "golden" / "neutral"
 
 
-def with_trajectory(plan: planned.Plan, n: int = 50, variant: bool = True) -> planned.Plan:
+def with_trajectory(plan: plan_types.Plan, n: int = 50, variant: bool = True) -> plan_types.Plan:
     """The plan with a smooth sampled trajectory (and one if-variant) instead of two samples."""
     t = np.arange(n) * plan.step
     q = np.stack([np.sin(t * (j + 1)) * (0.5 + 0.1 * j) - 0.2 * j for j in range(6)], axis=1)
     qd = np.gradient(q, plan.step, axis=0)
-    traj = planned.Trajectory(t, q, qd, np.gradient(qd, plan.step, axis=0))
+    traj = plan_types.Trajectory(t, q, qd, np.gradient(qd, plan.step, axis=0))
     tp = plan.tasks[0]
-    variants = (planned.Variant(1, 8, "otherwise", planned.Trajectory(t[:5], -q[:5], -qd[:5], qd[:5])),) if variant else ()
-    return planned.Plan(plan.program, (planned.TaskPlan(tp.task, tp.robot, traj, tp.records, variants),), plan.step)
+    variants = (plan_types.Variant(1, 8, "otherwise", plan_types.Trajectory(t[:5], -q[:5], -qd[:5], qd[:5])),) if variant else ()
+    return plan_types.Plan(plan.program, (plan_types.TaskPlan(tp.task, tp.robot, traj, tp.records, variants),), plan.step)
 
 
 class TestCsv:
@@ -55,8 +55,8 @@ class TestCsv:
         """A task with no samples cannot be written: E452 at the task."""
         plan = demo_plan()
         tp = plan.tasks[0]
-        empty = planned.Trajectory(np.zeros(0), np.zeros((0, 6)), np.zeros((0, 6)), np.zeros((0, 6)))
-        bad = planned.Plan(plan.program, (planned.TaskPlan(tp.task, tp.robot, empty, tp.records),))
+        empty = plan_types.Trajectory(np.zeros(0), np.zeros((0, 6)), np.zeros((0, 6)), np.zeros((0, 6)))
+        bad = plan_types.Plan(plan.program, (plan_types.TaskPlan(tp.task, tp.robot, empty, tp.records),))
         result = CsvBackend().emit(bad)
         assert result.files == {}
         assert [(d.code.id, d.severity.value) for d in result.diagnostics] == [("E452", "error")]
@@ -66,13 +66,13 @@ class TestCsv:
         plan = demo_plan()
         tp = plan.tasks[0]
         z = np.full((2, 6), -0.0)
-        traj = planned.Trajectory(np.array([0.0, 0.004]), z, z.copy(), z.copy())
-        p = planned.Plan(plan.program, (planned.TaskPlan(tp.task, tp.robot, traj, tp.records),))
+        traj = plan_types.Trajectory(np.array([0.0, 0.004]), z, z.copy(), z.copy())
+        p = plan_types.Plan(plan.program, (plan_types.TaskPlan(tp.task, tp.robot, traj, tp.records),))
         assert "-0" not in CsvBackend().emit(p).files["demo.csv"]
 
 
 class TestJson:
-    def _doc(self) -> tuple[planned.Plan, dict]:  # type: ignore[type-arg]
+    def _doc(self) -> tuple[plan_types.Plan, dict]:  # type: ignore[type-arg]
         plan = with_trajectory(demo_plan())
         (text,) = JsonBackend().emit(plan).files.values()
         return plan, json.loads(text)

@@ -22,12 +22,12 @@ from click.testing import CliRunner, Result
 from rmot import backends
 from rmot.backends import BACKENDS, controllers, targets
 from rmot.backends.base import Backend, TaskContext
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.compiler.cli import cli
 from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 
 
-def _line(letter: str, rec: planned.InstructionRecord) -> str:
+def _line(letter: str, rec: plan_types.InstructionRecord) -> str:
     assert rec.tcp_pose is not None
     return letter + " " + " ".join(f"{v * 1000.0:.1f}" for v in rec.tcp_pose.position)
 
@@ -46,13 +46,13 @@ class ToyBackend(Backend):
         rec = self.move_record(node, ctx)
         return rec if isinstance(rec, list) else self.by_kind(node)(rec)
 
-    def move_joint(self, rec: planned.InstructionRecord) -> list[str]:
+    def move_joint(self, rec: plan_types.InstructionRecord) -> list[str]:
         return [_line("J", rec)]
 
-    def move_linear(self, rec: planned.InstructionRecord) -> list[str]:
+    def move_linear(self, rec: plan_types.InstructionRecord) -> list[str]:
         return [_line("L", rec)]
 
-    def move_circular(self, rec: planned.InstructionRecord) -> list[str]:
+    def move_circular(self, rec: plan_types.InstructionRecord) -> list[str]:
         return [_line("C", rec)]
 
     def set_digital(self, node: ir.SetDigital, ctx: TaskContext) -> list[str]:
@@ -159,7 +159,7 @@ def _printing_targets() -> list[str]:
 @pytest.mark.parametrize("kind", list(ir.MotionKind), ids=lambda k: k.name.lower())
 @pytest.mark.parametrize("target", _printing_targets())
 def test_vendor_prints_each_kind_with_its_handler(
-        target: str, kind: ir.MotionKind, plan_from_text: Callable[..., planned.Plan],
+        target: str, kind: ir.MotionKind, plan_from_text: Callable[..., plan_types.Plan],
         monkeypatch: pytest.MonkeyPatch) -> None:
     """A program with a joint move then one move of `kind`: the backend calls its MOVES handler
     for `kind` exactly once (the joint handler once more for the first move), nothing else,

@@ -14,7 +14,7 @@ from scipy.spatial.transform import Rotation
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.krl import KrlBackend
 from rmot.backends.rapid import RapidBackend
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 PROGRAM = """
 program roundtrip on r1 {
@@ -49,28 +49,28 @@ def assert_same_pose(a: np.ndarray, b: np.ndarray) -> None:
 
 
 @pytest.fixture(scope="module")
-def plan(plan_from_text) -> planned.Plan:  # type: ignore[no-untyped-def]
+def plan(plan_from_text) -> plan_types.Plan:  # type: ignore[no-untyped-def]
     return plan_from_text(PROGRAM, "roundtrip.rmot")
 
 
 @pytest.fixture(scope="module")
-def robot(plan: planned.Plan):  # type: ignore[no-untyped-def]
+def robot(plan: plan_types.Plan):  # type: ignore[no-untyped-def]
     from rmot.compiler.robots import load_robot
 
     return load_robot(plan.program.cell.robot("r1").source.load_key)
 
 
-def moves(plan: planned.Plan) -> list[tuple[ir.Move, planned.InstructionRecord]]:
+def moves(plan: plan_types.Plan) -> list[tuple[ir.Move, plan_types.InstructionRecord]]:
     tp = plan.tasks[0]
     return [(m, tp.record(m.uid)) for m in tp.task.body if isinstance(m, ir.Move)]
 
 
-def cartesian_records(plan: planned.Plan) -> list[planned.InstructionRecord]:
+def cartesian_records(plan: plan_types.Plan) -> list[plan_types.InstructionRecord]:
     return [r for m, r in moves(plan) if isinstance(m.target, ir.CartesianTarget)]
 
 
 class TestRapid:
-    def test_poses_and_confdata(self, plan: planned.Plan, robot) -> None:  # type: ignore[no-untyped-def]
+    def test_poses_and_confdata(self, plan: plan_types.Plan, robot) -> None:  # type: ignore[no-untyped-def]
         """robtarget (mm, quaternion w-first) in wobj with tooldata -> flange = FK(q); confdata -> branch."""
         text = RapidBackend().emit(plan).files["roundtrip.mod"]
         num = r"(-?[\d.]+)"
@@ -101,7 +101,7 @@ class TestRapid:
                                 ir.Wrist.FLIP if cfx & 1 else ir.Wrist.NOFLIP)
             assert decoded == robot.branch(rec.q_target) == rec.branch
 
-    def test_joint_target(self, plan: planned.Plan) -> None:
+    def test_joint_target(self, plan: plan_types.Plan) -> None:
         """The jointtarget holds the joints in degrees."""
         text = RapidBackend().emit(plan).files["roundtrip.mod"]
         values = re.search(r"jointtarget home:=\[\[(.*?)\]", text).group(1)
@@ -109,7 +109,7 @@ class TestRapid:
 
 
 class TestKrl:
-    def test_poses_status_turn(self, plan: planned.Plan, robot) -> None:  # type: ignore[no-untyped-def]
+    def test_poses_status_turn(self, plan: plan_types.Plan, robot) -> None:  # type: ignore[no-untyped-def]
         """E6POS (mm, A B C = Rz·Ry·Rx) in $BASE with $TOOL -> flange = FK(q); S and T -> branch and signs."""
         files = KrlBackend().emit(plan).files
         dat = files["roundtrip.dat"]
@@ -138,7 +138,7 @@ class TestKrl:
 
 
 class TestFanuc:
-    def test_poses_and_config(self, plan: planned.Plan, robot) -> None:  # type: ignore[no-untyped-def]
+    def test_poses_and_config(self, plan: plan_types.Plan, robot) -> None:  # type: ignore[no-untyped-def]
         """X Y Z W P R (fixed XYZ) in UFRAME with UTOOL -> flange = FK(q); CONFIG -> branch and turns."""
         text = FanucBackend().emit(plan).files["ROUNDTRIP.ls"]
 

@@ -10,7 +10,7 @@ import pytest
 
 from rmot.backends import BACKENDS
 from rmot.backends.lowering import routine_names
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.backends import controllers
 
 PROGRAM = """
@@ -54,7 +54,7 @@ SHAPES: dict[str, tuple[str, str]] = {
 
 
 @pytest.fixture(scope="module")
-def plan(plan_from_text) -> planned.Plan:  # type: ignore[no-untyped-def]
+def plan(plan_from_text) -> plan_types.Plan:  # type: ignore[no-untyped-def]
     return plan_from_text(PROGRAM, "dedupe.rmot")
 
 
@@ -64,7 +64,7 @@ def count(files: dict[str, str], pattern: str, routine: str) -> int:
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
-def test_proc_without_pose_is_one_routine(plan: planned.Plan, vendor: str) -> None:
+def test_proc_without_pose_is_one_routine(plan: plan_types.Plan, vendor: str) -> None:
     """beep() called 3 times: exactly one routine named `beep` and 3 calls of it."""
     files = BACKENDS[vendor]().emit(plan).files
     define, call = SHAPES[vendor]
@@ -74,7 +74,7 @@ def test_proc_without_pose_is_one_routine(plan: planned.Plan, vendor: str) -> No
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
-def test_different_targets_keep_numbered_routines(plan: planned.Plan, vendor: str) -> None:
+def test_different_targets_keep_numbered_routines(plan: plan_types.Plan, vendor: str) -> None:
     """visit(a) and visit(b) move to different targets: routines visit_1 and visit_2, one call each."""
     files = BACKENDS[vendor]().emit(plan).files
     define, call = SHAPES[vendor]
@@ -83,12 +83,12 @@ def test_different_targets_keep_numbered_routines(plan: planned.Plan, vendor: st
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
-def test_deterministic(plan: planned.Plan, vendor: str) -> None:
+def test_deterministic(plan: plan_types.Plan, vendor: str) -> None:
     """Two emissions of the same plan are byte-identical."""
     assert BACKENDS[vendor]().emit(plan).files == BACKENDS[vendor]().emit(plan).files
 
 
-def test_source_map_points_at_calls_and_proc_body(plan: planned.Plan) -> None:
+def test_source_map_points_at_calls_and_proc_body(plan: plan_types.Plan) -> None:
     """Each call line follows its call site's `file:line`; the shared routine's lines point at
     the proc body (lines 3..5), the same for every call."""
     text = BACKENDS["rapid"]().emit(plan).files["dedupe.mod"]

@@ -20,10 +20,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "backends"))
 from backend_fixtures import FRONT_UP_NOFLIP, GRIPPER, TABLE, cart, deg, hand_plan, move
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 
-def long_plan(cycles: int = 250) -> planned.Plan:
+def long_plan(cycles: int = 250) -> plan_types.Plan:
     body: list[ir.Instr] = []
     records = {}
     for k in range(cycles):

@@ -12,7 +12,7 @@ import time
 import numpy as np
 import pytest
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.compiler.robots import load_robot
 from rmot.sim.collide import Timeline, candidate_pairs, check_timeline
 from rmot.sim.exact import coal_shapes
@@ -195,7 +195,7 @@ def test_verify_hundred_instruction_program(benchmark, tmp_path) -> None:
     front = load_text(_hundred_instruction_program(), str(tmp_path / "hundred.rmot"))
     assert not front.has_errors, [d.message for d in front.diagnostics]
     t0 = time.perf_counter()
-    plan: planned.Plan = plan_program(front.program)
+    plan: plan_types.Plan = plan_program(front.program)
     planning = time.perf_counter() - t0
     report = benchmark.pedantic(verify, args=(plan,), rounds=5, iterations=1)
     samples = sum(tp.trajectory.t.size for tp in plan.tasks)

@@ -177,7 +177,7 @@ def test_untimeable_chain_gets_exact_stops_not_dropped(monkeypatch) -> None:  # 
     """A blended chain that cannot be timed as a whole: every corner becomes an exact stop
     with W225 at its move and time, and the plan lasts as long as the same program with
     `zone fine` (nothing vanishes, no 0 s hold)."""
-    import rmot.compiler.plan.chain as chain
+    import rmot.compiler.plan.move_chain as chain
 
     real = chain.path_piece
     calls = []

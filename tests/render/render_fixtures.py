@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 
 
 @dataclass(frozen=True)
@@ -72,7 +72,7 @@ def cell() -> ir.Cell:
     return ir.Cell("demo", (robot,), (table, post), (tool,))
 
 
-def plan(duration: float = 2.0, step: float = 0.004) -> planned.Plan:
+def plan(duration: float = 2.0, step: float = 0.004) -> plan_types.Plan:
     """r1 swings J1 from -0.6 to 0.6 rad and J2/J3 forward, over `duration` s, with the gripper."""
     c = cell()
     motion = ir.Motion(tcp_speed=0.5, tcp_accel=2.0, joint_speed=1.0, joint_accel=1.0, zone=ir.Zone())
@@ -84,6 +84,6 @@ def plan(duration: float = 2.0, step: float = 0.004) -> planned.Plan:
     s = (t / duration)[:, None]
     q = np.array([-0.6, 0.3, 0.6]) + s * np.array([1.2, 0.6, 0.3])
     zeros = np.zeros_like(q)
-    traj = planned.Trajectory(t, q, zeros, zeros.copy())
-    record = planned.InstructionRecord(1, None, 0.0, duration, q_target=q[-1])
-    return planned.Plan(program, (planned.TaskPlan(task, "r1", traj, (record,)),), step)
+    traj = plan_types.Trajectory(t, q, zeros, zeros.copy())
+    record = plan_types.InstructionRecord(1, None, 0.0, duration, q_target=q[-1])
+    return plan_types.Plan(program, (plan_types.TaskPlan(task, "r1", traj, (record,)),), step)

@@ -104,7 +104,7 @@ def arm6(name: str = "arm6") -> FakeRobot:
 
 # --------------------------------------------------------------------------- hand-made plans
 
-from rmot.compiler import planned  # noqa: E402
+from rmot.compiler import plan_types  # noqa: E402
 from rmot.lang.source import Pos, SourceFile, Span  # noqa: E402
 
 PROGRAM_PATH = "prog.rmot"
@@ -134,7 +134,7 @@ def quintic(q0: np.ndarray, q1: np.ndarray, t: np.ndarray, duration: float) -> t
 
 def task_plan(task_name: str, robot: str, waypoints: list, durations: list[float], file: SourceFile,
               first_line: int = 2, t0: float = 0.0, step: float = 0.004, first_uid: int = 1,
-              tool: ir.ToolRef | None = None) -> planned.TaskPlan:
+              tool: ir.ToolRef | None = None) -> plan_types.TaskPlan:
     """Moves from waypoints[k] to waypoints[k+1] in durations[k] s; move k is on line first_line+k.
     A duration of a move between equal waypoints is a wait (still a Move record)."""
     tool = tool or ir.ToolRef(None)
@@ -154,16 +154,16 @@ def task_plan(task_name: str, robot: str, waypoints: list, durations: list[float
         qs.append(q)
         qds.append(qd)
         qdds.append(qdd)
-        records.append(planned.InstructionRecord(uid, span, t_start, t_start + n * step, q_target=q1))
+        records.append(plan_types.InstructionRecord(uid, span, t_start, t_start + n * step, q_target=q1))
         t_start += n * step
-    traj = planned.Trajectory(np.concatenate(ts), np.concatenate(qs), np.concatenate(qds), np.concatenate(qdds))
+    traj = plan_types.Trajectory(np.concatenate(ts), np.concatenate(qs), np.concatenate(qds), np.concatenate(qdds))
     task = ir.Task(task_name, robot, tuple(moves))
-    return planned.TaskPlan(task, robot, traj, tuple(records))
+    return plan_types.TaskPlan(task, robot, traj, tuple(records))
 
 
-def make_plan(cell: ir.Cell, tasks: list[planned.TaskPlan], file: SourceFile) -> planned.Plan:
+def make_plan(cell: ir.Cell, tasks: list[plan_types.TaskPlan], file: SourceFile) -> plan_types.Plan:
     program = ir.Program("p", cell, tuple(tp.task for tp in tasks), span=line_span(file, 1))
-    return planned.Plan(program, tuple(tasks))
+    return plan_types.Plan(program, tuple(tasks))
 
 
 def cell(robots: list[tuple[str, tuple[float, float, float]]], fixtures=(), tools=(), allowed=()) -> ir.Cell:

@@ -7,7 +7,7 @@ import numpy as np
 import trimesh
 from simkit import arm3, box, cell, line_span, make_plan, source, task_plan
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.scene import build_scene
@@ -26,10 +26,10 @@ def test_if_variant_is_verified() -> None:
     c = cell([("r1", (0, 0, 0))], fixtures=[box("post", *POST)])
     main = task_plan("main", "r1", [(0, -1, 0), (0, -1.2, 0)], [1.0], file)  # the `then` arm: clear
     arm = task_plan("arm", "r1", [(0, -1, 0), (0, 1, 0.2)], [1.0], file, first_line=20, first_uid=20)
-    records = main.records + tuple(planned.InstructionRecord(r.uid, r.span, r.t_start, r.t_end, variant=1) for r in arm.records)
-    variant = planned.Variant(1, if_uid=99, arm="otherwise", trajectory=arm.trajectory)
+    records = main.records + tuple(plan_types.InstructionRecord(r.uid, r.span, r.t_start, r.t_end, variant=1) for r in arm.records)
+    variant = plan_types.Variant(1, if_uid=99, arm="otherwise", trajectory=arm.trajectory)
     task = ir.Task("main", "r1", main.task.body + arm.task.body)
-    tp = planned.TaskPlan(task, "r1", main.trajectory, records, (variant,))
+    tp = plan_types.TaskPlan(task, "r1", main.trajectory, records, (variant,))
     report = verify_with(make_plan(c, [tp], file), robots={"r1": arm3("r1")})
     hits = _codes(report, codes.COLLISION)
     assert len(hits) == 1
@@ -100,6 +100,6 @@ def test_plan_diagnostics_are_reported_first() -> None:
     tp = task_plan("main", "r1", [(0, 0, 0), (0.2, 0, 0)], [1.0], file)
     own = Diagnostic(Code("E299", "test-plan-finding", "a planner finding for this test"), Severity.ERROR,
                      "target must be reachable (got 1.2 m away)", line_span(file, 2))
-    plan = planned.Plan(make_plan(c, [tp], file).program, (tp,), diagnostics=(own,))
+    plan = plan_types.Plan(make_plan(c, [tp], file).program, (tp,), diagnostics=(own,))
     report = verify_with(plan, robots={"r1": arm3("r1")})
     assert report.diagnostics == (own,) and report.has_errors

@@ -7,7 +7,7 @@ import pinocchio as pin
 import pytest
 from simkit import arm3, cell, make_plan, source, task_plan
 
-from rmot.compiler import planned
+from rmot.compiler import plan_types
 from rmot.sim import codes
 from rmot.sim.limits import check_limits, joint_torques
 from rmot.sim.verification import verify_with
@@ -72,7 +72,7 @@ def test_torque_matches_rnea_and_is_reported() -> None:
     robot = arm3("r1", effort=5.0)
     t = np.linspace(0, 1, 11)
     q = np.stack([np.zeros(11), np.linspace(0, 1.2, 11), np.zeros(11)], axis=1)
-    traj = planned.Trajectory(t, q, np.zeros_like(q), np.zeros_like(q))
+    traj = plan_types.Trajectory(t, q, np.zeros_like(q), np.zeros_like(q))
     tau = joint_torques(robot, traj)
     data = robot.model.createData()
     for k in (0, 5, 10):
@@ -85,7 +85,7 @@ def test_payload_adds_gravity_torque() -> None:
     """A 2 kg payload 0.1 m out on the last joint of a horizontal arm adds its weight's moment."""
     robot = arm3("r1")
     q = np.array([[0.0, np.pi / 2, 0.0]])
-    traj = planned.Trajectory(np.zeros(1), q, np.zeros_like(q), np.zeros_like(q))
+    traj = plan_types.Trajectory(np.zeros(1), q, np.zeros_like(q), np.zeros_like(q))
     bare = joint_torques(robot, traj)[0]
     loaded = joint_torques(robot, traj, payload=2.0, payload_at=np.array([0, 0, 0.1]))[0]
     # the payload sits 0.5 + 0.1 m from J2's axis, horizontally: 2 kg * g * 0.6 m more at J2

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from simkit import arm3, cell
 
-from rmot.compiler import ir, planned
+from rmot.compiler import ir, plan_types
 from rmot.sim.scene import build_scene, flange_in_last_joint
 from rmot.sim.verification import _payload
 
@@ -19,8 +19,8 @@ def test_payload_at_half_the_tcp_offset() -> None:
     move = ir.Move(uid=1, kind=ir.MotionKind.JOINT, target=ir.JointTarget((0.0, 0.0, 0.0)), via=None,
                    motion=motion, tool=ir.ToolRef("gun", tcp, 2.0), frame=ir.FrameRef(None))
     task = ir.Task("main", "r1", (move,))
-    traj = planned.Trajectory(np.array([0.0, 1.0]), np.zeros((2, 3)), np.zeros((2, 3)), np.zeros((2, 3)))
-    mass, at = _payload(scene, planned.TaskPlan(task, "r1", traj, ()))
+    traj = plan_types.Trajectory(np.array([0.0, 1.0]), np.zeros((2, 3)), np.zeros((2, 3)), np.zeros((2, 3)))
+    mass, at = _payload(scene, plan_types.TaskPlan(task, "r1", traj, ()))
     flange = flange_in_last_joint(scene.robots["r1"].robot)
     assert mass == 2.0
     assert at is not None
