@@ -69,7 +69,7 @@ from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.codes_loops import LOOP_UNROLLED
 from rmot.backends.loops import (
-    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
+    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var, level_moves,
 )
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, plan_types
@@ -722,7 +722,7 @@ class FanucBackend(Backend):
         loops): sum over the loops (R[v] - first) * step, one operator per line."""
         done: set[int] = set()
         lines: list[str] = []
-        for uid in _level_moves(template.body):
+        for uid in level_moves(template.body):
             for role in ("target", "via"):
                 offset = template.targets.get((uid, role))
                 pr = ctx.regs.offsets.get((uid, role))
@@ -836,21 +836,6 @@ def _config_key(q: np.ndarray, branch: ir.Config | None) -> object:
 
 def _rounded(steps: tuple[tuple[float, float, float], ...]) -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(round(v * 1000.0, 3) for v in s) for s in steps)
-
-
-def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
-    """Uids of the moves of `body` outside nested loops (in If arms, whiles, procs too)."""
-    out: list[int] = []
-    for node in body:
-        if isinstance(node, ir.Move):
-            out.append(node.uid)
-        elif isinstance(node, ir.If):
-            out += _level_moves(node.then) + _level_moves(node.otherwise)
-        elif isinstance(node, (ir.While, ir.ProcCall)):
-            out += _level_moves(node.body)
-        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
-            out += _level_moves(node.on_timeout)
-    return out
 
 
 def _offset_signature(body: tuple[ir.Instr, ...],

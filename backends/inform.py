@@ -92,7 +92,7 @@ from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, f
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.codes_loops import LOOP_UNROLLED
 from rmot.backends.loops import (
-    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var,
+    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var, level_moves,
 )
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
@@ -778,7 +778,7 @@ class InformBackend(Backend):
         loops of (counter - first) * step, in 0.001 mm."""
         done: set[int] = set()
         lines: list[str] = []
-        for uid in _level_moves(template.body):
+        for uid in level_moves(template.body):
             for role in ("target", "via"):
                 found = ctx.vars.offsets.get((uid, role))
                 if found is None or found[0] in done:
@@ -913,21 +913,6 @@ def _rconf_key(q: np.ndarray, branch: ir.Config | None) -> object:
     if branch is None or None in (branch.shoulder, branch.elbow, branch.wrist):
         return None
     return rconf(branch, q)
-
-
-def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
-    """Uids of the moves of `body` outside nested loops (in If arms, whiles, procs too)."""
-    out: list[int] = []
-    for node in body:
-        if isinstance(node, ir.Move):
-            out.append(node.uid)
-        elif isinstance(node, ir.If):
-            out += _level_moves(node.then) + _level_moves(node.otherwise)
-        elif isinstance(node, (ir.While, ir.ProcCall)):
-            out += _level_moves(node.body)
-        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
-            out += _level_moves(node.on_timeout)
-    return out
 
 
 def _inform_blocker(template: LoopTemplate) -> str | None:

@@ -42,6 +42,7 @@ __all__ = [
     "ExtraKey",
     "LoopTemplate",
     "LoopVar",
+    "level_moves",
     "ORIENTATION_TOL",
     "POSITION_TOL",
     "TargetOffset",
@@ -576,3 +577,18 @@ def bind_loop_var(body: tuple[ir.Instr, ...], name: str, value: int) -> tuple[ir
     from rmot.compiler.ir_tree import bind_loop_variable
 
     return bind_loop_variable(body, name, value)
+
+
+def level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
+    """Uids of the moves of `body` outside nested loops (in If arms, whiles, procs too)."""
+    out: list[int] = []
+    for node in body:
+        if isinstance(node, ir.Move):
+            out.append(node.uid)
+        elif isinstance(node, ir.If):
+            out += level_moves(node.then) + level_moves(node.otherwise)
+        elif isinstance(node, (ir.While, ir.ProcCall)):
+            out += level_moves(node.body)
+        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
+            out += level_moves(node.on_timeout)
+    return out

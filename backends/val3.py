@@ -72,7 +72,7 @@ from typing import ClassVar
 from rmot.backends import codes, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
 from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
-from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var
+from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var, level_moves
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, plan_types
 from rmot.lang.source import Span
@@ -605,7 +605,7 @@ class Val3Backend(Backend):
         this level's own moves use (one local trsf per distinct shift)."""
         lines: list[str] = []
         done: set[str] = set()
-        for uid in _level_moves(template.body):
+        for uid in level_moves(template.body):
             for role in ("target", "via"):
                 offset = template.targets.get((uid, role))
                 if offset is None or not any(any(s) for s in offset.steps):
@@ -664,21 +664,6 @@ _VAL3_CMP = {ir.CompareOp.EQ: "==", ir.CompareOp.NE: "!=", ir.CompareOp.LT: "<",
 def _blend_key(node: ir.Instr, rec: plan_types.InstructionRecord | None) -> object:
     """What VAL3 prints from a move's record beyond its target: the blend (mdesc leave/reach)."""
     return None if rec is None or not isinstance(node, ir.Move) else round(rec.blend_radius, 6)
-
-
-def _level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
-    """Uids of the moves of `body` outside nested loops (in If arms, whiles, procs too)."""
-    out: list[int] = []
-    for node in body:
-        if isinstance(node, ir.Move):
-            out.append(node.uid)
-        elif isinstance(node, ir.If):
-            out += _level_moves(node.then) + _level_moves(node.otherwise)
-        elif isinstance(node, (ir.While, ir.ProcCall)):
-            out += _level_moves(node.body)
-        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
-            out += _level_moves(node.on_timeout)
-    return out
 
 
 def _can_stop(body: tuple[ir.Instr, ...]) -> bool:

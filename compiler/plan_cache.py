@@ -43,6 +43,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rmot.compiler.plan_codec import CodecError, decode, encode
+from rmot.lang._tables import cache_dir  # one cache directory: lang's, the stage upstream
 
 if TYPE_CHECKING:
     from rmot.compiler import ir
@@ -57,14 +58,6 @@ _KEY_PREFIXES = ("urdf-chain:",)  # load keys that carry a JSON list holding a f
 _STALE_TEMP_S = 3600.0
 
 
-def cache_dir() -> Path:
-    """$RMOT_CACHE_DIR, else $XDG_CACHE_HOME/rmot, else ~/.cache/rmot."""
-    explicit = os.environ.get("RMOT_CACHE_DIR")
-    if explicit:
-        return Path(explicit)
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    base = Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache"
-    return base / "rmot"
 
 
 def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = True) -> Plan:
