@@ -36,6 +36,11 @@ __all__ = [
 ]
 
 _REPAIR_ROUNDS = 12
+# the refinement may grow a path's grid to this many times its first size or this many points,
+# whichever is more; past that it repairs in place (a limit violated nearly everywhere, e.g. a
+# torque limit under an absurd payload, would otherwise quadruple the grid every round: 4^5)
+_MAX_GROWTH = 16
+_MAX_REFINED_POINTS = 100_000
 _REFINE_ROUNDS = 5  # first split the cells where a limit is exceeded, this many times
 _GRID_STEP = 0.004  # largest grid cell in path units (rad of joint arc, or scaled TCP length)
 _GRID_SUB_MAX = 64  # at most this many cells per waypoint interval
@@ -268,10 +273,17 @@ def path_piece(
         tcp_int = (np.minimum(tcp_speed[:-1], tcp_speed[1:]), acc_int)
     grid, _ = _grid(ss)
     arrays = _Arrays(_Limits(path, spline, ss, vlim, alim, f_int, tcp_int, torque), grid)
+    bound = max(_MAX_GROWTH * len(arrays.grid), _MAX_REFINED_POINTS)
     for attempt in range(_REFINE_ROUNDS + 1):
         rounds = 0 if attempt < _REFINE_ROUNDS else _REPAIR_ROUNDS
         x, r_acc, r_vel, bad, w_tau = arrays.solve(arrays.xmax.copy(), rounds)
         if not np.any(bad) or attempt == _REFINE_ROUNDS:
+            break
+        if len(arrays.grid) + 9 * np.count_nonzero(bad) > bound:
+            # splitting would grow the grid past its bound (a limit violated nearly everywhere,
+            # e.g. a torque limit under an absurd payload: each round would quadruple the grid):
+            # repair the cells in place instead, with the same local ceilings as the last round
+            x, r_acc, r_vel, bad, w_tau = arrays.solve(arrays.xmax.copy(), _REPAIR_ROUNDS)
             break
         arrays = arrays.refined(np.flatnonzero(bad))  # first split the offending cells (consumes the old)
     worst_a = float(np.max(r_acc, initial=0.0))

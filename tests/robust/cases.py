@@ -115,6 +115,12 @@ CASES: tuple[Case, ...] = (
                              + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n",
                              "part.stl": "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0 0.1 0\nendloop\nendfacet\nendsolid t\n"},
          ("check", "{d}/p.rmot"), frozenset({2}), ("E125",)),  # SIGSEGV in coal before (make fuzz, seed 25011)
+    Case("torque_bound_everywhere", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600 at pose(z=296mm)\n"
+                                     "  tool g = box(90mm, 70mm, 120mm) at pose(z=100mm) tcp pose(z=204 in) mass 4.395 kg on r1\n}\n"
+                                     "program p on r1 {\n  tool g\n  target home = joints(12.42, -47.2, 17.52, 59.58, 42.14, 30.6) deg\n"
+                                     "  target t = pose(x=617.8mm, y=-65mm, z=1086mm, rx=151.38deg)\n  move joint home\n"
+                                     "  move joint shift(t, z=-92.8mm)\n  move linear t tool flange\n}\n"},
+         ("check", "{d}/p.rmot"), frozenset({1}), ()),  # 200 s before: the timing's grid refinement quadrupled every round (fuzz seed 837)
     Case("flat_mesh", {"p.rmot": "cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"part.stl\") at pose(x=2m)\n}\n"
                        + "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n", "part.stl": "@STL@"},
          ("check", "{d}/p.rmot"), frozenset({0, 1}), ()),  # one triangle: a warning (W560), no traceback
