@@ -67,9 +67,9 @@ import numpy as np
 from rmot.backends import codes, codes_logic
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
-from rmot.backends.codes_loops import LOOP_UNROLLED
+from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
-    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var, level_moves,
+    LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
 )
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, plan_types
@@ -656,17 +656,10 @@ class FanucBackend(Backend):
             return self._vendor_loop(template, ctx)
         found = analyse(node, ctx.record, config_key=_config_key,
                         unroll=bool(getattr(self, "unroll", False)))
-        loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
-        reason = _fanuc_blocker(loop) if loop is not None else None
-        if loop is None or reason is not None:
-            self.warn(LOOP_UNROLLED, reason or (found.message if isinstance(found, Unrolled) else ""),
-                      found.span if isinstance(found, Unrolled) and reason is None else node.span)
-            return self._unrolled(node, ctx)
-        lines = self._zero_offsets(loop, ctx) + self._vendor_loop(loop, ctx)
-        if isinstance(found, Unrolled):  # the last iteration on its own, after the loop
-            self.warn(LOOP_UNROLLED, found.message, found.span)
-            lines += self._unrolled(replace(node, iterations=(found.last,)), ctx)
-        return lines
+        return blocked_loop_lines(
+            self, node, found, _fanuc_blocker,
+            lambda t: self._zero_offsets(t, ctx) + self._vendor_loop(t, ctx),
+            lambda n: self._unrolled(n, ctx))
 
     def _unrolled(self, node: ir.Loop, ctx: FanucContext) -> list[str]:
         lines: list[str] = []

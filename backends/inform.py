@@ -90,9 +90,9 @@ import numpy as np
 from rmot.backends import codes, codes_logic, codes_turns, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
-from rmot.backends.codes_loops import LOOP_UNROLLED
+from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
-    LoopTemplate, LoopVar, TargetOffset, Unrolled, analyse, bind_loop_var, level_moves,
+    LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
 )
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
@@ -708,18 +708,13 @@ class InformBackend(Backend):
             return self._vendor_loop(template, ctx)
         found = analyse(node, ctx.record, config_key=_rconf_key,
                         unroll=bool(getattr(self, "unroll", False)))
-        loop = found.peeled if isinstance(found, Unrolled) else found  # all but the last?
-        reason = _inform_blocker(loop) if loop is not None else None
-        if loop is None or reason is not None:
-            self.warn(LOOP_UNROLLED, reason or (found.message if isinstance(found, Unrolled) else ""),
-                      found.span if isinstance(found, Unrolled) and reason is None else node.span)
-            return self._unrolled(node, ctx)
-        self._number_shifts(loop, ctx)
-        lines = self._vendor_loop(loop, ctx)
-        if isinstance(found, Unrolled):  # the last iteration on its own, after the loop
-            self.warn(LOOP_UNROLLED, found.message, found.span)
-            lines += self._unrolled(replace(node, iterations=(found.last,)), ctx)
-        return lines
+
+        def write(template: LoopTemplate) -> list[str]:
+            self._number_shifts(template, ctx)
+            return self._vendor_loop(template, ctx)
+
+        return blocked_loop_lines(self, node, found, _inform_blocker, write,
+                                  lambda n: self._unrolled(n, ctx))
 
     def _unrolled(self, node: ir.Loop, ctx: InformContext) -> list[str]:
         lines: list[str] = []

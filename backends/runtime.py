@@ -17,7 +17,7 @@ of the template with their offsets (backends/loops.py) and each loop's counter n
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -28,6 +28,7 @@ from rmot.compiler import ir
 __all__ = [
     "ExprDialect",
     "LoopState",
+    "blocked_loop_lines",
     "expr_text",
     "is_int",
     "loop_template",
@@ -197,6 +198,33 @@ def loop_lines(
     nodes = last.body if node.var is None else loops.bind_loop_var(last.body, node.var, last.value)
     note = f"{node.var or 'iteration'} = {last.value}: the last iteration, on its own"
     return write(result.peeled) + [backend.comment(note)] + body(nodes)
+
+
+def blocked_loop_lines(
+    backend: Any,
+    node: ir.Loop,
+    found: loops.LoopTemplate | loops.Unrolled,
+    blocker: Callable[[loops.LoopTemplate], str | None],
+    write: Callable[[loops.LoopTemplate], list[str]],
+    unroll: Callable[[ir.Loop], list[str]],
+) -> list[str]:
+    """A Loop for a vendor whose loops have limits of their own (Fanuc registers, INFORM
+    shifts): the analysed template (or, when only the last iteration differs, all but it)
+    written by `write` unless `blocker` names a reason it cannot be; otherwise every iteration
+    by `unroll`, with W420 giving the reason; a peeled last iteration follows the loop."""
+    loop = found.peeled if isinstance(found, loops.Unrolled) else found  # all but the last?
+    reason = blocker(loop) if loop is not None else None
+    if loop is None or reason is not None:
+        backend.warn(codes_loops.LOOP_UNROLLED,
+                     reason or (found.message if isinstance(found, loops.Unrolled) else ""),
+                     found.span if isinstance(found, loops.Unrolled) and reason is None
+                     else node.span)
+        return unroll(node)
+    lines = write(loop)
+    if isinstance(found, loops.Unrolled):  # the last iteration on its own, after the loop
+        backend.warn(codes_loops.LOOP_UNROLLED, found.message, found.span)
+        lines += unroll(replace(node, iterations=(found.last,)))
+    return lines
 
 
 def unrolled(
