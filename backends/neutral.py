@@ -15,12 +15,13 @@ JSON, one file per program (`<program>.json`): the Plan as data —
 from __future__ import annotations
 
 import json
+import re
 from typing import Any
 
 import numpy as np
 
 from rmot.backends import codes
-from rmot.backends.base import Backend, EmitResult, TaskContext, fmt, source_ref
+from rmot.backends.base import Backend, EmitResult, TaskContext, source_ref
 from rmot.compiler import ir, plan_types
 
 __all__ = ["CSV_DECIMALS", "JSON_DECIMALS", "CsvBackend", "JsonBackend", "plan_document"]
@@ -44,10 +45,20 @@ def _num(x: float, decimals: int = JSON_DECIMALS) -> float:
 
 
 def _nums(a: np.ndarray | tuple[float, ...], decimals: int = JSON_DECIMALS) -> list[Any]:
+    """_num of every element, nested like the array. One '%.nf' format per row instead of a
+    round() per number (a long trajectory has millions): the same correctly rounded decimal
+    that round() takes, read back by float(); + 0.0 turns -0.0 into 0.0."""
     arr = np.asarray(a, dtype=float)
-    if arr.ndim == 1:
-        return [_num(v, decimals) for v in arr]
-    return [_nums(row, decimals) for row in arr]
+    if arr.ndim > 2:
+        return [_nums(part, decimals) for part in arr]
+    rows = np.atleast_2d(arr)
+    if rows.shape[1] == 0:
+        values: list[Any] = [[] for _ in range(rows.shape[0])]
+    else:
+        row_format = ",".join([f"%.{decimals}f"] * rows.shape[1])
+        values = [[float(t) + 0.0 for t in (row_format % tuple(r)).split(",")]
+                  for r in rows.tolist()]
+    return values[0] if arr.ndim == 1 else values
 
 
 class CsvBackend(Backend):
@@ -70,11 +81,14 @@ class CsvBackend(Backend):
             return {}
         dof = traj.q.shape[1]
         header = ["t"] + [f"q{j + 1}" for j in range(dof)] + [f"qd{j + 1}" for j in range(dof)]
-        rows = [",".join(header)]
-        for k in range(traj.t.size):
-            values = (traj.t[k], *traj.q[k], *traj.qd[k])
-            rows.append(",".join(fmt(v, CSV_DECIMALS) for v in values))
-        return {f"{ctx.program_name}{self.file_ext}": "\n".join(rows) + "\n"}
+        # one format per row (a long trajectory has millions of numbers); a field that prints
+        # as -0.000 becomes 0.000 as conventions.fmt would write it
+        row_format = ",".join([f"%.{CSV_DECIMALS}f"] * (1 + 2 * dof))
+        table = np.column_stack([traj.t, traj.q, traj.qd]).tolist()
+        rows = [",".join(header)] + [row_format % tuple(r) for r in table]
+        zero = f"{0.0:.{CSV_DECIMALS}f}"
+        body = re.sub(rf"(^|,)-{re.escape(zero)}(?=,|$)", rf"\g<1>{zero}", "\n".join(rows), flags=re.M)
+        return {f"{ctx.program_name}{self.file_ext}": body + "\n"}
 
 
 class JsonBackend(Backend):

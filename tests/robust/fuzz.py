@@ -1,12 +1,15 @@
 """`make fuzz`: N generated projects (tests/robust/gen.py, by seed) through the whole pipeline
 (front end, planner, verifier, every backend, the compile writer), each in a worker process
-under a 2 GB address-space cap (resource.setrlimit) with a 30 s wall-clock limit per input.
+under a 2 GB address-space cap (resource.setrlimit) with a 30 s limit per input. The limit is
+on the worker's CPU time for the input (read from /proc), so a loaded machine (the test suite
+running beside the fuzzer) cannot turn a slow input into a false hang; a worker that answers
+nothing for four times the limit in wall time is a hang too (blocked, not computing).
 
     .venv/bin/python -m tests.robust.fuzz [--n 100000] [--start 0] [--jobs 1] [--timeout 30]
                                          [--memory-gb 2] [--report fuzz-report.json]
 
 Counted per input: ok (diagnostics or files, exit 0/1/2), traceback (an exception escaped a
-stage), hang (no answer within the timeout: the worker is killed and replaced), memory
+stage), hang (more CPU than the timeout, or no answer for 4x it: the worker is killed and replaced), memory
 (MemoryError under the cap) and crash (the worker died: a signal such as SIGSEGV). Every
 failure is listed with its seed: `random_project(seed)` rebuilds the input.
 """
@@ -29,6 +32,9 @@ from rmot.backends import targets
 from collections import Counter
 
 TARGETS = targets()
+_TICKS = os.sysconf("SC_CLK_TCK")
+_WALL_FACTOR = 4  # no answer for this many timeouts of wall time: blocked, a hang
+_SLOWEST = 20  # the slowest inputs (CPU seconds) listed in the report
 
 
 def run_one(seed: int, workdir: str) -> str:
@@ -68,7 +74,9 @@ def worker(memory_gb: float) -> None:
     sys.stdout.flush()
     for line in sys.stdin:
         seed = int(line)
-        sys.stdout.write(json.dumps([seed, run_one(seed, workdir)]) + "\n")
+        started = time.process_time()
+        result = run_one(seed, workdir)
+        sys.stdout.write(json.dumps([seed, result, round(time.process_time() - started, 3)]) + "\n")
         sys.stdout.flush()
 
 
@@ -79,11 +87,20 @@ class Worker:
         assert self.proc.stdout is not None
         self.proc.stdout.readline()  # "ready" (imports are not part of any input's time)
         self.seed: int | None = None
-        self.started = 0.0
+        self.started = self.cpu_started = 0.0
+
+    def cpu_seconds(self) -> float:
+        """The worker's user + system CPU time so far (/proc/PID/stat fields 14 and 15)."""
+        try:
+            with open(f"/proc/{self.proc.pid}/stat", encoding="ascii") as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            return 0.0
+        return (int(fields[11]) + int(fields[12])) / _TICKS
 
     def send(self, seed: int) -> None:
         assert self.proc.stdin is not None
-        self.seed, self.started = seed, time.monotonic()
+        self.seed, self.started, self.cpu_started = seed, time.monotonic(), self.cpu_seconds()
         self.proc.stdin.write(f"{seed}\n")
         self.proc.stdin.flush()
 
@@ -110,6 +127,7 @@ def main() -> None:
     exits: Counter[str] = Counter()  # among ok inputs: how far they got (exit 0 / 1 / 2)
     written = [0]  # inputs for which vendor files were written
     failures: list[tuple[int, str]] = []
+    slowest: list[tuple[float, int]] = []
     workers = [Worker(args.memory_gb) for _ in range(args.jobs)]
     t0, done = time.monotonic(), 0
 
@@ -120,8 +138,12 @@ def main() -> None:
         else:
             w.send(seed)
 
-    def record(seed: int, result: str) -> None:
+    def record(seed: int, result: str, cpu: float | None = None) -> None:
         nonlocal done
+        if cpu is not None:
+            slowest.append((cpu, seed))
+            slowest.sort(reverse=True)
+            del slowest[_SLOWEST:]
         kind = result.split(":", 1)[0].split(" ", 1)[0]
         counts[kind] += 1
         if kind == "ok":
@@ -150,10 +172,12 @@ def main() -> None:
     summary = {"inputs": done, "seconds": round(time.monotonic() - t0, 1), "start": args.start, "interrupted": interrupted,
                "ok": counts["ok"], "traceback": counts["traceback"], "hang": counts["hang"],
                "memory": counts["memory"], "crash": counts["crash"], "ok_exit_codes": dict(exits),
-               "inputs_with_files_written": written[0], "failures": failures}
+               "inputs_with_files_written": written[0], "hang_limit": f"{args.timeout:g} s CPU or "
+               f"{_WALL_FACTOR * args.timeout:g} s without an answer",
+               "slowest_cpu_seconds": [[seed, cpu] for cpu, seed in slowest], "failures": failures}
     with open(args.report, "w", encoding="utf-8") as f:
         json.dump(summary, f, indent=1)
-    print(json.dumps({k: v for k, v in summary.items() if k != "failures"}))
+    print(json.dumps({k: v for k, v in summary.items() if k not in ("failures", "slowest_cpu_seconds")}))
     sys.exit(1 if failures else 0)
 
 
@@ -165,17 +189,19 @@ def _loop(workers: list[Worker], feed, record, args) -> None:  # type: ignore[no
             if w.proc.stdout in ready:
                 line = w.proc.stdout.readline()  # type: ignore[union-attr]
                 if line:
-                    seed, result = json.loads(line)
-                    record(seed, result)
+                    seed, result, cpu = json.loads(line)
+                    record(seed, result, cpu)
                     feed(w)
                     continue
                 code = w.proc.wait()  # died: a crash (signal) or an out-of-memory kill
                 record(w.seed, f"crash: worker exited with {code}" if code != -9 else "memory: killed")  # type: ignore[arg-type]
                 workers[workers.index(w)] = nw = Worker(args.memory_gb)
                 feed(nw)
-            elif time.monotonic() - w.started > args.timeout:
+            elif (w.cpu_seconds() - w.cpu_started > args.timeout
+                  or time.monotonic() - w.started > _WALL_FACTOR * args.timeout):
+                cpu, wall = w.cpu_seconds() - w.cpu_started, time.monotonic() - w.started
                 w.kill()
-                record(w.seed, f"hang: no answer within {args.timeout:g} s")  # type: ignore[arg-type]
+                record(w.seed, f"hang: no answer after {cpu:.1f} s CPU, {wall:.1f} s wall")  # type: ignore[arg-type]
                 workers[workers.index(w)] = nw = Worker(args.memory_gb)
                 feed(nw)
 
