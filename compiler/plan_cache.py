@@ -56,6 +56,10 @@ MAX_BYTES = 500 * 1024 * 1024  # bound on the plans folder; least recently used 
 _PACKAGES = ("rmot.lang", "rmot.compiler", "rmot.backends", "rmot.sim")
 _KEY_PREFIXES = ("urdf-chain:",)  # load keys that carry a JSON list holding a file path
 _STALE_TEMP_S = 3600.0
+# A full scan costs a stat per entry (~1,300 in a full cache: a third of a small program's
+# compile in a fuzz run), so it runs at most once per this many seconds per cache; between
+# scans the folder may exceed MAX_BYTES by what is written in that time.
+_EVICT_EVERY_S = 30.0
 
 
 
@@ -80,7 +84,8 @@ def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = T
     except OSError as exc:
         return _with_warning(plan, path.parent.parent.parent, exc)
     try:
-        evict(path.parent.parent, MAX_BYTES)
+        if _eviction_due(path.parent.parent):
+            evict(path.parent.parent, MAX_BYTES)
     except OSError:
         pass
     return plan
@@ -242,6 +247,18 @@ def _remove(path: Path) -> None:
         path.unlink()
     except OSError:
         pass
+
+
+def _eviction_due(folder: Path) -> bool:
+    """True at most once per _EVICT_EVERY_S (a marker file's mtime, touched when it is)."""
+    marker = folder / ".last-eviction"
+    try:
+        if time.time() - marker.stat().st_mtime < _EVICT_EVERY_S:
+            return False
+    except FileNotFoundError:
+        pass
+    marker.touch()
+    return True
 
 
 def evict(folder: Path, max_bytes: int) -> int:
