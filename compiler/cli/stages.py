@@ -70,12 +70,13 @@ def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> 
     return run("the planner", plan_cache.cached_plan, program, **kwargs)
 
 
-def verify(planned: Plan, *, clearance: float | None = None) -> Report:
-    """The verification (collisions, limits) of a plan."""
-    from rmot import sim
+def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = True) -> Report:
+    """The verification (collisions, limits) of a plan, through the verification cache
+    (compiler/cli/verify_cache.py: used only for a plan that came through the plan cache)."""
+    from rmot.compiler.cli.verify_cache import cached_verify
 
-    kwargs: dict[str, Any] = {} if clearance is None else {"clearance": clearance}
-    report: Report = run("the verification", sim.verify, planned, **kwargs)
+    report: Report = run("the verification", cached_verify, planned, clearance=clearance,
+                         use_cache=use_cache)
     return report
 
 
