@@ -50,7 +50,7 @@ if TYPE_CHECKING:
     from rmot.compiler import ir
     from rmot.compiler.plan_types import Plan
 
-__all__ = ["MAX_BYTES", "cache_dir", "cached_plan", "evict", "key_of", "plan_key", "source_digest"]
+__all__ = ["MAX_BYTES", "cache_dir", "cached_plan", "evict", "key_of", "plan_by_key", "plan_key", "source_digest"]
 
 FORMAT = "rmot-plan-cache/1"
 MAX_BYTES = 500 * 1024 * 1024  # bound on the plans folder; least recently used entries go first
@@ -66,6 +66,16 @@ def key_of(plan: Plan) -> str | None:
     """The content key of `plan` if cached_plan returned it in this process, else None (a plan
     made with use_cache=False, or from a program the codec does not encode)."""
     return _KEYS.get(plan)
+
+
+def plan_by_key(key: str) -> Plan | None:
+    """The Plan cached under `key` (a key plan_key gave for the default step), or None."""
+    if len(key) != 64 or any(c not in "0123456789abcdef" for c in key):
+        return None
+    plan = _read(cache_dir() / "plans" / key[:2] / f"{key}.npz", key)
+    if plan is not None:
+        _KEYS[plan] = key
+    return plan
 
 
 def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = True) -> Plan:

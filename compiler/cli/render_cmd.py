@@ -139,7 +139,7 @@ def load_plan(program: str, cell: str | None, project_root: str | None, use_cach
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes
 
-    loaded = stages.load(program, cell=cell, project_root=project_root)
+    loaded = stages.load(program, cell=cell, project_root=project_root, use_cache=use_cache)
     _report(loaded.diagnostics)
     if loaded.program is None:
         _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,

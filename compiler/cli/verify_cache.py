@@ -37,6 +37,7 @@ import importlib.util
 import json
 import os
 import tempfile
+import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -45,7 +46,7 @@ if TYPE_CHECKING:
     from rmot.compiler.plan_types import Plan
     from rmot.sim.report import Report
 
-__all__ = ["FORMAT", "MAX_BYTES", "cached_verify", "entry_path", "verify_key"]
+__all__ = ["FORMAT", "MAX_BYTES", "cached_verify", "entry_path", "scene_files", "verify_key"]
 
 FORMAT = "rmot-verify-cache/1"
 MAX_BYTES = 100 * 1024 * 1024  # bound on the verify folder; least recently used entries go first
@@ -65,9 +66,10 @@ def cached_verify(plan: Plan, *, clearance: float | None = None, use_cache: bool
     report = _read(path, key, plan)
     if report is not None:
         return report
+    started = time.time()
     report = _verify(plan, clearance)
     try:
-        _write(path, key, plan, report)
+        _write(path, key, plan, report, started)
     except (OSError, ValueError):  # an unwritable folder (W700 came with the plan), a value not encoded
         return report
     try:
@@ -113,7 +115,7 @@ def _libraries() -> str:
 
 
 # ---------------------------------------------------------------------------- files read
-def _scene_files(plan: Plan) -> list[str]:
+def scene_files(plan: Plan) -> list[str]:
     """Absolute paths of the mesh files the verification's scene reads: every ir.Mesh of the
     cell (fixtures, tools, parts) and every mesh solid of its robots (a URDF's meshes)."""
     from rmot.compiler import ir
@@ -157,7 +159,8 @@ def _digest(path: str) -> str | None:
 
 
 # ---------------------------------------------------------------------------- entries
-def _write(path: Path, key: str, plan: Plan, report: Report) -> None:
+def _write(path: Path, key: str, plan: Plan, report: Report, started: float) -> None:
+    from rmot.compiler.cli.load_cache import settled
     from rmot.compiler.plan_codec import encode
 
     n = len(plan.diagnostics)
@@ -167,7 +170,10 @@ def _write(path: Path, key: str, plan: Plan, report: Report) -> None:
     doc, arrays = encode(value)  # CodecError is a ValueError
     if arrays:
         raise ValueError("a report holds no arrays")
-    files = [[p, _digest(p)] for p in _scene_files(plan)]
+    paths = scene_files(plan)
+    if not settled(paths, started):
+        return  # a mesh changed while (or just before) the scene read it: no entry
+    files = [[p, _digest(p)] for p in paths]
     data = json.dumps({"format": FORMAT, "key": key, "files": files, "doc": doc},
                       separators=(",", ":"), allow_nan=False).encode("utf-8")
     path.parent.mkdir(parents=True, exist_ok=True)
