@@ -17,9 +17,11 @@ The key (SHA-256) covers everything the verification is a function of:
 - the verification options (--clearance), and the format of this cache;
 - the installed numeric libraries the verification runs on (numpy, pinocchio, coal, numba):
   the size and modification time of each one's package file, found without importing it.
-The files the scene reads that are not in the program (a URDF robot's collision meshes; a
-mesh the cell names that does not exist yet) are listed in the entry with their SHA-256 (or
-null when missing) and hashed again on every read: any change is a miss.
+The files the scene reads that are not in the program (a URDF robot's collision meshes, and
+the cell's meshes again) are listed in the entry with their SHA-256 (or null when missing) and
+hashed again on every read: any change is a miss. A mesh modified within 2 s before the
+verification started gets no entry (load_cache.settled: its bytes hashed after verifying may
+not be the bytes the scene read).
 
 Entries: <cache dir>/verify/<k[:2]>/<key>.json (the cache directory of lang/_tables.py), written
 to a temporary file in the same folder and renamed into place (atomic; safe under concurrent
