@@ -16,12 +16,13 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from rmot.compiler import ir
-from rmot.compiler.passes.context import Reporter, RobotLoader, default_robot_loader
-from rmot.compiler.passes.state import FrontendState
-from rmot.compiler.pipeline import run
 from rmot.lang.diagnostics import Diagnostic
+
+if TYPE_CHECKING:  # the passes (and the parser) load when a file is read, not with the result type
+    from rmot.compiler import ir
+    from rmot.compiler.passes.context import RobotLoader
 
 __all__ = ["FrontendResult", "load_program", "load_text"]
 
@@ -31,6 +32,9 @@ class FrontendResult:
     program: ir.Program | None
     cell: ir.Cell | None
     diagnostics: tuple[Diagnostic, ...]
+    # absolute paths of the source files read (program, imports, cell): the CLI's load cache
+    # (compiler/cli/load_cache.py) checks their bytes before it reuses a result
+    sources: tuple[str, ...] = ()
 
     @property
     def has_errors(self) -> bool:
@@ -55,6 +59,10 @@ def load_text(text: str, path: str = "<input>", *, cell: str | None = None, proj
 
 def _load(path: str, text: str | None, cell: str | None, project_root: str | None,
           robot_loader: RobotLoader | None, require_program: bool = False) -> FrontendResult:
+    from rmot.compiler.passes.context import Reporter, default_robot_loader
+    from rmot.compiler.passes.state import FrontendState
+    from rmot.compiler.pipeline import run
+
     root = os.path.abspath(project_root) if project_root else os.path.dirname(os.path.abspath(path))
     roots = (root,) if cell is None else (root, os.path.dirname(os.path.abspath(cell)))
     state = FrontendState(path=path, roots=roots, reporter=Reporter(), robot_loader=robot_loader or default_robot_loader,
@@ -71,4 +79,7 @@ def _load(path: str, text: str | None, cell: str | None, project_root: str | Non
         state.reporter.error(codes.NO_PROGRAM, f"'{path}' must contain a program (got none: only a cell or declarations)", None)
     diagnostics = state.reporter.sink.items
     program = None if any(d.is_error for d in diagnostics) else state.program
-    return FrontendResult(program, state.cell, diagnostics)
+    read = [state.main.path] if state.main is not None else []
+    read += [*state.modules, *([state.cell_module.path] if state.cell_module is not None else [])]
+    sources = tuple(sorted({os.path.abspath(p) for p in read}))
+    return FrontendResult(program, state.cell, diagnostics, sources)

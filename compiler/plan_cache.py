@@ -36,6 +36,7 @@ import json
 import os
 import tempfile
 import time
+import weakref
 import zipfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -49,7 +50,10 @@ if TYPE_CHECKING:
     from rmot.compiler import ir
     from rmot.compiler.plan_types import Plan
 
-__all__ = ["MAX_BYTES", "cache_dir", "cached_plan", "evict", "plan_key", "source_digest"]
+__all__ = [
+    "MAX_BYTES", "cache_dir", "cached_plan", "evict", "eviction_due", "key_of", "plan_by_key",
+    "plan_key", "source_digest",
+]
 
 FORMAT = "rmot-plan-cache/1"
 MAX_BYTES = 500 * 1024 * 1024  # bound on the plans folder; least recently used entries go first
@@ -60,8 +64,25 @@ _STALE_TEMP_S = 3600.0
 # compile in a fuzz run), so it runs at most once per this many seconds per cache; between
 # scans the folder may exceed MAX_BYTES by what is written in that time.
 _EVICT_EVERY_S = 30.0
+# the content key of each Plan cached_plan returned in this process (the verification cache,
+# compiler/cli/verify_cache.py, keys its entries by it); weak: a Plan is not kept alive by it
+_KEYS: weakref.WeakKeyDictionary[Plan, str] = weakref.WeakKeyDictionary()
 
 
+def key_of(plan: Plan) -> str | None:
+    """The content key of `plan` if cached_plan returned it in this process, else None (a plan
+    made with use_cache=False, or from a program the codec does not encode)."""
+    return _KEYS.get(plan)
+
+
+def plan_by_key(key: str) -> Plan | None:
+    """The Plan cached under `key` (a key plan_key gave for the default step), or None."""
+    if len(key) != 64 or any(c not in "0123456789abcdef" for c in key):
+        return None
+    plan = _read(cache_dir() / "plans" / key[:2] / f"{key}.npz", key)
+    if plan is not None:
+        _KEYS[plan] = key
+    return plan
 
 
 def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = True) -> Plan:
@@ -75,6 +96,7 @@ def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = T
     path = cache_dir() / "plans" / key[:2] / f"{key}.npz"
     plan = _read(path, key)
     if plan is not None:
+        _KEYS[plan] = key
         return plan
     plan = _plan(program, step)
     try:
@@ -82,9 +104,12 @@ def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = T
     except CodecError:
         return plan
     except OSError as exc:
-        return _with_warning(plan, path.parent.parent.parent, exc)
+        plan = _with_warning(plan, path.parent.parent.parent, exc)
+        _KEYS[plan] = key
+        return plan
+    _KEYS[plan] = key
     try:
-        if _eviction_due(path.parent.parent):
+        if eviction_due(path.parent.parent):
             evict(path.parent.parent, MAX_BYTES)
     except OSError:
         pass
@@ -249,7 +274,7 @@ def _remove(path: Path) -> None:
         pass
 
 
-def _eviction_due(folder: Path) -> bool:
+def eviction_due(folder: Path) -> bool:
     """True at most once per _EVICT_EVERY_S (a marker file's mtime, touched when it is)."""
     marker = folder / ".last-eviction"
     try:
@@ -261,13 +286,13 @@ def _eviction_due(folder: Path) -> bool:
     return True
 
 
-def evict(folder: Path, max_bytes: int) -> int:
-    """Remove the least recently used entries until the folder holds at most max_bytes; also
-    temporary files left by killed runs. Returns the number of files removed."""
+def evict(folder: Path, max_bytes: int, suffix: str = ".npz") -> int:
+    """Remove the least recently used entries (files `*/*<suffix>`) until the folder holds at
+    most max_bytes; also temporary files left by killed runs. Returns the number removed."""
     entries = []
     removed = 0
     now = time.time()
-    for path in Path(folder).glob("*/*.npz"):
+    for path in Path(folder).glob(f"*/*{suffix}"):
         try:
             st = path.stat()
         except OSError:

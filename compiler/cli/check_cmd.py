@@ -57,7 +57,7 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     # the front end reports a missing file (E501) and a file without a program (E119); a stage
     # failing unexpectedly is E550 in this program's report (compiler/cli/stages.py)
     try:
-        front = stages.load(path, cell=cell, project_root=project_root)
+        front = stages.load(path, cell=cell, project_root=project_root, use_cache=use_cache)
     except stages.StageError as exc:
         return CheckOutcome(Report(path, {}, (exc.diagnostic,)), True)
     front_diags = tuple(front.diagnostics)

@@ -68,7 +68,7 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
 
     # the front end reports a missing file (E501) and a file without a program (E119)
     try:
-        front = stages.load(path, cell=cell, project_root=project_root)
+        front = stages.load(path, cell=cell, project_root=project_root, use_cache=use_cache)
     except stages.StageError as exc:
         return CompileOutcome({}, (exc.diagnostic,), EXIT_INPUT)
     diagnostics = tuple(front.diagnostics)

@@ -139,7 +139,7 @@ def load_plan(program: str, cell: str | None, project_root: str | None, use_cach
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes
 
-    loaded = stages.load(program, cell=cell, project_root=project_root)
+    loaded = stages.load(program, cell=cell, project_root=project_root, use_cache=use_cache)
     _report(loaded.diagnostics)
     if loaded.program is None:
         _fail(Diagnostic(codes.NOTHING_TO_RENDER, Severity.ERROR,
@@ -164,9 +164,7 @@ def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | 
     _report(scene.diagnostics)  # meshes that do not load: errors stop here, warnings are shown
     size = size or ((480, 360) if ext in (".gif", ".mp4") else (640, 480))
     camera = _camera(camera_text, scene, size)
-    from rmot.sim.render.findings import verified_markings
-
-    marks, _ = verified_markings(scene)  # findings are marked in every kind of picture
+    marks = _markings(plan, scene)  # findings are marked in every kind of picture
     if ext == ".png":
         from rmot.sim.render.still import still_image
 
@@ -186,3 +184,17 @@ def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | 
         from rmot.sim.render.html import render_html
 
         write_text(output, render_html(scene, fps=fps, camera=camera, marks=marks))
+
+
+def _markings(plan: Any, scene: Any) -> Any:
+    """The scene's markings of the plan's findings, verified through the one pipeline (and its
+    cache: compiler/cli/verify_cache.py). A verification that cannot run leaves the pictures
+    unmarked, as sim.render.findings.verified_markings does: `rmot check` reports it."""
+    from rmot.compiler.cli import stages
+    from rmot.sim.render.findings import markings
+
+    try:
+        found = stages.verify(plan).diagnostics
+    except stages.StageError:
+        return ()
+    return markings(scene, found)

@@ -43,7 +43,7 @@ def report(programs: tuple[str, ...], output: str, cell: str | None, project_roo
     for path in programs:
         front: tuple[Diagnostic, ...] = ()
         try:  # a stage failing unexpectedly is E550 for this program (compiler/cli/stages.py)
-            loaded = stages.load(path, cell=cell, project_root=project_root)
+            loaded = stages.load(path, cell=cell, project_root=project_root, use_cache=not no_cache)
             front = tuple(loaded.diagnostics)
             if any(d.is_error for d in front) or loaded.program is None:
                 input_error = True

@@ -52,8 +52,15 @@ def run(stage: str, fn: Callable[..., T], *args: Any, **kwargs: Any) -> T:
 
 
 def load(path: str, *, cell: str | None = None, project_root: str | None = None,
-         require_program: bool = True) -> FrontendResult:
-    """The front end (input errors are diagnostics in the result, not exceptions)."""
+         require_program: bool = True, use_cache: bool = False) -> FrontendResult:
+    """The front end (input errors are diagnostics in the result, not exceptions); with
+    `use_cache`, a program already planned is taken from the caches when no file it read has
+    changed (compiler/cli/load_cache.py)."""
+    if use_cache:
+        from rmot.compiler.cli import load_cache
+
+        return run("the front end", load_cache.load, path, cell=cell, project_root=project_root,
+                   require_program=require_program)
     from rmot.compiler import frontend
 
     return run("the front end", frontend.load_program, path, cell=cell, project_root=project_root,
@@ -63,19 +70,28 @@ def load(path: str, *, cell: str | None = None, project_root: str | None = None,
 def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> Plan:
     """The planner, through the plan cache."""
     from rmot.compiler import plan_cache
+    from rmot.compiler.cli import load_cache
 
+    if use_cache and step is None:
+        known = load_cache.planned(program)
+        if known is not None:
+            return known
     kwargs: dict[str, Any] = {"use_cache": use_cache}
     if step is not None:
         kwargs["step"] = step
-    return run("the planner", plan_cache.cached_plan, program, **kwargs)
+    planned = run("the planner", plan_cache.cached_plan, program, **kwargs)
+    if use_cache and step is None:
+        load_cache.record(program, planned)
+    return planned
 
 
-def verify(planned: Plan, *, clearance: float | None = None) -> Report:
-    """The verification (collisions, limits) of a plan."""
-    from rmot import sim
+def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = True) -> Report:
+    """The verification (collisions, limits) of a plan, through the verification cache
+    (compiler/cli/verify_cache.py: used only for a plan that came through the plan cache)."""
+    from rmot.compiler.cli.verify_cache import cached_verify
 
-    kwargs: dict[str, Any] = {} if clearance is None else {"clearance": clearance}
-    report: Report = run("the verification", sim.verify, planned, **kwargs)
+    report: Report = run("the verification", cached_verify, planned, clearance=clearance,
+                         use_cache=use_cache)
     return report
 
 

@@ -237,16 +237,16 @@ def test_evict_removes_least_recently_used_beyond_the_bound(tmp_path: Path) -> N
 def test_eviction_scans_at_most_once_per_interval(tmp_path: Path) -> None:
     """The full scan (a stat per entry) runs on the first write and then not again until the
     marker is _EVICT_EVERY_S old: a run of compiles does not pay it every time."""
-    from rmot.compiler.plan_cache import _EVICT_EVERY_S, _eviction_due
+    from rmot.compiler.plan_cache import _EVICT_EVERY_S, eviction_due
 
     folder = tmp_path / "plans"
     folder.mkdir()
-    assert _eviction_due(folder) is True
-    assert _eviction_due(folder) is False
+    assert eviction_due(folder) is True
+    assert eviction_due(folder) is False
     old = time.time() - _EVICT_EVERY_S - 1
     os.utime(folder / ".last-eviction", (old, old))
-    assert _eviction_due(folder) is True
-    assert _eviction_due(folder) is False
+    assert eviction_due(folder) is True
+    assert eviction_due(folder) is False
 
 
 class _Foreign(enum.Enum):

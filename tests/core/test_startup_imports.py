@@ -62,10 +62,12 @@ def test_robot_library_without_ik_loads_no_numba(env: dict[str, str], args: list
 def test_check_with_a_cached_plan_loads_no_planner_nor_plotting(env: dict[str, str], tmp_path: Path) -> None:
     prog = tmp_path / "three.rmot"
     prog.write_text(THREE, encoding="utf-8")
+    future = prog.stat().st_mtime + 3600  # never "settled": no load entry, the front end runs
+    os.utime(prog, (future, future))
     first = subprocess.run(RMOT + ["check", str(prog)], env=env, capture_output=True, text=True, check=False)
     assert first.returncode == 0, first.stdout + first.stderr[-2000:]
     names = imported(["check", str(prog)], env)
-    assert "pinocchio" in names  # verification ran
+    assert "pinocchio" in names  # the front end ran
     assert not names & {"matplotlib", "toppra", "ruckig", "cvxpy", "PIL", "imageio"}
     assert not names & {"numba", "scipy"}  # a small job: FK in numpy, no compiled kernel loaded
 
@@ -77,3 +79,19 @@ def test_check_without_cache_loads_no_plotting(env: dict[str, str], tmp_path: Pa
     assert "pinocchio" in names
     assert "matplotlib" not in names
     assert "numba" not in names  # a small grid: TOPP and IK kernels run in the interpreter
+
+
+@pytest.mark.parametrize("command", [["check"], ["compile", "--target", "rapid", "-o", "OUT"]])
+def test_a_command_after_check_loads_neither_parser_nor_robot_library(
+        env: dict[str, str], tmp_path: Path, command: list[str]) -> None:
+    """Plan, verification and front-end result all come from the cache (compiler/cli/
+    load_cache.py): no lark, no pinocchio. The file is saved a minute before the runs (a file
+    modified within 2 s before a run gets no load entry)."""
+    prog = tmp_path / "three.rmot"
+    prog.write_text(THREE, encoding="utf-8")
+    os.utime(prog, (prog.stat().st_mtime - 60, prog.stat().st_mtime - 60))
+    first = subprocess.run(RMOT + ["check", str(prog)], env=env, capture_output=True, text=True, check=False)
+    assert first.returncode == 0, first.stdout + first.stderr[-2000:]
+    args = [str(tmp_path / "out") if a == "OUT" else a for a in command]
+    names = imported([args[0], str(prog), *args[1:]], env)
+    assert not names & {"lark", "pinocchio", "coal", "numba", "scipy", "toppra", "matplotlib"}
