@@ -96,7 +96,7 @@ from rmot.backends.loops import (
 )
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
@@ -172,21 +172,18 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
         if isinstance(node, ir.Move):
             out[node.uid] = last
             last = node
-        elif isinstance(node, ir.ProcCall):
-            _, last = predecessors(node.body, last, out)
-        elif isinstance(node, ir.If):
-            _, a = predecessors(node.then, last, out)
-            _, b = predecessors(node.otherwise, last, out)
-            last = a if a is b else None
-        elif isinstance(node, ir.Loop):  # issue #15: the iterations one after another
-            for it in node.iterations:
-                _, last = predecessors(it.body, last, out)
-        elif isinstance(node, ir.While):  # the body may run zero or more times
-            _, end = predecessors(node.body, last, out)
-            last = last if end is last else None
-        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)) and node.on_timeout:
-            _, end = predecessors(node.on_timeout, last, out)
-            last = last if end is last else None
+            continue
+        runs, bodies = ir_tree.flow(node)
+        if runs.sure:  # a proc body, a loop's iterations (issue #15): one after another
+            for sub in bodies:
+                _, last = predecessors(sub, last, out)
+        elif runs is ir_tree.Runs.ONE_OF:  # if arms: known only when every arm ends alike
+            ends = [predecessors(sub, last, out)[1] for sub in bodies]
+            last = ends[0] if ends and all(e is ends[0] for e in ends) else None
+        else:  # a while's body, a timeout branch: it may not run
+            for sub in bodies:
+                _, end = predecessors(sub, last, out)
+                last = last if end is last else None
     return out, last
 
 

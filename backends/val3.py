@@ -74,7 +74,7 @@ from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, 
 from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
 from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var, level_moves
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.lang.source import Span
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
@@ -646,8 +646,11 @@ def _last_move(node: ir.Instr | None) -> ir.Move | None:
     """The move that ends `node` (itself, or the last of a proc body), if any."""
     if isinstance(node, ir.Move):
         return node
-    if isinstance(node, ir.ProcCall) and node.body:
-        return _last_move(node.body[-1])
+    if node is None:
+        return None
+    runs, bodies = ir_tree.flow(node)
+    if runs is ir_tree.Runs.CALL and bodies[0]:
+        return _last_move(bodies[0][-1])
     return None
 
 
