@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.backends import codes_loops, loops
+from rmot.backends import codes, loops
 from rmot.compiler import ir
 
 __all__ = [
@@ -165,7 +165,7 @@ def loop_template(
     assert result is not None
     if not unroll and node.iterations:
         how = "" if result.peeled is not None else "; written iteration by iteration"
-        backend.warn(codes_loops.LOOP_UNROLLED, result.message + how, result.span)
+        backend.warn(codes.LOOP_UNROLLED, result.message + how, result.span)
     return result, best
 
 
@@ -215,14 +215,14 @@ def blocked_loop_lines(
     loop = found.peeled if isinstance(found, loops.Unrolled) else found  # all but the last?
     reason = blocker(loop) if loop is not None else None
     if loop is None or reason is not None:
-        backend.warn(codes_loops.LOOP_UNROLLED,
+        backend.warn(codes.LOOP_UNROLLED,
                      reason or (found.message if isinstance(found, loops.Unrolled) else ""),
                      found.span if isinstance(found, loops.Unrolled) and reason is None
                      else node.span)
         return unroll(node)
     lines = write(loop)
     if isinstance(found, loops.Unrolled):  # the last iteration on its own, after the loop
-        backend.warn(codes_loops.LOOP_UNROLLED, found.message, found.span)
+        backend.warn(codes.LOOP_UNROLLED, found.message, found.span)
         lines += unroll(replace(node, iterations=(found.last,)))
     return lines
 

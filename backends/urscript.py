@@ -373,7 +373,6 @@ UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]
 #   * wait with a timeout branch: the same counted loop as wait_input above, then
 #     `if not (cond):` runs the branch instead of popup + halt.
 
-from rmot.backends import codes_loops as _codes_loops  # noqa: E402
 from rmot.backends import loops as _loops  # noqa: E402
 from rmot.backends import runtime as _rt  # noqa: E402
 
@@ -393,7 +392,7 @@ def _ur_dialect(self: UrScriptBackend, ctx: UrContext, span: object) -> _rt.Expr
     def analog(a: ir.AnalogInput) -> str:
         low, high = ANALOG_IN_PORTS
         if not low <= a.port <= high:
-            self.unsupported(_codes_loops.ANALOG_IN_PORT,
+            self.unsupported(codes.ANALOG_IN_PORT,
                              f"analog input port must be in {low}..{high} "
                              f"for get_standard_analog_in (got {a.port})",
                              span)  # type: ignore[arg-type]

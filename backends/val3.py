@@ -69,9 +69,9 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
-from rmot.backends import codes, codes_logic
+from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
-from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
+from rmot.backends.codes import LOOP_UNROLLED, STOP_IN_ROUTINE
 from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var, level_moves
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, ir_tree, plan_types
@@ -512,7 +512,7 @@ class Val3Backend(Backend):
         elif isinstance(e, ir.Logic):
             text = f" {e.op} ".join(self.expr(o, node, ctx, True) for o in e.operands)
         else:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, "a value must be a constant, variable, "
+            self.unsupported(codes.LOGIC_UNSUPPORTED, "a value must be a constant, variable, "
                              f"input or an operation on them (got {type(e).__name__})", node.span)
             return "false"
         return f"({text})" if nested else text
