@@ -73,6 +73,7 @@ from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
 from rmot.backends.codes import LOOP_UNROLLED, STOP_IN_ROUTINE
 from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var, level_moves
+from rmot.backends.runtime import loop_plan
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, ir_tree, plan_types
 from rmot.lang.source import Span
@@ -572,13 +573,15 @@ class Val3Backend(Backend):
             return self._vendor_loop(template, ctx)
         found = analyse(node, ctx.record, extra_key=_blend_key,
                         unroll=bool(getattr(self, "unroll", False)))
-        if isinstance(found, LoopTemplate):
-            return self._vendor_loop(found, ctx)
-        self.warn(LOOP_UNROLLED, found.message, found.span)
-        if found.peeled is None:
+        plan = loop_plan(node, found)  # the one loop decision (backends/runtime.py)
+        if plan.why:  # before the loop's own findings
+            self.warn(LOOP_UNROLLED, plan.why, plan.span)
+        if plan.template is None:
             return self._unrolled(node, ctx)
-        return (self._vendor_loop(found.peeled, ctx)  # then the last iteration on its own
-                + self._unrolled(replace(node, iterations=(found.last,)), ctx))
+        lines = self._vendor_loop(plan.template, ctx)
+        if plan.last is None:
+            return lines
+        return lines + self._unrolled(replace(node, iterations=(plan.last,)), ctx)
 
     def _unrolled(self, node: ir.Loop, ctx: Val3Context) -> list[str]:
         lines: list[str] = []
