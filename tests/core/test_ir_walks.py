@@ -168,8 +168,10 @@ def test_every_dispatcher_covers_every_kind() -> None:
     from rmot.compiler import ir_dump
     from rmot.compiler.plan import timeline
 
+    from rmot.backends import neutral
+
     tables = {"timeline": timeline._PLAN, "ir_dump heads": ir_dump._HEADS,
-              "ir_dump labels": ir_dump._LABELS}
+              "ir_dump labels": ir_dump._LABELS, "JSON kinds": neutral._KIND_LABELS}
     tables.update({f"{name} EMIT": cls.EMIT for name, cls in BACKENDS.items()})
     for owner, table in tables.items():
         ir_tree.require_kinds(owner, table)  # type: ignore[arg-type]
