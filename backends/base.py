@@ -67,7 +67,7 @@ from rmot.backends.conventions import (
 )
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
@@ -745,3 +745,7 @@ for _cls, _method, _fallback in (
     Backend.EMIT.setdefault(_cls, _method)
     if not hasattr(Backend, Backend.EMIT[_cls]):
         setattr(Backend, Backend.EMIT[_cls], _fallback)
+
+# Every instruction kind has a printer (the fallbacks above included): a kind added to the IR
+# without one is an import-time error here, never a silent default (issue #19).
+ir_tree.require_kinds("backends/base.Backend.EMIT", Backend.EMIT)

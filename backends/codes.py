@@ -1,7 +1,9 @@
 """Diagnostic codes of the shared backend machinery and of RAPID, KRL and Fanuc TP.
 
 Range E400–E449 / W400–W449 (the URScript, INFORM, VAL3 and neutral backends use
-E450–E499 / W450–W499 in the section at the end of this module).
+E450–E499 / W450–W499 in the section at the end of this module), with the sections of
+runtime logic (E420–E439 / W420–W439: loops, runtime values, stop) and joint turns (E440–E449)
+that every vendor shares.
 """
 
 from __future__ import annotations
@@ -115,4 +117,64 @@ __all__ += [
     "WAIT_END_MOVE",
     "ANALOG_LINK",
     "PART_PAYLOAD_NOT_EXPRESSED",
+]
+
+
+# ------------------------------------------------------------------ runtime logic (issue #15)
+# Loops written as vendor loops or unrolled, runtime values, waits with a timeout branch,
+# stop (E420-E429 / W420-W429; E165 above is the fallback of a vendor that writes none of
+# it), and the emitters of Fanuc TP, Yaskawa INFORM and Staubli VAL3 (E430-E439 / W430-W439).
+# (backends/codes_loops.py and codes_logic.py until issue #19.)
+ANALOG_IN_PORT = Code(
+    "E420",
+    "analog-input-out-of-range",
+    "an analog input's port is outside what the vendor's controller has",
+)
+LOOP_UNROLLED = Code(
+    "W420",
+    "loop-unrolled",
+    "a for loop was written iteration by iteration: its iterations differ in more "
+    "than target positions on a constant step (the warning names the iteration, "
+    "the instruction and the difference)",
+)
+STOP_IN_ROUTINE = Code(
+    "W421",
+    "stop-flag",
+    "a stop inside a routine ends the program through a flag tested after each "
+    "call (the vendor has no instruction that ends the program from a routine)",
+)
+LOGIC_UNSUPPORTED = Code(
+    "E430",
+    "runtime-value-unsupported",
+    "a runtime value or condition has no form in this vendor's language",
+)
+REGISTERS_EXHAUSTED = Code(
+    "E431",
+    "registers-exhausted",
+    "the program needs more controller variables or registers than the block rmot writes them to",
+)
+WAIT_POLLED = Code(
+    "W431",
+    "wait-polled",
+    "a wait on a condition the vendor's wait instruction cannot test is written as a "
+    "polling loop (its timeout counted by a timer)",
+)
+STOP_AS_PAUSE = Code(
+    "W432",
+    "stop-as-pause",
+    "`stop` inside a called job is written as a pause: the vendor cannot end the "
+    "calling job from a called one",
+)
+
+# ------------------------------------------------------------------ joint turns (issue #15)
+# in the vendors' configuration data, E440-E449 / W440-W444 (backends/codes_turns.py until
+# issue #19; the front end's turn codes are in compiler/codes.py)
+TURN_NOT_EXPRESSIBLE = Code(
+    "E440", "turn-not-expressible",
+    "a planned joint value's turn cannot be told apart by the vendor's configuration data")
+
+__all__ += [
+    "ANALOG_IN_PORT", "LOOP_UNROLLED", "STOP_IN_ROUTINE",
+    "LOGIC_UNSUPPORTED", "REGISTERS_EXHAUSTED", "WAIT_POLLED", "STOP_AS_PAUSE",
+    "TURN_NOT_EXPRESSIBLE",
 ]

@@ -64,7 +64,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_logic
+from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.runtime import blocked_loop_lines
@@ -474,7 +474,7 @@ class FanucBackend(Backend):
     def _reg(self, name: str, ctx: FanucContext, span: object) -> str:
         n = ctx.regs.variables.get(name)
         if n is None:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED,
+            self.unsupported(codes.LOGIC_UNSUPPORTED,
                              f"variable '{name}' must be declared in the task (got a reference to "
                              "an undeclared one)", span)  # type: ignore[arg-type]
             n = 0
@@ -483,7 +483,7 @@ class FanucBackend(Backend):
     def _temp(self, ctx: FanucContext, span: object) -> str:
         n = ctx.regs.temp()
         if n > self.MAX_REGISTER:
-            self.unsupported(codes_logic.REGISTERS_EXHAUSTED,
+            self.unsupported(codes.REGISTERS_EXHAUSTED,
                              f"the program must fit registers R[{self.REG_FIRST}.."
                              f"{self.MAX_REGISTER}] (needs R[{n}])", span)  # type: ignore[arg-type]
         return f"R[{n}:rmot tmp]"
@@ -573,7 +573,7 @@ class FanucBackend(Backend):
             return out
         test = self._test(c, not when, ctx, node)
         if test is None:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, f"a condition must be a comparison, an "
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"a condition must be a comparison, an "
                              f"input, a variable or and/or/not (got {type(c).__name__})", node.span)
             return []
         return test[0] + [f"IF {test[1]},JMP LBL[{label}]"]
@@ -630,7 +630,7 @@ class FanucBackend(Backend):
             if node.timeout is None:
                 return [f"WAIT {one[1]}"]
             return self._timed_wait(one[1], node.timeout, node.on_timeout, ctx)
-        self.warn(codes_logic.WAIT_POLLED, "TP's WAIT must test comparisons of one and/or kind, at "
+        self.warn(codes.WAIT_POLLED, "TP's WAIT must test comparisons of one and/or kind, at "
                   f"most {self.MAX_CONDITIONS}, on registers and I/O; this condition is polled "
                   "in a loop" + (f" with TIMER[{self.POLL_TIMER}] counting the timeout"
                                  if node.timeout else ""),
@@ -681,7 +681,7 @@ class FanucBackend(Backend):
                 ctx.regs.prs[steps] = self.LOOP_PR + len(ctx.regs.prs) + 1
                 pr = ctx.regs.prs[steps]
                 if pr > self.FRAME_PR:
-                    self.unsupported(codes_logic.REGISTERS_EXHAUSTED,
+                    self.unsupported(codes.REGISTERS_EXHAUSTED,
                                      f"loop offsets must fit PR[{self.LOOP_PR + 1}.."
                                      f"{self.FRAME_PR}] (needs PR[{pr}])", template.loop.span)
                 lines.append(f"PR[{pr}]=LPOS-LPOS")

@@ -44,11 +44,11 @@ instruction needs none).
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from itertools import count
 
 from rmot.backends import codes
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic, Severity
 
 __all__ = [
@@ -96,13 +96,14 @@ def handshake_ports(cell: ir.Cell, robot: str) -> HandshakePorts | None:
 
 
 def _syncs_in_if_arms(body: tuple[ir.Instr, ...], inside: bool = False) -> Iterator[ir.Sync]:
+    """The syncs in bodies that may not run: if arms (and whiles, timeout branches, which the
+    front end refuses already); a barrier's level is fixed when compiling, so it must run."""
     for node in body:
         if isinstance(node, ir.Sync) and inside:
             yield node
-        elif isinstance(node, ir.If):
-            yield from _syncs_in_if_arms(node.then + node.otherwise, True)
-        elif isinstance(node, ir.ProcCall):
-            yield from _syncs_in_if_arms(node.body, inside)
+        runs, bodies = ir_tree.flow(node)
+        for sub in bodies:
+            yield from _syncs_in_if_arms(sub, inside or not runs.sure)
 
 
 def check_handshake(body: tuple[ir.Instr, ...], cell: ir.Cell, robot: str,
@@ -155,13 +156,9 @@ def _lower(body: tuple[ir.Instr, ...], ports: HandshakePorts, rounds: Iterator[i
                 HandshakeWait(uid=-node.uid - 1, span=node.span, barrier=node.name, round=k,
                               condition=ir.InputCondition(port=ports.inp, value=level, signal=SYNC_SIGNAL)),
             ]
-        elif isinstance(node, ir.If):
-            then = _lower(node.then, ports, rounds)
-            out.append(replace(node, then=then, otherwise=_lower(node.otherwise, ports, rounds)))
-        elif isinstance(node, ir.ProcCall):
-            out.append(replace(node, body=_lower(node.body, ports, rounds)))
-        else:
-            out.append(node)
+        else:  # into every body, in source order (proc bodies, if arms, loop iterations)
+            bodies = tuple(_lower(sub, ports, rounds) for sub in ir_tree.children(node))
+            out.append(ir_tree.rebuilt(node, bodies) if bodies else node)
     return tuple(out)
 
 

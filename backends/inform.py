@@ -87,7 +87,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_logic, codes_turns, turns
+from rmot.backends import codes, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.runtime import blocked_loop_lines
@@ -96,7 +96,7 @@ from rmot.backends.loops import (
 )
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
@@ -172,21 +172,18 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
         if isinstance(node, ir.Move):
             out[node.uid] = last
             last = node
-        elif isinstance(node, ir.ProcCall):
-            _, last = predecessors(node.body, last, out)
-        elif isinstance(node, ir.If):
-            _, a = predecessors(node.then, last, out)
-            _, b = predecessors(node.otherwise, last, out)
-            last = a if a is b else None
-        elif isinstance(node, ir.Loop):  # issue #15: the iterations one after another
-            for it in node.iterations:
-                _, last = predecessors(it.body, last, out)
-        elif isinstance(node, ir.While):  # the body may run zero or more times
-            _, end = predecessors(node.body, last, out)
-            last = last if end is last else None
-        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)) and node.on_timeout:
-            _, end = predecessors(node.on_timeout, last, out)
-            last = last if end is last else None
+            continue
+        runs, bodies = ir_tree.flow(node)
+        if runs.sure:  # a proc body, a loop's iterations (issue #15): one after another
+            for sub in bodies:
+                _, last = predecessors(sub, last, out)
+        elif runs is ir_tree.Runs.ONE_OF:  # if arms: known only when every arm ends alike
+            ends = [predecessors(sub, last, out)[1] for sub in bodies]
+            last = ends[0] if ends and all(e is ends[0] for e in ends) else None
+        else:  # a while's body, a timeout branch: it may not run
+            for sub in bodies:
+                _, end = predecessors(sub, last, out)
+                last = last if end is last else None
     return out, last
 
 
@@ -344,7 +341,7 @@ class InformBackend(Backend):
             pose = node.frame.pose.inverse() * pose
         far = turns.beyond_one_turn(q, (0, 3, 5))  # RCONF's flags (issue #15)
         if far and node.kind is ir.MotionKind.JOINT:  # MOVL/MOVC run on from the current joints
-            self.unsupported(codes_turns.TURN_NOT_EXPRESSIBLE,
+            self.unsupported(codes.TURN_NOT_EXPRESSIBLE,
                              turns.message(q, far, "RCONF's R/T/S flags"), node.span)
         return ctx.job.add(_Position(tool, rconf(branch, q), position_values(pose), user))
 
@@ -552,7 +549,7 @@ class InformBackend(Backend):
     def _var(self, name: str, ctx: InformContext, span: object) -> str:
         found = ctx.vars.variables.get(name)
         if found is None:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED,
+            self.unsupported(codes.LOGIC_UNSUPPORTED,
                              f"variable '{name}' must be declared in the task (got a reference to "
                              "an undeclared one)", span)  # type: ignore[arg-type]
             return "D000"
@@ -560,7 +557,7 @@ class InformBackend(Backend):
 
     def _numbered(self, vtype: ir.ValueType, n: int, span: object) -> str:
         if n > self.MAX_VAR:
-            self.unsupported(codes_logic.REGISTERS_EXHAUSTED, f"the program must fit variables "
+            self.unsupported(codes.REGISTERS_EXHAUSTED, f"the program must fit variables "
                              f"{self.VAR_FIRST:03d}..{self.MAX_VAR:03d} of each type (needs "
                              f"{self.LETTER[vtype]}{n:03d})", span)  # type: ignore[arg-type]
         return f"{self.LETTER[vtype]}{n:03d}"
@@ -600,7 +597,7 @@ class InformBackend(Backend):
             t = self._temp(e.type, ctx, node.span)
             return lines + more + [f"SET {t} {a}", f"{_INFORM_OP[e.op]} {t} {b}"], t
         if isinstance(e, ir.AnalogInput):
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, f"analog input ain[{e.port}] must be "
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"analog input ain[{e.port}] must be "
                              "readable by a job (INFORM reads analog inputs only through the "
                              "optional analog I/O functions; rmot does not write them)", node.span)
             return [], "0"
@@ -671,7 +668,7 @@ class InformBackend(Backend):
         jump to the label before END follows, so a restart ends the job (END: the job's end)
         instead of running on. A called job cannot end its caller: PAUSE only (W432)."""
         if ctx.job.name != ctx.main:
-            self.warn(codes_logic.STOP_AS_PAUSE,
+            self.warn(codes.STOP_AS_PAUSE,
                       f"stop in the called job '{ctx.job.name}' is written as PAUSE (a called "
                       "job's END returns to its caller); a restart runs on", node.span)
             return ['MSG "STOP"', "PAUSE"]
@@ -685,7 +682,7 @@ class InformBackend(Backend):
         ctx.vars.reset()
         counted = (" and its timeout counted in polls (the wait lasts at least the timeout)"
                    if node.timeout is not None else "")
-        self.warn(codes_logic.WAIT_POLLED, "INFORM's WAIT must test one signal; this condition "
+        self.warn(codes.WAIT_POLLED, "INFORM's WAIT must test one signal; this condition "
                   f"is polled every {self.POLL_STEP:g} s{counted}", node.span)
         poll, done = self.label(ctx), self.label(ctx)
         test = self._jump(node.condition, done, True, ctx, node)

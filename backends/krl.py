@@ -55,7 +55,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, codes_turns, turns
+from rmot.backends import codes, turns
 from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
@@ -330,7 +330,7 @@ class KrlBackend(Backend):
         branch = self.branch_or_default(branch, node)
         far = turns.beyond_one_turn(q, range(min(6, len(q))))  # Turn is a sign (issue #15)
         if far and node.kind is ir.MotionKind.JOINT:  # LIN/CIRC run on from the current joints
-            self.unsupported(codes_turns.TURN_NOT_EXPRESSIBLE,
+            self.unsupported(codes.TURN_NOT_EXPRESSIBLE,
                              turns.message(q, far, "KRL's Turn (the sign of each axis)"), node.span)
         st = f",S {status_of(branch)},T {turn_bits(q)}"
         return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}", node.span)
@@ -499,7 +499,6 @@ KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign, 
 #     reached: $PRO_STATE1 #P_END). A stop inside a routine sets RMOT_STOP and returns; every
 #     call of such a routine is followed by `IF RMOT_STOP THEN RETURN ENDIF` (warning W421).
 
-from rmot.backends import codes_loops as _codes_loops  # noqa: E402
 from rmot.backends import loops as _loops  # noqa: E402
 from rmot.backends import runtime as _rt  # noqa: E402
 
@@ -521,7 +520,7 @@ def _krl_dialect(self: KrlBackend, ctx: KrlContext, span: object) -> _rt.ExprDia
     def analog(a: ir.AnalogInput) -> str:
         low, high = ANALOG_IN_PORTS
         if not low <= a.port <= high:
-            self.unsupported(_codes_loops.ANALOG_IN_PORT,
+            self.unsupported(codes.ANALOG_IN_PORT,
                              f"analog input port must be in {low}..{high} "
                              f"for $ANIN (got {a.port})", span)  # type: ignore[arg-type]
         return f"$ANIN[{a.port}]*10"
@@ -606,7 +605,7 @@ def _k_stop(self: KrlBackend, node: ir.Stop, ctx: KrlContext) -> list[str]:
     if ctx.loops.in_routine == 0:
         return ["RETURN ; stop: ends the program"]
     _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
-    self.warn_once(ctx, "stop-flag", _codes_loops.STOP_IN_ROUTINE,
+    self.warn_once(ctx, "stop-flag", codes.STOP_IN_ROUTINE,
                    "stop inside a routine: KRL cannot end the program from a routine; it sets "
                    f"{_STOP_FLAG} and returns, and every call "
                    "returns in turn", node.span)

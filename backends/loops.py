@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 __all__ = [
     "ConfigKey",
@@ -585,10 +585,9 @@ def level_moves(body: tuple[ir.Instr, ...]) -> list[int]:
     for node in body:
         if isinstance(node, ir.Move):
             out.append(node.uid)
-        elif isinstance(node, ir.If):
-            out += level_moves(node.then) + level_moves(node.otherwise)
-        elif isinstance(node, (ir.While, ir.ProcCall)):
-            out += level_moves(node.body)
-        elif isinstance(node, (ir.WaitInput, ir.WaitCondition)):
-            out += level_moves(node.on_timeout)
+            continue
+        runs, bodies = ir_tree.flow(node)
+        if runs is not ir_tree.Runs.ITERATIONS:
+            for sub in bodies:
+                out += level_moves(sub)
     return out

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Iterator
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 
 __all__ = [
     "count_instructions", "iter_proc_calls", "routine_names", "split_body",
@@ -25,8 +25,9 @@ def count_instructions(body: tuple[ir.Instr, ...]) -> int:
     n = 0
     for node in body:
         n += 1
-        if isinstance(node, ir.If):
-            n += count_instructions(node.then) + count_instructions(node.otherwise)
+        runs, bodies = ir_tree.flow(node)
+        if runs is ir_tree.Runs.ONE_OF:
+            n += sum(count_instructions(sub) for sub in bodies)
     return n
 
 

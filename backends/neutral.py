@@ -22,7 +22,7 @@ import numpy as np
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, EmitResult, TaskContext, source_ref
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 __all__ = ["CSV_DECIMALS", "JSON_DECIMALS", "CsvBackend", "JsonBackend", "plan_document"]
 
@@ -145,16 +145,23 @@ def _trajectory(traj: plan_types.Trajectory) -> dict[str, Any]:
     return {"t": _nums(traj.t), "q": _nums(traj.q), "qd": _nums(traj.qd)}
 
 
+# the JSON document's word for each instruction kind (a move: its motion kind's MOVE_LABELS)
+_KIND_LABELS: dict[type, str] = {
+    ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog", ir.Pulse: "pulse",
+    ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if", ir.Sync: "sync",
+    ir.Native: "native", ir.ProcCall: "proc_call", ir.Attach: "attach", ir.Detach: "detach",
+    ir.VarDecl: "var", ir.Assign: "assign", ir.Loop: "loop", ir.While: "while",  # issue #15
+    ir.WaitCondition: "wait_condition", ir.Stop: "stop",
+}
+ir_tree.require_kinds("backends/neutral._KIND_LABELS", _KIND_LABELS)
+
+
 def _kind(node: ir.Instr | None) -> str:
     if node is None:
         return "unknown"
     if isinstance(node, ir.Move):
         return MOVE_LABELS[node.kind]
-    return {ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog", ir.Pulse: "pulse",
-            ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if", ir.Sync: "sync",
-            ir.Native: "native", ir.ProcCall: "proc_call", ir.Attach: "attach", ir.Detach: "detach",
-            ir.VarDecl: "var", ir.Assign: "assign", ir.Loop: "loop", ir.While: "while",  # issue #15
-            ir.WaitCondition: "wait_condition", ir.Stop: "stop"}[type(node)]
+    return _KIND_LABELS[type(node)]
 
 
 def _pose(pose: ir.Pose | None) -> dict[str, Any] | None:

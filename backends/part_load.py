@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 
 __all__ = ["held_load", "part_centres", "state_at_moves"]
 
@@ -78,8 +78,8 @@ def held_load(node: ir.Attach | ir.Detach, ctx: Any) -> tuple[float, np.ndarray,
 
 def state_at_moves(ctx: Any) -> dict[int, ir.Attach | ir.Detach | None]:
     """Move uid -> the attach or detach whose held parts the move carries (None: none yet),
-    through `if` arms (each arm starts from the state before the `if`; both end alike, E143)
-    and proc calls, for vendors that write the load with every motion (KRL)."""
+    through `if` arms (each arm starts from the state before the `if`; both end alike, E143),
+    proc calls and loops (ir_tree.flow), for vendors that write the load with every motion (KRL)."""
     cache = getattr(ctx, "_part_state", None)
     if cache is not None:
         return cache
@@ -91,12 +91,15 @@ def state_at_moves(ctx: Any) -> dict[int, ir.Attach | ir.Detach | None]:
                 cur = n
             elif isinstance(n, ir.Move):
                 out[n.uid] = cur
-            elif isinstance(n, ir.If):
-                after = walk(n.then, cur)
-                walk(n.otherwise, cur)
-                cur = after
-            elif isinstance(n, ir.ProcCall):
-                cur = walk(n.body, cur)
+            else:
+                runs, bodies = ir_tree.flow(n)
+                if runs.sure:  # a proc body, a loop's iterations: one after another
+                    for sub in bodies:
+                        cur = walk(sub, cur)
+                elif bodies:  # if arms, a while's body, a timeout branch: from the state before
+                    ends = [walk(sub, cur) for sub in bodies]
+                    # both arms of an if end alike (E143); a body that may not run leaves it
+                    cur = ends[0] if runs is ir_tree.Runs.ONE_OF else cur
         return cur
 
     walk(ctx.task.body, None)

@@ -22,15 +22,17 @@ from typing import Any
 
 import numpy as np
 
-from rmot.backends import codes_loops, loops
+from rmot.backends import codes, loops
 from rmot.compiler import ir
 
 __all__ = [
     "ExprDialect",
+    "LoopPlan",
     "LoopState",
     "blocked_loop_lines",
     "expr_text",
     "is_int",
+    "loop_plan",
     "loop_template",
     "offset_terms",
     "unrolled",
@@ -165,8 +167,42 @@ def loop_template(
     assert result is not None
     if not unroll and node.iterations:
         how = "" if result.peeled is not None else "; written iteration by iteration"
-        backend.warn(codes_loops.LOOP_UNROLLED, result.message + how, result.span)
+        backend.warn(codes.LOOP_UNROLLED, result.message + how, result.span)
     return result, best
+
+
+@dataclass(frozen=True)
+class LoopPlan:
+    """How one Loop is written, the one decision every vendor follows (issue #19): `template`
+    as one vendor loop (None: every iteration one after another), then `last`, the last
+    iteration on its own when the loop holds all but it (a peeled loop); `why` is W420's text
+    when the loop is not one whole vendor loop ("" when it is), at `span`."""
+
+    template: loops.LoopTemplate | None
+    last: ir.LoopIteration | None
+    why: str
+    span: Any
+
+
+def loop_plan(
+    node: ir.Loop,
+    found: loops.LoopTemplate | loops.Unrolled,
+    blocker: Callable[[loops.LoopTemplate], str | None] | None = None,
+) -> LoopPlan:
+    """The analysis `found` (loops.analyse) as a LoopPlan: its template, or the template of all
+    iterations but the last, unless the vendor's `blocker` names a reason the vendor cannot
+    write that loop (Fanuc registers, INFORM shifts): then every iteration, with the reason."""
+    loop = found if isinstance(found, loops.LoopTemplate) else found.peeled
+    reason = blocker(loop) if loop is not None and blocker is not None else None
+    if isinstance(found, loops.LoopTemplate) and reason is None:
+        return LoopPlan(found, None, "", None)
+    if loop is None or reason is not None:
+        if isinstance(found, loops.Unrolled) and reason is None:
+            return LoopPlan(None, None, found.message, found.span)
+        why = reason or (found.message if isinstance(found, loops.Unrolled) else "")
+        return LoopPlan(None, None, why, node.span)
+    assert isinstance(found, loops.Unrolled)
+    return LoopPlan(loop, found.last, found.message, found.span)
 
 
 def loop_lines(
@@ -186,18 +222,18 @@ def loop_lines(
     if template is not None:
         return write(template)
     result, k = loop_template(backend, node, ctx, **keys)  # k: which keys found a template
-    if isinstance(result, loops.LoopTemplate):
-        if found is not None:
-            found(result, k)
-        return write(result)
-    if result.peeled is None:
+    plan = loop_plan(node, result)  # (loop_template warned W420 already)
+    if plan.template is None:
         return unrolled(backend, node, ctx, body)
     if found is not None:
-        found(result.peeled, k)
-    last = result.last
+        found(plan.template, k)
+    lines = write(plan.template)
+    if plan.last is None:
+        return lines
+    last = plan.last
     nodes = last.body if node.var is None else loops.bind_loop_var(last.body, node.var, last.value)
     note = f"{node.var or 'iteration'} = {last.value}: the last iteration, on its own"
-    return write(result.peeled) + [backend.comment(note)] + body(nodes)
+    return lines + [backend.comment(note)] + body(nodes)
 
 
 def blocked_loop_lines(
@@ -212,18 +248,14 @@ def blocked_loop_lines(
     shifts): the analysed template (or, when only the last iteration differs, all but it)
     written by `write` unless `blocker` names a reason it cannot be; otherwise every iteration
     by `unroll`, with W420 giving the reason; a peeled last iteration follows the loop."""
-    loop = found.peeled if isinstance(found, loops.Unrolled) else found  # all but the last?
-    reason = blocker(loop) if loop is not None else None
-    if loop is None or reason is not None:
-        backend.warn(codes_loops.LOOP_UNROLLED,
-                     reason or (found.message if isinstance(found, loops.Unrolled) else ""),
-                     found.span if isinstance(found, loops.Unrolled) and reason is None
-                     else node.span)
+    plan = loop_plan(node, found, blocker)
+    if plan.template is None:
+        backend.warn(codes.LOOP_UNROLLED, plan.why, plan.span)
         return unroll(node)
-    lines = write(loop)
-    if isinstance(found, loops.Unrolled):  # the last iteration on its own, after the loop
-        backend.warn(codes_loops.LOOP_UNROLLED, found.message, found.span)
-        lines += unroll(replace(node, iterations=(found.last,)))
+    lines = write(plan.template)
+    if plan.last is not None:  # the last iteration on its own, after the loop
+        backend.warn(codes.LOOP_UNROLLED, plan.why, plan.span)
+        lines += unroll(replace(node, iterations=(plan.last,)))
     return lines
 
 

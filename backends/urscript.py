@@ -64,7 +64,7 @@ from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
 
@@ -373,7 +373,6 @@ UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]
 #   * wait with a timeout branch: the same counted loop as wait_input above, then
 #     `if not (cond):` runs the branch instead of popup + halt.
 
-from rmot.backends import codes_loops as _codes_loops  # noqa: E402
 from rmot.backends import loops as _loops  # noqa: E402
 from rmot.backends import runtime as _rt  # noqa: E402
 
@@ -393,7 +392,7 @@ def _ur_dialect(self: UrScriptBackend, ctx: UrContext, span: object) -> _rt.Expr
     def analog(a: ir.AnalogInput) -> str:
         low, high = ANALOG_IN_PORTS
         if not low <= a.port <= high:
-            self.unsupported(_codes_loops.ANALOG_IN_PORT,
+            self.unsupported(codes.ANALOG_IN_PORT,
                              f"analog input port must be in {low}..{high} "
                              f"for get_standard_analog_in (got {a.port})",
                              span)  # type: ignore[arg-type]
@@ -446,11 +445,11 @@ def _uses_time(body: tuple[ir.Instr, ...]) -> bool:
     for node in body:
         if isinstance(node, _TIMED):
             return True
-        if isinstance(node, ir.If) and _uses_time(node.then) and _uses_time(node.otherwise):
+        runs, bodies = ir_tree.flow(node)
+        if runs is ir_tree.Runs.ONE_OF and bodies and all(_uses_time(sub) for sub in bodies):
             return True
-        if isinstance(node, ir.ProcCall) and _uses_time(node.body):
-            return True
-        if isinstance(node, ir.Loop) and node.iterations and _uses_time(node.iterations[0].body):
+        # a proc body; a loop's iterations, each like the first
+        if runs.sure and bodies and _uses_time(bodies[0]):
             return True
     return False
 

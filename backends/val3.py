@@ -69,12 +69,13 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
-from rmot.backends import codes, codes_logic
+from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, euler_xyz_moving_deg, fmt, position_mm
-from rmot.backends.codes_loops import LOOP_UNROLLED, STOP_IN_ROUTINE
+from rmot.backends.codes import LOOP_UNROLLED, STOP_IN_ROUTINE
 from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var, level_moves
+from rmot.backends.runtime import loop_plan
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.lang.source import Span
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
@@ -512,7 +513,7 @@ class Val3Backend(Backend):
         elif isinstance(e, ir.Logic):
             text = f" {e.op} ".join(self.expr(o, node, ctx, True) for o in e.operands)
         else:
-            self.unsupported(codes_logic.LOGIC_UNSUPPORTED, "a value must be a constant, variable, "
+            self.unsupported(codes.LOGIC_UNSUPPORTED, "a value must be a constant, variable, "
                              f"input or an operation on them (got {type(e).__name__})", node.span)
             return "false"
         return f"({text})" if nested else text
@@ -572,13 +573,15 @@ class Val3Backend(Backend):
             return self._vendor_loop(template, ctx)
         found = analyse(node, ctx.record, extra_key=_blend_key,
                         unroll=bool(getattr(self, "unroll", False)))
-        if isinstance(found, LoopTemplate):
-            return self._vendor_loop(found, ctx)
-        self.warn(LOOP_UNROLLED, found.message, found.span)
-        if found.peeled is None:
+        plan = loop_plan(node, found)  # the one loop decision (backends/runtime.py)
+        if plan.why:  # before the loop's own findings
+            self.warn(LOOP_UNROLLED, plan.why, plan.span)
+        if plan.template is None:
             return self._unrolled(node, ctx)
-        return (self._vendor_loop(found.peeled, ctx)  # then the last iteration on its own
-                + self._unrolled(replace(node, iterations=(found.last,)), ctx))
+        lines = self._vendor_loop(plan.template, ctx)
+        if plan.last is None:
+            return lines
+        return lines + self._unrolled(replace(node, iterations=(plan.last,)), ctx)
 
     def _unrolled(self, node: ir.Loop, ctx: Val3Context) -> list[str]:
         lines: list[str] = []
@@ -646,8 +649,11 @@ def _last_move(node: ir.Instr | None) -> ir.Move | None:
     """The move that ends `node` (itself, or the last of a proc body), if any."""
     if isinstance(node, ir.Move):
         return node
-    if isinstance(node, ir.ProcCall) and node.body:
-        return _last_move(node.body[-1])
+    if node is None:
+        return None
+    runs, bodies = ir_tree.flow(node)
+    if runs is ir_tree.Runs.CALL and bodies[0]:
+        return _last_move(bodies[0][-1])
     return None
 
 

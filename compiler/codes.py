@@ -56,6 +56,21 @@ URDF_BAD_CHAIN = Code("E507", "urdf-bad-chain", "the URDF links base= and tip= d
 __all__ += ["MODEL_JOINT_FIELD", "MODEL_CHAIN_LENGTH", "MODEL_BAD_VALUE", "MODEL_MIXED_DH", "MODEL_SHADOWS_LIBRARY",
             "URDF_UNKNOWN_LINK", "URDF_BAD_CHAIN"]
 
+# a model's motor ratings and link masses (issue #16, the design range E809-E819 / W801-W809
+# shared with rmot.sim.design.codes; compiler/codes_design.py until issue #19)
+MODEL_MASS_INCOMPLETE = Code(
+    "E809",
+    "model-mass-incomplete",
+    "a model gives link masses on some joint lines but not on all of them",
+)
+MODEL_TORQUE_UNCHECKED = Code(
+    "W801",
+    "model-torque-unchecked",
+    "a model gives torque ratings but no link masses: torques cannot be computed, "
+    "the ratings are neither checked nor slow the timing",
+)
+__all__ += ["MODEL_MASS_INCOMPLETE", "MODEL_TORQUE_UNCHECKED"]
+
 # parts that tools pick up and put down (issue #14)
 UNKNOWN_PART = Code("E140", "unknown-part", "attach or detach names no part of the cell")
 PART_ALREADY_HELD = Code("E141", "part-already-held", "attach of a part the task already holds")

@@ -30,6 +30,8 @@ from typing import TYPE_CHECKING, Union
 from rmot.lang.source import Span
 
 if TYPE_CHECKING:
+    from collections.abc import Iterator
+
     import numpy as np
 
 __all__ = [
@@ -767,21 +769,13 @@ def payload_cog(tcp: Pose) -> tuple[float, float, float]:
     return (0.5 * x, 0.5 * y, 0.5 * z)
 
 
-def walk(body: tuple[Instr, ...]):  # type: ignore[no-untyped-def]
-    """Yield every instruction in source order, descending into If arms, ProcCall and While
-    bodies, every Loop iteration and timeout branches."""
-    for instr in body:
-        yield instr
-        if isinstance(instr, If):
-            yield from walk(instr.then)
-            yield from walk(instr.otherwise)
-        elif isinstance(instr, (ProcCall, While)):
-            yield from walk(instr.body)
-        elif isinstance(instr, Loop):
-            for it in instr.iterations:
-                yield from walk(it.body)
-        elif isinstance(instr, (WaitInput, WaitCondition)):
-            yield from walk(instr.on_timeout)
+def walk(body: tuple[Instr, ...]) -> Iterator[Instr]:
+    """Yield every instruction in source order, descending into every body an instruction
+    holds (If arms, ProcCall and While bodies, Loop iterations, timeout branches): the one
+    walker, compiler/ir_tree.walk (imported here late: ir_tree imports this module)."""
+    from rmot.compiler.ir_tree import walk as tree_walk
+
+    return tree_walk(body)
 
 
 def load_cog(tool: ToolRef, load: float) -> tuple[float, float, float]:

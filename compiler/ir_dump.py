@@ -15,7 +15,7 @@ from enum import Enum
 from collections.abc import Callable
 from typing import Any
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.lang.source import Span
 
 __all__ = ["dump_cell", "dump_program", "to_json", "to_jsonable"]
@@ -157,27 +157,28 @@ _HEADS: dict[type, Callable[[Any], str]] = {
 }
 
 
+# The label above each body `ir_tree.children` gives (None: the body follows unlabelled).
+_LABELS: dict[type, Callable[[Any], tuple[str | None, ...]]] = {
+    **{kind: lambda i: () for kind in ir_tree.LEAVES},
+    ir.If: lambda i: ("then:", "else:"),
+    ir.ProcCall: lambda i: (None,),
+    ir.While: lambda i: (None,),
+    ir.Loop: lambda i: tuple(f"{i.var or 'round'} = {it.value}:" for it in i.iterations),
+    ir.WaitInput: lambda i: ("on timeout:",) if i.on_timeout else (),
+    ir.WaitCondition: lambda i: ("on timeout:",) if i.on_timeout else (),
+}
+ir_tree.require_kinds("compiler/ir_dump._HEADS", _HEADS)
+ir_tree.require_kinds("compiler/ir_dump._LABELS", _LABELS)
+
+
 def _instr(i: ir.Instr, indent: str, out: list[str], main: str) -> None:
-    out.append(f"{indent}#{i.uid} " + _HEADS[type(i)](i) + _at(i.span, main))
-    if isinstance(i, ir.If):
-        out.append(f"{indent}  then:")
-        for j in i.then:
-            _instr(j, indent + "    ", out, main)
-        out.append(f"{indent}  else:")
-        for j in i.otherwise:
-            _instr(j, indent + "    ", out, main)
-    elif isinstance(i, (ir.ProcCall, ir.While)):
-        for j in i.body:
-            _instr(j, indent + "  ", out, main)
-    elif isinstance(i, ir.Loop):
-        for it in i.iterations:
-            out.append(f"{indent}  {i.var or 'round'} = {it.value}:")
-            for j in it.body:
-                _instr(j, indent + "    ", out, main)
-    elif isinstance(i, (ir.WaitInput, ir.WaitCondition)) and i.on_timeout:
-        out.append(f"{indent}  on timeout:")
-        for j in i.on_timeout:
-            _instr(j, indent + "    ", out, main)
+    out.append(f"{indent}#{i.uid} " + ir_tree.handler(_HEADS, i)(i) + _at(i.span, main))
+    for label, body in zip(ir_tree.handler(_LABELS, i)(i), ir_tree.children(i)):
+        if label is not None:
+            out.append(f"{indent}  {label}")
+        inner = indent + ("    " if label is not None else "  ")
+        for j in body:
+            _instr(j, inner, out, main)
 
 
 def dump_program(prog: ir.Program) -> str:

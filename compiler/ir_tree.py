@@ -6,23 +6,42 @@ WaitCondition: the timeout branch); `rebuilt(instr, bodies)` is the same instruc
 ones. An instruction kind this module does not know raises TypeError: a walker never skips a
 node kind silently. `iteration_paths(body)` maps each instruction's uid to the loop iterations
 it lies in, for messages that name the iteration (`layer = 2, row = 1, col = 0`).
+
+`flow(instr)` is how those bodies run (issue #19): a proc call's body once, a loop's iterations
+once each in order, exactly one of an if's arms, a while's body zero or more times, a timeout
+branch zero times or once. A pass that follows the program's paths (which syncs always run,
+which move comes first, the move before each move, the parts held at a move) asks `flow` and
+decides per `Runs`, never per instruction kind, so a new kind that holds bodies needs only its
+line here. `walk(body)` is every instruction in source order at every depth. A pass that prints
+or plans each kind its own way is a dispatcher instead: a table kind -> handler, checked
+against `KINDS` (tests/core/test_ir_walks.py keeps hand-written walks out of the code).
 """
 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterator
+import typing
+from collections.abc import Iterable, Iterator, Mapping
+from enum import Enum
 
 from rmot.compiler import ir
 
 __all__ = [
+    "KINDS",
     "LEAVES",
+    "NESTING",
+    "Runs",
     "bind_loop_variable",
     "children",
     "describe_iteration",
+    "flow",
+    "handler",
     "iteration_paths",
     "rebuilt",
+    "require_kinds",
     "unroll_loops",
+    "walk",
+    "walk_bodies",
     "walk_with_paths",
 ]
 
@@ -41,6 +60,36 @@ LEAVES: tuple[type, ...] = (
     ir.Assign,
     ir.Stop,
 )
+
+
+class Runs(Enum):
+    """How the bodies an instruction holds run, each time the instruction runs."""
+
+    LEAF = "holds no body"
+    CALL = "its body once (a routine of its own)"
+    ITERATIONS = "each body once, in order"
+    ONE_OF = "exactly one of its bodies"
+    REPEATED = "its body zero or more times"
+    MAYBE = "its body zero times or once"
+
+    @property
+    def sure(self) -> bool:
+        """Every instruction of the bodies runs whenever the instruction runs."""
+        return self in (Runs.CALL, Runs.ITERATIONS)
+
+
+# instructions that hold bodies, and how those run (`children` gives the bodies)
+NESTING: dict[type, Runs] = {
+    ir.If: Runs.ONE_OF,
+    ir.ProcCall: Runs.CALL,
+    ir.Loop: Runs.ITERATIONS,
+    ir.While: Runs.REPEATED,
+    ir.WaitInput: Runs.MAYBE,
+    ir.WaitCondition: Runs.MAYBE,
+}
+# every instruction kind: a table keyed by kind (a printer, a planner) must cover these
+KINDS: tuple[type, ...] = LEAVES + tuple(NESTING)
+V = typing.TypeVar("V")
 # one step of an iteration path: (loop uid, loop variable or None for `repeat`, value)
 Step = tuple[int, "str | None", int]
 
@@ -59,6 +108,49 @@ def children(instr: ir.Instr) -> tuple[tuple[ir.Instr, ...], ...]:
     raise TypeError(
         f"ir_tree: instruction kind {type(instr).__name__} is not known (add it to ir_tree)"
     )
+
+
+def flow(instr: ir.Instr) -> tuple[Runs, tuple[tuple[ir.Instr, ...], ...]]:
+    """How `instr`'s bodies run, and the bodies (those of `children`, in the same order)."""
+    bodies = children(instr)  # raises for a kind this module does not know
+    if isinstance(instr, LEAVES):
+        return Runs.LEAF, bodies
+    for cls in type(instr).__mro__:
+        if cls in NESTING:
+            return NESTING[cls], bodies
+    raise TypeError(f"ir_tree: {type(instr).__name__} holds bodies but has no NESTING entry")
+
+
+def require_kinds(owner: str, table: Mapping[type, object]) -> None:
+    """Raise TypeError unless `table` (a dispatcher: kind -> handler) has an entry for every
+    instruction kind of KINDS; called where the table is built, so a kind added to the IR
+    without a handler there fails at import, never as a silent default."""
+    missing = [k.__name__ for k in KINDS if k not in table]
+    if missing:
+        raise TypeError(f"{owner}: no handler for instruction kind {', '.join(missing)} "
+                        "(every kind of compiler/ir_tree.KINDS needs one)")
+
+
+def handler(table: Mapping[type, V], instr: ir.Instr) -> V:
+    """`table`'s entry for `instr`'s kind or its nearest base (a subclass a backend adds)."""
+    for cls in type(instr).__mro__:
+        if cls in table:
+            return table[cls]
+    raise TypeError(f"no handler for instruction kind {type(instr).__name__}")
+
+
+def walk(body: Iterable[ir.Instr]) -> Iterator[ir.Instr]:
+    """Every instruction of `body` in source order, each before the bodies it holds."""
+    for instr in body:
+        yield instr
+        for sub in children(instr):
+            yield from walk(sub)
+
+
+def walk_bodies(bodies: Iterable[tuple[ir.Instr, ...]]) -> Iterator[ir.Instr]:
+    """`walk` over several bodies one after another (an if's arms, a loop's iterations)."""
+    for body in bodies:
+        yield from walk(body)
 
 
 def rebuilt(
@@ -156,6 +248,19 @@ def unroll_loops(body: tuple[ir.Instr, ...]) -> tuple[ir.Instr, ...]:
         else:
             out.append(rebuilt(instr, tuple(unroll_loops(sub) for sub in children(instr))))
     return tuple(out)
+
+
+def _check_tables() -> None:
+    """KINDS is ir.Instr, each kind once: a leaf, or a kind with bodies and a Runs."""
+    instr_kinds = set(typing.get_args(ir.Instr))
+    both = set(LEAVES) & set(NESTING)
+    missing = instr_kinds - set(KINDS)
+    if both or missing or len(KINDS) != len(instr_kinds):
+        names = sorted(c.__name__ for c in both | missing)
+        raise TypeError(f"ir_tree: LEAVES and NESTING must name each ir.Instr kind once ({names})")
+
+
+_check_tables()
 
 
 def _folded(e: ir.Arith) -> ir.RtExpr:

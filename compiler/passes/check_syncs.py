@@ -11,7 +11,7 @@ single-task program's syncs are no-ops and are otherwise not checked.
 
 from __future__ import annotations
 
-from rmot.compiler import codes, ir
+from rmot.compiler import codes, ir, ir_tree
 from rmot.compiler.passes.state import FrontendState
 from rmot.lang.source import Span
 
@@ -19,21 +19,20 @@ __all__ = ["check_syncs"]
 
 
 def _syncs(body: tuple[ir.Instr, ...], conditional: list[ir.Sync]) -> list[ir.Sync]:
-    """The unconditional syncs of `body` in source order; syncs inside `if` arms go to `conditional`."""
+    """The syncs of `body` that always run, in source order (into proc calls and every loop
+    iteration); syncs in bodies that may not run (if arms, whiles, timeout branches) go to
+    `conditional`."""
     out: list[ir.Sync] = []
     for instr in body:
         if isinstance(instr, ir.Sync):
             out.append(instr)
-        elif isinstance(instr, ir.If):
-            conditional.extend(i for i in ir.walk(instr.then + instr.otherwise) if isinstance(i, ir.Sync))
-        elif isinstance(instr, ir.ProcCall):
-            out.extend(_syncs(instr.body, conditional))
-        elif isinstance(instr, ir.Loop):  # issue #15: every iteration runs, its syncs count
-            for it in instr.iterations:
-                out.extend(_syncs(it.body, conditional))
-        elif isinstance(instr, (ir.While, ir.WaitInput, ir.WaitCondition)):  # runs 0..n times
-            bodies = instr.body if isinstance(instr, ir.While) else instr.on_timeout
-            conditional.extend(i for i in ir.walk(bodies) if isinstance(i, ir.Sync))
+            continue
+        runs, bodies = ir_tree.flow(instr)
+        if runs.sure:
+            for sub in bodies:
+                out.extend(_syncs(sub, conditional))
+        else:
+            conditional.extend(i for i in ir_tree.walk_bodies(bodies) if isinstance(i, ir.Sync))
     return out
 
 

@@ -19,7 +19,7 @@ import math
 
 from collections.abc import Callable
 
-from rmot.compiler import codes, codes_design, ir
+from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
@@ -106,14 +106,14 @@ def _dynamics_complete(decl: ast.ModelDecl, joints: list[ModelJointSpec], rep: R
     massless = [k for k, j in enumerate(joints, 1) if j.mass is None]
     if massless and len(massless) < len(joints):
         verb = "has" if len(massless) == 1 else "have"
-        rep.error(codes_design.MODEL_MASS_INCOMPLETE,
+        rep.error(codes.MODEL_MASS_INCOMPLETE,
                   f"model '{name}' must give a link mass on every joint line or on none "
                   f"(joint {', '.join(map(str, massless))} {verb} none; write "
                   "mass 0 kg for a link without mass)", lines[massless[0] - 1].span)
         return False
     rated = [k for k, j in enumerate(joints, 1) if j.torque is not None]
     if rated and massless:
-        rep.warning(codes_design.MODEL_TORQUE_UNCHECKED,
+        rep.warning(codes.MODEL_TORQUE_UNCHECKED,
                     f"model '{name}' gives torque ratings but no link masses: the joint torques "
                     "cannot be computed, so the ratings are neither checked nor slow the motion "
                     "(give every joint line a mass, e.g. mass 4 kg)", lines[rated[0] - 1].span)

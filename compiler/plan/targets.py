@@ -29,12 +29,13 @@ Everything returns values: (q or None, [Finding]) with user-facing messages.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
 
 from rmot.compiler import ir
-from rmot.compiler.ir_tree import children
+from rmot.compiler.ir_tree import Runs, flow
 from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
 from rmot.compiler.plan.robot_model import RobotModel
@@ -282,20 +283,19 @@ def _turn_unreached(turns: tuple[tuple[int, int], ...],
     return Finding(codes.TURN_NOT_REACHED, Severity.ERROR, msg)
 
 
-def _main_line(body: tuple[ir.Instr, ...]):  # type: ignore[no-untyped-def]
-    """Instructions on the main timeline in order (then-arms of ifs, proc bodies)."""
+def _main_line(body: tuple[ir.Instr, ...]) -> Iterator[ir.Instr]:
+    """Instructions on the main timeline in order: then-arms of ifs, proc bodies, loops and
+    whiles entered (issue #15); a wait's timeout branch is not on it; it ends at a `stop`."""
     for instr in body:
-        if isinstance(instr, ir.If):
-            yield from _main_line(instr.then)
-        elif isinstance(instr, ir.ProcCall):
-            yield from _main_line(instr.body)
-        elif isinstance(instr, (ir.Loop, ir.While)):  # issue #15: the main timeline enters them
-            for sub in children(instr):
-                yield from _main_line(sub)
-        elif isinstance(instr, ir.Stop):
+        if isinstance(instr, ir.Stop):
             return
-        else:
-            children(instr)  # a kind ir_tree does not know raises; timeout branches are not main
+        runs, bodies = flow(instr)
+        if runs is Runs.ONE_OF:
+            yield from _main_line(bodies[0])
+        elif runs in (Runs.CALL, Runs.ITERATIONS, Runs.REPEATED):
+            for sub in bodies:
+                yield from _main_line(sub)
+        else:  # a leaf, or a wait whose timeout branch is off the main timeline
             yield instr
 
 
@@ -321,21 +321,17 @@ def _first_moves(body: tuple[ir.Instr, ...]) -> tuple[list[ir.Move], bool]:
     for instr in body:
         if isinstance(instr, ir.Move):
             return found + [instr], True
-        if isinstance(instr, ir.ProcCall):
-            arms = [instr.body]
-        elif isinstance(instr, ir.If):
-            arms = [instr.then, instr.otherwise]
-        elif isinstance(instr, ir.Loop):  # issue #15: its iterations run one after another
-            arms = [tuple(i for it in instr.iterations for i in it.body)]
-        elif isinstance(instr, ir.While):  # runs zero or more times
-            arms = [instr.body, ()]
-        elif isinstance(instr, (ir.WaitInput, ir.WaitCondition)) and instr.on_timeout:
-            arms = [instr.on_timeout, ()]
-        elif isinstance(instr, ir.Stop):
+        if isinstance(instr, ir.Stop):
             return found, True  # this path ends without a move
-        else:
-            children(instr)  # a kind ir_tree does not know raises
+        runs, bodies = flow(instr)
+        if runs is Runs.LEAF:
             continue
+        if runs is Runs.ONE_OF:
+            arms = list(bodies)
+        else:  # the bodies one after another (a loop's iterations), run once or maybe not
+            arms = [tuple(i for sub in bodies for i in sub)]
+            if not runs.sure:  # a while or a timeout branch may not run
+                arms.append(())
         results = [_first_moves(arm) for arm in arms]
         found += [m for moves, _ in results for m in moves]
         if all(done for _, done in results):

@@ -32,12 +32,16 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
 from rmot.compiler import ir
-from rmot.compiler.ir_tree import describe_iteration, iteration_paths
+from rmot.compiler.ir_tree import (
+    describe_iteration, flow, handler, iteration_paths, require_kinds, walk, walk_bodies,
+)
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.move_chain import TimedChain, time_chain
 from rmot.compiler.plan.segments import Segment, build_segment
@@ -50,7 +54,6 @@ from rmot.compiler.plan.robot_model import RobotModel
 __all__ = ["TaskDraft", "VariantDraft", "build_task", "proc_records"]
 
 _EVENTS = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.Native, ir.VarDecl, ir.Assign)
-_BLOCKING = (ir.WaitTime, ir.WaitInput, ir.WaitCondition, ir.Sync, ir.Attach, ir.Detach)
 WHILE_BOUND = 3  # iterations of a while planned at most to reach its fixed point (REFERENCE.md §7)
 _SAME_Q = 1e-6  # rad (m): a while iteration ends where it started when every joint is this close
 
@@ -134,31 +137,8 @@ class _Builder:
         for i, instr in enumerate(body):
             if self.stopped:
                 return
-            after = (body[i + 1:],) + rest
-            if isinstance(instr, ir.Move):
-                self._move(instr)
-            elif isinstance(instr, _EVENTS) or (self.lone and isinstance(instr, ir.Sync)):
-                self._event(instr)
-            elif isinstance(instr, ir.ProcCall):
-                self.walk(instr.body, after)
-            elif isinstance(instr, ir.If):
-                self._if(instr, after)
-            elif isinstance(instr, ir.Loop):  # every iteration in order (issue #15)
-                for k, it in enumerate(instr.iterations):
-                    self.walk(it.body, tuple(x.body for x in instr.iterations[k + 1:]) + after)
-            elif isinstance(instr, ir.While):
-                self._while(instr, after)
-            elif isinstance(instr, (ir.WaitInput, ir.WaitCondition)) and instr.on_timeout:
-                self._wait_branch(instr, after)
-            elif isinstance(instr, ir.Stop):
-                self.flush()
-                self._record(instr, self.t, self.t)
-                self.stopped = True
-            elif isinstance(instr, _BLOCKING):
-                self._blocking(instr)
-            else:
-                kind = type(instr).__name__
-                raise TypeError(f"timeline: instruction kind {kind} is not planned (add it here)")
+            plan = _PLAN.get(type(instr)) or handler(_PLAN, instr)
+            plan(self, instr, (body[i + 1:],) + rest)
 
     def walk_rest(self, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
         for j, body in enumerate(rest):
@@ -380,6 +360,63 @@ class _Builder:
             q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None)
 
 
+# ---------------------------------------------------------------- one handler per instruction kind
+# (the planner plans each kind its own way: a dispatcher, checked complete at import against
+# compiler/ir_tree.KINDS; `after` is what runs after the instruction, as in `_Builder.walk`)
+_Rest = tuple[tuple[ir.Instr, ...], ...]
+
+
+def _plan_loop(b: _Builder, instr: ir.Loop, after: _Rest) -> None:
+    """Every iteration in order (issue #15), each continued by the later ones."""
+    for k, it in enumerate(instr.iterations):
+        b.walk(it.body, tuple(x.body for x in instr.iterations[k + 1:]) + after)
+
+
+def _plan_wait(b: _Builder, instr: ir.WaitInput | ir.WaitCondition, after: _Rest) -> None:
+    if instr.on_timeout:
+        b._wait_branch(instr, after)
+    else:
+        b._blocking(instr)
+
+
+def _plan_sync(b: _Builder, instr: ir.Sync, after: _Rest) -> None:
+    """A lone task's sync waits for nobody: an event; else a barrier the robot stands at."""
+    if b.lone:
+        b._event(instr)
+    else:
+        b._blocking(instr)
+
+
+def _plan_stop(b: _Builder, instr: ir.Stop, after: _Rest) -> None:
+    b.flush()
+    b._record(instr, b.t, b.t)
+    b.stopped = True
+
+
+def _plan_event(b: _Builder, instr: ir.Instr, after: _Rest) -> None:
+    b._event(instr)
+
+
+def _plan_blocking(b: _Builder, instr: ir.Instr, after: _Rest) -> None:
+    b._blocking(instr)
+
+
+_PLAN: dict[type, Callable[[_Builder, Any, _Rest], None]] = {
+    ir.Move: lambda b, instr, after: b._move(instr),
+    **{kind: _plan_event for kind in _EVENTS},
+    ir.Sync: _plan_sync,
+    ir.ProcCall: lambda b, instr, after: b.walk(instr.body, after),
+    ir.If: lambda b, instr, after: b._if(instr, after),
+    ir.Loop: _plan_loop,
+    ir.While: lambda b, instr, after: b._while(instr, after),
+    ir.WaitInput: _plan_wait,
+    ir.WaitCondition: _plan_wait,
+    **{kind: _plan_blocking for kind in (ir.WaitTime, ir.Attach, ir.Detach)},
+    ir.Stop: _plan_stop,
+}
+require_kinds("compiler/plan/timeline._PLAN", _PLAN)
+
+
 def build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, *, lone: bool = False) -> TaskDraft:
     """The timeline of one task from joints q0 (dof,); `lone`: the program's only task (syncs are no-ops)."""
     draft = TaskDraft()
@@ -427,12 +464,11 @@ def _continuations_apart(draft: TaskDraft, task: str) -> list[Diagnostic]:
 def proc_records(body: tuple[ir.Instr, ...], records: list[InstructionRecord]) -> list[InstructionRecord]:
     """Records of proc calls and for/repeat loops: each spans its body's records (per variant)."""
     out = []
-    for instr in ir.walk(body):
-        if not isinstance(instr, (ir.ProcCall, ir.Loop)):
+    for instr in walk(body):
+        runs, bodies = flow(instr)
+        if not runs.sure:  # a record spans a proc call's body or a loop's iterations
             continue
-        inner = ir.walk(instr.body) if isinstance(instr, ir.ProcCall) else \
-            (i for it in instr.iterations for i in ir.walk(it.body))
-        uids = {i.uid for i in inner}
+        uids = {i.uid for i in walk_bodies(bodies)}
         for variant in sorted({r.variant for r in records if r.uid in uids}):
             inner = [r for r in records if r.uid in uids and r.variant == variant]
             t0, t1 = min(r.t_start for r in inner), max(r.t_end for r in inner)

@@ -2,16 +2,18 @@
 
 from __future__ import annotations
 
+from rmot.compiler.codes import UNKNOWN_ROBOT as UNKNOWN_ROBOT
 from rmot.lang.diagnostics import Code
 
-__all__ = ["UNKNOWN_ROBOT", "BAD_URDF"]
+__all__ = ["BAD_URDF"]
 
-# A RobotError carries one of these; the design commands (sim/design/study.py) report it as
-# is (`rmot reach --robot nosuch`: E201); the front end, planner and verifier report a robot
-# that does not load under their own codes (E111, E505, E231, E320).
+# A RobotError carries one of these; the design commands (sim/design/study.py) report BAD_URDF
+# as is (`rmot reach --robot broken.urdf`: E202); the front end, planner and verifier report a
+# robot that does not load under their own codes (E111, E505, E231, E320).
+# An unknown robot name is the front end's E111 (UNKNOWN_ROBOT, imported above), which the
+# design commands report as E804: issue #19 removed E201, which no caller ever reported.
 # Issue #19 removed E203-E208: E203 and E208 were never reported; E204-E207 (IkResult.code)
 # were reported only under the planner's codes for the same findings (E220 target-unreachable,
 # E221 target-out-of-limits, E222 branch-change, E224/W221 singular: compiler/plan/targets.py).
 
-UNKNOWN_ROBOT = Code("E201", "robot-not-in-library", "a robot name is not in the library and is not a URDF file")
 BAD_URDF = Code("E202", "bad-urdf", "a URDF file cannot be loaded as a serial arm")

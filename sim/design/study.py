@@ -114,7 +114,7 @@ class Study:
 
 def robot_error_code(exc: Any) -> Any:
     """The code of a --robot value the loader refused: an unknown library name (the loader's
-    E201) is the design commands' E804; a file that does not load keeps the loader's own code."""
+    UNKNOWN_ROBOT, E111) is the design commands' E804; a file that does not load keeps the loader's own code."""
     from rmot.compiler.robots.codes import UNKNOWN_ROBOT
 
     return codes.ROBOT_UNKNOWN if exc.code in (None, UNKNOWN_ROBOT) else exc.code

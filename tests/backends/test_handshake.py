@@ -140,6 +140,17 @@ class TestLowering:
         assert rounds == [(1, 1, True), (4, 2, False), (5, 3, True), (6, 4, False)]
         assert isinstance(out[2], ir.ProcCall) and out[2].proc == "outer"
 
+    def test_counts_through_every_loop_iteration(self) -> None:
+        """A sync in a `repeat 2` runs twice: two barriers with their own levels (issue #19: the
+        lowering went through if arms and proc calls only and left the loop's syncs as they
+        were, a barrier no handshake vendor writes)."""
+        its = tuple(ir.LoopIteration(value=v, body=(_sync(10 + v),)) for v in (0, 1))
+        loop = ir.Loop(uid=2, var=None, first=0, last=2, iterations=its, span=span_at(2))
+        out = sync_as_handshake((_sync(1), loop), PORTS)
+        assert not [n for n in ir.walk(out) if isinstance(n, ir.Sync)]
+        rounds = [(n.uid, n.round, n.value) for n in ir.walk(out) if isinstance(n, HandshakeSet)]
+        assert rounds == [(1, 1, True), (10, 2, False), (11, 3, True)]
+
     @given(st.lists(st.booleans(), max_size=12))
     def test_every_barrier_toggles_the_level(self, kinds: list[bool]) -> None:
         """Property: each sync becomes one set+wait pair at the same level, and consecutive

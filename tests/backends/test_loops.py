@@ -95,3 +95,30 @@ def test_bind_loop_var() -> None:
     assert loops.uses_loop_var(body, "i") and not loops.uses_loop_var(body, "j")
     bound = loops.bind_loop_var(body, "i", 3)
     assert not loops.uses_loop_var(bound, "i")  # the loop variable reads 3 now
+
+
+def test_loop_plan_is_the_one_decision_of_every_vendor() -> None:
+    """runtime.loop_plan (issue #19): a template is one vendor loop; an analysis whose
+    iterations but the last fit is that loop and then the last iteration, with W420's text at
+    the differing instruction; a vendor blocker's reason writes every iteration, at the loop."""
+    from rmot.backends import loops as lp
+    from rmot.backends.runtime import loop_plan
+    from rmot.compiler import ir as _ir
+
+    its = tuple(_ir.LoopIteration(value=v, body=()) for v in range(3))
+    node = _ir.Loop(uid=1, var="i", first=0, last=3, iterations=its, span="loop")
+    whole = lp.LoopTemplate(node, lp.LoopVar(1, "i", 0, 2), (), {}, {})
+    plan = loop_plan(node, whole)
+    assert (plan.template, plan.last, plan.why) == (whole, None, "")
+    differs = lp.Unrolled(node, "i = 2", 7, "a wait where the first iteration has a move", "move")
+    plan = loop_plan(node, differs)
+    assert (plan.template, plan.last, plan.span) == (None, None, "move")
+    assert plan.why == differs.message and "i = 2" in plan.why
+    peeled = lp.Unrolled(node, "i = 2", 7, "it blends", "move", peeled=whole)
+    plan = loop_plan(node, peeled)
+    assert (plan.template, plan.last, plan.span) == (whole, its[-1], "move")
+    assert "last iteration (i = 2)" in plan.why
+    for found in (whole, peeled):
+        plan = loop_plan(node, found, lambda t: "needs 12 registers")
+        assert (plan.template, plan.last, plan.why, plan.span) == (
+            None, None, "needs 12 registers", "loop")

@@ -133,3 +133,37 @@ program p on r1 {
     assert len(routines) == 2
     bodies = [src.split(f"DEF {r}(")[1].split("END")[0] for r in routines]
     assert {frozenset(re.findall(r"\$LOAD=(\w+)", b)) for b in bodies} == {frozenset({"gripper_load"}), frozenset({"gripper_load_b1"})}
+
+
+def test_krl_moves_inside_a_loop_carry_the_held_part(tmp_path: Path) -> None:
+    """A loop's moves after an attach write tool + part as $LOAD, as straight-line moves do
+    (issue #19: the parts walk went through if arms and proc calls only, so a KRL loop's moves
+    wrote the bare tool's load while the part hung on it)."""
+    import shutil
+
+    shutil.copy(STACK.parent / "cell.rmot", tmp_path / "cell.rmot")
+    (tmp_path / "p.rmot").write_text("""use cell "cell.rmot"
+program p on r1 {
+  tool gripper
+  frame world
+  move joint joints(0, -90, 90, -90, -90, 0) deg
+  move joint b1 * pose(z=150mm, rx=180deg)
+  move linear b1 * pose(z=50mm, rx=180deg) zone fine
+  attach b1
+  move linear b1 * pose(z=150mm, rx=180deg) zone fine
+  repeat 2 {
+    move joint joints(10, -90, 90, -90, -90, 0) deg zone fine
+    move joint joints(0, -90, 90, -90, -90, 0) deg zone fine
+  }
+  move joint b1 * pose(z=150mm, rx=180deg)
+  move linear b1 * pose(z=50mm, rx=180deg) zone fine
+  detach b1
+}
+""", encoding="utf-8")
+    front = load_program(str(tmp_path / "p.rmot"))
+    assert front.program is not None, [str(d) for d in front.diagnostics]
+    files = BACKENDS["krl"]().emit(plan_program(front.program)).files
+    src = next(t for n, t in files.items() if n.endswith(".src"))
+    loop = src.split("FOR ")[1].split("ENDFOR")[0]
+    assert len(re.findall(r"PTP ", loop)) == 2, loop
+    assert re.findall(r"\$LOAD=(\w+)", loop) == ["gripper_load_b1"] * 2, loop

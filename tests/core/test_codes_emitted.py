@@ -86,8 +86,9 @@ def test_an_unused_code_is_found() -> None:
 # points to `rmot robots list`); a URDF that does not load keeps the loader's E202
 @pytest.mark.parametrize(("robot", "code"), [("no_such_arm", "E804"), ("broken.urdf", "E202")])
 def test_robot_load_codes_reach_the_user(robot: str, code: str, tmp_path: Path) -> None:
-    """E201/E202 (a RobotError's code) are reported as they are by the design commands (the
-    front end and the planner report a robot that does not load under their own codes)."""
+    """E202 (a RobotError's code) is reported as it is by the design commands, an unknown name
+    as their E804 (the front end and the planner report a robot that does not load under their
+    own codes; issue #19 removed E201, which nothing reported)."""
     from click.testing import CliRunner
 
     from rmot.compiler.cli import cli
