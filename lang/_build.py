@@ -95,7 +95,7 @@ def _fast_node(cls: Callable[..., T]) -> Callable[..., T]:
         s0, s1 = s
 
         def make2(a: Any, b: Any) -> Any:
-            obj = new(cls)
+            obj: Any = new(cls)
             s0(obj, a)
             s1(obj, b)
             return obj
@@ -105,7 +105,7 @@ def _fast_node(cls: Callable[..., T]) -> Callable[..., T]:
         s0, s1, s2 = s
 
         def make3(a: Any, b: Any, c: Any) -> Any:
-            obj = new(cls)
+            obj: Any = new(cls)
             s0(obj, a)
             s1(obj, b)
             s2(obj, c)
@@ -116,7 +116,7 @@ def _fast_node(cls: Callable[..., T]) -> Callable[..., T]:
         s0, s1, s2, s3 = s
 
         def make4(a: Any, b: Any, c: Any, d: Any) -> Any:
-            obj = new(cls)
+            obj: Any = new(cls)
             s0(obj, a)
             s1(obj, b)
             s2(obj, c)
@@ -127,7 +127,7 @@ def _fast_node(cls: Callable[..., T]) -> Callable[..., T]:
     s0, s1, s2, s3, s4 = s
 
     def make5(a: Any, b: Any, c: Any, d: Any, e: Any) -> Any:
-        obj = new(cls)
+        obj: Any = new(cls)
         s0(obj, a)
         s1(obj, b)
         s2(obj, c)
@@ -140,6 +140,43 @@ def _fast_node(cls: Callable[..., T]) -> Callable[..., T]:
 
 _make_pos = _fast_constructor(Pos, ("line", "col", "offset"))
 _make_span = _fast_constructor(Span, ("file", "start", "end"))
+
+
+def _fast_token_span() -> Any:
+    """`Span(file, Pos(a.line, a.column, a.start_pos), Pos(b.end_line, b.end_column, b.end_pos))`
+    for tokens `a` .. `b` in one call (the builder makes one per name, number and string).
+
+    The same three objects as through _make_pos / _make_span, without two of the calls; if
+    either class stops fitting that shape it is built the ordinary way."""
+    if _make_pos is Pos or _make_span is Span or [f.name for f in fields(Span)] != [
+            "file", "start", "end", "parent"]:
+        return lambda file, a, b: Span(file, Pos(a.line, a.column, a.start_pos),
+                                       Pos(b.end_line, b.end_column, b.end_pos))
+    line, col, offset = (Pos.__dict__[n].__set__ for n in ("line", "col", "offset"))
+    set_file, set_start, set_end, set_parent = (
+        Span.__dict__[n].__set__ for n in ("file", "start", "end", "parent"))
+    new = object.__new__
+
+    def token_span(file: SourceFile, a: Token, b: Token) -> Span:
+        start: Any = new(Pos)
+        line(start, a.line)
+        col(start, a.column)
+        offset(start, a.start_pos)
+        end: Any = new(Pos)
+        line(end, b.end_line)
+        col(end, b.end_column)
+        offset(end, b.end_pos)
+        span: Any = new(Span)
+        set_file(span, file)
+        set_start(span, start)
+        set_end(span, end)
+        set_parent(span, None)
+        return span
+
+    return token_span
+
+
+_tokens_span = _fast_token_span()
 
 
 # The AST nodes the builder makes most, built through their slots (see _fast_node).
@@ -212,8 +249,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         self.diagnostics = []
 
     def _token_span(self, tok: Token) -> Span:
-        return _make_span(self.file, _make_pos(tok.line, tok.column, tok.start_pos),
-                          _make_pos(tok.end_line, tok.end_column, tok.end_pos))
+        return _tokens_span(self.file, tok, tok)
 
     def _span(self, c: list[Any]) -> Span:
         """From the start of the first child to the end of the last (tokens or nodes)."""
@@ -454,8 +490,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def number(self, c: list[Any]) -> ast.Number:
         num, unit = c
         last = num if unit is None else unit
-        start, end = _make_pos(num.line, num.column, num.start_pos), _make_pos(last.end_line, last.end_column, last.end_pos)
-        span = _make_span(self.file, start, end)
+        span = _tokens_span(self.file, num, last)
         value = float(num)
         if value == float("inf"):  # `1e999`: refused where written (issue #20); 0.0 keeps the tree well-typed
             self.diagnostics.append(Diagnostic(codes.NOT_FINITE_LITERAL, Severity.ERROR, "number must fit a 64-bit "
