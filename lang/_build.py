@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import re
 from dataclasses import MISSING, fields
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 from lark import Token, Transformer
 
@@ -35,6 +36,7 @@ KEYWORDS = frozenset({
 # keywords that start no statement yet, kept for the language's future (see reserved_statement)
 RESERVED = {"return": "procs end at their closing brace"}
 _ESCAPE = re.compile(r'\\(["\\])')
+T = TypeVar("T")
 
 def _fast_constructor(cls: type, names: tuple[str, str, str]) -> Any:
     """`cls(x, y, z)` for a frozen slots dataclass, setting the slots directly (half the time).
@@ -50,6 +52,19 @@ def _fast_constructor(cls: type, names: tuple[str, str, str]) -> Any:
     defaults = tuple((cls.__dict__[f.name].__set__, f.default) for f in extras)
     new = object.__new__
 
+    if len(defaults) == 1:  # Span: its `parent`
+        (set_w, w), = defaults
+
+        def make_one_default(x: Any, y: Any, z: Any) -> Any:
+            obj: Any = new(cls)
+            set_x(obj, x)
+            set_y(obj, y)
+            set_z(obj, z)
+            set_w(obj, w)
+            return obj
+
+        return make_one_default
+
     def make(x: Any, y: Any, z: Any) -> Any:
         obj: Any = new(cls)
         set_x(obj, x)
@@ -62,8 +77,140 @@ def _fast_constructor(cls: type, names: tuple[str, str, str]) -> Any:
     return make
 
 
+def _fast_node(cls: Callable[..., T]) -> Callable[..., T]:
+    """`cls(*every field)` for a frozen slots dataclass (an AST node), setting the slots directly.
+
+    The builder makes ~11 nodes per line; a frozen dataclass's __init__ goes through
+    `object.__setattr__` per field, this through the slot descriptors (about half the time).
+    The same object results (same class, same field values). Only for classes whose fields
+    are all set from positional arguments; any other class keeps its own constructor.
+    """
+    assert isinstance(cls, type)
+    names = [f.name for f in fields(cls)]
+    if hasattr(cls, "__post_init__") or not all(f.init for f in fields(cls)) or not 2 <= len(names) <= 5:
+        return cls
+    s = [cls.__dict__[n].__set__ for n in names]
+    new = object.__new__
+    if len(s) == 2:
+        s0, s1 = s
+
+        def make2(a: Any, b: Any) -> Any:
+            obj: Any = new(cls)
+            s0(obj, a)
+            s1(obj, b)
+            return obj
+
+        return make2
+    if len(s) == 3:
+        s0, s1, s2 = s
+
+        def make3(a: Any, b: Any, c: Any) -> Any:
+            obj: Any = new(cls)
+            s0(obj, a)
+            s1(obj, b)
+            s2(obj, c)
+            return obj
+
+        return make3
+    if len(s) == 4:
+        s0, s1, s2, s3 = s
+
+        def make4(a: Any, b: Any, c: Any, d: Any) -> Any:
+            obj: Any = new(cls)
+            s0(obj, a)
+            s1(obj, b)
+            s2(obj, c)
+            s3(obj, d)
+            return obj
+
+        return make4
+    s0, s1, s2, s3, s4 = s
+
+    def make5(a: Any, b: Any, c: Any, d: Any, e: Any) -> Any:
+        obj: Any = new(cls)
+        s0(obj, a)
+        s1(obj, b)
+        s2(obj, c)
+        s3(obj, d)
+        s4(obj, e)
+        return obj
+
+    return make5
+
+
 _make_pos = _fast_constructor(Pos, ("line", "col", "offset"))
 _make_span = _fast_constructor(Span, ("file", "start", "end"))
+
+
+def _fast_token_span() -> Any:
+    """`Span(file, Pos(a.line, a.column, a.start_pos), Pos(b.end_line, b.end_column, b.end_pos))`
+    for tokens `a` .. `b` in one call (the builder makes one per name, number and string).
+
+    The same three objects as through _make_pos / _make_span, without two of the calls; if
+    either class stops fitting that shape it is built the ordinary way."""
+    if _make_pos is Pos or _make_span is Span or [f.name for f in fields(Span)] != [
+            "file", "start", "end", "parent"]:
+        return lambda file, a, b: Span(file, Pos(a.line, a.column, a.start_pos),
+                                       Pos(b.end_line, b.end_column, b.end_pos))
+    line, col, offset = (Pos.__dict__[n].__set__ for n in ("line", "col", "offset"))
+    set_file, set_start, set_end, set_parent = (
+        Span.__dict__[n].__set__ for n in ("file", "start", "end", "parent"))
+    new = object.__new__
+
+    def token_span(file: SourceFile, a: Token, b: Token) -> Span:
+        start: Any = new(Pos)
+        line(start, a.line)
+        col(start, a.column)
+        offset(start, a.start_pos)
+        end: Any = new(Pos)
+        line(end, b.end_line)
+        col(end, b.end_column)
+        offset(end, b.end_pos)
+        span: Any = new(Span)
+        set_file(span, file)
+        set_start(span, start)
+        set_end(span, end)
+        set_parent(span, None)
+        return span
+
+    return token_span
+
+
+_tokens_span = _fast_token_span()
+
+
+# The AST nodes the builder makes most, built through their slots (see _fast_node).
+_Number = _fast_node(ast.Number)
+_Arg = _fast_node(ast.Arg)
+_Ident = _fast_node(ast.Ident)
+_Name = _fast_node(ast.Name)
+_Setting = _fast_node(ast.Setting)
+_Call = _fast_node(ast.Call)
+_Move = _fast_node(ast.Move)
+_IoRef = _fast_node(ast.IoRef)
+_SetIo = _fast_node(ast.SetIo)
+_Condition = _fast_node(ast.Condition)
+_TargetDecl = _fast_node(ast.TargetDecl)
+_WaitTime = _fast_node(ast.WaitTime)
+_BinOp = _fast_node(ast.BinOp)
+_IfStmt = _fast_node(ast.IfStmt)
+_WaitUntil = _fast_node(ast.WaitUntil)
+_Joints = _fast_node(ast.Joints)
+_Neg = _fast_node(ast.Neg)
+_Vector = _fast_node(ast.Vector)
+_String = _fast_node(ast.String)
+_Attr = _fast_node(ast.Attr)
+_Compare = _fast_node(ast.Compare)
+_Logic = _fast_node(ast.Logic)
+_NotCond = _fast_node(ast.NotCond)
+_Pulse = _fast_node(ast.Pulse)
+_For = _fast_node(ast.For)
+_Repeat = _fast_node(ast.Repeat)
+_CallStmt = _fast_node(ast.CallStmt)
+_AssignStmt = _fast_node(ast.AssignStmt)
+_VarDecl = _fast_node(ast.VarDecl)
+_While = _fast_node(ast.While)
+_ConstDecl = _fast_node(ast.ConstDecl)
 
 
 def reserved_statement(word: str, span: Span) -> Diagnostic:
@@ -102,8 +249,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         self.diagnostics = []
 
     def _token_span(self, tok: Token) -> Span:
-        return _make_span(self.file, _make_pos(tok.line, tok.column, tok.start_pos),
-                          _make_pos(tok.end_line, tok.end_column, tok.end_pos))
+        return _tokens_span(self.file, tok, tok)
 
     def _span(self, c: list[Any]) -> Span:
         """From the start of the first child to the end of the last (tokens or nodes)."""
@@ -122,7 +268,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         if what is not None and str(tok) in KEYWORDS:
             msg = f"{what} name must not be a keyword (got '{tok}')"
             self.diagnostics.append(Diagnostic(codes.RESERVED_KEYWORD, Severity.ERROR, msg, span))
-        return ast.Ident(str(tok), span)
+        return _Ident(str(tok), span)
 
     def _unit(self, tok: Token) -> str:
         """The unit text; an E007 when the lexer's compound shape (`kg/s`) is no known unit."""
@@ -132,7 +278,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return text
 
     def _string(self, tok: Token) -> ast.String:
-        return ast.String(_unquote(tok), self._token_span(tok))
+        return _String(_unquote(tok), self._token_span(tok))
 
     # -- files and blocks
     def start(self, c: list[Any]) -> ast.Module:
@@ -209,10 +355,10 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     # -- program declarations
     def target_decl(self, c: list[Any]) -> ast.TargetDecl:
-        return ast.TargetDecl(self._ident(c[1], "target"), c[3], self._span(c))
+        return _TargetDecl(self._ident(c[1], "target"), c[3], self._span(c))
 
     def const_decl(self, c: list[Any]) -> ast.ConstDecl:
-        return ast.ConstDecl(self._ident(c[1], "constant"), c[3], self._span(c))
+        return _ConstDecl(self._ident(c[1], "constant"), c[3], self._span(c))
 
     def proc_decl(self, c: list[Any]) -> ast.ProcDecl:
         return ast.ProcDecl(self._ident(c[1], "proc"), c[3] or (), tuple(c[5]), self._span(c))
@@ -228,7 +374,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         value = c[1]
         if isinstance(value, Token):  # tool/frame NAME, or the FINE keyword
             value = None if value.type == "FINE" else self._ident(value)
-        return ast.Setting(kind, value, self._span(c))
+        return _Setting(kind, value, self._span(c))
 
     def tool_setting(self, c: list[Any]) -> ast.Setting:
         return self._setting("tool", c)
@@ -256,40 +402,40 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     mod_frame = frame_setting
 
     def mod_config(self, c: list[Any]) -> ast.Setting:
-        return ast.Setting("config", c[2] or (), self._span(c))
+        return _Setting("config", c[2] or (), self._span(c))
 
     def mod_time(self, c: list[Any]) -> ast.Setting:
         return self._setting("time", c)
 
     # -- motion
     def move_simple(self, c: list[Any]) -> ast.Move:
-        return ast.Move(str(c[1]), c[2], None, tuple(c[3:]), self._span(c))
+        return _Move(str(c[1]), c[2], None, tuple(c[3:]), self._span(c))
 
     def move_circular(self, c: list[Any]) -> ast.Move:
-        return ast.Move("circular", c[5], c[3], tuple(c[6:]), self._span(c))
+        return _Move("circular", c[5], c[3], tuple(c[6:]), self._span(c))
 
     # -- I/O, timing, control flow
     def io_ref(self, c: list[Any]) -> ast.IoRef:
-        return ast.IoRef(str(c[0]), c[2], self._span(c))
+        return _IoRef(str(c[0]), c[2], self._span(c))
 
     def set_io(self, c: list[Any]) -> ast.SetIo:
-        return ast.SetIo(c[1], c[3], self._span(c))
+        return _SetIo(c[1], c[3], self._span(c))
 
     def pulse(self, c: list[Any]) -> ast.Pulse:
-        return ast.Pulse(c[1], c[3], self._span(c))
+        return _Pulse(c[1], c[3], self._span(c))
 
     def wait_time(self, c: list[Any]) -> ast.WaitTime:
-        return ast.WaitTime(c[1], self._span(c))
+        return _WaitTime(c[1], self._span(c))
 
     def wait_until(self, c: list[Any]) -> ast.WaitUntil:
         otherwise = tuple(c[6]) if len(c) > 6 and c[6] is not None else None
-        return ast.WaitUntil(c[2], c[4], self._span(c), otherwise)
+        return _WaitUntil(c[2], c[4], self._span(c), otherwise)
 
     def for_loop(self, c: list[Any]) -> ast.For:
-        return ast.For(self._ident(c[1], "loop variable"), c[3], c[5], tuple(c[6]), self._span(c))
+        return _For(self._ident(c[1], "loop variable"), c[3], c[5], tuple(c[6]), self._span(c))
 
     def repeat_loop(self, c: list[Any]) -> ast.Repeat:
-        return ast.Repeat(c[1], tuple(c[2]), self._span(c))
+        return _Repeat(c[1], tuple(c[2]), self._span(c))
 
     def if_stmt(self, c: list[Any]) -> ast.IfStmt:
         otherwise = c[3]
@@ -297,7 +443,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
             otherwise = ()
         elif isinstance(otherwise, ast.IfStmt):  # else if: a nested branch
             otherwise = (otherwise,)
-        return ast.IfStmt(c[1], tuple(c[2]), tuple(otherwise), self._span(c))
+        return _IfStmt(c[1], tuple(c[2]), tuple(otherwise), self._span(c))
 
     def else_part(self, c: list[Any]) -> Any:
         return c[0]
@@ -311,11 +457,11 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def call(self, c: list[Any]) -> ast.CallStmt:
         if str(c[0]) in RESERVED:  # `return()`: the word is reserved, not an unknown proc
             self.diagnostics.append(reserved_statement(str(c[0]), self._token_span(c[0])))
-        return ast.CallStmt(self._ident(c[0]), c[2] or (), self._span(c))
+        return _CallStmt(self._ident(c[0]), c[2] or (), self._span(c))
 
     # -- expressions
     def _binop(self, op: str, c: list[Any]) -> ast.BinOp:
-        return ast.BinOp(op, c[0], c[1], self._span(c))
+        return _BinOp(op, c[0], c[1], self._span(c))
 
     def add(self, c: list[Any]) -> ast.BinOp:
         return self._binop("+", c)
@@ -330,7 +476,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return self._binop("/", c)
 
     def neg(self, c: list[Any]) -> ast.Neg:
-        return ast.Neg(c[1], self._span(c))
+        return _Neg(c[1], self._span(c))
 
     def unary(self, c: list[Any]) -> Any:  # `+x`
         return c[1]
@@ -339,42 +485,41 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return c[1]
 
     def attr(self, c: list[Any]) -> ast.Attr:
-        return ast.Attr(c[0], self._ident(c[1]), self._span(c))
+        return _Attr(c[0], self._ident(c[1]), self._span(c))
 
     def number(self, c: list[Any]) -> ast.Number:
         num, unit = c
         last = num if unit is None else unit
-        start, end = _make_pos(num.line, num.column, num.start_pos), _make_pos(last.end_line, last.end_column, last.end_pos)
-        span = _make_span(self.file, start, end)
+        span = _tokens_span(self.file, num, last)
         value = float(num)
         if value == float("inf"):  # `1e999`: refused where written (issue #20); 0.0 keeps the tree well-typed
             self.diagnostics.append(Diagnostic(codes.NOT_FINITE_LITERAL, Severity.ERROR, "number must fit a 64-bit "
                                                f"float, at most about 1.8e308 (got {str(num)[:40]})", span))
             value = 0.0
-        return ast.Number(value, None if unit is None else self._unit(unit), span)
+        return _Number(value, None if unit is None else self._unit(unit), span)
 
     def name(self, c: list[Any]) -> ast.Name:
-        return ast.Name(str(c[0]), self._token_span(c[0]))
+        return _Name(str(c[0]), self._token_span(c[0]))
 
     def call_expr(self, c: list[Any]) -> ast.Call:
-        return ast.Call(self._ident(c[0]), c[2] or (), self._span(c))
+        return _Call(self._ident(c[0]), c[2] or (), self._span(c))
 
     def joints(self, c: list[Any]) -> ast.Joints:
         unit = self._unit(c[4]) if c[4] is not None else None
-        return ast.Joints(c[2] or (), unit, self._span(c))
+        return _Joints(c[2] or (), unit, self._span(c))
 
     def vector(self, c: list[Any]) -> ast.Vector:
-        first = ast.Arg(None, c[1], c[1].span)
-        return ast.Vector((first, *(c[3] or ())), self._span(c))
+        first = _Arg(None, c[1], c[1].span)
+        return _Vector((first, *(c[3] or ())), self._span(c))
 
     def string(self, c: list[Any]) -> ast.String:
         return self._string(c[0])
 
     def args(self, c: list[Any]) -> tuple[ast.Arg, ...]:
-        return tuple([a if a.__class__ is ast.Arg else ast.Arg(None, a, a.span) for a in c])
+        return tuple([a if a.__class__ is ast.Arg else _Arg(None, a, a.span) for a in c])
 
     def kwarg(self, c: list[Any]) -> ast.Arg:
-        return ast.Arg(self._ident(c[0]), c[1], self._span(c))
+        return _Arg(self._ident(c[0]), c[1], self._span(c))
 
     # -- robot models (appended; lowered by compiler/passes/lower_model.py)
     def model_decl(self, c: list[Any]) -> ast.ModelDecl:
@@ -388,25 +533,25 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return ast.ModelJoint(self._ident(c[1]), tuple(c[2:]), self._span(c))
 
     def model_call(self, c: list[Any]) -> ast.Call:
-        return ast.Call(self._ident(c[0]), c[2] or (), self._span(c))
+        return _Call(self._ident(c[0]), c[2] or (), self._span(c))
 
     def model_speed(self, c: list[Any]) -> ast.Setting:
-        return ast.Setting("speed", c[1], self._span(c))
+        return _Setting("speed", c[1], self._span(c))
 
     def model_accel(self, c: list[Any]) -> ast.Setting:
-        return ast.Setting("accel", c[1], self._span(c))
+        return _Setting("accel", c[1], self._span(c))
 
     def model_torque(self, c: list[Any]) -> ast.Setting:
-        return ast.Setting("torque", c[1], self._span(c))
+        return _Setting("torque", c[1], self._span(c))
 
     def model_mass(self, c: list[Any]) -> ast.Setting:
-        return ast.Setting("mass", c[1], self._span(c))
+        return _Setting("mass", c[1], self._span(c))
 
     def model_flange(self, c: list[Any]) -> ast.Setting:
-        return ast.Setting("flange", c[1], self._span(c))
+        return _Setting("flange", c[1], self._span(c))
 
     def model_payload(self, c: list[Any]) -> ast.Setting:
-        return ast.Setting("payload", c[1], self._span(c))
+        return _Setting("payload", c[1], self._span(c))
 
     # -- parts (issue #14)
     def part_decl(self, c: list[Any]) -> ast.PartDecl:
@@ -429,28 +574,28 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     # -- runtime logic (issue #15)
     def var_decl(self, c: list[Any]) -> ast.VarDecl:
         type_ = self._ident(c[3]) if c[3] is not None else None
-        return ast.VarDecl(self._ident(c[1], "variable"), type_, c[5], self._span(c))
+        return _VarDecl(self._ident(c[1], "variable"), type_, c[5], self._span(c))
 
     def assign(self, c: list[Any]) -> ast.AssignStmt:
-        return ast.AssignStmt(self._ident(c[0]), c[2], self._span(c))
+        return _AssignStmt(self._ident(c[0]), c[2], self._span(c))
 
     def stop_stmt(self, c: list[Any]) -> ast.StopStmt:
         return ast.StopStmt(self._span(c))
 
     def while_loop(self, c: list[Any]) -> ast.While:
-        return ast.While(c[1], tuple(c[2]), self._span(c))
+        return _While(c[1], tuple(c[2]), self._span(c))
 
     def while_bare(self, c: list[Any]) -> ast.While:
-        return ast.While(None, tuple(c[1]), self._span(c))
+        return _While(None, tuple(c[1]), self._span(c))
 
     def for_unbounded(self, c: list[Any]) -> ast.For:
-        return ast.For(self._ident(c[1], "loop variable"), c[3], None, tuple(c[4]), self._span(c))
+        return _For(self._ident(c[1], "loop variable"), c[3], None, tuple(c[4]), self._span(c))
 
     def _logic(self, op: str, c: list[Any]) -> ast.Logic:
         items: list[Any] = []
         for x in c:
             items += x.operands if isinstance(x, ast.Logic) and x.op == op else [x]
-        return ast.Logic(op, tuple(items), self._span(c))
+        return _Logic(op, tuple(items), self._span(c))
 
     def logic_or(self, c: list[Any]) -> ast.Logic:
         return self._logic("or", c)
@@ -459,20 +604,20 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return self._logic("and", c)
 
     def logic_not(self, c: list[Any]) -> ast.NotCond:
-        return ast.NotCond(c[1], self._span(c))
+        return _NotCond(c[1], self._span(c))
 
     def compare(self, c: list[Any]) -> ast.Compare:
-        return ast.Compare(str(c[1]), c[0], c[2], self._span(c))
+        return _Compare(str(c[1]), c[0], c[2], self._span(c))
 
     def io_read(self, c: list[Any]) -> Any:
         io = c[0]
-        return ast.Condition(io, "==", None, io.span) if io.kind == "in" else io
+        return _Condition(io, "==", None, io.span) if io.kind == "in" else io
 
     def compare_io(self, c: list[Any]) -> Any:
         op = str(c[1])
         if c[0].kind == "in" and op in ("==", "!="):  # `in[n] == on`: what every backend writes
-            return ast.Condition(c[0], op, c[2], self._span(c))
-        return ast.Compare(op, c[0], c[2], self._span(c))
+            return _Condition(c[0], op, c[2], self._span(c))
+        return _Compare(op, c[0], c[2], self._span(c))
 
     def r_cmp(self, c: list[Any]) -> Any:  # `( cond )`
         return c[1]

@@ -275,7 +275,7 @@ def _lean(rule: Any, callback: Any) -> Any:
         picks = tuple(i for i, _ in callback.to_include)
         inline = [i for i, expand in callback.to_include if expand]
         if not inline:
-            return lambda c: build([c[i] for i in picks])
+            return _picker(build, picks)
         if inline == [0] and picks[0] == 0:  # left recursion: extend the first child's list, as lark does
             rest = picks[1:]
 
@@ -299,6 +299,20 @@ def _lean(rule: Any, callback: Any) -> Any:
             return lambda c: build(c[:keep] + tail)
         return lambda c: build([None if i is None else c[i] for i in template])
     return callback
+
+
+def _picker(build: Any, picks: tuple[int, ...]) -> Any:
+    """`build([c[i] for i in picks])`, spelt out for one to three picks (no comprehension)."""
+    if len(picks) == 1:
+        (a,) = picks
+        return lambda c: build([c[a]])
+    if len(picks) == 2:
+        a, b = picks
+        return lambda c: build([c[a], c[b]])
+    if len(picks) == 3:
+        a, b, d = picks
+        return lambda c: build([c[a], c[b], c[d]])
+    return lambda c: build([c[i] for i in picks])
 
 
 def _is_tree_builder(f: Any) -> bool:

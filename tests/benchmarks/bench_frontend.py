@@ -2,6 +2,8 @@
 
 Run: make bench  (or .venv/bin/python -m pytest tests/benchmarks/bench_frontend.py)
 Targets (issue 2): >= 20,000 lines/s for parse + lower; <= 0.3 s for `rmot --help`.
+`.venv/bin/python tests/benchmarks/bench_frontend.py` prints lines/s (library and CLI GC
+schedules, parse alone) and where the time goes (stage_split: lex, LALR loop, AST build, passes).
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ import time
 
 import pytest
 
-from rmot.compiler.frontend import load_text
+from rmot.compiler.frontend import load_program, load_text
 from rmot.lang.parse import parse_text
 
 LINES = 10_000
@@ -123,9 +125,100 @@ def lines_per_second(rounds: int = 5) -> dict[str, float]:
     return out
 
 
+def stage_split(rounds: int = 7) -> list[tuple[str, float]]:
+    """Where parse + lower of the 10,000-line program spends its time: median CPU seconds per
+    stage, with the `rmot` command's GC schedule (the library's default schedule adds the
+    collector's walks on top, mostly in the AST build). Stages: reading the file (bytes +
+    UTF-8), the lexer's master regex alone, lex + the LALR loop with no-op rule callbacks,
+    the AST build (full parse minus that), then each front-end pass as compiler/pipeline
+    runs it (load_sources includes the parse of the program and of the default cell)."""
+    import gc
+    import os
+    import statistics
+    import tempfile
+
+    from rmot.compiler import pipeline
+    from rmot.compiler.cli import GC_THRESHOLDS
+    from rmot.compiler.passes.context import Reporter, default_robot_loader
+    from rmot.compiler.passes.state import FrontendState
+    from rmot.lang._lalr import PostLexState
+    from rmot.lang.lexer import TOKEN
+    from rmot.lang.parse import _parser
+
+    text = generated_program()
+    load_text(text, "/bench/big.rmot")
+    driver = _parser().driver
+    real = driver.actions
+    noop = [{k: v if v.__class__ is int or v[2] is None else (v[0], v[1], _first_child)
+             for k, v in row.items()} for row in real]
+
+    def lex() -> None:
+        match, pos, n = TOKEN.match, 0, len(text)
+        while pos < n:
+            m = match(text, pos)
+            if m is None:
+                break
+            m.group(m.lastgroup)  # type: ignore[arg-type]
+            pos = m.end()
+
+    def lalr() -> None:
+        driver.actions = noop
+        try:
+            driver.parse(text, PostLexState())
+        finally:
+            driver.actions = real
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "big.rmot")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+
+        def read() -> None:
+            with open(path, "rb") as f:
+                f.read().decode("utf-8")
+
+        old = gc.get_threshold()
+        gc.set_threshold(*GC_THRESHOLDS)
+        try:
+            def med(fn) -> float:  # type: ignore[no-untyped-def]
+                times = []
+                for _ in range(rounds):
+                    t0 = time.process_time()
+                    fn()
+                    times.append(time.process_time() - t0)
+                return statistics.median(times)
+
+            out = [("read the file", med(read)), ("lex (master regex only)", med(lex))]
+            out.append(("lex + LALR loop (no-op callbacks)", med(lalr)))
+            out.append(("AST build (parse_text - the above)",
+                        med(lambda: parse_text(text, "big.rmot")) - out[-1][1]))
+            per_pass: dict[str, list[float]] = {}
+            for _ in range(rounds):
+                state = FrontendState(path=path, roots=(tmp,), reporter=Reporter(),
+                                      robot_loader=default_robot_loader, text=None, cell_path=None)
+                for p in pipeline.PASSES:
+                    t0 = time.process_time()
+                    state = p(state)
+                    per_pass.setdefault(p.__name__, []).append(time.process_time() - t0)
+                assert state.program is not None
+            out += [(f"pass {k}", statistics.median(v)) for k, v in per_pass.items()]
+            out.append(("load_program (all of it)", med(lambda: load_program(path))))
+        finally:
+            gc.set_threshold(*old)
+    return out
+
+
+def _first_child(c: list[object]) -> object:
+    return c[0] if c else None
+
+
 if __name__ == "__main__":
     import os
 
     for label, rate in lines_per_second().items():
         print(f"{label:36s} {rate:10,.0f} lines/s (CPU time; target >= 20,000 for parse + lower)")
+    lines = generated_program().count("\n")
+    print("stage split (CPU time, median; rmot's GC schedule):")
+    for label, seconds in stage_split():
+        print(f"  {label:38s} {seconds * 1e3:8.1f} ms {seconds / lines * 1e6:7.1f} us/line")
     print(f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")

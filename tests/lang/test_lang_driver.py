@@ -211,3 +211,44 @@ def test_the_command_line_owns_the_collector_schedule(monkeypatch: pytest.Monkey
         assert gc.get_threshold() == cli.GC_THRESHOLDS != old and gc.isenabled()
     finally:
         gc.set_threshold(*old)
+
+
+def test_fast_nodes_equal_ordinary_ones_in_every_field() -> None:
+    """Each AST node class the builder makes through its slots (_build._fast_node) gives the
+    object its own constructor gives: same class, every field (span included) the same value,
+    and still frozen."""
+    from rmot.lang import ast
+
+    f = SourceFile("a", "xyz")
+    made = 0
+    for name in dir(ast):
+        cls = getattr(ast, name)
+        fast = getattr(_build, f"_{name}", None)
+        if not (isinstance(cls, type) and dataclasses.is_dataclass(cls)) or fast is None or fast is cls:
+            continue
+        fields = dataclasses.fields(cls)
+        args = [Span(f, Pos(1, i + 1, i), Pos(2, i + 2, i + 9)) if fl.name == "span" else (name, i)
+                for i, fl in enumerate(fields)]
+        a, b = fast(*args), cls(*args)
+        assert type(a) is cls and a == b and hash(a) == hash(b), name
+        for fl in fields:
+            assert getattr(a, fl.name) is getattr(b, fl.name), (name, fl.name)
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(a, fields[0].name, None)
+        made += 1
+    assert made >= 20  # the hot classes (Number, Arg, Ident, Move, ...) take the fast path
+
+
+def test_fast_node_falls_back_where_init_matters() -> None:
+    """A node that validates in __post_init__ keeps its own constructor."""
+
+    @dataclasses.dataclass(frozen=True, slots=True)
+    class Checked:
+        a: int
+        b: int
+
+        def __post_init__(self) -> None:
+            if self.a < 0:
+                raise ValueError
+
+    assert _build._fast_node(Checked) is Checked
