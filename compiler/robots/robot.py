@@ -104,6 +104,7 @@ class Robot:
         self._chain: Chain = chain_of(model)
         self._dls_args: tuple[Any, ...] | None = None  # filled on first numeric IK
         self._restarts: np.ndarray | None = None  # numeric IK restart seeds, drawn once
+        self._fast: Any = None  # ik's compiled single-pose solver (fastsolve), made on first use
         self._solid_joint = np.array([s.joint_id for s in solids], dtype=int)
         self._solid_place = np.array([s.placement.matrix() for s in solids]).reshape(-1, 4, 4)
         self._solid_se3 = [pin.SE3(m) for m in self._solid_place]
