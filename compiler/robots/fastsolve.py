@@ -30,12 +30,12 @@ once a process has solved SOLVE_ONE.threshold poses (so `rmot robots ik` stays n
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from rmot.compiler.jit import Kernel
-from rmot.compiler.robots import fastdls, fastik
-from rmot.compiler.robots.fastdls import _fk_jac
+from rmot.compiler.robots import fastik, ik
 from rmot.compiler.robots.fastik import _opw_one, _ur_one
 
 __all__ = ["SOLVE_ONE"]
@@ -118,15 +118,70 @@ def _branch_code(kind, bpar, crows, q):  # type: ignore[no-untyped-def]
     return (4 if shoulder < 0.0 else 0) + (2 if elbow < 0.0 else 0) + (1 if wrist < 0.0 else 0)
 
 
-def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma):  # type: ignore[no-untyped-def]
+def _jacobian_into(placements, axes, prismatic, flange, qm, jac, frames):  # type: ignore[no-untyped-def]
+    """jac (6,n): the world-frame geometric Jacobian of the flange (fastdls._fk_jac's columns:
+    linear rows first); frames (n,6) scratch: each joint's world axis and origin."""
+    n = qm.shape[0]
+    t00, t01, t02, t03 = 1.0, 0.0, 0.0, 0.0
+    t10, t11, t12, t13 = 0.0, 1.0, 0.0, 0.0
+    t20, t21, t22, t23 = 0.0, 0.0, 1.0, 0.0
+    for i in range(n + 1):
+        p = flange if i == n else placements[i]
+        p00, p01, p02, p03 = p[0, 0], p[0, 1], p[0, 2], p[0, 3]
+        p10, p11, p12, p13 = p[1, 0], p[1, 1], p[1, 2], p[1, 3]
+        p20, p21, p22, p23 = p[2, 0], p[2, 1], p[2, 2], p[2, 3]
+        t00, t01, t02, t03 = (t00 * p00 + t01 * p10 + t02 * p20, t00 * p01 + t01 * p11 + t02 * p21,
+                              t00 * p02 + t01 * p12 + t02 * p22, t00 * p03 + t01 * p13 + t02 * p23 + t03)
+        t10, t11, t12, t13 = (t10 * p00 + t11 * p10 + t12 * p20, t10 * p01 + t11 * p11 + t12 * p21,
+                              t10 * p02 + t11 * p12 + t12 * p22, t10 * p03 + t11 * p13 + t12 * p23 + t13)
+        t20, t21, t22, t23 = (t20 * p00 + t21 * p10 + t22 * p20, t20 * p01 + t21 * p11 + t22 * p21,
+                              t20 * p02 + t21 * p12 + t22 * p22, t20 * p03 + t21 * p13 + t22 * p23 + t23)
+        if i == n:
+            break
+        x, y, z = axes[i, 0], axes[i, 1], axes[i, 2]
+        frames[i, 0] = t00 * x + t01 * y + t02 * z
+        frames[i, 1] = t10 * x + t11 * y + t12 * z
+        frames[i, 2] = t20 * x + t21 * y + t22 * z
+        if prismatic[i]:
+            d = qm[i]
+            t03 += frames[i, 0] * d
+            t13 += frames[i, 1] * d
+            t23 += frames[i, 2] * d
+        else:
+            c, s = math.cos(qm[i]), math.sin(qm[i])
+            v = 1.0 - c
+            r00, r01, r02 = c + x * x * v, x * y * v - z * s, x * z * v + y * s
+            r10, r11, r12 = y * x * v + z * s, c + y * y * v, y * z * v - x * s
+            r20, r21, r22 = z * x * v - y * s, z * y * v + x * s, c + z * z * v
+            t00, t01, t02 = (t00 * r00 + t01 * r10 + t02 * r20, t00 * r01 + t01 * r11 + t02 * r21,
+                             t00 * r02 + t01 * r12 + t02 * r22)
+            t10, t11, t12 = (t10 * r00 + t11 * r10 + t12 * r20, t10 * r01 + t11 * r11 + t12 * r21,
+                             t10 * r02 + t11 * r12 + t12 * r22)
+            t20, t21, t22 = (t20 * r00 + t21 * r10 + t22 * r20, t20 * r01 + t21 * r11 + t22 * r21,
+                             t20 * r02 + t21 * r12 + t22 * r22)
+        frames[i, 3], frames[i, 4], frames[i, 5] = t03, t13, t23
+    for i in range(n):
+        ax, ay, az = frames[i, 0], frames[i, 1], frames[i, 2]
+        if prismatic[i]:
+            jac[0, i], jac[1, i], jac[2, i] = ax, ay, az
+            jac[3, i] = jac[4, i] = jac[5, i] = 0.0
+        else:
+            dx, dy, dz = t03 - frames[i, 3], t13 - frames[i, 4], t23 - frames[i, 5]
+            jac[0, i] = ay * dz - az * dy
+            jac[1, i] = az * dx - ax * dz
+            jac[2, i] = ax * dy - ay * dx
+            jac[3, i], jac[4, i], jac[5, i] = ax, ay, az
+
+
+def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma,  # type: ignore[no-untyped-def]
+                  jac, a, frames):
     """True when the smallest singular value of the reach-scaled Jacobian is surely >= sigma
-    (by |det J| / |J|_F^(n-1) > 2 sigma); False = ask the SVD."""
+    (by |det J| / |J|_F^(n-1) > 2 sigma); False = ask the SVD. jac, a (6,6), frames (6,6):
+    scratch."""
     n = qm.shape[0]
     if n != 6:
         return False
-    jac = np.empty((6, n))
-    _fk_jac(placements, axes, prismatic, flange, qm, jac)
-    a = np.empty((6, 6))
+    _jacobian_into(placements, axes, prismatic, flange, qm, jac, frames)
     scale = max(reach, 1e-3)
     frob = 0.0
     for r in range(6):
@@ -162,11 +217,12 @@ def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, re
 
 def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, revolute,  # type: ignore[no-untyped-def]
               placements, axes, prismatic, flange, coupling, coupled, want, reach, tols,
-              raw, opts, counts, out, codes):
+              raw, opts, counts, out, codes, scratch, flags, dist, order, ordered, ordered_codes):
     """One pose -> (m, flag): out[:m] the solutions sorted as ik.solve sorts them, codes[:m]
     their branch codes; flag 1 = the caller must run the exact singularity test on out[0].
-    m = -1: hand the pose to ik.solve (see the module docstring). raw (8,dof), opts
-    (dof, max equivalents per joint), counts (dof,) int: scratch."""
+    m = -1: hand the pose to ik.solve (see the module docstring). Scratch: raw (8,dof), opts
+    (dof, max equivalents per joint), counts (dof,) int, scratch (19,6), flags (2,8) bool,
+    dist, order (int), ordered, ordered_codes (int) with out's rows."""
     dof = seed.shape[0]
     pos_tol, rot_tol, sigma = tols[0], tols[1], tols[2]
     # the pose: finite, rotation orthonormal (ik._check_pose raises otherwise)
@@ -183,8 +239,11 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
         _opw_one(a0, a1, a2, a3, local, raw)
     else:
         _ur_one(a0, local, raw)
-    qm = np.empty(dof)
-    keep = np.zeros(8, dtype=np.bool_)
+    qm = scratch[0]
+    keep = flags[0]
+    verified = flags[1]
+    for b in range(8):
+        keep[b] = False
     n_keep = 0
     for b in range(8):
         finite = True
@@ -214,7 +273,8 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
         return -1, 0
     # distinct modulo 2π (ik._distinct: np.remainder, then the wrapped gap; a candidate is
     # dropped when it equals any earlier verified one, dropped or not)
-    verified = keep.copy()
+    for b in range(8):
+        verified[b] = keep[b]
     for b in range(8):
         if not verified[b]:
             continue
@@ -278,21 +338,30 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
     if n_groups == 0 or m == 0:
         return -1, 0  # out of limits, or no branch as configured: ik.solve's messages
     # stable sort by the distance from the seed (ik.solve: np.argsort(kind="stable"))
-    dist = np.empty(m)
     for i in range(m):
         acc = 0.0
         for j in range(dof):
             d = out[i, j] - seed[j]
             acc += d * d
         dist[i] = math.sqrt(acc)
-    order = np.argsort(dist, kind="mergesort")
-    ordered = out[:m].copy()
-    ordered_codes = codes[:m].copy()
+    if m > 48:
+        order[:m] = np.argsort(dist[:m], kind="mergesort")
+    else:  # insertion sort of the indices: stable, no allocation
+        for i in range(m):
+            k = i
+            while k > 0 and dist[order[k - 1]] > dist[i]:
+                order[k] = order[k - 1]
+                k -= 1
+            order[k] = i
     for i in range(m):
         k = order[i]
         for j in range(dof):
-            out[i, j] = ordered[k, j]
-        codes[i] = ordered_codes[k]
+            ordered[i, j] = out[k, j]
+        ordered_codes[i] = codes[k]
+    for i in range(m):
+        for j in range(dof):
+            out[i, j] = ordered[i, j]
+        codes[i] = ordered_codes[i]
     for j in range(dof):
         if coupled:
             acc = 0.0
@@ -301,12 +370,13 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
             qm[j] = acc
         else:
             qm[j] = out[0, j]
-    flag = 0 if _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma) else 1
+    flag = 0 if _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma,
+                              scratch[1:7], scratch[7:13], scratch[13:19]) else 1
     return m, flag
 
 
-SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, fastdls._FK_JAC, Kernel(_fk_error),
-                                    Kernel(_branch_code), Kernel(_not_singular, uses=(fastdls._FK_JAC,))),
+SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, Kernel(_fk_error), Kernel(_branch_code),
+                                    Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
                    threshold=200)
 
 
@@ -339,6 +409,17 @@ class FastSolver:
         self.per_joint = int(span.max()) + 1
         self.max_rows = 8 * int(np.prod(span + 1))
         self.raw = np.empty((8, dof))
+        self.scratch = np.empty((19, 6))
+        self.flags = np.empty((2, 8), dtype=np.bool_)
+        self.dist = np.empty(self.max_rows)
+        self.order = np.empty(self.max_rows, dtype=np.int64)
+        self.ordered = np.empty((self.max_rows, dof))
+        self.ordered_codes = np.empty(self.max_rows, dtype=np.int64)
+        self.compiled: Any = None  # SOLVE_ONE's dispatcher and its argument groups, on first use
+        self.head: tuple[Any, ...] = ()
+        self.body: tuple[Any, ...] = ()
+        self.tail: tuple[Any, ...] = ()
+        self.work: tuple[Any, ...] = ()
         self.opts = np.empty((dof, self.per_joint + 1))
         self.counts = np.empty(dof, dtype=np.int64)
         self.zeros = np.zeros(dof)
@@ -359,32 +440,34 @@ class FastSolver:
 
     def solve(self, robot, pose, seed, config):  # type: ignore[no-untyped-def]
         """IkResult, or None when ik.solve must decide (see the module docstring)."""
-        from rmot.compiler.robots import ik
-
         target = np.asarray(pose, dtype=float)
         if target.shape != (4, 4):
             return None
         seed_q = self.zeros if seed is None else np.asarray(seed, dtype=float).reshape(robot.dof)
         cf = self.closed_form
-        local = target if cf.pre is None and cf.post is None else cf.local(target[None])[0]
+        local = target if cf.pre is None and cf.post is None else np.ascontiguousarray(cf.local(target[None])[0])
         out = np.empty((self.max_rows, robot.dof))
         codes = np.empty(self.max_rows, dtype=np.int64)
-        a = self.args
-        m, flag = SOLVE_ONE.jit()(
-            self.kind, a[0], a[1], a[2], a[3], self.bpar, self.crows, np.ascontiguousarray(local), target,
-            seed_q, self.lo, self.hi, self.revolute, self.placements, self.axes, self.prismatic, self.flange,
-            self.coupling, self.coupled, self.want(config), self.reach, _TOLS, self.raw, self.opts,
-            self.counts, out, codes)
+        if self.compiled is None:
+            self.compiled = SOLVE_ONE.jit()
+            self.head = (self.kind, *self.args, self.bpar, self.crows)
+            self.body = (self.lo, self.hi, self.revolute, self.placements, self.axes, self.prismatic,
+                         self.flange, self.coupling, self.coupled)
+            self.tail = (self.reach, _TOLS, self.raw, self.opts, self.counts)
+            self.work = (self.scratch, self.flags, self.dist, self.order, self.ordered, self.ordered_codes)
+        m, flag = self.compiled(*self.head, local, target, seed_q, *self.body,
+                                self.any if config is None else self.want(config), *self.tail, out, codes,
+                                *self.work)
         if m < 0:
             return None
         qs = out[:m]
         qs.setflags(write=False)
         sols = tuple(qs)
         configs = self.configs
-        brs = tuple([configs[c] for c in codes[:m].tolist()])
+        brs = tuple(map(configs.__getitem__, codes[:m].tolist()))
         if flag and ik._is_singular(robot, sols[0]):
             return ik.IkResult(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
         return ik.IkResult(ik.IkStatus.OK, sols, brs)
 
 
-_TOLS = np.array([1e-9, 1e-9, 1e-6])  # ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA (tested equal)
+_TOLS = np.array([ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA])
