@@ -175,6 +175,26 @@ def _cpu_median_us(fn, calls: int = 200, repeats: int = 25) -> float:  # type: i
     return float(np.median(times) * 1e6)
 
 
+def _closed_form_arm(name: str) -> dict[str, float]:
+    """Robot.ik per call and ik_batch per pose, each next to the raw closed form (same run)."""
+    arm = load_robot(name)
+    aq, aposes = targets(arm)
+    amany = np.concatenate([aposes] * 5)
+    for i in range(400):  # past the compiled single-pose pass's threshold (fastsolve)
+        arm.ik(aposes[i % N_TARGETS])
+    arm.ik_batch(amany, seed=aq[0])
+    nxt = cycle(range(N_TARGETS))
+    return {
+        f"{name}_closed_form_single_us": _cpu_median_us(lambda: arm.ik_closed_form(aposes[nxt()])),
+        f"{name}_robot_ik_us": _cpu_median_us(lambda: arm.ik(aposes[nxt()])),
+        f"{name}_closed_form_batched_us_per_pose": _cpu_median_us(
+            lambda: arm.ik_closed_form(amany), calls=3) / len(amany),
+        f"{name}_ik_batch_us_per_pose": _cpu_median_us(
+            lambda: arm.ik_batch(amany, seed=aq[0]), calls=3) / len(amany),
+        f"{name}_solutions_per_call": float(np.median([len(arm.ik(t).solutions) for t in aposes])),
+    }
+
+
 def summary() -> dict[str, float]:
     out: dict[str, float] = {}
     r = load_robot("abb_irb1600")
@@ -199,19 +219,7 @@ def summary() -> dict[str, float]:
     out["ur5e_closed_form_batched_us_per_pose"] = _median_us(lambda: ur.ik_closed_form(ur_many), 50) / len(ur_many)
     out["ur5e_closed_form_single_us"] = _median_us(lambda: ur.ik_closed_form(ur_poses[nxt()]), 5000)
     for name in ("abb_irb120", "ur5e"):  # issue 18: Robot.ik <= 20 us, ik_batch <= 2 us/pose
-        arm = load_robot(name)
-        aq, aposes = targets(arm)
-        amany = np.concatenate([aposes] * 5)
-        for i in range(400):  # past the compiled single-pose pass's threshold (fastsolve)
-            arm.ik(aposes[i % N_TARGETS])
-        arm.ik_batch(amany, seed=aq[0])
-        out[f"{name}_closed_form_single_us"] = _cpu_median_us(lambda: arm.ik_closed_form(aposes[nxt()]))
-        out[f"{name}_robot_ik_us"] = _cpu_median_us(lambda: arm.ik(aposes[nxt()]))
-        out[f"{name}_closed_form_batched_us_per_pose"] = _cpu_median_us(
-            lambda: arm.ik_closed_form(amany), calls=3) / len(amany)
-        out[f"{name}_ik_batch_us_per_pose"] = _cpu_median_us(
-            lambda: arm.ik_batch(amany, seed=aq[0]), calls=3) / len(amany)
-        out[f"{name}_solutions_per_call"] = float(np.median([len(arm.ik(t).solutions) for t in aposes]))
+        out.update(_closed_form_arm(name))
     u = load_robot(ur5_urdf())
     uq, uposes = targets(u)
     u.ik(uposes[0])
