@@ -36,60 +36,12 @@ import numpy as np
 
 from rmot.compiler.jit import Kernel
 from rmot.compiler.robots import fastik, ik
+from rmot.compiler.robots.fastfk import FK_ERROR, _fk_error
 from rmot.compiler.robots.fastik import _opw_one, _ur_one
 
 __all__ = ["SOLVE_ONE"]
 
 _TWO_PI = 2 * math.pi
-
-
-def _fk_error(placements, axes, prismatic, flange, qm, target):  # type: ignore[no-untyped-def]
-    """(squared position error, squared rotation-matrix error) of FK(qm) against target:
-    3x4 affine products in local scalars, no allocation."""
-    t00, t01, t02, t03 = 1.0, 0.0, 0.0, 0.0
-    t10, t11, t12, t13 = 0.0, 1.0, 0.0, 0.0
-    t20, t21, t22, t23 = 0.0, 0.0, 1.0, 0.0
-    for i in range(qm.shape[0] + 1):
-        p = flange if i == qm.shape[0] else placements[i]
-        p00, p01, p02, p03 = p[0, 0], p[0, 1], p[0, 2], p[0, 3]
-        p10, p11, p12, p13 = p[1, 0], p[1, 1], p[1, 2], p[1, 3]
-        p20, p21, p22, p23 = p[2, 0], p[2, 1], p[2, 2], p[2, 3]
-        t00, t01, t02, t03 = (t00 * p00 + t01 * p10 + t02 * p20, t00 * p01 + t01 * p11 + t02 * p21,
-                              t00 * p02 + t01 * p12 + t02 * p22, t00 * p03 + t01 * p13 + t02 * p23 + t03)
-        t10, t11, t12, t13 = (t10 * p00 + t11 * p10 + t12 * p20, t10 * p01 + t11 * p11 + t12 * p21,
-                              t10 * p02 + t11 * p12 + t12 * p22, t10 * p03 + t11 * p13 + t12 * p23 + t13)
-        t20, t21, t22, t23 = (t20 * p00 + t21 * p10 + t22 * p20, t20 * p01 + t21 * p11 + t22 * p21,
-                              t20 * p02 + t21 * p12 + t22 * p22, t20 * p03 + t21 * p13 + t22 * p23 + t23)
-        if i == qm.shape[0]:
-            break
-        x, y, z = axes[i, 0], axes[i, 1], axes[i, 2]
-        if prismatic[i]:
-            d = qm[i]
-            t03 += (t00 * x + t01 * y + t02 * z) * d
-            t13 += (t10 * x + t11 * y + t12 * z) * d
-            t23 += (t20 * x + t21 * y + t22 * z) * d
-        elif x == 0.0 and y == 0.0 and z == 1.0:  # about z: two columns turn
-            c, s = math.cos(qm[i]), math.sin(qm[i])
-            t00, t01 = t00 * c + t01 * s, t01 * c - t00 * s
-            t10, t11 = t10 * c + t11 * s, t11 * c - t10 * s
-            t20, t21 = t20 * c + t21 * s, t21 * c - t20 * s
-        else:  # fastdls._rotation's matrix
-            c, s = math.cos(qm[i]), math.sin(qm[i])
-            v = 1.0 - c
-            r00, r01, r02 = c + x * x * v, x * y * v - z * s, x * z * v + y * s
-            r10, r11, r12 = y * x * v + z * s, c + y * y * v, y * z * v - x * s
-            r20, r21, r22 = z * x * v - y * s, z * y * v + x * s, c + z * z * v
-            t00, t01, t02 = (t00 * r00 + t01 * r10 + t02 * r20, t00 * r01 + t01 * r11 + t02 * r21,
-                             t00 * r02 + t01 * r12 + t02 * r22)
-            t10, t11, t12 = (t10 * r00 + t11 * r10 + t12 * r20, t10 * r01 + t11 * r11 + t12 * r21,
-                             t10 * r02 + t11 * r12 + t12 * r22)
-            t20, t21, t22 = (t20 * r00 + t21 * r10 + t22 * r20, t20 * r01 + t21 * r11 + t22 * r21,
-                             t20 * r02 + t21 * r12 + t22 * r22)
-    dp = ((t03 - target[0, 3]) ** 2 + (t13 - target[1, 3]) ** 2 + (t23 - target[2, 3]) ** 2)
-    dr = ((t00 - target[0, 0]) ** 2 + (t01 - target[0, 1]) ** 2 + (t02 - target[0, 2]) ** 2
-          + (t10 - target[1, 0]) ** 2 + (t11 - target[1, 1]) ** 2 + (t12 - target[1, 2]) ** 2
-          + (t20 - target[2, 0]) ** 2 + (t21 - target[2, 1]) ** 2 + (t22 - target[2, 2]) ** 2)
-    return dp, dr
 
 
 def _branch_code(kind, bpar, crows, q):  # type: ignore[no-untyped-def]
@@ -375,7 +327,7 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
     return m, flag
 
 
-SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, Kernel(_fk_error), Kernel(_branch_code),
+SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR, Kernel(_branch_code),
                                     Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
                    threshold=200)
 
