@@ -30,6 +30,7 @@ once a process has solved SOLVE_ONE.threshold poses (so `rmot robots ik` stays n
 from __future__ import annotations
 
 import math
+from operator import itemgetter
 from typing import Any
 
 import numpy as np
@@ -40,6 +41,8 @@ from rmot.compiler.robots.fastfk import FK_ERROR, _fk_error
 from rmot.compiler.robots.fastik import _opw_one, _ur_one
 
 __all__ = ["SOLVE_ONE"]
+
+_TOLS = (ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA)
 
 _TWO_PI = 2 * math.pi
 
@@ -167,16 +170,24 @@ def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, re
     return abs(det) > 2.0 * sigma * math.sqrt(frob) ** (n - 1)
 
 
-def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, revolute,  # type: ignore[no-untyped-def]
-              placements, axes, prismatic, flange, coupling, coupled, want, reach, tols,
-              raw, opts, counts, out, codes, scratch, flags, dist, order, ordered, ordered_codes):
+def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type: ignore[no-untyped-def]
+              placements, axes, prismatic, flange, coupling, want, fwork, opts, iwork, dist, out, codes):
     """One pose -> (m, flag): out[:m] the solutions sorted as ik.solve sorts them, codes[:m]
     their branch codes; flag 1 = the caller must run the exact singularity test on out[0].
-    m = -1: hand the pose to ik.solve (see the module docstring). Scratch: raw (8,dof), opts
-    (dof, max equivalents per joint), counts (dof,) int, scratch (19,6), flags (2,8) bool,
-    dist, order (int), ordered, ordered_codes (int) with out's rows."""
+    m = -1: hand the pose to ik.solve (see the module docstring). consts: lo, hi, revolute
+    (1.0 / 0.0) per joint, then reach, POS_TOL, ROT_TOL, SINGULAR_SIGMA, coupled, kind
+    (0 OPW, 1 UR). Scratch: fwork (35 + rows, dof): raw (8,dof), 19 rows, the 8 rows mod 2π, then
+    out's rows reordered; opts (dof, max equivalents per joint); iwork: counts (dof), two flag rows (2x8),
+    the order and the codes of out's rows; dist with out's rows."""
     dof = seed.shape[0]
-    pos_tol, rot_tol, sigma = tols[0], tols[1], tols[2]
+    rows = out.shape[0]
+    lo, hi, revolute = consts[0:dof], consts[dof:2 * dof], consts[2 * dof:3 * dof]
+    reach, pos_tol, rot_tol, sigma = consts[3 * dof], consts[3 * dof + 1], consts[3 * dof + 2], consts[3 * dof + 3]
+    coupled = consts[3 * dof + 4] != 0.0
+    kind = int(consts[3 * dof + 5])
+    raw, scratch, wrapped, ordered = fwork[0:8], fwork[8:27], fwork[27:35], fwork[35:35 + rows]
+    counts, flags = iwork[0:dof], iwork[dof:dof + 16].reshape((2, 8))
+    order, ordered_codes = iwork[dof + 16:dof + 16 + rows], iwork[dof + 16 + rows:dof + 16 + 2 * rows]
     # the pose: finite, rotation orthonormal (ik._check_pose raises otherwise)
     for r in range(4):
         for c in range(4):
@@ -195,7 +206,7 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
     keep = flags[0]
     verified = flags[1]
     for b in range(8):
-        keep[b] = False
+        keep[b] = 0
     n_keep = 0
     for b in range(8):
         finite = True
@@ -217,7 +228,7 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
         if dp <= pos_tol / 2 and dr <= rot_tol / 2:
             if dof == 6 and abs(math.sin(raw[b, 4])) <= 2e-7:
                 return -1, 0  # the wrist singularity: ik.solve keeps the seed's J4
-            keep[b] = True
+            keep[b] = 1
             n_keep += 1
         elif dp < 2e-4 and dr < 2e-4:
             return -1, 0  # a near miss: ik.solve polishes it
@@ -227,6 +238,10 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
     # dropped when it equals any earlier verified one, dropped or not)
     for b in range(8):
         verified[b] = keep[b]
+        if keep[b]:
+            for j in range(dof):
+                w = np.fmod(raw[b, j], _TWO_PI)
+                wrapped[b, j] = w + _TWO_PI if w < 0.0 else w
     for b in range(8):
         if not verified[b]:
             continue
@@ -235,18 +250,12 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
                 continue
             worst = 0.0
             for j in range(dof):
-                wa = np.fmod(raw[b, j], _TWO_PI)
-                if wa < 0.0:
-                    wa += _TWO_PI
-                wb = np.fmod(raw[e, j], _TWO_PI)
-                if wb < 0.0:
-                    wb += _TWO_PI
-                gap = abs(wb - wa)
+                gap = abs(wrapped[e, j] - wrapped[b, j])
                 d = min(gap, _TWO_PI - gap)
                 if d > worst:
                     worst = d
             if worst <= 1e-9:
-                keep[b] = False
+                keep[b] = 0
                 break
     m = 0
     n_groups = 0
@@ -258,14 +267,14 @@ def solve_one(kind, a0, a1, a2, a3, bpar, crows, local, target, seed, lo, hi, re
         total = 1
         for j in range(dof):
             v = raw[b, j]
-            first = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI if revolute[j] else v
+            first = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI if revolute[j] != 0.0 else v
             if not (lo[j] - 1e-12 <= first and first <= hi[j] + 1e-12):
                 empty = True
                 break
             value = min(max(first, lo[j]), hi[j])
             opts[j, 0] = value
             k = 1
-            while revolute[j] and value + _TWO_PI <= hi[j] + 1e-12:
+            while revolute[j] != 0.0 and value + _TWO_PI <= hi[j] + 1e-12:
                 value = min(value + _TWO_PI, hi[j])
                 opts[j, k] = value
                 k += 1
@@ -360,22 +369,19 @@ class FastSolver:
         span = np.where(self.revolute, np.floor((self.hi - self.lo + 2e-12) / _TWO_PI), 0.0)
         self.per_joint = int(span.max()) + 1
         self.max_rows = 8 * int(np.prod(span + 1))
-        self.raw = np.empty((8, dof))
-        self.scratch = np.empty((19, 6))
-        self.flags = np.empty((2, 8), dtype=np.bool_)
-        self.dist = np.empty(self.max_rows)
-        self.order = np.empty(self.max_rows, dtype=np.int64)
-        self.ordered = np.empty((self.max_rows, dof))
-        self.ordered_codes = np.empty(self.max_rows, dtype=np.int64)
+        rows = self.max_rows
+        self.consts = np.concatenate([self.lo, self.hi, self.revolute.astype(float),
+                                      [self.reach, *_TOLS, float(self.coupled), float(self.kind)]])
+        self.fwork = np.empty((35 + rows, dof))
+        self.iwork = np.zeros(dof + 16 + 2 * rows, dtype=np.int64)
+        self.dist = np.empty(rows)
+        self.opts = np.empty((dof, self.per_joint + 1))
+        self.zeros = np.zeros(dof)
+        self.any = np.full(3, -1, dtype=np.int64)
         self.compiled: Any = None  # SOLVE_ONE's dispatcher and its argument groups, on first use
         self.head: tuple[Any, ...] = ()
         self.body: tuple[Any, ...] = ()
-        self.tail: tuple[Any, ...] = ()
         self.work: tuple[Any, ...] = ()
-        self.opts = np.empty((dof, self.per_joint + 1))
-        self.counts = np.empty(dof, dtype=np.int64)
-        self.zeros = np.zeros(dof)
-        self.any = np.full(3, -1, dtype=np.int64)
         self.configs = tuple(config_of(-1.0 if c & 4 else 1.0, -1.0 if c & 2 else 1.0, -1.0 if c & 1 else 1.0)
                              for c in range(8))  # the same objects as robot.branch gives
         self.usable = robot._flange_joint == dof and dof == 6
@@ -402,24 +408,20 @@ class FastSolver:
         codes = np.empty(self.max_rows, dtype=np.int64)
         if self.compiled is None:
             self.compiled = SOLVE_ONE.jit()
-            self.head = (self.kind, *self.args, self.bpar, self.crows)
-            self.body = (self.lo, self.hi, self.revolute, self.placements, self.axes, self.prismatic,
-                         self.flange, self.coupling, self.coupled)
-            self.tail = (self.reach, _TOLS, self.raw, self.opts, self.counts)
-            self.work = (self.scratch, self.flags, self.dist, self.order, self.ordered, self.ordered_codes)
+            self.head = (*self.args, self.bpar, self.crows)
+            self.body = (self.consts, self.placements, self.axes, self.prismatic, self.flange, self.coupling)
+            self.work = (self.fwork, self.opts, self.iwork, self.dist)
         m, flag = self.compiled(*self.head, local, target, seed_q, *self.body,
-                                self.any if config is None else self.want(config), *self.tail, out, codes,
-                                *self.work)
+                                self.any if config is None else self.want(config), *self.work, out, codes)
         if m < 0:
             return None
         qs = out[:m]
         qs.setflags(write=False)
         sols = tuple(qs)
         configs = self.configs
-        brs = tuple(map(configs.__getitem__, codes[:m].tolist()))
+        brs = (configs[int(codes[0])],) if m == 1 else itemgetter(*codes[:m].tolist())(configs)
         if flag and ik._is_singular(robot, sols[0]):
             return ik.IkResult(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
         return ik.IkResult(ik.IkStatus.OK, sols, brs)
 
 
-_TOLS = np.array([ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA])

@@ -179,7 +179,7 @@ def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Co
     fast = robot._fast
     if fast is None:
         fast = robot._fast = _fast_solver(robot)
-    if fast and fast.kernel.prefer_compiled(1):
+    if fast and (fast.compiled is not None or fast.kernel.prefer_compiled(1)):
         res: IkResult | None = fast.solve(robot, pose, seed, config)
         if res is not None:
             return res
