@@ -6,7 +6,7 @@ For each pose and closed-form branch: the 2π-equivalent of every joint nearest 
 within the limits (as `ik._nearest_in_limits`: k0 = round((seed - q) / 2π), then k0, k0-1,
 k0+1, k0-2, k0+2, the first nearest one kept, clipped into the limits), NaN for the whole row
 when a joint has none; then FK of the row over the chain arrays (fastdls's loop) against the
-pose (fastfk._fk_error: in registers, polynomial sines), flagging the rows beyond
+pose (fastfk._fk_error_rows: the 8 branches of a pose at once, vectorised), flagging the rows beyond
 the tolerances it is given (half of POS_TOL / ROT_TOL: the caller checks those again exactly as
 its numpy path does, and polishes the failures with `ik._verified`).
 
@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from rmot.compiler.jit import Kernel
-from rmot.compiler.robots.fastfk import FK_ERROR, _fk_error
+from rmot.compiler.robots.fastfk import FK_ERROR_ROWS, _fk_error_rows
 
 __all__ = ["NEAREST_VERIFIED"]
 
@@ -34,7 +34,9 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
         poses, pos_tol, rot_tol, out, bad):
     n_pose, n_branch, dof = raw.shape
     two_pi = 2 * math.pi
-    qm = np.empty(dof)
+    qm = np.empty((dof, n_branch))  # one column per branch (fastfk._fk_error_rows)
+    t = np.empty((14, n_branch))
+    err = np.empty((2, n_branch))
     for n in range(n_pose):
         target = poses[n]
         for b in range(n_branch):
@@ -67,18 +69,22 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
             if missing:
                 for j in range(dof):
                     row[j] = np.nan
+                    qm[j, b] = 0.0  # FK'd with the others, not looked at
                 continue
             for j in range(dof):
                 if coupled:
                     acc = 0.0
                     for k in range(dof):
                         acc += coupling[j, k] * row[k]
-                    qm[j] = acc
+                    qm[j, b] = acc
                 else:
-                    qm[j] = row[j]
-            dp2, dr2 = _fk_error(placements, axes, prismatic, flange, qm, target)
-            if math.sqrt(dp2) > pos_tol or math.sqrt(dr2) / math.sqrt(2.0) > rot_tol:
+                    qm[j, b] = row[j]
+        _fk_error_rows(placements, axes, prismatic, flange, qm, target, t, err)
+        for b in range(n_branch):
+            if math.isnan(out[n, b, 0]):
+                continue
+            if math.sqrt(err[0, b]) > pos_tol or math.sqrt(err[1, b]) / math.sqrt(2.0) > rot_tol:
                 bad[n, b] = True
 
 
-NEAREST_VERIFIED = Kernel(_nearest_verified, uses=(FK_ERROR,))
+NEAREST_VERIFIED = Kernel(_nearest_verified, uses=(FK_ERROR_ROWS,))

@@ -37,7 +37,7 @@ import numpy as np
 
 from rmot.compiler.jit import Kernel
 from rmot.compiler.robots import fastik, ik
-from rmot.compiler.robots.fastfk import FK_ERROR, _fk_error
+from rmot.compiler.robots.fastfk import FK_ERROR_ROWS, _fk_error_rows
 from rmot.compiler.robots.fastik import _opw_one, _ur_one
 
 __all__ = ["SOLVE_ONE"]
@@ -171,14 +171,16 @@ def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, re
 
 
 def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type: ignore[no-untyped-def]
-              placements, axes, prismatic, flange, coupling, want, fwork, opts, iwork, dist, out, codes):
+              placements, axes, prismatic, flange, coupling, want, fwork, opts, iwork, dist, branch_work,
+              out, codes):
     """One pose -> (m, flag): out[:m] the solutions sorted as ik.solve sorts them, codes[:m]
     their branch codes; flag 1 = the caller must run the exact singularity test on out[0].
     m = -1: hand the pose to ik.solve (see the module docstring). consts: lo, hi, revolute
     (1.0 / 0.0) per joint, then reach, POS_TOL, ROT_TOL, SINGULAR_SIGMA, coupled, kind
     (0 OPW, 1 UR). Scratch: fwork (35 + rows, dof): raw (8,dof), 19 rows, the 8 rows mod 2π, then
-    out's rows reordered; opts (dof, max equivalents per joint); iwork: counts (dof), two flag rows (2x8),
-    the order and the codes of out's rows; dist with out's rows."""
+    out's rows reordered; opts (dof, max equivalents per joint); iwork: counts (dof), three flag rows (3x8),
+    the order and the codes of out's rows; dist with out's rows; branch_work (dof + 16, 8):
+    the branches' FK (fastfk._fk_error_rows)."""
     dof = seed.shape[0]
     rows = out.shape[0]
     lo, hi, revolute = consts[0:dof], consts[dof:2 * dof], consts[2 * dof:3 * dof]
@@ -186,8 +188,8 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     coupled = consts[3 * dof + 4] != 0.0
     kind = int(consts[3 * dof + 5])
     raw, scratch, wrapped, ordered = fwork[0:8], fwork[8:27], fwork[27:35], fwork[35:35 + rows]
-    counts, flags = iwork[0:dof], iwork[dof:dof + 16].reshape((2, 8))
-    order, ordered_codes = iwork[dof + 16:dof + 16 + rows], iwork[dof + 16 + rows:dof + 16 + 2 * rows]
+    counts, flags = iwork[0:dof], iwork[dof:dof + 24].reshape((3, 8))
+    order, ordered_codes = iwork[dof + 24:dof + 24 + rows], iwork[dof + 24 + rows:dof + 24 + 2 * rows]
     # the pose: finite, rotation orthonormal (ik._check_pose raises otherwise)
     for r in range(4):
         for c in range(4):
@@ -208,22 +210,28 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     for b in range(8):
         keep[b] = 0
     n_keep = 0
+    columns, t, err = branch_work[0:dof], branch_work[dof:dof + 14], branch_work[dof + 14:dof + 16]
+    finite = flags[2]
     for b in range(8):
-        finite = True
+        finite[b] = 1
         for j in range(dof):
             if not math.isfinite(raw[b, j]):
-                finite = False
-        if not finite:
-            continue
+                finite[b] = 0
         for j in range(dof):
-            if coupled:
+            if not finite[b]:
+                columns[j, b] = 0.0  # FK'd with the others, not looked at
+            elif coupled:
                 acc = 0.0
                 for k in range(dof):
                     acc += coupling[j, k] * raw[b, k]
-                qm[j] = acc
+                columns[j, b] = acc
             else:
-                qm[j] = raw[b, j]
-        dp2, dr2 = _fk_error(placements, axes, prismatic, flange, qm, target)
+                columns[j, b] = raw[b, j]
+    _fk_error_rows(placements, axes, prismatic, flange, columns, target, t, err)
+    for b in range(8):
+        if not finite[b]:
+            continue
+        dp2, dr2 = err[0, b], err[1, b]
         dp, dr = math.sqrt(dp2), math.sqrt(dr2 / 2.0)
         if dp <= pos_tol / 2 and dr <= rot_tol / 2:
             if dof == 6 and abs(math.sin(raw[b, 4])) <= 2e-7:
@@ -336,7 +344,7 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     return m, flag
 
 
-SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR, Kernel(_branch_code),
+SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS, Kernel(_branch_code),
                                     Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
                    threshold=200)
 
@@ -373,8 +381,9 @@ class FastSolver:
         self.consts = np.concatenate([self.lo, self.hi, self.revolute.astype(float),
                                       [self.reach, *_TOLS, float(self.coupled), float(self.kind)]])
         self.fwork = np.empty((35 + rows, dof))
-        self.iwork = np.zeros(dof + 16 + 2 * rows, dtype=np.int64)
+        self.iwork = np.zeros(dof + 24 + 2 * rows, dtype=np.int64)
         self.dist = np.empty(rows)
+        self.branch_work = np.empty((dof + 16, 8))
         self.opts = np.empty((dof, self.per_joint + 1))
         self.zeros = np.zeros(dof)
         self.any = np.full(3, -1, dtype=np.int64)
@@ -384,6 +393,8 @@ class FastSolver:
         self.work: tuple[Any, ...] = ()
         self.configs = tuple(config_of(-1.0 if c & 4 else 1.0, -1.0 if c & 2 else 1.0, -1.0 if c & 1 else 1.0)
                              for c in range(8))  # the same objects as robot.branch gives
+        self.config_array = np.empty(8, dtype=object)
+        self.config_array[:] = self.configs
         self.usable = robot._flange_joint == dof and dof == 6
         self.kernel = SOLVE_ONE
 
@@ -410,7 +421,7 @@ class FastSolver:
             self.compiled = SOLVE_ONE.jit()
             self.head = (*self.args, self.bpar, self.crows)
             self.body = (self.consts, self.placements, self.axes, self.prismatic, self.flange, self.coupling)
-            self.work = (self.fwork, self.opts, self.iwork, self.dist)
+            self.work = (self.fwork, self.opts, self.iwork, self.dist, self.branch_work)
         m, flag = self.compiled(*self.head, local, target, seed_q, *self.body,
                                 self.any if config is None else self.want(config), *self.work, out, codes)
         if m < 0:
@@ -419,7 +430,10 @@ class FastSolver:
         qs.setflags(write=False)
         sols = tuple(qs)
         configs = self.configs
-        brs = (configs[int(codes[0])],) if m == 1 else itemgetter(*codes[:m].tolist())(configs)
+        if m <= 16:
+            brs = (configs[int(codes[0])],) if m == 1 else itemgetter(*codes[:m].tolist())(configs)
+        else:  # many 2π-equivalents (joints beyond ±180°): one numpy gather
+            brs = tuple(self.config_array[codes[:m]].tolist())
         if flag and ik._is_singular(robot, sols[0]):
             return ik.IkResult(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
         return ik.IkResult(ik.IkStatus.OK, sols, brs)
