@@ -297,12 +297,20 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
         if ((want[0] >= 0 and want[0] != code // 4) or (want[1] >= 0 and want[1] != (code // 2) % 2)
                 or (want[2] >= 0 and want[2] != code % 2)):
             continue
+        digits = flags[2, :dof]  # (finite's row, no longer read) an odometer, last joint fastest
+        for j in range(dof):
+            digits[j] = 0
         for idx in range(total):
-            rest = idx
-            for j in range(dof - 1, -1, -1):
-                out[m + idx, j] = opts[j, rest % counts[j]]
-                rest //= counts[j]
+            for j in range(dof):
+                out[m + idx, j] = opts[j, digits[j]]
             codes[m + idx] = code
+            j = dof - 1
+            while j >= 0:
+                digits[j] += 1
+                if digits[j] < counts[j]:
+                    break
+                digits[j] = 0
+                j -= 1
         m += total
     if n_groups == 0 or m == 0:
         return -1, 0  # out of limits, or no branch as configured: ik.solve's messages
