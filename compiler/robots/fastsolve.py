@@ -391,6 +391,8 @@ class FastSolver:
         self.fwork = np.empty((35 + rows, dof))
         self.iwork = np.zeros(dof + 24 + 2 * rows, dtype=np.int64)
         self.dist = np.empty(rows)
+        self.out = np.empty((rows, dof))  # the kernel's answer, copied out per call
+        self.codes = np.empty(rows, dtype=np.int64)
         self.branch_work = np.empty((dof + 16, 8))
         self.opts = np.empty((dof, self.per_joint + 1))
         self.zeros = np.zeros(dof)
@@ -423,8 +425,7 @@ class FastSolver:
         seed_q = self.zeros if seed is None else np.asarray(seed, dtype=float).reshape(robot.dof)
         cf = self.closed_form
         local = target if cf.pre is None and cf.post is None else np.ascontiguousarray(cf.local(target[None])[0])
-        out = np.empty((self.max_rows, robot.dof))
-        codes = np.empty(self.max_rows, dtype=np.int64)
+        out, codes = self.out, self.codes
         if self.compiled is None:
             self.compiled = SOLVE_ONE.jit()
             self.head = (*self.args, self.bpar, self.crows)
@@ -434,7 +435,7 @@ class FastSolver:
                                 self.any if config is None else self.want(config), *self.work, out, codes)
         if m < 0:
             return None
-        qs = out[:m]
+        qs = out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
         qs.setflags(write=False)
         sols = tuple(qs)
         configs = self.configs
