@@ -43,7 +43,7 @@ from rmot.compiler import ir
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
 from rmot.compiler.robots.urik import UrParams, ur_branch_quantities
 
-__all__ = ["config_of", "opw_branch_fn", "ur_branch_fn"]
+__all__ = ["config_of", "opw_branch_fn", "ur_branch_fn", "opw_branch_arrays", "ur_branch_arrays"]
 
 
 _EPS = 1e-12
@@ -87,3 +87,17 @@ def ur_branch_fn(p: UrParams):  # type: ignore[no-untyped-def]
         return config_of(float(shoulder), float(elbow), float(wrist))
 
     return branch
+
+
+def opw_branch_arrays(p: OpwParams, jmap: OpwJointMap) -> tuple[np.ndarray, np.ndarray]:
+    """`opw_branch_fn`'s numbers as arrays for the compiled solver (fastsolve._branch_code):
+    (sign2, sign3, offset2, offset3, a1, c2, forearm, psi3), rows 2 and 3 of the coupling."""
+    c = jmap._c
+    bpar = np.array([jmap.sign[1], jmap.sign[2], jmap.offset[1], jmap.offset[2], p.a1, p.c2, p.forearm, p.psi3],
+                    dtype=float)
+    return bpar, np.ascontiguousarray(c[1:3], dtype=float)
+
+
+def ur_branch_arrays(p: UrParams) -> tuple[np.ndarray, np.ndarray]:
+    """`ur_branch_quantities`' numbers (a2, a3, d5) for the compiled solver."""
+    return np.array([p.a2, p.a3, p.d5], dtype=float), np.zeros((2, 6))

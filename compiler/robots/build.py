@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
 from rmot.compiler import ir
-from rmot.compiler.robots.branches import opw_branch_fn, ur_branch_fn
+from rmot.compiler.robots.branches import opw_branch_arrays, opw_branch_fn, ur_branch_arrays, ur_branch_fn
+from rmot.compiler.robots.closed_form import ClosedForm
 from rmot.compiler.robots.dh import build_model
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
 from rmot.compiler.robots.robot import LinkSolid, Robot
@@ -127,15 +127,11 @@ def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # typ
     """flange_inv: the vendor flange -> OPW flange transform (identity unless turned).
     The numba kernels load on the first IK call, not when the robot is built: `robots list`,
     `show`, `fk` and the front end never pay for numba."""
+    from rmot.compiler.robots import fastik  # no numba: its kernels compile on first use
+
     turned = not np.allclose(flange_inv, np.eye(4))
-    kernel: list[Any] = []  # [fastik.opw_solve, its parameter arrays], filled on the first call
-
-    def closed_form(poses: np.ndarray) -> np.ndarray:
-        if not kernel:
-            from rmot.compiler.robots import fastik
-
-            kernel.extend((fastik.opw_solve, fastik.opw_kernel_args(p, jmap)))
-        return kernel[0](kernel[1], poses @ flange_inv if turned else poses)
+    closed_form = ClosedForm("opw", fastik.opw_kernel_args(p, jmap), None, flange_inv if turned else None,
+                             opw_branch_arrays(p, jmap))
 
     def distance(pose: np.ndarray) -> float:
         c = pose[:3, 3] - p.c4 * pose[:3, 2]  # the flange turn is about z: same axis
@@ -154,11 +150,7 @@ def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # typ
 
 def _ur_solver(p: UrParams):  # type: ignore[no-untyped-def]
     p_arr = np.array([p.d1, p.a2, p.a3, p.d4, p.d5, p.d6])
-
-    def closed_form(poses: np.ndarray) -> np.ndarray:
-        from rmot.compiler.robots import fastik  # numba loads on the first IK call (see _opw_solver)
-
-        return fastik.ur_solve(p_arr, poses)
+    closed_form = ClosedForm("ur", (p_arr,), branch=ur_branch_arrays(p))
 
     def distance(pose: np.ndarray) -> float:
         p05 = pose[:3, 3] - p.d6 * pose[:3, 2]

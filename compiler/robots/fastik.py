@@ -33,6 +33,11 @@ def _acos(x: float) -> float:
 
 def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
     a1, a2, b, c1, c2, c3, c4 = p[0], p[1], p[2], p[3], p[4], p[5], p[6]
+    diagonal = True
+    for j in range(6):
+        for k in range(6):
+            if j != k and cinv[j, k] != 0.0:
+                diagonal = False
     cx, cy, cz = t[0, 3] - c4 * t[0, 2], t[1, 3] - c4 * t[1, 2], t[2, 3] - c4 * t[2, 2]
     rho2 = cx * cx + cy * cy - b * b
     nx1 = math.sqrt(rho2) - a1 if rho2 >= 0 else math.nan
@@ -79,17 +84,22 @@ def _opw_one(p, sign, offset, cinv, t, out):  # type: ignore[no-untyped-def]
             a00 = k4 * r00 + s4 * r10
             a10 = -s4 * r00 + k4 * r10
             t6 = math.atan2(a10, k5 * a00 - s5 * r20)
-            _store(out[4 * w + i], (th1[i], th2[i], th3[i], t4, t5, t6), sign, offset, cinv)
+            _store(out[4 * w + i], (th1[i], th2[i], th3[i], t4, t5, t6), sign, offset, cinv, diagonal)
 
 
-def _store(row, theta, sign, offset, cinv):  # type: ignore[no-untyped-def]
+def _store(row, theta, sign, offset, cinv, diagonal):  # type: ignore[no-untyped-def]
     """row = cinv @ ((theta - offset) * sign): OPW angles to controller values (all NaN when
-    the branch does not exist)."""
+    the branch does not exist). diagonal: cinv has no off-diagonal entry (then the one term
+    of each sum directly: the same operations, 0.0 + c·(θ - offset)·sign, without the scan)."""
     for k in range(6):
         if math.isnan(theta[k]):
             for j in range(6):
                 row[j] = math.nan
             return
+    if diagonal:
+        for j in range(6):
+            row[j] = 0.0 + cinv[j, j] * (theta[j] - offset[j]) * sign[j]
+        return
     for j in range(6):
         acc = 0.0
         for k in range(6):
@@ -132,7 +142,12 @@ def opw_batch(p: OpwParams, poses: np.ndarray) -> np.ndarray:
 
 
 def _wrap(x):  # type: ignore[no-untyped-def]
-    return (x + math.pi) % (2 * math.pi) - math.pi
+    """(x + π) % 2π - π; the modulo only outside [0, 2π), where it is not the identity (the
+    usual case, an atan2 angle, skips the fmod: the same float either way)."""
+    y = x + math.pi
+    if 0.0 <= y < 2 * math.pi:
+        return y - math.pi
+    return y % (2 * math.pi) - math.pi
 
 
 def _ur_one(p, t, out):  # type: ignore[no-untyped-def]

@@ -21,6 +21,7 @@ import itertools
 import math
 from dataclasses import dataclass
 from enum import Enum
+from typing import Any
 
 import numpy as np
 
@@ -175,6 +176,32 @@ def _has_equivalent(robot, q: np.ndarray) -> bool:  # type: ignore[no-untyped-de
 
 
 def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Config | None = None) -> IkResult:  # type: ignore[no-untyped-def]
+    fast = robot._fast
+    if fast is None:
+        fast = robot._fast = _fast_solver(robot)
+    if fast and (fast.compiled is not None or fast.kernel.prefer_compiled(1)):
+        res: IkResult | None = fast.solve(robot, pose, seed, config)
+        if res is not None:
+            return res
+    return solve_exact(robot, pose, seed, config)
+
+
+def _fast_solver(robot) -> Any:  # type: ignore[no-untyped-def]
+    """fastsolve's compiled pass for closed-form 6R arms (False for every other robot)."""
+    from rmot.compiler.robots.closed_form import ClosedForm
+
+    closed_form = robot._closed_form
+    if not isinstance(closed_form, ClosedForm) or not closed_form.branch:
+        return False
+    from rmot.compiler.robots.fastsolve import FastSolver
+
+    solver = FastSolver(robot, closed_form)
+    return solver if solver.usable else False
+
+
+def solve_exact(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Config | None = None) -> IkResult:  # type: ignore[no-untyped-def]
+    """`solve` step by step in numpy and pinocchio: the reference of fastsolve's compiled pass,
+    and the path of every pose that pass hands back."""
     target = _check_pose(pose)
     seed_q = np.zeros(robot.dof) if seed is None else np.asarray(seed, dtype=float).reshape(robot.dof)
     raw = _candidates(robot, target, seed_q)

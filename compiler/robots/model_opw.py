@@ -192,11 +192,10 @@ def opw_solver_for(robot: Robot) -> tuple[Callable[[np.ndarray], np.ndarray], Ca
     params, jmap, b_mat, f_mat = found
     from rmot.compiler.robots import fastik
 
-    args = fastik.opw_kernel_args(params, jmap)
-    b_inv, f_inv = np.linalg.inv(b_mat), np.linalg.inv(f_mat)
+    from rmot.compiler.robots.branches import opw_branch_arrays
+    from rmot.compiler.robots.closed_form import ClosedForm
 
-    def closed_form(poses: np.ndarray) -> np.ndarray:
-        return fastik.opw_solve(args, b_inv @ poses @ f_inv)
-
+    closed_form = ClosedForm("opw", fastik.opw_kernel_args(params, jmap), np.linalg.inv(b_mat),
+                             np.linalg.inv(f_mat), opw_branch_arrays(params, jmap))
     branch_fn: Callable[[np.ndarray], ir.Config] = opw_branch_fn(params, jmap)
     return closed_form, branch_fn, _row_branches(opw_rows=True, j5_sign=jmap.sign[4])

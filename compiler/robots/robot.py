@@ -104,6 +104,7 @@ class Robot:
         self._chain: Chain = chain_of(model)
         self._dls_args: tuple[Any, ...] | None = None  # filled on first numeric IK
         self._restarts: np.ndarray | None = None  # numeric IK restart seeds, drawn once
+        self._fast: Any = None  # ik's compiled single-pose solver (fastsolve), made on first use
         self._solid_joint = np.array([s.joint_id for s in solids], dtype=int)
         self._solid_place = np.array([s.placement.matrix() for s in solids]).reshape(-1, 4, 4)
         self._solid_se3 = [pin.SE3(m) for m in self._solid_place]
@@ -183,8 +184,7 @@ class Robot:
     def ik(self, pose: np.ndarray, seed: np.ndarray | None = None,
            config: ir.Config | None = None) -> IkResult:
         """Every solution of the flange pose within limits, nearest to seed first -> IkResult."""
-        from rmot.compiler.robots.ik import solve
-
+        solve = _IK_SOLVE[0] if _IK_SOLVE else _ik_solve()  # no import statement per call
         return solve(self, pose, seed, config)
 
     def ik_batch(self, poses: np.ndarray, seed: np.ndarray | None = None) -> np.ndarray:
@@ -202,6 +202,16 @@ class Robot:
         if self._closed_form is None:
             raise ValueError(f"{self.name} has no closed-form IK")
         return self._closed_form(np.asarray(poses, dtype=float).reshape(-1, 4, 4))
+
+
+_IK_SOLVE: list[Callable[..., IkResult]] = []  # ik.solve, imported on the first Robot.ik
+
+
+def _ik_solve() -> Callable[..., IkResult]:
+    from rmot.compiler.robots.ik import solve
+
+    _IK_SOLVE.append(solve)
+    return solve
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:

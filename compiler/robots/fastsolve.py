@@ -1,0 +1,450 @@
+# mypy: disable-error-code="no-untyped-call"
+# (numba kernels: untyped on purpose, numba types them; they call each other by plain name)
+"""`Robot.ik` of closed-form arms in one compiled pass (numba), for processes that solve many
+single poses (the planner, the CLI's batch commands).
+
+The pass does what `ik.solve` does, in the same order and with the same arithmetic for every
+value it returns: the closed form (fastik's kernel), FK verification of each branch, the
+distinct candidates modulo 2π, each one's branch, every 2π-equivalent within the limits in
+itertools.product order, the config filter, the stable sort by distance from the seed, and a
+test that the first solution is not singular. The joint values and branch names are those of
+`ik.solve`; so the pass only decides what is clear by a margin and hands every other pose
+back to `ik.solve` whole (return -1):
+
+- FK here sums in another order than numpy's matmul (~1e-16): a branch is accepted when its
+  error is below half the tolerance, rejected when above 2e-4 (ik.solve polishes up to 1e-4),
+  else the pose goes back;
+- a wrist near its singularity (|sin J5| <= 2e-7; ik.solve keeps the seed's J4 below 1e-7),
+  a branch quantity within 1e-10 of its boundary (the sine here may differ from numpy's in
+  the last bit), no verified or no in-limit solution (the messages are ik.solve's), no branch
+  left after the config filter, or a rotation near the orthonormality bound go back;
+- singular: the smallest singular value of the reach-scaled Jacobian is at least
+  |det J| / |J|_F^(n-1) (every singular value is at most the Frobenius norm); when that bound
+  is above twice SINGULAR_SIGMA the pose is not singular, else the caller asks pinocchio and
+  the SVD exactly as `ik._is_singular` does (flag 1).
+
+The interpreted form is the same function (Kernel); `ik.solve` only calls the compiled one,
+once a process has solved SOLVE_ONE.threshold poses (so `rmot robots ik` stays numba-free).
+"""
+
+from __future__ import annotations
+
+import math
+from operator import itemgetter
+from typing import Any
+
+import numpy as np
+
+from rmot.compiler.jit import Kernel
+from rmot.compiler.robots import fastik, ik
+from rmot.compiler.robots.fastfk import FK_ERROR_ROWS, _fk_error_rows
+from rmot.compiler.robots.fastik import _opw_one, _ur_one
+
+__all__ = ["SOLVE_ONE"]
+
+_TOLS = (ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA)
+
+_TWO_PI = 2 * math.pi
+
+
+def _branch_code(kind, bpar, crows, q):  # type: ignore[no-untyped-def]
+    """4·shoulder + 2·elbow + wrist (1 = BACK / DOWN / FLIP) as branches.config_of names q,
+    or -1 when a quantity lies within 1e-10 of its boundary (ik.solve decides those)."""
+    if kind == 0:  # branches.opw_branch_fn
+        acc2 = 0.0
+        acc3 = 0.0
+        for j in range(6):
+            if crows[0, j] != 0.0:
+                acc2 += crows[0, j] * q[j]
+            if crows[1, j] != 0.0:
+                acc3 += crows[1, j] * q[j]
+        t2 = bpar[0] * acc2 + bpar[2]
+        t3 = bpar[1] * acc3 + bpar[3]
+        shoulder = bpar[4] + bpar[5] * math.sin(t2) + bpar[6] * math.sin(t2 + t3 + bpar[7])
+        elbow = math.sin(t3 + bpar[7])
+    else:  # urik.ur_branch_quantities
+        x1 = (bpar[0] * math.cos(q[1]) + bpar[1] * math.cos(q[1] + q[2])
+              + bpar[2] * math.sin(q[1] + q[2] + q[3]))
+        shoulder = -x1
+        elbow = math.sin(q[2])
+    wrist = math.sin(q[4])
+    if abs(shoulder) < 1e-10 or abs(elbow) < 1e-10 or abs(wrist) < 1e-10:
+        return -1
+    return (4 if shoulder < 0.0 else 0) + (2 if elbow < 0.0 else 0) + (1 if wrist < 0.0 else 0)
+
+
+def _jacobian_into(placements, axes, prismatic, flange, qm, jac, frames):  # type: ignore[no-untyped-def]
+    """jac (6,n): the world-frame geometric Jacobian of the flange (fastdls._fk_jac's columns:
+    linear rows first); frames (n,6) scratch: each joint's world axis and origin."""
+    n = qm.shape[0]
+    t00, t01, t02, t03 = 1.0, 0.0, 0.0, 0.0
+    t10, t11, t12, t13 = 0.0, 1.0, 0.0, 0.0
+    t20, t21, t22, t23 = 0.0, 0.0, 1.0, 0.0
+    for i in range(n + 1):
+        p = flange if i == n else placements[i]
+        p00, p01, p02, p03 = p[0, 0], p[0, 1], p[0, 2], p[0, 3]
+        p10, p11, p12, p13 = p[1, 0], p[1, 1], p[1, 2], p[1, 3]
+        p20, p21, p22, p23 = p[2, 0], p[2, 1], p[2, 2], p[2, 3]
+        t00, t01, t02, t03 = (t00 * p00 + t01 * p10 + t02 * p20, t00 * p01 + t01 * p11 + t02 * p21,
+                              t00 * p02 + t01 * p12 + t02 * p22, t00 * p03 + t01 * p13 + t02 * p23 + t03)
+        t10, t11, t12, t13 = (t10 * p00 + t11 * p10 + t12 * p20, t10 * p01 + t11 * p11 + t12 * p21,
+                              t10 * p02 + t11 * p12 + t12 * p22, t10 * p03 + t11 * p13 + t12 * p23 + t13)
+        t20, t21, t22, t23 = (t20 * p00 + t21 * p10 + t22 * p20, t20 * p01 + t21 * p11 + t22 * p21,
+                              t20 * p02 + t21 * p12 + t22 * p22, t20 * p03 + t21 * p13 + t22 * p23 + t23)
+        if i == n:
+            break
+        x, y, z = axes[i, 0], axes[i, 1], axes[i, 2]
+        frames[i, 0] = t00 * x + t01 * y + t02 * z
+        frames[i, 1] = t10 * x + t11 * y + t12 * z
+        frames[i, 2] = t20 * x + t21 * y + t22 * z
+        if prismatic[i]:
+            d = qm[i]
+            t03 += frames[i, 0] * d
+            t13 += frames[i, 1] * d
+            t23 += frames[i, 2] * d
+        else:
+            c, s = math.cos(qm[i]), math.sin(qm[i])
+            v = 1.0 - c
+            r00, r01, r02 = c + x * x * v, x * y * v - z * s, x * z * v + y * s
+            r10, r11, r12 = y * x * v + z * s, c + y * y * v, y * z * v - x * s
+            r20, r21, r22 = z * x * v - y * s, z * y * v + x * s, c + z * z * v
+            t00, t01, t02 = (t00 * r00 + t01 * r10 + t02 * r20, t00 * r01 + t01 * r11 + t02 * r21,
+                             t00 * r02 + t01 * r12 + t02 * r22)
+            t10, t11, t12 = (t10 * r00 + t11 * r10 + t12 * r20, t10 * r01 + t11 * r11 + t12 * r21,
+                             t10 * r02 + t11 * r12 + t12 * r22)
+            t20, t21, t22 = (t20 * r00 + t21 * r10 + t22 * r20, t20 * r01 + t21 * r11 + t22 * r21,
+                             t20 * r02 + t21 * r12 + t22 * r22)
+        frames[i, 3], frames[i, 4], frames[i, 5] = t03, t13, t23
+    for i in range(n):
+        ax, ay, az = frames[i, 0], frames[i, 1], frames[i, 2]
+        if prismatic[i]:
+            jac[0, i], jac[1, i], jac[2, i] = ax, ay, az
+            jac[3, i] = jac[4, i] = jac[5, i] = 0.0
+        else:
+            dx, dy, dz = t03 - frames[i, 3], t13 - frames[i, 4], t23 - frames[i, 5]
+            jac[0, i] = ay * dz - az * dy
+            jac[1, i] = az * dx - ax * dz
+            jac[2, i] = ax * dy - ay * dx
+            jac[3, i], jac[4, i], jac[5, i] = ax, ay, az
+
+
+def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma,  # type: ignore[no-untyped-def]
+                  jac, a, frames):
+    """True when the smallest singular value of the reach-scaled Jacobian is surely >= sigma
+    (by |det J| / |J|_F^(n-1) > 2 sigma); False = ask the SVD. jac, a (6,6), frames (6,6):
+    scratch."""
+    n = qm.shape[0]
+    if n != 6:
+        return False
+    _jacobian_into(placements, axes, prismatic, flange, qm, jac, frames)
+    scale = max(reach, 1e-3)
+    frob = 0.0
+    for r in range(6):
+        for c in range(6):
+            v = jac[r, c]
+            if coupled:
+                v = 0.0
+                for k in range(6):
+                    v += jac[r, k] * coupling[k, c]
+            if r >= 3:
+                v *= scale
+            a[r, c] = v
+            frob += v * v
+    det = 1.0
+    for c in range(6):  # Gaussian elimination with partial pivoting
+        piv = c
+        for r in range(c + 1, 6):
+            if abs(a[r, c]) > abs(a[piv, c]):
+                piv = r
+        if a[piv, c] == 0.0:
+            return False
+        if piv != c:
+            det = -det
+            for k in range(6):
+                a[c, k], a[piv, k] = a[piv, k], a[c, k]
+        det *= a[c, c]
+        for r in range(c + 1, 6):
+            f = a[r, c] / a[c, c]
+            for k in range(c, 6):
+                a[r, k] -= f * a[c, k]
+    return abs(det) > 2.0 * sigma * math.sqrt(frob) ** (n - 1)
+
+
+def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type: ignore[no-untyped-def]
+              placements, axes, prismatic, flange, coupling, want, fwork, opts, iwork, dist, branch_work,
+              out, codes):
+    """One pose -> (m, flag): out[:m] the solutions sorted as ik.solve sorts them, codes[:m]
+    their branch codes; flag 1 = the caller must run the exact singularity test on out[0].
+    m = -1: hand the pose to ik.solve (see the module docstring). consts: lo, hi, revolute
+    (1.0 / 0.0) per joint, then reach, POS_TOL, ROT_TOL, SINGULAR_SIGMA, coupled, kind
+    (0 OPW, 1 UR). Scratch: fwork (35 + rows, dof): raw (8,dof), 19 rows, the 8 rows mod 2π, then
+    out's rows reordered; opts (dof, max equivalents per joint); iwork: counts (dof), three flag rows (3x8),
+    the order and the codes of out's rows; dist with out's rows; branch_work (dof + 16, 8):
+    the branches' FK (fastfk._fk_error_rows)."""
+    dof = seed.shape[0]
+    rows = out.shape[0]
+    lo, hi, revolute = consts[0:dof], consts[dof:2 * dof], consts[2 * dof:3 * dof]
+    reach, pos_tol, rot_tol, sigma = consts[3 * dof], consts[3 * dof + 1], consts[3 * dof + 2], consts[3 * dof + 3]
+    coupled = consts[3 * dof + 4] != 0.0
+    kind = int(consts[3 * dof + 5])
+    raw, scratch, wrapped, ordered = fwork[0:8], fwork[8:27], fwork[27:35], fwork[35:35 + rows]
+    counts, flags = iwork[0:dof], iwork[dof:dof + 24].reshape((3, 8))
+    order, ordered_codes = iwork[dof + 24:dof + 24 + rows], iwork[dof + 24 + rows:dof + 24 + 2 * rows]
+    # the pose: finite, rotation orthonormal (ik._check_pose raises otherwise)
+    for r in range(4):
+        for c in range(4):
+            if not math.isfinite(target[r, c]):
+                return -1, 0
+    for r in range(3):
+        for c in range(3):
+            dot = target[r, 0] * target[c, 0] + target[r, 1] * target[c, 1] + target[r, 2] * target[c, 2]
+            if abs(dot - (1.0 if r == c else 0.0)) > 0.5e-6:
+                return -1, 0
+    if kind == 0:
+        _opw_one(a0, a1, a2, a3, local, raw)
+    else:
+        _ur_one(a0, local, raw)
+    qm = scratch[0]
+    keep = flags[0]
+    verified = flags[1]
+    for b in range(8):
+        keep[b] = 0
+    n_keep = 0
+    columns, t, err = branch_work[0:dof], branch_work[dof:dof + 14], branch_work[dof + 14:dof + 16]
+    finite = flags[2]
+    for b in range(8):
+        finite[b] = 1
+        for j in range(dof):
+            if not math.isfinite(raw[b, j]):
+                finite[b] = 0
+        for j in range(dof):
+            if not finite[b]:
+                columns[j, b] = 0.0  # FK'd with the others, not looked at
+            elif coupled:
+                acc = 0.0
+                for k in range(dof):
+                    acc += coupling[j, k] * raw[b, k]
+                columns[j, b] = acc
+            else:
+                columns[j, b] = raw[b, j]
+    _fk_error_rows(placements, axes, prismatic, flange, columns, target, t, err)
+    for b in range(8):
+        if not finite[b]:
+            continue
+        dp2, dr2 = err[0, b], err[1, b]
+        dp, dr = math.sqrt(dp2), math.sqrt(dr2 / 2.0)
+        if dp <= pos_tol / 2 and dr <= rot_tol / 2:
+            if dof == 6 and abs(math.sin(raw[b, 4])) <= 2e-7:
+                return -1, 0  # the wrist singularity: ik.solve keeps the seed's J4
+            keep[b] = 1
+            n_keep += 1
+        elif dp < 2e-4 and dr < 2e-4:
+            return -1, 0  # a near miss: ik.solve polishes it
+    if n_keep == 0:
+        return -1, 0
+    # distinct modulo 2π (ik._distinct: np.remainder, then the wrapped gap; a candidate is
+    # dropped when it equals any earlier verified one, dropped or not)
+    for b in range(8):
+        verified[b] = keep[b]
+        if keep[b]:
+            for j in range(dof):
+                w = np.fmod(raw[b, j], _TWO_PI)
+                wrapped[b, j] = w + _TWO_PI if w < 0.0 else w
+    for b in range(8):
+        if not verified[b]:
+            continue
+        for e in range(b):
+            if not verified[e]:
+                continue
+            worst = 0.0
+            for j in range(dof):
+                gap = abs(wrapped[e, j] - wrapped[b, j])
+                d = min(gap, _TWO_PI - gap)
+                if d > worst:
+                    worst = d
+            if worst <= 1e-9:
+                keep[b] = 0
+                break
+    m = 0
+    n_groups = 0
+    for b in range(8):
+        if not keep[b]:
+            continue
+        # ik._equivalents: every q + 2πk within the limits, itertools.product order
+        empty = False
+        total = 1
+        for j in range(dof):
+            v = raw[b, j]
+            first = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI if revolute[j] != 0.0 else v
+            if not (lo[j] - 1e-12 <= first and first <= hi[j] + 1e-12):
+                empty = True
+                break
+            value = min(max(first, lo[j]), hi[j])
+            opts[j, 0] = value
+            k = 1
+            while revolute[j] != 0.0 and value + _TWO_PI <= hi[j] + 1e-12:
+                value = min(value + _TWO_PI, hi[j])
+                opts[j, k] = value
+                k += 1
+            counts[j] = k
+            total *= k
+        if empty:
+            continue
+        code = _branch_code(kind, bpar, crows, raw[b])
+        if code < 0:
+            return -1, 0
+        n_groups += 1
+        if ((want[0] >= 0 and want[0] != code // 4) or (want[1] >= 0 and want[1] != (code // 2) % 2)
+                or (want[2] >= 0 and want[2] != code % 2)):
+            continue
+        digits = flags[2, :dof]  # (finite's row, no longer read) an odometer, last joint fastest
+        for j in range(dof):
+            digits[j] = 0
+        for idx in range(total):
+            for j in range(dof):
+                out[m + idx, j] = opts[j, digits[j]]
+            codes[m + idx] = code
+            j = dof - 1
+            while j >= 0:
+                digits[j] += 1
+                if digits[j] < counts[j]:
+                    break
+                digits[j] = 0
+                j -= 1
+        m += total
+    if n_groups == 0 or m == 0:
+        return -1, 0  # out of limits, or no branch as configured: ik.solve's messages
+    # stable sort by the distance from the seed (ik.solve: np.argsort(kind="stable"))
+    for i in range(m):
+        acc = 0.0
+        for j in range(dof):
+            d = out[i, j] - seed[j]
+            acc += d * d
+        dist[i] = math.sqrt(acc)
+    if m > 48:
+        order[:m] = np.argsort(dist[:m], kind="mergesort")
+    else:  # insertion sort of the indices: stable, no allocation
+        for i in range(m):
+            k = i
+            while k > 0 and dist[order[k - 1]] > dist[i]:
+                order[k] = order[k - 1]
+                k -= 1
+            order[k] = i
+    for i in range(m):
+        k = order[i]
+        for j in range(dof):
+            ordered[i, j] = out[k, j]
+        ordered_codes[i] = codes[k]
+    for i in range(m):
+        for j in range(dof):
+            out[i, j] = ordered[i, j]
+        codes[i] = ordered_codes[i]
+    for j in range(dof):
+        if coupled:
+            acc = 0.0
+            for k in range(dof):
+                acc += coupling[j, k] * out[0, k]
+            qm[j] = acc
+        else:
+            qm[j] = out[0, j]
+    flag = 0 if _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma,
+                              scratch[1:7], scratch[7:13], scratch[13:19]) else 1
+    return m, flag
+
+
+SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS, Kernel(_branch_code),
+                                    Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
+                   threshold=200)
+
+
+class FastSolver:
+    """The arrays of one closed-form robot for SOLVE_ONE, and the call around it."""
+
+    def __init__(self, robot, closed_form) -> None:  # type: ignore[no-untyped-def]
+        from rmot.compiler.robots.branches import config_of
+
+        chain = robot._chain
+        dof = robot.dof
+        self.kind = 0 if closed_form.kind == "opw" else 1
+        # one signature for both kinds (numba types both calls): UR's unused arrays are dummies
+        args = tuple(closed_form.args)
+        args = args if len(args) == 4 else (args[0], np.zeros(6), np.zeros(6), np.eye(6))
+        self.args = tuple(np.array(a, dtype=float) for a in args)
+        self.closed_form = closed_form
+        self.bpar, self.crows = (np.array(a, dtype=float) for a in closed_form.branch)
+        self.lo = np.array(robot.joint_limits[:, 0], dtype=float)  # writable copies: one numba type
+        self.hi = np.array(robot.joint_limits[:, 1], dtype=float)
+        self.revolute = np.array(robot._revolute, dtype=np.bool_)
+        self.placements = np.array(chain.placements, dtype=float)
+        self.axes = np.array(chain.axes, dtype=float)
+        self.prismatic = np.array(chain.prismatic, dtype=np.bool_)
+        self.flange = np.array(robot._flange_in_joint, dtype=float)
+        self.coupled = robot._coupling is not None
+        self.coupling = np.array(robot._coupling, dtype=float) if self.coupled else np.eye(dof)
+        self.reach = float(robot.reach)
+        span = np.where(self.revolute, np.floor((self.hi - self.lo + 2e-12) / _TWO_PI), 0.0)
+        self.per_joint = int(span.max()) + 1
+        self.max_rows = 8 * int(np.prod(span + 1))
+        rows = self.max_rows
+        self.consts = np.concatenate([self.lo, self.hi, self.revolute.astype(float),
+                                      [self.reach, *_TOLS, float(self.coupled), float(self.kind)]])
+        self.fwork = np.empty((35 + rows, dof))
+        self.iwork = np.zeros(dof + 24 + 2 * rows, dtype=np.int64)
+        self.dist = np.empty(rows)
+        self.out = np.empty((rows, dof))  # the kernel's answer, copied out per call
+        self.codes = np.empty(rows, dtype=np.int64)
+        self.branch_work = np.empty((dof + 16, 8))
+        self.opts = np.empty((dof, self.per_joint + 1))
+        self.zeros = np.zeros(dof)
+        self.any = np.full(3, -1, dtype=np.int64)
+        self.compiled: Any = None  # SOLVE_ONE's dispatcher and its argument groups, on first use
+        self.head: tuple[Any, ...] = ()
+        self.body: tuple[Any, ...] = ()
+        self.work: tuple[Any, ...] = ()
+        self.configs = tuple(config_of(-1.0 if c & 4 else 1.0, -1.0 if c & 2 else 1.0, -1.0 if c & 1 else 1.0)
+                             for c in range(8))  # the same objects as robot.branch gives
+        self.config_array = np.empty(8, dtype=object)
+        self.config_array[:] = self.configs
+        self.usable = robot._flange_joint == dof and dof == 6
+        self.kernel = SOLVE_ONE
+
+    def want(self, config) -> np.ndarray:  # type: ignore[no-untyped-def]
+        from rmot.compiler import ir
+
+        if config is None:
+            return self.any
+        return np.array([-1 if config.shoulder is None else int(config.shoulder is ir.Shoulder.BACK),
+                         -1 if config.elbow is None else int(config.elbow is ir.Elbow.DOWN),
+                         -1 if config.wrist is None else int(config.wrist is ir.Wrist.FLIP)], dtype=np.int64)
+
+    def solve(self, robot, pose, seed, config):  # type: ignore[no-untyped-def]
+        """IkResult, or None when ik.solve must decide (see the module docstring)."""
+        target = np.asarray(pose, dtype=float)
+        if target.shape != (4, 4):
+            return None
+        seed_q = self.zeros if seed is None else np.asarray(seed, dtype=float).reshape(robot.dof)
+        cf = self.closed_form
+        local = target if cf.pre is None and cf.post is None else np.ascontiguousarray(cf.local(target[None])[0])
+        out, codes = self.out, self.codes
+        if self.compiled is None:
+            self.compiled = SOLVE_ONE.jit()
+            self.head = (*self.args, self.bpar, self.crows)
+            self.body = (self.consts, self.placements, self.axes, self.prismatic, self.flange, self.coupling)
+            self.work = (self.fwork, self.opts, self.iwork, self.dist, self.branch_work)
+        m, flag = self.compiled(*self.head, local, target, seed_q, *self.body,
+                                self.any if config is None else self.want(config), *self.work, out, codes)
+        if m < 0:
+            return None
+        qs = out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
+        qs.setflags(write=False)
+        sols = tuple(qs)
+        configs = self.configs
+        if m <= 16:
+            brs = (configs[int(codes[0])],) if m == 1 else itemgetter(*codes[:m].tolist())(configs)
+        else:  # many 2π-equivalents (joints beyond ±180°): one numpy gather
+            brs = tuple(self.config_array[codes[:m]].tolist())
+        if flag and ik._is_singular(robot, sols[0]):
+            return ik.IkResult(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
+        return ik.IkResult(ik.IkStatus.OK, sols, brs)
+
+
