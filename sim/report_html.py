@@ -236,7 +236,7 @@ def _section(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
 
 
 def _safe(parts: dict[Any, Callable[[], Any]], key: Any, problems: list[Diagnostic]) -> Any:
-    from rmot.sim.render.codes_views import PART_MISSING
+    from rmot.sim.render.codes import REPORT_PART_MISSING as PART_MISSING
 
     make = parts.get(key if not isinstance(key, tuple) else key[0])
     if make is None:

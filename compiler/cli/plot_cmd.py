@@ -39,13 +39,13 @@ def fail(*diagnostics: Any) -> None:
 
 def write_or_fail(path: str, data: bytes) -> None:
     from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.sim.render import codes_views
+    from rmot.sim.render import codes as picture_codes
     from rmot.compiler.atomic import write_bytes
 
     try:
         write_bytes(path, data)
     except OSError as exc:
-        fail(Diagnostic(codes_views.OUTPUT_FAILED, Severity.ERROR,
+        fail(Diagnostic(picture_codes.VIEW_OUTPUT_FAILED, Severity.ERROR,
                         f"output file must be writable (got '{path}': {exc.strerror or exc})", None))
 
 
