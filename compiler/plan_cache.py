@@ -52,7 +52,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MAX_BYTES", "cache_dir", "cached_plan", "evict", "eviction_due", "key_of", "plan_by_key",
-    "plan_key", "source_digest",
+    "plan_key", "source_digest", "write_entry",
 ]
 
 FORMAT = "rmot-plan-cache/1"
@@ -256,11 +256,19 @@ def _write(path: Path, key: str, plan: Plan) -> None:
     members: dict[str, Any] = {"__meta__": np.frombuffer(meta, dtype=np.uint8)}
     members.update({f"a{i}": a for i, a in enumerate(arrays)})
     np.savez(buffer, **members)
+    write_entry(path, buffer.getvalue())
+
+
+def write_entry(path: Path, data: bytes) -> None:
+    """A cache entry written atomically: a temporary `.tmp-*` file beside it (evict removes
+    those a killed run left), renamed onto it. Not compiler/atomic.py: an entry is not the
+    user's output, so no fsync (a torn entry is detected and rebuilt) and no umask mode (the
+    cache is the user's own; mkstemp's 0600)."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".npz", dir=path.parent)
+    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=path.suffix, dir=path.parent)
     try:
         with os.fdopen(fd, "wb") as f:
-            f.write(buffer.getbuffer())
+            f.write(data)
         os.replace(tmp, path)
     except BaseException:
         _remove(Path(tmp))

@@ -26,7 +26,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import tempfile
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -160,15 +159,9 @@ def _write(entry: Path, key: str, plan_key: str, result: FrontendResult, plan: P
     data = json.dumps({"format": FORMAT, "key": key, "plan": plan_key,
                        "files": [_stamp(p) for p in files], "sources": list(result.sources),
                        "doc": doc}, separators=(",", ":"), allow_nan=False).encode("utf-8")
-    entry.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".json", dir=entry.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, entry)
-    except BaseException:
-        _remove(Path(tmp))
-        raise
+    from rmot.compiler.plan_cache import write_entry
+
+    write_entry(entry, data)
 
 
 def _read(entry: Path, key: str) -> tuple[FrontendResult, Plan] | None:

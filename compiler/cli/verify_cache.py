@@ -38,7 +38,6 @@ import hashlib
 import importlib.util
 import json
 import os
-import tempfile
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -179,15 +178,9 @@ def _write(path: Path, key: str, plan: Plan, report: Report, started: float) -> 
     files = [[p, _digest(p)] for p in paths]
     data = json.dumps({"format": FORMAT, "key": key, "files": files, "doc": doc},
                       separators=(",", ":"), allow_nan=False).encode("utf-8")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=".json", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        _remove(Path(tmp))
-        raise
+    from rmot.compiler.plan_cache import write_entry
+
+    write_entry(path, data)
 
 
 def _read(path: Path, key: str, plan: Plan) -> Report | None:
