@@ -18,10 +18,10 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner, Result
 
 from rmot.compiler import frontend
-from rmot.compiler.cli import cli, load_cache
+from rmot.compiler.cli import load_cache
+from tests.core.cache_cli import Counter, count_calls, run
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = """import "lib.rmot"
@@ -36,11 +36,6 @@ program three on r1 {
 }
 """
 LIB = "const lift = 100 mm\n"
-
-
-class Counter:
-    def __init__(self) -> None:
-        self.calls = 0
 
 
 def write_old(path: Path, text: str) -> None:
@@ -63,24 +58,7 @@ def project(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
 
 @pytest.fixture
 def front_ends(monkeypatch: pytest.MonkeyPatch) -> Counter:
-    counter = Counter()
-    real = frontend.load_program
-
-    def counted(*args: object, **kwargs: object) -> object:
-        counter.calls += 1
-        return real(*args, **kwargs)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(frontend, "load_program", counted)
-    return counter
-
-
-def run(project: Path, *args: str) -> Result:
-    cwd = os.getcwd()
-    os.chdir(project)
-    try:
-        return CliRunner().invoke(cli, list(args))
-    finally:
-        os.chdir(cwd)
+    return count_calls(monkeypatch, frontend, "load_program")
 
 
 def entries(project: Path) -> list[Path]:

@@ -16,9 +16,9 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from click.testing import CliRunner, Result
 
-from rmot.compiler.cli import cli, verify_cache
+from rmot.compiler.cli import verify_cache
+from tests.core.cache_cli import Counter, count_calls, run
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -46,11 +46,6 @@ POST = "at pose(x=-700mm, y=300mm, z=800mm)"
 POST_MOVED = "at pose(x=300mm, y=-500mm, z=800mm)"  # into the arm's way to the pallet
 
 
-class Counter:
-    def __init__(self) -> None:
-        self.calls = 0
-
-
 @pytest.fixture(scope="module")
 def project(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
     """A project folder with the program and its cell; the plan cache of the module's runs."""
@@ -67,24 +62,7 @@ def project(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
 @pytest.fixture
 def verifications(monkeypatch: pytest.MonkeyPatch) -> Counter:
     """Counts the verifications that really run."""
-    counter = Counter()
-    real = verify_cache._verify
-
-    def counted(*args: object, **kwargs: object) -> object:
-        counter.calls += 1
-        return real(*args, **kwargs)  # type: ignore[arg-type]
-
-    monkeypatch.setattr(verify_cache, "_verify", counted)
-    return counter
-
-
-def run(project: Path, *args: str) -> Result:
-    cwd = os.getcwd()
-    os.chdir(project)  # relative paths, as a user types them: prog.rmot:14:3
-    try:
-        return CliRunner().invoke(cli, list(args))
-    finally:
-        os.chdir(cwd)
+    return count_calls(monkeypatch, verify_cache, "_verify")
 
 
 def entries(project: Path) -> list[Path]:

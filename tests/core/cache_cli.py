@@ -1,0 +1,41 @@
+"""Shared by the verify- and load-cache tests: run the CLI from a project folder (relative
+paths, as a user types them) and count how often a stage really runs."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any
+
+import pytest
+from click.testing import CliRunner, Result
+
+from rmot.compiler.cli import cli
+
+
+class Counter:
+    def __init__(self) -> None:
+        self.calls = 0
+
+
+def count_calls(monkeypatch: pytest.MonkeyPatch, module: Any, name: str) -> Counter:
+    """Replace module.name by a wrapper that counts its calls, then calls the original."""
+    counter = Counter()
+    real = getattr(module, name)
+
+    def counted(*args: object, **kwargs: object) -> object:
+        counter.calls += 1
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(module, name, counted)
+    return counter
+
+
+def run(project: Path, *args: str) -> Result:
+    """`rmot ARGS` with `project` as the working directory."""
+    cwd = os.getcwd()
+    os.chdir(project)
+    try:
+        return CliRunner().invoke(cli, list(args))
+    finally:
+        os.chdir(cwd)
