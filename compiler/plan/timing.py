@@ -30,6 +30,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rmot.compiler.plan.cubic import CubicSpline
+
 __all__ = [
     "ConstAccelTiming", "HoldPiece", "PathPiece", "Piece", "TimingError",
     "joint_move_piece", "path_piece", "stretched",
@@ -261,8 +263,6 @@ def path_piece(
     path = _PathSpline(ss, waypoints)
     spline = None
     if tcp is not None and tcp_speed is not None:
-        from scipy.interpolate import CubicSpline
-
         spline = CubicSpline(ss, tcp)
     n_int = len(ss) - 1
     f_int = np.ones(n_int) if vscale is None else np.minimum(vscale[:-1], vscale[1:])
@@ -308,16 +308,14 @@ def _arc_rates(spline, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # type:
 
 class _PathSpline:
     """q(s) and its first two derivatives: the not-a-knot cubic spline through the waypoints,
-    the same interpolation as toppra's SplineInterpolator default, built on scipy directly so
-    that timing never imports toppra (whose package and algorithm modules import matplotlib:
-    ~1 s of start-up for every command that plans; issue 18)."""
+    the same interpolation as toppra's SplineInterpolator default (scipy's CubicSpline), built
+    on numpy (compiler/plan/cubic.py) so that timing imports neither toppra (whose package
+    imports matplotlib) nor scipy.interpolate: ~1.4 s of start-up together (issue 18)."""
 
     def __init__(self, ss: np.ndarray, waypoints: np.ndarray) -> None:
-        from scipy.interpolate import CubicSpline
-
         self._constant = waypoints[0] if len(ss) == 1 else None
         if self._constant is None:
-            spline = CubicSpline(ss, waypoints, bc_type="not-a-knot")
+            spline = CubicSpline(ss, waypoints)
             self._orders = (spline, spline.derivative(), spline.derivative(2))
 
     def __call__(self, s: np.ndarray, order: int = 0) -> np.ndarray:

@@ -79,6 +79,7 @@ def test_check_without_cache_loads_no_plotting(env: dict[str, str], tmp_path: Pa
     assert "pinocchio" in names
     assert "matplotlib" not in names
     assert "numba" not in names  # a small grid: TOPP and IK kernels run in the interpreter
+    assert "scipy" not in names  # the path splines are numpy (compiler/plan/cubic.py)
 
 
 @pytest.mark.parametrize("command", [["check"], ["compile", "--target", "rapid", "-o", "OUT"]])
