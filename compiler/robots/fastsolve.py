@@ -30,7 +30,6 @@ once a process has solved SOLVE_ONE.threshold poses (so `rmot robots ik` stays n
 from __future__ import annotations
 
 import math
-from operator import itemgetter
 from typing import Any
 
 import numpy as np
@@ -39,6 +38,7 @@ from rmot.compiler.jit import Kernel
 from rmot.compiler.robots import fastik, ik
 from rmot.compiler.robots.fastfk import FK_ERROR_ROWS, _fk_error_rows
 from rmot.compiler.robots.fastik import _opw_one, _ur_one
+from rmot.compiler.robots.ik_rows import BranchRows, JointRows, Lazy
 
 __all__ = ["SOLVE_ONE"]
 
@@ -170,15 +170,125 @@ def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, re
     return abs(det) > 2.0 * sigma * math.sqrt(frob) ** (n - 1)
 
 
+def _expand(groups, n_groups, seed, out, codes, dist, digits):  # type: ignore[no-untyped-def]
+    """Every row of the first n_groups groups (solve_one's layout: code, row count, then per
+    joint its count of equivalents and their values) in ik._equivalents' order (itertools.product
+    over the joints, last fastest; groups in branch order), with its branch code and its distance
+    from the seed (the sum of squares in joint order, then the square root). digits: (dof,)
+    scratch. Returns the row count."""
+    dof = seed.shape[0]
+    per = (groups.shape[1] - 2 - dof) // dof
+    m = 0
+    for gi in range(n_groups):
+        g = groups[gi]
+        code = int(g[0])
+        for j in range(dof):
+            digits[j] = 0
+        for idx in range(int(g[1])):
+            acc = 0.0
+            for j in range(dof):
+                v = g[2 + dof + j * per + digits[j]]
+                out[m, j] = v
+                d = v - seed[j]
+                acc += d * d
+            dist[m] = math.sqrt(acc)
+            codes[m] = code
+            m += 1
+            j = dof - 1
+            while j >= 0:
+                digits[j] += 1
+                if digits[j] < g[2 + j]:
+                    break
+                digits[j] = 0
+                j -= 1
+    return m
+
+
+def _nearest_row(groups, n_groups, seed, row, digits, partial):  # type: ignore[no-untyped-def]
+    """The index (in `_expand`'s order) of the first row at the least distance from the seed
+    (the first row of a stable sort by `_expand`'s distances, with the same arithmetic), and
+    that row into row, without making the others.
+
+    A depth-first walk over each group's joints in `_expand`'s order: a row's sum of squares
+    is the sums over its first joints (partial: (dof,) scratch) plus the rest, the same sums
+    in the same order as `_expand`'s. A float sum of non-negative terms never decreases, so
+    once a prefix sum exceeds T = U·(1 + 1e-13), where U is the sum of some row (each group's
+    nearest option per joint), every row below it has a distance above √U's rounding, which
+    is at least the least distance: it can be neither the nearest nor tie with it, and the
+    walk skips it. digits: (dof,) scratch."""
+    dof = seed.shape[0]
+    per = (groups.shape[1] - 2 - dof) // dof
+    bound = math.inf
+    for gi in range(n_groups):  # U: a row of each group, its nearest option per joint
+        g = groups[gi]
+        acc = 0.0
+        for j in range(dof):
+            best_d = math.inf
+            for k in range(int(g[2 + j])):
+                d = abs(g[2 + dof + j * per + k] - seed[j])
+                if d < best_d:
+                    best_d = d
+            acc += best_d * best_d
+        if acc < bound:
+            bound = acc
+    limit = bound * (1.0 + 1e-13)
+    best = math.inf
+    first = -1
+    base = 0
+    for gi in range(n_groups):
+        g = groups[gi]
+        j = 0
+        digits[0] = 0
+        while True:
+            d = g[2 + dof + j * per + digits[j]] - seed[j]
+            acc = (0.0 if j == 0 else partial[j - 1]) + d * d
+            partial[j] = acc
+            if acc <= limit:
+                if j < dof - 1:
+                    j += 1
+                    digits[j] = 0
+                    continue
+                dist = math.sqrt(acc)
+                if dist < best:
+                    best = dist
+                    index = 0
+                    for i in range(dof):
+                        row[i] = g[2 + dof + i * per + digits[i]]
+                        index = index * int(g[2 + i]) + digits[i]
+                    first = base + index
+            digits[j] += 1  # the next option of this joint, or back up
+            while digits[j] >= g[2 + j]:
+                j -= 1
+                if j < 0:
+                    break
+                digits[j] += 1
+            if j < 0:
+                break
+        base += int(g[1])
+    return first
+
+
+def _group_of(groups, n_groups, index):  # type: ignore[no-untyped-def]
+    """The group of row `index` in `_expand`'s order."""
+    for gi in range(n_groups):
+        index -= int(groups[gi, 1])
+        if index < 0:
+            return gi
+    return -1
+
+
 def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type: ignore[no-untyped-def]
-              placements, axes, prismatic, flange, coupling, want, fwork, opts, iwork, dist, branch_work,
+              placements, axes, prismatic, flange, coupling, want, fwork, groups, iwork, dist, branch_work,
               out, codes):
-    """One pose -> (m, flag): out[:m] the solutions sorted as ik.solve sorts them, codes[:m]
-    their branch codes; flag 1 = the caller must run the exact singularity test on out[0].
+    """One pose -> (m, flag, first, n_groups): out[:m] the solutions sorted as ik.solve sorts
+    them, codes[:m] their branch codes, when first = -1; when m > 48 (many 2π-equivalents) only
+    the nearest in out[0] and its code in codes[0], first its index among all rows as `_expand`
+    makes them from groups[:n_groups] (the caller makes and sorts them only if asked:
+    ik_rows.Lazy); flag 1 = the caller must run the exact singularity test on the nearest row.
     m = -1: hand the pose to ik.solve (see the module docstring). consts: lo, hi, revolute
     (1.0 / 0.0) per joint, then reach, POS_TOL, ROT_TOL, SINGULAR_SIGMA, coupled, kind
     (0 OPW, 1 UR). Scratch: fwork (35 + rows, dof): raw (8,dof), 19 rows, the 8 rows mod 2π, then
-    out's rows reordered; opts (dof, max equivalents per joint); iwork: counts (dof), three flag rows (3x8),
+    out's rows reordered; groups (8, 2 + dof + dof·K): `_expand`'s; iwork: (dof, unused), three flag rows (3x8),
     the order and the codes of out's rows; dist with out's rows; branch_work (dof + 16, 8):
     the branches' FK (fastfk._fk_error_rows)."""
     dof = seed.shape[0]
@@ -188,18 +298,18 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     coupled = consts[3 * dof + 4] != 0.0
     kind = int(consts[3 * dof + 5])
     raw, scratch, wrapped, ordered = fwork[0:8], fwork[8:27], fwork[27:35], fwork[35:35 + rows]
-    counts, flags = iwork[0:dof], iwork[dof:dof + 24].reshape((3, 8))
+    flags = iwork[dof:dof + 24].reshape((3, 8))
     order, ordered_codes = iwork[dof + 24:dof + 24 + rows], iwork[dof + 24 + rows:dof + 24 + 2 * rows]
     # the pose: finite, rotation orthonormal (ik._check_pose raises otherwise)
     for r in range(4):
         for c in range(4):
             if not math.isfinite(target[r, c]):
-                return -1, 0
+                return -1, 0, -1, 0
     for r in range(3):
         for c in range(3):
             dot = target[r, 0] * target[c, 0] + target[r, 1] * target[c, 1] + target[r, 2] * target[c, 2]
             if abs(dot - (1.0 if r == c else 0.0)) > 0.5e-6:
-                return -1, 0
+                return -1, 0, -1, 0
     if kind == 0:
         _opw_one(a0, a1, a2, a3, local, raw)
     else:
@@ -235,13 +345,13 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
         dp, dr = math.sqrt(dp2), math.sqrt(dr2 / 2.0)
         if dp <= pos_tol / 2 and dr <= rot_tol / 2:
             if dof == 6 and abs(math.sin(raw[b, 4])) <= 2e-7:
-                return -1, 0  # the wrist singularity: ik.solve keeps the seed's J4
+                return -1, 0, -1, 0  # the wrist singularity: ik.solve keeps the seed's J4
             keep[b] = 1
             n_keep += 1
         elif dp < 2e-4 and dr < 2e-4:
-            return -1, 0  # a near miss: ik.solve polishes it
+            return -1, 0, -1, 0  # a near miss: ik.solve polishes it
     if n_keep == 0:
-        return -1, 0
+        return -1, 0, -1, 0
     # distinct modulo 2π (ik._distinct: np.remainder, then the wrapped gap; a candidate is
     # dropped when it equals any earlier verified one, dropped or not)
     for b in range(8):
@@ -267,92 +377,84 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
                 break
     m = 0
     n_groups = 0
+    n_kept = 0
+    per = (groups.shape[1] - 2 - dof) // dof  # room for equivalents per joint
     for b in range(8):
         if not keep[b]:
             continue
         # ik._equivalents: every q + 2πk within the limits, itertools.product order
+        g = groups[n_kept]
         empty = False
         total = 1
         for j in range(dof):
             v = raw[b, j]
-            first = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI if revolute[j] != 0.0 else v
-            if not (lo[j] - 1e-12 <= first and first <= hi[j] + 1e-12):
+            start = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI if revolute[j] != 0.0 else v
+            if not (lo[j] - 1e-12 <= start and start <= hi[j] + 1e-12):
                 empty = True
                 break
-            value = min(max(first, lo[j]), hi[j])
-            opts[j, 0] = value
+            value = min(max(start, lo[j]), hi[j])
+            g[2 + dof + j * per] = value
             k = 1
             while revolute[j] != 0.0 and value + _TWO_PI <= hi[j] + 1e-12:
                 value = min(value + _TWO_PI, hi[j])
-                opts[j, k] = value
+                g[2 + dof + j * per + k] = value
                 k += 1
-            counts[j] = k
+            g[2 + j] = k
             total *= k
         if empty:
             continue
         code = _branch_code(kind, bpar, crows, raw[b])
         if code < 0:
-            return -1, 0
+            return -1, 0, -1, 0
         n_groups += 1
         if ((want[0] >= 0 and want[0] != code // 4) or (want[1] >= 0 and want[1] != (code // 2) % 2)
                 or (want[2] >= 0 and want[2] != code % 2)):
             continue
-        digits = flags[2, :dof]  # (finite's row, no longer read) an odometer, last joint fastest
-        for j in range(dof):
-            digits[j] = 0
-        for idx in range(total):
-            for j in range(dof):
-                out[m + idx, j] = opts[j, digits[j]]
-            codes[m + idx] = code
-            j = dof - 1
-            while j >= 0:
-                digits[j] += 1
-                if digits[j] < counts[j]:
-                    break
-                digits[j] = 0
-                j -= 1
+        g[0] = code
+        g[1] = total
+        n_kept += 1
         m += total
     if n_groups == 0 or m == 0:
-        return -1, 0  # out of limits, or no branch as configured: ik.solve's messages
-    # stable sort by the distance from the seed (ik.solve: np.argsort(kind="stable"))
-    for i in range(m):
-        acc = 0.0
-        for j in range(dof):
-            d = out[i, j] - seed[j]
-            acc += d * d
-        dist[i] = math.sqrt(acc)
-    if m > 48:
-        order[:m] = np.argsort(dist[:m], kind="mergesort")
-    else:  # insertion sort of the indices: stable, no allocation
+        return -1, 0, -1, 0  # out of limits, or no branch as configured: ik.solve's messages
+    if m > 48:  # many 2π-equivalents: the caller makes and sorts them if asked (ik_rows.Lazy)
+        first = _nearest_row(groups, n_kept, seed, out[0], flags[2, :dof], wrapped[0])
+        codes[0] = int(groups[_group_of(groups, n_kept, first), 0])
+        nearest = out[0]
+    else:  # all rows, then an insertion sort of the indices: stable, no allocation
+        first = -1
+        _expand(groups, n_kept, seed, out, codes, dist, flags[2, :dof])
         for i in range(m):
             k = i
             while k > 0 and dist[order[k - 1]] > dist[i]:
                 order[k] = order[k - 1]
                 k -= 1
             order[k] = i
-    for i in range(m):
-        k = order[i]
-        for j in range(dof):
-            ordered[i, j] = out[k, j]
-        ordered_codes[i] = codes[k]
-    for i in range(m):
-        for j in range(dof):
-            out[i, j] = ordered[i, j]
-        codes[i] = ordered_codes[i]
+        for i in range(m):
+            k = order[i]
+            for j in range(dof):
+                ordered[i, j] = out[k, j]
+            ordered_codes[i] = codes[k]
+        for i in range(m):
+            for j in range(dof):
+                out[i, j] = ordered[i, j]
+            codes[i] = ordered_codes[i]
+        nearest = out[0]
     for j in range(dof):
         if coupled:
             acc = 0.0
             for k in range(dof):
-                acc += coupling[j, k] * out[0, k]
+                acc += coupling[j, k] * nearest[k]
             qm[j] = acc
         else:
-            qm[j] = out[0, j]
+            qm[j] = nearest[j]
     flag = 0 if _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma,
                               scratch[1:7], scratch[7:13], scratch[13:19]) else 1
-    return m, flag
+    return m, flag, first, n_kept
 
 
+EXPAND = Kernel(_expand)
 SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS, Kernel(_branch_code),
+                                    EXPAND, Kernel(_nearest_row), Kernel(_group_of),
                                     Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
                    threshold=200)
 
@@ -394,7 +496,7 @@ class FastSolver:
         self.out = np.empty((rows, dof))  # the kernel's answer, copied out per call
         self.codes = np.empty(rows, dtype=np.int64)
         self.branch_work = np.empty((dof + 16, 8))
-        self.opts = np.empty((dof, self.per_joint + 1))
+        self.groups = np.empty((8, 2 + dof + dof * (self.per_joint + 1)))
         self.zeros = np.zeros(dof)
         self.any = np.full(3, -1, dtype=np.int64)
         self.compiled: Any = None  # SOLVE_ONE's dispatcher and its argument groups, on first use
@@ -403,8 +505,6 @@ class FastSolver:
         self.work: tuple[Any, ...] = ()
         self.configs = tuple(config_of(-1.0 if c & 4 else 1.0, -1.0 if c & 2 else 1.0, -1.0 if c & 1 else 1.0)
                              for c in range(8))  # the same objects as robot.branch gives
-        self.config_array = np.empty(8, dtype=object)
-        self.config_array[:] = self.configs
         self.usable = robot._flange_joint == dof and dof == 6
         self.kernel = SOLVE_ONE
 
@@ -430,21 +530,31 @@ class FastSolver:
             self.compiled = SOLVE_ONE.jit()
             self.head = (*self.args, self.bpar, self.crows)
             self.body = (self.consts, self.placements, self.axes, self.prismatic, self.flange, self.coupling)
-            self.work = (self.fwork, self.opts, self.iwork, self.dist, self.branch_work)
-        m, flag = self.compiled(*self.head, local, target, seed_q, *self.body,
-                                self.any if config is None else self.want(config), *self.work, out, codes)
+            self.work = (self.fwork, self.groups, self.iwork, self.dist, self.branch_work)
+        m, flag, first, n_groups = self.compiled(*self.head, local, target, seed_q, *self.body,
+                                                 self.any if config is None else self.want(config),
+                                                 *self.work, out, codes)
         if m < 0:
             return None
-        qs = out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
-        qs.setflags(write=False)
-        sols = tuple(qs)
         configs = self.configs
-        if m <= 16:
-            brs = (configs[int(codes[0])],) if m == 1 else itemgetter(*codes[:m].tolist())(configs)
-        else:  # many 2π-equivalents (joints beyond ±180°): one numpy gather
-            brs = tuple(self.config_array[codes[:m]].tolist())
+        if first < 0:  # all rows, sorted by the kernel
+            rows = out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
+            rows.setflags(write=False)
+            sols = JointRows(rows)
+            brs = BranchRows(codes=codes[:m].copy(), table=configs)
+        else:  # many 2π-equivalents: made and sorted when asked for (ik_rows.Lazy)
+            lazy = Lazy(_make_rows, self.groups[:n_groups].copy(), seed_q.copy(), m)
+            nearest = out[0].copy()
+            nearest.setflags(write=False)
+            sols = JointRows(None, lazy, nearest, m)
+            brs = BranchRows(table=configs, lazy=lazy, first=configs[int(codes[0])], count=m)
         if flag and ik._is_singular(robot, sols[0]):
             return ik.IkResult(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
         return ik.IkResult(ik.IkStatus.OK, sols, brs)
 
 
+def _make_rows(groups: np.ndarray, seed: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(rows, codes, distances) of a lazy result, in `_expand`'s order (SOLVE_ONE's arithmetic)."""
+    rows, codes, dist = np.empty((m, len(seed))), np.empty(m, dtype=np.int64), np.empty(m)
+    EXPAND.jit()(groups, len(groups), seed, rows, codes, dist, np.empty(len(seed), dtype=np.int64))
+    return rows, codes, dist

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
 from typing import Any
@@ -26,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.robots.ik_rows import BranchRows, JointRows
 from rmot.compiler.robots.numeric import dls, dls_fast, restart_seeds
 
 __all__ = ["IkResult", "IkStatus", "solve", "solve_batch", "POS_TOL", "ROT_TOL"]
@@ -46,13 +48,14 @@ class IkStatus(Enum):
 
 @dataclass(frozen=True, slots=True)
 class IkResult:
-    """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them.
-    UNREACHABLE: `distance` (m) from the workspace. OUT_OF_LIMITS: `joint` (0-based index),
+    """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them
+    (immutable sequences that behave as tuples: robots/ik_rows.py; `solutions.array` is all of
+    them as one (m, dof) array). UNREACHABLE: `distance` (m) from the workspace. OUT_OF_LIMITS: `joint` (0-based index),
     `excess` (rad or m) of the least-violating solution; `message` a sentence for users."""
 
     status: IkStatus
-    solutions: tuple[np.ndarray, ...] = ()
-    branches: tuple[ir.Config, ...] = ()
+    solutions: Sequence[np.ndarray] = ()
+    branches: Sequence[ir.Config] = ()
     message: str = ""
     distance: float = 0.0
     joint: int | None = None
@@ -223,12 +226,12 @@ def solve_exact(robot, pose: np.ndarray, seed: np.ndarray | None = None, config:
     order = np.argsort(np.sqrt(np.add.reduce(delta * delta, axis=1)), kind="stable")  # = norm(delta, axis=1)
     qs = qs[order]
     qs.setflags(write=False)
-    sols = tuple(qs)
+    sols = JointRows(qs)
     if len(kept) == 1:
-        brs = (kept[0][0],) * len(sols)
+        brs = BranchRows((kept[0][0],) * len(sols))
     else:
         names = [b for b, e in kept for _ in range(len(e))]
-        brs = tuple(names[i] for i in order.tolist())
+        brs = BranchRows(tuple(names[i] for i in order.tolist()))
     if _is_singular(robot, sols[0]):
         return IkResult(IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
     return IkResult(IkStatus.OK, sols, brs)
