@@ -45,6 +45,7 @@ __all__ = ["SOLVE_ONE"]
 _TOLS = (ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA)
 
 _TWO_PI = 2 * math.pi
+_SORTED_ROWS = 48  # above: a result's rows are made and sorted only when asked for
 
 
 def _branch_code(kind, bpar, crows, q):  # type: ignore[no-untyped-def]
@@ -279,12 +280,13 @@ def _group_of(groups, n_groups, index):  # type: ignore[no-untyped-def]
 
 def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type: ignore[no-untyped-def]
               placements, axes, prismatic, flange, coupling, want, fwork, groups, iwork, dist, branch_work,
-              out, codes):
-    """One pose -> (m, flag, first, n_groups): out[:m] the solutions sorted as ik.solve sorts
-    them, codes[:m] their branch codes, when first = -1; when m > 48 (many 2π-equivalents) only
-    the nearest in out[0] and its code in codes[0], first its index among all rows as `_expand`
-    makes them from groups[:n_groups] (the caller makes and sorts them only if asked:
-    ik_rows.Lazy); flag 1 = the caller must run the exact singularity test on the nearest row.
+              out, codes, saved):
+    """One pose -> (m, flag, first, n_groups, code): out[:m] the solutions sorted as ik.solve
+    sorts them, codes[:m] their branch codes, when first = -1; when m > _SORTED_ROWS (many
+    2π-equivalents) saved = the seed, the nearest row, then groups (as `_expand` makes the rows
+    of groups[:n_groups]), first the nearest row's index in that order and code its branch code
+    (the caller makes and sorts the rows only if asked: ik_rows.Lazy); flag 1 = the caller must
+    run the exact singularity test on the nearest row.
     m = -1: hand the pose to ik.solve (see the module docstring). consts: lo, hi, revolute
     (1.0 / 0.0) per joint, then reach, POS_TOL, ROT_TOL, SINGULAR_SIGMA, coupled, kind
     (0 OPW, 1 UR). Scratch: fwork (35 + rows, dof): raw (8,dof), 19 rows, the 8 rows mod 2π, then
@@ -304,12 +306,12 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     for r in range(4):
         for c in range(4):
             if not math.isfinite(target[r, c]):
-                return -1, 0, -1, 0
+                return -1, 0, -1, 0, 0
     for r in range(3):
         for c in range(3):
             dot = target[r, 0] * target[c, 0] + target[r, 1] * target[c, 1] + target[r, 2] * target[c, 2]
             if abs(dot - (1.0 if r == c else 0.0)) > 0.5e-6:
-                return -1, 0, -1, 0
+                return -1, 0, -1, 0, 0
     if kind == 0:
         _opw_one(a0, a1, a2, a3, local, raw)
     else:
@@ -345,13 +347,13 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
         dp, dr = math.sqrt(dp2), math.sqrt(dr2 / 2.0)
         if dp <= pos_tol / 2 and dr <= rot_tol / 2:
             if dof == 6 and abs(math.sin(raw[b, 4])) <= 2e-7:
-                return -1, 0, -1, 0  # the wrist singularity: ik.solve keeps the seed's J4
+                return -1, 0, -1, 0, 0  # the wrist singularity: ik.solve keeps the seed's J4
             keep[b] = 1
             n_keep += 1
         elif dp < 2e-4 and dr < 2e-4:
-            return -1, 0, -1, 0  # a near miss: ik.solve polishes it
+            return -1, 0, -1, 0, 0  # a near miss: ik.solve polishes it
     if n_keep == 0:
-        return -1, 0, -1, 0
+        return -1, 0, -1, 0, 0
     # distinct modulo 2π (ik._distinct: np.remainder, then the wrapped gap; a candidate is
     # dropped when it equals any earlier verified one, dropped or not)
     for b in range(8):
@@ -405,7 +407,7 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
             continue
         code = _branch_code(kind, bpar, crows, raw[b])
         if code < 0:
-            return -1, 0, -1, 0
+            return -1, 0, -1, 0, 0
         n_groups += 1
         if ((want[0] >= 0 and want[0] != code // 4) or (want[1] >= 0 and want[1] != (code // 2) % 2)
                 or (want[2] >= 0 and want[2] != code % 2)):
@@ -415,11 +417,13 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
         n_kept += 1
         m += total
     if n_groups == 0 or m == 0:
-        return -1, 0, -1, 0  # out of limits, or no branch as configured: ik.solve's messages
-    if m > 48:  # many 2π-equivalents: the caller makes and sorts them if asked (ik_rows.Lazy)
-        first = _nearest_row(groups, n_kept, seed, out[0], flags[2, :dof], wrapped[0])
-        codes[0] = int(groups[_group_of(groups, n_kept, first), 0])
-        nearest = out[0]
+        return -1, 0, -1, 0, 0  # out of limits, or no branch as configured: ik.solve's messages
+    if m > _SORTED_ROWS:  # many 2π-equivalents: the caller makes and sorts them if asked (ik_rows.Lazy)
+        for j in range(dof):
+            saved[j] = seed[j]
+        nearest = saved[dof:2 * dof]
+        first = _nearest_row(groups, n_kept, seed, nearest, flags[2, :dof], wrapped[0])
+        code0 = int(groups[_group_of(groups, n_kept, first), 0])
     else:  # all rows, then an insertion sort of the indices: stable, no allocation
         first = -1
         _expand(groups, n_kept, seed, out, codes, dist, flags[2, :dof])
@@ -439,6 +443,7 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
                 out[i, j] = ordered[i, j]
             codes[i] = ordered_codes[i]
         nearest = out[0]
+        code0 = codes[0]
     for j in range(dof):
         if coupled:
             acc = 0.0
@@ -449,14 +454,57 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
             qm[j] = nearest[j]
     flag = 0 if _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma,
                               scratch[1:7], scratch[7:13], scratch[13:19]) else 1
-    return m, flag, first, n_kept
+    return m, flag, first, n_kept, code0
+
+
+def solve_packed(fc, ic, local, target, seed, want, fs, iscr):  # type: ignore[no-untyped-def]
+    """solve_one with its arrays packed into four (FastSolver's layout): a call with fewer
+    arguments costs less to dispatch (~45 ns each). fc: the robot's constants; ic: dof, the
+    length of the closed form's first array and of the branch parameters, the scratch rows,
+    the columns of a group; fs / iscr: float / int scratch."""
+    dof, n0, nb, rows, gcols = ic[0], ic[1], ic[2], ic[3], ic[4]
+    a0 = fc[0:n0]
+    o = n0
+    a1, a2 = fc[o:o + 6], fc[o + 6:o + 12]
+    a3 = fc[o + 12:o + 48].reshape((6, 6))
+    o += 48
+    bpar = fc[o:o + nb]
+    o += nb
+    crows = fc[o:o + 2 * dof].reshape((2, dof))
+    o += 2 * dof
+    consts = fc[o:o + 3 * dof + 6]
+    o += 3 * dof + 6
+    placements = fc[o:o + 16 * dof].reshape((dof, 4, 4))
+    o += 16 * dof
+    axes = fc[o:o + 3 * dof].reshape((dof, 3))
+    o += 3 * dof
+    prismatic = fc[o:o + dof]
+    o += dof
+    flange = fc[o:o + 16].reshape((4, 4))
+    coupling = fc[o + 16:o + 16 + dof * dof].reshape((dof, dof))
+    saved = fs[0:2 * dof + 8 * gcols]  # seed, nearest row, groups: what a lazy result keeps
+    groups = saved[2 * dof:].reshape((8, gcols))
+    o = 2 * dof + 8 * gcols
+    fwork = fs[o:o + (35 + rows) * dof].reshape((35 + rows, dof))
+    o += (35 + rows) * dof
+    dist = fs[o:o + rows]
+    o += rows
+    branch_work = fs[o:o + (dof + 16) * 8].reshape((dof + 16, 8))
+    o += (dof + 16) * 8
+    out = fs[o:o + rows * dof].reshape((rows, dof))
+    iwork = iscr[0:dof + 24 + 2 * rows]
+    codes = iscr[dof + 24 + 2 * rows:dof + 24 + 3 * rows]
+    return solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts, placements, axes,
+                     prismatic, flange, coupling, want, fwork, groups, iwork, dist, branch_work,
+                     out, codes, saved)
 
 
 EXPAND = Kernel(_expand)
-SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS, Kernel(_branch_code),
+_SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS, Kernel(_branch_code),
                                     EXPAND, Kernel(_nearest_row), Kernel(_group_of),
                                     Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
-                   threshold=200)
+                   )
+SOLVE_ONE = Kernel(solve_packed, uses=(_SOLVE_ONE,), threshold=200)
 
 
 class FastSolver:
@@ -487,22 +535,24 @@ class FastSolver:
         span = np.where(self.revolute, np.floor((self.hi - self.lo + 2e-12) / _TWO_PI), 0.0)
         self.per_joint = int(span.max()) + 1
         self.max_rows = 8 * int(np.prod(span + 1))
-        rows = self.max_rows
+        rows = min(self.max_rows, _SORTED_ROWS)  # more rows are made only when asked for
         self.consts = np.concatenate([self.lo, self.hi, self.revolute.astype(float),
                                       [self.reach, *_TOLS, float(self.coupled), float(self.kind)]])
-        self.fwork = np.empty((35 + rows, dof))
-        self.iwork = np.zeros(dof + 24 + 2 * rows, dtype=np.int64)
-        self.dist = np.empty(rows)
-        self.out = np.empty((rows, dof))  # the kernel's answer, copied out per call
-        self.codes = np.empty(rows, dtype=np.int64)
-        self.branch_work = np.empty((dof + 16, 8))
-        self.groups = np.empty((8, 2 + dof + dof * (self.per_joint + 1)))
+        gcols = 2 + dof + dof * (self.per_joint + 1)
+        self.gcols = gcols
+        parts = (*self.args, self.bpar, self.crows, self.consts, self.placements, self.axes,
+                 self.prismatic.astype(float), self.flange, self.coupling)
+        self.fc = np.concatenate([np.ravel(a) for a in parts])  # solve_packed's layout
+        self.ic = np.array([dof, len(self.args[0]), len(self.bpar), rows, gcols], dtype=np.int64)
+        n_saved = 2 * dof + 8 * gcols
+        self.fs = np.empty(n_saved + (35 + rows) * dof + rows + (dof + 16) * 8 + rows * dof)
+        self.iscr = np.zeros(dof + 24 + 3 * rows, dtype=np.int64)
+        self.saved = self.fs[:n_saved]  # seed, nearest row, groups (a lazy result's copy)
+        self.out = self.fs[len(self.fs) - rows * dof:].reshape(rows, dof)  # the sorted rows
+        self.codes = self.iscr[dof + 24 + 2 * rows:]
         self.zeros = np.zeros(dof)
         self.any = np.full(3, -1, dtype=np.int64)
-        self.compiled: Any = None  # SOLVE_ONE's dispatcher and its argument groups, on first use
-        self.head: tuple[Any, ...] = ()
-        self.body: tuple[Any, ...] = ()
-        self.work: tuple[Any, ...] = ()
+        self.compiled: Any = None  # SOLVE_ONE's dispatcher, on first use
         self.configs = tuple(config_of(-1.0 if c & 4 else 1.0, -1.0 if c & 2 else 1.0, -1.0 if c & 1 else 1.0)
                              for c in range(8))  # the same objects as robot.branch gives
         self.usable = robot._flange_joint == dof and dof == 6
@@ -525,36 +575,36 @@ class FastSolver:
         seed_q = self.zeros if seed is None else np.asarray(seed, dtype=float).reshape(robot.dof)
         cf = self.closed_form
         local = target if cf.pre is None and cf.post is None else np.ascontiguousarray(cf.local(target[None])[0])
-        out, codes = self.out, self.codes
-        if self.compiled is None:
-            self.compiled = SOLVE_ONE.jit()
-            self.head = (*self.args, self.bpar, self.crows)
-            self.body = (self.consts, self.placements, self.axes, self.prismatic, self.flange, self.coupling)
-            self.work = (self.fwork, self.groups, self.iwork, self.dist, self.branch_work)
-        m, flag, first, n_groups = self.compiled(*self.head, local, target, seed_q, *self.body,
-                                                 self.any if config is None else self.want(config),
-                                                 *self.work, out, codes)
+        compiled = self.compiled
+        if compiled is None:
+            compiled = self.compiled = SOLVE_ONE.jit()
+        m, flag, first, n_groups, code = compiled(
+            self.fc, self.ic, local, target, seed_q, self.any if config is None else self.want(config),
+            self.fs, self.iscr)
         if m < 0:
             return None
-        configs = self.configs
         if first < 0:  # all rows, sorted by the kernel
-            rows = out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
+            rows = self.out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
             rows.setflags(write=False)
             sols = JointRows(rows)
-            brs = BranchRows(codes=codes[:m].copy(), table=configs)
+            brs = BranchRows(None, self.codes[:m].copy(), self.configs)
         else:  # many 2π-equivalents: made and sorted when asked for (ik_rows.Lazy)
-            lazy = Lazy(_make_rows, self.groups[:n_groups].copy(), seed_q.copy(), m)
-            nearest = out[0].copy()
-            nearest.setflags(write=False)
-            sols = JointRows(None, lazy, nearest, m)
-            brs = BranchRows(table=configs, lazy=lazy, first=configs[int(codes[0])], count=m)
+            dof = robot.dof
+            saved = self.saved[:2 * dof + n_groups * self.gcols].copy()
+            saved.setflags(write=False)
+            lazy = Lazy(_make_rows, saved, dof, self.gcols, m)
+            sols = JointRows(None, lazy, saved[dof:2 * dof], m)
+            brs = BranchRows(None, None, self.configs, lazy, self.configs[code], m)
         if flag and ik._is_singular(robot, sols[0]):
-            return ik.IkResult(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
-        return ik.IkResult(ik.IkStatus.OK, sols, brs)
+            return ik.result(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
+        return ik.result(ik.IkStatus.OK, sols, brs)
 
 
-def _make_rows(groups: np.ndarray, seed: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(rows, codes, distances) of a lazy result, in `_expand`'s order (SOLVE_ONE's arithmetic)."""
-    rows, codes, dist = np.empty((m, len(seed))), np.empty(m, dtype=np.int64), np.empty(m)
-    EXPAND.jit()(groups, len(groups), seed, rows, codes, dist, np.empty(len(seed), dtype=np.int64))
+def _make_rows(saved: np.ndarray, dof: int, gcols: int, m: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(rows, codes, distances) of a lazy result in `_expand`'s order (SOLVE_ONE's arithmetic);
+    saved: the seed, the nearest row, the groups (solve_packed's layout)."""
+    seed = saved[:dof]
+    groups = saved[2 * dof:].reshape(-1, gcols)
+    rows, codes, dist = np.empty((m, dof)), np.empty(m, dtype=np.int64), np.empty(m)
+    EXPAND.jit()(groups, len(groups), seed, rows, codes, dist, np.empty(dof, dtype=np.int64))
     return rows, codes, dist

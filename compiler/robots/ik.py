@@ -67,6 +67,27 @@ class IkResult:
         return bool(self.solutions)
 
 
+_NEW = object.__new__
+_SETTERS = tuple(IkResult.__dict__[f].__set__ for f in  # type: ignore[attr-defined]
+                 ("status", "solutions", "branches", "message", "distance", "joint", "excess"))
+
+
+def result(status: IkStatus, solutions: Sequence[np.ndarray], branches: Sequence[ir.Config],
+           message: str = "") -> IkResult:
+    """IkResult(status, solutions, branches, message): the same frozen value, made through its
+    slots (half the time of the dataclass's __init__, which Robot.ik pays on every call)."""
+    out = _NEW(IkResult)
+    s0, s1, s2, s3, s4, s5, s6 = _SETTERS
+    s0(out, status)
+    s1(out, solutions)
+    s2(out, branches)
+    s3(out, message)
+    s4(out, 0.0)
+    s5(out, None)
+    s6(out, 0.0)
+    return out
+
+
 _EYE3 = np.eye(3)
 
 
