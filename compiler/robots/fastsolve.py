@@ -185,7 +185,7 @@ def _expand(groups, n_groups, seed, out, codes, dist, digits):  # type: ignore[n
         code = int(g[0])
         for j in range(dof):
             digits[j] = 0
-        for idx in range(int(g[1])):
+        for _idx in range(int(g[1])):
             acc = 0.0
             for j in range(dof):
                 v = g[2 + dof + j * per + digits[j]]

@@ -68,7 +68,7 @@ class IkResult:
 
 
 _NEW = object.__new__
-_SETTERS = tuple(IkResult.__dict__[f].__set__ for f in  # type: ignore[attr-defined]
+_SETTERS = tuple(IkResult.__dict__[f].__set__ for f in
                  ("status", "solutions", "branches", "message", "distance", "joint", "excess"))
 
 

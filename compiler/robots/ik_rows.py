@@ -94,7 +94,8 @@ class JointRows(Sequence[np.ndarray]):
         n = len(self)
         if not -n <= i < n:
             raise IndexError("tuple index out of range")
-        return self.array[i]
+        row: np.ndarray = self.array[i]
+        return row
 
     def __iter__(self) -> Iterator[np.ndarray]:
         return iter(self.array)
