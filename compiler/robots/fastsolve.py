@@ -590,21 +590,37 @@ class FastSolver:
             brs = BranchRows(None, self.codes[:m].copy(), self.configs)
         else:  # many 2π-equivalents: made and sorted when asked for (ik_rows.Lazy)
             dof = robot.dof
-            saved = self.saved[:2 * dof + n_groups * self.gcols].copy()
-            saved.setflags(write=False)
+            saved = self.saved[:2 * dof + n_groups * self.gcols].copy()  # private to the result
+            nearest = saved[dof:2 * dof]
+            nearest.setflags(write=False)
             lazy = Lazy(_make_rows, saved, dof, self.gcols, m)
-            sols = JointRows(None, lazy, saved[dof:2 * dof], m)
+            sols = JointRows(None, lazy, nearest, m)
             brs = BranchRows(None, None, self.configs, lazy, self.configs[code], m)
         if flag and ik._is_singular(robot, sols[0]):
             return ik.result(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
         return ik.result(ik.IkStatus.OK, sols, brs)
 
 
-def _make_rows(saved: np.ndarray, dof: int, gcols: int, m: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(rows, codes, distances) of a lazy result in `_expand`'s order (SOLVE_ONE's arithmetic);
+def _make_rows(saved: np.ndarray, dof: int, gcols: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """(rows, codes) of a lazy result sorted as ik.solve sorts them (SOLVE_ONE's arithmetic);
     saved: the seed, the nearest row, the groups (solve_packed's layout)."""
-    seed = saved[:dof]
-    groups = saved[2 * dof:].reshape(-1, gcols)
-    rows, codes, dist = np.empty((m, dof)), np.empty(m, dtype=np.int64), np.empty(m)
-    EXPAND.jit()(groups, len(groups), seed, rows, codes, dist, np.empty(dof, dtype=np.int64))
-    return rows, codes, dist
+    rows, codes = np.empty((m, dof)), np.empty(m, dtype=np.int64)
+    EXPAND_SORTED.jit()(saved[2 * dof:].reshape(-1, gcols), saved[:dof], rows, codes)
+    return rows, codes
+
+
+def _expand_sorted(groups, seed, rows, codes):  # type: ignore[no-untyped-def]
+    """`_expand` of every group, then the rows and codes in the order of a stable sort by the
+    distances (numba's mergesort: stable, as ik.solve_exact's np.argsort(kind="stable"))."""
+    m, dof = rows.shape
+    made, made_codes, dist = np.empty((m, dof)), np.empty(m, dtype=np.int64), np.empty(m)
+    _expand(groups, groups.shape[0], seed, made, made_codes, dist, np.empty(dof, dtype=np.int64))
+    order = np.argsort(dist, kind="mergesort")
+    for i in range(m):
+        k = order[i]
+        for j in range(dof):
+            rows[i, j] = made[k, j]
+        codes[i] = made_codes[k]
+
+
+EXPAND_SORTED = Kernel(_expand_sorted, uses=(EXPAND,))

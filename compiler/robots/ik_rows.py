@@ -27,14 +27,12 @@ __all__ = ["BranchRows", "JointRows", "Lazy"]
 
 
 class Lazy:
-    """Rows not made yet: `make(*args)` gives (rows (m, dof), branch codes (m,), distances (m,))
-    in the order they were made; `get` makes them once, sorts them (np.argsort(kind="stable")
-    of the distances) and returns (rows read-only, codes)."""
+    """Rows not made yet: `make(*args)` makes them once, as (rows (m, dof), branch codes (m,))
+    sorted; `get` returns them (rows read-only)."""
 
     __slots__ = ("_make", "_args", "_rows", "_codes")
 
-    def __init__(self, make: Callable[..., tuple[np.ndarray, np.ndarray, np.ndarray]],
-                 *args: Any) -> None:
+    def __init__(self, make: Callable[..., tuple[np.ndarray, np.ndarray]], *args: Any) -> None:
         self._make, self._args = make, args
         self._rows: np.ndarray | None = None
         self._codes: np.ndarray | None = None
@@ -42,9 +40,7 @@ class Lazy:
     def get(self) -> tuple[np.ndarray, np.ndarray]:
         rows, codes = self._rows, self._codes
         if rows is None or codes is None:
-            rows, codes, dist = self._make(*self._args)
-            order = np.argsort(dist, kind="stable")
-            rows, codes = rows[order], codes[order]
+            rows, codes = self._make(*self._args)
             rows.setflags(write=False)
             self._rows, self._codes, self._args = rows, codes, ()
         return rows, codes
