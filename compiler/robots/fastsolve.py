@@ -23,6 +23,14 @@ back to `ik.solve` whole (return -1):
   is above twice SINGULAR_SIGMA the pose is not singular, else the caller asks pinocchio and
   the SVD exactly as `ik._is_singular` does (flag 1).
 
+More than _SORTED_ROWS solutions (joints beyond ±180°: a UR arm has 512 per pose): the pass
+checks everything above and finds the nearest solution (the first row of the stable sort, by
+a pruned walk with the same sums: `_nearest_row`), but makes and sorts the rows only when the
+result is asked for more than its first one (`_expand_sorted`, through ik_rows.Lazy). The
+result is then `IkResult.solutions`/`branches` as views over one array (robots/ik_rows.py).
+The call passes its arrays packed into four (`solve_packed`): numba's dispatch costs ~45 ns
+per argument.
+
 The interpreted form is the same function (Kernel); `ik.solve` only calls the compiled one,
 once a process has solved SOLVE_ONE.threshold poses (so `rmot robots ik` stays numba-free).
 """
