@@ -3,6 +3,7 @@
 """`ik_batch`'s limits, seed selection and FK verification in one compiled loop (numba).
 
 For each pose and closed-form branch: the 2π-equivalent of every joint nearest to the seed
+(seeds: one row per pose, or one row for all)
 within the limits (as `ik._nearest_in_limits`: k0 = round((seed - q) / 2π), then k0, k0-1,
 k0+1, k0-2, k0+2, the first nearest one kept, clipped into the limits), NaN for the whole row
 when a joint has none; then FK of the rows that exist (fastfk._fk_columns, in blocks of columns from several
@@ -42,13 +43,14 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
     slot = np.empty(_BLOCK, dtype=np.int64)
     cols = 0
     for n in range(n_pose):
+        sn = n if seeds.shape[0] > 1 else 0  # one seed row per pose, or one for all
         for b in range(n_branch):
             row = out[n, b]
             bad[n, b] = False
             missing = False
             for j in range(dof):
                 r = raw[n, b, j]
-                s = seeds[n, j]
+                s = seeds[sn, j]
                 k0 = np.round((s - r) / two_pi) if revolute[j] else 0.0
                 cand = r + (k0 * two_pi if revolute[j] else 0.0)  # the loop's first candidate
                 if (cand >= lo[j] - 1e-12 and cand <= hi[j] + 1e-12

@@ -361,7 +361,7 @@ def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
     from rmot.compiler.robots.fastbatch import NEAREST_VERIFIED
 
     n, b, dof = raw.shape
-    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (n, dof)), dtype=float)
+    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (n if seed_q.ndim == 2 else 1, dof)), dtype=float)
     chain = robot._chain
     coupled = robot._coupling is not None
     coupling = np.ascontiguousarray(robot._coupling, dtype=float) if coupled else np.eye(dof)
@@ -375,8 +375,8 @@ def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
         POS_TOL / 2, ROT_TOL / 2, out, bad)
     # Rows the kernel's FK put within half a tolerance of failing (a few per thousand) get the
     # numpy path's own check, so that its rounding, not the kernel's, decides which to polish.
-    rows = np.argwhere(bad)
-    if len(rows):
+    if bad.any():
+        rows = np.argwhere(bad)
         n_i, b_i = rows[:, 0], rows[:, 1]
         out[n_i, b_i] = _verify_batch(robot, poses[n_i], out[n_i, b_i][:, None])[:, 0]
     return out
