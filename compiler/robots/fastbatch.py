@@ -3,13 +3,13 @@
 """`ik_batch`'s limits, seed selection and FK verification in one compiled loop (numba).
 
 For each pose and closed-form branch: the 2π-equivalent of every joint nearest to the seed
-(seeds: one row per pose, or one row for all)
-within the limits (as `ik._nearest_in_limits`: k0 = round((seed - q) / 2π), then k0, k0-1,
-k0+1, k0-2, k0+2, the first nearest one kept, clipped into the limits), NaN for the whole row
-when a joint has none; then FK of the rows that exist (fastfk._fk_columns, in blocks of columns from several
-poses, vectorised; a NaN row is not looked at) against their poses, flagging the rows beyond
-the tolerances it is given (half of POS_TOL / ROT_TOL: the caller checks those again exactly as
-its numpy path does, and polishes the failures with `ik._verified`).
+(seeds: one row per pose, or one row for all) within the limits (as `ik._nearest_in_limits`:
+k0 = round((seed - q) / 2π), then k0, k0-1, k0+1, k0-2, k0+2, the first nearest one kept,
+clipped into the limits), NaN for the whole row when a joint has none; then FK of the rows
+that exist (fastfk._fk_columns, in blocks of columns from several poses, vectorised; a NaN
+row is not looked at) against their poses, flagging the rows beyond the tolerances it is
+given (half of POS_TOL / ROT_TOL: the caller checks those again exactly as its numpy path
+does, and polishes the failures with `ik._verified`).
 
 The same arithmetic as the numpy path in `ik.solve_batch` for the chosen values (so the same
 joint values come out); FK here rounds differently from numpy's matmul (another order of

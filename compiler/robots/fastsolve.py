@@ -287,8 +287,8 @@ def _group_of(groups, n_groups, index):  # type: ignore[no-untyped-def]
 
 
 def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type: ignore[no-untyped-def]
-              placements, axes, prismatic, flange, coupling, want, fwork, groups, iwork, dist, branch_work,
-              out, codes, saved):
+              placements, axes, prismatic, flange, coupling, want, fwork, groups, iwork, dist,
+              branch_work, out, codes, saved):
     """One pose -> (m, flag, first, n_groups, code): out[:m] the solutions sorted as ik.solve
     sorts them, codes[:m] their branch codes, when first = -1; when m > _SORTED_ROWS (many
     2π-equivalents) saved = the seed, the nearest row, then groups (as `_expand` makes the rows
@@ -298,7 +298,8 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     m = -1: hand the pose to ik.solve (see the module docstring). consts: lo, hi, revolute
     (1.0 / 0.0) per joint, then reach, POS_TOL, ROT_TOL, SINGULAR_SIGMA, coupled, kind
     (0 OPW, 1 UR). Scratch: fwork (35 + rows, dof): raw (8,dof), 19 rows, the 8 rows mod 2π, then
-    out's rows reordered; groups (8, 2 + dof + dof·K): `_expand`'s; iwork: (dof, unused), three flag rows (3x8),
+    out's rows reordered; groups (8, 2 + dof + dof·K): `_expand`'s; iwork: (dof, unused),
+    three flag rows (3x8),
     the order and the codes of out's rows; dist with out's rows; branch_work (dof + 16, 8):
     the branches' FK (fastfk._fk_error_rows)."""
     dof = seed.shape[0]
@@ -398,7 +399,9 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
         total = 1
         for j in range(dof):
             v = raw[b, j]
-            start = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI if revolute[j] != 0.0 else v
+            start = v
+            if revolute[j] != 0.0:
+                start = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI
             if not (lo[j] - 1e-12 <= start and start <= hi[j] + 1e-12):
                 empty = True
                 break
@@ -426,7 +429,7 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
         m += total
     if n_groups == 0 or m == 0:
         return -1, 0, -1, 0, 0  # out of limits, or no branch as configured: ik.solve's messages
-    if m > _SORTED_ROWS:  # many 2π-equivalents: the caller makes and sorts them if asked (ik_rows.Lazy)
+    if m > _SORTED_ROWS:  # many 2π-equivalents: made and sorted if asked for (ik_rows.Lazy)
         for j in range(dof):
             saved[j] = seed[j]
         nearest = saved[dof:2 * dof]
@@ -508,10 +511,10 @@ def solve_packed(fc, ic, local, target, seed, want, fs, iscr):  # type: ignore[n
 
 
 EXPAND = Kernel(_expand)
-_SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS, Kernel(_branch_code),
-                                    EXPAND, Kernel(_nearest_row), Kernel(_group_of),
-                                    Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
-                   )
+_SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS,
+                                     Kernel(_branch_code), EXPAND, Kernel(_nearest_row),
+                                     Kernel(_group_of),
+                                     Kernel(_not_singular, uses=(Kernel(_jacobian_into),))))
 SOLVE_ONE = Kernel(solve_packed, uses=(_SOLVE_ONE,), threshold=200)
 
 
@@ -587,8 +590,8 @@ class FastSolver:
         if compiled is None:
             compiled = self.compiled = SOLVE_ONE.jit()
         m, flag, first, n_groups, code = compiled(
-            self.fc, self.ic, local, target, seed_q, self.any if config is None else self.want(config),
-            self.fs, self.iscr)
+            self.fc, self.ic, local, target, seed_q,
+            self.any if config is None else self.want(config), self.fs, self.iscr)
         if m < 0:
             return None
         if first < 0:  # all rows, sorted by the kernel
@@ -605,7 +608,8 @@ class FastSolver:
             sols = JointRows(None, lazy, nearest, m)
             brs = BranchRows(None, None, self.configs, lazy, self.configs[code], m)
         if flag and ik._is_singular(robot, sols[0]):
-            return ik.result(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
+            return ik.result(ik.IkStatus.SINGULAR, sols, brs,
+                             "the pose lies on a kinematic singularity")
         return ik.result(ik.IkStatus.OK, sols, brs)
 
 

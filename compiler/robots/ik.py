@@ -50,7 +50,8 @@ class IkStatus(Enum):
 class IkResult:
     """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them
     (immutable sequences that behave as tuples: robots/ik_rows.py; `solutions.array` is all of
-    them as one (m, dof) array). UNREACHABLE: `distance` (m) from the workspace. OUT_OF_LIMITS: `joint` (0-based index),
+    them as one (m, dof) array).
+    UNREACHABLE: `distance` (m) from the workspace. OUT_OF_LIMITS: `joint` (0-based index),
     `excess` (rad or m) of the least-violating solution; `message` a sentence for users."""
 
     status: IkStatus
@@ -361,7 +362,8 @@ def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
     from rmot.compiler.robots.fastbatch import NEAREST_VERIFIED
 
     n, b, dof = raw.shape
-    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (n if seed_q.ndim == 2 else 1, dof)), dtype=float)
+    rows_of_seeds = n if seed_q.ndim == 2 else 1  # one row for all poses: not copied n times
+    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (rows_of_seeds, dof)), dtype=float)
     chain = robot._chain
     coupled = robot._coupling is not None
     coupling = np.ascontiguousarray(robot._coupling, dtype=float) if coupled else np.eye(dof)

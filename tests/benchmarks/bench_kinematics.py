@@ -275,6 +275,6 @@ if __name__ == "__main__":
         print(f"{name}: Robot.ik {one:.1f} us per call (target <= 20; raw closed form {raw1:.1f} us, "
               f"{results[f'{name}_solutions_per_call']:.0f} solutions per call; "
               f"{results[f'{name}_robot_ik_all_rows_us']:.1f} us with every solution made), "
-              f"ik_batch {per:.2f} us per pose (target <= 2; raw closed form {rawb:.2f} us per pose, "
-              f"{per - rawb:.2f} us above it)")
+              f"ik_batch {per:.2f} us per pose (target <= 2; raw closed form {rawb:.2f} us "
+              f"per pose, {per - rawb:.2f} us above it)")
     print(f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")

@@ -44,14 +44,16 @@ def test_joint_rows_behave_as_a_tuple_of_rows() -> None:
             view[i]
         with pytest.raises(IndexError):
             plain[i]
-    assert isinstance(view[1:3], JointRows) and view[1:3] == plain[1:3] and view[::-1] == plain[::-1]
+    assert isinstance(view[1:3], JointRows) and view[1:3] == plain[1:3]
+    assert view[::-1] == plain[::-1]
     assert len(view[5:]) == 0 and not view[5:]
     assert [r.tolist() for r in view] == [r.tolist() for r in plain]
     assert [r.tolist() for r in reversed(view)] == [r.tolist() for r in reversed(plain)]
     assert view == plain and plain == view and view == JointRows(rows.copy())
     assert view != plain[:3] and view != list(plain)  # a tuple is never equal to a list either
     assert repr(view) == repr(plain)
-    assert np.array_equal(np.asarray(view), rows) and np.asarray(view, dtype=np.float32).dtype == np.float32
+    assert np.array_equal(np.asarray(view), rows)
+    assert np.asarray(view, dtype=np.float32).dtype == np.float32
     a, b, *_ = view  # unpacking, zip, list: what the callers do
     assert np.array_equal(a, plain[0]) and np.array_equal(b, plain[1])
 
@@ -87,8 +89,9 @@ def test_result_is_frozen_and_made_as_the_dataclass_makes_it() -> None:
     rows = JointRows(_rows())
     fast = ik.result(ik.IkStatus.OK, rows, (), "m")
     slow = ik.IkResult(ik.IkStatus.OK, rows, (), "m")
-    assert all(getattr(fast, f.name) is getattr(slow, f.name) or getattr(fast, f.name) == getattr(slow, f.name)
-               for f in dataclasses.fields(ik.IkResult))
+    for f in dataclasses.fields(ik.IkResult):
+        a, b = getattr(fast, f.name), getattr(slow, f.name)
+        assert a is b or a == b
     with pytest.raises(dataclasses.FrozenInstanceError):
         fast.solutions = ()  # type: ignore[misc]
 
@@ -97,8 +100,8 @@ def test_result_is_frozen_and_made_as_the_dataclass_makes_it() -> None:
 @given(u=st.lists(st.floats(0.0, 1.0), min_size=6, max_size=6),
        offset=st.lists(st.floats(-4.0, 4.0), min_size=6, max_size=6), use_seed=st.booleans(),
        config=st.sampled_from((None, ir.Config(None, ir.Elbow.DOWN, None))))
-def test_lazy_rows_give_the_exact_paths_answer_before_and_after_they_are_made(  # type: ignore[no-untyped-def]
-        u, offset, use_seed, config) -> None:
+def test_lazy_rows_give_the_exact_paths_answer_before_and_after_they_are_made(
+        u, offset, use_seed, config) -> None:  # type: ignore[no-untyped-def]
     """ur5e: every joint spans ±360°, so a pose has up to 512 solutions, made only when asked."""
     robot, solver = robot_and_solver("ur5e")
     q = -3.0 + np.array(u) * 6.0
@@ -121,8 +124,8 @@ def test_lazy_rows_give_the_exact_paths_answer_before_and_after_they_are_made(  
     # then all of them: the same rows in the same order, the same branches
     assert fast.branches[-1] == exact.branches[-1]
     assert fast.solutions == exact.solutions and fast.branches == exact.branches
-    assert np.array_equal(fast.solutions.array, np.array(list(exact.solutions)))  # type: ignore[attr-defined]
-    assert not fast.solutions.array.flags.writeable  # type: ignore[attr-defined]
+    made = fast.solutions.array  # type: ignore[attr-defined]
+    assert np.array_equal(made, np.array(list(exact.solutions))) and not made.flags.writeable
 
 
 def _plain_order(groups: np.ndarray, seed: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -130,16 +133,21 @@ def _plain_order(groups: np.ndarray, seed: np.ndarray) -> tuple[np.ndarray, np.n
     from the seed (sum of squares in joint order, then sqrt), without fastsolve."""
     dof = len(seed)
     per = (groups.shape[1] - 2 - dof) // dof
-    rows = [[g[2 + dof + j * per + k] for j, k in enumerate(digits)]
-            for g in groups for digits in itertools.product(*(range(int(g[2 + j])) for j in range(dof)))]
+    rows = []
+    for g in groups:
+        for digits in itertools.product(*(range(int(g[2 + j])) for j in range(dof))):
+            rows.append([g[2 + dof + j * per + k] for j, k in enumerate(digits)])
     out = np.array(rows)
-    dist = np.array([np.sqrt(sum((v - s) * (v - s) for v, s in zip(r, seed.tolist()))) for r in out.tolist()])
+    seeds = seed.tolist()
+    dist = np.array([np.sqrt(sum((v - s) * (v - s) for v, s in zip(r, seeds)))
+                     for r in out.tolist()])
     return out, dist
 
 
 @settings(max_examples=40, deadline=None)
 @given(data=st.data(), n_groups=st.integers(1, 4), dof=st.integers(1, 6))
-def test_nearest_row_is_the_first_row_of_the_stable_sort(data, n_groups, dof) -> None:  # type: ignore[no-untyped-def]
+def test_nearest_row_is_the_first_row_of_the_stable_sort(  # type: ignore[no-untyped-def]
+        data, n_groups, dof) -> None:
     """fastsolve's pruned walk finds the first row of a stable sort by distance, ties included:
     values drawn from a small set symmetric about the seed make many distances exactly equal."""
     per = 3
@@ -151,14 +159,16 @@ def test_nearest_row_is_the_first_row_of_the_stable_sort(data, n_groups, dof) ->
         g[0], g[1] = data.draw(st.integers(0, 7)), float(np.prod(counts))
         g[2:2 + dof] = counts
         for j, c in enumerate(counts):
-            g[2 + dof + j * per:2 + dof + j * per + c] = data.draw(st.lists(values, min_size=c, max_size=c))
+            at = 2 + dof + j * per
+            g[at:at + c] = data.draw(st.lists(values, min_size=c, max_size=c))
     rows, dist = _plain_order(groups, seed)
     want = int(np.argsort(dist, kind="stable")[0])
     for fn in (fastsolve._nearest_row, fastsolve.Kernel(fastsolve._nearest_row).jit()):
         row = np.empty(dof)
         first = fn(groups, n_groups, seed, row, np.zeros(dof, dtype=np.int64), np.zeros(dof))
         assert first == want and np.array_equal(row, rows[want])
-    out, codes, d = np.empty((len(rows), dof)), np.empty(len(rows), dtype=np.int64), np.empty(len(rows))
+    m = len(rows)
+    out, codes, d = np.empty((m, dof)), np.empty(m, dtype=np.int64), np.empty(m)
     fastsolve.EXPAND.jit()(groups, n_groups, seed, out, codes, d, np.zeros(dof, dtype=np.int64))
     assert np.array_equal(out, rows) and np.array_equal(d, dist)
 
@@ -168,7 +178,8 @@ def test_a_ur5e_pose_has_512_lazy_solutions_that_reach_it() -> None:
     pose = robot.fk(np.array([0.3, -1.2, 1.0, -0.5, 0.8, 0.2])).copy()
     res = solver.solve(robot, pose, None, None)
     assert res is not None and res.status is ik.IkStatus.OK
-    assert len(res.solutions) == len(res.branches) == 512 and res.solutions._rows is None  # type: ignore[attr-defined]
+    assert len(res.solutions) == len(res.branches) == 512
+    assert res.solutions._rows is None  # type: ignore[attr-defined]
     for s in res.solutions[::37]:  # pinocchio's FK of a sample of them
         dp, dr = ik.pose_error(robot.fk(s), pose)
         assert dp <= ik.POS_TOL and dr <= ik.ROT_TOL
