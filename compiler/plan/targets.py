@@ -29,7 +29,7 @@ Everything returns values: (q or None, [Finding]) with user-facing messages.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -247,11 +247,14 @@ def turn_range_findings(robot: object, turns: tuple[tuple[int, int], ...]) -> li
     return out
 
 
-def _on_turns(robot: object, solutions: tuple[np.ndarray, ...], turns: tuple[tuple[int, int], ...],
+def _on_turns(robot: object, solutions: Sequence[np.ndarray], turns: tuple[tuple[int, int], ...],
               q_now: np.ndarray) -> list[np.ndarray]:
     """The solutions on the fixed turns, nearest to q_now first. A solution on another turn is
     moved onto it by whole turns (a revolute joint is 2 pi periodic) when that stays within
-    the limits: a local IK (URDF arms) returns one equivalent only."""
+    the limits: a local IK (URDF arms) returns one equivalent only. Without fixed turns: the
+    nearest solution alone (the callers read the first one; a UR arm has 512, made on demand)."""
+    if not turns:
+        return list(solutions[:1])
     on = [q for q in solutions if not off_turns(q, turns)]
     if on or not turns:
         return on
@@ -273,7 +276,7 @@ def off_turns(q: np.ndarray, turns: tuple[tuple[int, int], ...]) -> list[tuple[i
 
 
 def _turn_unreached(turns: tuple[tuple[int, int], ...],
-                    solutions: tuple[np.ndarray, ...]) -> Finding:
+                    solutions: Sequence[np.ndarray]) -> Finding:
     wanted = ", ".join(f"joint {j + 1} on turn {n}" for j, n in turns)
     found = ", ".join(
         f"joint {j + 1} on turn{'s' * (len(ts) > 1)} {', '.join(str(t) for t in ts)}"

@@ -3,12 +3,13 @@
 """`ik_batch`'s limits, seed selection and FK verification in one compiled loop (numba).
 
 For each pose and closed-form branch: the 2π-equivalent of every joint nearest to the seed
-within the limits (as `ik._nearest_in_limits`: k0 = round((seed - q) / 2π), then k0, k0-1,
-k0+1, k0-2, k0+2, the first nearest one kept, clipped into the limits), NaN for the whole row
-when a joint has none; then FK of the row over the chain arrays (fastdls's loop) against the
-pose (fastfk._fk_error_rows: the 8 branches of a pose at once, vectorised), flagging the rows beyond
-the tolerances it is given (half of POS_TOL / ROT_TOL: the caller checks those again exactly as
-its numpy path does, and polishes the failures with `ik._verified`).
+(seeds: one row per pose, or one row for all) within the limits (as `ik._nearest_in_limits`:
+k0 = round((seed - q) / 2π), then k0, k0-1, k0+1, k0-2, k0+2, the first nearest one kept,
+clipped into the limits), NaN for the whole row when a joint has none; then FK of the rows
+that exist (fastfk._fk_columns, in blocks of columns from several poses, vectorised; a NaN
+row is not looked at) against their poses, flagging the rows beyond the tolerances it is
+given (half of POS_TOL / ROT_TOL: the caller checks those again exactly as its numpy path
+does, and polishes the failures with `ik._verified`).
 
 The same arithmetic as the numpy path in `ik.solve_batch` for the chosen values (so the same
 joint values come out); FK here rounds differently from numpy's matmul (another order of
@@ -24,7 +25,7 @@ import math
 import numpy as np
 
 from rmot.compiler.jit import Kernel
-from rmot.compiler.robots.fastfk import FK_ERROR_ROWS, _fk_error_rows
+from rmot.compiler.robots.fastfk import FK_COLUMNS, _fk_columns
 
 __all__ = ["NEAREST_VERIFIED"]
 
@@ -34,18 +35,22 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
         poses, pos_tol, rot_tol, out, bad):
     n_pose, n_branch, dof = raw.shape
     two_pi = 2 * math.pi
-    qm = np.empty((dof, n_branch))  # one column per branch (fastfk._fk_error_rows)
-    t = np.empty((14, n_branch))
-    err = np.empty((2, n_branch))
+    # FK in blocks of _BLOCK columns (one per row that exists, of several poses: longer loops
+    # for the compiler's vectors, no NaN rows); a block's unused columns hold earlier values
+    qm = np.zeros((dof, _BLOCK))
+    t = np.empty((14, _BLOCK))
+    owner = np.empty(_BLOCK, dtype=np.int64)
+    slot = np.empty(_BLOCK, dtype=np.int64)
+    cols = 0
     for n in range(n_pose):
-        target = poses[n]
+        sn = n if seeds.shape[0] > 1 else 0  # one seed row per pose, or one for all
         for b in range(n_branch):
             row = out[n, b]
             bad[n, b] = False
             missing = False
             for j in range(dof):
                 r = raw[n, b, j]
-                s = seeds[n, j]
+                s = seeds[sn, j]
                 k0 = np.round((s - r) / two_pi) if revolute[j] else 0.0
                 cand = r + (k0 * two_pi if revolute[j] else 0.0)  # the loop's first candidate
                 if (cand >= lo[j] - 1e-12 and cand <= hi[j] + 1e-12
@@ -69,22 +74,32 @@ def _nearest_verified(  # type: ignore[no-untyped-def]
             if missing:
                 for j in range(dof):
                     row[j] = np.nan
-                    qm[j, b] = 0.0  # FK'd with the others, not looked at
                 continue
             for j in range(dof):
                 if coupled:
                     acc = 0.0
                     for k in range(dof):
                         acc += coupling[j, k] * row[k]
-                    qm[j, b] = acc
+                    qm[j, cols] = acc
                 else:
-                    qm[j, b] = row[j]
-        _fk_error_rows(placements, axes, prismatic, flange, qm, target, t, err)
-        for b in range(n_branch):
-            if math.isnan(out[n, b, 0]):
-                continue
-            if math.sqrt(err[0, b]) > pos_tol or math.sqrt(err[1, b]) / math.sqrt(2.0) > rot_tol:
-                bad[n, b] = True
+                    qm[j, cols] = row[j]
+            owner[cols] = n
+            slot[cols] = b
+            cols += 1
+        if cols > _BLOCK - n_branch or (n == n_pose - 1 and cols > 0):
+            _fk_columns(placements, axes, prismatic, flange, qm, t)
+            for c in range(cols):
+                target = poses[owner[c]]
+                dp = 0.0
+                dr = 0.0
+                for i in range(3):
+                    dp += (t[4 * i + 3, c] - target[i, 3]) ** 2
+                    for k in range(3):
+                        dr += (t[4 * i + k, c] - target[i, k]) ** 2
+                if math.sqrt(dp) > pos_tol or math.sqrt(dr) / math.sqrt(2.0) > rot_tol:
+                    bad[owner[c], slot[c]] = True
+            cols = 0
 
 
-NEAREST_VERIFIED = Kernel(_nearest_verified, uses=(FK_ERROR_ROWS,))
+_BLOCK = 64  # FK columns per block (at least the branches of one pose)
+NEAREST_VERIFIED = Kernel(_nearest_verified, uses=(FK_COLUMNS,))

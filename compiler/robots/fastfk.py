@@ -20,7 +20,7 @@ import math
 
 from rmot.compiler.jit import Kernel
 
-__all__ = ["FK_ERROR_ROWS", "SINCOS"]
+__all__ = ["FK_COLUMNS", "FK_ERROR_ROWS", "SINCOS"]
 
 _TWO_OVER_PI = 6.36619772367581382433e-01
 _PIO2_1 = 1.57079632673412561417e+00  # the first 33 bits of π/2: k·PIO2_1 is exact for |k| < 2^20
@@ -48,11 +48,11 @@ def _sincos(x):  # type: ignore[no-untyped-def]
     return -c, s
 
 
-def _fk_error_rows(placements, axes, prismatic, flange, qm, target, t, err):  # type: ignore[no-untyped-def]
-    """How far FK of R configurations lies from target: qm (n, R) model values (one column
-    each), t (14, R) scratch, err (2, R) out (squared position, squared rotation errors). Each step is
-    a loop over the R columns without branches, which the compiler vectorises (SIMD); the
-    sine and cosine are `_sincos`'s with its quadrant chosen by selects."""
+def _fk_columns(placements, axes, prismatic, flange, qm, t):  # type: ignore[no-untyped-def]
+    """FK of R configurations: qm (n, R) model values (one column each) -> t[:12] the flange
+    poses' top three rows (entry 4·row + col), t (14, R). Each step is a loop over the R
+    columns without branches, which the compiler vectorises (SIMD); the sine and cosine are
+    `_sincos`'s with its quadrant chosen by selects."""
     n, count = qm.shape
     for k in range(12):
         v = 1.0 if k == 0 or k == 5 or k == 10 else 0.0
@@ -116,6 +116,13 @@ def _fk_error_rows(placements, axes, prismatic, flange, qm, target, t, err):  # 
                 t[4 * row, r] = t0 * r00 + t1 * r10 + t2 * r20
                 t[4 * row + 1, r] = t0 * r01 + t1 * r11 + t2 * r21
                 t[4 * row + 2, r] = t0 * r02 + t1 * r12 + t2 * r22
+
+
+def _fk_error_rows(placements, axes, prismatic, flange, qm, target, t, err):  # type: ignore[no-untyped-def]
+    """How far FK of R configurations lies from target: qm (n, R) model values (one column
+    each), t (14, R) scratch, err (2, R) out (squared position, squared rotation errors)."""
+    _fk_columns(placements, axes, prismatic, flange, qm, t)
+    count = qm.shape[1]
     for r in range(count):
         dp = 0.0
         dr = 0.0
@@ -128,4 +135,5 @@ def _fk_error_rows(placements, axes, prismatic, flange, qm, target, t, err):  # 
 
 
 SINCOS = Kernel(_sincos)
-FK_ERROR_ROWS = Kernel(_fk_error_rows)
+FK_COLUMNS = Kernel(_fk_columns)
+FK_ERROR_ROWS = Kernel(_fk_error_rows, uses=(FK_COLUMNS,))

@@ -23,6 +23,14 @@ back to `ik.solve` whole (return -1):
   is above twice SINGULAR_SIGMA the pose is not singular, else the caller asks pinocchio and
   the SVD exactly as `ik._is_singular` does (flag 1).
 
+More than _SORTED_ROWS solutions (joints beyond ±180°: a UR arm has 512 per pose): the pass
+checks everything above and finds the nearest solution (the first row of the stable sort, by
+a pruned walk with the same sums: `_nearest_row`), but makes and sorts the rows only when the
+result is asked for more than its first one (`_expand_sorted`, through ik_rows.Lazy). The
+result is then `IkResult.solutions`/`branches` as views over one array (robots/ik_rows.py).
+The call passes its arrays packed into four (`solve_packed`): numba's dispatch costs ~45 ns
+per argument.
+
 The interpreted form is the same function (Kernel); `ik.solve` only calls the compiled one,
 once a process has solved SOLVE_ONE.threshold poses (so `rmot robots ik` stays numba-free).
 """
@@ -30,7 +38,6 @@ once a process has solved SOLVE_ONE.threshold poses (so `rmot robots ik` stays n
 from __future__ import annotations
 
 import math
-from operator import itemgetter
 from typing import Any
 
 import numpy as np
@@ -39,12 +46,14 @@ from rmot.compiler.jit import Kernel
 from rmot.compiler.robots import fastik, ik
 from rmot.compiler.robots.fastfk import FK_ERROR_ROWS, _fk_error_rows
 from rmot.compiler.robots.fastik import _opw_one, _ur_one
+from rmot.compiler.robots.ik_rows import BranchRows, JointRows, Lazy
 
 __all__ = ["SOLVE_ONE"]
 
 _TOLS = (ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA)
 
 _TWO_PI = 2 * math.pi
+_SORTED_ROWS = 48  # above: a result's rows are made and sorted only when asked for
 
 
 def _branch_code(kind, bpar, crows, q):  # type: ignore[no-untyped-def]
@@ -170,15 +179,127 @@ def _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, re
     return abs(det) > 2.0 * sigma * math.sqrt(frob) ** (n - 1)
 
 
+def _expand(groups, n_groups, seed, out, codes, dist, digits):  # type: ignore[no-untyped-def]
+    """Every row of the first n_groups groups (solve_one's layout: code, row count, then per
+    joint its count of equivalents and their values) in ik._equivalents' order (itertools.product
+    over the joints, last fastest; groups in branch order), with its branch code and its distance
+    from the seed (the sum of squares in joint order, then the square root). digits: (dof,)
+    scratch. Returns the row count."""
+    dof = seed.shape[0]
+    per = (groups.shape[1] - 2 - dof) // dof
+    m = 0
+    for gi in range(n_groups):
+        g = groups[gi]
+        code = int(g[0])
+        for j in range(dof):
+            digits[j] = 0
+        for _idx in range(int(g[1])):
+            acc = 0.0
+            for j in range(dof):
+                v = g[2 + dof + j * per + digits[j]]
+                out[m, j] = v
+                d = v - seed[j]
+                acc += d * d
+            dist[m] = math.sqrt(acc)
+            codes[m] = code
+            m += 1
+            j = dof - 1
+            while j >= 0:
+                digits[j] += 1
+                if digits[j] < g[2 + j]:
+                    break
+                digits[j] = 0
+                j -= 1
+    return m
+
+
+def _nearest_row(groups, n_groups, seed, row, digits, partial):  # type: ignore[no-untyped-def]
+    """The index (in `_expand`'s order) of the first row at the least distance from the seed
+    (the first row of a stable sort by `_expand`'s distances, with the same arithmetic), and
+    that row into row, without making the others.
+
+    A depth-first walk over each group's joints in `_expand`'s order: a row's sum of squares
+    is the sums over its first joints (partial: (dof,) scratch) plus the rest, the same sums
+    in the same order as `_expand`'s. A float sum of non-negative terms never decreases, so
+    once a prefix sum exceeds T = U·(1 + 1e-13), where U is the sum of some row (each group's
+    nearest option per joint), every row below it has a distance above √U's rounding, which
+    is at least the least distance: it can be neither the nearest nor tie with it, and the
+    walk skips it. digits: (dof,) scratch."""
+    dof = seed.shape[0]
+    per = (groups.shape[1] - 2 - dof) // dof
+    bound = math.inf
+    for gi in range(n_groups):  # U: a row of each group, its nearest option per joint
+        g = groups[gi]
+        acc = 0.0
+        for j in range(dof):
+            best_d = math.inf
+            for k in range(int(g[2 + j])):
+                d = abs(g[2 + dof + j * per + k] - seed[j])
+                if d < best_d:
+                    best_d = d
+            acc += best_d * best_d
+        if acc < bound:
+            bound = acc
+    limit = bound * (1.0 + 1e-13)
+    best = math.inf
+    first = -1
+    base = 0
+    for gi in range(n_groups):
+        g = groups[gi]
+        j = 0
+        digits[0] = 0
+        while True:
+            d = g[2 + dof + j * per + digits[j]] - seed[j]
+            acc = (0.0 if j == 0 else partial[j - 1]) + d * d
+            partial[j] = acc
+            if acc <= limit:
+                if j < dof - 1:
+                    j += 1
+                    digits[j] = 0
+                    continue
+                dist = math.sqrt(acc)
+                if dist < best:
+                    best = dist
+                    index = 0
+                    for i in range(dof):
+                        row[i] = g[2 + dof + i * per + digits[i]]
+                        index = index * int(g[2 + i]) + digits[i]
+                    first = base + index
+            digits[j] += 1  # the next option of this joint, or back up
+            while digits[j] >= g[2 + j]:
+                j -= 1
+                if j < 0:
+                    break
+                digits[j] += 1
+            if j < 0:
+                break
+        base += int(g[1])
+    return first
+
+
+def _group_of(groups, n_groups, index):  # type: ignore[no-untyped-def]
+    """The group of row `index` in `_expand`'s order."""
+    for gi in range(n_groups):
+        index -= int(groups[gi, 1])
+        if index < 0:
+            return gi
+    return -1
+
+
 def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type: ignore[no-untyped-def]
-              placements, axes, prismatic, flange, coupling, want, fwork, opts, iwork, dist, branch_work,
-              out, codes):
-    """One pose -> (m, flag): out[:m] the solutions sorted as ik.solve sorts them, codes[:m]
-    their branch codes; flag 1 = the caller must run the exact singularity test on out[0].
+              placements, axes, prismatic, flange, coupling, want, fwork, groups, iwork, dist,
+              branch_work, out, codes, saved):
+    """One pose -> (m, flag, first, n_groups, code): out[:m] the solutions sorted as ik.solve
+    sorts them, codes[:m] their branch codes, when first = -1; when m > _SORTED_ROWS (many
+    2π-equivalents) saved = the seed, the nearest row, then groups (as `_expand` makes the rows
+    of groups[:n_groups]), first the nearest row's index in that order and code its branch code
+    (the caller makes and sorts the rows only if asked: ik_rows.Lazy); flag 1 = the caller must
+    run the exact singularity test on the nearest row.
     m = -1: hand the pose to ik.solve (see the module docstring). consts: lo, hi, revolute
     (1.0 / 0.0) per joint, then reach, POS_TOL, ROT_TOL, SINGULAR_SIGMA, coupled, kind
     (0 OPW, 1 UR). Scratch: fwork (35 + rows, dof): raw (8,dof), 19 rows, the 8 rows mod 2π, then
-    out's rows reordered; opts (dof, max equivalents per joint); iwork: counts (dof), three flag rows (3x8),
+    out's rows reordered; groups (8, 2 + dof + dof·K): `_expand`'s; iwork: (dof, unused),
+    three flag rows (3x8),
     the order and the codes of out's rows; dist with out's rows; branch_work (dof + 16, 8):
     the branches' FK (fastfk._fk_error_rows)."""
     dof = seed.shape[0]
@@ -188,18 +309,18 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     coupled = consts[3 * dof + 4] != 0.0
     kind = int(consts[3 * dof + 5])
     raw, scratch, wrapped, ordered = fwork[0:8], fwork[8:27], fwork[27:35], fwork[35:35 + rows]
-    counts, flags = iwork[0:dof], iwork[dof:dof + 24].reshape((3, 8))
+    flags = iwork[dof:dof + 24].reshape((3, 8))
     order, ordered_codes = iwork[dof + 24:dof + 24 + rows], iwork[dof + 24 + rows:dof + 24 + 2 * rows]
     # the pose: finite, rotation orthonormal (ik._check_pose raises otherwise)
     for r in range(4):
         for c in range(4):
             if not math.isfinite(target[r, c]):
-                return -1, 0
+                return -1, 0, -1, 0, 0
     for r in range(3):
         for c in range(3):
             dot = target[r, 0] * target[c, 0] + target[r, 1] * target[c, 1] + target[r, 2] * target[c, 2]
             if abs(dot - (1.0 if r == c else 0.0)) > 0.5e-6:
-                return -1, 0
+                return -1, 0, -1, 0, 0
     if kind == 0:
         _opw_one(a0, a1, a2, a3, local, raw)
     else:
@@ -235,13 +356,13 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
         dp, dr = math.sqrt(dp2), math.sqrt(dr2 / 2.0)
         if dp <= pos_tol / 2 and dr <= rot_tol / 2:
             if dof == 6 and abs(math.sin(raw[b, 4])) <= 2e-7:
-                return -1, 0  # the wrist singularity: ik.solve keeps the seed's J4
+                return -1, 0, -1, 0, 0  # the wrist singularity: ik.solve keeps the seed's J4
             keep[b] = 1
             n_keep += 1
         elif dp < 2e-4 and dr < 2e-4:
-            return -1, 0  # a near miss: ik.solve polishes it
+            return -1, 0, -1, 0, 0  # a near miss: ik.solve polishes it
     if n_keep == 0:
-        return -1, 0
+        return -1, 0, -1, 0, 0
     # distinct modulo 2π (ik._distinct: np.remainder, then the wrapped gap; a candidate is
     # dropped when it equals any earlier verified one, dropped or not)
     for b in range(8):
@@ -267,94 +388,134 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
                 break
     m = 0
     n_groups = 0
+    n_kept = 0
+    per = (groups.shape[1] - 2 - dof) // dof  # room for equivalents per joint
     for b in range(8):
         if not keep[b]:
             continue
         # ik._equivalents: every q + 2πk within the limits, itertools.product order
+        g = groups[n_kept]
         empty = False
         total = 1
         for j in range(dof):
             v = raw[b, j]
-            first = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI if revolute[j] != 0.0 else v
-            if not (lo[j] - 1e-12 <= first and first <= hi[j] + 1e-12):
+            start = v
+            if revolute[j] != 0.0:
+                start = v + math.ceil((lo[j] - 1e-12 - v) / _TWO_PI) * _TWO_PI
+            if not (lo[j] - 1e-12 <= start and start <= hi[j] + 1e-12):
                 empty = True
                 break
-            value = min(max(first, lo[j]), hi[j])
-            opts[j, 0] = value
+            value = min(max(start, lo[j]), hi[j])
+            g[2 + dof + j * per] = value
             k = 1
             while revolute[j] != 0.0 and value + _TWO_PI <= hi[j] + 1e-12:
                 value = min(value + _TWO_PI, hi[j])
-                opts[j, k] = value
+                g[2 + dof + j * per + k] = value
                 k += 1
-            counts[j] = k
+            g[2 + j] = k
             total *= k
         if empty:
             continue
         code = _branch_code(kind, bpar, crows, raw[b])
         if code < 0:
-            return -1, 0
+            return -1, 0, -1, 0, 0
         n_groups += 1
         if ((want[0] >= 0 and want[0] != code // 4) or (want[1] >= 0 and want[1] != (code // 2) % 2)
                 or (want[2] >= 0 and want[2] != code % 2)):
             continue
-        digits = flags[2, :dof]  # (finite's row, no longer read) an odometer, last joint fastest
-        for j in range(dof):
-            digits[j] = 0
-        for idx in range(total):
-            for j in range(dof):
-                out[m + idx, j] = opts[j, digits[j]]
-            codes[m + idx] = code
-            j = dof - 1
-            while j >= 0:
-                digits[j] += 1
-                if digits[j] < counts[j]:
-                    break
-                digits[j] = 0
-                j -= 1
+        g[0] = code
+        g[1] = total
+        n_kept += 1
         m += total
     if n_groups == 0 or m == 0:
-        return -1, 0  # out of limits, or no branch as configured: ik.solve's messages
-    # stable sort by the distance from the seed (ik.solve: np.argsort(kind="stable"))
-    for i in range(m):
-        acc = 0.0
+        return -1, 0, -1, 0, 0  # out of limits, or no branch as configured: ik.solve's messages
+    if m > _SORTED_ROWS:  # many 2π-equivalents: made and sorted if asked for (ik_rows.Lazy)
         for j in range(dof):
-            d = out[i, j] - seed[j]
-            acc += d * d
-        dist[i] = math.sqrt(acc)
-    if m > 48:
-        order[:m] = np.argsort(dist[:m], kind="mergesort")
-    else:  # insertion sort of the indices: stable, no allocation
+            saved[j] = seed[j]
+        nearest = saved[dof:2 * dof]
+        first = _nearest_row(groups, n_kept, seed, nearest, flags[2, :dof], wrapped[0])
+        code0 = int(groups[_group_of(groups, n_kept, first), 0])
+    else:  # all rows, then an insertion sort of the indices: stable, no allocation
+        first = -1
+        _expand(groups, n_kept, seed, out, codes, dist, flags[2, :dof])
         for i in range(m):
             k = i
             while k > 0 and dist[order[k - 1]] > dist[i]:
                 order[k] = order[k - 1]
                 k -= 1
             order[k] = i
-    for i in range(m):
-        k = order[i]
-        for j in range(dof):
-            ordered[i, j] = out[k, j]
-        ordered_codes[i] = codes[k]
-    for i in range(m):
-        for j in range(dof):
-            out[i, j] = ordered[i, j]
-        codes[i] = ordered_codes[i]
+        for i in range(m):
+            k = order[i]
+            for j in range(dof):
+                ordered[i, j] = out[k, j]
+            ordered_codes[i] = codes[k]
+        for i in range(m):
+            for j in range(dof):
+                out[i, j] = ordered[i, j]
+            codes[i] = ordered_codes[i]
+        nearest = out[0]
+        code0 = codes[0]
     for j in range(dof):
         if coupled:
             acc = 0.0
             for k in range(dof):
-                acc += coupling[j, k] * out[0, k]
+                acc += coupling[j, k] * nearest[k]
             qm[j] = acc
         else:
-            qm[j] = out[0, j]
+            qm[j] = nearest[j]
     flag = 0 if _not_singular(placements, axes, prismatic, flange, coupling, coupled, qm, reach, sigma,
                               scratch[1:7], scratch[7:13], scratch[13:19]) else 1
-    return m, flag
+    return m, flag, first, n_kept, code0
 
 
-SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS, Kernel(_branch_code),
-                                    Kernel(_not_singular, uses=(Kernel(_jacobian_into),))),
-                   threshold=200)
+def solve_packed(fc, ic, local, target, seed, want, fs, iscr):  # type: ignore[no-untyped-def]
+    """solve_one with its arrays packed into four (FastSolver's layout): a call with fewer
+    arguments costs less to dispatch (~45 ns each). fc: the robot's constants; ic: dof, the
+    length of the closed form's first array and of the branch parameters, the scratch rows,
+    the columns of a group; fs / iscr: float / int scratch."""
+    dof, n0, nb, rows, gcols = ic[0], ic[1], ic[2], ic[3], ic[4]
+    a0 = fc[0:n0]
+    o = n0
+    a1, a2 = fc[o:o + 6], fc[o + 6:o + 12]
+    a3 = fc[o + 12:o + 48].reshape((6, 6))
+    o += 48
+    bpar = fc[o:o + nb]
+    o += nb
+    crows = fc[o:o + 2 * dof].reshape((2, dof))
+    o += 2 * dof
+    consts = fc[o:o + 3 * dof + 6]
+    o += 3 * dof + 6
+    placements = fc[o:o + 16 * dof].reshape((dof, 4, 4))
+    o += 16 * dof
+    axes = fc[o:o + 3 * dof].reshape((dof, 3))
+    o += 3 * dof
+    prismatic = fc[o:o + dof]
+    o += dof
+    flange = fc[o:o + 16].reshape((4, 4))
+    coupling = fc[o + 16:o + 16 + dof * dof].reshape((dof, dof))
+    saved = fs[0:2 * dof + 8 * gcols]  # seed, nearest row, groups: what a lazy result keeps
+    groups = saved[2 * dof:].reshape((8, gcols))
+    o = 2 * dof + 8 * gcols
+    fwork = fs[o:o + (35 + rows) * dof].reshape((35 + rows, dof))
+    o += (35 + rows) * dof
+    dist = fs[o:o + rows]
+    o += rows
+    branch_work = fs[o:o + (dof + 16) * 8].reshape((dof + 16, 8))
+    o += (dof + 16) * 8
+    out = fs[o:o + rows * dof].reshape((rows, dof))
+    iwork = iscr[0:dof + 24 + 2 * rows]
+    codes = iscr[dof + 24 + 2 * rows:dof + 24 + 3 * rows]
+    return solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts, placements, axes,
+                     prismatic, flange, coupling, want, fwork, groups, iwork, dist, branch_work,
+                     out, codes, saved)
+
+
+EXPAND = Kernel(_expand)
+_SOLVE_ONE = Kernel(solve_one, uses=(fastik._OPW_ONE, fastik._UR_ONE, FK_ERROR_ROWS,
+                                     Kernel(_branch_code), EXPAND, Kernel(_nearest_row),
+                                     Kernel(_group_of),
+                                     Kernel(_not_singular, uses=(Kernel(_jacobian_into),))))
+SOLVE_ONE = Kernel(solve_packed, uses=(_SOLVE_ONE,), threshold=200)
 
 
 class FastSolver:
@@ -385,26 +546,26 @@ class FastSolver:
         span = np.where(self.revolute, np.floor((self.hi - self.lo + 2e-12) / _TWO_PI), 0.0)
         self.per_joint = int(span.max()) + 1
         self.max_rows = 8 * int(np.prod(span + 1))
-        rows = self.max_rows
+        rows = min(self.max_rows, _SORTED_ROWS)  # more rows are made only when asked for
         self.consts = np.concatenate([self.lo, self.hi, self.revolute.astype(float),
                                       [self.reach, *_TOLS, float(self.coupled), float(self.kind)]])
-        self.fwork = np.empty((35 + rows, dof))
-        self.iwork = np.zeros(dof + 24 + 2 * rows, dtype=np.int64)
-        self.dist = np.empty(rows)
-        self.out = np.empty((rows, dof))  # the kernel's answer, copied out per call
-        self.codes = np.empty(rows, dtype=np.int64)
-        self.branch_work = np.empty((dof + 16, 8))
-        self.opts = np.empty((dof, self.per_joint + 1))
+        gcols = 2 + dof + dof * (self.per_joint + 1)
+        self.gcols = gcols
+        parts = (*self.args, self.bpar, self.crows, self.consts, self.placements, self.axes,
+                 self.prismatic.astype(float), self.flange, self.coupling)
+        self.fc = np.concatenate([np.ravel(a) for a in parts])  # solve_packed's layout
+        self.ic = np.array([dof, len(self.args[0]), len(self.bpar), rows, gcols], dtype=np.int64)
+        n_saved = 2 * dof + 8 * gcols
+        self.fs = np.empty(n_saved + (35 + rows) * dof + rows + (dof + 16) * 8 + rows * dof)
+        self.iscr = np.zeros(dof + 24 + 3 * rows, dtype=np.int64)
+        self.saved = self.fs[:n_saved]  # seed, nearest row, groups (a lazy result's copy)
+        self.out = self.fs[len(self.fs) - rows * dof:].reshape(rows, dof)  # the sorted rows
+        self.codes = self.iscr[dof + 24 + 2 * rows:]
         self.zeros = np.zeros(dof)
         self.any = np.full(3, -1, dtype=np.int64)
-        self.compiled: Any = None  # SOLVE_ONE's dispatcher and its argument groups, on first use
-        self.head: tuple[Any, ...] = ()
-        self.body: tuple[Any, ...] = ()
-        self.work: tuple[Any, ...] = ()
+        self.compiled: Any = None  # SOLVE_ONE's dispatcher, on first use
         self.configs = tuple(config_of(-1.0 if c & 4 else 1.0, -1.0 if c & 2 else 1.0, -1.0 if c & 1 else 1.0)
                              for c in range(8))  # the same objects as robot.branch gives
-        self.config_array = np.empty(8, dtype=object)
-        self.config_array[:] = self.configs
         self.usable = robot._flange_joint == dof and dof == 6
         self.kernel = SOLVE_ONE
 
@@ -425,26 +586,53 @@ class FastSolver:
         seed_q = self.zeros if seed is None else np.asarray(seed, dtype=float).reshape(robot.dof)
         cf = self.closed_form
         local = target if cf.pre is None and cf.post is None else np.ascontiguousarray(cf.local(target[None])[0])
-        out, codes = self.out, self.codes
-        if self.compiled is None:
-            self.compiled = SOLVE_ONE.jit()
-            self.head = (*self.args, self.bpar, self.crows)
-            self.body = (self.consts, self.placements, self.axes, self.prismatic, self.flange, self.coupling)
-            self.work = (self.fwork, self.opts, self.iwork, self.dist, self.branch_work)
-        m, flag = self.compiled(*self.head, local, target, seed_q, *self.body,
-                                self.any if config is None else self.want(config), *self.work, out, codes)
+        compiled = self.compiled
+        if compiled is None:
+            compiled = self.compiled = SOLVE_ONE.jit()
+        m, flag, first, n_groups, code = compiled(
+            self.fc, self.ic, local, target, seed_q,
+            self.any if config is None else self.want(config), self.fs, self.iscr)
         if m < 0:
             return None
-        qs = out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
-        qs.setflags(write=False)
-        sols = tuple(qs)
-        configs = self.configs
-        if m <= 16:
-            brs = (configs[int(codes[0])],) if m == 1 else itemgetter(*codes[:m].tolist())(configs)
-        else:  # many 2π-equivalents (joints beyond ±180°): one numpy gather
-            brs = tuple(self.config_array[codes[:m]].tolist())
+        if first < 0:  # all rows, sorted by the kernel
+            rows = self.out[:m].copy()  # its own array of m rows: a result keeps no scratch alive
+            rows.setflags(write=False)
+            sols = JointRows(rows)
+            brs = BranchRows(None, self.codes[:m].copy(), self.configs)
+        else:  # many 2π-equivalents: made and sorted when asked for (ik_rows.Lazy)
+            dof = robot.dof
+            saved = self.saved[:2 * dof + n_groups * self.gcols].copy()  # private to the result
+            nearest = saved[dof:2 * dof]
+            nearest.setflags(write=False)
+            lazy = Lazy(_make_rows, saved, dof, self.gcols, m)
+            sols = JointRows(None, lazy, nearest, m)
+            brs = BranchRows(None, None, self.configs, lazy, self.configs[code], m)
         if flag and ik._is_singular(robot, sols[0]):
-            return ik.IkResult(ik.IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
-        return ik.IkResult(ik.IkStatus.OK, sols, brs)
+            return ik.result(ik.IkStatus.SINGULAR, sols, brs,
+                             "the pose lies on a kinematic singularity")
+        return ik.result(ik.IkStatus.OK, sols, brs)
 
 
+def _make_rows(saved: np.ndarray, dof: int, gcols: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """(rows, codes) of a lazy result sorted as ik.solve sorts them (SOLVE_ONE's arithmetic);
+    saved: the seed, the nearest row, the groups (solve_packed's layout)."""
+    rows, codes = np.empty((m, dof)), np.empty(m, dtype=np.int64)
+    EXPAND_SORTED.jit()(saved[2 * dof:].reshape(-1, gcols), saved[:dof], rows, codes)
+    return rows, codes
+
+
+def _expand_sorted(groups, seed, rows, codes):  # type: ignore[no-untyped-def]
+    """`_expand` of every group, then the rows and codes in the order of a stable sort by the
+    distances (numba's mergesort: stable, as ik.solve_exact's np.argsort(kind="stable"))."""
+    m, dof = rows.shape
+    made, made_codes, dist = np.empty((m, dof)), np.empty(m, dtype=np.int64), np.empty(m)
+    _expand(groups, groups.shape[0], seed, made, made_codes, dist, np.empty(dof, dtype=np.int64))
+    order = np.argsort(dist, kind="mergesort")
+    for i in range(m):
+        k = order[i]
+        for j in range(dof):
+            rows[i, j] = made[k, j]
+        codes[i] = made_codes[k]
+
+
+EXPAND_SORTED = Kernel(_expand_sorted, uses=(EXPAND,))

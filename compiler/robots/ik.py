@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
 from typing import Any
@@ -26,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.robots.ik_rows import BranchRows, JointRows
 from rmot.compiler.robots.numeric import dls, dls_fast, restart_seeds
 
 __all__ = ["IkResult", "IkStatus", "solve", "solve_batch", "POS_TOL", "ROT_TOL"]
@@ -46,13 +48,15 @@ class IkStatus(Enum):
 
 @dataclass(frozen=True, slots=True)
 class IkResult:
-    """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them.
+    """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them
+    (immutable sequences that behave as tuples: robots/ik_rows.py; `solutions.array` is all of
+    them as one (m, dof) array).
     UNREACHABLE: `distance` (m) from the workspace. OUT_OF_LIMITS: `joint` (0-based index),
     `excess` (rad or m) of the least-violating solution; `message` a sentence for users."""
 
     status: IkStatus
-    solutions: tuple[np.ndarray, ...] = ()
-    branches: tuple[ir.Config, ...] = ()
+    solutions: Sequence[np.ndarray] = ()
+    branches: Sequence[ir.Config] = ()
     message: str = ""
     distance: float = 0.0
     joint: int | None = None
@@ -62,6 +66,27 @@ class IkResult:
     def ok(self) -> bool:
         """True when there is at least one solution (OK or SINGULAR)."""
         return bool(self.solutions)
+
+
+_NEW = object.__new__
+_SETTERS = tuple(IkResult.__dict__[f].__set__ for f in
+                 ("status", "solutions", "branches", "message", "distance", "joint", "excess"))
+
+
+def result(status: IkStatus, solutions: Sequence[np.ndarray], branches: Sequence[ir.Config],
+           message: str = "") -> IkResult:
+    """IkResult(status, solutions, branches, message): the same frozen value, made through its
+    slots (half the time of the dataclass's __init__, which Robot.ik pays on every call)."""
+    out = _NEW(IkResult)
+    s0, s1, s2, s3, s4, s5, s6 = _SETTERS
+    s0(out, status)
+    s1(out, solutions)
+    s2(out, branches)
+    s3(out, message)
+    s4(out, 0.0)
+    s5(out, None)
+    s6(out, 0.0)
+    return out
 
 
 _EYE3 = np.eye(3)
@@ -223,12 +248,12 @@ def solve_exact(robot, pose: np.ndarray, seed: np.ndarray | None = None, config:
     order = np.argsort(np.sqrt(np.add.reduce(delta * delta, axis=1)), kind="stable")  # = norm(delta, axis=1)
     qs = qs[order]
     qs.setflags(write=False)
-    sols = tuple(qs)
+    sols = JointRows(qs)
     if len(kept) == 1:
-        brs = (kept[0][0],) * len(sols)
+        brs = BranchRows((kept[0][0],) * len(sols))
     else:
         names = [b for b, e in kept for _ in range(len(e))]
-        brs = tuple(names[i] for i in order.tolist())
+        brs = BranchRows(tuple(names[i] for i in order.tolist()))
     if _is_singular(robot, sols[0]):
         return IkResult(IkStatus.SINGULAR, sols, brs, "the pose lies on a kinematic singularity")
     return IkResult(IkStatus.OK, sols, brs)
@@ -337,7 +362,8 @@ def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
     from rmot.compiler.robots.fastbatch import NEAREST_VERIFIED
 
     n, b, dof = raw.shape
-    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (n, dof)), dtype=float)
+    rows_of_seeds = n if seed_q.ndim == 2 else 1  # one row for all poses: not copied n times
+    seeds = np.ascontiguousarray(np.broadcast_to(seed_q, (rows_of_seeds, dof)), dtype=float)
     chain = robot._chain
     coupled = robot._coupling is not None
     coupling = np.ascontiguousarray(robot._coupling, dtype=float) if coupled else np.eye(dof)
@@ -351,8 +377,8 @@ def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
         POS_TOL / 2, ROT_TOL / 2, out, bad)
     # Rows the kernel's FK put within half a tolerance of failing (a few per thousand) get the
     # numpy path's own check, so that its rounding, not the kernel's, decides which to polish.
-    rows = np.argwhere(bad)
-    if len(rows):
+    if bad.any():
+        rows = np.argwhere(bad)
         n_i, b_i = rows[:, 0], rows[:, 1]
         out[n_i, b_i] = _verify_batch(robot, poses[n_i], out[n_i, b_i][:, None])[:, 0]
     return out

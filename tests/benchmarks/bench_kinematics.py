@@ -6,10 +6,12 @@ each next to a plain pinocchio damped-least-squares loop run in the same process
 
 Targets (issue 3): batched closed form <= 1 µs per pose (all 8 branches), single call
 <= 10 µs, numeric median <= 100 µs cold with 100 % success at 1e-9, FK <= 1.5 µs.
-Issue 18 (`_closed_form_arm`, CPU-time medians): Robot.ik on abb_irb120 and ur5e <= 20 µs per
-call with all its checks, ik_batch with limits and seed selection <= 2 µs per pose, each next
-to the raw closed form in the same run. ur5e's joints span ±360°: every call returns all 512
-2π-equivalents as a tuple of arrays, which alone costs ~50 µs (see `solutions_per_call`).
+Issue 18 (`_closed_form_arm`, CPU-time medians): Robot.ik on abb_irb120, kuka_kr6_r900 and ur5e
+<= 20 µs per call with all its checks, ik_batch with limits and seed selection <= 2 µs per pose,
+each next to the raw closed form in the same run. ur5e's joints span ±360°: a pose has 512
+2π-equivalents (`solutions_per_call`); Robot.ik finds, checks and returns the nearest and makes
+the others (rows of one array, sorted) only when asked for (`robot_ik_all_rows_us`: Robot.ik
+plus a list of every solution, what a caller that reads all of them pays).
 """
 
 from __future__ import annotations
@@ -186,17 +188,26 @@ def _closed_form_arm(name: str) -> dict[str, float]:
     amany = np.concatenate([aposes] * 5)
     for i in range(400):  # past the compiled single-pose pass's threshold (fastsolve)
         arm.ik(aposes[i % N_TARGETS])
-    arm.ik_batch(amany, seed=aq[0])
+    for _ in range(3):  # past the closed form's threshold (fastik), as in a planner's process
+        arm.ik_batch(amany, seed=aq[0])
     nxt = cycle(range(N_TARGETS))
+
+    def ik_all_rows() -> None:  # Robot.ik, then every solution made (and sorted) as a row array
+        list(arm.ik(aposes[nxt()]).solutions)
+
     return {
         f"{name}_closed_form_single_us": _cpu_median_us(lambda: arm.ik_closed_form(aposes[nxt()])),
         f"{name}_robot_ik_us": _cpu_median_us(lambda: arm.ik(aposes[nxt()])),
+        f"{name}_robot_ik_all_rows_us": _cpu_median_us(ik_all_rows, calls=50),
         f"{name}_closed_form_batched_us_per_pose": _cpu_median_us(
             lambda: arm.ik_closed_form(amany), calls=3) / len(amany),
         f"{name}_ik_batch_us_per_pose": _cpu_median_us(
             lambda: arm.ik_batch(amany, seed=aq[0]), calls=3) / len(amany),
         f"{name}_solutions_per_call": float(np.median([len(arm.ik(t).solutions) for t in aposes])),
     }
+
+
+ISSUE_18_ARMS = ("abb_irb120", "kuka_kr6_r900", "ur5e")
 
 
 def summary() -> dict[str, float]:
@@ -222,7 +233,7 @@ def summary() -> dict[str, float]:
     ur.ik_closed_form(ur_many)
     out["ur5e_closed_form_batched_us_per_pose"] = _median_us(lambda: ur.ik_closed_form(ur_many), 50) / len(ur_many)
     out["ur5e_closed_form_single_us"] = _median_us(lambda: ur.ik_closed_form(ur_poses[nxt()]), 5000)
-    for name in ("abb_irb120", "ur5e"):  # issue 18: Robot.ik <= 20 us, ik_batch <= 2 us/pose
+    for name in ISSUE_18_ARMS:  # issue 18: Robot.ik <= 20 us, ik_batch <= 2 us/pose
         out.update(_closed_form_arm(name))
     u = load_robot(ur5_urdf())
     uq, uposes = targets(u)
@@ -258,10 +269,12 @@ if __name__ == "__main__":
     batch = results["ik_batch_limits_seed_us_per_pose"]
     print(f"ik_batch with limits and seed: {batch:.2f} us per pose (target <= 2), "
           f"{batch / raw:.1f}x the raw closed form")
-    for name in ("abb_irb120", "ur5e"):
+    for name in ISSUE_18_ARMS:
         one, raw1 = results[f"{name}_robot_ik_us"], results[f"{name}_closed_form_single_us"]
         per, rawb = results[f"{name}_ik_batch_us_per_pose"], results[f"{name}_closed_form_batched_us_per_pose"]
         print(f"{name}: Robot.ik {one:.1f} us per call (target <= 20; raw closed form {raw1:.1f} us, "
-              f"{results[f'{name}_solutions_per_call']:.0f} solutions per call), ik_batch {per:.2f} us per "
-              f"pose (target <= 2; raw closed form {rawb:.2f} us per pose)")
+              f"{results[f'{name}_solutions_per_call']:.0f} solutions per call; "
+              f"{results[f'{name}_robot_ik_all_rows_us']:.1f} us with every solution made), "
+              f"ik_batch {per:.2f} us per pose (target <= 2; raw closed form {rawb:.2f} us "
+              f"per pose, {per - rawb:.2f} us above it)")
     print(f"(load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")
