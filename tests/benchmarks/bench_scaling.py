@@ -5,6 +5,12 @@ and the peak RSS of that one child (os.wait4), and the wall time.
     python tests/benchmarks/bench_scaling.py                       # the curve, zone fine + 10 mm
     python tests/benchmarks/bench_scaling.py --n 10 80 400 --rounds 5 --zones fine
     python tests/benchmarks/bench_scaling.py --stages 2000         # where time and memory go
+    python tests/benchmarks/bench_scaling.py --base /tmp/base      # and another tree, same rounds
+
+BASE: another rmot tree measured in the same rounds, run by the same interpreter with this
+tree's editable install taken off the import path (as in bench_startup.py), e.g. before a change:
+    mkdir -p /tmp/base/rmot /tmp/old && git archive HEAD~1 | tar -x -C /tmp/old
+    for d in lang compiler backends sim; do ln -s /tmp/old/$d /tmp/base/rmot/$d; done
     pytest tests/benchmarks/bench_scaling.py                       # a tiny curve (N = 10, 20)
 
 The program: an ABB IRB 120 (library arm) over a table, a gripper; `move joint home` to a joint
@@ -38,6 +44,15 @@ from pathlib import Path
 
 RMOT = [sys.executable, "-c",
         "import sys; from rmot.compiler.cli import main; sys.argv[0] = 'rmot'; main()"]
+
+
+def rmot_of(tree: str | None) -> list[str]:
+    """The command that runs `rmot` from `tree` (None: the installed one)."""
+    if tree is None:
+        return RMOT
+    return [sys.executable, "-c", "import sys; sys.meta_path[:] = [f for f in sys.meta_path "
+            f"if 'editable' not in repr(f).lower()]; sys.path.insert(0, {tree!r}); "
+            "from rmot.compiler.cli import main; sys.argv[0] = 'rmot'; main()"]
 CELL = """cell scaling {
   robot r1 = abb_irb120
   fixture table = box(600mm, 800mm, 40mm) at pose(x=450mm, z=-20mm)
@@ -93,23 +108,30 @@ def run_child(cmd: list[str], env: dict[str, str] | None = None) -> Run:
 
 
 def measure(ns: list[int], zones: list[str], rounds: int, large: int = 400,
-            large_rounds: int = 1) -> dict[tuple[str, int], Run]:
+            large_rounds: int = 1, base: str | None = None) -> dict[tuple[str, int], Run]:
     """Median Run of `rmot check --no-cache` per (zone, N): `rounds` rounds for N < `large`,
-    `large_rounds` from there on (the medians are per column: CPU, wall and peak apart)."""
+    `large_rounds` from there on (the medians are per column: CPU, wall and peak apart). With
+    `base`, that tree's runs too, interleaved, under the zone "base: <zone>"."""
+    trees = [("", None)] + ([("base: ", base)] if base else [])
     out: dict[tuple[str, int], Run] = {}
     with tempfile.TemporaryDirectory() as tmp:
         env = dict(os.environ, RMOT_CACHE_DIR=os.path.join(tmp, "cache"))
-        run_child([*RMOT, "check", write_program(tmp, 3, "fine")], env)  # warm: numba kernels
+        for _, tree in trees:  # warm: numba's kernel cache
+            run_child([*rmot_of(tree), "check", write_program(tmp, 3, "fine")], env)
         for n in ns:
             for zone in zones:
                 prog = write_program(tmp, n, zone)
-                runs = [run_child([*RMOT, "check", "--no-cache", prog], env)
-                        for _ in range(rounds if n < large else large_rounds)]
-                out[(zone, n)] = Run(statistics.median(r.cpu_s for r in runs),
-                                     statistics.median(r.wall_s for r in runs),
-                                     statistics.median(r.peak_mb for r in runs),
-                                     max(r.exit_code for r in runs))
-                print(f"  zone {zone:6s} N={n:5d}: {out[(zone, n)]}", file=sys.stderr, flush=True)
+                runs: dict[str, list[Run]] = {label: [] for label, _ in trees}
+                for _ in range(rounds if n < large else large_rounds):
+                    for label, tree in trees:
+                        runs[label].append(run_child([*rmot_of(tree), "check", "--no-cache", prog], env))
+                for label, got in runs.items():
+                    out[(label + zone, n)] = Run(statistics.median(r.cpu_s for r in got),
+                                                 statistics.median(r.wall_s for r in got),
+                                                 statistics.median(r.peak_mb for r in got),
+                                                 max(r.exit_code for r in got))
+                    print(f"  {label}zone {zone:6s} N={n:5d}: {out[(label + zone, n)]}",
+                          file=sys.stderr, flush=True)
     return out
 
 
@@ -242,6 +264,7 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--rounds", type=int, default=3, help="rounds per N below --large")
     ap.add_argument("--large", type=int, default=400, help="from this N on, --large-rounds")
     ap.add_argument("--large-rounds", type=int, default=1)
+    ap.add_argument("--base", default=None, help="another rmot tree to measure in the same rounds")
     ap.add_argument("--stages", type=int, default=None, metavar="N",
                     help="only the per-stage split of one program of N moves, in this process")
     ap.add_argument("--profile", action="store_true", help="with --stages: cProfile's top 40")
@@ -251,7 +274,7 @@ def main(argv: list[str] | None = None) -> None:
     if args.stages is not None:
         print(stages(args.stages, args.zones[0], args.profile, args.trace))
         return
-    results = measure(args.n, args.zones, args.rounds, args.large, args.large_rounds)
+    results = measure(args.n, args.zones, args.rounds, args.large, args.large_rounds, args.base)
     print(table(results))
     print(f"(machine load average at the end: {os.getloadavg()[0]:.1f} on {os.cpu_count()} CPUs)")
 
