@@ -6,12 +6,12 @@ and the peak RSS of that one child (os.wait4), and the wall time.
     python tests/benchmarks/bench_scaling.py --n 10 80 400 --rounds 5 --zones fine
     python tests/benchmarks/bench_scaling.py --stages 2000         # where time and memory go
     python tests/benchmarks/bench_scaling.py --base /tmp/base      # and another tree, same rounds
+    pytest tests/benchmarks/bench_scaling.py                       # a tiny curve (N = 10, 20)
 
 BASE: another rmot tree measured in the same rounds, run by the same interpreter with this
 tree's editable install taken off the import path (as in bench_startup.py), e.g. before a change:
     mkdir -p /tmp/base/rmot /tmp/old && git archive HEAD~1 | tar -x -C /tmp/old
     for d in lang compiler backends sim; do ln -s /tmp/old/$d /tmp/base/rmot/$d; done
-    pytest tests/benchmarks/bench_scaling.py                       # a tiny curve (N = 10, 20)
 
 The program: an ABB IRB 120 (library arm) over a table, a gripper; `move joint home` to a joint
 target, then N moves alternating `move joint` / `move linear` to seeded random poses of a
@@ -20,13 +20,16 @@ whole program (`zone fine`, or `zone 10 mm`: blended). Every target is reachable
 collides, so the check does the whole work (IK, timing, sampled collision and limit checks)
 and exits 0; a run that exits otherwise is reported as such.
 
-Targets (issue 18): time(400) <= 5 x time(80) (CPU); peak RSS at N = 2000 below 1.5 GB. The
-slope of the log-log fit of CPU time against N over N >= 80 (1.0 = linear; the fixed start-up
-cost, ~2 s of imports and numba kernels, flattens the curve below that).
+Targets (issue 18): time(400) <= 5 x time(80) (CPU); peak RSS at N = 2000 below 1.5 GB. Also
+the slope of the log-log fit of CPU time against N over N >= 80 (1.0 = linear; the fixed
+start-up cost, ~1-2 s of imports and numba kernels, flattens it), the same of the CPU time and
+peak above the smallest N's (the cost of the moves themselves), and the CPU per added move
+between successive N (constant when the cost is linear).
 
 `--stages N` runs the same pipeline in this process, stage by stage (front end, planner,
-verification, report text), with the time, the RSS after each stage and the stage's own peak
-of Python allocations (tracemalloc), and cProfile's top functions with --profile.
+verification, report text): the wall time, the RSS after each stage and its peak RSS (Linux:
+VmHWM, reset before each stage); with --trace also its peak of Python and numpy allocations
+(tracemalloc, ~5x slower), with --profile cProfile's top 40 functions.
 """
 
 from __future__ import annotations
@@ -169,6 +172,15 @@ def table(results: dict[tuple[str, int], Run]) -> str:
         tail = [(n, r.cpu_s) for n, r in got.items() if n >= 80]
         if len(tail) >= 2:
             facts.append(f"log-log slope of CPU over N >= 80: {slope(tail):.2f}")
+        above = [(n, r.cpu_s - got[min(got)].cpu_s) for n, r in got.items()
+                 if n >= 80 and r.cpu_s > got[min(got)].cpu_s]
+        if len(above) >= 2:
+            facts.append(f"of CPU above N={min(got)}: {slope(above):.2f}")
+        steps = sorted(tail)
+        if len(steps) >= 2:
+            facts.append("CPU per added move (ms): " + ", ".join(
+                f"{n0}->{n1} {1000 * (c1 - c0) / (n1 - n0):.1f}"
+                for (n0, c0), (n1, c1) in zip(steps, steps[1:])))
         peak_tail = [(n, r.peak_mb - got[min(got)].peak_mb) for n, r in got.items()
                      if n >= 80 and r.peak_mb > got[min(got)].peak_mb]
         if len(peak_tail) >= 2:
