@@ -30,7 +30,7 @@ from rmot.sim.meshio import MeshData, load_mesh
 __all__ = ["Body", "RobotEntry", "Scene", "build_scene", "flange_in_last_joint", "load_robots"]
 
 Shape = ir.Box | ir.Cylinder | ir.Sphere | ir.Capsule | MeshData
-# samples per block of Scene.poses; not below fastdls.JOINT_FRAMES's threshold (25,000)
+# samples per block of Scene.poses (at least fastdls.JOINT_FRAMES's threshold, 25,000)
 POSE_CHUNK = 32_768
 
 
@@ -97,20 +97,23 @@ class Scene:
         the same product either way, the same floats; the first chunk is at least the FK
         kernel's compile threshold, so it takes the same (compiled or interpreted) form as
         one call for all samples would."""
+        from rmot.compiler.robots.fastdls import JOINT_FRAMES
+
         entry = self.robots[robot]
         q = np.atleast_2d(np.asarray(q, dtype=np.float64))
         bodies = self.robot_bodies(robot)
         out = {b.name: np.empty((q.shape[0], 4, 4)) for b in bodies}
         has_tool = any(b.kind == "tool" for b in bodies)
-        for lo in range(0, q.shape[0], POSE_CHUNK) if q.shape[0] else ():
-            chunk = q[lo:lo + POSE_CHUNK]
+        size = max(POSE_CHUNK, JOINT_FRAMES.threshold)
+        for lo in range(0, q.shape[0], size) if q.shape[0] else ():
+            chunk = q[lo:lo + size]
             solids = np.asarray(entry.robot.solid_poses_batch(chunk))
             flange = np.asarray(entry.robot.fk_batch(chunk)) if has_tool else None
             for b in bodies:
                 if b.kind == "link":
-                    out[b.name][lo:lo + POSE_CHUNK] = entry.base @ solids[:, b.solid_index]
+                    out[b.name][lo:lo + size] = entry.base @ solids[:, b.solid_index]
                 else:
-                    out[b.name][lo:lo + POSE_CHUNK] = entry.base @ flange @ b.local
+                    out[b.name][lo:lo + size] = entry.base @ flange @ b.local
         return out
 
     def fixture_pose(self, body: Body) -> np.ndarray:

@@ -23,9 +23,11 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 @pytest.fixture
 def one_fk_form(monkeypatch: pytest.MonkeyPatch) -> None:
-    """FK in one form (compiled or not) for the whole test: numba's and the interpreter's sine
-    may differ in the last bit, and which runs depends on the work done so far (compiler/jit.py)."""
-    monkeypatch.setattr(JOINT_FRAMES, "threshold", 10**15)
+    """FK in one form for the whole test, the compiled one: numba's and the interpreter's sine
+    may differ in the last bit, and which runs depends on the work done so far (compiler/jit.py).
+    Its threshold set low, so that Scene.poses' chunk is POSE_CHUNK, as patched by the test."""
+    JOINT_FRAMES.jit()  # from now on this process runs the compiled form (loaded from numba's cache)
+    monkeypatch.setattr(JOINT_FRAMES, "threshold", 1)
 
 
 def _scene() -> Scene:
@@ -101,3 +103,26 @@ def test_verification_report_unchanged_by_chunk_sizes(monkeypatch: pytest.Monkey
     small = format_json([verify(plan)])
     assert samples > 10 * 64 and '"E300"' in default
     assert small == default
+
+
+def test_pose_chunks_never_below_the_fk_threshold(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A chunk is at least JOINT_FRAMES's threshold: the first chunk of a long sweep then takes
+    the form (compiled or not) one call for every sample would take."""
+    scene, q = _scene(), _samples(2500)
+    robot = scene.robots["r1"].robot
+    sizes: list[int] = []
+    batch = robot.solid_poses_batch
+
+    def spy(qs: np.ndarray) -> np.ndarray:
+        sizes.append(len(qs))
+        return np.asarray(batch(qs))
+
+    monkeypatch.setattr(robot, "solid_poses_batch", spy)
+    monkeypatch.setattr(scene_mod, "POSE_CHUNK", 1000)
+    monkeypatch.setattr(JOINT_FRAMES, "threshold", 1200)
+    scene.poses("r1", q)
+    assert sizes == [1200, 1200, 100]
+    sizes.clear()
+    monkeypatch.setattr(JOINT_FRAMES, "threshold", 1)
+    scene.poses("r1", q)
+    assert sizes == [1000, 1000, 500]
