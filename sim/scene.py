@@ -30,6 +30,8 @@ from rmot.sim.meshio import MeshData, load_mesh
 __all__ = ["Body", "RobotEntry", "Scene", "build_scene", "flange_in_last_joint", "load_robots"]
 
 Shape = ir.Box | ir.Cylinder | ir.Sphere | ir.Capsule | MeshData
+# samples per block of Scene.poses (at least fastdls.JOINT_FRAMES's threshold, 25,000)
+POSE_CHUNK = 32_768
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,18 +89,31 @@ class Scene:
         return tuple(b for b in self.bodies if b.robot == robot)
 
     def poses(self, robot: str, q: np.ndarray) -> dict[str, np.ndarray]:
-        """World poses of the robot's bodies for joint samples q: (N, dof) -> {name: (N, 4, 4)}."""
+        """World poses of the robot's bodies for joint samples q: (N, dof) -> {name: (N, 4, 4)}.
+
+        Computed POSE_CHUNK samples at a time into the result arrays, so the robot's
+        intermediate frames (all joints, all solids: several times the result) are held for
+        one chunk only (issue 18: 2000 moves peaked at 600 MB here). Every sample's pose is
+        the same product either way, the same floats; the first chunk is at least the FK
+        kernel's compile threshold, so it takes the same (compiled or interpreted) form as
+        one call for all samples would."""
+        from rmot.compiler.robots.fastdls import JOINT_FRAMES
+
         entry = self.robots[robot]
         q = np.atleast_2d(np.asarray(q, dtype=np.float64))
         bodies = self.robot_bodies(robot)
-        solids = np.asarray(entry.robot.solid_poses_batch(q))
-        flange = np.asarray(entry.robot.fk_batch(q)) if any(b.kind == "tool" for b in bodies) else None
-        out: dict[str, np.ndarray] = {}
-        for b in bodies:
-            if b.kind == "link":
-                out[b.name] = entry.base @ solids[:, b.solid_index]
-            else:
-                out[b.name] = entry.base @ flange @ b.local
+        out = {b.name: np.empty((q.shape[0], 4, 4)) for b in bodies}
+        has_tool = any(b.kind == "tool" for b in bodies)
+        size = max(POSE_CHUNK, JOINT_FRAMES.threshold)
+        for lo in range(0, q.shape[0], size) if q.shape[0] else ():
+            chunk = q[lo:lo + size]
+            solids = np.asarray(entry.robot.solid_poses_batch(chunk))
+            flange = np.asarray(entry.robot.fk_batch(chunk)) if has_tool else None
+            for b in bodies:
+                if b.kind == "link":
+                    out[b.name][lo:lo + size] = entry.base @ solids[:, b.solid_index]
+                else:
+                    out[b.name][lo:lo + size] = entry.base @ flange @ b.local
         return out
 
     def fixture_pose(self, body: Body) -> np.ndarray:
