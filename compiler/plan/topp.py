@@ -24,6 +24,7 @@ tightened and the passes re-run: a repair slows that spot, never the whole path.
 
 from __future__ import annotations
 
+import math
 
 import numpy as np
 
@@ -157,24 +158,27 @@ def _passes(ss, xmax, beta, lo, hi):  # type: ignore[no-untyped-def]
 
 
 def _check(x, h, d1, d2, m1, m2, vel_in, thetas, c):  # type: ignore[no-untyped-def]
-    k, n = d1.shape[0] - 1, d1.shape[1]
+    k, n = len(d1) - 1, len(d1[0])
     r_acc = np.zeros(k)
     r_vel = np.zeros(k)
     for i in range(k):
-        u = (x[i + 1] - x[i]) / (2.0 * h[i])
+        x0, x1 = x[i], x[i + 1]
+        u = (x1 - x0) / (2.0 * h[i])
         worst = 0.0
+        d1_end, d2_end = d1[i + 1], d2[i + 1]
         for j in range(n):
-            r = abs(d1[i + 1, j] * u + d2[i + 1, j] * x[i + 1]) / c[j]
+            r = abs(d1_end[j] * u + d2_end[j] * x1) / c[j]
             if r > worst:
                 worst = r
         vw = 0.0
         for t in range(len(thetas)):
-            xt = x[i] + thetas[t] * (x[i + 1] - x[i])
+            xt = x0 + thetas[t] * (x1 - x0)
+            m1_in, m2_in = m1[t][i], m2[t][i]
             for j in range(n):
-                r = abs(m1[t, i, j] * u + m2[t, i, j] * xt) / c[j]
+                r = abs(m1_in[j] * u + m2_in[j] * xt) / c[j]
                 if r > worst:
                     worst = r
-            v = vel_in[t, i] * np.sqrt(max(xt, 0.0))
+            v = vel_in[t][i] * math.sqrt(max(xt, 0.0))
             if v > vw:
                 vw = v
         r_acc[i] = worst
@@ -205,7 +209,7 @@ def _check_torque(x, h, ta, tb, tc, thetas, limit):  # type: ignore[no-untyped-d
 
 CEILING = Kernel(_ceiling, threshold=2 * _PY_WORK, lists=True)
 PASSES = Kernel(_passes, threshold=2 * _PY_WORK, lists=True)
-CHECK = Kernel(_check, threshold=_PY_WORK)
+CHECK = Kernel(_check, threshold=_PY_WORK, lists=True)
 CHECK_TORQUE = Kernel(_check_torque, threshold=_PY_WORK)
 
 
