@@ -4,7 +4,8 @@ same program against `rmot compile --no-cache`, whole processes, medians of inte
     python tests/benchmarks/bench_cache.py [ROUNDS] [BASE]     # medians (s) and the ratios
     pytest tests/benchmarks/bench_cache.py                     # the same, as a pytest run
 
-Programs: a 3-move program (bench_startup.THREE) and examples/palletizing.rmot (96 moves).
+Programs: a 3-move program (bench_startup.THREE), examples/pick_place.rmot and
+examples/palletizing.rmot (96 moves).
 BASE (optional): another rmot tree measured in the same rounds (see bench_startup.py for how
 to lay one out), e.g. the commit before the verification cache, for a before/after in one run.
 Each tree has its own cache folder, filled by one `rmot check` of each program before the
@@ -35,7 +36,8 @@ def measure(rounds: int = 5, base: str | None = None) -> dict[str, tuple[float, 
         Path(three).write_text(THREE, encoding="utf-8")
         past = time.time() - 60  # saved before the run: files modified within 2 s get no
         os.utime(three, (past, past))  # front-end cache entry (compiler/cli/load_cache.py)
-        programs = {"3 moves": three, "palletizing": str(ROOT / "examples" / "palletizing.rmot")}
+        programs = {"3 moves": three, "pick_place": str(ROOT / "examples" / "pick_place.rmot"),
+                    "palletizing": str(ROOT / "examples" / "palletizing.rmot")}
         commands: dict[str, tuple[list[str], dict[str, str]]] = {}
         for label, tree in [("", None)] + ([("base: ", base)] if base else []):
             env = dict(os.environ, RMOT_CACHE_DIR=os.path.join(tmp, f"cache{len(label)}"))
