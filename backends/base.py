@@ -70,6 +70,7 @@ from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
+from rmot.lang.record import record
 from rmot.lang.source import Span
 from rmot.backends.safe_text import comment_safe
 
@@ -89,7 +90,7 @@ DEFAULT_JOINT_ACCEL: float = ir.DEFAULT_JOINT_ACCEL  # fraction of each joint's 
 C = TypeVar("C", bound="TaskContext")
 
 
-@dataclass(frozen=True)
+@record
 class EmitResult:
     """What a backend produces: files in a deterministic order, and what it had to say.
 
@@ -105,7 +106,7 @@ class EmitResult:
         return any(d.is_error for d in self.diagnostics)
 
 
-@dataclass(frozen=True)
+@record
 class TaskContext:
     """Everything a backend needs to print one task: the plan, the task's plan, its robot."""
 

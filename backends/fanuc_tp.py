@@ -74,6 +74,7 @@ from rmot.backends.loops import (
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, plan_types
 from rmot.backends.safe_text import comment_safe, tp_io_comment
+from rmot.lang.record import record
 from rmot.lang.source import Span
 
 __all__ = ["FanucBackend", "FANUC_RULES", "config_string", "turn_number"]
@@ -131,7 +132,7 @@ class _Frames:
         return self.tools.number(tool.name, tool_number(self.cell, self.robot, tool.name), tool.tcp)
 
 
-@dataclass(frozen=True)
+@record
 class FanucContext(TaskContext):
     """One task's context plus its names, frame numbers, routine programs and the program
     being printed."""

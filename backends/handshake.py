@@ -44,12 +44,12 @@ instruction needs none).
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import dataclass
 from itertools import count
 
 from rmot.backends import codes
 from rmot.compiler import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.record import record
 
 __all__ = [
     "SYNC_SIGNAL", "HandshakePorts", "HandshakeSet", "HandshakeWait",
@@ -59,7 +59,7 @@ __all__ = [
 SYNC_SIGNAL = "sync"
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class HandshakeSet(ir.SetDigital):
     """The set half of the `round`-th handshake of barrier `barrier`."""
 
@@ -67,7 +67,7 @@ class HandshakeSet(ir.SetDigital):
     round: int
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class HandshakeWait(ir.WaitInput):
     """The wait half of the `round`-th handshake of barrier `barrier`."""
 
@@ -75,7 +75,7 @@ class HandshakeWait(ir.WaitInput):
     round: int
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class HandshakePorts:
     """One robot's handshake signals: its digital output and digital input named "sync"."""
 

@@ -98,6 +98,7 @@ from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
 from rmot.compiler import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe
+from rmot.lang.record import record
 
 __all__ = ["InformBackend", "PL_DISTANCES_MM", "rconf"]
 
@@ -187,7 +188,7 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
     return out, last
 
 
-@dataclass(frozen=True)
+@record
 class InformContext(TaskContext):
     """One task's context plus what printing it uses and collects: routine names, each move's
     predecessor, tool numbers, the finished job files and the job being printed."""

@@ -62,6 +62,7 @@ from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, plan_types
 from rmot.backends.safe_text import comment_safe
+from rmot.lang.record import record
 
 __all__ = ["KrlBackend", "KRL_RULES", "status_of"]
 
@@ -136,7 +137,7 @@ class _Module:
     stored: dict[tuple[str, int], tuple[str, str]] = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
+@record
 class KrlContext(TaskContext):
     """One task's context plus its names, its routines' names and the module being printed."""
 

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang.record import record
 
 __all__ = [
     "ConfigKey",
@@ -88,7 +89,7 @@ def branch_and_turns(q: np.ndarray, branch: ir.Config | None) -> Hashable:
     return (branch, turns)
 
 
-@dataclass(frozen=True)
+@record
 class LoopVar:
     """One loop of the analysed nest: `name` is the `for` variable (None for `repeat n`);
     the vendor loop counts from `first` to `last`, both run (`last` is the Loop's exclusive
@@ -100,7 +101,7 @@ class LoopVar:
     last: int
 
 
-@dataclass(frozen=True)
+@record
 class TargetOffset:
     """A Cartesian target of the template: `base` is its `in_frame` pose at the first value
     of every loop in `loops` (outer first); `steps[k]` the position change (m, in the move's
@@ -118,7 +119,7 @@ class TargetOffset:
         raise KeyError(loop_uid)
 
 
-@dataclass(frozen=True)
+@record
 class LoopTemplate:
     """A loop that can be written as one vendor loop.
 
@@ -137,7 +138,7 @@ class LoopTemplate:
     choices: dict[int, frozenset[Hashable]] = field(default_factory=dict)
 
 
-@dataclass(frozen=True)
+@record
 class Unrolled:
     """Why the loop must be written iteration by iteration: `iteration` names the values of
     the loop variables where it first differs (`layer = 2, row = 1`), `uid` the instruction,

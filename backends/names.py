@@ -13,12 +13,13 @@ from dataclasses import dataclass, field
 
 from rmot.backends import codes
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
+from rmot.lang.record import record
 from rmot.lang.source import Span
 
 __all__ = ["DataPool", "NameRules", "NameTable", "legalize"]
 
 
-@dataclass(frozen=True)
+@record
 class NameRules:
     """A vendor's identifier rules.
 

@@ -38,13 +38,14 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
 from __future__ import annotations
 
 from collections.abc import Hashable
-from dataclasses import dataclass, field
+from dataclasses import field
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, plan_types
+from rmot.lang.record import record
 from rmot.lang.source import Span
 
 __all__ = ["RapidBackend", "RAPID_RULES", "cfx_of"]
@@ -168,7 +169,7 @@ def pose_text(pose: ir.Pose) -> str:
     return f"[[{fmt_list(position_mm(pose), 3)}],[{fmt_list(pose.quaternion, 6)}]]"
 
 
-@dataclass(frozen=True)
+@record
 class RapidContext(TaskContext):
     """One task's context plus the declarations collected while printing it (emitted above
     the routines)."""

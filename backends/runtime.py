@@ -24,6 +24,7 @@ import numpy as np
 
 from rmot.backends import codes, loops
 from rmot.compiler import ir
+from rmot.lang.record import record
 
 __all__ = [
     "ExprDialect",
@@ -39,7 +40,7 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
+@record
 class ExprDialect:
     """How one vendor writes runtime expressions."""
 
@@ -171,7 +172,7 @@ def loop_template(
     return result, best
 
 
-@dataclass(frozen=True)
+@record
 class LoopPlan:
     """How one Loop is written, the one decision every vendor follows (issue #19): `template`
     as one vendor loop (None: every iteration one after another), then `last`, the last

@@ -58,13 +58,14 @@ Support (checked by tests/backends/test_urscript.py):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang.record import record
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
 
@@ -116,7 +117,7 @@ def pose_text(pose: ir.Pose) -> str:
     return "p[" + fmt_list((*pose.position, *rotation_vector(pose)), POS_DECIMALS, ", ") + "]"
 
 
-@dataclass(frozen=True)
+@record
 class UrContext(TaskContext):
     """One task's context plus what printing it collects: routine names and definitions,
     pulse threads, warnings given once."""

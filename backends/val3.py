@@ -76,6 +76,7 @@ from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var, level_move
 from rmot.backends.runtime import loop_plan
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang.record import record
 from rmot.lang.source import Span
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]
@@ -141,7 +142,7 @@ class _Data:
         return table.index(value)
 
 
-@dataclass(frozen=True)
+@record
 class Val3Context(TaskContext):
     """One task's context plus what printing it collects: names, routine names, the global
     data, the programs' code, warnings given once."""

@@ -15,10 +15,10 @@ an explicit `cell` file's directory is allowed too.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from rmot.lang.diagnostics import Diagnostic
+from rmot.lang.record import record
 
 if TYPE_CHECKING:  # the passes (and the parser) load when a file is read, not with the result type
     from rmot.compiler import ir
@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # the passes (and the parser) load when a file is read, not w
 __all__ = ["FrontendResult", "load_program", "load_text"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class FrontendResult:
     program: ir.Program | None
     cell: ir.Cell | None

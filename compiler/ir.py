@@ -23,10 +23,11 @@ even when two instructions are otherwise equal; and `span`, excluded from equali
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from enum import Enum, auto
 from typing import TYPE_CHECKING, Union
 
+from rmot.lang.record import record
 from rmot.lang.source import Span
 
 if TYPE_CHECKING:
@@ -56,7 +57,7 @@ def _span_field() -> Span | None:
 # --------------------------------------------------------------------------- poses
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Pose:
     """A rigid transform: position in metres and a unit quaternion (w, x, y, z), w >= 0."""
 
@@ -180,14 +181,14 @@ def _rotate(q: tuple[float, ...], v: tuple[float, ...]) -> tuple[float, float, f
 # --------------------------------------------------------------------------- geometry
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Box:
     """Centred on its pose; full edge lengths along local x, y, z (m)."""
 
     size: tuple[float, float, float]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Cylinder:
     """Axis along local z, centred on its pose (as in coal/FCL)."""
 
@@ -195,12 +196,12 @@ class Cylinder:
     height: float
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Sphere:
     radius: float
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Capsule:
     """Axis along local z, centred on its pose; `length` excludes the two hemispherical caps."""
 
@@ -208,7 +209,7 @@ class Capsule:
     length: float
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Mesh:
     """A mesh file, already resolved to an absolute path inside the project; `scale` converts
     the file's unit to metres (unit=mm gives 0.001). Loaded by the sim, not by the compiler."""
@@ -231,7 +232,7 @@ class RobotSourceKind(Enum):
     URDF_CHAIN = auto()  # urdf(path, base=, tip=): ref is "urdf-chain:" + JSON [path, base, tip]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class RobotSource:
     kind: RobotSourceKind
     ref: str  # library name, absolute URDF path, or the load key of a model / URDF chain
@@ -242,7 +243,7 @@ class RobotSource:
         return self.ref
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class RobotInstance:
     name: str
     source: RobotSource
@@ -251,7 +252,7 @@ class RobotInstance:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Fixture:
     name: str
     geometry: Geometry
@@ -259,7 +260,7 @@ class Fixture:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Tool:
     name: str
     robot: str  # the robot it is mounted on
@@ -271,7 +272,7 @@ class Tool:
     number: int | None = None  # the controller's tool number (`number n`), if the cell gives one
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Frame:
     name: str
     pose: Pose  # in world
@@ -286,7 +287,7 @@ class IoDirection(Enum):
     ANALOG_IN = auto()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class IoSignal:
     direction: IoDirection
     port: int
@@ -295,7 +296,7 @@ class IoSignal:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Cell:
     name: str
     robots: tuple[RobotInstance, ...]
@@ -338,7 +339,7 @@ class Wrist(Enum):
     NOFLIP = "noflip"
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Config:
     """An IK branch of a 6R arm; None fields are free (the planner keeps the current one)."""
 
@@ -361,7 +362,7 @@ def turn_of(q: float) -> int:
     return math.floor((q + math.pi) / (2 * math.pi))
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Zone:
     """Blending radius in metres; 0.0 means `fine` (exact stop)."""
 
@@ -381,7 +382,7 @@ DEFAULT_JOINT_SPEED = 1.0  # fraction of each joint's maximum speed
 DEFAULT_JOINT_ACCEL = 1.0  # fraction of each joint's maximum acceleration
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Motion:
     """Every speed-like setting a move needs, resolved from the modal settings (SI)."""
 
@@ -393,7 +394,7 @@ class Motion:
     duration: float | None = None  # s: a `time` modifier fixes the move's duration
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ToolRef:
     """The active tool; name None is the bare flange (tcp identity)."""
 
@@ -402,7 +403,7 @@ class ToolRef:
     mass: float = 0.0
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class FrameRef:
     """The active reference frame; name None is the robot base (pose identity)."""
 
@@ -411,14 +412,14 @@ class FrameRef:
     world: Pose = Pose()  # the frame in world
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class CartesianTarget:
     pose: Pose  # TCP in the robot base frame
     in_frame: Pose  # the same target relative to the move's frame, as written
     name: str | None = None  # the `target` name it came from, if any
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class JointTarget:
     values: tuple[float, ...]  # rad for revolute joints, m for prismatic
     name: str | None = None
@@ -427,7 +428,7 @@ class JointTarget:
 # --------------------------------------------------------------------------- instructions
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Move:
     uid: int
     kind: MotionKind
@@ -440,7 +441,7 @@ class Move:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class SetDigital:
     uid: int
     port: int
@@ -449,7 +450,7 @@ class SetDigital:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class SetAnalog:
     uid: int
     port: int
@@ -458,7 +459,7 @@ class SetAnalog:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Pulse:
     uid: int
     port: int
@@ -467,21 +468,21 @@ class Pulse:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class WaitTime:
     uid: int
     duration: float  # s
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class InputCondition:
     port: int
     value: bool
     signal: str | None = None
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class WaitInput:
     uid: int
     condition: InputCondition
@@ -490,7 +491,7 @@ class WaitInput:
     on_timeout: tuple[Instr, ...] = ()  # `timeout T else { ... }`: runs when T passes first
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class If:
     """A runtime branch; both arms are planned and verified. `condition` is an InputCondition
     for `if in[n] == on|off` (as every backend has always written it) or, since issue #15, any
@@ -503,14 +504,14 @@ class If:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Sync:
     uid: int
     name: str
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Native:
     """Vendor text passed through by that backend only (`vendor` as written: rapid, krl, ...)."""
 
@@ -520,7 +521,7 @@ class Native:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class ProcCall:
     """An inlined proc call: `body` is the proc's body with the arguments substituted.
 
@@ -537,7 +538,7 @@ class ProcCall:
 # --------------------------------------------------------------------------- parts (issue #14)
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Part:
     """A movable object: where it starts (world), its solid and its mass (kg). A tool picks it
     up with `attach` and puts it down with `detach`; where it is at any time follows from the
@@ -550,7 +551,7 @@ class Part:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Attach:
     """`attach part`: the part is fixed to the active tool at its current relative pose.
     `held`: the parts this task holds after the instruction; `load`: the mass the flange then
@@ -564,7 +565,7 @@ class Attach:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Detach:
     """`detach part`: the part stays where it is in the world (an obstacle from then on)."""
 
@@ -602,13 +603,13 @@ class CompareOp(Enum):
     GE = ">="
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Const:
     value: int | float | bool
     type: ValueType
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class VarRef:
     """A task variable (declared by `var`) or, inside a `Loop`, the loop variable (INT)."""
 
@@ -616,7 +617,7 @@ class VarRef:
     type: ValueType
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class AnalogInput:
     """`ain[port]`: the controller's analog input value (NUM, in the controller's unit, V)."""
 
@@ -624,7 +625,7 @@ class AnalogInput:
     signal: str | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Arith:
     """`left op right`, op one of + - * / ; type INT unless an operand is NUM or op is '/'."""
 
@@ -634,14 +635,14 @@ class Arith:
     type: ValueType
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Compare:
     op: CompareOp
     left: RtExpr
     right: RtExpr
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Logic:
     """`a and b and ...` (op "and") or `a or b ...` (op "or"); operands are conditions."""
 
@@ -649,7 +650,7 @@ class Logic:
     operands: tuple[Condition, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Not:
     operand: Condition
 
@@ -660,7 +661,7 @@ RtExpr = Union[Const, VarRef, AnalogInput, Arith, Compare, Logic, Not, InputCond
 Condition = Union[InputCondition, Compare, Logic, Not, VarRef, Const]
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class VarDecl:
     """`var NAME: type = EXPR`: a task variable with its initial value (a task-level
     declaration: backends declare it in the task's data section and assign `init` here)."""
@@ -672,7 +673,7 @@ class VarDecl:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Assign:
     uid: int
     name: str
@@ -680,7 +681,7 @@ class Assign:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class LoopIteration:
     """One value of the loop variable and the loop body lowered with it bound."""
 
@@ -688,7 +689,7 @@ class LoopIteration:
     body: tuple[Instr, ...]
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Loop:
     """`for var in first .. last { }` (var set) or `repeat n { }` (var None, values 0..n-1).
 
@@ -704,7 +705,7 @@ class Loop:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class While:
     """`while COND { body }` at runtime. The planner plans the body from the state before the
     loop until the state at the end of an iteration equals the state at its start (then every
@@ -717,7 +718,7 @@ class While:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class WaitCondition:
     """`wait until COND [timeout T [else { ... }]]` for a condition that is not one digital
     input (those stay `WaitInput`); `on_timeout` runs when T passes first (then the task goes
@@ -730,7 +731,7 @@ class WaitCondition:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
+@record(slots=True, kw_only=True)
 class Stop:
     """`stop`: the task ends here (the controller halts the program)."""
 
@@ -742,7 +743,7 @@ Instr = Union[Move, SetDigital, SetAnalog, Pulse, WaitTime, WaitInput, If, Sync,
               VarDecl, Assign, Loop, While, WaitCondition, Stop]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Task:
     """One robot's instruction list (a single-robot `program ... on r1` has one task)."""
 
@@ -752,7 +753,7 @@ class Task:
     span: Span | None = _span_field()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Program:
     name: str
     cell: Cell

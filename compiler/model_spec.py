@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import json
 from typing import Any
-from dataclasses import dataclass
+
+from rmot.lang.record import record
 
 __all__ = ["MAX_JOINTS", "MODEL_PREFIX", "ModelJointSpec", "ModelSolid", "ModelSpec", "model_key", "model_name", "spec_from_key"]
 
@@ -19,7 +20,7 @@ MAX_JOINTS = 12  # a bound on the chain, far above any serial arm a controller d
 MODEL_PREFIX = "model:"
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ModelJointSpec:
     """One joint: kind 'R' or 'P'; DH a, d in m, alpha, theta in rad; limits in rad (R) or m (P);
     speed in rad/s or m/s; accel in rad/s² or m/s²; optional (issue #16) the link's mass in kg
@@ -38,7 +39,7 @@ class ModelJointSpec:
     torque: float | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ModelSpec:
     name: str
     modified: bool  # True: Craig's modified DH
@@ -50,7 +51,7 @@ class ModelSpec:
     solids: tuple[ModelSolid, ...] = ()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ModelSolid:
     joint: int
     kind: str

@@ -210,15 +210,21 @@ def source_digest() -> str:
 
 
 def _source_files() -> list[tuple[str, Path]]:
-    """(package/relative path, path) of rmot's own files, sorted."""
-    out = []
+    """(package/relative path, path) of rmot's own files, sorted by that name.
+
+    os.walk, not Path.rglob: every cached command lists these ~190 files, and rglob took
+    9-19 ms of a 0.3 s cached compile (issue 18), os.walk about a tenth of that."""
+    out: list[tuple[str, Path]] = []
     for package in _PACKAGES:
         spec = importlib.util.find_spec(package)
         for root in (spec.submodule_search_locations or []) if spec else []:
-            for path in sorted(Path(root).rglob("*")):
-                if "__pycache__" in path.parts or path.suffix == ".pyc" or not path.is_file():
-                    continue
-                out.append((f"{package}/{path.relative_to(root).as_posix()}", path))
+            for folder, dirs, names in os.walk(root):
+                dirs[:] = [d for d in dirs if d != "__pycache__"]
+                rel = os.path.relpath(folder, root).replace(os.sep, "/")
+                prefix = f"{package}/" if rel == "." else f"{package}/{rel}/"
+                out.extend((prefix + name, Path(folder, name)) for name in names
+                           if not name.endswith(".pyc") and os.path.isfile(os.path.join(folder, name)))
+    out.sort(key=lambda entry: entry[0])
     return out
 
 

@@ -14,12 +14,13 @@ named here by its "module:Class" path, imported only when it is looked up.
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass
+
+from rmot.lang.record import record
 
 __all__ = ["Target", "controllers", "lookup", "register", "targets", "unregister"]
 
 
-@dataclass(frozen=True)
+@record
 class Target:
     """One output target: its --target name, where its Backend class lives (a "module:Class"
     path, imported on first use, or the class itself) and whether it is a controller language

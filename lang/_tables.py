@@ -24,9 +24,10 @@ import hashlib
 import json
 import os
 import tempfile
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
+
+from rmot.lang.record import record
 
 __all__ = ["FORMAT", "LARK_VERSIONS", "LalrTables", "build_tables", "cache_dir", "load_tables",
            "tables_key"]
@@ -40,7 +41,7 @@ LARK_VERSIONS = ("1.3.1",)
 GRAMMAR = Path(__file__).with_name("grammar") / "rmot.lark"
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class LalrTables:
     """terminals: lark TerminalDefs; rules: lark Rules; states[i]: {symbol: ("s", state) or
     ("r", rule index)}; start / end: the start rule's first and accepting states."""

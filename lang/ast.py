@@ -15,9 +15,10 @@ Node families:
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Union
 
+from rmot.lang.record import record
 from rmot.lang.source import SourceFile, Span
 
 __all__ = [
@@ -35,7 +36,7 @@ def _span() -> Span:
     return field(compare=False, hash=False, repr=False)  # type: ignore[no-any-return]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Ident:
     """A name as written where something is declared or referred to by name (not an Expr)."""
 
@@ -46,20 +47,20 @@ class Ident:
 # --------------------------------------------------------------------------- expressions
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Number:
     value: float
     unit: str | None  # as written: "mm", "deg/s", "%"; None for a bare number
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Name:
     name: str
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Arg:
     """A call argument, positional (name None) or keyword (`x=10mm`)."""
 
@@ -68,14 +69,14 @@ class Arg:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Call:
     func: Ident
     args: tuple[Arg, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Joints:
     """`joints(0, -90, 90, 0, 90, 0) deg`: `unit` applies to the values written without one."""
 
@@ -84,19 +85,19 @@ class Joints:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Vector:
     items: tuple[Arg, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class String:
     value: str
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class BinOp:
     op: str  # one of + - * /
     left: Expr
@@ -104,13 +105,13 @@ class BinOp:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Neg:
     operand: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Attr:
     """Component access: `p.x`, `p.rz`."""
 
@@ -125,26 +126,26 @@ Expr = Union[Number, Name, Call, Joints, Vector, String, BinOp, Neg, Attr]
 # --------------------------------------------------------------------------- statements
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class UseCell:
     path: String
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Import:
     path: String
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class CellDecl:
     name: Ident
     body: tuple[Stmt, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ProgramDecl:
     name: Ident
     robot: Ident | None  # `program p on r1`
@@ -152,14 +153,14 @@ class ProgramDecl:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class TaskDecl:
     robot: Ident
     body: tuple[Stmt, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class RobotDecl:
     name: Ident
     library: Ident | None  # a library name, or None for a URDF
@@ -169,7 +170,7 @@ class RobotDecl:
     urdf_args: tuple[Arg, ...] = ()  # `urdf("f.urdf", base="base_link", tip="tool0")`
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Geometry:
     """`box(...)`, `cylinder(...)`, `sphere(...)`, `capsule(...)`, `mesh(...)`, checked later."""
 
@@ -178,7 +179,7 @@ class Geometry:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class FixtureDecl:
     name: Ident
     geometry: Geometry
@@ -186,7 +187,7 @@ class FixtureDecl:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ToolDecl:
     name: Ident
     geometry: Geometry | None  # None: `tool t = none ...`
@@ -198,7 +199,7 @@ class ToolDecl:
     number: Expr | None = None  # `number n`: the controller's tool number
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class FrameDecl:
     name: Ident
     value: Expr
@@ -206,14 +207,14 @@ class FrameDecl:
     number: Expr | None = None  # `number n`: the controller's frame number
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class IoRef:
     kind: str  # in | out | ain | aout
     index: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class IoDecl:
     io: IoRef
     signal: String
@@ -221,28 +222,28 @@ class IoDecl:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class TargetDecl:
     name: Ident
     value: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ConstDecl:
     name: Ident
     value: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Param:
     name: Ident
     type: Ident
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ProcDecl:
     name: Ident
     params: tuple[Param, ...]
@@ -250,7 +251,7 @@ class ProcDecl:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Setting:
     """A modal setting or a per-move modifier.
 
@@ -266,7 +267,7 @@ class Setting:
 Modifier = Setting
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Move:
     kind: str  # joint | linear | circular
     target: Expr
@@ -275,27 +276,27 @@ class Move:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class SetIo:
     io: IoRef
     value: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Pulse:
     io: IoRef
     duration: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class WaitTime:
     duration: Expr
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Condition:
     io: IoRef
     op: str  # == or != ; a bare `in[2]` is `in[2] == on`
@@ -303,7 +304,7 @@ class Condition:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class WaitUntil:
     condition: Condition | RtCond
     timeout: Expr | None
@@ -311,7 +312,7 @@ class WaitUntil:
     on_timeout: tuple[Stmt, ...] | None = None  # `timeout T else { ... }` (issue #15)
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class For:
     var: Ident
     start: Expr
@@ -320,14 +321,14 @@ class For:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Repeat:
     count: Expr
     body: tuple[Stmt, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class IfStmt:
     condition: Condition | RtCond
     then: tuple[Stmt, ...]
@@ -335,27 +336,27 @@ class IfStmt:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class SyncStmt:
     name: Ident
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class NativeStmt:
     vendor: Ident
     text: String
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class CallStmt:
     name: Ident
     args: tuple[Arg, ...]
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class PartDecl:
     """`part NAME = GEOMETRY [at POSE] [mass M]`: a movable object of the cell (issue #14)."""
 
@@ -366,7 +367,7 @@ class PartDecl:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class AttachStmt:
     """`attach NAME` (attach=True) or `detach NAME` (attach=False)."""
 
@@ -382,7 +383,7 @@ Stmt = Union[
 ]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Module:
     """The statements of one file, in source order."""
 
@@ -393,7 +394,7 @@ class Module:
 # --------------------------------------------------------------------------- robot models
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ModelJoint:
     """`joint revolute dh(...) range(...) speed ... accel ...`: `parts` are the Calls
     (dh/mdh/range) and Settings (speed/accel) as written, checked by the compiler."""
@@ -403,7 +404,7 @@ class ModelJoint:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ModelDecl:
     """`model NAME { joint ... ; flange pose(...) ; payload 5 kg }` in a cell.
 
@@ -421,7 +422,7 @@ Stmt = Union[Stmt, ModelDecl]  # type: ignore[misc]
 # ------------------------------------------------------------------ runtime logic (issue #15)
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Compare:
     """`left op right` in a condition, op one of == != < <= > >= (an I/O read may be `left`)."""
 
@@ -431,7 +432,7 @@ class Compare:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Logic:
     """`a and b ...` (op "and") or `a or b ...` (op "or"), operands flattened."""
 
@@ -440,7 +441,7 @@ class Logic:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class NotCond:
     operand: RtCond
     span: Span = _span()
@@ -451,7 +452,7 @@ class NotCond:
 RtCond = Union[Expr, IoRef, Condition, Compare, Logic, NotCond]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class VarDecl:
     """`var NAME[: int|num|bool] = EXPR`: a task variable (runtime state)."""
 
@@ -461,19 +462,19 @@ class VarDecl:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class AssignStmt:
     name: Ident
     value: RtCond
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class StopStmt:
     span: Span = _span()
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class While:
     condition: RtCond | None  # None: `while { }` (an error, E156)
     body: tuple[Stmt, ...]

@@ -20,9 +20,10 @@ Rendered form (like a modern compiler):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from enum import Enum
 
+from rmot.lang.record import record
 from rmot.lang.source import Span
 
 __all__ = [
@@ -46,7 +47,7 @@ class Severity(Enum):
 _REGISTRY: dict[str, Code] = {}
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Code:
     """A registered diagnostic code, e.g. Code("E101", "unknown-name", "a name is not defined").
 
@@ -73,7 +74,7 @@ def all_codes() -> tuple[Code, ...]:
     return tuple(sorted(_REGISTRY.values(), key=lambda c: c.id))
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Amount:
     """How much: a penetration depth, a clearance, a limit excess. `unit` as users read it."""
 
@@ -84,7 +85,7 @@ class Amount:
         return f"{self.value:.4g} {self.unit}"
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Diagnostic:
     """One error, warning or note.
 

@@ -23,7 +23,6 @@ import difflib
 import functools
 import re
 import threading
-from dataclasses import dataclass
 from typing import cast
 
 from lark import Token
@@ -36,6 +35,7 @@ from rmot.lang._lalr import LalrDriver, PostLexState
 from rmot.lang._tables import GRAMMAR as _GRAMMAR
 from rmot.lang._tables import load_tables
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
+from rmot.lang.record import record
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.units import unknown_unit
 
@@ -45,7 +45,7 @@ __all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KE
 _MAX_EXPECTED = 6
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class ParseResult:
     module: ast.Module | None
     diagnostics: tuple[Diagnostic, ...]

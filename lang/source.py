@@ -9,10 +9,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from rmot.lang.record import record
+
 __all__ = ["Pos", "SourceFile", "Span"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class SourceFile:
     """One file's text, kept so a diagnostic can show the offending line."""
 
@@ -52,7 +54,7 @@ class Pos:
     offset: int = 0
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Span:
     """A range of source text. Never part of node equality (fields use compare=False)."""
 

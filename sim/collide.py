@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from rmot.lang.record import record
 from rmot.sim.bounds import (
     BLOCK, LazyCentres, block_bound, block_spheres, joint_motion, lower_bound, model_q, pair_reach,
 )
@@ -61,7 +62,7 @@ class Timeline:
     accel: dict[str, np.ndarray]
 
 
-@dataclass(frozen=True)
+@record
 class PairHit:
     """One contiguous interval where two bodies touch ("collision") or come closer than the
     clearance ("clearance"), or a permanent overlap of two static bodies ("static")."""

@@ -7,12 +7,12 @@ worst value of the run.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from rmot.compiler import plan_types
+from rmot.lang.record import record
 
 __all__ = ["LimitHit", "check_limits", "joint_torques"]
 
@@ -21,7 +21,7 @@ __all__ = ["LimitHit", "check_limits", "joint_torques"]
 _SLACK = {"position": 1e-6, "velocity": 1e-4, "acceleration": 1e-3, "torque": 1e-3}
 
 
-@dataclass(frozen=True)
+@record
 class LimitHit:
     quantity: str  # "position" | "velocity" | "acceleration" | "torque"
     joint: int  # 1-based, as on the pendant

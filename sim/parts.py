@@ -34,6 +34,7 @@ import numpy as np
 
 from rmot.compiler import ir, plan_types
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
+from rmot.lang.record import record
 from rmot.sim import codes
 from rmot.sim.collide import CONTACT_TOL, PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.exact import ExactPair
@@ -46,7 +47,7 @@ GRIP_TOL = 0.002  # m: a tool may touch the part it grips this deep, and must be
 REST_TOL = 1e-4  # m: a part may rest on a fixture (collide.STATIC_TOL)
 
 
-@dataclass(frozen=True)
+@record
 class PartEvent:
     t: float
     robot: str

@@ -39,12 +39,12 @@ model has no inertia data.
 from __future__ import annotations
 
 import json
-import xml.etree.ElementTree as ET
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 from rmot.lang.diagnostics import Diagnostic, Severity, render
+from rmot.lang.record import record
 
 __all__ = ["JSON_SCHEMA", "Report", "format_json", "format_junit", "format_sarif", "format_text",
            "to_json", "validate_json"]
@@ -52,7 +52,7 @@ __all__ = ["JSON_SCHEMA", "Report", "format_json", "format_junit", "format_sarif
 JSON_VERSION = 2
 
 
-@dataclass(frozen=True)
+@record
 class Report:
     """What verification found for one program. cycle_times: task name -> seconds."""
 
@@ -297,6 +297,8 @@ def validate_json(doc: Any, schema: dict[str, Any] = JSON_SCHEMA, where: str = "
 def format_junit(reports: Sequence[Report]) -> str:
     """One testcase per program (time = cycle time), one <failure> per error diagnostic;
     warnings go to the testcase's <system-out>."""
+    import xml.etree.ElementTree as ET  # here, not at the top: only JUnit output needs it
+
     failures = sum(len(r.errors) for r in reports)
     suites = ET.Element("testsuites", name="rmot check", tests=str(len(reports)), failures=str(failures))
     suite = ET.SubElement(suites, "testsuite", name="rmot check", tests=str(len(reports)),

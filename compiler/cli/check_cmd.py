@@ -9,14 +9,13 @@ from __future__ import annotations
 
 import os
 import re
-from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import click
 
 from rmot.compiler.atomic import write_atomic, write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+from rmot.lang.record import record
 
 if TYPE_CHECKING:  # the heavy stages load only when a check runs
     from rmot.compiler.plan_types import Plan
@@ -29,7 +28,7 @@ _LENGTH = re.compile(r"^\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(mm|cm|m)\s*$
 _UNIT = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
 
 
-@dataclass(frozen=True)
+@record
 class CheckOutcome:
     report: Report
     input_error: bool
@@ -165,6 +164,9 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
     options = {**({"use_cache": False} if no_cache else {}), **({"dynamics": True} if dynamics else {})}
     args = [((p, cell, project_root, clearance_m, images), options) for p in programs]
     if jobs > 1 and len(programs) > 1:
+        # imported here: multiprocessing costs ~20 ms of every check, and only --jobs uses it
+        from concurrent.futures import ProcessPoolExecutor
+
         with ProcessPoolExecutor(max_workers=min(jobs, len(programs))) as pool:
             outcomes = list(pool.map(_check_args, args))
     else:

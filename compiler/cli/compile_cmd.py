@@ -21,19 +21,18 @@ leaves the previous output untouched.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import click
 
 from rmot.compiler.vendors import targets as registered_targets
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+from rmot.lang.record import record
 
 if TYPE_CHECKING:
     from rmot.lang.diagnostics import Diagnostic
 
 __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
-
 
 
 class _Targets(click.Choice):  # type: ignore[type-arg]
@@ -49,7 +48,7 @@ class _Targets(click.Choice):  # type: ignore[type-arg]
         return super().convert(value, param, ctx)
 
 
-@dataclass(frozen=True)
+@record
 class CompileOutcome:
     """What a compile produced: files (relative path -> text), diagnostics, and the exit code."""
 

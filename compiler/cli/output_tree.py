@@ -16,7 +16,6 @@ killed run leaves only hidden `.rmot-*` directories, removed by the next run.
 from __future__ import annotations
 
 import ctypes
-import ctypes.util
 import itertools
 import os
 import shutil
@@ -31,8 +30,9 @@ _RENAME_EXCHANGE = 2  # linux/fs.h
 
 def _renameat2() -> object | None:
     try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
-        fn = libc.renameat2
+        # the C library this process already has loaded (dlopen(NULL)), not a search:
+        # ctypes.util.find_library runs ldconfig in a subprocess, ~7 ms of every compile
+        fn = ctypes.CDLL(None, use_errno=True).renameat2
     except (OSError, AttributeError):
         return None
     fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]

@@ -20,7 +20,8 @@ import heapq
 import os
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass
+
+from rmot.lang.record import record
 
 __all__ = ["Shard", "parse_shard", "select_shard"]
 
@@ -28,7 +29,7 @@ _SHARD = re.compile(r"^\s*([0-9]+)\s*/\s*([0-9]+)\s*$")
 MAX_SHARDS = 10_000  # more runners than any CI matrix allows (GitHub's limit is 256 jobs)
 
 
-@dataclass(frozen=True)
+@record
 class Shard:
     """Shard `index` (1-based) of `count`."""
 

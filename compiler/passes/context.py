@@ -13,12 +13,13 @@ from typing import Any
 
 from rmot.compiler import codes
 from rmot.lang.diagnostics import Code, Diagnostic, DiagnosticSink, Severity
+from rmot.lang.record import record
 from rmot.lang.source import Span
 
 __all__ = ["Entry", "Reporter", "RobotInfo", "RobotLoader", "RobotLookupError", "Scope", "default_robot_loader"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class RobotInfo:
     """What the front end needs of a robot model: its joint count and joint types ('R'/'P')."""
 

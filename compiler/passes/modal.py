@@ -21,7 +21,7 @@ Choices (LANGUAGE.md is silent; what RAPID/KRL/TP programmers expect):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
@@ -29,11 +29,12 @@ from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
 from rmot.compiler.passes.limits import MAX_TCP_SPEED, MAX_ZONE_M, MIN_RATIO, MIN_TCP_ACCEL, MIN_TCP_SPEED, within
 from rmot.compiler.passes.values import article, ACCEL, LENGTH, RATIO, SPEED, PoseV, Quantity, fmt_quantity
 from rmot.lang import ast
+from rmot.lang.record import record
 
 __all__ = ["DEFAULT_MODAL", "Modal", "apply_setting", "speed_modifier_warnings"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Modal:
     tool: ir.ToolRef
     frame: ir.FrameRef

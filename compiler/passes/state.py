@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from rmot.compiler import ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLoader, Scope
 from rmot.lang import ast
+from rmot.lang.record import record
 
 __all__ = ["FrontendState", "LoadedModule"]
 
@@ -20,7 +21,7 @@ class LoadedModule:
     imports: list[str] = field(default_factory=list)  # absolute paths, in source order
 
 
-@dataclass(frozen=True)
+@record
 class FrontendState:
     path: str  # the main file as given
     roots: tuple[str, ...]  # directories every named path must stay inside

@@ -7,10 +7,10 @@ zero and `unit` None, so "missing unit" can be told apart from a dimensionless r
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Union
 
 from rmot.compiler import ir
+from rmot.lang.record import record
 from rmot.lang.source import Span
 from rmot.lang.units import UNIT_TABLE
 
@@ -61,7 +61,7 @@ def example_unit(dim: Dim) -> str:
     return f"{article} {name} such as {example}" if example else f"{article} {name}"
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Quantity:
     value: float  # SI
     dim: Dim
@@ -80,30 +80,30 @@ def fmt_quantity(q: Quantity) -> str:
     return f"{number:g} {q.unit}"
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class PoseV:
     pose: ir.Pose
     name: str | None = None  # the target/frame/fixture it came from
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class JointsV:
     values: tuple[Quantity, ...]
     span: Span | None = None  # the joints(...) literal, for count errors
     name: str | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class VectorV:
     items: tuple[Value, ...]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class BoolV:
     value: bool
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class StringV:
     value: str
 

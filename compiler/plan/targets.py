@@ -30,7 +30,6 @@ Everything returns values: (q or None, [Finding]) with user-facing messages.
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -39,6 +38,7 @@ from rmot.compiler.ir_tree import Runs, flow
 from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
 from rmot.compiler.plan.robot_model import RobotModel
+from rmot.lang.record import record
 
 __all__ = [
     "Finding", "branch_changes", "flange_target", "home_joints", "initial_joints", "off_turns",
@@ -46,7 +46,7 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
+@record
 class Finding:
     code: Code
     severity: Severity
@@ -151,7 +151,7 @@ def _ik(robot: RobotModel, flange: np.ndarray, seed: np.ndarray, config: ir.Conf
     return _Local((q,))
 
 
-@dataclass(frozen=True)
+@record
 class _Local:
     """A stand-in IkResult holding solutions found by the local solve."""
 

@@ -10,15 +10,15 @@ then exactly the controller's q (a coupling such as Fanuc's J2/J3 is applied out
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import pinocchio as pin
+
+from rmot.lang.record import record
 
 __all__ = ["DHRow", "DHTable", "build_model", "rot_x", "rot_z", "trans"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class DHRow:
     """One joint: lengths in metres, angles in radians."""
 
@@ -30,7 +30,7 @@ class DHRow:
     kind: str = "R"  # 'R' revolute, 'P' prismatic
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class DHTable:
     rows: tuple[DHRow, ...]
     modified: bool = False  # False: standard DH; True: Craig's modified DH

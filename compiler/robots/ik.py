@@ -20,7 +20,6 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 from enum import Enum
 from typing import Any
 
@@ -29,6 +28,7 @@ import numpy as np
 from rmot.compiler import ir
 from rmot.compiler.robots.ik_rows import BranchRows, JointRows
 from rmot.compiler.robots.numeric import dls, dls_fast, restart_seeds
+from rmot.lang.record import record
 
 __all__ = ["IkResult", "IkStatus", "solve", "solve_batch", "POS_TOL", "ROT_TOL"]
 
@@ -46,7 +46,7 @@ class IkStatus(Enum):
     SINGULAR = "singular"  # solutions exist (in .solutions) but the pose is on a singularity
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class IkResult:
     """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them
     (immutable sequences that behave as tuples: robots/ik_rows.py; `solutions.array` is all of

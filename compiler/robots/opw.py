@@ -15,16 +15,17 @@ Fanuc's J2/J3 coupling), see `OpwJointMap`.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
 from rmot.compiler.robots.dh import DHRow, DHTable
+from rmot.lang.record import record
 
 __all__ = ["OpwParams", "OpwJointMap", "opw_dh_table", "opw_ik", "opw_fk", "opw_shoulder_elbow"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class OpwParams:
     """The seven OPW lengths in metres (see the module docstring for their meaning)."""
 
@@ -47,7 +48,7 @@ class OpwParams:
         return math.hypot(self.a2, self.c3)
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class OpwJointMap:
     """θ = sign · (coupling @ q) + offset, per joint (rad)."""
 

@@ -7,7 +7,6 @@ one pinocchio Data, so a Robot is not safe to share between threads.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -15,6 +14,7 @@ import pinocchio as pin
 
 from rmot.compiler import ir
 from rmot.compiler.robots.kinematic_chain import Chain, chain_of
+from rmot.lang.record import record
 
 if TYPE_CHECKING:
     from rmot.compiler.robots.ik import IkResult
@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 __all__ = ["LinkSolid", "Robot"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class LinkSolid:
     """A collision/display solid: `geometry` placed at `placement` in joint `joint_id`'s frame
     (pinocchio joint index; 0 = fixed to the robot base)."""

@@ -12,11 +12,12 @@ import numpy as np
 from rmot.compiler.robots.dh import DHTable, rot_z
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams, opw_dh_table
 from rmot.compiler.robots.urik import UrParams
+from rmot.lang.record import record
 
 __all__ = ["RobotSpec", "Segment", "opw_spec", "ur_spec", "opw_segments", "ur_segments"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Segment:
     """A capsule around the segment p0-p1 (m, in the base frame at the spec's `solid_pose`),
     moving with joint `joint` (0 = fixed to the base: then a flat-bottomed cylinder)."""

@@ -8,14 +8,14 @@ the flange axes, then a planar 2R problem for q2, q3 (two) and q4 = q234 - q2 - 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
+
+from rmot.lang.record import record
 
 __all__ = ["UrParams", "ur_ik", "ur_fk", "ur_branch_quantities"]
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class UrParams:
     """UR DH lengths in metres (a2, a3 negative as in UR's table)."""
 

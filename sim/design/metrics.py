@@ -13,12 +13,12 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from rmot.compiler import ir, plan_types
+from rmot.lang.record import record
 from rmot.sim.report import Report
 
 __all__ = ["JointDynamics", "TaskMetrics", "dynamics", "task_metrics", "program_metrics", "substitute_robot"]
@@ -27,7 +27,7 @@ SUFFICE_SLACK = 1e-3  # the verification's torque slack (sim/limits._SLACK["torq
 MAX_SAMPLES = 1500  # manipulability is evaluated on at most this many samples per trajectory (evenly spaced)
 
 
-@dataclass(frozen=True)
+@record
 class JointDynamics:
     joint: int  # 1-based
     peak_torque: float  # N·m (N for prismatic)
@@ -53,7 +53,7 @@ class JointDynamics:
         return self.peak_torque <= self.rated_torque * (1 + SUFFICE_SLACK)
 
 
-@dataclass(frozen=True)
+@record
 class TaskMetrics:
     task: str
     robot: str  # the cell's robot name

@@ -10,9 +10,11 @@ plane, 1 at the far plane).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
+
+from rmot.lang.record import record
 
 __all__ = ["Camera", "CameraSpecError", "camera_fields", "parse_camera"]
 
@@ -26,7 +28,7 @@ class CameraSpecError(ValueError):
     """A `--camera` text that does not describe a camera (message suitable for users)."""
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Camera:
     """A perspective camera; distances in metres, `fov_deg` the vertical view angle in degrees."""
 

@@ -13,11 +13,12 @@ interpolated (Gouraud), or per pixel on interpolated normals (Phong shading).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
 from numba import njit
+
+from rmot.lang.record import record
 
 __all__ = ["DEFAULT_LIGHTS", "Light", "Material", "Shading", "shade"]
 
@@ -28,7 +29,7 @@ class Shading(Enum):
     PHONG = "phong"
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Light:
     """A directional light: `direction` points from the scene towards the light (world frame)."""
 
@@ -36,7 +37,7 @@ class Light:
     intensity: float = 1.0
 
 
-@dataclass(frozen=True, slots=True)
+@record(slots=True)
 class Material:
     ambient: float = 0.28
     diffuse: float = 0.72

@@ -117,3 +117,20 @@ def test_output_directory_that_cannot_be_made_is_e520(tmp_path: Path) -> None:
     result = CliRunner().invoke(cli, ["compile", str(tmp_path / "p.rmot"), "--target", "rapid", "-o", str(tmp_path / "afile" / "o")])
     assert result.exit_code == 2 and "error[E520]" in result.output and "afile" in result.output
     assert result.exception is None or isinstance(result.exception, SystemExit)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="renameat2 is Linux's")
+def test_the_exchange_swaps_two_directories_in_one_call(tmp_path: Path) -> None:
+    """The C library's renameat2(RENAME_EXCHANGE) is found (dlopen of the process itself, no
+    ldconfig search) and swaps: each name then holds the other's files."""
+    from rmot.compiler.cli import output_tree
+
+    a, b = tmp_path / "a", tmp_path / "b"
+    a.mkdir()
+    b.mkdir()
+    (a / "f").write_text("from a")
+    (b / "f").write_text("from b")
+    assert output_tree.exchange(str(a), str(b)) is True
+    assert (a / "f").read_text() == "from b" and (b / "f").read_text() == "from a"
+    with pytest.raises(FileNotFoundError):
+        output_tree.exchange(str(a), str(tmp_path / "missing"))
