@@ -3,10 +3,10 @@
 Why: Python 3.11's `dataclass` writes the source of six methods for every frozen class and
 compiles each with `exec`: about 1 ms a class on this machine, and the AST, the IR and the
 plan types define over a hundred of them, all created on every start of `rmot` (issue 18:
-the start-up of `rmot check`). Equality, hashing and repr need no per-class code: they read
-the class's field names, fetched at C speed by an `operator.attrgetter` built once per class,
-so only `__init__`, `__setattr__` and `__delattr__` are still generated (measured in
-tests/benchmarks/bench_startup.py).
+the start-up of `rmot check`). Equality, hashing and repr need no per-class code: three
+shared functions, closed over the class's field names (fetched at C speed by one
+`operator.attrgetter` per class), so only `__init__`, `__setattr__` and `__delattr__` are still
+generated (measured in tests/benchmarks/bench_startup.py).
 
 The behaviour is exactly `@dataclass(frozen=True, ...)`'s (Python 3.11, dataclasses.py):
 - `a == b` compares the tuple of the fields with `compare=True` when both are of the same
@@ -52,14 +52,12 @@ def record(cls: type[_T] | None = None, /, *, slots: bool = False,
                             "shared; use @dataclass for a class that defines its own")
         made: Any = dataclass(c, frozen=True, eq=False, repr=False, slots=slots, kw_only=kw_only)
         every = fields(made)
-        compared = [f.name for f in every if f.compare]
-        hashed = [f.name for f in every if (f.compare if f.hash is None else f.hash)]
-        shared = {"_record_compared": staticmethod(_tuple_of(compared)),
-                  "_record_hashed": staticmethod(_tuple_of(hashed)),
-                  "_record_shown": tuple(f.name for f in every if f.repr),
-                  "__eq__": _eq, "__hash__": _hash, "__repr__": _repr}
-        for name, value in shared.items():
-            setattr(made, name, value)
+        compared = _tuple_of([f.name for f in every if f.compare])
+        hashed = _tuple_of([f.name for f in every if (f.compare if f.hash is None else f.hash)])
+        shown = tuple(f.name for f in every if f.repr)
+        for method in (_eq_of(compared), _hash_of(hashed), _repr_of(shown)):
+            method.__qualname__ = f"{made.__qualname__}.{method.__name__}"
+            setattr(made, method.__name__, method)
         return made  # type: ignore[no-any-return]
 
     return wrap if cls is None else wrap(cls)
@@ -76,18 +74,25 @@ def _tuple_of(names: list[str]) -> Callable[[Any], tuple[Any, ...]]:
     return lambda self: ()
 
 
-def _eq(self: Any, other: Any) -> Any:
-    if other.__class__ is self.__class__:
-        key = self._record_compared
-        return key(self) == key(other)
-    return NotImplemented
+# Closures over each class's getters, not methods looking the getters up on the instance: a
+# closure is made without compiling anything, and reads its getter at local-variable speed.
+def _eq_of(key: Callable[[Any], tuple[Any, ...]]) -> Callable[[Any, Any], Any]:
+    def __eq__(self: Any, other: Any) -> Any:
+        if other.__class__ is self.__class__:
+            return key(self) == key(other)
+        return NotImplemented
+    return __eq__
 
 
-def _hash(self: Any) -> int:
-    return hash(self._record_hashed(self))
+def _hash_of(key: Callable[[Any], tuple[Any, ...]]) -> Callable[[Any], int]:
+    def __hash__(self: Any) -> int:
+        return hash(key(self))
+    return __hash__
 
 
-@reprlib.recursive_repr()
-def _repr(self: Any) -> str:
-    shown = ", ".join(f"{name}={getattr(self, name)!r}" for name in self._record_shown)
-    return f"{self.__class__.__qualname__}({shown})"
+def _repr_of(shown: tuple[str, ...]) -> Callable[[Any], str]:
+    @reprlib.recursive_repr()
+    def __repr__(self: Any) -> str:
+        fields_text = ", ".join(f"{name}={getattr(self, name)!r}" for name in shown)
+        return f"{self.__class__.__qualname__}({fields_text})"
+    return __repr__
