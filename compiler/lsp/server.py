@@ -1,0 +1,165 @@
+"""The pygls server: one Analysis per open document, plan jobs in the background.
+
+On open and on every change the front end runs at once on the new text (analysis.py) and
+its diagnostics are published; then, after a short pause without typing, a PlanJob
+(planning.py) plans and verifies the same text in another process, and its findings are
+published together with the front end's, if the text has not changed meanwhile. A change
+cancels the job of the text before it. Every handler answers from the latest analysis;
+an exception inside one is logged and answered as "nothing here", never a crash.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+from lsprotocol import types as lsp
+from pygls.lsp.server import LanguageServer
+
+from rmot.compiler.lsp import features
+from rmot.compiler.lsp.analysis import Analysis, analyze, path_of, to_lsp
+from rmot.compiler.lsp.planning import PlanJob, PlanResult
+
+__all__ = ["RmotServer", "build_server"]
+
+PLAN_DELAY_S = 0.3  # typing pause before a plan job starts
+T = TypeVar("T")
+log = logging.getLogger(__name__)
+
+
+class RmotServer(LanguageServer):
+    """A LanguageServer that keeps, per document URI, its analysis, plan and plan job."""
+
+    def __init__(self) -> None:
+        from importlib.metadata import PackageNotFoundError, version
+
+        try:
+            own = version("rmot")
+        except PackageNotFoundError:
+            own = "0+unknown"
+        super().__init__("rmot", own)
+        self.analyses: dict[str, Analysis] = {}
+        self.plans: dict[str, PlanResult] = {}
+        self.jobs: dict[str, asyncio.Task[None]] = {}
+        self.planning = True  # `rmot lsp --no-plan`: front-end diagnostics only
+
+    def refresh(self, uri: str) -> None:
+        """Analyse the document's current text, publish, and start its plan job."""
+        document = self.workspace.get_text_document(uri)
+        analysis = _safely(lambda: analyze(path_of(uri), document.source, document.version), None)
+        if analysis is None:
+            return
+        self.analyses[uri] = analysis
+        self.plans.pop(uri, None)
+        self._publish(uri, analysis, None)
+        old = self.jobs.pop(uri, None)
+        if old is not None:
+            old.cancel()
+        if self.planning and analysis.program is not None:
+            self.jobs[uri] = asyncio.get_running_loop().create_task(self._plan(uri, analysis))
+
+    def close(self, uri: str) -> None:
+        job = self.jobs.pop(uri, None)
+        if job is not None:
+            job.cancel()
+        self.analyses.pop(uri, None)
+        self.plans.pop(uri, None)
+        self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri, []))
+
+    async def _plan(self, uri: str, analysis: Analysis) -> None:
+        await asyncio.sleep(PLAN_DELAY_S)
+        job = PlanJob(analysis.path, analysis.text)
+        try:
+            result = await asyncio.get_running_loop().run_in_executor(None, job.result)
+        finally:
+            job.cancel()
+        if result is None or self.analyses.get(uri) is not analysis:
+            return
+        self.plans[uri] = result
+        self._publish(uri, analysis, result)
+        workspace = self.client_capabilities.workspace
+        hints = workspace.inlay_hint if workspace is not None else None
+        if hints is not None and hints.refresh_support:
+            self.workspace_inlay_hint_refresh(None)
+
+    def _publish(self, uri: str, analysis: Analysis, plan: PlanResult | None) -> None:
+        found = [to_lsp(d, analysis.path) for d in analysis.diagnostics]
+        if plan is not None:
+            found += plan.diagnostics
+        self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri, found, version=analysis.version))
+
+
+def _safely(answer: Callable[[], T], default: T) -> T:
+    """answer(); a bug in a feature is logged and answered with `default` (the server stays up)."""
+    try:
+        return answer()
+    except Exception:
+        log.exception("rmot lsp: a request failed")
+        return default
+
+
+def build_server(planning: bool = True) -> RmotServer:
+    server = RmotServer()
+    server.planning = planning
+    _register_documents(server)
+    _register_features(server)
+    return server
+
+
+def _register_documents(server: RmotServer) -> None:
+    @server.feature(lsp.TEXT_DOCUMENT_DID_OPEN)
+    def did_open(ls: RmotServer, params: lsp.DidOpenTextDocumentParams) -> None:
+        ls.refresh(params.text_document.uri)
+
+    @server.feature(lsp.TEXT_DOCUMENT_DID_CHANGE)
+    def did_change(ls: RmotServer, params: lsp.DidChangeTextDocumentParams) -> None:
+        ls.refresh(params.text_document.uri)
+
+    @server.feature(lsp.TEXT_DOCUMENT_DID_SAVE)
+    def did_save(ls: RmotServer, params: lsp.DidSaveTextDocumentParams) -> None:
+        ls.refresh(params.text_document.uri)  # an imported file may have changed on disk
+
+    @server.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
+    def did_close(ls: RmotServer, params: lsp.DidCloseTextDocumentParams) -> None:
+        ls.close(params.text_document.uri)
+
+
+def _register_features(server: RmotServer) -> None:
+    def analysis_of(uri: str) -> Analysis | None:
+        return server.analyses.get(uri)
+
+    def on(uri: str, answer: Callable[[Analysis], Any], default: Any) -> Any:
+        found = analysis_of(uri)
+        return default if found is None else _safely(lambda: answer(found), default)
+
+    @server.feature(lsp.TEXT_DOCUMENT_DEFINITION)
+    def definition(ls: RmotServer, params: lsp.DefinitionParams) -> list[lsp.Location]:
+        return on(params.text_document.uri, lambda a: features.definition(a, params.position), [])  # type: ignore[no-any-return]
+
+    @server.feature(lsp.TEXT_DOCUMENT_REFERENCES)
+    def references(ls: RmotServer, params: lsp.ReferenceParams) -> list[lsp.Location]:
+        return on(params.text_document.uri, lambda a: features.references(  # type: ignore[no-any-return]
+            a, params.position, params.context.include_declaration), [])
+
+    @server.feature(lsp.TEXT_DOCUMENT_HOVER)
+    def hover(ls: RmotServer, params: lsp.HoverParams) -> lsp.Hover | None:
+        uri = params.text_document.uri
+        return on(uri, lambda a: features.hover(a, ls.plans.get(uri), params.position), None)  # type: ignore[no-any-return]
+
+    @server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[" "]))
+    def completion(ls: RmotServer, params: lsp.CompletionParams) -> lsp.CompletionList:
+        uri = params.text_document.uri
+        text = ls.workspace.get_text_document(uri).source
+        items = on(uri, lambda a: features.completion(a, text, params.position), [])
+        return lsp.CompletionList(is_incomplete=False, items=items)
+
+    @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
+    def symbols(ls: RmotServer, params: lsp.DocumentSymbolParams) -> list[lsp.DocumentSymbol]:
+        return on(params.text_document.uri, features.document_symbols, [])  # type: ignore[no-any-return]
+
+    @server.feature(lsp.TEXT_DOCUMENT_INLAY_HINT)
+    def inlay(ls: RmotServer, params: lsp.InlayHintParams) -> list[lsp.InlayHint]:
+        uri = params.text_document.uri
+        return on(uri, lambda a: features.inlay_hints(a, ls.plans.get(uri), params.range), [])  # type: ignore[no-any-return]
