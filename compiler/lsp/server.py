@@ -41,6 +41,9 @@ class RmotServer(LanguageServer):
             own = "0+unknown"
         super().__init__("rmot", own)
         self.analyses: dict[str, Analysis] = {}
+        # the latest analysis whose document parsed: the features' names and positions while
+        # the text being typed does not parse (a half-typed statement is a syntax error)
+        self.parsed: dict[str, Analysis] = {}
         self.plans: dict[str, PlanResult] = {}
         self.jobs: dict[str, asyncio.Task[None]] = {}
         self.planning = True  # `rmot lsp --no-plan`: front-end diagnostics only
@@ -52,6 +55,8 @@ class RmotServer(LanguageServer):
         if analysis is None:
             return
         self.analyses[uri] = analysis
+        if analysis.module is not None or uri not in self.parsed:
+            self.parsed[uri] = analysis
         self.plans.pop(uri, None)
         self._publish(uri, analysis, None)
         old = self.jobs.pop(uri, None)
@@ -65,6 +70,7 @@ class RmotServer(LanguageServer):
         if job is not None:
             job.cancel()
         self.analyses.pop(uri, None)
+        self.parsed.pop(uri, None)
         self.plans.pop(uri, None)
         self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri, []))
 
@@ -128,7 +134,7 @@ def _register_documents(server: RmotServer) -> None:
 
 def _register_features(server: RmotServer) -> None:
     def analysis_of(uri: str) -> Analysis | None:
-        return server.analyses.get(uri)
+        return server.parsed.get(uri)
 
     def on(uri: str, answer: Callable[[Analysis], Any], default: Any) -> Any:
         found = analysis_of(uri)
