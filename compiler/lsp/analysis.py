@@ -11,6 +11,7 @@ diagnostic and the features work on what the files that do parse declare.
 from __future__ import annotations
 
 import os
+from functools import cached_property
 from typing import Any
 
 from lsprotocol import types as lsp
@@ -35,10 +36,15 @@ class Analysis:
     version: int | None
     text: str
     diagnostics: tuple[Diagnostic, ...]
-    index: SymbolIndex
     modules: dict[str, ast.Module]  # absolute path -> parsed module (this document first)
     program: ir.Program | None  # None when the front end found errors or there is no program
     cell: ir.Cell | None
+
+    @cached_property
+    def index(self) -> SymbolIndex:
+        """The names of every file read, built on the first request that needs them (not on
+        the way to the diagnostics of a keystroke)."""
+        return build_index(list(self.modules.values()))
 
     @property
     def has_errors(self) -> bool:
@@ -68,8 +74,7 @@ def analyze(path: str, text: str, version: int | None = None) -> Analysis:
     loaded = [state.main, *state.modules.values(), state.cell_module]
     modules = {os.path.abspath(m.path): m.module for m in loaded if m is not None}
     program = None if any(d.is_error for d in diagnostics) else state.program
-    return Analysis(path, version, text, diagnostics, build_index(list(modules.values())), modules,
-                    program, state.cell)
+    return Analysis(path, version, text, diagnostics, modules, program, state.cell)
 
 
 def uri_of(path: str) -> str:

@@ -12,14 +12,14 @@ import math
 import os
 import re
 from collections.abc import Iterator
-from dataclasses import fields, is_dataclass
+from dataclasses import is_dataclass
 from typing import Any
 
 from lsprotocol import types as lsp
 
 from rmot.compiler import ir
 from rmot.compiler.lsp.analysis import Analysis, lsp_range, uri_of
-from rmot.compiler.lsp.index import Symbol, contains
+from rmot.compiler.lsp.index import Symbol, contains, field_names
 from rmot.compiler.lsp.planning import MovePlan, PlanResult
 from rmot.lang import ast
 from rmot.lang.source import Span
@@ -162,8 +162,8 @@ def _nodes(node: Any) -> Iterator[Any]:
             yield from _nodes(item)
     elif is_dataclass(node) and hasattr(node, "span"):
         yield node
-        for f in fields(node):
-            yield from _nodes(getattr(node, f.name))
+        for name in field_names(type(node)):
+            yield from _nodes(getattr(node, name))
 
 
 def _number_at(analysis: Analysis, line: int, col: int) -> ast.Number | None:

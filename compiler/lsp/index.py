@@ -9,6 +9,7 @@ of the files; the front end has already reported names that are not visible.
 
 from __future__ import annotations
 
+import functools
 import os
 from dataclasses import fields, is_dataclass
 from typing import Any
@@ -17,7 +18,7 @@ from rmot.lang import ast
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
-__all__ = ["Symbol", "SymbolIndex", "build_index", "contains"]
+__all__ = ["Symbol", "SymbolIndex", "build_index", "contains", "field_names"]
 
 # declaration class -> kind shown to users (its `name` field is the declared name)
 DECLARATIONS: dict[type, str] = {
@@ -116,6 +117,12 @@ def build_index(modules: list[ast.Module]) -> SymbolIndex:
     return SymbolIndex(symbols)
 
 
+@functools.cache
+def field_names(cls: type) -> tuple[str, ...]:
+    """The fields of an AST class, looked up once per class (dataclasses.fields is slow)."""
+    return tuple(f.name for f in fields(cls))
+
+
 def _walk(node: Any, scope: Span | None, out: list[Symbol]) -> None:
     kind = DECLARATIONS.get(type(node))
     if kind is not None and isinstance(getattr(node, "name", None), ast.Ident):
@@ -127,13 +134,13 @@ def _walk(node: Any, scope: Span | None, out: list[Symbol]) -> None:
         if key is not None:
             out.append(Symbol(key, node.io.span, "io", None, node))
     inner = node.span if isinstance(node, _BLOCKS) else scope
-    for f in fields(node):
-        value = getattr(node, f.name)
-        if kind is not None and f.name == "name":
+    for name in field_names(type(node)):
+        value = getattr(node, name)
+        if kind is not None and name == "name":
             continue
-        if isinstance(node, ast.For) and f.name == "var":
+        if isinstance(node, ast.For) and name == "var":
             continue
-        if (type(node), f.name) in _NOT_NAMES:
+        if (type(node), name) in _NOT_NAMES:
             if isinstance(value, tuple):
                 _walk_items(value, inner, out)
             continue
