@@ -57,9 +57,9 @@ def references(analysis: Analysis, position: lsp.Position, include_declaration: 
 
 def hover(analysis: Analysis, plan: PlanResult | None, position: lsp.Position) -> lsp.Hover | None:
     line, col = position.line + 1, position.character + 1
-    number = _number_at(analysis, line, col)
-    if number is not None:
-        return _markdown(_unit_text(number), number.span)
+    literal = _unit_at(analysis, line, col)
+    if literal is not None:
+        return _markdown(_unit_text(literal[0], literal[1]), literal[2])
     symbol = _at(analysis, position)
     if symbol is not None:
         found = analysis.index.definition(symbol)
@@ -77,14 +77,14 @@ def _markdown(text: str, span: Span) -> lsp.Hover:
     return lsp.Hover(lsp.MarkupContent(lsp.MarkupKind.Markdown, text), lsp_range(span))
 
 
-def _unit_text(number: ast.Number) -> str:
-    unit = number.unit or ""
+def _unit_text(value: float, unit: str) -> str:
+    """`150 mm` = **0.15 m**: a literal's value in SI units (lang/units.py's table)."""
     factor, dim = UNIT_TABLE[unit]
     si = {(1, 0, 0, 0, 0): "m", (0, 1, 0, 0, 0): "rad", (0, 0, 1, 0, 0): "s", (0, 0, 0, 1, 0): "kg",
           (0, 0, 0, 0, 1): "(fraction)", (1, 0, -1, 0, 0): "m/s", (0, 1, -1, 0, 0): "rad/s",
           (1, 0, -2, 0, 0): "m/s^2", (0, 1, -2, 0, 0): "rad/s^2", (1, 0, -2, 1, 0): "N",
           (2, 0, -2, 1, 0): "N*m"}.get(dim, "SI")
-    return f"`{number.value:g} {unit}` = **{number.value * factor:.6g} {si}**"
+    return f"`{value:g} {unit}` = **{value * factor:.6g} {si}**"
 
 
 def _symbol_text(analysis: Analysis, plan: PlanResult | None, symbol: Symbol) -> str:
@@ -166,13 +166,18 @@ def _nodes(node: Any) -> Iterator[Any]:
             yield from _nodes(getattr(node, name))
 
 
-def _number_at(analysis: Analysis, line: int, col: int) -> ast.Number | None:
+def _unit_at(analysis: Analysis, line: int, col: int) -> tuple[float, str, Span] | None:
+    """A literal with a unit under the cursor: `150 mm`, or the unit of `joints(...) deg`
+    (then the value of 1 of that unit)."""
     module = analysis.module
     if module is None:
         return None
     for node in _nodes(module.body):
         if isinstance(node, ast.Number) and node.unit in UNIT_TABLE and contains(node.span, line, col):
-            return node
+            return node.value, node.unit, node.span
+        if isinstance(node, ast.Joints) and node.unit in UNIT_TABLE and node.span.end.line == line \
+                and node.span.end.col - len(node.unit) <= col <= node.span.end.col:
+            return 1.0, node.unit, node.span
     return None
 
 
@@ -220,7 +225,7 @@ def completion(analysis: Analysis, text: str, position: lsp.Position) -> list[ls
     line1, col1 = position.line + 1, position.character + 1
     unit = _AFTER_NUMBER.search(before)
     if unit is not None:
-        return [lsp.CompletionItem(u, kind=lsp.CompletionItemKind.Unit, detail=_unit_text(ast.Number(1.0, u)))
+        return [lsp.CompletionItem(u, kind=lsp.CompletionItemKind.Unit, detail=_unit_text(1.0, u))
                 for u in UNIT_NAMES if u.startswith(unit.group(1))]
     if _AFTER_MOVE.search(before):
         targets = analysis.index.visible(analysis.path, line1, col1, frozenset({"target"}))
