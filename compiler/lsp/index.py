@@ -9,7 +9,6 @@ of the files; the front end has already reported names that are not visible.
 
 from __future__ import annotations
 
-import functools
 import os
 from dataclasses import fields, is_dataclass
 from typing import Any
@@ -87,7 +86,8 @@ class SymbolIndex:
             return max(local, key=lambda d: (d.scope.start.offset if d.scope else -1))
         top = [d for d in same if d.scope is None]
         here = [d for d in top if d.path == symbol.path]
-        return (here or top or [None])[0]
+        candidates = here or top
+        return candidates[0] if candidates else None
 
     def references(self, declaration: Symbol) -> list[Symbol]:
         """Every occurrence that resolves to `declaration`, the declaration included."""
@@ -117,10 +117,15 @@ def build_index(modules: list[ast.Module]) -> SymbolIndex:
     return SymbolIndex(symbols)
 
 
-@functools.cache
+_FIELD_NAMES: dict[type, tuple[str, ...]] = {}
+
+
 def field_names(cls: type) -> tuple[str, ...]:
     """The fields of an AST class, looked up once per class (dataclasses.fields is slow)."""
-    return tuple(f.name for f in fields(cls))
+    names = _FIELD_NAMES.get(cls)
+    if names is None:
+        names = _FIELD_NAMES[cls] = tuple(f.name for f in fields(cls))
+    return names
 
 
 def _walk(node: Any, scope: Span | None, out: list[Symbol]) -> None:

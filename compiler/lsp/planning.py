@@ -16,6 +16,7 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
+from rmot.compiler import ir
 from rmot.lang.record import record
 
 __all__ = ["MovePlan", "PlanJob", "PlanResult", "plan_document"]
@@ -68,15 +69,15 @@ def plan_document(path: str, text: str) -> PlanResult:
                       tuple(sorted(report.cycle_times.items())))
 
 
-def _joint_types(program: Any, robot: str) -> tuple[str, ...]:
+def _joint_types(program: ir.Program, robot: str) -> tuple[str, ...]:
     from rmot.compiler.robots import load_robot
 
     for r in program.cell.robots:
         if r.name == robot:
             try:
-                return tuple(load_robot(r.source.ref).joint_types)
+                return tuple(str(t) for t in load_robot(r.source.ref).joint_types)
             except Exception:  # a URDF or model robot the library does not name: show radians
-                return ("R",) * r.dof
+                return ("R",) * int(r.dof)
     return ()
 
 
