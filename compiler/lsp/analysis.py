@@ -57,19 +57,10 @@ class Analysis:
 
 def analyze(path: str, text: str, version: int | None = None) -> Analysis:
     """The front end's result for `text` as the content of `path` (see the module docstring)."""
-    from rmot.compiler.passes.context import Reporter, default_robot_loader
-    from rmot.compiler.passes.state import FrontendState
-    from rmot.compiler.pipeline import run
+    from rmot.compiler.frontend import run_passes
 
     path = os.path.abspath(path)
-    state = FrontendState(path=path, roots=(os.path.dirname(path),), reporter=Reporter(),
-                          robot_loader=default_robot_loader, text=text)
-    try:
-        state = run(state)
-    except RecursionError:  # absurdly deep nesting: the front end's own message (frontend.py)
-        from rmot.compiler import codes
-
-        state.reporter.error(codes.TOO_LARGE_UNROLLED, "nesting must be at most a few hundred levels deep (got deeper)", None)
+    state = run_passes(path, text)
     diagnostics = state.reporter.sink.items
     loaded = [state.main, *state.modules.values(), state.cell_module]
     modules = {os.path.abspath(m.path): m.module for m in loaded if m is not None}
