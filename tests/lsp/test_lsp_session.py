@@ -16,6 +16,7 @@ import subprocess
 import sys
 from pathlib import Path
 from typing import Any
+from urllib.parse import unquote, urlparse
 
 import pytest
 import pytest_lsp
@@ -25,14 +26,18 @@ from pytest_lsp import ClientServerConfig, LanguageClient
 _RMOT = shutil.which("rmot", path=os.path.dirname(sys.executable)) or "rmot"
 
 LIB = """\
-# a proc the program imports
+# procs the program imports
 proc lift(p: pose) {
   move linear shift(p, z=100mm)
 }
+
+proc put(p: pose) {
+  move linear p frame pallet
+}
 """
 
-# examples/collision.rmot's program (the gripper hits the table on the way to `slot`),
-# with `lift` from an imported file and the typo `hme` on its last line
+# examples/collision.rmot's program (the gripper hits the table on the way to `slot`, here
+# in the imported proc `put`), with the typo `hme` on its last line
 PROGRAM = """\
 import "lib/moves.rmot"
 
@@ -50,7 +55,7 @@ program collide on r1 {
   move linear nest frame table_top speed 100 mm/s
   set out[1] = on
   wait 300 ms
-  move linear slot frame pallet
+  put(slot)
   set out[1] = off
   frame pallet
   lift(slot)
@@ -102,11 +107,18 @@ def _cli_check(path: Path) -> list[dict[str, Any]]:
     return json.loads(run.stdout)["programs"][0]["diagnostics"]  # type: ignore[no-any-return]
 
 
-def _same_as_cli(lsp_diags: list[types.Diagnostic], cli: list[dict[str, Any]]) -> None:
-    ours = sorted((d.code, d.range.start.line + 1, d.range.start.character + 1,
-                   d.range.end.line + 1, d.range.end.character + 1) for d in lsp_diags)
-    theirs = sorted((d["code"], d["line"], d["col"], d["end_line"], d["end_col"]) for d in cli)
-    assert ours == theirs
+def _same_as_cli(lsp_diags: list[types.Diagnostic], cli: list[dict[str, Any]], uri: str) -> None:
+    """Same codes at the same places: the CLI's file:line:col is the LSP's range in the
+    document, or its "reported here" related location for a finding in an imported file."""
+    ours = []
+    for d in lsp_diags:
+        here = [r.location for r in d.related_information or [] if r.message == "reported here"]
+        where = here[0] if here else types.Location(uri, d.range)
+        r = where.range
+        ours.append((d.code, unquote(urlparse(where.uri).path),
+                     r.start.line + 1, r.start.character + 1, r.end.line + 1, r.end.character + 1))
+    theirs = [(d["code"], d["file"], d["line"], d["col"], d["end_line"], d["end_col"]) for d in cli]
+    assert sorted(map(str, ours)) == sorted(map(str, theirs))
 
 
 def _change(client: LanguageClient, uri: str, version: int, text: str) -> None:
@@ -124,17 +136,20 @@ async def test_session(client: LanguageClient, project: Path) -> None:
     typo = next(d for d in first if d.code == "E101")
     assert (typo.range.start.line, typo.range.start.character, typo.range.end.character) == (TYPO_LINE, 13, 16)
     assert "did you mean 'home'" in typo.message
-    _same_as_cli(first, _cli_check(project))
+    _same_as_cli(first, _cli_check(project), uri)
 
     fixed = PROGRAM.replace("move joint hme", "move joint home")
     _change(client, uri, 2, fixed)
     found = await _diagnostics_until(client, uri, lambda ds: any(d.code == "E300" for d in ds))
     assert not any(d.code == "E101" for d in found)
     collision = next(d for d in found if d.code == "E300")
-    assert collision.range.start.line == 16  # `move linear slot frame pallet`
+    assert collision.range.start.line == 16  # shown at the call `put(slot)` in this document,
+    (inside,) = collision.related_information or []  # with the proc's move as related location
+    assert inside.location.uri == (project.parent / "lib" / "moves.rmot").as_uri()
+    assert inside.location.range.start.line == 6  # `move linear p frame pallet`
     assert "table" in collision.message
     project.write_text(fixed, encoding="utf-8")
-    _same_as_cli(found, _cli_check(project))
+    _same_as_cli(found, _cli_check(project), uri)
 
     await _hover_target(client, uri)
     await _definition_in_import(client, uri, project)
