@@ -60,16 +60,17 @@ def hover(analysis: Analysis, plan: PlanResult | None, position: lsp.Position) -
     literal = _unit_at(analysis, line, col)
     if literal is not None:
         return _markdown(_unit_text(literal[0], literal[1]), literal[2])
-    symbol = _at(analysis, position)
-    if symbol is not None:
-        found = analysis.index.definition(symbol)
-        if found is not None:
-            return _markdown(_symbol_text(analysis, plan, found), symbol.span)
     statement = _statement_at(analysis, line, col)
-    if statement is not None:
-        moves = _moves_from(analysis, statement.span)
-        if moves:
-            return _markdown(_moves_text(analysis, plan, moves), statement.span)
+    moves = _moves_from(analysis, statement.span) if statement is not None else []
+    symbol = _at(analysis, position)
+    found = analysis.index.definition(symbol) if symbol is not None else None
+    if symbol is not None and found is not None:
+        text = _symbol_text(analysis, plan, found)
+        if found.kind == "proc" and moves:  # a call: what its body does here
+            text += "\n\n" + _moves_text(analysis, plan, moves)
+        return _markdown(text, symbol.span)
+    if statement is not None and moves:
+        return _markdown(_moves_text(analysis, plan, moves), statement.span)
     return None
 
 
@@ -104,7 +105,7 @@ def _moves_text(analysis: Analysis, plan: PlanResult | None, moves: list[tuple[i
     bases = {r.name: r.base for r in analysis.program.cell.robots} if analysis.program else {}
     out = []
     for task, move in moves[:_MAX_SHOWN]:
-        out.append(f"**move {move.kind.value}** (task {task.name}, robot {task.robot})")
+        out.append(f"**move {move.kind.name.lower()}** (task {task.name}, robot {task.robot})")
         target = move.target
         if isinstance(target, ir.CartesianTarget):
             frame = move.frame.name or "robot base"

@@ -19,7 +19,7 @@ from lsprotocol import types as lsp
 
 from rmot.compiler.lsp import features
 from rmot.compiler.lsp.analysis import Analysis, analyze
-from rmot.compiler.lsp.planning import PlanResult, plan_document
+from rmot.compiler.lsp.planning import PlanJob, PlanResult, plan_document
 
 ROOT = Path(__file__).resolve().parents[2]
 PICK = ROOT / "examples" / "pick_place.rmot"
@@ -139,3 +139,18 @@ def test_inlay_hints_give_each_moves_duration(analysis: Analysis, plan: PlanResu
     moves = [m for t in analysis.program.tasks for m in t.body if getattr(m, "span", None)  # type: ignore[union-attr]
              and m.span.start.line == last.position.line + 1]
     assert f"{durations[moves[0].uid]:.2f} s" in str(last.label)
+
+
+def test_hover_on_a_proc_call_lists_the_moves_of_its_body(analysis: Analysis, plan: PlanResult) -> None:
+    hover = features.hover(analysis, plan, _pos("grasp(nest)", 2))
+    assert hover is not None
+    text = hover.contents.value  # type: ignore[union-attr]
+    assert text.startswith("**proc** `grasp`") and "lib/moves.rmot" in text
+    # grasp = approach (joint + linear) then retract (linear), inlined once per loop iteration
+    assert "**move joint**" in text and "**move linear**" in text and "more instances" in text
+
+
+def test_a_cancelled_plan_job_answers_none() -> None:
+    job = PlanJob(str(PICK), TEXT)
+    job.cancel()
+    assert job.result() is None
