@@ -54,6 +54,19 @@ class Analysis:
     def module(self) -> ast.Module | None:
         return self.modules.get(self.path)
 
+    @cached_property
+    def entries(self) -> dict[str, Span]:
+        """The file each `import` / `use cell` of this document names -> that statement."""
+        module = self.module
+        if module is None:
+            return {}
+        folder = os.path.dirname(self.path)
+        return {os.path.normpath(os.path.join(folder, s.path.value)): s.span for s in module.body
+                if isinstance(s, (ast.Import, ast.UseCell))}
+
+    def to_lsp(self, diagnostic: Diagnostic) -> lsp.Diagnostic:
+        return to_lsp(diagnostic, self.path, self.entries)
+
 
 def analyze(path: str, text: str, version: int | None = None) -> Analysis:
     """The front end's result for `text` as the content of `path` (see the module docstring)."""
@@ -86,12 +99,13 @@ def lsp_range(span: Span) -> lsp.Range:
                      lsp.Position(span.end.line - 1, max(span.end.col - 1, span.start.col - 1)))
 
 
-def to_lsp(diagnostic: Diagnostic, path: str) -> lsp.Diagnostic:
+def to_lsp(diagnostic: Diagnostic, path: str, entries: dict[str, Span] | None = None) -> lsp.Diagnostic:
     """An rmot Diagnostic as the LSP's, placed in the document `path`.
 
     A diagnostic from another file (an import, the cell) or from a proc body inlined at a
-    call is shown at the call or line in this document that brought it in; its own place and
-    the chain of calls are related locations, as are its notes ("first defined here")."""
+    call is shown at the call, or at the `import` / `use cell` (`entries`: file -> that
+    statement), in this document that brought it in; its own place and the chain of calls
+    are related locations, as are its notes ("first defined here")."""
     related: list[lsp.DiagnosticRelatedInformation] = []
     span = diagnostic.span
     where = lsp.Range(lsp.Position(0, 0), lsp.Position(0, 1))
@@ -100,6 +114,8 @@ def to_lsp(diagnostic: Diagnostic, path: str) -> lsp.Diagnostic:
         here = next((s for s in chain if os.path.abspath(s.path) == path), None)
         if here is not None:
             where = lsp_range(here)
+        elif entries and os.path.abspath(span.path) in entries:
+            where = lsp_range(entries[os.path.abspath(span.path)])
         if here is not span:
             related.append(_related(span, "reported here"))
         related += [_related(site, "through this call") for site in span.expansion_chain() if site is not here]

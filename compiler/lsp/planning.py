@@ -47,7 +47,7 @@ class PlanResult:
 def plan_document(path: str, text: str) -> PlanResult:
     """Front end -> plan -> verify for `text` as `path` (runs in the worker process)."""
     from rmot.compiler.cli import stages
-    from rmot.compiler.lsp.analysis import analyze, to_lsp
+    from rmot.compiler.lsp.analysis import analyze
 
     analysis = analyze(path, text)
     if analysis.program is None:
@@ -56,7 +56,7 @@ def plan_document(path: str, text: str) -> PlanResult:
         planned = stages.plan(analysis.program)
         report = stages.verify(planned)
     except stages.StageError as exc:
-        return PlanResult((to_lsp(exc.diagnostic, analysis.path),), (), (), True)
+        return PlanResult((analysis.to_lsp(exc.diagnostic),), (), (), True)
     moves = []
     for task in planned.tasks:
         types = _joint_types(analysis.program, task.robot)
@@ -65,7 +65,7 @@ def plan_document(path: str, text: str) -> PlanResult:
                 continue
             moves.append(MovePlan(r.uid, task.task.name, task.robot, float(r.t_start), float(r.t_end),
                                   tuple(float(q) for q in r.q_target), types, str(r.branch) if r.branch else ""))
-    return PlanResult(tuple(to_lsp(d, analysis.path) for d in report.diagnostics), tuple(moves),
+    return PlanResult(tuple(analysis.to_lsp(d) for d in report.diagnostics), tuple(moves),
                       tuple(sorted(report.cycle_times.items())))
 
 
@@ -82,6 +82,7 @@ def _joint_types(program: ir.Program, robot: str) -> tuple[str, ...]:
 
 
 def _child(conn: Any, path: str, text: str) -> None:
+    os.dup2(2, 1)  # stdout is the server's JSON-RPC channel: anything printed here goes to stderr
     try:
         result = plan_document(path, text)
     except Exception as exc:  # a bug in a stage: one internal-error diagnostic, never a traceback

@@ -19,7 +19,7 @@ from lsprotocol import types as lsp
 from pygls.lsp.server import LanguageServer
 
 from rmot.compiler.lsp import features
-from rmot.compiler.lsp.analysis import Analysis, analyze, path_of, to_lsp
+from rmot.compiler.lsp.analysis import Analysis, analyze, path_of
 from rmot.compiler.lsp.planning import PlanJob, PlanResult
 
 __all__ = ["RmotServer", "build_server"]
@@ -91,7 +91,7 @@ class RmotServer(LanguageServer):
             self.workspace_inlay_hint_refresh(None)
 
     def _publish(self, uri: str, analysis: Analysis, plan: PlanResult | None) -> None:
-        found = [to_lsp(d, analysis.path) for d in analysis.diagnostics]
+        found = [analysis.to_lsp(d) for d in analysis.diagnostics]
         if plan is not None:
             found += plan.diagnostics
         self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri, found, version=analysis.version))

@@ -154,3 +154,14 @@ def test_a_cancelled_plan_job_answers_none() -> None:
     job = PlanJob(str(PICK), TEXT)
     job.cancel()
     assert job.result() is None
+
+
+def test_an_error_in_an_imported_file_is_shown_at_the_import(tmp_path: Path) -> None:
+    (tmp_path / "lib.rmot").write_text("const slow = 100 mm/s\nconst fast = 3 * slwo\n", encoding="utf-8")
+    text = 'import "lib.rmot"\n\nprogram p on r1 {\n  move joint joints(0, 0, 0, 0, 90, 0) deg\n}\n'
+    a = analyze(str(tmp_path / "main.rmot"), text)
+    (typo,) = [a.to_lsp(d) for d in a.diagnostics if d.code.id == "E101"]
+    assert (typo.range.start.line, typo.range.start.character) == (0, 0)  # the `import` line
+    (inside,) = typo.related_information or []
+    assert inside.location.uri == (tmp_path / "lib.rmot").as_uri()
+    assert (inside.location.range.start.line, inside.location.range.start.character) == (1, 17)

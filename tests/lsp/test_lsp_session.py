@@ -154,6 +154,9 @@ async def test_session(client: LanguageClient, project: Path) -> None:
     await _hover_target(client, uri)
     await _definition_in_import(client, uri, project)
     await _complete_after_move_joint(client, uri)
+    # the server wrote nothing beside the sources (no vendor program, no report)
+    assert sorted(str(p.relative_to(project.parent)) for p in project.parent.rglob("*")) == [
+        "collide.rmot", "lib", "lib/moves.rmot"]
 
 
 async def _hover_target(client: LanguageClient, uri: str) -> None:
