@@ -120,6 +120,11 @@ def _moves_text(analysis: Analysis, plan: PlanResult | None, moves: list[tuple[i
         out.append(f"- joints: {_joints_text(p)}")
         if p.branch:
             out.append(f"- configuration: {p.branch}")
+        if p.limit_margin[0]:
+            joint, margin = p.limit_margin
+            prismatic = joint <= len(p.joint_types) and p.joint_types[joint - 1] == "P"
+            amount = f"{margin * 1000:.1f} mm" if prismatic else f"{math.degrees(margin):.1f}°"
+            out.append(f"- joint-limit margin: J{joint} is {amount} from the end of its range")
         out.append(f"- time: {p.t_start:.3f} s → {p.t_end:.3f} s ({p.t_end - p.t_start:.3f} s)")
     if len(moves) > _MAX_SHOWN:
         out.append(f"- … and {len(moves) - _MAX_SHOWN} more instances (loops, proc calls)")

@@ -34,6 +34,9 @@ class MovePlan:
     joints: tuple[float, ...]  # at the target: rad (revolute) or m (prismatic); () if not planned
     joint_types: tuple[str, ...]  # 'R' / 'P' per joint
     branch: str  # the IK branch ("shoulder=front, elbow=up, wrist=noflip"), "" if none
+    # the joint closest to an end of its range at the target: (1-based joint, distance in rad
+    # or m); (0, 0.0) when the robot's limits are not known here
+    limit_margin: tuple[int, float] = (0, 0.0)
 
 
 @record(slots=True)
@@ -59,26 +62,40 @@ def plan_document(path: str, text: str) -> PlanResult:
         return PlanResult((analysis.to_lsp(exc.diagnostic),), (), (), True)
     moves = []
     for task in planned.tasks:
-        types = _joint_types(analysis.program, task.robot)
+        types, limits = _robot_data(analysis.program, task.robot)
         for r in task.records:
             if r.q_target is None or r.variant:
                 continue
-            moves.append(MovePlan(r.uid, task.task.name, task.robot, float(r.t_start), float(r.t_end),
-                                  tuple(float(q) for q in r.q_target), types, str(r.branch) if r.branch else ""))
+            q = tuple(float(v) for v in r.q_target)
+            moves.append(MovePlan(r.uid, task.task.name, task.robot, float(r.t_start), float(r.t_end), q, types,
+                                  str(r.branch) if r.branch else "", _limit_margin(q, limits)))
     return PlanResult(tuple(analysis.to_lsp(d) for d in report.diagnostics), tuple(moves),
                       tuple(sorted(report.cycle_times.items())))
 
 
-def _joint_types(program: ir.Program, robot: str) -> tuple[str, ...]:
+def _robot_data(program: ir.Program, robot: str) -> tuple[tuple[str, ...], tuple[tuple[float, float], ...]]:
+    """The robot's joint types ('R'/'P') and joint ranges (as the planner loads the robot)."""
     from rmot.compiler.robots import load_robot
 
     for r in program.cell.robots:
         if r.name == robot:
             try:
-                return tuple(str(t) for t in load_robot(r.source.ref).joint_types)
-            except Exception:  # a URDF or model robot the library does not name: show radians
-                return ("R",) * int(r.dof)
-    return ()
+                model = load_robot(r.source.ref)
+            except Exception:  # a robot this loader cannot give: radians, no ranges shown
+                return ("R",) * int(r.dof), ()
+            limits = tuple((float(lo), float(hi)) for lo, hi in model.joint_limits)
+            return tuple(str(t) for t in model.joint_types), limits
+    return (), ()
+
+
+def _limit_margin(q: tuple[float, ...], limits: tuple[tuple[float, float], ...]) -> tuple[int, float]:
+    """(1-based joint, distance) of the joint nearest an end of its range (sim/design/metrics.py
+    computes the same over a whole trajectory)."""
+    if len(limits) != len(q):
+        return (0, 0.0)
+    margins = [min(v - lo, hi - v) for v, (lo, hi) in zip(q, limits)]
+    worst = min(range(len(q)), key=lambda j: margins[j])
+    return (worst + 1, margins[worst])
 
 
 def _child(conn: Any, path: str, text: str) -> None:

@@ -165,3 +165,19 @@ def test_an_error_in_an_imported_file_is_shown_at_the_import(tmp_path: Path) -> 
     (inside,) = typo.related_information or []
     assert inside.location.uri == (tmp_path / "lib.rmot").as_uri()
     assert (inside.location.range.start.line, inside.location.range.start.character) == (1, 17)
+
+
+def test_hover_gives_the_joint_limit_margin_at_the_target(analysis: Analysis, plan: PlanResult) -> None:
+    """The margin shown for `home` = joints(0, -10, 10, 0, 90, 0) deg, against the IRB 1600's
+    ranges as the robot library gives them (the worst joint recomputed here)."""
+    from rmot.compiler.robots import load_robot
+
+    hover = features.hover(analysis, plan, _pos("move joint home", 12))
+    assert hover is not None
+    shown = re.search(r"margin: J(\d) is ([0-9.]+)°", hover.contents.value)  # type: ignore[union-attr]
+    assert shown is not None
+    limits = load_robot("abb_irb1600").joint_limits
+    home = np.radians([0, -10, 10, 0, 90, 0])
+    margins = np.minimum(home - limits[:, 0], limits[:, 1] - home)
+    assert int(shown.group(1)) == int(np.argmin(margins)) + 1
+    assert float(shown.group(2)) == pytest.approx(math.degrees(margins.min()), abs=0.06)
