@@ -224,7 +224,10 @@ def statement_keywords() -> tuple[str, ...]:
     return tuple(sorted(w for w, t in kinds.keywords.items() if t in accepted))
 
 
-def completion(analysis: Analysis, text: str, position: lsp.Position) -> list[lsp.CompletionItem]:
+def completion(analysis: Analysis, text: str, position: lsp.Position, typed_space: bool = False) -> list[lsp.CompletionItem]:
+    """Targets after `move joint `, units after a number, keywords and procs where a statement
+    starts, else the names in scope. `typed_space`: the client asks because a space was typed
+    (the trigger character), and then only the first two answer (not after every space)."""
     lines = text.split("\n")
     line = lines[position.line] if position.line < len(lines) else ""
     before = line[:position.character]
@@ -236,6 +239,8 @@ def completion(analysis: Analysis, text: str, position: lsp.Position) -> list[ls
     if _AFTER_MOVE.search(before):
         targets = analysis.index.visible(analysis.path, line1, col1, frozenset({"target"}))
         return [_item(s) for s in targets]
+    if typed_space:
+        return []
     prefix = (_WORD.search(before) or _WORD.search("")).group(1)  # type: ignore[union-attr]
     names = [_item(s) for s in analysis.index.visible(analysis.path, line1, col1) if s.name.startswith(prefix)]
     if _STATEMENT_START.match(before):

@@ -158,7 +158,8 @@ def _register_features(server: RmotServer) -> None:
     def completion(ls: RmotServer, params: lsp.CompletionParams) -> lsp.CompletionList:
         uri = params.text_document.uri
         text = ls.workspace.get_text_document(uri).source
-        items = on(uri, lambda a: features.completion(a, text, params.position), [])
+        typed_space = params.context is not None and params.context.trigger_character == " "
+        items = on(uri, lambda a: features.completion(a, text, params.position, typed_space), [])
         return lsp.CompletionList(is_incomplete=False, items=items)
 
     @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)

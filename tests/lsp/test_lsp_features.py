@@ -107,6 +107,9 @@ def test_completion_kinds(analysis: Analysis) -> None:
     text = TEXT.replace("speed 400 mm/s", "speed 400 ")
     units = {i.label for i in features.completion(analysis, text, _pos("speed 400 mm/s", 10))}
     assert {"mm/s", "m/s", "deg"} <= units and "home" not in units
+    # a space typed elsewhere (the trigger character) offers nothing: no popup after every word
+    assert features.completion(analysis, TEXT, _pos("tool gripper", 5), typed_space=True) == []
+    assert features.completion(analysis, TEXT, _pos("tool gripper", 5)) != []
 
 
 def test_hover_on_a_target_shows_joints_that_reach_its_world_pose(analysis: Analysis, plan: PlanResult) -> None:
