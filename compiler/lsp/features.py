@@ -105,6 +105,7 @@ def _moves_text(analysis: Analysis, plan: PlanResult | None, moves: list[tuple[i
     bases = {r.name: r.base for r in analysis.program.cell.robots} if analysis.program else {}
     out = []
     for task, move in moves[:_MAX_SHOWN]:
+        out += [""] if out else []  # a blank line: each move its own Markdown paragraph
         out.append(f"**move {move.kind.name.lower()}** (task {task.name}, robot {task.robot})")
         target = move.target
         if isinstance(target, ir.CartesianTarget):
@@ -127,7 +128,7 @@ def _moves_text(analysis: Analysis, plan: PlanResult | None, moves: list[tuple[i
             out.append(f"- joint-limit margin: J{joint} is {amount} from the end of its range")
         out.append(f"- time: {p.t_start:.3f} s → {p.t_end:.3f} s ({p.t_end - p.t_start:.3f} s)")
     if len(moves) > _MAX_SHOWN:
-        out.append(f"- … and {len(moves) - _MAX_SHOWN} more instances (loops, proc calls)")
+        out.append(f"\n… and {len(moves) - _MAX_SHOWN} more instances (loops, proc calls)")
     return "\n".join(out)
 
 
@@ -303,7 +304,7 @@ def inlay_hints(analysis: Analysis, plan: PlanResult | None, window: lsp.Range) 
     for span, total, count in totals.values():
         if not window.start.line <= span.end.line - 1 <= window.end.line:
             continue
-        label = f" {total:.2f} s" + (f" ({count} moves)" if count > 1 else "")
+        label = f" {total:.2f} s" + (f" in {count} moves" if count > 1 else "")
         hints.append(lsp.InlayHint(lsp.Position(span.end.line - 1, span.end.col - 1), label,
                                    kind=lsp.InlayHintKind.Parameter, padding_left=True))
     return sorted(hints, key=lambda h: (h.position.line, h.position.character))
