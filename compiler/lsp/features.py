@@ -103,7 +103,7 @@ def _symbol_text(analysis: Analysis, plan: PlanResult | None, symbol: Symbol) ->
 def _moves_text(analysis: Analysis, plan: PlanResult | None, moves: list[tuple[ir.Task, ir.Move]]) -> str:
     planned = {m.uid: m for m in plan.moves} if plan is not None else {}
     bases = {r.name: r.base for r in analysis.program.cell.robots} if analysis.program else {}
-    out = []
+    out: list[str] = []
     for task, move in moves[:_MAX_SHOWN]:
         out += [""] if out else []  # a blank line: each move its own Markdown paragraph
         out.append(f"**move {move.kind.name.lower()}** (task {task.name}, robot {task.robot})")

@@ -25,6 +25,7 @@ from rmot.compiler.lsp.planning import PlanJob, PlanResult
 __all__ = ["RmotServer", "build_server"]
 
 PLAN_DELAY_S = 0.3  # typing pause before a plan job starts
+PLAN_WAIT_S = 20.0  # how long a hover waits for a running plan job
 T = TypeVar("T")
 log = logging.getLogger(__name__)
 
@@ -64,6 +65,31 @@ class RmotServer(LanguageServer):
             old.cancel()
         if self.planning and analysis.program is not None:
             self.jobs[uri] = asyncio.get_running_loop().create_task(self._plan(uri, analysis))
+
+    async def planned(self, uri: str) -> None:
+        """Wait (at most PLAN_WAIT_S) for the document's plan job, if one is running: a hover
+        asked right after a change still names the planned joints. A client that gives up
+        cancels the request; the job goes on."""
+        job = self.jobs.get(uri)
+        if job is None or job.done():
+            return
+        try:
+            await asyncio.wait_for(asyncio.shield(job), PLAN_WAIT_S)
+        except (asyncio.TimeoutError, asyncio.CancelledError):  # superseded or slow: answer without
+            pass
+
+    def completing(self, uri: str, text: str, line: int) -> Analysis | None:
+        """The analysis completion needs while the statement being typed does not parse: the
+        text with that line blanked (every other position unchanged). None when the current
+        text parses (the usual analysis is right) or the blanked one does not either."""
+        current = self.analyses.get(uri)
+        if current is None or current.module is not None:
+            return None
+        lines = text.split("\n")
+        if line < len(lines):
+            lines[line] = ""
+        blanked = analyze(current.path, "\n".join(lines))
+        return blanked if blanked.module is not None else None
 
     def close(self, uri: str) -> None:
         job = self.jobs.pop(uri, None)
@@ -150,8 +176,9 @@ def _register_features(server: RmotServer) -> None:
             a, params.position, params.context.include_declaration), [])
 
     @server.feature(lsp.TEXT_DOCUMENT_HOVER)
-    def hover(ls: RmotServer, params: lsp.HoverParams) -> lsp.Hover | None:
+    async def hover(ls: RmotServer, params: lsp.HoverParams) -> lsp.Hover | None:
         uri = params.text_document.uri
+        await ls.planned(uri)
         return on(uri, lambda a: features.hover(a, ls.plans.get(uri), params.position), None)  # type: ignore[no-any-return]
 
     @server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[" "]))
@@ -159,7 +186,10 @@ def _register_features(server: RmotServer) -> None:
         uri = params.text_document.uri
         text = ls.workspace.get_text_document(uri).source
         typed_space = params.context is not None and params.context.trigger_character == " "
-        items = on(uri, lambda a: features.completion(a, text, params.position, typed_space), [])
+        found = _safely(lambda: ls.completing(uri, text, params.position.line), None) or analysis_of(uri)
+        none: list[lsp.CompletionItem] = []
+        items = none if found is None else _safely(
+            lambda: features.completion(found, text, params.position, typed_space), none)
         return lsp.CompletionList(is_incomplete=False, items=items)
 
     @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)

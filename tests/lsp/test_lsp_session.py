@@ -190,3 +190,35 @@ async def _complete_after_move_joint(client: LanguageClient, uri: str) -> None:
         types.TextDocumentIdentifier(uri), types.Position(line=TYPO_LINE, character=13)))
     items = result.items if isinstance(result, types.CompletionList) else result or []
     assert sorted(i.label for i in items) == ["home", "nest", "slot"]
+
+
+def _open(client: LanguageClient, uri: str, text: str) -> None:
+    client.text_document_did_open(types.DidOpenTextDocumentParams(
+        types.TextDocumentItem(uri=uri, language_id="rmot", version=1, text=text)))
+
+
+@pytest.mark.asyncio
+async def test_completion_in_a_document_that_never_parsed(client: LanguageClient, project: Path) -> None:
+    """`move joint ` half typed from the first keystroke: the targets in scope all the same."""
+    uri = project.as_uri()
+    _open(client, uri, PROGRAM.replace("move joint hme", "move joint "))
+    (syntax,) = await _diagnostics_until(client, uri, lambda ds: bool(ds))
+    assert syntax.code is not None and str(syntax.code).startswith("E0")
+    result = await client.text_document_completion_async(types.CompletionParams(
+        types.TextDocumentIdentifier(uri), types.Position(line=TYPO_LINE, character=13)))
+    items = result.items if isinstance(result, types.CompletionList) else result or []
+    assert sorted(i.label for i in items) == ["home", "nest", "slot"]
+
+
+@pytest.mark.asyncio
+async def test_hover_right_after_a_change_waits_for_the_plan(client: LanguageClient, project: Path) -> None:
+    """A hover sent before the plan's diagnostics arrived still names the planned joints."""
+    uri = project.as_uri()
+    _open(client, uri, PROGRAM.replace("move joint hme", "move joint home"))
+    await _diagnostics_until(client, uri, lambda ds: True)  # the front end's (no E300 yet)
+    hover = await client.text_document_hover_async(types.HoverParams(
+        types.TextDocumentIdentifier(uri), types.Position(line=9, character=10)))  # `target slot`
+    assert hover is not None
+    text = hover.contents.value  # type: ignore[union-attr]
+    assert "in frame `pallet`" in text and "in world" in text
+    assert all(f"J{j} " in text for j in range(1, 7)) and "(planning...)" not in text
