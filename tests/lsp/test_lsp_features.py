@@ -184,3 +184,15 @@ def test_hover_gives_the_joint_limit_margin_at_the_target(analysis: Analysis, pl
     margins = np.minimum(home - limits[:, 0], limits[:, 1] - home)
     assert int(shown.group(1)) == int(np.argmin(margins)) + 1
     assert float(shown.group(2)) == pytest.approx(math.degrees(margins.min()), abs=0.06)
+
+
+@pytest.mark.parametrize("needle, offset, declared", [
+    ("program pick_place on r1", 22, r"\s*robot r1 = "),        # a robot, in the cell
+    ("  tool gripper", 8, r"\s*tool gripper = "),               # a tool, in the cell
+    ("grasp(nest)", 1, r"proc grasp\("),                         # a proc, in the import
+])
+def test_definitions_across_use_cell_and_import(analysis: Analysis, needle: str, offset: int, declared: str) -> None:
+    (location,) = features.definition(analysis, _pos(needle, offset))
+    path = location.uri[len("file://"):]
+    line = Path(path).read_text(encoding="utf-8").split("\n")[location.range.start.line]
+    assert re.match(declared, line), line
