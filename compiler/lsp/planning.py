@@ -100,6 +100,8 @@ def _limit_margin(q: tuple[float, ...], limits: tuple[tuple[float, float], ...])
 
 def _child(conn: Any, path: str, text: str) -> None:
     os.dup2(2, 1)  # stdout is the server's JSON-RPC channel: anything printed here goes to stderr
+    if hasattr(os, "nice"):
+        os.nice(10)  # below the server: the next keystroke's front end runs first
     try:
         result = plan_document(path, text)
     except Exception as exc:  # a bug in a stage: one internal-error diagnostic, never a traceback
