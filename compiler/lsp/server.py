@@ -151,7 +151,11 @@ def _register_documents(server: RmotServer) -> None:
 
     @server.feature(lsp.TEXT_DOCUMENT_DID_SAVE)
     def did_save(ls: RmotServer, params: lsp.DidSaveTextDocumentParams) -> None:
-        ls.refresh(params.text_document.uri)  # an imported file may have changed on disk
+        """The saved file and every open document that reads it (an import, a cell)."""
+        saved = path_of(params.text_document.uri)
+        for uri, analysis in list(ls.analyses.items()):
+            if uri == params.text_document.uri or saved in analysis.modules:
+                ls.refresh(uri)
 
     @server.feature(lsp.TEXT_DOCUMENT_DID_CLOSE)
     def did_close(ls: RmotServer, params: lsp.DidCloseTextDocumentParams) -> None:

@@ -222,3 +222,16 @@ async def test_hover_right_after_a_change_waits_for_the_plan(client: LanguageCli
     text = hover.contents.value  # type: ignore[union-attr]
     assert "in frame `pallet`" in text and "in world" in text
     assert all(f"J{j} " in text for j in range(1, 7)) and "(planning...)" not in text
+
+
+@pytest.mark.asyncio
+async def test_saving_an_import_refreshes_the_program(client: LanguageClient, project: Path) -> None:
+    """The proc renamed in the saved library: the program calling it gets E1xx at once."""
+    uri, lib = project.as_uri(), project.parent / "lib" / "moves.rmot"
+    _open(client, uri, PROGRAM)
+    await _diagnostics_until(client, uri, lambda ds: any(d.code == "E101" for d in ds))
+    lib.write_text(LIB.replace("proc put(", "proc place("), encoding="utf-8")
+    client.text_document_did_save(types.DidSaveTextDocumentParams(types.TextDocumentIdentifier(lib.as_uri())))
+    found = await _diagnostics_until(client, uri, lambda ds: any("put" in d.message for d in ds))
+    (call,) = [d for d in found if "put" in d.message]
+    assert call.range.start.line == 16 and str(call.code).startswith("E1")
