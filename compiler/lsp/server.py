@@ -34,13 +34,9 @@ class RmotServer(LanguageServer):
     """A LanguageServer that keeps, per document URI, its analysis, plan and plan job."""
 
     def __init__(self) -> None:
-        from importlib.metadata import PackageNotFoundError, version
+        from rmot.compiler.cli import _version
 
-        try:
-            own = version("rmot")
-        except PackageNotFoundError:
-            own = "0+unknown"
-        super().__init__("rmot", own)
+        super().__init__("rmot", _version())
         self.analyses: dict[str, Analysis] = {}
         # the latest analysis whose document parsed: the features' names and positions while
         # the text being typed does not parse (a half-typed statement is a syntax error)

@@ -9,7 +9,7 @@ Each round changes one move's target to a typo or back (whole-document sync, a n
 each time) and waits for the publishDiagnostics of that version; the typo rounds must carry
 E101, the others none (so the timing is of a real answer). By default the server runs with
 `--no-plan` (planning would start 0.3 s after the change in another process, competing for
-the same cores); `--plan` measures with it on. Target (the issue): median within 100 ms.
+the same cores); `--plan` measures with it on. Target: a median within 100 ms.
 """
 
 from __future__ import annotations
