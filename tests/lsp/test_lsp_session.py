@@ -235,3 +235,25 @@ async def test_saving_an_import_refreshes_the_program(client: LanguageClient, pr
     found = await _diagnostics_until(client, uri, lambda ds: any("put" in d.message for d in ds))
     (call,) = [d for d in found if "put" in d.message]
     assert call.range.start.line == 16 and str(call.code).startswith("E1")
+
+
+@pytest.mark.asyncio
+async def test_typing_fast_never_breaks_the_server(client: LanguageClient, project: Path) -> None:
+    """The program typed in 60 quick changes (each a prefix, most of them not parsing): the
+    server stays up, the last version's diagnostics are the ones shown, requests answer."""
+    uri = project.as_uri()
+    text = PROGRAM.replace("move joint hme", "move joint home")
+    _open(client, uri, "")
+    step = max(1, len(text) // 60)
+    versions = list(range(2, 2 + len(range(step, len(text), step))))
+    for version, cut in zip(versions, range(step, len(text), step)):
+        _change(client, uri, version, text[:cut])
+        hover = await client.text_document_hover_async(types.HoverParams(
+            types.TextDocumentIdentifier(uri), types.Position(line=cut % 20, character=3)))
+        assert hover is None or hover.contents is not None
+    _change(client, uri, versions[-1] + 1, text)
+    found = await _diagnostics_until(client, uri, lambda ds: any(d.code == "E300" for d in ds))
+    assert [d.code for d in found] == ["E300"]
+    symbols = await client.text_document_document_symbol_async(types.DocumentSymbolParams(
+        types.TextDocumentIdentifier(uri)))
+    assert [s.name for s in symbols or []] == ["collide"]
