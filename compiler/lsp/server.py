@@ -20,6 +20,7 @@ from pygls.lsp.server import LanguageServer
 
 from rmot.compiler.lsp import features
 from rmot.compiler.lsp.analysis import Analysis, analyze, path_of
+from rmot.compiler.lsp.encoding import ClientUnits
 from rmot.compiler.lsp.planning import PlanJob, PlanResult
 
 __all__ = ["RmotServer", "build_server"]
@@ -116,7 +117,27 @@ class RmotServer(LanguageServer):
         found = [analysis.to_lsp(d) for d in analysis.diagnostics]
         if plan is not None:
             found += plan.diagnostics
+        found = self.units(uri).out(found)
         self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri, found, version=analysis.version))
+
+    def units(self, uri: str) -> ClientUnits:
+        """Column conversion for a request about `uri` (encoding.py)."""
+        document = self.workspace.get_text_document(uri)
+
+        def lines_of(other: str) -> list[str]:
+            if other == uri:
+                return list(document.lines)
+            analysis = self.parsed.get(uri)
+            module = analysis.modules.get(path_of(other)) if analysis is not None else None
+            if module is not None:
+                return module.file.text.split("\n")
+            try:
+                with open(path_of(other), encoding="utf-8") as f:
+                    return f.read().split("\n")
+            except (OSError, ValueError):
+                return []
+
+        return ClientUnits(document.position_codec, uri, lines_of)
 
 
 def _safely(answer: Callable[[], T], default: T) -> T:
@@ -162,41 +183,49 @@ def _register_features(server: RmotServer) -> None:
     def analysis_of(uri: str) -> Analysis | None:
         return server.parsed.get(uri)
 
-    def on(uri: str, answer: Callable[[Analysis], Any], default: Any) -> Any:
+    def on(uri: str, answer: Callable[[Analysis, ClientUnits], Any], default: Any) -> Any:
+        """answer(analysis, units) in client units; `default` when there is nothing to ask."""
         found = analysis_of(uri)
-        return default if found is None else _safely(lambda: answer(found), default)
+        if found is None:
+            return default
+        units = server.units(uri)
+        return _safely(lambda: units.out(answer(found, units)), default)
 
     @server.feature(lsp.TEXT_DOCUMENT_DEFINITION)
     def definition(ls: RmotServer, params: lsp.DefinitionParams) -> list[lsp.Location]:
-        return on(params.text_document.uri, lambda a: features.definition(a, params.position), [])  # type: ignore[no-any-return]
+        return on(params.text_document.uri,  # type: ignore[no-any-return]
+                  lambda a, u: features.definition(a, u.position_in(params.position)), [])
 
     @server.feature(lsp.TEXT_DOCUMENT_REFERENCES)
     def references(ls: RmotServer, params: lsp.ReferenceParams) -> list[lsp.Location]:
-        return on(params.text_document.uri, lambda a: features.references(  # type: ignore[no-any-return]
-            a, params.position, params.context.include_declaration), [])
+        return on(params.text_document.uri, lambda a, u: features.references(  # type: ignore[no-any-return]
+            a, u.position_in(params.position), params.context.include_declaration), [])
 
     @server.feature(lsp.TEXT_DOCUMENT_HOVER)
     async def hover(ls: RmotServer, params: lsp.HoverParams) -> lsp.Hover | None:
         uri = params.text_document.uri
         await ls.planned(uri)
-        return on(uri, lambda a: features.hover(a, ls.plans.get(uri), params.position), None)  # type: ignore[no-any-return]
+        return on(uri, lambda a, u: features.hover(  # type: ignore[no-any-return]
+            a, ls.plans.get(uri), u.position_in(params.position)), None)
 
     @server.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[" "]))
     def completion(ls: RmotServer, params: lsp.CompletionParams) -> lsp.CompletionList:
         uri = params.text_document.uri
         text = ls.workspace.get_text_document(uri).source
         typed_space = params.context is not None and params.context.trigger_character == " "
-        found = _safely(lambda: ls.completing(uri, text, params.position.line), None) or analysis_of(uri)
+        position = ls.units(uri).position_in(params.position)
+        found = _safely(lambda: ls.completing(uri, text, position.line), None) or analysis_of(uri)
         none: list[lsp.CompletionItem] = []
         items = none if found is None else _safely(
-            lambda: features.completion(found, text, params.position, typed_space), none)
+            lambda: features.completion(found, text, position, typed_space), none)
         return lsp.CompletionList(is_incomplete=False, items=items)
 
     @server.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
     def symbols(ls: RmotServer, params: lsp.DocumentSymbolParams) -> list[lsp.DocumentSymbol]:
-        return on(params.text_document.uri, features.document_symbols, [])  # type: ignore[no-any-return]
+        return on(params.text_document.uri, lambda a, u: features.document_symbols(a), [])  # type: ignore[no-any-return]
 
     @server.feature(lsp.TEXT_DOCUMENT_INLAY_HINT)
     def inlay(ls: RmotServer, params: lsp.InlayHintParams) -> list[lsp.InlayHint]:
         uri = params.text_document.uri
-        return on(uri, lambda a: features.inlay_hints(a, ls.plans.get(uri), params.range), [])  # type: ignore[no-any-return]
+        return on(uri, lambda a, u: features.inlay_hints(  # type: ignore[no-any-return]
+            a, ls.plans.get(uri), lsp.Range(u.position_in(params.range.start), u.position_in(params.range.end))), [])

@@ -257,3 +257,25 @@ async def test_typing_fast_never_breaks_the_server(client: LanguageClient, proje
     symbols = await client.text_document_document_symbol_async(types.DocumentSymbolParams(
         types.TextDocumentIdentifier(uri)))
     assert [s.name for s in symbols or []] == ["collide"]
+
+
+@pytest.mark.asyncio
+async def test_columns_are_utf16_code_units(client: LanguageClient, project: Path) -> None:
+    """An emoji (two UTF-16 units) before a name on its line: the range is in the client's
+    units (UTF-16, the LSP's default), counted here by Python's own UTF-16 encoder."""
+    uri = project.as_uri()
+    prefix = "  native rapid \"\U0001F600\"; move joint "
+    before_lift = "  native rapid \"\U0001F600\U0001F600\"; "
+    text = PROGRAM.replace("  move joint hme", prefix + "hme").replace("  lift(slot)", before_lift + "lift(slot)")
+    _open(client, uri, text)
+    found = await _diagnostics_until(client, uri, lambda ds: any(d.code == "E101" for d in ds))
+    (typo,) = [d for d in found if d.code == "E101"]
+    start = len(prefix.encode("utf-16-le")) // 2
+    assert (typo.range.start.line, typo.range.start.character, typo.range.end.character) == (TYPO_LINE, start, start + 3)
+    # and a position coming in: the `t` of `lift` in UTF-16 units (in code points it would
+    # be two characters further, on `slot`)
+    at = len(before_lift.encode("utf-16-le")) // 2 + 3
+    (location,) = await client.text_document_definition_async(types.DefinitionParams(
+        types.TextDocumentIdentifier(uri), types.Position(line=TYPO_LINE - 1, character=at))) or []
+    assert location.uri.endswith("lib/moves.rmot")
+    assert location.range.start.line == 1  # `lift` in lib/moves.rmot
