@@ -66,6 +66,9 @@ class SymbolIndex:
     def __init__(self, symbols: list[Symbol]) -> None:
         self.symbols = symbols
         self.declarations = [s for s in symbols if s.kind]
+        self._declared: dict[str, list[Symbol]] = {}
+        for d in self.declarations:
+            self._declared.setdefault(d.name, []).append(d)
 
     def at(self, path: str, line: int, col: int) -> Symbol | None:
         """The occurrence under the 1-based (line, col) of `path`, if any."""
@@ -79,7 +82,7 @@ class SymbolIndex:
         """The declaration `symbol` names (itself when it is one)."""
         if symbol.kind:
             return symbol
-        same = [d for d in self.declarations if d.name == symbol.name]
+        same = self._declared.get(symbol.name, [])
         local = [d for d in same if d.scope is not None and d.path == symbol.path
                  and _within(symbol.span, d.scope)]
         if local:  # innermost block first
