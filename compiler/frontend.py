@@ -23,8 +23,9 @@ from rmot.lang.record import record
 if TYPE_CHECKING:  # the passes (and the parser) load when a file is read, not with the result type
     from rmot.compiler import ir
     from rmot.compiler.passes.context import RobotLoader
+    from rmot.compiler.passes.state import FrontendState
 
-__all__ = ["FrontendResult", "load_program", "load_text"]
+__all__ = ["FrontendResult", "load_program", "load_text", "run_passes"]
 
 
 @record(slots=True)
@@ -57,8 +58,11 @@ def load_text(text: str, path: str = "<input>", *, cell: str | None = None, proj
     return _load(path, text, cell, project_root, robot_loader, require_program)
 
 
-def _load(path: str, text: str | None, cell: str | None, project_root: str | None,
-          robot_loader: RobotLoader | None, require_program: bool = False) -> FrontendResult:
+def run_passes(path: str, text: str | None = None, cell: str | None = None, project_root: str | None = None,
+               robot_loader: RobotLoader | None = None) -> FrontendState:
+    """The front end's passes over `path` (or `text` as its content), returning their whole
+    state: what load_program returns and also the parsed modules of every file read (the
+    language server's symbol index). Never raises for bad input."""
     from rmot.compiler.passes.context import Reporter, default_robot_loader
     from rmot.compiler.passes.state import FrontendState
     from rmot.compiler.pipeline import run
@@ -73,6 +77,12 @@ def _load(path: str, text: str | None, cell: str | None, project_root: str | Non
         from rmot.compiler import codes
 
         state.reporter.error(codes.TOO_LARGE_UNROLLED, "nesting must be at most a few hundred levels deep (got deeper)", None)
+    return state
+
+
+def _load(path: str, text: str | None, cell: str | None, project_root: str | None,
+          robot_loader: RobotLoader | None, require_program: bool = False) -> FrontendResult:
+    state = run_passes(path, text, cell, project_root, robot_loader)
     if require_program and state.program is None and not state.reporter.has_errors:
         from rmot.compiler import codes
 

@@ -33,6 +33,7 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "reach": ("rmot.compiler.cli.reach_cmd", "reach", "Map a robot's reachable workspace and its singularities."),
     "place": ("rmot.compiler.cli.place_cmd", "place", "Find the best base pose for a robot in a region."),
     "compare": ("rmot.compiler.cli.compare_cmd", "compare", "Run one program on several arms and compare them."),
+    "lsp": ("rmot.compiler.cli.lsp_cmd", "lsp_cmd", "Run the language server (LSP over stdio) for editors."),
 }
 
 
