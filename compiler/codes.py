@@ -177,3 +177,17 @@ __all__ += [
     "UNREACHABLE_AFTER_STOP",
     "WAIT_ELSE_WITHOUT_TIMEOUT",
 ]
+
+# --- controller conventions of cell-defined robots (compiler/robots/controller.py)
+MODEL_PENDANT = Code(
+    "E185", "model-pendant", "a model joint's pendant(sign=, zero=, coupled_to=) is not a valid mapping"
+)
+UNKNOWN_CONTROLLER = Code(
+    "E186", "unknown-controller", "a `controller` line or urdf(controller=) names no known robot maker"
+)
+URDF_CONTROLLER_FRAMES = Code(
+    "E187", "urdf-controller-frames",
+    "urdf(controller=) on a file without the controller's `base` and `tool0` links (and no base=/tip=)",
+)
+
+__all__ += ["MODEL_PENDANT", "UNKNOWN_CONTROLLER", "URDF_CONTROLLER_FRAMES"]

@@ -528,7 +528,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def model_joint(self, c: list[Any]) -> ast.ModelJoint:
         if str(c[0]) != "joint":  # `linear ...`: the word shares the move-kind token
-            msg = f"a model line must start with 'joint', 'flange' or 'payload' (got '{c[0]}')"
+            msg = f"a model line must start with 'joint', 'flange', 'payload' or 'controller' (got '{c[0]}')"
             self.diagnostics.append(Diagnostic(codes.SYNTAX, Severity.ERROR, msg, self._token_span(c[0])))
         return ast.ModelJoint(self._ident(c[1]), tuple(c[2:]), self._span(c))
 
@@ -552,6 +552,9 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def model_payload(self, c: list[Any]) -> ast.Setting:
         return _Setting("payload", c[1], self._span(c))
+
+    def model_controller(self, c: list[Any]) -> ast.Setting:
+        return _Setting("controller", self._ident(c[1]), self._span(c))
 
     # -- parts (issue #14)
     def part_decl(self, c: list[Any]) -> ast.PartDecl:

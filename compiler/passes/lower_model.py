@@ -21,6 +21,7 @@ from collections.abc import Callable
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
+from rmot.compiler.passes.lower_controller import controller_word, pendant_of
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
                                          MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
@@ -48,6 +49,8 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
     conventions: dict[str, Span] = {}
     flange: ast.Setting | None = None
     payload: ast.Setting | None = None
+    controller: ast.Setting | None = None
+    pendant: dict[int, tuple[float, float, int]] = {}
     ok = True
     for item in decl.items:
         if isinstance(item, ast.ModelJoint):
@@ -57,6 +60,13 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
             if j is not None:
                 joints.append(j)
             for part in item.parts:
+                if isinstance(part, ast.Call) and part.func.name == "pendant" and j is not None:
+                    if index in pendant:
+                        rep.error(codes.MODEL_JOINT_FIELD, "a joint must have one pendant(...) field (got two)", part.span)
+                    mapping = pendant_of(part, index, j.kind, scope, rep)
+                    ok &= mapping is not None and index not in pendant
+                    if mapping is not None:
+                        pendant[index] = mapping
                 if isinstance(part, ast.Call) and part.func.name == "solid":
                     given = _solid(part, index, scope, rep, geometry)
                     ok &= given is not None
@@ -65,6 +75,9 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
         elif item.kind == "flange":
             ok &= _once(item, flange, name, rep)
             flange = flange or item
+        elif item.kind == "controller":
+            ok &= _once(item, controller, name, rep)
+            controller = controller or item
         else:
             ok &= _once(item, payload, name, rep)
             payload = payload or item
@@ -93,9 +106,12 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
         ok &= payload_kg is not None
     if ok and joints:
         ok &= _dynamics_complete(decl, joints, rep)
+    maker = None if controller is None else controller_word(controller, rep)
+    ok &= controller is None or maker is not None
     if not ok:
         return None
-    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids))
+    mappings = tuple(pendant.get(k, (1.0, 0.0, 0)) for k in range(1, len(joints) + 1)) if pendant else ()
+    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids), maker, mappings)
 
 
 def _dynamics_complete(decl: ast.ModelDecl, joints: list[ModelJointSpec], rep: Reporter) -> bool:
@@ -156,12 +172,12 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
     ok = True
     for part in j.parts:
         key = part.kind if isinstance(part, ast.Setting) else part.func.name
-        if key == "solid":  # any number of them, lowered by _solid
+        if key in ("solid", "pendant"):  # solids: any number, lowered by _solid; pendant: lower_controller
             continue
         slot = "dh" if key in ("dh", "mdh") else key
         if slot not in _FIELDS + _OPTIONAL:
             rep.unknown(key, "joint field", part.func.span if isinstance(part, ast.Call) else part.span,
-                        ["dh", "mdh", "range", "solid"], codes.MODEL_JOINT_FIELD)
+                        ["dh", "mdh", "range", "solid", "pendant"], codes.MODEL_JOINT_FIELD)
             ok = False
             continue
         if slot in fields:
