@@ -92,7 +92,9 @@ class _CellBuilder:
                     return
                 import json
 
-                key = "urdf-chain:" + json.dumps([path, *chain])  # compiler/robots/loader.py
+                base_link, tip_link, maker = chain
+                parts = [path, base_link, tip_link] + ([maker] if maker is not None else [])
+                key = "urdf-chain:" + json.dumps(parts)  # compiler/robots/loader.py
                 source = ir.RobotSource(ir.RobotSourceKind.URDF_CHAIN, key)
         try:
             info = self.state.robot_loader(key)

@@ -14,7 +14,7 @@ from rmot.compiler.passes.evaluate import eval_expr, expect_quantity, match_args
 from rmot.compiler.passes.values import ANGLE, DIMENSIONLESS, LENGTH, Quantity
 from rmot.lang import ast
 
-__all__ = ["controller_word", "pendant_of"]
+__all__ = ["controller_word", "pendant_of", "urdf_controller"]
 
 
 def controller_word(item: ast.Setting, rep: Reporter) -> str | None:
@@ -27,6 +27,17 @@ def controller_word(item: ast.Setting, rep: Reporter) -> str | None:
         rep.unknown(item.value.name, "robot maker", item.value.span, sorted(MAKERS), codes.UNKNOWN_CONTROLLER)
         return None
     return word
+
+
+def urdf_controller(value: ast.Expr, rep: Reporter) -> str | None:
+    """The maker of `urdf(..., controller="abb")` (a key of controller.MAKERS), None after E186."""
+    from rmot.compiler.robots.controller import MAKERS
+
+    if not isinstance(value, ast.String) or value.value.lower() not in MAKERS:
+        shown = value.value if isinstance(value, ast.String) else "an expression"
+        rep.unknown(shown, "robot maker (in quotes)", value.span, sorted(MAKERS), codes.UNKNOWN_CONTROLLER)
+        return None
+    return value.value.lower()
 
 
 def pendant_of(call: ast.Call, index: int, kind: str, scope: Scope, rep: Reporter) -> tuple[float, float, int] | None:

@@ -21,7 +21,7 @@ from collections.abc import Callable
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
-from rmot.compiler.passes.lower_controller import controller_word, pendant_of
+from rmot.compiler.passes.lower_controller import controller_word, pendant_of, urdf_controller
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
                                          MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
@@ -295,14 +295,27 @@ def check_model_name(decl: ast.ModelDecl, rep: Reporter) -> None:
                     "cell declared with it use the model (rename the model to use the library arm)", decl.name.span)
 
 
-def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str, str] | None:
-    """(base, tip) link names of `urdf("f.urdf", base="...", tip="...")`, checked against the file."""
-    bound = match_args(s.urdf_args, ("base", "tip"), "urdf", s.span, rep, required=0)
+def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str | None, str | None, str | None] | None:
+    """(base, tip, controller) of `urdf("f.urdf", base="...", tip="...", controller="...")`,
+    checked against the file. With controller= alone the chain runs from the URDF's `base`
+    link to its `tool0` (ROS-Industrial's controller base and flange frames); with
+    controller="any" alone, the whole file as without arguments."""
+    bound = match_args(s.urdf_args, ("base", "tip", "controller"), "urdf", s.span, rep, required=0)
     if bound is None:
         return None
+    maker = None
+    if "controller" in bound:
+        maker = urdf_controller(bound["controller"].value, rep)
+        if maker is None:
+            return None
+    if maker == "any" and "base" not in bound and "tip" not in bound:
+        return None, None, maker  # the whole file, its joint values vouched for as they are
     names: dict[str, str] = {}
     for key in ("base", "tip"):
         arg = bound.get(key)
+        if arg is None and maker is not None and "base" not in bound and "tip" not in bound:
+            names[key] = {"base": "base", "tip": "tool0"}[key]
+            continue
         if arg is None:
             rep.error(codes.BAD_ARGUMENT, f"urdf() with a chain must give {key}=\"LINK\" (got no {key})", s.urdf.span if s.urdf else s.span)
             return None
@@ -316,10 +329,16 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str, str] | 
 
         links = urdf_links(path)
     except (ImportError, RobotError):
-        return names["base"], names["tip"]  # the load step says why the file is unusable
+        return names["base"], names["tip"], maker  # the load step says why the file is unusable
     ok = True
     for key in ("base", "tip"):
-        if names[key] not in links:
+        if names[key] not in links and key not in bound:
+            rep.error(codes.URDF_CONTROLLER_FRAMES, f"URDF '{path}' must have a link '{names[key]}' (ROS-Industrial's "
+                      f"controller {'base' if key == 'base' else 'flange'} frame) for urdf(controller=), or the call "
+                      "must name the links at the controller's base and flange frames: base=\"LINK\", tip=\"LINK\"",
+                      s.urdf.span if s.urdf else s.span)
+            ok = False
+        elif names[key] not in links:
             rep.unknown(names[key], f"URDF link ({key}=)", bound[key].value.span, list(links), codes.URDF_UNKNOWN_LINK)
             ok = False
     if ok:
@@ -329,4 +348,4 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str, str] | 
         if problem is not None:
             rep.error(codes.URDF_BAD_CHAIN, f"urdf() base and tip must bound a chain of joints ({problem})", s.span)
             ok = False
-    return (names["base"], names["tip"]) if ok else None
+    return (names["base"], names["tip"], maker) if ok else None
