@@ -22,9 +22,13 @@ another maker (E481) before anything is emitted (compiler/cli/compile_cmd.py).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
-__all__ = ["ANY", "MAKERS", "coupling_matrix", "fanuc_urdf_coupling", "maker_of"]
+from rmot.compiler import ir
+
+__all__ = ["ANY", "MAKERS", "coupling_matrix", "fanuc_urdf_coupling", "in_joint_values", "maker_of"]
 
 ANY = "any"
 # the word a cell writes -> the maker's name as backends/controller_data.TARGET_BRANDS prints it
@@ -54,3 +58,23 @@ def fanuc_urdf_coupling(dof: int) -> np.ndarray:
     """ROS-Industrial fanuc_driver passes J3 to ROS as J3 + J2 (J23_factor = 1, the default of
     its `fanuc_driver` launch files): URDF joint_3 = J2 + J3, the other joints one to one."""
     return coupling_matrix((1.0,) * dof, (0, 0, 2) + (0,) * (dof - 3)) if dof >= 3 else np.eye(dof)  # type: ignore[return-value]
+
+
+def in_joint_values(closed_form: Callable[[np.ndarray], np.ndarray] | None,
+                     branch_fn: Callable[[np.ndarray], ir.Config], coupling: np.ndarray,
+                     ) -> tuple[Callable[[np.ndarray], np.ndarray] | None, Callable[[np.ndarray], ir.Config]]:
+    """A closed form and branch function of the model variables u, as functions of the joint
+    values p = C⁻¹ u (a row the closed form leaves NaN stays NaN)."""
+    inverse_t = np.linalg.inv(coupling).T
+
+    def branch(q: np.ndarray) -> ir.Config:
+        return branch_fn(coupling @ q)
+
+    if closed_form is None:
+        return None, branch
+    solve = closed_form
+
+    def in_joints(poses: np.ndarray) -> np.ndarray:
+        return solve(poses) @ inverse_t
+
+    return in_joints, branch

@@ -35,13 +35,11 @@ Conventions (lang/REFERENCE.md, "Robot models"):
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.model_spec import MAX_JOINTS, MODEL_PREFIX, ModelJointSpec, ModelSpec, model_key, spec_from_key
-from rmot.compiler.robots.controller import coupling_matrix
+from rmot.compiler.robots.controller import coupling_matrix, in_joint_values
 from rmot.compiler.robots.dh import DHRow, DHTable, build_model
 from rmot.compiler.robots.robot import LinkSolid, Robot
 
@@ -91,13 +89,13 @@ def robot_from_model(spec: ModelSpec) -> Robot:
     if opw is not None:
         closed_form, branch_fn, rows = opw
         if coupling is not None:
-            closed_form, branch_fn = _in_joint_values(closed_form, branch_fn, coupling)
+            closed_form, branch_fn = in_joint_values(closed_form, branch_fn, coupling)
         robot = Robot(**common, coupling=coupling, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
     else:
         chain = probe._chain
         wrist_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, model_limits)
         if wrist_fn is not None and coupling is not None:
-            wrist_fn = _in_joint_values(None, wrist_fn, coupling)[1]
+            wrist_fn = in_joint_values(None, wrist_fn, coupling)[1]
         robot = Robot(**common, coupling=coupling, branch_fn=wrist_fn)
     robot.reach = _reach(robot)
     robot.rated_payload_kg = spec.payload_kg
@@ -111,26 +109,6 @@ def _model_limits(coupling: np.ndarray, limits: np.ndarray) -> np.ndarray:
     lo = np.minimum(coupling, 0.0) @ limits[:, 1] + np.maximum(coupling, 0.0) @ limits[:, 0]
     hi = np.maximum(coupling, 0.0) @ limits[:, 1] + np.minimum(coupling, 0.0) @ limits[:, 0]
     return np.column_stack([lo, hi])
-
-
-def _in_joint_values(closed_form: Callable[[np.ndarray], np.ndarray] | None,
-                     branch_fn: Callable[[np.ndarray], ir.Config], coupling: np.ndarray,
-                     ) -> tuple[Callable[[np.ndarray], np.ndarray] | None, Callable[[np.ndarray], ir.Config]]:
-    """A closed form and branch function of the model variables u, as functions of the joint
-    values p = C⁻¹ u (a row the closed form leaves NaN stays NaN)."""
-    inverse_t = np.linalg.inv(coupling).T
-
-    def branch(q: np.ndarray) -> ir.Config:
-        return branch_fn(coupling @ q)
-
-    if closed_form is None:
-        return None, branch
-    solve = closed_form
-
-    def in_joints(poses: np.ndarray) -> np.ndarray:
-        return solve(poses) @ inverse_t
-
-    return in_joints, branch
 
 
 def _add_dynamics(robot: Robot, spec: ModelSpec) -> None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import os
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -80,9 +81,8 @@ def _flange_frame(model: pin.Model, first: str | None = None) -> int:
 
 def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: str | None = None,
            controller: str | None = None) -> Robot:
+    from rmot.compiler.robots.controller import in_joint_values
     from rmot.compiler.robots.kinematic_chain import chain_of
-
-    from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
 
     chain = chain_of(model)  # raises ValueError for branched chains and multi-dof joints
     fid = _flange_frame(model, flange_name)
@@ -92,22 +92,37 @@ def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: s
     velocity = np.where(model.velocityLimit > 0, model.velocityLimit, 1.0)
     solids = tuple(s for s in (_solid(g) for g in geoms.geometryObjects) if s is not None)
     name = os.path.splitext(os.path.basename(path))[0]
-    branch_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
     coupling, conventions = _controller_coupling(controller, model.nq)
-    # Fanuc: the URDF's joint_3 is J2 + J3; its limits stay the joint limits, as ROS-I's fanuc
-    # files give the data sheet's J3 range there; branch names read the URDF joints
-    if coupling is not None:
-        if branch_fn is not None:
-            urdf_branch = branch_fn
-            branch_fn = lambda q: urdf_branch(coupling @ q)  # noqa: E731
-    robot = Robot(
+    common = dict(
         name=name, vendor="URDF", model_name=model.name or name, model=model, flange_frame=fid,
         joint_limits=limits, velocity_limits=velocity, accel_limits=4.0 * velocity, reach=0.0,
         solids=solids, adjacent_pairs=_adjacent(solids), has_inertia=any(i.mass > 0 for i in model.inertias[1:]),
-        source=path, branch_fn=branch_fn, coupling=coupling, controller=controller, conventions=conventions,
+        source=path, controller=controller, conventions=conventions,
     )
+    closed_form, branch_fn, rows = _kinematics(Robot(**common), chain)  # type: ignore[arg-type]
+    # Fanuc: the URDF's joint_3 is J2 + J3; its limits stay the joint limits, as ROS-I's fanuc
+    # files give the data sheet's J3 range there; the closed form and branch names read the
+    # URDF joints and are turned into pendant values
+    if coupling is not None and branch_fn is not None:
+        closed_form, branch_fn = in_joint_values(closed_form, branch_fn, coupling)
+    robot = Robot(**common, coupling=coupling, closed_form=closed_form, branch_fn=branch_fn,  # type: ignore[arg-type]
+                  batch_branches=rows)
     robot.reach = _reach(robot)
     return robot
+
+
+def _kinematics(probe: Robot, chain: Any) -> tuple[Any, Any, Any]:
+    """(closed form, branch function, batch rows) of a URDF arm: the OPW closed form when its
+    geometry is ortho-parallel with a spherical wrist, proven by FK at random configurations
+    (model_opw, as for a cell's model), else the geometric branch names of a spherical wrist
+    (wrist_branches) with the numeric IK, else none."""
+    from rmot.compiler.robots.model_opw import opw_solver_for
+    from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
+
+    opw = opw_solver_for(probe) if probe.dof == 6 and not np.any(chain.prismatic) else None
+    if opw is not None:
+        return opw
+    return None, spherical_wrist_branch_fn(probe.model, chain.axes, chain.prismatic, probe.joint_limits), None
 
 
 def _controller_coupling(controller: str | None, dof: int) -> tuple[np.ndarray | None, tuple[tuple[str, str], ...]]:

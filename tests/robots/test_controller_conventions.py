@@ -207,3 +207,17 @@ def test_urdf_without_controller_is_refused_by_vendors(tmp_path: Path) -> None:
     assert outcome.refused == ("rapid",) and _codes(outcome) == {"E480"}
     message = next(d.message for d in outcome.diagnostics if d.code.id == "E480")
     assert 'controller="abb"' in message
+
+
+def test_config_on_an_arm_without_branch_names_is_an_error_at_the_move(tmp_path: Path) -> None:
+    """A 6R model whose wrist axes do not meet (a 50 mm offset at J5) has no branch names:
+    config(...) cannot be honoured and is refused at its move, not ignored."""
+    offset = KUKA_MODEL.replace("CONTROLLER", "controller kuka").replace(
+        "dh(a=0mm,   alpha=90deg,  d=0mm,   theta=0deg)", "dh(a=0mm,   alpha=90deg,  d=50mm,  theta=0deg)")
+    path = _cell(tmp_path, offset, "kr6", config="config(wrist=flip)")
+    assert load_robot(load_program(path).program.cell.robots[0].source.ref).branch(np.zeros(6)).wrist is None
+    outcome = compile_program(path, ("json",), use_cache=False)
+    found = [d for d in outcome.diagnostics if d.code.id == "E188"]
+    line = next(k for k, text in enumerate(Path(path).read_text().splitlines(), 1) if "config(wrist=flip)" in text)
+    assert found and found[0].span.start.line == line
+    assert "drop the config" in found[0].message
