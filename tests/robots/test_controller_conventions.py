@@ -221,3 +221,17 @@ def test_config_on_an_arm_without_branch_names_is_an_error_at_the_move(tmp_path:
     line = next(k for k, text in enumerate(Path(path).read_text().splitlines(), 1) if "config(wrist=flip)" in text)
     assert found and found[0].span.start.line == line
     assert "drop the config" in found[0].message
+
+
+@pytest.mark.parametrize("name", ["meshes/link_1.stl", "package://arm_support/meshes/link_1.stl"])
+def test_missing_urdf_mesh_is_not_found_with_the_path(tmp_path: Path, name: str) -> None:
+    """A mesh that simply is not there is E501 naming the path searched, not E504 (outside)."""
+    text = _urdf(BY_NAME["abb_irb120"], np.degrees(load_robot("abb_irb120").joint_limits))
+    text = text.replace('<link name="link_1"/>', f'<link name="link_1"><collision><geometry><mesh filename="{name}"/>'
+                        '</geometry></collision></link>')
+    (tmp_path / "arm.urdf").write_text(text)
+    front = load_program(_cell(tmp_path, "", 'urdf("arm.urdf", controller="abb")'))
+    found = [d for d in front.diagnostics if d.is_error and d.code.id != "E101"]  # E101: the program's robot
+    assert [d.code.id for d in found] == ["E501"], [d.message for d in found]
+    assert "must exist" in found[0].message and str(tmp_path / "meshes" / "link_1.stl") in found[0].message \
+        or str(tmp_path / "arm_support" / "meshes" / "link_1.stl") in found[0].message
