@@ -191,3 +191,14 @@ URDF_CONTROLLER_FRAMES = Code(
 )
 
 __all__ += ["MODEL_PENDANT", "UNKNOWN_CONTROLLER", "URDF_CONTROLLER_FRAMES"]
+
+# --- robot descriptions as xacro / with packages (compiler/passes/xacro_files.py)
+XACRO_FAILED = Code("E540", "xacro-failed", "a xacro file does not expand to a URDF (xacro's message)")
+XACRO_REFUSED = Code(
+    "E541", "xacro-refused",
+    "a xacro file uses what is not data: $(env)/$(optenv)/$(eval), entities, files outside the project, "
+    "expressions beyond arithmetic",
+)
+UNKNOWN_PACKAGE = Code("E542", "unknown-package", "$(find PKG) or package://PKG names a package urdf(packages=) does not give")
+
+__all__ += ["XACRO_FAILED", "XACRO_REFUSED", "UNKNOWN_PACKAGE"]

@@ -312,6 +312,21 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[5], span,
                              urdf_args=urdf_args[0] if urdf_args else ())
 
+    def urdf_args(self, c: list[Any]) -> tuple[ast.Arg, ...]:
+        return self.args(c)
+
+    def urdf_packages(self, c: list[Any]) -> ast.Arg:
+        """`packages={a: "dir", ...}`: an Arg whose value is a Vector of named String items."""
+        items = tuple(c[1] or ())
+        return _Arg(self._ident(c[0]), _Vector(items, self._span([c[0], *items]) if items else self._span([c[0]])),
+                    self._span([c[0], *items]))
+
+    def package_items(self, c: list[Any]) -> tuple[ast.Arg, ...]:
+        return tuple(c)
+
+    def package_item(self, c: list[Any]) -> ast.Arg:
+        return _Arg(self._ident(c[0]), self._string(c[1]), self._span(c))
+
     def robot_library(self, c: list[Any]) -> tuple[ast.Ident, None]:
         return self._ident(c[0]), None
 

@@ -19,6 +19,7 @@ from pathlib import Path
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
 from rmot.compiler.passes.urdf_paths import check_urdf_files
+from rmot.compiler.passes.lower_model import described_urdf
 from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_MESH_SCALE, MIN_SIZE_M, within
 from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.load_files import resolve_path
@@ -81,10 +82,12 @@ class _CellBuilder:
             assert s.urdf is not None
             span = s.urdf.span
             path = resolve_path(s.urdf.value, self.file, self.state.roots, span, self.rep, "URDF")
+            if path is not None:
+                path = described_urdf(s, path, self.file, self.state.roots, self.rep)
             if path is None or not check_urdf_files(path, self.state.roots, span, self.rep):
                 return
             key, source = path, ir.RobotSource(ir.RobotSourceKind.URDF, path)
-            if s.urdf_args:
+            if any(a.name is None or a.name.name != "packages" for a in s.urdf_args):
                 from rmot.compiler.passes.lower_model import urdf_chain
 
                 chain = urdf_chain(s, path, self.rep)

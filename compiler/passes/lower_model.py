@@ -22,13 +22,14 @@ from collections.abc import Callable
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.lower_controller import controller_word, pendant_of, urdf_controller
+from rmot.compiler.passes.load_files import resolve_folder
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
                                          MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
                                          fmt_quantity)
 from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
 from rmot.lang import ast
-from rmot.lang.source import Span
+from rmot.lang.source import SourceFile, Span
 
 __all__ = ["lower_model"]
 
@@ -295,12 +296,34 @@ def check_model_name(decl: ast.ModelDecl, rep: Reporter) -> None:
                     "cell declared with it use the model (rename the model to use the library arm)", decl.name.span)
 
 
+def described_urdf(s: ast.RobotDecl, path: str, file: SourceFile, roots: tuple[str, ...], rep: Reporter) -> str | None:
+    """The URDF a `urdf(...)` declaration describes: the file itself, or (a .xacro file, or
+    packages= given) its expansion with the packages resolved (compiler/passes/xacro_files.py)."""
+    arg = next((a for a in s.urdf_args if a.name is not None and a.name.name == "packages"), None)
+    if arg is None and not path.lower().endswith(".xacro"):
+        return path
+    packages: dict[str, str] = {}
+    if arg is not None:
+        if not isinstance(arg.value, ast.Vector) or not all(i.name is not None for i in arg.value.items):
+            rep.error(codes.BAD_ARGUMENT, 'urdf() packages must be {name: "folder", ...}', arg.value.span)
+            return None
+        for item in arg.value.items:
+            assert item.name is not None and isinstance(item.value, ast.String)
+            folder = resolve_folder(item.value.value, file, roots, item.value.span, rep)
+            if folder is None:
+                return None
+            packages[item.name.name] = folder
+    from rmot.compiler.passes.xacro_files import expand_description
+
+    return expand_description(path, packages, roots, s.urdf.span if s.urdf else s.span, rep)
+
+
 def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str | None, str | None, str | None] | None:
     """(base, tip, controller) of `urdf("f.urdf", base="...", tip="...", controller="...")`,
     checked against the file. With controller= alone the chain runs from the URDF's `base`
     link to its `tool0` (ROS-Industrial's controller base and flange frames); with
     controller="any" alone, the whole file as without arguments."""
-    bound = match_args(s.urdf_args, ("base", "tip", "controller"), "urdf", s.span, rep, required=0)
+    bound = match_args(s.urdf_args, ("base", "tip", "controller", "packages"), "urdf", s.span, rep, required=0)
     if bound is None:
         return None
     maker = None
