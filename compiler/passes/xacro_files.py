@@ -59,9 +59,12 @@ def expand_description(path: str, packages: dict[str, str], roots: tuple[str, ..
                        rep: Reporter) -> str | None:
     """The path of the URDF that `path` (xacro or URDF) expands to, or None after a diagnostic."""
     try:
-        with _LOCK, _sandboxed_xacro(packages, roots) as xacro:
-            text = _expand(xacro, path) if path.lower().endswith(".xacro") else _read(path, roots)
-        text = _absolute_meshes(text, Path(path).resolve().parent, packages)
+        try:
+            with _LOCK, _sandboxed_xacro(packages, roots) as xacro:
+                text = _expand(xacro, path) if path.lower().endswith(".xacro") else _read(path, roots)
+            text = _absolute_meshes(text, Path(path).resolve().parent, packages)
+        except Exception as exc:  # xacro wraps what our hooks raise: find the hook's own
+            raise _own(exc) from None
     except RefusedXacro as exc:
         rep.error(codes.XACRO_REFUSED, f"{os.path.basename(path)} must be plain data to expand (got {exc})", span)
         return None
@@ -78,6 +81,19 @@ def expand_description(path: str, packages: dict[str, str], roots: tuple[str, ..
 
 class _UnknownPackage(Exception):
     pass
+
+
+def _own(exc: BaseException) -> BaseException:
+    """The RefusedXacro or _UnknownPackage inside xacro's wrappers (`.exc`, causes), else exc."""
+    seen: set[int] = set()
+    current: BaseException | None = exc
+    while current is not None and id(current) not in seen:
+        if isinstance(current, (RefusedXacro, _UnknownPackage)):
+            return current
+        seen.add(id(current))
+        inner = getattr(current, "exc", None)
+        current = inner if isinstance(inner, BaseException) else (current.__cause__ or current.__context__)
+    return exc
 
 
 def _read(path: str, roots: tuple[str, ...]) -> str:
