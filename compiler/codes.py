@@ -202,3 +202,5 @@ XACRO_REFUSED = Code(
 UNKNOWN_PACKAGE = Code("E542", "unknown-package", "$(find PKG) or package://PKG names a package urdf(packages=) does not give")
 
 __all__ += ["XACRO_FAILED", "XACRO_REFUSED", "UNKNOWN_PACKAGE"]
+STEP_UNIT = Code("E543", "step-unit", "mesh(\"f.step\", unit=/scale=): a STEP file states its own length unit")
+__all__ += ["STEP_UNIT"]

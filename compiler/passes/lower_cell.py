@@ -13,6 +13,8 @@ Choices (LANGUAGE.md is silent):
 
 from __future__ import annotations
 
+import os
+
 from dataclasses import replace
 from pathlib import Path
 
@@ -167,6 +169,11 @@ class _CellBuilder:
             if within(scale, MIN_MESH_SCALE, MAX_MESH_SCALE, "mesh scale", "", 1.0, bound["scale"].span, self.rep) is None:
                 return None
         path = resolve_path(path_arg.value, self.file, self.state.roots, path_arg.span, self.rep, "mesh")
+        if path is not None and os.path.splitext(path)[1].lower() in (".step", ".stp") and ("unit" in bound or "scale" in bound):
+            given = bound["unit"] if "unit" in bound else bound["scale"]
+            self.rep.error(codes.STEP_UNIT, "a STEP mesh must be given without unit= or scale= (the file states its "
+                           "own length unit, which OpenCASCADE applies)", given.span)
+            return None
         return None if path is None else ir.Mesh(path, scale, span=path_arg.span)
 
     def _FixtureDecl(self, s: ast.FixtureDecl) -> None:
