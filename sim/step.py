@@ -20,6 +20,7 @@ import os
 import subprocess
 import sys
 import tempfile
+from typing import Any
 
 import numpy as np
 
@@ -62,7 +63,7 @@ def read_step(path: str) -> tuple[np.ndarray, np.ndarray]:
                 raise StepError("STEP files need the cad extra: pip install 'rmot[cad]' (cascadio)")
             raise StepError("STEP file must hold solids OpenCASCADE can read and tessellate (it found none it could mesh)")
         try:
-            loaded = trimesh.load(glb, force="mesh", process=False)
+            loaded: Any = trimesh.load(glb, force="mesh", process=False)  # force="mesh": a Trimesh
         except Exception:  # an empty scene has no geometry to concatenate
             raise StepError("STEP file must hold at least one solid or surface (it holds no geometry)") from None
     loaded.merge_vertices()

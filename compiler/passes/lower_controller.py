@@ -53,7 +53,7 @@ def pendant_of(call: ast.Call, index: int, kind: str, scope: Scope, rep: Reporte
             rep.error(codes.MODEL_PENDANT, "pendant sign must be 1 or -1 (the pendant turns with or against "
                       "the DH joint)", bound["sign"].value.span)
             return None
-        sign = float(number)  # type: ignore[arg-type]
+        sign = float(number)
     if "zero" in bound:
         dim = ANGLE if kind == "R" else LENGTH
         z = expect_quantity(eval_expr(bound["zero"].value, scope, rep), dim, "pendant zero", bound["zero"].value.span, rep)

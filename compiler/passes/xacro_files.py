@@ -249,9 +249,11 @@ class _Interpreter:
 
     def visit_Subscript(self, node: pyast.Subscript) -> Any:
         base, key = self.visit(node.value), self.visit(node.slice)
-        if not isinstance(base, (dict, list, tuple, str)) or not isinstance(key, (int, str)):
-            raise RefusedXacro("an index into something that is not the file's data")
-        return base[key]
+        if isinstance(base, dict) and isinstance(key, (int, str)):
+            return base[key]
+        if isinstance(base, (list, tuple, str)) and isinstance(key, int):
+            return base[key]
+        raise RefusedXacro("an index into something that is not the file's data")
 
     def visit_Call(self, node: pyast.Call) -> Any:
         func = self.visit(node.func)

@@ -89,7 +89,9 @@ def robot_from_model(spec: ModelSpec) -> Robot:
     if opw is not None:
         closed_form, branch_fn, rows = opw
         if coupling is not None:
-            closed_form, branch_fn = in_joint_values(closed_form, branch_fn, coupling)
+            in_joints, branch_fn = in_joint_values(closed_form, branch_fn, coupling)
+            assert in_joints is not None
+            closed_form = in_joints
         robot = Robot(**common, coupling=coupling, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
     else:
         chain = probe._chain

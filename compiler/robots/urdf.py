@@ -99,14 +99,13 @@ def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: s
         solids=solids, adjacent_pairs=_adjacent(solids), has_inertia=any(i.mass > 0 for i in model.inertias[1:]),
         source=path, controller=controller, conventions=conventions,
     )
-    closed_form, branch_fn, rows = _kinematics(Robot(**common), chain)  # type: ignore[arg-type]
+    closed_form, branch_fn, rows = _kinematics(Robot(**common), chain)
     # Fanuc: the URDF's joint_3 is J2 + J3; its limits stay the joint limits, as ROS-I's fanuc
     # files give the data sheet's J3 range there; the closed form and branch names read the
     # URDF joints and are turned into pendant values
     if coupling is not None and branch_fn is not None:
         closed_form, branch_fn = in_joint_values(closed_form, branch_fn, coupling)
-    robot = Robot(**common, coupling=coupling, closed_form=closed_form, branch_fn=branch_fn,  # type: ignore[arg-type]
-                  batch_branches=rows)
+    robot = Robot(**common, coupling=coupling, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
     robot.reach = _reach(robot)
     return robot
 
