@@ -80,6 +80,7 @@ def robot_from_model(spec: ModelSpec) -> Robot:
         joint_limits=limits, velocity_limits=velocity, accel_limits=accel, reach=0.0, solids=solids,
         adjacent_pairs=_adjacent(model, solids, q0), source="model block in the cell",
         dh_rows=dh_table(spec).rows, dh_modified=spec.modified, controller=spec.controller,
+        conventions=_conventions(spec),
     )
     # the closed form and the branch names are derived on the model variables u = C p, then
     # read back in joint values (p = C⁻¹ u); the probe has no coupling so u is its joint value
@@ -104,6 +105,20 @@ def robot_from_model(spec: ModelSpec) -> Robot:
     if all(j.mass is not None for j in spec.joints):
         _add_dynamics(robot, spec)
     return robot
+
+
+def _conventions(spec: ModelSpec) -> tuple[tuple[str, str], ...]:
+    """What the model declares about its controller (compiler/robots/controller.py), as text."""
+    if spec.controller is None:
+        return ()
+    pendant = spec.pendant or ((1.0, 0.0, 0),) * len(spec.joints)
+    signs = ", ".join(f"{s:+.0f}" for s, _, _ in pendant)
+    zeros = ", ".join(f"{z:g}" for _, z, _ in pendant)
+    coupled = [f"J{i} + J{c}" for i, (_, _, c) in enumerate(pendant, 1) if c]
+    return (("controller", spec.controller), ("base frame", "DH frame 0 (declared by `controller`)"),
+            ("flange frame", "the model's `flange` (declared by `controller`)"),
+            ("signs", f"pendant signs ({signs}); zeros ({zeros}) rad or m"),
+            ("coupling", "DH variable of " + ", ".join(coupled) if coupled else "none"))
 
 
 def _model_limits(coupling: np.ndarray, limits: np.ndarray) -> np.ndarray:
