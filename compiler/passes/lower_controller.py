@@ -14,7 +14,7 @@ from rmot.compiler.passes.evaluate import eval_expr, expect_quantity, match_args
 from rmot.compiler.passes.values import ANGLE, DIMENSIONLESS, LENGTH, Quantity
 from rmot.lang import ast
 
-__all__ = ["controller_word", "pendant_of", "urdf_controller"]
+__all__ = ["controller_word", "declared_controller", "pendant_of", "record_pendant", "urdf_controller"]
 
 
 def controller_word(item: ast.Setting, rep: Reporter) -> str | None:
@@ -27,6 +27,28 @@ def controller_word(item: ast.Setting, rep: Reporter) -> str | None:
         rep.unknown(item.value.name, "robot maker", item.value.span, sorted(MAKERS), codes.UNKNOWN_CONTROLLER)
         return None
     return word
+
+
+def declared_controller(item: ast.Setting | None, pendant: dict[int, tuple[float, float, int]], n_joints: int,
+                        rep: Reporter) -> tuple[str | None, tuple[tuple[float, float, int], ...]] | None:
+    """(maker or None, per joint (sign, zero, coupled_to) or ()) of a model; None after E186."""
+    maker = None if item is None else controller_word(item, rep)
+    if item is not None and maker is None:
+        return None
+    return maker, tuple(pendant.get(k, (1.0, 0.0, 0)) for k in range(1, n_joints + 1)) if pendant else ()
+
+
+def record_pendant(call: ast.Call, index: int, kind: str, pendant: dict[int, tuple[float, float, int]],
+                   scope: Scope, rep: Reporter) -> bool:
+    """Lower joint `index`'s `pendant(...)` into `pendant`; False after a diagnostic."""
+    if index in pendant:
+        rep.error(codes.MODEL_JOINT_FIELD, "a joint must have one pendant(...) field (got two)", call.span)
+        return False
+    mapping = pendant_of(call, index, kind, scope, rep)
+    if mapping is None:
+        return False
+    pendant[index] = mapping
+    return True
 
 
 def urdf_controller(value: ast.Expr, rep: Reporter) -> str | None:

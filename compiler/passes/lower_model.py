@@ -21,7 +21,7 @@ from collections.abc import Callable
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
-from rmot.compiler.passes.lower_controller import controller_word, pendant_of, urdf_controller
+from rmot.compiler.passes.lower_controller import declared_controller, record_pendant, urdf_controller
 from rmot.compiler.passes.load_files import resolve_folder
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
@@ -62,12 +62,7 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
                 joints.append(j)
             for part in item.parts:
                 if isinstance(part, ast.Call) and part.func.name == "pendant" and j is not None:
-                    if index in pendant:
-                        rep.error(codes.MODEL_JOINT_FIELD, "a joint must have one pendant(...) field (got two)", part.span)
-                    mapping = pendant_of(part, index, j.kind, scope, rep)
-                    ok &= mapping is not None and index not in pendant
-                    if mapping is not None:
-                        pendant[index] = mapping
+                    ok &= record_pendant(part, index, j.kind, pendant, scope, rep)
                 if isinstance(part, ast.Call) and part.func.name == "solid":
                     given = _solid(part, index, scope, rep, geometry)
                     ok &= given is not None
@@ -107,12 +102,10 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
         ok &= payload_kg is not None
     if ok and joints:
         ok &= _dynamics_complete(decl, joints, rep)
-    maker = None if controller is None else controller_word(controller, rep)
-    ok &= controller is None or maker is not None
-    if not ok:
+    declared = declared_controller(controller, pendant, len(joints), rep)
+    if not ok or declared is None:
         return None
-    mappings = tuple(pendant.get(k, (1.0, 0.0, 0)) for k in range(1, len(joints) + 1)) if pendant else ()
-    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids), maker, mappings)
+    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids), *declared)
 
 
 def _dynamics_complete(decl: ast.ModelDecl, joints: list[ModelJointSpec], rep: Reporter) -> bool:

@@ -36,6 +36,7 @@ from typing import Any
 
 from rmot.compiler import codes
 from rmot.compiler.passes.context import Reporter
+from rmot.compiler.passes.urdf_paths import _inside
 from rmot.lang.source import Span
 
 __all__ = ["MAX_BYTES", "expand_description"]
@@ -299,10 +300,3 @@ def _write(text: str, stem: str) -> str:
         write_text(str(target), text)
     return str(target)
 
-
-def _inside(path: Path, root: Path) -> bool:
-    try:
-        path.resolve().relative_to(root.resolve())
-    except (ValueError, OSError):
-        return False
-    return True

@@ -30,20 +30,20 @@ def _wrist_reach(p: OpwParams) -> float:
 
 def rosi_arms() -> list[RobotSpec]:
     """One arm per brand of ROS-Industrial's ABB, Fanuc, Motoman and Stäubli packages."""
+    return _abb_fanuc() + _yaskawa_staubli()
+
+
+def _abb_fanuc() -> list[RobotSpec]:
     from rmot.compiler.robots.dynamics import EFFORT_METHOD as EFFORT
     from rmot.compiler.robots.dynamics import INERTIA_METHOD as INERTIA
     from rmot.compiler.robots.dynamics import SPREAD_METHOD as SPREAD
-    from rmot.compiler.robots.library import (ABB, ABB_CONV, ACC_EST, FANUC, FANUC_CONV, STAUBLI, STAUBLI_CONV, YASKAWA,
-                                              YASKAWA_CONV, _acc, _sources)
+    from rmot.compiler.robots.library import (ABB, ABB_CONV, ACC_EST, FANUC, FANUC_CONV,
+                                              _acc, _sources)
 
     irb2400 = OpwParams(a1=0.100, a2=-0.135, b=0.0, c1=0.615, c2=0.705, c3=0.755, c4=0.085)
     m16ib = OpwParams(a1=0.150, a2=-0.100, b=0.0, c1=0.0, c2=0.770, c3=0.740, c4=0.100)
-    mh12 = OpwParams(a1=0.155, a2=-0.200, b=0.0, c1=0.0, c2=0.614, c3=0.640, c4=0.100)
-    tx60l = OpwParams(a1=0.0, a2=0.0, b=0.020, c1=0.0, c2=0.400, c3=0.450, c4=0.070)
     abb_file = f"{_ROSI}/abb abb_irb2400_support/urdf/irb2400_macro.xacro @ 7f6a1b189991"
     fanuc_file = f"{_ROSI}/fanuc fanuc_m16ib_support/urdf/m16ib20_macro.xacro @ e9bafced8e1f"
-    motoman_file = f"{_ROSI}/motoman motoman_mh12_support/urdf/mh12_macro.xacro @ 16ddd4361b95"
-    staubli_file = f"{_ROSI}/staubli_experimental staubli_tx60_support/urdf/tx60l_macro.xacro @ 12c677d12379"
     return [
         # ABB IRB 2400: tool0 turned (0, 90°, 0) from link_6, ABB's tool0 (z out of the flange)
         opw_spec(
@@ -72,6 +72,20 @@ def rosi_arms() -> list[RobotSpec]:
                              mass=f"FANUC M-16iB/20 data sheet: mechanical unit 220 kg (not re-verified here); {SPREAD}",
                              inertia=INERTIA, effort=EFFORT, payload="the model name M-16iB/20: 20 kg"),
         ),
+    ]
+
+
+def _yaskawa_staubli() -> list[RobotSpec]:
+    from rmot.compiler.robots.dynamics import INERTIA_METHOD as INERTIA
+    from rmot.compiler.robots.dynamics import SPREAD_METHOD as SPREAD
+    from rmot.compiler.robots.library import (ACC_EST, STAUBLI, STAUBLI_CONV, YASKAWA,
+                                              YASKAWA_CONV, _acc, _sources)
+
+    mh12 = OpwParams(a1=0.155, a2=-0.200, b=0.0, c1=0.0, c2=0.614, c3=0.640, c4=0.100)
+    tx60l = OpwParams(a1=0.0, a2=0.0, b=0.020, c1=0.0, c2=0.400, c3=0.450, c4=0.070)
+    motoman_file = f"{_ROSI}/motoman motoman_mh12_support/urdf/mh12_macro.xacro @ 16ddd4361b95"
+    staubli_file = f"{_ROSI}/staubli_experimental staubli_tx60_support/urdf/tx60l_macro.xacro @ 12c677d12379"
+    return [
         # Yaskawa Motoman MH12: robot frame at the L-axis height (450 mm, ROS-I `base`)
         opw_spec(
             name="yaskawa_mh12", vendor="Yaskawa", model="Motoman MH12", source=motoman_file, params=mh12, jmap=YASKAWA,
