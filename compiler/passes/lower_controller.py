@@ -86,8 +86,8 @@ def pendant_of(call: ast.Call, index: int, kind: str, scope: Scope, rep: Reporte
         value = eval_expr(bound["coupled_to"].value, scope, rep)
         number = value.value if isinstance(value, Quantity) and value.dim == DIMENSIONLESS else None
         if number is None or number != int(number) or not 0 <= number < index or kind != "R":
-            rep.error(codes.MODEL_PENDANT, f"pendant coupled_to must name an earlier revolute joint, 1 to "
-                      f"{index - 1}, or 0 for none (Fanuc's J2/J3 interaction: coupled_to=2 on joint 3)",
+            rep.error(codes.MODEL_PENDANT, f"pendant coupled_to must name an earlier revolute joint "
+                      f"({'1' if index == 2 else f'1..{index - 1}'}) or be 0 for none (Fanuc's J2/J3 interaction: coupled_to=2 on joint 3)",
                       bound["coupled_to"].value.span)
             return None
         coupled = int(number)
