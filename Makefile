@@ -13,7 +13,7 @@ TARGETS := --target rapid --target krl --target fanuc --target urscript --target
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
+	$(BIN)/python -m pip install --quiet -e '.[test,cad]'
 	touch $(STAMP)
 
 # The main job: verify the pick-and-place example on the built-in default cell, compile it for

@@ -178,3 +178,15 @@ __all__ += [
     "LOGIC_UNSUPPORTED", "REGISTERS_EXHAUSTED", "WAIT_POLLED", "STOP_AS_PAUSE",
     "TURN_NOT_EXPRESSIBLE",
 ]
+
+# --- controller conventions a vendor target needs (compiler/robots/controller.py)
+CONTROLLER_UNDECLARED = Code(
+    "E480", "controller-undeclared",
+    "a cell model or URDF robot declares no controller conventions: the vendor cannot vouch for its joint values",
+)
+CONTROLLER_MISMATCH = Code(
+    "E481", "controller-mismatch",
+    "a cell model or URDF robot declares another maker's controller than the target's",
+)
+
+__all__ += ["CONTROLLER_UNDECLARED", "CONTROLLER_MISMATCH"]

@@ -177,3 +177,30 @@ __all__ += [
     "UNREACHABLE_AFTER_STOP",
     "WAIT_ELSE_WITHOUT_TIMEOUT",
 ]
+
+# --- controller conventions of cell-defined robots (compiler/robots/controller.py)
+MODEL_PENDANT = Code(
+    "E185", "model-pendant", "a model joint's pendant(sign=, zero=, coupled_to=) is not a valid mapping"
+)
+UNKNOWN_CONTROLLER = Code(
+    "E186", "unknown-controller", "a `controller` line or urdf(controller=) names no known robot maker"
+)
+URDF_CONTROLLER_FRAMES = Code(
+    "E187", "urdf-controller-frames",
+    "urdf(controller=) on a file without the controller's `base` and `tool0` links (and no base=/tip=)",
+)
+
+__all__ += ["MODEL_PENDANT", "UNKNOWN_CONTROLLER", "URDF_CONTROLLER_FRAMES"]
+
+# --- robot descriptions as xacro / with packages (compiler/passes/xacro_files.py)
+XACRO_FAILED = Code("E540", "xacro-failed", "a xacro file does not expand to a URDF (xacro's message)")
+XACRO_REFUSED = Code(
+    "E541", "xacro-refused",
+    "a xacro file uses what is not data: $(env)/$(optenv)/$(eval), entities, files outside the project, "
+    "expressions beyond arithmetic",
+)
+UNKNOWN_PACKAGE = Code("E542", "unknown-package", "$(find PKG) or package://PKG names a package urdf(packages=) does not give")
+
+__all__ += ["XACRO_FAILED", "XACRO_REFUSED", "UNKNOWN_PACKAGE"]
+STEP_UNIT = Code("E543", "step-unit", "mesh(\"f.step\", unit=/scale=): a STEP file states its own length unit")
+__all__ += ["STEP_UNIT"]

@@ -229,7 +229,7 @@ class RobotSourceKind(Enum):
     LIBRARY = auto()  # a name from compiler.robots.list_robots()
     URDF = auto()  # an absolute path to a URDF file
     MODEL = auto()  # a `model` block of the cell: ref is its load key (compiler/model_spec.py)
-    URDF_CHAIN = auto()  # urdf(path, base=, tip=): ref is "urdf-chain:" + JSON [path, base, tip]
+    URDF_CHAIN = auto()  # urdf(path, base=, tip=, controller=): ref is "urdf-chain:" + JSON [path, base, tip(, maker)]
 
 
 @record(slots=True)

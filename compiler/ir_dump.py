@@ -61,8 +61,8 @@ def dump_cell(cell: ir.Cell) -> str:
 
             ref = model_name(r.source.ref)
         elif r.source.kind is ir.RobotSourceKind.URDF_CHAIN:
-            path, base, tip = json.loads(r.source.ref.split(":", 1)[1])
-            ref = f"{path.rsplit('/', 1)[-1]}[{base}..{tip}]"
+            path, base, tip, *maker = json.loads(r.source.ref.split(":", 1)[1])  # maker: urdf(controller=)
+            ref = path.rsplit('/', 1)[-1] + ("" if base is None else f"[{base}..{tip}]") + "".join(f" controller={m}" for m in maker)
         lines.append(f"  robot {r.name} {r.source.kind.name.lower()}:{ref} dof={r.dof} base={_pose(r.base)}")
     for f in cell.fixtures:
         lines.append(f"  fixture {f.name} {_geometry(f.geometry)} at {_pose(f.pose)}")

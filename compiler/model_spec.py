@@ -49,6 +49,11 @@ class ModelSpec:
     # solids given in the cell: (joint 1..n, kind, numbers, pose (4,4) row-major in DH frame i);
     # kind box (x, y, z) | cylinder (r, h) | sphere (r,) | capsule (r, length) | mesh (scale,) with `path`
     solids: tuple[ModelSolid, ...] = ()
+    # the controller whose pendant values the joint values are (`controller kuka`; None: undeclared)
+    # and per joint (sign, zero, coupled_to) from `pendant(...)` ((): every joint (1, 0, 0));
+    # see compiler/robots/controller.py
+    controller: str | None = None
+    pendant: tuple[tuple[float, float, int], ...] = ()
 
 
 @record(slots=True)
@@ -67,6 +72,10 @@ def model_key(spec: ModelSpec) -> str:
         "joints": [_joint_row(j) for j in spec.joints],
         "solids": [[g.joint, g.kind, list(g.numbers), list(g.pose), g.path] for g in spec.solids],
     }
+    if spec.controller is not None:  # only when declared, so an undeclared model's key is as before
+        data["controller"] = spec.controller
+    if spec.pendant:
+        data["pendant"] = [list(p) for p in spec.pendant]
     return MODEL_PREFIX + json.dumps(data, sort_keys=True, separators=(",", ":"))
 
 
@@ -92,8 +101,11 @@ def spec_from_key(key: str) -> ModelSpec:
     payload = data["payload_kg"]
     solids = tuple(ModelSolid(int(j), str(k), tuple(float(x) for x in n), tuple(float(x) for x in p), str(path))
                    for j, k, n, p, path in data.get("solids", ()))
+    controller = data.get("controller")
+    pendant = tuple((float(s), float(z), int(c)) for s, z, c in data.get("pendant", ()))
     return ModelSpec(str(data["name"]), bool(data["modified"]), joints, tuple(float(x) for x in data["flange"]),
-                     None if payload is None else float(payload), solids)
+                     None if payload is None else float(payload), solids,
+                     None if controller is None else str(controller), pendant)
 
 
 def model_name(key: str) -> str:

@@ -312,6 +312,21 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[5], span,
                              urdf_args=urdf_args[0] if urdf_args else ())
 
+    def urdf_args(self, c: list[Any]) -> tuple[ast.Arg, ...]:
+        return self.args(c)
+
+    def urdf_packages(self, c: list[Any]) -> ast.Arg:
+        """`packages={a: "dir", ...}`: an Arg whose value is a Vector of named String items."""
+        items = tuple(c[1] or ())
+        return _Arg(self._ident(c[0]), _Vector(items, self._span([c[0], *items]) if items else self._span([c[0]])),
+                    self._span([c[0], *items]))
+
+    def package_items(self, c: list[Any]) -> tuple[ast.Arg, ...]:
+        return tuple(c)
+
+    def package_item(self, c: list[Any]) -> ast.Arg:
+        return _Arg(self._ident(c[0]), self._string(c[1]), self._span(c))
+
     def robot_library(self, c: list[Any]) -> tuple[ast.Ident, None]:
         return self._ident(c[0]), None
 
@@ -528,7 +543,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def model_joint(self, c: list[Any]) -> ast.ModelJoint:
         if str(c[0]) != "joint":  # `linear ...`: the word shares the move-kind token
-            msg = f"a model line must start with 'joint', 'flange' or 'payload' (got '{c[0]}')"
+            msg = f"a model line must start with 'joint', 'flange', 'payload' or 'controller' (got '{c[0]}')"
             self.diagnostics.append(Diagnostic(codes.SYNTAX, Severity.ERROR, msg, self._token_span(c[0])))
         return ast.ModelJoint(self._ident(c[1]), tuple(c[2:]), self._span(c))
 
@@ -552,6 +567,9 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def model_payload(self, c: list[Any]) -> ast.Setting:
         return _Setting("payload", c[1], self._span(c))
+
+    def model_controller(self, c: list[Any]) -> ast.Setting:
+        return _Setting("controller", self._ident(c[1]), self._span(c))
 
     # -- parts (issue #14)
     def part_decl(self, c: list[Any]) -> ast.PartDecl:

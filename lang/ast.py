@@ -408,7 +408,8 @@ class ModelJoint:
 class ModelDecl:
     """`model NAME { joint ... ; flange pose(...) ; payload 5 kg }` in a cell.
 
-    items: ModelJoint lines and Settings of kind flange / payload, in source order."""
+    items: ModelJoint lines and Settings of kind flange / payload / controller (an Ident),
+    in source order."""
 
     name: Ident
     items: tuple[ModelJoint | Setting, ...]

@@ -1,6 +1,7 @@
 """Mesh files -> triangle arrays in metres, or a Diagnostic at the span that names the file.
 
-Formats: STL, OBJ, PLY, OFF through trimesh; every other suffix is read as the classic
+Formats: STL, OBJ, PLY, OFF through trimesh; STEP (.step/.stp) through OpenCASCADE
+(sim/step.py: tessellated within 0.05 mm, grown by it); every other suffix is read as the classic
 "points then polygons" text format (LANGUAGE.md §3):
 
     <point count> <polygon count>          (on one line or on two)
@@ -26,6 +27,7 @@ import numpy as np
 from rmot.compiler import ir
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.sim import codes
+from rmot.sim.step import STEP_SUFFIXES, StepError, read_step
 
 __all__ = ["MeshData", "load_mesh", "parse_classic"]
 
@@ -111,6 +113,11 @@ def _read_cached(path: str, mtime_ns: int, size: int) -> tuple[np.ndarray, np.nd
     suffix = os.path.splitext(path)[1].lower()
     if suffix in _TRIMESH_SUFFIXES:
         vertices, faces = _read_trimesh(path)
+    elif suffix in STEP_SUFFIXES:  # tessellated by OpenCASCADE, grown by its tolerance (sim/step.py)
+        try:
+            vertices, faces = read_step(path)
+        except StepError as exc:
+            raise _MeshError(codes.MESH_UNREADABLE, str(exc)) from None
     else:
         try:
             with open(path, encoding="utf-8") as f:

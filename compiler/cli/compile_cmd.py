@@ -30,6 +30,7 @@ from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 from rmot.lang.record import record
 
 if TYPE_CHECKING:
+    from rmot.compiler import ir
     from rmot.lang.diagnostics import Diagnostic
 
 __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
@@ -85,6 +86,11 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
     files: dict[str, str] = {}
     refused: list[str] = []
     for target in dict.fromkeys(targets):  # each target once, in the order given
+        undeclared = controller_refusals(target, plan.program.cell)
+        if undeclared:  # the vendor cannot vouch for these robots' joint values: nothing emitted
+            diagnostics += undeclared
+            refused.append(target)
+            continue
         try:
             result = stages.emit(target, plan, source_map=source_map,
                                  allow_findings_header=findings, write_frames=write_frames, unroll=unroll)
@@ -108,6 +114,60 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
             continue
         files.update({f"{target}/{name}": text for name, text in result.files.items()})
     return CompileOutcome(files, diagnostics, EXIT_FINDINGS if refused else EXIT_OK, tuple(refused))
+
+
+def controller_refusals(target: str, cell: ir.Cell) -> tuple[Diagnostic, ...]:
+    """E480/E481 at each robot of the cell whose joint values a `target` controller cannot take
+    as they are: a cell model or URDF arm that declares no controller, or declares another
+    maker's (compiler/robots/controller.py). Library arms carry their vendor's conventions
+    (another brand's arm is W415, backends/base.py); data formats (csv, json) need none."""
+    from rmot.backends import codes as backend_codes
+    from rmot.backends.controller_data import TARGET_BRANDS
+    from rmot.compiler import ir
+    from rmot.compiler.robots import RobotError, load_robot
+    from rmot.lang.diagnostics import Diagnostic, Severity
+    from rmot.compiler.robots.controller import ANY, MAKERS
+
+    brand = TARGET_BRANDS.get(target)
+    if brand is None:
+        return ()
+    out = []
+    for robot in cell.robots:
+        if robot.source.kind is ir.RobotSourceKind.LIBRARY:
+            continue
+        try:
+            declared = load_robot(robot.source.ref).controller
+        except RobotError:  # reported by the front end
+            continue
+        how = ("a `controller` line in the model (e.g. `controller " + target_word(brand[0]) + "`, with "
+               "pendant(sign=, zero=, coupled_to=) on joints that differ)"
+               if robot.source.kind is ir.RobotSourceKind.MODEL
+               else f'urdf(..., controller="{target_word(brand[0])}")')
+        if declared is None:
+            out.append(Diagnostic(backend_codes.CONTROLLER_UNDECLARED, Severity.ERROR,
+                                  f"{target}: robot '{robot.name}' must declare its controller's conventions (joint "
+                                  f"signs and zeros, couplings, base and flange frames) before a {brand[0]} program "
+                                  f"can carry its joint values; add {how}, or `controller any` to vouch for them "
+                                  "as they are", robot.span))
+        elif declared != ANY and MAKERS.get(declared) != brand[0]:
+            out.append(Diagnostic(backend_codes.CONTROLLER_MISMATCH, Severity.ERROR,
+                                  f"{target}: robot '{robot.name}' declares {MAKERS.get(declared, declared)} pendant "
+                                  f"values; a {target} program runs on {brand[0]} controllers (compile for "
+                                  f"{_target_of(MAKERS.get(declared, ''))} instead)", robot.span))
+    return tuple(out)
+
+
+def target_word(brand: str) -> str:
+    """The cell's word for a maker (the inverse of controller.MAKERS)."""
+    from rmot.compiler.robots.controller import MAKERS
+
+    return next(word for word, name in MAKERS.items() if name == brand)
+
+
+def _target_of(brand: str) -> str:
+    from rmot.backends.controller_data import TARGET_BRANDS
+
+    return next((t for t, (b, _) in TARGET_BRANDS.items() if b == brand), "its own controller")
 
 
 def _case_clash(files: dict[str, str]) -> tuple[str, str] | None:

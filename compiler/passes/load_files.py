@@ -49,6 +49,20 @@ def resolve_path(written: str, relative_to: SourceFile, roots: tuple[str, ...], 
     return str(target)
 
 
+def resolve_folder(written: str, relative_to: SourceFile, roots: tuple[str, ...], span: Span | None,
+                   rep: Reporter) -> str | None:
+    """The absolute path of folder `written` (relative to the naming file), inside one of `roots`."""
+    base = Path(relative_to.path).resolve().parent
+    target = Path(os.path.normpath(written if os.path.isabs(written) else base / written))
+    if roots and not any(_inside(target, Path(r)) for r in roots):
+        rep.error(codes.PATH_ESCAPES, f"package folder must stay inside the project directory {roots[0]} (got '{_short(written)}')", span)
+        return None
+    if not target.is_dir():
+        rep.error(codes.FILE_NOT_FOUND, f"package folder '{_short(written)}' must exist (got no folder at {_short(str(target))})", span)
+        return None
+    return str(target)
+
+
 def _short(text: str, limit: int = 120) -> str:
     return text if len(text) <= limit else f"{text[:limit // 2]}...{text[-limit // 2:]} ({len(text)} characters)"
 

@@ -13,12 +13,15 @@ Choices (LANGUAGE.md is silent):
 
 from __future__ import annotations
 
+import os
+
 from dataclasses import replace
 from pathlib import Path
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
 from rmot.compiler.passes.urdf_paths import check_urdf_files
+from rmot.compiler.passes.lower_model import described_urdf
 from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_MESH_SCALE, MIN_SIZE_M, within
 from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.load_files import resolve_path
@@ -81,10 +84,12 @@ class _CellBuilder:
             assert s.urdf is not None
             span = s.urdf.span
             path = resolve_path(s.urdf.value, self.file, self.state.roots, span, self.rep, "URDF")
+            if path is not None:
+                path = described_urdf(s, path, self.file, self.state.roots, self.rep)
             if path is None or not check_urdf_files(path, self.state.roots, span, self.rep):
                 return
             key, source = path, ir.RobotSource(ir.RobotSourceKind.URDF, path)
-            if s.urdf_args:
+            if any(a.name is None or a.name.name != "packages" for a in s.urdf_args):
                 from rmot.compiler.passes.lower_model import urdf_chain
 
                 chain = urdf_chain(s, path, self.rep)
@@ -92,7 +97,9 @@ class _CellBuilder:
                     return
                 import json
 
-                key = "urdf-chain:" + json.dumps([path, *chain])  # compiler/robots/loader.py
+                base_link, tip_link, maker = chain
+                parts = [path, base_link, tip_link] + ([maker] if maker is not None else [])
+                key = "urdf-chain:" + json.dumps(parts)  # compiler/robots/loader.py
                 source = ir.RobotSource(ir.RobotSourceKind.URDF_CHAIN, key)
         try:
             info = self.state.robot_loader(key)
@@ -162,6 +169,11 @@ class _CellBuilder:
             if within(scale, MIN_MESH_SCALE, MAX_MESH_SCALE, "mesh scale", "", 1.0, bound["scale"].span, self.rep) is None:
                 return None
         path = resolve_path(path_arg.value, self.file, self.state.roots, path_arg.span, self.rep, "mesh")
+        if path is not None and os.path.splitext(path)[1].lower() in (".step", ".stp") and ("unit" in bound or "scale" in bound):
+            given = bound["unit"] if "unit" in bound else bound["scale"]
+            self.rep.error(codes.STEP_UNIT, "a STEP mesh must be given without unit= or scale= (the file states its "
+                           "own length unit, which OpenCASCADE applies)", given.span)
+            return None
         return None if path is None else ir.Mesh(path, scale, span=path_arg.span)
 
     def _FixtureDecl(self, s: ast.FixtureDecl) -> None:

@@ -21,13 +21,15 @@ from collections.abc import Callable
 
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
+from rmot.compiler.passes.lower_controller import declared_controller, record_pendant, urdf_controller
+from rmot.compiler.passes.load_files import resolve_folder
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
                                          MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
                                          fmt_quantity)
 from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
 from rmot.lang import ast
-from rmot.lang.source import Span
+from rmot.lang.source import SourceFile, Span
 
 __all__ = ["lower_model"]
 
@@ -48,6 +50,8 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
     conventions: dict[str, Span] = {}
     flange: ast.Setting | None = None
     payload: ast.Setting | None = None
+    controller: ast.Setting | None = None
+    pendant: dict[int, tuple[float, float, int]] = {}
     ok = True
     for item in decl.items:
         if isinstance(item, ast.ModelJoint):
@@ -57,6 +61,8 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
             if j is not None:
                 joints.append(j)
             for part in item.parts:
+                if isinstance(part, ast.Call) and part.func.name == "pendant" and j is not None:
+                    ok &= record_pendant(part, index, j.kind, pendant, scope, rep)
                 if isinstance(part, ast.Call) and part.func.name == "solid":
                     given = _solid(part, index, scope, rep, geometry)
                     ok &= given is not None
@@ -65,6 +71,9 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
         elif item.kind == "flange":
             ok &= _once(item, flange, name, rep)
             flange = flange or item
+        elif item.kind == "controller":
+            ok &= _once(item, controller, name, rep)
+            controller = controller or item
         else:
             ok &= _once(item, payload, name, rep)
             payload = payload or item
@@ -93,9 +102,10 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
         ok &= payload_kg is not None
     if ok and joints:
         ok &= _dynamics_complete(decl, joints, rep)
-    if not ok:
+    declared = declared_controller(controller, pendant, len(joints), rep)
+    if not ok or declared is None:
         return None
-    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids))
+    return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids), *declared)
 
 
 def _dynamics_complete(decl: ast.ModelDecl, joints: list[ModelJointSpec], rep: Reporter) -> bool:
@@ -156,12 +166,12 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
     ok = True
     for part in j.parts:
         key = part.kind if isinstance(part, ast.Setting) else part.func.name
-        if key == "solid":  # any number of them, lowered by _solid
+        if key in ("solid", "pendant"):  # solids: any number, lowered by _solid; pendant: lower_controller
             continue
         slot = "dh" if key in ("dh", "mdh") else key
         if slot not in _FIELDS + _OPTIONAL:
             rep.unknown(key, "joint field", part.func.span if isinstance(part, ast.Call) else part.span,
-                        ["dh", "mdh", "range", "solid"], codes.MODEL_JOINT_FIELD)
+                        ["dh", "mdh", "range", "solid", "pendant"], codes.MODEL_JOINT_FIELD)
             ok = False
             continue
         if slot in fields:
@@ -279,14 +289,49 @@ def check_model_name(decl: ast.ModelDecl, rep: Reporter) -> None:
                     "cell declared with it use the model (rename the model to use the library arm)", decl.name.span)
 
 
-def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str, str] | None:
-    """(base, tip) link names of `urdf("f.urdf", base="...", tip="...")`, checked against the file."""
-    bound = match_args(s.urdf_args, ("base", "tip"), "urdf", s.span, rep, required=0)
+def described_urdf(s: ast.RobotDecl, path: str, file: SourceFile, roots: tuple[str, ...], rep: Reporter) -> str | None:
+    """The URDF a `urdf(...)` declaration describes: the file itself, or (a .xacro file, or
+    packages= given) its expansion with the packages resolved (compiler/passes/xacro_files.py)."""
+    arg = next((a for a in s.urdf_args if a.name is not None and a.name.name == "packages"), None)
+    if arg is None and not path.lower().endswith(".xacro"):
+        return path
+    packages: dict[str, str] = {}
+    if arg is not None:
+        if not isinstance(arg.value, ast.Vector) or not all(i.name is not None for i in arg.value.items):
+            rep.error(codes.BAD_ARGUMENT, 'urdf() packages must be {name: "folder", ...}', arg.value.span)
+            return None
+        for item in arg.value.items:
+            assert item.name is not None and isinstance(item.value, ast.String)
+            folder = resolve_folder(item.value.value, file, roots, item.value.span, rep)
+            if folder is None:
+                return None
+            packages[item.name.name] = folder
+    from rmot.compiler.passes.xacro_files import expand_description
+
+    return expand_description(path, packages, roots, s.urdf.span if s.urdf else s.span, rep)
+
+
+def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str | None, str | None, str | None] | None:
+    """(base, tip, controller) of `urdf("f.urdf", base="...", tip="...", controller="...")`,
+    checked against the file. With controller= alone the chain runs from the URDF's `base`
+    link to its `tool0` (ROS-Industrial's controller base and flange frames); with
+    controller="any" alone, the whole file as without arguments."""
+    bound = match_args(s.urdf_args, ("base", "tip", "controller", "packages"), "urdf", s.span, rep, required=0)
     if bound is None:
         return None
+    maker = None
+    if "controller" in bound:
+        maker = urdf_controller(bound["controller"].value, rep)
+        if maker is None:
+            return None
+    if maker == "any" and "base" not in bound and "tip" not in bound:
+        return None, None, maker  # the whole file, its joint values vouched for as they are
     names: dict[str, str] = {}
     for key in ("base", "tip"):
         arg = bound.get(key)
+        if arg is None and maker is not None and "base" not in bound and "tip" not in bound:
+            names[key] = {"base": "base", "tip": "tool0"}[key]
+            continue
         if arg is None:
             rep.error(codes.BAD_ARGUMENT, f"urdf() with a chain must give {key}=\"LINK\" (got no {key})", s.urdf.span if s.urdf else s.span)
             return None
@@ -300,10 +345,16 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str, str] | 
 
         links = urdf_links(path)
     except (ImportError, RobotError):
-        return names["base"], names["tip"]  # the load step says why the file is unusable
+        return names["base"], names["tip"], maker  # the load step says why the file is unusable
     ok = True
     for key in ("base", "tip"):
-        if names[key] not in links:
+        if names[key] not in links and key not in bound:
+            rep.error(codes.URDF_CONTROLLER_FRAMES, f"URDF '{path}' must have a link '{names[key]}' (ROS-Industrial's "
+                      f"controller {'base' if key == 'base' else 'flange'} frame) for urdf(controller=), or the call "
+                      "must name the links at the controller's base and flange frames: base=\"LINK\", tip=\"LINK\"",
+                      s.urdf.span if s.urdf else s.span)
+            ok = False
+        elif names[key] not in links:
             rep.unknown(names[key], f"URDF link ({key}=)", bound[key].value.span, list(links), codes.URDF_UNKNOWN_LINK)
             ok = False
     if ok:
@@ -313,4 +364,4 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str, str] | 
         if problem is not None:
             rep.error(codes.URDF_BAD_CHAIN, f"urdf() base and tip must bound a chain of joints ({problem})", s.span)
             ok = False
-    return (names["base"], names["tip"]) if ok else None
+    return (names["base"], names["tip"], maker) if ok else None

@@ -6,7 +6,8 @@ URDF is handed to pinocchio (which would read the mesh). Resolution, as ROS tool
   * `package://PKG/rest`: `<dir>/PKG/rest` for the URDF's folder and its ancestors, *only
     those inside the project root*, the first that exists (outside the root: not searched);
   * `file:///abs/path`: the absolute path; a relative name: relative to the URDF's folder;
-  * after resolution (symbolic links followed) the file must lie inside a root.
+  * after resolution (symbolic links followed) the file must lie inside a root (E504); a
+    mesh that is inside the project but simply not there is E501, with the paths searched.
 Also refused here, with the joint's name: a revolute, continuous or prismatic joint whose
 axis is the zero vector (no direction to move along; E505). The file is parsed with the
 standard library's expat parser, which refuses entity-expansion bombs.
@@ -40,7 +41,12 @@ def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: 
     for mesh in tree.iter("mesh"):
         name = mesh.get("filename") or ""
         target = _resolve(name, folder, roots)
-        if target is None or not any(_inside(target, Path(r)) for r in roots):
+        missing = _missing_mesh(name, target, folder, roots)
+        if missing is not None:
+            rep.error(codes.FILE_NOT_FOUND, f"mesh named by {os.path.basename(urdf)} must exist (got '{name[:200]}': "
+                      f"{missing})", span)
+            ok = False
+        elif target is None or not any(_inside(target, Path(r)) for r in roots):
             rep.error(codes.PATH_ESCAPES, f"mesh named by the URDF must stay inside the project directory {roots[0]} "
                       f"(got '{name[:200]}' in {os.path.basename(urdf)})", span)
             ok = False
@@ -58,6 +64,25 @@ def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: 
                       f"(got xyz=\"{text[:60]}\")", span)
             ok = False
     return ok
+
+
+def _missing_mesh(name: str, target: Path | None, folder: Path, roots: tuple[str, ...]) -> str | None:
+    """Why a mesh inside the project is simply not there (the paths searched), else None: a
+    name that leads out of the project, or a file that exists, is judged by the caller."""
+    if name.startswith("package://"):
+        if target is not None:
+            return None
+        rest = name[len("package://"):]
+        dirs = [folder, *folder.parents]
+        inside = [d for d in dirs if any(_inside(d, Path(r)) for r in roots)]
+        if any(Path(os.path.normpath(d / rest)).exists() for d in dirs if d not in inside):
+            return None  # it exists, but only outside the project: E504
+        searched = [Path(os.path.normpath(d / rest)) for d in inside]
+        shown = ", ".join(str(p) for p in searched[:3]) + (", ..." if len(searched) > 3 else "")
+        return f"no file at {shown}"
+    if target is None or target.exists() or not any(_inside(target, Path(r)) for r in roots):
+        return None
+    return f"no file at {target}"
 
 
 def _resolve(name: str, folder: Path, roots: tuple[str, ...]) -> Path | None:

@@ -53,3 +53,9 @@ WHILE_NO_FIXED_POINT = Code(
     "a while loop whose iterations do not come back to the state they started from",
 )
 __all__ += ["WHILE_NO_FIXED_POINT"]
+# controller conventions of cell-brought arms: a branch request the arm cannot honour
+CONFIG_WITHOUT_BRANCHES = Code(
+    "E188", "config-without-branches",
+    "config(shoulder=, elbow=, wrist=) on an arm that has no branch names (no spherical wrist)",
+)
+__all__ += ["CONFIG_WITHOUT_BRANCHES"]

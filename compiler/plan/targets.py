@@ -131,6 +131,10 @@ def solve_target(
         return None, bad
     flange = flange_target(move)
     current = robot.branch(q_now)
+    if _any_config(move.config) and not _any_config(current):
+        msg = (f"config({move.config}) needs an arm with branch names (a 6R arm with a spherical wrist); "
+               f"robot '{robot.name}' has none, so no branch can be chosen: drop the config")
+        return None, [Finding(codes.CONFIG_WITHOUT_BRANCHES, Severity.ERROR, msg)]
     if move.kind is ir.MotionKind.JOINT:
         return _solve_joint_move(robot, move, flange, q_now, current)
     return _solve_cartesian(robot, move, flange, q_now, current)
@@ -147,6 +151,8 @@ def _ik(robot: RobotModel, flange: np.ndarray, seed: np.ndarray, config: ir.Conf
     q = newton_ik(robot, flange, seed, iters=50)
     lim = robot.joint_limits
     if q is None or np.any(q < lim[:, 0] - 1e-9) or np.any(q > lim[:, 1] + 1e-9):
+        return res
+    if config is not None and branch_changes(robot.branch(q), config):  # the local solve ignores the config
         return res
     return _Local((q,))
 

@@ -42,7 +42,7 @@ def build_robot(spec: RobotSpec) -> Robot:
         closed_form=closed_form, branch_fn=branch_fn, workspace_distance=distance,
         source=spec.source, dh_rows=spec.dh.rows, dh_modified=spec.dh.modified, batch_branches=rows,
         has_inertia=bool(spec.link_mass_kg), rated_payload_kg=spec.rated_payload_kg,
-        sources=spec.sources, conventions=spec.conventions,
+        sources=spec.sources, conventions=spec.conventions, controller=spec.vendor,
     )
 
 

@@ -539,6 +539,12 @@ def _kroshu_arms() -> list[RobotSpec]:
     ]
 
 
+def _rosi_arms() -> list[RobotSpec]:
+    from rmot.compiler.robots.library_rosi import rosi_arms  # the arms of ROS-I's support packages
+
+    return rosi_arms()
+
+
 SPECS: dict[str, RobotSpec] = {
-    s.name: s for s in _abb_kuka() + _fanuc_yaskawa_staubli() + [_puma560()] + _ur() + _kroshu_arms()
+    s.name: s for s in _abb_kuka() + _fanuc_yaskawa_staubli() + [_puma560()] + _ur() + _kroshu_arms() + _rosi_arms()
 }

@@ -68,5 +68,5 @@ def _load_keyed(key: str) -> Robot:
             raise RobotError(f"model cannot be built: {exc}", codes.BAD_URDF) from None
     from rmot.compiler.robots.urdf import robot_from_urdf
 
-    path, base, tip = json.loads(key[len("urdf-chain:"):])
-    return robot_from_urdf(os.path.abspath(path), base=base, tip=tip)
+    path, base, tip, *maker = json.loads(key[len("urdf-chain:"):])  # maker: urdf(controller=), when given
+    return robot_from_urdf(os.path.abspath(path), base=base, tip=tip, controller=maker[0] if maker else None)

@@ -39,6 +39,7 @@ import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.model_spec import MAX_JOINTS, MODEL_PREFIX, ModelJointSpec, ModelSpec, model_key, spec_from_key
+from rmot.compiler.robots.controller import coupling_matrix, in_joint_values
 from rmot.compiler.robots.dh import DHRow, DHTable, build_model
 from rmot.compiler.robots.robot import LinkSolid, Robot
 
@@ -46,7 +47,11 @@ __all__ = ["MAX_JOINTS", "ModelJointSpec", "ModelSpec", "MODEL_PREFIX", "model_k
            "spec_from_key", "dh_table"]
 
 def dh_table(spec: ModelSpec) -> DHTable:
-    rows = tuple(DHRow(d=j.d, a=j.a, alpha=j.alpha, offset=j.theta, kind=j.kind) for j in spec.joints)
+    """The DH rows in the model variables u = C p (p the joint values; C from `pendant`):
+    θᵢ = theta + signᵢ·(pᵢ + p_c − zeroᵢ) is the offset theta − signᵢ·zeroᵢ plus uᵢ."""
+    pendant = spec.pendant or ((1.0, 0.0, 0),) * len(spec.joints)
+    rows = tuple(DHRow(d=j.d, a=j.a, alpha=j.alpha, offset=j.theta - p[0] * p[1], kind=j.kind)
+                 for j, p in zip(spec.joints, pendant))
     return DHTable(rows, modified=spec.modified)
 
 
@@ -66,27 +71,61 @@ def robot_from_model(spec: ModelSpec) -> Robot:
     limits = np.array([(j.lo, j.hi) for j in spec.joints], dtype=float)
     velocity = np.array([j.speed for j in spec.joints], dtype=float)
     accel = np.array([j.accel for j in spec.joints], dtype=float)
-    solids = _solids(model, limits, {g.joint for g in spec.solids}) + _given_solids(spec, link_frames)
+    coupling = None if not spec.pendant else coupling_matrix(tuple(p[0] for p in spec.pendant),
+                                                              tuple(p[2] for p in spec.pendant))
+    q0 = _zero_in_limits(limits) if coupling is None else coupling @ _zero_in_limits(limits)
+    solids = _solids(model, q0, {g.joint for g in spec.solids}) + _given_solids(spec, link_frames)
     common = dict(
         name=spec.name, vendor="cell model", model_name=spec.name, model=model, flange_frame=fid,
         joint_limits=limits, velocity_limits=velocity, accel_limits=accel, reach=0.0, solids=solids,
-        adjacent_pairs=_adjacent(model, solids, limits), source="model block in the cell",
-        dh_rows=dh_table(spec).rows, dh_modified=spec.modified,
+        adjacent_pairs=_adjacent(model, solids, q0), source="model block in the cell",
+        dh_rows=dh_table(spec).rows, dh_modified=spec.modified, controller=spec.controller,
+        conventions=_conventions(spec),
     )
-    probe = Robot(**common)
+    # the closed form and the branch names are derived on the model variables u = C p, then
+    # read back in joint values (p = C⁻¹ u); the probe has no coupling so u is its joint value
+    model_limits = limits if coupling is None else _model_limits(coupling, limits)
+    probe = Robot(**{**common, "joint_limits": model_limits})
     opw = opw_solver_for(probe) if len(spec.joints) == 6 else None
     if opw is not None:
         closed_form, branch_fn, rows = opw
-        robot = Robot(**common, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
+        if coupling is not None:
+            in_joints, branch_fn = in_joint_values(closed_form, branch_fn, coupling)
+            assert in_joints is not None
+            closed_form = in_joints
+        robot = Robot(**common, coupling=coupling, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
     else:
         chain = probe._chain
-        wrist_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits)
-        robot = Robot(**common, branch_fn=wrist_fn)
+        wrist_fn = spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, model_limits)
+        if wrist_fn is not None and coupling is not None:
+            wrist_fn = in_joint_values(None, wrist_fn, coupling)[1]
+        robot = Robot(**common, coupling=coupling, branch_fn=wrist_fn)
     robot.reach = _reach(robot)
     robot.rated_payload_kg = spec.payload_kg
     if all(j.mass is not None for j in spec.joints):
         _add_dynamics(robot, spec)
     return robot
+
+
+def _conventions(spec: ModelSpec) -> tuple[tuple[str, str], ...]:
+    """What the model declares about its controller (compiler/robots/controller.py), as text."""
+    if spec.controller is None:
+        return ()
+    pendant = spec.pendant or ((1.0, 0.0, 0),) * len(spec.joints)
+    signs = ", ".join(f"{s:+.0f}" for s, _, _ in pendant)
+    zeros = ", ".join(f"{z:g}" for _, z, _ in pendant)
+    coupled = [f"J{i} + J{c}" for i, (_, _, c) in enumerate(pendant, 1) if c]
+    return (("controller", spec.controller), ("base frame", "DH frame 0 (declared by `controller`)"),
+            ("flange frame", "the model's `flange` (declared by `controller`)"),
+            ("signs", f"pendant signs ({signs}); zeros ({zeros}) rad or m"),
+            ("coupling", "DH variable of " + ", ".join(coupled) if coupled else "none"))
+
+
+def _model_limits(coupling: np.ndarray, limits: np.ndarray) -> np.ndarray:
+    """The box of model variables u = C p over the joint-value box (the probe's sampling range)."""
+    lo = np.minimum(coupling, 0.0) @ limits[:, 1] + np.maximum(coupling, 0.0) @ limits[:, 0]
+    hi = np.maximum(coupling, 0.0) @ limits[:, 1] + np.minimum(coupling, 0.0) @ limits[:, 0]
+    return np.column_stack([lo, hi])
 
 
 def _add_dynamics(robot: Robot, spec: ModelSpec) -> None:
@@ -159,11 +198,11 @@ def _given_solids(spec: ModelSpec, link_frames: list[np.ndarray]) -> tuple[LinkS
     return tuple(out)
 
 
-def _solids(model, limits: np.ndarray, given: set[int] = frozenset()) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def,assignment]
+def _solids(model, q0: np.ndarray, given: set[int] = frozenset()) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def,assignment]
     """Per link i: a capsule along joint i's axis to the foot of the next joint origin (the DH
     d), then one from there to the next joint origin (the DH a); a stub along the axis where
-    both are zero. The base: a cylinder standing on z = 0 of DH frame 0."""
-    q0 = _zero_in_limits(limits)
+    both are zero. The base: a cylinder standing on z = 0 of DH frame 0. q0: the model
+    variables at which the solids are laid out (the joint values' zero, clipped into the range)."""
     pts, frames, _ = _joint_points(model, q0)
     total = float(sum(np.linalg.norm(pts[i + 1] - pts[i]) for i in range(len(pts) - 1))) + float(np.linalg.norm(pts[0]))
     r0 = min(max(0.05 * total, 0.015), 0.10)
@@ -211,10 +250,9 @@ def _segment_distance(a0: np.ndarray, a1: np.ndarray, b0: np.ndarray, b1: np.nda
     return float(np.min(np.linalg.norm(pa[:, None] - pb[None], axis=-1)))
 
 
-def _adjacent(model, solids: tuple[LinkSolid, ...], limits: np.ndarray) -> tuple[tuple[int, int], ...]:  # type: ignore[no-untyped-def]
+def _adjacent(model, solids: tuple[LinkSolid, ...], q0: np.ndarray) -> tuple[tuple[int, int], ...]:  # type: ignore[no-untyped-def]
     """Solids of the same or neighbouring joints (they meet at the joint between them), and
-    those whose bounding capsules overlap at the zero configuration (they touch by design)."""
-    q0 = _zero_in_limits(limits)
+    those whose bounding capsules overlap at the zero configuration q0 (they touch by design)."""
     _, frames, _ = _joint_points(model, q0)
     ends = [_bounding_segment(frames[s.joint_id] @ s.placement.matrix(), s.geometry) for s in solids]
     pairs = set()

@@ -61,7 +61,9 @@ class Robot:
     ir.Config of each of the 8 ik_batch rows, fixed per robot; None without a closed form),
     rated_payload_kg (the data sheet's rated payload, kg; None when unknown), sources
     ((quantity, source) pairs: where each number comes from), conventions ((topic, text)
-    pairs: base frame, flange frame, joint zero, signs, couplings).
+    pairs: base frame, flange frame, joint zero, signs, couplings), controller (the maker
+    whose pendant values the joint values are, as `controller.MAKERS` names it; "any" when the
+    cell vouches for every controller; None when nothing declares it: vendor targets refuse).
     """
 
     rated_payload_kg: float | None = None  # the rated payload (kg), where known
@@ -76,6 +78,7 @@ class Robot:
         has_inertia: bool = False, source: str = "", dh_rows: tuple[Any, ...] = (), dh_modified: bool = False,
         batch_branches: tuple[ir.Config, ...] | None = None, rated_payload_kg: float | None = None,
         sources: tuple[tuple[str, str], ...] = (), conventions: tuple[tuple[str, str], ...] = (),
+        controller: str | None = None,
     ) -> None:
         self.name, self.vendor, self.model_name, self.source = name, vendor, model_name, source
         self.model = model = NamedModel(model, model_name)
@@ -111,6 +114,7 @@ class Robot:
         self.batch_branches = batch_branches
         self.rated_payload_kg = None if rated_payload_kg is None else float(rated_payload_kg)
         self.sources, self.conventions = sources, conventions
+        self.controller = controller
 
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, dof={self.dof})"

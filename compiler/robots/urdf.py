@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import os
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -26,10 +27,12 @@ __all__ = ["robot_from_urdf", "urdf_links"]
 _FLANGE_NAMES = ("tool0", "flange", "ee_link")
 
 
-def robot_from_urdf(path: str, base: str | None = None, tip: str | None = None) -> Robot:
+def robot_from_urdf(path: str, base: str | None = None, tip: str | None = None, controller: str | None = None) -> Robot:
     """base/tip: the links bounding the arm (`urdf("f.urdf", base=, tip=)`); joints outside
     the chain between them (fingers, a rail before the base) are locked at 0 (within their
-    limits) and the base link's frame becomes the robot's base frame; the flange is the tip."""
+    limits) and the base link's frame becomes the robot's base frame; the flange is the tip.
+    controller: the maker whose pendant values the URDF joint values are, as ROS-Industrial's
+    driver passes them (compiler/robots/controller.py); None: undeclared."""
     if os.path.isdir(path):
         raise RobotError(f"'{path}' is a directory, not a URDF file", codes.BAD_URDF)
     if not os.path.isfile(path):
@@ -52,7 +55,7 @@ def robot_from_urdf(path: str, base: str | None = None, tip: str | None = None) 
     if model.nq == 0:
         raise RobotError(f"URDF '{path}' has no movable joint", codes.BAD_URDF)
     try:
-        robot = _robot(model, geoms, path, flange_name)
+        robot = _robot(model, geoms, path, flange_name, controller)
     except ValueError as exc:
         raise RobotError(f"URDF '{path}' is not a usable serial arm: {exc}", codes.BAD_URDF) from None
     return robot
@@ -76,10 +79,10 @@ def _flange_frame(model: pin.Model, first: str | None = None) -> int:
     return bodies[-1] if bodies else model.addFrame(pin.Frame("flange", last_joint, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
 
 
-def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: str | None = None) -> Robot:
+def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: str | None = None,
+           controller: str | None = None) -> Robot:
+    from rmot.compiler.robots.controller import in_joint_values
     from rmot.compiler.robots.kinematic_chain import chain_of
-
-    from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
 
     chain = chain_of(model)  # raises ValueError for branched chains and multi-dof joints
     fid = _flange_frame(model, flange_name)
@@ -89,15 +92,54 @@ def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: s
     velocity = np.where(model.velocityLimit > 0, model.velocityLimit, 1.0)
     solids = tuple(s for s in (_solid(g) for g in geoms.geometryObjects) if s is not None)
     name = os.path.splitext(os.path.basename(path))[0]
-    robot = Robot(
+    coupling, conventions = _controller_coupling(controller, model.nq)
+    common = dict(
         name=name, vendor="URDF", model_name=model.name or name, model=model, flange_frame=fid,
         joint_limits=limits, velocity_limits=velocity, accel_limits=4.0 * velocity, reach=0.0,
         solids=solids, adjacent_pairs=_adjacent(solids), has_inertia=any(i.mass > 0 for i in model.inertias[1:]),
-        source=path,
-        branch_fn=spherical_wrist_branch_fn(model, chain.axes, chain.prismatic, limits),
+        source=path, controller=controller, conventions=conventions,
     )
+    closed_form, branch_fn, rows = _kinematics(Robot(**common), chain)
+    # Fanuc: the URDF's joint_3 is J2 + J3; its limits stay the joint limits, as ROS-I's fanuc
+    # files give the data sheet's J3 range there; the closed form and branch names read the
+    # URDF joints and are turned into pendant values
+    if coupling is not None and branch_fn is not None:
+        closed_form, branch_fn = in_joint_values(closed_form, branch_fn, coupling)
+    robot = Robot(**common, coupling=coupling, closed_form=closed_form, branch_fn=branch_fn, batch_branches=rows)
     robot.reach = _reach(robot)
     return robot
+
+
+def _kinematics(probe: Robot, chain: Any) -> tuple[Any, Any, Any]:
+    """(closed form, branch function, batch rows) of a URDF arm: the OPW closed form when its
+    geometry is ortho-parallel with a spherical wrist, proven by FK at random configurations
+    (model_opw, as for a cell's model), else the geometric branch names of a spherical wrist
+    (wrist_branches) with the numeric IK, else none."""
+    from rmot.compiler.robots.model_opw import opw_solver_for
+    from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn
+
+    opw = opw_solver_for(probe) if probe.dof == 6 and not np.any(chain.prismatic) else None
+    if opw is not None:
+        return opw
+    return None, spherical_wrist_branch_fn(probe.model, chain.axes, chain.prismatic, probe.joint_limits), None
+
+
+def _controller_coupling(controller: str | None, dof: int) -> tuple[np.ndarray | None, tuple[tuple[str, str], ...]]:
+    """The joint coupling and the conventions a URDF arm declared for `controller` has (ROS-I
+    drivers pass the pendant values one to one; Fanuc's fanuc_driver J23_factor = 1)."""
+    from rmot.compiler.robots.controller import ANY, MAKERS, fanuc_urdf_coupling
+
+    if controller is None:
+        return None, ()
+    if controller == ANY:
+        return None, (("controller", "any: the URDF's joint values and frames as they are (declared by the cell)"),)
+    frames = (("base frame", "the URDF link at base= (ROS-Industrial `base`: the controller's base frame)"),
+              ("flange frame", "the URDF link at tip= (ROS-Industrial `tool0`: the controller's flange)"))
+    if MAKERS[controller] == "FANUC" and dof == 6:
+        return fanuc_urdf_coupling(dof), frames + (
+            ("signs", "teach pendant values; the URDF joints one to one but J3"),
+            ("coupling", "URDF joint_3 = J2 + J3 (ros-industrial/fanuc fanuc_driver linkage_transform, J23_factor = 1)"))
+    return None, frames + (("signs", f"{MAKERS[controller]} pendant values one to one (ROS-Industrial driver)"),)
 
 
 def _solid(g: pin.GeometryObject) -> LinkSolid | None:

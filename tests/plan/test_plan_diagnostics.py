@@ -212,14 +212,15 @@ def test_untimeable_chain_gets_exact_stops_not_dropped(monkeypatch) -> None:  # 
 
 
 def test_codes_are_registered_in_the_planner_range() -> None:
-    """Every planner code is E220-E299 or W220-W299 (or E172-E179, issue #15's joint turns, a
-    range the planner shares with the front end), with a kebab-case name."""
+    """Every planner code is E220-E299 or W220-W299 (or E172-E179, joint turns, a range the
+    planner shares with the front end, and E188, config(...) on an arm without branch names,
+    from the robots-and-CAD range), with a kebab-case name."""
     from rmot.compiler.plan import codes
     from rmot.lang.diagnostics import Code
 
     found = [getattr(codes, n) for n in codes.__all__]
     assert all(isinstance(c, Code) for c in found)
-    assert all(c.id[0] in "EW" and (220 <= int(c.id[1:]) <= 299 or c.id in ("E172", "E173", "E174"))
+    assert all(c.id[0] in "EW" and (220 <= int(c.id[1:]) <= 299 or c.id in ("E172", "E173", "E174", "E188"))
                for c in found)
     assert all(c.name == c.name.lower() and " " not in c.name for c in found)
     assert len({c.id for c in found}) == len(found)

@@ -22,7 +22,10 @@ ADDED = (  # issue 12: each with its independent reference in reference_arms.py
     "kuka_kr8_r1440_2_arc_hw", "kuka_kr150_r3100_2", "kuka_kr240_r2900_2", "kuka_kr300_r2700_2",
     "kuka_kr500_r2800_2", "ur16e", "ur3", "ur5", "ur10",
 )
-NAMES = ORIGINAL + ADDED
+ROSI = (  # one arm per brand from ROS-I's support packages (compiler/robots/library_rosi.py)
+    "abb_irb2400", "fanuc_m16ib20", "yaskawa_mh12", "staubli_tx60l",
+)
+NAMES = ORIGINAL + ADDED + ROSI
 
 
 def random_q(robot: Robot, n: int, seed: int = 0) -> np.ndarray:
@@ -35,7 +38,7 @@ def rot_y(deg: float) -> np.ndarray:
 
 
 def test_library_names_are_exactly_the_contract():
-    """list_robots() is the 33 contract names, sorted."""
+    """list_robots() is the contract names (33, and the ROS-I batch), sorted."""
     assert list_robots() == tuple(sorted(NAMES))
 
 
