@@ -124,17 +124,17 @@ def controller_refusals(target: str, cell: ir.Cell) -> tuple[Diagnostic, ...]:
     from rmot.backends import codes as backend_codes
     from rmot.backends.controller_data import TARGET_BRANDS
     from rmot.compiler import ir
-    from rmot.compiler.robots import RobotError, load_robot
     from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.compiler.robots.controller import ANY, MAKERS
 
     brand = TARGET_BRANDS.get(target)
-    if brand is None:
+    own_models = [r for r in cell.robots if r.source.kind is not ir.RobotSourceKind.LIBRARY]
+    if brand is None or not own_models:
         return ()
+    # the robot package loads pinocchio: only for a cell that has its own arms
+    from rmot.compiler.robots import RobotError, load_robot
+    from rmot.compiler.robots.controller import ANY, MAKERS
     out = []
-    for robot in cell.robots:
-        if robot.source.kind is ir.RobotSourceKind.LIBRARY:
-            continue
+    for robot in own_models:
         try:
             declared = load_robot(robot.source.ref).controller
         except RobotError:  # reported by the front end
