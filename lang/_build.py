@@ -374,7 +374,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         value = c[1]
         if isinstance(value, Token):  # tool/frame NAME, or the FINE keyword
             value = None if value.type == "FINE" else self._ident(value)
-        return _Setting(kind, value, self._span(c))
+        return _Setting(ast.SettingKind(kind), value, self._span(c))
 
     def tool_setting(self, c: list[Any]) -> ast.Setting:
         return self._setting("tool", c)
@@ -402,7 +402,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     mod_frame = frame_setting
 
     def mod_config(self, c: list[Any]) -> ast.Setting:
-        return _Setting("config", c[2] or (), self._span(c))
+        return _Setting(ast.SettingKind.CONFIG, c[2] or (), self._span(c))
 
     def mod_time(self, c: list[Any]) -> ast.Setting:
         return self._setting("time", c)
@@ -536,22 +536,22 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return _Call(self._ident(c[0]), c[2] or (), self._span(c))
 
     def model_speed(self, c: list[Any]) -> ast.Setting:
-        return _Setting("speed", c[1], self._span(c))
+        return _Setting(ast.SettingKind.SPEED, c[1], self._span(c))
 
     def model_accel(self, c: list[Any]) -> ast.Setting:
-        return _Setting("accel", c[1], self._span(c))
+        return _Setting(ast.SettingKind.ACCEL, c[1], self._span(c))
 
     def model_torque(self, c: list[Any]) -> ast.Setting:
-        return _Setting("torque", c[1], self._span(c))
+        return _Setting(ast.SettingKind.TORQUE, c[1], self._span(c))
 
     def model_mass(self, c: list[Any]) -> ast.Setting:
-        return _Setting("mass", c[1], self._span(c))
+        return _Setting(ast.SettingKind.MASS, c[1], self._span(c))
 
     def model_flange(self, c: list[Any]) -> ast.Setting:
-        return _Setting("flange", c[1], self._span(c))
+        return _Setting(ast.SettingKind.FLANGE, c[1], self._span(c))
 
     def model_payload(self, c: list[Any]) -> ast.Setting:
-        return _Setting("payload", c[1], self._span(c))
+        return _Setting(ast.SettingKind.PAYLOAD, c[1], self._span(c))
 
     # -- parts (issue #14)
     def part_decl(self, c: list[Any]) -> ast.PartDecl:

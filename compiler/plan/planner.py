@@ -9,6 +9,7 @@ from rmot.compiler.plan import codes
 from rmot.compiler.plan.sync import align, hold_variants, sample
 from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
+from rmot.compiler.plan import torque
 from rmot.compiler.plan_types import Plan, TaskPlan, Variant
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.compiler.plan.robot_model import RobotModel
@@ -100,14 +101,8 @@ def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
 def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program) -> TaskDraft:
     """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
     robot has no torque ratings), the payload as the verification takes it."""
-    from rmot.compiler.plan.torque import TORQUE, task_payload, torque_limits
-
-    limits = torque_limits(robot, *task_payload(task, program.cell.parts))
-    token = TORQUE.set(limits)
-    try:
-        return build_task(robot, task, q0, lone=len(program.tasks) == 1)
-    finally:
-        TORQUE.reset(token)
+    limits = torque.torque_limits(robot, *torque.task_payload(task, program.cell.parts))
+    return build_task(robot, task, q0, lone=len(program.tasks) == 1, torque=limits)
 
 
 def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]) -> RobotModel | None:

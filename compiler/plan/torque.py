@@ -32,23 +32,17 @@ motion the motors already manage plans exactly as before.
 
 from __future__ import annotations
 
-from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from rmot.compiler import ir
 
-__all__ = ["CHECK_STEP", "TORQUE", "TorqueLimits", "exceeds", "task_payload", "torque_limits"]
+__all__ = ["CHECK_STEP", "TorqueLimits", "exceeds", "task_payload", "torque_limits"]
 
 CHECK_STEP = (
     0.002  # s: the torque of a timed chain is sampled this often to decide whether it binds
 )
-
-# The torque limits of the task being planned (set by planner.plan_program around a task's
-# timeline, read by chain.py): kept out of the timeline builder's signature.
-TORQUE: ContextVar[TorqueLimits | None] = ContextVar("rmot_torque_limits", default=None)
-
 
 @dataclass(frozen=True, eq=False)
 class TorqueLimits:
