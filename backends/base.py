@@ -293,7 +293,7 @@ class Backend:
     def __init__(self, *, allow_findings_header: bool = False, write_frames: bool = False,
                  unroll: bool = False) -> None:
         self.findings_header = allow_findings_header
-        # `--unroll` (issue #15): every `for` loop written iteration by iteration
+        # `--unroll`: every `for` loop written iteration by iteration
         self.unroll = unroll
         # `--write-frames`: numbered tools and frames are also written into the controller's
         # stored data (Fanuc UTOOL/UFRAME, KUKA TOOL_DATA/BASE_DATA); off, they are only selected
@@ -316,7 +316,7 @@ class Backend:
             self.check_brand(ctx.robot)
             for fname, text in self.emit_task(ctx).items():
                 first = owner.setdefault(fname.casefold(), task_plan.task.name)
-                if first != task_plan.task.name:  # issue #20: names equal after the vendor's cut or case folding
+                if first != task_plan.task.name:  # names equal after the vendor's cut or case folding
                     if (first, task_plan.task.name) not in clashed:
                         clashed.add((first, task_plan.task.name))
                         self._emission.diagnostics.append(_name_clash(self, fname, first, task_plan))

@@ -146,7 +146,7 @@ class KrlContext(TaskContext):
     names: NameTable
     routine_of: dict[int, str]
     module: _Module
-    loops: LoopState = field(default_factory=LoopState)  # issue #15: the vendor loop being written
+    loops: LoopState = field(default_factory=LoopState)  # the vendor loop being written
 
 
 class KrlBackend(Backend):
@@ -301,7 +301,7 @@ class KrlBackend(Backend):
         else:
             tname = ctx.module.data.add(node.tool.name, f"FRAME:{{{frame_text(node.tool.tcp)}}}")
             lname = ctx.module.data.add(f"{node.tool.name}_load", f"LOAD:{load_text(node.tool)}")
-            held = _held_load_name(node, ctx)  # parts held (issue #14): tool + parts, see _part_load
+            held = _held_load_name(node, ctx)  # parts held: tool + parts, see _part_load
             if held is not None:
                 lname = held
             lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
@@ -334,7 +334,7 @@ class KrlBackend(Backend):
                    hint: str | None = None) -> str:
         assert q is not None
         branch = self.branch_or_default(branch, node)
-        far = turns.beyond_one_turn(q, range(min(6, len(q))))  # Turn is a sign (issue #15)
+        far = turns.beyond_one_turn(q, range(min(6, len(q))))  # Turn is a sign
         if far and node.kind is ir.MotionKind.JOINT:  # LIN/CIRC run on from the current joints
             self.unsupported(codes.TURN_NOT_EXPRESSIBLE,
                              turns.message(q, far, "KRL's Turn (the sign of each axis)"), node.span)
@@ -574,7 +574,7 @@ def _held_load_name(node: ir.Move, ctx: KrlContext) -> str | None:
     return _load_data(event, ctx)
 
 
-# ----------------------------------------------------------------- runtime logic (issue #15)
+# ----------------------------------------------------------------- runtime logic
 #
 # Sources: KUKA System Software 8.x "Operating and Programming Instructions for System
 # Integrators" (KSS 8.x), chapter "Programming for user group Expert: KRL syntax":

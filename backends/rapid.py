@@ -183,7 +183,7 @@ class RapidContext(TaskContext):
     routines: dict[str, list[str]] = field(default_factory=dict)
     routine_of: dict[int, str] = field(default_factory=dict)
     massless_tools: set[str] = field(default_factory=set)
-    loops: LoopState = field(default_factory=LoopState)  # issue #15: the vendor loop being written
+    loops: LoopState = field(default_factory=LoopState)  # the vendor loop being written
 
 
 class RapidBackend(Backend):
@@ -469,7 +469,7 @@ class RapidBackend(Backend):
         return self._routine_call(node, ctx)
 
 
-# ----------------------------------------------------------------- runtime logic (issue #15)
+# ----------------------------------------------------------------- runtime logic
 #
 # Sources (ABB "Technical reference manual - RAPID Instructions, Functions and Data types",
 # 3HAC050917-001, and "Technical reference manual - RAPID overview" 3HAC050947-001):

@@ -128,8 +128,8 @@ class UrContext(TaskContext):
     routine_defs: list[str] = field(default_factory=list)
     defined: set[str] = field(default_factory=set)  # routine names already in routine_defs
     threads: dict[str, list[str]] = field(default_factory=dict)
-    names: NameTable | None = None  # issue #15: variables and loop counters
-    loops: LoopState = field(default_factory=LoopState)  # issue #15: the vendor loop being written
+    names: NameTable | None = None  # variables and loop counters
+    loops: LoopState = field(default_factory=LoopState)  # the vendor loop being written
 
 
 class UrScriptBackend(Backend):
@@ -152,7 +152,7 @@ class UrScriptBackend(Backend):
         main = self.block(body, ctx)
         self.extend(names.diagnostics)
         lines = self.header(ctx) + [f"def {prog}():"]
-        lines += self.indent(ctx.loops.decls, self.INDENT)  # globals and input domains (issue #15)
+        lines += self.indent(ctx.loops.decls, self.INDENT)  # globals and input domains
         for thread_lines in ctx.threads.values():
             lines += self.indent(thread_lines, self.INDENT)
         lines += self.indent(ctx.routine_defs, self.INDENT)
@@ -439,7 +439,7 @@ class UrScriptBackend(Backend):
         return self._routine_call(node, ctx)
 
 
-# ----------------------------------------------------------------- runtime logic (issue #15)
+# ----------------------------------------------------------------- runtime logic
 #
 # Sources: Universal Robots, "The URScript Programming Language" (e-Series, PolyScope 5.x):
 #   * variables: `global NAME = value` at the top of the program makes NAME visible in every

@@ -31,7 +31,7 @@ KEYWORDS = frozenset({
     "repeat", "if", "else", "proc", "return", "const", "use", "import", "cell", "program",
     "task", "sync", "native", "on", "off", "config", "at", "robot", "fixture", "io",
     "joint_speed", "joints", "time",
-    "var", "while", "and", "or", "not",  # issue #15 (`stop` stays a name: weld_seam's target)
+    "var", "while", "and", "or", "not",  # runtime logic (`stop` stays a name: weld_seam's target)
 })
 # keywords that start no statement yet, kept for the language's future (see reserved_statement)
 RESERVED = {"return": "procs end at their closing brace"}
@@ -492,7 +492,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         last = num if unit is None else unit
         span = _tokens_span(self.file, num, last)
         value = float(num)
-        if value == float("inf"):  # `1e999`: refused where written (issue #20); 0.0 keeps the tree well-typed
+        if value == float("inf"):  # `1e999`: refused where written; 0.0 keeps the tree well-typed
             self.diagnostics.append(Diagnostic(codes.NOT_FINITE_LITERAL, Severity.ERROR, "number must fit a 64-bit "
                                                f"float, at most about 1.8e308 (got {str(num)[:40]})", span))
             value = 0.0
@@ -553,7 +553,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def model_payload(self, c: list[Any]) -> ast.Setting:
         return _Setting(ast.SettingKind.PAYLOAD, c[1], self._span(c))
 
-    # -- parts (issue #14)
+    # -- parts
     def part_decl(self, c: list[Any]) -> ast.PartDecl:
         opts = dict(c[4:])
         span = self._span([*c[:4], *(value for _, value in c[4:])])
@@ -571,7 +571,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def detach(self, c: list[Any]) -> ast.AttachStmt:
         return ast.AttachStmt(self._ident(c[1]), False, self._span(c))
 
-    # -- runtime logic (issue #15)
+    # -- runtime logic
     def var_decl(self, c: list[Any]) -> ast.VarDecl:
         type_ = self._ident(c[3]) if c[3] is not None else None
         return _VarDecl(self._ident(c[1], "variable"), type_, c[5], self._span(c))

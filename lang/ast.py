@@ -332,7 +332,7 @@ class WaitUntil:
     condition: Condition | RtCond
     timeout: Expr | None
     span: Span = _span()
-    on_timeout: tuple[Stmt, ...] | None = None  # `timeout T else { ... }` (issue #15)
+    on_timeout: tuple[Stmt, ...] | None = None  # `timeout T else { ... }`
 
 
 @record(slots=True)
@@ -381,7 +381,7 @@ class CallStmt:
 
 @record(slots=True)
 class PartDecl:
-    """`part NAME = GEOMETRY [at POSE] [mass M]`: a movable object of the cell (issue #14)."""
+    """`part NAME = GEOMETRY [at POSE] [mass M]`: a movable object of the cell."""
 
     name: Ident
     geometry: Geometry
@@ -442,7 +442,7 @@ __all__ += ["ModelDecl", "ModelJoint"]
 Stmt = Union[Stmt, ModelDecl]  # type: ignore[misc]
 
 
-# ------------------------------------------------------------------ runtime logic (issue #15)
+# ------------------------------------------------------------------ runtime logic
 
 
 @record(slots=True)

@@ -115,7 +115,7 @@ def _mesh_shapes(mesh: MeshData) -> tuple[object, object]:
         bvh.buildConvexHull(True, "Qt")
         return bvh.convex, bvh
     # A flat mesh (one triangle, a plane, fewer than 4 points) has no volume and coal's hull
-    # raises on it (issue #20, found by `make fuzz`): its hull is taken of the points and
+    # raises on it (found by `make fuzz`): its hull is taken of the points and
     # copies of them 1 um along the plane's normal, a sheet one micrometre thick.
     pts = np.asarray(mesh.vertices, dtype=np.float64)
     centred = pts - pts.mean(axis=0)

@@ -93,7 +93,7 @@ class Scene:
 
         Computed POSE_CHUNK samples at a time into the result arrays, so the robot's
         intermediate frames (all joints, all solids: several times the result) are held for
-        one chunk only (issue 18: 2000 moves peaked at 600 MB here). Every sample's pose is
+        one chunk only (2000 moves peaked at 600 MB here). Every sample's pose is
         the same product either way, the same floats; the first chunk is at least the FK
         kernel's compile threshold, so it takes the same (compiled or interpreted) form as
         one call for all samples would."""

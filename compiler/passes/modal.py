@@ -8,7 +8,7 @@ Choices (LANGUAGE.md is silent; what RAPID/KRL/TP programmers expect):
     acceleration, used by joint moves): `accel 50 %`.
   * `speed` takes a TCP speed (mm/s, m/s), used by linear and circular moves, or a ratio
     (share of each joint's maximum speed, used by joint moves): `speed 20 %` is exactly
-    `joint_speed 20 %`, as a setting or a move's modifier (issue #15). A modifier that the move
+    `joint_speed 20 %`, as a setting or a move's modifier. A modifier that the move
     it is on does not use warns: a TCP speed on a joint move W170, a ratio on a linear or
     circular move W171 (speed_modifier_warnings).
   * Settings are scoped to their block: a setting inside a proc body, a loop body or an if

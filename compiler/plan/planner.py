@@ -49,7 +49,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     for draft in drafts.values():
         hold_variants(draft)
     too_long = _too_many_samples(program, drafts, step)
-    if too_long:  # refused before sampling: the work is bounded before it is done (issue #20)
+    if too_long:  # refused before sampling: the work is bounded before it is done
         diagnostics.extend(too_long)
         diagnostics.sort(key=_diagnostic_order)
         return Plan(program, (), step, tuple(diagnostics))
@@ -66,7 +66,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
 # renderer's frames all scale with it. Measured: a 280 s program checks in 2.2 s and 0.49 GB;
 # a 967 s task took 1.2 GB and 28 s on a loaded machine, and the CSV and JSON backends format
 # every sample (about 0.1 ms each). 900 s covers a full pallet or a long seam (a 1000-move
-# pick-and-place plans to 294 s) and keeps a compile under 2 GB (issue #20; first set at 300 s,
+# pick-and-place plans to 294 s) and keeps a compile under 2 GB (first set at 300 s,
 # raised when that refused programs of realistic length).
 MAX_SAMPLES = 225_000
 

@@ -102,7 +102,7 @@ class _Builder:
         self.chain: list[Segment] = []
         self.events: list[tuple[ir.Instr, int]] = []
         self.pending: list[tuple[Finding, int]] = []  # warnings of chain moves, by chain index
-        self.stopped = False  # a `stop` ended this path (issue #15): nothing after it is planned
+        self.stopped = False  # a `stop` ended this path: nothing after it is planned
         self.tool: str | None = None  # the tool of the last move, and the parts held: with q, the
         self.held: tuple[str, ...] = ()  # state a while's iteration must end in to be proved
         self.paths: dict[int, tuple] = {}  # type: ignore[type-arg]  # uid -> loop iterations
@@ -252,7 +252,7 @@ class _Builder:
         )
         self.draft.continuations.append((index, n_if))
 
-    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # ------------------------------------------------------------------ runtime logic
     def _wait_branch(
         self, instr: ir.WaitInput | ir.WaitCondition, rest: tuple[tuple[ir.Instr, ...], ...]
     ) -> None:
@@ -371,7 +371,7 @@ _Rest = tuple[tuple[ir.Instr, ...], ...]
 
 
 def _plan_loop(b: _Builder, instr: ir.Loop, after: _Rest) -> None:
-    """Every iteration in order (issue #15), each continued by the later ones."""
+    """Every iteration in order, each continued by the later ones."""
     for k, it in enumerate(instr.iterations):
         b.walk(it.body, tuple(x.body for x in instr.iterations[k + 1:]) + after)
 

@@ -1,4 +1,4 @@
-"""Joint torque limits for the timing (issue #16): a heavy payload slows the motion rather than
+"""Joint torque limits for the timing: a heavy payload slows the motion rather than
 exceeding the motors.
 
 Along a path q(s) timed by x = ds/dt^2 and u = d2s/dt2 the joint torques are affine in (u, x):
@@ -148,7 +148,7 @@ def flange_in_last_joint(robot: Any) -> np.ndarray:
 
 
 # samples per block of `exceeds`: the inverse dynamics of a whole blended chain at once held
-# ~1 kB a sample (a 2000-move chain: 350,000 samples, 380 MB; issue 18)
+# ~1 kB a sample (a 2000-move chain: 350,000 samples, 380 MB)
 EXCEEDS_CHUNK = 16_384
 
 

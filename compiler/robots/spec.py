@@ -48,7 +48,7 @@ class RobotSpec:
     solid_pose: tuple[float, ...] = ()  # controller q (rad) at which `segments` are given
     extra_adjacent: tuple[tuple[str, str], ...] = ()  # solid-name pairs that touch by design
     notes: str = ""
-    # --- provenance and dynamics (issue 12) ---
+    # --- provenance and dynamics ---
     rated_payload_kg: float | None = None  # the data sheet's rated payload
     link_mass_kg: tuple[float, ...] = ()  # per moving link 1..n; () = no inertias
     effort_nm: tuple[float, ...] = ()  # per joint torque limit; () = estimated by `dynamics`

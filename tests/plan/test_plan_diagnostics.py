@@ -212,7 +212,7 @@ def test_untimeable_chain_gets_exact_stops_not_dropped(monkeypatch) -> None:  # 
 
 
 def test_codes_are_registered_in_the_planner_range() -> None:
-    """Every planner code is E220-E299 or W220-W299 (or E172-E179, issue #15's joint turns, a
+    """Every planner code is E220-E299 or W220-W299 (or E172-E179, the joint turns, a
     range the planner shares with the front end), with a kebab-case name."""
     from rmot.compiler.plan import codes
     from rmot.lang.diagnostics import Code
