@@ -8,12 +8,16 @@ the caller needs is the distance confirmed on the triangles (BVH collision, then
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import coal
 import numpy as np
 
 from rmot.compiler import ir
 from rmot.sim.meshio import MeshData, is_flat
-from rmot.sim.scene import Body
+
+if TYPE_CHECKING:  # for annotations only: sim/scene imports this module
+    from rmot.sim.scene import Body
 
 __all__ = ["ExactPair", "coal_shapes", "exact_distance"]
 

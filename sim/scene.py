@@ -173,7 +173,7 @@ def _always_touching(entry: RobotEntry, bodies: list[Body]) -> frozenset[frozens
     within the limits (as MoveIt's setup assistant disables "always in collision" pairs):
     they overlap by construction (e.g. a forearm capsule reaching into a spherical wrist's
     flange), so checking them would only report the model, never the program."""
-    from rmot.sim.exact import exact_distance
+    from rmot.sim.exact import exact_distance  # coal: loaded when a cell is checked
 
     robot = entry.robot
     lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]
