@@ -24,13 +24,15 @@ demo: $(STAMP)
 	$(BIN)/rmot render $(EXAMPLE) -o $(OUT)/pick_place.png
 	@echo "demo: vendor programs in $(OUT)/pick_place/, picture in $(OUT)/pick_place.png"
 
-# lint and types first (settings in pyproject.toml, how to fix: lint19.md), then the tests
+# lint, types and the layer contract first (settings in pyproject.toml, how to fix:
+# lint19.md), then the tests
 test: lint
 	$(BIN)/python -m pytest -q
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 
 # Mutation testing, never part of `make test`: mutmut over backends/base.py,
 # lang/diagnostics.py and compiler/plan/timing.py, each with only its own test files
