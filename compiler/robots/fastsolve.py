@@ -21,7 +21,7 @@ back to `ik.solve` whole (return -1):
 - singular: the smallest singular value of the reach-scaled Jacobian is at least
   |det J| / |J|_F^(n-1) (every singular value is at most the Frobenius norm); when that bound
   is above twice SINGULAR_SIGMA the pose is not singular, else the caller asks pinocchio and
-  the SVD exactly as `ik._is_singular` does (flag 1).
+  the SVD exactly as `ik_result.is_singular` does (flag 1).
 
 More than _SORTED_ROWS solutions (joints beyond ±180°: a UR arm has 512 per pose): the pass
 checks everything above and finds the nearest solution (the first row of the stable sort, by
@@ -43,14 +43,14 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler.jit import Kernel
-from rmot.compiler.robots import fastik, ik
+from rmot.compiler.robots import fastik, ik_result
 from rmot.compiler.robots.fastfk import FK_ERROR_ROWS, _fk_error_rows
 from rmot.compiler.robots.fastik import _opw_one, _ur_one
 from rmot.compiler.robots.ik_rows import BranchRows, JointRows, Lazy
 
 __all__ = ["SOLVE_ONE"]
 
-_TOLS = (ik.POS_TOL, ik.ROT_TOL, ik.SINGULAR_SIGMA)
+_TOLS = (ik_result.POS_TOL, ik_result.ROT_TOL, ik_result.SINGULAR_SIGMA)
 
 _TWO_PI = 2 * math.pi
 _SORTED_ROWS = 48  # above: a result's rows are made and sorted only when asked for
@@ -607,10 +607,10 @@ class FastSolver:
             lazy = Lazy(_make_rows, saved, dof, self.gcols, m)
             sols = JointRows(None, lazy, nearest, m)
             brs = BranchRows(None, None, self.configs, lazy, self.configs[code], m)
-        if flag and ik._is_singular(robot, sols[0]):
-            return ik.result(ik.IkStatus.SINGULAR, sols, brs,
-                             "the pose lies on a kinematic singularity")
-        return ik.result(ik.IkStatus.OK, sols, brs)
+        if flag and ik_result.is_singular(robot, sols[0]):
+            return ik_result.result(ik_result.IkStatus.SINGULAR, sols, brs,
+                                    "the pose lies on a kinematic singularity")
+        return ik_result.result(ik_result.IkStatus.OK, sols, brs)
 
 
 def _make_rows(saved: np.ndarray, dof: int, gcols: int, m: int) -> tuple[np.ndarray, np.ndarray]:

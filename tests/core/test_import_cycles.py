@@ -21,9 +21,6 @@ KNOWN = {
     # ir.walk delegates to ir_tree.walk, and ir_tree reads ir's classes: the 65 callers of
     # ir.walk (backends, sim, tests) must call ir_tree.walk instead, then ir.walk goes.
     frozenset({"rmot.compiler.ir", "rmot.compiler.ir_tree"}),
-    # fastsolve (numba, loaded on first use by ik) builds its IkResult with ik.result: it
-    # must hand back the rows and ik build the result.
-    frozenset({"rmot.compiler.robots.fastsolve", "rmot.compiler.robots.ik"}),
     # the two caches of `rmot check` / `rmot compile` clear each other's entries.
     frozenset({"rmot.compiler.cli.load_cache", "rmot.compiler.cli.verify_cache"}),
 }
