@@ -168,7 +168,7 @@ def _fast_solver(robot) -> Any:  # type: ignore[no-untyped-def]
     closed_form = robot._closed_form
     if not isinstance(closed_form, ClosedForm) or not closed_form.branch:
         return False
-    from rmot.compiler.robots.fastsolve import FastSolver  # numba-compiled: loaded on first use
+    from rmot.compiler.robots.fast_solver import FastSolver  # numba-compiled: loaded on first use
 
     solver = FastSolver(robot, closed_form)
     return solver if solver.usable else False
