@@ -23,6 +23,7 @@ import numpy as np
 
 from rmot.compiler import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.sim.report import GUARANTEE
 
 __all__ = ["ProgramResult", "breakdown", "render_report"]
 
@@ -175,8 +176,6 @@ def _section(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
 
 def _summary(k: int, result: ProgramResult) -> list[str]:
     """The program's heading, verdict, cycle time and (when planned) the model's assumptions."""
-    from rmot.sim.report import GUARANTEE
-
     errors = [d for d in result.diagnostics if d.severity is Severity.ERROR]
     warnings = [d for d in result.diagnostics if d.severity is Severity.WARNING]
     ok = result.plan is not None and not errors
