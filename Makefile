@@ -24,15 +24,17 @@ demo: $(STAMP)
 	$(BIN)/rmot render $(EXAMPLE) -o $(OUT)/pick_place.png
 	@echo "demo: vendor programs in $(OUT)/pick_place/, picture in $(OUT)/pick_place.png"
 
-# lint and types first (issue #19; settings in pyproject.toml, how to fix: lint19.md), then the tests
+# lint, types and the layer contract first (settings in pyproject.toml, how to fix:
+# lint19.md), then the tests
 test: lint
 	$(BIN)/python -m pytest -q
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/mypy
+	$(BIN)/lint-imports
 
-# Mutation testing (issue #19), never part of `make test`: mutmut over backends/base.py,
+# Mutation testing, never part of `make test`: mutmut over backends/base.py,
 # lang/diagnostics.py and compiler/plan/timing.py, each with only its own test files
 # (tests/mutation/mutate.py; MUTATE=base|diagnostics|timing for one). Prints each score.
 MUTATE ?= all
@@ -45,7 +47,7 @@ bench: $(STAMP)
 	$(BIN)/python -m pip install --quiet -e '.[bench]'
 	$(BIN)/python -m pytest tests/benchmarks -q -p no:cacheprovider -o python_files='bench_*.py test_*.py' -o addopts='' --benchmark-columns=median,iqr,rounds
 
-# Fuzzing (issue #20): FUZZ_N generated projects (tests/robust/gen.py) through the whole
+# Fuzzing: FUZZ_N generated projects (tests/robust/gen.py) through the whole
 # pipeline, each under a 2 GB memory cap and a 30 s limit in a worker process; counts of
 # tracebacks / hangs / memory / crashes go to stdout and $(FUZZ_REPORT). `make test` runs a
 # small Hypothesis budget of the same generator (tests/robust/test_fuzz.py).

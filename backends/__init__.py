@@ -7,6 +7,14 @@ others.
 
     from rmot.backends import BACKENDS
     result = BACKENDS["rapid"]().emit(plan)      # EmitResult(files, diagnostics)
+
+Where things are: base.py (the Backend class: EMIT and MOVES tables, the class flags
+PRINTS_LOOPS and RUNTIME_CONDITIONS, the defaults every vendor starts from), one module per
+vendor (rapid, krl, fanuc_tp, urscript, inform, val3; neutral for CSV/JSON), and what they
+share: conventions (number and orientation formats), names (legal identifiers), lowering and
+handshake (IR -> IR transforms: splitting, `sync` as I/O), loops and runtime (vendor loops,
+runtime expressions), part_load (the load while parts are held), turns, controller_data,
+safe_text, codes. A backend reads the IR and the Plan only (pyproject's layer contract).
 """
 
 from __future__ import annotations

@@ -16,7 +16,7 @@ __all__ = [
     "NAME_CHANGED", "NAME_CLASH", "SPEED_ROUNDED", "ZONE_ROUNDED", "TIMEOUT_LOWERED",
     "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED", "SYNC_OUTPUT_LEFT_ON",
     "TIME_ROUNDED", "MASS_RAISED", "PAYLOAD_NOT_EXPRESSED",
-    # issue 13 (vendor programs that load): E410-E419 / W414-W419
+    # vendor programs that load on the controller: E410-E419 / W414-W419
     "RESERVED_RENAMED", "OTHER_BRAND", "STORED_DATA_WRITTEN", "LIMIT_CLAMPED", "NUMBER_OUT_OF_RANGE",
 ]
 
@@ -50,7 +50,7 @@ SYNC_OUTPUT_LEFT_ON = Code("W410", "sync-output-left-on",
 PAYLOAD_NOT_EXPRESSED = Code("W411", "payload-not-expressed",
                              "the vendor's program cannot carry the tool's payload; set it on the controller")
 
-# ---- issue 13: programs that load on the controller (E410-E419, W414-W419)
+# ---- programs that load on the controller (E410-E419, W414-W419)
 RESERVED_RENAMED = Code("W414", "reserved-name-renamed",
                         "a name is a reserved word, instruction, function, data type or predefined "
                         "datum of the vendor's language; it was renamed")
@@ -64,7 +64,7 @@ NUMBER_OUT_OF_RANGE = Code("E410", "frame-number-out-of-range",
 LIMIT_CLAMPED = Code("W417", "limit-clamped",
                      "a speed, acceleration or zone is beyond what the vendor accepts; clamped")
 
-# issue #15 (runtime logic): the base fallback until a vendor writes these nodes itself
+# runtime logic: what the base class reports for the nodes a vendor does not write itself
 RUNTIME_UNSUPPORTED = Code(
     "E165",
     "runtime-logic-unsupported",
@@ -74,9 +74,8 @@ __all__ += ["RUNTIME_UNSUPPORTED"]
 
 
 # ------------------------------------------------------------------ URScript, INFORM,
-# VAL3 and the neutral (CSV/JSON) backends: E450-E499 / W450-W499 (a module of their own
-# until issue #19; the generic codes above - speed or zone rounded, program split,
-# native skipped, name changed - are theirs too)
+# VAL3 and the neutral (CSV/JSON) backends: E450-E499 / W450-W499 (the generic codes above -
+# speed or zone rounded, program split, native skipped, name changed - are theirs too)
 
 # errors
 ANALOG_UNSUPPORTED = Code("E450", "analog-out-unsupported",
@@ -102,7 +101,7 @@ ANALOG_LINK = Code("W455", "analog-link-needed",
                    "an analog output variable is declared unlinked: link it to the controller's "
                    "physical output before running")
 
-# parts held by the tool (issue #14)
+# parts held by the tool
 PART_PAYLOAD_NOT_EXPRESSED = Code("W460", "part-payload-not-expressed",
                                   "the payload of held parts cannot be set by this vendor's program: "
                                   "enter the numbers given on the controller")
@@ -120,11 +119,10 @@ __all__ += [
 ]
 
 
-# ------------------------------------------------------------------ runtime logic (issue #15)
+# ------------------------------------------------------------------ runtime logic
 # Loops written as vendor loops or unrolled, runtime values, waits with a timeout branch,
 # stop (E420-E429 / W420-W429; E165 above is the fallback of a vendor that writes none of
 # it), and the emitters of Fanuc TP, Yaskawa INFORM and Staubli VAL3 (E430-E439 / W430-W439).
-# (backends/codes_loops.py and codes_logic.py until issue #19.)
 ANALOG_IN_PORT = Code(
     "E420",
     "analog-input-out-of-range",
@@ -166,9 +164,9 @@ STOP_AS_PAUSE = Code(
     "calling job from a called one",
 )
 
-# ------------------------------------------------------------------ joint turns (issue #15)
-# in the vendors' configuration data, E440-E449 / W440-W444 (backends/codes_turns.py until
-# issue #19; the front end's turn codes are in compiler/codes.py)
+# ------------------------------------------------------------------ joint turns
+# in the vendors' configuration data, E440-E449 / W440-W444 (the front end's
+# turn codes are in compiler/codes.py)
 TURN_NOT_EXPRESSIBLE = Code(
     "E440", "turn-not-expressible",
     "a planned joint value's turn cannot be told apart by the vendor's configuration data")

@@ -1,5 +1,5 @@
 """What a program assumes of the controller it is loaded on: the robot's brand, and the
-controller's stored tool and frame numbers (issue 13).
+controller's stored tool and frame numbers.
 
 * Brand: a program written for a controller of one brand drives that brand's arms only (KRL
   runs on a KUKA KR C4, RAPID on an ABB IRC5/OmniCore, ...). The robot library names its

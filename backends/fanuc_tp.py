@@ -46,7 +46,7 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     back). Missing signals: error E409 at the sync; a sync in an if arm: error E405.
   * names: program names at most 36 characters (R-30iA and later), upper case, a letter
     first, letters, digits and '_'; comments are cut into pieces of at most 32 characters.
-  * runtime logic (issue #15, the block at the end of the class): variables as R registers,
+  * runtime logic (the block at the end of the class): variables as R registers,
     one operator per line, IF/WAIT conditions in standard logic or as jump chains, while as
     LBL/JMP, timeout branches at the TIMEOUT label, polled waits with TIMER[10] (W431), stop =
     ABORT, `for` loops as LBL/JMP with Offset,PR[i] or unrolled (W420).
@@ -142,7 +142,7 @@ class FanucContext(TaskContext):
     frames: _Frames
     files: dict[str, str] = field(default_factory=dict)  # routine programs: file name -> text
     program: _Program = field(default_factory=_Program)
-    regs: _Registers = field(default_factory=lambda: _Registers({}))  # runtime logic (issue #15)
+    regs: _Registers = field(default_factory=lambda: _Registers({}))  # runtime logic
 
 
 class FanucBackend(Backend):
@@ -151,6 +151,8 @@ class FanucBackend(Backend):
     file_ext = ".ls"
     COMMENT = "!"
     NAME_RULES = FANUC_RULES
+    PRINTS_LOOPS = True  # a counting R register with LBL/JMP, targets moved by Offset,PR
+    RUNTIME_CONDITIONS = True  # writes and/or/not, AI, R registers and timeout branches
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("TP program", "programs")
     FRAME_PR: ClassVar[int] = 90
@@ -311,7 +313,7 @@ class FanucBackend(Backend):
 
     @staticmethod
     def _offset(node: ir.Move, ctx: FanucContext) -> str:
-        """` Offset,PR[i]` on a move of a loop whose target moves per iteration (issue #15):
+        """` Offset,PR[i]` on a move of a loop whose target moves per iteration:
         the destination shifted by PR[i] in the selected user frame (HandlingTool V9.40
         Operator's Manual sec 7.3.13, "Offset,PR[i]"; real programs: `L P[2] 2000mm/sec FINE
         Offset,PR[100]`)."""
@@ -413,7 +415,7 @@ class FanucBackend(Backend):
 
     def if_(self, node: ir.If, ctx: FanucContext) -> list[str]:
         c = node.condition
-        if not isinstance(c, ir.InputCondition):  # issue #15: any condition
+        if not isinstance(c, ir.InputCondition):  # any condition
             return self._if_condition(node, ctx)
         self.port_ok(c.port, "digital input", node.span)
         other, done = ctx.program.label(), ctx.program.label()
@@ -441,7 +443,7 @@ class FanucBackend(Backend):
     def proc_call(self, node: ir.ProcCall, ctx: FanucContext) -> list[str]:
         name = ctx.routine_of[node.uid]
         shifted = _offset_signature(node.body, ctx.regs.offsets)
-        if shifted is not None:  # issue #15: a call whose moves take Offset,PR: its own routine
+        if shifted is not None:  # a call whose moves take Offset,PR: its own routine
             key = (name, shifted)
             if key not in ctx.regs.loop_routines:
                 k = len(ctx.regs.loop_routines) + 1
@@ -452,7 +454,7 @@ class FanucBackend(Backend):
             ctx.files[f"{name}.ls"] = self._program(name, node.body, ctx, is_main=False)
         return [f"CALL {name}"]
 
-    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # ------------------------------------------------------------------ runtime logic
     # Variables are numeric registers R[n:name] (R-30iB Operator's Manual B-83284EN, "Register
     # instructions": a register holds an integer or a real); a bool is R 0/1 (one register type
     # for every variable, so conditions and assignments read alike). Numbering: the task's
@@ -755,7 +757,7 @@ class FanucBackend(Backend):
         return lines
 
 
-# ---------------------------------------------------------------- runtime logic helpers (issue #15)
+# ---------------------------------------------------------------- runtime logic helpers
 
 _TP_OP = {ir.CompareOp.EQ: "=", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<", ir.CompareOp.LE: "<=",
           ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
@@ -857,11 +859,6 @@ def _loop_words(loop: ir.Loop) -> str:
     return f"loop 'for {loop.var} in {loop.first} .. {loop.last}'" if loop.var else "repeat loop"
 
 
-FanucBackend.EMIT = {**FanucBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                     ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
-                     ir.Stop: "stop"}
-
-
 def _sig(signal: str | None) -> str:
     """The cell's signal name as a TP I/O comment: DO[1:gripper_close]."""
     return f":{tp_io_comment(signal)[:24]}" if signal else ""
@@ -878,5 +875,3 @@ def _loop_head(var: LoopVar) -> str:
     if var.name is None:
         return f"repeat {var.last - var.first + 1}"
     return f"for {var.name} = {var.first} .. {var.last}"
-# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
-FanucBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

@@ -52,7 +52,7 @@ Vendor conventions (DX100/DX200 "Job data format" of the offline-teaching interf
     `WAIT IN#(i)=` the same level, o and i being the robot's `io out[o] = "sync"` /
     `io in[i] = "sync"` of the cell (wired crosswise).
 
-Runtime logic (issue #15, the block at the end of the class): D/R/B variables from 050 with
+Runtime logic (the block at the end of the class): D/R/B variables from 050 with
 SET/ADD/SUB/MUL/DIV/INC/DEC, one-comparison `JUMP *L IF` chains, while loops with labels, the
 timeout branch by testing the input again after `WAIT ... T=`, polled waits (W431), `stop` =
 PAUSE (+ the job's end in the main job; W432 in a called job), `for` loops with INC and SFTON
@@ -157,7 +157,7 @@ class _Job:
     name: str
     positions: list[_Position] = field(default_factory=list)
     labels: int = 0
-    shifts: list[int] = field(default_factory=list)  # P variables the job declares (issue #15)
+    shifts: list[int] = field(default_factory=list)  # P variables the job declares
     stop_label: str | None = None  # `*Lnnn` before END, where a main job's `stop` jumps
 
     def add(self, pos: _Position) -> str:
@@ -175,7 +175,7 @@ def predecessors(body: tuple[ir.Instr, ...], last: ir.Move | None = None,
             last = node
             continue
         runs, bodies = ir_tree.flow(node)
-        if runs.sure:  # a proc body, a loop's iterations (issue #15): one after another
+        if runs.sure:  # a proc body, a loop's iterations: one after another
             for sub in bodies:
                 _, last = predecessors(sub, last, out)
         elif runs is ir_tree.Runs.ONE_OF:  # if arms: known only when every arm ends alike
@@ -199,8 +199,8 @@ class InformContext(TaskContext):
     user_frames: dict[int, tuple[str, ir.Pose]] = field(default_factory=dict)  # numbered frames used
     files: dict[str, str] = field(default_factory=dict)
     job: _Job = field(default_factory=lambda: _Job(""))
-    main: str = ""  # the main job's name (issue #15: where `stop` can end the program)
-    vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic (issue #15)
+    main: str = ""  # the main job's name (where `stop` can end the program)
+    vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic
 
 
 class InformBackend(Backend):
@@ -209,6 +209,8 @@ class InformBackend(Backend):
     COMMENT = "'"
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = INFORM_RULES
+    PRINTS_LOOPS = True  # INC on a counting variable with labels and JUMP, targets by SFTON
+    RUNTIME_CONDITIONS = True  # JUMP chains over I/O and variables, timeout branches (AIN: E430)
     DIGITAL_PORTS = (1, 1024)  # OT# / IN# general-purpose I/O
     ANALOG_PORTS = (1, 40)  # AO#
     MAX_TCP_SPEED = 1.5  # m/s
@@ -274,7 +276,7 @@ class InformBackend(Backend):
                 lines.append(f"///RCONF {pos.conf}")
                 conf = pos.conf
             lines.append(f"C{k:05d}={pos.values}")
-        if job.shifts:  # issue #15: the loop shifts, Cartesian zeros the job sets per iteration
+        if job.shifts:  # the loop shifts, Cartesian zeros the job sets per iteration
             lines += ["///POSTYPE ROBOT", "///RECTAN"]
             lines += [f"P{n:04d}=0.000,0.000,0.000,0.0000,0.0000,0.0000" for n in job.shifts]
         return lines
@@ -340,7 +342,7 @@ class InformBackend(Backend):
                                  f"in 1..{MAX_USER_FRAME} for a user frame (got {user})", node.span)
             ctx.user_frames[user] = (node.frame.name, node.frame.pose)  # type: ignore[assignment]
             pose = node.frame.pose.inverse() * pose
-        far = turns.beyond_one_turn(q, (0, 3, 5))  # RCONF's flags (issue #15)
+        far = turns.beyond_one_turn(q, (0, 3, 5))  # RCONF's flags
         if far and node.kind is ir.MotionKind.JOINT:  # MOVL/MOVC run on from the current joints
             self.unsupported(codes.TURN_NOT_EXPRESSIBLE,
                              turns.message(q, far, "RCONF's R/T/S flags"), node.span)
@@ -500,7 +502,7 @@ class InformBackend(Backend):
         return f"*L{job.labels:03d}"
 
     def if_(self, node: ir.If, ctx: InformContext) -> list[str]:
-        if not isinstance(node.condition, ir.InputCondition):  # issue #15: any condition
+        if not isinstance(node.condition, ir.InputCondition):  # any condition
             return self._if_condition(node, ctx)
         test = self.condition(node.condition, node.span, negate=True)
         if test is None:
@@ -518,7 +520,7 @@ class InformBackend(Backend):
         name = ctx.routine_of[node.uid]
         shifted = tuple(ctx.vars.offsets.get((m.uid, "target"), (None,))[0]
                         for m in ir.walk(node.body) if isinstance(m, ir.Move))
-        if any(s is not None for s in shifted):  # issue #15: a call in a loop with shifted moves
+        if any(s is not None for s in shifted):  # a call in a loop with shifted moves
             key = (name, shifted)
             if key not in ctx.vars.loop_jobs:
                 ctx.vars.loop_jobs[key] = f"{name}_L{len(ctx.vars.loop_jobs) + 1}"[:32]
@@ -527,7 +529,7 @@ class InformBackend(Backend):
             self.job(name, node.body, ctx)
         return [f"CALL JOB:{name}"]
 
-    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # ------------------------------------------------------------------ runtime logic
     # Variables are the controller's numbered variables (YRC1000 INSTRUCTIONS manual, "Variables";
     # the arithmetic instructions SET, ADD, SUB, MUL, DIV, INC work in place on their first
     # operand): int -> D (32-bit integer), num -> R (real), bool -> B (0/1), from VAR_FIRST in
@@ -802,7 +804,7 @@ class InformBackend(Backend):
         return [f"SFTON P{found[0]:03d} {found[1]}", *lines, "SFTOF"]
 
 
-# ---------------------------------------------------------------- runtime logic helpers (issue #15)
+# ---------------------------------------------------------------- runtime logic helpers
 
 _INFORM_OP = {"+": "ADD", "-": "SUB", "*": "MUL", "/": "DIV"}
 _INFORM_CMP = {ir.CompareOp.EQ: "=", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<",
@@ -919,16 +921,9 @@ def _inform_blocker(template: LoopTemplate) -> str | None:
     return None
 
 
-InformBackend.EMIT = {**InformBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                      ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
-                      ir.Stop: "stop"}
-
-
 def _loop_head(var: LoopVar) -> str:
     """The comment above a vendor loop: `for layer = 0 .. 2` (the values it runs) or
     `repeat 2`."""
     if var.name is None:
         return f"repeat {var.last - var.first + 1}"
     return f"for {var.name} = {var.first} .. {var.last}"
-# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
-InformBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

@@ -1,4 +1,4 @@
-"""Can a `for` loop be written as ONE vendor loop? The vendor-neutral analysis (issue #15).
+"""Can a `for` loop be written as ONE vendor loop? The vendor-neutral analysis.
 
 The front end lowers `for i in a .. b { ... }` to an `ir.Loop` whose every iteration is
 lowered with `i` bound (what the planner plans and the verifier checks). A controller's loop

@@ -150,7 +150,7 @@ _KIND_LABELS: dict[type, str] = {
     ir.Move: "move", ir.SetDigital: "set_digital", ir.SetAnalog: "set_analog", ir.Pulse: "pulse",
     ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if", ir.Sync: "sync",
     ir.Native: "native", ir.ProcCall: "proc_call", ir.Attach: "attach", ir.Detach: "detach",
-    ir.VarDecl: "var", ir.Assign: "assign", ir.Loop: "loop", ir.While: "while",  # issue #15
+    ir.VarDecl: "var", ir.Assign: "assign", ir.Loop: "loop", ir.While: "while",
     ir.WaitCondition: "wait_condition", ir.Stop: "stop",
 }
 ir_tree.require_kinds("backends/neutral._KIND_LABELS", _KIND_LABELS)

@@ -1,4 +1,4 @@
-"""The load a robot carries while it holds parts (issue #14), for the backends' payload lines.
+"""The load a robot carries while it holds parts, for the backends' payload lines.
 
 `held_load(node, ctx)`: after an `attach`/`detach`, the held parts' total mass and their
 centre of gravity in the flange frame, and the same for tool + parts. A part's centre is

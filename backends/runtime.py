@@ -1,4 +1,4 @@
-"""Runtime logic shared by the vendor backends (issue #15): expressions, loops, unrolling.
+"""Runtime logic shared by the vendor backends: expressions, loops, unrolling.
 
 A vendor describes its expression syntax with an `ExprDialect` (operators, literals, how a
 variable, a digital input and an analog input read) and `expr_text` prints any `ir.RtExpr`
@@ -174,7 +174,7 @@ def loop_template(
 
 @record
 class LoopPlan:
-    """How one Loop is written, the one decision every vendor follows (issue #19): `template`
+    """How one Loop is written, the one decision every vendor follows: `template`
     as one vendor loop (None: every iteration one after another), then `last`, the last
     iteration on its own when the loop holds all but it (a peeled loop); `why` is W420's text
     when the loop is not one whole vendor loop ("" when it is), at `span`."""

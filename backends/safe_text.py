@@ -1,4 +1,4 @@
-"""User text (file names, signal names, names) made safe for the comment it lands in (issue #20).
+"""User text (file names, signal names, names) made safe for the comment it lands in.
 
 A program's *file name* or a cell's signal name reaches every vendor file inside comments;
 a line break in it (LF, CR, form feed, U+2028, ...) would end the comment and turn the rest

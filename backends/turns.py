@@ -1,4 +1,4 @@
-"""Whether a vendor's configuration data can select a planned joint value (issue #15, item 4).
+"""Whether a vendor's configuration data can select a planned joint value.
 
 KRL's Turn holds only the sign of each axis (KSS 8.x System Integrators manual, "Status and
 Turn") and INFORM's RCONF only whether R, T and S lie outside -180 < a <= 180 deg (DX100

@@ -44,7 +44,7 @@ Vendor conventions (VAL3 reference manual):
     `wait(dIn[i] == ...)`, o and i being the robot's `io out[o] = "sync"` /
     `io in[i] = "sync"` of the cell (wired crosswise); a waitEndMove() precedes it like any I/O.
 
-Runtime logic (issue #15, the block at the end of the class): task variables as global num/bool
+Runtime logic (the block at the end of the class): task variables as global num/bool
 data, infix expressions, if/while/for, watch() with the timeout branch, `for` loops with
 compose(point, frame, trShift) offsets or unrolled (W420), stop = waitEndMove() + return.
 
@@ -133,7 +133,7 @@ class _Data:
     outputs: int = 0  # size of dOut (highest port + 1)
     inputs: int = 0
     analog: int = 0  # size of aOut
-    analog_in: int = 0  # size of aIn (issue #15)
+    analog_in: int = 0  # size of aIn
     variables: dict[str, tuple[str, str]] = field(default_factory=dict)  # name -> (type, value)
 
     def index(self, table: list[str], value: str) -> int:
@@ -151,7 +151,7 @@ class Val3Context(TaskContext):
     routine_of: dict[int, str]
     data: _Data = field(default_factory=_Data)
     programs: dict[str, list[str]] = field(default_factory=dict)  # program name -> code lines
-    # runtime logic (issue #15): each program's locals, the program being printed, the loop
+    # runtime logic: each program's locals, the program being printed, the loop
     # counters in scope (IR name -> VAL3 name), nested loop templates, shifts
     locals: dict[str, dict[str, str]] = field(default_factory=dict)
     where: list[str] = field(default_factory=lambda: ["start"])
@@ -172,9 +172,12 @@ class Val3Backend(Backend):
     DIGITAL_PORTS = (0, 63)  # dIn / dOut arrays linked to BasicIO-1\%I / %Q
     NO_RECORD_NOTE = None
     WAITS_FOR_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse,
-                                                    ir.WaitTime, ir.WaitInput, ir.If)
+                                                    ir.WaitTime, ir.WaitInput, ir.If,
+                                                    ir.While, ir.WaitCondition, ir.Stop)
     NO_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime,
-                                             ir.WaitInput)
+                                             ir.WaitInput, ir.WaitCondition)
+    PRINTS_LOOPS = True  # for ... endFor, targets moved by compose(..., trShift)
+    RUNTIME_CONDITIONS = True  # writes and/or/not, aIn, variables and timeout branches
 
     # ------------------------------------------------------------------ application
 
@@ -185,7 +188,7 @@ class Val3Backend(Backend):
             names.reserve(reserved)  # taken after the app is named (the order decides a clash)
         ctx = task.with_state(Val3Context, names=names, routine_of=self.routine_table(names, body, task))
         main = self.block(body, ctx) + ["waitEndMove()"]
-        if "bStop" in ctx.data.variables:  # issue #15: a stop in a called program; clear it first
+        if "bStop" in ctx.data.variables:  # a stop in a called program; clear it first
             main.insert(0, "bStop = false")
         ctx.programs["start"] = main
         ctx.programs["stop"] = []
@@ -316,7 +319,7 @@ class Val3Backend(Backend):
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: Val3Context,
                    tail: str) -> list[str]:
-        if (node.uid, "target") in ctx.offsets:  # issue #15: a joint move of a vendor loop
+        if (node.uid, "target") in ctx.offsets:  # a joint move of a vendor loop
             branch = self.branch(rec, node)
             if branch is None or rec.tcp_pose is None:
                 return []
@@ -409,7 +412,7 @@ class Val3Backend(Backend):
         return self._timeout_branch(test, node.timeout, node.on_timeout, message, ctx, node.span)
 
     def if_(self, node: ir.If, ctx: Val3Context) -> list[str]:
-        if not isinstance(node.condition, ir.InputCondition):  # issue #15: any condition
+        if not isinstance(node.condition, ir.InputCondition):  # any condition
             return self._if_condition(node, ctx)
         test = self.condition(node.condition, node.span, ctx)
         if test is None:
@@ -425,7 +428,7 @@ class Val3Backend(Backend):
         name = ctx.routine_of[node.uid]
         shifted = tuple(ctx.offsets.get((m.uid, "target"))
                         for m in ir.walk(node.body) if isinstance(m, ir.Move))
-        if any(s is not None for s in shifted):  # issue #15: a call in a loop with shifted moves
+        if any(s is not None for s in shifted):  # a call in a loop with shifted moves
             key = (name, shifted)
             if key not in ctx.loop_programs:
                 ctx.loop_programs[key] = ctx.names.name(f"{name}_L{len(ctx.loop_programs) + 1}")
@@ -436,13 +439,13 @@ class Val3Backend(Backend):
             ctx.programs[name] = [self.comment(f"proc {node.proc}"), *self.block(node.body, ctx)]
             ctx.where.pop()
         after = []
-        if _can_stop(node.body):  # issue #15: a stop in the called program ends this one too
+        if _can_stop(node.body):  # a stop in the called program ends this one too
             ctx.data.variables["bStop"] = ("bool", 'value="false"')
             back = self._stop_return(ctx, node.span)
             after = ["if bStop", *self.indent(back, self.INDENT), "endIf"]
         return self.call_args_comment(node) + [f"call {name}()"] + after
 
-    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # ------------------------------------------------------------------ runtime logic
     # VAL3 has typed variables and infix expressions (VAL3 Reference Manual s7, "Simple types":
     # num, bool; operators + - * /, == != < <= > >=, and or !), so the IR's expressions are
     # written as they read. A task's `var`s are global data (`num`/`bool` in the .dtx: a called
@@ -662,7 +665,7 @@ def _degrees(q: object) -> list[float]:
     return [math.degrees(float(v)) for v in q]  # type: ignore[attr-defined]
 
 
-# ---------------------------------------------------------------- runtime logic helpers (issue #15)
+# ---------------------------------------------------------------- runtime logic helpers
 
 _VAL3_CMP = {ir.CompareOp.EQ: "==", ir.CompareOp.NE: "!=", ir.CompareOp.LT: "<",
              ir.CompareOp.LE: "<=", ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
@@ -675,12 +678,3 @@ def _blend_key(node: ir.Instr, rec: plan_types.InstructionRecord | None) -> obje
 
 def _can_stop(body: tuple[ir.Instr, ...]) -> bool:
     return any(isinstance(n, ir.Stop) for n in ir.walk(body))
-
-
-Val3Backend.EMIT = {**Val3Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                    ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
-                    ir.Stop: "stop"}
-Val3Backend.WAITS_FOR_MOTION = (*Val3Backend.WAITS_FOR_MOTION, ir.While, ir.WaitCondition, ir.Stop)
-Val3Backend.NO_MOTION = (*Val3Backend.NO_MOTION, ir.WaitCondition)
-# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
-Val3Backend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

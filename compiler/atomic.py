@@ -1,4 +1,4 @@
-"""The one way rmot writes an output file (issue #19): atomically, with the umask's mode.
+"""The one way rmot writes an output file: atomically, with the umask's mode.
 
 Every output — vendor programs (compiler/cli/output_tree.py), `check -o` and `merge -o`
 reports, `plan --csv`, renders, plots, reach maps, `place -o` — goes through `write_atomic`

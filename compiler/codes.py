@@ -56,8 +56,8 @@ URDF_BAD_CHAIN = Code("E507", "urdf-bad-chain", "the URDF links base= and tip= d
 __all__ += ["MODEL_JOINT_FIELD", "MODEL_CHAIN_LENGTH", "MODEL_BAD_VALUE", "MODEL_MIXED_DH", "MODEL_SHADOWS_LIBRARY",
             "URDF_UNKNOWN_LINK", "URDF_BAD_CHAIN"]
 
-# a model's motor ratings and link masses (issue #16, the design range E809-E819 / W801-W809
-# shared with rmot.sim.design.codes; compiler/codes_design.py until issue #19)
+# a model's motor ratings and link masses (the design range E809-E819 / W801-W809
+# shared with rmot.sim.design.codes)
 MODEL_MASS_INCOMPLETE = Code(
     "E809",
     "model-mass-incomplete",
@@ -71,7 +71,7 @@ MODEL_TORQUE_UNCHECKED = Code(
 )
 __all__ += ["MODEL_MASS_INCOMPLETE", "MODEL_TORQUE_UNCHECKED"]
 
-# parts that tools pick up and put down (issue #14)
+# parts that tools pick up and put down
 UNKNOWN_PART = Code("E140", "unknown-part", "attach or detach names no part of the cell")
 PART_ALREADY_HELD = Code("E141", "part-already-held", "attach of a part the task already holds")
 PART_NOT_HELD = Code("E142", "part-not-held", "detach of a part the task does not hold")
@@ -79,7 +79,7 @@ PART_ARMS_DIFFER = Code("E143", "part-arms-differ", "the arms of a runtime if le
 PART_HELD_AT_END = Code("W140", "part-held-at-end", "a task ends still holding a part")
 __all__ += ["UNKNOWN_PART", "PART_ALREADY_HELD", "PART_NOT_HELD", "PART_ARMS_DIFFER", "PART_HELD_AT_END"]
 
-# issue #20: numbers, work and files a hostile or clumsy input can make absurd
+# numbers, work and files a hostile or clumsy input can make absurd
 NOT_FINITE = Code("E123", "not-finite", "a value overflows to infinity or is not a number")
 TOO_MUCH_WORK = Code("E124", "too-much-work", "the program would make the compiler do more work than allowed")
 PHYSICAL_RANGE = Code("E125", "outside-accepted-range", "a time, speed, zone, size or position outside what rmot accepts")
@@ -87,7 +87,7 @@ OUTPUT_FAILED = Code("E520", "output-failed", "an output file or directory canno
 UNREADABLE = Code("E521", "unreadable", "a file or folder exists but cannot be read")
 OUTPUT_NAME_CLASH = Code("E522", "output-name-clash", "two output files get the same name on a controller")
 
-# issue #15 item 4: joint-move speeds and joint turns (E170-E179, W170-W174 are the front
+# joint-move speeds and joint turns (E170-E179, W170-W174 are the front
 # end's and the planner's; the planner's are in compiler/plan/codes.py)
 TURN_BAD_JOINT = Code("E170", "turn-bad-joint",
                       "config(jN=...) names no revolute joint of the task's robot")
@@ -101,7 +101,7 @@ JOINT_SPEED_ON_CARTESIAN_MOVE = Code(
     "a joint speed share modifier on a linear or circular move, which it does not change")
 __all__ += ["TURN_BAD_JOINT", "TURN_NOT_WHOLE", "TCP_SPEED_ON_JOINT_MOVE",
             "JOINT_SPEED_ON_CARTESIAN_MOVE"]
-# runtime logic (issue #15): task variables, conditions, loops that stay loops, while, stop
+# runtime logic: task variables, conditions, loops that stay loops, while, stop
 RT_UNKNOWN_VAR = Code(
     "E150",
     "unknown-variable",

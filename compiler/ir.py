@@ -306,7 +306,7 @@ class Cell:
     io: tuple[IoSignal, ...] = ()
     allowed_contacts: tuple[tuple[str, str], ...] = ()  # body pairs the checker ignores
     span: Span | None = _span_field()
-    parts: tuple[Part, ...] = ()  # movable objects (issue #14), at their starting poses
+    parts: tuple[Part, ...] = ()  # movable objects, at their starting poses
 
     def robot(self, name: str) -> RobotInstance:
         for r in self.robots:
@@ -346,7 +346,7 @@ class Config:
     shoulder: Shoulder | None = None
     elbow: Elbow | None = None
     wrist: Wrist | None = None
-    # issue #15: fixed turns (joint index from 0, turn n) of joints whose range exceeds 360 deg,
+    # fixed turns (joint index from 0, turn n) of joints whose range exceeds 360 deg,
     # sorted by joint; turn n = q in [n*360 - 180, n*360 + 180) deg (turn_of). Empty = free.
     turns: tuple[tuple[int, int], ...] = ()
 
@@ -358,7 +358,7 @@ class Config:
 
 def turn_of(q: float) -> int:
     """The turn of a revolute joint value q (rad): n with q in [n*2pi - pi, n*2pi + pi)
-    (lang/REFERENCE.md section 6, "turns"; issue #15)."""
+    (lang/REFERENCE.md section 6, "turns")."""
     return math.floor((q + math.pi) / (2 * math.pi))
 
 
@@ -494,7 +494,7 @@ class WaitInput:
 @record(slots=True, kw_only=True)
 class If:
     """A runtime branch; both arms are planned and verified. `condition` is an InputCondition
-    for `if in[n] == on|off` (as every backend has always written it) or, since issue #15, any
+    for `if in[n] == on|off` (the one-input form every backend writes) or any
     Condition (and/or/not, analog inputs, variables)."""
 
     uid: int
@@ -535,7 +535,7 @@ class ProcCall:
     span: Span | None = _span_field()
 
 
-# --------------------------------------------------------------------------- parts (issue #14)
+# --------------------------------------------------------------------------- parts
 
 
 @record(slots=True)
@@ -577,7 +577,7 @@ class Detach:
     span: Span | None = _span_field()
 
 
-# --------------------------------------------------------------------------- runtime logic (issue #15)
+# --------------------------------------------------------------------------- runtime logic
 #
 # Runtime state lives in the controller: typed variables a task declares, assigns and tests,
 # conditions over inputs (digital and analog) and variables, loops that stay loops in the

@@ -102,7 +102,7 @@ def _cond(c: ir.RtExpr) -> str:
 
 
 def rt_text(e: ir.RtExpr) -> str:
-    """A runtime expression in rmot's own syntax, fully parenthesised (issue #15)."""
+    """A runtime expression in rmot's own syntax, fully parenthesised."""
     if isinstance(e, ir.Const):
         if e.type is ir.ValueType.BOOL:
             return "on" if e.value else "off"

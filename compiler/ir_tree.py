@@ -1,4 +1,4 @@
-"""The nesting of IR instructions, in one place (issue #15): which instruction holds which bodies.
+"""The nesting of IR instructions, in one place: which instruction holds which bodies.
 
 `children(instr)` gives the instruction lists an instruction holds, in execution order (If:
 then, otherwise; ProcCall and While: body; Loop: each iteration's body; WaitInput and
@@ -7,7 +7,7 @@ ones. An instruction kind this module does not know raises TypeError: a walker n
 node kind silently. `iteration_paths(body)` maps each instruction's uid to the loop iterations
 it lies in, for messages that name the iteration (`layer = 2, row = 1, col = 0`).
 
-`flow(instr)` is how those bodies run (issue #19): a proc call's body once, a loop's iterations
+`flow(instr)` is how those bodies run: a proc call's body once, a loop's iterations
 once each in order, exactly one of an if's arms, a while's body zero or more times, a timeout
 branch zero times or once. A pass that follows the program's paths (which syncs always run,
 which move comes first, the move before each move, the parts held at a move) asks `flow` and

@@ -23,7 +23,7 @@ MODEL_PREFIX = "model:"
 @record(slots=True)
 class ModelJointSpec:
     """One joint: kind 'R' or 'P'; DH a, d in m, alpha, theta in rad; limits in rad (R) or m (P);
-    speed in rad/s or m/s; accel in rad/s² or m/s²; optional (issue #16) the link's mass in kg
+    speed in rad/s or m/s; accel in rad/s² or m/s²; optionally the link's mass in kg
     and the motor's rated torque in N·m (N for a prismatic joint), None when not given."""
 
     kind: str
@@ -80,7 +80,7 @@ def model_key(spec: ModelSpec) -> str:
 
 
 def _joint_row(j: ModelJointSpec) -> list[object]:
-    """A joint's numbers in the key; mass and torque (issue #16) only when given, so that the
+    """A joint's numbers in the key; mass and torque only when given, so that the
     key of a model without them is written as before."""
     row: list[object] = [j.kind, j.a, j.alpha, j.d, j.theta, j.lo, j.hi, j.speed, j.accel]
     if j.mass is not None or j.torque is not None:

@@ -3,8 +3,8 @@
 The planner (compiler/plan/segments.py: how a kind's joint path is built) and every backend
 (backends/base.py `Backend.MOVES`: which method prints a kind) declare a table kind -> handler
 and check it here when they are imported. A kind added to ir.MotionKind without a handler in
-one of them is an import-time error naming the table, never a silent default (before issue
-#19, every `move()` printed "not joint, not linear" as a circle).
+one of them is an import-time error naming the table, never a silent default (such as
+printing every move that is neither joint nor linear as a circle).
 """
 
 from __future__ import annotations

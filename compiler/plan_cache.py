@@ -8,7 +8,7 @@ The key (SHA-256) covers everything the plan is a function of:
   the front end read (program, imports, cell: each Span keeps its SourceFile), the cell, the
   robots' load keys (library name, URDF path, or a cell model's full parameters, its link
   masses and motor ratings included); the tools' and parts' masses, which the timing's joint
-  torque limits depend on (issue #16), are fields of the program;
+  torque limits depend on, are fields of the program;
 - the bytes of every file the program names by absolute path (URDFs, meshes, a URDF chain's file);
 - a digest of rmot's own files (code, robot library, grammar, data), so any change to the
   compiler invalidates every entry (rmot's version number adds nothing to it: a release with
@@ -213,7 +213,7 @@ def _source_files() -> list[tuple[str, Path]]:
     """(package/relative path, path) of rmot's own files, sorted by that name.
 
     os.walk, not Path.rglob: every cached command lists these ~190 files, and rglob took
-    9-19 ms of a 0.3 s cached compile (issue 18), os.walk about a tenth of that."""
+    9-19 ms of a 0.3 s cached compile, os.walk about a tenth of that."""
     out: list[tuple[str, Path]] = []
     for package in _PACKAGES:
         spec = importlib.util.find_spec(package)

@@ -25,6 +25,9 @@ from typing import Any
 
 import numpy as np
 
+from rmot.lang.diagnostics import _REGISTRY as _CODE_REGISTRY
+from rmot.lang.diagnostics import Code
+
 __all__ = ["ALLOWED_MODULES", "CodecError", "decode", "encode", "allowed_types"]
 
 # The modules whose dataclasses and enums may appear in a Plan (the Plan, the IR, spans, diagnostics).
@@ -179,10 +182,8 @@ def decode(doc: Any, arrays: list[np.ndarray] | dict[int, np.ndarray]) -> Any:
 
 def _intern(obj: Any) -> Any:
     """A registered diagnostic Code decodes to the registered object itself (codes are singletons)."""
-    from rmot.lang.diagnostics import Code, _REGISTRY as codes
-
     if type(obj) is Code:
-        known = codes.get(obj.id)
+        known = _CODE_REGISTRY.get(obj.id)
         if known is not None and known == obj:
             return known
     return obj

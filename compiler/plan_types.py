@@ -120,7 +120,7 @@ class Plan:
         raise KeyError(name)
 
 
-# ------------------------------------------------------------------ variant paths (issue #15)
+# ------------------------------------------------------------------ variant paths
 # How a Variant's path is named in messages: Variant.arm -> words ({at}: " at line N", or "" when
 # the instruction has no source position).
 PATHS = {

@@ -1,4 +1,4 @@
-"""The one registry of output targets (issue #19): --target name -> Backend class.
+"""The one registry of output targets: --target name -> Backend class.
 
 Every list of vendors in the project derives from it: `compile --target`
 (compiler/cli/compile_cmd.py), the front end's `native NAME "..."` check

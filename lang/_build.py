@@ -31,7 +31,7 @@ KEYWORDS = frozenset({
     "repeat", "if", "else", "proc", "return", "const", "use", "import", "cell", "program",
     "task", "sync", "native", "on", "off", "config", "at", "robot", "fixture", "io",
     "joint_speed", "joints", "time",
-    "var", "while", "and", "or", "not",  # issue #15 (`stop` stays a name: weld_seam's target)
+    "var", "while", "and", "or", "not",  # runtime logic (`stop` stays a name: weld_seam's target)
 })
 # keywords that start no statement yet, kept for the language's future (see reserved_statement)
 RESERVED = {"return": "procs end at their closing brace"}
@@ -389,7 +389,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         value = c[1]
         if isinstance(value, Token):  # tool/frame NAME, or the FINE keyword
             value = None if value.type == "FINE" else self._ident(value)
-        return _Setting(kind, value, self._span(c))
+        return _Setting(ast.SettingKind(kind), value, self._span(c))
 
     def tool_setting(self, c: list[Any]) -> ast.Setting:
         return self._setting("tool", c)
@@ -417,7 +417,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     mod_frame = frame_setting
 
     def mod_config(self, c: list[Any]) -> ast.Setting:
-        return _Setting("config", c[2] or (), self._span(c))
+        return _Setting(ast.SettingKind.CONFIG, c[2] or (), self._span(c))
 
     def mod_time(self, c: list[Any]) -> ast.Setting:
         return self._setting("time", c)
@@ -507,7 +507,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         last = num if unit is None else unit
         span = _tokens_span(self.file, num, last)
         value = float(num)
-        if value == float("inf"):  # `1e999`: refused where written (issue #20); 0.0 keeps the tree well-typed
+        if value == float("inf"):  # `1e999`: refused where written; 0.0 keeps the tree well-typed
             self.diagnostics.append(Diagnostic(codes.NOT_FINITE_LITERAL, Severity.ERROR, "number must fit a 64-bit "
                                                f"float, at most about 1.8e308 (got {str(num)[:40]})", span))
             value = 0.0
@@ -551,27 +551,27 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return _Call(self._ident(c[0]), c[2] or (), self._span(c))
 
     def model_speed(self, c: list[Any]) -> ast.Setting:
-        return _Setting("speed", c[1], self._span(c))
+        return _Setting(ast.SettingKind.SPEED, c[1], self._span(c))
 
     def model_accel(self, c: list[Any]) -> ast.Setting:
-        return _Setting("accel", c[1], self._span(c))
+        return _Setting(ast.SettingKind.ACCEL, c[1], self._span(c))
 
     def model_torque(self, c: list[Any]) -> ast.Setting:
-        return _Setting("torque", c[1], self._span(c))
+        return _Setting(ast.SettingKind.TORQUE, c[1], self._span(c))
 
     def model_mass(self, c: list[Any]) -> ast.Setting:
-        return _Setting("mass", c[1], self._span(c))
+        return _Setting(ast.SettingKind.MASS, c[1], self._span(c))
 
     def model_flange(self, c: list[Any]) -> ast.Setting:
-        return _Setting("flange", c[1], self._span(c))
+        return _Setting(ast.SettingKind.FLANGE, c[1], self._span(c))
 
     def model_payload(self, c: list[Any]) -> ast.Setting:
-        return _Setting("payload", c[1], self._span(c))
+        return _Setting(ast.SettingKind.PAYLOAD, c[1], self._span(c))
 
     def model_controller(self, c: list[Any]) -> ast.Setting:
-        return _Setting("controller", self._ident(c[1]), self._span(c))
+        return _Setting(ast.SettingKind.CONTROLLER, self._ident(c[1]), self._span(c))
 
-    # -- parts (issue #14)
+    # -- parts
     def part_decl(self, c: list[Any]) -> ast.PartDecl:
         opts = dict(c[4:])
         span = self._span([*c[:4], *(value for _, value in c[4:])])
@@ -589,7 +589,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def detach(self, c: list[Any]) -> ast.AttachStmt:
         return ast.AttachStmt(self._ident(c[1]), False, self._span(c))
 
-    # -- runtime logic (issue #15)
+    # -- runtime logic
     def var_decl(self, c: list[Any]) -> ast.VarDecl:
         type_ = self._ident(c[3]) if c[3] is not None else None
         return _VarDecl(self._ident(c[1], "variable"), type_, c[5], self._span(c))

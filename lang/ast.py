@@ -16,6 +16,7 @@ Node families:
 from __future__ import annotations
 
 from dataclasses import field
+from enum import StrEnum
 from typing import Union
 
 from rmot.lang.record import record
@@ -28,7 +29,7 @@ __all__ = [
     "Param", "ProcDecl", "ProgramDecl", "Pulse", "Repeat", "RobotDecl", "SetIo", "Setting",
     "Stmt", "String", "SyncStmt", "TargetDecl", "TaskDecl", "ToolDecl", "UseCell", "Vector",
     "WaitTime", "WaitUntil",
-    "PartDecl", "AttachStmt",
+    "PartDecl", "AttachStmt", "SettingKind",
 ]
 
 
@@ -251,15 +252,38 @@ class ProcDecl:
     span: Span = _span()
 
 
+class SettingKind(StrEnum):
+    """What a Setting sets: the keyword as written (a str, so `kind == "tool"` holds).
+
+    Modal settings and move modifiers: tool, frame, speed, joint_speed, accel, zone; move
+    modifiers only: config, time; lines of a `model` block: torque, mass, flange, payload, controller.
+    Each consumer keeps a table with an entry for every kind, checked when it is imported
+    (compiler/passes/modal.SETTING_HANDLERS)."""
+
+    TOOL = "tool"
+    FRAME = "frame"
+    SPEED = "speed"
+    JOINT_SPEED = "joint_speed"
+    ACCEL = "accel"
+    ZONE = "zone"
+    CONFIG = "config"
+    TIME = "time"
+    TORQUE = "torque"
+    MASS = "mass"
+    FLANGE = "flange"
+    PAYLOAD = "payload"
+    CONTROLLER = "controller"
+
+
 @record(slots=True)
 class Setting:
-    """A modal setting or a per-move modifier.
+    """A modal setting or a per-move modifier (or a line of a `model` block).
 
-    kind: tool | frame | speed | joint_speed | accel | zone | config | time. `value` is an
-    Ident for tool/frame, None for `zone fine`, the argument tuple for config, else an Expr.
+    `value` is an Ident for tool/frame, None for `zone fine`, the argument tuple for config,
+    else an Expr.
     """
 
-    kind: str
+    kind: SettingKind
     value: Expr | Ident | tuple[Arg, ...] | None
     span: Span = _span()
 
@@ -309,7 +333,7 @@ class WaitUntil:
     condition: Condition | RtCond
     timeout: Expr | None
     span: Span = _span()
-    on_timeout: tuple[Stmt, ...] | None = None  # `timeout T else { ... }` (issue #15)
+    on_timeout: tuple[Stmt, ...] | None = None  # `timeout T else { ... }`
 
 
 @record(slots=True)
@@ -358,7 +382,7 @@ class CallStmt:
 
 @record(slots=True)
 class PartDecl:
-    """`part NAME = GEOMETRY [at POSE] [mass M]`: a movable object of the cell (issue #14)."""
+    """`part NAME = GEOMETRY [at POSE] [mass M]`: a movable object of the cell."""
 
     name: Ident
     geometry: Geometry
@@ -420,7 +444,7 @@ __all__ += ["ModelDecl", "ModelJoint"]
 Stmt = Union[Stmt, ModelDecl]  # type: ignore[misc]
 
 
-# ------------------------------------------------------------------ runtime logic (issue #15)
+# ------------------------------------------------------------------ runtime logic
 
 
 @record(slots=True)

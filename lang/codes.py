@@ -21,7 +21,7 @@ RESERVED_KEYWORD = Code("E008", "reserved-keyword", "a keyword is used as a name
 EMPTY_FILE = Code("E009", "empty-file", "the file holds no statement")
 BINARY_INPUT = Code("E010", "binary-input", "the file holds control characters: not a text file")
 
-# issue #20: line breaks other tools count and the lexer does not; numbers too big for a float
+# line breaks other tools count and the lexer does not; numbers too big for a float
 LONE_CR = Code("E011", "lone-carriage-return", "a carriage return not followed by a line feed (old Mac line ending)")
 UNICODE_LINE_BREAK = Code("E012", "unicode-line-break", "U+0085, U+2028 or U+2029: a line break only some tools count")
 NOT_FINITE_LITERAL = Code("E013", "number-too-large", "a number literal too large for a 64-bit float (it would be infinite)")

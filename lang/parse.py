@@ -115,7 +115,7 @@ def _error(code: Code, message: str, span: Span | None,
 
 def _binary_problem(file: SourceFile) -> Diagnostic | None:
     """NUL and other C0 control characters (besides tab, newline, CR, FF) mean a binary file."""
-    found = _CONTROL.search(file.text)  # the whole file: a NUL after 64 KiB is binary too (issue #20)
+    found = _CONTROL.search(file.text)  # the whole file: a NUL after 64 KiB is binary too
     if found is not None:
         i, ch = found.start(), found.group()
         span = Span.from_offsets(file, i, i + 1)
@@ -125,7 +125,7 @@ def _binary_problem(file: SourceFile) -> Diagnostic | None:
 
 _CONTROL = re.compile(r"[\x00-\x08\x0b\x0e-\x1f]")
 # Line breaks the lexer does not take as one but other text layers do (Python's splitlines,
-# editors): refused, so that every tool counts the same lines as `file:line:col` (issue #20).
+# editors): refused, so that every tool counts the same lines as `file:line:col`.
 _ODD_BREAK = re.compile("\r(?!\n)|[\x85\u2028\u2029]")
 
 
@@ -307,7 +307,7 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[To
     return None
 
 
-# the words a statement may start with (issue #15: an unknown statement word lists them, and a
+# the words a statement may start with (an unknown statement word lists them, and a
 # near miss is matched against these only, so `let` is not taken for `at` nor `var` for `via`)
 STATEMENT_STARTS = [
     "move",

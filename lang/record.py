@@ -2,7 +2,7 @@
 
 Why: Python 3.11's `dataclass` writes the source of six methods for every frozen class and
 compiles each with `exec`: about 1 ms a class on this machine, and the AST, the IR and the
-plan types define over a hundred of them, all created on every start of `rmot` (issue 18:
+plan types define over a hundred of them, all created on every start of `rmot` (part of
 the start-up of `rmot check`). Equality, hashing and repr need no per-class code: three
 shared functions, closed over the class's field names (fetched at C speed by one
 `operator.attrgetter` per class), so only `__init__`, `__setattr__` and `__delattr__` are still

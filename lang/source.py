@@ -26,7 +26,7 @@ class SourceFile:
 
         Lines end at LF only (a CRLF's CR is dropped), exactly as the lexer and `pos_at` count
         them: `str.splitlines` would also break at form feed, CR, U+2028 and five more, and
-        then `file:line:col` and the quoted line would disagree (issue #20)."""
+        then `file:line:col` and the quoted line would disagree."""
         if line < 1:
             return ""
         start = 0

@@ -24,7 +24,7 @@ _DEG = math.pi / 180
 _L, _A, _T, _M, _P = (1, 0, 0, 0, 0), (0, 1, 0, 0, 0), (0, 0, 1, 0, 0), (0, 0, 0, 1, 0), (0, 0, 0, 0, 1)
 _SPEED, _ANG_SPEED = (1, 0, -1, 0, 0), (0, 1, -1, 0, 0)
 _ACCEL, _ANG_ACCEL = (1, 0, -2, 0, 0), (0, 1, -2, 0, 0)
-_FORCE, _TORQUE = (1, 0, -2, 1, 0), (2, 0, -2, 1, 0)  # N, N·m: a model joint's rating (#16)
+_FORCE, _TORQUE = (1, 0, -2, 1, 0), (2, 0, -2, 1, 0)  # N, N·m: a model joint's rating
 
 UNIT_TABLE: dict[str, tuple[float, tuple[int, int, int, int, int]]] = {
     "mm": (1e-3, _L), "cm": (1e-2, _L), "m": (1.0, _L), "in": (0.0254, _L),

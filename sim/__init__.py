@@ -1,7 +1,17 @@
-"""rmot.sim: verification (collisions, limits) and rendering of a Plan.
+"""rmot.sim: the physical world of a Plan: verification (collisions, limits) and rendering.
 
 Public API: `verify(plan, *, clearance=None) -> Report`, `Report`, `load_mesh(mesh)`.
 Imported lazily so `rmot.sim.meshio` and `rmot.sim.render` do not pull in pinocchio.
+
+Where things are: verification.py runs the checks over the whole Plan: scene.py (every body
+with its name, geometry and pose; parts.py for parts carried and placed), collide.py with
+bounds.py (sampled collision and clearance with a no-miss guarantee between samples) and
+exact.py (exact distances, coal), limits.py (joint position, speed, acceleration, torque);
+report.py (the Report as text, JSON, JUnit, SARIF), report_html.py, timing_report.py (what a
+cycle time assumes) and plots.py; meshio.py reads mesh files. render/ draws stills,
+animations and findings; design/ holds the cell design studies (reach maps, robot
+comparison, base placement), which call the planner. sim imports the compiler's vocabulary,
+robots and planner, never the command line or the backends (pyproject's layer contract).
 """
 
 from __future__ import annotations

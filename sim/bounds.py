@@ -96,7 +96,7 @@ def lower_bound(a: Body, b: Body, pa: np.ndarray, pb: np.ndarray,
     samples `idx` only. `centres`: world sphere centres already computed, by body name.
 
     Computed BOUND_CHUNK samples at a time: a pair of two sphere covers needs (samples, Ka, Kb)
-    temporaries, ~0.4 KB a sample for 7 x 7 spheres (issue 18); each sample's bound is the
+    temporaries, ~0.4 KB a sample for 7 x 7 spheres; each sample's bound is the
     same arithmetic on its own row either way."""
     if b.kind == "fixture":
         a, b, pa, pb = b, a, pb, pa

@@ -34,7 +34,7 @@ MESH_EMPTY = Code("E562", "mesh-empty", "a mesh file has no triangles")
 MESH_TRUNCATED = Code("E563", "mesh-truncated", "a mesh file ends before its declared points or polygons")
 MESH_NOT_WATERTIGHT = Code("W560", "mesh-not-watertight", "a mesh is not a closed manifold surface")
 
-# parts that tools pick up and put down (issue #14)
+# parts that tools pick up and put down
 PART_NOT_TOUCHING = Code("E330", "part-not-touching", "attach of a part farther than 2 mm from the tool's solid and its TCP")
 PART_HELD_ELSEWHERE = Code("E331", "part-held-elsewhere", "attach of a part another robot still holds")
 PAYLOAD_EXCEEDED = Code("E332", "payload-exceeded", "tool mass plus held parts beyond the robot's rated payload")

@@ -341,7 +341,7 @@ def _bisect(scene: Scene, timeline: Timeline, exact: ExactPair, a: Body, b: Body
         tm = (ta + tb) / 2
         qm = {r: (qa[r] + qb[r]) / 2 for r in robots}
         pm = {r: scene.poses(r, qm[r]) for r in robots}
-        # a body of a robot without a task stands still: its first pose (issue #20: KeyError, found by make fuzz)
+        # a body of a robot without a task stands still: its first pose (KeyError, found by make fuzz)
         def pose(body: Body, k: int, pm: dict[str, dict[str, np.ndarray]] = pm) -> np.ndarray:
             if body.name in fixed:
                 return fixed[body.name]  # type: ignore[return-value]  # set for a body of one pose

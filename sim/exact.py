@@ -8,12 +8,16 @@ the caller needs is the distance confirmed on the triangles (BVH collision, then
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import coal
 import numpy as np
 
 from rmot.compiler import ir
 from rmot.sim.meshio import MeshData, is_flat
-from rmot.sim.scene import Body
+
+if TYPE_CHECKING:  # for annotations only: sim/scene imports this module
+    from rmot.sim.scene import Body
 
 __all__ = ["ExactPair", "coal_shapes", "exact_distance"]
 
@@ -115,7 +119,7 @@ def _mesh_shapes(mesh: MeshData) -> tuple[object, object]:
         bvh.buildConvexHull(True, "Qt")
         return bvh.convex, bvh
     # A flat mesh (one triangle, a plane, fewer than 4 points) has no volume and coal's hull
-    # raises on it (issue #20, found by `make fuzz`): its hull is taken of the points and
+    # raises on it (found by `make fuzz`): its hull is taken of the points and
     # copies of them 1 um along the plane's normal, a sheet one micrometre thick.
     pts = np.asarray(mesh.vertices, dtype=np.float64)
     centred = pts - pts.mean(axis=0)

@@ -62,7 +62,7 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
     except OSError:
         return _error(mesh, codes.MESH_MISSING, f"mesh file must exist (got '{path}')")
     try:
-        with open(path, "rb"):  # an unreadable file is said to be unreadable, not "not a valid STL" (issue #20)
+        with open(path, "rb"):  # an unreadable file is said to be unreadable, not "not a valid STL"
             pass
     except OSError as exc:
         from rmot.compiler import codes as check_codes

@@ -1,4 +1,4 @@
-"""Parts over time (issue #14): where every part of the cell is, and who holds it, at any
+"""Parts over time: where every part of the cell is, and who holds it, at any
 instant of a Plan — and what that means for the collision check and the payload.
 
 A part starts at its declared pose in the world. `attach p` (a record on the task's

@@ -23,6 +23,7 @@ import numpy as np
 
 from rmot.compiler import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.sim.report import GUARANTEE
 
 __all__ = ["ProgramResult", "breakdown", "render_report"]
 
@@ -165,8 +166,16 @@ ASSUMPTIONS = (
 
 def _section(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]], problems: list[Diagnostic]) -> str:
     """The HTML of one program; `parts` makes the pictures lazily so a failure becomes a W600."""
-    from rmot.sim.report import GUARANTEE
+    out = _summary(k, result)
+    out += _findings(k, result, parts, problems)
+    if result.plan is None:
+        return "".join(out) + "</section>"
+    out += _planned(k, result, parts, problems)
+    return "".join(out) + "</section>"
 
+
+def _summary(k: int, result: ProgramResult) -> list[str]:
+    """The program's heading, verdict, cycle time and (when planned) the model's assumptions."""
     errors = [d for d in result.diagnostics if d.severity is Severity.ERROR]
     warnings = [d for d in result.diagnostics if d.severity is Severity.WARNING]
     ok = result.plan is not None and not errors
@@ -184,7 +193,13 @@ def _section(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
         items = [a.format(step=step) for a in ASSUMPTIONS] + [GUARANTEE[0].upper() + GUARANTEE[1:] + "."]
         out.append("<details><summary>Model assumptions</summary><ul>" + "".join(f"<li>{_e(a)}</li>" for a in items)
                    + "</ul></details>")
-    # findings
+    return out
+
+
+def _findings(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
+              problems: list[Diagnostic]) -> list[str]:
+    """Every finding with its source lines, its timing and (once per event) its picture."""
+    out: list[str] = []
     marks = _safe(parts, "marks", problems) or ()
     by_diag = {id(m.diagnostic): m for m in marks}
     events = {m.diagnostic.code.id + str(m.diagnostic.span and m.diagnostic.span.start) + ",".join(sorted(m.bodies)): m
@@ -210,29 +225,32 @@ def _section(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
             out.append(f'<div><a href="#viewer{k}" class="jump" data-viewer="viewer{k}" data-t="{m.worst:.4f}">'
                        f"show in the 3D viewer at t = {m.worst:.3f} s</a></div>")
         out.append("</div>")
-    if result.plan is None:
-        return "".join(out) + "</section>"
-    # cycle-time breakdown
-    out.append("<h3>Cycle-time breakdown</h3><table><tr><th>task</th><th>robot</th><th>ends at [s]</th><th>moving</th>"
-               "<th>waiting (time / input)</th><th>at syncs</th><th>I/O</th><th>idle after its end</th></tr>")
+    return out
+
+
+def _planned(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
+             problems: list[Diagnostic]) -> list[str]:
+    """What only a planned program has: the cycle-time breakdown, the plots, the 3D viewer and
+    the robot and cell data used."""
+    assert result.plan is not None
+    out = ["<h3>Cycle-time breakdown</h3><table><tr><th>task</th><th>robot</th><th>ends at [s]</th><th>moving</th>"
+           "<th>waiting (time / input)</th><th>at syncs</th><th>I/O</th><th>idle after its end</th></tr>"]
     for row in breakdown(result.plan):
         out.append(f"<tr><td>{_e(row['task'])}</td><td>{_e(row['robot'])}</td><td>{row['total']:.3f}</td>"
                    + "".join(f"<td>{row[c]:.3f}</td>" for c in ("move", "wait", "sync", "io", "idle")) + "</tr>")
     out.append("</table>")
-    # plots
     out.append("<h3>Plots</h3>")
     for what in PLOTS:
         svg = _safe(parts, ("plot", what), problems)
         if svg:
             out.append(f'<figure><img class="plot" alt="{what}" src="{_data_uri("image/svg+xml", svg)}"></figure>')
-    # viewer
     page = _safe(parts, "viewer", problems)
     if page:
         out.append(f'<h3>3D viewer</h3><iframe class="viewer" id="viewer{k}" title="3D viewer of {_e(result.path)}" '
                    f'srcdoc="{_e(page)}"></iframe>')
     robots = _safe(parts, "robots", problems) or {}
     out.append("<h3>Robot and cell data used</h3>" + _cell_tables(result.plan, robots))
-    return "".join(out) + "</section>"
+    return out
 
 
 def _safe(parts: dict[Any, Callable[[], Any]], key: Any, problems: list[Diagnostic]) -> Any:

@@ -93,7 +93,7 @@ class Scene:
 
         Computed POSE_CHUNK samples at a time into the result arrays, so the robot's
         intermediate frames (all joints, all solids: several times the result) are held for
-        one chunk only (issue 18: 2000 moves peaked at 600 MB here). Every sample's pose is
+        one chunk only (2000 moves peaked at 600 MB here). Every sample's pose is
         the same product either way, the same floats; the first chunk is at least the FK
         kernel's compile threshold, so it takes the same (compiled or interpreted) form as
         one call for all samples would."""
@@ -173,7 +173,7 @@ def _always_touching(entry: RobotEntry, bodies: list[Body]) -> frozenset[frozens
     within the limits (as MoveIt's setup assistant disables "always in collision" pairs):
     they overlap by construction (e.g. a forearm capsule reaching into a spherical wrist's
     flange), so checking them would only report the model, never the program."""
-    from rmot.sim.exact import exact_distance
+    from rmot.sim.exact import exact_distance  # coal: loaded when a cell is checked
 
     robot = entry.robot
     lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]

@@ -1,4 +1,4 @@
-"""What a reported cycle time assumes, and where the time goes (issue 11).
+"""What a reported cycle time assumes, and where the time goes.
 
 `ASSUMPTIONS` is the model behind every cycle time rmot prints (lang/REFERENCE.md section 6);
 `ASSUMPTIONS_LINE` is its one-line form for text reports. `timing_json(plan)` gives per task
@@ -55,7 +55,7 @@ _KIND = {ir.Move: "move", ir.SetDigital: "set", ir.SetAnalog: "set", ir.Pulse: "
          ir.WaitTime: "wait", ir.WaitInput: "wait_until", ir.If: "if", ir.Sync: "sync",
          ir.Native: "native", ir.ProcCall: "call",
          ir.VarDecl: "var", ir.Assign: "assign", ir.Loop: "loop", ir.While: "while",
-         ir.WaitCondition: "wait_until", ir.Stop: "stop"}  # issue #15
+         ir.WaitCondition: "wait_until", ir.Stop: "stop"}
 
 
 def timing_json(plan: plan_types.Plan) -> list[dict[str, Any]]:

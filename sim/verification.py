@@ -210,7 +210,7 @@ def _span_at(tp: plan_types.TaskPlan, t: float, variant: int) -> Span | None:
 
 def _iteration_at(tp: plan_types.TaskPlan | None, t: float, variant: int) -> str:
     """' (in iteration layer = 2, row = 1)' when the instruction the task executes at time t lies
-    in a for/repeat loop (issue #15: a finding names the iteration), else ''."""
+    in a for/repeat loop (a finding names the iteration), else ''."""
     if tp is None:
         return ""
     record = _record_at(tp, t, variant)

@@ -41,7 +41,7 @@ def parse_length(text: str) -> float:
     if not match:
         raise ValueError(f"must be a length with a unit, e.g. 10mm (got '{text}')")
     value = float(match.group(1)) * _UNIT[match.group(2)]
-    if not value <= 10.0:  # also inf (`1e999mm`): a clearance beyond 10 m says nothing about a cell (issue #20)
+    if not value <= 10.0:  # also inf (`1e999mm`): a clearance beyond 10 m says nothing about a cell
         raise ValueError(f"must be a length of at most 10 m (got '{text}')")
     return value
 
@@ -98,7 +98,7 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
         return Report(report.program_file, report.cycle_times, report.diagnostics + (note,), report.tasks)
     try:
         os.makedirs(directory, exist_ok=True)
-    except OSError as exc:  # issue #20: a folder that cannot be made is a finding about the option, not a traceback
+    except OSError as exc:  # a folder that cannot be made is a finding about the option, not a traceback
         from rmot.compiler import codes as check_codes
 
         why = Diagnostic(check_codes.OUTPUT_FAILED, Severity.ERROR,

@@ -11,7 +11,7 @@ REPORT_FORMAT = Code("E531", "report-format", "a file given to merge-reports is 
 REPORTS_MISMATCH = Code("E532", "reports-mismatch", "reports given to merge-reports differ in format or version")
 REPORT_UNWRITABLE = Code("E533", "report-unwritable", "the merged report cannot be written where -o says")
 
-# issue #19: one CLI pipeline (compiler/cli/stages.py): a stage that fails unexpectedly
+# one CLI pipeline (compiler/cli/stages.py): a stage that fails unexpectedly
 INTERNAL_ERROR = Code("E550", "internal-error",
                       "a stage of rmot failed unexpectedly (a bug in rmot, not in the input): "
                       "the message names the stage and the exception; please report it")

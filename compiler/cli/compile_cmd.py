@@ -94,7 +94,7 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
         try:
             result = stages.emit(target, plan, source_map=source_map,
                                  allow_findings_header=findings, write_frames=write_frames, unroll=unroll)
-        except stages.StageError as exc:  # a backend bug refuses that vendor only (issue #20)
+        except stages.StageError as exc:  # a backend bug refuses that vendor only
             diagnostics += (exc.diagnostic,)
             refused.append(target)
             continue

@@ -1,4 +1,4 @@
-"""Operating-system errors as diagnostics (issue #20): a missing output folder, a full disk,
+"""Operating-system errors as diagnostics: a missing output folder, a full disk,
 a name longer than NAME_MAX, a folder that cannot be made become `rmot: error[E520]: ...`
 naming the path, never a traceback."""
 

@@ -1,4 +1,4 @@
-"""`rmot compile`'s writer: each vendor directory replaced whole and atomically (issue #20).
+"""`rmot compile`'s writer: each vendor directory replaced whole and atomically.
 
 For each vendor, every file is written into a fresh staging directory beside the final one
 (`OUTDIR/.rmot-stage-<vendor>-<pid>-<n>`), flushed to disk, and the staging directory then

@@ -1,4 +1,4 @@
-"""The one pipeline the commands run (issue #19): front end -> planner -> verification ->
+"""The one pipeline the commands run: front end -> planner -> verification ->
 backends, each stage called through `run`, so that a stage failing unexpectedly (a bug, not
 the input) becomes the same diagnostic in every command:
 

@@ -57,7 +57,7 @@ def eval_expr(e: ast.Expr, scope: Scope, rep: Reporter) -> Value | None:
 
 # Every quantity of a program, in SI units (m, s, rad, kg, ...), is at most this in size: a
 # policy bound (not a physical constant) far above any cell (metres), cycle (hours) or mass,
-# and far below where float arithmetic loses whole units or overflows (issue #20).
+# and far below where float arithmetic loses whole units or overflows.
 MAX_MAGNITUDE = 1e9
 
 
@@ -99,7 +99,7 @@ def _name(e: ast.Name, scope: Scope, rep: Reporter) -> Value | None:
         rep.error(codes.WRONG_TYPE, f"'{e.name}' must be a value to be used here (got {article(entry.kind)})", e.span,
                   ((f"'{e.name}' is defined here", entry.span),))
         return None
-    if entry.kind == "rtvar":  # issue #15: a task variable's value is known only at runtime
+    if entry.kind == "rtvar":  # a task variable's value is known only at runtime
         rep.error(codes.RT_IN_COMPILE_TIME,
                   f"var '{e.name}' must not be used here: a pose, target, speed, time or loop "
                   "bound "
@@ -303,7 +303,7 @@ def _quaternion(v: Value | None, span: Span, rep: Reporter) -> tuple[float, floa
         rep.error(codes.WRONG_TYPE, f"pose field 'q' must be four numbers (w, x, y, z) (got {article(type_name(v))})", span)
         return None
     w, x, y, z = (i.value for i in v.items if isinstance(i, Quantity))  # all four are (checked above)
-    n = math.hypot(w, x, y, z)  # no overflow for components near 1e200 (issue #20)
+    n = math.hypot(w, x, y, z)  # no overflow for components near 1e200
     if n < 1e-12 or not math.isfinite(n):
         rep.error(codes.OUT_OF_RANGE, "pose field 'q' must not be the zero quaternion (got (0, 0, 0, 0))", span)
         return None

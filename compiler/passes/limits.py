@@ -1,4 +1,4 @@
-"""Bounds on the numbers a program may give and on the work it may cause (issue #20).
+"""Bounds on the numbers a program may give and on the work it may cause.
 
 A hostile or clumsy program must get a diagnostic at the span of the number, never a hang, a
 memory blow-up or a crash deep in the planner, the verifier or a backend. Each bound below

@@ -37,7 +37,7 @@ def resolve_path(written: str, relative_to: SourceFile, roots: tuple[str, ...], 
             rep.error(codes.PATH_ESCAPES, f"{what} path must stay inside the project directory {roots[0]} (got '{written}')", span)
             return None
         os.stat(target)
-    except OSError as exc:  # a name longer than NAME_MAX, a folder that cannot be searched, ... (issue #20)
+    except OSError as exc:  # a name longer than NAME_MAX, a folder that cannot be searched, ...
         missing = isinstance(exc, (FileNotFoundError, NotADirectoryError))
         code = codes.FILE_NOT_FOUND if missing or exc.errno == errno.ENAMETOOLONG else codes.UNREADABLE
         reason = "no file there" if missing else (exc.strerror or str(exc))

@@ -46,7 +46,7 @@ _KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circula
 _CONFIG = {"shoulder": ir.Shoulder, "elbow": ir.Elbow, "wrist": ir.Wrist}
 
 
-_CALL_STEPS = 4  # measured: a proc call costs about five statements of lowering (issue #20)
+_CALL_STEPS = 4  # measured: a proc call costs about five statements of lowering
 
 
 class _TooLarge(Exception):
@@ -68,8 +68,8 @@ class TaskLowering:
     rounds: int = 0  # loop rounds begun in this task (bounded: MAX_ITERATIONS)
     stack: list[int] = field(default_factory=list)  # ids of the procs being inlined
     called: set[int] = field(default_factory=set)  # ids of the ProcDecls inlined at least once
-    held: dict[str, Span | None] = field(default_factory=dict)  # parts held now -> where attached (issue #14)
-    depth: int = 0  # blocks entered below the task's body (a `var` belongs to the body, #15)
+    held: dict[str, Span | None] = field(default_factory=dict)  # parts held now -> where attached
+    depth: int = 0  # blocks entered below the task's body (a `var` belongs to the body)
 
     def run(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
         try:
@@ -166,7 +166,7 @@ class TaskLowering:
     # ---------------------------------------------------------------- loops and branches
 
     def for_loop(self, s: ast.For, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
-        """An ir.Loop with every iteration lowered, the loop variable bound to its value (#15)."""
+        """An ir.Loop with every iteration lowered, the loop variable bound to its value."""
         if s.stop is None:
             self.rep.error(
                 codes.FOR_WITHOUT_BOUNDS,
@@ -229,7 +229,7 @@ class TaskLowering:
         return ir.Loop(uid=0, var=None, first=0, last=n, iterations=tuple(iterations), span=s.span)
 
     def _rounds(self, n: int, s: ast.Stmt) -> None:
-        """Count n loop rounds against the task's budget before running any (issue #20)."""
+        """Count n loop rounds against the task's budget before running any."""
         self.rounds += max(0, n)
         if self.rounds > MAX_ITERATIONS:
             self.rep.error(codes.TOO_MUCH_WORK, f"loops of a task must run at most {MAX_ITERATIONS} rounds in all "
@@ -287,7 +287,7 @@ class TaskLowering:
         finally:
             self.stack.pop()
         self.steps += _node_count(body)  # re-spanning the inlined body is work too: a fan-out of empty procs
-        if self.steps > MAX_WORK_STEPS:  # costs one step per nested node per level (issue #20)
+        if self.steps > MAX_WORK_STEPS:  # costs one step per nested node per level
             self.rep.error(codes.TOO_MUCH_WORK, f"a task must make the compiler visit at most {MAX_WORK_STEPS} statements "
                            "while unrolling loops and inlining procs (got more at this call)", s.span)
             raise _TooLarge
@@ -378,7 +378,7 @@ class TaskLowering:
             uid=0, condition=cond, timeout=timeout, on_timeout=on_timeout, span=s.span
         )
 
-    # ---------------------------------------------------------------- runtime state (issue #15)
+    # ---------------------------------------------------------------- runtime state
 
     def rt(self, scope: Scope) -> RtLowering:
         return RtLowering(
@@ -518,10 +518,10 @@ class TaskLowering:
             return None
         return ir.Native(uid=0, vendor=s.vendor.name, text=s.text.value, span=s.span)
 
-    # ---------------------------------------------------------------- parts (issue #14)
+    # ---------------------------------------------------------------- parts
 
     def attach(self, s: ast.AttachStmt, modal: Modal) -> ir.Instr | None:
-        """`attach NAME` / `detach NAME` (issue #14): the part must be a part of the cell, not held
+        """`attach NAME` / `detach NAME`: the part must be a part of the cell, not held
         yet for attach, held by this task for detach. Whether the tool touches it is known only
         once the motion is planned (sim/parts.py, E330)."""
         name = s.part.name
@@ -580,7 +580,7 @@ class TaskLowering:
         turns: dict[int, int] = {}
         for arg in m.value:  # type: ignore[union-attr]
             key = arg.name.name if arg.name is not None else None
-            if key is not None and TURN_KEY.fullmatch(key):  # config(j6=-1): a turn (issue #15)
+            if key is not None and TURN_KEY.fullmatch(key):  # config(j6=-1): a turn
                 turn = turn_arg(arg, scope, self.info, self.robot, self.rep)
                 if turn is not None:
                     turns[turn[0]] = turn[1]

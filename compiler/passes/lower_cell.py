@@ -253,7 +253,7 @@ class _CellBuilder:
         self.models[name] = (None if spec is None else model_key(spec), s)
 
     def _PartDecl(self, s: ast.PartDecl) -> None:
-        """`part box1 = box(...) at pose(...) mass 2kg` (issue #14): its name used as a pose is
+        """`part box1 = box(...) at pose(...) mass 2kg`: its name used as a pose is
         where it starts (`move linear box1 * pose(z=100mm)`)."""
         geometry = self._geometry(s.geometry)
         pose = self._pose(s.at, f"placement of part '{s.name.name}'")

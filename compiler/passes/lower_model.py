@@ -8,7 +8,7 @@ lengths (mm, mm/s, mm/s^2). `flange POSE` (default identity) and `payload MASS` 
 payload, default none) may appear once each. Every number must be finite; speeds and
 accelerations > 0; range lo < hi; payload >= 0; 1 to MAX_JOINTS joints; dh and mdh rows
 are not mixed. See compiler/robots/model.py for the conventions.
-Optional per joint (issue #16): `mass M` (the link's mass, >= 0, on every joint line or on
+Optional per joint: `mass M` (the link's mass, >= 0, on every joint line or on
 none: E809) and `torque T` (the motor's rated torque, N*m, > 0; a force in N on a prismatic
 joint); ratings without masses cannot be checked (W801).
 """
@@ -36,7 +36,7 @@ __all__ = ["lower_model"]
 _DH_ARGS = ("a", "alpha", "d", "theta")
 _KINDS = {"revolute": "R", "prismatic": "P"}
 _FIELDS = ("dh", "range", "speed", "accel")  # dh stands for dh or mdh
-_OPTIONAL = ("mass", "torque")  # issue #16: link mass, motor's rated torque (N for prismatic)
+_OPTIONAL = ("mass", "torque")  # link mass, motor's rated torque (N for prismatic)
 
 
 GeometryFn = Callable[[ast.Geometry], "ir.Geometry | None"]

@@ -8,7 +8,7 @@ Choices (LANGUAGE.md is silent; what RAPID/KRL/TP programmers expect):
     acceleration, used by joint moves): `accel 50 %`.
   * `speed` takes a TCP speed (mm/s, m/s), used by linear and circular moves, or a ratio
     (share of each joint's maximum speed, used by joint moves): `speed 20 %` is exactly
-    `joint_speed 20 %`, as a setting or a move's modifier (issue #15). A modifier that the move
+    `joint_speed 20 %`, as a setting or a move's modifier. A modifier that the move
     it is on does not use warns: a TCP speed on a joint move W170, a ratio on a linear or
     circular move W171 (speed_modifier_warnings).
   * Settings are scoped to their block: a setting inside a proc body, a loop body or an if
@@ -21,6 +21,7 @@ Choices (LANGUAGE.md is silent; what RAPID/KRL/TP programmers expect):
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import replace
 
 from rmot.compiler import codes, ir
@@ -31,7 +32,10 @@ from rmot.compiler.passes.values import article, ACCEL, LENGTH, RATIO, SPEED, Po
 from rmot.lang import ast
 from rmot.lang.record import record
 
-__all__ = ["DEFAULT_MODAL", "Modal", "apply_setting", "speed_modifier_warnings"]
+__all__ = [
+    "DEFAULT_MODAL", "SETTING_HANDLERS", "Modal", "apply_setting", "require_setting_handlers",
+    "speed_modifier_warnings",
+]
 
 
 @record(slots=True)
@@ -50,32 +54,82 @@ DEFAULT_MODAL = Modal(ir.ToolRef(None), ir.FrameRef(None))
 
 def apply_setting(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
     """The modal state after setting `s` (unchanged, with a diagnostic, when `s` is wrong)."""
-    if s.kind == "tool":
-        tool = _tool(s.value, scope, robot, rep)  # type: ignore[arg-type]
-        return modal if tool is None else replace(modal, tool=tool)
-    if s.kind == "frame":
-        frame = _frame(s.value, scope, base, rep)  # type: ignore[arg-type]
-        return modal if frame is None else replace(modal, frame=frame)
-    if s.kind == "zone":
-        if s.value is None:
-            return replace(modal, zone=ir.Zone(0.0))
-        r = _positive(s, scope, LENGTH, "zone", rep, allow_zero=True)
-        r = None if r is None else within(r, 0.0, MAX_ZONE_M, "zone", "mm", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
-        return modal if r is None else replace(modal, zone=ir.Zone(r))
-    if s.kind == "speed" and _is_ratio(s.value, scope, rep):  # type: ignore[arg-type]
-        v = _ratio(s, scope, "speed", rep)
-        return modal if v is None else replace(modal, joint_speed=v)
-    if s.kind == "speed":
-        v = _positive(s, scope, SPEED, "speed", rep)
-        v = None if v is None else within(v, MIN_TCP_SPEED, MAX_TCP_SPEED, "speed", "mm/s", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
-        return modal if v is None else replace(modal, tcp_speed=v)
-    if s.kind == "joint_speed":
-        v = _ratio(s, scope, "joint_speed", rep)
-        return modal if v is None else replace(modal, joint_speed=v)
-    if s.kind == "accel":
-        return _accel(modal, s, scope, rep)
+    return SETTING_HANDLERS[s.kind](modal, s, scope, robot, base, rep)
+
+
+def _set_tool(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
+    tool = _tool(s.value, scope, robot, rep)  # type: ignore[arg-type]
+    return modal if tool is None else replace(modal, tool=tool)
+
+
+def _set_frame(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
+    frame = _frame(s.value, scope, base, rep)  # type: ignore[arg-type]
+    return modal if frame is None else replace(modal, frame=frame)
+
+
+def _set_zone(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
+    if s.value is None:
+        return replace(modal, zone=ir.Zone(0.0))
+    r = _positive(s, scope, LENGTH, "zone", rep, allow_zero=True)
+    r = None if r is None else within(r, 0.0, MAX_ZONE_M, "zone", "mm", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
+    return modal if r is None else replace(modal, zone=ir.Zone(r))
+
+
+def _set_speed(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
+    """A ratio is the joint speed share (`speed 20 %` = `joint_speed 20 %`), else a TCP speed."""
+    if _is_ratio(s.value, scope, rep):  # type: ignore[arg-type]
+        return _set_joint_speed(modal, s, scope, robot, base, rep, "speed")
+    v = _positive(s, scope, SPEED, "speed", rep)
+    v = None if v is None else within(v, MIN_TCP_SPEED, MAX_TCP_SPEED, "speed", "mm/s", 1e-3, s.value.span, rep)  # type: ignore[union-attr]
+    return modal if v is None else replace(modal, tcp_speed=v)
+
+
+def _set_joint_speed(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose,
+                     rep: Reporter, word: str = "joint_speed") -> Modal:
+    v = _ratio(s, scope, word, rep)
+    return modal if v is None else replace(modal, joint_speed=v)
+
+
+def _set_accel(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
+    return _accel(modal, s, scope, rep)
+
+
+def _misplaced(modal: Modal, s: ast.Setting, scope: Scope, robot: str, base: ir.Pose, rep: Reporter) -> Modal:
+    """E115: a move modifier (config, time) or a model line written as a setting."""
     rep.error(codes.MISPLACED, f"'{s.kind}' must be a modifier of a move (got it as a setting)", s.span)
     return modal
+
+
+SettingHandler = Callable[[Modal, ast.Setting, Scope, str, ir.Pose, Reporter], Modal]
+
+# Every setting kind -> how a setting of that kind changes the modal state; checked below when
+# this module is imported, so a kind added to ast.SettingKind without an entry fails at once.
+SETTING_HANDLERS: dict[ast.SettingKind, SettingHandler] = {
+    ast.SettingKind.TOOL: _set_tool,
+    ast.SettingKind.FRAME: _set_frame,
+    ast.SettingKind.ZONE: _set_zone,
+    ast.SettingKind.SPEED: _set_speed,
+    ast.SettingKind.JOINT_SPEED: _set_joint_speed,
+    ast.SettingKind.ACCEL: _set_accel,
+    ast.SettingKind.CONFIG: _misplaced,
+    ast.SettingKind.TIME: _misplaced,
+    ast.SettingKind.TORQUE: _misplaced,
+    ast.SettingKind.MASS: _misplaced,
+    ast.SettingKind.FLANGE: _misplaced,
+    ast.SettingKind.PAYLOAD: _misplaced,
+    ast.SettingKind.CONTROLLER: _misplaced,
+}
+
+
+def require_setting_handlers(table: Iterable[str], kinds: Iterable[str] = ast.SettingKind) -> None:
+    """TypeError unless `table` (its keys) has an entry for every member of `kinds`, no other."""
+    missing, unknown = sorted(set(kinds) - set(table)), sorted(set(table) - set(kinds))
+    if missing or unknown:
+        raise TypeError(f"compiler/passes/modal.SETTING_HANDLERS: no handler for setting kind "
+                        f"{', '.join(missing) or '-'}; unknown kind {', '.join(unknown) or '-'}")
+
+
+require_setting_handlers(SETTING_HANDLERS)
 
 
 def _tool(name: ast.Ident, scope: Scope, robot: str, rep: Reporter) -> ir.ToolRef | None:

@@ -143,7 +143,7 @@ def _names_in(e: object, out: list[ast.Name]) -> None:
     elif isinstance(e, ast.Vector):
         for a in e.items:
             _names_in(a.value, out)
-    elif isinstance(e, (ast.Condition, ast.IoRef)):  # issue #15: conditions
+    elif isinstance(e, (ast.Condition, ast.IoRef)):  # conditions
         _names_in(e.io.index if isinstance(e, ast.Condition) else e.index, out)
         if isinstance(e, ast.Condition):
             _names_in(e.value, out)

@@ -1,4 +1,4 @@
-"""Runtime expressions and conditions (issue #15): ast conditions -> typed ir.RtExpr.
+"""Runtime expressions and conditions: ast conditions -> typed ir.RtExpr.
 
 What the controller computes at runtime: task variables (`var`), digital and analog inputs,
 arithmetic and comparisons, and/or/not. Compile-time values used in them (consts, loop

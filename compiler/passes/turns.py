@@ -1,4 +1,4 @@
-"""`config(jN=n)`: the turn of joint N fixed at a move's target (issue #15, item 4).
+"""`config(jN=n)`: the turn of joint N fixed at a move's target.
 
 Turn n of a revolute joint means its value q lies in [n*360 - 180, n*360 + 180) deg
 (ir.turn_of; lang/REFERENCE.md section 6). The front end checks what it can know without the

@@ -1,4 +1,4 @@
-"""The files a URDF names (collision and visual meshes) checked like the cell's own paths (issue #20).
+"""The files a URDF names (collision and visual meshes) checked like the cell's own paths.
 
 A URDF is a side file of the project: every `<mesh filename="...">` in it must lead to a
 file inside the project root, exactly as `mesh("...")` in a cell must (E504), before the

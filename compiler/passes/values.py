@@ -31,7 +31,7 @@ SPEED: Dim = (1, 0, -1, 0, 0)
 ANGULAR_SPEED: Dim = (0, 1, -1, 0, 0)
 ACCEL: Dim = (1, 0, -2, 0, 0)
 ANGULAR_ACCEL: Dim = (0, 1, -2, 0, 0)
-FORCE: Dim = (1, 0, -2, 1, 0)  # N: a prismatic model joint's force rating (issue #16)
+FORCE: Dim = (1, 0, -2, 1, 0)  # N: a prismatic model joint's force rating
 TORQUE: Dim = (2, 0, -2, 1, 0)  # N*m: a revolute model joint's torque rating
 __all__ += ["FORCE", "TORQUE"]
 

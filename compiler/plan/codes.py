@@ -36,7 +36,7 @@ UNKNOWN_START = Code("W224", "unknown-start", "a task's first move is not a join
 TIMING_EXACT_STOP = Code("W225", "timing-exact-stop",
                          "a blended chain could not be timed as a whole; its corners became exact stops")
 
-# issue #15 item 4: joint turns fixed by config(jN=...) (E170-E179 are the front end's and
+# joint turns fixed by config(jN=...) (E170-E179 are the front end's and
 # the planner's; E170/E171 are in compiler/codes.py)
 TURN_RANGE_TOO_SMALL = Code("E172", "turn-joint-range",
                             "a turn is fixed on a joint whose range spans at most 360 deg")
@@ -46,7 +46,7 @@ TURN_NOT_REACHED = Code(
     "E174", "turn-not-reached",
     "a target has no solution on its fixed turn, or a linear or circular path ends on another")
 __all__ += ["TURN_RANGE_TOO_SMALL", "TURN_OUTSIDE_LIMITS", "TURN_NOT_REACHED"]
-# runtime logic (issue #15)
+# runtime logic
 WHILE_NO_FIXED_POINT = Code(
     "E240",
     "while-no-fixed-point",

@@ -2,7 +2,7 @@
 
 The same spline, and the same evaluation, as `scipy.interpolate.CubicSpline(x, y)` (default
 `bc_type="not-a-knot"`, extrapolating): built here on numpy alone because importing
-scipy.interpolate costs ~0.45 s of CPU, a third of a small `rmot check` (issue 18); scipy stays
+scipy.interpolate costs ~0.45 s of CPU, a third of a small `rmot check`; scipy stays
 the independent witness in tests/plan/test_cubic.py.
 
 The construction follows the textbook (de Boor, "A Practical Guide to Splines", ch. IV) as

@@ -30,7 +30,7 @@ from rmot.compiler.plan.blend import ChainPath, blend_chain
 from rmot.compiler.plan.segments import Segment
 from rmot.compiler.plan.timing import (HoldPiece, PathPiece, Piece, TimingError, joint_move_piece,
                                        path_piece, stretched)
-from rmot.compiler.plan.torque import TORQUE, TorqueLimits, exceeds
+from rmot.compiler.plan.torque import TorqueLimits, exceeds
 from rmot.compiler.plan.robot_model import RobotModel
 
 __all__ = ["TimedChain", "time_chain"]
@@ -58,24 +58,26 @@ def _limits(robot: RobotModel, segments: list[Segment]) -> tuple[np.ndarray, np.
     return robot.velocity_limits.copy(), robot.accel_limits * fa
 
 
-def time_chain(robot: RobotModel, segments: list[Segment]) -> TimedChain:
-    """Time segments (len >= 1) joined by their zones; segments[-1] ends at rest."""
+def time_chain(robot: RobotModel, segments: list[Segment],
+               torque: TorqueLimits | None = None) -> TimedChain:
+    """Time segments (len >= 1) joined by their zones; segments[-1] ends at rest. `torque`: the
+    task's joint torque limits (compiler/plan/torque.py), None where the robot has no ratings."""
     vmax, amax = _limits(robot, segments)
     duration = segments[0].move.motion.duration if len(segments) == 1 else None
     if len(segments) == 1 and segments[0].move.kind is ir.MotionKind.JOINT:
-        return _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, duration)
+        return _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, duration, torque)
     path = blend_chain(robot, segments)
-    return _path_chain(path, segments, vmax, amax, duration)
+    return _path_chain(path, segments, vmax, amax, duration, torque)
 
 
-def _joint_chain(seg: Segment, vmax: np.ndarray, amax: np.ndarray, duration: float | None) -> TimedChain:
+def _joint_chain(seg: Segment, vmax: np.ndarray, amax: np.ndarray, duration: float | None,
+                 limits: TorqueLimits | None) -> TimedChain:
     error = None
     try:
         piece = joint_move_piece(seg.q[0], seg.q[-1], vmax, amax, duration)
     except TimingError as exc:
         error = str(exc)
         piece = joint_move_piece(seg.q[0], seg.q[-1], vmax, amax, None)
-    limits = TORQUE.get()
     if limits is not None and exceeds(limits, piece):
         slower = _line_piece(seg.q[0], seg.q[-1], vmax, amax, limits)
         if slower is not None:
@@ -104,10 +106,10 @@ def _line_piece(q0: np.ndarray, q1: np.ndarray, vmax: np.ndarray, amax: np.ndarr
         return None
 
 
-def _torque_limited(piece: PathPiece, args: tuple[Any, ...], kwargs: dict[str, Any]) -> PathPiece:
+def _torque_limited(piece: PathPiece, args: tuple[Any, ...], kwargs: dict[str, Any],
+                    limits: TorqueLimits | None) -> PathPiece:
     """`piece` (path_piece(*args, **kwargs)), or the same path timed again with the task's torque
-    limits where its torques exceed them (unchanged if that timing fails)."""
-    limits = TORQUE.get()
+    `limits` where its torques exceed them (unchanged if that timing fails)."""
     if limits is None or not exceeds(limits, piece):
         return piece
     try:
@@ -116,7 +118,7 @@ def _torque_limited(piece: PathPiece, args: tuple[Any, ...], kwargs: dict[str, A
         return piece
 
 
-def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain:  # type: ignore[no-untyped-def]
+def _path_chain(path: ChainPath, segments, vmax, amax, duration, torque) -> TimedChain:  # type: ignore[no-untyped-def]
     dof = path.q.shape[1]
     ss = path.ss
     if ss[-1] < 1e-9:
@@ -136,9 +138,9 @@ def _path_chain(path: ChainPath, segments, vmax, amax, duration) -> TimedChain: 
     error = None
     try:
         args = (path.q[keep], ss[keep], vlim, amax, dof, vscale)
-        piece = _torque_limited(path_piece(*args, **tcp_kw), args, tcp_kw)
+        piece = _torque_limited(path_piece(*args, **tcp_kw), args, tcp_kw, torque)
     except TimingError as exc:
-        return _stopped_chain(segments, vmax, amax, str(exc))
+        return _stopped_chain(segments, vmax, amax, str(exc), torque)
     if duration is not None:
         if duration < piece.duration * (1 - 1e-9):
             error = f"time must be at least the fastest feasible {piece.duration:.3f} s (got {duration:.3f} s)"
@@ -172,14 +174,14 @@ class SequencePiece(Piece):
         return out[0], out[1], out[2]
 
 
-def _stopped_chain(segments, vmax, amax, message: str) -> TimedChain:  # type: ignore[no-untyped-def]
+def _stopped_chain(segments, vmax, amax, message: str, torque) -> TimedChain:  # type: ignore[no-untyped-def]
     """The chain could not be timed as a whole: every move on its own, exact stops at the
     corners (reported by the caller at each stop's move and time). A move that cannot be
     timed even on its own keeps its error (E228) at its move; the robot then holds there."""
     pieces, starts, ends, error, error_at = [], [], [], None, None
     t = 0.0
     for k, seg in enumerate(segments):
-        single = time_chain_single(seg, vmax, amax)
+        single = time_chain_single(seg, vmax, amax, torque)
         if single.error is not None and error is None:
             error, error_at = single.error, k
         pieces.append(single.piece)
@@ -192,19 +194,20 @@ def _stopped_chain(segments, vmax, amax, message: str) -> TimedChain:  # type: i
                       error_at, message)
 
 
-def time_chain_single(seg: Segment, vmax: np.ndarray, amax: np.ndarray) -> TimedChain:
+def time_chain_single(seg: Segment, vmax: np.ndarray, amax: np.ndarray,
+                      torque: TorqueLimits | None = None) -> TimedChain:
     """One move from rest to rest (no zone), never raising: a move that cannot be timed holds
     at its start with the reason in `error`."""
     if seg.move.kind is ir.MotionKind.JOINT:
-        return _joint_chain(seg, vmax * seg.speed_factor, amax, None)
+        return _joint_chain(seg, vmax * seg.speed_factor, amax, None, torque)
     path = blend_chain(None, [seg])  # one move: no corner, no robot needed
     try:
-        return _path_chain_strict(path, [seg], vmax, amax)
+        return _path_chain_strict(path, [seg], vmax, amax, torque)
     except TimingError as exc:
         return TimedChain(HoldPiece(seg.q[0].copy(), 0.0), (0.0,), (0.0,), (0.0,), None, str(exc), False)
 
 
-def _path_chain_strict(path: ChainPath, segments, vmax, amax) -> TimedChain:  # type: ignore[no-untyped-def]
+def _path_chain_strict(path: ChainPath, segments, vmax, amax, torque) -> TimedChain:  # type: ignore[no-untyped-def]
     dof = path.q.shape[1]
     ss = path.ss
     if ss[-1] < 1e-9:
@@ -216,5 +219,5 @@ def _path_chain_strict(path: ChainPath, segments, vmax, amax) -> TimedChain:  # 
             and np.any(np.isfinite(path.tcp_speed)):
         tcp_kw = dict(tcp=path.tcp[keep], tcp_speed=path.tcp_speed[keep], tcp_accel=path.tcp_accel[keep])
     args = (path.q[keep], ss[keep], vmax * segments[0].speed_factor, amax, dof, None)
-    piece = _torque_limited(path_piece(*args, **tcp_kw), args, tcp_kw)
+    piece = _torque_limited(path_piece(*args, **tcp_kw), args, tcp_kw, torque)
     return TimedChain(piece, (0.0,), (piece.duration,), (0.0,), path)

@@ -9,6 +9,7 @@ from rmot.compiler.plan import codes
 from rmot.compiler.plan.sync import align, hold_variants, sample
 from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
+from rmot.compiler.plan import torque
 from rmot.compiler.plan_types import Plan, TaskPlan, Variant
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.compiler.plan.robot_model import RobotModel
@@ -48,7 +49,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     for draft in drafts.values():
         hold_variants(draft)
     too_long = _too_many_samples(program, drafts, step)
-    if too_long:  # refused before sampling: the work is bounded before it is done (issue #20)
+    if too_long:  # refused before sampling: the work is bounded before it is done
         diagnostics.extend(too_long)
         diagnostics.sort(key=_diagnostic_order)
         return Plan(program, (), step, tuple(diagnostics))
@@ -65,7 +66,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
 # renderer's frames all scale with it. Measured: a 280 s program checks in 2.2 s and 0.49 GB;
 # a 967 s task took 1.2 GB and 28 s on a loaded machine, and the CSV and JSON backends format
 # every sample (about 0.1 ms each). 900 s covers a full pallet or a long seam (a 1000-move
-# pick-and-place plans to 294 s) and keeps a compile under 2 GB (issue #20; first set at 300 s,
+# pick-and-place plans to 294 s) and keeps a compile under 2 GB (first set at 300 s,
 # raised when that refused programs of realistic length).
 MAX_SAMPLES = 225_000
 
@@ -100,14 +101,8 @@ def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
 def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program) -> TaskDraft:
     """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
     robot has no torque ratings), the payload as the verification takes it."""
-    from rmot.compiler.plan.torque import TORQUE, task_payload, torque_limits
-
-    limits = torque_limits(robot, *task_payload(task, program.cell.parts))
-    token = TORQUE.set(limits)
-    try:
-        return build_task(robot, task, q0, lone=len(program.tasks) == 1)
-    finally:
-        TORQUE.reset(token)
+    limits = torque.torque_limits(robot, *torque.task_payload(task, program.cell.parts))
+    return build_task(robot, task, q0, lone=len(program.tasks) == 1, torque=limits)
 
 
 def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]) -> RobotModel | None:

@@ -1,4 +1,4 @@
-"""Inverse dynamics of a serial chain, vectorised over many samples (issue #16).
+"""Inverse dynamics of a serial chain, vectorised over many samples.
 
 pinocchio's `rnea` takes one configuration per call; the torque limits of the timing need it
 at every grid point (three calls each) and the decision whether they bind at every 2 ms of a

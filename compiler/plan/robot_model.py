@@ -1,4 +1,4 @@
-"""What the planner needs of a robot: the `RobotModel` protocol (issue #19).
+"""What the planner needs of a robot: the `RobotModel` protocol.
 
 compiler/robots/robot.Robot is the one implementation; the planner (compiler/plan) types its
 robot with this protocol instead of `object`, so a missing or misspelt attribute is a type

@@ -77,7 +77,7 @@ def build_segment(
         return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
     seg, more = _cartesian_segment(robot, move, q_now, q_target, tool)
     off = off_turns(seg.q_end, move.config.turns) if seg is not None else []
-    if off:  # the path decides the end's turns (issue #15): they must be the ones fixed
+    if off:  # the path decides the end's turns: they must be the ones fixed
         assert seg is not None  # off_turns is empty without a segment
         j, n, got = off[0]
         msg = (f"a {move.kind.name.lower()} move must end with joint {j + 1} on turn {n} "
@@ -129,7 +129,7 @@ def _arc(start: np.ndarray, via: ir.CartesianTarget | None, end: np.ndarray) -> 
 
 # Per motion kind, the TCP path (start, via, end) a move follows by dense IK, or None for the
 # straight line in joint space (a synchronised joint move). A kind without an entry fails at
-# import (issue #19), never a silent default.
+# import, never a silent default.
 _TCP_PATHS: dict[ir.MotionKind, Callable[[np.ndarray, ir.CartesianTarget | None, np.ndarray],
                                          CartesianPath] | None] = {
     ir.MotionKind.JOINT: None,

@@ -116,8 +116,8 @@ def sample(pieces: list[Piece], step: float, t0: float, dof: int, q_rest: np.nda
     q = np.tile(q_rest, (n, 1)).astype(float)
     qd, qdd = np.zeros((n, dof)), np.zeros((n, dof))
     start = 0.0
-    for piece in pieces:  # each piece's samples by bisection: linear in pieces + samples (issue #20:
-        end = start + piece.duration  # a full-length mask per piece made 10,000 waits quadratic)
+    for piece in pieces:  # each piece's samples by bisection: linear in pieces + samples (a
+        end = start + piece.duration  # full-length mask per piece made 10,000 waits quadratic)
         if piece.duration > 0:
             lo, hi = int(np.searchsorted(tl, start, "left")), int(np.searchsorted(tl, end, "left"))
             if hi > lo:

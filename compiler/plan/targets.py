@@ -11,7 +11,7 @@ Rules (LANGUAGE.md "Motion"):
   path cannot change branch); a `config(...)` that differs from the current branch, or a target
   reachable only on another branch, is an error (E222) saying which branch changes and how to
   fix it (insert a joint move with that config before the move).
-* `config(jN=n)` fixes joint N's turn at the target (issue #15): turn n = q in
+* `config(jN=n)` fixes joint N's turn at the target: turn n = q in
   [n*360 - 180, n*360 + 180) deg (ir.turn_of). Only on a joint whose range spans more than
   360 deg (E172) and only a turn that meets the joint's limits (E173). A joint move takes the
   nearest solution on those turns (E174 when none is); a linear or circular move follows its
@@ -294,7 +294,7 @@ def _turn_unreached(turns: tuple[tuple[int, int], ...],
 
 def _main_line(body: tuple[ir.Instr, ...]) -> Iterator[ir.Instr]:
     """Instructions on the main timeline in order: then-arms of ifs, proc bodies, loops and
-    whiles entered (issue #15); a wait's timeout branch is not on it; it ends at a `stop`."""
+    whiles entered; a wait's timeout branch is not on it; it ends at a `stop`."""
     for instr in body:
         if isinstance(instr, ir.Stop):
             return

@@ -44,6 +44,7 @@ from rmot.compiler.ir_tree import (
 )
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.move_chain import TimedChain, time_chain
+from rmot.compiler.plan.torque import TorqueLimits
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
 from rmot.compiler.plan.timing import HoldPiece, Piece
@@ -88,8 +89,10 @@ class _Builder:
     """Walks one instruction list; `variant` > 0 for an if-arm planned off the main timeline."""
 
     def __init__(self, robot: RobotModel, task: str, q0: np.ndarray, t0: float, variant: int,
-                 draft: TaskDraft, counter: list[int], lone: bool = False) -> None:
+                 draft: TaskDraft, counter: list[int], lone: bool = False,
+                 torque: TorqueLimits | None = None) -> None:
         self.robot, self.task, self.variant, self.lone = robot, task, variant, lone
+        self.torque = torque  # the task's joint torque limits for time_chain (None: no ratings)
         self.spawn = True  # False while walking a variant's continuation: later ifs belong to main
         self.note: tuple[str, object] | None = None  # set on variants: which if's otherwise path
         self.syncs: list[tuple[int, int]] = []  # a variant's syncs (piece pos, record idx)
@@ -99,7 +102,7 @@ class _Builder:
         self.chain: list[Segment] = []
         self.events: list[tuple[ir.Instr, int]] = []
         self.pending: list[tuple[Finding, int]] = []  # warnings of chain moves, by chain index
-        self.stopped = False  # a `stop` ended this path (issue #15): nothing after it is planned
+        self.stopped = False  # a `stop` ended this path: nothing after it is planned
         self.tool: str | None = None  # the tool of the last move, and the parts held: with q, the
         self.held: tuple[str, ...] = ()  # state a while's iteration must end in to be proved
         self.paths: dict[int, tuple] = {}  # type: ignore[type-arg]  # uid -> loop iterations
@@ -220,7 +223,8 @@ class _Builder:
         task from the arm's end; `kind` names the path (PATHS)."""
         self.counter[0] += 1
         index = self.counter[0]
-        sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter, self.lone)
+        sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter, self.lone,
+                       self.torque)
         sub.paths, (sub.tool, sub.held) = self.paths, state
         line = instr.span.start.line if instr.span is not None else "?"
         sub.note = (f"on {path_words(kind, line)}", instr.span)
@@ -248,7 +252,7 @@ class _Builder:
         )
         self.draft.continuations.append((index, n_if))
 
-    # ------------------------------------------------------------------ runtime logic (issue #15)
+    # ------------------------------------------------------------------ runtime logic
     def _wait_branch(
         self, instr: ir.WaitInput | ir.WaitCondition, rest: tuple[tuple[ir.Instr, ...], ...]
     ) -> None:
@@ -326,7 +330,7 @@ class _Builder:
             return
         chain, events, pending, t0 = self.chain, self.events, self.pending, self.t
         self.chain, self.events, self.pending = [], [], []
-        timed = time_chain(self.robot, chain)
+        timed = time_chain(self.robot, chain, self.torque)
         self._append(timed.piece)
         for i, seg in enumerate(chain):
             self._move_record(seg, timed, i, t0)
@@ -367,7 +371,7 @@ _Rest = tuple[tuple[ir.Instr, ...], ...]
 
 
 def _plan_loop(b: _Builder, instr: ir.Loop, after: _Rest) -> None:
-    """Every iteration in order (issue #15), each continued by the later ones."""
+    """Every iteration in order, each continued by the later ones."""
     for k, it in enumerate(instr.iterations):
         b.walk(it.body, tuple(x.body for x in instr.iterations[k + 1:]) + after)
 
@@ -417,10 +421,12 @@ _PLAN: dict[type, Callable[[_Builder, Any, _Rest], None]] = {
 require_kinds("compiler/plan/timeline._PLAN", _PLAN)
 
 
-def build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, *, lone: bool = False) -> TaskDraft:
-    """The timeline of one task from joints q0 (dof,); `lone`: the program's only task (syncs are no-ops)."""
+def build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, *, lone: bool = False,
+               torque: TorqueLimits | None = None) -> TaskDraft:
+    """The timeline of one task from joints q0 (dof,); `lone`: the program's only task (syncs are no-ops);
+    `torque`: the task's joint torque limits (compiler/plan/torque.py), None where there are none."""
     draft = TaskDraft()
-    builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0], lone)
+    builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0], lone, torque)
     builder.paths = iteration_paths(task.body)
     builder.walk(task.body)
     builder.flush()

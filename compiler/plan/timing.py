@@ -310,7 +310,7 @@ class _PathSpline:
     """q(s) and its first two derivatives: the not-a-knot cubic spline through the waypoints,
     the same interpolation as toppra's SplineInterpolator default (scipy's CubicSpline), built
     on numpy (compiler/plan/cubic.py) so that timing imports neither toppra (whose package
-    imports matplotlib) nor scipy.interpolate: ~1.4 s of start-up together (issue 18)."""
+    imports matplotlib) nor scipy.interpolate: ~1.4 s of start-up together."""
 
     def __init__(self, ss: np.ndarray, waypoints: np.ndarray) -> None:
         self._constant = waypoints[0] if len(ss) == 1 else None

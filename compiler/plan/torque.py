@@ -1,4 +1,4 @@
-"""Joint torque limits for the timing (issue #16): a heavy payload slows the motion rather than
+"""Joint torque limits for the timing: a heavy payload slows the motion rather than
 exceeding the motors.
 
 Along a path q(s) timed by x = ds/dt^2 and u = d2s/dt2 the joint torques are affine in (u, x):
@@ -32,23 +32,17 @@ motion the motors already manage plans exactly as before.
 
 from __future__ import annotations
 
-from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from rmot.compiler import ir
 
-__all__ = ["CHECK_STEP", "TORQUE", "TorqueLimits", "exceeds", "task_payload", "torque_limits"]
+__all__ = ["CHECK_STEP", "TorqueLimits", "exceeds", "task_payload", "torque_limits"]
 
 CHECK_STEP = (
     0.002  # s: the torque of a timed chain is sampled this often to decide whether it binds
 )
-
-# The torque limits of the task being planned (set by planner.plan_program around a task's
-# timeline, read by chain.py): kept out of the timeline builder's signature.
-TORQUE: ContextVar[TorqueLimits | None] = ContextVar("rmot_torque_limits", default=None)
-
 
 @dataclass(frozen=True, eq=False)
 class TorqueLimits:
@@ -154,7 +148,7 @@ def flange_in_last_joint(robot: Any) -> np.ndarray:
 
 
 # samples per block of `exceeds`: the inverse dynamics of a whole blended chain at once held
-# ~1 kB a sample (a 2000-move chain: 350,000 samples, 380 MB; issue 18)
+# ~1 kB a sample (a 2000-move chain: 350,000 samples, 380 MB)
 EXCEEDS_CHUNK = 16_384
 
 

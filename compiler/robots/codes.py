@@ -11,9 +11,9 @@ __all__ = ["BAD_URDF"]
 # as is (`rmot reach --robot broken.urdf`: E202); the front end, planner and verifier report a
 # robot that does not load under their own codes (E111, E505, E231, E320).
 # An unknown robot name is the front end's E111 (UNKNOWN_ROBOT, imported above), which the
-# design commands report as E804: issue #19 removed E201, which no caller ever reported.
-# Issue #19 removed E203-E208: E203 and E208 were never reported; E204-E207 (IkResult.code)
-# were reported only under the planner's codes for the same findings (E220 target-unreachable,
+# design commands report as E804 (there is no E201: no caller would report it).
+# There are no E203-E208: E203 and E208 would never be reported; E204-E207 (IkResult.code)
+# would be reported only under the planner's codes for the same findings (E220 target-unreachable,
 # E221 target-out-of-limits, E222 branch-change, E224/W221 singular: compiler/plan/targets.py).
 
 BAD_URDF = Code("E202", "bad-urdf", "a URDF file cannot be loaded as a serial arm")

@@ -15,12 +15,10 @@ rated payload 0.1 m along and 0.1 m across the flange axis.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pinocchio as pin
 
-from rmot.compiler.robots.spec import Segment
+from rmot.compiler.robots.spec import Segment, capsule_volume as _volume, spread_mass
 
 __all__ = ["EFFORT_METHOD", "INERTIA_METHOD", "SPREAD_METHOD", "estimate_effort", "given_inertias", "link_inertias",
            "spread_mass"]
@@ -30,18 +28,6 @@ INERTIA_METHOD = "estimate: uniform solid over each link's capsules (centre of m
 EFFORT_METHOD = ("estimate: 2 x the largest gravity + own-axis inertial torque (M_ii x accel limit) over 256 poses "
                  "within the limits, rated payload 0.1 m along and 0.1 m across the flange axis")
 PAYLOAD_OFFSET = (0.1, 0.0, 0.1)  # m in the flange frame, for `estimate_effort`
-
-
-def _volume(seg: Segment) -> float:
-    length = math.dist(seg.p0, seg.p1)
-    return math.pi * seg.radius ** 2 * length + 4.0 / 3.0 * math.pi * seg.radius ** 3
-
-
-def spread_mass(segments: tuple[Segment, ...], total_kg: float, dof: int) -> tuple[float, ...]:
-    """Each moving link's share (1..dof) of `total_kg` spread over all capsules by volume."""
-    vols = [_volume(s) for s in segments]
-    whole = sum(vols)
-    return tuple(total_kg * sum(v for s, v in zip(segments, vols) if s.joint == j) / whole for j in range(1, dof + 1))
 
 
 def _solid(seg: Segment, mass: float) -> tuple[np.ndarray, np.ndarray]:

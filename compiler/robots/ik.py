@@ -19,74 +19,24 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
-from enum import Enum
 from typing import Any
 
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.robots.ik_result import (
+    POS_TOL, ROT_TOL, SINGULAR_SIGMA, IkResult, IkStatus, result,
+)
+from rmot.compiler.robots.ik_result import is_singular as _is_singular
 from rmot.compiler.robots.ik_rows import BranchRows, JointRows
 from rmot.compiler.robots.numeric import dls, dls_fast, restart_seeds
-from rmot.lang.record import record
 
-__all__ = ["IkResult", "IkStatus", "solve", "solve_batch", "POS_TOL", "ROT_TOL"]
+__all__ = [
+    "IkResult", "IkStatus", "solve", "solve_batch", "POS_TOL", "ROT_TOL", "SINGULAR_SIGMA", "result",
+]
 
-POS_TOL = 1e-9  # m
-ROT_TOL = 1e-9  # rad
-SINGULAR_SIGMA = 1e-6  # smallest singular value of the Jacobian (reach-scaled) at a singularity
 TWO_PI = 2 * math.pi
 NUMERIC_RESTARTS = 24
-
-
-class IkStatus(Enum):
-    OK = "ok"
-    UNREACHABLE = "unreachable"  # no solution at all (distance says how far outside)
-    OUT_OF_LIMITS = "out-of-limits"  # solutions exist, every one violates a joint limit
-    SINGULAR = "singular"  # solutions exist (in .solutions) but the pose is on a singularity
-
-
-@record(slots=True)
-class IkResult:
-    """status; solutions (dof,) arrays nearest to seed first and `branches` parallel to them
-    (immutable sequences that behave as tuples: robots/ik_rows.py; `solutions.array` is all of
-    them as one (m, dof) array).
-    UNREACHABLE: `distance` (m) from the workspace. OUT_OF_LIMITS: `joint` (0-based index),
-    `excess` (rad or m) of the least-violating solution; `message` a sentence for users."""
-
-    status: IkStatus
-    solutions: Sequence[np.ndarray] = ()
-    branches: Sequence[ir.Config] = ()
-    message: str = ""
-    distance: float = 0.0
-    joint: int | None = None
-    excess: float = 0.0
-
-    @property
-    def ok(self) -> bool:
-        """True when there is at least one solution (OK or SINGULAR)."""
-        return bool(self.solutions)
-
-
-_NEW = object.__new__
-_SETTERS = tuple(IkResult.__dict__[f].__set__ for f in
-                 ("status", "solutions", "branches", "message", "distance", "joint", "excess"))
-
-
-def result(status: IkStatus, solutions: Sequence[np.ndarray], branches: Sequence[ir.Config],
-           message: str = "") -> IkResult:
-    """IkResult(status, solutions, branches, message): the same frozen value, made through its
-    slots (half the time of the dataclass's __init__, which Robot.ik pays on every call)."""
-    out = _NEW(IkResult)
-    s0, s1, s2, s3, s4, s5, s6 = _SETTERS
-    s0(out, status)
-    s1(out, solutions)
-    s2(out, branches)
-    s3(out, message)
-    s4(out, 0.0)
-    s5(out, None)
-    s6(out, 0.0)
-    return out
 
 
 _EYE3 = np.eye(3)
@@ -218,7 +168,7 @@ def _fast_solver(robot) -> Any:  # type: ignore[no-untyped-def]
     closed_form = robot._closed_form
     if not isinstance(closed_form, ClosedForm) or not closed_form.branch:
         return False
-    from rmot.compiler.robots.fastsolve import FastSolver
+    from rmot.compiler.robots.fast_solver import FastSolver  # numba-compiled: loaded on first use
 
     solver = FastSolver(robot, closed_form)
     return solver if solver.usable else False
@@ -308,12 +258,6 @@ def _distinct(qs: list[np.ndarray]) -> list[np.ndarray]:
     diff = np.minimum(gap, TWO_PI - gap).max(axis=2)
     same_as_earlier = np.any(np.tril(diff <= 1e-9, k=-1), axis=1)
     return [q for q, dup in zip(qs, same_as_earlier) if not dup]
-
-
-def _is_singular(robot, q: np.ndarray) -> bool:  # type: ignore[no-untyped-def]
-    j = robot.jacobian(q).copy()
-    j[3:] *= max(robot.reach, 1e-3)
-    return bool(np.linalg.svd(j, compute_uv=False)[-1] < SINGULAR_SIGMA)
 
 
 def _unreachable(robot, target: np.ndarray) -> IkResult:  # type: ignore[no-untyped-def]

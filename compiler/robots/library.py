@@ -140,7 +140,7 @@ def _abb_kuka() -> list[RobotSpec]:
             speed_deg_s=(250, 250, 250, 320, 320, 420),
             # estimate from ABB IRB 120 product specification standard cycle 0.58 s (25 mm up,
             # 300 mm across, 25 mm down and back, 1 kg): 16 x the joint speed per second (vmax
-            # in 62.5 ms) gives 0.60 s with 10 mm corners, 0.69 s with exact stops (issue 11)
+            # in 62.5 ms) gives 0.60 s with 10 mm corners, 0.69 s with exact stops
             accel_deg_s2=(4000, 4000, 4000, 5120, 5120, 6720),
             reach=0.580, radii=(0.09, 0.07, 0.055, 0.055, 0.05, 0.045, 0.03),
             rated_payload_kg=3.0, arm_mass_kg=25.0, conventions=ABB_CONV,

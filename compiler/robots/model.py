@@ -25,7 +25,7 @@ Conventions (lang/REFERENCE.md, "Robot models"):
     60 % at the flange; an estimate for display and a conservative collision envelope, not
     the vendor's shape. Solids of the same or neighbouring joints, and solids that overlap at
     the model's zero configuration, touch by design and are not checked against each other.
-  * Accelerations and speeds are the model's own. Dynamics (issue #16) only where every joint
+  * Accelerations and speeds are the model's own. Dynamics only where every joint
     line gives its link's `mass`: the mass spread over the link's solids (given or generated)
     by volume, each a uniform solid over its bounding capsule (compiler/robots/dynamics
     .link_inertias, the library's estimate); a link with no solid of known extent (a mesh)

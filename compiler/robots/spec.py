@@ -5,6 +5,7 @@ A spec is plain data. `robot.Robot` builds the pinocchio model from it once.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -14,7 +15,8 @@ from rmot.compiler.robots.opw import OpwJointMap, OpwParams, opw_dh_table
 from rmot.compiler.robots.urik import UrParams
 from rmot.lang.record import record
 
-__all__ = ["RobotSpec", "Segment", "opw_spec", "ur_spec", "opw_segments", "ur_segments"]
+__all__ = ["RobotSpec", "Segment", "capsule_volume", "opw_spec", "spread_mass", "ur_spec", "opw_segments",
+           "ur_segments"]
 
 
 @record(slots=True)
@@ -27,6 +29,20 @@ class Segment:
     p0: tuple[float, float, float]
     p1: tuple[float, float, float]
     radius: float
+
+
+def capsule_volume(seg: Segment) -> float:
+    """The volume (m^3) of a segment's capsule: a cylinder and two half spheres."""
+    length = math.dist(seg.p0, seg.p1)
+    return math.pi * seg.radius ** 2 * length + 4.0 / 3.0 * math.pi * seg.radius ** 3
+
+
+def spread_mass(segments: tuple[Segment, ...], total_kg: float, dof: int) -> tuple[float, ...]:
+    """Each moving link's share (1..dof) of `total_kg` spread over all capsules by volume."""
+    vols = [capsule_volume(s) for s in segments]
+    whole = sum(vols)
+    return tuple(total_kg * sum(v for s, v in zip(segments, vols) if s.joint == j) / whole
+                 for j in range(1, dof + 1))
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -48,7 +64,7 @@ class RobotSpec:
     solid_pose: tuple[float, ...] = ()  # controller q (rad) at which `segments` are given
     extra_adjacent: tuple[tuple[str, str], ...] = ()  # solid-name pairs that touch by design
     notes: str = ""
-    # --- provenance and dynamics (issue 12) ---
+    # --- provenance and dynamics ---
     rated_payload_kg: float | None = None  # the data sheet's rated payload
     link_mass_kg: tuple[float, ...] = ()  # per moving link 1..n; () = no inertias
     effort_nm: tuple[float, ...] = ()  # per joint torque limit; () = estimated by `dynamics`
@@ -76,14 +92,12 @@ def opw_spec(
     flange_rz: the vendor flange frame turned about the flange axis from the OPW one (rad).
     floor: z of the mounting face in the base frame (m; below 0 when the vendor's base frame
     sits at the J2 height, as Fanuc's does).
-    arm_mass_kg: the data sheet's arm mass, spread over the capsules (`dynamics.spread_mass`)
+    arm_mass_kg: the data sheet's arm mass, spread over the capsules (`spread_mass`)
     unless `link_mass_kg` is given in `extra`.
     """
     solid_q = tuple(jmap.from_theta(np.zeros(6)).tolist())
     segments = opw_segments(params, radii, floor)
     if arm_mass_kg is not None and "link_mass_kg" not in extra:
-        from rmot.compiler.robots.dynamics import spread_mass
-
         extra["link_mass_kg"] = spread_mass(segments, arm_mass_kg, 6)
     return RobotSpec(
         name=name, vendor=vendor, model=model, source=source, dh=opw_dh_table(params, jmap),

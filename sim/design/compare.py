@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from rmot.compiler import ir
-from rmot.lang.diagnostics import Diagnostic
+from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.sim.design.metrics import TaskMetrics, program_metrics, substitute_robot
 from rmot.sim.report import Report
 
@@ -46,7 +46,6 @@ def run_arm(program: ir.Program, key: str | None, slot: str, path: str) -> ArmRe
     """Plan and verify `program` with arm `key` in `slot` (None: the cell's own robot)."""
     from rmot.compiler.plan import plan_program
     from rmot.compiler.robots import RobotError, load_robot
-    from rmot.lang.diagnostics import Severity
     from rmot.sim import codes, verify
 
     model = ""

@@ -15,7 +15,9 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.robots.codes import UNKNOWN_ROBOT
 from rmot.sim.design import codes
+from rmot.lang.diagnostics import Diagnostic, Severity
 
 __all__ = ["OptionError", "Study", "fixture_meshes", "parse_angles", "parse_region", "rotation_rpy", "study_for"]
 
@@ -31,8 +33,6 @@ class OptionError(ValueError):
 
     def diagnostic(self) -> Any:
         """The error as a diagnostic value (no span: the value came from the command line)."""
-        from rmot.lang.diagnostics import Diagnostic, Severity
-
         return Diagnostic(self.code, Severity.ERROR, self.message, None)
 
 
@@ -115,8 +115,6 @@ class Study:
 def robot_error_code(exc: Any) -> Any:
     """The code of a --robot value the loader refused: an unknown library name (the loader's
     UNKNOWN_ROBOT, E111) is the design commands' E804; a file that does not load keeps the loader's own code."""
-    from rmot.compiler.robots.codes import UNKNOWN_ROBOT
-
     return codes.ROBOT_UNKNOWN if exc.code in (None, UNKNOWN_ROBOT) else exc.code
 
 

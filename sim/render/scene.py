@@ -38,7 +38,7 @@ ROBOT_BY_VENDOR = {  # the colours the vendors paint their arms, roughly
     "ur": (0.62, 0.75, 0.85),
 }
 ROBOT_DEFAULT = (0.85, 0.55, 0.15)
-PART = (0.78, 0.56, 0.30)  # cardboard: parts that tools pick up and put down (issue #14)
+PART = (0.78, 0.56, 0.30)  # cardboard: parts that tools pick up and put down
 
 
 @dataclass(frozen=True, eq=False)
@@ -102,7 +102,7 @@ def body_poses(rs: RenderScene, times: np.ndarray) -> np.ndarray:
     moving: dict[str, np.ndarray] = {}
     for robot, values in q.items():
         moving.update(rs.scene.poses(robot, values))
-    moving.update(part_poses(rs.scene, rs.plan, times, q))  # parts: placed or on a flange (issue #14)
+    moving.update(part_poses(rs.scene, rs.plan, times, q))  # parts: placed or on a flange
     poses = np.empty((len(times), len(rs.names), 4, 4))
     for i, body in enumerate(rs.scene.bodies):
         poses[:, i] = moving[body.name] if body.name in moving else body.local

@@ -1,4 +1,4 @@
-"""Hand-built runtime-logic programs (issue #15) for the Fanuc, INFORM and VAL3 emitters: a
+"""Hand-built runtime-logic programs for the Fanuc, INFORM and VAL3 emitters: a
 3 x 4 x 3 palletiser written with nested `for` loops and a machine-tending task with a
 counter, a `while` on an input, a timeout branch and `stop`, lowered as the front end lowers
 them (every loop iteration with its own uids, the loop variables bound into the targets) and

@@ -1,4 +1,4 @@
-"""Hand-built loop programs for the loop analysis and the vendor loop tests (issue #15).
+"""Hand-built loop programs for the loop analysis and the vendor loop tests.
 
 A palletiser nest `for layer in 0 .. L-1 { for row in 0 .. R-1 { ... } }` lowered as the front
 end lowers it: every iteration's body with its own uids and the loop variables bound into the

@@ -1,4 +1,4 @@
-"""Independent witnesses for the emitted vendor loops (issue #15): tiny interpreters, written
+"""Independent witnesses for the emitted vendor loops: tiny interpreters, written
 here from the vendors' manuals and NOT from the backends, that run an emitted RAPID module,
 KRL module or URScript program's loops, offsets and routine calls, and list every Cartesian
 target the program moves to, in the robot base frame, in execution order.

@@ -1,4 +1,4 @@
-"""backends/base.py behaviour that mutation testing (issue #19, `make mutation`) found untested:
+"""backends/base.py behaviour that mutation testing (`make mutation`) found untested:
 de-duplication of diagnostics, hashable keys, the shared limits and warnings. A toy vendor
 with its own limits stands in for a controller; expected values are written out here."""
 

@@ -1,4 +1,4 @@
-"""Numbered tools and frames, stored data left alone, and the brand check (issue 13).
+"""Numbered tools and frames, stored data left alone, and the brand check.
 
 A cell may give a tool or frame its controller number (`number n`). Fanuc, KRL and INFORM
 then select that number and never write the controller's stored tool/frame data unless

@@ -1,4 +1,4 @@
-"""One program per vendor golden file (issue 13): tests/backends/programs/tour.rmot has an
+"""One program per vendor golden file: tests/backends/programs/tour.rmot has an
 arc, blended joint moves, I/O waits with and without timeout, an if/else, a proc, a tool
 change and a frame change, a numbered tool and frame and unnumbered ones. Its files for all
 six vendors are in golden/<vendor>/tour__<file>, reviewed line by line against the manuals

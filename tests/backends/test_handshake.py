@@ -141,7 +141,7 @@ class TestLowering:
         assert isinstance(out[2], ir.ProcCall) and out[2].proc == "outer"
 
     def test_counts_through_every_loop_iteration(self) -> None:
-        """A sync in a `repeat 2` runs twice: two barriers with their own levels (issue #19: the
+        """A sync in a `repeat 2` runs twice: two barriers with their own levels (the
         lowering went through if arms and proc calls only and left the loop's syncs as they
         were, a barrier no handshake vendor writes)."""
         its = tuple(ir.LoopIteration(value=v, body=(_sync(10 + v),)) for v in (0, 1))

@@ -1,4 +1,4 @@
-"""Every vendor writes what the plan assumed for joint-move speeds (issue #15, item 4):
+"""Every vendor writes what the plan assumed for joint-move speeds:
 `speed R %` on a joint move gives the same files as `joint_speed R %`, and a TCP speed on a
 joint move (W170, not used by the plan) gives the same files as no speed at all — no backend
 turns it into a controller TCP limit the plan did not time (ABB MoveJ writes vmax, VAL3 movej

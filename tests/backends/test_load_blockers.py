@@ -1,4 +1,5 @@
-"""Issue 13's load-blockers, one test each, through the real front end and planner:
+"""What kept a vendor program from loading on its controller, one test each, through the
+real front end and planner:
 
 * Fanuc: a circular move's `C P[via]` line does not end the instruction (no ` ;`); only its
   `:  P[to] speed zone ;` continuation does (R-30iB Operator's Manual, circular motion;

@@ -1,4 +1,4 @@
-"""Runtime logic (issue #15) in the Fanuc TP, INFORM and VAL3 emitters.
+"""Runtime logic in the Fanuc TP, INFORM and VAL3 emitters.
 
 * golden files (hand-reviewed once) of a 3 x 4 x 3 palletiser written with nested `for` and of
   a machine-tending task (counter, `while` on an input, timeout branch, `stop`); the

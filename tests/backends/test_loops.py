@@ -1,4 +1,4 @@
-"""backends/loops.py: when a `for` loop's iterations can be one vendor loop (issue #15)."""
+"""backends/loops.py: when a `for` loop's iterations can be one vendor loop."""
 
 from __future__ import annotations
 
@@ -98,7 +98,7 @@ def test_bind_loop_var() -> None:
 
 
 def test_loop_plan_is_the_one_decision_of_every_vendor() -> None:
-    """runtime.loop_plan (issue #19): a template is one vendor loop; an analysis whose
+    """runtime.loop_plan: a template is one vendor loop; an analysis whose
     iterations but the last fit is that loop and then the last iteration, with W420's text at
     the differing instruction; a vendor blocker's reason writes every iteration, at the loop."""
     from rmot.backends import loops as lp

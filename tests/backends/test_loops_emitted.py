@@ -1,4 +1,4 @@
-"""Vendor loops as emitted (issue #15): the emitted RAPID / KRL / URScript loop, run by the
+"""Vendor loops as emitted: the emitted RAPID / KRL / URScript loop, run by the
 witness interpreters of loop_witness.py (written from the manuals, not from the backends),
 moves to exactly the poses the planner verified for every iteration; loops that cannot be one
 vendor loop are unrolled with W420 naming the iteration; `--unroll` writes every iteration;
@@ -98,8 +98,8 @@ def test_palletiser_loops_reach_every_verified_placement(
 
 
 def test_palletiser_rapid_is_a_few_dozen_moves(pallet_plan: plan_types.Plan) -> None:
-    """Issue #15 'Done when': RAPID with no more than a few dozen moves (216 unrolled), nested FOR
-    loops with Offs on the slot targets."""
+    """The palletiser as one program: RAPID with no more than a few dozen moves (216
+    unrolled), nested FOR loops with Offs on the slot targets."""
     text = next(iter(emit("rapid", pallet_plan).files.values()))
     moves = [ln for ln in text.splitlines() if ln.strip().startswith("Move")]
     assert len(moves) <= 36, len(moves)

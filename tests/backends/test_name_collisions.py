@@ -1,4 +1,4 @@
-"""Names that cannot collide (issue 13): a proc or target named like something the vendor's
+"""Names that cannot collide: a proc or target named like something the vendor's
 language defines is renamed with W414; names equal after the vendor's length and case rules
 are made unique (W401). Checked on the emitted text: every routine defined once, every call
 names a routine the program defines, and no definition takes a built-in's name."""

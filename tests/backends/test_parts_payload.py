@@ -1,4 +1,4 @@
-"""Held parts' payload in the vendor programs (issue #14): tests/data/parts/stack.rmot picks
+"""Held parts' payload in the vendor programs: tests/data/parts/stack.rmot picks
 two 2 kg cubes with a 1 kg gripper (TCP on the gripper's end face, 100 mm from the flange;
 the gripper's own centre of gravity at half the TCP offset, 50 mm, rmot's convention). A
 cube is held by its top face, so its centre is 50 mm beyond the TCP: 150 mm from the flange.
@@ -137,7 +137,7 @@ program p on r1 {
 
 def test_krl_moves_inside_a_loop_carry_the_held_part(tmp_path: Path) -> None:
     """A loop's moves after an attach write tool + part as $LOAD, as straight-line moves do
-    (issue #19: the parts walk went through if arms and proc calls only, so a KRL loop's moves
+    (the parts walk went through if arms and proc calls only, so a KRL loop's moves
     wrote the bare tool's load while the part hung on it)."""
     import shutil
 

@@ -1,4 +1,4 @@
-"""One registry per concept (issue #19): the backend registry is the only list of vendors, and
+"""One registry per concept: the backend registry is the only list of vendors, and
 every table keyed by ir.MotionKind (each backend's MOVES, the planner's segment builders) has
 a handler for each kind, checked at import.
 

@@ -1,4 +1,4 @@
-"""RAPID, KRL and URScript write the runtime-logic instructions (issue #15): expressions with
+"""RAPID, KRL and URScript write the runtime-logic instructions: expressions with
 each vendor's operators and priorities, analog inputs in each vendor's unit and range (E420),
 waits on a condition, stop inside a routine (KRL W421), repeat loops."""
 

@@ -1,4 +1,4 @@
-"""Joint turns fixed by `config(j6=n)` (issue #15, item 4) reach every vendor's file.
+"""Joint turns fixed by `config(j6=n)` reach every vendor's file.
 
 For each vendor, a program moves J6 to turn -1, then turn +1 (a joint move and a linear move
 that keeps it), then back to turn -1, on an arm whose J6 range allows both turns. The

@@ -9,7 +9,7 @@ examples/palletizing.rmot (96 moves).
 BASE (optional): another rmot tree measured in the same rounds (see bench_startup.py for how
 to lay one out), e.g. the commit before the verification cache, for a before/after in one run.
 Each tree has its own cache folder, filled by one `rmot check` of each program before the
-rounds. Target (issue 18): the cached compile at least 3x faster than --no-cache. Wall and
+rounds. Target: the cached compile at least 3x faster than --no-cache. Wall and
 CPU time (user + system of the child) are both shown: on a loaded machine CPU is the steadier.
 """
 

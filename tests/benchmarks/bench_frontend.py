@@ -1,7 +1,7 @@
 """Front-end speed: parse + lower a generated 10,000-line program; `rmot --help` wall time.
 
 Run: make bench  (or .venv/bin/python -m pytest tests/benchmarks/bench_frontend.py)
-Targets (issue 2): >= 20,000 lines/s for parse + lower; <= 0.3 s for `rmot --help`.
+Targets: >= 20,000 lines/s for parse + lower; <= 0.3 s for `rmot --help`.
 `.venv/bin/python tests/benchmarks/bench_frontend.py` prints lines/s (library and CLI GC
 schedules, parse alone) and where the time goes (stage_split: lex, LALR loop, AST build, passes).
 """

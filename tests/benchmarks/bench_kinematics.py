@@ -4,11 +4,11 @@ each next to a plain pinocchio damped-least-squares loop run in the same process
     pytest tests/benchmarks/bench_kinematics.py          # pytest-benchmark tables
     python tests/benchmarks/bench_kinematics.py          # one summary of medians (µs)
 
-Targets (issue 3): batched closed form <= 1 µs per pose (all 8 branches), single call
+Targets: batched closed form <= 1 µs per pose (all 8 branches), single call
 <= 10 µs, numeric median <= 100 µs cold with 100 % success at 1e-9, FK <= 1.5 µs.
-Issue 18 (`_closed_form_arm`, CPU-time medians): Robot.ik on abb_irb120, kuka_kr6_r900 and ur5e
-<= 20 µs per call with all its checks, ik_batch with limits and seed selection <= 2 µs per pose,
-each next to the raw closed form in the same run. ur5e's joints span ±360°: a pose has 512
+Closed-form arms (`_closed_form_arm`, CPU-time medians): Robot.ik on abb_irb120, kuka_kr6_r900
+and ur5e <= 20 µs per call with all its checks, ik_batch with limits and seed selection
+<= 2 µs per pose, each next to the raw closed form in the same run. ur5e's joints span ±360°: a pose has 512
 2π-equivalents (`solutions_per_call`); Robot.ik finds, checks and returns the nearest and makes
 the others (rows of one array, sorted) only when asked for (`robot_ik_all_rows_us`: Robot.ik
 plus a list of every solution, what a caller that reads all of them pays).
@@ -233,7 +233,7 @@ def summary() -> dict[str, float]:
     ur.ik_closed_form(ur_many)
     out["ur5e_closed_form_batched_us_per_pose"] = _median_us(lambda: ur.ik_closed_form(ur_many), 50) / len(ur_many)
     out["ur5e_closed_form_single_us"] = _median_us(lambda: ur.ik_closed_form(ur_poses[nxt()]), 5000)
-    for name in ISSUE_18_ARMS:  # issue 18: Robot.ik <= 20 us, ik_batch <= 2 us/pose
+    for name in ISSUE_18_ARMS:  # Robot.ik <= 20 us, ik_batch <= 2 us/pose
         out.update(_closed_form_arm(name))
     u = load_robot(ur5_urdf())
     uq, uposes = targets(u)

@@ -1,4 +1,4 @@
-"""The cost of parts in the collision check (issue #14): configurations checked per second
+"""The cost of parts in the collision check: configurations checked per second
 without parts, and with 24 parts (one held on the flange, 23 placed around the arm), on the
 same arm, fixtures and path as bench_verify.py's "clear" setting.
 

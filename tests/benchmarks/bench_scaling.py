@@ -1,4 +1,4 @@
-"""Linear cost, bounded memory (issue 18, item 4): `rmot check --no-cache` of a program of N
+"""Linear cost, bounded memory: `rmot check --no-cache` of a program of N
 moves, N = 10 ... 2000, each run a whole `rmot` process; per run the CPU time (user + system)
 and the peak RSS of that one child (os.wait4), and the wall time.
 
@@ -20,7 +20,7 @@ whole program (`zone fine`, or `zone 10 mm`: blended). Every target is reachable
 collides, so the check does the whole work (IK, timing, sampled collision and limit checks)
 and exits 0; a run that exits otherwise is reported as such.
 
-Targets (issue 18): time(400) <= 5 x time(80) (CPU); peak RSS at N = 2000 below 1.5 GB. Also
+Targets: time(400) <= 5 x time(80) (CPU); peak RSS at N = 2000 below 1.5 GB. Also
 the slope of the log-log fit of CPU time against N over N >= 80 (1.0 = linear; the fixed
 start-up cost, ~1-2 s of imports and numba kernels, flattens it), the same of the CPU time and
 peak above the smallest N's (the cost of the moves themselves), and the CPU per added move

@@ -12,7 +12,7 @@ BASE (optional): another rmot tree to measure in the same rounds, e.g. main befo
 It runs through the same interpreter and site-packages, with this tree's editable install
 taken off the import path; each tree has its own cache folder.
 
-Targets (issue 18): `rmot check` of a 3-move program <= floor + 0.6 s; `rmot robots ik` <=
+Targets: `rmot check` of a 3-move program <= floor + 0.6 s; `rmot robots ik` <=
 floor + 0.3 s; `rmot compile` right after `rmot check` of the same program >= 3x faster than
 `rmot compile --no-cache`. Both wall and CPU time are shown: on a loaded machine the CPU
 time (user + system of the child) is the steadier.

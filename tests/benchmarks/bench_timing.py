@@ -1,4 +1,4 @@
-"""Timing benchmark (issue 11): random pick-and-place programs, cycle time and planning cost.
+"""Timing benchmark: random pick-and-place programs, cycle time and planning cost.
 
 Programs: alternating `move joint pose(..)` / `move linear pose(..)` to random points of a
 120 x 300 x 100 mm box in front of the robot, tool pointing down, 300 mm/s, one zone for the
@@ -15,7 +15,7 @@ Run:
     .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 ur5e --n 10 50 100 200
     .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 --zones 10 --n 10 100 1000 --verify --memory
     .venv/bin/python tests/benchmarks/bench_timing.py --arms abb_irb120 ur5e --zones 0 10 --n 10 100 --reference
-The machine the numbers in the issue's closing note came from was shared (2 cores, ~8 jobs).
+The machine the measured numbers came from was shared (2 cores, ~8 jobs).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Torque-limited timing benchmark (issue 16): what a binding joint torque limit costs the planner.
+"""Torque-limited timing benchmark: what a binding joint torque limit costs the planner.
 
 Programs on a UR5e (cited ratings 150/150/150/28/28/28 N·m): alternating joint and linear
 moves between random points of a box in front of the arm, 10 mm zones, with a tool of MASS kg
@@ -9,7 +9,7 @@ equal up to the cost of the torque check (sampled RNEA every 2 ms of each chain)
 
 Run:
     .venv/bin/python tests/benchmarks/bench_torque.py --n 10 40 --mass 0 8 --repeat 3
-The machine the numbers in the issue's closing note came from was shared (2 cores, ~8 jobs).
+The machine the numbers below came from was shared (2 cores, ~8 jobs).
 Measured there (load ~12, --n 10 40 --mass 0 8 --repeat 3): no limit binds on these programs
 (cycle times equal); planning with the torque check took 1.07x (10 moves) and 1.09x (40
 moves) the time without it at 0 kg, within the noise of the loaded machine at 8 kg.

@@ -173,7 +173,7 @@ class TestWholeFileProblems:
 
 def test_unrolling_beyond_the_limit_is_reported_once() -> None:
     """A loop that unrolls past MAX_INSTRUCTIONS stops with one E121 at the statement that overflows."""
-    # 150,000 rounds (under the loop-round budget, E124, issue #20) of two instructions each
+    # 150,000 rounds (under the loop-round budget, E124) of two instructions each
     result = load_text("program p on r1 {\n  repeat 150000 { wait 1 ms; wait 1 ms }\n}\n", "/virtual/big.rmot")
     assert [(d.code.id, d.span.start.line) for d in result.diagnostics] == [("E121", 2)]  # type: ignore[union-attr]
 

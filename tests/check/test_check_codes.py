@@ -22,7 +22,7 @@ def test_codes_are_registered_and_in_range() -> None:
     for code in _codes(lang_codes):
         assert re.fullmatch(r"E0\d\d", code.id) and registered[code.id] is code
     for code in _codes(check_codes):
-        # E809/W801: a cell model's masses and ratings, numbered in the design range (issue #16)
+        # E809/W801: a cell model's masses and ratings, numbered in the design range
         # and reported by the front end's model pass (compiler/passes/lower_model.py)
         assert re.fullmatch(r"[EW]1\d\d|E5\d\d|E809|W801", code.id), code
         assert registered[code.id] is code
@@ -34,7 +34,7 @@ def test_most_codes_have_a_fixture() -> None:
     """Each front-end code except the few that need generated input appears in a bad fixture."""
     text = "".join(p.read_text(encoding="utf-8") for p in BAD.glob("*.rmot"))
     generated = {"E009", "E010", "E502", "E503", "E505", "E121"}  # tested in test_check_bad_inputs
-    generated |= {"E011", "E012", "E520", "E521", "E522"}  # line breaks, OS errors: tests/robust (issue #20)
+    generated |= {"E011", "E012", "E520", "E521", "E522"}  # line breaks, OS errors: tests/robust
     generated |= {"W123"}  # a warning (fixtures declare errors): tested in test_check_config_and_ranges
     generated |= {"W135"}  # a warning: tested in tests/robots/test_cell_model.py
     generated |= {"W140"}  # a warning: tested in test_check_parts

@@ -39,7 +39,7 @@ def test_json_round_trips_the_instruction_count() -> None:
             uids.append(node["uid"])
             collect(node.get("body", []) if node["type"] == "ProcCall" else [])
             collect(node.get("then", []) + node.get("otherwise", []))
-            for it in node.get("iterations", []):  # issue #15: a for loop keeps every iteration
+            for it in node.get("iterations", []):  # a for loop keeps every iteration
                 collect(it["body"])
 
     collect(data["tasks"][0]["body"])

@@ -1,4 +1,4 @@
-"""Parts in the cell language (issue #14): declarations, attach/detach and what the front end
+"""Parts in the cell language: declarations, attach/detach and what the front end
 can tell before anything moves (the bad inputs are fixtures in tests/data/bad/part_*.rmot)."""
 
 from __future__ import annotations

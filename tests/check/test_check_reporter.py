@@ -1,4 +1,4 @@
-"""The front end's Reporter drops exact repeats only (issue #19: a mutation of its warning
+"""The front end's Reporter drops exact repeats only (a mutation of its warning
 de-duplication survived every test)."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Issue #15, item 4: `speed R %` on joint moves, TCP speeds where a move does not use them,
+"""`speed R %` on joint moves, TCP speeds where a move does not use them,
 and joint turns fixed by `config(jN=n)` (front end, planner; the vendors' files are checked in
 tests/backends/test_turns_emitted.py).
 

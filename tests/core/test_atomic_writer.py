@@ -1,4 +1,4 @@
-"""One atomic writer honouring the umask (issue #19): every output file — vendor programs,
+"""One atomic writer honouring the umask: every output file — vendor programs,
 `check -o` reports, `plan --csv`, renders, plots — gets mode 0666 & ~umask, under any umask
 (before, vendor files and reports were 0600 while renders were 0644)."""
 

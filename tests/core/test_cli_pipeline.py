@@ -1,4 +1,4 @@
-"""One CLI pipeline (issue #19): a stage that fails unexpectedly is the same diagnostic in
+"""One CLI pipeline: a stage that fails unexpectedly is the same diagnostic in
 every command — E550 internal-error naming the stage, exit 2, no traceback. Each test makes one
 stage raise (monkeypatched) and runs a command through the real `rmot` group."""
 

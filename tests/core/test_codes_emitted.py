@@ -1,4 +1,4 @@
-"""No dead diagnostic codes (issue #19): every code a codes module registers is used by the
+"""No dead diagnostic codes: every code a codes module registers is used by the
 code that reports diagnostics, so a user can meet it.
 
 A code counts as used when some module of the package (not its own codes module, not a test)
@@ -82,13 +82,13 @@ def test_an_unused_code_is_found() -> None:
     assert _users("rmot.compiler.robots.codes", "BAD_URDF")
 
 
-# an unknown library name is the design commands' own E804 since #16 (it names --robot and
+# an unknown library name is the design commands' own E804 (it names --robot and
 # points to `rmot robots list`); a URDF that does not load keeps the loader's E202
 @pytest.mark.parametrize(("robot", "code"), [("no_such_arm", "E804"), ("broken.urdf", "E202")])
 def test_robot_load_codes_reach_the_user(robot: str, code: str, tmp_path: Path) -> None:
     """E202 (a RobotError's code) is reported as it is by the design commands, an unknown name
     as their E804 (the front end and the planner report a robot that does not load under their
-    own codes; issue #19 removed E201, which nothing reported)."""
+    own codes; there is no E201, which nothing would report)."""
     from click.testing import CliRunner
 
     from rmot.compiler.cli import cli

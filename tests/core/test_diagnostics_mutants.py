@@ -1,4 +1,4 @@
-"""Diagnostics behaviour that mutation testing (issue #19, `make mutation`) found untested:
+"""Diagnostics behaviour that mutation testing (`make mutation`) found untested:
 the code registry, carets on empty and multi-line spans, time ranges, span-less text, and
 the sink. Expected texts are written out by hand."""
 

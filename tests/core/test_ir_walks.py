@@ -1,4 +1,4 @@
-"""One IR walker (issue #19): the nesting of IR instructions is known in compiler/ir_tree only.
+"""One IR walker: the nesting of IR instructions is known in compiler/ir_tree only.
 
 A pass that recurses into the bodies an instruction holds asks `ir_tree.children`, `walk` or
 `flow` (how those bodies run) instead of testing `isinstance(x, ir.If)` and reading `.then`;
@@ -87,7 +87,7 @@ def test_the_allow_list_names_functions_that_exist_and_still_recurse() -> None:
 
 
 def test_the_scan_catches_a_hand_written_walk() -> None:
-    """The scan is not blind: the walk issue #19 found in 9 files is reported."""
+    """The scan is not blind: a hand-written walk of the IR nesting is reported."""
     src = ROOT / "compiler" / "_probe_walk.py"
     src.write_text(
         "from rmot.compiler import ir\n\n"

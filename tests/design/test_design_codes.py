@@ -41,7 +41,7 @@ CASES = [
     ("E804", ["reach", DEMO, "--robot", "zz", "-o", "OUT.png"], "--robot must name a robot of cell 'demo' (r1, r2) (got 'zz')"),
     ("E804", [*PLACE, "--robot", "zz", "--region", "x=0m..1m, y=0m..1m", "-o", "OUT.rmot"], "--robot must name a robot of cell"),
     ("E804", [*COMPARE, "--as", "zz"], "--as must name a robot of cell 'place_inside' (r1) (got 'zz')"),
-    # an unknown bare library name is E804 too, not the loader's E111 (issue #16; E201 until #19)
+    # an unknown bare library name is E804 too, not the loader's E111
     ("E804", ["reach", "--robot", "no_such_arm", "-o", "OUT.png"],
      "--robot: unknown robot 'no_such_arm'"),
     ("E804", [*COMPARE, "--robot", "no_such_arm"],

@@ -110,7 +110,7 @@ def test_check_dynamics_prints_the_rnea_numbers() -> None:
 
 
 def test_library_arms_get_torque_figures(pick_compare: dict) -> None:
-    """Library arms carry inertias (issue 12): every joint gets a peak torque below its rated
+    """Library arms carry inertias: every joint gets a peak torque below its rated
     torque on the verified program, and a positive RMS no larger than the peak."""
     arm = pick_compare["arms"][0]
     assert arm["dynamics"] is not None and len(arm["dynamics"]) == 6
@@ -127,7 +127,7 @@ def test_a_robot_without_inertias_says_so() -> None:
 
 def test_unknown_arm_is_a_finding_not_a_traceback(tmp_path: Path) -> None:
     """An arm file that does not load is reported as not verified, with E320; a name that is no
-    library robot and no URDF file is a bad option, E804, before anything is planned (issue #16)."""
+    library robot and no URDF file is a bad option, E804, before anything is planned."""
     doc = _compare_json(PICK, str(tmp_path / "missing.urdf"))
     assert doc["arms"][0]["verified"] is False
     assert doc["arms"][0]["first_findings"][0]["code"] == "E320"

@@ -28,7 +28,7 @@ VENDORS = targets()
 # program, the cell or the planner changed and the comments should be re-read.
 CLEAN = {
     "pick_place.rmot": 39.2,
-    "palletizing.rmot": 267.5,  # issue #15: 3 x 4 x 3 cartons written with nested for loops
+    "palletizing.rmot": 267.5,  # 3 x 4 x 3 cartons written with nested for loops
     "weld_seam.rmot": 31.0,
     "handover.rmot": 15.6,
     "inspect.rmot": 6.9,
@@ -50,7 +50,7 @@ DOCUMENTED_WARNINGS |= {"W460"}
 # tests/backends) also shows: RAPID tooldata for its massless pointer (W413), an analog
 # output VAL3 must link by hand (W455) and a pulse VAL3 lowers to set/delay/reset (W451).
 EXTRA_WARNINGS = {"inspect.rmot": {"W413", "W451", "W455"}}
-# Loops (issue #15): a `for` loop written iteration by iteration, or its last iteration after the
+# Loops: a `for` loop written iteration by iteration, or its last iteration after the
 # loop (W420 names the iteration: in the shipped examples the last placement, whose final move
 # blends into the way home instead of stopping); a stop inside a routine ends the program
 # through a flag tested after each call (W421: KRL, VAL3).

@@ -1,5 +1,5 @@
-"""The "expected ..." list of a syntax error: at most six alternatives, then "..." (issue #19:
-a mutation of the cut-off survived every test)."""
+"""The "expected ..." list of a syntax error: at most six alternatives, then "..." (a
+mutation of the cut-off would otherwise survive every test)."""
 
 from __future__ import annotations
 

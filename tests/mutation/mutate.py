@@ -1,4 +1,4 @@
-"""Mutation testing (issue #19): mutmut over one module with only its own test files.
+"""Mutation testing: mutmut over one module with only its own test files.
 
     python -m tests.mutation.mutate base          # or: diagnostics, timing, all
     make mutation                                 # all three, one after the other

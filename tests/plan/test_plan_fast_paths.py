@@ -1,4 +1,4 @@
-"""The planner's fast paths (issue #11, planning speed) against independent witnesses:
+"""The planner's fast paths (planning speed) against independent witnesses:
 
 * a refined timing grid (new points and cells evaluated alone and merged into the old ones in
   place) holds the same limits as the same grid evaluated whole;

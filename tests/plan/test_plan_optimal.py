@@ -1,4 +1,4 @@
-"""Timing against an independent time-optimal reference (issue 11).
+"""Timing against an independent time-optimal reference.
 
 The reference is toppra (not used by rmot's timing) run in this test on a dense uniform grid
 over the plan's own geometric path (the joined, blended joint path rmot builds), with the same

@@ -1,4 +1,4 @@
-"""The programmed TCP speed is kept along Cartesian moves and blended chains (issue 4).
+"""The programmed TCP speed is kept along Cartesian moves and blended chains.
 
 A weld-like chain: a line, a quarter arc that turns the tool about the vertical as it goes
 (the TCP's joint motion per millimetre jumps where the arc starts), a second line, joined by

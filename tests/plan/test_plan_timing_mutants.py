@@ -1,4 +1,4 @@
-"""Timing behaviour that mutation testing (issue #19, `make mutation`) found untested.
+"""Timing behaviour that mutation testing (`make mutation`) found untested.
 
 Every expectation is computed here from the motion model's definition (synchronised straight
 line, trapezoid, uniform time stretch, TCP speed of the TCP path), not read from the code.

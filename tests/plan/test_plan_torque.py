@@ -1,4 +1,4 @@
-"""Joint torque limits feed the timing (issue #16): a heavy payload slows the motion rather than
+"""Joint torque limits feed the timing: a heavy payload slows the motion rather than
 exceeding the motors.
 
 Witnesses, none of them rmot's timing code:

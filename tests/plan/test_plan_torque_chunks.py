@@ -1,4 +1,4 @@
-"""torque.exceeds samples a timed chain EXCEEDS_CHUNK samples at a time (issue 18: bounded
+"""torque.exceeds samples a timed chain EXCEEDS_CHUNK samples at a time (bounded
 memory): the same answer as one pass over every sample, on a case of many chunks whose only
 excess lies in a late chunk, on one without any excess, and the same torques, bit for bit."""
 

@@ -7,8 +7,8 @@ test against the floor: the nearest object must be the one the rasteriser shows,
 pixels whose 3 x 3 neighbourhood in the ray-cast holds more than one object (edge pixels,
 where a centre a hair inside one object may rasterise to its neighbour).
 
-The scenes include the two of issue #17: a box 1.2 m in front of the eye with the rest of the
-scene 6 m away (the near plane once followed the scene's size and cut the box away), and a
+The scenes include two that once rendered wrong: a box 1.2 m in front of the eye with the rest
+of the scene 6 m away (the near plane once followed the scene's size and cut the box away), and a
 table seen from close by (the floor showed through its front face). The floor triangles are
 large and cross the near plane and pass behind the eye, so clipping is exercised too.
 """
@@ -142,7 +142,7 @@ def mismatches(boxes: list[Box], camera: Camera, size: tuple[int, int] = SIZE, f
     return int(bad.sum()), expected
 
 
-# The cell of issue #17: a 500 x 700 x 780 mm table at x = 480 mm, an LR Mate 200iD base
+# A cell that once rendered wrong: a 500 x 700 x 780 mm table at x = 480 mm, an LR Mate 200iD base
 # (about 160 x 160 mm) standing on it at z = 800 mm, seen from close by.
 TABLE = Box((0.48, 0.0, 0.39), (0.5, 0.7, 0.78))
 ROBOT_BASE = Box((0.48, 0.0, 0.88), (0.16, 0.16, 0.16))

@@ -1,4 +1,4 @@
-"""Parts in the pictures (issue #14): a held part is drawn where the gripper holds it, a
+"""Parts in the pictures: a held part is drawn where the gripper holds it, a
 placed one where it was put, in every picture kind.
 
 The pixel test projects a world point with its own pinhole camera (look-at with +z up, the

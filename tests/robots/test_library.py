@@ -16,7 +16,7 @@ ORIGINAL = (
     "abb_irb120", "abb_irb1600", "abb_irb4600", "kuka_kr6_r900", "kuka_kr16", "kuka_kr210",
     "fanuc_lrmate200id", "fanuc_m20ia", "yaskawa_gp8", "staubli_tx2_60", "ur3e", "ur5e", "ur10e", "puma560",
 )
-ADDED = (  # issue 12: each with its independent reference in reference_arms.py
+ADDED = (  # each with its independent reference in reference_arms.py
     "kuka_kr4_r600", "kuka_kr6_r700_2", "kuka_kr6_r900_2", "kuka_kr10_r900_2", "kuka_kr10_r1100_2",
     "kuka_kr16_r1610_2", "kuka_kr20_r1810_2", "kuka_kr30_r2100", "kuka_kr50_r2500", "kuka_kr210_r3100_2",
     "kuka_kr8_r1440_2_arc_hw", "kuka_kr150_r3100_2", "kuka_kr240_r2900_2", "kuka_kr300_r2700_2",

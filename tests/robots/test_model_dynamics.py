@@ -1,4 +1,4 @@
-"""Motor ratings and link masses on a cell `model` (issue #16): `torque 120 N*m` and `mass 4 kg`
+"""Motor ratings and link masses on a cell `model`: `torque 120 N*m` and `mass 4 kg`
 on a joint line become the robot's rated torques and link inertias; `rmot check --dynamics`
 says per joint whether the motor suffices; the timing respects the ratings.
 

@@ -1,4 +1,5 @@
-"""Reproducers of issue #20, one per failure class ingredient (written anew, same ingredients).
+"""Reproducers of hostile or damaged input, one per failure class ingredient (written anew,
+same ingredients).
 
 Each case is a small project: files (path -> text or bytes), the `rmot` argument list (`{d}`
 is the project directory) and what must come back: an exit code and the diagnostic codes the

@@ -172,7 +172,7 @@ def _statement(d: Draw, depth: int, procs: list[str]) -> str:
 
 
 def _condition(d: Draw) -> str:
-    """A runtime condition (issue #15): inputs, analog inputs, variables, and/or/not."""
+    """A runtime condition: inputs, analog inputs, variables, and/or/not."""
     leaves = (f"in[{_int(d, 1, 3)}] {d.pick(('==', '!='))} {d.pick(('on', 'off'))}",
               f"ain[{_int(d, 1, 2)}] {d.pick(('<', '<=', '>', '>='))} {_num(d, -1, 10)}",
               f"n {d.pick(('<', '==', '!=', '>='))} {_int(d, -2, 5)}", "flag", "not flag")
@@ -183,7 +183,7 @@ def _condition(d: Draw) -> str:
 
 
 def _runtime_statement(d: Draw, depth: int, procs: list[str], pad: str) -> str:
-    """Runtime logic (issue #15): assignments, while, wait with a timeout branch, stop, if on a
+    """Runtime logic: assignments, while, wait with a timeout branch, stop, if on a
     general condition, joint-move speed shares and fixed turns. `var n` and `var flag` are
     declared at the top of every generated program; absurd draws assign to the wrong things."""
     kind = d.integer(0, 9)

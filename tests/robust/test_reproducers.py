@@ -1,6 +1,7 @@
-"""Every failure class of issue #20 as a regression test: each reproducer (tests/robust/cases.py)
-runs through the real command line in this process and must end with the expected exit code
-and diagnostic codes, never a traceback; no vendor file may carry injected text."""
+"""Every failure class of hostile or damaged input as a regression test: each reproducer
+(tests/robust/cases.py) runs through the real command line in this process and must end with
+the expected exit code and diagnostic codes, never a traceback; no vendor file may carry
+injected text."""
 
 from __future__ import annotations
 

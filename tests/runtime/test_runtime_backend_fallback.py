@@ -1,4 +1,4 @@
-"""The backends' base fallback for runtime logic (issue #15): a vendor without its own loop
+"""The backends' base fallback for runtime logic: a vendor without its own loop
 writing gets every Loop unrolled (the loop variable bound to each value), and var, assignment,
 while, stop, general conditions and timeout branches are E165 — never dropped silently.
 

@@ -1,4 +1,4 @@
-"""Runtime logic in the front end (issue #15): parsing, typing and lowering of var, assignment,
+"""Runtime logic in the front end: parsing, typing and lowering of var, assignment,
 conditions, while, wait-until timeout branches, stop, and for/repeat as ir.Loop.
 
 The expected IR is written out by hand from the language's rules (REFERENCE.md §12), not

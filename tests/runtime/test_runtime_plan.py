@@ -1,4 +1,4 @@
-"""Runtime logic in the planner and the verifier (issue #15): every loop iteration planned and
+"""Runtime logic in the planner and the verifier: every loop iteration planned and
 checked, findings naming the iteration, the while fixed-point rule, timeout paths and stop.
 
 Independent witnesses: the palletiser's 36 slot poses and the iteration that must collide are

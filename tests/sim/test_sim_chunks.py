@@ -1,4 +1,4 @@
-"""The verification's chunked computations (issue 18: bounded memory) give the same floats as
+"""The verification's chunked computations (bounded memory) give the same floats as
 one computation over every sample: Scene.poses (POSE_CHUNK samples at a time) and the broad
 phase's lower_bound (BOUND_CHUNK), each on a case of several chunks with a short last one,
 and a whole verification report, byte for byte, with tiny chunks against the defaults."""

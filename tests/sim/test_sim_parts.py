@@ -1,4 +1,4 @@
-"""Parts in the verification (issue #14): held parts are bodies of their robot, placed parts
+"""Parts in the verification: held parts are bodies of their robot, placed parts
 are fixtures, two parts must keep a gap, the payload is checked.
 
 Every program runs in tests/data/parts/cell.rmot: a UR10e (rated payload 12.5 kg) on a 400 mm
