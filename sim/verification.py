@@ -23,6 +23,7 @@ from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.source import Span
 from rmot.sim import codes
+from rmot.sim.corners import corner_findings
 from rmot.sim.collide import PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.limits import LimitHit, check_limits
 from rmot.sim.report import Report
@@ -51,6 +52,7 @@ def verify_with(plan: plan_types.Plan, *, clearance: float | None = None,
             findings += parts.shape_diagnostics(program.cell)
             findings += _part_collisions(scene, plan, tasks, clearance or 0.0)
             findings += parts.payload_findings(scene, plan)
+    findings += corner_findings(scene, tasks)
     for tp in tasks:
         findings += _limits(scene, tp, plan)
     findings.sort(key=_finding_order)
