@@ -9,7 +9,8 @@ JSON (version 2; `JSON_SCHEMA` below is the normative description):
                               "moving_s": float, "waiting_s": float, "sync_s": float,
                               "instructions": [{"uid": int, "kind": str, "line": int | null,
                                                 "start_s": float, "end_s": float,
-                                                "variant": int}],
+                                                "variant": int,
+                                                "blend_radius_mm": float}],  # moves only
                               "dynamics": {"model": str, "note": str,          # only with
                                            "joints": [{"joint": int,           # check --dynamics
                                                        "unit": "N·m" | "N",
@@ -132,7 +133,8 @@ _TASK: dict[str, Any] = {
             "required": ["uid", "kind", "line", "start_s", "end_s", "variant"],
             "additionalProperties": False,
             "properties": {"uid": {"type": "integer"}, "kind": {"type": "string"}, "line": _NULL_INT,
-                           "start_s": _NUM, "end_s": _NUM, "variant": {"type": "integer"}},
+                           "start_s": _NUM, "end_s": _NUM, "variant": {"type": "integer"},
+                           "blend_radius_mm": _NUM},
         }},
     },
 }

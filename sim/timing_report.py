@@ -77,10 +77,17 @@ def timing_json(plan: plan_types.Plan) -> list[dict[str, Any]]:
             "moving_s": _round(moving),
             "waiting_s": _round(max(cycle - moving - syncing, 0.0)),
             "sync_s": _round(syncing),
-            "instructions": [
-                {"uid": r.uid, "kind": kind[r.uid], "line": r.span.start.line if r.span else None,
-                 "start_s": _round(r.t_start), "end_s": _round(r.t_end), "variant": r.variant}
-                for r in sorted(tp.records, key=lambda r: (r.variant, r.t_start, r.uid))
-            ],
+            "instructions": [_instruction(r, kind[r.uid])
+                             for r in sorted(tp.records, key=lambda r: (r.variant, r.t_start, r.uid))],
         })
     return tasks
+
+
+def _instruction(r: plan_types.InstructionRecord, kind: str) -> dict[str, Any]:
+    """One instruction's times; a move also its verified blend radius (mm, 0 = exact stop), the
+    radius every backend prints as the move's zone."""
+    out: dict[str, Any] = {"uid": r.uid, "kind": kind, "line": r.span.start.line if r.span else None,
+                           "start_s": _round(r.t_start), "end_s": _round(r.t_end), "variant": r.variant}
+    if kind == "move":
+        out["blend_radius_mm"] = _round(r.blend_radius * 1000.0)
+    return out

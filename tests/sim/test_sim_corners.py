@@ -65,3 +65,12 @@ def test_fine_corner_and_distant_post_are_clean(tmp_path: Path) -> None:
     assert not _findings(_program(tmp_path, 260, "fine"), "W340")
     far = _program(tmp_path, 400, "50 mm")
     assert not _findings(far, "W340") and not _findings(far, "W341")
+
+
+def test_json_gives_each_moves_verified_blend_radius(tmp_path: Path) -> None:
+    """min(zone, half of each neighbouring move) = min(90, 400 / 2, 150 / 2) mm; 0 where it stops."""
+    path = _program(tmp_path, 400, "90 mm")
+    result = CliRunner().invoke(check_cmd.check, [str(path), "--format", "json", "--no-cache"])
+    (task,) = json.loads(result.output)["programs"][0]["tasks"]
+    radii = {i["line"]: i["blend_radius_mm"] for i in task["instructions"] if i["kind"] == "move"}
+    assert radii == {BLENDED_LINE - 2: 0.0, BLENDED_LINE - 1: 0.0, BLENDED_LINE: 75.0, BLENDED_LINE + 1: 0.0}
