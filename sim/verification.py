@@ -261,8 +261,14 @@ def _limits(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None 
         if traj.t.size == 0:
             continue
         for hit in check_limits(entry.robot, traj, payload, payload_at):
-            out.append(_limit_diagnostic(tp, hit, variant))
+            out.append(_limit_diagnostic(tp, hit, variant, _estimated_torque(entry.robot)))
     return out
+
+
+def _estimated_torque(robot: Any) -> bool:
+    """Whether the robot's torque ratings are an estimate (its `effort` source says so,
+    compiler/robots/dynamics.py): an excess over them is a warning (W342), not an error."""
+    return dict(getattr(robot, "sources", ())).get("effort", "").startswith("estimate")
 
 
 def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> tuple[float, np.ndarray | None]:
@@ -285,7 +291,7 @@ def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None
     return best[0], flange[:3, :3] @ best[1] + flange[:3, 3]
 
 
-def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int) -> Diagnostic:
+def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int, estimated: bool = False) -> Diagnostic:
     unit, factor, p_unit, p_factor = _UNITS[hit.quantity]
     if hit.prismatic:
         unit, factor = p_unit, p_factor
@@ -304,5 +310,10 @@ def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int) -> D
     if variant:
         message += _variant_path(tp, variant)
     span = _span_at(tp, hit.t0, variant)
-    return Diagnostic(_LIMIT_CODES[hit.quantity], Severity.ERROR, message, span, (), hit.t0, hit.t1,
+    code, severity = _LIMIT_CODES[hit.quantity], Severity.ERROR
+    if hit.quantity == "torque" and estimated:
+        code, severity = codes.JOINT_TORQUE_ESTIMATE, Severity.WARNING
+        message = message.replace("exceeds its limit", "exceeds its estimated limit")
+        message += f" (robot '{tp.robot}': the vendor publishes no torque rating; `rmot robots show` gives the estimate)"
+    return Diagnostic(code, severity, message, span, (), hit.t0, hit.t1,
                       (f"{tp.robot}/joint{hit.joint}",), amount, tp.task.name)
