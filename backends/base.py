@@ -51,6 +51,7 @@ object per call or reuse it sequentially (never share one between threads).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from collections.abc import Callable, Hashable, Iterable
@@ -67,6 +68,7 @@ from rmot.backends.conventions import (
 )
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
+from rmot.backends.part_load import held_load
 from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
@@ -234,6 +236,8 @@ class Backend:
         ir.Pulse: "pulse", ir.WaitTime: "wait_time", ir.WaitInput: "wait_input", ir.If: "if_",
         ir.Sync: "sync", ir.Native: "native", ir.ProcCall: "proc_call",
         ir.Attach: "attach", ir.Detach: "detach",
+        ir.Loop: "loop", ir.VarDecl: "var_decl", ir.Assign: "assign", ir.While: "while_",
+        ir.WaitCondition: "wait_condition", ir.Stop: "stop",
     }
     MOVES: ClassVar[dict[ir.MotionKind, str]] = {
         ir.MotionKind.JOINT: "move_joint", ir.MotionKind.LINEAR: "move_linear",
@@ -250,6 +254,13 @@ class Backend:
     # source; None: no documented limit in the language (the controller limits it itself)
     MAX_TCP_SPEED: ClassVar[float | None] = None
     MAX_TCP_SPEED_SOURCE: ClassVar[str] = ""
+    # True: the vendor prints `for`/`repeat` loops as loops (its own `loop` method). False:
+    # `lowered_plan` unrolls every loop before printing (the loop variable bound to each value).
+    PRINTS_LOOPS: ClassVar[bool] = False
+    # True: the vendor writes runtime conditions itself (and/or/not, analog inputs, variables,
+    # timeout branches). False: an `if` on such a condition or a wait with a timeout branch is
+    # E165 (`needs_runtime_conditions`) instead of a condition or branch silently dropped.
+    RUNTIME_CONDITIONS: ClassVar[bool] = False
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -257,6 +268,10 @@ class Backend:
         # other (a test's, a plug-in's) when the target registry hands it out (compiler/vendors)
         if cls.name and cls.__module__.startswith("rmot.backends."):
             cls.validate_kinds()
+        own_loop = getattr(cls, cls.EMIT[ir.Loop], None) is not Backend.loop
+        if own_loop != cls.PRINTS_LOOPS:  # the flag and the Loop printer must tell the same
+            raise TypeError(f"backend {cls.__name__}: PRINTS_LOOPS is {cls.PRINTS_LOOPS} but its "
+                            f"Loop printer is {'its own' if own_loop else 'the unrolling default'}")
 
     @classmethod
     def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:
@@ -288,7 +303,9 @@ class Backend:
     # ------------------------------------------------------------------ entry point
 
     def emit(self, plan: plan_types.Plan, *, source_map: bool = True) -> EmitResult:
-        """Format every task of `plan`; one output program (one or more files) per task."""
+        """Format every task of `plan` (after `lowered_plan`); one output program (one or
+        more files) per task."""
+        plan = self.lowered_plan(plan)
         self._emission = _Emission()
         files: dict[str, str] = {}
         owner: dict[str, str] = {}  # case-folded file name -> the task that wrote it
@@ -306,6 +323,16 @@ class Backend:
                     continue
                 files[fname] = text
         return EmitResult(files, _unique(self._emission.diagnostics))
+
+    def lowered_plan(self, plan: plan_types.Plan) -> plan_types.Plan:
+        """`plan` as this vendor prints it, by the class flags: unless PRINTS_LOOPS, every task
+        body with its loops unrolled (ir_tree.unroll_loops) before anything of it is printed, so
+        the vendor's walkers (routines, predecessors, lowerings, handshake) see plain lists."""
+        if self.PRINTS_LOOPS:
+            return plan
+        tasks = tuple(dataclasses.replace(tp, task=dataclasses.replace(
+            tp.task, body=ir_tree.unroll_loops(tp.task.body))) for tp in plan.tasks)
+        return dataclasses.replace(plan, tasks=tasks)
 
     def check_brand(self, robot: ir.RobotInstance) -> None:
         """W415 at the robot's declaration when a library arm is of another brand than this
@@ -404,7 +431,15 @@ class Backend:
     # ------------------------------------------------------------------ dispatch
 
     def instr(self, node: ir.Instr, ctx: TaskContext) -> list[str]:
-        """The lines of one instruction (source comment first), via the EMIT table."""
+        """The lines of one instruction (source comment first), via the EMIT table.
+
+        By the class flags first: a Loop reaching a vendor that does not print loops is its
+        iterations' lines only (no source comment of its own: the same text as the unrolled
+        body); unless RUNTIME_CONDITIONS, a node that needs them is E165."""
+        if isinstance(node, ir.Loop) and not self.PRINTS_LOOPS:
+            return self.loop(node, ctx)
+        if not self.RUNTIME_CONDITIONS and self.needs_runtime_conditions(node):
+            return self.runtime_unsupported(node, ctx)
         # by the node's class or its nearest base (a HandshakeSet prints as a SetDigital)
         method = next((self.EMIT[c] for c in type(node).__mro__ if c in self.EMIT), None)
         if method is None:
@@ -580,6 +615,72 @@ class Backend:
                   + ("" if known else f" (not one of {', '.join(controllers())})"), node.span)
         return [self.comment(f"native {node.vendor} block skipped")]
 
+    # ------------------------------------------------------------------ defaults: parts, runtime
+    # (`ctx: Any`: each vendor's override takes its own TaskContext subclass)
+
+    def attach(self, node: ir.Attach, ctx: Any) -> list[str]:
+        """A comment plus W460 once per part and task with the payload to enter on the
+        controller (RAPID, KRL and URScript write the held load themselves)."""
+        return self.part_payload_comment(node, ctx)
+
+    def detach(self, node: ir.Detach, ctx: Any) -> list[str]:
+        """A comment with the payload left on the flange (see `attach`)."""
+        return self.part_payload_comment(node, ctx)
+
+    def part_payload_comment(self, node: ir.Attach | ir.Detach, ctx: TaskContext) -> list[str]:
+        """`attach`/`detach` for a vendor whose program cannot carry a held part's load."""
+        _, _, total, cog = held_load(node, ctx)
+        word = "attach" if isinstance(node, ir.Attach) else "detach"
+        if isinstance(node, ir.Attach):
+            cog_mm = fmt_list((c * 1000.0 for c in cog), 1)
+            self.warn_once(ctx, f"part-payload:{node.part}", codes.PART_PAYLOAD_NOT_EXPRESSED,
+                           f"part '{node.part}' held: the payload ({fmt(total, 3)} kg with the tool, "
+                           f"centre of gravity [{cog_mm}] mm in the flange frame) must be set on the "
+                           f"controller while it is held ({self.name} programs cannot carry it)",
+                           node.span)
+        return [self.comment(f"{word} {node.part}: payload {fmt(total, 3)} kg")]
+
+    def loop(self, node: ir.Loop, ctx: Any) -> list[str]:
+        """A `for` / `repeat` loop written as its iterations one after another, the loop
+        variable bound to each value (no lines of its own); vendors that print loops override
+        it and set PRINTS_LOOPS."""
+        out: list[str] = []
+        for it in node.iterations:
+            body = (ir_tree.bind_loop_variable(it.body, node.var, it.value)
+                    if node.var is not None else it.body)
+            out.extend(self.body(body, ctx))
+        return out
+
+    @staticmethod
+    def needs_runtime_conditions(node: ir.Instr) -> bool:
+        """An `if` on a condition other than one input, or a wait with a timeout branch."""
+        return ((isinstance(node, ir.If) and not isinstance(node.condition, ir.InputCondition))
+                or (isinstance(node, ir.WaitInput) and bool(node.on_timeout)))
+
+    def runtime_unsupported(self, node: ir.Instr, ctx: TaskContext) -> list[str]:
+        """E165: runtime logic this vendor's backend does not write (never dropped silently)."""
+        kind = type(node).__name__
+        what = {"If": "an if on a general condition",
+                "WaitInput": "a wait with a timeout branch"}.get(kind, kind)
+        self.unsupported(codes.RUNTIME_UNSUPPORTED, f"{what} must be expressible for {self.name} "
+                         "(its backend writes no runtime logic for it yet)", node.span)
+        return [self.comment(f"UNSUPPORTED {kind}")]
+
+    def var_decl(self, node: ir.VarDecl, ctx: Any) -> list[str]:
+        return self.runtime_unsupported(node, ctx)
+
+    def assign(self, node: ir.Assign, ctx: Any) -> list[str]:
+        return self.runtime_unsupported(node, ctx)
+
+    def while_(self, node: ir.While, ctx: Any) -> list[str]:
+        return self.runtime_unsupported(node, ctx)
+
+    def wait_condition(self, node: ir.WaitCondition, ctx: Any) -> list[str]:
+        return self.runtime_unsupported(node, ctx)
+
+    def stop(self, node: ir.Stop, ctx: Any) -> list[str]:
+        return self.runtime_unsupported(node, ctx)
+
 
 # --------------------------------------------------------------------------- routine keys
 
@@ -625,128 +726,6 @@ def key_value(v: Any) -> Hashable:
     return repr(v)
 
 
-# --------------------------------------------------------------------------- parts (issue #14)
-# Appended here (not in the class body above) to keep this change apart from other work on
-# the vendor modules: the default for `attach`/`detach` is a comment plus W460 once per part
-# and task with the numbers to enter; RAPID, KRL and URScript override `attach`/`detach`.
-
-
-def _part_payload_default(self: Backend, node: ir.Attach | ir.Detach, ctx: TaskContext) -> list[str]:
-    from rmot.backends.codes import PART_PAYLOAD_NOT_EXPRESSED
-    from rmot.backends.part_load import held_load
-
-    _, _, total, cog = held_load(node, ctx)
-    word = "attach" if isinstance(node, ir.Attach) else "detach"
-    if isinstance(node, ir.Attach):
-        cog_mm = fmt_list((c * 1000.0 for c in cog), 1)
-        self.warn_once(ctx, f"part-payload:{node.part}", PART_PAYLOAD_NOT_EXPRESSED,
-                       f"part '{node.part}' held: the payload ({fmt(total, 3)} kg with the tool, centre of gravity "
-                       f"[{cog_mm}] mm in the flange frame) must be set on the controller while it is held "
-                       f"({self.name} programs cannot carry it)", node.span)
-    return [self.comment(f"{word} {node.part}: payload {fmt(total, 3)} kg")]
-
-
-Backend.attach = _part_payload_default  # type: ignore[attr-defined]
-Backend.detach = _part_payload_default  # type: ignore[attr-defined]
-
-
-# ------------------------------------------------------------------ runtime logic (issue #15)
-# Appended (like the parts block above) as the fallback every vendor starts from: a `for` /
-# `repeat` Loop is written as its iterations one after another (unrolled, the loop variable
-# bound to each value: ir_tree.bind_loop_variable), and the other runtime-logic nodes (var,
-# assignment, while, general wait condition, stop) are E165 until the vendor's own handler
-# (a method of the same name on its Backend subclass) replaces the fallback.
-
-
-def _loop_unrolled(self: Backend, node: ir.Loop, ctx: TaskContext) -> list[str]:
-    from rmot.compiler.ir_tree import bind_loop_variable
-
-    out: list[str] = []  # exactly what the unrolled program was before issue #15: no added lines
-    for it in node.iterations:
-        body = bind_loop_variable(it.body, node.var, it.value) if node.var is not None else it.body
-        out.extend(self.body(body, ctx))
-    return out
-
-
-def _runtime_unsupported(self: Backend, node: ir.Instr, ctx: TaskContext) -> list[str]:
-    from rmot.backends.codes import RUNTIME_UNSUPPORTED
-
-    kind = type(node).__name__
-    what = {"If": "an if on a general condition", "WaitInput": "a wait with a timeout branch"}.get(
-        kind, kind
-    )
-    self.unsupported(
-        RUNTIME_UNSUPPORTED,
-        f"{what} must be expressible for {self.name} (its backend writes no "
-        f"runtime logic for it yet)",
-        node.span,
-    )
-    return [self.comment(f"UNSUPPORTED {kind}")]
-
-
-_dispatch = Backend.instr
-
-
-def _instr_with_fallbacks(self: Backend, node: ir.Instr, ctx: TaskContext) -> list[str]:
-    """Backend.instr, except: a Loop the vendor leaves to the fallback is its iterations' lines
-    only (no source comment of its own: the unrolled text is what it was before issue #15); and
-    unless the vendor sets RUNTIME_CONDITIONS (it writes and/or/not, analog inputs, variables
-    and timeout branches itself), an `if` on such a condition or a wait with a timeout branch is
-    E165 instead of a condition or branch silently dropped."""
-    if (
-        isinstance(node, ir.Loop)
-        and getattr(type(self), self.EMIT[ir.Loop], None) is _loop_unrolled
-    ):
-        unrolled: list[str] = _loop_unrolled(self, node, ctx)
-        return unrolled
-    if not getattr(self, "RUNTIME_CONDITIONS", False) and (
-        (isinstance(node, ir.If) and not isinstance(node.condition, ir.InputCondition))
-        or (isinstance(node, ir.WaitInput) and node.on_timeout)
-    ):
-        return _runtime_unsupported(self, node, ctx)
-    return _dispatch(self, node, ctx)
-
-
-Backend.instr = _instr_with_fallbacks  # type: ignore[method-assign]
-_emit = Backend.emit
-
-
-def _emit_loops_unrolled(
-    self: Backend, plan: plan_types.Plan, *, source_map: bool = True
-) -> EmitResult:
-    """Backend.emit; a vendor that leaves loops to the fallback gets every task body with its
-    loops unrolled (ir_tree.unroll_loops) before anything of it runs, so its own walkers
-    (routines, predecessors, lowerings, handshake) see the instruction lists they always have."""
-    if getattr(type(self), self.EMIT[ir.Loop], None) is _loop_unrolled:
-        import dataclasses
-
-        from rmot.compiler.ir_tree import unroll_loops
-
-        tasks = tuple(
-            dataclasses.replace(
-                tp, task=dataclasses.replace(tp.task, body=unroll_loops(tp.task.body))
-            )
-            for tp in plan.tasks
-        )
-        plan = dataclasses.replace(plan, tasks=tasks)
-    return _emit(self, plan, source_map=source_map)
-
-
-Backend.emit = _emit_loops_unrolled  # type: ignore[method-assign]
-Backend.RUNTIME_CONDITIONS = False  # type: ignore[attr-defined]
-
-for _cls, _method, _fallback in (
-    (ir.Loop, "loop", _loop_unrolled),
-    (ir.VarDecl, "var_decl", _runtime_unsupported),
-    (ir.Assign, "assign", _runtime_unsupported),
-    (ir.While, "while_", _runtime_unsupported),
-    (ir.WaitCondition, "wait_condition", _runtime_unsupported),
-    (ir.Stop, "stop", _runtime_unsupported),
-):
-    Backend.EMIT.setdefault(_cls, _method)
-    if not hasattr(Backend, Backend.EMIT[_cls]):
-        setattr(Backend, Backend.EMIT[_cls], _fallback)
-
-# Every instruction kind has a printer (the fallbacks above included): a kind added to the IR
-# without one is an import-time error here, never a silent default (issue #19).
+# Every instruction kind has a printer (the defaults of the class body included): a kind added
+# to the IR without one is an import-time error here, never a silent default.
 ir_tree.require_kinds("backends/base.Backend.EMIT", Backend.EMIT)

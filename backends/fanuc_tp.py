@@ -151,6 +151,8 @@ class FanucBackend(Backend):
     file_ext = ".ls"
     COMMENT = "!"
     NAME_RULES = FANUC_RULES
+    PRINTS_LOOPS = True  # a counting R register with LBL/JMP, targets moved by Offset,PR
+    RUNTIME_CONDITIONS = True  # writes and/or/not, AI, R registers and timeout branches
     MAX_INSTRUCTIONS = 1000
     SPLIT_UNITS = ("TP program", "programs")
     FRAME_PR: ClassVar[int] = 90
@@ -857,11 +859,6 @@ def _loop_words(loop: ir.Loop) -> str:
     return f"loop 'for {loop.var} in {loop.first} .. {loop.last}'" if loop.var else "repeat loop"
 
 
-FanucBackend.EMIT = {**FanucBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                     ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
-                     ir.Stop: "stop"}
-
-
 def _sig(signal: str | None) -> str:
     """The cell's signal name as a TP I/O comment: DO[1:gripper_close]."""
     return f":{tp_io_comment(signal)[:24]}" if signal else ""
@@ -878,5 +875,3 @@ def _loop_head(var: LoopVar) -> str:
     if var.name is None:
         return f"repeat {var.last - var.first + 1}"
     return f"for {var.name} = {var.first} .. {var.last}"
-# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
-FanucBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

@@ -209,6 +209,8 @@ class InformBackend(Backend):
     COMMENT = "'"
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = INFORM_RULES
+    PRINTS_LOOPS = True  # INC on a counting variable with labels and JUMP, targets by SFTON
+    RUNTIME_CONDITIONS = True  # JUMP chains over I/O and variables, timeout branches (AIN: E430)
     DIGITAL_PORTS = (1, 1024)  # OT# / IN# general-purpose I/O
     ANALOG_PORTS = (1, 40)  # AO#
     MAX_TCP_SPEED = 1.5  # m/s
@@ -919,16 +921,9 @@ def _inform_blocker(template: LoopTemplate) -> str | None:
     return None
 
 
-InformBackend.EMIT = {**InformBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                      ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
-                      ir.Stop: "stop"}
-
-
 def _loop_head(var: LoopVar) -> str:
     """The comment above a vendor loop: `for layer = 0 .. 2` (the values it runs) or
     `repeat 2`."""
     if var.name is None:
         return f"repeat {var.last - var.first + 1}"
     return f"for {var.name} = {var.first} .. {var.last}"
-# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
-InformBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]

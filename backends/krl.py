@@ -56,6 +56,8 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes, turns
+from rmot.backends import loops as _loops
+from rmot.backends import runtime as _rt
 from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
@@ -149,6 +151,8 @@ class KrlContext(TaskContext):
 
 class KrlBackend(Backend):
     name = "krl"
+    PRINTS_LOOPS = True  # FOR ... ENDFOR, with offsets per iteration (loop, _pos)
+    RUNTIME_CONDITIONS = True  # writes and/or/not, $ANIN, variables and timeout branches
     DIGITAL_PORTS = (1, 4096)  # $IN / $OUT, KSS 8.x System Variables
     file_ext = ".src"
     COMMENT = ";"
@@ -212,7 +216,7 @@ class KrlBackend(Backend):
 
     # ------------------------------------------------------------------ motion
 
-    def move(self, node: ir.Move, ctx: KrlContext) -> list[str]:
+    def _move_plain(self, node: ir.Move, ctx: KrlContext) -> list[str]:
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
@@ -325,8 +329,9 @@ class KrlBackend(Backend):
         values = ",".join(f"A{i + 1} {fmt(math.degrees(v), 4)}" for i, v in enumerate(target.values))
         return ctx.module.data.add(target.name or "j", f"E6AXIS:{{{values}{E_AXES}}}")
 
-    def _pos(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
-             node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
+    def _pos_plain(self, target: ir.CartesianTarget, q: np.ndarray | None,
+                   branch: ir.Config | None, node: ir.Move, ctx: KrlContext,
+                   hint: str | None = None) -> str:
         assert q is not None
         branch = self.branch_or_default(branch, node)
         far = turns.beyond_one_turn(q, range(min(6, len(q))))  # Turn is a sign (issue #15)
@@ -361,7 +366,7 @@ class KrlBackend(Backend):
     def wait_time(self, node: ir.WaitTime, ctx: KrlContext) -> list[str]:
         return [f"WAIT SEC {fmt(node.duration, 3)}"]
 
-    def wait_input(self, node: ir.WaitInput, ctx: KrlContext) -> list[str]:
+    def _wait_input_halt(self, node: ir.WaitInput, ctx: KrlContext) -> list[str]:
         c = node.condition
         if not self.port_ok(c.port, "digital input", node.span):
             return []
@@ -382,12 +387,10 @@ class KrlBackend(Backend):
     def _signal_note(signal: str | None) -> str:
         return f" ; {comment_safe(signal)}" if signal else ""
 
-    def if_(self, node: ir.If, ctx: KrlContext) -> list[str]:
+    def _if_input(self, node: ir.If, ctx: KrlContext) -> list[str]:
+        """An `if` on one digital input (`if_` writes the other conditions)."""
         c = node.condition
-        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
-            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
-                             f"for {self.name} (it is not yet)", node.span)
-            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
+        assert isinstance(c, ir.InputCondition)  # if_ sends the other conditions elsewhere
         self.port_ok(c.port, "digital input", node.span)
         lines = [f"IF $IN[{c.port}]=={self._level(c.value)} THEN" + self._signal_note(c.signal)]
         lines += self.indent(self.body(node.then, ctx), "  ")
@@ -395,28 +398,158 @@ class KrlBackend(Backend):
             lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), "  ")
         return lines + ["ENDIF"]
 
-    def proc_call(self, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
+    def _routine_call(self, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
         name = ctx.routine_of[node.uid]
         if name not in ctx.module.routines:  # calls printing the same routine share it
             ctx.module.routines[name] = []
             ctx.module.routines[name] = [self.comment(f"proc {node.proc}")] + self.body(node.body, ctx)
         return self.call_args_comment(node) + [f"{name}()"]
 
+    # ------------------------------------------------------------------ parts
 
-# --------------------------------------------------------------------------- parts (issue #14)
+    def attach(self, node: ir.Attach, ctx: KrlContext) -> list[str]:
+        return self.part_load(node, ctx)
+
+    def detach(self, node: ir.Detach, ctx: KrlContext) -> list[str]:
+        return self.part_load(node, ctx)
+
+    def part_load(self, node: ir.Attach | ir.Detach, ctx: KrlContext) -> list[str]:
+        """`$LOAD=...` after an attach or detach: tool + held parts as one load on the flange, and
+        every later motion of the same tool writes that load instead of the tool's alone.
+
+        KUKA System Software 8.x, Operating and Programming Instructions for System Integrators,
+        system variable $LOAD: the load on the flange, {M mass kg, CM centre of mass in the flange
+        coordinate system (mm, A/B/C deg), J inertia}. ($LOAD_A3 is a supplementary load on axis 3,
+        not a gripped part.) Inertia is written as 0 (a point mass, as for tools)."""
+        if node.tool.name is None:
+            return self.part_payload_comment(node, ctx)
+        return [f"$LOAD={_load_data(node, ctx)}"]
+
+    def context_key(self, node: ir.Instr, ctx: TaskContext) -> object:
+        """A motion's routine key also depends on the parts held then (its `$LOAD` line), so a
+        proc called once empty-handed and once holding a part prints two routines."""
+        from rmot.backends.part_load import state_at_moves
+
+        key = super().context_key(node, ctx)
+        if isinstance(node, ir.Move) and ctx.plan.program.cell.parts:
+            event = state_at_moves(ctx).get(node.uid)
+            return (key, None if event is None else (event.held, event.tool.name))
+        return key
+
+    # ------------------------------------------------------------------ runtime logic
+    # (KRL sources: the comment above _KRL_TYPES)
+
+    def var_decl(self, node: ir.VarDecl, ctx: KrlContext) -> list[str]:
+        name = ctx.names.name(node.name, node.span)
+        krl_type, zero = _KRL_TYPES[node.type]
+        _declare_var(ctx, name, krl_type, zero)
+        return [f"{name}={_kexpr(self, node.init, ctx, node.span)}"]
+
+    def assign(self, node: ir.Assign, ctx: KrlContext) -> list[str]:
+        return [f"{ctx.names.name(node.name, node.span)}={_kexpr(self, node.value, ctx, node.span)}"]
+
+    def if_(self, node: ir.If, ctx: KrlContext) -> list[str]:
+        if isinstance(node.condition, ir.InputCondition):
+            return self._if_input(node, ctx)
+        lines = [f"IF {_kexpr(self, node.condition, ctx, node.span)} THEN"]
+        lines += self.indent(self.body(node.then, ctx), "  ")
+        if node.otherwise:
+            lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), "  ")
+        return lines + ["ENDIF"]
+
+    def while_(self, node: ir.While, ctx: KrlContext) -> list[str]:
+        return ([f"WHILE {_kexpr(self, node.condition, ctx, node.span)}"]
+                + self.indent(self.body(node.body, ctx), "  ") + ["ENDWHILE"])
+
+    def wait_input(self, node: ir.WaitInput, ctx: KrlContext) -> list[str]:
+        if node.timeout is None or not node.on_timeout:
+            return self._wait_input_halt(node, ctx)
+        c = node.condition
+        if not self.port_ok(c.port, "digital input", node.span):
+            return []
+        cond = f"$IN[{c.port}]=={self._level(c.value)}"
+        return _k_timed(self, cond, node.timeout, node.on_timeout, ctx, node.span)
+
+    def wait_condition(self, node: ir.WaitCondition, ctx: KrlContext) -> list[str]:
+        cond = _kexpr(self, node.condition, ctx, node.span)
+        if node.timeout is None:
+            return [f"WAIT FOR {cond}"]
+        return _k_timed(self, cond, node.timeout, node.on_timeout, ctx, node.span)
+
+    def stop(self, node: ir.Stop, ctx: KrlContext) -> list[str]:
+        if ctx.loops.in_routine == 0:
+            return ["RETURN ; stop: ends the program"]
+        _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
+        self.warn_once(ctx, "stop-flag", codes.STOP_IN_ROUTINE,
+                       "stop inside a routine: KRL cannot end the program from a routine; it sets "
+                       f"{_STOP_FLAG} and returns, and every call "
+                       "returns in turn", node.span)
+        return [f"{_STOP_FLAG}=TRUE", "RETURN ; stop"]
+
+    def proc_call(self, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
+        if _rt.inline_call(node, ctx.loops):  # written inline in a vendor loop, like RAPID and URScript
+            return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
+        ctx.loops.in_routine += 1
+        try:
+            lines = self._routine_call(node, ctx)
+        finally:
+            ctx.loops.in_routine -= 1
+        if any(isinstance(n, ir.Stop) for n in ir.walk(node.body)):
+            _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
+            ret = "RETURN ; stop: ends the program" if ctx.loops.in_routine == 0 else "RETURN ; stop"
+            lines += [f"IF {_STOP_FLAG} THEN", f"  {ret}", "ENDIF"]
+        return lines
+
+    def _pos(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
+             node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
+        """The E6POS (or FRAME) data a motion goes to, as _pos_plain; in a vendor loop, a PTP target every iteration reaches only as a
+        FRAME (see _ptp_key) is one, and an offset target is a work copy moved by the counters."""
+        forms = ctx.loops.choices.get(node.uid, frozenset())
+        if node.kind is ir.MotionKind.JOINT and forms and all(f[1] == SHORTEST for f in forms):
+            self.branch_or_default(branch, node)
+            frame = f"FRAME:{{{frame_text(target.in_frame)}}}"
+            name = ctx.module.data.add(hint or target.name or "p", frame,
+                                       node.span)
+        else:
+            name = self._pos_plain(target, q, branch, node, ctx, hint)
+        offset = ctx.loops.offsets.get((node.uid, "via" if target is node.via else "target"))
+        if offset is None:
+            return name
+        terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 6)))
+        if terms == ("0", "0", "0"):
+            return name
+        value = next(v for n, v in ctx.module.data.items if n == name)
+        work = ctx.module.data.add(f"{name}_loop", value)
+        ctx.loops.pending.append(f"{work}={name}")
+        for axis, term in zip("XYZ", terms, strict=True):
+            if term != "0":
+                sign = "" if term.startswith("-") else "+"
+                ctx.loops.pending.append(f"{work}.{axis}={name}.{axis}{sign}{term}")
+        return work
+
+    def move(self, node: ir.Move, ctx: KrlContext) -> list[str]:
+        """A motion; in a vendor loop, the lines moving its work copies by the loop counters
+        (queued by `_pos`) go right before the motion line."""
+        lines = self._move_plain(node, ctx)
+        if ctx.loops.pending and lines:
+            lines = lines[:-1] + ctx.loops.pending + lines[-1:]
+        ctx.loops.pending.clear()
+        return lines
+
+    def loop(self, node: ir.Loop, ctx: KrlContext) -> list[str]:
+        def write(template: _loops.LoopTemplate) -> list[str]:
+            counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
+            _declare_var(ctx, counter, "INT", "0")
+            ctx.loops.enter(template, counter)
+            head = f"FOR {counter}={template.var.first} TO {template.var.last}"
+            return [head] + self.indent(self.body(template.body, ctx), "  ") + ["ENDFOR"]
+
+        return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
+                              move_config=krl_config,
+                              extra_key=lambda n, r: _krl_extra(self, n, r, ctx))
 
 
-def _part_load(self: KrlBackend, node: ir.Attach | ir.Detach, ctx: KrlContext) -> list[str]:
-    """`$LOAD=...` after an attach or detach: tool + held parts as one load on the flange, and
-    every later motion of the same tool writes that load instead of the tool's alone.
-
-    KUKA System Software 8.x, Operating and Programming Instructions for System Integrators,
-    system variable $LOAD: the load on the flange, {M mass kg, CM centre of mass in the flange
-    coordinate system (mm, A/B/C deg), J inertia}. ($LOAD_A3 is a supplementary load on axis 3,
-    not a gripped part.) Inertia is written as 0 (a point mass, as for tools)."""
-    if node.tool.name is None:
-        return _part_payload_fallback(self, node, ctx)
-    return [f"$LOAD={_load_data(node, ctx)}"]
+# --------------------------------------------------------------------------- held parts: the load data
 
 
 def _load_data(node: ir.Attach | ir.Detach, ctx: KrlContext) -> str:
@@ -439,32 +572,6 @@ def _held_load_name(node: ir.Move, ctx: KrlContext) -> str | None:
     if event is None or not event.held or event.tool.name != node.tool.name:
         return None
     return _load_data(event, ctx)
-
-
-def _part_payload_fallback(self: KrlBackend, node: ir.Attach | ir.Detach, ctx: KrlContext) -> list[str]:
-    return Backend.attach(self, node, ctx)  # type: ignore[attr-defined]
-
-
-KrlBackend.attach = _part_load  # type: ignore[attr-defined]
-KrlBackend.detach = _part_load  # type: ignore[attr-defined]
-
-
-_context_key_without_parts = KrlBackend.context_key
-
-
-def _context_key_with_parts(self: KrlBackend, node: ir.Instr, ctx: TaskContext) -> object:
-    """A motion's routine key also depends on the parts held then (its `$LOAD` line), so a
-    proc called once empty-handed and once holding a part prints two routines."""
-    from rmot.backends.part_load import state_at_moves
-
-    key = _context_key_without_parts(self, node, ctx)
-    if isinstance(node, ir.Move) and ctx.plan.program.cell.parts:
-        event = state_at_moves(ctx).get(node.uid)
-        return (key, None if event is None else (event.held, event.tool.name))
-    return key
-
-
-KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign, assignment]
 
 
 # ----------------------------------------------------------------- runtime logic (issue #15)
@@ -499,9 +606,6 @@ KrlBackend.context_key = _context_key_with_parts  # type: ignore[method-assign, 
 #     RETURN leaves the current DEF: in the main program it ends the program (its END is
 #     reached: $PRO_STATE1 #P_END). A stop inside a routine sets RMOT_STOP and returns; every
 #     call of such a routine is followed by `IF RMOT_STOP THEN RETURN ENDIF` (warning W421).
-
-from rmot.backends import loops as _loops  # noqa: E402
-from rmot.backends import runtime as _rt  # noqa: E402
 
 _KRL_TYPES = {ir.ValueType.INT: ("INT", "0"), ir.ValueType.NUM: ("REAL", "0.0"),
               ir.ValueType.BOOL: ("BOOL", "FALSE")}
@@ -541,35 +645,6 @@ def _kexpr(self: KrlBackend, e: object, ctx: KrlContext, span: object) -> str:
     return _rt.expr_text(e, _krl_dialect(self, ctx, span))
 
 
-def _k_var_decl(self: KrlBackend, node: ir.VarDecl, ctx: KrlContext) -> list[str]:
-    name = ctx.names.name(node.name, node.span)
-    krl_type, zero = _KRL_TYPES[node.type]
-    _declare_var(ctx, name, krl_type, zero)
-    return [f"{name}={_kexpr(self, node.init, ctx, node.span)}"]
-
-
-def _k_assign(self: KrlBackend, node: ir.Assign, ctx: KrlContext) -> list[str]:
-    return [f"{ctx.names.name(node.name, node.span)}={_kexpr(self, node.value, ctx, node.span)}"]
-
-
-_if_input = KrlBackend.if_
-
-
-def _k_if(self: KrlBackend, node: ir.If, ctx: KrlContext) -> list[str]:
-    if isinstance(node.condition, ir.InputCondition):
-        return _if_input(self, node, ctx)
-    lines = [f"IF {_kexpr(self, node.condition, ctx, node.span)} THEN"]
-    lines += self.indent(self.body(node.then, ctx), "  ")
-    if node.otherwise:
-        lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), "  ")
-    return lines + ["ENDIF"]
-
-
-def _k_while(self: KrlBackend, node: ir.While, ctx: KrlContext) -> list[str]:
-    return ([f"WHILE {_kexpr(self, node.condition, ctx, node.span)}"]
-            + self.indent(self.body(node.body, ctx), "  ") + ["ENDWHILE"])
-
-
 def _k_timed(self: KrlBackend, cond: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
              ctx: KrlContext, span: object) -> list[str]:
     """A wait on `cond` for at most `timeout` s, then the timeout branch (or HALT without one)."""
@@ -580,55 +655,6 @@ def _k_timed(self: KrlBackend, cond: str, timeout: float, on_timeout: tuple[ir.I
     return [f"$TIMER_STOP[{n}]=TRUE", f"{t}=0", f"$TIMER_STOP[{n}]=FALSE",
             f"WAIT FOR ({cond}) OR ({t}>={int(round(timeout * 1000))})", f"$TIMER_STOP[{n}]=TRUE",
             f"IF NOT ({cond}) THEN"] + self.indent(branch, "  ") + ["ENDIF"]
-
-
-_wait_input_plain = KrlBackend.wait_input
-
-
-def _k_wait_input(self: KrlBackend, node: ir.WaitInput, ctx: KrlContext) -> list[str]:
-    if node.timeout is None or not node.on_timeout:
-        return _wait_input_plain(self, node, ctx)
-    c = node.condition
-    if not self.port_ok(c.port, "digital input", node.span):
-        return []
-    cond = f"$IN[{c.port}]=={self._level(c.value)}"
-    return _k_timed(self, cond, node.timeout, node.on_timeout, ctx, node.span)
-
-
-def _k_wait_condition(self: KrlBackend, node: ir.WaitCondition, ctx: KrlContext) -> list[str]:
-    cond = _kexpr(self, node.condition, ctx, node.span)
-    if node.timeout is None:
-        return [f"WAIT FOR {cond}"]
-    return _k_timed(self, cond, node.timeout, node.on_timeout, ctx, node.span)
-
-
-def _k_stop(self: KrlBackend, node: ir.Stop, ctx: KrlContext) -> list[str]:
-    if ctx.loops.in_routine == 0:
-        return ["RETURN ; stop: ends the program"]
-    _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
-    self.warn_once(ctx, "stop-flag", codes.STOP_IN_ROUTINE,
-                   "stop inside a routine: KRL cannot end the program from a routine; it sets "
-                   f"{_STOP_FLAG} and returns, and every call "
-                   "returns in turn", node.span)
-    return [f"{_STOP_FLAG}=TRUE", "RETURN ; stop"]
-
-
-_proc_call_plain = KrlBackend.proc_call
-
-
-def _k_proc_call(self: KrlBackend, node: ir.ProcCall, ctx: KrlContext) -> list[str]:
-    if _rt.inline_call(node, ctx.loops):  # written inline in a vendor loop, like RAPID and URScript
-        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
-    ctx.loops.in_routine += 1
-    try:
-        lines = _proc_call_plain(self, node, ctx)
-    finally:
-        ctx.loops.in_routine -= 1
-    if any(isinstance(n, ir.Stop) for n in ir.walk(node.body)):
-        _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
-        ret = "RETURN ; stop: ends the program" if ctx.loops.in_routine == 0 else "RETURN ; stop"
-        lines += [f"IF {_STOP_FLAG} THEN", f"  {ret}", "ENDIF"]
-    return lines
 
 
 def krl_config(node: ir.Move, q: np.ndarray, branch: ir.Config | None) -> object:
@@ -685,76 +711,3 @@ def _krl_extra(self: KrlBackend, node: ir.Instr, rec: object, ctx: KrlContext) -
             forms.add((key, SHORTEST))
         return frozenset(forms)
     return key
-
-
-_pos_plain = KrlBackend._pos
-
-
-def _k_pos(self: KrlBackend, target: ir.CartesianTarget, q: np.ndarray | None,
-           branch: ir.Config | None,
-           node: ir.Move, ctx: KrlContext, hint: str | None = None) -> str:
-    """As KrlBackend._pos; in a vendor loop, a PTP target every iteration reaches only as a
-    FRAME (see _ptp_key) is one, and an offset target is a work copy moved by the counters."""
-    forms = ctx.loops.choices.get(node.uid, frozenset())
-    if node.kind is ir.MotionKind.JOINT and forms and all(f[1] == SHORTEST for f in forms):
-        self.branch_or_default(branch, node)
-        frame = f"FRAME:{{{frame_text(target.in_frame)}}}"
-        name = ctx.module.data.add(hint or target.name or "p", frame,
-                                   node.span)
-    else:
-        name = _pos_plain(self, target, q, branch, node, ctx, hint)
-    offset = ctx.loops.offsets.get((node.uid, "via" if target is node.via else "target"))
-    if offset is None:
-        return name
-    terms = _rt.offset_terms(offset, ctx.loops.counters, 1000.0, lambda v: _rt.trimmed(fmt(v, 6)))
-    if terms == ("0", "0", "0"):
-        return name
-    value = next(v for n, v in ctx.module.data.items if n == name)
-    work = ctx.module.data.add(f"{name}_loop", value)
-    ctx.loops.pending.append(f"{work}={name}")
-    for axis, term in zip("XYZ", terms, strict=True):
-        if term != "0":
-            sign = "" if term.startswith("-") else "+"
-            ctx.loops.pending.append(f"{work}.{axis}={name}.{axis}{sign}{term}")
-    return work
-
-
-_move_plain = KrlBackend.move
-
-
-def _k_move(self: KrlBackend, node: ir.Move, ctx: KrlContext) -> list[str]:
-    lines = _move_plain(self, node, ctx)
-    if ctx.loops.pending and lines:
-        lines = lines[:-1] + ctx.loops.pending + lines[-1:]
-    ctx.loops.pending.clear()
-    return lines
-
-
-def _k_loop(self: KrlBackend, node: ir.Loop, ctx: KrlContext) -> list[str]:
-    def write(template: _loops.LoopTemplate) -> list[str]:
-        counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
-        _declare_var(ctx, counter, "INT", "0")
-        ctx.loops.enter(template, counter)
-        head = f"FOR {counter}={template.var.first} TO {template.var.last}"
-        return [head] + self.indent(self.body(template.body, ctx), "  ") + ["ENDFOR"]
-
-    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
-                          move_config=krl_config,
-                          extra_key=lambda n, r: _krl_extra(self, n, r, ctx))
-
-
-KrlBackend.EMIT = {**KrlBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                   ir.While: "while_",
-                   ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
-KrlBackend.var_decl = _k_var_decl  # type: ignore[attr-defined]
-KrlBackend.assign = _k_assign  # type: ignore[attr-defined]
-KrlBackend.if_ = _k_if  # type: ignore[method-assign]
-KrlBackend.while_ = _k_while  # type: ignore[attr-defined]
-KrlBackend.loop = _k_loop  # type: ignore[attr-defined]
-KrlBackend.wait_input = _k_wait_input  # type: ignore[method-assign]
-KrlBackend.wait_condition = _k_wait_condition  # type: ignore[attr-defined]
-KrlBackend.stop = _k_stop  # type: ignore[attr-defined]
-KrlBackend.proc_call = _k_proc_call  # type: ignore[method-assign]
-KrlBackend._pos = _k_pos  # type: ignore[method-assign]
-KrlBackend.move = _k_move  # type: ignore[method-assign]
-KrlBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]  # writes and/or/not, ain, vars

@@ -39,8 +39,11 @@ from __future__ import annotations
 
 from collections.abc import Hashable
 from dataclasses import field
+from typing import Any
 
 from rmot.backends import codes
+from rmot.backends import loops as _loops
+from rmot.backends import runtime as _rt
 from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
@@ -191,6 +194,8 @@ class RapidBackend(Backend):
     NAME_RULES = RAPID_RULES
     SIX_AXIS_DATA = "RAPID robtarget/jointtarget data"
     BRANCH_DATA = "confdata"
+    PRINTS_LOOPS = True  # FOR ... ENDFOR, targets moved by Offs
+    RUNTIME_CONDITIONS = True  # writes and/or/not, AInput, variables and timeout flags
 
     # ------------------------------------------------------------------ program
 
@@ -368,25 +373,6 @@ class RapidBackend(Backend):
     def wait_time(self, node: ir.WaitTime, ctx: RapidContext) -> list[str]:
         return [f"WaitTime {fmt(node.duration, 3)};"]
 
-    def wait_input(self, node: ir.WaitInput, ctx: RapidContext) -> list[str]:
-        c = node.condition
-        text = f"WaitDI {self._signal(ctx, 'di', c.port, c.signal, node.span)}, {int(c.value)}"
-        if node.timeout is not None:
-            text += f"\\MaxTime:={fmt(node.timeout, 3)}"
-        return [text + ";"]
-
-    def if_(self, node: ir.If, ctx: RapidContext) -> list[str]:
-        c = node.condition
-        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
-            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
-                             f"for {self.name} (it is not yet)", node.span)
-            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
-        lines = [f"IF DInput({self._signal(ctx, 'di', c.port, c.signal, node.span)}) = {int(c.value)} THEN"]
-        lines += self.indent(self.body(node.then, ctx), self.INDENT)
-        if node.otherwise:
-            lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)
-        return lines + ["ENDIF"]
-
     def sync(self, node: ir.Sync, ctx: RapidContext) -> list[str]:  # type: ignore[override]
         n = len(ctx.plan.tasks)
         task_list = ",".join(f'["T_ROB{k + 1}"]' for k in range(n))
@@ -395,40 +381,92 @@ class RapidBackend(Backend):
         self._declare(ctx, "sync", f"PERS tasks all_tasks{{{n}}}:=[{task_list}];")
         return [f"WaitSyncTask {name}, all_tasks;"]
 
-    def proc_call(self, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
+    def _routine_call(self, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
         name = ctx.routine_of[node.uid]
         if name not in ctx.routines:  # calls printing the same routine share it (routine_table)
             ctx.routines[name] = []  # reserve the slot first: routines print in call order
             ctx.routines[name] = [self.comment(f"proc {node.proc}")] + self.body(node.body, ctx)
         return self.call_args_comment(node) + [f"{name};"]
 
+    # ------------------------------------------------------------------ parts
 
-# --------------------------------------------------------------------------- parts (issue #14)
+    def attach(self, node: ir.Attach, ctx: RapidContext) -> list[str]:
+        return self.grip_load(node, ctx)
 
+    def detach(self, node: ir.Detach, ctx: RapidContext) -> list[str]:
+        return self.grip_load(node, ctx)
 
-def _grip_load(self: RapidBackend, node: ir.Attach | ir.Detach, ctx: RapidContext) -> list[str]:
-    """`GripLoad piece;` after an attach or detach: the held parts' payload (the tool's own mass
-    stays in its tooldata), `GripLoad load0;` once nothing is held.
+    def grip_load(self, node: ir.Attach | ir.Detach, ctx: RapidContext) -> list[str]:
+        """`GripLoad piece;` after an attach or detach: the held parts' payload (the tool's own mass
+        stays in its tooldata), `GripLoad load0;` once nothing is held.
 
-    ABB, Technical reference manual "RAPID Instructions, Functions and Data types": GripLoad
-    ("defines the payload which the robot holds in its gripper"; load0 = no payload) and
-    loaddata [mass kg, cog [x,y,z] mm, aom, ix, iy, iz], the payload's centre of gravity in the
-    tool coordinate system when the robot holds the tool. Inertia is written as 0 (a point
-    mass, as rmot's torque check assumes for tools)."""
-    from rmot.backends.part_load import held_load
+        ABB, Technical reference manual "RAPID Instructions, Functions and Data types": GripLoad
+        ("defines the payload which the robot holds in its gripper"; load0 = no payload) and
+        loaddata [mass kg, cog [x,y,z] mm, aom, ix, iy, iz], the payload's centre of gravity in the
+        tool coordinate system when the robot holds the tool. Inertia is written as 0 (a point
+        mass, as rmot's torque check assumes for tools)."""
+        from rmot.backends.part_load import held_load
 
-    mass, cog, _, _ = held_load(node, ctx)
-    if mass <= 0.0:
-        return ["GripLoad load0;"]
-    in_tool = (node.tool.tcp.inverse() * ir.Pose(tuple(float(c) for c in cog))).position  # type: ignore[arg-type]
-    name = ctx.names.name("load_" + "_".join(node.held))
-    cog_mm = fmt_list((c * 1000.0 for c in in_tool), 3)
-    self._declare(ctx, "loaddata", f"PERS loaddata {name}:=[{fmt(mass, 3)},[{cog_mm}],[1,0,0,0],0,0,0];")
-    return [f"GripLoad {name};"]
+        mass, cog, _, _ = held_load(node, ctx)
+        if mass <= 0.0:
+            return ["GripLoad load0;"]
+        in_tool = (node.tool.tcp.inverse() * ir.Pose(tuple(float(c) for c in cog))).position  # type: ignore[arg-type]
+        name = ctx.names.name("load_" + "_".join(node.held))
+        cog_mm = fmt_list((c * 1000.0 for c in in_tool), 3)
+        self._declare(ctx, "loaddata", f"PERS loaddata {name}:=[{fmt(mass, 3)},[{cog_mm}],[1,0,0,0],0,0,0];")
+        return [f"GripLoad {name};"]
 
+    # ------------------------------------------------------------------ runtime logic
+    # (RAPID sources: the comment above _RAPID_TYPES)
 
-RapidBackend.attach = _grip_load  # type: ignore[attr-defined]
-RapidBackend.detach = _grip_load  # type: ignore[attr-defined]
+    def var_decl(self, node: ir.VarDecl, ctx: RapidContext) -> list[str]:
+        name = ctx.names.name(node.name, node.span)
+        self._declare(ctx, "var", f"VAR {_RAPID_TYPES[node.type]} {name};")
+        return [f"{name} := {_expr(self, node.init, ctx, node.span)};"]
+
+    def assign(self, node: ir.Assign, ctx: RapidContext) -> list[str]:
+        return [f"{ctx.names.name(node.name, node.span)} := {_expr(self, node.value, ctx, node.span)};"]
+
+    def if_(self, node: ir.If, ctx: RapidContext) -> list[str]:
+        lines = [f"IF {_expr(self, node.condition, ctx, node.span)} THEN"]
+        lines += self.indent(self.body(node.then, ctx), self.INDENT)
+        if node.otherwise:
+            lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)
+        return lines + ["ENDIF"]
+
+    def while_(self, node: ir.While, ctx: RapidContext) -> list[str]:
+        lines = [f"WHILE {_expr(self, node.condition, ctx, node.span)} DO"]
+        return lines + self.indent(self.body(node.body, ctx), self.INDENT) + ["ENDWHILE"]
+
+    def wait_input(self, node: ir.WaitInput, ctx: RapidContext) -> list[str]:
+        c = node.condition
+        head = f"WaitDI {self._signal(ctx, 'di', c.port, c.signal, node.span)}, {int(c.value)}"
+        return _timed(self, head, node.timeout, node.on_timeout, ctx)
+
+    def wait_condition(self, node: ir.WaitCondition, ctx: RapidContext) -> list[str]:
+        head = f"WaitUntil {_expr(self, node.condition, ctx, node.span)}"
+        return _timed(self, head, node.timeout, node.on_timeout, ctx)
+
+    def stop(self, node: ir.Stop, ctx: RapidContext) -> list[str]:
+        return ["EXIT;"]
+
+    def loop(self, node: ir.Loop, ctx: RapidContext) -> list[str]:
+        def write(template: _loops.LoopTemplate) -> list[str]:
+            counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
+            ctx.loops.enter(template, counter)
+            head = f"FOR {counter} FROM {template.var.first} TO {template.var.last} DO"
+            return [head] + self.indent(self.body(template.body, ctx), self.INDENT) + ["ENDFOR"]
+
+        return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
+                              config_key=rapid_conf, config_match=rapid_conf_match,
+                              extra_key=lambda n, r: self.context_key(n, ctx))
+
+    def proc_call(self, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
+        """A call inside a FOR whose body the loop offsets is written inline (the FOR counter is
+        local to the loop: RAPID overview, "FOR": not known in another routine)."""
+        if _rt.inline_call(node, ctx.loops):
+            return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
+        return self._routine_call(node, ctx)
 
 
 # ----------------------------------------------------------------- runtime logic (issue #15)
@@ -458,11 +496,6 @@ RapidBackend.detach = _grip_load  # type: ignore[attr-defined]
 #   * stop -> EXIT (instruction EXIT: "terminate program execution. Program restart is then
 #     blocked"), which ends the task; `Stop` only pauses it (execution continues at the next
 #     instruction on restart), so it is not `stop`.
-
-from typing import Any  # noqa: E402
-
-from rmot.backends import loops as _loops  # noqa: E402
-from rmot.backends import runtime as _rt  # noqa: E402
 
 _RAPID_TYPES = {ir.ValueType.INT: "num", ir.ValueType.NUM: "num", ir.ValueType.BOOL: "bool"}
 _RAPID_COMPARE = {ir.CompareOp.EQ: "=", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<",
@@ -495,29 +528,6 @@ def _expr(self: RapidBackend, e: object, ctx: RapidContext, span: object) -> str
     return _rt.expr_text(e, _dialect(self, ctx, span))
 
 
-def _var_decl(self: RapidBackend, node: ir.VarDecl, ctx: RapidContext) -> list[str]:
-    name = ctx.names.name(node.name, node.span)
-    self._declare(ctx, "var", f"VAR {_RAPID_TYPES[node.type]} {name};")
-    return [f"{name} := {_expr(self, node.init, ctx, node.span)};"]
-
-
-def _assign(self: RapidBackend, node: ir.Assign, ctx: RapidContext) -> list[str]:
-    return [f"{ctx.names.name(node.name, node.span)} := {_expr(self, node.value, ctx, node.span)};"]
-
-
-def _if(self: RapidBackend, node: ir.If, ctx: RapidContext) -> list[str]:
-    lines = [f"IF {_expr(self, node.condition, ctx, node.span)} THEN"]
-    lines += self.indent(self.body(node.then, ctx), self.INDENT)
-    if node.otherwise:
-        lines += ["ELSE"] + self.indent(self.body(node.otherwise, ctx), self.INDENT)
-    return lines + ["ENDIF"]
-
-
-def _while(self: RapidBackend, node: ir.While, ctx: RapidContext) -> list[str]:
-    lines = [f"WHILE {_expr(self, node.condition, ctx, node.span)} DO"]
-    return lines + self.indent(self.body(node.body, ctx), self.INDENT) + ["ENDWHILE"]
-
-
 def _timeout_flag(self: RapidBackend, ctx: RapidContext) -> str:
     name = ctx.names.name("rmot_timeout")
     self._declare(ctx, "var", f"VAR bool {name};")
@@ -534,21 +544,6 @@ def _timed(self: RapidBackend, head: str, timeout: float | None, on_timeout: tup
     flag = _timeout_flag(self, ctx)
     return [f"{head}\\TimeFlag:={flag};", f"IF {flag} THEN"] + self.indent(
         self.body(on_timeout, ctx), self.INDENT) + ["ENDIF"]
-
-
-def _wait_input(self: RapidBackend, node: ir.WaitInput, ctx: RapidContext) -> list[str]:
-    c = node.condition
-    head = f"WaitDI {self._signal(ctx, 'di', c.port, c.signal, node.span)}, {int(c.value)}"
-    return _timed(self, head, node.timeout, node.on_timeout, ctx)
-
-
-def _wait_condition(self: RapidBackend, node: ir.WaitCondition, ctx: RapidContext) -> list[str]:
-    head = f"WaitUntil {_expr(self, node.condition, ctx, node.span)}"
-    return _timed(self, head, node.timeout, node.on_timeout, ctx)
-
-
-def _stop(self: RapidBackend, node: ir.Stop, ctx: RapidContext) -> list[str]:
-    return ["EXIT;"]
 
 
 def rapid_conf(q: Any, branch: ir.Config | None) -> Hashable:
@@ -575,41 +570,3 @@ def rapid_conf_match(first: Any, other: Any) -> bool:
         return bool(first == other)
     a, b = first, other  # (cf1, cf4, cf6, cfx)
     return bool(a[3] == b[3] and all(abs(a[i] - b[i]) <= 1 for i in range(3)))
-
-
-def _loop(self: RapidBackend, node: ir.Loop, ctx: RapidContext) -> list[str]:
-    def write(template: _loops.LoopTemplate) -> list[str]:
-        counter = ctx.names.name(template.var.name or f"rmot_rep{template.loop.uid}", node.span)
-        ctx.loops.enter(template, counter)
-        head = f"FOR {counter} FROM {template.var.first} TO {template.var.last} DO"
-        return [head] + self.indent(self.body(template.body, ctx), self.INDENT) + ["ENDFOR"]
-
-    return _rt.loop_lines(self, node, ctx, write, lambda body: self.body(body, ctx),
-                          config_key=rapid_conf, config_match=rapid_conf_match,
-                          extra_key=lambda n, r: self.context_key(n, ctx))
-
-
-_proc_call_plain = RapidBackend.proc_call
-
-
-def _r_proc_call(self: RapidBackend, node: ir.ProcCall, ctx: RapidContext) -> list[str]:
-    """A call inside a FOR whose body the loop offsets is written inline (the FOR counter is
-    local to the loop: RAPID overview, "FOR": not known in another routine)."""
-    if _rt.inline_call(node, ctx.loops):
-        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.body(node.body, ctx)
-    return _proc_call_plain(self, node, ctx)
-
-
-RapidBackend.EMIT = {**RapidBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                     ir.While: "while_",
-                     ir.Loop: "loop", ir.WaitCondition: "wait_condition", ir.Stop: "stop"}
-RapidBackend.var_decl = _var_decl  # type: ignore[attr-defined]
-RapidBackend.assign = _assign  # type: ignore[attr-defined]
-RapidBackend.if_ = _if  # type: ignore[method-assign]
-RapidBackend.while_ = _while  # type: ignore[attr-defined]
-RapidBackend.loop = _loop  # type: ignore[attr-defined]
-RapidBackend.wait_input = _wait_input  # type: ignore[method-assign]
-RapidBackend.wait_condition = _wait_condition  # type: ignore[attr-defined]
-RapidBackend.stop = _stop  # type: ignore[attr-defined]
-RapidBackend.proc_call = _r_proc_call  # type: ignore[method-assign]
-RapidBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]  # writes and/or/not, ain, vars

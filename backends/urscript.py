@@ -61,6 +61,8 @@ import math
 from dataclasses import field
 
 from rmot.backends import codes
+from rmot.backends import loops as _loops
+from rmot.backends import runtime as _rt
 from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.runtime import LoopState
@@ -136,6 +138,8 @@ class UrScriptBackend(Backend):
     COMMENT = "#"
     SYNC_HANDSHAKE = True  # sync -> the I/O handshake of backends/handshake.py
     NAME_RULES = UR_RULES
+    PRINTS_LOOPS = True  # a counter and `while counter <= last:`, targets moved by pose_add
+    RUNTIME_CONDITIONS = True  # writes and/or/not, analog inputs, variables, timeout branches
     DIGITAL_PORTS = (0, 15)  # standard 0..7, configurable 8..15 (control box)
     NO_RECORD_NOTE = "move uid {uid} has no plan"
 
@@ -174,7 +178,7 @@ class UrScriptBackend(Backend):
 
     # ------------------------------------------------------------------ motion
 
-    def move(self, node: ir.Move, ctx: UrContext) -> list[str]:
+    def _move_plain(self, node: ir.Move, ctx: UrContext) -> list[str]:
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
@@ -283,7 +287,7 @@ class UrScriptBackend(Backend):
         sig = self.digital(cond.port, span, "in")
         return f"get_{sig}) == {cond.value}" if sig else None
 
-    def wait_input(self, node: ir.WaitInput, ctx: UrContext) -> list[str]:
+    def _wait_input_halt(self, node: ir.WaitInput, ctx: UrContext) -> list[str]:
         test = self.condition(node.condition, node.span)
         if test is None:
             return []
@@ -299,12 +303,10 @@ class UrScriptBackend(Backend):
                 f'  popup("{message}", title="rmot", error=True, blocking=True)',
                 "  halt", "end"]
 
-    def if_(self, node: ir.If, ctx: UrContext) -> list[str]:
+    def _if_input(self, node: ir.If, ctx: UrContext) -> list[str]:
+        """An `if` on one digital input (`if_` writes the other conditions)."""
         c = node.condition
-        if not isinstance(c, ir.InputCondition):  # conditions over variables: issue #15
-            self.unsupported(codes.UNSUPPORTED, f"if on a {type(c).__name__} must be expressible "
-                             f"for {self.name} (it is not yet)", node.span)
-            return [self.comment(f"UNSUPPORTED if on a {type(c).__name__}")]
+        assert isinstance(c, ir.InputCondition)  # if_ sends the other conditions elsewhere
         test = self.condition(c, node.span)
         if test is None:
             return []
@@ -315,7 +317,7 @@ class UrScriptBackend(Backend):
 
     # ------------------------------------------------------------------ structure
 
-    def proc_call(self, node: ir.ProcCall, ctx: UrContext) -> list[str]:
+    def _routine_call(self, node: ir.ProcCall, ctx: UrContext) -> list[str]:
         name = ctx.routine_of[node.uid]
         if name not in ctx.defined:  # calls printing the same routine share it (routine_table)
             ctx.defined.add(name)
@@ -324,24 +326,117 @@ class UrScriptBackend(Backend):
             ctx.routine_defs.extend(self.indent(body, self.INDENT) + ["end"])
         return self.call_args_comment(node) + [f"{name}()"]
 
+    # ------------------------------------------------------------------ parts
 
-# --------------------------------------------------------------------------- parts (issue #14)
+    def attach(self, node: ir.Attach, ctx: UrContext) -> list[str]:
+        return self.set_payload(node, ctx)
 
+    def detach(self, node: ir.Detach, ctx: UrContext) -> list[str]:
+        return self.set_payload(node, ctx)
 
-def _set_payload(self: UrScriptBackend, node: ir.Attach | ir.Detach, ctx: UrContext) -> list[str]:
-    """`set_payload(m, [cx, cy, cz])` after an attach or detach: tool + held parts.
+    def set_payload(self, node: ir.Attach | ir.Detach, ctx: UrContext) -> list[str]:
+        """`set_payload(m, [cx, cy, cz])` after an attach or detach: tool + held parts.
 
-    Universal Robots, "The URScript Programming Language" (e-Series), set_payload(m, cog):
-    m the payload mass in kg, cog the centre of gravity's displacement from the tool flange
-    in metres. The bare flange with parts held writes the parts alone."""
-    from rmot.backends.part_load import held_load
+        Universal Robots, "The URScript Programming Language" (e-Series), set_payload(m, cog):
+        m the payload mass in kg, cog the centre of gravity's displacement from the tool flange
+        in metres. The bare flange with parts held writes the parts alone."""
+        from rmot.backends.part_load import held_load
 
-    _, _, total, cog = held_load(node, ctx)
-    return [f"set_payload({fmt(total, 3)}, [{fmt_list(cog, POS_DECIMALS, ', ')}])"]
+        _, _, total, cog = held_load(node, ctx)
+        return [f"set_payload({fmt(total, 3)}, [{fmt_list(cog, POS_DECIMALS, ', ')}])"]
 
+    # ------------------------------------------------------------------ runtime logic
+    # (URScript sources: the comment above _UR_ZERO)
 
-UrScriptBackend.attach = _set_payload  # type: ignore[attr-defined]
-UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]
+    def var_decl(self, node: ir.VarDecl, ctx: UrContext) -> list[str]:
+        name = _uname(ctx, node.name, node.span)
+        decl = f"global {name} = {_UR_ZERO[node.type]}"
+        if decl not in ctx.loops.decls:
+            ctx.loops.decls.append(decl)
+        return [f"{name} = {_uexpr(self, node.init, ctx, node.span)}"]
+
+    def assign(self, node: ir.Assign, ctx: UrContext) -> list[str]:
+        return [f"{_uname(ctx, node.name, node.span)} = {_uexpr(self, node.value, ctx, node.span)}"]
+
+    def if_(self, node: ir.If, ctx: UrContext) -> list[str]:
+        if isinstance(node.condition, ir.InputCondition):
+            return self._if_input(node, ctx)
+        lines = [f"if {_uexpr(self, node.condition, ctx, node.span)}:"]
+        lines += self.indent(self.block(node.then, ctx), self.INDENT)
+        if node.otherwise:
+            lines += ["else:"] + self.indent(self.block(node.otherwise, ctx), self.INDENT)
+        return lines + ["end"]
+
+    def while_(self, node: ir.While, ctx: UrContext) -> list[str]:
+        return ([f"while {_uexpr(self, node.condition, ctx, node.span)}:"]
+                + self.indent(_loop_body(self, node.body, ctx), self.INDENT) + ["end"])
+
+    def wait_input(self, node: ir.WaitInput, ctx: UrContext) -> list[str]:
+        if node.timeout is None or not node.on_timeout:
+            return self._wait_input_halt(node, ctx)
+        test = self.condition(node.condition, node.span)
+        if test is None:
+            return []
+        return _u_timed(self, test, node.timeout, node.on_timeout, ctx)
+
+    def wait_condition(self, node: ir.WaitCondition, ctx: UrContext) -> list[str]:
+        test = _uexpr(self, node.condition, ctx, node.span)
+        if node.timeout is None:
+            return [f"while not ({test}):", "  sync()", "end"]
+        if node.on_timeout:
+            return _u_timed(self, test, node.timeout, node.on_timeout, ctx)
+        message = f"wait until timed out after {fmt(node.timeout, 3)} s; program stopped"
+        return _u_timed(self, test, node.timeout, (), ctx)[:-1] + [
+            f'  popup("{message}", title="rmot", error=True, blocking=True)', "  halt", "end"]
+
+    def stop(self, node: ir.Stop, ctx: UrContext) -> list[str]:
+        return ["halt"]
+
+    def move(self, node: ir.Move, ctx: UrContext) -> list[str]:
+        """As _move_plain; a target a vendor loop offsets is written as a pose_add (and a
+        joint move to it through get_inverse_kin near the first iteration's joints)."""
+        moving = _rt.moving_offset(ctx.loops, node.uid, "target")
+        if moving is None or not isinstance(node.target, ir.CartesianTarget):
+            return self._move_plain(node, ctx)
+        rec = self.move_record(node, ctx)
+        if isinstance(rec, list):
+            return rec
+        if rec.tcp_pose is None:
+            return self._move_plain(node, ctx)
+        m = node.motion
+        r = fmt(rec.blend_radius, POS_DECIMALS)
+        to = _offset_pose(self, rec.tcp_pose, node, "target", ctx)
+        if node.kind is ir.MotionKind.JOINT:
+            v_max, a_max = self.joint_limits(ctx, node)
+            q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"  # type: ignore[arg-type]
+            accel = fmt(m.joint_accel * a_max, RATE_DECIMALS)
+            return [f"movej(get_inverse_kin({to}, qnear={q}), a={accel}, "
+                    f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{self.duration_arg(m)}, r={r})"]
+        speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
+        if node.kind is ir.MotionKind.LINEAR:
+            return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]
+        if node.via is None:
+            return self._move_plain(node, ctx)
+        via = _offset_pose(self, node.via.pose, node, "via", ctx)
+        return [f"movec({via}, {to}, {speed}, r={r}, mode=0)"]
+
+    def loop(self, node: ir.Loop, ctx: UrContext) -> list[str]:
+        def write(template: _loops.LoopTemplate) -> list[str]:
+            counter = _uname(ctx, template.var.name or f"rmot_rep{template.loop.uid}", node.span)
+            ctx.loops.enter(template, counter)
+            body = _loop_body(self, template.body, ctx)
+            return ([f"{counter} = {template.var.first}", f"while {counter} <= {template.var.last}:"]
+                    + self.indent(body + [f"{counter} = {counter} + 1"], self.INDENT) + ["end"])
+
+        return _rt.loop_lines(self, node, ctx, write, lambda body: self.block(body, ctx),
+                              extra_key=_ur_extra)
+
+    def proc_call(self, node: ir.ProcCall, ctx: UrContext) -> list[str]:
+        """A call inside a vendor loop whose body the loop offsets is written inline (the counter
+        is a local of the program's def, not known inside the proc's own def)."""
+        if _rt.inline_call(node, ctx.loops):
+            return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.block(node.body, ctx)
+        return self._routine_call(node, ctx)
 
 
 # ----------------------------------------------------------------- runtime logic (issue #15)
@@ -373,9 +468,6 @@ UrScriptBackend.detach = _set_payload  # type: ignore[attr-defined]
 #   * stop -> `halt` (Module internals, halt(): terminates the program).
 #   * wait with a timeout branch: the same counted loop as wait_input above, then
 #     `if not (cond):` runs the branch instead of popup + halt.
-
-from rmot.backends import loops as _loops  # noqa: E402
-from rmot.backends import runtime as _rt  # noqa: E402
 
 _UR_ZERO = {ir.ValueType.INT: "0", ir.ValueType.NUM: "0.0", ir.ValueType.BOOL: "False"}
 _UR_COMPARE = {ir.CompareOp.EQ: "==", ir.CompareOp.NE: "!=", ir.CompareOp.LT: "<",
@@ -416,31 +508,6 @@ def _uexpr(self: UrScriptBackend, e: object, ctx: UrContext, span: object) -> st
     return _rt.expr_text(e, _ur_dialect(self, ctx, span))
 
 
-def _u_var_decl(self: UrScriptBackend, node: ir.VarDecl, ctx: UrContext) -> list[str]:
-    name = _uname(ctx, node.name, node.span)
-    decl = f"global {name} = {_UR_ZERO[node.type]}"
-    if decl not in ctx.loops.decls:
-        ctx.loops.decls.append(decl)
-    return [f"{name} = {_uexpr(self, node.init, ctx, node.span)}"]
-
-
-def _u_assign(self: UrScriptBackend, node: ir.Assign, ctx: UrContext) -> list[str]:
-    return [f"{_uname(ctx, node.name, node.span)} = {_uexpr(self, node.value, ctx, node.span)}"]
-
-
-_u_if_input = UrScriptBackend.if_
-
-
-def _u_if(self: UrScriptBackend, node: ir.If, ctx: UrContext) -> list[str]:
-    if isinstance(node.condition, ir.InputCondition):
-        return _u_if_input(self, node, ctx)
-    lines = [f"if {_uexpr(self, node.condition, ctx, node.span)}:"]
-    lines += self.indent(self.block(node.then, ctx), self.INDENT)
-    if node.otherwise:
-        lines += ["else:"] + self.indent(self.block(node.otherwise, ctx), self.INDENT)
-    return lines + ["end"]
-
-
 def _uses_time(body: tuple[ir.Instr, ...]) -> bool:
     """True when running `body` surely moves or waits (every if arm does, a loop runs)."""
     for node in body:
@@ -463,44 +530,12 @@ def _loop_body(self: UrScriptBackend, body: tuple[ir.Instr, ...], ctx: UrContext
     return lines
 
 
-def _u_while(self: UrScriptBackend, node: ir.While, ctx: UrContext) -> list[str]:
-    return ([f"while {_uexpr(self, node.condition, ctx, node.span)}:"]
-            + self.indent(_loop_body(self, node.body, ctx), self.INDENT) + ["end"])
-
-
 def _u_timed(self: UrScriptBackend, test: str, timeout: float, on_timeout: tuple[ir.Instr, ...],
              ctx: UrContext) -> list[str]:
     return ["rmot_waited = 0.0",
             f"while not ({test}) and rmot_waited < {fmt(timeout, 4)}:",
             "  sync()", "  rmot_waited = rmot_waited + get_steptime()", "end",
             f"if not ({test}):"] + self.indent(self.block(on_timeout, ctx), self.INDENT) + ["end"]
-
-
-_u_wait_input_plain = UrScriptBackend.wait_input
-
-
-def _u_wait_input(self: UrScriptBackend, node: ir.WaitInput, ctx: UrContext) -> list[str]:
-    if node.timeout is None or not node.on_timeout:
-        return _u_wait_input_plain(self, node, ctx)
-    test = self.condition(node.condition, node.span)
-    if test is None:
-        return []
-    return _u_timed(self, test, node.timeout, node.on_timeout, ctx)
-
-
-def _u_wait_condition(self: UrScriptBackend, node: ir.WaitCondition, ctx: UrContext) -> list[str]:
-    test = _uexpr(self, node.condition, ctx, node.span)
-    if node.timeout is None:
-        return [f"while not ({test}):", "  sync()", "end"]
-    if node.on_timeout:
-        return _u_timed(self, test, node.timeout, node.on_timeout, ctx)
-    message = f"wait until timed out after {fmt(node.timeout, 3)} s; program stopped"
-    return _u_timed(self, test, node.timeout, (), ctx)[:-1] + [
-        f'  popup("{message}", title="rmot", error=True, blocking=True)', "  halt", "end"]
-
-
-def _u_stop(self: UrScriptBackend, node: ir.Stop, ctx: UrContext) -> list[str]:
-    return ["halt"]
 
 
 def _offset_pose(self: UrScriptBackend, base: ir.Pose, node: ir.Move, role: str,
@@ -519,78 +554,7 @@ def _offset_pose(self: UrScriptBackend, base: ir.Pose, node: ir.Move, role: str,
     return f"pose_add({text}, p[{', '.join(terms)}, 0, 0, 0])"
 
 
-_u_move_plain = UrScriptBackend.move
-
-
-def _u_move(self: UrScriptBackend, node: ir.Move, ctx: UrContext) -> list[str]:
-    """As UrScriptBackend.move; a target a vendor loop offsets is written as a pose_add (and a
-    joint move to it through get_inverse_kin near the first iteration's joints)."""
-    moving = _rt.moving_offset(ctx.loops, node.uid, "target")
-    if moving is None or not isinstance(node.target, ir.CartesianTarget):
-        return _u_move_plain(self, node, ctx)
-    rec = self.move_record(node, ctx)
-    if isinstance(rec, list):
-        return rec
-    if rec.tcp_pose is None:
-        return _u_move_plain(self, node, ctx)
-    m = node.motion
-    r = fmt(rec.blend_radius, POS_DECIMALS)
-    to = _offset_pose(self, rec.tcp_pose, node, "target", ctx)
-    if node.kind is ir.MotionKind.JOINT:
-        v_max, a_max = self.joint_limits(ctx, node)
-        q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"  # type: ignore[arg-type]
-        accel = fmt(m.joint_accel * a_max, RATE_DECIMALS)
-        return [f"movej(get_inverse_kin({to}, qnear={q}), a={accel}, "
-                f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{self.duration_arg(m)}, r={r})"]
-    speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
-    if node.kind is ir.MotionKind.LINEAR:
-        return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]
-    if node.via is None:
-        return _u_move_plain(self, node, ctx)
-    via = _offset_pose(self, node.via.pose, node, "via", ctx)
-    return [f"movec({via}, {to}, {speed}, r={r}, mode=0)"]
-
-
 def _ur_extra(node: ir.Instr, rec: object) -> object:
     """URScript prints each move's planned blend radius (r=): iterations must agree on it."""
     radius = getattr(rec, "blend_radius", None)
     return None if radius is None else fmt(radius, POS_DECIMALS)
-
-
-def _u_loop(self: UrScriptBackend, node: ir.Loop, ctx: UrContext) -> list[str]:
-    def write(template: _loops.LoopTemplate) -> list[str]:
-        counter = _uname(ctx, template.var.name or f"rmot_rep{template.loop.uid}", node.span)
-        ctx.loops.enter(template, counter)
-        body = _loop_body(self, template.body, ctx)
-        return ([f"{counter} = {template.var.first}", f"while {counter} <= {template.var.last}:"]
-                + self.indent(body + [f"{counter} = {counter} + 1"], self.INDENT) + ["end"])
-
-    return _rt.loop_lines(self, node, ctx, write, lambda body: self.block(body, ctx),
-                          extra_key=_ur_extra)
-
-
-_u_proc_call_plain = UrScriptBackend.proc_call
-
-
-def _u_proc_call(self: UrScriptBackend, node: ir.ProcCall, ctx: UrContext) -> list[str]:
-    """A call inside a vendor loop whose body the loop offsets is written inline (the counter
-    is a local of the program's def, not known inside the proc's own def)."""
-    if _rt.inline_call(node, ctx.loops):
-        return [self.comment(f"{node.proc}({', '.join(node.args)})")] + self.block(node.body, ctx)
-    return _u_proc_call_plain(self, node, ctx)
-
-
-UrScriptBackend.EMIT = {**UrScriptBackend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                        ir.While: "while_", ir.Loop: "loop", ir.WaitCondition: "wait_condition",
-                        ir.Stop: "stop"}
-UrScriptBackend.var_decl = _u_var_decl  # type: ignore[attr-defined]
-UrScriptBackend.assign = _u_assign  # type: ignore[attr-defined]
-UrScriptBackend.if_ = _u_if  # type: ignore[method-assign]
-UrScriptBackend.while_ = _u_while  # type: ignore[attr-defined]
-UrScriptBackend.loop = _u_loop  # type: ignore[attr-defined]
-UrScriptBackend.wait_input = _u_wait_input  # type: ignore[method-assign]
-UrScriptBackend.wait_condition = _u_wait_condition  # type: ignore[attr-defined]
-UrScriptBackend.stop = _u_stop  # type: ignore[attr-defined]
-UrScriptBackend.move = _u_move  # type: ignore[method-assign]
-UrScriptBackend.proc_call = _u_proc_call  # type: ignore[method-assign]
-UrScriptBackend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]  # and/or/not, ain, vars

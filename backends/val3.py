@@ -172,9 +172,12 @@ class Val3Backend(Backend):
     DIGITAL_PORTS = (0, 63)  # dIn / dOut arrays linked to BasicIO-1\%I / %Q
     NO_RECORD_NOTE = None
     WAITS_FOR_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse,
-                                                    ir.WaitTime, ir.WaitInput, ir.If)
+                                                    ir.WaitTime, ir.WaitInput, ir.If,
+                                                    ir.While, ir.WaitCondition, ir.Stop)
     NO_MOTION: ClassVar[tuple[type, ...]] = (ir.SetDigital, ir.SetAnalog, ir.Pulse, ir.WaitTime,
-                                             ir.WaitInput)
+                                             ir.WaitInput, ir.WaitCondition)
+    PRINTS_LOOPS = True  # for ... endFor, targets moved by compose(..., trShift)
+    RUNTIME_CONDITIONS = True  # writes and/or/not, aIn, variables and timeout branches
 
     # ------------------------------------------------------------------ application
 
@@ -675,12 +678,3 @@ def _blend_key(node: ir.Instr, rec: plan_types.InstructionRecord | None) -> obje
 
 def _can_stop(body: tuple[ir.Instr, ...]) -> bool:
     return any(isinstance(n, ir.Stop) for n in ir.walk(body))
-
-
-Val3Backend.EMIT = {**Val3Backend.EMIT, ir.VarDecl: "var_decl", ir.Assign: "assign",
-                    ir.Loop: "loop", ir.While: "while_", ir.WaitCondition: "wait_condition",
-                    ir.Stop: "stop"}
-Val3Backend.WAITS_FOR_MOTION = (*Val3Backend.WAITS_FOR_MOTION, ir.While, ir.WaitCondition, ir.Stop)
-Val3Backend.NO_MOTION = (*Val3Backend.NO_MOTION, ir.WaitCondition)
-# it writes and/or/not, analog inputs and timeout branches itself (base.py's fallback gate)
-Val3Backend.RUNTIME_CONDITIONS = True  # type: ignore[attr-defined]
