@@ -498,11 +498,14 @@ class Backend:
 
     @staticmethod
     def planned_zone(node: ir.Move, rec: plan_types.InstructionRecord) -> ir.Zone:
-        """The zone a vendor prints for `node`: `fine` where the plan stops (record's
-        blend_radius 0: before a wait, wait until, if, sync, at a timed move, at the task's
-        end, wherever a blend could not be built), else the programmed zone. The controller
-        then stops exactly where the verified path stops (lang/REFERENCE.md §8, stop points)."""
-        return node.motion.zone if rec.blend_radius > 0.0 else ir.Zone(0.0)
+        """The zone a vendor prints for `node`: the record's blend radius, the one the plan
+        verified (at most the programmed zone: compiler/plan/blend.py shrinks it to half of
+        each neighbouring move and halves it where the blend would leave its sphere), `fine`
+        where the plan stops (before a wait, wait until, if, sync, at a timed move, at the
+        task's end, wherever a blend could not be built). The controller then blends inside
+        the sphere that was verified and stops where the verified path stops
+        (lang/REFERENCE.md §8, stop points)."""
+        return ir.Zone(rec.blend_radius) if rec.blend_radius > 0.0 else ir.Zone(0.0)
 
     def branch_or_default(self, branch: ir.Config | None, node: ir.Move) -> ir.Config:
         """`branch` when it names shoulder, elbow and wrist; else E402 and front/up/no-flip
