@@ -142,6 +142,7 @@ class UrScriptBackend(Backend):
     RUNTIME_CONDITIONS = True  # writes and/or/not, analog inputs, variables, timeout branches
     DIGITAL_PORTS = (0, 15)  # standard 0..7, configurable 8..15 (control box)
     NO_RECORD_NOTE = "move uid {uid} has no plan"
+    SIX_AXIS_DATA = "movej/movel/movec (a UR controller drives six joints)"  # URScript manual: q is a 6-vector
 
     # ------------------------------------------------------------------ program
 
