@@ -187,13 +187,19 @@ class UrScriptBackend(Backend):
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: UrContext,
                    r: str) -> list[str]:
-        m = node.motion
-        v_max, a_max = self.joint_limits(ctx, node)
         assert rec.q_target is not None  # move_record returns a record with joints
         q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"
-        t = self.duration_arg(m)
-        return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
-                f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{t}, r={r})"]
+        return [f"movej({q}, {self.movej_rates(node, rec, ctx)}{self.duration_arg(node.motion)}, r={r})"]
+
+    def movej_rates(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: UrContext) -> str:
+        """`a=.., v=..` of a movej, the leading axis' acceleration and speed (URScript manual,
+        movej): the plan's (TaskPlan.leading_axis_rates), so the controller's trapezoid is the
+        verified timing; the IR's fractions of JOINT_LIMITS only where the plan has no motion."""
+        rates = ctx.task_plan.leading_axis_rates(rec)
+        if rates is None:
+            v_max, a_max = self.joint_limits(ctx, node)
+            rates = (node.motion.joint_speed * v_max, node.motion.joint_accel * a_max)
+        return f"a={fmt(rates[1], RATE_DECIMALS)}, v={fmt(rates[0], RATE_DECIMALS)}"
 
     def _tcp_args(self, node: ir.Move, rec: plan_types.InstructionRecord) -> tuple[str, str] | None:
         """(speed arguments, target pose) of movel/movec; None (E401) without a TCP pose."""
@@ -408,11 +414,9 @@ class UrScriptBackend(Backend):
         r = fmt(rec.blend_radius, POS_DECIMALS)
         to = _offset_pose(self, rec.tcp_pose, node, "target", ctx)
         if node.kind is ir.MotionKind.JOINT:
-            v_max, a_max = self.joint_limits(ctx, node)
             q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"  # type: ignore[arg-type]
-            accel = fmt(m.joint_accel * a_max, RATE_DECIMALS)
-            return [f"movej(get_inverse_kin({to}, qnear={q}), a={accel}, "
-                    f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{self.duration_arg(m)}, r={r})"]
+            return [f"movej(get_inverse_kin({to}, qnear={q}), {self.movej_rates(node, rec, ctx)}"
+                    f"{self.duration_arg(m)}, r={r})"]
         speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
         if node.kind is ir.MotionKind.LINEAR:
             return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]
