@@ -13,9 +13,10 @@ Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5
     `movec(p_via, p_to, a, v, r, mode=0)` (mode 0: orientation interpolated to the target, as
     the IR's SLERP); there is no configuration data: movel/movec follow the path from the
     current joints, which the plan already fixed;
-  * movej `v`/`a` are the leading axis' speed and acceleration; the IR's fractions of each
-    joint's maximum are multiplied by `JOINT_LIMITS[model]`, the slowest joint's datasheet
-    maximum (exact where all joints share the maximum, otherwise conservative);
+  * movej `v`/`a` are the leading axis' speed and acceleration: the plan's (the leading axis'
+    peak speed and acceleration over the move, TaskPlan.leading_axis_rates), so the
+    controller's trapezoid runs the verified timing; where the plan has no motion for a move,
+    the IR's fractions of `JOINT_LIMITS[model]`, the slowest joint's datasheet maximum;
   * I/O: `set_standard_digital_out(n, b)` (n 0..7), `set_configurable_digital_out(n - 8, b)`
     (n 8..15), `get_standard_digital_in(n)` / `get_configurable_digital_in(n - 8)`
     (DIGITAL_PORTS = 0..15: the control box's 8 standard + 8 configurable I/O);
