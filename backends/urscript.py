@@ -165,14 +165,22 @@ class UrScriptBackend(Backend):
         return {f"{prog}{self.file_ext}": "\n".join(lines) + "\n"}
 
     def block(self, nodes: tuple[ir.Instr, ...], ctx: UrContext) -> list[str]:
-        """A body with `set_tcp` at its first move and wherever the tool changes."""
+        """A body with `set_tcp` at its first move and wherever the tool changes, with the
+        payload the move carries: the tool and the parts it holds there (the state after the
+        last attach/detach on the move's path, part_load.state_at_moves, as KRL's $LOAD), so a
+        loop body, an `if` arm or a proc never sets the tool alone while a part is held."""
+        from rmot.backends.part_load import state_at_moves
+
         out: list[str] = []
         current: ir.ToolRef | None = None
         for node in nodes:
             if isinstance(node, ir.Move) and node.tool != current:
                 current = node.tool
                 out.append(f"set_tcp({pose_text(node.tool.tcp)})")
-                if node.tool.name is not None:
+                event = state_at_moves(ctx).get(node.uid)
+                if event is not None and event.held and event.tool.name == node.tool.name:
+                    out += self.set_payload(event, ctx)
+                elif node.tool.name is not None:
                     cog = fmt_list(tool_cog(node.tool), POS_DECIMALS, ", ")
                     out.append(f"set_payload({fmt(node.tool.mass, 3)}, [{cog}])")
             out.extend(self.instr(node, ctx))
