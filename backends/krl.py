@@ -233,6 +233,13 @@ class KrlBackend(Backend):
         ctx.module.uses_ptp_helper = True
         lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
         zone = self._ptp_zone(node, stop, lines)
+        following = ctx.task_plan.next_move(rec)
+        if zone and following is not None and following.kind is not ir.MotionKind.JOINT:
+            # PTP -> LIN/CIRC: the CP part of the corner needs its own parameter (KUKA
+            # mxAutomation manual, PTP approximation "C_PTP C_DIS"; KSS 8.x "PTP-CP approximate
+            # positioning"): the plan's blend radius, as for LIN/CIRC
+            lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
+            zone += " C_DIS"
         if isinstance(node.target, ir.JointTarget):
             return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
         return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]

@@ -111,6 +111,15 @@ class TaskPlan:
         accel = float(np.max(np.abs(traj.qdd[inside, lead])))
         return (speed, accel) if speed > 0.0 and accel > 0.0 else None
 
+    def next_move(self, rec: InstructionRecord) -> ir.Move | None:
+        """The move that follows `rec` on its timeline (the one a blend at `rec` joins), or None."""
+        moves = {i.uid: i for i in ir.walk(self.task.body) if isinstance(i, ir.Move)}
+        later = [r for r in self.records if r.variant == rec.variant and r.uid in moves
+                 and r.uid != rec.uid and r.t_start >= rec.t_end - 1e-9]
+        if not later:
+            return None
+        return moves[min(later, key=lambda r: (r.t_start, r.t_end)).uid]
+
     def record(self, uid: int) -> InstructionRecord | None:
         for r in self.records:
             if r.uid == uid and r.variant == 0:

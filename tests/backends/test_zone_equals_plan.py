@@ -83,3 +83,25 @@ def test_neutral_formats_print_the_json_radius(plan) -> None:  # type: ignore[no
     (doc,) = [json.loads(t) for name, t in result.files.items() if Path(name).suffix == ".json"]
     blends = [i.get("blend_mm") for task in doc["tasks"] for i in task["instructions"] if "blend_mm" in i]
     assert max(blends) == pytest.approx(25.0)
+
+
+def test_krl_ptp_blended_into_a_lin_is_c_ptp_c_dis(tmp_path_factory: pytest.TempPathFactory) -> None:
+    """PTP -> LIN approximation is `PTP p C_PTP C_DIS` with $APO.CDIS the plan's radius (KUKA
+    mxAutomation manual, PTP approximation); PTP -> PTP stays `C_PTP`. Read back by the KRL
+    checker of tests/backends/vendor_validators.py."""
+    from vendor_validators import check_krl
+
+    path = tmp_path_factory.mktemp("ptp") / "ptp.rmot"
+    path.write_text(PROGRAM.replace("move joint pose(x=800mm, y=-200mm, z=1000mm, rx=180deg) zone fine",
+                                    "move joint pose(x=800mm, y=-200mm, z=1000mm, rx=180deg) zone 30 mm")
+                    .replace("joints(0, 0, 0, 0, 90, 0) deg zone fine",
+                             "joints(0, 0, 0, 0, 90, 0) deg zone fine\n  move joint joints(-5, 0, 0, 0, 90, 0) deg zone 10 mm"))
+    front = stages.load(str(path), use_cache=False)
+    assert front.program is not None
+    files = BACKENDS["krl"]().emit(stages.plan(front.program, use_cache=False), source_map=False).files
+    src = next(t for n, t in files.items() if n.endswith(".src")).splitlines()
+    ptps = [k for k, line in enumerate(src) if line.strip().startswith("PTP ")]
+    assert src[ptps[1]].strip().endswith(" C_PTP")  # into the next PTP
+    assert src[ptps[2]].strip().endswith(" C_PTP C_DIS")  # into the LIN
+    assert src[ptps[2] - 1].strip() == "$APO.CDIS=30.000"
+    assert check_krl(files) == []
