@@ -41,9 +41,10 @@ NUM = r"-?\d+(?:\.\d+)?"
 
 # --------------------------------------------------------------------------- Fanuc LS
 
-# [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`
+# [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`; the motion
+# option ACC n (acceleration override, 0..150 %: R-30iB Operator's Manual, motion options)
 _TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) "
-                        r"(FINE|CNT(\d+))(?: Offset,PR\[\d+\])?$")
+                        r"(FINE|CNT(\d+))(?: ACC(?:[0-9]|[1-9][0-9]|1[0-4][0-9]|150))?(?: Offset,PR\[\d+\])?$")
 _TP_CIRC_HEAD = re.compile(r"^C P\[(\d+)(?::[^\]]*)?\]$")
 _TP_CIRC_TAIL = re.compile(r"^:\s+P\[(\d+)(?::[^\]]*)?\] (\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
 
@@ -296,7 +297,9 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
         for c in re.findall(r"\bC\d{5}\b", ln):
             if c not in names:
                 bad.append((k, f"{c} is not a position of the job"))
-        m = re.match(r"^MOV([JLC]) C\d{5} (VJ|V)=([\d.]+)(?: PL=(\d+))?(?: FPT)?$", ln)
+        # ACC=/DEC= 20..100 % (YRC1000 INFORM manual, MOVJ/MOVL tags)
+        m = re.match(r"^MOV([JLC]) C\d{5} (VJ|V)=([\d.]+)(?: PL=(\d+))?"
+                     r"(?: ACC=(?:[2-9][0-9]|100) DEC=(?:[2-9][0-9]|100))?(?: FPT)?$", ln)
         if ln.startswith("MOV") and m is None:
             bad.append((k, f"a motion is 'MOVJ|MOVL|MOVC Cnnnnn VJ=|V= [PL=n] [FPT]' (got {ln})"))
         elif m:
