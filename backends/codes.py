@@ -178,3 +178,10 @@ __all__ += [
     "LOGIC_UNSUPPORTED", "REGISTERS_EXHAUSTED", "WAIT_POLLED", "STOP_AS_PAUSE",
     "TURN_NOT_EXPRESSIBLE",
 ]
+
+# ------------------------------------------------------------------ motion fidelity
+# what the controller runs is what was verified: E470-E474 / W470-W474
+ANALOG_RAW_COUNTS = Code(
+    "E470", "analog-raw-counts",
+    "a Fanuc AI[n] holds the raw A/D count, not volts: a comparison in volts has no TP form")
+__all__ += ["ANALOG_RAW_COUNTS"]

@@ -519,6 +519,11 @@ class FanucBackend(Backend):
         if isinstance(e, ir.VarRef):
             return [], self._reg(e.name, ctx, node.span)
         if isinstance(e, ir.AnalogInput):
+            # AI[n] is the raw A/D count of the input (FANUC B-63943EN/02 §8.4.14), whose
+            # scale (counts per volt) depends on the I/O module: volts have no TP form
+            self.unsupported(codes.ANALOG_RAW_COUNTS, f"analog input {e.port} must be compared in the "
+                             "controller's raw A/D counts on Fanuc (AI[n] holds counts, not volts; got a "
+                             "value in volts)", node.span)
             return [], f"AI[{e.port}{_sig(e.signal)}]"
         if isinstance(e, ir.Arith):
             lines, a = self._operand(e.left, ctx, node)
