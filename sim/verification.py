@@ -268,7 +268,8 @@ def _limits(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None 
 def _estimated_torque(robot: Any) -> bool:
     """Whether the robot's torque ratings are an estimate (its `effort` source says so,
     compiler/robots/dynamics.py): an excess over them is a warning (W342), not an error."""
-    return dict(getattr(robot, "sources", ())).get("effort", "").startswith("estimate")
+    source: str = dict(getattr(robot, "sources", ())).get("effort", "")
+    return source.startswith("estimate")
 
 
 def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> tuple[float, np.ndarray | None]:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 
-from bench_cycle_arms import cycle  # noqa: E402
+from bench_cycle_arms import cycle
 
 
 def test_kr_agilus_cycle_is_within_its_peers() -> None:
