@@ -7,6 +7,7 @@ JSON (version 2; `JSON_SCHEMA` below is the normative description):
                    "assumptions": {str: str} | null,
                    "tasks": [{"task": str, "robot": str, "cycle_time_s": float,
                               "moving_s": float, "waiting_s": float, "sync_s": float,
+                              "accelerations": str,  # the robot's source; "estimate: ..."
                               "instructions": [{"uid": int, "kind": str, "line": int | null,
                                                 "start_s": float, "end_s": float,
                                                 "variant": int,
@@ -127,7 +128,7 @@ _TASK: dict[str, Any] = {
     "additionalProperties": False,
     "properties": {
         "task": {"type": "string"}, "robot": {"type": "string"}, "cycle_time_s": _NUM,
-        "moving_s": _NUM, "waiting_s": _NUM, "sync_s": _NUM,
+        "moving_s": _NUM, "waiting_s": _NUM, "sync_s": _NUM, "accelerations": {"type": "string"},
         "instructions": {"type": "array", "items": {
             "type": "object",
             "required": ["uid", "kind", "line", "start_s", "end_s", "variant"],

@@ -60,7 +60,8 @@ def verify_with(plan: plan_types.Plan, *, clearance: float | None = None,
     cycle_times = {tp.task.name: float(tp.cycle_time) for tp in plan.tasks}
     from rmot.sim.timing_report import timing_json
 
-    return Report(_program_file(program), cycle_times, diagnostics, tuple(timing_json(plan)))
+    accel = {name: dict(getattr(e.robot, "sources", ())).get("accel", "not stated") for name, e in scene.robots.items()}
+    return Report(_program_file(program), cycle_times, diagnostics, tuple(timing_json(plan, accel)))
 
 
 def _program_file(program: ir.Program) -> str:

@@ -72,5 +72,6 @@ def test_json_gives_each_moves_verified_blend_radius(tmp_path: Path) -> None:
     path = _program(tmp_path, 400, "90 mm")
     result = CliRunner().invoke(check_cmd.check, [str(path), "--format", "json", "--no-cache"])
     (task,) = json.loads(result.output)["programs"][0]["tasks"]
+    assert task["accelerations"].startswith("estimate")  # the IRB 1600's: marked per arm
     radii = {i["line"]: i["blend_radius_mm"] for i in task["instructions"] if i["kind"] == "move"}
     assert radii == {BLENDED_LINE - 2: 0.0, BLENDED_LINE - 1: 0.0, BLENDED_LINE: 75.0, BLENDED_LINE + 1: 0.0}
