@@ -112,6 +112,8 @@ def format_text(reports: Sequence[Report]) -> str:
     if any(r.cycle_times for r in reports):
         blocks.append(f"note: {GUARANTEE}")
         blocks.append(f"note: {ASSUMPTIONS_LINE}")
+        blocks += [f"note: robot '{t['robot']}' calibrated by the cell: {t['accelerations']}"
+                   for r in reports for t in (r.tasks or ()) if "(calibration)" in t.get("accelerations", "")]
     return "\n".join(blocks) + "\n"
 
 
