@@ -177,7 +177,3 @@ __all__ += [
     "UNREACHABLE_AFTER_STOP",
     "WAIT_ELSE_WITHOUT_TIMEOUT",
 ]
-
-# a cell's calibration of a robot to its controller (`robot r1 = NAME speed S % accel A %`)
-ROBOT_SHARE_TWICE = Code("E241", "robot-share-twice", "a robot declaration gives speed or accel twice")
-__all__ += ["ROBOT_SHARE_TWICE"]

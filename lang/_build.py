@@ -308,7 +308,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     # -- cell declarations
     def robot_decl(self, c: list[Any]) -> ast.RobotDecl:
         library, urdf, *urdf_args = c[3]
-        shares = tuple(x for x in c[4:-2] if isinstance(x, ast.Setting))
+        shares = tuple(x for x in c[4:6] if x is not None)
         span = self._span([*c[:3], library or urdf, *c[4:]])
         return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[-1], span,
                              urdf_args=urdf_args[0] if urdf_args else (), shares=shares)

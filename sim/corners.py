@@ -26,15 +26,13 @@ import numpy as np
 from rmot.compiler import ir, plan_types
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.sim import codes
+from rmot.sim.corner_vendors import BOUND_VENDORS, SPHERE_VENDORS
 from rmot.sim.collide import candidate_pairs
 from rmot.sim.exact import exact_distance
 from rmot.sim.scene import Body, Scene
 
-__all__ = ["BOUND_VENDORS", "SPHERE_VENDORS", "corner_findings", "for_targets"]
+__all__ = ["corner_findings"]
 
-# vendor -> how its corner is written (the words the messages use)
-SPHERE_VENDORS = "RAPID zone, KRL C_DIS, URScript r, VAL3 blend, INFORM PL"
-BOUND_VENDORS = {"fanuc": "Fanuc CNT", "krl": "KRL C_PTP"}  # KRL only for a PTP (joint) move
 _FOLLOWING_JOINTS = 3  # the links of the last three joints follow the TCP through a corner
 
 
@@ -57,14 +55,6 @@ def corner_findings(scene: Scene, tasks: Iterable[plan_types.TaskPlan]) -> list[
                 prev = records[k - 1] if k > 0 else None
                 out += _corner(scene, tp, pairs, moves[rec.uid], rec, prev, records[k + 1])
     return out
-
-
-def for_targets(diagnostics: Iterable[Diagnostic], targets: Iterable[str]) -> tuple[Diagnostic, ...]:
-    """The diagnostics without the W341 findings that concern none of `targets` (a compile for
-    RAPID is not told about Fanuc's CNT bound)."""
-    wanted = {BOUND_VENDORS[t] for t in targets if t in BOUND_VENDORS}
-    return tuple(d for d in diagnostics
-                 if d.code != codes.CORNER_BOUND or any(words in d.message for words in wanted))
 
 
 def _fixture_pairs(scene: Scene, robot: str) -> list[tuple[Body, Body]]:

@@ -93,7 +93,7 @@ def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = T
     A corner finding that concerns only some controllers (W341) is kept when `targets` names
     one of them (sim/corners.py: `rmot check` has no target and reports the zone sphere)."""
     from rmot.compiler.cli.verify_cache import cached_verify
-    from rmot.sim.corners import for_targets
+    from rmot.sim.corner_vendors import for_targets
 
     report: Report = run("the verification", cached_verify, planned, clearance=clearance,
                          use_cache=use_cache)

@@ -115,13 +115,10 @@ class _CellBuilder:
 
     def _shares(self, s: ast.RobotDecl) -> tuple[float, float] | None:
         """(speed share, acceleration share) of `robot r1 = NAME speed S % accel A %`: the arm's
-        limits calibrated to its controller, each 1 %..300 % (E125 outside, E241 twice)."""
+        limits calibrated to its controller, each 1 %..300 % (E125 outside; each at most once,
+        in this order, by the grammar)."""
         got: dict[str, float] = {}
         for setting in s.shares:
-            if setting.kind in got:
-                self.rep.error(codes.ROBOT_SHARE_TWICE, f"robot '{s.name.name}' must give {setting.kind} "
-                               "once (got it twice)", setting.span)
-                return None
             e: ast.Expr = setting.value  # type: ignore[assignment]
             x = expect_quantity(eval_expr(e, self.scope, self.rep), RATIO, f"{setting.kind} of robot "
                                 f"'{s.name.name}'", e.span, self.rep)
