@@ -75,3 +75,13 @@ def test_json_gives_each_moves_verified_blend_radius(tmp_path: Path) -> None:
     assert task["accelerations"].startswith("estimate")  # the IRB 1600's: marked per arm
     radii = {i["line"]: i["blend_radius_mm"] for i in task["instructions"] if i["kind"] == "move"}
     assert radii == {BLENDED_LINE - 2: 0.0, BLENDED_LINE - 1: 0.0, BLENDED_LINE: 75.0, BLENDED_LINE + 1: 0.0}
+
+
+def test_a_blended_joint_move_names_krl_c_ptp_too(tmp_path: Path) -> None:
+    """A PTP's corner (KRL C_PTP, a share of half the PTP motion) has the same bound as Fanuc's
+    CNT: a KRL compile reports it for a joint move, not for a linear one (above)."""
+    path = tmp_path / "corner.rmot"
+    path.write_text(SOURCE.replace("POST_Y", "310mm").replace("ZONE", "50 mm").replace(
+        "move linear pose(x=800mm, y=200mm, z=1000mm", "move joint pose(x=800mm, y=200mm, z=1000mm"))
+    (found,) = _compiled(path, "krl")
+    assert "Fanuc CNT and KRL C_PTP" in found.message and found.span.start.line == BLENDED_LINE
