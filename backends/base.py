@@ -498,11 +498,14 @@ class Backend:
 
     @staticmethod
     def planned_zone(node: ir.Move, rec: plan_types.InstructionRecord) -> ir.Zone:
-        """The zone a vendor prints for `node`: `fine` where the plan stops (record's
-        blend_radius 0: before a wait, wait until, if, sync, at a timed move, at the task's
-        end, wherever a blend could not be built), else the programmed zone. The controller
-        then stops exactly where the verified path stops (lang/REFERENCE.md §8, stop points)."""
-        return node.motion.zone if rec.blend_radius > 0.0 else ir.Zone(0.0)
+        """The zone a vendor prints for `node`: the record's blend radius, the one the plan
+        verified (at most the programmed zone: compiler/plan/blend.py shrinks it to half of
+        each neighbouring move and halves it where the blend would leave its sphere), `fine`
+        where the plan stops (before a wait, wait until, if, sync, at a timed move, at the
+        task's end, wherever a blend could not be built). The controller then blends inside
+        the sphere that was verified and stops where the verified path stops
+        (lang/REFERENCE.md §8, stop points)."""
+        return ir.Zone(rec.blend_radius) if rec.blend_radius > 0.0 else ir.Zone(0.0)
 
     def branch_or_default(self, branch: ir.Config | None, node: ir.Move) -> ir.Config:
         """`branch` when it names shoulder, elbow and wrist; else E402 and front/up/no-flip
@@ -573,6 +576,22 @@ class Backend:
         if not accel_is_default(node.motion, node.kind):
             self.warn_once(ctx, "accel", codes.ACCEL_IGNORED,
                            f"programmed accelerations are not expressed ({how})", node.span)
+
+    def accel_percent(self, node: ir.Move, ctx: TaskContext, low: int, how: str) -> int | None:
+        """The move's joint acceleration ratio as a whole percentage in low..100, for a vendor
+        whose acceleration form takes that range (RAPID AccSet, Fanuc ACC, INFORM ACC=/DEC=);
+        the plan limits every joint to that share of its maximum (compiler/plan/move_chain.py).
+        None for the default 100 % and for a Cartesian move, whose programmed TCP acceleration
+        (m/s^2) none of them takes (W408 when it is not the default). A ratio outside the range
+        or not a whole percentage is not expressed either: W408 (`how`)."""
+        ratio = node.motion.joint_accel * 100.0
+        if node.kind is not ir.MotionKind.JOINT:
+            self.warn_accel(node, ctx, how)
+            return None
+        if abs(ratio - round(ratio)) < 1e-9 and low <= round(ratio) <= 100:
+            return None if round(ratio) == 100 else round(ratio)
+        self.warn_accel(node, ctx, how)
+        return None
 
     def tcp_speed_within_limit(self, node: ir.Move) -> float:
         """The move's TCP speed (m/s), clamped to MAX_TCP_SPEED with W417 at the move."""

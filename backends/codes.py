@@ -188,3 +188,10 @@ CONTROLLER_MISMATCH = Code(
 )
 
 __all__ += ["CONTROLLER_UNDECLARED", "CONTROLLER_MISMATCH"]
+
+# ------------------------------------------------------------------ motion fidelity
+# what the controller runs is what was verified: E470-E474 / W470-W474
+ANALOG_RAW_COUNTS = Code(
+    "E470", "analog-raw-counts",
+    "a Fanuc AI[n] holds the raw A/D count, not volts: a comparison in volts has no TP form")
+__all__ += ["ANALOG_RAW_COUNTS"]

@@ -110,6 +110,12 @@ def axis_quadrant(angle: float) -> int:
     return math.floor(angle / (math.pi / 2) + 1e-12)
 
 
+TURN_ZERO_RAD = 1e-6  # rad (0.00006 deg): an axis this close to 0 is at 0, whatever its float sign
+
+
 def turn_bits(q: np.ndarray) -> int:
-    """KUKA Turn: bit i set when axis i+1 is negative (< 0)."""
-    return sum(1 << i for i, v in enumerate(q[:6]) if v < 0.0)
+    """KUKA Turn: bit i set when axis i+1 is negative (< 0). An axis within TURN_ZERO_RAD of 0
+    (float noise of the planner: -1e-12 for an axis planned at 0) counts as 0, not negative:
+    its E6AXIS value prints as 0.000, and a Turn bit the angle does not show would send the
+    controller to the other side of the axis' zero."""
+    return sum(1 << i for i, v in enumerate(q[:6]) if v < -TURN_ZERO_RAD)

@@ -24,8 +24,8 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     (integer, at most MAX_TCP_MM_S = 2000); a `time` modifier is emitted exactly as `n.nnsec`.
     Other values are rounded or clamped to the nearest legal one (warning W402).
   * times: WAIT in steps of 0.01 s, PULSE in steps of 0.1 s (other values rounded, W412).
-  * acceleration: TP's ACC is a % of the motion's own profile, not m/s^2 or a share of each
-    axis's maximum: a non-default programmed acceleration is not expressed (W408 once per task).
+  * acceleration: a joint move's acceleration share is the motion option `ACCn` (n %); a TCP
+    acceleration (m/s^2) has no TP form (W408 once per task).
   * payload: a .ls program can only select a payload schedule (PAYLOAD[i]) whose mass and
     centre of gravity live on the controller ($PLST_GRP1[i]): a tool with a mass warns W411
     once, giving the mass and rmot's centre of gravity (half way flange->TCP, base.tool_cog).
@@ -272,7 +272,8 @@ class FanucBackend(Backend):
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
-        self.warn_accel(node, ctx, "TP's ACC is a % of the motion profile; the controller's own applies")
+        if node.kind is not ir.MotionKind.JOINT:  # joint moves write ACC (move_joint)
+            self.warn_accel(node, ctx, "TP's ACC is a share of the motion profile, not a TCP acceleration")
         self.warn_payload(node, ctx, "the controller's payload schedule ($PLST_GRP1) selected by PAYLOAD[i]")
         uf, ut = ctx.frames.uframe(node.frame), ctx.frames.utool(node.tool)
         zone = self._zone(node, self.planned_zone(node, rec))
@@ -285,7 +286,11 @@ class FanucBackend(Backend):
             p = self._joint_position(node.target, uf, ut, ctx)
         else:
             p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
-        return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}{self._offset(node, ctx)}"]
+        # ACC: acceleration override of the motion, % (FANUC R-30iB Operator's Manual, motion
+        # options "ACC": 0..150); rmot writes the plan's joint acceleration share, 1..100 %
+        pct = self.accel_percent(node, ctx, 1, "TP's ACC is a share of the joint motion profile")
+        acc = "" if pct is None else f" ACC{pct}"
+        return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}{acc}{self._offset(node, ctx)}"]
 
     def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: FanucContext,
                     uf: int, ut: int, zone: str) -> list[str]:
@@ -514,6 +519,11 @@ class FanucBackend(Backend):
         if isinstance(e, ir.VarRef):
             return [], self._reg(e.name, ctx, node.span)
         if isinstance(e, ir.AnalogInput):
+            # AI[n] is the raw A/D count of the input (FANUC B-63943EN/02 §8.4.14), whose
+            # scale (counts per volt) depends on the I/O module: volts have no TP form
+            self.unsupported(codes.ANALOG_RAW_COUNTS, f"analog input {e.port} must be compared in the "
+                             "controller's raw A/D counts on Fanuc (AI[n] holds counts, not volts; got a "
+                             "value in volts)", node.span)
             return [], f"AI[{e.port}{_sig(e.signal)}]"
         if isinstance(e, ir.Arith):
             lines, a = self._operand(e.left, ctx, node)

@@ -362,7 +362,11 @@ class InformBackend(Backend):
             self.warn(codes.JOINT_AS_CARTESIAN, "joint target written as the Cartesian "
                       "position of its planned joints with full RCONF (pulse counts per "
                       "degree are robot-specific)", node.span)
-        movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}"] if c else []
+        # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual,
+        # MOVJ tags): the plan's joint acceleration share
+        pct = self.accel_percent(node, ctx, 20, "INFORM's ACC=/DEC= take 20..100 % of the maximum")
+        acc = "" if pct is None else f" ACC={pct} DEC={pct}"
+        movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}{acc}"] if c else []
         return self.shifted(node, movj, ctx)
 
     def move_linear(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
@@ -410,8 +414,9 @@ class InformBackend(Backend):
         return lines + [f"MOVC {via} V={v}", f"MOVC {end} V={v}{pl} FPT"]
 
     def motion_notes(self, node: ir.Move, ctx: InformContext) -> None:
-        self.warn_accel(node, ctx, "INFORM sets acceleration only as % of the controller's "
-                        "maximum (ACC=/DEC=); the controller default is used")
+        if node.kind is not ir.MotionKind.JOINT:  # joint moves write ACC=/DEC= (move_joint)
+            self.warn_accel(node, ctx, "INFORM sets acceleration only as % of the controller's "
+                            "maximum (ACC=/DEC=); the controller default is used")
         self.warn_payload(node, ctx, f"tool file {ctx.tools.get(node.tool.name, 0)} (W, Xg, Yg, Zg)")
         if node.motion.duration is not None:
             self.warn(codes.DURATION_IGNORED, f"INFORM has no fixed-duration move; the duration "

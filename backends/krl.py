@@ -18,7 +18,8 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
     KRL form: the programmed speeds are used (warning W409).
   * zones: exact stop without approximation wherever the plan stops (Backend.planned_zone:
     before WAIT FOR, IF, a handshake, at the end); LIN/CIRC: C_DIS with $APO.CDIS in mm
-    (exact); PTP: C_PTP with $APO.CPTP in % (1 % per mm, clamped 1..100: no exact form, W403).
+    (exact); PTP: C_PTP with $APO.CPTP in % (1 % per mm, clamped 1..100: no exact form, W403);
+    a PTP blended into a LIN/CIRC: C_PTP C_DIS, $APO.CDIS too (mxAutomation manual, PTP).
   * I/O: $OUT[n]=TRUE, PULSE($OUT[n],TRUE,t), WAIT SEC t, WAIT FOR $IN[n]==TRUE,
     IF $IN[n]==TRUE THEN; $ANOUT[n] = volts / 10 (KRL's -1.0..1.0 is -10..10 V).
     KRL's WAIT FOR has no timeout: a timed wait is lowered to a wait on the input OR timer
@@ -233,6 +234,13 @@ class KrlBackend(Backend):
         ctx.module.uses_ptp_helper = True
         lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
         zone = self._ptp_zone(node, stop, lines)
+        following = ctx.task_plan.next_move(rec)
+        if zone and following is not None and following.kind is not ir.MotionKind.JOINT:
+            # PTP -> LIN/CIRC: the CP part of the corner needs its own parameter (KUKA
+            # mxAutomation manual, PTP approximation "C_PTP C_DIS"; KSS 8.x "PTP-CP approximate
+            # positioning"): the plan's blend radius, as for LIN/CIRC
+            lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
+            zone += " C_DIS"
         if isinstance(node.target, ir.JointTarget):
             return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
         return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]

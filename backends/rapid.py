@@ -22,8 +22,9 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
   * tooldata: the TCP pose, the tool's mass (0 kg is declared as 0.001 kg, RAPID's minimum,
     warning W413), the centre of gravity half way along the flange->TCP vector (rmot's payload
     convention, base.tool_cog), inertia 0.
-  * acceleration: AccSet is modal, so a programmed (non-default) acceleration is not expressed
-    (warning W408 once per task); the controller's own acceleration applies.
+  * acceleration: in a task whose joint moves set an acceleration share, `AccSet n, 100;`
+    before every move (modal, so written each time); a TCP acceleration (m/s^2) has no AccSet
+    form (warning W408 once per task).
   * I/O: SetDO / SetAO / PulseDO\\PLength / WaitDI ...\\MaxTime (an unhandled
     ERR_WAIT_MAXTIME stops the program with its message: rmot's timeout semantics, see
     base.py) / IF DInput(..) = 1 THEN; signal names from the cell
@@ -44,7 +45,7 @@ from typing import Any
 from rmot.backends import codes
 from rmot.backends import loops as _loops
 from rmot.backends import runtime as _rt
-from rmot.backends.base import Backend, TaskContext, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
+from rmot.backends.base import Backend, TaskContext, accel_is_default, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, plan_types
@@ -237,10 +238,27 @@ class RapidBackend(Backend):
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
-        self._warn_accel(node, ctx)
         tool, wobj = self._tool(node.tool, node.span, ctx), self._wobj(node.frame, ctx)
         zone = self._zone(self.planned_zone(node, rec), ctx)
-        return self.by_kind(node)(node, rec, ctx, zone, tool, wobj)
+        return self._accset(node, ctx) + self.by_kind(node)(node, rec, ctx, zone, tool, wobj)
+
+    def _accset(self, node: ir.Move, ctx: RapidContext) -> list[str]:
+        """`AccSet n, 100;` before every move of a task whose joint moves set an acceleration
+        share (ABB RAPID reference, AccSet Acc, Ramp: Acc 20..100 % of the normal acceleration,
+        modal, so it is written with every move and no move depends on the text of another);
+        n is the move's joint acceleration share, which the plan applies to the joints of every
+        move in its chain (compiler/plan/move_chain.py). A Cartesian move's TCP acceleration
+        (m/s^2) has no AccSet form (W408), nor has a share outside 20..100 % (W408, 100 %)."""
+        if node.kind is not ir.MotionKind.JOINT:
+            self.warn_accel(node, ctx, "AccSet is a share of the normal acceleration, not a TCP acceleration")
+        if not any(isinstance(i, ir.Move) and i.kind is ir.MotionKind.JOINT
+                   and not accel_is_default(i.motion, i.kind) for i in ir.walk(ctx.task.body)):
+            return []
+        share = node.motion.joint_accel * 100.0
+        if abs(share - round(share)) < 1e-9 and 20 <= round(share) <= 100:
+            return [f"AccSet {round(share)}, 100;"]
+        self.warn_accel(node, ctx, "AccSet takes a whole 20..100 %")
+        return ["AccSet 100, 100;"]
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: RapidContext,
                    zone: str, tool: str, wobj: str) -> list[str]:
@@ -272,9 +290,6 @@ class RapidBackend(Backend):
         q_via = rec.q_via if rec.q_via is not None else rec.q_target
         via = self._robtarget(node.via, q_via, rec.branch, node, ctx, hint=node.via.name or "via")
         return [f"MoveC {via}, {to}, {speed}, {zone}, {tool}{wobj};"]
-
-    def _warn_accel(self, node: ir.Move, ctx: RapidContext) -> None:
-        self.warn_accel(node, ctx, "AccSet is modal; the controller's own acceleration applies")
 
     def _tcp_speed(self, node: ir.Move, ctx: RapidContext) -> str:
         v = node.motion.tcp_speed * 1000.0

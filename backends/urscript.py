@@ -13,9 +13,10 @@ Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5
     `movec(p_via, p_to, a, v, r, mode=0)` (mode 0: orientation interpolated to the target, as
     the IR's SLERP); there is no configuration data: movel/movec follow the path from the
     current joints, which the plan already fixed;
-  * movej `v`/`a` are the leading axis' speed and acceleration; the IR's fractions of each
-    joint's maximum are multiplied by `JOINT_LIMITS[model]`, the slowest joint's datasheet
-    maximum (exact where all joints share the maximum, otherwise conservative);
+  * movej `v`/`a` are the leading axis' speed and acceleration: the plan's (the leading axis'
+    peak speed and acceleration over the move, TaskPlan.leading_axis_rates), so the
+    controller's trapezoid runs the verified timing; where the plan has no motion for a move,
+    the IR's fractions of `JOINT_LIMITS[model]`, the slowest joint's datasheet maximum;
   * I/O: `set_standard_digital_out(n, b)` (n 0..7), `set_configurable_digital_out(n - 8, b)`
     (n 8..15), `get_standard_digital_in(n)` / `get_configurable_digital_in(n - 8)`
     (DIGITAL_PORTS = 0..15: the control box's 8 standard + 8 configurable I/O);
@@ -142,6 +143,7 @@ class UrScriptBackend(Backend):
     RUNTIME_CONDITIONS = True  # writes and/or/not, analog inputs, variables, timeout branches
     DIGITAL_PORTS = (0, 15)  # standard 0..7, configurable 8..15 (control box)
     NO_RECORD_NOTE = "move uid {uid} has no plan"
+    SIX_AXIS_DATA = "movej/movel/movec (a UR controller drives six joints)"  # URScript manual: q is a 6-vector
 
     # ------------------------------------------------------------------ program
 
@@ -163,14 +165,22 @@ class UrScriptBackend(Backend):
         return {f"{prog}{self.file_ext}": "\n".join(lines) + "\n"}
 
     def block(self, nodes: tuple[ir.Instr, ...], ctx: UrContext) -> list[str]:
-        """A body with `set_tcp` at its first move and wherever the tool changes."""
+        """A body with `set_tcp` at its first move and wherever the tool changes, with the
+        payload the move carries: the tool and the parts it holds there (the state after the
+        last attach/detach on the move's path, part_load.state_at_moves, as KRL's $LOAD), so a
+        loop body, an `if` arm or a proc never sets the tool alone while a part is held."""
+        from rmot.backends.part_load import state_at_moves
+
         out: list[str] = []
         current: ir.ToolRef | None = None
         for node in nodes:
             if isinstance(node, ir.Move) and node.tool != current:
                 current = node.tool
                 out.append(f"set_tcp({pose_text(node.tool.tcp)})")
-                if node.tool.name is not None:
+                event = state_at_moves(ctx).get(node.uid)
+                if event is not None and event.held and event.tool.name == node.tool.name:
+                    out += self.set_payload(event, ctx)
+                elif node.tool.name is not None:
                     cog = fmt_list(tool_cog(node.tool), POS_DECIMALS, ", ")
                     out.append(f"set_payload({fmt(node.tool.mass, 3)}, [{cog}])")
             out.extend(self.instr(node, ctx))
@@ -186,13 +196,19 @@ class UrScriptBackend(Backend):
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: UrContext,
                    r: str) -> list[str]:
-        m = node.motion
-        v_max, a_max = self.joint_limits(ctx, node)
         assert rec.q_target is not None  # move_record returns a record with joints
         q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"
-        t = self.duration_arg(m)
-        return [f"movej({q}, a={fmt(m.joint_accel * a_max, RATE_DECIMALS)}, "
-                f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{t}, r={r})"]
+        return [f"movej({q}, {self.movej_rates(node, rec, ctx)}{self.duration_arg(node.motion)}, r={r})"]
+
+    def movej_rates(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: UrContext) -> str:
+        """`a=.., v=..` of a movej, the leading axis' acceleration and speed (URScript manual,
+        movej): the plan's (TaskPlan.leading_axis_rates), so the controller's trapezoid is the
+        verified timing; the IR's fractions of JOINT_LIMITS only where the plan has no motion."""
+        rates = ctx.task_plan.leading_axis_rates(rec)
+        if rates is None:
+            v_max, a_max = self.joint_limits(ctx, node)
+            rates = (node.motion.joint_speed * v_max, node.motion.joint_accel * a_max)
+        return f"a={fmt(rates[1], RATE_DECIMALS)}, v={fmt(rates[0], RATE_DECIMALS)}"
 
     def _tcp_args(self, node: ir.Move, rec: plan_types.InstructionRecord) -> tuple[str, str] | None:
         """(speed arguments, target pose) of movel/movec; None (E401) without a TCP pose."""
@@ -407,11 +423,9 @@ class UrScriptBackend(Backend):
         r = fmt(rec.blend_radius, POS_DECIMALS)
         to = _offset_pose(self, rec.tcp_pose, node, "target", ctx)
         if node.kind is ir.MotionKind.JOINT:
-            v_max, a_max = self.joint_limits(ctx, node)
             q = "[" + fmt_list(rec.q_target, ANGLE_DECIMALS, ", ") + "]"  # type: ignore[arg-type]
-            accel = fmt(m.joint_accel * a_max, RATE_DECIMALS)
-            return [f"movej(get_inverse_kin({to}, qnear={q}), a={accel}, "
-                    f"v={fmt(m.joint_speed * v_max, RATE_DECIMALS)}{self.duration_arg(m)}, r={r})"]
+            return [f"movej(get_inverse_kin({to}, qnear={q}), {self.movej_rates(node, rec, ctx)}"
+                    f"{self.duration_arg(m)}, r={r})"]
         speed = f"a={fmt(m.tcp_accel, RATE_DECIMALS)}, v={fmt(m.tcp_speed, RATE_DECIMALS)}"
         if node.kind is ir.MotionKind.LINEAR:
             return [f"movel({to}, {speed}{self.duration_arg(m)}, r={r})"]

@@ -236,11 +236,19 @@ class RobotSourceKind(Enum):
 class RobotSource:
     kind: RobotSourceKind
     ref: str  # library name, absolute URDF path, or the load key of a model / URDF chain
+    # the cell's calibration of the arm to its controller (`robot r1 = NAME speed S % accel A %`):
+    # shares of the joint speed and acceleration limits (1.0 = the robot's own)
+    speed_share: float = 1.0
+    accel_share: float = 1.0
 
     @property
     def load_key(self) -> str:
-        """What `compiler.robots.load_robot` takes."""
-        return self.ref
+        """What `compiler.robots.load_robot` takes (a calibrated arm: "calibrated:" + JSON)."""
+        if self.speed_share == 1.0 and self.accel_share == 1.0:
+            return self.ref
+        import json
+
+        return "calibrated:" + json.dumps([self.ref, self.speed_share, self.accel_share])
 
 
 @record(slots=True)

@@ -92,6 +92,34 @@ class TaskPlan:
     def cycle_time(self) -> float:
         return self.trajectory.duration
 
+    def leading_axis_rates(self, rec: InstructionRecord) -> tuple[float, float] | None:
+        """(peak speed, peak acceleration) of a joint move's leading axis (the joint that moves
+        farthest) over [t_start, t_end] of the record's timeline, or None without a motion
+        there. The planned joint move runs along its joint-space line, every axis in step, so
+        the leading axis' speed and acceleration determine the move's timing (what URScript's
+        movej `v` and `a` give the controller)."""
+        traj = self.trajectory
+        if rec.variant:
+            traj = next((v.trajectory for v in self.variants if v.index == rec.variant), traj)
+        if rec.q_target is None or traj.t.size == 0:
+            return None
+        inside = (traj.t >= rec.t_start - 1e-9) & (traj.t <= rec.t_end + 1e-9)
+        if not np.any(inside):
+            return None
+        lead = int(np.argmax(np.abs(np.asarray(rec.q_target) - traj.at(rec.t_start))))
+        speed = float(np.max(np.abs(traj.qd[inside, lead])))
+        accel = float(np.max(np.abs(traj.qdd[inside, lead])))
+        return (speed, accel) if speed > 0.0 and accel > 0.0 else None
+
+    def next_move(self, rec: InstructionRecord) -> ir.Move | None:
+        """The move that follows `rec` on its timeline (the one a blend at `rec` joins), or None."""
+        moves = {i.uid: i for i in ir.walk(self.task.body) if isinstance(i, ir.Move)}
+        later = [r for r in self.records if r.variant == rec.variant and r.uid in moves
+                 and r.uid != rec.uid and r.t_start >= rec.t_end - 1e-9]
+        if not later:
+            return None
+        return moves[min(later, key=lambda r: (r.t_start, r.t_end)).uid]
+
     def record(self, uid: int) -> InstructionRecord | None:
         for r in self.records:
             if r.uid == uid and r.variant == 0:

@@ -308,9 +308,16 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     # -- cell declarations
     def robot_decl(self, c: list[Any]) -> ast.RobotDecl:
         library, urdf, *urdf_args = c[3]
+        shares = tuple(x for x in c[4:6] if x is not None)
         span = self._span([*c[:3], library or urdf, *c[4:]])
-        return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[5], span,
-                             urdf_args=urdf_args[0] if urdf_args else ())
+        return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[-1], span,
+                             urdf_args=urdf_args[0] if urdf_args else (), shares=shares)
+
+    def robot_speed(self, c: list[Any]) -> ast.Setting:
+        return _Setting("speed", c[1], self._span(c))
+
+    def robot_accel(self, c: list[Any]) -> ast.Setting:
+        return _Setting("accel", c[1], self._span(c))
 
     def urdf_args(self, c: list[Any]) -> tuple[ast.Arg, ...]:
         return self.args(c)

@@ -169,6 +169,7 @@ class RobotDecl:
     at: Expr | None
     span: Span = _span()
     urdf_args: tuple[Arg, ...] = ()  # `urdf("f.urdf", base="base_link", tip="tool0")`
+    shares: tuple[Setting, ...] = ()  # `speed R %` / `accel R %`: the arm's limits scaled
 
 
 @record(slots=True)

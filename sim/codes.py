@@ -40,3 +40,13 @@ PART_HELD_ELSEWHERE = Code("E331", "part-held-elsewhere", "attach of a part anot
 PAYLOAD_EXCEEDED = Code("E332", "payload-exceeded", "tool mass plus held parts beyond the robot's rated payload")
 PART_GRIP_DEPTH = Code("E333", "part-grip-depth", "a tool enters the part it attaches deeper than 2 mm")
 __all__ += ["PART_NOT_TOUCHING", "PART_HELD_ELSEWHERE", "PAYLOAD_EXCEEDED", "PART_GRIP_DEPTH"]
+
+# blended corners: the region a controller may drive (sim/corners.py)
+CORNER_SPHERE = Code("W340", "corner-zone-sphere",
+                     "a fixture lies inside a blended corner's zone sphere, where the controller's corner path may run")
+CORNER_BOUND = Code("W341", "corner-controller-bound",
+                    "a fixture lies within the corner bound of Fanuc CNT / KRL C_PTP (half the shorter neighbouring segment)")
+__all__ += ["CORNER_SPHERE", "CORNER_BOUND"]
+JOINT_TORQUE_ESTIMATE = Code("W342", "joint-torque-estimate",
+                             "inverse dynamics needs more torque than a joint's estimated rating (the vendor publishes none)")
+__all__ += ["JOINT_TORQUE_ESTIMATE"]

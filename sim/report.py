@@ -7,9 +7,11 @@ JSON (version 2; `JSON_SCHEMA` below is the normative description):
                    "assumptions": {str: str} | null,
                    "tasks": [{"task": str, "robot": str, "cycle_time_s": float,
                               "moving_s": float, "waiting_s": float, "sync_s": float,
+                              "accelerations": str,  # the robot's source; "estimate: ..."
                               "instructions": [{"uid": int, "kind": str, "line": int | null,
                                                 "start_s": float, "end_s": float,
-                                                "variant": int}],
+                                                "variant": int,
+                                                "blend_radius_mm": float}],  # moves only
                               "dynamics": {"model": str, "note": str,          # only with
                                            "joints": [{"joint": int,           # check --dynamics
                                                        "unit": "N·m" | "N",
@@ -110,6 +112,8 @@ def format_text(reports: Sequence[Report]) -> str:
     if any(r.cycle_times for r in reports):
         blocks.append(f"note: {GUARANTEE}")
         blocks.append(f"note: {ASSUMPTIONS_LINE}")
+        blocks += [f"note: robot '{t['robot']}' calibrated by the cell: {t['accelerations']}"
+                   for r in reports for t in (r.tasks or ()) if "(calibration)" in t.get("accelerations", "")]
     return "\n".join(blocks) + "\n"
 
 
@@ -126,13 +130,14 @@ _TASK: dict[str, Any] = {
     "additionalProperties": False,
     "properties": {
         "task": {"type": "string"}, "robot": {"type": "string"}, "cycle_time_s": _NUM,
-        "moving_s": _NUM, "waiting_s": _NUM, "sync_s": _NUM,
+        "moving_s": _NUM, "waiting_s": _NUM, "sync_s": _NUM, "accelerations": {"type": "string"},
         "instructions": {"type": "array", "items": {
             "type": "object",
             "required": ["uid", "kind", "line", "start_s", "end_s", "variant"],
             "additionalProperties": False,
             "properties": {"uid": {"type": "integer"}, "kind": {"type": "string"}, "line": _NULL_INT,
-                           "start_s": _NUM, "end_s": _NUM, "variant": {"type": "integer"}},
+                           "start_s": _NUM, "end_s": _NUM, "variant": {"type": "integer"},
+                           "blend_radius_mm": _NUM},
         }},
     },
 }

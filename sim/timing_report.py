@@ -7,6 +7,7 @@ the time spent moving, waiting and synchronising, and per instruction its start 
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
 from rmot.compiler import ir, plan_types
@@ -19,7 +20,8 @@ ASSUMPTIONS: dict[str, str] = {
     "limits": "joint velocity and acceleration; on linear and circular moves (and the blends "
               "touching them) TCP path speed <= speed and TCP path acceleration <= accel",
     "accelerations": "robot library values: estimates (vmax reached in 0.25 s) unless the robot's data "
-                     "cites a source; ABB IRB 120 estimated from ABB's published standard cycle (0.58 s)",
+                     "cites a source; ABB IRB 120 estimated from ABB's published standard cycle (0.58 s); "
+                     "each task's `accelerations` gives its robot's source",
     "payload": "the payload (heaviest tool and held parts) slows the motion only where a joint "
                "torque would exceed its rating (robots with inertia data and torque ratings); "
                "servo lag does not change the timing",
@@ -58,10 +60,12 @@ _KIND = {ir.Move: "move", ir.SetDigital: "set", ir.SetAnalog: "set", ir.Pulse: "
          ir.WaitCondition: "wait_until", ir.Stop: "stop"}
 
 
-def timing_json(plan: plan_types.Plan) -> list[dict[str, Any]]:
+def timing_json(plan: plan_types.Plan, accel_sources: Mapping[str, str] | None = None) -> list[dict[str, Any]]:
     """Per task (main timeline): cycle time, time moving / waiting / synchronising (they add up
     to the cycle time: waiting is every other instant the robot stands still), and every
-    instruction's start and end (s). Records of `if` variants carry their variant number."""
+    instruction's start and end (s). Records of `if` variants carry their variant number.
+    `accel_sources` (robot name -> where its joint accelerations come from, "estimate: ..." for
+    an estimate) adds the task robot's as `accelerations`: the cycle time rests on them."""
     tasks = []
     for tp in plan.tasks:
         by_uid = _instructions(tp.task.body)
@@ -77,10 +81,19 @@ def timing_json(plan: plan_types.Plan) -> list[dict[str, Any]]:
             "moving_s": _round(moving),
             "waiting_s": _round(max(cycle - moving - syncing, 0.0)),
             "sync_s": _round(syncing),
-            "instructions": [
-                {"uid": r.uid, "kind": kind[r.uid], "line": r.span.start.line if r.span else None,
-                 "start_s": _round(r.t_start), "end_s": _round(r.t_end), "variant": r.variant}
-                for r in sorted(tp.records, key=lambda r: (r.variant, r.t_start, r.uid))
-            ],
+            "instructions": [_instruction(r, kind[r.uid])
+                             for r in sorted(tp.records, key=lambda r: (r.variant, r.t_start, r.uid))],
         })
+        if accel_sources and tp.robot in accel_sources:
+            tasks[-1]["accelerations"] = accel_sources[tp.robot]
     return tasks
+
+
+def _instruction(r: plan_types.InstructionRecord, kind: str) -> dict[str, Any]:
+    """One instruction's times; a move also its verified blend radius (mm, 0 = exact stop), the
+    radius every backend prints as the move's zone."""
+    out: dict[str, Any] = {"uid": r.uid, "kind": kind, "line": r.span.start.line if r.span else None,
+                           "start_s": _round(r.t_start), "end_s": _round(r.t_end), "variant": r.variant}
+    if kind == "move":
+        out["blend_radius_mm"] = _round(r.blend_radius * 1000.0)
+    return out

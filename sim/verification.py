@@ -23,6 +23,7 @@ from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.source import Span
 from rmot.sim import codes
+from rmot.sim.corners import corner_findings
 from rmot.sim.collide import PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.limits import LimitHit, check_limits
 from rmot.sim.report import Report
@@ -51,6 +52,7 @@ def verify_with(plan: plan_types.Plan, *, clearance: float | None = None,
             findings += parts.shape_diagnostics(program.cell)
             findings += _part_collisions(scene, plan, tasks, clearance or 0.0)
             findings += parts.payload_findings(scene, plan)
+    findings += corner_findings(scene, tasks)
     for tp in tasks:
         findings += _limits(scene, tp, plan)
     findings.sort(key=_finding_order)
@@ -58,7 +60,8 @@ def verify_with(plan: plan_types.Plan, *, clearance: float | None = None,
     cycle_times = {tp.task.name: float(tp.cycle_time) for tp in plan.tasks}
     from rmot.sim.timing_report import timing_json
 
-    return Report(_program_file(program), cycle_times, diagnostics, tuple(timing_json(plan)))
+    accel = {name: dict(getattr(e.robot, "sources", ())).get("accel", "not stated") for name, e in scene.robots.items()}
+    return Report(_program_file(program), cycle_times, diagnostics, tuple(timing_json(plan, accel)))
 
 
 def _program_file(program: ir.Program) -> str:
@@ -259,8 +262,15 @@ def _limits(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None 
         if traj.t.size == 0:
             continue
         for hit in check_limits(entry.robot, traj, payload, payload_at):
-            out.append(_limit_diagnostic(tp, hit, variant))
+            out.append(_limit_diagnostic(tp, hit, variant, _estimated_torque(entry.robot)))
     return out
+
+
+def _estimated_torque(robot: Any) -> bool:
+    """Whether the robot's torque ratings are an estimate (its `effort` source says so,
+    compiler/robots/dynamics.py): an excess over them is a warning (W342), not an error."""
+    source: str = dict(getattr(robot, "sources", ())).get("effort", "")
+    return source.startswith("estimate")
 
 
 def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> tuple[float, np.ndarray | None]:
@@ -283,7 +293,7 @@ def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None
     return best[0], flange[:3, :3] @ best[1] + flange[:3, 3]
 
 
-def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int) -> Diagnostic:
+def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int, estimated: bool = False) -> Diagnostic:
     unit, factor, p_unit, p_factor = _UNITS[hit.quantity]
     if hit.prismatic:
         unit, factor = p_unit, p_factor
@@ -302,5 +312,10 @@ def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int) -> D
     if variant:
         message += _variant_path(tp, variant)
     span = _span_at(tp, hit.t0, variant)
-    return Diagnostic(_LIMIT_CODES[hit.quantity], Severity.ERROR, message, span, (), hit.t0, hit.t1,
+    code, severity = _LIMIT_CODES[hit.quantity], Severity.ERROR
+    if hit.quantity == "torque" and estimated:
+        code, severity = codes.JOINT_TORQUE_ESTIMATE, Severity.WARNING
+        message = message.replace("exceeds its limit", "exceeds its estimated limit")
+        message += f" (robot '{tp.robot}': the vendor publishes no torque rating; `rmot robots show` gives the estimate)"
+    return Diagnostic(code, severity, message, span, (), hit.t0, hit.t1,
                       (f"{tp.robot}/joint{hit.joint}",), amount, tp.task.name)

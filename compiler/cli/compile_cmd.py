@@ -76,7 +76,7 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
         return CompileOutcome({}, diagnostics, EXIT_INPUT)
     try:
         plan = stages.plan(front.program, use_cache=use_cache)
-        report = stages.verify(plan)
+        report = stages.verify(plan, targets=targets)
     except stages.StageError as exc:
         return CompileOutcome({}, diagnostics + (exc.diagnostic,), EXIT_INPUT)
     diagnostics += tuple(report.diagnostics)

@@ -12,6 +12,7 @@ same diagnostic from the command group (compiler/cli/__init__.py `LazyGroup.invo
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -85,14 +86,18 @@ def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> 
     return planned
 
 
-def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = True) -> Report:
+def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = True,
+           targets: tuple[str, ...] = ()) -> Report:
     """The verification (collisions, limits) of a plan, through the verification cache
-    (compiler/cli/verify_cache.py: used only for a plan that came through the plan cache)."""
+    (compiler/cli/verify_cache.py: used only for a plan that came through the plan cache).
+    A corner finding that concerns only some controllers (W341) is kept when `targets` names
+    one of them (sim/corners.py: `rmot check` has no target and reports the zone sphere)."""
     from rmot.compiler.cli.verify_cache import cached_verify
+    from rmot.sim.corner_vendors import for_targets
 
     report: Report = run("the verification", cached_verify, planned, clearance=clearance,
                          use_cache=use_cache)
-    return report
+    return dataclasses.replace(report, diagnostics=for_targets(report.diagnostics, targets))
 
 
 def emit(target: str, planned: Plan, *, source_map: bool = True, **options: Any) -> Any:

@@ -27,7 +27,7 @@ from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose
 from rmot.compiler.passes.load_files import resolve_path
 from rmot.compiler.passes.scopes import declare, misplaced
 from rmot.compiler.passes.state import FrontendState
-from rmot.compiler.passes.values import LENGTH, MASS, UNIT_TABLE, PoseV, Quantity
+from rmot.compiler.passes.values import LENGTH, MASS, RATIO, UNIT_TABLE, PoseV, Quantity
 from rmot.lang import ast
 
 __all__ = ["lower_cell", "IO_DIRECTIONS"]
@@ -110,10 +110,30 @@ class _CellBuilder:
                 what = "model" if source.kind is ir.RobotSourceKind.MODEL else "URDF"
                 self.rep.error(codes.ROBOT_LOAD, f"{what} robot must load (got: {exc})", span)
             return
+        if s.shares:
+            shares = self._shares(s)
+            if shares is None:
+                return
+            source = ir.RobotSource(source.kind, source.ref, *shares)
         if base is None or not declare(self.scope, Entry("robot", s.name.name, PoseV(base, s.name.name), s.name.span), self.rep):
             return
         self.infos[s.name.name] = info
         self.robots.append(ir.RobotInstance(s.name.name, source, base, info.dof, span=s.span))
+
+    def _shares(self, s: ast.RobotDecl) -> tuple[float, float] | None:
+        """(speed share, acceleration share) of `robot r1 = NAME speed S % accel A %`: the arm's
+        limits calibrated to its controller, each 1 %..300 % (E125 outside; each at most once,
+        in this order, by the grammar)."""
+        got: dict[str, float] = {}
+        for setting in s.shares:
+            e: ast.Expr = setting.value  # type: ignore[assignment]
+            x = expect_quantity(eval_expr(e, self.scope, self.rep), RATIO, f"{setting.kind} of robot "
+                                f"'{s.name.name}'", e.span, self.rep)
+            x = within(x, 0.01, 3.0, f"{setting.kind} of robot '{s.name.name}'", "%", 0.01, e.span, self.rep)
+            if x is None:
+                return None
+            got[setting.kind] = x
+        return got.get("speed", 1.0), got.get("accel", 1.0)
 
     def _geometry(self, g: ast.Geometry) -> ir.Geometry | None:
         kind = g.kind.name

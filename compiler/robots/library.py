@@ -28,9 +28,10 @@ Every number carries its source in the spec's `sources` (shown by `rmot robots s
 a vendor data sheet, a vendor's own description (KUKA's kroshu/kuka_robot_descriptions), a
 ROS-Industrial support package, or "estimate: how". Each arm's geometry is checked against
 an independent reference chain in tests/robots/test_reference_fk.py (reference, path and
-commit in tests/robots/reference_arms.py). Accelerations: KUKA publishes them
-(kroshu/kuka_robot_descriptions `*_joint_limits.yaml`); other vendors do not, and those are
-an estimate, the max axis speed reached in 0.25 s (4 × speed per second). Inertias and torque
+commit in tests/robots/reference_arms.py). Accelerations: no vendor publishes its
+controller's, so every arm's is an estimate, the max axis speed reached in 0.25 s (4 × speed
+per second); KUKA's ROS descriptions (`*_joint_limits.yaml`) give joint accelerations for
+planning, not the controller's (`_kuka_accel`), kept in the source text. Inertias and torque
 limits: see `dynamics`. Lengths in m, angles in degrees here (converted by `robot.Robot`).
 """
 
@@ -56,6 +57,17 @@ def _acc(speeds: tuple[float, ...]) -> tuple[float, ...]:
 
 
 ACC_EST = "estimate: 4 x the axis speed per second (the max speed reached in 0.25 s); the vendor publishes none"
+
+
+def _kuka_accel(where: str, values: tuple[float, ...]) -> str:
+    """The source of a KUKA arm's accelerations: the same estimate as the other vendors'. KUKA's
+    ROS descriptions give joint accelerations, but not the controller's: they made a KR 10
+    R1100-2 (A2 98.8 deg/s^2) 2.5-3 x slower than an IRB 120, LR Mate 200iD or GP8 of the same
+    class on the 25/300/25 mm cycle (tests/benchmarks/bench_cycle_arms.py), and a KR 500 take
+    over a second to reach A2's speed."""
+    listed = ", ".join(f"{v:g}" for v in values)
+    return (f"estimate: 4 x the axis speed per second (the max speed reached in 0.25 s); not {where} "
+            f"({listed} deg/s^2), planning limits for another purpose than the controller's")
 ROSI_ABB = "ros-industrial/abb_experimental"
 KROSHU = "kroshu/kuka_robot_descriptions"
 
@@ -190,13 +202,14 @@ def _abb_kuka() -> list[RobotSpec]:
             name="kuka_kr6_r900", vendor="KUKA", model="KR 6 R900 sixx", source="KUKA KR AGILUS sixx spec PF0030; kroshu kr6_r900_sixx",
             params=OpwParams(a1=0.025, a2=-0.035, b=0.0, c1=0.400, c2=0.455, c3=0.420, c4=0.080), jmap=KUKA,
             limits_deg=((-170, 170), (-190, 45), (-120, 156), (-185, 185), (-120, 120), (-350, 350)),
-            speed_deg_s=(360, 300, 360, 381, 388, 615), accel_deg_s2=(1241.4, 394.7, 1800.0, 7623.5, 7766.9, 15377.2),
+            speed_deg_s=(360, 300, 360, 381, 388, 615), accel_deg_s2=_acc((360, 300, 360, 381, 388, 615)),
             reach=0.9015, radii=(0.09, 0.08, 0.06, 0.06, 0.05, 0.045, 0.03),
             rated_payload_kg=6.0, arm_mass_kg=52.0, conventions=KUKA_CONV,
             sources=_sources(
                 geometry=f"KUKA spec PF0030; = {KROSHU} kuka_agilus_support/urdf/kr6_r900_sixx_macro.xacro",
                 limits=f"KUKA spec PF0030; = {KROSHU} kr6_r900_sixx_macro.xacro", speed=f"KUKA spec PF0030; = {KROSHU} kr6_r900_sixx_macro.xacro",
-                accel=f"KUKA: {KROSHU} kuka_agilus_support/config/kr6_r900_sixx_joint_limits.yaml (rad/s^2 -> deg/s^2)",
+                accel=_kuka_accel(f"{KROSHU} kuka_agilus_support/config/kr6_r900_sixx_joint_limits.yaml max_acceleration",
+                                  (1241.4, 394.7, 1800.0, 7623.5, 7766.9, 15377.2)),
                 reach="KUKA spec PF0030: 901.5 mm", mass=f"KUKA spec PF0030: arm 52 kg; {SPREAD}",
                 inertia=INERTIA, effort=EFFORT, payload="KUKA spec PF0030: rated payload 6 kg"),
         ),
@@ -206,13 +219,14 @@ def _abb_kuka() -> list[RobotSpec]:
             name="kuka_kr16", vendor="KUKA", model="KR 16-2", source="KUKA Spez KR 16-2; ROS-I kuka_experimental kr16_2",
             params=OpwParams(a1=0.260, a2=0.035, b=0.0, c1=0.675, c2=0.680, c3=0.670, c4=0.158), jmap=KUKA,
             limits_deg=((-185, 185), (-155, 35), (-130, 154), (-350, 350), (-130, 130), (-350, 350)),
-            speed_deg_s=(156, 156, 156, 330, 330, 615), accel_deg_s2=(623.1, 257.7, 1178.3, 5318.1, 5115.4, 6878.3),
+            speed_deg_s=(156, 156, 156, 330, 330, 615), accel_deg_s2=_acc((156, 156, 156, 330, 330, 615)),
             reach=1.610, radii=(0.2, 0.16, 0.11, 0.11, 0.09, 0.07, 0.05),
             rated_payload_kg=16.0, arm_mass_kg=235.0, conventions=KUKA_CONV,
             sources=_sources(
                 geometry="KUKA Spez KR 16-2; = ros-industrial/kuka_experimental kuka_kr16_support/urdf/kr16_2_macro.xacro (A4 35 mm below A3 at HOME)",
                 limits="KUKA Spez KR 16-2; = the ROS-I URDF", speed="KUKA Spez KR 16-2; = the ROS-I URDF",
-                accel=f"estimate: KUKA's published accelerations of the KR 16 R1610-2 (same payload and reach class), {KROSHU} kuka_cybertech_support/config/kr16_r1610_2_joint_limits.yaml",
+                accel=_kuka_accel(f"{KROSHU} kuka_cybertech_support/config/kr16_r1610_2_joint_limits.yaml max_acceleration "
+                                  "(the KR 16 R1610-2, same payload and reach class)", (623.1, 257.7, 1178.3, 5318.1, 5115.4, 6878.3)),
                 reach="KUKA Spez KR 16-2: 1610 mm", mass=f"KUKA Spez KR 16-2: arm 235 kg; {SPREAD}",
                 inertia=INERTIA, effort=EFFORT, payload="KUKA Spez KR 16-2: rated payload 16 kg"),
         ),
@@ -223,7 +237,7 @@ def _abb_kuka() -> list[RobotSpec]:
             name="kuka_kr210", vendor="KUKA", model="KR 210 R2700-2", source=f"{KROSHU} kr210_r2700_2",
             params=OpwParams(a1=0.330, a2=-0.115, b=0.0, c1=0.645, c2=1.150, c3=1.220, c4=0.215), jmap=KUKA,
             limits_deg=((-185, 185), (-140, -5), (-120, 168), (-350, 350), (-125, 125), (-350, 350)),
-            speed_deg_s=(116.79, 111.45, 112.0, 179.0, 172.0, 220.0), accel_deg_s2=(113.6, 72.4, 147.0, 403.3, 101.1, 107.3),
+            speed_deg_s=(116.79, 111.45, 112.0, 179.0, 172.0, 220.0), accel_deg_s2=_acc((116.79, 111.45, 112.0, 179.0, 172.0, 220.0)),
             reach=2.700, radii=(0.35, 0.3, 0.2, 0.22, 0.17, 0.13, 0.09),
             rated_payload_kg=210.0, link_mass_kg=(363.07, 232.06, 190.33, 42.411794929, 16.991732133, 6.6),
             effort_nm=(7290.0, 8910.0, 6988.84717, 2274.29199, 1398.30298, 781.554626), conventions=KUKA_CONV,
@@ -231,7 +245,8 @@ def _abb_kuka() -> list[RobotSpec]:
             sources=_sources(
                 geometry=f"{KROSHU} kuka_quantec_support/urdf/kr210_r2700_2_macro.xacro (330/645/1150/115/1220/215 mm)",
                 limits=f"{KROSHU} kr210_r2700_2_macro.xacro", speed=f"{KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml",
-                accel=f"KUKA: {KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml (rad/s^2 -> deg/s^2)",
+                accel=_kuka_accel(f"{KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml max_acceleration",
+                                  (113.6, 72.4, 147.0, 403.3, 101.1, 107.3)),
                 reach="the product name KR 210 R2700-2: 2700 mm (wrist centre 2705 mm)",
                 mass=f"{KROSHU} kr210_r2700_2_macro.xacro link_1..link_6 <mass>",
                 inertia=f"{KROSHU} kr210_r2700_2_macro.xacro link_1..link_6 <inertial> (rmot.compiler.robots.kuka_inertia)",
@@ -306,14 +321,17 @@ def _fanuc_yaskawa_staubli() -> list[RobotSpec]:
             limits_deg=((-180, 180), (-127.5, 127.5), (-152.5, 152.5), (-270, 270), (-121, 132.5), (-270, 270)),
             speed_deg_s=(435, 385, 500, 995, 1065, 1445), accel_deg_s2=_acc((435, 385, 500, 995, 1065, 1445)),
             reach=0.670, radii=(0.09, 0.08, 0.06, 0.06, 0.05, 0.04, 0.03), floor=-0.375,
-            rated_payload_kg=3.5, arm_mass_kg=52.0, effort_nm=(126.0, 47.0, 32.0, 7.0, 8.0, 2.0), conventions=STAUBLI_CONV,
+            rated_payload_kg=3.5, arm_mass_kg=52.0, conventions=STAUBLI_CONV,
             sources=_sources(
                 geometry=("Staubli TX2-60 data sheet D28110804; = ros-industrial/staubli_experimental "
                           "staubli_tx2_60_support/urdf/tx2_60_macro.xacro, world frame = its `base`, 375 mm above the mounting face"),
                 limits="ros-industrial/staubli_experimental tx2_60_macro.xacro (J3 +-152.5 deg; rmot had +-142.5)",
                 speed="ros-industrial/staubli_experimental tx2_60_macro.xacro, 'nominal velocity limits' (J2 385, J3 500 deg/s; rmot had 410, 540)",
                 accel=ACC_EST, reach="Staubli TX2-60 data sheet: 670 mm", mass=f"Staubli TX2-60 data sheet: arm 52 kg; {SPREAD}",
-                inertia=INERTIA, effort="ros-industrial/staubli_experimental tx2_60_macro.xacro, 'from Staubli instruction manual' (floor mounted)",
+                inertia=INERTIA,
+                effort=(f"{EFFORT}; not the ROS-I tx2_60_macro.xacro <limit effort> (126, 47, 32, 7, 8, 2 N·m): "
+                        "J2's 47 N·m barely holds the stretched arm's rated 3.5 kg against gravity (3.5 kg x 9.81 x 0.67 m "
+                        "= 23 N·m before the arm's own links), so those values are not joint ratings"),
                 payload="Staubli TX2-60 data sheet: nominal payload 3.5 kg"),
         ),
     ]
@@ -431,12 +449,12 @@ def _kroshu(name: str, model: str, pkg: str, stem: str, params: OpwParams, *, li
     urdf, limits = f"{KROSHU} {pkg}/urdf/{stem}_macro.xacro", f"{KROSHU} {pkg}/config/{stem}_joint_limits.yaml"
     return opw_spec(
         name=name, vendor="KUKA", model=model, source=f"{KROSHU} {stem}", params=params, jmap=KUKA,
-        limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=accel_deg_s2, reach=reach_mm / 1000, radii=radii,
+        limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=_acc(speed_deg_s), reach=reach_mm / 1000, radii=radii,
         rated_payload_kg=payload, link_mass_kg=link_mass_kg, effort_nm=effort_nm, conventions=KUKA_CONV,
         link_inertia=KUKA_INERTIA[name],
         sources=_sources(
             geometry=f"{urdf} joint origins", limits=f"{urdf} joint <limit lower/upper>", speed=f"{urdf} joint <limit velocity>",
-            accel=f"KUKA: {limits} max_acceleration (rad/s^2 -> deg/s^2)",
+            accel=_kuka_accel(f"{limits} max_acceleration", accel_deg_s2),
             reach=f"the product name {model}: nominal {reach_mm:g} mm", mass=f"{urdf} link_1..link_6 <mass>",
             inertia=f"{urdf} link_1..link_6 <inertial> (centre of mass, tensor; rmot.compiler.robots.kuka_inertia)",
             effort=f"{urdf} joint <limit effort>", payload=f"the product name {model}: {payload:g} kg"),

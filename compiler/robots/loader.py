@@ -30,11 +30,22 @@ def load_robot(name_or_path: str) -> Robot:
     """A library robot by name, or a URDF file by path (absolute, or ending in .urdf).
     Raises RobotError (only) for an unknown name or a file that is not a usable arm."""
     key = str(name_or_path)
+    if key.startswith("calibrated:"):  # a cell's `robot r1 = NAME speed S % accel A %`
+        return _load_calibrated(key)
     if key.startswith(("model:", "urdf-chain:")):  # a cell's model block, a URDF chain between two links
         return _load_keyed(key)
     if key.lower().endswith(".urdf") or os.sep in key:
         return _load_urdf(os.path.abspath(key))
     return _load_library(key)
+
+
+@lru_cache(maxsize=None)
+def _load_calibrated(key: str) -> Robot:
+    """ "calibrated:" + JSON [inner key, speed share, acceleration share] (ir.RobotSource)."""
+    import json
+
+    inner, speed, accel = json.loads(key[len("calibrated:"):])
+    return load_robot(inner).calibrated(float(speed), float(accel))
 
 
 @lru_cache(maxsize=None)

@@ -119,6 +119,20 @@ class Robot:
     def __repr__(self) -> str:
         return f"Robot({self.name!r}, dof={self.dof})"
 
+    def calibrated(self, speed_share: float, accel_share: float) -> Robot:
+        """This arm with its joint speed and acceleration limits scaled by the shares a cell
+        gives (`robot r1 = NAME speed S % accel A %`: the user's calibration of the arm to its
+        real controller, e.g. to match a measured cycle); its sources say so."""
+        import copy
+
+        out = copy.copy(self)
+        out.velocity_limits = _frozen(self.velocity_limits * speed_share)
+        out.accel_limits = _frozen(self.accel_limits * accel_share)
+        scaled = {"speed": speed_share, "accel": accel_share}
+        out.sources = tuple((k, f"x {scaled[k] * 100:g} % by the cell (calibration) of: {v}"
+                             if scaled.get(k, 1.0) != 1.0 else v) for k, v in self.sources)
+        return out
+
     # ----------------------------------------------------------------- joint spaces
     def to_model(self, q: np.ndarray) -> np.ndarray:
         """Controller values (..., dof) -> pinocchio q (differs only under Fanuc's J2/J3 coupling)."""

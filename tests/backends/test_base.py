@@ -95,6 +95,13 @@ class TestConfigHelpers:
         q = np.radians([-10, 20, -30, 0, -5, 90])
         assert turn_bits(q) == 0b010101
 
+    def test_kuka_turn_bits_of_an_axis_at_zero(self) -> None:
+        """An axis planned at 0 with float noise (-0.0, -1e-12 rad) prints as 0.000 in E6AXIS and
+        is not negative: no Turn bit (a KR 16 at A1 = 0.000 deg must not get T 1)."""
+        assert turn_bits(np.array([-0.0, -1e-12, 0.0, -1e-9, 0.0, 0.0])) == 0
+        assert float(fmt(np.degrees(-1e-9), 3)) == 0.0  # what the controller reads
+        assert turn_bits(np.radians([-0.01, 0, 0, 0, 0, 0])) == 0b1  # a real negative angle keeps its bit
+
 
 class TestRegistry:
     def test_every_target_has_a_lazy_entry(self) -> None:

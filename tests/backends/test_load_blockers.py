@@ -171,15 +171,16 @@ def test_fanuc_circular_line_is_continued_not_terminated(plan_from_text: Callabl
 
 
 def test_krl_blended_ptp_is_c_ptp_with_apo_cptp(plan_from_text: Callable[..., plan_types.Plan]) -> None:
-    """A blended joint move is `PTP p C_PTP` after `$APO.CPTP=n` (1..100); never PTP .. C_DIS."""
+    """A blended joint move is `PTP p C_PTP` after `$APO.CPTP=n` (1..100); never PTP .. C_DIS
+    alone (C_DIS only after C_PTP, where the PTP blends into a LIN/CIRC: mxAutomation manual)."""
     result = BACKENDS["krl"]().emit(plan_from_text(ARCS, "arcs.rmot"))
     lines = [line.strip() for line in result.files["arcs.src"].splitlines()]
     ptp = [k for k, line in enumerate(lines) if line.startswith("PTP ")]
-    assert not [lines[k] for k in ptp if "C_DIS" in lines[k]]
-    blended = [k for k in ptp if lines[k].endswith(" C_PTP")]
+    assert not [lines[k] for k in ptp if "C_DIS" in lines[k] and "C_PTP C_DIS" not in lines[k]]
+    blended = [k for k in ptp if lines[k].endswith((" C_PTP", " C_PTP C_DIS"))]
     assert blended, lines
     for k in blended:
-        setting = next(line for line in reversed(lines[:k]) if line.startswith("$APO."))
+        setting = next(line for line in reversed(lines[:k]) if line.startswith("$APO.CPTP"))
         assert re.fullmatch(r"\$APO\.CPTP=(\d+)", setting) and 1 <= int(setting.split("=")[1]) <= 100
     assert "W403" in {d.code.id for d in result.diagnostics}
 

@@ -474,7 +474,9 @@ def test_analog_inputs_per_vendor() -> None:
     node = ir.If(
         uid=2, condition=cond, then=(ir.SetDigital(uid=3, port=1, value=True),), span=span_at(2)
     )
-    assert "IF AI[2]<=4.5,JMP LBL[1]" in main_lines("fanuc", one("fanuc", node))
+    fanuc = one("fanuc", node)
+    # AI[n] holds the raw A/D count (FANUC B-63943EN/02 §8.4.14), not volts: refused
+    assert fanuc.has_errors and "E470" in codes(fanuc)
     val3 = one("val3", node)
     assert "if aioGet(aIn[2]) > 4.5" in main_lines("val3", val3) and "W455" in codes(val3)
     inform = one("inform", node)

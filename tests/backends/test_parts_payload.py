@@ -139,6 +139,37 @@ def test_krl_moves_inside_a_loop_carry_the_held_part(tmp_path: Path) -> None:
     """A loop's moves after an attach write tool + part as $LOAD, as straight-line moves do
     (the parts walk went through if arms and proc calls only, so a KRL loop's moves
     wrote the bare tool's load while the part hung on it)."""
+    program = _holding_program(tmp_path, "")
+    files = BACKENDS["krl"]().emit(plan_program(program)).files
+    src = next(t for n, t in files.items() if n.endswith(".src"))
+    loop = src.split("FOR ")[1].split("ENDFOR")[0]
+    assert len(re.findall(r"PTP ", loop)) == 2, loop
+    assert re.findall(r"\$LOAD=(\w+)", loop) == ["gripper_load_b1"] * 2, loop
+
+
+def test_urscript_blocks_keep_the_held_payload(tmp_path: Path) -> None:
+    """A loop body and an `if` arm after an attach start with set_tcp and set_payload: the
+    payload is tool + part (3 kg at 116.667 mm, the module docstring's hand computation), never
+    the tool alone (1 kg), which would stay set after the `if` until the detach (a UR arm's
+    payload drives its collision detection: URScript manual, set_payload)."""
+    if_arm = """  if in[1] == on {
+    move joint joints(5, -90, 90, -90, -90, 0) deg zone fine
+  }
+"""
+    program = _holding_program(tmp_path, if_arm)
+    (text,) = BACKENDS["urscript"]().emit(plan_program(program)).files.values()
+    calls = re.findall(r"set_payload\(([\d.]+), \[([^\]]+)\]\)", text)
+    masses = [float(m) for m, _ in calls]
+    assert masses[0] == 1.0 and masses[-1] == 1.0  # before the attach, after the detach
+    between = masses[masses.index(3.0): len(masses) - 1]
+    assert between and set(between) == {3.0}, masses
+    for _, cog in calls[masses.index(3.0): len(masses) - 1]:
+        assert [float(c) for c in cog.split(",")] == pytest.approx([0.0, 0.0, 0.116667], abs=1e-6)
+
+
+def _holding_program(tmp_path: Path, after_loop: str):  # type: ignore[no-untyped-def]
+    """A program that holds b1 through a loop, with `after_loop` inserted after the loop (the
+    part still held)."""
     import shutil
 
     shutil.copy(STACK.parent / "cell.rmot", tmp_path / "cell.rmot")
@@ -155,15 +186,11 @@ program p on r1 {
     move joint joints(10, -90, 90, -90, -90, 0) deg zone fine
     move joint joints(0, -90, 90, -90, -90, 0) deg zone fine
   }
-  move joint b1 * pose(z=150mm, rx=180deg)
+""" + after_loop + """  move joint b1 * pose(z=150mm, rx=180deg)
   move linear b1 * pose(z=50mm, rx=180deg) zone fine
   detach b1
 }
 """, encoding="utf-8")
     front = load_program(str(tmp_path / "p.rmot"))
     assert front.program is not None, [str(d) for d in front.diagnostics]
-    files = BACKENDS["krl"]().emit(plan_program(front.program)).files
-    src = next(t for n, t in files.items() if n.endswith(".src"))
-    loop = src.split("FOR ")[1].split("ENDFOR")[0]
-    assert len(re.findall(r"PTP ", loop)) == 2, loop
-    assert re.findall(r"\$LOAD=(\w+)", loop) == ["gripper_load_b1"] * 2, loop
+    return front.program

@@ -137,6 +137,18 @@ class TestRefusalsAndWarnings:
         _, diags = emit(make_plan(body, [], "ur5e"))
         assert diags == ["error:E401:3"]
 
+    @pytest.mark.parametrize("dof", [7, 2])
+    def test_not_six_joints_is_an_error(self, dof: int) -> None:
+        """movej's q is the six joint positions of a UR arm (URScript manual, movej): a 7-joint
+        model or a 2-axis mechanism has no URScript form (E403), as in RAPID and KRL."""
+        from backend_fixtures import cart as cart_in, deg, hand_plan, move as move_in
+
+        plan = hand_plan((move_in(1, ir.MotionKind.JOINT, cart_in(ir.Pose())),), {1: (deg(*[0.0] * dof), None)},
+                         robot="ur5e", dof=dof)
+        result = UrScriptBackend().emit(plan)
+        assert [d.code.id for d in result.diagnostics if d.is_error] == ["E403"]
+        assert "movej" not in "\n".join(result.files.values())
+
 
 def _rotvec_pose(values: list[float]) -> np.ndarray:
     """UR's p[x, y, z, rx, ry, rz] as a matrix, converted independently with scipy."""

@@ -19,7 +19,8 @@ Sources (the rule's comment names the section):
          interpolation needs three points, JUMP *label, CALL JOB:, comments 32 characters,
          job names 32 characters (YRC1000), tool files 0..63.
   [KRL]  KUKA KSS 8.x "Operating and Programming Instructions for System Integrators": 10.2
-         "Programming motions" (PTP approximated with C_PTP only; LIN/CIRC with C_DIS, C_ORI,
+         "Programming motions" (PTP approximated with C_PTP, followed by C_DIS/C_ORI/C_VEL
+         when it blends into a CP motion (KUKA mxAutomation manual, PTP); LIN/CIRC with C_DIS, C_ORI,
          C_VEL; $APO.CPTP 1..100 %), 11 "KRL syntax" (DEF ... END, DEFDAT ... ENDDAT, IF ...
          ENDIF, FOR ... ENDFOR, DECL in the .dat, names of at most 24 characters).
   [VAL3] Stäubli VAL3 Reference Manual (s7/s8): 2 "VAL3 language elements" (applications,
@@ -40,9 +41,10 @@ NUM = r"-?\d+(?:\.\d+)?"
 
 # --------------------------------------------------------------------------- Fanuc LS
 
-# [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`
+# [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`; the motion
+# option ACC n (acceleration override, 0..150 %: R-30iB Operator's Manual, motion options)
 _TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) "
-                        r"(FINE|CNT(\d+))(?: Offset,PR\[\d+\])?$")
+                        r"(FINE|CNT(\d+))(?: ACC(?:[0-9]|[1-9][0-9]|1[0-4][0-9]|150))?(?: Offset,PR\[\d+\])?$")
 _TP_CIRC_HEAD = re.compile(r"^C P\[(\d+)(?::[^\]]*)?\]$")
 _TP_CIRC_TAIL = re.compile(r"^:\s+P\[(\d+)(?::[^\]]*)?\] (\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
 
@@ -295,7 +297,9 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
         for c in re.findall(r"\bC\d{5}\b", ln):
             if c not in names:
                 bad.append((k, f"{c} is not a position of the job"))
-        m = re.match(r"^MOV([JLC]) C\d{5} (VJ|V)=([\d.]+)(?: PL=(\d+))?(?: FPT)?$", ln)
+        # ACC=/DEC= 20..100 % (YRC1000 INFORM manual, MOVJ/MOVL tags)
+        m = re.match(r"^MOV([JLC]) C\d{5} (VJ|V)=([\d.]+)(?: PL=(\d+))?"
+                     r"(?: ACC=(?:[2-9][0-9]|100) DEC=(?:[2-9][0-9]|100))?(?: FPT)?$", ln)
         if ln.startswith("MOV") and m is None:
             bad.append((k, f"a motion is 'MOVJ|MOVL|MOVC Cnnnnn VJ=|V= [PL=n] [FPT]' (got {ln})"))
         elif m:
@@ -433,7 +437,7 @@ def check_krl(files: dict[str, str]) -> list[str]:
             for ident in re.findall(r"\b\w+\b", ln):
                 if len(ident) > 24 and not ident.isdigit():
                     bad.append(f"{name}:{k}: identifier {ident} is longer than 24 characters")
-            motion = re.match(r"^(PTP|LIN|CIRC) (\w+)(?:,(\w+))?(?: (C_\w+))?$", ln)
+            motion = re.match(r"^(PTP|LIN|CIRC) (\w+)(?:,(\w+))?(?: (C_\w+(?: C_\w+)?))?$", ln)
             if word in ("PTP", "LIN", "CIRC"):
                 if motion is None:
                     bad.append(f"{name}:{k}: a motion is 'PTP|LIN p [C_..]' or 'CIRC aux,p [C_..]'")
@@ -441,7 +445,8 @@ def check_krl(files: dict[str, str]) -> list[str]:
                 kind, first, second, apo = motion.groups()
                 if (kind == "CIRC") != (second is not None):
                     bad.append(f"{name}:{k}: CIRC takes an auxiliary and an end point, PTP/LIN one point")
-                if apo is not None and apo not in (("C_PTP",) if kind == "PTP" else ("C_DIS", "C_ORI", "C_VEL")):
+                ptp_forms = ("C_PTP", "C_PTP C_DIS", "C_PTP C_ORI", "C_PTP C_VEL")  # PTP->CP: mxAutomation
+                if apo is not None and apo not in (ptp_forms if kind == "PTP" else ("C_DIS", "C_ORI", "C_VEL")):
                     bad.append(f"{name}:{k}: {kind} cannot be approximated with {apo}")
                 for point in filter(None, (first, second)):
                     if point not in declared and point.upper() not in _KRL_SYSTEM:

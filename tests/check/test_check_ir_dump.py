@@ -44,7 +44,8 @@ def test_json_round_trips_the_instruction_count() -> None:
 
     collect(data["tasks"][0]["body"])
     assert uids == list(range(1, len(uids) + 1)) and len(uids) > 50
-    assert data["cell"]["robots"][0]["source"] == {"type": "RobotSource", "kind": "library", "ref": "abb_irb1600"}
+    assert data["cell"]["robots"][0]["source"] == {"type": "RobotSource", "kind": "library", "ref": "abb_irb1600",
+                                                   "speed_share": 1.0, "accel_share": 1.0}
 
 
 class TestIrCommand:

@@ -182,9 +182,16 @@ def test_every_number_names_its_source_and_every_arm_its_conventions(name):
     assert tuple(dict(r.conventions)) == TOPICS
 
 
-def test_kuka_accelerations_are_kukas_published_ones():
-    """KR 6 R900 sixx: KUKA's own joint accelerations (kroshu/kuka_robot_descriptions
-    kuka_agilus_support/config/kr6_r900_sixx_joint_limits.yaml, rad/s^2, transcribed here)."""
-    published = (21.666156, 6.889457, 31.415926, 133.055688, 135.557707, 268.382564)
-    np.testing.assert_allclose(load_robot("kuka_kr6_r900").accel_limits, published, rtol=1e-3)
-    assert "kroshu" in dict(load_robot("kuka_kr210").sources)["accel"]
+def test_kuka_accelerations_are_marked_estimates_not_the_ros_planning_limits():
+    """KR 6 R900 sixx: KUKA's ROS description gives A2 394.7 deg/s^2 (kroshu/kuka_robot_descriptions
+    kuka_agilus_support/config/kr6_r900_sixx_joint_limits.yaml, 6.889457 rad/s^2, transcribed
+    here), a planning limit, not the controller's: the library uses the estimate every other
+    vendor's arm has (4 x the axis speed per second, the speeds typed from KUKA spec PF0030) and
+    says so, with KUKA's numbers kept in the source text."""
+    speeds = np.radians((360, 300, 360, 381, 388, 615))
+    robot = load_robot("kuka_kr6_r900")
+    np.testing.assert_allclose(robot.accel_limits, 4 * speeds, rtol=1e-9)
+    assert not np.isclose(robot.accel_limits[1], 6.889457, rtol=1e-3)
+    for name in ("kuka_kr6_r900", "kuka_kr210", "kuka_kr10_r1100_2"):
+        source = dict(load_robot(name).sources)["accel"]
+        assert source.startswith("estimate") and "kroshu" in source, name

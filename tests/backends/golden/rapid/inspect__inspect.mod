@@ -14,21 +14,28 @@ MODULE inspect
 
   PROC main()
     ! inspect.rmot:15
+    AccSet 50, 100;
     MoveAbsJ home\NoEOffs, vmax, fine, pointer;
     ! inspect.rmot:16
+    AccSet 50, 100;
     MoveJ start, vmax, fine, pointer\WObj:=table_top;
     ! inspect.rmot:17
     FOR rmot_rep3 FROM 0 TO 1 DO
       ! inspect.rmot:18
+      AccSet 50, 100;
       MoveC via, p, v150, z2, pointer\WObj:=table_top;
       ! inspect.rmot:19
+      AccSet 50, 100;
       MoveC via_2, start, v150, z2, pointer\WObj:=table_top;
     ENDFOR
     ! inspect.rmot:21
+    AccSet 50, 100;
     MoveL p_2, v150, fine, pointer\WObj:=table_top;
     ! inspect.rmot:22
+    AccSet 50, 100;
     MoveL p_2, v150, fine, pointer\WObj:=table_top;
     ! inspect.rmot:23
+    AccSet 50, 100;
     MoveL p_3, v150, fine, pointer\WObj:=table_top;
     ! inspect.rmot:24
     IF DInput(part_present) = 1 THEN
