@@ -177,3 +177,6 @@ __all__ += [
     "UNREACHABLE_AFTER_STOP",
     "WAIT_ELSE_WITHOUT_TIMEOUT",
 ]
+# `move free` (E180-E184 are its front end's; its search reports E250-E259, sim/codes.py)
+FREE_TIMED = Code("E180", "free-move-timed", "a 'move free' with a 'time' modifier (its path is found at plan time)")
+__all__ += ["FREE_TIMED"]

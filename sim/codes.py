@@ -40,3 +40,12 @@ PART_HELD_ELSEWHERE = Code("E331", "part-held-elsewhere", "attach of a part anot
 PAYLOAD_EXCEEDED = Code("E332", "payload-exceeded", "tool mass plus held parts beyond the robot's rated payload")
 PART_GRIP_DEPTH = Code("E333", "part-grip-depth", "a tool enters the part it attaches deeper than 2 mm")
 __all__ += ["PART_NOT_TOUCHING", "PART_HELD_ELSEWHERE", "PAYLOAD_EXCEEDED", "PART_GRIP_DEPTH"]
+# `move free`: the joint-space search that finds its path (sim/free/)
+FREE_GOAL_BLOCKED = Code("E250", "free-goal-in-collision",
+                         "the target of a 'move free' is in collision (or closer than its clearance)")
+FREE_START_BLOCKED = Code("E251", "free-start-in-collision", "a 'move free' starts in collision")
+FREE_NO_PATH = Code("E252", "free-no-path", "the search found no collision-free path within its budget")
+FREE_UNSUPPORTED = Code("E253", "free-placement",
+                        "a 'move free' that is a task's first move, or inside a loop, if or proc")
+FREE_PATH = Code("W250", "free-path", "the via points a 'move free' inserted (a note)")
+__all__ += ["FREE_GOAL_BLOCKED", "FREE_START_BLOCKED", "FREE_NO_PATH", "FREE_UNSUPPORTED", "FREE_PATH"]
