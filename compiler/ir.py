@@ -432,8 +432,8 @@ class FreeMotion:
     time (sim/free/), then written as joint moves through the via points it finds."""
 
     clearance: float = 0.0  # m: the path keeps at least this distance from everything else
-    samples: int = 4000  # configurations the search may draw: the budget that decides
-    budget: float = 20.0  # s of search time: a safety stop (reported), never what decides
+    samples: int = 1000  # configurations the search may draw: the budget that decides
+    budget: float = 120.0  # s of search time: a safety stop (reported), never what decides
 
 
 # --------------------------------------------------------------------------- instructions

@@ -46,6 +46,10 @@ __all__ = ["VIA_ZONES", "FreeResult", "has_free_moves", "lower_free_moves"]
 
 FORMAT = "rmot-free-1"  # in every seed and cache key: a change to the search makes new ones
 VIA_ZONES = (0.05, 0.01, 0.0)  # m: zones tried at the via points, largest first; 0 = fine
+# m: the shortened path's new segments keep this much more than the clearance, so that the
+# zones at its via points (which cut the corners) still keep the clearance; measured on the wall
+# cell (tests/free): with 0 the tight path around the wall's end verified only with `fine`
+BLEND_ROOM = 0.02
 PlanFn = Callable[[ir.Program], plan_types.Plan]
 
 
@@ -148,13 +152,17 @@ def _blocked_ends(space: FreeSpace, q_start: np.ndarray, q_goal: np.ndarray, mov
     for q, code, what in ((q_start, codes.FREE_START_BLOCKED, "start"), (q_goal, codes.FREE_GOAL_BLOCKED, "target")):
         hits = [h for h in space.blocked(q, 0.0) if h.kind == "collision"]
         if hits:
-            worst = min(hits, key=lambda h: (h.distance, h.a, h.b))
-            names = ", ".join(f"'{h.a}' with '{h.b}' ({-h.distance * 1000:.1f} mm deep)"
-                              for h in sorted(hits, key=lambda h: (h.distance, h.a, h.b))[:3])
-            message = (f"the {what} of a 'move free' must be free of collision (got {names}); "
-                       f"no path was searched")
-            out.append(_finding(code, message, move, task, bodies=(worst.a, worst.b)))
+            named = sorted((_moving_first(space, h.a, h.b) + (h.distance,) for h in hits), key=lambda x: (x[2], x[0], x[1]))
+            names = ", ".join(f"'{a}' is {-d * 1000:.1f} mm inside '{b}'" for a, b, d in named[:3])
+            more = f" (and {len(named) - 3} more)" if len(named) > 3 else ""
+            message = f"the {what} of a 'move free' must be free of collision (got: {names}{more}); no path was searched"
+            out.append(_finding(code, message, move, task, bodies=named[0][:2]))
     return out
+
+
+def _moving_first(space: FreeSpace, a: str, b: str) -> tuple[str, str]:
+    """The pair with the robot's body first (as the verifier names a collision)."""
+    return (a, b) if space.scene.body(a).robot == space.robot else (b, a)
 
 
 def _slack(space: FreeSpace, q: np.ndarray, clearance: float) -> float:
@@ -169,8 +177,8 @@ def _search(space: FreeSpace, robot: object, q_start: np.ndarray, q_goal: np.nda
     scale = 1.0 / np.asarray(robot.velocity_limits, dtype=float)  # type: ignore[attr-defined]
     ends = {q_start.tobytes(): _slack(space, q_start, free.clearance), q_goal.tobytes(): _slack(space, q_goal, free.clearance)}
 
-    def edge_free(qa: np.ndarray, qb: np.ndarray) -> bool:
-        c = min(ends.get(qa.tobytes(), free.clearance), ends.get(qb.tobytes(), free.clearance))
+    def edge_free(qa: np.ndarray, qb: np.ndarray, margin: float = 0.0) -> bool:
+        c = min(ends.get(qa.tobytes(), free.clearance + margin), ends.get(qb.tobytes(), free.clearance + margin))
         return space.segment_free(qa, qb, c)
 
     rng = np.random.default_rng(int(key[:16], 16))
@@ -184,7 +192,7 @@ def _search(space: FreeSpace, robot: object, q_start: np.ndarray, q_goal: np.nda
         message = (f"a 'move free' must find a collision-free path keeping {free.clearance * 1000:g} mm clearance: "
                    f"no path was found: {why}")
         return [], {}, Diagnostic(codes.FREE_NO_PATH, Severity.ERROR, message, None)
-    path = shorten([np.asarray(q, dtype=float) for q in found.path], edge_free, rng, scale)
+    path = shorten([np.asarray(q, dtype=float) for q in found.path], lambda a, b: edge_free(a, b, BLEND_ROOM), rng, scale)
     return path, {"samples": found.samples, "segments": space.edges}, None
 
 
@@ -203,9 +211,12 @@ def _key(space: FreeSpace, q_start: np.ndarray, q_goal: np.ndarray, free: ir.Fre
 
 
 def _cache_path(key: str):  # type: ignore[no-untyped-def]
-    from rmot.compiler.plan_cache import cache_dir
+    """The entry of a search: its key with the digest of rmot's own source (a changed search
+    never reads an old path; the seed itself does not change with the source)."""
+    from rmot.compiler.plan_cache import cache_dir, source_digest
 
-    return cache_dir() / "free" / key[:2] / f"{key}.json"
+    entry = hashlib.sha256((key + source_digest()).encode()).hexdigest()
+    return cache_dir() / "free" / entry[:2] / f"{entry}.json"
 
 
 def _cached_path(key: str) -> tuple[list[np.ndarray] | None, dict[str, int] | None]:

@@ -4,9 +4,10 @@ The algorithm is Kuffner and LaValle's RRT-Connect (ICRA 2000, "RRT-Connect: An 
 Approach to Single-Query Path Planning"): two trees, one from the start and one from the goal;
 each round draws one configuration, extends one tree a step towards it and pulls the other
 tree straight at the new node until it is blocked or the trees meet. The path found is then
-shortened: a greedy pass that joins every node to the farthest later node it sees, and random
+shortened: a greedy pass that joins every node to the farthest later node it sees, random
 shortcuts between points on the path (Geraerts and Overmars, "Creating High-quality Paths for
-Motion Planning", IJRR 2007, section 4: "partial shortcuts" aside).
+Motion Planning", IJRR 2007, section 4: "partial shortcuts" aside), and a relaxation that pulls
+each via point towards its neighbours' midpoint while that stays free and shortens the path.
 
 Distances are measured in *seconds at full joint speed*: joint j is scaled by 1 / vmax_j, so
 a step is a fixed share of motion time whatever the joint, and the path length is the time a
@@ -150,7 +151,31 @@ def shorten(path: list[np.ndarray], edge_free: EdgeCheck, rng: np.random.Generat
         b = _point(path, cum, j, s2)
         if edge_free(a, b) and _length([path[i], a, b, path[j + 1]], scale) < _length(path[i:j + 2], scale):
             path = path[:i + 1] + [a, b] + path[j + 1:]
-    return _greedy(path, edge_free)
+    return _relaxed(_greedy(path, edge_free), edge_free, scale)
+
+
+RELAX_ROUNDS = 4  # passes of pulling each via point towards its neighbours' midpoint
+
+
+def _relaxed(path: list[np.ndarray], edge_free: EdgeCheck, scale: np.ndarray) -> list[np.ndarray]:
+    """Smoothing: each via point moves towards the midpoint of its neighbours (the whole way,
+    half or a quarter) while both its segments stay free and the path gets shorter; a joint
+    the detour does not need (a wrist a random sample turned) goes back to the straight line."""
+    path = list(path)
+    for _ in range(RELAX_ROUNDS):
+        moved = False
+        for k in range(1, len(path) - 1):
+            mid = (path[k - 1] + path[k + 1]) / 2
+            before = _length(path[k - 1:k + 2], scale)
+            for share in (1.0, 0.5, 0.25):
+                q = path[k] + (mid - path[k]) * share
+                if (_length([path[k - 1], q, path[k + 1]], scale) < before - 1e-9
+                        and edge_free(path[k - 1], q) and edge_free(q, path[k + 1])):
+                    path[k], moved = q, True
+                    break
+        if not moved:
+            break
+    return path
 
 
 def _point(path: list[np.ndarray], cum: np.ndarray, i: int, s: float) -> np.ndarray:
