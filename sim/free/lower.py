@@ -29,7 +29,7 @@ import hashlib
 import json
 import math
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -42,7 +42,7 @@ from rmot.sim.free.search import path_length, search_path, shorten
 from rmot.sim.free.space import FreeSpace, free_space, robot_timeline
 from rmot.sim.scene import Scene, build_scene
 
-__all__ = ["VIA_ZONES", "FreeResult", "has_free_moves", "lower_free_moves"]
+__all__ = ["VIA_ZONES", "FreeProblem", "FreeResult", "edge_check", "free_problem", "has_free_moves", "lower_free_moves"]
 
 FORMAT = "rmot-free-1"  # in every seed and cache key: a change to the search makes new ones
 VIA_ZONES = (0.05, 0.01, 0.0)  # m: zones tried at the via points, largest first; 0 = fine
@@ -98,8 +98,23 @@ def _finding(code: object, message: str, move: ir.Move, task: ir.Task, severity:
     return Diagnostic(code, severity, message, move.span, (), None, None, bodies, None, task.name)  # type: ignore[arg-type]
 
 
-def _lower_one(program: ir.Program, plan_fn: PlanFn, scene: Scene, task_name: str, uid: int,
-               use_cache: bool) -> tuple[ir.Program, list[Diagnostic]]:
+@dataclass(frozen=True, eq=False)
+class FreeProblem:
+    """One `move free` ready to search: where it starts and ends, in which free space."""
+
+    task: ir.Task
+    move: ir.Move
+    record: plan_types.InstructionRecord
+    q_start: np.ndarray
+    q_goal: np.ndarray
+    space: FreeSpace
+
+
+def free_problem(program: ir.Program, plan_fn: PlanFn, scene: Scene, task_name: str,
+                 uid: int) -> FreeProblem | list[Diagnostic]:
+    """The search problem of the `move free` `uid`, or the findings that stop it before any
+    search (E253 no start, E251 / E250 start or goal in collision; [] when the planner could
+    not place the target, which it reports itself)."""
     plan = plan_fn(program)
     task = next(t for t in program.tasks if t.name == task_name)
     move = next(i for i in task.body if i.uid == uid)
@@ -107,29 +122,36 @@ def _lower_one(program: ir.Program, plan_fn: PlanFn, scene: Scene, task_name: st
     tp = next((p for p in plan.tasks if p.task.name == task_name), None)
     rec = tp.record(uid) if tp is not None else None
     if tp is None or rec is None or rec.q_target is None or tp.robot not in scene.robots:
-        return program, []  # the planner could not place the target: it reported why
+        return []
     q_start = _start_joints(tp, task, uid)
     if q_start is None:
-        return program, [_finding(codes.FREE_UNSUPPORTED, "a 'move free' must not be its task's first move (its "
-                                  "start is unknown): put a joint move to a joint target before it", move, task)]
+        return [_finding(codes.FREE_UNSUPPORTED, "a 'move free' must not be its task's first move (its "
+                         "start is unknown): put a joint move to a joint target before it", move, task)]
     q_goal = np.asarray(rec.q_target, dtype=float)
     space = free_space(scene, plan, tp.robot, rec.t_start)
     blocked = _blocked_ends(space, q_start, q_goal, move, task)
-    if blocked:
-        return program, blocked
+    return blocked or FreeProblem(task, move, rec, q_start, q_goal, space)
+
+
+def _lower_one(program: ir.Program, plan_fn: PlanFn, scene: Scene, task_name: str, uid: int,
+               use_cache: bool) -> tuple[ir.Program, list[Diagnostic]]:
+    problem = free_problem(program, plan_fn, scene, task_name, uid)
+    if not isinstance(problem, FreeProblem):
+        return program, problem
+    task, move, space = problem.task, problem.move, problem.space
     free = move.free
     assert free is not None
-    robot = scene.robots[tp.robot].robot
-    key = _key(space, q_start, q_goal, free)
+    robot = space.scene.robots[space.robot].robot
+    key = _key(space, problem.q_start, problem.q_goal, free)
     path, outcome = _cached_path(key) if use_cache else (None, None)
     if path is None:
-        path, outcome, failure = _search(space, robot, q_start, q_goal, free, key)
+        path, outcome, failure = _search(space, robot, problem.q_start, problem.q_goal, free, key)
         if failure is not None:
             return program, [replace(failure, span=move.span, task=task.name)]
         if use_cache:
             _store_path(key, path, outcome)
     vias = [tuple(float(v) for v in q) for q in path[1:-1]]
-    return _emit(program, plan_fn, space, task, move, rec, vias, path, outcome)
+    return _emit(program, plan_fn, space, task, move, problem.record, vias, path, outcome)
 
 
 def _start_joints(tp: plan_types.TaskPlan, task: ir.Task, uid: int) -> np.ndarray | None:
@@ -171,15 +193,24 @@ def _slack(space: FreeSpace, q: np.ndarray, clearance: float) -> float:
     return min([clearance] + [max(0.0, d * (1 - 1e-6)) for d in near])
 
 
+def edge_check(space: FreeSpace, q_start: np.ndarray, q_goal: np.ndarray,
+               clearance: float) -> Callable[..., bool]:
+    """edge_free(qa, qb, margin=0): the segment keeps clearance + margin, less next to the start
+    or the goal where they are already closer (_slack)."""
+    ends = {q_start.tobytes(): _slack(space, q_start, clearance), q_goal.tobytes(): _slack(space, q_goal, clearance)}
+
+    def edge_free(qa: np.ndarray, qb: np.ndarray, margin: float = 0.0) -> bool:
+        c = min(ends.get(qa.tobytes(), clearance + margin), ends.get(qb.tobytes(), clearance + margin))
+        return space.segment_free(qa, qb, c)
+
+    return edge_free
+
+
 def _search(space: FreeSpace, robot: object, q_start: np.ndarray, q_goal: np.ndarray, free: ir.FreeMotion,
             key: str) -> tuple[list[np.ndarray], dict[str, int], Diagnostic | None]:
     lo, hi = (np.asarray(robot.joint_limits, dtype=float)[:, k] for k in (0, 1))  # type: ignore[attr-defined]
     scale = 1.0 / np.asarray(robot.velocity_limits, dtype=float)  # type: ignore[attr-defined]
-    ends = {q_start.tobytes(): _slack(space, q_start, free.clearance), q_goal.tobytes(): _slack(space, q_goal, free.clearance)}
-
-    def edge_free(qa: np.ndarray, qb: np.ndarray, margin: float = 0.0) -> bool:
-        c = min(ends.get(qa.tobytes(), free.clearance + margin), ends.get(qb.tobytes(), free.clearance + margin))
-        return space.segment_free(qa, qb, c)
+    edge_free = edge_check(space, q_start, q_goal, free.clearance)
 
     rng = np.random.default_rng(int(key[:16], 16))
     found = search_path(q_start, q_goal, lo, hi, scale, edge_free, rng, free.samples, free.budget)
