@@ -69,7 +69,6 @@ def load(path: str, *, cell: str | None = None, project_root: str | None = None,
 
 def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> Plan:
     """The planner, through the plan cache."""
-    from rmot.compiler import plan_cache
     from rmot.compiler.cli import load_cache
 
     if use_cache and step is None:
@@ -99,9 +98,12 @@ def _plan_free_moves(program: Any, kwargs: dict[str, Any]) -> Plan:
     lowered = lower_free_moves(program, lambda p: plan_cache.cached_plan(p, **kwargs), kwargs["use_cache"])
     planned = plan_cache.cached_plan(lowered.program, **kwargs)
     found = planned.diagnostics + lowered.diagnostics
-    order = sorted(range(len(found)), key=lambda k: (found[k].span.path, found[k].span.start.offset)
-                   if found[k].span is not None else ("", -1))
-    return dataclasses.replace(planned, diagnostics=tuple(found[k] for k in order))
+
+    def order(k: int) -> tuple[str, int]:  # the planner's order: by source position, stable
+        span = found[k].span
+        return (span.path, span.start.offset) if span is not None else ("", -1)
+
+    return dataclasses.replace(planned, diagnostics=tuple(found[k] for k in sorted(range(len(found)), key=order)))
 
 
 def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = True) -> Report:

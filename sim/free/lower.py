@@ -29,6 +29,7 @@ import hashlib
 import json
 import math
 from collections.abc import Callable
+from typing import Any
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -206,10 +207,11 @@ def edge_check(space: FreeSpace, q_start: np.ndarray, q_goal: np.ndarray,
     return edge_free
 
 
-def _search(space: FreeSpace, robot: object, q_start: np.ndarray, q_goal: np.ndarray, free: ir.FreeMotion,
+def _search(space: FreeSpace, robot: Any, q_start: np.ndarray, q_goal: np.ndarray, free: ir.FreeMotion,
             key: str) -> tuple[list[np.ndarray], dict[str, int], Diagnostic | None]:
-    lo, hi = (np.asarray(robot.joint_limits, dtype=float)[:, k] for k in (0, 1))  # type: ignore[attr-defined]
-    scale = 1.0 / np.asarray(robot.velocity_limits, dtype=float)  # type: ignore[attr-defined]
+    limits = np.asarray(robot.joint_limits, dtype=np.float64)
+    lo, hi = limits[:, 0], limits[:, 1]
+    scale = 1.0 / np.asarray(robot.velocity_limits, dtype=np.float64)
     edge_free = edge_check(space, q_start, q_goal, free.clearance)
 
     rng = np.random.default_rng(int(key[:16], 16))
@@ -266,11 +268,15 @@ def _cached_path(key: str) -> tuple[list[np.ndarray] | None, dict[str, int] | No
 
 
 def _store_path(key: str, path: list[np.ndarray], outcome: dict[str, int]) -> None:
-    from rmot.compiler.plan_cache import write_entry
+    """The entry, written atomically; the folder kept within the plan cache's size bound."""
+    from rmot.compiler.plan_cache import MAX_BYTES, evict, eviction_due, write_entry
 
     doc = {"key": key, "path": [[float(v) for v in q] for q in path], "outcome": outcome}
+    entry = _cache_path(key)
     try:
-        write_entry(_cache_path(key), json.dumps(doc, sort_keys=True).encode())
+        write_entry(entry, json.dumps(doc, sort_keys=True).encode())
+        if eviction_due(entry.parent.parent):
+            evict(entry.parent.parent, MAX_BYTES, suffix=".json")
     except OSError:
         pass  # an unwritable cache only costs the next run the search
 

@@ -180,8 +180,9 @@ def _relaxed(path: list[np.ndarray], edge_free: EdgeCheck, scale: np.ndarray) ->
 
 def _point(path: list[np.ndarray], cum: np.ndarray, i: int, s: float) -> np.ndarray:
     seg = cum[i + 1] - cum[i]
-    f = (s - cum[i]) / seg if seg > 0 else 0.0
-    return path[i] + (path[i + 1] - path[i]) * f
+    f = float((s - cum[i]) / seg) if seg > 0 else 0.0
+    point: np.ndarray = path[i] + (path[i + 1] - path[i]) * f
+    return point
 
 
 def _greedy(path: list[np.ndarray], edge_free: EdgeCheck) -> list[np.ndarray]:
