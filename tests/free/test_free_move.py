@@ -205,3 +205,21 @@ def test_fcl_witness_every_sample_of_the_move_keeps_the_clearance(wall_plan) -> 
                 result = fcl.DistanceResult()
                 nearest = min(nearest, fcl.distance(body, fx, request, result))
     assert nearest >= 0.010 - 1e-4, nearest
+
+
+def test_check_json_and_ir_planned_show_the_via_points(tmp_path: Path) -> None:
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+
+    env = {"RMOT_CACHE_DIR": str(tmp_path)}
+    program = str(HERE / "wall_free.rmot")
+    out = CliRunner().invoke(cli, ["check", program, "--format", "json"], env=env)
+    assert out.exit_code == 0, out.output
+    notes = [d for d in json.loads(out.output)["programs"][0]["diagnostics"] if d["code"] == "W250"]
+    assert len(notes) == 1 and notes[0]["severity"] == "note" and notes[0]["line"] == 12
+    dump = CliRunner().invoke(cli, ["ir", program, "--planned"], env=env)
+    assert dump.exit_code == 0
+    lines = [line for line in dump.stdout.splitlines() if "@12:3" in line]
+    assert len(lines) >= 3 and all("name=place_via" in line for line in lines[:-1])
+    assert "free(clearance=0.01 samples=1000 budget=120)" in lines[-1]
