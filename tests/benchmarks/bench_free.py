@@ -12,7 +12,9 @@ SimpleSetup.simplifySolution (shortcutting, B-spline smoothing, vertex collapsin
 state validity and the motion validity given by rmot's own free space (sim/free/space.py: the
 verifier's bodies, pairs and no-miss segment check, clearance relaxed next to the ends exactly
 as for rmot's search), its RNG seeded (ompl.util.RNG.setSeed) and a time budget of 60 s.
-Without ompl the table has rmot's rows only, and says so.
+Without ompl the table has rmot's rows only, and says so. OMPL's seed is process-wide and can
+be set only once, so its rows for the later cases depend on what ran before them (two runs of
+this script gave OMPL shelf paths of 7.8 and 14.9 rad); rmot's rows do not change.
 
 Run: .venv/bin/python tests/benchmarks/bench_free.py
 """

@@ -223,3 +223,17 @@ def test_check_json_and_ir_planned_show_the_via_points(tmp_path: Path) -> None:
     lines = [line for line in dump.stdout.splitlines() if "@12:3" in line]
     assert len(lines) >= 3 and all("name=place_via" in line for line in lines[:-1])
     assert "free(clearance=0.01 samples=1000 budget=120)" in lines[-1]
+
+
+@pytest.mark.parametrize("old, new, why", [
+    ("  move joint home\n  move joint pick frame pick_top\n", "", "first move"),
+    ("  move free place frame place_top clearance 10 mm\n",
+     "  repeat 2 {\n  move free place frame place_top clearance 10 mm\n  }\n", "loop"),
+])
+def test_move_free_without_one_known_start_is_refused(tmp_path: Path, old: str, new: str, why: str) -> None:
+    path = _variant(tmp_path, "wall_free.rmot", old, new)
+    plan = stages.plan(load_program(path).program, use_cache=False)
+    found = [d for d in plan.diagnostics if d.code.id == "E253"]
+    assert found, (why, [d.message for d in plan.diagnostics])
+    assert ("first move" in found[0].message) == (why == "first move")
+    assert "W250" not in _codes(plan)
