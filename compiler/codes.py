@@ -204,3 +204,7 @@ UNKNOWN_PACKAGE = Code("E542", "unknown-package", "$(find PKG) or package://PKG 
 __all__ += ["XACRO_FAILED", "XACRO_REFUSED", "UNKNOWN_PACKAGE"]
 STEP_UNIT = Code("E543", "step-unit", "mesh(\"f.step\", unit=/scale=): a STEP file states its own length unit")
 __all__ += ["STEP_UNIT"]
+
+# `move free` (E180-E184 are its front end's; its search reports E250-E259, sim/codes.py)
+FREE_TIMED = Code("E180", "free-move-timed", "a 'move free' with a 'time' modifier (its path is found at plan time)")
+__all__ += ["FREE_TIMED"]

@@ -47,6 +47,7 @@ __all__ = [
     "AnalogInput", "Arith", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
     "Loop", "LoopIteration", "Not", "RtExpr", "Stop", "ValueType", "VarDecl", "VarRef",
     "WaitCondition", "While",
+    "FreeMotion",
 ]
 
 
@@ -433,6 +434,16 @@ class JointTarget:
     name: str | None = None
 
 
+@record(slots=True)
+class FreeMotion:
+    """`move free`: the joint move to the target is found by a collision-free search at plan
+    time (sim/free/), then written as joint moves through the via points it finds."""
+
+    clearance: float = 0.0  # m: the path keeps at least this distance from everything else
+    samples: int = 1000  # configurations the search may draw: the budget that decides
+    budget: float = 120.0  # s of search time: a safety stop (reported), never what decides
+
+
 # --------------------------------------------------------------------------- instructions
 
 
@@ -446,6 +457,7 @@ class Move:
     tool: ToolRef
     frame: FrameRef
     config: Config = Config()
+    free: FreeMotion | None = None  # `move free` (kind JOINT): the path is searched at plan time
     span: Span | None = _span_field()
 
 

@@ -88,10 +88,12 @@ def _move(m: ir.Move) -> str:
     via = f" via {_target(m.via)}" if m.via is not None else ""
     mo = m.motion
     timing = f" time={_f(mo.duration)}" if mo.duration is not None else ""
+    free = (f" free(clearance={_f(m.free.clearance)} samples={m.free.samples} budget={_f(m.free.budget)})"
+            if m.free is not None else "")
     return (f"move {m.kind.name.lower()}{via} to {_target(m.target)} tool={m.tool.name or 'flange'} "
             f"frame={m.frame.name or 'base'} speed={_f(mo.tcp_speed)} accel={_f(mo.tcp_accel)} "
             f"joint_speed={_f(mo.joint_speed)} joint_accel={_f(mo.joint_accel)} zone={_f(mo.zone.radius)}{timing} "
-            f"config={m.config}")
+            f"config={m.config}{free}")
 
 
 def _cond(c: ir.RtExpr) -> str:
@@ -203,7 +205,7 @@ def to_jsonable(x: Any) -> Any:
         obj: dict[str, Any] = {"type": type(x).__name__}
         for f in dataclasses.fields(x):
             value = getattr(x, f.name)
-            if value is not None or f.name != "span":
+            if value is not None or f.name not in ("span", "free"):  # a Move's `free`: only on `move free`
                 obj[f.name] = to_jsonable(value)
         return obj
     if isinstance(x, (tuple, list)):

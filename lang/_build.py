@@ -436,6 +436,18 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def move_circular(self, c: list[Any]) -> ast.Move:
         return _Move("circular", c[5], c[3], tuple(c[6:]), self._span(c))
 
+    def move_free(self, c: list[Any]) -> ast.Move:
+        return _Move("free", c[2], None, tuple(c[3:]), self._span(c))
+
+    def free_clearance(self, c: list[Any]) -> ast.Setting:
+        return self._setting("clearance", c)
+
+    def free_samples(self, c: list[Any]) -> ast.Setting:
+        return self._setting("samples", c)
+
+    def free_budget(self, c: list[Any]) -> ast.Setting:
+        return self._setting("budget", c)
+
     # -- I/O, timing, control flow
     def io_ref(self, c: list[Any]) -> ast.IoRef:
         return _IoRef(str(c[0]), c[2], self._span(c))

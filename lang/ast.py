@@ -294,7 +294,7 @@ Modifier = Setting
 
 @record(slots=True)
 class Move:
-    kind: str  # joint | linear | circular
+    kind: str  # joint | linear | circular | free
     target: Expr
     via: Expr | None
     modifiers: tuple[Setting, ...]

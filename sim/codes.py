@@ -50,3 +50,13 @@ __all__ += ["CORNER_SPHERE", "CORNER_BOUND"]
 JOINT_TORQUE_ESTIMATE = Code("W342", "joint-torque-estimate",
                              "inverse dynamics needs more torque than a joint's estimated rating (the vendor publishes none)")
 __all__ += ["JOINT_TORQUE_ESTIMATE"]
+
+# `move free`: the joint-space search that finds its path (sim/free/)
+FREE_GOAL_BLOCKED = Code("E250", "free-goal-in-collision",
+                         "the target of a 'move free' is in collision (or closer than its clearance)")
+FREE_START_BLOCKED = Code("E251", "free-start-in-collision", "a 'move free' starts in collision")
+FREE_NO_PATH = Code("E252", "free-no-path", "the search found no collision-free path within its budget")
+FREE_UNSUPPORTED = Code("E253", "free-placement",
+                        "a 'move free' that is a task's first move, or inside a loop, if or proc")
+FREE_PATH = Code("W250", "free-path", "the via points a 'move free' inserted (a note)")
+__all__ += ["FREE_GOAL_BLOCKED", "FREE_START_BLOCKED", "FREE_NO_PATH", "FREE_UNSUPPORTED", "FREE_PATH"]

@@ -1,4 +1,5 @@
-"""`rmot ir FILE [--cell CELL] [--json] [--project-root DIR]`: print the checked IR.
+"""`rmot ir FILE [--cell CELL] [--json] [--project-root DIR] [--planned]`: print the checked IR
+(with --planned: the IR as planned, each `move free` written as joint moves through its via points).
 
 Diagnostics go to stderr in compiler style; exit 2 when the input has errors, else 0.
 A file that holds only a cell prints the cell.
@@ -21,7 +22,9 @@ __all__ = ["ir"]
 @click.option("--json", "as_json", is_flag=True, help="Print JSON instead of the text dump.")
 @click.option("--project-root", type=click.Path(file_okay=False), default=None,
               help="Directory every path in the sources must stay inside (default: FILE's directory).")
-def ir(file: str, cell: str | None, as_json: bool, project_root: str | None) -> None:
+@click.option("--planned", is_flag=True,
+              help="Print the IR the backends get: each `move free` as joint moves through its via points.")
+def ir(file: str, cell: str | None, as_json: bool, project_root: str | None, planned: bool) -> None:
     from rmot.compiler.frontend import load_program
     from rmot.compiler.ir_dump import dump_cell, dump_program, to_json
     from rmot.lang.diagnostics import render
@@ -32,7 +35,15 @@ def ir(file: str, cell: str | None, as_json: bool, project_root: str | None) -> 
     if result.has_errors:
         sys.exit(EXIT_INPUT)
     if result.program is not None:
-        click.echo(to_json(result.program) if as_json else dump_program(result.program), nl=False)
+        program = result.program
+        if planned:  # the plan's program: `move free` lowered at plan time (rmot.sim.free)
+            from rmot.compiler.cli import stages
+
+            plan = stages.plan(program)
+            for d in plan.diagnostics:
+                click.echo(render(d), err=True)
+            program = plan.program
+        click.echo(to_json(program) if as_json else dump_program(program), nl=False)
     elif result.cell is not None:
         click.echo(to_json(result.cell) if as_json else dump_cell(result.cell) + "\n", nl=False)
     else:

@@ -70,7 +70,6 @@ def load(path: str, *, cell: str | None = None, project_root: str | None = None,
 
 def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> Plan:
     """The planner, through the plan cache."""
-    from rmot.compiler import plan_cache
     from rmot.compiler.cli import load_cache
 
     if use_cache and step is None:
@@ -80,10 +79,32 @@ def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> 
     kwargs: dict[str, Any] = {"use_cache": use_cache}
     if step is not None:
         kwargs["step"] = step
-    planned = run("the planner", plan_cache.cached_plan, program, **kwargs)
+    planned = run("the planner", _plan_free_moves, program, kwargs)
     if use_cache and step is None:
         load_cache.record(program, planned)
     return planned
+
+
+def _plan_free_moves(program: Any, kwargs: dict[str, Any]) -> Plan:
+    """The plan; a program with `move free` is planned with its via points found first
+    (rmot.sim.free: the search needs the verifier's collision model, so the CLI joins them),
+    and the searches' findings and notes join the plan's diagnostics."""
+    import dataclasses
+
+    from rmot.compiler import plan_cache
+    from rmot.sim.free.lower import has_free_moves, lower_free_moves
+
+    if not has_free_moves(program):
+        return plan_cache.cached_plan(program, **kwargs)
+    lowered = lower_free_moves(program, lambda p: plan_cache.cached_plan(p, **kwargs), kwargs["use_cache"])
+    planned = plan_cache.cached_plan(lowered.program, **kwargs)
+    found = planned.diagnostics + lowered.diagnostics
+
+    def order(k: int) -> tuple[str, int]:  # the planner's order: by source position, stable
+        span = found[k].span
+        return (span.path, span.start.offset) if span is not None else ("", -1)
+
+    return dataclasses.replace(planned, diagnostics=tuple(found[k] for k in sorted(range(len(found)), key=order)))
 
 
 def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = True,

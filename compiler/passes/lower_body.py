@@ -20,7 +20,7 @@ Choices (LANGUAGE.md is silent):
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from rmot.compiler.vendors import controllers
 from rmot.compiler import codes, ir
@@ -42,7 +42,11 @@ from rmot.lang.parse import RESERVED
 __all__ = ["MAX_INSTRUCTIONS", "TaskLowering"]
 
 MAX_INSTRUCTIONS = 200_000
-_KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circular": ir.MotionKind.CIRCULAR}
+_KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circular": ir.MotionKind.CIRCULAR,
+          "free": ir.MotionKind.JOINT}  # `move free`: a joint move whose path is searched (ir.FreeMotion)
+_FREE_OPTIONS = ("clearance", "samples", "budget")
+MAX_FREE_SAMPLES = 1_000_000  # policy: a search drawing more would run for hours (about 1 ms a draw)
+MAX_FREE_CLEARANCE_M = 1.0  # policy: a larger gap leaves no room in any cell rmot models
 _CONFIG = {"shoulder": ir.Shoulder, "elbow": ir.Elbow, "wrist": ir.Wrist}
 
 
@@ -552,9 +556,18 @@ class TaskLowering:
 
     def move(self, s: ast.Move, scope: Scope, modal: Modal) -> ir.Instr | None:
         config, duration, ok = ir.Config(), None, True
+        free = ir.FreeMotion() if s.kind == "free" else None
         for m in s.modifiers:
             if m.kind == "config":
                 config = self.config(m, scope) or config
+            elif m.kind in _FREE_OPTIONS:
+                free = self.free_option(m, scope, free)  # type: ignore[arg-type]
+                ok = ok and free is not None
+                free = free or ir.FreeMotion()
+            elif m.kind == "time" and s.kind == "free":
+                self.rep.error(codes.FREE_TIMED, "a 'move free' must not have a 'time' modifier (its path is found "
+                               "at plan time; use speed or joint_speed to slow it)", m.span)
+                ok = False
             elif m.kind == "time":
                 duration = self._time(m.value, scope, "move time")  # type: ignore[arg-type]
                 ok = ok and duration is not None
@@ -573,7 +586,22 @@ class TaskLowering:
                                      "joints fix the arm's configuration, there is no IK branch to choose); it is ignored", m.span)
         motion = ir.Motion(modal.tcp_speed, modal.tcp_accel, modal.joint_speed, modal.joint_accel, modal.zone, duration)
         return ir.Move(uid=0, kind=kind, target=target, via=via, motion=motion, tool=modal.tool,  # type: ignore[arg-type]
-                       frame=modal.frame, config=config, span=s.span)
+                       frame=modal.frame, config=config, free=free, span=s.span)
+
+    def free_option(self, m: ast.Setting, scope: Scope, free: ir.FreeMotion) -> ir.FreeMotion | None:
+        """`clearance D`, `samples N`, `budget T` of a `move free` (None after an error)."""
+        e: ast.Expr = m.value  # type: ignore[assignment]
+        value = eval_expr(e, scope, self.rep)
+        if m.kind == "clearance":
+            d = within(expect_quantity(value, LENGTH, "free-move clearance", e.span, self.rep),
+                       0.0, MAX_FREE_CLEARANCE_M, "free-move clearance", "mm", 1e-3, e.span, self.rep)
+            return replace(free, clearance=d) if d is not None else None
+        if m.kind == "samples":
+            n = expect_integer(value, "free-move samples", e.span, self.rep, minimum=1)
+            n = within(n, 1, MAX_FREE_SAMPLES, "free-move samples", "", 1, e.span, self.rep)  # type: ignore[assignment]
+            return replace(free, samples=int(n)) if n is not None else None
+        t = self._time(e, scope, "free-move search budget")
+        return replace(free, budget=t) if t is not None else None
 
     def config(self, m: ast.Setting, scope: Scope) -> ir.Config | None:
         values: dict[str, object] = {}
