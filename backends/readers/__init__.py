@@ -1,0 +1,91 @@
+"""Readers of vendor programs: RAPID, KRL, URScript, ... back into a neutral Document
+(`model.py`), printed as .rmot by `writer.py` and compared by `diff.py`.
+
+`read_files(paths)` picks the reader by each file's extension (`READERS`), reads every file
+and merges them into one Document; a file that is not its vendor's language raises
+`ImportError_` with a located E510, never a traceback.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
+from rmot.backends.readers.model import Document, Routine, Where
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.source import Pos, SourceFile, Span
+
+__all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of"]
+
+
+def _rapid(path: str, text: str) -> tuple[Document, Tally]:
+    from rmot.backends.readers.rapid import read_rapid
+
+    m = read_rapid(path, text)
+    main = next((r.name for r in m.routines if r.name.lower() == "main"), m.routines[0].name if m.routines else "main")
+    doc = Document("rapid", m.name, main, tuple(m.targets.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), tuple(m.routines), tuple(m.consts.items()), (m.tally.count(),),
+                   tuple(m.tally.diagnostics))
+    return doc, m.tally
+
+
+# extension (lower case) -> (vendor, reader)
+READERS: dict[str, tuple[str, Callable[[str, str], tuple[Document, Tally]]]] = {
+    ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
+}
+
+_SOURCES: dict[str, SourceFile] = {}
+
+
+def span_of(where: Where) -> Span:
+    """A span at `where` in a file read by read_files (its text shows under diagnostics)."""
+    source = _SOURCES.get(where.path) or SourceFile(where.path, "")
+    pos = Pos(where.line, where.col)
+    return Span(source, pos, pos)
+
+
+def vendor_of(path: str) -> str | None:
+    entry = READERS.get(os.path.splitext(path)[1].lower())
+    return entry[0] if entry else None
+
+
+def _fail(code: codes.Code, path: str, message: str) -> ImportError_:  # type: ignore[name-defined]
+    return ImportError_(Diagnostic(code, Severity.ERROR, message, span_of(Where(path, 1))))
+
+
+def read_files(paths: list[str]) -> Document:
+    """Read and merge the files (one vendor): the first file's main routine runs."""
+    docs: list[Document] = []
+    for path in paths:
+        entry = READERS.get(os.path.splitext(path)[1].lower())
+        if entry is None:
+            known = ", ".join(sorted(READERS))
+            raise _fail(codes.UNKNOWN_FORMAT, path, f"`rmot import` reads {known} files (got `{os.path.basename(path)}`)")
+        with open(path, "rb") as f:
+            data = f.read(MAX_BYTES + 1)
+        if len(data) > MAX_BYTES:
+            raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be at most {MAX_BYTES} bytes")
+        try:
+            text = read_text(data)
+        except ValueError as exc:
+            raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be text ({exc})") from None
+        _SOURCES[path] = SourceFile(path, text)
+        doc, _ = entry[1](path, text)
+        docs.append(doc)
+    vendors = {d.vendor for d in docs}
+    if len(vendors) > 1:
+        raise _fail(codes.DIFF_VENDORS_DIFFER, paths[-1], f"the files must be of one vendor (got {', '.join(sorted(vendors))})")
+    return _merge(docs)
+
+
+def _merge(docs: list[Document]) -> Document:
+    first = docs[0]
+    routines: list[Routine] = []
+    for d in docs:
+        routines += [r for r in d.routines if not (d is not first and r.name == d.main and r.name == first.main)]
+    return Document(first.vendor, first.name, first.main, sum((d.targets for d in docs), ()),
+                    sum((d.tools for d in docs), ()), sum((d.frames for d in docs), ()), tuple(routines),
+                    sum((d.consts for d in docs), ()), sum((d.counts for d in docs), ()),
+                    sum((d.diagnostics for d in docs), ()))
