@@ -117,6 +117,8 @@ def num_expr(text: str, names: frozenset[str] | set[str]) -> str | None:
     out: list[str] = []
     pos = 0
     text = text.strip()
+    if number(text) is not None:
+        return text
     while pos < len(text):
         m = _EXPR_TOKEN.match(text, pos)
         if m is None or m.end() == pos:

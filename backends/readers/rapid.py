@@ -411,7 +411,11 @@ class _Module:
             return (text, None, None) if text in self.pose_params else None
         m = re.fullmatch(r"(?i)(Offs|RelTool)\s*\((.*)\)", text)
         if m:
-            return self._offset(m.group(1).upper(), split_top(m.group(2)))
+            args: list[str] = []
+            for arg in split_top(m.group(2)):
+                bits = split_top(arg, "\\")
+                args += [bits[0]] + ["\\" + b for b in bits[1:]]
+            return self._offset(m.group(1).upper(), args)
         lit = literal(text)
         pose = _pose(lit)
         if pose is not None:

@@ -27,11 +27,10 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str] | str
     """(SignalMap, robot name) of a cell file, or the error text."""
     from rmot.backends.readers.writer import SignalMap
     from rmot.compiler import ir
-    from rmot.compiler.frontend import load_text
+    from rmot.compiler.frontend import load_program
     from rmot.lang.diagnostics import render_all
 
-    result = load_text("program import_probe { }", os.path.join(os.path.dirname(os.path.abspath(cell_path)), "x.rmot"),
-                       cell=cell_path)
+    result = load_program(cell_path)
     if result.cell is None or any(d.is_error for d in result.diagnostics):
         return render_all([d for d in result.diagnostics if d.is_error]) or f"rmot: {cell_path}: not a cell"
     names = [r.name for r in result.cell.robots]
