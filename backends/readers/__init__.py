@@ -17,7 +17,7 @@ from rmot.backends.readers.model import Document, Routine, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
-__all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of"]
+__all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "companions"]
 
 
 def _rapid(path: str, text: str) -> tuple[Document, Tally]:
@@ -89,3 +89,13 @@ def _merge(docs: list[Document]) -> Document:
                     sum((d.tools for d in docs), ()), sum((d.frames for d in docs), ()), tuple(routines),
                     sum((d.consts for d in docs), ()), sum((d.counts for d in docs), ()),
                     sum((d.diagnostics for d in docs), ()))
+
+
+def companions(path: str) -> list[str]:
+    """The files that make one program with `path`: a KRL `.src` and its `.dat`."""
+    stem, ext = os.path.splitext(path)
+    if ext.lower() == ".src":
+        for dat in (stem + ".dat", stem + ".DAT"):
+            if os.path.exists(dat):
+                return [path, dat]
+    return [path]
