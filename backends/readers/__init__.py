@@ -20,7 +20,7 @@ from rmot.lang.source import Pos, SourceFile, Span
 __all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "companions"]
 
 
-def _rapid(path: str, text: str) -> tuple[Document, Tally]:
+def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.rapid import read_rapid
 
     m = read_rapid(path, text)
@@ -31,9 +31,27 @@ def _rapid(path: str, text: str) -> tuple[Document, Tally]:
     return doc, m.tally
 
 
+def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.krl import read_krl
+
+    if path.lower().endswith(".dat"):
+        raise ImportError_(Diagnostic(codes.NOT_VENDOR_LANGUAGE, Severity.ERROR,
+                                      "a KRL .dat is read with its .src (give the .src, or both)",
+                                      span_of(Where(path, 1))))
+    m = read_krl((path, text), companion)
+    main = next((r.name for r in m.routines if r.name.upper() == m.name.upper()), m.name)
+    targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
+    doc = Document("krl", m.name, main, targets, tuple(m.tools.values()),
+                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics))
+    return doc, m.tally
+
+
+Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"]
+
 # extension (lower case) -> (vendor, reader)
-READERS: dict[str, tuple[str, Callable[[str, str], tuple[Document, Tally]]]] = {
+READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
+    ".src": ("krl", _krl), ".dat": ("krl", _krl),
 }
 
 _SOURCES: dict[str, SourceFile] = {}
@@ -55,24 +73,40 @@ def _fail(code: codes.Code, path: str, message: str) -> ImportError_:  # type: i
     return ImportError_(Diagnostic(code, Severity.ERROR, message, span_of(Where(path, 1))))
 
 
+def _load(path: str) -> str:
+    with open(path, "rb") as f:
+        data = f.read(MAX_BYTES + 1)
+    if len(data) > MAX_BYTES:
+        raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be at most {MAX_BYTES} bytes")
+    try:
+        text = read_text(data)
+    except ValueError as exc:
+        raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be text ({exc})") from None
+    _SOURCES[path] = SourceFile(path, text)
+    return text
+
+
 def read_files(paths: list[str]) -> Document:
-    """Read and merge the files (one vendor): the first file's main routine runs."""
+    """Read and merge the files (one vendor): the first file's main routine runs. A KRL .src
+    reads its .dat (given too, or beside it)."""
     docs: list[Document] = []
+    consumed = set()
     for path in paths:
+        if path in consumed:
+            continue
         entry = READERS.get(os.path.splitext(path)[1].lower())
         if entry is None:
             known = ", ".join(sorted(READERS))
             raise _fail(codes.UNKNOWN_FORMAT, path, f"`rmot import` reads {known} files (got `{os.path.basename(path)}`)")
-        with open(path, "rb") as f:
-            data = f.read(MAX_BYTES + 1)
-        if len(data) > MAX_BYTES:
-            raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be at most {MAX_BYTES} bytes")
-        try:
-            text = read_text(data)
-        except ValueError as exc:
-            raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be text ({exc})") from None
-        _SOURCES[path] = SourceFile(path, text)
-        doc, _ = entry[1](path, text)
+        companion = None
+        if entry[0] == "krl" and path.lower().endswith(".src"):
+            stem = os.path.splitext(path)[0]
+            dat = next((p for p in paths if os.path.splitext(p)[0] == stem and p.lower().endswith(".dat")), None)
+            dat = dat or next((c for c in companions(path)[1:]), None)
+            if dat is not None:
+                consumed.add(dat)
+                companion = (dat, _load(dat))
+        doc, _ = entry[1](path, _load(path), companion)
         docs.append(doc)
     vendors = {d.vendor for d in docs}
     if len(vendors) > 1:

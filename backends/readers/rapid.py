@@ -446,7 +446,7 @@ class _Module:
 def pose_expr(pose: ir.Pose) -> str:
     """An rmot pose literal: mm and the exact quaternion."""
     x, y, z = (round(v * 1000, 6) for v in pose.position)
-    q = ", ".join(f"{v:.9g}" for v in pose.quaternion)
+    q = ", ".join(f"{round(v, 10) + 0.0:.10g}" for v in pose.quaternion)
     return f"pose(x={x:g}mm, y={y:g}mm, z={z:g}mm, q=({q}))"
 
 

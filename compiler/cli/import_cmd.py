@@ -45,7 +45,7 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str] | str
     return SignalMap(*(tuple(t) for t in tables)), chosen
 
 
-@click.command(name="import", help="Read RAPID vendor programs back into a .rmot program.")
+@click.command(name="import", help="Read RAPID (.mod, .modx, .prg) or KRL (.src with its .dat) programs back into a .rmot program.")
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False, exists=True))
 @click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False), help="The .rmot file to write.")
 @click.option("--robot", default=None, help="With --cell: the cell's robot; without: the library arm of the stub cell.")
