@@ -46,12 +46,23 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
     return doc, m.tally
 
 
+def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.urscript import read_urscript
+
+    m = read_urscript(path, text, _MODEL[0])
+    doc = Document("urscript", m.name, m.main, tuple(m.targets.values()), tuple(m.tools.values()), (),
+                   tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics))
+    return doc, m.tally
+
+
+_MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
+
 Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"]
 
 # extension (lower case) -> (vendor, reader)
 READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
-    ".src": ("krl", _krl), ".dat": ("krl", _krl),
+    ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
 }
 
 _SOURCES: dict[str, SourceFile] = {}
@@ -86,9 +97,11 @@ def _load(path: str) -> str:
     return text
 
 
-def read_files(paths: list[str]) -> Document:
+def read_files(paths: list[str], model: str | None = None) -> Document:
     """Read and merge the files (one vendor): the first file's main routine runs. A KRL .src
-    reads its .dat (given too, or beside it)."""
+    reads its .dat (given too, or beside it). `model`: the robot library name the program runs
+    on, where a vendor writes speeds relative to the arm (URScript movej)."""
+    _MODEL[0] = model
     docs: list[Document] = []
     consumed = set()
     for path in paths:

@@ -26,7 +26,7 @@ from rmot.backends.readers.model import (
     Call, Cond, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
 )
-from rmot.backends.readers.rapid import mm, pose_expr
+from rmot.backends.readers.rapid import mm, num_text, pose_expr
 from rmot.compiler import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
@@ -64,6 +64,8 @@ class _State:
     def __init__(self) -> None:
         self.vel_cp = DEFAULT_VEL_CP
         self.vel_ptp = 100.0
+        self.acc_cp: float | None = None  # mm/s^2; None = 2 m/s^2, rmot's default
+        self.acc_ptp: float | None = None  # %; None = 100 %
         self.cdis: float | None = None
         self.cptp: float | None = None
         self.tool: str | None = None
@@ -244,9 +246,15 @@ class _Krl:
             else:
                 st.cptp = value
             return True
-        m = re.fullmatch(r"(?i)RMOT_PTP\s*\(\s*([\d.]+)\s*,\s*[\d.]+\s*\)|BAS\s*\(\s*#VEL_PTP\s*,\s*([\d.]+)\s*\)", text)
+        m = re.fullmatch(r"(?i)RMOT_PTP\s*\(\s*([\d.]+)\s*,\s*([\d.]+)\s*\)|BAS\s*\(\s*#VEL_PTP\s*,\s*([\d.]+)\s*\)", text)
         if m:
-            st.vel_ptp = float(m.group(1) or m.group(2))
+            st.vel_ptp = float(m.group(1) or m.group(3))
+            if m.group(2):
+                st.acc_ptp = None if float(m.group(2)) == 100.0 else float(m.group(2))
+            return True
+        m = re.fullmatch(r"(?i)\$ACC\.CP\s*=\s*([\d.]+)", text)
+        if m:
+            st.acc_cp = None if float(m.group(1)) == 2.0 else float(m.group(1)) * 1000.0
             return True
         m = re.fullmatch(r"(?i)BAS\s*\(\s*#VEL_CP\s*,\s*([\d.]+)\s*\)", text)
         if m:
@@ -255,7 +263,7 @@ class _Krl:
         m = re.fullmatch(r"(?i)\$(TOOL|BASE)\s*=\s*(\$NULLFRAME|\w+)", text)
         if m:
             return self._tool_base(m.group(1).upper(), m.group(2))
-        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+|\$ACC\.CP\s*=\s*2(\.0*)?", text) is not None
+        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
 
     def _tool_base(self, which: str, name: str) -> bool:
         key = name.upper()
@@ -352,7 +360,7 @@ class _Krl:
                 return (pose_expr(pose), None, Target("", pose, None, branch, Where("", 0)))
             joints = [agg.get(f"A{i}") for i in range(1, 7)]
             if all(isinstance(j, float) for j in joints):
-                expr = f"joints({', '.join(f'{j:g}' for j in joints)}) deg"  # type: ignore[str-format]
+                expr = f"joints({', '.join(num_text(j) for j in joints)}) deg"  # type: ignore[arg-type]
                 return (expr, None, Target("", None, tuple(joints), None, Where("", 0)))  # type: ignore[arg-type]
         return None
 
@@ -379,7 +387,8 @@ class _Krl:
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=st.vel_cp if kind != "joint" else None, joint_pct=st.vel_ptp if kind == "joint" else None,
                     zone=zone, tool=st.tool, frame=st.frame, config=config,
-                    pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None)
+                    pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None,
+                    accel=st.acc_cp if kind != "joint" else None, joint_accel=st.acc_ptp if kind == "joint" else None)
 
     def _fold(self, i: int) -> tuple[list[Stmt], int]:
         """An inline form: a motion read from its header (its statements skipped), anything

@@ -80,6 +80,8 @@ class Move:
     config: ir.Config | None = None
     pose: ir.Pose | None = None  # the resolved target where known (for diff)
     joints: tuple[float, ...] | None = None
+    accel: float | None = None  # mm/s^2, linear and circular moves; None = the controller's own
+    joint_accel: float | None = None  # % of each joint's max acceleration, joint moves
 
 
 @record(slots=True)

@@ -25,7 +25,7 @@ from rmot.backends.readers.model import (
 from rmot.backends.readers.rapid_text import Statement, literal, statements
 from rmot.compiler import ir
 
-__all__ = ["read_rapid", "branch_of_cfx"]
+__all__ = ["read_rapid", "branch_of_cfx", "pose_expr", "num_text", "mm"]
 
 PULSE_DEFAULT_S = 0.2  # PulseDO without \PLength: 0.2 s (RAPID Instructions, PulseDO)
 _PARAM_TYPES = {"robtarget": "pose", "jointtarget": "joints", "num": "number", "bool": "bool"}
@@ -445,9 +445,14 @@ class _Module:
 
 def pose_expr(pose: ir.Pose) -> str:
     """An rmot pose literal: mm and the exact quaternion."""
-    x, y, z = (round(v * 1000, 6) for v in pose.position)
-    q = ", ".join(f"{round(v, 10) + 0.0:.10g}" for v in pose.quaternion)
-    return f"pose(x={x:g}mm, y={y:g}mm, z={z:g}mm, q=({q}))"
+    x, y, z = (num_text(v * 1000, 6) for v in pose.position)
+    q = ", ".join(num_text(v, 10) for v in pose.quaternion)
+    return f"pose(x={x}mm, y={y}mm, z={z}mm, q=({q}))"
+
+
+def num_text(value: float, decimals: int = 9) -> str:
+    """A number rounded to `decimals` places, shortest form, never `-0` (deterministic text)."""
+    return f"{round(value, decimals) + 0.0:.15g}"
 
 
 def _cond(text: str) -> Cond | None:

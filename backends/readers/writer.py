@@ -16,13 +16,13 @@ from rmot.backends.readers.model import (
     Call, Cond, Document, FileCount, For, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While,
 )
-from rmot.backends.readers.rapid import pose_expr
+from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.compiler import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
-__all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals"]
+__all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools"]
 
 INDENT = "  "
 
@@ -117,8 +117,44 @@ def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where]
                     counts, doc.diagnostics + tuple(diags))
 
 
+def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:
+    """Equal to what the vendors print: 1 um and 1e-6 in each quaternion component (up to sign)."""
+    near = all(abs(x - y) < 1e-6 for x, y in zip(a.position, b.position))
+    dot = abs(sum(x * y for x, y in zip(a.quaternion, b.quaternion)))
+    return near and dot > 1 - 1e-9
+
+
+def match_tools(doc: Document, cell_tools: tuple[tuple[str, ir.Pose], ...]) -> Document:
+    """A vendor that selects tools by TCP value only (URScript set_tcp): name each tool after the
+    cell's tool with the same TCP, where there is one."""
+    names = {}
+    for t in doc.tools:
+        match = next((name for name, tcp in cell_tools if _same_pose(tcp, t.tcp)), None)
+        if match is not None and t.name != match:
+            names[t.name] = match
+
+    def fix(body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
+        out: list[Stmt] = []
+        for s in body:
+            if isinstance(s, Move) and s.tool in names:
+                s = Move(**{**{f: getattr(s, f) for f in Move.__dataclass_fields__}, "tool": names[s.tool]})
+            elif isinstance(s, If):
+                s = If(s.cond, fix(s.then), fix(s.orelse), s.where)
+            elif isinstance(s, (While, For)):
+                s = type(s)(*[fix(getattr(s, f)) if f == "body" else getattr(s, f) for f in s.__dataclass_fields__])
+            out.append(s)
+        return tuple(out)
+
+    if not names:
+        return doc
+    routines = tuple(type(r)(r.name, r.params, fix(r.body), r.where) for r in doc.routines)
+    tools = tuple(t for t in doc.tools if t.name not in names)
+    return Document(doc.vendor, doc.name, doc.main, doc.targets, tools, doc.frames, routines, doc.consts,
+                    doc.counts, doc.diagnostics)
+
+
 def _num(v: float) -> str:
-    return f"{round(v, 9):g}" if abs(v) < 1e15 else repr(v)
+    return num_text(v)
 
 
 def _quote(text: str) -> str:
@@ -194,6 +230,10 @@ class _Printer:
             mods.append(f"speed {_num(m.speed)} mm/s")
         if m.joint_pct is not None:
             mods.append(f"speed {_num(m.joint_pct)} %")
+        if m.accel is not None:
+            mods.append(f"accel {_num(m.accel)} mm/s^2")
+        if m.joint_accel is not None:
+            mods.append(f"accel {_num(m.joint_accel)} %")
         if m.time is not None:
             mods.append(f"time {_num(m.time)} s")
         mods.append("zone fine" if m.zone is None or m.zone == 0 else f"zone {_num(m.zone)} mm")

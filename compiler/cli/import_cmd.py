@@ -23,8 +23,8 @@ DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "u
                   "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8"}
 
 
-def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str] | str:
-    """(SignalMap, robot name) of a cell file, or the error text."""
+def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object] | str:
+    """(SignalMap, robot name, ir.Cell) of a cell file, or the error text."""
     from rmot.backends.readers.writer import SignalMap
     from rmot.compiler import ir
     from rmot.compiler.frontend import load_program
@@ -42,10 +42,10 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str] | str
     for s in result.cell.io:
         if s.direction in kinds and s.robot in (None, chosen):
             tables[kinds[s.direction]].append((s.name.upper(), s.port))
-    return SignalMap(*(tuple(t) for t in tables)), chosen
+    return SignalMap(*(tuple(t) for t in tables)), chosen, result.cell
 
 
-@click.command(name="import", help="Read RAPID (.mod, .modx, .prg) or KRL (.src with its .dat) programs back into a .rmot program.")
+@click.command(name="import", help="Read RAPID (.mod, .modx, .prg), KRL (.src with its .dat) or URScript (.script) programs back into .rmot.")
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False, exists=True))
 @click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False), help="The .rmot file to write.")
 @click.option("--robot", default=None, help="With --cell: the cell's robot; without: the library arm of the stub cell.")
@@ -53,30 +53,40 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str] | str
               help="Run the imported program in this cell (else a stub cell is written beside OUT).")
 def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None) -> None:
     from rmot.backends.readers import ImportError_, read_files, span_of
-    from rmot.backends.readers.writer import SignalMap, cell_stub, program_text, resolve_signals, stub_signals
+    from rmot.backends.readers.writer import (
+        SignalMap, cell_stub, match_tools, program_text, resolve_signals, stub_signals,
+    )
+    from rmot.compiler import ir
     from rmot.compiler.atomic import write_text
     from rmot.lang.diagnostics import render
 
+    found = _cell_signals(cell, robot) if cell is not None else None
+    if isinstance(found, str):
+        click.echo(found, err=True)
+        sys.exit(EXIT_INPUT)
+    model = robot
+    if found is not None:
+        cell_ir = found[2]
+        assert isinstance(cell_ir, ir.Cell)
+        model = cell_ir.robot(found[1]).source.ref
     try:
-        doc = read_files(list(files))
+        doc = read_files(list(files), model=model)
     except ImportError_ as exc:
         click.echo(render(exc.diagnostic), err=True)
         sys.exit(EXIT_INPUT)
     out_dir = os.path.dirname(os.path.abspath(output))
-    if cell is not None:
-        found = _cell_signals(cell, robot)
-        if isinstance(found, str):
-            click.echo(found, err=True)
-            sys.exit(EXIT_INPUT)
-        signals, robot_name = found
-        assert isinstance(signals, SignalMap)
+    if cell is not None and found is not None:
+        signals, robot_name, cell_ir = found
+        assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
         doc = resolve_signals(doc, signals, span_of)
+        doc = match_tools(doc, tuple((t.name, t.tcp) for t in cell_ir.tools if t.robot == robot_name))
         use = os.path.relpath(os.path.abspath(cell), out_dir)
     else:
         signals, robot_name = stub_signals(doc), "r1"
+        robot = robot or DEFAULT_MODELS[doc.vendor]
         stem = os.path.splitext(os.path.basename(output))[0]
         use = f"{stem}_cell.rmot"
-        write_text(os.path.join(out_dir, use), cell_stub(doc, signals, robot or DEFAULT_MODELS[doc.vendor]))
+        write_text(os.path.join(out_dir, use), cell_stub(doc, signals, robot))
     for d in doc.diagnostics:
         click.echo(render(d), err=True)
     write_text(output, program_text(doc, signals, robot_name, use))
