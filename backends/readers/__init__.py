@@ -27,7 +27,7 @@ def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
     main = next((r.name for r in m.routines if r.name.lower() == "main"), m.routines[0].name if m.routines else "main")
     doc = Document("rapid", m.name, main, tuple(m.targets.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), tuple(m.routines), tuple(m.consts.items()), (m.tally.count(),),
-                   tuple(m.tally.diagnostics))
+                   tuple(m.tally.diagnostics), tuple(m.tally.comments))
     return doc, m.tally
 
 
@@ -42,7 +42,8 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
     main = next((r.name for r in m.routines if r.name.upper() == m.name.upper()), m.name)
     targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
     doc = Document("krl", m.name, main, targets, tuple(m.tools.values()),
-                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics))
+                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
     return doc, m.tally
 
 
@@ -51,7 +52,7 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 
     m = read_urscript(path, text, _MODEL[0])
     doc = Document("urscript", m.name, m.main, tuple(m.targets.values()), tuple(m.tools.values()), (),
-                   tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics))
+                   tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics), tuple(m.tally.comments))
     return doc, m.tally
 
 
@@ -63,6 +64,7 @@ Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"
 READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
     ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
+    ".urscript": ("urscript", _urscript),
 }
 
 _SOURCES: dict[str, SourceFile] = {}
@@ -135,7 +137,7 @@ def _merge(docs: list[Document]) -> Document:
     return Document(first.vendor, first.name, first.main, sum((d.targets for d in docs), ()),
                     sum((d.tools for d in docs), ()), sum((d.frames for d in docs), ()), tuple(routines),
                     sum((d.consts for d in docs), ()), sum((d.counts for d in docs), ()),
-                    sum((d.diagnostics for d in docs), ()))
+                    sum((d.diagnostics for d in docs), ()), sum((d.kept for d in docs), ()))
 
 
 def companions(path: str) -> list[str]:

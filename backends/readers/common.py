@@ -47,6 +47,7 @@ class Tally:
         self.diagnostics: list[Diagnostic] = []
         self.imported = 0
         self.native = 0
+        self.comments: list[Native] = []  # declarations and routines kept as a comment block
 
     def span(self, where: Where) -> Span:
         pos = Pos(where.line, where.col)
@@ -63,6 +64,11 @@ class Tally:
         self.native += 1
         self.warn(codes.KEPT_NATIVE, f"{why}; kept as `native {self.vendor}`: {text.strip()[:60]}", where)
         return Native(self.vendor, text.strip(), where)
+
+    def comment(self, text: str, where: Where) -> None:
+        """A line with no rmot form outside any routine: kept in the comment block (counted native)."""
+        self.native += 1
+        self.comments.append(Native(self.vendor, text.strip(), where))
 
     def count(self) -> FileCount:
         return FileCount(self.path, self.imported, self.native)

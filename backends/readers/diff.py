@@ -13,7 +13,7 @@ import math
 from difflib import SequenceMatcher
 
 from rmot.backends.readers.model import (
-    Call, Document, For, If, Move, Native, Pulse, SetOut, Stmt, Stop, Target, Wait, WaitIn, While,
+    Call, Document, For, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While,
 )
 from rmot.compiler import ir
 

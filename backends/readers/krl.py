@@ -144,8 +144,11 @@ class _Krl:
         self.tally.warn(codes.DECLARATION_KEPT, "a KRL function (DEFFCT) has no rmot form: kept as a comment",
                         self.lines[i].where)
         while i < len(self.lines) and self.lines[i].word != "ENDFCT":
-            self.tally.native += bool(self.lines[i].text)
+            if self.lines[i].text:
+                self.tally.comment(self.lines[i].text, self.lines[i].where)
             i += 1
+        if i < len(self.lines):
+            self.tally.comment(self.lines[i].text, self.lines[i].where)
         return i + 1
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:

@@ -199,3 +199,4 @@ class Document:
     consts: tuple[tuple[str, float], ...]
     counts: tuple[FileCount, ...]
     diagnostics: tuple[Diagnostic, ...]
+    kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments

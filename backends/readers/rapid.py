@@ -49,13 +49,15 @@ def _pose(lit: object) -> ir.Pose | None:
     xyz, q = lit[0], lit[1]
     if len(xyz) != 3 or len(q) != 4 or not all(isinstance(v, float) for v in xyz + q):
         return None
-    norm = sum(v * v for v in q) ** 0.5  # type: ignore[operator]
+    qf = [float(v) for v in q]  # type: ignore[arg-type]
+    norm = sum(v * v for v in qf) ** 0.5
     if norm < 1e-9:
         return None
-    w, x, y, z = (v / norm for v in q)  # type: ignore[operator]
+    w, x, y, z = (v / norm for v in qf)
     if w < 0:
         w, x, y, z = -w, -x, -y, -z
-    return ir.Pose((xyz[0] / 1000, xyz[1] / 1000, xyz[2] / 1000), (w, x, y, z))  # type: ignore[operator]
+    px, py, pz = (float(v) / 1000 for v in xyz)  # type: ignore[arg-type]
+    return ir.Pose((px, py, pz), (w, x, y, z))
 
 
 def mm(expr: str) -> str:
@@ -113,14 +115,14 @@ class _Module:
         if m is None:
             self.tally.warn(codes.DECLARATION_KEPT, f"not a RAPID data declaration rmot reads: {st.text[:60]}",
                             st.where)
-            self.tally.native += 1
+            self.tally.comment(st.text + ";", st.where)
             return
         _, type_, name, dims, value = m.groups()
         lit = literal(value) if value and not dims else None
         if not self._data(type_.lower(), name, lit, st.where):
             self.tally.warn(codes.DECLARATION_KEPT, f"{type_} {name} has no rmot form here: kept as a comment",
                             st.where)
-            self.tally.native += 1
+            self.tally.comment(st.text + ";", st.where)
         else:
             self.tally.imported += 1
 
@@ -137,7 +139,7 @@ class _Module:
             if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
                     and all(isinstance(v, float) for v in lit[0])):
                 return False
-            self.targets[name.upper()] = Target(name, None, tuple(lit[0]), None, where)  # type: ignore[arg-type]
+            self.targets[name.upper()] = Target(name, None, tuple(float(v) for v in lit[0]), None, where)  # type: ignore[arg-type]
         elif type_ == "tooldata":
             return self._tool(name, lit, where)
         elif type_ == "wobjdata":
@@ -174,13 +176,16 @@ class _Module:
 
     def _skip_routine(self, i: int) -> int:
         """FUNC and TRAP routines: kept as comments (rmot has neither functions nor interrupts)."""
-        start = self.stmts[i]
+        start, start_i = self.stmts[i], i
         end = "END" + start.text.split()[0 if start.word != "LOCAL" else 1].upper()
-        self.tally.warn(codes.DECLARATION_KEPT, f"{start.text[:40]} has no rmot form (a function or "
-                        "interrupt routine): kept as a comment", start.where)
+        self.tally.warn(codes.DECLARATION_KEPT, f"{start.text[:40]} has no rmot form (a function, an "
+                        "interrupt routine or a parameter rmot has no type for): kept as a comment", start.where)
         while i < len(self.stmts) and self.stmts[i].word != end:
-            self.tally.native += 1
+            st = self.stmts[i]
+            self.tally.comment(st.text if _no_semicolon(st.text) or i == start_i else st.text + ";", st.where)
             i += 1
+        if i < len(self.stmts):
+            self.tally.comment(self.stmts[i].text, self.stmts[i].where)
         return i + 1
 
     # ---------------------------------------------------------------- routines
@@ -190,7 +195,10 @@ class _Module:
         m = re.match(r"(?i)^(?:LOCAL\s+)?PROC\s+(\w+)\s*\((.*)\)\s*$", st.text)
         if m is None:
             raise self.tally.fail(f"a PROC header must be `PROC name(params)` (got `{st.text[:40]}`)", st.where)
-        params = self._params(m.group(2), st.where)
+        params = self._params(m.group(2))
+        if params is None:
+            del self.proc_names[m.group(1).upper()]
+            return self._skip_routine(i)
         saved = set(self.names)
         self.names |= {p for p, t in params if t == "number"}
         self.pose_params = {p for p, t in params if t in ("pose", "joints")}
@@ -199,14 +207,16 @@ class _Module:
         self.routines.append(Routine(m.group(1), tuple(params), tuple(body), st.where))
         return i + 1
 
-    def _params(self, text: str, where: Where) -> list[tuple[str, str]]:
+    @staticmethod
+    def _params(text: str) -> list[tuple[str, str]] | None:
+        """(name, rmot type) of each parameter; None when one has no rmot type (num, bool,
+        robtarget, jointtarget are read; optional, INOUT and other types are not)."""
         out = []
         for p in split_top(text.replace("|", ","), ",") if text.strip() else []:
-            words = p.replace("\\", " ").split()
-            if len(words) >= 2 and words[-2].lower() in _PARAM_TYPES and not p.startswith("\\"):
-                out.append((words[-1], _PARAM_TYPES[words[-2].lower()]))
-            else:
-                raise self.tally.fail(f"parameter `{p}` has no rmot type", where)
+            words = p.split()
+            if len(words) != 2 or words[0].lower() not in _PARAM_TYPES:
+                return None
+            out.append((words[1], _PARAM_TYPES[words[0].lower()]))
         return out
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:

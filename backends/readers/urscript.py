@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, split_top
 from rmot.backends.readers.model import (
     Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Iterator
+from dataclasses import replace
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.model import (
@@ -40,7 +41,7 @@ class SignalMap:
             return signal
         table = dict(getattr(self, kind))
         if signal.upper() in table:
-            return table[signal.upper()]
+            return int(table[signal.upper()])
         prefix = {"outputs": "DO", "inputs": "DI", "analog": "AO"}[kind]
         m = re.fullmatch(prefix + r"_?(\d+)", signal.upper())  # rmot's own generic names (do1, di2)
         return int(m.group(1)) if m else None
@@ -85,36 +86,48 @@ def stub_signals(doc: Document) -> SignalMap:
     return SignalMap(*(tuple(named[k].items()) for k in ("outputs", "inputs", "analog")))
 
 
+def map_leaves(body: tuple[Stmt, ...], fn: Callable[[Stmt], Stmt]) -> tuple[Stmt, ...]:
+    """`body` with `fn` applied to every instruction that is not a block, at every depth (a
+    block whose condition `fn` replaces is replaced whole)."""
+    out: list[Stmt] = []
+    for s in body:
+        if isinstance(s, If) and fn(s) is s:
+            s = replace(s, then=map_leaves(s.then, fn), orelse=map_leaves(s.orelse, fn))
+        elif isinstance(s, (While, For)) and fn(s) is s:
+            s = replace(s, body=map_leaves(s.body, fn))
+        else:
+            s = fn(s)
+        out.append(s)
+    return tuple(out)
+
+
+def _with_routines(doc: Document, fn: Callable[[Stmt], Stmt], **changes: object) -> Document:
+    routines = tuple(replace(r, body=map_leaves(r.body, fn)) for r in doc.routines)
+    return replace(doc, routines=routines, **changes)  # type: ignore[arg-type]
+
+
 def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where], Span]) -> Document:
     """Every named signal the cell does not declare: its instruction is kept native (W513)."""
     diags: list[Diagnostic] = []
     moved: dict[str, int] = {}
 
-    def fix(body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
-        out: list[Stmt] = []
-        for s in body:
-            missing = [sig for kind, sig in _signal_uses(s) if signals.port(kind, sig) is None]
-            if missing and not isinstance(s, (If, While)):
-                w = s.where  # type: ignore[union-attr]
-                diags.append(Diagnostic(codes.SIGNAL_UNKNOWN, Severity.WARNING,
-                                        f"signal `{missing[0]}` is not declared in the cell: kept native", span_of(w)))
-                moved[w.path] = moved.get(w.path, 0) + 1
-                out.append(Native(doc.vendor, f"! signal {missing[0]} unknown at {w}", w))
-                continue
-            if isinstance(s, If):
-                s = If(s.cond, fix(s.then), fix(s.orelse), s.where)
-            elif isinstance(s, While):
-                s = While(s.cond, fix(s.body), s.where)
-            elif isinstance(s, For):
-                s = For(s.var, s.first, s.stop, fix(s.body), s.where)
-            out.append(s)
-        return tuple(out)
+    def fix(s: Stmt) -> Stmt:
+        missing = [sig for kind, sig in _signal_uses(s) if signals.port(kind, sig) is None]
+        if not missing:
+            return s
+        w = s.where
+        span = span_of(w)
+        diags.append(Diagnostic(codes.SIGNAL_UNKNOWN, Severity.WARNING,
+                                f"signal `{missing[0]}` must be declared in the cell (it is not): kept native", span))
+        last = max([w.line] + [x.where.line + 1 for x in _walk((s,)) if x is not s])
+        text = "\n".join(span.file.line_text(n).strip() for n in range(w.line, last + 1))
+        moved[w.path] = moved.get(w.path, 0) + 1
+        return Native(doc.vendor, text or f"signal {missing[0]}", w)
 
-    routines = tuple(type(r)(r.name, r.params, fix(r.body), r.where) for r in doc.routines)
+    fixed = _with_routines(doc, fix)
     counts = tuple(FileCount(c.path, c.imported - moved.get(c.path, 0), c.native + moved.get(c.path, 0))
                    for c in doc.counts)
-    return Document(doc.vendor, doc.name, doc.main, doc.targets, doc.tools, doc.frames, routines, doc.consts,
-                    counts, doc.diagnostics + tuple(diags))
+    return replace(fixed, counts=counts, diagnostics=doc.diagnostics + tuple(diags))
 
 
 def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:
@@ -132,25 +145,13 @@ def match_tools(doc: Document, cell_tools: tuple[tuple[str, ir.Pose], ...]) -> D
         match = next((name for name, tcp in cell_tools if _same_pose(tcp, t.tcp)), None)
         if match is not None and t.name != match:
             names[t.name] = match
-
-    def fix(body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
-        out: list[Stmt] = []
-        for s in body:
-            if isinstance(s, Move) and s.tool in names:
-                s = Move(**{**{f: getattr(s, f) for f in Move.__dataclass_fields__}, "tool": names[s.tool]})
-            elif isinstance(s, If):
-                s = If(s.cond, fix(s.then), fix(s.orelse), s.where)
-            elif isinstance(s, (While, For)):
-                s = type(s)(*[fix(getattr(s, f)) if f == "body" else getattr(s, f) for f in s.__dataclass_fields__])
-            out.append(s)
-        return tuple(out)
-
     if not names:
         return doc
-    routines = tuple(type(r)(r.name, r.params, fix(r.body), r.where) for r in doc.routines)
-    tools = tuple(t for t in doc.tools if t.name not in names)
-    return Document(doc.vendor, doc.name, doc.main, doc.targets, tools, doc.frames, routines, doc.consts,
-                    doc.counts, doc.diagnostics)
+
+    def fix(s: Stmt) -> Stmt:
+        return replace(s, tool=names[s.tool]) if isinstance(s, Move) and s.tool in names else s
+
+    return _with_routines(doc, fix, tools=tuple(t for t in doc.tools if t.name not in names))
 
 
 def _num(v: float) -> str:
@@ -190,7 +191,8 @@ class _Printer:
             timeout = f" timeout {_num(s.timeout)} s" if s.timeout is not None else ""
             self.emit(depth, f"wait until {self.cond(s.cond)}{timeout}")
         elif isinstance(s, Native):
-            self.emit(depth, f"native {s.vendor} {_quote(s.text)}   # {s.where}")
+            for n, line in enumerate(s.text.split("\n")):
+                self.emit(depth, f"native {s.vendor} {_quote(line)}   # {replace(s.where, line=s.where.line + n, col=1) if n else s.where}")
         elif isinstance(s, Stop):
             self.emit(depth, "stop")
         elif isinstance(s, Call):
@@ -274,6 +276,11 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
     if main is not None:
         p.body(main.body, 1, {})
     p.emit(0, "}")
+    if doc.kept:
+        p.emit(0, "")
+        p.emit(0, "# kept from the vendor files (declarations and routines with no rmot form):")
+        for k in doc.kept:
+            p.emit(0, f"#   {k.where}: {k.text}")
     return "\n".join(p.lines) + "\n"
 
 

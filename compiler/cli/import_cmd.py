@@ -53,6 +53,7 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, objec
               help="Run the imported program in this cell (else a stub cell is written beside OUT).")
 def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None) -> None:
     from rmot.backends.readers import ImportError_, read_files, span_of
+    from rmot.backends.readers.counts import motion_io_counts
     from rmot.backends.readers.writer import (
         SignalMap, cell_stub, match_tools, program_text, resolve_signals, stub_signals,
     )
@@ -90,9 +91,13 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     for d in doc.diagnostics:
         click.echo(render(d), err=True)
     write_text(output, program_text(doc, signals, robot_name, use))
+    motion_io = motion_io_counts(doc)
     for c in doc.counts:
         total = c.imported + c.native
         share = 100.0 * c.imported / total if total else 100.0
-        click.echo(f"{c.path}: {c.imported} imported, {c.native} kept native ({share:.1f} % imported)")
+        moved, kept = motion_io.get(c.path, (0, 0))
+        io_share = 100.0 * moved / (moved + kept) if moved + kept else 100.0
+        click.echo(f"{c.path}: {c.imported} imported, {c.native} kept native ({share:.1f} % imported); "
+                   f"motion and I/O: {moved} imported, {kept} kept native ({io_share:.1f} %)")
     click.echo(f"wrote {output}")
     sys.exit(EXIT_OK)
