@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from itertools import product
 
 from rmot.backends.krl import KrlBackend, status_of
@@ -45,12 +46,13 @@ def branch_of_status(s: int) -> ir.Config:
     raise AssertionError("status_of covers 0..7")
 
 
-def krl_pose(agg: dict[str, object]) -> ir.Pose | None:
+def krl_pose(agg: Mapping[str, object]) -> ir.Pose | None:
     """X Y Z (mm) A B C (deg) of an aggregate as an ir.Pose, None if a component is missing."""
     values = [agg.get(k) for k in ("X", "Y", "Z", "A", "B", "C")]
-    if not all(isinstance(v, float) for v in values):
+    floats = [v for v in values if isinstance(v, float)]
+    if len(floats) != 6:
         return None
-    x, y, z, a, b, c = values  # type: ignore[misc]
+    x, y, z, a, b, c = floats
     pose = ir.Pose.from_xyz_rpy(x / 1000, y / 1000, z / 1000, math.radians(c), math.radians(b), math.radians(a))
     # cos(90 deg) is 6e-17 in floating point: a component below 1e-12 (far below the 1e-4 deg
     # KRL prints) is zero, so C 180 reads as the exact half turn rmot wrote

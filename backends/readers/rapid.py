@@ -49,14 +49,14 @@ def _pose(lit: object) -> ir.Pose | None:
     xyz, q = lit[0], lit[1]
     if len(xyz) != 3 or len(q) != 4 or not all(isinstance(v, float) for v in xyz + q):
         return None
-    qf = [float(v) for v in q]  # type: ignore[arg-type]
+    qf = [float(v) for v in q]
     norm = sum(v * v for v in qf) ** 0.5
     if norm < 1e-9:
         return None
     w, x, y, z = (v / norm for v in qf)
     if w < 0:
         w, x, y, z = -w, -x, -y, -z
-    px, py, pz = (float(v) / 1000 for v in xyz)  # type: ignore[arg-type]
+    px, py, pz = (float(v) / 1000 for v in xyz)
     return ir.Pose((px, py, pz), (w, x, y, z))
 
 
@@ -139,7 +139,7 @@ class _Module:
             if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
                     and all(isinstance(v, float) for v in lit[0])):
                 return False
-            self.targets[name.upper()] = Target(name, None, tuple(float(v) for v in lit[0]), None, where)  # type: ignore[arg-type]
+            self.targets[name.upper()] = Target(name, None, tuple(float(v) for v in lit[0]), None, where)
         elif type_ == "tooldata":
             return self._tool(name, lit, where)
         elif type_ == "wobjdata":

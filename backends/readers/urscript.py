@@ -36,8 +36,7 @@ def ur_pose(values: list[float]) -> ir.Pose:
     if angle < 1e-15:
         return ir.Pose((x, y, z))
     s = math.sin(angle / 2) / angle
-    q = (math.cos(angle / 2), rx * s, ry * s, rz * s)
-    q = tuple(0.0 if abs(v) < 1e-12 else v for v in q)  # cos(pi/2) noise, as krl_pose
+    q = [0.0 if abs(v) < 1e-12 else v for v in (math.cos(angle / 2), rx * s, ry * s, rz * s)]  # cos(pi/2) noise
     n = math.sqrt(sum(v * v for v in q))
     w, qx, qy, qz = (v / n for v in q)
     if w < 0:

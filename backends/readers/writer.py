@@ -13,6 +13,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import replace
 
 from rmot.backends.readers import codes
+from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.model import (
     Call, Cond, Document, FileCount, For, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While,
@@ -23,7 +24,8 @@ from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
-__all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools"]
+__all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools",
+           "rename_warnings"]
 
 INDENT = "  "
 
@@ -130,6 +132,15 @@ def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where]
     return replace(fixed, counts=counts, diagnostics=doc.diagnostics + tuple(diags))
 
 
+def rename_warnings(doc: Document, span_of: Callable[[Where], Span]) -> tuple[Diagnostic, ...]:
+    """W514 at each declared name the program writes under another name (an rmot keyword)."""
+    named = [(t.name, t.where) for t in doc.targets] + [(t.name, t.where) for t in doc.tools] + \
+        [(f.name, f.where) for f in doc.frames] + [(r.name, r.where) for r in doc.routines]
+    return tuple(Diagnostic(codes.NAME_RENAMED, Severity.WARNING,
+                            f"`{name}` must not be an rmot keyword in a .rmot program: written as `{rmot_name(name)}`",
+                            span_of(where)) for name, where in named if rmot_name(name) != name)
+
+
 def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:
     """Equal to what the vendors print: 1 um and 1e-6 in each quaternion component (up to sign)."""
     near = all(abs(x - y) < 1e-6 for x, y in zip(a.position, b.position))
@@ -196,7 +207,7 @@ class _Printer:
         elif isinstance(s, Stop):
             self.emit(depth, "stop")
         elif isinstance(s, Call):
-            self.emit(depth, f"{s.name}({', '.join(s.args)})")
+            self.emit(depth, f"{rmot_name(s.name)}({', '.join(s.args)})")
         else:
             self.block(s, depth, state)
 
@@ -221,6 +232,7 @@ class _Printer:
     def move(self, m: Move, depth: int, state: dict[str, str | None]) -> None:
         for key in ("tool", "frame"):
             value = getattr(m, key)
+            value = value if value in (None, "flange", "base") else rmot_name(value)
             if value is not None and state.get(key) != value:
                 self.emit(depth, f"{key} {value}")
                 state[key] = value
@@ -250,8 +262,6 @@ def _target_line(t_name: str, pose: ir.Pose | None, joints: tuple[float, ...] | 
 
 def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | None) -> str:
     """The .rmot program of `doc` on `robot` (a robot of the cell)."""
-    from rmot.backends.readers.common import rmot_name
-
     p = _Printer(doc, signals)
     files = ", ".join(c.path for c in doc.counts)
     p.emit(0, f"# imported by `rmot import` from {files} ({doc.vendor})")
@@ -270,7 +280,7 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
             main = r
             continue
         params = ", ".join(f"{n}: {t}" for n, t in r.params)
-        p.emit(1, f"proc {r.name}({params}) {{")
+        p.emit(1, f"proc {rmot_name(r.name)}({params}) {{")
         p.body(r.body, 2, {})
         p.emit(1, "}")
     if main is not None:
@@ -287,8 +297,6 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
 def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") -> str:
     """A cell with `model` at the world origin (world = the robot base, where vendors write
     work objects) and the tools, frames and I/O names the vendor files declare."""
-    from rmot.backends.readers.common import rmot_name
-
     lines = [f"# cell stub written by `rmot import` for {doc.name} ({doc.vendor})",
              f"cell {rmot_name(doc.name)}_cell {{", f"  robot {robot} = {model}"]
     for t in doc.tools:

@@ -55,7 +55,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     from rmot.backends.readers import ImportError_, read_files, span_of
     from rmot.backends.readers.counts import motion_io_counts
     from rmot.backends.readers.writer import (
-        SignalMap, cell_stub, match_tools, program_text, resolve_signals, stub_signals,
+        SignalMap, cell_stub, match_tools, program_text, rename_warnings, resolve_signals, stub_signals,
     )
     from rmot.compiler import ir
     from rmot.compiler.atomic import write_text
@@ -88,7 +88,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         stem = os.path.splitext(os.path.basename(output))[0]
         use = f"{stem}_cell.rmot"
         write_text(os.path.join(out_dir, use), cell_stub(doc, signals, robot))
-    for d in doc.diagnostics:
+    for d in doc.diagnostics + rename_warnings(doc, span_of):
         click.echo(render(d), err=True)
     write_text(output, program_text(doc, signals, robot_name, use))
     motion_io = motion_io_counts(doc)
