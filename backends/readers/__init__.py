@@ -9,11 +9,13 @@ and merges them into one Document; a file that is not its vendor's language rais
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
-from rmot.backends.readers.model import Document, Routine, Where
+from rmot.compiler.ir import Pose
+from rmot.backends.readers.model import Document, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
@@ -56,7 +58,20 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
     return doc, m.tally
 
 
-_MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
+def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.fanuc import read_fanuc
+
+    m = read_fanuc(path, text, _FANUC_LABELS)
+    doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
+    return doc, m.tally
+
+
+_MODEL: list[str | None] = [None]
+# Fanuc tool and frame numbers are the controller's, shared by every program: the names the
+# files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
+_FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}  # the robot model read_files was given (URScript joint speeds)
 
 Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"]
 
@@ -64,7 +79,7 @@ Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"
 READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
     ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
-    ".urscript": ("urscript", _urscript),
+    ".urscript": ("urscript", _urscript), ".ls": ("fanuc", _fanuc),
 }
 
 _SOURCES: dict[str, SourceFile] = {}
@@ -104,6 +119,12 @@ def read_files(paths: list[str], model: str | None = None) -> Document:
     reads its .dat (given too, or beside it). `model`: the robot library name the program runs
     on, where a vendor writes speeds relative to the arm (URScript movej)."""
     _MODEL[0] = model
+    _FANUC_LABELS["UTOOL"].clear()
+    _FANUC_LABELS["UFRAME"].clear()
+    for path in paths:
+        if path.lower().endswith(".ls"):
+            for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):
+                _FANUC_LABELS[kind][int(n)] = name
     docs: list[Document] = []
     consumed = set()
     for path in paths:
@@ -129,13 +150,61 @@ def read_files(paths: list[str], model: str | None = None) -> Document:
     return _merge(docs)
 
 
+def _unique_targets(docs: list[Document]) -> list[Document]:
+    """Targets of one name in several files: one declaration when equal; otherwise the later
+    file's is renamed `FILE_name` (its moves follow)."""
+    from dataclasses import replace
+
+    from rmot.backends.readers.writer import map_leaves
+
+    seen: dict[str, Target] = {}
+    out = []
+    for d in docs:
+        renames: dict[str, str] = {}
+        kept = []
+        for t in d.targets:
+            other = seen.get(t.name)
+            if other is None:
+                seen[t.name] = t
+                kept.append(t)
+            elif (other.pose, other.joints, other.config) != (t.pose, t.joints, t.config):
+                renames[t.name] = f"{d.name.lower()}_{t.name}"
+                kept.append(replace(t, name=renames[t.name]))
+        routines = tuple(replace(r, body=map_leaves(r.body, _renamer(renames))) for r in d.routines)
+        out.append(replace(d, targets=tuple(kept), routines=routines))
+    return out
+
+
+def _renamer(renames: dict[str, str]) -> Callable[[Stmt], Stmt]:
+    """A function renaming the targets a move names (whole words of its expressions)."""
+    from dataclasses import replace
+
+    from rmot.backends.readers.model import Move
+
+    def sub(text: str) -> str:
+        return re.sub(r"\b(\w+)\b", lambda m: renames.get(m.group(1), m.group(1)), text)
+
+    def rename(s: Stmt) -> Stmt:
+        if not isinstance(s, Move) or not renames:
+            return s
+        return replace(s, target=sub(s.target), via=sub(s.via) if s.via else None,
+                       target_name=renames.get(s.target_name or "", s.target_name))
+
+    return rename
+
+
 def _merge(docs: list[Document]) -> Document:
+    docs = _unique_targets(docs)
     first = docs[0]
     routines: list[Routine] = []
     for d in docs:
         routines += [r for r in d.routines if not (d is not first and r.name == d.main and r.name == first.main)]
+    tools = {t.name: t for d in docs for t in d.tools if t.tcp != Pose() or t.mass}  # data where a file has it
+    tools = {**{t.name: t for d in docs for t in d.tools}, **tools}
+    frames = {f.name: f for d in docs for f in d.frames if f.pose != Pose()}
+    frames = {**{f.name: f for d in docs for f in d.frames}, **frames}
     return Document(first.vendor, first.name, first.main, sum((d.targets for d in docs), ()),
-                    sum((d.tools for d in docs), ()), sum((d.frames for d in docs), ()), tuple(routines),
+                    tuple(tools.values()), tuple(frames.values()), tuple(routines),
                     sum((d.consts for d in docs), ()), sum((d.counts for d in docs), ()),
                     sum((d.diagnostics for d in docs), ()), sum((d.kept for d in docs), ()))
 

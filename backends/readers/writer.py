@@ -232,7 +232,7 @@ class _Printer:
     def move(self, m: Move, depth: int, state: dict[str, str | None]) -> None:
         for key in ("tool", "frame"):
             value = getattr(m, key)
-            value = value if value in (None, "flange", "base") else rmot_name(value)
+            value = value if value in (None, "flange", "base", "world") else rmot_name(value)
             if value is not None and state.get(key) != value:
                 self.emit(depth, f"{key} {value}")
                 state[key] = value

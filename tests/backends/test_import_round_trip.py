@@ -1,5 +1,5 @@
-"""compile -> `rmot import` -> compile means the same program, for RAPID, KRL and URScript on
-every single-task example.
+"""compile -> `rmot import` -> compile means the same program, for RAPID, KRL, URScript and
+Fanuc TP on every single-task example.
 
 Witnesses (none of them the readers under test): the planner's own JSON plan of the original
 and of the imported program (`--target json`: every instruction's kind, planned joints, branch,
@@ -21,15 +21,19 @@ from rmot.compiler.cli import cli
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ["pick_place", "palletizing", "weld_seam", "collision", "model_arm", "inspect"]
-MAIN_FILE = {"rapid": "*.mod", "krl": "*.src", "urscript": "*.script"}
+MAIN_FILE = {"rapid": "*.mod", "krl": "*.src", "urscript": "*.script", "fanuc": "*.ls"}
 IO_PATTERNS = {  # each vendor's I/O instructions (RAPID, KRL, URScript manuals)
     "rapid": r"(?:SetDO|SetAO|PulseDO|WaitDI|IF DInput)[^;\n]*",
     "krl": r"\$OUT\[\d+\]=\w+|\$ANOUT\[\d+\]=[-\d.]+|PULSE\([^)]*\)|WAIT FOR [^;\n]*|IF \$IN[^\n]*",
+    "fanuc": r"(?:DO|AO)\[\d+[^\]]*\]=[^;\n]*|WAIT DI\[[^;\n]*|IF DI\[[^;\n]*",
     "urscript": r"set_(?:standard|configurable)_(?:digital|analog)_out\([^)]*\)|get_(?:standard|configurable)_digital_in\(\d+\)[^:\n]*",
 }
-# RAPID and URScript movec carry no acceleration: the plan of the imported program is timed
+# RAPID and Fanuc TP carry no acceleration: the plan of the imported program is timed
 # with the controller's default where the original set one (the backends warn W408 / W409)
-NO_ACCEL = {("rapid", "inspect")}
+NO_ACCEL = {("rapid", "inspect"), ("fanuc", "inspect")}
+# Fanuc programs whose loop offsets (PR[k] set per iteration in the caller) are used by moves in
+# called programs: those moves are kept native (the called program has no loop counter)
+NOT_YET = {("fanuc", "pick_place"), ("fanuc", "palletizing")}
 
 
 def _cell_of(example: Path) -> Path:
@@ -68,18 +72,24 @@ def _leaves(plan: dict) -> list[dict]:
     return [i for i in plan["tasks"][0]["instructions"] if i["kind"] not in ("loop", "proc_call")]
 
 
-@pytest.mark.parametrize("vendor", ["rapid", "krl", "urscript"])
-@pytest.mark.parametrize("name", EXAMPLES)
+CASES = [pytest.param(v, n, marks=pytest.mark.xfail(strict=True, reason="loop offsets used in called TP programs"))
+         if (v, n) in NOT_YET else (v, n) for v in ("rapid", "krl", "urscript", "fanuc") for n in EXAMPLES]
+
+
+@pytest.mark.parametrize(("vendor", "name"), CASES)
 def test_round_trip(vendor: str, name: str, tmp_path: Path) -> None:
     example = ROOT / "examples" / f"{name}.rmot"
     cell = _cell_of(example)
     before = _compile(example, cell, vendor, tmp_path / "a")
-    main = next((tmp_path / "a" / vendor).glob(MAIN_FILE[vendor]))
+    files = sorted((tmp_path / "a" / vendor).glob(MAIN_FILE[vendor]))
+    files.sort(key=lambda p: p.stem.lower() != name)  # the program's own file first (its main runs)
+    if vendor != "fanuc":
+        files = files[:1]  # RAPID module, KRL .src (its .dat beside it), URScript: one file
     imported = tmp_path / f"{name}_imported.rmot"
-    result = CliRunner().invoke(cli, ["import", str(main), "-o", str(imported), "--cell", str(cell)],
+    result = CliRunner().invoke(cli, ["import", *map(str, files), "-o", str(imported), "--cell", str(cell)],
                                 catch_exceptions=False)
     assert result.exit_code == 0, result.output
-    assert " 0 kept native (100.0 % imported)" in result.output, result.output
+    assert result.output.count(" 0 kept native (100.0 % imported)") == len(files), result.output
     after = _compile(imported, cell, vendor, tmp_path / "b")
     if (vendor, name) not in NO_ACCEL:
         assert abs(after["cycle_time"] - before["cycle_time"]) <= 0.005 * before["cycle_time"]
