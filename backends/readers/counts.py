@@ -3,8 +3,8 @@ the share a user of `rmot import` cares about (set-up, sockets and bookkeeping l
 vendor program are not motion).
 
 A native line counts as motion or I/O when its first word is one of the vendor's motion or
-I/O instructions (RAPID Instructions reference; KSS 8.x motion and I/O statements; URScript
-manual, modules motion and interfaces).
+I/O instructions (RAPID Instructions reference; KSS 8.x motion and I/O statements; R-30iB
+Operator's Manual motion and I/O instructions; URScript manual, modules motion and interfaces).
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ MOTION_IO_WORDS = {
               "WAITDO", "WAITTIME", "WAITUNTIL"},
     "krl": {"PTP", "LIN", "CIRC", "SPTP", "SLIN", "SCIRC", "PTP_REL", "LIN_REL", "CIRC_REL", "$OUT", "$OUT_C",
             "PULSE", "WAIT", "$ANOUT"},
+    "fanuc": {"J", "L", "C", "A", "DO", "AO", "RO", "WAIT"},
     "urscript": {"MOVEJ", "MOVEL", "MOVEC", "MOVEP", "SERVOJ", "SPEEDJ", "SPEEDL", "SET_STANDARD_DIGITAL_OUT",
                  "SET_DIGITAL_OUT", "SET_CONFIGURABLE_DIGITAL_OUT", "SET_TOOL_DIGITAL_OUT",
                  "SET_STANDARD_ANALOG_OUT", "SET_ANALOG_OUT", "SLEEP"},
