@@ -62,3 +62,23 @@ def test_not_a_program_is_located(tmp_path: Path, module: Path) -> None:
     bad.write_text("hello\n")
     result = CliRunner().invoke(cli, ["diff", str(module), str(bad)])
     assert result.exit_code == 2 and f"{bad}:1:1: error[E510]" in result.output
+
+
+def test_vendor_program_against_its_rmot_source(tmp_path: Path) -> None:
+    """A TP program touched on the pendant (one L speed 50 -> 40 mm/sec, by hand here) against
+    the .rmot it was compiled from: the .rmot side is compiled in memory and compared."""
+    source = ROOT / "examples" / "weld_seam.rmot"
+    result = CliRunner().invoke(cli, ["compile", str(source), "--target", "fanuc", "-o", str(tmp_path)],
+                                catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    ls = tmp_path / "fanuc" / "WELD_SEAM.ls"
+    code, out = _diff(source, ls)
+    assert (code, out) == (0, ["0 differences"])
+    lines = ls.read_text().splitlines()
+    n = next(i for i, ln in enumerate(lines) if "50mm/sec FINE" in ln)
+    lines[n] = lines[n].replace("50mm/sec", "40mm/sec")
+    ls.write_text("\n".join(lines) + "\n")
+    code, out = _diff(source, ls)
+    assert code == 1
+    assert out[0].endswith(f"-> {ls}:{n + 1}:3: move linear start: speed 50 mm/s -> 40 mm/s"), out
+    assert out[0].startswith(f"{source}[fanuc/WELD_SEAM.ls]:{n + 1}:3")
