@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from rmot.backends.readers.model import Document, If, Move, Native, Pulse, SetOut, Stmt, Wait, WaitIn, While, For
+from rmot.backends.readers.model import Document, Move, Native, Pulse, SetOut, Wait, WaitIn, walk
 
 __all__ = ["motion_io_counts", "MOTION_IO_WORDS"]
 
@@ -28,23 +28,12 @@ MOTION_IO_WORDS = {
 }
 
 
-def _walk(body: tuple[Stmt, ...]) -> list[Stmt]:
-    out: list[Stmt] = []
-    for s in body:
-        out.append(s)
-        if isinstance(s, If):
-            out += _walk(s.then) + _walk(s.orelse)
-        elif isinstance(s, (While, For)):
-            out += _walk(s.body)
-    return out
-
-
 def motion_io_counts(doc: Document) -> dict[str, tuple[int, int]]:
     """path -> (motion and I/O instructions imported, kept native)."""
     words = MOTION_IO_WORDS.get(doc.vendor, set())
     counts: dict[str, list[int]] = {c.path: [0, 0] for c in doc.counts}
     for r in doc.routines:
-        for s in _walk(r.body):
+        for s in walk(r.body):
             slot = counts.setdefault(s.where.path, [0, 0])
             if isinstance(s, (Move, SetOut, Pulse, Wait, WaitIn)):
                 slot[0] += 1

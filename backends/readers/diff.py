@@ -13,7 +13,7 @@ import math
 from difflib import SequenceMatcher
 
 from rmot.backends.readers.model import (
-    Call, Document, For, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While,
+    Call, Document, For, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, walk,
 )
 from rmot.compiler import ir
 
@@ -63,17 +63,6 @@ def _targets(a: Document, b: Document) -> list[str]:
         if t.config != other.config and t.config is not None and other.config is not None:
             out.append(f"{t.where} -> {other.where}: target {t.name} configuration {t.config} -> {other.config}")
     out += [f"{t.where}: target {t.name} added" for key, t in tb.items() if key not in ta]
-    return out
-
-
-def _flat(body: tuple[Stmt, ...]) -> list[Stmt]:
-    out: list[Stmt] = []
-    for s in body:
-        out.append(s)
-        if isinstance(s, If):
-            out += _flat(s.then) + _flat(s.orelse)
-        elif isinstance(s, (While, For)):
-            out += _flat(s.body)
     return out
 
 
@@ -132,7 +121,7 @@ def _compare(x: Stmt, y: Stmt) -> list[str]:
 
 
 def _routine(ra: tuple[Stmt, ...], rb: tuple[Stmt, ...]) -> list[str]:
-    fa, fb = _flat(ra), _flat(rb)
+    fa, fb = walk(ra), walk(rb)
     out: list[str] = []
     matcher = SequenceMatcher(a=[describe(s) for s in fa], b=[describe(s) for s in fb], autojunk=False)
     for op, i1, i2, j1, j2 in matcher.get_opcodes():

@@ -16,7 +16,7 @@ from rmot.lang.record import record
 __all__ = [
     "Where", "Target", "ToolData", "FrameData", "Move", "SetOut", "Pulse", "Wait", "WaitIn",
     "Cond", "If", "While", "For", "Call", "Native", "Stop", "Stmt", "Routine", "FileCount",
-    "Document", "Signal",
+    "Document", "Signal", "walk",
 ]
 
 # a signal by its controller name (RAPID, INFORM names) or by its port number (KRL, TP, UR)
@@ -168,6 +168,18 @@ class Stop:
 
 
 Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop
+
+
+def walk(body: tuple[Stmt, ...]) -> list[Stmt]:
+    """Every statement of `body` in source order, the statements of blocks after their block."""
+    out: list[Stmt] = []
+    for s in body:
+        out.append(s)
+        if isinstance(s, If):
+            out += walk(s.then) + walk(s.orelse)
+        elif isinstance(s, (While, For)):
+            out += walk(s.body)
+    return out
 
 
 @record(slots=True)

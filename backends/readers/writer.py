@@ -9,14 +9,14 @@ times are each move's own modifiers, exactly as the vendor wrote them on that mo
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import replace
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.model import (
     Call, Cond, Document, FileCount, For, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
-    Where, While,
+    Where, While, walk,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.compiler import ir
@@ -49,16 +49,6 @@ class SignalMap:
         return int(m.group(1)) if m else None
 
 
-def _walk(body: tuple[Stmt, ...]) -> Iterator[Stmt]:
-    for s in body:
-        yield s
-        if isinstance(s, If):
-            yield from _walk(s.then)
-            yield from _walk(s.orelse)
-        elif isinstance(s, (While, For)):
-            yield from _walk(s.body)
-
-
 def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
     if isinstance(s, SetOut):
         return [("analog" if s.analog else "outputs", s.signal)]
@@ -74,7 +64,7 @@ def stub_signals(doc: Document) -> SignalMap:
     1, 2, ... of their kind in order of first use."""
     named: dict[str, dict[str, int]] = {"outputs": {}, "inputs": {}, "analog": {}}
     used: dict[str, set[int]] = {k: set() for k in named}
-    uses = [u for r in doc.routines for s in _walk(r.body) for u in _signal_uses(s)]
+    uses = [u for r in doc.routines for s in walk(r.body) for u in _signal_uses(s)]
     for kind, sig in uses:
         if isinstance(sig, int):
             used[kind].add(sig)
@@ -121,7 +111,7 @@ def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where]
         span = span_of(w)
         diags.append(Diagnostic(codes.SIGNAL_UNKNOWN, Severity.WARNING,
                                 f"signal `{missing[0]}` must be declared in the cell (it is not): kept native", span))
-        last = max([w.line] + [x.where.line + 1 for x in _walk((s,)) if x is not s])
+        last = max([w.line] + [x.where.line + 1 for x in walk((s,)) if x is not s])
         text = "\n".join(span.file.line_text(n).strip() for n in range(w.line, last + 1))
         moved[w.path] = moved.get(w.path, 0) + 1
         return Native(doc.vendor, text or f"signal {missing[0]}", w)
