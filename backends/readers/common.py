@@ -48,6 +48,7 @@ class Tally:
         self.imported = 0
         self.native = 0
         self.comments: list[Native] = []  # declarations and routines kept as a comment block
+        self.depth = 0  # blocks open while reading (bounded: a hostile file cannot exhaust the stack)
 
     def span(self, where: Where) -> Span:
         pos = Pos(where.line, where.col)
@@ -64,6 +65,17 @@ class Tally:
         self.native += 1
         self.warn(codes.KEPT_NATIVE, f"{why}; kept as `native {self.vendor}`: {text.strip()[:60]}", where)
         return Native(self.vendor, text.strip(), where)
+
+    MAX_NESTING = 64
+
+    def enter(self, where: Where) -> None:
+        """A block opens; more than MAX_NESTING open blocks is E510 (no controller nests so deep)."""
+        self.depth += 1
+        if self.depth > self.MAX_NESTING:
+            raise self.fail(f"blocks must nest at most {self.MAX_NESTING} deep", where)
+
+    def leave(self) -> None:
+        self.depth -= 1
 
     def comment(self, text: str, where: Where) -> None:
         """A line with no rmot form outside any routine: kept in the comment block (counted native)."""

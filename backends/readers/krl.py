@@ -154,6 +154,14 @@ class _Krl:
         return i + 1
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        """The statements from `i` to the block's end (nesting bounded by Tally.enter)."""
+        self.tally.enter(self.lines[min(i, len(self.lines) - 1)].where)
+        try:
+            return self._block_body(i, ends)
+        finally:
+            self.tally.leave()
+
+    def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
         while i < len(self.lines):
             ln = self.lines[i]

@@ -62,9 +62,12 @@ def lines(path: str, text: str) -> list[Line]:
 Aggregate = dict[str, "float | str | Aggregate"]
 
 
-def aggregate(text: str) -> Aggregate | None:
-    """`{X 1.0,Y 2,A 0.0, CM {X 0}}` (an optional `TYPE:` prefix) as a dict, keys upper case."""
+def aggregate(text: str, depth: int = 0) -> Aggregate | None:
+    """`{X 1.0,Y 2,A 0.0, CM {X 0}}` (an optional `TYPE:` prefix) as a dict, keys upper case;
+    None beyond 8 levels (LOAD nests 2 deep)."""
     text = text.strip()
+    if depth >= 8:
+        return None
     m = re.fullmatch(r"(?s)\{\s*(?:\w+\s*:)?(.*)\}", text)
     if m is None:
         return None
@@ -77,7 +80,7 @@ def aggregate(text: str) -> Aggregate | None:
             return None
         key, value = km.group(1).upper(), km.group(2).strip()
         if value.startswith("{"):
-            sub = aggregate(value)
+            sub = aggregate(value, depth + 1)
             if sub is None:
                 return None
             out[key] = sub

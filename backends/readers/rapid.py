@@ -220,6 +220,14 @@ class _Module:
         return out
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        """The statements from `i` to the block's end (nesting bounded by Tally.enter)."""
+        self.tally.enter(self.stmts[min(i, len(self.stmts) - 1)].where)
+        try:
+            return self._block_body(i, ends)
+        finally:
+            self.tally.leave()
+
+    def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
         while i < len(self.stmts):
             st = self.stmts[i]
@@ -411,9 +419,12 @@ class _Module:
                 frame = self.frames[m.group(1).upper()].name
         return frame
 
-    def _target(self, text: str) -> tuple[str, str | None, Target | None] | None:
-        """(rmot expression, declared name, declaration) of a RAPID target expression."""
+    def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
+        """(rmot expression, declared name, declaration) of a RAPID target expression (offsets
+        nested at most 8 deep)."""
         text = text.strip()
+        if depth > 8:
+            return None
         decl = self.targets.get(text.upper())
         if decl is not None:
             return (rmot_name(decl.name), decl.name, decl)
@@ -425,15 +436,15 @@ class _Module:
             for arg in split_top(m.group(2)):
                 bits = split_top(arg, "\\")
                 args += [bits[0]] + ["\\" + b for b in bits[1:]]
-            return self._offset(m.group(1).upper(), args)
+            return self._offset(m.group(1).upper(), args, depth)
         lit = literal(text)
         pose = _pose(lit)
         if pose is not None:
             return (pose_expr(pose), None, Target("", pose, None, None, Where("", 0)))
         return None
 
-    def _offset(self, func: str, args: list[str]) -> tuple[str, str | None, Target | None] | None:
-        base = self._target(args[0]) if args else None
+    def _offset(self, func: str, args: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
+        base = self._target(args[0], depth + 1) if args else None
         if base is None or len(args) < 4:
             return None
         offs = [num_expr(a, self.names) for a in args[1:4]]

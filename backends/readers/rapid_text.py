@@ -92,11 +92,16 @@ def _find_semicolon(line: str, pos: int) -> int:
 Literal = float | str | list["Literal"]
 
 
-def literal(text: str) -> Literal | None:
+MAX_DEPTH = 8  # robtarget nests 3 deep; deeper aggregates are no data rmot reads
+
+
+def literal(text: str, depth: int = 0) -> Literal | None:
     """A RAPID aggregate `[[..],[..]]` as nested lists of numbers and names, or None."""
     text = text.strip()
     if text.startswith("[") and text.endswith("]"):
-        items = [literal(p) for p in split_top(text[1:-1])]
+        if depth >= MAX_DEPTH:
+            return None
+        items = [literal(p, depth + 1) for p in split_top(text[1:-1])]
         if any(i is None for i in items):
             return None
         return items  # type: ignore[return-value]

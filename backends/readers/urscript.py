@@ -103,6 +103,14 @@ class _Script:
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        """The statements from `i` to the block's end (nesting bounded by Tally.enter)."""
+        self.tally.enter(self.lines[min(i, len(self.lines) - 1)].where)
+        try:
+            return self._block_body(i, ends)
+        finally:
+            self.tally.leave()
+
+    def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
         while i < len(self.lines):
             ln = self.lines[i]
@@ -285,14 +293,17 @@ class _Script:
             self.targets[m.group(1)] = Target(m.group(1), None, tuple(math.degrees(v) for v in values), None, ln.where)
         return True
 
-    def _target(self, text: str) -> tuple[str, str | None, Target | None] | None:
-        """(rmot expression, declared name, declaration) of a URScript pose or joint list."""
+    def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
+        """(rmot expression, declared name, declaration) of a URScript pose or joint list
+        (nested at most 8 deep)."""
+        if depth > 8:
+            return None
         if text in self.targets:
             t = self.targets[text]
             return (t.name, t.name, t)
         m = re.fullmatch(r"get_inverse_kin\((.*),qnear=\[.*\]\)", text)
         if m:
-            return self._target(m.group(1))
+            return self._target(m.group(1), depth + 1)
         m = re.fullmatch(r"(p?)\[(.*)\]", text)
         if m:
             values = _numbers(m.group(2))
@@ -306,7 +317,7 @@ class _Script:
                     Target("", None, joints, None, Where("", 0)))
         m = re.fullmatch(r"pose_add\((.*)\)", text)
         parts = split_top(m.group(1)) if m else []
-        base = self._target(parts[0]) if len(parts) == 2 else None
+        base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
         shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
         offs = split_top(shift.group(1)) if shift else []
         if base is None or len(offs) != 6 or any(number(o) != 0.0 for o in offs[3:]):
