@@ -68,6 +68,16 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
     return doc, m.tally
 
 
+def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.inform import read_inform
+
+    m = read_inform(path, text)
+    doc = Document("inform", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
+    return doc, m.tally
+
+
 _MODEL: list[str | None] = [None]
 # Fanuc tool and frame numbers are the controller's, shared by every program: the names the
 # files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
@@ -80,6 +90,7 @@ READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
     ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
     ".urscript": ("urscript", _urscript), ".ls": ("fanuc", _fanuc),
+    ".jbi": ("inform", _inform),
 }
 
 _SOURCES: dict[str, SourceFile] = {}

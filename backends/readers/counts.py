@@ -21,6 +21,7 @@ MOTION_IO_WORDS = {
               "WAITDO", "WAITTIME", "WAITUNTIL"},
     "krl": {"PTP", "LIN", "CIRC", "SPTP", "SLIN", "SCIRC", "PTP_REL", "LIN_REL", "CIRC_REL", "$OUT", "$OUT_C",
             "PULSE", "WAIT", "$ANOUT"},
+    "inform": {"MOVJ", "MOVL", "MOVC", "MOVS", "IMOV", "DOUT", "PULSE", "AOUT", "TIMER", "WAIT"},
     "fanuc": {"J", "L", "C", "A", "DO", "AO", "RO", "WAIT"},
     "urscript": {"MOVEJ", "MOVEL", "MOVEC", "MOVEP", "SERVOJ", "SPEEDJ", "SPEEDL", "SET_STANDARD_DIGITAL_OUT",
                  "SET_DIGITAL_OUT", "SET_CONFIGURABLE_DIGITAL_OUT", "SET_TOOL_DIGITAL_OUT",
