@@ -61,7 +61,8 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.fanuc import read_fanuc
 
-    m = read_fanuc(path, text, _FANUC_LABELS)
+    m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS)
+    _FANUC_INLINED.update(m.inlined)
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments))
@@ -78,10 +79,14 @@ def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Do
     return doc, m.tally
 
 
-_MODEL: list[str | None] = [None]
+_MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
 # Fanuc tool and frame numbers are the controller's, shared by every program: the names the
 # files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
-_FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}  # the robot model read_files was given (URScript joint speeds)
+_FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
+# the TP programs of one import by name: a program CALLed inside a counting loop whose
+# offset registers it uses is read again at the call, inlined with the loop's counter
+_FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
+_FANUC_INLINED: set[str] = set()  # the programs some caller inlined
 
 Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"]
 
@@ -132,8 +137,13 @@ def read_files(paths: list[str], model: str | None = None) -> Document:
     _MODEL[0] = model
     _FANUC_LABELS["UTOOL"].clear()
     _FANUC_LABELS["UFRAME"].clear()
+    _FANUC_PROGRAMS.clear()
+    _FANUC_INLINED.clear()
     for path in paths:
         if path.lower().endswith(".ls"):
+            prog = re.match(r"\s*/PROG\s+(\w+)", _load(path))
+            if prog:
+                _FANUC_PROGRAMS[prog.group(1).upper()] = (path, _load(path))
             for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):
                 _FANUC_LABELS[kind][int(n)] = name
     docs: list[Document] = []
@@ -155,10 +165,24 @@ def read_files(paths: list[str], model: str | None = None) -> Document:
                 companion = (dat, _load(dat))
         doc, _ = entry[1](path, _load(path), companion)
         docs.append(doc)
+    docs = _without_inlined(docs)
     vendors = {d.vendor for d in docs}
     if len(vendors) > 1:
         raise _fail(codes.DIFF_VENDORS_DIFFER, paths[-1], f"the files must be of one vendor (got {', '.join(sorted(vendors))})")
     return _merge(docs)
+
+
+def _without_inlined(docs: list[Document]) -> list[Document]:
+    """TP programs every caller inlined (they moved by the caller's loop offsets) are not
+    routines of the imported program: their lines are imported at the calls."""
+    from rmot.backends.readers.model import Call, walk
+
+    while True:  # a program only inlined programs call goes too
+        called = {s.name.upper() for d in docs for r in d.routines for s in walk(r.body) if isinstance(s, Call)}
+        kept = [d for i, d in enumerate(docs) if i == 0 or d.name.upper() not in _FANUC_INLINED - called]
+        if len(kept) == len(docs):
+            return kept
+        docs = kept
 
 
 def _unique_targets(docs: list[Document]) -> list[Document]:

@@ -44,7 +44,8 @@ def _branch(text: str) -> ir.Config | None:
 
 
 class _Ls:
-    def __init__(self, path: str, text: str, labels: dict[str, dict[int, str]]) -> None:
+    def __init__(self, path: str, text: str, labels: dict[str, dict[int, str]],
+                 programs: dict[str, tuple[str, str]] | None = None) -> None:
         self.tally = Tally(path, text, "fanuc")
         self.path = path
         self.raw = text.split("\n")
@@ -60,6 +61,8 @@ class _Ls:
         self.state: dict[str, int] = {"UTOOL": 0, "UFRAME": 0}
         self.timeout: float | None = None
         self.routine = Routine("", (), (), Where(path, 1))  # the program, once read
+        self.programs = programs or {}
+        self.inlined: set[str] = set()  # programs read again at a call inside a loop
 
     # ---------------------------------------------------------------- sections
 
@@ -144,6 +147,11 @@ class _Ls:
             return [], i + 1
         if not text:
             return [], i + 1
+        call = re.fullmatch(r"CALL\s+(\w+)", text)
+        inlined = self._inline_body(call.group(1)) if call else None
+        if inlined is not None:
+            self.tally.imported += 1
+            return list(inlined), i + 1
         for pattern in (self._data, self._loop, self._timed_wait, self._if):
             found = pattern(i, end)
             if found is not None:
@@ -313,6 +321,34 @@ class _Ls:
                     pose=decl.pose, joints=decl.joints)
 
 
+    def _uses_offsets(self, name: str, depth: int) -> bool:
+        """Whether program `name`, or a program it calls (8 levels), moves by an offset register
+        this program's loops set."""
+        source = self.programs.get(name.upper())
+        if source is None or depth > 8:
+            return False
+        if any(re.search(rf"Offset,PR\[{k}\]", source[1]) for k in self.offsets):
+            return True
+        return any(self._uses_offsets(callee, depth + 1) for callee in re.findall(r"CALL\s+(\w+)", source[1]))
+
+    def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
+        """The body of program `name` read with this program's loop counters and offset
+        registers, when it moves a target by one of them (else None: it is called)."""
+        source = self.programs.get(name.upper())
+        if source is None or not self.loop_vars or not self._uses_offsets(name, 0):
+            return None
+        callee = _Ls(source[0], source[1], self.labels, self.programs)
+        callee.offsets, callee.loop_vars = self.offsets, self.loop_vars
+        callee.state = dict(self.state)
+        callee.tools, callee.frames = self.tools, self.frames
+        callee.read()
+        self.positions.update({-(len(self.positions) + k + 1): t for k, t in enumerate(callee.positions.values())})
+        self.inlined.add(name.upper())
+        self.inlined |= callee.inlined
+        return callee.routine.body
+
+
+
 def _speed(kind: str, text: str) -> tuple[float | None, float | None, float | None] | None:
     """(TCP mm/s, joint %, fixed time s) of a TP speed."""
     m = re.fullmatch(r"([\d.]+)(%|mm/sec|sec)", text)
@@ -326,9 +362,11 @@ def _speed(kind: str, text: str) -> tuple[float | None, float | None, float | No
     return (value, None, None) if m.group(2) == "mm/sec" else (None, value, None)
 
 
-def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = None) -> _Ls:
+def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = None,
+               programs: dict[str, tuple[str, str]] | None = None) -> _Ls:
     """Read one TP program; raises ImportError_ (E510) when it is not one. `labels`: tool and
-    frame names by number, from all the program's files."""
-    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}})
+    frame names by number, from all the program's files; `programs`: those files by program
+    name (a program called inside a loop that moves its targets is inlined at the call)."""
+    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs)
     ls.read()
     return ls
