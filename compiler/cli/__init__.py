@@ -33,8 +33,8 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "reach": ("rmot.compiler.cli.reach_cmd", "reach", "Map a robot's reachable workspace and its singularities."),
     "place": ("rmot.compiler.cli.place_cmd", "place", "Find the best base pose for a robot in a region."),
     "compare": ("rmot.compiler.cli.compare_cmd", "compare", "Run one program on several arms and compare them."),
-    "import": ("rmot.compiler.cli.import_cmd", "import_", "Read vendor programs (RAPID, KRL, URScript) back into .rmot."),
-    "diff": ("rmot.compiler.cli.diff_cmd", "diff", "The semantic difference of two vendor programs."),
+    "import": ("rmot.compiler.cli.import_cmd", "import_", "Read RAPID, KRL, URScript, Fanuc TP or INFORM programs back into .rmot."),
+    "diff": ("rmot.compiler.cli.diff_cmd", "diff", "What changed between two vendor programs (or one and its .rmot)."),
 }
 
 
