@@ -426,22 +426,24 @@ class _Krl:
         m = re.match(r"(?i)(\w+)(?:\s+(\w+))?\s+(CONT\s+)?Vel\s*=\s*([\d.]+)\s*(%|m/s|mm/s)\s+(\w+)"
                      r"(?:\s+Tool\[(\d+)\](?::(\S+))?)?(?:\s+Base\[(\d+)\](?::(\S+))?)?", text)
         kind = _MOTIONS[word]
-        if m is None or (kind == "circular") != (m.group(2) is not None and m.group(2).upper() != "CONT"):
+        second = m.group(2) if m and m.group(2) and m.group(2).upper() != "CONT" else None
+        cont = m is not None and (m.group(3) is not None or (m.group(2) or "").upper() == "CONT")
+        if m is None or (kind == "circular") != (second is not None):
             return None
-        points = [m.group(1)] + ([m.group(2)] if kind == "circular" else [])
+        points = [m.group(1)] + ([second] if second else [])
         found = [self._target("X" + p) or self._target(p) for p in points]
         if any(f is None for f in found):
             return None
         vel, unit = float(m.group(4)), m.group(5)
         zone = None
-        if m.group(3):
+        if cont:
             data = self.data.get(("P" if kind == "joint" else "L") + m.group(6).upper()) or self.data.get(m.group(6).upper())
             apo = data[2].get("APO_DIST") if data and isinstance(data[2], dict) else None
             if not isinstance(apo, float):
                 return None
             zone = apo
-        tool = self._numbered("tool", m.group(7), m.group(8))
-        frame = self._numbered("base", m.group(9), m.group(10))
+        tool = self._numbered("tool", m.group(7), m.group(8), where)
+        frame = self._numbered("base", m.group(9), m.group(10), where)
         expr, name, decl = found[-1]  # type: ignore[misc]
         config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
         speed = vel * 1000.0 if unit == "m/s" else vel
@@ -450,9 +452,9 @@ class _Krl:
                     zone=zone, tool=tool, frame=frame, config=config,
                     pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None)
 
-    def _numbered(self, what: str, n: str | None, name: str | None) -> str | None:
+    def _numbered(self, what: str, n: str | None, name: str | None, at: Where) -> str | None:
         """A tool or base selected by its controller number: a stub entry (its data lives in
-        $config.dat, not in the program: the stub puts it at the flange / robot base)."""
+        $config.dat, not in the program: the stub puts it at the flange / robot base, W511)."""
         if n is None:
             return None
         if what == "base" and n == "0":
@@ -460,6 +462,10 @@ class _Krl:
         label = re.sub(r"\W", "_", name) if name else f"{what}{n}"
         key = label.upper()
         where = Where(self.tally.path, 1)
+        stored = "TOOL_DATA" if what == "tool" else "BASE_DATA"
+        if (what == "tool" and key not in self.tools) or (what == "base" and key not in self.frames):
+            self.tally.warn(codes.DECLARATION_KEPT, f"{what} {n} (`{label}`) is {stored}[{n}] in the controller's "
+                            "$config.dat, not in the program: a cell stub puts it at identity (give --cell)", at)
         if what == "tool" and key not in self.tools:
             self.tools[key] = ToolData(label, ir.Pose(), 0.0, where)
         elif what == "base" and key not in self.frames:
