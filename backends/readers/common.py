@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
+from typing import TypeVar
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.model import FileCount, Native, Where
@@ -18,6 +20,7 @@ from rmot.lang.source import Pos, SourceFile, Span
 __all__ = ["Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
            "num_expr", "rmot_name", "RMOT_RESERVED"]
 
+T = TypeVar("T")
 MAX_BYTES = 4 * 1024 * 1024  # the largest vendor file read (a pendant job is far smaller)
 NUMBER_RE = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 
@@ -76,6 +79,14 @@ class Tally:
 
     def leave(self) -> None:
         self.depth -= 1
+
+    def nested(self, where: Where, read: Callable[[], T]) -> T:
+        """`read()` one block deeper (enter/leave around it)."""
+        self.enter(where)
+        try:
+            return read()
+        finally:
+            self.leave()
 
     def comment(self, text: str, where: Where) -> None:
         """A line with no rmot form outside any routine: kept in the comment block (counted native)."""

@@ -120,12 +120,9 @@ class _Ls:
     # ---------------------------------------------------------------- instructions
 
     def _block(self, i: int, stop: int | None) -> tuple[list[Stmt], int]:
-        """The statements from `i` to the block's end (nesting bounded by Tally.enter)."""
-        self.tally.enter(self.instructions[min(i, len(self.instructions) - 1)][1] if self.instructions else Where(self.path, 1))
-        try:
-            return self._block_body(i, stop)
-        finally:
-            self.tally.leave()
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        where = self.instructions[min(i, len(self.instructions) - 1)][1] if self.instructions else Where(self.path, 1)
+        return self.tally.nested(where, lambda: self._block_body(i, stop))
 
     def _block_body(self, i: int, stop: int | None) -> tuple[list[Stmt], int]:
         end = len(self.instructions) if stop is None else stop

@@ -101,15 +101,15 @@ class _Job:
     # ---------------------------------------------------------------- instructions
 
     def _block(self, i: int, end: int) -> tuple[list[Stmt], int]:
-        self.tally.enter(self.inst[min(i, len(self.inst) - 1)][1] if self.inst else Where(self.path, 1))
-        try:
-            body: list[Stmt] = []
-            while i < end:
-                stmts, i = self._statement(i, end)
-                body += stmts
-            return body, i
-        finally:
-            self.tally.leave()
+        where = self.inst[min(i, len(self.inst) - 1)][1] if self.inst else Where(self.path, 1)
+        return self.tally.nested(where, lambda: self._block_body(i, end))
+
+    def _block_body(self, i: int, end: int) -> tuple[list[Stmt], int]:
+        body: list[Stmt] = []
+        while i < end:
+            stmts, i = self._statement(i, end)
+            body += stmts
+        return body, i
 
     def _text(self, i: int) -> str:
         return self.inst[i][0] if i < len(self.inst) else ""

@@ -220,12 +220,8 @@ class _Module:
         return out
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
-        """The statements from `i` to the block's end (nesting bounded by Tally.enter)."""
-        self.tally.enter(self.stmts[min(i, len(self.stmts) - 1)].where)
-        try:
-            return self._block_body(i, ends)
-        finally:
-            self.tally.leave()
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        return self.tally.nested(self.stmts[min(i, len(self.stmts) - 1)].where, lambda: self._block_body(i, ends))
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []

@@ -103,12 +103,8 @@ class _Script:
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
-        """The statements from `i` to the block's end (nesting bounded by Tally.enter)."""
-        self.tally.enter(self.lines[min(i, len(self.lines) - 1)].where)
-        try:
-            return self._block_body(i, ends)
-        finally:
-            self.tally.leave()
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
