@@ -34,6 +34,8 @@ COMMANDS: dict[str, tuple[str, str, str]] = {
     "place": ("rmot.compiler.cli.place_cmd", "place", "Find the best base pose for a robot in a region."),
     "compare": ("rmot.compiler.cli.compare_cmd", "compare", "Run one program on several arms and compare them."),
     "lsp": ("rmot.compiler.cli.lsp_cmd", "lsp_cmd", "Run the language server (LSP over stdio) for editors."),
+    "import": ("rmot.compiler.cli.import_cmd", "import_", "Read RAPID, KRL, URScript, Fanuc TP or INFORM programs back into .rmot."),
+    "diff": ("rmot.compiler.cli.diff_cmd", "diff", "What changed between two vendor programs (or one and its .rmot)."),
 }
 
 

@@ -1,0 +1,254 @@
+"""Readers of vendor programs: RAPID, KRL, URScript, ... back into a neutral Document
+(`model.py`), printed as .rmot by `writer.py` and compared by `diff.py`.
+
+`read_files(paths)` picks the reader by each file's extension (`READERS`), reads every file
+and merges them into one Document; a file that is not its vendor's language raises
+`ImportError_` with a located E510, never a traceback.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Callable
+
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
+from rmot.compiler.ir import Pose
+from rmot.backends.readers.model import Document, Routine, Stmt, Target, Where
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.source import Pos, SourceFile, Span
+
+__all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "companions"]
+
+
+def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.rapid import read_rapid
+
+    m = read_rapid(path, text)
+    main = next((r.name for r in m.routines if r.name.lower() == "main"), m.routines[0].name if m.routines else "main")
+    doc = Document("rapid", m.name, main, tuple(m.targets.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), tuple(m.routines), tuple(m.consts.items()), (m.tally.count(),),
+                   tuple(m.tally.diagnostics), tuple(m.tally.comments))
+    return doc, m.tally
+
+
+def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.krl import read_krl
+
+    if path.lower().endswith(".dat"):
+        raise ImportError_(Diagnostic(codes.NOT_VENDOR_LANGUAGE, Severity.ERROR,
+                                      "a KRL .dat is read with its .src (give the .src, or both)",
+                                      span_of(Where(path, 1))))
+    m = read_krl((path, text), companion)
+    main = next((r.name for r in m.routines if r.name.upper() == m.name.upper()), m.name)
+    targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
+    doc = Document("krl", m.name, main, targets, tuple(m.tools.values()),
+                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
+    return doc, m.tally
+
+
+def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.urscript import read_urscript
+
+    m = read_urscript(path, text, _MODEL[0])
+    doc = Document("urscript", m.name, m.main, tuple(m.targets.values()), tuple(m.tools.values()), (),
+                   tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics), tuple(m.tally.comments))
+    return doc, m.tally
+
+
+def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.fanuc import read_fanuc
+
+    m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS)
+    _FANUC_INLINED.update(m.inlined)
+    doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
+    return doc, m.tally
+
+
+def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.inform import read_inform
+
+    m = read_inform(path, text)
+    doc = Document("inform", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
+    return doc, m.tally
+
+
+_MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
+# Fanuc tool and frame numbers are the controller's, shared by every program: the names the
+# files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
+_FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
+# the TP programs of one import by name: a program CALLed inside a counting loop whose
+# offset registers it uses is read again at the call, inlined with the loop's counter
+_FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
+_FANUC_INLINED: set[str] = set()  # the programs some caller inlined
+
+Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"]
+
+# extension (lower case) -> (vendor, reader)
+READERS: dict[str, tuple[str, Reader]] = {
+    ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
+    ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
+    ".urscript": ("urscript", _urscript), ".ls": ("fanuc", _fanuc),
+    ".jbi": ("inform", _inform),
+}
+
+_SOURCES: dict[str, SourceFile] = {}
+
+
+def span_of(where: Where) -> Span:
+    """A span at `where` in a file read by read_files (its text shows under diagnostics)."""
+    source = _SOURCES.get(where.path) or SourceFile(where.path, "")
+    pos = Pos(where.line, where.col)
+    return Span(source, pos, pos)
+
+
+def vendor_of(path: str) -> str | None:
+    entry = READERS.get(os.path.splitext(path)[1].lower())
+    return entry[0] if entry else None
+
+
+def _fail(code: codes.Code, path: str, message: str) -> ImportError_:  # type: ignore[name-defined]
+    return ImportError_(Diagnostic(code, Severity.ERROR, message, span_of(Where(path, 1))))
+
+
+def _load(path: str) -> str:
+    with open(path, "rb") as f:
+        data = f.read(MAX_BYTES + 1)
+    if len(data) > MAX_BYTES:
+        raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be at most {MAX_BYTES} bytes")
+    try:
+        text = read_text(data)
+    except ValueError as exc:
+        raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be text ({exc})") from None
+    _SOURCES[path] = SourceFile(path, text)
+    return text
+
+
+def read_files(paths: list[str], model: str | None = None) -> Document:
+    """Read and merge the files (one vendor): the first file's main routine runs. A KRL .src
+    reads its .dat (given too, or beside it). `model`: the robot library name the program runs
+    on, where a vendor writes speeds relative to the arm (URScript movej)."""
+    _MODEL[0] = model
+    _FANUC_LABELS["UTOOL"].clear()
+    _FANUC_LABELS["UFRAME"].clear()
+    _FANUC_PROGRAMS.clear()
+    _FANUC_INLINED.clear()
+    for path in paths:
+        if path.lower().endswith(".ls"):
+            prog = re.match(r"\s*/PROG\s+(\w+)", _load(path))
+            if prog:
+                _FANUC_PROGRAMS[prog.group(1).upper()] = (path, _load(path))
+            for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):
+                _FANUC_LABELS[kind][int(n)] = name
+    docs: list[Document] = []
+    consumed = set()
+    for path in paths:
+        if path in consumed:
+            continue
+        entry = READERS.get(os.path.splitext(path)[1].lower())
+        if entry is None:
+            known = ", ".join(sorted(READERS))
+            raise _fail(codes.UNKNOWN_FORMAT, path, f"`rmot import` reads {known} files (got `{os.path.basename(path)}`)")
+        companion = None
+        if entry[0] == "krl" and path.lower().endswith(".src"):
+            stem = os.path.splitext(path)[0]
+            dat = next((p for p in paths if os.path.splitext(p)[0] == stem and p.lower().endswith(".dat")), None)
+            dat = dat or next((c for c in companions(path)[1:]), None)
+            if dat is not None:
+                consumed.add(dat)
+                companion = (dat, _load(dat))
+        doc, _ = entry[1](path, _load(path), companion)
+        docs.append(doc)
+    docs = _without_inlined(docs)
+    vendors = {d.vendor for d in docs}
+    if len(vendors) > 1:
+        raise _fail(codes.DIFF_VENDORS_DIFFER, paths[-1], f"the files must be of one vendor (got {', '.join(sorted(vendors))})")
+    return _merge(docs)
+
+
+def _without_inlined(docs: list[Document]) -> list[Document]:
+    """TP programs every caller inlined (they moved by the caller's loop offsets) are not
+    routines of the imported program: their lines are imported at the calls."""
+    from rmot.backends.readers.model import Call, walk
+
+    while True:  # a program only inlined programs call goes too
+        called = {s.name.upper() for d in docs for r in d.routines for s in walk(r.body) if isinstance(s, Call)}
+        kept = [d for i, d in enumerate(docs) if i == 0 or d.name.upper() not in _FANUC_INLINED - called]
+        if len(kept) == len(docs):
+            return kept
+        docs = kept
+
+
+def _unique_targets(docs: list[Document]) -> list[Document]:
+    """Targets of one name in several files: one declaration when equal; otherwise the later
+    file's is renamed `FILE_name` (its moves follow)."""
+    from dataclasses import replace
+
+    from rmot.backends.readers.writer import map_leaves
+
+    seen: dict[str, Target] = {}
+    out = []
+    for d in docs:
+        renames: dict[str, str] = {}
+        kept = []
+        for t in d.targets:
+            other = seen.get(t.name)
+            if other is None:
+                seen[t.name] = t
+                kept.append(t)
+            elif (other.pose, other.joints, other.config) != (t.pose, t.joints, t.config):
+                renames[t.name] = f"{d.name.lower()}_{t.name}"
+                kept.append(replace(t, name=renames[t.name]))
+        routines = tuple(replace(r, body=map_leaves(r.body, _renamer(renames))) for r in d.routines)
+        out.append(replace(d, targets=tuple(kept), routines=routines))
+    return out
+
+
+def _renamer(renames: dict[str, str]) -> Callable[[Stmt], Stmt]:
+    """A function renaming the targets a move names (whole words of its expressions)."""
+    from dataclasses import replace
+
+    from rmot.backends.readers.model import Move
+
+    def sub(text: str) -> str:
+        return re.sub(r"\b(\w+)\b", lambda m: renames.get(m.group(1), m.group(1)), text)
+
+    def rename(s: Stmt) -> Stmt:
+        if not isinstance(s, Move) or not renames:
+            return s
+        return replace(s, target=sub(s.target), via=sub(s.via) if s.via else None,
+                       target_name=renames.get(s.target_name or "", s.target_name))
+
+    return rename
+
+
+def _merge(docs: list[Document]) -> Document:
+    docs = _unique_targets(docs)
+    first = docs[0]
+    routines: list[Routine] = []
+    for d in docs:
+        routines += [r for r in d.routines if not (d is not first and r.name == d.main and r.name == first.main)]
+    tools = {t.name: t for d in docs for t in d.tools if t.tcp != Pose() or t.mass}  # data where a file has it
+    tools = {**{t.name: t for d in docs for t in d.tools}, **tools}
+    frames = {f.name: f for d in docs for f in d.frames if f.pose != Pose()}
+    frames = {**{f.name: f for d in docs for f in d.frames}, **frames}
+    return Document(first.vendor, first.name, first.main, sum((d.targets for d in docs), ()),
+                    tuple(tools.values()), tuple(frames.values()), tuple(routines),
+                    sum((d.consts for d in docs), ()), sum((d.counts for d in docs), ()),
+                    sum((d.diagnostics for d in docs), ()), sum((d.kept for d in docs), ()))
+
+
+def companions(path: str) -> list[str]:
+    """The files that make one program with `path`: a KRL `.src` and its `.dat`."""
+    stem, ext = os.path.splitext(path)
+    if ext.lower() == ".src":
+        for dat in (stem + ".dat", stem + ".DAT"):
+            if os.path.exists(dat):
+                return [path, dat]
+    return [path]

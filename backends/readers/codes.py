@@ -1,0 +1,30 @@
+"""Diagnostic codes of `rmot import` and `rmot diff` (reading vendor programs back).
+
+Range E510–E519 / W510–W519: every message is located at the vendor file's line and column.
+"""
+
+from __future__ import annotations
+
+from rmot.lang.diagnostics import Code
+
+__all__ = [
+    "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
+    "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
+]
+
+NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
+                           "a file given to `rmot import` is not a program in the vendor language its name says")
+UNKNOWN_FORMAT = Code("E511", "unknown-vendor-format",
+                      "a file's extension names no vendor language `rmot import` reads")
+IMPORT_UNREADABLE = Code("E512", "import-unreadable", "a vendor file is not UTF-8/Latin-1 text or too large")
+DIFF_VENDORS_DIFFER = Code("E513", "diff-vendors-differ", "`rmot diff` was given programs of two different vendors")
+
+KEPT_NATIVE = Code("W510", "kept-native",
+                   "a vendor instruction has no rmot form: it is kept as a `native` statement at its place")
+DECLARATION_KEPT = Code("W511", "declaration-kept",
+                        "a vendor declaration has no rmot form: it is kept as a comment")
+JOINT_SPEED_READ = Code("W512", "joint-speed-read",
+                        "a joint move's TCP speed is read as 100 % joint speed (rmot times joint moves by joint share)")
+SIGNAL_UNKNOWN = Code("W513", "signal-unknown",
+                      "an I/O signal name is not declared in the cell: the instruction is kept native")
+NAME_RENAMED = Code("W514", "name-renamed", "a vendor name is an rmot keyword or clashes: it is renamed")

@@ -1,0 +1,170 @@
+"""What every vendor reader shares: located diagnostics, the imported/native tally, reading
+a file as text, splitting argument lists at top level, and numeric expressions.
+
+Inputs are data: nothing here evaluates vendor text; numbers are parsed with float() and
+refused when not finite.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from typing import TypeVar
+
+from rmot.backends.readers import codes
+from rmot.backends.readers.model import FileCount, Native, Where
+from rmot.lang.diagnostics import Code, Diagnostic, Severity
+from rmot.lang.source import Pos, SourceFile, Span
+
+__all__ = ["Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
+           "num_expr", "rmot_name", "RMOT_RESERVED"]
+
+T = TypeVar("T")
+MAX_BYTES = 4 * 1024 * 1024  # the largest vendor file read (a pendant job is far smaller)
+NUMBER_RE = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+
+# rmot's reserved words (lang/REFERENCE.md section 2): a vendor name equal to one is renamed
+RMOT_RESERVED = frozenset(
+    "move joint linear circular via to speed accel zone fine tool frame target set wait until timeout "
+    "pulse for in repeat if else proc return const use import cell program task sync native on off "
+    "config at robot fixture io joint_speed joints time var while stop and or not true false none tcp "
+    "mass flange base world pose inv shift int num bool".split())
+
+
+class ImportError_(Exception):
+    """A file that cannot be read as the vendor language: carries the located E510."""
+
+    def __init__(self, diagnostic: Diagnostic) -> None:
+        super().__init__(diagnostic.message)
+        self.diagnostic = diagnostic
+
+
+class Tally:
+    """Collects one file's diagnostics and its imported / native instruction count."""
+
+    def __init__(self, path: str, text: str, vendor: str) -> None:
+        self.path = path
+        self.vendor = vendor
+        self.source = SourceFile(path, text)
+        self.diagnostics: list[Diagnostic] = []
+        self.imported = 0
+        self.native = 0
+        self.comments: list[Native] = []  # declarations and routines kept as a comment block
+        self.depth = 0  # blocks open while reading (bounded: a hostile file cannot exhaust the stack)
+
+    def span(self, where: Where) -> Span:
+        pos = Pos(where.line, where.col)
+        return Span(self.source, pos, pos)
+
+    def warn(self, code: Code, message: str, where: Where) -> None:
+        self.diagnostics.append(Diagnostic(code, Severity.WARNING, message, self.span(where)))
+
+    def fail(self, message: str, where: Where) -> ImportError_:
+        return ImportError_(Diagnostic(codes.NOT_VENDOR_LANGUAGE, Severity.ERROR, message, self.span(where)))
+
+    def keep(self, text: str, where: Where, why: str) -> Native:
+        """A line rmot cannot express: a native statement at its place, and W510 there."""
+        self.native += 1
+        self.warn(codes.KEPT_NATIVE, f"{why}; kept as `native {self.vendor}`: {text.strip()[:60]}", where)
+        return Native(self.vendor, text.strip(), where)
+
+    MAX_NESTING = 64
+
+    def enter(self, where: Where) -> None:
+        """A block opens; more than MAX_NESTING open blocks is E510 (no controller nests so deep)."""
+        self.depth += 1
+        if self.depth > self.MAX_NESTING:
+            raise self.fail(f"blocks must nest at most {self.MAX_NESTING} deep", where)
+
+    def leave(self) -> None:
+        self.depth -= 1
+
+    def nested(self, where: Where, read: Callable[[], T]) -> T:
+        """`read()` one block deeper (enter/leave around it)."""
+        self.enter(where)
+        try:
+            return read()
+        finally:
+            self.leave()
+
+    def comment(self, text: str, where: Where) -> None:
+        """A line with no rmot form outside any routine: kept in the comment block (counted native)."""
+        self.native += 1
+        self.comments.append(Native(self.vendor, text.strip(), where))
+
+    def count(self) -> FileCount:
+        return FileCount(self.path, self.imported, self.native)
+
+
+def read_text(data: bytes) -> str:
+    """Vendor files are ASCII, UTF-8 or Latin-1 (older controllers); a NUL byte means binary."""
+    if b"\x00" in data:
+        raise ValueError("binary data (NUL bytes)")
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    return text.replace("\r\n", "\n").replace("\r", "\n")
+
+
+def split_top(text: str, seps: str = ",") -> list[str]:
+    """Split at separators outside brackets, parentheses, braces and strings."""
+    parts: list[str] = []
+    depth, start, quote = 0, 0, False
+    for i, ch in enumerate(text):
+        if ch == '"':
+            quote = not quote
+        elif quote:
+            continue
+        elif ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        elif ch in seps and depth == 0:
+            parts.append(text[start:i])
+            start = i + 1
+    parts.append(text[start:])
+    return [p.strip() for p in parts]
+
+
+def number(text: str) -> float | None:
+    """A finite decimal number, or None (names, expressions, 9E+09 placeholders are numbers)."""
+    text = text.strip()
+    if not NUMBER_RE.fullmatch(text):
+        return None
+    value = float(text)
+    return value if math.isfinite(value) else None
+
+
+_EXPR_TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?)|([A-Za-z_]\w*)|([-+*/()]))")
+
+
+def num_expr(text: str, names: frozenset[str] | set[str]) -> str | None:
+    """A vendor arithmetic expression over numbers and known names (loop counters,
+    parameters, constants) as rmot text, or None when it holds anything else."""
+    out: list[str] = []
+    pos = 0
+    text = text.strip()
+    if number(text) is not None:
+        return text
+    while pos < len(text):
+        m = _EXPR_TOKEN.match(text, pos)
+        if m is None or m.end() == pos:
+            return None
+        num, name, op = m.groups()
+        if name is not None and name not in names:
+            return None
+        out.append(num or name or op)
+        pos = m.end()
+    return " ".join(out) if out else None
+
+
+def rmot_name(name: str, taken: set[str] | None = None) -> str:
+    """A vendor identifier as a legal rmot name (keywords get a trailing `_`)."""
+    clean = re.sub(r"\W", "_", name)
+    if not clean or clean[0].isdigit():
+        clean = "n_" + clean
+    if clean in RMOT_RESERVED:
+        clean += "_"
+    return clean

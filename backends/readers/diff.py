@@ -1,0 +1,149 @@
+"""The semantic difference of two programs read back (`rmot diff A B`).
+
+Targets are matched by name and compared by position (mm), orientation (the angle of the
+relative rotation, deg), joint values (deg) and configuration; instructions are aligned per
+routine (difflib's longest matching blocks over each instruction's kind and target, so an
+inserted line does not shift every later comparison) and compared by speed, zone, time,
+tool, frame and I/O value. Every item names both places, `file:line`.
+"""
+
+from __future__ import annotations
+
+import math
+from difflib import SequenceMatcher
+
+from rmot.backends.readers.model import (
+    Call, Document, For, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, walk,
+)
+from rmot.compiler import ir
+
+__all__ = ["diff_documents", "TOLERANCE_MM", "TOLERANCE_DEG"]
+
+TOLERANCE_MM = 0.001  # what the vendors print (RAPID, KRL 3 decimals of a mm)
+TOLERANCE_DEG = 0.001
+
+
+def _angle_deg(a: ir.Pose, b: ir.Pose) -> float:
+    dot = abs(sum(x * y for x, y in zip(a.quaternion, b.quaternion)))
+    return math.degrees(2 * math.acos(min(1.0, dot)))
+
+
+def _distance_mm(a: ir.Pose, b: ir.Pose) -> float:
+    return 1000 * math.dist(a.position, b.position)
+
+
+def _pose_change(a: ir.Pose | None, b: ir.Pose | None, ja: tuple[float, ...] | None,
+                 jb: tuple[float, ...] | None) -> str | None:
+    if a is not None and b is not None:
+        d, r = _distance_mm(a, b), _angle_deg(a, b)
+        if d > TOLERANCE_MM or r > TOLERANCE_DEG:
+            return f"moved {d:.3f} mm, turned {r:.3f} deg"
+    elif ja is not None and jb is not None:
+        worst = max((abs(x - y) for x, y in zip(ja, jb)), default=0.0)
+        if len(ja) != len(jb) or worst > TOLERANCE_DEG:
+            joint = max(range(min(len(ja), len(jb))), key=lambda i: abs(ja[i] - jb[i]), default=0)
+            return f"joints changed by up to {worst:.3f} deg (joint {joint + 1})"
+    elif (a is None) != (b is None):
+        return "changed between a pose and joint values"
+    return None
+
+
+def _targets(a: Document, b: Document) -> list[str]:
+    out = []
+    tb = {t.name.upper(): t for t in b.targets}
+    ta = {t.name.upper(): t for t in a.targets}
+    for key, t in ta.items():
+        other = tb.get(key)
+        if other is None:
+            out.append(f"{t.where}: target {t.name} removed")
+            continue
+        change = _pose_change(t.pose, other.pose, t.joints, other.joints)
+        if change:
+            out.append(f"{t.where} -> {other.where}: target {t.name} {change}")
+        if t.config != other.config and t.config is not None and other.config is not None:
+            out.append(f"{t.where} -> {other.where}: target {t.name} configuration {t.config} -> {other.config}")
+    out += [f"{t.where}: target {t.name} added" for key, t in tb.items() if key not in ta]
+    return out
+
+
+def describe(s: Stmt) -> str:
+    """What an instruction is, without the details a touch-up changes (the alignment key)."""
+    if isinstance(s, Move):
+        return f"move {s.kind} {s.target_name or s.target.split('(')[0]}"
+    if isinstance(s, SetOut):
+        return f"set {'aout' if s.analog else 'out'} {s.signal}"
+    if isinstance(s, Pulse):
+        return f"pulse {s.signal}"
+    if isinstance(s, WaitIn):
+        return f"wait until {s.cond.signal}"
+    if isinstance(s, (If, While)):
+        return f"{type(s).__name__.lower()} {s.cond.signal}"
+    if isinstance(s, For):
+        return f"for {s.var}"
+    if isinstance(s, Call):
+        return f"call {s.name}"
+    if isinstance(s, Native):
+        return f"native {s.text}"
+    return "stop" if isinstance(s, Stop) else "wait"
+
+
+def _details(s: Stmt) -> dict[str, str]:
+    if isinstance(s, Move):
+        return {"speed": f"{s.speed:g} mm/s" if s.speed is not None else f"{s.joint_pct or 100:g} %",
+                "zone": "fine" if s.zone is None else f"{s.zone:g} mm",
+                "time": "-" if s.time is None else f"{s.time:g} s", "tool": str(s.tool), "frame": str(s.frame),
+                "target": s.target, "config": str(s.config)}
+    if isinstance(s, SetOut):
+        return {"value": f"{s.value:g}"}
+    if isinstance(s, Pulse):
+        return {"length": f"{s.seconds:g} s"}
+    if isinstance(s, Wait):
+        return {"time": f"{s.seconds:g} s"}
+    if isinstance(s, (WaitIn, If, While)):
+        timeout = getattr(s, "timeout", None)
+        return {"level": "on" if s.cond.on else "off", "timeout": "-" if timeout is None else f"{timeout:g} s"}
+    if isinstance(s, For):
+        return {"range": f"{s.first} .. {s.stop}"}
+    return {}
+
+
+def _compare(x: Stmt, y: Stmt) -> list[str]:
+    where = f"{x.where} -> {y.where}: {describe(x)}"
+    dx, dy = _details(x), _details(y)
+    out = [f"{where}: {k} {dx[k]} -> {dy[k]}" for k in dx if dx[k] != dy.get(k) and k != "target"]
+    if isinstance(x, Move) and isinstance(y, Move):
+        change = _pose_change(x.pose, y.pose, x.joints, y.joints) if x.target_name is None else None
+        if change or (dx["target"] != dy["target"] and x.target_name == y.target_name and x.target_name is None):
+            out.append(f"{where}: target {change or dx['target'] + ' -> ' + dy['target']}")
+        elif dx["target"] != dy["target"]:
+            out.append(f"{where}: target {dx['target']} -> {dy['target']}")
+    return out
+
+
+def _routine(ra: tuple[Stmt, ...], rb: tuple[Stmt, ...]) -> list[str]:
+    fa, fb = walk(ra), walk(rb)
+    out: list[str] = []
+    matcher = SequenceMatcher(a=[describe(s) for s in fa], b=[describe(s) for s in fb], autojunk=False)
+    for op, i1, i2, j1, j2 in matcher.get_opcodes():
+        if op == "equal" or (op == "replace" and i2 - i1 == j2 - j1 and all(
+                fa[i].__class__ is fb[j].__class__ for i, j in zip(range(i1, i2), range(j1, j2)))):
+            for i, j in zip(range(i1, i2), range(j1, j2)):
+                out += _compare(fa[i], fb[j])
+            continue
+        out += [f"{fa[i].where}: removed {describe(fa[i])}" for i in range(i1, i2)]
+        out += [f"{fb[j].where}: added {describe(fb[j])}" for j in range(j1, j2)]
+    return out
+
+
+def diff_documents(a: Document, b: Document) -> list[str]:
+    """Every difference, one line each (empty when the programs mean the same)."""
+    out = _targets(a, b)
+    rb = {r.name.upper(): r for r in b.routines}
+    ra = {r.name.upper(): r for r in a.routines}
+    for key, r in ra.items():
+        if key not in rb:
+            out.append(f"{r.where}: routine {r.name} removed")
+            continue
+        out += _routine(r.body, rb[key].body)
+    out += [f"{r.where}: routine {r.name} added" for key, r in rb.items() if key not in ra]
+    return out

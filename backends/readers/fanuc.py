@@ -1,0 +1,369 @@
+"""Read Fanuc TP programs (`.ls`, the ASCII form) back into a neutral Document.
+
+Conventions are the Fanuc backend's, read in reverse (FANUC R-30iB Operator's Manual, Basic
+Operation): `/PROG NAME`, `/MN` numbered lines ending `;` (a line starting `:` continues the
+one before, as a circular move's second point), `/POS` positions `P[n:"name"]{ GP1: UF, UT,
+CONFIG : 'F|N U|D T|B, t4, t5, t6', X Y Z mm, W P R deg }` (R = Rz(R)·Ry(P)·Rx(W): rx=W, ry=P,
+rz=R) or `J1..J6 deg`; CONFIG N = wrist flip (the backend's `config_string`), U elbow up, T
+shoulder front (turn numbers are not read: the planner takes the nearest, as the program did);
+`J P[n] v% FINE|CNTn`, `L P[n] v mm/sec ..`, `C P[a] : P[b] ..`, `n.nnsec` a fixed time, CNT
+1 mm per step (`FanucBackend.CNT_MM`); `UTOOL_NUM`/`UFRAME_NUM` (0 = robot base) with the
+tool/frame written through `PR[k]=LPOS`, `PR[k,i]=v`, `UTOOL[n]=PR[k]` and named by the
+`!UTOOL[n] = name` comment; `DO[n]=ON|OFF|PULSE,t sec`, `AO[n]=`, `WAIT t(sec)`, `WAIT DI[n]=..`
+with `$WAITTMOUT` (1/100 s) and the ABORT label; the counting loop `R[v]=a`, `LBL[t]`, ..,
+`R[v]=R[v]+1`, `IF R[v]<=b,JMP LBL[t]` with `Offset,PR[k]`, `PR[k,i]=R[v]*d` as `shift`.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from rmot.backends.fanuc_tp import FanucBackend
+from rmot.backends.readers.common import Tally, number, rmot_name
+from rmot.backends.readers.model import (
+    Call, Cond, For, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, Routine,
+)
+from rmot.backends.readers.rapid import mm
+from rmot.compiler import ir
+
+__all__ = ["read_fanuc"]
+
+_MOTION = re.compile(r"(?i)^(J|L)\s+P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
+_CIRC = re.compile(r"(?i)^C\s+P\[(\d+)(?::[^\]]*)?\]\s*:\s*P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
+_SIG = r"\[(\d+)(?::[^\]]*)?\]"
+
+
+def _branch(text: str) -> ir.Config | None:
+    m = re.match(r"\s*([FN])\s*([UD])\s*([TB])", text.upper())
+    if m is None:
+        return None
+    return ir.Config(ir.Shoulder.FRONT if m.group(3) == "T" else ir.Shoulder.BACK,
+                     ir.Elbow.UP if m.group(2) == "U" else ir.Elbow.DOWN,
+                     ir.Wrist.FLIP if m.group(1) == "N" else ir.Wrist.NOFLIP)
+
+
+class _Ls:
+    def __init__(self, path: str, text: str, labels: dict[str, dict[int, str]],
+                 programs: dict[str, tuple[str, str]] | None = None) -> None:
+        self.tally = Tally(path, text, "fanuc")
+        self.path = path
+        self.raw = text.split("\n")
+        self.name = ""
+        self.instructions: list[tuple[str, Where]] = []
+        self.positions: dict[int, Target] = {}
+        self.tools: dict[int, ToolData] = {}
+        self.frames: dict[int, FrameData] = {}
+        self.labels = {kind: dict(names) for kind, names in labels.items()}
+        self.pr: dict[int, list[float]] = {}
+        self.offsets: dict[int, dict[str, str]] = {}
+        self.loop_vars: dict[str, str] = {}
+        self.state: dict[str, int] = {"UTOOL": 0, "UFRAME": 0}
+        self.timeout: float | None = None
+        self.routine = Routine("", (), (), Where(path, 1))  # the program, once read
+        self.programs = programs or {}
+        self.inlined: set[str] = set()  # programs read again at a call inside a loop
+
+    # ---------------------------------------------------------------- sections
+
+    def read(self) -> Routine:
+        first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
+        m = re.match(r"\s*/PROG\s+(\w+)", first[1])
+        if m is None:
+            raise self.tally.fail("a Fanuc TP .ls program must start with `/PROG NAME`", Where(self.path, first[0]))
+        self.name = m.group(1)
+        section = ""
+        for n, line in enumerate(self.raw, 1):
+            stripped = line.strip()
+            if stripped.startswith("/"):
+                section = stripped.split()[0].upper()
+                continue
+            if section == "/MN" and stripped:
+                self._mn_line(line, n)
+        self._positions()
+        body, _ = self._block(0, None)
+        self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
+        return self.routine
+
+    def _mn_line(self, line: str, n: int) -> None:
+        m = re.match(r"\s*(\d+)?\s*:\s*(.*?)\s*;?\s*$", line)
+        if m is None:
+            raise self.tally.fail(f"a /MN line must be `N:  instruction ;` (got `{line.strip()[:40]}`)", Where(self.path, n))
+        text = m.group(2)
+        if m.group(1) is None and self.instructions:  # `:` continues the line before (C P[a] : P[b])
+            prev, where = self.instructions[-1]
+            self.instructions[-1] = (f"{prev} : {text}", where)
+        else:
+            self.instructions.append((text, Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
+
+    def _positions(self) -> None:
+        text = "\n".join(self.raw)
+        start = text.find("/POS")
+        for m in re.finditer(r"P\[(\d+)(?::\"([^\"]*)\")?\]\s*\{(.*?)\};", text[max(start, 0):], re.S):
+            n, label, body = int(m.group(1)), m.group(2), m.group(3)
+            line = text[:max(start, 0) + m.start()].count("\n") + 1
+            values = {k.upper(): float(v) for k, v in re.findall(r"\b([XYZWPR]|J\d)\s*=\s*(-?[\d.]+)", body)}
+            conf = re.search(r"CONFIG\s*:\s*'([^']*)'", body)
+            name = rmot_name(label) if label else f"{self.name.lower()}_p{n}"
+            if any(t.name == name for t in self.positions.values()):
+                name = f"{name}_{n}"  # the same label on another P[n] (the moves name it by number)
+            where = Where(self.path, line)
+            if all(k in values for k in "XYZWPR"):
+                pose = ir.Pose.from_xyz_rpy(values["X"] / 1000, values["Y"] / 1000, values["Z"] / 1000,
+                                            math.radians(values["W"]), math.radians(values["P"]), math.radians(values["R"]))
+                q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)  # cos(90 deg) noise
+                self.positions[n] = Target(name, ir.Pose(pose.position, q), None,  # type: ignore[arg-type]
+                                           _branch(conf.group(1)) if conf else None, where)
+            elif all(f"J{i}" in values for i in range(1, 7)):
+                self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where)
+
+    # ---------------------------------------------------------------- instructions
+
+    def _block(self, i: int, stop: int | None) -> tuple[list[Stmt], int]:
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        where = self.instructions[min(i, len(self.instructions) - 1)][1] if self.instructions else Where(self.path, 1)
+        return self.tally.nested(where, lambda: self._block_body(i, stop))
+
+    def _block_body(self, i: int, stop: int | None) -> tuple[list[Stmt], int]:
+        end = len(self.instructions) if stop is None else stop
+        body: list[Stmt] = []
+        while i < end:
+            stmts, i = self._statement(i, end)
+            body += stmts
+        return body, i
+
+    def _text(self, i: int) -> str:
+        return self.instructions[i][0] if i < len(self.instructions) else ""
+
+    def _statement(self, i: int, end: int) -> tuple[list[Stmt], int]:
+        text, where = self.instructions[i]
+        if text.startswith("!"):
+            m = re.fullmatch(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", text)
+            if m:
+                self.labels[m.group(1)][int(m.group(2))] = m.group(3)
+            return [], i + 1
+        if not text:
+            return [], i + 1
+        call = re.fullmatch(r"CALL\s+(\w+)", text)
+        inlined = self._inline_body(call.group(1)) if call else None
+        if inlined is not None:
+            self.tally.imported += 1
+            return list(inlined), i + 1
+        for pattern in (self._data, self._loop, self._timed_wait, self._if):
+            found = pattern(i, end)
+            if found is not None:
+                return found
+        stmt = self._simple(text, where)
+        if stmt is None:
+            return [self.tally.keep(text + " ;", where, "no rmot form")], i + 1
+        self.tally.imported += 1
+        return [stmt], i + 1
+
+    def _data(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """PR writes (a tool, frame or loop offset being built) and UTOOL/UFRAME selections."""
+        text = self._text(i)
+        m = re.fullmatch(r"PR\[(\d+)(?::[^\]]*)?\]\s*=\s*LPOS(-LPOS)?", text)
+        if m:
+            self.pr[int(m.group(1))] = [0.0] * 6
+            if m.group(2):
+                self.offsets[int(m.group(1))] = {}
+            return [], i + 1
+        m = re.fullmatch(r"PR\[(\d+),(\d)\]\s*=\s*(-?[\d.]+)", text)
+        if m and int(m.group(1)) in self.pr and 1 <= int(m.group(2)) <= 6:
+            self.pr[int(m.group(1))][int(m.group(2)) - 1] = float(m.group(3))
+            return [], i + 1
+        m = re.fullmatch(r"PR\[(\d+),([123])\]\s*=\s*R\[(\d+)(?::[^\]]*)?\]\*(-?[\d.]+)", text)
+        if m and int(m.group(1)) in self.offsets and m.group(3) in self.loop_vars:
+            self.offsets[int(m.group(1))]["xyz"[int(m.group(2)) - 1]] = f"{self.loop_vars[m.group(3)]} * {m.group(4)}"
+            return [], i + 1
+        m = re.fullmatch(r"(UTOOL|UFRAME)\[(\d+)\]\s*=\s*PR\[(\d+)\]", text)
+        if m and int(m.group(3)) in self.pr:
+            self._define(m.group(1), int(m.group(2)), self.pr[int(m.group(3))], self.instructions[i][1])
+            return [], i + 1
+        m = re.fullmatch(r"(UTOOL|UFRAME)_NUM\s*=\s*(\d+)", text)
+        if m:
+            self.state[m.group(1)] = int(m.group(2))
+            return [], i + 1
+        m = re.fullmatch(r"\$WAITTMOUT\s*=\s*(\d+)", text)
+        if m:
+            self.timeout = int(m.group(1)) / 100.0
+            return [], i + 1
+        return None
+
+    def _define(self, kind: str, n: int, v: list[float], where: Where) -> None:
+        pose = ir.Pose.from_xyz_rpy(v[0] / 1000, v[1] / 1000, v[2] / 1000, *(math.radians(a) for a in v[3:]))
+        name = self.labels[kind].get(n, f"{kind.lower()}{n}")
+        if kind == "UTOOL":
+            self.tools[n] = ToolData(name, pose, 0.0, where)
+        else:
+            self.frames[n] = FrameData(name, pose, where)
+
+    def _named(self, kind: str) -> str:
+        n = self.state[kind]
+        if kind == "UFRAME" and n == 0:
+            return "base"
+        table = self.tools if kind == "UTOOL" else self.frames
+        if n not in table:
+            label = self.labels[kind].get(n, f"{kind.lower()}{n}")
+            where = Where(self.path, 1)
+            if kind == "UTOOL":
+                self.tools[n] = ToolData(label, ir.Pose(), 0.0, where)
+            else:
+                self.frames[n] = FrameData(label, ir.Pose(), where)
+        return table[n].name
+
+    def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        m = re.fullmatch(r"R\[(\d+)(?::([^\]]*))?\]\s*=\s*(-?\d+)", self._text(i))
+        lbl = re.fullmatch(r"LBL\[(\d+)\]", self._text(i + 1)) if m else None
+        if m is None or lbl is None:
+            return None
+        reg = m.group(1)
+        close = rf"IF R\[{reg}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{lbl.group(1)}\]"
+        j = next((k for k in range(i + 2, end) if re.fullmatch(close, self._text(k))), None)
+        step = rf"R\[{reg}(?::[^\]]*)?\]=R\[{reg}(?::[^\]]*)?\]\+1"
+        if j is None or not re.fullmatch(step, self._text(j - 1)):
+            return None
+        var = rmot_name((m.group(2) or f"r{reg}").replace(" ", "_"))
+        self.loop_vars[reg] = var
+        body, _ = self._block(i + 2, j - 1)
+        del self.loop_vars[reg]
+        last = int(re.fullmatch(close, self._text(j)).group(1))  # type: ignore[union-attr]
+        self.tally.imported += 1
+        return [For(var, int(m.group(3)), last + 1, tuple(body), self.instructions[i][1])], j + 1
+
+    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`IF DI[n]<>ON,JMP LBL[a]`, then-body, [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
+        m = re.fullmatch(rf"IF DI{_SIG}\s*<>\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
+        if m is None:
+            return None
+        ja = next((k for k in range(i + 1, end) if self._text(k) == f"LBL[{m.group(3)}]"), None)
+        if ja is None:
+            return None
+        jmp = re.fullmatch(r"JMP LBL\[(\d+)\]", self._text(ja - 1))
+        jb = next((k for k in range(ja + 1, end) if jmp and self._text(k) == f"LBL[{jmp.group(1)}]"), None)
+        then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
+        orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
+        self.tally.imported += 1
+        cond = Cond(int(m.group(1)), m.group(2) == "ON")
+        return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1
+
+    def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`WAIT DI[n]=ON TIMEOUT,LBL[a]`, `JMP LBL[b]`, `LBL[a]`, `ABORT`, `LBL[b]` (after $WAITTMOUT)."""
+        m = re.fullmatch(rf"WAIT DI{_SIG}\s*=\s*(ON|OFF) TIMEOUT,LBL\[(\d+)\]", self._text(i))
+        if m is None or self.timeout is None:
+            return None
+        texts = [t for t in (self._text(k) for k in range(i + 1, min(i + 7, end))) if not t.startswith("!")]
+        jmp = re.fullmatch(r"JMP LBL\[(\d+)\]", texts[0]) if texts else None
+        if not (jmp and len(texts) >= 4 and texts[1] == f"LBL[{m.group(3)}]" and texts[2] == "ABORT"
+                and texts[3] == f"LBL[{jmp.group(1)}]"):
+            return None
+        k = i + 1
+        while self._text(k) != f"LBL[{jmp.group(1)}]":
+            k += 1
+        self.tally.imported += 1
+        return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), self.timeout, self.instructions[i][1])], k + 1
+
+    def _simple(self, text: str, where: Where) -> Stmt | None:
+        if text.startswith(("J ", "L ", "C ")):
+            return self._motion(text, where)
+        m = re.fullmatch(rf"DO{_SIG}\s*=\s*(ON|OFF)", text)
+        if m:
+            return SetOut(int(m.group(1)), 1.0 if m.group(2) == "ON" else 0.0, where)
+        m = re.fullmatch(rf"DO{_SIG}\s*=\s*PULSE,\s*([\d.]+)\s*sec", text)
+        if m:
+            return Pulse(int(m.group(1)), float(m.group(2)), where)
+        m = re.fullmatch(rf"AO{_SIG}\s*=\s*(-?[\d.]+)", text)
+        if m:
+            return SetOut(int(m.group(1)), float(m.group(2)), where, analog=True)
+        m = re.fullmatch(r"WAIT\s+([\d.]+)\s*\(sec\)", text)
+        if m:
+            return Wait(float(m.group(1)), where)
+        m = re.fullmatch(rf"WAIT DI{_SIG}\s*=\s*(ON|OFF)", text)
+        if m:
+            return WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), None, where)
+        m = re.fullmatch(r"CALL\s+(\w+)", text)
+        if m:
+            return Call(m.group(1), (), where)
+        return Stop(where) if text == "ABORT" else None
+
+    def _motion(self, text: str, where: Where) -> Move | None:
+        circ = _CIRC.match(text)
+        lin = None if circ else _MOTION.match(text)
+        if circ:
+            kind, points, speed, zone, rest = "circular", [int(circ.group(1)), int(circ.group(2))], *circ.group(3, 4, 5)
+        elif lin:
+            kind = "joint" if lin.group(1).upper() == "J" else "linear"
+            points, speed, zone, rest = [int(lin.group(2))], *lin.group(3, 4, 5)
+        else:
+            return None
+        decls = [self.positions.get(p) for p in points]
+        offset = re.fullmatch(r"(?i)Offset,PR\[(\d+)\]", rest.strip()) if rest.strip() else None
+        if any(d is None for d in decls) or (rest.strip() and (offset is None or int(offset.group(1)) not in self.offsets)):
+            return None
+        exprs = [d.name for d in decls]  # type: ignore[union-attr]
+        if offset:
+            terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(self.offsets[int(offset.group(1))].items()))
+            exprs = [f"shift({e}, {terms})" if terms else e for e in exprs]
+        timing = _speed(kind, speed.replace(" ", ""))
+        if timing is None:
+            return None
+        cnt = re.fullmatch(r"(?i)CNT\s*(\d+)", zone)
+        decl = decls[-1]
+        assert decl is not None
+        return Move(kind, exprs[-1], decl.name, where, via=exprs[0] if kind == "circular" else None,
+                    speed=timing[0], joint_pct=timing[1], time=timing[2],
+                    zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
+                    tool=self._named("UTOOL"), frame=self._named("UFRAME"),
+                    config=decl.config if kind == "joint" and decl.pose is not None else None,
+                    pose=decl.pose, joints=decl.joints)
+
+
+    def _uses_offsets(self, name: str, depth: int) -> bool:
+        """Whether program `name`, or a program it calls (8 levels), moves by an offset register
+        this program's loops set."""
+        source = self.programs.get(name.upper())
+        if source is None or depth > 8:
+            return False
+        if any(re.search(rf"Offset,PR\[{k}\]", source[1]) for k in self.offsets):
+            return True
+        return any(self._uses_offsets(callee, depth + 1) for callee in re.findall(r"CALL\s+(\w+)", source[1]))
+
+    def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
+        """The body of program `name` read with this program's loop counters and offset
+        registers, when it moves a target by one of them (else None: it is called)."""
+        source = self.programs.get(name.upper())
+        if source is None or not self.loop_vars or not self._uses_offsets(name, 0):
+            return None
+        callee = _Ls(source[0], source[1], self.labels, self.programs)
+        callee.offsets, callee.loop_vars = self.offsets, self.loop_vars
+        callee.state = dict(self.state)
+        callee.tools, callee.frames = self.tools, self.frames
+        callee.read()
+        self.positions.update({-(len(self.positions) + k + 1): t for k, t in enumerate(callee.positions.values())})
+        self.inlined.add(name.upper())
+        self.inlined |= callee.inlined
+        return callee.routine.body
+
+
+
+def _speed(kind: str, text: str) -> tuple[float | None, float | None, float | None] | None:
+    """(TCP mm/s, joint %, fixed time s) of a TP speed."""
+    m = re.fullmatch(r"([\d.]+)(%|mm/sec|sec)", text)
+    if m is None or number(m.group(1)) is None:
+        return None
+    value = float(m.group(1))
+    if m.group(2) == "sec":
+        return (None, None, value)
+    if (m.group(2) == "%") != (kind == "joint"):
+        return None
+    return (value, None, None) if m.group(2) == "mm/sec" else (None, value, None)
+
+
+def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = None,
+               programs: dict[str, tuple[str, str]] | None = None) -> _Ls:
+    """Read one TP program; raises ImportError_ (E510) when it is not one. `labels`: tool and
+    frame names by number, from all the program's files; `programs`: those files by program
+    name (a program called inside a loop that moves its targets is inlined at the call)."""
+    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs)
+    ls.read()
+    return ls

@@ -1,0 +1,219 @@
+"""Read Yaskawa INFORM jobs (`.JBI`) back into a neutral Document.
+
+Conventions are the INFORM backend's, read in reverse (Yaskawa DX100/YRC1000 INFORM manual,
+156191-1CD): `/JOB`, `//NAME`, `//POS` with `///TOOL n`, `///POSTYPE ROBOT|USER` (`///USER n`),
+`///RECTAN`, `///RCONF l,m,n,..` then `Cnnnnn=X,Y,Z,Rx,Ry,Rz` (mm, deg, R = Rz·Ry·Rx); RCONF m
+0 elbow up / 1 down, n 0 front / 1 rear (the backend's `rconf`; l is Yaskawa's own flip on R
+and is not the rmot wrist, so the wrist stays free: the planner takes the nearest); `//INST`
+`MOVJ C VJ=% PL=n`, `MOVL C V=mm/s PL=n`, `MOVC` start, via, end `FPT` (the start is where the
+robot stands), PL 0..4 = 0 / 12.5 / 25 / 50 / 100 mm (the backend's levels); `DOUT OT#(n)
+ON|OFF`, `PULSE OT#(n) T=`, `AOUT AO#(n) v`, `TIMER T=`, `WAIT IN#(n)=.. [T=]` (with the
+backend's JUMP/MSG/PAUSE: `timeout`), `JUMP *La IF IN#(n)=..` .. `*La` as `if`, `CALL JOB:`,
+the tool named by the `'TOOL n = name` comment. Pulse positions (`///PULSE`) are robot
+specific: their moves stay native.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from rmot.backends.readers.common import Tally, rmot_name
+from rmot.backends.readers.model import (
+    Call, Cond, FrameData, If, Move, Pulse, Routine, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where,
+)
+from rmot.compiler import ir
+
+__all__ = ["read_inform", "PL_MM"]
+
+PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/inform.py)
+
+
+class _Job:
+    def __init__(self, path: str, text: str) -> None:
+        self.tally = Tally(path, text, "inform")
+        self.path = path
+        self.raw = text.split("\n")
+        self.name = ""
+        self.positions: dict[str, Target] = {}
+        self.position_tool: dict[str, int] = {}
+        self.position_user: dict[str, int | None] = {}
+        self.tool_names: dict[int, str] = {}
+        self.tools: dict[int, ToolData] = {}
+        self.frames: dict[int, FrameData] = {}
+        self.inst: list[tuple[str, Where]] = []
+        self.routine = Routine("", (), (), Where(path, 1))
+
+    def read(self) -> None:
+        first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
+        if first[1].strip() != "/JOB":
+            raise self.tally.fail("an INFORM job must start with `/JOB`", Where(self.path, first[0]))
+        section, conf, tool, user, pulse = "", "0,0,0", 0, None, False
+        for n, line in enumerate(self.raw, 1):
+            s = line.strip()
+            if s.startswith("//NAME"):
+                self.name = s.split()[1] if len(s.split()) > 1 else "JOB"
+            elif s in ("//POS", "//INST") or s.startswith("//"):
+                section = s.split()[0] if s.startswith("//") and not s.startswith("///") else section
+            if s.startswith("///"):
+                key, _, rest = s[3:].partition(" ")
+                conf = rest if key == "RCONF" else conf
+                tool = int(rest) if key == "TOOL" and rest.isdigit() else tool
+                user = int(rest) if key == "USER" and rest.isdigit() else (None if key == "POSTYPE" and rest == "ROBOT" else user)
+                pulse = key == "PULSE" or (pulse and key != "RECTAN")
+                continue
+            if section == "//POS":
+                self._position(s, n, conf, tool, user, pulse)
+            elif section == "//INST" and s and not s.startswith("//"):
+                m = re.match(r"'\s*TOOL\s+(\d+)\s*=\s*(\w+)", s)
+                if m:
+                    self.tool_names[int(m.group(1))] = m.group(2)
+                if not s.startswith("'") and s not in ("NOP", "END"):
+                    self.inst.append((s, Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
+        if not self.name:
+            raise self.tally.fail("an INFORM job must name itself (`//NAME NAME`)", Where(self.path, first[0]))
+        body, _ = self._block(0, len(self.inst))
+        self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
+
+    def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
+        m = re.fullmatch(r"(C\d+)\s*=\s*(.*)", s)
+        if m is None or pulse:
+            return
+        try:
+            v = [float(x) for x in m.group(2).split(",")]
+        except ValueError:
+            return
+        if len(v) < 6 or not all(math.isfinite(x) for x in v):
+            return
+        pose = ir.Pose.from_xyz_rpy(v[0] / 1000, v[1] / 1000, v[2] / 1000, *(math.radians(a) for a in v[3:6]))
+        q = tuple(0.0 if abs(c) < 1e-12 else c for c in pose.quaternion)  # cos(90 deg) noise
+        bits = conf.split(",")
+        branch = None
+        if len(bits) >= 3 and bits[1].strip() in "01" and bits[2].strip() in "01":
+            branch = ir.Config(ir.Shoulder.FRONT if bits[2].strip() == "0" else ir.Shoulder.BACK,
+                               ir.Elbow.UP if bits[1].strip() == "0" else ir.Elbow.DOWN, None)
+        name = f"{self.name.lower()}_{m.group(1).lower()}"
+        self.positions[m.group(1)] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
+                                            Where(self.path, n))
+        self.position_tool[m.group(1)] = tool
+        self.position_user[m.group(1)] = user
+
+    # ---------------------------------------------------------------- instructions
+
+    def _block(self, i: int, end: int) -> tuple[list[Stmt], int]:
+        where = self.inst[min(i, len(self.inst) - 1)][1] if self.inst else Where(self.path, 1)
+        return self.tally.nested(where, lambda: self._block_body(i, end))
+
+    def _block_body(self, i: int, end: int) -> tuple[list[Stmt], int]:
+        body: list[Stmt] = []
+        while i < end:
+            stmts, i = self._statement(i, end)
+            body += stmts
+        return body, i
+
+    def _text(self, i: int) -> str:
+        return self.inst[i][0] if i < len(self.inst) else ""
+
+    def _statement(self, i: int, end: int) -> tuple[list[Stmt], int]:
+        text, where = self.inst[i]
+        for pattern in (self._arc, self._timed_wait, self._if):
+            found = pattern(i, end)
+            if found is not None:
+                self.tally.imported += 1
+                return found
+        stmt = self._simple(text, where)
+        if stmt is None:
+            return [self.tally.keep(text, where, "no rmot form")], i + 1
+        self.tally.imported += 1
+        return [stmt], i + 1
+
+    def _move(self, kind: str, names: list[str], rest: str, where: Where) -> Move | None:
+        decls = [self.positions.get(n) for n in names]
+        speed = re.search(r"\bV=([\d.]+)", rest)
+        vj = re.search(r"\bVJ=([\d.]+)", rest)
+        pl = re.search(r"\bPL=(\d)", rest)
+        extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT)\b", "", rest).strip()
+        if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
+                (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
+            return None
+        decl = decls[-1]
+        assert decl is not None
+        user = self.position_user[names[-1]]
+        return Move(kind, decl.name, decl.name, where, via=decls[0].name if kind == "circular" else None,  # type: ignore[union-attr]
+                    speed=float(speed.group(1)) if speed and kind != "joint" else None,
+                    joint_pct=float(vj.group(1)) if vj else None,
+                    zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
+                    tool=self._tool(self.position_tool[names[-1]]), frame="base" if user is None else f"user{user}",
+                    config=decl.config if kind == "joint" else None, pose=decl.pose)
+
+    def _tool(self, n: int) -> str:
+        if n not in self.tools:
+            self.tools[n] = ToolData(self.tool_names.get(n, f"tool{n}"), ir.Pose(), 0.0, Where(self.path, 1))
+        return self.tools[n].name
+
+    def _arc(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """MOVC start, via, end FPT: a circular move from where the robot stands; right after
+        an arc, MOVC via, end FPT (the arc before ended at the start)."""
+        chained = re.fullmatch(r"MOVC\s+C\d+.*\bFPT", self._text(i - 1)) is not None if i else False
+        n = 2 if chained else 3
+        texts = [self._text(k) for k in range(i, min(i + n, end))]
+        ms = [re.fullmatch(r"MOVC\s+(C\d+)\s*(.*)", t) for t in texts]
+        if len(ms) < n or not all(ms) or "FPT" not in texts[-1] or any("FPT" in t for t in texts[:-1]):
+            return None
+        move = self._move("circular", [ms[-2].group(1), ms[-1].group(1)], ms[-1].group(2),  # type: ignore[union-attr]
+                          self.inst[i + n - 2][1])
+        return ([move], i + n) if move else None
+
+    def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        m = re.fullmatch(r"WAIT IN#\((\d+)\)=(ON|OFF) T=([\d.]+)", self._text(i))
+        jump = re.fullmatch(rf"JUMP \*(L\w+) IF IN#\({m.group(1)}\)={m.group(2)}", self._text(i + 1)) if m else None
+        if m is None or jump is None or not self._text(i + 2).startswith("MSG") or self._text(i + 3) != "PAUSE" \
+                or self._text(i + 4) != f"*{jump.group(1)}":
+            return None
+        return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), float(m.group(3)), self.inst[i][1])], i + 5
+
+    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`JUMP *La IF IN#(n)=X`, then, [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when not X)."""
+        m = re.fullmatch(r"JUMP \*(L\w+) IF IN#\((\d+)\)=(ON|OFF)", self._text(i))
+        if m is None:
+            return None
+        ja = next((k for k in range(i + 1, end) if self._text(k) == f"*{m.group(1)}"), None)
+        if ja is None:
+            return None
+        jmp = re.fullmatch(r"JUMP \*(L\w+)", self._text(ja - 1))
+        jb = next((k for k in range(ja + 1, end) if jmp and self._text(k) == f"*{jmp.group(1)}"), None)
+        then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
+        orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
+        cond = Cond(int(m.group(2)), m.group(3) == "OFF")
+        return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
+
+    def _simple(self, text: str, where: Where) -> Stmt | None:
+        m = re.fullmatch(r"(MOVJ|MOVL)\s+(C\d+)\s*(.*)", text)
+        if m:
+            return self._move("joint" if m.group(1) == "MOVJ" else "linear", [m.group(2)], m.group(3), where)
+        m = re.fullmatch(r"DOUT OT#\((\d+)\) (ON|OFF)", text)
+        if m:
+            return SetOut(int(m.group(1)), 1.0 if m.group(2) == "ON" else 0.0, where)
+        m = re.fullmatch(r"PULSE OT#\((\d+)\) T=([\d.]+)", text)
+        if m:
+            return Pulse(int(m.group(1)), float(m.group(2)), where)
+        m = re.fullmatch(r"AOUT AO#\((\d+)\) (-?[\d.]+)", text)
+        if m:
+            return SetOut(int(m.group(1)), float(m.group(2)), where, analog=True)
+        m = re.fullmatch(r"TIMER T=([\d.]+)", text)
+        if m:
+            return Wait(float(m.group(1)), where)
+        m = re.fullmatch(r"WAIT IN#\((\d+)\)=(ON|OFF)", text)
+        if m:
+            return WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), None, where)
+        m = re.fullmatch(r"CALL JOB:(\w+)", text)
+        if m:
+            return Call(rmot_name(m.group(1)), (), where)
+        return Stop(where) if text == "PAUSE" else None
+
+
+def read_inform(path: str, text: str) -> _Job:
+    """Read one INFORM job; raises ImportError_ (E510) when it is not one."""
+    job = _Job(path, text)
+    job.read()
+    return job

@@ -1,0 +1,498 @@
+"""Read KUKA KRL (`.src` with its `.dat`) back into a neutral Document.
+
+Conventions are the KRL backend's, read in reverse (KUKA KSS 8.x Operating and Programming
+Instructions for System Integrators): E6POS/POS/FRAME `{X,Y,Z mm, A,B,C deg}` with
+R = Rz(A)·Ry(B)·Rx(C) (= rmot's rz, ry, rx); Status S bit 0 shoulder back, bit 1 elbow up,
+bit 2 wrist flip (inverted through `backends.krl.status_of`); `$VEL.CP` m/s, `$VEL_AXIS` /
+`BAS(#VEL_PTP)` %, `$APO.CDIS` mm for C_DIS, `$APO.CPTP` % for C_PTP (the backend's 1 mm per %,
+`KrlBackend.CPTP_MM`); `$TOOL`/`$BASE` name module FRAMEs (or `TOOL_DATA[n]`/`BASE_DATA[n]`,
+stored on the controller); the work-copy offset `P_loop=P`, `P_loop.X=P.X+d` is `shift`.
+Inline forms of KSS 5 (KR C2) and KSS 8 (KR C4), `;FOLD PTP P1 CONT Vel=100 % PDAT1 Tool[1]
+Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1, PPDAT1/LCPDAT1
+(APO_DIST mm).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping
+from itertools import product
+
+from rmot.backends.krl import KrlBackend, status_of
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
+from rmot.backends.readers.krl_text import Line, aggregate, declarations, lines
+from rmot.backends.readers.model import (
+    Call, Cond, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
+    Routine,
+)
+from rmot.backends.readers.rapid import mm, num_text, pose_expr
+from rmot.compiler import ir
+
+__all__ = ["read_krl", "branch_of_status", "krl_pose"]
+
+DEFAULT_VEL_CP = 2000.0  # mm/s: BAS(#INITMOV) sets $VEL.CP to DEF_VEL_CP = 2 m/s (KSS 8.x, BAS.SRC)
+_MOTIONS = {"PTP": "joint", "SPTP": "joint", "LIN": "linear", "SLIN": "linear", "CIRC": "circular",
+            "SCIRC": "circular"}
+
+
+def branch_of_status(s: int) -> ir.Config:
+    """The branch whose Status (the backend's `status_of`) has the low 3 bits of `s`."""
+    for sh, el, wr in product(ir.Shoulder, ir.Elbow, ir.Wrist):
+        branch = ir.Config(sh, el, wr)
+        if status_of(branch) == s & 7:
+            return branch
+    raise AssertionError("status_of covers 0..7")
+
+
+def krl_pose(agg: Mapping[str, object]) -> ir.Pose | None:
+    """X Y Z (mm) A B C (deg) of an aggregate as an ir.Pose, None if a component is missing."""
+    values = [agg.get(k) for k in ("X", "Y", "Z", "A", "B", "C")]
+    floats = [v for v in values if isinstance(v, float)]
+    if len(floats) != 6:
+        return None
+    x, y, z, a, b, c = floats
+    pose = ir.Pose.from_xyz_rpy(x / 1000, y / 1000, z / 1000, math.radians(c), math.radians(b), math.radians(a))
+    # cos(90 deg) is 6e-17 in floating point: a component below 1e-12 (far below the 1e-4 deg
+    # KRL prints) is zero, so C 180 reads as the exact half turn rmot wrote
+    q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)
+    return ir.Pose(pose.position, q)  # type: ignore[arg-type]
+
+
+class _State:
+    """The modal motion variables a plain KRL motion reads."""
+
+    def __init__(self) -> None:
+        self.vel_cp = DEFAULT_VEL_CP
+        self.vel_ptp = 100.0
+        self.acc_cp: float | None = None  # mm/s^2; None = 2 m/s^2, rmot's default
+        self.acc_ptp: float | None = None  # %; None = 100 %
+        self.cdis: float | None = None
+        self.cptp: float | None = None
+        self.tool: str | None = None
+        self.frame: str | None = None
+
+
+class _Krl:
+    def __init__(self, src: tuple[str, str], dat: tuple[str, str] | None) -> None:
+        self.tally = Tally(src[0], src[1], "krl")
+        self.lines = lines(*src)
+        self.data: dict[str, tuple[str, str, object, Where]] = {}
+        if dat is not None:
+            for d in declarations(lines(*dat)):
+                self.data[d.name.upper()] = (d.type, d.name, aggregate(d.value) if d.value else number(d.value or ""),
+                                             d.where)
+        self.tool_names = {m.upper() for m in re.findall(r"(?im)^\s*\$TOOL\s*=\s*(\w+)", src[1])}
+        self.base_names = {m.upper() for m in re.findall(r"(?im)^\s*\$BASE\s*=\s*(\w+)", src[1])}
+        self.targets: dict[str, Target] = {}
+        self.tools: dict[str, ToolData] = {}
+        self.frames: dict[str, FrameData] = {}
+        self.routines: list[Routine] = []
+        self.names: set[str] = set()
+        self.work: dict[str, tuple[str, dict[str, str]]] = {}  # P_loop -> (P, axis offsets)
+        self.state = _State()
+        self.name = "imported"
+        self._data_objects()
+
+    def _data_objects(self) -> None:
+        for key, (type_, name, value, where) in self.data.items():
+            if not isinstance(value, dict):
+                continue
+            pose = krl_pose(value)
+            if key in self.tool_names and pose is not None:
+                load = self.data.get(f"{key}_LOAD")
+                mass = load[2].get("M") if load and isinstance(load[2], dict) else 0.0
+                self.tools[key] = ToolData(name, pose, mass if isinstance(mass, float) else 0.0, where)
+            elif key in self.base_names and pose is not None:
+                self.frames[key] = FrameData(name, pose, where)
+            elif type_ in ("E6POS", "POS", "FRAME") and pose is not None:
+                s = value.get("S")
+                branch = branch_of_status(int(s)) if isinstance(s, float) else None
+                self.targets[key] = Target(name, pose, None, branch, where)
+            elif type_ in ("E6AXIS", "AXIS"):
+                joints = [value.get(f"A{i}") for i in range(1, 7)]
+                if all(isinstance(j, float) for j in joints):
+                    self.targets[key] = Target(name, None, tuple(joints), None, where)  # type: ignore[arg-type]
+
+    # ---------------------------------------------------------------- structure
+
+    def read(self) -> None:
+        i = 0
+        while i < len(self.lines) and self.lines[i].fold is None and not self.lines[i].text:
+            i += 1
+        starts = [ln for ln in self.lines if ln.text]
+        if not starts or not re.match(r"(?i)(GLOBAL\s+)?DEF\s+\w+\s*\(", starts[0].text):
+            where = starts[0].where if starts else Where(self.tally.path, 1)
+            raise self.tally.fail("a KRL .src must start with `DEF name( )` (after &ACCESS lines and folds)", where)
+        self.name = re.match(r"(?i)(?:GLOBAL\s+)?DEF\s+(\w+)", starts[0].text).group(1)  # type: ignore[union-attr]
+        i = 0
+        while i < len(self.lines):
+            ln = self.lines[i]
+            m = re.match(r"(?i)(?:GLOBAL\s+)?DEF\s+(\w+)\s*\((.*)\)\s*$", ln.text)
+            if m and m.group(1).upper() == "RMOT_PTP":  # rmot's own helper: read as the speed it sets
+                while i < len(self.lines) and self.lines[i].word != "END":
+                    i += 1
+            elif m:
+                self.state = _State()
+                body, i = self._block(i + 1, ("END",))
+                self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
+            elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
+                i = self._skip_function(i)
+                continue
+            i += 1
+
+    def _skip_function(self, i: int) -> int:
+        self.tally.warn(codes.DECLARATION_KEPT, "a KRL function (DEFFCT) has no rmot form: kept as a comment",
+                        self.lines[i].where)
+        while i < len(self.lines) and self.lines[i].word != "ENDFCT":
+            if self.lines[i].text:
+                self.tally.comment(self.lines[i].text, self.lines[i].where)
+            i += 1
+        if i < len(self.lines):
+            self.tally.comment(self.lines[i].text, self.lines[i].where)
+        return i + 1
+
+    def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+
+    def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        body: list[Stmt] = []
+        while i < len(self.lines):
+            ln = self.lines[i]
+            if ln.word in ends and not ln.fold:
+                return body, i
+            stmts, i = self._statement(i)
+            body += stmts
+        raise self.tally.fail(f"missing {' or '.join(ends)}", self.lines[-1].where if self.lines else
+                              Where(self.tally.path, 1))
+
+    def _statement(self, i: int) -> tuple[list[Stmt], int]:
+        ln = self.lines[i]
+        if ln.endfold:
+            return [], i + 1
+        if ln.fold is not None:
+            return self._fold(i)
+        word = ln.word
+        if word in ("FOR", "IF", "WHILE"):
+            return self._compound(i)
+        if word in ("LOOP", "REPEAT", "SWITCH"):
+            end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
+            return self._keep_block(i, word, end)
+        if word in ("DECL", "INT", "REAL", "BOOL", "CHAR", "E6POS", "POS", "FRAME", "E6AXIS", "AXIS", "SIGNAL"):
+            return [], i + 1
+        if self._setting(ln.text):
+            return [], i + 1
+        if self._work_copy(ln.text):
+            return [], i + 1
+        if i + 7 < len(self.lines):
+            timed = self._timed_wait(i)
+            if timed is not None:
+                self.tally.imported += 1
+                return [timed], i + 8
+        stmt = self._simple(ln)
+        if stmt is None:
+            return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
+        self.tally.imported += 1
+        return [stmt], i + 1
+
+    def _keep_block(self, i: int, start: str, end: str) -> tuple[list[Stmt], int]:
+        out: list[Stmt] = []
+        depth = 0
+        while i < len(self.lines):
+            ln = self.lines[i]
+            depth += ln.word == start
+            depth -= ln.word == end
+            if ln.text:
+                out.append(self.tally.keep(ln.text, ln.where, f"{start} has no rmot form"))
+            i += 1
+            if depth <= 0:
+                break
+        return out, i
+
+    def _compound(self, i: int) -> tuple[list[Stmt], int]:
+        ln = self.lines[i]
+        word = ln.word
+        end = {"FOR": "ENDFOR", "IF": "ENDIF", "WHILE": "ENDWHILE"}[word]
+        if word == "FOR":
+            m = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", ln.text)
+            if m is None:
+                return self._keep_block(i, word, end)
+            saved = set(self.names)
+            self.names.add(m.group(1))
+            body, j = self._block(i + 1, (end,))
+            self.names = saved
+            self.tally.imported += 1
+            return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
+        m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
+        cond = _cond(m.group(1)) if m else None
+        if cond is None:
+            return self._keep_block(i, word, end)
+        then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
+        orelse: list[Stmt] = []
+        if self.lines[j].word == "ELSE":
+            orelse, j = self._block(j + 1, (end,))
+        self.tally.imported += 1
+        if word == "WHILE":
+            return [While(cond, tuple(then), ln.where)], j + 1
+        return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
+
+    # ---------------------------------------------------------------- modal variables
+
+    def _setting(self, text: str) -> bool:
+        """$VEL.CP, $APO, $TOOL, $BASE, $LOAD, $ACC, RMOT_PTP, BAS(#VEL_..): the state of the
+        motions after them (True when the line is one of them)."""
+        st = self.state
+        m = re.fullmatch(r"(?i)\$(VEL\.CP|APO\.CDIS|APO\.CPTP)\s*=\s*([-\d.eE+]+)", text)
+        if m:
+            value = float(m.group(2))
+            key = m.group(1).upper()
+            if key == "VEL.CP":
+                st.vel_cp = value * 1000.0
+            elif key == "APO.CDIS":
+                st.cdis = value
+            else:
+                st.cptp = value
+            return True
+        m = re.fullmatch(r"(?i)RMOT_PTP\s*\(\s*([\d.]+)\s*,\s*([\d.]+)\s*\)|BAS\s*\(\s*#VEL_PTP\s*,\s*([\d.]+)\s*\)", text)
+        if m:
+            st.vel_ptp = float(m.group(1) or m.group(3))
+            if m.group(2):
+                st.acc_ptp = None if float(m.group(2)) == 100.0 else float(m.group(2))
+            return True
+        m = re.fullmatch(r"(?i)\$ACC\.CP\s*=\s*([\d.]+)", text)
+        if m:
+            st.acc_cp = None if float(m.group(1)) == 2.0 else float(m.group(1)) * 1000.0
+            return True
+        m = re.fullmatch(r"(?i)BAS\s*\(\s*#VEL_CP\s*,\s*([\d.]+)\s*\)", text)
+        if m:
+            st.vel_cp = float(m.group(1)) * 1000.0
+            return True
+        m = re.fullmatch(r"(?i)\$(TOOL|BASE)\s*=\s*(\$NULLFRAME|\w+)", text)
+        if m:
+            return self._tool_base(m.group(1).upper(), m.group(2))
+        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
+
+    def _tool_base(self, which: str, name: str) -> bool:
+        key = name.upper()
+        if which == "TOOL":
+            if key == "$NULLFRAME":
+                self.state.tool = "flange"
+            elif key in self.tools:
+                self.state.tool = self.tools[key].name
+            else:
+                return False
+        elif key == "$NULLFRAME":
+            self.state.frame = "base"
+        elif key in self.frames:
+            self.state.frame = self.frames[key].name
+        else:
+            return False
+        return True
+
+    def _work_copy(self, text: str) -> bool:
+        """`P_loop=P` then `P_loop.X=P.X+expr`: the loop's work copy of a target (shift)."""
+        m = re.fullmatch(r"(\w+)\s*=\s*(\w+)", text)
+        if m and m.group(2).upper() in self.targets and m.group(1).upper() in self.data:
+            self.work[m.group(1).upper()] = (m.group(2).upper(), {})
+            return True
+        m = re.fullmatch(r"(?i)(\w+)\.([XYZ])\s*=\s*(\w+)\.([XYZ])\s*\+\s*(.+)", text)
+        if m and m.group(1).upper() in self.work and m.group(2).upper() == m.group(4).upper():
+            expr = num_expr(m.group(5), self.names)
+            if expr is not None and self.work[m.group(1).upper()][0] == m.group(3).upper():
+                self.work[m.group(1).upper()][1][m.group(2).lower()] = expr
+                return True
+        return False
+
+    def _timed_wait(self, i: int) -> WaitIn | None:
+        """The backend's 8-line timed wait: timer reset, WAIT FOR (c) OR ($TIMER[k]>=ms), and
+        HALT when c did not come."""
+        texts = [ln.text.replace(" ", "").upper() for ln in self.lines[i:i + 8]]
+        m = re.fullmatch(r"\$TIMER_STOP\[(\d+)\]=TRUE", texts[0])
+        if m is None:
+            return None
+        k = m.group(1)
+        w = re.fullmatch(rf"WAITFOR\((.*)\)OR\(\$TIMER\[{k}\]>=(\d+)\)", texts[3])
+        ok = (texts[1] == f"$TIMER[{k}]=0" and texts[2] == f"$TIMER_STOP[{k}]=FALSE" and w is not None
+              and texts[4] == f"$TIMER_STOP[{k}]=TRUE" and texts[6] == "HALT" and texts[7] == "ENDIF")
+        cond = _cond(w.group(1)) if ok and w else None
+        if cond is None or texts[5] != f"IFNOT({w.group(1)})THEN":  # type: ignore[union-attr]
+            return None
+        return WaitIn(cond, int(w.group(2)) / 1000.0, self.lines[i + 3].where)  # type: ignore[union-attr]
+
+    # ---------------------------------------------------------------- statements
+
+    def _simple(self, ln: Line) -> Stmt | None:
+        text, word, where = ln.text, ln.word, ln.where
+        if word in _MOTIONS:
+            return self._motion(word, text[len(word):].strip(), where)
+        m = re.fullmatch(r"(?i)\$OUT(?:_C)?\[(\d+)\]\s*=\s*(TRUE|FALSE)", text)
+        if m:
+            return SetOut(int(m.group(1)), 1.0 if m.group(2).upper() == "TRUE" else 0.0, where)
+        m = re.fullmatch(r"(?i)\$ANOUT\[(\d+)\]\s*=\s*(-?[\d.]+)", text)
+        if m:
+            return SetOut(int(m.group(1)), float(m.group(2)) * 10.0, where, analog=True)
+        m = re.fullmatch(r"(?i)PULSE\s*\(\s*\$OUT\[(\d+)\]\s*,\s*TRUE\s*,\s*([\d.]+)\s*\)", text)
+        if m:
+            return Pulse(int(m.group(1)), float(m.group(2)), where)
+        m = re.fullmatch(r"(?i)WAIT\s+SEC\s+([\d.]+)", text)
+        if m:
+            return Wait(float(m.group(1)), where)
+        m = re.fullmatch(r"(?i)WAIT\s+FOR\s+(.+)", text)
+        if m:
+            cond = _cond(m.group(1))
+            return WaitIn(cond, None, where) if cond else None
+        m = re.fullmatch(r"(\w+)\s*\(\s*\)", text)
+        if m and m.group(1).upper() not in ("HALT", "BAS"):
+            return Call(m.group(1), (), where)
+        return None
+
+    def _target(self, text: str) -> tuple[str, str | None, Target | None] | None:
+        text = text.strip()
+        key = text.upper()
+        if key in self.work:
+            base, offsets = self.work[key]
+            decl = self.targets[base]
+            terms = ", ".join(f"{axis}={mm(e)}" for axis, e in sorted(offsets.items()))
+            named = rmot_name(decl.name)
+            return (f"shift({named}, {terms})" if terms else named, decl.name, decl)
+        if key in self.targets:
+            decl = self.targets[key]
+            return (rmot_name(decl.name), decl.name, decl)
+        agg = aggregate(text)
+        if agg is not None:
+            pose = krl_pose(agg)
+            if pose is not None:
+                s = agg.get("S")
+                branch = branch_of_status(int(s)) if isinstance(s, float) else None
+                return (pose_expr(pose), None, Target("", pose, None, branch, Where("", 0)))
+            joints = [agg.get(f"A{i}") for i in range(1, 7)]
+            if all(isinstance(j, float) for j in joints):
+                expr = f"joints({', '.join(num_text(j) for j in joints)}) deg"  # type: ignore[arg-type]
+                return (expr, None, Target("", None, tuple(joints), None, Where("", 0)))  # type: ignore[arg-type]
+        return None
+
+    def _motion(self, word: str, rest: str, where: Where) -> Move | None:
+        kind = _MOTIONS[word]
+        m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
+        points = split_top(m.group(1)) if m else []
+        approx = (m.group(2) or "").upper() if m else ""
+        if len(points) != (2 if kind == "circular" else 1) or approx in ("C_VEL", "C_ORI", "C_SPL"):
+            return None
+        found = [self._target(p) for p in points]
+        if any(f is None for f in found):
+            return None
+        st = self.state
+        if kind == "joint":
+            zone = (st.cptp * KrlBackend.CPTP_MM if approx == "C_PTP" and st.cptp is not None else
+                    st.cdis if approx == "C_DIS" else None)
+        else:
+            zone = st.cdis if approx == "C_DIS" else None
+        if approx and zone is None:
+            return None
+        expr, name, decl = found[-1]  # type: ignore[misc]
+        config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
+        return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
+                    speed=st.vel_cp if kind != "joint" else None, joint_pct=st.vel_ptp if kind == "joint" else None,
+                    zone=zone, tool=st.tool, frame=st.frame, config=config,
+                    pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None,
+                    accel=st.acc_cp if kind != "joint" else None, joint_accel=st.acc_ptp if kind == "joint" else None)
+
+    def _fold(self, i: int) -> tuple[list[Stmt], int]:
+        """An inline form: a motion read from its header (its statements skipped), anything
+        else read from the statements inside; the INI fold is set-up, kept as a comment."""
+        header = self.lines[i].fold or ""
+        end = _fold_end(self.lines, i)
+        if re.match(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO", header):
+            self.tally.warn(codes.DECLARATION_KEPT, f"the `{header[:30]}` fold is controller set-up: kept as a "
+                            "comment", self.lines[i].where)
+            return [], end + 1
+        m = re.match(r"(?i)(S?PTP|S?LIN|S?CIRC)\s+(.*)", header)
+        if m is None:
+            return [], i + 1  # the statements inside are read as they come
+        move = self._inline(m.group(1).upper(), m.group(2), self.lines[i].where)
+        if move is None:
+            return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read")], end + 1
+        self.tally.imported += 1
+        return [move], end + 1
+
+    def _inline(self, word: str, text: str, where: Where) -> Move | None:
+        """`P1 [P2] [CONT] Vel=100 % PDAT1 Tool[1][:name] Base[0][:name]`."""
+        m = re.match(r"(?i)(\w+)(?:\s+(\w+))?\s+(CONT\s+)?Vel\s*=\s*([\d.]+)\s*(%|m/s|mm/s)\s+(\w+)"
+                     r"(?:\s+Tool\[(\d+)\](?::(\S+))?)?(?:\s+Base\[(\d+)\](?::(\S+))?)?", text)
+        kind = _MOTIONS[word]
+        second = m.group(2) if m and m.group(2) and m.group(2).upper() != "CONT" else None
+        cont = m is not None and (m.group(3) is not None or (m.group(2) or "").upper() == "CONT")
+        if m is None or (kind == "circular") != (second is not None):
+            return None
+        points = [m.group(1)] + ([second] if second else [])
+        found = [self._target("X" + p) or self._target(p) for p in points]
+        if any(f is None for f in found):
+            return None
+        vel, unit = float(m.group(4)), m.group(5)
+        zone = None
+        if cont:
+            data = self.data.get(("P" if kind == "joint" else "L") + m.group(6).upper()) or self.data.get(m.group(6).upper())
+            apo = data[2].get("APO_DIST") if data and isinstance(data[2], dict) else None
+            if not isinstance(apo, float):
+                return None
+            zone = apo
+        tool = self._numbered("tool", m.group(7), m.group(8), where)
+        frame = self._numbered("base", m.group(9), m.group(10), where)
+        expr, name, decl = found[-1]  # type: ignore[misc]
+        config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
+        speed = vel * 1000.0 if unit == "m/s" else vel
+        return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
+                    speed=speed if kind != "joint" else None, joint_pct=vel if kind == "joint" else None,
+                    zone=zone, tool=tool, frame=frame, config=config,
+                    pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None)
+
+    def _numbered(self, what: str, n: str | None, name: str | None, at: Where) -> str | None:
+        """A tool or base selected by its controller number: a stub entry (its data lives in
+        $config.dat, not in the program: the stub puts it at the flange / robot base, W511)."""
+        if n is None:
+            return None
+        if what == "base" and n == "0":
+            return "base"
+        label = re.sub(r"\W", "_", name) if name else f"{what}{n}"
+        key = label.upper()
+        where = Where(self.tally.path, 1)
+        stored = "TOOL_DATA" if what == "tool" else "BASE_DATA"
+        if (what == "tool" and key not in self.tools) or (what == "base" and key not in self.frames):
+            self.tally.warn(codes.DECLARATION_KEPT, f"{what} {n} (`{label}`) is {stored}[{n}] in the controller's "
+                            "$config.dat, not in the program: a cell stub puts it at identity (give --cell)", at)
+        if what == "tool" and key not in self.tools:
+            self.tools[key] = ToolData(label, ir.Pose(), 0.0, where)
+        elif what == "base" and key not in self.frames:
+            self.frames[key] = FrameData(label, ir.Pose(), where)
+        return label
+
+
+def _fold_end(found: list[Line], i: int) -> int:
+    depth = 0
+    for j in range(i, len(found)):
+        depth += found[j].fold is not None
+        depth -= found[j].endfold
+        if depth == 0:
+            return j
+    return len(found) - 1
+
+
+def _cond(text: str) -> Cond | None:
+    """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT $IN[n]`, in optional parentheses."""
+    text = text.strip()
+    while text.startswith("(") and text.endswith(")") and split_top(text[1:-1], ")") == [text[1:-1].strip()]:
+        text = text[1:-1].strip()
+    m = re.fullmatch(r"(?i)(NOT\s+)?\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", text)
+    if m is None:
+        return None
+    on = (m.group(3) or "TRUE").upper() == "TRUE"
+    return Cond(int(m.group(2)), on != bool(m.group(1)))
+
+
+def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:
+    """Read a KRL .src (and its .dat); raises ImportError_ (E510) when it is not KRL."""
+    module = _Krl(src, dat)
+    module.read()
+    return module

@@ -1,0 +1,108 @@
+"""KRL source as located lines, `.dat` declarations and `{..}` aggregates.
+
+KRL (KUKA KSS 8.x Operating and Programming Instructions for System Integrators, "KRL
+syntax"): one statement per line, `;` starts a comment, `&ACCESS`/`&REL`/`&PARAM` header
+lines, `DEF name( ) .. END` routines in the `.src`, `DEFDAT name .. ENDDAT` data in the
+`.dat`, `DECL [GLOBAL] TYPE name=value`; names and keywords are case-insensitive. Inline forms
+are `;FOLD header;%{PE}...` .. `;ENDFOLD` around the statements they stand for.
+"""
+
+from __future__ import annotations
+
+import re
+
+from rmot.backends.readers.common import number, split_top
+from rmot.backends.readers.model import Where
+from rmot.lang.record import record
+
+__all__ = ["Line", "lines", "aggregate", "Decl", "declarations"]
+
+
+@record(slots=True)
+class Line:
+    text: str  # without its comment; a fold line keeps its header in `fold`
+    where: Where
+    fold: str | None = None  # the header of a `;FOLD` line
+    endfold: bool = False
+
+    @property
+    def word(self) -> str:
+        m = re.match(r"\s*(\$?[A-Za-z_][\w.]*)", self.text)
+        return m.group(1).upper() if m else ""
+
+
+def _strip_comment(line: str) -> str:
+    quote = False
+    for i, ch in enumerate(line):
+        if ch in "\"'":
+            quote = not quote
+        elif ch == ";" and not quote:
+            return line[:i]
+    return line
+
+
+def lines(path: str, text: str) -> list[Line]:
+    out: list[Line] = []
+    for n, raw in enumerate(text.split("\n"), 1):
+        stripped = raw.strip()
+        col = len(raw) - len(raw.lstrip()) + 1
+        fold = re.match(r"(?i);\s*FOLD\b\s*(.*)", stripped)
+        if fold:
+            out.append(Line("", Where(path, n, col), fold=fold.group(1).split(";%")[0].strip()))
+            continue
+        if re.match(r"(?i);\s*ENDFOLD\b", stripped):
+            out.append(Line("", Where(path, n, col), endfold=True))
+            continue
+        code = _strip_comment(raw).strip()
+        if code and not code.startswith("&"):
+            out.append(Line(code, Where(path, n, col)))
+    return out
+
+
+Aggregate = dict[str, "float | str | Aggregate"]
+
+
+def aggregate(text: str, depth: int = 0) -> Aggregate | None:
+    """`{X 1.0,Y 2,A 0.0, CM {X 0}}` (an optional `TYPE:` prefix) as a dict, keys upper case;
+    None beyond 8 levels (LOAD nests 2 deep)."""
+    text = text.strip()
+    if depth >= 8:
+        return None
+    m = re.fullmatch(r"(?s)\{\s*(?:\w+\s*:)?(.*)\}", text)
+    if m is None:
+        return None
+    out: Aggregate = {}
+    for item in split_top(m.group(1)):
+        if not item:
+            continue
+        km = re.fullmatch(r"(?s)([A-Za-z_]\w*(?:\[\])?)\s+(.*)", item)
+        if km is None:
+            return None
+        key, value = km.group(1).upper(), km.group(2).strip()
+        if value.startswith("{"):
+            sub = aggregate(value, depth + 1)
+            if sub is None:
+                return None
+            out[key] = sub
+        else:
+            num = number(value)
+            out[key] = num if num is not None else value
+    return out
+
+
+@record(slots=True)
+class Decl:
+    type: str  # upper case
+    name: str
+    value: str | None
+    where: Where
+
+
+def declarations(found: list[Line]) -> list[Decl]:
+    """Every `[DECL] [GLOBAL] TYPE name[=value]` line of a data list."""
+    out = []
+    for ln in found:
+        m = re.fullmatch(r"(?is)(?:DECL\s+)?(?:GLOBAL\s+)?([A-Za-z_]\w*)\s+([A-Za-z_]\w*)\s*(?:=\s*(.*))?", ln.text)
+        if m and m.group(1).upper() not in ("DEFDAT", "ENDDAT", "EXT", "EXTFCT", "SIGNAL", "STRUC", "ENUM"):
+            out.append(Decl(m.group(1).upper(), m.group(2), m.group(3), ln.where))
+    return out

@@ -1,0 +1,214 @@
+"""The neutral document a vendor reader produces: what a program does, in rmot's terms.
+
+Every reader (RAPID, KRL, URScript, ...) turns its files into one `Document`: the targets,
+tools, frames and routines it declares, each statement located at its vendor file's line.
+`writer.py` prints a Document as .rmot text; `diff.py` compares two Documents. Lengths are
+millimetres, angles degrees, times seconds, speeds mm/s (as the vendors print them); poses
+are `ir.Pose` (metres and a w-first quaternion, the IR's own form).
+"""
+
+from __future__ import annotations
+
+from rmot.compiler import ir
+from rmot.lang.diagnostics import Diagnostic
+from rmot.lang.record import record
+
+__all__ = [
+    "Where", "Target", "ToolData", "FrameData", "Move", "SetOut", "Pulse", "Wait", "WaitIn",
+    "Cond", "If", "While", "For", "Call", "Native", "Stop", "Stmt", "Routine", "FileCount",
+    "Document", "Signal", "walk",
+]
+
+# a signal by its controller name (RAPID, INFORM names) or by its port number (KRL, TP, UR)
+Signal = str | int
+
+
+@record(slots=True)
+class Where:
+    """A place in a vendor file (1-based line and column)."""
+
+    path: str
+    line: int
+    col: int = 1
+
+    def __str__(self) -> str:
+        return f"{self.path}:{self.line}:{self.col}"
+
+
+@record(slots=True)
+class Target:
+    """A declared target: a pose in its frame or joint values (degrees), with its branch."""
+
+    name: str
+    pose: ir.Pose | None
+    joints: tuple[float, ...] | None
+    config: ir.Config | None
+    where: Where
+
+
+@record(slots=True)
+class ToolData:
+    name: str
+    tcp: ir.Pose  # in the flange frame
+    mass: float  # kg
+    where: Where
+
+
+@record(slots=True)
+class FrameData:
+    name: str
+    pose: ir.Pose  # in the robot base
+    where: Where
+
+
+@record(slots=True)
+class Move:
+    """One motion. `target` is the rmot expression of the target (a name, `shift(...)`,
+    `pose(...)`, `joints(...) deg`); `target_name` the declared target it refers to."""
+
+    kind: str  # "joint", "linear" or "circular"
+    target: str
+    target_name: str | None
+    where: Where
+    via: str | None = None
+    speed: float | None = None  # mm/s, linear and circular moves
+    joint_pct: float | None = None  # % of each joint's max speed, joint moves
+    zone: float | None = None  # mm; None = fine (exact stop)
+    time: float | None = None  # s, a move of fixed duration
+    tool: str | None = None  # None = keep the active one
+    frame: str | None = None  # None = keep; "base" = the robot base
+    config: ir.Config | None = None
+    pose: ir.Pose | None = None  # the resolved target where known (for diff)
+    joints: tuple[float, ...] | None = None
+    accel: float | None = None  # mm/s^2, linear and circular moves; None = the controller's own
+    joint_accel: float | None = None  # % of each joint's max acceleration, joint moves
+
+
+@record(slots=True)
+class SetOut:
+    signal: Signal
+    value: float  # 0/1 for digital outputs, volts for analog
+    where: Where
+    analog: bool = False
+
+
+@record(slots=True)
+class Pulse:
+    signal: Signal
+    seconds: float
+    where: Where
+
+
+@record(slots=True)
+class Wait:
+    seconds: float
+    where: Where
+
+
+@record(slots=True)
+class Cond:
+    """A digital input at a level: the condition every vendor's IF/WAIT reads."""
+
+    signal: Signal
+    on: bool
+
+
+@record(slots=True)
+class WaitIn:
+    cond: Cond
+    timeout: float | None
+    where: Where
+
+
+@record(slots=True)
+class If:
+    cond: Cond
+    then: tuple[Stmt, ...]
+    orelse: tuple[Stmt, ...]
+    where: Where
+
+
+@record(slots=True)
+class While:
+    cond: Cond
+    body: tuple[Stmt, ...]
+    where: Where
+
+
+@record(slots=True)
+class For:
+    """`for var in first .. stop` (half open, as rmot writes it)."""
+
+    var: str
+    first: int
+    stop: int
+    body: tuple[Stmt, ...]
+    where: Where
+
+
+@record(slots=True)
+class Call:
+    name: str
+    args: tuple[str, ...]  # rmot expressions
+    where: Where
+
+
+@record(slots=True)
+class Native:
+    """Vendor text kept as it is (one `native` statement per source line)."""
+
+    vendor: str
+    text: str
+    where: Where
+
+
+@record(slots=True)
+class Stop:
+    where: Where
+
+
+Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop
+
+
+def walk(body: tuple[Stmt, ...]) -> list[Stmt]:
+    """Every statement of `body` in source order, the statements of blocks after their block."""
+    out: list[Stmt] = []
+    for s in body:
+        out.append(s)
+        if isinstance(s, If):
+            out += walk(s.then) + walk(s.orelse)
+        elif isinstance(s, (While, For)):
+            out += walk(s.body)
+    return out
+
+
+@record(slots=True)
+class Routine:
+    name: str
+    params: tuple[tuple[str, str], ...]  # (name, rmot type)
+    body: tuple[Stmt, ...]
+    where: Where
+
+
+@record(slots=True)
+class FileCount:
+    """How many instruction lines of a file were imported and how many kept native."""
+
+    path: str
+    imported: int
+    native: int
+
+
+@record(slots=True)
+class Document:
+    vendor: str
+    name: str  # the program's name (module, DEF, job)
+    main: str  # the routine that runs
+    targets: tuple[Target, ...]
+    tools: tuple[ToolData, ...]
+    frames: tuple[FrameData, ...]
+    routines: tuple[Routine, ...]
+    consts: tuple[tuple[str, float], ...]
+    counts: tuple[FileCount, ...]
+    diagnostics: tuple[Diagnostic, ...]
+    kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments

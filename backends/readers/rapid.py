@@ -1,0 +1,495 @@
+"""Read ABB RAPID modules (`.mod`, `.modx`, `.prg`) back into a neutral Document.
+
+Conventions are the RAPID backend's, read in reverse (ABB Technical reference manual –
+RAPID Instructions, Functions and Data types, 3HAC050917-001): robtarget
+`[[x,y,z],[q1..q4],[cf1,cf4,cf6,cfx],[eax]]` in mm and a w-first quaternion relative to the
+move's work object; confdata cfx = 4·(shoulder back) + 2·(elbow down) + (wrist flip) (inverted
+through `backends.rapid.cfx_of`); speeddata v_tcp mm/s (v5..v7000 predefined); zonedata
+pzone_tcp mm (z0..z200 predefined, `fine` a stop point); `Offs(p, dx, dy, dz)` a displacement
+in the work object (= rmot `shift`); `RelTool(p, dx, dy, dz \\Rx \\Ry \\Rz)` in the tool frame,
+rotations about x, then y, then z (= `p * pose(..)`).
+"""
+
+from __future__ import annotations
+
+import re
+from itertools import product
+
+from rmot.backends.rapid import SPEEDS_MM_S, cfx_of
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
+from rmot.backends.readers.model import (
+    Call, Cond, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While,
+    For, Routine,
+)
+from rmot.backends.readers.rapid_text import Statement, literal, statements
+from rmot.compiler import ir
+
+__all__ = ["read_rapid", "branch_of_cfx", "pose_expr", "num_text", "mm"]
+
+PULSE_DEFAULT_S = 0.2  # PulseDO without \PLength: 0.2 s (RAPID Instructions, PulseDO)
+_PARAM_TYPES = {"robtarget": "pose", "jointtarget": "joints", "num": "number", "bool": "bool"}
+_DECL = re.compile(r"(?i)^(?:(?:LOCAL|TASK)\s+)*(CONST|PERS|VAR)\s+(\w+)\s+(\w+)\s*(\{[^}]*\})?\s*(?::=\s*(.*))?$")
+_MOVES = {"MOVEJ": "joint", "MOVEL": "linear", "MOVEC": "circular", "MOVEABSJ": "joint"}
+
+
+def branch_of_cfx(cfx: int) -> ir.Config | None:
+    """The branch whose cfx (the backend's `cfx_of`) is `cfx`; None outside 0..7."""
+    for s, e, w in product(ir.Shoulder, ir.Elbow, ir.Wrist):
+        branch = ir.Config(s, e, w)
+        if cfx_of(branch) == cfx:
+            return branch
+    return None
+
+
+def _pose(lit: object) -> ir.Pose | None:
+    """[[x,y,z],[q1,q2,q3,q4], ...] in mm -> ir.Pose (metres), None if malformed."""
+    if not (isinstance(lit, list) and len(lit) >= 2 and isinstance(lit[0], list) and isinstance(lit[1], list)):
+        return None
+    xyz, q = lit[0], lit[1]
+    if len(xyz) != 3 or len(q) != 4 or not all(isinstance(v, float) for v in xyz + q):
+        return None
+    qf = [float(v) for v in q]
+    norm = sum(v * v for v in qf) ** 0.5
+    if norm < 1e-9:
+        return None
+    w, x, y, z = (v / norm for v in qf)
+    if w < 0:
+        w, x, y, z = -w, -x, -y, -z
+    px, py, pz = (float(v) / 1000 for v in xyz)
+    return ir.Pose((px, py, pz), (w, x, y, z))
+
+
+def mm(expr: str) -> str:
+    """An rmot length from a vendor number or expression in mm."""
+    return f"{expr} mm" if number(expr) is not None else f"({expr}) * 1 mm"
+
+
+class _Module:
+    """One RAPID module being read: its data, routines and tally."""
+
+    def __init__(self, path: str, text: str) -> None:
+        self.tally = Tally(path, text, "rapid")
+        self.stmts = statements(path, text)
+        self.targets: dict[str, Target] = {}
+        self.tools: dict[str, ToolData] = {}
+        self.frames: dict[str, FrameData] = {}
+        self.speeds: dict[str, float] = {f"V{s}": float(s) for s in SPEEDS_MM_S}
+        self.zones: dict[str, float | None] = {"FINE": None, **{f"Z{z}": float(z) for z in (
+            1, 5, 10, 15, 20, 30, 40, 50, 60, 80, 100, 150, 200)}, "Z0": 0.3}
+        self.consts: dict[str, float] = {}
+        self.routines: list[Routine] = []
+        self.proc_names: dict[str, str] = {}  # upper -> as written
+        self.names: set[str] = set()  # numeric names an expression may use
+        self.pose_params: set[str] = set()  # the current PROC's target parameters
+        self.name = "imported"
+
+    # ---------------------------------------------------------------- module level
+
+    def read(self) -> None:
+        if not self.stmts or self.stmts[0].word != "MODULE":
+            where = self.stmts[0].where if self.stmts else Where(self.tally.path, 1)
+            raise self.tally.fail("a RAPID module must start with `MODULE name` (after an optional "
+                                  "%%% header)", where)
+        self.name = self.stmts[0].text.split()[1].split("(")[0]
+        for st in self.stmts:
+            m = re.match(r"(?i)^(?:LOCAL\s+)?PROC\s+(\w+)", st.text)
+            if m:
+                self.proc_names[m.group(1).upper()] = m.group(1)
+        i = 1
+        while i < len(self.stmts):
+            st = self.stmts[i]
+            if st.word == "ENDMODULE":
+                return
+            if re.match(r"(?i)^(?:LOCAL\s+)?PROC\b", st.text):
+                i = self._proc(i)
+            elif re.match(r"(?i)^(?:LOCAL\s+)?(FUNC|TRAP)\b", st.text):
+                i = self._skip_routine(i)
+            else:
+                self._declaration(st)
+                i += 1
+        raise self.tally.fail("the module has no ENDMODULE", self.stmts[-1].where)
+
+    def _declaration(self, st: Statement) -> None:
+        m = _DECL.match(st.text)
+        if m is None:
+            self.tally.warn(codes.DECLARATION_KEPT, f"not a RAPID data declaration rmot reads: {st.text[:60]}",
+                            st.where)
+            self.tally.comment(st.text + ";", st.where)
+            return
+        _, type_, name, dims, value = m.groups()
+        lit = literal(value) if value and not dims else None
+        if not self._data(type_.lower(), name, lit, st.where):
+            self.tally.warn(codes.DECLARATION_KEPT, f"{type_} {name} has no rmot form here: kept as a comment",
+                            st.where)
+            self.tally.comment(st.text + ";", st.where)
+        else:
+            self.tally.imported += 1
+
+    def _data(self, type_: str, name: str, lit: object, where: Where) -> bool:
+        if type_ == "robtarget":
+            pose = _pose(lit)
+            if pose is None:
+                return False
+            conf = lit[2] if isinstance(lit, list) and len(lit) > 2 and isinstance(lit[2], list) else None
+            cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
+            branch = branch_of_cfx(int(cfx)) if cfx is not None else None
+            self.targets[name.upper()] = Target(name, pose, None, branch, where)
+        elif type_ == "jointtarget":
+            if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
+                    and all(isinstance(v, float) for v in lit[0])):
+                return False
+            self.targets[name.upper()] = Target(name, None, tuple(float(v) for v in lit[0]), None, where)
+        elif type_ == "tooldata":
+            return self._tool(name, lit, where)
+        elif type_ == "wobjdata":
+            return self._wobj(name, lit, where)
+        elif type_ == "speeddata" and isinstance(lit, list) and lit and isinstance(lit[0], float):
+            self.speeds[name.upper()] = lit[0]
+        elif type_ == "zonedata" and isinstance(lit, list) and len(lit) > 1 and isinstance(lit[1], float):
+            self.zones[name.upper()] = None if lit[0] == "TRUE" else lit[1]
+        elif type_ == "num" and isinstance(lit, float):
+            self.consts[name] = lit
+            self.names.add(name)
+        else:
+            return False
+        return True
+
+    def _tool(self, name: str, lit: object, where: Where) -> bool:
+        if not (isinstance(lit, list) and len(lit) >= 3 and lit[0] == "TRUE"):
+            return False  # a stationary tool (robhold FALSE) has no rmot form
+        tcp = _pose(lit[1])
+        load = lit[2]
+        if tcp is None or not (isinstance(load, list) and load and isinstance(load[0], float)):
+            return False
+        self.tools[name.upper()] = ToolData(name, tcp, load[0], where)
+        return True
+
+    def _wobj(self, name: str, lit: object, where: Where) -> bool:
+        if not (isinstance(lit, list) and len(lit) >= 5 and lit[0] == "FALSE"):
+            return False  # a work object moved by the robot or a mechanical unit has no rmot form
+        uframe, oframe = _pose(lit[3]), _pose(lit[4])
+        if uframe is None or oframe is None:
+            return False
+        self.frames[name.upper()] = FrameData(name, uframe * oframe, where)
+        return True
+
+    def _skip_routine(self, i: int) -> int:
+        """FUNC and TRAP routines: kept as comments (rmot has neither functions nor interrupts)."""
+        start, start_i = self.stmts[i], i
+        end = "END" + start.text.split()[0 if start.word != "LOCAL" else 1].upper()
+        self.tally.warn(codes.DECLARATION_KEPT, f"{start.text[:40]} has no rmot form (a function, an "
+                        "interrupt routine or a parameter rmot has no type for): kept as a comment", start.where)
+        while i < len(self.stmts) and self.stmts[i].word != end:
+            st = self.stmts[i]
+            self.tally.comment(st.text if _no_semicolon(st.text) or i == start_i else st.text + ";", st.where)
+            i += 1
+        if i < len(self.stmts):
+            self.tally.comment(self.stmts[i].text, self.stmts[i].where)
+        return i + 1
+
+    # ---------------------------------------------------------------- routines
+
+    def _proc(self, i: int) -> int:
+        st = self.stmts[i]
+        m = re.match(r"(?i)^(?:LOCAL\s+)?PROC\s+(\w+)\s*\((.*)\)\s*$", st.text)
+        if m is None:
+            raise self.tally.fail(f"a PROC header must be `PROC name(params)` (got `{st.text[:40]}`)", st.where)
+        params = self._params(m.group(2))
+        if params is None:
+            del self.proc_names[m.group(1).upper()]
+            return self._skip_routine(i)
+        saved = set(self.names)
+        self.names |= {p for p, t in params if t == "number"}
+        self.pose_params = {p for p, t in params if t in ("pose", "joints")}
+        body, i = self._block(i + 1, ("ENDPROC",))
+        self.names, self.pose_params = saved, set()
+        self.routines.append(Routine(m.group(1), tuple(params), tuple(body), st.where))
+        return i + 1
+
+    @staticmethod
+    def _params(text: str) -> list[tuple[str, str]] | None:
+        """(name, rmot type) of each parameter; None when one has no rmot type (num, bool,
+        robtarget, jointtarget are read; optional, INOUT and other types are not)."""
+        out = []
+        for p in split_top(text.replace("|", ","), ",") if text.strip() else []:
+            words = p.split()
+            if len(words) != 2 or words[0].lower() not in _PARAM_TYPES:
+                return None
+            out.append((words[1], _PARAM_TYPES[words[0].lower()]))
+        return out
+
+    def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        return self.tally.nested(self.stmts[min(i, len(self.stmts) - 1)].where, lambda: self._block_body(i, ends))
+
+    def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        body: list[Stmt] = []
+        while i < len(self.stmts):
+            st = self.stmts[i]
+            if st.word in ends:
+                return body, i
+            if st.word in ("ERROR", "UNDO", "BACKWARD") and "ENDPROC" in ends:
+                j = i
+                while j < len(self.stmts) and self.stmts[j].word != "ENDPROC":
+                    body.append(self.tally.keep(self.stmts[j].text, self.stmts[j].where, "an error handler"))
+                    j += 1
+                return body, j
+            stmt, i = self._statement(i)
+            body.extend(stmt)
+        raise self.tally.fail(f"missing {' or '.join(ends)}", self.stmts[-1].where)
+
+    def _statement(self, i: int) -> tuple[list[Stmt], int]:
+        st = self.stmts[i]
+        word = st.word
+        if word in ("IF", "WHILE", "FOR") and re.search(r"(?i)\b(THEN|DO)\s*$", st.text):
+            return self._compound(i)
+        if word == "TEST":
+            return self._keep_block(i, "ENDTEST", "TEST/CASE has no rmot form")
+        if re.match(r"(?i)^(LOCAL\s+|TASK\s+)*(CONST|PERS|VAR)\s", st.text):
+            self._declaration(st)
+            return [], i + 1
+        converted = self._simple(st)
+        if converted is None:
+            return [self.tally.keep(st.text + ";", st.where, "no rmot form")], i + 1
+        self.tally.imported += 1
+        return [converted], i + 1
+
+    def _keep_block(self, i: int, end: str, why: str) -> tuple[list[Stmt], int]:
+        out: list[Stmt] = []
+        depth = 0
+        while i < len(self.stmts):
+            st = self.stmts[i]
+            depth += st.word == end[3:]
+            depth -= st.word == end
+            text = st.text if _no_semicolon(st.text) else st.text + ";"
+            out.append(self.tally.keep(text, st.where, why))
+            i += 1
+            if depth <= 0:
+                break
+        return out, i
+
+    def _compound(self, i: int) -> tuple[list[Stmt], int]:
+        st = self.stmts[i]
+        word = st.word
+        end = {"IF": "ENDIF", "WHILE": "ENDWHILE", "FOR": "ENDFOR"}[word]
+        head = self._head(st)
+        if head is None:
+            return self._keep_block(i, end, f"this {word} has no rmot form")
+        if word == "FOR":
+            var, first, stop = head  # type: ignore[misc]
+            saved = set(self.names)
+            self.names.add(var)
+            body, j = self._block(i + 1, (end,))
+            self.names = saved
+            self.tally.imported += 1
+            return [For(var, first, stop, tuple(body), st.where)], j + 1
+        then, j = self._block(i + 1, (end, "ELSE", "ELSEIF"))
+        self.tally.imported += 1
+        if word == "WHILE":
+            return [While(head, tuple(then), st.where)], j + 1  # type: ignore[arg-type]
+        orelse: list[Stmt] = []
+        if self.stmts[j].word == "ELSEIF":
+            nested = Statement("IF" + self.stmts[j].text[6:], self.stmts[j].where)
+            self.stmts[j] = nested
+            orelse, j = self._compound(j)
+            return [If(head, tuple(then), tuple(orelse), st.where)], j  # type: ignore[arg-type]
+        if self.stmts[j].word == "ELSE":
+            orelse, j = self._block(j + 1, (end,))
+        return [If(head, tuple(then), tuple(orelse), st.where)], j + 1  # type: ignore[arg-type]
+
+    def _head(self, st: Statement) -> Cond | tuple[str, int, int] | None:
+        if st.word == "FOR":
+            m = re.match(r"(?i)^FOR\s+(\w+)\s+FROM\s+(-?\d+)\s+TO\s+(-?\d+)\s+(?:STEP\s+1\s+)?DO$", st.text)
+            if m is None:
+                return None
+            return (m.group(1), int(m.group(2)), int(m.group(3)) + 1)
+        m = re.match(r"(?i)^(?:IF|WHILE)\s+(.*?)\s+(?:THEN|DO)$", st.text)
+        return _cond(m.group(1)) if m else None
+
+    def _simple(self, st: Statement) -> Stmt | None:
+        word = st.word
+        args_text = st.text[len(word):].strip() if st.text[:len(word)].upper() == word else ""
+        args = split_top(args_text) if args_text else []
+        if word in _MOVES:
+            return self._move(word, args, st.where)
+        if word == "SETDO" and len(args) == 2 and args[1] in ("0", "1"):
+            return SetOut(args[0], float(args[1]), st.where)
+        if word in ("SET", "RESET") and len(args) == 1:
+            return SetOut(args[0], 1.0 if word == "SET" else 0.0, st.where)
+        if word == "SETAO" and len(args) == 2 and number(args[1]) is not None:
+            return SetOut(args[0], number(args[1]), st.where, analog=True)  # type: ignore[arg-type]
+        if word == "PULSEDO":
+            m = re.match(r"(?i)^\\PLength\s*:=\s*([0-9.]+)\s*,\s*(\w+)$", args_text)
+            if m:
+                return Pulse(m.group(2), float(m.group(1)), st.where)
+            if re.fullmatch(r"\w+", args_text):
+                return Pulse(args_text, PULSE_DEFAULT_S, st.where)
+            return None
+        if word == "WAITTIME" and len(args) == 1 and number(args[0].replace("\\InPos", "")) is not None:
+            return Wait(number(args[0].replace("\\InPos", "")), st.where)  # type: ignore[arg-type]
+        if word == "WAITDI":
+            m = re.match(r"(?i)^(\w+)\s*,\s*([01])\s*(?:\\MaxTime\s*:=\s*([0-9.]+))?$", args_text)
+            if m:
+                return WaitIn(Cond(m.group(1), m.group(2) == "1"),
+                              float(m.group(3)) if m.group(3) else None, st.where)
+            return None
+        if word == "WAITUNTIL":
+            m = re.match(r"(?i)^(.*?)\s*(?:\\MaxTime\s*:=\s*([0-9.]+))?$", args_text)
+            cond = _cond(m.group(1)) if m else None
+            return WaitIn(cond, float(m.group(2)) if m and m.group(2) else None, st.where) if cond else None
+        if word == "EXIT" and not args:
+            return Stop(st.where)
+        if word in self.proc_names:
+            return self._call(word, args_text, st.where)
+        return None
+
+    def _call(self, word: str, args_text: str, where: Where) -> Stmt | None:
+        args = []
+        for a in split_top(args_text) if args_text else []:
+            expr = self._target(a) if not re.fullmatch(r"-?[\d.]+", a) else a
+            if expr is None:
+                return None
+            args.append(expr[0] if isinstance(expr, tuple) else expr)
+        return Call(self.proc_names[word], tuple(args), where)
+
+    def _move(self, word: str, args: list[str], where: Where) -> Move | None:
+        kind = _MOVES[word]
+        if len(args) != (5 if kind == "circular" else 4):
+            return None
+        parts = [split_top(a, "\\") for a in args]
+        via = None
+        if kind == "circular":
+            via_t = self._target(parts[0][0])
+            if via_t is None:
+                return None
+            via = via_t[0]
+            parts = parts[1:]
+        to, speed, zone, tool = parts
+        target = self._target(to[0])
+        if target is None or len(to) > 1 and to[1:] != ["NoEOffs"]:
+            return None
+        expr, name, decl = target
+        if (word == "MOVEABSJ") != (decl is not None and decl.joints is not None):
+            return None
+        timing = self._speed(kind, speed)
+        zone_mm = self.zones.get(zone[0].upper(), "bad") if len(zone) == 1 else "bad"
+        frame = self._wobj_of(tool[1:])
+        if timing is None or zone_mm == "bad" or tool[0].upper() not in {*self.tools, "TOOL0"} or frame is None:
+            return None
+        if timing[2]:
+            self.tally.warn(codes.JOINT_SPEED_READ, f"{word} at {speed[0]}: rmot times a joint move by its joint "
+                            "share; read as 100 %", where)
+        tool_name = self.tools[tool[0].upper()].name if tool[0].upper() in self.tools else "flange"
+        config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
+        return Move(kind, expr, name, where, via=via, speed=timing[0] if kind != "joint" else None,
+                    joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
+                    time=timing[1], tool=tool_name, frame=frame, config=config,
+                    pose=decl.pose if decl and expr == decl.name else None,
+                    joints=decl.joints if decl else None)
+
+    def _speed(self, kind: str, speed: list[str]) -> tuple[float | None, float | None, bool] | None:
+        """(TCP mm/s, duration s, joint speed read as 100 %) of a speed argument."""
+        name = speed[0].upper()
+        duration = None
+        for switch in speed[1:]:
+            m = re.fullmatch(r"(?i)T\s*:=\s*([0-9.]+)", switch)
+            if m is None:
+                return None
+            duration = float(m.group(1))
+        if name == "VMAX":
+            return (5000.0 if kind != "joint" else None, duration, False)
+        if name not in self.speeds:
+            return None
+        return (self.speeds[name], duration, kind == "joint" and duration is None)
+
+    def _wobj_of(self, switches: list[str]) -> str | None:
+        frame = "base"
+        for s in switches:
+            m = re.fullmatch(r"(?i)WObj\s*:=\s*(\w+)", s)
+            if m is None:
+                return None
+            if m.group(1).upper() != "WOBJ0":
+                if m.group(1).upper() not in self.frames:
+                    return None
+                frame = self.frames[m.group(1).upper()].name
+        return frame
+
+    def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
+        """(rmot expression, declared name, declaration) of a RAPID target expression (offsets
+        nested at most 8 deep)."""
+        text = text.strip()
+        if depth > 8:
+            return None
+        decl = self.targets.get(text.upper())
+        if decl is not None:
+            return (rmot_name(decl.name), decl.name, decl)
+        if re.fullmatch(r"\w+", text):
+            return (text, None, None) if text in self.pose_params else None
+        m = re.fullmatch(r"(?i)(Offs|RelTool)\s*\((.*)\)", text)
+        if m:
+            args: list[str] = []
+            for arg in split_top(m.group(2)):
+                bits = split_top(arg, "\\")
+                args += [bits[0]] + ["\\" + b for b in bits[1:]]
+            return self._offset(m.group(1).upper(), args, depth)
+        lit = literal(text)
+        pose = _pose(lit)
+        if pose is not None:
+            return (pose_expr(pose), None, Target("", pose, None, None, Where("", 0)))
+        return None
+
+    def _offset(self, func: str, args: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
+        base = self._target(args[0], depth + 1) if args else None
+        if base is None or len(args) < 4:
+            return None
+        offs = [num_expr(a, self.names) for a in args[1:4]]
+        if any(o is None for o in offs):
+            return None
+        terms = ", ".join(f"{axis}={mm(o)}" for axis, o in zip("xyz", offs) if o not in ("0",))  # type: ignore[arg-type]
+        if func == "OFFS" and len(args) == 4:
+            return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
+        turns = []
+        for switch in args[4:] if func == "RELTOOL" else ["bad"]:
+            m = re.fullmatch(r"(?i)\\R([xyz])\s*:=\s*(.+)", switch)
+            angle = num_expr(m.group(2), self.names) if m else None
+            if m is None or angle is None:
+                return None
+            turns.append(f" * pose(r{m.group(1).lower()}={angle if number(angle) is not None else f'({angle}) * 1'} deg)")
+        shifted = f"{base[0]} * pose({terms})" if terms else base[0]
+        return (shifted + "".join(turns), base[1], base[2])
+
+
+def pose_expr(pose: ir.Pose) -> str:
+    """An rmot pose literal: mm and the exact quaternion."""
+    x, y, z = (num_text(v * 1000, 6) for v in pose.position)
+    q = ", ".join(num_text(v, 10) for v in pose.quaternion)
+    return f"pose(x={x}mm, y={y}mm, z={z}mm, q=({q}))"
+
+
+def num_text(value: float, decimals: int = 9) -> str:
+    """A number rounded to `decimals` places, shortest form, never `-0` (deterministic text)."""
+    return f"{round(value, decimals) + 0.0:.15g}"
+
+
+def _cond(text: str) -> Cond | None:
+    """`DInput(sig) = 1`, `sig = 1`, `TestDI(sig)`, `NOT TestDI(sig)` as a digital condition."""
+    text = text.strip()
+    m = re.fullmatch(r"(?i)(?:DInput\s*\(\s*(\w+)\s*\)|(\w+))\s*=\s*([01]|high|low)", text)
+    if m:
+        return Cond(m.group(1) or m.group(2), m.group(3).lower() in ("1", "high"))
+    m = re.fullmatch(r"(?i)(NOT\s+)?TestDI\s*\(\s*(\w+)\s*\)", text)
+    if m:
+        return Cond(m.group(2), not m.group(1))
+    return None
+
+
+def _no_semicolon(text: str) -> bool:
+    return re.match(r"(?i)^(IF|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST)\b", text) is not None
+
+
+def read_rapid(path: str, text: str) -> _Module:
+    """Read one RAPID module; raises ImportError_ (E510) when it is not one."""
+    module = _Module(path, text)
+    module.read()
+    return module

@@ -1,0 +1,385 @@
+"""Read Universal Robots URScript (`.script`) back into a neutral Document.
+
+Conventions are the URScript backend's, read in reverse (Universal Robots, "The URScript
+Programming Language", e-Series): poses `p[x, y, z, rx, ry, rz]` in metres and a rotation
+vector (rad), always in the robot base; `movej` joints in rad, `v`/`a` in rad/s, rad/s² as a
+share of the slowest joint's datasheet maximum (`backends.urscript.JOINT_LIMITS`, the model
+given by the cell or --robot); `movel`/`movec` `v` m/s, `a` m/s², `r` the blend radius in m, `t`
+a fixed duration; `pose_add(P, p[dx, dy, dz, 0, 0, 0])` a translation in the base (= `shift`);
+`set_tcp` the tool (named by its TCP: matched to the cell's tools by value); standard digital
+I/O 0..7, configurable 8..15, analog out volts / 10 on the 0..10 V domain; the backend's
+timed wait (a `get_steptime()` counting loop, then popup + halt) is `wait until .. timeout`.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from rmot.backends.readers.common import Tally, num_expr, number, split_top
+from rmot.backends.readers.model import (
+    Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
+)
+from rmot.backends.readers.rapid import num_text, pose_expr
+from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
+from rmot.compiler import ir
+
+__all__ = ["read_urscript", "ur_pose"]
+
+DEFAULT_TCP_ACCEL = 2.0  # m/s^2: what the backend writes for rmot's default acceleration
+
+
+def ur_pose(values: list[float]) -> ir.Pose:
+    """p[x, y, z, rx, ry, rz] (m, rotation vector rad) as an ir.Pose."""
+    x, y, z, rx, ry, rz = values
+    angle = math.sqrt(rx * rx + ry * ry + rz * rz)
+    if angle < 1e-15:
+        return ir.Pose((x, y, z))
+    s = math.sin(angle / 2) / angle
+    q = [0.0 if abs(v) < 1e-12 else v for v in (math.cos(angle / 2), rx * s, ry * s, rz * s)]  # cos(pi/2) noise
+    n = math.sqrt(sum(v * v for v in q))
+    w, qx, qy, qz = (v / n for v in q)
+    if w < 0:
+        w, qx, qy, qz = -w, -qx, -qy, -qz
+    return ir.Pose((x, y, z), (w, qx, qy, qz))
+
+
+def _numbers(text: str) -> list[float] | None:
+    values = [number(v) for v in split_top(text)]
+    return None if any(v is None for v in values) else values  # type: ignore[return-value]
+
+
+class _Line:
+    def __init__(self, text: str, where: Where) -> None:
+        self.text = text
+        self.where = where
+
+    @property
+    def head(self) -> str:
+        m = re.match(r"\s*(\w+)", self.text)
+        return m.group(1) if m else ""
+
+
+class _Script:
+    def __init__(self, path: str, text: str, model: str | None) -> None:
+        self.tally = Tally(path, text, "urscript")
+        self.lines: list[_Line] = []
+        for n, raw in enumerate(text.split("\n"), 1):
+            code = raw.split("#")[0].strip() if '"' not in raw else _strip_hash(raw).strip()
+            if code and not code.startswith("$"):
+                self.lines.append(_Line(code, Where(path, n, len(raw) - len(raw.lstrip()) + 1)))
+        self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
+        self.targets: dict[str, Target] = {}
+        self.tools: dict[tuple[float, ...], ToolData] = {}
+        self.tool: str | None = None
+        self.pulses: dict[str, tuple[int, float]] = {}
+        self.routines: list[Routine] = []
+        self.defs: set[str] = set()
+        self.names: set[str] = set()
+        self.name = "imported"
+        self.main = "imported"
+
+    # ---------------------------------------------------------------- structure
+
+    def read(self) -> None:
+        if not self.lines:
+            raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
+        self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
+        first = self.lines[0]
+        m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
+        if m is None and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
+            raise self.tally.fail("a URScript program must start with `def name():` or a statement "
+                                  f"(got `{first.text[:40]}`)", first.where)
+        if m:
+            self.name = self.main = m.group(1)
+            body, i = self._block(1, ("end",))
+            self.routines.append(Routine(self.main, (), tuple(body), first.where))
+            for ln in self.lines[i + 1:]:
+                if not re.fullmatch(rf"{self.main}\s*\(\s*\)", ln.text):
+                    self.routines[-1] = Routine(self.main, (), self.routines[-1].body + (self.tally.keep(
+                        ln.text, ln.where, "a statement after the program's def"),), first.where)
+        else:
+            body, _ = self._block(0, ())
+            self.routines.append(Routine(self.main, (), tuple(body), first.where))
+
+    def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+
+    def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+        body: list[Stmt] = []
+        while i < len(self.lines):
+            ln = self.lines[i]
+            if ln.head in ends or (ln.text.startswith("else") and "else" in ends) or \
+                    (ln.head == "elif" and "elif" in ends):
+                return body, i
+            stmts, i = self._statement(i)
+            body += stmts
+        if ends:
+            raise self.tally.fail(f"missing `{ends[0]}`", self.lines[-1].where)
+        return body, i
+
+    def _statement(self, i: int) -> tuple[list[Stmt], int]:
+        ln = self.lines[i]
+        m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", ln.text)
+        if m:
+            body, j = self._block(i + 1, ("end",))
+            self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
+            return [], j + 1
+        if re.match(r"(def|thread)\s+\w+\s*\(", ln.text):
+            return self._thread(i)
+        step = re.fullmatch(r"(\w+)\s*=\s*(\w+)\s*\+\s*1", ln.text)
+        if step and step.group(1) == step.group(2) and step.group(1) in self.names and \
+                i + 1 < len(self.lines) and self.lines[i + 1].head == "end":
+            return [], i + 1  # a loop's counter step: part of the `for` read by _loop
+        for pattern in (self._timed_wait, self._wait, self._loop):
+            found = pattern(i)
+            if found is not None:
+                self.tally.imported += 1
+                return found
+        if ln.head in ("if", "while"):
+            return self._compound(i)
+        if self._setting(ln.text) or self._declare(ln):
+            return [], i + 1
+        stmt = self._simple(ln)
+        if stmt is None:
+            return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
+        self.tally.imported += 1
+        return [stmt], i + 1
+
+    def _thread(self, i: int) -> tuple[list[Stmt], int]:
+        """A thread: the backend's pulse thread (out on, sleep, out off) is remembered as a
+        pulse for the `run` that starts it; any other thread is kept native."""
+        ln = self.lines[i]
+        j = i + 1
+        while j < len(self.lines) and self.lines[j].head != "end":
+            j += 1
+        name = re.match(r"(?:def|thread)\s+(\w+)", ln.text).group(1)  # type: ignore[union-attr]
+        inner = [x.text.replace(" ", "") for x in self.lines[i + 1:j]]
+        m = re.fullmatch(r"set_(standard|configurable)_digital_out\((\d+),True\)", inner[0]) if len(inner) == 3 else None
+        s = re.fullmatch(r"sleep\(([\d.]+)\)", inner[1]) if m else None
+        if m and s and inner[2] == inner[0].replace("True", "False"):
+            self.pulses[name] = (int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), float(s.group(1)))
+            return [], j + 1
+        return [self.tally.keep(x.text, x.where, "a thread has no rmot form") for x in self.lines[i:j + 1]], j + 1
+
+    def _texts(self, i: int, n: int) -> list[str]:
+        return [ln.text.replace(" ", "") for ln in self.lines[i:i + n]]
+
+    def _timed_wait(self, i: int) -> tuple[list[Stmt], int] | None:
+        t = self._texts(i, 9)
+        if len(t) < 9 or t[0] != "rmot_waited=0.0":
+            return None
+        w = re.fullmatch(r"whilenot\((.*)\)andrmot_waited<([\d.]+):", t[1])
+        ok = (w is not None and t[2] == "sync()" and t[3] == "rmot_waited=rmot_waited+get_steptime()"
+              and t[4] == "end" and t[5] == f"ifnot({w.group(1)}):" and t[6].startswith("popup(")
+              and t[7] == "halt" and t[8] == "end")
+        cond = _cond(w.group(1)) if ok and w else None
+        if cond is None:
+            return None
+        return [WaitIn(cond, float(w.group(2)), self.lines[i + 1].where)], i + 9  # type: ignore[union-attr]
+
+    def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
+        t = self._texts(i, 3)
+        w = re.fullmatch(r"whilenot\((.*)\):", t[0]) if len(t) == 3 else None
+        cond = _cond(w.group(1)) if w and t[1] == "sync()" and t[2] == "end" else None
+        return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
+
+    def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
+        """`v = a`, `while v <= b:`, body, `v = v + 1`, `end`: for v in a .. b + 1."""
+        t = self._texts(i, 2)
+        m = re.fullmatch(r"(\w+)=(-?\d+)", t[0]) if len(t) == 2 else None
+        w = re.fullmatch(rf"while{m.group(1)}<=(-?\d+):", t[1]) if m else None
+        if m is None or w is None:
+            return None
+        var = m.group(1)
+        saved = set(self.names)
+        self.names.add(var)
+        body, j = self._block(i + 2, ("end",))
+        self.names = saved
+        last = self.lines[j - 1].text.replace(" ", "") if j - 1 > i + 1 else ""
+        if last != f"{var}={var}+1":
+            return None
+        return [For(var, int(m.group(2)), int(w.group(1)) + 1, tuple(body), self.lines[i + 1].where)], j + 1
+
+    def _compound(self, i: int) -> tuple[list[Stmt], int]:
+        ln = self.lines[i]
+        m = re.fullmatch(r"(if|elif|while)\s+(.*):", ln.text)
+        cond = _cond(m.group(2)) if m else None
+        if cond is None:
+            out, j, depth = [], i, 0
+            while j < len(self.lines):
+                depth += self.lines[j].head in ("if", "while", "def", "thread")
+                depth -= self.lines[j].head == "end"
+                out.append(self.tally.keep(self.lines[j].text, self.lines[j].where, f"this {ln.head} has no rmot form"))
+                j += 1
+                if depth <= 0:
+                    break
+            return out, j  # type: ignore[return-value]
+        self.tally.imported += 1
+        if ln.head == "while":
+            body, j = self._block(i + 1, ("end",))
+            return [While(cond, tuple(body), ln.where)], j + 1
+        then, j = self._block(i + 1, ("end", "else", "elif"))
+        if self.lines[j].head == "elif":
+            orelse, j = self._compound(j)
+            return [If(cond, tuple(then), tuple(orelse), ln.where)], j
+        orelse = []
+        if self.lines[j].text.startswith("else"):
+            orelse, j = self._block(j + 1, ("end",))
+        return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
+
+    # ---------------------------------------------------------------- statements
+
+    def _setting(self, text: str) -> bool:
+        compact = text.replace(" ", "")
+        m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", compact)
+        if m:
+            values = _numbers(m.group(1))
+            if values is None or len(values) != 6:
+                return False
+            key = tuple(round(v, 6) for v in values)
+            if key not in self.tools:
+                self.tools[key] = ToolData(f"tcp_{len(self.tools) + 1}", ur_pose(values), 0.0, Where(self.tally.path, 1))
+            self.tool = self.tools[key].name
+            return True
+        m = re.fullmatch(r"set_payload\(([\d.]+)(?:,.*)?\)", compact)
+        if m and self.tool is not None:
+            key = next(k for k, t in self.tools.items() if t.name == self.tool)
+            t = self.tools[key]
+            self.tools[key] = ToolData(t.name, t.tcp, float(m.group(1)), t.where)
+            return True
+        return re.fullmatch(r"set_analog_outputdomain\(\d+,1\)", compact) is not None
+
+    def _simple(self, ln: _Line) -> Stmt | None:
+        text, where = ln.text.replace(" ", ""), ln.where
+        m = re.fullmatch(r"(movej|movel|movec)\((.*)\)", text)
+        if m:
+            return self._move(m.group(1), split_top(m.group(2)), where)
+        m = re.fullmatch(r"set_(standard|configurable)_digital_out\((\d+),(True|False)\)", text)
+        if m:
+            return SetOut(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0),
+                          1.0 if m.group(3) == "True" else 0.0, where)
+        m = re.fullmatch(r"set_standard_analog_out\((\d+),([\d.]+)\)", text)
+        if m:
+            return SetOut(int(m.group(1)), float(m.group(2)) * 10.0, where, analog=True)
+        m = re.fullmatch(r"sleep\(([\d.]+)\)", text)
+        if m:
+            return Wait(float(m.group(1)), where)
+        m = re.fullmatch(r"(?:\w+=)?run(\w+)\(\)", text)
+        if m and m.group(1) in self.pulses:
+            port, seconds = self.pulses[m.group(1)]
+            return Pulse(port, seconds, where)
+        if text == "halt":
+            return Stop(where)
+        m = re.fullmatch(r"(\w+)\(\)", text)
+        if m and m.group(1) in self.defs:
+            return Call(m.group(1), (), where)
+        return None
+
+    def _declare(self, ln: _Line) -> bool:
+        """`[global] name = p[...]` or `= [j1, ..]` once, at its first assignment: a target."""
+        m = re.fullmatch(r"(?:global\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
+        values = _numbers(m.group(3)) if m else None
+        if m is None or values is None or len(values) != 6 or m.group(1) in self.targets:
+            return False
+        if m.group(2):
+            self.targets[m.group(1)] = Target(m.group(1), ur_pose(values), None, None, ln.where)
+        else:
+            self.targets[m.group(1)] = Target(m.group(1), None, tuple(math.degrees(v) for v in values), None, ln.where)
+        return True
+
+    def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
+        """(rmot expression, declared name, declaration) of a URScript pose or joint list
+        (nested at most 8 deep)."""
+        if depth > 8:
+            return None
+        if text in self.targets:
+            t = self.targets[text]
+            return (t.name, t.name, t)
+        m = re.fullmatch(r"get_inverse_kin\((.*),qnear=\[.*\]\)", text)
+        if m:
+            return self._target(m.group(1), depth + 1)
+        m = re.fullmatch(r"(p?)\[(.*)\]", text)
+        if m:
+            values = _numbers(m.group(2))
+            if values is None or len(values) != 6:
+                return None
+            if m.group(1):
+                pose = ur_pose(values)
+                return (pose_expr(pose), None, Target("", pose, None, None, Where("", 0)))
+            joints = tuple(math.degrees(v) for v in values)
+            return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
+                    Target("", None, joints, None, Where("", 0)))
+        m = re.fullmatch(r"pose_add\((.*)\)", text)
+        parts = split_top(m.group(1)) if m else []
+        base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
+        shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
+        offs = split_top(shift.group(1)) if shift else []
+        if base is None or len(offs) != 6 or any(number(o) != 0.0 for o in offs[3:]):
+            return None
+        exprs = [num_expr(o, self.names) for o in offs[:3]]
+        if any(e is None for e in exprs):
+            return None
+        terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"  # type: ignore[arg-type]
+                          for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
+        return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
+
+    def _move(self, func: str, args: list[str], where: Where) -> Move | None:
+        kind = {"movej": "joint", "movel": "linear", "movec": "circular"}[func]
+        named = dict(a.split("=", 1) for a in args if re.match(r"\w+=", a) and not a.startswith("get_"))
+        points = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
+        if len(points) != (2 if kind == "circular" else 1) or set(named) - {"a", "v", "r", "t", "mode"}:
+            return None
+        if named.get("mode", "0") != "0":
+            return None
+        found = [self._target(p) for p in points]
+        values = {k: number(v) for k, v in named.items()}
+        if any(f is None for f in found) or any(v is None for v in values.values()):
+            return None
+        expr, name, decl = found[-1]  # type: ignore[misc]
+        v, a = values.get("v"), values.get("a")
+        zone = (values.get("r") or 0.0) * 1000.0
+        if kind == "joint":
+            pct = 100.0 * v / self.vmax if v is not None else 100.0
+            acc = 100.0 * a / self.amax if a is not None else None
+            speed, accel, jpct, jacc = None, None, round(pct, 4), (None if acc is None or abs(acc - 100) < 1e-3
+                                                                  else round(acc, 4))
+        else:
+            speed = 1000.0 * v if v is not None else 250.0
+            accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
+            jpct, jacc = None, None
+        return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
+                    speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t"), tool=self.tool,
+                    frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
+                    accel=accel, joint_accel=jacc)
+
+
+def _strip_hash(line: str) -> str:
+    quote = False
+    for i, ch in enumerate(line):
+        if ch == '"':
+            quote = not quote
+        elif ch == "#" and not quote:
+            return line[:i]
+    return line
+
+
+def _cond(text: str) -> Cond | None:
+    """`get_standard_digital_in(n) == True|False`, bare, or `not ...` (configurable: n + 8)."""
+    text = text.replace(" ", "")
+    neg = text.startswith("not")
+    if neg:
+        text = text[3:].strip("()")
+    m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:==(True|False))?", text)
+    if m is None:
+        return None
+    on = (m.group(3) or "True") == "True"
+    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != neg)
+
+
+def read_urscript(path: str, text: str, model: str | None) -> _Script:
+    """Read one URScript program; raises ImportError_ (E510) when it is not one."""
+    script = _Script(path, text, model)
+    script.read()
+    return script

@@ -1,0 +1,300 @@
+"""Print a neutral Document as a .rmot program (and a cell stub for the data it declares).
+
+Settings are written where they change: `tool` and `frame` before the first move that needs
+them in each block (rmot settings do not leak out of a block, so every block starts from what
+its parent had; a proc body starts unknown and sets both). Speeds, zones, configurations and
+times are each move's own modifiers, exactly as the vendor wrote them on that move.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+from dataclasses import replace
+
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import rmot_name
+from rmot.backends.readers.model import (
+    Call, Cond, Document, FileCount, For, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
+    Where, While, walk,
+)
+from rmot.backends.readers.rapid import num_text, pose_expr
+from rmot.compiler import ir
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.record import record
+from rmot.lang.source import Span
+
+__all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools",
+           "rename_warnings"]
+
+INDENT = "  "
+
+
+@record(slots=True)
+class SignalMap:
+    """Signal name (upper case) -> port, per kind, as the cell declares them."""
+
+    outputs: tuple[tuple[str, int], ...] = ()
+    inputs: tuple[tuple[str, int], ...] = ()
+    analog: tuple[tuple[str, int], ...] = ()
+
+    def port(self, kind: str, signal: Signal) -> int | None:
+        if isinstance(signal, int):
+            return signal
+        table = dict(getattr(self, kind))
+        if signal.upper() in table:
+            return int(table[signal.upper()])
+        prefix = {"outputs": "DO", "inputs": "DI", "analog": "AO"}[kind]
+        m = re.fullmatch(prefix + r"_?(\d+)", signal.upper())  # rmot's own generic names (do1, di2)
+        return int(m.group(1)) if m else None
+
+
+def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
+    if isinstance(s, SetOut):
+        return [("analog" if s.analog else "outputs", s.signal)]
+    if isinstance(s, Pulse):
+        return [("outputs", s.signal)]
+    if isinstance(s, (WaitIn, If, While)):
+        return [("inputs", s.cond.signal)]
+    return []
+
+
+def stub_signals(doc: Document) -> SignalMap:
+    """Ports for a cell stub: numbered signals keep their port; named ones take the free ports
+    1, 2, ... of their kind in order of first use."""
+    named: dict[str, dict[str, int]] = {"outputs": {}, "inputs": {}, "analog": {}}
+    used: dict[str, set[int]] = {k: set() for k in named}
+    uses = [u for r in doc.routines for s in walk(r.body) for u in _signal_uses(s)]
+    for kind, sig in uses:
+        if isinstance(sig, int):
+            used[kind].add(sig)
+    for kind, sig in uses:
+        if isinstance(sig, str) and sig.upper() not in named[kind]:
+            n = SignalMap().port(kind, sig) or 1
+            while n in used[kind]:
+                n += 1
+            used[kind].add(n)
+            named[kind][sig.upper()] = n
+    return SignalMap(*(tuple(named[k].items()) for k in ("outputs", "inputs", "analog")))
+
+
+def map_leaves(body: tuple[Stmt, ...], fn: Callable[[Stmt], Stmt]) -> tuple[Stmt, ...]:
+    """`body` with `fn` applied to every instruction that is not a block, at every depth (a
+    block whose condition `fn` replaces is replaced whole)."""
+    out: list[Stmt] = []
+    for s in body:
+        if isinstance(s, If) and fn(s) is s:
+            s = replace(s, then=map_leaves(s.then, fn), orelse=map_leaves(s.orelse, fn))
+        elif isinstance(s, (While, For)) and fn(s) is s:
+            s = replace(s, body=map_leaves(s.body, fn))
+        else:
+            s = fn(s)
+        out.append(s)
+    return tuple(out)
+
+
+def _with_routines(doc: Document, fn: Callable[[Stmt], Stmt], **changes: object) -> Document:
+    routines = tuple(replace(r, body=map_leaves(r.body, fn)) for r in doc.routines)
+    return replace(doc, routines=routines, **changes)  # type: ignore[arg-type]
+
+
+def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where], Span]) -> Document:
+    """Every named signal the cell does not declare: its instruction is kept native (W513)."""
+    diags: list[Diagnostic] = []
+    moved: dict[str, int] = {}
+
+    def fix(s: Stmt) -> Stmt:
+        missing = [sig for kind, sig in _signal_uses(s) if signals.port(kind, sig) is None]
+        if not missing:
+            return s
+        w = s.where
+        span = span_of(w)
+        diags.append(Diagnostic(codes.SIGNAL_UNKNOWN, Severity.WARNING,
+                                f"signal `{missing[0]}` must be declared in the cell (it is not): kept native", span))
+        last = max([w.line] + [x.where.line + 1 for x in walk((s,)) if x is not s])
+        text = "\n".join(span.file.line_text(n).strip() for n in range(w.line, last + 1))
+        moved[w.path] = moved.get(w.path, 0) + 1
+        return Native(doc.vendor, text or f"signal {missing[0]}", w)
+
+    fixed = _with_routines(doc, fix)
+    counts = tuple(FileCount(c.path, c.imported - moved.get(c.path, 0), c.native + moved.get(c.path, 0))
+                   for c in doc.counts)
+    return replace(fixed, counts=counts, diagnostics=doc.diagnostics + tuple(diags))
+
+
+def rename_warnings(doc: Document, span_of: Callable[[Where], Span]) -> tuple[Diagnostic, ...]:
+    """W514 at each declared name the program writes under another name (an rmot keyword)."""
+    named = [(t.name, t.where) for t in doc.targets] + [(t.name, t.where) for t in doc.tools] + \
+        [(f.name, f.where) for f in doc.frames] + [(r.name, r.where) for r in doc.routines]
+    return tuple(Diagnostic(codes.NAME_RENAMED, Severity.WARNING,
+                            f"`{name}` must not be an rmot keyword in a .rmot program: written as `{rmot_name(name)}`",
+                            span_of(where)) for name, where in named if rmot_name(name) != name)
+
+
+def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:
+    """Equal to what the vendors print: 1 um and 1e-6 in each quaternion component (up to sign)."""
+    near = all(abs(x - y) < 1e-6 for x, y in zip(a.position, b.position))
+    dot = abs(sum(x * y for x, y in zip(a.quaternion, b.quaternion)))
+    return near and dot > 1 - 1e-9
+
+
+def match_tools(doc: Document, cell_tools: tuple[tuple[str, ir.Pose], ...]) -> Document:
+    """A vendor that selects tools by TCP value only (URScript set_tcp): name each tool after the
+    cell's tool with the same TCP, where there is one."""
+    names = {}
+    for t in doc.tools:
+        match = next((name for name, tcp in cell_tools if _same_pose(tcp, t.tcp)), None)
+        if match is not None and t.name != match:
+            names[t.name] = match
+    if not names:
+        return doc
+
+    def fix(s: Stmt) -> Stmt:
+        return replace(s, tool=names[s.tool]) if isinstance(s, Move) and s.tool in names else s
+
+    return _with_routines(doc, fix, tools=tuple(t for t in doc.tools if t.name not in names))
+
+
+def _num(v: float) -> str:
+    return num_text(v)
+
+
+def _quote(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+class _Printer:
+    def __init__(self, doc: Document, signals: SignalMap) -> None:
+        self.doc = doc
+        self.signals = signals
+        self.lines: list[str] = []
+
+    def emit(self, depth: int, text: str) -> None:
+        self.lines.append(INDENT * depth + text)
+
+    def body(self, body: tuple[Stmt, ...], depth: int, state: dict[str, str | None]) -> None:
+        state = dict(state)
+        for s in body:
+            self.stmt(s, depth, state)
+
+    def stmt(self, s: Stmt, depth: int, state: dict[str, str | None]) -> None:
+        if isinstance(s, Move):
+            self.move(s, depth, state)
+        elif isinstance(s, SetOut):
+            port = self.signals.port("analog" if s.analog else "outputs", s.signal)
+            value = _num(s.value) if s.analog else ("on" if s.value else "off")
+            self.emit(depth, f"set {'aout' if s.analog else 'out'}[{port}] = {value}")
+        elif isinstance(s, Pulse):
+            self.emit(depth, f"pulse out[{self.signals.port('outputs', s.signal)}] for {_num(s.seconds)} s")
+        elif isinstance(s, Wait):
+            self.emit(depth, f"wait {_num(s.seconds)} s")
+        elif isinstance(s, WaitIn):
+            timeout = f" timeout {_num(s.timeout)} s" if s.timeout is not None else ""
+            self.emit(depth, f"wait until {self.cond(s.cond)}{timeout}")
+        elif isinstance(s, Native):
+            for n, line in enumerate(s.text.split("\n")):
+                self.emit(depth, f"native {s.vendor} {_quote(line)}   # {replace(s.where, line=s.where.line + n, col=1) if n else s.where}")
+        elif isinstance(s, Stop):
+            self.emit(depth, "stop")
+        elif isinstance(s, Call):
+            self.emit(depth, f"{rmot_name(s.name)}({', '.join(s.args)})")
+        else:
+            self.block(s, depth, state)
+
+    def block(self, s: Stmt, depth: int, state: dict[str, str | None]) -> None:
+        if isinstance(s, For):
+            self.emit(depth, f"for {s.var} in {s.first} .. {s.stop} {{")
+            self.body(s.body, depth + 1, state)
+        elif isinstance(s, While):
+            self.emit(depth, f"while {self.cond(s.cond)} {{")
+            self.body(s.body, depth + 1, state)
+        elif isinstance(s, If):
+            self.emit(depth, f"if {self.cond(s.cond)} {{")
+            self.body(s.then, depth + 1, state)
+            if s.orelse:
+                self.emit(depth, "} else {")
+                self.body(s.orelse, depth + 1, state)
+        self.emit(depth, "}")
+
+    def cond(self, c: Cond) -> str:
+        return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
+
+    def move(self, m: Move, depth: int, state: dict[str, str | None]) -> None:
+        for key in ("tool", "frame"):
+            value = getattr(m, key)
+            value = value if value in (None, "flange", "base", "world") else rmot_name(value)
+            if value is not None and state.get(key) != value:
+                self.emit(depth, f"{key} {value}")
+                state[key] = value
+        head = f"move circular via {m.via} to {m.target}" if m.kind == "circular" else f"move {m.kind} {m.target}"
+        mods = []
+        if m.config is not None and (m.config.shoulder or m.config.elbow or m.config.wrist or m.config.turns):
+            mods.append(f"config({m.config})")
+        if m.speed is not None:
+            mods.append(f"speed {_num(m.speed)} mm/s")
+        if m.joint_pct is not None:
+            mods.append(f"speed {_num(m.joint_pct)} %")
+        if m.accel is not None:
+            mods.append(f"accel {_num(m.accel)} mm/s^2")
+        if m.joint_accel is not None:
+            mods.append(f"accel {_num(m.joint_accel)} %")
+        if m.time is not None:
+            mods.append(f"time {_num(m.time)} s")
+        mods.append("zone fine" if m.zone is None or m.zone == 0 else f"zone {_num(m.zone)} mm")
+        self.emit(depth, " ".join([head, *mods]))
+
+
+def _target_line(t_name: str, pose: ir.Pose | None, joints: tuple[float, ...] | None) -> str:
+    if joints is not None:
+        return f"target {t_name} = joints({', '.join(_num(j) for j in joints)}) deg"
+    return f"target {t_name} = {pose_expr(pose)}"  # type: ignore[arg-type]
+
+
+def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | None) -> str:
+    """The .rmot program of `doc` on `robot` (a robot of the cell)."""
+    p = _Printer(doc, signals)
+    files = ", ".join(c.path for c in doc.counts)
+    p.emit(0, f"# imported by `rmot import` from {files} ({doc.vendor})")
+    for c in doc.counts:
+        p.emit(0, f"#   {c.path}: {c.imported} instructions imported, {c.native} kept native")
+    if use_cell is not None:
+        p.emit(0, f"use cell {_quote(use_cell)}")
+    p.emit(0, f"program {rmot_name(doc.name)} on {robot} {{")
+    for name, value in doc.consts:
+        p.emit(1, f"const {name} = {_num(value)}")
+    for t in doc.targets:
+        p.emit(1, _target_line(rmot_name(t.name), t.pose, t.joints))
+    main = None
+    for r in doc.routines:
+        if r.name == doc.main:
+            main = r
+            continue
+        params = ", ".join(f"{n}: {t}" for n, t in r.params)
+        p.emit(1, f"proc {rmot_name(r.name)}({params}) {{")
+        p.body(r.body, 2, {})
+        p.emit(1, "}")
+    if main is not None:
+        p.body(main.body, 1, {})
+    p.emit(0, "}")
+    if doc.kept:
+        p.emit(0, "")
+        p.emit(0, "# kept from the vendor files (declarations and routines with no rmot form):")
+        for k in doc.kept:
+            p.emit(0, f"#   {k.where}: {k.text}")
+    return "\n".join(p.lines) + "\n"
+
+
+def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") -> str:
+    """A cell with `model` at the world origin (world = the robot base, where vendors write
+    work objects) and the tools, frames and I/O names the vendor files declare."""
+    lines = [f"# cell stub written by `rmot import` for {doc.name} ({doc.vendor})",
+             f"cell {rmot_name(doc.name)}_cell {{", f"  robot {robot} = {model}"]
+    for t in doc.tools:
+        lines.append(f"  tool {rmot_name(t.name)} = none tcp {pose_expr(t.tcp)} mass {_num(t.mass)} kg on {robot}")
+    for f in doc.frames:
+        lines.append(f"  frame {rmot_name(f.name)} = {pose_expr(f.pose)}")
+    for kind, word in (("outputs", "out"), ("inputs", "in"), ("analog", "aout")):
+        for name, port in getattr(signals, kind):
+            lines.append(f"  io {word}[{port}] = {_quote(name.lower())} on {robot}")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
