@@ -32,6 +32,11 @@ def _expand(text: str | bytes, d: str) -> str | bytes:
     if text == "@URDF0@":
         urdf = ARM6.read_text(encoding="utf-8")
         return urdf.replace('<origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>', '<origin xyz="0 0 0.2"/><axis xyz="0 0 0"/>', 1)
+    sub = re.fullmatch(r"@URDFSUB:(.*?)=>(.*)@", text, re.S)
+    if sub:  # arm6.urdf with its first `old` replaced by `new`
+        urdf = ARM6.read_text(encoding="utf-8")
+        assert sub.group(1) in urdf, sub.group(1)
+        return urdf.replace(sub.group(1), sub.group(2), 1)
     m = re.fullmatch(r"@URDF:(.*)@", text)
     if m:
         urdf = ARM6.read_text(encoding="utf-8")
