@@ -22,7 +22,7 @@ class Case:
     codes: tuple[str, ...] = ()   # each must appear in the output
     absent: tuple[str, ...] = ()  # text that must not appear in any output file
     setup: str = ""               # a named extra step (chmod, ...) done by the runner
-    extra: dict[str, str] = field(default_factory=dict)
+    extra: dict[str, str] = field(default_factory=dict)  # symbolic links the runner makes: name -> target
 
 
 def _prog(body: str, head: str = "") -> str:
@@ -206,4 +206,20 @@ CASES: tuple[Case, ...] = (
           ("inertia_nan", 'ixx="0.04"', 'ixx="nan"'))),
     Case("urdf_1000_joints", {"p.rmot": _URDF_PROG, "arm.urdf": _chain_urdf(1000)}, ("check", "{d}/p.rmot"),
          frozenset({2}), ("E505", "at most")),
+    # ---- round 3: an output never replaces an input or a folder rmot did not write (inputs compared after)
+    Case("keep_check_output_is_program", {"p.rmot": _prog("  move joint home")}, ("check", "{d}/p.rmot", "-o", "{d}/p.rmot"),
+         frozenset({2}), ("E564",), setup="keep_inputs"),
+    Case("keep_check_output_is_link_to_program", {"p.rmot": _prog("  move joint home")},
+         ("check", "{d}/p.rmot", "-o", "{d}/link.rmot"), frozenset({2}), ("E564",), setup="keep_inputs",
+         extra={"link.rmot": "p.rmot"}),
+    Case("keep_plan_csv_is_program", {"p.rmot": _prog("  move joint home")}, ("plan", "{d}/p.rmot", "--csv", "{d}/p.rmot"),
+         frozenset({2}), ("E564",), setup="keep_inputs"),
+    Case("keep_place_output_is_cell", {"p.rmot": 'use cell "c.rmot"\nprogram p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n',
+                                       "c.rmot": "cell c {\n  robot r1 = abb_irb1600\n}\n"},
+         ("place", "{d}/p.rmot", "--region", "x=0mm..100mm, y=0mm..100mm", "-o", "{d}/c.rmot"), frozenset({2}), ("E564",),
+         setup="keep_inputs"),
+    Case("keep_compile_foreign_vendor_folder", {"p.rmot": _prog("  move joint home"), "json/mine.txt": "the user's own notes\n"},
+         ("compile", "{d}/p.rmot", "--target", "json", "--target", "rapid", "-o", "{d}"), frozenset({2}), ("E565",),
+         setup="keep_inputs"),
 )
+

@@ -51,6 +51,8 @@ def materialise(case: Case, d: str) -> list[str]:
         path.parent.mkdir(parents=True, exist_ok=True)
         body = _expand(text, d)
         path.write_bytes(body if isinstance(body, bytes) else body.encode("utf-8"))
+    for link, target in case.extra.items():  # symbolic links: name -> target
+        (Path(d) / link).symlink_to(target)
     if case.setup == "lock":
         os.chmod(Path(d) / "locked", 0)
     if case.setup == "lock_stl":
