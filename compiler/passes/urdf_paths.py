@@ -107,7 +107,7 @@ def _positive_numbers(text: str, counts: tuple[int, ...]) -> bool:
     return len(values) in counts and all(math.isfinite(v) and v > 0 for v in values)
 
 
-def _check_values(tree: ET.ElementTree, name: str, span: Span | None, rep: Reporter) -> bool:
+def _check_values(tree: "ET.ElementTree[ET.Element]", name: str, span: Span | None, rep: Reporter) -> bool:
     """Sizes, shapes, velocity limits and inertias the parser would drop or misread (module doc)."""
     joints, links = list(tree.iter("joint")), list(tree.iter("link"))
     if len(joints) > MAX_JOINTS or len(links) > MAX_LINKS:

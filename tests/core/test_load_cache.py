@@ -11,7 +11,6 @@ already planned is not parsed and lowered again while no file it read has change
 
 from __future__ import annotations
 
-import json
 import os
 import time
 from collections.abc import Iterator
