@@ -54,6 +54,8 @@ bench: $(STAMP)
 FUZZ_N      ?= 100000
 FUZZ_START  ?= 0
 FUZZ_JOBS   ?= 1
+FUZZ_MIX    ?=
+export FUZZ_MIX
 FUZZ_REPORT ?= fuzz-report.json
 fuzz: $(STAMP)
 	$(BIN)/python -m tests.robust.fuzz --n $(FUZZ_N) --start $(FUZZ_START) --jobs $(FUZZ_JOBS) --timeout 30 --memory-gb 2 --report $(FUZZ_REPORT)

@@ -86,6 +86,11 @@ PHYSICAL_RANGE = Code("E125", "outside-accepted-range", "a time, speed, zone, si
 OUTPUT_FAILED = Code("E520", "output-failed", "an output file or directory cannot be written")
 UNREADABLE = Code("E521", "unreadable", "a file or folder exists but cannot be read")
 OUTPUT_NAME_CLASH = Code("E522", "output-name-clash", "two output files get the same name on a controller")
+OUTPUT_IS_INPUT = Code("E564", "output-is-input",
+                       "an output path is one of the command's input files (after resolving links)")
+FOREIGN_OUTPUT_DIR = Code("E565", "foreign-output-dir",
+                          "a vendor folder of the output directory was not created by rmot")
+__all__ += ["OUTPUT_IS_INPUT", "FOREIGN_OUTPUT_DIR"]
 
 # joint-move speeds and joint turns (E170-E179, W170-W174 are the front
 # end's and the planner's; the planner's are in compiler/plan/codes.py)

@@ -19,8 +19,10 @@ Entries live in the user's cache directory, never beside the program: $RMOT_CACH
 $XDG_CACHE_HOME/rmot, else ~/.cache/rmot; one file per plan, plans/<k[:2]>/<key>.npz (JSON
 document + arrays, read with allow_pickle=False: no pickle anywhere). Writes go to a temporary
 file in the same folder and are renamed into place (atomic, safe under concurrent runs: two
-runs writing the same key write the same bytes). An entry that cannot be read, is truncated or
-was written by another version is deleted and rebuilt, never an error. The cache is bounded
+runs writing the same key write the same bytes). Every entry is sealed with an HMAC bound to
+its key (lang/cache_seal.py): an entry that is not this cache's for this key, is not a regular
+file, exceeds MAX_ENTRY_BYTES, cannot be read, is truncated or was written by another version
+is a miss and is rebuilt, never an error. The cache is bounded
 (MAX_BYTES): after a write the least recently used entries beyond it are removed.
 A directory that cannot be written gives warning W700 in the plan's diagnostics.
 """
@@ -45,6 +47,7 @@ import numpy as np
 
 from rmot.compiler.plan_codec import CodecError, decode, encode
 from rmot.lang._tables import cache_dir  # one cache directory: lang's, the stage upstream
+from rmot.lang.cache_seal import read_sealed, seal
 
 if TYPE_CHECKING:
     from rmot.compiler import ir
@@ -57,6 +60,7 @@ __all__ = [
 
 FORMAT = "rmot-plan-cache/1"
 MAX_BYTES = 500 * 1024 * 1024  # bound on the plans folder; least recently used entries go first
+MAX_ENTRY_BYTES = 256 * 1024 * 1024  # bound on one plan entry read back: a larger file is a miss
 _PACKAGES = ("rmot.lang", "rmot.compiler", "rmot.backends", "rmot.sim")
 _KEY_PREFIXES = ("urdf-chain:",)  # load keys that carry a JSON list holding a file path
 _STALE_TEMP_S = 3600.0
@@ -187,23 +191,17 @@ def source_digest() -> str:
         st = path.stat()
         stamp.update(f"{name}\0{st.st_size}\0{st.st_mtime_ns}\0".encode())
     memo = cache_dir() / "source" / stamp.hexdigest()
-    try:
-        known = memo.read_text(encoding="ascii").strip()
-        if len(known) == 64 and all(c in "0123456789abcdef" for c in known):
-            return known
-    except (OSError, UnicodeDecodeError):
-        pass
+    sealed = read_sealed(memo, "source:" + memo.name, 64)
+    known = sealed.decode("ascii", "replace") if sealed is not None else ""
+    if len(known) == 64 and all(c in "0123456789abcdef" for c in known):
+        return known
     h = hashlib.sha256()
     for name, path in files:
         h.update(f"{name}\0".encode())
         h.update(hashlib.sha256(path.read_bytes()).digest())
     digest = h.hexdigest()
     try:
-        memo.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=memo.parent, prefix=".digest-")
-        with os.fdopen(fd, "w", encoding="ascii") as f:
-            f.write(digest)
-        os.replace(tmp, memo)
+        write_entry(memo, "source:" + memo.name, digest.encode("ascii"))
     except OSError:
         pass  # an unwritable cache folder: hashed again next time
     return digest
@@ -233,8 +231,13 @@ def _read(path: Path, key: str) -> Plan | None:
     """The Plan stored under `path`, or None (a missing, corrupt or foreign entry is removed)."""
     from rmot.compiler.plan_types import Plan
 
+    payload = read_sealed(path, key, MAX_ENTRY_BYTES)
+    if payload is None:  # missing, foreign, tampered with, not a bounded regular file: a miss
+        if os.path.lexists(path):
+            _remove(path)
+        return None
     try:
-        with np.load(path, allow_pickle=False) as z:
+        with np.load(io.BytesIO(payload), allow_pickle=False) as z:
             meta = json.loads(bytes(z["__meta__"]).decode("utf-8"))
             if meta.get("format") != FORMAT or meta.get("key") != key:
                 raise CodecError("an entry of another format or key")
@@ -242,9 +245,8 @@ def _read(path: Path, key: str) -> Plan | None:
         plan = decode(meta["doc"], arrays)
         if not isinstance(plan, Plan):
             raise CodecError("the entry does not hold a Plan")
-    except FileNotFoundError:
-        return None
-    except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, CodecError, UnicodeDecodeError):
+    except (OSError, ValueError, KeyError, TypeError, EOFError, zipfile.BadZipFile, CodecError, UnicodeDecodeError,
+            RecursionError):
         _remove(path)
         return None
     try:
@@ -262,14 +264,19 @@ def _write(path: Path, key: str, plan: Plan) -> None:
     members: dict[str, Any] = {"__meta__": np.frombuffer(meta, dtype=np.uint8)}
     members.update({f"a{i}": a for i, a in enumerate(arrays)})
     np.savez(buffer, **members)
-    write_entry(path, buffer.getvalue())
+    write_entry(path, key, buffer.getvalue())
 
 
-def write_entry(path: Path, data: bytes) -> None:
-    """A cache entry written atomically: a temporary `.tmp-*` file beside it (evict removes
-    those a killed run left), renamed onto it. Not compiler/atomic.py: an entry is not the
-    user's output, so no fsync (a torn entry is detected and rebuilt) and no umask mode (the
-    cache is the user's own; mkstemp's 0600)."""
+def write_entry(path: Path, key: str, data: bytes) -> None:
+    """A cache entry sealed under `key` (lang/cache_seal.py) written atomically: a temporary
+    `.tmp-*` file beside it (evict removes those a killed run left), renamed onto it. Not
+    compiler/atomic.py: an entry is not the user's output, so no fsync (a torn entry is
+    detected and rebuilt) and no umask mode (the cache is the user's own; mkstemp's 0600).
+    Nothing is written when the cache has no secret (it could never be read back)."""
+    sealed = seal(key, data)
+    if sealed is None:
+        raise OSError("the cache's secret can be neither read nor created")
+    data = sealed
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=".tmp-", suffix=path.suffix, dir=path.parent)
     try:

@@ -9,7 +9,8 @@ $RMOT_CACHE_DIR, else $XDG_CACHE_HOME/rmot, else ~/.cache/rmot (the plan cache's
 JSON, never pickle (lark's own `cache=True` pickles, and a file in a user's cache folder is
 input, not code). Loading it rebuilds lark's own objects (`Rule`, `TerminalDef`) through
 lark's `Serialize` interface, which instantiates only lark's symbol and option classes. A
-file that cannot be read, is not this key's, or does not have the expected shape is ignored
+file that cannot be read, is not sealed by this cache for this key (lang/cache_seal.py: an
+HMAC, a bounded regular file inside the cache), or does not have the expected shape is ignored
 and rewritten (atomically: a temporary file renamed into place, so concurrent runs are safe);
 a folder that cannot be written only costs the build time. The grammar text itself is part
 of the key, so any change to the grammar (or to lark) builds new tables.
@@ -39,6 +40,7 @@ FORMAT = "rmot-lalr-tables/1"
 # test: read its internals, run tests/lang, then add it here and widen the pin.
 LARK_VERSIONS = ("1.3.1",)
 GRAMMAR = Path(__file__).with_name("grammar") / "rmot.lark"
+MAX_ENTRY_BYTES = 16 * 1024 * 1024  # a table file read back is at most this (rmot's: ~0.3 MB)
 
 
 @record(slots=True)
@@ -170,10 +172,14 @@ def _tupled(x: Any) -> Any:
 
 
 def _read(path: Path, key: str) -> dict[str, Any] | None:
+    from rmot.lang.cache_seal import read_sealed
+
+    payload = read_sealed(path, key, MAX_ENTRY_BYTES)
+    if payload is None:  # missing, foreign, tampered with, not a bounded regular file: a miss
+        return None
     try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
-    except (OSError, ValueError):
+        data = json.loads(payload.decode("utf-8"))
+    except (ValueError, RecursionError):
         return None
     if not isinstance(data, dict) or data.get("key") != key or data.get("format") != FORMAT:
         return None
@@ -181,12 +187,17 @@ def _read(path: Path, key: str) -> dict[str, Any] | None:
 
 
 def _write(path: Path, data: dict[str, Any]) -> None:
+    from rmot.lang.cache_seal import seal
+
     try:
+        sealed = seal(str(data["key"]), json.dumps(data, separators=(",", ":")).encode("utf-8"))
+        if sealed is None:
+            return  # no secret: an entry could never be read back
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=".tables-", suffix=".tmp", dir=path.parent)
         try:
-            with os.fdopen(fd, "w", encoding="utf-8") as f:
-                json.dump(data, f, separators=(",", ":"))
+            with os.fdopen(fd, "wb") as f:
+                f.write(sealed)
             os.replace(tmp, path)
         except BaseException:
             os.unlink(tmp)

@@ -146,6 +146,13 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
           jobs: int, images: str | None, project_root: str | None, shard: str | None, no_cache: bool,
           dynamics: bool = False) -> None:
     """Parse, plan and verify PROGRAMs; report collisions, limit excesses and cycle times."""
+    if output:
+        from rmot.compiler.cli.oserrors import output_is_input
+
+        clash = output_is_input("report file", output, (*programs, cell))
+        if clash:
+            click.echo(clash, err=True)
+            click.get_current_context().exit(EXIT_INPUT)
     if shard is not None:
         from rmot.compiler.cli.shard import parse_shard, select_shard
 

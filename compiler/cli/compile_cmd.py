@@ -225,9 +225,9 @@ def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: s
     try:
         written = write_all(outdir, outcome.files)
     except OSError as exc:
-        from rmot.compiler.cli.oserrors import output_failed
+        from rmot.compiler.cli.oserrors import foreign_output_dir, output_failed
 
-        click.echo(output_failed("output directory", outdir, exc), err=True)
+        click.echo(foreign_output_dir(exc) or output_failed("output directory", outdir, exc), err=True)
         ctx.exit(EXIT_INPUT)
     for path in written:
         click.echo(f"wrote {path}")

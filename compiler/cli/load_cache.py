@@ -18,7 +18,9 @@ is skipped; any change, a missing plan entry, or a damaged entry: the front end 
 
 Only an error-free front-end result is stored (its warnings with it, as the plan codec's JSON:
 no pickle). Entries: <cache dir>/load/<k[:2]>/<key>.json, written atomically (temporary file
-+ rename); a damaged entry is removed and the front end runs.
++ rename) and sealed with an HMAC bound to the key (lang/cache_seal.py); an entry that is not
+this cache's, not a regular file or larger than MAX_BYTES is a miss, a damaged one is removed,
+and the front end runs.
 """
 
 from __future__ import annotations
@@ -161,7 +163,7 @@ def _write(entry: Path, key: str, plan_key: str, result: FrontendResult, plan: P
                        "doc": doc}, separators=(",", ":"), allow_nan=False).encode("utf-8")
     from rmot.compiler.plan_cache import write_entry
 
-    write_entry(entry, data)
+    write_entry(entry, key, data)
 
 
 def _read(entry: Path, key: str) -> tuple[FrontendResult, Plan] | None:
@@ -170,9 +172,10 @@ def _read(entry: Path, key: str) -> tuple[FrontendResult, Plan] | None:
     from rmot.compiler.plan_codec import CodecError, decode
     from rmot.lang.diagnostics import Diagnostic
 
-    try:
-        data = entry.read_bytes()
-    except OSError:
+    from rmot.lang.cache_seal import read_sealed
+
+    data = read_sealed(entry, key, MAX_BYTES)
+    if data is None:  # missing, foreign, tampered with, not a bounded regular file: a miss
         return None
     try:
         doc = json.loads(data.decode("utf-8"))

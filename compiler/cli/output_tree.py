@@ -20,12 +20,21 @@ import itertools
 import os
 import shutil
 
-from rmot.compiler.atomic import write_new
+from rmot.compiler.atomic import write_new, write_text
 
-__all__ = ["write_vendor_dirs"]
+__all__ = ["MARKER", "ForeignOutputDir", "write_vendor_dirs"]
 
 _SEQ = itertools.count()
 _RENAME_EXCHANGE = 2  # linux/fs.h
+# OUTDIR/.rmot.output lists, one a line, the vendor directories rmot wrote there: a non-empty
+# directory not listed is the user's (or another tool's) and is never replaced. The list sits
+# beside the vendor directories, not in them, so a vendor directory copied to a controller
+# holds only the controller's files.
+MARKER = ".rmot.output"
+
+
+class ForeignOutputDir(OSError):
+    """OUTDIR/<vendor> exists, is not empty and was not written by rmot."""
 
 
 def _renameat2() -> object | None:
@@ -106,6 +115,11 @@ def write_vendor_dirs(outdir: str, vendors: dict[str, dict[str, str]]) -> list[s
     leaves every vendor not yet swapped as it was, and no staging directory behind."""
     os.makedirs(outdir, exist_ok=True)
     recover(outdir)
+    own = _own_vendors(outdir)
+    for vendor in vendors:
+        _require_own(os.path.join(outdir, vendor), own)
+    if not set(vendors) <= own:
+        write_text(os.path.join(outdir, MARKER), "".join(f"{v}\n" for v in sorted(own | set(vendors))))
     written: list[str] = []
     for vendor, files in vendors.items():
         final = os.path.join(outdir, vendor)
@@ -138,3 +152,20 @@ def _swap(stage: str, final: str, outdir: str, vendor: str) -> None:
     os.rename(final, aside)
     os.rename(stage, final)
     shutil.rmtree(aside, ignore_errors=True)
+
+
+def _own_vendors(outdir: str) -> set[str]:
+    """The vendor directories OUTDIR's MARKER lists (none when it is missing or unreadable)."""
+    try:
+        with open(os.path.join(outdir, MARKER), encoding="utf-8") as f:
+            return {line.strip() for line in f.read(1 << 16).splitlines() if line.strip()}
+    except (OSError, UnicodeDecodeError):
+        return set()
+
+
+def _require_own(final: str, own: set[str]) -> None:
+    """ForeignOutputDir when `final` is a non-empty directory MARKER does not list."""
+    if not os.path.isdir(final) or os.path.islink(final) or os.path.basename(final) in own:
+        return
+    if os.listdir(final):
+        raise ForeignOutputDir(17, f"folder not written by rmot (not listed in {MARKER})", final)

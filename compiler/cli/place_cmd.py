@@ -60,6 +60,12 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
             click.echo(render_all(result.diagnostics), err=True)
             sys.exit(EXIT_INPUT)
         loaded.append(result.program)
+        from rmot.compiler.cli.oserrors import output_is_input
+
+        clash = output_is_input("cell file", output, (path, cell, *result.sources))
+        if clash:
+            click.echo(clash, err=True)
+            sys.exit(EXIT_INPUT)
     name = slot or loaded[0].tasks[0].robot
     spans = set()
     for p in loaded:

@@ -65,6 +65,13 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
     """Plan FILE: joint trajectories, cycle time per task, planning diagnostics."""
     from rmot.lang.diagnostics import render
 
+    if csv_out:
+        from rmot.compiler.cli.oserrors import output_is_input
+
+        clash = output_is_input("trajectory file", csv_out, (file, cell))
+        if clash:
+            click.echo(clash, err=True)
+            raise SystemExit(EXIT_INPUT)
     step_s = parse_step(step)
     program, diagnostics = _load(file, cell, project_root)
     for d in diagnostics:

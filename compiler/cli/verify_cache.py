@@ -25,8 +25,9 @@ not be the bytes the scene read).
 
 Entries: <cache dir>/verify/<k[:2]>/<key>.json (the cache directory of lang/_tables.py), written
 to a temporary file in the same folder and renamed into place (atomic; safe under concurrent
-runs). An entry that cannot be read or decoded, or that was written under another key or
-format, is removed and rebuilt, never an error. The folder is bounded (MAX_BYTES, least
+runs), sealed with an HMAC bound to the key (lang/cache_seal.py). An entry that is not this
+cache's for this key, not a regular file or over MAX_ENTRY_BYTES is a miss and is rebuilt; one
+that cannot be decoded is removed and rebuilt, never an error. The folder is bounded (MAX_BYTES, least
 recently used first). The plan's own diagnostics are not stored: they are taken from the Plan
 at hand, so a cached entry never repeats a warning of the run that wrote it (W700).
 """
@@ -51,6 +52,7 @@ __all__ = ["FORMAT", "MAX_BYTES", "cached_verify", "entry_path", "scene_files", 
 
 FORMAT = "rmot-verify-cache/1"
 MAX_BYTES = 100 * 1024 * 1024  # bound on the verify folder; least recently used entries go first
+MAX_ENTRY_BYTES = 16 * 1024 * 1024  # bound on one entry read back: a larger file is a miss
 _LIBRARIES = ("numpy", "pinocchio", "coal", "numba")
 
 
@@ -180,7 +182,7 @@ def _write(path: Path, key: str, plan: Plan, report: Report, started: float) -> 
                       separators=(",", ":"), allow_nan=False).encode("utf-8")
     from rmot.compiler.plan_cache import write_entry
 
-    write_entry(path, data)
+    write_entry(path, key, data)
 
 
 def _read(path: Path, key: str, plan: Plan) -> Report | None:
@@ -188,9 +190,10 @@ def _read(path: Path, key: str, plan: Plan) -> Report | None:
     or foreign entry is removed; a stale one is overwritten by the caller)."""
     from rmot.compiler.plan_codec import CodecError, decode
 
-    try:
-        data = path.read_bytes()
-    except OSError:
+    from rmot.lang.cache_seal import read_sealed
+
+    data = read_sealed(path, key, MAX_ENTRY_BYTES)
+    if data is None:  # missing, foreign, tampered with, not a bounded regular file: a miss
         return None
     try:
         entry = json.loads(data.decode("utf-8"))

@@ -11,6 +11,15 @@ URDF is handed to pinocchio (which would read the mesh). Resolution, as ROS tool
 Also refused here, with the joint's name: a revolute, continuous or prismatic joint whose
 axis is the zero vector (no direction to move along; E505). The file is parsed with the
 standard library's expat parser, which refuses entity-expansion bombs.
+
+Every value pinocchio's parser (urdfdom) would drop with only a line on stderr, or accept and
+plan with silently, is refused here with the element's name (E505), so what loads is what the
+file declares: a collision or visual shape's dimensions (box size, cylinder and sphere radius,
+cylinder length, mesh scale) must be finite and positive; a moving joint's velocity limit,
+when given, finite and positive (urdfdom reads velocity="0" as "no limit", which rmot would
+plan at a made-up 1 rad/s); a link's mass finite and >= 0 and its inertia entries finite. A
+file with more than MAX_JOINTS joints or MAX_LINKS links is refused before it is parsed into
+a model (a 1,000-joint file exhausted memory in verification).
 """
 
 from __future__ import annotations
@@ -18,6 +27,7 @@ from __future__ import annotations
 import math
 import os
 import xml.etree.ElementTree as ET
+from collections.abc import Callable
 from pathlib import Path
 
 from rmot.compiler import codes
@@ -27,6 +37,11 @@ from rmot.lang.source import Span
 __all__ = ["check_urdf_files"]
 
 _MOVING = ("revolute", "continuous", "prismatic")
+MAX_JOINTS = 64  # industrial arms have 6-7 (plus a rail, a gripper's fingers): far above any real cell
+MAX_LINKS = 256
+_SHAPES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",), "capsule": ("radius", "length"),
+           "mesh": ("scale",)}
+_COUNTS = {"size": (3,), "scale": (1, 3)}  # how many numbers each attribute holds (URDF spec)
 
 
 def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: Reporter) -> bool:
@@ -50,6 +65,7 @@ def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: 
             rep.error(codes.PATH_ESCAPES, f"mesh named by the URDF must stay inside the project directory {roots[0]} "
                       f"(got '{name[:200]}' in {os.path.basename(urdf)})", span)
             ok = False
+    ok = _check_values(tree, os.path.basename(urdf), span, rep) and ok
     for joint in tree.iter("joint"):
         if joint.get("type") not in _MOVING:
             continue
@@ -106,3 +122,52 @@ def _inside(path: Path, root: Path) -> bool:
     except (ValueError, OSError):
         return False
     return True
+
+
+def _positive_numbers(text: str, counts: tuple[int, ...]) -> bool:
+    try:
+        values = [float(v) for v in text.split()]
+    except ValueError:
+        return False
+    return len(values) in counts and all(math.isfinite(v) and v > 0 for v in values)
+
+
+def _check_values(tree: "ET.ElementTree[ET.Element]", name: str, span: Span | None, rep: Reporter) -> bool:
+    """Sizes, shapes, velocity limits and inertias the parser would drop or misread (module doc)."""
+    joints, links = list(tree.iter("joint")), list(tree.iter("link"))
+    if len(joints) > MAX_JOINTS or len(links) > MAX_LINKS:
+        rep.error(codes.ROBOT_LOAD, f"URDF robot must have at most {MAX_JOINTS} joints and {MAX_LINKS} links "
+                  f"(got {len(joints)} joints, {len(links)} links in {name})", span)
+        return False
+    problems: list[str] = []
+    for link in links:
+        label = f"link '{link.get('name', '?')[:80]}'"
+        for shape, attributes in _SHAPES.items():
+            for element in link.iter(shape):
+                for attribute in attributes:
+                    text = element.get(attribute)
+                    counts = _COUNTS.get(attribute, (1,))
+                    if (text is not None or shape != "mesh") and not _positive_numbers(text or "", counts):
+                        problems.append(f"{label}: {shape} {attribute}=\"{(text or '')[:40]}\" must be finite and positive")
+        for mass in link.iter("mass"):
+            if not _finite(mass.get("value", ""), lambda v: v >= 0):
+                problems.append(f"{label}: mass value=\"{mass.get('value', '')[:40]}\" must be a finite number >= 0")
+        for inertia in link.iter("inertia"):
+            if not all(_finite(v, lambda _: True) for v in inertia.attrib.values()):
+                problems.append(f"{label}: inertia entries must be finite numbers")
+    for joint in joints:
+        limit = joint.find("limit")
+        velocity = limit.get("velocity") if limit is not None else None
+        if joint.get("type") in _MOVING and velocity is not None and not _finite(velocity, lambda v: v > 0):
+            problems.append(f"joint '{joint.get('name', '?')[:80]}': limit velocity=\"{velocity[:40]}\" must be finite and positive")
+    for problem in problems[:5]:
+        rep.error(codes.ROBOT_LOAD, f"URDF {name}, {problem}", span)
+    return not problems
+
+
+def _finite(text: str, accept: Callable[[float], bool]) -> bool:
+    try:
+        value = float(text)
+    except ValueError:
+        return False
+    return math.isfinite(value) and accept(value)

@@ -85,6 +85,27 @@ class TaskDraft:
     q: np.ndarray | None = None  # the final joints
 
 
+@dataclass(frozen=True, slots=True)
+class _Tail:
+    """What runs after an instruction: body[start:], then `parent`."""
+
+    body: tuple[ir.Instr, ...]
+    start: int
+    parent: _Rest
+
+
+@dataclass(frozen=True, slots=True)
+class _Iterations:
+    """What runs after a loop iteration: the loop's iterations from `start`, then `parent`."""
+
+    loop: ir.Loop
+    start: int
+    parent: _Rest
+
+
+_Rest = _Tail | _Iterations | None
+
+
 class _Builder:
     """Walks one instruction list; `variant` > 0 for an if-arm planned off the main timeline."""
 
@@ -134,18 +155,27 @@ class _Builder:
         return self.chain[-1].q_end if self.chain else self.q
 
     # ------------------------------------------------------------------ walking
-    def walk(self, body: tuple[ir.Instr, ...], rest: tuple[tuple[ir.Instr, ...], ...] = ()) -> None:
-        """Walk `body`; `rest`: what runs after it (enclosing bodies' tails, innermost first),
-        the continuation a variant of an `if` inside `body` is planned along."""
-        for i, instr in enumerate(body):
+    def walk(self, body: tuple[ir.Instr, ...], rest: _Rest = None, start: int = 0) -> None:
+        """Walk body[start:]; `rest`: what runs after it (enclosing bodies' tails, innermost
+        first), the continuation a variant of an `if` inside `body` is planned along. Each
+        instruction's continuation is one new link (_Rest), not a copy of what follows it: the
+        walk is linear in the number of instructions and loop iterations."""
+        for i in range(start, len(body)):
             if self.stopped:
                 return
+            instr = body[i]
             plan = _PLAN.get(type(instr)) or handler(_PLAN, instr)
-            plan(self, instr, (body[i + 1:],) + rest)
+            plan(self, instr, _Tail(body, i + 1, rest))
 
-    def walk_rest(self, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
-        for j, body in enumerate(rest):
-            self.walk(body, rest[j + 1:])
+    def walk_rest(self, rest: _Rest) -> None:
+        while rest is not None:
+            if isinstance(rest, _Tail):
+                self.walk(rest.body, rest.parent, rest.start)
+            else:
+                iterations = rest.loop.iterations
+                for k in range(rest.start, len(iterations)):
+                    self.walk(iterations[k].body, _Iterations(rest.loop, k + 1, rest.parent))
+            rest = rest.parent
 
     def _move(self, move: ir.Move) -> None:
         if move.motion.duration is not None:
@@ -194,7 +224,7 @@ class _Builder:
         self.q = piece.end_q()
 
     # ------------------------------------------------------------------ if
-    def _if(self, instr: ir.If, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
+    def _if(self, instr: ir.If, rest: _Rest) -> None:
         self.flush()
         t0, q0 = self.t, self.q.copy()
         n_records = len(self.draft.records)
@@ -212,7 +242,7 @@ class _Builder:
         instr: ir.Instr,
         arm: tuple[ir.Instr, ...],
         kind: str,
-        rest: tuple[tuple[ir.Instr, ...], ...],
+        rest: _Rest,
         t0: float,
         q0: np.ndarray,
         n_records: int,
@@ -254,7 +284,7 @@ class _Builder:
 
     # ------------------------------------------------------------------ runtime logic
     def _wait_branch(
-        self, instr: ir.WaitInput | ir.WaitCondition, rest: tuple[tuple[ir.Instr, ...], ...]
+        self, instr: ir.WaitInput | ir.WaitCondition, rest: _Rest
     ) -> None:
         """The main timeline: the condition holds at once (as for every `wait until`); a variant:
         the timeout passes (the robot stands for T), the timeout branch runs, then the rest."""
@@ -278,7 +308,7 @@ class _Builder:
     def _state(self) -> tuple[np.ndarray, str | None, tuple[str, ...]]:
         return self.q.copy(), self.tool, tuple(sorted(self.held))
 
-    def _while(self, instr: ir.While, rest: tuple[tuple[ir.Instr, ...], ...]) -> None:
+    def _while(self, instr: ir.While, rest: _Rest) -> None:
         """The body from the state before the loop, then again from the state at its end, until an
         iteration ends in the state it started from (joints within _SAME_Q, same tool, same parts
         held): every later iteration repeats that one. No fixed point in WHILE_BOUND iterations:
@@ -367,13 +397,12 @@ class _Builder:
 # ---------------------------------------------------------------- one handler per instruction kind
 # (the planner plans each kind its own way: a dispatcher, checked complete at import against
 # compiler/ir_tree.KINDS; `after` is what runs after the instruction, as in `_Builder.walk`)
-_Rest = tuple[tuple[ir.Instr, ...], ...]
 
 
 def _plan_loop(b: _Builder, instr: ir.Loop, after: _Rest) -> None:
-    """Every iteration in order, each continued by the later ones."""
+    """Every iteration in order, each continued by the later ones (one link each: linear)."""
     for k, it in enumerate(instr.iterations):
-        b.walk(it.body, tuple(x.body for x in instr.iterations[k + 1:]) + after)
+        b.walk(it.body, _Iterations(instr, k + 1, after))
 
 
 def _plan_wait(b: _Builder, instr: ir.WaitInput | ir.WaitCondition, after: _Rest) -> None:

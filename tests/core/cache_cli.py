@@ -39,3 +39,26 @@ def run(project: Path, *args: str) -> Result:
         return CliRunner().invoke(cli, list(args))
     finally:
         os.chdir(cwd)
+
+
+def entry_json(path: Path) -> Any:
+    """The JSON document a sealed cache entry holds (lang/cache_seal.py: MAGIC, MAC line, payload)."""
+    import json
+
+    from rmot.lang.cache_seal import MAGIC
+
+    data = path.read_bytes()
+    assert data.startswith(MAGIC)
+    return json.loads(data[data.index(b"\n", len(MAGIC)) + 1:])
+
+
+def write_sealed(path: Path, key: str, doc: Any) -> None:
+    """`doc` stored at `path` as a validly sealed entry of `key`: what it holds is then
+    checked by the reader's decoding, not stopped by the MAC."""
+    import json
+
+    from rmot.lang.cache_seal import seal
+
+    sealed = seal(key, json.dumps(doc).encode("utf-8"))
+    assert sealed is not None
+    path.write_bytes(sealed)

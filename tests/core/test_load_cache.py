@@ -11,7 +11,6 @@ already planned is not parsed and lowered again while no file it read has change
 
 from __future__ import annotations
 
-import json
 import os
 import time
 from collections.abc import Iterator
@@ -21,7 +20,7 @@ import pytest
 
 from rmot.compiler import frontend
 from rmot.compiler.cli import load_cache
-from tests.core.cache_cli import Counter, count_calls, run
+from tests.core.cache_cli import Counter, count_calls, entry_json, run, write_sealed
 
 ROOT = Path(__file__).resolve().parents[2]
 PROGRAM = """import "lib.rmot"
@@ -143,18 +142,18 @@ def test_a_damaged_entry_is_ignored(project: Path, front_ends: Counter, damage: 
         path = load_cache._entry_path(load_cache.load_key("p.rmot", None, None, True))
     finally:
         os.chdir(cwd)
-    entry = json.loads(path.read_bytes())
+    entry = entry_json(path)
     if damage == "garbage":
         path.write_bytes(b"\xff" + os.urandom(100))
     elif damage == "not-diagnostics":
         entry["doc"] = {"$t": [1]}
-        path.write_text(json.dumps(entry), encoding="utf-8")
+        write_sealed(path, path.stem, entry)
     elif damage == "bad-files":
         entry["files"] = [{"a": 1}]
-        path.write_text(json.dumps(entry), encoding="utf-8")
+        write_sealed(path, path.stem, entry)
     else:
         entry["plan"] = "f" * 64
-        path.write_text(json.dumps(entry), encoding="utf-8")
+        write_sealed(path, path.stem, entry)
     calls = front_ends.calls
     again = run(project, "check", "p.rmot")
     assert front_ends.calls == calls + 1

@@ -10,7 +10,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 from collections.abc import Iterator
 from pathlib import Path
@@ -18,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from rmot.compiler.cli import verify_cache
-from tests.core.cache_cli import Counter, count_calls, run
+from tests.core.cache_cli import Counter, count_calls, entry_json, run, write_sealed
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -148,7 +147,7 @@ def test_a_damaged_entry_is_ignored_and_rebuilt(project: Path, verifications: Co
     cold = run(project, "check", "prog.rmot")
     (path,) = entries(project)
     data = path.read_bytes()
-    entry = json.loads(data)
+    entry = entry_json(path)
     if damage == "truncate":
         path.write_bytes(data[: len(data) // 2])
     elif damage == "garbage":
@@ -157,22 +156,22 @@ def test_a_damaged_entry_is_ignored_and_rebuilt(project: Path, verifications: Co
         path.write_bytes(b"")
     elif damage == "not-a-report":
         entry["doc"] = {"$t": ["prog.rmot", {"$d": []}, {"$t": [1, 2]}, None]}
-        path.write_text(json.dumps(entry), encoding="utf-8")
+        write_sealed(path, path.stem, entry)
     elif damage == "wrong-key":
         entry["key"] = "0" * 64
-        path.write_text(json.dumps(entry), encoding="utf-8")
+        write_sealed(path, path.stem, entry)
     elif damage == "unknown-type":
         entry["doc"] = {"$c": "os:system", "id": 0, "f": {}}
-        path.write_text(json.dumps(entry), encoding="utf-8")
+        write_sealed(path, path.stem, entry)
     else:
         entry["files"] = [[1, 2, 3]]
-        path.write_text(json.dumps(entry), encoding="utf-8")
+        write_sealed(path, path.stem, entry)
     calls = verifications.calls
     again = run(project, "check", "prog.rmot")
     assert verifications.calls == calls + 1  # the damaged entry was not used
     assert (again.exit_code, again.stdout, again.stderr) == (cold.exit_code, cold.stdout, cold.stderr)
     (rebuilt,) = entries(project)
-    assert json.loads(rebuilt.read_bytes())["key"] == rebuilt.stem  # written afresh, readable
+    assert entry_json(rebuilt)["key"] == rebuilt.stem  # written afresh, readable
     run(project, "check", "prog.rmot")
     assert verifications.calls == calls + 1  # the rebuilt entry is read
 
@@ -185,9 +184,9 @@ def test_a_changed_scene_file_listed_in_the_entry_misses(project: Path, verifica
     (path,) = entries(project)
     mesh = project / "wrist.stl"
     mesh.write_bytes(b"solid a\nendsolid a\n")
-    entry = json.loads(path.read_bytes())
+    entry = entry_json(path)
     entry["files"] = [[str(mesh), verify_cache._digest(str(mesh))]]
-    path.write_text(json.dumps(entry), encoding="utf-8")
+    write_sealed(path, path.stem, entry)
     calls = verifications.calls
     run(project, "check", "prog.rmot")
     assert verifications.calls == calls  # unchanged: read

@@ -9,6 +9,7 @@ from pathlib import Path
 import lark
 import pytest
 from rmot.lang import _tables, parse
+from tests.core.cache_cli import entry_json, write_sealed
 from rmot.lang._tables import (
     GRAMMAR,
     LARK_VERSIONS,
@@ -59,7 +60,7 @@ def test_tables_read_back_equal_lark_s_own(tmp_path: Path, monkeypatch: pytest.M
     first = load_tables(text)
     files = list((tmp_path / "lalr").glob("*.json"))
     assert [f.name for f in files] == [f"{tables_key(text)}.json"]
-    doc = json.loads(files[0].read_text(encoding="utf-8"))  # plain JSON, no pickle
+    doc = entry_json(files[0])  # plain JSON (sealed), no pickle
     assert doc["key"] == tables_key(text) and doc["format"] == _tables.FORMAT
     fresh = from_data(build_tables(text))
     assert _shape(load_tables(text)) == _shape(fresh) == _shape(first)
@@ -78,7 +79,7 @@ def test_a_damaged_file_is_ignored_and_rewritten(damage: str, tmp_path: Path, mo
     text = GRAMMAR.read_text(encoding="utf-8")
     good = _shape(load_tables(text))
     path = tmp_path / "lalr" / f"{tables_key(text)}.json"
-    doc = json.loads(path.read_text(encoding="utf-8"))
+    doc = entry_json(path)
     if damage == "garbage":
         path.write_bytes(b"\x80not json")
     elif damage == "truncated":
@@ -91,9 +92,9 @@ def test_a_damaged_file_is_ignored_and_rewritten(damage: str, tmp_path: Path, mo
             next(a for a in row if a[1] == "r")[2] = 10**6
         else:
             doc["start"] = -1
-        path.write_text(json.dumps(doc), encoding="utf-8")
+        write_sealed(path, tables_key(text), doc)  # sealed: the reader's shape checks refuse it
     assert _shape(load_tables(text)) == good
-    rewritten = json.loads(path.read_text(encoding="utf-8"))
+    rewritten = entry_json(path)
     assert rewritten["key"] == tables_key(text) and _shape(from_data(rewritten)) == good
 
 

@@ -23,7 +23,7 @@ class Case:
     codes: tuple[str, ...] = ()   # each must appear in the output
     absent: tuple[str, ...] = ()  # text that must not appear in any output file
     setup: str = ""               # a named extra step (chmod, ...) done by the runner
-    extra: dict[str, str] = field(default_factory=dict)
+    extra: dict[str, str] = field(default_factory=dict)  # symbolic links the runner makes: name -> target
 
 
 def _prog(body: str, head: str = "") -> str:
@@ -56,6 +56,18 @@ _FAN = "\n".join(
     ["  proc a0() { }"]
     + [f"  proc a{i}() {{ {'; '.join([f'a{i - 1}()'] * 10)} }}" for i in range(1, 8)]
     + ["  a7()"])
+
+_URDF_PROG = "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n"
+
+
+def _chain_urdf(joints: int) -> str:
+    """A serial chain of `joints` revolute joints (a URDF too long for any arm)."""
+    links = "".join(f'<link name="l{i}"/>' for i in range(joints + 1))
+    chain = "".join(f'<joint name="j{i}" type="revolute"><parent link="l{i}"/><child link="l{i + 1}"/>'
+                    f'<origin xyz="0 0 0.01"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" velocity="1" effort="1"/></joint>'
+                    for i in range(joints))
+    return f'<?xml version="1.0"?><robot name="long">{links}{chain}</robot>'
+
 
 CASES: tuple[Case, ...] = (
     # ---- tracebacks
@@ -180,4 +192,35 @@ CASES: tuple[Case, ...] = (
          ("ir", "{d}/proj/p.rmot"), frozenset({2}), ("E504",)),
     Case("urdf_zero_axis", {"p.rmot": "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n",
                             "arm.urdf": "@URDF0@"}, ("ir", "{d}/p.rmot"), frozenset({2}), ("E505",)),
+    # ---- round 3: what a URDF declares is loaded or refused (urdfdom only printed on stderr)
+    *(Case(f"urdf_{name}", {"p.rmot": _URDF_PROG, "arm.urdf": f"@URDFSUB:{old}=>{new}@"}, ("check", "{d}/p.rmot"),
+           frozenset({2}), ("E505", "p.rmot:2:"))
+      for name, old, new in (
+          ("collision_length_nan", '<cylinder radius="0.09" length="0.2"/></geometry></collision>',
+           '<cylinder radius="0.09" length="nan"/></geometry></collision>'),
+          ("collision_radius_negative", '<cylinder radius="0.09" length="0.2"/></geometry></collision>',
+           '<cylinder radius="-0.09" length="0.2"/></geometry></collision>'),
+          ("collision_box_inf", '<cylinder radius="0.09" length="0.2"/></geometry></collision>',
+           '<box size="0.1 inf 0.1"/></geometry></collision>'),
+          ("velocity_zero", 'velocity="3.0"', 'velocity="0"'),
+          ("mass_negative", '<mass value="6"/>', '<mass value="-6"/>'),
+          ("inertia_nan", 'ixx="0.04"', 'ixx="nan"'))),
+    Case("urdf_1000_joints", {"p.rmot": _URDF_PROG, "arm.urdf": _chain_urdf(1000)}, ("check", "{d}/p.rmot"),
+         frozenset({2}), ("E505", "at most")),
+    # ---- round 3: an output never replaces an input or a folder rmot did not write (inputs compared after)
+    Case("keep_check_output_is_program", {"p.rmot": _prog("  move joint home")}, ("check", "{d}/p.rmot", "-o", "{d}/p.rmot"),
+         frozenset({2}), ("E564",), setup="keep_inputs"),
+    Case("keep_check_output_is_link_to_program", {"p.rmot": _prog("  move joint home")},
+         ("check", "{d}/p.rmot", "-o", "{d}/link.rmot"), frozenset({2}), ("E564",), setup="keep_inputs",
+         extra={"link.rmot": "p.rmot"}),
+    Case("keep_plan_csv_is_program", {"p.rmot": _prog("  move joint home")}, ("plan", "{d}/p.rmot", "--csv", "{d}/p.rmot"),
+         frozenset({2}), ("E564",), setup="keep_inputs"),
+    Case("keep_place_output_is_cell", {"p.rmot": 'use cell "c.rmot"\nprogram p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n',
+                                       "c.rmot": "cell c {\n  robot r1 = abb_irb1600\n}\n"},
+         ("place", "{d}/p.rmot", "--region", "x=0mm..100mm, y=0mm..100mm", "-o", "{d}/c.rmot"), frozenset({2}), ("E564",),
+         setup="keep_inputs"),
+    Case("keep_compile_foreign_vendor_folder", {"p.rmot": _prog("  move joint home"), "json/mine.txt": "the user's own notes\n"},
+         ("compile", "{d}/p.rmot", "--target", "json", "--target", "rapid", "-o", "{d}"), frozenset({2}), ("E565",),
+         setup="keep_inputs"),
 )
+

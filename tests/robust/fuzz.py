@@ -8,6 +8,9 @@ nothing for four times the limit in wall time is a hang too (blocked, not comput
     .venv/bin/python -m tests.robust.fuzz [--n 100000] [--start 0] [--jobs 1] [--timeout 30]
                                          [--memory-gb 2] [--report fuzz-report.json]
 
+With FUZZ_MIX=1 (`make fuzz FUZZ_MIX=1`), every odd seed is an example program mutated by
+`mutated_example(seed)` instead of a generated project.
+
 Counted per input: ok (diagnostics or files, exit 0/1/2), traceback (an exception escaped a
 stage), hang (more CPU than the timeout, or no answer for 4x it: the worker is killed and replaced), memory
 (MemoryError under the cap) and crash (the worker died: a signal such as SIGSEGV). Every
@@ -37,6 +40,39 @@ _WALL_FACTOR = 4  # no answer for this many timeouts of wall time: blocked, a ha
 _SLOWEST = 20  # the slowest inputs (CPU seconds) listed in the report
 
 
+_EXTREMES = ("nan", "1e308", "-1e308", "0", "-0", "999999999999", "1e-320", "-5", "inf")
+
+
+def mutated_example(seed: int) -> dict[str, str]:
+    """An example program (examples/*.rmot, with a cell file of its own folder) mutated by seed:
+    lines deleted, duplicated or swapped, numbers replaced by extremes (nan, 1e308, 0, negative),
+    a brace removed. The strategy that found what the generator's well-formed programs did not."""
+    import random
+    import re
+
+    rng = random.Random(seed)
+    folder = os.path.join(os.path.dirname(__file__), "..", "..", "examples")
+    names = sorted(n for n in os.listdir(folder) if n.endswith(".rmot"))
+    lines = open(os.path.join(folder, rng.choice(names)), encoding="utf-8").read().splitlines()
+    for _ in range(rng.randint(1, 4)):
+        i = rng.randrange(len(lines))
+        kind = rng.randrange(5)
+        if kind == 0:
+            del lines[i]
+        elif kind == 1:
+            lines.insert(i, lines[i])
+        elif kind == 2:
+            j = rng.randrange(len(lines))
+            lines[i], lines[j] = lines[j], lines[i]
+        elif kind == 3:
+            lines[i] = re.sub(r"\d+(\.\d+)?", lambda _: rng.choice(_EXTREMES), lines[i], count=1)
+        else:
+            lines[i] = lines[i].replace("}", "", 1)
+        if not lines:
+            lines = ["program p on r1 {", "}"]
+    return {"main.rmot": "\n".join(lines) + "\n"}
+
+
 def run_one(seed: int, workdir: str) -> str:
     """One input through the pipeline; 'ok' or 'traceback: ...'."""
     from rmot.compiler.cli.compile_cmd import compile_program, write_all
@@ -46,7 +82,8 @@ def run_one(seed: int, workdir: str) -> str:
     proj = os.path.join(workdir, f"p{seed}")
     os.makedirs(proj)
     try:
-        for name, text in random_project(seed).items():
+        project = mutated_example(seed) if os.environ.get("FUZZ_MIX") and seed % 2 else random_project(seed)
+        for name, text in project.items():
             with open(os.path.join(proj, name), "w", encoding="utf-8", newline="") as f:
                 f.write(text)
         try:

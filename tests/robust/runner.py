@@ -32,6 +32,11 @@ def _expand(text: str | bytes, d: str) -> str | bytes:
     if text == "@URDF0@":
         urdf = ARM6.read_text(encoding="utf-8")
         return urdf.replace('<origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>', '<origin xyz="0 0 0.2"/><axis xyz="0 0 0"/>', 1)
+    sub = re.fullmatch(r"@URDFSUB:(.*?)=>(.*)@", text, re.S)
+    if sub:  # arm6.urdf with its first `old` replaced by `new`
+        urdf = ARM6.read_text(encoding="utf-8")
+        assert sub.group(1) in urdf, sub.group(1)
+        return urdf.replace(sub.group(1), sub.group(2), 1)
     m = re.fullmatch(r"@URDF:(.*)@", text)
     if m:
         urdf = ARM6.read_text(encoding="utf-8")
@@ -46,6 +51,8 @@ def materialise(case: Case, d: str) -> list[str]:
         path.parent.mkdir(parents=True, exist_ok=True)
         body = _expand(text, d)
         path.write_bytes(body if isinstance(body, bytes) else body.encode("utf-8"))
+    for link, target in case.extra.items():  # symbolic links: name -> target
+        (Path(d) / link).symlink_to(target)
     if case.setup == "lock":
         os.chmod(Path(d) / "locked", 0)
     if case.setup == "lock_stl":

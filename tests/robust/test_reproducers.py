@@ -49,6 +49,11 @@ def test_reproducer(case: Case, tmp_path: Path, monkeypatch: pytest.MonkeyPatch)
     for bad in case.absent:
         assert not any(bad.encode() in data for data in out.files.values()), bad
     assert "Traceback" not in out.output
+    if case.setup == "keep_inputs":  # nothing the case's project held was replaced or removed
+        for rel, text in case.files.items():
+            assert (tmp_path / rel).read_text(encoding="utf-8") == text, rel
+        assert not any(p.name.startswith(".rmot-") or p.suffix in (".csv", ".mod") for p in tmp_path.rglob("*")), \
+            sorted(tmp_path.rglob("*"))
 
 
 def test_form_feed_line_and_quoted_source_agree(tmp_path: Path) -> None:
