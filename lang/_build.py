@@ -314,10 +314,10 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
                              urdf_args=urdf_args[0] if urdf_args else (), shares=shares)
 
     def robot_speed(self, c: list[Any]) -> ast.Setting:
-        return _Setting("speed", c[1], self._span(c))
+        return _Setting(ast.SettingKind.SPEED, c[1], self._span(c))
 
     def robot_accel(self, c: list[Any]) -> ast.Setting:
-        return _Setting("accel", c[1], self._span(c))
+        return _Setting(ast.SettingKind.ACCEL, c[1], self._span(c))
 
     def urdf_args(self, c: list[Any]) -> tuple[ast.Arg, ...]:
         return self.args(c)
@@ -440,13 +440,13 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return _Move("free", c[2], None, tuple(c[3:]), self._span(c))
 
     def free_clearance(self, c: list[Any]) -> ast.Setting:
-        return self._setting("clearance", c)
+        return self._setting(ast.SettingKind.CLEARANCE, c)
 
     def free_samples(self, c: list[Any]) -> ast.Setting:
-        return self._setting("samples", c)
+        return self._setting(ast.SettingKind.SAMPLES, c)
 
     def free_budget(self, c: list[Any]) -> ast.Setting:
-        return self._setting("budget", c)
+        return self._setting(ast.SettingKind.BUDGET, c)
 
     # -- I/O, timing, control flow
     def io_ref(self, c: list[Any]) -> ast.IoRef:

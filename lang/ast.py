@@ -257,7 +257,8 @@ class SettingKind(StrEnum):
     """What a Setting sets: the keyword as written (a str, so `kind == "tool"` holds).
 
     Modal settings and move modifiers: tool, frame, speed, joint_speed, accel, zone; move
-    modifiers only: config, time; lines of a `model` block: torque, mass, flange, payload, controller.
+    modifiers only: config, time; options of a `move free` only: clearance, samples, budget;
+    lines of a `model` block: torque, mass, flange, payload, controller.
     Each consumer keeps a table with an entry for every kind, checked when it is imported
     (compiler/passes/modal.SETTING_HANDLERS)."""
 
@@ -274,6 +275,9 @@ class SettingKind(StrEnum):
     FLANGE = "flange"
     PAYLOAD = "payload"
     CONTROLLER = "controller"
+    CLEARANCE = "clearance"
+    SAMPLES = "samples"
+    BUDGET = "budget"
 
 
 @record(slots=True)

@@ -96,7 +96,10 @@ def _plan_free_moves(program: Any, kwargs: dict[str, Any]) -> Plan:
 
     if not has_free_moves(program):
         return plan_cache.cached_plan(program, **kwargs)
-    lowered = lower_free_moves(program, lambda p: plan_cache.cached_plan(p, **kwargs), kwargs["use_cache"])
+    from rmot.compiler.cli.free_cache import FreePathCache
+
+    store = FreePathCache() if kwargs["use_cache"] else None
+    lowered = lower_free_moves(program, lambda p: plan_cache.cached_plan(p, **kwargs), store)
     planned = plan_cache.cached_plan(lowered.program, **kwargs)
     found = planned.diagnostics + lowered.diagnostics
 

@@ -118,6 +118,9 @@ SETTING_HANDLERS: dict[ast.SettingKind, SettingHandler] = {
     ast.SettingKind.FLANGE: _misplaced,
     ast.SettingKind.PAYLOAD: _misplaced,
     ast.SettingKind.CONTROLLER: _misplaced,
+    ast.SettingKind.CLEARANCE: _misplaced,
+    ast.SettingKind.SAMPLES: _misplaced,
+    ast.SettingKind.BUDGET: _misplaced,
 }
 
 

@@ -19,8 +19,9 @@ chose for its target (config honoured). Then:
 
 Deterministic: the search's Generator is seeded by a SHA-256 of everything it depends on (the
 robot, start, goal, clearance, sample budget, the bodies and where they stand), so the same
-input gives the same path on every run and machine; the path found is kept in the plan cache's
-folder under that key (`free/`), so a second run does not search again.
+input gives the same path on every run and machine; the path found is kept under that key by
+the store the caller hands in (the CLI's: the plan cache's `free/` folder), so a second run
+does not search again.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ import hashlib
 import json
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import Any, Protocol
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -39,11 +40,12 @@ from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.sim import codes
 from rmot.sim.collide import check_timeline
+from rmot.sim.corners import corner_findings
 from rmot.sim.free.search import path_length, search_path, shorten
 from rmot.sim.free.space import FreeSpace, free_space, robot_timeline
 from rmot.sim.scene import Scene, build_scene
 
-__all__ = ["VIA_ZONES", "FreeProblem", "FreeResult", "edge_check", "free_problem", "has_free_moves", "lower_free_moves"]
+__all__ = ["VIA_ZONES", "FreeProblem", "PathStore", "FreeResult", "edge_check", "free_problem", "has_free_moves", "lower_free_moves"]
 
 FORMAT = "rmot-free-1"  # in every seed and cache key: a change to the search makes new ones
 VIA_ZONES = (0.05, 0.01, 0.0)  # m: zones tried at the via points, largest first; 0 = fine
@@ -52,6 +54,14 @@ VIA_ZONES = (0.05, 0.01, 0.0)  # m: zones tried at the via points, largest first
 # cell (tests/free): with 0 the tight path around the wall's end verified only with `fine`
 BLEND_ROOM = 0.02
 PlanFn = Callable[[ir.Program], plan_types.Plan]
+
+
+class PathStore(Protocol):
+    """Keeps the paths found between runs (the CLI's is compiler/cli/free_cache.py)."""
+
+    def load(self, key: str) -> bytes | None: ...
+
+    def save(self, key: str, data: bytes) -> None: ...
 
 
 @record
@@ -64,9 +74,10 @@ def has_free_moves(program: ir.Program) -> bool:
     return any(isinstance(i, ir.Move) and i.free is not None for t in program.tasks for i in ir.walk(t.body))
 
 
-def lower_free_moves(program: ir.Program, plan_fn: PlanFn, use_cache: bool = True) -> FreeResult:
+def lower_free_moves(program: ir.Program, plan_fn: PlanFn, store: PathStore | None = None) -> FreeResult:
     """The program with every `move free` written as joint moves through the via points its
-    search found; the findings and notes of the searches."""
+    search found; the findings and notes of the searches. `store` keeps found paths between
+    runs (None: search every time)."""
     diags: list[Diagnostic] = []
     todo: list[tuple[str, int]] = []
     for task in program.tasks:
@@ -83,7 +94,7 @@ def lower_free_moves(program: ir.Program, plan_fn: PlanFn, use_cache: bool = Tru
         return FreeResult(program, tuple(diags))
     scene = build_scene(program.cell, _tools_used(program))
     for task_name, uid in todo:
-        program, found = _lower_one(program, plan_fn, scene, task_name, uid, use_cache)
+        program, found = _lower_one(program, plan_fn, scene, task_name, uid, store)
         diags += found
     return FreeResult(program, tuple(diags))
 
@@ -135,7 +146,7 @@ def free_problem(program: ir.Program, plan_fn: PlanFn, scene: Scene, task_name: 
 
 
 def _lower_one(program: ir.Program, plan_fn: PlanFn, scene: Scene, task_name: str, uid: int,
-               use_cache: bool) -> tuple[ir.Program, list[Diagnostic]]:
+               store: PathStore | None) -> tuple[ir.Program, list[Diagnostic]]:
     problem = free_problem(program, plan_fn, scene, task_name, uid)
     if not isinstance(problem, FreeProblem):
         return program, problem
@@ -144,13 +155,13 @@ def _lower_one(program: ir.Program, plan_fn: PlanFn, scene: Scene, task_name: st
     assert free is not None
     robot = space.scene.robots[space.robot].robot
     key = _key(space, problem.q_start, problem.q_goal, free)
-    path, outcome = _cached_path(key) if use_cache else (None, None)
+    path, outcome = _cached_path(store, key) if store is not None else (None, None)
     if path is None:
         path, outcome, failure = _search(space, robot, problem.q_start, problem.q_goal, free, key)
         if failure is not None:
             return program, [replace(failure, span=move.span, task=task.name)]
-        if use_cache:
-            _store_path(key, path, outcome)
+        if store is not None:
+            _store_path(store, key, path, outcome)
     vias = [tuple(float(v) for v in q) for q in path[1:-1]]
     return _emit(program, plan_fn, space, task, move, problem.record, vias, path, outcome)
 
@@ -243,42 +254,27 @@ def _key(space: FreeSpace, q_start: np.ndarray, q_goal: np.ndarray, free: ir.Fre
     return h.hexdigest()
 
 
-def _cache_path(key: str):  # type: ignore[no-untyped-def]
-    """The entry of a search: its key with the digest of rmot's own source (a changed search
-    never reads an old path; the seed itself does not change with the source)."""
-    from rmot.compiler.plan_cache import cache_dir, source_digest
-
-    entry = hashlib.sha256((key + source_digest()).encode()).hexdigest()
-    return cache_dir() / "free" / entry[:2] / f"{entry}.json"
-
-
-def _cached_path(key: str) -> tuple[list[np.ndarray] | None, dict[str, int] | None]:
+def _cached_path(store: PathStore, key: str) -> tuple[list[np.ndarray] | None, dict[str, int] | None]:
     """A path found before under `key` (None when absent or not a well-formed entry)."""
+    data = store.load(key)
+    if data is None:
+        return None, None
     try:
-        doc = json.loads(_cache_path(key).read_text(encoding="utf-8"))
+        doc = json.loads(data.decode("utf-8"))
         if doc.get("key") != key:
             return None, None
         path = [np.asarray(q, dtype=float) for q in doc["path"]]
         outcome = {k: int(v) for k, v in doc["outcome"].items()}
-    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+    except (ValueError, KeyError, TypeError, AttributeError, RecursionError):
         return None, None
     if len(path) < 2 or any(q.ndim != 1 or not np.all(np.isfinite(q)) for q in path):
         return None, None
     return path, outcome
 
 
-def _store_path(key: str, path: list[np.ndarray], outcome: dict[str, int]) -> None:
-    """The entry, written atomically; the folder kept within the plan cache's size bound."""
-    from rmot.compiler.plan_cache import MAX_BYTES, evict, eviction_due, write_entry
-
+def _store_path(store: PathStore, key: str, path: list[np.ndarray], outcome: dict[str, int]) -> None:
     doc = {"key": key, "path": [[float(v) for v in q] for q in path], "outcome": outcome}
-    entry = _cache_path(key)
-    try:
-        write_entry(entry, json.dumps(doc, sort_keys=True).encode())
-        if eviction_due(entry.parent.parent):
-            evict(entry.parent.parent, MAX_BYTES, suffix=".json")
-    except OSError:
-        pass  # an unwritable cache only costs the next run the search
+    store.save(key, json.dumps(doc, sort_keys=True).encode())
 
 
 # --------------------------------------------------------------------------- emit
@@ -323,7 +319,9 @@ def _emit(program: ir.Program, plan_fn: PlanFn, space: FreeSpace, task: ir.Task,
 
 def _timed_clean(program: ir.Program, plan_fn: PlanFn, space: FreeSpace, task_name: str, uid: int,
                  clearance: float) -> bool:
-    """The timed path through the vias (blends included) verifies clean in the move's window."""
+    """The timed path through the vias (blends included) verifies clean in the move's window,
+    and no fixture lies in a via's zone sphere, where a controller's corner path may run
+    (sim/corners.py: W340 would follow at every target)."""
     plan = plan_fn(program)
     if any(d.is_error for d in plan.diagnostics):
         return False
@@ -337,7 +335,10 @@ def _timed_clean(program: ir.Program, plan_fn: PlanFn, space: FreeSpace, task_na
         return False
     window = robot_timeline(plan, space.scene, r0.t_end, r1.t_end)
     hits = check_timeline(space.scene, window, space.pairs, clearance)
-    return not [h for h in hits if h.kind != "static" and space._counts(h)]
+    if [h for h in hits if h.kind != "static" and space._counts(h)]:
+        return False
+    span = task.body[index].span
+    return not any(d.code == codes.CORNER_SPHERE and d.span == span for d in corner_findings(space.scene, [tp]))
 
 
 def _is_via(instr: ir.Move, move: ir.Move) -> bool:

@@ -68,7 +68,7 @@ def _timed(program: ir.Program, problem, path: list[np.ndarray]) -> float:  # ty
 def rmot_row(path: Path) -> dict[str, object]:
     program, problem = _problem(path)
     t0 = time.perf_counter()
-    result = lower.lower_free_moves(program, _plan, use_cache=False)
+    result = lower.lower_free_moves(program, _plan, None)
     seconds = time.perf_counter() - t0
     body = result.program.tasks[0].body
     vias = [np.asarray(i.target.values) for i in body if isinstance(i, ir.Move) and isinstance(i.target, ir.JointTarget)
