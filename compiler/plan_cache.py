@@ -46,8 +46,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rmot.compiler.plan_codec import CodecError, decode, encode
-from rmot.lang._tables import cache_dir  # one cache directory: lang's, the stage upstream
-from rmot.lang.cache_seal import read_sealed, seal
+from rmot.lang.cache_seal import cache_dir, read_sealed, seal  # one cache directory: lang's, the stage upstream
 
 if TYPE_CHECKING:
     from rmot.compiler import ir

@@ -28,6 +28,7 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
+from rmot.lang.cache_seal import cache_dir, read_sealed, seal
 from rmot.lang.record import record
 
 __all__ = ["FORMAT", "LARK_VERSIONS", "LalrTables", "build_tables", "cache_dir", "load_tables",
@@ -53,16 +54,6 @@ class LalrTables:
     states: tuple[dict[str, tuple[str, int]], ...]
     start: int
     end: int
-
-
-def cache_dir() -> Path:
-    """$RMOT_CACHE_DIR, else $XDG_CACHE_HOME/rmot, else ~/.cache/rmot."""
-    explicit = os.environ.get("RMOT_CACHE_DIR")
-    if explicit:
-        return Path(explicit)
-    xdg = os.environ.get("XDG_CACHE_HOME")
-    base = Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache"
-    return base / "rmot"
 
 
 def tables_key(grammar: str) -> str:
@@ -172,8 +163,6 @@ def _tupled(x: Any) -> Any:
 
 
 def _read(path: Path, key: str) -> dict[str, Any] | None:
-    from rmot.lang.cache_seal import read_sealed
-
     payload = read_sealed(path, key, MAX_ENTRY_BYTES)
     if payload is None:  # missing, foreign, tampered with, not a bounded regular file: a miss
         return None
@@ -187,8 +176,6 @@ def _read(path: Path, key: str) -> dict[str, Any] | None:
 
 
 def _write(path: Path, data: dict[str, Any]) -> None:
-    from rmot.lang.cache_seal import seal
-
     try:
         sealed = seal(str(data["key"]), json.dumps(data, separators=(",", ":")).encode("utf-8"))
         if sealed is None:

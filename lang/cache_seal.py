@@ -31,7 +31,7 @@ import stat
 import tempfile
 from pathlib import Path
 
-__all__ = ["MAGIC", "read_sealed", "seal", "secret", "unseal"]
+__all__ = ["MAGIC", "cache_dir", "read_sealed", "seal", "secret", "unseal"]
 
 MAGIC = b"rmot-sealed/1\n"
 _SECRET_BYTES = 32
@@ -39,16 +39,21 @@ _MAC_HEX = 64
 _SECRETS: dict[str, bytes] = {}  # per cache directory, read once a process
 
 
-def _cache_dir() -> Path:
-    from rmot.lang._tables import cache_dir
-
-    return cache_dir()
+def cache_dir() -> Path:
+    """The one cache directory of every cache entry: $RMOT_CACHE_DIR, else
+    $XDG_CACHE_HOME/rmot, else ~/.cache/rmot."""
+    explicit = os.environ.get("RMOT_CACHE_DIR")
+    if explicit:
+        return Path(explicit)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache"
+    return base / "rmot"
 
 
 def secret() -> bytes | None:
     """The cache's secret, created when missing or untrustworthy; None when it can be neither
     read nor created (an unwritable cache: nothing sealed is then read or written)."""
-    path = _cache_dir() / "secret"
+    path = cache_dir() / "secret"
     known = _SECRETS.get(str(path)) or _read_secret(path)
     if known is not None:
         _SECRETS[str(path)] = known
@@ -139,7 +144,7 @@ def read_sealed(path: Path, key_text: str, max_bytes: int) -> bytes | None:
     `key_text`, or None: missing, not a regular file, over max_bytes, outside the cache
     directory once links are resolved, or not sealed by this cache for this key."""
     try:
-        inside = Path(os.path.realpath(path.parent)).is_relative_to(os.path.realpath(_cache_dir()))
+        inside = Path(os.path.realpath(path.parent)).is_relative_to(os.path.realpath(cache_dir()))
     except (OSError, ValueError):
         return None
     if not inside:

@@ -41,6 +41,10 @@ import math
 import re
 
 from rmot.compiler.robots.dh import DHRow, DHTable
+from rmot.compiler.robots.library_common import (
+    ABB, ABB_CONV, ACC_EST, FANUC, FANUC_CONV, KROSHU, KUKA, KUKA_CONV, ROSI_ABB, STAUBLI, STAUBLI_CONV,
+    UR_CONV, YASKAWA, YASKAWA_CONV, acc_estimate, conventions, kuka_accel_source, sources,
+)
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
 import numpy as np
 
@@ -48,93 +52,6 @@ from rmot.compiler.robots.spec import OPW_TOUCHING, RobotSpec, opw_segments, opw
 from rmot.compiler.robots.urik import UrParams
 
 __all__ = ["SPECS"]
-
-H = math.pi / 2
-
-
-def _acc(speeds: tuple[float, ...]) -> tuple[float, ...]:
-    return tuple(4.0 * s for s in speeds)
-
-
-ACC_EST = "estimate: 4 x the axis speed per second (the max speed reached in 0.25 s); the vendor publishes none"
-
-
-def _kuka_accel(where: str, values: tuple[float, ...]) -> str:
-    """The source of a KUKA arm's accelerations: the same estimate as the other vendors'. KUKA's
-    ROS descriptions give joint accelerations, but not the controller's: they made a KR 10
-    R1100-2 (A2 98.8 deg/s^2) 2.5-3 x slower than an IRB 120, LR Mate 200iD or GP8 of the same
-    class on the 25/300/25 mm cycle (tests/benchmarks/bench_cycle_arms.py), and a KR 500 take
-    over a second to reach A2's speed."""
-    listed = ", ".join(f"{v:g}" for v in values)
-    return (f"estimate: 4 x the axis speed per second (the max speed reached in 0.25 s); not {where} "
-            f"({listed} deg/s^2), planning limits for another purpose than the controller's")
-ROSI_ABB = "ros-industrial/abb_experimental"
-KROSHU = "kroshu/kuka_robot_descriptions"
-
-
-def _sources(**kw: str) -> tuple[tuple[str, str], ...]:
-    """(quantity, source) pairs in a fixed order: geometry, limits, speed, accel, reach, mass,
-    inertia, effort, payload."""
-    order = ("geometry", "limits", "speed", "accel", "reach", "mass", "inertia", "effort", "payload")
-    assert set(kw) <= set(order), set(kw) - set(order)
-    return tuple((k, kw[k]) for k in order if k in kw)
-
-
-def _conv(base: str, flange: str, zero: str, signs: str, coupling: str = "none") -> tuple[tuple[str, str], ...]:
-    return (("base frame", base), ("flange frame", flange), ("joint zero", zero), ("signs", signs), ("coupling", coupling))
-
-
-ABB_CONV = _conv(
-    "ABB base frame on the mounting face at the J1 axis, x forward (ROS-I abb_experimental `base`)",
-    "tool0: z out of the flange; at the calibration position z along base +x, x down",
-    "all zero = calibration position: upper arm up, forearm horizontal",
-    "RAPID jointtarget values (ROS-I abb_driver passes them one to one); J1 > 0 turns counter-clockwise seen from above",
-)
-KUKA_CONV = _conv(
-    "$ROBROOT on the mounting face at the A1 axis (kroshu/kuka_robot_descriptions README: `base` = $ROBROOT)",
-    "$FLANGE: at HOME z forward, x down (A B C = 0 90 0); = ROS-I / kroshu `tool0`",
-    "A2 = 0 upper arm horizontal forward, A3 = 0 forearm in line with it; HOME = (0, -90, 90, 0, 0, 0)",
-    "KCP values (kuka_rsi_hw_interface: DEG2RAD * AIPos); A1, A4, A6 > 0 turn clockwise seen along +z / the arm",
-)
-FANUC_CONV = _conv(
-    "Fanuc world frame on the J1 axis at the J2 height (ROS-I fanuc `base`; the mounting face is below it)",
-    "faceplate: at zero z forward, x up (W P R = 180 -90 0); = ROS-I `tool0`",
-    "all zero: upper arm up, forearm horizontal",
-    "teach pendant joint values; J4..J6 positive the other way round than the URDF axes",
-    "J3 is the forearm's angle to the horizontal: model q3 = J2 + J3 (ROS-I fanuc_driver J23_factor = 1)",
-)
-YASKAWA_CONV = _conv(
-    "robot frame on the S axis at the L-axis height (ROS-I motoman `base`; ros-industrial/motoman issue 167)",
-    "tool0: at zero z forward, x up",
-    "all zero: lower arm up, upper arm horizontal",
-    "S L U R B T in degrees (pulses / pulse-per-degree); U relative to L",
-)
-STAUBLI_CONV = _conv(
-    "Stäubli world frame at the J1/J2 intersection (ROS-I staubli_experimental `base`)",
-    "flange: z along J6 (ROS-I `tool0`)",
-    "all zero = arm stretched vertically (the \"candle\")",
-    "VAL3 joint values one to one",
-)
-UR_CONV = _conv(
-    "UR Base frame (DH frame 0; ur_description `base`, x backwards from `base_link`)",
-    "tool flange (DH frame 6; ur_description `tool0`)",
-    "the DH θ of UR's table (what PolyScope shows): all zero = arm stretched horizontally",
-    "PolyScope values one to one",
-)
-
-
-ABB = OpwJointMap(offset=(0, 0, H, 0, 0, 0))  # J3 = 0: forearm horizontal
-KUKA = OpwJointMap(sign=(-1, 1, 1, -1, 1, -1), offset=(0, H, 0, 0, 0, 0))  # A2 = -90°: upright
-# Fanuc: J3 is the forearm's angle to the horizontal (J2/J3 interaction), positive up; the
-# model variable u3 = J2 + J3 is the relative elbow angle. J4..J6 turn the other way round.
-FANUC = OpwJointMap(
-    sign=(1, 1, -1, -1, -1, -1), offset=(0, 0, H, 0, 0, 0),
-    coupling=((1, 0, 0, 0, 0, 0), (0, 1, 0, 0, 0, 0), (0, 1, 1, 0, 0, 0),
-              (0, 0, 0, 1, 0, 0), (0, 0, 0, 0, 1, 0), (0, 0, 0, 0, 0, 1)),
-)
-YASKAWA = OpwJointMap(sign=(1, 1, -1, -1, -1, -1), offset=(0, 0, H, 0, 0, 0))  # U relative to L
-STAUBLI = OpwJointMap()  # zero = arm stretched vertically (the "candle")
-
 
 def _abb_kuka() -> list[RobotSpec]:
     from rmot.compiler.robots.kuka_inertia import KUKA_INERTIA
@@ -156,7 +73,7 @@ def _abb_kuka() -> list[RobotSpec]:
             accel_deg_s2=(4000, 4000, 4000, 5120, 5120, 6720),
             reach=0.580, radii=(0.09, 0.07, 0.055, 0.055, 0.05, 0.045, 0.03),
             rated_payload_kg=3.0, arm_mass_kg=25.0, conventions=ABB_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry=f"ABB 3HAC035960-001 dimension drawing; = {ROSI_ABB} abb_irb120_support/urdf/irb120_3_58_macro.xacro",
                 limits="ABB 3HAC035960-001 working range; = the ROS-I URDF", speed="ABB 3HAC035960-001 axis max speeds; = the ROS-I URDF",
                 accel=("estimate: from ABB 3HAC035960-001's standard cycle 0.58 s (25/300/25 mm, 1 kg): 16 x the joint "
@@ -171,10 +88,10 @@ def _abb_kuka() -> list[RobotSpec]:
             name="abb_irb1600", vendor="ABB", model="IRB 1600-6/1.45", source=f"ABB 3HAC023604-001; {ROSI_ABB} irb1600_8_145",
             params=OpwParams(a1=0.150, a2=0.0, b=0.0, c1=0.4865, c2=0.700, c3=0.600, c4=0.065), jmap=ABB,
             limits_deg=((-180, 180), (-90, 120), (-245, 65), (-200, 200), (-115, 115), (-400, 400)),
-            speed_deg_s=(150, 160, 170, 320, 400, 460), accel_deg_s2=_acc((150, 160, 170, 320, 400, 460)),
+            speed_deg_s=(150, 160, 170, 320, 400, 460), accel_deg_s2=acc_estimate((150, 160, 170, 320, 400, 460)),
             reach=1.450, radii=(0.15, 0.12, 0.09, 0.09, 0.07, 0.06, 0.045),
             rated_payload_kg=6.0, arm_mass_kg=250.0, conventions=ABB_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry=f"{ROSI_ABB} abb_irb1600_support/urdf/irb1600_8_145_macro.xacro (150/486.5/700/600/65 mm)",
                 limits=f"{ROSI_ABB} abb_irb1600_support/urdf/irb1600_8_145_macro.xacro (J2 -90..+120 deg)",
                 speed=("ABB 3HAC023604-001 (= ROS-I irb1600_6_12_macro.xacro; ROS-I's 1.45 m file has 180/180/200/400/400/460 "
@@ -187,10 +104,10 @@ def _abb_kuka() -> list[RobotSpec]:
             name="abb_irb4600", vendor="ABB", model="IRB 4600-60/2.05", source="ABB 3HAC032885-001",
             params=OpwParams(a1=0.175, a2=-0.175, b=0.0, c1=0.495, c2=0.900, c3=0.960, c4=0.135), jmap=ABB,
             limits_deg=((-180, 180), (-90, 150), (-180, 75), (-400, 400), (-125, 120), (-400, 400)),
-            speed_deg_s=(175, 175, 175, 250, 250, 360), accel_deg_s2=_acc((175, 175, 175, 250, 250, 360)),
+            speed_deg_s=(175, 175, 175, 250, 250, 360), accel_deg_s2=acc_estimate((175, 175, 175, 250, 250, 360)),
             reach=2.050, radii=(0.25, 0.2, 0.14, 0.15, 0.12, 0.1, 0.07),
             rated_payload_kg=60.0, arm_mass_kg=425.0, conventions=ABB_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry=f"ABB 3HAC032885-001; = {ROSI_ABB} abb_irb4600_support/urdf/irb4600_60_205_macro.xacro",
                 limits="ABB 3HAC032885-001; = the ROS-I URDF", speed="ABB 3HAC032885-001; = the ROS-I URDF", accel=ACC_EST,
                 reach="ABB 3HAC032885-001: 2.05 m", mass=f"ABB 3HAC032885-001: arm 412-435 kg by variant, 425 kg taken; {SPREAD}",
@@ -202,13 +119,13 @@ def _abb_kuka() -> list[RobotSpec]:
             name="kuka_kr6_r900", vendor="KUKA", model="KR 6 R900 sixx", source="KUKA KR AGILUS sixx spec PF0030; kroshu kr6_r900_sixx",
             params=OpwParams(a1=0.025, a2=-0.035, b=0.0, c1=0.400, c2=0.455, c3=0.420, c4=0.080), jmap=KUKA,
             limits_deg=((-170, 170), (-190, 45), (-120, 156), (-185, 185), (-120, 120), (-350, 350)),
-            speed_deg_s=(360, 300, 360, 381, 388, 615), accel_deg_s2=_acc((360, 300, 360, 381, 388, 615)),
+            speed_deg_s=(360, 300, 360, 381, 388, 615), accel_deg_s2=acc_estimate((360, 300, 360, 381, 388, 615)),
             reach=0.9015, radii=(0.09, 0.08, 0.06, 0.06, 0.05, 0.045, 0.03),
             rated_payload_kg=6.0, arm_mass_kg=52.0, conventions=KUKA_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry=f"KUKA spec PF0030; = {KROSHU} kuka_agilus_support/urdf/kr6_r900_sixx_macro.xacro",
                 limits=f"KUKA spec PF0030; = {KROSHU} kr6_r900_sixx_macro.xacro", speed=f"KUKA spec PF0030; = {KROSHU} kr6_r900_sixx_macro.xacro",
-                accel=_kuka_accel(f"{KROSHU} kuka_agilus_support/config/kr6_r900_sixx_joint_limits.yaml max_acceleration",
+                accel=kuka_accel_source(f"{KROSHU} kuka_agilus_support/config/kr6_r900_sixx_joint_limits.yaml max_acceleration",
                                   (1241.4, 394.7, 1800.0, 7623.5, 7766.9, 15377.2)),
                 reach="KUKA spec PF0030: 901.5 mm", mass=f"KUKA spec PF0030: arm 52 kg; {SPREAD}",
                 inertia=INERTIA, effort=EFFORT, payload="KUKA spec PF0030: rated payload 6 kg"),
@@ -219,13 +136,13 @@ def _abb_kuka() -> list[RobotSpec]:
             name="kuka_kr16", vendor="KUKA", model="KR 16-2", source="KUKA Spez KR 16-2; ROS-I kuka_experimental kr16_2",
             params=OpwParams(a1=0.260, a2=0.035, b=0.0, c1=0.675, c2=0.680, c3=0.670, c4=0.158), jmap=KUKA,
             limits_deg=((-185, 185), (-155, 35), (-130, 154), (-350, 350), (-130, 130), (-350, 350)),
-            speed_deg_s=(156, 156, 156, 330, 330, 615), accel_deg_s2=_acc((156, 156, 156, 330, 330, 615)),
+            speed_deg_s=(156, 156, 156, 330, 330, 615), accel_deg_s2=acc_estimate((156, 156, 156, 330, 330, 615)),
             reach=1.610, radii=(0.2, 0.16, 0.11, 0.11, 0.09, 0.07, 0.05),
             rated_payload_kg=16.0, arm_mass_kg=235.0, conventions=KUKA_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry="KUKA Spez KR 16-2; = ros-industrial/kuka_experimental kuka_kr16_support/urdf/kr16_2_macro.xacro (A4 35 mm below A3 at HOME)",
                 limits="KUKA Spez KR 16-2; = the ROS-I URDF", speed="KUKA Spez KR 16-2; = the ROS-I URDF",
-                accel=_kuka_accel(f"{KROSHU} kuka_cybertech_support/config/kr16_r1610_2_joint_limits.yaml max_acceleration "
+                accel=kuka_accel_source(f"{KROSHU} kuka_cybertech_support/config/kr16_r1610_2_joint_limits.yaml max_acceleration "
                                   "(the KR 16 R1610-2, same payload and reach class)", (623.1, 257.7, 1178.3, 5318.1, 5115.4, 6878.3)),
                 reach="KUKA Spez KR 16-2: 1610 mm", mass=f"KUKA Spez KR 16-2: arm 235 kg; {SPREAD}",
                 inertia=INERTIA, effort=EFFORT, payload="KUKA Spez KR 16-2: rated payload 16 kg"),
@@ -237,15 +154,15 @@ def _abb_kuka() -> list[RobotSpec]:
             name="kuka_kr210", vendor="KUKA", model="KR 210 R2700-2", source=f"{KROSHU} kr210_r2700_2",
             params=OpwParams(a1=0.330, a2=-0.115, b=0.0, c1=0.645, c2=1.150, c3=1.220, c4=0.215), jmap=KUKA,
             limits_deg=((-185, 185), (-140, -5), (-120, 168), (-350, 350), (-125, 125), (-350, 350)),
-            speed_deg_s=(116.79, 111.45, 112.0, 179.0, 172.0, 220.0), accel_deg_s2=_acc((116.79, 111.45, 112.0, 179.0, 172.0, 220.0)),
+            speed_deg_s=(116.79, 111.45, 112.0, 179.0, 172.0, 220.0), accel_deg_s2=acc_estimate((116.79, 111.45, 112.0, 179.0, 172.0, 220.0)),
             reach=2.700, radii=(0.35, 0.3, 0.2, 0.22, 0.17, 0.13, 0.09),
             rated_payload_kg=210.0, link_mass_kg=(363.07, 232.06, 190.33, 42.411794929, 16.991732133, 6.6),
             effort_nm=(7290.0, 8910.0, 6988.84717, 2274.29199, 1398.30298, 781.554626), conventions=KUKA_CONV,
             link_inertia=KUKA_INERTIA["kuka_kr210"],
-            sources=_sources(
+            sources=sources(
                 geometry=f"{KROSHU} kuka_quantec_support/urdf/kr210_r2700_2_macro.xacro (330/645/1150/115/1220/215 mm)",
                 limits=f"{KROSHU} kr210_r2700_2_macro.xacro", speed=f"{KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml",
-                accel=_kuka_accel(f"{KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml max_acceleration",
+                accel=kuka_accel_source(f"{KROSHU} kuka_quantec_support/config/kr210_r2700_2_joint_limits.yaml max_acceleration",
                                   (113.6, 72.4, 147.0, 403.3, 101.1, 107.3)),
                 reach="the product name KR 210 R2700-2: 2700 mm (wrist centre 2705 mm)",
                 mass=f"{KROSHU} kr210_r2700_2_macro.xacro link_1..link_6 <mass>",
@@ -269,10 +186,10 @@ def _fanuc_yaskawa_staubli() -> list[RobotSpec]:
             name="fanuc_lrmate200id", vendor="FANUC", model="LR Mate 200iD", source="FANUC LR Mate 200iD data sheet",
             params=OpwParams(a1=0.050, a2=-0.035, b=0.0, c1=0.0, c2=0.330, c3=0.335, c4=0.080), jmap=FANUC,
             limits_deg=((-170, 170), (-100, 145), (-140, 205), (-190, 190), (-125, 125), (-360, 360)),
-            speed_deg_s=(450, 380, 520, 550, 545, 1000), accel_deg_s2=_acc((450, 380, 520, 550, 545, 1000)),
+            speed_deg_s=(450, 380, 520, 550, 545, 1000), accel_deg_s2=acc_estimate((450, 380, 520, 550, 545, 1000)),
             reach=0.717, radii=(0.09, 0.08, 0.06, 0.06, 0.05, 0.045, 0.03), flange_rz=math.pi, floor=-0.330,
             rated_payload_kg=7.0, arm_mass_kg=25.0, conventions=FANUC_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry="FANUC LR Mate 200iD data sheet; = ros-industrial/fanuc fanuc_lrmate200id_support/urdf/lrmate200id_macro.xacro",
                 limits=("FANUC LR Mate 200iD data sheet (pendant J3 -140..205 deg; ROS-I's -70..205 bounds its URDF joint_3 = J2 + J3, "
                         "a different variable; not re-verified in a FANUC manual)"),
@@ -286,10 +203,10 @@ def _fanuc_yaskawa_staubli() -> list[RobotSpec]:
             name="fanuc_m20ia", vendor="FANUC", model="M-20iA", source="FANUC M-20iA data sheet; ROS-I fanuc m20ia",
             params=OpwParams(a1=0.150, a2=-0.250, b=0.0, c1=0.0, c2=0.790, c3=0.835, c4=0.100), jmap=FANUC,
             limits_deg=((-170, 170), (-100, 160), (-185, 273), (-200, 200), (-140, 140), (-270, 270)),
-            speed_deg_s=(195, 175, 180, 360, 360, 550), accel_deg_s2=_acc((195, 175, 180, 360, 360, 550)),
+            speed_deg_s=(195, 175, 180, 360, 360, 550), accel_deg_s2=acc_estimate((195, 175, 180, 360, 360, 550)),
             reach=1.811, radii=(0.2, 0.16, 0.1, 0.12, 0.09, 0.07, 0.05), flange_rz=math.pi, floor=-0.525,
             rated_payload_kg=20.0, arm_mass_kg=250.0, conventions=FANUC_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry="FANUC M-20iA data sheet; = ros-industrial/fanuc fanuc_m20ia_support/urdf/m20ia_macro.xacro",
                 limits="ros-industrial/fanuc fanuc_m20ia_support/urdf/m20ia_macro.xacro (J5 +-140, J6 +-270 deg)",
                 speed="FANUC M-20iA data sheet; = the ROS-I URDF", accel=ACC_EST, reach="FANUC data sheet: 1811 mm",
@@ -302,10 +219,10 @@ def _fanuc_yaskawa_staubli() -> list[RobotSpec]:
             name="yaskawa_gp8", vendor="Yaskawa", model="Motoman GP8", source="Yaskawa GP8 spec 178642-1CD; ROS-I motoman gp8",
             params=OpwParams(a1=0.040, a2=-0.040, b=0.0, c1=0.0, c2=0.345, c3=0.340, c4=0.080), jmap=YASKAWA,
             limits_deg=((-170, 170), (-65, 145), (-70, 190), (-190, 190), (-135, 135), (-360, 360)),
-            speed_deg_s=(455, 385, 520, 550, 550, 1000), accel_deg_s2=_acc((455, 385, 520, 550, 550, 1000)),
+            speed_deg_s=(455, 385, 520, 550, 550, 1000), accel_deg_s2=acc_estimate((455, 385, 520, 550, 550, 1000)),
             reach=0.727, radii=(0.09, 0.08, 0.06, 0.06, 0.05, 0.045, 0.03), flange_rz=math.pi, floor=-0.330,
             rated_payload_kg=8.0, arm_mass_kg=32.0, conventions=YASKAWA_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry=("Yaskawa GP8 spec 178642-1CD; = ros-industrial/motoman motoman_gp8_support/urdf/gp8_macro.xacro, "
                           "robot frame = its `base`, 330 mm above the mounting face"),
                 limits="Yaskawa GP8 spec 178642-1CD; = the ROS-I URDF", speed="Yaskawa GP8 spec 178642-1CD", accel=ACC_EST,
@@ -319,10 +236,10 @@ def _fanuc_yaskawa_staubli() -> list[RobotSpec]:
             name="staubli_tx2_60", vendor="Staubli", model="TX2-60", source="Staubli TX2-60 data sheet D28110804; ROS-I staubli tx2_60",
             params=OpwParams(a1=0.0, a2=0.0, b=0.020, c1=0.0, c2=0.290, c3=0.310, c4=0.070), jmap=STAUBLI,
             limits_deg=((-180, 180), (-127.5, 127.5), (-152.5, 152.5), (-270, 270), (-121, 132.5), (-270, 270)),
-            speed_deg_s=(435, 385, 500, 995, 1065, 1445), accel_deg_s2=_acc((435, 385, 500, 995, 1065, 1445)),
+            speed_deg_s=(435, 385, 500, 995, 1065, 1445), accel_deg_s2=acc_estimate((435, 385, 500, 995, 1065, 1445)),
             reach=0.670, radii=(0.09, 0.08, 0.06, 0.06, 0.05, 0.04, 0.03), floor=-0.375,
             rated_payload_kg=3.5, arm_mass_kg=52.0, conventions=STAUBLI_CONV,
-            sources=_sources(
+            sources=sources(
                 geometry=("Staubli TX2-60 data sheet D28110804; = ros-industrial/staubli_experimental "
                           "staubli_tx2_60_support/urdf/tx2_60_macro.xacro, world frame = its `base`, 375 mm above the mounting face"),
                 limits="ros-industrial/staubli_experimental tx2_60_macro.xacro (J3 +-152.5 deg; rmot had +-142.5)",
@@ -356,12 +273,12 @@ def _puma560() -> RobotSpec:
     return RobotSpec(
         name="puma560", vendor="Unimation", model="PUMA 560", source="Corke 1996, mdl_puma560",
         dh=DHTable(rows), limits_deg=((-160, 160), (-45, 225), (-225, 45), (-110, 170), (-100, 100), (-266, 266)),
-        speed_deg_s=speeds, accel_deg_s2=_acc(speeds), reach=0.864, opw=(params, jmap),
+        speed_deg_s=speeds, accel_deg_s2=acc_estimate(speeds), reach=0.864, opw=(params, jmap),
         segments=segments, solid_pose=tuple(jmap.from_theta(np.zeros(6)).tolist()),
         extra_adjacent=OPW_TOUCHING, rated_payload_kg=2.5, link_mass_kg=spread_mass(segments, 63.0, 6),
-        conventions=_conv("at the shoulder (J2 axis), as Corke's Robotics Toolbox", "DH frame 6 (no tool)",
+        conventions=conventions("at the shoulder (J2 axis), as Corke's Robotics Toolbox", "DH frame 6 (no tool)",
                           "Corke's qz: all DH θ zero", "the DH θ of Corke's table"),
-        sources=_sources(
+        sources=sources(
             geometry="Corke, 'A robotics toolbox for MATLAB', IEEE RAM 1996 / Robotics Toolbox mdl_puma560 DH table",
             limits="Robotics Toolbox mdl_puma560 qlim", speed="Unimation Puma 500 series manual (approx.)", accel=ACC_EST,
             reach="estimate: shoulder to wrist centre, 0.4318 + 0.4318 m, rounded up", mass=f"Unimation: arm 63 kg (approx.); {SPREAD_METHOD}",
@@ -380,7 +297,7 @@ def _ur() -> list[RobotSpec]:
 
     def src(model: str, reach_mm: int, payload: str) -> tuple[tuple[str, str], ...]:
         cfg = f"ros-industrial/universal_robot ur_description/config/{model.lower()}"
-        return _sources(
+        return sources(
             geometry=f"UR DH table for the {model}; = {cfg}/default_kinematics.yaml", limits=f"{cfg}/joint_limits.yaml (+-360 deg)",
             speed=f"{model} data sheet; = {cfg}/joint_limits.yaml", accel=f"{ACC_EST} ({cfg}/joint_limits.yaml: 'acceleration limits are not publicly available')",
             reach=f"{model} data sheet: {reach_mm} mm", mass=f"{cfg}/physical_parameters.yaml shoulder..wrist_3 masses",
@@ -390,44 +307,44 @@ def _ur() -> list[RobotSpec]:
     return [
         ur_spec(name="ur3e", model="UR3e", source="UR DH table; UR3e data sheet",
                 params=UrParams(0.15185, -0.24355, -0.2132, 0.13105, 0.08535, 0.0921),
-                speed_deg_s=(180, 180, 180, 360, 360, 360), accel_deg_s2=_acc((180, 180, 180, 360, 360, 360)),
+                speed_deg_s=(180, 180, 180, 360, 360, 360), accel_deg_s2=acc_estimate((180, 180, 180, 360, 360, 360)),
                 reach=0.500, shoulder_off=0.120, elbow_off=0.093, radii=(0.065, 0.05, 0.045, 0.04, 0.035),
                 rated_payload_kg=3.0, link_mass_kg=(2.0, 3.42, 1.26, 0.8, 0.8, 0.35), effort_nm=(56.0, 56.0, 28.0, 12.0, 12.0, 12.0),
                 conventions=UR_CONV, sources=src("UR3e", 500, "3 kg")),
         ur_spec(name="ur5e", model="UR5e", source="UR DH table; UR5e data sheet",
                 params=UrParams(0.1625, -0.425, -0.3922, 0.1333, 0.0997, 0.0996),
-                speed_deg_s=(180,) * 6, accel_deg_s2=_acc((180,) * 6),
+                speed_deg_s=(180,) * 6, accel_deg_s2=acc_estimate((180,) * 6),
                 reach=0.850, shoulder_off=0.138, elbow_off=0.131, radii=(0.075, 0.065, 0.055, 0.045, 0.045),
                 rated_payload_kg=5.0, link_mass_kg=(3.7, 8.393, 2.275, 1.219, 1.219, 0.1879), effort_nm=(150.0, 150.0, 150.0, 28.0, 28.0, 28.0),
                 conventions=UR_CONV, sources=src("UR5e", 850, "5 kg")),
         ur_spec(name="ur10e", model="UR10e", source="UR DH table; UR10e data sheet",
                 params=UrParams(0.1807, -0.6127, -0.57155, 0.17415, 0.11985, 0.11655),
-                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=_acc((120, 120, 180, 180, 180, 180)),
+                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=acc_estimate((120, 120, 180, 180, 180, 180)),
                 reach=1.300, shoulder_off=0.176, elbow_off=0.137, radii=(0.095, 0.08, 0.065, 0.055, 0.05),
                 rated_payload_kg=12.5, link_mass_kg=(7.778, 12.93, 3.87, 1.96, 1.96, 0.202), effort_nm=(330.0, 330.0, 150.0, 56.0, 56.0, 56.0),
                 conventions=UR_CONV, sources=src("UR10e", 1300, "12.5 kg")),
         ur_spec(name="ur16e", model="UR16e", source="UR DH table; UR16e data sheet",
                 params=UrParams(0.1807, -0.4784, -0.36, 0.17415, 0.11985, 0.11655),
-                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=_acc((120, 120, 180, 180, 180, 180)),
+                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=acc_estimate((120, 120, 180, 180, 180, 180)),
                 reach=0.900, shoulder_off=0.176, elbow_off=0.136, radii=(0.095, 0.08, 0.065, 0.055, 0.05),
                 rated_payload_kg=16.0, link_mass_kg=(7.369, 10.45, 4.321, 2.18, 2.033, 0.907), effort_nm=(330.0, 330.0, 150.0, 56.0, 56.0, 56.0),
                 conventions=UR_CONV, sources=src("UR16e", 900, "16 kg")),
         # CB3 series (UR3, UR5, UR10): the same conventions; numbers from ur_description's CB3 configs.
         ur_spec(name="ur3", model="UR3", source="UR DH table; UR3 data sheet",
                 params=UrParams(0.1519, -0.24365, -0.21325, 0.11235, 0.08535, 0.0819),
-                speed_deg_s=(180, 180, 180, 360, 360, 360), accel_deg_s2=_acc((180, 180, 180, 360, 360, 360)),
+                speed_deg_s=(180, 180, 180, 360, 360, 360), accel_deg_s2=acc_estimate((180, 180, 180, 360, 360, 360)),
                 reach=0.500, shoulder_off=0.1198, elbow_off=0.0923, radii=(0.065, 0.05, 0.045, 0.04, 0.035),
                 rated_payload_kg=3.0, link_mass_kg=(2.0, 3.42, 1.26, 0.8, 0.8, 0.35), effort_nm=(56.0, 56.0, 28.0, 12.0, 12.0, 12.0),
                 conventions=UR_CONV, sources=src("UR3", 500, "3 kg")),
         ur_spec(name="ur5", model="UR5", source="UR DH table; UR5 data sheet",
                 params=UrParams(0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823),
-                speed_deg_s=(180,) * 6, accel_deg_s2=_acc((180,) * 6),
+                speed_deg_s=(180,) * 6, accel_deg_s2=acc_estimate((180,) * 6),
                 reach=0.850, shoulder_off=0.13585, elbow_off=0.11935, radii=(0.075, 0.04, 0.055, 0.045, 0.045),  # CB3: d1 89 mm
                 rated_payload_kg=5.0, link_mass_kg=(3.7, 8.393, 2.275, 1.219, 1.219, 0.1879), effort_nm=(150.0, 150.0, 150.0, 28.0, 28.0, 28.0),
                 conventions=UR_CONV, sources=src("UR5", 850, "5 kg")),
         ur_spec(name="ur10", model="UR10", source="UR DH table; UR10 data sheet",
                 params=UrParams(0.1273, -0.612, -0.5723, 0.163941, 0.1157, 0.0922),
-                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=_acc((120, 120, 180, 180, 180, 180)),
+                speed_deg_s=(120, 120, 180, 180, 180, 180), accel_deg_s2=acc_estimate((120, 120, 180, 180, 180, 180)),
                 reach=1.300, shoulder_off=0.220941, elbow_off=0.171899, radii=(0.095, 0.06, 0.065, 0.055, 0.05),  # CB3: d1 127 mm
                 rated_payload_kg=10.0, link_mass_kg=(7.778, 12.93, 3.87, 1.96, 1.96, 0.202), effort_nm=(330.0, 330.0, 150.0, 56.0, 56.0, 56.0),
                 conventions=UR_CONV, sources=src("UR10", 1300, "10 kg")),
@@ -449,12 +366,12 @@ def _kroshu(name: str, model: str, pkg: str, stem: str, params: OpwParams, *, li
     urdf, limits = f"{KROSHU} {pkg}/urdf/{stem}_macro.xacro", f"{KROSHU} {pkg}/config/{stem}_joint_limits.yaml"
     return opw_spec(
         name=name, vendor="KUKA", model=model, source=f"{KROSHU} {stem}", params=params, jmap=KUKA,
-        limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=_acc(speed_deg_s), reach=reach_mm / 1000, radii=radii,
+        limits_deg=limits_deg, speed_deg_s=speed_deg_s, accel_deg_s2=acc_estimate(speed_deg_s), reach=reach_mm / 1000, radii=radii,
         rated_payload_kg=payload, link_mass_kg=link_mass_kg, effort_nm=effort_nm, conventions=KUKA_CONV,
         link_inertia=KUKA_INERTIA[name],
-        sources=_sources(
+        sources=sources(
             geometry=f"{urdf} joint origins", limits=f"{urdf} joint <limit lower/upper>", speed=f"{urdf} joint <limit velocity>",
-            accel=_kuka_accel(f"{limits} max_acceleration", accel_deg_s2),
+            accel=kuka_accel_source(f"{limits} max_acceleration", accel_deg_s2),
             reach=f"the product name {model}: nominal {reach_mm:g} mm", mass=f"{urdf} link_1..link_6 <mass>",
             inertia=f"{urdf} link_1..link_6 <inertial> (centre of mass, tensor; rmot.compiler.robots.kuka_inertia)",
             effort=f"{urdf} joint <limit effort>", payload=f"the product name {model}: {payload:g} kg"),
