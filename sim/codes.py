@@ -40,3 +40,5 @@ PART_HELD_ELSEWHERE = Code("E331", "part-held-elsewhere", "attach of a part anot
 PAYLOAD_EXCEEDED = Code("E332", "payload-exceeded", "tool mass plus held parts beyond the robot's rated payload")
 PART_GRIP_DEPTH = Code("E333", "part-grip-depth", "a tool enters the part it attaches deeper than 2 mm")
 __all__ += ["PART_NOT_TOUCHING", "PART_HELD_ELSEWHERE", "PAYLOAD_EXCEEDED", "PART_GRIP_DEPTH"]
+FEEDER_EMPTY = Code("E334", "feeder-empty", "attach from a feeder whose `count` parts have all been taken")
+__all__ += ["FEEDER_EMPTY"]
