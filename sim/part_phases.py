@@ -124,7 +124,8 @@ def _flange(scene: Scene, robot: str, traj: plan_types.Trajectory | None, t: flo
         q = np.clip(np.zeros(entry.robot.dof), entry.robot.joint_limits[:, 0], entry.robot.joint_limits[:, 1])
     else:
         q = traj.at(t)
-    return entry.base @ np.asarray(entry.robot.fk(q))
+    flange: np.ndarray = entry.base @ np.asarray(entry.robot.fk(q))
+    return flange
 
 
 def phases(scene: Scene, plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] | None = None,

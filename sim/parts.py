@@ -41,7 +41,7 @@ from rmot.sim.part_phases import (
 from rmot.sim.scene import Body, Scene, _local_box, _reach, _sphere_cover, flange_in_last_joint
 
 __all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "heaviest_held", "part_bodies", "part_events", "part_hits",
-           "payload_findings", "phase_scene", "phases", "placements", "shape_diagnostics"]
+           "payload_findings", "phase_scene", "phases", "shape_diagnostics"]
 
 # --------------------------------------------------------------------------- collision
 
