@@ -1,6 +1,6 @@
 """Feeders and parts resting on parts: a palletiser in nested `for` loops (2 layers x 2 rows x
 2 columns of 190 x 90 x 100 mm cartons, touching side by side and stacked) in the cell of
-examples/palletizing.rmot with a `feeder` at the infeed stop.
+examples/palletizing.rmot, whose `feeder` presents the cartons at the infeed stop.
 
 Independent witnesses: the depth of a carton set 5 mm into its neighbour is the smallest
 per-axis overlap of the two axis-aligned boxes at their slots (worked out from the box sizes
@@ -20,7 +20,8 @@ from rmot.sim.verification import verify
 
 ROOT = Path(__file__).resolve().parents[2]
 CELL = (ROOT / "examples" / "cells" / "palletizer_loops.rmot").read_text(encoding="utf-8")
-FEEDER = "  feeder carton = box(190mm, 90mm, 100mm) at pose(x=700mm, z=800mm) mass 2 kg count {count}\n}}\n"
+FEEDER = "feeder carton = box(190mm, 90mm, 100mm) at pose(x=700mm, z=800mm) mass 2 kg count "
+assert FEEDER + "36" in CELL  # the example's feeder, with the count each test gives
 
 PROGRAM = """use cell "cell.rmot"
 const lift = 250 mm
@@ -56,7 +57,7 @@ ATTACH_LINE = 18  # `attach carton` in PROGRAM
 
 
 def _verify(tmp_path: Path, offset_mm: float = 0.0, count: int = 8, program: str = PROGRAM):  # type: ignore[no-untyped-def]
-    (tmp_path / "cell.rmot").write_text(CELL.rstrip().rstrip("}") + FEEDER.format(count=count), encoding="utf-8")
+    (tmp_path / "cell.rmot").write_text(CELL.replace(FEEDER + "36", FEEDER + str(count)), encoding="utf-8")
     path = tmp_path / "pallet.rmot"
     path.write_text(program.format(offset=f"{offset_mm}mm"), encoding="utf-8")
     result = load_program(str(path), require_program=True)
