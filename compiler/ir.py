@@ -569,6 +569,11 @@ class Part:
     pose: Pose  # in world, before any task runs
     mass: float = 0.0
     span: Span | None = _span_field()
+    # a feeder (`feeder NAME = ...`): a fresh part of this solid appears at `pose` whenever the
+    # last one has been taken; `count` parts in all (None: without end). Each part it presents
+    # is named NAME#k (k = 1, 2, ... in the order they are taken; sim/part_phases.py).
+    feeder: bool = False
+    count: int | None = None
 
 
 @record(slots=True, kw_only=True)

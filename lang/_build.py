@@ -596,6 +596,15 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         span = self._span([*c[:4], *(value for _, value in c[4:])])
         return ast.PartDecl(self._ident(c[1], "part"), c[3], opts.get("at"), opts.get("mass"), span)
 
+    def feeder_decl(self, c: list[Any]) -> ast.FeederDecl:
+        opts = dict(c[4:])
+        span = self._span([*c[:4], *(value for _, value in c[4:])])
+        return ast.FeederDecl(self._ident(c[1], "feeder"), c[3], opts.get("at"), opts.get("mass"), opts.get("count"),
+                              span)
+
+    def feeder_count(self, c: list[Any]) -> tuple[str, Any]:
+        return "count", c[0]
+
     def part_at(self, c: list[Any]) -> tuple[str, Any]:
         return "at", c[0]
 

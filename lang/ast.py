@@ -29,7 +29,7 @@ __all__ = [
     "Param", "ProcDecl", "ProgramDecl", "Pulse", "Repeat", "RobotDecl", "SetIo", "Setting",
     "Stmt", "String", "SyncStmt", "TargetDecl", "TaskDecl", "ToolDecl", "UseCell", "Vector",
     "WaitTime", "WaitUntil",
-    "PartDecl", "AttachStmt", "SettingKind",
+    "PartDecl", "AttachStmt", "SettingKind", "FeederDecl",
 ]
 
 
@@ -405,10 +405,24 @@ class AttachStmt:
     span: Span = _span()
 
 
+@record(slots=True)
+class FeederDecl:
+    """`feeder NAME = GEOMETRY [at POSE] [mass M] [count N]`: a source of parts of one solid,
+    presenting a fresh one at its pose whenever the last one has been taken (N in all, or
+    without end)."""
+
+    name: Ident
+    geometry: Geometry
+    at: Expr | None
+    mass: Expr | None
+    count: Expr | None
+    span: Span = _span()
+
+
 Stmt = Union[
     UseCell, Import, CellDecl, ProgramDecl, TaskDecl, RobotDecl, FixtureDecl, ToolDecl,
     FrameDecl, IoDecl, TargetDecl, ConstDecl, ProcDecl, Setting, Move, SetIo, Pulse, WaitTime,
-    WaitUntil, For, Repeat, IfStmt, SyncStmt, NativeStmt, CallStmt, PartDecl, AttachStmt,
+    WaitUntil, For, Repeat, IfStmt, SyncStmt, NativeStmt, CallStmt, PartDecl, AttachStmt, FeederDecl,
 ]
 
 

@@ -334,6 +334,7 @@ STATEMENT_STARTS = [
     "const",
     "proc",
     "part",
+    "feeder",
 ]
 # words of other robot languages for what rmot spells differently
 _OTHER_LANGUAGES = {

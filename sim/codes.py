@@ -60,3 +60,6 @@ FREE_UNSUPPORTED = Code("E253", "free-placement",
                         "a 'move free' that is a task's first move, or inside a loop, if or proc")
 FREE_PATH = Code("W250", "free-path", "the via points a 'move free' inserted (a note)")
 __all__ += ["FREE_GOAL_BLOCKED", "FREE_START_BLOCKED", "FREE_NO_PATH", "FREE_UNSUPPORTED", "FREE_PATH"]
+
+FEEDER_EMPTY = Code("E334", "feeder-empty", "attach from a feeder whose `count` parts have all been taken")
+__all__ += ["FEEDER_EMPTY"]

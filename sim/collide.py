@@ -242,7 +242,9 @@ def _advance(flagged: np.ndarray, need: np.ndarray, move: np.ndarray, clearance:
             e = min(int(np.searchsorted(cum, cum[i] - d, side="left")) - 1, m - 1)
             if e > i:
                 skipped.append((i, e))
-            k = int(np.searchsorted(flagged, e + 1, side="left"))
+            # max(e, i): a contact shallower than cum's rounding (d = -1e-12, two faces touching)
+            # gives e = i - 1, which must not stall the walk on sample i
+            k = int(np.searchsorted(flagged, max(e, i) + 1, side="left"))
             continue
         # intervals i..J are safe while cum[J+1] <= cum[i] + d - clearance
         last_safe = int(np.searchsorted(cum, cum[i] + d - clearance, side="right")) - 2

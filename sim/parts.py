@@ -1,22 +1,21 @@
-"""Parts over time: where every part of the cell is, and who holds it, at any
-instant of a Plan — and what that means for the collision check and the payload.
+"""Parts over time: what the parts' phases (sim/part_phases.py: where every part is and who
+holds it between attach/detach events, feeders presenting theirs) mean for the collision
+check, the payload and the pictures.
 
-A part starts at its declared pose in the world. `attach p` (a record on the task's
-timeline, at the instant the robot stops before it) fixes p to the robot's flange at the
-relative pose it has then; `detach p` leaves it in the world where it is. Between two such
-events anywhere in the program (a *phase*) every part is either *placed* (a fixture at a
-world pose) or *held* (a body riding on a robot's flange, like a tool). The collision check
-of a phase is the ordinary one (sim/collide.py, same no-miss guarantee) on the phase's
-samples, over the pairs that involve a part; the pairs without a part are checked once by
-sim/verification.py as before.
+The collision check of a phase is the ordinary one (sim/collide.py, same no-miss guarantee)
+on the phase's samples, over the pairs that involve a part; the pairs without a part are
+checked once by sim/verification.py as before.
 
 Contacts a part may make (the only departures from the ordinary check):
   * the tools of the robot that picks it up or puts it down may touch it up to GRIP_TOL
     (2 mm) penetration: a gripper closes on the part (checked at the attach instant too);
   * a part may rest on a fixture (penetration up to REST_TOL, 0.1 mm, as two static bodies
     may touch, collide.STATIC_TOL): a box stands on its infeed or pallet;
-  * two parts must keep a gap: touching (distance below collide.CONTACT_TOL, 10 µm) is a
-    collision, so a stack with zero gap is found, and one with a gap is clean.
+  * a part may rest on parts the same way, side by side or stacked: placed parts may touch up
+    to REST_TOL, and a carried part may touch placed ones up to REST_TOL in the run of contact
+    that ends where it is put down (or starts where it is picked up). Touching anywhere else
+    on its way is a collision of depth 0; deeper than REST_TOL is a collision naming both
+    parts and the depth.
 A held part is a body of its robot: checked against fixtures, placed parts, the robot's
 links except those of the last joint (the flange), and other robots; never against the
 holding robot's tools (their contact is fixed while held and checked at the attach).
@@ -27,221 +26,62 @@ the `if` and the variant's own after it; it is checked for the pairs of its robo
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-from typing import Any
+from dataclasses import replace
 
 import numpy as np
 
 from rmot.compiler import ir, plan_types
+from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
-from rmot.lang.record import record
 from rmot.sim import codes
 from rmot.sim.collide import CONTACT_TOL, PairHit, Timeline, candidate_pairs, check_timeline
-from rmot.sim.exact import ExactPair
-from rmot.sim.scene import Body, Scene, _local_box, _reach, _shape, _sphere_cover, flange_in_last_joint
+from rmot.sim.part_phases import (
+    GRIP_TOL, REST_TOL, Phase, PartEvent, declared_part, part_events, part_shape, phases,
+)
+from rmot.sim.scene import Body, Scene, _local_box, _reach, _sphere_cover, flange_in_last_joint
 
 __all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "heaviest_held", "part_bodies", "part_events", "part_hits",
            "payload_findings", "phase_scene", "phases", "shape_diagnostics"]
-
-GRIP_TOL = 0.002  # m: a tool may touch the part it grips this deep, and must be this close to attach it
-REST_TOL = 1e-4  # m: a part may rest on a fixture (collide.STATIC_TOL)
-
-
-@record
-class PartEvent:
-    t: float
-    robot: str
-    instr: ir.Attach | ir.Detach
-    variant: int = 0
-    barriers: int = 0  # `sync`s its task passed before it: orders events of one instant
-
-    @property
-    def attach(self) -> bool:
-        return isinstance(self.instr, ir.Attach)
-
-
-@dataclass(frozen=True, eq=False)
-class Phase:
-    """[t0, t1]: every part placed (`placed`: name -> world pose (4, 4)) or held (`held`:
-    name -> (robot, pose in the flange frame (4, 4)))."""
-
-    t0: float
-    t1: float
-    placed: dict[str, np.ndarray]
-    held: dict[str, tuple[str, np.ndarray]]
-
-
-# --------------------------------------------------------------------------- events
-
-
-def part_events(plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] | None = None) -> list[PartEvent]:
-    """Attach/detach events in time order. At one instant (the simulation takes no time for
-    `wait until`, `set` or a sync both tasks reach together) the `sync` barriers decide: an
-    event after more barriers of its task comes later; then detach before attach.
-    `variant` (robot, Variant): that robot's events follow the variant's path."""
-    out: list[PartEvent] = []
-    for tp in plan.tasks:
-        instrs: dict[int, ir.Instr] = {}
-        barriers: dict[int, int] = {}
-        passed = 0
-        for i in ir.walk(tp.task.body):
-            if isinstance(i, ir.Sync):
-                passed += 1
-            elif isinstance(i, (ir.Attach, ir.Detach)):
-                instrs[i.uid], barriers[i.uid] = i, passed
-        if not instrs:
-            continue
-        if variant is not None and variant[0] == tp.robot:
-            v = variant[1]
-            t_split = float(v.trajectory.t[0]) if v.trajectory.t.size else 0.0
-            recs = [r for r in tp.records if r.variant == 0 and r.t_start < t_split - 1e-12]
-            recs += [r for r in tp.records if r.variant == v.index]
-        else:
-            recs = [r for r in tp.records if r.variant == 0]
-        for r in recs:
-            if r.uid in instrs:
-                out.append(PartEvent(float(r.t_start), tp.robot, instrs[r.uid], r.variant, barriers[r.uid]))  # type: ignore[arg-type]
-    out.sort(key=lambda e: (round(e.t, 9), e.barriers, e.attach, e.instr.uid))
-    return out
-
-
-def _trajectories(plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] | None) -> dict[str, plan_types.Trajectory]:
-    trajs = {tp.robot: tp.trajectory for tp in plan.tasks}
-    if variant is not None:
-        trajs[variant[0]] = variant[1].trajectory
-    return trajs
-
-
-def _flange(scene: Scene, robot: str, traj: plan_types.Trajectory | None, t: float) -> np.ndarray:
-    entry = scene.robots[robot]
-    if traj is None or traj.t.size == 0:
-        q = np.clip(np.zeros(entry.robot.dof), entry.robot.joint_limits[:, 0], entry.robot.joint_limits[:, 1])
-    else:
-        q = traj.at(t)
-    return entry.base @ np.asarray(entry.robot.fk(q))
-
-
-def phases(scene: Scene, plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] | None = None,
-           diagnostics: list[Diagnostic] | None = None) -> list[Phase]:
-    """The phases of the program's time (or of one variant's path): the parts' states between
-    events. Attach/detach problems only the plan can show go to `diagnostics` (E330, E331)."""
-    parts = {p.name: p for p in scene.cell.parts}
-    trajs = _trajectories(plan, variant)
-    main = _trajectories(plan, None)
-    end = max([float(tr.t[-1]) for tr in trajs.values() if tr.t.size] or [0.0])
-    start = float(variant[1].trajectory.t[0]) if variant is not None and variant[1].trajectory.t.size else 0.0
-    placed = {name: p.pose.matrix() for name, p in parts.items()}
-    held: dict[str, tuple[str, np.ndarray]] = {}
-    out: list[Phase] = []
-    t_prev = 0.0
-    for ev in part_events(plan, variant):
-        name = ev.instr.part
-        if name not in parts or ev.robot not in scene.robots:
-            continue
-        if ev.t > t_prev:
-            out.append(Phase(t_prev, ev.t, dict(placed), dict(held)))
-            t_prev = ev.t
-        # before a variant starts its robot follows the main timeline
-        flange = _flange(scene, ev.robot, (main if ev.variant == 0 else trajs).get(ev.robot), ev.t)
-        if ev.attach:
-            if name in held:  # another robot holds it (the front end refuses a task's own, E141)
-                if diagnostics is not None:
-                    diagnostics.append(Diagnostic(
-                        codes.PART_HELD_ELSEWHERE, Severity.ERROR,
-                        f"part '{name}' must be released before robot '{ev.robot}' attaches it (robot "
-                        f"'{held[name][0]}' still holds it then; put a detach and a sync before this attach)",
-                        ev.instr.span, (), ev.t, ev.t, (name,), None, None))
-                continue
-            world = placed.pop(name)
-            held[name] = (ev.robot, np.linalg.inv(flange) @ world)
-            if diagnostics is not None:
-                diagnostics += _grip_check(scene, ev, flange, world, parts[name])
-        else:
-            if name not in held or held[name][0] != ev.robot:
-                continue
-            robot, local = held.pop(name)
-            placed[name] = flange @ local
-    out.append(Phase(t_prev, max(end, t_prev), dict(placed), dict(held)))
-    return [p for p in out if p.t1 >= start - 1e-12]
-
-
-def _grip_check(scene: Scene, ev: PartEvent, flange: np.ndarray, world: np.ndarray, part: ir.Part) -> list[Diagnostic]:
-    """E330: at its attach the part must be within GRIP_TOL of the tool's solid or its TCP;
-    E300: the tool must not be inside it deeper than GRIP_TOL."""
-    tool_ref = ev.instr.tool
-    shape = _part_shape(part)
-    if shape is None:
-        return []
-    pbody = Body(part.name, "fixture", None, shape, world)
-    tcp = flange @ tool_ref.tcp.matrix()
-    point = Body("tcp", "fixture", None, ir.Sphere(1e-9), tcp)
-    d_tcp = ExactPair(point, pbody).distance(tcp, world, 0.0)
-    d_tool = np.inf
-    tool_body = next((b for b in scene.bodies if b.kind == "tool" and b.name == tool_ref.name and b.robot == ev.robot), None)
-    if tool_body is not None:
-        d_tool = ExactPair(tool_body, pbody).distance(flange @ tool_body.local, world, 0.0)
-    if tool_body is not None and d_tool < -GRIP_TOL:
-        depth = -d_tool * 1000
-        return [Diagnostic(codes.PART_GRIP_DEPTH, Severity.ERROR,
-                           f"tool '{tool_body.name}' must touch part '{part.name}' without entering it deeper than "
-                           f"{GRIP_TOL * 1000:g} mm to attach it (penetration {depth:.1f} mm)", ev.instr.span, (),
-                           ev.t, ev.t, (tool_body.name, part.name), Amount(round(depth, 3), "mm"), None)]
-    nearest = min(d_tcp, d_tool)
-    if nearest <= GRIP_TOL:
-        return []
-    what = f"tool '{tool_ref.name}'" if tool_ref.name else "the flange"
-    return [Diagnostic(codes.PART_NOT_TOUCHING, Severity.ERROR,
-                       f"part '{part.name}' must be within {GRIP_TOL * 1000:g} mm of {what} or its TCP to be attached "
-                       f"(nearest {nearest * 1000:.1f} mm away)", ev.instr.span, (), ev.t, ev.t,
-                       (tool_ref.name or f"{ev.robot}/flange", part.name), Amount(round(nearest * 1000, 3), "mm"), None)]
-
 
 # --------------------------------------------------------------------------- collision
 
 
 def part_bodies(scene: Scene, phase: Phase) -> list[Body]:
-    """The parts as bodies in one phase: placed ones as fixtures, held ones as tool-like solids."""
+    """The parts there are in one phase as bodies: placed ones as fixtures, held ones as
+    tool-like solids (a feeder's parts once presented, each named by its ordinal)."""
+    declared = {p.name: (k, p) for k, p in enumerate(scene.cell.parts)}
     out: list[Body] = []
-    for part in scene.cell.parts:
-        shape = _part_shape(part)
+    for name in sorted([*phase.placed, *phase.held], key=lambda n: _order(declared, n)):
+        part = declared[declared_part(name)][1]
+        shape = part_shape(part)
         if shape is None:
             continue
-        if part.name in phase.held:
-            robot, local = phase.held[part.name]
+        if name in phase.held:
+            robot, local = phase.held[name]
             entry = scene.robots[robot]
             spheres = _sphere_cover(shape)
             placement = flange_in_last_joint(entry.robot) @ local
             reach = _reach(entry.robot, entry.robot.dof, spheres, placement, entry.prismatic)
-            out.append(Body(part.name, "tool", robot, shape, local, joint=int(entry.robot.dof),
+            out.append(Body(name, "tool", robot, shape, local, joint=int(entry.robot.dof),
                             spheres=spheres, reach=reach, span=part.span))
         else:
             centre, half = _local_box(shape)
-            out.append(Body(part.name, "fixture", None, shape, phase.placed[part.name], obb_centre=centre,
+            out.append(Body(name, "fixture", None, shape, phase.placed[name], obb_centre=centre,
                             obb_half=half, span=part.span, spheres=_sphere_cover(shape)))
     return out
 
 
-_SHAPES: dict[int, Any] = {}
-
-
-def _part_shape(part: ir.Part, diags: list[Diagnostic] | None = None) -> Any:
-    """The part's solid (a mesh is loaded once); problems loading it go to `diags`."""
-    key = id(part)
-    cached = _SHAPES.get(key)
-    if cached is None or cached[0] is not part:
-        found: list[Diagnostic] = []
-        cached = (part, _shape(part.geometry, found), tuple(found))
-        _SHAPES[key] = cached
-    if diags is not None:
-        diags += cached[2]
-    return cached[1]
+def _order(declared: dict[str, tuple[int, ir.Part]], name: str) -> tuple[int, int]:
+    """Cell order, then a feeder's parts by ordinal (`infeed#2` before `infeed#10`)."""
+    ordinal = name.partition("#")[2]
+    return declared[declared_part(name)][0], int(ordinal) if ordinal else 0
 
 
 def shape_diagnostics(cell: ir.Cell) -> list[Diagnostic]:
     """Mesh problems of the cell's parts (E560-E563, W560), as for fixtures."""
     out: list[Diagnostic] = []
     for part in cell.parts:
-        _part_shape(part, out)
+        part_shape(part, out)
     return out
 
 
@@ -256,41 +96,74 @@ def part_hits(scene: Scene, timeline: Timeline, phase_list: list[Phase], clearan
               only_robot: str | None = None) -> list[tuple[Scene, PairHit]]:
     """Collisions (and clearance approaches) of every pair involving a part, phase by phase;
     a contact that continues across a phase boundary is one hit."""
-    names = {p.name for p in scene.cell.parts}
     out: list[tuple[Scene, PairHit]] = []
     for k, phase in enumerate(phase_list):
         sub = _slice(timeline, phase.t0, phase.t1)
         if sub is None:
             continue
+        names = set(phase.placed) | set(phase.held)
         pscene = phase_scene(scene, phase)
         pairs = [(a, b) for a, b in candidate_pairs(pscene, only_robot=only_robot)
                  if (a.name in names or b.name in names) and (k == 0 or a.moves or b.moves)]
-        if k == 0 and only_robot is None:  # where the parts start: overlaps with fixtures or each other (W300)
+        if only_robot is None:  # where the parts start or arrive: overlaps with fixtures or each other (W300)
+            new = names if k == 0 else phase.presented
             still = [b for b in pscene.bodies if b.kind == "fixture"]
-            pairs += [(a, b) for i, a in enumerate(still) for b in still[i + 1:] if a.name in names or b.name in names]
+            pairs += [(a, b) for i, a in enumerate(still) for b in still[i + 1:] if a.name in new or b.name in new]
         part_part = [(a, b) for a, b in pairs if a.name in names and b.name in names]
         others = [(a, b) for a, b in pairs if not (a.name in names and b.name in names)]
         hits = check_timeline(pscene, sub, others, clearance)
         ends = (float(sub.t[0]), float(sub.t[-1]))
-        hits = [h for h in hits if _counts(pscene, h) and not _resting_approach(pscene, h, ends)]
-        # two parts must not touch: closer than CONTACT_TOL is a collision
-        for h in check_timeline(pscene, sub, part_part, max(clearance, CONTACT_TOL)):
-            if h.kind == "static" or h.distance < CONTACT_TOL:
-                kind = h.kind if h.kind == "static" else "collision"
-                depth = h.distance if h.distance < 0.0 else -0.0  # touching: a collision of depth 0
-                out.append((pscene, replace(h, kind=kind, distance=depth)))
-            elif h.distance < clearance:
-                out.append((pscene, h))
+        hits = [h for h in hits if _counts(pscene, h, names) and not _resting_approach(pscene, h, ends, names)]
+        hits += _part_part_hits(pscene, sub, part_part, phase, clearance)
         out += [(pscene, h) for h in hits]
     return _merge(out)
 
 
-def _counts(scene: Scene, hit: PairHit) -> bool:
+def _part_part_hits(scene: Scene, sub: Timeline, pairs: list[tuple[Body, Body]], phase: Phase,
+                    clearance: float) -> list[PairHit]:
+    """Two parts may rest on each other, side by side or stacked: contact up to REST_TOL deep.
+    A carried part touching a placed one is a collision (depth 0 when it only touches), except
+    in the run of contact that is its own place or pick: the run that ends at the sample where
+    it is put down (it slides down beside its neighbour, onto the layer below) or starts where
+    it is picked up, and a feeder's part arriving beside one just taken. Deeper than REST_TOL
+    is a collision everywhere."""
+    ends = (float(sub.t[0]), float(sub.t[-1]))
+    out: list[PairHit] = []
+    resting: set[tuple[str, str]] = set()  # pairs that come to rest on each other at a place or pick
+    # the threshold -REST_TOL: a part sliding down along its neighbour's face (distance 0) is
+    # certified in steps of REST_TOL of motion, not bisected to CONTACT_TOL at every sample
+    for h in check_timeline(scene, sub, pairs, -REST_TOL):
+        if h.kind == "static" or h.distance < -REST_TOL:
+            out.append(replace(h, kind="static" if h.kind == "static" else "collision"))
+        elif not _at_own_event(h, phase, ends):
+            out.append(replace(h, kind="collision", distance=min(h.distance, -0.0)))
+        else:
+            resting.add((h.a, h.b))
+    if clearance > CONTACT_TOL:  # the approach of a part set down against another is the place itself
+        moving = [(a, b) for a, b in pairs if a.moves or b.moves]
+        out += [h for h in check_timeline(scene, sub, moving, clearance)
+                if h.kind == "clearance" and h.distance >= CONTACT_TOL
+                and not ((h.a, h.b) in resting and _at_own_event(h, phase, ends, loose=True))]
+    return out
+
+
+def _at_own_event(hit: PairHit, phase: Phase, ends: tuple[float, float], loose: bool = False) -> bool:
+    """The run starts at the phase's first sample and one of the two parts was picked up or
+    arrived then, or ends at its last sample and one of them is put down then (`loose`: an
+    approach that leads into such a run may stop short of the sample, where the contact run
+    takes over)."""
+    pair = {hit.a, hit.b}
+    if loose:
+        return bool(pair & (phase.picked | phase.presented | phase.put))
+    starts = hit.t0 <= ends[0] + 1e-9 and bool(pair & (phase.picked | phase.presented))
+    return starts or (hit.t1 >= ends[1] - 1e-9 and bool(pair & phase.put))
+
+
+def _counts(scene: Scene, hit: PairHit, names: set[str]) -> bool:
     """False for the contacts a part may make: a gripper on its part, a part resting on a fixture."""
     if hit.kind == "clearance":
         return True
     a, b = scene.body(hit.a), scene.body(hit.b)
-    names = {p.name for p in scene.cell.parts}
     part, other = (a, b) if a.name in names else (b, a)
     if other.kind == "tool" and other.name not in names:
         return hit.distance < -GRIP_TOL
@@ -299,14 +172,13 @@ def _counts(scene: Scene, hit: PairHit) -> bool:
     return True
 
 
-def _resting_approach(scene: Scene, hit: PairHit, ends: tuple[float, float]) -> bool:
+def _resting_approach(scene: Scene, hit: PairHit, ends: tuple[float, float], names: set[str]) -> bool:
     """A clearance approach that is the pick or the place itself: a tool near a part (it grips
     it), or a part near a fixture in a run that starts or ends at the phase's first or last
     sample, its attach or detach (it is lifted off or set down on its support). Not reported
     under --clearance."""
     if hit.kind != "clearance":
         return False
-    names = {p.name for p in scene.cell.parts}
     a, b = scene.body(hit.a), scene.body(hit.b)
     part, other = (a, b) if a.name in names else (b, a)
     if other.name in names:
@@ -378,6 +250,7 @@ def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
         if rated is None:
             continue
         moves = {i.uid: i for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
+        iterations = iteration_paths(tp.task.body)
         paths = [(0, main_events, None)] + [(v.index, part_events(plan, (tp.robot, v)), v) for v in tp.variants]
         for index, events, variant in paths:
             recs = [r for r in tp.records if r.uid in moves and r.variant == index]
@@ -392,6 +265,9 @@ def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
                     what += [f"part '{n}' {parts[n].mass:g} kg" for n in held]
                     message = (f"payload {total:g} kg ({' + '.join(what)}) must not exceed robot '{tp.robot}''s "
                                f"rated payload {rated:g} kg")
+                    path = iterations.get(r.uid)
+                    if path:
+                        message += f" (in iteration {describe_iteration(path)})"
                     if variant is not None:
                         message += f" (on the path through the '{variant.arm}' arm of an if)"
                     if (r.uid, message.split(" (on the path")[0]) not in seen:
@@ -408,7 +284,8 @@ def heaviest_held(scene: Scene, plan: plan_types.Plan, tp: plan_types.TaskPlan) 
     best: tuple[float, np.ndarray | None] = (0.0, None)
     parts = {p.name: p for p in scene.cell.parts}
     for phase in phases(scene, plan):
-        mine = [(parts[n], local) for n, (robot, local) in phase.held.items() if robot == tp.robot and n in parts]
+        mine = [(parts[declared_part(n)], local) for n, (robot, local) in phase.held.items()
+                if robot == tp.robot and declared_part(n) in parts]
         mass = sum(p.mass for p, _ in mine)
         if mass > best[0]:
             cog = sum((p.mass * (local @ np.append(_centre(p), 1.0))[:3] for p, local in mine), np.zeros(3)) / mass
@@ -417,7 +294,7 @@ def heaviest_held(scene: Scene, plan: plan_types.Plan, tp: plan_types.TaskPlan) 
 
 
 def _centre(part: ir.Part) -> np.ndarray:
-    shape = _part_shape(part)
+    shape = part_shape(part)
     if shape is None:
         return np.zeros(3)
     return _local_box(shape)[0]

@@ -288,6 +288,20 @@ class _CellBuilder:
         if declare(self.scope, Entry("part", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
             self.parts.append(ir.Part(s.name.name, geometry, pose, mass, span=s.span))
 
+    def _FeederDecl(self, s: ast.FeederDecl) -> None:
+        """`feeder infeed = box(...) at pose(...) mass 6 kg count 28`: a part of the cell whose
+        `attach` takes the part it presents (its name used as a pose is where it presents them)."""
+        count = None
+        if s.count is not None:
+            count = expect_integer(eval_expr(s.count, self.scope, self.rep), "feeder count", s.count.span, self.rep,
+                                   minimum=1)
+            if count is None:
+                return
+        before = len(self.parts)
+        self._PartDecl(ast.PartDecl(s.name, s.geometry, s.at, s.mass, s.span))
+        if len(self.parts) > before:
+            self.parts[-1] = replace(self.parts[-1], feeder=True, count=count)
+
     def _ConstDecl(self, s: ast.ConstDecl) -> None:
         v = eval_expr(s.value, self.scope, self.rep)
         if v is not None:

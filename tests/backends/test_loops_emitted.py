@@ -105,7 +105,10 @@ def test_palletiser_rapid_is_a_few_dozen_moves(pallet_plan: plan_types.Plan) -> 
     assert len(moves) <= 36, len(moves)
     assert "FOR layer FROM 0 TO 1 DO" in text and "FOR row FROM 0 TO 3 DO" in text
     assert "FOR col FROM 0 TO 2 DO" in text
-    assert "Offs(" in text and "col*200" in text and "row*100" in text and "layer*100" in text
+    assert "Offs(" in text and "col*190" in text and "row*90" in text and "layer*100" in text
+    # the payload follows the carton in the gripper inside the loop: GripLoad at each attach and detach
+    body = text[text.index("FOR col FROM 0 TO 2 DO"):]
+    assert "GripLoad" in body.split("ENDFOR")[0], body[:2000]
 
 
 @pytest.mark.parametrize("vendor", LOOP_VENDORS)

@@ -37,7 +37,7 @@ def _plan_text(text: str, tmp_path: Path, name: str = "p.rmot"):  # type: ignore
 def test_palletizer_plans_all_36_placements() -> None:
     """examples/palletizing.rmot: the pallet frame is pallet_base (centre y = -1100 mm, top at
     z = 400 mm) moved to its -x,-y corner, i.e. world (-300, -1300, 400) mm; a slot's TCP is at
-    x = 100 + 200 col, y = 50 + 100 row, z = 100 + 100 layer mm from there, tool down; the robot
+    x = 95 + 190 col, y = 45 + 90 row, z = 100 + 100 layer mm from there (cartons touching), tool down; the robot
     base is at z = 400 mm. Each of the 3 x 4 x 3 slots must be the target of exactly one planned
     move of the main timeline (the straight move down onto it)."""
     result = load_program(str(EXAMPLES / "palletizing.rmot"))
@@ -54,8 +54,8 @@ def test_palletizer_plans_all_36_placements() -> None:
     )
     expected = [
         (
-            -0.300 + 0.100 + 0.200 * col,
-            -1.300 + 0.050 + 0.100 * row,
+            -0.300 + 0.095 + 0.190 * col,
+            -1.300 + 0.045 + 0.090 * row,
             0.400 + 0.100 + 0.100 * layer - 0.400,
         )
         for layer, row, col in itertools.product(range(3), range(4), range(3))

@@ -207,3 +207,16 @@ def test_box_on_swept_path_is_always_found(fraction: float, along: float, link: 
     hits = [d for d in _findings(report, codes.COLLISION) if "dot" in d.bodies]
     assert hits
     assert any(h.time_s - STEP <= t <= h.end_time_s + STEP for h in hits)
+
+
+def test_advance_walks_on_through_a_contact_shallower_than_the_motion_sums_rounding() -> None:
+    """Two faces touching give a signed distance like -1e-12 m; where the accumulated motion
+    bound is large, cum[i] - d rounds to cum[i] and the contact proves no later sample. The
+    walk must still move on to the next sample (it stalled on sample i before)."""
+    import numpy as np
+
+    from rmot.sim.collide import _advance
+
+    move = np.full(4, 1e6)
+    evaluated, dists, split = _advance(np.arange(5), np.zeros(5), move, 0.0, lambda i: -1e-12, lipschitz=True)
+    assert list(evaluated) == [0, 1, 2, 3, 4] and split.size == 0

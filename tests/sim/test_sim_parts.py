@@ -1,5 +1,5 @@
 """Parts in the verification: held parts are bodies of their robot, placed parts
-are fixtures, two parts must keep a gap, the payload is checked.
+are fixtures, parts may rest on parts (up to 0.1 mm), the payload is checked.
 
 Every program runs in tests/data/parts/cell.rmot: a UR10e (rated payload 12.5 kg) on a 400 mm
 pedestal, 100 mm cubes on an infeed table, a 1 kg gripper whose end face is the TCP. The
@@ -47,13 +47,19 @@ class TestStacking:
         _, report = _check(tmp_path, _stack(10))
         assert _errors(report) == []
 
-    def test_zero_gap_is_a_collision_between_the_two_parts(self, tmp_path: Path) -> None:
-        """Centres 100 mm apart, cubes 100 mm: the faces touch while b2 goes down beside b1."""
+    def test_zero_gap_is_clean_parts_rest_side_by_side(self, tmp_path: Path) -> None:
+        """Centres 100 mm apart, cubes 100 mm: the faces touch while b2 goes down beside b1,
+        the run of contact that ends where b2 is put down (resting, not colliding)."""
         _, report = _check(tmp_path, _stack(0))
+        assert _errors(report) == []
+
+    def test_overlap_beyond_the_rest_tolerance_is_a_collision(self, tmp_path: Path) -> None:
+        """Centres 99.8 mm apart: b2 enters b1 by 0.2 mm, twice the 0.1 mm rest tolerance."""
+        _, report = _check(tmp_path, _stack(-0.2))
         (d,) = _errors(report)
         assert d.code.id == "E300" and set(d.bodies) == {"b1", "b2"}
-        assert "'b2'" in d.message and "'b1'" in d.message
         assert d.span.start.line == 26  # `move linear shift(place, y=100mm + gap)`: b2 goes down beside b1
+        assert d.amount is not None and d.amount.value == pytest.approx(0.2, abs=0.01)
 
     def test_overlap_is_a_collision_as_deep_as_the_overlap(self, tmp_path: Path) -> None:
         """Centres 90 mm apart: b2 enters b1 by 10 mm."""
