@@ -54,7 +54,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "MAX_BYTES", "cache_dir", "cached_plan", "evict", "eviction_due", "key_of", "plan_by_key",
-    "plan_key", "source_digest", "write_entry",
+    "plan_key", "SETTLE_S", "settled", "source_digest", "write_entry",
 ]
 
 FORMAT = "rmot-plan-cache/1"
@@ -175,6 +175,23 @@ def _named_files(doc: Any) -> set[str]:
         elif isinstance(v, list):
             stack.extend(v)
     return found
+
+
+# A file modified less than this before a command started is not vouched for by a cache entry:
+# its bytes read after planning may not be the bytes the front end read ("racy git").
+SETTLE_S = 2.0
+
+
+def settled(paths: list[str], started: float) -> bool:
+    """Whether no file of `paths` was modified since SETTLE_S before `started` (a missing
+    file counts as settled: its stamp says missing, and its appearing is a change)."""
+    for path in paths:
+        try:
+            if os.stat(path).st_mtime >= started - SETTLE_S:
+                return False
+        except OSError:
+            continue
+    return True
 
 
 @functools.cache

@@ -41,9 +41,6 @@ __all__ = ["FORMAT", "load", "load_key", "planned", "record"]
 
 FORMAT = "rmot-load-cache/1"
 MAX_BYTES = 50 * 1024 * 1024
-# A file modified less than this before the front end started is not vouched for: its bytes
-# read after planning may not be the bytes the front end read ("racy git"); no entry then.
-SETTLE_S = 2.0
 # the program a load() in this process gave: (program, its Plan) when read from the cache,
 # (program, entry key, result) when computed; one program at a time (each load() resets them)
 _READ: dict[int, tuple[ir.Program, Plan]] = {}
@@ -131,22 +128,10 @@ def _stamp(path: str) -> list[Any]:
     return [path, os.path.realpath(path), digest]
 
 
-def settled(paths: list[str], started: float) -> bool:
-    """Whether no file of `paths` was modified since SETTLE_S before `started` (a missing
-    file counts as settled: its stamp says missing, and its appearing is a change)."""
-    for path in paths:
-        try:
-            if os.stat(path).st_mtime >= started - SETTLE_S:
-                return False
-        except OSError:
-            continue
-    return True
-
-
 def _write(entry: Path, key: str, plan_key: str, result: FrontendResult, plan: Plan,
            started: float) -> None:
     from rmot.compiler.cli.verify_cache import scene_files
-    from rmot.compiler.plan_cache import _named_files
+    from rmot.compiler.plan_cache import _named_files, settled
     from rmot.compiler.plan_codec import encode
 
     if not result.sources:

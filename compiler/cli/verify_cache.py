@@ -20,7 +20,7 @@ The key (SHA-256) covers everything the verification is a function of:
 The files the scene reads that are not in the program (a URDF robot's collision meshes, and
 the cell's meshes again) are listed in the entry with their SHA-256 (or null when missing) and
 hashed again on every read: any change is a miss. A mesh modified within 2 s before the
-verification started gets no entry (load_cache.settled: its bytes hashed after verifying may
+verification started gets no entry (plan_cache.settled: its bytes hashed after verifying may
 not be the bytes the scene read).
 
 Entries: <cache dir>/verify/<k[:2]>/<key>.json (the cache directory of lang/_tables.py), written
@@ -164,7 +164,7 @@ def _digest(path: str) -> str | None:
 
 # ---------------------------------------------------------------------------- entries
 def _write(path: Path, key: str, plan: Plan, report: Report, started: float) -> None:
-    from rmot.compiler.cli.load_cache import settled
+    from rmot.compiler.plan_cache import settled
     from rmot.compiler.plan_codec import encode
 
     n = len(plan.diagnostics)

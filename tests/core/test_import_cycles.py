@@ -21,8 +21,6 @@ KNOWN = {
     # ir.walk delegates to ir_tree.walk, and ir_tree reads ir's classes: the 65 callers of
     # ir.walk (backends, sim, tests) must call ir_tree.walk instead, then ir.walk goes.
     frozenset({"rmot.compiler.ir", "rmot.compiler.ir_tree"}),
-    # the two caches of `rmot check` / `rmot compile` clear each other's entries.
-    frozenset({"rmot.compiler.cli.load_cache", "rmot.compiler.cli.verify_cache"}),
 }
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from rmot.compiler import frontend
+from rmot.compiler import frontend, plan_cache
 from rmot.compiler.cli import load_cache
 from tests.core.cache_cli import Counter, count_calls, entry_json, run, write_sealed
 
@@ -130,7 +130,7 @@ def test_a_file_modified_just_before_the_run_gets_no_entry(project: Path, front_
     result = run(tmp_path, "check", "p.rmot")
     assert result.exit_code == 0
     assert set(entries(project)) == before
-    assert load_cache.settled([str(tmp_path / "p.rmot")], time.time() + load_cache.SETTLE_S + 1)
+    assert plan_cache.settled([str(tmp_path / "p.rmot")], time.time() + plan_cache.SETTLE_S + 1)
 
 
 @pytest.mark.parametrize("damage", ["garbage", "not-diagnostics", "bad-files", "unknown-plan"])
