@@ -30,4 +30,5 @@ SIGNAL_UNKNOWN = Code("W513", "signal-unknown",
                       "an I/O signal name is not declared in the cell: the instruction is kept native")
 NAME_RENAMED = Code("W514", "name-renamed", "a vendor name is an rmot keyword or clashes: it is renamed")
 JOINT_RATES_READ = Code("W515", "joint-rates-read",
-                        "a URScript movej's a=/v= are the plan's leading-axis peak rates, not shares: read as 100 %")
+                        "a URScript movej's a=/v= (the plan's leading-axis peak rates) give no shares where its start "
+                        "is unknown or it blends: read as 100 %")

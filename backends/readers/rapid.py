@@ -303,7 +303,7 @@ class _Module:
         return [If(head, tuple(then), tuple(orelse), st.where)], j + 1  # type: ignore[arg-type]
 
     def _acc_set(self, st: Statement) -> bool:
-        """`AccSet Acc, 100;` read into the modal acceleration share of the joint moves after it
+        """`AccSet Acc, 100;` read into the modal joint acceleration share of the moves after it
         (ABB RAPID reference, AccSet Acc, Ramp: Acc 20..100 % of the normal acceleration, Ramp 100 % = the
         normal jerk); another Ramp has no rmot form and stays native."""
         m = re.fullmatch(r"(?i)AccSet\s+(\d+(?:\.\d+)?)\s*,\s*100(?:\.0*)?", st.text)
@@ -400,7 +400,7 @@ class _Module:
                     joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
                     time=timing[1], tool=tool_name, frame=frame, config=config,
                     pose=decl.pose if decl and expr == decl.name else None,
-                    joints=decl.joints if decl else None, joint_accel=self.acc_pct if kind == "joint" else None)
+                    joints=decl.joints if decl else None, joint_accel=self.acc_pct)
 
     def _speed(self, kind: str, speed: list[str]) -> tuple[float | None, float | None, bool] | None:
         """(TCP mm/s, duration s, joint speed read as 100 %) of a speed argument."""

@@ -2,9 +2,9 @@
 
 Conventions are the URScript backend's, read in reverse (Universal Robots, "The URScript
 Programming Language", e-Series): poses `p[x, y, z, rx, ry, rz]` in metres and a rotation
-vector (rad), always in the robot base; `movej` joints in rad, `v`/`a` in rad/s, rad/s² as a
-share of the slowest joint's datasheet maximum (`backends.urscript.JOINT_LIMITS`, the model
-given by the cell or --robot); `movel`/`movec` `v` m/s, `a` m/s², `r` the blend radius in m, `t`
+vector (rad), always in the robot base; `movej` joints in rad, `v`/`a` in rad/s, rad/s² the
+plan's leading-axis peak rates (shares of `backends.urscript.JOINT_LIMITS` on the task's first
+move, which is not planned); `movel`/`movec` `v` m/s, `a` m/s², `r` the blend radius in m, `t`
 a fixed duration; `pose_add(P, p[dx, dy, dz, 0, 0, 0])` a translation in the base (= `shift`);
 `set_tcp` the tool (named by its TCP: matched to the cell's tools by value); standard digital
 I/O 0..7, configurable 8..15, analog out volts / 10 on the 0..10 V domain; the backend's
