@@ -5,7 +5,8 @@ Instructions for System Integrators): E6POS/POS/FRAME `{X,Y,Z mm, A,B,C deg}` wi
 R = Rz(A)·Ry(B)·Rx(C) (= rmot's rz, ry, rx); Status S bit 0 shoulder back, bit 1 elbow up,
 bit 2 wrist flip (inverted through `backends.krl.status_of`); `$VEL.CP` m/s, `$VEL_AXIS` /
 `BAS(#VEL_PTP)` %, `$APO.CDIS` mm for C_DIS, `$APO.CPTP` % for C_PTP (the backend's 1 mm per %,
-`KrlBackend.CPTP_MM`), `$APO.CDIS` mm for a PTP blended into a LIN/CIRC (`C_PTP C_DIS`); `$TOOL`/`$BASE` name module FRAMEs (or `TOOL_DATA[n]`/`BASE_DATA[n]`,
+`KrlBackend.CPTP_MM`), `$APO.CDIS` mm for a PTP blended into a LIN/CIRC (`C_PTP C_DIS`);
+`$TOOL`/`$BASE` name module FRAMEs (or `TOOL_DATA[n]`/`BASE_DATA[n]`,
 stored on the controller); the work-copy offset `P_loop=P`, `P_loop.X=P.X+d` is `shift`.
 Inline forms of KSS 5 (KR C2) and KSS 8 (KR C4), `;FOLD PTP P1 CONT Vel=100 % PDAT1 Tool[1]
 Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1, PPDAT1/LCPDAT1

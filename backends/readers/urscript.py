@@ -62,7 +62,8 @@ class _Line:
 
 
 class _Script:
-    def __init__(self, path: str, text: str, model: str | None) -> None:
+    def __init__(self, path: str, text: str, model: str | None,
+                 limits: tuple[tuple[float, ...], tuple[float, ...]] | None) -> None:
         self.tally = Tally(path, text, "urscript")
         self.lines: list[_Line] = []
         for n, raw in enumerate(text.split("\n"), 1):
@@ -70,7 +71,7 @@ class _Script:
             if code and not code.startswith("$"):
                 self.lines.append(_Line(code, Where(path, n, len(raw) - len(raw.lstrip()) + 1)))
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
-        self.limits = _joint_limits(model)
+        self.limits = limits
         self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg
         self.moved = False  # a move was read: the next one is not the task's first
         self.targets: dict[str, Target] = {}
@@ -397,21 +398,6 @@ def _share(ratio: float) -> float | None:
     return None if pct >= 99.95 else max(pct, 1.0)
 
 
-def _joint_limits(model: str | None) -> tuple[list[float], list[float]] | None:
-    """(speed rad/s, acceleration rad/s^2) of each joint of the robot `model` (the cell's or
-    --robot), None where it does not load."""
-    if not model:
-        return None
-    from rmot.compiler.robots.errors import RobotError
-    from rmot.compiler.robots.loader import load_robot
-
-    try:
-        robot = load_robot(model)
-    except RobotError:
-        return None
-    return [float(x) for x in robot.velocity_limits], [float(x) for x in robot.accel_limits]
-
-
 def _strip_hash(line: str) -> str:
     quote = False
     for i, ch in enumerate(line):
@@ -435,8 +421,9 @@ def _cond(text: str) -> Cond | None:
     return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != neg)
 
 
-def read_urscript(path: str, text: str, model: str | None) -> _Script:
+def read_urscript(path: str, text: str, model: str | None,
+                  limits: tuple[tuple[float, ...], tuple[float, ...]] | None = None) -> _Script:
     """Read one URScript program; raises ImportError_ (E510) when it is not one."""
-    script = _Script(path, text, model)
+    script = _Script(path, text, model, limits)
     script.read()
     return script
