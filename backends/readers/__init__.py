@@ -52,7 +52,7 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
 def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.urscript import read_urscript
 
-    m = read_urscript(path, text, _MODEL[0])
+    m = read_urscript(path, text, _MODEL[0], _LIMITS[0])
     doc = Document("urscript", m.name, m.main, tuple(m.targets.values()), tuple(m.tools.values()), (),
                    tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics), tuple(m.tally.comments))
     return doc, m.tally
@@ -80,6 +80,8 @@ def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Do
 
 
 _MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
+JointLimits = tuple[tuple[float, ...], tuple[float, ...]]  # each joint's speed rad/s, acceleration rad/s^2
+_LIMITS: list[JointLimits | None] = [None]  # that model's joint limits (URScript movej rates)
 # Fanuc tool and frame numbers are the controller's, shared by every program: the names the
 # files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
 _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
@@ -130,11 +132,13 @@ def _load(path: str) -> str:
     return text
 
 
-def read_files(paths: list[str], model: str | None = None) -> Document:
+def read_files(paths: list[str], model: str | None = None, limits: JointLimits | None = None) -> Document:
     """Read and merge the files (one vendor): the first file's main routine runs. A KRL .src
     reads its .dat (given too, or beside it). `model`: the robot library name the program runs
-    on, where a vendor writes speeds relative to the arm (URScript movej)."""
+    on, where a vendor writes speeds relative to the arm (URScript movej); `limits`: its joint
+    speed and acceleration limits (the caller loads the arm: a reader only reads text)."""
     _MODEL[0] = model
+    _LIMITS[0] = limits
     _FANUC_LABELS["UTOOL"].clear()
     _FANUC_LABELS["UFRAME"].clear()
     _FANUC_PROGRAMS.clear()

@@ -10,6 +10,7 @@ from rmot.lang.diagnostics import Code
 __all__ = [
     "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
+    "JOINT_RATES_READ",
 ]
 
 NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
@@ -28,3 +29,6 @@ JOINT_SPEED_READ = Code("W512", "joint-speed-read",
 SIGNAL_UNKNOWN = Code("W513", "signal-unknown",
                       "an I/O signal name is not declared in the cell: the instruction is kept native")
 NAME_RENAMED = Code("W514", "name-renamed", "a vendor name is an rmot keyword or clashes: it is renamed")
+JOINT_RATES_READ = Code("W515", "joint-rates-read",
+                        "a URScript movej's a=/v= (the plan's leading-axis peak rates) give no shares where its start "
+                        "is unknown or it blends: read as 100 %")

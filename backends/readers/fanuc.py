@@ -297,6 +297,13 @@ class _Ls:
         else:
             return None
         decls = [self.positions.get(p) for p in points]
+        # ACCn: the motion option's acceleration override, n % (R-30iB Operator's Manual, motion
+        # options "ACC"); rmot's joint acceleration share takes 1..100 % on joint moves
+        acc = re.match(r"(?i)ACC\s*(\d+)\b", rest.strip())
+        if acc is not None:
+            if kind != "joint" or not 1 <= int(acc.group(1)) <= 100:
+                return None
+            rest = rest.strip()[acc.end():]
         offset = re.fullmatch(r"(?i)Offset,PR\[(\d+)\]", rest.strip()) if rest.strip() else None
         if any(d is None for d in decls) or (rest.strip() and (offset is None or int(offset.group(1)) not in self.offsets)):
             return None
@@ -315,7 +322,8 @@ class _Ls:
                     zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
                     tool=self._named("UTOOL"), frame=self._named("UFRAME"),
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
-                    pose=decl.pose, joints=decl.joints)
+                    pose=decl.pose, joints=decl.joints,
+                    joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None)
 
 
     def _uses_offsets(self, name: str, depth: int) -> bool:

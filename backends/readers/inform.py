@@ -132,9 +132,14 @@ class _Job:
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
-        extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT)\b", "", rest).strip()
+        # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual, MOVJ
+        # tags); rmot has one joint acceleration share, so both must be equal, on joint moves
+        acc = re.search(r"\bACC=(\d+)\s+DEC=(\d+)\b", rest)
+        extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+)\b", "", rest).strip()
         if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
                 (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
+            return None
+        if acc is not None and (kind != "joint" or acc.group(1) != acc.group(2) or not 20 <= int(acc.group(1)) <= 100):
             return None
         decl = decls[-1]
         assert decl is not None
@@ -144,7 +149,8 @@ class _Job:
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
                     tool=self._tool(self.position_tool[names[-1]]), frame="base" if user is None else f"user{user}",
-                    config=decl.config if kind == "joint" else None, pose=decl.pose)
+                    config=decl.config if kind == "joint" else None, pose=decl.pose,
+                    joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None)
 
     def _tool(self, n: int) -> str:
         if n not in self.tools:

@@ -5,7 +5,8 @@ Instructions for System Integrators): E6POS/POS/FRAME `{X,Y,Z mm, A,B,C deg}` wi
 R = Rz(A)·Ry(B)·Rx(C) (= rmot's rz, ry, rx); Status S bit 0 shoulder back, bit 1 elbow up,
 bit 2 wrist flip (inverted through `backends.krl.status_of`); `$VEL.CP` m/s, `$VEL_AXIS` /
 `BAS(#VEL_PTP)` %, `$APO.CDIS` mm for C_DIS, `$APO.CPTP` % for C_PTP (the backend's 1 mm per %,
-`KrlBackend.CPTP_MM`); `$TOOL`/`$BASE` name module FRAMEs (or `TOOL_DATA[n]`/`BASE_DATA[n]`,
+`KrlBackend.CPTP_MM`), `$APO.CDIS` mm for a PTP blended into a LIN/CIRC (`C_PTP C_DIS`);
+`$TOOL`/`$BASE` name module FRAMEs (or `TOOL_DATA[n]`/`BASE_DATA[n]`,
 stored on the controller); the work-copy offset `P_loop=P`, `P_loop.X=P.X+d` is `shift`.
 Inline forms of KSS 5 (KR C2) and KSS 8 (KR C4), `;FOLD PTP P1 CONT Vel=100 % PDAT1 Tool[1]
 Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1, PPDAT1/LCPDAT1
@@ -375,18 +376,18 @@ class _Krl:
 
     def _motion(self, word: str, rest: str, where: Where) -> Move | None:
         kind = _MOTIONS[word]
-        m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
+        m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
-        approx = (m.group(2) or "").upper() if m else ""
+        approx = " ".join((m.group(2) or "").upper().split()) if m else ""
         if len(points) != (2 if kind == "circular" else 1) or approx in ("C_VEL", "C_ORI", "C_SPL"):
             return None
         found = [self._target(p) for p in points]
         if any(f is None for f in found):
             return None
         st = self.state
-        if kind == "joint":
+        if kind == "joint":  # a PTP blended into a LIN/CIRC: `C_PTP C_DIS`, its radius $APO.CDIS
             zone = (st.cptp * KrlBackend.CPTP_MM if approx == "C_PTP" and st.cptp is not None else
-                    st.cdis if approx == "C_DIS" else None)
+                    st.cdis if approx in ("C_DIS", "C_PTP C_DIS") else None)
         else:
             zone = st.cdis if approx == "C_DIS" else None
         if approx and zone is None:

@@ -82,6 +82,7 @@ class _Module:
         self.proc_names: dict[str, str] = {}  # upper -> as written
         self.names: set[str] = set()  # numeric names an expression may use
         self.pose_params: set[str] = set()  # the current PROC's target parameters
+        self.acc_pct: float | None = None  # the last `AccSet Acc, 100;` (modal), None = 100 %
         self.name = "imported"
 
     # ---------------------------------------------------------------- module level
@@ -249,6 +250,9 @@ class _Module:
         if re.match(r"(?i)^(LOCAL\s+|TASK\s+)*(CONST|PERS|VAR)\s", st.text):
             self._declaration(st)
             return [], i + 1
+        if self._acc_set(st):
+            self.tally.imported += 1
+            return [], i + 1
         converted = self._simple(st)
         if converted is None:
             return [self.tally.keep(st.text + ";", st.where, "no rmot form")], i + 1
@@ -297,6 +301,16 @@ class _Module:
         if self.stmts[j].word == "ELSE":
             orelse, j = self._block(j + 1, (end,))
         return [If(head, tuple(then), tuple(orelse), st.where)], j + 1  # type: ignore[arg-type]
+
+    def _acc_set(self, st: Statement) -> bool:
+        """`AccSet Acc, 100;` read into the modal joint acceleration share of the moves after it
+        (ABB RAPID reference, AccSet Acc, Ramp: Acc 20..100 % of the normal acceleration, Ramp 100 % = the
+        normal jerk); another Ramp has no rmot form and stays native."""
+        m = re.fullmatch(r"(?i)AccSet\s+(\d+(?:\.\d+)?)\s*,\s*100(?:\.0*)?", st.text)
+        if m is None or not 20 <= float(m.group(1)) <= 100:
+            return False
+        self.acc_pct = None if float(m.group(1)) == 100 else float(m.group(1))
+        return True
 
     def _head(self, st: Statement) -> Cond | tuple[str, int, int] | None:
         if st.word == "FOR":
@@ -386,7 +400,7 @@ class _Module:
                     joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
                     time=timing[1], tool=tool_name, frame=frame, config=config,
                     pose=decl.pose if decl and expr == decl.name else None,
-                    joints=decl.joints if decl else None)
+                    joints=decl.joints if decl else None, joint_accel=self.acc_pct)
 
     def _speed(self, kind: str, speed: list[str]) -> tuple[float | None, float | None, bool] | None:
         """(TCP mm/s, duration s, joint speed read as 100 %) of a speed argument."""

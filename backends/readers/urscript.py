@@ -2,9 +2,9 @@
 
 Conventions are the URScript backend's, read in reverse (Universal Robots, "The URScript
 Programming Language", e-Series): poses `p[x, y, z, rx, ry, rz]` in metres and a rotation
-vector (rad), always in the robot base; `movej` joints in rad, `v`/`a` in rad/s, rad/s² as a
-share of the slowest joint's datasheet maximum (`backends.urscript.JOINT_LIMITS`, the model
-given by the cell or --robot); `movel`/`movec` `v` m/s, `a` m/s², `r` the blend radius in m, `t`
+vector (rad), always in the robot base; `movej` joints in rad, `v`/`a` in rad/s, rad/s² the
+plan's leading-axis peak rates (shares of `backends.urscript.JOINT_LIMITS` on the task's first
+move, which is not planned); `movel`/`movec` `v` m/s, `a` m/s², `r` the blend radius in m, `t`
 a fixed duration; `pose_add(P, p[dx, dy, dz, 0, 0, 0])` a translation in the base (= `shift`);
 `set_tcp` the tool (named by its TCP: matched to the cell's tools by value); standard digital
 I/O 0..7, configurable 8..15, analog out volts / 10 on the 0..10 V domain; the backend's
@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import re
 
+from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, split_top
 from rmot.backends.readers.model import (
     Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
@@ -61,7 +62,8 @@ class _Line:
 
 
 class _Script:
-    def __init__(self, path: str, text: str, model: str | None) -> None:
+    def __init__(self, path: str, text: str, model: str | None,
+                 limits: tuple[tuple[float, ...], tuple[float, ...]] | None) -> None:
         self.tally = Tally(path, text, "urscript")
         self.lines: list[_Line] = []
         for n, raw in enumerate(text.split("\n"), 1):
@@ -69,6 +71,9 @@ class _Script:
             if code and not code.startswith("$"):
                 self.lines.append(_Line(code, Where(path, n, len(raw) - len(raw.lstrip()) + 1)))
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
+        self.limits = limits
+        self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg
+        self.moved = False  # a move was read: the next one is not the task's first
         self.targets: dict[str, Target] = {}
         self.tools: dict[tuple[float, ...], ToolData] = {}
         self.tool: str | None = None
@@ -103,7 +108,9 @@ class _Script:
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
-        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
+        block starts or ends, the joints the robot stands at are not known from the text."""
+        self.rest_joints = None
         return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
@@ -325,6 +332,37 @@ class _Script:
                           for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
         return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
 
+    def _joint_shares(self, joints: tuple[float, ...] | None, v: float | None, a: float | None,
+                      zone: float, where: Where) -> tuple[float | None, float | None]:
+        """(joint speed %, joint acceleration %) of a movej, None = rmot's default 100 %. The
+        backend writes the plan's leading-axis peak rates (URScript manual, movej: `a`, `v` of the
+        leading axis); the task's first move is not planned, so there it writes the shares of
+        JOINT_LIMITS, read back exactly. Elsewhere the shares follow from the move's joint
+        displacement, known when the movej starts where an exact-stop movej ended (rest to rest
+        on the joint-space line, trapezoidal: the binding joint is the one with the least limit
+        per degree; a triangular profile never reaches the speed limit, which stays 100 %)."""
+        start, first = self.rest_joints, not self.moved
+        self.rest_joints = joints if zone == 0.0 else None
+        self.moved = True
+        if first and v is not None and a is not None:
+            return _share(v / self.vmax), _share(a / self.amax)
+        if v is None or a is None or joints is None or start is None or self.limits is None or zone != 0.0:
+            if v is not None or a is not None:
+                self.tally.warn(codes.JOINT_RATES_READ, f"movej a={a}, v={v}: the plan's leading-axis peak "
+                                "rates, whose shares need the move's start; read as 100 %", where)
+            return None, None
+        delta = [abs(math.radians(q - q0)) for q, q0 in zip(joints, start)]
+        lead = max(delta)
+        if lead < 1e-9:
+            return None, None
+        vmax, amax = self.limits
+        path_speed, path_accel = v / lead, a / lead  # of s in 0..1 along the joint-space line
+        moving = [i for i, d in enumerate(delta) if d > 1e-12]
+        accel = _share(path_accel / min(amax[i] / delta[i] for i in moving))
+        triangular = abs(path_speed * path_speed - path_accel) <= 1e-3 * path_accel
+        speed = None if triangular else _share(path_speed / min(vmax[i] / delta[i] for i in moving))
+        return speed, accel
+
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
         kind = {"movej": "joint", "movel": "linear", "movec": "circular"}[func]
         named = dict(a.split("=", 1) for a in args if re.match(r"\w+=", a) and not a.startswith("get_"))
@@ -341,11 +379,10 @@ class _Script:
         v, a = values.get("v"), values.get("a")
         zone = (values.get("r") or 0.0) * 1000.0
         if kind == "joint":
-            pct = 100.0 * v / self.vmax if v is not None else 100.0
-            acc = 100.0 * a / self.amax if a is not None else None
-            speed, accel, jpct, jacc = None, None, round(pct, 4), (None if acc is None or abs(acc - 100) < 1e-3
-                                                                  else round(acc, 4))
+            speed, accel = None, None
+            jpct, jacc = self._joint_shares(decl.joints if decl else None, v, a, zone, where)
         else:
+            self.rest_joints, self.moved = None, True
             speed = 1000.0 * v if v is not None else 250.0
             accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
             jpct, jacc = None, None
@@ -353,6 +390,12 @@ class _Script:
                     speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t"), tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
                     accel=accel, joint_accel=jacc)
+
+
+def _share(ratio: float) -> float | None:
+    """A joint speed/acceleration ratio as rmot's %, None for 100 % (the default) or above."""
+    pct = round(100.0 * ratio, 3)
+    return None if pct >= 99.95 else max(pct, 1.0)
 
 
 def _strip_hash(line: str) -> str:
@@ -378,8 +421,9 @@ def _cond(text: str) -> Cond | None:
     return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != neg)
 
 
-def read_urscript(path: str, text: str, model: str | None) -> _Script:
+def read_urscript(path: str, text: str, model: str | None,
+                  limits: tuple[tuple[float, ...], tuple[float, ...]] | None = None) -> _Script:
     """Read one URScript program; raises ImportError_ (E510) when it is not one."""
-    script = _Script(path, text, model)
+    script = _Script(path, text, model, limits)
     script.read()
     return script

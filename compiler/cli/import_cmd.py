@@ -23,6 +23,21 @@ DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "u
                   "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8"}
 
 
+def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+    """(speed rad/s, acceleration rad/s^2) of each joint of the arm `model` (the cell's robot or
+    --robot), None where it does not load: a reader then keeps the joint shares it cannot derive."""
+    if not model:
+        return None
+    from rmot.compiler.robots.errors import RobotError
+    from rmot.compiler.robots.loader import load_robot
+
+    try:
+        robot = load_robot(model)
+    except RobotError:
+        return None
+    return tuple(map(float, robot.velocity_limits)), tuple(map(float, robot.accel_limits))
+
+
 def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object] | str:
     """(SignalMap, robot name, ir.Cell) of a cell file, or the error text."""
     from rmot.backends.readers.writer import SignalMap
@@ -71,7 +86,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         assert isinstance(cell_ir, ir.Cell)
         model = cell_ir.robot(found[1]).source.ref
     try:
-        doc = read_files(list(files), model=model)
+        doc = read_files(list(files), model=model, limits=_joint_limits(model))
     except ImportError_ as exc:
         click.echo(render(exc.diagnostic), err=True)
         sys.exit(EXIT_INPUT)

@@ -28,9 +28,10 @@ IO_PATTERNS = {  # each vendor's I/O instructions (RAPID, KRL, URScript manuals)
     "fanuc": r"(?:DO|AO)\[\d+[^\]]*\]=[^;\n]*|WAIT DI\[[^;\n]*|IF DI\[[^;\n]*",
     "urscript": r"set_(?:standard|configurable)_(?:digital|analog)_out\([^)]*\)|get_(?:standard|configurable)_digital_in\(\d+\)[^:\n]*",
 }
-# RAPID and Fanuc TP carry no acceleration: the plan of the imported program is timed
-# with the controller's default where the original set one (the backends warn W408 / W409)
-NO_ACCEL = {("rapid", "inspect"), ("fanuc", "inspect")}
+# Joint acceleration shares come back from every vendor (RAPID AccSet, TP ACCn, KRL
+# RMOT_PTP, URScript movej a=). A TCP acceleration has no RAPID/TP form (W408): inspect's one
+# 500 mm/s^2 back-off of 30 mm re-times within the tolerances below, so it is compared too.
+NO_ACCEL: set[tuple[str, str]] = set()
 
 
 def _cell_of(example: Path) -> Path:
