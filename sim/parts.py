@@ -40,7 +40,7 @@ from rmot.sim.part_phases import (
 )
 from rmot.sim.scene import Body, Scene, _local_box, _reach, _sphere_cover, flange_in_last_joint
 
-__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "heaviest_held", "part_bodies", "part_events", "part_hits",
+__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "absent_pose", "heaviest_held", "is_absent", "part_bodies", "part_events", "part_hits",
            "payload_findings", "phase_scene", "phases", "shape_diagnostics"]
 
 # --------------------------------------------------------------------------- collision
@@ -303,35 +303,67 @@ def _centre(part: ir.Part) -> np.ndarray:
 # --------------------------------------------------------------------------- pictures
 
 
-def with_part_bodies(scene: Scene) -> Scene:
+def with_part_bodies(scene: Scene, plan: plan_types.Plan | None = None) -> Scene:
     """`scene` plus every part as a body at its starting pose (what a picture draws; where it
-    is at an instant comes from part_poses)."""
-    start = Phase(0.0, 0.0, {p.name: p.pose.matrix() for p in scene.cell.parts}, {})
+    is at an instant comes from part_poses). With the `plan`, a feeder is drawn as the parts it
+    gives (`carton#1`, `carton#2`, ...: every part any phase has), each only while it exists."""
+    names = {p.name: p.pose.matrix() for p in scene.cell.parts if plan is None or not p.feeder}
+    if plan is not None:
+        spots = {p.name: p.pose.matrix() for p in scene.cell.parts}
+        for phase in _program_phases(scene, plan):
+            for name in [*phase.placed, *phase.held]:
+                names.setdefault(name, spots[declared_part(name)])
+    start = Phase(0.0, 0.0, names, {})
     return replace(scene, bodies=scene.bodies + tuple(part_bodies(scene, start)))
 
 
 _PHASES: dict[tuple[int, int], tuple[Scene, plan_types.Plan, list[Phase]]] = {}
 
 
-def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
-               q: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """part name -> (N, 4, 4) world poses at `times` (N,): placed where they lie, held ones on
-    their robot's flange (q: robot -> (N, dof) joint values at `times`)."""
-    if not scene.cell.parts:
-        return {}
-    key = (id(scene), id(plan))
+def _program_phases(scene: Scene, plan: plan_types.Plan) -> list[Phase]:
+    """phases(scene, plan), computed once per (scene, plan) for the pictures. The phases do not
+    depend on the scene's part bodies, so a scene and the same scene with its parts share them."""
+    key = (id(scene.cell), id(plan))
     cached = _PHASES.get(key)
-    if cached is None or cached[0] is not scene or cached[1] is not plan:
+    if cached is None or cached[0].cell is not scene.cell or cached[1] is not plan:
         _PHASES.clear()  # one program at a time: keep the cache small
         cached = (scene, plan, phases(scene, plan))
         _PHASES[key] = cached
-    phase_list = cached[2]
+    return cached[2]
+
+
+def absent_pose(spot: np.ndarray) -> np.ndarray:
+    """The pose of a part that does not exist at an instant (a feeder's part not yet presented):
+    the body shrunk to the point `spot` (4, 4) stands at, so it covers no pixel and no view."""
+    pose = np.zeros((4, 4))
+    pose[:, 3] = spot[:, 3]
+    return pose
+
+
+def is_absent(pose: np.ndarray) -> bool:
+    """Whether a body pose (4, 4) is absent_pose's: a body shrunk to a point."""
+    return not np.any(pose[:3, :3])
+
+
+def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
+               q: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """part name -> (N, 4, 4) world poses at `times` (N,): placed where they lie, held ones on
+    their robot's flange (q: robot -> (N, dof) joint values at `times`); a feeder's part before
+    it is presented has absent_pose. Declared parts and every feeder part by ordinal."""
+    if not scene.cell.parts:
+        return {}
+    phase_list = _program_phases(scene, plan)
     n = len(times)
     starts = np.array([ph.t0 for ph in phase_list])
     which = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(phase_list) - 1)
     flanges = {r: scene.robots[r].base @ np.asarray(scene.robots[r].robot.fk_batch(v)) for r, v in q.items()
                if r in scene.robots and any(r == h[0] for ph in phase_list for h in ph.held.values())}
-    out = {p.name: np.tile(p.pose.matrix(), (n, 1, 1)) for p in scene.cell.parts}
+    spots = {p.name: p.pose.matrix() for p in scene.cell.parts}
+    out = {name: np.tile(spot, (n, 1, 1)) for name, spot in spots.items()}
+    for ph in phase_list:
+        for name in [*ph.placed, *ph.held]:
+            if name not in out:
+                out[name] = np.tile(absent_pose(spots[declared_part(name)]), (n, 1, 1))
     for k, ph in enumerate(phase_list):
         mask = which == k
         if not mask.any():
