@@ -33,6 +33,8 @@ import numpy as np
 from rmot.compiler import ir, plan_types
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
+from rmot.lang.record import record
+from rmot.lang.source import Span
 from rmot.sim import codes
 from rmot.sim.collide import CONTACT_TOL, PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.part_phases import (
@@ -40,7 +42,8 @@ from rmot.sim.part_phases import (
 )
 from rmot.sim.scene import Body, Scene, _local_box, _reach, _sphere_cover, flange_in_last_joint
 
-__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "absent_pose", "heaviest_held", "is_absent", "part_bodies", "part_events", "part_hits",
+__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "Placement", "absent_pose", "heaviest_held", "is_absent", "part_bodies",
+           "part_events", "part_hits", "placements",
            "payload_findings", "phase_scene", "phases", "shape_diagnostics"]
 
 # --------------------------------------------------------------------------- collision
@@ -372,4 +375,29 @@ def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
             out[name][mask] = world
         for name, (robot, local) in ph.held.items():
             out[name][mask] = flanges[robot][mask] @ local
+    return out
+
+
+@record
+class Placement:
+    """A part put down: `name` (a feeder's by ordinal, `carton#7`), its world pose (4, 4) from
+    then on, the instant `t` s of its detach, and the detach's source `span`."""
+
+    name: str
+    pose: np.ndarray
+    t: float
+    span: Span | None
+
+
+def placements(scene: Scene, plan: plan_types.Plan) -> list[Placement]:
+    """Every part put down on the main timeline, in the order they were put down (what
+    `rmot report` lists): where each stays, when and by which `detach`."""
+    phase_list = _program_phases(scene, plan)
+    events = [e for e in part_events(plan) if not e.attach]
+    out: list[Placement] = []
+    for k, phase in enumerate(phase_list[:-1]):
+        after = phase_list[k + 1]
+        for name in sorted(phase.put, key=lambda n: (declared_part(n), len(n), n)):
+            ev = next((e for e in events if e.instr.part == declared_part(name) and abs(e.t - phase.t1) <= 1e-9), None)
+            out.append(Placement(name, after.placed[name], phase.t1, ev.instr.span if ev is not None else None))
     return out

@@ -76,3 +76,24 @@ def test_a_frame_at_the_start_has_no_stack_and_at_the_end_all_of_it(rs) -> None:
     one = 12  # a box is 12 triangles
     assert carton_triangles(0.0) == one  # only the carton waiting at the infeed stop
     assert carton_triangles(float(rs.plan.cycle_time)) == 36 * one
+
+
+def test_the_report_lists_each_carton_put_down_where_when_and_by_which_line(rs) -> None:  # type: ignore[no-untyped-def]
+    from rmot.sim.parts import placements
+    from rmot.sim.report_html import _placed_table
+
+    placed = placements(rs.scene, rs.plan)
+    assert [p.name for p in placed] == [f"carton#{k}" for k in range(1, 37)]
+    assert np.allclose([p.t for p in placed], _detach_times(rs), atol=1e-9)
+    lines = PALLET.read_text(encoding="utf-8").splitlines()
+    detach_line = next(k for k, text in enumerate(lines, 1) if text.strip().startswith("detach carton"))
+    assert {p.span.start.line for p in placed} == {detach_line}
+    # each carton stays where the tool left it: the same offset from the flange at every detach
+    # (every carton is gripped alike), by the robot library's forward kinematics at that instant
+    tp = rs.plan.tasks[0]
+    entry = rs.scene.robots[tp.robot]
+    offsets = [np.linalg.inv(entry.base @ np.asarray(entry.robot.fk(tp.trajectory.at(p.t)))) @ p.pose for p in placed]
+    assert all(np.allclose(o, offsets[0], atol=1e-5) for o in offsets)  # 10 um: grips differ by trajectory sampling
+    assert len({tuple(np.round(p.pose[:3, 3], 4)) for p in placed}) == 36  # 36 distinct places
+    table = "".join(_placed_table(placed))
+    assert "Parts placed (36)" in table and table.count("<tr>") == 37 and f"palletizing.rmot:{detach_line}" in table
