@@ -239,6 +239,26 @@ def load_at(plan: plan_types.Plan, tp: plan_types.TaskPlan, t: float, parts: dic
     return sum(parts[n].mass for n in held if n in parts), held
 
 
+def _by_ordinal(scene: Scene, plan: plan_types.Plan, robot: str, variant: plan_types.Variant | None, t: float,
+                held: list[str]) -> list[str]:
+    """The parts `held` (declared names) by `robot` at `t` as findings name them: a feeder's
+    part by its ordinal (`carton#7`, the one the robot holds then, from the phases), others as
+    declared."""
+    feeders = {p.name for p in scene.cell.parts if p.feeder}
+    if not feeders.intersection(held):
+        return list(held)
+    phase_list = phases(scene, plan, (robot, variant)) if variant is not None else _program_phases(scene, plan)
+    now = [ph for ph in phase_list if ph.t0 <= t + 1e-12][-1:] or phase_list[:1]
+    ordinals = sorted((n for ph in now for n, (r, _) in ph.held.items() if r == robot and "#" in n), key=lambda n: (len(n), n))
+    out = []
+    for n in held:
+        mine = next((o for o in ordinals if declared_part(o) == n), None)
+        if mine is not None:
+            ordinals.remove(mine)
+        out.append(mine or n)
+    return out
+
+
 def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
     """E332: the tool's mass plus the held parts' beyond the robot's rated payload, at the
     first move of each run of moves that carry too much (`rated_payload_kg` on the robot;
@@ -265,7 +285,8 @@ def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
                 over = total > rated + 1e-9
                 if over and not over_before:
                     what = [f"tool '{move.tool.name}' {move.tool.mass:g} kg"] if move.tool.name else []
-                    what += [f"part '{n}' {parts[n].mass:g} kg" for n in held]
+                    named = _by_ordinal(scene, plan, tp.robot, variant, r.t_start, held)
+                    what += [f"part '{name}' {parts[n].mass:g} kg" for n, name in zip(held, named)]
                     message = (f"payload {total:g} kg ({' + '.join(what)}) must not exceed robot '{tp.robot}''s "
                                f"rated payload {rated:g} kg")
                     path = iterations.get(r.uid)

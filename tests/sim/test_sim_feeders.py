@@ -102,3 +102,20 @@ def test_parts_findings_in_a_loop_name_their_iteration(tmp_path: Path) -> None:
     far = [d for d in errors if d.code.id == "E330"]
     assert far and all("(in iteration layer = " in d.message for d in far)
     assert "'carton#1'" in far[0].message and "(in iteration layer = 0, row = 0, col = 0)" in far[0].message
+
+
+def test_payload_finding_names_the_feeder_part_by_its_ordinal(tmp_path: Path) -> None:
+    """5 kg cartons on the 1.2 kg suction tool: 6.2 kg over the IRB 1600-6/1.45's rated 6 kg
+    (ABB 3HAC023604-001, the model name) from each pick on; E332 names the carton carried then."""
+    heavy = CELL.replace(FEEDER, FEEDER.replace("mass 2 kg", "mass 5 kg"))
+    (tmp_path / "cell.rmot").write_text(heavy.replace(FEEDER.replace("mass 2 kg", "mass 5 kg") + "36",
+                                                      FEEDER.replace("mass 2 kg", "mass 5 kg") + "8"), encoding="utf-8")
+    path = tmp_path / "pallet.rmot"
+    path.write_text(PROGRAM.format(offset="0mm"), encoding="utf-8")
+    result = load_program(str(path), require_program=True)
+    assert not result.has_errors
+    over = [d for d in verify(plan_program(result.program)).diagnostics if d.code.id == "E332"]
+    assert len(over) == 8  # one per carried carton
+    for k, d in enumerate(over, 1):
+        assert f"part 'carton#{k}' 5 kg" in d.message and "6.2 kg" in d.message, d.message
+    assert "(in iteration layer = 1, row = 1, col = 1)" in over[-1].message
