@@ -89,7 +89,7 @@ class FreeSpace:
         if not self.scene.cell.parts:
             return True
         names = {p.name for p in self.scene.cell.parts}
-        return parts._counts(self.scene, hit) if names & {hit.a, hit.b} else True
+        return parts._counts(self.scene, hit, names) if names & {hit.a, hit.b} else True
 
     def _timeline(self, q: np.ndarray) -> Timeline:
         n = q.shape[0]
