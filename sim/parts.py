@@ -402,12 +402,14 @@ def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
 @record
 class Placement:
     """A part put down: `name` (a feeder's by ordinal, `carton#7`), its world pose (4, 4) from
-    then on, the instant `t` s of its detach, and the detach's source `span`."""
+    then on, the instant `t` s of its detach, the detach's source `span` and the loop iteration
+    it ran in (`layer = 1, row = 0`; '' outside loops)."""
 
     name: str
     pose: np.ndarray
     t: float
     span: Span | None
+    iteration: str = ""
 
 
 def placements(scene: Scene, plan: plan_types.Plan) -> list[Placement]:
@@ -415,10 +417,13 @@ def placements(scene: Scene, plan: plan_types.Plan) -> list[Placement]:
     `rmot report` lists): where each stays, when and by which `detach`."""
     phase_list = _program_phases(scene, plan)
     events = [e for e in part_events(plan) if not e.attach]
+    paths = {tp.robot: iteration_paths(tp.task.body) for tp in plan.tasks}
     out: list[Placement] = []
     for k, phase in enumerate(phase_list[:-1]):
         after = phase_list[k + 1]
         for name in sorted(phase.put, key=lambda n: (declared_part(n), len(n), n)):
             ev = next((e for e in events if e.instr.part == declared_part(name) and abs(e.t - phase.t1) <= 1e-9), None)
-            out.append(Placement(name, after.placed[name], phase.t1, ev.instr.span if ev is not None else None))
+            path = paths[ev.robot].get(ev.instr.uid) if ev is not None else None
+            out.append(Placement(name, after.placed[name], phase.t1, ev.instr.span if ev is not None else None,
+                                 describe_iteration(path) if path else ""))
     return out

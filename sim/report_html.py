@@ -259,11 +259,11 @@ def _placed_table(placed: Sequence[Any]) -> list[str]:
     if not placed:
         return []
     out = [f"<h3>Parts placed ({len(placed)})</h3><table><tr><th>part</th><th>pose in world</th><th>placed at [s]</th>"
-           "<th>by the detach at</th></tr>"]
+           "<th>by the detach at</th><th>in iteration</th></tr>"]
     for p in placed:
         line = f"{p.span.file.path}:{p.span.start.line}" if p.span is not None else "?"
         out.append(f"<tr><td>{_e(p.name)}</td><td>{_e(_pose_text(ir.Pose.from_matrix(p.pose)))}</td>"
-                   f"<td>{p.t:.3f}</td><td>{_e(line)}</td></tr>")
+                   f"<td>{p.t:.3f}</td><td>{_e(line)}</td><td>{_e(p.iteration)}</td></tr>")
     out.append("</table>")
     return out
 

@@ -95,5 +95,8 @@ def test_the_report_lists_each_carton_put_down_where_when_and_by_which_line(rs) 
     offsets = [np.linalg.inv(entry.base @ np.asarray(entry.robot.fk(tp.trajectory.at(p.t)))) @ p.pose for p in placed]
     assert all(np.allclose(o, offsets[0], atol=1e-5) for o in offsets)  # 10 um: grips differ by trajectory sampling
     assert len({tuple(np.round(p.pose[:3, 3], 4)) for p in placed}) == 36  # 36 distinct places
+    loops = [text.split()[1] for text in lines if text.strip().startswith("for ")]  # the loop variables, outermost first
+    assert placed[0].iteration == ", ".join(f"{v} = 0" for v in loops)
+    assert placed[-1].iteration != placed[0].iteration and placed[-1].iteration.startswith(f"{loops[0]} = ")
     table = "".join(_placed_table(placed))
     assert "Parts placed (36)" in table and table.count("<tr>") == 37 and f"palletizing.rmot:{detach_line}" in table
