@@ -33,6 +33,8 @@ import numpy as np
 from rmot.compiler import ir, plan_types
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
+from rmot.lang.record import record
+from rmot.lang.source import Span
 from rmot.sim import codes
 from rmot.sim.collide import CONTACT_TOL, PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.part_phases import (
@@ -40,7 +42,8 @@ from rmot.sim.part_phases import (
 )
 from rmot.sim.scene import Body, Scene, _local_box, _reach, _sphere_cover, flange_in_last_joint
 
-__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "heaviest_held", "part_bodies", "part_events", "part_hits",
+__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "Placement", "absent_pose", "heaviest_held", "is_absent", "part_bodies",
+           "part_events", "part_hits", "placements",
            "payload_findings", "phase_scene", "phases", "shape_diagnostics"]
 
 # --------------------------------------------------------------------------- collision
@@ -236,6 +239,26 @@ def load_at(plan: plan_types.Plan, tp: plan_types.TaskPlan, t: float, parts: dic
     return sum(parts[n].mass for n in held if n in parts), held
 
 
+def _by_ordinal(scene: Scene, plan: plan_types.Plan, robot: str, variant: plan_types.Variant | None, t: float,
+                held: list[str]) -> list[str]:
+    """The parts `held` (declared names) by `robot` at `t` as findings name them: a feeder's
+    part by its ordinal (`carton#7`, the one the robot holds then, from the phases), others as
+    declared."""
+    feeders = {p.name for p in scene.cell.parts if p.feeder}
+    if not feeders.intersection(held):
+        return list(held)
+    phase_list = phases(scene, plan, (robot, variant)) if variant is not None else _program_phases(scene, plan)
+    now = [ph for ph in phase_list if ph.t0 <= t + 1e-12][-1:] or phase_list[:1]
+    ordinals = sorted((n for ph in now for n, (r, _) in ph.held.items() if r == robot and "#" in n), key=lambda n: (len(n), n))
+    out = []
+    for n in held:
+        mine = next((o for o in ordinals if declared_part(o) == n), None)
+        if mine is not None:
+            ordinals.remove(mine)
+        out.append(mine or n)
+    return out
+
+
 def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
     """E332: the tool's mass plus the held parts' beyond the robot's rated payload, at the
     first move of each run of moves that carry too much (`rated_payload_kg` on the robot;
@@ -262,7 +285,8 @@ def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
                 over = total > rated + 1e-9
                 if over and not over_before:
                     what = [f"tool '{move.tool.name}' {move.tool.mass:g} kg"] if move.tool.name else []
-                    what += [f"part '{n}' {parts[n].mass:g} kg" for n in held]
+                    named = _by_ordinal(scene, plan, tp.robot, variant, r.t_start, held)
+                    what += [f"part '{name}' {parts[n].mass:g} kg" for n, name in zip(held, named)]
                     message = (f"payload {total:g} kg ({' + '.join(what)}) must not exceed robot '{tp.robot}''s "
                                f"rated payload {rated:g} kg")
                     path = iterations.get(r.uid)
@@ -303,35 +327,67 @@ def _centre(part: ir.Part) -> np.ndarray:
 # --------------------------------------------------------------------------- pictures
 
 
-def with_part_bodies(scene: Scene) -> Scene:
+def with_part_bodies(scene: Scene, plan: plan_types.Plan | None = None) -> Scene:
     """`scene` plus every part as a body at its starting pose (what a picture draws; where it
-    is at an instant comes from part_poses)."""
-    start = Phase(0.0, 0.0, {p.name: p.pose.matrix() for p in scene.cell.parts}, {})
+    is at an instant comes from part_poses). With the `plan`, a feeder is drawn as the parts it
+    gives (`carton#1`, `carton#2`, ...: every part any phase has), each only while it exists."""
+    names = {p.name: p.pose.matrix() for p in scene.cell.parts if plan is None or not p.feeder}
+    if plan is not None:
+        spots = {p.name: p.pose.matrix() for p in scene.cell.parts}
+        for phase in _program_phases(scene, plan):
+            for name in [*phase.placed, *phase.held]:
+                names.setdefault(name, spots[declared_part(name)])
+    start = Phase(0.0, 0.0, names, {})
     return replace(scene, bodies=scene.bodies + tuple(part_bodies(scene, start)))
 
 
 _PHASES: dict[tuple[int, int], tuple[Scene, plan_types.Plan, list[Phase]]] = {}
 
 
-def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
-               q: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
-    """part name -> (N, 4, 4) world poses at `times` (N,): placed where they lie, held ones on
-    their robot's flange (q: robot -> (N, dof) joint values at `times`)."""
-    if not scene.cell.parts:
-        return {}
-    key = (id(scene), id(plan))
+def _program_phases(scene: Scene, plan: plan_types.Plan) -> list[Phase]:
+    """phases(scene, plan), computed once per (scene, plan) for the pictures. The phases do not
+    depend on the scene's part bodies, so a scene and the same scene with its parts share them."""
+    key = (id(scene.cell), id(plan))
     cached = _PHASES.get(key)
-    if cached is None or cached[0] is not scene or cached[1] is not plan:
+    if cached is None or cached[0].cell is not scene.cell or cached[1] is not plan:
         _PHASES.clear()  # one program at a time: keep the cache small
         cached = (scene, plan, phases(scene, plan))
         _PHASES[key] = cached
-    phase_list = cached[2]
+    return cached[2]
+
+
+def absent_pose(spot: np.ndarray) -> np.ndarray:
+    """The pose of a part that does not exist at an instant (a feeder's part not yet presented):
+    the body shrunk to the point `spot` (4, 4) stands at, so it covers no pixel and no view."""
+    pose = np.zeros((4, 4))
+    pose[:, 3] = spot[:, 3]
+    return pose
+
+
+def is_absent(pose: np.ndarray) -> bool:
+    """Whether a body pose (4, 4) is absent_pose's: a body shrunk to a point."""
+    return not np.any(pose[:3, :3])
+
+
+def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
+               q: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """part name -> (N, 4, 4) world poses at `times` (N,): placed where they lie, held ones on
+    their robot's flange (q: robot -> (N, dof) joint values at `times`); a feeder's part before
+    it is presented has absent_pose. Declared parts and every feeder part by ordinal."""
+    if not scene.cell.parts:
+        return {}
+    phase_list = _program_phases(scene, plan)
     n = len(times)
     starts = np.array([ph.t0 for ph in phase_list])
     which = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(phase_list) - 1)
     flanges = {r: scene.robots[r].base @ np.asarray(scene.robots[r].robot.fk_batch(v)) for r, v in q.items()
                if r in scene.robots and any(r == h[0] for ph in phase_list for h in ph.held.values())}
-    out = {p.name: np.tile(p.pose.matrix(), (n, 1, 1)) for p in scene.cell.parts}
+    spots = {p.name: p.pose.matrix() for p in scene.cell.parts}
+    out = {name: np.tile(spot, (n, 1, 1)) for name, spot in spots.items()}
+    for ph in phase_list:
+        for name in [*ph.placed, *ph.held]:
+            if name not in out:
+                out[name] = np.tile(absent_pose(spots[declared_part(name)]), (n, 1, 1))
     for k, ph in enumerate(phase_list):
         mask = which == k
         if not mask.any():
@@ -340,4 +396,34 @@ def part_poses(scene: Scene, plan: plan_types.Plan, times: np.ndarray,
             out[name][mask] = world
         for name, (robot, local) in ph.held.items():
             out[name][mask] = flanges[robot][mask] @ local
+    return out
+
+
+@record
+class Placement:
+    """A part put down: `name` (a feeder's by ordinal, `carton#7`), its world pose (4, 4) from
+    then on, the instant `t` s of its detach, the detach's source `span` and the loop iteration
+    it ran in (`layer = 1, row = 0`; '' outside loops)."""
+
+    name: str
+    pose: np.ndarray
+    t: float
+    span: Span | None
+    iteration: str = ""
+
+
+def placements(scene: Scene, plan: plan_types.Plan) -> list[Placement]:
+    """Every part put down on the main timeline, in the order they were put down (what
+    `rmot report` lists): where each stays, when and by which `detach`."""
+    phase_list = _program_phases(scene, plan)
+    events = [e for e in part_events(plan) if not e.attach]
+    paths = {tp.robot: iteration_paths(tp.task.body) for tp in plan.tasks}
+    out: list[Placement] = []
+    for k, phase in enumerate(phase_list[:-1]):
+        after = phase_list[k + 1]
+        for name in sorted(phase.put, key=lambda n: (declared_part(n), len(n), n)):
+            ev = next((e for e in events if e.instr.part == declared_part(name) and abs(e.t - phase.t1) <= 1e-9), None)
+            path = paths[ev.robot].get(ev.instr.uid) if ev is not None else None
+            out.append(Placement(name, after.placed[name], phase.t1, ev.instr.span if ev is not None else None,
+                                 describe_iteration(path) if path else ""))
     return out

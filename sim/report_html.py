@@ -250,6 +250,21 @@ def _planned(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
                    f'srcdoc="{_e(page)}"></iframe>')
     robots = _safe(parts, "robots", problems) or {}
     out.append("<h3>Robot and cell data used</h3>" + _cell_tables(result.plan, robots))
+    out += _placed_table(_safe(parts, "placements", problems) or ())
+    return out
+
+
+def _placed_table(placed: Sequence[Any]) -> list[str]:
+    """The parts put down (a feeder's by ordinal), where they stay, when, and by which `detach`."""
+    if not placed:
+        return []
+    out = [f"<h3>Parts placed ({len(placed)})</h3><table><tr><th>part</th><th>pose in world</th><th>placed at [s]</th>"
+           "<th>by the detach at</th><th>in iteration</th></tr>"]
+    for p in placed:
+        line = f"{p.span.file.path}:{p.span.start.line}" if p.span is not None else "?"
+        out.append(f"<tr><td>{_e(p.name)}</td><td>{_e(_pose_text(ir.Pose.from_matrix(p.pose)))}</td>"
+                   f"<td>{p.t:.3f}</td><td>{_e(line)}</td><td>{_e(p.iteration)}</td></tr>")
+    out.append("</table>")
     return out
 
 
@@ -269,6 +284,7 @@ def _safe(parts: dict[Any, Callable[[], Any]], key: Any, problems: list[Diagnost
 
 def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
     """The expensive pieces of a program's section, made on demand (each may fail alone)."""
+    from rmot.sim.parts import placements
     from rmot.sim.plots import figure_bytes, plot_data
     from rmot.sim.render.files import write_png  # noqa: F401 - the PNG encoder lives with it
     from rmot.sim.render.findings import markings
@@ -308,7 +324,8 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
 
     return {"marks": marks, "picture": picture, "plot": plot,
             "viewer": lambda: render_html(scene(), fps=10, marks=marks()),
-            "robots": lambda: {name: e.robot for name, e in scene().scene.robots.items()}}
+            "robots": lambda: {name: e.robot for name, e in scene().scene.robots.items()},
+            "placements": lambda: placements(scene().scene, scene().plan)}
 
 
 STYLE = """

@@ -30,7 +30,7 @@ from rmot.compiler.passes.state import FrontendState
 from rmot.compiler.passes.values import LENGTH, MASS, RATIO, UNIT_TABLE, PoseV, Quantity
 from rmot.lang import ast
 
-__all__ = ["lower_cell", "IO_DIRECTIONS"]
+__all__ = ["program_feeders", "lower_cell", "IO_DIRECTIONS"]
 
 IO_DIRECTIONS = {"out": ir.IoDirection.DIGITAL_OUT, "in": ir.IoDirection.DIGITAL_IN,
                  "aout": ir.IoDirection.ANALOG_OUT, "ain": ir.IoDirection.ANALOG_IN}
@@ -39,12 +39,12 @@ _GEOMETRY_ARGS = {"box": ("x", "y", "z"), "cylinder": ("r", "h"), "sphere": ("r"
 
 
 class _CellBuilder:
-    def __init__(self, state: FrontendState, decl: ast.CellDecl) -> None:
+    def __init__(self, state: FrontendState, decl: ast.CellDecl, scope: Scope | None = None) -> None:
         self.state = state
         self.rep: Reporter = state.reporter
         self.decl = decl
         self.file = decl.span.file
-        self.scope = Scope()
+        self.scope = Scope() if scope is None else scope
         self.robots: list[ir.RobotInstance] = []
         self.infos: dict[str, RobotInfo] = {}
         self.fixtures: list[ir.Fixture] = []
@@ -323,3 +323,23 @@ def lower_cell(state: FrontendState) -> FrontendState:
     builder = _CellBuilder(state, cells[0])
     cell = builder.build()
     return replace(state, cell=cell, cell_scope=builder.scope, robots=builder.infos)
+
+
+def program_feeders(state: FrontendState, prog: ast.ProgramDecl, scope: Scope) -> FrontendState:
+    """The feeders declared at a program's top level (`feeder infeed = box(...) at ...`), added
+    to the cell's parts as if the cell declared them; their names are declared in `scope` (the
+    program's), their numbers read in it. A name the cell already gives a part is a second definition
+    (E102)."""
+    decls = [s for s in prog.body if isinstance(s, ast.FeederDecl)]
+    if not decls or state.cell is None:
+        return state
+    builder = _CellBuilder(state, ast.CellDecl(prog.name, (), prog.span), scope)
+    taken = {p.name: p for p in state.cell.parts}
+    for decl in decls:
+        first = taken.get(decl.name.name)
+        if first is not None:
+            state.reporter.error(codes.DUPLICATE, f"'{decl.name.name}' must be defined once (the cell already has a part "
+                                 "of that name)", decl.name.span, ((f"'{decl.name.name}' is first defined here", first.span),))
+            continue
+        builder._FeederDecl(decl)
+    return replace(state, cell=replace(state.cell, parts=state.cell.parts + tuple(builder.parts)))

@@ -17,6 +17,7 @@ from dataclasses import replace
 from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.lower_body import TaskLowering
+from rmot.compiler.passes.lower_cell import program_feeders
 from rmot.compiler.passes.modal import DEFAULT_MODAL, Modal, apply_setting
 from rmot.compiler.passes.state import FrontendState
 from rmot.lang import ast
@@ -39,7 +40,11 @@ def lower_program(state: FrontendState) -> FrontendState:
     prog = programs[0]
     file_scope = state.module_scopes.get(state.main.path, Scope(state.cell_scope))
     procs: list[Entry] = list(state.procs)
-    tasks = _lower_tasks(prog, state, Scope(file_scope), procs)
+    scope = Scope(file_scope)
+    state = program_feeders(state, prog, scope)  # a program's own feeders join the cell's parts
+    cell = state.cell
+    assert cell is not None
+    tasks = _lower_tasks(prog, state, scope, procs)
     state = replace(state, procs=tuple(procs))  # with the procs declared inside the program
     if tasks is None:
         return state
@@ -74,14 +79,14 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
         robot = _robot(robot_name, state)
         if robot is None:
             return None
-        body = tuple(s for s in prog.body if not isinstance(s, ast.TaskDecl))
+        body = tuple(s for s in prog.body if not isinstance(s, (ast.TaskDecl, ast.FeederDecl)))
         lowering = _task_lowering(robot, state, procs)
         return [ir.Task(prog.name.name, robot.name, lowering.run(body, scope, DEFAULT_MODAL, where), span=prog.span)]
     # several tasks: shared declarations once, then each task with the shared settings
     shared = tuple(s for s in prog.body if isinstance(s, _SHARED))
     settings = tuple(s for s in prog.body if isinstance(s, ast.Setting))
     for s in prog.body:
-        if not isinstance(s, (*_SHARED, ast.Setting, ast.TaskDecl)):
+        if not isinstance(s, (*_SHARED, ast.Setting, ast.TaskDecl, ast.FeederDecl)):
             rep.error(codes.MISPLACED, f"{_word(s)} must be inside a task in {where} (it has task blocks)", s.span)
     first_robot = _robot(task_decls[0].robot, state) or state.cell.robots[0] if state.cell.robots else None
     if first_robot is None:

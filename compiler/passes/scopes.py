@@ -37,7 +37,7 @@ STATEMENT_WORDS = {
 STATEMENT_WORDS["ModelDecl"] = "a robot model (it belongs in a cell)"
 STATEMENT_WORDS.update({"VarDecl": "a var", "AssignStmt": "an assignment", "StopStmt": "'stop'",
                         "While": "a while loop"})
-STATEMENT_WORDS["FeederDecl"] = "a feeder (it belongs in a cell)"
+STATEMENT_WORDS["FeederDecl"] = "a feeder (it belongs in a cell or at a program's top level)"
 _ALLOWED_IN = {
     "file": "a file holds use cell, import, cell, program, const, target and proc",
     "cell": "a cell holds robot, fixture, tool, frame, io and const",

@@ -19,6 +19,7 @@ from rmot.compiler.plan_types import Plan
 from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.tessellate import TriMesh, merge, tessellate
 from rmot.sim.render.transform import rotate_vectors, transform_points
+from rmot.sim.part_phases import declared_part
 from rmot.sim.parts import part_poses, with_part_bodies
 from rmot.sim.scene import Body, Scene, build_scene
 
@@ -186,7 +187,7 @@ def prepare(plan: Plan, samples: int = 24, robots: Mapping[str, object] | None =
 
     robots: robot instance name -> Robot (default: loaded from the robot library).
     """
-    scene = with_part_bodies(build_scene(plan.program.cell, _tools_used(plan.program), robots))
+    scene = with_part_bodies(build_scene(plan.program.cell, _tools_used(plan.program), robots), plan)
     names = tuple(b.name for b in scene.bodies)
     meshes = tuple(tessellate(b.shape) for b in scene.bodies)
     colors = np.array([_body_color(scene, b) for b in scene.bodies], np.float32).reshape(-1, 3)
@@ -201,7 +202,7 @@ def prepare(plan: Plan, samples: int = 24, robots: Mapping[str, object] | None =
 
 
 def _body_color(scene: Scene, body: Body) -> tuple[float, float, float]:
-    if any(p.name == body.name for p in scene.cell.parts):
+    if any(p.name == declared_part(body.name) for p in scene.cell.parts):
         return PART
     kind = body.kind
     if kind == "fixture":

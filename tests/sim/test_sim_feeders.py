@@ -102,3 +102,47 @@ def test_parts_findings_in_a_loop_name_their_iteration(tmp_path: Path) -> None:
     far = [d for d in errors if d.code.id == "E330"]
     assert far and all("(in iteration layer = " in d.message for d in far)
     assert "'carton#1'" in far[0].message and "(in iteration layer = 0, row = 0, col = 0)" in far[0].message
+
+
+def test_payload_finding_names_the_feeder_part_by_its_ordinal(tmp_path: Path) -> None:
+    """5 kg cartons on the 1.2 kg suction tool: 6.2 kg over the IRB 1600-6/1.45's rated 6 kg
+    (ABB 3HAC023604-001, the model name) from each pick on; E332 names the carton carried then."""
+    heavy = CELL.replace(FEEDER, FEEDER.replace("mass 2 kg", "mass 5 kg"))
+    (tmp_path / "cell.rmot").write_text(heavy.replace(FEEDER.replace("mass 2 kg", "mass 5 kg") + "36",
+                                                      FEEDER.replace("mass 2 kg", "mass 5 kg") + "8"), encoding="utf-8")
+    path = tmp_path / "pallet.rmot"
+    path.write_text(PROGRAM.format(offset="0mm"), encoding="utf-8")
+    result = load_program(str(path), require_program=True)
+    assert not result.has_errors
+    over = [d for d in verify(plan_program(result.program)).diagnostics if d.code.id == "E332"]
+    assert len(over) == 8  # one per carried carton
+    for k, d in enumerate(over, 1):
+        assert f"part 'carton#{k}' 5 kg" in d.message and "6.2 kg" in d.message, d.message
+    assert "(in iteration layer = 1, row = 1, col = 1)" in over[-1].message
+
+
+def test_a_feeder_declared_in_the_program_works_as_one_in_the_cell(tmp_path: Path) -> None:
+    """The cell's feeder line moved to the program's top level: the same stack checks clean
+    with 8 cartons; with 7 the 8th attach (one line lower: the feeder line above it) is E334."""
+    line = FEEDER + "{count}"
+    program = PROGRAM.replace("  tool suction\n", "  tool suction\n  " + line.replace("{", "{{").replace("}", "}}") + "\n")
+    (tmp_path / "cell.rmot").write_text(CELL.replace(FEEDER + "36\n", ""), encoding="utf-8")
+    for count, expected in ((8, []), (7, [("E334", ATTACH_LINE + 1)])):
+        path = tmp_path / "pallet.rmot"
+        path.write_text(program.format(offset="0mm").replace("{count}", str(count)), encoding="utf-8")
+        result = load_program(str(path), require_program=True)
+        assert not result.has_errors, [str(d) for d in result.diagnostics]
+        assert [p.name for p in result.program.cell.parts if p.feeder] == ["carton"]
+        errors = [d for d in verify(plan_program(result.program)).diagnostics if d.is_error]
+        assert [(d.code.id, d.span.start.line) for d in errors] == expected
+
+
+def test_a_feeder_inside_a_loop_or_named_like_a_cell_part_is_refused(tmp_path: Path) -> None:
+    (tmp_path / "cell.rmot").write_text(CELL, encoding="utf-8")
+    nested = PROGRAM.replace("      for col in 0 .. 2 {{\n", "      for col in 0 .. 2 {{\n        " + FEEDER + "3\n")
+    twice = PROGRAM.replace("  tool suction\n", "  tool suction\n  " + FEEDER + "3\n")
+    for text, code in ((nested, "E115"), (twice, "E102")):
+        path = tmp_path / "pallet.rmot"
+        path.write_text(text.format(offset="0mm"), encoding="utf-8")
+        found = [d.code.id for d in load_program(str(path), require_program=True).diagnostics if d.is_error]
+        assert code in found, found
