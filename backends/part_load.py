@@ -21,7 +21,11 @@ __all__ = ["held_load", "part_centres", "state_at_moves"]
 
 
 def part_centres(ctx: Any) -> dict[int, np.ndarray]:
-    """Attach uid -> the part's centre in the flange frame (m), for every attach of the task."""
+    """Attach uid -> the part's centre in the flange frame (m), for every attach of the task.
+
+    A part taken where it was declared has its declared centre; a feeder presents every part
+    of its supply at the declared pose, so each attach of a feeder part has it too. A plain
+    part attached again (it was put down somewhere since) is taken as centred on the TCP."""
     cache = getattr(ctx, "_part_centres", None)
     if cache is not None:
         return cache
@@ -42,7 +46,7 @@ def part_centres(ctx: Any) -> dict[int, np.ndarray]:
         elif isinstance(instr, ir.Attach):
             part = parts.get(instr.part)
             tcp = np.asarray(instr.tool.tcp.position, dtype=float)
-            if part is None or flange is None or instr.part in seen or instr.part in attached_elsewhere:
+            if part is None or flange is None or (instr.part in seen and not part.feeder) or instr.part in attached_elsewhere:
                 out[instr.uid] = tcp
             else:
                 in_base = base_inv * part.pose
