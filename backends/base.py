@@ -131,6 +131,16 @@ class TaskContext:
         """'file.rmot:12' for `node` when source maps are on (see `source_ref`), else None."""
         return source_ref(getattr(node, "span", None)) if self.source_map else None
 
+    def register_slice(self, first: int, last: int) -> tuple[int, int]:
+        """This task's own part (lo, hi) of a controller's global register range first..last.
+        Registers are global on a Fanuc or Yaskawa controller and the program's tasks may run
+        on one controller, so task k of n (program order) takes the k-th of n equal slices:
+        no two tasks share a register; a single task keeps the whole range."""
+        names = [t.name for t in self.plan.program.tasks]
+        size = (last - first + 1) // max(len(names), 1)
+        k = names.index(self.task.name) if self.task.name in names else 0
+        return first + k * size, first + (k + 1) * size - 1
+
     def with_state(self, cls: type[C], **state: Any) -> C:
         """This context as the vendor subclass `cls`, carrying that vendor's per-task `state`."""
         return cls(**{f.name: getattr(self, f.name) for f in fields(TaskContext)}, **state)

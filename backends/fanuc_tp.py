@@ -176,7 +176,7 @@ class FanucBackend(Backend):
         routine_of = self.routine_table(names, body, task, prefix=f"{main_name}_")
         ctx = task.with_state(FanucContext, names=names, routine_of=routine_of,
                               frames=_Frames(task.plan.program.cell, task.robot.name),
-                              regs=_Registers(task_variables(body)))
+                              regs=_Registers.of_task(task, body))
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:
             for part in parts:
@@ -249,7 +249,11 @@ class FanucBackend(Backend):
                     lines.append(self.comment(f"W {fmt(w, 1)} P {fmt(p, 1)} R {fmt(r, 1)}"[:COMMENT_MAX]))
                     continue
                 k += 1
-                pr = self.FRAME_PR + k
+                pr = ctx.regs.frame_prs[0] + k - 1
+                if pr > ctx.regs.frame_prs[1]:
+                    self.unsupported(codes.REGISTERS_EXHAUSTED, f"this task's tool and frame setup "
+                                     f"must fit PR[{ctx.regs.frame_prs[0]}..{ctx.regs.frame_prs[1]}] "
+                                     f"(needs PR[{pr}])", self._decl_span(ctx, kind, fname))
                 if not given:
                     self.warn(codes.STORED_DATA_WRITTEN, f"{what} '{fname or 'flange'}' has no controller "
                               f"number: the program overwrites {kind}[{index}] and PR[{pr}] (give it "
@@ -473,10 +477,14 @@ class FanucBackend(Backend):
     # MAX_CONDITIONS leaves of one operator (real programs: `IF DI[101]=ON AND UO[3]=OFF AND
     # DI[104]=OFF,JMP LBL[20]`), else a chain of one-condition jumps.
 
+    # Registers, position registers and timers are global on the controller, which the
+    # program's tasks may share: each task numbers its own slice of every range
+    # (TaskContext.register_slice; lang/REFERENCE.md §8), the whole range for a single task.
     REG_FIRST: ClassVar[int] = 1
     MAX_REGISTER: ClassVar[int] = 200  # R-30iB: R[1]..R[200] by default (Operator's Manual)
-    LOOP_PR: ClassVar[int] = 60  # loop offsets PR[61..89]: below FRAME_PR + 1
-    POLL_TIMER: ClassVar[int] = 10  # TIMER[10] counts a polled wait's timeout (TIMER[1..10])
+    LOOP_PR: ClassVar[int] = 60  # loop offsets PR[61..90]: below FRAME_PR + 1
+    MAX_PR: ClassVar[int] = 100  # R-30iB: PR[1]..PR[100] by default; frame setup PR[91..100]
+    TIMERS: ClassVar[int] = 10  # TIMER[1..10]
     MAX_CONDITIONS: ClassVar[int] = 5
 
     def _reg(self, name: str, ctx: FanucContext, span: object) -> str:
@@ -486,14 +494,19 @@ class FanucBackend(Backend):
                              f"variable '{name}' must be declared in the task (got a reference to "
                              "an undeclared one)", span)  # type: ignore[arg-type]
             n = 0
+        self._within(n, ctx, span)
         return f"R[{n}:{tp_io_comment(name)[:16]}]"
+
+    def _within(self, n: int, ctx: FanucContext, span: object) -> None:
+        """E4xx when R[n] lies beyond this task's slice of the registers."""
+        if n > ctx.regs.last:
+            self.unsupported(codes.REGISTERS_EXHAUSTED,
+                             f"the program must fit registers R[{ctx.regs.first}.."
+                             f"{ctx.regs.last}] (needs R[{n}])", span)  # type: ignore[arg-type]
 
     def _temp(self, ctx: FanucContext, span: object) -> str:
         n = ctx.regs.temp()
-        if n > self.MAX_REGISTER:
-            self.unsupported(codes.REGISTERS_EXHAUSTED,
-                             f"the program must fit registers R[{self.REG_FIRST}.."
-                             f"{self.MAX_REGISTER}] (needs R[{n}])", span)  # type: ignore[arg-type]
+        self._within(n, ctx, span)
         return f"R[{n}:rmot tmp]"
 
     def var_decl(self, node: ir.VarDecl, ctx: FanucContext) -> list[str]:
@@ -645,14 +658,14 @@ class FanucBackend(Backend):
             return self._timed_wait(one[1], node.timeout, node.on_timeout, ctx)
         self.warn(codes.WAIT_POLLED, "TP's WAIT must test comparisons of one and/or kind, at "
                   f"most {self.MAX_CONDITIONS}, on registers and I/O; this condition is polled "
-                  "in a loop" + (f" with TIMER[{self.POLL_TIMER}] counting the timeout"
+                  "in a loop" + (f" with TIMER[{ctx.regs.timer}] counting the timeout"
                                  if node.timeout else ""),
                   node.span)
         poll, done = ctx.program.label(), ctx.program.label()
         if node.timeout is None:
             return [f"LBL[{poll}]", *self._jump(c, done, True, ctx, node), f"JMP LBL[{poll}]",
                     f"LBL[{done}]"]
-        timer = f"TIMER[{self.POLL_TIMER}]"  # seconds (real programs: `R[181]=TIMER[5]`, `>=3`)
+        timer = f"TIMER[{ctx.regs.timer}]"  # seconds (real programs: `R[181]=TIMER[5]`, `>=3`)
         lines = [f"{timer}=RESET", f"{timer}=START", f"LBL[{poll}]",
                  *self._jump(c, done, True, ctx, node)]
         t = self._temp(ctx, node.span)
@@ -691,12 +704,12 @@ class FanucBackend(Backend):
                 continue
             steps = (tuple(v.uid for v in offset.loops), _rounded(offset.steps))
             if steps not in ctx.regs.prs:
-                ctx.regs.prs[steps] = self.LOOP_PR + len(ctx.regs.prs) + 1
+                ctx.regs.prs[steps] = ctx.regs.loop_prs[0] + len(ctx.regs.prs)
                 pr = ctx.regs.prs[steps]
-                if pr > self.FRAME_PR:
+                if pr > ctx.regs.loop_prs[1]:
                     self.unsupported(codes.REGISTERS_EXHAUSTED,
-                                     f"loop offsets must fit PR[{self.LOOP_PR + 1}.."
-                                     f"{self.FRAME_PR}] (needs PR[{pr}])", template.loop.span)
+                                     f"loop offsets must fit PR[{ctx.regs.loop_prs[0]}.."
+                                     f"{ctx.regs.loop_prs[1]}] (needs PR[{pr}])", template.loop.span)
                 lines.append(f"PR[{pr}]=LPOS-LPOS")
             ctx.regs.offsets[key] = ctx.regs.prs[steps]
         return lines
@@ -720,7 +733,9 @@ class FanucBackend(Backend):
         if var.name is not None:
             return self._reg(var.name, ctx, span)
         if var.uid not in ctx.regs.repeat:
-            ctx.regs.repeat[var.uid] = f"R[{ctx.regs.counter()}:rmot repeat]"
+            n = ctx.regs.counter()
+            self._within(n, ctx, span)
+            ctx.regs.repeat[var.uid] = f"R[{n}:rmot repeat]"
         return ctx.regs.repeat[var.uid]
 
     def _offset_lines(self, template: LoopTemplate, ctx: FanucContext) -> list[str]:
@@ -786,6 +801,11 @@ class _Registers:
     temporaries above them, and the loop offsets (PR per (move uid, role))."""
 
     variables: dict[str, int]
+    first: int = 1  # this task's registers R[first..last] (TaskContext.register_slice)
+    last: int = 200
+    loop_prs: tuple[int, int] = (61, 90)  # this task's loop offsets PR[lo..hi]
+    frame_prs: tuple[int, int] = (91, 100)  # this task's tool and frame setup PR[lo..hi]
+    timer: int = 10  # the TIMER counting this task's polled waits
     used: int = 0
     prs: dict[object, int] = field(default_factory=dict)
     offsets: dict[tuple[int, str], int] = field(default_factory=dict)
@@ -794,21 +814,30 @@ class _Registers:
     loop_routines: dict[object, str] = field(default_factory=dict)  # (routine, offsets) -> name
     counters: int = 0
 
+    @classmethod
+    def of_task(cls, task: TaskContext, body: tuple[ir.Instr, ...]) -> _Registers:
+        """The registers of `task`: its own slice of each global range."""
+        first, last = task.register_slice(FanucBackend.REG_FIRST, FanucBackend.MAX_REGISTER)
+        return cls(task_variables(body, first), first=first, last=last,
+                   loop_prs=task.register_slice(FanucBackend.LOOP_PR + 1, FanucBackend.FRAME_PR),
+                   frame_prs=task.register_slice(FanucBackend.FRAME_PR + 1, FanucBackend.MAX_PR),
+                   timer=task.register_slice(1, FanucBackend.TIMERS)[1])
+
     def reset(self) -> None:
         self.used = 0
 
     def temp(self) -> int:
         self.used += 1
-        return FanucBackend.REG_FIRST + len(self.variables) + self.counters + self.used - 1
+        return self.first + len(self.variables) + self.counters + self.used - 1
 
     def counter(self) -> int:
         """A register of its own for a `repeat` loop's count (never reused as a temporary)."""
         self.counters += 1
-        return FanucBackend.REG_FIRST + len(self.variables) + self.counters - 1
+        return self.first + len(self.variables) + self.counters - 1
 
 
-def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, int]:
-    """Every variable and loop variable of a task, numbered from REG_FIRST in order of first
+def task_variables(body: tuple[ir.Instr, ...], first: int = FanucBackend.REG_FIRST) -> dict[str, int]:
+    """Every variable and loop variable of a task, numbered from `first` in order of first
     appearance."""
     names: list[str] = []
     for node in ir.walk(body):
@@ -816,7 +845,7 @@ def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, int]:
                 else node.var if isinstance(node, ir.Loop) else None)
         if name is not None and name not in names:
             names.append(name)
-    return {name: FanucBackend.REG_FIRST + k for k, name in enumerate(names)}
+    return {name: first + k for k, name in enumerate(names)}
 
 
 def _tp_number(value: float | int | bool) -> str:
