@@ -28,7 +28,9 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     acceleration (m/s^2) has no TP form (W408 once per task).
   * payload: a .ls program can only select a payload schedule (PAYLOAD[i]) whose mass and
     centre of gravity live on the controller ($PLST_GRP1[i]): a tool with a mass warns W411
-    once, giving the mass and rmot's centre of gravity (half way flange->TCP, base.tool_cog).
+    once, giving the mass and rmot's centre of gravity (half way flange->TCP, base.tool_cog);
+    each attach/detach selects the schedule of the new load with PAYLOAD[i] (W460 gives the
+    values to enter in schedule i).
   * digital ports: DI[n] / DO[n] with n in DIGITAL_PORTS = 1..512 (the R-30iA/iB standard
     DI[1]-DI[512] / DO[1]-DO[512] logical range); E404 outside.
   * zones: FINE, else CNTn. CNT is not a radius (it scales the corner rounding with speed):
@@ -65,7 +67,8 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes
-from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm
+from rmot.backends.part_load import held_load
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
@@ -431,6 +434,41 @@ class FanucBackend(Backend):
         lines = [f"IF DI[{c.port}{_sig(c.signal)}]<>{self._level(c.value)},JMP LBL[{other}]"]
         lines += self.body(node.then, ctx) + [f"JMP LBL[{done}]", f"LBL[{other}]"]
         return lines + self.body(node.otherwise, ctx) + [f"LBL[{done}]"]
+
+    # A held part's load: TP's payload instruction `PAYLOAD[i]` switches the active payload
+    # schedule i (R-30iB Operator's Manual B-83284EN, "Payload instruction": i = payload schedule
+    # number 1..10), whose mass and centre of gravity are entered on the controller's payload
+    # setting screen ($PLST_GRP1[i]); a program selects a schedule, it does not write its
+    # numbers. Each distinct load of the task (tool + held parts after an attach or detach)
+    # gets its own schedule, numbered in order of first use; W460 once per schedule gives the
+    # values to enter there.
+    MAX_PAYLOAD_SCHEDULE: ClassVar[int] = 10
+
+    def attach(self, node: ir.Attach, ctx: FanucContext) -> list[str]:  # type: ignore[override]
+        return self._payload_switch(node, ctx)
+
+    def detach(self, node: ir.Detach, ctx: FanucContext) -> list[str]:  # type: ignore[override]
+        return self._payload_switch(node, ctx)
+
+    def _payload_switch(self, node: ir.Attach | ir.Detach, ctx: FanucContext) -> list[str]:
+        _, _, total, cog = held_load(node, ctx)
+        cog_mm = fmt_list((c * 1000.0 for c in cog), 1)
+        schedules = ctx.regs.payloads
+        key = f"{fmt(total, 3)} kg [{cog_mm}]"
+        if key not in schedules:
+            schedules[key] = len(schedules) + 1
+            if schedules[key] > self.MAX_PAYLOAD_SCHEDULE:
+                self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"the task's loads must fit payload "
+                                 f"schedules 1..{self.MAX_PAYLOAD_SCHEDULE} (needs "
+                                 f"{schedules[key]})", node.span)
+            self.warn(codes.PART_PAYLOAD_NOT_EXPRESSED, f"payload schedule {schedules[key]} "
+                      f"($PLST_GRP1[{schedules[key]}]) must hold {fmt(total, 3)} kg with centre of "
+                      f"gravity [{cog_mm}] mm in the flange frame (tool and held parts): the "
+                      f"program selects it with PAYLOAD[{schedules[key]}] at this "
+                      f"{'attach' if isinstance(node, ir.Attach) else 'detach'}", node.span)
+        word = "attach" if isinstance(node, ir.Attach) else "detach"
+        return [self.comment(f"{word} {node.part}: {fmt(total, 3)} kg"[:COMMENT_MAX]),
+                f"PAYLOAD[{schedules[key]}]"]
 
     def sync(self, node: ir.Sync, ctx: FanucContext) -> list[str]:  # type: ignore[override]
         """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
@@ -806,6 +844,7 @@ class _Registers:
     loop_prs: tuple[int, int] = (61, 90)  # this task's loop offsets PR[lo..hi]
     frame_prs: tuple[int, int] = (91, 100)  # this task's tool and frame setup PR[lo..hi]
     timer: int = 10  # the TIMER counting this task's polled waits
+    payloads: dict[str, int] = field(default_factory=dict)  # load -> its payload schedule
     used: int = 0
     prs: dict[object, int] = field(default_factory=dict)
     offsets: dict[tuple[int, str], int] = field(default_factory=dict)

@@ -130,6 +130,9 @@ def _fanuc_file(stem: str, text: str, programs: set[str]) -> list[tuple[int, str
             num = re.match(r"^(UFRAME_NUM|UTOOL_NUM)=(\d+)$", instr)
             if num and not (0 if num.group(1) == "UFRAME_NUM" else 1) <= int(num.group(2)) <= (9 if num.group(1) == "UFRAME_NUM" else 10):
                 bad.append((where, f"{num.group(1)} must be a frame the controller has (got {num.group(2)})"))
+            payload = re.match(r"^PAYLOAD\[(\d+)\]$", instr)  # R-30iB: payload schedules 1..10
+            if instr.startswith("PAYLOAD") and (payload is None or not 1 <= int(payload.group(1)) <= 10):
+                bad.append((where, f"PAYLOAD must select a payload schedule 1..10 (got {instr})"))
         k += 1
     if count is None or int(count.group(1)) != line_no:
         bad.append((1, f"LINE_COUNT must equal the number of /MN lines ({line_no})"))
