@@ -233,7 +233,8 @@ class KrlBackend(Backend):
         m = node.motion
         stop = self.planned_zone(node, rec)
         ctx.module.uses_ptp_helper = True
-        lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
+        # the acceleration share the plan timed this move with (its chain's, decided once)
+        lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(rec.accel_share * 100.0, 3)})")
         if ctx.robot.exact_ptp_approximation and not stop.is_fine:
             # KSS >= 8.2: a PTP is approximated by the distance from the end point in mm, as
             # LIN/CIRC are ($APO.CDIS; KUKA System Software 8.2/8.3 Operating and Programming
