@@ -444,10 +444,10 @@ class FanucBackend(Backend):
     # values to enter there.
     MAX_PAYLOAD_SCHEDULE: ClassVar[int] = 10
 
-    def attach(self, node: ir.Attach, ctx: FanucContext) -> list[str]:  # type: ignore[override]
+    def attach(self, node: ir.Attach, ctx: FanucContext) -> list[str]:
         return self._payload_switch(node, ctx)
 
-    def detach(self, node: ir.Detach, ctx: FanucContext) -> list[str]:  # type: ignore[override]
+    def detach(self, node: ir.Detach, ctx: FanucContext) -> list[str]:
         return self._payload_switch(node, ctx)
 
     def _payload_switch(self, node: ir.Attach | ir.Detach, ctx: FanucContext) -> list[str]:
