@@ -213,10 +213,3 @@ __all__ += ["STEP_UNIT"]
 # `move free` (E180-E184 are its front end's; its search reports E250-E259, sim/codes.py)
 FREE_TIMED = Code("E180", "free-move-timed", "a 'move free' with a 'time' modifier (its path is found at plan time)")
 __all__ += ["FREE_TIMED"]
-
-# the controller software a cell declares for a robot (`robot r1 = NAME controller kss 8.3`)
-UNKNOWN_CONTROLLER_SOFTWARE = Code(
-    "E242", "unknown-controller-software",
-    "`controller NAME R` on a robot names software other than kss, or a release that is not a "
-    "plain number 1..99")
-__all__ += ["UNKNOWN_CONTROLLER_SOFTWARE"]

@@ -124,8 +124,9 @@ class _CellBuilder:
 
     def _kss_release(self, s: ast.RobotDecl) -> float | None:
         """The KUKA system software release of `robot r1 = NAME controller kss 8.3` (major.minor
-        as KUKA numbers its releases: 8.2, 8.3, 8.5, ...), None when the cell gives none; E242
-        for other software or a release that is not a plain number 1..99."""
+        as KUKA numbers its releases: 8.2, 8.3, 8.5, ...), None when the cell gives none; E118
+        (a value the setting does not allow) for other software or a release that is not a
+        plain number 1..99."""
         if s.software is None:
             return None
         name, e = s.software
@@ -133,7 +134,7 @@ class _CellBuilder:
         number = value.value if isinstance(value, Quantity) and not value.unit else None
         if name.name != "kss" or number is None or not 1.0 <= number < 100.0:
             shown = value.shown() if isinstance(value, Quantity) else "a value that is not a number"
-            self.rep.error(codes.UNKNOWN_CONTROLLER_SOFTWARE, "a robot's controller software must "
+            self.rep.error(codes.OUT_OF_RANGE, "a robot's controller software must "
                            f"be 'kss' with its release as a number, e.g. `controller kss 8.3` (got "
                            f"'{name.name}' {shown})", name.span)
             return None

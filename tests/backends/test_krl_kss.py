@@ -87,8 +87,8 @@ def test_older_or_undeclared_kss_keeps_c_ptp_and_its_bound(tmp_path: Path, contr
 
 @pytest.mark.parametrize("controller", ["controller vkrc 8.3", "controller kss 8.3mm",
                                         "controller kss 0"])
-def test_unknown_software_or_release_is_e242(tmp_path: Path, controller: str) -> None:
+def test_unknown_software_or_release_is_e118(tmp_path: Path, controller: str) -> None:
     path = _program(tmp_path, controller)
     result = CliRunner().invoke(check_cmd.check, [str(path), "--no-cache"])
-    assert result.exit_code == 2 and "error[E242]" in result.output
+    assert result.exit_code == 2 and "error[E118]" in result.output
     assert f"{path}:9:" in result.output  # the robot's line
