@@ -587,20 +587,25 @@ class Backend:
             self.warn_once(ctx, "accel", codes.ACCEL_IGNORED,
                            f"programmed accelerations are not expressed ({how})", node.span)
 
-    def accel_percent(self, node: ir.Move, ctx: TaskContext, low: int, how: str) -> int | None:
-        """The move's joint acceleration ratio as a whole percentage in low..100, for a vendor
-        whose acceleration form takes that range (RAPID AccSet, Fanuc ACC, INFORM ACC=/DEC=);
-        the plan limits every joint to that share of its maximum (compiler/plan/move_chain.py).
+    def accel_percent(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: TaskContext,
+                      low: int, how: str) -> int | None:
+        """The joint acceleration share the plan timed the move with (`rec.accel_share`: its
+        blended chain's smallest `accel`, compiler/plan/move_chain.py) as a whole percentage in
+        low..100, for a vendor whose acceleration form takes that range (Fanuc ACC, INFORM
+        ACC=/DEC=).
         None for the default 100 % and for a Cartesian move, whose programmed TCP acceleration
         (m/s^2) none of them takes (W408 when it is not the default). A ratio outside the range
         or not a whole percentage is not expressed either: W408 (`how`)."""
-        ratio = node.motion.joint_accel * 100.0
+        ratio = rec.accel_share * 100.0
         if node.kind is not ir.MotionKind.JOINT:
             self.warn_accel(node, ctx, how)
             return None
         if abs(ratio - round(ratio)) < 1e-9 and low <= round(ratio) <= 100:
             return None if round(ratio) == 100 else round(ratio)
-        self.warn_accel(node, ctx, how)
+        # also a move of default `accel` in a chain timed with another share: said once
+        self.warn_once(ctx, "accel", codes.ACCEL_IGNORED, "programmed accelerations are not "
+                       f"expressed ({how}; the plan timed this move with {fmt(ratio, 3)} %)",
+                       node.span)
         return None
 
     def tcp_speed_within_limit(self, node: ir.Move) -> float:

@@ -295,7 +295,7 @@ class FanucBackend(Backend):
             p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         # ACC: acceleration override of the motion, % (FANUC R-30iB Operator's Manual, motion
         # options "ACC": 0..150); rmot writes the plan's joint acceleration share, 1..100 %
-        pct = self.accel_percent(node, ctx, 1, "TP's ACC is a share of the joint motion profile")
+        pct = self.accel_percent(node, rec, ctx, 1, "TP's ACC is a share of the joint motion profile")
         acc = "" if pct is None else f" ACC{pct}"
         return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}{acc}{self._offset(node, ctx)}"]
 

@@ -364,7 +364,7 @@ class InformBackend(Backend):
                       "degree are robot-specific)", node.span)
         # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual,
         # MOVJ tags): the plan's joint acceleration share
-        pct = self.accel_percent(node, ctx, 20, "INFORM's ACC=/DEC= take 20..100 % of the maximum")
+        pct = self.accel_percent(node, rec, ctx, 20, "INFORM's ACC=/DEC= take 20..100 % of the maximum")
         acc = "" if pct is None else f" ACC={pct} DEC={pct}"
         movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}{acc}"] if c else []
         return self.shifted(node, movj, ctx)

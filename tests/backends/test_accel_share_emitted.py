@@ -45,3 +45,14 @@ def test_krl_prints_the_share_the_chain_was_timed_with() -> None:
     shares = [float(a) / 100.0 for a in re.findall(r"RMOT_PTP\([\d.]+,([\d.]+)\)", src)]
     assert len(shares) == 3
     assert used - 1e-3 <= shares[-1] <= used + 0.03, (shares, used)
+
+
+def test_fanuc_and_inform_print_the_chain_share_too() -> None:
+    """Fanuc `ACCn` and INFORM `ACC=n DEC=n` on both moves of the chain timed at 40 %."""
+    front = load_text(PROGRAM, str(ROOT / "acc.rmot"))
+    assert front.program is not None
+    plan = plan_program(front.program)
+    fanuc = "\n".join(BACKENDS["fanuc"]().emit(plan).files.values())
+    assert re.findall(r"^\s*\d+:\s+J P\[\d+\] \d+% \w+(.*?) ;$", fanuc, re.M) == ["", " ACC40", " ACC40"]
+    inform = "\n".join(BACKENDS["inform"]().emit(plan).files.values())
+    assert re.findall(r"^MOVJ \S+ VJ=\S+(?: PL=\d)?(.*)$", inform, re.M) == ["", " ACC=40 DEC=40", " ACC=40 DEC=40"]
