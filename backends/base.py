@@ -131,6 +131,16 @@ class TaskContext:
         """'file.rmot:12' for `node` when source maps are on (see `source_ref`), else None."""
         return source_ref(getattr(node, "span", None)) if self.source_map else None
 
+    def register_slice(self, first: int, last: int) -> tuple[int, int]:
+        """This task's own part (lo, hi) of a controller's global register range first..last.
+        Registers are global on a Fanuc or Yaskawa controller and the program's tasks may run
+        on one controller, so task k of n (program order) takes the k-th of n equal slices:
+        no two tasks share a register; a single task keeps the whole range."""
+        names = [t.name for t in self.plan.program.tasks]
+        size = (last - first + 1) // max(len(names), 1)
+        k = names.index(self.task.name) if self.task.name in names else 0
+        return first + k * size, first + (k + 1) * size - 1
+
     def with_state(self, cls: type[C], **state: Any) -> C:
         """This context as the vendor subclass `cls`, carrying that vendor's per-task `state`."""
         return cls(**{f.name: getattr(self, f.name) for f in fields(TaskContext)}, **state)
@@ -577,20 +587,25 @@ class Backend:
             self.warn_once(ctx, "accel", codes.ACCEL_IGNORED,
                            f"programmed accelerations are not expressed ({how})", node.span)
 
-    def accel_percent(self, node: ir.Move, ctx: TaskContext, low: int, how: str) -> int | None:
-        """The move's joint acceleration ratio as a whole percentage in low..100, for a vendor
-        whose acceleration form takes that range (RAPID AccSet, Fanuc ACC, INFORM ACC=/DEC=);
-        the plan limits every joint to that share of its maximum (compiler/plan/move_chain.py).
+    def accel_percent(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: TaskContext,
+                      low: int, how: str) -> int | None:
+        """The joint acceleration share the plan timed the move with (`rec.accel_share`: its
+        blended chain's smallest `accel`, compiler/plan/move_chain.py) as a whole percentage in
+        low..100, for a vendor whose acceleration form takes that range (Fanuc ACC, INFORM
+        ACC=/DEC=).
         None for the default 100 % and for a Cartesian move, whose programmed TCP acceleration
         (m/s^2) none of them takes (W408 when it is not the default). A ratio outside the range
         or not a whole percentage is not expressed either: W408 (`how`)."""
-        ratio = node.motion.joint_accel * 100.0
+        ratio = rec.accel_share * 100.0
         if node.kind is not ir.MotionKind.JOINT:
             self.warn_accel(node, ctx, how)
             return None
         if abs(ratio - round(ratio)) < 1e-9 and low <= round(ratio) <= 100:
             return None if round(ratio) == 100 else round(ratio)
-        self.warn_accel(node, ctx, how)
+        # also a move of default `accel` in a chain timed with another share: said once
+        self.warn_once(ctx, "accel", codes.ACCEL_IGNORED, "programmed accelerations are not "
+                       f"expressed ({how}; the plan timed this move with {fmt(ratio, 3)} %)",
+                       node.span)
         return None
 
     def tcp_speed_within_limit(self, node: ir.Move) -> float:

@@ -28,7 +28,9 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
     acceleration (m/s^2) has no TP form (W408 once per task).
   * payload: a .ls program can only select a payload schedule (PAYLOAD[i]) whose mass and
     centre of gravity live on the controller ($PLST_GRP1[i]): a tool with a mass warns W411
-    once, giving the mass and rmot's centre of gravity (half way flange->TCP, base.tool_cog).
+    once, giving the mass and rmot's centre of gravity (half way flange->TCP, base.tool_cog);
+    each attach/detach selects the schedule of the new load with PAYLOAD[i] (W460 gives the
+    values to enter in schedule i).
   * digital ports: DI[n] / DO[n] with n in DIGITAL_PORTS = 1..512 (the R-30iA/iB standard
     DI[1]-DI[512] / DO[1]-DO[512] logical range); E404 outside.
   * zones: FINE, else CNTn. CNT is not a radius (it scales the corner rounding with speed):
@@ -65,7 +67,8 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes
-from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, header_lines, position_mm
+from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm
+from rmot.backends.part_load import held_load
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
 from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
@@ -176,7 +179,7 @@ class FanucBackend(Backend):
         routine_of = self.routine_table(names, body, task, prefix=f"{main_name}_")
         ctx = task.with_state(FanucContext, names=names, routine_of=routine_of,
                               frames=_Frames(task.plan.program.cell, task.robot.name),
-                              regs=_Registers(task_variables(body)))
+                              regs=_Registers.of_task(task, body))
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:
             for part in parts:
@@ -249,7 +252,11 @@ class FanucBackend(Backend):
                     lines.append(self.comment(f"W {fmt(w, 1)} P {fmt(p, 1)} R {fmt(r, 1)}"[:COMMENT_MAX]))
                     continue
                 k += 1
-                pr = self.FRAME_PR + k
+                pr = ctx.regs.frame_prs[0] + k - 1
+                if pr > ctx.regs.frame_prs[1]:
+                    self.unsupported(codes.REGISTERS_EXHAUSTED, f"this task's tool and frame setup "
+                                     f"must fit PR[{ctx.regs.frame_prs[0]}..{ctx.regs.frame_prs[1]}] "
+                                     f"(needs PR[{pr}])", self._decl_span(ctx, kind, fname))
                 if not given:
                     self.warn(codes.STORED_DATA_WRITTEN, f"{what} '{fname or 'flange'}' has no controller "
                               f"number: the program overwrites {kind}[{index}] and PR[{pr}] (give it "
@@ -288,7 +295,7 @@ class FanucBackend(Backend):
             p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         # ACC: acceleration override of the motion, % (FANUC R-30iB Operator's Manual, motion
         # options "ACC": 0..150); rmot writes the plan's joint acceleration share, 1..100 %
-        pct = self.accel_percent(node, ctx, 1, "TP's ACC is a share of the joint motion profile")
+        pct = self.accel_percent(node, rec, ctx, 1, "TP's ACC is a share of the joint motion profile")
         acc = "" if pct is None else f" ACC{pct}"
         return [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}", f"J P[{p}] {speed} {zone}{acc}{self._offset(node, ctx)}"]
 
@@ -428,6 +435,41 @@ class FanucBackend(Backend):
         lines += self.body(node.then, ctx) + [f"JMP LBL[{done}]", f"LBL[{other}]"]
         return lines + self.body(node.otherwise, ctx) + [f"LBL[{done}]"]
 
+    # A held part's load: TP's payload instruction `PAYLOAD[i]` switches the active payload
+    # schedule i (R-30iB Operator's Manual B-83284EN, "Payload instruction": i = payload schedule
+    # number 1..10), whose mass and centre of gravity are entered on the controller's payload
+    # setting screen ($PLST_GRP1[i]); a program selects a schedule, it does not write its
+    # numbers. Each distinct load of the task (tool + held parts after an attach or detach)
+    # gets its own schedule, numbered in order of first use; W460 once per schedule gives the
+    # values to enter there.
+    MAX_PAYLOAD_SCHEDULE: ClassVar[int] = 10
+
+    def attach(self, node: ir.Attach, ctx: FanucContext) -> list[str]:
+        return self._payload_switch(node, ctx)
+
+    def detach(self, node: ir.Detach, ctx: FanucContext) -> list[str]:
+        return self._payload_switch(node, ctx)
+
+    def _payload_switch(self, node: ir.Attach | ir.Detach, ctx: FanucContext) -> list[str]:
+        _, _, total, cog = held_load(node, ctx)
+        cog_mm = fmt_list((c * 1000.0 for c in cog), 1)
+        schedules = ctx.regs.payloads
+        key = f"{fmt(total, 3)} kg [{cog_mm}]"
+        if key not in schedules:
+            schedules[key] = len(schedules) + 1
+            if schedules[key] > self.MAX_PAYLOAD_SCHEDULE:
+                self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"the task's loads must fit payload "
+                                 f"schedules 1..{self.MAX_PAYLOAD_SCHEDULE} (needs "
+                                 f"{schedules[key]})", node.span)
+            self.warn(codes.PART_PAYLOAD_NOT_EXPRESSED, f"payload schedule {schedules[key]} "
+                      f"($PLST_GRP1[{schedules[key]}]) must hold {fmt(total, 3)} kg with centre of "
+                      f"gravity [{cog_mm}] mm in the flange frame (tool and held parts): the "
+                      f"program selects it with PAYLOAD[{schedules[key]}] at this "
+                      f"{'attach' if isinstance(node, ir.Attach) else 'detach'}", node.span)
+        word = "attach" if isinstance(node, ir.Attach) else "detach"
+        return [self.comment(f"{word} {node.part}: {fmt(total, 3)} kg"[:COMMENT_MAX]),
+                f"PAYLOAD[{schedules[key]}]"]
+
     def sync(self, node: ir.Sync, ctx: FanucContext) -> list[str]:  # type: ignore[override]
         """Only reached when the I/O handshake was not built (see Backend.sync_handshake)."""
         return [line[:COMMENT_MAX + 1] for line in self.sync_not_lowered(node, ctx)]
@@ -473,10 +515,14 @@ class FanucBackend(Backend):
     # MAX_CONDITIONS leaves of one operator (real programs: `IF DI[101]=ON AND UO[3]=OFF AND
     # DI[104]=OFF,JMP LBL[20]`), else a chain of one-condition jumps.
 
+    # Registers, position registers and timers are global on the controller, which the
+    # program's tasks may share: each task numbers its own slice of every range
+    # (TaskContext.register_slice; lang/REFERENCE.md §8), the whole range for a single task.
     REG_FIRST: ClassVar[int] = 1
     MAX_REGISTER: ClassVar[int] = 200  # R-30iB: R[1]..R[200] by default (Operator's Manual)
-    LOOP_PR: ClassVar[int] = 60  # loop offsets PR[61..89]: below FRAME_PR + 1
-    POLL_TIMER: ClassVar[int] = 10  # TIMER[10] counts a polled wait's timeout (TIMER[1..10])
+    LOOP_PR: ClassVar[int] = 60  # loop offsets PR[61..90]: below FRAME_PR + 1
+    MAX_PR: ClassVar[int] = 100  # R-30iB: PR[1]..PR[100] by default; frame setup PR[91..100]
+    TIMERS: ClassVar[int] = 10  # TIMER[1..10]
     MAX_CONDITIONS: ClassVar[int] = 5
 
     def _reg(self, name: str, ctx: FanucContext, span: object) -> str:
@@ -486,14 +532,19 @@ class FanucBackend(Backend):
                              f"variable '{name}' must be declared in the task (got a reference to "
                              "an undeclared one)", span)  # type: ignore[arg-type]
             n = 0
+        self._within(n, ctx, span)
         return f"R[{n}:{tp_io_comment(name)[:16]}]"
+
+    def _within(self, n: int, ctx: FanucContext, span: object) -> None:
+        """E4xx when R[n] lies beyond this task's slice of the registers."""
+        if n > ctx.regs.last:
+            self.unsupported(codes.REGISTERS_EXHAUSTED,
+                             f"the program must fit registers R[{ctx.regs.first}.."
+                             f"{ctx.regs.last}] (needs R[{n}])", span)  # type: ignore[arg-type]
 
     def _temp(self, ctx: FanucContext, span: object) -> str:
         n = ctx.regs.temp()
-        if n > self.MAX_REGISTER:
-            self.unsupported(codes.REGISTERS_EXHAUSTED,
-                             f"the program must fit registers R[{self.REG_FIRST}.."
-                             f"{self.MAX_REGISTER}] (needs R[{n}])", span)  # type: ignore[arg-type]
+        self._within(n, ctx, span)
         return f"R[{n}:rmot tmp]"
 
     def var_decl(self, node: ir.VarDecl, ctx: FanucContext) -> list[str]:
@@ -645,14 +696,14 @@ class FanucBackend(Backend):
             return self._timed_wait(one[1], node.timeout, node.on_timeout, ctx)
         self.warn(codes.WAIT_POLLED, "TP's WAIT must test comparisons of one and/or kind, at "
                   f"most {self.MAX_CONDITIONS}, on registers and I/O; this condition is polled "
-                  "in a loop" + (f" with TIMER[{self.POLL_TIMER}] counting the timeout"
+                  "in a loop" + (f" with TIMER[{ctx.regs.timer}] counting the timeout"
                                  if node.timeout else ""),
                   node.span)
         poll, done = ctx.program.label(), ctx.program.label()
         if node.timeout is None:
             return [f"LBL[{poll}]", *self._jump(c, done, True, ctx, node), f"JMP LBL[{poll}]",
                     f"LBL[{done}]"]
-        timer = f"TIMER[{self.POLL_TIMER}]"  # seconds (real programs: `R[181]=TIMER[5]`, `>=3`)
+        timer = f"TIMER[{ctx.regs.timer}]"  # seconds (real programs: `R[181]=TIMER[5]`, `>=3`)
         lines = [f"{timer}=RESET", f"{timer}=START", f"LBL[{poll}]",
                  *self._jump(c, done, True, ctx, node)]
         t = self._temp(ctx, node.span)
@@ -691,12 +742,12 @@ class FanucBackend(Backend):
                 continue
             steps = (tuple(v.uid for v in offset.loops), _rounded(offset.steps))
             if steps not in ctx.regs.prs:
-                ctx.regs.prs[steps] = self.LOOP_PR + len(ctx.regs.prs) + 1
+                ctx.regs.prs[steps] = ctx.regs.loop_prs[0] + len(ctx.regs.prs)
                 pr = ctx.regs.prs[steps]
-                if pr > self.FRAME_PR:
+                if pr > ctx.regs.loop_prs[1]:
                     self.unsupported(codes.REGISTERS_EXHAUSTED,
-                                     f"loop offsets must fit PR[{self.LOOP_PR + 1}.."
-                                     f"{self.FRAME_PR}] (needs PR[{pr}])", template.loop.span)
+                                     f"loop offsets must fit PR[{ctx.regs.loop_prs[0]}.."
+                                     f"{ctx.regs.loop_prs[1]}] (needs PR[{pr}])", template.loop.span)
                 lines.append(f"PR[{pr}]=LPOS-LPOS")
             ctx.regs.offsets[key] = ctx.regs.prs[steps]
         return lines
@@ -720,7 +771,9 @@ class FanucBackend(Backend):
         if var.name is not None:
             return self._reg(var.name, ctx, span)
         if var.uid not in ctx.regs.repeat:
-            ctx.regs.repeat[var.uid] = f"R[{ctx.regs.counter()}:rmot repeat]"
+            n = ctx.regs.counter()
+            self._within(n, ctx, span)
+            ctx.regs.repeat[var.uid] = f"R[{n}:rmot repeat]"
         return ctx.regs.repeat[var.uid]
 
     def _offset_lines(self, template: LoopTemplate, ctx: FanucContext) -> list[str]:
@@ -786,6 +839,12 @@ class _Registers:
     temporaries above them, and the loop offsets (PR per (move uid, role))."""
 
     variables: dict[str, int]
+    first: int = 1  # this task's registers R[first..last] (TaskContext.register_slice)
+    last: int = 200
+    loop_prs: tuple[int, int] = (61, 90)  # this task's loop offsets PR[lo..hi]
+    frame_prs: tuple[int, int] = (91, 100)  # this task's tool and frame setup PR[lo..hi]
+    timer: int = 10  # the TIMER counting this task's polled waits
+    payloads: dict[str, int] = field(default_factory=dict)  # load -> its payload schedule
     used: int = 0
     prs: dict[object, int] = field(default_factory=dict)
     offsets: dict[tuple[int, str], int] = field(default_factory=dict)
@@ -794,21 +853,30 @@ class _Registers:
     loop_routines: dict[object, str] = field(default_factory=dict)  # (routine, offsets) -> name
     counters: int = 0
 
+    @classmethod
+    def of_task(cls, task: TaskContext, body: tuple[ir.Instr, ...]) -> _Registers:
+        """The registers of `task`: its own slice of each global range."""
+        first, last = task.register_slice(FanucBackend.REG_FIRST, FanucBackend.MAX_REGISTER)
+        return cls(task_variables(body, first), first=first, last=last,
+                   loop_prs=task.register_slice(FanucBackend.LOOP_PR + 1, FanucBackend.FRAME_PR),
+                   frame_prs=task.register_slice(FanucBackend.FRAME_PR + 1, FanucBackend.MAX_PR),
+                   timer=task.register_slice(1, FanucBackend.TIMERS)[1])
+
     def reset(self) -> None:
         self.used = 0
 
     def temp(self) -> int:
         self.used += 1
-        return FanucBackend.REG_FIRST + len(self.variables) + self.counters + self.used - 1
+        return self.first + len(self.variables) + self.counters + self.used - 1
 
     def counter(self) -> int:
         """A register of its own for a `repeat` loop's count (never reused as a temporary)."""
         self.counters += 1
-        return FanucBackend.REG_FIRST + len(self.variables) + self.counters - 1
+        return self.first + len(self.variables) + self.counters - 1
 
 
-def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, int]:
-    """Every variable and loop variable of a task, numbered from REG_FIRST in order of first
+def task_variables(body: tuple[ir.Instr, ...], first: int = FanucBackend.REG_FIRST) -> dict[str, int]:
+    """Every variable and loop variable of a task, numbered from `first` in order of first
     appearance."""
     names: list[str] = []
     for node in ir.walk(body):
@@ -816,7 +884,7 @@ def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, int]:
                 else node.var if isinstance(node, ir.Loop) else None)
         if name is not None and name not in names:
             names.append(name)
-    return {name: FanucBackend.REG_FIRST + k for k, name in enumerate(names)}
+    return {name: first + k for k, name in enumerate(names)}
 
 
 def _tp_number(value: float | int | bool) -> str:

@@ -227,7 +227,7 @@ class InformBackend(Backend):
                       f"instructions (got more); split into {len(split)} parts", task.task.span)
         ctx = task.with_state(InformContext, routine_of={},
                               preds=predecessors(body)[0], tools=self.tool_numbers(task),
-                              main=main, vars=_Variables(task_variables(body)))
+                              main=main, vars=_Variables.of_task(task, body))
         # job names are global on the controller: a proc's job carries the program's name
         # (MAIN_APPROACH), so two programs' procs of one name never overwrite each other; the
         # split parts already do (NAME_PART1)
@@ -364,7 +364,7 @@ class InformBackend(Backend):
                       "degree are robot-specific)", node.span)
         # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual,
         # MOVJ tags): the plan's joint acceleration share
-        pct = self.accel_percent(node, ctx, 20, "INFORM's ACC=/DEC= take 20..100 % of the maximum")
+        pct = self.accel_percent(node, rec, ctx, 20, "INFORM's ACC=/DEC= take 20..100 % of the maximum")
         acc = "" if pct is None else f" ACC={pct} DEC={pct}"
         movj = [f"MOVJ {c} VJ={self.joint_speed(node)}{pl}{acc}"] if c else []
         return self.shifted(node, movj, ctx)
@@ -550,6 +550,8 @@ class InformBackend(Backend):
     VAR_FIRST: ClassVar[int] = 50
     MAX_VAR: ClassVar[int] = 99  # B/I/D/R/P000..099: the default variable counts of DX200/YRC1000
     PVAR_FIRST: ClassVar[int] = 50
+    # Variables are global on the controller, which the program's tasks may share: each task
+    # numbers its own slice of 050..099 (TaskContext.register_slice; lang/REFERENCE.md §8).
     POLL_STEP: ClassVar[float] = 0.01  # s, the TIMER step of a polled wait
     LETTER: ClassVar[dict[ir.ValueType, str]] = {ir.ValueType.INT: "D", ir.ValueType.NUM: "R",
                                                  ir.ValueType.BOOL: "B"}
@@ -561,17 +563,17 @@ class InformBackend(Backend):
                              f"variable '{name}' must be declared in the task (got a reference to "
                              "an undeclared one)", span)  # type: ignore[arg-type]
             return "D000"
-        return self._numbered(found[0], found[1], span)
+        return self._numbered(found[0], found[1], span, ctx)
 
-    def _numbered(self, vtype: ir.ValueType, n: int, span: object) -> str:
-        if n > self.MAX_VAR:
+    def _numbered(self, vtype: ir.ValueType, n: int, span: object, ctx: InformContext) -> str:
+        if n > ctx.vars.last:
             self.unsupported(codes.REGISTERS_EXHAUSTED, f"the program must fit variables "
-                             f"{self.VAR_FIRST:03d}..{self.MAX_VAR:03d} of each type (needs "
+                             f"{ctx.vars.first:03d}..{ctx.vars.last:03d} of each type (needs "
                              f"{self.LETTER[vtype]}{n:03d})", span)  # type: ignore[arg-type]
         return f"{self.LETTER[vtype]}{n:03d}"
 
     def _temp(self, vtype: ir.ValueType, ctx: InformContext, span: object) -> str:
-        return self._numbered(vtype, ctx.vars.temp(vtype), span)
+        return self._numbered(vtype, ctx.vars.temp(vtype), span, ctx)
 
     def var_decl(self, node: ir.VarDecl, ctx: InformContext) -> list[str]:
         return self._store(node.name, node.init, node, ctx)
@@ -739,7 +741,11 @@ class InformBackend(Backend):
                 continue
             key = (system, tuple(v.uid for v in offset.loops), steps)
             if key not in ctx.vars.shifts:
-                ctx.vars.shifts[key] = self.PVAR_FIRST + len(ctx.vars.shifts)
+                ctx.vars.shifts[key] = ctx.vars.pvar_first + len(ctx.vars.shifts)
+                if ctx.vars.shifts[key] > ctx.vars.pvar_last:
+                    self.unsupported(codes.REGISTERS_EXHAUSTED, "loop shifts must fit "
+                                     f"P{ctx.vars.pvar_first:03d}..P{ctx.vars.pvar_last:03d} "
+                                     f"(needs P{ctx.vars.shifts[key]:03d})", template.loop.span)
             ctx.vars.offsets[(uid, role)] = (ctx.vars.shifts[key], system, offset.loops, steps)
 
     def _shift_steps(self, node: ir.Move, offset: TargetOffset,
@@ -770,7 +776,7 @@ class InformBackend(Backend):
         if var.name is not None:
             return self._var(var.name, ctx, span)
         if var.uid not in ctx.vars.repeat:
-            ctx.vars.repeat[var.uid] = self._numbered(ir.ValueType.INT, ctx.vars.counter(), span)
+            ctx.vars.repeat[var.uid] = self._numbered(ir.ValueType.INT, ctx.vars.counter(), span, ctx)
         return ctx.vars.repeat[var.uid]
 
     def _shift_lines(self, template: LoopTemplate, ctx: InformContext) -> list[str]:
@@ -833,6 +839,10 @@ class _Variables:
     statement above them per type; loop shifts (P variables) and repeat counters."""
 
     variables: dict[str, tuple[ir.ValueType, int]]
+    first: int = 50  # this task's B/D/R numbers first..last (TaskContext.register_slice)
+    last: int = 99
+    pvar_first: int = 50  # this task's loop shift P variables
+    pvar_last: int = 99
     used: dict[ir.ValueType, int] = field(default_factory=dict)
     shifts: dict[object, int] = field(default_factory=dict)
     offsets: dict[tuple[int, str], _Shift] = field(default_factory=dict)
@@ -841,12 +851,20 @@ class _Variables:
     counters: int = 0
     loop_jobs: dict[object, str] = field(default_factory=dict)  # (job, shifts) -> its own job
 
+    @classmethod
+    def of_task(cls, task: TaskContext, body: tuple[ir.Instr, ...]) -> _Variables:
+        """The variables of `task`: its own slice of 050..099 for B/D/R and for P."""
+        first, last = task.register_slice(InformBackend.VAR_FIRST, InformBackend.MAX_VAR)
+        pvar_first, pvar_last = task.register_slice(InformBackend.PVAR_FIRST, InformBackend.MAX_VAR)
+        return cls(task_variables(body, first), first=first, last=last,
+                   pvar_first=pvar_first, pvar_last=pvar_last)
+
     def reset(self) -> None:
         self.used = {}
 
     def _top(self, vtype: ir.ValueType) -> int:
         n = sum(1 for t, _ in self.variables.values() if t is vtype)
-        return InformBackend.VAR_FIRST + n + (self.counters if vtype is ir.ValueType.INT else 0)
+        return self.first + n + (self.counters if vtype is ir.ValueType.INT else 0)
 
     def temp(self, vtype: ir.ValueType) -> int:
         self.used[vtype] = self.used.get(vtype, 0) + 1
@@ -861,9 +879,10 @@ class _Variables:
                 for name, (t, n) in self.variables.items()]
 
 
-def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, tuple[ir.ValueType, int]]:
+def task_variables(body: tuple[ir.Instr, ...], first: int = InformBackend.VAR_FIRST,
+                   ) -> dict[str, tuple[ir.ValueType, int]]:
     """Every variable and loop variable of a task with its type and number (per type from
-    VAR_FIRST, in order of first appearance)."""
+    `first`, in order of first appearance)."""
     out: dict[str, tuple[ir.ValueType, int]] = {}
     for node in ir.walk(body):
         if isinstance(node, ir.VarDecl):
@@ -874,7 +893,7 @@ def task_variables(body: tuple[ir.Instr, ...]) -> dict[str, tuple[ir.ValueType, 
             continue
         if name not in out:
             n = sum(1 for t, _ in out.values() if t is vtype)
-            out[name] = (vtype, InformBackend.VAR_FIRST + n)
+            out[name] = (vtype, first + n)
     return out
 
 

@@ -19,7 +19,8 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
   * zones: exact stop without approximation wherever the plan stops (Backend.planned_zone:
     before WAIT FOR, IF, a handshake, at the end); LIN/CIRC: C_DIS with $APO.CDIS in mm
     (exact); PTP: C_PTP with $APO.CPTP in % (1 % per mm, clamped 1..100: no exact form, W403);
-    a PTP blended into a LIN/CIRC: C_PTP C_DIS, $APO.CDIS too (mxAutomation manual, PTP).
+    a PTP blended into a LIN/CIRC: C_PTP C_DIS, $APO.CDIS too (mxAutomation manual, PTP); on a
+    robot the cell declares KSS >= 8.2 (`controller kss 8.3`), PTP: C_DIS with $APO.CDIS (exact).
   * I/O: $OUT[n]=TRUE, PULSE($OUT[n],TRUE,t), WAIT SEC t, WAIT FOR $IN[n]==TRUE,
     IF $IN[n]==TRUE THEN; $ANOUT[n] = volts / 10 (KRL's -1.0..1.0 is -10..10 V).
     KRL's WAIT FOR has no timeout: a timed wait is lowered to a wait on the input OR timer
@@ -232,10 +233,20 @@ class KrlBackend(Backend):
         m = node.motion
         stop = self.planned_zone(node, rec)
         ctx.module.uses_ptp_helper = True
-        lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(m.joint_accel * 100.0, 3)})")
-        zone = self._ptp_zone(node, stop, lines)
+        # the acceleration share the plan timed this move with (its chain's, decided once)
+        lines.append(f"RMOT_PTP({fmt(m.joint_speed * 100.0, 3)},{fmt(rec.accel_share * 100.0, 3)})")
+        if ctx.robot.exact_ptp_approximation and not stop.is_fine:
+            # KSS >= 8.2: a PTP is approximated by the distance from the end point in mm, as
+            # LIN/CIRC are ($APO.CDIS; KUKA System Software 8.2/8.3 Operating and Programming
+            # Instructions for System Integrators, "Approximate positioning", PTP "C_DIS"):
+            # the plan's blend radius, exact, into a PTP or a LIN/CIRC alike
+            lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
+            zone = " C_DIS"
+        else:
+            zone = self._ptp_zone(node, stop, lines)
         following = ctx.task_plan.next_move(rec)
-        if zone and following is not None and following.kind is not ir.MotionKind.JOINT:
+        if (zone.startswith(" C_PTP") and following is not None
+                and following.kind is not ir.MotionKind.JOINT):
             # PTP -> LIN/CIRC: the CP part of the corner needs its own parameter (KUKA
             # mxAutomation manual, PTP approximation "C_PTP C_DIS"; KSS 8.x "PTP-CP approximate
             # positioning"): the plan's blend radius, as for LIN/CIRC

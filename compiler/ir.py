@@ -259,6 +259,16 @@ class RobotInstance:
     base: Pose  # the robot base frame in world
     dof: int  # number of joints (from the robot library or the URDF)
     span: Span | None = _span_field()
+    # the KUKA system software release the cell declares (`controller kss 8.3`), else None
+    kss_release: float | None = None
+
+    @property
+    def exact_ptp_approximation(self) -> bool:
+        """True when the cell declares KSS >= 8.2, whose PTP approximation takes a distance in
+        mm (`PTP P C_DIS` with $APO.CDIS; KUKA System Software 8.2/8.3 Operating and Programming
+        Instructions for System Integrators, "Approximate positioning") instead of C_PTP's
+        percentage of half the motion: the corner stays inside the zone sphere."""
+        return self.kss_release is not None and self.kss_release >= 8.2 - 1e-9
 
 
 @record(slots=True)

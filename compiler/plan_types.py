@@ -67,6 +67,9 @@ class InstructionRecord:
     flange_pose: ir.Pose | None = None  # flange at the target, robot base frame
     q_via: np.ndarray | None = None  # circular moves: joints at the via point
     blend_radius: float = 0.0  # the blend actually used (m); 0 = exact stop
+    # the share of the arm's joint acceleration limits the move was timed with: the smallest
+    # `accel` of its blended chain (compiler/plan/move_chain.chain_accel_share); 1 = full
+    accel_share: float = 1.0
     variant: int = 0  # 0 = main timeline; k = Plan variant k
 
 

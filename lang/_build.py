@@ -309,15 +309,19 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def robot_decl(self, c: list[Any]) -> ast.RobotDecl:
         library, urdf, *urdf_args = c[3]
         shares = tuple(x for x in c[4:6] if x is not None)
-        span = self._span([*c[:3], library or urdf, *c[4:]])
+        span = self._span([*c[:3], library or urdf, *c[4:6], *(c[6] or ()), *c[7:]])
         return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[-1], span,
-                             urdf_args=urdf_args[0] if urdf_args else (), shares=shares)
+                             urdf_args=urdf_args[0] if urdf_args else (), shares=shares,
+                             software=c[6])
 
     def robot_speed(self, c: list[Any]) -> ast.Setting:
         return _Setting(ast.SettingKind.SPEED, c[1], self._span(c))
 
     def robot_accel(self, c: list[Any]) -> ast.Setting:
         return _Setting(ast.SettingKind.ACCEL, c[1], self._span(c))
+
+    def robot_software(self, c: list[Any]) -> tuple[ast.Ident, ast.Expr]:
+        return (self._ident(c[1]), c[2])
 
     def urdf_args(self, c: list[Any]) -> tuple[ast.Arg, ...]:
         return self.args(c)

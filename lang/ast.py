@@ -170,6 +170,7 @@ class RobotDecl:
     span: Span = _span()
     urdf_args: tuple[Arg, ...] = ()  # `urdf("f.urdf", base="base_link", tip="tool0")`
     shares: tuple[Setting, ...] = ()  # `speed R %` / `accel R %`: the arm's limits scaled
+    software: tuple[Ident, Expr] | None = None  # `controller kss 8.3`: the controller's software
 
 
 @record(slots=True)

@@ -7,7 +7,8 @@ regions):
 * RAPID zones, KRL `C_DIS`, URScript `r`, VAL3 blend, INFORM `PL`: the corner path stays inside
   the sphere of the zone radius around the programmed point. rmot prints the plan's blend
   radius, so that sphere has the record's `blend_radius`.
-* Fanuc `CNT` (rounding grows with speed) and KRL `C_PTP` (a share of half the PTP motion): the
+* Fanuc `CNT` (rounding grows with speed) and KRL `C_PTP` (a share of half the PTP motion; a
+  robot whose cell declares KSS >= 8.2 writes `PTP .. C_DIS` instead, inside the sphere): the
   corner may start up to half the shorter neighbouring segment before the point.
 
 The region swept by the robot is taken as every body that follows the TCP (the tool and the
@@ -19,7 +20,7 @@ zone sphere, every controller; W341 for the bound, naming the vendors it applies
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable
 
 import numpy as np
 
@@ -36,8 +37,11 @@ __all__ = ["corner_findings"]
 _FOLLOWING_JOINTS = 3  # the links of the last three joints follow the TCP through a corner
 
 
-def corner_findings(scene: Scene, tasks: Iterable[plan_types.TaskPlan]) -> list[Diagnostic]:
-    """W340/W341 at every blended move of every task (main timeline and variants)."""
+def corner_findings(scene: Scene, tasks: Iterable[plan_types.TaskPlan],
+                    exact_ptp: Collection[str] = ()) -> list[Diagnostic]:
+    """W340/W341 at every blended move of every task (main timeline and variants); `exact_ptp`
+    names the robots whose KRL PTP corner keeps to the zone sphere (KSS >= 8.2 declared:
+    ir.RobotInstance.exact_ptp_approximation), so W341 does not name KRL C_PTP for them."""
     out: list[Diagnostic] = []
     for tp in tasks:
         moves = {i.uid: i for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
@@ -53,7 +57,8 @@ def corner_findings(scene: Scene, tasks: Iterable[plan_types.TaskPlan]) -> list[
                 if rec.blend_radius <= 0.0 or k + 1 >= len(records):
                     continue
                 prev = records[k - 1] if k > 0 else None
-                out += _corner(scene, tp, pairs, moves[rec.uid], rec, prev, records[k + 1])
+                krl_bound = moves[rec.uid].kind is ir.MotionKind.JOINT and tp.robot not in exact_ptp
+                out += _corner(scene, tp, pairs, krl_bound, rec, prev, records[k + 1])
     return out
 
 
@@ -71,7 +76,7 @@ def _fixture_pairs(scene: Scene, robot: str) -> list[tuple[Body, Body]]:
     return out
 
 
-def _corner(scene: Scene, tp: plan_types.TaskPlan, pairs: list[tuple[Body, Body]], move: ir.Move,
+def _corner(scene: Scene, tp: plan_types.TaskPlan, pairs: list[tuple[Body, Body]], krl_bound: bool,
             rec: plan_types.InstructionRecord, prev: plan_types.InstructionRecord | None,
             nxt: plan_types.InstructionRecord) -> list[Diagnostic]:
     corner = _position(rec)
@@ -96,7 +101,7 @@ def _corner(scene: Scene, tp: plan_types.TaskPlan, pairs: list[tuple[Body, Body]
                    "or the move fine")
         return [Diagnostic(codes.CORNER_SPHERE, Severity.WARNING, message, rec.span, (), rec.t_end,
                            rec.t_end, (body.name, fixture.name), amount, tp.task.name)]
-    vendors = [BOUND_VENDORS["fanuc"]] + ([BOUND_VENDORS["krl"]] if move.kind is ir.MotionKind.JOINT else [])
+    vendors = [BOUND_VENDORS["fanuc"]] + ([BOUND_VENDORS["krl"]] if krl_bound else [])
     message = (f"'{body.name}' is {d * 1000:.1f} mm from '{fixture.name}' at this blended corner: "
                f"{' and '.join(vendors)} may start the corner up to half the shorter neighbouring "
                f"segment ({bound * 1000:.1f} mm) before the point, beyond the verified "

@@ -52,7 +52,8 @@ def verify_with(plan: plan_types.Plan, *, clearance: float | None = None,
             findings += parts.shape_diagnostics(program.cell)
             findings += _part_collisions(scene, plan, tasks, clearance or 0.0)
             findings += parts.payload_findings(scene, plan)
-    findings += corner_findings(scene, tasks)
+    findings += corner_findings(scene, tasks, {r.name for r in program.cell.robots
+                                               if r.exact_ptp_approximation})
     for tp in tasks:
         findings += _limits(scene, tp, plan)
     findings.sort(key=_finding_order)

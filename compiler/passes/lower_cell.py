@@ -118,7 +118,27 @@ class _CellBuilder:
         if base is None or not declare(self.scope, Entry("robot", s.name.name, PoseV(base, s.name.name), s.name.span), self.rep):
             return
         self.infos[s.name.name] = info
-        self.robots.append(ir.RobotInstance(s.name.name, source, base, info.dof, span=s.span))
+        release = self._kss_release(s)
+        self.robots.append(ir.RobotInstance(s.name.name, source, base, info.dof, span=s.span,
+                                            kss_release=release))
+
+    def _kss_release(self, s: ast.RobotDecl) -> float | None:
+        """The KUKA system software release of `robot r1 = NAME controller kss 8.3` (major.minor
+        as KUKA numbers its releases: 8.2, 8.3, 8.5, ...), None when the cell gives none; E118
+        (a value the setting does not allow) for other software or a release that is not a
+        plain number 1..99."""
+        if s.software is None:
+            return None
+        name, e = s.software
+        value = eval_expr(e, self.scope, self.rep)
+        number = value.value if isinstance(value, Quantity) and not value.unit else None
+        if name.name != "kss" or number is None or not 1.0 <= number < 100.0:
+            shown = value.shown() if isinstance(value, Quantity) else "a value that is not a number"
+            self.rep.error(codes.OUT_OF_RANGE, "a robot's controller software must "
+                           f"be 'kss' with its release as a number, e.g. `controller kss 8.3` (got "
+                           f"'{name.name}' {shown})", name.span)
+            return None
+        return float(number)
 
     def _shares(self, s: ast.RobotDecl) -> tuple[float, float] | None:
         """(speed share, acceleration share) of `robot r1 = NAME speed S % accel A %`: the arm's

@@ -33,7 +33,7 @@ from rmot.compiler.plan.timing import (HoldPiece, PathPiece, Piece, TimingError,
 from rmot.compiler.plan.torque import TorqueLimits, exceeds
 from rmot.compiler.plan.robot_model import RobotModel
 
-__all__ = ["TimedChain", "time_chain"]
+__all__ = ["TimedChain", "chain_accel_share", "time_chain"]
 
 
 
@@ -51,11 +51,17 @@ class TimedChain:
     stop_reason: str = ""  # why the chain could not be timed as a whole (with `stops`)
 
 
+def chain_accel_share(segments: list[Segment]) -> float:
+    """The share of the joint acceleration limits a chain is timed with: the smallest
+    joint_accel of its moves (one constant set of limits per chain), recorded on every move's
+    InstructionRecord for the backends to print."""
+    return min(s.move.motion.joint_accel for s in segments)
+
+
 def _limits(robot: RobotModel, segments: list[Segment]) -> tuple[np.ndarray, np.ndarray]:
     """Joint velocity limits (full; joint_speed applies per point, see ChainPath.vscale) and
     joint acceleration limits (amax times the smallest joint_accel of the chain)."""
-    fa = min(s.move.motion.joint_accel for s in segments)
-    return robot.velocity_limits.copy(), robot.accel_limits * fa
+    return robot.velocity_limits.copy(), robot.accel_limits * chain_accel_share(segments)
 
 
 def time_chain(robot: RobotModel, segments: list[Segment],

@@ -43,7 +43,7 @@ from rmot.compiler.ir_tree import (
     describe_iteration, flow, handler, iteration_paths, require_kinds, walk, walk_bodies,
 )
 from rmot.compiler.plan import codes
-from rmot.compiler.plan.move_chain import TimedChain, time_chain
+from rmot.compiler.plan.move_chain import TimedChain, chain_accel_share, time_chain
 from rmot.compiler.plan.torque import TorqueLimits
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
@@ -363,7 +363,7 @@ class _Builder:
         timed = time_chain(self.robot, chain, self.torque)
         self._append(timed.piece)
         for i, seg in enumerate(chain):
-            self._move_record(seg, timed, i, t0)
+            self._move_record(seg, timed, i, t0, chain_accel_share(chain))
         if timed.error is not None:
             code = codes.TIME_TOO_SHORT if timed.error_is_time else codes.TIMING_FAILED
             at = 0 if timed.error_is_time else (timed.error_at if timed.error_at is not None else len(chain) - 1)
@@ -381,7 +381,8 @@ class _Builder:
         for k, f in (timed.path.findings if timed.path is not None else ()):
             self._diag(f, chain[k].move.span, t0 + timed.ends[k], chain[k].move.uid)
 
-    def _move_record(self, seg: Segment, timed: TimedChain, i: int, t0: float) -> None:
+    def _move_record(self, seg: Segment, timed: TimedChain, i: int, t0: float,
+                     accel_share: float) -> None:
         robot, move = self.robot, seg.move
         flange = robot.fk(seg.q_end)
         tcp = move.target.pose if isinstance(move.target, ir.CartesianTarget) else \
@@ -391,6 +392,7 @@ class _Builder:
             move, t0 + timed.starts[i], t0 + timed.ends[i], q_target=seg.q_end.copy(),
             branch=branch if branch.shoulder is not None else None, tcp_pose=tcp,
             flange_pose=ir.Pose.from_matrix(flange), blend_radius=timed.radii[i],
+            accel_share=accel_share,
             q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None)
 
 

@@ -46,7 +46,8 @@ def hand_plan(body: tuple[ir.Instr, ...], records: dict[int, tuple[np.ndarray, i
     """A Plan built by hand: `records` maps a move's uid to (q_target (dof,), branch).
 
     Moves of If arms and proc bodies are looked up the same way; a move's record blends with
-    its programmed zone (a hand plan models no stops). Each record lasts 1 s unless
+    its programmed zone and is timed with its own `accel` (a hand plan models no stops and no
+    chains). Each record lasts 1 s unless
     `durations` says otherwise; the trajectory is two samples (backends do not read it).
     """
     durations = durations or {}
@@ -60,7 +61,8 @@ def hand_plan(body: tuple[ir.Instr, ...], records: dict[int, tuple[np.ndarray, i
             recs.append(plan_types.InstructionRecord(uid=node.uid, span=node.span, t_start=t, t_end=t + d,
                                                   q_target=np.asarray(q, float), branch=branch, tcp_pose=tcp,
                                                   q_via=np.asarray(q, float) if getattr(node, "via", None) else None,
-                                                  blend_radius=node.motion.zone.radius if isinstance(node, ir.Move) else 0.0))
+                                                  blend_radius=node.motion.zone.radius if isinstance(node, ir.Move) else 0.0,
+                                                  accel_share=node.motion.joint_accel if isinstance(node, ir.Move) else 1.0))
             t += d
     traj = plan_types.Trajectory(np.array([0.0, max(t, 0.004)]), np.zeros((2, dof)), np.zeros((2, dof)),
                               np.zeros((2, dof)))

@@ -58,7 +58,7 @@ def record(node: ir.Move, t0: float, q: np.ndarray, branch: ir.Config | None,
     return plan_types.InstructionRecord(uid=node.uid, span=node.span, t_start=t0, t_end=t0 + 1.0,
                                      q_target=np.asarray(q, float), branch=branch, tcp_pose=tcp,
                                      q_via=None if q_via is None else np.asarray(q_via, float),
-                                     blend_radius=blend)
+                                     blend_radius=blend, accel_share=node.motion.joint_accel)
 
 
 def demo_body() -> tuple[ir.Instr, ...]:
@@ -127,7 +127,8 @@ def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> pl
         body.append(node)
         rec = record(node, float(k), q, robot.branch(q), tcp, q_via=q_via)
         recs.append(plan_types.InstructionRecord(**{**{f: getattr(rec, f) for f in (
-            "uid", "span", "t_start", "t_end", "q_target", "branch", "tcp_pose", "q_via", "blend_radius")},
+            "uid", "span", "t_start", "t_end", "q_target", "branch", "tcp_pose", "q_via", "blend_radius",
+            "accel_share")},
             "flange_pose": flange}))
     return make_plan(tuple(body), recs, robot_name)
 

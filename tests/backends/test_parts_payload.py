@@ -92,7 +92,7 @@ def test_urscript_set_payload_at_attach_and_detach(plan) -> None:  # type: ignor
     assert values[2][1] == pytest.approx([0.0, 0.0, 0.05], abs=1e-6)
 
 
-@pytest.mark.parametrize("vendor", ["fanuc", "inform", "val3"])
+@pytest.mark.parametrize("vendor", ["inform", "val3"])
 def test_vendors_without_payload_instructions_warn_once_per_part_with_the_numbers(plan, vendor: str) -> None:  # type: ignore[no-untyped-def]
     w = [d for d in _emit(plan, vendor).diagnostics if d.code.id == "W460"]
     assert len(w) == 2  # b1 and b2, each once
@@ -194,3 +194,16 @@ program p on r1 {
     front = load_program(str(tmp_path / "p.rmot"))
     assert front.program is not None, [str(d) for d in front.diagnostics]
     return front.program
+
+
+def test_fanuc_selects_a_payload_schedule_per_load(plan) -> None:  # type: ignore[no-untyped-def]
+    """PAYLOAD[i] at each attach and detach (R-30iB "Payload instruction"): one schedule per
+    distinct load, W460 once per schedule with the numbers computed by hand above."""
+    result = _emit(plan, "fanuc")
+    text = "\n".join(result.files.values())
+    assert [int(i) for i in re.findall(r"PAYLOAD\[(\d+)\]", text)] == [1, 2, 1, 2]
+    w = {int(re.search(r"schedule (\d+)", d.message).group(1)): d.message  # type: ignore[union-attr]
+         for d in result.diagnostics if d.code.id == "W460"}
+    assert sorted(w) == [1, 2]
+    assert "3.000 kg" in w[1] and "[0.0,0.0,116.7] mm" in w[1]
+    assert "1.000 kg" in w[2] and "[0.0,0.0,50.0] mm" in w[2]

@@ -130,6 +130,9 @@ def _fanuc_file(stem: str, text: str, programs: set[str]) -> list[tuple[int, str
             num = re.match(r"^(UFRAME_NUM|UTOOL_NUM)=(\d+)$", instr)
             if num and not (0 if num.group(1) == "UFRAME_NUM" else 1) <= int(num.group(2)) <= (9 if num.group(1) == "UFRAME_NUM" else 10):
                 bad.append((where, f"{num.group(1)} must be a frame the controller has (got {num.group(2)})"))
+            payload = re.match(r"^PAYLOAD\[(\d+)\]$", instr)  # R-30iB: payload schedules 1..10
+            if instr.startswith("PAYLOAD") and (payload is None or not 1 <= int(payload.group(1)) <= 10):
+                bad.append((where, f"PAYLOAD must select a payload schedule 1..10 (got {instr})"))
         k += 1
     if count is None or int(count.group(1)) != line_no:
         bad.append((1, f"LINE_COUNT must equal the number of /MN lines ({line_no})"))
@@ -404,8 +407,9 @@ def _val3_code(code: str, programs: set[str], sizes: dict[str | None, int]) -> l
 _KRL_SYSTEM = {"$NULLFRAME", "HOME"}
 
 
-def check_krl(files: dict[str, str]) -> list[str]:
-    """A module's .src and .dat (file name -> text), structural rules of [KRL]."""
+def check_krl(files: dict[str, str], *, kss_exact_ptp: bool = False) -> list[str]:
+    """A module's .src and .dat (file name -> text), structural rules of [KRL]; `kss_exact_ptp`:
+    the controller runs KSS >= 8.2, where a PTP may also be approximated with C_DIS."""
     bad: list[str] = []
     for name, text in files.items():
         if not name.endswith(".src"):
@@ -446,6 +450,8 @@ def check_krl(files: dict[str, str]) -> list[str]:
                 if (kind == "CIRC") != (second is not None):
                     bad.append(f"{name}:{k}: CIRC takes an auxiliary and an end point, PTP/LIN one point")
                 ptp_forms = ("C_PTP", "C_PTP C_DIS", "C_PTP C_ORI", "C_PTP C_VEL")  # PTP->CP: mxAutomation
+                if kss_exact_ptp:  # KSS >= 8.2: PTP approximated by distance (System Integrators, "Approximate positioning")
+                    ptp_forms += ("C_DIS",)
                 if apo is not None and apo not in (ptp_forms if kind == "PTP" else ("C_DIS", "C_ORI", "C_VEL")):
                     bad.append(f"{name}:{k}: {kind} cannot be approximated with {apo}")
                 for point in filter(None, (first, second)):
