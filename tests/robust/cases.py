@@ -57,6 +57,8 @@ _FAN = "\n".join(
     + [f"  proc a{i}() {{ {'; '.join([f'a{i - 1}()'] * 10)} }}" for i in range(1, 8)]
     + ["  a7()"])
 
+_MESH_PROG = ("cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"@F@\") at pose(x=2m)\n}\n"
+              "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n")
 _URDF_PROG = "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n"
 
 
@@ -222,5 +224,14 @@ CASES: tuple[Case, ...] = (
     Case("keep_compile_foreign_vendor_folder", {"p.rmot": _prog("  move joint home"), "json/mine.txt": "the user's own notes\n"},
          ("compile", "{d}/p.rmot", "--target", "json", "--target", "rapid", "-o", "{d}"), frozenset({2}), ("E565",),
          setup="keep_inputs"),
+    # ---- round 3: a mesh is what its file declares, and has area (zero-area triangles crashed the collision library)
+    *(Case(f"mesh_{name}", {"p.rmot": _MESH_PROG.replace("@F@", file), file: body}, ("check", "{d}/p.rmot"), frozenset({1}), (code,))
+      for name, file, body, code in (
+          ("off_fewer_faces", "part.off", "OFF\n4 6 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n", "E563"),
+          ("off_fewer_vertices", "part.off", "OFF 4 1 0\n0 0 0\n1 0 0\n", "E563"),
+          ("zero_area_stl", "part.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 1 1 1\nvertex 1 1 1\nvertex 1 1 1\n"
+           "endloop\nendfacet\nendsolid t\n", "E562"),
+          ("zero_area_polygon", "part.mesh", "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n", "E562"))),
+    Case("mesh_zero_area_compile", {"p.rmot": _MESH_PROG.replace("@F@", "part.mesh"), "part.mesh": "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 0 0\n"},
+         ("compile", "{d}/p.rmot", "--target", "json", "-o", "{d}/out"), frozenset({1, 2}), ("E562",)),
 )
-
