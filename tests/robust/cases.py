@@ -234,4 +234,10 @@ CASES: tuple[Case, ...] = (
           ("zero_area_polygon", "part.mesh", "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n", "E562"))),
     Case("mesh_zero_area_compile", {"p.rmot": _MESH_PROG.replace("@F@", "part.mesh"), "part.mesh": "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 0 0\n"},
          ("compile", "{d}/p.rmot", "--target", "json", "-o", "{d}/out"), frozenset({1, 2}), ("E562",)),
+    # ---- round 3: an arm that does not verify has no cycle time to rank by
+    Case("compare_unreachable_arm_has_no_cycle_time",
+         {"p.rmot": "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n"
+                    "  move linear pose(x=1400mm, y=0mm, z=600mm, ry=180deg)\n}\n"},
+         ("compare", "{d}/p.rmot", "--robot", "ur5e", "--format", "json"), frozenset({1}),
+         ('"cycle_time_s": null', '"verified": false', "E220")),
 )
