@@ -59,6 +59,19 @@ _FAN = "\n".join(
 
 _MESH_PROG = ("cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"@F@\") at pose(x=2m)\n}\n"
               "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n")
+_MODEL_PROG = """cell c {
+  model lifter {
+    joint revolute dh(a=300mm, alpha=0deg, d=400mm, theta=0deg) range(-170deg, 170deg) speed 180 deg/s accel 720 deg/s^2
+    joint revolute dh(a=250mm, alpha=180deg, d=0mm, theta=0deg) range(-145deg, 145deg) speed 240 deg/s accel 960 deg/s^2
+    joint prismatic dh(a=0mm, alpha=0deg, d=0mm, theta=0deg) range(0mm, 200mm) speed 1000 mm/s accel 4000 mm/s^2
+  }
+  robot r1 = lifter at pose(x=1m)
+}
+program p on r1 {
+  move joint joints(0deg, 0deg, 100mm)
+  move joint joints(10deg, 0deg, 100mm)
+}
+"""
 _URDF_PROG = "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n"
 
 
@@ -240,4 +253,11 @@ CASES: tuple[Case, ...] = (
                     "  move linear pose(x=1400mm, y=0mm, z=600mm, ry=180deg)\n}\n"},
          ("compare", "{d}/p.rmot", "--robot", "ur5e", "--format", "json"), frozenset({1}),
          ('"cycle_time_s": null', '"verified": false', "E220")),
+    # ---- round 3: absurd lengths in a model block are refused where they are written (verification allocated 90 GiB)
+    *(Case(f"model_{name}", {"p.rmot": _MODEL_PROG.replace(old, new, 1)}, ("check", "{d}/p.rmot"), frozenset({2}), ("E125", where))
+      for name, old, new, where in (
+          ("dh_a_huge", "a=300mm", "a=999999999999mm", "p.rmot:3:"),
+          ("dh_d_huge", "d=400mm", "d=-1e9 m", "p.rmot:3:"),
+          ("prismatic_range_huge", "range(0mm, 200mm)", "range(0mm, 1e15mm)", "p.rmot:5:"),
+          ("flange_far", "  }\n  robot", "    flange pose(z=999999999999mm)\n  }\n  robot", "p.rmot:6:"))),
 )
