@@ -72,6 +72,10 @@ program p on r1 {
   move joint joints(10deg, 0deg, 100mm)
 }
 """
+def _nested(levels: int) -> str:
+    return _prog("  repeat 1 {\n" * levels + "  move joint home\n" + "  }\n" * levels)
+
+
 _URDF_PROG = "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n"
 
 
@@ -260,4 +264,10 @@ CASES: tuple[Case, ...] = (
           ("dh_d_huge", "d=400mm", "d=-1e9 m", "p.rmot:3:"),
           ("prismatic_range_huge", "range(0mm, 200mm)", "range(0mm, 1e15mm)", "p.rmot:5:"),
           ("flange_far", "  }\n  robot", "    flange pose(z=999999999999mm)\n  }\n  robot", "p.rmot:6:"))),
+    # ---- round 3: the nesting the front end allows is what every later stage handles (backends recursed out near 125)
+    Case("nest_repeat_200", {"p.rmot": _nested(200)}, ("compile", "{d}/p.rmot", *_ALL, "-o", "{d}/out"), frozenset({2}),
+         ("E121", "p.rmot:69:3", "at most 64")),
+    Case("nest_repeat_at_limit", {"p.rmot": _nested(64)},
+         ("compile", "{d}/p.rmot", *_ALL[:8], *_ALL[10:], "-o", "{d}/out"), frozenset({0}), ()),  # INFORM: E431, 50 loop variables
+    Case("nest_repeat_at_limit_check", {"p.rmot": _nested(64)}, ("check", "{d}/p.rmot"), frozenset({0}), ("ok: cycle",)),
 )
