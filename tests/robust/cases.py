@@ -270,4 +270,17 @@ CASES: tuple[Case, ...] = (
     Case("nest_repeat_at_limit", {"p.rmot": _nested(64)},
          ("compile", "{d}/p.rmot", *_ALL[:8], *_ALL[10:], "-o", "{d}/out"), frozenset({0}), ()),  # INFORM: E431, 50 loop variables
     Case("nest_repeat_at_limit_check", {"p.rmot": _nested(64)}, ("check", "{d}/p.rmot"), frozenset({0}), ("ok: cycle",)),
+    # ---- round 3: merge-reports of a hostile report names the file and what is wrong, not E550
+    Case("merge_json_200000_deep", {"deep.json": "[" * 200_000 + "]" * 200_000}, ("merge-reports", "{d}/deep.json"),
+         frozenset({2}), ("E531", "deep.json", "too deeply")),
+    Case("merge_json_900_deep_programs", {"r.json": '{"version": 1, "programs": ' + "[" * 900 + "]" * 900 + "}"},
+         ("merge-reports", "{d}/r.json"), frozenset({2}), ("E531", "r.json", "64")),
+    *(Case(f"merge_sarif_{name}", {"r.sarif": '{"version": "2.1.0", "runs": [' + run + "]}"}, ("merge-reports", "{d}/r.sarif"),
+           frozenset({2}), ("E531", "r.sarif" if name != "unknown_rule" else "E1"))
+      for name, run in (("tool_number", '{"tool": 5, "results": []}'),
+                        ("driver_string", '{"tool": {"driver": "x"}, "results": []}'),
+                        ("results_object", '{"tool": {"driver": {"rules": []}}, "results": {}}'),
+                        ("result_without_rule", '{"results": [{"message": {}}]}'),
+                        ("location_number", '{"results": [{"ruleId": "E1", "locations": [7]}]}'),
+                        ("unknown_rule", '{"results": [{"ruleId": "E1", "locations": [{"physicalLocation": 7}]}]}'))),
 )
