@@ -283,4 +283,9 @@ CASES: tuple[Case, ...] = (
                         ("result_without_rule", '{"results": [{"message": {}}]}'),
                         ("location_number", '{"results": [{"ruleId": "E1", "locations": [7]}]}'),
                         ("unknown_rule", '{"results": [{"ruleId": "E1", "locations": [{"physicalLocation": 7}]}]}'))),
+    # ---- round 3: an unknown word in a cell is answered with what a cell declares, not program statements
+    _ir("cell_unknown_declaration", "  wait 1 s", ("E006", "p.rmot:3:3", "a cell declaration starts with robot, fixture"),
+        head="cell c {\n  robot r1 = abb_irb1600\n  xyzzy f = box(1m, 1m, 1m)\n}"),
+    _ir("cell_misspelt_declaration", "  wait 1 s", ("E006", "p.rmot:3:3", "unknown declaration 'fixtre'; did you mean 'fixture'?"),
+        head="cell c {\n  robot r1 = abb_irb1600\n  fixtre f = box(1m, 1m, 1m)\n}"),
 )
