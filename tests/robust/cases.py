@@ -10,6 +10,7 @@ tests/robust/survey.py (each in a subprocess under a time and memory cap).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 __all__ = ["CASES", "Case"]
 
@@ -24,6 +25,9 @@ class Case:
     absent: tuple[str, ...] = ()  # text that must not appear in any output file
     setup: str = ""               # a named extra step (chmod, ...) done by the runner
     extra: dict[str, str] = field(default_factory=dict)  # symbolic links the runner makes: name -> target
+
+
+_EXAMPLES_MODEL_CELL = (Path(__file__).resolve().parents[2] / "examples" / "cells" / "model_arm.rmot").read_text(encoding="utf-8")
 
 
 def _prog(body: str, head: str = "") -> str:
@@ -288,4 +292,10 @@ CASES: tuple[Case, ...] = (
         head="cell c {\n  robot r1 = abb_irb1600\n  xyzzy f = box(1m, 1m, 1m)\n}"),
     _ir("cell_misspelt_declaration", "  wait 1 s", ("E006", "p.rmot:3:3", "unknown declaration 'fixtre'; did you mean 'fixture'?"),
         head="cell c {\n  robot r1 = abb_irb1600\n  fixtre f = box(1m, 1m, 1m)\n}"),
+    # ---- round 3: a cell model's name in W452 is quoted in balanced quotes
+    Case("w452_cell_model_quotes", {"p.rmot": 'use cell "c.rmot"\nprogram p on r1 {\n  move joint joints(0, 0, 0, 0, 30, 0) deg\n'
+                                               '  move joint joints(20, 0, 0, 0, 30, 0) deg\n}\n',
+                                    "c.rmot": _EXAMPLES_MODEL_CELL},
+         ("compile", "{d}/p.rmot", "--target", "urscript", "-o", "{d}/out"), frozenset({0}),
+         ("warning[W452]: urscript: robot model 'my_arm' (a cell model) must be",)),
 )
