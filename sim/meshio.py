@@ -126,10 +126,11 @@ def _read_cached(path: str, mtime_ns: int, size: int) -> tuple[np.ndarray, np.nd
             raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must be readable text (got {exc.__class__.__name__})") from None
         vertices, faces = parse_classic(text)
     _check_nonempty(path, vertices, faces)
+    watertight = _is_watertight(faces)  # of the file's own triangles: dropping slivers does not open a surface
     faces = _without_zero_area(path, vertices, faces)
     vertices.setflags(write=False)
     faces.setflags(write=False)
-    return vertices, faces, _is_watertight(faces)
+    return vertices, faces, watertight
 
 
 def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
@@ -282,7 +283,7 @@ def _without_zero_area(path: str, vertices: np.ndarray, faces: np.ndarray) -> np
     corners = vertices[faces]
     twice_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
     size = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
-    kept = faces[twice_area > _ZERO_AREA * size * size]
+    kept: np.ndarray = faces[twice_area > _ZERO_AREA * size * size]
     if len(kept) == 0:
         raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain a triangle of non-zero area (all {len(faces)} in "
                          f"'{os.path.basename(path)}' have zero area)")
