@@ -81,7 +81,7 @@ def test_a_backend_failure_refuses_that_vendor_only(program: Path, tmp_path: Pat
     result = CliRunner().invoke(cli, args)
     assert result.exit_code == 1, result.output
     assert "error[E550]: internal error in backend rapid (Boom: stage exploded)" in result.output
-    assert sorted(p.name for p in (tmp_path / "v").iterdir()) == ["krl"]
+    assert sorted(p.name for p in (tmp_path / "v").iterdir()) == [".rmot.output", "krl"]  # the marker of rmot's own folders
 
 
 def test_an_exception_in_a_command_itself_is_e550(program: Path, tmp_path: Path,
