@@ -298,4 +298,12 @@ CASES: tuple[Case, ...] = (
                                     "c.rmot": _EXAMPLES_MODEL_CELL},
          ("compile", "{d}/p.rmot", "--target", "urscript", "-o", "{d}/out"), frozenset({0}),
          ("warning[W452]: urscript: robot model 'my_arm' (a cell model) must be",)),
+    # ---- round 3: 64 levels of if, while or proc calls compile to every target; one more is E121
+    *(Case(f"nest_{kind}_{levels}", {"p.rmot": _prog(text)}, ("compile", "{d}/p.rmot", *_ALL, "-o", "{d}/out"),
+           frozenset({0} if levels == 64 else {2}), () if levels == 64 else ("E121", "at most 64"))
+      for levels in (64, 65)
+      for kind, text in (("if", "  if in[1] {\n" * levels + "  move joint home\n" + "  }\n" * levels),
+                         ("while", "  while in[1] {\n" * levels + "  move joint home\n" + "  }\n" * levels),
+                         ("proc", "  proc a0() { move joint home }\n"
+                          + "".join(f"  proc a{i}() {{ a{i - 1}() }}\n" for i in range(1, levels)) + f"  a{levels - 1}()"))),
 )
