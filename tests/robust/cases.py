@@ -306,4 +306,11 @@ CASES: tuple[Case, ...] = (
                          ("while", "  while in[1] {\n" * levels + "  move joint home\n" + "  }\n" * levels),
                          ("proc", "  proc a0() { move joint home }\n"
                           + "".join(f"  proc a{i}() {{ a{i - 1}() }}\n" for i in range(1, levels)) + f"  a{levels - 1}()"))),
+    # ---- round 3: cell placements beyond a kilometre are refused where they are written
+    *(Case(f"cell_far_{name}", {"p.rmot": "cell c {\n" + decl + "\n}\nprogram p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n"},
+           ("check", "{d}/p.rmot"), frozenset({2}), ("E125", "p.rmot:" + where, "within 1000 m"))
+      for name, decl, where in (
+          ("robot", "  robot r1 = abb_irb1600 at pose(x=999999999999mm)", "2:29"),
+          ("fixture", "  robot r1 = abb_irb1600\n  fixture f = box(1m, 1m, 1m) at pose(z=1e9 m)", "3:34"),
+          ("tool_tcp", "  robot r1 = abb_irb1600\n  tool g = box(10mm, 10mm, 10mm) tcp pose(z=1e9 m) on r1", "3:38"))),
 )
