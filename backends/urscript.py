@@ -250,16 +250,17 @@ class UrScriptBackend(Backend):
 
     def joint_limits(self, ctx: UrContext, node: ir.Move) -> tuple[float, float]:
         model = ctx.robot.source.ref
+        shown = f"'{model}'"
         if ctx.robot.source.kind is ir.RobotSourceKind.MODEL:  # a cell's model: name it, not its key
             from rmot.compiler.model_spec import model_name
 
-            model = f"{model_name(model)}' (a cell model"
+            shown = f"'{model_name(model)}' (a cell model)"
         if model in JOINT_LIMITS:
             return JOINT_LIMITS[model]
         if "model" in ctx.warned:
             return DEFAULT_LIMITS
         ctx.warned.add("model")
-        self.warn(codes.SPEED_TABLE_UNKNOWN, f"robot model '{model}' must be in the URScript "
+        self.warn(codes.SPEED_TABLE_UNKNOWN, f"robot model {shown} must be in the URScript "
                   f"joint speed table (it is not); assumed 180 deg/s and 800 deg/s^2", node.span)
         return DEFAULT_LIMITS
 

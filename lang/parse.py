@@ -258,7 +258,7 @@ def _bad_token(tok: Token, expected: set[str], file: SourceFile, post: PostLexSt
     history = _history_before(tok, post)
     if tok.type == "_NL" and history:
         span = _after(file, history[-1])  # point just past the last word, not past a comment
-    misspelt = _misspelt(tok, expected, file, history)
+    misspelt = _misspelt(tok, expected, file, history, _inside_cell(post, file))
     if misspelt is not None:
         return misspelt
     code = codes.UNEXPECTED_END if at_end else codes.SYNTAX
@@ -278,7 +278,7 @@ def _history_before(tok: Token, post: PostLexState) -> list[Token]:
     return history
 
 
-def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[Token]) -> Diagnostic | None:
+def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[Token], in_cell: bool = False) -> Diagnostic | None:
     """A name near a keyword the parser wanted, or a word after a number that is no unit."""
     prev = history[-1] if history else None
     if tok.type == "NAME" and "UNIT" in expected and prev is not None and prev.type == "NUMBER":
@@ -297,15 +297,29 @@ def _misspelt(tok: Token, expected: set[str], file: SourceFile, history: list[To
         if word in _OTHER_LANGUAGES:
             msg = f"unknown statement '{word}'; rmot writes this as {_OTHER_LANGUAGES[word]}"
             return _error(codes.MISSPELT_KEYWORD, msg, token_span(file, prev))
-        near = difflib.get_close_matches(word, STATEMENT_STARTS, n=1, cutoff=0.6)
+        starts = CELL_DECLARATION_STARTS if in_cell else STATEMENT_STARTS
+        near = difflib.get_close_matches(word, starts, n=1, cutoff=0.6)
         if near:
-            return _error(codes.MISSPELT_KEYWORD, f"unknown statement '{prev}'; did you mean '{near[0]}'?", token_span(file, prev))
-        words = ", ".join(STATEMENT_STARTS)
+            kind = "declaration" if in_cell else "statement"
+            return _error(codes.MISSPELT_KEYWORD, f"unknown {kind} '{prev}'; did you mean '{near[0]}'?", token_span(file, prev))
+        words = ", ".join(starts)
         msg = (f"unknown statement '{prev}': a statement starts with {words}, "
                "or is a proc call NAME(...) or an assignment NAME = EXPR")
+        if in_cell:
+            msg = f"unknown declaration '{prev}' in a cell: a cell declaration starts with {words}"
         return _error(codes.MISSPELT_KEYWORD, msg, token_span(file, prev))
     return None
 
+
+def _inside_cell(post: PostLexState, file: SourceFile) -> bool:
+    """The innermost open block is the body of `cell NAME {`."""
+    if not post.braces:
+        return False
+    return re.search(r"\bcell\s+[A-Za-z_]\w*\s*\Z", file.text[:post.braces[-1].start_pos]) is not None
+
+
+# the words a declaration in a cell starts with (compiler/passes/lower_cell.py lowers these)
+CELL_DECLARATION_STARTS = ["robot", "fixture", "tool", "frame", "io", "const", "model", "part"]
 
 # the words a statement may start with (an unknown statement word lists them, and a
 # near miss is matched against these only, so `let` is not taken for `at` nor `var` for `via`)

@@ -126,9 +126,11 @@ def _read_cached(path: str, mtime_ns: int, size: int) -> tuple[np.ndarray, np.nd
             raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must be readable text (got {exc.__class__.__name__})") from None
         vertices, faces = parse_classic(text)
     _check_nonempty(path, vertices, faces)
+    watertight = _is_watertight(faces)  # of the file's own triangles: dropping slivers does not open a surface
+    faces = _without_zero_area(path, vertices, faces)
     vertices.setflags(write=False)
     faces.setflags(write=False)
-    return vertices, faces, _is_watertight(faces)
+    return vertices, faces, watertight
 
 
 def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
@@ -138,6 +140,9 @@ def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
         raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain triangles (got an empty file '{os.path.basename(path)}')")
     if _looks_truncated_stl(path):
         raise _MeshError(codes.MESH_TRUNCATED, "binary STL file must hold as many triangles as its header declares (the file is truncated)")
+    short = _off_shortfall(path)
+    if short:
+        raise _MeshError(codes.MESH_TRUNCATED, f"OFF file must hold as many {short} as its header declares (the file is truncated)")
     try:
         loaded = trimesh.load(path, force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for bad files; all mean "unreadable"
@@ -161,6 +166,31 @@ def _looks_truncated_stl(path: str) -> bool:
         return False
     declared = int.from_bytes(head[80:84], "little")
     return os.path.getsize(path) < 84 + 50 * declared
+
+
+def _off_shortfall(path: str) -> str:
+    """'vertices' or 'faces' when a text OFF file holds fewer lines of them than its header
+    declares (trimesh reads what is there without a word), else ''. The header is `OFF`
+    (or COFF, NOFF, ...), then the vertex, face and edge counts, on its line or the next."""
+    if not path.lower().endswith(".off"):
+        return ""
+    with open(path, "rb") as f:
+        raw = f.read()
+    try:
+        text = raw.decode("ascii")
+    except UnicodeDecodeError:  # binary OFF: trimesh checks its lengths
+        return ""
+    lines = [line.split("#", 1)[0].split() for line in text.splitlines()]
+    lines = [line for line in lines if line]
+    if not lines or not lines[0][0].upper().endswith("OFF") or "BINARY" in (t.upper() for t in lines[0]):
+        return ""
+    counts, rest = (lines[0][1:], lines[1:]) if len(lines[0]) > 1 else ((lines[1] if len(lines) > 1 else []), lines[2:])
+    if len(counts) < 2 or not all(t.isdigit() for t in counts[:2]):
+        return ""  # not a header trimesh reads either: it reports the file as unreadable
+    n_vertices, n_faces = int(counts[0]), int(counts[1])
+    if len(rest) < n_vertices:
+        return "vertices"
+    return "faces" if len(rest) < n_vertices + n_faces else ""
 
 
 def _short(exc: Exception) -> str:
@@ -244,6 +274,23 @@ def _check_nonempty(path: str, vertices: np.ndarray, faces: np.ndarray) -> None:
         raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain triangles (got none in '{os.path.basename(path)}')")
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise _MeshError(codes.MESH_UNREADABLE, "mesh faces must index its vertices")
+
+
+def _without_zero_area(path: str, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """The faces with a non-zero area. A triangle whose corners coincide or lie on one line
+    bounds nothing, and the collision library crashes on a mesh made only of them; such
+    triangles are dropped, and a mesh left with none is refused (E562)."""
+    corners = vertices[faces]
+    twice_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+    size = float(np.ptp(vertices, axis=0).max()) if len(vertices) else 0.0
+    kept: np.ndarray = faces[twice_area > _ZERO_AREA * size * size]
+    if len(kept) == 0:
+        raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain a triangle of non-zero area (all {len(faces)} in "
+                         f"'{os.path.basename(path)}' have zero area)")
+    return kept
+
+
+_ZERO_AREA = 1e-12  # relative to the mesh's size squared: far below any modelling tolerance, above rounding
 
 
 def _is_watertight(faces: np.ndarray) -> bool:

@@ -54,6 +54,7 @@ class TaskData:
     programmed: list[tuple[float, float, float]]  # (t0, t1, mm/s) of linear/circular moves
     slowdowns: list[tuple[float, float]]  # W221 intervals
     bars: list[tuple[float, float, str, str]]  # (t0, t1, kind, label)
+    prismatic: tuple[bool, ...] = ()  # per joint: a prismatic joint is shown in mm (N), not deg (N·m)
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,7 +130,8 @@ def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: 
             bars.append((t0, t1, kind[0], kind[1]))
     return TaskData(tp.task.name, tp.robot, traj.t, traj.q * f, traj.qd * f, traj.qdd * f,
                     np.asarray(robot.joint_limits) * f[:, None], np.asarray(robot.velocity_limits) * f,
-                    np.asarray(robot.accel_limits) * f, tau, tau_lim, tcp_speed, programmed, slowdowns, bars)
+                    np.asarray(robot.accel_limits) * f, tau, tau_lim, tcp_speed, programmed, slowdowns, bars,
+                    tuple(t == "P" for t in robot.joint_types))
 
 
 def plot_data(plan: Plan) -> PlotData:
@@ -163,6 +165,7 @@ def _joint_panels(data: PlotData, quantity: str) -> Any:
     dof = max((td.q.shape[1] for td in data.tasks), default=1)
     fig, axes = _figure(dof, max(len(data.tasks), 1))
     unit = {"joints": "deg", "speeds": "deg/s", "accels": "deg/s²", "torque": "N·m"}[quantity]
+    linear = {"joints": "mm", "speeds": "mm/s", "accels": "mm/s²", "torque": "N"}[quantity]  # prismatic joints
     for c, td in enumerate(data.tasks):
         values, lower, upper = _series(td, quantity)
         for j in range(dof):
@@ -178,7 +181,8 @@ def _joint_panels(data: PlotData, quantity: str) -> Any:
             over = (values[:, j] > upper[j]) | (values[:, j] < lower[j])
             if over.any():
                 ax.plot(td.t[over], values[over, j], ".", color=SYNC, markersize=2)
-            ax.set_ylabel(f"J{j + 1} [{unit}]", fontsize=8)
+            prismatic = j < len(td.prismatic) and td.prismatic[j]
+            ax.set_ylabel(f"J{j + 1} [{linear if prismatic else unit}]", fontsize=8)
             ax.tick_params(labelsize=7)
         axes[0, c].set_title(f"{td.name} on {td.robot}", fontsize=9)
         axes[-1, c].set_xlabel("time [s]", fontsize=8)

@@ -3,8 +3,9 @@
 Without --robot: the cell's own robot (its metrics and dynamics alone). Each arm stands in the
 place of the program's robot (same base pose; `--place` with
 `--region` places each one first, as `rmot place` does) and goes through the planner and
-verifier of `rmot check`. Per arm: verifies or not (with the first findings), cycle time,
-worst joint-limit margin, worst manipulability, peak torque against the rated torque.
+verifier of `rmot check`. Per arm: verifies or not (with the first findings), cycle time (null
+for an arm that does not verify), worst joint-limit margin, worst manipulability, peak torque
+against the rated torque.
 
 Exit codes: 0 at least one arm verifies; 1 none does; 2 bad input (E80x diagnostics of
 sim/design/codes.py). An arm that does not load is that arm's finding (E320), not an input error.
@@ -48,7 +49,8 @@ def arm_dict(r: Any) -> dict[str, Any]:
     return {
         "robot": r.key, "model": r.model, "verified": r.verified,
         "first_findings": [_finding(d) for d in r.first_findings()],
-        "cycle_time_s": None if r.report.cycle_time is None else round(r.report.cycle_time, 6),
+        # only a verified arm has a cycle time: one that cannot reach or collides has none to rank by
+        "cycle_time_s": None if not r.verified or r.report.cycle_time is None else round(r.report.cycle_time, 6),
         "joint_margin": _margin(m),
         "manipulability": None if m is None or not math.isfinite(m.manipulability) else round(m.manipulability, 6),
         "dynamics": dyn,

@@ -13,7 +13,8 @@ Ordering by program makes the merged file independent of the order the shards ar
 and equal to an unsharded `rmot check` of the programs sorted by path.
 
 Reports are data: XML with a DOCTYPE or entity declaration is refused (no entity expansion),
-JSON with NaN/Infinity is refused, and a file over 64 MiB is refused before it is read.
+JSON with NaN/Infinity or nested over 64 levels is refused, a SARIF run is checked for the shape the
+merge reads, and a file over 64 MiB is refused before it is read.
 Exit codes: 0 merged, 2 an input could not be read or the inputs do not fit together.
 """
 
@@ -82,16 +83,63 @@ def parse_document(path: str, data: bytes) -> tuple[str, Any]:
         return "junit", root
     try:
         doc = json.loads(data.decode("utf-8"), parse_constant=_reject_constant)
+    except RecursionError:  # the decoder recurses per level: 200,000 nested arrays
+        raise MergeError(codes.REPORT_FORMAT, f"report '{path}' nests JSON values too deeply (an rmot report nests "
+                         f"fewer than {MAX_JSON_DEPTH} levels)") from None
     except (UnicodeDecodeError, ValueError) as exc:
         raise MergeError(codes.REPORT_FORMAT,
                          f"report '{path}' is neither JUnit XML nor JSON ({exc.__class__.__name__}: {exc})") from None
+    _check_depth(path, doc)
     if isinstance(doc, dict) and doc.get("version") == "2.1.0" and isinstance(doc.get("runs"), list):
         if len(doc["runs"]) != 1 or not isinstance(doc["runs"][0], dict):
             raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is SARIF with {len(doc['runs'])} runs; rmot writes one")
+        _check_sarif(path, doc["runs"][0])
         return "sarif", doc
     if isinstance(doc, dict) and isinstance(doc.get("programs"), list) and "version" in doc:
         return "json", doc
     raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is JSON but neither SARIF 2.1.0 nor an rmot check report")
+
+
+# Policy: an rmot report nests 7 levels (SARIF: runs, results, locations, physicalLocation,
+# region); 64 leaves room for any member a reader adds and keeps the merge's own recursion
+# (json.dumps with indent recurses once per level) far from Python's limit.
+MAX_JSON_DEPTH = 64
+
+
+def _check_depth(path: str, doc: Any) -> None:
+    """MergeError when a value of `doc` nests more than MAX_JSON_DEPTH levels (checked without recursion)."""
+    stack = [(doc, 1)]
+    while stack:
+        value, depth = stack.pop()
+        if depth > MAX_JSON_DEPTH:
+            raise MergeError(_codes().REPORT_FORMAT, f"report '{path}' nests JSON values more than {MAX_JSON_DEPTH} "
+                             "levels deep (an rmot report nests fewer)")
+        children = value.values() if isinstance(value, dict) else value if isinstance(value, list) else ()
+        stack.extend((child, depth + 1) for child in children)
+
+
+def _check_sarif(path: str, run: dict[str, Any]) -> None:
+    """MergeError naming the first member of a SARIF run that does not have the shape the merge reads."""
+    def fail(where: str, wanted: str, got: Any) -> None:
+        raise MergeError(_codes().REPORT_FORMAT, f"report '{path}': SARIF member {where} must be {wanted} "
+                         f"(got {type(got).__name__} {json.dumps(got)[:40]})")
+
+    tool = run.get("tool", {})
+    if not isinstance(tool, dict):
+        fail("runs[0].tool", "an object", tool)
+    driver = tool.get("driver", {})
+    if not isinstance(driver, dict):
+        fail("runs[0].tool.driver", "an object", driver)
+    for name, items in (("tool.driver.rules", driver.get("rules", [])), ("results", run.get("results", []))):
+        if not isinstance(items, list):
+            fail(f"runs[0].{name}", "an array", items)
+        key = "id" if name.endswith("rules") else "ruleId"
+        for k, item in enumerate(items):
+            if not isinstance(item, dict) or not isinstance(item.get(key), str):
+                fail(f"runs[0].{name}[{k}]", f"an object with a string '{key}'", item)
+            locations = item.get("locations", [])
+            if not isinstance(locations, list) or not all(isinstance(loc, dict) for loc in locations):
+                fail(f"runs[0].{name}[{k}].locations", "an array of objects", locations)
 
 
 # --------------------------------------------------------------------------- JUnit
@@ -115,7 +163,9 @@ def _merge_junit(roots: list[ET.Element]) -> str:
 def _first_uri(doc: dict[str, Any]) -> str:
     for result in doc["runs"][0].get("results", []):
         for loc in result.get("locations", []):
-            uri = loc.get("physicalLocation", {}).get("artifactLocation", {}).get("uri")
+            physical = loc.get("physicalLocation")
+            artifact = physical.get("artifactLocation") if isinstance(physical, dict) else None
+            uri = artifact.get("uri") if isinstance(artifact, dict) else None
             if isinstance(uri, str):
                 return uri
     return ""
@@ -135,6 +185,9 @@ def _merge_sarif(docs: list[dict[str, Any]]) -> str:
     results = []
     for doc in sorted(docs, key=_first_uri):
         for result in doc["runs"][0].get("results", []):
+            if result["ruleId"] not in index:
+                raise MergeError(codes.REPORT_FORMAT, f"a SARIF result has rule {result['ruleId'][:40]!r}, which no report's "
+                                 "tool.driver.rules describes")
             results.append({**result, "ruleIndex": index[result["ruleId"]]})
     run0 = docs[0]["runs"][0]
     driver = {**run0["tool"]["driver"], "rules": [rules[r] for r in order]}

@@ -79,7 +79,7 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
         raise RuntimeError(f"internal: robot '{name}' has no source span to rewrite")
     found = search(loaded, name, bounds, objective=objective, screen_n=samples)
     click.echo(f"screened {found.screened} poses by IK ({found.screen_feasible} reach every target), "
-               f"planned and verified {found.verified_count} in full")
+               f"planned and verified {found.verified_count} in full, {found.passing} of them clean (only those are ranked)")
     if found.best is None:
         click.echo(f"no pose of robot '{name}' in the region verifies:")
         for line in found.failures:

@@ -94,6 +94,7 @@ def render(program: str, cell: str | None, output: str, at: float, size: tuple[i
     fps = fps or (10 if ext == ".gif" else 25)  # GIF: fewer frames keep the file small
     try:
         _write(plan, output, ext, at, size, aa, camera, fps)
+        click.echo(f"wrote {output}")  # a success says so, as compile and place do
         if any(d.is_error for d in plan.diagnostics):
             sys.exit(EXIT_FINDINGS)  # drawn anyway (a picture helps to see what failed), but not a success
     except _InputError as exc:

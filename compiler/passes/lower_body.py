@@ -39,9 +39,13 @@ from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, T
 from rmot.lang import ast
 from rmot.lang.parse import RESERVED
 
-__all__ = ["MAX_INSTRUCTIONS", "TaskLowering"]
+__all__ = ["MAX_INSTRUCTIONS", "MAX_NESTING", "TaskLowering"]
 
 MAX_INSTRUCTIONS = 200_000
+# Policy: blocks nest at most 64 levels. The planner, the verifier and every backend recurse
+# once or more per level; under the command line they fail near 125 levels, so 64 keeps every
+# stage at half its real limit (tests/robust: a program at the limit compiles to every target).
+MAX_NESTING = 64
 _KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circular": ir.MotionKind.CIRCULAR,
           "free": ir.MotionKind.JOINT}  # `move free`: a joint move whose path is searched (ir.FreeMotion)
 _FREE_OPTIONS = ("clearance", "samples", "budget")
@@ -98,6 +102,10 @@ class TaskLowering:
                 )
                 stopped = False  # once per block
             stopped = stopped or isinstance(stmt, ast.StopStmt)
+            if self.depth > MAX_NESTING:
+                self.rep.error(codes.TOO_LARGE_UNROLLED, f"blocks (loops, ifs, inlined procs) must nest at most {MAX_NESTING} "
+                               f"levels deep (got {self.depth} at this statement)", stmt.span)
+                raise _TooLarge
             self.steps += 1
             if self.steps > MAX_WORK_STEPS:
                 self.rep.error(codes.TOO_MUCH_WORK, f"a task must make the compiler visit at most {MAX_WORK_STEPS} statements "

@@ -68,7 +68,12 @@ class _CellBuilder:
     def _pose(self, e: ast.Expr | None, what: str) -> ir.Pose | None:
         if e is None:
             return ir.Pose()
-        return expect_pose(eval_expr(e, self.scope, self.rep), what, e.span, self.rep)
+        pose = expect_pose(eval_expr(e, self.scope, self.rep), what, e.span, self.rep)
+        far = max((abs(c) for c in pose.position), default=0.0) if pose is not None else 0.0
+        if far > MAX_SIZE_M:  # a cell a kilometre across at most, as its solids: 10^9 m only costs work later
+            self.rep.error(codes.PHYSICAL_RANGE, f"{what} must be within {MAX_SIZE_M:g} m of the origin (got {far:.6g} m)", e.span)
+            return None
+        return pose
 
     def _RobotDecl(self, s: ast.RobotDecl) -> None:
         base = self._pose(s.at, f"placement of robot '{s.name.name}'")

@@ -24,6 +24,7 @@ from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.lower_controller import declared_controller, record_pendant, urdf_controller
 from rmot.compiler.passes.load_files import resolve_folder
 from rmot.compiler.passes.evaluate import eval_expr, expect_pose, expect_quantity, match_args
+from rmot.compiler.passes.limits import MAX_POSITION_M
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
                                          MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
                                          fmt_quantity)
@@ -92,8 +93,10 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
             ok = False
         else:
             m = pose.matrix()
-            if not all(math.isfinite(x) for x in m.flat):
-                rep.error(codes.MODEL_BAD_VALUE, f"flange of model '{name}' must be finite", flange.value.span)  # type: ignore[union-attr]
+            finite = all(math.isfinite(x) for x in m.flat)
+            if not finite or max(abs(float(x)) for x in m[:3, 3]) > MAX_POSITION_M:  # a flange km away: GiB of samples
+                rep.error(codes.MODEL_BAD_VALUE if not finite else codes.PHYSICAL_RANGE, f"flange of model '{name}' must be "
+                          + (f"within {MAX_POSITION_M:g} m of the last DH frame" if finite else "finite"), flange.value.span)  # type: ignore[union-attr]
                 ok = False
             flange_m = tuple(float(x) for x in m.flat)
     payload_kg = None
@@ -147,6 +150,9 @@ def _number(e: ast.Expr, dim: Dim, what: str, rep: Reporter, scope: Scope | None
     shown = fmt_quantity(v) if isinstance(v, Quantity) else f"{x:g}"
     if not math.isfinite(x):
         rep.error(codes.MODEL_BAD_VALUE, f"{what} must be a finite number (got {shown})", e.span)
+        return None
+    if dim == LENGTH and abs(x) > MAX_POSITION_M:  # a DH length of 10^9 m made verification allocate 90 GiB
+        rep.error(codes.PHYSICAL_RANGE, f"{what} must be within {MAX_POSITION_M:g} m (got {shown})", e.span)
         return None
     if positive and x <= 0:
         rep.error(codes.MODEL_BAD_VALUE, f"{what} must be > 0 (got {shown})", e.span)

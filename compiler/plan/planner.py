@@ -6,6 +6,7 @@ import numpy as np
 
 from rmot.compiler import ir
 from rmot.compiler.plan import codes
+from rmot.compiler.plan.least_time import least_duration_s
 from rmot.compiler.plan.sync import align, hold_variants, sample
 from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
@@ -35,15 +36,21 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     drafts: dict[str, TaskDraft] = {}
     robots: dict[str, RobotModel] = {}
     starts: dict[str, np.ndarray] = {}
+    least = 0.0
     for task in program.tasks:
         diagnostics.extend(Diagnostic(f.code, f.severity, f.message, move.span, time_s=0.0, task=task.name)
                            for move, f in unknown_starts(task))
         robot = _robot_for(program, task, diagnostics)
         if robot is None:
             continue
+        least += least_duration_s(robot.velocity_limits, task.body)
+        if least / step > MAX_SAMPLES:  # refused before any move is timed
+            diagnostics.append(_too_long(program, least, step, "at least "))
+            diagnostics.sort(key=_diagnostic_order)
+            return Plan(program, (), step, tuple(diagnostics))
         q0 = initial_joints(robot, task.body)
         robots[task.name], starts[task.name] = robot, q0
-        drafts[task.name] = _build_task(robot, task, q0, program)
+        drafts[task.name] = _build_task(robot, task, q0, program, MAX_SAMPLES * step)
         diagnostics.extend(drafts[task.name].diagnostics)
     diagnostics.extend(align(drafts))
     for draft in drafts.values():
@@ -73,9 +80,8 @@ MAX_SAMPLES = 225_000
 
 def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: float) -> list[Diagnostic]:
     """E124 at the first task when all timelines together (every task, and every if-branch
-    variant, which is sampled on its own) would exceed MAX_SAMPLES samples."""
-    from rmot.compiler import codes as check_codes
-
+    variant, which is sampled on its own) would exceed MAX_SAMPLES samples. A path is timed only
+    until it passes the whole budget (build_task's budget_s): the total is then a lower bound."""
     total, parts = 0.0, 0
     for task in program.tasks:
         draft = drafts.get(task.name)
@@ -86,11 +92,18 @@ def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: f
             parts += 1
     if total / step <= MAX_SAMPLES:
         return []
+    return [_too_long(program, total, step, "", f" or more over {parts} timeline{'s' * (parts != 1)}: tasks and if-branch "
+                      "variants, each sampled on its own")]
+
+
+def _too_long(program: ir.Program, total: float, step: float, bound: str, over: str = "") -> Diagnostic:
+    """E124 at the first task: the timelines take `bound` `total` s, more than MAX_SAMPLES samples."""
+    from rmot.compiler import codes as check_codes
+
     msg = (f"the timelines of a program must take at most {MAX_SAMPLES * step:g} s in all at a step of {step * 1000:g} ms "
-           f"({MAX_SAMPLES} samples; got {total:.6g} s over {parts} timeline{'s' * (parts != 1)}: tasks and if-branch "
-           "variants, each sampled on its own): split the program or shorten its waits and slow moves")
+           f"({MAX_SAMPLES} samples; got {bound}{total:.6g} s{over}): split the program or shorten its waits and slow moves")
     first = program.tasks[0]
-    return [Diagnostic(check_codes.TOO_MUCH_WORK, Severity.ERROR, msg, first.span, task=first.name)]
+    return Diagnostic(check_codes.TOO_MUCH_WORK, Severity.ERROR, msg, first.span, task=first.name)
 
 
 def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
@@ -98,11 +111,12 @@ def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
     return (span.path, span.start.offset) if span is not None else ("", -1)
 
 
-def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program) -> TaskDraft:
+def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program, budget_s: float) -> TaskDraft:
     """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
-    robot has no torque ratings), the payload as the verification takes it."""
+    robot has no torque ratings), the payload as the verification takes it; a path longer than
+    `budget_s` is refused by _too_many_samples, so its timing stops there."""
     limits = torque.torque_limits(robot, *torque.task_payload(task, program.cell.parts))
-    return build_task(robot, task, q0, lone=len(program.tasks) == 1, torque=limits)
+    return build_task(robot, task, q0, lone=len(program.tasks) == 1, torque=limits, budget_s=budget_s)
 
 
 def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]) -> RobotModel | None:

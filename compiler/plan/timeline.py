@@ -118,6 +118,8 @@ class _Builder:
         self.note: tuple[str, object] | None = None  # set on variants: which if's otherwise path
         self.syncs: list[tuple[int, int]] = []  # a variant's syncs (piece pos, record idx)
         self.q, self.t = q0.copy(), t0
+        self.t0 = t0
+        self.budget_s = float("inf")  # walking stops once this path is longer: the plan is refused (E124) anyway
         self.pieces: list[Piece] = []
         self.draft, self.counter = draft, counter
         self.chain: list[Segment] = []
@@ -161,7 +163,7 @@ class _Builder:
         instruction's continuation is one new link (_Rest), not a copy of what follows it: the
         walk is linear in the number of instructions and loop iterations."""
         for i in range(start, len(body)):
-            if self.stopped:
+            if self.stopped or self.t - self.t0 > self.budget_s:
                 return
             instr = body[i]
             plan = _PLAN.get(type(instr)) or handler(_PLAN, instr)
@@ -255,7 +257,7 @@ class _Builder:
         index = self.counter[0]
         sub = _Builder(self.robot, self.task, q0, t0, index, self.draft, self.counter, self.lone,
                        self.torque)
-        sub.paths, (sub.tool, sub.held) = self.paths, state
+        sub.paths, (sub.tool, sub.held), sub.budget_s = self.paths, state, self.budget_s
         line = instr.span.start.line if instr.span is not None else "?"
         sub.note = (f"on {path_words(kind, line)}", instr.span)
         if hold > 0:
@@ -453,12 +455,14 @@ require_kinds("compiler/plan/timeline._PLAN", _PLAN)
 
 
 def build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, *, lone: bool = False,
-               torque: TorqueLimits | None = None) -> TaskDraft:
+               torque: TorqueLimits | None = None, budget_s: float = float("inf")) -> TaskDraft:
     """The timeline of one task from joints q0 (dof,); `lone`: the program's only task (syncs are no-ops);
-    `torque`: the task's joint torque limits (compiler/plan/torque.py), None where there are none."""
+    `torque`: the task's joint torque limits (compiler/plan/torque.py), None where there are none;
+    `budget_s`: a path (main or variant) longer than this is not walked further, as the planner
+    refuses it (E124): the timing work stays bounded by the time the planner accepts."""
     draft = TaskDraft()
     builder = _Builder(robot, task.name, q0, 0.0, 0, draft, [0], lone, torque)
-    builder.paths = iteration_paths(task.body)
+    builder.paths, builder.budget_s = iteration_paths(task.body), budget_s
     builder.walk(task.body)
     builder.flush()
     draft.pieces = builder.pieces

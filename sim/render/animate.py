@@ -66,7 +66,7 @@ def render_animation(plan: Plan, path: str, *, fps: int = 25, size: tuple[int, i
     """Write the animated program to `path` (.gif or .mp4) atomically.
 
     progress: a callback (done, total), False for none, None for a bar on stderr when the
-    program lasts longer than 2 s.
+    program lasts longer than 2 s and stderr is a terminal.
     """
     write_animation(prepare(plan), path, fps=fps, size=size, aa=aa, camera=camera, progress=progress)
 
@@ -80,8 +80,8 @@ def write_animation(rs: RenderScene, path: str, *, fps: int = 25, size: tuple[in
     ext = os.path.splitext(path)[1].lower()
     if ext not in (".gif", ".mp4"):
         raise AnimationError(f"animation file must end in .gif or .mp4 (got '{path}')")
-    if progress is None:
-        progress = stderr_progress if plan.cycle_time > 2.0 else False
+    if progress is None:  # a bar redrawn with \r is for a terminal: in a CI log each redraw would be a line
+        progress = stderr_progress if plan.cycle_time > 2.0 and sys.stderr.isatty() else False
     frames = _frames(rs, fps, size, aa, camera, progress if callable(progress) else None, marks)
     writer = _write_gif if ext == ".gif" else _write_mp4
     write_atomic(path, lambda temp: writer(temp, frames, fps))

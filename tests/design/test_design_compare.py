@@ -57,7 +57,7 @@ def test_compare_equals_check_of_a_cell_edited_to_the_other_arm(pick_compare: di
     arm = pick_compare["arms"][1]
     errors = [d for d in check["diagnostics"] if d["severity"] == "error"]
     assert arm["verified"] is (not errors) and not arm["verified"]
-    assert arm["cycle_time_s"] == pytest.approx(check["cycle_time_s"], abs=1e-6)
+    assert arm["cycle_time_s"] is None  # an arm that does not verify has no cycle time a consumer could rank by
     assert [(f["code"], f["line"], f["message"]) for f in arm["first_findings"]] == \
         [(d["code"], d["line"], d["message"]) for d in errors[:3]]
 

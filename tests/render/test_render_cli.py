@@ -24,7 +24,7 @@ def test_png_still_of_the_program(tmp_path: Path) -> None:
     """A PNG of the requested size is written atomically (no temporary file left), exit code 0."""
     out = tmp_path / "swing.png"
     code, output = _run(PROGRAM, "-o", str(out), "--size", "200x150", "--at", "0.3", "--aa", "1")
-    assert (code, output) == (0, "")
+    assert (code, output) == (0, f"wrote {out}\n")
     assert Image.open(out).size == (200, 150)
     assert [p.name for p in tmp_path.iterdir()] == ["swing.png"]
 

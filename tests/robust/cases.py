@@ -10,6 +10,7 @@ tests/robust/survey.py (each in a subprocess under a time and memory cap).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 __all__ = ["CASES", "Case"]
 
@@ -24,6 +25,9 @@ class Case:
     absent: tuple[str, ...] = ()  # text that must not appear in any output file
     setup: str = ""               # a named extra step (chmod, ...) done by the runner
     extra: dict[str, str] = field(default_factory=dict)  # symbolic links the runner makes: name -> target
+
+
+_EXAMPLES_MODEL_CELL = (Path(__file__).resolve().parents[2] / "examples" / "cells" / "model_arm.rmot").read_text(encoding="utf-8")
 
 
 def _prog(body: str, head: str = "") -> str:
@@ -56,6 +60,25 @@ _FAN = "\n".join(
     ["  proc a0() { }"]
     + [f"  proc a{i}() {{ {'; '.join([f'a{i - 1}()'] * 10)} }}" for i in range(1, 8)]
     + ["  a7()"])
+
+_MESH_PROG = ("cell c {\n  robot r1 = abb_irb1600\n  fixture f = mesh(\"@F@\") at pose(x=2m)\n}\n"
+              "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n")
+_MODEL_PROG = """cell c {
+  model lifter {
+    joint revolute dh(a=300mm, alpha=0deg, d=400mm, theta=0deg) range(-170deg, 170deg) speed 180 deg/s accel 720 deg/s^2
+    joint revolute dh(a=250mm, alpha=180deg, d=0mm, theta=0deg) range(-145deg, 145deg) speed 240 deg/s accel 960 deg/s^2
+    joint prismatic dh(a=0mm, alpha=0deg, d=0mm, theta=0deg) range(0mm, 200mm) speed 1000 mm/s accel 4000 mm/s^2
+  }
+  robot r1 = lifter at pose(x=1m)
+}
+program p on r1 {
+  move joint joints(0deg, 0deg, 100mm)
+  move joint joints(10deg, 0deg, 100mm)
+}
+"""
+def _nested(levels: int) -> str:
+    return _prog("  repeat 1 {\n" * levels + "  move joint home\n" + "  }\n" * levels)
+
 
 _URDF_PROG = "cell c {\n  robot r1 = urdf(\"arm.urdf\")\n}\nprogram p on r1 {\n  wait 1 s\n}\n"
 
@@ -222,5 +245,72 @@ CASES: tuple[Case, ...] = (
     Case("keep_compile_foreign_vendor_folder", {"p.rmot": _prog("  move joint home"), "json/mine.txt": "the user's own notes\n"},
          ("compile", "{d}/p.rmot", "--target", "json", "--target", "rapid", "-o", "{d}"), frozenset({2}), ("E565",),
          setup="keep_inputs"),
+    # ---- round 3: a mesh is what its file declares, and has area (zero-area triangles crashed the collision library)
+    *(Case(f"mesh_{name}", {"p.rmot": _MESH_PROG.replace("@F@", file), file: body}, ("check", "{d}/p.rmot"), frozenset({1}), (code,))
+      for name, file, body, code in (
+          ("off_fewer_faces", "part.off", "OFF\n4 6 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n", "E563"),
+          ("off_fewer_vertices", "part.off", "OFF 4 1 0\n0 0 0\n1 0 0\n", "E563"),
+          ("zero_area_stl", "part.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 1 1 1\nvertex 1 1 1\nvertex 1 1 1\n"
+           "endloop\nendfacet\nendsolid t\n", "E562"),
+          ("zero_area_polygon", "part.mesh", "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n", "E562"))),
+    Case("mesh_zero_area_compile", {"p.rmot": _MESH_PROG.replace("@F@", "part.mesh"), "part.mesh": "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 0 0\n"},
+         ("compile", "{d}/p.rmot", "--target", "json", "-o", "{d}/out"), frozenset({1, 2}), ("E562",)),
+    # ---- round 3: an arm that does not verify has no cycle time to rank by
+    Case("compare_unreachable_arm_has_no_cycle_time",
+         {"p.rmot": "program p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n"
+                    "  move linear pose(x=1400mm, y=0mm, z=600mm, ry=180deg)\n}\n"},
+         ("compare", "{d}/p.rmot", "--robot", "ur5e", "--format", "json"), frozenset({1}),
+         ('"cycle_time_s": null', '"verified": false', "E220")),
+    # ---- round 3: absurd lengths in a model block are refused where they are written (verification allocated 90 GiB)
+    *(Case(f"model_{name}", {"p.rmot": _MODEL_PROG.replace(old, new, 1)}, ("check", "{d}/p.rmot"), frozenset({2}), ("E125", where))
+      for name, old, new, where in (
+          ("dh_a_huge", "a=300mm", "a=999999999999mm", "p.rmot:3:"),
+          ("dh_d_huge", "d=400mm", "d=-1e9 m", "p.rmot:3:"),
+          ("prismatic_range_huge", "range(0mm, 200mm)", "range(0mm, 1e15mm)", "p.rmot:5:"),
+          ("flange_far", "  }\n  robot", "    flange pose(z=999999999999mm)\n  }\n  robot", "p.rmot:6:"))),
+    # ---- round 3: the nesting the front end allows is what every later stage handles (backends recursed out near 125)
+    Case("nest_repeat_200", {"p.rmot": _nested(200)}, ("compile", "{d}/p.rmot", *_ALL, "-o", "{d}/out"), frozenset({2}),
+         ("E121", "p.rmot:69:3", "at most 64")),
+    Case("nest_repeat_at_limit", {"p.rmot": _nested(64)},
+         ("compile", "{d}/p.rmot", *_ALL[:8], *_ALL[10:], "-o", "{d}/out"), frozenset({0}), ()),  # INFORM: E431, 50 loop variables
+    Case("nest_repeat_at_limit_check", {"p.rmot": _nested(64)}, ("check", "{d}/p.rmot"), frozenset({0}), ("ok: cycle",)),
+    # ---- round 3: merge-reports of a hostile report names the file and what is wrong, not E550
+    Case("merge_json_200000_deep", {"deep.json": "[" * 200_000 + "]" * 200_000}, ("merge-reports", "{d}/deep.json"),
+         frozenset({2}), ("E531", "deep.json", "too deeply")),
+    Case("merge_json_900_deep_programs", {"r.json": '{"version": 1, "programs": ' + "[" * 900 + "]" * 900 + "}"},
+         ("merge-reports", "{d}/r.json"), frozenset({2}), ("E531", "r.json", "64")),
+    *(Case(f"merge_sarif_{name}", {"r.sarif": '{"version": "2.1.0", "runs": [' + run + "]}"}, ("merge-reports", "{d}/r.sarif"),
+           frozenset({2}), ("E531", "r.sarif" if name != "unknown_rule" else "E1"))
+      for name, run in (("tool_number", '{"tool": 5, "results": []}'),
+                        ("driver_string", '{"tool": {"driver": "x"}, "results": []}'),
+                        ("results_object", '{"tool": {"driver": {"rules": []}}, "results": {}}'),
+                        ("result_without_rule", '{"results": [{"message": {}}]}'),
+                        ("location_number", '{"results": [{"ruleId": "E1", "locations": [7]}]}'),
+                        ("unknown_rule", '{"results": [{"ruleId": "E1", "locations": [{"physicalLocation": 7}]}]}'))),
+    # ---- round 3: an unknown word in a cell is answered with what a cell declares, not program statements
+    _ir("cell_unknown_declaration", "  wait 1 s", ("E006", "p.rmot:3:3", "a cell declaration starts with robot, fixture"),
+        head="cell c {\n  robot r1 = abb_irb1600\n  xyzzy f = box(1m, 1m, 1m)\n}"),
+    _ir("cell_misspelt_declaration", "  wait 1 s", ("E006", "p.rmot:3:3", "unknown declaration 'fixtre'; did you mean 'fixture'?"),
+        head="cell c {\n  robot r1 = abb_irb1600\n  fixtre f = box(1m, 1m, 1m)\n}"),
+    # ---- round 3: a cell model's name in W452 is quoted in balanced quotes
+    Case("w452_cell_model_quotes", {"p.rmot": 'use cell "c.rmot"\nprogram p on r1 {\n  move joint joints(0, 0, 0, 0, 30, 0) deg\n'
+                                               '  move joint joints(20, 0, 0, 0, 30, 0) deg\n}\n',
+                                    "c.rmot": _EXAMPLES_MODEL_CELL},
+         ("compile", "{d}/p.rmot", "--target", "urscript", "-o", "{d}/out"), frozenset({0}),
+         ("warning[W452]: urscript: robot model 'my_arm' (a cell model) must be",)),
+    # ---- round 3: 64 levels of if, while or proc calls compile to every target; one more is E121
+    *(Case(f"nest_{kind}_{levels}", {"p.rmot": _prog(text)}, ("compile", "{d}/p.rmot", *_ALL, "-o", "{d}/out"),
+           frozenset({0} if levels == 64 else {2}), () if levels == 64 else ("E121", "at most 64"))
+      for levels in (64, 65)
+      for kind, text in (("if", "  if in[1] {\n" * levels + "  move joint home\n" + "  }\n" * levels),
+                         ("while", "  while in[1] {\n" * levels + "  move joint home\n" + "  }\n" * levels),
+                         ("proc", "  proc a0() { move joint home }\n"
+                          + "".join(f"  proc a{i}() {{ a{i - 1}() }}\n" for i in range(1, levels)) + f"  a{levels - 1}()"))),
+    # ---- round 3: cell placements beyond a kilometre are refused where they are written
+    *(Case(f"cell_far_{name}", {"p.rmot": "cell c {\n" + decl + "\n}\nprogram p on r1 {\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n}\n"},
+           ("check", "{d}/p.rmot"), frozenset({2}), ("E125", "p.rmot:" + where, "within 1000 m"))
+      for name, decl, where in (
+          ("robot", "  robot r1 = abb_irb1600 at pose(x=999999999999mm)", "2:29"),
+          ("fixture", "  robot r1 = abb_irb1600\n  fixture f = box(1m, 1m, 1m) at pose(z=1e9 m)", "3:34"),
+          ("tool_tcp", "  robot r1 = abb_irb1600\n  tool g = box(10mm, 10mm, 10mm) tcp pose(z=1e9 m) on r1", "3:38"))),
 )
-

@@ -1,0 +1,44 @@
+"""A lower bound on a task's duration, without IK or timing: the planner refuses a program
+whose timelines are too long (E124) from it before it times any move.
+
+Counted: waits, fixed move times, and joint moves between two joint-space targets, each at
+least the slowest joint's travel over its speed limit times the move's speed fraction (no
+acceleration phase: a bound from below). Only instructions that always run are counted (the
+task body, every loop iteration, inlined proc bodies); an `if` or `while` counts nothing and
+forgets the last joint position, as does a move to a Cartesian target; a `stop` ends the count.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rmot.compiler import ir
+
+__all__ = ["least_duration_s"]
+
+
+def least_duration_s(velocity_limits: np.ndarray, body: tuple[ir.Instr, ...]) -> float:
+    """Seconds the instructions `body` take at least on a robot of these joint speed limits (rad/s, m/s)."""
+    vmax = np.asarray(velocity_limits, dtype=float)
+    total, last = 0.0, None
+    stack: list[ir.Instr] = list(reversed(body))
+    while stack:
+        instr = stack.pop()
+        if isinstance(instr, ir.Loop):
+            stack.extend(reversed([i for it in instr.iterations for i in it.body]))
+        elif isinstance(instr, ir.ProcCall):
+            stack.extend(reversed(instr.body))
+        elif isinstance(instr, ir.WaitTime):
+            total += instr.duration
+        elif isinstance(instr, ir.Move):
+            q = np.asarray(instr.target.values) if isinstance(instr.target, ir.JointTarget) else None
+            if instr.motion.duration is not None:
+                total += instr.motion.duration
+            elif q is not None and last is not None and q.shape == last.shape == vmax.shape and instr.kind is ir.MotionKind.JOINT:
+                total += float(np.max(np.abs(q - last) / (vmax * instr.motion.joint_speed)))
+            last = q
+        elif isinstance(instr, (ir.If, ir.While)):
+            last = None
+        elif isinstance(instr, ir.Stop):  # the task ends here: what follows never runs
+            break
+    return total
