@@ -75,7 +75,7 @@ from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
 )
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe, tp_io_comment
 from rmot.lang.record import record
 from rmot.lang.source import Span
@@ -879,7 +879,7 @@ def task_variables(body: tuple[ir.Instr, ...], first: int = FanucBackend.REG_FIR
     """Every variable and loop variable of a task, numbered from `first` in order of first
     appearance."""
     names: list[str] = []
-    for node in ir.walk(body):
+    for node in ir_tree.walk(body):
         name = (node.name if isinstance(node, ir.VarDecl)
                 else node.var if isinstance(node, ir.Loop) else None)
         if name is not None and name not in names:
@@ -915,7 +915,7 @@ def _rounded(steps: tuple[tuple[float, float, float], ...]) -> tuple[tuple[float
 def _offset_signature(body: tuple[ir.Instr, ...],
                       offsets: dict[tuple[int, str], int]) -> tuple[object, ...] | None:
     """The offsets of a called body's moves in order, or None when none of them takes one."""
-    sig = tuple(offsets.get((m.uid, "target")) for m in ir.walk(body) if isinstance(m, ir.Move))
+    sig = tuple(offsets.get((m.uid, "target")) for m in ir_tree.walk(body) if isinstance(m, ir.Move))
     return sig if any(s is not None for s in sig) else None
 
 
@@ -923,7 +923,7 @@ def _fanuc_blocker(template: LoopTemplate) -> str | None:
     """Why a loop the analysis accepts still cannot be one TP loop: a circular move whose
     points move (`Offset,PR[i]` shifts one destination per line), or a `repeat` loop (no
     variable)."""
-    for node in ir.walk(template.body):
+    for node in ir_tree.walk(template.body):
         if isinstance(node, ir.Move) and node.kind is ir.MotionKind.CIRCULAR:
             offsets = [template.targets.get((node.uid, role)) for role in ("target", "via")]
             if any(o is not None and any(any(s) for s in o.steps) for o in offsets):

@@ -113,7 +113,7 @@ def check_handshake(body: tuple[ir.Instr, ...], cell: ir.Cell, robot: str,
     Errors: the robot lacks its "sync" signals (E409, at every sync), a sync inside an `if`
     arm (E405). Warning: an odd number of barriers leaves the output on (W410, at the last).
     """
-    syncs = [n for n in ir.walk(body) if isinstance(n, ir.Sync)]
+    syncs = [n for n in ir_tree.walk(body) if isinstance(n, ir.Sync)]
     if not syncs:
         return ()
     out: list[Diagnostic] = []

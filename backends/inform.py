@@ -524,7 +524,7 @@ class InformBackend(Backend):
     def proc_call(self, node: ir.ProcCall, ctx: InformContext) -> list[str]:
         name = ctx.routine_of[node.uid]
         shifted = tuple(ctx.vars.offsets.get((m.uid, "target"), (None,))[0]
-                        for m in ir.walk(node.body) if isinstance(m, ir.Move))
+                        for m in ir_tree.walk(node.body) if isinstance(m, ir.Move))
         if any(s is not None for s in shifted):  # a call in a loop with shifted moves
             key = (name, shifted)
             if key not in ctx.vars.loop_jobs:
@@ -734,7 +734,7 @@ class InformBackend(Backend):
         """One P variable per distinct shift of the nest (its steps in the coordinates the job
         writes the position in: the robot frame, or the numbered user frame)."""
         for (uid, role), offset in sorted(template.targets.items()):
-            node = next(n for n in ir.walk(template.body) if n.uid == uid)
+            node = next(n for n in ir_tree.walk(template.body) if n.uid == uid)
             assert isinstance(node, ir.Move)
             system, steps = self._shift_steps(node, offset, ctx)
             if not any(any(s) for s in steps):
@@ -884,7 +884,7 @@ def task_variables(body: tuple[ir.Instr, ...], first: int = InformBackend.VAR_FI
     """Every variable and loop variable of a task with its type and number (per type from
     `first`, in order of first appearance)."""
     out: dict[str, tuple[ir.ValueType, int]] = {}
-    for node in ir.walk(body):
+    for node in ir_tree.walk(body):
         if isinstance(node, ir.VarDecl):
             name, vtype = node.name, node.type
         elif isinstance(node, ir.Loop) and node.var is not None:
@@ -937,7 +937,7 @@ def _rconf_key(q: np.ndarray, branch: ir.Config | None) -> object:
 def _inform_blocker(template: LoopTemplate) -> str | None:
     """Why a loop the analysis accepts still cannot be one INFORM loop: a circular move (MOVC
     starts from the move before it, which a loop's first iteration does not know)."""
-    for node in ir.walk(template.body):
+    for node in ir_tree.walk(template.body):
         if isinstance(node, ir.Move) and node.kind is ir.MotionKind.CIRCULAR:
             loop = template.loop
             return (f"loop 'for {loop.var} in {loop.first} .. {loop.last}' unrolled: an INFORM "

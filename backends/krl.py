@@ -64,7 +64,7 @@ from rmot.backends.controller_data import frame_number, tool_number
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe
 from rmot.lang.record import record
 
@@ -513,7 +513,7 @@ class KrlBackend(Backend):
             lines = self._routine_call(node, ctx)
         finally:
             ctx.loops.in_routine -= 1
-        if any(isinstance(n, ir.Stop) for n in ir.walk(node.body)):
+        if any(isinstance(n, ir.Stop) for n in ir_tree.walk(node.body)):
             _declare_var(ctx, _STOP_FLAG, "BOOL", "FALSE")
             ret = "RETURN ; stop: ends the program" if ctx.loops.in_routine == 0 else "RETURN ; stop"
             lines += [f"IF {_STOP_FLAG} THEN", f"  {ret}", "ENDIF"]

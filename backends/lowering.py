@@ -58,7 +58,7 @@ def split_body(body: tuple[ir.Instr, ...], max_instructions: int, stem: str) -> 
 
 def iter_proc_calls(body: tuple[ir.Instr, ...]) -> Iterator[ir.ProcCall]:
     """Every ProcCall in source order, outer before inner, including those inside If arms."""
-    for node in ir.walk(body):
+    for node in ir_tree.walk(body):
         if isinstance(node, ir.ProcCall):
             yield node
 

@@ -127,7 +127,7 @@ def plan_document(plan: plan_types.Plan) -> dict[str, Any]:
 
 
 def _task(tp: plan_types.TaskPlan) -> dict[str, Any]:
-    nodes = {n.uid: n for n in ir.walk(tp.task.body)}
+    nodes = {n.uid: n for n in ir_tree.walk(tp.task.body)}
     traj = tp.trajectory
     return {
         "name": tp.task.name,

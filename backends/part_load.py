@@ -33,12 +33,12 @@ def part_centres(ctx: Any) -> dict[int, np.ndarray]:
     cell = program.cell
     parts = {p.name: p for p in cell.parts}
     attached_elsewhere = {i.part for t in program.tasks if t.name != ctx.task.name
-                          for i in ir.walk(t.body) if isinstance(i, ir.Attach)}
+                          for i in ir_tree.walk(t.body) if isinstance(i, ir.Attach)}
     base_inv = ctx.robot.base.inverse()
     flange: ir.Pose | None = None
     seen: set[str] = set()
     out: dict[int, np.ndarray] = {}
-    for instr in ir.walk(ctx.task.body):
+    for instr in ir_tree.walk(ctx.task.body):
         if isinstance(instr, ir.Move):
             rec = ctx.record(instr)
             if rec is not None and rec.flange_pose is not None:
@@ -62,7 +62,7 @@ def held_load(node: ir.Attach | ir.Detach, ctx: Any) -> tuple[float, np.ndarray,
     centres = part_centres(ctx)
     parts = {p.name: p for p in ctx.plan.program.cell.parts}
     latest: dict[str, int] = {}
-    for instr in ir.walk(ctx.task.body):
+    for instr in ir_tree.walk(ctx.task.body):
         if isinstance(instr, ir.Attach):
             latest[instr.part] = instr.uid
         if instr is node or instr.uid == node.uid:

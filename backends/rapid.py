@@ -48,7 +48,7 @@ from rmot.backends import runtime as _rt
 from rmot.backends.base import Backend, TaskContext, accel_is_default, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
@@ -252,7 +252,7 @@ class RapidBackend(Backend):
         if node.kind is not ir.MotionKind.JOINT:
             self.warn_accel(node, ctx, "AccSet is a share of the normal acceleration, not a TCP acceleration")
         if not any(isinstance(i, ir.Move) and i.kind is ir.MotionKind.JOINT
-                   and not accel_is_default(i.motion, i.kind) for i in ir.walk(ctx.task.body)):
+                   and not accel_is_default(i.motion, i.kind) for i in ir_tree.walk(ctx.task.body)):
             return []
         share = node.motion.joint_accel * 100.0
         if abs(share - round(share)) < 1e-9 and 20 <= round(share) <= 100:

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from rmot.backends import codes, loops
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.lang.record import record
 
 __all__ = [
@@ -286,7 +286,7 @@ def inline_call(node: ir.ProcCall, state: LoopState) -> bool:
     its routine): its body has a target the loop offsets or reads a loop counter, and a
     vendor's loop counter is not known inside another routine (RAPID: the FOR counter is
     local to the loop; URScript: a local of the program's def)."""
-    uids = {n.uid for n in ir.walk(node.body)}
+    uids = {n.uid for n in ir_tree.walk(node.body)}
     moving = {uid for (uid, _), off in state.offsets.items() if any(any(s) for s in off.steps)}
     if uids & moving:
         return True

@@ -427,7 +427,7 @@ class Val3Backend(Backend):
     def proc_call(self, node: ir.ProcCall, ctx: Val3Context) -> list[str]:
         name = ctx.routine_of[node.uid]
         shifted = tuple(ctx.offsets.get((m.uid, "target"))
-                        for m in ir.walk(node.body) if isinstance(m, ir.Move))
+                        for m in ir_tree.walk(node.body) if isinstance(m, ir.Move))
         if any(s is not None for s in shifted):  # a call in a loop with shifted moves
             key = (name, shifted)
             if key not in ctx.loop_programs:
@@ -534,7 +534,7 @@ class Val3Backend(Backend):
         """`while`: the condition is read with no motion queued (a waitEndMove() ends a body
         that moves, as before the loop), as the plan reads it."""
         body = self.block(node.body, ctx, settled=True)
-        moves = any(isinstance(n, ir.Move) for n in ir.walk(node.body))
+        moves = any(isinstance(n, ir.Move) for n in ir_tree.walk(node.body))
         if moves and not isinstance(node.body[-1], self.NO_MOTION):
             body.append("waitEndMove()")
         return [f"while {self.expr(node.condition, node, ctx)}", *self.indent(body, self.INDENT),
@@ -677,4 +677,4 @@ def _blend_key(node: ir.Instr, rec: plan_types.InstructionRecord | None) -> obje
 
 
 def _can_stop(body: tuple[ir.Instr, ...]) -> bool:
-    return any(isinstance(n, ir.Stop) for n in ir.walk(body))
+    return any(isinstance(n, ir.Stop) for n in ir_tree.walk(body))

@@ -31,7 +31,6 @@ from rmot.lang.record import record
 from rmot.lang.source import Span
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator
 
     import numpy as np
 
@@ -42,7 +41,7 @@ __all__ = [
     "IoSignal", "JointTarget", "Mesh", "Motion", "MotionKind", "Move", "Native", "Pose",
     "ProcCall", "Program", "Pulse", "RobotInstance", "RobotSource", "SetAnalog",
     "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
-    "WaitTime", "Wrist", "Zone", "payload_cog", "walk",
+    "WaitTime", "Wrist", "Zone", "payload_cog",
     "Attach", "Detach", "Part", "load_cog",
     "AnalogInput", "Arith", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
     "Loop", "LoopIteration", "Not", "RtExpr", "Stop", "ValueType", "VarDecl", "VarRef",
@@ -803,15 +802,6 @@ def payload_cog(tcp: Pose) -> tuple[float, float, float]:
     backend that writes a payload."""
     x, y, z = tcp.position
     return (0.5 * x, 0.5 * y, 0.5 * z)
-
-
-def walk(body: tuple[Instr, ...]) -> Iterator[Instr]:
-    """Yield every instruction in source order, descending into every body an instruction
-    holds (If arms, ProcCall and While bodies, Loop iterations, timeout branches): the one
-    walker, compiler/ir_tree.walk (imported here late: ir_tree imports this module)."""
-    from rmot.compiler.ir_tree import walk as tree_walk
-
-    return tree_walk(body)
 
 
 def load_cog(tool: ToolRef, load: float) -> tuple[float, float, float]:

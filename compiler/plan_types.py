@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.source import Span
 
@@ -116,7 +116,7 @@ class TaskPlan:
 
     def next_move(self, rec: InstructionRecord) -> ir.Move | None:
         """The move that follows `rec` on its timeline (the one a blend at `rec` joins), or None."""
-        moves = {i.uid: i for i in ir.walk(self.task.body) if isinstance(i, ir.Move)}
+        moves = {i.uid: i for i in ir_tree.walk(self.task.body) if isinstance(i, ir.Move)}
         later = [r for r in self.records if r.variant == rec.variant and r.uid in moves
                  and r.uid != rec.uid and r.t_start >= rec.t_end - 1e-9]
         if not later:

@@ -24,7 +24,7 @@ from collections.abc import Collection, Iterable
 
 import numpy as np
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.corner_vendors import BOUND_VENDORS, SPHERE_VENDORS
@@ -44,7 +44,7 @@ def corner_findings(scene: Scene, tasks: Iterable[plan_types.TaskPlan],
     ir.RobotInstance.exact_ptp_approximation), so W341 does not name KRL C_PTP for them."""
     out: list[Diagnostic] = []
     for tp in tasks:
-        moves = {i.uid: i for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
+        moves = {i.uid: i for i in ir_tree.walk(tp.task.body) if isinstance(i, ir.Move)}
         pairs = _fixture_pairs(scene, tp.robot)
         if not pairs:
             continue

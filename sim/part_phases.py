@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.record import record
@@ -90,7 +90,7 @@ def part_events(plan: plan_types.Plan, variant: tuple[str, plan_types.Variant] |
         instrs: dict[int, ir.Instr] = {}
         barriers: dict[int, int] = {}
         passed = 0
-        for i in ir.walk(tp.task.body):
+        for i in ir_tree.walk(tp.task.body):
             if isinstance(i, ir.Sync):
                 passed += 1
             elif isinstance(i, (ir.Attach, ir.Detach)):

@@ -30,7 +30,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.record import record
@@ -272,7 +272,7 @@ def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
         rated = getattr(entry.robot, "rated_payload_kg", None) if entry is not None else None
         if rated is None:
             continue
-        moves = {i.uid: i for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
+        moves = {i.uid: i for i in ir_tree.walk(tp.task.body) if isinstance(i, ir.Move)}
         iterations = iteration_paths(tp.task.body)
         paths = [(0, main_events, None)] + [(v.index, part_events(plan, (tp.robot, v)), v) for v in tp.variants]
         for index, events, variant in paths:

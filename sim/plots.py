@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.plan_types import Plan, TaskPlan
 
 __all__ = ["KINDS", "PlotData", "figure_bytes", "plot_data"]
@@ -69,7 +69,7 @@ def _display(robot: Any) -> np.ndarray:
 
 
 def _instructions(tp: TaskPlan) -> dict[int, Any]:
-    return {i.uid: i for i in ir.walk(tp.task.body)}
+    return {i.uid: i for i in ir_tree.walk(tp.task.body)}
 
 
 def _bar(instr: Any) -> tuple[str, str] | None:

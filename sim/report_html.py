@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.sim.report import GUARANTEE
 
@@ -57,7 +57,7 @@ def breakdown(plan: Any) -> list[dict[str, Any]]:
     rows = []
     cycle = float(plan.cycle_time)
     for tp in plan.tasks:
-        instrs = {i.uid: i for i in ir.walk(tp.task.body)}
+        instrs = {i.uid: i for i in ir_tree.walk(tp.task.body)}
         spent = {"move": 0.0, "wait": 0.0, "sync": 0.0, "io": 0.0}
         for r in tp.records:
             if r.variant != 0:

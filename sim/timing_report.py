@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 __all__ = ["ASSUMPTIONS", "ASSUMPTIONS_LINE", "timing_json"]
 
@@ -40,7 +40,7 @@ def _round(x: float) -> float:
 
 
 def _instructions(body: tuple[ir.Instr, ...]) -> dict[int, ir.Instr]:
-    return {instr.uid: instr for instr in ir.walk(body)}  # every nested body (loop iterations too)
+    return {instr.uid: instr for instr in ir_tree.walk(body)}  # every nested body (loop iterations too)
 
 
 def _union(intervals: list[tuple[float, float]]) -> float:

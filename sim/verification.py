@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.source import Span
@@ -77,7 +77,7 @@ def _tools_used(program: ir.Program) -> dict[str, set[str]]:
     used: dict[str, set[str]] = {}
     for task in program.tasks:
         names = used.setdefault(task.robot, set())
-        for instr in ir.walk(task.body):
+        for instr in ir_tree.walk(task.body):
             if isinstance(instr, ir.Move) and instr.tool.name is not None:
                 names.add(instr.tool.name)
     return used
@@ -200,7 +200,7 @@ def _variant_path(tp: plan_types.TaskPlan, variant: int) -> str:
     arm and everything after the if, so the finding may be in either."""
     for v in tp.variants:
         if v.index == variant:
-            span = next((i.span for i in ir.walk(tp.task.body) if i.uid == v.if_uid), None)
+            span = next((i.span for i in ir_tree.walk(tp.task.body) if i.uid == v.if_uid), None)
             line = span.start.line if span is not None else None
             return f" (on {plan_types.path_words(v.arm, line)})"
     return " (on another path through a runtime if)"
@@ -224,7 +224,7 @@ def _iteration_at(tp: plan_types.TaskPlan | None, t: float, variant: int) -> str
 
 def _record_at(tp: plan_types.TaskPlan, t: float, variant: int) -> plan_types.InstructionRecord | None:
     """The record of the move the task executes at time t (else of any instruction then)."""
-    moves = {i.uid for i in ir.walk(tp.task.body) if isinstance(i, ir.Move)}
+    moves = {i.uid for i in ir_tree.walk(tp.task.body) if isinstance(i, ir.Move)}
     records = [r for r in tp.records if r.variant == variant] or list(tp.records)
     for want_move in (True, False):
         chosen = None
@@ -279,7 +279,7 @@ def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None
     joint's frame): half way along the flange->TCP vector, ir.payload_cog, the point every
     backend writes as the tool's payload."""
     best: tuple[float, np.ndarray | None] = (0.0, None)
-    for instr in ir.walk(tp.task.body):
+    for instr in ir_tree.walk(tp.task.body):
         if isinstance(instr, ir.Move) and instr.tool.mass > best[0]:
             best = (instr.tool.mass, np.asarray(ir.payload_cog(instr.tool.tcp), dtype=float))
     if scene.cell.parts and plan is not None:  # the heaviest parts it holds, at their own centroids, with the heaviest tool

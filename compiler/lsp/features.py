@@ -17,7 +17,7 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.lsp.analysis import Analysis, lsp_range, uri_of
 from rmot.compiler.lsp.index import Symbol, contains, field_names
 from rmot.compiler.lsp.planning import MovePlan, PlanResult
@@ -149,7 +149,7 @@ def _joints_text(p: MovePlan) -> str:
 def _all_moves(analysis: Analysis) -> list[tuple[ir.Task, ir.Move]]:
     if analysis.program is None:
         return []
-    return [(task, i) for task in analysis.program.tasks for i in ir.walk(task.body) if isinstance(i, ir.Move)]
+    return [(task, i) for task in analysis.program.tasks for i in ir_tree.walk(task.body) if isinstance(i, ir.Move)]
 
 
 def _moves_from(analysis: Analysis, statement: Span) -> list[tuple[ir.Task, ir.Move]]:

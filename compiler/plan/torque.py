@@ -36,7 +36,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 
 __all__ = ["CHECK_STEP", "TorqueLimits", "exceeds", "task_payload", "torque_limits"]
 
@@ -93,7 +93,7 @@ def task_payload(task: ir.Task, parts: tuple[ir.Part, ...]) -> tuple[float, np.n
     tool_mass, tool_at = 0.0, None
     held_mass, held_at = 0.0, None
     masses = {p.name: p.mass for p in parts}
-    for instr in ir.walk(task.body):
+    for instr in ir_tree.walk(task.body):
         if isinstance(instr, ir.Move) and instr.tool.mass > tool_mass:
             tool_mass, tool_at = (
                 instr.tool.mass,

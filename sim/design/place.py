@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.ir_tree import children, rebuilt
 
 __all__ = ["Candidate", "Placement", "halton", "place", "rebase", "world_targets"]
@@ -126,7 +126,7 @@ def world_targets(program: ir.Program, slot: str) -> Targets:
     for task in program.tasks:
         if task.robot != slot:
             continue
-        for m in ir.walk(task.body):
+        for m in ir_tree.walk(task.body):
             if not isinstance(m, ir.Move) or not isinstance(m.target, ir.CartesianTarget):
                 continue
             tcp_inv = m.tool.tcp.inverse()

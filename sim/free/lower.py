@@ -35,7 +35,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.sim import codes
@@ -71,7 +71,7 @@ class FreeResult:
 
 
 def has_free_moves(program: ir.Program) -> bool:
-    return any(isinstance(i, ir.Move) and i.free is not None for t in program.tasks for i in ir.walk(t.body))
+    return any(isinstance(i, ir.Move) and i.free is not None for t in program.tasks for i in ir_tree.walk(t.body))
 
 
 def lower_free_moves(program: ir.Program, plan_fn: PlanFn, store: PathStore | None = None) -> FreeResult:
@@ -82,7 +82,7 @@ def lower_free_moves(program: ir.Program, plan_fn: PlanFn, store: PathStore | No
     todo: list[tuple[str, int]] = []
     for task in program.tasks:
         top = {i.uid for i in task.body}
-        for instr in ir.walk(task.body):
+        for instr in ir_tree.walk(task.body):
             if not (isinstance(instr, ir.Move) and instr.free is not None):
                 continue
             if instr.uid in top:
@@ -172,7 +172,7 @@ def _start_joints(tp: plan_types.TaskPlan, task: ir.Task, uid: int) -> np.ndarra
     for instr in task.body:
         if instr.uid == uid:
             break
-        before += [i.uid for i in ir.walk((instr,)) if isinstance(i, ir.Move)]
+        before += [i.uid for i in ir_tree.walk((instr,)) if isinstance(i, ir.Move)]
     for prev in reversed(before):
         r = tp.record(prev)
         if r is not None and r.q_target is not None:
@@ -283,7 +283,7 @@ def _store_path(store: PathStore, key: str, path: list[np.ndarray], outcome: dic
 def _rewritten(program: ir.Program, task: ir.Task, move: ir.Move, vias: list[tuple[float, ...]], zone: float,
                q_goal_branch: ir.Config | None) -> ir.Program:
     """The program with `move` preceded by joint moves to the via points."""
-    next_uid = 1 + max(i.uid for t in program.tasks for i in ir.walk(t.body))
+    next_uid = 1 + max(i.uid for t in program.tasks for i in ir_tree.walk(t.body))
     stem = move.target.name or "free"
     motion = replace(move.motion, zone=ir.Zone(zone))
     via_moves = [ir.Move(uid=next_uid + k, kind=ir.MotionKind.JOINT, target=ir.JointTarget(q, f"{stem}_via{k + 1}"),

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.plan_types import Plan
 from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.tessellate import TriMesh, merge, tessellate
@@ -67,7 +67,7 @@ class RenderScene:
 def _tools_used(program: ir.Program) -> dict[str, set[str]]:
     used: dict[str, set[str]] = {}
     for task in program.tasks:
-        for instr in ir.walk(task.body):
+        for instr in ir_tree.walk(task.body):
             if isinstance(instr, ir.Move) and instr.tool.name is not None:
                 used.setdefault(task.robot, set()).add(instr.tool.name)
     return used
@@ -170,7 +170,7 @@ def _tcp_paths(plan: Plan, scene: Scene, max_points: int = 1500) -> tuple[np.nda
 
 def _active_tcp(tp: object, times: np.ndarray) -> np.ndarray:
     """(N, 4, 4) TCP in the flange frame of the move running at each time (flange if none)."""
-    moves = {m.uid: m for m in ir.walk(tp.task.body) if isinstance(m, ir.Move)}  # type: ignore[attr-defined]
+    moves = {m.uid: m for m in ir_tree.walk(tp.task.body) if isinstance(m, ir.Move)}  # type: ignore[attr-defined]
     spans = sorted((r.t_start, r.uid) for r in tp.records if r.variant == 0 and r.uid in moves)  # type: ignore[attr-defined]
     out = np.tile(np.eye(4), (len(times), 1, 1))
     if not spans:

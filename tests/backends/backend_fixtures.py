@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from rmot.backends.base import Backend, EmitResult
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.source import Pos, SourceFile, Span
 
@@ -53,7 +53,7 @@ def hand_plan(body: tuple[ir.Instr, ...], records: dict[int, tuple[np.ndarray, i
     durations = durations or {}
     recs = []
     t = 0.0
-    for node in ir.walk(body):
+    for node in ir_tree.walk(body):
         if node.uid in records:
             q, branch = records[node.uid]
             d = durations.get(node.uid, 1.0)
@@ -96,7 +96,7 @@ class Row:
 
 def emit_row(backend: type[Backend], row: Row) -> EmitResult:
     """`backend`'s output for `row.instr` alone, every move in it planned at Q, FRONT_UP_NOFLIP."""
-    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk((row.instr,)) if isinstance(n, ir.Move)}
+    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir_tree.walk((row.instr,)) if isinstance(n, ir.Move)}
     return backend().emit(hand_plan((row.instr,), records, robot=BRAND_ROBOT.get(backend.name, "abb_irb120")))
 
 
@@ -170,7 +170,7 @@ def handshake_missing(plan: plan_types.Plan) -> bool:
     program = plan.program
     return len(program.tasks) > 1 and any(
         handshake_ports(program.cell, t.robot) is None
-        for t in program.tasks if any(isinstance(n, ir.Sync) for n in ir.walk(t.body)))
+        for t in program.tasks if any(isinstance(n, ir.Sync) for n in ir_tree.walk(t.body)))
 
 
 # --------------------------------------------------------------------------- reading output back

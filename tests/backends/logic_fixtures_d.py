@@ -20,7 +20,7 @@ from backend_fixtures import (
     motion,
     span_at,
 )
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 J, L = ir.MotionKind.JOINT, ir.MotionKind.LINEAR
 DOWN_Q = ir.Pose.from_xyz_rpy(0, 0, 0, math.pi, 0, 0).quaternion
@@ -208,7 +208,7 @@ def iteration_poses(loop: ir.Loop, plan: plan_types.Plan) -> list[tuple[str, ir.
     in execution order: what the plan verified, from its records."""
     out: list[tuple[str, ir.Pose]] = []
     tp = plan.tasks[0]
-    for node in ir.walk((loop,)):
+    for node in ir_tree.walk((loop,)):
         if isinstance(node, ir.Move):
             rec = tp.record(node.uid)
             assert rec is not None and rec.tcp_pose is not None

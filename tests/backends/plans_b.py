@@ -13,7 +13,7 @@ import math
 import numpy as np
 from backend_fixtures import FRONT_UP_NOFLIP, deg, motion, span_at
 
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 GRIPPER_TCP = ir.Pose.from_xyz_rpy(0.01, -0.02, 0.15, 0.0, math.radians(10.0), math.radians(30.0))
 GRIPPER = ir.ToolRef("gripper", GRIPPER_TCP)
@@ -96,7 +96,7 @@ def demo_plan(robot: str = "ur5e") -> plan_types.Plan:
           9: HOME_Q, 12: deg(10, -40, 50, 0, 80, 10), 14: deg(12, -38, 48, 0, 82, 12)}
     blends = {2: 0.025}
     recs, t = [], 0.0
-    for node in ir.walk(body):
+    for node in ir_tree.walk(body):
         if isinstance(node, ir.Move):
             tcp = node.target.pose if isinstance(node.target, ir.CartesianTarget) else PICK_POSE
             recs.append(record(node, t, np.asarray(qs[node.uid]), FRONT_UP_NOFLIP, tcp,

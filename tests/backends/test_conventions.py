@@ -11,7 +11,7 @@ from backend_fixtures import DOWN, FRONT_UP_NOFLIP, Q, cart, hand_plan, span_at
 
 from rmot.backends import BACKENDS, codes, controllers, targets
 from rmot.backends.base import DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, EmitResult
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.passes.modal import DEFAULT_MODAL
 
 ROBOT = {"rapid": "abb_irb120", "krl": "kuka_kr16", "fanuc": "fanuc_lrmate200id", "urscript": "ur5e",
@@ -30,7 +30,7 @@ def move(uid: int, kind: ir.MotionKind = L, tool: ir.ToolRef = ir.ToolRef(None),
 
 
 def emit(target: str, body: tuple[ir.Instr, ...]) -> EmitResult:
-    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk(body) if isinstance(n, ir.Move)}
+    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir_tree.walk(body) if isinstance(n, ir.Move)}
     return BACKENDS[target]().emit(hand_plan(body, records, robot=ROBOT[target]))
 
 

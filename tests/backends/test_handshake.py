@@ -18,7 +18,7 @@ from rmot.backends.handshake import (
     SYNC_SIGNAL, HandshakePorts, HandshakeSet, HandshakeWait, check_handshake, handshake_note,
     handshake_ports, sync_as_handshake,
 )
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.backends import controllers
 
 PORTS = HandshakePorts(out=3, inp=4)
@@ -100,7 +100,7 @@ OUT, IN = ir.IoDirection.DIGITAL_OUT, ir.IoDirection.DIGITAL_IN
 
 def _io_pairs(body: tuple[ir.Instr, ...]) -> list[tuple[str, int, bool]]:
     out: list[tuple[str, int, bool]] = []
-    for n in ir.walk(body):
+    for n in ir_tree.walk(body):
         if isinstance(n, ir.SetDigital):
             out.append(("set", n.port, n.value))
         elif isinstance(n, ir.WaitInput):
@@ -136,7 +136,7 @@ class TestLowering:
         inner = ir.ProcCall(uid=3, proc="inner", args=(), body=(_sync(4),), span=span_at(3))
         body = (_sync(1), ir.ProcCall(uid=2, proc="outer", args=(), body=(inner, _sync(5)), span=span_at(2)), _sync(6))
         out = sync_as_handshake(body, PORTS)
-        rounds = [(n.uid, n.round, n.value) for n in ir.walk(out) if isinstance(n, HandshakeSet)]
+        rounds = [(n.uid, n.round, n.value) for n in ir_tree.walk(out) if isinstance(n, HandshakeSet)]
         assert rounds == [(1, 1, True), (4, 2, False), (5, 3, True), (6, 4, False)]
         assert isinstance(out[2], ir.ProcCall) and out[2].proc == "outer"
 
@@ -147,8 +147,8 @@ class TestLowering:
         its = tuple(ir.LoopIteration(value=v, body=(_sync(10 + v),)) for v in (0, 1))
         loop = ir.Loop(uid=2, var=None, first=0, last=2, iterations=its, span=span_at(2))
         out = sync_as_handshake((_sync(1), loop), PORTS)
-        assert not [n for n in ir.walk(out) if isinstance(n, ir.Sync)]
-        rounds = [(n.uid, n.round, n.value) for n in ir.walk(out) if isinstance(n, HandshakeSet)]
+        assert not [n for n in ir_tree.walk(out) if isinstance(n, ir.Sync)]
+        rounds = [(n.uid, n.round, n.value) for n in ir_tree.walk(out) if isinstance(n, HandshakeSet)]
         assert rounds == [(1, 1, True), (10, 2, False), (11, 3, True)]
 
     @given(st.lists(st.booleans(), max_size=12))

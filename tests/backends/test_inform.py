@@ -13,7 +13,7 @@ from backend_fixtures import blocks as shared_blocks
 from plans_b import HOME_Q, PICK_POSE, cart, demo_plan, fk_plan, make_plan, move, record, sample_joints
 
 from rmot.backends.inform import InformBackend
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 
 GOLDEN = Path(__file__).parent / "golden" / "inform"
 J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
@@ -104,7 +104,7 @@ class TestTable:
 class TestNearestAndRefused:
     def _plan(self, body: tuple[ir.Instr, ...]) -> object:
         recs = [record(n, 0.0, np.asarray(HOME_Q), FRONT_UP_NOFLIP, PICK_POSE, n.motion.zone.radius)
-                for n in ir.walk(body) if isinstance(n, ir.Move)]
+                for n in ir_tree.walk(body) if isinstance(n, ir.Move)]
         return make_plan(body, recs, "yaskawa_gp8")
 
     @pytest.mark.parametrize(("m", "expected", "code"), [

@@ -36,7 +36,7 @@ from logic_fixtures_d import (
 )
 from rmot.backends import BACKENDS
 from rmot.backends.base import EmitResult
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 from vendor_validators import check_fanuc, check_inform, check_val3
 
 VENDORS = ("fanuc", "inform", "val3")
@@ -563,7 +563,7 @@ def test_every_iteration_is_planned_the_same_robot_joints() -> None:
     compares against is the plan's record, not the IR's target)."""
     plan, loop = pallet_program("val3")
     tp = plan.tasks[0]
-    moves = [n for n in ir.walk((loop,)) if isinstance(n, ir.Move)]
+    moves = [n for n in ir_tree.walk((loop,)) if isinstance(n, ir.Move)]
     assert all(np.allclose(tp.record(m.uid).q_target, Q) for m in moves)  # type: ignore[union-attr]
     branches = [tp.record(m.uid).branch for m in moves]  # type: ignore[union-attr]
     assert all(b == FRONT_UP_NOFLIP for b in branches)
@@ -688,7 +688,7 @@ def test_a_moving_arc_in_a_loop_is_unrolled_for_tp_and_inform_and_composed_for_v
         iterations=tuple(ir.LoopIteration(value=k, body=body(k, 10 + 2 * k)) for k in range(3)),
     )
     for vendor in VENDORS:
-        records = {m.uid: (Q, FRONT_UP_NOFLIP) for m in ir.walk((loop,)) if isinstance(m, ir.Move)}
+        records = {m.uid: (Q, FRONT_UP_NOFLIP) for m in ir_tree.walk((loop,)) if isinstance(m, ir.Move)}
         result = emit(vendor, hand_plan((loop,), records, robot=BRAND_ROBOT[vendor]))
         notes = [d.message for d in result.diagnostics if d.code.id == "W420"]
         if vendor == "val3":

@@ -19,7 +19,7 @@ from loop_witness import krl_targets, rapid_targets, ur_targets
 from test_vendor_validators import findings
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 PROGRAMS = Path(__file__).parent / "programs"
 LOOP_VENDORS = ("rapid", "krl", "urscript")
@@ -31,7 +31,7 @@ def verified_poses(
     """The TCP pose (base frame) the planner verified at every move of the main timeline, in
     execution order (None for a joint-target move when not `cartesian_only`)."""
     tp = plan.tasks[0]
-    moves = {n.uid: n for n in ir.walk(tp.task.body) if isinstance(n, ir.Move)}
+    moves = {n.uid: n for n in ir_tree.walk(tp.task.body) if isinstance(n, ir.Move)}
     recs = sorted(
         (r for r in tp.records if r.variant == 0 and r.uid in moves and r.q_target is not None),
         key=lambda r: r.t_start,

@@ -14,7 +14,7 @@ from plans_b import demo_plan
 
 from rmot.backends import BACKENDS
 from rmot.backends.neutral import CSV_DECIMALS, CsvBackend, JsonBackend
-from rmot.compiler import ir, plan_types
+from rmot.compiler import ir, ir_tree, plan_types
 
 GOLDEN = Path(__file__).parent / "golden" / "neutral"
 
@@ -82,7 +82,7 @@ class TestJson:
         plan, doc = self._doc()
         task = doc["tasks"][0]
         assert (doc["program"], doc["cell"], task["name"], task["robot"], task["dof"]) == ("demo", "democell", "main", "r1", 6)
-        nodes = {n.uid: n for n in ir.walk(plan.tasks[0].task.body)}
+        nodes = {n.uid: n for n in ir_tree.walk(plan.tasks[0].task.body)}
         assert len(task["instructions"]) == len(plan.tasks[0].records)
         for got, rec in zip(task["instructions"], plan.tasks[0].records):
             node = nodes[rec.uid]

@@ -18,14 +18,14 @@ from backend_fixtures import (
 )
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 
 INT, NUM, BOOL = ir.ValueType.INT, ir.ValueType.NUM, ir.ValueType.BOOL
 COUNT = ir.VarRef("count", INT)
 
 
 def emit(vendor: str, body: tuple[ir.Instr, ...]):  # type: ignore[no-untyped-def]
-    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir.walk(body) if isinstance(n, ir.Move)}
+    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir_tree.walk(body) if isinstance(n, ir.Move)}
     return BACKENDS[vendor]().emit(hand_plan(body, records, robot=BRAND_ROBOT[vendor]))
 
 

@@ -40,7 +40,7 @@ from functools import partial
 
 import pytest
 from rmot.backends import BACKENDS
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 
@@ -80,7 +80,7 @@ def planned_and_emitted(vendor: str) -> tuple[list[float], list[float], dict[str
     plan = plan_program(front.program)
     assert not [d for d in plan.diagnostics if d.is_error], [d.message for d in plan.diagnostics]
     tp = plan.tasks[0]
-    moves = [n for n in ir.walk(tp.task.body) if isinstance(n, ir.Move)]
+    moves = [n for n in ir_tree.walk(tp.task.body) if isinstance(n, ir.Move)]
     q6 = []
     for m in moves:
         rec = tp.record(m.uid)

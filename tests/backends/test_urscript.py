@@ -16,7 +16,7 @@ from scipy.spatial.transform import Rotation
 
 from rmot.backends import BACKENDS
 from rmot.backends.urscript import UrScriptBackend
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 
 GOLDEN = Path(__file__).parent / "golden" / "urscript"
 J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
@@ -87,7 +87,7 @@ class TestTable:
 class TestRefusalsAndWarnings:
     def _plan(self, body: tuple[ir.Instr, ...], robot: str = "ur5e") -> object:
         recs = [record(n, 0.0, np.asarray(HOME_Q), FRONT_UP_NOFLIP, PICK_POSE)
-                for n in ir.walk(body) if isinstance(n, ir.Move)]
+                for n in ir_tree.walk(body) if isinstance(n, ir.Move)]
         return make_plan(body, recs, robot)
 
     def test_single_task_sync_is_a_noop(self) -> None:

@@ -15,7 +15,7 @@ from plans_b import (HOME_Q, PICK_POSE, TABLE, cart, demo_plan, fk_plan, make_pl
                      move, record, sample_joints)
 
 from rmot.backends.val3 import Val3Backend
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 
 GOLDEN = Path(__file__).parent / "golden" / "val3"
 NS = {"d": "http://www.staubli.com/robotics/VAL3/Data/2", "p": "http://www.staubli.com/robotics/VAL3/Program/2"}
@@ -114,7 +114,7 @@ class TestTable:
 class TestRefusedAndWarned:
     def _plan(self, body: tuple[ir.Instr, ...]) -> object:
         recs = [record(n, 0.0, np.asarray(HOME_Q), FRONT_UP_NOFLIP, PICK_POSE, n.motion.zone.radius)
-                for n in ir.walk(body) if isinstance(n, ir.Move)]
+                for n in ir_tree.walk(body) if isinstance(n, ir.Move)]
         return make_plan(body, recs, "staubli_tx2_60")
 
     def test_single_task_sync_is_noop_and_analog_warned(self) -> None:

@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
 
 from plan_helpers import Prog, pose, program
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.plan import plan_program
 from rmot.compiler.plan.dense import newton_ik
 
@@ -60,7 +60,7 @@ def baseline(prog: ir.Program, step: float = 0.004) -> float:
     robot = load_robot(prog.cell.robots[0].source.load_key)
     q = np.zeros(robot.dof)
     total, path = 0.0, [q]
-    for instr in ir.walk(prog.tasks[0].body):
+    for instr in ir_tree.walk(prog.tasks[0].body):
         if isinstance(instr, ir.WaitTime):
             total += instr.duration
         if not isinstance(instr, ir.Move):
@@ -99,7 +99,7 @@ def test_plan_pick_and_place(benchmark) -> None:  # type: ignore[no-untyped-def]
     t0 = time.perf_counter()
     baseline_traj = baseline(prog)
     baseline_s = time.perf_counter() - t0
-    n = sum(1 for _ in ir.walk(prog.tasks[0].body))
+    n = sum(1 for _ in ir_tree.walk(prog.tasks[0].body))
     benchmark.extra_info.update(
         instructions=n, trajectory_s=round(plan.cycle_time, 3), baseline_s=round(baseline_s, 4),
         baseline_trajectory_s=round(baseline_traj, 3),
@@ -118,7 +118,7 @@ if __name__ == "__main__":
     t0 = time.perf_counter()
     traj = baseline(prog)
     base = time.perf_counter() - t0
-    n = sum(1 for _ in ir.walk(prog.tasks[0].body))
+    n = sum(1 for _ in ir_tree.walk(prog.tasks[0].body))
     print(f"instructions {n}, trajectory {plan.cycle_time:.3f} s, planning median "
           f"{np.median(times) * 1e3:.0f} ms; baseline {base * 1e3:.0f} ms (trajectory {traj:.3f} s); "
           f"ratio {np.median(times) / base:.2f}; errors {[d.code.id for d in plan.diagnostics]}")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_text
 
@@ -26,7 +26,7 @@ program calls on r1 {
 
 
 def _moves(body: tuple[ir.Instr, ...]) -> list[ir.Move]:
-    return [i for i in ir.walk(body) if isinstance(i, ir.Move)]
+    return [i for i in ir_tree.walk(body) if isinstance(i, ir.Move)]
 
 
 def test_inlined_moves_carry_their_call_chain() -> None:

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.frontend import load_program, load_text
 from rmot.lang.diagnostics import render
 
@@ -34,7 +34,7 @@ def lower(body: str, cell: str = CELL) -> ir.Program:
 
 
 def moves(prog: ir.Program, task: int = 0) -> list[ir.Move]:
-    return [i for i in ir.walk(prog.tasks[task].body) if isinstance(i, ir.Move)]
+    return [i for i in ir_tree.walk(prog.tasks[task].body) if isinstance(i, ir.Move)]
 
 
 def rpy_matrix(x: float, y: float, z: float, rx: float, ry: float, rz: float) -> np.ndarray:
@@ -200,7 +200,7 @@ class TestControlFlow:
         """After unrolling and inlining, uids count 1, 2, 3, ... in walk order across tasks."""
         prog = lower("program p { task r1 { proc a() { wait 1 s; sync s }\n for i in 0 .. 2 { a() } }\n"
                      " task r2 { sync s; sync s; if in[2] { wait 1 s } } }")
-        uids = [i.uid for t in prog.tasks for i in ir.walk(t.body)]
+        uids = [i.uid for t in prog.tasks for i in ir_tree.walk(t.body)]
         assert uids == list(range(1, len(uids) + 1))
 
     def test_native_text(self) -> None:

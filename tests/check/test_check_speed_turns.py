@@ -14,7 +14,7 @@ import math
 from pathlib import Path
 
 import pytest
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 from rmot.compiler.robots.library import SPECS
@@ -36,7 +36,7 @@ def _planned(body: str) -> tuple[list[float], list[Diagnostic]]:
     assert front.program is not None, [d.message for d in front.diagnostics]
     plan = plan_program(front.program)
     tp = plan.tasks[0]
-    moves = [n for n in ir.walk(tp.task.body) if isinstance(n, ir.Move)]
+    moves = [n for n in ir_tree.walk(tp.task.body) if isinstance(n, ir.Move)]
     durations = []
     for m in moves:
         rec = tp.record(m.uid)
@@ -126,7 +126,7 @@ def _j6(body: str) -> tuple[list[float], list[Diagnostic]]:
     plan = plan_program(front.program)
     tp = plan.tasks[0]
     out = []
-    for m in (n for n in ir.walk(tp.task.body) if isinstance(n, ir.Move)):
+    for m in (n for n in ir_tree.walk(tp.task.body) if isinstance(n, ir.Move)):
         rec = tp.record(m.uid)
         out.append(
             math.nan

@@ -141,7 +141,7 @@ def test_walk_is_source_order_at_every_depth() -> None:
     inner = ir.ProcCall(uid=2, proc="p", args=(), body=(leaf[1],))
     body = (ir.If(uid=1, condition=cond, then=(inner,), otherwise=(leaf[2],)), leaf[3])
     assert _uid((leaf[0],) + body) == [10, 1, 2, 11, 12, 13]
-    assert _uid((leaf[0],) + body) == [i.uid for i in ir.walk((leaf[0],) + body)]
+    assert _uid((leaf[0],) + body) == [i.uid for i in ir_tree.walk((leaf[0],) + body)]
 
 
 def test_require_kinds_names_the_missing_kind() -> None:

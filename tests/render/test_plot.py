@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
@@ -38,7 +38,7 @@ def test_tcp_speed_matches_forward_kinematics(handover) -> None:  # type: ignore
     scene = build_scene(plan.program.cell, {})
     for tp, td in zip(plan.tasks, data.tasks):
         robot, base = scene.robots[tp.robot].robot, np.asarray(scene.robots[tp.robot].base)
-        moves = {m.uid: m for m in ir.walk(tp.task.body) if isinstance(m, ir.Move)}
+        moves = {m.uid: m for m in ir_tree.walk(tp.task.body) if isinstance(m, ir.Move)}
         linear = [r for r in tp.records if r.uid in moves and r.variant == 0
                   and moves[r.uid].kind is ir.MotionKind.LINEAR and r.t_end - r.t_start > 0.2]
         assert linear

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
 from rmot.sim.render.html import scene_data
@@ -34,7 +34,7 @@ def rs():  # type: ignore[no-untyped-def]
 def _detach_times(rs) -> list[float]:  # type: ignore[no-untyped-def]
     """Start times of the `detach carton` records on the main timeline, in order."""
     tp = rs.plan.tasks[0]
-    detaches = {i.uid for i in ir.walk(tp.task.body) if isinstance(i, ir.Detach)}
+    detaches = {i.uid for i in ir_tree.walk(tp.task.body) if isinstance(i, ir.Detach)}
     return sorted(float(r.t_start) for r in tp.records if r.variant == 0 and r.uid in detaches)
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.frontend import load_text
 from rmot.compiler.ir_tree import bind_loop_variable, iteration_paths
 from rmot.lang import ast
@@ -220,10 +220,10 @@ class TestLowering:
             (inner,) = it.body
             assert isinstance(inner, ir.Loop) and [i.value for i in inner.iterations] == [1, 2, 3]
         assert isinstance(rep, ir.Loop) and rep.var is None and (rep.first, rep.last) == (0, 2)
-        uids = [i.uid for i in ir.walk(body)]
+        uids = [i.uid for i in ir_tree.walk(body)]
         assert len(uids) == len(set(uids)) == 3 + 2 * (1 + 3) + 2
         paths = iteration_paths(body)
-        moves = [i for i in ir.walk(outer.iterations[1].body) if isinstance(i, ir.Move)]
+        moves = [i for i in ir_tree.walk(outer.iterations[1].body) if isinstance(i, ir.Move)]
         assert [[(v, x) for _, v, x in paths[m.uid]] for m in moves] == [
             [("layer", 1), ("row", r)] for r in (1, 2, 3)
         ]
@@ -276,7 +276,7 @@ def test_for_iterations_are_the_half_open_range(
     (loop,) = body
     assert isinstance(loop, ir.Loop)
     assert [it.value for it in loop.iterations] == [v for v in range(-10, 10) if first <= v < last]
-    uids = [i.uid for i in ir.walk(body)]
+    uids = [i.uid for i in ir_tree.walk(body)]
     assert len(set(uids)) == len(uids)
 
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from rmot.compiler import ir
+from rmot.compiler import ir, ir_tree
 from rmot.compiler.frontend import load_program, load_text
 from rmot.compiler.plan import timeline
 from rmot.compiler.plan.planner import plan_program
@@ -156,7 +156,7 @@ program w on r1 {{
 def _moves_of(tp, prog: ir.Program, name: str) -> list:  # type: ignore[no-untyped-def]
     uids = {
         i.uid
-        for i in ir.walk(prog.tasks[0].body)
+        for i in ir_tree.walk(prog.tasks[0].body)
         if isinstance(i, ir.Move) and i.target.name == name
     }
     return [r for r in tp.records if r.uid in uids and r.variant == 0]
