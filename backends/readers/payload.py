@@ -1,0 +1,158 @@
+"""Payload switches back to `attach PART` / `detach PART`, when the import runs in a cell.
+
+A backend writes an `attach`/`detach` as the vendor's payload instruction at the same place
+(RAPID `GripLoad piece;` after an attach, `GripLoad load0;` after the last detach). A reader
+keeps such a line native (W510); with the cell known, `match_payloads` turns it back:
+
+  * a switch to a load whose mass is one part's (or feeder's) mass and whose centre of gravity
+    lies within that part's bounding sphere around the TCP (the gripper holds the part there)
+    becomes `attach PART`; several parts that fit, or none, keep the line native with W516
+    naming the candidates;
+  * a switch to no load (`load0`) becomes `detach PART` of the part the routine attached last,
+    or of the cell's only part; otherwise it stays native with W516.
+
+RAPID's loaddata (ABB Technical reference manual "RAPID Instructions, Functions and Data
+types": loaddata [mass kg, cog [x, y, z] mm in the tool frame, aom, ix, iy, iz]; GripLoad
+"defines the payload which the robot holds in its gripper", load0 = no payload) is read from
+the module's `PERS/CONST loaddata` declarations, which the reader keeps as comments.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from dataclasses import replace
+
+from rmot.backends.readers import codes
+from rmot.backends.readers.model import Document, FileCount, Grip, Native, Stmt, Where
+from rmot.backends.readers.writer import map_leaves
+from rmot.compiler import ir
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.record import record
+from rmot.lang.source import Span
+
+__all__ = ["PartSpec", "cell_parts", "match_payloads"]
+
+MASS_TOLERANCE = 0.0006  # kg: the backends print masses to 3 decimals
+COG_TOLERANCE = 0.0006  # m: centres of gravity to 0.001 mm .. 1 mm (RAPID mm with 3 decimals)
+_NUM = r"[-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?"
+
+
+@record(slots=True)
+class PartSpec:
+    """A part or feeder of the cell as the matcher needs it."""
+
+    name: str
+    mass: float  # kg
+    reach: float  # m: the radius of its bounding sphere (a held part's centre is this close to the TCP)
+
+
+def _reach(g: ir.Geometry | None) -> float:
+    if isinstance(g, ir.Box):
+        return 0.5 * math.sqrt(sum(s * s for s in g.size))
+    if isinstance(g, ir.Cylinder):
+        return math.hypot(g.radius, 0.5 * g.height)
+    if isinstance(g, ir.Sphere):
+        return g.radius
+    if isinstance(g, ir.Capsule):
+        return g.radius + 0.5 * g.length
+    return math.inf  # a mesh: its extent is the sim's to load; the mass alone decides
+
+
+def cell_parts(cell: ir.Cell) -> tuple[PartSpec, ...]:
+    """The cell's parts and feeders."""
+    return tuple(PartSpec(p.name, p.mass, _reach(p.geometry)) for p in cell.parts)
+
+
+Load = tuple[float, tuple[float, float, float], Where | None]  # mass kg, cog m (tool frame), declared at
+
+
+def _rapid_loads(doc: Document) -> dict[str, Load]:
+    """loaddata name (lower case) -> (mass kg, cog m in the tool frame, its declaration), from
+    the declarations the reader kept as comments."""
+    out: dict[str, Load] = {}
+    for kept in doc.kept:
+        m = re.match(rf"(?i)\s*(?:LOCAL\s+)?(?:PERS|CONST|VAR)\s+loaddata\s+(\w+)\s*:?=\s*\[\s*({_NUM})\s*,"
+                     rf"\s*\[\s*({_NUM})\s*,\s*({_NUM})\s*,\s*({_NUM})\s*\]", kept.text)
+        if m:
+            x, y, z = (float(m.group(i)) / 1000.0 for i in (3, 4, 5))
+            out[m.group(1).lower()] = (float(m.group(2)), (x, y, z), kept.where)
+    return out
+
+
+def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> Load | None:
+    """The held parts' load (mass, cog m in the tool frame, where its data is declared) a native
+    line switches to; mass 0 for the switch back to the tool alone; None when the line is no
+    payload switch (or its data is not in the files)."""
+    if doc.vendor == "rapid":
+        m = re.fullmatch(r"(?i)GripLoad\s+(\w+)\s*;", s.text)
+        if m is None:
+            return None
+        if m.group(1).lower() == "load0":
+            return 0.0, (0.0, 0.0, 0.0), None
+        return loads.get(m.group(1).lower())
+    return None
+
+
+def _candidates(parts: tuple[PartSpec, ...], mass: float, cog: tuple[float, float, float]) -> list[str]:
+    return [p.name for p in parts
+            if abs(p.mass - mass) <= MASS_TOLERANCE and math.hypot(*cog) <= p.reach + COG_TOLERANCE]
+
+
+def match_payloads(doc: Document, parts: tuple[PartSpec, ...], span_of: Callable[[Where], Span]) -> Document:
+    """`doc` with every payload switch that matches one part as a `Grip`; the others stay
+    native with W516. The kept-native counts and W510 warnings of the turned lines go."""
+    if not parts:
+        return doc
+    loads = _rapid_loads(doc)
+    turned: list[Where] = []
+    used: set[Where] = set()  # the declarations of the loads the turned lines switch to
+    needed: set[Where] = set()  # ... and of those a line kept native still names
+    diags: list[Diagnostic] = []
+    held: list[str] = []  # the parts the routine being read attached, in source order
+
+    def fix(s: Stmt) -> Stmt:
+        if not isinstance(s, Native):
+            return s
+        load = _switch(doc, s, loads)
+        if load is None:
+            return s
+        mass, cog, declared = load
+        names = (held[-1:] or [p.name for p in parts]) if mass == 0.0 else _candidates(parts, mass, cog)
+        if len(names) != 1:
+            what = f"parts {', '.join(names)} all fit" if names else \
+                f"no part of the cell ({', '.join(p.name for p in parts)}) has its mass and centre"
+            diags.append(Diagnostic(codes.PAYLOAD_UNMATCHED, Severity.WARNING,
+                                    f"payload switch `{s.text}`: {what}; kept native", span_of(s.where)))
+            if declared is not None:
+                needed.add(declared)
+            return s
+        turned.append(s.where)
+        if declared is not None:
+            used.add(declared)
+        if mass != 0.0:
+            held.append(names[0])
+        return Grip(names[0], mass != 0.0, s.where)
+
+    routines = []
+    for r in doc.routines:
+        held.clear()
+        routines.append(replace(r, body=map_leaves(r.body, fix)))
+    return _recount(replace(doc, routines=tuple(routines)), turned, used - needed, diags)
+
+
+def _recount(doc: Document, turned: list[Where], used: set[Where], diags: list[Diagnostic]) -> Document:
+    """The turned lines and the load declarations they use count as imported and lose their
+    W510/W511 (the declarations leave the comment block); the W516 warnings join."""
+    places = {(w.path, w.line, w.col) for w in (*turned, *used)}
+    kept = tuple(d for d in doc.diagnostics if not (
+        d.code in (codes.KEPT_NATIVE, codes.DECLARATION_KEPT) and d.span is not None
+        and (d.span.file.path, d.span.start.line, d.span.start.col) in places))
+    per_file: dict[str, int] = {}
+    for w in (*turned, *used):
+        per_file[w.path] = per_file.get(w.path, 0) + 1
+    counts = tuple(FileCount(c.path, c.imported + per_file.get(c.path, 0), c.native - per_file.get(c.path, 0))
+                   for c in doc.counts)
+    comments = tuple(n for n in doc.kept if n.where not in used)
+    return replace(doc, counts=counts, diagnostics=kept + tuple(diags), kept=comments)
