@@ -81,28 +81,57 @@ def _rapid_loads(doc: Document) -> dict[str, Load]:
     return out
 
 
-def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> Load | None:
-    """The held parts' load (mass, cog m in the tool frame, where its data is declared) a native
-    line switches to; mass 0 for the switch back to the tool alone; None when the line is no
-    payload switch (or its data is not in the files)."""
+def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> tuple[bool, Load] | None:
+    """(whether the load is the tool's and the parts' together in the flange frame, the load
+    the native line switches to) -- RAPID's GripLoad is the parts' alone in the tool frame,
+    mass 0 the switch back to the tool alone; None when the line is no payload switch (or its
+    data is not in the files)."""
     if doc.vendor == "rapid":
         m = re.fullmatch(r"(?i)GripLoad\s+(\w+)\s*;", s.text)
         if m is None:
             return None
         if m.group(1).lower() == "load0":
-            return 0.0, (0.0, 0.0, 0.0), None
-        return loads.get(m.group(1).lower())
+            return False, (0.0, (0.0, 0.0, 0.0), None)
+        found = loads.get(m.group(1).lower())
+        return None if found is None else (False, found)
+    if doc.vendor == "urscript":  # set_payload(m, [x, y, z]): kg, m from the flange
+        m = re.fullmatch(rf"set_payload\(\s*({_NUM})\s*,\s*\[\s*({_NUM})\s*,\s*({_NUM})\s*,\s*({_NUM})\s*\]\s*\)",
+                         s.text)
+        if m is None:
+            return None
+        return True, (float(m.group(1)), (float(m.group(2)), float(m.group(3)), float(m.group(4))), None)
     return None
 
 
-def _candidates(parts: tuple[PartSpec, ...], mass: float, cog: tuple[float, float, float]) -> list[str]:
-    return [p.name for p in parts
-            if abs(p.mass - mass) <= MASS_TOLERANCE and math.hypot(*cog) <= p.reach + COG_TOLERANCE]
+def _held(total: Load, tools: tuple[tuple[ir.Pose, float], ...]) -> list[tuple[float, tuple[float, float, float]]]:
+    """The parts' load (mass, cog m in the tool frame) a tool + parts load means, for each of
+    the robot's tools (TCP in the flange frame, mass); mass 0 where it is the tool's alone. The
+    tool's centre is rmot's payload convention (ir.payload_cog)."""
+    mass, cog, _ = total
+    out = []
+    for tcp, tool_mass in tools:
+        tool_cog = ir.payload_cog(tcp)
+        parts = mass - tool_mass
+        if abs(parts) <= MASS_TOLERANCE:
+            if math.dist(cog, tool_cog) <= COG_TOLERANCE:
+                out.append((0.0, (0.0, 0.0, 0.0)))
+            continue
+        centre = tuple((mass * c - tool_mass * t) / parts for c, t in zip(cog, tool_cog, strict=True))
+        out.append((parts, (tcp.inverse() * ir.Pose(centre)).position))
+    return out
 
 
-def match_payloads(doc: Document, parts: tuple[PartSpec, ...], span_of: Callable[[Where], Span]) -> Document:
+def _candidates(parts: tuple[PartSpec, ...], held: list[tuple[float, tuple[float, float, float]]]) -> list[str]:
+    """The parts whose mass is the held load's and whose centre can be that load's centre."""
+    return [p.name for p in parts if any(
+        abs(p.mass - mass) <= MASS_TOLERANCE and math.hypot(*cog) <= p.reach + COG_TOLERANCE for mass, cog in held)]
+
+
+def match_payloads(doc: Document, parts: tuple[PartSpec, ...], tools: tuple[tuple[ir.Pose, float], ...],
+                   span_of: Callable[[Where], Span]) -> Document:
     """`doc` with every payload switch that matches one part as a `Grip`; the others stay
-    native with W516. The kept-native counts and W510 warnings of the turned lines go."""
+    native with W516. `tools`: the robot's tools (TCP in the flange frame, mass kg). The
+    kept-native counts and W510 warnings of the turned lines go."""
     if not parts:
         return doc
     loads = _rapid_loads(doc)
@@ -115,11 +144,13 @@ def match_payloads(doc: Document, parts: tuple[PartSpec, ...], span_of: Callable
     def fix(s: Stmt) -> Stmt:
         if not isinstance(s, Native):
             return s
-        load = _switch(doc, s, loads)
-        if load is None:
+        found = _switch(doc, s, loads)
+        if found is None:
             return s
-        mass, cog, declared = load
-        names = (held[-1:] or [p.name for p in parts]) if mass == 0.0 else _candidates(parts, mass, cog)
+        declared = found[1][2]
+        loads_held = _held(found[1], tools) if found[0] else [found[1][:2]]
+        take = not (loads_held and all(m == 0.0 for m, _ in loads_held))  # else back to the tool alone
+        names = _candidates(parts, loads_held) if take else (held[-1:] or [p.name for p in parts])
         if len(names) != 1:
             what = f"parts {', '.join(names)} all fit" if names else \
                 f"no part of the cell ({', '.join(p.name for p in parts)}) has its mass and centre"
@@ -131,9 +162,9 @@ def match_payloads(doc: Document, parts: tuple[PartSpec, ...], span_of: Callable
         turned.append(s.where)
         if declared is not None:
             used.add(declared)
-        if mass != 0.0:
+        if take:
             held.append(names[0])
-        return Grip(names[0], mass != 0.0, s.where)
+        return Grip(names[0], take, s.where)
 
     routines = []
     for r in doc.routines:

@@ -97,7 +97,8 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
         doc = resolve_signals(doc, signals, span_of)
         doc = match_tools(doc, tuple((t.name, t.tcp) for t in cell_ir.tools if t.robot == robot_name))
-        doc = match_payloads(doc, cell_parts(cell_ir), span_of)
+        doc = match_payloads(doc, cell_parts(cell_ir),
+                             tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
         use = os.path.relpath(os.path.abspath(cell), out_dir)
     else:
         signals, robot_name = stub_signals(doc), "r1"
