@@ -222,3 +222,5 @@ class Document:
     counts: tuple[FileCount, ...]
     diagnostics: tuple[Diagnostic, ...]
     kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments
+    # named loads the files declare (KRL LOAD data): (name, mass kg, centre of mass mm in the flange frame)
+    loads: tuple[tuple[str, float, tuple[float, float, float]], ...] = ()

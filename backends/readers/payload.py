@@ -100,6 +100,11 @@ def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> tuple[bool, Loa
         if m is None:
             return None
         return True, (float(m.group(1)), (float(m.group(2)), float(m.group(3)), float(m.group(4))), None)
+    if doc.vendor == "krl":  # $LOAD=name: the .dat's LOAD {M kg, CM {X, Y, Z mm}} on the flange
+        m = re.fullmatch(r"(?i)\$LOAD\s*=\s*(\w+)", s.text)
+        named = {name.lower(): (mass, tuple(c / 1000.0 for c in cm)) for name, mass, cm in doc.loads}
+        found = named.get(m.group(1).lower()) if m else None
+        return None if found is None else (True, (found[0], found[1], None))  # type: ignore[arg-type]
     return None
 
 
