@@ -65,7 +65,7 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
     _FANUC_INLINED.update(m.inlined)
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
-                   tuple(m.tally.comments))
+                   tuple(m.tally.comments), tuple(m.loads))
     return doc, m.tally
 
 

@@ -100,10 +100,11 @@ def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> tuple[bool, Loa
         if m is None:
             return None
         return True, (float(m.group(1)), (float(m.group(2)), float(m.group(3)), float(m.group(4))), None)
-    if doc.vendor == "krl":  # $LOAD=name: the .dat's LOAD {M kg, CM {X, Y, Z mm}} on the flange
-        m = re.fullmatch(r"(?i)\$LOAD\s*=\s*(\w+)", s.text)
+    if doc.vendor in ("krl", "fanuc"):  # KRL $LOAD=name: the .dat's LOAD {M kg, CM {X, Y, Z mm}}
+        # on the flange; TP PAYLOAD[i]: schedule i, its mass from a remark before it (centre unknown)
+        m = re.fullmatch(r"(?i)\$LOAD\s*=\s*(\w+)|(PAYLOAD\[\d+\])\s*;", s.text)
         named = {name.lower(): (mass, tuple(c / 1000.0 for c in cm)) for name, mass, cm in doc.loads}
-        found = named.get(m.group(1).lower()) if m else None
+        found = named.get((m.group(1) or m.group(2)).lower()) if m else None
         return None if found is None else (True, (found[0], found[1], None))  # type: ignore[arg-type]
     return None
 
@@ -117,9 +118,13 @@ def _held(total: Load, tools: tuple[tuple[ir.Pose, float], ...]) -> list[tuple[f
     for tcp, tool_mass in tools:
         tool_cog = ir.payload_cog(tcp)
         parts = mass - tool_mass
+        known = all(map(math.isfinite, cog))  # a TP schedule's centre is on the controller
         if abs(parts) <= MASS_TOLERANCE:
-            if math.dist(cog, tool_cog) <= COG_TOLERANCE:
+            if not known or math.dist(cog, tool_cog) <= COG_TOLERANCE:
                 out.append((0.0, (0.0, 0.0, 0.0)))
+            continue
+        if not known:
+            out.append((parts, (0.0, 0.0, 0.0)))  # the mass alone decides
             continue
         centre = tuple((mass * c - tool_mass * t) / parts for c, t in zip(cog, tool_cog, strict=True))
         out.append((parts, (tcp.inverse() * ir.Pose(centre)).position))
