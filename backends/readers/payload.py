@@ -146,6 +146,7 @@ def match_payloads(doc: Document, parts: tuple[PartSpec, ...], tools: tuple[tupl
         return doc
     loads = _rapid_loads(doc)
     turned: list[Where] = []
+    unmatched: list[Where] = []
     used: set[Where] = set()  # the declarations of the loads the turned lines switch to
     needed: set[Where] = set()  # ... and of those a line kept native still names
     diags: list[Diagnostic] = []
@@ -162,12 +163,17 @@ def match_payloads(doc: Document, parts: tuple[PartSpec, ...], tools: tuple[tupl
         take = not (loads_held and all(m == 0.0 for m, _ in loads_held))  # else back to the tool alone
         names = _candidates(parts, loads_held) if take else (held[-1:] or [p.name for p in parts])
         if len(names) != 1:
-            what = f"parts {', '.join(names)} all fit" if names else \
-                f"no part of the cell ({', '.join(p.name for p in parts)}) has its mass and centre"
+            if not take:
+                what = f"the part it leaves is not known here (the cell has {', '.join(names)})"
+            elif names:
+                what = f"parts {', '.join(names)} all fit"
+            else:
+                what = f"no part of the cell ({', '.join(p.name for p in parts)}) has its mass and centre"
             diags.append(Diagnostic(codes.PAYLOAD_UNMATCHED, Severity.WARNING,
                                     f"payload switch `{s.text}`: {what}; kept native", span_of(s.where)))
             if declared is not None:
                 needed.add(declared)
+            unmatched.append(s.where)  # W516 says it; its W510 goes
             return s
         turned.append(s.where)
         if declared is not None:
@@ -180,13 +186,15 @@ def match_payloads(doc: Document, parts: tuple[PartSpec, ...], tools: tuple[tupl
     for r in doc.routines:
         held.clear()
         routines.append(replace(r, body=map_leaves(r.body, fix)))
-    return _recount(replace(doc, routines=tuple(routines)), turned, used - needed, diags)
+    return _recount(replace(doc, routines=tuple(routines)), turned, used - needed, unmatched, diags)
 
 
-def _recount(doc: Document, turned: list[Where], used: set[Where], diags: list[Diagnostic]) -> Document:
+def _recount(doc: Document, turned: list[Where], used: set[Where], unmatched: list[Where],
+             diags: list[Diagnostic]) -> Document:
     """The turned lines and the load declarations they use count as imported and lose their
-    W510/W511 (the declarations leave the comment block); the W516 warnings join."""
-    places = {(w.path, w.line, w.col) for w in (*turned, *used)}
+    W510/W511 (the declarations leave the comment block); the W516 warnings join, in place of
+    the W510 of the lines they keep native."""
+    places = {(w.path, w.line, w.col) for w in (*turned, *used, *unmatched)}
     kept = tuple(d for d in doc.diagnostics if not (
         d.code in (codes.KEPT_NATIVE, codes.DECLARATION_KEPT) and d.span is not None
         and (d.span.file.path, d.span.start.line, d.span.start.col) in places))

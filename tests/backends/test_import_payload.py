@@ -133,6 +133,7 @@ def test_two_parts_fit_kept_native_naming_both(vendor: str, tmp_path: Path) -> N
     assert code == 0, output
     line = SWITCH_LINES[vendor][0]
     assert re.search(rf":{line}:\d+: warning\[W516\]: .*box1, box2", output), output
+    assert not re.search(rf":{line}:\d+: warning\[W510\]", output), output  # one warning a line
     assert "attach" not in program and f"native {vendor}" in program, program
 
 
