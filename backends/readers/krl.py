@@ -292,7 +292,7 @@ class _Krl:
             cm = value.get("CM") if isinstance(value, dict) and type_.upper() == "LOAD" else None
             mass = value.get("M") if isinstance(value, dict) else None
             if isinstance(cm, dict) and isinstance(mass, float) and all(isinstance(cm.get(k), float) for k in "XYZ"):
-                out.append((name, mass, (float(cm["X"]), float(cm["Y"]), float(cm["Z"]))))  # type: ignore[arg-type]
+                out.append((name, mass, (float(cm["X"]), float(cm["Y"]), float(cm["Z"]))))
         return tuple(out)
 
     def _tool_base(self, which: str, name: str) -> bool:

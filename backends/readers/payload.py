@@ -103,9 +103,10 @@ def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> tuple[bool, Loa
     if doc.vendor in ("krl", "fanuc"):  # KRL $LOAD=name: the .dat's LOAD {M kg, CM {X, Y, Z mm}}
         # on the flange; TP PAYLOAD[i]: schedule i, its mass from a remark before it (centre unknown)
         m = re.fullmatch(r"(?i)\$LOAD\s*=\s*(\w+)|(PAYLOAD\[\d+\])\s*;", s.text)
-        named = {name.lower(): (mass, tuple(c / 1000.0 for c in cm)) for name, mass, cm in doc.loads}
-        found = named.get((m.group(1) or m.group(2)).lower()) if m else None
-        return None if found is None else (True, (found[0], found[1], None))  # type: ignore[arg-type]
+        named = {name.lower(): (mass, (cm[0] / 1000.0, cm[1] / 1000.0, cm[2] / 1000.0))
+                 for name, mass, cm in doc.loads}
+        entry = named.get((m.group(1) or m.group(2)).lower()) if m else None
+        return None if entry is None else (True, (entry[0], entry[1], None))
     return None
 
 
@@ -126,8 +127,8 @@ def _held(total: Load, tools: tuple[tuple[ir.Pose, float], ...]) -> list[tuple[f
         if not known:
             out.append((parts, (0.0, 0.0, 0.0)))  # the mass alone decides
             continue
-        centre = tuple((mass * c - tool_mass * t) / parts for c, t in zip(cog, tool_cog, strict=True))
-        out.append((parts, (tcp.inverse() * ir.Pose(centre)).position))
+        x, y, z = ((mass * c - tool_mass * t) / parts for c, t in zip(cog, tool_cog, strict=True))
+        out.append((parts, (tcp.inverse() * ir.Pose((x, y, z))).position))
     return out
 
 
