@@ -1,20 +1,26 @@
 """Payload switches back to `attach PART` / `detach PART`, when the import runs in a cell.
 
-A backend writes an `attach`/`detach` as the vendor's payload instruction at the same place
-(RAPID `GripLoad piece;` after an attach, `GripLoad load0;` after the last detach). A reader
-keeps such a line native (W510); with the cell known, `match_payloads` turns it back:
+A backend writes an `attach`/`detach` as the vendor's payload instruction at the same place:
+RAPID `GripLoad piece;` / `GripLoad load0;`, KRL `$LOAD=name`, URScript `set_payload(m, cog)`,
+TP `PAYLOAD[i]`. A reader keeps such a line native (W510); with the cell known,
+`match_payloads` turns it back:
 
-  * a switch to a load whose mass is one part's (or feeder's) mass and whose centre of gravity
-    lies within that part's bounding sphere around the TCP (the gripper holds the part there)
-    becomes `attach PART`; several parts that fit, or none, keep the line native with W516
-    naming the candidates;
-  * a switch to no load (`load0`) becomes `detach PART` of the part the routine attached last,
+  * a switch to a load whose parts' share (the load less the tool's mass and centre, where the
+    vendor writes tool + parts) has one part's (or feeder's) mass and a centre within that
+    part's bounding sphere around the TCP (the gripper holds the part there) becomes
+    `attach PART`; several parts that fit, or none, keep the line native with W516 naming
+    the candidates;
+  * a switch to the tool alone becomes `detach PART` of the part the routine attached last,
     or of the cell's only part; otherwise it stays native with W516.
 
-RAPID's loaddata (ABB Technical reference manual "RAPID Instructions, Functions and Data
-types": loaddata [mass kg, cog [x, y, z] mm in the tool frame, aom, ix, iy, iz]; GripLoad
-"defines the payload which the robot holds in its gripper", load0 = no payload) is read from
-the module's `PERS/CONST loaddata` declarations, which the reader keeps as comments.
+Vendor data: ABB Technical reference manual "RAPID Instructions, Functions and Data types"
+(loaddata [mass kg, cog [x, y, z] mm in the tool frame, ...]; GripLoad, load0 = no payload),
+read from the module's loaddata declarations the reader keeps as comments; KUKA System
+Software 8.x, system variable $LOAD {M kg, CM {X, Y, Z mm} in the flange frame}, from the
+.dat's LOAD data; URScript manual set_payload(m kg, cog m from the flange); Fanuc TP
+PAYLOAD[i] selects a schedule whose data lives on the controller: its mass is taken from a
+`!...: M kg` remark right before the line (the backend writes one), its centre is unknown.
+The tool's own centre is rmot's convention, ir.payload_cog (half way along flange->TCP).
 """
 
 from __future__ import annotations
