@@ -146,10 +146,13 @@ def test_without_a_cell_kept_native(vendor: str, tmp_path: Path) -> None:
     assert "attach" not in program and "detach" not in program, program
 
 
-def test_no_part_of_that_mass_kept_native(tmp_path: Path) -> None:
-    """A 2.5 kg load: neither box1 (2 kg) nor plate (5 kg)."""
+@pytest.mark.parametrize("data", [
+    "[2.5,[0,0,50]",  # 2.5 kg: neither box1 (2 kg) nor plate (5 kg)
+    "[2,[0,0,150]",  # box1's mass, its centre 150 mm from the TCP: beyond its 122.5 mm half-diagonal
+])
+def test_no_part_fits_kept_native(data: str, tmp_path: Path) -> None:
     files = dict(FILES["rapid"])
-    FILES["rapid"] = {"grip_demo.mod": RAPID.replace("[2,[0,0,50]", "[2.5,[0,0,50]")}
+    FILES["rapid"] = {"grip_demo.mod": RAPID.replace("[2,[0,0,50]", data)}
     try:
         code, output, program = _import(tmp_path, "rapid", CELL)
     finally:
