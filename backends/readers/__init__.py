@@ -45,7 +45,7 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
     targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
     doc = Document("krl", m.name, main, targets, tuple(m.tools.values()),
                    tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
-                   tuple(m.tally.comments))
+                   tuple(m.tally.comments), m.named_loads())
     return doc, m.tally
 
 
@@ -65,7 +65,7 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
     _FANUC_INLINED.update(m.inlined)
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
-                   tuple(m.tally.comments))
+                   tuple(m.tally.comments), tuple(m.loads))
     return doc, m.tally
 
 
@@ -245,7 +245,8 @@ def _merge(docs: list[Document]) -> Document:
     return Document(first.vendor, first.name, first.main, sum((d.targets for d in docs), ()),
                     tuple(tools.values()), tuple(frames.values()), tuple(routines),
                     sum((d.consts for d in docs), ()), sum((d.counts for d in docs), ()),
-                    sum((d.diagnostics for d in docs), ()), sum((d.kept for d in docs), ()))
+                    sum((d.diagnostics for d in docs), ()), sum((d.kept for d in docs), ()),
+                    sum((d.loads for d in docs), ()))
 
 
 def companions(path: str) -> list[str]:

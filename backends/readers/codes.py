@@ -10,7 +10,7 @@ from rmot.lang.diagnostics import Code
 __all__ = [
     "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
-    "JOINT_RATES_READ",
+    "JOINT_RATES_READ", "PAYLOAD_UNMATCHED",
 ]
 
 NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
@@ -32,3 +32,5 @@ NAME_RENAMED = Code("W514", "name-renamed", "a vendor name is an rmot keyword or
 JOINT_RATES_READ = Code("W515", "joint-rates-read",
                         "a URScript movej's a=/v= (the plan's leading-axis peak rates) give no shares where its start "
                         "is unknown or it blends: read as 100 %")
+PAYLOAD_UNMATCHED = Code("W516", "payload-unmatched",
+                         "a payload switch matches no part of the cell, or several: it is kept native")

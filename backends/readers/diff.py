@@ -13,7 +13,7 @@ import math
 from difflib import SequenceMatcher
 
 from rmot.backends.readers.model import (
-    Call, Document, For, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, walk,
+    Call, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, walk,
 )
 from rmot.compiler import ir
 
@@ -84,6 +84,8 @@ def describe(s: Stmt) -> str:
         return f"call {s.name}"
     if isinstance(s, Native):
         return f"native {s.text}"
+    if isinstance(s, Grip):
+        return f"{'attach' if s.take else 'detach'} {s.part}"
     return "stop" if isinstance(s, Stop) else "wait"
 
 

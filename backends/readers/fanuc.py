@@ -63,6 +63,9 @@ class _Ls:
         self.routine = Routine("", (), (), Where(path, 1))  # the program, once read
         self.programs = programs or {}
         self.inlined: set[str] = set()  # programs read again at a call inside a loop
+        # PAYLOAD[i] schedules with the mass a remark right before the line gives (the schedule's
+        # data lives on the controller): (name, mass kg, centre unknown)
+        self.loads: list[tuple[str, float, tuple[float, float, float]]] = []
 
     # ---------------------------------------------------------------- sections
 
@@ -154,6 +157,11 @@ class _Ls:
             if found is not None:
                 return found
         stmt = self._simple(text, where)
+        payload = re.fullmatch(r"PAYLOAD\[(\d+)\]", text)
+        remark = re.fullmatch(r"!.*:\s*(\d+(?:\.\d+)?)\s*kg", self._text(i - 1)) if payload and i > 0 else None
+        if remark:
+            nan = float("nan")
+            self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (nan, nan, nan)))  # type: ignore[union-attr]
         if stmt is None:
             return [self.tally.keep(text + " ;", where, "no rmot form")], i + 1
         self.tally.imported += 1

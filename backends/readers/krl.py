@@ -183,6 +183,8 @@ class _Krl:
             return self._keep_block(i, word, end)
         if word in ("DECL", "INT", "REAL", "BOOL", "CHAR", "E6POS", "POS", "FRAME", "E6AXIS", "AXIS", "SIGNAL"):
             return [], i + 1
+        if self._load_switch(i):
+            return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text):
             return [], i + 1
         if self._work_copy(ln.text):
@@ -274,6 +276,24 @@ class _Krl:
         if m:
             return self._tool_base(m.group(1).upper(), m.group(2))
         return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
+
+    def _load_switch(self, i: int) -> bool:
+        """`$LOAD=name` that is not the load of the tool the line before selects: a switch of the
+        held load (an attach or detach)."""
+        if re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", self.lines[i].text) is None:
+            return False
+        before = next((ln.text for ln in reversed(self.lines[:i]) if ln.text), "")
+        return re.match(r"(?i)\$TOOL\s*=", before) is None
+
+    def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
+        """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
+        out = []
+        for type_, name, value, _ in self.data.values():
+            cm = value.get("CM") if isinstance(value, dict) and type_.upper() == "LOAD" else None
+            mass = value.get("M") if isinstance(value, dict) else None
+            if isinstance(cm, dict) and isinstance(mass, float) and all(isinstance(cm.get(k), float) for k in "XYZ"):
+                out.append((name, mass, (float(cm["X"]), float(cm["Y"]), float(cm["Z"]))))
+        return tuple(out)
 
     def _tool_base(self, which: str, name: str) -> bool:
         key = name.upper()

@@ -15,7 +15,7 @@ from rmot.lang.record import record
 
 __all__ = [
     "Where", "Target", "ToolData", "FrameData", "Move", "SetOut", "Pulse", "Wait", "WaitIn",
-    "Cond", "If", "While", "For", "Call", "Native", "Stop", "Stmt", "Routine", "FileCount",
+    "Cond", "If", "While", "For", "Call", "Native", "Stop", "Grip", "Stmt", "Routine", "FileCount",
     "Document", "Signal", "walk",
 ]
 
@@ -167,7 +167,17 @@ class Stop:
     where: Where
 
 
-Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop
+@record(slots=True)
+class Grip:
+    """`attach part` (take=True) or `detach part`: a vendor payload switch matched to a part of
+    the cell (payload.py)."""
+
+    part: str
+    take: bool
+    where: Where
+
+
+Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop | Grip
 
 
 def walk(body: tuple[Stmt, ...]) -> list[Stmt]:
@@ -212,3 +222,5 @@ class Document:
     counts: tuple[FileCount, ...]
     diagnostics: tuple[Diagnostic, ...]
     kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments
+    # named loads the files declare (KRL LOAD data): (name, mass kg, centre of mass mm in the flange frame)
+    loads: tuple[tuple[str, float, tuple[float, float, float]], ...] = ()

@@ -146,6 +146,9 @@ class _Script:
                 return found
         if ln.head in ("if", "while"):
             return self._compound(i)
+        if ln.head == "set_payload" and not (i > 0 and self.lines[i - 1].head == "set_tcp"):
+            # not the load of a tool just selected: a switch of the held load (an attach/detach)
+            return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
         stmt = self._simple(ln)

@@ -15,7 +15,7 @@ from dataclasses import replace
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.model import (
-    Call, Cond, Document, FileCount, For, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
+    Call, Cond, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While, walk,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
@@ -196,6 +196,8 @@ class _Printer:
                 self.emit(depth, f"native {s.vendor} {_quote(line)}   # {replace(s.where, line=s.where.line + n, col=1) if n else s.where}")
         elif isinstance(s, Stop):
             self.emit(depth, "stop")
+        elif isinstance(s, Grip):
+            self.emit(depth, f"{'attach' if s.take else 'detach'} {s.part}")
         elif isinstance(s, Call):
             self.emit(depth, f"{rmot_name(s.name)}({', '.join(s.args)})")
         else:

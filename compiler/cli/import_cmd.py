@@ -69,6 +69,7 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, objec
 def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None) -> None:
     from rmot.backends.readers import ImportError_, read_files, span_of
     from rmot.backends.readers.counts import motion_io_counts
+    from rmot.backends.readers.payload import cell_parts, match_payloads
     from rmot.backends.readers.writer import (
         SignalMap, cell_stub, match_tools, program_text, rename_warnings, resolve_signals, stub_signals,
     )
@@ -96,6 +97,8 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
         doc = resolve_signals(doc, signals, span_of)
         doc = match_tools(doc, tuple((t.name, t.tcp) for t in cell_ir.tools if t.robot == robot_name))
+        doc = match_payloads(doc, cell_parts(cell_ir),
+                             tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
         use = os.path.relpath(os.path.abspath(cell), out_dir)
     else:
         signals, robot_name = stub_signals(doc), "r1"
