@@ -13,11 +13,11 @@ from collections.abc import Callable
 from typing import TypeVar
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.model import FileCount, Native, Where
+from rmot.backends.readers.model import Call, Cond, FileCount, Native, Pulse, SetOut, Stmt, Wait, WaitIn, Where
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
-__all__ = ["Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
+__all__ = ["SIMPLE_FORMS", "match_simple", "Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
            "num_expr", "rmot_name", "RMOT_RESERVED"]
 
 T = TypeVar("T")
@@ -168,3 +168,25 @@ def rmot_name(name: str, taken: set[str] | None = None) -> str:
     if clean in RMOT_RESERVED:
         clean += "_"
     return clean
+
+
+# The I/O, wait and call statements every vendor writes in one line, built from a match whose
+# groups are (signal or name, value): a vendor reader lists its own patterns for these kinds.
+SIMPLE_FORMS: dict[str, Callable[[re.Match[str], Where], Stmt]] = {
+    "out": lambda m, w: SetOut(int(m.group(1)), 1.0 if m.group(2) == "ON" else 0.0, w),
+    "pulse": lambda m, w: Pulse(int(m.group(1)), float(m.group(2)), w),
+    "aout": lambda m, w: SetOut(int(m.group(1)), float(m.group(2)), w, analog=True),
+    "wait": lambda m, w: Wait(float(m.group(1)), w),
+    "wait_in": lambda m, w: WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), None, w),
+    "call": lambda m, w: Call(m.group(1), (), w),  # the routine keeps the name it has in its file
+    "call_renamed": lambda m, w: Call(rmot_name(m.group(1)), (), w),  # a routine named as rmot names it
+}
+
+
+def match_simple(text: str, patterns: tuple[tuple[str, re.Pattern[str]], ...], where: Where) -> Stmt | None:
+    """The statement of the first (kind, pattern) in `patterns` that matches all of `text`."""
+    for kind, pattern in patterns:
+        m = pattern.fullmatch(text)
+        if m:
+            return SIMPLE_FORMS[kind](m, where)
+    return None

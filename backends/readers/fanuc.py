@@ -20,9 +20,9 @@ import math
 import re
 
 from rmot.backends.fanuc_tp import FanucBackend
-from rmot.backends.readers.common import Tally, number, rmot_name
+from rmot.backends.readers.common import Tally, match_simple, number, rmot_name
 from rmot.backends.readers.model import (
-    Call, Cond, For, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, Routine,
+    Cond, For, FrameData, If, Move, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.compiler import ir
@@ -32,6 +32,15 @@ __all__ = ["read_fanuc"]
 _MOTION = re.compile(r"(?i)^(J|L)\s+P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _CIRC = re.compile(r"(?i)^C\s+P\[(\d+)(?::[^\]]*)?\]\s*:\s*P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _SIG = r"\[(\d+)(?::[^\]]*)?\]"
+# TP standard instructions (B-83284EN): outputs, pulses, analog outputs, timed and input waits, calls
+_SIMPLE = (
+    ("out", re.compile(rf"DO{_SIG}\s*=\s*(ON|OFF)")),
+    ("pulse", re.compile(rf"DO{_SIG}\s*=\s*PULSE,\s*([\d.]+)\s*sec")),
+    ("aout", re.compile(rf"AO{_SIG}\s*=\s*(-?[\d.]+)")),
+    ("wait", re.compile(r"WAIT\s+([\d.]+)\s*\(sec\)")),
+    ("wait_in", re.compile(rf"WAIT DI{_SIG}\s*=\s*(ON|OFF)")),
+    ("call", re.compile(r"CALL\s+(\w+)")),
+)
 
 
 def _branch(text: str) -> ir.Config | None:
@@ -274,25 +283,7 @@ class _Ls:
     def _simple(self, text: str, where: Where) -> Stmt | None:
         if text.startswith(("J ", "L ", "C ")):
             return self._motion(text, where)
-        m = re.fullmatch(rf"DO{_SIG}\s*=\s*(ON|OFF)", text)
-        if m:
-            return SetOut(int(m.group(1)), 1.0 if m.group(2) == "ON" else 0.0, where)
-        m = re.fullmatch(rf"DO{_SIG}\s*=\s*PULSE,\s*([\d.]+)\s*sec", text)
-        if m:
-            return Pulse(int(m.group(1)), float(m.group(2)), where)
-        m = re.fullmatch(rf"AO{_SIG}\s*=\s*(-?[\d.]+)", text)
-        if m:
-            return SetOut(int(m.group(1)), float(m.group(2)), where, analog=True)
-        m = re.fullmatch(r"WAIT\s+([\d.]+)\s*\(sec\)", text)
-        if m:
-            return Wait(float(m.group(1)), where)
-        m = re.fullmatch(rf"WAIT DI{_SIG}\s*=\s*(ON|OFF)", text)
-        if m:
-            return WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), None, where)
-        m = re.fullmatch(r"CALL\s+(\w+)", text)
-        if m:
-            return Call(m.group(1), (), where)
-        return Stop(where) if text == "ABORT" else None
+        return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "ABORT" else None)
 
     def _motion(self, text: str, where: Where) -> Move | None:
         circ = _CIRC.match(text)

@@ -18,13 +18,24 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers.common import Tally, rmot_name
+from rmot.backends.readers.common import Tally, match_simple
 from rmot.backends.readers.model import (
-    Call, Cond, FrameData, If, Move, Pulse, Routine, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where,
+    Cond, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
 from rmot.compiler import ir
 
 __all__ = ["read_inform", "PL_MM"]
+
+# INFORM instructions (the forms backends/inform.py writes): outputs, pulses, analog outputs,
+# timers, input waits, job calls
+_SIMPLE = (
+    ("out", re.compile(r"DOUT OT#\((\d+)\) (ON|OFF)")),
+    ("pulse", re.compile(r"PULSE OT#\((\d+)\) T=([\d.]+)")),
+    ("aout", re.compile(r"AOUT AO#\((\d+)\) (-?[\d.]+)")),
+    ("wait", re.compile(r"TIMER T=([\d.]+)")),
+    ("wait_in", re.compile(r"WAIT IN#\((\d+)\)=(ON|OFF)")),
+    ("call_renamed", re.compile(r"CALL JOB:(\w+)")),
+)
 
 PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/inform.py)
 
@@ -197,25 +208,7 @@ class _Job:
         m = re.fullmatch(r"(MOVJ|MOVL)\s+(C\d+)\s*(.*)", text)
         if m:
             return self._move("joint" if m.group(1) == "MOVJ" else "linear", [m.group(2)], m.group(3), where)
-        m = re.fullmatch(r"DOUT OT#\((\d+)\) (ON|OFF)", text)
-        if m:
-            return SetOut(int(m.group(1)), 1.0 if m.group(2) == "ON" else 0.0, where)
-        m = re.fullmatch(r"PULSE OT#\((\d+)\) T=([\d.]+)", text)
-        if m:
-            return Pulse(int(m.group(1)), float(m.group(2)), where)
-        m = re.fullmatch(r"AOUT AO#\((\d+)\) (-?[\d.]+)", text)
-        if m:
-            return SetOut(int(m.group(1)), float(m.group(2)), where, analog=True)
-        m = re.fullmatch(r"TIMER T=([\d.]+)", text)
-        if m:
-            return Wait(float(m.group(1)), where)
-        m = re.fullmatch(r"WAIT IN#\((\d+)\)=(ON|OFF)", text)
-        if m:
-            return WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), None, where)
-        m = re.fullmatch(r"CALL JOB:(\w+)", text)
-        if m:
-            return Call(rmot_name(m.group(1)), (), where)
-        return Stop(where) if text == "PAUSE" else None
+        return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
 
 
 def read_inform(path: str, text: str) -> _Job:
