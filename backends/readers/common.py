@@ -17,7 +17,7 @@ from rmot.backends.readers.model import Call, Cond, FileCount, Native, Pulse, Se
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
-__all__ = ["SIMPLE_FORMS", "match_simple", "Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
+__all__ = ["SIMPLE_FORMS", "label_arms", "match_simple", "Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
            "num_expr", "rmot_name", "RMOT_RESERVED"]
 
 T = TypeVar("T")
@@ -190,3 +190,17 @@ def match_simple(text: str, patterns: tuple[tuple[str, re.Pattern[str]], ...], w
         if m:
             return SIMPLE_FORMS[kind](m, where)
     return None
+
+
+def label_arms(text_at: Callable[[int], str], i: int, end: int, label_a: str, jump: re.Pattern[str],
+               label: Callable[[str], str]) -> tuple[int, int | None] | None:
+    """The lines of an if written with labels (TP, INFORM): the conditional jump at line `i`
+    goes to `label_a` (the else arm, or the end); a jump to another label just before it
+    (`jump`, the label's name in group 1, its line `label(name)`) ends the then-arm and marks an
+    else-arm up to that label. (line of label_a, line of the end label or None), or None."""
+    ja = next((k for k in range(i + 1, end) if text_at(k) == label_a), None)
+    if ja is None:
+        return None
+    jmp = jump.fullmatch(text_at(ja - 1))
+    jb = next((k for k in range(ja + 1, end) if jmp and text_at(k) == label(jmp.group(1))), None)
+    return ja, jb

@@ -20,7 +20,7 @@ import math
 import re
 
 from rmot.backends.fanuc_tp import FanucBackend
-from rmot.backends.readers.common import Tally, match_simple, number, rmot_name
+from rmot.backends.readers.common import Tally, label_arms, match_simple, number, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
@@ -32,6 +32,7 @@ __all__ = ["read_fanuc"]
 _MOTION = re.compile(r"(?i)^(J|L)\s+P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _CIRC = re.compile(r"(?i)^C\s+P\[(\d+)(?::[^\]]*)?\]\s*:\s*P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _SIG = r"\[(\d+)(?::[^\]]*)?\]"
+_JMP = re.compile(r"JMP LBL\[(\d+)\]")
 # TP standard instructions (B-83284EN): outputs, pulses, analog outputs, timed and input waits, calls
 _SIMPLE = (
     ("out", re.compile(rf"DO{_SIG}\s*=\s*(ON|OFF)")),
@@ -253,11 +254,10 @@ class _Ls:
         m = re.fullmatch(rf"IF DI{_SIG}\s*<>\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
         if m is None:
             return None
-        ja = next((k for k in range(i + 1, end) if self._text(k) == f"LBL[{m.group(3)}]"), None)
-        if ja is None:
+        arms = label_arms(self._text, i, end, f"LBL[{m.group(3)}]", _JMP, lambda n: f"LBL[{n}]")
+        if arms is None:
             return None
-        jmp = re.fullmatch(r"JMP LBL\[(\d+)\]", self._text(ja - 1))
-        jb = next((k for k in range(ja + 1, end) if jmp and self._text(k) == f"LBL[{jmp.group(1)}]"), None)
+        ja, jb = arms
         then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         self.tally.imported += 1

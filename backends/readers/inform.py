@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers.common import Tally, match_simple
+from rmot.backends.readers.common import Tally, label_arms, match_simple
 from rmot.backends.readers.model import (
     Cond, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
@@ -26,6 +26,7 @@ from rmot.compiler import ir
 
 __all__ = ["read_inform", "PL_MM"]
 
+_JUMP = re.compile(r"JUMP \*(L\w+)")
 # INFORM instructions (the forms backends/inform.py writes): outputs, pulses, analog outputs,
 # timers, input waits, job calls
 _SIMPLE = (
@@ -194,11 +195,10 @@ class _Job:
         m = re.fullmatch(r"JUMP \*(L\w+) IF IN#\((\d+)\)=(ON|OFF)", self._text(i))
         if m is None:
             return None
-        ja = next((k for k in range(i + 1, end) if self._text(k) == f"*{m.group(1)}"), None)
-        if ja is None:
+        arms = label_arms(self._text, i, end, f"*{m.group(1)}", _JUMP, lambda n: f"*{n}")
+        if arms is None:
             return None
-        jmp = re.fullmatch(r"JUMP \*(L\w+)", self._text(ja - 1))
-        jb = next((k for k in range(ja + 1, end) if jmp and self._text(k) == f"*{jmp.group(1)}"), None)
+        ja, jb = arms
         then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         cond = Cond(int(m.group(2)), m.group(3) == "OFF")
