@@ -12,9 +12,9 @@ tests/robots/test_reference_fk.py composes it independently and compares.
 
 Not here: the 5-axis arms (LR Mate 200iC/5H, /5HS, 200iD/4SH, /7H, M-430iA/2F) and the
 LR Mate 200iC/5F file (no joint_6), M-430iA/2P and CRX-10iA/L (no spherical wrist: OPW does not
-apply), M-900iB/700 (a parallel-link file with xacro conditions), and variants left out to keep
-the suite's time (each arm adds its IK checks): LR Mate 200i, 200iB/3L, 200iC/5L, 200iD/4S,
-/4SC, /7LC, M-6iB/6S, CR-7iA/L, R-2000iC/125L, /210F, /270F.
+apply), M-900iB/700 (a parallel-link file with xacro conditions). Where the package file has
+no masses and the variant's own data sheet mass is not at hand, `mass_source` says whose mass
+stands in for it.
 """
 
 from __future__ import annotations
@@ -187,6 +187,114 @@ _ARMS = (
         speed_deg_s=(105, 90, 85, 120, 120, 200), rounded=False, payload_kg=210.0,
         floor=-0.67,
         arm_mass_kg=1110.0,
+    ),
+    RosiArm(
+        name="fanuc_lrmate200i", model="LR Mate 200i",
+        file=_FANUC.format("fanuc_lrmate200i_support/urdf/lrmate200i_macro.xacro"),
+        params=OpwParams(a1=0.15, a2=-0.075, b=0.0, c1=0.0, c2=0.25, c3=0.29, c4=0.08),
+        limits_deg=((-160, 160), (-33, 152), (-149.5, 165), (-190, 190), (-119.5, 119.5), (-360, 360)),
+        speed_deg_s=(180, 180, 225, 400, 330, 480), rounded=True, payload_kg=3.0,
+        floor=-0.35,
+        arm_mass_kg=37.0,
+        payload_source="FANUC LR Mate 200i data sheet: 3 kg, recalled, not re-verified here",
+        mass_source="estimate: the LR Mate 200iB's 37 kg (data sheet, recalled; the same lengths in the ROS-I files)",
+    ),
+    RosiArm(
+        name="fanuc_lrmate200ib3l", model="LR Mate 200iB/3L",
+        file=_FANUC.format("fanuc_lrmate200ib_support/urdf/lrmate200ib3l_macro.xacro"),
+        params=OpwParams(a1=0.15, a2=-0.075, b=0.0, c1=0.0, c2=0.25, c3=0.45, c4=0.08),
+        limits_deg=((-160, 160), (-33, 152), (-125, 165), (-190, 190), (-120, 120), (-360, 360)),
+        speed_deg_s=(140, 150, 160, 400, 330, 480), rounded=True, payload_kg=3.0,
+        floor=-0.35,
+        arm_mass_kg=37.0,
+        mass_source="estimate: the LR Mate 200iB's 37 kg (data sheet, recalled; the same arm with a 160 mm longer forearm)",
+    ),
+    RosiArm(
+        name="fanuc_lrmate200ic5l", model="LR Mate 200iC/5L",
+        file=_FANUC.format("fanuc_lrmate200ic_support/urdf/lrmate200ic5l_macro.xacro"),
+        params=OpwParams(a1=0.075, a2=-0.075, b=0.0, c1=0.0, c2=0.4, c3=0.41, c4=0.08),
+        limits_deg=((-170, 170), (-90, 140), (-148, 230), (-190, 190), (-120, 120), (-360, 360)),
+        speed_deg_s=(270, 270, 270, 450, 450, 720), rounded=True, payload_kg=5.0,
+        floor=-0.33,
+        arm_mass_kg=29.0,
+    ),
+    RosiArm(
+        name="fanuc_lrmate200id4s", model="LR Mate 200iD/4S",
+        file=_FANUC.format("fanuc_lrmate200id_support/urdf/lrmate200id4s_macro.xacro"),
+        params=OpwParams(a1=0.0, a2=-0.02, b=0.0, c1=0.0, c2=0.26, c3=0.29, c4=0.07),
+        limits_deg=((-170, 170), (-110, 120), (-69, 205), (-190, 190), (-120, 120), (-360, 360)),
+        speed_deg_s=(460, 460, 520, 560, 560, 900), rounded=False, payload_kg=4.0,
+        floor=-0.33,
+        arm_mass_kg=20.0,
+    ),
+    RosiArm(
+        name="fanuc_lrmate200id4sc", model="LR Mate 200iD/4SC",
+        file=_FANUC.format("fanuc_lrmate200id_support/urdf/lrmate200id4sc_macro.xacro"),
+        params=OpwParams(a1=0.0, a2=-0.02, b=0.0, c1=0.0, c2=0.26, c3=0.29, c4=0.08),
+        limits_deg=((-170, 170), (-110, 120), (-69, 205), (-190, 190), (-118, 118), (-360, 360)),
+        speed_deg_s=(460, 460, 520, 560, 560, 900), rounded=False, payload_kg=4.0,
+        floor=-0.33,
+        arm_mass_kg=20.0,
+        mass_source="estimate: the LR Mate 200iD/4S's 20 kg (data sheet, recalled; its clean-room version)",
+    ),
+    RosiArm(
+        name="fanuc_lrmate200id7lc", model="LR Mate 200iD/7LC",
+        file=_FANUC.format("fanuc_lrmate200id_support/urdf/lrmate200id7lc_macro.xacro"),
+        params=OpwParams(a1=0.05, a2=-0.035, b=0.0, c1=0.0, c2=0.44, c3=0.42, c4=0.092),
+        limits_deg=((-170, 170), (-100, 145), (-70, 213), (-190, 190), (-125, 125), (-360, 360)),
+        speed_deg_s=(370, 310, 410, 550, 545, 1000), rounded=False, payload_kg=7.0,
+        floor=-0.33,
+        arm_mass_kg=27.0,
+        mass_source="estimate: the LR Mate 200iD/7L's 27 kg (data sheet, recalled; its clean-room version)",
+    ),
+    RosiArm(
+        name="fanuc_m6ib6s", model="M-6iB/6S",
+        file=_FANUC.format("fanuc_m6ib_support/urdf/m6ib6s_macro.xacro"),
+        params=OpwParams(a1=0.15, a2=-0.1, b=0.0, c1=0.0, c2=0.36, c3=0.43, c4=0.1),
+        limits_deg=((-170, 170), (-90, 160), (-155, 155), (-190, 190), (-140, 140), (-360, 360)),
+        speed_deg_s=(200, 200, 260, 400, 400, 720), rounded=True, payload_kg=6.0,
+        floor=-0.45,
+        arm_mass_kg=135.0,
+        mass_source="estimate: the M-6iB's 135 kg (data sheet, recalled; the same base with shorter arms, so an upper bound)",
+    ),
+    RosiArm(
+        name="fanuc_cr7ial", model="CR-7iA/L",
+        file=_FANUC.format("fanuc_cr7ia_support/urdf/cr7ial_macro.xacro"),
+        params=OpwParams(a1=0.05, a2=-0.035, b=0.0, c1=0.0, c2=0.44, c3=0.42, c4=0.08),
+        limits_deg=((-170, 170), (-66, 100), (-140, 244), (-190, 190), (-120, 120), (-360, 360)),
+        speed_deg_s=(370, 310, 410, 550, 545, 1000), rounded=True, payload_kg=7.0,
+        floor=-0.457,
+        arm_mass_kg=55.0,
+    ),
+    RosiArm(
+        name="fanuc_r2000ic125l", model="R-2000iC/125L",
+        file=_FANUC_EXPERIMENTAL.format("fanuc_r2000ic_support/urdf/r2000ic125l_macro.xacro"),
+        params=OpwParams(a1=0.312, a2=-0.225, b=0.0, c1=0.0, c2=1.075, c3=1.73, c4=0.215),
+        limits_deg=((-185, 185), (-60, 76), (-121, 180), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(130, 115, 125, 180, 180, 260), rounded=False, payload_kg=125.0,
+        floor=-0.67,
+        arm_mass_kg=1110.0,
+        mass_source="estimate: the R-2000iC/210L's 1110 kg (data sheet, recalled; the same arm lengths)",
+    ),
+    RosiArm(
+        name="fanuc_r2000ic210f", model="R-2000iC/210F",
+        file=_FANUC_EXPERIMENTAL.format("fanuc_r2000ic_support/urdf/r2000ic210f_macro.xacro"),
+        params=OpwParams(a1=0.312, a2=-0.225, b=0.0, c1=0.0, c2=1.075, c3=1.28, c4=0.215),
+        limits_deg=((-185, 185), (-60, 76), (-132, 180), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(120, 105, 110, 140, 140, 220), rounded=False, payload_kg=210.0,
+        floor=-0.67,
+        arm_mass_kg=1090.0,
+        mass_source="estimate: the R-2000iC/165F's 1090 kg (data sheet, recalled; the same arm lengths)",
+    ),
+    RosiArm(
+        name="fanuc_r2000ic270f", model="R-2000iC/270F",
+        file=_FANUC_EXPERIMENTAL.format("fanuc_r2000ic_support/urdf/r2000ic270f_macro.xacro"),
+        params=OpwParams(a1=0.312, a2=-0.225, b=0.0, c1=0.0, c2=1.075, c3=1.28, c4=0.24),
+        limits_deg=((-185, 185), (-60, 76), (-132, 180), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(105, 90, 85, 120, 120, 200), rounded=False, payload_kg=270.0,
+        floor=-0.67,
+        arm_mass_kg=1090.0,
+        mass_source="estimate: the R-2000iC/165F's 1090 kg (data sheet, recalled; the same arm lengths with a heavier wrist, so a lower bound)",
     ),
 )
 

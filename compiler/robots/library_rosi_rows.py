@@ -12,6 +12,8 @@ library_rosi.py builds its first arm of each brand.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from rmot.compiler.robots.opw import OpwJointMap, OpwParams
 from rmot.compiler.robots.spec import RobotSpec, opw_spec
 from rmot.lang.record import record
@@ -30,9 +32,11 @@ class RosiArm:
     """One arm: its library name, the vendor's model name, its macro file (repository, path,
     commit), the OPW lengths (m), the joint bounds (deg) and speeds (deg/s) of the file's
     <limit> tags (`rounded`: the file gives decimal radians, here to the nearest 0.5 deg and
-    1 deg/s), the rated payload (kg, the model name's), the arm's mass (kg) as the data sheet
-    gives it or per link from the file's <inertial> tags, and the mounting face's height in
-    the controller frame (`floor`, m: below zero where the controller frame is at J2's height)."""
+    1 deg/s), the rated payload (kg, the model name's unless `payload_source` says otherwise),
+    the arm's mass (kg) as the data sheet gives it (or, with `mass_source`, as a sibling
+    model's stands in for it) or per link from the file's <inertial> tags, and the mounting
+    face's height in the controller frame (`floor`, m: below zero where the controller frame
+    is at J2's height)."""
 
     name: str
     model: str
@@ -46,6 +50,7 @@ class RosiArm:
     link_mass_kg: tuple[float, ...] = ()
     floor: float = 0.0
     payload_source: str = ""  # where the payload is not in the model name
+    mass_source: str = ""  # where `arm_mass_kg` is not the model's own data sheet value
 
 
 @record
@@ -79,6 +84,8 @@ def _mass_source(arm: RosiArm, vendor: str) -> str:
 
     if arm.link_mass_kg:
         return f"{arm.file} <inertial> masses of link_1..link_6"
+    if arm.mass_source:
+        return f"{arm.mass_source}; {SPREAD_METHOD}"
     return (f"{vendor} data sheet of the {arm.model}: {arm.arm_mass_kg:g} kg, recalled, not re-verified here "
             f"(the ROS-I file has no masses); {SPREAD_METHOD}")
 
@@ -92,8 +99,7 @@ def rosi_spec(arm: RosiArm, brand: RosiBrand) -> RobotSpec:
     reach = _wrist_reach(arm.params)
     unit = "rad, to the nearest 0.5 deg" if arm.rounded else "deg"
     speed_unit = "rad/s, to the nearest deg/s" if arm.rounded else "deg/s"
-    extra: dict[str, object] = {"link_mass_kg": arm.link_mass_kg} if arm.link_mass_kg else {}
-    return opw_spec(
+    spec = opw_spec(
         name=arm.name, vendor=brand.vendor, model=arm.model, source=arm.file, params=arm.params, jmap=brand.jmap,
         limits_deg=arm.limits_deg, speed_deg_s=arm.speed_deg_s, accel_deg_s2=acc_estimate(arm.speed_deg_s),
         reach=reach, radii=_radii(reach), flange_rz=brand.flange_rz, floor=arm.floor, conventions=brand.conventions,
@@ -102,5 +108,5 @@ def rosi_spec(arm: RosiArm, brand: RosiBrand) -> RobotSpec:
                         speed=f"{arm.file} ({speed_unit})", accel=ACC_EST, reach=_REACH_EST,
                         mass=_mass_source(arm, brand.vendor), inertia=INERTIA_METHOD, effort=EFFORT_METHOD,
                         payload=arm.payload_source or f"the model name {arm.model}: {arm.payload_kg:g} kg"),
-        **extra,
     )
+    return replace(spec, link_mass_kg=arm.link_mass_kg) if arm.link_mass_kg else spec

@@ -33,6 +33,8 @@ ROSI_ABB_FANUC = (  # the further ABB and FANUC arms of ROS-I's packages (librar
     "fanuc_cr7ia", "fanuc_cr35ia", "fanuc_lrmate200ib", "fanuc_lrmate200ic", "fanuc_lrmate200id7l", "fanuc_m6ib",
     "fanuc_m10ia", "fanuc_m10ia7l", "fanuc_m20ia10l", "fanuc_m20ib25", "fanuc_m710ic45m", "fanuc_m710ic50",
     "fanuc_m900ia260l", "fanuc_r1000ia80f", "fanuc_r2000ib210f", "fanuc_r2000ic165f", "fanuc_r2000ic210l",
+    "fanuc_lrmate200i", "fanuc_lrmate200ib3l", "fanuc_lrmate200ic5l", "fanuc_lrmate200id4s", "fanuc_lrmate200id4sc",
+    "fanuc_lrmate200id7lc", "fanuc_m6ib6s", "fanuc_cr7ial", "fanuc_r2000ic125l", "fanuc_r2000ic210f", "fanuc_r2000ic270f",
 )
 NAMES = ORIGINAL + ADDED + ROSI + ROSI_ABB_FANUC
 
