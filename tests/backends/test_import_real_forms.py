@@ -1,0 +1,98 @@
+"""Forms real pendant and PolyScope files use that rmot's own output never does, read back:
+Fanuc `DO[n]=(ON)`, `WAIT (DI[n])`, cm/min and inch/min feedrates, motion options kept after
+the move (W517), point-logic lines and multi-group positions; URScript `while True:` read as
+one cycle (W518), `get_inverse_kin(P, qnear=Q)` and `pose_trans(P, p[..])`.
+
+Witnesses: the hand-written lines below follow the R-30iB Operator's Manual (feedrate units:
+1 cm/min = 10/60 mm/s, 1 inch/min = 25.4/60 mm/s) and the URScript manual (pose_trans: the
+offset is in the first pose's frame); expected values are computed here from those rules.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Move, Native, SetOut, WaitIn, walk
+
+TP = """/PROG  DEMO
+/ATTR
+OWNER\t\t= MNEDITOR;
+/MN
+   1:  UFRAME_NUM=0 ;
+   2:  UTOOL_NUM=1 ;
+   3:  DO[5]=(ON) ;
+   4:  WAIT (DI[7])    ;
+   5:  WAIT (!DI[8])    ;
+   6:L P[1] 240cm/min CNT100 COORD PTH    ;
+   7:L P[1] 60inch/min FINE TB   .10sec,DO[3]=ON    ;
+      1:  DO[4]=(OFF) ;
+       ------ ;
+   8:L P[1] 100mm/sec FINE Tool_Offset,PR[15]    ;
+/POS
+P[1]{
+   GP1:
+\tUF : 0, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',
+\tX =   100.000  mm,\tY =   200.000  mm,\tZ =   300.000  mm,
+\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg
+   GP2:
+\tUF : 0, UT : 1,
+\tJ1=  1500.000  mm
+};
+/END
+"""
+
+
+def _stmts(path: Path) -> list[object]:
+    doc = read_files([str(path)])
+    return [s for r in doc.routines for s in walk(r.body)]
+
+
+def test_fanuc_pendant_forms(tmp_path: Path) -> None:
+    path = tmp_path / "demo.ls"
+    path.write_text(TP)
+    stmts = _stmts(path)
+    outs = [s for s in stmts if isinstance(s, SetOut)]
+    assert [(s.signal, s.value) for s in outs] == [(5, 1.0), (3, 1.0), (4, 0.0)]
+    waits = [s for s in stmts if isinstance(s, WaitIn)]
+    assert [(w.cond.signal, w.cond.on) for w in waits] == [(7, True), (8, False)]
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert len(moves) == 2  # the Tool_Offset move stays native (the register is the controller's)
+    assert abs(moves[0].speed - 240 * 10 / 60) < 1e-9 and moves[0].zone == 100.0
+    assert abs(moves[1].speed - 60 * 25.4 / 60) < 1e-9
+    assert moves[0].pose is not None and abs(moves[0].pose.position[2] - 0.3) < 1e-12  # GP1, not GP2's J1
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert natives[:2] == ["COORD", "PTH"] and natives[-1].startswith("L P[1] 100mm/sec")
+
+
+def test_fanuc_option_warnings_are_located(tmp_path: Path) -> None:
+    path = tmp_path / "demo.ls"
+    path.write_text(TP)
+    doc = read_files([str(path)])
+    w517 = [d for d in doc.diagnostics if d.code.id == "W517"]
+    assert [d.span.start.line for d in w517] == [10, 10, 11]
+
+
+SCRIPT = """def Prog():
+  global W1_p=p[.4, -.2, .3, 0, 3.14159265358979, 0]
+  global W1_q=[0, -1.57, 1.57, -1.57, -1.57, 0]
+  while (True):
+    movej(get_inverse_kin(W1_p, qnear=W1_q), a=1.4, v=1.05)
+    movel(pose_trans(W1_p, p[0, 0, -0.05, 0, 0, 0]), a=1.2, v=0.25)
+    set_standard_digital_out(2, True)
+  end
+end
+"""
+
+
+def test_polyscope_program(tmp_path: Path) -> None:
+    path = tmp_path / "prog.script"
+    path.write_text(SCRIPT)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    assert not any(isinstance(s, Native) for s in stmts)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert moves[0].target == "W1_p" and moves[0].kind == "joint"
+    assert moves[1].target == "W1_p * pose(z=-50mm)"  # along the pose's own z (pose_trans)
+    assert [d.code.id for d in doc.diagnostics] == ["W518"]
+    assert doc.diagnostics[0].span.start.line == 4
