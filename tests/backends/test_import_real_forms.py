@@ -96,3 +96,44 @@ def test_polyscope_program(tmp_path: Path) -> None:
     assert moves[1].target == "W1_p * pose(z=-50mm)"  # along the pose's own z (pose_trans)
     assert [d.code.id for d in doc.diagnostics] == ["W518"]
     assert doc.diagnostics[0].span.start.line == 4
+
+
+KRL = """DEF demo( )
+$VEL.CP = 0.2
+$APO.CDIS = 2.0
+$TOOL = {FRAME: X 0.000,Y 0.000,Z 150.000,A 0.000,B 0.000,C 0.000}
+$BASE = {FRAME: X 0.000,Y 0.000,Z 0.000,A 0.000,B 0.000,C 0.000}
+PTP HOME
+LIN {X 500.000,Y -100.000,Z 400.000,A 180.000,B 0.000,C 180.000}
+LIN_REL {Z 50} C_DIS
+LIN_REL {X 10} #TOOL
+LIN_REL {Z 5}
+IF $IN[1] THEN
+LIN_REL {Z 5}
+ENDIF
+PTP XHOME
+END
+"""
+
+
+def test_krl_hand_and_robodk_forms(tmp_path: Path) -> None:
+    """KSS 8.x: `PTP HOME` goes to $config.dat's XHOME (shipped {A1 0, A2 -90, A3 90, ..}), a
+    `$TOOL = {FRAME: ..}` written in the program is a tool of that TCP, LIN_REL moves from where
+    the last move ended (in the base, or with #TOOL in the tool frame)."""
+    path = tmp_path / "demo.src"
+    path.write_text(KRL)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert moves[0].target == "HOME" and moves[-1].target == "HOME"
+    home = next(t for t in doc.targets if t.name == "HOME")
+    assert home.joints == (0.0, -90.0, 90.0, 0.0, 0.0, 0.0)
+    lit = moves[1].target
+    assert moves[2].target == f"shift({lit}, z=50mm)" and moves[2].zone == 2.0
+    assert moves[3].target == f"shift({lit}, z=50mm) * pose(x=10mm)"
+    assert moves[4].target == f"shift(shift({lit}, z=50mm) * pose(x=10mm), z=5mm)"
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert natives == ["LIN_REL {Z 5}"]  # where a block starts the robot's place is not known
+    tool = next(t for t in doc.tools if t.name == moves[1].tool)
+    assert abs(tool.tcp.position[2] - 0.15) < 1e-12 and moves[1].frame == "base"
+    assert sum(d.code.id == "W511" and "XHOME" in d.message for d in doc.diagnostics) == 1
