@@ -69,6 +69,8 @@ class _Job:
                 section = s.split()[0] if s.startswith("//") and not s.startswith("///") else section
             if s.startswith("///"):
                 key, _, rest = s[3:].partition(" ")
+                if key == "COMM" and rest.strip().upper() == self.name.upper():
+                    self.name = rest.strip()  # the job's own name as its comment gives it (its case)
                 conf = rest if key == "RCONF" else conf
                 tool = int(rest) if key == "TOOL" and rest.isdigit() else tool
                 user = int(rest) if key == "USER" and rest.isdigit() else (None if key == "POSTYPE" and rest == "ROBOT" else user)
@@ -106,7 +108,7 @@ class _Job:
                                ir.Elbow.UP if bits[1].strip() == "0" else ir.Elbow.DOWN, None)
         name = f"{self.name.lower()}_{m.group(1).lower()}"
         self.positions[m.group(1)] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
-                                            Where(self.path, n))
+                                            Where(self.path, n), ",".join(b.strip() for b in bits))
         self.position_tool[m.group(1)] = tool
         self.position_user[m.group(1)] = user
 
