@@ -72,7 +72,8 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
 def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.inform import read_inform
 
-    m = read_inform(path, text)
+    m = read_inform(path, text, _FANUC_PROGRAMS)
+    _FANUC_INLINED.update(m.inlined)
     doc = Document("inform", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments))
@@ -85,8 +86,9 @@ _LIMITS: list[JointLimits | None] = [None]  # that model's joint limits (URScrip
 # Fanuc tool and frame numbers are the controller's, shared by every program: the names the
 # files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
 _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
-# the TP programs of one import by name: a program CALLed inside a counting loop whose
-# offset registers it uses is read again at the call, inlined with the loop's counter
+# the TP programs (and INFORM jobs) of one import by name: a program CALLed inside a counting
+# loop whose offset registers (shift variables) it uses is read again at the call, inlined with
+# the loop's counter
 _FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
 _FANUC_INLINED: set[str] = set()  # the programs some caller inlined
 
@@ -150,6 +152,10 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
                 _FANUC_PROGRAMS[prog.group(1).upper()] = (path, _load(path))
             for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):
                 _FANUC_LABELS[kind][int(n)] = name
+        if path.lower().endswith(".jbi"):  # INFORM jobs by name, as TP programs: inlined in a shifting loop
+            job = re.search(r"(?m)^//NAME\s+(\w+)", _load(path))
+            if job:
+                _FANUC_PROGRAMS[job.group(1).upper()] = (path, _load(path))
     docs: list[Document] = []
     consumed = set()
     for path in paths:

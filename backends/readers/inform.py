@@ -18,10 +18,11 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers.common import Tally, label_arms, match_simple
+from rmot.backends.readers.common import Tally, label_arms, match_simple, rmot_name
 from rmot.backends.readers.model import (
-    Cond, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
+    Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
+from rmot.backends.readers.rapid import mm
 from rmot.compiler import ir
 
 __all__ = ["read_inform", "PL_MM"]
@@ -38,12 +39,21 @@ _SIMPLE = (
     ("call_renamed", re.compile(r"CALL JOB:(\w+)")),
 )
 
+# the remark the backend writes where the program attaches or detaches a part (INFORM selects
+# loads only as tool files: backends/inform.py, W460): the tool and parts' mass
+_PAYLOAD_REMARK = re.compile(r"'(?:attach|detach) \w+: payload \d+(?:\.\d+)? kg")
 PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/inform.py)
 
 
 class _Job:
-    def __init__(self, path: str, text: str) -> None:
+    def __init__(self, path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> None:
         self.tally = Tally(path, text, "inform")
+        self.jobs = jobs or {}  # the import's jobs by name (a job called in a shifting loop is inlined)
+        self.inlined: set[str] = set()
+        self.var_names: dict[str, str] = {}  # `'D050 = row`: the loop counters' names
+        self.counters: dict[str, str] = {}  # D variable -> the rmot loop variable, inside its loop
+        self.shifts: dict[str, dict[str, str]] = {}  # P variable -> axis -> offset expression (mm)
+        self.shift: str | None = None  # the P variable between SFTON and SFTOF
         self.path = path
         self.raw = text.split("\n")
         self.name = ""
@@ -82,7 +92,10 @@ class _Job:
                 m = re.match(r"'\s*TOOL\s+(\d+)\s*=\s*(\w+)", s)
                 if m:
                     self.tool_names[int(m.group(1))] = m.group(2)
-                if not s.startswith("'") and s not in ("NOP", "END"):
+                m = re.fullmatch(r"'(D\d+) = (\w+)", s)
+                if m:
+                    self.var_names[m.group(1)] = m.group(2)
+                if (not s.startswith("'") or _PAYLOAD_REMARK.fullmatch(s)) and s not in ("NOP", "END"):
                     self.inst.append((s, Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
         if not self.name:
             raise self.tally.fail("an INFORM job must name itself (`//NAME NAME`)", Where(self.path, first[0]))
@@ -130,7 +143,17 @@ class _Job:
 
     def _statement(self, i: int, end: int) -> tuple[list[Stmt], int]:
         text, where = self.inst[i]
-        for pattern in (self._arc, self._timed_wait, self._if):
+        shifting = self._shift_data(i)
+        if shifting is not None:
+            return [], shifting
+        call = re.fullmatch(r"CALL JOB:(\w+)", text)
+        inlined = self._inline_body(call.group(1)) if call else None
+        if inlined is not None:
+            self.tally.imported += 1
+            return list(inlined), i + 1
+        if _PAYLOAD_REMARK.fullmatch(text):  # INFORM has no load instruction: the backend's remark
+            return [self.tally.keep(text, where, "a payload remark (`rmot import --cell` reads an attach or detach)")], i + 1
+        for pattern in (self._loop, self._arc, self._timed_wait, self._if):
             found = pattern(i, end)
             if found is not None:
                 self.tally.imported += 1
@@ -140,6 +163,77 @@ class _Job:
             return [self.tally.keep(text, where, "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
+
+    def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`SET Dv a`, `*Lk`, body, `INC Dv`, `JUMP *Lk IF Dv<=b` (the backend's counted loop)."""
+        m = re.fullmatch(r"SET (D\d+) (\d+)", self._text(i))
+        label = re.fullmatch(r"\*(L\w+)", self._text(i + 1)) if m else None
+        if m is None or label is None:
+            return None
+        var = m.group(1)
+        close = f"JUMP *{label.group(1)} IF {var}<="
+        j = next((k for k in range(i + 2, end) if self._text(k).startswith(close)), None)
+        last = self._text(j)[len(close):] if j is not None else ""
+        if j is None or self._text(j - 1) != f"INC {var}" or not last.isdigit():
+            return None
+        name = rmot_name(self.var_names.get(var, var.lower()))
+        self.counters[var] = name
+        body, _ = self._block(i + 2, j - 1)
+        del self.counters[var]
+        return [For(name, int(m.group(2)), int(last) + 1, tuple(body), self.inst[i][1])], j + 1
+
+    def _shift_data(self, i: int) -> int | None:
+        """A shift being built or switched: `SET Dt Dv`, `MUL Dt m`, `SETE Pn (e) Dt` (element e
+        of Pn, X/Y/Z in µm, = the counter × m µm), `SFTON Pn RF`, `SFTOF`: the next line, or None."""
+        text = self._text(i)
+        m = re.fullmatch(r"SET (D\d+) (D\d+)", text)
+        mul = re.fullmatch(rf"MUL {m.group(1)} (-?\d+)", self._text(i + 1)) if m else None
+        sete = re.fullmatch(rf"SETE (P\d+) \(([123])\) {m.group(1)}", self._text(i + 2)) if m and mul else None
+        if m and mul and sete and m.group(2) in self.counters:
+            offset = f"{self.counters[m.group(2)]} * {int(mul.group(1)) / 1000:g}"  # µm per step -> mm
+            self.shifts.setdefault(sete.group(1), {})["xyz"[int(sete.group(2)) - 1]] = offset
+            return i + 3
+        on = re.fullmatch(r"SFTON (P\d+) RF", text)
+        if on and on.group(1) in self.shifts:
+            self.shift = on.group(1)
+            return i + 1
+        if text == "SFTOF" and self.shift is not None:
+            self.shift = None
+            return i + 1
+        return None
+
+    def _shifted(self, name: str) -> str:
+        """A target moved by the active shift (robot frame: rmot's `shift` in the base)."""
+        if self.shift is None:
+            return name
+        terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(self.shifts[self.shift].items()))
+        return f"shift({name}, {terms})" if terms else name
+
+    def _uses_shifts(self, name: str, depth: int) -> bool:
+        """Whether job `name`, or a job it calls (8 levels), switches on a shift this job's
+        loops set."""
+        source = self.jobs.get(name.upper())
+        if source is None or depth > 8:
+            return False
+        if any(re.search(rf"(?m)^SFTON {p} RF", source[1]) for p in self.shifts):
+            return True
+        return any(self._uses_shifts(callee, depth + 1) for callee in re.findall(r"(?m)^CALL JOB:(\w+)", source[1]))
+
+    def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
+        """The body of job `name` read with this job's loop counters and shifts, when it
+        switches on one of them (else None: it is called)."""
+        source = self.jobs.get(name.upper())
+        if source is None or not self.counters or not self._uses_shifts(name, 0):
+            return None
+        callee = _Job(source[0], source[1], self.jobs)
+        callee.counters, callee.shifts = self.counters, self.shifts
+        callee.tools, callee.tool_names = self.tools, {**self.tool_names}
+        callee.read()
+        for key, target in callee.positions.items():
+            self.positions[f"{callee.name}:{key}"] = target
+        self.inlined.add(name.upper())
+        self.inlined |= callee.inlined
+        return callee.routine.body
 
     def _move(self, kind: str, names: list[str], rest: str, where: Where) -> Move | None:
         decls = [self.positions.get(n) for n in names]
@@ -158,7 +252,8 @@ class _Job:
         decl = decls[-1]
         assert decl is not None
         user = self.position_user[names[-1]]
-        return Move(kind, decl.name, decl.name, where, via=decls[0].name if kind == "circular" else None,  # type: ignore[union-attr]
+        return Move(kind, self._shifted(decl.name), decl.name, where,
+                    via=self._shifted(decls[0].name) if kind == "circular" else None,  # type: ignore[union-attr]
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
@@ -213,8 +308,9 @@ class _Job:
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
 
 
-def read_inform(path: str, text: str) -> _Job:
-    """Read one INFORM job; raises ImportError_ (E510) when it is not one."""
-    job = _Job(path, text)
+def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> _Job:
+    """Read one INFORM job; raises ImportError_ (E510) when it is not one. `jobs`: the import's
+    files by job name (a job called inside a loop whose shift it switches on is inlined)."""
+    job = _Job(path, text, jobs)
     job.read()
     return job

@@ -1,10 +1,12 @@
-"""compile -> `rmot import` -> compile means the same program, for RAPID, KRL, URScript and
-Fanuc TP on every single-task example.
+"""compile -> `rmot import` -> compile means the same program, for RAPID, KRL, URScript,
+Fanuc TP and Yaskawa INFORM on every single-task example.
 
 Witnesses (none of them the readers under test): the planner's own JSON plan of the original
 and of the imported program (`--target json`: every instruction's kind, planned joints, branch,
 blend radius, TCP pose and timing, and the cycle time), and the I/O instructions of the vendor
-files the backend writes for both, picked out by patterns of each vendor's I/O syntax.
+files the backend writes for both, picked out by patterns of each vendor's I/O syntax. Where
+the INFORM jobs of both compiles have the same names, the jobs themselves are compared line by
+line, positions as numbers and rotations (`_same_jobs`).
 """
 
 from __future__ import annotations
@@ -79,7 +81,7 @@ def _leaves(plan: dict) -> list[dict]:
 
 
 CASES = [(v, n) for v in ("rapid", "krl", "urscript", "fanuc") for n in EXAMPLES]
-CASES += [("inform", n) for n in ("weld_seam", "collision", "model_arm", "inspect")]  # pick_place, palletizing: loops with SFTON shifts, not read yet
+CASES += [("inform", n) for n in EXAMPLES]
 
 
 @pytest.mark.parametrize(("vendor", "name"), CASES)
@@ -98,7 +100,8 @@ def test_round_trip(vendor: str, name: str, tmp_path: Path) -> None:
     summary = [line for line in result.output.splitlines() if " kept native (" in line]
     assert summary and all(" 0 kept native (100.0 % imported)" in line for line in summary), result.output
     after = _compile(imported, cell, vendor, tmp_path / "b")
-    if vendor == "inform":  # the job is the vendor's whole meaning: see _same_jobs
+    jobs = [sorted(p.name for p in (tmp_path / side / vendor).glob("*.JBI")) for side in "ab"]
+    if vendor == "inform" and jobs[0] == jobs[1]:  # the job is the vendor's whole meaning: see _same_jobs
         _same_jobs(tmp_path / "a" / vendor, tmp_path / "b" / vendor)
         if not set(before["_warned"]) & ROUNDED:
             assert abs(after["cycle_time"] - before["cycle_time"]) <= 0.005 * before["cycle_time"]
@@ -109,8 +112,8 @@ def test_round_trip(vendor: str, name: str, tmp_path: Path) -> None:
             _same_instruction(a, b, before["cycle_time"])
     io_before = [re.findall(IO_PATTERNS[vendor], f.read_text()) for f in sorted((tmp_path / "a" / vendor).iterdir())]
     io_after = [re.findall(IO_PATTERNS[vendor], f.read_text()) for f in sorted((tmp_path / "b" / vendor).iterdir())]
-    if vendor == "fanuc":  # programs called in a loop come back inlined in their caller: compare the lines
-        io_before, io_after = ([sorted(re.sub(r"LBL\[\d+\]", "LBL", x) for f in io for x in f)]
+    if vendor in ("fanuc", "inform"):  # programs called in a loop come back inlined in their caller: compare the lines
+        io_before, io_after = ([sorted(re.sub(r"LBL\[\d+\]|\*L\d+", "LBL", x) for f in io for x in f)]
                                for io in (io_before, io_after))
     assert io_after == io_before
 
@@ -150,9 +153,7 @@ def _quat_zyx(rxyz: list[float]) -> list[float]:
 @pytest.mark.parametrize("name", ["weld_seam", "inspect"])
 def test_inform_cartesian_targets(name: str, tmp_path: Path) -> None:
     """INFORM: every instruction of the job is imported and every linear and circular target
-    plans to the same TCP pose (0.001 mm, 0.001 deg). Not yet the whole round trip: RCONF's flip
-    bit is Yaskawa's rule on the R axis, not the rmot wrist, so joint moves may take another
-    wrist solution (the INFORM reader leaves the wrist free)."""
+    plans to the same TCP pose (0.001 mm, 0.001 deg) (the whole round trip: test_round_trip)."""
     example = ROOT / "examples" / f"{name}.rmot"
     cell = _cell_of(example)
     before = _compile(example, cell, "inform", tmp_path / "a")
