@@ -328,7 +328,7 @@ class _Ls:
                     zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
                     tool=self._named("UTOOL"), frame=self._named("UFRAME"),
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
-                    pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc not in (None, 100) else None)
+                    pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
 
     def _option(self, text: str, where: Where) -> Stmt:
