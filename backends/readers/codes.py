@@ -10,7 +10,7 @@ from rmot.lang.diagnostics import Code
 __all__ = [
     "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
-    "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE",
+    "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE", "PARAMETERS_NUMBER",
 ]
 
 NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
@@ -40,3 +40,6 @@ MOTION_OPTION_KEPT = Code("W517", "motion-option-kept",
 LOOP_READ_ONCE = Code("W518", "loop-read-once",
                       "a program's outermost endless loop (URScript `while True:`) is read as one cycle: "
                       "rmot's program is one cycle, which the controller repeats")
+PARAMETERS_NUMBER = Code("W519", "parameters-number",
+                         "a URScript function's parameters are untyped: they are declared `number` and the lines "
+                         "that use them stay native")

@@ -134,6 +134,15 @@ class _Script:
             body, j = self._block(i + 1, ("end",))
             self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             return [], j + 1
+        params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
+                              ln.text)
+        if params:  # a function with parameters: a proc; the lines that use a parameter stay native
+            names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
+            self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
+                            "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
+            body, j = self._block(i + 1, ("end",))
+            self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
+            return [], j + 1
         if re.match(r"(def|thread)\s+\w+\s*\(", ln.text):
             return self._thread(i)
         step = re.fullmatch(r"(\w+)\s*=\s*(\w+)\s*\+\s*1", ln.text)
@@ -162,8 +171,12 @@ class _Script:
         """A thread: the backend's pulse thread (out on, sleep, out off) is remembered as a
         pulse for the `run` that starts it; any other thread is kept native."""
         ln = self.lines[i]
-        j = i + 1
-        while j < len(self.lines) and self.lines[j].head != "end":
+        j, depth = i + 1, 1
+        while j < len(self.lines):  # the thread's own `end` (its ifs and whiles end before it)
+            depth += self.lines[j].head in ("if", "while", "for", "def", "thread")
+            depth -= self.lines[j].head == "end"
+            if depth == 0:
+                break
             j += 1
         name = re.match(r"(?:def|thread)\s+(\w+)", ln.text).group(1)  # type: ignore[union-attr]
         inner = [x.text.replace(" ", "") for x in self.lines[i + 1:j]]

@@ -137,3 +137,24 @@ def test_krl_hand_and_robodk_forms(tmp_path: Path) -> None:
     tool = next(t for t in doc.tools if t.name == moves[1].tool)
     assert abs(tool.tcp.position[2] - 0.15) < 1e-12 and moves[1].frame == "base"
     assert sum(d.code.id == "W511" and "XHOME" in d.message for d in doc.diagnostics) == 1
+
+
+def test_urscript_function_with_parameters(tmp_path: Path) -> None:
+    """A function with parameters is a proc (parameters declared `number`, W519, a keyword
+    renamed); its lines that do not use a parameter are read, the others stay native."""
+    path = tmp_path / "lib.script"
+    path.write_text("def blink(port, time=0.5):\n  set_standard_digital_out(3, True)\n  sleep(0.2)\n"
+                    "  set_standard_digital_out(port, False)\nend\n")
+    doc = read_files([str(path)])
+    proc = next(r for r in doc.routines if r.name == "blink")
+    assert proc.params == (("port", "number"), ("time", "number"))
+    assert [type(s).__name__ for s in proc.body] == ["SetOut", "Wait", "Native"]
+    assert [d.code.id for d in doc.diagnostics].count("W519") == 1
+    out = tmp_path / "lib.rmot"
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)])
+    assert result.exit_code == 0 and "proc blink(port: number, time_: number)" in out.read_text(), result.output
+    checked = CliRunner().invoke(cli, ["check", str(out)])
+    assert checked.exit_code == 0, checked.output
