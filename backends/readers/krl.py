@@ -15,17 +15,15 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 
 from __future__ import annotations
 
-import math
 import re
-from collections.abc import Mapping
 from itertools import product
 
 from rmot.backends.krl import KrlBackend, status_of
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
-from rmot.backends.readers.krl_text import Line, aggregate, declarations, lines
+from rmot.backends.readers.krl_text import Line, aggregate, declarations, fold_end, in_cond, krl_pose, lines
 from rmot.backends.readers.model import (
-    Call, Cond, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
+    Call, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
 )
 from rmot.backends.readers.rapid import mm, num_text, pose_expr
@@ -50,20 +48,6 @@ def branch_of_status(s: int) -> ir.Config:
 def _declared(move: Move) -> Target:
     """The target a move went to, as a declaration (its pose; no name of its own)."""
     return Target(move.target_name or "", move.pose, move.joints, move.config, move.where)
-
-
-def krl_pose(agg: Mapping[str, object]) -> ir.Pose | None:
-    """X Y Z (mm) A B C (deg) of an aggregate as an ir.Pose, None if a component is missing."""
-    values = [agg.get(k) for k in ("X", "Y", "Z", "A", "B", "C")]
-    floats = [v for v in values if isinstance(v, float)]
-    if len(floats) != 6:
-        return None
-    x, y, z, a, b, c = floats
-    pose = ir.Pose.from_xyz_rpy(x / 1000, y / 1000, z / 1000, math.radians(c), math.radians(b), math.radians(a))
-    # cos(90 deg) is 6e-17 in floating point: a component below 1e-12 (far below the 1e-4 deg
-    # KRL prints) is zero, so C 180 reads as the exact half turn rmot wrote
-    q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)
-    return ir.Pose(pose.position, q)  # type: ignore[arg-type]
 
 
 class _State:
@@ -102,6 +86,7 @@ class _Krl:
         # the Cartesian target the last move went to, in straight-line code (None where a block
         # starts or ends, or after a move not read): where a LIN_REL starts
         self.last: tuple[str, str | None, Target | None] | None = None
+        self.at: Where | None = None  # the line being read
         self._data_objects()
 
     def _data_objects(self) -> None:
@@ -181,6 +166,7 @@ class _Krl:
 
     def _statement(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
+        self.at = ln.where  # where a setting read from the line's text is located
         if ln.endfold:
             return [], i + 1
         if ln.fold is not None:
@@ -239,7 +225,7 @@ class _Krl:
             self.tally.imported += 1
             return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
-        cond = _cond(m.group(1)) if m else None
+        cond = in_cond(m.group(1)) if m else None
         if cond is None:
             return self._keep_block(i, word, end)
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
@@ -288,6 +274,15 @@ class _Krl:
         m = re.fullmatch(r"(?is)\$(TOOL|BASE)\s*=\s*(\{.*\})", text)
         if m:
             return self._inline_frame(m.group(1).upper(), m.group(2))
+        m = re.fullmatch(r"(?i)BAS\s*\(\s*#(TOOL|BASE)\s*,\s*(\d+)\s*\)", text)
+        if m:  # KSS BAS.SRC: $TOOL = TOOL_DATA[n] / $BASE = BASE_DATA[n] (n 0: the flange / robot base)
+            kind, n = m.group(1).lower(), m.group(2)
+            if kind == "tool" and n == "0":
+                st.tool = "flange"
+            else:
+                chosen = self._numbered(kind, n, None, self.at or Where(self.tally.path, 1))
+                st.tool, st.frame = (chosen, st.frame) if kind == "tool" else (st.tool, chosen)
+            return True
         return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
 
     def _load_switch(self, i: int) -> bool:
@@ -376,7 +371,7 @@ class _Krl:
         w = re.fullmatch(rf"WAITFOR\((.*)\)OR\(\$TIMER\[{k}\]>=(\d+)\)", texts[3])
         ok = (texts[1] == f"$TIMER[{k}]=0" and texts[2] == f"$TIMER_STOP[{k}]=FALSE" and w is not None
               and texts[4] == f"$TIMER_STOP[{k}]=TRUE" and texts[6] == "HALT" and texts[7] == "ENDIF")
-        cond = _cond(w.group(1)) if ok and w else None
+        cond = in_cond(w.group(1)) if ok and w else None
         if cond is None or texts[5] != f"IFNOT({w.group(1)})THEN":  # type: ignore[union-attr]
             return None
         return WaitIn(cond, int(w.group(2)) / 1000.0, self.lines[i + 3].where)  # type: ignore[union-attr]
@@ -405,7 +400,7 @@ class _Krl:
             return Wait(float(m.group(1)), where)
         m = re.fullmatch(r"(?i)WAIT\s+FOR\s+(.+)", text)
         if m:
-            cond = _cond(m.group(1))
+            cond = in_cond(m.group(1))
             return WaitIn(cond, None, where) if cond else None
         m = re.fullmatch(r"(\w+)\s*\(\s*\)", text)
         if m and m.group(1).upper() not in ("HALT", "BAS"):
@@ -502,7 +497,7 @@ class _Krl:
         """An inline form: a motion read from its header (its statements skipped), anything
         else read from the statements inside; the INI fold is set-up, kept as a comment."""
         header = self.lines[i].fold or ""
-        end = _fold_end(self.lines, i)
+        end = fold_end(self.lines, i)
         if re.match(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO", header):
             self.tally.warn(codes.DECLARATION_KEPT, f"the `{header[:30]}` fold is controller set-up: kept as a "
                             "comment", self.lines[i].where)
@@ -567,28 +562,6 @@ class _Krl:
         elif what == "base" and key not in self.frames:
             self.frames[key] = FrameData(label, ir.Pose(), where)
         return label
-
-
-def _fold_end(found: list[Line], i: int) -> int:
-    depth = 0
-    for j in range(i, len(found)):
-        depth += found[j].fold is not None
-        depth -= found[j].endfold
-        if depth == 0:
-            return j
-    return len(found) - 1
-
-
-def _cond(text: str) -> Cond | None:
-    """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT $IN[n]`, in optional parentheses."""
-    text = text.strip()
-    while text.startswith("(") and text.endswith(")") and split_top(text[1:-1], ")") == [text[1:-1].strip()]:
-        text = text[1:-1].strip()
-    m = re.fullmatch(r"(?i)(NOT\s+)?\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", text)
-    if m is None:
-        return None
-    on = (m.group(3) or "TRUE").upper() == "TRUE"
-    return Cond(int(m.group(2)), on != bool(m.group(1)))
 
 
 def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:

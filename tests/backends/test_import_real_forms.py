@@ -158,3 +158,16 @@ def test_urscript_function_with_parameters(tmp_path: Path) -> None:
     assert result.exit_code == 0 and "proc blink(port: number, time_: number)" in out.read_text(), result.output
     checked = CliRunner().invoke(cli, ["check", str(out)])
     assert checked.exit_code == 0, checked.output
+
+
+def test_krl_bas_tool_and_base(tmp_path: Path) -> None:
+    """KSS BAS.SRC: `BAS(#TOOL, n)` / `BAS(#BASE, n)` select TOOL_DATA[n] / BASE_DATA[n] (data of
+    $config.dat: W511 at the line), BASE 0 the robot base."""
+    path = tmp_path / "bas.src"
+    path.write_text("DEF bas( )\nBAS (#TOOL,2)\nBAS (#BASE,0)\nPTP {A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\n"
+                    "BAS (#BASE,3)\nPTP {A1 5,A2 -90,A3 90,A4 0,A5 0,A6 0}\nEND\n")
+    doc = read_files([str(path)])
+    moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    assert [(m.tool, m.frame) for m in moves] == [("tool2", "base"), ("tool2", "base3")]
+    assert {d.span.start.line for d in doc.diagnostics if d.code.id == "W511"} == {2, 5}
+    assert not any(isinstance(s, Native) for r in doc.routines for s in walk(r.body))
