@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import re
 
+from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, label_arms, match_simple, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -70,7 +71,7 @@ class _Job:
         first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
         if first[1].strip() != "/JOB":
             raise self.tally.fail("an INFORM job must start with `/JOB`", Where(self.path, first[0]))
-        section, conf, tool, user, pulse = "", "0,0,0", 0, None, False
+        section, conf, tool, user, pulse, postype = "", "0,0,0", 0, None, False, "ROBOT"
         for n, line in enumerate(self.raw, 1):
             s = line.strip()
             if s.startswith("//NAME"):
@@ -83,11 +84,12 @@ class _Job:
                     self.name = rest.strip()  # the job's own name as its comment gives it (its case)
                 conf = rest if key == "RCONF" else conf
                 tool = int(rest) if key == "TOOL" and rest.isdigit() else tool
-                user = int(rest) if key == "USER" and rest.isdigit() else (None if key == "POSTYPE" and rest == "ROBOT" else user)
+                postype = rest.strip() if key == "POSTYPE" else postype  # ROBOT, BASE (no base axis: the same), USER
+                user = int(rest) if key == "USER" and rest.isdigit() else user
                 pulse = key == "PULSE" or (pulse and key != "RECTAN")
                 continue
             if section == "//POS":
-                self._position(s, n, conf, tool, user, pulse)
+                self._position(s, n, conf, tool, user if postype == "USER" else None, pulse)
             elif section == "//INST" and s and not s.startswith("//"):
                 m = re.match(r"'\s*TOOL\s+(\d+)\s*=\s*(\w+)", s)
                 if m:
@@ -243,7 +245,8 @@ class _Job:
         # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual, MOVJ
         # tags); rmot has one joint acceleration share, so both must be equal, on joint moves
         acc = re.search(r"\bACC=(\d+)\s+DEC=(\d+)\b", rest)
-        extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+)\b", "", rest).strip()
+        extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+|NWAIT)\b", "", rest).strip()
+
         if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
                 (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
             return None
@@ -252,6 +255,9 @@ class _Job:
         decl = decls[-1]
         assert decl is not None
         user = self.position_user[names[-1]]
+        if re.search(r"\bNWAIT\b", rest):  # the next instructions run during the move
+            self.tally.warn(codes.MOTION_OPTION_KEPT, "NWAIT is not read: the instructions after this move "
+                            "run once it ends, not while it runs", where)
         return Move(kind, self._shifted(decl.name), decl.name, where,
                     via=self._shifted(decls[0].name) if kind == "circular" else None,  # type: ignore[union-attr]
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,

@@ -171,3 +171,18 @@ def test_krl_bas_tool_and_base(tmp_path: Path) -> None:
     assert [(m.tool, m.frame) for m in moves] == [("tool2", "base"), ("tool2", "base3")]
     assert {d.span.start.line for d in doc.diagnostics if d.code.id == "W511"} == {2, 5}
     assert not any(isinstance(s, Native) for r in doc.routines for s in walk(r.body))
+
+
+def test_inform_base_positions_and_nwait(tmp_path: Path) -> None:
+    """A RoboDK-style job: `///POSTYPE BASE` positions are in the base (the `///USER n` before
+    them applies to POSTYPE USER only), `NWAIT` is read with W517 at its line."""
+    path = tmp_path / "PROG1.JBI"
+    path.write_text("/JOB\n//NAME PROG1\n//POS\n///NPOS 2,0,0,0,0,0\n///USER 1\n///TOOL 1\n///POSTYPE BASE\n"
+                    "///RECTAN\n///RCONF 1,0,0,0,0,0,0,0\nC00000=400.000,0.000,300.000,180.0000,0.0000,0.0000\n"
+                    "C00001=400.000,100.000,300.000,180.0000,0.0000,0.0000\n//INST\n///DATE 2024/01/10 10:00\n"
+                    "///ATTR SC,RW\n///GROUP1 RB1\nNOP\nMOVJ C00000 VJ=50.00\nMOVL C00001 V=111.1 PL=0 NWAIT\n"
+                    "DOUT OT#(1) ON\nEND\n")
+    doc = read_files([str(path)])
+    moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    assert [(m.frame, m.speed) for m in moves] == [("base", None), ("base", 111.1)]
+    assert [(d.code.id, d.span.start.line) for d in doc.diagnostics] == [("W517", 18)]
