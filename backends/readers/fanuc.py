@@ -21,7 +21,7 @@ import re
 
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import Tally, label_arms, match_simple, number, rmot_name
+from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Native, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
@@ -239,23 +239,19 @@ class _Ls:
         return table[n].name
 
     def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        m = re.fullmatch(r"R\[(\d+)(?::([^\]]*))?\]\s*=\s*(-?\d+)", self._text(i))
-        lbl = re.fullmatch(r"LBL\[(\d+)\]", self._text(i + 1)) if m else None
-        if m is None or lbl is None:
+        found = label_loop(self._text, i, end, r"R\[(\d+)(?::[^\]]*)?\]\s*=\s*(-?\d+)", r"LBL\[(\d+)\]",
+                           lambda r, k: rf"IF R\[{r}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{k}\]",
+                           lambda r: rf"R\[{r}(?::[^\]]*)?\]=R\[{r}(?::[^\]]*)?\]\+1")
+        if found is None:
             return None
-        reg = m.group(1)
-        close = rf"IF R\[{reg}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{lbl.group(1)}\]"
-        j = next((k for k in range(i + 2, end) if re.fullmatch(close, self._text(k))), None)
-        step = rf"R\[{reg}(?::[^\]]*)?\]=R\[{reg}(?::[^\]]*)?\]\+1"
-        if j is None or not re.fullmatch(step, self._text(j - 1)):
-            return None
-        var = rmot_name((m.group(2) or f"r{reg}").replace(" ", "_"))
+        reg, first, last, j = found
+        label = re.match(r"R\[\d+:([^\]]*)\]", self._text(i))
+        var = rmot_name((label.group(1) if label else f"r{reg}").replace(" ", "_"))
         self.loop_vars[reg] = var
         body, _ = self._block(i + 2, j - 1)
         del self.loop_vars[reg]
-        last = int(re.fullmatch(close, self._text(j)).group(1))  # type: ignore[union-attr]
         self.tally.imported += 1
-        return [For(var, int(m.group(3)), last + 1, tuple(body), self.instructions[i][1])], j + 1
+        return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`IF DI[n]<>ON,JMP LBL[a]`, then-body, [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
@@ -343,21 +339,13 @@ class _Ls:
         self.tally.native += 1
         return Native("fanuc", text, where)
 
-    def _uses_offsets(self, name: str, depth: int) -> bool:
-        """Whether program `name`, or a program it calls (8 levels), moves by an offset register
-        this program's loops set."""
-        source = self.programs.get(name.upper())
-        if source is None or depth > 8:
-            return False
-        if any(re.search(rf"Offset,PR\[{k}\]", source[1]) for k in self.offsets):
-            return True
-        return any(self._uses_offsets(callee, depth + 1) for callee in re.findall(r"CALL\s+(\w+)", source[1]))
-
     def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
         """The body of program `name` read with this program's loop counters and offset
         registers, when it moves a target by one of them (else None: it is called)."""
         source = self.programs.get(name.upper())
-        if source is None or not self.loop_vars or not self._uses_offsets(name, 0):
+        offsets = [rf"Offset,PR\[{k}\]" for k in self.offsets]  # a program that moves by one
+        if source is None or not self.loop_vars or not reaches(
+                self.programs, name, lambda text: any(re.search(p, text) for p in offsets), r"CALL\s+(\w+)"):
             return None
         callee = _Ls(source[0], source[1], self.labels, self.programs)
         callee.offsets, callee.loop_vars = self.offsets, self.loop_vars

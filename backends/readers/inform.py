@@ -19,7 +19,7 @@ import math
 import re
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import Tally, label_arms, match_simple, rmot_name
+from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
@@ -168,21 +168,16 @@ class _Job:
 
     def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`SET Dv a`, `*Lk`, body, `INC Dv`, `JUMP *Lk IF Dv<=b` (the backend's counted loop)."""
-        m = re.fullmatch(r"SET (D\d+) (\d+)", self._text(i))
-        label = re.fullmatch(r"\*(L\w+)", self._text(i + 1)) if m else None
-        if m is None or label is None:
+        found = label_loop(self._text, i, end, r"SET (D\d+) (\d+)", r"\*(L\w+)",
+                           lambda v, k: rf"JUMP \*{k} IF {v}<=(\d+)", lambda v: f"INC {v}")
+        if found is None:
             return None
-        var = m.group(1)
-        close = f"JUMP *{label.group(1)} IF {var}<="
-        j = next((k for k in range(i + 2, end) if self._text(k).startswith(close)), None)
-        last = self._text(j)[len(close):] if j is not None else ""
-        if j is None or self._text(j - 1) != f"INC {var}" or not last.isdigit():
-            return None
+        var, first, last, j = found
         name = rmot_name(self.var_names.get(var, var.lower()))
         self.counters[var] = name
         body, _ = self._block(i + 2, j - 1)
         del self.counters[var]
-        return [For(name, int(m.group(2)), int(last) + 1, tuple(body), self.inst[i][1])], j + 1
+        return [For(name, first, last + 1, tuple(body), self.inst[i][1])], j + 1
 
     def _shift_data(self, i: int) -> int | None:
         """A shift being built or switched: `SET Dt Dv`, `MUL Dt m`, `SETE Pn (e) Dt` (element e
@@ -211,21 +206,13 @@ class _Job:
         terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(self.shifts[self.shift].items()))
         return f"shift({name}, {terms})" if terms else name
 
-    def _uses_shifts(self, name: str, depth: int) -> bool:
-        """Whether job `name`, or a job it calls (8 levels), switches on a shift this job's
-        loops set."""
-        source = self.jobs.get(name.upper())
-        if source is None or depth > 8:
-            return False
-        if any(re.search(rf"(?m)^SFTON {p} RF", source[1]) for p in self.shifts):
-            return True
-        return any(self._uses_shifts(callee, depth + 1) for callee in re.findall(r"(?m)^CALL JOB:(\w+)", source[1]))
-
     def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
         """The body of job `name` read with this job's loop counters and shifts, when it
         switches on one of them (else None: it is called)."""
         source = self.jobs.get(name.upper())
-        if source is None or not self.counters or not self._uses_shifts(name, 0):
+        shifted = [rf"(?m)^SFTON {p} RF" for p in self.shifts]  # a job that switches one on
+        if source is None or not self.counters or not reaches(
+                self.jobs, name, lambda text: any(re.search(p, text) for p in shifted), r"(?m)^CALL JOB:(\w+)"):
             return None
         callee = _Job(source[0], source[1], self.jobs)
         callee.counters, callee.shifts = self.counters, self.shifts
