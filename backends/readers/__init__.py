@@ -80,6 +80,34 @@ def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Do
     return doc, m.tally
 
 
+def _val3(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.val3 import read_val3
+
+    folder = os.path.dirname(os.path.abspath(path))
+    data = [(p, _load(p)) for p in sorted(os.path.join(folder, f) for f in os.listdir(folder) if f.lower().endswith(".dtx"))]
+    m = read_val3(path, text, data)
+    main = m.routines[0].name if m.routines else "start"
+    doc = Document("val3", os.path.basename(folder), main, tuple(m.targets.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
+    return doc, m.tally
+
+
+def _project(paths: list[str]) -> list[str]:
+    """A VAL3 project (`.pjx`) as the program files it names, `start.pgx` first."""
+    out: list[str] = []
+    for path in paths:
+        if not path.lower().endswith(".pjx"):
+            out.append(path)
+            continue
+        names = re.findall(r'<Program\s+file="([^"/\\]+\.pgx)"', _load(path))
+        if not names:
+            raise _fail(codes.NOT_VENDOR_LANGUAGE, path, "a VAL3 project must name its programs (`<Program file=..>`)")
+        names.sort(key=lambda n: n.lower() != "start.pgx")
+        out += [os.path.join(os.path.dirname(path), n) for n in names]
+    return out
+
+
 _MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
 JointLimits = tuple[tuple[float, ...], tuple[float, ...]]  # each joint's speed rad/s, acceleration rad/s^2
 _LIMITS: list[JointLimits | None] = [None]  # that model's joint limits (URScript movej rates)
@@ -99,7 +127,7 @@ READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
     ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
     ".urscript": ("urscript", _urscript), ".ls": ("fanuc", _fanuc),
-    ".jbi": ("inform", _inform),
+    ".jbi": ("inform", _inform), ".pgx": ("val3", _val3), ".pjx": ("val3", _val3),
 }
 
 _SOURCES: dict[str, SourceFile] = {}
@@ -139,6 +167,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     reads its .dat (given too, or beside it). `model`: the robot library name the program runs
     on, where a vendor writes speeds relative to the arm (URScript movej); `limits`: its joint
     speed and acceleration limits (the caller loads the arm: a reader only reads text)."""
+    paths = _project(paths)
     _MODEL[0] = model
     _LIMITS[0] = limits
     _FANUC_LABELS["UTOOL"].clear()

@@ -30,7 +30,7 @@ __all__ = ["import_", "DEFAULT_MODELS"]
 
 # the stub cell's robot when --robot is not given: a library arm of the vendor's maker
 DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "ur5e",
-                  "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8"}
+                  "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8", "val3": "staubli_tx2_60"}
 
 
 def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ...]] | None:

@@ -186,3 +186,15 @@ def test_inform_base_positions_and_nwait(tmp_path: Path) -> None:
     moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
     assert [(m.frame, m.speed) for m in moves] == [("base", None), ("base", 111.1)]
     assert [(d.code.id, d.span.start.line) for d in doc.diagnostics] == [("W517", 18)]
+
+
+def test_val3_refuses_xml_with_entities(tmp_path: Path) -> None:
+    """A VAL3 file is data: XML with a DOCTYPE (entity expansion) is a located E510, never parsed."""
+    path = tmp_path / "start.pgx"
+    path.write_text('<?xml version="1.0"?>\n<!DOCTYPE p [<!ENTITY a "aaaa">]>\n<Programs><Program name="start">'
+                    "<Code>begin\nend</Code></Program></Programs>\n")
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "x.rmot")])
+    assert result.exit_code == 2 and f"{path}:1:1: error[E510]" in result.output, result.output
