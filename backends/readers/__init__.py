@@ -85,9 +85,11 @@ def _val3(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docu
 
     folder = os.path.dirname(os.path.abspath(path))
     data = [(p, _load(p)) for p in sorted(os.path.join(folder, f) for f in os.listdir(folder) if f.lower().endswith(".dtx"))]
-    m = read_val3(path, text, data)
+    m = read_val3(path, text, data, _FANUC_PROGRAMS)
+    _FANUC_INLINED.update(m.inlined)
     main = m.routines[0].name if m.routines else "start"
-    doc = Document("val3", os.path.basename(folder), main, tuple(m.targets.values()), tuple(m.tools.values()),
+    name = os.path.basename(folder) if main == "start" else main  # the application is its folder
+    doc = Document("val3", name, main, tuple(m.targets.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments))
     return doc, m.tally
@@ -181,6 +183,10 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
                 _FANUC_PROGRAMS[prog.group(1).upper()] = (path, _load(path))
             for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):
                 _FANUC_LABELS[kind][int(n)] = name
+        if path.lower().endswith(".pgx"):  # VAL3 programs by name, the same way
+            program = re.search(r'<Program\s+name="(\w+)"', _load(path))
+            if program:
+                _FANUC_PROGRAMS[program.group(1).upper()] = (path, _load(path))
         if path.lower().endswith(".jbi"):  # INFORM jobs by name, as TP programs: inlined in a shifting loop
             job = re.search(r"(?m)^//NAME\s+(\w+)", _load(path))
             if job:

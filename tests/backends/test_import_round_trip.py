@@ -1,5 +1,5 @@
 """compile -> `rmot import` -> compile means the same program, for RAPID, KRL, URScript,
-Fanuc TP and Yaskawa INFORM on every single-task example, Stäubli VAL3 on those without loops.
+Fanuc TP, Yaskawa INFORM and Stäubli VAL3 on every single-task example.
 
 Witnesses (none of them the readers under test): the planner's own JSON plan of the original
 and of the imported program (`--target json`: every instruction's kind, planned joints, branch,
@@ -84,9 +84,7 @@ def _leaves(plan: dict) -> list[dict]:
 
 CASES = [(v, n) for v in ("rapid", "krl", "urscript", "fanuc") for n in EXAMPLES]
 CASES += [("inform", n) for n in EXAMPLES]
-# VAL3: loops with a trShift and programs specialised per loop (pick_place, palletizing,
-# inspect) are not read yet
-CASES += [("val3", n) for n in ("weld_seam", "collision", "model_arm")]
+CASES += [("val3", n) for n in EXAMPLES]
 
 
 @pytest.mark.parametrize(("vendor", "name"), CASES)
@@ -117,7 +115,7 @@ def test_round_trip(vendor: str, name: str, tmp_path: Path) -> None:
             _same_instruction(a, b, before["cycle_time"])
     io_before = [re.findall(IO_PATTERNS[vendor], f.read_text()) for f in sorted((tmp_path / "a" / vendor).rglob("*")) if f.is_file()]
     io_after = [re.findall(IO_PATTERNS[vendor], f.read_text()) for f in sorted((tmp_path / "b" / vendor).rglob("*")) if f.is_file()]
-    if vendor in ("fanuc", "inform"):  # programs called in a loop come back inlined in their caller: compare the lines
+    if vendor in ("fanuc", "inform", "val3"):  # programs called in a loop come back inlined in their caller: compare the lines
         io_before, io_after = ([sorted(re.sub(r"LBL\[\d+\]|\*L\d+", "LBL", x) for f in io for x in f)]
                                for io in (io_before, io_after))
     assert io_after == io_before
