@@ -92,7 +92,7 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, objec
     return SignalMap(*(tuple(t) for t in tables)), chosen, result.cell
 
 
-@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP or INFORM programs back into .rmot.")
+@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP, INFORM or VAL3 programs back into .rmot.")
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False, exists=True))
 @click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False), help="The .rmot file to write.")
 @click.option("--robot", default=None, help="With --cell: the cell's robot; without: the library arm of the stub cell.")

@@ -198,3 +198,14 @@ def test_val3_refuses_xml_with_entities(tmp_path: Path) -> None:
     from rmot.compiler.cli import cli
     result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "x.rmot")])
     assert result.exit_code == 2 and f"{path}:1:1: error[E510]" in result.output, result.output
+
+
+def test_val3_project_naming_no_program(tmp_path: Path) -> None:
+    """A `.pjx` that names no `.pgx` (or only paths outside its folder) is a located E510."""
+    path = tmp_path / "app.pjx"
+    path.write_text('<Project><Programs><Program file="../../etc/start.pgx" /></Programs></Project>\n')
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "x.rmot")])
+    assert result.exit_code == 2 and f"{path}:1:1: error[E510]" in result.output, result.output
