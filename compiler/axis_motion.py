@@ -57,7 +57,7 @@ def axis_samples(tp: TaskPlan, axes: tuple[ExtAxis, ...], t: np.ndarray | None =
 
 
 def axis_findings(tp: TaskPlan, external: ExternalAxes | None) -> list[Diagnostic]:
-    """E604 at each move that drives an axis outside its range, naming the axis."""
+    """E605 at each move that drives an axis outside its range, naming the axis."""
     axes = {a.name: a for a in task_axes(tp.task, external)}
     found: list[Diagnostic] = []
     for instr in ir_tree.walk(tp.task.body):

@@ -22,7 +22,7 @@ Program (`ProgramAxes`, used by the task lowering):
   * A joint move and `move axes` move the axes time-synchronously with the arm: the move lasts
     at least each axis' shortest rest-to-rest time (ir.Motion.min_duration), and stops exactly
     at both ends. A linear or circular move whose axes change (coordinated motion) and any axis
-    change inside an if or while are E605.
+    change inside an if or while are E606.
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ def names_in(e: ast.Expr) -> set[str]:
         elif isinstance(node, ast.BinOp):
             stack += [node.left, node.right]
         elif isinstance(node, ast.Neg):
-            stack.append(node.value)
+            stack.append(node.operand)
         elif isinstance(node, (ast.Call, ast.Vector)):
             stack += [a.value for a in (node.args if isinstance(node, ast.Call) else node.items)]
     return out
@@ -158,7 +158,7 @@ class CellAxes:
 
     def frame(self, name: str, value: ast.Expr, world: ir.Pose, span: Span) -> None:
         """A frame whose value names a mechanism rides on it (at its place at home)."""
-        riding = sorted(names_in(value) & set(self.mechanisms))
+        riding = sorted(names_in(value) & set(self.mechanisms)) if self.mechanisms else []
         if len(riding) > 1:
             self.rep.error(codes.EXT_MOUNT, f"frame '{name}' must ride on one mechanism (got {', '.join(riding)})", value.span)
         elif riding:
@@ -171,7 +171,7 @@ def _shown(x: float, dim: tuple[int, ...]) -> str:
 
 
 def check_axis_branches(body: tuple[ir.Instr, ...], rep: Reporter) -> None:
-    """E605 for an axis change inside an if or while: the axes' values after it would depend on
+    """E606 for an axis change inside an if or while: the axes' values after it would depend on
     which path ran, and every later target's pose depends on them."""
     for instr in walk(body):
         runs, bodies = flow(instr)
@@ -186,7 +186,7 @@ def check_axis_branches(body: tuple[ir.Instr, ...], rep: Reporter) -> None:
 
 def program_axes(prog: ast.ProgramDecl, robot: ir.RobotInstance, cell: ir.Cell, rep: Reporter) -> ProgramAxes | None:
     """The axes a single-robot program drives (`with ...`), or None when it drives none or
-    after an error (E602)."""
+    after an error (E603)."""
     external = cell.external or ExternalAxes()
     names: list[str] = []
     for ident in prog.axes:

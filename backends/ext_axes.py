@@ -1,0 +1,96 @@
+"""External axes in vendor programs: which axis value goes where, and the frames that ride on a
+unit. The values come from the IR (ir.Move.ext: every axis the task drives, at the move's
+target); the backends only format them.
+
+Bindings (rmot's defaults; the report's checklist lists them as machine data to check):
+  * the task's axes in `with` order (a mechanism's axes in their order) take the vendor's
+    external-axis slots in turn: RAPID eax_a, eax_b, ... (robtarget/jointtarget `extax`), KRL
+    E1, E2, ... (E6POS/E6AXIS); linear axes in mm, revolute ones in degrees;
+  * a mechanism is the RAPID mechanical unit of its name in capitals (`pos` -> "POS").
+A controller's world is the robot's base frame with every axis at home, as rmot writes it for
+a robot without axes.
+
+RAPID (ABB "Technical reference manual - RAPID Instructions, Functions and Data types"):
+robtarget.extax / jointtarget.extax (extjoint: eax_a..eax_f, 9E9 for an axis not used);
+MoveExtJ "Move one or several mechanical units without TCP" (ToJointPos, Speed [\\T], Zone);
+wobjdata [robhold, ufprog, ufmec, uframe, oframe]: ufprog FALSE and ufmec the unit's name for a
+work object a unit moves, uframe then in the unit's moving frame.
+KRL (KUKA System Software 8.x, Operating and Programming Instructions for System Integrators,
+"E6POS", "E6AXIS"; KSS 8.5 "Configuration of Kinematic Systems"): E1..E6 in an E6POS or E6AXIS;
+a base on an external kinematic system is `$BASE=EK(MACHINE_DEF[n].ROOT,MACHINE_DEF[n].MECH_TYPE,
+offset)`, the offset in the kinematic's flange frame ($ETn_TFLA3 chain).
+"""
+
+from __future__ import annotations
+
+import math
+
+from rmot.backends.conventions import fmt, fmt_list, position_mm
+from rmot.compiler import ir
+from rmot.compiler.axis_motion import task_axes
+from rmot.compiler.ir_axes import ExtAxis, ExternalAxes
+
+__all__ = ["RAPID_UNUSED", "driven_axes", "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
+           "unit_name", "vendor_values"]
+
+RAPID_UNUSED = "9E+09"  # "no position defined" in an extax / robax slot (RAPID reference, extjoint)
+SLOTS = 6  # RAPID eax_a..eax_f, KRL E1..E6
+
+
+def driven_axes(task: ir.Task, cell: ir.Cell) -> tuple[ExtAxis, ...]:
+    """The external axes `task` drives, in slot order (none for a task without)."""
+    return task_axes(task, cell.external)
+
+
+def vendor_values(node: ir.Move, axes: tuple[ExtAxis, ...]) -> tuple[float, ...]:
+    """The axis values at `node`'s target in the vendors' units: mm (linear) or deg (revolute)."""
+    values = dict(node.ext)
+    return tuple(values[a.name] * 1000.0 if a.linear else math.degrees(values[a.name]) for a in axes)
+
+
+def rapid_extax(node: ir.Move, axes: tuple[ExtAxis, ...]) -> str:
+    """The `extax` of a robtarget or jointtarget: eax_a..eax_f."""
+    values = [fmt(v, 3) for v in vendor_values(node, axes)]
+    return "[" + ",".join(values + [RAPID_UNUSED] * (SLOTS - len(values))) + "]"
+
+
+def krl_e_axes(node: ir.Move, axes: tuple[ExtAxis, ...]) -> str:
+    """`,E1 v,...,E6 v` of an E6POS or E6AXIS (0 for a slot no axis takes, as KRL declares it)."""
+    values = list(vendor_values(node, axes)) + [0.0] * (SLOTS - len(axes))
+    return "".join(f",E{k + 1} {fmt(v, 4)}" for k, v in enumerate(values))
+
+
+def unit_name(mechanism: str) -> str:
+    return mechanism.upper()
+
+
+def riding_frame(frame: ir.FrameRef, external: ExternalAxes | None) -> tuple[str, ir.Pose] | None:
+    """(mechanism, the frame in the mechanism's flange frame) for a frame that rides on one."""
+    if frame.name is None or external is None:
+        return None
+    mount = external.mount(frame.name)
+    if mount is None or mount.kind != "frame":
+        return None
+    return mount.mechanism, mount.local
+
+
+def mechanism_index(mechanism: str, cell: ir.Cell) -> int:
+    """KRL's MACHINE_DEF index of a mechanism: 1 is the robot, mechanisms follow in cell order."""
+    assert cell.external is not None
+    return 2 + [m.name for m in cell.external.mechanisms].index(mechanism)
+
+
+def rapid_wobj(frame: ir.FrameRef, robot: ir.RobotInstance, cell: ir.Cell) -> str:
+    """A wobjdata literal for a task with external axes: on a unit, `ufprog` FALSE, `ufmec` the
+    unit and uframe in its moving frame; else fixed, uframe in the controller's world (the
+    robot's base frame with the axes at home)."""
+    riding = riding_frame(frame, cell.external)
+    if riding is not None:
+        mechanism, local = riding
+        return f'[FALSE,FALSE,"{unit_name(mechanism)}",{_pose(local)},[[0,0,0],[1,0,0,0]]]'
+    return f'[FALSE,TRUE,"",{_pose(robot.base.inverse() * frame.world)},[[0,0,0],[1,0,0,0]]]'
+
+
+def _pose(pose: ir.Pose) -> str:
+    """[[x,y,z],[q1,q2,q3,q4]] in mm and a w-first quaternion (RAPID pose)."""
+    return f"[[{fmt_list(position_mm(pose), 3)}],[{fmt_list(pose.quaternion, 6)}]]"
