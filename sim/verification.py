@@ -28,7 +28,7 @@ from rmot.sim.collide import PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.limits import LimitHit, check_limits
 from rmot.sim.report import Report
 from rmot.sim.scene import Scene, build_scene, flange_in_last_joint
-from rmot.sim import parts
+from rmot.sim import axes_collide, parts
 
 __all__ = ["verify", "verify_with"]
 
@@ -91,7 +91,14 @@ def _collisions(scene: Scene, plan: plan_types.Plan, tasks: list[plan_types.Task
     out: list[Diagnostic] = []
     timeline = _timeline(scene, main, None)
     by_robot = {tp.robot: tp for tp in tasks}
-    hits = check_timeline(scene, timeline, candidate_pairs(scene), clearance)
+    pairs = candidate_pairs(scene)
+    external = plan.program.cell.external
+    driver = axes_collide.driving_task(tasks, external)
+    if driver is not None and external is not None:  # pairs whose relative pose the external axes change
+        pairs, moved = axes_collide.axis_pairs(pairs, axes_collide.body_groups(scene, external))
+        hits = axes_collide.axis_collisions(scene, timeline, moved, driver, external, clearance)
+        out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
+    hits = check_timeline(scene, timeline, pairs, clearance)
     out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
     for tp in tasks:
         for variant in tp.variants:
