@@ -249,3 +249,19 @@ def test_the_cycle_time_counts_the_axes(plan: Plan) -> None:
     front = load_text(still.replace("move axes pos to (-10deg, 180deg)\n", ""), "/tmp/ext_axes_still.rmot")
     assert front.program is not None
     assert plan_program(front.program).cycle_time < plan.cycle_time - 1.0
+
+
+# ------------------------------------------------------------------ golden files (reviewed by hand)
+
+
+@pytest.mark.parametrize("vendor", ["rapid", "krl"])
+def test_track_tending_golden(vendor: str) -> None:
+    """examples/track_tending.rmot for RAPID and KRL equals its golden files, read by hand once:
+    RAPID robtargets carry the carriage in eax_a (600, 2000, 3400 mm), the work objects are
+    fixed in the robot's world with the track at 0 (door_a 550 mm above the base's 250 mm);
+    KRL E6POS carry it in E1 and each PTP that moves the track sets $VEL_EXTAX[1]/$ACC_EXTAX[1]."""
+    from backend_fixtures import check_golden, example_plans
+
+    result = BACKENDS[vendor]().emit(example_plans(("track_tending",))["track_tending"])
+    assert not result.has_errors
+    check_golden(vendor, "track_tending", result.files)
