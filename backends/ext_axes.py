@@ -25,12 +25,12 @@ from __future__ import annotations
 
 import math
 
-from rmot.backends.conventions import fmt, fmt_list, position_mm
+from rmot.backends.conventions import euler_zyx_deg, fmt, fmt_list, position_mm
 from rmot.compiler import ir
 from rmot.compiler.axis_motion import task_axes
 from rmot.compiler.ir_axes import ExtAxis, ExternalAxes
 
-__all__ = ["RAPID_UNUSED", "driven_axes", "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
+__all__ = ["RAPID_UNUSED", "driven_axes", "machine_data", "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
            "unit_name", "vendor_values"]
 
 RAPID_UNUSED = "9E+09"  # "no position defined" in an extax / robax slot (RAPID reference, extjoint)
@@ -91,6 +91,45 @@ def rapid_wobj(frame: ir.FrameRef, robot: ir.RobotInstance, cell: ir.Cell) -> st
     return f'[FALSE,TRUE,"",{_pose(robot.base.inverse() * frame.world)},[[0,0,0],[1,0,0,0]]]'
 
 
+def _xyzabc(pose: ir.Pose) -> str:
+    """{X, Y, Z, A, B, C} in mm and degrees, KUKA's frame (A, B, C about z, y, x)."""
+    a, b, c = euler_zyx_deg(pose)
+    return "{" + ",".join(f"{k} {fmt(v, 3)}" for k, v in zip("XYZABC", (*position_mm(pose), a, b, c))) + "}"
+
+
 def _pose(pose: ir.Pose) -> str:
     """[[x,y,z],[q1,q2,q3,q4]] in mm and a w-first quaternion (RAPID pose)."""
     return f"[[{fmt_list(position_mm(pose), 3)}],[{fmt_list(pose.quaternion, 6)}]]"
+
+
+def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ...], vendor: str) -> list[str]:
+    """The controller configuration the program assumes, as checklist lines for its header: rmot
+    cannot read the controller, so the numbers it planned with are printed for a person to
+    compare with the machine data (RAPID: the MOC mechanical units; KRL: $EX_KIN / $ETn and
+    MACHINE_DEF; KSS 8.5 "Configuration of Kinematic Systems")."""
+    if cell.external is None or not axes:
+        return []
+    world = robot.base.inverse()  # the controller's world: the arm's base with every axis at home
+    lines = ["machine data assumed (check on the controller): world = the robot base with every axis at home"]
+    slot = 0
+    for mech in cell.external.mechanisms:
+        mine = [a for a in mech.axes if a in axes]
+        if not mine:
+            continue
+        base = world * mech.base
+        where = f"base at {_pose(base) if vendor == 'rapid' else _xyzabc(base)} in world"
+        if vendor == "rapid":
+            kind = "TRACK (carries the robot)" if mech.kind == "track" else "rotating/linear unit, coordinated work objects"
+            lines.append(f'unit "{unit_name(mech.name)}": MOC type {kind}, {where}')
+        else:
+            index = mechanism_index(mech.name, cell)
+            kind = "$ERSYSROOT/$ROBROOT on the carriage (mathematically coupled)" if mech.kind == "track" else "$ETn external kinematic, EK() bases"
+            lines.append(f"{mech.name}: MACHINE_DEF[{index}], {kind}, {where}")
+        for axis in mine:
+            slot += 1
+            name = f"eax_{'abcdef'[slot - 1]}" if vendor == "rapid" else f"E{slot}"
+            direction = "xyz"[axis.direction.index(1.0)]
+            lines.append(f"  {name} = {axis.name}: {'linear along' if axis.linear else 'revolute about'} {direction}, "
+                         f"[{axis.shown(axis.low)}, {axis.shown(axis.high)}], {axis.shown(axis.speed)}/s, "
+                         f"{axis.shown(axis.accel)}/s^2")
+    return lines

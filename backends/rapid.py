@@ -45,7 +45,7 @@ from typing import Any
 from rmot.backends import codes
 from rmot.backends import loops as _loops
 from rmot.backends import runtime as _rt
-from rmot.backends.ext_axes import RAPID_UNUSED, driven_axes, rapid_extax, rapid_wobj
+from rmot.backends.ext_axes import RAPID_UNUSED, driven_axes, machine_data, rapid_extax, rapid_wobj
 from rmot.backends.base import Backend, TaskContext, accel_is_default, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
@@ -211,6 +211,8 @@ class RapidBackend(Backend):
                               axes=driven_axes(task.task, task.plan.program.cell))
         main = self.body(body, ctx)
         lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
+        lines += self.indent([self.comment(line) for line in machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "rapid")],
+                             self.INDENT)
         for kind in ("tooldata", "wobjdata", "loaddata", "sync", "var"):
             lines += self.indent(ctx.decls.get(kind, []), self.INDENT)
         lines += self.indent(self._data_lines(ctx), self.INDENT)

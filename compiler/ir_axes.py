@@ -152,4 +152,5 @@ def synced_position(start: float, end: float, duration: float, accel: float, t: 
     s = np.where(tc < ramp, 0.5 * accel * tc * tc,
                  np.where(tc <= duration - ramp, 0.5 * accel * ramp * ramp + v * (tc - ramp),
                           d - 0.5 * accel * (duration - tc) ** 2))
-    return start + math.copysign(1.0, delta) * s
+    out: np.ndarray = start + math.copysign(1.0, delta) * s
+    return out

@@ -25,7 +25,7 @@ from rmot.sim.collide import PairHit, Timeline, _runs
 from rmot.sim.exact import ExactPair
 from rmot.sim.scene import Body, Scene
 
-__all__ = ["axis_collisions", "axis_pairs", "body_groups", "driving_task"]
+__all__ = ["axis_collisions", "axis_pairs", "body_groups", "driving_task", "mechanism_motion", "with_axes"]
 
 
 def body_groups(scene: Scene, external: ExternalAxes | None) -> dict[str, str]:
@@ -42,7 +42,8 @@ def body_groups(scene: Scene, external: ExternalAxes | None) -> dict[str, str]:
 
 def axis_pairs(pairs: list[tuple[Body, Body]], groups: dict[str, str]) -> tuple[list[tuple[Body, Body]], list[tuple[Body, Body]]]:
     """(pairs the general check keeps, pairs whose relative pose the axes change)."""
-    keep, moved = [], []
+    keep: list[tuple[Body, Body]] = []
+    moved: list[tuple[Body, Body]] = []
     for a, b in pairs:
         (moved if groups.get(a.name) != groups.get(b.name) else keep).append((a, b))
     return keep, moved
@@ -53,16 +54,10 @@ def axis_collisions(scene: Scene, timeline: Timeline, pairs: list[tuple[Body, Bo
     """Every collision (and approach closer than `clearance`) of the pairs the axes move."""
     if not pairs:
         return []
-    groups = body_groups(scene, external)
-    motion = _mechanism_motion(timeline, tp, external)
     poses: dict[str, np.ndarray] = {}
     for robot, q in timeline.q.items():
         poses.update(scene.poses(robot, q))
-    for body in scene.bodies:
-        if body.kind == "fixture":
-            poses[body.name] = body.local[None]
-        if body.name in groups:
-            poses[body.name] = motion[groups[body.name]] @ poses[body.name]
+    poses = with_axes(scene, tp, external, timeline.t, poses)
     hits: list[PairHit] = []
     m = timeline.t.shape[0]
     for a, b in pairs:
@@ -77,16 +72,31 @@ def axis_collisions(scene: Scene, timeline: Timeline, pairs: list[tuple[Body, Bo
     return hits
 
 
-def _mechanism_motion(timeline: Timeline, tp: TaskPlan, external: ExternalAxes) -> dict[str, np.ndarray]:
-    """Mechanism -> (M, 4, 4): flange(axes(t)) * flange(home)^-1 at each timeline sample."""
+def with_axes(scene: Scene, tp: TaskPlan, external: ExternalAxes, times: np.ndarray,
+              poses: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """`poses` (body -> (M, 4, 4) at `times`, robot bodies with their base at home; fixtures may
+    be absent) with every body a mechanism carries moved by its mechanism's motion since home."""
+    groups = body_groups(scene, external)
+    motion = mechanism_motion(times, tp, external)
+    out = dict(poses)
+    for body in scene.bodies:
+        if body.kind == "fixture" and body.name not in out:
+            out[body.name] = body.local[None]
+        if body.name in groups:
+            out[body.name] = motion[groups[body.name]] @ out[body.name]
+    return out
+
+
+def mechanism_motion(times: np.ndarray, tp: TaskPlan, external: ExternalAxes) -> dict[str, np.ndarray]:
+    """Mechanism -> (M, 4, 4): flange(axes(t)) * flange(home)^-1 at each of `times`."""
     axes = task_axes(tp.task, external)
-    values = axis_samples(tp, axes, timeline.t)
+    values = axis_samples(tp, axes, times)
     column = {a.name: k for k, a in enumerate(axes)}
     out: dict[str, np.ndarray] = {}
     for mech in external.mechanisms:
         home_inv = mech.flange(mech.home()).inverse()
         rows = [tuple(values[i, column[a.name]] if a.name in column else a.home for a in mech.axes)
-                for i in range(timeline.t.shape[0])]
+                for i in range(times.shape[0])]
         out[mech.name] = np.array([(mech.flange(r) * home_inv).matrix() for r in rows]) if rows else np.zeros((0, 4, 4))
     return out
 

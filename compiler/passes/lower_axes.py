@@ -35,7 +35,7 @@ from rmot.compiler.ir_axes import AXIS_DIRECTIONS, ExtAxis, ExternalAxes, Mechan
 from rmot.compiler.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
-from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, SPEED, VectorV, Value
+from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, SPEED, Dim, VectorV, Value
 from rmot.lang import ast
 from rmot.lang.source import Span
 
@@ -108,7 +108,7 @@ class CellAxes:
         home = min(max(0.0, low), high)
         return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span)
 
-    def _range(self, a: ast.ExtAxisDecl, dim: tuple[int, ...]) -> tuple[float, float] | None:
+    def _range(self, a: ast.ExtAxisDecl, dim: Dim) -> tuple[float, float] | None:
         call = a.args[0].value if len(a.args) == 1 else None
         if not isinstance(call, ast.Call) or call.func.name != "range" or len(call.args) != 2:
             self.rep.error(codes.EXT_AXIS_DEFINITION, "an external axis must give its travel as range(low, high) after the axis",
@@ -125,14 +125,14 @@ class CellAxes:
             return None
         return low, high
 
-    def _finite(self, v: Value | None, dim: tuple[int, ...], what: str, span: Span) -> float | None:
+    def _finite(self, v: Value | None, dim: Dim, what: str, span: Span) -> float | None:
         x = expect_quantity(v, dim, what, span, self.rep)
         if x is not None and not math.isfinite(x):
             self.rep.error(codes.EXT_AXIS_DEFINITION, f"{what} must be finite (got {x})", span)
             return None
         return x
 
-    def _positive(self, e: ast.Expr | None, dim: tuple[int, ...], what: str, span: Span) -> float | None:
+    def _positive(self, e: ast.Expr | None, dim: Dim, what: str, span: Span) -> float | None:
         if e is None:
             self.rep.error(codes.EXT_AXIS_DEFINITION, f"{what} must be given (the controller's machine data for it)", span)
             return None
@@ -166,7 +166,7 @@ class CellAxes:
             self.mounts.append(Mount(name, "frame", mech.name, mech.flange(mech.home()).inverse() * world, span))
 
 
-def _shown(x: float, dim: tuple[int, ...]) -> str:
+def _shown(x: float, dim: Dim) -> str:
     return f"{x * 1000:.6g} mm" if dim == LENGTH else f"{math.degrees(x):.6g} deg"
 
 

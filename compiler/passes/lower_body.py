@@ -584,7 +584,9 @@ class TaskLowering:
                 duration = self._time(m.value, scope, "move time")  # type: ignore[arg-type]
                 ok = ok and duration is not None
             elif m.kind == "ext":  # the axes' values at the target: ProgramAxes.move
-                ok = ok and (self.axes is not None or self._no_axes(m.span) is not None)
+                if self.axes is None:
+                    self._no_axes(m.span)
+                    ok = False
             else:
                 modal = apply_setting(modal, m, scope, self.robot, self.base, self.rep)
         kind = _KINDS[s.kind]
