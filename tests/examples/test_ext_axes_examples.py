@@ -1,0 +1,47 @@
+"""The two external-axes examples through the real command line: each checks clean (exit 0,
+no diagnostic at all) at about its cycle time, and compiles for RAPID and KRL with only the
+documented warning (W415: a KUKA arm in a RAPID program); the vendors without external axes
+refuse it with E607 and write nothing for it (lang/REFERENCE.md §15).
+
+(The examples drive external axes, which four of the eight vendors refuse, so they are not in
+test_shipped_examples.py's every-vendor list.)"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner, Result
+
+from rmot.compiler.cli import cli
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+# example -> approximate cycle time (s) from `rmot check`; +-25 % as for the other examples
+CYCLE = {"weld_positioner.rmot": 72.0, "track_tending.rmot": 15.4}
+
+
+def _run(*args: str) -> Result:
+    return CliRunner().invoke(cli, list(args))
+
+
+@pytest.mark.parametrize("name", sorted(CYCLE))
+def test_checks_clean(name: str) -> None:
+    result = _run("check", str(EXAMPLES / name), "--format", "json")
+    assert result.exit_code == 0, result.output
+    report = json.loads(result.stdout)["programs"][0]
+    assert report["diagnostics"] == []
+    assert report["cycle_time_s"] == pytest.approx(CYCLE[name], rel=0.25)
+
+
+@pytest.mark.parametrize("name", sorted(CYCLE))
+def test_compiles_for_rapid_and_krl_and_the_others_refuse(name: str, tmp_path: Path) -> None:
+    ok = _run("compile", str(EXAMPLES / name), "--target", "rapid", "--target", "krl", "-o", str(tmp_path / "a"))
+    assert ok.exit_code == 0, ok.stderr
+    assert set(re.findall(r"warning\[(W\d+)\]", ok.stderr)) <= {"W415"}
+    assert {p.name for p in (tmp_path / "a").iterdir()} == {"rapid", "krl", ".rmot.output"}
+    for vendor in ("fanuc", "inform", "urscript", "val3"):
+        refused = _run("compile", str(EXAMPLES / name), "--target", vendor, "-o", str(tmp_path / vendor))
+        assert refused.exit_code != 0 and "error[E607]" in refused.stderr, refused.stderr
+        assert not (tmp_path / vendor / vendor).exists()
