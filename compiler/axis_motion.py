@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rmot.compiler import codes, ir, ir_tree
+from rmot.compiler import codes_axes, ir, ir_tree
 from rmot.compiler.ir_axes import ExtAxis, ExternalAxes, synced_position
 from rmot.compiler.plan_types import TaskPlan
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -69,7 +69,7 @@ def axis_findings(tp: TaskPlan, external: ExternalAxes | None) -> list[Diagnosti
             if axis.low - 1e-12 <= value <= axis.high + 1e-12:
                 continue
             found.append(Diagnostic(
-                codes.EXT_AXIS_LIMIT, Severity.ERROR,
+                codes_axes.EXT_AXIS_LIMIT, Severity.ERROR,
                 f"axis '{name}' must stay within [{axis.shown(axis.low)}, {axis.shown(axis.high)}] (got {axis.shown(value)})",
                 instr.span, time_s=rec.t_end if rec is not None else None, task=tp.task.name))
     return found

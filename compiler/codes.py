@@ -213,16 +213,3 @@ __all__ += ["STEP_UNIT"]
 # `move free` (E180-E184 are its front end's; its search reports E250-E259, sim/codes.py)
 FREE_TIMED = Code("E180", "free-move-timed", "a 'move free' with a 'time' modifier (its path is found at plan time)")
 __all__ += ["FREE_TIMED"]
-
-
-# --------------------------------------------------------------------------- external axes
-# Tracks and positioners (compiler/passes/lower_axes.py, compiler/plan/axes.py).
-EXT_AXIS_DEFINITION = Code("E601", "ext-axis-definition", "an external axis that is not linear or revolute about x, y "
-                           "or z with a finite range(low, high), low < high, and positive speed and accel")
-EXT_MOUNT = Code("E602", "ext-mount", "`on NAME` that names no track or positioner, or a robot on a positioner")
-EXT_PROGRAM_AXES = Code("E603", "ext-program-axes", "`with` naming what is not a mechanism, or a robot on a track its program does not drive")
-EXT_VALUES = Code("E604", "ext-values", "ext(...) or `move axes` values that name no axis of the program, or of the wrong count or unit")
-EXT_AXIS_LIMIT = Code("E605", "ext-axis-limit", "an external axis driven outside its range")
-EXT_MOTION = Code("E606", "ext-motion", "external axes moved where rmot cannot plan it: during a linear or circular move, or inside an if or while")
-EXT_STOPS = Code("W601", "ext-stops", "a zone ignored: a move that moves external axes, and the move before it, stop exactly")
-__all__ += ["EXT_STOPS", "EXT_AXIS_DEFINITION", "EXT_MOUNT", "EXT_PROGRAM_AXES", "EXT_VALUES", "EXT_AXIS_LIMIT", "EXT_MOTION"]

@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from rmot.compiler import codes, ir
+from rmot.compiler import codes_axes, ir
 from rmot.compiler.ir_axes import AXIS_DIRECTIONS, ExtAxis, ExternalAxes, Mechanism, Mount, axis_time
 from rmot.compiler.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
@@ -78,10 +78,10 @@ class CellAxes:
         many = len(s.axes) > 1
         axes = [self._axis(a, f"{s.name.name}.{i + 1}" if many else s.name.name) for i, a in enumerate(s.axes)]
         if s.kind == "track" and axes and axes[0] is not None and not axes[0].linear:
-            self.rep.error(codes.EXT_AXIS_DEFINITION, f"a track's axis must be linear (got {s.axes[0].kind.name})", s.axes[0].kind.span)
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"a track's axis must be linear (got {s.axes[0].kind.name})", s.axes[0].kind.span)
             return None
         if len(axes) > 2:
-            self.rep.error(codes.EXT_AXIS_DEFINITION, f"a positioner must have 1 or 2 axes (got {len(axes)})", s.span)
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"a positioner must have 1 or 2 axes (got {len(axes)})", s.span)
             return None
         if base is None or any(a is None for a in axes):
             return None
@@ -92,12 +92,12 @@ class CellAxes:
     def _axis(self, a: ast.ExtAxisDecl, name: str) -> ExtAxis | None:
         rep = self.rep
         if a.kind.name not in _KINDS:
-            rep.error(codes.EXT_AXIS_DEFINITION, f"an external axis must be linear or revolute (got '{a.kind.name}')", a.kind.span)
+            rep.error(codes_axes.EXT_AXIS_DEFINITION, f"an external axis must be linear or revolute (got '{a.kind.name}')", a.kind.span)
             return None
         linear = a.kind.name == "linear"
         direction = AXIS_DIRECTIONS.get(a.axis.name)
         if direction is None:
-            rep.error(codes.EXT_AXIS_DEFINITION, f"an external axis must move along x, y or z (got 'axis {a.axis.name}')", a.axis.span)
+            rep.error(codes_axes.EXT_AXIS_DEFINITION, f"an external axis must move along x, y or z (got 'axis {a.axis.name}')", a.axis.span)
             return None
         bounds = self._range(a, LENGTH if linear else ANGLE)
         speed = self._positive(a.speed, SPEED if linear else ANGULAR_SPEED, f"speed of axis '{name}'", a.span)
@@ -111,7 +111,7 @@ class CellAxes:
     def _range(self, a: ast.ExtAxisDecl, dim: Dim) -> tuple[float, float] | None:
         call = a.args[0].value if len(a.args) == 1 else None
         if not isinstance(call, ast.Call) or call.func.name != "range" or len(call.args) != 2:
-            self.rep.error(codes.EXT_AXIS_DEFINITION, "an external axis must give its travel as range(low, high) after the axis",
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, "an external axis must give its travel as range(low, high) after the axis",
                            a.args[0].span if a.args else a.span)
             return None
         what = "the low end of the range", "the high end of the range"
@@ -120,7 +120,7 @@ class CellAxes:
         if low is None or high is None:
             return None
         if not low < high:
-            self.rep.error(codes.EXT_AXIS_DEFINITION, "range(low, high) must have low < high (got "
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, "range(low, high) must have low < high (got "
                            f"{_shown(low, dim)} .. {_shown(high, dim)})", call.span)
             return None
         return low, high
@@ -128,17 +128,17 @@ class CellAxes:
     def _finite(self, v: Value | None, dim: Dim, what: str, span: Span) -> float | None:
         x = expect_quantity(v, dim, what, span, self.rep)
         if x is not None and not math.isfinite(x):
-            self.rep.error(codes.EXT_AXIS_DEFINITION, f"{what} must be finite (got {x})", span)
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"{what} must be finite (got {x})", span)
             return None
         return x
 
     def _positive(self, e: ast.Expr | None, dim: Dim, what: str, span: Span) -> float | None:
         if e is None:
-            self.rep.error(codes.EXT_AXIS_DEFINITION, f"{what} must be given (the controller's machine data for it)", span)
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"{what} must be given (the controller's machine data for it)", span)
             return None
         x = self._finite(eval_expr(e, self.scope, self.rep), dim, what, e.span)
         if x is not None and x <= 0:
-            self.rep.error(codes.EXT_AXIS_DEFINITION, f"{what} must be > 0 (got {_shown(x, dim)})", e.span)
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"{what} must be > 0 (got {_shown(x, dim)})", e.span)
             return None
         return x
 
@@ -146,10 +146,10 @@ class CellAxes:
         """`body` rides on mechanism `on` at `local`: its world pose at home (None after an error)."""
         mech = self.mechanisms.get(on.name)
         if mech is None:
-            self.rep.unknown(on.name, "track or positioner", on.span, list(self.mechanisms), codes.EXT_MOUNT)
+            self.rep.unknown(on.name, "track or positioner", on.span, list(self.mechanisms), codes_axes.EXT_MOUNT)
             return None
         if kind == "robot" and mech.kind != "track":
-            self.rep.error(codes.EXT_MOUNT, f"a robot must ride on a track (got positioner '{on.name}')", on.span)
+            self.rep.error(codes_axes.EXT_MOUNT, f"a robot must ride on a track (got positioner '{on.name}')", on.span)
             return None
         if local is None:
             return None
@@ -160,7 +160,7 @@ class CellAxes:
         """A frame whose value names a mechanism rides on it (at its place at home)."""
         riding = sorted(names_in(value) & set(self.mechanisms)) if self.mechanisms else []
         if len(riding) > 1:
-            self.rep.error(codes.EXT_MOUNT, f"frame '{name}' must ride on one mechanism (got {', '.join(riding)})", value.span)
+            self.rep.error(codes_axes.EXT_MOUNT, f"frame '{name}' must ride on one mechanism (got {', '.join(riding)})", value.span)
         elif riding:
             mech = self.mechanisms[riding[0]]
             self.mounts.append(Mount(name, "frame", mech.name, mech.flange(mech.home()).inverse() * world, span))
@@ -179,7 +179,7 @@ def check_axis_branches(body: tuple[ir.Instr, ...], rep: Reporter) -> None:
             continue
         for inner in walk(tuple(i for b in bodies for i in b)):
             if isinstance(inner, ir.Move) and inner.motion.min_duration is not None:
-                rep.error(codes.EXT_MOTION, "external axes must not move inside an if or while (their values after it "
+                rep.error(codes_axes.EXT_MOTION, "external axes must not move inside an if or while (their values after it "
                           "would depend on the path taken); move them before or after it", inner.span)
                 return
 
@@ -191,12 +191,12 @@ def program_axes(prog: ast.ProgramDecl, robot: ir.RobotInstance, cell: ir.Cell, 
     names: list[str] = []
     for ident in prog.axes:
         if external.mechanism(ident.name) is None:
-            rep.unknown(ident.name, "track or positioner", ident.span, [m.name for m in external.mechanisms], codes.EXT_PROGRAM_AXES)
+            rep.unknown(ident.name, "track or positioner", ident.span, [m.name for m in external.mechanisms], codes_axes.EXT_PROGRAM_AXES)
             return None
         names.append(ident.name)
     mount = external.mount(robot.name)
     if mount is not None and mount.mechanism not in names:
-        rep.error(codes.EXT_PROGRAM_AXES, f"program '{prog.name.name}' must drive the track robot '{robot.name}' rides on "
+        rep.error(codes_axes.EXT_PROGRAM_AXES, f"program '{prog.name.name}' must drive the track robot '{robot.name}' rides on "
                   f"(add 'with {mount.mechanism}')", prog.name.span)
         return None
     return ProgramAxes(external, tuple(names), robot, rep) if names else None
@@ -221,7 +221,7 @@ class ProgramAxes:
             if m.kind == "ext" and not self._ext(m.value, scope, values):  # type: ignore[arg-type]
                 return None
         if values != self.values and move.kind is not ir.MotionKind.JOINT:
-            self.rep.error(codes.EXT_MOTION, f"a {move.kind.name.lower()} move must keep the external axes still (got a change "
+            self.rep.error(codes_axes.EXT_MOTION, f"a {move.kind.name.lower()} move must keep the external axes still (got a change "
                            "of " + ", ".join(a.name for a in self.axes if values[a.name] != self.values[a.name]) +
                            "): coordinated motion is not planned; move the axes with a joint move or 'move axes' first", s.span)
             return None
@@ -231,10 +231,10 @@ class ProgramAxes:
         """`move axes M to VALUES`: the arm holds the joints of the last move."""
         if s.mechanism.name not in self.mechanisms:
             self.rep.unknown(s.mechanism.name, "mechanism this program drives", s.mechanism.span, list(self.mechanisms),
-                             codes.EXT_VALUES)
+                             codes_axes.EXT_VALUES)
             return None
         if self.last is None:
-            self.rep.error(codes.EXT_MOTION, "'move axes' must follow a move of the arm (the arm holds the joints it "
+            self.rep.error(codes_axes.EXT_MOTION, "'move axes' must follow a move of the arm (the arm holds the joints it "
                            "reached; got none before it)", s.span)
             return None
         values = dict(self.values)
@@ -251,7 +251,7 @@ class ProgramAxes:
         ext = tuple((a.name, values[a.name]) for a in self.axes)
         if changed:
             if move.motion.zone.radius > 0 or (self.last is not None and self.last.motion.zone.radius > 0):
-                self.rep.warning(codes.EXT_STOPS, "a move that moves external axes stops exactly, and so does the "
+                self.rep.warning(codes_axes.EXT_STOPS, "a move that moves external axes stops exactly, and so does the "
                                  "move before it (their zones are planned as fine)", move.span)
             need = max(axis_time(values[a.name] - self.values[a.name], a.speed, a.accel) for a in changed)
             move = replace(move, motion=replace(move.motion, min_duration=need, zone=ir.Zone(0.0)))
@@ -263,11 +263,11 @@ class ProgramAxes:
     def _ext(self, args: tuple[ast.Arg, ...], scope: Scope, values: dict[str, float]) -> bool:
         for arg in args:
             if arg.name is None:
-                self.rep.error(codes.EXT_VALUES, "ext(...) must name each mechanism (`ext(rail=1200mm)`)", arg.span)
+                self.rep.error(codes_axes.EXT_VALUES, "ext(...) must name each mechanism (`ext(rail=1200mm)`)", arg.span)
                 return False
             if arg.name.name not in self.mechanisms:
                 self.rep.unknown(arg.name.name, "mechanism this program drives", arg.name.span, list(self.mechanisms),
-                                 codes.EXT_VALUES)
+                                 codes_axes.EXT_VALUES)
                 return False
             if not self._assign(arg.name.name, arg.value, scope, values):
                 return False
@@ -280,7 +280,7 @@ class ProgramAxes:
         items = v.items if isinstance(v, VectorV) else (v,)
         if v is None or len(items) != len(mech.axes):
             if v is not None:
-                self.rep.error(codes.EXT_VALUES, f"'{name}' must get {len(mech.axes)} value{'s' * (len(mech.axes) > 1)}, "
+                self.rep.error(codes_axes.EXT_VALUES, f"'{name}' must get {len(mech.axes)} value{'s' * (len(mech.axes) > 1)}, "
                                f"one per axis (got {len(items)})", e.span)
             return False
         for axis, item in zip(mech.axes, items):
@@ -288,7 +288,7 @@ class ProgramAxes:
             if x is None:
                 return False
             if not math.isfinite(x):
-                self.rep.error(codes.EXT_VALUES, f"value of axis '{axis.name}' must be finite (got {x})", e.span)
+                self.rep.error(codes_axes.EXT_VALUES, f"value of axis '{axis.name}' must be finite (got {x})", e.span)
                 return False
             values[axis.name] = x
         return True

@@ -23,7 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 from rmot.compiler.vendors import controllers
-from rmot.compiler import codes, ir
+from rmot.compiler import codes_axes, codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
 from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
 from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
@@ -606,7 +606,7 @@ class TaskLowering:
         return move if self.axes is None else self.axes.move(move, s, scope)
 
     def _no_axes(self, span: Span | None) -> None:
-        self.rep.error(codes.EXT_VALUES, "external-axis values need a program that drives the axes "
+        self.rep.error(codes_axes.EXT_VALUES, "external-axis values need a program that drives the axes "
                        "(`program p on r1 with rail, pos`)", span)
 
     def free_option(self, m: ast.Setting, scope: Scope, free: ir.FreeMotion) -> ir.FreeMotion | None:

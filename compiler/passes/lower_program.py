@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from rmot.compiler import codes, ir
+from rmot.compiler import codes_axes, codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.lower_body import TaskLowering
 from rmot.compiler.passes.lower_axes import check_axis_branches, program_axes
@@ -90,7 +90,7 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
     shared = tuple(s for s in prog.body if isinstance(s, _SHARED))
     settings = tuple(s for s in prog.body if isinstance(s, ast.Setting))
     for ident in prog.axes[:1]:
-        rep.error(codes.EXT_PROGRAM_AXES, f"'with' must go with a program on one robot (got task blocks in {where})", ident.span)
+        rep.error(codes_axes.EXT_PROGRAM_AXES, f"'with' must go with a program on one robot (got task blocks in {where})", ident.span)
     for s in prog.body:
         if not isinstance(s, (*_SHARED, ast.Setting, ast.TaskDecl, ast.FeederDecl)):
             rep.error(codes.MISPLACED, f"{_word(s)} must be inside a task in {where} (it has task blocks)", s.span)

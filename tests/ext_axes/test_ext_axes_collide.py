@@ -10,19 +10,13 @@ import math
 
 import pytest
 
+from ext_axes_witness import CELL_HEAD
+
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 from rmot.sim.verification import verify
 
-CELL = """cell c {
-  track rail = linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 at pose(z=0mm)
-  robot r1 = kuka_kr16 on rail at pose(z=250mm)
-  positioner pos = axes(revolute(axis y, range(-90deg, 90deg)) speed 90 deg/s accel 180 deg/s^2,
-                        revolute(axis z, range(-360deg, 360deg)) speed 180 deg/s accel 360 deg/s^2)
-                   at pose(x=1800mm, z=700mm)
-  fixture jig = box(600mm, 400mm, 40mm) on pos at pose(z=20mm)
-  frame work = pos * pose(z=40mm)
-  tool torch = cylinder(10mm, 300mm) at pose(z=150mm) tcp pose(z=300mm) on r1
+CELL = CELL_HEAD + """  tool torch = cylinder(10mm, 300mm) at pose(z=150mm) tcp pose(z=300mm) on r1
 PILLAR}
 program p on r1 with rail, pos {
   tool torch

@@ -1,8 +1,9 @@
 """External axes in the front end: the cell syntax, `on`, `with`, `ext(...)`, `move axes`, and
 the diagnostics of bad input, each at its line (lang/REFERENCE.md §15).
 
-Witness for target resolution: the base-frame target the IR holds is recomputed here from the
-numbers of the cell text with plain numpy rotation matrices (not rmot.compiler.ir_axes)."""
+Witness for target resolution: the base-frame target the IR holds is recomputed from the
+numbers of the cell text with plain numpy rotation matrices (ext_axes_witness.py, not
+rmot.compiler.ir_axes)."""
 
 from __future__ import annotations
 
@@ -11,51 +12,17 @@ import math
 import numpy as np
 import pytest
 
+from ext_axes_witness import CELL, at, robot_base, rot, work_frame
+
 from rmot.compiler import ir
 from rmot.compiler.frontend import load_text
 
-CELL = """cell c {
-  track rail = linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 at pose(z=0mm)
-  robot r1 = kuka_kr16 on rail at pose(z=250mm)
-  positioner pos = axes(revolute(axis y, range(-90deg, 90deg)) speed 90 deg/s accel 180 deg/s^2,
-                        revolute(axis z, range(-360deg, 360deg)) speed 180 deg/s accel 360 deg/s^2)
-                   at pose(x=1800mm, z=700mm)
-  fixture jig = box(600mm, 400mm, 40mm) on pos at pose(z=20mm)
-  frame work = pos * pose(z=40mm)
-  tool torch = none tcp pose(z=300mm) on r1
-}
-"""
 HOME = "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n"
 
 
 def _load(program: str, cell: str = CELL) -> tuple[ir.Program | None, list[tuple[str, int]]]:
     result = load_text(cell + program, "/tmp/ext_axes_test.rmot")
     return result.program, [(d.code.id, d.span.start.line if d.span else 0) for d in result.diagnostics]
-
-
-def _rot(axis: str, angle: float) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    m = {"x": [[1, 0, 0], [0, c, -s], [0, s, c]], "y": [[c, 0, s], [0, 1, 0], [-s, 0, c]],
-         "z": [[c, -s, 0], [s, c, 0], [0, 0, 1]]}[axis]
-    out = np.eye(4)
-    out[:3, :3] = m
-    return out
-
-
-def _trans(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> np.ndarray:
-    out = np.eye(4)
-    out[:3, 3] = (x, y, z)
-    return out
-
-
-def robot_base(rail_m: float) -> np.ndarray:
-    """The arm's base in world: track at the origin, carriage along x, robot 250 mm up."""
-    return _trans(x=rail_m) @ _trans(z=0.25)
-
-
-def work_frame(tilt: float, turn: float) -> np.ndarray:
-    """`work` in world: positioner at (1800, 0, 700) mm, tilt about y, turn about z, 40 mm up."""
-    return _trans(1.8, 0.0, 0.7) @ _rot("y", tilt) @ _rot("z", turn) @ _trans(z=0.04)
 
 
 def test_the_cell_places_what_rides_at_home() -> None:
@@ -78,10 +45,10 @@ def test_targets_resolve_with_the_axes_at_the_move() -> None:
                            "  move joint pose(z=80mm, rx=180deg) frame work ext(rail=900mm)\n}\n")
     assert codes == [] and program is not None
     moves = [i for i in program.tasks[0].body if isinstance(i, ir.Move)]
-    expected = [  # (rail m, tilt, turn, target in work) for the four moves after home
-        (1.2, math.radians(30), math.radians(90), _trans(0.1, 0.02, 0.05) @ _rot("x", math.pi)),
-        (1.2, math.radians(30), math.radians(90), _trans(-0.1, 0.0, 0.05) @ _rot("x", math.pi)),
-        (0.9, 0.0, math.radians(180), _trans(z=0.08) @ _rot("x", math.pi)),
+    expected = [  # (rail mm, tilt deg, turn deg, target in work) for the moves after home
+        (1200, 30, 90, at(0.1, 0.02, 0.05) @ rot("x", 180)),
+        (1200, 30, 90, at(-0.1, 0.0, 0.05) @ rot("x", 180)),
+        (900, 0, 180, at(z=0.08) @ rot("x", 180)),
     ]
     for move, (rail, tilt, turn, local) in zip([moves[1], moves[2], moves[4]], expected, strict=True):
         want = np.linalg.inv(robot_base(rail)) @ work_frame(tilt, turn) @ local

@@ -3,7 +3,7 @@
 Each emitted target is read back from the program text with small regular-expression readers
 written from the manuals' data formats (RAPID robtarget / jointtarget / wobjdata literals; KRL
 E6POS with A, B, C the rotations about z, y, x), then placed in world through the cell's
-mechanisms composed here with plain numpy from the cell text's numbers (not
+mechanisms composed with plain numpy from the cell text's numbers (ext_axes_witness.py, not
 rmot.compiler.ir_axes): TCP = flange(axis values read from the text) * work object * target.
 That must equal the planned TCP (the arm's base on the track at the move's rail value, times
 the planned TCP in the base frame) within 0.01 mm. The vendors without external axes refuse the
@@ -18,6 +18,8 @@ import re
 import numpy as np
 import pytest
 
+from ext_axes_witness import CELL_HEAD, at, positioner_flange, robot_base, rot
+
 from rmot.backends import BACKENDS
 from rmot.compiler import ir
 from rmot.compiler.axis_motion import axis_samples, task_axes
@@ -25,15 +27,7 @@ from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 from rmot.compiler.plan_types import Plan
 
-SOURCE = """cell c {
-  track rail = linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 at pose(z=0mm)
-  robot r1 = kuka_kr16 on rail at pose(z=250mm)
-  positioner pos = axes(revolute(axis y, range(-90deg, 90deg)) speed 90 deg/s accel 180 deg/s^2,
-                        revolute(axis z, range(-360deg, 360deg)) speed 180 deg/s accel 360 deg/s^2)
-                   at pose(x=1800mm, z=700mm)
-  fixture jig = box(600mm, 400mm, 40mm) on pos at pose(z=20mm)
-  frame work = pos * pose(z=40mm)
-  frame table = pose(x=1200mm, y=-900mm, z=600mm, rz=30deg)
+SOURCE = CELL_HEAD + """  frame table = pose(x=1200mm, y=-900mm, z=600mm, rz=30deg)
   tool torch = none tcp pose(z=300mm) mass 1 kg on r1
 }
 program p on r1 with rail, pos {
@@ -62,21 +56,6 @@ def plan() -> Plan:
 # ------------------------------------------------------------------ the witness's kinematics
 
 
-def _rot(axis: str, deg: float) -> np.ndarray:
-    c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
-    m = {"x": [[1, 0, 0], [0, c, -s], [0, s, c]], "y": [[c, 0, s], [0, 1, 0], [-s, 0, c]],
-         "z": [[c, -s, 0], [s, c, 0], [0, 0, 1]]}[axis]
-    out = np.eye(4)
-    out[:3, :3] = m
-    return out
-
-
-def _at(x: float = 0.0, y: float = 0.0, z: float = 0.0) -> np.ndarray:
-    out = np.eye(4)
-    out[:3, 3] = (x, y, z)
-    return out
-
-
 def _quat(q: list[float]) -> np.ndarray:
     w, x, y, z = q
     out = np.eye(4)
@@ -84,14 +63,6 @@ def _quat(q: list[float]) -> np.ndarray:
                    [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
                    [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
     return out
-
-
-def robot_base(rail_mm: float) -> np.ndarray:
-    return _at(x=rail_mm / 1000) @ _at(z=0.25)
-
-
-def positioner_flange(tilt_deg: float, turn_deg: float) -> np.ndarray:
-    return _at(1.8, 0.0, 0.7) @ _rot("y", tilt_deg) @ _rot("z", turn_deg)
 
 
 def planned_tcp_world(plan: Plan) -> list[np.ndarray]:
@@ -124,11 +95,11 @@ def rapid_targets(text: str) -> list[np.ndarray]:
     for name, wobj in re.findall(r"Move[JL] (\w+), [^,]+, [^,]+, torch\\WObj:=(\w+);", text):
         trans, rot, _, extax = re.match(r"(\[.*?\]),(\[.*?\]),(\[.*?\]),(\[.*?\])$", data[name]).groups()  # type: ignore[union-attr]
         values = _nums(trans) + _nums(rot)
-        target = _at(*(v / 1000 for v in values[:3])) @ _quat(values[3:7])
+        target = at(*(v / 1000 for v in values[:3])) @ _quat(values[3:7])
         rail, tilt, turn = _nums(extax)[:3]
         robhold, ufprog, ufmec, rest = re.match(r'(\w+),(\w+),"(\w*)",(.*)', wobjs[wobj]).groups()  # type: ignore[union-attr]
         uf = _nums(rest)[:7]
-        uframe = _at(*(v / 1000 for v in uf[:3])) @ _quat(uf[3:7])
+        uframe = at(*(v / 1000 for v in uf[:3])) @ _quat(uf[3:7])
         if ufprog == "FALSE":  # coordinated: the unit named by ufmec moves the user frame
             assert ufmec == "POS"
             carrier = positioner_flange(tilt, turn)
@@ -184,7 +155,7 @@ def krl_targets(src: str, dat: str) -> list[np.ndarray]:
         if motion is None or motion.group(2) not in data:
             continue
         p = _e6pos(data[motion.group(2)])
-        target = _at(p["X"] / 1000, p["Y"] / 1000, p["Z"] / 1000) @ _rot("z", p["A"]) @ _rot("y", p["B"]) @ _rot("x", p["C"])
+        target = at(p["X"] / 1000, p["Y"] / 1000, p["Z"] / 1000) @ rot("z", p["A"]) @ rot("y", p["B"]) @ rot("x", p["C"])
         assert base is not None
         ek = re.match(r"\$BASE=EK\(MACHINE_DEF\[(\d)\]\.ROOT,MACHINE_DEF\[\d\]\.MECH_TYPE,\{(.*)\}\)", base)
         if ek is not None:
@@ -194,7 +165,7 @@ def krl_targets(src: str, dat: str) -> list[np.ndarray]:
         else:
             f = _e6pos(frames[base.removeprefix("$BASE=")])
             carrier = robot_base(0.0)
-        frame = _at(f["X"] / 1000, f["Y"] / 1000, f["Z"] / 1000) @ _rot("z", f["A"]) @ _rot("y", f["B"]) @ _rot("x", f["C"])
+        frame = at(f["X"] / 1000, f["Y"] / 1000, f["Z"] / 1000) @ rot("z", f["A"]) @ rot("y", f["B"]) @ rot("x", f["C"])
         out.append(carrier @ frame @ target)
     return out
 
@@ -250,18 +221,3 @@ def test_the_cycle_time_counts_the_axes(plan: Plan) -> None:
     assert front.program is not None
     assert plan_program(front.program).cycle_time < plan.cycle_time - 1.0
 
-
-# ------------------------------------------------------------------ golden files (reviewed by hand)
-
-
-@pytest.mark.parametrize("vendor", ["rapid", "krl"])
-def test_track_tending_golden(vendor: str) -> None:
-    """examples/track_tending.rmot for RAPID and KRL equals its golden files, read by hand once:
-    RAPID robtargets carry the carriage in eax_a (600, 2000, 3400 mm), the work objects are
-    fixed in the robot's world with the track at 0 (door_a 550 mm above the base's 250 mm);
-    KRL E6POS carry it in E1 and each PTP that moves the track sets $VEL_EXTAX[1]/$ACC_EXTAX[1]."""
-    from backend_fixtures import check_golden, example_plans
-
-    result = BACKENDS[vendor]().emit(example_plans(("track_tending",))["track_tending"])
-    assert not result.has_errors
-    check_golden(vendor, "track_tending", result.files)
