@@ -94,10 +94,15 @@ def _collisions(scene: Scene, plan: plan_types.Plan, tasks: list[plan_types.Task
     pairs = candidate_pairs(scene)
     external = plan.program.cell.external
     driver = axes_collide.driving_task(tasks, external)
+    groups = axes_collide.body_groups(scene, external) if driver is not None else {}
     if driver is not None and external is not None:  # pairs whose relative pose the external axes change
-        pairs, moved = axes_collide.axis_pairs(pairs, axes_collide.body_groups(scene, external))
+        pairs, moved = axes_collide.axis_pairs(pairs, groups)
         hits = axes_collide.axis_collisions(scene, timeline, moved, driver, external, clearance)
         out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
+        if driver.variants:
+            out.append(Diagnostic(codes.AXES_PATHS_UNCHECKED, Severity.WARNING, "collisions of the bodies external axes "
+                                  "carry are checked on the main path only, not on the other paths of an if or while",
+                                  driver.task.span, task=driver.task.name))
     hits = check_timeline(scene, timeline, pairs, clearance)
     out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
     for tp in tasks:
@@ -105,7 +110,8 @@ def _collisions(scene: Scene, plan: plan_types.Plan, tasks: list[plan_types.Task
             trajs = dict(main)
             trajs[tp.robot] = variant.trajectory
             timeline = _timeline(scene, trajs, variant.trajectory.t)
-            hits = check_timeline(scene, timeline, candidate_pairs(scene, only_robot=tp.robot), clearance)
+            kept = axes_collide.axis_pairs(candidate_pairs(scene, only_robot=tp.robot), groups)[0]
+            hits = check_timeline(scene, timeline, kept, clearance)
             out += [_collision_diagnostic(scene, by_robot, h, clearance, variant.index, tp.robot) for h in hits
                     if h.kind != "static"]
     return out

@@ -39,7 +39,7 @@ from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPE
 from rmot.lang import ast
 from rmot.lang.source import Span
 
-__all__ = ["CellAxes", "ProgramAxes", "check_axis_branches", "names_in", "program_axes"]
+__all__ = ["CellAxes", "ProgramAxes", "check_axis_branches", "names_in", "program_axes", "refuse_track_in_tasks"]
 
 _KINDS = ("linear", "revolute")
 
@@ -200,6 +200,15 @@ def program_axes(prog: ast.ProgramDecl, robot: ir.RobotInstance, cell: ir.Cell, 
                   f"(add 'with {mount.mechanism}')", prog.name.span)
         return None
     return ProgramAxes(external, tuple(names), robot, rep) if names else None
+
+
+def refuse_track_in_tasks(robot: ir.RobotInstance, cell: ir.Cell, span: Span, rep: Reporter) -> None:
+    """E603 for a task block of a robot on a track: only a program on one robot drives axes."""
+    mount = cell.external.mount(robot.name) if cell.external is not None else None
+    if mount is not None:
+        rep.error(codes_axes.EXT_PROGRAM_AXES, f"robot '{robot.name}' rides on track '{mount.mechanism}': its program must "
+                  f"be a program on one robot that drives it (`program p on {robot.name} with {mount.mechanism}`), not a task",
+                  span)
 
 
 class ProgramAxes:

@@ -17,7 +17,7 @@ from dataclasses import replace
 from rmot.compiler import codes_axes, codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.lower_body import TaskLowering
-from rmot.compiler.passes.lower_axes import check_axis_branches, program_axes
+from rmot.compiler.passes.lower_axes import check_axis_branches, program_axes, refuse_track_in_tasks
 from rmot.compiler.passes.lower_cell import program_feeders
 from rmot.compiler.passes.modal import DEFAULT_MODAL, Modal, apply_setting
 from rmot.compiler.passes.state import FrontendState
@@ -108,6 +108,7 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
         robot = _robot(t.robot, state)
         if robot is None:
             continue
+        refuse_track_in_tasks(robot, state.cell, t.robot.span, rep)
         seen[t.robot.name] = t
         lowering = _task_lowering(robot, state, procs)
         modal = _settings(settings, scope, robot, rep)

@@ -83,3 +83,15 @@ def test_an_arm_on_the_track_meets_a_pillar_only_where_the_carriage_takes_it() -
     assert hits and all(h.span.start.line in (14, 15) for h in hits)
     _, clean = _check(pillar=pillar.replace("x=1200mm", "x=3200mm"))
     assert not [d for d in clean if "pillar" in d.bodies]
+
+
+def test_the_other_paths_of_an_if_are_said_to_be_unchecked() -> None:
+    """W602: a program with an if whose axes-carried bodies are checked on the main path only."""
+    branch = ("  if in[1] {\n    move joint joints(0deg, -80deg, 90deg, 0deg, 45deg, 0deg)\n  } else {\n"
+              "    move joint joints(0deg, -85deg, 90deg, 0deg, 45deg, 0deg)\n  }\n")
+    front = load_text(CELL.replace("TILT", branch).replace("PILLAR", ""), "/tmp/ext_axes_if.rmot")
+    assert front.program is not None, [d.message for d in front.diagnostics]
+    report = verify(plan_program(front.program))
+    assert [d.code.id for d in report.diagnostics if d.code.id == "W602"] == ["W602"]
+    _, errors = _check()
+    assert errors == []

@@ -106,3 +106,9 @@ def test_ext_without_with_is_an_error() -> None:
     cell = CELL.replace(" on rail at pose(z=250mm)", " at pose(z=250mm)")
     _, codes = _load("program p on r1 {\n" + HOME + "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg) ext(pos=(0deg, 5deg))\n}\n", cell)
     assert ("E604", 13) in codes
+
+
+def test_a_robot_on_a_track_in_a_task_block_is_an_error() -> None:
+    cell = CELL.replace("}\n", "  robot r2 = kuka_kr16 at pose(y=3000mm)\n}\n")
+    _, codes = _load("program p {\n  task r1 {\n" + HOME + "  }\n  task r2 {\n" + HOME + "  }\n}\n", cell)
+    assert ("E603", 13) in codes
