@@ -338,7 +338,7 @@ class KrlBackend(Backend):
         if node.frame.name is None:
             lines.append("$BASE=$NULLFRAME")
         elif ctx.axes:
-            lines.append(self._axes_base(node, ctx))
+            lines.append(self._axes_base(node, base_n, ctx))
         elif base_n is not None:
             self._stored(ctx, "BASE_DATA", base_n, node.frame.name, f"{{{frame_text(node.frame.pose)}}}", node)
             lines.append(f"$BASE=BASE_DATA[{base_n}]")
@@ -356,16 +356,21 @@ class KrlBackend(Backend):
                              f"'{name}' number must be in 1..{limit} for {array} (got {n})", node.span)
         ctx.module.stored[(array, n)] = (name, value)
 
-    def _axes_base(self, node: ir.Move, ctx: KrlContext) -> str:
+    def _axes_base(self, node: ir.Move, base_n: int | None, ctx: KrlContext) -> str:
         """$BASE in a task with external axes: a frame on a positioner through EK() (the frame in
-        the kinematic's flange frame), any other in $WORLD (the robot base with the axes at home)."""
+        the kinematic's flange frame), any other in $WORLD (the robot base with the axes at home),
+        from BASE_DATA[n] when the cell numbers it."""
         cell = ctx.plan.program.cell
         riding = riding_frame(node.frame, cell.external)
         if riding is not None:
             n = mechanism_index(riding[0], cell)
             return f"$BASE=EK(MACHINE_DEF[{n}].ROOT,MACHINE_DEF[{n}].MECH_TYPE,{{{frame_text(riding[1])}}})"
         assert node.frame.name is not None
-        return f"$BASE={ctx.module.data.add(node.frame.name, f'FRAME:{{{frame_text(ctx.robot.base.inverse() * node.frame.world)}}}')}"
+        value = f"{{{frame_text(ctx.robot.base.inverse() * node.frame.world)}}}"
+        if base_n is not None:
+            self._stored(ctx, "BASE_DATA", base_n, node.frame.name, value, node)
+            return f"$BASE=BASE_DATA[{base_n}]"
+        return f"$BASE={ctx.module.data.add(node.frame.name, 'FRAME:' + value)}"
 
     @staticmethod
     def _e_axes(node: ir.Move, ctx: KrlContext) -> str:

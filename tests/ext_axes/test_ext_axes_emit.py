@@ -27,7 +27,7 @@ from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 from rmot.compiler.plan_types import Plan
 
-SOURCE = CELL_HEAD + """  frame table = pose(x=1200mm, y=-900mm, z=600mm, rz=30deg)
+SOURCE = CELL_HEAD + """  frame table = pose(x=1200mm, y=-900mm, z=600mm, rz=30deg) number 3
   tool torch = none tcp pose(z=300mm) mass 1 kg on r1
 }
 program p on r1 with rail, pos {
@@ -146,6 +146,7 @@ def krl_targets(src: str, dat: str) -> list[np.ndarray]:
     """World TCP of every PTP/LIN to an E6POS, in program order (KRL ABC: Rz(A) Ry(B) Rx(C))."""
     data = dict(re.findall(r"DECL E6POS (\w+)=\{(.*)\}", dat))
     frames = dict(re.findall(r"DECL FRAME (\w+)=\{(.*)\}", dat))
+    frames |= {f"BASE_DATA[{n}]": value for n, value in re.findall(r"; BASE_DATA\[(\d+)\] must hold \w+: \{(.*)\}", src)}
     out, base = [], None
     for line in src.splitlines():
         line = line.strip()
