@@ -99,6 +99,12 @@ def _collisions(scene: Scene, plan: plan_types.Plan, tasks: list[plan_types.Task
         pairs, moved = axes_collide.axis_pairs(pairs, groups)
         hits = axes_collide.axis_collisions(scene, timeline, moved, driver, external, clearance)
         out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
+        if moved:
+            step = float(np.max(np.diff(timeline.t))) * 1000 if timeline.t.size > 1 else 0.0
+            out.append(Diagnostic(codes.AXES_SAMPLED, Severity.NOTE, f"the {len(moved)} body pairs whose relative pose "
+                                  f"the external axes change are checked at every sample (at most {step:.0f} ms apart), not with "
+                                  "the no-miss bound: a contact shallower than their motion in one step can be missed",
+                                  driver.task.span, task=driver.task.name))
         if driver.variants:
             out.append(Diagnostic(codes.AXES_PATHS_UNCHECKED, Severity.WARNING, "collisions of the bodies external axes "
                                   "carry are checked on the main path only, not on the other paths of an if or while",
