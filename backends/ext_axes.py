@@ -24,13 +24,15 @@ offset)`, the offset in the kinematic's flange frame ($ETn_TFLA3 chain).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from rmot.backends.conventions import euler_zyx_deg, fmt, fmt_list, position_mm
 from rmot.compiler import ir
 from rmot.compiler.axis_motion import task_axes
 from rmot.compiler.ir_axes import ExtAxis, ExternalAxes
 
-__all__ = ["RAPID_UNUSED", "driven_axes", "machine_data", "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
+__all__ = ["RAPID_UNUSED", "driven_axes", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
+           "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
            "unit_name", "vendor_values"]
 
 RAPID_UNUSED = "9E+09"  # "no position defined" in an extax / robax slot (RAPID reference, extjoint)
@@ -91,10 +93,12 @@ def rapid_wobj(frame: ir.FrameRef, robot: ir.RobotInstance, cell: ir.Cell) -> st
     return f'[FALSE,TRUE,"",{_pose(robot.base.inverse() * frame.world)},[[0,0,0],[1,0,0,0]]]'
 
 
-def _xyzabc(pose: ir.Pose) -> str:
-    """{X, Y, Z, A, B, C} in mm and degrees, KUKA's frame (A, B, C about z, y, x)."""
+def _xyzabc(pose: ir.Pose, fanuc: bool = False) -> str:
+    """{X, Y, Z, A, B, C} in mm and degrees, KUKA's frame (A, B, C about z, y, x), or Fanuc's
+    {X, Y, Z, W, P, R} (W, P, R about x, y, z: the same angles in the other order)."""
     a, b, c = euler_zyx_deg(pose)
-    return "{" + ",".join(f"{k} {fmt(v, 3)}" for k, v in zip("XYZABC", (*position_mm(pose), a, b, c))) + "}"
+    names, angles = ("XYZWPR", (c, b, a)) if fanuc else ("XYZABC", (a, b, c))
+    return "{" + ",".join(f"{k} {fmt(v, 3)}" for k, v in zip(names, (*position_mm(pose), *angles))) + "}"
 
 
 def _pose(pose: ir.Pose) -> str:
@@ -111,16 +115,20 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
         return []
     world = robot.base.inverse()  # the controller's world: the arm's base with every axis at home
     lines = ["machine data assumed (check on the controller): world = the robot base with every axis at home"]
-    slot = 0
+    slot, group = 0, 1
     for mech in cell.external.mechanisms:
         mine = [a for a in mech.axes if a in axes]
         if not mine:
             continue
         base = world * mech.base
-        where = f"base at {_pose(base) if vendor == 'rapid' else _xyzabc(base)} in world"
+        where = f"base at {_pose(base) if vendor == 'rapid' else _xyzabc(base, vendor == 'fanuc')} in world"
         if vendor == "rapid":
             kind = "TRACK (carries the robot)" if mech.kind == "track" else "rotating/linear unit, coordinated work objects"
             lines.append(f'unit "{unit_name(mech.name)}": MOC type {kind}, {where}')
+        elif vendor == "fanuc":
+            group += mech.kind != "track"
+            kind = "extended axes of group 1 (integrated rail)" if mech.kind == "track" else f"motion group {group}, not coordinated"
+            lines.append(f"{mech.name}: {kind}, {where}")
         else:
             index = mechanism_index(mech.name, cell)
             kind = "$ERSYSROOT/$ROBROOT on the carriage (mathematically coupled)" if mech.kind == "track" else "$ETn external kinematic, EK() bases"
@@ -128,8 +136,60 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
         for axis in mine:
             slot += 1
             name = f"eax_{'abcdef'[slot - 1]}" if vendor == "rapid" else f"E{slot}"
+            if vendor == "fanuc":
+                name = f"GP1 E{slot}" if mech.kind == "track" else f"GP{group} J{mine.index(axis) + 1}"
             direction = "xyz"[axis.direction.index(1.0)]
             lines.append(f"  {name} = {axis.name}: {'linear along' if axis.linear else 'revolute about'} {direction}, "
                          f"[{axis.shown(axis.low)}, {axis.shown(axis.high)}], {axis.shown(axis.speed)}/s, "
                          f"{axis.shown(axis.accel)}/s^2")
     return lines
+
+
+def fanuc_in_world(node: ir.Move, robot: ir.RobotInstance, cell: ir.Cell) -> ir.Move:
+    """A move of a task with external axes, its targets written where a Fanuc controller without
+    coordinated motion takes them: a frame fixed in the world keeps its UFRAME (its value in the
+    controller's world, the robot base with the axes at home); a frame on a positioner, and the
+    robot's own base frame (which the track moves), become UFRAME 0 with the target in world."""
+    assert cell.external is not None
+    frame = node.frame
+    world = robot.base.inverse()
+    if frame.name is not None and riding_frame(frame, cell.external) is None:
+        return replace(node, frame=ir.FrameRef(frame.name, world * frame.world, frame.world))
+    base = cell.external.world(robot.name, dict(node.ext)) or robot.base
+
+    def in_world(t: ir.CartesianTarget | None) -> ir.CartesianTarget | None:
+        return None if t is None else replace(t, in_frame=world * base * t.pose)
+
+    target = node.target if isinstance(node.target, ir.JointTarget) else in_world(node.target)
+    return replace(node, frame=ir.FrameRef(None), target=target, via=in_world(node.via))  # type: ignore[arg-type]
+
+
+def fanuc_groups(node: ir.Move, axes: tuple[ExtAxis, ...], cell: ir.Cell, uf: int, ut: int) -> tuple[list[str], list[str]]:
+    """(lines ending the GP1 block: a track's axes as the robot group's extended axes E1..;
+    the blocks of the other motion groups: each positioner its own group GP2, GP3, ... with J1..)
+    (Fanuc .ls /POS format: `E1=  v  mm` after the W, P, R line, `GP2: UF : n, UT : m, J1= v mm`
+    blocks, as in controller programs of a robot on a rail with a second group.)"""
+    assert cell.external is not None
+    values = dict(zip((a.name for a in axes), vendor_values(node, axes)))
+    extended: list[str] = []
+    blocks: list[str] = []
+    for mech in cell.external.mechanisms:
+        mine = [a for a in mech.axes if a.name in values]
+        if not mine:
+            continue
+        cells = [f"{fmt(values[a.name], 3):>9}  {'mm' if a.linear else 'deg'}" for a in mine]
+        if mech.kind == "track":
+            extended += [f"E{len(extended) + k + 1}= {c}" for k, c in enumerate(cells)]
+        else:
+            group = 2 + len(blocks) // 3
+            blocks += [f"   GP{group}:", f"\tUF : {uf}, UT : {ut},\t",
+                       "\t" + ",\t".join(f"J{k + 1}= {c}" for k, c in enumerate(cells))]
+    return ["\t" + ",\t".join(extended)] if extended else [], blocks
+
+
+def fanuc_default_group(axes: tuple[ExtAxis, ...], cell: ir.Cell) -> str:
+    """DEFAULT_GROUP: the robot's group and one per positioner the task drives."""
+    assert cell.external is not None
+    names = {a.name for a in axes}
+    groups = 1 + sum(1 for m in cell.external.mechanisms if m.kind == "positioner" and any(a.name in names for a in m.axes))
+    return ",".join(["1"] * groups + ["*"] * (5 - groups))

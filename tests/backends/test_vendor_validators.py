@@ -86,9 +86,9 @@ def findings(vendor: str, files: dict[str, str], tmp: Path) -> list[str]:
 
 
 # Examples that drive external axes (lang/REFERENCE.md §15), and the vendors that refuse them
-# with E607: URScript and VAL3 have no external axes; Fanuc TP and INFORM are not written yet.
+# with E607: URScript and VAL3 have no external axes; INFORM is not written yet.
 EXTERNAL_AXES_EXAMPLES = {"weld_positioner", "track_tending"}
-REFUSE_EXTERNAL_AXES = {"fanuc", "urscript", "inform", "val3"}
+REFUSE_EXTERNAL_AXES = {"urscript", "inform", "val3"}
 
 
 @pytest.mark.parametrize("vendor", VENDORS)

@@ -65,13 +65,13 @@ def _quat(q: list[float]) -> np.ndarray:
     return out
 
 
-def planned_tcp_world(plan: Plan) -> list[np.ndarray]:
+def planned_tcp_world(plan: Plan, axes_only: bool = False) -> list[np.ndarray]:
     """The planned TCP of each Cartesian move, in world: the base on the track at the move's
     rail value times the planned TCP in the base frame (InstructionRecord.tcp_pose)."""
     tp = plan.tasks[0]
     out = []
     for move in tp.task.body:
-        if isinstance(move, ir.Move) and isinstance(move.target, ir.CartesianTarget) and not move.axes_only:
+        if isinstance(move, ir.Move) and isinstance(move.target, ir.CartesianTarget) and (axes_only or not move.axes_only):
             rec = tp.record(move.uid)
             assert rec is not None and rec.tcp_pose is not None
             out.append(robot_base(dict(move.ext)["rail"] * 1000) @ rec.tcp_pose.matrix())
@@ -186,7 +186,54 @@ def test_krl_targets_re_expand_to_the_planned_tcp(plan: Plan) -> None:
     assert held is not None and _e6pos(held.group(1))["E3"] == pytest.approx(180.0)
 
 
-@pytest.mark.parametrize("vendor", ["urscript", "val3", "fanuc", "inform"])
+# ------------------------------------------------------------------ Fanuc TP
+
+
+def fanuc_targets(text: str) -> tuple[list[np.ndarray], list[tuple[float, float, float]]]:
+    """World TCP of every J/L move to a Cartesian position (Fanuc W, P, R: Rz(R) Ry(P) Rx(W)),
+    and the (E1, GP2 J1, GP2 J2) of each: the rail as the robot group's extended axis, the
+    positioner as group 2. UFRAME n's value is read from the header comment that names it."""
+    header = r"!UFRAME\[(\d+)\] = \w+ must hold: ;\s+\d+:\s+!(X .*?) ;\s+\d+:\s+!(W .*?) ;"
+    frames = {int(n): [float(v) for v in re.findall(_NUM, x + " " + w)] for n, x, w in re.findall(header, text)}
+    blocks = dict(re.findall(r"^P\[(\d+)(?::[^\]]*)?\]\{\n(.*?)\n\};", text, re.M | re.S))
+    poses, axes = [], []
+    for n in re.findall(r"^\s*\d+:\s*[JL] P\[(\d+)\]", text, re.M):
+        block = blocks[n]
+        gp1, gp2 = block.split("   GP2:")
+        if "X =" not in gp1:
+            continue
+        v = {k: float(x) for k, x in re.findall(r"\b([XYZWPR]|E1) ?= +(" + _NUM + ")", gp1)}
+        uf = int(re.search(r"UF : (\d+)", gp1).group(1))  # type: ignore[union-attr]
+        frame = np.eye(4)
+        if uf:
+            x, y, z, w, p, r = frames[uf]
+            frame = at(x / 1000, y / 1000, z / 1000) @ rot("z", r) @ rot("y", p) @ rot("x", w)
+        target = at(v["X"] / 1000, v["Y"] / 1000, v["Z"] / 1000) @ rot("z", v["R"]) @ rot("y", v["P"]) @ rot("x", v["W"])
+        poses.append(robot_base(0.0) @ frame @ target)
+        j1, j2 = (float(x) for x in re.findall(r"J\d= +(" + _NUM + ") +deg", gp2))
+        axes.append((v["E1"], j1, j2))
+    return poses, axes
+
+
+def test_fanuc_positions_re_expand_to_the_planned_tcp(plan: Plan) -> None:
+    result = BACKENDS["fanuc"]().emit(plan)
+    assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
+    (text,) = result.files.values()
+    assert "DEFAULT_GROUP\t= 1,1,*,*,*;" in text
+    got, axes = fanuc_targets(text)
+    want = planned_tcp_world(plan, axes_only=True)  # `move axes` is a J move with the arm held
+    assert len(got) == len(want) == 5
+    for g, w in zip(got, want, strict=True):
+        assert np.abs(g[:3, 3] - w[:3, 3]).max() < TOL_M
+        assert np.abs(g[:3, :3] - w[:3, :3]).max() < 1e-4  # W, P, R printed with 3 decimals (deg)
+    moves = [m for m in plan.tasks[0].task.body if isinstance(m, ir.Move) and isinstance(m.target, ir.CartesianTarget)]
+    for (e1, j1, j2), move in zip(axes, moves, strict=True):
+        ext = dict(move.ext)
+        assert (e1, j1, j2) == pytest.approx((ext["rail"] * 1000, math.degrees(ext["pos.1"]), math.degrees(ext["pos.2"])),
+                                             abs=1e-3)
+
+
+@pytest.mark.parametrize("vendor", ["urscript", "val3", "inform"])
 def test_vendors_without_external_axes_refuse_at_the_first_move(plan: Plan, vendor: str) -> None:
     result = BACKENDS[vendor]().emit(plan)
     errors = [d for d in result.diagnostics if d.is_error]

@@ -1,10 +1,10 @@
 """The two external-axes examples through the real command line: each checks clean (exit 0,
-no error or warning, only the W603 note) at about its cycle time, and compiles for RAPID and KRL with only the
-documented warning (W415: a KUKA arm in a RAPID program); the vendors without external axes
-refuse it with E607 and write nothing for it (lang/REFERENCE.md §15).
+no error or warning, only the W603 note) at about its cycle time, and compiles for RAPID, KRL
+and Fanuc TP with only the documented warnings (W411, W415, W416); INFORM, URScript and VAL3 refuse it
+with E607 and write nothing for it (lang/REFERENCE.md §15).
 
-(The examples drive external axes, which four of the eight vendors refuse, so they are not in
-test_shipped_examples.py's every-vendor list.)"""
+(The examples drive external axes, which three of the six controllers and both data formats
+refuse, so they are not in test_shipped_examples.py's every-vendor list.)"""
 
 from __future__ import annotations
 
@@ -37,12 +37,15 @@ def test_checks_clean(name: str) -> None:
 
 
 @pytest.mark.parametrize("name", sorted(CYCLE))
-def test_compiles_for_rapid_and_krl_and_the_others_refuse(name: str, tmp_path: Path) -> None:
-    ok = _run("compile", str(EXAMPLES / name), "--target", "rapid", "--target", "krl", "-o", str(tmp_path / "a"))
+def test_compiles_for_rapid_krl_fanuc_and_the_others_refuse(name: str, tmp_path: Path) -> None:
+    ok = _run("compile", str(EXAMPLES / name), "--target", "rapid", "--target", "krl", "--target", "fanuc",
+              "-o", str(tmp_path / "a"))
     assert ok.exit_code == 0, ok.stderr
-    assert set(re.findall(r"warning\[(W\d+)\]", ok.stderr)) <= {"W415"}
-    assert {p.name for p in (tmp_path / "a").iterdir()} == {"rapid", "krl", ".rmot.output"}
-    for vendor in ("fanuc", "inform", "urscript", "val3"):
+    # W415 a KUKA arm for ABB or Fanuc; W416 Fanuc UTOOL/UFRAME written by the program, W411 the
+    # tool's mass for the Fanuc payload schedule (both explained in pick_place.rmot)
+    assert set(re.findall(r"warning\[(W\d+)\]", ok.stderr)) <= {"W411", "W415", "W416"}
+    assert {p.name for p in (tmp_path / "a").iterdir()} == {"rapid", "krl", "fanuc", ".rmot.output"}
+    for vendor in ("inform", "urscript", "val3"):
         refused = _run("compile", str(EXAMPLES / name), "--target", vendor, "-o", str(tmp_path / vendor))
         assert refused.exit_code != 0 and "error[E607]" in refused.stderr, refused.stderr
         assert not (tmp_path / vendor / vendor).exists()
