@@ -86,7 +86,7 @@ def findings(vendor: str, files: dict[str, str], tmp: Path) -> list[str]:
 
 
 # Examples that drive external axes (lang/REFERENCE.md §15), and the vendors that refuse them
-# with E607: URScript and VAL3 have no external axes; INFORM is not written yet.
+# with E607: URScript and VAL3 have no external axes; INFORM is not written yet (lang/REFERENCE.md §15).
 EXTERNAL_AXES_EXAMPLES = {"weld_positioner", "track_tending"}
 REFUSE_EXTERNAL_AXES = {"urscript", "inform", "val3"}
 
