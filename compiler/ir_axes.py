@@ -4,8 +4,8 @@ A *mechanism* is a chain of external axes fixed in the world at `base`: a `track
 linear axis whose carriage carries a robot) or a `positioner` (one or two axes whose flange
 carries fixtures and frames). Each axis moves along (linear) or about (revolute) a unit
 direction of the frame it sits in; the axes of one mechanism are stacked without offsets, so
-the flange is `base * A1(q1) * A2(q2)` (the KUKA `$ETn` chain with every local offset zero,
-KSS 8.5 "Configuration of Kinematic Systems", ch. "External kinematic systems").
+the flange is `base * A1(q1) * A2(q2)` (the KUKA `$ETn` chain, root then one transform per
+axis, with every local offset zero; KSS 8.5 "Configuration of Kinematic Systems").
 
 Bodies ride on a mechanism through a `Mount`: the pose of the robot base, fixture or frame in
 the mechanism's flange frame. Everything the cell lists in world (ir.Cell) is placed at the

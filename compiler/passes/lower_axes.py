@@ -16,8 +16,8 @@ Program (`ProgramAxes`, used by the task lowering):
   * `program p on r1 with rail, pos`: the mechanisms the task drives; a robot on a track must
     drive it. All of them start at home.
   * `ext(rail=1200mm, pos=(30deg, 90deg))` sets axis values at a move's target (a one-axis
-    mechanism by its name, a two-axis one by a pair or by `pos.1=`/`pos.2=` written as
-    `pos_1=`); an axis not set keeps its value. The target's pose resolves with the axes there:
+    mechanism by its name and one value, a two-axis one by its name and a pair); an axis not
+    set keeps its value. The target's pose resolves with the axes there:
     the arm's base rides on its track, a frame on a positioner moves with its flange.
   * A joint move and `move axes` move the axes time-synchronously with the arm: the move lasts
     at least each axis' shortest rest-to-rest time (ir.Motion.min_duration), and stops exactly
