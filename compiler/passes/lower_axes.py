@@ -35,6 +35,7 @@ from rmot.compiler.ir_axes import AXIS_DIRECTIONS, ExtAxis, ExternalAxes, Mechan
 from rmot.compiler.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
+from rmot.compiler.passes.limits import MAX_SIZE_M
 from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, SPEED, Dim, VectorV, Value
 from rmot.lang import ast
 from rmot.lang.source import Span
@@ -42,6 +43,7 @@ from rmot.lang.source import Span
 __all__ = ["CellAxes", "ProgramAxes", "check_axis_branches", "names_in", "program_axes", "refuse_track_in_tasks"]
 
 _KINDS = ("linear", "revolute")
+MAX_TURNS = 100  # policy: a revolute axis' range at most +-100 turns (a turntable that never unwinds)
 
 
 def names_in(e: ast.Expr) -> set[str]:
@@ -122,6 +124,11 @@ class CellAxes:
         if not low < high:
             self.rep.error(codes_axes.EXT_AXIS_DEFINITION, "range(low, high) must have low < high (got "
                            f"{_shown(low, dim)} .. {_shown(high, dim)})", call.span)
+            return None
+        bound = MAX_SIZE_M if dim == LENGTH else MAX_TURNS * 2 * math.pi  # a cell's size; a few turns
+        if max(-low, high) > bound:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"range(low, high) must stay within +-{_shown(bound, dim)} "
+                           f"(got {_shown(low, dim)} .. {_shown(high, dim)})", call.span)
             return None
         return low, high
 

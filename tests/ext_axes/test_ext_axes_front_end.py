@@ -77,6 +77,8 @@ def test_a_move_that_moves_axes_lasts_at_least_the_axes_time() -> None:
     ("  track t2 = revolute(axis z, range(0deg, 10deg)) speed 1 deg/s accel 1 deg/s^2\n", "E601", 10),
     ("  track t2 = linear(axis x, range(0mm, 1e400mm)) speed 1 m/s accel 1 m/s^2\n", "E601", 10),
     ("  track t2 = linear(axis x, range(0mm, 10mm)) speed 0 m/s accel 1 m/s^2\n", "E601", 10),
+    ("  track t2 = linear(axis x, range(0mm, 1e9mm)) speed 1 m/s accel 1 m/s^2\n", "E601", 10),
+    ("  positioner p2 = axes(revolute(axis z, range(0deg, 1e6deg)) speed 1 deg/s accel 1 deg/s^2)\n", "E601", 10),
     ("  track t2 = linear(axis x, range(0mm, 10mm)) accel 1 m/s^2\n", "E601", 10),
     ("  fixture box2 = box(1mm, 1mm, 1mm) on nowhere at pose()\n", "E602", 10),
     ("  robot r2 = kuka_kr16 on pos at pose()\n", "E602", 10),
