@@ -257,6 +257,7 @@ class Backend:
     SIX_AXIS_DATA: ClassVar[str | None] = None
     NO_RECORD_NOTE: ClassVar[str | None] = "move (uid {uid}) not emitted: no planned joints"
     NOT_SIX_AXIS_NOTE: ClassVar[str] = "move not emitted: robot is not a 6-axis arm"
+    EXTERNAL_AXES: ClassVar[bool] = False  # writes the values of external axes (backends/ext_axes.py)
     BRANCH_DATA: ClassVar[str] = "the configuration data"
     INDENT: ClassVar[str] = "  "
     DIGITAL_PORTS: ClassVar[tuple[int, int]] = (1, 4096)
@@ -500,6 +501,13 @@ class Backend:
                              node.span)
             note = self.NO_RECORD_NOTE
             return [] if note is None else [self.comment(note.format(uid=node.uid))]
+        if node.ext and not self.EXTERNAL_AXES:
+            if "external axes" not in ctx.warned:  # once per task: every move would say the same
+                ctx.warned.add("external axes")
+                self.unsupported(codes.EXT_AXES_UNSUPPORTED, f"task '{ctx.task.name}' drives external axes "
+                                 f"({', '.join(name for name, _ in node.ext)}), which rmot cannot write for this "
+                                 "controller", node.span)
+            return [self.comment("move with external axes not emitted")]
         if self.SIX_AXIS_DATA is not None and ctx.robot.dof != 6:
             self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "
                              f"{self.SIX_AXIS_DATA} (got {ctx.robot.dof})", node.span)

@@ -195,3 +195,9 @@ ANALOG_RAW_COUNTS = Code(
     "E470", "analog-raw-counts",
     "a Fanuc AI[n] holds the raw A/D count, not volts: a comparison in volts has no TP form")
 __all__ += ["ANALOG_RAW_COUNTS"]
+
+# ------------------------------------------------------------------ external axes
+EXT_AXES_UNSUPPORTED = Code(
+    "E607", "ext-axes-unsupported",
+    "a program that drives external axes, for a vendor rmot cannot write them for")
+__all__ += ["EXT_AXES_UNSUPPORTED"]

@@ -67,6 +67,7 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes
+from rmot.backends.ext_axes import driven_axes, fanuc_default_group, fanuc_groups, fanuc_in_world, machine_data
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm
 from rmot.backends.part_load import held_load
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
@@ -76,6 +77,7 @@ from rmot.backends.loops import (
 )
 from rmot.backends.names import NameRules, NameTable
 from rmot.compiler import ir, ir_tree, plan_types
+from rmot.compiler.ir_axes import ExtAxis
 from rmot.backends.safe_text import comment_safe, tp_io_comment
 from rmot.lang.record import record
 from rmot.lang.source import Span
@@ -146,12 +148,14 @@ class FanucContext(TaskContext):
     files: dict[str, str] = field(default_factory=dict)  # routine programs: file name -> text
     program: _Program = field(default_factory=_Program)
     regs: _Registers = field(default_factory=lambda: _Registers({}))  # runtime logic
+    axes: tuple[ExtAxis, ...] = ()  # the external axes the task drives (backends/ext_axes.py)
 
 
 class FanucBackend(Backend):
     name = "fanuc"
     DIGITAL_PORTS = (1, 512)  # DI / DO logical numbers, R-30iA/iB
     file_ext = ".ls"
+    EXTERNAL_AXES = True  # a track as E1.. of group 1, a positioner as its own group (backends/ext_axes.py)
     COMMENT = "!"
     NAME_RULES = FANUC_RULES
     PRINTS_LOOPS = True  # a counting R register with LBL/JMP, targets moved by Offset,PR
@@ -179,7 +183,7 @@ class FanucBackend(Backend):
         routine_of = self.routine_table(names, body, task, prefix=f"{main_name}_")
         ctx = task.with_state(FanucContext, names=names, routine_of=routine_of,
                               frames=_Frames(task.plan.program.cell, task.robot.name),
-                              regs=_Registers.of_task(task, body))
+                              regs=_Registers.of_task(task, body), axes=driven_axes(task.task, task.plan.program.cell))
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:
             for part in parts:
@@ -192,21 +196,23 @@ class FanucBackend(Backend):
 
     def _program(self, name: str, body: tuple[ir.Instr, ...], task: FanucContext, *, is_main: bool) -> str:
         ctx = replace(task, program=_Program())
-        lines = [self.comment(piece) for text in header_lines(ctx.plan, self.name, self.findings_header)
-                 for piece in _pieces(text)]
+        head = header_lines(ctx.plan, self.name, self.findings_header)
+        head += machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "fanuc") if is_main else []
+        lines = [self.comment(piece) for text in head for piece in _pieces(text)]
         main = self.body(body, ctx)
         if is_main:
             lines += self._frame_setup(ctx)
         lines += main
-        return self._ls(name, lines, ctx.program.positions)
+        groups = fanuc_default_group(ctx.axes, ctx.plan.program.cell) if ctx.axes else "1,*,*,*,*"
+        return self._ls(name, lines, ctx.program.positions, groups)
 
-    def _ls(self, name: str, lines: list[str], positions: list[str]) -> str:
+    def _ls(self, name: str, lines: list[str], positions: list[str], groups: str = "1,*,*,*,*") -> str:
         out = [f"/PROG  {name}", "/ATTR", "OWNER\t\t= MNEDITOR;", 'COMMENT\t\t= "rmot";',
                "PROG_SIZE\t= 0;", "FILE_NAME\t= ;", "VERSION\t\t= 0;", f"LINE_COUNT\t= {sum(not x.startswith(':') for x in lines)};",
                "MEMORY_SIZE\t= 0;", "PROTECT\t\t= READ_WRITE;",
                "TCD:  STACK_SIZE\t= 0,", "      TASK_PRIORITY\t= 50,", "      TIME_SLICE\t= 0,",
                "      BUSY_LAMP_OFF\t= 0,", "      ABORT_REQUEST\t= 0,", "      PAUSE_REQUEST\t= 0;",
-               "DEFAULT_GROUP\t= 1,*,*,*,*;", "CONTROL_CODE\t= 00000000 00000000;", "/MN"]
+               f"DEFAULT_GROUP\t= {groups};", "CONTROL_CODE\t= 00000000 00000000;", "/MN"]
         n = 0
         for k, line in enumerate(lines):
             if line.startswith(":"):  # continuation of a circular move: no line number
@@ -279,6 +285,8 @@ class FanucBackend(Backend):
         rec = self.move_record(node, ctx)
         if isinstance(rec, list):
             return rec
+        if ctx.axes:  # no coordinated motion: targets in fixed user frames (backends/ext_axes.py)
+            node = fanuc_in_world(node, ctx.robot, ctx.plan.program.cell)
         if node.kind is not ir.MotionKind.JOINT:  # joint moves write ACC (move_joint)
             self.warn_accel(node, ctx, "TP's ACC is a share of the motion profile, not a TCP acceleration")
         self.warn_payload(node, ctx, "the controller's payload schedule ($PLST_GRP1) selected by PAYLOAD[i]")
@@ -290,7 +298,7 @@ class FanucBackend(Backend):
                    uf: int, ut: int, zone: str) -> list[str]:
         speed = self._joint_speed(node)
         if isinstance(node.target, ir.JointTarget):
-            p = self._joint_position(node.target, uf, ut, ctx)
+            p = self._joint_position(node.target, uf, ut, ctx, node)
         else:
             p = self._cart_position(node.target, rec.q_target, rec.branch, uf, ut, node, ctx)
         # ACC: acceleration override of the motion, % (FANUC R-30iB Operator's Manual, motion
@@ -362,11 +370,22 @@ class FanucBackend(Backend):
                   f"emitted as CNT{cnt}", node.span)
         return f"CNT{cnt}"
 
-    def _joint_position(self, target: ir.JointTarget, uf: int, ut: int, ctx: FanucContext) -> int:
+    def _joint_position(self, target: ir.JointTarget, uf: int, ut: int, ctx: FanucContext, node: ir.Move) -> int:
         values = [math.degrees(v) for v in target.values]
         cells = [f"J{i + 1}= {fmt(v, 3):>9} deg" for i, v in enumerate(values)]
         body = [f"\tUF : {uf}, UT : {ut},", "\t" + ",\t".join(cells[:3]) + ",", "\t" + ",\t".join(cells[3:])]
-        return self._position(body, target.name, ctx)
+        return self._position(self._with_groups(body, node, uf, ut, ctx), target.name, ctx)
+
+    @staticmethod
+    def _with_groups(body: list[str], node: ir.Move, uf: int, ut: int, ctx: FanucContext) -> list[str]:
+        """The GP1 lines of a position, with the task's external axes: a track's as E1.. of GP1,
+        each positioner's as its own group block (backends/ext_axes.py)."""
+        if not ctx.axes:
+            return body
+        extended, groups = fanuc_groups(node, ctx.axes, ctx.plan.program.cell, uf, ut)
+        if extended:
+            body = body[:-1] + [body[-1] + ","] + extended
+        return body + groups
 
     def _cart_position(self, target: ir.CartesianTarget, q: np.ndarray | None, branch: ir.Config | None,
                        uf: int, ut: int, node: ir.Move, ctx: FanucContext) -> int:
@@ -377,7 +396,7 @@ class FanucBackend(Backend):
         body = [f"\tUF : {uf}, UT : {ut},\t\tCONFIG : '{config_string(branch, q)}',",
                 f"\tX = {fmt(x, 3):>9}  mm,\tY = {fmt(y, 3):>9}  mm,\tZ = {fmt(z, 3):>9}  mm,",
                 f"\tW = {fmt(w, 3):>9} deg,\tP = {fmt(p, 3):>9} deg,\tR = {fmt(r, 3):>9} deg"]
-        return self._position(body, target.name, ctx)
+        return self._position(self._with_groups(body, node, uf, ut, ctx), target.name, ctx)
 
     @staticmethod
     def _position(body: list[str], name: str | None, ctx: FanucContext) -> int:

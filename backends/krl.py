@@ -61,11 +61,13 @@ from rmot.backends import codes, turns
 from rmot.backends import loops as _loops
 from rmot.backends import runtime as _rt
 from rmot.backends.controller_data import frame_number, tool_number
+from rmot.backends.ext_axes import driven_axes, krl_e_axes, machine_data, mechanism_index, riding_frame
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe
+from rmot.compiler.ir_axes import ExtAxis
 from rmot.lang.record import record
 
 __all__ = ["KrlBackend", "KRL_RULES", "status_of"]
@@ -149,12 +151,14 @@ class KrlContext(TaskContext):
     routine_of: dict[int, str]
     module: _Module
     loops: LoopState = field(default_factory=LoopState)  # the vendor loop being written
+    axes: tuple[ExtAxis, ...] = ()  # the external axes the task drives, in E1.. order
 
 
 class KrlBackend(Backend):
     name = "krl"
     PRINTS_LOOPS = True  # FOR ... ENDFOR, with offsets per iteration (loop, _pos)
     RUNTIME_CONDITIONS = True  # writes and/or/not, $ANIN, variables and timeout branches
+    EXTERNAL_AXES = True  # E1..E6 in E6POS/E6AXIS, EK() bases (backends/ext_axes.py)
     DIGITAL_PORTS = (1, 4096)  # $IN / $OUT, KSS 8.x System Variables
     file_ext = ".src"
     COMMENT = ";"
@@ -176,7 +180,8 @@ class KrlBackend(Backend):
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, main_name, body = self.open_task(task)
         ctx = task.with_state(KrlContext, names=names, module=_Module(DataPool(names)),
-                              routine_of=self.routine_table(names, body, task))
+                              routine_of=self.routine_table(names, body, task),
+                              axes=driven_axes(task.task, task.plan.program.cell))
         files: dict[str, str] = {}
         parts = self.split_parts(body, ctx, main_name)
         if parts is not None:
@@ -197,7 +202,7 @@ class KrlBackend(Backend):
         """The .src and .dat of one module: `body`, or calls to part modules."""
         ctx = replace(task, module=_Module(DataPool(task.names)))
         main = list(calls) if calls is not None else self.body(body, ctx)
-        head = self.header(ctx)
+        head = self.header(ctx) + [self.comment(line) for line in machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "krl")]
         stored = []
         for (array, n), (rname, value) in sorted(ctx.module.stored.items()):
             if self.write_frames:
@@ -252,8 +257,14 @@ class KrlBackend(Backend):
             # positioning"): the plan's blend radius, as for LIN/CIRC
             lines.append(f"$APO.CDIS={fmt(stop.radius * 1000.0, 3)}")
             zone += " C_DIS"
+        if node.motion.min_duration is not None:  # axes move: at their full speed and acceleration, as planned
+            # ($VEL_EXTAX[n] / $ACC_EXTAX[n]: % of the external axis' maximum, KSS 8.x System Variables)
+            lines += [f"${kind}_EXTAX[{k + 1}]=100" for k in range(len(ctx.axes)) for kind in ("VEL", "ACC")]
+        if node.axes_only:  # the arm holds its planned joints; E1.. move (a synchronous PTP)
+            held = ir.JointTarget(tuple(float(v) for v in rec.q_target), "jext")  # type: ignore[union-attr]
+            return lines + [f"PTP {self._axis(held, ctx, node)}{zone}"]
         if isinstance(node.target, ir.JointTarget):
-            return lines + [f"PTP {self._axis(node.target, ctx)}{zone}"]
+            return lines + [f"PTP {self._axis(node.target, ctx, node)}{zone}"]
         return lines + [f"PTP {self._pos(node.target, rec.q_target, rec.branch, node, ctx)}{zone}"]
 
     def _cp_head(self, node: ir.Move, rec: plan_types.InstructionRecord, lines: list[str]) -> str:
@@ -326,6 +337,8 @@ class KrlBackend(Backend):
             lines += [f"$TOOL={tname}", f"$LOAD={lname}"]
         if node.frame.name is None:
             lines.append("$BASE=$NULLFRAME")
+        elif ctx.axes:
+            lines.append(self._axes_base(node, base_n, ctx))
         elif base_n is not None:
             self._stored(ctx, "BASE_DATA", base_n, node.frame.name, f"{{{frame_text(node.frame.pose)}}}", node)
             lines.append(f"$BASE=BASE_DATA[{base_n}]")
@@ -343,10 +356,30 @@ class KrlBackend(Backend):
                              f"'{name}' number must be in 1..{limit} for {array} (got {n})", node.span)
         ctx.module.stored[(array, n)] = (name, value)
 
+    def _axes_base(self, node: ir.Move, base_n: int | None, ctx: KrlContext) -> str:
+        """$BASE in a task with external axes: a frame on a positioner through EK() (the frame in
+        the kinematic's flange frame), any other in $WORLD (the robot base with the axes at home),
+        from BASE_DATA[n] when the cell numbers it."""
+        cell = ctx.plan.program.cell
+        riding = riding_frame(node.frame, cell.external)
+        if riding is not None:
+            n = mechanism_index(riding[0], cell)
+            return f"$BASE=EK(MACHINE_DEF[{n}].ROOT,MACHINE_DEF[{n}].MECH_TYPE,{{{frame_text(riding[1])}}})"
+        assert node.frame.name is not None
+        value = f"{{{frame_text(ctx.robot.base.inverse() * node.frame.world)}}}"
+        if base_n is not None:
+            self._stored(ctx, "BASE_DATA", base_n, node.frame.name, value, node)
+            return f"$BASE=BASE_DATA[{base_n}]"
+        return f"$BASE={ctx.module.data.add(node.frame.name, 'FRAME:' + value)}"
+
     @staticmethod
-    def _axis(target: ir.JointTarget, ctx: KrlContext) -> str:
+    def _e_axes(node: ir.Move, ctx: KrlContext) -> str:
+        return krl_e_axes(node, ctx.axes) if ctx.axes else E_AXES
+
+    def _axis(self, target: ir.JointTarget, ctx: KrlContext, node: ir.Move | None = None) -> str:
         values = ",".join(f"A{i + 1} {fmt(math.degrees(v), 4)}" for i, v in enumerate(target.values))
-        return ctx.module.data.add(target.name or "j", f"E6AXIS:{{{values}{E_AXES}}}")
+        e_axes = self._e_axes(node, ctx) if node is not None else E_AXES
+        return ctx.module.data.add(target.name or "j", f"E6AXIS:{{{values}{e_axes}}}")
 
     def _pos_plain(self, target: ir.CartesianTarget, q: np.ndarray | None,
                    branch: ir.Config | None, node: ir.Move, ctx: KrlContext,
@@ -358,7 +391,8 @@ class KrlBackend(Backend):
             self.unsupported(codes.TURN_NOT_EXPRESSIBLE,
                              turns.message(q, far, "KRL's Turn (the sign of each axis)"), node.span)
         st = f",S {status_of(branch)},T {turn_bits(q)}"
-        return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{E_AXES}}}", node.span)
+        return ctx.module.data.add(hint or target.name or "p", f"E6POS:{{{frame_text(target.in_frame)}{st}{self._e_axes(node, ctx)}}}",
+                                   node.span)
 
     # ------------------------------------------------------------------ I/O and flow
 

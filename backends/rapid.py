@@ -45,10 +45,12 @@ from typing import Any
 from rmot.backends import codes
 from rmot.backends import loops as _loops
 from rmot.backends import runtime as _rt
+from rmot.backends.ext_axes import RAPID_UNUSED, driven_axes, machine_data, rapid_extax, rapid_wobj
 from rmot.backends.base import Backend, TaskContext, accel_is_default, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.compiler import ir, ir_tree, plan_types
+from rmot.compiler.ir_axes import ExtAxis
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
@@ -184,6 +186,7 @@ class RapidContext(TaskContext):
     routines: dict[str, list[str]] = field(default_factory=dict)
     routine_of: dict[int, str] = field(default_factory=dict)
     massless_tools: set[str] = field(default_factory=set)
+    axes: tuple[ExtAxis, ...] = ()  # the external axes the task drives, in eax_a.. order
     loops: LoopState = field(default_factory=LoopState)  # the vendor loop being written
 
 
@@ -197,15 +200,19 @@ class RapidBackend(Backend):
     BRANCH_DATA = "confdata"
     PRINTS_LOOPS = True  # FOR ... ENDFOR, targets moved by Offs
     RUNTIME_CONDITIONS = True  # writes and/or/not, AInput, variables and timeout flags
+    EXTERNAL_AXES = True  # extax, MoveExtJ, coordinated wobjdata (backends/ext_axes.py)
 
     # ------------------------------------------------------------------ program
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, module, body = self.open_task(task, reserved=("main",))
         ctx = task.with_state(RapidContext, names=names, data=DataPool(names),
-                              routine_of=self.routine_table(names, body, task))
+                              routine_of=self.routine_table(names, body, task),
+                              axes=driven_axes(task.task, task.plan.program.cell))
         main = self.body(body, ctx)
         lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
+        lines += self.indent([self.comment(line) for line in machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "rapid")],
+                             self.INDENT)
         for kind in ("tooldata", "wobjdata", "loaddata", "sync", "var"):
             lines += self.indent(ctx.decls.get(kind, []), self.INDENT)
         lines += self.indent(self._data_lines(ctx), self.INDENT)
@@ -262,8 +269,11 @@ class RapidBackend(Backend):
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: RapidContext,
                    zone: str, tool: str, wobj: str) -> list[str]:
+        if node.axes_only:  # the units alone, the arm holds its joints: MoveExtJ (backends/ext_axes.py)
+            target = ctx.data.add("jext", f"jointtarget:[[{','.join([RAPID_UNUSED] * 6)}],{rapid_extax(node, ctx.axes)}]")
+            return [f"MoveExtJ {target}, vmax\\T:={fmt(rec.t_end - rec.t_start, 3)}, {zone};"]
         if isinstance(node.target, ir.JointTarget):
-            target = self._jointtarget(node.target, ctx)
+            target = self._jointtarget(node.target, ctx, self._extax(node, ctx))
             speed = self._joint_speed(node, rec)
             return [f"MoveAbsJ {target}\\NoEOffs, {speed}, {zone}, {tool};"]
         to = self._robtarget(node.target, rec.q_target, rec.branch, node, ctx)
@@ -332,18 +342,22 @@ class RapidBackend(Backend):
         return ctx.data.add(f"z{num_name(r)}", "zonedata:[FALSE," + ",".join(
             fmt(x, 3) for x in (r, o, o, 0.1 * o, o, 0.1 * o)) + "]")
 
-    def _jointtarget(self, target: ir.JointTarget, ctx: RapidContext) -> str:
+    def _jointtarget(self, target: ir.JointTarget, ctx: RapidContext, extax: str = EXTAX) -> str:
         import math
 
         values = fmt_list((math.degrees(v) for v in target.values), 3)
-        return ctx.data.add(target.name or "j", f"jointtarget:[[{values}],{EXTAX}]")
+        return ctx.data.add(target.name or "j", f"jointtarget:[[{values}],{extax}]")
+
+    @staticmethod
+    def _extax(node: ir.Move, ctx: RapidContext) -> str:
+        return rapid_extax(node, ctx.axes) if ctx.axes else EXTAX
 
     def _robtarget(self, target: ir.CartesianTarget, q: object, branch: ir.Config | None,
                    node: ir.Move, ctx: RapidContext, hint: str | None = None) -> str:
         branch = self.branch_or_default(branch, node)
         cf = (axis_quadrant(q[0]), axis_quadrant(q[3]), axis_quadrant(q[5]), cfx_of(branch))  # type: ignore[index]
         conf = ",".join(str(c) for c in cf)
-        value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{EXTAX}]"
+        value = f"robtarget:[{pose_text(target.in_frame)[1:-1]},[{conf}],{self._extax(node, ctx)}]"
         name = ctx.data.add(hint or target.name or "p", value, node.span)
         return _offs(ctx, node, "via" if target is node.via else "target", name)
 
@@ -365,6 +379,9 @@ class RapidBackend(Backend):
         if frame.name is None:
             return ""
         name = ctx.names.name(frame.name)
+        if ctx.axes:  # a unit moves the frame, or the controller's world is the base at home
+            self._declare(ctx, "wobjdata", f"TASK PERS wobjdata {name}:={rapid_wobj(frame, ctx.robot, ctx.plan.program.cell)};")
+            return f"\\WObj:={name}"
         self._declare(ctx, "wobjdata", f"TASK PERS wobjdata {name}:=[FALSE,TRUE,\"\","
                       f"{pose_text(frame.pose)},[[0,0,0],[1,0,0,0]]];")
         return f"\\WObj:={name}"

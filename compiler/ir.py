@@ -33,6 +33,7 @@ from rmot.lang.source import Span
 if TYPE_CHECKING:
 
     import numpy as np
+    from rmot.compiler.ir_axes import ExternalAxes
 
 __all__ = [
     "DEFAULT_JOINT_ACCEL", "DEFAULT_JOINT_SPEED", "DEFAULT_TCP_ACCEL", "DEFAULT_TCP_SPEED",
@@ -325,6 +326,7 @@ class Cell:
     allowed_contacts: tuple[tuple[str, str], ...] = ()  # body pairs the checker ignores
     span: Span | None = _span_field()
     parts: tuple[Part, ...] = ()  # movable objects, at their starting poses
+    external: ExternalAxes | None = None  # tracks and positioners; the bodies above at their home values
 
     def robot(self, name: str) -> RobotInstance:
         for r in self.robots:
@@ -410,6 +412,7 @@ class Motion:
     joint_accel: float  # fraction of each joint's max acceleration, (0, 1]
     zone: Zone
     duration: float | None = None  # s: a `time` modifier fixes the move's duration
+    min_duration: float | None = None  # s: external axes moving with the arm need at least this (compiler/ir_axes.py)
 
 
 @record(slots=True)
@@ -468,6 +471,8 @@ class Move:
     config: Config = Config()
     free: FreeMotion | None = None  # `move free` (kind JOINT): the path is searched at plan time
     span: Span | None = _span_field()
+    ext: tuple[tuple[str, float], ...] = ()  # every external axis of the program at the target (SI)
+    axes_only: bool = False  # `move axes`: the arm holds its joints while the axes move
 
 
 @record(slots=True, kw_only=True)

@@ -194,6 +194,9 @@ def dump_program(prog: ir.Program) -> str:
     return "\n".join(out) + "\n"
 
 
+_ONLY_WHEN_SET = frozenset({"external", "min_duration", "ext", "axes_only"})
+
+
 def to_jsonable(x: Any) -> Any:
     if isinstance(x, Span):
         return {"file": x.path, "line": x.start.line, "col": x.start.col}
@@ -205,6 +208,8 @@ def to_jsonable(x: Any) -> Any:
         obj: dict[str, Any] = {"type": type(x).__name__}
         for f in dataclasses.fields(x):
             value = getattr(x, f.name)
+            if f.name in _ONLY_WHEN_SET and value == f.default:  # external axes: only in a cell that has them
+                continue
             if value is not None or f.name not in ("span", "free"):  # a Move's `free`: only on `move free`
                 obj[f.name] = to_jsonable(value)
         return obj

@@ -34,6 +34,7 @@ __all__ = ["ALLOWED_MODULES", "CodecError", "decode", "encode", "allowed_types"]
 ALLOWED_MODULES = (
     "rmot.compiler.plan_types",
     "rmot.compiler.ir",
+    "rmot.compiler.ir_axes",  # external axes (ir.Cell.external)
     "rmot.lang.source",
     "rmot.lang.diagnostics",
 )

@@ -300,7 +300,11 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def program(self, c: list[Any]) -> ast.ProgramDecl:
         robot = self._ident(c[3]) if c[3] is not None else None
-        return ast.ProgramDecl(self._ident(c[1], "program"), robot, tuple(c[4]), self._span(c))
+        axes = tuple(self._ident(t) for t in c[5]) if c[5] is not None else ()
+        return ast.ProgramDecl(self._ident(c[1], "program"), robot, tuple(c[6]), self._span(c), axes)
+
+    def names(self, c: list[Any]) -> list[Token]:
+        return c
 
     def task(self, c: list[Any]) -> ast.TaskDecl:
         return ast.TaskDecl(self._ident(c[1]), tuple(c[2]), self._span(c))
@@ -312,7 +316,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         span = self._span([*c[:3], library or urdf, *c[4:6], *(c[6] or ()), *c[7:]])
         return ast.RobotDecl(self._ident(c[1], "robot"), library, urdf, c[-1], span,
                              urdf_args=urdf_args[0] if urdf_args else (), shares=shares,
-                             software=c[6])
+                             software=c[6], on=self._ident(c[8]) if c[8] is not None else None)
 
     def robot_speed(self, c: list[Any]) -> ast.Setting:
         return _Setting(ast.SettingKind.SPEED, c[1], self._span(c))
@@ -348,7 +352,8 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return None, self._string(c[0]), c[1]
 
     def fixture_decl(self, c: list[Any]) -> ast.FixtureDecl:
-        return ast.FixtureDecl(self._ident(c[1], "fixture"), c[3], c[5], self._span(c))
+        on = self._ident(c[5]) if c[5] is not None else None
+        return ast.FixtureDecl(self._ident(c[1], "fixture"), c[3], c[7], self._span(c), on)
 
     def geometry(self, c: list[Any]) -> ast.Geometry:
         return ast.Geometry(self._ident(c[0]), c[2] or (), self._span(c))
@@ -432,6 +437,9 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def mod_time(self, c: list[Any]) -> ast.Setting:
         return self._setting("time", c)
+
+    def mod_ext(self, c: list[Any]) -> ast.Setting:
+        return _Setting(ast.SettingKind.EXT, c[2] or (), self._span(c))
 
     # -- motion
     def move_simple(self, c: list[Any]) -> ast.Move:
@@ -671,3 +679,27 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def r_cmp(self, c: list[Any]) -> Any:  # `( cond )`
         return c[1]
+
+    # -- external axes (tracks and positioners)
+    def track_decl(self, c: list[Any]) -> ast.MechanismDecl:
+        return ast.MechanismDecl("track", self._ident(c[1], "track"), (c[3],), c[5], self._span(c))
+
+    def positioner_decl(self, c: list[Any]) -> ast.MechanismDecl:
+        return ast.MechanismDecl("positioner", self._ident(c[1], "positioner"), tuple(c[5]), c[8], self._span(c))
+
+    def ext_axes(self, c: list[Any]) -> list[ast.ExtAxisDecl]:
+        return c
+
+    def ext_axis(self, c: list[Any]) -> ast.ExtAxisDecl:
+        options = dict(c[7:])
+        return ast.ExtAxisDecl(self._ident(c[0]), self._ident(c[3]), c[5], options.get("speed"),
+                               options.get("accel"), self._span([*c[:7], *(value for _, value in c[7:])]))
+
+    def ext_speed(self, c: list[Any]) -> tuple[str, Any]:
+        return "speed", c[1]
+
+    def ext_accel(self, c: list[Any]) -> tuple[str, Any]:
+        return "accel", c[1]
+
+    def move_axes(self, c: list[Any]) -> ast.MoveAxes:
+        return ast.MoveAxes(self._ident(c[2]), c[4], tuple(c[5:]), self._span(c))

@@ -152,6 +152,7 @@ class ProgramDecl:
     robot: Ident | None  # `program p on r1`
     body: tuple[Stmt, ...]
     span: Span = _span()
+    axes: tuple[Ident, ...] = ()  # `program p on r1 with rail, pos`: the mechanisms it drives
 
 
 @record(slots=True)
@@ -171,6 +172,7 @@ class RobotDecl:
     urdf_args: tuple[Arg, ...] = ()  # `urdf("f.urdf", base="base_link", tip="tool0")`
     shares: tuple[Setting, ...] = ()  # `speed R %` / `accel R %`: the arm's limits scaled
     software: tuple[Ident, Expr] | None = None  # `controller kss 8.3`: the controller's software
+    on: Ident | None = None  # `on rail`: the track whose carriage carries it (`at` is then on the carriage)
 
 
 @record(slots=True)
@@ -188,6 +190,7 @@ class FixtureDecl:
     geometry: Geometry
     at: Expr | None
     span: Span = _span()
+    on: Ident | None = None  # `on pos`: the mechanism that carries it (`at` is then on its flange)
 
 
 @record(slots=True)
@@ -279,6 +282,7 @@ class SettingKind(StrEnum):
     CLEARANCE = "clearance"
     SAMPLES = "samples"
     BUDGET = "budget"
+    EXT = "ext"  # a move modifier: external-axis values at the target, `ext(rail=1200mm)`
 
 
 @record(slots=True)
@@ -528,3 +532,43 @@ class While:
 
 __all__ += ["AssignStmt", "Compare", "Logic", "NotCond", "RtCond", "StopStmt", "VarDecl", "While"]
 Stmt = Union[Stmt, VarDecl, AssignStmt, StopStmt, While]  # type: ignore[misc]
+
+
+# --------------------------------------------------------------------------- external axes
+
+
+@record(slots=True)
+class ExtAxisDecl:
+    """One axis of a track or positioner: `linear(axis x, range(0mm, 4000mm)) speed V accel A`."""
+
+    kind: Ident  # linear | revolute
+    axis: Ident  # x | y | z
+    args: tuple[Arg, ...]  # range(lo, hi)
+    speed: Expr | None
+    accel: Expr | None
+    span: Span = _span()
+
+
+@record(slots=True)
+class MechanismDecl:
+    """`track NAME = linear(...)` or `positioner NAME = axes(revolute(...), ...)`."""
+
+    kind: str  # track | positioner
+    name: Ident
+    axes: tuple[ExtAxisDecl, ...]
+    at: Expr | None
+    span: Span = _span()
+
+
+@record(slots=True)
+class MoveAxes:
+    """`move axes pos to (0deg, 180deg)`: the mechanism's axes alone; the arm holds its joints."""
+
+    mechanism: Ident
+    values: Expr
+    modifiers: tuple[Setting, ...]
+    span: Span = _span()
+
+
+__all__ += ["ExtAxisDecl", "MechanismDecl", "MoveAxes"]
+Stmt = Union[Stmt, MechanismDecl, MoveAxes]  # type: ignore[misc]

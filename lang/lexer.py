@@ -38,7 +38,7 @@ TOKEN = re.compile(r"""
     )
 """, re.X)
 BLANKS = re.compile(r"[ \t\f\r]*+(?:\#[^\n]*+)?+")
-CONTINUES = re.compile(r"\s*(?:to|else)(?![A-Za-z0-9_])")
+CONTINUES = re.compile(r"\s*(?:to|else|at)(?![A-Za-z0-9_])")
 _WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout"})))
 
 

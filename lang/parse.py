@@ -319,7 +319,7 @@ def _inside_cell(post: PostLexState, file: SourceFile) -> bool:
 
 
 # the words a declaration in a cell starts with (compiler/passes/lower_cell.py lowers these)
-CELL_DECLARATION_STARTS = ["robot", "fixture", "tool", "frame", "io", "const", "model", "part"]
+CELL_DECLARATION_STARTS = ["robot", "fixture", "tool", "frame", "io", "const", "model", "part", "track", "positioner"]
 
 # the words a statement may start with (an unknown statement word lists them, and a
 # near miss is matched against these only, so `let` is not taken for `at` nor `var` for `via`)

@@ -63,3 +63,10 @@ __all__ += ["FREE_GOAL_BLOCKED", "FREE_START_BLOCKED", "FREE_NO_PATH", "FREE_UNS
 
 FEEDER_EMPTY = Code("E334", "feeder-empty", "attach from a feeder whose `count` parts have all been taken")
 __all__ += ["FEEDER_EMPTY"]
+
+# bodies that external axes carry (sim/axes_collide.py)
+AXES_PATHS_UNCHECKED = Code("W602", "ext-paths-unchecked",
+                            "collisions of bodies external axes carry are not checked on the other paths of an if or while")
+AXES_SAMPLED = Code("W603", "ext-sampled-check",
+                    "a note: bodies external axes carry are checked at every sample, without the no-miss bound")
+__all__ += ["AXES_PATHS_UNCHECKED", "AXES_SAMPLED"]

@@ -28,7 +28,7 @@ from rmot.sim.collide import PairHit, Timeline, candidate_pairs, check_timeline
 from rmot.sim.limits import LimitHit, check_limits
 from rmot.sim.report import Report
 from rmot.sim.scene import Scene, build_scene, flange_in_last_joint
-from rmot.sim import parts
+from rmot.sim import axes_collide, parts
 
 __all__ = ["verify", "verify_with"]
 
@@ -91,14 +91,33 @@ def _collisions(scene: Scene, plan: plan_types.Plan, tasks: list[plan_types.Task
     out: list[Diagnostic] = []
     timeline = _timeline(scene, main, None)
     by_robot = {tp.robot: tp for tp in tasks}
-    hits = check_timeline(scene, timeline, candidate_pairs(scene), clearance)
+    pairs = candidate_pairs(scene)
+    external = plan.program.cell.external
+    driver = axes_collide.driving_task(tasks, external)
+    groups = axes_collide.body_groups(scene, external) if driver is not None else {}
+    if driver is not None and external is not None:  # pairs whose relative pose the external axes change
+        pairs, moved = axes_collide.axis_pairs(pairs, groups)
+        hits = axes_collide.axis_collisions(scene, timeline, moved, driver, external, clearance)
+        out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
+        if moved:
+            step = float(np.max(np.diff(timeline.t))) * 1000 if timeline.t.size > 1 else 0.0
+            out.append(Diagnostic(codes.AXES_SAMPLED, Severity.NOTE, f"the {len(moved)} body pairs whose relative pose "
+                                  f"the external axes change are checked at every sample (at most {step:.0f} ms apart), not with "
+                                  "the no-miss bound: a contact shallower than their motion in one step can be missed",
+                                  driver.task.span, task=driver.task.name))
+        if driver.variants:
+            out.append(Diagnostic(codes.AXES_PATHS_UNCHECKED, Severity.WARNING, "collisions of the bodies external axes "
+                                  "carry are checked on the main path only, not on the other paths of an if or while",
+                                  driver.task.span, task=driver.task.name))
+    hits = check_timeline(scene, timeline, pairs, clearance)
     out += [_collision_diagnostic(scene, by_robot, h, clearance, 0) for h in hits]
     for tp in tasks:
         for variant in tp.variants:
             trajs = dict(main)
             trajs[tp.robot] = variant.trajectory
             timeline = _timeline(scene, trajs, variant.trajectory.t)
-            hits = check_timeline(scene, timeline, candidate_pairs(scene, only_robot=tp.robot), clearance)
+            kept = axes_collide.axis_pairs(candidate_pairs(scene, only_robot=tp.robot), groups)[0]
+            hits = check_timeline(scene, timeline, kept, clearance)
             out += [_collision_diagnostic(scene, by_robot, h, clearance, variant.index, tp.robot) for h in hits
                     if h.kind != "static"]
     return out

@@ -23,12 +23,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 from rmot.compiler.vendors import controllers
-from rmot.compiler import codes, ir
+from rmot.compiler import codes_axes, codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
 from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
 from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
 from rmot.compiler.passes.limits import MAX_DURATION_S, MAX_ITERATIONS, MAX_PORT, MAX_POSITION_M, MAX_WORK_STEPS, within
 from rmot.compiler.passes.modal import Modal, apply_setting, speed_modifier_warnings
+from rmot.compiler.passes.lower_axes import ProgramAxes
 from rmot.compiler.passes.procs import bind_call
 from rmot.compiler.passes.runtime import TYPE_NAMES, RtLowering, expr_type, fits
 from rmot.compiler.ir_tree import children, rebuilt
@@ -78,6 +79,7 @@ class TaskLowering:
     called: set[int] = field(default_factory=set)  # ids of the ProcDecls inlined at least once
     held: dict[str, Span | None] = field(default_factory=dict)  # parts held now -> where attached
     depth: int = 0  # blocks entered below the task's body (a `var` belongs to the body)
+    axes: ProgramAxes | None = None  # the external axes the task drives (`with`), their values so far
 
     def run(self, body: tuple[ast.Stmt, ...], scope: Scope, modal: Modal, where: str) -> tuple[ir.Instr, ...]:
         try:
@@ -133,6 +135,8 @@ class TaskLowering:
     def statement(self, s: ast.Stmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
         if isinstance(s, ast.Move):
             return self.move(s, scope, modal)
+        if isinstance(s, ast.MoveAxes):
+            return self.axes.move_axes(s, scope) if self.axes is not None else self._no_axes(s.span)
         if isinstance(s, (ast.TargetDecl, ast.ConstDecl)):
             declare_value(s, scope, self.rep)
         elif isinstance(s, ast.FrameDecl):
@@ -579,6 +583,10 @@ class TaskLowering:
             elif m.kind == "time":
                 duration = self._time(m.value, scope, "move time")  # type: ignore[arg-type]
                 ok = ok and duration is not None
+            elif m.kind == "ext":  # the axes' values at the target: ProgramAxes.move
+                if self.axes is None:
+                    self._no_axes(m.span)
+                    ok = False
             else:
                 modal = apply_setting(modal, m, scope, self.robot, self.base, self.rep)
         kind = _KINDS[s.kind]
@@ -593,8 +601,13 @@ class TaskLowering:
                     self.rep.warning(codes.CONFIG_IGNORED, "config(...) must go with a pose target (got a joint target: "
                                      "joints fix the arm's configuration, there is no IK branch to choose); it is ignored", m.span)
         motion = ir.Motion(modal.tcp_speed, modal.tcp_accel, modal.joint_speed, modal.joint_accel, modal.zone, duration)
-        return ir.Move(uid=0, kind=kind, target=target, via=via, motion=motion, tool=modal.tool,  # type: ignore[arg-type]
+        move = ir.Move(uid=0, kind=kind, target=target, via=via, motion=motion, tool=modal.tool,  # type: ignore[arg-type]
                        frame=modal.frame, config=config, free=free, span=s.span)
+        return move if self.axes is None else self.axes.move(move, s, scope)
+
+    def _no_axes(self, span: Span | None) -> None:
+        self.rep.error(codes_axes.EXT_VALUES, "external-axis values need a program that drives the axes "
+                       "(`program p on r1 with rail, pos`)", span)
 
     def free_option(self, m: ast.Setting, scope: Scope, free: ir.FreeMotion) -> ir.FreeMotion | None:
         """`clearance D`, `samples N`, `budget T` of a `move free` (None after an error)."""

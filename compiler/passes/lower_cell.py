@@ -22,6 +22,7 @@ from rmot.compiler import codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
 from rmot.compiler.passes.urdf_paths import check_urdf_files
 from rmot.compiler.passes.lower_model import described_urdf
+from rmot.compiler.passes.lower_axes import CellAxes
 from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_MESH_SCALE, MIN_SIZE_M, within
 from rmot.compiler.passes.evaluate import eval_expr, expect_integer, expect_pose, expect_quantity, match_args
 from rmot.compiler.passes.load_files import resolve_path
@@ -54,6 +55,7 @@ class _CellBuilder:
         self.io_seen: dict[tuple[ir.IoDirection, int, str | None], ast.IoDecl] = {}
         self.models: dict[str, tuple[str | None, ast.ModelDecl]] = {}  # name -> (load key or None if bad, decl)
         self.parts: list[ir.Part] = []
+        self.axes = CellAxes(self.rep, self.scope)  # tracks, positioners and what rides on them
 
     def build(self) -> ir.Cell:
         for stmt in self.decl.body:
@@ -63,7 +65,8 @@ class _CellBuilder:
             else:
                 handler(stmt)
         return ir.Cell(self.decl.name.name, tuple(self.robots), tuple(self.fixtures), tuple(self.tools),
-                       tuple(self.frames), tuple(self.io), span=self.decl.span, parts=tuple(self.parts))
+                       tuple(self.frames), tuple(self.io), span=self.decl.span, parts=tuple(self.parts),
+                       external=self.axes.result())
 
     def _pose(self, e: ast.Expr | None, what: str) -> ir.Pose | None:
         if e is None:
@@ -77,6 +80,8 @@ class _CellBuilder:
 
     def _RobotDecl(self, s: ast.RobotDecl) -> None:
         base = self._pose(s.at, f"placement of robot '{s.name.name}'")
+        if s.on is not None:
+            base = self.axes.carried(s.on, base, "robot", s.name.name, s.span)
         if s.library is not None and s.library.name in self.models:  # a model of this cell
             key, span = self.models[s.library.name][0], s.library.span
             if key is None:  # the model block has errors, reported there
@@ -224,6 +229,8 @@ class _CellBuilder:
     def _FixtureDecl(self, s: ast.FixtureDecl) -> None:
         geometry = self._geometry(s.geometry)
         pose = self._pose(s.at, f"placement of fixture '{s.name.name}'")
+        if s.on is not None:
+            pose = self.axes.carried(s.on, pose, "fixture", s.name.name, s.span)
         if geometry is None or pose is None:
             return
         if declare(self.scope, Entry("fixture", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
@@ -254,6 +261,12 @@ class _CellBuilder:
         if pose is not None and declare(self.scope, Entry("frame", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
             self.frames.append(ir.Frame(s.name.name, pose, span=s.span,
                                         number=self._number(s.number, f"frame '{s.name.name}'")))
+            self.axes.frame(s.name.name, s.value, pose, s.span)
+
+    def _MechanismDecl(self, s: ast.MechanismDecl) -> None:
+        flange = self.axes.mechanism(s, self._pose(s.at, f"placement of {s.kind} '{s.name.name}'"))
+        if flange is not None:
+            declare(self.scope, Entry("mechanism", s.name.name, PoseV(flange, s.name.name), s.name.span), self.rep)
 
     def _number(self, e: ast.Expr | None, what: str) -> int | None:
         """`number n` of a tool or frame: the controller's number, an integer >= 0 (which

@@ -14,9 +14,10 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from rmot.compiler import codes, ir
+from rmot.compiler import codes_axes, codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.lower_body import TaskLowering
+from rmot.compiler.passes.lower_axes import check_axis_branches, program_axes, refuse_track_in_tasks
 from rmot.compiler.passes.lower_cell import program_feeders
 from rmot.compiler.passes.modal import DEFAULT_MODAL, Modal, apply_setting
 from rmot.compiler.passes.state import FrontendState
@@ -81,10 +82,15 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
             return None
         body = tuple(s for s in prog.body if not isinstance(s, (ast.TaskDecl, ast.FeederDecl)))
         lowering = _task_lowering(robot, state, procs)
-        return [ir.Task(prog.name.name, robot.name, lowering.run(body, scope, DEFAULT_MODAL, where), span=prog.span)]
+        lowering.axes = program_axes(prog, robot, state.cell, rep)
+        instrs = lowering.run(body, scope, DEFAULT_MODAL, where)
+        check_axis_branches(instrs, rep)
+        return [ir.Task(prog.name.name, robot.name, instrs, span=prog.span)]
     # several tasks: shared declarations once, then each task with the shared settings
     shared = tuple(s for s in prog.body if isinstance(s, _SHARED))
     settings = tuple(s for s in prog.body if isinstance(s, ast.Setting))
+    for ident in prog.axes[:1]:
+        rep.error(codes_axes.EXT_PROGRAM_AXES, f"'with' must go with a program on one robot (got task blocks in {where})", ident.span)
     for s in prog.body:
         if not isinstance(s, (*_SHARED, ast.Setting, ast.TaskDecl, ast.FeederDecl)):
             rep.error(codes.MISPLACED, f"{_word(s)} must be inside a task in {where} (it has task blocks)", s.span)
@@ -102,6 +108,7 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
         robot = _robot(t.robot, state)
         if robot is None:
             continue
+        refuse_track_in_tasks(robot, state.cell, t.robot.span, rep)
         seen[t.robot.name] = t
         lowering = _task_lowering(robot, state, procs)
         modal = _settings(settings, scope, robot, rep)

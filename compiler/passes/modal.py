@@ -121,6 +121,7 @@ SETTING_HANDLERS: dict[ast.SettingKind, SettingHandler] = {
     ast.SettingKind.CLEARANCE: _misplaced,
     ast.SettingKind.SAMPLES: _misplaced,
     ast.SettingKind.BUDGET: _misplaced,
+    ast.SettingKind.EXT: _misplaced,
 }
 
 

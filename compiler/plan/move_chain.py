@@ -70,8 +70,12 @@ def time_chain(robot: RobotModel, segments: list[Segment],
     task's joint torque limits (compiler/plan/torque.py), None where the robot has no ratings."""
     vmax, amax = _limits(robot, segments)
     duration = segments[0].move.motion.duration if len(segments) == 1 else None
+    floor = segments[0].move.motion.min_duration if len(segments) == 1 else None  # external axes moving with the arm
     if len(segments) == 1 and segments[0].move.kind is ir.MotionKind.JOINT:
-        return _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, duration, torque)
+        timed = _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, duration, torque)
+        if floor is not None and timed.piece.duration < floor:
+            timed = _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, floor, torque)
+        return timed
     path = blend_chain(robot, segments)
     return _path_chain(path, segments, vmax, amax, duration, torque)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from rmot.compiler import ir
+from rmot.compiler.axis_motion import axis_findings
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.least_time import least_duration_s
 from rmot.compiler.plan.sync import align, hold_variants, sample
@@ -64,6 +65,8 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
         _task_plan(task, drafts[task.name], robots[task.name], starts[task.name], step)
         for task in program.tasks if task.name in drafts
     )
+    for tp in tasks:  # external axes outside their ranges, at the move that drives them there
+        diagnostics.extend(axis_findings(tp, program.cell.external))
     diagnostics.sort(key=_diagnostic_order)
     return Plan(program, tasks, step, tuple(diagnostics))
 

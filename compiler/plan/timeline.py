@@ -180,7 +180,8 @@ class _Builder:
             rest = rest.parent
 
     def _move(self, move: ir.Move) -> None:
-        if move.motion.duration is not None:
+        alone = move.motion.duration is not None or move.motion.min_duration is not None  # timed on its own
+        if alone:
             self.flush()
         self.tool = move.tool.name
         seg, findings = build_segment(self.robot, move, self._q_end())
@@ -192,7 +193,7 @@ class _Builder:
             return
         self.pending += [(f, len(self.chain)) for f in findings]  # timed when the chain is
         self.chain.append(seg)
-        if move.motion.zone.is_fine or move.motion.duration is not None:
+        if move.motion.zone.is_fine or alone:
             self.flush()
 
     def _event(self, instr: ir.Instr) -> None:

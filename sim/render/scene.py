@@ -22,6 +22,7 @@ from rmot.sim.render.transform import rotate_vectors, transform_points
 from rmot.sim.part_phases import declared_part
 from rmot.sim.parts import part_poses, with_part_bodies
 from rmot.sim.scene import Body, Scene, build_scene
+from rmot.sim.axes_collide import driving_task, mechanism_motion, with_axes
 
 if TYPE_CHECKING:
     from rmot.compiler.plan.robot_model import RobotModel
@@ -104,6 +105,10 @@ def body_poses(rs: RenderScene, times: np.ndarray) -> np.ndarray:
     for robot, values in q.items():
         moving.update(rs.scene.poses(robot, values))
     moving.update(part_poses(rs.scene, rs.plan, times, q))  # parts: placed or on a flange
+    external = rs.plan.program.cell.external
+    driver = driving_task(list(rs.plan.tasks), external)
+    if driver is not None and external is not None:  # a robot on a track, fixtures on a positioner
+        moving = with_axes(rs.scene, driver, external, times, moving)
     poses = np.empty((len(times), len(rs.names), 4, 4))
     for i, body in enumerate(rs.scene.bodies):
         poses[:, i] = moving[body.name] if body.name in moving else body.local
@@ -164,7 +169,12 @@ def _tcp_paths(plan: Plan, scene: Scene, max_points: int = 1500) -> tuple[np.nda
         idx = np.unique(np.linspace(0, traj.t.size - 1, min(traj.t.size, max_points)).astype(int))
         flange = np.asarray(entry.robot.fk_batch(traj.q[idx]))
         tcp = _active_tcp(tp, traj.t[idx])  # (N, 4, 4)
-        paths.append((entry.base @ flange @ tcp)[:, :3, 3])
+        world = entry.base @ flange @ tcp
+        external = plan.program.cell.external
+        mount = external.mount(tp.robot) if external is not None else None
+        if mount is not None and external is not None:  # the arm rides on a track
+            world = mechanism_motion(traj.t[idx], tp, external)[mount.mechanism] @ world
+        paths.append(world[:, :3, 3])
     return tuple(paths)
 
 

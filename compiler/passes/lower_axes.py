@@ -1,0 +1,331 @@
+"""External axes in the cell and in a program: tracks, positioners, `on`, `with`, `ext(...)`,
+`move axes` -> compiler/ir_axes.py values and ir.Move.ext.
+
+Cell (`CellAxes`, used by lower_cell's builder):
+  * `track NAME = linear(axis x, range(0mm, 4000mm)) speed V accel A at POSE` and
+    `positioner NAME = axes(revolute(axis y, range(...)) speed V accel A, ...) at POSE`; the
+    axis directions are those of the mechanism's own frame (`at`, in world). A track has one
+    linear axis; a positioner one or two axes of either kind.
+  * Each axis is named after its mechanism: `rail` for a one-axis mechanism, else `pos.1`,
+    `pos.2`. Its home value (where the cell's listing places what it carries) is 0 when the
+    range holds 0, else the range's nearer end.
+  * `robot r1 = ... on rail at POSE`: POSE on the carriage; a robot rides on a track only.
+    `fixture jig = ... on pos at POSE`: POSE on the flange. A frame whose value names a
+    mechanism (`frame work = pos * pose(z=40mm)`) rides on it, at its value at home.
+Program (`ProgramAxes`, used by the task lowering):
+  * `program p on r1 with rail, pos`: the mechanisms the task drives; a robot on a track must
+    drive it. All of them start at home.
+  * `ext(rail=1200mm, pos=(30deg, 90deg))` sets axis values at a move's target (a one-axis
+    mechanism by its name and one value, a two-axis one by its name and a pair); an axis not
+    set keeps its value. The target's pose resolves with the axes there:
+    the arm's base rides on its track, a frame on a positioner moves with its flange.
+  * A joint move and `move axes` move the axes time-synchronously with the arm: the move lasts
+    at least each axis' shortest rest-to-rest time (ir.Motion.min_duration), and stops exactly
+    at both ends. A linear or circular move whose axes change (coordinated motion) and any axis
+    change inside an if or while are E606.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from rmot.compiler import codes_axes, ir
+from rmot.compiler.ir_axes import AXIS_DIRECTIONS, ExtAxis, ExternalAxes, Mechanism, Mount, axis_time
+from rmot.compiler.ir_tree import Runs, flow, walk
+from rmot.compiler.passes.context import Reporter, Scope
+from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
+from rmot.compiler.passes.limits import MAX_SIZE_M
+from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, SPEED, Dim, VectorV, Value
+from rmot.lang import ast
+from rmot.lang.source import Span
+
+__all__ = ["CellAxes", "ProgramAxes", "check_axis_branches", "names_in", "program_axes", "refuse_track_in_tasks"]
+
+_KINDS = ("linear", "revolute")
+MAX_TURNS = 100  # policy: a revolute axis' range at most +-100 turns (a turntable that never unwinds)
+
+
+def names_in(e: ast.Expr) -> set[str]:
+    """Every plain name an expression reads (a frame riding on a mechanism names it)."""
+    out: set[str] = set()
+    stack: list[object] = [e]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, ast.Name):
+            out.add(node.name)
+        elif isinstance(node, ast.BinOp):
+            stack += [node.left, node.right]
+        elif isinstance(node, ast.Neg):
+            stack.append(node.operand)
+        elif isinstance(node, (ast.Call, ast.Vector)):
+            stack += [a.value for a in (node.args if isinstance(node, ast.Call) else node.items)]
+    return out
+
+
+class CellAxes:
+    """The mechanisms and mounts of one cell, built declaration by declaration."""
+
+    def __init__(self, rep: Reporter, scope: Scope) -> None:
+        self.rep = rep
+        self.scope = scope
+        self.mechanisms: dict[str, Mechanism] = {}
+        self.mounts: list[Mount] = []
+
+    def result(self) -> ExternalAxes | None:
+        return ExternalAxes(tuple(self.mechanisms.values()), tuple(self.mounts)) if self.mechanisms else None
+
+    def mechanism(self, s: ast.MechanismDecl, base: ir.Pose | None) -> ir.Pose | None:
+        """The mechanism's flange at home in world (None after an error)."""
+        many = len(s.axes) > 1
+        axes = [self._axis(a, f"{s.name.name}.{i + 1}" if many else s.name.name) for i, a in enumerate(s.axes)]
+        if s.kind == "track" and axes and axes[0] is not None and not axes[0].linear:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"a track's axis must be linear (got {s.axes[0].kind.name})", s.axes[0].kind.span)
+            return None
+        if len(axes) > 2:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"a positioner must have 1 or 2 axes (got {len(axes)})", s.span)
+            return None
+        if base is None or any(a is None for a in axes):
+            return None
+        mech = Mechanism(s.name.name, s.kind, tuple(a for a in axes if a is not None), base, s.span)
+        self.mechanisms[mech.name] = mech
+        return mech.flange(mech.home())
+
+    def _axis(self, a: ast.ExtAxisDecl, name: str) -> ExtAxis | None:
+        rep = self.rep
+        if a.kind.name not in _KINDS:
+            rep.error(codes_axes.EXT_AXIS_DEFINITION, f"an external axis must be linear or revolute (got '{a.kind.name}')", a.kind.span)
+            return None
+        linear = a.kind.name == "linear"
+        direction = AXIS_DIRECTIONS.get(a.axis.name)
+        if direction is None:
+            rep.error(codes_axes.EXT_AXIS_DEFINITION, f"an external axis must move along x, y or z (got 'axis {a.axis.name}')", a.axis.span)
+            return None
+        bounds = self._range(a, LENGTH if linear else ANGLE)
+        speed = self._positive(a.speed, SPEED if linear else ANGULAR_SPEED, f"speed of axis '{name}'", a.span)
+        accel = self._positive(a.accel, ACCEL if linear else ANGULAR_ACCEL, f"accel of axis '{name}'", a.span)
+        if bounds is None or speed is None or accel is None:
+            return None
+        low, high = bounds
+        home = min(max(0.0, low), high)
+        return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span)
+
+    def _range(self, a: ast.ExtAxisDecl, dim: Dim) -> tuple[float, float] | None:
+        call = a.args[0].value if len(a.args) == 1 else None
+        if not isinstance(call, ast.Call) or call.func.name != "range" or len(call.args) != 2:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, "an external axis must give its travel as range(low, high) after the axis",
+                           a.args[0].span if a.args else a.span)
+            return None
+        what = "the low end of the range", "the high end of the range"
+        ends = [self._finite(eval_expr(arg.value, self.scope, self.rep), dim, w, arg.span) for arg, w in zip(call.args, what)]
+        low, high = ends
+        if low is None or high is None:
+            return None
+        if not low < high:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, "range(low, high) must have low < high (got "
+                           f"{_shown(low, dim)} .. {_shown(high, dim)})", call.span)
+            return None
+        bound = MAX_SIZE_M if dim == LENGTH else MAX_TURNS * 2 * math.pi  # a cell's size; a few turns
+        if max(-low, high) > bound:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"range(low, high) must stay within +-{_shown(bound, dim)} "
+                           f"(got {_shown(low, dim)} .. {_shown(high, dim)})", call.span)
+            return None
+        return low, high
+
+    def _finite(self, v: Value | None, dim: Dim, what: str, span: Span) -> float | None:
+        x = expect_quantity(v, dim, what, span, self.rep)
+        if x is not None and not math.isfinite(x):
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"{what} must be finite (got {x})", span)
+            return None
+        return x
+
+    def _positive(self, e: ast.Expr | None, dim: Dim, what: str, span: Span) -> float | None:
+        if e is None:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"{what} must be given (the controller's machine data for it)", span)
+            return None
+        x = self._finite(eval_expr(e, self.scope, self.rep), dim, what, e.span)
+        if x is not None and x <= 0:
+            self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"{what} must be > 0 (got {_shown(x, dim)})", e.span)
+            return None
+        return x
+
+    def carried(self, on: ast.Ident, local: ir.Pose | None, kind: str, body: str, span: Span) -> ir.Pose | None:
+        """`body` rides on mechanism `on` at `local`: its world pose at home (None after an error)."""
+        mech = self.mechanisms.get(on.name)
+        if mech is None:
+            self.rep.unknown(on.name, "track or positioner", on.span, list(self.mechanisms), codes_axes.EXT_MOUNT)
+            return None
+        if kind == "robot" and mech.kind != "track":
+            self.rep.error(codes_axes.EXT_MOUNT, f"a robot must ride on a track (got positioner '{on.name}')", on.span)
+            return None
+        if local is None:
+            return None
+        self.mounts.append(Mount(body, kind, mech.name, local, span))
+        return mech.flange(mech.home()) * local
+
+    def frame(self, name: str, value: ast.Expr, world: ir.Pose, span: Span) -> None:
+        """A frame whose value names a mechanism rides on it (at its place at home)."""
+        riding = sorted(names_in(value) & set(self.mechanisms)) if self.mechanisms else []
+        if len(riding) > 1:
+            self.rep.error(codes_axes.EXT_MOUNT, f"frame '{name}' must ride on one mechanism (got {', '.join(riding)})", value.span)
+        elif riding:
+            mech = self.mechanisms[riding[0]]
+            self.mounts.append(Mount(name, "frame", mech.name, mech.flange(mech.home()).inverse() * world, span))
+
+
+def _shown(x: float, dim: Dim) -> str:
+    return f"{x * 1000:.6g} mm" if dim == LENGTH else f"{math.degrees(x):.6g} deg"
+
+
+def check_axis_branches(body: tuple[ir.Instr, ...], rep: Reporter) -> None:
+    """E606 for an axis change inside an if or while: the axes' values after it would depend on
+    which path ran, and every later target's pose depends on them."""
+    for instr in walk(body):
+        runs, bodies = flow(instr)
+        if runs not in (Runs.ONE_OF, Runs.REPEATED, Runs.MAYBE):
+            continue
+        for inner in walk(tuple(i for b in bodies for i in b)):
+            if isinstance(inner, ir.Move) and inner.motion.min_duration is not None:
+                rep.error(codes_axes.EXT_MOTION, "external axes must not move inside an if or while (their values after it "
+                          "would depend on the path taken); move them before or after it", inner.span)
+                return
+
+
+def program_axes(prog: ast.ProgramDecl, robot: ir.RobotInstance, cell: ir.Cell, rep: Reporter) -> ProgramAxes | None:
+    """The axes a single-robot program drives (`with ...`), or None when it drives none or
+    after an error (E603)."""
+    external = cell.external or ExternalAxes()
+    names: list[str] = []
+    for ident in prog.axes:
+        if external.mechanism(ident.name) is None:
+            rep.unknown(ident.name, "track or positioner", ident.span, [m.name for m in external.mechanisms], codes_axes.EXT_PROGRAM_AXES)
+            return None
+        names.append(ident.name)
+    mount = external.mount(robot.name)
+    if mount is not None and mount.mechanism not in names:
+        rep.error(codes_axes.EXT_PROGRAM_AXES, f"program '{prog.name.name}' must drive the track robot '{robot.name}' rides on "
+                  f"(add 'with {mount.mechanism}')", prog.name.span)
+        return None
+    return ProgramAxes(external, tuple(names), robot, rep) if names else None
+
+
+def refuse_track_in_tasks(robot: ir.RobotInstance, cell: ir.Cell, span: Span, rep: Reporter) -> None:
+    """E603 for a task block of a robot on a track: only a program on one robot drives axes."""
+    mount = cell.external.mount(robot.name) if cell.external is not None else None
+    if mount is not None:
+        rep.error(codes_axes.EXT_PROGRAM_AXES, f"robot '{robot.name}' rides on track '{mount.mechanism}': its program must "
+                  f"be a program on one robot that drives it (`program p on {robot.name} with {mount.mechanism}`), not a task",
+                  span)
+
+
+class ProgramAxes:
+    """The axes one task drives, and their values as the lowering walks the program in order."""
+
+    def __init__(self, external: ExternalAxes, mechanisms: tuple[str, ...], robot: ir.RobotInstance, rep: Reporter) -> None:
+        self.external = external
+        self.mechanisms = mechanisms
+        self.axes = external.axes(mechanisms)
+        self.robot = robot
+        self.rep = rep
+        self.values = {a.name: a.home for a in self.axes}
+        self.last: ir.Move | None = None  # the last move lowered: what `move axes` holds
+
+    def move(self, move: ir.Move, s: ast.Move, scope: Scope) -> ir.Move | None:
+        """`move` with the axis values at its target (its `ext(...)` over the values so far)."""
+        values = dict(self.values)
+        for m in s.modifiers:
+            if m.kind == "ext" and not self._ext(m.value, scope, values):  # type: ignore[arg-type]
+                return None
+        if values != self.values and move.kind is not ir.MotionKind.JOINT:
+            self.rep.error(codes_axes.EXT_MOTION, f"a {move.kind.name.lower()} move must keep the external axes still (got a change "
+                           "of " + ", ".join(a.name for a in self.axes if values[a.name] != self.values[a.name]) +
+                           "): coordinated motion is not planned; move the axes with a joint move or 'move axes' first", s.span)
+            return None
+        return self._timed(self._resolved(move, values), values)
+
+    def move_axes(self, s: ast.MoveAxes, scope: Scope) -> ir.Move | None:
+        """`move axes M to VALUES`: the arm holds the joints of the last move."""
+        if s.mechanism.name not in self.mechanisms:
+            self.rep.unknown(s.mechanism.name, "mechanism this program drives", s.mechanism.span, list(self.mechanisms),
+                             codes_axes.EXT_VALUES)
+            return None
+        if self.last is None:
+            self.rep.error(codes_axes.EXT_MOTION, "'move axes' must follow a move of the arm (the arm holds the joints it "
+                           "reached; got none before it)", s.span)
+            return None
+        values = dict(self.values)
+        if not self._assign(s.mechanism.name, s.values, scope, values):
+            return None
+        held = replace(self.last, axes_only=True, kind=ir.MotionKind.JOINT, via=None, span=s.span, uid=0, free=None,
+                       motion=replace(self.last.motion, duration=None))
+        return self._timed(self._resolved(held, values, keep_base_pose=True), values)
+
+    def _timed(self, move: ir.Move | None, values: dict[str, float]) -> ir.Move | None:
+        if move is None:
+            return None
+        changed = [a for a in self.axes if values[a.name] != self.values[a.name]]
+        ext = tuple((a.name, values[a.name]) for a in self.axes)
+        if changed:
+            if move.motion.zone.radius > 0 or (self.last is not None and self.last.motion.zone.radius > 0):
+                self.rep.warning(codes_axes.EXT_STOPS, "a move that moves external axes stops exactly, and so does the "
+                                 "move before it (their zones are planned as fine)", move.span)
+            need = max(axis_time(values[a.name] - self.values[a.name], a.speed, a.accel) for a in changed)
+            move = replace(move, motion=replace(move.motion, min_duration=need, zone=ir.Zone(0.0)))
+        self.values = values
+        move = replace(move, ext=ext)
+        self.last = move
+        return move
+
+    def _ext(self, args: tuple[ast.Arg, ...], scope: Scope, values: dict[str, float]) -> bool:
+        for arg in args:
+            if arg.name is None:
+                self.rep.error(codes_axes.EXT_VALUES, "ext(...) must name each mechanism (`ext(rail=1200mm)`)", arg.span)
+                return False
+            if arg.name.name not in self.mechanisms:
+                self.rep.unknown(arg.name.name, "mechanism this program drives", arg.name.span, list(self.mechanisms),
+                                 codes_axes.EXT_VALUES)
+                return False
+            if not self._assign(arg.name.name, arg.value, scope, values):
+                return False
+        return True
+
+    def _assign(self, name: str, e: ast.Expr, scope: Scope, values: dict[str, float]) -> bool:
+        mech = self.external.mechanism(name)
+        assert mech is not None
+        v = eval_expr(e, scope, self.rep)
+        items = v.items if isinstance(v, VectorV) else (v,)
+        if v is None or len(items) != len(mech.axes):
+            if v is not None:
+                self.rep.error(codes_axes.EXT_VALUES, f"'{name}' must get {len(mech.axes)} value{'s' * (len(mech.axes) > 1)}, "
+                               f"one per axis (got {len(items)})", e.span)
+            return False
+        for axis, item in zip(mech.axes, items):
+            x = expect_quantity(item, LENGTH if axis.linear else ANGLE, f"value of axis '{axis.name}'", e.span, self.rep)
+            if x is None:
+                return False
+            if not math.isfinite(x):
+                self.rep.error(codes_axes.EXT_VALUES, f"value of axis '{axis.name}' must be finite (got {x})", e.span)
+                return False
+            values[axis.name] = x
+        return True
+
+    def _resolved(self, move: ir.Move, values: dict[str, float], keep_base_pose: bool = False) -> ir.Move:
+        """The move's frame and targets with the axes at `values`: the arm's base on its track,
+        a frame on a positioner with its flange. `keep_base_pose`: the TCP stays where it is in
+        the robot's base frame (the arm holds its joints) and its pose in the frame follows."""
+        base = self.external.world(self.robot.name, values) or self.robot.base
+        frame = move.frame
+        if frame.name is None:
+            return move
+        world = self.external.world(frame.name, values) or frame.world
+        frame = ir.FrameRef(frame.name, base.inverse() * world, world)
+
+        def place(t: ir.CartesianTarget | None) -> ir.CartesianTarget | None:
+            if t is None:
+                return None
+            if keep_base_pose:
+                return replace(t, in_frame=frame.pose.inverse() * t.pose)
+            return replace(t, pose=frame.pose * t.in_frame)
+
+        target = move.target if isinstance(move.target, ir.JointTarget) else place(move.target)
+        return replace(move, frame=frame, target=target, via=place(move.via))  # type: ignore[arg-type]

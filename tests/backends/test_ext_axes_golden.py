@@ -1,0 +1,21 @@
+"""Golden files of an example that drives external axes (examples/track_tending.rmot), for the
+vendors that write external axes; the other external-axes tests are in tests/ext_axes."""
+
+from __future__ import annotations
+
+import pytest
+from backend_fixtures import check_golden, example_plans
+
+from rmot.backends import BACKENDS
+
+
+@pytest.mark.parametrize("vendor", ["rapid", "krl", "fanuc"])
+def test_track_tending_golden(vendor: str) -> None:
+    """examples/track_tending.rmot for RAPID, KRL and Fanuc TP equals its golden files, read by hand once:
+    RAPID robtargets carry the carriage in eax_a (600, 2000, 3400 mm), the work objects are
+    fixed in the robot's world with the track at 0 (door_a 550 mm above the base's 250 mm);
+    KRL E6POS carry it in E1 and each PTP that moves the track sets $VEL_EXTAX[1]/$ACC_EXTAX[1];
+    Fanuc positions carry it as `E1=` of group 1, the stations' frames as UFRAMEs in the world."""
+    result = BACKENDS[vendor]().emit(example_plans(("track_tending",))["track_tending"])
+    assert not result.has_errors
+    check_golden(vendor, "track_tending", result.files)
