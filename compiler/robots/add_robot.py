@@ -29,7 +29,7 @@ from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.record import record
 
-__all__ = ["Added", "add_from_dh"]
+__all__ = ["Added", "add_from_dh", "add_from_urdf"]
 
 _MAKERS = ("abb", "kuka", "fanuc", "yaskawa", "staubli", "any")
 _FIELDS = ("a", "alpha", "d", "theta", "range", "speed", "sign")
@@ -64,7 +64,7 @@ def _fail(code: Code, message: str, file: SourceFile, mark: object | None) -> _R
 
 
 def _node_map(node: object, file: SourceFile, what: str) -> dict[str, object]:
-    import yaml
+    import yaml  # type: ignore[import-untyped]  # PyYAML, no stubs installed
 
     from rmot.compiler.codes import ADD_BAD_FIELD
 
@@ -130,7 +130,7 @@ def _joint(node: object, k: int, file: SourceFile) -> tuple[float, ModelJointSpe
 
 def _read(file: SourceFile) -> tuple[dict[str, object], tuple[ModelJointSpec, ...], tuple[float, ...], object]:
     """The top-level fields, the six joints and their pendant signs (file positions kept for the errors)."""
-    import yaml
+    import yaml  # type: ignore[import-untyped]  # PyYAML, no stubs installed
 
     from rmot.compiler.codes import ADD_BAD_FIELD, ADD_UNREADABLE
 
@@ -164,10 +164,39 @@ def add_from_dh(path: str, text: str, seed: int = 7) -> Added:
         return Added("", math.nan, math.nan, (exc.diagnostic,))
 
 
+def add_from_urdf(path: str, name: str, maker: str, source: str, base: str | None = None, tip: str | None = None,
+                  seed: int = 7) -> Added:
+    """The library definition of a URDF arm (from `base` to `tip`, else the loader's chain and
+    flange), its joint values taken as the pendant's one to one (as ROS-I's Motoman and Stäubli
+    drivers have them), or the refusal."""
+    from rmot.compiler.codes import ADD_ACCEL_ESTIMATED, ADD_BAD_FIELD, ADD_NO_SOURCE, ADD_UNREADABLE
+    from rmot.compiler.robots.errors import RobotError
+    from rmot.compiler.robots.urdf import robot_from_urdf
+
+    file = SourceFile(path, "")
+    try:
+        if not re.fullmatch(r"[a-z][a-z0-9_]{1,62}", name):
+            raise _fail(ADD_BAD_FIELD, f"name '{name}' must be lower case letters, digits and _", file, None)
+        if maker not in _MAKERS:
+            raise _fail(ADD_BAD_FIELD, f"vendor '{maker}' is none of {', '.join(_MAKERS)}", file, None)
+        try:
+            robot = robot_from_urdf(path, base, tip)
+        except RobotError as exc:
+            raise _fail(ADD_UNREADABLE, f"the URDF does not load as a serial arm: {exc.message}", file, None) from None
+        notes = [Diagnostic(ADD_ACCEL_ESTIMATED, Severity.WARNING, "accelerations are the library's estimate "
+                            "(4 x the axis speed per second)", _span(file, None))]
+        if not source:
+            notes.insert(0, Diagnostic(ADD_NO_SOURCE, Severity.WARNING, "no --source: the URDF's numbers are cited as "
+                                       "the file's path", _span(file, None)))
+        arm = _Arm(name, name, maker, source or path, (1.0,) * 6)
+        return _derived(arm, robot, robot, tuple(notes), seed, file, None)
+    except _Refused as exc:
+        return Added("", math.nan, math.nan, (exc.diagnostic,))
+
+
 def _add(file: SourceFile, seed: int) -> Added:
-    from rmot.compiler.codes import ADD_ACCEL_ESTIMATED, ADD_BAD_FIELD, ADD_NO_SOURCE, ADD_NOT_OPW
+    from rmot.compiler.codes import ADD_ACCEL_ESTIMATED, ADD_BAD_FIELD, ADD_NO_SOURCE
     from rmot.compiler.robots.model import robot_from_model
-    from rmot.compiler.robots.model_opw import derive_opw
 
     fields, joints, signs, top = _read(file)
     name = _text(fields, "name", file, top)
@@ -179,7 +208,7 @@ def _add(file: SourceFile, seed: int) -> Added:
     dh = _text(fields, "dh", file, top, "standard")
     if dh not in ("standard", "modified"):
         raise _fail(ADD_BAD_FIELD, f"dh must be standard or modified (got '{dh}')", file, top)
-    notes = []
+    notes: list[Diagnostic] = []
     source = _text(fields, "source", file, top, "")
     if not source:
         notes.append(Diagnostic(ADD_NO_SOURCE, Severity.WARNING, "the table names no `source`: its numbers are cited "
@@ -188,23 +217,46 @@ def _add(file: SourceFile, seed: int) -> Added:
                             "(4 x the axis speed per second)", _span(file, top)))
     # the OPW form is derived on the DH variables u; the pendant value p turns u = sign·p
     spec = ModelSpec(name, dh == "modified", joints, controller=None if maker == "any" else maker)
-    found = derive_opw(robot_from_model(spec))
-    if found is None:
-        raise _fail(ADD_NOT_OPW, "the table is not an ortho-parallel arm with a spherical wrist (no OPW closed form "
-                    "reproduces its FK)", file, top)
-    params, jmap = _clean(found[0], OpwJointMap(sign=tuple(a * b for a, b in zip(found[1].sign, signs)),
-                                                offset=found[1].offset))
-    base, flange = found[2], found[3]
-    flange_rz = _flange_turn(base, flange)
-    if flange_rz is None:
-        raise _fail(ADD_NOT_OPW, "the table's frame 0 or flange is turned against the OPW frames in a way a library "
-                    "definition cannot state (frame 0 must have z up along J1 and x towards the arm at zero; the "
-                    "flange only turned about its z)", file, top)
-    model = _text(fields, "model", file, top, name)
-    lib = _spec(name, model, maker, source or "unknown", params, jmap, joints, flange_rz)
     pendant = tuple((sg, 0.0, 0) for sg in signs)
-    max_mm, max_rad = _fk_check(robot_from_model(ModelSpec(name, dh == "modified", joints, pendant=pendant)), lib, seed)
-    return Added(_definition(lib, maker, params, jmap, flange_rz), max_mm, max_rad, tuple(notes))
+    table = robot_from_model(ModelSpec(name, dh == "modified", joints, pendant=pendant))
+    arm = _Arm(name, _text(fields, "model", file, top, name), maker, source or "unknown", signs)
+    return _derived(arm, robot_from_model(spec), table, tuple(notes), seed, file, top)
+
+
+@record(slots=True)
+class _Arm:
+    """What the definition says besides the geometry: names, maker, source, pendant signs."""
+
+    name: str
+    model: str
+    maker: str
+    source: str
+    signs: tuple[float, ...]
+
+
+def _derived(arm: _Arm, in_dh: object, in_pendant: object, notes: tuple[Diagnostic, ...], seed: int,
+             file: SourceFile, where: object) -> Added:
+    """The definition of the arm whose FK in DH variables is `in_dh`'s, checked against
+    `in_pendant` (the same arm in pendant values)."""
+    from rmot.compiler.codes import ADD_NOT_OPW
+    from rmot.compiler.robots.model_opw import derive_opw
+
+    found = derive_opw(in_dh)
+    if found is None:
+        raise _fail(ADD_NOT_OPW, "not an ortho-parallel arm with a spherical wrist (no OPW closed form reproduces "
+                    "its FK)", file, where)
+    params, jmap = _clean(found[0], OpwJointMap(sign=tuple(a * b for a, b in zip(found[1].sign, arm.signs)),
+                                                offset=found[1].offset))
+    limits = in_pendant.joint_limits  # type: ignore[attr-defined]
+    speeds = in_pendant.velocity_limits  # type: ignore[attr-defined]
+    flange_rz = _flange_turn(found[2], _spec(arm, params, jmap, limits, speeds, 0.0), in_pendant)
+    if flange_rz is None:
+        raise _fail(ADD_NOT_OPW, "frame 0 or the flange is turned against the OPW frames in a way a library "
+                    "definition cannot state (frame 0 must have z up along J1 and x towards the arm at zero; the "
+                    "flange only turned about its z)", file, where)
+    lib = _spec(arm, params, jmap, limits, speeds, flange_rz)
+    max_mm, max_rad = _fk_check(in_pendant, lib, seed)
+    return Added(_definition(lib, arm.maker, params, jmap, flange_rz), max_mm, max_rad, notes)
 
 
 def _tidy(v: float) -> float:
@@ -218,22 +270,28 @@ def _clean(p: OpwParams, jmap: OpwJointMap) -> tuple[OpwParams, OpwJointMap]:
     return params, OpwJointMap(sign=tuple(_tidy(v) for v in jmap.sign), offset=tuple(_tidy(v) for v in jmap.offset))
 
 
-def _flange_turn(base: np.ndarray, flange: np.ndarray) -> float | None:
-    """The flange's turn about its z when frame 0 is the OPW base and the flange only turns about z."""
+def _flange_turn(base: np.ndarray, unturned: RobotSpec, arm: object) -> float | None:
+    """The flange's turn about its z (the library's `flange_rz`), where frame 0 is the OPW base
+    and the arm's flange differs from the definition's unturned one by a turn about z only."""
+    from rmot.compiler.robots.build import build_robot
+
     if not np.allclose(base, np.eye(4), atol=1e-9):
         return None
-    if not np.allclose(flange[:3, 3], 0.0, atol=1e-9) or abs(flange[2, 2] - 1.0) > 1e-9:
+    zero = np.zeros(6)
+    m = np.linalg.inv(build_robot(unturned).fk(zero)) @ arm.fk(zero)  # type: ignore[attr-defined]
+    if not np.allclose(m[:3, 3], 0.0, atol=1e-9) or abs(m[2, 2] - 1.0) > 1e-9:
         return None
-    return _tidy(math.atan2(flange[1, 0], flange[0, 0]))
+    return _tidy(math.atan2(m[1, 0], m[0, 0]))
 
 
-def _spec(name: str, model: str, maker: str, source: str, params: OpwParams, jmap: OpwJointMap,
-          joints: tuple[ModelJointSpec, ...], flange_rz: float) -> RobotSpec:
+def _spec(arm: _Arm, params: OpwParams, jmap: OpwJointMap, limits_rad: np.ndarray, speed_rad: np.ndarray,
+          flange_rz: float) -> RobotSpec:
     from rmot.compiler.robots.library_common import ACC_EST, acc_estimate, sources
     from rmot.compiler.robots.spec import opw_spec
 
-    limits = tuple((round(math.degrees(j.lo), 6), round(math.degrees(j.hi), 6)) for j in joints)
-    speed = tuple(round(math.degrees(j.speed), 6) for j in joints)
+    limits = tuple((round(math.degrees(lo), 6), round(math.degrees(hi), 6)) for lo, hi in limits_rad)
+    speed = tuple(round(math.degrees(v), 6) for v in speed_rad)
+    name, model, maker, source = arm.name, arm.model, arm.maker, arm.source
     reach = params.a1 + params.c2 + math.hypot(params.a2, params.c3)
     scale = max(reach, 0.3) / 1.44  # the MH12's capsule radii (library_rosi.py) scaled by wrist reach
     radii = tuple(max(0.02, round(r * scale, 3)) for r in (0.13, 0.11, 0.08, 0.08, 0.065, 0.055, 0.04))

@@ -93,3 +93,43 @@ def test_cli_prints_the_definition_or_a_located_error(tmp_path):
     bad = CliRunner().invoke(cli, ["robots", "add", str(table)])
     assert bad.exit_code == 2 and f"{table}:8:5: error[E548]" in bad.stderr, bad.stderr
     assert isinstance(bad.exception, SystemExit)  # exit 2, no traceback
+
+
+def _urdf_of(ref) -> str:  # type: ignore[no-untyped-def]
+    """A URDF of a reference chain: its joints, `base` (the controller frame) and `tool0`."""
+    def origin(xyz, rpy) -> str:  # type: ignore[no-untyped-def]
+        return f'<origin xyz="{" ".join(map(repr, xyz))}" rpy="{" ".join(map(repr, rpy))}"/>'
+
+    links = ["base_link"] + [f"link_{i}" for i in range(1, 7)]
+    out = ['<robot name="arm">'] + [f'<link name="{n}"/>' for n in links + ["base", "tool0"]]
+    for i, (xyz, rpy, axis) in enumerate(ref.joints, 1):
+        out.append(f'<joint name="joint_{i}" type="revolute"><parent link="{links[i - 1]}"/><child link="{links[i]}"/>'
+                   f'{origin(xyz, rpy)}<axis xyz="{" ".join(map(repr, axis))}"/>'
+                   '<limit lower="-2.5" upper="2.5" effort="100" velocity="3"/></joint>')
+    out.append(f'<joint name="base_link-base" type="fixed"><parent link="base_link"/><child link="base"/>'
+               f'{origin(*ref.controller)}</joint>')
+    assert len(ref.tool) == 1
+    out.append(f'<joint name="link_6-tool0" type="fixed"><parent link="link_6"/><child link="tool0"/>{origin(*ref.tool[0])}'
+               '</joint>')
+    return "\n".join(out + ["</robot>"])
+
+
+def test_urdf_becomes_a_definition_equal_to_its_chain(tmp_path):
+    """The GP12's ROS-I chain as a URDF, from `base` to `tool0`: the definition's FK is the chain's."""
+    from reference_arms import BY_NAME
+    from test_reference_fk import reference_fk
+
+    from rmot.compiler.robots.add_robot import add_from_urdf
+
+    ref = BY_NAME["yaskawa_gp12"]
+    path = tmp_path / "gp12.urdf"
+    path.write_text(_urdf_of(ref))
+    added = add_from_urdf(str(path), "my_gp12", "yaskawa", "ROS-I gp12_macro.xacro", base="base", tip="tool0")
+    assert [d.code.id for d in added.diagnostics] == ["W548"] and added.max_mm < 1e-6
+    robot = _built(added.text)
+    for q in np.random.default_rng(4).uniform(robot.joint_limits[:, 0], robot.joint_limits[:, 1], (40, 6)):
+        a, b = robot.fk(q), reference_fk(ref, q)
+        # the URDF's tool0 turn is written 3.1415926 -1.570796: 3e-7 rad off pi, -pi/2
+        assert np.abs(a[:3, 3] - b[:3, 3]).max() < 1e-8 and np.abs(a[:3, :3] - b[:3, :3]).max() < 1e-6
+    turned = add_from_urdf(str(path), "my_gp12", "yaskawa", "", base="base", tip="link_6")  # flange z across J6
+    assert [d.code.id for d in turned.diagnostics] == ["E549"]
