@@ -130,7 +130,7 @@ def _joint(node: object, k: int, file: SourceFile) -> tuple[float, ModelJointSpe
 
 def _read(file: SourceFile) -> tuple[dict[str, object], tuple[ModelJointSpec, ...], tuple[float, ...], object]:
     """The top-level fields, the six joints and their pendant signs (file positions kept for the errors)."""
-    import yaml  # type: ignore[import-untyped]  # PyYAML, no stubs installed
+    import yaml
 
     from rmot.compiler.codes import ADD_BAD_FIELD, ADD_UNREADABLE
 
@@ -173,7 +173,11 @@ def add_from_urdf(path: str, name: str, maker: str, source: str, base: str | Non
     from rmot.compiler.robots.errors import RobotError
     from rmot.compiler.robots.urdf import robot_from_urdf
 
-    file = SourceFile(path, "")
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            file = SourceFile(path, f.read(200))  # the first line, for the error's caret
+    except OSError:
+        file = SourceFile(path, "")
     try:
         if not re.fullmatch(r"[a-z][a-z0-9_]{1,62}", name):
             raise _fail(ADD_BAD_FIELD, f"name '{name}' must be lower case letters, digits and _", file, None)
