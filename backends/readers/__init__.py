@@ -72,11 +72,42 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
 def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.inform import read_inform
 
-    m = read_inform(path, text)
+    m = read_inform(path, text, _FANUC_PROGRAMS)
+    _FANUC_INLINED.update(m.inlined)
     doc = Document("inform", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments))
     return doc, m.tally
+
+
+def _val3(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.val3 import read_val3
+
+    folder = os.path.dirname(os.path.abspath(path))
+    data = [(p, _load(p)) for p in sorted(os.path.join(folder, f) for f in os.listdir(folder) if f.lower().endswith(".dtx"))]
+    m = read_val3(path, text, data, _FANUC_PROGRAMS)
+    _FANUC_INLINED.update(m.inlined)
+    main = m.routines[0].name if m.routines else "start"
+    name = os.path.basename(folder) if main == "start" else main  # the application is its folder
+    doc = Document("val3", name, main, tuple(m.targets.values()), tuple(m.tools.values()),
+                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.tally.comments))
+    return doc, m.tally
+
+
+def _project(paths: list[str]) -> list[str]:
+    """A VAL3 project (`.pjx`) as the program files it names, `start.pgx` first."""
+    out: list[str] = []
+    for path in paths:
+        if not path.lower().endswith(".pjx"):
+            out.append(path)
+            continue
+        names = re.findall(r'<Program\s+file="([^"/\\]+\.pgx)"', _load(path))
+        if not names:
+            raise _fail(codes.NOT_VENDOR_LANGUAGE, path, "a VAL3 project must name its programs (`<Program file=..>`)")
+        names.sort(key=lambda n: n.lower() != "start.pgx")
+        out += [os.path.join(os.path.dirname(path), n) for n in names]
+    return out
 
 
 _MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
@@ -85,8 +116,9 @@ _LIMITS: list[JointLimits | None] = [None]  # that model's joint limits (URScrip
 # Fanuc tool and frame numbers are the controller's, shared by every program: the names the
 # files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
 _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
-# the TP programs of one import by name: a program CALLed inside a counting loop whose
-# offset registers it uses is read again at the call, inlined with the loop's counter
+# the TP programs (and INFORM jobs) of one import by name: a program CALLed inside a counting
+# loop whose offset registers (shift variables) it uses is read again at the call, inlined with
+# the loop's counter
 _FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
 _FANUC_INLINED: set[str] = set()  # the programs some caller inlined
 
@@ -97,7 +129,7 @@ READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
     ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
     ".urscript": ("urscript", _urscript), ".ls": ("fanuc", _fanuc),
-    ".jbi": ("inform", _inform),
+    ".jbi": ("inform", _inform), ".pgx": ("val3", _val3), ".pjx": ("val3", _val3),
 }
 
 _SOURCES: dict[str, SourceFile] = {}
@@ -137,6 +169,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     reads its .dat (given too, or beside it). `model`: the robot library name the program runs
     on, where a vendor writes speeds relative to the arm (URScript movej); `limits`: its joint
     speed and acceleration limits (the caller loads the arm: a reader only reads text)."""
+    paths = _project(paths)
     _MODEL[0] = model
     _LIMITS[0] = limits
     _FANUC_LABELS["UTOOL"].clear()
@@ -150,6 +183,14 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
                 _FANUC_PROGRAMS[prog.group(1).upper()] = (path, _load(path))
             for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):
                 _FANUC_LABELS[kind][int(n)] = name
+        if path.lower().endswith(".pgx"):  # VAL3 programs by name, the same way
+            program = re.search(r'<Program\s+name="(\w+)"', _load(path))
+            if program:
+                _FANUC_PROGRAMS[program.group(1).upper()] = (path, _load(path))
+        if path.lower().endswith(".jbi"):  # INFORM jobs by name, as TP programs: inlined in a shifting loop
+            job = re.search(r"(?m)^//NAME\s+(\w+)", _load(path))
+            if job:
+                _FANUC_PROGRAMS[job.group(1).upper()] = (path, _load(path))
     docs: list[Document] = []
     consumed = set()
     for path in paths:

@@ -10,7 +10,7 @@ from rmot.lang.diagnostics import Code
 __all__ = [
     "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
-    "JOINT_RATES_READ", "PAYLOAD_UNMATCHED",
+    "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE", "PARAMETERS_NUMBER",
 ]
 
 NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
@@ -34,3 +34,13 @@ JOINT_RATES_READ = Code("W515", "joint-rates-read",
                         "is unknown or it blends: read as 100 %")
 PAYLOAD_UNMATCHED = Code("W516", "payload-unmatched",
                          "a payload switch matches no part of the cell, or several: it is kept native")
+MOTION_OPTION_KEPT = Code("W517", "motion-option-kept",
+                          "a motion option rmot's move has no form for (TP PTH, COORD, a TB/TA/DB action, Arc "
+                          "Start/End, Weave; INFORM NWAIT): the move is imported and the option kept native right "
+                          "after it (NWAIT: dropped, the next instructions run once the move ends)")
+LOOP_READ_ONCE = Code("W518", "loop-read-once",
+                      "a program's outermost endless loop (URScript `while True:`) is read as one cycle: "
+                      "rmot's program is one cycle, which the controller repeats")
+PARAMETERS_NUMBER = Code("W519", "parameters-number",
+                         "a URScript function's parameters are untyped: they are declared `number` and the lines "
+                         "that use them stay native")

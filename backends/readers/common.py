@@ -17,7 +17,8 @@ from rmot.backends.readers.model import Call, Cond, FileCount, Native, Pulse, Se
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
-__all__ = ["SIMPLE_FORMS", "label_arms", "match_simple", "Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
+__all__ = ["SIMPLE_FORMS", "label_arms", "label_loop", "reaches",
+           "match_simple", "Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
            "num_expr", "rmot_name", "RMOT_RESERVED"]
 
 T = TypeVar("T")
@@ -178,6 +179,7 @@ SIMPLE_FORMS: dict[str, Callable[[re.Match[str], Where], Stmt]] = {
     "aout": lambda m, w: SetOut(int(m.group(1)), float(m.group(2)), w, analog=True),
     "wait": lambda m, w: Wait(float(m.group(1)), w),
     "wait_in": lambda m, w: WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), None, w),
+    "wait_true": lambda m, w: WaitIn(Cond(int(m.group("sig")), not m.group("neg")), None, w),  # WAIT (!DI[n])
     "call": lambda m, w: Call(m.group(1), (), w),  # the routine keeps the name it has in its file
     "call_renamed": lambda m, w: Call(rmot_name(m.group(1)), (), w),  # a routine named as rmot names it
 }
@@ -204,3 +206,32 @@ def label_arms(text_at: Callable[[int], str], i: int, end: int, label_a: str, ju
     jmp = jump.fullmatch(text_at(ja - 1))
     jb = next((k for k in range(ja + 1, end) if jmp and text_at(k) == label(jmp.group(1))), None)
     return ja, jb
+
+
+def label_loop(text_at: Callable[[int], str], i: int, end: int, start: str, label: str,
+               close: Callable[[str, str], str], step: Callable[[str], str]) -> tuple[str, int, int, int] | None:
+    """A counted loop written with a label (TP, INFORM): line `i` sets the counter (`start`:
+    groups counter, first value), the next is the label (`label`: group its name), the body,
+    the step line (`step(counter)`) and the conditional jump back (`close(counter, label)`:
+    group the last value). (counter, first, last, line of the jump back) or None."""
+    m = re.fullmatch(start, text_at(i))
+    lbl = re.fullmatch(label, text_at(i + 1)) if m else None
+    if m is None or lbl is None:
+        return None
+    back = close(m.group(1), lbl.group(1))
+    j = next((k for k in range(i + 2, end) if re.fullmatch(back, text_at(k))), None)
+    if j is None or not re.fullmatch(step(m.group(1)), text_at(j - 1)):
+        return None
+    return m.group(1), int(m.group(2)), int(re.fullmatch(back, text_at(j)).group(1)), j  # type: ignore[union-attr]
+
+
+def reaches(sources: dict[str, tuple[str, str]], name: str, uses: Callable[[str], bool], call: str,
+            depth: int = 0) -> bool:
+    """Whether program `name` (its (path, text) in `sources`, by upper-case name), or one it
+    calls (`call`: a pattern whose group 1 names the callee), 8 levels down, has text for which
+    `uses` holds (a TP offset register or an INFORM shift a caller's loop sets)."""
+    source = sources.get(name.upper())
+    if source is None or depth > 8:
+        return False
+    return uses(source[1]) or any(reaches(sources, callee, uses, call, depth + 1)
+                                  for callee in re.findall(call, source[1]))

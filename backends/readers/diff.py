@@ -4,7 +4,8 @@ Targets are matched by name and compared by position (mm), orientation (the angl
 relative rotation, deg), joint values (deg) and configuration; instructions are aligned per
 routine (difflib's longest matching blocks over each instruction's kind and target, so an
 inserted line does not shift every later comparison) and compared by speed, zone, time,
-tool, frame and I/O value. Every item names both places, `file:line`.
+tool, frame and I/O value; a line kept native on both sides by the words that changed. Every
+item names both places, `file:line`.
 """
 
 from __future__ import annotations
@@ -109,7 +110,20 @@ def _details(s: Stmt) -> dict[str, str]:
     return {}
 
 
+def _native_change(x: Native, y: Native) -> list[str]:
+    """A line kept native on both sides whose text changed: the words that differ, then the
+    line (a touch-up of a move rmot cannot read, such as `CNT60` -> `CNT20`, is still named)."""
+    if x.text == y.text:
+        return []
+    wa, wb = x.text.split(), y.text.split()
+    words = [f"{' '.join(wa[i1:i2]) or '-'} -> {' '.join(wb[j1:j2]) or '-'}"
+             for op, i1, i2, j1, j2 in SequenceMatcher(a=wa, b=wb, autojunk=False).get_opcodes() if op != "equal"]
+    return [f"{x.where} -> {y.where}: native line changed ({'; '.join(words)}): {y.text}"]
+
+
 def _compare(x: Stmt, y: Stmt) -> list[str]:
+    if isinstance(x, Native) and isinstance(y, Native):
+        return _native_change(x, y)
     where = f"{x.where} -> {y.where}: {describe(x)}"
     dx, dy = _details(x), _details(y)
     out = [f"{where}: {k} {dx[k]} -> {dy[k]}" for k in dx if dx[k] != dy.get(k) and k != "target"]

@@ -20,9 +20,10 @@ import math
 import re
 
 from rmot.backends.fanuc_tp import FanucBackend
-from rmot.backends.readers.common import Tally, label_arms, match_simple, number, rmot_name
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
 from rmot.backends.readers.model import (
-    Cond, For, FrameData, If, Move, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
+    Cond, For, FrameData, If, Move, Native, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.compiler import ir
@@ -35,11 +36,12 @@ _SIG = r"\[(\d+)(?::[^\]]*)?\]"
 _JMP = re.compile(r"JMP LBL\[(\d+)\]")
 # TP standard instructions (B-83284EN): outputs, pulses, analog outputs, timed and input waits, calls
 _SIMPLE = (
-    ("out", re.compile(rf"DO{_SIG}\s*=\s*(ON|OFF)")),
+    ("out", re.compile(rf"DO{_SIG}\s*=\s*\(?(ON|OFF)\)?")),  # the pendant writes `DO[n]=(ON)` too
     ("pulse", re.compile(rf"DO{_SIG}\s*=\s*PULSE,\s*([\d.]+)\s*sec")),
     ("aout", re.compile(rf"AO{_SIG}\s*=\s*(-?[\d.]+)")),
     ("wait", re.compile(r"WAIT\s+([\d.]+)\s*\(sec\)")),
     ("wait_in", re.compile(rf"WAIT DI{_SIG}\s*=\s*(ON|OFF)")),
+    ("wait_true", re.compile(r"WAIT\s*\(\s*(?P<neg>!?)DI\[(?P<sig>\d+)(?::[^\]]*)?\]\s*\)")),
     ("call", re.compile(r"CALL\s+(\w+)")),
 )
 
@@ -99,11 +101,13 @@ class _Ls:
         return self.routine
 
     def _mn_line(self, line: str, n: int) -> None:
+        if re.fullmatch(r"\s*-+\s*;?\s*", line):  # the end of a move's point-logic lines (its own
+            return  # numbered lines, listed after the move, run at the point: read in sequence)
         m = re.match(r"\s*(\d+)?\s*:\s*(.*?)\s*;?\s*$", line)
         if m is None:
             raise self.tally.fail(f"a /MN line must be `N:  instruction ;` (got `{line.strip()[:40]}`)", Where(self.path, n))
         text = m.group(2)
-        if m.group(1) is None and self.instructions:  # `:` continues the line before (C P[a] : P[b])
+        if m.group(1) is None and self.instructions and re.match(r"P\[", text):  # `: P[b] ..` continues C P[a]
             prev, where = self.instructions[-1]
             self.instructions[-1] = (f"{prev} : {text}", where)
         else:
@@ -113,7 +117,7 @@ class _Ls:
         text = "\n".join(self.raw)
         start = text.find("/POS")
         for m in re.finditer(r"P\[(\d+)(?::\"([^\"]*)\")?\]\s*\{(.*?)\};", text[max(start, 0):], re.S):
-            n, label, body = int(m.group(1)), m.group(2), m.group(3)
+            n, label, body = int(m.group(1)), m.group(2), re.split(r"\bGP[2-9]\s*:", m.group(3))[0]  # the arm's group
             line = text[:max(start, 0) + m.start()].count("\n") + 1
             values = {k.upper(): float(v) for k, v in re.findall(r"\b([XYZWPR]|J\d)\s*=\s*(-?[\d.]+)", body)}
             conf = re.search(r"CONFIG\s*:\s*'([^']*)'", body)
@@ -166,6 +170,10 @@ class _Ls:
             found = pattern(i, end)
             if found is not None:
                 return found
+        moved = self._motion(text, where) if text.startswith(("J ", "L ", "C ")) else None
+        if moved is not None:
+            self.tally.imported += 1
+            return [moved[0], *moved[1]], i + 1
         stmt = self._simple(text, where)
         payload = re.fullmatch(r"PAYLOAD\[(\d+)\]", text)
         remark = re.fullmatch(r"!.*:\s*(\d+(?:\.\d+)?)\s*kg", self._text(i - 1)) if payload and i > 0 else None
@@ -231,23 +239,19 @@ class _Ls:
         return table[n].name
 
     def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        m = re.fullmatch(r"R\[(\d+)(?::([^\]]*))?\]\s*=\s*(-?\d+)", self._text(i))
-        lbl = re.fullmatch(r"LBL\[(\d+)\]", self._text(i + 1)) if m else None
-        if m is None or lbl is None:
+        found = label_loop(self._text, i, end, r"R\[(\d+)(?::[^\]]*)?\]\s*=\s*(-?\d+)", r"LBL\[(\d+)\]",
+                           lambda r, k: rf"IF R\[{r}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{k}\]",
+                           lambda r: rf"R\[{r}(?::[^\]]*)?\]=R\[{r}(?::[^\]]*)?\]\+1")
+        if found is None:
             return None
-        reg = m.group(1)
-        close = rf"IF R\[{reg}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{lbl.group(1)}\]"
-        j = next((k for k in range(i + 2, end) if re.fullmatch(close, self._text(k))), None)
-        step = rf"R\[{reg}(?::[^\]]*)?\]=R\[{reg}(?::[^\]]*)?\]\+1"
-        if j is None or not re.fullmatch(step, self._text(j - 1)):
-            return None
-        var = rmot_name((m.group(2) or f"r{reg}").replace(" ", "_"))
+        reg, first, last, j = found
+        label = re.match(r"R\[\d+:([^\]]*)\]", self._text(i))
+        var = rmot_name((label.group(1) if label else f"r{reg}").replace(" ", "_"))
         self.loop_vars[reg] = var
         body, _ = self._block(i + 2, j - 1)
         del self.loop_vars[reg]
-        last = int(re.fullmatch(close, self._text(j)).group(1))  # type: ignore[union-attr]
         self.tally.imported += 1
-        return [For(var, int(m.group(3)), last + 1, tuple(body), self.instructions[i][1])], j + 1
+        return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`IF DI[n]<>ON,JMP LBL[a]`, then-body, [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
@@ -282,10 +286,11 @@ class _Ls:
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
         if text.startswith(("J ", "L ", "C ")):
-            return self._motion(text, where)
+            return None  # a move this reader could not read (`_motion`)
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "ABORT" else None)
 
-    def _motion(self, text: str, where: Where) -> Move | None:
+    def _motion(self, text: str, where: Where) -> tuple[Move, list[Stmt]] | None:
+        """The move of a motion line and the options kept native after it (W517), or None."""
         circ = _CIRC.match(text)
         lin = None if circ else _MOTION.match(text)
         if circ:
@@ -296,19 +301,17 @@ class _Ls:
         else:
             return None
         decls = [self.positions.get(p) for p in points]
-        # ACCn: the motion option's acceleration override, n % (R-30iB Operator's Manual, motion
-        # options "ACC"); rmot's joint acceleration share takes 1..100 % on joint moves
-        acc = re.match(r"(?i)ACC\s*(\d+)\b", rest.strip())
-        if acc is not None:
-            if kind != "joint" or not 1 <= int(acc.group(1)) <= 100:
-                return None
-            rest = rest.strip()[acc.end():]
-        offset = re.fullmatch(r"(?i)Offset,PR\[(\d+)\]", rest.strip()) if rest.strip() else None
-        if any(d is None for d in decls) or (rest.strip() and (offset is None or int(offset.group(1)) not in self.offsets)):
+        options = _options(rest)
+        if options is None or any(d is None for d in decls):
+            return None
+        acc, offset, kept = options
+        if acc is not None and (kind != "joint" or not 1 <= acc <= 100):
+            return None  # rmot's joint acceleration share takes 1..100 % on joint moves
+        if offset is not None and offset not in self.offsets:
             return None
         exprs = [d.name for d in decls]  # type: ignore[union-attr]
-        if offset:
-            terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(self.offsets[int(offset.group(1))].items()))
+        if offset is not None:
+            terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(self.offsets[offset].items()))
             exprs = [f"shift({e}, {terms})" if terms else e for e in exprs]
         timing = _speed(kind, speed.replace(" ", ""))
         if timing is None:
@@ -316,30 +319,33 @@ class _Ls:
         cnt = re.fullmatch(r"(?i)CNT\s*(\d+)", zone)
         decl = decls[-1]
         assert decl is not None
-        return Move(kind, exprs[-1], decl.name, where, via=exprs[0] if kind == "circular" else None,
+        move = Move(kind, exprs[-1], decl.name, where, via=exprs[0] if kind == "circular" else None,
                     speed=timing[0], joint_pct=timing[1], time=timing[2],
                     zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
                     tool=self._named("UTOOL"), frame=self._named("UFRAME"),
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
-                    pose=decl.pose, joints=decl.joints,
-                    joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None)
+                    pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
+        return move, [self._option(text, where) for text in kept]
 
-
-    def _uses_offsets(self, name: str, depth: int) -> bool:
-        """Whether program `name`, or a program it calls (8 levels), moves by an offset register
-        this program's loops set."""
-        source = self.programs.get(name.upper())
-        if source is None or depth > 8:
-            return False
-        if any(re.search(rf"Offset,PR\[{k}\]", source[1]) for k in self.offsets):
-            return True
-        return any(self._uses_offsets(callee, depth + 1) for callee in re.findall(r"CALL\s+(\w+)", source[1]))
+    def _option(self, text: str, where: Where) -> Stmt:
+        """A motion option kept after its move: an action (`DO[n]=ON`, `CALL p`) read as its
+        statement, anything else native; W517 says the option was the move's."""
+        self.tally.warn(codes.MOTION_OPTION_KEPT, f"the move's option `{text[:50]}` is kept after the move "
+                        "(an action timed before or after arrival runs once the move ends)", where)
+        action = re.fullmatch(r"(?i)(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*,\s*(.+)", text)
+        stmt = match_simple(action.group(1).strip(), _SIMPLE, where) if action else None
+        if stmt is not None:
+            return stmt
+        self.tally.native += 1
+        return Native("fanuc", text, where)
 
     def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
         """The body of program `name` read with this program's loop counters and offset
         registers, when it moves a target by one of them (else None: it is called)."""
         source = self.programs.get(name.upper())
-        if source is None or not self.loop_vars or not self._uses_offsets(name, 0):
+        offsets = [rf"Offset,PR\[{k}\]" for k in self.offsets]  # a program that moves by one
+        if source is None or not self.loop_vars or not reaches(
+                self.programs, name, lambda text: any(re.search(p, text) for p in offsets), r"CALL\s+(\w+)"):
             return None
         callee = _Ls(source[0], source[1], self.labels, self.programs)
         callee.offsets, callee.loop_vars = self.offsets, self.loop_vars
@@ -353,14 +359,46 @@ class _Ls:
 
 
 
+# Motion options (R-30iB Operator's Manual, "Motion option instructions"): the path is the
+# move's with or without them; kept native after the move (W517). ACCn and Offset,PR[k] are read.
+_KEPT_OPTION = re.compile(r"(?i)(PTH|COORD|(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*,\s*.+$"
+                          r"|Arc\s+(?:Start|End)\s*\[[^\]]*\]|Weave\s*(?:\w+\s*)?\[[^\]]*\]|Weave\s+End)")
+
+
+def _options(rest: str) -> tuple[int | None, int | None, list[str]] | None:
+    """(ACCn, Offset,PR[k] register, options kept native) of a motion line's options, or None
+    where one has no reading (the whole move is kept native)."""
+    acc: int | None = None
+    offset: int | None = None
+    kept: list[str] = []
+    rest = rest.strip().lstrip(":").strip()
+    while rest:
+        m = re.match(r"(?i)ACC\s*(\d+)\b", rest)
+        o = None if m else re.match(r"(?i)Offset,\s*PR\[(\d+)(?::[^\]]*)?\]", rest)
+        k = None if m or o else _KEPT_OPTION.match(rest)
+        if m:
+            acc = int(m.group(1))
+        elif o:
+            offset = int(o.group(1))
+        elif k:
+            kept.append(re.sub(r"\s+", " ", k.group(0).strip()))
+        else:
+            return None
+        rest = rest[(m or o or k).end():].strip().lstrip(":").strip()  # type: ignore[union-attr]
+    return acc, offset, kept
+
+
 def _speed(kind: str, text: str) -> tuple[float | None, float | None, float | None] | None:
     """(TCP mm/s, joint %, fixed time s) of a TP speed."""
-    m = re.fullmatch(r"([\d.]+)(%|mm/sec|sec)", text)
+    m = re.fullmatch(r"([\d.]+)(%|mm/sec|cm/min|inch/min|sec|msec)", text)
     if m is None or number(m.group(1)) is None:
         return None
     value = float(m.group(1))
-    if m.group(2) == "sec":
-        return (None, None, value)
+    if m.group(2) in ("sec", "msec"):
+        return (None, None, value / 1000 if m.group(2) == "msec" else value)
+    if m.group(2) in ("cm/min", "inch/min"):  # the TP feedrate units (R-30iB manual, motion speed)
+        value *= (10.0 if m.group(2) == "cm/min" else 25.4) / 60.0
+        return (value, None, None) if kind != "joint" else None
     if (m.group(2) == "%") != (kind == "joint"):
         return None
     return (value, None, None) if m.group(2) == "mm/sec" else (None, value, None)

@@ -18,10 +18,12 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers.common import Tally, label_arms, match_simple
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
-    Cond, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
+    Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
+from rmot.backends.readers.rapid import mm
 from rmot.compiler import ir
 
 __all__ = ["read_inform", "PL_MM"]
@@ -38,12 +40,21 @@ _SIMPLE = (
     ("call_renamed", re.compile(r"CALL JOB:(\w+)")),
 )
 
+# the remark the backend writes where the program attaches or detaches a part (INFORM selects
+# loads only as tool files: backends/inform.py, W460): the tool and parts' mass
+_PAYLOAD_REMARK = re.compile(r"'(?:attach|detach) \w+: payload \d+(?:\.\d+)? kg")
 PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/inform.py)
 
 
 class _Job:
-    def __init__(self, path: str, text: str) -> None:
+    def __init__(self, path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> None:
         self.tally = Tally(path, text, "inform")
+        self.jobs = jobs or {}  # the import's jobs by name (a job called in a shifting loop is inlined)
+        self.inlined: set[str] = set()
+        self.var_names: dict[str, str] = {}  # `'D050 = row`: the loop counters' names
+        self.counters: dict[str, str] = {}  # D variable -> the rmot loop variable, inside its loop
+        self.shifts: dict[str, dict[str, str]] = {}  # P variable -> axis -> offset expression (mm)
+        self.shift: str | None = None  # the P variable between SFTON and SFTOF
         self.path = path
         self.raw = text.split("\n")
         self.name = ""
@@ -60,7 +71,7 @@ class _Job:
         first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
         if first[1].strip() != "/JOB":
             raise self.tally.fail("an INFORM job must start with `/JOB`", Where(self.path, first[0]))
-        section, conf, tool, user, pulse = "", "0,0,0", 0, None, False
+        section, conf, tool, user, pulse, postype = "", "0,0,0", 0, None, False, "ROBOT"
         for n, line in enumerate(self.raw, 1):
             s = line.strip()
             if s.startswith("//NAME"):
@@ -69,18 +80,24 @@ class _Job:
                 section = s.split()[0] if s.startswith("//") and not s.startswith("///") else section
             if s.startswith("///"):
                 key, _, rest = s[3:].partition(" ")
+                if key == "COMM" and rest.strip().upper() == self.name.upper():
+                    self.name = rest.strip()  # the job's own name as its comment gives it (its case)
                 conf = rest if key == "RCONF" else conf
                 tool = int(rest) if key == "TOOL" and rest.isdigit() else tool
-                user = int(rest) if key == "USER" and rest.isdigit() else (None if key == "POSTYPE" and rest == "ROBOT" else user)
+                postype = rest.strip() if key == "POSTYPE" else postype  # ROBOT, BASE (no base axis: the same), USER
+                user = int(rest) if key == "USER" and rest.isdigit() else user
                 pulse = key == "PULSE" or (pulse and key != "RECTAN")
                 continue
             if section == "//POS":
-                self._position(s, n, conf, tool, user, pulse)
+                self._position(s, n, conf, tool, user if postype == "USER" else None, pulse)
             elif section == "//INST" and s and not s.startswith("//"):
                 m = re.match(r"'\s*TOOL\s+(\d+)\s*=\s*(\w+)", s)
                 if m:
                     self.tool_names[int(m.group(1))] = m.group(2)
-                if not s.startswith("'") and s not in ("NOP", "END"):
+                m = re.fullmatch(r"'(D\d+) = (\w+)", s)
+                if m:
+                    self.var_names[m.group(1)] = m.group(2)
+                if (not s.startswith("'") or _PAYLOAD_REMARK.fullmatch(s)) and s not in ("NOP", "END"):
                     self.inst.append((s, Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
         if not self.name:
             raise self.tally.fail("an INFORM job must name itself (`//NAME NAME`)", Where(self.path, first[0]))
@@ -106,7 +123,7 @@ class _Job:
                                ir.Elbow.UP if bits[1].strip() == "0" else ir.Elbow.DOWN, None)
         name = f"{self.name.lower()}_{m.group(1).lower()}"
         self.positions[m.group(1)] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
-                                            Where(self.path, n))
+                                            Where(self.path, n), ",".join(b.strip() for b in bits))
         self.position_tool[m.group(1)] = tool
         self.position_user[m.group(1)] = user
 
@@ -128,7 +145,17 @@ class _Job:
 
     def _statement(self, i: int, end: int) -> tuple[list[Stmt], int]:
         text, where = self.inst[i]
-        for pattern in (self._arc, self._timed_wait, self._if):
+        shifting = self._shift_data(i)
+        if shifting is not None:
+            return [], shifting
+        call = re.fullmatch(r"CALL JOB:(\w+)", text)
+        inlined = self._inline_body(call.group(1)) if call else None
+        if inlined is not None:
+            self.tally.imported += 1
+            return list(inlined), i + 1
+        if _PAYLOAD_REMARK.fullmatch(text):  # INFORM has no load instruction: the backend's remark
+            return [self.tally.keep(text, where, "a payload remark (`rmot import --cell` reads an attach or detach)")], i + 1
+        for pattern in (self._loop, self._arc, self._timed_wait, self._if):
             found = pattern(i, end)
             if found is not None:
                 self.tally.imported += 1
@@ -139,6 +166,64 @@ class _Job:
         self.tally.imported += 1
         return [stmt], i + 1
 
+    def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`SET Dv a`, `*Lk`, body, `INC Dv`, `JUMP *Lk IF Dv<=b` (the backend's counted loop)."""
+        found = label_loop(self._text, i, end, r"SET (D\d+) (\d+)", r"\*(L\w+)",
+                           lambda v, k: rf"JUMP \*{k} IF {v}<=(\d+)", lambda v: f"INC {v}")
+        if found is None:
+            return None
+        var, first, last, j = found
+        name = rmot_name(self.var_names.get(var, var.lower()))
+        self.counters[var] = name
+        body, _ = self._block(i + 2, j - 1)
+        del self.counters[var]
+        return [For(name, first, last + 1, tuple(body), self.inst[i][1])], j + 1
+
+    def _shift_data(self, i: int) -> int | None:
+        """A shift being built or switched: `SET Dt Dv`, `MUL Dt m`, `SETE Pn (e) Dt` (element e
+        of Pn, X/Y/Z in µm, = the counter × m µm), `SFTON Pn RF`, `SFTOF`: the next line, or None."""
+        text = self._text(i)
+        m = re.fullmatch(r"SET (D\d+) (D\d+)", text)
+        mul = re.fullmatch(rf"MUL {m.group(1)} (-?\d+)", self._text(i + 1)) if m else None
+        sete = re.fullmatch(rf"SETE (P\d+) \(([123])\) {m.group(1)}", self._text(i + 2)) if m and mul else None
+        if m and mul and sete and m.group(2) in self.counters:
+            offset = f"{self.counters[m.group(2)]} * {int(mul.group(1)) / 1000:g}"  # µm per step -> mm
+            self.shifts.setdefault(sete.group(1), {})["xyz"[int(sete.group(2)) - 1]] = offset
+            return i + 3
+        on = re.fullmatch(r"SFTON (P\d+) RF", text)
+        if on and on.group(1) in self.shifts:
+            self.shift = on.group(1)
+            return i + 1
+        if text == "SFTOF" and self.shift is not None:
+            self.shift = None
+            return i + 1
+        return None
+
+    def _shifted(self, name: str) -> str:
+        """A target moved by the active shift (robot frame: rmot's `shift` in the base)."""
+        if self.shift is None:
+            return name
+        terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(self.shifts[self.shift].items()))
+        return f"shift({name}, {terms})" if terms else name
+
+    def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
+        """The body of job `name` read with this job's loop counters and shifts, when it
+        switches on one of them (else None: it is called)."""
+        source = self.jobs.get(name.upper())
+        shifted = [rf"(?m)^SFTON {p} RF" for p in self.shifts]  # a job that switches one on
+        if source is None or not self.counters or not reaches(
+                self.jobs, name, lambda text: any(re.search(p, text) for p in shifted), r"(?m)^CALL JOB:(\w+)"):
+            return None
+        callee = _Job(source[0], source[1], self.jobs)
+        callee.counters, callee.shifts = self.counters, self.shifts
+        callee.tools, callee.tool_names = self.tools, {**self.tool_names}
+        callee.read()
+        for key, target in callee.positions.items():
+            self.positions[f"{callee.name}:{key}"] = target
+        self.inlined.add(name.upper())
+        self.inlined |= callee.inlined
+        return callee.routine.body
+
     def _move(self, kind: str, names: list[str], rest: str, where: Where) -> Move | None:
         decls = [self.positions.get(n) for n in names]
         speed = re.search(r"\bV=([\d.]+)", rest)
@@ -147,7 +232,8 @@ class _Job:
         # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual, MOVJ
         # tags); rmot has one joint acceleration share, so both must be equal, on joint moves
         acc = re.search(r"\bACC=(\d+)\s+DEC=(\d+)\b", rest)
-        extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+)\b", "", rest).strip()
+        extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+|NWAIT)\b", "", rest).strip()
+
         if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
                 (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
             return None
@@ -156,7 +242,11 @@ class _Job:
         decl = decls[-1]
         assert decl is not None
         user = self.position_user[names[-1]]
-        return Move(kind, decl.name, decl.name, where, via=decls[0].name if kind == "circular" else None,  # type: ignore[union-attr]
+        if re.search(r"\bNWAIT\b", rest):  # the next instructions run during the move
+            self.tally.warn(codes.MOTION_OPTION_KEPT, "NWAIT is not read: the instructions after this move "
+                            "run once it ends, not while it runs", where)
+        return Move(kind, self._shifted(decl.name), decl.name, where,
+                    via=self._shifted(decls[0].name) if kind == "circular" else None,  # type: ignore[union-attr]
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
@@ -211,8 +301,9 @@ class _Job:
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
 
 
-def read_inform(path: str, text: str) -> _Job:
-    """Read one INFORM job; raises ImportError_ (E510) when it is not one."""
-    job = _Job(path, text)
+def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> _Job:
+    """Read one INFORM job; raises ImportError_ (E510) when it is not one. `jobs`: the import's
+    files by job name (a job called inside a loop whose shift it switches on is inlined)."""
+    job = _Job(path, text, jobs)
     job.read()
     return job

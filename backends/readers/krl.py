@@ -15,17 +15,15 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 
 from __future__ import annotations
 
-import math
 import re
-from collections.abc import Mapping
 from itertools import product
 
 from rmot.backends.krl import KrlBackend, status_of
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
-from rmot.backends.readers.krl_text import Line, aggregate, declarations, lines
+from rmot.backends.readers.krl_text import Line, aggregate, declarations, fold_end, in_cond, krl_pose, lines
 from rmot.backends.readers.model import (
-    Call, Cond, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
+    Call, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
 )
 from rmot.backends.readers.rapid import mm, num_text, pose_expr
@@ -47,18 +45,9 @@ def branch_of_status(s: int) -> ir.Config:
     raise AssertionError("status_of covers 0..7")
 
 
-def krl_pose(agg: Mapping[str, object]) -> ir.Pose | None:
-    """X Y Z (mm) A B C (deg) of an aggregate as an ir.Pose, None if a component is missing."""
-    values = [agg.get(k) for k in ("X", "Y", "Z", "A", "B", "C")]
-    floats = [v for v in values if isinstance(v, float)]
-    if len(floats) != 6:
-        return None
-    x, y, z, a, b, c = floats
-    pose = ir.Pose.from_xyz_rpy(x / 1000, y / 1000, z / 1000, math.radians(c), math.radians(b), math.radians(a))
-    # cos(90 deg) is 6e-17 in floating point: a component below 1e-12 (far below the 1e-4 deg
-    # KRL prints) is zero, so C 180 reads as the exact half turn rmot wrote
-    q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)
-    return ir.Pose(pose.position, q)  # type: ignore[arg-type]
+def _declared(move: Move) -> Target:
+    """The target a move went to, as a declaration (its pose; no name of its own)."""
+    return Target(move.target_name or "", move.pose, move.joints, move.config, move.where)
 
 
 class _State:
@@ -94,6 +83,10 @@ class _Krl:
         self.work: dict[str, tuple[str, dict[str, str]]] = {}  # P_loop -> (P, axis offsets)
         self.state = _State()
         self.name = "imported"
+        # the Cartesian target the last move went to, in straight-line code (None where a block
+        # starts or ends, or after a move not read): where a LIN_REL starts
+        self.last: tuple[str, str | None, Target | None] | None = None
+        self.at: Where | None = None  # the line being read
         self._data_objects()
 
     def _data_objects(self) -> None:
@@ -160,9 +153,11 @@ class _Krl:
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
+        self.last = None
         while i < len(self.lines):
             ln = self.lines[i]
             if ln.word in ends and not ln.fold:
+                self.last = None
                 return body, i
             stmts, i = self._statement(i)
             body += stmts
@@ -171,6 +166,7 @@ class _Krl:
 
     def _statement(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
+        self.at = ln.where  # where a setting read from the line's text is located
         if ln.endfold:
             return [], i + 1
         if ln.fold is not None:
@@ -229,7 +225,7 @@ class _Krl:
             self.tally.imported += 1
             return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
-        cond = _cond(m.group(1)) if m else None
+        cond = in_cond(m.group(1)) if m else None
         if cond is None:
             return self._keep_block(i, word, end)
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
@@ -275,6 +271,18 @@ class _Krl:
         m = re.fullmatch(r"(?i)\$(TOOL|BASE)\s*=\s*(\$NULLFRAME|\w+)", text)
         if m:
             return self._tool_base(m.group(1).upper(), m.group(2))
+        m = re.fullmatch(r"(?is)\$(TOOL|BASE)\s*=\s*(\{.*\})", text)
+        if m:
+            return self._inline_frame(m.group(1).upper(), m.group(2))
+        m = re.fullmatch(r"(?i)BAS\s*\(\s*#(TOOL|BASE)\s*,\s*(\d+)\s*\)", text)
+        if m:  # KSS BAS.SRC: $TOOL = TOOL_DATA[n] / $BASE = BASE_DATA[n] (n 0: the flange / robot base)
+            kind, n = m.group(1).lower(), m.group(2)
+            if kind == "tool" and n == "0":
+                st.tool = "flange"
+            else:
+                chosen = self._numbered(kind, n, None, self.at or Where(self.tally.path, 1))
+                st.tool, st.frame = (chosen, st.frame) if kind == "tool" else (st.tool, chosen)
+            return True
         return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
 
     def _load_switch(self, i: int) -> bool:
@@ -312,6 +320,32 @@ class _Krl:
             return False
         return True
 
+    def _inline_frame(self, which: str, text: str) -> bool:
+        """`$TOOL = {FRAME: X .., C ..}` / `$BASE = {..}` written in the program (RoboDK, hand
+        programs): a tool or work object of that pose, one per distinct value; an identity base is
+        the robot base."""
+        agg = aggregate(text)
+        pose = krl_pose(agg) if agg is not None else None
+        if pose is None:
+            return False
+        table: dict[str, ToolData] | dict[str, FrameData] = self.tools if which == "TOOL" else self.frames
+        if which == "BASE" and pose == ir.Pose():
+            self.state.frame = "base"
+            return True
+        same = next((v.name for v in table.values() if (v.tcp if isinstance(v, ToolData) else v.pose) == pose), None)
+        if same is None:
+            same = f"{which.lower()}_{len(table) + 1}"
+            where = Where(self.tally.path, 1)
+            if which == "TOOL":
+                self.tools[same.upper()] = ToolData(same, pose, 0.0, where)
+            else:
+                self.frames[same.upper()] = FrameData(same, pose, where)
+        if which == "TOOL":
+            self.state.tool = same
+        else:
+            self.state.frame = same
+        return True
+
     def _work_copy(self, text: str) -> bool:
         """`P_loop=P` then `P_loop.X=P.X+expr`: the loop's work copy of a target (shift)."""
         m = re.fullmatch(r"(\w+)\s*=\s*(\w+)", text)
@@ -337,7 +371,7 @@ class _Krl:
         w = re.fullmatch(rf"WAITFOR\((.*)\)OR\(\$TIMER\[{k}\]>=(\d+)\)", texts[3])
         ok = (texts[1] == f"$TIMER[{k}]=0" and texts[2] == f"$TIMER_STOP[{k}]=FALSE" and w is not None
               and texts[4] == f"$TIMER_STOP[{k}]=TRUE" and texts[6] == "HALT" and texts[7] == "ENDIF")
-        cond = _cond(w.group(1)) if ok and w else None
+        cond = in_cond(w.group(1)) if ok and w else None
         if cond is None or texts[5] != f"IFNOT({w.group(1)})THEN":  # type: ignore[union-attr]
             return None
         return WaitIn(cond, int(w.group(2)) / 1000.0, self.lines[i + 3].where)  # type: ignore[union-attr]
@@ -347,7 +381,11 @@ class _Krl:
     def _simple(self, ln: Line) -> Stmt | None:
         text, word, where = ln.text, ln.word, ln.where
         if word in _MOTIONS:
-            return self._motion(word, text[len(word):].strip(), where)
+            move = self._motion(word, text[len(word):].strip(), where)
+            self.last = (move.target, move.target_name, _declared(move)) if move and move.pose else None
+            return move
+        if word in ("LIN_REL", "PTP_REL"):
+            return self._relative(word, text[len(word):].strip(), where)
         m = re.fullmatch(r"(?i)\$OUT(?:_C)?\[(\d+)\]\s*=\s*(TRUE|FALSE)", text)
         if m:
             return SetOut(int(m.group(1)), 1.0 if m.group(2).upper() == "TRUE" else 0.0, where)
@@ -362,14 +400,14 @@ class _Krl:
             return Wait(float(m.group(1)), where)
         m = re.fullmatch(r"(?i)WAIT\s+FOR\s+(.+)", text)
         if m:
-            cond = _cond(m.group(1))
+            cond = in_cond(m.group(1))
             return WaitIn(cond, None, where) if cond else None
         m = re.fullmatch(r"(\w+)\s*\(\s*\)", text)
         if m and m.group(1).upper() not in ("HALT", "BAS"):
             return Call(m.group(1), (), where)
         return None
 
-    def _target(self, text: str) -> tuple[str, str | None, Target | None] | None:
+    def _target(self, text: str, at: Where | None = None) -> tuple[str, str | None, Target | None] | None:
         text = text.strip()
         key = text.upper()
         if key in self.work:
@@ -381,6 +419,8 @@ class _Krl:
         if key in self.targets:
             decl = self.targets[key]
             return (rmot_name(decl.name), decl.name, decl)
+        if key in ("HOME", "XHOME") and at is not None:
+            return self._home(at)
         agg = aggregate(text)
         if agg is not None:
             pose = krl_pose(agg)
@@ -394,14 +434,47 @@ class _Krl:
                 return (expr, None, Target("", None, tuple(joints), None, Where("", 0)))  # type: ignore[arg-type]
         return None
 
-    def _motion(self, word: str, rest: str, where: Where) -> Move | None:
+    def _relative(self, word: str, rest: str, where: Where) -> Move | None:
+        """`LIN_REL {X dx, Y dy, Z dz} [C_DIS] [#BASE|#TOOL]` (KSS 8.x, relative motions: the
+        offset in the base, or with #TOOL in the tool frame, from where the last move ended) →
+        `shift(last, ..)` / `last * pose(..)`; only a translation, and only after a move whose
+        target is known in straight-line code (a relative move's own, an expression, included)."""
+        m = re.fullmatch(r"(?is)(\{.*\})\s*(C_DIS|C_PTP)?\s*(#BASE|#TOOL)?", rest)
+        agg = aggregate(m.group(1)) if m else None
+        last = self.last
+        if m is None or agg is None or last is None or set(agg) - {"X", "Y", "Z"} or \
+                not all(isinstance(v, float) for v in agg.values()):
+            return None
+        terms = ", ".join(f"{k.lower()}={num_text(float(v))}mm" for k, v in sorted(agg.items()) if v != 0.0)  # type: ignore[arg-type]
+        expr = (f"{last[0]} * pose({terms})" if (m.group(3) or "").upper() == "#TOOL" else
+                f"shift({last[0]}, {terms})") if terms else last[0]
+        move = self._motion("PTP" if word == "PTP_REL" else "LIN", f"_ {m.group(2) or ''}", where,
+                            (expr, last[1], None))
+        self.last = (expr, last[1], None) if move is not None else None  # the next one starts here
+        return move
+
+    def _home(self, where: Where) -> tuple[str, str | None, Target | None]:
+        """`PTP HOME` / `PTP XHOME`: the home position lives in the controller's $config.dat
+        (`DECL E6AXIS XHOME`), not in the program; read as KUKA's shipped value {A1 0, A2 -90,
+        A3 90, A4 0, A5 0, A6 0} (KSS 8.x $config.dat, BAS home) with W511 at the first use."""
+        if "XHOME" not in self.targets:
+            self.tally.warn(codes.DECLARATION_KEPT, "HOME is XHOME of the controller's $config.dat, not in the "
+                            "program: read as KUKA's shipped {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} (check it "
+                            "against the controller, or give its .dat)", where)
+            self.targets["XHOME"] = Target("HOME", None, (0.0, -90.0, 90.0, 0.0, 0.0, 0.0), None, where)
+        decl = self.targets["XHOME"]
+        return (rmot_name(decl.name), decl.name, decl)
+
+    def _motion(self, word: str, rest: str, where: Where,
+                point: tuple[str, str | None, Target | None] | None = None) -> Move | None:
+        """A motion statement; `point`: its target already read (a relative move's)."""
         kind = _MOTIONS[word]
         m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
         approx = " ".join((m.group(2) or "").upper().split()) if m else ""
         if len(points) != (2 if kind == "circular" else 1) or approx in ("C_VEL", "C_ORI", "C_SPL"):
             return None
-        found = [self._target(p) for p in points]
+        found = [point] if point is not None else [self._target(p, where) for p in points]
         if any(f is None for f in found):
             return None
         st = self.state
@@ -424,7 +497,7 @@ class _Krl:
         """An inline form: a motion read from its header (its statements skipped), anything
         else read from the statements inside; the INI fold is set-up, kept as a comment."""
         header = self.lines[i].fold or ""
-        end = _fold_end(self.lines, i)
+        end = fold_end(self.lines, i)
         if re.match(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO", header):
             self.tally.warn(codes.DECLARATION_KEPT, f"the `{header[:30]}` fold is controller set-up: kept as a "
                             "comment", self.lines[i].where)
@@ -433,6 +506,7 @@ class _Krl:
         if m is None:
             return [], i + 1  # the statements inside are read as they come
         move = self._inline(m.group(1).upper(), m.group(2), self.lines[i].where)
+        self.last = (move.target, move.target_name, _declared(move)) if move and move.pose else None
         if move is None:
             return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read")], end + 1
         self.tally.imported += 1
@@ -448,7 +522,7 @@ class _Krl:
         if m is None or (kind == "circular") != (second is not None):
             return None
         points = [m.group(1)] + ([second] if second else [])
-        found = [self._target("X" + p) or self._target(p) for p in points]
+        found = [self._target("X" + p) or self._target(p, where) for p in points]
         if any(f is None for f in found):
             return None
         vel, unit = float(m.group(4)), m.group(5)
@@ -488,28 +562,6 @@ class _Krl:
         elif what == "base" and key not in self.frames:
             self.frames[key] = FrameData(label, ir.Pose(), where)
         return label
-
-
-def _fold_end(found: list[Line], i: int) -> int:
-    depth = 0
-    for j in range(i, len(found)):
-        depth += found[j].fold is not None
-        depth -= found[j].endfold
-        if depth == 0:
-            return j
-    return len(found) - 1
-
-
-def _cond(text: str) -> Cond | None:
-    """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT $IN[n]`, in optional parentheses."""
-    text = text.strip()
-    while text.startswith("(") and text.endswith(")") and split_top(text[1:-1], ")") == [text[1:-1].strip()]:
-        text = text[1:-1].strip()
-    m = re.fullmatch(r"(?i)(NOT\s+)?\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", text)
-    if m is None:
-        return None
-    on = (m.group(3) or "TRUE").upper() == "TRUE"
-    return Cond(int(m.group(2)), on != bool(m.group(1)))
 
 
 def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:

@@ -9,13 +9,16 @@ are `;FOLD header;%{PE}...` .. `;ENDFOLD` around the statements they stand for.
 
 from __future__ import annotations
 
+import math
 import re
+from collections.abc import Mapping
 
 from rmot.backends.readers.common import number, split_top
-from rmot.backends.readers.model import Where
+from rmot.backends.readers.model import Cond, Where
+from rmot.compiler import ir
 from rmot.lang.record import record
 
-__all__ = ["Line", "lines", "aggregate", "Decl", "declarations"]
+__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond"]
 
 
 @record(slots=True)
@@ -106,3 +109,39 @@ def declarations(found: list[Line]) -> list[Decl]:
         if m and m.group(1).upper() not in ("DEFDAT", "ENDDAT", "EXT", "EXTFCT", "SIGNAL", "STRUC", "ENUM"):
             out.append(Decl(m.group(1).upper(), m.group(2), m.group(3), ln.where))
     return out
+
+
+def krl_pose(agg: Mapping[str, object]) -> ir.Pose | None:
+    """X Y Z (mm) A B C (deg) of an aggregate as an ir.Pose, None if a component is missing."""
+    values = [agg.get(k) for k in ("X", "Y", "Z", "A", "B", "C")]
+    floats = [v for v in values if isinstance(v, float)]
+    if len(floats) != 6:
+        return None
+    x, y, z, a, b, c = floats
+    pose = ir.Pose.from_xyz_rpy(x / 1000, y / 1000, z / 1000, math.radians(c), math.radians(b), math.radians(a))
+    # cos(90 deg) is 6e-17 in floating point: a component below 1e-12 (far below the 1e-4 deg
+    # KRL prints) is zero, so C 180 reads as the exact half turn rmot wrote
+    q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)
+    return ir.Pose(pose.position, q)  # type: ignore[arg-type]
+
+
+def fold_end(found: list[Line], i: int) -> int:
+    depth = 0
+    for j in range(i, len(found)):
+        depth += found[j].fold is not None
+        depth -= found[j].endfold
+        if depth == 0:
+            return j
+    return len(found) - 1
+
+
+def in_cond(text: str) -> Cond | None:
+    """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT $IN[n]`, in optional parentheses."""
+    text = text.strip()
+    while text.startswith("(") and text.endswith(")") and split_top(text[1:-1], ")") == [text[1:-1].strip()]:
+        text = text[1:-1].strip()
+    m = re.fullmatch(r"(?i)(NOT\s+)?\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", text)
+    if m is None:
+        return None
+    on = (m.group(3) or "TRUE").upper() == "TRUE"
+    return Cond(int(m.group(2)), on != bool(m.group(1)))

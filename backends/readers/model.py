@@ -44,6 +44,7 @@ class Target:
     joints: tuple[float, ...] | None
     config: ir.Config | None
     where: Where
+    rconf: str | None = None  # an INFORM position's RCONF as written (resolved with the arm: inform_conf)
 
 
 @record(slots=True)

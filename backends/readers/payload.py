@@ -20,6 +20,9 @@ Software 8.x, system variable $LOAD {M kg, CM {X, Y, Z mm} in the flange frame},
 .dat's LOAD data; URScript manual set_payload(m kg, cog m from the flange); Fanuc TP
 PAYLOAD[i] selects a schedule whose data lives on the controller: its mass is taken from a
 `!...: M kg` remark right before the line (the backend writes one), its centre is unknown.
+INFORM has no load instruction and VAL3 tool data no mass: the backends write the remark
+`'attach P: payload M kg` / `// attach P: payload M kg` (tool and parts, kg), read the same
+way, by mass.
 The tool's own centre is rmot's convention, ir.payload_cog (half way along flange->TCP).
 """
 
@@ -113,6 +116,10 @@ def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> tuple[bool, Loa
                  for name, mass, cm in doc.loads}
         entry = named.get((m.group(1) or m.group(2)).lower()) if m else None
         return None if entry is None else (True, (entry[0], entry[1], None))
+    if doc.vendor in ("inform", "val3"):  # the backend's remark `'attach P: payload M kg` (tool + parts; no centre)
+        m = re.fullmatch(r"(?:'|// )(?:attach|detach) \w+: payload (\d+(?:\.\d+)?) kg", s.text)
+        nan = float("nan")
+        return None if m is None else (True, (float(m.group(1)), (nan, nan, nan), None))
     return None
 
 

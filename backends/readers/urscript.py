@@ -92,7 +92,8 @@ class _Script:
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
-        if m is None and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
+        library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
+        if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
             raise self.tally.fail("a URScript program must start with `def name():` or a statement "
                                   f"(got `{first.text[:40]}`)", first.where)
         if m:
@@ -133,6 +134,15 @@ class _Script:
             body, j = self._block(i + 1, ("end",))
             self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             return [], j + 1
+        params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
+                              ln.text)
+        if params:  # a function with parameters: a proc; the lines that use a parameter stay native
+            names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
+            self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
+                            "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
+            body, j = self._block(i + 1, ("end",))
+            self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
+            return [], j + 1
         if re.match(r"(def|thread)\s+\w+\s*\(", ln.text):
             return self._thread(i)
         step = re.fullmatch(r"(\w+)\s*=\s*(\w+)\s*\+\s*1", ln.text)
@@ -161,8 +171,12 @@ class _Script:
         """A thread: the backend's pulse thread (out on, sleep, out off) is remembered as a
         pulse for the `run` that starts it; any other thread is kept native."""
         ln = self.lines[i]
-        j = i + 1
-        while j < len(self.lines) and self.lines[j].head != "end":
+        j, depth = i + 1, 1
+        while j < len(self.lines):  # the thread's own `end` (its ifs and whiles end before it)
+            depth += self.lines[j].head in ("if", "while", "for", "def", "thread")
+            depth -= self.lines[j].head == "end"
+            if depth == 0:
+                break
             j += 1
         name = re.match(r"(?:def|thread)\s+(\w+)", ln.text).group(1)  # type: ignore[union-attr]
         inner = [x.text.replace(" ", "") for x in self.lines[i + 1:j]]
@@ -215,7 +229,9 @@ class _Script:
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
         m = re.fullmatch(r"(if|elif|while)\s+(.*):", ln.text)
-        cond = _cond(m.group(2)) if m else None
+        forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
+            and all(x.where.col < ln.where.col or x.head == "end" for x in self.lines[:i] if x.head == "while")
+        cond = _FOREVER if forever else _cond(m.group(2)) if m else None
         if cond is None:
             out, j, depth = [], i, 0
             while j < len(self.lines):
@@ -229,6 +245,10 @@ class _Script:
         self.tally.imported += 1
         if ln.head == "while":
             body, j = self._block(i + 1, ("end",))
+            if cond is _FOREVER:  # PolyScope's "Program loops forever": rmot's program is one cycle
+                self.tally.warn(codes.LOOP_READ_ONCE, "`while True` is read as one cycle of the program "
+                                "(the controller repeats an rmot program)", ln.where)
+                return body, j + 1
             return [While(cond, tuple(body), ln.where)], j + 1
         then, j = self._block(i + 1, ("end", "else", "elif"))
         if self.lines[j].head == "elif":
@@ -307,7 +327,7 @@ class _Script:
         if text in self.targets:
             t = self.targets[text]
             return (t.name, t.name, t)
-        m = re.fullmatch(r"get_inverse_kin\((.*),qnear=\[.*\]\)", text)
+        m = re.fullmatch(r"get_inverse_kin\((.*),qnear=(?:\[.*\]|\w+)\)", text)  # PolyScope: `qnear=Waypoint_q`
         if m:
             return self._target(m.group(1), depth + 1)
         m = re.fullmatch(r"(p?)\[(.*)\]", text)
@@ -321,6 +341,9 @@ class _Script:
             joints = tuple(math.degrees(v) for v in values)
             return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
                     Target("", None, joints, None, Where("", 0)))
+        trans = re.fullmatch(r"pose_trans\((.*)\)", text)
+        if trans:
+            return self._tool_offset(split_top(trans.group(1)), depth)
         m = re.fullmatch(r"pose_add\((.*)\)", text)
         parts = split_top(m.group(1)) if m else []
         base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
@@ -334,6 +357,17 @@ class _Script:
         terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"  # type: ignore[arg-type]
                           for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
         return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
+
+    def _tool_offset(self, parts: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
+        """`pose_trans(P, p[dx, dy, dz, 0, 0, 0])`: P moved along its own (tool) axes (URScript
+        manual, pose_trans: the second pose is expressed in the first's frame) = `P * pose(..)`."""
+        base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
+        shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
+        offs = [number(o) for o in split_top(shift.group(1))] if shift else []
+        if base is None or len(offs) != 6 or any(o is None for o in offs) or any(o != 0.0 for o in offs[3:]):
+            return None
+        terms = ", ".join(f"{a}={num_text(1000.0 * o)}mm" for a, o in zip("xyz", offs[:3]) if o != 0.0)  # type: ignore[operator]
+        return (f"{base[0]} * pose({terms})" if terms else base[0], base[1], base[2])
 
     def _joint_shares(self, joints: tuple[float, ...] | None, v: float | None, a: float | None,
                       zone: float, where: Where) -> tuple[float | None, float | None]:
@@ -393,6 +427,9 @@ class _Script:
                     speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t"), tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
                     accel=accel, joint_accel=jacc)
+
+
+_FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
 
 
 def _share(ratio: float) -> float | None:

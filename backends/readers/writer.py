@@ -271,7 +271,7 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
         if r.name == doc.main:
             main = r
             continue
-        params = ", ".join(f"{n}: {t}" for n, t in r.params)
+        params = ", ".join(f"{rmot_name(n)}: {t}" for n, t in r.params)
         p.emit(1, f"proc {rmot_name(r.name)}({params}) {{")
         p.body(r.body, 2, {})
         p.emit(1, "}")

@@ -9,18 +9,28 @@ error (exit 2); a line kept native is a located warning.
 
 from __future__ import annotations
 
+import math
 import os
 import sys
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
 
+if TYPE_CHECKING:
+    import numpy as np
+
+    from rmot.backends.readers.model import Document
+    from rmot.compiler import ir
+    from rmot.compiler.ir import Pose
+
 __all__ = ["import_", "DEFAULT_MODELS"]
 
 # the stub cell's robot when --robot is not given: a library arm of the vendor's maker
 DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "ur5e",
-                  "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8"}
+                  "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8", "val3": "staubli_tx2_60"}
 
 
 def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
@@ -36,6 +46,28 @@ def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ..
     except RobotError:
         return None
     return tuple(map(float, robot.velocity_limits)), tuple(map(float, robot.accel_limits))
+
+
+def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -> Document:
+    """INFORM joint moves configured from their RCONF with the arm's IK (readers/inform_conf.py);
+    `doc` as it is for other vendors or where the arm does not load."""
+    if doc.vendor != "inform" or not model:
+        return doc
+    from rmot.backends.readers.inform_conf import resolve_rconf
+    from rmot.compiler.robots.errors import RobotError
+    from rmot.compiler.robots.loader import load_robot
+
+    try:
+        robot = load_robot(model)
+    except RobotError:
+        return doc
+    wide = tuple(j for j, (lo, hi) in enumerate(robot.joint_limits.tolist()) if hi - lo > 2 * math.pi + 1e-9)
+
+    def ik(flange: np.ndarray) -> tuple[Sequence[np.ndarray], Sequence[ir.Config]]:
+        result = robot.ik(flange)
+        return result.solutions, result.branches
+
+    return resolve_rconf(doc, ik, tcp_of, wide)
 
 
 def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object] | str:
@@ -60,7 +92,7 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, objec
     return SignalMap(*(tuple(t) for t in tables)), chosen, result.cell
 
 
-@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP or INFORM programs back into .rmot.")
+@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP, INFORM or VAL3 programs back into .rmot.")
 @click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False, exists=True))
 @click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False), help="The .rmot file to write.")
 @click.option("--robot", default=None, help="With --cell: the cell's robot; without: the library arm of the stub cell.")
@@ -99,6 +131,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         doc = match_tools(doc, tuple((t.name, t.tcp) for t in cell_ir.tools if t.robot == robot_name))
         doc = match_payloads(doc, cell_parts(cell_ir),
                              tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
+        doc = _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
         use = os.path.relpath(os.path.abspath(cell), out_dir)
     else:
         signals, robot_name = stub_signals(doc), "r1"

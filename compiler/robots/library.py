@@ -476,8 +476,10 @@ def _kroshu_arms() -> list[RobotSpec]:
 
 def _rosi_arms() -> list[RobotSpec]:
     from rmot.compiler.robots.library_rosi import rosi_arms  # the arms of ROS-I's support packages
+    from rmot.compiler.robots.library_abb import abb_arms  # ROS-I's further ABB arms
+    from rmot.compiler.robots.library_fanuc import fanuc_arms  # ROS-I's further FANUC arms
 
-    return rosi_arms()
+    return rosi_arms() + abb_arms() + fanuc_arms()
 
 
 def _motoman_staubli_arms() -> list[RobotSpec]:

@@ -82,3 +82,27 @@ def test_vendor_program_against_its_rmot_source(tmp_path: Path) -> None:
     assert code == 1
     assert out[0].endswith(f"-> {ls}:{n + 1}:3: move linear start: speed 50 mm/s -> 40 mm/s"), out
     assert out[0].startswith(f"{source}[fanuc/WELD_SEAM.ls]:{n + 1}:3")
+
+
+def test_touch_up_of_a_real_tp_program(tmp_path: Path) -> None:
+    """A real generated TP toolpath (tests/data/vendor_programs/fanuc/crs_surface.ls, whose
+    moves stay native: `Tool_Offset,PR[15]`): P[5] touched up 1.5 mm in X in /POS and one
+    move's CNT60 turned into CNT20 are both named, each at its line in both files."""
+    a = ROOT / "tests" / "data" / "vendor_programs" / "fanuc" / "crs_surface.ls"
+    text = a.read_text()
+    start = text.index("P[5]{")
+    x_at = text.index("X =", start)
+    x_end = text.index("mm", x_at)
+    x = float(text[x_at:x_end].split("=")[1])
+    touched = text[:x_at] + f"X =\t{x + 1.5:.6f}\t" + text[x_end:]
+    move = "\t7:L P[3] 200mm/sec CNT60"
+    assert touched.count(move) == 1
+    touched = touched.replace(move, "\t7:L P[3] 200mm/sec CNT20")
+    b = tmp_path / "crs_surface.ls"
+    b.write_text(touched)
+    code, lines = _diff(a, b)
+    assert code == 1 and lines[-1] == "2 differences", lines
+    p5 = text[:start].count("\n") + 1
+    cnt = text[:text.index(move)].count("\n") + 1  # the line the match starts
+    assert f":{p5}:1 -> {b}:{p5}:1: target surface_p5 moved 1.500 mm, turned 0.000 deg" in lines[0]
+    assert f":{cnt}:2 -> {b}:{cnt}:2: native line changed (CNT60 -> CNT20)" in lines[1]

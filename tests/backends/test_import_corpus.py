@@ -19,13 +19,13 @@ from click.testing import CliRunner
 from rmot.compiler.cli import cli
 
 CORPUS = Path(__file__).resolve().parents[1] / "data" / "vendor_programs"
-FILES = sorted(p for p in CORPUS.glob("*/*") if p.suffix.lower() in (".mod", ".src", ".urscript", ".script", ".ls"))
+FILES = sorted(p for p in CORPUS.glob("*/*") if p.suffix.lower() in (".mod", ".src", ".urscript", ".script", ".ls", ".jbi"))
 NOT_THE_LANGUAGE = {"external_control.urscript"}  # a driver template: `{{...}}` placeholders
 
 
 def test_corpus_has_every_vendor_and_its_sources() -> None:
-    assert {p.parent.name for p in FILES} == {"rapid", "krl", "urscript", "fanuc"}
-    for vendor in ("rapid", "krl", "urscript", "fanuc"):
+    assert {p.parent.name for p in FILES} == {"rapid", "krl", "urscript", "fanuc", "inform"}
+    for vendor in ("rapid", "krl", "urscript", "fanuc", "inform"):
         source = (CORPUS / vendor / "SOURCE").read_text()
         for f in (p for p in FILES if p.parent.name == vendor):
             assert f.name in source, f"{f.name} has no entry in {vendor}/SOURCE"

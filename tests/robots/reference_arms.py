@@ -617,9 +617,6 @@ ARMS: tuple[RefArm, ...] = (
     ),
 )
 
-from reference_arms_motoman import MOTOMAN_ARMS  # noqa: E402  (it reads RefArm and the mappings above)
-from reference_arms_staubli import STAUBLI_ARMS  # noqa: E402
-ARMS += MOTOMAN_ARMS + STAUBLI_ARMS
 BY_NAME = {a.name: a for a in ARMS}
 
 

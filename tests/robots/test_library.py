@@ -25,6 +25,17 @@ ADDED = (  # each with its independent reference in reference_arms.py
 ROSI = (  # one arm per brand from ROS-I's support packages (compiler/robots/library_rosi.py)
     "abb_irb2400", "fanuc_m16ib20", "yaskawa_mh12", "staubli_tx60l",
 )
+ROSI_ABB_FANUC = (  # the further ABB and FANUC arms of ROS-I's packages (library_abb.py, library_fanuc.py)
+    "abb_irb120t", "abb_irb1200_5_90", "abb_irb1200_7_70", "abb_irb1600_6_12", "abb_irb2600_12_165",
+    "abb_irb4600_20_250", "abb_irb4600_40_255", "abb_irb6600_225_255", "abb_irb6640_185_280",
+    "abb_irb6650s_125_350", "abb_irb6650s_90_390", "abb_irb6700_200_260", "abb_irb6700_235_265",
+    "abb_irb7600_150_350",
+    "fanuc_cr7ia", "fanuc_cr35ia", "fanuc_lrmate200ib", "fanuc_lrmate200ic", "fanuc_lrmate200id7l", "fanuc_m6ib",
+    "fanuc_m10ia", "fanuc_m10ia7l", "fanuc_m20ia10l", "fanuc_m20ib25", "fanuc_m710ic45m", "fanuc_m710ic50",
+    "fanuc_m900ia260l", "fanuc_r1000ia80f", "fanuc_r2000ib210f", "fanuc_r2000ic165f", "fanuc_r2000ic210l",
+    "fanuc_lrmate200i", "fanuc_lrmate200ib3l", "fanuc_lrmate200ic5l", "fanuc_lrmate200id4s", "fanuc_lrmate200id4sc",
+    "fanuc_lrmate200id7lc", "fanuc_m6ib6s", "fanuc_cr7ial", "fanuc_r2000ic125l", "fanuc_r2000ic210f", "fanuc_r2000ic270f",
+)
 MOTOMAN_STAUBLI = (  # compiler/robots/library_motoman.py, library_staubli.py
     "yaskawa_gp4", "yaskawa_gp7", "yaskawa_gp12", "yaskawa_gp25", "yaskawa_gp35l", "yaskawa_gp50", "yaskawa_gp70l",
     "yaskawa_gp88", "yaskawa_gp110", "yaskawa_gp180", "yaskawa_gp180_120", "yaskawa_mh50", "yaskawa_mh110",
@@ -35,7 +46,7 @@ MOTOMAN_STAUBLI = (  # compiler/robots/library_motoman.py, library_staubli.py
 # Arms whose source gives no rated payload (their `sources` say "unknown"): the Stäubli
 # packages give none, and the names GP180-120 and AR2010 do not say it.
 PAYLOAD_UNKNOWN = frozenset(n for n in MOTOMAN_STAUBLI if n.startswith("staubli_")) | {"yaskawa_gp180_120", "yaskawa_ar2010"}
-NAMES = ORIGINAL + ADDED + ROSI + MOTOMAN_STAUBLI
+NAMES = ORIGINAL + ADDED + ROSI + ROSI_ABB_FANUC + MOTOMAN_STAUBLI
 
 
 def random_q(robot: Robot, n: int, seed: int = 0) -> np.ndarray:

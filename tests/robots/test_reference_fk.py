@@ -15,6 +15,12 @@ import pytest
 
 from rmot.compiler.robots import list_robots, load_robot
 from reference_arms import ARMS, BY_NAME, KUKA_INERTIALS, RefArm
+from reference_arms_abb import ABB_ARMS
+from reference_arms_fanuc import FANUC_ARMS
+from reference_arms_motoman import MOTOMAN_ARMS
+from reference_arms_staubli import STAUBLI_ARMS
+
+EVERY_ARM = ARMS + ABB_ARMS + FANUC_ARMS + MOTOMAN_ARMS + STAUBLI_ARMS
 
 
 def _rpy(r: float, p: float, y: float) -> np.ndarray:
@@ -77,10 +83,10 @@ def _errors(arm: RefArm, n: int, seed: int) -> tuple[float, float]:
 def test_every_library_arm_has_a_reference():
     """No library arm without an independent reference (the Puma's is Corke's DH table in
     test_library.py); no reference for an arm the library does not have."""
-    assert set(BY_NAME) | {"puma560"} == set(list_robots())
+    assert {a.name for a in EVERY_ARM} | {"puma560"} == set(list_robots())
 
 
-@pytest.mark.parametrize("arm", ARMS, ids=lambda a: a.name)
+@pytest.mark.parametrize("arm", EVERY_ARM, ids=lambda a: a.name)
 def test_library_fk_equals_the_reference_chain(arm):
     """Library FK = the reference chain, controller frame to flange, within 0.01 mm / 1e-6 rad."""
     pos, ang = _errors(arm, 60, seed=12)

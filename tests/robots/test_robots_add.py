@@ -44,7 +44,7 @@ def _built(text: str):  # type: ignore[no-untyped-def]
 
 
 def test_mh5_table_becomes_a_definition_equal_to_yaskawas_urdf():
-    from reference_arms import BY_NAME
+    from reference_arms_motoman import MOTOMAN_ARMS
     from test_reference_fk import reference_fk
 
     added = add_from_dh("mh5.yaml", MH5)
@@ -52,7 +52,7 @@ def test_mh5_table_becomes_a_definition_equal_to_yaskawas_urdf():
     assert added.max_mm < 1e-6 and added.max_rad < 1e-9
     robot = _built(added.text)
     assert robot.has_closed_form and robot.conventions == YASKAWA_CONV
-    ref = BY_NAME["yaskawa_mh5"]
+    ref = next(a for a in MOTOMAN_ARMS if a.name == "yaskawa_mh5")
     for q in np.random.default_rng(3).uniform(robot.joint_limits[:, 0], robot.joint_limits[:, 1], (40, 6)):
         a, b = robot.fk(q), reference_fk(ref, q)
         assert np.abs(a - b).max() < 1e-8
@@ -116,12 +116,12 @@ def _urdf_of(ref) -> str:  # type: ignore[no-untyped-def]
 
 def test_urdf_becomes_a_definition_equal_to_its_chain(tmp_path):
     """The GP12's ROS-I chain as a URDF, from `base` to `tool0`: the definition's FK is the chain's."""
-    from reference_arms import BY_NAME
+    from reference_arms_motoman import MOTOMAN_ARMS
     from test_reference_fk import reference_fk
 
     from rmot.compiler.robots.add_robot import add_from_urdf
 
-    ref = BY_NAME["yaskawa_gp12"]
+    ref = next(a for a in MOTOMAN_ARMS if a.name == "yaskawa_gp12")
     path = tmp_path / "gp12.urdf"
     path.write_text(_urdf_of(ref))
     added = add_from_urdf(str(path), "my_gp12", "yaskawa", "ROS-I gp12_macro.xacro", base="base", tip="tool0")

@@ -1,0 +1,211 @@
+"""Forms real pendant and PolyScope files use that rmot's own output never does, read back:
+Fanuc `DO[n]=(ON)`, `WAIT (DI[n])`, cm/min and inch/min feedrates, motion options kept after
+the move (W517), point-logic lines and multi-group positions; URScript `while True:` read as
+one cycle (W518), `get_inverse_kin(P, qnear=Q)` and `pose_trans(P, p[..])`.
+
+Witnesses: the hand-written lines below follow the R-30iB Operator's Manual (feedrate units:
+1 cm/min = 10/60 mm/s, 1 inch/min = 25.4/60 mm/s) and the URScript manual (pose_trans: the
+offset is in the first pose's frame); expected values are computed here from those rules.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Move, Native, SetOut, WaitIn, walk
+
+TP = """/PROG  DEMO
+/ATTR
+OWNER\t\t= MNEDITOR;
+/MN
+   1:  UFRAME_NUM=0 ;
+   2:  UTOOL_NUM=1 ;
+   3:  DO[5]=(ON) ;
+   4:  WAIT (DI[7])    ;
+   5:  WAIT (!DI[8])    ;
+   6:L P[1] 240cm/min CNT100 COORD PTH    ;
+   7:L P[1] 60inch/min FINE TB   .10sec,DO[3]=ON    ;
+      1:  DO[4]=(OFF) ;
+       ------ ;
+   8:L P[1] 100mm/sec FINE Tool_Offset,PR[15]    ;
+/POS
+P[1]{
+   GP1:
+\tUF : 0, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',
+\tX =   100.000  mm,\tY =   200.000  mm,\tZ =   300.000  mm,
+\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg
+   GP2:
+\tUF : 0, UT : 1,
+\tJ1=  1500.000  mm
+};
+/END
+"""
+
+
+def _stmts(path: Path) -> list[object]:
+    doc = read_files([str(path)])
+    return [s for r in doc.routines for s in walk(r.body)]
+
+
+def test_fanuc_pendant_forms(tmp_path: Path) -> None:
+    path = tmp_path / "demo.ls"
+    path.write_text(TP)
+    stmts = _stmts(path)
+    outs = [s for s in stmts if isinstance(s, SetOut)]
+    assert [(s.signal, s.value) for s in outs] == [(5, 1.0), (3, 1.0), (4, 0.0)]
+    waits = [s for s in stmts if isinstance(s, WaitIn)]
+    assert [(w.cond.signal, w.cond.on) for w in waits] == [(7, True), (8, False)]
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert len(moves) == 2  # the Tool_Offset move stays native (the register is the controller's)
+    assert abs(moves[0].speed - 240 * 10 / 60) < 1e-9 and moves[0].zone == 100.0
+    assert abs(moves[1].speed - 60 * 25.4 / 60) < 1e-9
+    assert moves[0].pose is not None and abs(moves[0].pose.position[2] - 0.3) < 1e-12  # GP1, not GP2's J1
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert natives[:2] == ["COORD", "PTH"] and natives[-1].startswith("L P[1] 100mm/sec")
+
+
+def test_fanuc_option_warnings_are_located(tmp_path: Path) -> None:
+    path = tmp_path / "demo.ls"
+    path.write_text(TP)
+    doc = read_files([str(path)])
+    w517 = [d for d in doc.diagnostics if d.code.id == "W517"]
+    assert [d.span.start.line for d in w517] == [10, 10, 11]
+
+
+SCRIPT = """def Prog():
+  global W1_p=p[.4, -.2, .3, 0, 3.14159265358979, 0]
+  global W1_q=[0, -1.57, 1.57, -1.57, -1.57, 0]
+  while (True):
+    movej(get_inverse_kin(W1_p, qnear=W1_q), a=1.4, v=1.05)
+    movel(pose_trans(W1_p, p[0, 0, -0.05, 0, 0, 0]), a=1.2, v=0.25)
+    set_standard_digital_out(2, True)
+  end
+end
+"""
+
+
+def test_polyscope_program(tmp_path: Path) -> None:
+    path = tmp_path / "prog.script"
+    path.write_text(SCRIPT)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    assert not any(isinstance(s, Native) for s in stmts)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert moves[0].target == "W1_p" and moves[0].kind == "joint"
+    assert moves[1].target == "W1_p * pose(z=-50mm)"  # along the pose's own z (pose_trans)
+    assert [d.code.id for d in doc.diagnostics] == ["W518"]
+    assert doc.diagnostics[0].span.start.line == 4
+
+
+KRL = """DEF demo( )
+$VEL.CP = 0.2
+$APO.CDIS = 2.0
+$TOOL = {FRAME: X 0.000,Y 0.000,Z 150.000,A 0.000,B 0.000,C 0.000}
+$BASE = {FRAME: X 0.000,Y 0.000,Z 0.000,A 0.000,B 0.000,C 0.000}
+PTP HOME
+LIN {X 500.000,Y -100.000,Z 400.000,A 180.000,B 0.000,C 180.000}
+LIN_REL {Z 50} C_DIS
+LIN_REL {X 10} #TOOL
+LIN_REL {Z 5}
+IF $IN[1] THEN
+LIN_REL {Z 5}
+ENDIF
+PTP XHOME
+END
+"""
+
+
+def test_krl_hand_and_robodk_forms(tmp_path: Path) -> None:
+    """KSS 8.x: `PTP HOME` goes to $config.dat's XHOME (shipped {A1 0, A2 -90, A3 90, ..}), a
+    `$TOOL = {FRAME: ..}` written in the program is a tool of that TCP, LIN_REL moves from where
+    the last move ended (in the base, or with #TOOL in the tool frame)."""
+    path = tmp_path / "demo.src"
+    path.write_text(KRL)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert moves[0].target == "HOME" and moves[-1].target == "HOME"
+    home = next(t for t in doc.targets if t.name == "HOME")
+    assert home.joints == (0.0, -90.0, 90.0, 0.0, 0.0, 0.0)
+    lit = moves[1].target
+    assert moves[2].target == f"shift({lit}, z=50mm)" and moves[2].zone == 2.0
+    assert moves[3].target == f"shift({lit}, z=50mm) * pose(x=10mm)"
+    assert moves[4].target == f"shift(shift({lit}, z=50mm) * pose(x=10mm), z=5mm)"
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert natives == ["LIN_REL {Z 5}"]  # where a block starts the robot's place is not known
+    tool = next(t for t in doc.tools if t.name == moves[1].tool)
+    assert abs(tool.tcp.position[2] - 0.15) < 1e-12 and moves[1].frame == "base"
+    assert sum(d.code.id == "W511" and "XHOME" in d.message for d in doc.diagnostics) == 1
+
+
+def test_urscript_function_with_parameters(tmp_path: Path) -> None:
+    """A function with parameters is a proc (parameters declared `number`, W519, a keyword
+    renamed); its lines that do not use a parameter are read, the others stay native."""
+    path = tmp_path / "lib.script"
+    path.write_text("def blink(port, time=0.5):\n  set_standard_digital_out(3, True)\n  sleep(0.2)\n"
+                    "  set_standard_digital_out(port, False)\nend\n")
+    doc = read_files([str(path)])
+    proc = next(r for r in doc.routines if r.name == "blink")
+    assert proc.params == (("port", "number"), ("time", "number"))
+    assert [type(s).__name__ for s in proc.body] == ["SetOut", "Wait", "Native"]
+    assert [d.code.id for d in doc.diagnostics].count("W519") == 1
+    out = tmp_path / "lib.rmot"
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)])
+    assert result.exit_code == 0 and "proc blink(port: number, time_: number)" in out.read_text(), result.output
+    checked = CliRunner().invoke(cli, ["check", str(out)])
+    assert checked.exit_code == 0, checked.output
+
+
+def test_krl_bas_tool_and_base(tmp_path: Path) -> None:
+    """KSS BAS.SRC: `BAS(#TOOL, n)` / `BAS(#BASE, n)` select TOOL_DATA[n] / BASE_DATA[n] (data of
+    $config.dat: W511 at the line), BASE 0 the robot base."""
+    path = tmp_path / "bas.src"
+    path.write_text("DEF bas( )\nBAS (#TOOL,2)\nBAS (#BASE,0)\nPTP {A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\n"
+                    "BAS (#BASE,3)\nPTP {A1 5,A2 -90,A3 90,A4 0,A5 0,A6 0}\nEND\n")
+    doc = read_files([str(path)])
+    moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    assert [(m.tool, m.frame) for m in moves] == [("tool2", "base"), ("tool2", "base3")]
+    assert {d.span.start.line for d in doc.diagnostics if d.code.id == "W511"} == {2, 5}
+    assert not any(isinstance(s, Native) for r in doc.routines for s in walk(r.body))
+
+
+def test_inform_base_positions_and_nwait(tmp_path: Path) -> None:
+    """A RoboDK-style job: `///POSTYPE BASE` positions are in the base (the `///USER n` before
+    them applies to POSTYPE USER only), `NWAIT` is read with W517 at its line."""
+    path = tmp_path / "PROG1.JBI"
+    path.write_text("/JOB\n//NAME PROG1\n//POS\n///NPOS 2,0,0,0,0,0\n///USER 1\n///TOOL 1\n///POSTYPE BASE\n"
+                    "///RECTAN\n///RCONF 1,0,0,0,0,0,0,0\nC00000=400.000,0.000,300.000,180.0000,0.0000,0.0000\n"
+                    "C00001=400.000,100.000,300.000,180.0000,0.0000,0.0000\n//INST\n///DATE 2024/01/10 10:00\n"
+                    "///ATTR SC,RW\n///GROUP1 RB1\nNOP\nMOVJ C00000 VJ=50.00\nMOVL C00001 V=111.1 PL=0 NWAIT\n"
+                    "DOUT OT#(1) ON\nEND\n")
+    doc = read_files([str(path)])
+    moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    assert [(m.frame, m.speed) for m in moves] == [("base", None), ("base", 111.1)]
+    assert [(d.code.id, d.span.start.line) for d in doc.diagnostics] == [("W517", 18)]
+
+
+def test_val3_refuses_xml_with_entities(tmp_path: Path) -> None:
+    """A VAL3 file is data: XML with a DOCTYPE (entity expansion) is a located E510, never parsed."""
+    path = tmp_path / "start.pgx"
+    path.write_text('<?xml version="1.0"?>\n<!DOCTYPE p [<!ENTITY a "aaaa">]>\n<Programs><Program name="start">'
+                    "<Code>begin\nend</Code></Program></Programs>\n")
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "x.rmot")])
+    assert result.exit_code == 2 and f"{path}:1:1: error[E510]" in result.output, result.output
+
+
+def test_val3_project_naming_no_program(tmp_path: Path) -> None:
+    """A `.pjx` that names no `.pgx` (or only paths outside its folder) is a located E510."""
+    path = tmp_path / "app.pjx"
+    path.write_text('<Project><Programs><Program file="../../etc/start.pgx" /></Programs></Project>\n')
+    from click.testing import CliRunner
+
+    from rmot.compiler.cli import cli
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "x.rmot")])
+    assert result.exit_code == 2 and f"{path}:1:1: error[E510]" in result.output, result.output
