@@ -213,3 +213,17 @@ __all__ += ["STEP_UNIT"]
 # `move free` (E180-E184 are its front end's; its search reports E250-E259, sim/codes.py)
 FREE_TIMED = Code("E180", "free-move-timed", "a 'move free' with a 'time' modifier (its path is found at plan time)")
 __all__ += ["FREE_TIMED"]
+
+# --- `rmot robots add`: a DH table turned into a library definition (compiler/robots/add_robot.py)
+ADD_UNREADABLE = Code("E547", "robot-table-unreadable", "a `rmot robots add` DH table is not readable YAML/JSON")
+ADD_BAD_FIELD = Code("E548", "robot-table-field", "a `rmot robots add` DH table lacks a field or has a bad value")
+ADD_NOT_OPW = Code(
+    "E549", "robot-table-not-opw",
+    "a `rmot robots add` DH table is not a 6R spherical-wrist arm a library definition (OPW form) can hold",
+)
+ADD_NO_SOURCE = Code("W547", "robot-table-no-source", "a `rmot robots add` DH table names no source for its numbers")
+ADD_ACCEL_ESTIMATED = Code(
+    "W548", "robot-table-accel-estimated", "a `rmot robots add` definition's accelerations are the library's estimate"
+)
+
+__all__ += ["ADD_ACCEL_ESTIMATED", "ADD_BAD_FIELD", "ADD_NOT_OPW", "ADD_NO_SOURCE", "ADD_UNREADABLE"]

@@ -222,3 +222,8 @@ def ik_cmd(name: str, pose: tuple[str, ...], show_all: bool, as_json: bool) -> N
         click.echo(f"{i:>3}  {str(b):<40} {_fmt(_display(r, q))}")
     if not result.solutions:
         sys.exit(1)  # a finding about the input pose, not a usage error
+
+
+from rmot.compiler.cli.robots_add_cmd import add_cmd  # noqa: E402  (`rmot robots add`)
+
+robots.add_command(add_cmd)

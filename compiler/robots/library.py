@@ -482,6 +482,13 @@ def _rosi_arms() -> list[RobotSpec]:
     return rosi_arms() + abb_arms() + fanuc_arms()
 
 
+def _motoman_staubli_arms() -> list[RobotSpec]:
+    from rmot.compiler.robots.library_motoman import motoman_arms  # ROS-I's Motoman support packages
+    from rmot.compiler.robots.library_staubli import staubli_arms  # ROS-I's Stäubli support packages
+
+    return motoman_arms() + staubli_arms()
+
+
 SPECS: dict[str, RobotSpec] = {
-    s.name: s for s in _abb_kuka() + _fanuc_yaskawa_staubli() + [_puma560()] + _ur() + _kroshu_arms() + _rosi_arms()
+    s.name: s for s in _abb_kuka() + _fanuc_yaskawa_staubli() + [_puma560()] + _ur() + _kroshu_arms() + _rosi_arms() + _motoman_staubli_arms()
 }

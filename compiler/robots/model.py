@@ -20,7 +20,8 @@ Conventions (lang/REFERENCE.md, "Robot models"):
   * Solids: those the cell gives (`solid(...)`, placed in DH frame i) replace the generated
     ones of their link. Generated: per link a capsule along its joint axis to the foot of the
     next joint's origin (the DH d) and one from there to that origin (the DH a), a short one
-    along the axis where both vanish, and a cylinder standing on z = 0 for the base.
+    along the axis where both vanish, and a cylinder standing on z = 0 for the base (hanging
+    below the shoulder where DH frame 0 is at the J2 height, as a Fanuc's or Yaskawa's is).
     Radii are 5 % of the summed link lengths (at least 15 mm, at most 100 mm), tapering to
     60 % at the flange; an estimate for display and a conservative collision envelope, not
     the vendor's shape. Solids of the same or neighbouring joints, and solids that overlap at
@@ -201,13 +202,13 @@ def _given_solids(spec: ModelSpec, link_frames: list[np.ndarray]) -> tuple[LinkS
 def _solids(model, q0: np.ndarray, given: set[int] = frozenset()) -> tuple[LinkSolid, ...]:  # type: ignore[no-untyped-def,assignment]
     """Per link i: a capsule along joint i's axis to the foot of the next joint origin (the DH
     d), then one from there to the next joint origin (the DH a); a stub along the axis where
-    both are zero. The base: a cylinder standing on z = 0 of DH frame 0. q0: the model
+    both are zero. The base: `_base_cylinder`. q0: the model
     variables at which the solids are laid out (the joint values' zero, clipped into the range)."""
     pts, frames, _ = _joint_points(model, q0)
     total = float(sum(np.linalg.norm(pts[i + 1] - pts[i]) for i in range(len(pts) - 1))) + float(np.linalg.norm(pts[0]))
     r0 = min(max(0.05 * total, 0.015), 0.10)
     n = model.nq
-    out = [_capsule("base", 0, np.zeros(3), np.array([0.0, 0.0, 2 * r0]), r0, np.eye(4), cylinder=True)]
+    out = [_base_cylinder(pts, r0, r0 * (1.0 - 0.8 / n) if n > 1 else r0)]
     for i in range(n):
         if i + 1 in given:  # the cell gives this link's solids
             continue
@@ -226,6 +227,19 @@ def _solids(model, q0: np.ndarray, given: set[int] = frozenset()) -> tuple[LinkS
         for k, (a, b) in enumerate(kept):
             out.append(_capsule(f"link_{i + 1}" + ("" if k == 0 else "_offset"), i + 1, a, b, r, frame))
     return tuple(out)
+
+
+def _base_cylinder(pts: np.ndarray, r0: float, r2: float) -> LinkSolid:
+    """The base: a cylinder of radius r0 and height 2·r0 on the J1 axis, standing on z = 0 of
+    DH frame 0. Where that frame is at the shoulder (Fanuc's, Yaskawa's and Stäubli's
+    controller frames lie at the J2 height, the mounting face below them) a standing cylinder
+    would fill the space the upper arm (radius r2) swings through at the shoulder; there it
+    hangs below the shoulder, clear of the upper arm (its turret, link 1's solid, fills
+    the column up to the shoulder and touches the base by design)."""
+    shoulder = pts[1] if len(pts) > 2 else pts[-1]
+    top = 2 * r0 if shoulder[2] >= 2 * r0 + r2 else min(0.0, float(shoulder[2])) - r2 - 0.002
+    bottom = 0.0 if top > 0 else top - 2 * r0
+    return _capsule("base", 0, np.array([0.0, 0.0, bottom]), np.array([0.0, 0.0, top]), r0, np.eye(4), cylinder=True)
 
 
 def _capsule(name: str, joint: int, p0: np.ndarray, p1: np.ndarray, radius: float, joint_frame: np.ndarray,

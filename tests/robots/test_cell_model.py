@@ -280,3 +280,31 @@ def test_spherical_wrist_without_opw_base_gets_numeric_ik_and_branch_names() -> 
     assert result.solutions
     np.testing.assert_allclose(witness_fk(rows, result.solutions[0], False), witness_fk(rows, q, False), atol=1e-8)
     assert robot.branch(result.solutions[0]) == result.branches[0]
+
+
+# Yaskawa MH5 (Yaskawa-Global/motoman_ros2_support_packages mh5_macro.xacro: 88/310/40/305/80 mm),
+# standard DH with frame 0 at the L-axis height: the robot frame `controller yaskawa` declares.
+MH5_AT_SHOULDER = [("revolute", 0.088, D(-90), 0.0, 0.0), ("revolute", 0.31, 0.0, 0.0, D(-90)),
+                   ("revolute", 0.04, D(-90), 0.0, 0.0), ("revolute", 0.0, D(90), 0.305, 0.0),
+                   ("revolute", 0.0, D(-90), 0.0, 0.0), ("revolute", 0.0, 0.0, 0.08, 0.0)]
+
+
+def test_generated_base_hangs_below_a_shoulder_height_frame_0_clear_of_the_upper_arm() -> None:
+    """With DH frame 0 at the shoulder (the MH5's robot frame), the upper arm swings about J2
+    through the whole L range without touching the base cylinder (a standing cylinder filled
+    the shoulder: E301 at L = -60 deg); where frame 0 is on the floor the base still stands."""
+    from test_solids import cylinder_distance, samples, segment
+
+    robot = _robot(_cell(MH5_AT_SHOULDER, False))
+    names = [s.name for s in robot.solids]
+    base, upper = names.index("base"), names.index("link_2")
+    for lean in np.linspace(D(-90), D(150), 49):
+        q = np.array([0.0, lean, 0.0, 0.0, 0.0, 0.0])
+        poses = robot.solid_poses(q)
+        b0, b1, rb = segment(poses[base], robot.solids[base].geometry)
+        u0, u1, ru = segment(poses[upper], robot.solids[upper].geometry)
+        assert max(b0[2], b1[2]) < 0.0  # below the shoulder
+        assert cylinder_distance(b0, b1, rb, samples(u0, u1)) - ru > 0.0, np.degrees(lean)
+    standing = _robot(_cell(EXAMPLE, False))
+    s0, s1, _ = segment(standing.solid_poses(np.zeros(6))[0], standing.solids[0].geometry)
+    assert min(s0[2], s1[2]) == pytest.approx(0.0, abs=1e-12) and max(s0[2], s1[2]) > 0.0

@@ -17,8 +17,10 @@ from rmot.compiler.robots import list_robots, load_robot
 from reference_arms import ARMS, BY_NAME, KUKA_INERTIALS, RefArm
 from reference_arms_abb import ABB_ARMS
 from reference_arms_fanuc import FANUC_ARMS
+from reference_arms_motoman import MOTOMAN_ARMS
+from reference_arms_staubli import STAUBLI_ARMS
 
-EVERY_ARM = ARMS + ABB_ARMS + FANUC_ARMS
+EVERY_ARM = ARMS + ABB_ARMS + FANUC_ARMS + MOTOMAN_ARMS + STAUBLI_ARMS
 
 
 def _rpy(r: float, p: float, y: float) -> np.ndarray:
