@@ -17,14 +17,14 @@ def _codes(module: object) -> list[Code]:
 
 
 def test_codes_are_registered_and_in_range() -> None:
-    """E0xx for the language, E1xx/W1xx for checks, E5xx for files; names are kebab-case."""
+    """E0xx for the language, E1xx/W1xx for checks, E5xx/W5xx for files; names are kebab-case."""
     registered = {c.id: c for c in all_codes()}
     for code in _codes(lang_codes):
         assert re.fullmatch(r"E0\d\d", code.id) and registered[code.id] is code
     for code in _codes(check_codes):
         # E809/W801: a cell model's masses and ratings, numbered in the design range
         # and reported by the front end's model pass (compiler/passes/lower_model.py)
-        assert re.fullmatch(r"[EW]1\d\d|E5\d\d|E809|W801", code.id), code
+        assert re.fullmatch(r"[EW]1\d\d|[EW]5\d\d|E809|W801", code.id), code
         assert registered[code.id] is code
     for code in _codes(lang_codes) + _codes(check_codes):
         assert re.fullmatch(r"[a-z]+(-[a-z0-9]+)*", code.name), code
@@ -44,5 +44,6 @@ def test_most_codes_have_a_fixture() -> None:
     generated |= {"E809", "W801"}  # model masses and ratings: tests/robots/test_model_dynamics.py
     generated |= {"E187", "E540", "E541", "E542", "E543"}  # need URDF / xacro / STEP files: tests/robots/test_xacro.py,
     # tests/robots/test_controller_conventions.py, tests/sim/test_step.py
+    generated |= {"E547", "E548", "E549", "W547", "W548"}  # robot tables of `rmot robots add`: tests/robots/test_robots_add.py
     missing = [c.id for c in _codes(lang_codes) + _codes(check_codes) if c.id not in text and c.id not in generated]
     assert missing == [], missing
