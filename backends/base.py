@@ -1,4 +1,5 @@
-"""The Backend base class, the EmitResult type and the formatting helpers every vendor shares.
+"""The Backend base class; it re-exports what every vendor shares (EmitResult and TaskContext:
+backends/task_context.py; the formatting helpers: backends/conventions.py).
 
 A backend (sqlglot's dialect generator) is a table plus small formatting methods:
 
@@ -52,14 +53,9 @@ object per call or reuse it sequentially (never share one between threads).
 from __future__ import annotations
 
 import dataclasses
-import math
-import os
 from collections.abc import Callable, Hashable, Iterable
-from dataclasses import dataclass, field, fields, is_dataclass
 from enum import Enum
-from typing import Any, ClassVar, TypeVar
-
-import numpy as np
+from typing import Any, ClassVar
 
 from rmot.backends import codes, controller_data, handshake
 from rmot.backends.conventions import (
@@ -72,143 +68,23 @@ from rmot.backends.part_load import held_load
 from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
-from rmot.lang.record import record
 from rmot.lang.source import Span
 from rmot.backends.safe_text import comment_safe
+from rmot.backends.routine_keys import fingerprint, key_value
+from rmot.backends.task_context import (
+    DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, EmitResult, Emission, TaskContext, accel_is_default, header_lines,
+    name_clash, source_ref, unique,
+)
 
 __all__ = [
     "Backend", "EmitResult", "TaskContext",
     "fmt", "fmt_list", "source_ref", "header_lines",
     "euler_zyx_deg", "euler_xyz_moving_deg", "rotation_vector", "quaternion_wxyz",
     "position_mm", "turn_bits", "axis_quadrant", "tool_cog",
-    "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL", "key_value",
+    "DEFAULT_TCP_ACCEL", "DEFAULT_JOINT_ACCEL", "key_value", "accel_is_default",
 ]
 
-# The front end's accelerations when a program never sets `accel` (defined in compiler/ir.py):
-# a move carrying them asks for nothing a vendor must express.
-DEFAULT_TCP_ACCEL: float = ir.DEFAULT_TCP_ACCEL  # m/s^2
-DEFAULT_JOINT_ACCEL: float = ir.DEFAULT_JOINT_ACCEL  # fraction of each joint's maximum
-
-C = TypeVar("C", bound="TaskContext")
-
-
-@record
-class EmitResult:
-    """What a backend produces: files in a deterministic order, and what it had to say.
-
-    files: filename -> full text (each ends with a newline). diagnostics: errors mean the
-    files are not faithful and must not be written.
-    """
-
-    files: dict[str, str]
-    diagnostics: tuple[Diagnostic, ...] = ()
-
-    @property
-    def has_errors(self) -> bool:
-        return any(d.is_error for d in self.diagnostics)
-
-
-@record
-class TaskContext:
-    """Everything a backend needs to print one task: the plan, the task's plan, its robot."""
-
-    plan: plan_types.Plan
-    task_plan: plan_types.TaskPlan
-    robot: ir.RobotInstance
-    program_name: str  # the legal name of this task's output program
-    source_map: bool = field(default=True, kw_only=True)  # print `file:line` comments
-    warned: set[str] = field(default_factory=set, kw_only=True)  # warnings given once per task
-
-    @property
-    def task(self) -> ir.Task:
-        return self.task_plan.task
-
-    def record(self, instr: ir.Instr) -> plan_types.InstructionRecord | None:
-        """The planner's record of `instr` (looked up by uid), or None when there is none."""
-        return self.task_plan.record(instr.uid)
-
-    def source_ref(self, node: ir.Instr) -> str | None:
-        """'file.rmot:12' for `node` when source maps are on (see `source_ref`), else None."""
-        return source_ref(getattr(node, "span", None)) if self.source_map else None
-
-    def register_slice(self, first: int, last: int) -> tuple[int, int]:
-        """This task's own part (lo, hi) of a controller's global register range first..last.
-        Registers are global on a Fanuc or Yaskawa controller and the program's tasks may run
-        on one controller, so task k of n (program order) takes the k-th of n equal slices:
-        no two tasks share a register; a single task keeps the whole range."""
-        names = [t.name for t in self.plan.program.tasks]
-        size = (last - first + 1) // max(len(names), 1)
-        k = names.index(self.task.name) if self.task.name in names else 0
-        return first + k * size, first + (k + 1) * size - 1
-
-    def with_state(self, cls: type[C], **state: Any) -> C:
-        """This context as the vendor subclass `cls`, carrying that vendor's per-task `state`."""
-        return cls(**{f.name: getattr(self, f.name) for f in fields(TaskContext)}, **state)
-
-
-# --------------------------------------------------------------------------- settings
-
-
-def accel_is_default(motion: ir.Motion, kind: ir.MotionKind) -> bool:
-    """True when the move's acceleration is the front end's default for its kind (joint moves
-    use joint_accel, linear/circular moves tcp_accel): nothing programmed to express."""
-    if kind is ir.MotionKind.JOINT:
-        return math.isclose(motion.joint_accel, DEFAULT_JOINT_ACCEL)
-    return math.isclose(motion.tcp_accel, DEFAULT_TCP_ACCEL)
-
-
-# --------------------------------------------------------------------------- source map
-
-
-def source_ref(span: Span | None) -> str | None:
-    """'file.rmot:12' for a comment (file name without directories: the same on every machine)."""
-    if span is None:
-        return None
-    return f"{comment_safe(os.path.basename(span.file.path))}:{span.start.line}"
-
-
-def _name_clash(backend: object, fname: str, first: str, task_plan: plan_types.TaskPlan) -> Diagnostic:
-    """E522: two tasks' programs get one file name on this controller (its name length limit
-    or its case folding made them equal); writing both would lose one."""
-    from rmot.compiler import codes as file_codes
-
-    who = getattr(backend, "name", type(backend).__name__)
-    msg = (f"{who}: task '{task_plan.task.name}' must get its own output file (got '{fname}', "
-           f"the file of task '{first}': the controller's name length or case rules make the names equal); rename a task")
-    return Diagnostic(file_codes.OUTPUT_NAME_CLASH, Severity.ERROR, msg, task_plan.task.span)
-
-
-def header_lines(plan: plan_types.Plan, backend_name: str, findings: bool = False) -> list[str]:
-    """Lines (without the comment marker) every file starts with."""
-    program = plan.program
-    where = source_ref(program.span)
-    lines = [f"generated by rmot from program '{program.name}'" + (f" ({where})" if where else "")]
-    lines.append(f"target: {backend_name}; cell: {program.cell.name}; do not edit by hand")
-    if findings:
-        lines.append("WARNING: verification reported errors; compiled with --allow-findings")
-    return lines
-
-
 # --------------------------------------------------------------------------- base class
-
-
-def _unique(diagnostics: list[Diagnostic]) -> tuple[Diagnostic, ...]:
-    """Diagnostics without repeats: a proc body printed for several calls reports once."""
-    seen: set[tuple[object, ...]] = set()
-    out = []
-    for d in diagnostics:
-        key = (d.code.id, d.severity, d.message, d.span)
-        if key not in seen:
-            seen.add(key)
-            out.append(d)
-    return tuple(out)
-
-
-@dataclass
-class _Emission:
-    """Per-emit scratch: the diagnostics collected so far (reset by Backend.emit)."""
-
-    diagnostics: list[Diagnostic] = field(default_factory=list)
 
 
 class Backend:
@@ -309,7 +185,7 @@ class Backend:
         # `--write-frames`: numbered tools and frames are also written into the controller's
         # stored data (Fanuc UTOOL/UFRAME, KUKA TOOL_DATA/BASE_DATA); off, they are only selected
         self.write_frames = write_frames
-        self._emission = _Emission()
+        self._emission = Emission()
 
     # ------------------------------------------------------------------ entry point
 
@@ -317,7 +193,7 @@ class Backend:
         """Format every task of `plan` (after `lowered_plan`); one output program (one or
         more files) per task."""
         plan = self.lowered_plan(plan)
-        self._emission = _Emission()
+        self._emission = Emission()
         files: dict[str, str] = {}
         owner: dict[str, str] = {}  # case-folded file name -> the task that wrote it
         clashed: set[tuple[str, str]] = set()
@@ -330,10 +206,10 @@ class Backend:
                 if first != task_plan.task.name:  # names equal after the vendor's cut or case folding
                     if (first, task_plan.task.name) not in clashed:
                         clashed.add((first, task_plan.task.name))
-                        self._emission.diagnostics.append(_name_clash(self, fname, first, task_plan))
+                        self._emission.diagnostics.append(name_clash(self, fname, first, task_plan))
                     continue
                 files[fname] = text
-        return EmitResult(files, _unique(self._emission.diagnostics))
+        return EmitResult(files, unique(self._emission.diagnostics))
 
     def lowered_plan(self, plan: plan_types.Plan) -> plan_types.Plan:
         """`plan` as this vendor prints it, by the class flags: unless PRINTS_LOOPS, every task
@@ -388,7 +264,7 @@ class Backend:
         record of it (floats rounded to 1e-9, far below any printed precision; not its
         timing, which depends on where the call starts) and `context_key` (what else a vendor
         prints: RAPID a move's planned duration, INFORM an arc's start point)."""
-        return _fingerprint(call.body, ctx, self.context_key)
+        return fingerprint(call.body, ctx, self.context_key)
 
     def call_args_comment(self, node: ir.ProcCall) -> list[str]:
         """A comment with the call's arguments as written, above the call line (the routine
@@ -722,50 +598,6 @@ class Backend:
 
     def stop(self, node: ir.Stop, ctx: Any) -> list[str]:
         return self.runtime_unsupported(node, ctx)
-
-
-# --------------------------------------------------------------------------- routine keys
-
-_NESTED = ("body", "then", "otherwise")  # IR fields holding instructions
-_RECORD_FIELDS = ("q_target", "branch", "tcp_pose", "flange_pose", "q_via", "blend_radius")
-
-
-def _fingerprint(nodes: tuple[ir.Instr, ...], ctx: TaskContext,
-                 context_key: Callable[[ir.Instr, TaskContext], Hashable]) -> tuple[Hashable, ...]:
-    """A hashable picture of `nodes` as a backend prints them (see Backend.routine_key)."""
-    out: list[Hashable] = []
-    for node in nodes:
-        own = tuple(_fingerprint(getattr(node, f.name), ctx, context_key) if f.name in _NESTED
-                    else key_value(getattr(node, f.name))
-                    for f in fields(node) if f.name not in ("uid", "span"))
-        rec = ctx.record(node)
-        recorded = None if rec is None else tuple(key_value(getattr(rec, name)) for name in _RECORD_FIELDS)
-        out.append((type(node).__name__, own, source_ref(getattr(node, "span", None)),
-                    recorded, context_key(node, ctx)))
-    return tuple(out)
-
-
-def key_value(v: Any) -> Hashable:
-    """`v` as a hashable value: floats rounded to 1e-9, arrays and dataclasses as tuples,
-    spans left out (they never print beyond `file:line`)."""
-    if v is None or isinstance(v, (str, bool, int, Enum)):
-        return v
-    if isinstance(v, float):
-        return round(v, 9)
-    if isinstance(v, Span):
-        return None
-    if isinstance(v, np.ndarray):
-        return ("array", v.shape, tuple(round(float(x), 9) for x in v.ravel()))
-    if is_dataclass(v):
-        return (type(v).__name__, tuple(key_value(getattr(v, f.name)) for f in fields(v)))
-    if isinstance(v, (tuple, list, frozenset, set)):
-        items = tuple(key_value(x) for x in v)
-        return tuple(sorted(items, key=repr)) if isinstance(v, (set, frozenset)) else items
-    if isinstance(v, dict):
-        return tuple(sorted(((key_value(k), key_value(x)) for k, x in v.items()), key=repr))
-    if isinstance(v, (np.floating, np.integer)):
-        return key_value(v.item())
-    return repr(v)
 
 
 # Every instruction kind has a printer (the defaults of the class body included): a kind added

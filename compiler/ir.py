@@ -43,7 +43,7 @@ __all__ = [
     "ProcCall", "Program", "Pulse", "RobotInstance", "RobotSource", "SetAnalog",
     "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
     "WaitTime", "Wrist", "Zone", "payload_cog",
-    "Attach", "Detach", "Part", "load_cog",
+    "Attach", "Detach", "Part",
     "AnalogInput", "Arith", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
     "Loop", "LoopIteration", "Not", "RtExpr", "Stop", "ValueType", "VarDecl", "VarRef",
     "WaitCondition", "While",
@@ -807,16 +807,3 @@ def payload_cog(tcp: Pose) -> tuple[float, float, float]:
     backend that writes a payload."""
     x, y, z = tcp.position
     return (0.5 * x, 0.5 * y, 0.5 * z)
-
-
-def load_cog(tool: ToolRef, load: float) -> tuple[float, float, float]:
-    """The centre of gravity (flange frame, m) of the load a backend writes while parts are
-    held: the tool's mass at payload_cog and the held parts' mass (load - tool mass) at the
-    TCP, where the gripper holds them (the verification's torque check uses each part's true
-    centroid instead, sim/parts.py)."""
-    parts = max(load - tool.mass, 0.0)
-    if load <= 0.0:
-        return payload_cog(tool.tcp)
-    t = payload_cog(tool.tcp)
-    p = tool.tcp.position
-    return tuple((tool.mass * a + parts * b) / load for a, b in zip(t, p))  # type: ignore[return-value]

@@ -42,7 +42,7 @@ from rmot.sim.part_phases import (
 )
 from rmot.sim.scene import Body, Scene, _local_box, _reach, _sphere_cover, flange_in_last_joint
 
-__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "Placement", "absent_pose", "heaviest_held", "is_absent", "part_bodies",
+__all__ = ["GRIP_TOL", "REST_TOL", "Phase", "PartEvent", "Placement", "absent_pose", "is_absent", "part_bodies",
            "part_events", "part_hits", "placements",
            "payload_findings", "phase_scene", "phases", "shape_diagnostics"]
 
@@ -300,28 +300,6 @@ def payload_findings(scene: Scene, plan: plan_types.Plan) -> list[Diagnostic]:
                                               r.t_end, (tp.robot,), Amount(round(total - rated, 6), "kg"), tp.task.name))
                 over_before = over
     return out
-
-
-def heaviest_held(scene: Scene, plan: plan_types.Plan, tp: plan_types.TaskPlan) -> tuple[float, np.ndarray | None]:
-    """(mass, centre of gravity in the flange frame (3,)) of the heaviest set of parts the task's
-    robot holds in any phase of the main timeline (each part at its own centroid)."""
-    best: tuple[float, np.ndarray | None] = (0.0, None)
-    parts = {p.name: p for p in scene.cell.parts}
-    for phase in phases(scene, plan):
-        mine = [(parts[declared_part(n)], local) for n, (robot, local) in phase.held.items()
-                if robot == tp.robot and declared_part(n) in parts]
-        mass = sum(p.mass for p, _ in mine)
-        if mass > best[0]:
-            cog = sum((p.mass * (local @ np.append(_centre(p), 1.0))[:3] for p, local in mine), np.zeros(3)) / mass
-            best = (mass, cog)
-    return best
-
-
-def _centre(part: ir.Part) -> np.ndarray:
-    shape = part_shape(part)
-    if shape is None:
-        return np.zeros(3)
-    return _local_box(shape)[0]
 
 
 # --------------------------------------------------------------------------- pictures

@@ -4,8 +4,9 @@ Every task's main timeline is checked on one shared clock (robot against robot w
 overlap in time); every `if` variant is checked against the fixtures, its own robot and the
 other robots (on their main timelines at the same times). A robot of the cell without a task
 stands still at its zero configuration (clipped to its limits). Every tool a task names is
-treated as mounted for the whole task (tool changes are not modelled); its mass, at its centre
-of gravity half way along the flange->TCP vector (ir.payload_cog), is the torque check's payload.
+treated as mounted for the whole task (tool changes are not modelled); the torque check's
+payload is the heaviest tool with the heaviest set of parts held at once (compiler/payload.py,
+the one model the planner and the backends read too).
 
 The no-miss guarantee between samples is the distance bound in collide.py: a contact
 deeper than collide.CONTACT_TOL (10 µm) cannot fall between two samples unseen.
@@ -18,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.compiler import ir, ir_tree, payload, plan_types
 from rmot.compiler.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.source import Span
@@ -294,23 +295,14 @@ def _estimated_torque(robot: Any) -> bool:
 
 
 def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> tuple[float, np.ndarray | None]:
-    """The heaviest tool the task uses, as a point mass at its centre of gravity (in the last
-    joint's frame): half way along the flange->TCP vector, ir.payload_cog, the point every
-    backend writes as the tool's payload."""
-    best: tuple[float, np.ndarray | None] = (0.0, None)
-    for instr in ir_tree.walk(tp.task.body):
-        if isinstance(instr, ir.Move) and instr.tool.mass > best[0]:
-            best = (instr.tool.mass, np.asarray(ir.payload_cog(instr.tool.tcp), dtype=float))
-    if scene.cell.parts and plan is not None:  # the heaviest parts it holds, at their own centroids, with the heaviest tool
-        held, held_at = parts.heaviest_held(scene, plan, tp)
-        if held_at is not None:
-            mass = best[0] + held
-            tool_at = best[1] if best[1] is not None else np.zeros(3)
-            best = (mass, (best[0] * tool_at + held * held_at) / mass)
-    if best[1] is None:
-        return best
+    """The task's load (compiler/payload.task_load: its heaviest tool at ir.payload_cog, the
+    point every backend writes as the tool's payload, plus the heaviest set of parts it holds at
+    once, at their centres) as a point mass in the last joint's frame."""
+    load = payload.task_load(plan, tp)
+    if load is None:
+        return 0.0, None
     flange = flange_in_last_joint(scene.robots[tp.robot].robot)
-    return best[0], flange[:3, :3] @ best[1] + flange[:3, 3]
+    return load.mass, flange[:3, :3] @ load.at() + flange[:3, 3]
 
 
 def _limit_diagnostic(tp: plan_types.TaskPlan, hit: LimitHit, variant: int, estimated: bool = False) -> Diagnostic:

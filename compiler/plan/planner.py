@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.compiler import ir, payload
 from rmot.compiler.axis_motion import axis_findings
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.least_time import least_duration_s
@@ -116,9 +116,10 @@ def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
 
 def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program, budget_s: float) -> TaskDraft:
     """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
-    robot has no torque ratings), the payload as the verification takes it; a path longer than
+    robot has no torque ratings) with the payload's timing bound (compiler/payload.py); a path longer than
     `budget_s` is refused by _too_many_samples, so its timing stops there."""
-    limits = torque.torque_limits(robot, *torque.task_payload(task, program.cell.parts))
+    load = payload.timing_load(task, program.cell.parts)
+    limits = torque.torque_limits(robot, load.mass if load else 0.0, load.at() if load else None)
     return build_task(robot, task, q0, lone=len(program.tasks) == 1, torque=limits, budget_s=budget_s)
 
 

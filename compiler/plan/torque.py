@@ -19,11 +19,11 @@ so a timing that respects them is one the torque check passes. Those limits are 
 source gives them (UR, KUKA/kroshu, Stäubli descriptions; a cell `model`'s `torque`) and
 otherwise estimated (compiler/robots/dynamics.EFFORT_METHOD); `rmot robots show` names which.
 
-The payload is the verification's (sim/verification._payload): the heaviest tool the task
-uses, its mass at ir.payload_cog, plus the heaviest set of parts it holds at once (from the
-`attach`/`detach` instructions' `held`), which the planner, not knowing yet where on the tool
-a part is gripped, puts at the TCP of the tool that attaches it (the verification puts it at
-the part's centroid; the difference is the part's centroid's offset from the TCP).
+The payload is compiler/payload.py's `timing_load` (the model every reader shares): the
+heaviest tool the task uses, its mass at ir.payload_cog, plus the heaviest set of parts it holds
+at once, which the planner, not knowing yet where on the tool a part is gripped, puts at the
+TCP of the tool that attaches it (the verification puts it at the part's centre, fixed at its
+attach: the difference is that centre's offset from the TCP).
 
 A chain is first timed without torque rows; only when its torques, sampled every
 `CHECK_STEP`, exceed a limit is it timed again with them (chain.py), so every program whose
@@ -36,9 +36,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from rmot.compiler import ir, ir_tree
 
-__all__ = ["CHECK_STEP", "TorqueLimits", "exceeds", "task_payload", "torque_limits"]
+__all__ = ["CHECK_STEP", "TorqueLimits", "exceeds", "torque_limits"]
 
 CHECK_STEP = (
     0.002  # s: the torque of a timed chain is sampled this often to decide whether it binds
@@ -84,32 +83,6 @@ class TorqueLimits:
             found = Dynamics(self.model)
             object.__setattr__(self, "_dynamics", found)
         return found
-
-
-def task_payload(task: ir.Task, parts: tuple[ir.Part, ...]) -> tuple[float, np.ndarray | None]:
-    """(kg, centre of gravity in the flange frame (3,) or None): the heaviest tool the task uses
-    at ir.payload_cog plus the heaviest set of parts it holds at once, at the attaching tool's
-    TCP (see module doc)."""
-    tool_mass, tool_at = 0.0, None
-    held_mass, held_at = 0.0, None
-    masses = {p.name: p.mass for p in parts}
-    for instr in ir_tree.walk(task.body):
-        if isinstance(instr, ir.Move) and instr.tool.mass > tool_mass:
-            tool_mass, tool_at = (
-                instr.tool.mass,
-                np.asarray(ir.payload_cog(instr.tool.tcp), dtype=float),
-            )
-        elif isinstance(instr, ir.Attach):
-            mass = sum(masses.get(name, 0.0) for name in instr.held)
-            if mass > held_mass:
-                held_mass, held_at = mass, np.asarray(instr.tool.tcp.position, dtype=float)
-    if held_at is None:
-        return tool_mass, tool_at
-    total = tool_mass + held_mass
-    at = (
-        tool_mass * (tool_at if tool_at is not None else np.zeros(3)) + held_mass * held_at
-    ) / total
-    return total, at
 
 
 def torque_limits(robot: Any, mass: float, at: np.ndarray | None) -> TorqueLimits | None:

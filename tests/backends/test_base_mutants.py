@@ -12,9 +12,10 @@ import pytest
 
 from rmot.backends import codes
 from rmot.backends.base import (
-    DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, Backend, TaskContext, _unique, accel_is_default,
+    DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, Backend, TaskContext, accel_is_default,
     header_lines, key_value, source_ref,
 )
+from rmot.backends.task_context import unique
 from rmot.compiler import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
@@ -61,7 +62,7 @@ def _diag(message: str = "m", span: Span | None = None, severity: Severity = Sev
 class TestUnique:
     def test_exact_repeats_are_dropped_in_order(self) -> None:
         a, b = _diag("a", _span(1)), _diag("b", _span(1))
-        assert _unique([a, b, a, _diag("a", _span(1)), b]) == (a, b)
+        assert unique([a, b, a, _diag("a", _span(1)), b]) == (a, b)
 
     @pytest.mark.parametrize("other", [
         _diag("a", _span(2)), _diag("a (more)", _span(1)), _diag("a", _span(1), Severity.WARNING),
@@ -69,7 +70,7 @@ class TestUnique:
     ])
     def test_anything_different_is_kept(self, other: Diagnostic) -> None:
         first = _diag("a", _span(1))
-        assert _unique([first, other]) == (first, other)
+        assert unique([first, other]) == (first, other)
 
 
 class TestKeyValue:

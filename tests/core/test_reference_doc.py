@@ -26,10 +26,10 @@ _COMPLETE = re.compile(r"^\s*(program|cell)\b", re.M)
 
 
 def codes_modules() -> list[str]:
-    """Every `codes*.py` module under the four package folders, as import names."""
+    """Every `*codes.py` module under the four package folders, as import names."""
     names = []
     for folder, package in PACKAGES.items():
-        for path in sorted((ROOT / folder).glob("**/codes*.py")):
+        for path in sorted((ROOT / folder).glob("**/*codes.py")):
             rel = path.relative_to(ROOT / folder).with_suffix("")
             names.append(".".join((package, *rel.parts)))
     return names
