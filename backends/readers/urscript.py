@@ -83,6 +83,7 @@ class _Script:
         self.names: set[str] = set()
         self.name = "imported"
         self.main = "imported"
+        self.enclosing = 0  # loops and sub-routine bodies around the statement being read
 
     # ---------------------------------------------------------------- structure
 
@@ -131,7 +132,7 @@ class _Script:
         ln = self.lines[i]
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", ln.text)
         if m:
-            body, j = self._block(i + 1, ("end",))
+            body, j = self._enclosed(i + 1)
             self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             return [], j + 1
         params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
@@ -140,7 +141,7 @@ class _Script:
             names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
             self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
                             "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
-            body, j = self._block(i + 1, ("end",))
+            body, j = self._enclosed(i + 1)
             self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
             return [], j + 1
         if re.match(r"(def|thread)\s+\w+\s*\(", ln.text):
@@ -156,7 +157,7 @@ class _Script:
                 return found
         if ln.head in ("if", "while"):
             return self._compound(i)
-        if ln.head == "set_payload" and not (i > 0 and self.lines[i - 1].head == "set_tcp"):
+        if ln.head in ("set_payload", "set_target_payload") and not (i > 0 and self.lines[i - 1].head == "set_tcp"):
             # not the load of a tool just selected: a switch of the held load (an attach/detach)
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text) or self._declare(ln):
@@ -166,6 +167,15 @@ class _Script:
             return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
+
+    def _enclosed(self, i: int) -> tuple[list[Stmt], int]:
+        """The body of a loop or of a sub-routine, up to its `end`: a `while True:` in it is not
+        the program's outermost loop."""
+        self.enclosing += 1
+        try:
+            return self._block(i, ("end",))
+        finally:
+            self.enclosing -= 1
 
     def _thread(self, i: int) -> tuple[list[Stmt], int]:
         """A thread: the backend's pulse thread (out on, sleep, out off) is remembered as a
@@ -205,8 +215,9 @@ class _Script:
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
         t = self._texts(i, 3)
-        w = re.fullmatch(r"whilenot\((.*)\):", t[0]) if len(t) == 3 else None
-        cond = _cond(w.group(1)) if w and t[1] == "sync()" and t[2] == "end" else None
+        w = re.fullmatch(r"while(.*):", t[0]) if len(t) == 3 else None
+        test = _unwrap(w.group(1)) if w else ""  # PolyScope: `while (not(get_standard_digital_in(0) == True)):`
+        cond = _cond(test[3:]) if test.startswith("not") and t[1] == "sync()" and t[2] == "end" else None
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
@@ -230,7 +241,7 @@ class _Script:
         ln = self.lines[i]
         m = re.fullmatch(r"(if|elif|while)\s+(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
-            and all(x.where.col < ln.where.col or x.head == "end" for x in self.lines[:i] if x.head == "while")
+            and self.enclosing == 0
         cond = _FOREVER if forever else _cond(m.group(2)) if m else None
         if cond is None:
             out, j, depth = [], i, 0
@@ -244,7 +255,7 @@ class _Script:
             return out, j  # type: ignore[return-value]
         self.tally.imported += 1
         if ln.head == "while":
-            body, j = self._block(i + 1, ("end",))
+            body, j = self._enclosed(i + 1) if cond is not _FOREVER else self._block(i + 1, ("end",))
             if cond is _FOREVER:  # PolyScope's "Program loops forever": rmot's program is one cycle
                 self.tally.warn(codes.LOOP_READ_ONCE, "`while True` is read as one cycle of the program "
                                 "(the controller repeats an rmot program)", ln.where)
@@ -273,7 +284,7 @@ class _Script:
                 self.tools[key] = ToolData(f"tcp_{len(self.tools) + 1}", ur_pose(values), 0.0, Where(self.tally.path, 1))
             self.tool = self.tools[key].name
             return True
-        m = re.fullmatch(r"set_payload\(([\d.]+)(?:,.*)?\)", compact)
+        m = re.fullmatch(r"set_(?:target_)?payload\(([\d.]+)(?:,.*)?\)", compact)  # set_target_payload: PolyScope 5.10+
         if m and self.tool is not None:
             key = next(k for k, t in self.tools.items() if t.name == self.tool)
             t = self.tools[key]
@@ -448,12 +459,30 @@ def _strip_hash(line: str) -> str:
     return line
 
 
-def _cond(text: str) -> Cond | None:
-    """`get_standard_digital_in(n) == True|False`, bare, or `not ...` (configurable: n + 8)."""
+def _unwrap(text: str) -> str:
+    """`text` without spaces and without parentheses that enclose all of it."""
     text = text.replace(" ", "")
+    while text.startswith("(") and text.endswith(")") and _balanced(text[1:-1]):
+        text = text[1:-1]
+    return text
+
+
+def _balanced(text: str) -> bool:
+    depth = 0
+    for ch in text:
+        depth += (ch == "(") - (ch == ")")
+        if depth < 0:
+            return False
+    return depth == 0
+
+
+def _cond(text: str) -> Cond | None:
+    """`get_standard_digital_in(n) == True|False`, bare, or `not ...`, each maybe in parentheses
+    (configurable: n + 8)."""
+    text = _unwrap(text)
     neg = text.startswith("not")
     if neg:
-        text = text[3:].strip("()")
+        text = _unwrap(text[3:])
     m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:==(True|False))?", text)
     if m is None:
         return None
