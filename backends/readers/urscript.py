@@ -84,6 +84,10 @@ class _Script:
         self.name = "imported"
         self.main = "imported"
         self.enclosing = 0  # loops and sub-routine bodies around the statement being read
+        self.in_sub = 0  # sub-routine bodies around the statement being read
+        self.values: dict[str, float] = {}  # numeric variables as straight-line code has set them
+        self.assigned: dict[str, int] = {}  # name -> how many assignments the file holds
+        self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
 
     # ---------------------------------------------------------------- structure
 
@@ -92,6 +96,7 @@ class _Script:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
+        self._scan_numbers()
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
@@ -108,6 +113,35 @@ class _Script:
         else:
             body, _ = self._block(0, ())
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
+
+    def _scan_numbers(self) -> None:
+        """Which names the file assigns, how often, and which inside a nested block (deeper than
+        the program's own body): a move reads such a variable only where its value is certain."""
+        body_col = self.lines[1].where.col if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) \
+            and len(self.lines) > 1 else self.lines[0].where.col
+        for ln in self.lines:
+            m = _ASSIGN.fullmatch(ln.text)
+            if m:
+                self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
+                if ln.where.col > body_col:
+                    self.nested_set.add(m.group(1))
+
+    def _number_set(self, text: str) -> None:
+        """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =
+        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`)."""
+        m = _ASSIGN.fullmatch(text)
+        value = number(m.group(2)) if m else None
+        if m is not None and value is not None:
+            self.values[m.group(1)] = value
+
+    def _value(self, text: str) -> float | None:
+        """A move argument: a number, or a variable whose value at this move is certain (set once
+        in the file; or, outside sub-routines, never set inside a nested block)."""
+        value = number(text)
+        if value is not None or text not in self.values:
+            return value
+        once = self.assigned.get(text, 0) == 1
+        return self.values[text] if once or (self.in_sub == 0 and text not in self.nested_set) else None
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
@@ -132,7 +166,9 @@ class _Script:
         ln = self.lines[i]
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", ln.text)
         if m:
+            self.in_sub += 1
             body, j = self._enclosed(i + 1)
+            self.in_sub -= 1
             self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             return [], j + 1
         params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
@@ -162,6 +198,7 @@ class _Script:
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
+        self._number_set(ln.text)  # remembered for the moves that read it, and kept native
         stmt = self._simple(ln)
         if stmt is None:
             return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
@@ -414,13 +451,18 @@ class _Script:
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
         kind = {"movej": "joint", "movel": "linear", "movec": "circular"}[func]
         named = dict(a.split("=", 1) for a in args if re.match(r"\w+=", a) and not a.startswith("get_"))
-        points = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
-        if len(points) != (2 if kind == "circular" else 1) or set(named) - {"a", "v", "r", "t", "mode"}:
+        given = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
+        npoints = 2 if kind == "circular" else 1
+        points, positional = given[:npoints], given[npoints:]
+        # positional arguments in the manual's order: movej/movel(q, a, v, t, r), movec(via, to, a, v, r, mode)
+        order = ("a", "v", "r", "mode") if kind == "circular" else ("a", "v", "t", "r")
+        if len(points) != npoints or len(positional) > len(order) or set(named) & set(order[:len(positional)]):
             return None
-        if named.get("mode", "0") != "0":
+        named.update(zip(order, positional))
+        if set(named) - {"a", "v", "r", "t", "mode"} or named.get("mode", "0") != "0":
             return None
         found = [self._target(p) for p in points]
-        values = {k: number(v) for k, v in named.items()}
+        values = {k: self._value(v) for k, v in named.items()}
         if any(f is None for f in found) or any(v is None for v in values.values()):
             return None
         expr, name, decl = found[-1]  # type: ignore[misc]
@@ -435,11 +477,12 @@ class _Script:
             accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
             jpct, jacc = None, None
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
-                    speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t"), tool=self.tool,
+                    speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t") or None, tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
                     accel=accel, joint_accel=jacc)
 
 
+_ASSIGN = re.compile(r"(?:global\s+)?(\w+)\s*=\s*([-+\d.eE]+)")
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
 
 

@@ -265,3 +265,35 @@ def test_polyscope_export_with_step_counter(tmp_path: Path) -> None:
     assert [d.span.start.line for d in doc.diagnostics if d.code.id == "W518"] == [14]
     tool = doc.tools[0]
     assert abs(tool.mass - 1.2) < 1e-12 and abs(tool.tcp.position[2] - 0.15) < 1e-12
+
+
+ROBODK_UR = """def Prog1():
+  global speed_ms    = 0.300
+  global accel_mss   = 3.000
+  global blend_radius_m = 0.001
+  def Sub():
+    movel(p[0.5, 0, 0.3, 0, 3.14159265358979, 0],accel_mss,speed_ms,0,0)
+  end
+  set_tcp(p[0.000000, 0.000000, 0.150000, 0.000000, 0.000000, 0.000000])
+  speed_ms    = 0.250
+  movel(p[0.4, -0.1, 0.3, 0, 3.14159265358979, 0],accel_mss,speed_ms,0,blend_radius_m)
+  movec(p[0.45, -0.05, 0.3, 0, 3.14159265358979, 0],p[0.5, -0.1, 0.3, 0, 3.14159265358979, 0],accel_mss,speed_ms,0)
+  Sub()
+end
+"""
+
+
+def test_robodk_positional_arguments_and_variables(tmp_path: Path) -> None:
+    """RoboDK's UR post writes `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`: positional
+    arguments in the URScript manual's order (movel(pose, a, v, t, r), movec(via, to, a, v, r)),
+    values held in variables set in straight-line code. In a sub-routine a variable the program
+    sets more than once is not certain (it depends on the call): that move stays native."""
+    path = tmp_path / "prog.script"
+    path.write_text(ROBODK_UR)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.speed, m.accel, m.zone) for m in moves] == [
+        ("linear", 0.250 * 1000, 3.000 * 1000, 0.001 * 1000), ("circular", 0.250 * 1000, 3.000 * 1000, None)]
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert any(n.startswith("movel(p[0.5") for n in natives)  # speed_ms is set twice
