@@ -254,25 +254,28 @@ class _Script:
         t = self._texts(i, 3)
         w = re.fullmatch(r"while(.*):", t[0]) if len(t) == 3 else None
         test = _unwrap(w.group(1)) if w else ""  # PolyScope: `while (not(get_standard_digital_in(0) == True)):`
-        cond = _cond(test[3:]) if test.startswith("not") and t[1] == "sync()" and t[2] == "end" else None
+        looped = _cond(test) if t[1:] == ["sync()", "end"] else None
+        cond = Cond(looped.signal, not looped.on) if looped else None  # waits until the loop's test fails
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
-        """`v = a`, `while v <= b:`, body, `v = v + 1`, `end`: for v in a .. b + 1."""
+        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`), body, `v = v + 1`, `end`:
+        for v in a .. b + 1 (a .. b)."""
         t = self._texts(i, 2)
         m = re.fullmatch(r"(\w+)=(-?\d+)", t[0]) if len(t) == 2 else None
-        w = re.fullmatch(rf"while{m.group(1)}<=(-?\d+):", t[1]) if m else None
+        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\d+)\)?:", t[1]) if m else None
         if m is None or w is None:
             return None
         var = m.group(1)
         saved = set(self.names)
         self.names.add(var)
-        body, j = self._block(i + 2, ("end",))
+        body, j = self._enclosed(i + 2)
         self.names = saved
         last = self.lines[j - 1].text.replace(" ", "") if j - 1 > i + 1 else ""
         if last != f"{var}={var}+1":
             return None
-        return [For(var, int(m.group(2)), int(w.group(1)) + 1, tuple(body), self.lines[i + 1].where)], j + 1
+        end = int(w.group(2)) + (w.group(1) == "<=")
+        return [For(var, int(m.group(2)), end, tuple(body), self.lines[i + 1].where)], j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]

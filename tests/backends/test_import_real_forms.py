@@ -13,7 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import If, Move, Native, SetOut, WaitIn, walk
+from rmot.backends.readers.model import For, If, Move, Native, SetOut, WaitIn, walk
 
 TP = """/PROG  DEMO
 /ATTR
@@ -297,3 +297,36 @@ def test_robodk_positional_arguments_and_variables(tmp_path: Path) -> None:
         ("linear", 0.250 * 1000, 3.000 * 1000, 0.001 * 1000), ("circular", 0.250 * 1000, 3.000 * 1000, None)]
     natives = [s.text for s in stmts if isinstance(s, Native)]
     assert any(n.startswith("movel(p[0.5") for n in natives)  # speed_ms is set twice
+
+
+POLYSCOPE_LOOP = """def Untitled():
+  while (True):
+    $ 8 "Wait DI[0]=HI"
+    while (get_standard_digital_in(0) == False):
+      sync()
+    end
+    $ 9 "Loop 3 times"
+    Loop_1 = 0
+    while (Loop_1 < 3):
+      movel(p[-0.1439, -0.4356, 0.1020, -0.0012, 3.1162, 0.0388], a=1.2, v=0.25)
+      Loop_1 = Loop_1 + 1
+    end
+  end
+end
+"""
+
+
+def test_polyscope_wait_and_counted_loop(tmp_path: Path) -> None:
+    """PolyScope's `while (get_standard_digital_in(0) == False): sync() end` loops while the input
+    is off: it waits for it on; its "Loop 3 times" (`Loop_1 = 0`, `while (Loop_1 < 3):`, ..,
+    `Loop_1 = Loop_1 + 1`) runs the body for Loop_1 = 0, 1, 2."""
+    path = tmp_path / "prog.script"
+    path.write_text(POLYSCOPE_LOOP)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    assert not any(isinstance(s, Native) for s in stmts)
+    waits = [s for s in stmts if isinstance(s, WaitIn)]
+    assert [(w.cond.signal, w.cond.on) for w in waits] == [(0, True)]
+    loops = [s for s in stmts if isinstance(s, For)]
+    assert [(f.var, f.first, f.stop) for f in loops] == [("Loop_1", 0, 3)]
+    assert len(range(loops[0].first, loops[0].stop)) == 3
