@@ -290,8 +290,7 @@ def test_robodk_positional_arguments_and_variables(tmp_path: Path) -> None:
     sets more than once is not certain (it depends on the call): that move stays native."""
     path = tmp_path / "prog.script"
     path.write_text(ROBODK_UR)
-    doc = read_files([str(path)])
-    stmts = [s for r in doc.routines for s in walk(r.body)]
+    stmts = _stmts(path)
     moves = [s for s in stmts if isinstance(s, Move)]
     assert [(m.kind, m.speed, m.accel, m.zone) for m in moves] == [
         ("linear", 0.250 * 1000, 3.000 * 1000, 0.001 * 1000), ("circular", 0.250 * 1000, 3.000 * 1000, None)]
@@ -322,8 +321,7 @@ def test_polyscope_wait_and_counted_loop(tmp_path: Path) -> None:
     `Loop_1 = Loop_1 + 1`) runs the body for Loop_1 = 0, 1, 2."""
     path = tmp_path / "prog.script"
     path.write_text(POLYSCOPE_LOOP)
-    doc = read_files([str(path)])
-    stmts = [s for r in doc.routines for s in walk(r.body)]
+    stmts = _stmts(path)
     assert not any(isinstance(s, Native) for s in stmts)
     waits = [s for s in stmts if isinstance(s, WaitIn)]
     assert [(w.cond.signal, w.cond.on) for w in waits] == [(0, True)]
