@@ -83,6 +83,11 @@ class _Script:
         self.names: set[str] = set()
         self.name = "imported"
         self.main = "imported"
+        self.enclosing = 0  # loops and sub-routine bodies around the statement being read
+        self.in_sub = 0  # sub-routine bodies around the statement being read
+        self.values: dict[str, float] = {}  # numeric variables as straight-line code has set them
+        self.assigned: dict[str, int] = {}  # name -> how many assignments the file holds
+        self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
 
     # ---------------------------------------------------------------- structure
 
@@ -91,6 +96,7 @@ class _Script:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
+        self._scan_numbers()
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
@@ -107,6 +113,35 @@ class _Script:
         else:
             body, _ = self._block(0, ())
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
+
+    def _scan_numbers(self) -> None:
+        """Which names the file assigns, how often, and which inside a nested block (deeper than
+        the program's own body): a move reads such a variable only where its value is certain."""
+        body_col = self.lines[1].where.col if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) \
+            and len(self.lines) > 1 else self.lines[0].where.col
+        for ln in self.lines:
+            m = _ASSIGN.fullmatch(ln.text)
+            if m:
+                self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
+                if ln.where.col > body_col:
+                    self.nested_set.add(m.group(1))
+
+    def _number_set(self, text: str) -> None:
+        """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =
+        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`)."""
+        m = _ASSIGN.fullmatch(text)
+        value = number(m.group(2)) if m else None
+        if m is not None and value is not None:
+            self.values[m.group(1)] = value
+
+    def _value(self, text: str) -> float | None:
+        """A move argument: a number, or a variable whose value at this move is certain (set once
+        in the file; or, outside sub-routines, never set inside a nested block)."""
+        value = number(text)
+        if value is not None or text not in self.values:
+            return value
+        once = self.assigned.get(text, 0) == 1
+        return self.values[text] if once or (self.in_sub == 0 and text not in self.nested_set) else None
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
@@ -131,7 +166,9 @@ class _Script:
         ln = self.lines[i]
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", ln.text)
         if m:
-            body, j = self._block(i + 1, ("end",))
+            self.in_sub += 1
+            body, j = self._enclosed(i + 1)
+            self.in_sub -= 1
             self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             return [], j + 1
         params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
@@ -140,7 +177,7 @@ class _Script:
             names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
             self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
                             "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
-            body, j = self._block(i + 1, ("end",))
+            body, j = self._enclosed(i + 1)
             self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
             return [], j + 1
         if re.match(r"(def|thread)\s+\w+\s*\(", ln.text):
@@ -156,16 +193,26 @@ class _Script:
                 return found
         if ln.head in ("if", "while"):
             return self._compound(i)
-        if ln.head == "set_payload" and not (i > 0 and self.lines[i - 1].head == "set_tcp"):
+        if ln.head in ("set_payload", "set_target_payload") and not (i > 0 and self.lines[i - 1].head == "set_tcp"):
             # not the load of a tool just selected: a switch of the held load (an attach/detach)
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
+        self._number_set(ln.text)  # remembered for the moves that read it, and kept native
         stmt = self._simple(ln)
         if stmt is None:
             return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
+
+    def _enclosed(self, i: int) -> tuple[list[Stmt], int]:
+        """The body of a loop or of a sub-routine, up to its `end`: a `while True:` in it is not
+        the program's outermost loop."""
+        self.enclosing += 1
+        try:
+            return self._block(i, ("end",))
+        finally:
+            self.enclosing -= 1
 
     def _thread(self, i: int) -> tuple[list[Stmt], int]:
         """A thread: the backend's pulse thread (out on, sleep, out off) is remembered as a
@@ -205,32 +252,36 @@ class _Script:
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
         t = self._texts(i, 3)
-        w = re.fullmatch(r"whilenot\((.*)\):", t[0]) if len(t) == 3 else None
-        cond = _cond(w.group(1)) if w and t[1] == "sync()" and t[2] == "end" else None
+        w = re.fullmatch(r"while(.*):", t[0]) if len(t) == 3 else None
+        test = _unwrap(w.group(1)) if w else ""  # PolyScope: `while (not(get_standard_digital_in(0) == True)):`
+        looped = _cond(test) if t[1:] == ["sync()", "end"] else None
+        cond = Cond(looped.signal, not looped.on) if looped else None  # waits until the loop's test fails
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
-        """`v = a`, `while v <= b:`, body, `v = v + 1`, `end`: for v in a .. b + 1."""
+        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`), body, `v = v + 1`, `end`:
+        for v in a .. b + 1 (a .. b)."""
         t = self._texts(i, 2)
         m = re.fullmatch(r"(\w+)=(-?\d+)", t[0]) if len(t) == 2 else None
-        w = re.fullmatch(rf"while{m.group(1)}<=(-?\d+):", t[1]) if m else None
+        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\d+)\)?:", t[1]) if m else None
         if m is None or w is None:
             return None
         var = m.group(1)
         saved = set(self.names)
         self.names.add(var)
-        body, j = self._block(i + 2, ("end",))
+        body, j = self._enclosed(i + 2)
         self.names = saved
         last = self.lines[j - 1].text.replace(" ", "") if j - 1 > i + 1 else ""
         if last != f"{var}={var}+1":
             return None
-        return [For(var, int(m.group(2)), int(w.group(1)) + 1, tuple(body), self.lines[i + 1].where)], j + 1
+        end = int(w.group(2)) + (w.group(1) == "<=")
+        return [For(var, int(m.group(2)), end, tuple(body), self.lines[i + 1].where)], j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
         m = re.fullmatch(r"(if|elif|while)\s+(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
-            and all(x.where.col < ln.where.col or x.head == "end" for x in self.lines[:i] if x.head == "while")
+            and self.enclosing == 0
         cond = _FOREVER if forever else _cond(m.group(2)) if m else None
         if cond is None:
             out, j, depth = [], i, 0
@@ -244,7 +295,7 @@ class _Script:
             return out, j  # type: ignore[return-value]
         self.tally.imported += 1
         if ln.head == "while":
-            body, j = self._block(i + 1, ("end",))
+            body, j = self._enclosed(i + 1) if cond is not _FOREVER else self._block(i + 1, ("end",))
             if cond is _FOREVER:  # PolyScope's "Program loops forever": rmot's program is one cycle
                 self.tally.warn(codes.LOOP_READ_ONCE, "`while True` is read as one cycle of the program "
                                 "(the controller repeats an rmot program)", ln.where)
@@ -273,7 +324,7 @@ class _Script:
                 self.tools[key] = ToolData(f"tcp_{len(self.tools) + 1}", ur_pose(values), 0.0, Where(self.tally.path, 1))
             self.tool = self.tools[key].name
             return True
-        m = re.fullmatch(r"set_payload\(([\d.]+)(?:,.*)?\)", compact)
+        m = re.fullmatch(r"set_(?:target_)?payload\(([\d.]+)(?:,.*)?\)", compact)  # set_target_payload: PolyScope 5.10+
         if m and self.tool is not None:
             key = next(k for k, t in self.tools.items() if t.name == self.tool)
             t = self.tools[key]
@@ -403,13 +454,18 @@ class _Script:
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
         kind = {"movej": "joint", "movel": "linear", "movec": "circular"}[func]
         named = dict(a.split("=", 1) for a in args if re.match(r"\w+=", a) and not a.startswith("get_"))
-        points = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
-        if len(points) != (2 if kind == "circular" else 1) or set(named) - {"a", "v", "r", "t", "mode"}:
+        given = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
+        npoints = 2 if kind == "circular" else 1
+        points, positional = given[:npoints], given[npoints:]
+        # positional arguments in the manual's order: movej/movel(q, a, v, t, r), movec(via, to, a, v, r, mode)
+        order = ("a", "v", "r", "mode") if kind == "circular" else ("a", "v", "t", "r")
+        if len(points) != npoints or len(positional) > len(order) or set(named) & set(order[:len(positional)]):
             return None
-        if named.get("mode", "0") != "0":
+        named.update(zip(order, positional))
+        if set(named) - {"a", "v", "r", "t", "mode"} or named.get("mode", "0") != "0":
             return None
         found = [self._target(p) for p in points]
-        values = {k: number(v) for k, v in named.items()}
+        values = {k: self._value(v) for k, v in named.items()}
         if any(f is None for f in found) or any(v is None for v in values.values()):
             return None
         expr, name, decl = found[-1]  # type: ignore[misc]
@@ -424,11 +480,12 @@ class _Script:
             accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
             jpct, jacc = None, None
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
-                    speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t"), tool=self.tool,
+                    speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t") or None, tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
                     accel=accel, joint_accel=jacc)
 
 
+_ASSIGN = re.compile(r"(?:global\s+)?(\w+)\s*=\s*([-+\d.eE]+)")
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
 
 
@@ -448,12 +505,30 @@ def _strip_hash(line: str) -> str:
     return line
 
 
-def _cond(text: str) -> Cond | None:
-    """`get_standard_digital_in(n) == True|False`, bare, or `not ...` (configurable: n + 8)."""
+def _unwrap(text: str) -> str:
+    """`text` without spaces and without parentheses that enclose all of it."""
     text = text.replace(" ", "")
+    while text.startswith("(") and text.endswith(")") and _balanced(text[1:-1]):
+        text = text[1:-1]
+    return text
+
+
+def _balanced(text: str) -> bool:
+    depth = 0
+    for ch in text:
+        depth += (ch == "(") - (ch == ")")
+        if depth < 0:
+            return False
+    return depth == 0
+
+
+def _cond(text: str) -> Cond | None:
+    """`get_standard_digital_in(n) == True|False`, bare, or `not ...`, each maybe in parentheses
+    (configurable: n + 8)."""
+    text = _unwrap(text)
     neg = text.startswith("not")
     if neg:
-        text = text[3:].strip("()")
+        text = _unwrap(text[3:])
     m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:==(True|False))?", text)
     if m is None:
         return None

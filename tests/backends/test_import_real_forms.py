@@ -13,7 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import Move, Native, SetOut, WaitIn, walk
+from rmot.backends.readers.model import For, If, Move, Native, SetOut, WaitIn, walk
 
 TP = """/PROG  DEMO
 /ATTR
@@ -209,3 +209,122 @@ def test_val3_project_naming_no_program(tmp_path: Path) -> None:
     from rmot.compiler.cli import cli
     result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "x.rmot")])
     assert result.exit_code == 2 and f"{path}:1:1: error[E510]" in result.output, result.output
+
+
+POLYSCOPE_EXPORT = """def prog():
+  set_tcp(p[0.0,0.0,0.15,0.0,0.0,0.0])
+  set_target_payload(1.200000, [0.000000, 0.000000, 0.050000], [0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+  step_count_1 = 0.0
+  thread Step_Counter_Thread_1():
+    while (True):
+      step_count_1 = step_count_1 + 1.0
+      sync()
+    end
+  end
+  run Step_Counter_Thread_1()
+  global Waypoint_1_p=p[.4, -.2, .3, 0, 3.14159265358979, 0]
+  global Waypoint_1_q=[0, -1.57, 1.57, -1.57, -1.57, 0]
+  while (True):
+    $ 1 "Robot Program"
+    $ 2 "MoveJ"
+    movej(get_inverse_kin(Waypoint_1_p, qnear=Waypoint_1_q), a=1.3962634015954636, v=1.0471975511965976)
+    $ 3 "Wait digital_in[3]=HI"
+    while (not(get_standard_digital_in(3) == True)):
+      sync()
+    end
+    $ 4 "If digital_in[1]≟False"
+    if (get_standard_digital_in(1) == False):
+      $ 5 "Set DO[2]=On"
+      set_standard_digital_out(2, True)
+    end
+    while (not(get_configurable_digital_in(0))):
+      sync()
+    end
+  end
+end
+"""
+
+
+def test_polyscope_export_with_step_counter(tmp_path: Path) -> None:
+    """A PolyScope export: the step-counter thread runs its own `while (True):`, so the program's
+    `while (True):` is still the outermost loop of the program (read as one cycle); PolyScope's
+    wait `while (not(get_standard_digital_in(n) == True)): sync() end` waits for the input (URScript
+    manual: sync() ends the physical time step); an `if (...)` in parentheses reads its input;
+    set_target_payload right after set_tcp is the tool's load like set_payload."""
+    path = tmp_path / "prog.script"
+    path.write_text(POLYSCOPE_EXPORT)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    assert [s.target for s in stmts if isinstance(s, Move)] == ["Waypoint_1_p"]
+    waits = [s for s in stmts if isinstance(s, WaitIn)]
+    assert [(w.cond.signal, w.cond.on) for w in waits] == [(3, True), (0 + 8, True)]
+    assert [(s.signal, s.value) for s in stmts if isinstance(s, SetOut)] == [(2, 1.0)]
+    assert [(s.cond.signal, s.cond.on) for s in stmts if isinstance(s, If)] == [(1, False)]
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert natives[0] == "step_count_1 = 0.0" and not any("while (True)" == n for n in natives[5:])
+    assert [d.span.start.line for d in doc.diagnostics if d.code.id == "W518"] == [14]
+    tool = doc.tools[0]
+    assert abs(tool.mass - 1.2) < 1e-12 and abs(tool.tcp.position[2] - 0.15) < 1e-12
+
+
+ROBODK_UR = """def Prog1():
+  global speed_ms    = 0.300
+  global accel_mss   = 3.000
+  global blend_radius_m = 0.001
+  def Sub():
+    movel(p[0.5, 0, 0.3, 0, 3.14159265358979, 0],accel_mss,speed_ms,0,0)
+  end
+  set_tcp(p[0.000000, 0.000000, 0.150000, 0.000000, 0.000000, 0.000000])
+  speed_ms    = 0.250
+  movel(p[0.4, -0.1, 0.3, 0, 3.14159265358979, 0],accel_mss,speed_ms,0,blend_radius_m)
+  movec(p[0.45, -0.05, 0.3, 0, 3.14159265358979, 0],p[0.5, -0.1, 0.3, 0, 3.14159265358979, 0],accel_mss,speed_ms,0)
+  Sub()
+end
+"""
+
+
+def test_robodk_positional_arguments_and_variables(tmp_path: Path) -> None:
+    """RoboDK's UR post writes `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`: positional
+    arguments in the URScript manual's order (movel(pose, a, v, t, r), movec(via, to, a, v, r)),
+    values held in variables set in straight-line code. In a sub-routine a variable the program
+    sets more than once is not certain (it depends on the call): that move stays native."""
+    path = tmp_path / "prog.script"
+    path.write_text(ROBODK_UR)
+    stmts = _stmts(path)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.speed, m.accel, m.zone) for m in moves] == [
+        ("linear", 0.250 * 1000, 3.000 * 1000, 0.001 * 1000), ("circular", 0.250 * 1000, 3.000 * 1000, None)]
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert any(n.startswith("movel(p[0.5") for n in natives)  # speed_ms is set twice
+
+
+POLYSCOPE_LOOP = """def Untitled():
+  while (True):
+    $ 8 "Wait DI[0]=HI"
+    while (get_standard_digital_in(0) == False):
+      sync()
+    end
+    $ 9 "Loop 3 times"
+    Loop_1 = 0
+    while (Loop_1 < 3):
+      movel(p[-0.1439, -0.4356, 0.1020, -0.0012, 3.1162, 0.0388], a=1.2, v=0.25)
+      Loop_1 = Loop_1 + 1
+    end
+  end
+end
+"""
+
+
+def test_polyscope_wait_and_counted_loop(tmp_path: Path) -> None:
+    """PolyScope's `while (get_standard_digital_in(0) == False): sync() end` loops while the input
+    is off: it waits for it on; its "Loop 3 times" (`Loop_1 = 0`, `while (Loop_1 < 3):`, ..,
+    `Loop_1 = Loop_1 + 1`) runs the body for Loop_1 = 0, 1, 2."""
+    path = tmp_path / "prog.script"
+    path.write_text(POLYSCOPE_LOOP)
+    stmts = _stmts(path)
+    assert not any(isinstance(s, Native) for s in stmts)
+    waits = [s for s in stmts if isinstance(s, WaitIn)]
+    assert [(w.cond.signal, w.cond.on) for w in waits] == [(0, True)]
+    loops = [s for s in stmts if isinstance(s, For)]
+    assert [(f.var, f.first, f.stop) for f in loops] == [("Loop_1", 0, 3)]
+    assert len(range(loops[0].first, loops[0].stop)) == 3
