@@ -90,6 +90,8 @@ import numpy as np
 from rmot.backends import codes, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
+from rmot.backends.ext_axes import driven_axes
+from rmot.backends.inform_axes import InformAxes, inform_axes
 from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
@@ -159,6 +161,7 @@ class _Job:
     labels: int = 0
     shifts: list[int] = field(default_factory=list)  # P variables the job declares
     stop_label: str | None = None  # `*Lnnn` before END, where a main job's `stop` jumps
+    axes: InformAxes | None = None  # base / station positions (backends/inform_axes.py)
 
     def add(self, pos: _Position) -> str:
         self.positions.append(pos)
@@ -201,6 +204,7 @@ class InformContext(TaskContext):
     job: _Job = field(default_factory=lambda: _Job(""))
     main: str = ""  # the main job's name (where `stop` can end the program)
     vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic
+    axes: InformAxes | None = None  # the external axes the task drives (backends/inform_axes.py)
 
 
 class InformBackend(Backend):
@@ -216,18 +220,22 @@ class InformBackend(Backend):
     MAX_TCP_SPEED = 1.5  # m/s
     MAX_TCP_SPEED_SOURCE = "DX100/DX200 INFORM manual, MOVL/MOVC: V= 0.1..1500.0 mm/s"
     NO_RECORD_NOTE = None
+    EXTERNAL_AXES = True  # BS1 base and ST1 station positions in pulses (backends/inform_axes.py)
 
     # ------------------------------------------------------------------ jobs
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, main, body = self.open_task(task)
+        axes = self.task_axes(task, body)
+        if isinstance(axes, str):
+            return {}
         split = split_body(body, MAX_INSTRUCTIONS, task.program_name)
         if split is not body:
             self.warn(codes.PROGRAM_SPLIT, f"job '{main}' must hold at most {MAX_INSTRUCTIONS} "
                       f"instructions (got more); split into {len(split)} parts", task.task.span)
         ctx = task.with_state(InformContext, routine_of={},
                               preds=predecessors(body)[0], tools=self.tool_numbers(task),
-                              main=main, vars=_Variables.of_task(task, body))
+                              main=main, vars=_Variables.of_task(task, body), axes=axes)
         # job names are global on the controller: a proc's job carries the program's name
         # (MAIN_APPROACH), so two programs' procs of one name never overwrite each other; the
         # split parts already do (NAME_PART1)
@@ -240,7 +248,7 @@ class InformBackend(Backend):
         return dict(sorted(ctx.files.items()))
 
     def job(self, name: str, body: tuple[ir.Instr, ...], task: InformContext) -> None:
-        ctx = replace(task, job=_Job(name))
+        ctx = replace(task, job=_Job(name, axes=task.axes.fresh() if task.axes else None))
         job = ctx.job
         inst = self.body(body, ctx)
         if len(job.positions) > MAX_POSITIONS:
@@ -248,16 +256,18 @@ class InformBackend(Backend):
                              f"{MAX_POSITIONS} positions (got {len(job.positions)})", ctx.task.span)
         head = [c for line in header_lines(ctx.plan, self.name, self.findings_header)
                 for c in self.wrap(line)] + self.tool_comments(ctx)
+        head += [c for line in (job.axes.checklist() if job.axes else []) for c in self.wrap(line)]
         inst += [job.stop_label] if job.stop_label else []
         text = (["/JOB", f"//NAME {name}"] + self.pos_section(job) +
                 ["//INST", f"///DATE {DATE}", f"///COMM {ctx.plan.program.name[:32]}",
-                 "///ATTR SC,RW", "///GROUP1 RB1", "NOP"]
+                 "///ATTR SC,RW", *(job.axes.groups() if job.axes else ["///GROUP1 RB1"]), "NOP"]
                 + head + ctx.vars.comments() + inst + ["END"])
         ctx.files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
 
     @staticmethod
     def pos_section(job: _Job) -> list[str]:
-        lines = ["//POS", f"///NPOS {len(job.positions)},0,0,{len(job.shifts)},0,0"]
+        lines = ["//POS", job.axes.npos(len(job.positions), len(job.shifts)) if job.axes
+                 else f"///NPOS {len(job.positions)},0,0,{len(job.shifts)},0,0"]
         tool: int | None = None
         conf: str | None = None
         user: int | None = None
@@ -276,6 +286,7 @@ class InformBackend(Backend):
                 lines.append(f"///RCONF {pos.conf}")
                 conf = pos.conf
             lines.append(f"C{k:05d}={pos.values}")
+        lines += job.axes.pulse_lines() if job.axes else []
         if job.shifts:  # the loop shifts, Cartesian zeros the job sets per iteration
             lines += ["///POSTYPE ROBOT", "///RECTAN"]
             lines += [f"P{n:04d}=0.000,0.000,0.000,0.0000,0.0000,0.0000" for n in job.shifts]
@@ -335,7 +346,8 @@ class InformBackend(Backend):
                              "6-axis branch (got none: not a 6R arm, or no plan)", node.span)
             return None
         tool = ctx.tools.get(node.tool.name, 0)
-        user = frame_number(ctx.plan.program.cell, node.frame.name)
+        # with external axes every position is in ROBOT coordinates (backends/inform_axes.py)
+        user = None if ctx.axes else frame_number(ctx.plan.program.cell, node.frame.name)
         if user is not None:  # a numbered cell frame: the position in that user frame
             if not 1 <= user <= MAX_USER_FRAME:
                 self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"frame '{node.frame.name}' number must be "
@@ -353,7 +365,29 @@ class InformBackend(Backend):
         if isinstance(rec, list):
             return rec
         self.motion_notes(node, ctx)
-        return self.by_kind(node)(node, rec, ctx, self.zone(rec.blend_radius, node))
+        lines = self.by_kind(node)(node, rec, ctx, self.zone(rec.blend_radius, node))
+        axes = ctx.job.axes
+        if axes is None:
+            return lines
+        vj = self.joint_speed(node) if axes.station else ""  # the station's +MOVJ speed
+        return [axes.operands(line, node, vj) for line in lines]
+
+    def task_axes(self, task: TaskContext, body: tuple[ir.Instr, ...]) -> InformAxes | str | None:
+        """The task's base and station axes (None without), or, after the located refusal
+        (E607 at the first move that drives them), why they cannot be written."""
+        cell = task.plan.program.cell
+        axes = driven_axes(task.task, cell)
+        if not axes:
+            return None
+        found = inform_axes(task.task, cell, axes)
+        first = next(n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.ext)
+        if isinstance(found, str):
+            self.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
+        elif found.station:
+            self.warn(codes.INFORM_STATION_SPEED, "the station (GROUP2 ST1) moves at its own VJ "
+                      "(+MOVJ): it starts with the arm but may end at another time than the plan's "
+                      "time-synchronous move", first.span)
+        return found
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                    pl: str) -> list[str]:

@@ -86,9 +86,10 @@ def findings(vendor: str, files: dict[str, str], tmp: Path) -> list[str]:
 
 
 # Examples that drive external axes (lang/REFERENCE.md §15), and the vendors that refuse them
-# with E607: URScript and VAL3 have no external axes; INFORM is not written yet (lang/REFERENCE.md §15).
+# with E607: URScript and VAL3 have no external axes. INFORM writes them (the examples declare
+# each axis' pulse scale): its validator checks the BC/EC positions, NPOS and the groups.
 EXTERNAL_AXES_EXAMPLES = {"weld_positioner", "track_tending"}
-REFUSE_EXTERNAL_AXES = {"urscript", "inform", "val3"}
+REFUSE_EXTERNAL_AXES = {"urscript", "val3"}
 
 
 @pytest.mark.parametrize("vendor", VENDORS)

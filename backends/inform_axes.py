@@ -1,0 +1,123 @@
+"""External axes in Yaskawa INFORM jobs: a track as the robot's base axis, a positioner as a
+station, their positions in encoder pulses at the scale the cell declares.
+
+An INFORM job writes base-axis and station-axis positions as encoder pulses (`BCnnnnn=` and
+`ECnnnnn=` lines under `///POSTYPE PULSE` / `///PULSE`); the pulses per mm or per degree are
+machine data of the controller (the axis' gear ratio and encoder), so rmot writes them only
+for axes whose cell declaration states that scale: `inform(pulses_per_mm=N)` (linear) or
+`inform(pulses_per_deg=N)` (revolute), after the axis' accel. A task with an axis without it
+is refused (E607), naming the axis and what to declare.
+
+The job's form (DX100/DX200/YRC1000 "Job data format" of the offline-teaching interface;
+INFORM manual, "MOVJ/MOVL: additional items BC (base axis) and EC (station axis)" and
+"Coordinated control of two groups: +MOVJ"):
+  * `///NPOS C,BC,EC,P,BP,EX`: the counts of robot, base and station positions and of the P,
+    BP, EX variables the job declares;
+  * `BCnnnnn=p` (one value per base axis) and `ECnnnnn=p1,p2` (one per station axis) after
+    the robot's `C` positions, under `///POSTYPE PULSE` and `///PULSE`;
+  * `///GROUP1 RB1,BS1` (the robot and its base axis: one control group, one interpolation, so
+    the carriage starts and stops with the arm) and `///GROUP2 ST1` (the station, its own group);
+  * a move `MOVJ Cn BCn VJ=v +MOVJ ECn VJ=v` (`MOVL Cn BCn V=v ... +MOVJ ECn VJ=v`): the
+    robot group's move with its base axis, then the station group's move started with it.
+Witnesses of the form (controller programs and generators of welding cells with a base axis
+and a station): `///NPOS n,n,n,0,0,0`, `BC00000=878036`, `EC00001=45886,0`, `///GROUP1
+RB1,BS1`, `///GROUP2 ST1`, `MOVJ C# BC# VJ=... +MOVJ EC# VJ=...`.
+
+Positions: `C` is the TCP in ROBOT coordinates, the arm's own base frame, which rides on the
+carriage at the move's BC value (rmot's planned TCP in the base frame: exact for any base-axis
+direction); the station's axes stand at EC. rmot plans arm, base and station
+time-synchronously; the station as its own group moves at its own VJ (% of its maximum speed),
+so it starts with the arm but may end earlier or later (W604, once per task).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from rmot.compiler import ir
+from rmot.compiler.ir_axes import ExtAxis
+
+__all__ = ["InformAxes", "inform_axes"]
+
+
+@dataclass
+class InformAxes:
+    """A task's INFORM axes: the base axes (its track, BS1) and the station axes (its
+    positioner, ST1); the pulse values each job collects (BC and EC lines, in order)."""
+
+    base: tuple[ExtAxis, ...]
+    station: tuple[ExtAxis, ...]
+    bc: list[str] = field(default_factory=list)
+    ec: list[str] = field(default_factory=list)
+
+    def fresh(self) -> InformAxes:
+        """The same axes with no positions yet (one per job)."""
+        return InformAxes(self.base, self.station)
+
+    def groups(self) -> list[str]:
+        robot = "///GROUP1 RB1,BS1" if self.base else "///GROUP1 RB1"
+        return [robot] + (["///GROUP2 ST1"] if self.station else [])
+
+    def npos(self, c: int, p: int) -> str:
+        return f"///NPOS {c},{len(self.bc)},{len(self.ec)},{p},0,0"
+
+    def pulse_lines(self) -> list[str]:
+        if not self.bc and not self.ec:
+            return []
+        return (["///POSTYPE PULSE", "///PULSE"] + [f"BC{k:05d}={v}" for k, v in enumerate(self.bc)]
+                + [f"EC{k:05d}={v}" for k, v in enumerate(self.ec)])
+
+    def operands(self, line: str, node: ir.Move, vj: str) -> str:
+        """A robot move line `MOVx Cn ...` with the base operand after its C position and the
+        station's `+MOVJ ECn VJ=v` after it (every move states both: an axis not moved keeps
+        its value, which the move restates)."""
+        if not line.startswith("MOV"):
+            return line
+        values = dict(node.ext)
+        if self.base:
+            self.bc.append(",".join(str(pulses(a, values[a.name])) for a in self.base))
+            word, c, rest = line.split(" ", 2)
+            line = f"{word} {c} BC{len(self.bc) - 1:05d} {rest}"
+        if self.station:
+            self.ec.append(",".join(str(pulses(a, values[a.name])) for a in self.station))
+            line += f" +MOVJ EC{len(self.ec) - 1:05d} VJ={vj}"
+        return line
+
+    def checklist(self) -> list[str]:
+        """The machine data the job assumes, for a person to compare with the controller."""
+        lines = ["machine data assumed: C in ROBOT coordinates (the arm's base on the carriage)"]
+        for group, axes in (("R1+B1 base BS1", self.base), ("S1 station ST1", self.station)):
+            for k, a in enumerate(axes):
+                unit = a.unit()
+                lines.append(f"{group} axis {k + 1} = {a.name}: {'linear along' if a.linear else 'revolute about'} "
+                             f"{'xyz'[a.direction.index(1.0)]}, {a.pulses:g} pulses/{unit}, "
+                             f"0 pulses at 0 {unit}, + pulses = + {unit}")
+        return lines
+
+
+def pulses(axis: ExtAxis, value: float) -> int:
+    """The axis' value (SI) in encoder pulses at its declared scale, rounded to a whole pulse."""
+    assert axis.pulses is not None
+    shown = value * 1000.0 if axis.linear else math.degrees(value)
+    return round(shown * axis.pulses)
+
+
+def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> InformAxes | str:
+    """The task's axes as INFORM's base and station groups, or why they cannot be written: an
+    axis without its pulse scale, or more than one positioner (one station group, ST1)."""
+    assert cell.external is not None
+    missing = [a for a in axes if a.pulses is None]
+    if missing:
+        what = ", ".join(f"'{a.name}' (line {a.span.start.line if a.span else '?'}): "
+                         f"inform(pulses_per_{a.unit()}=N)" for a in missing)
+        return (f"task '{task.name}' drives external axes whose encoder pulse scale INFORM needs "
+                f"(BC/EC positions are pulses, machine data); declare it after each axis' accel: {what}")
+    names = {a.name for a in axes}
+    used = [m for m in cell.external.mechanisms if any(a.name in names for a in m.axes)]
+    stations = [m for m in used if m.kind != "track"]
+    if len(stations) > 1:
+        return (f"task '{task.name}' must drive at most one positioner for INFORM (one station group ST1; "
+                f"got {', '.join(m.name for m in stations)})")
+    base = tuple(a for m in used if m.kind == "track" for a in m.axes)
+    return InformAxes(base, tuple(a for m in stations for a in m.axes))
