@@ -108,9 +108,7 @@ class CellAxes:
             return None
         low, high = bounds
         home = min(max(0.0, low), high)
-        pulses = None if a.inform is None else self._pulses(a.inform, linear, name)
-        if a.inform is not None and pulses is None:
-            return None
+        pulses = None if a.inform is None else self._pulses(a.inform, linear, name)  # after E608: kept, unscaled
         return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span, pulses)
 
     def _pulses(self, call: ast.Call, linear: bool, name: str) -> float | None:
