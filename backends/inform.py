@@ -119,6 +119,7 @@ INFORM_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper
                                              "MUL", "DIV", "INC", "DEC", "GETS", "CLEAR", "SFTON",
                                              "SFTOF", "TOOLON", "TOOLOF", "SPEED", "LABEL"}))
 DATE = "2000/01/01 00:00"
+PULSE_TOLERANCE_MM = 0.01  # whole-pulse rounding of external axes beyond this warns (W605)
 
 
 def rconf(branch: ir.Config, q: np.ndarray) -> str:
@@ -369,8 +370,23 @@ class InformBackend(Backend):
         axes = ctx.job.axes
         if axes is None:
             return lines
+        self.warn_pulse_rounding(node, rec, axes, ctx)
         vj = self.joint_speed(node) if axes.station else ""  # the station's +MOVJ speed
         return [axes.operands(line, node, vj) for line in lines]
+
+    def warn_pulse_rounding(self, node: ir.Move, rec: plan_types.InstructionRecord, axes: InformAxes,
+                            ctx: InformContext) -> None:
+        """W605 (once per task) when whole pulses move the target by more than 0.01 mm."""
+        cell = ctx.plan.program.cell
+        base = cell.external.world(ctx.robot.name, dict(node.ext)) if cell.external else None
+        if rec.tcp_pose is None or "pulse rounding" in ctx.warned:
+            return
+        tcp = ((base or ctx.robot.base) * rec.tcp_pose).position
+        bound = axes.rounding_mm(node, tcp)
+        if bound > PULSE_TOLERANCE_MM:
+            ctx.warned.add("pulse rounding")
+            self.warn(codes.PULSE_ROUNDING, f"whole encoder pulses move the target by up to {bound:.3g} mm "
+                      f"relative to the part (more than {PULSE_TOLERANCE_MM:g} mm): a coarse pulse scale", node.span)
 
     def task_axes(self, task: TaskContext, body: tuple[ir.Instr, ...]) -> InformAxes | str | None:
         """The task's base and station axes (None without), or, after the located refusal

@@ -48,12 +48,13 @@ class InformAxes:
 
     base: tuple[ExtAxis, ...]
     station: tuple[ExtAxis, ...]
+    station_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)  # the point its axes pass through (world, m)
     bc: list[str] = field(default_factory=list)
     ec: list[str] = field(default_factory=list)
 
     def fresh(self) -> InformAxes:
         """The same axes with no positions yet (one per job)."""
-        return InformAxes(self.base, self.station)
+        return InformAxes(self.base, self.station, self.station_origin)
 
     def groups(self) -> list[str]:
         robot = "///GROUP1 RB1,BS1" if self.base else "///GROUP1 RB1"
@@ -83,6 +84,20 @@ class InformAxes:
             self.ec.append(",".join(str(pulses(a, values[a.name])) for a in self.station))
             line += f" +MOVJ EC{len(self.ec) - 1:05d} VJ={vj}"
         return line
+
+    def rounding_mm(self, node: ir.Move, tcp: tuple[float, float, float]) -> float:
+        """A bound on how far writing whole pulses moves the TCP (world, m) of `node` relative
+        to the part: the base axes' rounding itself, plus each station axis' rounding (an angle
+        times the TCP's distance from the station's axes, which all pass through its base
+        point: a positioner's axes are stacked without offsets)."""
+        values = dict(node.ext)
+        reach_mm = 1000.0 * math.dist(tcp, self.station_origin)
+        total = 0.0
+        for axis in self.base + self.station:
+            shown = values[axis.name] * 1000.0 if axis.linear else math.degrees(values[axis.name])
+            error = abs(pulses(axis, values[axis.name]) / (axis.pulses or 1.0) - shown)
+            total += error if axis.linear else math.radians(error) * reach_mm
+        return total
 
     def checklist(self) -> list[str]:
         """The machine data the job assumes, for a person to compare with the controller."""
@@ -120,4 +135,5 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
         return (f"task '{task.name}' must drive at most one positioner for INFORM (one station group ST1; "
                 f"got {', '.join(m.name for m in stations)})")
     base = tuple(a for m in used if m.kind == "track" for a in m.axes)
-    return InformAxes(base, tuple(a for m in stations for a in m.axes))
+    origin = stations[0].base.position if stations else (0.0, 0.0, 0.0)
+    return InformAxes(base, tuple(a for m in stations for a in m.axes), origin)
