@@ -290,8 +290,8 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
     if not (len(head) == 5 and head[0].startswith("///DATE ") and head[1].startswith("///COMM")
             and head[2].startswith("///ATTR") and head[3] in groups and head[4] == "NOP"):
         bad.append((inst + 1, "//INST is followed by ///DATE, ///COMM, ///ATTR, ///GROUP1 RB1[,BS1], [///GROUP2 ST1], NOP"))
-    elif groups[head[3]] != bool(axis_lines["BC"]) or station != bool(axis_lines["EC"]):
-        bad.append((inst + 4, "BC positions need ///GROUP1 RB1,BS1 and EC positions ///GROUP2 ST1, and only they"))
+    elif (axis_lines["BC"] and not groups[head[3]]) or (axis_lines["EC"] and not station):
+        bad.append((inst + 4, "BC positions need ///GROUP1 RB1,BS1 and EC positions ///GROUP2 ST1"))
     if lines[-1] != "END":
         bad.append((len(lines), "a job ends with END"))
     body = list(enumerate(lines[inst + 6 + station:-1], start=inst + 7 + station))
