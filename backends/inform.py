@@ -804,7 +804,8 @@ class InformBackend(Backend):
     def _shift_steps(self, node: ir.Move, offset: TargetOffset,
                      ctx: InformContext) -> tuple[str, tuple[tuple[int, int, int], ...]]:
         """(coordinate system, integer steps in 0.001 mm per loop variable)."""
-        user = frame_number(ctx.plan.program.cell, node.frame.name)
+        # with external axes no user frame: the steps in ROBOT coordinates, as the positions
+        user = None if ctx.axes else frame_number(ctx.plan.program.cell, node.frame.name)
         rot = np.eye(3) if user is not None else node.frame.pose.matrix()[:3, :3]
         system = f"UF#({user})" if user is not None else "RF"
         steps = tuple(tuple(int(round(float(v) * 1e6)) for v in rot @ np.array(s))

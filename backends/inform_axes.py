@@ -19,9 +19,12 @@ INFORM manual, "MOVJ/MOVL: additional items BC (base axis) and EC (station axis)
     the carriage starts and stops with the arm) and `///GROUP2 ST1` (the station, its own group);
   * a move `MOVJ Cn BCn VJ=v +MOVJ ECn VJ=v` (`MOVL Cn BCn V=v ... +MOVJ ECn VJ=v`): the
     robot group's move with its base axis, then the station group's move started with it.
-Witnesses of the form (controller programs and generators of welding cells with a base axis
-and a station): `///NPOS n,n,n,0,0,0`, `BC00000=878036`, `EC00001=45886,0`, `///GROUP1
-RB1,BS1`, `///GROUP2 ST1`, `MOVJ C# BC# VJ=... +MOVJ EC# VJ=...`.
+Witnesses of the form, found by exact-string search of public source (job generators and the
+notes of a welding cell with a base axis and a station; repositories not identified):
+`///NPOS n,n,n,0,0,0` with `BC00000=878036`, `EC00001=45886,0`, `///GROUP1 RB1,BS1`,
+`///GROUP2 ST1` and `MOVJ C# BC# VJ=... +MOVJ EC# VJ=...`; `///NPOS 1,0,1,1,0,1` for a job
+holding C00000, EC00000=0,0, P00000 and EX00000 (the count order C, BC, EC, P, BP, EX) under
+`///GROUP1 RB1` / `///GROUP2 ST1`; `MOVJ C%05d BC%05d VJ=...` beside `BC%05d=%ld,%ld` lines.
 
 Positions: `C` is the TCP in ROBOT coordinates, the arm's own base frame, which rides on the
 carriage at the move's BC value (rmot's planned TCP in the base frame: exact for any base-axis

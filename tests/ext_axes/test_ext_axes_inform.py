@@ -174,3 +174,24 @@ def test_a_coarse_scale_warns_that_whole_pulses_move_the_target() -> None:
     warned = [d for d in result.diagnostics if d.code.id == "W605"]
     assert len(warned) == 1 and warned[0].span is not None and warned[0].span.start.line == 15  # pos.2 = 90 deg
     assert not result.has_errors
+
+
+def test_a_loop_in_a_numbered_frame_shifts_in_robot_coordinates() -> None:
+    """With external axes every position is in ROBOT coordinates, so a loop's shift is too
+    (RF, no user frame the job would need stored): 50 mm along the frame's x, turned 30 deg
+    about z, is (50 cos 30, 50 sin 30) = (43.301, 25.000) mm in 0.001 mm steps."""
+    source = with_bindings(SOURCE, BINDINGS[:1]).split("program p")[0] + """program p on r1 with rail {
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg) ext(rail=700mm)
+  for i in 0 .. 3 {
+    move linear pose(x=i*50mm, z=100mm, rx=180deg) frame table
+  }
+}
+"""
+    source = re.sub(r"  positioner pos = .*?at pose\(x=1800mm, z=700mm\)\n", "", source, flags=re.S)
+    source = "\n".join(ln for ln in source.splitlines() if "on pos" not in ln and "pos *" not in ln)
+    result = BACKENDS["inform"]().emit(_plan(source))
+    assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
+    (text,) = result.files.values()
+    assert "UF#" not in text and "///USER" not in text and "SFTON P050 RF" in text
+    steps = [int(v) for v in re.findall(r"^MUL D\d+ (-?\d+)$", text, re.M)]
+    assert steps == [round(50000 * math.cos(math.radians(30))), round(50000 * math.sin(math.radians(30)))]
