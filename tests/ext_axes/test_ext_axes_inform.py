@@ -195,3 +195,13 @@ def test_a_loop_in_a_numbered_frame_shifts_in_robot_coordinates() -> None:
     assert "UF#" not in text and "///USER" not in text and "SFTON P050 RF" in text
     steps = [int(v) for v in re.findall(r"^MUL D\d+ (-?\d+)$", text, re.M)]
     assert steps == [round(50000 * math.cos(math.radians(30))), round(50000 * math.sin(math.radians(30)))]
+
+
+def test_two_positioners_are_refused_one_station_group() -> None:
+    second = ("  fixture jig", "  positioner turn = axes(revolute(axis z, range(-180deg, 180deg)) speed 90 deg/s "
+              "accel 180 deg/s^2 inform(pulses_per_deg=100)) at pose(x=-1500mm, z=600mm)\n  fixture jig")
+    source = with_bindings(SOURCE, (*BINDINGS, second, ("with rail, pos", "with rail, pos, turn")))
+    result = BACKENDS["inform"]().emit(_plan(source))
+    errors = [d for d in result.diagnostics if d.is_error]
+    assert [d.code.id for d in errors] == ["E607"] and not result.files
+    assert "at most one positioner" in errors[0].message and "pos, turn" in errors[0].message
