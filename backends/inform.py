@@ -93,8 +93,7 @@ import numpy as np
 from rmot.backends import codes, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
-from rmot.backends.ext_axes import driven_axes
-from rmot.backends.inform_axes import InformAxes, inform_axes
+from rmot.backends.inform_axes import InformAxes, task_axes, warn_pulse_rounding
 from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
@@ -122,7 +121,6 @@ INFORM_RULES = NameRules(max_len=32, allowed="A-Za-z0-9_", first="A-Za-z", upper
                                              "MUL", "DIV", "INC", "DEC", "GETS", "CLEAR", "SFTON",
                                              "SFTOF", "TOOLON", "TOOLOF", "SPEED", "LABEL"}))
 DATE = "2000/01/01 00:00"
-PULSE_TOLERANCE_MM = 0.01  # whole-pulse rounding of external axes beyond this warns (W605)
 
 
 def rconf(branch: ir.Config, q: np.ndarray) -> str:
@@ -230,7 +228,7 @@ class InformBackend(Backend):
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, main, body = self.open_task(task)
-        axes = self.task_axes(task, body)
+        axes = task_axes(self, task, body)
         if isinstance(axes, str):
             return {}
         split = split_body(body, MAX_INSTRUCTIONS, task.program_name)
@@ -373,40 +371,9 @@ class InformBackend(Backend):
         axes = ctx.job.axes
         if axes is None:
             return lines
-        self.warn_pulse_rounding(node, rec, axes, ctx)
+        warn_pulse_rounding(self, node, rec, axes, ctx)
         vj = self.joint_speed(node) if axes.station else ""  # the station's +MOVJ speed
         return [axes.operands(line, node, vj) for line in lines]
-
-    def warn_pulse_rounding(self, node: ir.Move, rec: plan_types.InstructionRecord, axes: InformAxes,
-                            ctx: InformContext) -> None:
-        """W605 (once per task) when whole pulses move the target by more than 0.01 mm."""
-        cell = ctx.plan.program.cell
-        base = cell.external.world(ctx.robot.name, dict(node.ext)) if cell.external else None
-        if rec.tcp_pose is None or "pulse rounding" in ctx.warned:
-            return
-        tcp = ((base or ctx.robot.base) * rec.tcp_pose).position
-        bound = axes.rounding_mm(node, tcp)
-        if bound > PULSE_TOLERANCE_MM:
-            ctx.warned.add("pulse rounding")
-            self.warn(codes.PULSE_ROUNDING, f"whole encoder pulses move the target by up to {bound:.3g} mm "
-                      f"relative to the part (more than {PULSE_TOLERANCE_MM:g} mm): a coarse pulse scale", node.span)
-
-    def task_axes(self, task: TaskContext, body: tuple[ir.Instr, ...]) -> InformAxes | str | None:
-        """The task's base and station axes (None without), or, after the located refusal
-        (E607 at the first move that drives them), why they cannot be written."""
-        cell = task.plan.program.cell
-        axes = driven_axes(task.task, cell)
-        if not axes:
-            return None
-        found = inform_axes(task.task, cell, axes)
-        first = next(n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.ext)
-        if isinstance(found, str):
-            self.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
-        elif found.station:
-            self.warn(codes.INFORM_STATION_SPEED, "the station (GROUP2 ST1) moves at its own VJ "
-                      "(+MOVJ): it starts with the arm but may end at another time than the plan's "
-                      "time-synchronous move", first.span)
-        return found
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                    pl: str) -> list[str]:

@@ -38,10 +38,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from rmot.compiler import ir
+from rmot.backends import codes
+from rmot.backends.base import Backend, TaskContext
+from rmot.backends.ext_axes import driven_axes
+from rmot.compiler import ir, ir_tree, plan_types
 from rmot.compiler.ir_axes import ExtAxis
 
-__all__ = ["InformAxes", "inform_axes"]
+__all__ = ["InformAxes", "inform_axes", "task_axes", "warn_pulse_rounding"]
+
+PULSE_TOLERANCE_MM = 0.01  # whole-pulse rounding of external axes beyond this warns (W605)
 
 
 @dataclass
@@ -140,3 +145,35 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
     base = tuple(a for m in used if m.kind == "track" for a in m.axes)
     origin = stations[0].base.position if stations else (0.0, 0.0, 0.0)
     return InformAxes(base, tuple(a for m in stations for a in m.axes), origin)
+
+
+def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -> InformAxes | str | None:
+    """The task's base and station axes (None without), or, after the located refusal (E607 at
+    the first move that drives them), why they cannot be written; W604 for a station."""
+    cell = task.plan.program.cell
+    axes = driven_axes(task.task, cell)
+    if not axes:
+        return None
+    found = inform_axes(task.task, cell, axes)
+    first = next(n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.ext)
+    if isinstance(found, str):
+        backend.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
+    elif found.station:
+        backend.warn(codes.INFORM_STATION_SPEED, "the station (GROUP2 ST1) moves at its own VJ "
+                     "(+MOVJ): it starts with the arm but may end at another time than the plan's "
+                     "time-synchronous move", first.span)
+    return found
+
+
+def warn_pulse_rounding(backend: Backend, node: ir.Move, rec: plan_types.InstructionRecord, axes: InformAxes,
+                        ctx: TaskContext) -> None:
+    """W605 (once per task) when whole pulses move `node`'s target by more than 0.01 mm."""
+    cell = ctx.plan.program.cell
+    if rec.tcp_pose is None or "pulse rounding" in ctx.warned:
+        return
+    base = cell.external.world(ctx.robot.name, dict(node.ext)) if cell.external else None
+    bound = axes.rounding_mm(node, ((base or ctx.robot.base) * rec.tcp_pose).position)
+    if bound > PULSE_TOLERANCE_MM:
+        ctx.warned.add("pulse rounding")
+        backend.warn(codes.PULSE_ROUNDING, f"whole encoder pulses move the target by up to {bound:.3g} mm "
+                     f"relative to the part (more than {PULSE_TOLERANCE_MM:g} mm): a coarse pulse scale", node.span)
