@@ -25,6 +25,10 @@ notes of a welding cell with a base axis and a station; repositories not identif
 `///GROUP2 ST1` and `MOVJ C# BC# VJ=... +MOVJ EC# VJ=...`; `///NPOS 1,0,1,1,0,1` for a job
 holding C00000, EC00000=0,0, P00000 and EX00000 (the count order C, BC, EC, P, BP, EX) under
 `///GROUP1 RB1` / `///GROUP2 ST1`; `MOVJ C%05d BC%05d VJ=...` beside `BC%05d=%ld,%ld` lines.
+RoboDK's Motoman post processor (RoboDK Inc., its settings file) writes the same forms:
+`MOVL C00008 BC00008 V=166.7 +MOVJ EC00008 VJ=100.00` ("non synchronized motion (for the
+turntable)", its default; `SMOVL ... +MOVJ EC00008` would synchronise it) and asks the user for
+`PULSES_X_DEG` of each external axis, as rmot asks for `inform(pulses_per_...)`.
 
 Positions: `C` is the TCP in ROBOT coordinates, the arm's own base frame, which rides on the
 carriage at the move's BC value (rmot's planned TCP in the base frame: exact for any base-axis
