@@ -201,3 +201,11 @@ EXT_AXES_UNSUPPORTED = Code(
     "E607", "ext-axes-unsupported",
     "a program that drives external axes, for a vendor rmot cannot write them for")
 __all__ += ["EXT_AXES_UNSUPPORTED"]
+INFORM_STATION_SPEED = Code(
+    "W604", "inform-station-speed",
+    "an INFORM station group moves at its own VJ: it may not end with the arm as the plan has it")
+__all__ += ["INFORM_STATION_SPEED"]
+PULSE_ROUNDING = Code(
+    "W605", "pulse-rounding",
+    "INFORM base/station positions in whole encoder pulses move a target by more than 0.01 mm")
+__all__ += ["PULSE_ROUNDING"]

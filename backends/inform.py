@@ -67,12 +67,15 @@ still too large is an error (E406). Names: job names are upper-case, at most 32 
 Support (checked by tests/backends/test_inform.py):
   exact     MOVL/MOVC/MOVJ with Cartesian positions and full RCONF, V/VJ on their steps, PL at
             0/12.5/25/50/100 mm, DOUT, PULSE, AOUT, WAIT (with T), TIMER, if/else, procs as
-            jobs, native inform, source comments;
+            jobs, native inform, source comments; a track and a positioner as base (BS1) and
+            station (ST1) axes in pulses at the cell's declared scale (backends/inform_axes.py);
   warned    joint targets as Cartesian + RCONF (W450), acceleration (W408, once), fixed
             duration (W409), speed / zone / time rounding (W402 / W403 / W412), tool payload (W411), split jobs
-            (W406), legalised names (W400/W401), other vendors' native blocks (W407);
+            (W406), legalised names (W400/W401), other vendors' native blocks (W407), the
+            station's own VJ (W604), whole pulses moving a target > 0.01 mm (W605);
   lowered   sync as the I/O handshake (odd count W410);
-  refused   sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports
+  refused   external axes without their pulse scale, or two positioners (E607),
+            sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports
             outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions without a full branch
             (E402), an arc with no preceding move (E451), a job above 999 positions (E406), moves
             without a planned solution (E401).
@@ -90,6 +93,7 @@ import numpy as np
 from rmot.backends import codes, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
+from rmot.backends.inform_axes import InformAxes, task_axes, warn_pulse_rounding
 from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
@@ -159,6 +163,7 @@ class _Job:
     labels: int = 0
     shifts: list[int] = field(default_factory=list)  # P variables the job declares
     stop_label: str | None = None  # `*Lnnn` before END, where a main job's `stop` jumps
+    axes: InformAxes | None = None  # base / station positions (backends/inform_axes.py)
 
     def add(self, pos: _Position) -> str:
         self.positions.append(pos)
@@ -201,6 +206,7 @@ class InformContext(TaskContext):
     job: _Job = field(default_factory=lambda: _Job(""))
     main: str = ""  # the main job's name (where `stop` can end the program)
     vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic
+    axes: InformAxes | None = None  # the external axes the task drives (backends/inform_axes.py)
 
 
 class InformBackend(Backend):
@@ -216,18 +222,22 @@ class InformBackend(Backend):
     MAX_TCP_SPEED = 1.5  # m/s
     MAX_TCP_SPEED_SOURCE = "DX100/DX200 INFORM manual, MOVL/MOVC: V= 0.1..1500.0 mm/s"
     NO_RECORD_NOTE = None
+    EXTERNAL_AXES = True  # BS1 base and ST1 station positions in pulses (backends/inform_axes.py)
 
     # ------------------------------------------------------------------ jobs
 
     def emit_task(self, task: TaskContext) -> dict[str, str]:
         names, main, body = self.open_task(task)
+        axes = task_axes(self, task, body)
+        if isinstance(axes, str):
+            return {}
         split = split_body(body, MAX_INSTRUCTIONS, task.program_name)
         if split is not body:
             self.warn(codes.PROGRAM_SPLIT, f"job '{main}' must hold at most {MAX_INSTRUCTIONS} "
                       f"instructions (got more); split into {len(split)} parts", task.task.span)
         ctx = task.with_state(InformContext, routine_of={},
                               preds=predecessors(body)[0], tools=self.tool_numbers(task),
-                              main=main, vars=_Variables.of_task(task, body))
+                              main=main, vars=_Variables.of_task(task, body), axes=axes)
         # job names are global on the controller: a proc's job carries the program's name
         # (MAIN_APPROACH), so two programs' procs of one name never overwrite each other; the
         # split parts already do (NAME_PART1)
@@ -240,7 +250,7 @@ class InformBackend(Backend):
         return dict(sorted(ctx.files.items()))
 
     def job(self, name: str, body: tuple[ir.Instr, ...], task: InformContext) -> None:
-        ctx = replace(task, job=_Job(name))
+        ctx = replace(task, job=_Job(name, axes=task.axes.fresh() if task.axes else None))
         job = ctx.job
         inst = self.body(body, ctx)
         if len(job.positions) > MAX_POSITIONS:
@@ -248,16 +258,18 @@ class InformBackend(Backend):
                              f"{MAX_POSITIONS} positions (got {len(job.positions)})", ctx.task.span)
         head = [c for line in header_lines(ctx.plan, self.name, self.findings_header)
                 for c in self.wrap(line)] + self.tool_comments(ctx)
+        head += [c for line in (job.axes.checklist() if job.axes else []) for c in self.wrap(line)]
         inst += [job.stop_label] if job.stop_label else []
         text = (["/JOB", f"//NAME {name}"] + self.pos_section(job) +
                 ["//INST", f"///DATE {DATE}", f"///COMM {ctx.plan.program.name[:32]}",
-                 "///ATTR SC,RW", "///GROUP1 RB1", "NOP"]
+                 "///ATTR SC,RW", *(job.axes.groups() if job.axes else ["///GROUP1 RB1"]), "NOP"]
                 + head + ctx.vars.comments() + inst + ["END"])
         ctx.files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
 
     @staticmethod
     def pos_section(job: _Job) -> list[str]:
-        lines = ["//POS", f"///NPOS {len(job.positions)},0,0,{len(job.shifts)},0,0"]
+        lines = ["//POS", job.axes.npos(len(job.positions), len(job.shifts)) if job.axes
+                 else f"///NPOS {len(job.positions)},0,0,{len(job.shifts)},0,0"]
         tool: int | None = None
         conf: str | None = None
         user: int | None = None
@@ -276,6 +288,7 @@ class InformBackend(Backend):
                 lines.append(f"///RCONF {pos.conf}")
                 conf = pos.conf
             lines.append(f"C{k:05d}={pos.values}")
+        lines += job.axes.pulse_lines() if job.axes else []
         if job.shifts:  # the loop shifts, Cartesian zeros the job sets per iteration
             lines += ["///POSTYPE ROBOT", "///RECTAN"]
             lines += [f"P{n:04d}=0.000,0.000,0.000,0.0000,0.0000,0.0000" for n in job.shifts]
@@ -335,7 +348,8 @@ class InformBackend(Backend):
                              "6-axis branch (got none: not a 6R arm, or no plan)", node.span)
             return None
         tool = ctx.tools.get(node.tool.name, 0)
-        user = frame_number(ctx.plan.program.cell, node.frame.name)
+        # with external axes every position is in ROBOT coordinates (backends/inform_axes.py)
+        user = None if ctx.axes else frame_number(ctx.plan.program.cell, node.frame.name)
         if user is not None:  # a numbered cell frame: the position in that user frame
             if not 1 <= user <= MAX_USER_FRAME:
                 self.unsupported(codes.NUMBER_OUT_OF_RANGE, f"frame '{node.frame.name}' number must be "
@@ -353,7 +367,13 @@ class InformBackend(Backend):
         if isinstance(rec, list):
             return rec
         self.motion_notes(node, ctx)
-        return self.by_kind(node)(node, rec, ctx, self.zone(rec.blend_radius, node))
+        lines = self.by_kind(node)(node, rec, ctx, self.zone(rec.blend_radius, node))
+        axes = ctx.job.axes
+        if axes is None:
+            return lines
+        warn_pulse_rounding(self, node, rec, axes, ctx)
+        vj = self.joint_speed(node) if axes.station else ""  # the station's +MOVJ speed
+        return [axes.operands(line, node, vj) for line in lines]
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                    pl: str) -> list[str]:
@@ -751,7 +771,8 @@ class InformBackend(Backend):
     def _shift_steps(self, node: ir.Move, offset: TargetOffset,
                      ctx: InformContext) -> tuple[str, tuple[tuple[int, int, int], ...]]:
         """(coordinate system, integer steps in 0.001 mm per loop variable)."""
-        user = frame_number(ctx.plan.program.cell, node.frame.name)
+        # with external axes no user frame: the steps in ROBOT coordinates, as the positions
+        user = None if ctx.axes else frame_number(ctx.plan.program.cell, node.frame.name)
         rot = np.eye(3) if user is not None else node.frame.pose.matrix()[:3, :3]
         system = f"UF#({user})" if user is not None else "RF"
         steps = tuple(tuple(int(round(float(v) * 1e6)) for v in rot @ np.array(s))

@@ -46,6 +46,7 @@ class ExtAxis:
     accel: float
     home: float
     span: Span | None = None
+    pulses: float | None = None  # INFORM encoder pulses per mm (linear) or per degree (revolute), as declared
 
     def unit(self) -> str:
         return "mm" if self.linear else "deg"

@@ -693,13 +693,17 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def ext_axis(self, c: list[Any]) -> ast.ExtAxisDecl:
         options = dict(c[7:])
         return ast.ExtAxisDecl(self._ident(c[0]), self._ident(c[3]), c[5], options.get("speed"),
-                               options.get("accel"), self._span([*c[:7], *(value for _, value in c[7:])]))
+                               options.get("accel"), self._span([*c[:7], *(value for _, value in c[7:])]),
+                               options.get("inform"))
 
     def ext_speed(self, c: list[Any]) -> tuple[str, Any]:
         return "speed", c[1]
 
     def ext_accel(self, c: list[Any]) -> tuple[str, Any]:
         return "accel", c[1]
+
+    def ext_inform(self, c: list[Any]) -> tuple[str, Any]:
+        return "inform", ast.Call(self._ident(c[0]), c[2], self._span(c))
 
     def move_axes(self, c: list[Any]) -> ast.MoveAxes:
         return ast.MoveAxes(self._ident(c[2]), c[4], tuple(c[5:]), self._span(c))

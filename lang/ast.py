@@ -547,6 +547,7 @@ class ExtAxisDecl:
     speed: Expr | None
     accel: Expr | None
     span: Span = _span()
+    inform: Call | None = None  # the INFORM binding: `inform(pulses_per_mm=N)` or `inform(pulses_per_deg=N)`
 
 
 @record(slots=True)

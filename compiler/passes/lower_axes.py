@@ -36,7 +36,7 @@ from rmot.compiler.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
 from rmot.compiler.passes.limits import MAX_SIZE_M
-from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, LENGTH, SPEED, Dim, VectorV, Value
+from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, DIMENSIONLESS, LENGTH, SPEED, Dim, VectorV, Value
 from rmot.lang import ast
 from rmot.lang.source import Span
 
@@ -108,7 +108,23 @@ class CellAxes:
             return None
         low, high = bounds
         home = min(max(0.0, low), high)
-        return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span)
+        pulses = None if a.inform is None else self._pulses(a.inform, linear, name)  # after E608: kept, unscaled
+        return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span, pulses)
+
+    def _pulses(self, call: ast.Call, linear: bool, name: str) -> float | None:
+        """The INFORM binding `inform(pulses_per_mm=N)` (linear) or `inform(pulses_per_deg=N)`
+        (revolute): the axis' encoder pulses per unit, machine data of the controller (a job
+        writes base and station positions in pulses), one finite number > 0."""
+        key = "pulses_per_mm" if linear else "pulses_per_deg"
+        arg = call.args[0] if len(call.args) == 1 else None
+        if arg is None or arg.name is None or arg.name.name != key:
+            self.rep.error(codes_axes.EXT_INFORM_BINDING, f"the INFORM binding of axis '{name}' must be inform({key}=N)", call.span)
+            return None
+        x = expect_quantity(eval_expr(arg.value, self.scope, self.rep), DIMENSIONLESS, f"{key} of axis '{name}'", arg.span, self.rep)
+        if x is not None and not (math.isfinite(x) and x > 0):
+            self.rep.error(codes_axes.EXT_INFORM_BINDING, f"{key} of axis '{name}' must be a finite number > 0 (got {x:g})", arg.value.span)
+            return None
+        return x
 
     def _range(self, a: ast.ExtAxisDecl, dim: Dim) -> tuple[float, float] | None:
         call = a.args[0].value if len(a.args) == 1 else None

@@ -86,9 +86,10 @@ def findings(vendor: str, files: dict[str, str], tmp: Path) -> list[str]:
 
 
 # Examples that drive external axes (lang/REFERENCE.md §15), and the vendors that refuse them
-# with E607: URScript and VAL3 have no external axes; INFORM is not written yet (lang/REFERENCE.md §15).
+# with E607: URScript and VAL3 have no external axes. INFORM writes them (the examples declare
+# each axis' pulse scale): its validator checks the BC/EC positions, NPOS and the groups.
 EXTERNAL_AXES_EXAMPLES = {"weld_positioner", "track_tending"}
-REFUSE_EXTERNAL_AXES = {"urscript", "inform", "val3"}
+REFUSE_EXTERNAL_AXES = {"urscript", "val3"}
 
 
 @pytest.mark.parametrize("vendor", VENDORS)
@@ -171,6 +172,20 @@ def test_inform_validator_rejects_an_unknown_job_and_a_bad_position() -> None:
     assert any("names no job" in f for f in check_inform({"A.JBI": job}))
     assert check_inform({"A.JBI": job.replace("CALL JOB:B\n", "")}) == []
     assert any("not a position" in f for f in check_inform({"A.JBI": job.replace("CALL JOB:B", "MOVL C00001 V=1.0")}))
+
+
+def test_inform_validator_rejects_axis_positions_the_header_or_groups_do_not_state() -> None:
+    job = ("/JOB\n//NAME A\n//POS\n///NPOS 1,1,1,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
+           "///RCONF 0,0,0,0,0,0,0,0\nC00000=1,2,3,4,5,6\n///POSTYPE PULSE\n///PULSE\nBC00000=120000\n"
+           "EC00000=0,90000\n//INST\n///DATE 2000/01/01 00:00\n///COMM a\n///ATTR SC,RW\n"
+           "///GROUP1 RB1,BS1\n///GROUP2 ST1\nNOP\nMOVL C00000 BC00000 V=100.0 PL=0 +MOVJ EC00000 VJ=50.00\nEND\n")
+    assert check_inform({"A.JBI": job}) == []
+    assert any("///NPOS must count" in f for f in check_inform({"A.JBI": job.replace("NPOS 1,1,1", "NPOS 1,0,1")}))
+    assert any("EC00001 is not a position" in f for f in check_inform({"A.JBI": job.replace("+MOVJ EC00000", "+MOVJ EC00001")}))
+    assert any("need ///GROUP1 RB1,BS1" in f for f in check_inform({"A.JBI": job.replace("RB1,BS1", "RB1")}))
+    assert any("whole pulses" in f for f in check_inform({"A.JBI": job.replace("BC00000=120000", "BC00000=12.5")}))
+    unused = job.replace("EC00000=0,90000\n", "EC00000=0,90000\nEC00001=0,0\n").replace("NPOS 1,1,1", "NPOS 1,1,2")
+    assert any("EC00001 is defined but no instruction uses it" in f for f in check_inform({"A.JBI": unused}))
 
 
 def test_val3_validator_rejects_an_index_beyond_the_data_and_an_unlisted_program() -> None:

@@ -250,13 +250,21 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
         pos, inst = lines.index("//POS"), lines.index("//INST")
     except ValueError:
         return bad + [(1, "a job has //POS and //INST sections")]
-    # [INF] job data format: ///NPOS C,BC,EC,P,BP,EX counts; position variables as `Pnnnn=`
-    npos = re.fullmatch(r"///NPOS (\d+),0,0,(\d+),0,0", lines[pos + 1])
+    # [INF] job data format: ///NPOS C,BC,EC,P,BP,EX counts; position variables as `Pnnnn=`;
+    # base (BC) and station (EC) positions in pulses, one integer per axis
+    npos = re.fullmatch(r"///NPOS (\d+),(\d+),(\d+),(\d+),0,0", lines[pos + 1])
     cs = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("C")]
     ps = [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith("P")]
-    if npos is None or int(npos.group(1)) != len(cs) or int(npos.group(2)) != len(ps):
-        bad.append((pos + 2, f"///NPOS must count the positions ({len(cs)}) and position "
-                             f"variables ({len(ps)})"))
+    axis_lines = {kind: [(k, ln) for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3) if ln.startswith(kind)]
+                  for kind in ("BC", "EC")}
+    counts = [len(cs), len(axis_lines["BC"]), len(axis_lines["EC"]), len(ps)]
+    if npos is None or [int(g) for g in npos.groups()] != counts:
+        bad.append((pos + 2, f"///NPOS must count the positions, base and station positions and "
+                             f"position variables ({','.join(map(str, counts))},0,0)"))
+    for kind, found in axis_lines.items():
+        for i, (k, ln) in enumerate(found):
+            if not re.fullmatch(rf"{kind}{i:05d}=-?\d+(,-?\d+)*", ln):
+                bad.append((k, f"{kind} positions are {kind}00000.. in order, whole pulses (got {ln})"))
     for k, ln in ps:
         if not re.fullmatch(r"P\d{4}=" + ",".join([NUM] * 6), ln):
             bad.append((k, f"a position variable is Pnnnn=X,Y,Z,Rx,Ry,Rz (got {ln})"))
@@ -265,7 +273,7 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
             bad.append((k, f"positions are C00000.. in order, each X,Y,Z,Rx,Ry,Rz (got {ln})"))
     for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3):
         if ln.startswith("///"):
-            m = re.fullmatch(r"///(TOOL|USER|POSTYPE|RECTAN|RCONF)(?: (.*))?", ln)
+            m = re.fullmatch(r"///(TOOL|USER|POSTYPE|RECTAN|RCONF|PULSE)(?: (.*))?", ln)
             if m is None:
                 bad.append((k, f"unknown position attribute {ln}"))
             elif m.group(1) == "TOOL" and not 0 <= int(m.group(2)) <= 63:
@@ -276,14 +284,19 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
                 bad.append((k, "POSTYPE is ROBOT, USER, BASE or PULSE"))
             elif m.group(1) == "RCONF" and not re.fullmatch(r"[01](,[01]){7}", m.group(2) or ""):
                 bad.append((k, "RCONF has 8 flags of 0/1"))
-    head = lines[inst + 1:inst + 6]
+    station = lines[inst + 5:inst + 6] == ["///GROUP2 ST1"]  # a station: its own control group
+    head = lines[inst + 1:inst + 5] + lines[inst + 5 + station:inst + 6 + station]
+    groups = {"///GROUP1 RB1": False, "///GROUP1 RB1,BS1": True}  # the robot, with its base axis
     if not (len(head) == 5 and head[0].startswith("///DATE ") and head[1].startswith("///COMM")
-            and head[2].startswith("///ATTR") and head[3].startswith("///GROUP1") and head[4] == "NOP"):
-        bad.append((inst + 1, "//INST is followed by ///DATE, ///COMM, ///ATTR, ///GROUP1, NOP"))
+            and head[2].startswith("///ATTR") and head[3] in groups and head[4] == "NOP"):
+        bad.append((inst + 1, "//INST is followed by ///DATE, ///COMM, ///ATTR, ///GROUP1 RB1[,BS1], [///GROUP2 ST1], NOP"))
+    elif (axis_lines["BC"] and not groups[head[3]]) or (axis_lines["EC"] and not station):
+        bad.append((inst + 4, "BC positions need ///GROUP1 RB1,BS1 and EC positions ///GROUP2 ST1"))
     if lines[-1] != "END":
         bad.append((len(lines), "a job ends with END"))
-    body = list(enumerate(lines[inst + 6:-1], start=inst + 7))
-    names = {f"C{i:05d}" for i in range(len(cs))}
+    body = list(enumerate(lines[inst + 6 + station:-1], start=inst + 7 + station))
+    names = {f"C{i:05d}" for i in range(len(cs))} | {f"{kind}{i:05d}" for kind, found in axis_lines.items() for i in range(len(found))}
+    used: set[str] = set()
     labels = [ln for _, ln in body if re.fullmatch(r"\*L\d+", ln)]
     run = 0  # consecutive MOVC lines
     for k, ln in body + [(len(lines), "END")]:
@@ -297,12 +310,16 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
             if len(ln) > 32:
                 bad.append((k, "a comment is at most 32 characters"))
             continue
-        for c in re.findall(r"\bC\d{5}\b", ln):
+        for c in re.findall(r"\b(?:B|E)?C\d{5}\b", ln):
+            used.add(c)
             if c not in names:
                 bad.append((k, f"{c} is not a position of the job"))
-        # ACC=/DEC= 20..100 % (YRC1000 INFORM manual, MOVJ/MOVL tags)
-        m = re.match(r"^MOV([JLC]) C\d{5} (VJ|V)=([\d.]+)(?: PL=(\d+))?"
-                     r"(?: ACC=(?:[2-9][0-9]|100) DEC=(?:[2-9][0-9]|100))?(?: FPT)?$", ln)
+        # ACC=/DEC= 20..100 % (YRC1000 INFORM manual, MOVJ/MOVL tags); a robot move with its base
+        # axis (BCnnnnn when GROUP1 has BS1) and the station group's move `+MOVJ ECnnnnn VJ=v`
+        base = " BC\\d{5}" if groups.get(head[3]) else ""
+        plus = r" \+MOVJ EC\d{5} VJ=(?:[\d.]+)" if station else ""
+        m = re.match(r"^MOV([JLC]) C\d{5}" + base + r" (VJ|V)=([\d.]+)(?: PL=(\d+))?"
+                     r"(?: ACC=(?:[2-9][0-9]|100) DEC=(?:[2-9][0-9]|100))?(?: FPT)?" + plus + "$", ln)
         if ln.startswith("MOV") and m is None:
             bad.append((k, f"a motion is 'MOVJ|MOVL|MOVC Cnnnnn VJ=|V= [PL=n] [FPT]' (got {ln})"))
         elif m:
@@ -320,6 +337,7 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
         call = re.match(r"^CALL JOB:(\w+)$", ln)
         if call and call.group(1) not in jobs:
             bad.append((k, f"CALL JOB:{call.group(1)} names no job of the set"))
+    bad += [(pos + 2, f"{c} is defined but no instruction uses it") for c in sorted(names - used)]
     return bad
 
 

@@ -233,7 +233,7 @@ def test_fanuc_positions_re_expand_to_the_planned_tcp(plan: Plan) -> None:
                                              abs=1e-3)
 
 
-@pytest.mark.parametrize("vendor", ["urscript", "val3", "inform"])
+@pytest.mark.parametrize("vendor", ["urscript", "val3"])  # INFORM: test_ext_axes_inform.py
 def test_vendors_without_external_axes_refuse_at_the_first_move(plan: Plan, vendor: str) -> None:
     result = BACKENDS[vendor]().emit(plan)
     errors = [d for d in result.diagnostics if d.is_error]

@@ -1,9 +1,10 @@
 """The two external-axes examples through the real command line: each checks clean (exit 0,
 no error or warning, only the W603 note) at about its cycle time, and compiles for RAPID, KRL
-and Fanuc TP with only the documented warnings (W411, W415, W416); INFORM, URScript and VAL3 refuse it
-with E607 and write nothing for it (lang/REFERENCE.md §15).
+and Fanuc TP with only the documented warnings (W411, W415, W416), and for INFORM with the pulse
+scales the examples declare (W450, W604 too); URScript and VAL3 refuse it with E607 and write
+nothing for it (lang/REFERENCE.md §15).
 
-(The examples drive external axes, which three of the six controllers and both data formats
+(The examples drive external axes, which two of the six controllers and both data formats
 refuse, so they are not in test_shipped_examples.py's every-vendor list.)"""
 
 from __future__ import annotations
@@ -45,7 +46,11 @@ def test_compiles_for_rapid_krl_fanuc_and_the_others_refuse(name: str, tmp_path:
     # tool's mass for the Fanuc payload schedule (both explained in pick_place.rmot)
     assert set(re.findall(r"warning\[(W\d+)\]", ok.stderr)) <= {"W411", "W415", "W416"}
     assert {p.name for p in (tmp_path / "a").iterdir()} == {"rapid", "krl", "fanuc", ".rmot.output"}
-    for vendor in ("inform", "urscript", "val3"):
+    informed = _run("compile", str(EXAMPLES / name), "--target", "inform", "-o", str(tmp_path / "i"))
+    assert informed.exit_code == 0, informed.stderr
+    # W450 joint targets as Cartesian + RCONF, W604 the station's own VJ (weld_positioner)
+    assert set(re.findall(r"warning\[(W\d+)\]", informed.stderr)) <= {"W411", "W415", "W450", "W604"}
+    for vendor in ("urscript", "val3"):
         refused = _run("compile", str(EXAMPLES / name), "--target", vendor, "-o", str(tmp_path / vendor))
         assert refused.exit_code != 0 and "error[E607]" in refused.stderr, refused.stderr
         assert not (tmp_path / vendor / vendor).exists()

@@ -1,0 +1,183 @@
+"""External axes in Yaskawa INFORM jobs: a track as the robot's base axis, a positioner as a
+station, their positions in encoder pulses at the scale the cell declares.
+
+An INFORM job writes base-axis and station-axis positions as encoder pulses (`BCnnnnn=` and
+`ECnnnnn=` lines under `///POSTYPE PULSE` / `///PULSE`); the pulses per mm or per degree are
+machine data of the controller (the axis' gear ratio and encoder), so rmot writes them only
+for axes whose cell declaration states that scale: `inform(pulses_per_mm=N)` (linear) or
+`inform(pulses_per_deg=N)` (revolute), after the axis' accel. A task with an axis without it
+is refused (E607), naming the axis and what to declare.
+
+The job's form (DX100/DX200/YRC1000 "Job data format" of the offline-teaching interface;
+INFORM manual, "MOVJ/MOVL: additional items BC (base axis) and EC (station axis)" and
+"Coordinated control of two groups: +MOVJ"):
+  * `///NPOS C,BC,EC,P,BP,EX`: the counts of robot, base and station positions and of the P,
+    BP, EX variables the job declares;
+  * `BCnnnnn=p` (one value per base axis) and `ECnnnnn=p1,p2` (one per station axis) after
+    the robot's `C` positions, under `///POSTYPE PULSE` and `///PULSE`;
+  * `///GROUP1 RB1,BS1` (the robot and its base axis: one control group, one interpolation, so
+    the carriage starts and stops with the arm) and `///GROUP2 ST1` (the station, its own group);
+  * a move `MOVJ Cn BCn VJ=v +MOVJ ECn VJ=v` (`MOVL Cn BCn V=v ... +MOVJ ECn VJ=v`): the
+    robot group's move with its base axis, then the station group's move started with it.
+Witnesses of the form, found by exact-string search of public source (job generators and the
+notes of a welding cell with a base axis and a station; repositories not identified):
+`///NPOS n,n,n,0,0,0` with `BC00000=878036`, `EC00001=45886,0`, `///GROUP1 RB1,BS1`,
+`///GROUP2 ST1` and `MOVJ C# BC# VJ=... +MOVJ EC# VJ=...`; `///NPOS 1,0,1,1,0,1` for a job
+holding C00000, EC00000=0,0, P00000 and EX00000 (the count order C, BC, EC, P, BP, EX) under
+`///GROUP1 RB1` / `///GROUP2 ST1`; `MOVJ C%05d BC%05d VJ=...` beside `BC%05d=%ld,%ld` lines.
+RoboDK's Motoman post processor (RoboDK Inc., its settings file) writes the same forms:
+`MOVL C00008 BC00008 V=166.7 +MOVJ EC00008 VJ=100.00` ("non synchronized motion (for the
+turntable)", its default; `SMOVL ... +MOVJ EC00008` would synchronise it) and asks the user for
+`PULSES_X_DEG` of each external axis, as rmot asks for `inform(pulses_per_...)`.
+
+Positions: `C` is the TCP in ROBOT coordinates, the arm's own base frame, which rides on the
+carriage at the move's BC value (rmot's planned TCP in the base frame: exact for any base-axis
+direction); the station's axes stand at EC. rmot plans arm, base and station
+time-synchronously; the station as its own group moves at its own VJ (% of its maximum speed),
+so it starts with the arm but may end earlier or later (W604, once per task).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from rmot.backends import codes
+from rmot.backends.base import Backend, TaskContext
+from rmot.backends.ext_axes import driven_axes
+from rmot.compiler import ir, ir_tree, plan_types
+from rmot.compiler.ir_axes import ExtAxis
+
+__all__ = ["InformAxes", "inform_axes", "task_axes", "warn_pulse_rounding"]
+
+PULSE_TOLERANCE_MM = 0.01  # whole-pulse rounding of external axes beyond this warns (W605)
+
+
+@dataclass
+class InformAxes:
+    """A task's INFORM axes: the base axes (its track, BS1) and the station axes (its
+    positioner, ST1); the pulse values each job collects (BC and EC lines, in order)."""
+
+    base: tuple[ExtAxis, ...]
+    station: tuple[ExtAxis, ...]
+    station_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)  # the point its axes pass through (world, m)
+    bc: list[str] = field(default_factory=list)
+    ec: list[str] = field(default_factory=list)
+
+    def fresh(self) -> InformAxes:
+        """The same axes with no positions yet (one per job)."""
+        return InformAxes(self.base, self.station, self.station_origin)
+
+    def groups(self) -> list[str]:
+        robot = "///GROUP1 RB1,BS1" if self.base else "///GROUP1 RB1"
+        return [robot] + (["///GROUP2 ST1"] if self.station else [])
+
+    def npos(self, c: int, p: int) -> str:
+        return f"///NPOS {c},{len(self.bc)},{len(self.ec)},{p},0,0"
+
+    def pulse_lines(self) -> list[str]:
+        if not self.bc and not self.ec:
+            return []
+        return (["///POSTYPE PULSE", "///PULSE"] + [f"BC{k:05d}={v}" for k, v in enumerate(self.bc)]
+                + [f"EC{k:05d}={v}" for k, v in enumerate(self.ec)])
+
+    def operands(self, line: str, node: ir.Move, vj: str) -> str:
+        """A robot move line `MOVx Cn ...` with the base operand after its C position and the
+        station's `+MOVJ ECn VJ=v` after it (every move states both: an axis not moved keeps
+        its value, which the move restates)."""
+        if not line.startswith("MOV"):
+            return line
+        values = dict(node.ext)
+        if self.base:
+            self.bc.append(",".join(str(pulses(a, values[a.name])) for a in self.base))
+            word, c, rest = line.split(" ", 2)
+            line = f"{word} {c} BC{len(self.bc) - 1:05d} {rest}"
+        if self.station:
+            self.ec.append(",".join(str(pulses(a, values[a.name])) for a in self.station))
+            line += f" +MOVJ EC{len(self.ec) - 1:05d} VJ={vj}"
+        return line
+
+    def rounding_mm(self, node: ir.Move, tcp: tuple[float, float, float]) -> float:
+        """A bound on how far writing whole pulses moves the TCP (world, m) of `node` relative
+        to the part: the base axes' rounding itself, plus each station axis' rounding (an angle
+        times the TCP's distance from the station's axes, which all pass through its base
+        point: a positioner's axes are stacked without offsets)."""
+        values = dict(node.ext)
+        reach_mm = 1000.0 * math.dist(tcp, self.station_origin)
+        total = 0.0
+        for axis in self.base + self.station:
+            shown = values[axis.name] * 1000.0 if axis.linear else math.degrees(values[axis.name])
+            error = abs(pulses(axis, values[axis.name]) / (axis.pulses or 1.0) - shown)
+            total += error if axis.linear else math.radians(error) * reach_mm
+        return total
+
+    def checklist(self) -> list[str]:
+        """The machine data the job assumes, for a person to compare with the controller."""
+        lines = ["machine data assumed: C in ROBOT coordinates (the arm's base on the carriage)"]
+        for group, axes in (("R1+B1 base BS1", self.base), ("S1 station ST1", self.station)):
+            for k, a in enumerate(axes):
+                unit = a.unit()
+                lines.append(f"{group} axis {k + 1} = {a.name}: {'linear along' if a.linear else 'revolute about'} "
+                             f"{'xyz'[a.direction.index(1.0)]}, {a.pulses:g} pulses/{unit}, "
+                             f"0 pulses at 0 {unit}, + pulses = + {unit}")
+        return lines
+
+
+def pulses(axis: ExtAxis, value: float) -> int:
+    """The axis' value (SI) in encoder pulses at its declared scale, rounded to a whole pulse."""
+    assert axis.pulses is not None
+    shown = value * 1000.0 if axis.linear else math.degrees(value)
+    return round(shown * axis.pulses)
+
+
+def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> InformAxes | str:
+    """The task's axes as INFORM's base and station groups, or why they cannot be written: an
+    axis without its pulse scale, or more than one positioner (one station group, ST1)."""
+    assert cell.external is not None
+    missing = [a for a in axes if a.pulses is None]
+    if missing:
+        what = ", ".join(f"'{a.name}' (line {a.span.start.line if a.span else '?'}): "
+                         f"inform(pulses_per_{a.unit()}=N)" for a in missing)
+        return (f"task '{task.name}' drives external axes whose encoder pulse scale INFORM needs "
+                f"(BC/EC positions are pulses, machine data); declare it after each axis' accel: {what}")
+    names = {a.name for a in axes}
+    used = [m for m in cell.external.mechanisms if any(a.name in names for a in m.axes)]
+    stations = [m for m in used if m.kind != "track"]
+    if len(stations) > 1:
+        return (f"task '{task.name}' must drive at most one positioner for INFORM (one station group ST1; "
+                f"got {', '.join(m.name for m in stations)})")
+    base = tuple(a for m in used if m.kind == "track" for a in m.axes)
+    origin = stations[0].base.position if stations else (0.0, 0.0, 0.0)
+    return InformAxes(base, tuple(a for m in stations for a in m.axes), origin)
+
+
+def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -> InformAxes | str | None:
+    """The task's base and station axes (None without), or, after the located refusal (E607 at
+    the first move that drives them), why they cannot be written; W604 for a station."""
+    cell = task.plan.program.cell
+    axes = driven_axes(task.task, cell)
+    if not axes:
+        return None
+    found = inform_axes(task.task, cell, axes)
+    first = next(n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.ext)
+    if isinstance(found, str):
+        backend.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
+    elif found.station:
+        backend.warn(codes.INFORM_STATION_SPEED, "the station (GROUP2 ST1) moves at its own VJ "
+                     "(+MOVJ): it starts with the arm but may end at another time than the plan's "
+                     "time-synchronous move", first.span)
+    return found
+
+
+def warn_pulse_rounding(backend: Backend, node: ir.Move, rec: plan_types.InstructionRecord, axes: InformAxes,
+                        ctx: TaskContext) -> None:
+    """W605 (once per task) when whole pulses move `node`'s target by more than 0.01 mm."""
+    cell = ctx.plan.program.cell
+    if rec.tcp_pose is None or "pulse rounding" in ctx.warned:
+        return
+    base = cell.external.world(ctx.robot.name, dict(node.ext)) if cell.external else None
+    bound = axes.rounding_mm(node, ((base or ctx.robot.base) * rec.tcp_pose).position)
+    if bound > PULSE_TOLERANCE_MM:
+        ctx.warned.add("pulse rounding")
+        backend.warn(codes.PULSE_ROUNDING, f"whole encoder pulses move the target by up to {bound:.3g} mm "
+                     f"relative to the part (more than {PULSE_TOLERANCE_MM:g} mm): a coarse pulse scale", node.span)
