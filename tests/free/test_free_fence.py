@@ -100,3 +100,28 @@ def test_sealed_passage_ends_within_the_default_budget() -> None:
     assert len(found) == 1 and found[0].span.start.line == 11
     assert "budget" in found[0].message
     assert elapsed < free.budget, elapsed
+
+
+def test_report_draws_the_found_path_and_its_via_points(fence_plan) -> None:  # type: ignore[no-untyped-def]
+    """The pictures parse as SVG (the standard library's XML parser, not the writer): per view
+    one path line, one dot per via point listed in W250, one rectangle per fixture."""
+    import xml.etree.ElementTree as ET
+
+    from rmot.sim.free.drawing import free_path_pictures
+
+    pictures = free_path_pictures(fence_plan)
+    assert len(pictures) == 1
+    caption, svg = pictures[0]
+    assert "fence_free.rmot:13:" in caption and "via points" in caption
+    note = next(d for d in fence_plan.diagnostics if d.code.id == "W250")
+    n_vias = int(note.message.split(" inserted ")[1].split(" via")[0])
+    ns = "{http://www.w3.org/2000/svg}"
+    views = [ET.fromstring(part + "</svg>") for part in svg.split("</svg>")[:-1]]
+    assert len(views) == 2
+    for view in views:
+        assert len(view.findall(f"{ns}polyline")) == 1
+        assert len(view.findall(f"{ns}circle")) == n_vias
+        assert {r.findtext(f"{ns}title") for r in view.findall(f"{ns}rect")} == {
+            "stand", "pick_table", "place_table", "fence"}
+    again = free_path_pictures(stages.plan(_front("fence_free.rmot"), use_cache=False))
+    assert again == pictures
