@@ -244,6 +244,12 @@ def _planned(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
         svg = _safe(parts, ("plot", what), problems)
         if svg:
             out.append(f'<figure><img class="plot" alt="{what}" src="{_data_uri("image/svg+xml", svg)}"></figure>')
+    free_paths = _safe(parts, "free_paths", problems) or ()
+    if free_paths:
+        out.append("<h3>Paths found by 'move free'</h3>")
+    for caption, svg in free_paths:
+        out.append(f'<figure><img class="plot" alt="{_e(caption)}" src="{_data_uri("image/svg+xml", svg.encode())}">'
+                   f"<figcaption>{_e(caption)}</figcaption></figure>")
     page = _safe(parts, "viewer", problems)
     if page:
         out.append(f'<h3>3D viewer</h3><iframe class="viewer" id="viewer{k}" title="3D viewer of {_e(result.path)}" '
@@ -284,6 +290,7 @@ def _safe(parts: dict[Any, Callable[[], Any]], key: Any, problems: list[Diagnost
 
 def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
     """The expensive pieces of a program's section, made on demand (each may fail alone)."""
+    from rmot.sim.free.drawing import free_path_pictures
     from rmot.sim.parts import placements
     from rmot.sim.plots import figure_bytes, plot_data
     from rmot.sim.render.files import write_png  # noqa: F401 - the PNG encoder lives with it
@@ -325,7 +332,8 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
     return {"marks": marks, "picture": picture, "plot": plot,
             "viewer": lambda: render_html(scene(), fps=10, marks=marks()),
             "robots": lambda: {name: e.robot for name, e in scene().scene.robots.items()},
-            "placements": lambda: placements(scene().scene, scene().plan)}
+            "placements": lambda: placements(scene().scene, scene().plan),
+            "free_paths": lambda: free_path_pictures(result.plan)}
 
 
 STYLE = """
