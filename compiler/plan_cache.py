@@ -47,6 +47,7 @@ import numpy as np
 
 from rmot.compiler.plan_codec import CodecError, decode, encode
 from rmot.lang.cache_seal import cache_dir, read_sealed, seal  # one cache directory: lang's, the stage upstream
+from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
 
 if TYPE_CHECKING:
     from rmot.compiler import ir
@@ -150,7 +151,7 @@ def plan_key(program: ir.Program, step: float) -> str:
     for path in sorted(_named_files(doc)):
         h.update(b"\0file\0" + path.encode() + b"\0")
         try:
-            h.update(hashlib.sha256(Path(path).read_bytes()).digest())
+            h.update(hashlib.sha256(read_regular(path, MAX_STAMPED_BYTES)).digest())
         except OSError:
             h.update(b"<unreadable>")
     return h.hexdigest()

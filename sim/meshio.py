@@ -18,9 +18,11 @@ triangles, but a body wholly inside an open surface is not detected as a contact
 
 from __future__ import annotations
 
+import errno
 import functools
 import os
 from dataclasses import dataclass
+from stat import S_ISREG
 
 import numpy as np
 
@@ -62,6 +64,8 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
     except OSError:
         return _error(mesh, codes.MESH_MISSING, f"mesh file must exist (got '{path}')")
     try:
+        if not S_ISREG(stat.st_mode):  # a FIFO would block the read forever, a device never end
+            raise OSError(errno.EINVAL, "not a regular file (a FIFO, device or folder)")
         with open(path, "rb"):  # an unreadable file is said to be unreadable, not "not a valid STL"
             pass
     except OSError as exc:

@@ -29,6 +29,7 @@ from typing import Any
 import click
 
 from rmot.compiler.cli import EXIT_INPUT
+from rmot.lang.input_file import read_regular
 
 __all__ = ["MergeError", "merge_documents", "merge_reports"]
 
@@ -57,8 +58,7 @@ def _read(path: str) -> bytes:
         if size > MAX_REPORT_BYTES:
             raise MergeError(codes.REPORT_UNREADABLE,
                              f"report '{path}' has {size} bytes, more than the {MAX_REPORT_BYTES} allowed")
-        with open(path, "rb") as f:
-            return f.read(MAX_REPORT_BYTES + 1)
+        return read_regular(path, MAX_REPORT_BYTES)
     except OSError as exc:
         raise MergeError(codes.REPORT_UNREADABLE, f"cannot read report '{path}': {exc.strerror or exc}") from None
 

@@ -18,6 +18,7 @@ from rmot.compiler import codes
 from rmot.compiler.passes.context import Reporter
 from rmot.compiler.passes.state import FrontendState, LoadedModule
 from rmot.lang import ast
+from rmot.lang.input_file import read_regular
 from rmot.lang.parse import parse_source
 from rmot.lang.source import SourceFile, Span
 
@@ -83,7 +84,7 @@ def read_module(path: str, span: Span | None, rep: Reporter) -> LoadedModule | N
             rep.error(codes.FILE_TOO_LARGE, f"source file must be at most {MAX_SOURCE_BYTES // 1024} KiB (got {size // 1024} KiB)",
                       span or Span.whole(SourceFile(path, "")))
             return None
-        data = Path(path).read_bytes()
+        data = read_regular(path, MAX_SOURCE_BYTES)
     except OSError as exc:
         code = codes.FILE_NOT_FOUND if isinstance(exc, FileNotFoundError) else codes.UNREADABLE
         rep.error(code, f"file '{_short(path)}' must be readable (got {exc.strerror or exc})", span)

@@ -32,6 +32,7 @@ from pathlib import Path
 
 from rmot.compiler import codes
 from rmot.compiler.passes.context import Reporter
+from rmot.lang.input_file import read_regular
 from rmot.lang.source import Span
 
 __all__ = ["check_urdf_files"]
@@ -39,6 +40,7 @@ __all__ = ["check_urdf_files"]
 _MOVING = ("revolute", "continuous", "prismatic")
 MAX_JOINTS = 64  # industrial arms have 6-7 (plus a rail, a gripper's fingers): far above any real cell
 MAX_LINKS = 256
+MAX_URDF_BYTES = 64 * 1024 * 1024  # a 64-joint URDF with inline geometry is a few hundred KiB
 _SHAPES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",), "capsule": ("radius", "length"),
            "mesh": ("scale",)}
 _COUNTS = {"size": (3,), "scale": (1, 3)}  # how many numbers each attribute holds (URDF spec)
@@ -47,7 +49,7 @@ _COUNTS = {"size": (3,), "scale": (1, 3)}  # how many numbers each attribute hol
 def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: Reporter) -> bool:
     """True when every mesh the URDF names lies inside a root and every moving joint has an axis."""
     try:
-        tree = ET.parse(urdf)
+        tree = ET.ElementTree(ET.fromstring(read_regular(urdf, MAX_URDF_BYTES)))
     except (ET.ParseError, OSError, ValueError) as exc:
         rep.error(codes.ROBOT_LOAD, f"URDF robot must be a readable XML file (got: {str(exc)[:200]})", span)
         return False
