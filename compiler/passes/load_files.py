@@ -76,8 +76,17 @@ def _inside(path: Path, root: Path) -> bool:
     return True
 
 
-def read_module(path: str, span: Span | None, rep: Reporter) -> LoadedModule | None:
-    """Read, decode and parse one source file; every problem becomes a diagnostic."""
+def shown_path(written: str, naming: SourceFile, resolved: str) -> str:
+    """How diagnostics name a file that `naming` names as `written`: relative as the naming file
+    is (`p.rmot` uses "c.rmot": `c.rmot`; `a/p.rmot`: `a/c.rmot`), else the resolved path."""
+    if os.path.isabs(written) or os.path.isabs(naming.path) or naming.path.startswith("<"):
+        return resolved
+    return os.path.normpath(os.path.join(os.path.dirname(naming.path), written))
+
+
+def read_module(path: str, span: Span | None, rep: Reporter, shown: str | None = None) -> LoadedModule | None:
+    """Read, decode and parse one source file; every problem becomes a diagnostic, which names
+    the file as `shown` (the path the way the user wrote it; `path` is the resolved one)."""
     try:
         size = os.path.getsize(path)
         if size > MAX_SOURCE_BYTES:
@@ -92,11 +101,12 @@ def read_module(path: str, span: Span | None, rep: Reporter) -> LoadedModule | N
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        where = SourceFile(path, data[: exc.start].decode("utf-8", "replace"))
+        where = SourceFile(shown or path, data[: exc.start].decode("utf-8", "replace"))
         bad = Span.from_offsets(where, len(where.text), len(where.text))
         rep.error(codes.NOT_UTF8, f"source file must be UTF-8 text (got byte 0x{data[exc.start]:02x} at offset {exc.start})", bad)
         return None
-    return parse_module(SourceFile(path, text.removeprefix("\ufeff")), rep)
+    loaded = parse_module(SourceFile(shown or path, text.removeprefix("\ufeff")), rep)
+    return LoadedModule(path, loaded.module) if loaded is not None and shown is not None else loaded
 
 
 def parse_module(file: SourceFile, rep: Reporter) -> LoadedModule | None:
@@ -133,7 +143,7 @@ def _follow_imports(mod: LoadedModule, walk: _Walk, chain: list[tuple[str, Span 
         mod.imports.append(path)
         if path in walk.done:
             continue
-        child = read_module(path, stmt.path.span, walk.rep)
+        child = read_module(path, stmt.path.span, walk.rep, shown_path(stmt.path.value, mod.module.file, path))
         walk.done[path] = child
         if child is not None:
             _follow_imports(child, walk, [*chain, (path, stmt.span)])
@@ -171,7 +181,8 @@ def _cell_module(main: LoadedModule, state: FrontendState, rep: Reporter) -> tup
         return read_module(state.cell_path, None, rep), False
     if uses:
         path = resolve_path(uses[0].path.value, main.module.file, state.roots, uses[0].path.span, rep, "cell file")
-        return (read_module(path, uses[0].path.span, rep) if path else None), False
+        shown = shown_path(uses[0].path.value, main.module.file, path) if path else None
+        return (read_module(path, uses[0].path.span, rep, shown) if path else None), False
     if any(isinstance(s, ast.CellDecl) for s in main.module.body):
         return main, False
     if not any(isinstance(s, ast.ProgramDecl) for s in main.module.body):
