@@ -89,9 +89,26 @@ def plan_by_key(key: str) -> Plan | None:
     return plan
 
 
+# A program of more instructions than this (each loop iteration counted) is planned without
+# the caches: its key and entries cost more than its planning (100,000 moves: the front end
+# 15 s, the plan 2 s, encoding the key and the plan and load entries 100 s more).
+MAX_CACHED_INSTRUCTIONS = 20_000
+
+
+def cacheable(program: ir.Program) -> bool:
+    """True when `program` holds at most MAX_CACHED_INSTRUCTIONS instructions."""
+    from itertools import islice
+
+    from rmot.compiler.ir_tree import walk_bodies
+
+    every = walk_bodies(task.body for task in program.tasks)
+    return sum(1 for _ in islice(every, MAX_CACHED_INSTRUCTIONS + 1)) <= MAX_CACHED_INSTRUCTIONS
+
+
 def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = True) -> Plan:
-    """plan_program(program, step=step), read from the cache when the same inputs were planned."""
-    if not use_cache:
+    """plan_program(program, step=step), read from the cache when the same inputs were planned
+    (a program too large to be worth caching is planned afresh, and no entry names it)."""
+    if not use_cache or not cacheable(program):
         return _plan(program, step)
     try:
         key = plan_key(program, step)

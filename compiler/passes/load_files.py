@@ -45,7 +45,11 @@ def resolve_path(written: str, relative_to: SourceFile, roots: tuple[str, ...], 
         rep.error(code, f"{what} '{_short(written)}' must exist and be readable (got {reason})", span)
         return None
     if not target.is_file():
-        rep.error(codes.FILE_NOT_FOUND, f"{what} '{_short(written)}' must exist (got no file at {_short(str(target))})", span)
+        if target.exists():  # a FIFO would block its reader, a device never end: neither is read
+            rep.error(codes.UNREADABLE, f"{what} '{_short(written)}' must be a regular file (got a FIFO, device or folder "
+                      f"at {_short(str(target))})", span)
+        else:
+            rep.error(codes.FILE_NOT_FOUND, f"{what} '{_short(written)}' must exist (got no file at {_short(str(target))})", span)
         return None
     return str(target)
 
