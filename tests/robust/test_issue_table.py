@@ -215,6 +215,17 @@ def _arc_consequence(d: Path) -> None:
     assert "p.rmot:4:3: note: the failed move" in out, out
 
 
+def _failed_robot_not_unknown(d: Path) -> None:
+    """A robot whose URDF does not load is one error where it is declared; its uses (the
+    program's `on r1`, a tool `on r1`) are not each an `unknown robot` of their own."""
+    (d / "p.rmot").write_text('cell c {\n  robot r1 = urdf("arm.urdf")\n  tool g = box(10mm, 10mm, 10mm) tcp pose(z=10mm) on r1\n}\n'
+                              "program p on r1 {\n  wait 1 s\n}\n", encoding="utf-8")
+    (d / "arm.urdf").write_text("<robot name='a'><link name='l0'/>", encoding="utf-8")
+    done = rmot(d, "check", "p.rmot")
+    assert done.returncode == 2 and "p.rmot:2:19: error[E505]" in done.stdout, _out(done)
+    assert "E101" not in _out(done) and "1 error," in done.stdout, _out(done)
+
+
 def _relative_cell_path(d: Path) -> None:
     (d / "a").mkdir()
     (d / "a" / "p.rmot").write_text('use cell "c.rmot"\nprogram p on r1 {\n  wait 1 s\n}\n', encoding="utf-8")
@@ -338,6 +349,7 @@ ROWS: list[tuple[str, str, Callable[[Path], None]]] = [
     ("last paragraph", "parsing stops at the first unknown word", _every_unknown_word),
     ("last paragraph", "failed arc then E226 0.000 mm apart", _arc_consequence),
     ("last paragraph", "cell path absolute, program relative", _relative_cell_path),
+    ("last paragraph", "a robot that does not load, then E101 unknown robot", _failed_robot_not_unknown),
     ("last paragraph", "W452 unbalanced quotes", _case("w452_cell_model_quotes")),
     ("last paragraph", "render silent on success, GIF bar floods logs", _render_output),
     ("last paragraph", "captions cover 45% of 640x480", _caption_area),
