@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import errno
 import functools
+import logging
 import os
 from dataclasses import dataclass
 from stat import S_ISREG
@@ -147,10 +148,15 @@ def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
     short = _off_shortfall(path)
     if short:
         raise _MeshError(codes.MESH_TRUNCATED, f"OFF file must hold as many {short} as its header declares (the file is truncated)")
+    log = logging.getLogger("trimesh")  # its modules log a traceback of what they tried and gave up
+    level = log.level  # on (a text STL's bad normal line): what a file lacks is ours to say, located
+    log.setLevel(logging.CRITICAL)
     try:
         loaded = trimesh.load(path, force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for bad files; all mean "unreadable"
         raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must be a valid {os.path.splitext(path)[1][1:].upper()} file ({_short(exc)})") from None
+    finally:
+        log.setLevel(level)
     if hasattr(loaded, "merge_vertices"):  # STL repeats each corner per triangle
         loaded.merge_vertices()
     vertices = np.asarray(getattr(loaded, "vertices", np.empty((0, 3))), dtype=np.float64).reshape(-1, 3)

@@ -313,4 +313,10 @@ CASES: tuple[Case, ...] = (
           ("robot", "  robot r1 = abb_irb1600 at pose(x=999999999999mm)", "2:29"),
           ("fixture", "  robot r1 = abb_irb1600\n  fixture f = box(1m, 1m, 1m) at pose(z=1e9 m)", "3:34"),
           ("tool_tcp", "  robot r1 = abb_irb1600\n  tool g = box(10mm, 10mm, 10mm) tcp pose(z=1e9 m) on r1", "3:38"))),
+    # ---- round 3 (make fuzz FUZZ_MIX=1, seed 1042): a text STL with a bad normal line made trimesh log a
+    # Python traceback on stderr; its triangles load (normals are not used), and nothing but rmot's words is printed
+    Case("mesh_stl_bad_normal_line", {"p.rmot": _MESH_PROG.replace("@F@", "part.stl"),
+                                      "part.stl": "solid t\nfacet normal 0 0 1&amp;\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\n"
+                                                  "vertex 0 0.1 0\nendloop\nendfacet\nendsolid t\n"},
+         ("check", "{d}/p.rmot"), frozenset({0, 1}), ("W560",)),
 )

@@ -111,17 +111,19 @@ def _urdf(rng: random.Random) -> Hostile:
         kind = rng.randrange(4)
         if kind == 0:  # an attribute's value set to an extreme
             attrs = list(re.finditer(r'(\w+)="([^"]*)"', text))
-            m = rng.choice(attrs)
-            text = text[: m.start(2)] + rng.choice(_EXTREMES) + text[m.end(2):]
+            if attrs:
+                m = rng.choice(attrs)
+                text = text[: m.start(2)] + rng.choice(_EXTREMES) + text[m.end(2):]
         elif kind == 1:  # an element deleted or duplicated
             elems = list(re.finditer(r"<(\w+)[^<>]*/>", text))
-            m = rng.choice(elems)
-            text = text[: m.start()] + (m.group(0) * 2 if rng.random() < 0.5 else "") + text[m.end():]
+            if elems:
+                m = rng.choice(elems)
+                text = text[: m.start()] + (m.group(0) * 2 if rng.random() < 0.5 else "") + text[m.end():]
         elif kind == 2:  # a joint type changed
             text = re.sub(r'type="(revolute|fixed|continuous|prismatic)"',
                           lambda _: f'type="{rng.choice(("revolute", "fixed", "continuous", "prismatic", "floating", "planar", "x"))}"',
                           text, count=rng.randint(1, 3))
-        else:  # cut somewhere
+        elif text:  # cut somewhere
             text = text[: rng.randrange(len(text))]
     program = 'cell c {\n  robot r1 = urdf("arm.urdf")\n}\nprogram p on r1 {\n  wait 1 s\n  move joint joints(0, 10, 10, 0, 10, 0) deg\n}\n'
     return Hostile("urdf", {"p.rmot": program, "arm.urdf": text}, ("check", "{d}/p.rmot"))

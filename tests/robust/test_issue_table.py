@@ -312,6 +312,7 @@ ROWS: list[tuple[str, str, Callable[[Path], None]]] = [
     ("wrong answer", "URDF velocity=0", _case("urdf_velocity_zero")),
     ("wrong answer", "negative link mass", _case("urdf_mass_negative")),
     ("crash signal", "zero-area STL (check)", _case("mesh_zero_area_stl")),
+    ("fuzz of the new mix", "text STL with a bad normal line (trimesh's traceback)", _case("mesh_stl_bad_normal_line")),
     ("crash signal", "zero-area polygon mesh (check)", _case("mesh_zero_area_polygon")),
     ("crash signal", "zero-area polygon mesh (compile)", _case("mesh_zero_area_compile")),
     ("memory", "DH a=999999999999mm", _case("model_dh_a_huge")),
