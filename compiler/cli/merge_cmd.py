@@ -96,6 +96,16 @@ def parse_document(path: str, data: bytes) -> tuple[str, Any]:
         _check_sarif(path, doc["runs"][0])
         return "sarif", doc
     if isinstance(doc, dict) and isinstance(doc.get("programs"), list) and "version" in doc:
+        from rmot.sim.report import JSON_SCHEMA, JSON_VERSION, validate_json
+
+        # a report of this version is checked against its schema; another version's (an older
+        # rmot's) only when mixed with others (REPORTS_MISMATCH), but its version is a number
+        schema = JSON_SCHEMA if doc["version"] == JSON_VERSION else {"properties": {"version": {"type": "integer"}}}
+        problems = validate_json(doc, schema)
+        if problems:
+            more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+            raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is not an rmot check report this version "
+                             f"writes: {problems[0][:200]}{more}")
         return "json", doc
     raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is JSON but neither SARIF 2.1.0 nor an rmot check report")
 

@@ -319,4 +319,10 @@ CASES: tuple[Case, ...] = (
                                       "part.stl": "solid t\nfacet normal 0 0 1&amp;\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\n"
                                                   "vertex 0 0.1 0\nendloop\nendfacet\nendsolid t\n"},
          ("check", "{d}/p.rmot"), frozenset({0, 1}), ("W560",)),
+    # ---- round 3 (make fuzz FUZZ_MIX=1): merge-reports merged JSON reports of another version or shape (exit 0)
+    *(Case(f"merge_json_{name}", {"r.json": text}, ("merge-reports", "{d}/r.json"), frozenset({2}), ("E531", "r.json", why))
+      for name, text, why in (("version_text", '{"version": "x", "programs": []}', "$.version: must be of type integer"),
+                              ("program_not_a_report", '{"version": 2, "programs": [{"$t": 1}]}', "must have key 'file'"),
+                              ("program_cycle_string", '{"version": 2, "programs": [{"file": "p.rmot", "cycle_time_s": "x", '
+                               '"assumptions": null, "tasks": [], "diagnostics": []}]}', "cycle_time_s"))),
 )
