@@ -49,7 +49,7 @@ _COUNTS = {"size": (3,), "scale": (1, 3)}  # how many numbers each attribute hol
 def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: Reporter) -> bool:
     """True when every mesh the URDF names lies inside a root and every moving joint has an axis."""
     try:
-        tree = ET.ElementTree(ET.fromstring(read_regular(urdf, MAX_URDF_BYTES)))
+        tree: ET.ElementTree[ET.Element] = ET.ElementTree(ET.fromstring(read_regular(urdf, MAX_URDF_BYTES)))
     except (ET.ParseError, OSError, ValueError) as exc:
         rep.error(codes.ROBOT_LOAD, f"URDF robot must be a readable XML file (got: {str(exc)[:200]})", span)
         return False
