@@ -25,6 +25,7 @@ import pytest
 
 from tests.robust.cases import CASES
 from tests.robust.runner import materialise
+from tests.robust.test_caches import _entries, damage_lalr
 
 ROOT = Path(__file__).resolve().parents[2]
 LIMIT_S = 60
@@ -71,10 +72,6 @@ def _case(name: str) -> Callable[[Path], None]:
 
 # ----------------------------------------------------------------------------- caches
 COLLISION = ROOT / "examples" / "collision.rmot"
-
-
-def _entries(cache: Path, folder: str) -> list[Path]:
-    return sorted(p for p in (cache / folder).rglob("*") if p.is_file() and not p.name.startswith("."))
 
 
 def _cache_attack(attack: Callable[[Path, Path], None], program: Path = COLLISION, command: str = "check") -> Callable[[Path], None]:
@@ -127,16 +124,8 @@ def _deep_plan(cache: Path, d: Path) -> None:
 
 
 def _damage_lalr(cache: Path, d: Path) -> None:
-    """Every shift of the cached parse table points at the start state."""
     for path in _entries(cache, "lalr"):
-        data = path.read_bytes()
-        start = data.index(b"{")
-        doc = json.loads(data[start:])
-        for row in doc["states"]:
-            for action in row:
-                if action[1] == "s":
-                    action[2] = doc["start"]
-        path.write_bytes(data[:start] + json.dumps(doc).encode())
+        damage_lalr(path)
 
 
 # ----------------------------------------------------------------------------- FIFOs and closed pipes
