@@ -114,7 +114,7 @@ def parse_source(file: SourceFile) -> ParseResult:
 # Syntax errors reported after the first, and the largest file searched for them (each one is
 # a parse of the whole file again).
 MAX_LATER_ERRORS = 10
-MAX_RECOVERY_BYTES = 256 * 1024
+MAX_RECOVERY_BYTES = 64 * 1024
 
 
 def _later_errors(file: SourceFile, first: Diagnostic) -> tuple[Diagnostic, ...]:
