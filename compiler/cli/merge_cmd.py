@@ -76,7 +76,7 @@ def parse_document(path: str, data: bytes) -> tuple[str, Any]:
             raise MergeError(codes.REPORT_FORMAT, f"report '{path}' declares a DOCTYPE or entities; refused")
         try:
             root = ET.fromstring(data)
-        except ET.ParseError as exc:
+        except (ET.ParseError, LookupError, ValueError) as exc:  # LookupError: an encoding Python does not know
             raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is not well-formed XML ({exc})") from None
         if root.tag != "testsuites":
             raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is XML but not JUnit (root <{root.tag}>)")

@@ -325,4 +325,6 @@ CASES: tuple[Case, ...] = (
                               ("program_not_a_report", '{"version": 2, "programs": [{"$t": 1}]}', "must have key 'file'"),
                               ("program_cycle_string", '{"version": 2, "programs": [{"file": "p.rmot", "cycle_time_s": "x", '
                                '"assumptions": null, "tasks": [], "diagnostics": []}]}', "cycle_time_s"))),
+    Case("merge_junit_unknown_encoding", {"r.xml": '<?xml version="1.0" encoding="UTFinf"?>\n<testsuites/>\n'},
+         ("merge-reports", "{d}/r.xml"), frozenset({2}), ("E531", "r.xml", "UTFinf")),  # E550 LookupError (fuzz seed 2031)
 )

@@ -331,6 +331,7 @@ ROWS: list[tuple[str, str, Callable[[Path], None]]] = [
     ("internal error", 'merge-reports of SARIF "tool": 5', _case("merge_sarif_tool_number")),
     ("fuzz of the new mix", "merge-reports of a JSON report whose version is text", _case("merge_json_version_text")),
     ("fuzz of the new mix", "merge-reports of a JSON program entry that is no report", _case("merge_json_program_not_a_report")),
+    ("fuzz of the new mix", "merge-reports of JUnit declaring encoding UTFinf", _case("merge_junit_unknown_encoding")),
     ("data loss", "check p.rmot -o p.rmot", _case("keep_check_output_is_program")),
     ("data loss", "plan p.rmot --csv p.rmot", _case("keep_plan_csv_is_program")),
     ("data loss", "place p.rmot ... -o c.rmot (its cell)", _case("keep_place_output_is_cell")),
