@@ -146,6 +146,9 @@ def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
     if _looks_truncated_stl(path):
         raise _MeshError(codes.MESH_TRUNCATED, "binary STL file must hold as many triangles as its header declares (the file is truncated)")
     short = _off_shortfall(path)
+    if short == "polygons":
+        raise _MeshError(codes.MESH_TRUNCATED, "OFF file faces must each list 3 or more corners and as many vertex indices "
+                         "(got a face line that is no polygon)")
     if short:
         raise _MeshError(codes.MESH_TRUNCATED, f"OFF file must hold as many {short} as its header declares (the file is truncated)")
     log = logging.getLogger("trimesh")  # its modules log a traceback of what they tried and gave up
@@ -180,8 +183,10 @@ def _looks_truncated_stl(path: str) -> bool:
 
 def _off_shortfall(path: str) -> str:
     """'vertices' or 'faces' when a text OFF file holds fewer lines of them than its header
-    declares (trimesh reads what is there without a word), else ''. The header is `OFF`
-    (or COFF, NOFF, ...), then the vertex, face and edge counts, on its line or the next."""
+    declares (trimesh reads what is there without a word), 'polygons' for a face line that is
+    no polygon (fewer than 3 corners, or fewer indices than it declares: trimesh drops it), else
+    ''. The header is `OFF` (or COFF, NOFF, ...), then the vertex, face and edge counts, on
+    its line or the next."""
     if not path.lower().endswith(".off"):
         return ""
     with open(path, "rb") as f:
@@ -200,7 +205,12 @@ def _off_shortfall(path: str) -> str:
     n_vertices, n_faces = int(counts[0]), int(counts[1])
     if len(rest) < n_vertices:
         return "vertices"
-    return "faces" if len(rest) < n_vertices + n_faces else ""
+    if len(rest) < n_vertices + n_faces:
+        return "faces"
+    polygons = rest[n_vertices:n_vertices + n_faces]
+    if any(not p[0].isdigit() or int(p[0]) < 3 or len(p) < 1 + int(p[0]) for p in polygons):
+        return "polygons"
+    return ""
 
 
 def _short(exc: Exception) -> str:

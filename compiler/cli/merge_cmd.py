@@ -200,8 +200,9 @@ def _merge_sarif(docs: list[dict[str, Any]]) -> str:
                                  "tool.driver.rules describes")
             results.append({**result, "ruleIndex": index[result["ruleId"]]})
     run0 = docs[0]["runs"][0]
-    driver = {**run0["tool"]["driver"], "rules": [rules[r] for r in order]}
-    run = {**run0, "tool": {**run0["tool"], "driver": driver}, "results": results}
+    tool0 = run0.get("tool", {})  # optional members, as _check_sarif reads them
+    driver = {**tool0.get("driver", {}), "rules": [rules[r] for r in order]}
+    run = {**run0, "tool": {**tool0, "driver": driver}, "results": results}
     merged = {**docs[0], "runs": [run]}
     return json.dumps(merged, indent=2, ensure_ascii=False) + "\n"
 

@@ -190,8 +190,10 @@ class _Builder:
         seg, findings = build_segment(self.robot, move, self._q_end())
         if seg is None:
             self.flush()
+            # a joint move to joint values fails for its target alone; any other depends on its start
+            alone = move.kind is ir.MotionKind.JOINT and isinstance(move.target, ir.JointTarget)
             for f in findings:
-                self._diag(f, move.span, self.t, move.uid, after=self.failed)
+                self._diag(f, move.span, self.t, move.uid, after=None if alone else self.failed)
             self._record(move, self.t, self.t)
             self.failed = move
             return

@@ -250,6 +250,8 @@ CASES: tuple[Case, ...] = (
       for name, file, body, code in (
           ("off_fewer_faces", "part.off", "OFF\n4 6 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n", "E563"),
           ("off_fewer_vertices", "part.off", "OFF 4 1 0\n0 0 0\n1 0 0\n", "E563"),
+          ("off_face_of_no_corners", "part.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 0\n1 0 1\n0 0 1 2\n3 3 4 5\n",
+           "E563"),  # trimesh dropped the face; make fuzz FUZZ_MIX=1 seed 3906
           ("zero_area_stl", "part.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 1 1 1\nvertex 1 1 1\nvertex 1 1 1\n"
            "endloop\nendfacet\nendsolid t\n", "E562"),
           ("zero_area_polygon", "part.mesh", "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n", "E562"))),
@@ -325,6 +327,14 @@ CASES: tuple[Case, ...] = (
                               ("program_not_a_report", '{"version": 2, "programs": [{"$t": 1}]}', "must have key 'file'"),
                               ("program_cycle_string", '{"version": 2, "programs": [{"file": "p.rmot", "cycle_time_s": "x", '
                                '"assumptions": null, "tasks": [], "diagnostics": []}]}', "cycle_time_s"))),
+    # make fuzz FUZZ_MIX=1 seed 3906: a flat mesh 170 m out (scale=1000) made coal's hull crash (SIGSEGV)
+    Case("mesh_flat_far_out", {"p.rmot": _MESH_PROG.replace('"@F@"', '"part.mesh", scale=1000').replace("x=2m", "x=0m"),
+                               "part.mesh": "3 1\n0.13049570990143062 0.027678012752656578 0.08053198025178649\n"
+                                            "0.04479475918153486 0.1340248411746556 0.09746116970084935\n"
+                                            "0.03220630161663727 0.1692231340574423 0.09838042348229114\n3 0 1 2\n"},
+         ("check", "{d}/p.rmot"), frozenset({0, 1}), ("W560",)),
+    Case("merge_sarif_run_without_tool", {"r.sarif": '{"version": "2.1.0", "runs": [{"results": []}]}'},
+         ("merge-reports", "{d}/r.sarif"), frozenset({0}), ('"driver"',)),  # E550 KeyError 'tool' (fuzz seed 3614)
     Case("merge_junit_unknown_encoding", {"r.xml": '<?xml version="1.0" encoding="UTFinf"?>\n<testsuites/>\n'},
          ("merge-reports", "{d}/r.xml"), frozenset({2}), ("E531", "r.xml", "UTFinf")),  # E550 LookupError (fuzz seed 2031)
 )
