@@ -227,7 +227,12 @@ CASES: tuple[Case, ...] = (
            '<box size="0.1 inf 0.1"/></geometry></collision>'),
           ("velocity_zero", 'velocity="3.0"', 'velocity="0"'),
           ("mass_negative", '<mass value="6"/>', '<mass value="-6"/>'),
-          ("inertia_nan", 'ixx="0.04"', 'ixx="nan"'))),
+          ("inertia_nan", 'ixx="0.04"', 'ixx="nan"'),
+          # make fuzz FUZZ_MIX=1 seed 2502: a 1e-320 m radius made verification allocate 4.5 GiB (E550 MemoryError),
+          # an origin of one number was read as the parser guessed
+          ("collision_radius_denormal", '<cylinder radius="0.09" length="0.2"/></geometry></collision>',
+           '<cylinder radius="1e-320" length="0.2"/></geometry></collision>'),
+          ("origin_one_number", '<origin xyz="0 0 0.2"/>', '<origin xyz="0"/>'))),
     Case("urdf_1000_joints", {"p.rmot": _URDF_PROG, "arm.urdf": _chain_urdf(1000)}, ("check", "{d}/p.rmot"),
          frozenset({2}), ("E505", "at most")),
     # ---- round 3: an output never replaces an input or a folder rmot did not write (inputs compared after)
