@@ -136,9 +136,11 @@ def _positive_numbers(text: str, counts: tuple[int, ...], low: float = 0.0, high
     return len(values) in counts and all(math.isfinite(v) and v > 0 and low <= v <= high for v in values)
 
 
-def _origin_problems(tree: "ET.ElementTree[ET.Element]") -> list[str]:
-    """An <origin> whose xyz or rpy is not three finite numbers (`xyz="0"`: the parser's guess)."""
-    problems = []
+def _form_problems(tree: "ET.ElementTree[ET.Element]") -> list[str]:
+    """An <origin> whose xyz or rpy is not three finite numbers (`xyz="0"`: the parser's guess),
+    a <geometry> of other than one shape (the parser reads the first and drops the rest)."""
+    problems = [f"a geometry must hold exactly one shape (got {len(g)}: {', '.join(c.tag for c in g)[:60]})"
+                for g in tree.iter("geometry") if len(g) != 1]
     for origin in tree.iter("origin"):
         for attribute in ("xyz", "rpy"):
             text = origin.get(attribute)
@@ -185,7 +187,7 @@ def _check_values(tree: "ET.ElementTree[ET.Element]", name: str, span: Span | No
         velocity = limit.get("velocity") if limit is not None else None
         if joint.get("type") in _MOVING and velocity is not None and not _finite(velocity, lambda v: v > 0):
             problems.append(f"joint '{joint.get('name', '?')[:80]}': limit velocity=\"{velocity[:40]}\" must be finite and positive")
-    problems += _origin_problems(tree)
+    problems += _form_problems(tree)
     for problem in problems[:5]:
         rep.error(codes.ROBOT_LOAD, f"URDF {name}, {problem}", span)
     return not problems
