@@ -138,9 +138,16 @@ def _positive_numbers(text: str, counts: tuple[int, ...], low: float = 0.0, high
 
 def _form_problems(tree: "ET.ElementTree[ET.Element]") -> list[str]:
     """An <origin> whose xyz or rpy is not three finite numbers (`xyz="0"`: the parser's guess),
-    a <geometry> of other than one shape (the parser reads the first and drops the rest)."""
+    a <geometry> of other than one shape (the parser reads the first and drops the rest), an
+    <inertial> without its mass value and six inertia entries (the parser skips the link's
+    inertia with only a message on stderr, and the torque check would go without it)."""
     problems = [f"a geometry must hold exactly one shape (got {len(g)}: {', '.join(c.tag for c in g)[:60]})"
                 for g in tree.iter("geometry") if len(g) != 1]
+    for inertial in tree.iter("inertial"):
+        mass, inertia = inertial.find("mass"), inertial.find("inertia")
+        if mass is None or mass.get("value") is None or inertia is None or any(
+                inertia.get(k) is None for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")):
+            problems.append("an inertial must have a mass value and the inertia entries ixx, ixy, ixz, iyy, iyz, izz")
     for origin in tree.iter("origin"):
         for attribute in ("xyz", "rpy"):
             text = origin.get(attribute)

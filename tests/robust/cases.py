@@ -234,7 +234,10 @@ CASES: tuple[Case, ...] = (
            '<cylinder radius="1e-320" length="0.2"/></geometry></collision>'),
           ("origin_one_number", '<origin xyz="0 0 0.2"/>', '<origin xyz="0"/>'),
           ("geometry_two_shapes", '<cylinder radius="0.09" length="0.2"/></geometry></collision>',
-           '<cylinder radius="0.09" length="0.2"/><box size="1 1 1"/></geometry></collision>'))),  # seed 8566
+           '<cylinder radius="0.09" length="0.2"/><box size="1 1 1"/></geometry></collision>'),  # seed 8566
+          # urdfdom printed "Could not parse inertial element" on stderr, and rmot check said ok (fuzz stderr)
+          ("inertial_without_mass", '<mass value="6"/>', ""),
+          ("inertia_without_ixx", 'ixx="0.04"', ""))),
     Case("urdf_1000_joints", {"p.rmot": _URDF_PROG, "arm.urdf": _chain_urdf(1000)}, ("check", "{d}/p.rmot"),
          frozenset({2}), ("E505", "at most")),
     # ---- round 3: an output never replaces an input or a folder rmot did not write (inputs compared after)

@@ -337,6 +337,7 @@ ROWS: list[tuple[str, str, Callable[[Path], None]]] = [
     ("fuzz of the new mix", "URDF cylinder radius 1e-320 (4.5 GiB in verification)", _case("urdf_collision_radius_denormal")),
     ("fuzz of the new mix", 'URDF origin xyz="0"', _case("urdf_origin_one_number")),
     ("fuzz of the new mix", "URDF geometry of two shapes (the second dropped)", _case("urdf_geometry_two_shapes")),
+    ("fuzz of the new mix", "URDF inertial without mass (urdfdom's stderr only)", _case("urdf_inertial_without_mass")),
     ("fuzz of the new mix", "merge-reports of JUnit declaring encoding UTFinf", _case("merge_junit_unknown_encoding")),
     ("data loss", "check p.rmot -o p.rmot", _case("keep_check_output_is_program")),
     ("data loss", "plan p.rmot --csv p.rmot", _case("keep_plan_csv_is_program")),
