@@ -355,7 +355,7 @@ ROWS: list[tuple[str, str, Callable[[Path], None]]] = [
     ("last paragraph", "captions cover 45% of 640x480", _caption_area),
     ("last paragraph", "prismatic joint plotted in [deg]", _prismatic_mm),
     ("closed stdout", "rmot --help | head -1", _closed_stdout("--help", status=1)),
-    *(("closed stdout", f"rmot {' '.join(args)} | head -1", _closed_stdout(*args))
+    *(("closed stdout", f"rmot {' '.join(args).replace(str(ROOT) + os.sep, '')} | head -1", _closed_stdout(*args))
       for args in (("robots", "list"), ("robots", "show", "abb_irb1600"), ("ir", str(ROOT / "examples" / "pick_place.rmot")),
                    ("check", str(ROOT / "examples" / "pick_place.rmot")), ("plan", str(ROOT / "examples" / "pick_place.rmot")),
                    ("diff", *(str(ROOT / "tests/data/vendor_programs/rapid" / n) for n in ("rosi_ROS_motion.mod", "rosi_ROS_motionServer.mod"))))),
