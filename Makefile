@@ -50,7 +50,9 @@ bench: $(STAMP)
 # Fuzzing: FUZZ_N generated projects (tests/robust/gen.py) through the whole
 # pipeline, each under a 2 GB memory cap and a 30 s limit in a worker process; counts of
 # tracebacks / hangs / memory / crashes go to stdout and $(FUZZ_REPORT). `make test` runs a
-# small Hypothesis budget of the same generator (tests/robust/test_fuzz.py).
+# small Hypothesis budget of the same generator (tests/robust/test_fuzz.py). FUZZ_MIX=1 mixes
+# in example programs mutated and hostile files (meshes, URDFs, damaged cache entries, attacked
+# reports for merge-reports; tests/robust/hostile.py): seed % 4 = 0 generated, 1 mutated, 2-3 hostile.
 FUZZ_N      ?= 100000
 FUZZ_START  ?= 0
 FUZZ_JOBS   ?= 1

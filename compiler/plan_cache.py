@@ -47,6 +47,7 @@ import numpy as np
 
 from rmot.compiler.plan_codec import CodecError, decode, encode
 from rmot.lang.cache_seal import cache_dir, read_sealed, seal  # one cache directory: lang's, the stage upstream
+from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
 
 if TYPE_CHECKING:
     from rmot.compiler import ir
@@ -88,9 +89,26 @@ def plan_by_key(key: str) -> Plan | None:
     return plan
 
 
+# A program of more instructions than this (each loop iteration counted) is planned without
+# the caches: its key and entries cost more than its planning (100,000 moves: the front end
+# 15 s, the plan 2 s, encoding the key and the plan and load entries 100 s more).
+MAX_CACHED_INSTRUCTIONS = 20_000
+
+
+def cacheable(program: ir.Program) -> bool:
+    """True when `program` holds at most MAX_CACHED_INSTRUCTIONS instructions."""
+    from itertools import islice
+
+    from rmot.compiler.ir_tree import walk_bodies
+
+    every = walk_bodies(task.body for task in program.tasks)
+    return sum(1 for _ in islice(every, MAX_CACHED_INSTRUCTIONS + 1)) <= MAX_CACHED_INSTRUCTIONS
+
+
 def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = True) -> Plan:
-    """plan_program(program, step=step), read from the cache when the same inputs were planned."""
-    if not use_cache:
+    """plan_program(program, step=step), read from the cache when the same inputs were planned
+    (a program too large to be worth caching is planned afresh, and no entry names it)."""
+    if not use_cache or not cacheable(program):
         return _plan(program, step)
     try:
         key = plan_key(program, step)
@@ -150,7 +168,7 @@ def plan_key(program: ir.Program, step: float) -> str:
     for path in sorted(_named_files(doc)):
         h.update(b"\0file\0" + path.encode() + b"\0")
         try:
-            h.update(hashlib.sha256(Path(path).read_bytes()).digest())
+            h.update(hashlib.sha256(read_regular(path, MAX_STAMPED_BYTES)).digest())
         except OSError:
             h.update(b"<unreadable>")
     return h.hexdigest()

@@ -27,9 +27,10 @@ from __future__ import annotations
 import hashlib
 import hmac
 import os
-import stat
 import tempfile
 from pathlib import Path
+
+from rmot.lang.input_file import read_regular
 
 __all__ = ["MAGIC", "cache_dir", "read_sealed", "seal", "secret", "unseal"]
 
@@ -85,30 +86,10 @@ def _read_secret(path: Path) -> bytes | None:
 def _read_regular(path: Path, max_bytes: int, *, owner_only: bool = False) -> bytes | None:
     """The bytes of `path` if it is a regular file (not followed through a symlink, never
     blocking on a FIFO) of at most max_bytes; else None."""
-    flags = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
     try:
-        fd = os.open(path, flags)
+        return read_regular(path, max_bytes, owner_only=owner_only, follow_links=False)
     except (OSError, ValueError):
         return None
-    try:
-        st = os.fstat(fd)
-        if not stat.S_ISREG(st.st_mode) or st.st_size > max_bytes:
-            return None
-        if owner_only and (st.st_mode & 0o077 or (hasattr(os, "geteuid") and st.st_uid != os.geteuid())):
-            return None
-        chunks, left = [], max_bytes + 1
-        while left > 0:
-            chunk = os.read(fd, min(left, 1 << 20))
-            if not chunk:
-                break
-            chunks.append(chunk)
-            left -= len(chunk)
-        data = b"".join(chunks)
-        return data if len(data) <= max_bytes else None
-    except OSError:
-        return None
-    finally:
-        os.close(fd)
 
 
 def _mac(key: bytes, key_text: str, payload: bytes) -> bytes:

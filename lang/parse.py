@@ -19,6 +19,7 @@ pyproject.toml; tests/lang/test_lang_lark_version.py fails on any other version.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import functools
 import re
@@ -87,7 +88,8 @@ def parse_text(text: str, path: str = "<input>") -> ParseResult:
 
 
 def parse_source(file: SourceFile) -> ParseResult:
-    """Parse one file; syntax errors become diagnostics (the first one; LALR stops there)."""
+    """Parse one file; syntax errors become diagnostics (LALR stops at the first one; the
+    lines of later ones are found by parsing again without the failing line, _later_errors)."""
     binary = _binary_problem(file) or _line_break_problem(file)
     if binary is not None:
         return ParseResult(None, (binary,))
@@ -98,7 +100,8 @@ def parse_source(file: SourceFile) -> ParseResult:
     try:
         module, problems = _parser().parse(file, post)
     except UnexpectedInput as exc:
-        return ParseResult(None, (wrap_syntax_error(exc, file, post),))
+        first = wrap_syntax_error(exc, file, post)
+        return ParseResult(None, (first, *_later_errors(file, first)))
     except Exception as exc:  # a builder bug must still not reach the user as a traceback
         span = Span.whole(file)
         return ParseResult(None, (_error(codes.SYNTAX, f"internal parser error: {exc!r}", span),))
@@ -106,6 +109,48 @@ def parse_source(file: SourceFile) -> ParseResult:
         msg = "file must contain a cell, a program or declarations (got only comments)"
         problems += (_error(codes.EMPTY_FILE, msg, Span.whole(file)),)
     return ParseResult(module, problems)
+
+
+# Syntax errors reported after the first, and the largest file searched for them (each one is
+# a parse of the whole file again).
+MAX_LATER_ERRORS = 10
+MAX_RECOVERY_BYTES = 64 * 1024
+
+
+def _later_errors(file: SourceFile, first: Diagnostic) -> tuple[Diagnostic, ...]:
+    """The syntax errors after `first` (an unknown word does not hide the next one): the line
+    of each error is blanked (spaces, so every later position stays) and the file parsed
+    again. Only a line without braces is blanked, so a block's structure never changes and
+    no error is one the blanking made; the search stops at a line with a brace."""
+    found: list[Diagnostic] = []
+    text, error = file.text, first
+    while len(found) < MAX_LATER_ERRORS and len(text) <= MAX_RECOVERY_BYTES and error.span is not None:
+        start = text.rfind("\n", 0, error.span.start.offset) + 1
+        end = text.find("\n", error.span.start.offset)
+        end = len(text) if end < 0 else end
+        if "{" in text[start:end] or "}" in text[start:end] or not text[start:end].strip():
+            break
+        text = text[:start] + " " * (end - start) + text[end:]
+        post = PostLexState()
+        try:
+            _parser().parse(SourceFile(file.path, text), post)
+            break
+        except UnexpectedInput as exc:
+            error = wrap_syntax_error(exc, SourceFile(file.path, text), post)
+        except Exception:  # a builder bug while recovering: the errors found so far stand
+            break
+        if error.span is None or error.span.start.offset < end:
+            break
+        found.append(_in_file(error, file))
+    return tuple(found)
+
+
+def _in_file(error: Diagnostic, file: SourceFile) -> Diagnostic:
+    """`error`, found in a copy of `file` with lines blanked, with its spans in `file` itself."""
+    def moved(span: Span | None) -> Span | None:
+        return None if span is None else Span.from_offsets(file, span.start.offset, span.end.offset)
+
+    return dataclasses.replace(error, span=moved(error.span), notes=tuple((text, moved(s)) for text, s in error.notes))
 
 
 def _error(code: Code, message: str, span: Span | None,

@@ -120,12 +120,15 @@ def _mesh_shapes(mesh: MeshData) -> tuple[object, object]:
         return bvh.convex, bvh
     # A flat mesh (one triangle, a plane, fewer than 4 points) has no volume and coal's hull
     # raises on it (found by `make fuzz`): its hull is taken of the points and
-    # copies of them 1 um along the plane's normal, a sheet one micrometre thick.
+    # copies of them 1 um along the plane's normal, a sheet one micrometre thick; a millionth
+    # of its distance from the origin when that is more than a metre (qhull's precision is
+    # relative to the coordinates: a 1 um sheet 170 m out crashed coal, make fuzz seed 3906).
     pts = np.asarray(mesh.vertices, dtype=np.float64)
     centred = pts - pts.mean(axis=0)
     _, _, vt = np.linalg.svd(centred if len(pts) >= 3 else np.vstack([centred, np.eye(3)]))
     normal, side = vt[-1], vt[-2]
-    padded = np.vstack([pts, pts + 1e-6 * normal, pts + 1e-6 * side])
+    sheet = 1e-6 * max(1.0, float(np.max(np.abs(pts))))
+    padded = np.vstack([pts, pts + sheet * normal, pts + sheet * side])
     hull = coal.BVHModelOBBRSS()
     hull.beginModel(0, len(padded))
     hull.addVertices(np.ascontiguousarray(padded))

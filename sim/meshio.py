@@ -18,9 +18,12 @@ triangles, but a body wholly inside an open surface is not detected as a contact
 
 from __future__ import annotations
 
+import errno
 import functools
+import logging
 import os
 from dataclasses import dataclass
+from stat import S_ISREG
 
 import numpy as np
 
@@ -62,6 +65,8 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
     except OSError:
         return _error(mesh, codes.MESH_MISSING, f"mesh file must exist (got '{path}')")
     try:
+        if not S_ISREG(stat.st_mode):  # a FIFO would block the read forever, a device never end
+            raise OSError(errno.EINVAL, "not a regular file (a FIFO, device or folder)")
         with open(path, "rb"):  # an unreadable file is said to be unreadable, not "not a valid STL"
             pass
     except OSError as exc:
@@ -141,12 +146,20 @@ def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
     if _looks_truncated_stl(path):
         raise _MeshError(codes.MESH_TRUNCATED, "binary STL file must hold as many triangles as its header declares (the file is truncated)")
     short = _off_shortfall(path)
+    if short == "polygons":
+        raise _MeshError(codes.MESH_TRUNCATED, "OFF file faces must each list 3 or more corners and as many vertex indices "
+                         "(got a face line that is no polygon)")
     if short:
         raise _MeshError(codes.MESH_TRUNCATED, f"OFF file must hold as many {short} as its header declares (the file is truncated)")
+    log = logging.getLogger("trimesh")  # its modules log a traceback of what they tried and gave up
+    level = log.level  # on (a text STL's bad normal line): what a file lacks is ours to say, located
+    log.setLevel(logging.CRITICAL)
     try:
         loaded = trimesh.load(path, force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for bad files; all mean "unreadable"
         raise _MeshError(codes.MESH_UNREADABLE, f"mesh file must be a valid {os.path.splitext(path)[1][1:].upper()} file ({_short(exc)})") from None
+    finally:
+        log.setLevel(level)
     if hasattr(loaded, "merge_vertices"):  # STL repeats each corner per triangle
         loaded.merge_vertices()
     vertices = np.asarray(getattr(loaded, "vertices", np.empty((0, 3))), dtype=np.float64).reshape(-1, 3)
@@ -170,8 +183,10 @@ def _looks_truncated_stl(path: str) -> bool:
 
 def _off_shortfall(path: str) -> str:
     """'vertices' or 'faces' when a text OFF file holds fewer lines of them than its header
-    declares (trimesh reads what is there without a word), else ''. The header is `OFF`
-    (or COFF, NOFF, ...), then the vertex, face and edge counts, on its line or the next."""
+    declares (trimesh reads what is there without a word), 'polygons' for a face line that is
+    no polygon (fewer than 3 corners, or fewer indices than it declares: trimesh drops it), else
+    ''. The header is `OFF` (or COFF, NOFF, ...), then the vertex, face and edge counts, on
+    its line or the next."""
     if not path.lower().endswith(".off"):
         return ""
     with open(path, "rb") as f:
@@ -190,7 +205,12 @@ def _off_shortfall(path: str) -> str:
     n_vertices, n_faces = int(counts[0]), int(counts[1])
     if len(rest) < n_vertices:
         return "vertices"
-    return "faces" if len(rest) < n_vertices + n_faces else ""
+    if len(rest) < n_vertices + n_faces:
+        return "faces"
+    polygons = rest[n_vertices:n_vertices + n_faces]
+    if any(not p[0].isdigit() or int(p[0]) < 3 or len(p) < 1 + int(p[0]) for p in polygons):
+        return "polygons"
+    return ""
 
 
 def _short(exc: Exception) -> str:

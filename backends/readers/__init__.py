@@ -17,6 +17,7 @@ from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_te
 from rmot.compiler.ir import Pose
 from rmot.backends.readers.model import Document, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.input_file import NotRegularFile, read_regular
 from rmot.lang.source import Pos, SourceFile, Span
 
 __all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "companions"]
@@ -152,10 +153,11 @@ def _fail(code: codes.Code, path: str, message: str) -> ImportError_:  # type: i
 
 
 def _load(path: str) -> str:
-    with open(path, "rb") as f:
-        data = f.read(MAX_BYTES + 1)
-    if len(data) > MAX_BYTES:
-        raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be at most {MAX_BYTES} bytes")
+    try:
+        data = read_regular(path, MAX_BYTES)
+    except NotRegularFile as exc:
+        raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be a regular file of at most {MAX_BYTES} bytes "
+                    f"(got {exc.strerror})") from None
     try:
         text = read_text(data)
     except ValueError as exc:

@@ -66,6 +66,8 @@ class LazyGroup(click.Group):
         except (click.exceptions.ClickException, click.exceptions.Exit, click.exceptions.Abort):
             raise
         except Exception as exc:
+            if _closed_output(exc):
+                _end_quietly(ctx)
             from rmot.compiler.cli.stages import StageError, internal_error
             from rmot.lang.diagnostics import render
 
@@ -78,6 +80,37 @@ class LazyGroup(click.Group):
         rows = [(name, COMMANDS[name][2]) for name in self.list_commands(ctx)]
         with formatter.section("Commands"):
             formatter.write_dl(rows)
+
+
+# The exit status of a Unix tool killed by SIGPIPE as a shell reports it (128 + signal 13).
+EXIT_CLOSED_OUTPUT = 128 + 13
+
+
+def _closed_output(exc: BaseException) -> bool:
+    """True when `exc` (or the error a stage wrapped) is a write to a pipe whose reader has gone
+    (`rmot robots list | head -1`): not a bug, the reader had what it wanted."""
+    import errno
+
+    while exc is not None:
+        if isinstance(exc, OSError) and exc.errno == errno.EPIPE:
+            return True
+        exc = exc.__cause__  # type: ignore[assignment]
+    return False
+
+
+def _end_quietly(ctx: click.Context) -> None:
+    """End as `yes | head -1` ends: no message, the SIGPIPE status; stdout is pointed at the
+    null device first so that the interpreter's final flush does not fail on the closed pipe."""
+    import os
+    import sys
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):  # stdout without a descriptor (a test runner's buffer)
+        pass
+    ctx.exit(EXIT_CLOSED_OUTPUT)
 
 
 def _unavailable(name: str) -> click.Command:

@@ -32,6 +32,8 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
+
 if TYPE_CHECKING:
     from rmot.compiler import ir
     from rmot.compiler.frontend import FrontendResult
@@ -122,7 +124,7 @@ def _entry_path(key: str) -> Path:
 def _stamp(path: str) -> list[Any]:
     """[path, its resolved path, SHA-256 of its bytes or None]."""
     try:
-        digest: str | None = hashlib.sha256(Path(path).read_bytes()).hexdigest()
+        digest: str | None = hashlib.sha256(read_regular(path, MAX_STAMPED_BYTES)).hexdigest()
     except OSError:
         digest = None
     return [path, os.path.realpath(path), digest]

@@ -29,6 +29,7 @@ from typing import Any
 import click
 
 from rmot.compiler.cli import EXIT_INPUT
+from rmot.lang.input_file import read_regular
 
 __all__ = ["MergeError", "merge_documents", "merge_reports"]
 
@@ -57,8 +58,7 @@ def _read(path: str) -> bytes:
         if size > MAX_REPORT_BYTES:
             raise MergeError(codes.REPORT_UNREADABLE,
                              f"report '{path}' has {size} bytes, more than the {MAX_REPORT_BYTES} allowed")
-        with open(path, "rb") as f:
-            return f.read(MAX_REPORT_BYTES + 1)
+        return read_regular(path, MAX_REPORT_BYTES)
     except OSError as exc:
         raise MergeError(codes.REPORT_UNREADABLE, f"cannot read report '{path}': {exc.strerror or exc}") from None
 
@@ -76,7 +76,7 @@ def parse_document(path: str, data: bytes) -> tuple[str, Any]:
             raise MergeError(codes.REPORT_FORMAT, f"report '{path}' declares a DOCTYPE or entities; refused")
         try:
             root = ET.fromstring(data)
-        except ET.ParseError as exc:
+        except (ET.ParseError, LookupError, ValueError) as exc:  # LookupError: an encoding Python does not know
             raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is not well-formed XML ({exc})") from None
         if root.tag != "testsuites":
             raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is XML but not JUnit (root <{root.tag}>)")
@@ -96,6 +96,16 @@ def parse_document(path: str, data: bytes) -> tuple[str, Any]:
         _check_sarif(path, doc["runs"][0])
         return "sarif", doc
     if isinstance(doc, dict) and isinstance(doc.get("programs"), list) and "version" in doc:
+        from rmot.sim.report import JSON_SCHEMA, JSON_VERSION, validate_json
+
+        # a report of this version is checked against its schema; another version's (an older
+        # rmot's) only when mixed with others (REPORTS_MISMATCH), but its version is a number
+        schema = JSON_SCHEMA if doc["version"] == JSON_VERSION else {"properties": {"version": {"type": "integer"}}}
+        problems = validate_json(doc, schema)
+        if problems:
+            more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+            raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is not an rmot check report this version "
+                             f"writes: {problems[0][:200]}{more}")
         return "json", doc
     raise MergeError(codes.REPORT_FORMAT, f"report '{path}' is JSON but neither SARIF 2.1.0 nor an rmot check report")
 
@@ -190,8 +200,9 @@ def _merge_sarif(docs: list[dict[str, Any]]) -> str:
                                  "tool.driver.rules describes")
             results.append({**result, "ruleIndex": index[result["ruleId"]]})
     run0 = docs[0]["runs"][0]
-    driver = {**run0["tool"]["driver"], "rules": [rules[r] for r in order]}
-    run = {**run0, "tool": {**run0["tool"], "driver": driver}, "results": results}
+    tool0 = run0.get("tool", {})  # optional members, as _check_sarif reads them
+    driver = {**tool0.get("driver", {}), "rules": [rules[r] for r in order]}
+    run = {**run0, "tool": {**tool0, "driver": driver}, "results": results}
     merged = {**docs[0], "runs": [run]}
     return json.dumps(merged, indent=2, ensure_ascii=False) + "\n"
 

@@ -43,6 +43,8 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
+
 if TYPE_CHECKING:
     from rmot.compiler import ir
     from rmot.compiler.plan_types import Plan
@@ -157,7 +159,7 @@ def _robot_meshes(cell: ir.Cell) -> list[str]:
 
 def _digest(path: str) -> str | None:
     try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+        return hashlib.sha256(read_regular(path, MAX_STAMPED_BYTES)).hexdigest()
     except OSError:
         return None
 

@@ -68,6 +68,9 @@ class Reporter:
     def __init__(self, sink: DiagnosticSink | None = None) -> None:
         self.sink = sink or DiagnosticSink()
         self._seen: set[tuple[str, str, int, int, str]] = set()
+        # names whose declaration failed with an error: a later use is that error's
+        # consequence, not an unknown name of its own
+        self.failed_declarations: set[str] = set()
 
     def error(self, code: Code, message: str, span: Span | None, notes: tuple[tuple[str, Span | None], ...] = ()) -> None:
         key = (code.id, span.path if span else "", span.start.offset if span else -1,
@@ -86,7 +89,10 @@ class Reporter:
         self.sink.add(Diagnostic(code, Severity.WARNING, message, span, notes))
 
     def unknown(self, name: str, what: str, span: Span | None, candidates: list[str], code: Code = codes.UNKNOWN_NAME) -> None:
-        """`unknown <what> 'x'; did you mean 'y'?` (difflib's closest candidate, if close enough)."""
+        """`unknown <what> 'x'; did you mean 'y'?` (difflib's closest candidate, if close enough);
+        nothing for a name whose declaration failed (its error is reported there)."""
+        if name in self.failed_declarations:
+            return
         near = difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)
         hint = f"; did you mean '{near[0]}'?" if near else ""
         self.error(code, f"unknown {what} '{name}'{hint}", span)

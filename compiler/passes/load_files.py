@@ -18,6 +18,7 @@ from rmot.compiler import codes
 from rmot.compiler.passes.context import Reporter
 from rmot.compiler.passes.state import FrontendState, LoadedModule
 from rmot.lang import ast
+from rmot.lang.input_file import read_regular
 from rmot.lang.parse import parse_source
 from rmot.lang.source import SourceFile, Span
 
@@ -44,7 +45,11 @@ def resolve_path(written: str, relative_to: SourceFile, roots: tuple[str, ...], 
         rep.error(code, f"{what} '{_short(written)}' must exist and be readable (got {reason})", span)
         return None
     if not target.is_file():
-        rep.error(codes.FILE_NOT_FOUND, f"{what} '{_short(written)}' must exist (got no file at {_short(str(target))})", span)
+        if target.exists():  # a FIFO would block its reader, a device never end: neither is read
+            rep.error(codes.UNREADABLE, f"{what} '{_short(written)}' must be a regular file (got a FIFO, device or folder "
+                      f"at {_short(str(target))})", span)
+        else:
+            rep.error(codes.FILE_NOT_FOUND, f"{what} '{_short(written)}' must exist (got no file at {_short(str(target))})", span)
         return None
     return str(target)
 
@@ -75,15 +80,24 @@ def _inside(path: Path, root: Path) -> bool:
     return True
 
 
-def read_module(path: str, span: Span | None, rep: Reporter) -> LoadedModule | None:
-    """Read, decode and parse one source file; every problem becomes a diagnostic."""
+def shown_path(written: str, naming: SourceFile, resolved: str) -> str:
+    """How diagnostics name a file that `naming` names as `written`: relative as the naming file
+    is (`p.rmot` uses "c.rmot": `c.rmot`; `a/p.rmot`: `a/c.rmot`), else the resolved path."""
+    if os.path.isabs(written) or os.path.isabs(naming.path) or naming.path.startswith("<"):
+        return resolved
+    return os.path.normpath(os.path.join(os.path.dirname(naming.path), written))
+
+
+def read_module(path: str, span: Span | None, rep: Reporter, shown: str | None = None) -> LoadedModule | None:
+    """Read, decode and parse one source file; every problem becomes a diagnostic, which names
+    the file as `shown` (the path the way the user wrote it; `path` is the resolved one)."""
     try:
         size = os.path.getsize(path)
         if size > MAX_SOURCE_BYTES:
             rep.error(codes.FILE_TOO_LARGE, f"source file must be at most {MAX_SOURCE_BYTES // 1024} KiB (got {size // 1024} KiB)",
                       span or Span.whole(SourceFile(path, "")))
             return None
-        data = Path(path).read_bytes()
+        data = read_regular(path, MAX_SOURCE_BYTES)
     except OSError as exc:
         code = codes.FILE_NOT_FOUND if isinstance(exc, FileNotFoundError) else codes.UNREADABLE
         rep.error(code, f"file '{_short(path)}' must be readable (got {exc.strerror or exc})", span)
@@ -91,11 +105,12 @@ def read_module(path: str, span: Span | None, rep: Reporter) -> LoadedModule | N
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        where = SourceFile(path, data[: exc.start].decode("utf-8", "replace"))
+        where = SourceFile(shown or path, data[: exc.start].decode("utf-8", "replace"))
         bad = Span.from_offsets(where, len(where.text), len(where.text))
         rep.error(codes.NOT_UTF8, f"source file must be UTF-8 text (got byte 0x{data[exc.start]:02x} at offset {exc.start})", bad)
         return None
-    return parse_module(SourceFile(path, text.removeprefix("\ufeff")), rep)
+    loaded = parse_module(SourceFile(shown or path, text.removeprefix("\ufeff")), rep)
+    return LoadedModule(path, loaded.module) if loaded is not None and shown is not None else loaded
 
 
 def parse_module(file: SourceFile, rep: Reporter) -> LoadedModule | None:
@@ -132,7 +147,7 @@ def _follow_imports(mod: LoadedModule, walk: _Walk, chain: list[tuple[str, Span 
         mod.imports.append(path)
         if path in walk.done:
             continue
-        child = read_module(path, stmt.path.span, walk.rep)
+        child = read_module(path, stmt.path.span, walk.rep, shown_path(stmt.path.value, mod.module.file, path))
         walk.done[path] = child
         if child is not None:
             _follow_imports(child, walk, [*chain, (path, stmt.span)])
@@ -170,7 +185,8 @@ def _cell_module(main: LoadedModule, state: FrontendState, rep: Reporter) -> tup
         return read_module(state.cell_path, None, rep), False
     if uses:
         path = resolve_path(uses[0].path.value, main.module.file, state.roots, uses[0].path.span, rep, "cell file")
-        return (read_module(path, uses[0].path.span, rep) if path else None), False
+        shown = shown_path(uses[0].path.value, main.module.file, path) if path else None
+        return (read_module(path, uses[0].path.span, rep, shown) if path else None), False
     if any(isinstance(s, ast.CellDecl) for s in main.module.body):
         return main, False
     if not any(isinstance(s, ast.ProgramDecl) for s in main.module.body):

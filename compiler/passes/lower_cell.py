@@ -79,6 +79,12 @@ class _CellBuilder:
         return pose
 
     def _RobotDecl(self, s: ast.RobotDecl) -> None:
+        start = len(self.rep.sink)
+        self._robot_decl(s)
+        if s.name.name not in self.infos and self.rep.sink.errors_since(start):
+            self.rep.failed_declarations.add(s.name.name)
+
+    def _robot_decl(self, s: ast.RobotDecl) -> None:
         base = self._pose(s.at, f"placement of robot '{s.name.name}'")
         if s.on is not None:
             base = self.axes.carried(s.on, base, "robot", s.name.name, s.span)

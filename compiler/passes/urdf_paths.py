@@ -32,6 +32,8 @@ from pathlib import Path
 
 from rmot.compiler import codes
 from rmot.compiler.passes.context import Reporter
+from rmot.compiler.passes.limits import MAX_MESH_SCALE, MAX_SIZE_M, MIN_MESH_SCALE, MIN_SIZE_M
+from rmot.lang.input_file import read_regular
 from rmot.lang.source import Span
 
 __all__ = ["check_urdf_files"]
@@ -39,6 +41,7 @@ __all__ = ["check_urdf_files"]
 _MOVING = ("revolute", "continuous", "prismatic")
 MAX_JOINTS = 64  # industrial arms have 6-7 (plus a rail, a gripper's fingers): far above any real cell
 MAX_LINKS = 256
+MAX_URDF_BYTES = 64 * 1024 * 1024  # a 64-joint URDF with inline geometry is a few hundred KiB
 _SHAPES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",), "capsule": ("radius", "length"),
            "mesh": ("scale",)}
 _COUNTS = {"size": (3,), "scale": (1, 3)}  # how many numbers each attribute holds (URDF spec)
@@ -47,7 +50,7 @@ _COUNTS = {"size": (3,), "scale": (1, 3)}  # how many numbers each attribute hol
 def check_urdf_files(urdf: str, roots: tuple[str, ...], span: Span | None, rep: Reporter) -> bool:
     """True when every mesh the URDF names lies inside a root and every moving joint has an axis."""
     try:
-        tree = ET.parse(urdf)
+        tree: ET.ElementTree[ET.Element] = ET.ElementTree(ET.fromstring(read_regular(urdf, MAX_URDF_BYTES)))
     except (ET.ParseError, OSError, ValueError) as exc:
         rep.error(codes.ROBOT_LOAD, f"URDF robot must be a readable XML file (got: {str(exc)[:200]})", span)
         return False
@@ -124,12 +127,41 @@ def _inside(path: Path, root: Path) -> bool:
     return True
 
 
-def _positive_numbers(text: str, counts: tuple[int, ...]) -> bool:
+def _positive_numbers(text: str, counts: tuple[int, ...], low: float = 0.0, high: float = math.inf) -> bool:
+    """`counts` numbers, each finite and within [low, high] (above 0 when low is 0)."""
     try:
         values = [float(v) for v in text.split()]
     except ValueError:
         return False
-    return len(values) in counts and all(math.isfinite(v) and v > 0 for v in values)
+    return len(values) in counts and all(math.isfinite(v) and v > 0 and low <= v <= high for v in values)
+
+
+def _form_problems(tree: "ET.ElementTree[ET.Element]") -> list[str]:
+    """An <origin> whose xyz or rpy is not three finite numbers (`xyz="0"`: the parser's guess),
+    a <geometry> of other than one shape (the parser reads the first and drops the rest), an
+    <inertial> without its mass value and six inertia entries (the parser skips the link's
+    inertia with only a message on stderr, and the torque check would go without it)."""
+    problems = [f"a geometry must hold exactly one shape (got {len(g)}: {', '.join(c.tag for c in g)[:60]})"
+                for g in tree.iter("geometry") if len(g) != 1]
+    for inertial in tree.iter("inertial"):
+        mass, inertia = inertial.find("mass"), inertial.find("inertia")
+        if mass is None or mass.get("value") is None or inertia is None or any(
+                inertia.get(k) is None for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")):
+            problems.append("an inertial must have a mass value and the inertia entries ixx, ixy, ixz, iyy, iyz, izz")
+    for origin in tree.iter("origin"):
+        for attribute in ("xyz", "rpy"):
+            text = origin.get(attribute)
+            if text is not None and not _three_finite(text):
+                problems.append(f"origin {attribute}=\"{text[:40]}\" must be three finite numbers")
+    return problems
+
+
+def _three_finite(text: str) -> bool:
+    try:
+        values = [float(v) for v in text.split()]
+    except ValueError:
+        return False
+    return len(values) == 3 and all(math.isfinite(v) for v in values)
 
 
 def _check_values(tree: "ET.ElementTree[ET.Element]", name: str, span: Span | None, rep: Reporter) -> bool:
@@ -147,8 +179,10 @@ def _check_values(tree: "ET.ElementTree[ET.Element]", name: str, span: Span | No
                 for attribute in attributes:
                     text = element.get(attribute)
                     counts = _COUNTS.get(attribute, (1,))
-                    if (text is not None or shape != "mesh") and not _positive_numbers(text or "", counts):
-                        problems.append(f"{label}: {shape} {attribute}=\"{(text or '')[:40]}\" must be finite and positive")
+                    low, high = (MIN_MESH_SCALE, MAX_MESH_SCALE) if shape == "mesh" else (MIN_SIZE_M, MAX_SIZE_M)
+                    if (text is not None or shape != "mesh") and not _positive_numbers(text or "", counts, low, high):
+                        problems.append(f"{label}: {shape} {attribute}=\"{(text or '')[:40]}\" must be finite and "
+                                        f"within {low:g} .. {high:g}{'' if shape == 'mesh' else ' m'}")
         for mass in link.iter("mass"):
             if not _finite(mass.get("value", ""), lambda v: v >= 0):
                 problems.append(f"{label}: mass value=\"{mass.get('value', '')[:40]}\" must be a finite number >= 0")
@@ -160,6 +194,7 @@ def _check_values(tree: "ET.ElementTree[ET.Element]", name: str, span: Span | No
         velocity = limit.get("velocity") if limit is not None else None
         if joint.get("type") in _MOVING and velocity is not None and not _finite(velocity, lambda v: v > 0):
             problems.append(f"joint '{joint.get('name', '?')[:80]}': limit velocity=\"{velocity[:40]}\" must be finite and positive")
+    problems += _form_problems(tree)
     for problem in problems[:5]:
         rep.error(codes.ROBOT_LOAD, f"URDF {name}, {problem}", span)
     return not problems

@@ -37,6 +37,7 @@ from typing import Any
 from rmot.compiler import codes
 from rmot.compiler.passes.context import Reporter
 from rmot.compiler.passes.urdf_paths import _inside
+from rmot.lang.input_file import NotRegularFile, read_regular
 from rmot.lang.source import Span
 
 __all__ = ["MAX_BYTES", "expand_description"]
@@ -102,9 +103,10 @@ def _read(path: str, roots: tuple[str, ...]) -> str:
     resolved = Path(path).resolve()
     if not any(_inside(resolved, Path(r)) for r in roots):
         raise RefusedXacro(f"an include outside the project: {path}")
-    data = resolved.read_bytes()[:MAX_BYTES + 1]
-    if len(data) > MAX_BYTES:
-        raise RefusedXacro(f"a file larger than {MAX_BYTES // (1024 * 1024)} MiB: {path}")
+    try:
+        data = read_regular(resolved, MAX_BYTES)
+    except NotRegularFile as exc:
+        raise RefusedXacro(f"not a regular file of at most {MAX_BYTES // (1024 * 1024)} MiB ({exc.strerror}): {path}") from None
     if re.search(rb"<!(DOCTYPE|ENTITY)", data):
         raise RefusedXacro(f"a DOCTYPE or entity declaration in {os.path.basename(path)}")
     text = data.decode("utf-8")

@@ -131,10 +131,11 @@ class _Builder:
         self.paths: dict[int, tuple] = {}  # type: ignore[type-arg]  # uid -> loop iterations
         self.repeat_quiet = False  # a while's later iterations: only findings not already reported
         self.while_round: str | None = None  # "round 2 of the while at line 9" in later rounds
+        self.failed: ir.Move | None = None  # the last move, when it failed: the next starts where it began
 
     # ------------------------------------------------------------------ helpers
     def _diag(self, f: Finding, span, time: float | None = None,  # type: ignore[no-untyped-def]
-              uid: int | None = None) -> None:
+              uid: int | None = None, after: ir.Move | None = None) -> None:
         message = f.message
         if uid is not None and uid in self.paths:  # inside a for/repeat: name the iteration
             message += f" (in iteration {describe_iteration(self.paths[uid])})"
@@ -146,6 +147,9 @@ class _Builder:
         if self.while_round is not None:  # found only in a later round of a while
             message += f" (in {self.while_round}, from where the round before it ends)"
         notes: tuple = (self.note,) if self.note is not None else ()  # type: ignore[type-arg]
+        if after is not None:  # planned from an assumed start: say which error it follows from
+            message += " (a consequence of the failed move before it: planned from where that move began)"
+            notes += (("the failed move; the robot is assumed to stay where it began", after.span),)
         self.draft.diagnostics.append(
             Diagnostic(f.code, f.severity, message, span, notes, time_s=time, task=self.task))
 
@@ -187,10 +191,14 @@ class _Builder:
         seg, findings = build_segment(self.robot, move, self._q_end())
         if seg is None:
             self.flush()
+            # a joint move to joint values fails for its target alone; any other depends on its start
+            alone = move.kind is ir.MotionKind.JOINT and isinstance(move.target, ir.JointTarget)
             for f in findings:
-                self._diag(f, move.span, self.t, move.uid)
+                self._diag(f, move.span, self.t, move.uid, after=None if alone else self.failed)
             self._record(move, self.t, self.t)
+            self.failed = move
             return
+        self.failed = None
         self.pending += [(f, len(self.chain)) for f in findings]  # timed when the chain is
         self.chain.append(seg)
         if move.motion.zone.is_fine or alone:

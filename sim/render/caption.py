@@ -9,6 +9,9 @@ __all__ = ["add_caption"]
 
 BAND = (24, 26, 30)
 TEXT = (250, 250, 250)
+# The most of a picture's height the caption band may cover: the picture is what shows the
+# finding; the full messages are in the command's output and the report.
+MAX_BAND_SHARE = 0.2
 
 
 def _font(height: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
@@ -37,17 +40,19 @@ def _wrap(draw: ImageDraw.ImageDraw, text: str, font: ImageFont.ImageFont | Imag
 
 
 def add_caption(image: np.ndarray, text: str, max_lines: int = 3) -> np.ndarray:
-    """A copy of image (H, W, 3) uint8 with `text` in a dark band at the bottom."""
+    """A copy of image (H, W, 3) uint8 with `text` in a dark band at the bottom, at most
+    `max_lines` lines and MAX_BAND_SHARE of the height (at least one line)."""
     picture = Image.fromarray(np.ascontiguousarray(image))
     draw = ImageDraw.Draw(picture)
     font = _font(picture.height)
     pad = 6
     lines = _wrap(draw, text, font, picture.width - 2 * pad)
+    ascent, descent = font.getmetrics() if hasattr(font, "getmetrics") else (11, 3)
+    line_h = ascent + descent + 2
+    max_lines = max(1, min(max_lines, int((picture.height * MAX_BAND_SHARE - 2 * pad) // line_h)))
     if len(lines) > max_lines:  # say that the text goes on rather than cutting it silently
         lines = lines[:max_lines]
         lines[-1] = lines[-1].rstrip()[:-1] + "…" if len(lines[-1]) > 1 else "…"
-    ascent, descent = font.getmetrics() if hasattr(font, "getmetrics") else (11, 3)
-    line_h = ascent + descent + 2
     band_h = line_h * len(lines) + 2 * pad
     draw.rectangle((0, picture.height - band_h, picture.width, picture.height), fill=BAND)
     for i, line in enumerate(lines):

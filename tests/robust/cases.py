@@ -227,7 +227,17 @@ CASES: tuple[Case, ...] = (
            '<box size="0.1 inf 0.1"/></geometry></collision>'),
           ("velocity_zero", 'velocity="3.0"', 'velocity="0"'),
           ("mass_negative", '<mass value="6"/>', '<mass value="-6"/>'),
-          ("inertia_nan", 'ixx="0.04"', 'ixx="nan"'))),
+          ("inertia_nan", 'ixx="0.04"', 'ixx="nan"'),
+          # make fuzz FUZZ_MIX=1 seed 2502: a 1e-320 m radius made verification allocate 4.5 GiB (E550 MemoryError),
+          # an origin of one number was read as the parser guessed
+          ("collision_radius_denormal", '<cylinder radius="0.09" length="0.2"/></geometry></collision>',
+           '<cylinder radius="1e-320" length="0.2"/></geometry></collision>'),
+          ("origin_one_number", '<origin xyz="0 0 0.2"/>', '<origin xyz="0"/>'),
+          ("geometry_two_shapes", '<cylinder radius="0.09" length="0.2"/></geometry></collision>',
+           '<cylinder radius="0.09" length="0.2"/><box size="1 1 1"/></geometry></collision>'),  # seed 8566
+          # urdfdom printed "Could not parse inertial element" on stderr, and rmot check said ok (fuzz stderr)
+          ("inertial_without_mass", '<mass value="6"/>', ""),
+          ("inertia_without_ixx", 'ixx="0.04"', ""))),
     Case("urdf_1000_joints", {"p.rmot": _URDF_PROG, "arm.urdf": _chain_urdf(1000)}, ("check", "{d}/p.rmot"),
          frozenset({2}), ("E505", "at most")),
     # ---- round 3: an output never replaces an input or a folder rmot did not write (inputs compared after)
@@ -250,6 +260,8 @@ CASES: tuple[Case, ...] = (
       for name, file, body, code in (
           ("off_fewer_faces", "part.off", "OFF\n4 6 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n", "E563"),
           ("off_fewer_vertices", "part.off", "OFF 4 1 0\n0 0 0\n1 0 0\n", "E563"),
+          ("off_face_of_no_corners", "part.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 0\n1 0 1\n0 0 1 2\n3 3 4 5\n",
+           "E563"),  # trimesh dropped the face; make fuzz FUZZ_MIX=1 seed 3906
           ("zero_area_stl", "part.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 1 1 1\nvertex 1 1 1\nvertex 1 1 1\n"
            "endloop\nendfacet\nendsolid t\n", "E562"),
           ("zero_area_polygon", "part.mesh", "3 1\n0 0 0\n0 0 0\n0 0 0\n3 0 1 2\n", "E562"))),
@@ -313,4 +325,26 @@ CASES: tuple[Case, ...] = (
           ("robot", "  robot r1 = abb_irb1600 at pose(x=999999999999mm)", "2:29"),
           ("fixture", "  robot r1 = abb_irb1600\n  fixture f = box(1m, 1m, 1m) at pose(z=1e9 m)", "3:34"),
           ("tool_tcp", "  robot r1 = abb_irb1600\n  tool g = box(10mm, 10mm, 10mm) tcp pose(z=1e9 m) on r1", "3:38"))),
+    # ---- round 3 (make fuzz FUZZ_MIX=1, seed 1042): a text STL with a bad normal line made trimesh log a
+    # Python traceback on stderr; its triangles load (normals are not used), and nothing but rmot's words is printed
+    Case("mesh_stl_bad_normal_line", {"p.rmot": _MESH_PROG.replace("@F@", "part.stl"),
+                                      "part.stl": "solid t\nfacet normal 0 0 1&amp;\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\n"
+                                                  "vertex 0 0.1 0\nendloop\nendfacet\nendsolid t\n"},
+         ("check", "{d}/p.rmot"), frozenset({0, 1}), ("W560",)),
+    # ---- round 3 (make fuzz FUZZ_MIX=1): merge-reports merged JSON reports of another version or shape (exit 0)
+    *(Case(f"merge_json_{name}", {"r.json": text}, ("merge-reports", "{d}/r.json"), frozenset({2}), ("E531", "r.json", why))
+      for name, text, why in (("version_text", '{"version": "x", "programs": []}', "$.version: must be of type integer"),
+                              ("program_not_a_report", '{"version": 2, "programs": [{"$t": 1}]}', "must have key 'file'"),
+                              ("program_cycle_string", '{"version": 2, "programs": [{"file": "p.rmot", "cycle_time_s": "x", '
+                               '"assumptions": null, "tasks": [], "diagnostics": []}]}', "cycle_time_s"))),
+    # make fuzz FUZZ_MIX=1 seed 3906: a flat mesh 170 m out (scale=1000) made coal's hull crash (SIGSEGV)
+    Case("mesh_flat_far_out", {"p.rmot": _MESH_PROG.replace('"@F@"', '"part.mesh", scale=1000').replace("x=2m", "x=0m"),
+                               "part.mesh": "3 1\n0.13049570990143062 0.027678012752656578 0.08053198025178649\n"
+                                            "0.04479475918153486 0.1340248411746556 0.09746116970084935\n"
+                                            "0.03220630161663727 0.1692231340574423 0.09838042348229114\n3 0 1 2\n"},
+         ("check", "{d}/p.rmot"), frozenset({0, 1}), ("W560",)),
+    Case("merge_sarif_run_without_tool", {"r.sarif": '{"version": "2.1.0", "runs": [{"results": []}]}'},
+         ("merge-reports", "{d}/r.sarif"), frozenset({0}), ('"driver"',)),  # E550 KeyError 'tool' (fuzz seed 3614)
+    Case("merge_junit_unknown_encoding", {"r.xml": '<?xml version="1.0" encoding="UTFinf"?>\n<testsuites/>\n'},
+         ("merge-reports", "{d}/r.xml"), frozenset({2}), ("E531", "r.xml", "UTFinf")),  # E550 LookupError (fuzz seed 2031)
 )

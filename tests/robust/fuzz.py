@@ -8,8 +8,11 @@ nothing for four times the limit in wall time is a hang too (blocked, not comput
     .venv/bin/python -m tests.robust.fuzz [--n 100000] [--start 0] [--jobs 1] [--timeout 30]
                                          [--memory-gb 2] [--report fuzz-report.json]
 
-With FUZZ_MIX=1 (`make fuzz FUZZ_MIX=1`), every odd seed is an example program mutated by
-`mutated_example(seed)` instead of a generated project.
+With FUZZ_MIX=1 (`make fuzz FUZZ_MIX=1`), the seeds mix the strategies that found what the
+generator's well-formed programs did not: seed % 4 == 0 a generated project, 1 an example
+program mutated by `mutated_example(seed)`, 2 and 3 a hostile file (a damaged mesh or URDF, a
+damaged cache entry, an attacked report for merge-reports: tests/robust/hostile.py, where a
+cache verdict that differs from --no-cache's is a failure too).
 
 Counted per input: ok (diagnostics or files, exit 0/1/2), traceback (an exception escaped a
 stage), hang (more CPU than the timeout, or no answer for 4x it: the worker is killed and replaced), memory
@@ -82,7 +85,14 @@ def run_one(seed: int, workdir: str) -> str:
     proj = os.path.join(workdir, f"p{seed}")
     os.makedirs(proj)
     try:
-        project = mutated_example(seed) if os.environ.get("FUZZ_MIX") and seed % 2 else random_project(seed)
+        if os.environ.get("FUZZ_MIX") and seed % 4 >= 2:
+            from tests.robust.hostile import run_hostile
+
+            try:
+                return run_hostile(seed, proj, os.path.join(workdir, "caches"))
+            except MemoryError:
+                return "memory"
+        project = mutated_example(seed) if os.environ.get("FUZZ_MIX") and seed % 4 == 1 else random_project(seed)
         for name, text in project.items():
             with open(os.path.join(proj, name), "w", encoding="utf-8", newline="") as f:
                 f.write(text)

@@ -70,3 +70,33 @@ def test_least_duration_is_a_lower_bound_and_refuses_30000_moves_before_timing(m
     refused = planner.plan_program(program(30_000))  # type: ignore[arg-type]
     assert [d.code.id for d in refused.diagnostics] == ["E124"] and "at least" in refused.diagnostics[0].message
     assert timed == []
+
+
+def test_linear_moves_bound_from_below_and_30000_are_refused_before_timing(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """Linear moves between Cartesian targets count their straight TCP travel over the
+    programmed speed, less the zones at both ends: below the planned cycle time (the planner is
+    the witness, with zones too), and 30,000 of them (10 mm apart at
+    250 mm/s, 1200 s) are E124 without one move timed (37 s before)."""
+    from rmot.compiler.frontend import load_text
+    from rmot.compiler.plan import planner, timeline
+    from rmot.compiler.plan.least_time import least_duration_s
+    from rmot.compiler.robots import load_robot
+
+    def program(n: int, head: str = "", cell: str = "") -> object:
+        body = "".join(f"  move linear pose(x={900 + 10 * (i % 2)}mm, y={20 * (i % 3)}mm, z=1000mm, ry=180deg)\n" for i in range(n))
+        loaded = load_text(f"{cell}program p on r1 {{\n  move joint joints(0, -10, 10, 0, 90, 0) deg\n{head}{body}}}\n",
+                           "p.rmot").program
+        assert loaded is not None
+        return loaded
+
+    vmax = load_robot("abb_irb1600").velocity_limits
+    for head in ("", "  speed 100 mm/s\n  zone 5 mm\n"):
+        small = program(12, head)
+        plan = planner.plan_program(small)  # type: ignore[arg-type]
+        bound = least_duration_s(vmax, small.tasks[0].body)  # type: ignore[attr-defined]
+        assert 0.1 < bound <= plan.cycle_time, (head, bound, plan.cycle_time)
+    timed: list[int] = []
+    monkeypatch.setattr(timeline, "time_chain", lambda *a, **k: timed.append(1))
+    refused = planner.plan_program(program(30_000))  # type: ignore[arg-type]
+    assert [d.code.id for d in refused.diagnostics] == ["E124"] and "at least" in refused.diagnostics[0].message
+    assert timed == []

@@ -31,8 +31,16 @@ def _deny(monkeypatch: pytest.MonkeyPatch, marker: str) -> None:
             raise PermissionError(13, "Permission denied", file)
         return real_open(file, *args, **kwargs)
 
+    real_os_open = os.open
+
+    def fake_os_open(path, *args, **kwargs):  # type: ignore[no-untyped-def]  # lang/input_file.read_regular
+        if marker in os.fsdecode(path):
+            raise PermissionError(13, "Permission denied", os.fsdecode(path))
+        return real_os_open(path, *args, **kwargs)
+
     monkeypatch.setattr(pathlib.Path, "read_bytes", read_bytes)
     monkeypatch.setattr(builtins, "open", fake_open)
+    monkeypatch.setattr(os, "open", fake_os_open)
 
 
 @pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
