@@ -1,7 +1,7 @@
 """rmot.backends: vendor program writers (text only; no planning here).
 
 `BACKENDS` maps a --target name to its Backend class, read from the one registry of targets
-(compiler/vendors.py, re-exported here: `register`, `targets`, `controllers`); each vendor
+(lang/vendors.py, re-exported here: `register`, `targets`, `controllers`); each vendor
 module is imported only when its entry is looked up, so loading one backend never loads the
 others.
 
@@ -22,7 +22,7 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING
 
-from rmot.compiler.vendors import Target, controllers, lookup, register, targets, unregister
+from rmot.lang.vendors import Target, controllers, lookup, register, targets, unregister
 
 if TYPE_CHECKING:
     from rmot.backends.base import Backend

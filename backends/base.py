@@ -37,7 +37,7 @@ Conventions every vendor follows (so one program means the same on every control
     Each vendor prints its own stop: RAPID WaitDI\\MaxTime, KRL HALT, Fanuc ABORT, URScript
     popup(error) + halt, INFORM MSG + PAUSE, VAL3 popUpMsg + stopMove/resetMotion + return.
   * acceleration: the front end's defaults (DEFAULT_TCP_ACCEL, DEFAULT_JOINT_ACCEL, from
-    compiler/ir.py) mean "the controller's own"; a vendor that cannot express a
+    lang/ir.py) mean "the controller's own"; a vendor that cannot express a
     programmed acceleration warns W408 once per task, only when a move sets a non-default one.
   * I/O ports: each vendor declares DIGITAL_PORTS (inclusive range, with its source); every
     port goes through `port_ok` (E404 outside it).
@@ -65,8 +65,8 @@ from rmot.backends.conventions import (
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.part_load import held_load
-from rmot.compiler import ir, ir_tree, plan_types
-from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
+from rmot.lang import ir, ir_tree, plan_types
+from rmot.lang.motion_kinds import MissingMotionHandler, require_handlers
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Span
 from rmot.backends.safe_text import comment_safe
@@ -152,7 +152,7 @@ class Backend:
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         # a backend of this package fails at import when a motion kind has no handler; any
-        # other (a test's, a plug-in's) when the target registry hands it out (compiler/vendors)
+        # other (a test's, a plug-in's) when the target registry hands it out (lang/vendors)
         if cls.name and cls.__module__.startswith("rmot.backends."):
             cls.validate_kinds()
         own_loop = getattr(cls, cls.EMIT[ir.Loop], None) is not Backend.loop

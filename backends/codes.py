@@ -166,7 +166,7 @@ STOP_AS_PAUSE = Code(
 
 # ------------------------------------------------------------------ joint turns
 # in the vendors' configuration data, E440-E449 / W440-W444 (the front end's
-# turn codes are in compiler/codes.py)
+# turn codes are in lang/check_codes.py)
 TURN_NOT_EXPRESSIBLE = Code(
     "E440", "turn-not-expressible",
     "a planned joint value's turn cannot be told apart by the vendor's configuration data")
@@ -177,7 +177,7 @@ __all__ += [
     "TURN_NOT_EXPRESSIBLE",
 ]
 
-# --- controller conventions a vendor target needs (compiler/robots/controller.py)
+# --- controller conventions a vendor target needs (sim/robots/controller.py)
 CONTROLLER_UNDECLARED = Code(
     "E480", "controller-undeclared",
     "a cell model or URDF robot declares no controller conventions: the vendor cannot vouch for its joint values",

@@ -15,7 +15,7 @@ controller's stored tool and frame numbers.
 
 from __future__ import annotations
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["TARGET_BRANDS", "brand_of", "frame_number", "tool_number", "NumberedData"]
 

@@ -14,7 +14,7 @@ from collections.abc import Iterable
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = [
     "axis_quadrant", "euler_xyz_moving_deg", "euler_zyx_deg", "fmt", "fmt_list", "position_mm",

@@ -27,9 +27,9 @@ import math
 from dataclasses import replace
 
 from rmot.backends.conventions import euler_zyx_deg, fmt, fmt_list, position_mm
-from rmot.compiler import ir
-from rmot.compiler.axis_motion import task_axes
-from rmot.compiler.ir_axes import ExtAxis, ExternalAxes
+from rmot.lang import ir
+from rmot.lang.axis_motion import task_axes
+from rmot.lang.ir_axes import ExtAxis, ExternalAxes
 
 __all__ = ["RAPID_UNUSED", "driven_axes", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
            "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",

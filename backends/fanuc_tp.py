@@ -7,7 +7,7 @@ Conventions (Fanuc "R-30iB Controller Operator's Manual (Basic Operation)"):
   * Cartesian positions carry `UF : n, UT : m, CONFIG : 'F|N U|D T|B, t4, t5, t6'`:
     N (no flip) when J5 < 0 and F when J5 > 0 on Fanuc's own J5 (the LR Mate's home with
     the tool down, J5 = -90 deg, shows 'N U T'); note rmot's branch calls J5 < 0 "flip"
-    (rmot.compiler.robots.branches), so rmot FLIP -> 'N', NOFLIP -> 'F'. U = elbow up,
+    (rmot.sim.robots.branches), so rmot FLIP -> 'N', NOFLIP -> 'F'. U = elbow up,
     D = down; T = wrist centre in front of J1 (toward), B = behind. t4..t6 are the turn
     numbers of J4, J5, J6 (as in Fanuc's RMI Turn4..Turn6): 0 for (-180, 180] deg, 1 for
     (180, 540], -1 for (-540, -180].
@@ -76,8 +76,8 @@ from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
 )
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir, ir_tree, plan_types
-from rmot.compiler.ir_axes import ExtAxis
+from rmot.lang import ir, ir_tree, plan_types
+from rmot.lang.ir_axes import ExtAxis
 from rmot.backends.safe_text import comment_safe, tp_io_comment
 from rmot.lang.record import record
 from rmot.lang.source import Span

@@ -47,7 +47,7 @@ from collections.abc import Iterator
 from itertools import count
 
 from rmot.backends import codes
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 

@@ -100,7 +100,7 @@ from rmot.backends.loops import (
 )
 from rmot.backends.lowering import routine_names, split_body
 from rmot.backends.names import NameRules
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe
 from rmot.lang.record import record
 

@@ -45,8 +45,8 @@ from dataclasses import dataclass, field
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext
 from rmot.backends.ext_axes import driven_axes
-from rmot.compiler import ir, ir_tree, plan_types
-from rmot.compiler.ir_axes import ExtAxis
+from rmot.lang import ir, ir_tree, plan_types
+from rmot.lang.ir_axes import ExtAxis
 
 __all__ = ["InformAxes", "inform_axes", "task_axes", "warn_pulse_rounding"]
 

@@ -7,7 +7,7 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
     $BASE is relative to $WORLD, assumed to coincide with $ROBROOT, KUKA's default floor
     mounting) with $TOOL = the tool's TCP in the flange frame and $LOAD its mass, centre of
     gravity half way along the flange->TCP vector (rmot's payload convention, base.tool_cog).
-  * Status S (from rmot's branch, rmot.compiler.robots.branches): bit 0 = wrist point behind
+  * Status S (from rmot's branch, rmot.sim.robots.branches): bit 0 = wrist point behind
     A1 (overhead area = shoulder back), bit 1 = A3 >= its stretched angle (elbow up; KUKA's
     home A3 = 90 deg gives S 'B010'), bit 2 = A5 < 0 (wrist flip).
     Turn T: bit i set when axis i+1 < 0.
@@ -65,9 +65,9 @@ from rmot.backends.ext_axes import driven_axes, krl_e_axes, machine_data, mechan
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.backends.safe_text import comment_safe
-from rmot.compiler.ir_axes import ExtAxis
+from rmot.lang.ir_axes import ExtAxis
 from rmot.lang.record import record
 
 __all__ = ["KrlBackend", "KRL_RULES", "status_of"]

@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.record import record
 
 __all__ = [
@@ -574,8 +574,8 @@ def _reads(v: Any, name: str) -> bool:
 def bind_loop_var(body: tuple[ir.Instr, ...], name: str, value: int) -> tuple[ir.Instr, ...]:
     """`body` with every read of the loop variable `name` replaced by Const(value) (what an
     unrolled iteration writes: the vendor has no loop counter there); the front end's
-    compiler/ir_tree.bind_loop_variable, the one walker of the IR's nesting."""
-    from rmot.compiler.ir_tree import bind_loop_variable
+    lang/ir_tree.bind_loop_variable, the one walker of the IR's nesting."""
+    from rmot.lang.ir_tree import bind_loop_variable
 
     return bind_loop_variable(body, name, value)
 

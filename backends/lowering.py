@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Iterator
 
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 
 __all__ = [
     "count_instructions", "iter_proc_calls", "routine_names", "split_body",

@@ -22,7 +22,7 @@ import numpy as np
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, EmitResult, TaskContext, source_ref
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 
 __all__ = ["CSV_DECIMALS", "JSON_DECIMALS", "CsvBackend", "JsonBackend", "plan_document"]
 
@@ -31,7 +31,7 @@ JSON_DECIMALS = 9
 
 
 # a move's "kind" in the JSON document, one per motion kind (checked at import: a new kind
-# without a label fails loudly, see compiler/motion_kinds.py)
+# without a label fails loudly, see lang/motion_kinds.py)
 MOVE_LABELS: dict[ir.MotionKind, str] = {
     ir.MotionKind.JOINT: "move_joint", ir.MotionKind.LINEAR: "move_linear",
     ir.MotionKind.CIRCULAR: "move_circular",

@@ -2,7 +2,7 @@
 
 `held_load(node, ctx)`: after an `attach`/`detach`, the held parts' total mass and their
 centre of gravity in the flange frame, and the same for tool + parts: the payload model every
-reader shares (compiler/payload.held_loads, read from the plan once per task), as numpy arrays.
+reader shares (lang/payload.held_loads, read from the plan once per task), as numpy arrays.
 `state_at_moves(ctx)`: which attach or detach a move carries the load of.
 """
 
@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree, payload
+from rmot.lang import ir, ir_tree, payload
 
 __all__ = ["held_load", "state_at_moves"]
 

@@ -9,7 +9,7 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
   * confdata [cf1, cf4, cf6, cfx]: cf1/cf4/cf6 = quadrant of axis 1/4/6, floor(q / 90 deg)
     (-1 for [-90, 0) deg); cfx (6-axis serial arms) = 4*(wrist centre behind axis 1)
     + 2*(wrist centre behind the lower arm) + (axis 5 negative), i.e. with rmot's branch
-    (rmot.compiler.robots.branches) shoulder back -> +4, elbow down -> +2, wrist flip -> +1.
+    (rmot.sim.robots.branches) shoulder back -> +4, elbow down -> +2, wrist flip -> +1.
   * speeddata: the predefined v5 ... v7000 when the TCP speed is one of them, else a CONST
     speeddata [v_tcp, 500, 5000, 1000] (exact). Joint moves: `vmax` at a joint speed share of
     100 %; RAPID has no per-move joint-speed share, so a smaller share is emitted as the planned
@@ -49,8 +49,8 @@ from rmot.backends.ext_axes import RAPID_UNUSED, driven_axes, machine_data, rapi
 from rmot.backends.base import Backend, TaskContext, accel_is_default, axis_quadrant, fmt, fmt_list, position_mm, tool_cog
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, ir_tree, plan_types
-from rmot.compiler.ir_axes import ExtAxis
+from rmot.lang import ir, ir_tree, plan_types
+from rmot.lang.ir_axes import ExtAxis
 from rmot.lang.record import record
 from rmot.lang.source import Span
 

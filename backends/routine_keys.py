@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 
 from rmot.backends.task_context import TaskContext, source_ref
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.source import Span
 
 __all__ = ["fingerprint", "key_value"]

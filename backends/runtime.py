@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from rmot.backends import codes, loops
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.lang.record import record
 
 __all__ = [

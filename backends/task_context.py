@@ -11,8 +11,8 @@ from dataclasses import dataclass, field, fields
 from typing import Any, TypeVar
 
 from rmot.backends.safe_text import comment_safe
-from rmot.compiler import codes as file_codes
-from rmot.compiler import ir, plan_types
+from rmot.lang import check_codes as file_codes
+from rmot.lang import ir, plan_types
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span
@@ -22,7 +22,7 @@ __all__ = [
     "accel_is_default", "header_lines", "name_clash", "source_ref", "unique",
 ]
 
-# The front end's accelerations when a program never sets `accel` (defined in compiler/ir.py):
+# The front end's accelerations when a program never sets `accel` (defined in lang/ir.py):
 # a move carrying them asks for nothing a vendor must express.
 DEFAULT_TCP_ACCEL: float = ir.DEFAULT_TCP_ACCEL  # m/s^2
 DEFAULT_JOINT_ACCEL: float = ir.DEFAULT_JOINT_ACCEL  # fraction of each joint's maximum

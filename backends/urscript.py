@@ -67,7 +67,7 @@ from rmot.backends import runtime as _rt
 from rmot.backends.base import Backend, TaskContext, fmt, fmt_list, rotation_vector, tool_cog
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.runtime import LoopState
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.record import record
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
@@ -252,7 +252,7 @@ class UrScriptBackend(Backend):
         model = ctx.robot.source.ref
         shown = f"'{model}'"
         if ctx.robot.source.kind is ir.RobotSourceKind.MODEL:  # a cell's model: name it, not its key
-            from rmot.compiler.model_spec import model_name
+            from rmot.lang.model_spec import model_name
 
             shown = f"'{model_name(model)}' (a cell model)"
         if model in JOINT_LIMITS:

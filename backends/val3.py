@@ -75,7 +75,7 @@ from rmot.backends.codes import LOOP_UNROLLED, STOP_IN_ROUTINE
 from rmot.backends.loops import LoopTemplate, analyse, bind_loop_var, level_moves
 from rmot.backends.runtime import loop_plan
 from rmot.backends.val3_data import NO_LIMIT, VAL3_RULES, XSI, Val3Context, config_attrs, trsf_attrs
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.source import Span
 
 __all__ = ["Val3Backend", "config_attrs", "trsf_attrs"]

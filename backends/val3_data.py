@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 from rmot.backends.base import TaskContext, euler_xyz_moving_deg, fmt, position_mm
 from rmot.backends.loops import LoopTemplate
 from rmot.backends.names import NameRules, NameTable
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.record import record
 
 __all__ = ["NO_LIMIT", "VAL3_BUILTINS", "VAL3_RULES", "XSI", "Val3Context", "config_attrs", "trsf_attrs"]

@@ -1,24 +1,22 @@
-"""rmot.compiler: the compiler proper (front-end passes, planner), the vocabulary every stage
-reads (IR, plan types, codes, registries), the robots, and the application on top (the `rmot`
-command line and the modules only it uses).
+"""rmot.compiler: the compiler proper and the application on top: the top layer, the one
+folder that may import all the others (pyproject's layer contract, `lint-imports`).
 
-Where things are, bottom to top (the layer contract in pyproject.toml, `lint-imports`, checks
-that each row imports only rows below it, with `sim` and `backends` between plan and cli):
+Where things are:
 
-    vocabulary  ir (the checked program, SI units), ir_tree (which instruction holds which
-                bodies: the one IR walker), plan_types (the Plan: the planner's hand-off),
-                codes / cache_codes (diagnostic codes), motion_kinds (tables keyed by motion
-                kind are complete), model_spec (a cell's `model` robot as data), vendors (the
-                one registry of --target names), atomic (the one file writer), jit (numba
-                kernels that also run as plain Python)
-    robots/     the robot library and kinematics: FK, Jacobians, closed-form and numeric IK,
-                IK branches, dynamics (pinocchio)
     passes/     AST + cell -> IR, one pass a module (pipeline.py lists them in order)
     plan/       IR -> Plan: IK branch per target, blends, time-optimal timing per task
-    (sim/ and backends/ sit here: verification and rendering; vendor printers)
-    application frontend (file -> checked IR), pipeline (the passes in order), plan_cache
-                (content-addressed Plans), plan_codec (a Plan as JSON + arrays), ir_dump
-                (`rmot ir`), cli/ (click commands, exit codes, the only file I/O)
+    design/     cell design studies joining the planner and the verifier: reach and
+                singularity maps, robot comparison, base placement, dynamics figures
+    driver      frontend (file -> checked IR, default_cell.rmot when a program has no cell),
+                pipeline (the passes in order), plan_cache (content-addressed Plans),
+                plan_codec (a Plan as JSON + arrays), ir_dump (`rmot ir`)
+    cli/        click commands, exit codes, the only file I/O, and the caches of the stages
+                they run (load, verify, free paths)
+    lsp/        the language server (`rmot lsp`)
+
+Below it: sim/ (the physical world: robots, kinematics, collision, verification, rendering)
+and backends/ (the vendor printers), which never import each other; lang/ (the language and
+the vocabulary every stage reads: AST, IR, plan types, codes, registries) under both.
 
 Each stage is a function over immutable values (lang/record.py); a value is decided once, on
 the IR or the Plan, and every consumer reads it from there."""

@@ -21,7 +21,7 @@ from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.record import record
 
 if TYPE_CHECKING:  # the passes (and the parser) load when a file is read, not with the result type
-    from rmot.compiler import ir
+    from rmot.lang import ir
     from rmot.compiler.passes.context import RobotLoader
     from rmot.compiler.passes.state import FrontendState
 
@@ -74,7 +74,7 @@ def run_passes(path: str, text: str | None = None, cell: str | None = None, proj
     try:
         state = run(state)
     except RecursionError:  # absurdly deep nesting: still a diagnostic, not a traceback
-        from rmot.compiler import codes
+        from rmot.lang import check_codes as codes
 
         state.reporter.error(codes.TOO_LARGE_UNROLLED, "nesting must be at most a few hundred levels deep (got deeper)", None)
     return state
@@ -84,7 +84,7 @@ def _load(path: str, text: str | None, cell: str | None, project_root: str | Non
           robot_loader: RobotLoader | None, require_program: bool = False) -> FrontendResult:
     state = run_passes(path, text, cell, project_root, robot_loader)
     if require_program and state.program is None and not state.reporter.has_errors:
-        from rmot.compiler import codes
+        from rmot.lang import check_codes as codes
 
         state.reporter.error(codes.NO_PROGRAM, f"'{path}' must contain a program (got none: only a cell or declarations)", None)
     diagnostics = state.reporter.sink.items

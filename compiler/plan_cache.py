@@ -50,8 +50,8 @@ from rmot.lang.cache_seal import cache_dir, read_sealed, seal  # one cache direc
 from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
 
 if TYPE_CHECKING:
-    from rmot.compiler import ir
-    from rmot.compiler.plan_types import Plan
+    from rmot.lang import ir
+    from rmot.lang.plan_types import Plan
 
 __all__ = [
     "MAX_BYTES", "cache_dir", "cached_plan", "evict", "eviction_due", "key_of", "plan_by_key",
@@ -99,7 +99,7 @@ def cacheable(program: ir.Program) -> bool:
     """True when `program` holds at most MAX_CACHED_INSTRUCTIONS instructions."""
     from itertools import islice
 
-    from rmot.compiler.ir_tree import walk_bodies
+    from rmot.lang.ir_tree import walk_bodies
 
     every = walk_bodies(task.body for task in program.tasks)
     return sum(1 for _ in islice(every, MAX_CACHED_INSTRUCTIONS + 1)) <= MAX_CACHED_INSTRUCTIONS
@@ -144,7 +144,7 @@ def _plan(program: ir.Program, step: float) -> Plan:
 
 
 def _with_warning(plan: Plan, folder: Path, exc: OSError) -> Plan:
-    from rmot.compiler import cache_codes
+    from rmot.lang import cache_codes
     from rmot.lang.diagnostics import Diagnostic, Severity
 
     msg = (f"plan cache directory '{folder}' must be writable (got {exc.strerror or exc}); "
@@ -263,7 +263,7 @@ def _source_files() -> list[tuple[str, Path]]:
 # ---------------------------------------------------------------------------- entries
 def _read(path: Path, key: str) -> Plan | None:
     """The Plan stored under `path`, or None (a missing, corrupt or foreign entry is removed)."""
-    from rmot.compiler.plan_types import Plan
+    from rmot.lang.plan_types import Plan
 
     payload = read_sealed(path, key, MAX_ENTRY_BYTES)
     if payload is None:  # missing, foreign, tampered with, not a bounded regular file: a miss
@@ -304,7 +304,7 @@ def _write(path: Path, key: str, plan: Plan) -> None:
 def write_entry(path: Path, key: str, data: bytes) -> None:
     """A cache entry sealed under `key` (lang/cache_seal.py) written atomically: a temporary
     `.tmp-*` file beside it (evict removes those a killed run left), renamed onto it. Not
-    compiler/atomic.py: an entry is not the user's output, so no fsync (a torn entry is
+    lang/atomic.py: an entry is not the user's output, so no fsync (a torn entry is
     detected and rebuilt) and no umask mode (the cache is the user's own; mkstemp's 0600).
     Nothing is written when the cache has no secret (it could never be read back)."""
     sealed = seal(key, data)

@@ -32,9 +32,9 @@ __all__ = ["ALLOWED_MODULES", "CodecError", "decode", "encode", "allowed_types"]
 
 # The modules whose dataclasses and enums may appear in a Plan (the Plan, the IR, spans, diagnostics).
 ALLOWED_MODULES = (
-    "rmot.compiler.plan_types",
-    "rmot.compiler.ir",
-    "rmot.compiler.ir_axes",  # external axes (ir.Cell.external)
+    "rmot.lang.plan_types",
+    "rmot.lang.ir",
+    "rmot.lang.ir_axes",  # external axes (ir.Cell.external)
     "rmot.lang.source",
     "rmot.lang.diagnostics",
 )

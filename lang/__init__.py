@@ -1,10 +1,19 @@
-"""rmot.lang: the .rmot language front end — text to AST, with compiler-grade diagnostics.
+"""rmot.lang: the .rmot language and the vocabulary every stage shares; the bottom layer, which
+imports no other rmot folder (pyproject's layer contract, `lint-imports`).
 
     from rmot.lang import parse_text
     result = parse_text(source, "cell.rmot")   # ParseResult(module: ast.Module | None, diagnostics)
 
-The grammar is lang/grammar/rmot.lark (lark LALR); `ast` holds the frozen node types;
-`codes` the E0xx diagnostic codes; `diagnostics` and `source` the shared Span/Diagnostic types.
+The language: the grammar is lang/grammar/rmot.lark (lark LALR: _lalr.py, _tables.py, lexer,
+parse, _build); `ast` holds the frozen node types; `codes` the E0xx diagnostic codes;
+`diagnostics` and `source` the shared Span/Diagnostic types; units, record (@record values).
+The vocabulary the later stages read: ir (the checked program, SI units), ir_tree (which
+instruction holds which bodies: the one IR walker), plan_types (the Plan: the planner's
+hand-off), payload (the load on a flange: one model for planner, verification and backends),
+check_codes / cache_codes (the check stage's and the caches' diagnostic codes),
+motion_kinds (tables keyed by motion kind are complete), model_spec (a cell's `model` robot as
+data), vendors (the one registry of --target names), atomic (the one file writer), jit (numba
+kernels that also run as plain Python), cache_seal (the cache directory and its seal).
 """
 
 from __future__ import annotations

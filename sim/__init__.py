@@ -1,4 +1,4 @@
-"""rmot.sim: the physical world of a Plan: verification (collisions, limits) and rendering.
+"""rmot.sim: the physical world of a Plan: robots, verification (collisions, limits), rendering.
 
 Public API: `verify(plan, *, clearance=None) -> Report`, `Report`, `load_mesh(mesh)`.
 Imported lazily so `rmot.sim.meshio` and `rmot.sim.render` do not pull in pinocchio.
@@ -9,9 +9,10 @@ bounds.py (sampled collision and clearance with a no-miss guarantee between samp
 exact.py (exact distances, coal), limits.py (joint position, speed, acceleration, torque);
 report.py (the Report as text, JSON, JUnit, SARIF), report_html.py, timing_report.py (what a
 cycle time assumes) and plots.py; meshio.py reads mesh files. render/ draws stills,
-animations and findings; design/ holds the cell design studies (reach maps, robot
-comparison, base placement), which call the planner. sim imports the compiler's vocabulary,
-robots and planner, never the command line or the backends (pyproject's layer contract).
+animations and findings; robots/ is the robot library and kinematics (FK, Jacobians,
+closed-form and numeric IK, IK branches, dynamics with pinocchio); free/ finds the
+collision-free paths of `move free`. sim imports only lang (the vocabulary), never the
+planner, the command line or the backends (pyproject's layer contract).
 """
 
 from __future__ import annotations

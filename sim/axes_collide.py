@@ -1,7 +1,7 @@
 """Collisions of what external axes move: a robot on a track, fixtures on a positioner.
 
 A body rides on a mechanism when its robot rides on a track or the fixture is mounted `on` a
-mechanism (compiler/ir_axes.py). Its world pose at time t is its pose with the axes at home
+mechanism (lang/ir_axes.py). Its world pose at time t is its pose with the axes at home
 (what the scene holds) moved by the mechanism's motion since home:
     pose(t) = flange(axes(t)) * flange(home)^-1 * pose_home(t).
 Two bodies on the same mechanism keep their relative pose, so their pair stays with the
@@ -18,9 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from rmot.compiler.axis_motion import axis_samples, task_axes
-from rmot.compiler.ir_axes import ExternalAxes
-from rmot.compiler.plan_types import TaskPlan
+from rmot.lang.axis_motion import axis_samples, task_axes
+from rmot.lang.ir_axes import ExternalAxes
+from rmot.lang.plan_types import TaskPlan
 from rmot.sim.collide import PairHit, Timeline, _runs
 from rmot.sim.exact import ExactPair
 from rmot.sim.scene import Body, Scene

@@ -24,7 +24,7 @@ from collections.abc import Collection, Iterable
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.corner_vendors import BOUND_VENDORS, SPHERE_VENDORS

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import coal
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.sim.meshio import MeshData, is_flat
 
 if TYPE_CHECKING:  # for annotations only: sim/scene imports this module

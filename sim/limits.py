@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 from rmot.lang.record import record
 
 __all__ = ["LimitHit", "check_limits", "joint_torques"]

@@ -27,7 +27,7 @@ from stat import S_ISREG
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.step import STEP_SUFFIXES, StepError, read_step
@@ -70,7 +70,7 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
         with open(path, "rb"):  # an unreadable file is said to be unreadable, not "not a valid STL"
             pass
     except OSError as exc:
-        from rmot.compiler import codes as check_codes
+        from rmot.lang import check_codes as check_codes
 
         return _error(mesh, check_codes.UNREADABLE, f"mesh file must be readable (got {exc.strerror or exc} for '{path}')")
     try:
@@ -79,7 +79,7 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
         return _error(mesh, exc.code, exc.message)
     extent = float(np.max(np.abs(vertices))) * float(mesh.scale) if vertices.size else 0.0
     if not extent <= _MAX_EXTENT_M:  # also NaN: a scaled mesh of 1e300 m crashed the collision library
-        from rmot.compiler import codes as check_codes
+        from rmot.lang import check_codes as check_codes
 
         return _error(mesh, check_codes.PHYSICAL_RANGE, f"mesh must lie within {_MAX_EXTENT_M:g} m of its origin once scaled "
                       f"(got a vertex {extent:.3g} m away; check its unit or scale)")

@@ -28,8 +28,8 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree, plan_types
-from rmot.compiler.ir_tree import describe_iteration, iteration_paths
+from rmot.lang import ir, ir_tree, plan_types
+from rmot.lang.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.sim import codes

@@ -25,8 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree
-from rmot.compiler.plan_types import Plan, TaskPlan
+from rmot.lang import ir, ir_tree
+from rmot.lang.plan_types import Plan, TaskPlan
 
 __all__ = ["KINDS", "PlotData", "figure_bytes", "plot_data"]
 

@@ -142,7 +142,7 @@ _TASK: dict[str, Any] = {
     },
 }
 
-# A task's optional `dynamics` block (`rmot check --dynamics`; rmot.sim.design.dynamics_text).
+# A task's optional `dynamics` block (`rmot check --dynamics`; rmot.compiler.design.dynamics_text).
 _DYNAMICS: dict[str, Any] = {
     "type": "object",
     "required": ["model", "joints", "note"],

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.sim.report import GUARANTEE
 
@@ -155,7 +155,7 @@ def _cell_tables(plan: Any, robots: dict[str, Any]) -> str:
 
 ASSUMPTIONS = (
     "Joint positions, speeds and accelerations are checked against the robot library's data (sources in the robot table); "
-    "vendors publish no accelerations, so those are estimates (rmot.compiler.robots.library).",
+    "vendors publish no accelerations, so those are estimates (rmot.sim.robots.library).",
     "Torques come from inverse dynamics (RNEA) where the robot model has inertias, with the heaviest tool of the task as "
     "a point mass half way along the flange-to-TCP vector.",
     "The motion is the planner's time-optimal trajectory sampled every {step:g} ms; a real controller's own planner "

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.meshio import MeshData, load_mesh
@@ -60,7 +60,7 @@ class Body:
 @dataclass(frozen=True, eq=False)
 class RobotEntry:
     name: str
-    robot: Any  # rmot.compiler.robots.Robot (or any object with the same API)
+    robot: Any  # rmot.sim.robots.Robot (or any object with the same API)
     base: np.ndarray  # (4, 4) base in world
     prismatic: np.ndarray  # (dof,) bool
 
@@ -97,7 +97,7 @@ class Scene:
         the same product either way, the same floats; the first chunk is at least the FK
         kernel's compile threshold, so it takes the same (compiled or interpreted) form as
         one call for all samples would."""
-        from rmot.compiler.robots.fastdls import JOINT_FRAMES
+        from rmot.sim.robots.fastdls import JOINT_FRAMES
 
         entry = self.robots[robot]
         q = np.atleast_2d(np.asarray(q, dtype=np.float64))
@@ -122,7 +122,7 @@ class Scene:
 
 def load_robots(cell: ir.Cell) -> tuple[dict[str, Any], tuple[Diagnostic, ...]]:
     """Load every robot of the cell through the robot library; failures become diagnostics."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     robots: dict[str, Any] = {}
     diags: list[Diagnostic] = []

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 
 __all__ = ["ASSUMPTIONS", "ASSUMPTIONS_LINE", "timing_json"]
 

@@ -5,7 +5,7 @@ overlap in time); every `if` variant is checked against the fixtures, its own ro
 other robots (on their main timelines at the same times). A robot of the cell without a task
 stands still at its zero configuration (clipped to its limits). Every tool a task names is
 treated as mounted for the whole task (tool changes are not modelled); the torque check's
-payload is the heaviest tool with the heaviest set of parts held at once (compiler/payload.py,
+payload is the heaviest tool with the heaviest set of parts held at once (lang/payload.py,
 the one model the planner and the backends read too).
 
 The no-miss guarantee between samples is the distance bound in collide.py: a contact
@@ -19,8 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree, payload, plan_types
-from rmot.compiler.ir_tree import describe_iteration, iteration_paths
+from rmot.lang import ir, ir_tree, payload, plan_types
+from rmot.lang.ir_tree import describe_iteration, iteration_paths
 from rmot.lang.diagnostics import Amount, Diagnostic, Severity
 from rmot.lang.source import Span
 from rmot.sim import codes
@@ -289,13 +289,13 @@ def _limits(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None 
 
 def _estimated_torque(robot: Any) -> bool:
     """Whether the robot's torque ratings are an estimate (its `effort` source says so,
-    compiler/robots/dynamics.py): an excess over them is a warning (W342), not an error."""
+    sim/robots/dynamics.py): an excess over them is a warning (W342), not an error."""
     source: str = dict(getattr(robot, "sources", ())).get("effort", "")
     return source.startswith("estimate")
 
 
 def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> tuple[float, np.ndarray | None]:
-    """The task's load (compiler/payload.task_load: its heaviest tool at ir.payload_cog, the
+    """The task's load (lang/payload.task_load: its heaviest tool at ir.payload_cog, the
     point every backend writes as the tool's payload, plus the heaviest set of parts it holds at
     once, at their centres) as a point mass in the last joint's frame."""
     load = payload.task_load(plan, tp)

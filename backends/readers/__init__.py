@@ -14,7 +14,7 @@ from collections.abc import Callable
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
-from rmot.compiler.ir import Pose
+from rmot.lang.ir import Pose
 from rmot.backends.readers.model import Document, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.input_file import NotRegularFile, read_regular

@@ -16,7 +16,7 @@ from difflib import SequenceMatcher
 from rmot.backends.readers.model import (
     Call, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, walk,
 )
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["diff_documents", "TOLERANCE_MM", "TOLERANCE_DEG"]
 

@@ -26,7 +26,7 @@ from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Native, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
 from rmot.backends.readers.rapid import mm
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["read_fanuc"]
 

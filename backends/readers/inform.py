@@ -24,7 +24,7 @@ from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
 from rmot.backends.readers.rapid import mm
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["read_inform", "PL_MM"]
 

@@ -23,7 +23,7 @@ import numpy as np
 from rmot.backends.inform import rconf
 from rmot.backends.readers.model import Document, Move, Stmt, Target
 from rmot.backends.readers.writer import map_leaves
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["resolve_rconf"]
 

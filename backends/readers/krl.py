@@ -27,7 +27,7 @@ from rmot.backends.readers.model import (
     Routine,
 )
 from rmot.backends.readers.rapid import mm, num_text, pose_expr
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
 

@@ -15,7 +15,7 @@ from collections.abc import Mapping
 
 from rmot.backends.readers.common import number, split_top
 from rmot.backends.readers.model import Cond, Where
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.record import record
 
 __all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond"]

@@ -9,7 +9,7 @@ are `ir.Pose` (metres and a w-first quaternion, the IR's own form).
 
 from __future__ import annotations
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.record import record
 

@@ -36,7 +36,7 @@ from dataclasses import replace
 from rmot.backends.readers import codes
 from rmot.backends.readers.model import Document, FileCount, Grip, Native, Stmt, Where
 from rmot.backends.readers.writer import map_leaves
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span

@@ -23,7 +23,7 @@ from rmot.backends.readers.model import (
     For, Routine,
 )
 from rmot.backends.readers.rapid_text import Statement, literal, statements
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["read_rapid", "branch_of_cfx", "pose_expr", "num_text", "mm"]
 

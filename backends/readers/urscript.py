@@ -23,7 +23,7 @@ from rmot.backends.readers.model import (
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["read_urscript", "ur_pose"]
 

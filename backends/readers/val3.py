@@ -25,7 +25,7 @@ from rmot.backends.readers.model import (
     Call, Cond, For, FrameData, If, Move, Pulse, Routine, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where,
 )
 from rmot.backends.readers.rapid import mm
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["read_val3"]
 

@@ -19,7 +19,7 @@ from rmot.backends.readers.model import (
     Where, While, walk,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span

@@ -13,12 +13,12 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from rmot.compiler.atomic import write_atomic, write_text
+from rmot.lang.atomic import write_atomic, write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 from rmot.lang.record import record
 
 if TYPE_CHECKING:  # the heavy stages load only when a check runs
-    from rmot.compiler.plan_types import Plan
+    from rmot.lang.plan_types import Plan
     from rmot.sim.report import Report
 
 __all__ = ["CheckOutcome", "check", "check_one", "parse_length"]
@@ -32,7 +32,7 @@ _UNIT = {"mm": 1e-3, "cm": 1e-2, "m": 1.0}
 class CheckOutcome:
     report: Report
     input_error: bool
-    dynamics: str = ""  # --dynamics: per-joint torque lines (rmot.sim.design.dynamics_text)
+    dynamics: str = ""  # --dynamics: per-joint torque lines (rmot.compiler.design.dynamics_text)
 
 
 def parse_length(text: str) -> float:
@@ -71,8 +71,8 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     if images:
         report = _render_images(plan, report, images)
     if dynamics:
-        from rmot.sim.design.dynamics_text import dynamics_json, dynamics_text
-        from rmot.sim.design.metrics import program_metrics
+        from rmot.compiler.design.dynamics_text import dynamics_json, dynamics_text
+        from rmot.compiler.design.metrics import program_metrics
 
         metrics = program_metrics(plan)
         blocks = dynamics_json(metrics)  # the JSON report's per-task `dynamics` (schema: sim/report.py)
@@ -99,7 +99,7 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
     try:
         os.makedirs(directory, exist_ok=True)
     except OSError as exc:  # a folder that cannot be made is a finding about the option, not a traceback
-        from rmot.compiler import codes as check_codes
+        from rmot.lang import check_codes as check_codes
 
         why = Diagnostic(check_codes.OUTPUT_FAILED, Severity.ERROR,
                          f"images folder '{directory}' must be a folder that can be made (got {exc.strerror or exc})", None)

@@ -8,7 +8,7 @@ for an arm that does not verify), worst joint-limit margin, worst manipulability
 against the rated torque.
 
 Exit codes: 0 at least one arm verifies; 1 none does; 2 bad input (E80x diagnostics of
-sim/design/codes.py). An arm that does not load is that arm's finding (E320), not an input error.
+compiler/design/codes.py). An arm that does not load is that arm's finding (E320), not an input error.
 """
 
 from __future__ import annotations
@@ -115,9 +115,9 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
     from rmot.compiler.cli.design_errors import fail, fail_code
     from rmot.compiler.frontend import load_program
     from rmot.lang.diagnostics import render_all
-    from rmot.sim.design import codes
-    from rmot.sim.design.compare import run_arm, slot_of
-    from rmot.sim.design.study import OptionError, parse_region
+    from rmot.compiler.design import codes
+    from rmot.compiler.design.compare import run_arm, slot_of
+    from rmot.compiler.design.study import OptionError, parse_region
 
     loaded = load_program(program, cell=cell, project_root=project_root, require_program=True)
     if loaded.has_errors or loaded.program is None:
@@ -162,9 +162,9 @@ def _known_arms(keys: tuple[str, ...]) -> None:
     command with E804 (as `rmot reach` and `rmot place` do); a file that does not load stays a
     per-arm finding (E320) in the table."""
     from rmot.compiler.cli.design_errors import fail_code
-    from rmot.compiler.robots import RobotError, load_robot
-    from rmot.compiler.robots.codes import UNKNOWN_ROBOT
-    from rmot.sim.design import codes
+    from rmot.sim.robots import RobotError, load_robot
+    from rmot.sim.robots.codes import UNKNOWN_ROBOT
+    from rmot.compiler.design import codes
 
     for key in keys:
         try:
@@ -177,10 +177,10 @@ def _known_arms(keys: tuple[str, ...]) -> None:
 
 def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[Any, str]:
     """The program with arm `key` placed by `rmot place`'s search (unchanged if none verifies)."""
-    from rmot.compiler.robots import RobotError, load_robot
-    from rmot.sim.design.metrics import substitute_robot
-    from rmot.sim.design.place import place, rebase
-    from rmot.sim.design.study import parse_region
+    from rmot.sim.robots import RobotError, load_robot
+    from rmot.compiler.design.metrics import substitute_robot
+    from rmot.compiler.design.place import place, rebase
+    from rmot.compiler.design.study import parse_region
 
     bounds = parse_region(region)  # parsed once already in compare()
     try:

@@ -25,19 +25,19 @@ from typing import TYPE_CHECKING
 
 import click
 
-from rmot.compiler.vendors import targets as registered_targets
+from rmot.lang.vendors import targets as registered_targets
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 from rmot.lang.record import record
 
 if TYPE_CHECKING:
-    from rmot.compiler import ir
+    from rmot.lang import ir
     from rmot.lang.diagnostics import Diagnostic
 
 __all__ = ["CompileOutcome", "compile_", "compile_program", "write_all"]
 
 
 class _Targets(click.Choice):  # type: ignore[type-arg]
-    """click.Choice over the target registry (compiler/vendors.py) as it is when the
+    """click.Choice over the target registry (lang/vendors.py) as it is when the
     option is read, so a backend registered after import is a valid --target."""
 
     def __init__(self) -> None:
@@ -104,7 +104,7 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
             continue
         clash = _case_clash(result.files)
         if clash:
-            from rmot.compiler import codes
+            from rmot.lang import check_codes as codes
             from rmot.lang.diagnostics import Diagnostic, Severity
 
             msg = (f"{target}: output files must have names that differ also without regard to case (got "
@@ -119,11 +119,11 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
 def controller_refusals(target: str, cell: ir.Cell) -> tuple[Diagnostic, ...]:
     """E480/E481 at each robot of the cell whose joint values a `target` controller cannot take
     as they are: a cell model or URDF arm that declares no controller, or declares another
-    maker's (compiler/robots/controller.py). Library arms carry their vendor's conventions
+    maker's (sim/robots/controller.py). Library arms carry their vendor's conventions
     (another brand's arm is W415, backends/base.py); data formats (csv, json) need none."""
     from rmot.backends import codes as backend_codes
     from rmot.backends.controller_data import TARGET_BRANDS
-    from rmot.compiler import ir
+    from rmot.lang import ir
     from rmot.lang.diagnostics import Diagnostic, Severity
 
     brand = TARGET_BRANDS.get(target)
@@ -131,8 +131,8 @@ def controller_refusals(target: str, cell: ir.Cell) -> tuple[Diagnostic, ...]:
     if brand is None or not own_models:
         return ()
     # the robot package loads pinocchio: only for a cell that has its own arms
-    from rmot.compiler.robots import RobotError, load_robot
-    from rmot.compiler.robots.controller import ANY, MAKERS
+    from rmot.sim.robots import RobotError, load_robot
+    from rmot.sim.robots.controller import ANY, MAKERS
     out = []
     for robot in own_models:
         try:
@@ -159,7 +159,7 @@ def controller_refusals(target: str, cell: ir.Cell) -> tuple[Diagnostic, ...]:
 
 def target_word(brand: str) -> str:
     """The cell's word for a maker (the inverse of controller.MAKERS)."""
-    from rmot.compiler.robots.controller import MAKERS
+    from rmot.sim.robots.controller import MAKERS
 
     return next(word for word, name in MAKERS.items() if name == brand)
 

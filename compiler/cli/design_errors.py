@@ -1,5 +1,5 @@
 """How the design commands (`rmot reach`, `rmot place`, `rmot compare`) end on bad input: a
-diagnostic with its registered code (sim/design/codes.py), rendered `rmot: error[E80x]: ...`
+diagnostic with its registered code (compiler/design/codes.py), rendered `rmot: error[E80x]: ...`
 (no span: the value came from a command-line option, which the message names), exit 2."""
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ def fail_code(code: Any, message: str) -> NoReturn:
 
 
 def fail_output(what: str, path: str, exc: OSError) -> NoReturn:
-    """An -o file that cannot be written: the project's E520 (rmot.compiler.codes.OUTPUT_FAILED)."""
+    """An -o file that cannot be written: the project's E520 (rmot.lang.check_codes.OUTPUT_FAILED)."""
     from rmot.compiler.cli.oserrors import output_failed
 
     click.echo(output_failed(what, path, exc), err=True)

@@ -36,7 +36,7 @@ def _fail(message: str, path: str) -> None:
 
 def _compiled(source: str, vendor: str, cell: str | None, workdir: str) -> tuple[list[str], dict[str, str]]:
     """Compile `source` for `vendor` into `workdir`: (files to read, temp path -> shown name)."""
-    from rmot.compiler.atomic import write_text
+    from rmot.lang.atomic import write_text
     from rmot.compiler.cli.compile_cmd import compile_program
     from rmot.lang.diagnostics import render
 

@@ -23,8 +23,8 @@ if TYPE_CHECKING:
     import numpy as np
 
     from rmot.backends.readers.model import Document
-    from rmot.compiler import ir
-    from rmot.compiler.ir import Pose
+    from rmot.lang import ir
+    from rmot.lang.ir import Pose
 
 __all__ = ["import_", "DEFAULT_MODELS"]
 
@@ -38,8 +38,8 @@ def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ..
     --robot), None where it does not load: a reader then keeps the joint shares it cannot derive."""
     if not model:
         return None
-    from rmot.compiler.robots.errors import RobotError
-    from rmot.compiler.robots.loader import load_robot
+    from rmot.sim.robots.errors import RobotError
+    from rmot.sim.robots.loader import load_robot
 
     try:
         robot = load_robot(model)
@@ -54,8 +54,8 @@ def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -
     if doc.vendor != "inform" or not model:
         return doc
     from rmot.backends.readers.inform_conf import resolve_rconf
-    from rmot.compiler.robots.errors import RobotError
-    from rmot.compiler.robots.loader import load_robot
+    from rmot.sim.robots.errors import RobotError
+    from rmot.sim.robots.loader import load_robot
 
     try:
         robot = load_robot(model)
@@ -73,7 +73,7 @@ def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -
 def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object] | str:
     """(SignalMap, robot name, ir.Cell) of a cell file, or the error text."""
     from rmot.backends.readers.writer import SignalMap
-    from rmot.compiler import ir
+    from rmot.lang import ir
     from rmot.compiler.frontend import load_program
     from rmot.lang.diagnostics import render_all
 
@@ -105,8 +105,8 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     from rmot.backends.readers.writer import (
         SignalMap, cell_stub, match_tools, program_text, rename_warnings, resolve_signals, stub_signals,
     )
-    from rmot.compiler import ir
-    from rmot.compiler.atomic import write_text
+    from rmot.lang import ir
+    from rmot.lang.atomic import write_text
     from rmot.lang.diagnostics import render
 
     found = _cell_signals(cell, robot) if cell is not None else None

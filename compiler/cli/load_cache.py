@@ -35,9 +35,9 @@ from typing import TYPE_CHECKING, Any
 from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
 
 if TYPE_CHECKING:
-    from rmot.compiler import ir
+    from rmot.lang import ir
     from rmot.compiler.frontend import FrontendResult
-    from rmot.compiler.plan_types import Plan
+    from rmot.lang.plan_types import Plan
 
 __all__ = ["FORMAT", "load", "load_key", "planned", "record"]
 

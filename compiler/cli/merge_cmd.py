@@ -265,8 +265,8 @@ def merge_reports_cmd(reports: tuple[str, ...], output: str | None) -> None:
 
 
 def _write_atomic(path: str, text: str) -> None:
-    """The one atomic writer (compiler/atomic.py); a failure is a MergeError (REPORT_UNWRITABLE)."""
-    from rmot.compiler.atomic import write_text
+    """The one atomic writer (lang/atomic.py); a failure is a MergeError (REPORT_UNWRITABLE)."""
+    from rmot.lang.atomic import write_text
 
     try:
         write_text(path, text)

@@ -9,7 +9,7 @@ __all__ = ["foreign_output_dir", "output_failed", "output_is_input"]
 
 def output_failed(what: str, path: str, exc: OSError) -> str:
     """The rendered E520 diagnostic for an output `path` that could not be written."""
-    from rmot.compiler import codes
+    from rmot.lang import check_codes as codes
     from rmot.lang.diagnostics import Diagnostic, Severity, render
 
     reason = exc.strerror or exc.__class__.__name__
@@ -23,7 +23,7 @@ def output_is_input(what: str, output: str, inputs: tuple[str | None, ...]) -> s
     the same file through a hard link), else None: checked before any work, nothing written."""
     import os
 
-    from rmot.compiler import codes
+    from rmot.lang import check_codes as codes
     from rmot.lang.diagnostics import Diagnostic, Severity, render
 
     target = os.path.realpath(output)
@@ -45,7 +45,7 @@ def output_is_input(what: str, output: str, inputs: tuple[str | None, ...]) -> s
 def foreign_output_dir(exc: OSError) -> str | None:
     """The rendered E565 diagnostic when `exc` is the writer's refusal to replace a vendor
     folder rmot did not create (compiler/cli/output_tree.py), else None."""
-    from rmot.compiler import codes
+    from rmot.lang import check_codes as codes
     from rmot.compiler.cli.output_tree import MARKER, ForeignOutputDir
     from rmot.lang.diagnostics import Diagnostic, Severity, render
 

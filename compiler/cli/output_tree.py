@@ -20,7 +20,7 @@ import itertools
 import os
 import shutil
 
-from rmot.compiler.atomic import write_new, write_text
+from rmot.lang.atomic import write_new, write_text
 
 __all__ = ["MARKER", "ForeignOutputDir", "write_vendor_dirs"]
 
@@ -129,7 +129,7 @@ def write_vendor_dirs(outdir: str, vendors: dict[str, dict[str, str]]) -> list[s
             for rel, text in files.items():
                 path = os.path.join(stage, *rel.split("/"))
                 os.makedirs(os.path.dirname(path), exist_ok=True)
-                write_new(path, text)  # the one writer (compiler/atomic.py): umask mode, fsync
+                write_new(path, text)  # the one writer (lang/atomic.py): umask mode, fsync
             _fsync_dir(stage)
             _swap(stage, final, outdir, vendor)
         finally:

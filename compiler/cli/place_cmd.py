@@ -3,10 +3,10 @@
 Finds a base pose for the cell's robot NAME in the region with which every program verifies
 (reach, branches, joint limits, collisions, payload), the best by --objective; writes a copy
 of the cell with that `at` pose, prints the pose, the objective and the runners-up. When no
-pose works it says what fails where. See rmot.sim.design.place for the search.
+pose works it says what fails where. See rmot.compiler.design.place for the search.
 
 Exit codes: 0 a pose was found and written; 1 no pose in the region verifies; 2 bad input
-(E80x diagnostics of sim/design/codes.py; an unwritable -o file: E520).
+(E80x diagnostics of compiler/design/codes.py; an unwritable -o file: E520).
 """
 
 from __future__ import annotations
@@ -42,10 +42,10 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
     from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
     from rmot.compiler.frontend import load_program
     from rmot.lang.diagnostics import render_all
-    from rmot.sim.design import codes
-    from rmot.sim.design.cell_edit import with_robot_at
-    from rmot.sim.design.place import place as search
-    from rmot.sim.design.study import OptionError, parse_region
+    from rmot.compiler.design import codes
+    from rmot.compiler.design.cell_edit import with_robot_at
+    from rmot.compiler.design.place import place as search
+    from rmot.compiler.design.study import OptionError, parse_region
     from rmot.sim.render.files import write_text
 
     try:

@@ -13,7 +13,7 @@ import re
 
 import click
 
-from rmot.compiler.atomic import write_text
+from rmot.lang.atomic import write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 
 __all__ = ["plan", "parse_step", "trajectory_csv"]

@@ -40,7 +40,7 @@ def fail(*diagnostics: Any) -> None:
 def write_or_fail(path: str, data: bytes) -> None:
     from rmot.lang.diagnostics import Diagnostic, Severity
     from rmot.sim.render import codes as picture_codes
-    from rmot.compiler.atomic import write_bytes
+    from rmot.lang.atomic import write_bytes
 
     try:
         write_bytes(path, data)

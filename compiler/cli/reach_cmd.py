@@ -7,7 +7,7 @@ PNG / SVG: two slices, a top view at height --z (default: the base's height) and
 view through the base (y = the base's y). HTML: the 3-D point cloud, interactive.
 Every point is coloured by manipulability relative to the best on the map (0 = singular).
 Exit codes: 0 written; 2 bad input (cell errors, unknown robot or tool, bad option: E80x
-diagnostics of sim/design/codes.py; an unwritable -o file: E520).
+diagnostics of compiler/design/codes.py; an unwritable -o file: E520).
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ def _map(study: Any, points: Any, step: float, rot: Any, label: str) -> Any:
     """IK at every point for a fixed orientation; forward sampling for any orientation."""
     import numpy as np
 
-    from rmot.sim.design.reach import reach_map, sampled_map
+    from rmot.compiler.design.reach import reach_map, sampled_map
 
     if rot is None:
         planar = bool(np.ptp(points, axis=0).min() < step / 2)  # a slice catches ~1/40 of the samples: draw more
@@ -67,9 +67,9 @@ def reach(cell: str | None, robot_name: str | None, output: str, tool: str | Non
           z_text: str | None, step_text: str | None, project_root: str | None) -> None:
     """Draw the reachable workspace of a robot, coloured by distance to singularity."""
     from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
-    from rmot.sim.design import codes
-    from rmot.sim.design.reach import reach_bound
-    from rmot.sim.design.study import OptionError, fixture_meshes, parse_angles, rotation_rpy, study_for
+    from rmot.compiler.design import codes
+    from rmot.compiler.design.reach import reach_bound
+    from rmot.compiler.design.study import OptionError, fixture_meshes, parse_angles, rotation_rpy, study_for
 
     ext = os.path.splitext(output)[1].lower()
     if ext not in FORMATS:
@@ -113,8 +113,8 @@ MAX_GRID_POINTS = 2_000_000
 def _length(option: str, text: str | None) -> float | None:
     """A length option ('750mm') in metres, or None when not given; raises OptionError (E802)."""
     from rmot.compiler.cli.check_cmd import parse_length
-    from rmot.sim.design import codes
-    from rmot.sim.design.study import OptionError
+    from rmot.compiler.design import codes
+    from rmot.compiler.design.study import OptionError
 
     if text is None:
         return None
@@ -126,8 +126,8 @@ def _length(option: str, text: str | None) -> float | None:
 
 def _check_work(ext: str, step: float, bound: float, step_text: str) -> None:
     """A --step so small that the grid exceeds MAX_GRID_POINTS is refused (E808) before any work."""
-    from rmot.sim.design import codes
-    from rmot.sim.design.study import OptionError
+    from rmot.compiler.design import codes
+    from rmot.compiler.design.study import OptionError
 
     per_axis = 2 * bound / step + 1
     points = per_axis ** 3 if ext == ".html" else 2 * per_axis ** 2
@@ -139,19 +139,19 @@ def _check_work(ext: str, step: float, bound: float, step_text: str) -> None:
 
 def _draw(study: Any, ext: str, output: str, step: float | None, bound: float, rot: Any, z: float | None,
           label: str, caption: list[str], fixtures: list[Any]) -> None:
-    from rmot.sim.design.reach import grid_for, slice_grid
+    from rmot.compiler.design.reach import grid_for, slice_grid
 
     if ext == ".html":
         grid_step = step or bound / (12 if study.robot.has_closed_form or rot is None else 8)
         m = _map(study, grid_for(study.base, bound, grid_step), grid_step, rot, label)
-        from rmot.sim.design.reach_draw import reach_html
+        from rmot.compiler.design.reach_draw import reach_html
         from rmot.sim.render.files import write_text
 
         caption.append(f"grid step {grid_step * 1000:.0f} mm; {int(m.reached.sum())} of {len(m.points)} points reached")
         write_text(output, reach_html(m, fixtures, f"rmot reach: {label}", caption))
     else:
-        from rmot.sim.design.figure import to_png, to_svg
-        from rmot.sim.design.reach_draw import Panel, panels_figure
+        from rmot.compiler.design.figure import to_png, to_svg
+        from rmot.compiler.design.reach_draw import Panel, panels_figure
         from rmot.sim.render.files import write_png, write_text
 
         grid_step = step or bound / (40 if study.robot.has_closed_form or rot is None else 20)

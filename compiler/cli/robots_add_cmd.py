@@ -1,7 +1,7 @@
 """`rmot robots add TABLE`: a data sheet's DH table as a library-style arm definition.
 
 Prints the definition (or writes it atomically with -o) after checking it by FK against the
-table (compiler/robots/add_robot.py). Errors are located diagnostics (E547-E549, exit 2);
+table (sim/robots/add_robot.py). Errors are located diagnostics (E547-E549, exit 2);
 warnings (W547, W548) go to stderr and the definition is still written.
 """
 
@@ -25,8 +25,8 @@ __all__ = ["add_cmd"]
 def add_cmd(table: str, output: str | None, name: str | None, vendor: str | None, source: str,
             base_link: str | None, tip: str | None) -> None:
     """Turn a DH table (YAML/JSON) or a URDF (lang/REFERENCE.md) into a checked library definition."""
-    from rmot.compiler.atomic import write_text
-    from rmot.compiler.robots.add_robot import add_from_urdf
+    from rmot.lang.atomic import write_text
+    from rmot.sim.robots.add_robot import add_from_urdf
     from rmot.lang.diagnostics import render
 
     if table.lower().endswith(".urdf"):
@@ -38,7 +38,7 @@ def add_cmd(table: str, output: str | None, name: str | None, vendor: str | None
 
 
 def _from_table(table: str):  # type: ignore[no-untyped-def]
-    from rmot.compiler.robots.add_robot import add_from_dh
+    from rmot.sim.robots.add_robot import add_from_dh
 
     try:
         with open(table, encoding="utf-8") as f:

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 if TYPE_CHECKING:
     from rmot.compiler.frontend import FrontendResult
-    from rmot.compiler.plan_types import Plan
+    from rmot.lang.plan_types import Plan
     from rmot.lang.diagnostics import Diagnostic
     from rmot.sim.report import Report
 

@@ -46,8 +46,8 @@ from typing import TYPE_CHECKING, Any
 from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
 
 if TYPE_CHECKING:
-    from rmot.compiler import ir
-    from rmot.compiler.plan_types import Plan
+    from rmot.lang import ir
+    from rmot.lang.plan_types import Plan
     from rmot.sim.report import Report
 
 __all__ = ["FORMAT", "MAX_BYTES", "cached_verify", "entry_path", "scene_files", "verify_key"]
@@ -124,7 +124,7 @@ def _libraries() -> str:
 def scene_files(plan: Plan) -> list[str]:
     """Absolute paths of the mesh files the verification's scene reads: every ir.Mesh of the
     cell (fixtures, tools, parts) and every mesh solid of its robots (a URDF's meshes)."""
-    from rmot.compiler import ir
+    from rmot.lang import ir
 
     found: set[str] = set()
     stack: list[Any] = [plan.program.cell]
@@ -144,8 +144,8 @@ def scene_files(plan: Plan) -> list[str]:
 
 
 def _robot_meshes(cell: ir.Cell) -> list[str]:
-    from rmot.compiler import ir
-    from rmot.compiler.robots import load_robot
+    from rmot.lang import ir
+    from rmot.sim.robots import load_robot
 
     out = []
     for inst in cell.robots:

@@ -16,7 +16,7 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.lsp.index import SymbolIndex, build_index
 from rmot.lang import ast
 from rmot.lang.diagnostics import Diagnostic, Severity

@@ -17,7 +17,7 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.lsp.analysis import Analysis, lsp_range, uri_of
 from rmot.compiler.lsp.index import Symbol, contains, field_names
 from rmot.compiler.lsp.planning import MovePlan, PlanResult

@@ -16,7 +16,7 @@ from typing import Any
 
 from lsprotocol import types as lsp
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.record import record
 
 __all__ = ["MovePlan", "PlanJob", "PlanResult", "plan_document"]
@@ -75,7 +75,7 @@ def plan_document(path: str, text: str) -> PlanResult:
 
 def _robot_data(program: ir.Program, robot: str) -> tuple[tuple[str, ...], tuple[tuple[float, float], ...]]:
     """The robot's joint types ('R'/'P') and joint ranges (as the planner loads the robot)."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     for r in program.cell.robots:
         if r.name == robot:
@@ -89,7 +89,7 @@ def _robot_data(program: ir.Program, robot: str) -> tuple[tuple[str, ...], tuple
 
 
 def _limit_margin(q: tuple[float, ...], limits: tuple[tuple[float, float], ...]) -> tuple[int, float]:
-    """(1-based joint, distance) of the joint nearest an end of its range (sim/design/metrics.py
+    """(1-based joint, distance) of the joint nearest an end of its range (compiler/design/metrics.py
     computes the same over a whole trajectory)."""
     if len(limits) != len(q):
         return (0, 0.0)

@@ -10,8 +10,8 @@ from dataclasses import replace
 from itertools import count
 from typing import Iterator
 
-from rmot.compiler import ir
-from rmot.compiler.ir_tree import children, rebuilt
+from rmot.lang import ir
+from rmot.lang.ir_tree import children, rebuilt
 from rmot.compiler.passes.state import FrontendState
 
 __all__ = ["assign_uids", "number"]

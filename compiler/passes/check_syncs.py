@@ -11,7 +11,7 @@ single-task program's syncs are no-ops and are otherwise not checked.
 
 from __future__ import annotations
 
-from rmot.compiler import codes, ir, ir_tree
+from rmot.lang import check_codes as codes, ir, ir_tree
 from rmot.compiler.passes.state import FrontendState
 from rmot.lang.source import Span
 

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.lang.diagnostics import Code, Diagnostic, DiagnosticSink, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span
@@ -114,9 +114,9 @@ class RobotLookupError(Exception):
 
 
 def default_robot_loader(key: str) -> RobotInfo:
-    """The robot library (compiler.robots); imported on first use because pinocchio is heavy."""
+    """The robot library (sim.robots); imported on first use because pinocchio is heavy."""
     try:
-        from rmot.compiler.robots import RobotError, list_robots, load_robot
+        from rmot.sim.robots import RobotError, list_robots, load_robot
     except ImportError as exc:  # the library is not built yet: say so as a diagnostic
         raise RobotLookupError(f"the robot library is not available ({exc})") from None
     try:

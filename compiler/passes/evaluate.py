@@ -21,7 +21,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from rmot.compiler import codes, ir
+from rmot.lang import check_codes as codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.values import (
     article,

@@ -9,7 +9,7 @@ every 4 ms, so the 900 s the planner accepts are 225,000 samples).
 
 from __future__ import annotations
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.compiler.passes.context import Reporter
 from rmot.lang.source import Span
 

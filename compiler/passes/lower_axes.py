@@ -1,5 +1,5 @@
 """External axes in the cell and in a program: tracks, positioners, `on`, `with`, `ext(...)`,
-`move axes` -> compiler/ir_axes.py values and ir.Move.ext.
+`move axes` -> lang/ir_axes.py values and ir.Move.ext.
 
 Cell (`CellAxes`, used by lower_cell's builder):
   * `track NAME = linear(axis x, range(0mm, 4000mm)) speed V accel A at POSE` and
@@ -30,9 +30,9 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from rmot.compiler import codes_axes, ir
-from rmot.compiler.ir_axes import AXIS_DIRECTIONS, ExtAxis, ExternalAxes, Mechanism, Mount, axis_time
-from rmot.compiler.ir_tree import Runs, flow, walk
+from rmot.lang import codes_axes, ir
+from rmot.lang.ir_axes import AXIS_DIRECTIONS, ExtAxis, ExternalAxes, Mechanism, Mount, axis_time
+from rmot.lang.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
 from rmot.compiler.passes.limits import MAX_SIZE_M

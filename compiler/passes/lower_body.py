@@ -22,8 +22,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
-from rmot.compiler.vendors import controllers
-from rmot.compiler import codes_axes, codes, ir
+from rmot.lang.vendors import controllers
+from rmot.lang import codes_axes, check_codes as codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, Scope
 from rmot.compiler.passes.lower_cell import IO_DIRECTIONS
 from rmot.compiler.passes.evaluate import eval_expr, expect_bool, expect_integer, expect_quantity
@@ -32,7 +32,7 @@ from rmot.compiler.passes.modal import Modal, apply_setting, speed_modifier_warn
 from rmot.compiler.passes.lower_axes import ProgramAxes
 from rmot.compiler.passes.procs import bind_call
 from rmot.compiler.passes.runtime import TYPE_NAMES, RtLowering, expr_type, fits
-from rmot.compiler.ir_tree import children, rebuilt
+from rmot.lang.ir_tree import children, rebuilt
 from rmot.lang.source import Span
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
 from rmot.compiler.passes.turns import TURN_KEY, turn_arg
@@ -527,7 +527,7 @@ class TaskLowering:
         return ir.While(uid=0, condition=cond, body=body, span=s.span)
 
     def native(self, s: ast.NativeStmt) -> ir.Instr | None:
-        vendors = controllers()  # the target registry (compiler/vendors.py)
+        vendors = controllers()  # the target registry (lang/vendors.py)
         if s.vendor.name not in vendors:
             self.rep.unknown(s.vendor.name, "controller language", s.vendor.span, list(vendors),
                              codes.UNKNOWN_VENDOR)

@@ -18,7 +18,7 @@ import os
 from dataclasses import replace
 from pathlib import Path
 
-from rmot.compiler import codes, ir
+from rmot.lang import check_codes as codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLookupError, Scope
 from rmot.compiler.passes.urdf_paths import check_urdf_files
 from rmot.compiler.passes.lower_model import described_urdf
@@ -115,7 +115,7 @@ class _CellBuilder:
 
                 base_link, tip_link, maker = chain
                 parts = [path, base_link, tip_link] + ([maker] if maker is not None else [])
-                key = "urdf-chain:" + json.dumps(parts)  # compiler/robots/loader.py
+                key = "urdf-chain:" + json.dumps(parts)  # sim/robots/loader.py
                 source = ir.RobotSource(ir.RobotSourceKind.URDF_CHAIN, key)
         try:
             info = self.state.robot_loader(key)
@@ -304,7 +304,7 @@ class _CellBuilder:
 
     def _ModelDecl(self, s: ast.ModelDecl) -> None:
         from rmot.compiler.passes.lower_model import check_model_name, lower_model
-        from rmot.compiler.model_spec import model_key
+        from rmot.lang.model_spec import model_key
 
         name = s.name.name
         if name in self.models:

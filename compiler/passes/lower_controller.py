@@ -1,14 +1,14 @@
 """A model's controller conventions: `controller MAKER` and per joint `pendant(...)`.
 
 `controller kuka` names the maker whose pendant values the model's joint values are
-(compiler/robots/controller.py states what that declares); `pendant(sign=-1, zero=-90deg,
+(sim/robots/controller.py states what that declares); `pendant(sign=-1, zero=-90deg,
 coupled_to=2)` on a joint line gives how the joint's pendant value p drives its DH variable:
 θ = theta + sign·(p + p_coupled − zero) (a prismatic joint: d = d + sign·(p − zero)).
 """
 
 from __future__ import annotations
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity, match_args
 from rmot.compiler.passes.values import ANGLE, DIMENSIONLESS, LENGTH, Quantity
@@ -19,7 +19,7 @@ __all__ = ["controller_word", "declared_controller", "pendant_of", "record_penda
 
 def controller_word(item: ast.Setting, rep: Reporter) -> str | None:
     """The maker of `controller NAME` (a key of controller.MAKERS), None after E186."""
-    from rmot.compiler.robots.controller import MAKERS
+    from rmot.sim.robots.controller import MAKERS
 
     assert isinstance(item.value, ast.Ident)
     word = item.value.name.lower()
@@ -53,7 +53,7 @@ def record_pendant(call: ast.Call, index: int, kind: str, pendant: dict[int, tup
 
 def urdf_controller(value: ast.Expr, rep: Reporter) -> str | None:
     """The maker of `urdf(..., controller="abb")` (a key of controller.MAKERS), None after E186."""
-    from rmot.compiler.robots.controller import MAKERS
+    from rmot.sim.robots.controller import MAKERS
 
     if not isinstance(value, ast.String) or value.value.lower() not in MAKERS:
         shown = value.value if isinstance(value, ast.String) else "an expression"

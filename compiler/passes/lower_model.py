@@ -7,7 +7,7 @@ angles for range, angular speeds and accelerations (deg/s, deg/s^2); prismatic j
 lengths (mm, mm/s, mm/s^2). `flange POSE` (default identity) and `payload MASS` (rated
 payload, default none) may appear once each. Every number must be finite; speeds and
 accelerations > 0; range lo < hi; payload >= 0; 1 to MAX_JOINTS joints; dh and mdh rows
-are not mixed. See compiler/robots/model.py for the conventions.
+are not mixed. See sim/robots/model.py for the conventions.
 Optional per joint: `mass M` (the link's mass, >= 0, on every joint line or on
 none: E809) and `torque T` (the motor's rated torque, N*m, > 0; a force in N on a prismatic
 joint); ratings without masses cannot be checked (W801).
@@ -19,7 +19,7 @@ import math
 
 from collections.abc import Callable
 
-from rmot.compiler import codes, ir
+from rmot.lang import check_codes as codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.lower_controller import declared_controller, record_pendant, urdf_controller
 from rmot.compiler.passes.load_files import resolve_folder
@@ -28,7 +28,7 @@ from rmot.compiler.passes.limits import MAX_POSITION_M
 from rmot.compiler.passes.values import (ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, FORCE, LENGTH,
                                          MASS, SPEED, TORQUE, Dim, Quantity, example_unit,
                                          fmt_quantity)
-from rmot.compiler.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
+from rmot.lang.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSpec
 from rmot.lang import ast
 from rmot.lang.source import SourceFile, Span
 
@@ -286,7 +286,7 @@ def check_model_name(decl: ast.ModelDecl, rep: Reporter) -> None:
     """W135 when the model is named like a library robot: the cell's model is used (it shadows
     the library entry within this cell), as a local name shadows an outer one."""
     try:
-        from rmot.compiler.robots import list_robots
+        from rmot.sim.robots import list_robots
     except ImportError:  # the robot library is not available: nothing to shadow
         return
     name = decl.name.name
@@ -346,8 +346,8 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str | None, 
             return None
         names[key] = arg.value.value
     try:
-        from rmot.compiler.robots import RobotError
-        from rmot.compiler.robots.urdf import urdf_links
+        from rmot.sim.robots import RobotError
+        from rmot.sim.robots.urdf import urdf_links
 
         links = urdf_links(path)
     except (ImportError, RobotError):
@@ -364,7 +364,7 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str | None, 
             rep.unknown(names[key], f"URDF link ({key}=)", bound[key].value.span, list(links), codes.URDF_UNKNOWN_LINK)
             ok = False
     if ok:
-        from rmot.compiler.robots.urdf import urdf_chain_error
+        from rmot.sim.robots.urdf import urdf_chain_error
 
         problem = urdf_chain_error(path, names["base"], names["tip"])
         if problem is not None:

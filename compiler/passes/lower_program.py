@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from rmot.compiler import codes_axes, codes, ir
+from rmot.lang import codes_axes, check_codes as codes, ir
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.lower_body import TaskLowering
 from rmot.compiler.passes.lower_axes import check_axis_branches, program_axes, refuse_track_in_tasks

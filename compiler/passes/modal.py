@@ -24,7 +24,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from dataclasses import replace
 
-from rmot.compiler import codes, ir
+from rmot.lang import check_codes as codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
 from rmot.compiler.passes.limits import MAX_TCP_SPEED, MAX_ZONE_M, MIN_RATIO, MIN_TCP_ACCEL, MIN_TCP_SPEED, within

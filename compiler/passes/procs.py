@@ -17,7 +17,7 @@ chain as notes.
 
 from __future__ import annotations
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity, match_args
 from rmot.compiler.passes.state import FrontendState

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from rmot.compiler import codes, ir
+from rmot.lang import check_codes as codes, ir
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import BOOL_NAMES
 from rmot.compiler.passes.values import DIMENSIONLESS, BoolV, Quantity, article, type_name

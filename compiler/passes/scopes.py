@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.compiler.passes.context import Entry, Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr
 from rmot.compiler.passes.state import FrontendState, LoadedModule

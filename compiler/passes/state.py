@@ -6,7 +6,7 @@ The Reporter (diagnostics) and the robot loader are shared services, not results
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.passes.context import Entry, Reporter, RobotInfo, RobotLoader, Scope
 from rmot.lang import ast
 from rmot.lang.record import record

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.compiler.passes.context import Reporter, RobotInfo, Scope
 from rmot.compiler.passes.evaluate import eval_expr
 from rmot.compiler.passes.values import DIMENSIONLESS, Quantity, article, fmt_quantity, type_name

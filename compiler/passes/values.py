@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Union
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.record import record
 from rmot.lang.source import Span
 from rmot.lang.units import UNIT_TABLE

@@ -34,7 +34,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.compiler.passes.context import Reporter
 from rmot.compiler.passes.urdf_paths import _inside
 from rmot.lang.input_file import NotRegularFile, read_regular
@@ -292,7 +292,7 @@ def _xml_attr(text: str) -> str:
 
 
 def _write(text: str, stem: str) -> str:
-    from rmot.compiler.atomic import write_text
+    from rmot.lang.atomic import write_text
 
     digest = hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
     folder = Path(tempfile.gettempdir()) / f"rmot-descriptions-{os.getuid()}" / digest

@@ -1,6 +1,6 @@
 """Diagnostic codes of the planner (E220–E299 errors, W220+ warnings).
 
-E200–E219 are left to the kinematics library (compiler/robots); the planner starts at E220.
+E200–E219 are left to the kinematics library (sim/robots); the planner starts at E220.
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ TIMING_EXACT_STOP = Code("W225", "timing-exact-stop",
                          "a blended chain could not be timed as a whole; its corners became exact stops")
 
 # joint turns fixed by config(jN=...) (E170-E179 are the front end's and
-# the planner's; E170/E171 are in compiler/codes.py)
+# the planner's; E170/E171 are in lang/check_codes.py)
 TURN_RANGE_TOO_SMALL = Code("E172", "turn-joint-range",
                             "a turn is fixed on a joint whose range spans at most 360 deg")
 TURN_OUTSIDE_LIMITS = Code("E173", "turn-outside-limits",

@@ -21,12 +21,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from rmot.compiler.jit import Kernel
+from rmot.lang.jit import Kernel
 
 __all__ = ["CubicSpline"]
 
 # Thomas elimination in the interpreter up to this much work (knots x columns) per process,
-# compiled past it: +, -, *, / only, so both forms give the same floats (compiler/jit.py)
+# compiled past it: +, -, *, / only, so both forms give the same floats (lang/jit.py)
 _PY_WORK = 20_000
 
 
@@ -34,7 +34,7 @@ def _thomas(lower, diag, upper, rhs, out):  # type: ignore[no-untyped-def]
     """Solve the tridiagonal system row i: lower[i] x[i-1] + diag[i] x[i] + upper[i] x[i+1] =
     rhs[i] (lower[0], upper[n-1] unused) for every column of rhs (n, m); the solution is
     written into out (n, m) and returned (rows read and written as `row = a[i]; row[j]`: views
-    compiled, lists interpreted, see compiler/jit.py)."""
+    compiled, lists interpreted, see lang/jit.py)."""
     n = len(diag)
     m = len(rhs[0])
     cp = [0.0] * n

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["least_duration_s"]
 

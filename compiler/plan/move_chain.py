@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.plan.blend import ChainPath, blend_chain
 from rmot.compiler.plan.segments import Segment
 from rmot.compiler.plan.timing import (HoldPiece, PathPiece, Piece, TimingError, joint_move_piece,

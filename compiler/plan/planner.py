@@ -4,15 +4,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from rmot.compiler import ir, payload
-from rmot.compiler.axis_motion import axis_findings
+from rmot.lang import ir, payload
+from rmot.lang.axis_motion import axis_findings
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.least_time import least_duration_s
 from rmot.compiler.plan.sync import align, hold_variants, sample
 from rmot.compiler.plan.targets import initial_joints, unknown_starts
 from rmot.compiler.plan.timeline import TaskDraft, build_task, proc_records
 from rmot.compiler.plan import torque
-from rmot.compiler.plan_types import Plan, TaskPlan, Variant
+from rmot.lang.plan_types import Plan, TaskPlan, Variant
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.compiler.plan.robot_model import RobotModel
 
@@ -20,7 +20,7 @@ __all__ = ["plan_program"]
 
 
 def _load(key: str) -> RobotModel:
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     return load_robot(key)
 
@@ -101,7 +101,7 @@ def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: f
 
 def _too_long(program: ir.Program, total: float, step: float, bound: str, over: str = "") -> Diagnostic:
     """E124 at the first task: the timelines take `bound` `total` s, more than MAX_SAMPLES samples."""
-    from rmot.compiler import codes as check_codes
+    from rmot.lang import check_codes as check_codes
 
     msg = (f"the timelines of a program must take at most {MAX_SAMPLES * step:g} s in all at a step of {step * 1000:g} ms "
            f"({MAX_SAMPLES} samples; got {bound}{total:.6g} s{over}): split the program or shorten its waits and slow moves")
@@ -116,7 +116,7 @@ def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
 
 def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program, budget_s: float) -> TaskDraft:
     """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
-    robot has no torque ratings) with the payload's timing bound (compiler/payload.py); a path longer than
+    robot has no torque ratings) with the payload's timing bound (lang/payload.py); a path longer than
     `budget_s` is refused by _too_many_samples, so its timing stops there."""
     load = payload.timing_load(task, program.cell.parts)
     limits = torque.torque_limits(robot, load.mass if load else 0.0, load.at() if load else None)

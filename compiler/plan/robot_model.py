@@ -1,6 +1,6 @@
 """What the planner needs of a robot: the `RobotModel` protocol.
 
-compiler/robots/robot.Robot is the one implementation; the planner (compiler/plan) types its
+sim/robots/robot.Robot is the one implementation; the planner (compiler/plan) types its
 robot with this protocol instead of `object`, so a missing or misspelt attribute is a type
 error, and a test double (tests/plan) needs only these members.
 """
@@ -11,10 +11,10 @@ from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 if TYPE_CHECKING:
-    from rmot.compiler.robots.ik import IkResult
+    from rmot.sim.robots.ik import IkResult
 
 __all__ = ["RobotModel"]
 

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rmot.compiler import ir
-from rmot.compiler.motion_kinds import require_handlers
+from rmot.lang import ir
+from rmot.lang.motion_kinds import require_handlers
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path, line_path
 from rmot.compiler.plan.dense import DensePath, PathFailure, follow_path

@@ -18,7 +18,7 @@ import numpy as np
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.timeline import TaskDraft
 from rmot.compiler.plan.timing import HoldPiece, Piece
-from rmot.compiler.plan_types import Trajectory
+from rmot.lang.plan_types import Trajectory
 from rmot.lang.diagnostics import Diagnostic, Severity
 
 __all__ = ["align", "hold_variants", "sample"]

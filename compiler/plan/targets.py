@@ -33,8 +33,8 @@ from collections.abc import Iterator, Sequence
 
 import numpy as np
 
-from rmot.compiler import ir
-from rmot.compiler.ir_tree import Runs, flow
+from rmot.lang import ir
+from rmot.lang.ir_tree import Runs, flow
 from rmot.compiler.plan import codes
 from rmot.lang.diagnostics import Code, Severity
 from rmot.compiler.plan.robot_model import RobotModel

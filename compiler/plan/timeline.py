@@ -38,8 +38,8 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
-from rmot.compiler.ir_tree import (
+from rmot.lang import ir
+from rmot.lang.ir_tree import (
     describe_iteration, flow, handler, iteration_paths, require_kinds, walk, walk_bodies,
 )
 from rmot.compiler.plan import codes
@@ -48,7 +48,7 @@ from rmot.compiler.plan.torque import TorqueLimits
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
 from rmot.compiler.plan.timing import HoldPiece, Piece
-from rmot.compiler.plan_types import InstructionRecord, path_words
+from rmot.lang.plan_types import InstructionRecord, path_words
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.compiler.plan.robot_model import RobotModel
 
@@ -409,7 +409,7 @@ class _Builder:
 
 # ---------------------------------------------------------------- one handler per instruction kind
 # (the planner plans each kind its own way: a dispatcher, checked complete at import against
-# compiler/ir_tree.KINDS; `after` is what runs after the instruction, as in `_Builder.walk`)
+# lang/ir_tree.KINDS; `after` is what runs after the instruction, as in `_Builder.walk`)
 
 
 def _plan_loop(b: _Builder, instr: ir.Loop, after: _Rest) -> None:

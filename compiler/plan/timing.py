@@ -7,7 +7,7 @@ The motion model (lang/REFERENCE.md section 6) is acceleration-limited, with no 
 for every motion alike: the fastest timing of the joint path under the joint velocity and
 acceleration limits and, on linear and circular moves, the TCP path speed and TCP path
 acceleration limits. (Controllers publish no jerk limits; the joint acceleration limits are
-effective values, see compiler/robots/library.py.)
+effective values, see sim/robots/library.py.)
 
 * Joint moves from rest to rest (`joint_move_piece`): a straight line in joint space, all
   joints starting and stopping together; the fastest timing of a straight line is the

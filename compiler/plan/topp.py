@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from rmot.compiler.jit import Kernel
+from rmot.lang.jit import Kernel
 
 __all__ = ["CEILING", "CHECK", "CHECK_TORQUE", "PASSES", "Rows", "check", "check_torque", "solve",
            "static_ceiling"]
@@ -88,7 +88,7 @@ def static_ceiling(beta: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarr
 
 
 # The kernels below run as plain Python on small grids and compiled by numba on large ones
-# (compiler/jit.py: one function body either way). Thresholds: the work (grid points x rows,
+# (lang/jit.py: one function body either way). Thresholds: the work (grid points x rows,
 # times rows again for the pairwise ceiling) at which the compiled form's one-time cost per
 # process (~0.6 s: importing numba, loading its cache) is about what the interpreter would take.
 # A symmetric row (lo = -hi) goes through the same floating-point operations as before

@@ -17,9 +17,9 @@ Where they apply: a robot with inertia data whose model gives every joint a fini
 torque limit (`effortLimit`) — exactly where the verification checks torque (sim/limits.py),
 so a timing that respects them is one the torque check passes. Those limits are cited where a
 source gives them (UR, KUKA/kroshu, Stäubli descriptions; a cell `model`'s `torque`) and
-otherwise estimated (compiler/robots/dynamics.EFFORT_METHOD); `rmot robots show` names which.
+otherwise estimated (sim/robots/dynamics.EFFORT_METHOD); `rmot robots show` names which.
 
-The payload is compiler/payload.py's `timing_load` (the model every reader shares): the
+The payload is lang/payload.py's `timing_load` (the model every reader shares): the
 heaviest tool the task uses, its mass at ir.payload_cog, plus the heaviest set of parts it holds
 at once, which the planner, not knowing yet where on the tool a part is gripped, puts at the
 TCP of the tool that attaches it (the verification puts it at the part's centre, fixed at its

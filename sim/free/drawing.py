@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 SIZE = 260  # pixels per view
 _VIEWS = (("from above (x, y)", 0, 1), ("from the side (x, z)", 0, 2))
@@ -63,7 +63,7 @@ def _view(title: str, a: int, b: int, path: np.ndarray, vias: np.ndarray,
 
 def free_path_pictures(plan: Any) -> list[tuple[str, str]]:
     """(caption, SVG) per `move free` of a planned program, in program order."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     cell = plan.program.cell
     boxes = [(f.name, c) for f in cell.fixtures if (c := _corners(f.geometry, f.pose.matrix())) is not None]

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 from rmot.lang.record import record
 from rmot.sim import parts
 from rmot.sim.collide import PairHit, Timeline, candidate_pairs, check_timeline

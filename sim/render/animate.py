@@ -13,7 +13,7 @@ from collections.abc import Callable, Iterator, Sequence
 import numpy as np
 from PIL import Image
 
-from rmot.compiler.plan_types import Plan
+from rmot.lang.plan_types import Plan
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.files import write_atomic
 from rmot.sim.render.findings import Marking, active

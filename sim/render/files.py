@@ -1,11 +1,11 @@
-"""Atomic output files: the project's one writer (compiler/atomic.py), plus the PNG encoder."""
+"""Atomic output files: the project's one writer (lang/atomic.py), plus the PNG encoder."""
 
 from __future__ import annotations
 
 import numpy as np
 from PIL import Image
 
-from rmot.compiler.atomic import write_atomic, write_text
+from rmot.lang.atomic import write_atomic, write_text
 
 __all__ = ["write_atomic", "write_png", "write_text"]
 

@@ -14,8 +14,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rmot.compiler import ir, ir_tree
-from rmot.compiler.plan_types import Plan
+from rmot.lang import ir, ir_tree
+from rmot.lang.plan_types import Plan
 from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.tessellate import TriMesh, merge, tessellate
 from rmot.sim.render.transform import rotate_vectors, transform_points

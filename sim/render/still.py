@@ -6,7 +6,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from rmot.compiler.plan_types import Plan
+from rmot.lang.plan_types import Plan
 from rmot.lang.diagnostics import Diagnostic
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.caption import add_caption

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 __all__ = ["TriMesh", "box", "capsule", "cylinder", "from_indexed", "merge", "sphere", "tessellate"]
 

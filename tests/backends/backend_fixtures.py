@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from rmot.backends.base import Backend, EmitResult
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.source import Pos, SourceFile, Span
 

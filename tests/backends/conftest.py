@@ -18,7 +18,7 @@ from collections.abc import Callable
 import pytest
 from backend_fixtures import hand_plan
 
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 
 
 @pytest.fixture

@@ -20,7 +20,7 @@ from backend_fixtures import (
     motion,
     span_at,
 )
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 
 J, L = ir.MotionKind.JOINT, ir.MotionKind.LINEAR
 DOWN_Q = ir.Pose.from_xyz_rpy(0, 0, 0, math.pi, 0, 0).quaternion

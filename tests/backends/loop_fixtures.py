@@ -24,7 +24,7 @@ from backend_fixtures import (
     span_at,
 )
 
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 
 L_KIND, J_KIND = ir.MotionKind.LINEAR, ir.MotionKind.JOINT
 DOWN_Q = ir.Pose.from_xyz_rpy(0, 0, 0, math.pi, 0, 0).quaternion

@@ -13,7 +13,7 @@ import math
 import numpy as np
 from backend_fixtures import FRONT_UP_NOFLIP, deg, motion, span_at
 
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 
 GRIPPER_TCP = ir.Pose.from_xyz_rpy(0.01, -0.02, 0.15, 0.0, math.radians(10.0), math.radians(30.0))
 GRIPPER = ir.ToolRef("gripper", GRIPPER_TCP)
@@ -110,7 +110,7 @@ def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> pl
 
     Records carry q, robot.branch(q), the TCP pose and the flange pose, as the planner's do.
     """
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     robot = load_robot(robot_name)
     kinds = (ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR)
@@ -135,7 +135,7 @@ def fk_plan(robot_name: str, qs: np.ndarray, *, frame: ir.FrameRef = BASE) -> pl
 
 def sample_joints(robot_name: str, n: int, seed: int = 7) -> np.ndarray:
     """n joint vectors inside the limits (a 20 % margin), away from the wrist singularity."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     robot = load_robot(robot_name)
     rng = np.random.default_rng(seed)

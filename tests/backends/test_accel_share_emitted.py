@@ -15,10 +15,10 @@ import re
 import numpy as np
 from backend_fixtures import ROOT
 from rmot.backends import BACKENDS
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
-from rmot.compiler.robots.loader import load_robot
+from rmot.sim.robots.loader import load_robot
 
 PROGRAM = """program acc on r1 {
   move joint joints(0, 0, 0, 0, 45, 0) deg zone fine

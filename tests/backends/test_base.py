@@ -16,7 +16,7 @@ from rmot.backends import BACKENDS, TARGETS, controllers, targets
 from rmot.backends.base import (
     EmitResult, axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, rotation_vector, turn_bits,
 )
-from rmot.compiler import ir
+from rmot.lang import ir
 
 quaternions = st.tuples(*[st.floats(-1, 1) for _ in range(4)]).filter(
     lambda q: 0.1 < math.sqrt(sum(c * c for c in q)))

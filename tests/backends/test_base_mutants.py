@@ -16,7 +16,7 @@ from rmot.backends.base import (
     header_lines, key_value, source_ref,
 )
 from rmot.backends.task_context import unique
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 

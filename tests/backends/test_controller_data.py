@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, plan_types
-from rmot.compiler.robots.library import SPECS
+from rmot.lang import ir, plan_types
+from rmot.sim.robots.library import SPECS
 from rmot.lang.source import SourceFile
 
 CELL = """

@@ -11,7 +11,7 @@ from backend_fixtures import DOWN, FRONT_UP_NOFLIP, Q, cart, hand_plan, span_at
 
 from rmot.backends import BACKENDS, codes, controllers, targets
 from rmot.backends.base import DEFAULT_JOINT_ACCEL, DEFAULT_TCP_ACCEL, EmitResult
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.passes.modal import DEFAULT_MODAL
 
 ROBOT = {"rapid": "abb_irb120", "krl": "kuka_kr16", "fanuc": "fanuc_lrmate200id", "urscript": "ur5e",

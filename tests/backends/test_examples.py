@@ -17,7 +17,7 @@ import pytest
 from backend_fixtures import check_golden, example_plans, handshake_missing, sample_program
 
 from rmot.backends import BACKENDS
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 
 VENDORS = ("rapid", "krl", "fanuc")
 EXAMPLES = ("inspect", "pick_place", "handover")

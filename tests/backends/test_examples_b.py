@@ -12,7 +12,7 @@ import pytest
 from backend_fixtures import check_golden, example_plans, handshake_missing
 
 from rmot.backends import BACKENDS, controllers
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 
 VENDORS = ("urscript", "inform", "val3", "csv", "json")
 EXAMPLES = ("inspect", "pick_place", "handover")

@@ -13,7 +13,7 @@ from backend_fixtures import (
 
 from rmot.backends import codes
 from rmot.backends.fanuc_tp import FanucBackend, config_string, turn_number
-from rmot.compiler import ir
+from rmot.lang import ir
 
 FRAMES = ("UFRAME_NUM=0", "UTOOL_NUM=1")
 

@@ -15,7 +15,7 @@ import pytest
 from backend_fixtures import check_golden
 
 from rmot.backends import BACKENDS
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 from rmot.backends import controllers
 
 TOUR = Path(__file__).parent / "programs" / "tour.rmot"

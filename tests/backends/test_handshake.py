@@ -18,7 +18,7 @@ from rmot.backends.handshake import (
     SYNC_SIGNAL, HandshakePorts, HandshakeSet, HandshakeWait, check_handshake, handshake_note,
     handshake_ports, sync_as_handshake,
 )
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from rmot.backends import controllers
 
 PORTS = HandshakePorts(out=3, inp=4)

@@ -16,7 +16,7 @@ from pathlib import Path
 from click.testing import CliRunner
 
 from rmot.compiler.cli import cli
-from rmot.compiler.robots.loader import load_robot
+from rmot.sim.robots.loader import load_robot
 
 MODULE = """MODULE m
   CONST jointtarget a:=[[0,0,0,0,30,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];

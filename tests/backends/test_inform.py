@@ -13,7 +13,7 @@ from backend_fixtures import blocks as shared_blocks
 from plans_b import HOME_Q, PICK_POSE, cart, demo_plan, fk_plan, make_plan, move, record, sample_joints
 
 from rmot.backends.inform import InformBackend
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 
 GOLDEN = Path(__file__).parent / "golden" / "inform"
 J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
@@ -205,7 +205,7 @@ class TestRoundTrip:
     @pytest.mark.parametrize("robot_name", ["yaskawa_gp8", "abb_irb120"])
     def test_positions_and_rconf_match_fk_and_branch(self, robot_name: str) -> None:
         """Each position read back (minus the tool) is FK of its planned joints; RCONF decodes to the branch."""
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
         from plans_b import GRIPPER_TCP
 
         robot = load_robot(robot_name)
@@ -245,7 +245,7 @@ class TestJointTargetsAsCartesian:
     def test_rconf_selects_exactly_the_planned_joints(self) -> None:
         """Among every IK solution of a position (all branches and turns), the RCONF matches only the planned joints."""
         from rmot.backends.inform import rconf
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
 
         robot = load_robot("yaskawa_gp8")
         for q in sample_joints("yaskawa_gp8", 12, seed=11):

@@ -11,7 +11,7 @@ from backend_fixtures import (
 
 from rmot.backends import codes
 from rmot.backends.krl import KrlBackend
-from rmot.compiler import ir
+from rmot.lang import ir
 
 NULL = ("$TOOL=$NULLFRAME", "$BASE=$NULLFRAME")
 E = ",E1 0.0,E2 0.0,E3 0.0,E4 0.0,E5 0.0,E6 0.0"

@@ -24,7 +24,7 @@ from collections.abc import Callable
 import pytest
 
 from rmot.backends import BACKENDS
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 
 STOPS = """
 program stops on r1 {

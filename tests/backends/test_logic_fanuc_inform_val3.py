@@ -36,7 +36,7 @@ from logic_fixtures_d import (
 )
 from rmot.backends import BACKENDS
 from rmot.backends.base import EmitResult
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 from vendor_validators import check_fanuc, check_inform, check_val3
 
 VENDORS = ("fanuc", "inform", "val3")
@@ -651,7 +651,7 @@ def test_a_moving_arc_in_a_loop_is_unrolled_for_tp_and_inform_and_composed_for_v
     before it: a loop whose arc moves per iteration is unrolled there (W420, saying why);
     VAL3 composes both the via and the end point."""
     from backend_fixtures import GRIPPER, TABLE, cart, motion
-    from rmot.compiler.ir import MotionKind
+    from rmot.lang.ir import MotionKind
 
     def body(k: int, uid: int) -> tuple[ir.Instr, ...]:
         x = 0.1 + 0.05 * k

@@ -9,7 +9,7 @@ from backend_fixtures import FRONT_UP_NOFLIP
 from loop_fixtures import Q0, palletiser, place
 
 from rmot.backends import loops
-from rmot.compiler import ir
+from rmot.lang import ir
 
 
 def analyse(plan, loop, **kw):  # type: ignore[no-untyped-def]
@@ -103,7 +103,7 @@ def test_loop_plan_is_the_one_decision_of_every_vendor() -> None:
     the differing instruction; a vendor blocker's reason writes every iteration, at the loop."""
     from rmot.backends import loops as lp
     from rmot.backends.runtime import loop_plan
-    from rmot.compiler import ir as _ir
+    from rmot.lang import ir as _ir
 
     its = tuple(_ir.LoopIteration(value=v, body=()) for v in range(3))
     node = _ir.Loop(uid=1, var="i", first=0, last=3, iterations=its, span="loop")

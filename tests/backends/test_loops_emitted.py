@@ -19,7 +19,7 @@ from loop_witness import krl_targets, rapid_targets, ur_targets
 from test_vendor_validators import findings
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 
 PROGRAMS = Path(__file__).parent / "programs"
 LOOP_VENDORS = ("rapid", "krl", "urscript")

@@ -7,7 +7,7 @@ from backend_fixtures import span_at
 from rmot.backends.lowering import (
     count_instructions, routine_names, split_body,
 )
-from rmot.compiler import ir
+from rmot.lang import ir
 
 
 def _wait(uid: int) -> ir.WaitTime:

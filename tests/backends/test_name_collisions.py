@@ -11,7 +11,7 @@ from collections.abc import Callable
 import pytest
 
 from rmot.backends import BACKENDS
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 
 PROGRAM = """
 proc movel() {

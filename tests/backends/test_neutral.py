@@ -14,7 +14,7 @@ from plans_b import demo_plan
 
 from rmot.backends import BACKENDS
 from rmot.backends.neutral import CSV_DECIMALS, CsvBackend, JsonBackend
-from rmot.compiler import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree, plan_types
 
 GOLDEN = Path(__file__).parent / "golden" / "neutral"
 

@@ -11,7 +11,7 @@ from backend_fixtures import (
 
 from rmot.backends import codes
 from rmot.backends.rapid import RapidBackend
-from rmot.compiler import ir
+from rmot.lang import ir
 
 
 

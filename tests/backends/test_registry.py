@@ -22,9 +22,9 @@ from click.testing import CliRunner, Result
 from rmot import backends
 from rmot.backends import BACKENDS, controllers, targets
 from rmot.backends.base import Backend, TaskContext
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 from rmot.compiler.cli import cli
-from rmot.compiler.motion_kinds import MissingMotionHandler, require_handlers
+from rmot.lang.motion_kinds import MissingMotionHandler, require_handlers
 
 
 def _line(letter: str, rec: plan_types.InstructionRecord) -> str:

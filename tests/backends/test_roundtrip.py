@@ -14,7 +14,7 @@ from scipy.spatial.transform import Rotation
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.krl import KrlBackend
 from rmot.backends.rapid import RapidBackend
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 
 PROGRAM = """
 program roundtrip on r1 {
@@ -55,7 +55,7 @@ def plan(plan_from_text) -> plan_types.Plan:  # type: ignore[no-untyped-def]
 
 @pytest.fixture(scope="module")
 def robot(plan: plan_types.Plan):  # type: ignore[no-untyped-def]
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     return load_robot(plan.program.cell.robot("r1").source.load_key)
 

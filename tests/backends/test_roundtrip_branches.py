@@ -18,7 +18,7 @@ from scipy.spatial.transform import Rotation
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.krl import KrlBackend
 from rmot.backends.rapid import RapidBackend
-from rmot.compiler import ir
+from rmot.lang import ir
 
 fractions = st.lists(st.floats(0.02, 0.98), min_size=6, max_size=6)
 FRONT, BACK = ir.Shoulder.FRONT, ir.Shoulder.BACK
@@ -27,7 +27,7 @@ FLIP, NOFLIP = ir.Wrist.FLIP, ir.Wrist.NOFLIP
 
 
 def _robot(name: str):  # type: ignore[no-untyped-def]
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     return load_robot(name)
 

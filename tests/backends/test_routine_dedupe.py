@@ -10,7 +10,7 @@ import pytest
 
 from rmot.backends import BACKENDS
 from rmot.backends.lowering import routine_names
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 from rmot.backends import controllers
 
 PROGRAM = """

@@ -18,7 +18,7 @@ from backend_fixtures import (
 )
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 
 INT, NUM, BOOL = ir.ValueType.INT, ir.ValueType.NUM, ir.ValueType.BOOL
 COUNT = ir.VarRef("count", INT)

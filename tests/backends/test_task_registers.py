@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 from backend_fixtures import ROOT, example_plans
 from rmot.backends import BACKENDS
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
 

@@ -40,7 +40,7 @@ from functools import partial
 
 import pytest
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 
@@ -86,7 +86,7 @@ def planned_and_emitted(vendor: str) -> tuple[list[float], list[float], dict[str
         rec = tp.record(m.uid)
         assert rec is not None and rec.q_target is not None
         q6.append(math.degrees(float(rec.q_target[5])))
-    from rmot.compiler.robots.library import SPECS
+    from rmot.sim.robots.library import SPECS
 
     result = BACKENDS[vendor]().emit(plan)
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]

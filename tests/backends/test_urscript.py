@@ -16,7 +16,7 @@ from scipy.spatial.transform import Rotation
 
 from rmot.backends import BACKENDS
 from rmot.backends.urscript import UrScriptBackend
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 
 GOLDEN = Path(__file__).parent / "golden" / "urscript"
 J, L, C = ir.MotionKind.JOINT, ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR
@@ -166,7 +166,7 @@ class TestRoundTrip:
     @pytest.mark.parametrize("robot_name", ["ur5e", "ur10e"])
     def test_poses_and_joints_match_fk(self, robot_name: str) -> None:
         """Poses read back (scipy rotation vectors, set_tcp removed) equal FK of the planned joints."""
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
 
         robot = load_robot(robot_name)
         qs = sample_joints(robot_name, 9)

@@ -15,7 +15,7 @@ from plans_b import (HOME_Q, PICK_POSE, TABLE, cart, demo_plan, fk_plan, make_pl
                      move, record, sample_joints)
 
 from rmot.backends.val3 import Val3Backend
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 
 GOLDEN = Path(__file__).parent / "golden" / "val3"
 NS = {"d": "http://www.staubli.com/robotics/VAL3/Data/2", "p": "http://www.staubli.com/robotics/VAL3/Program/2"}
@@ -167,7 +167,7 @@ class TestRoundTrip:
     @pytest.mark.parametrize("frame", [None, TABLE], ids=["world", "table"])
     def test_points_joints_and_config(self, frame: ir.FrameRef | None) -> None:
         """Points read back (frame · point · tool⁻¹) equal FK of the planned joints; config decodes to the branch."""
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
 
         robot = load_robot("staubli_tx2_60")
         qs = sample_joints("staubli_tx2_60", 9)
@@ -200,7 +200,7 @@ class TestRoundTrip:
 
     def test_config_agrees_with_staubli_joint_signs(self) -> None:
         """Stäubli defines epositive/wpositive by the signs of J3/J5: the emitted config agrees."""
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
 
         robot = load_robot("staubli_tx2_60")
         qs = [q for q in sample_joints("staubli_tx2_60", 40, seed=3) if abs(q[2]) > 0.1]

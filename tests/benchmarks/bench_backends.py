@@ -20,7 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "backends"))
 from backend_fixtures import FRONT_UP_NOFLIP, GRIPPER, TABLE, cart, deg, hand_plan, move
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 
 
 def long_plan(cycles: int = 250) -> plan_types.Plan:

@@ -25,8 +25,8 @@ import sys
 import numpy as np
 
 from rmot.compiler.cli import stages
-from rmot.compiler.robots import load_robot
-from rmot.compiler.robots.library import SPECS
+from rmot.sim.robots import load_robot
+from rmot.sim.robots.library import SPECS
 
 TCP_MM = 100.0
 CELL = """cell bench {{

@@ -28,7 +28,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rmot.compiler import ir, plan_cache
+from rmot.lang import ir
+from rmot.compiler import plan_cache
 from rmot.compiler.frontend import load_program
 from rmot.sim.free import lower
 from rmot.sim.free.search import path_length

@@ -24,7 +24,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 N_TARGETS = 200
 

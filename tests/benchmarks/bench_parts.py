@@ -15,8 +15,8 @@ import time
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
-from rmot.compiler.robots import load_robot
+from rmot.lang import ir
+from rmot.sim.robots import load_robot
 from rmot.sim.collide import Timeline, candidate_pairs, check_timeline
 from rmot.sim.parts import Phase, part_hits
 from rmot.sim.scene import build_scene

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from rmot.compiler.frontend import load_text
-from rmot.sim.design.place import _base_from, _evaluate, place, screen, world_targets
+from rmot.compiler.design.place import _base_from, _evaluate, place, screen, world_targets
 
 DATA = Path(__file__).resolve().parents[1] / "design" / "data"
 REGION = {"x": (-0.6, 0.4), "y": (-0.5, 0.5), "rz": (-np.pi, np.pi)}  # 1 m x 1 m x 360°
@@ -57,7 +57,7 @@ def load(text: str, cell: str):  # type: ignore[no-untyped-def]
 
 
 def dense_grid(program, nx: int, ny: int, nrz: int):  # type: ignore[no-untyped-def]
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     robot = load_robot(program.cell.robot("r1").source.load_key)
     old = program.cell.robot("r1").base.matrix()

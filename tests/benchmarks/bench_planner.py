@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
 
 from plan_helpers import Prog, pose, program
 
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.plan import plan_program
 from rmot.compiler.plan.dense import newton_ik
 
@@ -55,7 +55,7 @@ def pick_and_place(n_instructions: int = 100) -> ir.Program:
 def baseline(prog: ir.Program, step: float = 0.004) -> float:
     """Dense numeric IK + uniform timing (each step at the speed of its slowest joint or the
     programmed TCP speed, no acceleration phases); returns the trajectory duration (s)."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     robot = load_robot(prog.cell.robots[0].source.load_key)
     q = np.zeros(robot.dof)

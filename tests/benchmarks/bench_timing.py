@@ -34,7 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
 
 from plan_helpers import Prog, pose, program
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 DOWN = dict(rx=180, ry=0, rz=180)
 BOX = {  # (x, y, z) lower corner, mm: a 120 x 300 x 100 mm box in front of each arm
@@ -70,7 +70,7 @@ def reference(arm: str, n: int, zone_mm: float, seed: int) -> float:
     sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
     from test_plan_optimal import _segments, reference_time
 
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     robot = load_robot(arm)
     segs = _segments(robot, random_program(arm, n, zone_mm, seed, accel=REFERENCE_ACCEL))

@@ -28,7 +28,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plan"))
 
 from plan_helpers import Prog, pose, program
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.plan import plan_program
 from rmot.compiler.plan import torque as torque_mod
 

@@ -12,8 +12,8 @@ import time
 import numpy as np
 import pytest
 
-from rmot.compiler import ir, plan_types
-from rmot.compiler.robots import load_robot
+from rmot.lang import ir, plan_types
+from rmot.sim.robots import load_robot
 from rmot.sim.collide import Timeline, candidate_pairs, check_timeline
 from rmot.sim.exact import coal_shapes
 from rmot.sim.scene import build_scene

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from rmot.compiler import codes as check_codes
+from rmot.lang import check_codes as check_codes
 from rmot.lang import codes as lang_codes
 from rmot.lang.diagnostics import Code, all_codes
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.frontend import load_program
 from rmot.compiler.passes.context import RobotInfo, default_robot_loader
 from rmot.lang.diagnostics import render

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.frontend import load_text
 
 SUPPORT = Path(__file__).resolve().parents[1] / "data" / "bad" / "support"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from rmot.compiler import codes
+from rmot.lang import check_codes as codes
 from rmot.compiler.passes.context import Reporter
 from rmot.lang.diagnostics import Severity
 from rmot.lang.source import SourceFile, Span

@@ -14,10 +14,10 @@ import math
 from pathlib import Path
 
 import pytest
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
-from rmot.compiler.robots.library import SPECS
+from rmot.sim.robots.library import SPECS
 from rmot.lang.diagnostics import Diagnostic
 
 PATH = str(Path(__file__).resolve().parents[1] / "data" / "probe.rmot")

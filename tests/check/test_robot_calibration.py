@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from rmot.compiler.cli import stages
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 CELL = """cell cal {{
   robot r1 = kuka_kr6_r900{shares} at pose()

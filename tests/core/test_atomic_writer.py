@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from rmot.compiler.atomic import write_atomic, write_bytes, write_text
+from rmot.lang.atomic import write_atomic, write_bytes, write_text
 from rmot.compiler.cli import cli
 
 PROGRAM = """

@@ -13,7 +13,7 @@ import pytest
 
 from rmot.backends import BACKENDS
 from rmot.backends.base import Backend, TaskContext
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan.planner import plan_program
 

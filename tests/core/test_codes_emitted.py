@@ -66,7 +66,7 @@ def _users(module: str, name: str) -> list[str]:
 
 def test_the_scan_sees_every_codes_module() -> None:
     """The codes modules are found (a broken pattern would make the test below vacuous)."""
-    main = {"rmot.lang.codes", "rmot.compiler.codes", "rmot.backends.codes", "rmot.sim.codes"}
+    main = {"rmot.lang.codes", "rmot.lang.check_codes", "rmot.backends.codes", "rmot.sim.codes"}
     assert main <= set(CODE_MODULES)
     assert len(_registered()) > 100
 
@@ -78,8 +78,8 @@ def test_registered_code_is_used(module: str, name: str, code: str) -> None:
 
 def test_an_unused_code_is_found() -> None:
     """The scan fails on a code nothing names (a constant only its own module mentions)."""
-    assert not _users("rmot.compiler.robots.codes", "NO_SUCH_CONSTANT")
-    assert _users("rmot.compiler.robots.codes", "BAD_URDF")
+    assert not _users("rmot.sim.robots.codes", "NO_SUCH_CONSTANT")
+    assert _users("rmot.sim.robots.codes", "BAD_URDF")
 
 
 # an unknown library name is the design commands' own E804 (it names --robot and

@@ -1,4 +1,4 @@
-"""One IR walker: the nesting of IR instructions is known in compiler/ir_tree only.
+"""One IR walker: the nesting of IR instructions is known in lang/ir_tree only.
 
 A pass that recurses into the bodies an instruction holds asks `ir_tree.children`, `walk` or
 `flow` (how those bodies run) instead of testing `isinstance(x, ir.If)` and reading `.then`;
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 
 ROOT = Path(__file__).resolve().parents[2]
 # the IR kinds that hold bodies, and the fields those bodies live in
@@ -23,7 +23,7 @@ NESTING_KINDS = {"If", "ProcCall", "Loop", "While", "WaitInput", "WaitCondition"
 BODY_FIELDS = {"then", "otherwise", "iterations", "on_timeout"}
 
 # (file, function) -> why it may recurse over nested bodies by kind
-# (compiler/ir_tree.py itself is the walker and is not scanned)
+# (lang/ir_tree.py itself is the walker and is not scanned)
 ALLOWED: dict[tuple[str, str], str] = {
     ("backends/loops.py", "analyse"): (
         "calls itself once on the loop without its last iteration (peeling), not on a body"),
@@ -71,10 +71,10 @@ def _offenders(path: Path) -> list[str]:
 
 
 def test_no_hand_written_walk_over_nested_bodies() -> None:
-    """Every recursion over If/ProcCall/Loop/While bodies goes through compiler/ir_tree."""
+    """Every recursion over If/ProcCall/Loop/While bodies goes through lang/ir_tree."""
     found = [o for p in _sources() for o in _offenders(p)]
     assert not found, (
-        "hand-written walks over nested IR bodies (use compiler/ir_tree: children, walk, flow; "
+        "hand-written walks over nested IR bodies (use lang/ir_tree: children, walk, flow; "
         f"or a kind -> handler table checked by ir_tree.require_kinds): {found}")
 
 

@@ -1,4 +1,4 @@
-"""Each numba kernel (compiler/jit.py) is one algorithm: the interpreted form and the compiled
+"""Each numba kernel (lang/jit.py) is one algorithm: the interpreted form and the compiled
 form give the same floats on random inputs: bit for bit for the TOPP kernels (arithmetic only),
 to within a few ulp where sin/cos/atan2/acos come from numba's or the interpreter's math
 library; chain FK's numpy form repeats the compiled loop's arithmetic. (Which form runs is a
@@ -10,11 +10,11 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rmot.compiler.jit import Kernel
+from rmot.lang.jit import Kernel
 from rmot.compiler.plan import topp
-from rmot.compiler.robots import fastik, load_robot
-from rmot.compiler.robots.fastdls import DLS_CHAIN, JOINT_FRAMES
-from rmot.compiler.robots.opw import OpwJointMap, OpwParams
+from rmot.sim.robots import fastik, load_robot
+from rmot.sim.robots.fastdls import DLS_CHAIN, JOINT_FRAMES
+from rmot.sim.robots.opw import OpwJointMap, OpwParams
 
 _SEEDS = st.integers(0, 2**32 - 1)
 

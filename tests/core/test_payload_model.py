@@ -1,4 +1,4 @@
-"""One payload model (compiler/payload.py) for the planner, the verification and the backends.
+"""One payload model (lang/payload.py) for the planner, the verification and the backends.
 
 Witness: tests/data/parts/stack.rmot's numbers by hand. The gripper is 1 kg with its TCP
 100 mm out along the flange z axis (its mass at 50 mm, half way: ir.payload_cog); each cube
@@ -15,7 +15,7 @@ import pytest
 
 from rmot.backends.part_load import held_load
 from rmot.backends.rapid import RapidBackend
-from rmot.compiler import ir, ir_tree, payload
+from rmot.lang import ir, ir_tree, payload
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
 

@@ -279,7 +279,7 @@ def test_codec_refuses_documents_it_did_not_write(doc: object) -> None:
 
 
 def test_codec_round_trips_plain_values() -> None:
-    from rmot.compiler import ir
+    from rmot.lang import ir
 
     value = (1, -0.0, float("inf"), float("nan"), "s", None, True, [1, (2, 3)], {"k": (ir.Pose(),), 2: frozenset({1})},
              np.float32(1.5), np.arange(6, dtype=np.int16).reshape(2, 3), ir.MotionKind.LINEAR)

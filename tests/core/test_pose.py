@@ -8,7 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rmot.compiler.ir import Pose
+from rmot.lang.ir import Pose
 
 coords = st.floats(min_value=-2.0, max_value=2.0, allow_nan=False)
 angles = st.floats(min_value=-math.pi, max_value=math.pi, allow_nan=False)

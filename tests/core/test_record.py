@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang import ast
 from rmot.lang.record import record
 

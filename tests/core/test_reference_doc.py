@@ -106,7 +106,7 @@ class TestCodeTable:
     def test_codes_modules_are_found(self) -> None:
         """The glob finds the codes module of every stage that registers codes."""
         found = set(codes_modules())
-        assert {"rmot.lang.codes", "rmot.compiler.codes", "rmot.compiler.plan.codes",
+        assert {"rmot.lang.codes", "rmot.lang.check_codes", "rmot.compiler.plan.codes",
                 "rmot.sim.codes", "rmot.backends.codes"} <= found
 
 

@@ -49,7 +49,7 @@ def test_robots_ik_loads_neither_the_parser_nor_the_planner(env: dict[str, str])
     names = imported(["robots", "ik", "abb_irb120", "300", "0", "400", "180", "0", "0"], env)
     assert "pinocchio" in names  # it did run
     assert not names & {"matplotlib", "toppra", "ruckig", "lark", "cvxpy", "trimesh", "fcl", "PIL"}
-    assert "numba" not in names  # one pose: the closed form runs in the interpreter (compiler/jit.py)
+    assert "numba" not in names  # one pose: the closed form runs in the interpreter (lang/jit.py)
 
 
 @pytest.mark.parametrize("args", [["robots", "list"], ["robots", "fk", "abb_irb120", "0", "0", "0", "0", "30", "0"]])

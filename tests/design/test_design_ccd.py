@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 fcl = pytest.importorskip("fcl")
 

@@ -1,7 +1,7 @@
 """Bad input to the design commands (`rmot reach`, `rmot place`, `rmot compare`) is a diagnostic
 with its registered code, rendered `rmot: error[E80x]: ...` (no span: the value came from a
 command-line option, which the message names), exit 2 — never a bare `error:` line or a
-traceback. Every code of rmot.sim.design.codes is triggered here through the CLI."""
+traceback. Every code of rmot.compiler.design.codes is triggered here through the CLI."""
 
 from __future__ import annotations
 
@@ -76,7 +76,7 @@ def test_bad_option_is_a_coded_diagnostic(tmp_path: Path, code: str, args: list[
 def test_every_design_error_code_is_triggered() -> None:
     """The cases above reach every E-code the design commands register (none is dead)."""
     from rmot.lang.diagnostics import Code
-    from rmot.sim.design import codes
+    from rmot.compiler.design import codes
 
     registered = {v.id for v in vars(codes).values() if isinstance(v, Code) and v.id.startswith("E")}
     assert registered == {c[0] for c in CASES}

@@ -81,7 +81,7 @@ def test_bad_region_is_a_usage_error(tmp_path: Path, region: str, message: str) 
 def test_halton_points_are_stratified() -> None:
     """The screening sequence: of 256 points, each 1/256 slice of x holds exactly one (base 2), and of the
     first 243 each 1/243 slice of y holds exactly one (base 3) — the van der Corput property."""
-    from rmot.sim.design.place import halton
+    from rmot.compiler.design.place import halton
 
     u = halton(256, 2)
     assert sorted(int(a * 256) for a in u[:, 0]) == list(range(256))

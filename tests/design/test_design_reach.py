@@ -18,10 +18,10 @@ import pytest
 from click.testing import CliRunner
 
 from rmot.compiler.cli import cli
-from rmot.compiler.robots import load_robot
-from rmot.sim.design.reach import reach_map, sampled_map, slice_grid
-from rmot.sim.design.reach_draw import section
-from rmot.sim.design.study import rotation_rpy
+from rmot.sim.robots import load_robot
+from rmot.compiler.design.reach import reach_map, sampled_map, slice_grid
+from rmot.compiler.design.reach_draw import section
+from rmot.compiler.design.study import rotation_rpy
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -124,7 +124,7 @@ class TestAnyOrientation:
 
 def test_section_of_a_box_is_its_outline() -> None:
     """A plane through a tessellated 1 x 2 x 3 m box cuts it along a 1 x 2 rectangle (perimeter 6 m)."""
-    from rmot.compiler import ir
+    from rmot.lang import ir
     from rmot.sim.render.tessellate import tessellate
 
     tri = tessellate(ir.Box((1.0, 2.0, 3.0))).vertices
@@ -142,7 +142,7 @@ class TestCommand:
         assert result.exit_code == 0, result.output
         rects = ET.parse(out).getroot().findall("{http://www.w3.org/2000/svg}rect")
         robot = load_robot("ur5e")
-        from rmot.sim.design.reach import reach_bound
+        from rmot.compiler.design.reach import reach_bound
 
         bound = reach_bound(robot)
         n = sum(int(reach_map(robot, slice_grid(np.eye(4), bound, 0.1, plane, 0.0), orientation=DOWN).reached.sum())

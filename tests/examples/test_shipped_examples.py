@@ -156,7 +156,7 @@ class TestCompile:
         assert result.exit_code == 0, result.stderr
         assert _codes(result.stderr, "error") == set()
         assert {p.name for p in tmp_path.iterdir()} == set(NEEDS_BRANCH) | {"json", ".rmot.output"}
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
 
         arm = load_robot(str(EXAMPLES / "urdf_cell/arm6.urdf"))
         listing = json.loads(next((tmp_path / "json").iterdir()).read_text())
@@ -201,7 +201,7 @@ def _plan(name: str):  # type: ignore[no-untyped-def]
 
 def _tcp_in_world(cell, plan, tool_name: str, qs: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]
     """(N, 4, 4) TCP poses in world for joint rows qs (N, dof)."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     task = plan.tasks[0]
     robot = load_robot(cell.robot(task.robot).source.ref)
@@ -215,7 +215,7 @@ class TestPromisesInTheComments:
         corner of the bench top and of the pallet top on the front / elbow-up branch, with the
         wrist (J5) at least 12 deg away from its singularity over the pallet."""
         from rmot.compiler.frontend import load_text
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
 
         cell = load_text("program p on r1 { wait 1 s }", str(EXAMPLES / "probe.rmot")).cell
         assert cell is not None and cell.name == "default_cell"
@@ -302,7 +302,7 @@ class TestPromisesInTheComments:
         the documented size (300 x 200 x 80 mm, 2160 cm^3)."""
         import trimesh
 
-        from rmot.compiler.robots import load_robot
+        from rmot.sim.robots import load_robot
 
         arm = load_robot(str(EXAMPLES / "urdf_cell/arm6.urdf"))
         assert arm.dof == 6 and np.all(np.isfinite(arm.joint_limits)) and 0.85 < arm.reach < 0.95

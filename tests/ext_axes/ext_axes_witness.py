@@ -3,7 +3,7 @@
 The cell: a KR 16 on a 4 m track along x (robot 250 mm up on the carriage) and a 2-axis
 positioner at (1800, 0, 700) mm (tilt about y, then turn about z) carrying a jig and the frame
 `work` 40 mm above its flange. The witness places things in world with plain numpy rotation
-matrices built from those numbers, never through rmot.compiler.ir_axes: it is what the
+matrices built from those numbers, never through rmot.lang.ir_axes: it is what the
 compiler's own composition is compared against."""
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ Each emitted target is read back from the program text with small regular-expres
 written from the manuals' data formats (RAPID robtarget / jointtarget / wobjdata literals; KRL
 E6POS with A, B, C the rotations about z, y, x), then placed in world through the cell's
 mechanisms composed with plain numpy from the cell text's numbers (ext_axes_witness.py, not
-rmot.compiler.ir_axes): TCP = flange(axis values read from the text) * work object * target.
+rmot.lang.ir_axes): TCP = flange(axis values read from the text) * work object * target.
 That must equal the planned TCP (the arm's base on the track at the move's rail value, times
 the planned TCP in the base frame) within 0.01 mm. The vendors without external axes refuse the
 program with E607 at the first move that drives them. The timing: the move that moves the
@@ -21,11 +21,11 @@ import pytest
 from ext_axes_witness import CELL_HEAD, at, positioner_flange, robot_base, rot
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir
-from rmot.compiler.axis_motion import axis_samples, task_axes
+from rmot.lang import ir
+from rmot.lang.axis_motion import axis_samples, task_axes
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
-from rmot.compiler.plan_types import Plan
+from rmot.lang.plan_types import Plan
 
 SOURCE = CELL_HEAD + """  frame table = pose(x=1200mm, y=-900mm, z=600mm, rz=30deg) number 3
   tool torch = none tcp pose(z=300mm) mass 1 kg on r1

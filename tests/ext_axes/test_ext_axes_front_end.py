@@ -3,7 +3,7 @@ the diagnostics of bad input, each at its line (lang/REFERENCE.md §15).
 
 Witness for target resolution: the base-frame target the IR holds is recomputed from the
 numbers of the cell text with plain numpy rotation matrices (ext_axes_witness.py, not
-rmot.compiler.ir_axes)."""
+rmot.lang.ir_axes)."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ import pytest
 
 from ext_axes_witness import CELL, at, robot_base, rot, work_frame
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.frontend import load_text
 
 HOME = "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n"

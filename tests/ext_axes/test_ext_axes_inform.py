@@ -20,10 +20,10 @@ from ext_axes_witness import at, robot_base, rot, work_frame
 from test_ext_axes_emit import SOURCE
 
 from rmot.backends import BACKENDS
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
-from rmot.compiler.plan_types import Plan
+from rmot.lang.plan_types import Plan
 
 RAIL_PER_MM, TILT_PER_DEG, TURN_PER_DEG = 200.0, 1019.6889, 500.0  # declared below, as machine data
 BINDINGS = (("accel 2000 mm/s^2 at", f"accel 2000 mm/s^2 inform(pulses_per_mm={RAIL_PER_MM:g}) at"),

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.cli import stages
 from rmot.compiler.frontend import load_program
 

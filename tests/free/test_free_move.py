@@ -12,7 +12,7 @@ import fcl
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.cli import stages
 from rmot.compiler.frontend import load_program
 from rmot.lang.diagnostics import Severity
@@ -178,7 +178,7 @@ def _fcl_object(geometry: object, pose: np.ndarray) -> fcl.CollisionObject:
 def test_fcl_witness_every_sample_of_the_move_keeps_the_clearance(wall_plan) -> None:  # type: ignore[no-untyped-def]
     """python-fcl (FCL's own GJK), not the verifier's coal, measures every 4 ms sample of the
     free move's time window: the tool and the wrist-side links keep 10 mm from every fixture."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     program = wall_plan.program
     cell = program.cell

@@ -113,7 +113,7 @@ def test_completion_kinds(analysis: Analysis) -> None:
 
 
 def test_hover_on_a_target_shows_joints_that_reach_its_world_pose(analysis: Analysis, plan: PlanResult) -> None:
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     hover = features.hover(analysis, plan, _pos("grasp(nest)", 7))
     assert hover is not None
@@ -173,7 +173,7 @@ def test_an_error_in_an_imported_file_is_shown_at_the_import(tmp_path: Path) -> 
 def test_hover_gives_the_joint_limit_margin_at_the_target(analysis: Analysis, plan: PlanResult) -> None:
     """The margin shown for `home` = joints(0, -10, 10, 0, 90, 0) deg, against the IRB 1600's
     ranges as the robot library gives them (the worst joint recomputed here)."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     hover = features.hover(analysis, plan, _pos("move joint home", 12))
     assert hover is not None

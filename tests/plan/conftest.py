@@ -8,6 +8,6 @@ import pytest
 @pytest.fixture(scope="session")
 def irb120():  # type: ignore[no-untyped-def]
     """The ABB IRB 120 from the robot library."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     return load_robot("abb_irb120")

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.source import Pos, SourceFile, Span
 
 SOURCE = SourceFile("prog.rmot", "".join(f"instruction {i}\n" for i in range(1, 400)))

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.plan import plan_program
 from rmot.lang.diagnostics import Severity
 
@@ -186,7 +186,7 @@ def test_urdf_arm_without_closed_form_follows_the_line() -> None:
     """A URDF UR5 (numeric IK, Newton steps from the previous point): TCP on the line, limits kept."""
     from pathlib import Path
 
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     urdf = str(Path(np.__file__).parents[1] / "cmeel.prefix/share/example-robot-data/robots/ur_description/urdf/ur5_robot.urdf")
     robot = load_robot(urdf)
@@ -214,7 +214,7 @@ def test_urdf_arm_without_closed_form_follows_the_line() -> None:
 def test_any_line_is_followed_or_reported(a, b, speed, zone) -> None:  # type: ignore[no-untyped-def]
     """Property: random lines either plan cleanly on the line within the limits, or get an E2xx
     diagnostic at a move; never an exception."""
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     robot = load_robot("abb_irb120")
     p = Prog()

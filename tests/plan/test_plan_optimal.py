@@ -18,11 +18,11 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.plan import plan_program
 from rmot.compiler.plan.blend import blend_chain
 from rmot.compiler.plan.segments import build_segment
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 from rmot.lang.diagnostics import Severity
 
 from plan_helpers import Prog, pose, program

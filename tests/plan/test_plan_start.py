@@ -6,7 +6,7 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.cli import cli
 from rmot.compiler.plan import plan_program
 from rmot.lang.diagnostics import Severity

@@ -10,7 +10,7 @@ Witnesses, none of them rmot's timing code:
   within 2 % of it (toppra's collocation on its grid is itself approximate);
 * the UR5e's rated joint torques are Universal Robots' "max joint torques" as published in
   ros-industrial universal_robot ur5e/joint_limits.yaml (max_effort 150, 150, 150, 28, 28, 28
-  N·m), cited in compiler/robots/library.py and checked here against those numbers.
+  N·m), cited in sim/robots/library.py and checked here against those numbers.
 """
 
 from __future__ import annotations
@@ -19,10 +19,10 @@ import numpy as np
 import pinocchio as pin
 import pytest
 from plan_helpers import Prog, pose, program
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.plan import plan_program, topp
 from rmot.compiler.plan import torque as torque_mod
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 from rmot.sim.scene import flange_in_last_joint
 
 ARM = "ur5e"

@@ -10,7 +10,7 @@ import pytest
 from rmot.compiler.plan import torque as torque_mod
 from rmot.compiler.plan.move_chain import SequencePiece
 from rmot.compiler.plan.timing import HoldPiece, joint_move_piece
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 # the UR5e swinging its arm up through horizontal (tests/plan/test_plan_torque.py): with 8 kg
 # at the tool the plain timing needs more than J2's rating, with 1 kg it does not

@@ -8,9 +8,9 @@ import re
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.plan import plan_program
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 from plan_helpers import Counter, Prog, pose, program
 

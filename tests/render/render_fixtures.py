@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ import math
 import numpy as np
 from render_fixtures import arm3, plan
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.pipeline import depth_frame
 from rmot.sim.render.scene import body_poses, prepare, soup

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program

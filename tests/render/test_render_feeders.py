@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
 from rmot.sim.render.html import scene_data

@@ -15,7 +15,7 @@ import pytest
 
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 from rmot.sim.render.camera import Camera
 from rmot.sim.render.still import render_still
 

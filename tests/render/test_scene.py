@@ -112,7 +112,7 @@ def test_render_finding_writes_a_png_with_the_bodies_in_red_and_a_caption(scene,
 def _cell_with_mesh(path: str) -> object:
     import dataclasses
 
-    from rmot.compiler import ir
+    from rmot.lang import ir
 
     p = plan()
     mesh = ir.Fixture("wedge", ir.Mesh(path, scale=0.001), ir.Pose((0.6, -0.5, 0.0)))

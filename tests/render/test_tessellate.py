@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.sim.render.tessellate import tessellate
 
 

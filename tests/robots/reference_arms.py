@@ -553,7 +553,7 @@ ARMS: tuple[RefArm, ...] = (
         mapping=UR_MAP,
     ),
 ) + (
-    # One arm per brand of ROS-Industrial's support packages (compiler/robots/library_rosi.py),
+    # One arm per brand of ROS-Industrial's support packages (sim/robots/library_rosi.py),
     # the joint origins, axes and tool frames typed from each macro file.
     RefArm(
         name='abb_irb2400',

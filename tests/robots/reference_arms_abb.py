@@ -1,4 +1,4 @@
-"""ABB arms of ROS-Industrial's abb and abb_experimental support packages (compiler/robots/library_abb.py):
+"""ABB arms of ROS-Industrial's abb and abb_experimental support packages (sim/robots/library_abb.py):
 each chain typed from its macro file (joint origins, axes, the `base` and `tool0` frames) with the
 repository, path and commit. The RAPID joint values are the URDF's one to one (ABB_MAP).
 

@@ -1,5 +1,5 @@
 """FANUC arms of ROS-Industrial's fanuc and fanuc_experimental support packages
-(compiler/robots/library_fanuc.py): each chain typed from its macro file (joint origins, axes, the
+(sim/robots/library_fanuc.py): each chain typed from its macro file (joint origins, axes, the
 `base` and `tool0` frames) with the repository, path and commit. The URDF's joint_3 is the
 pendant's J3 + J2 (FANUC_MAP, from the fanuc_driver).
 

@@ -1,4 +1,4 @@
-"""Independent reference chains of the library's Motoman arms (compiler/robots/library_motoman.py).
+"""Independent reference chains of the library's Motoman arms (sim/robots/library_motoman.py).
 
 Each entry is the arm's URDF macro as published (ros-industrial/motoman; the MH5 from
 Yaskawa's own Yaskawa-Global/motoman_ros2_support_packages, whose MH5 has the `base` and

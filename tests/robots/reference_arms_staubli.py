@@ -1,4 +1,4 @@
-"""Independent reference chains of the library's Stäubli arms (compiler/robots/library_staubli.py).
+"""Independent reference chains of the library's Stäubli arms (sim/robots/library_staubli.py).
 
 Each entry is the arm's URDF macro as published (ros-industrial/staubli,
 ros-industrial/staubli_experimental): joint origins, rpy and axes, `base` as the controller

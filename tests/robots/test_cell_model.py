@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.frontend import load_text
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 PANDA = Path(np.__file__).parents[1] / "cmeel.prefix/share/example-robot-data/robots/panda_description/urdf/panda.urdf"

@@ -9,7 +9,7 @@ import pytest
 from click.testing import CliRunner
 
 from rmot.compiler.cli import cli
-from rmot.compiler.robots import list_robots, load_robot
+from rmot.sim.robots import list_robots, load_robot
 
 
 def run(*args: str):  # type: ignore[no-untyped-def]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from rmot.compiler.robots import codes
+from rmot.sim.robots import codes
 from rmot.lang.diagnostics import Code, all_codes
 
 

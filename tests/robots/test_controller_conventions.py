@@ -19,7 +19,7 @@ import pytest
 from reference_arms import BY_NAME, RefArm
 from rmot.compiler.cli.compile_cmd import compile_program
 from rmot.compiler.frontend import load_program
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 from test_reference_fk import reference_fk
 
 JOINT = "speed 200 deg/s accel 800 deg/s^2"

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pinocchio as pin
 
-from rmot.compiler.robots.dh import DHRow, DHTable, build_model
+from rmot.sim.robots.dh import DHRow, DHTable, build_model
 
 
 def rz(t):

@@ -7,12 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
-from rmot.compiler.robots import IkStatus, list_robots, load_robot
-from rmot.compiler.robots.library import SPECS
-from rmot.compiler.robots.numeric import dls
-from rmot.compiler.robots.opw import opw_ik
-from rmot.compiler.robots.urik import ur_ik
+from rmot.lang import ir
+from rmot.sim.robots import IkStatus, list_robots, load_robot
+from rmot.sim.robots.library import SPECS
+from rmot.sim.robots.numeric import dls
+from rmot.sim.robots.opw import opw_ik
+from rmot.sim.robots.urik import ur_ik
 
 N_POSES = 10_000
 
@@ -218,7 +218,7 @@ def test_equivalents_are_every_in_limit_shift_in_product_order_and_reproduce_the
     import importlib.metadata
     import itertools
 
-    from rmot.compiler.robots.ik import _equivalents
+    from rmot.sim.robots.ik import _equivalents
 
     files = importlib.metadata.files("example-robot-data") or []
     r = load_robot(str(next(f for f in files if f.name == "ur5_robot.urdf").locate()))

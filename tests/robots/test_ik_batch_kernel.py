@@ -1,4 +1,4 @@
-"""ik_batch's compiled pass (compiler/robots/fastbatch.py, used for many poses per call) gives
+"""ik_batch's compiled pass (sim/robots/fastbatch.py, used for many poses per call) gives
 the same joint values as its numpy path (`_nearest_in_limits` + `_verify_batch`) from the same
 closed-form rows, NaN rows included, with and without seeds, on reachable, unreachable and
 out-of-limits poses."""
@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rmot.compiler.robots import ik, load_robot
+from rmot.sim.robots import ik, load_robot
 
 
 @pytest.mark.parametrize("name", ["abb_irb1600", "ur5e", "kuka_kr6_r900", "fanuc_m20ia"])

@@ -1,4 +1,4 @@
-"""Robot.ik's compiled single-pose pass (compiler/robots/fastsolve.py) returns what the step-by-
+"""Robot.ik's compiled single-pose pass (sim/robots/fastsolve.py) returns what the step-by-
 step path (ik.solve_exact: numpy + pinocchio) returns for the same pose, seed and config: the
 same joint values bit for bit, in the same order, with the same branches and status; the first
 solution reaches the pose by pinocchio's FK within the tolerances; and it is one of ik_batch's
@@ -12,8 +12,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rmot.compiler import ir
-from rmot.compiler.robots import ik, load_robot
+from rmot.lang import ir
+from rmot.sim.robots import ik, load_robot
 
 ROBOTS = ("abb_irb120", "ur5e", "kuka_kr6_r900", "fanuc_m20ia")  # OPW, UR, KUKA signs, Fanuc coupling
 _CACHE: dict[str, object] = {}
@@ -76,7 +76,7 @@ def test_screening_sine_and_cosine_match_libm() -> None:
     """fastfk._sincos (fdlibm's polynomials) against math.sin / math.cos, interpreted and compiled."""
     import math
 
-    from rmot.compiler.robots.fastfk import SINCOS
+    from rmot.sim.robots.fastfk import SINCOS
 
     xs = np.concatenate([np.random.default_rng(3).uniform(-40.0, 40.0, 4000), np.arange(-50, 51) * np.pi / 4,
                          [0.0, -0.0, 1e-300, -1e-12, 3.0, -3.0]])

@@ -1,4 +1,4 @@
-"""IkResult's solutions / branches views (compiler/robots/ik_rows.py) behave as the tuples they
+"""IkResult's solutions / branches views (sim/robots/ik_rows.py) behave as the tuples they
 replace, and the lazy ones (many 2π-equivalents, robots/fastsolve.py) give what ik.solve_exact
 gives, before and after their rows are made. Witnesses: Python's own tuple of the same rows,
 ik.solve_exact (numpy + pinocchio), pinocchio's FK, and a plain expansion sorted by numpy."""
@@ -13,9 +13,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rmot.compiler import ir
-from rmot.compiler.robots import fastsolve, ik, load_robot
-from rmot.compiler.robots.ik_rows import BranchRows, JointRows
+from rmot.lang import ir
+from rmot.sim.robots import fastsolve, ik, load_robot
+from rmot.sim.robots.ik_rows import BranchRows, JointRows
 
 _ROBOTS: dict[str, object] = {}
 

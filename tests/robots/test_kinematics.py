@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
-from rmot.compiler.robots import list_robots, load_robot
-from rmot.compiler.robots.library import SPECS
-from rmot.compiler.robots.opw import opw_shoulder_elbow
+from rmot.lang import ir
+from rmot.sim.robots import list_robots, load_robot
+from rmot.sim.robots.library import SPECS
+from rmot.sim.robots.opw import opw_shoulder_elbow
 
 
 def random_q(robot, n: int, seed: int = 0) -> np.ndarray:

@@ -7,10 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
-from rmot.compiler.robots import Robot, RobotError, list_robots, load_robot
-from rmot.compiler.robots.library import SPECS
-from rmot.compiler.robots.opw import opw_fk
+from rmot.lang import ir
+from rmot.sim.robots import Robot, RobotError, list_robots, load_robot
+from rmot.sim.robots.library import SPECS
+from rmot.sim.robots.opw import opw_fk
 
 ORIGINAL = (
     "abb_irb120", "abb_irb1600", "abb_irb4600", "kuka_kr6_r900", "kuka_kr16", "kuka_kr210",
@@ -22,7 +22,7 @@ ADDED = (  # each with its independent reference in reference_arms.py
     "kuka_kr8_r1440_2_arc_hw", "kuka_kr150_r3100_2", "kuka_kr240_r2900_2", "kuka_kr300_r2700_2",
     "kuka_kr500_r2800_2", "ur16e", "ur3", "ur5", "ur10",
 )
-ROSI = (  # one arm per brand from ROS-I's support packages (compiler/robots/library_rosi.py)
+ROSI = (  # one arm per brand from ROS-I's support packages (sim/robots/library_rosi.py)
     "abb_irb2400", "fanuc_m16ib20", "yaskawa_mh12", "staubli_tx60l",
 )
 ROSI_ABB_FANUC = (  # the further ABB and FANUC arms of ROS-I's packages (library_abb.py, library_fanuc.py)
@@ -36,7 +36,7 @@ ROSI_ABB_FANUC = (  # the further ABB and FANUC arms of ROS-I's packages (librar
     "fanuc_lrmate200i", "fanuc_lrmate200ib3l", "fanuc_lrmate200ic5l", "fanuc_lrmate200id4s", "fanuc_lrmate200id4sc",
     "fanuc_lrmate200id7lc", "fanuc_m6ib6s", "fanuc_cr7ial", "fanuc_r2000ic125l", "fanuc_r2000ic210f", "fanuc_r2000ic270f",
 )
-MOTOMAN_STAUBLI = (  # compiler/robots/library_motoman.py, library_staubli.py
+MOTOMAN_STAUBLI = (  # sim/robots/library_motoman.py, library_staubli.py
     "yaskawa_gp4", "yaskawa_gp7", "yaskawa_gp12", "yaskawa_gp25", "yaskawa_gp35l", "yaskawa_gp50", "yaskawa_gp70l",
     "yaskawa_gp88", "yaskawa_gp110", "yaskawa_gp180", "yaskawa_gp180_120", "yaskawa_mh50", "yaskawa_mh110",
     "yaskawa_ms210", "yaskawa_ar2010", "yaskawa_hc20", "yaskawa_mh5",

@@ -21,7 +21,7 @@ from click.testing import CliRunner
 from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 G = 9.81  # m/s^2, pinocchio's default gravity (0, 0, -9.81)
 

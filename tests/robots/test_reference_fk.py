@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from rmot.compiler.robots import list_robots, load_robot
+from rmot.sim.robots import list_robots, load_robot
 from reference_arms import ARMS, BY_NAME, KUKA_INERTIALS, RefArm
 from reference_arms_abb import ABB_ARMS
 from reference_arms_fanuc import FANUC_ARMS

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 from reference_arms_abb import ABB_LIMITS
 from reference_arms_fanuc import FANUC_LIMITS
 

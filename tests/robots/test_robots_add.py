@@ -12,11 +12,11 @@ import pytest
 from click.testing import CliRunner
 
 from rmot.compiler.cli import cli
-from rmot.compiler.robots.add_robot import add_from_dh
-from rmot.compiler.robots.build import build_robot
-from rmot.compiler.robots.library_common import ACC_EST, YASKAWA_CONV, acc_estimate, sources
-from rmot.compiler.robots.opw import OpwJointMap, OpwParams
-from rmot.compiler.robots.spec import opw_spec
+from rmot.sim.robots.add_robot import add_from_dh
+from rmot.sim.robots.build import build_robot
+from rmot.sim.robots.library_common import ACC_EST, YASKAWA_CONV, acc_estimate, sources
+from rmot.sim.robots.opw import OpwJointMap, OpwParams
+from rmot.sim.robots.spec import opw_spec
 
 # Yaskawa MH5 in pendant values (S L U R B T; U, R, B, T turn against the DH z axes: sign -1),
 # frame 0 = the robot frame at the L-axis height, lengths of Yaskawa's mh5_macro.xacro.
@@ -119,7 +119,7 @@ def test_urdf_becomes_a_definition_equal_to_its_chain(tmp_path):
     from reference_arms_motoman import MOTOMAN_ARMS
     from test_reference_fk import reference_fk
 
-    from rmot.compiler.robots.add_robot import add_from_urdf
+    from rmot.sim.robots.add_robot import add_from_urdf
 
     ref = next(a for a in MOTOMAN_ARMS if a.name == "yaskawa_gp12")
     path = tmp_path / "gp12.urdf"

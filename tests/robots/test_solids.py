@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
-from rmot.compiler.robots import list_robots, load_robot
-from rmot.compiler.robots.library import SPECS
+from rmot.lang import ir
+from rmot.sim.robots import list_robots, load_robot
+from rmot.sim.robots.library import SPECS
 
 HOME_DEG = {"kuka_kr6_r900": (0, -90, 90, 0, 45, 0), "kuka_kr16": (0, -90, 90, 0, 45, 0),
             "kuka_kr210": (0, -90, 90, 0, 45, 0), "ur3e": (0, -90, 90, -90, -90, 0),

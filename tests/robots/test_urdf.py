@@ -8,11 +8,11 @@ import os
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
-from rmot.compiler.robots import IkStatus, RobotError, load_robot
-from rmot.compiler.robots.build import build_robot
-from rmot.compiler.robots.spec import ur_spec
-from rmot.compiler.robots.urik import UrParams
+from rmot.lang import ir
+from rmot.sim.robots import IkStatus, RobotError, load_robot
+from rmot.sim.robots.build import build_robot
+from rmot.sim.robots.spec import ur_spec
+from rmot.sim.robots.urik import UrParams
 
 
 def ur5_urdf() -> str:

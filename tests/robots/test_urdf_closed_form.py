@@ -17,7 +17,7 @@ import pinocchio as pin
 import pytest
 
 from rmot.compiler.cli.compile_cmd import compile_program
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 URDF = Path(__file__).resolve().parents[1] / "data" / "urdf" / "irb2400.urdf"
 

@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rmot.compiler import ir
-from rmot.compiler.robots import load_robot
-from rmot.compiler.robots.wrist_branches import spherical_wrist_branch_fn, wrist_centre
+from rmot.lang import ir
+from rmot.sim.robots import load_robot
+from rmot.sim.robots.wrist_branches import spherical_wrist_branch_fn, wrist_centre
 
 ARM6 = str(Path(__file__).resolve().parents[2] / "examples" / "urdf_cell" / "arm6.urdf")
 N = 2000

@@ -16,7 +16,7 @@ import pytest
 import trimesh
 
 from rmot.compiler.frontend import load_program
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 PLAIN = Path(__file__).resolve().parents[1] / "data" / "urdf" / "irb2400.urdf"
 DECL = 'urdf("vendor/abb_irb2400_support/urdf/irb2400.xacro", packages={abb_irb2400_support: "vendor/abb_irb2400_support"})'

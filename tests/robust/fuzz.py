@@ -114,7 +114,7 @@ def run_one(seed: int, workdir: str) -> str:
 
 def _warm_up() -> None:
     """Imports and numba's compilation (or loading of its cache) before the first timed input:
-    a worker's first program past a kernel's threshold (compiler/jit.py; the IK pass after 200
+    a worker's first program past a kernel's threshold (lang/jit.py; the IK pass after 200
     poses) would otherwise count a one-time compile of 10-30 s against that input."""
     from rmot.compiler.cli.compile_cmd import compile_program
 

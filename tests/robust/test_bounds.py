@@ -50,7 +50,7 @@ def test_least_duration_is_a_lower_bound_and_refuses_30000_moves_before_timing(m
     from rmot.compiler.frontend import load_text
     from rmot.compiler.plan import planner, timeline
     from rmot.compiler.plan.least_time import least_duration_s
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     def program(n: int, tail: str = "") -> object:
         body = "".join(f"  move joint joints({25 * (i % 2)}, -10, {10 + 5 * (i % 3)}, 0, 90, 0) deg\n" for i in range(n))
@@ -80,7 +80,7 @@ def test_linear_moves_bound_from_below_and_30000_are_refused_before_timing(monke
     from rmot.compiler.frontend import load_text
     from rmot.compiler.plan import planner, timeline
     from rmot.compiler.plan.least_time import least_duration_s
-    from rmot.compiler.robots import load_robot
+    from rmot.sim.robots import load_robot
 
     def program(n: int, head: str = "", cell: str = "") -> object:
         body = "".join(f"  move linear pose(x={900 + 10 * (i % 2)}mm, y={20 * (i % 3)}mm, z=1000mm, ry=180deg)\n" for i in range(n))

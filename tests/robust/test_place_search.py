@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler.frontend import load_text
-from rmot.sim.design import place as place_mod
+from rmot.compiler.design import place as place_mod
 
 
 def _program() -> Any:

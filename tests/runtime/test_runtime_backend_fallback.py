@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import ClassVar
 
 from rmot.backends.base import Backend, TaskContext
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.compiler.frontend import load_program
 from rmot.compiler.ir_dump import rt_text
 from rmot.compiler.plan.planner import plan_program

@@ -12,9 +12,9 @@ from pathlib import Path
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.frontend import load_text
-from rmot.compiler.ir_tree import bind_loop_variable, iteration_paths
+from rmot.lang.ir_tree import bind_loop_variable, iteration_paths
 from rmot.lang import ast
 from rmot.lang.parse import parse_text
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from rmot.compiler import ir, ir_tree
+from rmot.lang import ir, ir_tree
 from rmot.compiler.frontend import load_program, load_text
 from rmot.compiler.plan import timeline
 from rmot.compiler.plan.planner import plan_program

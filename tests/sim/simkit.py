@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from rmot.compiler import ir
+from rmot.lang import ir
 
 
 @dataclass(frozen=True)
@@ -104,7 +104,7 @@ def arm6(name: str = "arm6") -> FakeRobot:
 
 # --------------------------------------------------------------------------- hand-made plans
 
-from rmot.compiler import plan_types  # noqa: E402
+from rmot.lang import plan_types  # noqa: E402
 from rmot.lang.source import Pos, SourceFile, Span  # noqa: E402
 
 PROGRAM_PATH = "prog.rmot"

@@ -80,8 +80,8 @@ def test_without_lipschitz_every_contact_sample_is_exact() -> None:
 def test_contact_runs_match_a_dense_exact_reference() -> None:
     """UR5e through fixtures: every sampled contact run is one finding of its pair, with its
     start and end within a sample and its depth within DEPTH_TOL of coal at every sample."""
-    from rmot.compiler import ir
-    from rmot.compiler.robots import load_robot
+    from rmot.lang import ir
+    from rmot.sim.robots import load_robot
     from rmot.sim.collide import Timeline, candidate_pairs, check_timeline
     from rmot.sim.exact import ExactPair
     from rmot.sim.scene import build_scene

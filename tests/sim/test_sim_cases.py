@@ -7,7 +7,7 @@ import numpy as np
 import trimesh
 from simkit import arm3, box, cell, line_span, make_plan, source, task_plan
 
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.scene import build_scene

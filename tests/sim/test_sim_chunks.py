@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 from simkit import box, cell
 
-from rmot.compiler import ir
-from rmot.compiler.robots import load_robot
-from rmot.compiler.robots.fastdls import JOINT_FRAMES
+from rmot.lang import ir
+from rmot.sim.robots import load_robot
+from rmot.sim.robots.fastdls import JOINT_FRAMES
 from rmot.sim import bounds, scene as scene_mod
 from rmot.sim.bounds import LazyCentres, lower_bound
 from rmot.sim.scene import Body, Scene, build_scene
@@ -24,7 +24,7 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 @pytest.fixture
 def one_fk_form(monkeypatch: pytest.MonkeyPatch) -> None:
     """FK in one form for the whole test, the compiled one: numba's and the interpreter's sine
-    may differ in the last bit, and which runs depends on the work done so far (compiler/jit.py).
+    may differ in the last bit, and which runs depends on the work done so far (lang/jit.py).
     Its threshold set low, so that Scene.poses' chunk is POSE_CHUNK, as patched by the test."""
     JOINT_FRAMES.jit()  # from now on this process runs the compiled form (loaded from numba's cache)
     monkeypatch.setattr(JOINT_FRAMES, "threshold", 1)

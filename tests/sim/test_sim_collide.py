@@ -8,7 +8,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from simkit import arm3, box, cell, make_plan, source, task_plan
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.sim import codes
 from rmot.sim.verification import verify_with
 

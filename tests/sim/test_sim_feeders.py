@@ -69,7 +69,7 @@ def _verify(tmp_path: Path, offset_mm: float = 0.0, count: int = 8, program: str
 def test_touching_cartons_side_by_side_and_stacked_check_clean(tmp_path: Path) -> None:
     plan, errors = _verify(tmp_path)
     assert errors == []
-    assert any(isinstance(i, __import__("rmot.compiler.ir", fromlist=["Loop"]).Loop) for i in plan.tasks[0].task.body)
+    assert any(isinstance(i, __import__("rmot.lang.ir", fromlist=["Loop"]).Loop) for i in plan.tasks[0].task.body)
 
 
 def test_a_slot_5_mm_into_its_neighbour_is_one_collision_naming_both_cartons_depth_and_iteration(tmp_path: Path) -> None:

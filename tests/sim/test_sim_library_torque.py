@@ -7,7 +7,7 @@ import json
 from click.testing import CliRunner
 
 from rmot.compiler.cli import check_cmd
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 CELL = """cell heavy {
   robot r1 = ur10e at pose()

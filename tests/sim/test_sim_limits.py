@@ -7,7 +7,7 @@ import pinocchio as pin
 import pytest
 from simkit import arm3, cell, make_plan, source, task_plan
 
-from rmot.compiler import plan_types
+from rmot.lang import plan_types
 from rmot.sim import codes
 from rmot.sim.limits import check_limits, joint_torques
 from rmot.sim.verification import verify_with

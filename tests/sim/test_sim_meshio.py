@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import trimesh
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.sim import codes, load_mesh

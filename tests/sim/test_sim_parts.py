@@ -16,7 +16,7 @@ import pytest
 
 from rmot.compiler.frontend import load_program
 from rmot.compiler.plan import plan_program
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 from rmot.sim.verification import verify
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "parts"

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from simkit import arm3, cell
 
-from rmot.compiler import ir, plan_types
+from rmot.lang import ir, plan_types
 from rmot.sim.scene import build_scene, flange_in_last_joint
 from rmot.sim.verification import _payload
 

@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from simkit import arm3, box, cell
 
-from rmot.compiler import ir
+from rmot.lang import ir
 from rmot.sim.bounds import lower_bound
 from rmot.sim.exact import ExactPair
 from rmot.sim.scene import _sphere_cover, build_scene

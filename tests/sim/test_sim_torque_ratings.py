@@ -14,7 +14,7 @@ from pathlib import Path
 from click.testing import CliRunner
 
 from rmot.compiler.cli import check_cmd
-from rmot.compiler.robots import load_robot
+from rmot.sim.robots import load_robot
 
 PROGRAM = """cell tx2_cell {
   robot r1 = staubli_tx2_60 at pose(z=375mm)

@@ -1,0 +1,157 @@
+"""External axes as data: tracks and positioners, what they carry, and how an axis moves.
+
+A *mechanism* is a chain of external axes fixed in the world at `base`: a `track` (one
+linear axis whose carriage carries a robot) or a `positioner` (one or two axes whose flange
+carries fixtures and frames). Each axis moves along (linear) or about (revolute) a unit
+direction of the frame it sits in; the axes of one mechanism are stacked without offsets, so
+the flange is `base * A1(q1) * A2(q2)` (the KUKA `$ETn` chain, root then one transform per
+axis, with every local offset zero; KSS 8.5 "Configuration of Kinematic Systems").
+
+Bodies ride on a mechanism through a `Mount`: the pose of the robot base, fixture or frame in
+the mechanism's flange frame. Everything the cell lists in world (ir.Cell) is placed at the
+mechanisms' *home* values; `ExternalAxes.world` places a mounted body for any axis values.
+
+Time-synchronous motion (KUKA synchronous PTP with E1..E6; RAPID's MoveJ/MoveExtJ over a
+robot and its units): every axis of a move starts and stops with the arm; each axis follows a
+trapezoidal profile with its own speed and acceleration limits, stretched to the move's
+duration (`synced_position`). `axis_time` is the shortest such profile of one axis.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rmot.lang import ir
+from rmot.lang.record import record
+from rmot.lang.source import Span
+
+__all__ = ["AXIS_DIRECTIONS", "ExtAxis", "ExternalAxes", "Mechanism", "Mount", "axis_time", "synced_position"]
+
+AXIS_DIRECTIONS = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
+
+
+@record(slots=True)
+class ExtAxis:
+    """One external axis. `name`: how messages and vendors name it (`rail`, `pos.2`); SI units
+    (m, m/s, m/s^2 for linear axes; rad, rad/s, rad/s^2 for revolute ones)."""
+
+    name: str
+    linear: bool
+    direction: tuple[float, float, float]
+    low: float
+    high: float
+    speed: float
+    accel: float
+    home: float
+    span: Span | None = None
+    pulses: float | None = None  # INFORM encoder pulses per mm (linear) or per degree (revolute), as declared
+
+    def unit(self) -> str:
+        return "mm" if self.linear else "deg"
+
+    def shown(self, value: float) -> str:
+        """`value` in the unit the program writes (mm or deg)."""
+        return f"{value * 1000.0:.6g} mm" if self.linear else f"{math.degrees(value):.6g} deg"
+
+    def transform(self, value: float) -> ir.Pose:
+        if self.linear:
+            d = self.direction
+            return ir.Pose((d[0] * value, d[1] * value, d[2] * value))
+        half = 0.5 * value
+        s = math.sin(half)
+        d = self.direction
+        return ir.Pose((0.0, 0.0, 0.0), (math.cos(half), d[0] * s, d[1] * s, d[2] * s))
+
+
+@record(slots=True)
+class Mechanism:
+    name: str
+    kind: str  # track | positioner
+    axes: tuple[ExtAxis, ...]
+    base: ir.Pose  # the first axis' frame in world
+    span: Span | None = None
+
+    def flange(self, values: tuple[float, ...]) -> ir.Pose:
+        """The frame the last axis carries, in world, at `values` (one per axis)."""
+        pose = self.base
+        for axis, value in zip(self.axes, values, strict=True):
+            pose = pose * axis.transform(value)
+        return pose
+
+    def home(self) -> tuple[float, ...]:
+        return tuple(a.home for a in self.axes)
+
+
+@record(slots=True)
+class Mount:
+    """A robot, fixture or frame riding on `mechanism` at `local` (in its flange frame)."""
+
+    body: str
+    kind: str  # robot | fixture | frame
+    mechanism: str
+    local: ir.Pose
+    span: Span | None = None
+
+
+@record(slots=True)
+class ExternalAxes:
+    mechanisms: tuple[Mechanism, ...] = ()
+    mounts: tuple[Mount, ...] = ()
+
+    def mechanism(self, name: str) -> Mechanism | None:
+        return next((m for m in self.mechanisms if m.name == name), None)
+
+    def mount(self, body: str) -> Mount | None:
+        return next((m for m in self.mounts if m.body == body), None)
+
+    def axes(self, mechanisms: tuple[str, ...]) -> tuple[ExtAxis, ...]:
+        """Every axis of `mechanisms`, in that order: the order of a program's axis values."""
+        out: list[ExtAxis] = []
+        for name in mechanisms:
+            mech = self.mechanism(name)
+            out += mech.axes if mech is not None else ()
+        return tuple(out)
+
+    def values_of(self, mech: Mechanism, values: dict[str, float]) -> tuple[float, ...]:
+        return tuple(values.get(a.name, a.home) for a in mech.axes)
+
+    def world(self, body: str, values: dict[str, float]) -> ir.Pose | None:
+        """The world pose of a mounted body when the axes are at `values` (axis name -> value;
+        an axis not given is at home), or None when `body` rides on no mechanism."""
+        mount = self.mount(body)
+        mech = None if mount is None else self.mechanism(mount.mechanism)
+        if mount is None or mech is None:
+            return None
+        return mech.flange(self.values_of(mech, values)) * mount.local
+
+
+def axis_time(delta: float, speed: float, accel: float) -> float:
+    """The shortest rest-to-rest time over `delta` with speed and acceleration limits: a
+    trapezoid, or a triangle when the top speed is never reached."""
+    d = abs(delta)
+    if d == 0.0:
+        return 0.0
+    if speed * speed / accel >= d:
+        return 2.0 * math.sqrt(d / accel)
+    return d / speed + speed / accel
+
+
+def synced_position(start: float, end: float, duration: float, accel: float, t: np.ndarray) -> np.ndarray:
+    """The axis' value at times `t` (0..duration) of a rest-to-rest move start -> end lasting
+    exactly `duration` (>= axis_time): a trapezoid with the full acceleration `accel` and the
+    cruise speed that makes it end on time (a triangle when that time is the shortest)."""
+    delta = end - start
+    d = abs(delta)
+    if d == 0.0 or duration <= 0.0:
+        return np.full(t.shape, end if duration <= 0.0 else start)
+    disc = max(accel * accel * duration * duration - 4.0 * accel * d, 0.0)
+    v = 0.5 * (accel * duration - math.sqrt(disc))  # cruise speed: d = v * (T - v / a)
+    ramp = v / accel
+    tc = np.clip(t, 0.0, duration)
+    s = np.where(tc < ramp, 0.5 * accel * tc * tc,
+                 np.where(tc <= duration - ramp, 0.5 * accel * ramp * ramp + v * (tc - ramp),
+                          d - 0.5 * accel * (duration - tc) ** 2))
+    out: np.ndarray = start + math.copysign(1.0, delta) * s
+    return out
