@@ -63,7 +63,8 @@ class Code:
         known = _REGISTRY.get(self.id)
         if known is not None and known != self:
             raise ValueError(f"diagnostic code {self.id} registered twice: {known.name!r} and {self.name!r}")
-        _REGISTRY[self.id] = self
+        if known is None:  # an equal code declared again leaves the first one registered
+            _REGISTRY[self.id] = self
 
     def __str__(self) -> str:
         return self.id

@@ -20,6 +20,7 @@ class TestRegistry:
         listed = all_codes()
         assert codes.SYNTAX in listed and all(isinstance(c, Code) for c in listed)
         assert [c.id for c in listed] == sorted(c.id for c in listed)
+        assert next(c for c in listed if c.id == codes.SYNTAX.id) is codes.SYNTAX  # the first stays
 
     def test_an_id_taken_by_another_name_is_refused(self) -> None:
         with pytest.raises(ValueError, match=f"{codes.SYNTAX.id} registered twice"):
