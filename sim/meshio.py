@@ -110,15 +110,16 @@ def is_flat(vertices: np.ndarray) -> bool:
 def centroid(data: MeshData) -> tuple[float, float, float]:
     """The centre of mass (m, the mesh's frame) of the solid a mesh bounds, at uniform density:
     the volume-weighted mean of the signed tetrahedra from the origin to each triangle
-    (divergence theorem). A surface that bounds no volume (open or flat) gives the area-weighted
-    mean of its triangles' centres instead."""
+    (divergence theorem). A surface that bounds no volume (open, non-manifold or flat: its
+    signed volume would depend on where the origin is) gives the area-weighted mean of its
+    triangles' centres instead."""
     tri = data.vertices[data.faces]  # (F, 3 corners, 3)
     a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
     volumes = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
     centres = (a + b + c) / 4.0  # of each tetrahedron (origin, a, b, c)
     total = float(volumes.sum())
     size = float(np.ptp(data.vertices, axis=0).max()) if data.vertices.size else 0.0
-    if data.faces.size and abs(total) > 1e-9 * size ** 3:
+    if data.faces.size and _is_watertight(data.faces) and abs(total) > 1e-9 * size ** 3:
         x, y, z = (float(v) for v in volumes @ centres / total)
         return x, y, z
     areas = np.linalg.norm(np.cross(b - a, c - a), axis=1)

@@ -149,3 +149,22 @@ def test_the_payload_to_enter_on_the_controller_is_the_same(made: dict[str, Any]
     messages = [d.message for d in _emit(made, vendor).diagnostics if d.code.id == "W460"]
     cog = "[" + ",".join(f"{v:.1f}" for v in TOTAL_COG * 1000) + "] mm"
     assert any("3.000 kg" in m and cog in m for m in messages), (cog, messages)
+
+
+def test_a_mesh_centroid_is_the_solids_centre_of_mass() -> None:
+    """sim/meshio.centroid against trimesh's center_mass on an irregular closed solid (the
+    convex hull of scattered points, far from its origin), and on an open surface (one face of
+    a cube removed: trimesh's surface centroid, area-weighted, is the witness)."""
+    from rmot.sim.meshio import MeshData, centroid
+
+    rng = np.random.default_rng(7)
+    hull = trimesh.convex.convex_hull(rng.normal(size=(40, 3)) * [0.3, 0.1, 0.05] + [0.4, -0.2, 0.1])
+    assert hull.is_volume
+    got = centroid(MeshData(np.array(hull.vertices, dtype=float), np.array(hull.faces, dtype=np.int64)))
+    np.testing.assert_allclose(got, hull.center_mass, atol=1e-12)
+    box = trimesh.creation.box(extents=(0.2, 0.1, 0.1))
+    box.apply_translation((0.3, 0.0, 0.0))
+    up = box.face_normals[:, 2] > 0.5
+    open_box = trimesh.Trimesh(box.vertices, box.faces[~up], process=False)
+    got = centroid(MeshData(np.array(open_box.vertices, dtype=float), np.array(open_box.faces, dtype=np.int64)))
+    np.testing.assert_allclose(got, open_box.triangles_center.T @ open_box.area_faces / open_box.area, atol=1e-12)
