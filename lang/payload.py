@@ -96,8 +96,7 @@ def decide(task: ir.Task, program: ir.Program | None, flanges: Mapping[int, ir.P
     """The task's load. `flanges`: move uid -> the flange pose at its target (robot base
     frame); `centroids`: part name -> its centroid in its geometry frame (m; absent: the
     pose origin, where boxes, cylinders, spheres and capsules are centred)."""
-    parts = program.cell.parts if program is not None else ()
-    held = _held_loads(task, program, flanges, centroids) if parts else {}
+    held = _held_loads(task, program, flanges, centroids) if program is not None and program.cell.parts else {}
     tool = heaviest_tool(task.body)
     heaviest: Load | None = None
     for h in held.values():
@@ -154,7 +153,8 @@ def _centre_in(part_in_flange: ir.Pose, centroid: tuple[float, float, float] | N
     at = np.asarray(part_in_flange.position, dtype=float)
     if centroid is None or not any(centroid):
         return at
-    return at + part_in_flange.matrix()[:3, :3] @ np.asarray(centroid, dtype=float)
+    centre: np.ndarray = at + part_in_flange.matrix()[:3, :3] @ np.asarray(centroid, dtype=float)
+    return centre
 
 
 def _held_loads(task: ir.Task, program: ir.Program, flanges: Mapping[int, ir.Pose],

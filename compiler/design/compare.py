@@ -18,6 +18,8 @@ import numpy as np
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.compiler.design.metrics import TaskMetrics, program_metrics, substitute_robot
+from rmot.compiler.design.place import rebase
+from rmot.sim.robots import load_robot
 from rmot.sim.report import Report
 
 __all__ = ["ArmResult", "compare_arms", "mounting_z", "run_arm", "stand_in"]
@@ -74,9 +76,6 @@ def stand_in(program: ir.Program, slot: str, key: str, robot: Any) -> ir.Program
     """The program with the loaded `robot` (library name or absolute URDF path `key`) in the
     cell's robot `slot`, its mounting face (mounting_z) where the slot robot's is: the base frame
     moves along its own z by the difference; world-fixed targets stay where they are in the world."""
-    from rmot.compiler.design.place import rebase
-    from rmot.sim.robots import load_robot
-
     old = program.cell.robot(slot)
     rise = mounting_z(load_robot(old.source.load_key)) - mounting_z(robot)
     swapped = substitute_robot(program, slot, key, robot.dof)

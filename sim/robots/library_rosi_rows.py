@@ -109,11 +109,12 @@ def rosi_spec(arm: RosiArm, brand: RosiBrand) -> RobotSpec:
         limits_deg=arm.limits_deg, speed_deg_s=arm.speed_deg_s, accel_deg_s2=acc_estimate(arm.speed_deg_s),
         reach=reach, radii=_radii(reach), flange_rz=brand.flange_rz, floor=arm.floor, conventions=brand.conventions,
         rated_payload_kg=arm.payload_kg, arm_mass_kg=arm.arm_mass_kg,
-        **({"effort_nm": arm.effort_nm} if arm.effort_nm else {}),
         sources=sources(geometry=_geometry(arm), limits=f"{arm.file} ({unit}){brand.limits_note}",
                         speed=f"{arm.file} ({speed_unit})", accel=ACC_EST, reach=_REACH_EST,
                         mass=_mass_source(arm, brand.vendor), inertia=INERTIA_METHOD,
                         effort=f"{arm.file} <limit effort> (N*m)" if arm.effort_nm else EFFORT_METHOD,
                         payload=arm.payload_source or f"the model name {arm.model}: {arm.payload_kg:g} kg"),
     )
+    if arm.effort_nm:
+        spec = replace(spec, effort_nm=arm.effort_nm)
     return replace(spec, link_mass_kg=arm.link_mass_kg) if arm.link_mass_kg else spec

@@ -15,7 +15,6 @@ the flange frame (50, -20, 150) mm. Tool + part: 3 kg at ((0, 0, 50) + 2 (50, -2
 from __future__ import annotations
 
 import re
-from pathlib import Path
 from typing import Any
 
 import numpy as np
