@@ -2,7 +2,7 @@
 
 `held_load(node, ctx)`: after an `attach`/`detach`, the held parts' total mass and their
 centre of gravity in the flange frame, and the same for tool + parts: the payload model every
-reader shares (lang/payload.held_loads, read from the plan once per task), as numpy arrays.
+reader shares (lang/payload.of: the plan's decided TaskLoad, read once per task), as numpy arrays.
 `state_at_moves(ctx)`: which attach or detach a move carries the load of.
 """
 
@@ -20,7 +20,7 @@ __all__ = ["held_load", "state_at_moves"]
 def _loads(ctx: Any) -> dict[int, payload.HeldLoad]:
     cache = getattr(ctx, "_held_loads", None)
     if cache is None:
-        cache = payload.held_loads(ctx.plan, ctx.task_plan)
+        cache = dict(payload.of(ctx.plan, ctx.task_plan).held)
         object.__setattr__(ctx, "_held_loads", cache)  # a cache on the (frozen) task context
     return cache
 

@@ -35,6 +35,7 @@ ALLOWED_MODULES = (
     "rmot.lang.plan_types",
     "rmot.lang.ir",
     "rmot.lang.ir_axes",  # external axes (ir.Cell.external)
+    "rmot.lang.payload",  # the load each task carries (TaskPlan.load)
     "rmot.lang.source",
     "rmot.lang.diagnostics",
 )

@@ -1,31 +1,37 @@
 """The payload: what a robot's flange carries (its tool and the parts it holds) as one point
-mass, decided here for every reader: the planner's torque limits (compiler/plan/torque.py),
-the verification's torque check (sim/verification.py) and the backends' payload lines
-(backends/part_load.py).
+mass, decided once per task by the planner (`decide`, carried on the plan as TaskPlan.load)
+and read from there by every consumer: the planner's torque limits (compiler/plan/torque.py),
+the verification's torque check and plots (sim/verification.py), the design metrics and the
+backends' payload lines (backends/part_load.py). `of(plan, tp)` is that value.
 
 The model, in the flange frame (kg, m):
 - a tool's mass sits at `ir.payload_cog`, half way along the flange->TCP vector;
-- a held part's mass sits at its centre, fixed at its attach (`held_loads`): its declared
-  pose (the cell's `part ... at`, robot base frame; every part of a feeder is presented there)
-  seen from the flange at the move before the attach, where the robot stands still (the
-  planner stops before an attach). A plain part attached again (it was put down somewhere
-  since) or one another task also attaches (a hand-over) is taken at the TCP, where the
-  gripper holds it;
-- the load a task's torques are checked with is the heaviest tool it uses plus the heaviest
-  set of parts it holds at once (`task_load`).
-The planner times a task before its flange poses exist, so its bound (`timing_load`) takes the
-same tool and the same heaviest set of parts, each part at the TCP of the tool that attaches
-it: the difference is the parts' centres' offset from the TCP.
+- a held part's mass sits at its centroid (a mesh part's from its file, which the planner
+  reads: compiler/plan/load.py; a box, cylinder, sphere or capsule is centred on its pose),
+  fixed at its attach: its declared pose (the cell's `part ... at`, robot base frame; every
+  part of a feeder is presented there) seen from the flange at the target of the move before
+  the attach, where the robot stands still (the planner stops before an attach). A plain part
+  attached again (it was put down somewhere since) or one another task also attaches (a
+  hand-over) is taken at the TCP, where the gripper holds it;
+- after each attach or detach the flange carries the tool with the parts then held
+  (`TaskLoad.held`); the load a task's torques are bounded and checked with is the heaviest
+  tool it uses plus the heaviest set of parts it holds at once (`TaskLoad.peak`).
 """
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
+
 import numpy as np
 
-from rmot.lang import ir, ir_tree, plan_types
+from rmot.lang import ir, ir_tree
 from rmot.lang.record import record
 
-__all__ = ["HeldLoad", "Load", "heaviest_tool", "held_loads", "task_load", "timing_load"]
+if TYPE_CHECKING:  # plan_types carries a TaskLoad on each TaskPlan: imported for annotations only
+    from rmot.lang import plan_types
+
+__all__ = ["HeldLoad", "Load", "TaskLoad", "decide", "heaviest_tool", "of"]
 
 
 @record
@@ -71,77 +77,95 @@ def _with_tool(tool: Load | None, held_mass: float, held_at: np.ndarray) -> Load
     return Load.of(total, (tool_mass * tool_at + held_mass * held_at) / total)
 
 
-def timing_load(task: ir.Task, parts: tuple[ir.Part, ...]) -> Load | None:
-    """The planner's bound: the heaviest tool plus the heaviest set of parts the task holds at
-    once (an attach's `held`), at the TCP of the tool of that attach."""
+@record
+class TaskLoad:
+    """A task's load, decided once: `held` pairs each attach/detach uid (program order) with
+    the load after it; `peak` is the heaviest tool plus the heaviest set of parts held at once
+    (None: the task carries nothing)."""
+
+    held: tuple[tuple[int, HeldLoad], ...]
+    peak: Load | None
+
+    def after(self, uid: int) -> HeldLoad:
+        """The load after attach/detach `uid`."""
+        return dict(self.held)[uid]
+
+
+def decide(task: ir.Task, program: ir.Program | None, flanges: Mapping[int, ir.Pose],
+           centroids: Mapping[str, tuple[float, float, float]]) -> TaskLoad:
+    """The task's load. `flanges`: move uid -> the flange pose at its target (robot base
+    frame); `centroids`: part name -> its centroid in its geometry frame (m; absent: the
+    pose origin, where boxes, cylinders, spheres and capsules are centred)."""
+    held = _held_loads(task, program, flanges, centroids) if program is not None and program.cell.parts else {}
     tool = heaviest_tool(task.body)
-    masses = {p.name: p.mass for p in parts}
-    held_mass, held_at = 0.0, None
-    for instr in ir_tree.walk(task.body):
-        if isinstance(instr, ir.Attach):
-            mass = sum(masses.get(name, 0.0) for name in instr.held)
-            if mass > held_mass:
-                held_mass, held_at = mass, np.asarray(instr.tool.tcp.position, dtype=float)
-    if held_at is None:
-        return tool
-    return _with_tool(tool, held_mass, held_at)
-
-
-def task_load(plan: plan_types.Plan | None, tp: plan_types.TaskPlan) -> Load | None:
-    """The load the task's torques are checked with: its heaviest tool plus the heaviest set of
-    parts it holds at once (after an attach or detach of the plan, `held_loads`), at their
-    centres; None when it carries nothing."""
-    tool = heaviest_tool(tp.task.body)
-    if plan is None or not plan.program.cell.parts:
-        return tool
     heaviest: Load | None = None
-    for held in held_loads(plan, tp).values():
-        if held.parts.mass > (heaviest.mass if heaviest else 0.0):
-            heaviest = held.parts
-    if heaviest is None:
-        return tool
-    return _with_tool(tool, heaviest.mass, heaviest.at())
+    for h in held.values():
+        if h.parts.mass > (heaviest.mass if heaviest else 0.0):
+            heaviest = h.parts
+    peak = tool if heaviest is None else _with_tool(tool, heaviest.mass, heaviest.at())
+    return TaskLoad(tuple(held.items()), peak)
 
 
-def _part_centres(plan: plan_types.Plan, tp: plan_types.TaskPlan) -> dict[int, np.ndarray]:
-    """Attach uid -> the part's centre in the flange frame (m), for every attach of the task.
+def of(plan: plan_types.Plan | None, tp: plan_types.TaskPlan) -> TaskLoad:
+    """The load the plan decided for task `tp` (TaskPlan.load, set by the planner). A plan
+    built without the planner (a test's) has none: it is decided here from the flange poses
+    of its records, every part's centre at its pose origin."""
+    if tp.load is not None:
+        return tp.load
+    flanges = {}
+    for instr in ir_tree.walk(tp.task.body):
+        rec = tp.record(instr.uid) if isinstance(instr, ir.Move) else None
+        if rec is not None and rec.flange_pose is not None:
+            flanges[instr.uid] = rec.flange_pose
+    return decide(tp.task, plan.program if plan is not None else None, flanges, {})
 
-    A part taken where it was declared has its declared centre; a feeder presents every part
+
+def _part_centres(task: ir.Task, program: ir.Program, flanges: Mapping[int, ir.Pose],
+                  centroids: Mapping[str, tuple[float, float, float]]) -> dict[int, np.ndarray]:
+    """Attach uid -> the part's centroid in the flange frame (m), for every attach of the task.
+
+    A part taken where it was declared has its declared centroid; a feeder presents every part
     of its supply at the declared pose, so each attach of a feeder part has it too. A plain
     part attached again (it was put down somewhere since) is taken as centred on the TCP."""
-    program = plan.program
     parts = {p.name: p for p in program.cell.parts}
-    attached_elsewhere = {i.part for t in program.tasks if t.name != tp.task.name
+    attached_elsewhere = {i.part for t in program.tasks if t.name != task.name
                           for i in ir_tree.walk(t.body) if isinstance(i, ir.Attach)}
-    base_inv = program.cell.robot(tp.robot).base.inverse()
+    base_inv = program.cell.robot(task.robot).base.inverse()
     flange: ir.Pose | None = None
     seen: set[str] = set()
     out: dict[int, np.ndarray] = {}
-    for instr in ir_tree.walk(tp.task.body):
+    for instr in ir_tree.walk(task.body):
         if isinstance(instr, ir.Move):
-            rec = tp.record(instr.uid)
-            if rec is not None and rec.flange_pose is not None:
-                flange = rec.flange_pose
+            flange = flanges.get(instr.uid, flange)
         elif isinstance(instr, ir.Attach):
             part = parts.get(instr.part)
             tcp = np.asarray(instr.tool.tcp.position, dtype=float)
             if part is None or flange is None or (instr.part in seen and not part.feeder) or instr.part in attached_elsewhere:
                 out[instr.uid] = tcp
             else:
-                in_base = base_inv * part.pose
-                out[instr.uid] = np.asarray((flange.inverse() * in_base).position, dtype=float)
+                out[instr.uid] = _centre_in(flange.inverse() * (base_inv * part.pose), centroids.get(part.name))
             seen.add(instr.part)
     return out
 
 
-def held_loads(plan: plan_types.Plan, tp: plan_types.TaskPlan) -> dict[int, HeldLoad]:
-    """Attach/detach uid -> the load after it: the held parts' mass at their centres, and the
+def _centre_in(part_in_flange: ir.Pose, centroid: tuple[float, float, float] | None) -> np.ndarray:
+    """The part's centroid (its geometry frame) in the flange frame, given the part's pose there."""
+    at = np.asarray(part_in_flange.position, dtype=float)
+    if centroid is None or not any(centroid):
+        return at
+    centre: np.ndarray = at + part_in_flange.matrix()[:3, :3] @ np.asarray(centroid, dtype=float)
+    return centre
+
+
+def _held_loads(task: ir.Task, program: ir.Program, flanges: Mapping[int, ir.Pose],
+                centroids: Mapping[str, tuple[float, float, float]]) -> dict[int, HeldLoad]:
+    """Attach/detach uid -> the load after it: the held parts' mass at their centroids, and the
     tool's mass (at ir.payload_cog) with them."""
-    centres = _part_centres(plan, tp)
-    parts = {p.name: p for p in plan.program.cell.parts}
+    centres = _part_centres(task, program, flanges, centroids)
+    parts = {p.name: p for p in program.cell.parts}
     latest: dict[str, int] = {}
     out: dict[int, HeldLoad] = {}
-    for node in ir_tree.walk(tp.task.body):
+    for node in ir_tree.walk(task.body):
         if isinstance(node, ir.Attach):
             latest[node.part] = node.uid
         if isinstance(node, (ir.Attach, ir.Detach)) and node.uid not in out:

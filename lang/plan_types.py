@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rmot.lang import ir, ir_tree
+from rmot.lang import ir, ir_tree, payload
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.source import Span
 
@@ -90,6 +90,9 @@ class TaskPlan:
     trajectory: Trajectory
     records: tuple[InstructionRecord, ...]
     variants: tuple[Variant, ...] = ()
+    # the load the flange carries (tool and held parts), decided by the planner before it times
+    # the task and read by every consumer (lang/payload.of); None only in a plan built by hand
+    load: payload.TaskLoad | None = None
 
     @property
     def cycle_time(self) -> float:

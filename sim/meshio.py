@@ -32,7 +32,7 @@ from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.sim import codes
 from rmot.sim.step import STEP_SUFFIXES, StepError, read_step
 
-__all__ = ["MeshData", "load_mesh", "parse_classic"]
+__all__ = ["MeshData", "centroid", "load_mesh", "parse_classic"]
 
 _TRIMESH_SUFFIXES = {".stl", ".obj", ".ply", ".off"}
 
@@ -105,6 +105,28 @@ def is_flat(vertices: np.ndarray) -> bool:
     centred = vertices - vertices.mean(axis=0)
     sv = np.linalg.svd(centred, compute_uv=False)
     return bool(not np.all(np.isfinite(sv)) or sv[2] <= 1e-9 * max(sv[0], 1e-300))
+
+
+def centroid(data: MeshData) -> tuple[float, float, float]:
+    """The centre of mass (m, the mesh's frame) of the solid a mesh bounds, at uniform density:
+    the volume-weighted mean of the signed tetrahedra from the origin to each triangle
+    (divergence theorem). A surface that bounds no volume (open, non-manifold or flat: its
+    signed volume would depend on where the origin is) gives the area-weighted mean of its
+    triangles' centres instead."""
+    tri = data.vertices[data.faces]  # (F, 3 corners, 3)
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    volumes = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+    centres = (a + b + c) / 4.0  # of each tetrahedron (origin, a, b, c)
+    total = float(volumes.sum())
+    size = float(np.ptp(data.vertices, axis=0).max()) if data.vertices.size else 0.0
+    if data.faces.size and _is_watertight(data.faces) and abs(total) > 1e-9 * size ** 3:
+        x, y, z = (float(v) for v in volumes @ centres / total)
+        return x, y, z
+    areas = np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    if not data.faces.size or float(areas.sum()) <= 0.0:
+        return 0.0, 0.0, 0.0
+    x, y, z = (float(v) for v in areas @ ((a + b + c) / 3.0) / float(areas.sum()))
+    return x, y, z
 
 
 def _error(mesh: ir.Mesh, code: Code, message: str) -> Diagnostic:

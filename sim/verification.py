@@ -295,10 +295,10 @@ def _estimated_torque(robot: Any) -> bool:
 
 
 def _payload(scene: Scene, tp: plan_types.TaskPlan, plan: plan_types.Plan | None = None) -> tuple[float, np.ndarray | None]:
-    """The task's load (lang/payload.task_load: its heaviest tool at ir.payload_cog, the
-    point every backend writes as the tool's payload, plus the heaviest set of parts it holds at
-    once, at their centres) as a point mass in the last joint's frame."""
-    load = payload.task_load(plan, tp)
+    """The task's peak load as the plan decided it (lang/payload.of: its heaviest tool at
+    ir.payload_cog, the point every backend writes as the tool's payload, plus the heaviest set
+    of parts it holds at once, at their centroids) as a point mass in the last joint's frame."""
+    load = payload.of(plan, tp).peak
     if load is None:
         return 0.0, None
     flange = flange_in_last_joint(scene.robots[tp.robot].robot)

@@ -178,7 +178,7 @@ def _known_arms(keys: tuple[str, ...]) -> None:
 def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[Any, str]:
     """The program with arm `key` placed by `rmot place`'s search (unchanged if none verifies)."""
     from rmot.sim.robots import RobotError, load_robot
-    from rmot.compiler.design.metrics import substitute_robot
+    from rmot.compiler.design.compare import stand_in
     from rmot.compiler.design.place import place, rebase
     from rmot.compiler.design.study import parse_region
 
@@ -187,7 +187,7 @@ def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[
         robot = load_robot(key)
     except RobotError:
         return program, ""
-    prog = substitute_robot(program, slot, key, robot.dof)
+    prog = stand_in(program, slot, key, robot)
     result = place([prog], slot, bounds)
     if result.best is None:
         return prog, "no verified placement in the region: compared at the cell's pose"

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from rmot.lang import ir, payload
+from rmot.compiler.plan.load import decide_load
 from rmot.lang.axis_motion import axis_findings
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.least_time import least_duration_s
@@ -37,6 +38,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
     drafts: dict[str, TaskDraft] = {}
     robots: dict[str, RobotModel] = {}
     starts: dict[str, np.ndarray] = {}
+    loads: dict[str, payload.TaskLoad] = {}
     least = 0.0
     for task in program.tasks:
         diagnostics.extend(Diagnostic(f.code, f.severity, f.message, move.span, time_s=0.0, task=task.name)
@@ -51,7 +53,8 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
             return Plan(program, (), step, tuple(diagnostics))
         q0 = initial_joints(robot, task.body)
         robots[task.name], starts[task.name] = robot, q0
-        drafts[task.name] = _build_task(robot, task, q0, program, MAX_SAMPLES * step)
+        loads[task.name] = decide_load(robot, task, program)
+        drafts[task.name] = _build_task(robot, task, q0, program, loads[task.name].peak, MAX_SAMPLES * step)
         diagnostics.extend(drafts[task.name].diagnostics)
     diagnostics.extend(align(drafts))
     for draft in drafts.values():
@@ -62,7 +65,7 @@ def plan_program(program: ir.Program, *, step: float = 0.004) -> Plan:
         diagnostics.sort(key=_diagnostic_order)
         return Plan(program, (), step, tuple(diagnostics))
     tasks = tuple(
-        _task_plan(task, drafts[task.name], robots[task.name], starts[task.name], step)
+        _task_plan(task, drafts[task.name], robots[task.name], starts[task.name], step, loads[task.name])
         for task in program.tasks if task.name in drafts
     )
     for tp in tasks:  # external axes outside their ranges, at the move that drives them there
@@ -114,11 +117,11 @@ def _diagnostic_order(d: Diagnostic) -> tuple:  # type: ignore[type-arg]
     return (span.path, span.start.offset) if span is not None else ("", -1)
 
 
-def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program, budget_s: float) -> TaskDraft:
+def _build_task(robot: RobotModel, task: ir.Task, q0: np.ndarray, program: ir.Program,
+                load: payload.Load | None, budget_s: float) -> TaskDraft:
     """build_task under the task's joint torque limits (compiler/plan/torque.py; none where the
-    robot has no torque ratings) with the payload's timing bound (lang/payload.py); a path longer than
-    `budget_s` is refused by _too_many_samples, so its timing stops there."""
-    load = payload.timing_load(task, program.cell.parts)
+    robot has no torque ratings) with the task's decided peak load (compiler/plan/load.py); a
+    path longer than `budget_s` is refused by _too_many_samples, so its timing stops there."""
     limits = torque.torque_limits(robot, load.mass if load else 0.0, load.at() if load else None)
     return build_task(robot, task, q0, lone=len(program.tasks) == 1, torque=limits, budget_s=budget_s)
 
@@ -138,7 +141,8 @@ def _robot_for(program: ir.Program, task: ir.Task, diagnostics: list[Diagnostic]
         return None
 
 
-def _task_plan(task: ir.Task, draft: TaskDraft, robot: RobotModel, q0: np.ndarray, step: float) -> TaskPlan:
+def _task_plan(task: ir.Task, draft: TaskDraft, robot: RobotModel, q0: np.ndarray, step: float,
+               load: payload.TaskLoad) -> TaskPlan:
     dof = robot.dof
     trajectory = sample(draft.pieces, step, 0.0, dof, q0)
     variants = []
@@ -147,4 +151,4 @@ def _task_plan(task: ir.Task, draft: TaskDraft, robot: RobotModel, q0: np.ndarra
         variants.append(Variant(v.index, v.if_uid, v.arm, sample(v.pieces, step, v.t0, dof, start)))
     records = list(draft.records) + proc_records(task.body, list(draft.records))
     records.sort(key=lambda r: (r.variant, r.t_start, r.uid))
-    return TaskPlan(task, task.robot, trajectory, tuple(records), tuple(variants))
+    return TaskPlan(task, task.robot, trajectory, tuple(records), tuple(variants), load)

@@ -19,11 +19,11 @@ so a timing that respects them is one the torque check passes. Those limits are 
 source gives them (UR, KUKA/kroshu, Stäubli descriptions; a cell `model`'s `torque`) and
 otherwise estimated (sim/robots/dynamics.EFFORT_METHOD); `rmot robots show` names which.
 
-The payload is lang/payload.py's `timing_load` (the model every reader shares): the
-heaviest tool the task uses, its mass at ir.payload_cog, plus the heaviest set of parts it holds
-at once, which the planner, not knowing yet where on the tool a part is gripped, puts at the
-TCP of the tool that attaches it (the verification puts it at the part's centre, fixed at its
-attach: the difference is that centre's offset from the TCP).
+The payload is the task's peak load as the planner decides it before timing
+(compiler/plan/load.py, lang/payload.py; carried on the plan as TaskPlan.load, which the
+verification's torque check reads too): the heaviest tool the task uses, its mass at
+ir.payload_cog, plus the heaviest set of parts it holds at once, each at its centroid fixed at
+its attach.
 
 A chain is first timed without torque rows; only when its torques, sampled every
 `CHECK_STEP`, exceed a limit is it timed again with them (chain.py), so every program whose

@@ -26,108 +26,145 @@ SIA / SDA arms (7 axes) and the MotoPOS positioner.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 from rmot.sim.robots.library_common import ACC_EST, YASKAWA, YASKAWA_CONV, acc_estimate, sources
 from rmot.sim.robots.library_rosi import _REACH_EST, _wrist_reach
+from rmot.sim.robots.library_rosi_rows import RosiArm
 from rmot.sim.robots.opw import OpwParams
 from rmot.sim.robots.spec import RobotSpec, capsule_volume, opw_segments, opw_spec
 
 __all__ = ["motoman_arms"]
 
-_ROSI = "ros-industrial/motoman"
-_ROSI_COMMIT = "433be15f6a27"
-_YASKAWA_ROS2 = "Yaskawa-Global/motoman_ros2_support_packages"
-_YASKAWA_ROS2_COMMIT = "34b884797d61"
+# Each row's `file`: the package (repository, path, commit); `floor` is minus the height of
+# ROS-I's `base` (J2's height) over the mounting face; the payload is the model name's.
+_ROSI = "ros-industrial/motoman {} @ 433be15f6a27"
+_YASKAWA_ROS2 = "Yaskawa-Global/motoman_ros2_support_packages {} @ 34b884797d61"
 # The MH12's capsule radii (library_rosi.py) at its wrist reach; other arms scale them by reach.
 _MH12_RADII = (0.13, 0.11, 0.08, 0.08, 0.065, 0.055, 0.04)
 _MH12 = OpwParams(a1=0.155, a2=-0.200, b=0.0, c1=0.0, c2=0.614, c3=0.640, c4=0.100)
 _MH12_MASS_KG = 130.0  # Yaskawa Motoman MH12 data sheet (library_rosi.py, not re-verified there)
 
 
-class _Y(NamedTuple):
-    """One arm's row: the URDF's numbers (lengths m, degrees, deg/s, N*m) and its payload (kg,
-    from the model name; None where the name does not give it)."""
-
-    name: str
-    model: str
-    path: str
-    base_a1_a2_c2_c3_c4: tuple[float, ...]
-    limits_deg: tuple[tuple[float, float], ...]
-    speed_deg_s: tuple[float, ...]
-    effort_nm: tuple[float, ...]
-    payload_kg: float | None
-
-
-_ROWS = (
-    _Y("yaskawa_gp4", "Motoman GP4", "motoman_gp4_support/urdf/gp4_macro.xacro", (0.33, 0, -0.015, 0.26, 0.29, 0.072),
-       ((-170, 170), (-110, 130), (-65, 200), (-200, 200), (-123, 123), (-455, 455)),
-       (465, 465, 525, 565, 565, 1000),
-       (220.5, 305.76, 95.55, 48.02, 38.42, 16.46), 4),
-    _Y("yaskawa_gp7", "Motoman GP7", "motoman_gp7_support/urdf/gp7_macro.xacro", (0.33, 0.04, -0.04, 0.445, 0.44, 0.08),
-       ((-170, 170), (-65, 145), (-70, 190), (-190, 190), (-135, 135), (-360.6, 360.6)),
-       (375, 315, 410, 550, 550, 1001.8),
-       (212.66, 205.8, 106.82, 55.86, 32.68, 22.54), 7),
-    _Y("yaskawa_gp12", "Motoman GP12", "motoman_gp12_support/urdf/gp12_macro.xacro", (0.45, 0.155, -0.2, 0.614, 0.64, 0.1),
-       ((-170, 170), (-90, 155), (-85, 150), (-200, 200), (-150, 150), (-455, 455)),
-       (259.9, 229.9, 260, 469.9, 469.8, 699.8),
-       (926.1, 1029.0, 551.25, 89.96, 67.03, 33.3), 12),
-    _Y("yaskawa_gp25", "Motoman GP25", "motoman_gp25_support/urdf/gp25_macro.xacro", (0.505, 0.15, -0.2, 0.76, 0.795, 0.1),
-       ((-180, 180), (-105, 155), (-86, 160), (-200, 200), (-155, 150), (-455, 455)),
-       (210, 210, 265, 420, 420, 885),
-       (3087.0, 3087.0, 926.1, 88.2, 70.56, 50.31), 25),
-    _Y("yaskawa_gp35l", "Motoman GP35L", "motoman_gp35l_support/urdf/gp35l_macro.xacro", (0.54, 0.145, -0.21, 1.15, 1.225, 0.175),
-       ((-180, 180), (-90, 135), (-80, 206), (-360, 360), (-125, 125), (-360, 360)),
-       (180, 140, 178, 250, 250, 360),
-       (5516.2, 7060.7, 3089.0, 926.7, 794.3, 375.0), 35),
-    _Y("yaskawa_gp50", "Motoman GP50", "motoman_gp50_support/urdf/gp50_macro.xacro", (0.54, 0.145, -0.21, 0.87, 1.025, 0.175),
-       ((-180, 180), (-90, 135), (-80, 206), (-360, 360), (-125, 125), (-360, 360)),
-       (180, 178, 178, 250, 250, 360),
-       (5516.0, 7060.0, 3089.0, 926.0, 794.0, 375.0), 50),
-    _Y("yaskawa_gp70l", "Motoman GP70L", "motoman_gp70l_support/urdf/gp70l_macro.xacro", (0.54, 0.32, -0.235, 1.165, 1.225, 0.175),
-       ((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
-       (180, 123, 160, 230, 230, 350),
-       (3983.9, 10174.4, 5148.4, 823.7, 794.3, 333.4), 70),
-    _Y("yaskawa_gp88", "Motoman GP88", "motoman_gp88_support/urdf/gp88_macro.xacro", (0.54, 0.32, -0.21, 0.87, 1.025, 0.175),
-       ((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
-       (170, 140, 160, 230, 230, 350),
-       (4903.32, 7353.05, 3432.33, 978.21, 794.34, 375.1), 88),
-    _Y("yaskawa_gp110", "Motoman GP110", "motoman_gp110_support/urdf/gp110_macro.xacro", (0.54, 0.32, -0.235, 0.87, 1.02, 0.2),
-       ((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
-       (140, 110, 130, 175, 175, 255),
-       (4596.87, 11032.48, 5148.49, 1200.33, 1323.9, 823.76), 110),
-    _Y("yaskawa_gp180", "Motoman GP180", "motoman_gp180_support/urdf/gp180_macro.xacro", (0.65, 0.325, -0.3, 1.15, 1.225, 0.225),
-       ((-180, 180), (-60, 76), (-86, 90), (-360, 360), (-130, 130), (-360, 360)),
-       (125, 115, 125, 182, 175, 265),
-       (8237.59, 10419.57, 7453.05, 1671.05, 1081.18, 926.73), 180),
-    _Y("yaskawa_gp180_120", "Motoman GP180-120", "motoman_gp180_support/urdf/gp180_120_macro.xacro", (0.65, 0.325, -0.3, 1.15, 1.59, 0.225),
-       ((-180, 180), (-60, 76), (-86, 90), (-360, 360), (-130, 130), (-360, 360)),
-       (125, 115, 125, 182, 175, 265),
-       (9414.38, 11645.4, 7060.79, 1392.54, 1863.26, 926.73), None),
-    _Y("yaskawa_mh50", "Motoman MH50", "motoman_mh50_support/urdf/mh50_macro.xacro", (0.54, 0.145, -0.21, 0.87, 1.025, 0.175),
-       ((-180, 180), (-90, 135), (-80, 206), (-360, 360), (-125, 125), (-360, 360)),
-       (180, 177.8, 178, 250, 250, 360),
-       (4903.32, 6276.26, 2745.86, 823.76, 706.08, 333.43), 50),
-    _Y("yaskawa_mh110", "Motoman MH110", "motoman_mh110_support/urdf/mh110_macro.xacro", (0.54, 0.32, -0.235, 0.87, 1.02, 0.2),
-       ((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
-       (140, 110, 130, 175, 175, 255),
-       (5516.24, 11645.4, 4167.83, 1200.33, 1176.8, 823.76), 110),
-    _Y("yaskawa_ms210", "Motoman MS210", "motoman_ms210_support/urdf/ms210_macro.xacro", (0.65, 0.325, -0.3, 1.15, 1.225, 0.25),
-       ((-180, 180), (-60, 76), (-147, 90), (-210, 210), (-125, 125), (-210, 210)),
-       (120, 97, 115, 145, 145, 220),
-       (6276.26, 9806.65, 9806.65, 2451.66, 2745.86, 1800.5), 210),
-    _Y("yaskawa_ar2010", "Motoman AR2010", "motoman_ar2010_support/urdf/ar2010_macro.xacro", (0.505, 0.15, -0.2, 0.76, 1.082, 0.1),
-       ((-180, 180), (-105, 155), (-86, 160), (-150, 150), (-135, 90), (-210, 210)),
-       (210, 210, 220, 435, 435, 700),
-       (3087.0, 3087.0, 926.1, 78.4, 67.03, 33.3), None),
-    _Y("yaskawa_hc20", "Motoman HC20", "motoman_hc20_support/urdf/hc20_macro.xacro", (0.38, 0, 0, 0.82, 0.88, 0.2),
-       ((-180, 180), (-180, 180), (-67, 247), (-210, 210), (-180, 180), (-210, 210)),
-       (80, 80, 120, 130, 180, 180),
-       (917.28, 1223.04, 642.88, 368.48, 141.12, 141.12), 20),
-    _Y("yaskawa_mh5", "Motoman MH5", "motoman_mh5_support/urdf/mh5_macro.xacro", (0.33, 0.088, -0.04, 0.31, 0.305, 0.08),
-       ((-170, 170), (-65, 150), (-70, 190), (-190, 190), (-135, 135), (-360, 360)),
-       (376, 350, 400, 450, 450, 720),
-       (215.6, 176.4, 76.8, 44.7, 18.0, 18.0), 5),
+_ARMS = (
+    RosiArm(
+        name="yaskawa_gp4", model="Motoman GP4", file=_ROSI.format("motoman_gp4_support/urdf/gp4_macro.xacro"),
+        params=OpwParams(a1=0, a2=-0.015, b=0.0, c1=0.0, c2=0.26, c3=0.29, c4=0.072), floor=-0.33,
+        limits_deg=((-170, 170), (-110, 130), (-65, 200), (-200, 200), (-123, 123), (-455, 455)),
+        speed_deg_s=(465, 465, 525, 565, 565, 1000),
+        effort_nm=(220.5, 305.76, 95.55, 48.02, 38.42, 16.46), payload_kg=4,
+    ),
+    RosiArm(
+        name="yaskawa_gp7", model="Motoman GP7", file=_ROSI.format("motoman_gp7_support/urdf/gp7_macro.xacro"),
+        params=OpwParams(a1=0.04, a2=-0.04, b=0.0, c1=0.0, c2=0.445, c3=0.44, c4=0.08), floor=-0.33,
+        limits_deg=((-170, 170), (-65, 145), (-70, 190), (-190, 190), (-135, 135), (-360.6, 360.6)),
+        speed_deg_s=(375, 315, 410, 550, 550, 1001.8),
+        effort_nm=(212.66, 205.8, 106.82, 55.86, 32.68, 22.54), payload_kg=7,
+    ),
+    RosiArm(
+        name="yaskawa_gp12", model="Motoman GP12", file=_ROSI.format("motoman_gp12_support/urdf/gp12_macro.xacro"),
+        params=OpwParams(a1=0.155, a2=-0.2, b=0.0, c1=0.0, c2=0.614, c3=0.64, c4=0.1), floor=-0.45,
+        limits_deg=((-170, 170), (-90, 155), (-85, 150), (-200, 200), (-150, 150), (-455, 455)),
+        speed_deg_s=(259.9, 229.9, 260, 469.9, 469.8, 699.8),
+        effort_nm=(926.1, 1029.0, 551.25, 89.96, 67.03, 33.3), payload_kg=12,
+    ),
+    RosiArm(
+        name="yaskawa_gp25", model="Motoman GP25", file=_ROSI.format("motoman_gp25_support/urdf/gp25_macro.xacro"),
+        params=OpwParams(a1=0.15, a2=-0.2, b=0.0, c1=0.0, c2=0.76, c3=0.795, c4=0.1), floor=-0.505,
+        limits_deg=((-180, 180), (-105, 155), (-86, 160), (-200, 200), (-155, 150), (-455, 455)),
+        speed_deg_s=(210, 210, 265, 420, 420, 885),
+        effort_nm=(3087.0, 3087.0, 926.1, 88.2, 70.56, 50.31), payload_kg=25,
+    ),
+    RosiArm(
+        name="yaskawa_gp35l", model="Motoman GP35L", file=_ROSI.format("motoman_gp35l_support/urdf/gp35l_macro.xacro"),
+        params=OpwParams(a1=0.145, a2=-0.21, b=0.0, c1=0.0, c2=1.15, c3=1.225, c4=0.175), floor=-0.54,
+        limits_deg=((-180, 180), (-90, 135), (-80, 206), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(180, 140, 178, 250, 250, 360),
+        effort_nm=(5516.2, 7060.7, 3089.0, 926.7, 794.3, 375.0), payload_kg=35,
+    ),
+    RosiArm(
+        name="yaskawa_gp50", model="Motoman GP50", file=_ROSI.format("motoman_gp50_support/urdf/gp50_macro.xacro"),
+        params=OpwParams(a1=0.145, a2=-0.21, b=0.0, c1=0.0, c2=0.87, c3=1.025, c4=0.175), floor=-0.54,
+        limits_deg=((-180, 180), (-90, 135), (-80, 206), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(180, 178, 178, 250, 250, 360),
+        effort_nm=(5516.0, 7060.0, 3089.0, 926.0, 794.0, 375.0), payload_kg=50,
+    ),
+    RosiArm(
+        name="yaskawa_gp70l", model="Motoman GP70L", file=_ROSI.format("motoman_gp70l_support/urdf/gp70l_macro.xacro"),
+        params=OpwParams(a1=0.32, a2=-0.235, b=0.0, c1=0.0, c2=1.165, c3=1.225, c4=0.175), floor=-0.54,
+        limits_deg=((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(180, 123, 160, 230, 230, 350),
+        effort_nm=(3983.9, 10174.4, 5148.4, 823.7, 794.3, 333.4), payload_kg=70,
+    ),
+    RosiArm(
+        name="yaskawa_gp88", model="Motoman GP88", file=_ROSI.format("motoman_gp88_support/urdf/gp88_macro.xacro"),
+        params=OpwParams(a1=0.32, a2=-0.21, b=0.0, c1=0.0, c2=0.87, c3=1.025, c4=0.175), floor=-0.54,
+        limits_deg=((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(170, 140, 160, 230, 230, 350),
+        effort_nm=(4903.32, 7353.05, 3432.33, 978.21, 794.34, 375.1), payload_kg=88,
+    ),
+    RosiArm(
+        name="yaskawa_gp110", model="Motoman GP110", file=_ROSI.format("motoman_gp110_support/urdf/gp110_macro.xacro"),
+        params=OpwParams(a1=0.32, a2=-0.235, b=0.0, c1=0.0, c2=0.87, c3=1.02, c4=0.2), floor=-0.54,
+        limits_deg=((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(140, 110, 130, 175, 175, 255),
+        effort_nm=(4596.87, 11032.48, 5148.49, 1200.33, 1323.9, 823.76), payload_kg=110,
+    ),
+    RosiArm(
+        name="yaskawa_gp180", model="Motoman GP180", file=_ROSI.format("motoman_gp180_support/urdf/gp180_macro.xacro"),
+        params=OpwParams(a1=0.325, a2=-0.3, b=0.0, c1=0.0, c2=1.15, c3=1.225, c4=0.225), floor=-0.65,
+        limits_deg=((-180, 180), (-60, 76), (-86, 90), (-360, 360), (-130, 130), (-360, 360)),
+        speed_deg_s=(125, 115, 125, 182, 175, 265),
+        effort_nm=(8237.59, 10419.57, 7453.05, 1671.05, 1081.18, 926.73), payload_kg=180,
+    ),
+    RosiArm(
+        name="yaskawa_gp180_120", model="Motoman GP180-120", file=_ROSI.format("motoman_gp180_support/urdf/gp180_120_macro.xacro"),
+        params=OpwParams(a1=0.325, a2=-0.3, b=0.0, c1=0.0, c2=1.15, c3=1.59, c4=0.225), floor=-0.65,
+        limits_deg=((-180, 180), (-60, 76), (-86, 90), (-360, 360), (-130, 130), (-360, 360)),
+        speed_deg_s=(125, 115, 125, 182, 175, 265),
+        effort_nm=(9414.38, 11645.4, 7060.79, 1392.54, 1863.26, 926.73), payload_kg=None,
+    ),
+    RosiArm(
+        name="yaskawa_mh50", model="Motoman MH50", file=_ROSI.format("motoman_mh50_support/urdf/mh50_macro.xacro"),
+        params=OpwParams(a1=0.145, a2=-0.21, b=0.0, c1=0.0, c2=0.87, c3=1.025, c4=0.175), floor=-0.54,
+        limits_deg=((-180, 180), (-90, 135), (-80, 206), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(180, 177.8, 178, 250, 250, 360),
+        effort_nm=(4903.32, 6276.26, 2745.86, 823.76, 706.08, 333.43), payload_kg=50,
+    ),
+    RosiArm(
+        name="yaskawa_mh110", model="Motoman MH110", file=_ROSI.format("motoman_mh110_support/urdf/mh110_macro.xacro"),
+        params=OpwParams(a1=0.32, a2=-0.235, b=0.0, c1=0.0, c2=0.87, c3=1.02, c4=0.2), floor=-0.54,
+        limits_deg=((-180, 180), (-90, 155), (-80, 90), (-360, 360), (-125, 125), (-360, 360)),
+        speed_deg_s=(140, 110, 130, 175, 175, 255),
+        effort_nm=(5516.24, 11645.4, 4167.83, 1200.33, 1176.8, 823.76), payload_kg=110,
+    ),
+    RosiArm(
+        name="yaskawa_ms210", model="Motoman MS210", file=_ROSI.format("motoman_ms210_support/urdf/ms210_macro.xacro"),
+        params=OpwParams(a1=0.325, a2=-0.3, b=0.0, c1=0.0, c2=1.15, c3=1.225, c4=0.25), floor=-0.65,
+        limits_deg=((-180, 180), (-60, 76), (-147, 90), (-210, 210), (-125, 125), (-210, 210)),
+        speed_deg_s=(120, 97, 115, 145, 145, 220),
+        effort_nm=(6276.26, 9806.65, 9806.65, 2451.66, 2745.86, 1800.5), payload_kg=210,
+    ),
+    RosiArm(
+        name="yaskawa_ar2010", model="Motoman AR2010", file=_ROSI.format("motoman_ar2010_support/urdf/ar2010_macro.xacro"),
+        params=OpwParams(a1=0.15, a2=-0.2, b=0.0, c1=0.0, c2=0.76, c3=1.082, c4=0.1), floor=-0.505,
+        limits_deg=((-180, 180), (-105, 155), (-86, 160), (-150, 150), (-135, 90), (-210, 210)),
+        speed_deg_s=(210, 210, 220, 435, 435, 700),
+        effort_nm=(3087.0, 3087.0, 926.1, 78.4, 67.03, 33.3), payload_kg=None,
+    ),
+    RosiArm(
+        name="yaskawa_hc20", model="Motoman HC20", file=_ROSI.format("motoman_hc20_support/urdf/hc20_macro.xacro"),
+        params=OpwParams(a1=0, a2=0, b=0.0, c1=0.0, c2=0.82, c3=0.88, c4=0.2), floor=-0.38,
+        limits_deg=((-180, 180), (-180, 180), (-67, 247), (-210, 210), (-180, 180), (-210, 210)),
+        speed_deg_s=(80, 80, 120, 130, 180, 180),
+        effort_nm=(917.28, 1223.04, 642.88, 368.48, 141.12, 141.12), payload_kg=20,
+    ),
+    RosiArm(
+        name="yaskawa_mh5", model="Motoman MH5", file=_YASKAWA_ROS2.format("motoman_mh5_support/urdf/mh5_macro.xacro"),
+        params=OpwParams(a1=0.088, a2=-0.04, b=0.0, c1=0.0, c2=0.31, c3=0.305, c4=0.08), floor=-0.33,
+        limits_deg=((-170, 170), (-65, 150), (-70, 190), (-190, 190), (-135, 135), (-360, 360)),
+        speed_deg_s=(376, 350, 400, 450, 450, 720),
+        effort_nm=(215.6, 176.4, 76.8, 44.7, 18.0, 18.0), payload_kg=5,
+    ),
 )
 
 
@@ -147,22 +184,19 @@ _MASS_EST = ("estimate: the capsules' volume at the Motoman MH12's mass per caps
              "not re-verified); the ROS-I package gives no masses")
 
 
-def _spec(row: _Y) -> RobotSpec:
+def _spec(row: RosiArm) -> RobotSpec:
     from rmot.sim.robots.dynamics import INERTIA_METHOD, SPREAD_METHOD
 
-    base, a1, a2, c2, c3, c4 = row.base_a1_a2_c2_c3_c4
-    p = OpwParams(a1=a1, a2=a2, b=0.0, c1=0.0, c2=c2, c3=c3, c4=c4)
+    p, where, base = row.params, row.file, -row.floor
     radii = _radii(p)
-    mh5 = row.name == "yaskawa_mh5"
-    where = f"{_YASKAWA_ROS2 if mh5 else _ROSI} {row.path} @ {_YASKAWA_ROS2_COMMIT if mh5 else _ROSI_COMMIT}"
-    mm = "/".join(f"{1000 * v:g}" for v in (base, a1, c2, -a2, c3, c4))
+    mm = "/".join(f"{1000 * v:g}" for v in (base, p.a1, p.c2, -p.a2, p.c3, p.c4))
     payload = ("unknown: the model name does not give it and the ROS-I package has none" if row.payload_kg is None
                else f"the model name {row.model.split()[-1]}: {row.payload_kg:g} kg")
     return opw_spec(
         name=row.name, vendor="Yaskawa", model=row.model, source=where, params=p, jmap=YASKAWA,
         limits_deg=row.limits_deg, speed_deg_s=row.speed_deg_s, accel_deg_s2=acc_estimate(row.speed_deg_s),
-        reach=_wrist_reach(p), radii=radii, flange_rz=math.pi, floor=-base, effort_nm=row.effort_nm,
-        conventions=YASKAWA_CONV, rated_payload_kg=row.payload_kg, arm_mass_kg=_estimated_mass(p, radii, -base),
+        reach=_wrist_reach(p), radii=radii, flange_rz=math.pi, floor=row.floor, effort_nm=row.effort_nm,
+        conventions=YASKAWA_CONV, rated_payload_kg=row.payload_kg, arm_mass_kg=_estimated_mass(p, radii, row.floor),
         sources=sources(geometry=f"{where} ({mm} mm: base/a1/c2/a2/c3/c4)", limits=f"{where} (rad, to 0.1 deg)",
                         speed=f"{where} (rad/s, to 0.1 deg/s)", accel=ACC_EST, reach=_REACH_EST,
                         mass=f"{_MASS_EST}; {SPREAD_METHOD}", inertia=INERTIA_METHOD,
@@ -172,4 +206,4 @@ def _spec(row: _Y) -> RobotSpec:
 
 def motoman_arms() -> list[RobotSpec]:
     """The Motoman arms of ROS-I's motoman packages (and the MH5 of Yaskawa's ROS 2 package)."""
-    return [_spec(row) for row in _ROWS]
+    return [_spec(row) for row in _ARMS]

@@ -1,13 +1,16 @@
 """A library arm of a ROS-Industrial support package as one row of data, and the spec it builds.
 
-The brand modules (library_abb.py, library_fanuc.py) list their arms as `RosiArm` rows: the
-package's macro file (repository, path, commit), the OPW lengths read off its joint origins
+The brand modules (library_abb.py, library_fanuc.py, library_motoman.py, library_staubli.py)
+list their arms as `RosiArm` rows, one row type for every ROS-I arm: the package's macro file
+(repository, path, commit), the OPW lengths read off its joint origins
 (as library_rosi.py explains: a1 J2's forward offset from J1, c1 J2's height over the
 controller frame, c2 J2 to J3, a2 the forearm's offset, c3 J3 to the wrist centre, c4 the wrist
 centre to the flange, b the lateral offset), the bounds and speeds of its <limit> tags, the
-rated payload and the arm's mass, each with its source. `rosi_spec` turns a row into the
-RobotSpec with its brand's joint map, conventions and frames (`RosiBrand`), the way
-library_rosi.py builds its first arm of each brand.
+rated payload and the arm's mass, each with its source, and the <limit effort> torques where the
+package gives them. `rosi_spec` turns an ABB or FANUC row into the RobotSpec with its brand's
+joint map, conventions and frames (`RosiBrand`), the way library_rosi.py builds its first arm
+of each brand; the Motoman and Stäubli modules build theirs from the same rows with their
+brand's capsule radii and mass estimates.
 """
 
 from __future__ import annotations
@@ -27,16 +30,17 @@ _RADII_2400 = (0.17, 0.14, 0.10, 0.10, 0.08, 0.065, 0.045)
 _REACH_2400 = 1.555
 
 
-@record
+@record(kw_only=True)
 class RosiArm:
     """One arm: its library name, the vendor's model name, its macro file (repository, path,
     commit), the OPW lengths (m), the joint bounds (deg) and speeds (deg/s) of the file's
     <limit> tags (`rounded`: the file gives decimal radians, here to the nearest 0.5 deg and
-    1 deg/s), the rated payload (kg, the model name's unless `payload_source` says otherwise),
-    the arm's mass (kg) as the data sheet gives it (or, with `mass_source`, as a sibling
-    model's stands in for it) or per link from the file's <inertial> tags, and the mounting
-    face's height in the controller frame (`floor`, m: below zero where the controller frame
-    is at J2's height)."""
+    1 deg/s), the rated payload (kg, the model name's unless `payload_source` says otherwise;
+    None where neither gives it), the arm's mass (kg) as the data sheet gives it (or, with
+    `mass_source`, as a sibling model's stands in for it) or per link from the file's
+    <inertial> tags, the mounting face's height in the controller frame (`floor`, m: below zero
+    where the controller frame is at J2's height) and the joint torque limits of the file's
+    <limit effort> tags (`effort_nm`, N*m; empty where the file has none)."""
 
     name: str
     model: str
@@ -44,13 +48,14 @@ class RosiArm:
     params: OpwParams
     limits_deg: tuple[tuple[float, float], ...]
     speed_deg_s: tuple[float, ...]
-    rounded: bool
-    payload_kg: float
+    rounded: bool = False
+    payload_kg: float | None
     arm_mass_kg: float | None = None
     link_mass_kg: tuple[float, ...] = ()
     floor: float = 0.0
     payload_source: str = ""  # where the payload is not in the model name
     mass_source: str = ""  # where `arm_mass_kg` is not the model's own data sheet value
+    effort_nm: tuple[float, ...] = ()
 
 
 @record
@@ -106,7 +111,10 @@ def rosi_spec(arm: RosiArm, brand: RosiBrand) -> RobotSpec:
         rated_payload_kg=arm.payload_kg, arm_mass_kg=arm.arm_mass_kg,
         sources=sources(geometry=_geometry(arm), limits=f"{arm.file} ({unit}){brand.limits_note}",
                         speed=f"{arm.file} ({speed_unit})", accel=ACC_EST, reach=_REACH_EST,
-                        mass=_mass_source(arm, brand.vendor), inertia=INERTIA_METHOD, effort=EFFORT_METHOD,
+                        mass=_mass_source(arm, brand.vendor), inertia=INERTIA_METHOD,
+                        effort=f"{arm.file} <limit effort> (N*m)" if arm.effort_nm else EFFORT_METHOD,
                         payload=arm.payload_source or f"the model name {arm.model}: {arm.payload_kg:g} kg"),
     )
+    if arm.effort_nm:
+        spec = replace(spec, effort_nm=arm.effort_nm)
     return replace(spec, link_mass_kg=arm.link_mass_kg) if arm.link_mass_kg else spec

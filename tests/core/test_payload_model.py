@@ -31,26 +31,26 @@ def planned():  # type: ignore[no-untyped-def]
 
 def test_the_task_load_is_the_tool_and_the_heaviest_held_part_at_its_centre(planned) -> None:  # type: ignore[no-untyped-def]
     """(1 kg * 50 mm + 2 kg * 150 mm) / 3 kg = 116.67 mm along the flange z axis."""
-    load = payload.task_load(planned, planned.tasks[0])
+    load = payload.of(planned, planned.tasks[0]).peak
     assert load is not None
     assert load.mass == pytest.approx(3.0)
     np.testing.assert_allclose(load.at(), [0.0, 0.0, 0.35 / 3], atol=2e-5)  # the stop is within microns of the target
 
 
-def test_the_planner_bound_puts_the_same_parts_at_the_tcp(planned) -> None:  # type: ignore[no-untyped-def]
-    """Before the flange poses exist: the same 3 kg, the cube at the 100 mm TCP:
-    (1 kg * 50 mm + 2 kg * 100 mm) / 3 kg = 83.33 mm."""
-    load = payload.timing_load(planned.tasks[0].task, planned.program.cell.parts)
-    assert load is not None
-    assert load.mass == pytest.approx(3.0)
-    np.testing.assert_allclose(load.at(), [0.0, 0.0, 0.25 / 3], atol=1e-12)
+def test_the_plan_carries_the_planners_decision(planned) -> None:  # type: ignore[no-untyped-def]
+    """The planner decided the load before timing (from the targets) and put it on the plan:
+    the same 3 kg at 116.67 mm, exactly (the targets, not the IK solutions)."""
+    tp = planned.tasks[0]
+    assert tp.load is not None and payload.of(planned, tp) is tp.load
+    assert tp.load.peak is not None
+    np.testing.assert_allclose(tp.load.peak.at(), [0.0, 0.0, 0.35 / 3], atol=1e-12)
 
 
 def test_every_reader_gets_the_load_after_an_attach_from_the_model(planned) -> None:  # type: ignore[no-untyped-def]
     """The backends' load after each attach is the model's, and the verification's task load
     is the heaviest of them with the tool: one decider."""
     tp = planned.tasks[0]
-    loads = payload.held_loads(planned, tp)
+    loads = dict(payload.of(planned, tp).held)
     attaches = [i for i in ir_tree.walk(tp.task.body) if isinstance(i, ir.Attach)]
     assert [a.part for a in attaches] == ["b1", "b2"]
     ctx = type("Ctx", (), {})()
@@ -60,7 +60,7 @@ def test_every_reader_gets_the_load_after_an_attach_from_the_model(planned) -> N
         assert (mass, total) == (loads[attach.uid].parts.mass, loads[attach.uid].total.mass) == (2.0, 3.0)
         np.testing.assert_allclose(cog, [0.0, 0.0, 0.15], atol=2e-5)
         np.testing.assert_allclose(total_cog, [0.0, 0.0, 0.35 / 3], atol=2e-5)
-    assert payload.task_load(planned, tp) == loads[attaches[0].uid].total
+    assert payload.of(planned, tp).peak == loads[attaches[0].uid].total
 
 
 def test_rapid_prints_the_models_load(planned) -> None:  # type: ignore[no-untyped-def]
