@@ -1,0 +1,251 @@
+"""Coordinated motion: a linear or circular move while the positioner carrying its frame turns.
+
+The witness never asks rmot where the TCP is: it composes the arm's flange from the KR 16's
+reference chain (ROS-Industrial kuka_experimental kuka_kr16_support/urdf/kr16_2_macro.xacro @
+e78bbd15edb2, the joint origins and axes of tests/robots/reference_arms.py, pendant values one to
+one) with the track and the positioner built from the cell text's numbers (ext_axes_witness.py),
+at every 4 ms sample of the planned joints and axis values, and reads the TCP in the part frame
+`work`. That TCP must run on the programmed line / arc in `work` at no more than the programmed
+speed, in step with the axes (the shared progress u). Each vendor's emitted targets, re-expanded
+with the axis values written beside them, must reach the planned TCP in `work` within 0.01 mm;
+the controller's reading of the move (TCP linear in the moving frame from the start target to
+the end target while the axes go linearly from their start to their end values) sampled at the
+plan's axis values must match the plan's TCP within the dense path tolerance (0.05 mm)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from ext_axes_witness import CELL_HEAD, at, robot_base, rot, work_frame
+from test_ext_axes_emit import fanuc_targets, krl_targets, rapid_targets
+
+from rmot.backends import BACKENDS
+from rmot.compiler.frontend import load_text
+from rmot.compiler.plan import plan_program
+from rmot.lang import ir
+from rmot.lang.axis_motion import axis_samples, task_axes
+from rmot.lang.plan_types import Plan
+
+PULSES = CELL_HEAD.replace("accel 2000 mm/s^2 at", "accel 2000 mm/s^2 inform(pulses_per_mm=100) at").replace(
+    "deg/s^2,", "deg/s^2 inform(pulses_per_deg=1000),").replace("deg/s^2)\n", "deg/s^2 inform(pulses_per_deg=1000))\n")
+SOURCE = PULSES + """  tool torch = none tcp pose(z=300mm) mass 1 kg on r1
+}
+program p on r1 with rail, pos {
+  tool torch
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move joint pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=1000mm)
+  move linear pose(x=0mm, y=100mm, z=50mm, rx=180deg) frame work ext(pos=(0deg, 60deg)) speed 50 mm/s
+  move circular via pose(x=-100mm, y=0mm, z=50mm, rx=180deg) to pose(x=0mm, y=-100mm, z=50mm, rx=180deg) frame work ext(pos=(10deg, 120deg)) speed 50 mm/s
+  move linear pose(x=0mm, y=-100mm, z=150mm, rx=180deg) frame work speed 100 mm/s
+}
+"""
+TOL_M = 1e-5  # 0.01 mm
+PATH_TOL_M = 5e-5  # the dense IK's path tolerance (compiler/plan/dense.py)
+KR16 = (((0.0, 0.0, 0.675), (0.0, 0.0, -1.0)), ((0.26, 0.0, 0.0), (0.0, 1.0, 0.0)), ((0.68, 0.0, 0.0), (0.0, 1.0, 0.0)),
+        ((0.67, 0.0, -0.035), (-1.0, 0.0, 0.0)), ((0.0, 0.0, 0.0), (0.0, 1.0, 0.0)), ((0.0, 0.0, 0.0), (-1.0, 0.0, 0.0)))
+TCP = at(z=0.3)
+
+
+def _about(axis: tuple[float, float, float], angle: float) -> np.ndarray:
+    k = np.asarray(axis)
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    out = np.eye(4)
+    out[:3, :3] = np.eye(3) + math.sin(angle) * kx + (1 - math.cos(angle)) * kx @ kx
+    return out
+
+
+def flange(q: np.ndarray) -> np.ndarray:
+    """The KR 16's flange in its base frame (the URDF chain, then tool0: 0.158 m along x, ry 90 deg)."""
+    out = np.eye(4)
+    for (xyz, axis), value in zip(KR16, q, strict=True):
+        out = out @ at(*xyz) @ _about(axis, float(value))
+    return out @ at(0.158) @ rot("y", 90.0)
+
+
+def in_work(q: np.ndarray, rail: float, tilt: float, turn: float) -> np.ndarray:
+    """The TCP in the part frame `work` (rail in m, tilt and turn in rad)."""
+    world = robot_base(rail * 1000) @ flange(q) @ TCP
+    return np.linalg.inv(work_frame(math.degrees(tilt), math.degrees(turn))) @ world
+
+
+@pytest.fixture(scope="module")
+def plan() -> Plan:
+    front = load_text(SOURCE, "/tmp/ext_axes_coordinated.rmot")
+    assert front.program is not None, [d.message for d in front.diagnostics]
+    result = plan_program(front.program)
+    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
+    return result
+
+
+def _moves(plan: Plan) -> list[ir.Move]:
+    return [m for m in plan.tasks[0].task.body if isinstance(m, ir.Move)]
+
+
+def _samples(plan: Plan, move: ir.Move) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(t, axes (N, 3), TCP in work (N, 4, 4)) at the plan's samples during `move`."""
+    tp = plan.tasks[0]
+    rec = tp.record(move.uid)
+    assert rec is not None
+    values = axis_samples(tp, task_axes(tp.task, plan.program.cell.external))
+    inside = (tp.trajectory.t >= rec.t_start) & (tp.trajectory.t <= rec.t_end)
+    tcp = np.array([in_work(q, *e) for q, e in zip(tp.trajectory.q[inside], values[inside], strict=True)])
+    return tp.trajectory.t[inside], values[inside], tcp
+
+
+def test_the_linear_seam_is_straight_in_the_turning_part_frame(plan: Plan) -> None:
+    move = _moves(plan)[2]
+    assert move.coordinated is not None and move.coordinated.mechanism == "pos"
+    t, axes, tcp = _samples(plan, move)
+    p = tcp[:, :3, 3]
+    start, end = np.array([0.1, 0.0, 0.05]), np.array([0.0, 0.1, 0.05])
+    d = end - start
+    u = (p - start) @ d / (d @ d)
+    assert np.linalg.norm(p - start - u[:, None] * d, axis=1).max() < PATH_TOL_M
+    assert np.abs(p[-1] - end).max() < 1e-4 and np.abs(p[0] - start).max() < 1e-4  # the ends within a 4 ms step
+    turn = (axes[:, 2] - axes[0, 2]) / (axes[-1, 2] - axes[0, 2])
+    assert np.abs(turn - u).max() < 2e-3  # the axes and the TCP share one progress
+    assert math.degrees(axes[-1, 2] - axes[0, 2]) == pytest.approx(60.0, abs=0.1)
+    speed = np.linalg.norm(np.diff(p, axis=0), axis=1) / np.diff(t)
+    assert speed.max() <= 0.05 * 1.01 and speed.max() > 0.05 * 0.99  # the programmed speed, relative to the part
+
+
+def test_the_arc_is_round_in_the_part_frame_and_the_tilt_moves_with_it(plan: Plan) -> None:
+    t, axes, tcp = _samples(plan, _moves(plan)[3])
+    p = tcp[:, :3, 3]
+    assert np.abs(np.linalg.norm(p[:, :2], axis=1) - 0.1).max() < PATH_TOL_M  # the circle through the three points
+    assert np.abs(p[:, 2] - 0.05).max() < PATH_TOL_M
+    assert np.abs(p[-1] - [0.0, -0.1, 0.05]).max() < 1e-4
+    angle = np.unwrap(np.arctan2(p[:, 1], p[:, 0]))
+    u = (angle - angle[0]) / (angle[-1] - angle[0])
+    assert angle[-1] - angle[0] == pytest.approx(math.pi, abs=1e-3)  # through the via at 180 deg
+    for k in (1, 2):
+        progress = (axes[:, k] - axes[0, k]) / (axes[-1, k] - axes[0, k])
+        assert np.abs(progress - u).max() < 2e-3
+    speed = np.linalg.norm(np.diff(p, axis=0), axis=1) / np.diff(t)
+    assert speed.max() <= 0.05 * 1.01
+
+
+def test_the_timing_respects_every_axis_and_counts_in_the_cycle(plan: Plan) -> None:
+    tp = plan.tasks[0]
+    values = axis_samples(tp, task_axes(tp.task, plan.program.cell.external))
+    rate = np.abs(np.diff(values, axis=0)) / np.diff(tp.trajectory.t)[:, None]
+    assert np.all(rate.max(axis=0) <= np.array([1.5, math.radians(90), math.radians(180)]) * (1 + 1e-3))
+    qd = np.abs(tp.trajectory.qd).max(axis=0)
+    assert np.all(np.isfinite(qd))
+    arc = tp.record(_moves(plan)[3].uid)
+    assert arc is not None
+    assert arc.t_end - arc.t_start > math.pi * 0.1 / 0.05  # 314 mm at 50 mm/s: at least 6.28 s
+    assert plan.cycle_time >= arc.t_end
+
+
+def _planned_in_work(plan: Plan) -> list[np.ndarray]:
+    """The planned TCP at each Cartesian move's target, in `work` at that move's axis values."""
+    tp = plan.tasks[0]
+    out = []
+    for move in _moves(plan):
+        if isinstance(move.target, ir.CartesianTarget) and not move.axes_only and move.kind is not ir.MotionKind.CIRCULAR:
+            rec = tp.record(move.uid)
+            assert rec is not None and rec.tcp_pose is not None
+            ext = dict(move.ext)
+            world = robot_base(ext["rail"] * 1000) @ rec.tcp_pose.matrix()
+            out.append(np.linalg.inv(work_frame(math.degrees(ext["pos.1"]), math.degrees(ext["pos.2"]))) @ world)
+    return out
+
+
+def _controller_matches_plan(plan: Plan, start: np.ndarray, end: np.ndarray, move: ir.Move) -> None:
+    """The controller's coordinated line from the re-expanded start to end targets (in work),
+    at the progress the plan's axes show, is the plan's TCP in work."""
+    _, axes, tcp = _samples(plan, move)
+    u = (axes[:, 2] - axes[0, 2]) / (axes[-1, 2] - axes[0, 2])
+    controller = start[:3, 3] + u[:, None] * (end[:3, 3] - start[:3, 3])
+    assert np.abs(controller - tcp[:, :3, 3]).max() < PATH_TOL_M + 0.05 * 0.004  # + one sample's travel
+
+
+def _check_vendor(plan: Plan, world_targets: list[np.ndarray], axes: list[tuple[float, float, float]]) -> None:
+    want = _planned_in_work(plan)
+    assert len(world_targets) == len(want) == 3
+    got = [np.linalg.inv(work_frame(tilt, turn)) @ w for w, (_, tilt, turn) in zip(world_targets, axes, strict=True)]
+    for g, w in zip(got, want, strict=True):
+        assert np.abs(g[:3, 3] - w[:3, 3]).max() < TOL_M
+        assert np.abs(g[:3, :3] - w[:3, :3]).max() < 1e-4
+    _controller_matches_plan(plan, got[0], got[1], _moves(plan)[2])
+
+
+def _axes_of(plan: Plan) -> list[tuple[float, float, float]]:
+    out = []
+    for move in _moves(plan):
+        if isinstance(move.target, ir.CartesianTarget) and move.kind is not ir.MotionKind.CIRCULAR:
+            ext = dict(move.ext)
+            out.append((ext["rail"] * 1000, math.degrees(ext["pos.1"]), math.degrees(ext["pos.2"])))
+    return out
+
+
+def test_rapid_coordinated_work_object_re_expands_to_the_plan(plan: Plan) -> None:
+    result = BACKENDS["rapid"]().emit(plan)
+    assert not result.has_errors
+    (text,) = result.files.values()
+    assert 'PERS wobjdata work:=[FALSE,FALSE,"POS",' in text  # ufprog FALSE, ufmec the unit
+    assert "MoveL p_3, v50, fine, torch\\WObj:=work;" in text and "MoveC " in text
+    _check_vendor(plan, rapid_targets(text), _axes_of(plan))
+
+
+def test_krl_coupled_base_re_expands_to_the_plan(plan: Plan) -> None:
+    result = BACKENDS["krl"]().emit(plan)
+    assert not result.has_errors
+    src = next(t for n, t in result.files.items() if n.endswith(".src"))
+    dat = next(t for n, t in result.files.items() if n.endswith(".dat"))
+    assert "$BASE=EK(MACHINE_DEF[3].ROOT" in src and "CIRC " in src
+    _check_vendor(plan, krl_targets(src, dat), _axes_of(plan))
+
+
+def test_fanuc_coord_re_expands_to_the_plan(plan: Plan) -> None:
+    result = BACKENDS["fanuc"]().emit(plan)
+    assert not result.has_errors
+    (text,) = result.files.values()
+    assert "L P[3] 50mm/sec FINE COORD ;" in text and ":  P[5] 50mm/sec FINE COORD ;" in text
+    assert "L P[6] 100mm/sec FINE ;" in text  # the positioner still: not coordinated
+    assert "CD_PAIR" in text
+    poses, axes = fanuc_targets(text)
+    _check_vendor(plan, poses, axes)
+
+
+def test_inform_refuses_the_coordinated_move_at_its_line(plan: Plan) -> None:
+    result = BACKENDS["inform"]().emit(plan)
+    errors = [d for d in result.diagnostics if d.is_error]
+    assert [d.code.id for d in errors] == ["E607"]
+    assert errors[0].span is not None and errors[0].span.start.line == 15
+    assert "coordinated linear move" in errors[0].message and "SMOVL" in errors[0].message
+
+
+@pytest.mark.parametrize(("program", "code", "line"), [
+    # the frame rides on no mechanism: a linear move may not move the positioner
+    ("  move linear pose(x=1000mm, z=800mm, ry=180deg) frame world ext(pos=(0deg, 30deg))\n", "E606", 14),
+    # the frame rides on the positioner, but the track moves too
+    ("  move linear pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=500mm, pos=(0deg, 30deg))\n", "E609", 14),
+])
+def test_bad_coordinated_moves_are_located(program: str, code: str, line: int) -> None:
+    text = PULSES + "  tool torch = none tcp pose(z=300mm) on r1\n}\nprogram p on r1 with rail, pos {\n  tool torch\n" \
+        "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n" + program + "}\n"
+    front = load_text(text, "/tmp/ext_axes_coordinated_bad.rmot")
+    errors = [d for d in front.diagnostics if d.is_error]
+    assert [(d.code.id, d.span.start.line if d.span else None) for d in errors] == [(code, line)]
+
+
+def test_a_frame_on_a_positioner_the_program_does_not_drive_is_located() -> None:
+    text = PULSES + "  tool torch = none tcp pose(z=300mm) on r1\n}\nprogram p on r1 with rail {\n  tool torch\n" \
+        "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n" \
+        "  move linear pose(x=100mm, z=50mm, rx=180deg) frame work\n}\n"
+    front = load_text(text, "/tmp/ext_axes_coordinated_undriven.rmot")
+    errors = [d for d in front.diagnostics if d.is_error]
+    assert [(d.code.id, d.span.start.line if d.span else None) for d in errors] == [("E610", 14)]
+    assert "with rail, pos" in errors[0].message
+
+
+def test_a_linear_move_in_the_part_frame_with_the_axes_still_is_plain(plan: Plan) -> None:
+    last = _moves(plan)[4]
+    assert last.coordinated is None and last.kind is ir.MotionKind.LINEAR
+    rec = plan.tasks[0].record(last.uid)
+    assert rec is not None and rec.axes_path is None
