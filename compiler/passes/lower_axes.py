@@ -315,7 +315,7 @@ class ProgramAxes:
         values = dict(self.values)
         if not self._assign(s.mechanism.name, s.values, scope, values):
             return None
-        held = replace(self.last, axes_only=True, kind=ir.MotionKind.JOINT, via=None, span=s.span, uid=0, free=None,
+        held = replace(self.last, axes_only=True, kind=ir.MotionKind.JOINT, via=None, span=s.span, uid=0, free=None, coordinated=None,
                        motion=replace(self.last.motion, duration=None))
         return self._timed(self._resolved(held, values, keep_base_pose=True), values)
 
