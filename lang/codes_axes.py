@@ -6,7 +6,8 @@ from __future__ import annotations
 
 from rmot.lang.diagnostics import Code
 
-__all__ = ["EXT_AXIS_DEFINITION", "EXT_COORDINATED", "EXT_FRAME_UNDRIVEN", "EXT_AXIS_LIMIT", "EXT_INFORM_BINDING", "EXT_MOTION", "EXT_MOUNT", "EXT_PROGRAM_AXES", "EXT_STOPS", "EXT_VALUES"]
+__all__ = ["EXT_AXIS_DEFINITION", "EXT_AXIS_LIMIT", "EXT_COORDINATED", "EXT_FRAME_UNDRIVEN", "EXT_INFORM_BINDING", "EXT_MOTION",
+           "EXT_MOUNT", "EXT_PROGRAM_AXES", "EXT_STOPS", "EXT_VALUES"]
 
 
 EXT_AXIS_DEFINITION = Code("E601", "ext-axis-definition", "an external axis that is not linear or revolute about x, y "

@@ -158,7 +158,8 @@ class Coordinated:
             for axis in mech.axes:
                 v = values[:, names.index(axis.name)] if axis.name in names else np.full(rows, columns.get(axis.name, axis.home))
                 out = out @ _axis_matrices(axis, v)
-            return out @ mount.local.matrix()
+            placed: np.ndarray = out @ mount.local.matrix()
+            return placed
 
         base = chain(self.robot)
         base = np.tile(self.robot_base.matrix(), (rows, 1, 1)) if base is None else base

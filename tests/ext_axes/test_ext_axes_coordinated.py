@@ -38,7 +38,8 @@ program p on r1 with rail, pos {
   move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
   move joint pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=1000mm)
   move linear pose(x=0mm, y=100mm, z=50mm, rx=180deg) frame work ext(pos=(0deg, 60deg)) speed 50 mm/s
-  move circular via pose(x=-100mm, y=0mm, z=50mm, rx=180deg) to pose(x=0mm, y=-100mm, z=50mm, rx=180deg) frame work ext(pos=(10deg, 120deg)) speed 50 mm/s
+  move circular via pose(x=-100mm, y=0mm, z=50mm, rx=180deg)
+             to pose(x=0mm, y=-100mm, z=50mm, rx=180deg) frame work ext(pos=(10deg, 120deg)) speed 50 mm/s
   move linear pose(x=0mm, y=-100mm, z=150mm, rx=180deg) frame work speed 100 mm/s
 }
 """
