@@ -70,8 +70,10 @@ class MovingFramePath(CartesianPath):
         length = float(np.sum(np.linalg.norm(np.diff(curve, axis=0), axis=1)))
         rel = np.einsum("nji,njk->nik", poses[:-1, :3, :3], poses[1:, :3, :3])
         angle = float(np.sum(np.arccos(np.clip((np.trace(rel, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0))))
-        return MovingFramePath(part.kind, curve[0], curve[-1], part.q0, part.q1, length, angle, part=part, frames=frames,
-                               curve=curve)
+        # the initial sampling (dense.follow_path) follows the longer of the two: the TCP may stand
+        # still in the base frame while it runs along the whole seam in the part's
+        return MovingFramePath(part.kind, curve[0], curve[-1], part.q0, part.q1, max(length, part.length),
+                               max(angle, part.angle), part=part, frames=frames, curve=curve)
 
     def poses(self, u: np.ndarray) -> np.ndarray:
         assert self.part is not None and self.frames is not None  # built by `of`

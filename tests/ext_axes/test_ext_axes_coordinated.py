@@ -1,9 +1,8 @@
 """Coordinated motion: a linear or circular move while the positioner carrying its frame turns.
 
 The witness never asks rmot where the TCP is: it composes the arm's flange from the KR 16's
-reference chain (ROS-Industrial kuka_experimental kuka_kr16_support/urdf/kr16_2_macro.xacro @
-e78bbd15edb2, the joint origins and axes of tests/robots/reference_arms.py, pendant values one to
-one) with the track and the positioner built from the cell text's numbers (ext_axes_witness.py),
+reference chain (ext_axes_witness.kr16_flange, from ROS-Industrial's URDF) with the track and
+the positioner built from the cell text's numbers (ext_axes_witness.py),
 at every 4 ms sample of the planned joints and axis values, and reads the TCP in the part frame
 `work`. That TCP must run on the programmed line / arc in `work` at no more than the programmed
 speed, in step with the axes (the shared progress u). Each vendor's emitted targets, re-expanded
@@ -19,7 +18,7 @@ import math
 import numpy as np
 import pytest
 
-from ext_axes_witness import CELL_HEAD, at, robot_base, rot, work_frame
+from ext_axes_witness import CELL_HEAD, at, kr16_flange, robot_base, work_frame
 from test_ext_axes_emit import fanuc_targets, krl_targets, rapid_targets
 
 from rmot.backends import BACKENDS
@@ -28,6 +27,7 @@ from rmot.compiler.plan import plan_program
 from rmot.lang import ir
 from rmot.lang.axis_motion import axis_samples, task_axes
 from rmot.lang.plan_types import Plan
+from rmot.sim.verification import verify
 
 PULSES = CELL_HEAD.replace("accel 2000 mm/s^2 at", "accel 2000 mm/s^2 inform(pulses_per_mm=100) at").replace(
     "deg/s^2,", "deg/s^2 inform(pulses_per_deg=1000),").replace("deg/s^2)\n", "deg/s^2 inform(pulses_per_deg=1000))\n")
@@ -45,30 +45,12 @@ program p on r1 with rail, pos {
 """
 TOL_M = 1e-5  # 0.01 mm
 PATH_TOL_M = 5e-5  # the dense IK's path tolerance (compiler/plan/dense.py)
-KR16 = (((0.0, 0.0, 0.675), (0.0, 0.0, -1.0)), ((0.26, 0.0, 0.0), (0.0, 1.0, 0.0)), ((0.68, 0.0, 0.0), (0.0, 1.0, 0.0)),
-        ((0.67, 0.0, -0.035), (-1.0, 0.0, 0.0)), ((0.0, 0.0, 0.0), (0.0, 1.0, 0.0)), ((0.0, 0.0, 0.0), (-1.0, 0.0, 0.0)))
 TCP = at(z=0.3)
-
-
-def _about(axis: tuple[float, float, float], angle: float) -> np.ndarray:
-    k = np.asarray(axis)
-    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    out = np.eye(4)
-    out[:3, :3] = np.eye(3) + math.sin(angle) * kx + (1 - math.cos(angle)) * kx @ kx
-    return out
-
-
-def flange(q: np.ndarray) -> np.ndarray:
-    """The KR 16's flange in its base frame (the URDF chain, then tool0: 0.158 m along x, ry 90 deg)."""
-    out = np.eye(4)
-    for (xyz, axis), value in zip(KR16, q, strict=True):
-        out = out @ at(*xyz) @ _about(axis, float(value))
-    return out @ at(0.158) @ rot("y", 90.0)
 
 
 def in_work(q: np.ndarray, rail: float, tilt: float, turn: float) -> np.ndarray:
     """The TCP in the part frame `work` (rail in m, tilt and turn in rad)."""
-    world = robot_base(rail * 1000) @ flange(q) @ TCP
+    world = robot_base(rail * 1000) @ kr16_flange(q) @ TCP
     return np.linalg.inv(work_frame(math.degrees(tilt), math.degrees(turn))) @ world
 
 
@@ -250,3 +232,30 @@ def test_a_linear_move_in_the_part_frame_with_the_axes_still_is_plain(plan: Plan
     assert last.coordinated is None and last.kind is ir.MotionKind.LINEAR
     rec = plan.tasks[0].record(last.uid)
     assert rec is not None and rec.axes_path is None
+
+
+def test_a_post_on_the_turning_part_is_hit_at_the_coordinated_line_and_time() -> None:
+    """A 20 x 20 mm post stands on the part at (50, 50) mm in `work`, 100 mm tall: the seam line
+    (100, 0) -> (0, 100) at z = 50 mm passes through it, so the torch (a 10 mm cylinder along
+    its axis) meets it once the torch axis is 10 mm from the post's side: at y = 40 - 10/sqrt(2)
+    mm on the line. The time is read from the plan's samples through the witness FK, not from
+    the collision check: the check must report E300 at the coordinated move at that time."""
+    text = PULSES + """  tool torch = cylinder(10mm, 300mm) at pose(z=150mm) tcp pose(z=300mm) on r1
+  fixture post = box(20mm, 20mm, 100mm) on pos at pose(x=50mm, y=50mm, z=90mm)
+}
+program p on r1 with rail, pos {
+  tool torch
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move joint pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=1000mm)
+  move linear pose(x=0mm, y=100mm, z=50mm, rx=180deg) frame work ext(pos=(0deg, 60deg)) speed 50 mm/s
+}
+"""
+    front = load_text(text, "/tmp/ext_axes_coordinated_post.rmot")
+    assert front.program is not None, [d.message for d in front.diagnostics]
+    plan = plan_program(front.program)
+    hits = [d for d in verify(plan).diagnostics if d.is_error and d.code.id == "E300" and "post" in d.bodies]
+    assert hits and {h.span.start.line for h in hits if h.span is not None} == {16}
+    assert set(hits[0].bodies) == {"torch", "post"}
+    t, _, tcp = _samples(plan, _moves(plan)[2])
+    contact = float(np.interp(0.040 - 0.010 / math.sqrt(2.0), tcp[:, 1, 3], t))
+    assert hits[0].time_s == pytest.approx(contact, abs=2 * plan.step)
