@@ -134,7 +134,9 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
             lines.append(f"{mech.name}: {kind}, {where}")
         else:
             index = mechanism_index(mech.name, cell)
-            kind = "$ERSYSROOT/$ROBROOT on the carriage (mathematically coupled)" if mech.kind == "track" else "$ETn external kinematic, EK() bases"
+            coupled = ", LIN/CIRC mathematically coupled to it ($BASE=EK follows the kinematic)" if coordinated_pair else ""
+            kind = "$ERSYSROOT/$ROBROOT on the carriage (mathematically coupled)" if mech.kind == "track" \
+                else f"$ETn external kinematic, EK() bases{coupled}"
             lines.append(f"{mech.name}: MACHINE_DEF[{index}], {kind}, {where}")
         for axis in mine:
             slot += 1

@@ -259,3 +259,31 @@ program p on r1 with rail, pos {
     t, _, tcp = _samples(plan, _moves(plan)[2])
     contact = float(np.interp(0.040 - 0.010 / math.sqrt(2.0), tcp[:, 1, 3], t))
     assert hits[0].time_s == pytest.approx(contact, abs=2 * plan.step)
+
+
+def test_a_short_seam_with_a_half_turn_is_timed_by_the_turntable() -> None:
+    """10 mm of seam across the turntable's centre while it turns 180 deg: the turntable's own
+    rest-to-rest time (180 deg at 180 deg/s and 360 deg/s^2: a trapezoid of 180/180 + 180/360 =
+    1.5 s) bounds the move, not the 0.2 s the TCP speed would allow; time-optimal, it takes
+    little more, and the TCP relative to the part stays below the programmed speed."""
+    text = PULSES + """  tool torch = none tcp pose(z=300mm) on r1
+}
+program p on r1 with rail, pos {
+  tool torch
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move joint pose(x=0mm, y=-5mm, z=50mm, rx=180deg) frame work ext(rail=1000mm)
+  move linear pose(x=0mm, y=5mm, z=50mm, rx=180deg) frame work ext(pos=(0deg, 180deg)) speed 50 mm/s
+}
+"""
+    front = load_text(text, "/tmp/ext_axes_coordinated_turn.rmot")
+    assert front.program is not None, [d.message for d in front.diagnostics]
+    plan = plan_program(front.program)
+    assert not [d for d in plan.diagnostics if d.is_error], [d.message for d in plan.diagnostics]
+    move = _moves(plan)[2]
+    rec = plan.tasks[0].record(move.uid)
+    assert rec is not None
+    trapezoid = math.pi / math.pi + math.pi / (2 * math.pi)
+    assert trapezoid <= rec.t_end - rec.t_start <= trapezoid * 1.03
+    t, axes, tcp = _samples(plan, move)
+    assert np.degrees(np.abs(np.diff(axes[:, 2])) / np.diff(t)).max() == pytest.approx(180.0, rel=0.01)  # at full speed
+    assert np.abs(tcp[:, 0, 3]).max() < PATH_TOL_M and np.abs(tcp[:, 2, 3] - 0.05).max() < PATH_TOL_M
