@@ -202,7 +202,8 @@ class KrlBackend(Backend):
         """The .src and .dat of one module: `body`, or calls to part modules."""
         ctx = replace(task, module=_Module(DataPool(task.names)))
         main = list(calls) if calls is not None else self.body(body, ctx)
-        head = self.header(ctx) + [self.comment(line) for line in machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "krl", coordinated(ctx.task))]
+        head = self.header(ctx) + [self.comment(line) for line in
+                                   machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "krl", coordinated(ctx.task))]
         stored = []
         for (array, n), (rname, value) in sorted(ctx.module.stored.items()):
             if self.write_frames:

@@ -42,7 +42,7 @@ from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path,
 from rmot.compiler.plan.dense import PathFailure, follow_path
 from rmot.compiler.plan.move_chain import TimedChain
 from rmot.compiler.plan.robot_model import RobotModel
-from rmot.compiler.plan.segments import Segment
+from rmot.compiler.plan.segments import Segment, end_turns
 from rmot.compiler.plan.targets import Finding, solve_target
 from rmot.compiler.plan.timing import HoldPiece, PathPiece, TimingError, path_piece, stretched
 
@@ -156,7 +156,8 @@ def coordinated_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray) -> 
         via_index = int(np.argmin(np.abs(dense.u - part.u_at_via(np.asarray(move.via.in_frame.position)))))
     ext = e0 + dense.u[:, None] * (e1 - e0)
     seg = CoordinatedSegment(move, dense.q, part.positions(dense.u), 1.0 / move.motion.tcp_speed, via_index, part, ext=ext)
-    return seg, findings
+    off = end_turns(seg, move)
+    return (None, findings + [off]) if off is not None else (seg, findings)
 
 
 def _parameter(seg: CoordinatedSegment) -> np.ndarray:

@@ -14,6 +14,7 @@ plan's axis values must match the plan's TCP within the dense path tolerance (0.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -287,3 +288,40 @@ program p on r1 with rail, pos {
     t, axes, tcp = _samples(plan, move)
     assert np.degrees(np.abs(np.diff(axes[:, 2])) / np.diff(t)).max() == pytest.approx(180.0, rel=0.01)  # at full speed
     assert np.abs(tcp[:, 0, 3]).max() < PATH_TOL_M and np.abs(tcp[:, 2, 3] - 0.05).max() < PATH_TOL_M
+
+
+def _as_moves(text: str, vendor: str) -> str:
+    """The circular move's via and end as two plain motions, so the readers of
+    test_ext_axes_emit.py (J/L, PTP/LIN, MoveJ/MoveL) re-expand them in order."""
+    if vendor == "rapid":
+        return re.sub(r"MoveC (\w+), (\w+), ([^;]*);", r"MoveL \1, \3;\n    MoveL \2, \3;", text)
+    if vendor == "krl":
+        return re.sub(r"CIRC (\w+),(\w+)", r"LIN \1\n  LIN \2", text)
+    return re.sub(r"^(\s*\d+:\s*)C (P\[\d+\])\n\s*:\s*(P\[\d+\])", r"\1L \2 ;\n\1L \3", text, flags=re.M)
+
+
+@pytest.mark.parametrize("vendor", ["rapid", "krl", "fanuc"])
+def test_the_circular_via_and_end_re_expand_in_the_part_frame(plan: Plan, vendor: str) -> None:
+    """The coordinated arc's via and end as each vendor writes them, placed in `work` with the
+    axis values written beside them (the end's: the via is a point of the part), equal the via
+    as programmed and the planned end within 0.01 mm."""
+    files = BACKENDS[vendor]().emit(plan).files
+    if vendor == "rapid":
+        (text,) = files.values()
+        world = rapid_targets(_as_moves(text, vendor))
+    elif vendor == "krl":
+        src = next(t for n, t in files.items() if n.endswith(".src"))
+        world = krl_targets(_as_moves(src, vendor), next(t for n, t in files.items() if n.endswith(".dat")))
+    else:
+        (text,) = files.values()
+        world = fanuc_targets(_as_moves(text, vendor))[0]
+    arc = _moves(plan)[3]
+    rec = plan.tasks[0].record(arc.uid)
+    assert rec is not None and rec.tcp_pose is not None and arc.via is not None
+    ext = dict(arc.ext)
+    part = work_frame(math.degrees(ext["pos.1"]), math.degrees(ext["pos.2"]))
+    planned_end = np.linalg.inv(part) @ robot_base(ext["rail"] * 1000) @ rec.tcp_pose.matrix()
+    via, end = (np.linalg.inv(part) @ w for w in world[2:4])  # after the joint move and the coordinated line
+    assert np.abs(via[:3, 3] - np.asarray(arc.via.in_frame.position)).max() < TOL_M
+    assert np.abs(end[:3, 3] - planned_end[:3, 3]).max() < TOL_M
+    assert np.abs(end[:3, :3] - planned_end[:3, :3]).max() < 1e-4
