@@ -16,7 +16,8 @@ EXT_MOUNT = Code("E602", "ext-mount", "`on NAME` that names no track or position
 EXT_PROGRAM_AXES = Code("E603", "ext-program-axes", "`with` naming what is not a mechanism, or a robot on a track its program does not drive")
 EXT_VALUES = Code("E604", "ext-values", "ext(...) or `move axes` values that name no axis of the program, or of the wrong count or unit")
 EXT_AXIS_LIMIT = Code("E605", "ext-axis-limit", "an external axis driven outside its range")
-EXT_MOTION = Code("E606", "ext-motion", "external axes moved where rmot cannot plan it: during a linear or circular move, or inside an if or while")
+EXT_MOTION = Code("E606", "ext-motion", "external axes moved where rmot cannot plan it: during a linear or circular move in a frame "
+                   "that no moving mechanism carries, or inside an if or while")
 EXT_COORDINATED = Code("E609", "ext-coordinated", "a coordinated move (a linear or circular move while axes move) "
                        "that changes axes other than those of the mechanism its frame rides on")
 EXT_FRAME_UNDRIVEN = Code("E610", "ext-frame-undriven", "a move in a frame riding on a mechanism the program does not drive")

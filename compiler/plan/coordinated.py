@@ -48,7 +48,8 @@ from rmot.compiler.plan.timing import HoldPiece, PathPiece, TimingError, path_pi
 
 __all__ = ["CoordinatedChain", "CoordinatedSegment", "coordinated_axes", "coordinated_segment", "time_coordinated"]
 
-_CURVE_POINTS = 2000  # samples of the TCP's curve in the base frame, for distances to it
+_CURVE_POINTS = 2000  # samples of the TCP's curve in the base frame, for its length and distances to it
+_LOCAL_POINTS = 9  # samples of the curve within one interval of the dense path (MovingFramePath.deviation)
 _JOINT_WEIGHT = 0.01  # m per rad (or m) of joint/axis motion in the path parameter (see _parameter)
 _AXES_STEP = 0.002  # s between the samples of the axes' values recorded on the plan
 
@@ -83,6 +84,19 @@ class MovingFramePath(CartesianPath):
 
     def positions(self, u: np.ndarray) -> np.ndarray:
         out: np.ndarray = self.poses(u)[:, :3, 3]
+        return out
+
+    def deviation(self, u0: np.ndarray, u1: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """Distance (m) of points (N, 3) from the TCP's curve between u0 and u1 (N,) (a polyline
+        of _LOCAL_POINTS samples there): a curve that passes one place twice, or stands still in
+        the base frame while the part turns, is not matched far from where the point belongs."""
+        fractions = np.linspace(0.0, 1.0, _LOCAL_POINTS)
+        us = u0[:, None] + (u1 - u0)[:, None] * fractions
+        curve = self.positions(us.ravel()).reshape(len(u0), _LOCAL_POINTS, 3)
+        a, d = curve[:, :-1], np.diff(curve, axis=1)
+        rel = points[:, None, :] - a
+        t = np.clip(np.einsum("nki,nki->nk", rel, d) / np.maximum(np.einsum("nki,nki->nk", d, d), 1e-30), 0.0, 1.0)
+        out: np.ndarray = np.min(np.linalg.norm(rel - t[..., None] * d, axis=2), axis=1)
         return out
 
     def distance(self, points: np.ndarray) -> np.ndarray:
