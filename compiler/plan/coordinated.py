@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rmot.lang import ir
+from rmot.lang import codes_axes, ir
 from rmot.lang.diagnostics import Severity
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.cartesian import CartesianPath, DegenerateArc, arc_path, line_path
@@ -52,6 +52,7 @@ _CURVE_POINTS = 2000  # samples of the TCP's curve in the base frame, for its le
 _LOCAL_POINTS = 9  # samples of the curve within one interval of the dense path (MovingFramePath.deviation)
 _JOINT_WEIGHT = 0.01  # m per rad (or m) of joint/axis motion in the path parameter (see _parameter)
 _AXES_STEP = 0.002  # s between the samples of the axes' values recorded on the plan
+_SLOWDOWN_WARN = 1.05  # W606 when a joint or axis forces the TCP below 1/1.05 of its programmed speed
 
 
 @dataclass(frozen=True, eq=False)
@@ -171,7 +172,35 @@ def coordinated_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray) -> 
     ext = e0 + dense.u[:, None] * (e1 - e0)
     seg = CoordinatedSegment(move, dense.q, part.positions(dense.u), 1.0 / move.motion.tcp_speed, via_index, part, ext=ext)
     off = end_turns(seg, move)
-    return (None, findings + [off]) if off is not None else (seg, findings)
+    return (None, findings + [off]) if off is not None else (seg, findings + _slowdown(robot, seg))
+
+
+def _slowdown(robot: RobotModel, seg: CoordinatedSegment) -> list[Finding]:
+    """W606 where an arm joint or an axis cannot keep the programmed TCP speed relative to the
+    part: the rate each needs at that speed (its step over the TCP's step in the part frame),
+    over its speed limit, names the worst."""
+    coord = seg.move.coordinated
+    assert coord is not None
+    by_name = {a.name: a for m in coord.external.mechanisms for a in m.axes}
+    axes = [by_name[n] for n, _ in seg.move.ext]
+    dl = np.linalg.norm(np.diff(seg.tcp, axis=0), axis=1)
+    ok = dl > 1e-7
+    speed = seg.move.motion.tcp_speed
+    limits = np.concatenate([robot.velocity_limits, [a.speed for a in axes]])
+    need = np.abs(np.diff(np.hstack([seg.q, seg.ext]), axis=0))[ok] / dl[ok, None] * speed
+    if not np.any(ok) or float(np.max(need / limits)) <= _SLOWDOWN_WARN:
+        return []
+    i, j = np.unravel_index(int(np.argmax(need / limits)), need.shape)
+    dof = seg.q.shape[1]
+    if j < dof:
+        name, unit, scale = f"joint {j + 1}", "deg/s", float(np.degrees(1.0))
+    else:
+        axis = axes[j - dof]
+        name, unit, scale = f"axis '{axis.name}'", "mm/s" if axis.linear else "deg/s", 1000.0 if axis.linear else float(np.degrees(1.0))
+    worst = float(need[i, j] / limits[j])
+    msg = (f"the TCP speed relative to the part must drop to {speed / worst * 1e3:.1f} mm/s (programmed "
+           f"{speed * 1e3:.0f} mm/s): {name} would need {need[i, j] * scale:.0f} {unit} (max {limits[j] * scale:.0f} {unit})")
+    return [Finding(codes_axes.EXT_SLOWDOWN, Severity.WARNING, msg)]
 
 
 def _parameter(seg: CoordinatedSegment) -> np.ndarray:

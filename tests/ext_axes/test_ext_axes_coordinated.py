@@ -280,6 +280,10 @@ program p on r1 with rail, pos {
     assert front.program is not None, [d.message for d in front.diagnostics]
     plan = plan_program(front.program)
     assert not [d for d in plan.diagnostics if d.is_error], [d.message for d in plan.diagnostics]
+    slow = [d for d in plan.diagnostics if d.code.id == "W606"]
+    # 180 deg over 10 mm at 50 mm/s: 900 deg/s for a turntable of 180 deg/s, so 10 mm/s at most
+    assert len(slow) == 1 and slow[0].span is not None and slow[0].span.start.line == 15
+    assert "must drop to 10.0 mm/s (programmed 50 mm/s): axis 'pos.2' would need 900 deg/s (max 180 deg/s)" in slow[0].message
     move = _moves(plan)[2]
     rec = plan.tasks[0].record(move.uid)
     assert rec is not None
