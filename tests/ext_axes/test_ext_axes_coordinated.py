@@ -329,3 +329,24 @@ def test_the_circular_via_and_end_re_expand_in_the_part_frame(plan: Plan, vendor
     assert np.abs(via[:3, 3] - np.asarray(arc.via.in_frame.position)).max() < TOL_M
     assert np.abs(end[:3, 3] - planned_end[:3, 3]).max() < TOL_M
     assert np.abs(end[:3, :3] - planned_end[:3, :3]).max() < 1e-4
+    # the controller's arc: the circle through the line's end (the arc's start), via and end, in
+    # `work`, at the progress the plan's axes show (both axes move: tilt 0 -> 10, turn 60 -> 120)
+    line_ext = dict(_moves(plan)[2].ext)
+    start = np.linalg.inv(work_frame(math.degrees(line_ext["pos.1"]), math.degrees(line_ext["pos.2"]))) @ world[1]
+    _, axes, tcp = _samples(plan, arc)
+    u = (axes[:, 2] - axes[0, 2]) / (axes[-1, 2] - axes[0, 2])
+    controller = _circle(start[:3, 3], via[:3, 3], end[:3, 3], u)
+    assert np.abs(controller - tcp[:, :3, 3]).max() < PATH_TOL_M + 0.05 * 0.004
+
+
+def _circle(p0: np.ndarray, p1: np.ndarray, p2: np.ndarray, u: np.ndarray) -> np.ndarray:
+    """Points at fractions u (N,) of the arc from p0 through p1 to p2 (by angle): the centre as
+    the point of the three points' plane equidistant from them (a 3 x 3 linear system)."""
+    normal = np.cross(p1 - p0, p2 - p0)
+    rows = np.array([2 * (p1 - p0), 2 * (p2 - p0), normal])
+    centre = np.linalg.solve(rows, [p1 @ p1 - p0 @ p0, p2 @ p2 - p0 @ p0, normal @ p0])
+    e1 = (p0 - centre) / np.linalg.norm(p0 - centre)
+    e2 = np.cross(normal / np.linalg.norm(normal), e1)
+    sweep = math.atan2((p2 - centre) @ e2, (p2 - centre) @ e1) % (2 * math.pi)
+    radius = float(np.linalg.norm(p0 - centre))
+    return centre + radius * (np.cos(u * sweep)[:, None] * e1 + np.sin(u * sweep)[:, None] * e2)
