@@ -19,7 +19,7 @@ EXT_AXIS_LIMIT = Code("E605", "ext-axis-limit", "an external axis driven outside
 EXT_MOTION = Code("E606", "ext-motion", "external axes moved where rmot cannot plan it: during a linear or circular move in a frame "
                    "that no moving mechanism carries, or inside an if or while")
 EXT_COORDINATED = Code("E609", "ext-coordinated", "a coordinated move (a linear or circular move while axes move) "
-                       "that changes axes other than those of the mechanism its frame rides on")
+                       "that changes axes other than those of the positioner its frame rides on")
 EXT_FRAME_UNDRIVEN = Code("E610", "ext-frame-undriven", "a move in a frame riding on a mechanism the program does not drive")
 EXT_SLOWDOWN = Code("W606", "ext-slowdown", "a coordinated move whose TCP must go slower than programmed, relative to the "
                     "part, because an arm joint or an external axis cannot keep up")

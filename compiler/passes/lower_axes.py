@@ -294,6 +294,11 @@ class ProgramAxes:
         mech = self.external.mechanism(mount.mechanism)
         assert mech is not None  # a mount names a mechanism of the cell
         others = [n for n in changed if n not in {a.name for a in mech.axes}]
+        if mech.kind != "positioner":
+            self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move must be in a frame riding on a positioner "
+                           f"(frame '{move.frame.name}' rides on track '{mech.name}'); move the track with a joint move or "
+                           "'move axes' first", s.span)
+            return None
         if others:
             self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move in frame '{move.frame.name}' may move only the "
                            f"axes of '{mech.name}', which carries the frame (got a change of {', '.join(others)}); move those "

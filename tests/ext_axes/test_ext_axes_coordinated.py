@@ -206,12 +206,14 @@ def test_inform_refuses_the_coordinated_move_at_its_line(plan: Plan) -> None:
 
 @pytest.mark.parametrize(("program", "code", "line"), [
     # the frame rides on no mechanism: a linear move may not move the positioner
-    ("  move linear pose(x=1000mm, z=800mm, ry=180deg) frame world ext(pos=(0deg, 30deg))\n", "E606", 14),
+    ("  move linear pose(x=1000mm, z=800mm, ry=180deg) frame world ext(pos=(0deg, 30deg))\n", "E606", 15),
     # the frame rides on the positioner, but the track moves too
-    ("  move linear pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=500mm, pos=(0deg, 30deg))\n", "E609", 14),
+    ("  move linear pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=500mm, pos=(0deg, 30deg))\n", "E609", 15),
+    # a frame on the track: the track is no part carrier
+    ("  move linear pose(x=800mm, z=500mm, ry=180deg) frame carriage ext(rail=500mm)\n", "E609", 15),
 ])
 def test_bad_coordinated_moves_are_located(program: str, code: str, line: int) -> None:
-    text = PULSES + "  tool torch = none tcp pose(z=300mm) on r1\n}\nprogram p on r1 with rail, pos {\n  tool torch\n" \
+    text = PULSES + "  tool torch = none tcp pose(z=300mm) on r1\n  frame carriage = rail * pose(z=100mm)\n}\nprogram p on r1 with rail, pos {\n  tool torch\n" \
         "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n" + program + "}\n"
     front = load_text(text, "/tmp/ext_axes_coordinated_bad.rmot")
     errors = [d for d in front.diagnostics if d.is_error]
