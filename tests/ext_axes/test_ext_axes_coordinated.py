@@ -213,8 +213,8 @@ def test_inform_refuses_the_coordinated_move_at_its_line(plan: Plan) -> None:
     ("  move linear pose(x=800mm, z=500mm, ry=180deg) frame carriage ext(rail=500mm)\n", "E609", 15),
 ])
 def test_bad_coordinated_moves_are_located(program: str, code: str, line: int) -> None:
-    text = PULSES + "  tool torch = none tcp pose(z=300mm) on r1\n  frame carriage = rail * pose(z=100mm)\n}\nprogram p on r1 with rail, pos {\n  tool torch\n" \
-        "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n" + program + "}\n"
+    text = PULSES + "  tool torch = none tcp pose(z=300mm) on r1\n  frame carriage = rail * pose(z=100mm)\n}\n" \
+        "program p on r1 with rail, pos {\n  tool torch\n  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n" + program + "}\n"
     front = load_text(text, "/tmp/ext_axes_coordinated_bad.rmot")
     errors = [d for d in front.diagnostics if d.is_error]
     assert [(d.code.id, d.span.start.line if d.span else None) for d in errors] == [(code, line)]
