@@ -27,11 +27,11 @@ import math
 from dataclasses import replace
 
 from rmot.backends.conventions import euler_zyx_deg, fmt, fmt_list, position_mm
-from rmot.lang import ir
+from rmot.lang import ir, ir_tree
 from rmot.lang.axis_motion import task_axes
 from rmot.lang.ir_axes import ExtAxis, ExternalAxes
 
-__all__ = ["RAPID_UNUSED", "driven_axes", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
+__all__ = ["RAPID_UNUSED", "coordinated", "driven_axes", "fanuc_coord", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
            "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
            "unit_name", "vendor_values"]
 
@@ -106,7 +106,8 @@ def _pose(pose: ir.Pose) -> str:
     return f"[[{fmt_list(position_mm(pose), 3)}],[{fmt_list(pose.quaternion, 6)}]]"
 
 
-def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ...], vendor: str) -> list[str]:
+def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ...], vendor: str,
+                 coordinated_pair: bool = False) -> list[str]:
     """The controller configuration the program assumes, as checklist lines for its header: rmot
     cannot read the controller, so the numbers it planned with are printed for a person to
     compare with the machine data (RAPID: the MOC mechanical units; KRL: $EX_KIN / $ETn and
@@ -127,11 +128,15 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
             lines.append(f'unit "{unit_name(mech.name)}": MOC type {kind}, {where}')
         elif vendor == "fanuc":
             group += mech.kind != "track"
-            kind = "extended axes of group 1 (integrated rail)" if mech.kind == "track" else f"motion group {group}, not coordinated"
+            pair = f"the leader of the coordinated pair (CD_PAIR leader GP{group}, follower GP1, calibrated)" if coordinated_pair \
+                else "not coordinated"
+            kind = "extended axes of group 1 (integrated rail)" if mech.kind == "track" else f"motion group {group}, {pair}"
             lines.append(f"{mech.name}: {kind}, {where}")
         else:
             index = mechanism_index(mech.name, cell)
-            kind = "$ERSYSROOT/$ROBROOT on the carriage (mathematically coupled)" if mech.kind == "track" else "$ETn external kinematic, EK() bases"
+            coupled = ", LIN/CIRC mathematically coupled to it ($BASE=EK follows the kinematic)" if coordinated_pair else ""
+            kind = "$ERSYSROOT/$ROBROOT on the carriage (mathematically coupled)" if mech.kind == "track" \
+                else f"$ETn external kinematic, EK() bases{coupled}"
             lines.append(f"{mech.name}: MACHINE_DEF[{index}], {kind}, {where}")
         for axis in mine:
             slot += 1
@@ -185,6 +190,22 @@ def fanuc_groups(node: ir.Move, axes: tuple[ExtAxis, ...], cell: ir.Cell, uf: in
             blocks += [f"   GP{group}:", f"\tUF : {uf}, UT : {ut},\t",
                        "\t" + ",\t".join(f"J{k + 1}= {c}" for k, c in enumerate(cells))]
     return ["\t" + ",\t".join(extended)] if extended else [], blocks
+
+
+def coordinated(task: ir.Task) -> bool:
+    """Whether `task` has a coordinated move (a linear or circular move on a frame its moving axes carry)."""
+    return any(isinstance(i, ir.Move) and i.coordinated is not None for i in ir_tree.walk(task.body))
+
+
+def fanuc_coord(node: ir.Move) -> str:
+    """` COORD` after the termination of a coordinated L or C move: the follower (the robot,
+    group 1) moves relative to the leader (the positioner's group), its path and speed relative
+    to the leader's moving frame (FANUC Coordinated Motion Function, Setup and Operations
+    Manual, "COORD motion option"). The position is written as every other one of the task:
+    group 1 in UFRAME 0 (the world with the axes at home) at the leader's values in its GP2
+    block, from which the controller takes the position relative to the leader through the
+    calibrated pair; rmot assumes that calibration equals the cell's positioner base."""
+    return " COORD" if node.coordinated is not None else ""
 
 
 def fanuc_default_group(axes: tuple[ExtAxis, ...], cell: ir.Cell) -> str:

@@ -67,7 +67,7 @@ from typing import ClassVar
 import numpy as np
 
 from rmot.backends import codes
-from rmot.backends.ext_axes import driven_axes, fanuc_default_group, fanuc_groups, fanuc_in_world, machine_data
+from rmot.backends.ext_axes import coordinated, driven_axes, fanuc_coord, fanuc_default_group, fanuc_groups, fanuc_in_world, machine_data
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm
 from rmot.backends.part_load import held_load
 from rmot.backends.controller_data import NumberedData, frame_number, tool_number
@@ -197,7 +197,7 @@ class FanucBackend(Backend):
     def _program(self, name: str, body: tuple[ir.Instr, ...], task: FanucContext, *, is_main: bool) -> str:
         ctx = replace(task, program=_Program())
         head = header_lines(ctx.plan, self.name, self.findings_header)
-        head += machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "fanuc") if is_main else []
+        head += machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "fanuc", coordinated(ctx.task)) if is_main else []
         lines = [self.comment(piece) for text in head for piece in _pieces(text)]
         main = self.body(body, ctx)
         if is_main:
@@ -291,7 +291,7 @@ class FanucBackend(Backend):
             self.warn_accel(node, ctx, "TP's ACC is a share of the motion profile, not a TCP acceleration")
         self.warn_payload(node, ctx, "the controller's payload schedule ($PLST_GRP1) selected by PAYLOAD[i]")
         uf, ut = ctx.frames.uframe(node.frame), ctx.frames.utool(node.tool)
-        zone = self._zone(node, self.planned_zone(node, rec))
+        zone = self._zone(node, self.planned_zone(node, rec)) + fanuc_coord(node)
         return self.by_kind(node)(node, rec, ctx, uf, ut, zone)
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: FanucContext,

@@ -160,6 +160,10 @@ def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -
         return None
     found = inform_axes(task.task, cell, axes)
     first = next(n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.ext)
+    coordinated = next((n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.coordinated is not None), None)
+    if coordinated is not None and not isinstance(found, str):
+        found = coordinated_refusal(task.task, coordinated)
+        first = coordinated
     if isinstance(found, str):
         backend.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
     elif found.station:
@@ -167,6 +171,20 @@ def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -
                      "(+MOVJ): it starts with the arm but may end at another time than the plan's "
                      "time-synchronous move", first.span)
     return found
+
+
+def coordinated_refusal(task: ir.Task, move: ir.Move) -> str:
+    """Why a coordinated move is not written for INFORM: rmot writes a station as a separate
+    group that moves at its own VJ (`+MOVJ`, the non-synchronised form RoboDK's Motoman post
+    writes), and the coordinated form (SMOVL / a coordinated robot-station pair, the TCP's path
+    and V= relative to the station) needs the controller's coordination option and job
+    attributes rmot has no witness for; writing the plain form would move the TCP off the
+    planned seam, so the task is refused at the move."""
+    kind = move.kind.name.lower()
+    return (f"task '{task.name}': a coordinated {kind} move (the TCP on its path in frame '{move.frame.name}' while "
+            "the positioner moves) cannot be written for INFORM: rmot writes the station as +MOVJ at its own speed, "
+            "not the coordinated SMOVL form; move the positioner with 'move axes' before the seam, or compile for "
+            "rapid, krl or fanuc")
 
 
 def warn_pulse_rounding(backend: Backend, node: ir.Move, rec: plan_types.InstructionRecord, axes: InformAxes,

@@ -61,7 +61,7 @@ from rmot.backends import codes, turns
 from rmot.backends import loops as _loops
 from rmot.backends import runtime as _rt
 from rmot.backends.controller_data import frame_number, tool_number
-from rmot.backends.ext_axes import driven_axes, krl_e_axes, machine_data, mechanism_index, riding_frame
+from rmot.backends.ext_axes import coordinated, driven_axes, krl_e_axes, machine_data, mechanism_index, riding_frame
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, position_mm, tool_cog, turn_bits
 from rmot.backends.names import DataPool, NameRules, NameTable
 from rmot.backends.runtime import LoopState
@@ -202,7 +202,8 @@ class KrlBackend(Backend):
         """The .src and .dat of one module: `body`, or calls to part modules."""
         ctx = replace(task, module=_Module(DataPool(task.names)))
         main = list(calls) if calls is not None else self.body(body, ctx)
-        head = self.header(ctx) + [self.comment(line) for line in machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "krl")]
+        head = self.header(ctx) + [self.comment(line) for line in
+                                   machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "krl", coordinated(ctx.task))]
         stored = []
         for (array, n), (rname, value) in sorted(ctx.module.stored.items()):
             if self.write_frames:

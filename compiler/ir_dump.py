@@ -194,7 +194,7 @@ def dump_program(prog: ir.Program) -> str:
     return "\n".join(out) + "\n"
 
 
-_ONLY_WHEN_SET = frozenset({"external", "min_duration", "ext", "axes_only"})
+_ONLY_WHEN_SET = frozenset({"external", "min_duration", "ext", "axes_only", "coordinated"})
 
 
 def to_jsonable(x: Any) -> Any:

@@ -3,7 +3,9 @@
 The plan decides each move's start and end time (InstructionRecord) with the axes' shortest
 time as a floor (ir.Motion.min_duration); the IR decides each move's axis values (ir.Move.ext).
 An axis that changes during a move follows the time-synchronous trapezoid of
-`ir_axes.synced_position` over the move's whole duration, so it starts and stops with the arm.
+`ir_axes.synced_position` over the move's whole duration, so it starts and stops with the arm;
+during a coordinated move (ir.Move.coordinated) it follows the values the planner sampled from
+the move's one timing (InstructionRecord.axes_path).
 The verifier, the renderer and the backends read axis positions from `axis_samples` only.
 """
 
@@ -13,7 +15,7 @@ import numpy as np
 
 from rmot.lang import codes_axes, ir, ir_tree
 from rmot.lang.ir_axes import ExtAxis, ExternalAxes, synced_position
-from rmot.lang.plan_types import TaskPlan
+from rmot.lang.plan_types import InstructionRecord, TaskPlan
 from rmot.lang.diagnostics import Diagnostic, Severity
 
 __all__ = ["axis_findings", "axis_samples", "task_axes"]
@@ -30,10 +32,10 @@ def task_axes(task: ir.Task, external: ExternalAxes | None) -> tuple[ExtAxis, ..
     return tuple(by_name[name] for name, _ in first.ext)
 
 
-def _moves(tp: TaskPlan) -> list[tuple[float, float, dict[str, float]]]:
-    """(t_start, t_end, axis values at the target) of every move with axis values, in time order."""
+def _moves(tp: TaskPlan) -> list[tuple[float, float, dict[str, float], InstructionRecord]]:
+    """(t_start, t_end, axis values at the target, record) of every move with axis values, in time order."""
     moves = {i.uid: i for i in ir_tree.walk(tp.task.body) if isinstance(i, ir.Move) and i.ext}
-    out = [(r.t_start, r.t_end, dict(moves[r.uid].ext)) for r in tp.records if r.variant == 0 and r.uid in moves]
+    out = [(r.t_start, r.t_end, dict(moves[r.uid].ext), r) for r in tp.records if r.variant == 0 and r.uid in moves]
     return sorted(out, key=lambda m: (m[0], m[1]))
 
 
@@ -45,11 +47,15 @@ def axis_samples(tp: TaskPlan, axes: tuple[ExtAxis, ...], t: np.ndarray | None =
     for k, axis in enumerate(axes):
         value = np.full(times.shape, axis.home)
         now = axis.home
-        for t0, t1, values in moves:
+        for t0, t1, values, rec in moves:
             end = values.get(axis.name, now)
             if end != now:
                 inside = (times >= t0) & (times <= t1)
-                value[inside] = synced_position(now, end, t1 - t0, axis.accel, times[inside] - t0)
+                if rec.axes_path is not None:  # coordinated: the axes as the move's own timing drives them
+                    column = list(values).index(axis.name)
+                    value[inside] = np.interp(times[inside], rec.axes_path[0], rec.axes_path[1][:, column])
+                else:
+                    value[inside] = synced_position(now, end, t1 - t0, axis.accel, times[inside] - t0)
             value[times > t1] = end
             now = end
         out[:, k] = value

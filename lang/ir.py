@@ -33,7 +33,7 @@ from rmot.lang.source import Span
 if TYPE_CHECKING:
 
     import numpy as np
-    from rmot.lang.ir_axes import ExternalAxes
+    from rmot.lang.ir_axes import Coordinated, ExternalAxes
 
 __all__ = [
     "DEFAULT_JOINT_ACCEL", "DEFAULT_JOINT_SPEED", "DEFAULT_TCP_ACCEL", "DEFAULT_TCP_SPEED",
@@ -473,6 +473,7 @@ class Move:
     span: Span | None = _span_field()
     ext: tuple[tuple[str, float], ...] = ()  # every external axis of the program at the target (SI)
     axes_only: bool = False  # `move axes`: the arm holds its joints while the axes move
+    coordinated: Coordinated | None = None  # a linear/circular move on a frame its moving axes carry (lang/ir_axes.py)
 
 
 @record(slots=True, kw_only=True)

@@ -27,7 +27,7 @@ from rmot.lang import ir
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
-__all__ = ["AXIS_DIRECTIONS", "ExtAxis", "ExternalAxes", "Mechanism", "Mount", "axis_time", "synced_position"]
+__all__ = ["AXIS_DIRECTIONS", "Coordinated", "ExtAxis", "ExternalAxes", "Mechanism", "Mount", "axis_time", "synced_position"]
 
 AXIS_DIRECTIONS = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
 
@@ -125,6 +125,62 @@ class ExternalAxes:
         if mount is None or mech is None:
             return None
         return mech.flange(self.values_of(mech, values)) * mount.local
+
+
+@record(slots=True)
+class Coordinated:
+    """A linear or circular move whose frame rides on a mechanism that moves during it: the
+    TCP follows its line or arc *in that frame* (the part's), and the axes move in step with
+    it. The path parameter u in [0, 1] is shared: at u the axes are at start + u (end - start)
+    (ir.Move.ext is the end) and the TCP at the path's point u in the frame (the reading of
+    ABB's coordinated work object, KUKA's coupled EK base and Fanuc's COORD: relative path,
+    axes interpolated with it; see compiler/plan/coordinated.py)."""
+
+    mechanism: str  # the mechanism the frame rides on (its axes are the ones that move)
+    frame: str
+    robot: str
+    robot_base: ir.Pose  # the robot's base in world with every axis at home
+    start: tuple[tuple[str, float], ...]  # every axis of the program at the move's start (SI)
+    external: ExternalAxes
+
+    def part_in_base(self, names: tuple[str, ...], values: np.ndarray) -> np.ndarray:
+        """(N, 4, 4): the frame in the robot's base frame with the axes `names` at `values`
+        (N, len(names)); an axis not named is at its start value."""
+        columns = dict(self.start)
+        rows = values.shape[0]
+
+        def chain(body: str) -> np.ndarray | None:
+            mount = self.external.mount(body)
+            mech = None if mount is None else self.external.mechanism(mount.mechanism)
+            if mount is None or mech is None:
+                return None
+            out = np.tile(mech.base.matrix(), (rows, 1, 1))
+            for axis in mech.axes:
+                v = values[:, names.index(axis.name)] if axis.name in names else np.full(rows, columns.get(axis.name, axis.home))
+                out = out @ _axis_matrices(axis, v)
+            placed: np.ndarray = out @ mount.local.matrix()
+            return placed
+
+        base = chain(self.robot)
+        base = np.tile(self.robot_base.matrix(), (rows, 1, 1)) if base is None else base
+        frame = chain(self.frame)
+        assert frame is not None  # a coordinated move's frame rides on its mechanism
+        out: np.ndarray = np.linalg.inv(base) @ frame
+        return out
+
+
+def _axis_matrices(axis: ExtAxis, values: np.ndarray) -> np.ndarray:
+    """(N, 4, 4) transforms of one axis at `values` (N,): a translation along, or a rotation
+    about (Rodrigues), its unit direction; the same as ExtAxis.transform, vectorised."""
+    out = np.tile(np.eye(4), (values.shape[0], 1, 1))
+    d = np.asarray(axis.direction)
+    if axis.linear:
+        out[:, :3, 3] = values[:, None] * d
+        return out
+    k = np.array([[0.0, -d[2], d[1]], [d[2], 0.0, -d[0]], [-d[1], d[0], 0.0]])
+    s, c = np.sin(values)[:, None, None], np.cos(values)[:, None, None]
+    out[:, :3, :3] = np.eye(3) + s * k + (1.0 - c) * (k @ k)
+    return out
 
 
 def axis_time(delta: float, speed: float, accel: float) -> float:

@@ -66,6 +66,9 @@ class InstructionRecord:
     tcp_pose: ir.Pose | None = None  # TCP at the target, robot base frame
     flange_pose: ir.Pose | None = None  # flange at the target, robot base frame
     q_via: np.ndarray | None = None  # circular moves: joints at the via point
+    # a coordinated move (ir.Move.coordinated): the external axes' values (K, n; ir.Move.ext order)
+    # at times (K,) over [t_start, t_end], sampled from the move's one timing
+    axes_path: tuple[np.ndarray, np.ndarray] | None = None
     blend_radius: float = 0.0  # the blend actually used (m); 0 = exact stop
     # the share of the arm's joint acceleration limits the move was timed with: the smallest
     # `accel` of its blended chain (compiler/plan/move_chain.chain_accel_share); 1 = full

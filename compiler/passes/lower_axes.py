@@ -21,8 +21,11 @@ Program (`ProgramAxes`, used by the task lowering):
     the arm's base rides on its track, a frame on a positioner moves with its flange.
   * A joint move and `move axes` move the axes time-synchronously with the arm: the move lasts
     at least each axis' shortest rest-to-rest time (ir.Motion.min_duration), and stops exactly
-    at both ends. A linear or circular move whose axes change (coordinated motion) and any axis
-    change inside an if or while are E606.
+    at both ends. A linear or circular move whose axes change is *coordinated*
+    (ir_axes.Coordinated): its frame must ride on the mechanism whose axes change (else E606,
+    or E609 for a change of another mechanism's axes); it too stops exactly at both ends. Any
+    axis change inside an if or while is E606. A move in a frame riding on a mechanism the
+    program does not drive is E610.
 """
 
 from __future__ import annotations
@@ -31,7 +34,7 @@ import math
 from dataclasses import replace
 
 from rmot.lang import codes_axes, ir
-from rmot.lang.ir_axes import AXIS_DIRECTIONS, ExtAxis, ExternalAxes, Mechanism, Mount, axis_time
+from rmot.lang.ir_axes import AXIS_DIRECTIONS, Coordinated, ExtAxis, ExternalAxes, Mechanism, Mount, axis_time
 from rmot.lang.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
@@ -252,12 +255,57 @@ class ProgramAxes:
         for m in s.modifiers:
             if m.kind == "ext" and not self._ext(m.value, scope, values):  # type: ignore[arg-type]
                 return None
-        if values != self.values and move.kind is not ir.MotionKind.JOINT:
-            self.rep.error(codes_axes.EXT_MOTION, f"a {move.kind.name.lower()} move must keep the external axes still (got a change "
-                           "of " + ", ".join(a.name for a in self.axes if values[a.name] != self.values[a.name]) +
-                           "): coordinated motion is not planned; move the axes with a joint move or 'move axes' first", s.span)
+        if not self._frame_driven(move, s):
             return None
-        return self._timed(self._resolved(move, values), values)
+        coordinated = None
+        if values != self.values and move.kind is not ir.MotionKind.JOINT:
+            coordinated = self._coordinated(move, values, s)
+            if coordinated is None:
+                return None
+        timed = self._timed(self._resolved(move, values), values)
+        if timed is not None and coordinated is not None:
+            timed = replace(timed, coordinated=coordinated)
+            self.last = timed
+        return timed
+
+    def _frame_driven(self, move: ir.Move, s: ast.Move) -> bool:
+        """E610 for a move in a frame riding on a mechanism this program does not drive: where
+        that mechanism stands is unknown to the program (its axes take no value here)."""
+        mount = self.external.mount(move.frame.name) if move.frame.name is not None else None
+        if mount is None or mount.kind != "frame" or mount.mechanism in self.mechanisms:
+            return True
+        self.rep.error(codes_axes.EXT_FRAME_UNDRIVEN, f"frame '{move.frame.name}' rides on '{mount.mechanism}', which this "
+                       f"program does not drive: add it to the program's `with` (`with {', '.join((*self.mechanisms, mount.mechanism))}`)",
+                       s.span)
+        return False
+
+    def _coordinated(self, move: ir.Move, values: dict[str, float], s: ast.Move) -> Coordinated | None:
+        """The coordinated form of a linear or circular move that changes axis values: the
+        changed axes must all be those of the mechanism the move's frame rides on (E609; a
+        frame on no mechanism cannot carry the path: E606)."""
+        changed = [a.name for a in self.axes if values[a.name] != self.values[a.name]]
+        mount = self.external.mount(move.frame.name) if move.frame.name is not None else None
+        kind = move.kind.name.lower()
+        if mount is None or mount.kind != "frame":
+            self.rep.error(codes_axes.EXT_MOTION, f"a {kind} move that moves external axes ({', '.join(changed)}) must be in a "
+                           "frame riding on the mechanism that moves (coordinated motion); in a fixed frame, move the axes with "
+                           "a joint move or 'move axes' first", s.span)
+            return None
+        mech = self.external.mechanism(mount.mechanism)
+        assert mech is not None  # a mount names a mechanism of the cell
+        others = [n for n in changed if n not in {a.name for a in mech.axes}]
+        if mech.kind != "positioner":
+            self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move must be in a frame riding on a positioner "
+                           f"(frame '{move.frame.name}' rides on track '{mech.name}'); move the track with a joint move or "
+                           "'move axes' first", s.span)
+            return None
+        if others:
+            self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move in frame '{move.frame.name}' may move only the "
+                           f"axes of '{mech.name}', which carries the frame (got a change of {', '.join(others)}); move those "
+                           "with a joint move or 'move axes' first", s.span)
+            return None
+        return Coordinated(mech.name, mount.body, self.robot.name, self.robot.base,
+                           tuple((a.name, self.values[a.name]) for a in self.axes), self.external)
 
     def move_axes(self, s: ast.MoveAxes, scope: Scope) -> ir.Move | None:
         """`move axes M to VALUES`: the arm holds the joints of the last move."""
@@ -272,7 +320,7 @@ class ProgramAxes:
         values = dict(self.values)
         if not self._assign(s.mechanism.name, s.values, scope, values):
             return None
-        held = replace(self.last, axes_only=True, kind=ir.MotionKind.JOINT, via=None, span=s.span, uid=0, free=None,
+        held = replace(self.last, axes_only=True, kind=ir.MotionKind.JOINT, via=None, span=s.span, uid=0, free=None, coordinated=None,
                        motion=replace(self.last.motion, duration=None))
         return self._timed(self._resolved(held, values, keep_base_pose=True), values)
 

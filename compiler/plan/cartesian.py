@@ -127,6 +127,11 @@ class CartesianPath:
         rho = np.linalg.norm(rel - h[:, None] * normal, axis=1)
         return np.sqrt(h * h + (rho - self.radius) ** 2)
 
+    def deviation(self, u0: np.ndarray, u1: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """Distance (m) of points (N, 3), each found between path fractions u0 and u1 (N,), from
+        the path: for a fixed line or arc, the distance from the whole of it."""
+        return self.distance(points)
+
     def u_at_via(self, via: np.ndarray) -> float:
         """For an arc: the u at which the path passes the via point."""
         rel = via - self.center

@@ -185,7 +185,7 @@ def _intervals_to_split(
     jump = np.max(np.abs(np.diff(q, axis=0)), axis=1)
     mid = 0.5 * (q[1:] + q[:-1])
     tcp = (robot.fk_batch(mid) @ np.linalg.inv(tool_inv))[:, :3, 3]
-    return (jump > _MAX_JUMP) | (path.distance(tcp) > tol)
+    return (jump > _MAX_JUMP) | (path.deviation(u[:-1], u[1:], tcp) > tol)
 
 
 def _bisect(robot: RobotModel, solver: _Solver, path: CartesianPath, tool_inv: np.ndarray, u: np.ndarray,

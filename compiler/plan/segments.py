@@ -23,7 +23,7 @@ from rmot.compiler.plan.targets import Finding, off_turns, solve_target
 from rmot.lang.diagnostics import Severity
 from rmot.compiler.plan.robot_model import RobotModel
 
-__all__ = ["Segment", "build_segment"]
+__all__ = ["Segment", "build_segment", "end_turns"]
 
 _JOINT_STEP = 0.02  # rad between samples of a joint move
 _SLOWDOWN_WARN = 1.05  # warn when joints force the TCP below 1/1.05 of the programmed speed
@@ -76,16 +76,24 @@ def build_segment(
         q = q_now + np.linspace(0.0, 1.0, max(n, 2))[:, None] * (q_target - q_now)
         return Segment(move, q, _tcp_positions(robot, q, tool), 0.0), findings
     seg, more = _cartesian_segment(robot, move, q_now, q_target, tool)
-    off = off_turns(seg.q_end, move.config.turns) if seg is not None else []
-    if off:  # the path decides the end's turns: they must be the ones fixed
-        assert seg is not None  # off_turns is empty without a segment
-        j, n, got = off[0]
-        msg = (f"a {move.kind.name.lower()} move must end with joint {j + 1} on turn {n} "
-               f"(config(j{j + 1}={n})); its path from the current joints ends at "
-               f"{np.degrees(seg.q_end[j]):.1f} deg, turn {got}: "
-               f"insert a joint move with config(j{j + 1}={n}) before it")
-        return None, findings + more + [Finding(codes.TURN_NOT_REACHED, Severity.ERROR, msg)]
+    off = end_turns(seg, move) if seg is not None else None
+    if off is not None:
+        return None, findings + more + [off]
     return seg, findings + more
+
+
+def end_turns(seg: Segment, move: ir.Move) -> Finding | None:
+    """E-finding when a Cartesian path ends with a joint on another turn than `config` fixes:
+    the path decides the end's turns, so they must be the ones fixed."""
+    off = off_turns(seg.q_end, move.config.turns)
+    if not off:
+        return None
+    j, n, got = off[0]
+    msg = (f"a {move.kind.name.lower()} move must end with joint {j + 1} on turn {n} "
+           f"(config(j{j + 1}={n})); its path from the current joints ends at "
+           f"{np.degrees(seg.q_end[j]):.1f} deg, turn {got}: "
+           f"insert a joint move with config(j{j + 1}={n}) before it")
+    return Finding(codes.TURN_NOT_REACHED, Severity.ERROR, msg)
 
 
 def _cartesian_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray, q_target: np.ndarray,

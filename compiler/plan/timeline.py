@@ -44,6 +44,7 @@ from rmot.lang.ir_tree import (
 )
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.move_chain import TimedChain, chain_accel_share, time_chain
+from rmot.compiler.plan.coordinated import coordinated_axes, coordinated_segment, time_coordinated
 from rmot.compiler.plan.torque import TorqueLimits
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
@@ -188,7 +189,8 @@ class _Builder:
         if alone:
             self.flush()
         self.tool = move.tool.name
-        seg, findings = build_segment(self.robot, move, self._q_end())
+        build = build_segment if move.coordinated is None else coordinated_segment  # a frame carried by moving axes
+        seg, findings = build(self.robot, move, self._q_end())
         if seg is None:
             self.flush()
             # a joint move to joint values fails for its target alone; any other depends on its start
@@ -371,7 +373,8 @@ class _Builder:
             return
         chain, events, pending, t0 = self.chain, self.events, self.pending, self.t
         self.chain, self.events, self.pending = [], [], []
-        timed = time_chain(self.robot, chain, self.torque)
+        coordinated = len(chain) == 1 and chain[0].move.coordinated is not None  # timed with its axes
+        timed = time_coordinated(self.robot, chain[0]) if coordinated else time_chain(self.robot, chain, self.torque)
         self._append(timed.piece)
         for i, seg in enumerate(chain):
             self._move_record(seg, timed, i, t0, chain_accel_share(chain))
@@ -403,7 +406,7 @@ class _Builder:
             move, t0 + timed.starts[i], t0 + timed.ends[i], q_target=seg.q_end.copy(),
             branch=branch if branch.shoulder is not None else None, tcp_pose=tcp,
             flange_pose=ir.Pose.from_matrix(flange), blend_radius=timed.radii[i],
-            accel_share=accel_share,
+            accel_share=accel_share, axes_path=coordinated_axes(timed, t0),
             q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None)
 
 

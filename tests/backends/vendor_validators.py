@@ -42,11 +42,22 @@ NUM = r"-?\d+(?:\.\d+)?"
 # --------------------------------------------------------------------------- Fanuc LS
 
 # [TP] HandlingTool V9.40 Operator's Manual 7.3.13: a motion may end with `Offset,PR[i]`; the motion
-# option ACC n (acceleration override, 0..150 %: R-30iB Operator's Manual, motion options)
+# option ACC n (acceleration override, 0..150 %: R-30iB Operator's Manual, motion options); the
+# option COORD on L and C motions (FANUC Coordinated Motion Function, Setup and Operations Manual,
+# "COORD motion option": the follower group moves relative to its leader group, so the program
+# needs a second motion group in DEFAULT_GROUP)
 _TP_MOTION = re.compile(r"^(J|L) P\[(\d+)(?::[^\]]*)?\] (\d+%|\d+mm/sec|\d+(?:\.\d+)?sec) "
-                        r"(FINE|CNT(\d+))(?: ACC(?:[0-9]|[1-9][0-9]|1[0-4][0-9]|150))?(?: Offset,PR\[\d+\])?$")
+                        r"(FINE|CNT(\d+))(?: ACC(?:[0-9]|[1-9][0-9]|1[0-4][0-9]|150))?( COORD)?(?: Offset,PR\[\d+\])?$")
 _TP_CIRC_HEAD = re.compile(r"^C P\[(\d+)(?::[^\]]*)?\]$")
-_TP_CIRC_TAIL = re.compile(r"^:\s+P\[(\d+)(?::[^\]]*)?\] (\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))$")
+_TP_CIRC_TAIL = re.compile(r"^:\s+P\[(\d+)(?::[^\]]*)?\] (\d+mm/sec|\d+(?:\.\d+)?sec) (FINE|CNT(\d+))( COORD)?$")
+
+
+def _coord(option: str | None, text: str, where: int) -> list[tuple[int, str]]:
+    """COORD needs a leader: a second motion group in DEFAULT_GROUP."""
+    groups = re.search(r"DEFAULT_GROUP\t= ([1*,]+);", text)
+    if option and (groups is None or groups.group(1).split(",").count("1") < 2):
+        return [(where, "a COORD motion needs a leader group: DEFAULT_GROUP must have two groups or more")]
+    return []
 
 
 def check_fanuc(files: dict[str, str]) -> list[str]:
@@ -97,6 +108,7 @@ def _fanuc_file(stem: str, text: str, programs: set[str]) -> list[tuple[int, str
             else:
                 used_p += [int(head.group(1)) if head else -1, int(tail.group(1))]
                 bad += _zone(tail.group(4), where + 1)
+                bad += _coord(tail.group(5), text, where + 1)
             k += 2
             continue
         if not body.endswith(" ;"):
@@ -119,6 +131,9 @@ def _fanuc_file(stem: str, text: str, programs: set[str]) -> list[tuple[int, str
                 if speed.endswith("mm/sec") and not 1 <= int(speed[:-6]) <= 2000:
                     bad.append((where, "a linear speed must be 1..2000 mm/sec"))
                 bad += _zone(motion.group(5), where)
+                if motion.group(6) and motion.group(1) == "J":
+                    bad.append((where, "COORD must be on an L or C motion (got a J motion)"))
+                bad += _coord(motion.group(6), text, where)
         elif instr.startswith(":"):
             bad.append((where, "a ':' continuation must follow a 'C P[i]' line"))
         else:

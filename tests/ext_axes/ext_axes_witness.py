@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-__all__ = ["CELL", "CELL_HEAD", "at", "positioner_flange", "robot_base", "rot", "work_frame"]
+__all__ = ["CELL", "CELL_HEAD", "at", "kr16_flange", "positioner_flange", "robot_base", "rot", "work_frame"]
 
 CELL_HEAD = """cell c {
   track rail = linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 at pose(z=0mm)
@@ -54,3 +54,26 @@ def positioner_flange(tilt_deg: float, turn_deg: float) -> np.ndarray:
 
 def work_frame(tilt_deg: float, turn_deg: float) -> np.ndarray:
     return positioner_flange(tilt_deg, turn_deg) @ at(z=0.04)
+
+
+# The KR 16's joint origins and axes as ROS-Industrial publishes them (kuka_experimental
+# kuka_kr16_support/urdf/kr16_2_macro.xacro @ e78bbd15edb2, as in tests/robots/reference_arms.py;
+# pendant joint values one to one, kuka_rsi_hw_interface).
+KR16 = (((0.0, 0.0, 0.675), (0.0, 0.0, -1.0)), ((0.26, 0.0, 0.0), (0.0, 1.0, 0.0)), ((0.68, 0.0, 0.0), (0.0, 1.0, 0.0)),
+        ((0.67, 0.0, -0.035), (-1.0, 0.0, 0.0)), ((0.0, 0.0, 0.0), (0.0, 1.0, 0.0)), ((0.0, 0.0, 0.0), (-1.0, 0.0, 0.0)))
+
+
+def _about(axis: tuple[float, float, float], angle: float) -> np.ndarray:
+    k = np.asarray(axis)
+    kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    out = np.eye(4)
+    out[:3, :3] = np.eye(3) + math.sin(angle) * kx + (1 - math.cos(angle)) * kx @ kx
+    return out
+
+
+def kr16_flange(q: np.ndarray) -> np.ndarray:
+    """The KR 16's flange in its base frame (the URDF chain, then tool0: 0.158 m along x, ry 90 deg)."""
+    out = np.eye(4)
+    for (xyz, axis), value in zip(KR16, q, strict=True):
+        out = out @ at(*xyz) @ _about(axis, float(value))
+    return out @ at(0.158) @ rot("y", 90.0)
