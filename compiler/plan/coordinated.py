@@ -1,4 +1,5 @@
-"""Coordinated motion: a linear or circular move whose frame rides on a mechanism that moves.
+"""Coordinated motion: a linear or circular move while external axes move: its frame rides on
+a positioner that moves, or stays put in world while the track carrying the robot moves.
 
 The move (ir.Move with `coordinated`, lang/ir_axes.Coordinated) has one path parameter u in
 [0, 1] for everything that moves:
@@ -7,7 +8,12 @@ The move (ir.Move with `coordinated`, lang/ir_axes.Coordinated) has one path par
   by SLERP (compiler/plan/cartesian.py, the same geometry as a plain move);
 * the axes of the frame's mechanism go from their start to their end values linearly in u;
 * so the TCP in the robot's base frame at u is F(e(u)) * P(u), with F the frame in the base
-  frame at the axis values e(u) (Coordinated.part_in_base).
+  frame at the axis values e(u) (Coordinated.part_in_base): B(e)^-1 W(e), the frame's world
+  pose W (its positioner's flange, or constant for a fixed frame) seen from the arm's base B
+  (on the track's carriage at the track's value, or fixed). A move on a fixed frame while the
+  track moves is the same geometry with W constant: the TCP on the line in world, the arm's
+  IK at the carriage's pose along the path (ABB TRACK unit, KUKA ROBROOT kinematic, Fanuc
+  integrated rail: backends/ext_axes.py cites each).
 This is how the controllers describe it: ABB, a movable work object (wobjdata ufprog FALSE,
 ufmec the unit) "the robot ... coordinated with the movement of the mechanical unit", the
 speed "relative to the work object" ("Technical reference manual - RAPID Instructions,
