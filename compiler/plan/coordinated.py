@@ -183,8 +183,8 @@ def coordinated_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray) -> 
 
 def _slowdown(robot: RobotModel, seg: CoordinatedSegment) -> list[Finding]:
     """W606 where an arm joint or an axis cannot keep the programmed TCP speed relative to the
-    part: the rate each needs at that speed (its step over the TCP's step in the part frame),
-    over its speed limit, names the worst."""
+    move's frame (the part's, or a fixed frame while the track moves): the rate each needs at
+    that speed (its step over the TCP's step in the frame) over its speed limit, names the worst."""
     coord = seg.move.coordinated
     assert coord is not None
     by_name = {a.name: a for m in coord.external.mechanisms for a in m.axes}
@@ -204,7 +204,8 @@ def _slowdown(robot: RobotModel, seg: CoordinatedSegment) -> list[Finding]:
         axis = axes[j - dof]
         name, unit, scale = f"axis '{axis.name}'", "mm/s" if axis.linear else "deg/s", 1000.0 if axis.linear else float(np.degrees(1.0))
     worst = float(need[i, j] / limits[j])
-    msg = (f"the TCP speed relative to the part must drop to {speed / worst * 1e3:.1f} mm/s (programmed "
+    where = "relative to the part" if coord.relative() else f"in frame '{coord.frame}'"
+    msg = (f"the TCP speed {where} must drop to {speed / worst * 1e3:.1f} mm/s (programmed "
            f"{speed * 1e3:.0f} mm/s): {name} would need {need[i, j] * scale:.0f} {unit} (max {limits[j] * scale:.0f} {unit})")
     return [Finding(codes_axes.EXT_SLOWDOWN, Severity.WARNING, msg)]
 
