@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 from ext_axes_witness import CELL_HEAD, at, kr16_flange, robot_base, work_frame
+from test_ext_axes_coordinated import _as_moves, _circle
 from test_ext_axes_emit import fanuc_targets, krl_targets, rapid_targets
 
 from rmot.backends import BACKENDS
@@ -245,3 +246,61 @@ def test_what_still_cannot_be_planned_is_located(program: str, code: str) -> Non
     front = load_text(body, "/tmp/ext_axes_track_line_bad.rmot")
     errors = [d for d in front.diagnostics if d.is_error]
     assert [(d.code.id, d.span.start.line if d.span else None) for d in errors] == [(code, LINE + 2)]
+
+
+ARC = CELL_HEAD + """  tool torch = none tcp pose(z=300mm) on r1
+}
+program p on r1 with rail, pos {
+  tool torch
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move joint pose(x=500mm, y=-600mm, z=900mm, ry=180deg) frame world ext(rail=300mm)
+  move circular via pose(x=700mm, y=-800mm, z=900mm, ry=180deg)
+             to pose(x=900mm, y=-600mm, z=900mm, ry=180deg) frame world ext(rail=700mm) speed 200 mm/s
+}
+"""
+
+
+@pytest.fixture(scope="module")
+def arc_plan() -> Plan:
+    front = load_text(ARC, "/tmp/ext_axes_track_arc.rmot")
+    assert front.program is not None, [d.message for d in front.diagnostics]
+    result = plan_program(front.program)
+    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
+    return result
+
+
+@pytest.mark.parametrize("vendor", ["rapid", "krl", "fanuc"])
+def test_an_arc_in_world_while_the_track_moves(arc_plan: Plan, vendor: str) -> None:
+    """The half circle about (700, -600, 900) mm of radius 200 mm through the via, in world,
+    while the rail goes 300 -> 700 mm: the witness's TCP on it with the rail at the arc's
+    angular progress; each vendor's start, via and end re-expanded (rail from the text), and
+    the controller's circle through them at the plan's rail progress, match the plan."""
+    move = _moves(arc_plan)[2]
+    assert move.coordinated is not None and not move.coordinated.relative()
+    _, axes, tcp = _samples(arc_plan, move, part=False)
+    p = tcp[:, :3, 3]
+    centre = np.array([0.7, -0.6, 0.9])
+    assert np.abs(np.linalg.norm(p - centre, axis=1) - 0.2).max() < PATH_TOL_M
+    angle = np.unwrap(np.arctan2(p[:, 1] - centre[1], p[:, 0] - centre[0]))
+    u = (angle - angle[0]) / (angle[-1] - angle[0])
+    rail = (axes[:, 0] - axes[0, 0]) / (axes[-1, 0] - axes[0, 0])
+    assert abs(angle[-1] - angle[0]) == pytest.approx(math.pi, abs=1e-3) and np.abs(rail - u).max() < 2e-3
+    files = BACKENDS[vendor]().emit(arc_plan).files
+    if vendor == "rapid":
+        (text,) = files.values()
+        assert "MoveC via, p_3, v200, fine, torch\\WObj:=world;" in text
+        world = rapid_targets(_as_moves(text, vendor))
+    elif vendor == "krl":
+        src = next(t for n, t in files.items() if n.endswith(".src"))
+        world = krl_targets(_as_moves(src, vendor), next(t for n, t in files.items() if n.endswith(".dat")))
+    else:
+        (text,) = files.values()
+        assert "COORD" not in text.split("/MN")[1]
+        world = fanuc_targets(_as_moves(text, vendor))[0]
+    start, via, end = world
+    rec = arc_plan.tasks[0].record(move.uid)
+    assert rec is not None and rec.q_target is not None
+    assert np.abs(via[:3, 3] - [0.7, -0.8, 0.9]).max() < TOL_M
+    assert np.abs(end[:3, 3] - _world(rec.q_target, 0.7)[:3, 3]).max() < TOL_M
+    controller = _circle(start[:3, 3], via[:3, 3], end[:3, 3], rail)
+    assert np.abs(controller - p).max() < PATH_TOL_M
