@@ -308,21 +308,25 @@ def _as_moves(text: str, vendor: str) -> str:
     return re.sub(r"^(\s*\d+:\s*)C (P\[\d+\])\n\s*:\s*(P\[\d+\])", r"\1L \2 ;\n\1L \3", text, flags=re.M)
 
 
+def arc_targets(files: dict[str, str], vendor: str) -> list[np.ndarray]:
+    """World TCP of every Cartesian target of a vendor's program (a circular move's via and end
+    as two), in program order, re-expanded by test_ext_axes_emit.py's readers."""
+    if vendor == "rapid":
+        (text,) = files.values()
+        return rapid_targets(_as_moves(text, vendor))
+    if vendor == "krl":
+        src = next(t for n, t in files.items() if n.endswith(".src"))
+        return krl_targets(_as_moves(src, vendor), next(t for n, t in files.items() if n.endswith(".dat")))
+    (text,) = files.values()
+    return fanuc_targets(_as_moves(text, vendor))[0]
+
+
 @pytest.mark.parametrize("vendor", ["rapid", "krl", "fanuc"])
 def test_the_circular_via_and_end_re_expand_in_the_part_frame(plan: Plan, vendor: str) -> None:
     """The coordinated arc's via and end as each vendor writes them, placed in `work` with the
     axis values written beside them (the end's: the via is a point of the part), equal the via
     as programmed and the planned end within 0.01 mm."""
-    files = BACKENDS[vendor]().emit(plan).files
-    if vendor == "rapid":
-        (text,) = files.values()
-        world = rapid_targets(_as_moves(text, vendor))
-    elif vendor == "krl":
-        src = next(t for n, t in files.items() if n.endswith(".src"))
-        world = krl_targets(_as_moves(src, vendor), next(t for n, t in files.items() if n.endswith(".dat")))
-    else:
-        (text,) = files.values()
-        world = fanuc_targets(_as_moves(text, vendor))[0]
+    world = arc_targets(BACKENDS[vendor]().emit(plan).files, vendor)
     arc = _moves(plan)[3]
     rec = plan.tasks[0].record(arc.uid)
     assert rec is not None and rec.tcp_pose is not None and arc.via is not None

@@ -21,8 +21,9 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 from ext_axes_witness import CELL_HEAD, at, kr16_flange, robot_base, work_frame
-from test_ext_axes_coordinated import _as_moves, _circle
+from test_ext_axes_coordinated import _circle, _moves, arc_targets
 from test_ext_axes_emit import fanuc_targets, krl_targets, rapid_targets
+from test_ext_axes_inform import _plan
 
 from rmot.backends import BACKENDS
 from rmot.compiler.cli import cli
@@ -56,15 +57,7 @@ RAIL_TRAPEZOID_S = 1.3 / 1.5 + 1.5 / 2.0
 
 @pytest.fixture(scope="module")
 def plan() -> Plan:
-    front = load_text(SOURCE, "/tmp/ext_axes_track_line.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
-    return result
-
-
-def _moves(plan: Plan) -> list[ir.Move]:
-    return [m for m in plan.tasks[0].task.body if isinstance(m, ir.Move)]
+    return _plan(SOURCE)
 
 
 def _world(q: np.ndarray, rail: float) -> np.ndarray:
@@ -262,11 +255,7 @@ program p on r1 with rail, pos {
 
 @pytest.fixture(scope="module")
 def arc_plan() -> Plan:
-    front = load_text(ARC, "/tmp/ext_axes_track_arc.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
-    return result
+    return _plan(ARC)
 
 
 @pytest.mark.parametrize("vendor", ["rapid", "krl", "fanuc"])
@@ -286,18 +275,10 @@ def test_an_arc_in_world_while_the_track_moves(arc_plan: Plan, vendor: str) -> N
     rail = (axes[:, 0] - axes[0, 0]) / (axes[-1, 0] - axes[0, 0])
     assert abs(angle[-1] - angle[0]) == pytest.approx(math.pi, abs=1e-3) and np.abs(rail - u).max() < 2e-3
     files = BACKENDS[vendor]().emit(arc_plan).files
-    if vendor == "rapid":
-        (text,) = files.values()
-        assert "MoveC via, p_3, v200, fine, torch\\WObj:=world;" in text
-        world = rapid_targets(_as_moves(text, vendor))
-    elif vendor == "krl":
-        src = next(t for n, t in files.items() if n.endswith(".src"))
-        world = krl_targets(_as_moves(src, vendor), next(t for n, t in files.items() if n.endswith(".dat")))
-    else:
-        (text,) = files.values()
-        assert "COORD" not in text.split("/MN")[1]
-        world = fanuc_targets(_as_moves(text, vendor))[0]
-    start, via, end = world
+    text = "".join(files.values())
+    written = {"rapid": "MoveC via, p_3, v200, fine, torch\\WObj:=world;", "krl": "CIRC via,p_3", "fanuc": "C P[3]"}[vendor]
+    assert written in text and " COORD" not in text  # the frame stays put: a plain circular move
+    start, via, end = arc_targets(files, vendor)
     rec = arc_plan.tasks[0].record(move.uid)
     assert rec is not None and rec.q_target is not None
     assert np.abs(via[:3, 3] - [0.7, -0.8, 0.9]).max() < TOL_M
