@@ -170,7 +170,8 @@ def coordinated_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray) -> 
     dense = follow_path(robot, MovingFramePath.of(part, frames), np.linalg.inv(tool), q_now)
     if isinstance(dense, PathFailure):
         code = {"singular": codes.PATH_SINGULAR, "limit": codes.JOINT_LIMIT_PATH}.get(dense.kind, codes.TARGET_UNREACHABLE)
-        return None, findings + [Finding(code, Severity.ERROR, dense.message + " (coordinated: the frame moves with the axes)")]
+        moving = "the frame moves with the axes" if coord.relative() else "the track carries the arm along the path"
+        return None, findings + [Finding(code, Severity.ERROR, f"{dense.message} (coordinated: {moving})")]
     via_index = None
     if part.kind == "arc":
         assert move.via is not None

@@ -285,3 +285,20 @@ def test_an_arc_in_world_while_the_track_moves(arc_plan: Plan, vendor: str) -> N
     assert np.abs(end[:3, 3] - _world(rec.q_target, 0.7)[:3, 3]).max() < TOL_M
     controller = _circle(start[:3, 3], via[:3, 3], end[:3, 3], rail)
     assert np.abs(controller - p).max() < PATH_TOL_M
+
+
+def test_a_line_in_the_still_part_frame_while_only_the_track_moves() -> None:
+    """In `work` with the positioner still, only the rail moves (700 -> 900 mm): the line is
+    straight in `work` (and so in world), not relative to a moving part: a plain Fanuc L."""
+    source = SOURCE[:SOURCE.index("  move joint pose(x=200mm")] + (
+        "  move joint pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=700mm, pos=(30deg, 90deg))\n"
+        "  move linear pose(x=0mm, y=100mm, z=50mm, rx=180deg) frame work ext(rail=900mm) speed 50 mm/s\n}\n")
+    plan = _plan(source)
+    move = _moves(plan)[2]
+    assert move.coordinated is not None and not move.coordinated.relative()
+    _on_the_line(plan, 2, [0.1, 0.0, 0.05], [0.0, 0.1, 0.05], 0.05, part=True)
+    (text,) = BACKENDS["fanuc"]().emit(plan).files.values()
+    assert "L P[3] 50mm/sec FINE ;" in text and " COORD" not in text
+    world, axes = fanuc_targets(text)
+    for g, (w, wax), ax in zip(world, _witness_targets(plan), axes, strict=True):
+        assert ax == pytest.approx(wax, abs=1e-3) and np.abs(g[:3, 3] - w[:3, 3]).max() < TOL_M
