@@ -32,6 +32,7 @@ from rmot.compiler.plan import plan_program
 from rmot.lang import ir
 from rmot.lang.axis_motion import axis_samples, task_axes
 from rmot.lang.plan_types import Plan
+from rmot.sim.verification import verify
 
 SOURCE = CELL_HEAD + """  tool torch = none tcp pose(z=300mm) on r1
 }
@@ -302,3 +303,20 @@ def test_a_line_in_the_still_part_frame_while_only_the_track_moves() -> None:
     world, axes = fanuc_targets(text)
     for g, (w, wax), ax in zip(world, _witness_targets(plan), axes, strict=True):
         assert ax == pytest.approx(wax, abs=1e-3) and np.abs(g[:3, 3] - w[:3, 3]).max() < TOL_M
+
+
+def test_a_post_in_the_way_of_the_carried_torch_is_hit_at_the_line_and_time() -> None:
+    """A 20 x 20 mm post fixed in world at x = 1000 mm on the rail-bound line (y = -600 mm,
+    z 1000 .. 1100 mm, across the torch's 300 mm between TCP and flange): the torch (a 10 mm
+    cylinder along its axis) meets it once its axis is at x = 1000 - 10 - 10 mm. The time comes
+    from the witness's TCP on the plan's samples, not from the collision check, which must
+    report E300 at the line at that time: the arm is checked where the carriage carries it."""
+    source = SOURCE.replace("  tool torch = none tcp pose(z=300mm) on r1\n", "  tool torch = cylinder(10mm, 300mm) at pose(z=150mm) "
+                            "tcp pose(z=300mm) on r1\n  fixture post = box(20mm, 20mm, 100mm) at pose(x=1000mm, y=-600mm, z=1050mm)\n")
+    plan = _plan(source)
+    hits = [d for d in verify(plan).diagnostics if d.is_error and d.code.id == "E300" and "post" in d.bodies]
+    assert hits and {h.span.start.line for h in hits if h.span is not None} == {LINE + 4}  # the rail-bound line
+    assert set(hits[0].bodies) == {"torch", "post"}
+    t, _, tcp = _samples(plan, _moves(plan)[2], part=False)
+    contact = float(np.interp(0.980, tcp[:, 0, 3], t))
+    assert hits[0].time_s == pytest.approx(contact, abs=2 * plan.step)
