@@ -10,6 +10,21 @@ Bindings (rmot's defaults; the report's checklist lists them as machine data to 
 A controller's world is the robot's base frame with every axis at home, as rmot writes it for
 a robot without axes.
 
+A linear or circular move while the track carrying the robot moves is written as the plain
+move to a target with the track's new value beside it: each controller carries the arm's base
+on the track and interpolates the track with the TCP's path in the (fixed or coordinated) frame,
+which is how rmot plans it (compiler/plan/coordinated.py):
+  * ABB: the track a mechanical unit of MOC type TRACK, "linear track motion, only used when a
+    robot is mounted on the track" (Technical reference manual - System parameters, Motion,
+    Single Type, Mechanics); MoveL/MoveC with the robtarget's extax at the new track value;
+  * KUKA: the track a ROBROOT kinematic ($EX_KIN ET1 #ERSYS, $ERSYSROOT): "with every motion of
+    the ROBROOT kinematic system, the position in space of the robot changes ... the external
+    coupling is always switched on" (KUKA Machine Data, $ERSYSROOT, "Frame chain with linear
+    unit"); LIN/CIRC to an E6POS with the new E1;
+  * Fanuc: the rail an integrated extended axis E1 of the robot's group (Extended Axis Control,
+    integrated axis); L/C to a position whose GP1 block holds the new E1.
+INFORM (a base axis BC interpolated with MOVL) is refused for now (backends/inform_axes.py).
+
 RAPID (ABB "Technical reference manual - RAPID Instructions, Functions and Data types"):
 robtarget.extax / jointtarget.extax (extjoint: eax_a..eax_f, 9E9 for an axis not used);
 MoveExtJ "Move one or several mechanical units without TCP" (ToJointPos, Speed [\\T], Zone);
@@ -193,8 +208,9 @@ def fanuc_groups(node: ir.Move, axes: tuple[ExtAxis, ...], cell: ir.Cell, uf: in
 
 
 def coordinated(task: ir.Task) -> bool:
-    """Whether `task` has a coordinated move (a linear or circular move on a frame its moving axes carry)."""
-    return any(isinstance(i, ir.Move) and i.coordinated is not None for i in ir_tree.walk(task.body))
+    """Whether `task` has a move relative to a moving part (a linear or circular move on a frame
+    a moving positioner carries; a move on a fixed frame while the track moves is not one)."""
+    return any(isinstance(i, ir.Move) and i.coordinated is not None and i.coordinated.relative() for i in ir_tree.walk(task.body))
 
 
 def fanuc_coord(node: ir.Move) -> str:
@@ -204,8 +220,12 @@ def fanuc_coord(node: ir.Move) -> str:
     Manual, "COORD motion option"). The position is written as every other one of the task:
     group 1 in UFRAME 0 (the world with the axes at home) at the leader's values in its GP2
     block, from which the controller takes the position relative to the leader through the
-    calibrated pair; rmot assumes that calibration equals the cell's positioner base."""
-    return " COORD" if node.coordinated is not None else ""
+    calibrated pair; rmot assumes that calibration equals the cell's positioner base.
+    A linear or circular move whose frame stays put while only the robot's integrated rail (the
+    group's extended axis E1) moves is a plain L or C: the controller interpolates the rail with
+    the TCP's path in the user frame (FANUC HandlingTool Setup and Operations Manual, "Extended
+    Axis Control", integrated axes)."""
+    return " COORD" if node.coordinated is not None and node.coordinated.relative() else ""
 
 
 def fanuc_default_group(axes: tuple[ExtAxis, ...], cell: ir.Cell) -> str:

@@ -181,6 +181,11 @@ def coordinated_refusal(task: ir.Task, move: ir.Move) -> str:
     attributes rmot has no witness for; writing the plain form would move the TCP off the
     planned seam, so the task is refused at the move."""
     kind = move.kind.name.lower()
+    if move.coordinated is not None and not move.coordinated.relative():
+        return (f"task '{task.name}': a {kind} move while the track carrying the robot moves (the TCP on its path in "
+                f"frame '{move.frame.name}', the track interpolated with it) is not written for INFORM: rmot has no witness "
+                "yet for how a base axis (BC) is interpolated with MOVL/MOVC; move the track with a joint move or "
+                "'move axes' before the line, or compile for rapid, krl or fanuc")
     return (f"task '{task.name}': a coordinated {kind} move (the TCP on its path in frame '{move.frame.name}' while "
             "the positioner moves) cannot be written for INFORM: rmot writes the station as +MOVJ at its own speed, "
             "not the coordinated SMOVL form; move the positioner with 'move axes' before the seam, or compile for "

@@ -16,10 +16,11 @@ EXT_MOUNT = Code("E602", "ext-mount", "`on NAME` that names no track or position
 EXT_PROGRAM_AXES = Code("E603", "ext-program-axes", "`with` naming what is not a mechanism, or a robot on a track its program does not drive")
 EXT_VALUES = Code("E604", "ext-values", "ext(...) or `move axes` values that name no axis of the program, or of the wrong count or unit")
 EXT_AXIS_LIMIT = Code("E605", "ext-axis-limit", "an external axis driven outside its range")
-EXT_MOTION = Code("E606", "ext-motion", "external axes moved where rmot cannot plan it: during a linear or circular move in a frame "
-                   "that no moving mechanism carries, or inside an if or while")
-EXT_COORDINATED = Code("E609", "ext-coordinated", "a coordinated move (a linear or circular move while axes move) "
-                       "that changes axes other than those of the positioner its frame rides on")
+EXT_MOTION = Code("E606", "ext-motion", "external axes moved where rmot cannot plan it: during a linear or circular move in the "
+                   "robot's base frame, a positioner during one in a frame it does not carry, or inside an if or while")
+EXT_COORDINATED = Code("E609", "ext-coordinated", "a coordinated move (a linear or circular move while axes move) in a frame "
+                       "riding on a track, or that changes axes other than those of the positioner its frame rides on and "
+                       "the robot's track")
 EXT_FRAME_UNDRIVEN = Code("E610", "ext-frame-undriven", "a move in a frame riding on a mechanism the program does not drive")
 EXT_SLOWDOWN = Code("W606", "ext-slowdown", "a coordinated move whose TCP must go slower than programmed, relative to the "
                     "part, because an arm joint or an external axis cannot keep up")

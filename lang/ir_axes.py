@@ -129,19 +129,27 @@ class ExternalAxes:
 
 @record(slots=True)
 class Coordinated:
-    """A linear or circular move whose frame rides on a mechanism that moves during it: the
-    TCP follows its line or arc *in that frame* (the part's), and the axes move in step with
-    it. The path parameter u in [0, 1] is shared: at u the axes are at start + u (end - start)
-    (ir.Move.ext is the end) and the TCP at the path's point u in the frame (the reading of
-    ABB's coordinated work object, KUKA's coupled EK base and Fanuc's COORD: relative path,
-    axes interpolated with it; see compiler/plan/coordinated.py)."""
+    """A linear or circular move while external axes move: the TCP follows its line or arc *in
+    the move's frame*, and the axes move in step with it. The path parameter u in [0, 1] is
+    shared: at u the axes are at start + u (end - start) (ir.Move.ext is the end) and the TCP at
+    the path's point u in the frame. The frame either rides on a positioner whose axes move
+    (`mechanism`: the path is relative to the moving part, the reading of ABB's coordinated
+    work object, KUKA's coupled EK base and Fanuc's COORD) or stays put in world during the
+    move (`mechanism` None: a fixed frame, `frame_world`, or a positioner's frame while it
+    stands still) while the track carries the robot along (ABB TRACK unit, KUKA ROBROOT
+    kinematic, Fanuc integrated rail); see compiler/plan/coordinated.py."""
 
-    mechanism: str  # the mechanism the frame rides on (its axes are the ones that move)
+    mechanism: str | None  # the positioner carrying the frame when its axes move, else None
     frame: str
     robot: str
     robot_base: ir.Pose  # the robot's base in world with every axis at home
     start: tuple[tuple[str, float], ...]  # every axis of the program at the move's start (SI)
     external: ExternalAxes
+    frame_world: ir.Pose | None = None  # the frame in world when it rides on no mechanism
+
+    def relative(self) -> bool:
+        """Whether the path is relative to a moving part (a positioner's axes move with it)."""
+        return self.mechanism is not None
 
     def part_in_base(self, names: tuple[str, ...], values: np.ndarray) -> np.ndarray:
         """(N, 4, 4): the frame in the robot's base frame with the axes `names` at `values`
@@ -164,7 +172,9 @@ class Coordinated:
         base = chain(self.robot)
         base = np.tile(self.robot_base.matrix(), (rows, 1, 1)) if base is None else base
         frame = chain(self.frame)
-        assert frame is not None  # a coordinated move's frame rides on its mechanism
+        if frame is None:  # a frame fixed in world
+            assert self.frame_world is not None  # set for a frame that rides on no mechanism
+            frame = np.tile(self.frame_world.matrix(), (rows, 1, 1))
         out: np.ndarray = np.linalg.inv(base) @ frame
         return out
 

@@ -22,8 +22,10 @@ Program (`ProgramAxes`, used by the task lowering):
   * A joint move and `move axes` move the axes time-synchronously with the arm: the move lasts
     at least each axis' shortest rest-to-rest time (ir.Motion.min_duration), and stops exactly
     at both ends. A linear or circular move whose axes change is *coordinated*
-    (ir_axes.Coordinated): its frame must ride on the mechanism whose axes change (else E606,
-    or E609 for a change of another mechanism's axes); it too stops exactly at both ends. Any
+    (ir_axes.Coordinated): the TCP on its path in the move's frame while the axes move along.
+    In a frame fixed in world only the track carrying the robot may move; in a frame riding on
+    a positioner, that positioner's axes and the robot's track (else E606 / E609); the robot's
+    base frame (it moves with the track) is E606. It too stops exactly at both ends. Any
     axis change inside an if or while is E606. A move in a frame riding on a mechanism the
     program does not drive is E610.
 """
@@ -280,32 +282,46 @@ class ProgramAxes:
         return False
 
     def _coordinated(self, move: ir.Move, values: dict[str, float], s: ast.Move) -> Coordinated | None:
-        """The coordinated form of a linear or circular move that changes axis values: the
-        changed axes must all be those of the mechanism the move's frame rides on (E609; a
-        frame on no mechanism cannot carry the path: E606)."""
+        """The coordinated form of a linear or circular move that changes axis values: the TCP
+        on its path in the move's frame while the axes move along. The frame is fixed in world
+        (then only the track carrying the robot may move) or rides on a positioner (its axes and
+        the robot's track may move). The robot's own base frame moves with the track and a frame
+        on a track is no part carrier (E606, E609); any other mechanism's change is E606 in a
+        fixed frame, E609 in a positioner's."""
         changed = [a.name for a in self.axes if values[a.name] != self.values[a.name]]
-        mount = self.external.mount(move.frame.name) if move.frame.name is not None else None
         kind = move.kind.name.lower()
-        if mount is None or mount.kind != "frame":
-            self.rep.error(codes_axes.EXT_MOTION, f"a {kind} move that moves external axes ({', '.join(changed)}) must be in a "
-                           "frame riding on the mechanism that moves (coordinated motion); in a fixed frame, move the axes with "
-                           "a joint move or 'move axes' first", s.span)
+        if move.frame.name is None:
+            self.rep.error(codes_axes.EXT_MOTION, f"a {kind} move that moves external axes ({', '.join(changed)}) must name "
+                           "its frame (the robot's base frame moves with the track): use a frame fixed in the world "
+                           "(`frame world`) or one riding on the positioner", s.span)
             return None
-        mech = self.external.mechanism(mount.mechanism)
-        assert mech is not None  # a mount names a mechanism of the cell
-        others = [n for n in changed if n not in {a.name for a in mech.axes}]
-        if mech.kind != "positioner":
-            self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move must be in a frame riding on a positioner "
-                           f"(frame '{move.frame.name}' rides on track '{mech.name}'); move the track with a joint move or "
-                           "'move axes' first", s.span)
-            return None
-        if others:
-            self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move in frame '{move.frame.name}' may move only the "
-                           f"axes of '{mech.name}', which carries the frame (got a change of {', '.join(others)}); move those "
+        mount = self.external.mount(move.frame.name)
+        carrier = self.external.mechanism(mount.mechanism) if mount is not None and mount.kind == "frame" else None
+        if carrier is not None and carrier.kind != "positioner":
+            self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move must be in a frame fixed in the world or "
+                           f"riding on a positioner (frame '{move.frame.name}' rides on track '{carrier.name}'); move the track "
                            "with a joint move or 'move axes' first", s.span)
             return None
-        return Coordinated(mech.name, mount.body, self.robot.name, self.robot.base,
-                           tuple((a.name, self.values[a.name]) for a in self.axes), self.external)
+        robot_mount = self.external.mount(self.robot.name)
+        track = self.external.mechanism(robot_mount.mechanism) if robot_mount is not None else None
+        allowed = {a.name for m in (track, carrier) if m is not None for a in m.axes}
+        others = [n for n in changed if n not in allowed]
+        if others and carrier is None:
+            self.rep.error(codes_axes.EXT_MOTION, f"a {kind} move in frame '{move.frame.name}', which no moving mechanism "
+                           f"carries, may move only the track the robot rides on (got a change of {', '.join(others)}); "
+                           "a positioner's axes move during a linear or circular move only when its frame rides on "
+                           "the positioner (coordinated motion): move them with a joint move or 'move axes' first", s.span)
+            return None
+        if others:
+            assert carrier is not None
+            self.rep.error(codes_axes.EXT_COORDINATED, f"a coordinated {kind} move in frame '{move.frame.name}' may move only the "
+                           f"axes of '{carrier.name}', which carries the frame, and the track the robot rides on (got a change "
+                           f"of {', '.join(others)}); move those with a joint move or 'move axes' first", s.span)
+            return None
+        moving = carrier is not None and any(a.name in changed for a in carrier.axes)
+        return Coordinated(carrier.name if moving and carrier is not None else None, move.frame.name, self.robot.name,
+                           self.robot.base, tuple((a.name, self.values[a.name]) for a in self.axes), self.external,
+                           None if carrier is not None else move.frame.world)
 
     def move_axes(self, s: ast.MoveAxes, scope: Scope) -> ir.Move | None:
         """`move axes M to VALUES`: the arm holds the joints of the last move."""

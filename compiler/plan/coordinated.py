@@ -1,4 +1,5 @@
-"""Coordinated motion: a linear or circular move whose frame rides on a mechanism that moves.
+"""Coordinated motion: a linear or circular move while external axes move: its frame rides on
+a positioner that moves, or stays put in world while the track carrying the robot moves.
 
 The move (ir.Move with `coordinated`, lang/ir_axes.Coordinated) has one path parameter u in
 [0, 1] for everything that moves:
@@ -7,7 +8,12 @@ The move (ir.Move with `coordinated`, lang/ir_axes.Coordinated) has one path par
   by SLERP (compiler/plan/cartesian.py, the same geometry as a plain move);
 * the axes of the frame's mechanism go from their start to their end values linearly in u;
 * so the TCP in the robot's base frame at u is F(e(u)) * P(u), with F the frame in the base
-  frame at the axis values e(u) (Coordinated.part_in_base).
+  frame at the axis values e(u) (Coordinated.part_in_base): B(e)^-1 W(e), the frame's world
+  pose W (its positioner's flange, or constant for a fixed frame) seen from the arm's base B
+  (on the track's carriage at the track's value, or fixed). A move on a fixed frame while the
+  track moves is the same geometry with W constant: the TCP on the line in world, the arm's
+  IK at the carriage's pose along the path (ABB TRACK unit, KUKA ROBROOT kinematic, Fanuc
+  integrated rail: backends/ext_axes.py cites each).
 This is how the controllers describe it: ABB, a movable work object (wobjdata ufprog FALSE,
 ufmec the unit) "the robot ... coordinated with the movement of the mechanical unit", the
 speed "relative to the work object" ("Technical reference manual - RAPID Instructions,
@@ -164,7 +170,8 @@ def coordinated_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray) -> 
     dense = follow_path(robot, MovingFramePath.of(part, frames), np.linalg.inv(tool), q_now)
     if isinstance(dense, PathFailure):
         code = {"singular": codes.PATH_SINGULAR, "limit": codes.JOINT_LIMIT_PATH}.get(dense.kind, codes.TARGET_UNREACHABLE)
-        return None, findings + [Finding(code, Severity.ERROR, dense.message + " (coordinated: the frame moves with the axes)")]
+        moving = "the frame moves with the axes" if coord.relative() else "the track carries the arm along the path"
+        return None, findings + [Finding(code, Severity.ERROR, f"{dense.message} (coordinated: {moving})")]
     via_index = None
     if part.kind == "arc":
         assert move.via is not None
@@ -177,8 +184,8 @@ def coordinated_segment(robot: RobotModel, move: ir.Move, q_now: np.ndarray) -> 
 
 def _slowdown(robot: RobotModel, seg: CoordinatedSegment) -> list[Finding]:
     """W606 where an arm joint or an axis cannot keep the programmed TCP speed relative to the
-    part: the rate each needs at that speed (its step over the TCP's step in the part frame),
-    over its speed limit, names the worst."""
+    move's frame (the part's, or a fixed frame while the track moves): the rate each needs at
+    that speed (its step over the TCP's step in the frame) over its speed limit, names the worst."""
     coord = seg.move.coordinated
     assert coord is not None
     by_name = {a.name: a for m in coord.external.mechanisms for a in m.axes}
@@ -198,7 +205,8 @@ def _slowdown(robot: RobotModel, seg: CoordinatedSegment) -> list[Finding]:
         axis = axes[j - dof]
         name, unit, scale = f"axis '{axis.name}'", "mm/s" if axis.linear else "deg/s", 1000.0 if axis.linear else float(np.degrees(1.0))
     worst = float(need[i, j] / limits[j])
-    msg = (f"the TCP speed relative to the part must drop to {speed / worst * 1e3:.1f} mm/s (programmed "
+    where = "relative to the part" if coord.relative() else f"in frame '{coord.frame}'"
+    msg = (f"the TCP speed {where} must drop to {speed / worst * 1e3:.1f} mm/s (programmed "
            f"{speed * 1e3:.0f} mm/s): {name} would need {need[i, j] * scale:.0f} {unit} (max {limits[j] * scale:.0f} {unit})")
     return [Finding(codes_axes.EXT_SLOWDOWN, Severity.WARNING, msg)]
 

@@ -192,9 +192,13 @@ def test_krl_targets_re_expand_to_the_planned_tcp(plan: Plan) -> None:
 def fanuc_targets(text: str) -> tuple[list[np.ndarray], list[tuple[float, float, float]]]:
     """World TCP of every J/L move to a Cartesian position (Fanuc W, P, R: Rz(R) Ry(P) Rx(W)),
     and the (E1, GP2 J1, GP2 J2) of each: the rail as the robot group's extended axis, the
-    positioner as group 2. UFRAME n's value is read from the header comment that names it."""
+    positioner as group 2. UFRAME n's value is read from the header comment that names it, or
+    from the position register the program writes it through."""
     header = r"!UFRAME\[(\d+)\] = \w+ must hold: ;\s+\d+:\s+!(X .*?) ;\s+\d+:\s+!(W .*?) ;"
     frames = {int(n): [float(v) for v in re.findall(_NUM, x + " " + w)] for n, x, w in re.findall(header, text)}
+    # a frame without a cell number: written through a position register (PR[n,1..6] = X..R)
+    written = r"!UFRAME\[(\d+)\] = \w+ ;\s+\d+:\s+PR\[\d+\]=LPOS ;((?:\s+\d+:\s+PR\[\d+,\d\]=\S+ ;){6})"
+    frames |= {int(n): [float(v) for v in re.findall(r"PR\[\d+,\d\]=(" + _NUM + ")", body)] for n, body in re.findall(written, text)}
     blocks = dict(re.findall(r"^P\[(\d+)(?::[^\]]*)?\]\{\n(.*?)\n\};", text, re.M | re.S))
     poses, axes = [], []
     for n in re.findall(r"^\s*\d+:\s*[JL] P\[(\d+)\]", text, re.M):

@@ -95,7 +95,7 @@ def test_bad_cells_are_located_errors(cell_line: str, code: str, line: int) -> N
     ("program p on r1 with rail, pos {\n" + HOME + "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg) ext(pos=10deg)\n}\n", "E604", 13),
     ("program p on r1 with rail, pos {\n" + HOME + "  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg) ext(arm=10deg)\n}\n", "E604", 13),
     ("program p on r1 with rail, pos {\n  move axes pos to (0deg, 10deg)\n}\n", "E606", 12),
-    ("program p on r1 with rail, pos {\n" + HOME + "  move linear pose(x=1000mm, z=800mm, ry=180deg) frame world ext(rail=500mm)\n}\n",
+    ("program p on r1 with rail, pos {\n" + HOME + "  move linear pose(x=1000mm, z=800mm, ry=180deg) frame world ext(pos=(0deg, 10deg))\n}\n",
      "E606", 13),
     ("program p on r1 with rail, pos {\n" + HOME + "  if in[1] {\n    move axes pos to (0deg, 10deg)\n  }\n}\n", "E606", 14),
 ])
