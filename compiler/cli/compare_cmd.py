@@ -130,6 +130,12 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
         fail_code(codes.ROBOT_UNKNOWN, f"--as must name a robot of cell '{loaded.program.cell.name}' ({names}) (got '{slot}')")
     if do_place and region is None:
         fail_code(codes.OPTION_MISSING, "--place needs --region")
+    if do_place:
+        from rmot.compiler.design.reach_track import track_place_refusal
+
+        refusal = track_place_refusal(loaded.program.cell, name, "rmot compare --place")
+        if refusal is not None:
+            fail(refusal)
     if region is not None:
         try:
             parse_region(region)  # checked before any arm is planned

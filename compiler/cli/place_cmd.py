@@ -74,6 +74,11 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
         except KeyError:
             names = ", ".join(r.name for r in p.cell.robots)
             fail_code(codes.ROBOT_UNKNOWN, f"--robot must name a robot of cell '{p.cell.name}' ({names}) (got '{name}')")
+    from rmot.compiler.design.reach_track import track_place_refusal
+
+    refusal = track_place_refusal(loaded[0].cell, name, "rmot place")
+    if refusal is not None:
+        fail(refusal)
     instance = loaded[0].cell.robot(name)
     if instance.span is None:  # lower_cell gives every robot its declaration's span
         raise RuntimeError(f"internal: robot '{name}' has no source span to rewrite")
