@@ -67,9 +67,12 @@ class AxisSeries:
 
 def _series(axis: ExtAxis, t: np.ndarray, values: np.ndarray) -> AxisSeries:
     position = values * display_factor(axis)
-    edge = 2 if t.size > 2 else 1  # second order at the ends too: a ramp from rest starts at speed 0
-    speed = np.gradient(position, t, edge_order=edge) if t.size > 1 else np.zeros(t.shape)
-    accel = np.gradient(speed, t, edge_order=edge) if t.size > 1 else np.zeros(t.shape)
+    speed, accel = np.zeros(t.shape), np.zeros(t.shape)
+    if t.size > 2:  # second order at the ends too: a ramp from rest starts at speed 0
+        speed = np.asarray(np.gradient(position, t, edge_order=2), dtype=float)
+        accel = np.asarray(np.gradient(speed, t, edge_order=2), dtype=float)
+    elif t.size == 2:
+        speed = np.asarray(np.gradient(position, t), dtype=float)
     for a in (position, speed, accel):
         a.setflags(write=False)
     return AxisSeries(axis, t, position, speed, accel)

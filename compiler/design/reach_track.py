@@ -49,7 +49,9 @@ class TrackSweep:
 def track_sweep(cell: Any, robot: str) -> TrackSweep | None:
     """The sweep of `robot` when it rides on a track of `cell`, else None."""
     external = getattr(cell, "external", None)
-    mount = None if external is None else external.mount(robot)
+    if external is None:
+        return None
+    mount = external.mount(robot)
     mech = None if mount is None else external.mechanism(mount.mechanism)
     if mount is None or mech is None or mech.kind != "track":
         return None
