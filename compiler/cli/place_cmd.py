@@ -74,15 +74,19 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
         except KeyError:
             names = ", ".join(r.name for r in p.cell.robots)
             fail_code(codes.ROBOT_UNKNOWN, f"--robot must name a robot of cell '{p.cell.name}' ({names}) (got '{name}')")
-    from rmot.compiler.design.reach_track import track_place_refusal
+    from rmot.compiler.design.place_track import TrackMover, track_of
 
-    refusal = track_place_refusal(loaded[0].cell, name, "rmot place")
-    if refusal is not None:
-        fail(refusal)
+    from rmot.sim.robots import load_robot
+
     instance = loaded[0].cell.robot(name)
-    if instance.span is None:  # lower_cell gives every robot its declaration's span
-        raise RuntimeError(f"internal: robot '{name}' has no source span to rewrite")
-    found = search(loaded, name, bounds, objective=objective, screen_n=samples)
+    track = track_of(loaded[0].cell, name)  # a robot on a track: the track is placed, the arm rides it
+    if track is not None:
+        click.echo(f"robot '{name}' rides on track '{track.name}': placing the track (its `at`), the arm on its carriage")
+    span = instance.span if track is None else track.span  # the declaration whose `at` is rewritten
+    if span is None:  # lower_cell gives every robot and mechanism its declaration's span
+        raise RuntimeError(f"internal: '{name}' has no source span to rewrite")
+    mover = None if track is None else TrackMover(loaded, name, load_robot(instance.source.load_key))
+    found = search(loaded, name, bounds, objective=objective, screen_n=samples, mover=mover)
     click.echo(f"screened {found.screened} poses by IK ({found.screen_feasible} reach every target), "
                f"planned and verified {found.verified_count} in full, {found.passing} of them clean (only those are ranked)")
     if found.best is None:
@@ -94,7 +98,6 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
     click.echo(f"best ({objective}): {_line(best, objective)}")
     for k, c in enumerate(found.runners_up, 2):
         click.echo(f"  #{k}: {_line(c, objective)}")
-    span = instance.span
     with open(span.path, encoding="utf-8") as f:
         text = f.read()
     try:

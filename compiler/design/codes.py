@@ -31,6 +31,3 @@ OPTION_MISSING = Code("E807", "design-option-missing",
 OPTION_RANGE = Code("E808", "design-option-range",
                     "a design option is outside its range (--step not positive, or so small the map exceeds its work bound)")
 OPTION_IGNORED = Code("W800", "design-option-ignored", "a design option has no effect without another (--region without --place)")
-TRACK_PLACE = Code("E620", "design-track-place",
-                   "`rmot place` / `compare --place` of a robot that rides on a track: the track's pose is not searched")
-__all__ += ["TRACK_PLACE"]

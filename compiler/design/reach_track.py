@@ -20,7 +20,7 @@ import numpy as np
 
 from rmot.compiler.design.reach import ReachMap, reach_map, sampled_map
 
-__all__ = ["TrackSweep", "swept_grid", "swept_map", "swept_slice", "track_place_refusal", "track_sweep"]
+__all__ = ["TrackSweep", "swept_grid", "swept_map", "swept_slice", "track_sweep"]
 
 MAX_STATIONS = 200  # carriage stations of a fixed-orientation map (a 4 m track at 20 mm)
 
@@ -136,18 +136,3 @@ def study_bound(study: Any) -> float:
 
     return reach_bound(study.robot, study.tcp)
 
-
-def track_place_refusal(cell: Any, robot: str, command: str) -> Any:
-    """E620 at the robot's declaration when it rides on a track (None otherwise): a placement
-    search moves the arm's base, but on a track the base is the carriage's, set by the track's
-    `at` and each move's rail value, which the search does not vary."""
-    from rmot.compiler.design import codes
-    from rmot.lang.diagnostics import Diagnostic, Severity
-
-    sweep = track_sweep(cell, robot)
-    if sweep is None:
-        return None
-    span = cell.robot(robot).span
-    return Diagnostic(codes.TRACK_PLACE, Severity.ERROR,
-                      f"{command} must place a robot that stands on the floor (got '{robot}' on track '{sweep.track}': "
-                      f"its base is the carriage's; move the track's `at` pose, then `rmot reach` maps the whole travel)", span)

@@ -1,6 +1,7 @@
-"""The design commands with external axes: `rmot reach` over a track's travel, `place` refused
-for a robot on a track (E620, located), `compare` standing each arm on the carriage, a
-positioner cell mapped with its fixtures at home, a zero-length track located (E601).
+"""The design commands with external axes: `rmot reach` over a track's travel, `place` moving
+the track under a robot that rides it (and `compare --place` per arm), `compare` standing each
+arm on the carriage, a positioner cell mapped with its fixtures at home, a zero-length or
+non-finite track range located (E601).
 
 Witness of the swept map: for a reached point, the kept joint vector's flange pose from the
 robot model's forward kinematics (pinocchio, not the IK that found it), placed on the carriage
@@ -79,12 +80,67 @@ def test_cli_reach_on_a_track_and_on_a_positioner_cell(tmp_path) -> None:  # typ
     assert r.exit_code == 0, r.output
 
 
-def test_place_on_a_track_is_refused_at_the_robot(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    r = _run(tmp_path, "place", "examples/track_tending.rmot", "--region", "x=0m..1m, y=0m..1m", "-o", str(tmp_path / "c.rmot"))
-    assert r.exit_code == 2
-    assert "examples/track_tending.rmot:26:3: error[E620]" in r.output and "track 'rail'" in r.output
-    r = _run(tmp_path, "compare", "examples/track_tending.rmot", "--place", "--region", "x=0m..1m, y=0m..1m")
-    assert r.exit_code == 2 and "error[E620]" in r.output
+PLACE_PROGRAM = """program p on r1 with rail {
+  tool g
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move joint pose(x=2000mm, y=1900mm, z=300mm, rx=180deg) frame world ext(rail=2000mm)
+  move linear pose(x=2000mm, y=1900mm, z=200mm, rx=180deg) frame world speed 100 mm/s
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg) ext(rail=500mm)
+}
+"""
+
+
+def test_place_moves_the_track_under_the_arm(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """The seam 1.9 m to the side is out of reach from the track at y = 100 mm (1.8 m from the
+    rail's line, the KR 16 reaches 1.6 m): `rmot place` moves the track's `at` into the region,
+    the written cell checks clean, and the planned flange, placed on the carriage with numpy
+    from the written numbers (track at (x, y), rail value along x, arm 250 mm up), is at the
+    world target."""
+    import re
+
+    from rmot.compiler.plan import plan_program
+    from rmot.lang import ir, ir_tree
+
+    program = tmp_path / "p.rmot"
+    program.write_text(TRACK_CELL + PLACE_PROGRAM)
+    r = _run(tmp_path, "check", str(program))
+    assert r.exit_code == 1, r.output  # unreachable where the track is
+    out = tmp_path / "placed.rmot"
+    r = _run(tmp_path, "place", str(program), "--region", "x=-200mm..200mm, y=500mm..1200mm", "--samples", "16", "-o", str(out))
+    assert r.exit_code == 0, r.output
+    assert "placing the track" in r.output
+    text = out.read_text()
+    assert "robot r1 = kuka_kr16 on rail at pose(z=250mm)" in text  # the arm stays on its carriage
+    at = re.search(r"track rail = .* at pose\(x=(-?[0-9.]+)mm, y=(-?[0-9.]+)mm, z=(-?[0-9.]+)mm\)", text)
+    assert at is not None, text
+    x, y, z = (float(v) / 1000 for v in at.groups())
+    assert -0.2 <= x <= 0.2 and 0.5 <= y <= 1.2 and z == 0.0
+    r = _run(tmp_path, "check", str(out))
+    assert r.exit_code == 0, r.output
+    front = load_text(text, str(out))
+    assert front.program is not None
+    plan = plan_program(front.program)
+    tp = plan.tasks[0]
+    from rmot.sim.robots import load_robot
+
+    arm = load_robot("kuka_kr16")
+    moves = [m for m in ir_tree.walk(tp.task.body) if isinstance(m, ir.Move)]
+    for m, rail, target in ((moves[1], 2.0, (2.0, 1.9, 0.3)), (moves[2], 2.0, (2.0, 1.9, 0.2))):
+        rec = tp.record(m.uid)
+        assert rec is not None and rec.q_target is not None
+        base = np.eye(4)
+        base[:3, 3] = (x + rail, y, z + 0.25)
+        tcp = base @ arm.fk(rec.q_target) @ np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0.1], [0, 0, 0, 1.0]])
+        np.testing.assert_allclose(tcp[:3, 3], target, atol=1e-5)
+        np.testing.assert_allclose(tcp[:3, 2], (0, 0, -1), atol=1e-6)
+
+
+def test_compare_place_places_the_track_for_each_arm(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    program = tmp_path / "p.rmot"
+    program.write_text(TRACK_CELL + PLACE_PROGRAM)
+    r = _run(tmp_path, "compare", str(program), "--robot", "kuka_kr16", "--place", "--region", "x=-200mm..200mm, y=500mm..1200mm")
+    assert r.exit_code == 0, r.output
+    assert "track 'rail' placed at x=" in r.output
 
 
 def test_zero_length_track_is_located(tmp_path) -> None:  # type: ignore[no-untyped-def]

@@ -78,7 +78,8 @@ def test_axes_table_and_checklists(plan: Plan) -> None:
 
 
 def test_no_axes_no_section() -> None:
-    front = load_text("cell c {\n  robot r1 = kuka_kr16\n}\nprogram p on r1 {\n  move joint joints(0, -90, 90, 0, 45, 0) deg\n}\n", "/tmp/no_axes.rmot")
+    text = "cell c {\n  robot r1 = kuka_kr16\n}\nprogram p on r1 {\n  move joint joints(0, -90, 90, 0, 45, 0) deg\n}\n"
+    front = load_text(text, "/tmp/no_axes.rmot")
     assert front.program is not None
     plan = plan_program(front.program)
     assert axes_section(plan, checklists(plan)) == [] and checklists(plan) == ()
