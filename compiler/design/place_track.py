@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from rmot.compiler.design.place import Targets, screen
+from rmot.compiler.design.place import Mover, Targets, screen
 from rmot.lang import ir, ir_tree
 from rmot.lang.ir_axes import ExternalAxes, Mechanism
 from rmot.lang.ir_tree import children, rebuilt
@@ -43,10 +43,11 @@ def _fixed(frame: ir.FrameRef, slot: str, external: ExternalAxes, track: str) ->
     return mount is None or mount.mechanism != track
 
 
-class TrackMover:
-    """A `place.Mover` for the track under robot `slot` (module docstring)."""
+class TrackMover(Mover):
+    """The `place.Mover` of the track under robot `slot` (module docstring): its own targets
+    (the arm's base differs per move), screening and rebasing."""
 
-    def __init__(self, programs: list[ir.Program], slot: str, robot: Any) -> None:
+    def __init__(self, programs: list[ir.Program], slot: str, robot: Any) -> None:  # not Mover.__init__: its targets assume a fixed base
         cell = programs[0].cell
         track = track_of(cell, slot)
         assert track is not None and cell.external is not None
