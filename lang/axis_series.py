@@ -19,7 +19,7 @@ from rmot.lang.axis_motion import axis_samples, task_axes
 from rmot.lang.ir_axes import ExtAxis, ExternalAxes
 from rmot.lang.plan_types import TaskPlan
 
-__all__ = ["AxisSeries", "axis_series", "display_factor", "mechanism_of", "move_values"]
+__all__ = ["AxisSeries", "axis_series", "display_factor", "mechanism_of", "move_values", "robot_bases"]
 
 
 def display_factor(axis: ExtAxis) -> float:
@@ -94,3 +94,19 @@ def move_values(node: ir.Instr | None, axes: tuple[ExtAxis, ...]) -> dict[str, f
         return None
     values = dict(node.ext)
     return {a.name: values[a.name] * display_factor(a) for a in axes if a.name in values}
+
+
+def robot_bases(tp: TaskPlan, external: ExternalAxes | None, t: np.ndarray | None = None) -> np.ndarray | None:
+    """(N, 4, 4) world poses of the task's robot base at `t` (default: its samples) when it rides
+    on a track the task drives; None when its base stands still."""
+    axes = task_axes(tp.task, external)
+    if external is None or external.mount(tp.robot) is None or not axes:
+        return None
+    times = tp.trajectory.t if t is None else np.asarray(t, dtype=float)
+    values = axis_samples(tp, axes, times)
+    out = np.empty((times.shape[0], 4, 4))
+    for i, row in enumerate(values):
+        pose = external.world(tp.robot, {a.name: float(v) for a, v in zip(axes, row)})
+        assert pose is not None
+        out[i] = pose.matrix()
+    return out

@@ -6,8 +6,8 @@
     speeds    joint speeds against their limits;  accels  joint accelerations against theirs
     torque    joint torques by inverse dynamics (sim.limits.joint_torques) against the
               model's effort limits, where the robot model has inertias
-    tcp       TCP speed against the programmed speed of each linear/circular move, with the
-              planner's W221 slowdowns shaded
+    tcp       TCP speed in world (a robot on a track: with its carriage) against the programmed
+              speed of each linear/circular move, with the planner's W221 slowdowns shaded
     timeline  each task's instructions side by side on one time axis: moves, waits, syncs, I/O
 
 matplotlib is imported inside the functions (Agg backend, no display), so importing this
@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from rmot.lang import ir, ir_tree
-from rmot.lang.axis_series import AxisSeries, axis_series
+from rmot.lang.axis_series import AxisSeries, axis_series, robot_bases
 from rmot.lang.plan_types import Plan, TaskPlan
 
 __all__ = ["KINDS", "PlotData", "figure_bytes", "plot_data"]
@@ -110,7 +110,8 @@ def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: 
         for k, (_, _, move) in enumerate(moves):
             tcp[which == k] = move.tool.tcp.matrix()
     if traj.t.size > 1:
-        points = (base @ np.asarray(robot.fk_batch(traj.q)) @ tcp)[:, :3, 3]
+        riding = robot_bases(tp, plan.program.cell.external)  # a robot on a track: its base moves
+        points = ((base if riding is None else riding) @ np.asarray(robot.fk_batch(traj.q)) @ tcp)[:, :3, 3]
         speed = np.gradient(points, traj.t, axis=0)
         tcp_speed = np.linalg.norm(speed, axis=1) * 1000.0
     else:
@@ -196,6 +197,8 @@ def _joint_panels(data: PlotData, quantity: str) -> Any:
         axes[-1, c].set_xlabel("time [s]", fontsize=8)
     title = {"joints": "joint positions", "speeds": "joint speeds", "accels": "joint accelerations",
              "torque": "joint torques"}[quantity]
+    if extra:
+        title = title.replace("joint ", "joint and axis ")
     fig.suptitle(f"{data.program}: {title} (dashed: limits)", fontsize=10)
     return fig
 

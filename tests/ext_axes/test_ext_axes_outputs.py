@@ -152,3 +152,38 @@ def test_cli_csv_json_plot_of_the_track_example(tmp_path) -> None:  # type: igno
     r = runner.invoke(cli, ["plot", "examples/track_tending.rmot", "-o", str(tmp_path / "a.svg"), "--what", "speeds"])
     assert r.exit_code == 0, r.output
     assert 'id="ext-rail"' in (tmp_path / "a.svg").read_text()
+
+
+def test_tcp_speed_counts_the_carriage() -> None:
+    """`move axes rail to ...` with the arm's joints held: the TCP moves with the carriage, so
+    the TCP-speed plot's curve is the rail's trapezoid speed (witness: its derivative)."""
+    from rmot.sim.plots import plot_data
+
+    source = CELL_HEAD + """  tool torch = none tcp pose(z=300mm) on r1
+}
+program p on r1 with rail {
+  tool torch
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move axes rail to (1000mm)
+}
+"""
+    front = load_text(source, "/tmp/ext_axes_tcp.rmot")
+    assert front.program is not None, [d.message for d in front.diagnostics]
+    plan = plan_program(front.program)
+    td = plot_data(plan).tasks[0]
+    t0, t1 = _moves(plan)[1]
+    inside = (td.t > t0 + 0.02) & (td.t < t1 - 0.02)
+    rail = np.gradient(np.array([witness_rail(t, t0, t1) for t in td.t]), td.t)
+    np.testing.assert_allclose(td.tcp_speed[inside], np.abs(rail[inside]), rtol=1e-3, atol=1.0)
+
+
+def witness_rail(t: float, t0: float, t1: float, d: float = 1000.0, accel: float = 2000.0) -> float:
+    """The rail (mm) of a 0 -> d rest-to-rest trapezoid over [t0, t1] at `accel` mm/s^2."""
+    T = t1 - t0
+    v = (accel * T - math.sqrt(max(accel * accel * T * T - 4 * accel * d, 0.0))) / 2
+    s, r = min(max(t - t0, 0.0), T), v / accel
+    if s < r:
+        return 0.5 * accel * s * s
+    if s > T - r:
+        return d - 0.5 * accel * (T - s) ** 2
+    return 0.5 * accel * r * r + v * (s - r)
