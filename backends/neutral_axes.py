@@ -9,7 +9,9 @@ CSV: after the arm's `t,q1..qn,qd1..qdn`, per axis `NAME[UNIT]` then per axis
 `NAME_d[UNIT/s]` (`rail[mm]`, `pos.1[deg]`, ..., `rail_d[mm/s]`, `pos.1_d[deg/s]`).
 JSON, per task: `axes` (each axis' name, mechanism, kind, unit, range, speed and accel limits),
 the trajectory's `ext` and `ext_d` (one row per sample, one value per axis in `axes` order) and
-each move's `ext` (its target's values by axis name). A task without axes has none of them.
+each move's `ext` (its target's values by axis name). A task without axes has none of them; an
+`if` variant's trajectory has no axis rows (axes never move inside an if, E606: their values
+there are the main trajectory's at the same times).
 """
 
 from __future__ import annotations

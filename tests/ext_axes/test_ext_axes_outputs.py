@@ -42,13 +42,19 @@ LIMITS = {"rail": (0.0, 4000.0, 1500.0, 2000.0), "pos.1": (-90.0, 90.0, 90.0, 18
 UNITS = {"rail": "mm", "pos.1": "deg", "pos.2": "deg"}
 
 
-@pytest.fixture(scope="module")
-def plan() -> Plan:
-    front = load_text(SOURCE, "/tmp/ext_axes_outputs.rmot")
+def planned(source: str, path: str) -> Plan:
+    """The plan of a program text that must check and plan without errors."""
+    front = load_text(source, path)
     assert front.program is not None, [d.message for d in front.diagnostics]
     result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
+    errors = [d.message for d in result.diagnostics if d.is_error]
+    assert not errors, errors
     return result
+
+
+@pytest.fixture(scope="module")
+def plan() -> Plan:
+    return planned(SOURCE, "/tmp/ext_axes_outputs.rmot")
 
 
 def _moves(plan: Plan) -> list[tuple[float, float]]:
@@ -167,9 +173,7 @@ program p on r1 with rail {
   move axes rail to (1000mm)
 }
 """
-    front = load_text(source, "/tmp/ext_axes_tcp.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    plan = plan_program(front.program)
+    plan = planned(source, "/tmp/ext_axes_tcp.rmot")
     td = plot_data(plan).tasks[0]
     t0, t1 = _moves(plan)[1]
     inside = (td.t > t0 + 0.02) & (td.t < t1 - 0.02)
