@@ -27,6 +27,8 @@ broken by the larger worst joint-limit margin, then by the larger worst manipula
 
 A move whose frame is the robot's base (the default frame) keeps its target relative to the
 base: it moves with the robot. Every other target stays where it is in the world.
+What is placed is a `Mover`: the robot's base here, or the track a robot rides on
+(compiler/design/place_track.py), each with its own screening and rebasing.
 cvxpy is not used: no stage is a convex problem (reachability is a non-convex set of poses and
 the cycle time a black box of the planner), see the commit that dropped it.
 """
