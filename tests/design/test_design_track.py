@@ -167,3 +167,34 @@ def test_compare_stands_each_arm_on_the_carriage(tmp_path) -> None:  # type: ign
     r = _run(tmp_path, "compare", str(program), "--robot", "kuka_kr16", "--format", "json")
     assert r.exit_code == 0, r.output
     assert '"verified": true' in r.output
+
+
+POSITIONER_PROGRAM = """cell pc {
+  robot r1 = kuka_kr16 at pose()
+  positioner pos = axes(revolute(axis z, range(-360deg, 360deg)) speed 180 deg/s accel 360 deg/s^2) at pose(x=1100mm, z=500mm)
+  fixture plate = cylinder(r=200mm, h=20mm) on pos at pose(z=10mm)
+  frame work = pos * pose(z=20mm)
+  tool g = none tcp pose(z=100mm) on r1
+}
+program p on r1 with pos {
+  tool g
+  move joint joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move joint pose(x=-150mm, z=100mm, rx=180deg) frame work
+  move axes pos to (90deg)
+  move joint pose(x=-150mm, z=100mm, rx=180deg) frame work
+}
+"""
+
+
+def test_place_with_a_positioner_keeps_the_targets_on_it(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """A robot on the floor beside a turntable: `rmot place` moves the robot (the positioner
+    stays), the targets in the frame on the turntable stay on it, and the written cell checks clean."""
+    program = tmp_path / "p.rmot"
+    program.write_text(POSITIONER_PROGRAM)
+    out = tmp_path / "placed.rmot"
+    r = _run(tmp_path, "place", str(program), "--region", "x=-300mm..100mm, y=-200mm..200mm", "--samples", "8", "-o", str(out))
+    assert r.exit_code == 0, r.output
+    text = out.read_text()
+    assert "at pose(x=1100mm, z=500mm)" in text and "robot r1 = kuka_kr16 at pose(x=" in text
+    r = _run(tmp_path, "check", str(out))
+    assert r.exit_code == 0, r.output
