@@ -2,13 +2,16 @@
 
 CSV, one file per task (`<program>.csv`, `<program>_<task>.csv` with several tasks):
   header `t,q1..qn,qd1..qdn`, then one row per sample at the plan's fixed step; SI units
-  (s, rad or m, rad/s or m/s); `CSV_DECIMALS` places; -0 printed as 0.
+  (s, rad or m, rad/s or m/s); `CSV_DECIMALS` places; -0 printed as 0. A task that drives
+  external axes adds their columns, named by axis and unit (`rail[mm]`, `rail_d[mm/s]`;
+  backends/neutral_axes.py).
 
 JSON, one file per program (`<program>.json`): the Plan as data —
   program, cell, step, cycle_time, and per task its robot, dof, cycle_time, instructions
   (uid, kind, source `file:line`, t_start, t_end, joint solution, branch, TCP pose in mm +
   quaternion (w, x, y, z), blend in mm, variant), the variants, and the sampled trajectory
-  (t, q, qd). Keys sorted, floats rounded to `JSON_DECIMALS` places, -0 printed as 0, so the
+  (t, q, qd); with external axes, the task's `axes`, the trajectory's `ext`/`ext_d` and each
+  move's `ext` (backends/neutral_axes.py). Keys sorted, floats rounded to `JSON_DECIMALS` places, -0 printed as 0, so the
   same plan always gives the same bytes.
 """
 
@@ -22,6 +25,7 @@ import numpy as np
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, EmitResult, TaskContext, source_ref
+from rmot.backends.neutral_axes import csv_columns, json_axes, json_record_ext
 from rmot.lang import ir, ir_tree, plan_types
 
 __all__ = ["CSV_DECIMALS", "JSON_DECIMALS", "CsvBackend", "JsonBackend", "plan_document"]
@@ -66,6 +70,7 @@ class CsvBackend(Backend):
 
     name = "csv"
     file_ext = ".csv"
+    EXTERNAL_AXES = True  # the axis columns (backends/neutral_axes.py)
     COMMENT = "#"
 
     @classmethod
@@ -80,11 +85,12 @@ class CsvBackend(Backend):
                              "sampled trajectory (got 0 samples)", ctx.task.span)
             return {}
         dof = traj.q.shape[1]
-        header = ["t"] + [f"q{j + 1}" for j in range(dof)] + [f"qd{j + 1}" for j in range(dof)]
+        ext_names, ext_values = csv_columns(ctx.task_plan, ctx.plan.program.cell)
+        header = ["t"] + [f"q{j + 1}" for j in range(dof)] + [f"qd{j + 1}" for j in range(dof)] + ext_names
         # one format per row (a long trajectory has millions of numbers); a field that prints
         # as -0.000 becomes 0.000 as conventions.fmt would write it
-        row_format = ",".join([f"%.{CSV_DECIMALS}f"] * (1 + 2 * dof))
-        table = np.column_stack([traj.t, traj.q, traj.qd]).tolist()
+        row_format = ",".join([f"%.{CSV_DECIMALS}f"] * (1 + 2 * dof + len(ext_names)))
+        table = np.column_stack([traj.t, traj.q, traj.qd, ext_values]).tolist()
         rows = [",".join(header)] + [row_format % tuple(r) for r in table]
         zero = f"{0.0:.{CSV_DECIMALS}f}"
         body = re.sub(rf"(^|,)-{re.escape(zero)}(?=,|$)", rf"\g<1>{zero}", "\n".join(rows), flags=re.M)
@@ -96,6 +102,7 @@ class JsonBackend(Backend):
 
     name = "json"
     file_ext = ".json"
+    EXTERNAL_AXES = True  # the axes, their samples and each move's values (backends/neutral_axes.py)
 
     @classmethod
     def kind_tables(cls) -> dict[str, dict[ir.MotionKind, str]]:
@@ -122,22 +129,26 @@ def plan_document(plan: plan_types.Plan) -> dict[str, Any]:
         "cell": plan.program.cell.name,
         "step": _num(plan.step),
         "cycle_time": _num(plan.cycle_time),
-        "tasks": [_task(tp) for tp in plan.tasks],
+        "tasks": [_task(tp, plan.program.cell) for tp in plan.tasks],
     }
 
 
-def _task(tp: plan_types.TaskPlan) -> dict[str, Any]:
+def _task(tp: plan_types.TaskPlan, cell: ir.Cell) -> dict[str, Any]:
     nodes = {n.uid: n for n in ir_tree.walk(tp.task.body)}
     traj = tp.trajectory
-    return {
+    axes = json_axes(tp, cell, _num, _nums)  # external axes: {} without (backends/neutral_axes.py)
+    trajectory = _trajectory(traj)
+    if axes:
+        trajectory.update(ext=axes.pop("ext"), ext_d=axes.pop("ext_d"))
+    return axes | {
         "name": tp.task.name,
         "robot": tp.robot,
         "dof": int(traj.q.shape[1]),
         "cycle_time": _num(tp.cycle_time),
-        "instructions": [_record(r, nodes.get(r.uid)) for r in tp.records],
+        "instructions": [_record(r, nodes.get(r.uid)) | json_record_ext(nodes.get(r.uid), tp, cell, _num) for r in tp.records],
         "variants": [{"index": v.index, "if_uid": v.if_uid, "arm": v.arm,
                       "trajectory": _trajectory(v.trajectory)} for v in tp.variants],
-        "trajectory": _trajectory(traj),
+        "trajectory": trajectory,
     }
 
 

@@ -1,11 +1,13 @@
 """Plots of a planned program: joints against their limits, TCP speed, and the timeline.
 
-    joints    joint positions against the position limits (one panel per joint and task)
+    joints    joint positions against the position limits (one panel per joint and task), then
+              the external axes the task drives, each named by axis and unit (`rail [mm]`,
+              `pos.1 [deg]`) against its range (speeds, accels: against its speed / accel)
     speeds    joint speeds against their limits;  accels  joint accelerations against theirs
     torque    joint torques by inverse dynamics (sim.limits.joint_torques) against the
               model's effort limits, where the robot model has inertias
-    tcp       TCP speed against the programmed speed of each linear/circular move, with the
-              planner's W221 slowdowns shaded
+    tcp       TCP speed in world (a robot on a track: with its carriage) against the programmed
+              speed of each linear/circular move, with the planner's W221 slowdowns shaded
     timeline  each task's instructions side by side on one time axis: moves, waits, syncs, I/O
 
 matplotlib is imported inside the functions (Agg backend, no display), so importing this
@@ -26,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from rmot.lang import ir, ir_tree
+from rmot.lang.axis_series import AxisSeries, axis_series, robot_bases
 from rmot.lang.plan_types import Plan, TaskPlan
 
 __all__ = ["KINDS", "PlotData", "figure_bytes", "plot_data"]
@@ -55,6 +58,7 @@ class TaskData:
     slowdowns: list[tuple[float, float]]  # W221 intervals
     bars: list[tuple[float, float, str, str]]  # (t0, t1, kind, label)
     prismatic: tuple[bool, ...] = ()  # per joint: a prismatic joint is shown in mm (N), not deg (N·m)
+    axes: tuple[AxisSeries, ...] = ()  # the external axes the task drives, by name (lang/axis_series.py)
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,7 +110,8 @@ def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: 
         for k, (_, _, move) in enumerate(moves):
             tcp[which == k] = move.tool.tcp.matrix()
     if traj.t.size > 1:
-        points = (base @ np.asarray(robot.fk_batch(traj.q)) @ tcp)[:, :3, 3]
+        riding = robot_bases(tp, plan.program.cell.external)  # a robot on a track: its base moves
+        points = ((base if riding is None else riding) @ np.asarray(robot.fk_batch(traj.q)) @ tcp)[:, :3, 3]
         speed = np.gradient(points, traj.t, axis=0)
         tcp_speed = np.linalg.norm(speed, axis=1) * 1000.0
     else:
@@ -131,7 +136,7 @@ def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: 
     return TaskData(tp.task.name, tp.robot, traj.t, traj.q * f, traj.qd * f, traj.qdd * f,
                     np.asarray(robot.joint_limits) * f[:, None], np.asarray(robot.velocity_limits) * f,
                     np.asarray(robot.accel_limits) * f, tau, tau_lim, tcp_speed, programmed, slowdowns, bars,
-                    tuple(t == "P" for t in robot.joint_types))
+                    tuple(t == "P" for t in robot.joint_types), axis_series(tp, plan.program.cell.external))
 
 
 def plot_data(plan: Plan) -> PlotData:
@@ -161,9 +166,11 @@ def _figure(rows: int, cols: int, height_per_row: float = 1.25, width: float = 7
 
 
 def _joint_panels(data: PlotData, quantity: str) -> Any:
-    """One panel per joint (rows) and per task (columns); limits dashed in red."""
+    """One panel per joint (rows) and per task (columns), then one per external axis named by
+    axis and unit (not for torques); limits dashed in red."""
     dof = max((td.q.shape[1] for td in data.tasks), default=1)
-    fig, axes = _figure(dof, max(len(data.tasks), 1))
+    extra = 0 if quantity == "torque" else max((len(td.axes) for td in data.tasks), default=0)
+    fig, axes = _figure(dof + extra, max(len(data.tasks), 1))
     unit = {"joints": "deg", "speeds": "deg/s", "accels": "deg/s²", "torque": "N·m"}[quantity]
     linear = {"joints": "mm", "speeds": "mm/s", "accels": "mm/s²", "torque": "N"}[quantity]  # prismatic joints
     for c, td in enumerate(data.tasks):
@@ -184,12 +191,35 @@ def _joint_panels(data: PlotData, quantity: str) -> Any:
             prismatic = j < len(td.prismatic) and td.prismatic[j]
             ax.set_ylabel(f"J{j + 1} [{linear if prismatic else unit}]", fontsize=8)
             ax.tick_params(labelsize=7)
+        if extra:
+            _axis_panels(axes[dof:, c], td, quantity)
         axes[0, c].set_title(f"{td.name} on {td.robot}", fontsize=9)
         axes[-1, c].set_xlabel("time [s]", fontsize=8)
     title = {"joints": "joint positions", "speeds": "joint speeds", "accels": "joint accelerations",
              "torque": "joint torques"}[quantity]
+    if extra:
+        title = title.replace("joint ", "joint and axis ")
     fig.suptitle(f"{data.program}: {title} (dashed: limits)", fontsize=10)
     return fig
+
+
+def _axis_panels(panels: Any, td: TaskData, quantity: str) -> None:
+    """The external axes' rows of a task: `rail [mm]`, `pos.2 [deg/s]`, ... against their limits;
+    each panel's SVG group id is `ext-NAME` (the axis' name)."""
+    suffix = {"joints": "", "speeds": "/s", "accels": "/s²"}[quantity]
+    for k, ax in enumerate(panels):
+        if k >= len(td.axes):
+            ax.set_yticks([])
+            continue
+        s = td.axes[k]
+        values, limit = {"joints": (s.position, s.limits), "speeds": (s.speed, (-s.speed_limit, s.speed_limit)),
+                         "accels": (s.accel, (-s.accel_limit, s.accel_limit))}[quantity]
+        ax.plot(s.t, values, color=MOVE, linewidth=1.0)
+        ax.axhline(limit[1], **LIMIT_STYLE)
+        ax.axhline(limit[0], **LIMIT_STYLE)
+        ax.set_ylabel(f"{s.name} [{s.unit}{suffix}]", fontsize=8)
+        ax.set_gid(f"ext-{s.name}")
+        ax.tick_params(labelsize=7)
 
 
 def _series(td: TaskData, quantity: str) -> tuple[np.ndarray | None, np.ndarray, np.ndarray]:

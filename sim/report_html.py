@@ -24,6 +24,7 @@ import numpy as np
 from rmot.lang import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.sim.report import GUARANTEE
+from rmot.sim.report_axes import axes_section
 
 __all__ = ["ProgramResult", "breakdown", "render_report"]
 
@@ -41,6 +42,7 @@ class ProgramResult:
     diagnostics: tuple[Diagnostic, ...]
     cycle_times: dict[str, float] = field(default_factory=dict)
     robots: dict[str, Any] | None = None  # robot instance -> Robot, for tests (default: the library)
+    machine_data: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (heading, lines) per task and vendor (sim/report_axes.py)
 
 
 def _e(text: object) -> str:
@@ -256,6 +258,7 @@ def _planned(k: int, result: ProgramResult, parts: dict[str, Callable[[], Any]],
                    f'srcdoc="{_e(page)}"></iframe>')
     robots = _safe(parts, "robots", problems) or {}
     out.append("<h3>Robot and cell data used</h3>" + _cell_tables(result.plan, robots))
+    out += axes_section(result.plan, result.machine_data)
     out += _placed_table(_safe(parts, "placements", problems) or ())
     return out
 

@@ -130,6 +130,7 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
         fail_code(codes.ROBOT_UNKNOWN, f"--as must name a robot of cell '{loaded.program.cell.name}' ({names}) (got '{slot}')")
     if do_place and region is None:
         fail_code(codes.OPTION_MISSING, "--place needs --region")
+
     if region is not None:
         try:
             parse_region(region)  # checked before any arm is planned
@@ -187,8 +188,14 @@ def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[
         robot = load_robot(key)
     except RobotError:
         return program, ""
+    from rmot.compiler.design.place_track import TrackMover, track_of
+
     prog = stand_in(program, slot, key, robot)
-    result = place([prog], slot, bounds)
+    track = track_of(prog.cell, slot)  # a robot on a track: its track is placed, the arm rides it
+    mover = None if track is None else TrackMover([prog], slot, robot)
+    result = place([prog], slot, bounds, robot=robot, mover=mover)
     if result.best is None:
         return prog, "no verified placement in the region: compared at the cell's pose"
-    return rebase(prog, slot, result.best.base), f"placed at {result.best.describe()}"
+    placed = rebase(prog, slot, result.best.base) if mover is None else mover.rebase(prog, result.best.base)
+    what = "placed" if track is None else f"track '{track.name}' placed"
+    return placed, f"{what} at {result.best.describe()}"

@@ -3,7 +3,8 @@
 Finds a base pose for the cell's robot NAME in the region with which every program verifies
 (reach, branches, joint limits, collisions, payload), the best by --objective; writes a copy
 of the cell with that `at` pose, prints the pose, the objective and the runners-up. When no
-pose works it says what fails where. See rmot.compiler.design.place for the search.
+pose works it says what fails where. See rmot.compiler.design.place for the search. A robot on a
+track has the track placed instead (its `at` rewritten; compiler/design/place_track.py).
 
 Exit codes: 0 a pose was found and written; 1 no pose in the region verifies; 2 bad input
 (E80x diagnostics of compiler/design/codes.py; an unwritable -o file: E520).
@@ -12,6 +13,7 @@ Exit codes: 0 a pose was found and written; 1 no pose in the region verifies; 2 
 from __future__ import annotations
 
 import sys
+from typing import Any
 
 import click
 
@@ -25,6 +27,22 @@ def _line(c, objective: str) -> str:  # type: ignore[no-untyped-def]
 
     margin = f"{math.degrees(c.margin):.1f} deg" if math.isfinite(c.margin) else "-"
     return f"{c.describe()}: cycle {c.cycle_time:.3f} s, worst joint margin {margin}, worst manipulability {c.manipulability:.4f}"
+
+
+def _placed_declaration(loaded: list[Any], name: str) -> tuple[Any, Any]:
+    """(the declaration whose `at` is rewritten, the place.Mover or None for the robot's own base):
+    a robot on a track has its track placed, the arm riding on the carriage."""
+    from rmot.compiler.design.place_track import TrackMover, track_of
+    from rmot.sim.robots import load_robot
+
+    instance = loaded[0].cell.robot(name)
+    track = track_of(loaded[0].cell, name)
+    if track is not None:
+        click.echo(f"robot '{name}' rides on track '{track.name}': placing the track (its `at`), the arm on its carriage")
+    span = instance.span if track is None else track.span
+    if span is None:  # lower_cell gives every robot and mechanism its declaration's span
+        raise RuntimeError(f"internal: '{name}' has no source span to rewrite")
+    return span, None if track is None else TrackMover(loaded, name, load_robot(instance.source.load_key))
 
 
 @click.command(name="place")
@@ -74,10 +92,8 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
         except KeyError:
             names = ", ".join(r.name for r in p.cell.robots)
             fail_code(codes.ROBOT_UNKNOWN, f"--robot must name a robot of cell '{p.cell.name}' ({names}) (got '{name}')")
-    instance = loaded[0].cell.robot(name)
-    if instance.span is None:  # lower_cell gives every robot its declaration's span
-        raise RuntimeError(f"internal: robot '{name}' has no source span to rewrite")
-    found = search(loaded, name, bounds, objective=objective, screen_n=samples)
+    span, mover = _placed_declaration(loaded, name)
+    found = search(loaded, name, bounds, objective=objective, screen_n=samples, mover=mover)
     click.echo(f"screened {found.screened} poses by IK ({found.screen_feasible} reach every target), "
                f"planned and verified {found.verified_count} in full, {found.passing} of them clean (only those are ranked)")
     if found.best is None:
@@ -89,7 +105,6 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
     click.echo(f"best ({objective}): {_line(best, objective)}")
     for k, c in enumerate(found.runners_up, 2):
         click.echo(f"  #{k}: {_line(c, objective)}")
-    span = instance.span
     with open(span.path, encoding="utf-8") as f:
         text = f.read()
     try:

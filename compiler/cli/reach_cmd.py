@@ -40,11 +40,17 @@ def load_cell(path: str, project_root: str | None) -> Any:
     return loaded.cell
 
 
-def _map(study: Any, points: Any, step: float, rot: Any, label: str) -> Any:
-    """IK at every point for a fixed orientation; forward sampling for any orientation."""
+def _map(study: Any, points: Any, step: float, rot: Any, label: str, sweep: Any = None) -> Any:
+    """IK at every point for a fixed orientation; forward sampling for any orientation; for a
+    robot on a track, both over the track's travel (compiler/design/reach_track.py)."""
     import numpy as np
 
     from rmot.compiler.design.reach import reach_map, sampled_map
+    from rmot.compiler.design.reach_track import swept_map
+
+    if sweep is not None:
+        planar = bool(np.ptp(points, axis=0).min() < step / 2)
+        return swept_map(study, sweep, points, step, rot, label, SLICE_SAMPLES if planar else CLOUD_SAMPLES)
 
     if rot is None:
         planar = bool(np.ptp(points, axis=0).min() < step / 2)  # a slice catches ~1/40 of the samples: draw more
@@ -68,7 +74,10 @@ def reach(cell: str | None, robot_name: str | None, output: str, tool: str | Non
     """Draw the reachable workspace of a robot, coloured by distance to singularity."""
     from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
     from rmot.compiler.design import codes
+    import numpy as np
+
     from rmot.compiler.design.reach import reach_bound
+    from rmot.compiler.design.reach_track import track_sweep
     from rmot.compiler.design.study import OptionError, fixture_meshes, parse_angles, rotation_rpy, study_for
 
     ext = os.path.splitext(output)[1].lower()
@@ -83,8 +92,9 @@ def reach(cell: str | None, robot_name: str | None, output: str, tool: str | Non
             raise OptionError(codes.OPTION_RANGE, f"--step must be positive (got '{step_text}')")
         study = study_for(load_cell(cell, project_root) if cell else None, robot_name, tool)
         bound = reach_bound(study.robot, study.tcp)
+        sweep = track_sweep(study.cell, study.instance.name) if study.instance is not None else None
         if step is not None:
-            _check_work(ext, step, bound, step_text or "")
+            _check_work(ext, step, bound + (0.0 if sweep is None else 0.5 * float(np.linalg.norm(sweep.travel))), step_text or "")
     except OptionError as exc:
         fail(exc.diagnostic())
     fixtures, diags = fixture_meshes(study.cell)
@@ -98,8 +108,9 @@ def reach(cell: str | None, robot_name: str | None, output: str, tool: str | Non
     caption = [f"{label} ({study.robot.model_name}): TCP {'of ' + tool if tool else '= flange'}, {what}; "
                f"colour = manipulability / best on this map (0 = singular)",
                "reach only: joint limits and IK, not collisions; dashed circle = upper bound on reach from the link lengths"]
+    caption += _axes_notes(study.cell, sweep)
     try:
-        _draw(study, ext, output, step, bound, rot, z, label, caption, fixtures)
+        _draw(study, ext, output, step, bound, rot, z, label, caption, fixtures, sweep)
     except OSError as exc:
         fail_output("map file", output, exc)
     click.echo(f"wrote {output}")
@@ -137,13 +148,25 @@ def _check_work(ext: str, step: float, bound: float, step_text: str) -> None:
                           f"(got '{step_text}': {points:.3g} grid points, at most {MAX_GRID_POINTS:,})")
 
 
+def _axes_notes(cell: Any, sweep: Any) -> list[str]:
+    """Caption lines for a cell with external axes: the track swept; fixtures on a positioner at home."""
+    notes = [] if sweep is None else [sweep.caption()]
+    external = getattr(cell, "external", None)
+    riding = sorted({m.mechanism for m in external.mounts if m.kind == "fixture"}) if external is not None else []
+    if riding:
+        notes.append(f"fixtures on {', '.join(riding)} drawn with the axes at home")
+    return notes
+
+
 def _draw(study: Any, ext: str, output: str, step: float | None, bound: float, rot: Any, z: float | None,
-          label: str, caption: list[str], fixtures: list[Any]) -> None:
+          label: str, caption: list[str], fixtures: list[Any], sweep: Any = None) -> None:
     from rmot.compiler.design.reach import grid_for, slice_grid
+    from rmot.compiler.design.reach_track import swept_grid, swept_slice
 
     if ext == ".html":
         grid_step = step or bound / (12 if study.robot.has_closed_form or rot is None else 8)
-        m = _map(study, grid_for(study.base, bound, grid_step), grid_step, rot, label)
+        grid = grid_for(study.base, bound, grid_step) if sweep is None else swept_grid(sweep, bound, grid_step)
+        m = _map(study, grid, grid_step, rot, label, sweep)
         from rmot.compiler.design.reach_draw import reach_html
         from rmot.sim.render.files import write_text
 
@@ -157,8 +180,11 @@ def _draw(study: Any, ext: str, output: str, step: float | None, bound: float, r
         grid_step = step or bound / (40 if study.robot.has_closed_form or rot is None else 20)
         level_z = float(study.base[2, 3]) if z is None else z
         level_y = float(study.base[1, 3])
-        top = _map(study, slice_grid(study.base, bound, grid_step, "xy", level_z), grid_step, rot, label)
-        side = _map(study, slice_grid(study.base, bound, grid_step, "xz", level_y), grid_step, rot, label)
+        def plane(kind: str, level: float) -> Any:
+            grid = slice_grid(study.base, bound, grid_step, kind, level) if sweep is None else swept_slice(sweep, bound, grid_step, kind, level)
+            return _map(study, grid, grid_step, rot, label, sweep)
+
+        top, side = plane("xy", level_z), plane("xz", level_y)
         best = max(top.manipulability_max, side.manipulability_max)
         top, side = top.rescaled(best), side.rescaled(best)
         panels = [Panel(f"top view, z = {level_z:.3f} m", "xy", level_z, grid_step, top),

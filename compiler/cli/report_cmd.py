@@ -55,7 +55,10 @@ def report(programs: tuple[str, ...], output: str, cell: str | None, project_roo
             input_error = True
             results.append(ProgramResult(path, None, front + (exc.diagnostic,)))
             continue
-        results.append(ProgramResult(path, plan, front + tuple(checked.diagnostics), dict(checked.cycle_times)))
+        from rmot.compiler.design.machine_data import checklists
+
+        results.append(ProgramResult(path, plan, front + tuple(checked.diagnostics), dict(checked.cycle_times),
+                                     machine_data=checklists(plan)))
     page, problems = render_report(results)
     write_or_fail(output, page.encode("utf-8"))
     shown = [d for r in results for d in r.diagnostics] + list(problems)

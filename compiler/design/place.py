@@ -27,6 +27,8 @@ broken by the larger worst joint-limit margin, then by the larger worst manipula
 
 A move whose frame is the robot's base (the default frame) keeps its target relative to the
 base: it moves with the robot. Every other target stays where it is in the world.
+What is placed is a `Mover`: the robot's base here, or the track a robot rides on
+(compiler/design/place_track.py), each with its own screening and rebasing.
 cvxpy is not used: no stage is a convex problem (reachability is a non-convex set of poses and
 the cycle time a black box of the planner), see the commit that dropped it.
 """
@@ -42,7 +44,7 @@ import numpy as np
 from rmot.lang import ir, ir_tree
 from rmot.lang.ir_tree import children, rebuilt
 
-__all__ = ["Candidate", "Placement", "halton", "place", "rebase", "world_targets"]
+__all__ = ["Candidate", "Mover", "Placement", "halton", "place", "rebase", "world_targets"]
 
 SCREEN = 256
 VERIFY = 6
@@ -183,6 +185,31 @@ def screen(robot: Any, targets: Targets, base: np.ndarray) -> tuple[np.ndarray, 
     return ok, total
 
 
+class Mover:
+    """What a placement moves, and how a candidate pose is screened and applied: the robot's
+    base (this class), or a track that carries it (compiler/design/place_track.py).
+    `old`: the placed thing's pose in the cell (4, 4) world; `spans`: the screened targets' moves."""
+
+    def __init__(self, programs: list[ir.Program], slot: str, robot: Any) -> None:
+        self.slot = slot
+        self.robot = robot
+        self.old = programs[0].cell.robot(slot).base.matrix()
+        self.targets = [world_targets(p, slot) for p in programs]
+        self.spans = tuple(s for t in self.targets for s in t.spans)
+
+    def screen(self, pose: np.ndarray) -> tuple[np.ndarray, float]:
+        """(reachable per target, estimated motion time) with the placed thing at `pose`."""
+        oks, est = [], 0.0
+        for t in self.targets:
+            ok, e = screen(self.robot, t, pose)
+            oks.append(ok)
+            est += e
+        return (np.concatenate(oks) if oks else np.zeros(0, bool)), est
+
+    def rebase(self, program: ir.Program, pose: np.ndarray) -> ir.Program:
+        return rebase(program, self.slot, pose)
+
+
 # --------------------------------------------------------------------------- search
 
 
@@ -236,14 +263,14 @@ def _base_from(region: dict[str, tuple[float, float]], u: np.ndarray, old: np.nd
     return base
 
 
-def _evaluate(programs: list[ir.Program], slot: str, base: np.ndarray) -> Candidate:
+def _evaluate(programs: list[ir.Program], slot: str, base: np.ndarray, mover: Mover | None = None) -> Candidate:
     from rmot.compiler.plan import plan_program
     from rmot.sim import verify
     from rmot.compiler.design.metrics import program_metrics
 
     cycle, margin, manip, first = 0.0, math.inf, math.inf, None
     for program in programs:
-        plan = plan_program(rebase(program, slot, base))
+        plan = plan_program(rebase(program, slot, base) if mover is None else mover.rebase(program, base))
         report = verify(plan)
         if report.has_errors and first is None:
             first = report.errors[0]
@@ -256,29 +283,24 @@ def _evaluate(programs: list[ir.Program], slot: str, base: np.ndarray) -> Candid
 
 def place(programs: list[ir.Program], slot: str, region: dict[str, tuple[float, float]], *,
           objective: str = "cycle", screen_n: int = SCREEN, verify_n: int = VERIFY,
-          refine_rounds: int = REFINE_ROUNDS, robot: Any = None) -> Placement:
-    """The best base pose in `region` (see the module docstring)."""
+          refine_rounds: int = REFINE_ROUNDS, robot: Any = None, mover: Mover | None = None) -> Placement:
+    """The best base pose in `region` (see the module docstring); `mover`: what is placed (default
+    the robot's base)."""
     import time
 
     from rmot.sim.robots import load_robot
 
     if objective not in ("cycle", "margin"):
         raise ValueError(f"objective must be 'cycle' or 'margin' (got {objective!r})")
-    old = programs[0].cell.robot(slot).base.matrix()
     robot = robot or load_robot(programs[0].cell.robot(slot).source.load_key)
-    targets = [world_targets(p, slot) for p in programs]
+    mover = mover or Mover(programs, slot, robot)
     keys = [k for k in ("x", "y", "z", "rz") if k in region]
     t0 = time.perf_counter()
     units = halton(screen_n, len(keys))
-    scored, fail_counts = [], np.zeros(sum(len(t.configs) for t in targets))
+    scored, fail_counts = [], np.zeros(len(mover.spans))
     for u in units:
-        base = _base_from(region, u, old)
-        oks, est = [], 0.0
-        for t in targets:
-            ok, e = screen(robot, t, base)
-            oks.append(ok)
-            est += e
-        ok_all = np.concatenate(oks) if oks else np.zeros(0, bool)
+        base = _base_from(region, u, mover.old)
+        ok_all, est = mover.screen(base)
         fail_counts += ~ok_all
         if ok_all.all():
             scored.append((est, tuple(u), base))
@@ -286,16 +308,16 @@ def place(programs: list[ir.Program], slot: str, region: dict[str, tuple[float, 
     scored.sort(key=lambda s: (s[0], s[1]))
     evaluated: list[Candidate] = []
     for _, _, base in scored[:VERIFY_BUDGET]:  # down the ranking until verify_n verify (one, past the cap) or none is left
-        evaluated.append(_evaluate(programs, slot, base))
+        evaluated.append(_evaluate(programs, slot, base, mover))
         passing = sum(c.verified for c in evaluated)
         if passing >= verify_n or (passing and len(evaluated) >= VERIFY_CAP * verify_n):
             break
     t2 = time.perf_counter()
-    evaluated += _refine(programs, slot, region, robot, targets, evaluated, objective, refine_rounds, len(scored), screen_n)
+    evaluated += _refine(programs, slot, region, mover, evaluated, objective, refine_rounds, len(scored), screen_n)
     t3 = time.perf_counter()
     good = _distinct(sorted((c for c in evaluated if c.verified), key=lambda c: c.key(objective)))
     stats = {"screen_s": t1 - t0, "verify_s": t2 - t1, "refine_s": t3 - t2}
-    failures = () if good else _failures(targets, fail_counts, screen_n, evaluated)
+    failures = () if good else _failures(mover.spans, fail_counts, screen_n, evaluated)
     if not good and len(scored) > VERIFY_BUDGET:
         failures += (f"checked the first {VERIFY_BUDGET} of the {len(scored)} poses that reach every target in full "
                      "(the budget); a smaller region ranks fewer",)
@@ -311,8 +333,8 @@ def _distinct(cands: list[Candidate]) -> list[Candidate]:
     return out
 
 
-def _refine(programs: list[ir.Program], slot: str, region: dict[str, tuple[float, float]], robot: Any,
-            targets: list[Targets], evaluated: list[Candidate], objective: str, rounds: int,
+def _refine(programs: list[ir.Program], slot: str, region: dict[str, tuple[float, float]], mover: Mover,
+            evaluated: list[Candidate], objective: str, rounds: int,
             feasible: int, n: int, starts: int = REFINE_STARTS) -> list[Candidate]:
     """Compass search from each of the `starts` best verified poses (the feasible set is often
     disconnected: one start can sit in a worse pocket): ± step on each axis, halving the step
@@ -332,9 +354,9 @@ def _refine(programs: list[ir.Program], slot: str, region: dict[str, tuple[float
                     base = _nudge(best.base, key, sign * step[key], region)
                     if base is None or any(np.allclose(base, c.base, atol=1e-9) for c in evaluated + out):
                         continue
-                    if not all(screen(robot, t, base)[0].all() for t in targets):
+                    if not mover.screen(base)[0].all():
                         continue
-                    cand = _evaluate(programs, slot, base)
+                    cand = _evaluate(programs, slot, base, mover)
                     out.append(cand)
                     if cand.verified and cand.key(objective) < best.key(objective):
                         best, improved = cand, True
@@ -359,11 +381,10 @@ def _nudge(base: np.ndarray, key: str, delta: float, region: dict[str, tuple[flo
     return new if lo - 1e-12 <= new[axis, 3] <= hi + 1e-12 else None
 
 
-def _failures(targets: list[Targets], fail_counts: np.ndarray, n: int, evaluated: list[Candidate]) -> tuple[str, ...]:
+def _failures(spans: tuple[Any, ...], fail_counts: np.ndarray, n: int, evaluated: list[Candidate]) -> tuple[str, ...]:
     """What fails where: the targets unreachable from most sampled poses, and the first
     finding of each fully checked pose."""
     lines = []
-    spans = [s for t in targets for s in t.spans]
     order = np.argsort(-fail_counts, kind="stable")
     seen = set()
     for i in order:

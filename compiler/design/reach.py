@@ -183,14 +183,17 @@ def reach_map(robot: Any, points: np.ndarray, *, base: np.ndarray | None = None,
 
 
 def sampled_map(robot: Any, points: np.ndarray, step: float, *, base: np.ndarray | None = None,
-                tcp: np.ndarray | None = None, samples: int = 200_000, seed: int = 0, name: str | None = None) -> ReachMap:
+                tcp: np.ndarray | None = None, samples: int = 200_000, seed: int = 0, name: str | None = None,
+                sweep: np.ndarray | None = None) -> ReachMap:
     """Reach in any orientation, by forward sampling: `samples` joint vectors drawn uniformly
     within the limits (fixed seed: the same map every run), the TCP of each by FK, binned to
     the lattice of `points` (spacing `step`; a full grid or one plane of it). A lattice cell
     holding a sample is reached (by that sample's q, the best-conditioned one kept); a cell
     without one may still be reachable (sampling is sufficient, not exhaustive). Every
     orientation counts, so this is the total workspace (IK per point would need a finite
-    set of orientations, and is far slower for arms without a closed form)."""
+    set of orientations, and is far slower for arms without a closed form). `sweep` (3,) world m:
+    the base also slides by a uniform share of this vector per sample (a robot on a track, `base`
+    at the track's low end), so the map is of the joined chain track + arm."""
     base = np.eye(4) if base is None else np.asarray(base, dtype=float)
     tcp = np.eye(4) if tcp is None else np.asarray(tcp, dtype=float)
     points = np.asarray(points, dtype=float).reshape(-1, 3)
@@ -212,6 +215,8 @@ def sampled_map(robot: Any, points: np.ndarray, step: float, *, base: np.ndarray
     for start in range(0, samples, chunk):
         qs = lo + (hi - lo) * rng.random((min(chunk, samples - start), dof))
         tcp_world = (base @ robot.fk_batch(qs) @ tcp)[:, :3, 3]
+        if sweep is not None:
+            tcp_world = tcp_world + rng.random((len(qs), 1)) * np.asarray(sweep, dtype=float)
         k = np.round((tcp_world - ref) / step).astype(np.int64)
         inside = np.all(np.abs(k) < shift - 1, axis=1)
         c = code(np.where(inside[:, None], k, 0))

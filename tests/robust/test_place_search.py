@@ -24,7 +24,7 @@ def _program() -> Any:
 def test_place_checks_past_the_first_ranked_poses_until_one_verifies(monkeypatch) -> None:  # type: ignore[no-untyped-def]
     checked: list[np.ndarray] = []
 
-    def full_check(programs: Any, slot: str, base: np.ndarray) -> place_mod.Candidate:
+    def full_check(programs: Any, slot: str, base: np.ndarray, mover: Any = None) -> place_mod.Candidate:
         checked.append(base)  # only the 30th pose checked verifies; the failing ones have the "best" cycle time
         ok = len(checked) == 30
         return place_mod.Candidate(base, ok, 2.0 if ok else 0.0, 0.1, 0.1)
@@ -40,7 +40,7 @@ def test_place_checks_past_the_first_ranked_poses_until_one_verifies(monkeypatch
 
 def test_place_that_finds_none_checks_every_reachable_pose_within_its_budget(monkeypatch) -> None:  # type: ignore[no-untyped-def]
     checked: list[np.ndarray] = []
-    monkeypatch.setattr(place_mod, "_evaluate", lambda programs, slot, base: checked.append(base) or
+    monkeypatch.setattr(place_mod, "_evaluate", lambda programs, slot, base, mover=None: checked.append(base) or
                         place_mod.Candidate(base, False, 0.0, 0.1, 0.1))
     monkeypatch.setattr(place_mod, "VERIFY_BUDGET", 40)
     found = place_mod.place([_program()], "r1", {"x": (-0.1, 0.1), "y": (-0.1, 0.1)}, screen_n=64, refine_rounds=0)
