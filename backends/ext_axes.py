@@ -31,7 +31,7 @@ from rmot.lang import ir
 from rmot.lang.axis_motion import task_axes
 from rmot.lang.ir_axes import ExtAxis, ExternalAxes
 
-__all__ = ["RAPID_UNUSED", "driven_axes", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
+__all__ = ["absolute_turns", "RAPID_UNUSED", "driven_axes", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
            "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
            "unit_name", "vendor_values"]
 
@@ -142,7 +142,19 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
             lines.append(f"  {name} = {axis.name}: {'linear along' if axis.linear else 'revolute about'} {direction}, "
                          f"[{axis.shown(axis.low)}, {axis.shown(axis.high)}], {axis.shown(axis.speed)}/s, "
                          f"{axis.shown(axis.accel)}/s^2")
+            lines += absolute_turns(axis, name)
     return lines
+
+
+def absolute_turns(axis: ExtAxis, name: str) -> list[str]:
+    """The checklist line of a revolute axis with more than +-180 deg of range: rmot plans its
+    targets as absolute values (a move from -10 to 700 deg turns 710 deg, as programmed), which
+    the controller follows only when the axis is a normal one, not an endless / shortest-way
+    (modulo) axis."""
+    if not axis.beyond_half_turn():
+        return []
+    return [f"  {name} = {axis.name}: absolute targets, turned through the programmed difference (no "
+            f"shortest-way wrap): configure it as a normal axis, not an endless (modulo) one"]
 
 
 def fanuc_in_world(node: ir.Move, robot: ir.RobotInstance, cell: ir.Cell) -> ir.Move:

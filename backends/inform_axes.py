@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext
-from rmot.backends.ext_axes import driven_axes
+from rmot.backends.ext_axes import absolute_turns, driven_axes
 from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.ir_axes import ExtAxis
 
@@ -138,6 +138,7 @@ class InformAxes:
                 else:
                     assumed = " ASSUMED (not declared): confirm" if a.pulses is None else ""
                     lines.append(what + f"{scale(a):g} pulses/{unit}{assumed}, 0 pulses at 0 {unit}, + pulses = + {unit}")
+                lines += absolute_turns(a, f"{group} axis {k + 1}")
         return lines
 
     def assumed(self) -> tuple[ExtAxis, ...]:

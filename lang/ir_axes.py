@@ -55,6 +55,12 @@ class ExtAxis:
         """`value` in the unit the program writes (mm or deg)."""
         return f"{value * 1000.0:.6g} mm" if self.linear else f"{math.degrees(value):.6g} deg"
 
+    def beyond_half_turn(self) -> bool:
+        """A revolute axis whose range passes +-180 deg: its targets are absolute axis values
+        (every vendor's axis data: RAPID extax, KRL E1..E6, Fanuc J, INFORM EC pulses), so a
+        move turns it through the programmed difference, never the shortest way round."""
+        return not self.linear and (self.low < -math.pi or self.high > math.pi)
+
     def transform(self, value: float) -> ir.Pose:
         if self.linear:
             d = self.direction
