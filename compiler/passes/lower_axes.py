@@ -21,8 +21,11 @@ Program (`ProgramAxes`, used by the task lowering):
     the arm's base rides on its track, a frame on a positioner moves with its flange.
   * A joint move and `move axes` move the axes time-synchronously with the arm: the move lasts
     at least each axis' shortest rest-to-rest time (ir.Motion.min_duration), and stops exactly
-    at both ends. A linear or circular move whose axes change (coordinated motion) and any axis
-    change inside an if or while are E606.
+    at both ends. A linear or circular move whose axes change (coordinated motion) is E606.
+  * Inside an if, each arm starts from the values before it and both must end at the same
+    values; a while body must end at the values it started from (every pass then starts and is
+    timed alike); a `for`/`repeat` is unrolled, each round from the values the last left.
+    Otherwise E606, as is an axis change inside a wait's timeout branch.
 """
 
 from __future__ import annotations
@@ -194,16 +197,17 @@ def _shown(x: float, dim: Dim) -> str:
 
 
 def check_axis_branches(body: tuple[ir.Instr, ...], rep: Reporter) -> None:
-    """E606 for an axis change inside an if or while: the axes' values after it would depend on
-    which path ran, and every later target's pose depends on them."""
+    """E606 for an axis change inside a body that runs zero times or once (a wait's timeout
+    branch): the axes' values after it would depend on whether it ran. An if or while is checked
+    while it is lowered (ProgramAxes.join_arms, ProgramAxes.check_pass)."""
     for instr in walk(body):
         runs, bodies = flow(instr)
-        if runs not in (Runs.ONE_OF, Runs.REPEATED, Runs.MAYBE):
+        if runs is not Runs.MAYBE:
             continue
         for inner in walk(tuple(i for b in bodies for i in b)):
             if isinstance(inner, ir.Move) and inner.motion.min_duration is not None:
-                rep.error(codes_axes.EXT_MOTION, "external axes must not move inside an if or while (their values after it "
-                          "would depend on the path taken); move them before or after it", inner.span)
+                rep.error(codes_axes.EXT_MOTION, "external axes must not move inside a branch that may not run (their "
+                          "values after it would depend on the path taken); move them before or after it", inner.span)
                 return
 
 
@@ -245,6 +249,36 @@ class ProgramAxes:
         self.rep = rep
         self.values = {a.name: a.home for a in self.axes}
         self.last: ir.Move | None = None  # the last move lowered: what `move axes` holds
+
+    def state(self) -> dict[str, float]:
+        """The axis values so far (before an if or while)."""
+        return dict(self.values)
+
+    def restart(self, before: dict[str, float]) -> None:
+        """The next arm of an if starts from the values before the if."""
+        self.values = dict(before)
+
+    def join_arms(self, after_then: dict[str, float], span: Span) -> None:
+        """After both arms of an if (self at the end of the other arm): they must leave every
+        axis at one value, since every later target's pose and timing start from it (E606)."""
+        self._same(after_then, "both arms of an if must leave the external axes at the same values", "after one arm",
+                   "after the other", span)
+
+    def check_pass(self, before: dict[str, float], span: Span) -> None:
+        """After a while body: it must end with the axes where it started, so every pass (and
+        the code after the loop, which may follow no pass at all) starts from the same values
+        (E606); the moves inside are then timed alike on every pass."""
+        self._same(before, "a while body must end with the external axes where it started", "at its start",
+                   "at its end", span)
+        self.values = dict(before)
+
+    def _same(self, other: dict[str, float], what: str, other_at: str, here_at: str, span: Span) -> None:
+        differ = [a for a in self.axes if other[a.name] != self.values[a.name]]
+        if differ:
+            got = ", ".join(f"'{a.name}' {a.shown(other[a.name])} {other_at}, {a.shown(self.values[a.name])} {here_at}"
+                            for a in differ)
+            self.rep.error(codes_axes.EXT_MOTION, f"{what} (got {got}): every later move starts from them; "
+                           "move the axes back inside it, or before or after it", span)
 
     def move(self, move: ir.Move, s: ast.Move, scope: Scope) -> ir.Move | None:
         """`move` with the axis values at its target (its `ext(...)` over the values so far)."""
