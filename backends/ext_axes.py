@@ -141,7 +141,7 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
             direction = "xyz"[axis.direction.index(1.0)]
             lines.append(f"  {name} = {axis.name}: {'linear along' if axis.linear else 'revolute about'} {direction}, "
                          f"[{axis.shown(axis.low)}, {axis.shown(axis.high)}], {axis.shown(axis.speed)}/s, "
-                         f"{axis.shown(axis.accel)}/s^2")
+                         f"{axis.shown(axis.accel)}/s^2" + (f", moves {axis.mass:g} kg" if axis.mass else ""))
             lines += absolute_turns(axis, name)
     return lines
 

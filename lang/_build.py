@@ -694,7 +694,13 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         options = dict(c[7:])
         return ast.ExtAxisDecl(self._ident(c[0]), self._ident(c[3]), c[5], options.get("speed"),
                                options.get("accel"), self._span([*c[:7], *(value for _, value in c[7:])]),
-                               options.get("inform"))
+                               options.get("inform"), tuple(v for k, v in c[7:] if k == "solid"), options.get("mass"))
+
+    def ext_solid(self, c: list[Any]) -> tuple[str, Any]:
+        return "solid", ast.Call(self._ident(c[0]), c[2], self._span(c))
+
+    def ext_mass(self, c: list[Any]) -> tuple[str, Any]:
+        return "mass", c[1]
 
     def ext_speed(self, c: list[Any]) -> tuple[str, Any]:
         return "speed", c[1]

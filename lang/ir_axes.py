@@ -47,6 +47,7 @@ class ExtAxis:
     home: float
     span: Span | None = None
     pulses: float | None = None  # INFORM encoder pulses per mm (linear) or per degree (revolute), as declared
+    mass: float = 0.0  # kg the axis moves (`mass M`: its solids, as the cell declares)
 
     def unit(self) -> str:
         return "mm" if self.linear else "deg"
@@ -79,10 +80,11 @@ class Mechanism:
     base: ir.Pose  # the first axis' frame in world
     span: Span | None = None
 
-    def flange(self, values: tuple[float, ...]) -> ir.Pose:
-        """The frame the last axis carries, in world, at `values` (one per axis)."""
+    def flange(self, values: tuple[float, ...], through: int | None = None) -> ir.Pose:
+        """The frame the last axis carries, in world, at `values` (one per axis); with
+        `through`, the frame axis `through` (1-based) carries: its solids ride there."""
         pose = self.base
-        for axis, value in zip(self.axes, values, strict=True):
+        for axis, value in list(zip(self.axes, values, strict=True))[:through]:
             pose = pose * axis.transform(value)
         return pose
 
@@ -99,6 +101,11 @@ class Mount:
     mechanism: str
     local: ir.Pose
     span: Span | None = None
+    through: int | None = None  # rides on axis `through` (1-based: an axis' solid), not the flange
+
+    def group(self) -> str:
+        """What moves it: the mechanism's name, or `name#k` for a body on its axis k."""
+        return self.mechanism if self.through is None else f"{self.mechanism}#{self.through}"
 
 
 @record(slots=True)
@@ -130,7 +137,7 @@ class ExternalAxes:
         mech = None if mount is None else self.mechanism(mount.mechanism)
         if mount is None or mech is None:
             return None
-        return mech.flange(self.values_of(mech, values)) * mount.local
+        return mech.flange(self.values_of(mech, values), mount.through) * mount.local
 
 
 def axis_time(delta: float, speed: float, accel: float) -> float:

@@ -39,6 +39,8 @@ from rmot.lang.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
 from rmot.compiler.passes.limits import MAX_SIZE_M
+from rmot.compiler.passes.lower_axis_solids import axis_mass, axis_solids
+from rmot.compiler.passes.lower_model import GeometryFn
 from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, DIMENSIONLESS, LENGTH, SPEED, Dim, VectorV, Value
 from rmot.lang import ast
 from rmot.lang.source import Span
@@ -112,7 +114,10 @@ class CellAxes:
         low, high = bounds
         home = min(max(0.0, low), high)
         pulses = None if a.inform is None else self._pulses(a.inform, linear, name)  # after E608: kept, unscaled
-        return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span, pulses)
+        mass = axis_mass(a.mass, name, self.scope, rep)
+        if mass is None:
+            return None
+        return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span, pulses, mass)
 
     def _pulses(self, call: ast.Call, linear: bool, name: str) -> float | None:
         """The INFORM binding `inform(pulses_per_mm=N)` (linear) or `inform(pulses_per_deg=N)`
@@ -167,6 +172,15 @@ class CellAxes:
             self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"{what} must be > 0 (got {_shown(x, dim)})", e.span)
             return None
         return x
+
+    def solids(self, s: ast.MechanismDecl, geometry: GeometryFn) -> list[ir.Fixture]:
+        """The fixtures of the solids mechanism `s`'s axes carry (lower_axis_solids.py)."""
+        mech = self.mechanisms.get(s.name.name)
+        if mech is None:
+            return []
+        fixtures, mounts = axis_solids(s, mech, self.scope, self.rep, geometry)
+        self.mounts += mounts
+        return fixtures
 
     def carried(self, on: ast.Ident, local: ir.Pose | None, kind: str, body: str, span: Span) -> ir.Pose | None:
         """`body` rides on mechanism `on` at `local`: its world pose at home (None after an error)."""
