@@ -20,9 +20,11 @@ from rmot.sim.verification import verify
 
 PLATE = " solid(cylinder(r=300mm, h=30mm), at=pose(z=-15mm))"
 CELL = """cell c {
-  track rail = linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 solid(box(600mm, 500mm, 100mm), at=pose(z=150mm)) mass 250 kg at pose(z=0mm)
+  track rail = linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 """ \
+    """solid(box(600mm, 500mm, 100mm), at=pose(z=150mm)) mass 250 kg at pose(z=0mm)
   robot r1 = kuka_kr16 on rail at pose(z=250mm)
-  positioner pos = axes(revolute(axis y, range(-90deg, 90deg)) speed 90 deg/s accel 180 deg/s^2 solid(box(200mm, 900mm, 100mm), at=pose(z=-150mm)) mass 80 kg,
+  positioner pos = axes(revolute(axis y, range(-90deg, 90deg)) speed 90 deg/s accel 180 deg/s^2
+                          solid(box(200mm, 900mm, 100mm), at=pose(z=-150mm)) mass 80 kg,
                         revolute(axis z, range(-360deg, 360deg)) speed 180 deg/s accel 360 deg/s^2""" + PLATE + """)
                    at pose(x=1800mm, z=700mm)
   tool torch = none tcp pose(z=300mm) mass 1 kg on r1
@@ -70,7 +72,7 @@ def test_the_arm_reaching_the_tilted_plate_is_found_at_the_move_that_brings_it()
         report = verify(plan_program(front.program))
         return [(d.span.start.line if d.span else None, d.message) for d in report.diagnostics if d.code.id == "E300"]
     found = collisions(CELL)
-    assert found and all(line == 13 and "'pos.2.solid1'" in msg for line, msg in found)
+    assert found and all(line == 14 and "'pos.2.solid1'" in msg for line, msg in found)
     assert collisions(CELL.replace(PLATE, "")) == []
 
 
@@ -89,4 +91,4 @@ def test_the_checklist_states_each_axis_mass() -> None:
 ])
 def test_bad_solids_and_masses_are_located_errors(old: str, new: str, code: str, message: str) -> None:
     _, errors = _load(CELL.replace(old, new))
-    assert any(c.startswith(code) and line == 4 and message in msg for c, line, msg in errors), errors
+    assert any(c.startswith(code) and line == 5 and message in msg for c, line, msg in errors), errors
