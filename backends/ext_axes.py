@@ -31,9 +31,10 @@ from rmot.lang import ir
 from rmot.lang.axis_motion import task_axes
 from rmot.lang.ir_axes import ExtAxis, ExternalAxes
 
-__all__ = ["absolute_turns", "RAPID_UNUSED", "driven_axes", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
+__all__ = ["RAPID_UNUSED", "driven_axes", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
            "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
            "unit_name", "vendor_values"]
+__all__ += ["absolute_turns", "stacked_mechanisms"]
 
 RAPID_UNUSED = "9E+09"  # "no position defined" in an extax / robax slot (RAPID reference, extjoint)
 SLOTS = 6  # RAPID eax_a..eax_f, KRL E1..E6
@@ -144,6 +145,18 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
                          f"{axis.shown(axis.accel)}/s^2" + (f", moves {axis.mass:g} kg" if axis.mass else ""))
             lines += absolute_turns(axis, name)
     return lines
+
+
+def stacked_mechanisms(cell: ir.Cell, node: ir.Move) -> str:
+    """The stacked mechanisms (one riding on another) a move drives, as `'p2' on 'rail'`, or
+    "": rmot plans and verifies them but writes them for no controller yet (each vendor's
+    chained kinematics, KUKA $ETn on $ETm or an ABB unit on a track, are not verified)."""
+    external = cell.external
+    if external is None:
+        return ""
+    names = {name for name, _ in node.ext}
+    return ", ".join(f"'{m.name}' on '{m.on}'" for m in external.mechanisms
+                     if m.on is not None and any(a.name in names for a in m.axes))
 
 
 def absolute_turns(axis: ExtAxis, name: str) -> list[str]:

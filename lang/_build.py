@@ -682,10 +682,12 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     # -- external axes (tracks and positioners)
     def track_decl(self, c: list[Any]) -> ast.MechanismDecl:
-        return ast.MechanismDecl("track", self._ident(c[1], "track"), (c[3],), c[5], self._span(c))
+        return ast.MechanismDecl("track", self._ident(c[1], "track"), (c[3],), c[7], self._span(c),
+                                 self._ident(c[5]) if c[5] is not None else None)
 
     def positioner_decl(self, c: list[Any]) -> ast.MechanismDecl:
-        return ast.MechanismDecl("positioner", self._ident(c[1], "positioner"), tuple(c[5]), c[8], self._span(c))
+        return ast.MechanismDecl("positioner", self._ident(c[1], "positioner"), tuple(c[5]), c[10], self._span(c),
+                                 self._ident(c[8]) if c[8] is not None else None)
 
     def ext_axes(self, c: list[Any]) -> list[ast.ExtAxisDecl]:
         return c

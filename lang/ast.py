@@ -561,6 +561,7 @@ class MechanismDecl:
     axes: tuple[ExtAxisDecl, ...]
     at: Expr | None
     span: Span = _span()
+    on: Ident | None = None  # stacked on this mechanism's flange (`at` is then on that flange)
 
 
 @record(slots=True)

@@ -77,8 +77,9 @@ class Mechanism:
     name: str
     kind: str  # track | positioner
     axes: tuple[ExtAxis, ...]
-    base: ir.Pose  # the first axis' frame in world
+    base: ir.Pose  # the first axis' frame in world (with the mechanism it stands on at home)
     span: Span | None = None
+    on: str | None = None  # the mechanism whose flange carries this one (stacked), or None
 
     def flange(self, values: tuple[float, ...], through: int | None = None) -> ir.Pose:
         """The frame the last axis carries, in world, at `values` (one per axis); with
@@ -130,6 +131,15 @@ class ExternalAxes:
     def values_of(self, mech: Mechanism, values: dict[str, float]) -> tuple[float, ...]:
         return tuple(values.get(a.name, a.home) for a in mech.axes)
 
+    def moved(self, mech: Mechanism, values: dict[str, float]) -> ir.Pose:
+        """How the mechanisms `mech` stands on move its base from its place at home (identity
+        for one on the world): each carrier's flange(values) * flange(home)^-1, outermost first."""
+        carrier = self.mechanism(mech.on) if mech.on is not None else None
+        if carrier is None:
+            return ir.Pose()
+        return (self.moved(carrier, values) * carrier.flange(self.values_of(carrier, values))
+                * carrier.flange(carrier.home()).inverse())
+
     def world(self, body: str, values: dict[str, float]) -> ir.Pose | None:
         """The world pose of a mounted body when the axes are at `values` (axis name -> value;
         an axis not given is at home), or None when `body` rides on no mechanism."""
@@ -137,7 +147,7 @@ class ExternalAxes:
         mech = None if mount is None else self.mechanism(mount.mechanism)
         if mount is None or mech is None:
             return None
-        return mech.flange(self.values_of(mech, values), mount.through) * mount.local
+        return self.moved(mech, values) * mech.flange(self.values_of(mech, values), mount.through) * mount.local
 
 
 def axis_time(delta: float, speed: float, accel: float) -> float:

@@ -97,10 +97,12 @@ def mechanism_motion(times: np.ndarray, tp: TaskPlan, external: ExternalAxes) ->
     for mech in external.mechanisms:
         rows = [tuple(values[i, column[a.name]] if a.name in column else a.home for a in mech.axes)
                 for i in range(times.shape[0])]
+        carrier = out.get(mech.on) if mech.on is not None else None  # declared before: already here
         for through in (None, *range(1, len(mech.axes))):
             home_inv = mech.flange(mech.home(), through).inverse()
             key = mech.name if through is None else f"{mech.name}#{through}"
-            out[key] = np.array([(mech.flange(r, through) * home_inv).matrix() for r in rows]) if rows else np.zeros((0, 4, 4))
+            own = np.array([(mech.flange(r, through) * home_inv).matrix() for r in rows]) if rows else np.zeros((0, 4, 4))
+            out[key] = own if carrier is None else carrier @ own
     return out
 
 

@@ -90,9 +90,17 @@ class CellAxes:
         if len(axes) > 2:
             self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"a positioner must have 1 or 2 axes (got {len(axes)})", s.span)
             return None
+        if s.on is not None and base is not None:  # stacked: `at` is on the carrier's flange (at its home)
+            carrier = self.mechanisms.get(s.on.name)
+            if carrier is None:
+                self.rep.unknown(s.on.name, "track or positioner declared before it", s.on.span, list(self.mechanisms),
+                                 codes_axes.EXT_MOUNT)
+                return None
+            base = carrier.flange(carrier.home()) * base
         if base is None or any(a is None for a in axes):
             return None
-        mech = Mechanism(s.name.name, s.kind, tuple(a for a in axes if a is not None), base, s.span)
+        mech = Mechanism(s.name.name, s.kind, tuple(a for a in axes if a is not None), base, s.span,
+                         s.on.name if s.on is not None else None)
         self.mechanisms[mech.name] = mech
         return mech.flange(mech.home())
 
