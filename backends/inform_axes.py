@@ -132,7 +132,7 @@ class InformAxes:
             for k, a in enumerate(axes):
                 unit = a.unit()
                 what = f"{group} axis {k + 1} = {a.name}: {'linear along' if a.linear else 'revolute about'} " \
-                       f"{'xyz'[a.direction.index(1.0)]}, "
+                       f"{'xyz'[a.direction.index(1.0)]}, " + (f"moves {a.mass:g} kg, " if a.mass else "")
                 if a.pulses is None and a.linear:
                     lines.append(what + "BC in mm (rectangular base-axis data), 0 mm at its 0, + = + mm")
                 else:

@@ -82,6 +82,9 @@ def test_the_checklist_states_each_axis_mass() -> None:
     result = BACKENDS["krl"]().emit(plan_program(front.program))
     text = "\n".join(result.files.values())
     assert "moves 250 kg" in text and "moves 80 kg" in text
+    (job,) = BACKENDS["inform"]().emit(plan_program(front.program)).files.values()
+    comments = "".join(ln[1:] for ln in job.splitlines() if ln.startswith("'"))  # 32-character comment lines
+    assert "moves 250 kg" in comments and "moves 80 kg" in comments
 
 
 @pytest.mark.parametrize("old, new, code, message", [
