@@ -251,3 +251,15 @@ def test_two_positioners_are_refused_one_station_group() -> None:
     errors = [d for d in result.diagnostics if d.is_error]
     assert [d.code.id for d in errors] == ["E607"] and not result.files
     assert "at most one positioner" in errors[0].message and "pos, turn" in errors[0].message
+
+
+def test_a_track_alone_without_its_scale_is_all_rectangular_and_unflagged() -> None:
+    """No station: nothing is assumed (no W610), and the job has no pulse data at all."""
+    source = SOURCE.replace("with rail, pos", "with rail")
+    source = re.sub(r" ext\(rail=(\d+mm), pos=\([^)]*\)\)", r" ext(rail=\1)", source)
+    source = "\n".join(ln for ln in source.splitlines() if "frame work" not in ln and "move axes" not in ln)
+    result = BACKENDS["inform"]().emit(_plan(source))
+    assert not result.has_errors and "W610" not in [d.code.id for d in result.diagnostics]
+    (text,) = result.files.values()
+    bcs, form = _bc_values(text)
+    assert form == "///RECTAN" and "///PULSE" not in text and bcs["BC00001"] == 1200.0
