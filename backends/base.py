@@ -62,6 +62,7 @@ from rmot.backends.conventions import (
     axis_quadrant, euler_xyz_moving_deg, euler_zyx_deg, fmt, fmt_list, position_mm, quaternion_wxyz,
     rotation_vector, tool_cog, turn_bits,
 )
+from rmot.backends.ext_axes import stacked_mechanisms
 from rmot.backends.lowering import count_instructions, routine_names, split_body
 from rmot.backends.names import NameRules, NameTable
 from rmot.backends.part_load import held_load
@@ -377,12 +378,14 @@ class Backend:
                              node.span)
             note = self.NO_RECORD_NOTE
             return [] if note is None else [self.comment(note.format(uid=node.uid))]
-        if node.ext and not self.EXTERNAL_AXES:
+        stacked = stacked_mechanisms(ctx.plan.program.cell, node) if node.ext else ""
+        if node.ext and (stacked or not self.EXTERNAL_AXES):
             if "external axes" not in ctx.warned:  # once per task: every move would say the same
                 ctx.warned.add("external axes")
                 self.unsupported(codes.EXT_AXES_UNSUPPORTED, f"task '{ctx.task.name}' drives external axes "
                                  f"({', '.join(name for name, _ in node.ext)}), which rmot cannot write for this "
-                                 "controller", node.span)
+                                 "controller" + (f": a mechanism stacked on another ({stacked})" if stacked else ""),
+                                 node.span)
             return [self.comment("move with external axes not emitted")]
         if self.SIX_AXIS_DATA is not None and ctx.robot.dof != 6:
             self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "

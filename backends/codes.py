@@ -209,3 +209,7 @@ PULSE_ROUNDING = Code(
     "W605", "pulse-rounding",
     "INFORM base/station positions in whole encoder pulses move a target by more than 0.01 mm")
 __all__ += ["PULSE_ROUNDING"]
+INFORM_ASSUMED_SCALE = Code(
+    "W610", "inform-assumed-scale",
+    "INFORM station positions written at an assumed pulse scale (none declared): confirm it on the controller")
+__all__ += ["INFORM_ASSUMED_SCALE"]

@@ -49,6 +49,7 @@ from rmot.lang.ir_axes import ExtAxis, ExternalAxes
 __all__ = ["RAPID_UNUSED", "coordinated", "driven_axes", "fanuc_coord", "fanuc_default_group", "fanuc_groups", "fanuc_in_world", "machine_data",
            "krl_e_axes", "mechanism_index", "rapid_extax", "rapid_wobj", "riding_frame",
            "unit_name", "vendor_values"]
+__all__ += ["absolute_turns", "stacked_mechanisms"]
 
 RAPID_UNUSED = "9E+09"  # "no position defined" in an extax / robax slot (RAPID reference, extjoint)
 SLOTS = 6  # RAPID eax_a..eax_f, KRL E1..E6
@@ -161,8 +162,32 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
             direction = "xyz"[axis.direction.index(1.0)]
             lines.append(f"  {name} = {axis.name}: {'linear along' if axis.linear else 'revolute about'} {direction}, "
                          f"[{axis.shown(axis.low)}, {axis.shown(axis.high)}], {axis.shown(axis.speed)}/s, "
-                         f"{axis.shown(axis.accel)}/s^2")
+                         f"{axis.shown(axis.accel)}/s^2" + (f", moves {axis.mass:g} kg" if axis.mass else ""))
+            lines += absolute_turns(axis, name)
     return lines
+
+
+def stacked_mechanisms(cell: ir.Cell, node: ir.Move) -> str:
+    """The stacked mechanisms (one riding on another) a move drives, as `'p2' on 'rail'`, or
+    "": rmot plans and verifies them but writes them for no controller yet (each vendor's
+    chained kinematics, KUKA $ETn on $ETm or an ABB unit on a track, are not verified)."""
+    external = cell.external
+    if external is None:
+        return ""
+    names = {name for name, _ in node.ext}
+    return ", ".join(f"'{m.name}' on '{m.on}'" for m in external.mechanisms
+                     if m.on is not None and any(a.name in names for a in m.axes))
+
+
+def absolute_turns(axis: ExtAxis, name: str) -> list[str]:
+    """The checklist line of a revolute axis with more than +-180 deg of range: rmot plans its
+    targets as absolute values (a move from -10 to 700 deg turns 710 deg, as programmed), which
+    the controller follows only when the axis is a normal one, not an endless / shortest-way
+    (modulo) axis."""
+    if not axis.beyond_half_turn():
+        return []
+    return [f"  {name} = {axis.name}: absolute targets, turned through the programmed difference (no "
+            f"shortest-way wrap): configure it as a normal axis, not an endless (modulo) one"]
 
 
 def fanuc_in_world(node: ir.Move, robot: ir.RobotInstance, cell: ir.Cell) -> ir.Move:

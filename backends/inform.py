@@ -68,13 +68,16 @@ Support (checked by tests/backends/test_inform.py):
   exact     MOVL/MOVC/MOVJ with Cartesian positions and full RCONF, V/VJ on their steps, PL at
             0/12.5/25/50/100 mm, DOUT, PULSE, AOUT, WAIT (with T), TIMER, if/else, procs as
             jobs, native inform, source comments; a track and a positioner as base (BS1) and
-            station (ST1) axes in pulses at the cell's declared scale (backends/inform_axes.py);
+            station (ST1) axes in pulses at the cell's declared scale, a track without one in
+            mm (backends/inform_axes.py);
   warned    joint targets as Cartesian + RCONF (W450), acceleration (W408, once), fixed
             duration (W409), speed / zone / time rounding (W402 / W403 / W412), tool payload (W411), split jobs
             (W406), legalised names (W400/W401), other vendors' native blocks (W407), the
-            station's own VJ (W604), whole pulses moving a target > 0.01 mm (W605);
+            station's own VJ (W604), whole pulses moving a target > 0.01 mm (W605), station
+            axes without a declared scale at an assumed one (W610);
   lowered   sync as the I/O handshake (odd count W410);
-  refused   external axes without their pulse scale, or two positioners (E607),
+  refused   a revolute track or linear station axis without its pulse scale, or two
+            positioners (E607),
             sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports
             outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions without a full branch
             (E402), an arc with no preceding move (E451), a job above 999 positions (E406), moves

@@ -3,10 +3,12 @@ station, their positions in encoder pulses at the scale the cell declares.
 
 An INFORM job writes base-axis and station-axis positions as encoder pulses (`BCnnnnn=` and
 `ECnnnnn=` lines under `///POSTYPE PULSE` / `///PULSE`); the pulses per mm or per degree are
-machine data of the controller (the axis' gear ratio and encoder), so rmot writes them only
-for axes whose cell declaration states that scale: `inform(pulses_per_mm=N)` (linear) or
-`inform(pulses_per_deg=N)` (revolute), after the axis' accel. A task with an axis without it
-is refused (E607), naming the axis and what to declare.
+machine data of the controller (the axis' gear ratio and encoder), which a cell states as
+`inform(pulses_per_mm=N)` (linear) or `inform(pulses_per_deg=N)` (revolute) after the axis'
+accel. Without it, a track's base axis is written in mm under the rectangular form (a traveling
+axis' position is mm data as well as pulses: see base_value), and a revolute station axis, whose
+positions are pulses only, at ASSUMED_PULSES_PER_DEG with W610 and "ASSUMED" in the header's
+checklist; a revolute base axis or a linear station axis without it is refused (E607).
 
 The job's form (DX100/DX200/YRC1000 "Job data format" of the offline-teaching interface;
 INFORM manual, "MOVJ/MOVL: additional items BC (base axis) and EC (station axis)" and
@@ -44,13 +46,18 @@ from dataclasses import dataclass, field
 
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext
-from rmot.backends.ext_axes import driven_axes
+from rmot.backends.ext_axes import absolute_turns, driven_axes
 from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.ir_axes import ExtAxis
 
 __all__ = ["InformAxes", "inform_axes", "task_axes", "warn_pulse_rounding"]
 
 PULSE_TOLERANCE_MM = 0.01  # whole-pulse rounding of external axes beyond this warns (W605)
+# The station-axis scale written when the cell declares none: 100000 pulses per axis revolution,
+# the fallback Visual Components' Yaskawa post processor (v1.05, `ppr.append(100000)`) writes
+# with "WARNING! Using pulses but PPR/PZ data is invalid! Using default PPR/PZ values."; rmot
+# writes it only with W610 and the header's checklist naming the value to confirm.
+ASSUMED_PULSES_PER_DEG = 100000.0 / 360.0
 
 
 @dataclass
@@ -75,11 +82,18 @@ class InformAxes:
     def npos(self, c: int, p: int) -> str:
         return f"///NPOS {c},{len(self.bc)},{len(self.ec)},{p},0,0"
 
+    def base_in_mm(self) -> bool:
+        """The base axes are written in mm (rectangular base-axis data), not pulses: a track
+        whose cell declares no pulse scale (see base_value)."""
+        return bool(self.base) and all(a.pulses is None for a in self.base)
+
     def pulse_lines(self) -> list[str]:
-        if not self.bc and not self.ec:
-            return []
-        return (["///POSTYPE PULSE", "///PULSE"] + [f"BC{k:05d}={v}" for k, v in enumerate(self.bc)]
-                + [f"EC{k:05d}={v}" for k, v in enumerate(self.ec)])
+        """The BC and EC lines after the robot's C positions: BC in mm right after them while
+        the rectangular form is in effect (base_in_mm), else under `///POSTYPE PULSE`."""
+        bc = [f"BC{k:05d}={v}" for k, v in enumerate(self.bc)]
+        ec = [f"EC{k:05d}={v}" for k, v in enumerate(self.ec)]
+        in_mm, pulsed = (bc, ec) if self.base_in_mm() else ([], bc + ec)
+        return in_mm + (["///POSTYPE PULSE", "///PULSE"] + pulsed if pulsed else [])
 
     def operands(self, line: str, node: ir.Move, vj: str) -> str:
         """A robot move line `MOVx Cn ...` with the base operand after its C position and the
@@ -89,7 +103,7 @@ class InformAxes:
             return line
         values = dict(node.ext)
         if self.base:
-            self.bc.append(",".join(str(pulses(a, values[a.name])) for a in self.base))
+            self.bc.append(",".join(base_value(a, values[a.name]) for a in self.base))
             word, c, rest = line.split(" ", 2)
             line = f"{word} {c} BC{len(self.bc) - 1:05d} {rest}"
         if self.station:
@@ -107,7 +121,7 @@ class InformAxes:
         total = 0.0
         for axis in self.base + self.station:
             shown = values[axis.name] * 1000.0 if axis.linear else math.degrees(values[axis.name])
-            error = abs(pulses(axis, values[axis.name]) / (axis.pulses or 1.0) - shown)
+            error = abs(written(axis, values[axis.name]) - shown)
             total += error if axis.linear else math.radians(error) * reach_mm
         return total
 
@@ -117,31 +131,68 @@ class InformAxes:
         for group, axes in (("R1+B1 base BS1", self.base), ("S1 station ST1", self.station)):
             for k, a in enumerate(axes):
                 unit = a.unit()
-                lines.append(f"{group} axis {k + 1} = {a.name}: {'linear along' if a.linear else 'revolute about'} "
-                             f"{'xyz'[a.direction.index(1.0)]}, {a.pulses:g} pulses/{unit}, "
-                             f"0 pulses at 0 {unit}, + pulses = + {unit}")
+                what = f"{group} axis {k + 1} = {a.name}: {'linear along' if a.linear else 'revolute about'} " \
+                       f"{'xyz'[a.direction.index(1.0)]}, " + (f"moves {a.mass:g} kg, " if a.mass else "")
+                if a.pulses is None and a.linear:
+                    lines.append(what + "BC in mm (rectangular base-axis data), 0 mm at its 0, + = + mm")
+                else:
+                    assumed = " ASSUMED (not declared): confirm" if a.pulses is None else ""
+                    lines.append(what + f"{scale(a):g} pulses/{unit}{assumed}, 0 pulses at 0 {unit}, + pulses = + {unit}")
+                lines += absolute_turns(a, f"{group} axis {k + 1}")
         return lines
+
+    def assumed(self) -> tuple[ExtAxis, ...]:
+        """The station axes written at the assumed scale (ASSUMED_PULSES_PER_DEG)."""
+        return tuple(a for a in self.station if a.pulses is None)
+
+
+def scale(axis: ExtAxis) -> float:
+    """The axis' pulses per mm or per degree: declared, else (a revolute station axis) the
+    assumed ASSUMED_PULSES_PER_DEG."""
+    return axis.pulses if axis.pulses is not None else ASSUMED_PULSES_PER_DEG
 
 
 def pulses(axis: ExtAxis, value: float) -> int:
-    """The axis' value (SI) in encoder pulses at its declared scale, rounded to a whole pulse."""
-    assert axis.pulses is not None
+    """The axis' value (SI) in encoder pulses at its scale, rounded to a whole pulse."""
     shown = value * 1000.0 if axis.linear else math.degrees(value)
-    return round(shown * axis.pulses)
+    return round(shown * scale(axis))
+
+
+def base_value(axis: ExtAxis, value: float) -> str:
+    """A base axis' BC value: whole pulses at its declared scale, or, for a track without one,
+    mm with 3 decimals. A traveling axis' position is data in mm as well as in pulses: the
+    NX100 "Specifications" of the remote-command target position list "7th axis pulse number
+    (mm for traveling axis)"; the DX100 high-speed Ethernet server manual (3.3.17, base position
+    variable BP) reads and writes it as "0: pulse value" or "16: base coordinated value"; and
+    Visual Components' Yaskawa post (v1.05) writes `BCnnnnn=%.3f` (the track in mm) after the
+    C positions of a rectangular (`///RECTAN`) job."""
+    if axis.pulses is None and axis.linear:
+        return f"{value * 1000.0:.3f}"
+    return str(pulses(axis, value))
+
+
+def written(axis: ExtAxis, value: float) -> float:
+    """The value (mm or degrees) the job's BC/EC text stands for."""
+    if axis.pulses is None and axis.linear:
+        return round(value * 1000.0, 3)
+    return pulses(axis, value) / scale(axis)
 
 
 def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> InformAxes | str:
-    """The task's axes as INFORM's base and station groups, or why they cannot be written: an
-    axis without its pulse scale, or more than one positioner (one station group, ST1)."""
+    """The task's axes as INFORM's base and station groups, or why they cannot be written: more
+    than one positioner (one station group, ST1), or an axis without its pulse scale that is
+    neither a track's linear axis (written in mm) nor a revolute station axis (written at the
+    assumed scale, W610)."""
     assert cell.external is not None
-    missing = [a for a in axes if a.pulses is None]
+    names = {a.name for a in axes}
+    used = [m for m in cell.external.mechanisms if any(a.name in names for a in m.axes)]
+    missing = [a for m in used for a in m.axes if a.pulses is None and (m.kind == "track") != a.linear]
     if missing:
         what = ", ".join(f"'{a.name}' (line {a.span.start.line if a.span else '?'}): "
                          f"inform(pulses_per_{a.unit()}=N)" for a in missing)
         return (f"task '{task.name}' drives external axes whose encoder pulse scale INFORM needs "
-                f"(BC/EC positions are pulses, machine data); declare it after each axis' accel: {what}")
-    names = {a.name for a in axes}
-    used = [m for m in cell.external.mechanisms if any(a.name in names for a in m.axes)]
+                f"(a revolute base axis or a linear station axis is written in pulses, machine data); "
+                f"declare it after each axis' accel: {what}")
     stations = [m for m in used if m.kind != "track"]
     if len(stations) > 1:
         return (f"task '{task.name}' must drive at most one positioner for INFORM (one station group ST1; "
@@ -166,7 +217,14 @@ def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -
         first = coordinated
     if isinstance(found, str):
         backend.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
-    elif found.station:
+        return found
+    if found.assumed():
+        axes_named = ", ".join(f"'{a.name}'" for a in found.assumed())
+        backend.warn(codes.INFORM_ASSUMED_SCALE, f"station axes {axes_named} declare no pulse scale: "
+                     f"EC positions are written at an ASSUMED {ASSUMED_PULSES_PER_DEG:g} pulses/deg "
+                     f"(100000 per turn); confirm it with the positioner's gear ratio (pulses per axis "
+                     f"turn, parameters RCnG of ALL.PRM) or declare inform(pulses_per_deg=N)", first.span)
+    if found.station:
         backend.warn(codes.INFORM_STATION_SPEED, "the station (GROUP2 ST1) moves at its own VJ "
                      "(+MOVJ): it starts with the arm but may end at another time than the plan's "
                      "time-synchronous move", first.span)

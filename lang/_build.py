@@ -682,10 +682,12 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     # -- external axes (tracks and positioners)
     def track_decl(self, c: list[Any]) -> ast.MechanismDecl:
-        return ast.MechanismDecl("track", self._ident(c[1], "track"), (c[3],), c[5], self._span(c))
+        return ast.MechanismDecl("track", self._ident(c[1], "track"), (c[3],), c[7], self._span(c),
+                                 self._ident(c[5]) if c[5] is not None else None)
 
     def positioner_decl(self, c: list[Any]) -> ast.MechanismDecl:
-        return ast.MechanismDecl("positioner", self._ident(c[1], "positioner"), tuple(c[5]), c[8], self._span(c))
+        return ast.MechanismDecl("positioner", self._ident(c[1], "positioner"), tuple(c[5]), c[10], self._span(c),
+                                 self._ident(c[8]) if c[8] is not None else None)
 
     def ext_axes(self, c: list[Any]) -> list[ast.ExtAxisDecl]:
         return c
@@ -694,7 +696,13 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         options = dict(c[7:])
         return ast.ExtAxisDecl(self._ident(c[0]), self._ident(c[3]), c[5], options.get("speed"),
                                options.get("accel"), self._span([*c[:7], *(value for _, value in c[7:])]),
-                               options.get("inform"))
+                               options.get("inform"), tuple(v for k, v in c[7:] if k == "solid"), options.get("mass"))
+
+    def ext_solid(self, c: list[Any]) -> tuple[str, Any]:
+        return "solid", ast.Call(self._ident(c[0]), c[2], self._span(c))
+
+    def ext_mass(self, c: list[Any]) -> tuple[str, Any]:
+        return "mass", c[1]
 
     def ext_speed(self, c: list[Any]) -> tuple[str, Any]:
         return "speed", c[1]

@@ -548,6 +548,8 @@ class ExtAxisDecl:
     accel: Expr | None
     span: Span = _span()
     inform: Call | None = None  # the INFORM binding: `inform(pulses_per_mm=N)` or `inform(pulses_per_deg=N)`
+    solids: tuple[Call, ...] = ()  # `solid(box(...), at=POSE)`: solids riding on this axis (in its frame)
+    mass: Expr | None = None  # `mass M`: what the axis moves, its solids' mass
 
 
 @record(slots=True)
@@ -559,6 +561,7 @@ class MechanismDecl:
     axes: tuple[ExtAxisDecl, ...]
     at: Expr | None
     span: Span = _span()
+    on: Ident | None = None  # stacked on this mechanism's flange (`at` is then on that flange)
 
 
 @record(slots=True)

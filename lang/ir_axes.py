@@ -47,6 +47,7 @@ class ExtAxis:
     home: float
     span: Span | None = None
     pulses: float | None = None  # INFORM encoder pulses per mm (linear) or per degree (revolute), as declared
+    mass: float = 0.0  # kg the axis moves (`mass M`: its solids, as the cell declares)
 
     def unit(self) -> str:
         return "mm" if self.linear else "deg"
@@ -54,6 +55,12 @@ class ExtAxis:
     def shown(self, value: float) -> str:
         """`value` in the unit the program writes (mm or deg)."""
         return f"{value * 1000.0:.6g} mm" if self.linear else f"{math.degrees(value):.6g} deg"
+
+    def beyond_half_turn(self) -> bool:
+        """A revolute axis whose range passes +-180 deg: its targets are absolute axis values
+        (every vendor's axis data: RAPID extax, KRL E1..E6, Fanuc J, INFORM EC pulses), so a
+        move turns it through the programmed difference, never the shortest way round."""
+        return not self.linear and (self.low < -math.pi or self.high > math.pi)
 
     def transform(self, value: float) -> ir.Pose:
         if self.linear:
@@ -70,13 +77,15 @@ class Mechanism:
     name: str
     kind: str  # track | positioner
     axes: tuple[ExtAxis, ...]
-    base: ir.Pose  # the first axis' frame in world
+    base: ir.Pose  # the first axis' frame in world (with the mechanism it stands on at home)
     span: Span | None = None
+    on: str | None = None  # the mechanism whose flange carries this one (stacked), or None
 
-    def flange(self, values: tuple[float, ...]) -> ir.Pose:
-        """The frame the last axis carries, in world, at `values` (one per axis)."""
+    def flange(self, values: tuple[float, ...], through: int | None = None) -> ir.Pose:
+        """The frame the last axis carries, in world, at `values` (one per axis); with
+        `through`, the frame axis `through` (1-based) carries: its solids ride there."""
         pose = self.base
-        for axis, value in zip(self.axes, values, strict=True):
+        for axis, value in list(zip(self.axes, values, strict=True))[:through]:
             pose = pose * axis.transform(value)
         return pose
 
@@ -93,6 +102,11 @@ class Mount:
     mechanism: str
     local: ir.Pose
     span: Span | None = None
+    through: int | None = None  # rides on axis `through` (1-based: an axis' solid), not the flange
+
+    def group(self) -> str:
+        """What moves it: the mechanism's name, or `name#k` for a body on its axis k."""
+        return self.mechanism if self.through is None else f"{self.mechanism}#{self.through}"
 
 
 @record(slots=True)
@@ -117,6 +131,15 @@ class ExternalAxes:
     def values_of(self, mech: Mechanism, values: dict[str, float]) -> tuple[float, ...]:
         return tuple(values.get(a.name, a.home) for a in mech.axes)
 
+    def moved(self, mech: Mechanism, values: dict[str, float]) -> ir.Pose:
+        """How the mechanisms `mech` stands on move its base from its place at home (identity
+        for one on the world): each carrier's flange(values) * flange(home)^-1, outermost first."""
+        carrier = self.mechanism(mech.on) if mech.on is not None else None
+        if carrier is None:
+            return ir.Pose()
+        return (self.moved(carrier, values) * carrier.flange(self.values_of(carrier, values))
+                * carrier.flange(carrier.home()).inverse())
+
     def world(self, body: str, values: dict[str, float]) -> ir.Pose | None:
         """The world pose of a mounted body when the axes are at `values` (axis name -> value;
         an axis not given is at home), or None when `body` rides on no mechanism."""
@@ -124,7 +147,7 @@ class ExternalAxes:
         mech = None if mount is None else self.mechanism(mount.mechanism)
         if mount is None or mech is None:
             return None
-        return mech.flange(self.values_of(mech, values)) * mount.local
+        return self.moved(mech, values) * mech.flange(self.values_of(mech, values), mount.through) * mount.local
 
 
 @record(slots=True)

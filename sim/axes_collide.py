@@ -36,7 +36,7 @@ def body_groups(scene: Scene, external: ExternalAxes | None) -> dict[str, str]:
     for body in scene.bodies:
         mount = external.mount(body.robot if body.robot is not None else body.name)
         if mount is not None and mount.kind in ("robot", "fixture"):
-            groups[body.name] = mount.mechanism
+            groups[body.name] = mount.group()
     return groups
 
 
@@ -88,16 +88,21 @@ def with_axes(scene: Scene, tp: TaskPlan, external: ExternalAxes, times: np.ndar
 
 
 def mechanism_motion(times: np.ndarray, tp: TaskPlan, external: ExternalAxes) -> dict[str, np.ndarray]:
-    """Mechanism -> (M, 4, 4): flange(axes(t)) * flange(home)^-1 at each of `times`."""
+    """Mechanism -> (M, 4, 4): flange(axes(t)) * flange(home)^-1 at each of `times`; and
+    `name#k` -> the same for the frame axis k carries (the solids on an inner axis)."""
     axes = task_axes(tp.task, external)
     values = axis_samples(tp, axes, times)
     column = {a.name: k for k, a in enumerate(axes)}
     out: dict[str, np.ndarray] = {}
     for mech in external.mechanisms:
-        home_inv = mech.flange(mech.home()).inverse()
         rows = [tuple(values[i, column[a.name]] if a.name in column else a.home for a in mech.axes)
                 for i in range(times.shape[0])]
-        out[mech.name] = np.array([(mech.flange(r) * home_inv).matrix() for r in rows]) if rows else np.zeros((0, 4, 4))
+        carrier = out.get(mech.on) if mech.on is not None else None  # declared before: already here
+        for through in (None, *range(1, len(mech.axes))):
+            home_inv = mech.flange(mech.home(), through).inverse()
+            key = mech.name if through is None else f"{mech.name}#{through}"
+            own = np.array([(mech.flange(r, through) * home_inv).matrix() for r in rows]) if rows else np.zeros((0, 4, 4))
+            out[key] = own if carrier is None else carrier @ own
     return out
 
 

@@ -25,9 +25,12 @@ Program (`ProgramAxes`, used by the task lowering):
     (ir_axes.Coordinated): the TCP on its path in the move's frame while the axes move along.
     In a frame fixed in world only the track carrying the robot may move; in a frame riding on
     a positioner, that positioner's axes and the robot's track (else E606 / E609); the robot's
-    base frame (it moves with the track) is E606. It too stops exactly at both ends. Any
-    axis change inside an if or while is E606. A move in a frame riding on a mechanism the
-    program does not drive is E610.
+    base frame (it moves with the track) is E606. It too stops exactly at both ends. A move in
+    a frame riding on a mechanism the program does not drive is E610.
+  * Inside an if, each arm starts from the values before it and both must end at the same
+    values; a while body must end at the values it started from (every pass then starts and is
+    timed alike); a `for`/`repeat` is unrolled, each round from the values the last left.
+    Otherwise E606, as is an axis change inside a wait's timeout branch.
 """
 
 from __future__ import annotations
@@ -41,6 +44,8 @@ from rmot.lang.ir_tree import Runs, flow, walk
 from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import eval_expr, expect_quantity
 from rmot.compiler.passes.limits import MAX_SIZE_M
+from rmot.compiler.passes.lower_axis_solids import axis_mass, axis_solids
+from rmot.compiler.passes.lower_model import GeometryFn
 from rmot.compiler.passes.values import ACCEL, ANGLE, ANGULAR_ACCEL, ANGULAR_SPEED, DIMENSIONLESS, LENGTH, SPEED, Dim, VectorV, Value
 from rmot.lang import ast
 from rmot.lang.source import Span
@@ -90,9 +95,17 @@ class CellAxes:
         if len(axes) > 2:
             self.rep.error(codes_axes.EXT_AXIS_DEFINITION, f"a positioner must have 1 or 2 axes (got {len(axes)})", s.span)
             return None
+        if s.on is not None and base is not None:  # stacked: `at` is on the carrier's flange (at its home)
+            carrier = self.mechanisms.get(s.on.name)
+            if carrier is None:
+                self.rep.unknown(s.on.name, "track or positioner declared before it", s.on.span, list(self.mechanisms),
+                                 codes_axes.EXT_MOUNT)
+                return None
+            base = carrier.flange(carrier.home()) * base
         if base is None or any(a is None for a in axes):
             return None
-        mech = Mechanism(s.name.name, s.kind, tuple(a for a in axes if a is not None), base, s.span)
+        mech = Mechanism(s.name.name, s.kind, tuple(a for a in axes if a is not None), base, s.span,
+                         s.on.name if s.on is not None else None)
         self.mechanisms[mech.name] = mech
         return mech.flange(mech.home())
 
@@ -114,7 +127,10 @@ class CellAxes:
         low, high = bounds
         home = min(max(0.0, low), high)
         pulses = None if a.inform is None else self._pulses(a.inform, linear, name)  # after E608: kept, unscaled
-        return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span, pulses)
+        mass = axis_mass(a.mass, name, self.scope, rep)
+        if mass is None:
+            return None
+        return ExtAxis(name, linear, direction, low, high, speed, accel, home, a.span, pulses, mass)
 
     def _pulses(self, call: ast.Call, linear: bool, name: str) -> float | None:
         """The INFORM binding `inform(pulses_per_mm=N)` (linear) or `inform(pulses_per_deg=N)`
@@ -170,6 +186,15 @@ class CellAxes:
             return None
         return x
 
+    def solids(self, s: ast.MechanismDecl, geometry: GeometryFn) -> list[ir.Fixture]:
+        """The fixtures of the solids mechanism `s`'s axes carry (lower_axis_solids.py)."""
+        mech = self.mechanisms.get(s.name.name)
+        if mech is None:
+            return []
+        fixtures, mounts = axis_solids(s, mech, self.scope, self.rep, geometry)
+        self.mounts += mounts
+        return fixtures
+
     def carried(self, on: ast.Ident, local: ir.Pose | None, kind: str, body: str, span: Span) -> ir.Pose | None:
         """`body` rides on mechanism `on` at `local`: its world pose at home (None after an error)."""
         mech = self.mechanisms.get(on.name)
@@ -199,16 +224,17 @@ def _shown(x: float, dim: Dim) -> str:
 
 
 def check_axis_branches(body: tuple[ir.Instr, ...], rep: Reporter) -> None:
-    """E606 for an axis change inside an if or while: the axes' values after it would depend on
-    which path ran, and every later target's pose depends on them."""
+    """E606 for an axis change inside a body that runs zero times or once (a wait's timeout
+    branch): the axes' values after it would depend on whether it ran. An if or while is checked
+    while it is lowered (ProgramAxes.join_arms, ProgramAxes.check_pass)."""
     for instr in walk(body):
         runs, bodies = flow(instr)
-        if runs not in (Runs.ONE_OF, Runs.REPEATED, Runs.MAYBE):
+        if runs is not Runs.MAYBE:
             continue
         for inner in walk(tuple(i for b in bodies for i in b)):
             if isinstance(inner, ir.Move) and inner.motion.min_duration is not None:
-                rep.error(codes_axes.EXT_MOTION, "external axes must not move inside an if or while (their values after it "
-                          "would depend on the path taken); move them before or after it", inner.span)
+                rep.error(codes_axes.EXT_MOTION, "external axes must not move inside a branch that may not run (their "
+                          "values after it would depend on the path taken); move them before or after it", inner.span)
                 return
 
 
@@ -250,6 +276,36 @@ class ProgramAxes:
         self.rep = rep
         self.values = {a.name: a.home for a in self.axes}
         self.last: ir.Move | None = None  # the last move lowered: what `move axes` holds
+
+    def state(self) -> dict[str, float]:
+        """The axis values so far (before an if or while)."""
+        return dict(self.values)
+
+    def restart(self, before: dict[str, float]) -> None:
+        """The next arm of an if starts from the values before the if."""
+        self.values = dict(before)
+
+    def join_arms(self, after_then: dict[str, float], span: Span) -> None:
+        """After both arms of an if (self at the end of the other arm): they must leave every
+        axis at one value, since every later target's pose and timing start from it (E606)."""
+        self._same(after_then, "both arms of an if must leave the external axes at the same values", "after one arm",
+                   "after the other", span)
+
+    def check_pass(self, before: dict[str, float], span: Span) -> None:
+        """After a while body: it must end with the axes where it started, so every pass (and
+        the code after the loop, which may follow no pass at all) starts from the same values
+        (E606); the moves inside are then timed alike on every pass."""
+        self._same(before, "a while body must end with the external axes where it started", "at its start",
+                   "at its end", span)
+        self.values = dict(before)
+
+    def _same(self, other: dict[str, float], what: str, other_at: str, here_at: str, span: Span) -> None:
+        differ = [a for a in self.axes if other[a.name] != self.values[a.name]]
+        if differ:
+            got = ", ".join(f"'{a.name}' {a.shown(other[a.name])} {other_at}, {a.shown(self.values[a.name])} {here_at}"
+                            for a in differ)
+            self.rep.error(codes_axes.EXT_MOTION, f"{what} (got {got}): every later move starts from them; "
+                           "move the axes back inside it, or before or after it", span)
 
     def move(self, move: ir.Move, s: ast.Move, scope: Scope) -> ir.Move | None:
         """`move` with the axis values at its target (its `ext(...)` over the values so far)."""

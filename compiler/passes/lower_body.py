@@ -258,9 +258,15 @@ class TaskLowering:
     def if_stmt(self, s: ast.IfStmt, scope: Scope, modal: Modal, where: str) -> ir.Instr | None:
         cond = self.any_condition(s.condition, scope, "the condition of an if")
         before = dict(self.held)
+        axes_before = self.axes.state() if self.axes is not None else {}
         then = self.nested(s.then, scope.child(), modal, where)
         after_then, self.held = self.held, dict(before)
+        axes_after_then = self.axes.state() if self.axes is not None else {}
+        if self.axes is not None:  # each arm from the values before the if (lower_axes.py)
+            self.axes.restart(axes_before)
         otherwise = self.nested(s.otherwise, scope.child(), modal, where)
+        if self.axes is not None:
+            self.axes.join_arms(axes_after_then, s.span)
         if set(after_then) != set(self.held):
             differ = sorted(set(after_then) ^ set(self.held))
             self.rep.error(codes.PART_ARMS_DIFFER, f"both arms of an if must leave the same parts held (part "
@@ -510,7 +516,10 @@ class TaskLowering:
             return None
         cond = self.rt(scope).condition(s.condition, "the condition of a while")
         before = dict(self.held)
+        axes_before = self.axes.state() if self.axes is not None else {}
         body = self.nested(s.body, scope.child(), modal, where)
+        if self.axes is not None:  # every pass from the same axis values (lower_axes.py)
+            self.axes.check_pass(axes_before, s.span)
         if set(before) != set(self.held):
             differ = sorted(set(before) ^ set(self.held))
             self.rep.error(

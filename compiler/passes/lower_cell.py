@@ -273,6 +273,7 @@ class _CellBuilder:
         flange = self.axes.mechanism(s, self._pose(s.at, f"placement of {s.kind} '{s.name.name}'"))
         if flange is not None:
             declare(self.scope, Entry("mechanism", s.name.name, PoseV(flange, s.name.name), s.name.span), self.rep)
+            self.fixtures += self.axes.solids(s, self._geometry)  # the axes' own solids (lower_axis_solids.py)
 
     def _number(self, e: ast.Expr | None, what: str) -> int | None:
         """`number n` of a tool or frame: the controller's number, an integer >= 0 (which

@@ -32,7 +32,7 @@ from rmot.lang.model_spec import MAX_JOINTS, ModelJointSpec, ModelSolid, ModelSp
 from rmot.lang import ast
 from rmot.lang.source import SourceFile, Span
 
-__all__ = ["lower_model"]
+__all__ = ["lower_model", "solid_shape"]
 
 _DH_ARGS = ("a", "alpha", "d", "theta")
 _KINDS = {"revolute": "R", "prismatic": "P"}
@@ -223,8 +223,9 @@ def _joint(j: ast.ModelJoint, scope: Scope, rep: Reporter, conventions: dict[str
     return ModelJointSpec(kind, a, alpha, d, theta, rng[0], rng[1], speed, accel, mass, torque)
 
 
-def _solid(call: ast.Call, joint: int, scope: Scope, rep: Reporter, geometry: GeometryFn | None) -> ModelSolid | None:
-    """`solid(box(...), at=POSE)`: a solid of link `joint`, placed in DH frame `joint`."""
+def solid_shape(call: ast.Call, scope: Scope, rep: Reporter, geometry: GeometryFn | None) -> tuple[ir.Geometry, ir.Pose] | None:
+    """`solid(box(...), at=POSE)`: its geometry and placement (a model joint's or an external
+    axis' solid), or None after an error."""
     bound = match_args(call.args, ("shape", "at"), "solid", call.span, rep, required=1)
     if bound is None:
         return None
@@ -236,8 +237,15 @@ def _solid(call: ast.Call, joint: int, scope: Scope, rep: Reporter, geometry: Ge
     pose = ir.Pose()
     if "at" in bound:
         pose = expect_pose(eval_expr(bound["at"].value, scope, rep), "solid placement", bound["at"].value.span, rep)  # type: ignore[assignment]
-    if g is None or pose is None:
+    return None if g is None or pose is None else (g, pose)
+
+
+def _solid(call: ast.Call, joint: int, scope: Scope, rep: Reporter, geometry: GeometryFn | None) -> ModelSolid | None:
+    """`solid(box(...), at=POSE)`: a solid of link `joint`, placed in DH frame `joint`."""
+    found = solid_shape(call, scope, rep, geometry)
+    if found is None:
         return None
+    g, pose = found
     m = tuple(float(x) for x in pose.matrix().flat)
     if isinstance(g, ir.Box):
         return ModelSolid(joint, "box", tuple(g.size), m)

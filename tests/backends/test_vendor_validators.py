@@ -193,6 +193,20 @@ def test_inform_validator_rejects_axis_positions_the_header_or_groups_do_not_sta
     assert any("EC00001 is defined but no instruction uses it" in f for f in check_inform({"A.JBI": unused}))
 
 
+def test_inform_validator_reads_a_track_in_mm_only_under_rectan() -> None:
+    """A base axis written in mm (a traveling axis without its pulse scale) stands right after
+    the C positions, before ///PULSE; a station axis stays whole pulses."""
+    job = ("/JOB\n//NAME A\n//POS\n///NPOS 1,1,1,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
+           "///RCONF 0,0,0,0,0,0,0,0\nC00000=1,2,3,4,5,6\nBC00000=1200.000\n///POSTYPE PULSE\n///PULSE\n"
+           "EC00000=0,90000\n//INST\n///DATE 2000/01/01 00:00\n///COMM a\n///ATTR SC,RW\n"
+           "///GROUP1 RB1,BS1\n///GROUP2 ST1\nNOP\nMOVL C00000 BC00000 V=100.0 PL=0 +MOVJ EC00000 VJ=50.00\nEND\n")
+    assert check_inform({"A.JBI": job}) == []
+    under_pulse = job.replace("BC00000=1200.000\n///POSTYPE PULSE\n///PULSE\n", "///POSTYPE PULSE\n///PULSE\nBC00000=1200.000\n")
+    assert any("whole pulses" in f for f in check_inform({"A.JBI": under_pulse}))
+    assert any("mm with 3 decimals" in f for f in check_inform({"A.JBI": job.replace("=1200.000", "=1200")}))
+    assert any("whole pulses" in f for f in check_inform({"A.JBI": job.replace("EC00000=0,90000", "EC00000=0.000,9.000")}))
+
+
 def test_val3_validator_rejects_an_index_beyond_the_data_and_an_unlisted_program() -> None:
     plan = example_plans(("inspect",))["inspect"]
     files = BACKENDS["val3"]().emit(plan).files

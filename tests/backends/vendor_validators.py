@@ -276,10 +276,18 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
     if npos is None or [int(g) for g in npos.groups()] != counts:
         bad.append((pos + 2, f"///NPOS must count the positions, base and station positions and "
                              f"position variables ({','.join(map(str, counts))},0,0)"))
+    # the data form in effect at each line: ///PULSE or ///RECTAN (the last one before it); a
+    # base axis (BC) under ///RECTAN is a traveling axis in mm (NX100 specifications, target
+    # position "mm for traveling axis"), a station axis (EC) is always whole pulses
+    form = {k: "" for k in range(pos + 3, inst + 1)}
+    for k, ln in enumerate(lines[pos + 2:inst], start=pos + 3):
+        form[k] = ln[3:] if ln in ("///PULSE", "///RECTAN") else form.get(k - 1, "")
     for kind, found in axis_lines.items():
         for i, (k, ln) in enumerate(found):
-            if not re.fullmatch(rf"{kind}{i:05d}=-?\d+(,-?\d+)*", ln):
-                bad.append((k, f"{kind} positions are {kind}00000.. in order, whole pulses (got {ln})"))
+            mm = kind == "BC" and form[k] == "RECTAN"
+            if not re.fullmatch(rf"{kind}{i:05d}=" + (r"-?\d+\.\d{3}" if mm else r"-?\d+(,-?\d+)*"), ln):
+                bad.append((k, f"{kind} positions are {kind}00000.. in order, "
+                               f"{'mm with 3 decimals (///RECTAN)' if mm else 'whole pulses'} (got {ln})"))
     for k, ln in ps:
         if not re.fullmatch(r"P\d{4}=" + ",".join([NUM] * 6), ln):
             bad.append((k, f"a position variable is Pnnnn=X,Y,Z,Rx,Ry,Rz (got {ln})"))

@@ -136,13 +136,59 @@ def test_a_track_alone_is_group_one_with_its_base_axis() -> None:
     assert re.search(r"^///NPOS (\d+),\1,0,0,0,0$", text, re.M)
 
 
-def test_an_axis_without_its_scale_is_refused_naming_what_to_declare() -> None:
-    result = BACKENDS["inform"]().emit(_plan(with_bindings(SOURCE, BINDINGS[1:])))
-    errors = [d for d in result.diagnostics if d.is_error]
-    assert [d.code.id for d in errors] == ["E607"] and not result.files
-    assert errors[0].span is not None and errors[0].span.start.line == 14  # the first move that drives them
-    assert "'rail' (line 2): inform(pulses_per_mm=N)" in errors[0].message
-    assert "pos.1" not in errors[0].message
+ASSUMED_PER_DEG = 100000 / 360  # Visual Components' Yaskawa post's fallback: 100000 pulses per turn
+
+
+def _bc_values(text: str) -> tuple[dict[str, float], str]:
+    """The BC values and the data form (///RECTAN or ///PULSE) they stand under."""
+    pos = text.split("//INST")[0].splitlines()
+    form, found, forms = "", {}, set()
+    for ln in pos:
+        if ln in ("///RECTAN", "///PULSE"):
+            form = ln
+        m = re.fullmatch(r"(BC\d{5})=(-?[\d.]+)", ln)
+        if m:
+            found[m.group(1)] = float(m.group(2))
+            forms.add(form)
+    assert len(forms) == 1, forms
+    return found, forms.pop()
+
+
+def test_no_declared_scale_writes_the_track_in_mm_and_the_station_at_the_flagged_assumed_scale() -> None:
+    """Without inform(...) the job still compiles: the track's BC in mm under ///RECTAN, the
+    station's EC in pulses at 100000 per turn, flagged W610 and in the header checklist; the
+    targets re-expand from the job's text to the planned TCP in world within 0.01 mm."""
+    plan = _plan(SOURCE)
+    result = BACKENDS["inform"]().emit(plan)
+    assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
+    (w610,) = [d for d in result.diagnostics if d.code.id == "W610"]
+    assert "'pos.1', 'pos.2'" in w610.message and w610.span is not None and w610.span.start.line == 14
+    (text,) = result.files.values()
+    bcs, form = _bc_values(text)
+    assert form == "///RECTAN"
+    assert "ASSUMED (not declared): c" in text and "BC in mm (rectan" in text
+    moves = re.findall(r"^MOV[JLC] (C\d{5}) (BC\d{5}) .*\+MOVJ (EC\d{5}) VJ=[\d.]+$", text, re.M)
+    cs = {k: [float(v) for v in vals.split(",")] for k, vals in re.findall(r"^(C\d{5})=(.*)$", text, re.M)}
+    ecs = {k: _ints(v) for k, v in re.findall(r"^(EC\d{5})=(.*)$", text, re.M)}
+    want = planned(plan)
+    assert len(moves) == len(want) == 7
+    for (c, bc, ec), (world, ext) in zip(moves, want, strict=True):
+        assert bcs[bc] == pytest.approx(ext["rail"] * 1000, abs=5e-4)
+        tilt, turn = ecs[ec]
+        assert abs(tilt - math.degrees(ext["pos.1"]) * ASSUMED_PER_DEG) <= 0.5
+        assert abs(turn - math.degrees(ext["pos.2"]) * ASSUMED_PER_DEG) <= 0.5
+        x, y, z, rx, ry, rz = cs[c]
+        tcp = robot_base(bcs[bc]) @ at(x / 1000, y / 1000, z / 1000) @ rot("z", rz) @ rot("y", ry) @ rot("x", rx)
+        assert np.abs(tcp[:3, 3] - world[:3, 3]).max() < TOL_M
+
+
+def test_a_declared_track_scale_keeps_the_pulse_form() -> None:
+    result = BACKENDS["inform"]().emit(_plan(with_bindings(SOURCE, BINDINGS[:1])))
+    assert not result.has_errors
+    (text,) = result.files.values()
+    bcs, form = _bc_values(text)
+    assert form == "///PULSE" and bcs["BC00001"] == 1200 * RAIL_PER_MM
+    assert [d.code.id for d in result.diagnostics].count("W610") == 1  # the station still assumed
 
 
 @pytest.mark.parametrize("binding, code, at_text, message", [
@@ -205,3 +251,15 @@ def test_two_positioners_are_refused_one_station_group() -> None:
     errors = [d for d in result.diagnostics if d.is_error]
     assert [d.code.id for d in errors] == ["E607"] and not result.files
     assert "at most one positioner" in errors[0].message and "pos, turn" in errors[0].message
+
+
+def test_a_track_alone_without_its_scale_is_all_rectangular_and_unflagged() -> None:
+    """No station: nothing is assumed (no W610), and the job has no pulse data at all."""
+    source = SOURCE.replace("with rail, pos", "with rail")
+    source = re.sub(r" ext\(rail=(\d+mm), pos=\([^)]*\)\)", r" ext(rail=\1)", source)
+    source = "\n".join(ln for ln in source.splitlines() if "frame work" not in ln and "move axes" not in ln)
+    result = BACKENDS["inform"]().emit(_plan(source))
+    assert not result.has_errors and "W610" not in [d.code.id for d in result.diagnostics]
+    (text,) = result.files.values()
+    bcs, form = _bc_values(text)
+    assert form == "///RECTAN" and "///PULSE" not in text and list(bcs.values()) == [0.0, 700.0, 0.0]
