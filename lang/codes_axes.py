@@ -17,7 +17,8 @@ EXT_PROGRAM_AXES = Code("E603", "ext-program-axes", "`with` naming what is not a
 EXT_VALUES = Code("E604", "ext-values", "ext(...) or `move axes` values that name no axis of the program, or of the wrong count or unit")
 EXT_AXIS_LIMIT = Code("E605", "ext-axis-limit", "an external axis driven outside its range")
 EXT_MOTION = Code("E606", "ext-motion", "external axes moved where rmot cannot plan it: during a linear or circular move in the "
-                   "robot's base frame, a positioner during one in a frame it does not carry, or inside an if or while")
+                   "robot's base frame, a positioner during one in a frame it does not carry, or inside an if or while "
+                   "that leaves them at different values")
 EXT_COORDINATED = Code("E609", "ext-coordinated", "a coordinated move (a linear or circular move while axes move) in a frame "
                        "riding on a track, or that changes axes other than those of the positioner its frame rides on and "
                        "the robot's track")
