@@ -74,7 +74,11 @@ def test_axes_table_and_checklists(plan: Plan) -> None:
     assert any('unit "RAIL": MOC type TRACK' in x for x in rapid) and any(x.strip().startswith("eax_c = pos.2") for x in rapid)
     assert any("MACHINE_DEF[3]" in x and "$ETn" in x for x in krl) and any(x.strip().startswith("E1 = rail: linear along x") for x in krl)
     assert any(x.strip().startswith("GP1 E1 = rail") for x in fanuc) and any(x.strip().startswith("GP2 J2 = pos.2") for x in fanuc)
-    assert len(inform) == 1 and "not writable" in inform[0] and "inform(pulses_per_mm=N)" in inform[0]
+    # no scale declared: the track's BC in mm, each station axis at the assumed 100000 pulses per
+    # turn, flagged for the operator to confirm (W610)
+    assert any(x.startswith("R1+B1 base BS1 axis 1 = rail") and "BC in mm" in x for x in inform)
+    per_deg = f"{100000 / 360:.3f} pulses/deg ASSUMED"
+    assert [x.split(":")[0] for x in inform if per_deg in x] == ["S1 station ST1 axis 1 = pos.1", "S1 station ST1 axis 2 = pos.2"]
 
 
 def test_no_axes_no_section() -> None:
