@@ -328,3 +328,32 @@ def test_polyscope_wait_and_counted_loop(tmp_path: Path) -> None:
     loops = [s for s in stmts if isinstance(s, For)]
     assert [(f.var, f.first, f.stop) for f in loops] == [("Loop_1", 0, 3)]
     assert len(range(loops[0].first, loops[0].stop)) == 3
+
+
+PROCESS_MOVES = """def glue():
+  set_digital_out(2, True)
+  movep(p[0.4, 0.1, 0.3, 0, 3.14159265358979, 0], a=1.2, v=0.1, r=0.005)
+  movep(p[0.5, 0.1, 0.3, 0, 3.14159265358979, 0], 1.2, 0.05, 0.002)
+  set_digital_out(2, False)
+  set_digital_out(9, True)
+end
+"""
+
+
+def test_process_moves_and_the_old_output_name(tmp_path: Path) -> None:
+    """`movep(pose, a, v, r)` (URScript manual, module motion: move process, linear in tool space
+    at the constant tool speed v, blended with radius r) is a linear move at v with zone r;
+    positional arguments in the manual's order. `set_digital_out(n, b)`, the deprecated name of
+    set_standard_digital_out, sets standard output n for n in 0..7; output 9 is outside that
+    range and stays native."""
+    path = tmp_path / "glue.script"
+    path.write_text(PROCESS_MOVES)
+    stmts = _stmts(path)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.speed, m.zone) for m in moves] == [
+        ("linear", 0.1 * 1000, 0.005 * 1000), ("linear", 0.05 * 1000, 0.002 * 1000)]
+    outs = [s for s in stmts if isinstance(s, SetOut)]
+    assert [(s.signal, s.value) for s in outs] == [(2, 1.0), (2, 0.0)]
+    natives = [s for s in stmts if isinstance(s, Native)]
+    assert [n.text for n in natives] == ["set_digital_out(9, True)"]
+    assert natives[0].where.line == 6
