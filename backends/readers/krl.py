@@ -16,6 +16,7 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from itertools import product
 
 from rmot.backends.krl import KrlBackend, status_of
@@ -174,6 +175,8 @@ class _Krl:
         word = ln.word
         if word in ("FOR", "IF", "WHILE"):
             return self._compound(i)
+        if word == "SPLINE":
+            return self._spline(i)
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
             return self._keep_block(i, word, end)
@@ -209,6 +212,28 @@ class _Krl:
             if depth <= 0:
                 break
         return out, i
+
+    def _spline(self, i: int) -> tuple[list[Stmt], int]:
+        """A SPLINE block of SLIN/SCIRC segments only passes exactly through every point (KSS 8.3 System
+        Integrators, spline block): linear/circular moves without zone, the last one blended by
+        `ENDSPLINE C_SPL` with $APO.CDIS. SPL segments (a spline curve), WITH or folds: kept native."""
+        j = next((k for k in range(i, len(self.lines)) if self.lines[k].word == "ENDSPLINE"), None)
+        if j is None or not re.fullmatch(r"(?i)SPLINE", self.lines[i].text.strip()) or not re.fullmatch(
+                r"(?i)ENDSPLINE(\s+C_SPL)?", self.lines[j].text.strip()):
+            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+        segments = [ln for ln in self.lines[i + 1:j] if ln.text.strip() or ln.fold or ln.endfold]
+        moves = [self._motion(ln.word, ln.text.strip()[len(ln.word):].strip(), ln.where)
+                 if ln.word in ("SLIN", "SCIRC") and ln.fold is None and not re.search(r"(?i)\bWITH\b|C_SPL", ln.text)
+                 else None for ln in segments]
+        kept = [m for m in moves if m is not None]
+        blended = self.lines[j].text.strip().upper() != "ENDSPLINE"
+        if not kept or len(kept) != len(moves) or (blended and self.state.cdis is None):
+            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+        if blended:
+            kept[-1] = replace(kept[-1], zone=self.state.cdis)
+        self.tally.imported += len(kept)
+        self.last = None
+        return list(kept), j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
@@ -472,6 +497,10 @@ class _Krl:
         m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
         approx = " ".join((m.group(2) or "").upper().split()) if m else ""
+        # C_SPL on a SLIN/SCIRC single motion blends by $APO.CDIS as C_DIS does on LIN/CIRC (KSS 8.3
+        # System Integrators, spline single motions); on SPTP (and on PTP/LIN/CIRC) it stays native
+        if approx == "C_SPL" and word in ("SLIN", "SCIRC"):
+            approx = "C_DIS"
         if len(points) != (2 if kind == "circular" else 1) or approx in ("C_VEL", "C_ORI", "C_SPL"):
             return None
         found = [point] if point is not None else [self._target(p, where) for p in points]

@@ -357,3 +357,35 @@ def test_process_moves_and_the_old_output_name(tmp_path: Path) -> None:
     natives = [s for s in stmts if isinstance(s, Native)]
     assert [n.text for n in natives] == ["set_digital_out(9, True)"]
     assert natives[0].where.line == 6
+
+
+KRC4_SPLINE = """DEF glue( )
+$VEL.CP = 0.2
+$APO.CDIS = 5
+SLIN {X 500, Y 0, Z 600, A 0, B 90, C 0} C_SPL
+SPLINE
+  SLIN {X 500, Y 0, Z 500, A 0, B 90, C 0}
+  SCIRC {X 550, Y 50, Z 500, A 0, B 90, C 0}, {X 500, Y 100, Z 500, A 0, B 90, C 0}
+ENDSPLINE C_SPL
+SPLINE
+  SPL {X 600, Y 100, Z 500, A 0, B 90, C 0}
+ENDSPLINE
+SPTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} C_SPL
+END
+"""
+
+
+def test_krl_spline_single_motions_and_blocks(tmp_path: Path) -> None:
+    """KSS 8.3 (System Integrators, spline motions): `SLIN .. C_SPL` is approximated by $APO.CDIS
+    (5 mm here); a SPLINE block passes exactly through its points, so one of SLIN/SCIRC segments
+    is linear/circular moves without zone, the last blended by `ENDSPLINE C_SPL`; a block with an
+    SPL segment (a spline curve) stays native line by line, located; SPTP C_SPL stays native."""
+    path = tmp_path / "glue.src"
+    path.write_text(KRC4_SPLINE)
+    stmts = _stmts(path)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.speed, m.zone) for m in moves] == [
+        ("linear", 0.2 * 1000, 5.0), ("linear", 200.0, None), ("circular", 200.0, 5.0)]
+    natives = [s for s in stmts if isinstance(s, Native)]
+    assert [(n.text.split()[0], n.where.line) for n in natives] == [
+        ("SPLINE", 9), ("SPL", 10), ("ENDSPLINE", 11), ("SPTP", 12)]
