@@ -17,12 +17,13 @@ from __future__ import annotations
 
 import re
 from dataclasses import replace
-from itertools import product
 
-from rmot.backends.krl import KrlBackend, status_of
+from rmot.backends.krl import KrlBackend
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
-from rmot.backends.readers.krl_text import Line, aggregate, declarations, fold_end, in_cond, krl_pose, lines
+from rmot.backends.readers.krl_text import (
+    Line, MotionState, aggregate, branch_of_status, declarations, fold_end, in_cond, krl_pose, lines,
+)
 from rmot.backends.readers.model import (
     Call, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
@@ -32,37 +33,13 @@ from rmot.lang import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
 
-DEFAULT_VEL_CP = 2000.0  # mm/s: BAS(#INITMOV) sets $VEL.CP to DEF_VEL_CP = 2 m/s (KSS 8.x, BAS.SRC)
 _MOTIONS = {"PTP": "joint", "SPTP": "joint", "LIN": "linear", "SLIN": "linear", "CIRC": "circular",
             "SCIRC": "circular"}
-
-
-def branch_of_status(s: int) -> ir.Config:
-    """The branch whose Status (the backend's `status_of`) has the low 3 bits of `s`."""
-    for sh, el, wr in product(ir.Shoulder, ir.Elbow, ir.Wrist):
-        branch = ir.Config(sh, el, wr)
-        if status_of(branch) == s & 7:
-            return branch
-    raise AssertionError("status_of covers 0..7")
 
 
 def _declared(move: Move) -> Target:
     """The target a move went to, as a declaration (its pose; no name of its own)."""
     return Target(move.target_name or "", move.pose, move.joints, move.config, move.where)
-
-
-class _State:
-    """The modal motion variables a plain KRL motion reads."""
-
-    def __init__(self) -> None:
-        self.vel_cp = DEFAULT_VEL_CP
-        self.vel_ptp = 100.0
-        self.acc_cp: float | None = None  # mm/s^2; None = 2 m/s^2, rmot's default
-        self.acc_ptp: float | None = None  # %; None = 100 %
-        self.cdis: float | None = None
-        self.cptp: float | None = None
-        self.tool: str | None = None
-        self.frame: str | None = None
 
 
 class _Krl:
@@ -82,7 +59,7 @@ class _Krl:
         self.routines: list[Routine] = []
         self.names: set[str] = set()
         self.work: dict[str, tuple[str, dict[str, str]]] = {}  # P_loop -> (P, axis offsets)
-        self.state = _State()
+        self.state = MotionState()
         self.name = "imported"
         # the Cartesian target the last move went to, in straight-line code (None where a block
         # starts or ends, or after a move not read): where a LIN_REL starts
@@ -117,10 +94,12 @@ class _Krl:
         while i < len(self.lines) and self.lines[i].fold is None and not self.lines[i].text:
             i += 1
         starts = [ln for ln in self.lines if ln.text]
-        if not starts or not re.match(r"(?i)(GLOBAL\s+)?DEF\s+\w+\s*\(", starts[0].text):
+        # a module starts with DEF name( ) or, holding only functions, DEFFCT type name( ) (KSS 8.x)
+        head = re.match(r"(?i)(?:GLOBAL\s+)?(?:DEF|DEFFCT\s+\w+)\s+(\w+)\s*\(", starts[0].text) if starts else None
+        if head is None:
             where = starts[0].where if starts else Where(self.tally.path, 1)
             raise self.tally.fail("a KRL .src must start with `DEF name( )` (after &ACCESS lines and folds)", where)
-        self.name = re.match(r"(?i)(?:GLOBAL\s+)?DEF\s+(\w+)", starts[0].text).group(1)  # type: ignore[union-attr]
+        self.name = head.group(1)
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]
@@ -129,7 +108,7 @@ class _Krl:
                 while i < len(self.lines) and self.lines[i].word != "END":
                     i += 1
             elif m:
-                self.state = _State()
+                self.state = MotionState()
                 body, i = self._block(i + 1, ("END",))
                 self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
@@ -177,6 +156,9 @@ class _Krl:
             return self._compound(i)
         if word == "SPLINE":
             return self._spline(i)
+        if word == "LOOP" and not self.routines and self.tally.depth == 1 and not any(
+                ln.word == "EXIT" for ln in self.lines[i:]):
+            return self._forever(i)
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
             return self._keep_block(i, word, end)
@@ -234,6 +216,14 @@ class _Krl:
         self.tally.imported += len(kept)
         self.last = None
         return list(kept), j + 1
+
+    def _forever(self, i: int) -> tuple[list[Stmt], int]:
+        """The main routine's outermost LOOP .. ENDLOOP without EXIT: the cycle the controller repeats."""
+        self.tally.warn(codes.LOOP_READ_ONCE, "an outermost `LOOP` is read as one cycle of the program "
+                        "(the controller repeats an rmot program)", self.lines[i].where)
+        self.tally.imported += 1
+        body, j = self._block(i + 1, ("ENDLOOP",))
+        return body, j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]

@@ -12,13 +12,16 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
+from itertools import product
 
+from rmot.backends.krl import status_of
 from rmot.backends.readers.common import number, split_top
 from rmot.backends.readers.model import Cond, Where
 from rmot.lang import ir
 from rmot.lang.record import record
 
-__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond"]
+__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond", "MotionState",
+           "branch_of_status", "DEFAULT_VEL_CP"]
 
 
 @record(slots=True)
@@ -145,3 +148,29 @@ def in_cond(text: str) -> Cond | None:
         return None
     on = (m.group(3) or "TRUE").upper() == "TRUE"
     return Cond(int(m.group(2)), on != bool(m.group(1)))
+
+
+DEFAULT_VEL_CP = 2000.0  # mm/s: BAS(#INITMOV) sets $VEL.CP to DEF_VEL_CP = 2 m/s (KSS 8.x, BAS.SRC)
+
+
+def branch_of_status(s: int) -> ir.Config:
+    """The branch whose Status (the backend's `status_of`) has the low 3 bits of `s`."""
+    for sh, el, wr in product(ir.Shoulder, ir.Elbow, ir.Wrist):
+        branch = ir.Config(sh, el, wr)
+        if status_of(branch) == s & 7:
+            return branch
+    raise AssertionError("status_of covers 0..7")
+
+
+class MotionState:
+    """The modal motion variables a plain KRL motion reads."""
+
+    def __init__(self) -> None:
+        self.vel_cp = DEFAULT_VEL_CP
+        self.vel_ptp = 100.0
+        self.acc_cp: float | None = None  # mm/s^2; None = 2 m/s^2, rmot's default
+        self.acc_ptp: float | None = None  # %; None = 100 %
+        self.cdis: float | None = None
+        self.cptp: float | None = None
+        self.tool: str | None = None
+        self.frame: str | None = None

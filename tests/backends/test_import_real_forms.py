@@ -389,3 +389,48 @@ def test_krl_spline_single_motions_and_blocks(tmp_path: Path) -> None:
     natives = [s for s in stmts if isinstance(s, Native)]
     assert [(n.text.split()[0], n.where.line) for n in natives] == [
         ("SPLINE", 9), ("SPL", 10), ("ENDSPLINE", 11), ("SPTP", 12)]
+
+
+KRC2_CELL_LOOP = """DEF cycle( )
+BAS (#INITMOV,0 )
+LOOP
+  WAIT FOR $IN[21]==TRUE
+  $OUT[3]=TRUE
+  PTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}
+  sub()
+ENDLOOP
+END
+DEF sub( )
+LOOP
+  $OUT[4]=TRUE
+ENDLOOP
+END
+"""
+
+FUNCTIONS_ONLY = """&ACCESS RVP
+DEFFCT INT rpm(tool :IN)
+  INT tool
+  RETURN tool * 100
+ENDFCT
+"""
+
+
+def test_krl_outermost_loop_is_one_cycle_and_function_modules(tmp_path: Path) -> None:
+    """A pendant program's main `LOOP .. ENDLOOP` (KSS 8.x: an endless loop, left only by EXIT)
+    is the cycle the controller repeats: its body is read as one cycle of the program, W518 at
+    the LOOP line. A LOOP in a called routine, or one with an EXIT, stays native (the routine
+    would not return). A module of functions only (`DEFFCT`) imports (its functions kept as a
+    comment) instead of being refused."""
+    path = tmp_path / "cycle.src"
+    path.write_text(KRC2_CELL_LOOP)
+    doc = read_files([str(path)])
+    main, sub = doc.routines
+    assert [type(s).__name__ for s in main.body] == ["Native", "WaitIn", "SetOut", "Move", "Call"]  # BAS kept
+    assert [s.text for s in sub.body if isinstance(s, Native)] == ["LOOP", "$OUT[4]=TRUE", "ENDLOOP"]
+    assert any(d.code.id == "W518" and d.span.start.line == 3 for d in doc.diagnostics)
+    exit_path = tmp_path / "exit.src"
+    exit_path.write_text(KRC2_CELL_LOOP.replace("  sub()\n", "  EXIT\n"))
+    assert isinstance(read_files([str(exit_path)]).routines[0].body[1], Native)
+    fct = tmp_path / "rpm.src"
+    fct.write_text(FUNCTIONS_ONLY)
+    assert read_files([str(fct)]).routines == ()
