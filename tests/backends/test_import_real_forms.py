@@ -12,8 +12,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from click.testing import CliRunner
+
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import For, If, Move, Native, SetOut, WaitIn, walk
+from rmot.compiler.cli import cli
+from rmot.lang.parse import parse_text
 
 TP = """/PROG  DEMO
 /ATTR
@@ -434,3 +438,30 @@ def test_krl_outermost_loop_is_one_cycle_and_function_modules(tmp_path: Path) ->
     fct = tmp_path / "rpm.src"
     fct.write_text(FUNCTIONS_ONLY)
     assert read_files([str(fct)]).routines == ()
+
+
+KRC2_CONDITIONS = """DEF cell( )
+WAIT FOR $IN[18] AND $IN[19] AND NOT $IN[25]
+IF ($IN[1] AND $IN[2]) OR ($IN[3]==FALSE) THEN
+  $OUT[3]=TRUE
+ENDIF
+WAIT FOR $IN[18] AND $IN[19]==FALSE
+END
+"""
+
+
+def test_krl_combined_input_conditions(tmp_path: Path) -> None:
+    """KRL conditions over several inputs (KSS 8.x operator priority: NOT, then AND, then OR;
+    comparisons last, so `$IN[18] AND $IN[19]==FALSE` compares the AND and stays native) are
+    rmot's `and`/`or`/`not` conditions; the rmot text is checked by rmot's own parser."""
+    path = tmp_path / "cell.src"
+    path.write_text(KRC2_CONDITIONS)
+    doc = read_files([str(path)])
+    body = doc.routines[0].body
+    assert isinstance(body[0], WaitIn) and isinstance(body[1], If) and isinstance(body[2], Native)
+    out = tmp_path / "cell.rmot"
+    assert CliRunner().invoke(cli, ["import", str(path), "-o", str(out)]).exit_code == 0
+    text = out.read_text()
+    assert "wait until in[18] == on and in[19] == on and in[25] == off" in text
+    assert "if (in[1] == on and in[2] == on) or in[3] == off {" in text
+    assert not parse_text(text, str(out)).diagnostics
