@@ -465,3 +465,33 @@ def test_krl_combined_input_conditions(tmp_path: Path) -> None:
     assert "wait until in[18] == on and in[19] == on and in[25] == off" in text
     assert "if (in[1] == on and in[2] == on) or in[3] == off {" in text
     assert not parse_text(text, str(out)).diagnostics
+
+
+PULSE_JOB = """/JOB
+//NAME P1
+//POS
+///NPOS 1,0,0,0,0,0
+///TOOL 0
+///POSTYPE PULSE
+///PULSE
+C00000=0,0,0,0,0,0
+//INST
+///DATE 2020/01/01 00:00
+///ATTR SC,RW
+///GROUP1 RB1
+NOP
+MOVJ C00000 VJ=50.00
+END
+"""
+
+
+def test_inform_pulse_position_move_names_why_it_stays_native(tmp_path: Path) -> None:
+    """A move to a `///PULSE` position (encoder counts: INFORM manual, position data) needs the
+    arm's pulses per degree and zero offsets, which the library does not hold: the move stays
+    native, W510 at its line names the position and why."""
+    path = tmp_path / "P1.JBI"
+    path.write_text(PULSE_JOB)
+    doc = read_files([str(path)])
+    assert [s.text for s in doc.routines[0].body if isinstance(s, Native)] == ["MOVJ C00000 VJ=50.00"]
+    w510 = [d for d in doc.diagnostics if d.code.id == "W510"]
+    assert len(w510) == 1 and w510[0].span.start.line == 14 and "C00000 is a pulse position" in w510[0].message
