@@ -14,7 +14,7 @@ import math
 from difflib import SequenceMatcher
 
 from rmot.backends.readers.model import (
-    Call, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, walk,
+    Call, Cond, Conds, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, leaves, walk,
 )
 from rmot.lang import ir
 
@@ -76,9 +76,9 @@ def describe(s: Stmt) -> str:
     if isinstance(s, Pulse):
         return f"pulse {s.signal}"
     if isinstance(s, WaitIn):
-        return f"wait until {s.cond.signal}"
+        return f"wait until {_inputs(s.cond)}"
     if isinstance(s, (If, While)):
-        return f"{type(s).__name__.lower()} {s.cond.signal}"
+        return f"{type(s).__name__.lower()} {_inputs(s.cond)}"
     if isinstance(s, For):
         return f"for {s.var}"
     if isinstance(s, Call):
@@ -88,6 +88,18 @@ def describe(s: Stmt) -> str:
     if isinstance(s, Grip):
         return f"{'attach' if s.take else 'detach'} {s.part}"
     return "stop" if isinstance(s, Stop) else "wait"
+
+
+def _inputs(c: Cond | Conds) -> str:
+    """The inputs a condition reads (the alignment key: a touch-up changes levels, not inputs)."""
+    return " ".join(str(leaf.signal) for leaf in leaves(c))
+
+
+def _levels(c: Cond | Conds) -> str:
+    if isinstance(c, Cond):
+        return "on" if c.on else "off"
+    parts = [_levels(p) if isinstance(p, Cond) else f"({_levels(p)})" for p in c.parts]
+    return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 
 
 def _details(s: Stmt) -> dict[str, str]:
@@ -104,7 +116,7 @@ def _details(s: Stmt) -> dict[str, str]:
         return {"time": f"{s.seconds:g} s"}
     if isinstance(s, (WaitIn, If, While)):
         timeout = getattr(s, "timeout", None)
-        return {"level": "on" if s.cond.on else "off", "timeout": "-" if timeout is None else f"{timeout:g} s"}
+        return {"level": _levels(s.cond), "timeout": "-" if timeout is None else f"{timeout:g} s"}
     if isinstance(s, For):
         return {"range": f"{s.first} .. {s.stop}"}
     return {}

@@ -59,6 +59,7 @@ class _Job:
         self.raw = text.split("\n")
         self.name = ""
         self.positions: dict[str, Target] = {}
+        self.pulse_positions: set[str] = set()  # `///PULSE` positions: encoder counts of the arm's axes
         self.position_tool: dict[str, int] = {}
         self.position_user: dict[str, int | None] = {}
         self.tool_names: dict[int, str] = {}
@@ -106,6 +107,8 @@ class _Job:
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
         m = re.fullmatch(r"(C\d+)\s*=\s*(.*)", s)
+        if m is not None and pulse:
+            self.pulse_positions.add(m.group(1))
         if m is None or pulse:
             return
         try:
@@ -162,7 +165,11 @@ class _Job:
                 return found
         stmt = self._simple(text, where)
         if stmt is None:
-            return [self.tally.keep(text, where, "no rmot form")], i + 1
+            pulses = sorted(set(re.findall(r"\bC\d+\b", text)) & self.pulse_positions)
+            why = (f"{', '.join(pulses)} is a pulse position (///PULSE): encoder counts whose per-axis scales "
+                   "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
+                   "no rmot form")
+            return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
 

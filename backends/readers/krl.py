@@ -16,12 +16,14 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 from __future__ import annotations
 
 import re
-from itertools import product
+from dataclasses import replace
 
-from rmot.backends.krl import KrlBackend, status_of
+from rmot.backends.krl import KrlBackend
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
-from rmot.backends.readers.krl_text import Line, aggregate, declarations, fold_end, in_cond, krl_pose, lines
+from rmot.backends.readers.krl_text import (
+    Line, MotionState, aggregate, branch_of_status, declarations, fold_end, in_cond, krl_pose, lines,
+)
 from rmot.backends.readers.model import (
     Call, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
@@ -31,37 +33,13 @@ from rmot.lang import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
 
-DEFAULT_VEL_CP = 2000.0  # mm/s: BAS(#INITMOV) sets $VEL.CP to DEF_VEL_CP = 2 m/s (KSS 8.x, BAS.SRC)
 _MOTIONS = {"PTP": "joint", "SPTP": "joint", "LIN": "linear", "SLIN": "linear", "CIRC": "circular",
             "SCIRC": "circular"}
-
-
-def branch_of_status(s: int) -> ir.Config:
-    """The branch whose Status (the backend's `status_of`) has the low 3 bits of `s`."""
-    for sh, el, wr in product(ir.Shoulder, ir.Elbow, ir.Wrist):
-        branch = ir.Config(sh, el, wr)
-        if status_of(branch) == s & 7:
-            return branch
-    raise AssertionError("status_of covers 0..7")
 
 
 def _declared(move: Move) -> Target:
     """The target a move went to, as a declaration (its pose; no name of its own)."""
     return Target(move.target_name or "", move.pose, move.joints, move.config, move.where)
-
-
-class _State:
-    """The modal motion variables a plain KRL motion reads."""
-
-    def __init__(self) -> None:
-        self.vel_cp = DEFAULT_VEL_CP
-        self.vel_ptp = 100.0
-        self.acc_cp: float | None = None  # mm/s^2; None = 2 m/s^2, rmot's default
-        self.acc_ptp: float | None = None  # %; None = 100 %
-        self.cdis: float | None = None
-        self.cptp: float | None = None
-        self.tool: str | None = None
-        self.frame: str | None = None
 
 
 class _Krl:
@@ -81,7 +59,7 @@ class _Krl:
         self.routines: list[Routine] = []
         self.names: set[str] = set()
         self.work: dict[str, tuple[str, dict[str, str]]] = {}  # P_loop -> (P, axis offsets)
-        self.state = _State()
+        self.state = MotionState()
         self.name = "imported"
         # the Cartesian target the last move went to, in straight-line code (None where a block
         # starts or ends, or after a move not read): where a LIN_REL starts
@@ -116,10 +94,12 @@ class _Krl:
         while i < len(self.lines) and self.lines[i].fold is None and not self.lines[i].text:
             i += 1
         starts = [ln for ln in self.lines if ln.text]
-        if not starts or not re.match(r"(?i)(GLOBAL\s+)?DEF\s+\w+\s*\(", starts[0].text):
+        # a module starts with DEF name( ) or, holding only functions, DEFFCT type name( ) (KSS 8.x)
+        head = re.match(r"(?i)(?:GLOBAL\s+)?(?:DEF|DEFFCT\s+\w+)\s+(\w+)\s*\(", starts[0].text) if starts else None
+        if head is None:
             where = starts[0].where if starts else Where(self.tally.path, 1)
             raise self.tally.fail("a KRL .src must start with `DEF name( )` (after &ACCESS lines and folds)", where)
-        self.name = re.match(r"(?i)(?:GLOBAL\s+)?DEF\s+(\w+)", starts[0].text).group(1)  # type: ignore[union-attr]
+        self.name = head.group(1)
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]
@@ -128,7 +108,7 @@ class _Krl:
                 while i < len(self.lines) and self.lines[i].word != "END":
                     i += 1
             elif m:
-                self.state = _State()
+                self.state = MotionState()
                 body, i = self._block(i + 1, ("END",))
                 self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
@@ -174,6 +154,11 @@ class _Krl:
         word = ln.word
         if word in ("FOR", "IF", "WHILE"):
             return self._compound(i)
+        if word == "SPLINE":
+            return self._spline(i)
+        if word == "LOOP" and not self.routines and self.tally.depth == 1 and not any(
+                ln.word == "EXIT" for ln in self.lines[i:]):
+            return self._forever(i)
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
             return self._keep_block(i, word, end)
@@ -209,6 +194,36 @@ class _Krl:
             if depth <= 0:
                 break
         return out, i
+
+    def _spline(self, i: int) -> tuple[list[Stmt], int]:
+        """A SPLINE block of SLIN/SCIRC segments only passes exactly through every point (KSS 8.3 System
+        Integrators, spline block): linear/circular moves without zone, the last one blended by
+        `ENDSPLINE C_SPL` with $APO.CDIS. SPL segments (a spline curve), WITH or folds: kept native."""
+        j = next((k for k in range(i, len(self.lines)) if self.lines[k].word == "ENDSPLINE"), None)
+        if j is None or not re.fullmatch(r"(?i)SPLINE", self.lines[i].text.strip()) or not re.fullmatch(
+                r"(?i)ENDSPLINE(\s+C_SPL)?", self.lines[j].text.strip()):
+            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+        segments = [ln for ln in self.lines[i + 1:j] if ln.text.strip() or ln.fold or ln.endfold]
+        moves = [self._motion(ln.word, ln.text.strip()[len(ln.word):].strip(), ln.where)
+                 if ln.word in ("SLIN", "SCIRC") and ln.fold is None and not re.search(r"(?i)\bWITH\b|C_SPL", ln.text)
+                 else None for ln in segments]
+        kept = [m for m in moves if m is not None]
+        blended = self.lines[j].text.strip().upper() != "ENDSPLINE"
+        if not kept or len(kept) != len(moves) or (blended and self.state.cdis is None):
+            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+        if blended:
+            kept[-1] = replace(kept[-1], zone=self.state.cdis)
+        self.tally.imported += len(kept)
+        self.last = None
+        return list(kept), j + 1
+
+    def _forever(self, i: int) -> tuple[list[Stmt], int]:
+        """The main routine's outermost LOOP .. ENDLOOP without EXIT: the cycle the controller repeats."""
+        self.tally.warn(codes.LOOP_READ_ONCE, "an outermost `LOOP` is read as one cycle of the program "
+                        "(the controller repeats an rmot program)", self.lines[i].where)
+        self.tally.imported += 1
+        body, j = self._block(i + 1, ("ENDLOOP",))
+        return body, j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
@@ -472,6 +487,10 @@ class _Krl:
         m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
         approx = " ".join((m.group(2) or "").upper().split()) if m else ""
+        # C_SPL on a SLIN/SCIRC single motion blends by $APO.CDIS as C_DIS does on LIN/CIRC (KSS 8.3
+        # System Integrators, spline single motions); on SPTP (and on PTP/LIN/CIRC) it stays native
+        if approx == "C_SPL" and word in ("SLIN", "SCIRC"):
+            approx = "C_DIS"
         if len(points) != (2 if kind == "circular" else 1) or approx in ("C_VEL", "C_ORI", "C_SPL"):
             return None
         found = [point] if point is not None else [self._target(p, where) for p in points]

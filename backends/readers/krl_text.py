@@ -12,13 +12,16 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Mapping
+from itertools import product
 
+from rmot.backends.krl import status_of
 from rmot.backends.readers.common import number, split_top
-from rmot.backends.readers.model import Cond, Where
+from rmot.backends.readers.model import Cond, Conds, Where
 from rmot.lang import ir
 from rmot.lang.record import record
 
-__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond"]
+__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond", "MotionState",
+           "branch_of_status", "DEFAULT_VEL_CP"]
 
 
 @record(slots=True)
@@ -135,13 +138,78 @@ def fold_end(found: list[Line], i: int) -> int:
     return len(found) - 1
 
 
-def in_cond(text: str) -> Cond | None:
-    """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT $IN[n]`, in optional parentheses."""
-    text = text.strip()
-    while text.startswith("(") and text.endswith(")") and split_top(text[1:-1], ")") == [text[1:-1].strip()]:
-        text = text[1:-1].strip()
-    m = re.fullmatch(r"(?i)(NOT\s+)?\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", text)
+def in_cond(text: str) -> Cond | Conds | None:
+    """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT`, `AND`, `OR` and parentheses (KSS 8.x operator
+    priority: NOT before AND before OR); None for anything else (EXOR, variables, comparisons)."""
+    tokens = re.findall(r"(?i)\$IN\[\d+\]\s*(?:==\s*(?:TRUE|FALSE)\b)?|\(|\)|\bNOT\b|\bAND\b|\bOR\b|\S+", text)
+    parsed = _or(tokens, 0)
+    return parsed[0] if parsed is not None and parsed[1] == len(tokens) else None
+
+
+_Parsed = tuple[Cond | Conds, int] | None
+
+
+def _or(tokens: list[str], i: int, op: str = "OR") -> _Parsed:
+    parts: list[Cond | Conds] = []
+    while True:
+        parsed = _or(tokens, i, "AND") if op == "OR" else _unary(tokens, i)
+        if parsed is None:
+            return None
+        parts.append(parsed[0])
+        i = parsed[1]
+        if i >= len(tokens) or tokens[i].upper() != op:
+            return (parts[0] if len(parts) == 1 else Conds(op.lower(), tuple(parts))), i
+        i += 1
+
+
+def _unary(tokens: list[str], i: int) -> _Parsed:
+    if i >= len(tokens):
+        return None
+    word = tokens[i].upper()
+    if word == "NOT":
+        inner = _unary(tokens, i + 1)
+        if inner is None:
+            return None
+        c = inner[0]
+        return (Cond(c.signal, not c.on) if isinstance(c, Cond) else Conds("not", (c,))), inner[1]
+    if word == "(":
+        inner = _or(tokens, i + 1)
+        return (inner[0], inner[1] + 1) if inner and inner[1] < len(tokens) and tokens[inner[1]] == ")" else None
+    m = re.fullmatch(r"(?i)\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", tokens[i])
     if m is None:
         return None
-    on = (m.group(3) or "TRUE").upper() == "TRUE"
-    return Cond(int(m.group(2)), on != bool(m.group(1)))
+    # `==` binds after AND/OR (KSS 8.x operator priority: NOT 1, AND 4, EXOR 5, OR 6, comparisons 7):
+    # `$IN[1] AND $IN[2]==FALSE` compares the AND; a comparison is read only alone in its parentheses
+    start = i
+    while start > 0 and tokens[start - 1].upper() == "NOT":
+        start -= 1
+    alone = (start == 0 or tokens[start - 1] == "(") and (i + 1 == len(tokens) or tokens[i + 1] == ")")
+    if m.group(2) and not alone:
+        return None
+    return Cond(int(m.group(1)), (m.group(2) or "TRUE").upper() == "TRUE"), i + 1
+
+
+DEFAULT_VEL_CP = 2000.0  # mm/s: BAS(#INITMOV) sets $VEL.CP to DEF_VEL_CP = 2 m/s (KSS 8.x, BAS.SRC)
+
+
+def branch_of_status(s: int) -> ir.Config:
+    """The branch whose Status (the backend's `status_of`) has the low 3 bits of `s`."""
+    for sh, el, wr in product(ir.Shoulder, ir.Elbow, ir.Wrist):
+        branch = ir.Config(sh, el, wr)
+        if status_of(branch) == s & 7:
+            return branch
+    raise AssertionError("status_of covers 0..7")
+
+
+class MotionState:
+    """The modal motion variables a plain KRL motion reads."""
+
+    def __init__(self) -> None:
+        self.vel_cp = DEFAULT_VEL_CP
+        self.vel_ptp = 100.0
+        self.acc_cp: float | None = None  # mm/s^2; None = 2 m/s^2, rmot's default
+        self.acc_ptp: float | None = None  # %; None = 100 %
+        self.cdis: float | None = None
+        self.cptp: float | None = None
+        self.tool: str | None = None
+        self.frame: str | None = None

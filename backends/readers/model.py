@@ -15,7 +15,7 @@ from rmot.lang.record import record
 
 __all__ = [
     "Where", "Target", "ToolData", "FrameData", "Move", "SetOut", "Pulse", "Wait", "WaitIn",
-    "Cond", "If", "While", "For", "Call", "Native", "Stop", "Grip", "Stmt", "Routine", "FileCount",
+    "Cond", "Conds", "leaves", "If", "While", "For", "Call", "Native", "Stop", "Grip", "Stmt", "Routine", "FileCount",
     "Document", "Signal", "walk",
 ]
 
@@ -115,15 +115,28 @@ class Cond:
 
 
 @record(slots=True)
+class Conds:
+    """Input conditions combined: `op` "and"/"or" over two or more parts, or "not" over one."""
+
+    op: str
+    parts: tuple[Cond | Conds, ...]
+
+
+def leaves(c: Cond | Conds) -> list[Cond]:
+    """The input conditions a condition reads, left to right."""
+    return [c] if isinstance(c, Cond) else [leaf for part in c.parts for leaf in leaves(part)]
+
+
+@record(slots=True)
 class WaitIn:
-    cond: Cond
+    cond: Cond | Conds
     timeout: float | None
     where: Where
 
 
 @record(slots=True)
 class If:
-    cond: Cond
+    cond: Cond | Conds
     then: tuple[Stmt, ...]
     orelse: tuple[Stmt, ...]
     where: Where
@@ -131,7 +144,7 @@ class If:
 
 @record(slots=True)
 class While:
-    cond: Cond
+    cond: Cond | Conds
     body: tuple[Stmt, ...]
     where: Where
 

@@ -334,9 +334,14 @@ class _Script:
 
     def _simple(self, ln: _Line) -> Stmt | None:
         text, where = ln.text.replace(" ", ""), ln.where
-        m = re.fullmatch(r"(movej|movel|movec)\((.*)\)", text)
+        m = re.fullmatch(r"(movej|movel|movec|movep)\((.*)\)", text)
         if m:
             return self._move(m.group(1), split_top(m.group(2)), where)
+        # set_digital_out(n, b): the deprecated name of set_standard_digital_out for n in 0..7
+        # (URScript manual CB3, module interfaces); a higher n stays native
+        m = re.fullmatch(r"set_digital_out\(([0-7]),(True|False)\)", text)
+        if m:
+            return SetOut(int(m.group(1)), 1.0 if m.group(2) == "True" else 0.0, where)
         m = re.fullmatch(r"set_(standard|configurable)_digital_out\((\d+),(True|False)\)", text)
         if m:
             return SetOut(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0),
@@ -452,13 +457,17 @@ class _Script:
         return speed, accel
 
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
-        kind = {"movej": "joint", "movel": "linear", "movec": "circular"}[func]
+        # movep (URScript manual, module motion: "Move Process. Blend circular (in tool-space) and move
+        # linear (in tool-space) to position", movep(pose, a, v, r)): a straight line at the tool speed v
+        # with a blend of radius r, which is rmot's linear move with speed and zone; the constant-speed
+        # timing through the blend is the controller's, rmot plans its own
+        kind = {"movej": "joint", "movel": "linear", "movec": "circular", "movep": "linear"}[func]
         named = dict(a.split("=", 1) for a in args if re.match(r"\w+=", a) and not a.startswith("get_"))
         given = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
         npoints = 2 if kind == "circular" else 1
         points, positional = given[:npoints], given[npoints:]
         # positional arguments in the manual's order: movej/movel(q, a, v, t, r), movec(via, to, a, v, r, mode)
-        order = ("a", "v", "r", "mode") if kind == "circular" else ("a", "v", "t", "r")
+        order = ("a", "v", "r", "mode") if kind == "circular" else ("a", "v", "r") if func == "movep" else ("a", "v", "t", "r")
         if len(points) != npoints or len(positional) > len(order) or set(named) & set(order[:len(positional)]):
             return None
         named.update(zip(order, positional))

@@ -15,8 +15,8 @@ from dataclasses import replace
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.model import (
-    Call, Cond, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
-    Where, While, walk,
+    Call, Cond, Conds, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
+    Where, While, leaves, walk,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.lang import ir
@@ -55,7 +55,7 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
     if isinstance(s, Pulse):
         return [("outputs", s.signal)]
     if isinstance(s, (WaitIn, If, While)):
-        return [("inputs", s.cond.signal)]
+        return [("inputs", c.signal) for c in leaves(s.cond)]
     return []
 
 
@@ -218,8 +218,11 @@ class _Printer:
                 self.body(s.orelse, depth + 1, state)
         self.emit(depth, "}")
 
-    def cond(self, c: Cond) -> str:
-        return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
+    def cond(self, c: Cond | Conds) -> str:
+        if isinstance(c, Cond):
+            return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
+        parts = [self.cond(p) if isinstance(p, Cond) else f"({self.cond(p)})" for p in c.parts]
+        return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 
     def move(self, m: Move, depth: int, state: dict[str, str | None]) -> None:
         for key in ("tool", "frame"):

@@ -12,8 +12,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from click.testing import CliRunner
+
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import For, If, Move, Native, SetOut, WaitIn, walk
+from rmot.compiler.cli import cli
+from rmot.lang.parse import parse_text
 
 TP = """/PROG  DEMO
 /ATTR
@@ -328,3 +332,166 @@ def test_polyscope_wait_and_counted_loop(tmp_path: Path) -> None:
     loops = [s for s in stmts if isinstance(s, For)]
     assert [(f.var, f.first, f.stop) for f in loops] == [("Loop_1", 0, 3)]
     assert len(range(loops[0].first, loops[0].stop)) == 3
+
+
+PROCESS_MOVES = """def glue():
+  set_digital_out(2, True)
+  movep(p[0.4, 0.1, 0.3, 0, 3.14159265358979, 0], a=1.2, v=0.1, r=0.005)
+  movep(p[0.5, 0.1, 0.3, 0, 3.14159265358979, 0], 1.2, 0.05, 0.002)
+  set_digital_out(2, False)
+  set_digital_out(9, True)
+end
+"""
+
+
+def test_process_moves_and_the_old_output_name(tmp_path: Path) -> None:
+    """`movep(pose, a, v, r)` (URScript manual, module motion: move process, linear in tool space
+    at the constant tool speed v, blended with radius r) is a linear move at v with zone r;
+    positional arguments in the manual's order. `set_digital_out(n, b)`, the deprecated name of
+    set_standard_digital_out, sets standard output n for n in 0..7; output 9 is outside that
+    range and stays native."""
+    path = tmp_path / "glue.script"
+    path.write_text(PROCESS_MOVES)
+    stmts = _stmts(path)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.speed, m.zone) for m in moves] == [
+        ("linear", 0.1 * 1000, 0.005 * 1000), ("linear", 0.05 * 1000, 0.002 * 1000)]
+    outs = [s for s in stmts if isinstance(s, SetOut)]
+    assert [(s.signal, s.value) for s in outs] == [(2, 1.0), (2, 0.0)]
+    natives = [s for s in stmts if isinstance(s, Native)]
+    assert [n.text for n in natives] == ["set_digital_out(9, True)"]
+    assert natives[0].where.line == 6
+
+
+KRC4_SPLINE = """DEF glue( )
+$VEL.CP = 0.2
+$APO.CDIS = 5
+SLIN {X 500, Y 0, Z 600, A 0, B 90, C 0} C_SPL
+SPLINE
+  SLIN {X 500, Y 0, Z 500, A 0, B 90, C 0}
+  SCIRC {X 550, Y 50, Z 500, A 0, B 90, C 0}, {X 500, Y 100, Z 500, A 0, B 90, C 0}
+ENDSPLINE C_SPL
+SPLINE
+  SPL {X 600, Y 100, Z 500, A 0, B 90, C 0}
+ENDSPLINE
+SPTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} C_SPL
+END
+"""
+
+
+def test_krl_spline_single_motions_and_blocks(tmp_path: Path) -> None:
+    """KSS 8.3 (System Integrators, spline motions): `SLIN .. C_SPL` is approximated by $APO.CDIS
+    (5 mm here); a SPLINE block passes exactly through its points, so one of SLIN/SCIRC segments
+    is linear/circular moves without zone, the last blended by `ENDSPLINE C_SPL`; a block with an
+    SPL segment (a spline curve) stays native line by line, located; SPTP C_SPL stays native."""
+    path = tmp_path / "glue.src"
+    path.write_text(KRC4_SPLINE)
+    stmts = _stmts(path)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.speed, m.zone) for m in moves] == [
+        ("linear", 0.2 * 1000, 5.0), ("linear", 200.0, None), ("circular", 200.0, 5.0)]
+    natives = [s for s in stmts if isinstance(s, Native)]
+    assert [(n.text.split()[0], n.where.line) for n in natives] == [
+        ("SPLINE", 9), ("SPL", 10), ("ENDSPLINE", 11), ("SPTP", 12)]
+
+
+KRC2_CELL_LOOP = """DEF cycle( )
+BAS (#INITMOV,0 )
+LOOP
+  WAIT FOR $IN[21]==TRUE
+  $OUT[3]=TRUE
+  PTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}
+  sub()
+ENDLOOP
+END
+DEF sub( )
+LOOP
+  $OUT[4]=TRUE
+ENDLOOP
+END
+"""
+
+FUNCTIONS_ONLY = """&ACCESS RVP
+DEFFCT INT rpm(tool :IN)
+  INT tool
+  RETURN tool * 100
+ENDFCT
+"""
+
+
+def test_krl_outermost_loop_is_one_cycle_and_function_modules(tmp_path: Path) -> None:
+    """A pendant program's main `LOOP .. ENDLOOP` (KSS 8.x: an endless loop, left only by EXIT)
+    is the cycle the controller repeats: its body is read as one cycle of the program, W518 at
+    the LOOP line. A LOOP in a called routine, or one with an EXIT, stays native (the routine
+    would not return). A module of functions only (`DEFFCT`) imports (its functions kept as a
+    comment) instead of being refused."""
+    path = tmp_path / "cycle.src"
+    path.write_text(KRC2_CELL_LOOP)
+    doc = read_files([str(path)])
+    main, sub = doc.routines
+    assert [type(s).__name__ for s in main.body] == ["Native", "WaitIn", "SetOut", "Move", "Call"]  # BAS kept
+    assert [s.text for s in sub.body if isinstance(s, Native)] == ["LOOP", "$OUT[4]=TRUE", "ENDLOOP"]
+    assert any(d.code.id == "W518" and d.span.start.line == 3 for d in doc.diagnostics)
+    exit_path = tmp_path / "exit.src"
+    exit_path.write_text(KRC2_CELL_LOOP.replace("  sub()\n", "  EXIT\n"))
+    assert isinstance(read_files([str(exit_path)]).routines[0].body[1], Native)
+    fct = tmp_path / "rpm.src"
+    fct.write_text(FUNCTIONS_ONLY)
+    assert read_files([str(fct)]).routines == ()
+
+
+KRC2_CONDITIONS = """DEF cell( )
+WAIT FOR $IN[18] AND $IN[19] AND NOT $IN[25]
+IF ($IN[1] AND $IN[2]) OR ($IN[3]==FALSE) THEN
+  $OUT[3]=TRUE
+ENDIF
+WAIT FOR $IN[18] AND $IN[19]==FALSE
+END
+"""
+
+
+def test_krl_combined_input_conditions(tmp_path: Path) -> None:
+    """KRL conditions over several inputs (KSS 8.x operator priority: NOT, then AND, then OR;
+    comparisons last, so `$IN[18] AND $IN[19]==FALSE` compares the AND and stays native) are
+    rmot's `and`/`or`/`not` conditions; the rmot text is checked by rmot's own parser."""
+    path = tmp_path / "cell.src"
+    path.write_text(KRC2_CONDITIONS)
+    doc = read_files([str(path)])
+    body = doc.routines[0].body
+    assert isinstance(body[0], WaitIn) and isinstance(body[1], If) and isinstance(body[2], Native)
+    out = tmp_path / "cell.rmot"
+    assert CliRunner().invoke(cli, ["import", str(path), "-o", str(out)]).exit_code == 0
+    text = out.read_text()
+    assert "wait until in[18] == on and in[19] == on and in[25] == off" in text
+    assert "if (in[1] == on and in[2] == on) or in[3] == off {" in text
+    assert not parse_text(text, str(out)).diagnostics
+
+
+PULSE_JOB = """/JOB
+//NAME P1
+//POS
+///NPOS 1,0,0,0,0,0
+///TOOL 0
+///POSTYPE PULSE
+///PULSE
+C00000=0,0,0,0,0,0
+//INST
+///DATE 2020/01/01 00:00
+///ATTR SC,RW
+///GROUP1 RB1
+NOP
+MOVJ C00000 VJ=50.00
+END
+"""
+
+
+def test_inform_pulse_position_move_names_why_it_stays_native(tmp_path: Path) -> None:
+    """A move to a `///PULSE` position (encoder counts: INFORM manual, position data) needs the
+    arm's pulses per degree and zero offsets, which the library does not hold: the move stays
+    native, W510 at its line names the position and why."""
+    path = tmp_path / "P1.JBI"
+    path.write_text(PULSE_JOB)
+    doc = read_files([str(path)])
+    assert [s.text for s in doc.routines[0].body if isinstance(s, Native)] == ["MOVJ C00000 VJ=50.00"]
+    w510 = [d for d in doc.diagnostics if d.code.id == "W510"]
+    assert len(w510) == 1 and w510[0].span.start.line == 14 and "C00000 is a pulse position" in w510[0].message
