@@ -35,6 +35,7 @@ import numpy as np
 
 from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.record import record
+from rmot.lang.ir_tree import bind_loop_variable
 
 __all__ = [
     "ConfigKey",
@@ -575,7 +576,6 @@ def bind_loop_var(body: tuple[ir.Instr, ...], name: str, value: int) -> tuple[ir
     """`body` with every read of the loop variable `name` replaced by Const(value) (what an
     unrolled iteration writes: the vendor has no loop counter there); the front end's
     lang/ir_tree.bind_loop_variable, the one walker of the IR's nesting."""
-    from rmot.lang.ir_tree import bind_loop_variable
 
     return bind_loop_variable(body, name, value)
 

@@ -69,6 +69,8 @@ from rmot.backends.names import NameRules, NameTable
 from rmot.backends.runtime import LoopState
 from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.record import record
+from rmot.backends.part_load import state_at_moves, held_load
+from rmot.lang.model_spec import model_name
 
 __all__ = ["JOINT_LIMITS", "UrScriptBackend"]
 
@@ -169,7 +171,6 @@ class UrScriptBackend(Backend):
         payload the move carries: the tool and the parts it holds there (the state after the
         last attach/detach on the move's path, part_load.state_at_moves, as KRL's $LOAD), so a
         loop body, an `if` arm or a proc never sets the tool alone while a part is held."""
-        from rmot.backends.part_load import state_at_moves
 
         out: list[str] = []
         current: ir.ToolRef | None = None
@@ -252,7 +253,6 @@ class UrScriptBackend(Backend):
         model = ctx.robot.source.ref
         shown = f"'{model}'"
         if ctx.robot.source.kind is ir.RobotSourceKind.MODEL:  # a cell's model: name it, not its key
-            from rmot.lang.model_spec import model_name
 
             shown = f"'{model_name(model)}' (a cell model)"
         if model in JOINT_LIMITS:
@@ -357,7 +357,6 @@ class UrScriptBackend(Backend):
         Universal Robots, "The URScript Programming Language" (e-Series), set_payload(m, cog):
         m the payload mass in kg, cog the centre of gravity's displacement from the tool flange
         in metres. The bare flange with parts held writes the parts alone."""
-        from rmot.backends.part_load import held_load
 
         _, _, total, cog = held_load(node, ctx)
         return [f"set_payload({fmt(total, 3)}, [{fmt_list(cog, POS_DECIMALS, ', ')}])"]

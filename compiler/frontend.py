@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.record import record
+from rmot.compiler.passes.context import Reporter, default_robot_loader
 
 if TYPE_CHECKING:  # the passes (and the parser) load when a file is read, not with the result type
     from rmot.lang import ir
@@ -63,9 +64,8 @@ def run_passes(path: str, text: str | None = None, cell: str | None = None, proj
     """The front end's passes over `path` (or `text` as its content), returning their whole
     state: what load_program returns and also the parsed modules of every file read (the
     language server's symbol index). Never raises for bad input."""
-    from rmot.compiler.passes.context import Reporter, default_robot_loader
-    from rmot.compiler.passes.state import FrontendState
-    from rmot.compiler.pipeline import run
+    from rmot.compiler.passes.state import FrontendState  # late: loads numpy only when this runs
+    from rmot.compiler.pipeline import run  # late: loads coal only when this runs
 
     root = os.path.abspath(project_root) if project_root else os.path.dirname(os.path.abspath(path))
     roots = (root,) if cell is None else (root, os.path.dirname(os.path.abspath(cell)))
@@ -74,7 +74,7 @@ def run_passes(path: str, text: str | None = None, cell: str | None = None, proj
     try:
         state = run(state)
     except RecursionError:  # absurdly deep nesting: still a diagnostic, not a traceback
-        from rmot.lang import check_codes as codes
+        from rmot.lang import check_codes as codes  # late: optional, tried where used
 
         state.reporter.error(codes.TOO_LARGE_UNROLLED, "nesting must be at most a few hundred levels deep (got deeper)", None)
     return state
@@ -84,7 +84,7 @@ def _load(path: str, text: str | None, cell: str | None, project_root: str | Non
           robot_loader: RobotLoader | None, require_program: bool = False) -> FrontendResult:
     state = run_passes(path, text, cell, project_root, robot_loader)
     if require_program and state.program is None and not state.reporter.has_errors:
-        from rmot.lang import check_codes as codes
+        from rmot.lang import check_codes as codes  # late: tests replace it (monkeypatch): read at call time
 
         state.reporter.error(codes.NO_PROGRAM, f"'{path}' must contain a program (got none: only a cell or declarations)", None)
     diagnostics = state.reporter.sink.items

@@ -17,6 +17,7 @@ from typing import Any
 
 from rmot.lang import ir, ir_tree
 from rmot.lang.source import Span
+from rmot.lang.model_spec import model_name
 
 __all__ = ["dump_cell", "dump_program", "to_json", "to_jsonable"]
 
@@ -57,7 +58,6 @@ def dump_cell(cell: ir.Cell) -> str:
     for r in cell.robots:
         ref = r.source.ref if r.source.kind is ir.RobotSourceKind.LIBRARY else r.source.ref.rsplit("/", 1)[-1]
         if r.source.kind is ir.RobotSourceKind.MODEL:
-            from rmot.lang.model_spec import model_name
 
             ref = model_name(r.source.ref)
         elif r.source.kind is ir.RobotSourceKind.URDF_CHAIN:

@@ -48,6 +48,11 @@ import numpy as np
 from rmot.compiler.plan_codec import CodecError, decode, encode
 from rmot.lang.cache_seal import cache_dir, read_sealed, seal  # one cache directory: lang's, the stage upstream
 from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
+from itertools import islice
+from rmot.lang.ir_tree import walk_bodies
+from rmot.lang import cache_codes
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.plan_types import Plan
 
 if TYPE_CHECKING:
     from rmot.lang import ir
@@ -97,9 +102,7 @@ MAX_CACHED_INSTRUCTIONS = 20_000
 
 def cacheable(program: ir.Program) -> bool:
     """True when `program` holds at most MAX_CACHED_INSTRUCTIONS instructions."""
-    from itertools import islice
 
-    from rmot.lang.ir_tree import walk_bodies
 
     every = walk_bodies(task.body for task in program.tasks)
     return sum(1 for _ in islice(every, MAX_CACHED_INSTRUCTIONS + 1)) <= MAX_CACHED_INSTRUCTIONS
@@ -138,14 +141,12 @@ def cached_plan(program: ir.Program, *, step: float = 0.004, use_cache: bool = T
 
 
 def _plan(program: ir.Program, step: float) -> Plan:
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan import plan_program  # late: tests replace it (monkeypatch): read at call time
 
     return plan_program(program, step=step)
 
 
 def _with_warning(plan: Plan, folder: Path, exc: OSError) -> Plan:
-    from rmot.lang import cache_codes
-    from rmot.lang.diagnostics import Diagnostic, Severity
 
     msg = (f"plan cache directory '{folder}' must be writable (got {exc.strerror or exc}); "
            "set RMOT_CACHE_DIR or pass --no-cache")
@@ -263,7 +264,6 @@ def _source_files() -> list[tuple[str, Path]]:
 # ---------------------------------------------------------------------------- entries
 def _read(path: Path, key: str) -> Plan | None:
     """The Plan stored under `path`, or None (a missing, corrupt or foreign entry is removed)."""
-    from rmot.lang.plan_types import Plan
 
     payload = read_sealed(path, key, MAX_ENTRY_BYTES)
     if payload is None:  # missing, foreign, tampered with, not a bounded regular file: a miss

@@ -57,7 +57,7 @@ class LalrTables:
 
 
 def tables_key(grammar: str) -> str:
-    import lark
+    import lark  # late: loads lark only when this runs
 
     return hashlib.sha256(f"{FORMAT}\0{lark.__version__}\0{grammar}".encode()).hexdigest()
 
@@ -83,9 +83,9 @@ def load_tables(grammar: str | None = None, *, use_cache: bool = True) -> LalrTa
 
 def build_tables(grammar: str) -> dict[str, Any]:
     """lark's LALR analysis of `grammar` as JSON-ready data (lists, dicts, str, int, bool, None)."""
-    from lark import Lark
-    from lark.lexer import Lexer
-    from lark.parsers.lalr_analysis import Shift
+    from lark import Lark  # late: loads lark only when this runs
+    from lark.lexer import Lexer  # late: loads lark only when this runs
+    from lark.parsers.lalr_analysis import Shift  # late: loads lark only when this runs
 
     class _NoLexer(Lexer):  # the tables only: lang/_lalr.py lexes on its own
         def __init__(self, conf: Any) -> None:
@@ -117,8 +117,8 @@ def build_tables(grammar: str) -> dict[str, Any]:
 
 
 def from_data(data: dict[str, Any]) -> LalrTables:
-    from lark.grammar import Rule
-    from lark.lexer import PatternRE, PatternStr, TerminalDef
+    from lark.grammar import Rule  # late: loads lark only when this runs
+    from lark.lexer import PatternRE, PatternStr, TerminalDef  # late: loads lark only when this runs
 
     if data.get("format") != FORMAT:
         raise ValueError("not an rmot LALR table file")

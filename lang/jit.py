@@ -55,7 +55,7 @@ class Kernel:
     def jit(self) -> Any:
         """The numba dispatcher of the same function (compiled, or loaded from numba's cache)."""
         if self._jit is None:
-            import numba
+            import numba  # late: numba is heavy or optional, loaded only where used
 
             fn = self.py
             scope = dict(fn.__globals__)

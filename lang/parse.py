@@ -31,7 +31,8 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 
 from rmot.lang import ast
 from rmot.lang import codes
-from rmot.lang._build import KEYWORDS, RESERVED, AstBuilder, reserved_statement, token_span
+from rmot.lang._build import AstBuilder
+from rmot.lang._build_nodes import KEYWORDS, RESERVED, reserved_statement, token_span
 from rmot.lang._lalr import LalrDriver, PostLexState
 from rmot.lang._tables import GRAMMAR as _GRAMMAR
 from rmot.lang._tables import load_tables
@@ -39,6 +40,8 @@ from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.units import unknown_unit
+from lark import Tree
+from lark.parse_tree_builder import ParseTreeBuilder
 
 __all__ = ["ParseResult", "parse_source", "parse_text", "wrap_syntax_error", "KEYWORDS", "RESERVED"]
 
@@ -56,8 +59,6 @@ class _Parser:
     """The tables, the embedded builder and the loop that runs them; one per process."""
 
     def __init__(self) -> None:
-        from lark import Tree
-        from lark.parse_tree_builder import ParseTreeBuilder
 
         tables = load_tables(_GRAMMAR.read_text(encoding="utf-8"))
         self.builder = AstBuilder()

@@ -24,15 +24,15 @@ __all__ = ["Report", "load_mesh", "verify"]
 
 def __getattr__(name: str) -> Any:
     if name == "verify":
-        from rmot.sim.verification import verify
+        from rmot.sim.verification import verify  # late: tests replace it (monkeypatch): read at call time
 
         return verify
     if name == "Report":
-        from rmot.sim.report import Report
+        from rmot.sim.report import Report  # late: loads numpy only when this runs
 
         return Report
     if name == "load_mesh":
-        from rmot.sim.meshio import load_mesh
+        from rmot.sim.meshio import load_mesh  # late: loads numpy only when this runs
 
         return load_mesh
     raise AttributeError(f"module 'rmot.sim' has no attribute {name!r}")

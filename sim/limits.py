@@ -63,7 +63,7 @@ def joint_torques(robot: Any, traj: plan_types.Trajectory, payload: float = 0.0,
     """(N, dof) N·m (N for prismatic) by RNEA; the payload is a point mass on the last joint.
     Controller joint values go through robot.to_model (a linear map, Fanuc's J2/J3 coupling)
     when the robot has one; the torques are those of the model's joints."""
-    import pinocchio as pin
+    import pinocchio as pin  # late: pinocchio is heavy or optional, loaded only where used
 
     model = pin.Model(robot.model)  # a copy: the payload must not leak into the shared model
     if payload > 0:

@@ -70,7 +70,7 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
         with open(path, "rb"):  # an unreadable file is said to be unreadable, not "not a valid STL"
             pass
     except OSError as exc:
-        from rmot.lang import check_codes as check_codes
+        from rmot.lang import check_codes as check_codes  # late: optional, tried where used
 
         return _error(mesh, check_codes.UNREADABLE, f"mesh file must be readable (got {exc.strerror or exc} for '{path}')")
     try:
@@ -79,7 +79,7 @@ def load_mesh(mesh: ir.Mesh) -> MeshData | Diagnostic:
         return _error(mesh, exc.code, exc.message)
     extent = float(np.max(np.abs(vertices))) * float(mesh.scale) if vertices.size else 0.0
     if not extent <= _MAX_EXTENT_M:  # also NaN: a scaled mesh of 1e300 m crashed the collision library
-        from rmot.lang import check_codes as check_codes
+        from rmot.lang import check_codes as check_codes  # late: tests replace it (monkeypatch): read at call time
 
         return _error(mesh, check_codes.PHYSICAL_RANGE, f"mesh must lie within {_MAX_EXTENT_M:g} m of its origin once scaled "
                       f"(got a vertex {extent:.3g} m away; check its unit or scale)")
@@ -161,7 +161,7 @@ def _read_cached(path: str, mtime_ns: int, size: int) -> tuple[np.ndarray, np.nd
 
 
 def _read_trimesh(path: str) -> tuple[np.ndarray, np.ndarray]:
-    import trimesh
+    import trimesh  # late: trimesh is heavy or optional, loaded only where used
 
     if os.path.getsize(path) == 0:
         raise _MeshError(codes.MESH_EMPTY, f"mesh file must contain triangles (got an empty file '{os.path.basename(path)}')")

@@ -90,7 +90,7 @@ def _bar(instr: Any) -> tuple[str, str] | None:
 
 
 def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: tuple[float, Any]) -> TaskData:
-    from rmot.sim.limits import joint_torques
+    from rmot.sim.limits import joint_torques  # late: loads subprocess only when this runs
 
     traj = tp.trajectory
     f = _display(robot)
@@ -141,8 +141,8 @@ def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: 
 
 def plot_data(plan: Plan) -> PlotData:
     """Everything the plots draw, computed once (robots from the cell, as verification loads them)."""
-    from rmot.sim.scene import build_scene
-    from rmot.sim.verification import _payload
+    from rmot.sim.scene import build_scene  # late: loads coal only when this runs
+    from rmot.sim.verification import _payload  # late: loads coal only when this runs
 
     scene = build_scene(plan.program.cell, {})
     tasks = []
@@ -155,10 +155,10 @@ def plot_data(plan: Plan) -> PlotData:
 
 
 def _figure(rows: int, cols: int, height_per_row: float = 1.25, width: float = 7.5) -> tuple[Any, Any]:
-    import matplotlib
+    import matplotlib  # late: matplotlib is heavy or optional, loaded only where used
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # late: matplotlib is heavy or optional, loaded only where used
 
     fig, axes = plt.subplots(rows, cols, figsize=(width * cols / max(cols, 1) ** 0.3, 0.9 + height_per_row * rows),
                              squeeze=False, sharex="col")
@@ -292,10 +292,10 @@ def make_figure(data: PlotData, what: str) -> Any:
 
 def figure_bytes(data: PlotData, what: str, fmt: str) -> bytes:
     """One plot kind as PNG or SVG bytes (deterministic)."""
-    import matplotlib
+    import matplotlib  # late: matplotlib is heavy or optional, loaded only where used
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # late: matplotlib is heavy or optional, loaded only where used
 
     if fmt not in ("png", "svg"):
         raise ValueError(f"plot format must be png or svg (got {fmt!r})")

@@ -47,6 +47,9 @@ from typing import Any
 
 from rmot.lang.diagnostics import Diagnostic, Severity, render
 from rmot.lang.record import record
+import re
+import os
+from pathlib import Path
 
 __all__ = ["JSON_SCHEMA", "Report", "format_json", "format_junit", "format_sarif", "format_text",
            "to_json", "validate_json"]
@@ -105,7 +108,7 @@ GUARANTEE = ("collisions are checked along the whole path, not only at the sampl
 def format_text(reports: Sequence[Report]) -> str:
     """Every diagnostic in compiler style, one summary line per program, then what the
     collision check guarantees (when anything was verified)."""
-    from rmot.sim.timing_report import ASSUMPTIONS_LINE
+    from rmot.sim.timing_report import ASSUMPTIONS_LINE  # late: loads numpy only when this runs
 
     blocks = [render(d) for r in reports for d in r.diagnostics]
     blocks += [r.summary() for r in reports]
@@ -250,7 +253,7 @@ def to_json(reports: Sequence[Report]) -> dict[str, Any]:
 
 
 def _assumptions() -> dict[str, str]:
-    from rmot.sim.timing_report import ASSUMPTIONS
+    from rmot.sim.timing_report import ASSUMPTIONS  # late: loads numpy only when this runs
 
     return dict(ASSUMPTIONS)
 
@@ -266,7 +269,6 @@ _TYPES: dict[str, type | tuple[type, ...]] = {"object": dict, "array": list, "st
 def validate_json(doc: Any, schema: dict[str, Any] = JSON_SCHEMA, where: str = "$") -> list[str]:
     """The subset of JSON Schema that JSON_SCHEMA uses: type, const, enum, pattern, required,
     properties, additionalProperties: false, items. Returns the violations (empty = valid)."""
-    import re
 
     errors: list[str] = []
     if "type" in schema:
@@ -302,7 +304,7 @@ def validate_json(doc: Any, schema: dict[str, Any] = JSON_SCHEMA, where: str = "
 def format_junit(reports: Sequence[Report]) -> str:
     """One testcase per program (time = cycle time), one <failure> per error diagnostic;
     warnings go to the testcase's <system-out>."""
-    import xml.etree.ElementTree as ET  # here, not at the top: only JUnit output needs it
+    import xml.etree.ElementTree as ET  # here, not at the top: only JUnit output needs it  # late: loads xml only when this runs
 
     failures = sum(len(r.errors) for r in reports)
     suites = ET.Element("testsuites", name="rmot check", tests=str(len(reports)), failures=str(failures))
@@ -373,8 +375,6 @@ def _sarif_location(d: Diagnostic, program_file: str) -> dict[str, Any]:
 def _uri(path: str) -> str:
     """Code-scanning tools want paths relative to the checkout: relative to the working
     directory when the file is inside it, else an absolute file:// URI."""
-    import os
-    from pathlib import Path
 
     absolute = Path(os.path.abspath(path))
     try:

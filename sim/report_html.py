@@ -25,6 +25,7 @@ from rmot.lang import ir, ir_tree
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.sim.report import GUARANTEE
 from rmot.sim.report_axes import axes_section
+import io
 
 __all__ = ["ProgramResult", "breakdown", "render_report"]
 
@@ -278,7 +279,7 @@ def _placed_table(placed: Sequence[Any]) -> list[str]:
 
 
 def _safe(parts: dict[Any, Callable[[], Any]], key: Any, problems: list[Diagnostic]) -> Any:
-    from rmot.sim.render.codes import REPORT_PART_MISSING as PART_MISSING
+    from rmot.sim.render.codes import REPORT_PART_MISSING as PART_MISSING  # late: loads PIL only when this runs
 
     make = parts.get(key if not isinstance(key, tuple) else key[0])
     if make is None:
@@ -293,14 +294,14 @@ def _safe(parts: dict[Any, Callable[[], Any]], key: Any, problems: list[Diagnost
 
 def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
     """The expensive pieces of a program's section, made on demand (each may fail alone)."""
-    from rmot.sim.free.drawing import free_path_pictures
-    from rmot.sim.parts import placements
-    from rmot.sim.plots import figure_bytes, plot_data
-    from rmot.sim.render.files import write_png  # noqa: F401 - the PNG encoder lives with it
-    from rmot.sim.render.findings import markings
-    from rmot.sim.render.html import render_html
-    from rmot.sim.render.scene import prepare
-    from rmot.sim.render.still import finding_camera, still_image
+    from rmot.sim.free.drawing import free_path_pictures  # late: loads coal only when this runs
+    from rmot.sim.parts import placements  # late: loads coal only when this runs
+    from rmot.sim.plots import figure_bytes, plot_data  # late: tests replace it (monkeypatch): read at call time
+    from rmot.sim.render.files import write_png  # noqa: F401 - the PNG encoder lives with it  # late: loads PIL only when this runs
+    from rmot.sim.render.findings import markings  # late: loads PIL only when this runs
+    from rmot.sim.render.html import render_html  # late: loads PIL only when this runs
+    from rmot.sim.render.scene import prepare  # late: loads PIL only when this runs
+    from rmot.sim.render.still import finding_camera, still_image  # late: loads PIL only when this runs
 
     cache: dict[str, Any] = {}
 
@@ -316,9 +317,8 @@ def _parts(result: ProgramResult) -> dict[str, Callable[..., Any]]:
         return cache["marks"]
 
     def picture(m: Any) -> bytes:
-        import io
 
-        from PIL import Image
+        from PIL import Image  # late: PIL is heavy or optional, loaded only where used
 
         camera = finding_camera(scene(), m, PICTURE)
         image = still_image(scene(), time=m.worst, size=PICTURE, aa=2, marks=(m,), camera=camera)

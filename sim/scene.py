@@ -97,7 +97,7 @@ class Scene:
         the same product either way, the same floats; the first chunk is at least the FK
         kernel's compile threshold, so it takes the same (compiled or interpreted) form as
         one call for all samples would."""
-        from rmot.sim.robots.fastdls import JOINT_FRAMES
+        from rmot.sim.robots.fastdls import JOINT_FRAMES  # late: loads coal only when this runs
 
         entry = self.robots[robot]
         q = np.atleast_2d(np.asarray(q, dtype=np.float64))
@@ -122,7 +122,7 @@ class Scene:
 
 def load_robots(cell: ir.Cell) -> tuple[dict[str, Any], tuple[Diagnostic, ...]]:
     """Load every robot of the cell through the robot library; failures become diagnostics."""
-    from rmot.sim.robots import load_robot
+    from rmot.sim.robots import load_robot  # late: loads coal only when this runs
 
     robots: dict[str, Any] = {}
     diags: list[Diagnostic] = []
@@ -173,7 +173,7 @@ def _always_touching(entry: RobotEntry, bodies: list[Body]) -> frozenset[frozens
     within the limits (as MoveIt's setup assistant disables "always in collision" pairs):
     they overlap by construction (e.g. a forearm capsule reaching into a spherical wrist's
     flange), so checking them would only report the model, never the program."""
-    from rmot.sim.exact import exact_distance  # coal: loaded when a cell is checked
+    from rmot.sim.exact import exact_distance  # coal: loaded when a cell is checked  # late: loads coal only when this runs
 
     robot = entry.robot
     lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]

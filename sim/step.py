@@ -42,7 +42,7 @@ class StepError(Exception):
 
 def read_step(path: str) -> tuple[np.ndarray, np.ndarray]:
     """(vertices (V,3) m, faces (F,3)) of the STEP file's solids, grown by TOLERANCE_MM."""
-    import trimesh
+    import trimesh  # late: trimesh is heavy or optional, loaded only where used
 
     size = os.path.getsize(path)
     if size > MAX_STEP_BYTES:

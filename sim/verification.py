@@ -60,7 +60,7 @@ def verify_with(plan: plan_types.Plan, *, clearance: float | None = None,
     findings.sort(key=_finding_order)
     diagnostics = tuple(plan.diagnostics) + scene.diagnostics + tuple(findings)
     cycle_times = {tp.task.name: float(tp.cycle_time) for tp in plan.tasks}
-    from rmot.sim.timing_report import timing_json
+    from rmot.sim.timing_report import timing_json  # late: loads xml only when this runs
 
     accel = {name: dict(getattr(e.robot, "sources", ())).get("accel", "not stated") for name, e in scene.robots.items()}
     return Report(_program_file(program), cycle_times, diagnostics, tuple(timing_json(plan, accel)))

@@ -19,12 +19,13 @@ from rmot.backends.readers.model import Document, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.input_file import NotRegularFile, read_regular
 from rmot.lang.source import Pos, SourceFile, Span
+from dataclasses import replace
 
 __all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "companions"]
 
 
 def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
-    from rmot.backends.readers.rapid import read_rapid
+    from rmot.backends.readers.rapid import read_rapid  # late: loads numpy only when this runs
 
     m = read_rapid(path, text)
     main = next((r.name for r in m.routines if r.name.lower() == "main"), m.routines[0].name if m.routines else "main")
@@ -35,7 +36,7 @@ def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
 
 
 def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
-    from rmot.backends.readers.krl import read_krl
+    from rmot.backends.readers.krl import read_krl  # late: loads numpy only when this runs
 
     if path.lower().endswith(".dat"):
         raise ImportError_(Diagnostic(codes.NOT_VENDOR_LANGUAGE, Severity.ERROR,
@@ -51,7 +52,7 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
 
 
 def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
-    from rmot.backends.readers.urscript import read_urscript
+    from rmot.backends.readers.urscript import read_urscript  # late: loads numpy only when this runs
 
     m = read_urscript(path, text, _MODEL[0], _LIMITS[0])
     doc = Document("urscript", m.name, m.main, tuple(m.targets.values()), tuple(m.tools.values()), (),
@@ -60,7 +61,7 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 
 
 def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
-    from rmot.backends.readers.fanuc import read_fanuc
+    from rmot.backends.readers.fanuc import read_fanuc  # late: loads numpy only when this runs
 
     m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS)
     _FANUC_INLINED.update(m.inlined)
@@ -71,7 +72,7 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
 
 
 def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
-    from rmot.backends.readers.inform import read_inform
+    from rmot.backends.readers.inform import read_inform  # late: loads numpy only when this runs
 
     m = read_inform(path, text, _FANUC_PROGRAMS)
     _FANUC_INLINED.update(m.inlined)
@@ -82,7 +83,7 @@ def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Do
 
 
 def _val3(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
-    from rmot.backends.readers.val3 import read_val3
+    from rmot.backends.readers.val3 import read_val3  # late: loads numpy only when this runs
 
     folder = os.path.dirname(os.path.abspath(path))
     data = [(p, _load(p)) for p in sorted(os.path.join(folder, f) for f in os.listdir(folder) if f.lower().endswith(".dtx"))]
@@ -222,7 +223,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
 def _without_inlined(docs: list[Document]) -> list[Document]:
     """TP programs every caller inlined (they moved by the caller's loop offsets) are not
     routines of the imported program: their lines are imported at the calls."""
-    from rmot.backends.readers.model import Call, walk
+    from rmot.backends.readers.model import Call, walk  # late: loads numpy only when this runs
 
     while True:  # a program only inlined programs call goes too
         called = {s.name.upper() for d in docs for r in d.routines for s in walk(r.body) if isinstance(s, Call)}
@@ -235,9 +236,8 @@ def _without_inlined(docs: list[Document]) -> list[Document]:
 def _unique_targets(docs: list[Document]) -> list[Document]:
     """Targets of one name in several files: one declaration when equal; otherwise the later
     file's is renamed `FILE_name` (its moves follow)."""
-    from dataclasses import replace
 
-    from rmot.backends.readers.writer import map_leaves
+    from rmot.backends.readers.writer import map_leaves  # late: loads numpy only when this runs
 
     seen: dict[str, Target] = {}
     out = []
@@ -259,9 +259,8 @@ def _unique_targets(docs: list[Document]) -> list[Document]:
 
 def _renamer(renames: dict[str, str]) -> Callable[[Stmt], Stmt]:
     """A function renaming the targets a move names (whole words of its expressions)."""
-    from dataclasses import replace
 
-    from rmot.backends.readers.model import Move
+    from rmot.backends.readers.model import Move  # late: loads numpy only when this runs
 
     def sub(text: str) -> str:
         return re.sub(r"\b(\w+)\b", lambda m: renames.get(m.group(1), m.group(1)), text)

@@ -20,7 +20,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from rmot.backends.inform import rconf
+from rmot.backends.inform_text import rconf
 from rmot.backends.readers.model import Document, Move, Stmt, Target
 from rmot.backends.readers.writer import map_leaves
 from rmot.lang import ir

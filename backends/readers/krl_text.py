@@ -14,7 +14,7 @@ import re
 from collections.abc import Mapping
 from itertools import product
 
-from rmot.backends.krl import status_of
+from rmot.backends.krl_text import status_of
 from rmot.backends.readers.common import number, split_top
 from rmot.backends.readers.model import Cond, Conds, Where
 from rmot.lang import ir

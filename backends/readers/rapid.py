@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 from itertools import product
 
-from rmot.backends.rapid import SPEEDS_MM_S, cfx_of
+from rmot.backends.rapid_text import SPEEDS_MM_S, cfx_of
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
 from rmot.backends.readers.model import (

@@ -12,6 +12,10 @@ import gc
 import importlib
 
 import click
+import errno
+import os
+import sys
+from importlib.metadata import PackageNotFoundError, version
 
 __all__ = ["main", "EXIT_OK", "EXIT_FINDINGS", "EXIT_INPUT"]
 
@@ -68,8 +72,8 @@ class LazyGroup(click.Group):
         except Exception as exc:
             if _closed_output(exc):
                 _end_quietly(ctx)
-            from rmot.compiler.cli.stages import StageError, internal_error
-            from rmot.lang.diagnostics import render
+            from rmot.compiler.cli.stages import StageError, internal_error  # late: optional, tried where used
+            from rmot.lang.diagnostics import render  # late: optional, tried where used
 
             where = f"`rmot {ctx.invoked_subcommand}`" if ctx.invoked_subcommand else "rmot"
             diag = exc.diagnostic if isinstance(exc, StageError) else internal_error(where, exc)
@@ -89,7 +93,6 @@ EXIT_CLOSED_OUTPUT = 128 + 13
 def _closed_output(exc: BaseException) -> bool:
     """True when `exc` (or the error a stage wrapped) is a write to a pipe whose reader has gone
     (`rmot robots list | head -1`): not a bug, the reader had what it wanted."""
-    import errno
 
     while exc is not None:
         if isinstance(exc, OSError) and exc.errno == errno.EPIPE:
@@ -101,8 +104,6 @@ def _closed_output(exc: BaseException) -> bool:
 def _end_quietly(ctx: click.Context) -> None:
     """End as `yes | head -1` ends: no message, the SIGPIPE status; stdout is pointed at the
     null device first so that the interpreter's final flush does not fail on the closed pipe."""
-    import os
-    import sys
 
     try:
         devnull = os.open(os.devnull, os.O_WRONLY)
@@ -122,7 +123,6 @@ def _unavailable(name: str) -> click.Command:
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
 
     try:
         return version("rmot")

@@ -16,6 +16,9 @@ import click
 from rmot.lang.atomic import write_atomic, write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 from rmot.lang.record import record
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.compiler.cli.oserrors import output_is_input
+from rmot.compiler.cli.shard import parse_shard, select_shard
 
 if TYPE_CHECKING:  # the heavy stages load only when a check runs
     from rmot.lang.plan_types import Plan
@@ -50,8 +53,8 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
               clearance: float | None = None, images: str | None = None, use_cache: bool = True,
               dynamics: bool = False) -> CheckOutcome:
     """One program through front end -> planner -> verification (runs in a worker process)."""
-    from rmot.compiler.cli import stages
-    from rmot.sim.report import Report
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
+    from rmot.sim.report import Report  # late: loads numpy only when this runs
 
     # the front end reports a missing file (E501) and a file without a program (E119); a stage
     # failing unexpectedly is E550 in this program's report (compiler/cli/stages.py)
@@ -71,8 +74,8 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
     if images:
         report = _render_images(plan, report, images)
     if dynamics:
-        from rmot.compiler.design.dynamics_text import dynamics_json, dynamics_text
-        from rmot.compiler.design.metrics import program_metrics
+        from rmot.compiler.design.dynamics_text import dynamics_json, dynamics_text  # late: loads coal only when this runs
+        from rmot.compiler.design.metrics import program_metrics  # late: loads coal only when this runs
 
         metrics = program_metrics(plan)
         blocks = dynamics_json(metrics)  # the JSON report's per-task `dynamics` (schema: sim/report.py)
@@ -85,13 +88,12 @@ def check_one(path: str, cell: str | None = None, project_root: str | None = Non
 
 def _render_images(plan: Plan, report: Report, directory: str) -> Report:
     """One PNG per error event (findings.events) with a time; written atomically (temp file + rename)."""
-    from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.sim import codes
-    from rmot.sim.report import Report
+    from rmot.sim import codes  # late: tests replace it (monkeypatch): read at call time
+    from rmot.sim.report import Report  # late: loads numpy only when this runs
 
     try:
-        from rmot.sim.render import render_finding
-        from rmot.sim.render.findings import events
+        from rmot.sim.render import render_finding  # late: optional, tried where used
+        from rmot.sim.render.findings import events  # late: optional, tried where used
     except ImportError as exc:
         note = Diagnostic(codes.RENDER_UNAVAILABLE, Severity.WARNING,
                           f"images were not rendered: the renderer is not available ({exc})", None)
@@ -99,7 +101,7 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
     try:
         os.makedirs(directory, exist_ok=True)
     except OSError as exc:  # a folder that cannot be made is a finding about the option, not a traceback
-        from rmot.lang import check_codes as check_codes
+        from rmot.lang import check_codes as check_codes  # late: optional, tried where used
 
         why = Diagnostic(check_codes.OUTPUT_FAILED, Severity.ERROR,
                          f"images folder '{directory}' must be a folder that can be made (got {exc.strerror or exc})", None)
@@ -122,7 +124,7 @@ def _render_images(plan: Plan, report: Report, directory: str) -> Report:
 
 
 def _format(fmt: str, reports: list[Report]) -> str:
-    from rmot.sim import report as fmt_mod
+    from rmot.sim import report as fmt_mod  # late: loads numpy only when this runs
 
     return {"text": fmt_mod.format_text, "json": fmt_mod.format_json,
             "junit": fmt_mod.format_junit, "sarif": fmt_mod.format_sarif}[fmt](reports)
@@ -147,14 +149,12 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
           dynamics: bool = False) -> None:
     """Parse, plan and verify PROGRAMs; report collisions, limit excesses and cycle times."""
     if output:
-        from rmot.compiler.cli.oserrors import output_is_input
 
         clash = output_is_input("report file", output, (*programs, cell))
         if clash:
             click.echo(clash, err=True)
             click.get_current_context().exit(EXIT_INPUT)
     if shard is not None:
-        from rmot.compiler.cli.shard import parse_shard, select_shard
 
         try:
             programs = tuple(select_shard(programs, parse_shard(shard)))
@@ -172,7 +172,7 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
     args = [((p, cell, project_root, clearance_m, images), options) for p in programs]
     if jobs > 1 and len(programs) > 1:
         # imported here: multiprocessing costs ~20 ms of every check, and only --jobs uses it
-        from concurrent.futures import ProcessPoolExecutor
+        from concurrent.futures import ProcessPoolExecutor  # late: loads subprocess only when this runs
 
         with ProcessPoolExecutor(max_workers=min(jobs, len(programs))) as pool:
             outcomes = list(pool.map(_check_args, args))
@@ -186,7 +186,7 @@ def check(programs: tuple[str, ...], cell: str | None, fmt: str, output: str | N
         try:
             write_text(output, text)
         except OSError as exc:
-            from rmot.compiler.cli.oserrors import output_failed
+            from rmot.compiler.cli.oserrors import output_failed  # late: optional, tried where used
 
             click.echo(output_failed("report file", output, exc), err=True)
             click.get_current_context().exit(EXIT_INPUT)

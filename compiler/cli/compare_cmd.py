@@ -21,6 +21,10 @@ from typing import Any
 import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+from rmot.compiler.cli.design_errors import fail, fail_code
+from rmot.lang.diagnostics import render_all, Diagnostic, Severity, render
+from rmot.compiler.design import codes
+from dataclasses import replace
 
 __all__ = ["compare", "format_json", "format_text"]
 
@@ -112,12 +116,9 @@ def format_text(path: str, slot: str, results: list[Any]) -> str:
 def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str | None, fmt: str, do_place: bool,
             region: str | None, project_root: str | None) -> None:
     """Run one program on several arms and compare them."""
-    from rmot.compiler.cli.design_errors import fail, fail_code
-    from rmot.compiler.frontend import load_program
-    from rmot.lang.diagnostics import render_all
-    from rmot.compiler.design import codes
-    from rmot.compiler.design.compare import run_arm, slot_of
-    from rmot.compiler.design.study import OptionError, parse_region
+    from rmot.compiler.frontend import load_program  # late: tests replace it (monkeypatch): read at call time
+    from rmot.compiler.design.compare import run_arm, slot_of  # late: loads coal only when this runs
+    from rmot.compiler.design.study import OptionError, parse_region  # late: loads PIL only when this runs
 
     loaded = load_program(program, cell=cell, project_root=project_root, require_program=True)
     if loaded.has_errors or loaded.program is None:
@@ -137,7 +138,6 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
         except OptionError as exc:
             fail(exc.diagnostic())
         if not do_place:
-            from rmot.lang.diagnostics import Diagnostic, Severity, render
 
             click.echo(render(Diagnostic(codes.OPTION_IGNORED, Severity.WARNING,
                                          "--region is ignored without --place (the arms stand at the cell's pose)", None)), err=True)
@@ -150,7 +150,6 @@ def compare(program: str, robots: tuple[str, ...], cell: str | None, slot: str |
             prog, note = _placed(prog, key or prog.cell.robot(name).source.load_key, name, region or "", program)
         results.append(run_arm(prog, key, name, program))
         if note:
-            from dataclasses import replace
 
             results[-1] = replace(results[-1], note=note)
     text = (format_json if fmt == "json" else format_text)(program, name, results)
@@ -162,10 +161,8 @@ def _known_arms(keys: tuple[str, ...]) -> None:
     """Before any arm is planned: a --robot that names no library robot and no URDF file ends the
     command with E804 (as `rmot reach` and `rmot place` do); a file that does not load stays a
     per-arm finding (E320) in the table."""
-    from rmot.compiler.cli.design_errors import fail_code
-    from rmot.sim.robots import RobotError, load_robot
-    from rmot.sim.robots.codes import UNKNOWN_ROBOT
-    from rmot.compiler.design import codes
+    from rmot.sim.robots import RobotError, load_robot  # late: loads coal only when this runs
+    from rmot.sim.robots.codes import UNKNOWN_ROBOT  # late: loads coal only when this runs
 
     for key in keys:
         try:
@@ -178,17 +175,17 @@ def _known_arms(keys: tuple[str, ...]) -> None:
 
 def _placed(program: Any, key: str, slot: str, region: str, path: str) -> tuple[Any, str]:
     """The program with arm `key` placed by `rmot place`'s search (unchanged if none verifies)."""
-    from rmot.sim.robots import RobotError, load_robot
-    from rmot.compiler.design.compare import stand_in
-    from rmot.compiler.design.place import place, rebase
-    from rmot.compiler.design.study import parse_region
+    from rmot.sim.robots import RobotError, load_robot  # late: loads coal only when this runs
+    from rmot.compiler.design.compare import stand_in  # late: loads coal only when this runs
+    from rmot.compiler.design.place import place, rebase  # late: loads coal only when this runs
+    from rmot.compiler.design.study import parse_region  # late: loads PIL only when this runs
 
     bounds = parse_region(region)  # parsed once already in compare()
     try:
         robot = load_robot(key)
     except RobotError:
         return program, ""
-    from rmot.compiler.design.place_track import TrackMover, track_of
+    from rmot.compiler.design.place_track import TrackMover, track_of  # late: loads coal only when this runs
 
     prog = stand_in(program, slot, key, robot)
     track = track_of(prog.cell, slot)  # a robot on a track: its track is placed, the arm rides it

@@ -28,6 +28,8 @@ import click
 from rmot.lang.vendors import targets as registered_targets
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
 from rmot.lang.record import record
+from rmot.lang.diagnostics import Diagnostic, Severity, render
+from rmot.compiler.cli.output_tree import write_vendor_dirs
 
 if TYPE_CHECKING:
     from rmot.lang import ir
@@ -64,7 +66,7 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
                     source_map: bool = True, write_frames: bool = False, use_cache: bool = True,
                     unroll: bool = False) -> CompileOutcome:
     """Run the pipeline in memory (compiler/cli/stages.py); nothing is written here."""
-    from rmot.compiler.cli import stages
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
 
     # the front end reports a missing file (E501) and a file without a program (E119)
     try:
@@ -104,8 +106,7 @@ def compile_program(path: str, targets: tuple[str, ...], *, cell: str | None = N
             continue
         clash = _case_clash(result.files)
         if clash:
-            from rmot.lang import check_codes as codes
-            from rmot.lang.diagnostics import Diagnostic, Severity
+            from rmot.lang import check_codes as codes  # late: tests replace it (monkeypatch): read at call time
 
             msg = (f"{target}: output files must have names that differ also without regard to case (got "
                    f"{' and '.join(repr(n) for n in clash)}, one file on Windows and macOS); rename a task")
@@ -121,18 +122,17 @@ def controller_refusals(target: str, cell: ir.Cell) -> tuple[Diagnostic, ...]:
     as they are: a cell model or URDF arm that declares no controller, or declares another
     maker's (sim/robots/controller.py). Library arms carry their vendor's conventions
     (another brand's arm is W415, backends/base.py); data formats (csv, json) need none."""
-    from rmot.backends import codes as backend_codes
-    from rmot.backends.controller_data import TARGET_BRANDS
-    from rmot.lang import ir
-    from rmot.lang.diagnostics import Diagnostic, Severity
+    from rmot.backends import codes as backend_codes  # late: tests replace it (monkeypatch): read at call time
+    from rmot.backends.controller_data import TARGET_BRANDS  # late: loads numpy only when this runs
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
     brand = TARGET_BRANDS.get(target)
     own_models = [r for r in cell.robots if r.source.kind is not ir.RobotSourceKind.LIBRARY]
     if brand is None or not own_models:
         return ()
     # the robot package loads pinocchio: only for a cell that has its own arms
-    from rmot.sim.robots import RobotError, load_robot
-    from rmot.sim.robots.controller import ANY, MAKERS
+    from rmot.sim.robots import RobotError, load_robot  # late: loads coal only when this runs
+    from rmot.sim.robots.controller import ANY, MAKERS  # late: loads coal only when this runs
     out = []
     for robot in own_models:
         try:
@@ -159,13 +159,13 @@ def controller_refusals(target: str, cell: ir.Cell) -> tuple[Diagnostic, ...]:
 
 def target_word(brand: str) -> str:
     """The cell's word for a maker (the inverse of controller.MAKERS)."""
-    from rmot.sim.robots.controller import MAKERS
+    from rmot.sim.robots.controller import MAKERS  # late: loads coal only when this runs
 
     return next(word for word, name in MAKERS.items() if name == brand)
 
 
 def _target_of(brand: str) -> str:
-    from rmot.backends.controller_data import TARGET_BRANDS
+    from rmot.backends.controller_data import TARGET_BRANDS  # late: loads numpy only when this runs
 
     return next((t for t, (b, _) in TARGET_BRANDS.items() if b == brand), "its own controller")
 
@@ -183,7 +183,6 @@ def _case_clash(files: dict[str, str]) -> tuple[str, str] | None:
 def write_all(outdir: str, files: dict[str, str]) -> list[str]:
     """Write every file, grouped by vendor (the first path component); each vendor directory
     is replaced whole and atomically (compiler/cli/output_tree.py). Returns the final paths."""
-    from rmot.compiler.cli.output_tree import write_vendor_dirs
 
     vendors: dict[str, dict[str, str]] = {}
     for rel, text in files.items():
@@ -211,7 +210,6 @@ def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: s
              no_source_map: bool, project_root: str | None, write_frames: bool, no_cache: bool,
              unroll: bool = False) -> None:
     """Verify PROGRAM, then write it for each --target controller."""
-    from rmot.lang.diagnostics import render
 
     outcome = compile_program(program, targets, cell=cell, project_root=project_root,
                               allow_findings=allow_findings, source_map=not no_source_map,
@@ -225,7 +223,7 @@ def compile_(program: str, cell: str | None, targets: tuple[str, ...], outdir: s
     try:
         written = write_all(outdir, outcome.files)
     except OSError as exc:
-        from rmot.compiler.cli.oserrors import foreign_output_dir, output_failed
+        from rmot.compiler.cli.oserrors import foreign_output_dir, output_failed  # late: optional, tried where used
 
         click.echo(foreign_output_dir(exc) or output_failed("output directory", outdir, exc), err=True)
         ctx.exit(EXIT_INPUT)

@@ -10,26 +10,27 @@ from typing import Any, NoReturn
 import click
 
 from rmot.compiler.cli import EXIT_INPUT
+from rmot.lang.diagnostics import render, Diagnostic, Severity
+from rmot.compiler.cli.oserrors import output_failed
+import errno
+import os
 
 __all__ = ["fail", "fail_code", "fail_output", "require_output_dir"]
 
 
 def fail(diagnostic: Any) -> NoReturn:
-    from rmot.lang.diagnostics import render
 
     click.echo(render(diagnostic), err=True)
     sys.exit(EXIT_INPUT)
 
 
 def fail_code(code: Any, message: str) -> NoReturn:
-    from rmot.lang.diagnostics import Diagnostic, Severity
 
     fail(Diagnostic(code, Severity.ERROR, message, None))
 
 
 def fail_output(what: str, path: str, exc: OSError) -> NoReturn:
     """An -o file that cannot be written: the project's E520 (rmot.lang.check_codes.OUTPUT_FAILED)."""
-    from rmot.compiler.cli.oserrors import output_failed
 
     click.echo(output_failed(what, path, exc), err=True)
     sys.exit(EXIT_INPUT)
@@ -38,8 +39,6 @@ def fail_output(what: str, path: str, exc: OSError) -> NoReturn:
 def require_output_dir(what: str, path: str) -> None:
     """Before minutes of search: an -o file whose folder does not exist ends the command (E520) now,
     not after the work (the atomic write would fail the same way then)."""
-    import errno
-    import os
 
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):

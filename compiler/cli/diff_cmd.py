@@ -18,6 +18,8 @@ import tempfile
 import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+from rmot.lang.diagnostics import Diagnostic, Severity, render
+from rmot.lang.atomic import write_text
 
 __all__ = ["diff"]
 
@@ -26,9 +28,8 @@ _MAIN_EXT = {"rapid": ".mod", "krl": ".src", "urscript": ".script", "fanuc": ".l
 
 
 def _fail(message: str, path: str) -> None:
-    from rmot.backends.readers import codes, span_of
-    from rmot.backends.readers.model import Where
-    from rmot.lang.diagnostics import Diagnostic, Severity, render
+    from rmot.backends.readers import codes, span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.model import Where  # late: loads numpy only when this runs
 
     click.echo(render(Diagnostic(codes.DIFF_VENDORS_DIFFER, Severity.ERROR, message, span_of(Where(path, 1)))), err=True)
     sys.exit(EXIT_INPUT)
@@ -36,9 +37,7 @@ def _fail(message: str, path: str) -> None:
 
 def _compiled(source: str, vendor: str, cell: str | None, workdir: str) -> tuple[list[str], dict[str, str]]:
     """Compile `source` for `vendor` into `workdir`: (files to read, temp path -> shown name)."""
-    from rmot.lang.atomic import write_text
-    from rmot.compiler.cli.compile_cmd import compile_program
-    from rmot.lang.diagnostics import render
+    from rmot.compiler.cli.compile_cmd import compile_program  # late: loads coal only when this runs
 
     outcome = compile_program(source, (vendor,), cell=cell, allow_findings=True)
     if not outcome.files:
@@ -65,9 +64,8 @@ def _compiled(source: str, vendor: str, cell: str | None, workdir: str) -> tuple
 @click.option("--cell", "cell", type=click.Path(dir_okay=False, exists=True), default=None,
               help="The cell of a .rmot side (else its own `use cell` or the default cell).")
 def diff(a: str, b: str, cell: str | None) -> None:
-    from rmot.backends.readers import ImportError_, companions, read_files, vendor_of
-    from rmot.backends.readers.diff import diff_documents
-    from rmot.lang.diagnostics import render
+    from rmot.backends.readers import ImportError_, companions, read_files, vendor_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.diff import diff_documents  # late: loads numpy only when this runs
 
     va, vb = vendor_of(a), vendor_of(b)
     if va is None and vb is None:

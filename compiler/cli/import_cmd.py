@@ -18,6 +18,8 @@ from typing import TYPE_CHECKING
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+from rmot.lang.diagnostics import render_all, render
+from rmot.lang.atomic import write_text
 
 if TYPE_CHECKING:
     import numpy as np
@@ -38,8 +40,8 @@ def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ..
     --robot), None where it does not load: a reader then keeps the joint shares it cannot derive."""
     if not model:
         return None
-    from rmot.sim.robots.errors import RobotError
-    from rmot.sim.robots.loader import load_robot
+    from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
+    from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
 
     try:
         robot = load_robot(model)
@@ -53,9 +55,9 @@ def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -
     `doc` as it is for other vendors or where the arm does not load."""
     if doc.vendor != "inform" or not model:
         return doc
-    from rmot.backends.readers.inform_conf import resolve_rconf
-    from rmot.sim.robots.errors import RobotError
-    from rmot.sim.robots.loader import load_robot
+    from rmot.backends.readers.inform_conf import resolve_rconf  # late: loads numpy only when this runs
+    from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
+    from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
 
     try:
         robot = load_robot(model)
@@ -72,10 +74,9 @@ def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -
 
 def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object] | str:
     """(SignalMap, robot name, ir.Cell) of a cell file, or the error text."""
-    from rmot.backends.readers.writer import SignalMap
-    from rmot.lang import ir
-    from rmot.compiler.frontend import load_program
-    from rmot.lang.diagnostics import render_all
+    from rmot.backends.readers.writer import SignalMap  # late: loads numpy only when this runs
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
+    from rmot.compiler.frontend import load_program  # late: tests replace it (monkeypatch): read at call time
 
     result = load_program(cell_path)
     if result.cell is None or any(d.is_error for d in result.diagnostics):
@@ -99,15 +100,13 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, objec
 @click.option("--cell", "cell", type=click.Path(dir_okay=False, exists=True), default=None,
               help="Run the imported program in this cell (else a stub cell is written beside OUT).")
 def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None) -> None:
-    from rmot.backends.readers import ImportError_, read_files, span_of
-    from rmot.backends.readers.counts import motion_io_counts
-    from rmot.backends.readers.payload import cell_parts, match_payloads
-    from rmot.backends.readers.writer import (
+    from rmot.backends.readers import ImportError_, read_files, span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.counts import motion_io_counts  # late: loads numpy only when this runs
+    from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
+    from rmot.backends.readers.writer import (  # late: loads numpy only when this runs
         SignalMap, cell_stub, match_tools, program_text, rename_warnings, resolve_signals, stub_signals,
     )
-    from rmot.lang import ir
-    from rmot.lang.atomic import write_text
-    from rmot.lang.diagnostics import render
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
     found = _cell_signals(cell, robot) if cell is not None else None
     if isinstance(found, str):

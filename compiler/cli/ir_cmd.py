@@ -12,6 +12,7 @@ import sys
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+from rmot.lang.diagnostics import render
 
 __all__ = ["ir"]
 
@@ -25,9 +26,8 @@ __all__ = ["ir"]
 @click.option("--planned", is_flag=True,
               help="Print the IR the backends get: each `move free` as joint moves through its via points.")
 def ir(file: str, cell: str | None, as_json: bool, project_root: str | None, planned: bool) -> None:
-    from rmot.compiler.frontend import load_program
-    from rmot.compiler.ir_dump import dump_cell, dump_program, to_json
-    from rmot.lang.diagnostics import render
+    from rmot.compiler.frontend import load_program  # late: tests replace it (monkeypatch): read at call time
+    from rmot.compiler.ir_dump import dump_cell, dump_program, to_json  # late: loads numpy only when this runs
 
     result = load_program(file, cell=cell, project_root=project_root)
     for d in result.diagnostics:
@@ -37,7 +37,7 @@ def ir(file: str, cell: str | None, as_json: bool, project_root: str | None, pla
     if result.program is not None:
         program = result.program
         if planned:  # the plan's program: `move free` lowered at plan time (rmot.sim.free)
-            from rmot.compiler.cli import stages
+            from rmot.compiler.cli import stages  # late: loads coal only when this runs
 
             plan = stages.plan(program)
             for d in plan.diagnostics:

@@ -33,6 +33,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
+from rmot.lang.diagnostics import Diagnostic
+from rmot.lang.cache_seal import read_sealed
 
 if TYPE_CHECKING:
     from rmot.lang import ir
@@ -52,7 +54,7 @@ _COMPUTED: dict[int, tuple[ir.Program, str, FrontendResult, float]] = {}
 def load(path: str, *, cell: str | None = None, project_root: str | None = None,
          require_program: bool = True) -> FrontendResult:
     """frontend.load_program(path, ...), or the same result rebuilt from the caches."""
-    from rmot.compiler import frontend
+    from rmot.compiler import frontend  # late: tests replace it (monkeypatch): read at call time
 
     _READ.clear()
     _COMPUTED.clear()
@@ -84,7 +86,7 @@ def planned(program: ir.Program) -> Plan | None:
 def record(program: ir.Program, plan: Plan) -> None:
     """Remember the load() that computed `program` and the key of its `plan` (never raises for
     an unwritable folder or a value the codec does not encode: the next run loads afresh)."""
-    from rmot.compiler import plan_cache
+    from rmot.compiler import plan_cache  # late: tests replace it (monkeypatch): read at call time
 
     pending = _COMPUTED.pop(id(program), None)
     plan_key = plan_cache.key_of(plan)
@@ -102,7 +104,7 @@ def record(program: ir.Program, plan: Plan) -> None:
 
 def load_key(path: str, cell: str | None, project_root: str | None, require_program: bool) -> str:
     """The hex SHA-256 of one invocation of the front end (module doc)."""
-    from rmot.compiler.plan_cache import source_digest
+    from rmot.compiler.plan_cache import source_digest  # late: loads numpy only when this runs
 
     parts = [FORMAT, source_digest(), os.getcwd(), path, os.path.abspath(path),
              os.path.realpath(path), "" if cell is None else cell,
@@ -116,7 +118,7 @@ def load_key(path: str, cell: str | None, project_root: str | None, require_prog
 
 
 def _entry_path(key: str) -> Path:
-    from rmot.compiler.plan_cache import cache_dir
+    from rmot.compiler.plan_cache import cache_dir  # late: loads numpy only when this runs
 
     return cache_dir() / "load" / key[:2] / f"{key}.json"
 
@@ -132,9 +134,9 @@ def _stamp(path: str) -> list[Any]:
 
 def _write(entry: Path, key: str, plan_key: str, result: FrontendResult, plan: Plan,
            started: float) -> None:
-    from rmot.compiler.cli.verify_cache import scene_files
-    from rmot.compiler.plan_cache import _named_files, settled
-    from rmot.compiler.plan_codec import encode
+    from rmot.compiler.cli.verify_cache import scene_files  # late: loads coal only when this runs
+    from rmot.compiler.plan_cache import _named_files, settled  # late: loads numpy only when this runs
+    from rmot.compiler.plan_codec import encode  # late: loads numpy only when this runs
 
     if not result.sources:
         raise ValueError("the front end did not say which files it read")
@@ -148,18 +150,16 @@ def _write(entry: Path, key: str, plan_key: str, result: FrontendResult, plan: P
     data = json.dumps({"format": FORMAT, "key": key, "plan": plan_key,
                        "files": [_stamp(p) for p in files], "sources": list(result.sources),
                        "doc": doc}, separators=(",", ":"), allow_nan=False).encode("utf-8")
-    from rmot.compiler.plan_cache import write_entry
+    from rmot.compiler.plan_cache import write_entry  # late: loads numpy only when this runs
 
     write_entry(entry, key, data)
 
 
 def _read(entry: Path, key: str) -> tuple[FrontendResult, Plan] | None:
-    from rmot.compiler import plan_cache
-    from rmot.compiler.frontend import FrontendResult
-    from rmot.compiler.plan_codec import CodecError, decode
-    from rmot.lang.diagnostics import Diagnostic
+    from rmot.compiler import plan_cache  # late: tests replace it (monkeypatch): read at call time
+    from rmot.compiler.frontend import FrontendResult  # late: loads coal only when this runs
+    from rmot.compiler.plan_codec import CodecError, decode  # late: loads numpy only when this runs
 
-    from rmot.lang.cache_seal import read_sealed
 
     data = read_sealed(entry, key, MAX_BYTES)
     if data is None:  # missing, foreign, tampered with, not a bounded regular file: a miss

@@ -20,7 +20,7 @@ __all__ = ["lsp_cmd"]
 @click.option("--log", "log_file", type=click.Path(dir_okay=False), default=None, help="Write the server's log to FILE.")
 def lsp_cmd(stdio: bool, no_plan: bool, log_file: str | None) -> None:
     """Run the language server on stdin/stdout: diagnostics, hover, definition, completion."""
-    from rmot.compiler.lsp.server import build_server
+    from rmot.compiler.lsp.server import build_server  # late: loads coal only when this runs
 
     logging.basicConfig(filename=log_file, level=logging.INFO if log_file else logging.WARNING)
     build_server(planning=not no_plan).start_io()

@@ -30,6 +30,9 @@ import click
 
 from rmot.compiler.cli import EXIT_INPUT
 from rmot.lang.input_file import read_regular
+from rmot.compiler.cli import codes
+from rmot.lang.diagnostics import Diagnostic, Severity, render
+from rmot.lang.atomic import write_text
 
 __all__ = ["MergeError", "merge_documents", "merge_reports"]
 
@@ -46,7 +49,6 @@ class MergeError(Exception):
 
 
 def _codes() -> Any:
-    from rmot.compiler.cli import codes
 
     return codes
 
@@ -96,7 +98,7 @@ def parse_document(path: str, data: bytes) -> tuple[str, Any]:
         _check_sarif(path, doc["runs"][0])
         return "sarif", doc
     if isinstance(doc, dict) and isinstance(doc.get("programs"), list) and "version" in doc:
-        from rmot.sim.report import JSON_SCHEMA, JSON_VERSION, validate_json
+        from rmot.sim.report import JSON_SCHEMA, JSON_VERSION, validate_json  # late: loads numpy only when this runs
 
         # a report of this version is checked against its schema; another version's (an older
         # rmot's) only when mixed with others (REPORTS_MISMATCH), but its version is a number
@@ -251,7 +253,6 @@ def merge_reports(paths: list[str]) -> tuple[str, str]:
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None, help="Write the merged report to FILE.")
 def merge_reports_cmd(reports: tuple[str, ...], output: str | None) -> None:
     """Merge the JUnit, SARIF or JSON reports of `rmot check --shard K/N` runs into one."""
-    from rmot.lang.diagnostics import Diagnostic, Severity, render
 
     try:
         _, text = merge_reports(list(reports))
@@ -266,7 +267,6 @@ def merge_reports_cmd(reports: tuple[str, ...], output: str | None) -> None:
 
 def _write_atomic(path: str, text: str) -> None:
     """The one atomic writer (lang/atomic.py); a failure is a MergeError (REPORT_UNWRITABLE)."""
-    from rmot.lang.atomic import write_text
 
     try:
         write_text(path, text)

@@ -3,14 +3,16 @@ a name longer than NAME_MAX, a folder that cannot be made become `rmot: error[E5
 naming the path, never a traceback."""
 
 from __future__ import annotations
+from rmot.lang.diagnostics import Diagnostic, Severity, render
+import os
+from rmot.compiler.cli.output_tree import MARKER, ForeignOutputDir
 
 __all__ = ["foreign_output_dir", "output_failed", "output_is_input"]
 
 
 def output_failed(what: str, path: str, exc: OSError) -> str:
     """The rendered E520 diagnostic for an output `path` that could not be written."""
-    from rmot.lang import check_codes as codes
-    from rmot.lang.diagnostics import Diagnostic, Severity, render
+    from rmot.lang import check_codes as codes  # late: tests replace it (monkeypatch): read at call time
 
     reason = exc.strerror or exc.__class__.__name__
     where = exc.filename if isinstance(exc.filename, str) else path
@@ -21,10 +23,8 @@ def output_failed(what: str, path: str, exc: OSError) -> str:
 def output_is_input(what: str, output: str, inputs: tuple[str | None, ...]) -> str | None:
     """The rendered E564 diagnostic when `output` is one of `inputs` (same resolved path, or
     the same file through a hard link), else None: checked before any work, nothing written."""
-    import os
 
-    from rmot.lang import check_codes as codes
-    from rmot.lang.diagnostics import Diagnostic, Severity, render
+    from rmot.lang import check_codes as codes  # late: tests replace it (monkeypatch): read at call time
 
     target = os.path.realpath(output)
     for source in inputs:
@@ -45,9 +45,7 @@ def output_is_input(what: str, output: str, inputs: tuple[str | None, ...]) -> s
 def foreign_output_dir(exc: OSError) -> str | None:
     """The rendered E565 diagnostic when `exc` is the writer's refusal to replace a vendor
     folder rmot did not create (compiler/cli/output_tree.py), else None."""
-    from rmot.lang import check_codes as codes
-    from rmot.compiler.cli.output_tree import MARKER, ForeignOutputDir
-    from rmot.lang.diagnostics import Diagnostic, Severity, render
+    from rmot.lang import check_codes as codes  # late: tests replace it (monkeypatch): read at call time
 
     if not isinstance(exc, ForeignOutputDir):
         return None

@@ -18,12 +18,16 @@ from typing import Any
 import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
+import math
+from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
+from rmot.lang.diagnostics import render_all
+from rmot.compiler.design import codes
+from rmot.compiler.cli.oserrors import output_is_input
 
 __all__ = ["place"]
 
 
 def _line(c, objective: str) -> str:  # type: ignore[no-untyped-def]
-    import math
 
     margin = f"{math.degrees(c.margin):.1f} deg" if math.isfinite(c.margin) else "-"
     return f"{c.describe()}: cycle {c.cycle_time:.3f} s, worst joint margin {margin}, worst manipulability {c.manipulability:.4f}"
@@ -32,8 +36,8 @@ def _line(c, objective: str) -> str:  # type: ignore[no-untyped-def]
 def _placed_declaration(loaded: list[Any], name: str) -> tuple[Any, Any]:
     """(the declaration whose `at` is rewritten, the place.Mover or None for the robot's own base):
     a robot on a track has its track placed, the arm riding on the carriage."""
-    from rmot.compiler.design.place_track import TrackMover, track_of
-    from rmot.sim.robots import load_robot
+    from rmot.compiler.design.place_track import TrackMover, track_of  # late: loads coal only when this runs
+    from rmot.sim.robots import load_robot  # late: loads coal only when this runs
 
     instance = loaded[0].cell.robot(name)
     track = track_of(loaded[0].cell, name)
@@ -57,14 +61,11 @@ def _placed_declaration(loaded: list[Any], name: str) -> tuple[Any, Any]:
 def place(programs: tuple[str, ...], slot: str | None, region: str, output: str, objective: str, cell: str | None,
           samples: int, project_root: str | None) -> None:
     """Find the best base pose for a robot in a region; write the cell with it."""
-    from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
-    from rmot.compiler.frontend import load_program
-    from rmot.lang.diagnostics import render_all
-    from rmot.compiler.design import codes
-    from rmot.compiler.design.cell_edit import with_robot_at
-    from rmot.compiler.design.place import place as search
-    from rmot.compiler.design.study import OptionError, parse_region
-    from rmot.sim.render.files import write_text
+    from rmot.compiler.frontend import load_program  # late: tests replace it (monkeypatch): read at call time
+    from rmot.compiler.design.cell_edit import with_robot_at  # late: loads numpy only when this runs
+    from rmot.compiler.design.place import place as search  # late: loads coal only when this runs
+    from rmot.compiler.design.study import OptionError, parse_region  # late: loads PIL only when this runs
+    from rmot.sim.render.files import write_text  # late: loads PIL only when this runs
 
     try:
         bounds = parse_region(region)
@@ -78,7 +79,6 @@ def place(programs: tuple[str, ...], slot: str | None, region: str, output: str,
             click.echo(render_all(result.diagnostics), err=True)
             sys.exit(EXIT_INPUT)
         loaded.append(result.program)
-        from rmot.compiler.cli.oserrors import output_is_input
 
         clash = output_is_input("cell file", output, (path, cell, *result.sources))
         if clash:

@@ -15,6 +15,8 @@ import click
 
 from rmot.lang.atomic import write_text
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT, EXIT_OK
+from rmot.lang.diagnostics import render
+from rmot.compiler.cli.oserrors import output_is_input
 
 __all__ = ["plan", "parse_step", "trajectory_csv"]
 
@@ -48,7 +50,7 @@ def trajectory_csv(plan: object) -> str:
 
 def _load(file: str, cell: str | None, project_root: str | None):  # type: ignore[no-untyped-def]
     """(program or None, diagnostics) from the front end."""
-    from rmot.compiler.cli import stages
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
 
     result = stages.load(file, cell=cell, project_root=project_root)
     return result.program, tuple(result.diagnostics)
@@ -63,10 +65,8 @@ def _load(file: str, cell: str | None, project_root: str | None):  # type: ignor
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
 def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_root: str | None, no_cache: bool) -> None:
     """Plan FILE: joint trajectories, cycle time per task, planning diagnostics."""
-    from rmot.lang.diagnostics import render
 
     if csv_out:
-        from rmot.compiler.cli.oserrors import output_is_input
 
         clash = output_is_input("trajectory file", csv_out, (file, cell))
         if clash:
@@ -78,7 +78,7 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
         click.echo(render(d), err=True)
     if program is None or any(d.is_error for d in diagnostics):
         raise SystemExit(EXIT_INPUT)
-    from rmot.compiler.cli import stages
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
 
     result = stages.plan(program, step=step_s, use_cache=not no_cache)
     for d in result.diagnostics:
@@ -89,7 +89,7 @@ def plan(file: str, cell: str | None, csv_out: str | None, step: str, project_ro
         try:
             write_text(csv_out, trajectory_csv(result))
         except OSError as exc:
-            from rmot.compiler.cli.oserrors import output_failed
+            from rmot.compiler.cli.oserrors import output_failed  # late: optional, tried where used
 
             click.echo(output_failed("trajectory file", csv_out, exc), err=True)
             raise SystemExit(EXIT_INPUT) from None

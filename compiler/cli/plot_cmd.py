@@ -18,6 +18,8 @@ from typing import Any
 import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
+from rmot.lang.diagnostics import render_all, Diagnostic, Severity
+from rmot.lang.atomic import write_bytes
 
 __all__ = ["plot", "write_or_fail"]
 
@@ -31,16 +33,13 @@ def _output(ctx: click.Context, param: click.Parameter, value: str) -> str:
 
 
 def fail(*diagnostics: Any) -> None:
-    from rmot.lang.diagnostics import render_all
 
     click.echo(render_all(list(diagnostics)), err=True)
     sys.exit(EXIT_INPUT)
 
 
 def write_or_fail(path: str, data: bytes) -> None:
-    from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.sim.render import codes as picture_codes
-    from rmot.lang.atomic import write_bytes
+    from rmot.sim.render import codes as picture_codes  # late: loads PIL only when this runs
 
     try:
         write_bytes(path, data)
@@ -58,10 +57,10 @@ def write_or_fail(path: str, data: bytes) -> None:
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
 def plot(program: str, output: str, what: str, cell: str | None, project_root: str | None, no_cache: bool) -> None:
     """Plot a program's joints, speeds, torques, TCP speed or timeline to PNG or SVG."""
-    from rmot.compiler.cli.render_cmd import load_plan
+    from rmot.compiler.cli.render_cmd import load_plan  # late: loads PIL only when this runs
 
     plan = load_plan(program, cell, project_root, use_cache=not no_cache, purpose="plot")
-    from rmot.sim.plots import figure_bytes, plot_data
+    from rmot.sim.plots import figure_bytes, plot_data  # late: tests replace it (monkeypatch): read at call time
 
     fmt = os.path.splitext(output)[1].lower().lstrip(".")
     write_or_fail(output, figure_bytes(plot_data(plan), what, fmt))

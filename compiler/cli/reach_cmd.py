@@ -19,6 +19,9 @@ from typing import Any
 import click
 
 from rmot.compiler.cli import EXIT_INPUT
+from rmot.lang.diagnostics import render_all
+from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
+from rmot.compiler.design import codes
 
 __all__ = ["reach"]
 
@@ -29,8 +32,7 @@ CLOUD_SAMPLES = 200_000  # ... for the 3-D cloud
 
 def load_cell(path: str, project_root: str | None) -> Any:
     """The cell of a cell file or a program file; front-end errors end the command (exit 2)."""
-    from rmot.compiler.frontend import load_program
-    from rmot.lang.diagnostics import render_all
+    from rmot.compiler.frontend import load_program  # late: tests replace it (monkeypatch): read at call time
 
     loaded = load_program(path, project_root=project_root)
     if loaded.diagnostics:
@@ -43,10 +45,10 @@ def load_cell(path: str, project_root: str | None) -> Any:
 def _map(study: Any, points: Any, step: float, rot: Any, label: str, sweep: Any = None) -> Any:
     """IK at every point for a fixed orientation; forward sampling for any orientation; for a
     robot on a track, both over the track's travel (compiler/design/reach_track.py)."""
-    import numpy as np
+    import numpy as np  # late: loads numpy only when this runs
 
-    from rmot.compiler.design.reach import reach_map, sampled_map
-    from rmot.compiler.design.reach_track import swept_map
+    from rmot.compiler.design.reach import reach_map, sampled_map  # late: loads numpy only when this runs
+    from rmot.compiler.design.reach_track import swept_map  # late: loads numpy only when this runs
 
     if sweep is not None:
         planar = bool(np.ptp(points, axis=0).min() < step / 2)
@@ -72,13 +74,11 @@ def _map(study: Any, points: Any, step: float, rot: Any, label: str, sweep: Any 
 def reach(cell: str | None, robot_name: str | None, output: str, tool: str | None, orientation: str,
           z_text: str | None, step_text: str | None, project_root: str | None) -> None:
     """Draw the reachable workspace of a robot, coloured by distance to singularity."""
-    from rmot.compiler.cli.design_errors import fail, fail_code, fail_output, require_output_dir
-    from rmot.compiler.design import codes
-    import numpy as np
+    import numpy as np  # late: loads numpy only when this runs
 
-    from rmot.compiler.design.reach import reach_bound
-    from rmot.compiler.design.reach_track import track_sweep
-    from rmot.compiler.design.study import OptionError, fixture_meshes, parse_angles, rotation_rpy, study_for
+    from rmot.compiler.design.reach import reach_bound  # late: loads numpy only when this runs
+    from rmot.compiler.design.reach_track import track_sweep  # late: loads numpy only when this runs
+    from rmot.compiler.design.study import OptionError, fixture_meshes, parse_angles, rotation_rpy, study_for  # late: loads PIL only when this runs
 
     ext = os.path.splitext(output)[1].lower()
     if ext not in FORMATS:
@@ -99,7 +99,6 @@ def reach(cell: str | None, robot_name: str | None, output: str, tool: str | Non
         fail(exc.diagnostic())
     fixtures, diags = fixture_meshes(study.cell)
     if diags:
-        from rmot.lang.diagnostics import render_all
 
         click.echo(render_all(diags), err=True)
     label = study.instance.name if study.instance else study.robot.name
@@ -123,9 +122,8 @@ MAX_GRID_POINTS = 2_000_000
 
 def _length(option: str, text: str | None) -> float | None:
     """A length option ('750mm') in metres, or None when not given; raises OptionError (E802)."""
-    from rmot.compiler.cli.check_cmd import parse_length
-    from rmot.compiler.design import codes
-    from rmot.compiler.design.study import OptionError
+    from rmot.compiler.cli.check_cmd import parse_length  # late: loads coal only when this runs
+    from rmot.compiler.design.study import OptionError  # late: loads PIL only when this runs
 
     if text is None:
         return None
@@ -137,8 +135,7 @@ def _length(option: str, text: str | None) -> float | None:
 
 def _check_work(ext: str, step: float, bound: float, step_text: str) -> None:
     """A --step so small that the grid exceeds MAX_GRID_POINTS is refused (E808) before any work."""
-    from rmot.compiler.design import codes
-    from rmot.compiler.design.study import OptionError
+    from rmot.compiler.design.study import OptionError  # late: loads PIL only when this runs
 
     per_axis = 2 * bound / step + 1
     points = per_axis ** 3 if ext == ".html" else 2 * per_axis ** 2
@@ -160,22 +157,22 @@ def _axes_notes(cell: Any, sweep: Any) -> list[str]:
 
 def _draw(study: Any, ext: str, output: str, step: float | None, bound: float, rot: Any, z: float | None,
           label: str, caption: list[str], fixtures: list[Any], sweep: Any = None) -> None:
-    from rmot.compiler.design.reach import grid_for, slice_grid
-    from rmot.compiler.design.reach_track import swept_grid, swept_slice
+    from rmot.compiler.design.reach import grid_for, slice_grid  # late: loads numpy only when this runs
+    from rmot.compiler.design.reach_track import swept_grid, swept_slice  # late: loads numpy only when this runs
 
     if ext == ".html":
         grid_step = step or bound / (12 if study.robot.has_closed_form or rot is None else 8)
         grid = grid_for(study.base, bound, grid_step) if sweep is None else swept_grid(sweep, bound, grid_step)
         m = _map(study, grid, grid_step, rot, label, sweep)
-        from rmot.compiler.design.reach_draw import reach_html
-        from rmot.sim.render.files import write_text
+        from rmot.compiler.design.reach_draw import reach_html  # late: loads numpy only when this runs
+        from rmot.sim.render.files import write_text  # late: loads PIL only when this runs
 
         caption.append(f"grid step {grid_step * 1000:.0f} mm; {int(m.reached.sum())} of {len(m.points)} points reached")
         write_text(output, reach_html(m, fixtures, f"rmot reach: {label}", caption))
     else:
-        from rmot.compiler.design.figure import to_png, to_svg
-        from rmot.compiler.design.reach_draw import Panel, panels_figure
-        from rmot.sim.render.files import write_png, write_text
+        from rmot.compiler.design.figure import to_png, to_svg  # late: loads numpy only when this runs
+        from rmot.compiler.design.reach_draw import Panel, panels_figure  # late: loads numpy only when this runs
+        from rmot.sim.render.files import write_png, write_text  # late: loads PIL only when this runs
 
         grid_step = step or bound / (40 if study.robot.has_closed_form or rot is None else 20)
         level_z = float(study.base[2, 3]) if z is None else z

@@ -19,6 +19,7 @@ from typing import Any, NoReturn
 import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
+from rmot.lang.diagnostics import render_all, Diagnostic, Severity
 
 __all__ = ["render"]
 
@@ -42,7 +43,7 @@ def _check_camera(ctx: click.Context, param: click.Parameter, value: str | None)
     """Syntax now; the values merge with the default framing once the scene is known."""
     if value is None or value.strip().lower() in ("front", "side", "top", "iso"):
         return value
-    from rmot.sim.render.camera import CameraSpecError, camera_fields
+    from rmot.sim.render.camera import CameraSpecError, camera_fields  # late: loads PIL only when this runs
 
     try:
         camera_fields(value)
@@ -55,8 +56,8 @@ def _camera(text: str | None, scene: Any, size: tuple[int, int]) -> Any:
     """The --camera settings over the default three-quarter view of the scene."""
     if text is None:
         return None
-    from rmot.sim.render.camera import CameraSpecError, parse_camera
-    from rmot.sim.render.still import PRESETS, default_camera, preset_camera
+    from rmot.sim.render.camera import CameraSpecError, parse_camera  # late: loads PIL only when this runs
+    from rmot.sim.render.still import PRESETS, default_camera, preset_camera  # late: loads PIL only when this runs
 
     if text.strip().lower() in PRESETS:  # a named view: front, side, top, iso
         return preset_camera(scene, text.strip().lower(), size)
@@ -100,8 +101,8 @@ def render(program: str, cell: str | None, output: str, at: float, size: tuple[i
     except _InputError as exc:
         _fail(exc.diagnostic)
     except OSError as exc:
-        from rmot.lang.diagnostics import Diagnostic, Severity
-        from rmot.sim.render import codes
+        from rmot.lang.diagnostics import Diagnostic, Severity  # late: optional, tried where used
+        from rmot.sim.render import codes  # late: optional, tried where used
 
         _fail(Diagnostic(codes.OUTPUT_FAILED, Severity.ERROR,
                          f"output file must be writable (got '{output}': {exc.strerror or exc})", None))
@@ -114,7 +115,6 @@ class _InputError(Exception):
 
 
 def _fail(*diagnostics: Any) -> NoReturn:
-    from rmot.lang.diagnostics import render_all
 
     click.echo(render_all(list(diagnostics)), err=True)
     sys.exit(EXIT_INPUT)
@@ -122,7 +122,6 @@ def _fail(*diagnostics: Any) -> NoReturn:
 
 def _report(diagnostics: Any, stop_on_error: bool = True) -> None:
     """Print the diagnostics; exit 2 if any is an error (unless told to go on)."""
-    from rmot.lang.diagnostics import render_all
 
     diagnostics = tuple(diagnostics or ())
     if diagnostics:
@@ -136,9 +135,8 @@ def load_plan(program: str, cell: str | None, project_root: str | None, use_cach
     """Front end then planner (shared by render and plot). Front-end errors end the command
     (exit 2; a missing file is E501, a file without a program E119); planning errors are
     printed and the plan is still returned, so the caller draws it and exits 1."""
-    from rmot.compiler.cli import stages
-    from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.sim.render import codes
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
+    from rmot.sim.render import codes  # late: loads PIL only when this runs
 
     loaded = stages.load(program, cell=cell, project_root=project_root, use_cache=use_cache)
     _report(loaded.diagnostics)
@@ -152,10 +150,9 @@ def load_plan(program: str, cell: str | None, project_root: str | None, use_cach
 
 def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | None, aa: int | None,
            camera_text: str | None, fps: int) -> None:
-    from rmot.lang.diagnostics import Diagnostic, Severity
-    from rmot.sim.render import codes
-    from rmot.sim.render.files import write_png, write_text
-    from rmot.sim.render.scene import prepare
+    from rmot.sim.render import codes  # late: loads PIL only when this runs
+    from rmot.sim.render.files import write_png, write_text  # late: loads PIL only when this runs
+    from rmot.sim.render.scene import prepare  # late: loads PIL only when this runs
 
     duration = float(plan.cycle_time)
     if ext in (".png", ".svg") and not 0.0 <= at <= duration + 1e-9:
@@ -167,22 +164,22 @@ def _write(plan: Any, output: str, ext: str, at: float, size: tuple[int, int] | 
     camera = _camera(camera_text, scene, size)
     marks = _markings(plan, scene)  # findings are marked in every kind of picture
     if ext == ".png":
-        from rmot.sim.render.still import still_image
+        from rmot.sim.render.still import still_image  # late: loads PIL only when this runs
 
         write_png(output, still_image(scene, time=at, size=size, aa=aa or 2, camera=camera, marks=marks))
     elif ext in (".gif", ".mp4"):
-        from rmot.sim.render.animate import AnimationError, write_animation
+        from rmot.sim.render.animate import AnimationError, write_animation  # late: loads PIL only when this runs
 
         try:
             write_animation(scene, output, fps=fps, size=size, aa=aa or 1, camera=camera, marks=marks)
         except AnimationError as exc:
             raise _InputError(Diagnostic(codes.FORMAT_UNAVAILABLE, Severity.ERROR, str(exc), None)) from None
     elif ext == ".svg":
-        from rmot.sim.render.svg import render_svg
+        from rmot.sim.render.svg import render_svg  # late: loads PIL only when this runs
 
         write_text(output, render_svg(scene, time=at, size=size, camera=camera, marks=marks))
     else:
-        from rmot.sim.render.html import render_html
+        from rmot.sim.render.html import render_html  # late: loads PIL only when this runs
 
         write_text(output, render_html(scene, fps=fps, camera=camera, marks=marks))
 
@@ -191,8 +188,8 @@ def _markings(plan: Any, scene: Any) -> Any:
     """The scene's markings of the plan's findings, verified through the one pipeline (and its
     cache: compiler/cli/verify_cache.py). A verification that cannot run leaves the pictures
     unmarked, as sim.render.findings.verified_markings does: `rmot check` reports it."""
-    from rmot.compiler.cli import stages
-    from rmot.sim.render.findings import markings
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
+    from rmot.sim.render.findings import markings  # late: loads PIL only when this runs
 
     try:
         found = stages.verify(plan).diagnostics

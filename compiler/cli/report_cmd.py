@@ -16,6 +16,7 @@ import sys
 import click
 
 from rmot.compiler.cli import EXIT_FINDINGS, EXIT_INPUT
+from rmot.lang.diagnostics import Diagnostic, render_all
 
 __all__ = ["report"]
 
@@ -34,10 +35,9 @@ def _output(ctx: click.Context, param: click.Parameter, value: str) -> str:
 @click.option("--no-cache", is_flag=True, help="Plan from scratch; neither read nor write the plan cache.")
 def report(programs: tuple[str, ...], output: str, cell: str | None, project_root: str | None, no_cache: bool) -> None:
     """Verify PROGRAMs and write one HTML page: findings with pictures, plots, 3D view, data."""
-    from rmot.compiler.cli.plot_cmd import write_or_fail
-    from rmot.compiler.cli import stages
-    from rmot.lang.diagnostics import Diagnostic, render_all
-    from rmot.sim.report_html import ProgramResult, render_report
+    from rmot.compiler.cli.plot_cmd import write_or_fail  # late: loads PIL only when this runs
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
+    from rmot.sim.report_html import ProgramResult, render_report  # late: loads PIL only when this runs
 
     results, input_error = [], False
     for path in programs:
@@ -55,7 +55,7 @@ def report(programs: tuple[str, ...], output: str, cell: str | None, project_roo
             input_error = True
             results.append(ProgramResult(path, None, front + (exc.diagnostic,)))
             continue
-        from rmot.compiler.design.machine_data import checklists
+        from rmot.compiler.design.machine_data import checklists  # late: loads numpy only when this runs
 
         results.append(ProgramResult(path, plan, front + tuple(checked.diagnostics), dict(checked.cycle_times),
                                      machine_data=checklists(plan)))

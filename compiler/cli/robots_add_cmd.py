@@ -10,6 +10,8 @@ from __future__ import annotations
 import sys
 
 import click
+from rmot.lang.atomic import write_text
+from rmot.lang.diagnostics import render
 
 __all__ = ["add_cmd"]
 
@@ -25,9 +27,7 @@ __all__ = ["add_cmd"]
 def add_cmd(table: str, output: str | None, name: str | None, vendor: str | None, source: str,
             base_link: str | None, tip: str | None) -> None:
     """Turn a DH table (YAML/JSON) or a URDF (lang/REFERENCE.md) into a checked library definition."""
-    from rmot.lang.atomic import write_text
-    from rmot.sim.robots.add_robot import add_from_urdf
-    from rmot.lang.diagnostics import render
+    from rmot.sim.robots.add_robot import add_from_urdf  # late: loads coal only when this runs
 
     if table.lower().endswith(".urdf"):
         if not name or not vendor:
@@ -38,7 +38,7 @@ def add_cmd(table: str, output: str | None, name: str | None, vendor: str | None
 
 
 def _from_table(table: str):  # type: ignore[no-untyped-def]
-    from rmot.sim.robots.add_robot import add_from_dh
+    from rmot.sim.robots.add_robot import add_from_dh  # late: loads coal only when this runs
 
     try:
         with open(table, encoding="utf-8") as f:

@@ -20,7 +20,7 @@ _ARGS = {"ignore_unknown_options": True}  # so "-90" is a value, not an option
 
 
 def _load(name: str):  # type: ignore[no-untyped-def]
-    from rmot.sim.robots import RobotError, load_robot
+    from rmot.sim.robots import RobotError, load_robot  # late: loads coal only when this runs
 
     try:
         return load_robot(name)
@@ -77,7 +77,7 @@ def robots() -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 def list_cmd(as_json: bool) -> None:
     """List the library robots."""
-    from rmot.sim.robots import list_robots, load_robot
+    from rmot.sim.robots import list_robots, load_robot  # late: loads coal only when this runs
 
     rows = [load_robot(n) for n in list_robots()]
     if as_json:
@@ -171,7 +171,7 @@ def _dynamics(robot) -> dict[str, list[float] | None]:  # type: ignore[no-untype
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 def fk_cmd(name: str, joints: tuple[str, ...], as_json: bool) -> None:
     """Flange pose for joint values J1..Jn (degrees; mm for prismatic joints)."""
-    from rmot.lang import ir
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
     r = _load(name)
     values = _numbers(joints, "joint value")
@@ -198,7 +198,7 @@ def fk_cmd(name: str, joints: tuple[str, ...], as_json: bool) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 def ik_cmd(name: str, pose: tuple[str, ...], show_all: bool, as_json: bool) -> None:
     """Every IK solution of the flange pose X Y Z (mm) RX RY RZ (deg)."""
-    from rmot.lang import ir
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
     r = _load(name)
     values = _numbers(pose, "pose value")

@@ -15,6 +15,9 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, TypeVar
+from rmot.compiler.cli import codes
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.backends import BACKENDS
 
 if TYPE_CHECKING:
     from rmot.compiler.frontend import FrontendResult
@@ -37,8 +40,6 @@ class StageError(Exception):
 
 def internal_error(stage: str, exc: BaseException) -> Diagnostic:
     """E550 for `exc` raised inside `stage` ("the planner", "backend rapid", "rmot plot")."""
-    from rmot.compiler.cli import codes
-    from rmot.lang.diagnostics import Diagnostic, Severity
 
     message = f"internal error in {stage} ({type(exc).__name__}: {exc}); please report it"
     return Diagnostic(codes.INTERNAL_ERROR, Severity.ERROR, message, None)
@@ -58,11 +59,11 @@ def load(path: str, *, cell: str | None = None, project_root: str | None = None,
     `use_cache`, a program already planned is taken from the caches when no file it read has
     changed (compiler/cli/load_cache.py)."""
     if use_cache:
-        from rmot.compiler.cli import load_cache
+        from rmot.compiler.cli import load_cache  # late: loads coal only when this runs
 
         return run("the front end", load_cache.load, path, cell=cell, project_root=project_root,
                    require_program=require_program)
-    from rmot.compiler import frontend
+    from rmot.compiler import frontend  # late: tests replace it (monkeypatch): read at call time
 
     return run("the front end", frontend.load_program, path, cell=cell, project_root=project_root,
                require_program=require_program)
@@ -70,7 +71,7 @@ def load(path: str, *, cell: str | None = None, project_root: str | None = None,
 
 def plan(program: Any, *, use_cache: bool = True, step: float | None = None) -> Plan:
     """The planner, through the plan cache."""
-    from rmot.compiler.cli import load_cache
+    from rmot.compiler.cli import load_cache  # late: loads coal only when this runs
 
     if use_cache and step is None:
         known = load_cache.planned(program)
@@ -89,14 +90,13 @@ def _plan_free_moves(program: Any, kwargs: dict[str, Any]) -> Plan:
     """The plan; a program with `move free` is planned with its via points found first
     (rmot.sim.free: the search needs the verifier's collision model, so the CLI joins them),
     and the searches' findings and notes join the plan's diagnostics."""
-    import dataclasses
 
-    from rmot.compiler import plan_cache
-    from rmot.sim.free.lower import has_free_moves, lower_free_moves
+    from rmot.compiler import plan_cache  # late: tests replace it (monkeypatch): read at call time
+    from rmot.sim.free.lower import has_free_moves, lower_free_moves  # late: loads coal only when this runs
 
     if not has_free_moves(program):
         return plan_cache.cached_plan(program, **kwargs)
-    from rmot.compiler.cli.free_cache import FreePathCache
+    from rmot.compiler.cli.free_cache import FreePathCache  # late: loads numpy only when this runs
 
     store = FreePathCache() if kwargs["use_cache"] else None
     lowered = lower_free_moves(program, lambda p: plan_cache.cached_plan(p, **kwargs), store)
@@ -116,8 +116,8 @@ def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = T
     (compiler/cli/verify_cache.py: used only for a plan that came through the plan cache).
     A corner finding that concerns only some controllers (W341) is kept when `targets` names
     one of them (sim/corners.py: `rmot check` has no target and reports the zone sphere)."""
-    from rmot.compiler.cli.verify_cache import cached_verify
-    from rmot.sim.corner_vendors import for_targets
+    from rmot.compiler.cli.verify_cache import cached_verify  # late: loads coal only when this runs
+    from rmot.sim.corner_vendors import for_targets  # late: loads numpy only when this runs
 
     report: Report = run("the verification", cached_verify, planned, clearance=clearance,
                          use_cache=use_cache)
@@ -126,7 +126,6 @@ def verify(planned: Plan, *, clearance: float | None = None, use_cache: bool = T
 
 def emit(target: str, planned: Plan, *, source_map: bool = True, **options: Any) -> Any:
     """One backend's EmitResult (its module is imported on first use)."""
-    from rmot.backends import BACKENDS
 
     return run(f"backend {target}",
                lambda: BACKENDS[target](**options).emit(planned, source_map=source_map))

@@ -44,6 +44,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from rmot.lang.input_file import MAX_STAMPED_BYTES, read_regular
+from rmot.lang.cache_seal import read_sealed
+from rmot.lang.diagnostics import Diagnostic
 
 if TYPE_CHECKING:
     from rmot.lang import ir
@@ -61,7 +63,7 @@ _LIBRARIES = ("numpy", "pinocchio", "coal", "numba")
 def cached_verify(plan: Plan, *, clearance: float | None = None, use_cache: bool = True) -> Report:
     """sim.verify(plan, clearance=clearance), read from the cache when this plan (by content)
     was verified with the same options before."""
-    from rmot.compiler import plan_cache
+    from rmot.compiler import plan_cache  # late: tests replace it (monkeypatch): read at call time
 
     plan_key = plan_cache.key_of(plan) if use_cache else None
     if plan_key is None:
@@ -86,7 +88,7 @@ def cached_verify(plan: Plan, *, clearance: float | None = None, use_cache: bool
 
 
 def _verify(plan: Plan, clearance: float | None) -> Report:
-    from rmot.sim.verification import verify
+    from rmot.sim.verification import verify  # late: tests replace it (monkeypatch): read at call time
 
     return verify(plan, clearance=clearance)
 
@@ -101,7 +103,7 @@ def verify_key(plan_key: str, clearance: float | None) -> str:
 
 
 def entry_path(key: str) -> Path:
-    from rmot.compiler.plan_cache import cache_dir
+    from rmot.compiler.plan_cache import cache_dir  # late: loads numpy only when this runs
 
     return cache_dir() / "verify" / key[:2] / f"{key}.json"
 
@@ -124,7 +126,7 @@ def _libraries() -> str:
 def scene_files(plan: Plan) -> list[str]:
     """Absolute paths of the mesh files the verification's scene reads: every ir.Mesh of the
     cell (fixtures, tools, parts) and every mesh solid of its robots (a URDF's meshes)."""
-    from rmot.lang import ir
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
     found: set[str] = set()
     stack: list[Any] = [plan.program.cell]
@@ -144,8 +146,8 @@ def scene_files(plan: Plan) -> list[str]:
 
 
 def _robot_meshes(cell: ir.Cell) -> list[str]:
-    from rmot.lang import ir
-    from rmot.sim.robots import load_robot
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
+    from rmot.sim.robots import load_robot  # late: loads coal only when this runs
 
     out = []
     for inst in cell.robots:
@@ -166,8 +168,8 @@ def _digest(path: str) -> str | None:
 
 # ---------------------------------------------------------------------------- entries
 def _write(path: Path, key: str, plan: Plan, report: Report, started: float) -> None:
-    from rmot.compiler.plan_cache import settled
-    from rmot.compiler.plan_codec import encode
+    from rmot.compiler.plan_cache import settled  # late: loads numpy only when this runs
+    from rmot.compiler.plan_codec import encode  # late: loads numpy only when this runs
 
     n = len(plan.diagnostics)
     if tuple(report.diagnostics[:n]) != tuple(plan.diagnostics):
@@ -182,7 +184,7 @@ def _write(path: Path, key: str, plan: Plan, report: Report, started: float) -> 
     files = [[p, _digest(p)] for p in paths]
     data = json.dumps({"format": FORMAT, "key": key, "files": files, "doc": doc},
                       separators=(",", ":"), allow_nan=False).encode("utf-8")
-    from rmot.compiler.plan_cache import write_entry
+    from rmot.compiler.plan_cache import write_entry  # late: loads numpy only when this runs
 
     write_entry(path, key, data)
 
@@ -190,9 +192,8 @@ def _write(path: Path, key: str, plan: Plan, report: Report, started: float) -> 
 def _read(path: Path, key: str, plan: Plan) -> Report | None:
     """The Report stored under `path` for `plan`, or None (missing, stale or damaged: a damaged
     or foreign entry is removed; a stale one is overwritten by the caller)."""
-    from rmot.compiler.plan_codec import CodecError, decode
+    from rmot.compiler.plan_codec import CodecError, decode  # late: loads numpy only when this runs
 
-    from rmot.lang.cache_seal import read_sealed
 
     data = read_sealed(path, key, MAX_ENTRY_BYTES)
     if data is None:  # missing, foreign, tampered with, not a bounded regular file: a miss
@@ -218,8 +219,7 @@ def _read(path: Path, key: str, plan: Plan) -> Report | None:
 
 def _report(value: Any, plan: Plan) -> Report:
     """The Report of a decoded entry; TypeError when it is not the shape _write stores."""
-    from rmot.lang.diagnostics import Diagnostic
-    from rmot.sim.report import Report
+    from rmot.sim.report import Report  # late: loads numpy only when this runs
 
     program_file, cycle_times, diagnostics, tasks = value
     if not (isinstance(program_file, str) and isinstance(cycle_times, dict)

@@ -21,6 +21,7 @@ from rmot.compiler.design.metrics import TaskMetrics, program_metrics, substitut
 from rmot.compiler.design.place import rebase
 from rmot.sim.robots import load_robot
 from rmot.sim.report import Report
+import os
 
 __all__ = ["ArmResult", "compare_arms", "mounting_z", "run_arm", "stand_in"]
 
@@ -92,9 +93,9 @@ def _lift(z: float) -> np.ndarray:
 
 def run_arm(program: ir.Program, key: str | None, slot: str, path: str) -> ArmResult:
     """Plan and verify `program` with arm `key` in `slot` (None: the cell's own robot)."""
-    from rmot.compiler.plan import plan_program
-    from rmot.sim.robots import RobotError, load_robot
-    from rmot.sim import codes, verify
+    from rmot.compiler.plan import plan_program  # late: tests replace it (monkeypatch): read at call time
+    from rmot.sim.robots import RobotError, load_robot  # late: loads subprocess only when this runs
+    from rmot.sim import codes, verify  # late: tests replace it (monkeypatch): read at call time
 
     model = ""
     if key is not None:
@@ -103,7 +104,6 @@ def run_arm(program: ir.Program, key: str | None, slot: str, path: str) -> ArmRe
         except RobotError as exc:
             diag = Diagnostic(codes.ROBOT_UNAVAILABLE, Severity.ERROR, f"robot '{key}' must load ({exc.message})", None)
             return ArmResult(key, "", Report(path, {}, (diag,)), None)
-        import os
 
         ref = os.path.abspath(key) if key.lower().endswith(".urdf") else key
         program = stand_in(program, slot, ref, robot)
@@ -115,7 +115,7 @@ def run_arm(program: ir.Program, key: str | None, slot: str, path: str) -> ArmRe
     task = next((t.name for t in program.tasks if t.robot == slot), None)
     m = metrics.get(task) if task else None
     if not model:
-        from rmot.sim.robots import load_robot as _load
+        from rmot.sim.robots import load_robot as _load  # late: loads subprocess only when this runs
 
         model = _load(program.cell.robot(slot).source.load_key).model_name
     return ArmResult(key or program.cell.robot(slot).source.ref, model, report, m)

@@ -47,7 +47,7 @@ class Figure:
 
 
 def _font(size: int):  # type: ignore[no-untyped-def]
-    from PIL import ImageFont
+    from PIL import ImageFont  # late: PIL is heavy or optional, loaded only where used
 
     try:
         return ImageFont.load_default(size=size)  # Pillow's bundled font: the same on every machine
@@ -57,7 +57,7 @@ def _font(size: int):  # type: ignore[no-untyped-def]
 
 def to_png(fig: Figure) -> np.ndarray:
     """(H, W, 3) uint8."""
-    from PIL import Image, ImageDraw
+    from PIL import Image, ImageDraw  # late: PIL is heavy or optional, loaded only where used
 
     image = Image.new("RGB", (fig.width, fig.height), (255, 255, 255))
     draw = ImageDraw.Draw(image)

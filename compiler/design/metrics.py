@@ -20,6 +20,7 @@ import numpy as np
 from rmot.lang import ir, plan_types
 from rmot.lang.record import record
 from rmot.sim.report import Report
+from dataclasses import replace
 
 __all__ = ["JointDynamics", "TaskMetrics", "dynamics", "task_metrics", "program_metrics", "substitute_robot"]
 
@@ -103,7 +104,7 @@ def dynamics(robot: Any, tp: plan_types.TaskPlan, payload: float, payload_at: np
     """Per joint peak / RMS torque and peak power over every trajectory of the task."""
     if not getattr(robot, "has_inertia", False):
         return None, "no inertia data for this robot model: torques not computed"
-    from rmot.sim.limits import joint_torques
+    from rmot.sim.limits import joint_torques  # late: loads subprocess only when this runs
 
     effort = np.asarray(robot.model.effortLimit, dtype=float)[: robot.dof]
     peak = np.zeros(robot.dof)
@@ -136,8 +137,8 @@ def task_metrics(robot: Any, tp: plan_types.TaskPlan, payload: float = 0.0, payl
 
 def program_metrics(plan: plan_types.Plan, robots: dict[str, Any] | None = None) -> dict[str, TaskMetrics]:
     """task name -> TaskMetrics, the payload taken as verification takes it."""
-    from rmot.sim.scene import build_scene
-    from rmot.sim.verification import _payload, _tools_used
+    from rmot.sim.scene import build_scene  # late: loads coal only when this runs
+    from rmot.sim.verification import _payload, _tools_used  # late: loads coal only when this runs
 
     scene = build_scene(plan.program.cell, _tools_used(plan.program), robots)
     out = {}
@@ -152,7 +153,6 @@ def program_metrics(plan: plan_types.Plan, robots: dict[str, Any] | None = None)
 def substitute_robot(program: ir.Program, slot: str, key: str, dof: int) -> ir.Program:
     """The program with the cell's robot `slot` replaced by the robot `key` (library name or
     absolute URDF path) at the same base pose; targets stay where they are in the base frame."""
-    from dataclasses import replace
 
     kind = ir.RobotSourceKind.URDF if key.lower().endswith(".urdf") else ir.RobotSourceKind.LIBRARY
     robots = tuple(replace(r, source=ir.RobotSource(kind, key), dof=dof) if r.name == slot else r

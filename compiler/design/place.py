@@ -43,6 +43,7 @@ import numpy as np
 
 from rmot.lang import ir, ir_tree
 from rmot.lang.ir_tree import children, rebuilt
+import time
 
 __all__ = ["Candidate", "Mover", "Placement", "halton", "place", "rebase", "world_targets"]
 
@@ -264,9 +265,9 @@ def _base_from(region: dict[str, tuple[float, float]], u: np.ndarray, old: np.nd
 
 
 def _evaluate(programs: list[ir.Program], slot: str, base: np.ndarray, mover: Mover | None = None) -> Candidate:
-    from rmot.compiler.plan import plan_program
-    from rmot.sim import verify
-    from rmot.compiler.design.metrics import program_metrics
+    from rmot.compiler.plan import plan_program  # late: tests replace it (monkeypatch): read at call time
+    from rmot.sim import verify  # late: loads subprocess only when this runs
+    from rmot.compiler.design.metrics import program_metrics  # late: loads coal only when this runs
 
     cycle, margin, manip, first = 0.0, math.inf, math.inf, None
     for program in programs:
@@ -286,9 +287,8 @@ def place(programs: list[ir.Program], slot: str, region: dict[str, tuple[float, 
           refine_rounds: int = REFINE_ROUNDS, robot: Any = None, mover: Mover | None = None) -> Placement:
     """The best base pose in `region` (see the module docstring); `mover`: what is placed (default
     the robot's base)."""
-    import time
 
-    from rmot.sim.robots import load_robot
+    from rmot.sim.robots import load_robot  # late: loads coal only when this runs
 
     if objective not in ("cycle", "margin"):
         raise ValueError(f"objective must be 'cycle' or 'margin' (got {objective!r})")

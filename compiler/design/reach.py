@@ -96,7 +96,7 @@ def reach_bound(robot: Any, tcp: np.ndarray | None = None) -> float:
 
 
 def _last_joint_pose(robot: Any, q: np.ndarray) -> np.ndarray:
-    import pinocchio as pin
+    import pinocchio as pin  # late: pinocchio is heavy or optional, loaded only where used
 
     data = robot.model.createData()
     q = np.clip(q, robot.joint_limits[:, 0], robot.joint_limits[:, 1])

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from rmot.compiler.design.reach import ReachMap, reach_map, sampled_map
+from rmot.compiler.design.reach import reach_bound
 
 __all__ = ["TrackSweep", "swept_grid", "swept_map", "swept_slice", "track_sweep"]
 
@@ -132,7 +133,6 @@ def swept_map(study: Any, sweep: TrackSweep, points: np.ndarray, step: float, ro
 
 
 def study_bound(study: Any) -> float:
-    from rmot.compiler.design.reach import reach_bound
 
     return reach_bound(study.robot, study.tcp)
 

@@ -18,6 +18,7 @@ from rmot.lang import ir
 from rmot.sim.robots.codes import UNKNOWN_ROBOT
 from rmot.compiler.design import codes
 from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.compiler.design.reach_draw import FixtureMesh
 
 __all__ = ["OptionError", "Study", "fixture_meshes", "parse_angles", "parse_region", "rotation_rpy", "study_for"]
 
@@ -121,7 +122,7 @@ def robot_error_code(exc: Any) -> Any:
 def study_for(cell: ir.Cell | None, robot_name: str | None, tool: str | None) -> Study:
     """The robot of `cell` named robot_name (default: the cell's only robot), or, without a
     cell, the library robot / URDF file robot_name at the origin. Raises OptionError."""
-    from rmot.sim.robots import RobotError, load_robot
+    from rmot.sim.robots import RobotError, load_robot  # late: loads subprocess only when this runs
 
     if cell is None:
         if not robot_name:
@@ -161,9 +162,8 @@ def fixture_meshes(cell: ir.Cell | None) -> tuple[list[Any], tuple[Any, ...]]:
     diagnostics of fixtures that did not load."""
     if cell is None:
         return [], ()
-    from rmot.compiler.design.reach_draw import FixtureMesh
-    from rmot.sim.render.tessellate import tessellate
-    from rmot.sim.scene import build_scene
+    from rmot.sim.render.tessellate import tessellate  # late: loads PIL only when this runs
+    from rmot.sim.scene import build_scene  # late: loads subprocess only when this runs
 
     scene = build_scene(cell, {}, {})
     out = []

@@ -70,7 +70,7 @@ class Analysis:
 
 def analyze(path: str, text: str, version: int | None = None) -> Analysis:
     """The front end's result for `text` as the content of `path` (see the module docstring)."""
-    from rmot.compiler.frontend import run_passes
+    from rmot.compiler.frontend import run_passes  # late: loads coal only when this runs
 
     path = os.path.abspath(path)
     state = run_passes(path, text)
@@ -82,13 +82,13 @@ def analyze(path: str, text: str, version: int | None = None) -> Analysis:
 
 
 def uri_of(path: str) -> str:
-    from pygls.uris import from_fs_path
+    from pygls.uris import from_fs_path  # late: pygls is heavy or optional, loaded only where used
 
     return from_fs_path(os.path.abspath(path)) or path
 
 
 def path_of(uri: str) -> str:
-    from pygls.uris import to_fs_path
+    from pygls.uris import to_fs_path  # late: pygls is heavy or optional, loaded only where used
 
     return os.path.abspath(to_fs_path(uri) or uri)
 

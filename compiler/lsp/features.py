@@ -24,6 +24,7 @@ from rmot.compiler.lsp.planning import MovePlan, PlanResult
 from rmot.lang import ast
 from rmot.lang.source import Span
 from rmot.lang.units import UNIT_NAMES, UNIT_TABLE
+from rmot.lang.lexer import TokenKinds
 
 __all__ = ["completion", "definition", "document_symbols", "hover", "inlay_hints", "references",
            "statement_keywords"]
@@ -216,8 +217,7 @@ def statement_keywords() -> tuple[str, ...]:
     """The keywords a statement may start with, read from the grammar's LALR tables: the
     keyword terminals the parser accepts at the start of a file (every statement may stand
     there; where it may not is the front end's E1xx, not the grammar's)."""
-    from rmot.lang._tables import load_tables
-    from rmot.lang.lexer import TokenKinds
+    from rmot.lang._tables import load_tables  # late: loads lark only when this runs
 
     tables = load_tables()
     accepted = tables.states[tables.start]

@@ -49,8 +49,8 @@ class PlanResult:
 
 def plan_document(path: str, text: str) -> PlanResult:
     """Front end -> plan -> verify for `text` as `path` (runs in the worker process)."""
-    from rmot.compiler.cli import stages
-    from rmot.compiler.lsp.analysis import analyze
+    from rmot.compiler.cli import stages  # late: loads coal only when this runs
+    from rmot.compiler.lsp.analysis import analyze  # late: loads coal only when this runs
 
     analysis = analyze(path, text)
     if analysis.program is None:
@@ -75,7 +75,7 @@ def plan_document(path: str, text: str) -> PlanResult:
 
 def _robot_data(program: ir.Program, robot: str) -> tuple[tuple[str, ...], tuple[tuple[float, float], ...]]:
     """The robot's joint types ('R'/'P') and joint ranges (as the planner loads the robot)."""
-    from rmot.sim.robots import load_robot
+    from rmot.sim.robots import load_robot  # late: loads coal only when this runs
 
     for r in program.cell.robots:
         if r.name == robot:
@@ -105,8 +105,8 @@ def _child(conn: Any, path: str, text: str) -> None:
     try:
         result = plan_document(path, text)
     except Exception as exc:  # a bug in a stage: one internal-error diagnostic, never a traceback
-        from rmot.compiler.cli.stages import internal_error
-        from rmot.compiler.lsp.analysis import to_lsp
+        from rmot.compiler.cli.stages import internal_error  # late: optional, tried where used
+        from rmot.compiler.lsp.analysis import to_lsp  # late: optional, tried where used
 
         result = PlanResult((to_lsp(internal_error("the planner", exc), os.path.abspath(path)),), (), (), True)
     conn.send(result)

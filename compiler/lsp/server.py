@@ -22,6 +22,7 @@ from rmot.compiler.lsp import features
 from rmot.compiler.lsp.analysis import Analysis, analyze, path_of
 from rmot.compiler.lsp.encoding import ClientUnits
 from rmot.compiler.lsp.planning import PlanJob, PlanResult
+from rmot.compiler.cli import _version
 
 __all__ = ["RmotServer", "build_server"]
 
@@ -35,7 +36,6 @@ class RmotServer(LanguageServer):
     """A LanguageServer that keeps, per document URI, its analysis, plan and plan job."""
 
     def __init__(self) -> None:
-        from rmot.compiler.cli import _version
 
         super().__init__("rmot", _version())
         self.analyses: dict[str, Analysis] = {}

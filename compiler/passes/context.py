@@ -116,7 +116,7 @@ class RobotLookupError(Exception):
 def default_robot_loader(key: str) -> RobotInfo:
     """The robot library (sim.robots); imported on first use because pinocchio is heavy."""
     try:
-        from rmot.sim.robots import RobotError, list_robots, load_robot
+        from rmot.sim.robots import RobotError, list_robots, load_robot  # late: optional, tried where used
     except ImportError as exc:  # the library is not built yet: say so as a diagnostic
         raise RobotLookupError(f"the robot library is not available ({exc})") from None
     try:

@@ -16,7 +16,9 @@ Choices (LANGUAGE.md is silent):
     inv(robot base) * frame(world) * target. Linear and circular moves need pose targets;
     a joint move takes joints or a pose.
   * `time T` fixes a move's duration (Motion.duration); `config(...)` fills ir.Config.
-"""
+
+Over 600 lines: the TaskLowering class alone is 625 lines, and a class is written in one piece
+(its methods read its flags and tables)."""
 
 from __future__ import annotations
 
@@ -32,30 +34,26 @@ from rmot.compiler.passes.modal import Modal, apply_setting, speed_modifier_warn
 from rmot.compiler.passes.lower_axes import ProgramAxes
 from rmot.compiler.passes.procs import bind_call
 from rmot.compiler.passes.runtime import TYPE_NAMES, RtLowering, expr_type, fits
-from rmot.lang.ir_tree import children, rebuilt
 from rmot.lang.source import Span
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
 from rmot.compiler.passes.turns import TURN_KEY, turn_arg
 from rmot.compiler.passes.values import article, ANGLE, DIMENSIONLESS, LENGTH, TIME, JointsV, PoseV, Quantity, fmt_quantity, type_name
 from rmot.lang import ast
 from rmot.lang.parse import RESERVED
+from rmot.compiler.passes.lower_body_limits import (
+    MAX_INSTRUCTIONS,
+    MAX_NESTING,
+    _KINDS,
+    _FREE_OPTIONS,
+    MAX_FREE_SAMPLES,
+    MAX_FREE_CLEARANCE_M,
+    _CONFIG,
+    _CALL_STEPS,
+    _node_count,
+    _expanded_at,
+)
 
-__all__ = ["MAX_INSTRUCTIONS", "MAX_NESTING", "TaskLowering"]
-
-MAX_INSTRUCTIONS = 200_000
-# Policy: blocks nest at most 64 levels. The planner, the verifier and every backend recurse
-# once or more per level; under the command line they fail near 125 levels, so 64 keeps every
-# stage at half its real limit (tests/robust: a program at the limit compiles to every target).
-MAX_NESTING = 64
-_KINDS = {"joint": ir.MotionKind.JOINT, "linear": ir.MotionKind.LINEAR, "circular": ir.MotionKind.CIRCULAR,
-          "free": ir.MotionKind.JOINT}  # `move free`: a joint move whose path is searched (ir.FreeMotion)
-_FREE_OPTIONS = ("clearance", "samples", "budget")
-MAX_FREE_SAMPLES = 1_000_000  # policy: a search drawing more would run for hours (about 1 ms a draw)
-MAX_FREE_CLEARANCE_M = 1.0  # policy: a larger gap leaves no room in any cell rmot models
-_CONFIG = {"shoulder": ir.Shoulder, "elbow": ir.Elbow, "wrist": ir.Wrist}
-
-
-_CALL_STEPS = 4  # measured: a proc call costs about five statements of lowering
+__all__ = ["TaskLowering"]
 
 
 class _TooLarge(Exception):
@@ -690,22 +688,3 @@ class TaskLowering:
         return ir.JointTarget(tuple(values), v.name)
 
 
-def _node_count(body: tuple[ir.Instr, ...]) -> int:
-    n = 0
-    for instr in body:
-        n += 1
-        for sub in children(instr):
-            n += _node_count(sub)
-    return n
-
-
-def _expanded_at(instr: ir.Instr, call_site: Span | None) -> ir.Instr:
-    """`instr` inlined at `call_site`: its span (and its children's) records the call, so a
-    finding in a proc body can say which call it came through (Span.parent)."""
-    if call_site is None:
-        return instr
-    changes: dict[str, object] = {}
-    if instr.span is not None:
-        changes["span"] = instr.span.with_parent(call_site)
-    bodies = tuple(tuple(_expanded_at(i, call_site) for i in sub) for sub in children(instr))
-    return rebuilt(instr, bodies, **changes)

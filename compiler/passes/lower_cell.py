@@ -30,6 +30,8 @@ from rmot.compiler.passes.scopes import declare, misplaced
 from rmot.compiler.passes.state import FrontendState
 from rmot.compiler.passes.values import LENGTH, MASS, RATIO, UNIT_TABLE, PoseV, Quantity
 from rmot.lang import ast
+import json
+from rmot.lang.model_spec import model_key
 
 __all__ = ["program_feeders", "lower_cell", "IO_DIRECTIONS"]
 
@@ -106,12 +108,11 @@ class _CellBuilder:
                 return
             key, source = path, ir.RobotSource(ir.RobotSourceKind.URDF, path)
             if any(a.name is None or a.name.name != "packages" for a in s.urdf_args):
-                from rmot.compiler.passes.lower_model import urdf_chain
+                from rmot.compiler.passes.lower_model import urdf_chain  # late: loads coal only when this runs
 
                 chain = urdf_chain(s, path, self.rep)
                 if chain is None:
                     return
-                import json
 
                 base_link, tip_link, maker = chain
                 parts = [path, base_link, tip_link] + ([maker] if maker is not None else [])
@@ -304,8 +305,7 @@ class _CellBuilder:
         self.io.append(ir.IoSignal(direction, port, s.signal.value, robot, span=s.span))
 
     def _ModelDecl(self, s: ast.ModelDecl) -> None:
-        from rmot.compiler.passes.lower_model import check_model_name, lower_model
-        from rmot.lang.model_spec import model_key
+        from rmot.compiler.passes.lower_model import check_model_name, lower_model  # late: loads coal only when this runs
 
         name = s.name.name
         if name in self.models:

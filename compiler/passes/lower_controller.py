@@ -19,7 +19,7 @@ __all__ = ["controller_word", "declared_controller", "pendant_of", "record_penda
 
 def controller_word(item: ast.Setting, rep: Reporter) -> str | None:
     """The maker of `controller NAME` (a key of controller.MAKERS), None after E186."""
-    from rmot.sim.robots.controller import MAKERS
+    from rmot.sim.robots.controller import MAKERS  # late: loads coal only when this runs
 
     assert isinstance(item.value, ast.Ident)
     word = item.value.name.lower()
@@ -53,7 +53,7 @@ def record_pendant(call: ast.Call, index: int, kind: str, pendant: dict[int, tup
 
 def urdf_controller(value: ast.Expr, rep: Reporter) -> str | None:
     """The maker of `urdf(..., controller="abb")` (a key of controller.MAKERS), None after E186."""
-    from rmot.sim.robots.controller import MAKERS
+    from rmot.sim.robots.controller import MAKERS  # late: loads coal only when this runs
 
     if not isinstance(value, ast.String) or value.value.lower() not in MAKERS:
         shown = value.value if isinstance(value, ast.String) else "an expression"

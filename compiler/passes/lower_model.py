@@ -294,7 +294,7 @@ def check_model_name(decl: ast.ModelDecl, rep: Reporter) -> None:
     """W135 when the model is named like a library robot: the cell's model is used (it shadows
     the library entry within this cell), as a local name shadows an outer one."""
     try:
-        from rmot.sim.robots import list_robots
+        from rmot.sim.robots import list_robots  # late: optional, tried where used
     except ImportError:  # the robot library is not available: nothing to shadow
         return
     name = decl.name.name
@@ -320,7 +320,7 @@ def described_urdf(s: ast.RobotDecl, path: str, file: SourceFile, roots: tuple[s
             if folder is None:
                 return None
             packages[item.name.name] = folder
-    from rmot.compiler.passes.xacro_files import expand_description
+    from rmot.compiler.passes.xacro_files import expand_description  # late: loads xml only when this runs
 
     return expand_description(path, packages, roots, s.urdf.span if s.urdf else s.span, rep)
 
@@ -354,8 +354,8 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str | None, 
             return None
         names[key] = arg.value.value
     try:
-        from rmot.sim.robots import RobotError
-        from rmot.sim.robots.urdf import urdf_links
+        from rmot.sim.robots import RobotError  # late: optional, tried where used
+        from rmot.sim.robots.urdf import urdf_links  # late: optional, tried where used
 
         links = urdf_links(path)
     except (ImportError, RobotError):
@@ -372,7 +372,7 @@ def urdf_chain(s: ast.RobotDecl, path: str, rep: Reporter) -> tuple[str | None, 
             rep.unknown(names[key], f"URDF link ({key}=)", bound[key].value.span, list(links), codes.URDF_UNKNOWN_LINK)
             ok = False
     if ok:
-        from rmot.sim.robots.urdf import urdf_chain_error
+        from rmot.sim.robots.urdf import urdf_chain_error  # late: loads coal only when this runs
 
         problem = urdf_chain_error(path, names["base"], names["tip"])
         if problem is not None:

@@ -22,6 +22,7 @@ from rmot.compiler.passes.lower_cell import program_feeders
 from rmot.compiler.passes.modal import DEFAULT_MODAL, Modal, apply_setting
 from rmot.compiler.passes.state import FrontendState
 from rmot.lang import ast
+from rmot.compiler.passes.scopes import STATEMENT_WORDS
 
 __all__ = ["lower_program"]
 
@@ -118,7 +119,6 @@ def _lower_tasks(prog: ast.ProgramDecl, state: FrontendState, scope: Scope, proc
 
 
 def _word(s: ast.Stmt) -> str:
-    from rmot.compiler.passes.scopes import STATEMENT_WORDS
 
     return STATEMENT_WORDS.get(type(s).__name__, "this statement")
 

@@ -39,6 +39,8 @@ from rmot.compiler.passes.context import Reporter
 from rmot.compiler.passes.urdf_paths import _inside
 from rmot.lang.input_file import NotRegularFile, read_regular
 from rmot.lang.source import Span
+import xml.dom.minidom
+from rmot.lang.atomic import write_text
 
 __all__ = ["MAX_BYTES", "expand_description"]
 
@@ -119,10 +121,9 @@ def _read(path: str, roots: tuple[str, ...]) -> str:
 @contextlib.contextmanager
 def _sandboxed_xacro(packages: dict[str, str], roots: tuple[str, ...]) -> Iterator[Any]:
     """xacro with `find` from `packages`, files read through `_read`, `${}` through `_evaluate`."""
-    import xml.dom.minidom
 
-    import xacro
-    from xacro import substitution_args
+    import xacro  # late: xacro is heavy or optional, loaded only where used
+    from xacro import substitution_args  # late: xacro is heavy or optional, loaded only where used
 
     def find(pkg: str) -> str:
         if pkg not in packages:
@@ -292,7 +293,6 @@ def _xml_attr(text: str) -> str:
 
 
 def _write(text: str, stem: str) -> str:
-    from rmot.lang.atomic import write_text
 
     digest = hashlib.sha256(text.encode("utf-8")).hexdigest()[:20]
     folder = Path(tempfile.gettempdir()) / f"rmot-descriptions-{os.getuid()}" / digest

@@ -43,7 +43,7 @@ def part_centroids(parts: tuple[ir.Part, ...]) -> dict[str, tuple[float, float, 
     """Part name -> the centroid of its mesh in its geometry frame (m), for the mesh parts whose
     file loads (one that does not is reported by the verification; its mass stays at the
     part's pose origin). Boxes, cylinders, spheres and capsules are centred on their pose."""
-    from rmot.sim.meshio import MeshData, centroid, load_mesh  # heavy (trimesh, OpenCASCADE): only for mesh parts
+    from rmot.sim.meshio import MeshData, centroid, load_mesh  # late: trimesh/OpenCASCADE, only for mesh parts
 
     out: dict[str, tuple[float, float, float]] = {}
     for part in parts:

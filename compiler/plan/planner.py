@@ -21,7 +21,7 @@ __all__ = ["plan_program"]
 
 
 def _load(key: str) -> RobotModel:
-    from rmot.sim.robots import load_robot
+    from rmot.sim.robots import load_robot  # late: loads coal only when this runs
 
     return load_robot(key)
 
@@ -104,7 +104,7 @@ def _too_many_samples(program: ir.Program, drafts: dict[str, TaskDraft], step: f
 
 def _too_long(program: ir.Program, total: float, step: float, bound: str, over: str = "") -> Diagnostic:
     """E124 at the first task: the timelines take `bound` `total` s, more than MAX_SAMPLES samples."""
-    from rmot.lang import check_codes as check_codes
+    from rmot.lang import check_codes as check_codes  # late: tests replace it (monkeypatch): read at call time
 
     msg = (f"the timelines of a program must take at most {MAX_SAMPLES * step:g} s in all at a step of {step * 1000:g} ms "
            f"({MAX_SAMPLES} samples; got {bound}{total:.6g} s{over}): split the program or shorten its waits and slow moves")

@@ -94,7 +94,7 @@ class Dynamics:
         return _rnea(q, qd, qdd, *self._arrays)
 
     def _pinocchio(self, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray) -> np.ndarray:
-        import pinocchio as pin
+        import pinocchio as pin  # late: pinocchio is heavy or optional, loaded only where used
 
         data = self.model.createData()
         return np.array(

@@ -146,7 +146,7 @@ def _ik(robot: RobotModel, flange: np.ndarray, seed: np.ndarray, config: ir.Conf
     res = robot.ik(flange, seed=seed, config=config)
     if res.solutions or robot.has_closed_form:
         return res
-    from rmot.compiler.plan.dense import newton_ik
+    from rmot.compiler.plan.dense import newton_ik  # late: loads coal only when this runs
 
     q = newton_ik(robot, flange, seed, iters=50)
     lim = robot.joint_limits

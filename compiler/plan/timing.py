@@ -482,7 +482,7 @@ class _Arrays:
         w_tau) with per cell the largest acceleration and speed ratio found by the re-check (at
         the cell's end, with the cell's u and the next point's derivatives, and inside it) and,
         with torque limits, the factor x must shrink by for the torques to hold (else None)."""
-        from rmot.compiler.plan import topp
+        from rmot.compiler.plan import topp  # late: loads coal only when this runs
 
         for _ in range(rounds + 1):
             x = topp.solve(self.grid, xmax, self.rows)
@@ -513,7 +513,7 @@ def _normalised(pts: tuple[Any, ...]) -> tuple[Any, ...]:
     """A point's (d1, d2, a, b, c, vel, torque rows) as (d1, d2, beta, lo, hi, ceiling, vel): the
     rows in the solver's form (topp.Rows.normalised, row by row), kept instead of a, b, c; the
     torque rows (a, b, hi, lo) or None, one-sided, appended after the symmetric ones."""
-    from rmot.compiler.plan import topp
+    from rmot.compiler.plan import topp  # late: loads coal only when this runs
 
     d1, d2, a, b, c, vel, trows = pts
     if trows is None:

@@ -78,7 +78,7 @@ class TorqueLimits:
         """The vectorised RNEA of the payload model (compiler/plan/rnea.py), built on first use."""
         found = self.__dict__.get("_dynamics")
         if found is None:
-            from rmot.compiler.plan.rnea import Dynamics
+            from rmot.compiler.plan.rnea import Dynamics  # late: loads coal only when this runs
 
             found = Dynamics(self.model)
             object.__setattr__(self, "_dynamics", found)
@@ -91,7 +91,7 @@ def torque_limits(robot: Any, mass: float, at: np.ndarray | None) -> TorqueLimit
     limit)."""
     if not getattr(robot, "has_inertia", False):
         return None
-    import pinocchio as pin
+    import pinocchio as pin  # late: pinocchio is heavy or optional, loaded only where used
 
     dof = int(robot.dof)
     limit = np.asarray(robot.model.effortLimit, dtype=float)[:dof]
@@ -110,7 +110,7 @@ def torque_limits(robot: Any, mass: float, at: np.ndarray | None) -> TorqueLimit
 
 def flange_in_last_joint(robot: Any) -> np.ndarray:
     """(4,4) the flange frame in the last joint's frame (constant; taken at mid-range)."""
-    import pinocchio as pin
+    import pinocchio as pin  # late: pinocchio is heavy or optional, loaded only where used
 
     q = np.asarray(robot.joint_limits, dtype=float).mean(axis=1)
     model = robot.model

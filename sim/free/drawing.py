@@ -63,7 +63,7 @@ def _view(title: str, a: int, b: int, path: np.ndarray, vias: np.ndarray,
 
 def free_path_pictures(plan: Any) -> list[tuple[str, str]]:
     """(caption, SVG) per `move free` of a planned program, in program order."""
-    from rmot.sim.robots import load_robot
+    from rmot.sim.robots import load_robot  # late: loads coal only when this runs
 
     cell = plan.program.cell
     boxes = [(f.name, c) for f in cell.fixtures if (c := _corners(f.geometry, f.pose.matrix())) is not None]

@@ -100,7 +100,7 @@ def lower_free_moves(program: ir.Program, plan_fn: PlanFn, store: PathStore | No
 
 
 def _tools_used(program: ir.Program) -> dict[str, set[str]]:
-    from rmot.sim.verification import _tools_used as used
+    from rmot.sim.verification import _tools_used as used  # late: loads pinocchio only when this runs
 
     return used(program)
 

@@ -131,7 +131,7 @@ def free_space(scene: Scene, plan: plan_types.Plan, robot: str, t: float) -> Fre
 def robot_timeline(plan: plan_types.Plan, scene: Scene, t0: float, t1: float) -> Timeline:
     """Every robot on the main timeline between t0 and t1 (the verifier's resampling on the
     union of their sample times), for verifying a timed path with the other robots moving."""
-    from rmot.sim.verification import _timeline
+    from rmot.sim.verification import _timeline  # late: loads pinocchio only when this runs
 
     trajs = {tp.robot: tp.trajectory for tp in plan.tasks}
     times = np.concatenate([tr.t[(tr.t >= t0 - 1e-9) & (tr.t <= t1 + 1e-9)] for tr in trajs.values()]

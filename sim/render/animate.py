@@ -122,8 +122,8 @@ def _on_palette(frame_rgb: np.ndarray, palette: Image.Image) -> Image.Image:
 
 def _write_mp4(path: str, frames: Iterator[np.ndarray], fps: float) -> None:
     try:
-        import imageio.v2 as imageio
-        import imageio_ffmpeg  # noqa: F401 - the encoder binary the writer needs
+        import imageio.v2 as imageio  # late: optional, tried where used
+        import imageio_ffmpeg  # noqa: F401 - the encoder binary the writer needs  # late: optional, tried where used
     except ImportError:
         raise AnimationError("MP4 output needs the imageio-ffmpeg package (pip install imageio-ffmpeg)") from None
     writer = imageio.get_writer(path, format="FFMPEG", mode="I", fps=fps, codec="libx264", pixelformat="yuv420p",

@@ -113,7 +113,7 @@ def _surface_points(vertices: np.ndarray, spacing: float = 0.01, most: int = 24)
 
 def contact_point(rs: RenderScene, poses: np.ndarray, a: str, b: str) -> np.ndarray | None:
     """The middle of the closest pair of surface points of bodies a and b at poses (B, 4, 4)."""
-    from scipy.spatial import cKDTree
+    from scipy.spatial import cKDTree  # late: scipy is heavy or optional, loaded only where used
 
     if a not in rs.names or b not in rs.names:
         return None
@@ -129,7 +129,7 @@ def contact_point(rs: RenderScene, poses: np.ndarray, a: str, b: str) -> np.ndar
 
 def markings(rs: RenderScene, diagnostics: Iterable[Diagnostic]) -> tuple[Marking, ...]:
     """A Marking per event of the findings that name bodies of this scene and have a time."""
-    from rmot.sim.render.scene import body_poses
+    from rmot.sim.render.scene import body_poses  # late: loads pinocchio only when this runs
 
     out = []
     for d in events(diagnostics):
@@ -205,7 +205,7 @@ def verified_markings(rs: RenderScene) -> tuple[tuple[Marking, ...], tuple[Diagn
     A verification that cannot run leaves the pictures unmarked (the caller's `rmot check`
     is where verification problems are reported)."""
     try:
-        from rmot.sim import verify
+        from rmot.sim import verify  # late: optional, tried where used
 
         found = tuple(verify(rs.plan).diagnostics)
     except Exception:

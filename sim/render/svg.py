@@ -134,7 +134,7 @@ def render_svg(rs: RenderScene, *, time: float = 0.0, size: tuple[int, int] = (6
     """The hidden-line drawing of the cell at `time` s (bodies as <path id=name>, floor grid in
     grey, the TCP paths in blue); findings of `marks` active at `time` draw their bodies in red,
     circle the contact point and add a caption (<text class="finding">)."""
-    from rmot.sim.render.still import default_camera
+    from rmot.sim.render.still import default_camera  # late: loads pinocchio only when this runs
 
     camera = camera or default_camera(rs, size)
     poses = body_poses(rs, np.array([time]))[0]

@@ -28,6 +28,13 @@ from rmot.sim.robots.spec import RobotSpec
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 from rmot.lang.record import record
+from rmot.lang.check_codes import (
+    ADD_BAD_FIELD,
+    ADD_UNREADABLE,
+    ADD_NOT_OPW,
+    ADD_ACCEL_ESTIMATED,
+    ADD_NO_SOURCE,
+)
 
 __all__ = ["Added", "add_from_dh", "add_from_urdf"]
 
@@ -64,9 +71,8 @@ def _fail(code: Code, message: str, file: SourceFile, mark: object | None) -> _R
 
 
 def _node_map(node: object, file: SourceFile, what: str) -> dict[str, object]:
-    import yaml  # type: ignore[import-untyped]  # PyYAML, no stubs installed
+    import yaml  # type: ignore[import-untyped]  # PyYAML, no stubs installed  # late: yaml is heavy or optional, loaded only where used
 
-    from rmot.lang.check_codes import ADD_BAD_FIELD
 
     if not isinstance(node, yaml.MappingNode):
         raise _fail(ADD_BAD_FIELD, f"{what} must be a mapping of names to values", file, getattr(node, "start_mark", None))
@@ -77,7 +83,6 @@ def _node_map(node: object, file: SourceFile, what: str) -> dict[str, object]:
 
 
 def _number(node: object, file: SourceFile, what: str) -> float:
-    from rmot.lang.check_codes import ADD_BAD_FIELD
 
     text = str(getattr(node, "value", ""))
     try:
@@ -91,7 +96,6 @@ def _number(node: object, file: SourceFile, what: str) -> float:
 
 
 def _text(fields: dict[str, object], key: str, file: SourceFile, where: object, default: str | None = None) -> str:
-    from rmot.lang.check_codes import ADD_BAD_FIELD
 
     node = fields.get(key)
     if node is None:
@@ -102,7 +106,6 @@ def _text(fields: dict[str, object], key: str, file: SourceFile, where: object, 
 
 
 def _joint(node: object, k: int, file: SourceFile) -> tuple[float, ModelJointSpec]:
-    from rmot.lang.check_codes import ADD_BAD_FIELD
 
     fields = _node_map(node, file, f"joint {k}")
     mark = getattr(node, "start_mark", None)
@@ -130,9 +133,8 @@ def _joint(node: object, k: int, file: SourceFile) -> tuple[float, ModelJointSpe
 
 def _read(file: SourceFile) -> tuple[dict[str, object], tuple[ModelJointSpec, ...], tuple[float, ...], object]:
     """The top-level fields, the six joints and their pendant signs (file positions kept for the errors)."""
-    import yaml
+    import yaml  # late: yaml is heavy or optional, loaded only where used
 
-    from rmot.lang.check_codes import ADD_BAD_FIELD, ADD_UNREADABLE
 
     try:
         root = yaml.compose(file.text, Loader=yaml.SafeLoader)
@@ -147,7 +149,6 @@ def _read(file: SourceFile) -> tuple[dict[str, object], tuple[ModelJointSpec, ..
         raise _fail(ADD_BAD_FIELD, "the table needs `joints`: a list of six rows", file, root.start_mark)
     rows = joints.value  # type: ignore[attr-defined]
     if len(rows) != 6:
-        from rmot.lang.check_codes import ADD_NOT_OPW
 
         raise _fail(ADD_NOT_OPW, f"the library's arms have six revolute joints (the table has {len(rows)})", file,
                     joints.start_mark)  # type: ignore[attr-defined]
@@ -169,9 +170,8 @@ def add_from_urdf(path: str, name: str, maker: str, source: str, base: str | Non
     """The library definition of a URDF arm (from `base` to `tip`, else the loader's chain and
     flange), its joint values taken as the pendant's one to one (as ROS-I's Motoman and Stäubli
     drivers have them), or the refusal."""
-    from rmot.lang.check_codes import ADD_ACCEL_ESTIMATED, ADD_BAD_FIELD, ADD_NO_SOURCE, ADD_UNREADABLE
-    from rmot.sim.robots.errors import RobotError
-    from rmot.sim.robots.urdf import robot_from_urdf
+    from rmot.sim.robots.errors import RobotError  # late: loads subprocess only when this runs
+    from rmot.sim.robots.urdf import robot_from_urdf  # late: loads subprocess only when this runs
 
     try:
         with open(path, encoding="utf-8", errors="replace") as f:
@@ -199,8 +199,7 @@ def add_from_urdf(path: str, name: str, maker: str, source: str, base: str | Non
 
 
 def _add(file: SourceFile, seed: int) -> Added:
-    from rmot.lang.check_codes import ADD_ACCEL_ESTIMATED, ADD_BAD_FIELD, ADD_NO_SOURCE
-    from rmot.sim.robots.model import robot_from_model
+    from rmot.sim.robots.model import robot_from_model  # late: loads subprocess only when this runs
 
     fields, joints, signs, top = _read(file)
     name = _text(fields, "name", file, top)
@@ -242,8 +241,7 @@ def _derived(arm: _Arm, in_dh: object, in_pendant: object, notes: tuple[Diagnost
              file: SourceFile, where: object) -> Added:
     """The definition of the arm whose FK in DH variables is `in_dh`'s, checked against
     `in_pendant` (the same arm in pendant values)."""
-    from rmot.lang.check_codes import ADD_NOT_OPW
-    from rmot.sim.robots.model_opw import derive_opw
+    from rmot.sim.robots.model_opw import derive_opw  # late: loads subprocess only when this runs
 
     found = derive_opw(in_dh)
     if found is None:
@@ -277,7 +275,7 @@ def _clean(p: OpwParams, jmap: OpwJointMap) -> tuple[OpwParams, OpwJointMap]:
 def _flange_turn(base: np.ndarray, unturned: RobotSpec, arm: object) -> float | None:
     """The flange's turn about its z (the library's `flange_rz`), where frame 0 is the OPW base
     and the arm's flange differs from the definition's unturned one by a turn about z only."""
-    from rmot.sim.robots.build import build_robot
+    from rmot.sim.robots.build import build_robot  # late: loads subprocess only when this runs
 
     if not np.allclose(base, np.eye(4), atol=1e-9):
         return None
@@ -290,8 +288,8 @@ def _flange_turn(base: np.ndarray, unturned: RobotSpec, arm: object) -> float | 
 
 def _spec(arm: _Arm, params: OpwParams, jmap: OpwJointMap, limits_rad: np.ndarray, speed_rad: np.ndarray,
           flange_rz: float) -> RobotSpec:
-    from rmot.sim.robots.library_common import ACC_EST, acc_estimate, sources
-    from rmot.sim.robots.spec import opw_spec
+    from rmot.sim.robots.library_common import ACC_EST, acc_estimate, sources  # late: loads subprocess only when this runs
+    from rmot.sim.robots.spec import opw_spec  # late: loads subprocess only when this runs
 
     limits = tuple((round(math.degrees(lo), 6), round(math.degrees(hi), 6)) for lo, hi in limits_rad)
     speed = tuple(round(math.degrees(v), 6) for v in speed_rad)
@@ -309,7 +307,7 @@ def _spec(arm: _Arm, params: OpwParams, jmap: OpwJointMap, limits_rad: np.ndarra
 
 def _fk_check(table_robot, lib: RobotSpec, seed: int) -> tuple[float, float]:  # type: ignore[no-untyped-def]
     """Largest position (mm) and orientation (rad) difference of the definition's FK from the table's."""
-    from rmot.sim.robots.build import build_robot
+    from rmot.sim.robots.build import build_robot  # late: loads subprocess only when this runs
 
     built = build_robot(lib)
     qs = np.random.default_rng(seed).uniform(table_robot.joint_limits[:, 0], table_robot.joint_limits[:, 1], (_CHECKS, 6))

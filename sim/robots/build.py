@@ -49,7 +49,7 @@ def build_robot(spec: RobotSpec) -> Robot:
 def _add_dynamics(model: pin.Model, fid: int, spec: RobotSpec, coupling: np.ndarray | None) -> None:
     """Link inertias (dynamics.link_inertias) and joint torque limits (the spec's, else
     dynamics.estimate_effort) written into the model."""
-    from rmot.sim.robots import dynamics
+    from rmot.sim.robots import dynamics  # late: loads subprocess only when this runs
 
     data = model.createData()
     q = np.array(spec.solid_pose, dtype=float)
@@ -127,7 +127,7 @@ def _opw_solver(p: OpwParams, jmap: OpwJointMap, flange_inv: np.ndarray):  # typ
     """flange_inv: the vendor flange -> OPW flange transform (identity unless turned).
     The numba kernels load on the first IK call, not when the robot is built: `robots list`,
     `show`, `fk` and the front end never pay for numba."""
-    from rmot.sim.robots import fastik  # no numba: its kernels compile on first use
+    from rmot.sim.robots import fastik  # no numba: its kernels compile on first use  # late: loads subprocess only when this runs
 
     turned = not np.allclose(flange_inv, np.eye(4))
     closed_form = ClosedForm("opw", fastik.opw_kernel_args(p, jmap), None, flange_inv if turned else None,

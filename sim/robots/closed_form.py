@@ -36,7 +36,7 @@ class ClosedForm:
         return poses
 
     def __call__(self, poses: np.ndarray) -> np.ndarray:
-        from rmot.sim.robots import fastik
+        from rmot.sim.robots import fastik  # late: loads subprocess only when this runs
 
         local = self.local(poses)
         if self.kind == "opw":

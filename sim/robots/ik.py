@@ -163,12 +163,12 @@ def solve(robot, pose: np.ndarray, seed: np.ndarray | None = None, config: ir.Co
 
 def _fast_solver(robot) -> Any:  # type: ignore[no-untyped-def]
     """fastsolve's compiled pass for closed-form 6R arms (False for every other robot)."""
-    from rmot.sim.robots.closed_form import ClosedForm
+    from rmot.sim.robots.closed_form import ClosedForm  # late: loads subprocess only when this runs
 
     closed_form = robot._closed_form
     if not isinstance(closed_form, ClosedForm) or not closed_form.branch:
         return False
-    from rmot.sim.robots.fast_solver import FastSolver  # numba-compiled: loaded on first use
+    from rmot.sim.robots.fast_solver import FastSolver  # numba-compiled: loaded on first use  # late: loads subprocess only when this runs
 
     solver = FastSolver(robot, closed_form)
     return solver if solver.usable else False
@@ -303,7 +303,7 @@ _BATCH_KERNEL_POSES = 64
 def _nearest_verified_compiled(  # type: ignore[no-untyped-def]
         robot, poses: np.ndarray, raw: np.ndarray, seed_q: np.ndarray) -> np.ndarray:
     """`_nearest_in_limits` + `_verify_batch` in one compiled pass (robots/fastbatch.py)."""
-    from rmot.sim.robots.fastbatch import NEAREST_VERIFIED
+    from rmot.sim.robots.fastbatch import NEAREST_VERIFIED  # late: loads subprocess only when this runs
 
     n, b, dof = raw.shape
     rows_of_seeds = n if seed_q.ndim == 2 else 1  # one row for all poses: not copied n times

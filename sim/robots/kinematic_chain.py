@@ -31,7 +31,7 @@ class Chain:
         of a sine or cosine, numba's vs the interpreter's); numpy spares a small job numba's
         ~0.6 s load. A call counts as at least _CALL_ROWS configurations
         (numpy's cost per call)."""
-        from rmot.sim.robots.fastdls import JOINT_FRAMES
+        from rmot.sim.robots.fastdls import JOINT_FRAMES  # late: loads subprocess only when this runs
 
         q = np.ascontiguousarray(np.atleast_2d(q), dtype=float)
         if not JOINT_FRAMES.prefer_compiled(max(len(q), _CALL_ROWS)):

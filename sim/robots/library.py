@@ -54,10 +54,10 @@ from rmot.sim.robots.urik import UrParams
 __all__ = ["SPECS"]
 
 def _abb_kuka() -> list[RobotSpec]:
-    from rmot.sim.robots.kuka_inertia import KUKA_INERTIA
-    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA
-    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD
-    from rmot.sim.robots.dynamics import EFFORT_METHOD as EFFORT
+    from rmot.sim.robots.kuka_inertia import KUKA_INERTIA  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import EFFORT_METHOD as EFFORT  # late: loads subprocess only when this runs
 
     return [
         # ABB Product specification IRB 120 (3HAC035960-001): tool0 at (374, 0, 630) mm in
@@ -174,9 +174,9 @@ def _abb_kuka() -> list[RobotSpec]:
 
 
 def _fanuc_yaskawa_staubli() -> list[RobotSpec]:
-    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA
-    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD
-    from rmot.sim.robots.dynamics import EFFORT_METHOD as EFFORT
+    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import EFFORT_METHOD as EFFORT  # late: loads subprocess only when this runs
 
     return [
         # FANUC LR Mate 200iD data sheet: reach 717 mm. Fanuc's world frame has its origin
@@ -258,7 +258,7 @@ def _puma560() -> RobotSpec:
     """Puma 560 in the standard-DH convention of Corke, "A robotics toolbox for MATLAB"
     (IEEE RAM 1996) / Robotics Toolbox `mdl_puma560`: base frame at the shoulder, no tool
     (fkine(qz) = (0.4521, -0.1500, 0.4318) m), joint values = DH θ; limits as in qlim."""
-    from rmot.sim.robots.dynamics import EFFORT_METHOD, INERTIA_METHOD, SPREAD_METHOD, spread_mass
+    from rmot.sim.robots.dynamics import EFFORT_METHOD, INERTIA_METHOD, SPREAD_METHOD, spread_mass  # late: loads subprocess only when this runs
 
     h = math.pi / 2
     rows = (
@@ -293,7 +293,7 @@ def _ur() -> list[RobotSpec]:
     # (lateral steps of the tubes along J2) from UR's ur_description URDFs. Link masses from
     # ur_description config/<model>/physical_parameters.yaml, torque limits from
     # config/<model>/joint_limits.yaml (which cites UR's "Max. joint torques" article).
-    from rmot.sim.robots.dynamics import INERTIA_METHOD
+    from rmot.sim.robots.dynamics import INERTIA_METHOD  # late: loads subprocess only when this runs
 
     def src(model: str, reach_mm: int, payload: str) -> tuple[tuple[str, str], ...]:
         cfg = f"ros-industrial/universal_robot ur_description/config/{model.lower()}"
@@ -361,7 +361,7 @@ def _kroshu(name: str, model: str, pkg: str, stem: str, params: OpwParams, *, li
     found = re.match(r"KR (\d+) R(\d+)", model)
     assert found, model
     payload, reach_mm = float(found.group(1)), float(found.group(2))
-    from rmot.sim.robots.kuka_inertia import KUKA_INERTIA
+    from rmot.sim.robots.kuka_inertia import KUKA_INERTIA  # late: loads subprocess only when this runs
 
     urdf, limits = f"{KROSHU} {pkg}/urdf/{stem}_macro.xacro", f"{KROSHU} {pkg}/config/{stem}_joint_limits.yaml"
     return opw_spec(
@@ -475,16 +475,16 @@ def _kroshu_arms() -> list[RobotSpec]:
 
 
 def _rosi_arms() -> list[RobotSpec]:
-    from rmot.sim.robots.library_rosi import rosi_arms  # the arms of ROS-I's support packages
-    from rmot.sim.robots.library_abb import abb_arms  # ROS-I's further ABB arms
-    from rmot.sim.robots.library_fanuc import fanuc_arms  # ROS-I's further FANUC arms
+    from rmot.sim.robots.library_rosi import rosi_arms  # the arms of ROS-I's support packages  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library_abb import abb_arms  # ROS-I's further ABB arms  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library_fanuc import fanuc_arms  # ROS-I's further FANUC arms  # late: loads subprocess only when this runs
 
     return rosi_arms() + abb_arms() + fanuc_arms()
 
 
 def _motoman_staubli_arms() -> list[RobotSpec]:
-    from rmot.sim.robots.library_motoman import motoman_arms  # ROS-I's Motoman support packages
-    from rmot.sim.robots.library_staubli import staubli_arms  # ROS-I's Stäubli support packages
+    from rmot.sim.robots.library_motoman import motoman_arms  # ROS-I's Motoman support packages  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library_staubli import staubli_arms  # ROS-I's Stäubli support packages  # late: loads subprocess only when this runs
 
     return motoman_arms() + staubli_arms()
 

@@ -145,7 +145,7 @@ _ARMS = (
 
 def abb_arms() -> list[RobotSpec]:
     """The ABB arms of the ROS-I packages that library_rosi.py and library.py do not hold."""
-    from rmot.sim.robots.library_common import ABB, ABB_CONV
+    from rmot.sim.robots.library_common import ABB, ABB_CONV  # late: loads subprocess only when this runs
 
     brand = RosiBrand(vendor="ABB", jmap=ABB, conventions=ABB_CONV)
     return [rosi_spec(arm, brand) for arm in _ARMS]

@@ -22,6 +22,7 @@ from __future__ import annotations
 from rmot.sim.robots.library_rosi_rows import RosiArm, RosiBrand, rosi_spec
 from rmot.sim.robots.opw import OpwParams
 from rmot.sim.robots.spec import RobotSpec
+import math
 
 __all__ = ["fanuc_arms"]
 
@@ -301,9 +302,8 @@ _ARMS = (
 
 def fanuc_arms() -> list[RobotSpec]:
     """The FANUC arms of the ROS-I packages that library_rosi.py and library.py do not hold."""
-    import math
 
-    from rmot.sim.robots.library_common import FANUC, FANUC_CONV
+    from rmot.sim.robots.library_common import FANUC, FANUC_CONV  # late: loads subprocess only when this runs
 
     brand = RosiBrand(vendor="FANUC", jmap=FANUC, conventions=FANUC_CONV, flange_rz=math.pi, limits_note=_J3_NOTE)
     return [rosi_spec(arm, brand) for arm in _ARMS]

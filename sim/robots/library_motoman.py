@@ -185,7 +185,7 @@ _MASS_EST = ("estimate: the capsules' volume at the Motoman MH12's mass per caps
 
 
 def _spec(row: RosiArm) -> RobotSpec:
-    from rmot.sim.robots.dynamics import INERTIA_METHOD, SPREAD_METHOD
+    from rmot.sim.robots.dynamics import INERTIA_METHOD, SPREAD_METHOD  # late: loads subprocess only when this runs
 
     p, where, base = row.params, row.file, -row.floor
     radii = _radii(p)

@@ -34,10 +34,18 @@ def rosi_arms() -> list[RobotSpec]:
 
 
 def _abb_fanuc() -> list[RobotSpec]:
-    from rmot.sim.robots.dynamics import EFFORT_METHOD as EFFORT
-    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA
-    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD
-    from rmot.sim.robots.library_common import ABB, ABB_CONV, ACC_EST, FANUC, FANUC_CONV, acc_estimate, sources
+    from rmot.sim.robots.dynamics import EFFORT_METHOD as EFFORT  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library_common import (  # late: loads subprocess only when this runs
+        ABB,
+        ABB_CONV,
+        ACC_EST,
+        FANUC,
+        FANUC_CONV,
+        acc_estimate,
+        sources,
+    )
 
     irb2400 = OpwParams(a1=0.100, a2=-0.135, b=0.0, c1=0.615, c2=0.705, c3=0.755, c4=0.085)
     m16ib = OpwParams(a1=0.150, a2=-0.100, b=0.0, c1=0.0, c2=0.770, c3=0.740, c4=0.100)
@@ -75,9 +83,9 @@ def _abb_fanuc() -> list[RobotSpec]:
 
 
 def _yaskawa_staubli() -> list[RobotSpec]:
-    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA
-    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD
-    from rmot.sim.robots.library_common import (ACC_EST, STAUBLI, STAUBLI_CONV, YASKAWA, YASKAWA_CONV,
+    from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA  # late: loads subprocess only when this runs
+    from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library_common import (ACC_EST, STAUBLI, STAUBLI_CONV, YASKAWA, YASKAWA_CONV,  # late: loads subprocess only when this runs
                                                      acc_estimate, sources)
 
     mh12 = OpwParams(a1=0.155, a2=-0.200, b=0.0, c1=0.0, c2=0.614, c3=0.640, c4=0.100)

@@ -85,7 +85,7 @@ def _geometry(arm: RosiArm) -> str:
 
 
 def _mass_source(arm: RosiArm, vendor: str) -> str:
-    from rmot.sim.robots.dynamics import SPREAD_METHOD
+    from rmot.sim.robots.dynamics import SPREAD_METHOD  # late: loads subprocess only when this runs
 
     if arm.link_mass_kg:
         return f"{arm.file} <inertial> masses of link_1..link_6"
@@ -97,9 +97,9 @@ def _mass_source(arm: RosiArm, vendor: str) -> str:
 
 def rosi_spec(arm: RosiArm, brand: RosiBrand) -> RobotSpec:
     """The library spec of one row, every number with its source."""
-    from rmot.sim.robots.dynamics import EFFORT_METHOD, INERTIA_METHOD
-    from rmot.sim.robots.library_common import ACC_EST, acc_estimate, sources
-    from rmot.sim.robots.library_rosi import _REACH_EST, _wrist_reach
+    from rmot.sim.robots.dynamics import EFFORT_METHOD, INERTIA_METHOD  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library_common import ACC_EST, acc_estimate, sources  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library_rosi import _REACH_EST, _wrist_reach  # late: loads subprocess only when this runs
 
     reach = _wrist_reach(arm.params)
     unit = "rad, to the nearest 0.5 deg" if arm.rounded else "deg"

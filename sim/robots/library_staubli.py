@@ -120,7 +120,7 @@ def _masses(row: RosiArm) -> tuple[tuple[float, ...], str]:
 
 
 def _spec(row: RosiArm) -> RobotSpec:
-    from rmot.sim.robots.dynamics import INERTIA_METHOD
+    from rmot.sim.robots.dynamics import INERTIA_METHOD  # late: loads subprocess only when this runs
 
     p, where, base = row.params, row.file, -row.floor
     scale = _wrist_reach(p) / _TX60L_REACH

@@ -9,13 +9,14 @@ from functools import lru_cache
 from rmot.sim.robots import codes
 from rmot.sim.robots.errors import RobotError
 from rmot.sim.robots.robot import Robot
+import json
 
 __all__ = ["list_robots", "load_robot", "suggest"]
 
 
 def list_robots() -> tuple[str, ...]:
     """The library names, sorted."""
-    from rmot.sim.robots.library import SPECS
+    from rmot.sim.robots.library import SPECS  # late: loads subprocess only when this runs
 
     return tuple(sorted(SPECS))
 
@@ -42,7 +43,6 @@ def load_robot(name_or_path: str) -> Robot:
 @lru_cache(maxsize=None)
 def _load_calibrated(key: str) -> Robot:
     """ "calibrated:" + JSON [inner key, speed share, acceleration share] (ir.RobotSource)."""
-    import json
 
     inner, speed, accel = json.loads(key[len("calibrated:"):])
     return load_robot(inner).calibrated(float(speed), float(accel))
@@ -50,8 +50,8 @@ def _load_calibrated(key: str) -> Robot:
 
 @lru_cache(maxsize=None)
 def _load_library(name: str) -> Robot:
-    from rmot.sim.robots.build import build_robot
-    from rmot.sim.robots.library import SPECS
+    from rmot.sim.robots.build import build_robot  # late: loads subprocess only when this runs
+    from rmot.sim.robots.library import SPECS  # late: loads subprocess only when this runs
 
     spec = SPECS.get(name)
     if spec is None:
@@ -61,23 +61,22 @@ def _load_library(name: str) -> Robot:
 
 @lru_cache(maxsize=None)
 def _load_urdf(path: str) -> Robot:
-    from rmot.sim.robots.urdf import robot_from_urdf
+    from rmot.sim.robots.urdf import robot_from_urdf  # late: loads subprocess only when this runs
 
     return robot_from_urdf(path)
 
 
 @lru_cache(maxsize=None)
 def _load_keyed(key: str) -> Robot:
-    import json
 
     if key.startswith("model:"):
-        from rmot.sim.robots.model import robot_from_key
+        from rmot.sim.robots.model import robot_from_key  # late: loads subprocess only when this runs
 
         try:
             return robot_from_key(key)
         except ValueError as exc:
             raise RobotError(f"model cannot be built: {exc}", codes.BAD_URDF) from None
-    from rmot.sim.robots.urdf import robot_from_urdf
+    from rmot.sim.robots.urdf import robot_from_urdf  # late: loads subprocess only when this runs
 
     path, base, tip, *maker = json.loads(key[len("urdf-chain:"):])  # maker: urdf(controller=), when given
     return robot_from_urdf(os.path.abspath(path), base=base, tip=tip, controller=maker[0] if maker else None)

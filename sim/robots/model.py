@@ -61,9 +61,9 @@ def robot_from_key(key: str) -> Robot:
 
 
 def robot_from_model(spec: ModelSpec) -> Robot:
-    from rmot.sim.robots.model_opw import opw_solver_for
-    from rmot.sim.robots.urdf import _reach
-    from rmot.sim.robots.wrist_branches import spherical_wrist_branch_fn
+    from rmot.sim.robots.model_opw import opw_solver_for  # late: loads subprocess only when this runs
+    from rmot.sim.robots.urdf import _reach  # late: loads subprocess only when this runs
+    from rmot.sim.robots.wrist_branches import spherical_wrist_branch_fn  # late: loads subprocess only when this runs
 
     if not 1 <= len(spec.joints) <= MAX_JOINTS:
         raise ValueError(f"a model must have 1 to {MAX_JOINTS} joints (got {len(spec.joints)})")
@@ -131,8 +131,8 @@ def _model_limits(coupling: np.ndarray, limits: np.ndarray) -> np.ndarray:
 
 def _add_dynamics(robot: Robot, spec: ModelSpec) -> None:
     """Link inertias from the masses and the solids, ratings into effortLimit (module doc)."""
-    from rmot.sim.robots.dynamics import link_inertias
-    from rmot.sim.robots.spec import Segment
+    from rmot.sim.robots.dynamics import link_inertias  # late: loads subprocess only when this runs
+    from rmot.sim.robots.spec import Segment  # late: loads subprocess only when this runs
 
     segments = []
     for s in robot.solids:
@@ -143,7 +143,7 @@ def _add_dynamics(robot: Robot, spec: ModelSpec) -> None:
             p0, p1, r = ends
             segments.append(Segment(s.name, int(s.joint_id), (p0[0], p0[1], p0[2]),
                                     (p1[0], p1[1], p1[2]), float(r)))
-    import pinocchio as pin
+    import pinocchio as pin  # late: pinocchio is heavy or optional, loaded only where used
 
     masses = tuple(float(j.mass or 0.0) for j in spec.joints)
     # a massless link: computed with 1 kg (no division by zero), then left without inertia
@@ -162,7 +162,7 @@ def _add_dynamics(robot: Robot, spec: ModelSpec) -> None:
 
 def _joint_points(model, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # type: ignore[no-untyped-def]
     """Joint origins (n+1,3) with the flange last, joint frames (n+1,4,4) (index 0 = base)."""
-    import pinocchio as pin
+    import pinocchio as pin  # late: pinocchio is heavy or optional, loaded only where used
 
     data = model.createData()
     pin.forwardKinematics(model, data, q)
@@ -244,7 +244,7 @@ def _base_cylinder(pts: np.ndarray, r0: float, r2: float) -> LinkSolid:
 
 def _capsule(name: str, joint: int, p0: np.ndarray, p1: np.ndarray, radius: float, joint_frame: np.ndarray,
              cylinder: bool = False) -> LinkSolid:
-    from rmot.sim.robots.build import _frame_with_z
+    from rmot.sim.robots.build import _frame_with_z  # late: loads subprocess only when this runs
 
     axis = p1 - p0
     length = float(np.linalg.norm(axis))

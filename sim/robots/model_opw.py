@@ -70,7 +70,7 @@ def derive_opw(robot, geometric_branch=None) -> tuple[OpwParams, OpwJointMap, np
     verified sign choices the first whose OPW branch names agree with it at the check
     configurations wins (so the names do not depend on how the DH frames were drawn), else
     the first verified one."""
-    from rmot.sim.robots.wrist_branches import wrist_centre
+    from rmot.sim.robots.wrist_branches import wrist_centre  # late: loads subprocess only when this runs
 
     if robot.dof != 6 or any(t != "R" for t in robot.joint_types) or robot._coupling is not None:
         return None
@@ -91,7 +91,7 @@ def derive_opw(robot, geometric_branch=None) -> tuple[OpwParams, OpwJointMap, np
 
 
 def _names_agree(robot, found, geometric_branch) -> bool:  # type: ignore[no-untyped-def]
-    from rmot.sim.robots.branches import opw_branch_fn
+    from rmot.sim.robots.branches import opw_branch_fn  # late: loads subprocess only when this runs
 
     branch = opw_branch_fn(found[0], found[1])
     rng = np.random.default_rng(5)
@@ -145,7 +145,7 @@ def _candidate(robot: Robot, pts: np.ndarray, dirs: np.ndarray, flange0: np.ndar
     offsets = (0.0, theta2, theta23 - theta2, theta4, theta5, 0.0)
     params = OpwParams(a1=a1, a2=a2, b=b, c1=c1, c2=c2, c3=c3, c4=c4)
     jmap = OpwJointMap(sign=signs, offset=offsets)
-    from rmot.sim.robots.opw import opw_fk
+    from rmot.sim.robots.opw import opw_fk  # late: loads subprocess only when this runs
 
     t_opw0 = opw_fk(params, np.array([offsets]))[0]
     f_mat = np.linalg.inv(t_opw0) @ np.linalg.inv(b_mat) @ flange0
@@ -153,7 +153,7 @@ def _candidate(robot: Robot, pts: np.ndarray, dirs: np.ndarray, flange0: np.ndar
 
 
 def _verified(robot, params: OpwParams, jmap: OpwJointMap, b_mat: np.ndarray, f_mat: np.ndarray) -> bool:  # type: ignore[no-untyped-def]
-    from rmot.sim.robots import fastik
+    from rmot.sim.robots import fastik  # late: loads subprocess only when this runs
 
     rng = np.random.default_rng(12)
     lo, hi = robot.joint_limits[:, 0], robot.joint_limits[:, 1]
@@ -180,20 +180,20 @@ def _verified(robot, params: OpwParams, jmap: OpwJointMap, b_mat: np.ndarray, f_
 def opw_solver_for(robot: Robot) -> tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], ir.Config],
                                           tuple[ir.Config, ...]] | None:
     """(closed_form, branch_fn, batch rows) for a verified OPW chain, else None."""
-    from rmot.sim.robots.branches import opw_branch_fn
-    from rmot.sim.robots.build import _row_branches
+    from rmot.sim.robots.branches import opw_branch_fn  # late: loads subprocess only when this runs
+    from rmot.sim.robots.build import _row_branches  # late: loads subprocess only when this runs
 
-    from rmot.sim.robots.wrist_branches import spherical_wrist_branch_fn
+    from rmot.sim.robots.wrist_branches import spherical_wrist_branch_fn  # late: loads subprocess only when this runs
 
     geometric = spherical_wrist_branch_fn(robot.model, robot._chain.axes, robot._chain.prismatic, robot.joint_limits)
     found = derive_opw(robot, geometric)
     if found is None:
         return None
     params, jmap, b_mat, f_mat = found
-    from rmot.sim.robots import fastik
+    from rmot.sim.robots import fastik  # late: loads subprocess only when this runs
 
-    from rmot.sim.robots.branches import opw_branch_arrays
-    from rmot.sim.robots.closed_form import ClosedForm
+    from rmot.sim.robots.branches import opw_branch_arrays  # late: loads subprocess only when this runs
+    from rmot.sim.robots.closed_form import ClosedForm  # late: loads subprocess only when this runs
 
     closed_form = ClosedForm("opw", fastik.opw_kernel_args(params, jmap), np.linalg.inv(b_mat),
                              np.linalg.inv(f_mat), opw_branch_arrays(params, jmap))

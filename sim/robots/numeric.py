@@ -44,7 +44,7 @@ def dls(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_iter:
 
 def dls_fast(robot, target: np.ndarray, q0: np.ndarray, tol: float = 1e-11, max_iter: int = 60) -> tuple[np.ndarray, float]:  # type: ignore[no-untyped-def]
     """The same iteration compiled over the chain arrays (see `fastdls`)."""
-    from rmot.sim.robots.fastdls import DLS_CHAIN
+    from rmot.sim.robots.fastdls import DLS_CHAIN  # late: loads subprocess only when this runs
 
     args = robot._dls_args
     if args is None:

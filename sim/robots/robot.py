@@ -15,6 +15,7 @@ import pinocchio as pin
 from rmot.lang import ir
 from rmot.sim.robots.kinematic_chain import Chain, chain_of
 from rmot.lang.record import record
+import copy
 
 if TYPE_CHECKING:
     from rmot.sim.robots.ik import IkResult
@@ -123,7 +124,6 @@ class Robot:
         """This arm with its joint speed and acceleration limits scaled by the shares a cell
         gives (`robot r1 = NAME speed S % accel A %`: the user's calibration of the arm to its
         real controller, e.g. to match a measured cycle); its sources say so."""
-        import copy
 
         out = copy.copy(self)
         out.velocity_limits = _frozen(self.velocity_limits * speed_share)
@@ -210,7 +210,7 @@ class Robot:
         order as the solver's), the equivalent within limits nearest to seed (default 0);
         NaN where the branch does not exist or has no equivalent within the limits. For
         robots without a closed form, row 0 holds the numeric solution nearest to seed."""
-        from rmot.sim.robots.ik import solve_batch
+        from rmot.sim.robots.ik import solve_batch  # late: loads subprocess only when this runs
 
         return solve_batch(self, poses, seed)
 
@@ -226,7 +226,7 @@ _IK_SOLVE: list[Callable[..., IkResult]] = []  # ik.solve, imported on the first
 
 
 def _ik_solve() -> Callable[..., IkResult]:
-    from rmot.sim.robots.ik import solve
+    from rmot.sim.robots.ik import solve  # late: loads subprocess only when this runs
 
     _IK_SOLVE.append(solve)
     return solve

@@ -162,7 +162,7 @@ def ur_spec(
     **extra: object,
 ) -> RobotSpec:
     """A Universal Robots arm: joint values are UR's DH θ (no offsets, no sign changes)."""
-    from rmot.sim.robots.dh import DHRow
+    from rmot.sim.robots.dh import DHRow  # late: loads subprocess only when this runs
 
     rows = tuple(DHRow(d=d, a=a, alpha=al) for d, a, al in params.dh())
     limits = limits_deg or ((-360.0, 360.0),) * 6

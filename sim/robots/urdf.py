@@ -45,7 +45,7 @@ def robot_from_urdf(path: str, base: str | None = None, tip: str | None = None, 
         raise RobotError(f"cannot load URDF '{path}': {why}", codes.BAD_URDF) from None
     flange_name = None
     if base is not None or tip is not None:
-        from rmot.sim.robots.urdf_chain import reduce_to_chain
+        from rmot.sim.robots.urdf_chain import reduce_to_chain  # late: loads subprocess only when this runs
 
         try:
             model, geoms = reduce_to_chain(model, geoms, base, tip)
@@ -81,8 +81,8 @@ def _flange_frame(model: pin.Model, first: str | None = None) -> int:
 
 def _robot(model: pin.Model, geoms: pin.GeometryModel, path: str, flange_name: str | None = None,
            controller: str | None = None) -> Robot:
-    from rmot.sim.robots.controller import in_joint_values
-    from rmot.sim.robots.kinematic_chain import chain_of
+    from rmot.sim.robots.controller import in_joint_values  # late: loads subprocess only when this runs
+    from rmot.sim.robots.kinematic_chain import chain_of  # late: loads subprocess only when this runs
 
     chain = chain_of(model)  # raises ValueError for branched chains and multi-dof joints
     fid = _flange_frame(model, flange_name)
@@ -115,8 +115,8 @@ def _kinematics(probe: Robot, chain: Any) -> tuple[Any, Any, Any]:
     geometry is ortho-parallel with a spherical wrist, proven by FK at random configurations
     (model_opw, as for a cell's model), else the geometric branch names of a spherical wrist
     (wrist_branches) with the numeric IK, else none."""
-    from rmot.sim.robots.model_opw import opw_solver_for
-    from rmot.sim.robots.wrist_branches import spherical_wrist_branch_fn
+    from rmot.sim.robots.model_opw import opw_solver_for  # late: loads subprocess only when this runs
+    from rmot.sim.robots.wrist_branches import spherical_wrist_branch_fn  # late: loads subprocess only when this runs
 
     opw = opw_solver_for(probe) if probe.dof == 6 and not np.any(chain.prismatic) else None
     if opw is not None:
@@ -127,7 +127,7 @@ def _kinematics(probe: Robot, chain: Any) -> tuple[Any, Any, Any]:
 def _controller_coupling(controller: str | None, dof: int) -> tuple[np.ndarray | None, tuple[tuple[str, str], ...]]:
     """The joint coupling and the conventions a URDF arm declared for `controller` has (ROS-I
     drivers pass the pendant values one to one; Fanuc's fanuc_driver J23_factor = 1)."""
-    from rmot.sim.robots.controller import ANY, MAKERS, fanuc_urdf_coupling
+    from rmot.sim.robots.controller import ANY, MAKERS, fanuc_urdf_coupling  # late: loads subprocess only when this runs
 
     if controller is None:
         return None, ()
@@ -143,7 +143,7 @@ def _controller_coupling(controller: str | None, dof: int) -> tuple[np.ndarray |
 
 
 def _solid(g: pin.GeometryObject) -> LinkSolid | None:
-    import coal
+    import coal  # late: coal is heavy or optional, loaded only where used
 
     shape = g.geometry
     if isinstance(shape, coal.Box):
@@ -188,7 +188,7 @@ def urdf_links(path: str) -> tuple[str, ...]:
 
 def urdf_chain_error(path: str, base: str, tip: str) -> str | None:
     """Why base..tip is no chain of joints in the URDF (tip not below base, no joint), else None."""
-    from rmot.sim.robots.urdf_chain import chain_joints
+    from rmot.sim.robots.urdf_chain import chain_joints  # late: loads subprocess only when this runs
 
     model = pin.buildModelFromUrdf(path)
     try:

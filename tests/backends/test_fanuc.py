@@ -12,7 +12,8 @@ from backend_fixtures import (
 )
 
 from rmot.backends import codes
-from rmot.backends.fanuc_tp import FanucBackend, config_string, turn_number
+from rmot.backends.fanuc_tp import FanucBackend
+from rmot.backends.fanuc_tp_text import config_string, turn_number
 from rmot.lang import ir
 
 FRAMES = ("UFRAME_NUM=0", "UTOOL_NUM=1")

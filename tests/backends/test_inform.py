@@ -244,7 +244,7 @@ class TestRoundTrip:
 class TestJointTargetsAsCartesian:
     def test_rconf_selects_exactly_the_planned_joints(self) -> None:
         """Among every IK solution of a position (all branches and turns), the RCONF matches only the planned joints."""
-        from rmot.backends.inform import rconf
+        from rmot.backends.inform_text import rconf
         from rmot.sim.robots import load_robot
 
         robot = load_robot("yaskawa_gp8")

@@ -21,6 +21,7 @@ from lang_reference_lexer import reference_parser
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 
 from rmot.lang import _build, parse
+from rmot.lang import _build_nodes
 from rmot.lang._lalr import PostLexState
 from rmot.lang.source import Pos, SourceFile, Span
 
@@ -138,14 +139,14 @@ def test_random_token_soup_parses_as_with_larks_loop(words: list[str]) -> None:
 def test_positions_made_without_init_equal_ordinary_ones() -> None:
     """The builder's fast Pos/Span equal constructed ones in every field (defaults included) and stay frozen."""
     f = SourceFile("a", "xyz")
-    pairs = [(_build._make_pos(2, 3, 9), Pos(2, 3, 9)),
-             (_build._make_span(f, Pos(1, 1, 0), Pos(1, 2, 1)), Span(f, Pos(1, 1, 0), Pos(1, 2, 1)))]
+    pairs = [(_build_nodes._make_pos(2, 3, 9), Pos(2, 3, 9)),
+             (_build_nodes._make_span(f, Pos(1, 1, 0), Pos(1, 2, 1)), Span(f, Pos(1, 1, 0), Pos(1, 2, 1)))]
     for fast, ordinary in pairs:
         assert type(fast) is type(ordinary) and fast == ordinary and hash(fast) == hash(ordinary)
         for field in dataclasses.fields(ordinary):
             assert getattr(fast, field.name) == getattr(ordinary, field.name), field.name
     with pytest.raises(dataclasses.FrozenInstanceError):
-        _build._make_pos(1, 1, 0).line = 2  # type: ignore[misc]
+        _build_nodes._make_pos(1, 1, 0).line = 2  # type: ignore[misc]
 
 
 def test_fast_constructor_falls_back_where_init_matters() -> None:
@@ -168,8 +169,8 @@ def test_fast_constructor_falls_back_where_init_matters() -> None:
         c: int
         d: int
 
-    assert _build._fast_constructor(Checked, ("a", "b", "c")) is Checked
-    assert _build._fast_constructor(Wider, ("a", "b", "c")) is Wider
+    assert _build_nodes._fast_constructor(Checked, ("a", "b", "c")) is Checked
+    assert _build_nodes._fast_constructor(Wider, ("a", "b", "c")) is Wider
 
 
 def test_the_parse_keeps_no_tokens_alive() -> None:
@@ -251,4 +252,4 @@ def test_fast_node_falls_back_where_init_matters() -> None:
             if self.a < 0:
                 raise ValueError
 
-    assert _build._fast_node(Checked) is Checked
+    assert _build_nodes._fast_node(Checked) is Checked
