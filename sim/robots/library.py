@@ -54,6 +54,7 @@ from rmot.sim.robots.urik import UrParams
 __all__ = ["SPECS"]
 
 def _abb_kuka() -> list[RobotSpec]:
+    """The ABB and KUKA rows of the library. Long on purpose: a table with one entry per arm, each with its cited source beside it."""
     from rmot.sim.robots.kuka_inertia import KUKA_INERTIA  # late: loads subprocess only when this runs
     from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA  # late: loads subprocess only when this runs
     from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD  # late: loads subprocess only when this runs
@@ -174,6 +175,7 @@ def _abb_kuka() -> list[RobotSpec]:
 
 
 def _fanuc_yaskawa_staubli() -> list[RobotSpec]:
+    """The FANUC, Yaskawa and Stäubli rows of the library. Long on purpose: a table with one entry per arm, each with its cited source beside it."""
     from rmot.sim.robots.dynamics import INERTIA_METHOD as INERTIA  # late: loads subprocess only when this runs
     from rmot.sim.robots.dynamics import SPREAD_METHOD as SPREAD  # late: loads subprocess only when this runs
     from rmot.sim.robots.dynamics import EFFORT_METHOD as EFFORT  # late: loads subprocess only when this runs
@@ -287,6 +289,7 @@ def _puma560() -> RobotSpec:
 
 
 def _ur() -> list[RobotSpec]:
+    """The Universal Robots rows of the library. Long on purpose: a table with one entry per arm, each with its cited source beside it."""
     # Universal Robots, "DH parameters for calculations of kinematics and dynamics"
     # (universal-robots.com/articles/ur/application-installation/dh-parameters-...), e-Series
     # and CB3 tables; speeds and reach from the e-Series data sheets. Shoulder/elbow offsets
@@ -379,7 +382,7 @@ def _kroshu(name: str, model: str, pkg: str, stem: str, params: OpwParams, *, li
 
 
 def _kroshu_arms() -> list[RobotSpec]:
-    """More KUKA arms, each from KUKA's own description; see `_kroshu`."""
+    """More KUKA arms, each from KUKA's own description; see `_kroshu`. Long on purpose: a table with one entry per arm, each with its cited source beside it."""
     return [
         _kroshu("kuka_kr4_r600", "KR 4 R600", "kuka_agilus_support", "kr4_r600",
                 OpwParams(a1=0.0, a2=-0.02, b=0.0, c1=0.33, c2=0.29, c3=0.31, c4=0.075),
