@@ -87,8 +87,6 @@ from rmot.backends.fanuc_tp_text import (
     COMMENT_MAX,
     config_string,
     _TP_OP,
-    _NEGATED,
-    _MIRROR,
     _tp_number,
     _leaf,
     _config_key,
@@ -615,7 +613,7 @@ class FanucBackend(Backend):
             return None
         op, left, right = c.op, c.left, c.right
         if isinstance(left, ir.Const) and not isinstance(right, ir.Const):  # register on the left
-            op, left, right = _MIRROR[op], right, left
+            op, left, right = op.mirrored(), right, left
         lines: list[str] = []
         if isinstance(left, (ir.VarRef, ir.AnalogInput)):
             a = self._operand(left, ctx, node)[1]
@@ -629,7 +627,7 @@ class FanucBackend(Backend):
             more, value = self._operand(right, ctx, node)
             b = self._temp(ctx, node.span)
             lines += more + [f"{b}={value}"]
-        return lines, f"{a}{_TP_OP[_NEGATED[op] if negate else op]}{b}"
+        return lines, f"{a}{_TP_OP[op.negated() if negate else op]}{b}"
 
     def _jump(self, c: ir.Condition | ir.RtExpr, label: int, when: bool, ctx: FanucContext,
               node: ir.Instr) -> list[str]:

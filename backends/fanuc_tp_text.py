@@ -49,14 +49,6 @@ _TP_OP = {ir.CompareOp.EQ: "=", ir.CompareOp.NE: "<>", ir.CompareOp.LT: "<", ir.
           ir.CompareOp.GT: ">", ir.CompareOp.GE: ">="}
 
 
-_NEGATED = {ir.CompareOp.EQ: ir.CompareOp.NE, ir.CompareOp.NE: ir.CompareOp.EQ,
-            ir.CompareOp.LT: ir.CompareOp.GE, ir.CompareOp.GE: ir.CompareOp.LT,
-            ir.CompareOp.GT: ir.CompareOp.LE, ir.CompareOp.LE: ir.CompareOp.GT}
-
-
-_MIRROR = {ir.CompareOp.EQ: ir.CompareOp.EQ, ir.CompareOp.NE: ir.CompareOp.NE,
-           ir.CompareOp.LT: ir.CompareOp.GT, ir.CompareOp.GT: ir.CompareOp.LT,
-           ir.CompareOp.LE: ir.CompareOp.GE, ir.CompareOp.GE: ir.CompareOp.LE}
 
 
 def _tp_number(value: float | int | bool) -> str:

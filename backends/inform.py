@@ -120,8 +120,6 @@ from rmot.backends.inform_text import (
     predecessors,
     _INFORM_OP,
     _INFORM_CMP,
-    _NEGATED,
-    _MIRROR,
     _Shift,
     _inform_number,
     _value_type,
@@ -613,13 +611,13 @@ class InformBackend(Backend):
             return None
         op, left, right = c.op, c.left, c.right
         if isinstance(left, ir.Const) and not isinstance(right, ir.Const):
-            op, left, right = _MIRROR[op], right, left
+            op, left, right = op.mirrored(), right, left
         lines, a = self._value(left, ctx, node)
         if not isinstance(left, ir.VarRef) and not a.startswith(("D", "R", "B")):
             t = self._temp(_value_type(left), ctx, node.span)
             lines, a = lines + [f"SET {t} {a}"], t
         more, b = self._value(right, ctx, node)
-        return lines + more, f"{a}{_INFORM_CMP[_NEGATED[op] if negate else op]}{b}"
+        return lines + more, f"{a}{_INFORM_CMP[op.negated() if negate else op]}{b}"
 
     def _jump(self, c: ir.Condition | ir.RtExpr, label: str, when: bool, ctx: InformContext,
               node: ir.Instr) -> list[str]:

@@ -644,6 +644,14 @@ class CompareOp(Enum):
     GT = ">"
     GE = ">="
 
+    def negated(self) -> CompareOp:
+        """The comparison that holds exactly when this one does not (a < b: a >= b)."""
+        return CompareOp({"==": "!=", "!=": "==", "<": ">=", ">=": "<", ">": "<=", "<=": ">"}[self.value])
+
+    def mirrored(self) -> CompareOp:
+        """The comparison with its operands swapped that means the same (a < b: b > a)."""
+        return CompareOp({"==": "==", "!=": "!=", "<": ">", ">": "<", "<=": ">=", ">=": "<="}[self.value])
+
 
 @record(slots=True)
 class Const:
