@@ -21,7 +21,7 @@ import dataclasses
 import enum
 import importlib
 import math
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -139,17 +139,7 @@ def decode(doc: Any, arrays: list[np.ndarray] | dict[int, np.ndarray]) -> Any:
             except KeyError:
                 raise CodecError("a reference to an object not yet decoded") from None
         if "$c" in v:
-            cls = registry.get(v["$c"])
-            if cls is None or not dataclasses.is_dataclass(cls):
-                raise CodecError(f"type {v['$c']!r} is not allowed in a plan document")
-            names = {f.name for f in dataclasses.fields(cls)}
-            given = v["f"]
-            if set(given) != names:
-                raise CodecError(f"fields of {v['$c']} differ from the class (stale entry)")
-            obj = object.__new__(cls)
-            for key, item in given.items():
-                object.__setattr__(obj, key, dec(item))
-            obj = _intern(obj)
+            obj = _decode_object(v, registry, dec)
             objects[v["id"]] = obj
             return obj
         if "$a" in v:
@@ -180,6 +170,23 @@ def decode(doc: Any, arrays: list[np.ndarray] | dict[int, np.ndarray]) -> Any:
         raise
     except (KeyError, IndexError, TypeError, ValueError, AttributeError) as exc:
         raise CodecError(f"malformed plan document ({exc.__class__.__name__}: {exc})") from None
+
+
+def _decode_object(v: dict[str, Any], registry: dict[str, type], dec: Callable[[Any], Any]) -> Any:
+    """A registered dataclass instance from its fields, built without running its __init__ (the
+    fields were checked when it was encoded); a type not registered, or fields that differ from
+    the class (an entry written by another version), is a CodecError."""
+    cls = registry.get(v["$c"])
+    if cls is None or not dataclasses.is_dataclass(cls):
+        raise CodecError(f"type {v['$c']!r} is not allowed in a plan document")
+    names = {f.name for f in dataclasses.fields(cls)}
+    given = v["f"]
+    if set(given) != names:
+        raise CodecError(f"fields of {v['$c']} differ from the class (stale entry)")
+    obj = object.__new__(cls)
+    for key, item in given.items():
+        object.__setattr__(obj, key, dec(item))
+    return _intern(obj)
 
 
 def _intern(obj: Any) -> Any:

@@ -86,19 +86,8 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
     if n == 0 or n > MAX_JOINTS:
         rep.error(codes.MODEL_CHAIN_LENGTH, f"model '{name}' must have 1 to {MAX_JOINTS} joint lines (got {n})", decl.name.span)
         ok = False
-    flange_m: tuple[float, ...] = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)
-    if flange is not None:
-        pose = expect_pose(eval_expr(flange.value, scope, rep), f"flange of model '{name}'", flange.value.span, rep)  # type: ignore[arg-type, union-attr]
-        if pose is None:
-            ok = False
-        else:
-            m = pose.matrix()
-            finite = all(math.isfinite(x) for x in m.flat)
-            if not finite or max(abs(float(x)) for x in m[:3, 3]) > MAX_POSITION_M:  # a flange km away: GiB of samples
-                rep.error(codes.MODEL_BAD_VALUE if not finite else codes.PHYSICAL_RANGE, f"flange of model '{name}' must be "
-                          + (f"within {MAX_POSITION_M:g} m of the last DH frame" if finite else "finite"), flange.value.span)  # type: ignore[union-attr]
-                ok = False
-            flange_m = tuple(float(x) for x in m.flat)
+    flange_m = _flange_matrix(flange, name, scope, rep)
+    ok &= flange_m is not None
     payload_kg = None
     if payload is not None:
         payload_kg = _number(payload.value, MASS, f"payload of model '{name}'", rep, scope, minimum=0.0)  # type: ignore[arg-type]
@@ -106,9 +95,30 @@ def lower_model(decl: ast.ModelDecl, scope: Scope, rep: Reporter, geometry: Geom
     if ok and joints:
         ok &= _dynamics_complete(decl, joints, rep)
     declared = declared_controller(controller, pendant, len(joints), rep)
-    if not ok or declared is None:
+    if not ok or declared is None or flange_m is None:
         return None
     return ModelSpec(name, "mdh" in conventions, tuple(joints), flange_m, payload_kg, tuple(solids), *declared)
+
+
+IDENTITY_FLANGE = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+
+
+def _flange_matrix(flange: ast.Setting | None, name: str, scope: Scope, rep: Reporter) -> tuple[float, ...] | None:
+    """The flange's 4x4 matrix, row by row (identity when the model gives none); None after an
+    error: a pose that is not finite, or a flange farther than MAX_POSITION_M from the last DH
+    frame (a flange km away would make GiB of samples)."""
+    if flange is None:
+        return IDENTITY_FLANGE
+    pose = expect_pose(eval_expr(flange.value, scope, rep), f"flange of model '{name}'", flange.value.span, rep)  # type: ignore[arg-type, union-attr]
+    if pose is None:
+        return None
+    m = pose.matrix()
+    finite = all(math.isfinite(x) for x in m.flat)
+    if not finite or max(abs(float(x)) for x in m[:3, 3]) > MAX_POSITION_M:
+        rep.error(codes.MODEL_BAD_VALUE if not finite else codes.PHYSICAL_RANGE, f"flange of model '{name}' must be "
+                  + (f"within {MAX_POSITION_M:g} m of the last DH frame" if finite else "finite"), flange.value.span)  # type: ignore[union-attr]
+        return None
+    return tuple(float(x) for x in m.flat)
 
 
 def _dynamics_complete(decl: ast.ModelDecl, joints: list[ModelJointSpec], rep: Reporter) -> bool:

@@ -120,13 +120,37 @@ def _blend(robot, a: _Part, b: _Part, r: float, tool: np.ndarray):  # type: igno
     return keep, q[1:-1], tcp[1:-1], rest
 
 
+@dataclass
+class _Columns:
+    """The chain's per-point columns, appended piece by piece so they stay aligned."""
+    q: list[np.ndarray] = field(default_factory=list)
+    tcp: list[np.ndarray] = field(default_factory=list)
+    rate: list[np.ndarray] = field(default_factory=list)
+    accel: list[np.ndarray] = field(default_factory=list)
+    uniform: list[np.ndarray] = field(default_factory=list)
+    factor: list[np.ndarray] = field(default_factory=list)
+    by_tcp: list[np.ndarray] = field(default_factory=list)
+    count: int = 0
+
+    def add(self, q: np.ndarray, tcp: np.ndarray, rate: float, accel: float, uniform: bool, factor: float,
+            by_tcp: bool) -> None:
+        n = len(q)
+        self.q.append(q)
+        self.tcp.append(tcp)
+        self.rate.append(np.full(n, rate))
+        self.accel.append(np.full(n, accel))
+        self.uniform.append(np.full(n, uniform))
+        self.factor.append(np.full(n, factor))
+        self.by_tcp.append(np.full(n, by_tcp))
+        self.count += n
+
+
 def blend_chain(robot: RobotModel | None, segments: list[Segment]) -> ChainPath:
     """Join a chain of segments (each starting where the previous one ends) into one path."""
-    qs, tcps, rates, uniform, factors, by_tcp, accels = [], [], [], [], [], [], []
+    cols = _Columns()
     ends: list[int] = []
     radii: list[float] = []
     findings: list[tuple[int, Finding]] = []
-    count = 0
     part = _Part(segments[0].q, segments[0].tcp)
     for i, seg in enumerate(segments):
         blend, used, nxt = None, 0.0, None
@@ -135,53 +159,40 @@ def blend_chain(robot: RobotModel | None, segments: list[Segment]) -> ChainPath:
             if not seg.move.motion.zone.is_fine:
                 blend, used = _corner(robot, seg, segments[i + 1], part, nxt, findings, i)
         keep = blend[0] if blend is not None else part
-        qs.append(keep.q if i == 0 else keep.q[1:])
-        tcps.append(keep.tcp if i == 0 else keep.tcp[1:])
-        rates.append(np.full(len(qs[-1]), seg.tcp_rate))
-        accels.append(np.full(len(qs[-1]), _tcp_accel(seg)))
-        uniform.append(np.zeros(len(qs[-1]), bool))
-        factors.append(np.full(len(qs[-1]), seg.speed_factor))
-        by_tcp.append(np.full(len(qs[-1]), seg.tcp_rate > 0))
-        count += len(qs[-1])
-        ends.append(count - 1)
+        cols.add(keep.q if i == 0 else keep.q[1:], keep.tcp if i == 0 else keep.tcp[1:], seg.tcp_rate,
+                 _tcp_accel(seg), False, seg.speed_factor, seg.tcp_rate > 0)
+        ends.append(cols.count - 1)
         radii.append(used)
         if blend is not None:
             _, qb, tb, nxt = blend
-            qs.append(qb)
-            tcps.append(tb)
-            rates.append(np.full(len(qb), max(seg.tcp_rate, segments[i + 1].tcp_rate)))
-            both_acc = min(_tcp_accel(seg), _tcp_accel(segments[i + 1]))
-            accels.append(np.full(len(qb), both_acc))
-            uniform.append(np.ones(len(qb), bool))
-            # the zone exit (the next part's first point) has the next move's limits: limits
-            # apply per interval as the smaller of its two ends (timing.path_piece), so the
-            # blend's limits end exactly at the sphere
-            factors.append(np.full(len(qb), min(seg.speed_factor, segments[i + 1].speed_factor)))
-            factors.append(np.full(1, segments[i + 1].speed_factor))
-            both = seg.tcp_rate > 0 and segments[i + 1].tcp_rate > 0
-            by_tcp.append(np.full(len(qb) + 1, both))
-            count += len(qb)
-            # the blend's last point joins the next part, whose first point (q_out) is kept
-            qs.append(nxt.q[:1])
-            tcps.append(nxt.tcp[:1])
-            rates.append(np.full(1, segments[i + 1].tcp_rate))
-            accels.append(np.full(1, _tcp_accel(segments[i + 1])))
-            uniform.append(np.ones(1, bool))
-            count += 1
+            after = segments[i + 1]
+            both = seg.tcp_rate > 0 and after.tcp_rate > 0
+            cols.add(qb, tb, max(seg.tcp_rate, after.tcp_rate), min(_tcp_accel(seg), _tcp_accel(after)), True,
+                     min(seg.speed_factor, after.speed_factor), both)
+            # the blend's last point joins the next part, whose first point (q_out) is kept; that
+            # zone exit has the next move's limits: limits apply per interval as the smaller of its
+            # two ends (timing.path_piece), so the blend's limits end exactly at the sphere
+            cols.add(nxt.q[:1], nxt.tcp[:1], after.tcp_rate, _tcp_accel(after), True, after.speed_factor, both)
         part = nxt if nxt is not None else part
-    q, tcp, rate = np.concatenate(qs), np.concatenate(tcps), np.concatenate(rates)
+    return _chain_path(segments, cols, ends, radii, findings)
+
+
+def _chain_path(segments: list[Segment], cols: _Columns, ends: list[int], radii: list[float],
+                findings: list[tuple[int, Finding]]) -> ChainPath:
+    """The joined columns as a ChainPath: arc length weighted by the TCP rate, and the path parameter."""
+    q, tcp, rate = np.concatenate(cols.q), np.concatenate(cols.tcp), np.concatenate(cols.rate)
     step_rate = np.maximum(rate[1:], rate[:-1])
     c = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(tcp, axis=0), axis=1) * step_rate)])
     # TCP length as the parameter only in all-Cartesian chains: where a joint move joins in,
     # the change of parameter scale at its blends costs more time than it saves (measured)
     all_cartesian = all(s.tcp_rate > 0 for s in segments)
-    ss = _parameter(q, tcp, np.concatenate(uniform), np.concatenate(by_tcp) & all_cartesian)
-    vscale = np.concatenate(factors)
+    ss = _parameter(q, tcp, np.concatenate(cols.uniform), np.concatenate(cols.by_tcp) & all_cartesian)
+    vscale = np.concatenate(cols.factor)
     starts = [0] + ends[:-1]  # a move starts where the previous one ends (its zone entry)
     with np.errstate(divide="ignore"):
         speed = np.where(rate > 0, 1.0 / np.where(rate > 0, rate, 1.0), np.inf)
     return ChainPath(q, tcp, c, ss, vscale, tuple(starts), tuple(ends), tuple(radii), tuple(findings),
-                     speed, np.concatenate(accels))
+                     speed, np.concatenate(cols.accel))
 
 
 def _tcp_accel(seg: Segment) -> float:

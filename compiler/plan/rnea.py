@@ -176,12 +176,20 @@ def _rnea(q: np.ndarray, qd: np.ndarray, qdd: np.ndarray, revolute: np.ndarray, 
         f_ang.append(a_ang + cross(w, h_ang) + cross(v, h_lin))
         rots.append(rot)
         poss.append(pos)
+    return _joint_torques(f_lin, f_ang, rots, poss, revolute, axes)
+
+
+def _joint_torques(f_lin: list[np.ndarray], f_ang: list[np.ndarray], rots: list[np.ndarray],
+                   poss: list[np.ndarray], revolute: np.ndarray, axes: np.ndarray) -> np.ndarray:
+    """The backward pass: each link's force (in its frame) projected on its joint axis, then
+    added to its parent's in the parent's frame. f_lin and f_ang are summed in place."""
+    count, n = f_lin[0].shape[0], len(f_lin)
     tau = np.empty((count, n))
     for i in range(n - 1, -1, -1):
         tau[:, i] = (f_ang[i] if revolute[i] else f_lin[i]) @ axes[i]
-        if i > 0:  # the force on the parent, in the parent's frame
+        if i > 0:
             pl = np.einsum("nab,nb->na", rots[i], f_lin[i])
             pa = np.einsum("nab,nb->na", rots[i], f_ang[i])
             f_lin[i - 1] = f_lin[i - 1] + pl
-            f_ang[i - 1] = f_ang[i - 1] + pa + cross(poss[i], pl)
+            f_ang[i - 1] = f_ang[i - 1] + pa + _cross(poss[i], pl)
     return tau

@@ -33,6 +33,13 @@ __all__ = ["NEAREST_VERIFIED"]
 def _nearest_verified(  # type: ignore[no-untyped-def]
         raw, seeds, lo, hi, revolute, placements, axes, prismatic, flange, coupling, coupled,
         poses, pos_tol, rot_tol, out, bad):
+    """out[n, b]: branch b of pose n at the 2π-equivalents nearest the seed within the limits
+    (NaN when a joint has none); bad[n, b]: that row's FK is beyond pos_tol / rot_tol (see the
+    module docstring).
+
+    Long on purpose: one compiled loop over every pose, with the FK of the rows gathered in
+    blocks of columns from several poses; split into kernels, the rows of one pose could not
+    join another pose's block, and the block's scratch arrays would be passed around."""
     n_pose, n_branch, dof = raw.shape
     two_pi = 2 * math.pi
     # FK in blocks of _BLOCK columns (one per row that exists, of several poses: longer loops

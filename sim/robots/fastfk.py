@@ -52,7 +52,11 @@ def _fk_columns(placements, axes, prismatic, flange, qm, t):  # type: ignore[no-
     """FK of R configurations: qm (n, R) model values (one column each) -> t[:12] the flange
     poses' top three rows (entry 4·row + col), t (14, R). Each step is a loop over the R
     columns without branches, which the compiler vectorises (SIMD); the sine and cosine are
-    `_sincos`'s with its quadrant chosen by selects."""
+    `_sincos`'s with its quadrant chosen by selects.
+
+    Long on purpose: the product of the joints' transforms written out entry by entry, one
+    loop over the columns per entry, so the compiler vectorises each; calls between them
+    would break those loops."""
     n, count = qm.shape
     for k in range(12):
         v = 1.0 if k == 0 or k == 5 or k == 10 else 0.0

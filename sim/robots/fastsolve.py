@@ -222,7 +222,10 @@ def _nearest_row(groups, n_groups, seed, row, digits, partial):  # type: ignore[
     once a prefix sum exceeds T = U·(1 + 1e-13), where U is the sum of some row (each group's
     nearest option per joint), every row below it has a distance above √U's rounding, which
     is at least the least distance: it can be neither the nearest nor tie with it, and the
-    walk skips it. digits: (dof,) scratch."""
+    walk skips it. digits: (dof,) scratch.
+    Long on purpose: the walk keeps its prefix sums, bound and position in a few scalars and
+    one scratch row; a recursive or split version would pass them at every step of the walk.
+    """
     dof = seed.shape[0]
     per = (groups.shape[1] - 2 - dof) // dof
     bound = math.inf
@@ -299,7 +302,11 @@ def solve_one(a0, a1, a2, a3, bpar, crows, local, target, seed, consts,  # type:
     out's rows reordered; groups (8, 2 + dof + dof·K): `_expand`'s; iwork: (dof, unused),
     three flag rows (3x8),
     the order and the codes of out's rows; dist with out's rows; branch_work (dof + 16, 8):
-    the branches' FK (fastfk._fk_error_rows)."""
+    the branches' FK (fastfk._fk_error_rows).
+    Long on purpose: one compiled kernel per pose, called in a loop over the poses; its
+    stages (closed form, limits, sort, verification) share the scratch arrays above, and a
+    call per stage would pass all of them.
+    """
     dof = seed.shape[0]
     rows = out.shape[0]
     lo, hi, revolute = consts[0:dof], consts[dof:2 * dof], consts[2 * dof:3 * dof]
