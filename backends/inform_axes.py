@@ -36,7 +36,9 @@ Positions: `C` is the TCP in ROBOT coordinates, the arm's own base frame, which 
 carriage at the move's BC value (rmot's planned TCP in the base frame: exact for any base-axis
 direction); the station's axes stand at EC. rmot plans arm, base and station
 time-synchronously; the station as its own group moves at its own VJ (% of its maximum speed),
-so it starts with the arm but may end earlier or later (W604, once per task).
+so it starts with the arm but may end earlier or later (W604, once per task). A line or arc
+relative to the turning station is the robot as its slave, SMOVL / SMOVC with the station's
+`+MOVJ ECn` and no VJ (backends/inform_coordinated.py, its sources there).
 """
 
 from __future__ import annotations
