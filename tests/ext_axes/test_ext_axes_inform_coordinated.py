@@ -26,6 +26,7 @@ import pytest
 from click.testing import CliRunner
 from ext_axes_witness import CELL_HEAD, at, robot_base, rot, work_frame
 from test_ext_axes_coordinated import PATH_TOL_M, SOURCE, TOL_M, _circle, _moves, _planned_in_work, _samples
+from test_ext_axes_inform import _plan
 
 from rmot.backends import BACKENDS
 from rmot.compiler.cli import cli
@@ -83,14 +84,6 @@ def _emit(plan: Plan) -> tuple[str, list[str]]:
     assert not result.has_errors, [d.message for d in result.diagnostics if d.is_error]
     (text,) = result.files.values()
     return text, [d.code.id for d in result.diagnostics]
-
-
-def _plan(source: str) -> Plan:
-    front = load_text(source, "/tmp/ext_axes_inform_coordinated.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
-    return result
 
 
 @pytest.fixture(scope="module")
