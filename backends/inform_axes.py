@@ -200,7 +200,8 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
     """The task's axes as INFORM's base and station groups, or why they cannot be written: more
     than one positioner (one station group, ST1), or an axis without its pulse scale that is
     neither a track's linear axis (written in mm) nor a revolute station axis (written at the
-    assumed scale, W610)."""
+    assumed scale, W610). With a coordinated move (SMOVL/SMOVC) it holds the station's point in
+    the robot's frame, for the robot-station calibration line of the checklist."""
     assert cell.external is not None
     names = {a.name for a in axes}
     used = [m for m in cell.external.mechanisms if any(a.name in names for a in m.axes)]
@@ -217,7 +218,9 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
                 f"got {', '.join(m.name for m in stations)})")
     base = tuple(a for m in used if m.kind == "track" for a in m.axes)
     origin = stations[0].base.position if stations else (0.0, 0.0, 0.0)
-    return InformAxes(base, tuple(a for m in stations for a in m.axes), origin)
+    coordinated = any(is_coordinated(n) for n in ir_tree.walk(task.body) if isinstance(n, ir.Move))
+    in_robot = (cell.robot(task.robot).base.inverse() * ir.Pose(position=origin)).position if coordinated else None
+    return InformAxes(base, tuple(a for m in stations for a in m.axes), origin, in_robot)
 
 
 def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -> InformAxes | str | None:
@@ -233,8 +236,6 @@ def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -
     refused = None if isinstance(found, str) else refusal(task.task, moves, tuple(a.name for a in found.base))
     if refused is not None:
         found, first = refused
-    elif not isinstance(found, str) and any(is_coordinated(n) for n in moves):
-        found.coordinated = (task.robot.base.inverse() * ir.Pose(position=found.station_origin)).position
     if isinstance(found, str):
         backend.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
         return found

@@ -30,6 +30,7 @@ from test_ext_axes_inform import _plan
 
 from rmot.backends import BACKENDS
 from rmot.compiler.cli import cli
+from rmot.compiler.design.machine_data import checklists
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
 from rmot.lang.plan_types import Plan
@@ -111,6 +112,11 @@ def test_the_seam_is_written_coordinated_under_the_robot_and_station_groups(job:
     # the robot-station calibration the controller coordinates through: the positioner's axes
     # meet at (1800, 0, 700) mm in world, the robot's base 250 mm up on the carriage at 0 mm
     assert "X 1800.000, Y 0.000, Z 450.000 mm" in "".join(line[1:] for line in job.splitlines() if line.startswith("'"))
+
+
+def test_the_report_checklist_names_the_calibration_too(plan: Plan) -> None:
+    (inform,) = [lines for title, lines in checklists(plan) if "INFORM" in title]
+    assert any("robot-station calibration" in line and "X 1800.000, Y 0.000, Z 450.000 mm" in line for line in inform)
 
 
 def test_every_target_re_expands_to_the_plan_in_the_part_frame(plan: Plan, job: str) -> None:
