@@ -245,11 +245,26 @@ def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -
                      f"EC positions are written at an ASSUMED {ASSUMED_PULSES_PER_DEG:g} pulses/deg "
                      f"(100000 per turn); confirm it with the positioner's gear ratio (pulses per axis "
                      f"turn, parameters RCnG of ALL.PRM) or declare inform(pulses_per_deg=N)", first.span)
-    if found.station:
+    alone = station_alone(moves, found.station)
+    if alone is not None:
         backend.warn(codes.INFORM_STATION_SPEED, "the station (GROUP2 ST1) moves at its own VJ "
                      "(+MOVJ): it starts with the arm but may end at another time than the plan's "
-                     "time-synchronous move", first.span)
+                     "time-synchronous move", alone.span)
     return found
+
+
+def station_alone(moves: list[ir.Move], station: tuple[ExtAxis, ...]) -> ir.Move | None:
+    """The first of `moves` (in program order, from the axes' home values) that moves a station
+    axis and is not coordinated: the station's `+MOVJ ECn VJ=v` at its own speed (W604); None
+    when the station moves only with coordinated moves (SMOVL/SMOVC, the robot's V=) or not."""
+    now = {a.name: a.home for a in station}
+    for move in moves:
+        values = dict(move.ext)
+        new = {name: values.get(name, value) for name, value in now.items()}
+        if not is_coordinated(move) and any(abs(new[name] - now[name]) > 1e-12 for name in now):
+            return move
+        now = new
+    return None
 
 
 def warn_pulse_rounding(backend: Backend, node: ir.Move, rec: plan_types.InstructionRecord, axes: InformAxes,

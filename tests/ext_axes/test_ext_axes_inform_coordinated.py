@@ -114,6 +114,12 @@ def test_the_seam_is_written_coordinated_under_the_robot_and_station_groups(job:
     assert "X 1800.000, Y 0.000, Z 450.000 mm" in "".join(line[1:] for line in job.splitlines() if line.startswith("'"))
 
 
+def test_no_station_speed_warning_when_the_station_moves_only_coordinated(plan: Plan) -> None:
+    """W604 (the station at its own VJ) is for a station moving without the robot's path: here
+    it turns only during the coordinated line and arc, which follow the robot's V=."""
+    assert "W604" not in _emit(plan)[1]
+
+
 def test_the_report_checklist_names_the_calibration_too(plan: Plan) -> None:
     (inform,) = [lines for title, lines in checklists(plan) if "INFORM" in title]
     assert any("robot-station calibration" in line and "X 1800.000, Y 0.000, Z 450.000 mm" in line for line in inform)
@@ -212,6 +218,8 @@ def test_weld_positioner_compiles_for_inform_with_its_seam_on_the_fillet(tmp_pat
     flange; the robot at the world origin), on the fillet circle: radius 100 mm, z 0 in `work`."""
     out = CliRunner().invoke(cli, ["compile", str(EXAMPLE), "--target", "inform", "-o", str(tmp_path)])
     assert out.exit_code == 0, out.stderr
+    # the turntable's return from 360 to 0 deg with the arm's joint move home is the station alone
+    assert re.findall(r"weld_positioner.rmot:(\d+):\d+: warning\[W604\]", out.stderr) == ["76"]
     (path,) = (tmp_path / "inform").glob("*.JBI")
     steps = read_job(path.read_text(encoding="utf-8"))
     arc = [s for s in steps if s.word == "SMOVC"]
