@@ -183,7 +183,12 @@ def base_value(axis: ExtAxis, value: float) -> str:
     (mm for traveling axis)"; the DX100 high-speed Ethernet server manual (3.3.17, base position
     variable BP) reads and writes it as "0: pulse value" or "16: base coordinated value"; and
     Visual Components' Yaskawa post (v1.05) writes `BCnnnnn=%.3f` (the track in mm) after the
-    C positions of a rectangular (`///RECTAN`) job."""
+    C positions of a rectangular (`///RECTAN`) job. The DX100 "Interface with an Easy Offline
+    Teaching System" manual (4.1 Job Data Format, RECTAN: `<BCxxxxx> = <1>,<2>,<3>`; 4.3.1.3
+    Base Axis: "B1 = X0, Y0, Z0 ... the distance of the axis from the origin of the coordinate
+    system of teaching (For the used axes only.)", for ROBOT-type positions from the base
+    coordinate system's origin) gives the same reading: one value for a one-axis track, its
+    distance from where the base coordinates start (the track's 0, the checklist says so)."""
     if axis.pulses is None and axis.linear:
         return f"{value * 1000.0:.3f}"
     return str(pulses(axis, value))
