@@ -374,7 +374,8 @@ class InformBackend(Backend):
         rec = ctx.record(prev) if prev is not None else None
         if prev is None or rec is None:
             return ("no-start",)
-        return (prev.kind, key_value(rec.q_target), key_value(rec.tcp_pose), key_value(prev.tool))
+        return (prev.kind, is_coordinated(prev), key_value(rec.q_target), key_value(rec.tcp_pose),
+                key_value(prev.tool))
 
     def circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                  v: str, pl: str) -> list[str]:
@@ -391,7 +392,8 @@ class InformBackend(Backend):
                              node.span)
             return []
         lines: list[str] = []
-        if prev.kind is not ir.MotionKind.CIRCULAR:  # type: ignore[union-attr]
+        # an arc after a move that is no arc, or after an arc of the other kind (MOVC / SMOVC), restates its start
+        if prev.kind is not ir.MotionKind.CIRCULAR or is_coordinated(prev) != is_coordinated(node):  # type: ignore[union-attr,arg-type]
             start = self.position(prev_rec, prev_rec.q_target, prev_rec.tcp_pose, node, ctx)
             lines.append(f"MOVC {start} V={v}")
         via = self.position(rec, rec.q_via, via_pose(node, rec), node, ctx)

@@ -232,3 +232,19 @@ def test_weld_positioner_compiles_for_inform_with_its_seam_on_the_fillet(tmp_pat
         assert abs(math.hypot(p[0], p[1]) - 0.1) < TOL_M and abs(p[2]) < TOL_M
     # each via half-way through its quarter: the turntable at 45 + 90 k deg
     assert [s.ec[1] for s in arc[1::2] if s.ec is not None] == [45000, 135000, 225000, 315000]
+
+
+def test_a_coordinated_arc_after_a_plain_arc_restates_its_start() -> None:
+    """A plain arc in the still part frame, then a coordinated one continuing from its end: the
+    SMOVC run starts on its own SMOVC line at the plain arc's end (the same point of the part),
+    so each circle's three points are lines of one kind."""
+    source = SOURCE.replace("  move circular via", """  move circular via pose(x=-70.711mm, y=70.711mm, z=50mm, rx=180deg)
+             to pose(x=-100mm, y=0mm, z=50mm, rx=180deg) frame work speed 50 mm/s
+  move circular via""").replace("via pose(x=-100mm, y=0mm, z=50mm, rx=180deg)\n             to pose(x=0mm, y=-100mm",
+                                "via pose(x=-70.711mm, y=-70.711mm, z=50mm, rx=180deg)\n             to pose(x=0mm, y=-100mm")
+    steps = read_job(_emit(_plan(source))[0])
+    assert [s.word for s in steps][2:10] == ["SMOVL", "MOVC", "MOVC", "MOVC", "SMOVC", "SMOVC", "SMOVC", "MOVL"]
+    rails = [s.bc / RAIL_PER_MM for s in steps if s.bc is not None]
+    plain_end, coordinated_start = (in_work(steps[k], rails[k], STATION_PER_DEG) for k in (5, 6))
+    assert np.abs(plain_end - coordinated_start).max() < TOL_M
+    assert np.abs(plain_end[:3, 3] - [-0.1, 0.0, 0.05]).max() < TOL_M
