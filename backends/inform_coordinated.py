@@ -17,9 +17,12 @@ The form, from three independent public sources that agree:
     points, the process speed written as V= itself, where its uncoordinated station moves
     compute the station's VJ from that speed and the radius instead.
 The INFORM instruction list names the master side `+MOVJ`, `+MOVL`, `+MOVC` ("YASKAWA YRC1000
-INFORM Language - Part 4: Move Instructions", 9.1 Coordinated Robot Control) and the DX200's
-coordinated operation "master-slave relative interpolation" that keeps "the ideal posture of the
-tool relative to the workpiece" (chnfcs.com, YASKAWA DX200 functions, 3.2 Coordinated Motion).
+INFORM Language - Part 4: Move Instructions", 9.1 Coordinated Robot Control; a markdown digest
+of the manual found by code search, repository not identified), and a summary of the DX200's
+functions calls coordinated operation "master-slave relative interpolation" that keeps "the
+ideal posture of the tool relative to the workpiece" (https://www.chnfcs.com/manual/
+YASKAWA-DX200.html?pagenum=2, 3.2 Coordinated Motion). Assumed from MOVC, not seen on SMOVC
+in a source: FPT on an arc's end (continuous arcs, inform.py's circular).
 
 What rmot writes: each C position is the planned TCP in ROBOT coordinates with the station at
 the EC values written beside it (the taught pair the controller reads the position relative to
