@@ -71,7 +71,7 @@ class InformAxes:
     base: tuple[ExtAxis, ...]
     station: tuple[ExtAxis, ...]
     station_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)  # the point its axes pass through (world, m)
-    coordinated: tuple[float, float, float] | None = None  # SMOVL/SMOVC written: station_origin in the robot's frame
+    coordinated: ir.Pose | None = None  # SMOVL/SMOVC written: the station's base in the robot's frame
     bc: list[str] = field(default_factory=list)
     ec: list[str] = field(default_factory=list)
 
@@ -205,7 +205,7 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
     """The task's axes as INFORM's base and station groups, or why they cannot be written: more
     than one positioner (one station group, ST1), or an axis without its pulse scale that is
     neither a track's linear axis (written in mm) nor a revolute station axis (written at the
-    assumed scale, W610). With a coordinated move (SMOVL/SMOVC) it holds the station's point in
+    assumed scale, W610). With a coordinated move (SMOVL/SMOVC) it holds the station's base in
     the robot's frame, for the robot-station calibration line of the checklist."""
     assert cell.external is not None
     names = {a.name for a in axes}
@@ -224,7 +224,7 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
     base = tuple(a for m in used if m.kind == "track" for a in m.axes)
     origin = stations[0].base.position if stations else (0.0, 0.0, 0.0)
     coordinated = any(is_coordinated(n) for n in ir_tree.walk(task.body) if isinstance(n, ir.Move))
-    in_robot = (cell.robot(task.robot).base.inverse() * ir.Pose(position=origin)).position if coordinated else None
+    in_robot = cell.robot(task.robot).base.inverse() * stations[0].base if coordinated and stations else None
     return InformAxes(base, tuple(a for m in stations for a in m.axes), origin, in_robot)
 
 

@@ -38,6 +38,8 @@ of a MOVL/MOVC/SMOVL (the sources write BC beside such moves but none describes 
 
 from __future__ import annotations
 
+import math
+
 from rmot.lang import ir, plan_types
 
 __all__ = ["calibration_line", "is_coordinated", "refusal", "via_pose"]
@@ -84,9 +86,12 @@ def via_pose(node: ir.Move, rec: plan_types.InstructionRecord) -> ir.Pose | None
     return ir.Pose.from_matrix(frame @ node.via.in_frame.matrix())
 
 
-def calibration_line(origin_in_robot: tuple[float, float, float]) -> str:
+def calibration_line(station_in_robot: ir.Pose) -> str:
     """The checklist line of a job with coordinated moves: the controller relates R1 to S1
-    through its robot-station calibration, which must equal the cell's station placement."""
-    x, y, z = (1000.0 * v for v in origin_in_robot)
+    through its robot-station calibration, which must equal the cell's station placement (its
+    first axis' frame: the axes' common point and their directions)."""
+    x, y, z = (1000.0 * v for v in station_in_robot.position)
+    rx, ry, rz = (math.degrees(a) for a in station_in_robot.rpy())
     return (f"R1:S1 coordinated (SMOVL/SMOVC, ST1 the master): the robot-station calibration must put ST1's axes' "
-            f"common point at X {x:.3f}, Y {y:.3f}, Z {z:.3f} mm in the robot's frame (every axis at 0)")
+            f"common point at X {x:.3f}, Y {y:.3f}, Z {z:.3f} mm, their frame at Rx {rx:.4f}, Ry {ry:.4f}, "
+            f"Rz {rz:.4f} deg in the robot's frame (every axis at 0)")

@@ -122,7 +122,19 @@ def test_no_station_speed_warning_when_the_station_moves_only_coordinated(plan: 
 
 def test_the_report_checklist_names_the_calibration_too(plan: Plan) -> None:
     (inform,) = [lines for title, lines in checklists(plan) if "INFORM" in title]
-    assert any("robot-station calibration" in line and "X 1800.000, Y 0.000, Z 450.000 mm" in line for line in inform)
+    assert any("robot-station calibration" in line and "X 1800.000, Y 0.000, Z 450.000 mm, their frame at "
+               "Rx 0.0000, Ry 0.0000, Rz 0.0000 deg" in line for line in inform)
+
+
+def test_the_calibration_line_carries_the_station_turned_in_the_cell() -> None:
+    """The positioner turned 30 deg about z in the cell, the robot 1 m along the track's y: in
+    the robot's frame (the carriage at 0) the station's base is 1800 mm along x, -1000 mm along y
+    and 450 mm up, its frame turned 30 deg about z."""
+    source = SOURCE.replace("at pose(x=1800mm, z=700mm)", "at pose(x=1800mm, z=700mm, rz=30deg)").replace(
+        "on rail at pose(z=250mm)", "on rail at pose(y=1000mm, z=250mm)")
+    (inform,) = [lines for title, lines in checklists(_plan(source)) if "INFORM" in title]
+    assert any("X 1800.000, Y -1000.000, Z 450.000 mm, their frame at Rx 0.0000, Ry 0.0000, Rz 30.0000 deg" in line
+               for line in inform), inform
 
 
 def test_every_target_re_expands_to_the_plan_in_the_part_frame(plan: Plan, job: str) -> None:
