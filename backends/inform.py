@@ -69,15 +69,16 @@ Support (checked by tests/backends/test_inform.py):
             0/12.5/25/50/100 mm, DOUT, PULSE, AOUT, WAIT (with T), TIMER, if/else, procs as
             jobs, native inform, source comments; a track and a positioner as base (BS1) and
             station (ST1) axes in pulses at the cell's declared scale, a track without one in
-            mm (backends/inform_axes.py);
+            mm (backends/inform_axes.py); a line or arc relative to the turning station as
+            SMOVL/SMOVC (backends/inform_coordinated.py);
   warned    joint targets as Cartesian + RCONF (W450), acceleration (W408, once), fixed
             duration (W409), speed / zone / time rounding (W402 / W403 / W412), tool payload (W411), split jobs
             (W406), legalised names (W400/W401), other vendors' native blocks (W407), the
             station's own VJ (W604), whole pulses moving a target > 0.01 mm (W605), station
             axes without a declared scale at an assumed one (W610);
   lowered   sync as the I/O handshake (odd count W410);
-  refused   a revolute track or linear station axis without its pulse scale, or two
-            positioners (E607),
+  refused   a revolute track or linear station axis without its pulse scale, two
+            positioners, or a line or arc while the track moves (E607),
             sync without the cell's "sync" signals (E409) or inside an if arm (E405), ports
             outside OT#/IN# 1..1024, AO# 1..40 or +-14 V (E404), positions without a full branch
             (E402), an arc with no preceding move (E451), a job above 999 positions (E406), moves
@@ -98,6 +99,7 @@ from rmot.backends import codes, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.inform_axes import InformAxes, task_axes, warn_pulse_rounding
+from rmot.backends.inform_coordinated import is_coordinated, via_pose
 from rmot.backends.runtime import blocked_loop_lines
 from rmot.backends.loops import (
     LoopTemplate, LoopVar, TargetOffset, analyse, bind_loop_var, level_moves,
@@ -335,8 +337,10 @@ class InformBackend(Backend):
         if axes is None:
             return lines
         warn_pulse_rounding(self, node, rec, axes, ctx)
+        if is_coordinated(node):  # SMOVL/SMOVC relative to the station (backends/inform_coordinated.py)
+            return axes.coordinated_lines(lines, node, rec)
         vj = self.joint_speed(node) if axes.station else ""  # the station's +MOVJ speed
-        return [axes.operands(line, node, vj) for line in lines]
+        return [axes.operands(line, dict(node.ext), vj) for line in lines]
 
     def move_joint(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                    pl: str) -> list[str]:
@@ -370,7 +374,8 @@ class InformBackend(Backend):
         rec = ctx.record(prev) if prev is not None else None
         if prev is None or rec is None:
             return ("no-start",)
-        return (prev.kind, key_value(rec.q_target), key_value(rec.tcp_pose), key_value(prev.tool))
+        return (prev.kind, is_coordinated(prev), key_value(rec.q_target), key_value(rec.tcp_pose),
+                key_value(prev.tool))
 
     def circular(self, node: ir.Move, rec: plan_types.InstructionRecord, ctx: InformContext,
                  v: str, pl: str) -> list[str]:
@@ -387,10 +392,11 @@ class InformBackend(Backend):
                              node.span)
             return []
         lines: list[str] = []
-        if prev.kind is not ir.MotionKind.CIRCULAR:  # type: ignore[union-attr]
+        # an arc after a move that is no arc, or after an arc of the other kind (MOVC / SMOVC), restates its start
+        if prev.kind is not ir.MotionKind.CIRCULAR or is_coordinated(prev) != is_coordinated(node):  # type: ignore[union-attr,arg-type]
             start = self.position(prev_rec, prev_rec.q_target, prev_rec.tcp_pose, node, ctx)
             lines.append(f"MOVC {start} V={v}")
-        via = self.position(rec, rec.q_via, node.via.pose, node, ctx)
+        via = self.position(rec, rec.q_via, via_pose(node, rec), node, ctx)
         end = self.position(rec, rec.q_target, rec.tcp_pose, node, ctx)
         if any(c is None for c in (via, end)) or any("None" in line for line in lines):
             return []

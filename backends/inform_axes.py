@@ -36,7 +36,9 @@ Positions: `C` is the TCP in ROBOT coordinates, the arm's own base frame, which 
 carriage at the move's BC value (rmot's planned TCP in the base frame: exact for any base-axis
 direction); the station's axes stand at EC. rmot plans arm, base and station
 time-synchronously; the station as its own group moves at its own VJ (% of its maximum speed),
-so it starts with the arm but may end earlier or later (W604, once per task).
+so it starts with the arm but may end earlier or later (W604, once per task). A line or arc
+relative to the turning station is the robot as its slave, SMOVL / SMOVC with the station's
+`+MOVJ ECn` and no VJ (backends/inform_coordinated.py, its sources there).
 """
 
 from __future__ import annotations
@@ -47,6 +49,7 @@ from dataclasses import dataclass, field
 from rmot.backends import codes
 from rmot.backends.base import Backend, TaskContext
 from rmot.backends.ext_axes import absolute_turns, driven_axes
+from rmot.backends.inform_coordinated import calibration_line, is_coordinated, refusal
 from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.ir_axes import ExtAxis
 
@@ -68,12 +71,13 @@ class InformAxes:
     base: tuple[ExtAxis, ...]
     station: tuple[ExtAxis, ...]
     station_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)  # the point its axes pass through (world, m)
+    coordinated: ir.Pose | None = None  # SMOVL/SMOVC written: the station's base in the robot's frame
     bc: list[str] = field(default_factory=list)
     ec: list[str] = field(default_factory=list)
 
     def fresh(self) -> InformAxes:
         """The same axes with no positions yet (one per job)."""
-        return InformAxes(self.base, self.station, self.station_origin)
+        return InformAxes(self.base, self.station, self.station_origin, self.coordinated)
 
     def groups(self) -> list[str]:
         robot = "///GROUP1 RB1,BS1" if self.base else "///GROUP1 RB1"
@@ -95,21 +99,35 @@ class InformAxes:
         in_mm, pulsed = (bc, ec) if self.base_in_mm() else ([], bc + ec)
         return in_mm + (["///POSTYPE PULSE", "///PULSE"] + pulsed if pulsed else [])
 
-    def operands(self, line: str, node: ir.Move, vj: str) -> str:
+    def operands(self, line: str, values: dict[str, float], vj: str | None) -> str:
         """A robot move line `MOVx Cn ...` with the base operand after its C position and the
         station's `+MOVJ ECn VJ=v` after it (every move states both: an axis not moved keeps
-        its value, which the move restates)."""
+        its value, which the move restates), the axes at `values` (SI, by name). `vj` None: a
+        coordinated move (coordinated_lines), `SMOVx ... +MOVJ ECn` without the station's speed."""
         if not line.startswith("MOV"):
             return line
-        values = dict(node.ext)
         if self.base:
             self.bc.append(",".join(base_value(a, values[a.name]) for a in self.base))
             word, c, rest = line.split(" ", 2)
             line = f"{word} {c} BC{len(self.bc) - 1:05d} {rest}"
         if self.station:
             self.ec.append(",".join(str(pulses(a, values[a.name])) for a in self.station))
-            line += f" +MOVJ EC{len(self.ec) - 1:05d} VJ={vj}"
-        return line
+            line += f" +MOVJ EC{len(self.ec) - 1:05d}" + ("" if vj is None else f" VJ={vj}")
+        return "S" + line if vj is None else line
+
+    def coordinated_lines(self, lines: list[str], node: ir.Move, rec: plan_types.InstructionRecord) -> list[str]:
+        """A coordinated move's lines (inform_coordinated.py): each MOVL / MOVC line as SMOVL /
+        SMOVC with the axes where its C position is taken: a circular move's start line (the
+        previous target) at the move's start values, its via at the plan's values at the via
+        (InstructionRecord.ext_via), its end and a line's target at the move's end values."""
+        assert node.coordinated is not None  # only coordinated moves come here
+        values = [dict(node.ext)]
+        if node.kind is ir.MotionKind.CIRCULAR and rec.ext_via is not None:
+            via = dict(zip((n for n, _ in node.ext), (float(v) for v in rec.ext_via), strict=True))
+            values = [dict(node.coordinated.start), via, dict(node.ext)]
+        moves = [k for k, line in enumerate(lines) if line.startswith("MOV")]
+        at = dict(zip(moves, values[len(values) - len(moves):], strict=True))
+        return [self.operands(line, at[k], None) if k in at else line for k, line in enumerate(lines)]
 
     def rounding_mm(self, node: ir.Move, tcp: tuple[float, float, float]) -> float:
         """A bound on how far writing whole pulses moves the TCP (world, m) of `node` relative
@@ -139,7 +157,7 @@ class InformAxes:
                     assumed = " ASSUMED (not declared): confirm" if a.pulses is None else ""
                     lines.append(what + f"{scale(a):g} pulses/{unit}{assumed}, 0 pulses at 0 {unit}, + pulses = + {unit}")
                 lines += absolute_turns(a, f"{group} axis {k + 1}")
-        return lines
+        return lines + ([calibration_line(self.coordinated)] if self.coordinated is not None else [])
 
     def assumed(self) -> tuple[ExtAxis, ...]:
         """The station axes written at the assumed scale (ASSUMED_PULSES_PER_DEG)."""
@@ -165,7 +183,12 @@ def base_value(axis: ExtAxis, value: float) -> str:
     (mm for traveling axis)"; the DX100 high-speed Ethernet server manual (3.3.17, base position
     variable BP) reads and writes it as "0: pulse value" or "16: base coordinated value"; and
     Visual Components' Yaskawa post (v1.05) writes `BCnnnnn=%.3f` (the track in mm) after the
-    C positions of a rectangular (`///RECTAN`) job."""
+    C positions of a rectangular (`///RECTAN`) job. The DX100 "Interface with an Easy Offline
+    Teaching System" manual (4.1 Job Data Format, RECTAN: `<BCxxxxx> = <1>,<2>,<3>`; 4.3.1.3
+    Base Axis: "B1 = X0, Y0, Z0 ... the distance of the axis from the origin of the coordinate
+    system of teaching (For the used axes only.)", for ROBOT-type positions from the base
+    coordinate system's origin) gives the same reading: one value for a one-axis track, its
+    distance from where the base coordinates start (the track's 0, the checklist says so)."""
     if axis.pulses is None and axis.linear:
         return f"{value * 1000.0:.3f}"
     return str(pulses(axis, value))
@@ -182,7 +205,8 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
     """The task's axes as INFORM's base and station groups, or why they cannot be written: more
     than one positioner (one station group, ST1), or an axis without its pulse scale that is
     neither a track's linear axis (written in mm) nor a revolute station axis (written at the
-    assumed scale, W610)."""
+    assumed scale, W610). With a coordinated move (SMOVL/SMOVC) it holds the station's base in
+    the robot's frame, for the robot-station calibration line of the checklist."""
     assert cell.external is not None
     names = {a.name for a in axes}
     used = [m for m in cell.external.mechanisms if any(a.name in names for a in m.axes)]
@@ -199,7 +223,9 @@ def inform_axes(task: ir.Task, cell: ir.Cell, axes: tuple[ExtAxis, ...]) -> Info
                 f"got {', '.join(m.name for m in stations)})")
     base = tuple(a for m in used if m.kind == "track" for a in m.axes)
     origin = stations[0].base.position if stations else (0.0, 0.0, 0.0)
-    return InformAxes(base, tuple(a for m in stations for a in m.axes), origin)
+    coordinated = any(is_coordinated(n) for n in ir_tree.walk(task.body) if isinstance(n, ir.Move))
+    in_robot = cell.robot(task.robot).base.inverse() * stations[0].base if coordinated and stations else None
+    return InformAxes(base, tuple(a for m in stations for a in m.axes), origin, in_robot)
 
 
 def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -> InformAxes | str | None:
@@ -210,11 +236,11 @@ def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -
     if not axes:
         return None
     found = inform_axes(task.task, cell, axes)
-    first = next(n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.ext)
-    coordinated = next((n for n in ir_tree.walk(body) if isinstance(n, ir.Move) and n.coordinated is not None), None)
-    if coordinated is not None and not isinstance(found, str):
-        found = coordinated_refusal(task.task, coordinated)
-        first = coordinated
+    moves = [n for n in ir_tree.walk(body) if isinstance(n, ir.Move)]
+    first = next(n for n in moves if n.ext)
+    refused = None if isinstance(found, str) else refusal(task.task, moves, tuple(a.name for a in found.base))
+    if refused is not None:
+        found, first = refused
     if isinstance(found, str):
         backend.unsupported(codes.EXT_AXES_UNSUPPORTED, found, first.span)
         return found
@@ -224,30 +250,26 @@ def task_axes(backend: Backend, task: TaskContext, body: tuple[ir.Instr, ...]) -
                      f"EC positions are written at an ASSUMED {ASSUMED_PULSES_PER_DEG:g} pulses/deg "
                      f"(100000 per turn); confirm it with the positioner's gear ratio (pulses per axis "
                      f"turn, parameters RCnG of ALL.PRM) or declare inform(pulses_per_deg=N)", first.span)
-    if found.station:
+    alone = station_alone(moves, found.station)
+    if alone is not None:
         backend.warn(codes.INFORM_STATION_SPEED, "the station (GROUP2 ST1) moves at its own VJ "
                      "(+MOVJ): it starts with the arm but may end at another time than the plan's "
-                     "time-synchronous move", first.span)
+                     "time-synchronous move", alone.span)
     return found
 
 
-def coordinated_refusal(task: ir.Task, move: ir.Move) -> str:
-    """Why a coordinated move is not written for INFORM: rmot writes a station as a separate
-    group that moves at its own VJ (`+MOVJ`, the non-synchronised form RoboDK's Motoman post
-    writes), and the coordinated form (SMOVL / a coordinated robot-station pair, the TCP's path
-    and V= relative to the station) needs the controller's coordination option and job
-    attributes rmot has no witness for; writing the plain form would move the TCP off the
-    planned seam, so the task is refused at the move."""
-    kind = move.kind.name.lower()
-    if move.coordinated is not None and not move.coordinated.relative():
-        return (f"task '{task.name}': a {kind} move while the track carrying the robot moves (the TCP on its path in "
-                f"frame '{move.frame.name}', the track interpolated with it) is not written for INFORM: rmot has no witness "
-                "yet for how a base axis (BC) is interpolated with MOVL/MOVC; move the track with a joint move or "
-                "'move axes' before the line, or compile for rapid, krl or fanuc")
-    return (f"task '{task.name}': a coordinated {kind} move (the TCP on its path in frame '{move.frame.name}' while "
-            "the positioner moves) cannot be written for INFORM: rmot writes the station as +MOVJ at its own speed, "
-            "not the coordinated SMOVL form; move the positioner with 'move axes' before the seam, or compile for "
-            "rapid, krl or fanuc")
+def station_alone(moves: list[ir.Move], station: tuple[ExtAxis, ...]) -> ir.Move | None:
+    """The first of `moves` (in program order, from the axes' home values) that moves a station
+    axis and is not coordinated: the station's `+MOVJ ECn VJ=v` at its own speed (W604); None
+    when the station moves only with coordinated moves (SMOVL/SMOVC, the robot's V=) or not."""
+    now = {a.name: a.home for a in station}
+    for move in moves:
+        values = dict(move.ext)
+        new = {name: values.get(name, value) for name, value in now.items()}
+        if not is_coordinated(move) and any(abs(new[name] - now[name]) > 1e-12 for name in now):
+            return move
+        now = new
+    return None
 
 
 def warn_pulse_rounding(backend: Backend, node: ir.Move, rec: plan_types.InstructionRecord, axes: InformAxes,

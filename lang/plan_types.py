@@ -69,6 +69,7 @@ class InstructionRecord:
     # a coordinated move (ir.Move.coordinated): the external axes' values (K, n; ir.Move.ext order)
     # at times (K,) over [t_start, t_end], sampled from the move's one timing
     axes_path: tuple[np.ndarray, np.ndarray] | None = None
+    ext_via: np.ndarray | None = None  # a coordinated circular move: the axes (ir.Move.ext order) as the TCP passes the via
     blend_radius: float = 0.0  # the blend actually used (m); 0 = exact stop
     # the share of the arm's joint acceleration limits the move was timed with: the smallest
     # `accel` of its blended chain (compiler/plan/move_chain.chain_accel_share); 1 = full

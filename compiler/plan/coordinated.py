@@ -126,6 +126,18 @@ class CoordinatedSegment(Segment):
 
     ext: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
+    def via_axes(self) -> np.ndarray | None:
+        """A circular move's axes (ir.Move.ext order) where the TCP passes its via point: at the
+        via's exact progress u on the arc in the moving frame (not the nearest dense sample), so
+        a controller that takes the via with its own axis values (INFORM's SMOVC) sees the axes
+        go linearly in u through it."""
+        if self.move.via is None or self.path is None or self.path.kind != "arc":
+            return None
+        _, e0, e1 = _axis_values(self.move)
+        u = self.path.u_at_via(np.asarray(self.move.via.in_frame.position))
+        values: np.ndarray = e0 + u * (e1 - e0)
+        return values
+
 
 @dataclass(frozen=True, eq=False)
 class CoordinatedChain(TimedChain):

@@ -44,7 +44,7 @@ from rmot.lang.ir_tree import (
 )
 from rmot.compiler.plan import codes
 from rmot.compiler.plan.move_chain import TimedChain, chain_accel_share, time_chain
-from rmot.compiler.plan.coordinated import coordinated_axes, coordinated_segment, time_coordinated
+from rmot.compiler.plan.coordinated import CoordinatedSegment, coordinated_axes, coordinated_segment, time_coordinated
 from rmot.compiler.plan.torque import TorqueLimits
 from rmot.compiler.plan.segments import Segment, build_segment
 from rmot.compiler.plan.targets import Finding
@@ -407,7 +407,8 @@ class _Builder:
             branch=branch if branch.shoulder is not None else None, tcp_pose=tcp,
             flange_pose=ir.Pose.from_matrix(flange), blend_radius=timed.radii[i],
             accel_share=accel_share, axes_path=coordinated_axes(timed, t0),
-            q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None)
+            q_via=seg.q[seg.via_index].copy() if seg.via_index is not None else None,
+            ext_via=seg.via_axes() if isinstance(seg, CoordinatedSegment) else None)
 
 
 # ---------------------------------------------------------------- one handler per instruction kind

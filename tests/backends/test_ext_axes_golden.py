@@ -22,3 +22,16 @@ def test_track_tending_golden(vendor: str) -> None:
     result = BACKENDS[vendor]().emit(example_plans(("track_tending",))["track_tending"])
     assert not result.has_errors
     check_golden(vendor, "track_tending", result.files)
+
+
+def test_weld_positioner_inform_golden() -> None:
+    """examples/weld_positioner.rmot for INFORM equals its golden file, read by hand once: the
+    seam's four quarter arcs as one SMOVC start line and a via and an FPT end per quarter, each
+    with `+MOVJ ECn` and no VJ (the station follows the robot's V=12.0, relative to the part);
+    the vias' turntable at 45, 135, 225, 315 deg (45000.. pulses at the declared 1000/deg), the
+    ends at 90..360 deg; approach, departure and the turntable's return as MOVL/MOVJ with the
+    station's own VJ; ///GROUP1 RB1, ///GROUP2 ST1 and the R1:S1 calibration in the checklist
+    (the positioner's axes at X 1100, Y 0, Z 600 mm in the robot's frame)."""
+    result = BACKENDS["inform"]().emit(example_plans(("weld_positioner",))["weld_positioner"])
+    assert not result.has_errors
+    check_golden("inform", "weld_positioner", result.files)

@@ -91,9 +91,9 @@ def findings(vendor: str, files: dict[str, str], tmp: Path) -> list[str]:
 EXTERNAL_AXES_EXAMPLES = {"weld_positioner", "track_tending"}
 REFUSE_EXTERNAL_AXES = {"urscript", "val3"}
 # Examples with coordinated motion (a seam in a frame the positioner turns during the move), and the
-# vendors that refuse it with E607 at that move: INFORM (rmot writes no SMOVL).
+# vendors that refuse it with E607 at that move: none (INFORM writes it as SMOVL/SMOVC).
 COORDINATED_EXAMPLES = {"weld_positioner"}
-REFUSE_COORDINATED = {"inform"}
+REFUSE_COORDINATED: set[str] = set()
 
 
 @pytest.mark.parametrize("vendor", VENDORS)

@@ -323,7 +323,7 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
     labels = [ln for _, ln in body if re.fullmatch(r"\*L\d+", ln)]
     run = 0  # consecutive MOVC lines
     for k, ln in body + [(len(lines), "END")]:
-        if ln.startswith("MOVC "):
+        if ln.startswith(("MOVC ", "SMOVC ")):
             run += 1
         else:
             if 0 < run < 2:
@@ -339,12 +339,18 @@ def _inform_job(stem: str, text: str, jobs: set[str]) -> list[tuple[int, str]]:
                 bad.append((k, f"{c} is not a position of the job"))
         # ACC=/DEC= 20..100 % (YRC1000 INFORM manual, MOVJ/MOVL tags); a robot move with its base
         # axis (BCnnnnn when GROUP1 has BS1) and the station group's move `+MOVJ ECnnnnn VJ=v`
+        # A coordinated move, the robot the slave of the station: `SMOVL|SMOVC ... +MOVJ ECnnnnn`
+        # with no speed on the station's part, under ///GROUP2 ST1 (a job a DX200 saved,
+        # rpiRobotics/dx200_motion_progam_exec example_inform/R1-S1-SAMPLE.JBI @ 57e6205e:
+        # `SMOVL C00003 V=11.0  +MOVJ EC00003` beside `MOVL C00002 V=11.0  +MOVJ EC00002 VJ=0.78`).
         base = " BC\\d{5}" if groups.get(head[3]) else ""
-        plus = r" \+MOVJ EC\d{5} VJ=(?:[\d.]+)" if station else ""
+        slave = ln.startswith(("SMOVL ", "SMOVC "))
+        plus = r" \+MOVJ EC\d{5}" + ("" if slave else r" VJ=(?:[\d.]+)") if station else ""
         m = re.match(r"^MOV([JLC]) C\d{5}" + base + r" (VJ|V)=([\d.]+)(?: PL=(\d+))?"
-                     r"(?: ACC=(?:[2-9][0-9]|100) DEC=(?:[2-9][0-9]|100))?(?: FPT)?" + plus + "$", ln)
-        if ln.startswith("MOV") and m is None:
-            bad.append((k, f"a motion is 'MOVJ|MOVL|MOVC Cnnnnn VJ=|V= [PL=n] [FPT]' (got {ln})"))
+                     r"(?: ACC=(?:[2-9][0-9]|100) DEC=(?:[2-9][0-9]|100))?(?: FPT)?" + plus + "$", ln[slave:])
+        if ln.startswith(("MOV", "SMOV")) and (m is None or (slave and not station)):
+            bad.append((k, f"a motion is '[S]MOVJ|MOVL|MOVC Cnnnnn VJ=|V= [PL=n] [FPT]', SMOVL/SMOVC with "
+                           f"'+MOVJ ECnnnnn' of a ///GROUP2 ST1 station (got {ln})"))
         elif m:
             if (m.group(1) == "J") != (m.group(2) == "VJ"):
                 bad.append((k, "MOVJ takes VJ=, MOVL/MOVC take V="))

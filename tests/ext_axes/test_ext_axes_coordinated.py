@@ -196,14 +196,6 @@ def test_fanuc_coord_re_expands_to_the_plan(plan: Plan) -> None:
     _check_vendor(plan, poses, axes)
 
 
-def test_inform_refuses_the_coordinated_move_at_its_line(plan: Plan) -> None:
-    result = BACKENDS["inform"]().emit(plan)
-    errors = [d for d in result.diagnostics if d.is_error]
-    assert [d.code.id for d in errors] == ["E607"]
-    assert errors[0].span is not None and errors[0].span.start.line == 15
-    assert "coordinated linear move" in errors[0].message and "SMOVL" in errors[0].message
-
-
 @pytest.mark.parametrize(("program", "code", "line"), [
     # the frame rides on no mechanism: a linear move may not move the positioner
     ("  move linear pose(x=1000mm, z=800mm, ry=180deg) frame world ext(pos=(0deg, 30deg))\n", "E606", 15),

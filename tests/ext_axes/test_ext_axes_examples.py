@@ -1,7 +1,7 @@
 """The two external-axes examples through the real command line: each checks clean (exit 0,
 no error or warning, only the W603 note) at about its cycle time, and compiles for RAPID, KRL
 and Fanuc TP with only the documented warnings (W411, W415, W416), and for INFORM with the pulse
-scales the examples declare (W450, W604 too; weld_positioner's coordinated seam is E607 there);
+scales the examples declare (W450, W604 too; weld_positioner's coordinated seam as SMOVC);
 URScript and VAL3 refuse it with E607 and write nothing for it (lang/REFERENCE.md §15).
 
 (The examples drive external axes, which two of the six controllers and both data formats
@@ -54,11 +54,7 @@ def test_compiles_for_rapid_krl_fanuc_and_the_others_refuse(name: str, tmp_path:
     assert set(re.findall(r"warning\[(W\d+)\]", ok.stderr)) <= {"W411", "W415", "W416"}
     assert {p.name for p in (tmp_path / "a").iterdir()} == {"rapid", "krl", "fanuc", ".rmot.output"}
     informed = _run("compile", str(EXAMPLES / name), "--target", "inform", "-o", str(tmp_path / "i"))
-    if name == "weld_positioner.rmot":  # its seam is coordinated motion, which INFORM refuses at the first arc
-        assert informed.exit_code != 0 and re.search(r"weld_positioner.rmot:64:3: error\[E607\]: .*coordinated circular",
-                                                     informed.stderr), informed.stderr
-        return
-    assert informed.exit_code == 0, informed.stderr
+    assert informed.exit_code == 0, informed.stderr  # weld_positioner's seam as SMOVC (tests/ext_axes/test_ext_axes_inform_coordinated.py)
     # W450 joint targets as Cartesian + RCONF, W604 the station's own VJ (weld_positioner)
     assert set(re.findall(r"warning\[(W\d+)\]", informed.stderr)) <= {"W411", "W415", "W450", "W604"}
     for vendor in ("urscript", "val3"):
