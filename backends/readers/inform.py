@@ -99,16 +99,16 @@ class _Job:
                 if m:
                     self.var_names[m.group(1)] = m.group(2)
                 if (not s.startswith("'") or _PAYLOAD_REMARK.fullmatch(s)) and s not in ("NOP", "END"):
-                    self.inst.append((s, Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
+                    self.inst.append((_uncommented(s), Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
         if not self.name:
             raise self.tally.fail("an INFORM job must name itself (`//NAME NAME`)", Where(self.path, first[0]))
         body, _ = self._block(0, len(self.inst))
         self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
-        m = re.fullmatch(r"(C\d+)\s*=\s*(.*)", s)
+        m = re.fullmatch(r"([CP]\d+)\s*=\s*(.*)", s)
         if m is not None and pulse:
-            self.pulse_positions.add(m.group(1))
+            self.pulse_positions.add(_key(m.group(1)))
         if m is None or pulse:
             return
         try:
@@ -124,11 +124,12 @@ class _Job:
         if len(bits) >= 3 and bits[1].strip() in "01" and bits[2].strip() in "01":
             branch = ir.Config(ir.Shoulder.FRONT if bits[2].strip() == "0" else ir.Shoulder.BACK,
                                ir.Elbow.UP if bits[1].strip() == "0" else ir.Elbow.DOWN, None)
-        name = f"{self.name.lower()}_{m.group(1).lower()}"
-        self.positions[m.group(1)] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
+        key = _key(m.group(1))
+        name = f"{self.name.lower()}_{key.lower()}"
+        self.positions[key] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
                                             Where(self.path, n), ",".join(b.strip() for b in bits))
-        self.position_tool[m.group(1)] = tool
-        self.position_user[m.group(1)] = user
+        self.position_tool[key] = tool
+        self.position_user[key] = user
 
     # ---------------------------------------------------------------- instructions
 
@@ -165,7 +166,7 @@ class _Job:
                 return found
         stmt = self._simple(text, where)
         if stmt is None:
-            pulses = sorted(set(re.findall(r"\bC\d+\b", text)) & self.pulse_positions)
+            pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & self.pulse_positions)
             why = (f"{', '.join(pulses)} is a pulse position (///PULSE): encoder counts whose per-axis scales "
                    "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
                    "no rmot form")
@@ -269,13 +270,13 @@ class _Job:
     def _arc(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """MOVC start, via, end FPT: a circular move from where the robot stands; right after
         an arc, MOVC via, end FPT (the arc before ended at the start)."""
-        chained = re.fullmatch(r"MOVC\s+C\d+.*\bFPT", self._text(i - 1)) is not None if i else False
+        chained = re.fullmatch(r"MOVC\s+[CP]\d+.*\bFPT", self._text(i - 1)) is not None if i else False
         n = 2 if chained else 3
         texts = [self._text(k) for k in range(i, min(i + n, end))]
-        ms = [re.fullmatch(r"MOVC\s+(C\d+)\s*(.*)", t) for t in texts]
+        ms = [re.fullmatch(r"MOVC\s+([CP]\d+)\s*(.*)", t) for t in texts]
         if len(ms) < n or not all(ms) or "FPT" not in texts[-1] or any("FPT" in t for t in texts[:-1]):
             return None
-        move = self._move("circular", [ms[-2].group(1), ms[-1].group(1)], ms[-1].group(2),  # type: ignore[union-attr]
+        move = self._move("circular", [_key(ms[-2].group(1)), _key(ms[-1].group(1))], ms[-1].group(2),  # type: ignore[union-attr]
                           self.inst[i + n - 2][1])
         return ([move], i + n) if move else None
 
@@ -302,10 +303,25 @@ class _Job:
         return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
-        m = re.fullmatch(r"(MOVJ|MOVL)\s+(C\d+)\s*(.*)", text)
+        m = re.fullmatch(r"(MOVJ|MOVL)\s+([CP]\d+)\s*(.*)", text)
         if m:
-            return self._move("joint" if m.group(1) == "MOVJ" else "linear", [m.group(2)], m.group(3), where)
+            return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where)
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
+
+
+def _key(ref: str) -> str:
+    """A position's key: `C00012` / `P00100` as //POS writes it, whichever digits an
+    instruction names it with (`MOVJ P100`: the position variable P100, DX100/YRC1000 INFORM
+    manual, "position variable P")."""
+    return f"{ref[0]}{int(ref[1:]):05d}"
+
+
+def _uncommented(line: str) -> str:
+    """An instruction without the comment the pendant appends after `//` (`MOVL P106 V=150.0
+    PL=0  //CUT PRE-SLIDE`: YRC1000 INFORM manual, the line comment of an instruction); a
+    line with a quoted string keeps it all (`//` may be the string's)."""
+    m = re.fullmatch(r"(.*?\S)\s+//.*", line)
+    return m.group(1) if m and '"' not in line else line
 
 
 def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> _Job:
