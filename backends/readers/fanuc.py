@@ -305,8 +305,14 @@ class _Ls:
         if options is None or any(d is None for d in decls):
             return None
         acc, offset, kept = options
-        if acc is not None and (kind != "joint" or not 1 <= acc <= 100):
-            return None  # rmot's joint acceleration share takes 1..100 % on joint moves
+        if acc is not None and not 1 <= acc <= 100:
+            return None  # rmot's joint acceleration share takes 1..100 %
+        if acc is not None and acc != 100 and kind != "joint":
+            # ACC overrides the motion's acceleration and deceleration, J, L or C alike (R-30iB
+            # Operator's Manual, motion option "Acceleration override"); rmot's plan bounds a
+            # linear move's joints by the same share (compiler/plan/move_chain.py)
+            self.tally.warn(codes.ACCEL_SHARE_ON_PATH, f"ACC{acc} on a {kind} move is read as `accel {acc} %` "
+                            "(the joint acceleration share); its TCP acceleration stays the default", where)
         if offset is not None and offset not in self.offsets:
             return None
         exprs = [d.name for d in decls]  # type: ignore[union-attr]
