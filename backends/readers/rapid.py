@@ -33,6 +33,15 @@ _DECL = re.compile(r"(?i)^(?:(?:LOCAL|TASK)\s+)*(CONST|PERS|VAR)\s+(\w+)\s+(\w+)
 _MOVES = {"MOVEJ": "joint", "MOVEL": "linear", "MOVEC": "circular", "MOVEABSJ": "joint"}
 
 
+def _branch(lit: object) -> ir.Config | None:
+    """The branch of a robtarget literal's confdata [cf1, cf4, cf6, cfx] (its cfx), named or
+    inline (`MoveJ [[x,y,z],[q..],[0,-1,-1,0],[..]], ..` as RobotStudio and hand-written
+    modules write it)."""
+    conf = lit[2] if isinstance(lit, list) and len(lit) > 2 and isinstance(lit[2], list) else None
+    cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
+    return branch_of_cfx(int(cfx)) if cfx is not None else None
+
+
 def branch_of_cfx(cfx: int) -> ir.Config | None:
     """The branch whose cfx (the backend's `cfx_of`) is `cfx`; None outside 0..7."""
     for s, e, w in product(ir.Shoulder, ir.Elbow, ir.Wrist):
@@ -132,10 +141,7 @@ class _Module:
             pose = _pose(lit)
             if pose is None:
                 return False
-            conf = lit[2] if isinstance(lit, list) and len(lit) > 2 and isinstance(lit[2], list) else None
-            cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
-            branch = branch_of_cfx(int(cfx)) if cfx is not None else None
-            self.targets[name.upper()] = Target(name, pose, None, branch, where)
+            self.targets[name.upper()] = Target(name, pose, None, _branch(lit), where)
         elif type_ == "jointtarget":
             if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
                     and all(isinstance(v, float) for v in lit[0])):
@@ -399,7 +405,7 @@ class _Module:
         return Move(kind, expr, name, where, via=via, speed=timing[0] if kind != "joint" else None,
                     joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
                     time=timing[1], tool=tool_name, frame=frame, config=config,
-                    pose=decl.pose if decl and expr == decl.name else None,
+                    pose=decl.pose if decl and expr in (decl.name, pose_expr(decl.pose) if decl.pose else None) else None,
                     joints=decl.joints if decl else None, joint_accel=self.acc_pct)
 
     def _speed(self, kind: str, speed: list[str]) -> tuple[float | None, float | None, bool] | None:
@@ -450,7 +456,7 @@ class _Module:
         lit = literal(text)
         pose = _pose(lit)
         if pose is not None:
-            return (pose_expr(pose), None, Target("", pose, None, None, Where("", 0)))
+            return (pose_expr(pose), None, Target("", pose, None, _branch(lit), Where("", 0)))
         return None
 
     def _offset(self, func: str, args: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
