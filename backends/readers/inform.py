@@ -72,7 +72,10 @@ class _Job:
         first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
         if first[1].strip() != "/JOB":
             raise self.tally.fail("an INFORM job must start with `/JOB`", Where(self.path, first[0]))
-        section, conf, tool, user, pulse, postype = "", "0,0,0", 0, None, False, "ROBOT"
+        # a position is Cartesian only after `///RECTAN` ("Cartesian data is defined during and
+        # after this pseudo instruction", DX100 manual 4.1): before it, or after `///PULSE` or
+        # `///ANGLE`, its numbers are not mm (a job written without either holds pulse counts)
+        section, conf, tool, user, rectan, postype = "", "0,0,0", 0, None, False, "ROBOT"
         for n, line in enumerate(self.raw, 1):
             s = line.strip()
             if s.startswith("//NAME"):
@@ -87,10 +90,10 @@ class _Job:
                 tool = int(rest) if key == "TOOL" and rest.isdigit() else tool
                 postype = rest.strip() if key == "POSTYPE" else postype  # ROBOT, BASE (no base axis: the same), USER
                 user = int(rest) if key == "USER" and rest.isdigit() else user
-                pulse = key == "PULSE" or (pulse and key != "RECTAN")
+                rectan = key == "RECTAN" or (rectan and key not in ("PULSE", "ANGLE"))
                 continue
             if section == "//POS":
-                self._position(s, n, conf, tool, user if postype == "USER" else None, pulse)
+                self._position(s, n, conf, tool, user if postype == "USER" else None, not rectan)
             elif section == "//INST" and s and not s.startswith("//"):
                 m = re.match(r"'\s*TOOL\s+(\d+)\s*=\s*(\w+)", s)
                 if m:
@@ -167,7 +170,8 @@ class _Job:
         stmt = self._simple(text, where)
         if stmt is None:
             pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & self.pulse_positions)
-            why = (f"{', '.join(pulses)} is a pulse position (///PULSE): encoder counts whose per-axis scales "
+            why = (f"{', '.join(pulses)} is a pulse position (///PULSE, or no ///RECTAN before it): encoder "
+                   "counts whose per-axis scales "
                    "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
                    "no rmot form")
             return [self.tally.keep(text, where, why)], i + 1

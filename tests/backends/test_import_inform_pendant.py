@@ -99,3 +99,17 @@ def test_a_comment_inside_a_message_is_kept(tmp_path: Path) -> None:
     """`//` inside a quoted string is the string's, not a line comment."""
     moves, stmts = _moves(tmp_path, JOB.replace("TIMER T=0.50", 'MSG "see //HOME"'))
     assert [n.text for n in stmts if isinstance(n, Native)] == ['MSG "see //HOME"']
+
+
+def test_positions_without_a_data_form_are_not_millimetres(tmp_path: Path) -> None:
+    """A job written without `///POSTYPE`/`///RECTAN` (hehonglu123's Welding_Motoman
+    blending_test/linear/linear.JBI, run on a real arm) holds pulse counts: its moves stay
+    native, not read as positions 48 m away."""
+    path = tmp_path / "AAA.JBI"
+    path.write_text("/JOB\n//NAME AAA\n//POS\n///NPOS 2,0,0,0,0,0\nC00000=-48629,112084,69901,4161,-52375,-4796\n"
+                    "C00001=-46969,105372,61036,4871,-50464,-5567\n//INST\n///DATE 2023/02/07 09:03\n"
+                    "///ATTR SC,RW\n///GROUP1 RB1\nNOP\nMOVL C00000 V=10.0 PL=8\nMOVL C00001 V=10.0 PL=0\nEND\n")
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    assert not doc.targets and not any(isinstance(s, Move) for s in stmts)
+    assert [s.text for s in stmts if isinstance(s, Native)] == ["MOVL C00000 V=10.0 PL=8", "MOVL C00001 V=10.0 PL=0"]
