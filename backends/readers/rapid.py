@@ -139,10 +139,11 @@ class _Module:
 
     def share(self, other: _Module) -> None:
         """The global data of another module of the task, where this one declares no such name."""
-        for mine, theirs in ((self.targets, other.targets), (self.tools, other.tools), (self.frames, other.frames),
-                             (self.speeds, other.speeds), (self.zones, other.zones)):
-            for key, value in theirs.items():
-                mine.setdefault(key, value)  # type: ignore[attr-defined]
+        self.targets = {**other.targets, **self.targets}
+        self.tools = {**other.tools, **self.tools}
+        self.frames = {**other.frames, **self.frames}
+        self.speeds = {**other.speeds, **self.speeds}
+        self.zones = {**other.zones, **self.zones}
         self.names |= other.names  # its numbers may be used here (declared by its own module)
 
     def _declaration(self, st: Statement) -> None:

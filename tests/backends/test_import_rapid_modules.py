@@ -29,10 +29,12 @@ ENDMODULE
 WELD = """MODULE WeldTestModule
     PROC main()
         MoveJ pWGReady,speedAir,z10,toolWeldGun;
-        MoveL [[-301.19,34.29,849.89],[0.119305,-0.0528558,0.924955,-0.356975],[-1,-1,1,1],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]],v100,fine,toolWeldGun;
+        MoveL [[-301.19,34.29,849.89],[0.119305,-0.0528558,0.924955,-0.356975],[-1,-1,1,1],
+            [9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]],v100,fine,toolWeldGun;
         MoveL pWGReady,speedLocal,fine,toolWeldGun;
     ENDPROC
-    TASK PERS robtarget pWGReady:=[[2571.80,-1031.86,873.30],[0.361306,-0.103756,-0.907486,0.187513],[-1,0,-1,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
+    TASK PERS robtarget pWGReady:=[[2571.80,-1031.86,873.30],[0.361306,-0.103756,-0.907486,0.187513],[-1,0,-1,0],
+        [9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];
 ENDMODULE
 """
 
