@@ -13,7 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import Move, Native, walk
+from rmot.backends.readers.model import Cond, Conds, Move, Native, SetOut, WaitIn, walk
 
 TP = """/PROG  JOB_DBL_SAFE_1
 /ATTR
@@ -58,3 +58,43 @@ def test_acc_on_linear_moves(tmp_path: Path) -> None:
     assert [s.text for s in stmts if isinstance(s, Native)] == ["L P[2] 200mm/sec FINE ACC120 ;"]
     w540 = [(d.span.start.line, d.span.start.col) for d in doc.diagnostics if d.code.id == "W540"]
     assert w540 == [(10, 4)]  # the line number of the TP line
+
+
+def _read(tmp_path: Path, lines: list[str]) -> list[object]:
+    body = "\n".join(f"{n:4d}:  {t} ;" for n, t in enumerate(lines, 1))
+    path = tmp_path / "waits.ls"
+    path.write_text(f"/PROG  WAITS\n/ATTR\n/MN\n{body}\n/POS\n/END\n")
+    doc = read_files([str(path)])
+    return [s for r in doc.routines for s in walk(r.body)]
+
+
+def test_wait_on_several_inputs(tmp_path: Path) -> None:
+    """Each parenthesised level joins its terms with one operator: read as and/or/not; a level
+    mixing AND and OR, or a flag or timer, stays native (lines from the VASC backups)."""
+    stmts = _read(tmp_path, [
+        "WAIT (!DI[33] AND !DI[34] AND !DI[35] AND !DI[36])",
+        "WAIT (!DI[129] OR DI[26])",
+        "WAIT ((DI[718] AND !DI[772]) OR DI[26] OR DI[27])",
+        "WAIT DI[1]=ON AND DI[2]=OFF",
+        "WAIT (DI[1] AND DI[2] OR DI[3])",
+        "WAIT (!F[329] OR DI[26])",
+        "WAIT (DI[757] OR (TIMER[10]>=0))",
+    ])
+    waits = [s for s in stmts if isinstance(s, WaitIn)]
+    assert [w.cond for w in waits] == [
+        Conds("and", (Cond(33, False), Cond(34, False), Cond(35, False), Cond(36, False))),
+        Conds("or", (Cond(129, False), Cond(26, True))),
+        Conds("or", (Conds("and", (Cond(718, True), Cond(772, False))), Cond(26, True), Cond(27, True))),
+        Conds("and", (Cond(1, True), Cond(2, False))),
+    ]
+    assert [s.text for s in stmts if isinstance(s, Native)] == [
+        "WAIT (DI[1] AND DI[2] OR DI[3]) ;", "WAIT (!F[329] OR DI[26]) ;", "WAIT (DI[757] OR (TIMER[10]>=0)) ;"]
+
+
+def test_german_pendant_words(tmp_path: Path) -> None:
+    """A German controller's `A[n]=AN|AUS` is DO[n]=ON|OFF and `WARTE (E[n])` WAIT (DI[n])."""
+    stmts = _read(tmp_path, ["A[15:PF0 Robot (Punto Cero)]=AN", "A[17:Rob.En Mantenimiento]=(AUS)",
+                             "WARTE (E[9])", "WARTE (!E[9] AND E[10])"])
+    assert [(s.signal, s.value) for s in stmts if isinstance(s, SetOut)] == [(15, 1.0), (17, 0.0)]
+    assert [s.cond for s in stmts if isinstance(s, WaitIn)] == [
+        Cond(9, True), Conds("and", (Cond(9, False), Cond(10, True)))]
