@@ -9,8 +9,9 @@ and is not the rmot wrist, so the wrist stays free: the planner takes the neares
 robot stands), PL 0..4 = 0 / 12.5 / 25 / 50 / 100 mm (the backend's levels); `DOUT OT#(n)
 ON|OFF`, `PULSE OT#(n) T=`, `AOUT AO#(n) v`, `TIMER T=`, `WAIT IN#(n)=.. [T=]` (with the
 backend's JUMP/MSG/PAUSE: `timeout`), `JUMP *La IF IN#(n)=..` .. `*La` as `if`, `CALL JOB:`,
-the tool named by the `'TOOL n = name` comment. Pulse positions (`///PULSE`) are robot
-specific: their moves stay native.
+the tool named by the `'TOOL n = name` comment. Position variables (`P00100=` in //POS, `MOVJ
+P100`) are read as the C positions are. Pulse positions (`///PULSE`, or any position before a
+`///RECTAN`) are robot specific: their moves stay native.
 """
 
 from __future__ import annotations
