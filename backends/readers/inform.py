@@ -242,16 +242,20 @@ class _Job:
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
-        # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual, MOVJ
-        # tags); rmot has one joint acceleration share, so both must be equal, on joint moves
+        # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual, MOVJ,
+        # MOVL and MOVC tags); rmot has one joint acceleration share, so both must be equal
         acc = re.search(r"\bACC=(\d+)\s+DEC=(\d+)\b", rest)
         extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+|NWAIT)\b", "", rest).strip()
 
         if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
                 (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
             return None
-        if acc is not None and (kind != "joint" or acc.group(1) != acc.group(2) or not 20 <= int(acc.group(1)) <= 100):
+        if acc is not None and (acc.group(1) != acc.group(2) or not 20 <= int(acc.group(1)) <= 100):
             return None
+        if acc is not None and acc.group(1) != "100" and kind != "joint":  # ACC=/DEC= on MOVL, MOVC too
+            self.tally.warn(codes.ACCEL_SHARE_ON_PATH, f"ACC={acc.group(1)} DEC={acc.group(2)} on a {kind} move is "
+                            f"read as `accel {acc.group(1)} %` (the joint acceleration share); its TCP acceleration "
+                            "stays the default", where)
         decl = decls[-1]
         assert decl is not None
         user = self.position_user[names[-1]]

@@ -113,3 +113,17 @@ def test_positions_without_a_data_form_are_not_millimetres(tmp_path: Path) -> No
     stmts = [s for r in doc.routines for s in walk(r.body)]
     assert not doc.targets and not any(isinstance(s, Move) for s in stmts)
     assert [s.text for s in stmts if isinstance(s, Native)] == ["MOVL C00000 V=10.0 PL=8", "MOVL C00001 V=10.0 PL=0"]
+
+
+def test_acc_dec_on_a_linear_move(tmp_path: Path) -> None:
+    """Equal ACC=/DEC= on MOVL (the YRC1000 tags of MOVJ, MOVL and MOVC: acceleration and
+    deceleration ratios) is the joint acceleration share with W540 at its line; unequal ones
+    have no rmot form."""
+    text = JOB.replace("MOVL P106 V=150.0 PL=0  //CUT PRE-SLIDE", "MOVL P106 V=150.0 PL=0 ACC=50 DEC=50\n"
+                       "MOVL P105 V=150.0 ACC=50 DEC=20")
+    moves, stmts = _moves(tmp_path, text)
+    assert [(m.kind, m.target, m.joint_accel) for m in moves if m.kind == "linear"] == [
+        ("linear", "cut_only_p00106", 50.0)]
+    assert [s.text for s in stmts if isinstance(s, Native)] == ["MOVL P105 V=150.0 ACC=50 DEC=20"]
+    doc = read_files([str(tmp_path / "CUT_ONLY.JBI")])
+    assert [(d.code.id, d.span.start.line) for d in doc.diagnostics if d.code.id == "W540"] == [("W540", 22)]
