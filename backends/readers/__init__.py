@@ -27,7 +27,7 @@ __all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "com
 def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.rapid import read_rapid  # late: loads numpy only when this runs
 
-    m = read_rapid(path, text)
+    m = read_rapid(path, text, _RAPID_TASK)
     main = next((r.name for r in m.routines if r.name.lower() == "main"), m.routines[0].name if m.routines else "main")
     doc = Document("rapid", m.name, main, tuple(m.targets.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), tuple(m.routines), tuple(m.consts.items()), (m.tally.count(),),
@@ -123,6 +123,7 @@ _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
 # the loop's counter
 _FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
 _FANUC_INLINED: set[str] = set()  # the programs some caller inlined
+_RAPID_TASK: dict[str, str] = {}  # the RAPID modules given: one task, their global data shared
 
 Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"]
 
@@ -179,6 +180,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     _FANUC_LABELS["UFRAME"].clear()
     _FANUC_PROGRAMS.clear()
     _FANUC_INLINED.clear()
+    _RAPID_TASK.clear()
     for path in paths:
         if path.lower().endswith(".ls"):
             prog = re.match(r"\s*/PROG\s+(\w+)", _load(path))
@@ -190,6 +192,8 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
             program = re.search(r'<Program\s+name="(\w+)"', _load(path))
             if program:
                 _FANUC_PROGRAMS[program.group(1).upper()] = (path, _load(path))
+        if path.lower().endswith((".mod", ".modx", ".prg")):  # RAPID modules of one task share their global data
+            _RAPID_TASK[path] = _load(path)
         if path.lower().endswith(".jbi"):  # INFORM jobs by name, as TP programs: inlined in a shifting loop
             job = re.search(r"(?m)^//NAME\s+(\w+)", _load(path))
             if job:

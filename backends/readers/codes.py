@@ -44,3 +44,10 @@ LOOP_READ_ONCE = Code("W518", "loop-read-once",
 PARAMETERS_NUMBER = Code("W519", "parameters-number",
                          "a URScript function's parameters are untyped: they are declared `number` and the lines "
                          "that use them stay native")
+
+# Fanuc TP, INFORM and RAPID as pendants and RobotStudio write them
+__all__ += ["ACCEL_SHARE_ON_PATH"]
+ACCEL_SHARE_ON_PATH = Code("W540", "accel-share-on-path",
+                           "a TP linear or circular move's ACCn, an INFORM MOVL/MOVC's equal ACC=/DEC= (the motion's "
+                           "acceleration override) is read as rmot's joint acceleration share on that move: its TCP "
+                           "acceleration stays the default")

@@ -22,6 +22,7 @@ import re
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
+from rmot.backends.readers.fanuc_text import german_instruction, wait_condition
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Native, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
@@ -287,7 +288,9 @@ class _Ls:
     def _simple(self, text: str, where: Where) -> Stmt | None:
         if text.startswith(("J ", "L ", "C ")):
             return None  # a move this reader could not read (`_motion`)
-        return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "ABORT" else None)
+        stmt = match_simple(text, _SIMPLE, where) or (Stop(where) if text == "ABORT" else None)
+        cond = wait_condition(text) if stmt is None and text.startswith("WAIT") else None
+        return stmt or (WaitIn(cond, None, where) if cond is not None else german_instruction(text, where))
 
     def _motion(self, text: str, where: Where) -> tuple[Move, list[Stmt]] | None:
         """The move of a motion line and the options kept native after it (W517), or None."""
@@ -305,8 +308,14 @@ class _Ls:
         if options is None or any(d is None for d in decls):
             return None
         acc, offset, kept = options
-        if acc is not None and (kind != "joint" or not 1 <= acc <= 100):
-            return None  # rmot's joint acceleration share takes 1..100 % on joint moves
+        if acc is not None and not 1 <= acc <= 100:
+            return None  # rmot's joint acceleration share takes 1..100 %
+        if acc is not None and acc != 100 and kind != "joint":
+            # ACC overrides the motion's acceleration and deceleration, J, L or C alike (R-30iB
+            # Operator's Manual, motion option "Acceleration override"); rmot's plan bounds a
+            # linear move's joints by the same share (compiler/plan/move_chain.py)
+            self.tally.warn(codes.ACCEL_SHARE_ON_PATH, f"ACC{acc} on a {kind} move is read as `accel {acc} %` "
+                            "(the joint acceleration share); its TCP acceleration stays the default", where)
         if offset is not None and offset not in self.offsets:
             return None
         exprs = [d.name for d in decls]  # type: ignore[union-attr]

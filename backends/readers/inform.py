@@ -9,8 +9,9 @@ and is not the rmot wrist, so the wrist stays free: the planner takes the neares
 robot stands), PL 0..4 = 0 / 12.5 / 25 / 50 / 100 mm (the backend's levels); `DOUT OT#(n)
 ON|OFF`, `PULSE OT#(n) T=`, `AOUT AO#(n) v`, `TIMER T=`, `WAIT IN#(n)=.. [T=]` (with the
 backend's JUMP/MSG/PAUSE: `timeout`), `JUMP *La IF IN#(n)=..` .. `*La` as `if`, `CALL JOB:`,
-the tool named by the `'TOOL n = name` comment. Pulse positions (`///PULSE`) are robot
-specific: their moves stay native.
+the tool named by the `'TOOL n = name` comment. Position variables (`P00100=` in //POS, `MOVJ
+P100`) are read as the C positions are. Pulse positions (`///PULSE`, or any position before a
+`///RECTAN`) are robot specific: their moves stay native.
 """
 
 from __future__ import annotations
@@ -72,7 +73,10 @@ class _Job:
         first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
         if first[1].strip() != "/JOB":
             raise self.tally.fail("an INFORM job must start with `/JOB`", Where(self.path, first[0]))
-        section, conf, tool, user, pulse, postype = "", "0,0,0", 0, None, False, "ROBOT"
+        # a position is Cartesian only after `///RECTAN` ("Cartesian data is defined during and
+        # after this pseudo instruction", DX100 manual 4.1): before it, or after `///PULSE` or
+        # `///ANGLE`, its numbers are not mm (a job written without either holds pulse counts)
+        section, conf, tool, user, rectan, postype = "", "0,0,0", 0, None, False, "ROBOT"
         for n, line in enumerate(self.raw, 1):
             s = line.strip()
             if s.startswith("//NAME"):
@@ -87,10 +91,10 @@ class _Job:
                 tool = int(rest) if key == "TOOL" and rest.isdigit() else tool
                 postype = rest.strip() if key == "POSTYPE" else postype  # ROBOT, BASE (no base axis: the same), USER
                 user = int(rest) if key == "USER" and rest.isdigit() else user
-                pulse = key == "PULSE" or (pulse and key != "RECTAN")
+                rectan = key == "RECTAN" or (rectan and key not in ("PULSE", "ANGLE"))
                 continue
             if section == "//POS":
-                self._position(s, n, conf, tool, user if postype == "USER" else None, pulse)
+                self._position(s, n, conf, tool, user if postype == "USER" else None, not rectan)
             elif section == "//INST" and s and not s.startswith("//"):
                 m = re.match(r"'\s*TOOL\s+(\d+)\s*=\s*(\w+)", s)
                 if m:
@@ -99,16 +103,16 @@ class _Job:
                 if m:
                     self.var_names[m.group(1)] = m.group(2)
                 if (not s.startswith("'") or _PAYLOAD_REMARK.fullmatch(s)) and s not in ("NOP", "END"):
-                    self.inst.append((s, Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
+                    self.inst.append((_uncommented(s), Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
         if not self.name:
             raise self.tally.fail("an INFORM job must name itself (`//NAME NAME`)", Where(self.path, first[0]))
         body, _ = self._block(0, len(self.inst))
         self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
-        m = re.fullmatch(r"(C\d+)\s*=\s*(.*)", s)
+        m = re.fullmatch(r"([CP]\d+)\s*=\s*(.*)", s)
         if m is not None and pulse:
-            self.pulse_positions.add(m.group(1))
+            self.pulse_positions.add(_key(m.group(1)))
         if m is None or pulse:
             return
         try:
@@ -124,11 +128,12 @@ class _Job:
         if len(bits) >= 3 and bits[1].strip() in "01" and bits[2].strip() in "01":
             branch = ir.Config(ir.Shoulder.FRONT if bits[2].strip() == "0" else ir.Shoulder.BACK,
                                ir.Elbow.UP if bits[1].strip() == "0" else ir.Elbow.DOWN, None)
-        name = f"{self.name.lower()}_{m.group(1).lower()}"
-        self.positions[m.group(1)] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
+        key = _key(m.group(1))
+        name = f"{self.name.lower()}_{key.lower()}"
+        self.positions[key] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
                                             Where(self.path, n), ",".join(b.strip() for b in bits))
-        self.position_tool[m.group(1)] = tool
-        self.position_user[m.group(1)] = user
+        self.position_tool[key] = tool
+        self.position_user[key] = user
 
     # ---------------------------------------------------------------- instructions
 
@@ -165,8 +170,9 @@ class _Job:
                 return found
         stmt = self._simple(text, where)
         if stmt is None:
-            pulses = sorted(set(re.findall(r"\bC\d+\b", text)) & self.pulse_positions)
-            why = (f"{', '.join(pulses)} is a pulse position (///PULSE): encoder counts whose per-axis scales "
+            pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & self.pulse_positions)
+            why = (f"{', '.join(pulses)} is a pulse position (///PULSE, or no ///RECTAN before it): encoder "
+                   "counts whose per-axis scales "
                    "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
                    "no rmot form")
             return [self.tally.keep(text, where, why)], i + 1
@@ -236,16 +242,20 @@ class _Job:
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
-        # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual, MOVJ
-        # tags); rmot has one joint acceleration share, so both must be equal, on joint moves
+        # ACC=/DEC=: acceleration and deceleration ratios, 20..100 % (YRC1000 INFORM manual, MOVJ,
+        # MOVL and MOVC tags); rmot has one joint acceleration share, so both must be equal
         acc = re.search(r"\bACC=(\d+)\s+DEC=(\d+)\b", rest)
         extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+|NWAIT)\b", "", rest).strip()
 
         if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
                 (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
             return None
-        if acc is not None and (kind != "joint" or acc.group(1) != acc.group(2) or not 20 <= int(acc.group(1)) <= 100):
+        if acc is not None and (acc.group(1) != acc.group(2) or not 20 <= int(acc.group(1)) <= 100):
             return None
+        if acc is not None and acc.group(1) != "100" and kind != "joint":  # ACC=/DEC= on MOVL, MOVC too
+            self.tally.warn(codes.ACCEL_SHARE_ON_PATH, f"ACC={acc.group(1)} DEC={acc.group(2)} on a {kind} move is "
+                            f"read as `accel {acc.group(1)} %` (the joint acceleration share); its TCP acceleration "
+                            "stays the default", where)
         decl = decls[-1]
         assert decl is not None
         user = self.position_user[names[-1]]
@@ -269,13 +279,13 @@ class _Job:
     def _arc(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """MOVC start, via, end FPT: a circular move from where the robot stands; right after
         an arc, MOVC via, end FPT (the arc before ended at the start)."""
-        chained = re.fullmatch(r"MOVC\s+C\d+.*\bFPT", self._text(i - 1)) is not None if i else False
+        chained = re.fullmatch(r"MOVC\s+[CP]\d+.*\bFPT", self._text(i - 1)) is not None if i else False
         n = 2 if chained else 3
         texts = [self._text(k) for k in range(i, min(i + n, end))]
-        ms = [re.fullmatch(r"MOVC\s+(C\d+)\s*(.*)", t) for t in texts]
+        ms = [re.fullmatch(r"MOVC\s+([CP]\d+)\s*(.*)", t) for t in texts]
         if len(ms) < n or not all(ms) or "FPT" not in texts[-1] or any("FPT" in t for t in texts[:-1]):
             return None
-        move = self._move("circular", [ms[-2].group(1), ms[-1].group(1)], ms[-1].group(2),  # type: ignore[union-attr]
+        move = self._move("circular", [_key(ms[-2].group(1)), _key(ms[-1].group(1))], ms[-1].group(2),  # type: ignore[union-attr]
                           self.inst[i + n - 2][1])
         return ([move], i + n) if move else None
 
@@ -302,10 +312,25 @@ class _Job:
         return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
-        m = re.fullmatch(r"(MOVJ|MOVL)\s+(C\d+)\s*(.*)", text)
+        m = re.fullmatch(r"(MOVJ|MOVL)\s+([CP]\d+)\s*(.*)", text)
         if m:
-            return self._move("joint" if m.group(1) == "MOVJ" else "linear", [m.group(2)], m.group(3), where)
+            return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where)
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
+
+
+def _key(ref: str) -> str:
+    """A position's key: `C00012` / `P00100` as //POS writes it, whichever digits an
+    instruction names it with (`MOVJ P100`: the position variable P100, DX100/YRC1000 INFORM
+    manual, "position variable P")."""
+    return f"{ref[0]}{int(ref[1:]):05d}"
+
+
+def _uncommented(line: str) -> str:
+    """An instruction without the comment the pendant appends after `//` (`MOVL P106 V=150.0
+    PL=0  //CUT PRE-SLIDE`: YRC1000 INFORM manual, the line comment of an instruction); a
+    line with a quoted string keeps it all (`//` may be the string's)."""
+    m = re.fullmatch(r"(.*?\S)\s+//.*", line)
+    return m.group(1) if m and '"' not in line else line
 
 
 def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> _Job:

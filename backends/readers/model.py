@@ -82,7 +82,7 @@ class Move:
     pose: ir.Pose | None = None  # the resolved target where known (for diff)
     joints: tuple[float, ...] | None = None
     accel: float | None = None  # mm/s^2, linear and circular moves; None = the controller's own
-    joint_accel: float | None = None  # % of each joint's max acceleration, joint moves
+    joint_accel: float | None = None  # % of each joint's max acceleration (joint moves; TP ACC on any move)
 
 
 @record(slots=True)

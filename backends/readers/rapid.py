@@ -13,6 +13,7 @@ rotations about x, then y, then z (= `p * pose(..)`).
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from itertools import product
 
 from rmot.backends.rapid_text import SPEEDS_MM_S, cfx_of
@@ -31,6 +32,15 @@ PULSE_DEFAULT_S = 0.2  # PulseDO without \PLength: 0.2 s (RAPID Instructions, Pu
 _PARAM_TYPES = {"robtarget": "pose", "jointtarget": "joints", "num": "number", "bool": "bool"}
 _DECL = re.compile(r"(?i)^(?:(?:LOCAL|TASK)\s+)*(CONST|PERS|VAR)\s+(\w+)\s+(\w+)\s*(\{[^}]*\})?\s*(?::=\s*(.*))?$")
 _MOVES = {"MOVEJ": "joint", "MOVEL": "linear", "MOVEC": "circular", "MOVEABSJ": "joint"}
+
+
+def _branch(lit: object) -> ir.Config | None:
+    """The branch of a robtarget literal's confdata [cf1, cf4, cf6, cfx] (its cfx), named or
+    inline (`MoveJ [[x,y,z],[q..],[0,-1,-1,0],[..]], ..` as RobotStudio and hand-written
+    modules write it)."""
+    conf = lit[2] if isinstance(lit, list) and len(lit) > 2 and isinstance(lit[2], list) else None
+    cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
+    return branch_of_cfx(int(cfx)) if cfx is not None else None
 
 
 def branch_of_cfx(cfx: int) -> ir.Config | None:
@@ -93,6 +103,7 @@ class _Module:
             raise self.tally.fail("a RAPID module must start with `MODULE name` (after an optional "
                                   "%%% header)", where)
         self.name = self.stmts[0].text.split()[1].split("(")[0]
+        self.predeclare(local=True)  # data declared below the PROCs that use them
         for st in self.stmts:
             m = re.match(r"(?i)^(?:LOCAL\s+)?PROC\s+(\w+)", st.text)
             if m:
@@ -110,6 +121,30 @@ class _Module:
                 self._declaration(st)
                 i += 1
         raise self.tally.fail("the module has no ENDMODULE", self.stmts[-1].where)
+
+    def predeclare(self, local: bool) -> None:
+        """Every module-level data declaration, read ahead without counting (the module's own,
+        `local`, so a PROC may use data declared after it; another module's, without its LOCAL
+        data: the task's other modules see its global data, RAPID Overview, "Scope of data")."""
+        depth = 0
+        for st in self.stmts[1:]:
+            opens = re.match(r"(?i)^(?:LOCAL\s+)?(PROC|FUNC|TRAP)\b", st.text)
+            depth += 1 if opens else -1 if st.word in ("ENDPROC", "ENDFUNC", "ENDTRAP") else 0
+            m = _DECL.match(st.text) if depth == 0 and not opens else None
+            if m is None or (not local and re.match(r"(?i)^LOCAL\b", st.text)):
+                continue
+            _, type_, name, dims, value = m.groups()
+            if value and not dims:
+                self._data(type_.lower(), name, literal(value), st.where)
+
+    def share(self, other: _Module) -> None:
+        """The global data of another module of the task, where this one declares no such name."""
+        self.targets = {**other.targets, **self.targets}
+        self.tools = {**other.tools, **self.tools}
+        self.frames = {**other.frames, **self.frames}
+        self.speeds = {**other.speeds, **self.speeds}
+        self.zones = {**other.zones, **self.zones}
+        self.names |= other.names  # its numbers may be used here (declared by its own module)
 
     def _declaration(self, st: Statement) -> None:
         m = _DECL.match(st.text)
@@ -132,10 +167,7 @@ class _Module:
             pose = _pose(lit)
             if pose is None:
                 return False
-            conf = lit[2] if isinstance(lit, list) and len(lit) > 2 and isinstance(lit[2], list) else None
-            cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
-            branch = branch_of_cfx(int(cfx)) if cfx is not None else None
-            self.targets[name.upper()] = Target(name, pose, None, branch, where)
+            self.targets[name.upper()] = Target(name, pose, None, _branch(lit), where)
         elif type_ == "jointtarget":
             if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
                     and all(isinstance(v, float) for v in lit[0])):
@@ -255,9 +287,25 @@ class _Module:
             return [], i + 1
         converted = self._simple(st)
         if converted is None:
-            return [self.tally.keep(st.text + ";", st.where, "no rmot form")], i + 1
+            return [self.tally.keep(st.text + ";", st.where, self._why_kept(st))], i + 1
         self.tally.imported += 1
         return [converted], i + 1
+
+    def _why_kept(self, st: Statement) -> str:
+        """Why a statement stays native: for a move, the data it names that the files given do
+        not declare (a task's modules share their data: the module declaring them is needed)."""
+        if st.word not in _MOVES:
+            return "no rmot form"
+        args = split_top(st.text[len(st.word):].strip())
+        known = {*self.targets, *self.speeds, *self.zones, *self.tools, *self.frames, "VMAX", "TOOL0", "WOBJ0"}
+        names = [m.group(1) for a in args for m in [re.fullmatch(r"(?i)(?:\\WObj\s*:=\s*)?(\w+)", b.strip())
+                                                      for b in split_top(a, "\\")] if m]
+        unknown = sorted({n for n in names if n.upper() not in known and not re.fullmatch(r"[\d.]+", n)},
+                         key=names.index)
+        if not unknown:
+            return "no rmot form"
+        return (f"{', '.join(unknown)} {'is' if len(unknown) == 1 else 'are'} not declared in the files given "
+                "(another module of the task? give it too) or not constant data")
 
     def _keep_block(self, i: int, end: str, why: str) -> tuple[list[Stmt], int]:
         out: list[Stmt] = []
@@ -399,7 +447,7 @@ class _Module:
         return Move(kind, expr, name, where, via=via, speed=timing[0] if kind != "joint" else None,
                     joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
                     time=timing[1], tool=tool_name, frame=frame, config=config,
-                    pose=decl.pose if decl and expr == decl.name else None,
+                    pose=decl.pose if decl and expr in (decl.name, pose_expr(decl.pose) if decl.pose else None) else None,
                     joints=decl.joints if decl else None, joint_accel=self.acc_pct)
 
     def _speed(self, kind: str, speed: list[str]) -> tuple[float | None, float | None, bool] | None:
@@ -450,7 +498,7 @@ class _Module:
         lit = literal(text)
         pose = _pose(lit)
         if pose is not None:
-            return (pose_expr(pose), None, Target("", pose, None, None, Where("", 0)))
+            return (pose_expr(pose), None, Target("", pose, None, _branch(lit), Where("", 0)))
         return None
 
     def _offset(self, func: str, args: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
@@ -502,8 +550,14 @@ def _no_semicolon(text: str) -> bool:
     return re.match(r"(?i)^(IF|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST)\b", text) is not None
 
 
-def read_rapid(path: str, text: str) -> _Module:
-    """Read one RAPID module; raises ImportError_ (E510) when it is not one."""
+def read_rapid(path: str, text: str, task: Mapping[str, str] | None = None) -> _Module:
+    """Read one RAPID module; raises ImportError_ (E510) when it is not one. `task`: every
+    module given (path -> text): their global data are this module's too."""
     module = _Module(path, text)
+    for other_path, other_text in (task or {}).items():
+        other = _Module(other_path, other_text)
+        if other_path != path and other.stmts and other.stmts[0].word == "MODULE":
+            other.predeclare(local=False)
+            module.share(other)
     module.read()
     return module

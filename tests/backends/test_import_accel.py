@@ -49,7 +49,7 @@ def test_rapid_accset(tmp_path: Path) -> None:
     assert 'native rapid "AccSet 40, 50;"' in program
 
 
-def test_fanuc_acc_only_on_joint_moves(tmp_path: Path) -> None:
+def test_fanuc_acc_on_joint_and_linear_moves(tmp_path: Path) -> None:
     ls = """/PROG  T
 /MN
    1:  UFRAME_NUM=0 ;
@@ -73,7 +73,10 @@ P[2]{
 """
     program, output = _import(tmp_path, "T.ls", ls)
     assert re.search(r"move joint \S+ .*accel 35 %", program), program
-    assert "W510" in output and "L P[2] 100mm/sec FINE ACC35" in output  # rmot's share is of joint moves
+    # ACC overrides a linear move's acceleration too: the joint share rmot's plan bounds the
+    # move's joints by, with W540 (its TCP acceleration stays the default)
+    assert re.search(r"move linear \S+ .*accel 35 %", program), program
+    assert "W540" in output and "W510" not in output
 
 
 def _trapezoid_rates(delta_deg: list[float], vmax: list[float], amax: list[float],

@@ -1,0 +1,84 @@
+"""Fanuc TP instruction forms beyond one signal: a WAIT on several inputs, and the words of a
+German-language pendant.
+
+`WAIT (!DI[33] AND !DI[34])`, `WAIT (DI[1] OR (DI[2] AND !DI[3]))`, `WAIT DI[1]=ON AND
+DI[2]=OFF` (R-30iB Operator's Manual, wait instruction with a condition; mixed logic, `!` is
+NOT): read as rmot's and/or/not condition where every parenthesised level joins its terms with
+one operator — a level mixing AND and OR, a flag, register, timer or output stays native (its
+priority, or what it reads, is not an input rmot can wait for). A German-language controller
+writes the same instructions in its words (`A[15]=AN`, `WARTE (E[9])`: A Ausgang = DO, E
+Eingang = DI, AN/AUS = ON/OFF, WARTE = WAIT; the pendant backups of VASC's body shop, German
+program headers `KOMMENTAR`, `WKZ_NUM`): read as the English ones.
+"""
+
+from __future__ import annotations
+
+import re
+
+from rmot.backends.readers.model import Cond, Conds, SetOut, Stmt, WaitIn, Where
+
+__all__ = ["wait_condition", "german_instruction"]
+
+_TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
+_ON = ("ON", "AN")
+
+_Parsed = tuple["Cond | Conds", int] | None
+
+
+def wait_condition(text: str) -> Cond | Conds | None:
+    """The input condition of `WAIT cond` (or `WARTE cond`), or None where it reads anything
+    else or mixes AND and OR on one level."""
+    m = re.fullmatch(r"(?:WAIT|WARTE)\s*(.+?)\s*", text)
+    if m is None:
+        return None
+    tokens: list[re.Match[str]] = []
+    rest = m.group(1)
+    while rest.strip():
+        t = _TOKEN.match(rest)
+        if t is None:
+            return None
+        tokens.append(t)
+        rest = rest[t.end():]
+    parsed = _level(tokens, 0)
+    return parsed[0] if parsed is not None and parsed[1] == len(tokens) else None
+
+
+def _level(tokens: list[re.Match[str]], i: int) -> _Parsed:
+    parts: list[Cond | Conds] = []
+    op: str | None = None
+    while True:
+        parsed = _term(tokens, i)
+        if parsed is None:
+            return None
+        parts.append(parsed[0])
+        i = parsed[1]
+        if i < len(tokens) and tokens[i].group(6):
+            if op not in (None, tokens[i].group(6)):
+                return None  # AND and OR on one level: which binds first is not read
+            op, i = tokens[i].group(6), i + 1
+            continue
+        return (parts[0] if op is None else Conds(op.lower(), tuple(parts))), i
+
+
+def _term(tokens: list[re.Match[str]], i: int) -> _Parsed:
+    if i >= len(tokens):
+        return None
+    t = tokens[i]
+    if t.group(4):
+        inner = _level(tokens, i + 1)
+        if inner is None or inner[1] >= len(tokens) or not tokens[inner[1]].group(5):
+            return None
+        return inner[0], inner[1] + 1
+    if t.group(2) is None:
+        return None
+    on = (t.group(3) or "ON") in _ON
+    return Cond(int(t.group(2)), on != bool(t.group(1))), i + 1
+
+
+def german_instruction(text: str, where: Where) -> Stmt | None:
+    """`A[n]=AN|AUS` (the pendant also writes `(AN)`) and `WARTE (E[n])` as DO and WAIT DI."""
+    m = re.fullmatch(r"A\[(\d+)(?::[^\]]*)?\]\s*=\s*\(?(AN|AUS)\)?", text)
+    if m:
+        return SetOut(int(m.group(1)), 1.0 if m.group(2) == "AN" else 0.0, where)
+    cond = wait_condition(text) if text.startswith("WARTE") else None
+    return WaitIn(cond, None, where) if cond is not None else None

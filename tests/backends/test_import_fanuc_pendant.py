@@ -1,0 +1,100 @@
+"""Fanuc TP programs as a pendant saves them: the motion option `ACCn` on a linear move (the
+acceleration override of the motion, J, L and C alike) read as the move's joint acceleration
+share with W540 at its line; an override outside 1..100 keeps the move native.
+
+Witness: the program follows a pendant-saved one by another author (WILDER-SYSTEMS-LLC's
+git-ftp backup, job_dbl_safe_1.ls); the R-30iB Operator's Manual, motion option "Acceleration
+override" (ACC 0..150, the motion's acceleration and deceleration time scaled); the expected
+values are the file's numbers.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Cond, Conds, Move, Native, SetOut, WaitIn, walk
+
+TP = """/PROG  JOB_DBL_SAFE_1
+/ATTR
+OWNER\t\t= MNEDITOR;
+COMMENT\t\t= "";
+DEFAULT_GROUP\t= 1,*,*,*,*;
+/MN
+   1:  UFRAME_NUM=4 ;
+   2:  UTOOL_NUM=2 ;
+   3:J P[1] 20% FINE ACC10    ;
+   4:L P[2] 200mm/sec FINE ACC10    ;
+   5:L P[1] 200mm/sec CNT50 ACC100    ;
+   6:L P[2] 200mm/sec FINE ACC120    ;
+/POS
+P[1]{
+   GP1:
+\tUF : 4, UT : 2,\t\tCONFIG : 'F U T, 0, 0, 0',
+\tX =      .044  mm,\tY =    -4.101  mm,\tZ =   300.000  mm,
+\tW =     -.242 deg,\tP =     0.000 deg,\tR =     0.000 deg
+};
+P[2]{
+   GP1:
+\tUF : 4, UT : 2,\t\tCONFIG : 'F U T, 0, 0, 0',
+\tX =  -249.056  mm,\tY =    -4.101  mm,\tZ =   300.000  mm,
+\tW =     -.242 deg,\tP =     0.000 deg,\tR =     0.000 deg
+};
+/END
+"""
+
+
+def test_acc_on_linear_moves(tmp_path: Path) -> None:
+    path = tmp_path / "job_dbl_safe_1.ls"
+    path.write_text(TP)
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.speed, m.joint_pct, m.joint_accel, m.zone) for m in moves] == [
+        ("joint", None, 20.0, 10.0, None),
+        ("linear", 200.0, None, 10.0, None),
+        ("linear", 200.0, None, None, 50.0),  # ACC100: the controller's own
+    ]
+    assert [s.text for s in stmts if isinstance(s, Native)] == ["L P[2] 200mm/sec FINE ACC120 ;"]
+    w540 = [(d.span.start.line, d.span.start.col) for d in doc.diagnostics if d.code.id == "W540"]
+    assert w540 == [(10, 4)]  # the line number of the TP line
+
+
+def _read(tmp_path: Path, lines: list[str]) -> list[object]:
+    body = "\n".join(f"{n:4d}:  {t} ;" for n, t in enumerate(lines, 1))
+    path = tmp_path / "waits.ls"
+    path.write_text(f"/PROG  WAITS\n/ATTR\n/MN\n{body}\n/POS\n/END\n")
+    doc = read_files([str(path)])
+    return [s for r in doc.routines for s in walk(r.body)]
+
+
+def test_wait_on_several_inputs(tmp_path: Path) -> None:
+    """Each parenthesised level joins its terms with one operator: read as and/or/not; a level
+    mixing AND and OR, or a flag or timer, stays native (lines from the VASC backups)."""
+    stmts = _read(tmp_path, [
+        "WAIT (!DI[33] AND !DI[34] AND !DI[35] AND !DI[36])",
+        "WAIT (!DI[129] OR DI[26])",
+        "WAIT ((DI[718] AND !DI[772]) OR DI[26] OR DI[27])",
+        "WAIT DI[1]=ON AND DI[2]=OFF",
+        "WAIT (DI[1] AND DI[2] OR DI[3])",
+        "WAIT (!F[329] OR DI[26])",
+        "WAIT (DI[757] OR (TIMER[10]>=0))",
+    ])
+    waits = [s for s in stmts if isinstance(s, WaitIn)]
+    assert [w.cond for w in waits] == [
+        Conds("and", (Cond(33, False), Cond(34, False), Cond(35, False), Cond(36, False))),
+        Conds("or", (Cond(129, False), Cond(26, True))),
+        Conds("or", (Conds("and", (Cond(718, True), Cond(772, False))), Cond(26, True), Cond(27, True))),
+        Conds("and", (Cond(1, True), Cond(2, False))),
+    ]
+    assert [s.text for s in stmts if isinstance(s, Native)] == [
+        "WAIT (DI[1] AND DI[2] OR DI[3]) ;", "WAIT (!F[329] OR DI[26]) ;", "WAIT (DI[757] OR (TIMER[10]>=0)) ;"]
+
+
+def test_german_pendant_words(tmp_path: Path) -> None:
+    """A German controller's `A[n]=AN|AUS` is DO[n]=ON|OFF and `WARTE (E[n])` WAIT (DI[n])."""
+    stmts = _read(tmp_path, ["A[15:PF0 Robot (Punto Cero)]=AN", "A[17:Rob.En Mantenimiento]=(AUS)",
+                             "WARTE (E[9])", "WARTE (!E[9] AND E[10])"])
+    assert [(s.signal, s.value) for s in stmts if isinstance(s, SetOut)] == [(15, 1.0), (17, 0.0)]
+    assert [s.cond for s in stmts if isinstance(s, WaitIn)] == [
+        Cond(9, True), Conds("and", (Cond(9, False), Cond(10, True)))]
