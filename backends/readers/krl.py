@@ -20,12 +20,14 @@ from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
+from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
-    Line, MotionState, aggregate, branch_of_status, declarations, fold_end, in_cond, krl_pose, lines,
+    Line, MotionState, aggregate, branch_of_status, fold_end, in_cond, krl_pose, lines,
 )
+from rmot.backends.readers.krl_data import declared, data_list, named_loads, position, timed_wait
+from rmot.backends.readers.krl_names import config_near, declared_names, port_of, signals
 from rmot.backends.readers.model import (
-    Call, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
+    Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
 )
 from rmot.backends.readers.rapid import mm, num_text, pose_expr
@@ -37,20 +39,21 @@ _MOTIONS = {"PTP": "joint", "SPTP": "joint", "LIN": "linear", "SLIN": "linear", 
             "SCIRC": "circular"}
 
 
-def _declared(move: Move) -> Target:
-    """The target a move went to, as a declaration (its pose; no name of its own)."""
-    return Target(move.target_name or "", move.pose, move.joints, move.config, move.where)
-
-
 class _Krl:
     def __init__(self, src: tuple[str, str], dat: tuple[str, str] | None) -> None:
         self.tally = Tally(src[0], src[1], "krl")
         self.lines = lines(*src)
-        self.data: dict[str, tuple[str, str, object, Where]] = {}
-        if dat is not None:
-            for d in declarations(lines(*dat)):
-                self.data[d.name.upper()] = (d.type, d.name, aggregate(d.value) if d.value else number(d.value or ""),
-                                             d.where)
+        self.data = data_list(dat)
+        config = config_near(src[0])
+        self.config = data_list(config)  # the robot's global declarations (positions found there on use)
+        texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
+        self.signals = {k: v for text in texts for k, v in signals(text).items()}
+        self.variables = set().union(*(declared_names(text) for text in texts))
+        self.config_read = config is not None
+        self.inputs_named: set[str] = set()  # names read as inputs (W521 at the first use)
+        # a data object the program assigns holds its .dat value only until then: no constant target
+        self.assigned = {m.upper() for m in re.findall(r"(?im)^[ \t]*(\w+)[ \t]*(?:\[[^\]\n]*\])?[ \t]*(?:\.\w+)?"
+                                                       r"[ \t]*=(?!=)", src[1])}
         self.tool_names = {m.upper() for m in re.findall(r"(?im)^\s*\$TOOL\s*=\s*(\w+)", src[1])}
         self.base_names = {m.upper() for m in re.findall(r"(?im)^\s*\$BASE\s*=\s*(\w+)", src[1])}
         self.targets: dict[str, Target] = {}
@@ -78,14 +81,35 @@ class _Krl:
                 self.tools[key] = ToolData(name, pose, mass if isinstance(mass, float) else 0.0, where)
             elif key in self.base_names and pose is not None:
                 self.frames[key] = FrameData(name, pose, where)
-            elif type_ in ("E6POS", "POS", "FRAME") and pose is not None:
-                s = value.get("S")
-                branch = branch_of_status(int(s)) if isinstance(s, float) else None
-                self.targets[key] = Target(name, pose, None, branch, where)
-            elif type_ in ("E6AXIS", "AXIS"):
-                joints = [value.get(f"A{i}") for i in range(1, 7)]
-                if all(isinstance(j, float) for j in joints):
-                    self.targets[key] = Target(name, None, tuple(joints), None, where)  # type: ignore[arg-type]
+            elif key.split("[")[0] not in self.assigned:
+                found = position(type_, name, value, where)
+                if found is not None:
+                    self.targets[key] = found
+
+    def _named_input(self, name: str, pending: list[str]) -> Signal | None:
+        """The input a name in a condition reads: its SIGNAL's `$IN[n]`; a name declared nowhere the
+        import can see (not in the program, its .dat or a $config.dat found) and never assigned
+        here is external state another task sets: the input of that name (W521 once read)."""
+        key = name.upper()
+        if key in self.signals:
+            return port_of(self.signals, key, "IN")
+        if key in self.variables or key in self.assigned or key in self.data or self.config_read:
+            return None
+        pending.append(name)
+        return name
+
+    def _cond(self, text: str) -> Cond | Conds | None:
+        """A condition over inputs (and names read as inputs, each warned at its first use)."""
+        pending: list[str] = []
+        cond = in_cond(text, lambda name: self._named_input(name, pending))
+        for name in pending if cond is not None else []:
+            if name.upper() not in self.inputs_named:
+                self.inputs_named.add(name.upper())
+                self.tally.warn(codes.NAME_READ_AS_INPUT, f"`{name}` is declared neither in the program nor in a "
+                                "$config.dat found beside it: read as the input signal of that name (a SIGNAL of "
+                                "$config.dat, or a global BOOL another task sets); give --cell to check it",
+                                self.at or Where(self.tally.path, 1))
+        return cond
 
     # ---------------------------------------------------------------- structure
 
@@ -171,7 +195,7 @@ class _Krl:
         if self._work_copy(ln.text):
             return [], i + 1
         if i + 7 < len(self.lines):
-            timed = self._timed_wait(i)
+            timed = timed_wait(self.lines, i)
             if timed is not None:
                 self.tally.imported += 1
                 return [timed], i + 8
@@ -240,7 +264,7 @@ class _Krl:
             self.tally.imported += 1
             return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
-        cond = in_cond(m.group(1)) if m else None
+        cond = self._cond(m.group(1)) if m else None
         if cond is None:
             return self._keep_block(i, word, end)
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
@@ -300,6 +324,10 @@ class _Krl:
             return True
         return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
 
+    def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
+        """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
+        return named_loads(self.data)
+
     def _load_switch(self, i: int) -> bool:
         """`$LOAD=name` that is not the load of the tool the line before selects: a switch of the
         held load (an attach or detach)."""
@@ -307,16 +335,6 @@ class _Krl:
             return False
         before = next((ln.text for ln in reversed(self.lines[:i]) if ln.text), "")
         return re.match(r"(?i)\$TOOL\s*=", before) is None
-
-    def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
-        """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
-        out = []
-        for type_, name, value, _ in self.data.values():
-            cm = value.get("CM") if isinstance(value, dict) and type_.upper() == "LOAD" else None
-            mass = value.get("M") if isinstance(value, dict) else None
-            if isinstance(cm, dict) and isinstance(mass, float) and all(isinstance(cm.get(k), float) for k in "XYZ"):
-                out.append((name, mass, (float(cm["X"]), float(cm["Y"]), float(cm["Z"]))))
-        return tuple(out)
 
     def _tool_base(self, which: str, name: str) -> bool:
         key = name.upper()
@@ -375,47 +393,33 @@ class _Krl:
                 return True
         return False
 
-    def _timed_wait(self, i: int) -> WaitIn | None:
-        """The backend's 8-line timed wait: timer reset, WAIT FOR (c) OR ($TIMER[k]>=ms), and
-        HALT when c did not come."""
-        texts = [ln.text.replace(" ", "").upper() for ln in self.lines[i:i + 8]]
-        m = re.fullmatch(r"\$TIMER_STOP\[(\d+)\]=TRUE", texts[0])
-        if m is None:
-            return None
-        k = m.group(1)
-        w = re.fullmatch(rf"WAITFOR\((.*)\)OR\(\$TIMER\[{k}\]>=(\d+)\)", texts[3])
-        ok = (texts[1] == f"$TIMER[{k}]=0" and texts[2] == f"$TIMER_STOP[{k}]=FALSE" and w is not None
-              and texts[4] == f"$TIMER_STOP[{k}]=TRUE" and texts[6] == "HALT" and texts[7] == "ENDIF")
-        cond = in_cond(w.group(1)) if ok and w else None
-        if cond is None or texts[5] != f"IFNOT({w.group(1)})THEN":  # type: ignore[union-attr]
-            return None
-        return WaitIn(cond, int(w.group(2)) / 1000.0, self.lines[i + 3].where)  # type: ignore[union-attr]
-
     # ---------------------------------------------------------------- statements
 
     def _simple(self, ln: Line) -> Stmt | None:
         text, word, where = ln.text, ln.word, ln.where
         if word in _MOTIONS:
             move = self._motion(word, text[len(word):].strip(), where)
-            self.last = (move.target, move.target_name, _declared(move)) if move and move.pose else None
+            self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
             return move
         if word in ("LIN_REL", "PTP_REL"):
             return self._relative(word, text[len(word):].strip(), where)
-        m = re.fullmatch(r"(?i)\$OUT(?:_C)?\[(\d+)\]\s*=\s*(TRUE|FALSE)", text)
-        if m:
-            return SetOut(int(m.group(1)), 1.0 if m.group(2).upper() == "TRUE" else 0.0, where)
+        m = re.fullmatch(r"(?i)(?:\$OUT(?:_C)?\[(\d+)\]|(\w+))\s*=\s*(TRUE|FALSE)", text)
+        port = (int(m.group(1)) if m.group(1) else port_of(self.signals, m.group(2), "OUT")) if m else None
+        if m and port is not None:
+            return SetOut(port, 1.0 if m.group(3).upper() == "TRUE" else 0.0, where)
         m = re.fullmatch(r"(?i)\$ANOUT\[(\d+)\]\s*=\s*(-?[\d.]+)", text)
         if m:
             return SetOut(int(m.group(1)), float(m.group(2)) * 10.0, where, analog=True)
-        m = re.fullmatch(r"(?i)PULSE\s*\(\s*\$OUT\[(\d+)\]\s*,\s*TRUE\s*,\s*([\d.]+)\s*\)", text)
-        if m:
-            return Pulse(int(m.group(1)), float(m.group(2)), where)
+        m = re.fullmatch(r"(?i)PULSE\s*\(\s*(?:\$OUT\[(\d+)\]|(\w+))\s*,\s*TRUE\s*,\s*([\d.]+)\s*\)", text)
+        port = (int(m.group(1)) if m.group(1) else port_of(self.signals, m.group(2), "OUT")) if m else None
+        if m and port is not None:
+            return Pulse(port, float(m.group(3)), where)
         m = re.fullmatch(r"(?i)WAIT\s+SEC\s+([\d.]+)", text)
         if m:
             return Wait(float(m.group(1)), where)
         m = re.fullmatch(r"(?i)WAIT\s+FOR\s+(.+)", text)
         if m:
-            cond = in_cond(m.group(1))
+            cond = self._cond(m.group(1))
             return WaitIn(cond, None, where) if cond else None
         m = re.fullmatch(r"(\w+)\s*\(\s*\)", text)
         if m and m.group(1).upper() not in ("HALT", "BAS"):
@@ -424,30 +428,29 @@ class _Krl:
 
     def _target(self, text: str, at: Where | None = None) -> tuple[str, str | None, Target | None] | None:
         text = text.strip()
-        key = text.upper()
+        key = re.sub(r"\s+", "", text).upper() if re.fullmatch(r"\w+\s*\[\s*\d+\s*\]", text) else text.upper()
         if key in self.work:
             base, offsets = self.work[key]
             decl = self.targets[base]
             terms = ", ".join(f"{axis}={mm(e)}" for axis, e in sorted(offsets.items()))
             named = rmot_name(decl.name)
             return (f"shift({named}, {terms})" if terms else named, decl.name, decl)
+        if key not in self.targets and key in self.config and key.split("[")[0] not in self.assigned:
+            found = position(*self.config[key])  # a global position of the robot's $config.dat
+            if found is not None:
+                self.targets[key] = found
         if key in self.targets:
             decl = self.targets[key]
             return (rmot_name(decl.name), decl.name, decl)
         if key in ("HOME", "XHOME") and at is not None:
             return self._home(at)
-        agg = aggregate(text)
-        if agg is not None:
-            pose = krl_pose(agg)
-            if pose is not None:
-                s = agg.get("S")
-                branch = branch_of_status(int(s)) if isinstance(s, float) else None
-                return (pose_expr(pose), None, Target("", pose, None, branch, Where("", 0)))
-            joints = [agg.get(f"A{i}") for i in range(1, 7)]
-            if all(isinstance(j, float) for j in joints):
-                expr = f"joints({', '.join(num_text(j) for j in joints)}) deg"  # type: ignore[arg-type]
-                return (expr, None, Target("", None, tuple(joints), None, Where("", 0)))  # type: ignore[arg-type]
-        return None
+        agg = aggregate(text)  # a literal position: Cartesian where it has X..C, else axes A1..A6
+        literal = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
+        if literal is None:
+            return None
+        expr = pose_expr(literal.pose) if literal.pose is not None else \
+            f"joints({', '.join(num_text(j) for j in literal.joints or ())}) deg"
+        return (expr, None, literal)
 
     def _relative(self, word: str, rest: str, where: Where) -> Move | None:
         """`LIN_REL {X dx, Y dy, Z dz} [C_DIS] [#BASE|#TOOL]` (KSS 8.x, relative motions: the
@@ -484,9 +487,12 @@ class _Krl:
                 point: tuple[str, str | None, Target | None] | None = None) -> Move | None:
         """A motion statement; `point`: its target already read (a relative move's)."""
         kind = _MOTIONS[word]
-        m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
+        m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_DIS\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
         approx = " ".join((m.group(2) or "").upper().split()) if m else ""
+        # the KSS 8 inline form's own statement names the approximation twice, `LIN XP2 C_DIS C_DIS`
+        # (its header's `%P 3:C_DIS C_DIS`): one C_DIS
+        approx = "C_DIS" if approx == "C_DIS C_DIS" else approx
         # C_SPL on a SLIN/SCIRC single motion blends by $APO.CDIS as C_DIS does on LIN/CIRC (KSS 8.3
         # System Integrators, spline single motions); on SPTP (and on PTP/LIN/CIRC) it stays native
         if approx == "C_SPL" and word in ("SLIN", "SCIRC"):
@@ -524,8 +530,12 @@ class _Krl:
         m = re.match(r"(?i)(S?PTP|S?LIN|S?CIRC)\s+(.*)", header)
         if m is None:
             return [], i + 1  # the statements inside are read as they come
+        if not any(ln.word in _MOTIONS for ln in self.lines[i + 1:end]):
+            self.tally.warn(codes.FOLD_DISABLED, f"the inline form `{header[:40]}` has its statements commented "
+                            "out: the controller skips it, and so does the import", self.lines[i].where)
+            return [], end + 1
         move = self._inline(m.group(1).upper(), m.group(2), self.lines[i].where)
-        self.last = (move.target, move.target_name, _declared(move)) if move and move.pose else None
+        self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
         if move is None:
             return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read")], end + 1
         self.tally.imported += 1
