@@ -16,6 +16,7 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 from __future__ import annotations
 
 import re
+from copy import copy
 from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
@@ -24,7 +25,7 @@ from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, in_cond, krl_pose, lines,
 )
-from rmot.backends.readers.krl_data import declared, data_list, named_loads, position, timed_wait
+from rmot.backends.readers.krl_data import declared, data_list, home, keep_block, skip_function, with_values, named_loads, position, timed_wait
 from rmot.backends.readers.krl_names import config_near, declared_names, port_of, signals
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
@@ -136,20 +137,9 @@ class _Krl:
                 body, i = self._block(i + 1, ("END",))
                 self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
-                i = self._skip_function(i)
+                i = skip_function(self.lines, self.tally, i)
                 continue
             i += 1
-
-    def _skip_function(self, i: int) -> int:
-        self.tally.warn(codes.DECLARATION_KEPT, "a KRL function (DEFFCT) has no rmot form: kept as a comment",
-                        self.lines[i].where)
-        while i < len(self.lines) and self.lines[i].word != "ENDFCT":
-            if self.lines[i].text:
-                self.tally.comment(self.lines[i].text, self.lines[i].where)
-            i += 1
-        if i < len(self.lines):
-            self.tally.comment(self.lines[i].text, self.lines[i].where)
-        return i + 1
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
@@ -185,7 +175,7 @@ class _Krl:
             return self._forever(i)
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
-            return self._keep_block(i, word, end)
+            return keep_block(self.lines, self.tally, i, word, end)
         if word in ("DECL", "INT", "REAL", "BOOL", "CHAR", "E6POS", "POS", "FRAME", "E6AXIS", "AXIS", "SIGNAL"):
             return [], i + 1
         if self._load_switch(i):
@@ -205,20 +195,6 @@ class _Krl:
         self.tally.imported += 1
         return [stmt], i + 1
 
-    def _keep_block(self, i: int, start: str, end: str) -> tuple[list[Stmt], int]:
-        out: list[Stmt] = []
-        depth = 0
-        while i < len(self.lines):
-            ln = self.lines[i]
-            depth += ln.word == start
-            depth -= ln.word == end
-            if ln.text:
-                out.append(self.tally.keep(ln.text, ln.where, f"{start} has no rmot form"))
-            i += 1
-            if depth <= 0:
-                break
-        return out, i
-
     def _spline(self, i: int) -> tuple[list[Stmt], int]:
         """A SPLINE block of SLIN/SCIRC segments only passes exactly through every point (KSS 8.3 System
         Integrators, spline block): linear/circular moves without zone, the last one blended by
@@ -226,7 +202,7 @@ class _Krl:
         j = next((k for k in range(i, len(self.lines)) if self.lines[k].word == "ENDSPLINE"), None)
         if j is None or not re.fullmatch(r"(?i)SPLINE", self.lines[i].text.strip()) or not re.fullmatch(
                 r"(?i)ENDSPLINE(\s+C_SPL)?", self.lines[j].text.strip()):
-            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+            return keep_block(self.lines, self.tally, i, "SPLINE", "ENDSPLINE")
         segments = [ln for ln in self.lines[i + 1:j] if ln.text.strip() or ln.fold or ln.endfold]
         moves = [self._motion(ln.word, ln.text.strip()[len(ln.word):].strip(), ln.where)
                  if ln.word in ("SLIN", "SCIRC") and ln.fold is None and not re.search(r"(?i)\bWITH\b|C_SPL", ln.text)
@@ -234,7 +210,7 @@ class _Krl:
         kept = [m for m in moves if m is not None]
         blended = self.lines[j].text.strip().upper() != "ENDSPLINE"
         if not kept or len(kept) != len(moves) or (blended and self.state.cdis is None):
-            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+            return keep_block(self.lines, self.tally, i, "SPLINE", "ENDSPLINE")
         if blended:
             kept[-1] = replace(kept[-1], zone=self.state.cdis)
         self.tally.imported += len(kept)
@@ -256,7 +232,7 @@ class _Krl:
         if word == "FOR":
             m = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", ln.text)
             if m is None:
-                return self._keep_block(i, word, end)
+                return keep_block(self.lines, self.tally, i, word, end)
             saved = set(self.names)
             self.names.add(m.group(1))
             body, j = self._block(i + 1, (end,))
@@ -266,7 +242,7 @@ class _Krl:
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
         cond = self._cond(m.group(1)) if m else None
         if cond is None:
-            return self._keep_block(i, word, end)
+            return keep_block(self.lines, self.tally, i, word, end)
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
         orelse: list[Stmt] = []
         if self.lines[j].word == "ELSE":
@@ -443,7 +419,15 @@ class _Krl:
             decl = self.targets[key]
             return (rmot_name(decl.name), decl.name, decl)
         if key in ("HOME", "XHOME") and at is not None:
-            return self._home(at)
+            decl = home(self.targets, self.config, self.tally, at)
+            return (rmot_name(decl.name), decl.name, decl)
+        parts = split_top(text, ":")
+        if len(parts) == 2:  # `P:{X .., C ..}` (KSS 8.x geometric operator: the frame in P's own frame)
+            base, agg = self._target(parts[0], at), aggregate(parts[1])
+            offset = krl_pose(agg) if agg is not None else None
+            if base is None or base[2] is None or base[2].pose is None or offset is None:
+                return None
+            return (f"{base[0]} * {pose_expr(offset)}", base[1], Target("", base[2].pose * offset, None, None, base[2].where))
         agg = aggregate(text)  # a literal position: Cartesian where it has X..C, else axes A1..A6
         literal = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
         if literal is None:
@@ -471,24 +455,16 @@ class _Krl:
         self.last = (expr, last[1], None) if move is not None else None  # the next one starts here
         return move
 
-    def _home(self, where: Where) -> tuple[str, str | None, Target | None]:
-        """`PTP HOME` / `PTP XHOME`: the home position lives in the controller's $config.dat
-        (`DECL E6AXIS XHOME`), not in the program; read as KUKA's shipped value {A1 0, A2 -90,
-        A3 90, A4 0, A5 0, A6 0} (KSS 8.x $config.dat, BAS home) with W511 at the first use."""
-        if "XHOME" not in self.targets:
-            self.tally.warn(codes.DECLARATION_KEPT, "HOME is XHOME of the controller's $config.dat, not in the "
-                            "program: read as KUKA's shipped {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} (check it "
-                            "against the controller, or give its .dat)", where)
-            self.targets["XHOME"] = Target("HOME", None, (0.0, -90.0, 90.0, 0.0, 0.0, 0.0), None, where)
-        decl = self.targets["XHOME"]
-        return (rmot_name(decl.name), decl.name, decl)
-
     def _motion(self, word: str, rest: str, where: Where,
                 point: tuple[str, str | None, Target | None] | None = None) -> Move | None:
         """A motion statement; `point`: its target already read (a relative move's)."""
+        if re.search(r"(?i)\bWITH\b", rest):
+            return self._with(word, rest, where)
         kind = _MOTIONS[word]
         m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_DIS\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
+        if kind == "joint" and any(len(split_top(p, ":")) > 1 for p in points):
+            return None  # a PTP to `P:{..}`: which Status the result takes is not read
         approx = " ".join((m.group(2) or "").upper().split()) if m else ""
         # the KSS 8 inline form's own statement names the approximation twice, `LIN XP2 C_DIS C_DIS`
         # (its header's `%P 3:C_DIS C_DIS`): one C_DIS
@@ -517,6 +493,25 @@ class _Krl:
                     zone=zone, tool=st.tool, frame=st.frame, config=config,
                     pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None,
                     accel=st.acc_cp if kind != "joint" else None, joint_accel=st.acc_ptp if kind == "joint" else None)
+
+    def _with(self, word: str, rest: str, where: Where) -> Move | None:
+        """`SLIN P WITH $VEL.CP = v, $APO.CDIS = d C_SPL`, `SPTP P WITH $VEL_AXIS[1] = v, .., [6] = v`
+        (all six equal): the motion with these values, the modal ones unchanged after it."""
+        m = re.fullmatch(r"(?is)(\S.*?)\s+WITH\s+(.*?)\s*(C_DIS|C_SPL|C_PTP)?", rest)
+        values = with_values(m.group(2)) if m else None
+        axes = {v for k, v in (values or {}).items() if k.startswith("VEL_AXIS")}
+        if m is None or values is None or (axes and (len(axes) != 1 or len(values) - ("VEL.CP" in values)
+                                                      - ("APO.CDIS" in values) != 6)):
+            return None
+        saved = self.state
+        self.state = copy(saved)
+        self.state.vel_cp = values["VEL.CP"] * 1000.0 if "VEL.CP" in values else saved.vel_cp
+        self.state.cdis = values.get("APO.CDIS", saved.cdis)
+        self.state.vel_ptp = axes.pop() if axes else saved.vel_ptp
+        try:
+            return self._motion(word, f"{m.group(1)} {m.group(3) or ''}", where)
+        finally:
+            self.state = saved
 
     def _fold(self, i: int) -> tuple[list[Stmt], int]:
         """An inline form: a motion read from its header (its statements skipped), anything

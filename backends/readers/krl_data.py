@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import re
 
-from rmot.backends.readers.common import number
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally, number, split_top
 from rmot.backends.readers.krl_text import Line, aggregate, branch_of_status, declarations, in_cond, krl_pose, lines
-from rmot.backends.readers.model import Move, Target, WaitIn, Where
+from rmot.backends.readers.model import Move, Stmt, Target, WaitIn, Where
 
-__all__ = ["Data", "data_list", "position", "declared", "named_loads", "timed_wait"]
+__all__ = ["Data", "data_list", "position", "declared", "named_loads", "timed_wait", "keep_block", "skip_function", "with_values", "home"]
 
 Data = tuple[str, str, object, Where]  # type, name as written, value (aggregate or number), where
 
@@ -72,3 +73,60 @@ def timed_wait(found: list[Line], i: int) -> WaitIn | None:
         return None
     return WaitIn(cond, int(w.group(2)) / 1000.0, found[i + 3].where)  # type: ignore[union-attr]
 
+
+def keep_block(found: list[Line], tally: Tally, i: int, start: str, end: str) -> tuple[list[Stmt], int]:
+    """The block `start` .. `end` at `i` (nested ones included) kept native line by line."""
+    out: list[Stmt] = []
+    depth = 0
+    while i < len(found):
+        ln = found[i]
+        depth += ln.word == start
+        depth -= ln.word == end
+        if ln.text:
+            out.append(tally.keep(ln.text, ln.where, f"{start} has no rmot form"))
+        i += 1
+        if depth <= 0:
+            break
+    return out, i
+
+
+def skip_function(found: list[Line], tally: Tally, i: int) -> int:
+    """A DEFFCT .. ENDFCT at `i` into the comment block (W511); the index after it."""
+    tally.warn(codes.DECLARATION_KEPT, "a KRL function (DEFFCT) has no rmot form: kept as a comment", found[i].where)
+    while i < len(found) and found[i].word != "ENDFCT":
+        if found[i].text:
+            tally.comment(found[i].text, found[i].where)
+        i += 1
+    if i < len(found):
+        tally.comment(found[i].text, found[i].where)
+    return i + 1
+
+
+def with_values(text: str) -> dict[str, float] | None:
+    """`$VEL.CP = 0.2, $APO.CDIS = 5, $VEL_AXIS[1] = 50, ..` of a spline motion's WITH (KSS 8.3
+    System Integrators, SPTP/SLIN/SCIRC: the values hold for that motion only) as VEL.CP /
+    APO.CDIS / VEL_AXIS[n] -> number; None where an item is another variable or not a number."""
+    out: dict[str, float] = {}
+    for item in split_top(text):
+        m = re.fullmatch(r"(?i)\$(VEL\.CP|APO\.CDIS|VEL_AXIS\[\s*[1-6]\s*\])\s*=\s*(\S+)", item.strip())
+        value = number(m.group(2)) if m else None
+        if m is None or value is None:
+            return None
+        out[re.sub(r"\s+", "", m.group(1)).upper()] = value
+    return out
+
+
+def home(targets: dict[str, Target], config: dict[str, Data], tally: Tally, where: Where) -> Target:
+    """`PTP HOME` / `PTP XHOME`: the home position lives in the controller's $config.dat
+    (`DECL E6AXIS XHOME`), not in the program: the one of the $config.dat found, else KUKA's
+    shipped value {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} (KSS 8.x $config.dat, BAS home) with
+    W511 at the first use."""
+    found = position(*config["XHOME"]) if "XHOME" not in targets and "XHOME" in config else None
+    if found is not None:
+        targets["XHOME"] = found
+    if "XHOME" not in targets:
+        tally.warn(codes.DECLARATION_KEPT, "HOME is XHOME of the controller's $config.dat, not in the program: read "
+                   "as KUKA's shipped {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} (check it against the controller, "
+                   "or give its .dat)", where)
+        targets["XHOME"] = Target("HOME", None, (0.0, -90.0, 90.0, 0.0, 0.0, 0.0), None, where)
+    return targets["XHOME"]

@@ -161,3 +161,58 @@ END
     assert not parse_text(out.read_text(), str(out)).diagnostics
     stub = (tmp_path / "tend_cell.rmot").read_text()
     assert 'io in[1] = "inpinzaabierta"' in stub and 'io in[2] = "inpinza2abierta"' in stub  # KRL names: any case
+
+
+SPLINE_SRC = """DEF weld( )
+$APO.CDIS = 1
+SPTP P1 WITH $VEL_AXIS[1]=40, $VEL_AXIS[2]=40, $VEL_AXIS[3]=40, $VEL_AXIS[4]=40, $VEL_AXIS[5]=40, $VEL_AXIS[6]=40
+SLIN P2 WITH $VEL.CP = 0.25, $APO.CDIS = 8 C_SPL
+SLIN P2:{X 0,Y 0,Z 10.0,A 90.0,B 0,C 0}
+SPTP P1 WITH $VEL_AXIS[1]=40, $VEL_AXIS[2]=20
+SLIN P2 WITH $VEL.ORI1 = 100
+PTP P1:{X 0,Y 0,Z 10.0,A 0,B 0,C 0}
+LIN P2 C_DIS
+END
+"""
+
+SPLINE_DAT = """DEFDAT weld
+DECL E6POS P1={X 500.0,Y 0.0,Z 600.0,A 0.0,B 90.0,C 0.0,S 2,T 10}
+DECL E6POS P2={X 600.0,Y 100.0,Z 400.0,A 10.0,B 20.0,C 30.0,S 2,T 10}
+ENDDAT
+"""
+
+
+def test_with_values_and_the_geometric_operator(tmp_path: Path) -> None:
+    """KSS 8.3: a spline motion's WITH values hold for that motion only ($VEL_AXIS all six equal
+    → `speed 40 %`; $VEL.CP 0.25 m/s → 250 mm/s; $APO.CDIS 8 with C_SPL → zone 8 mm; after it
+    the modal $APO.CDIS 1 again); `P2:{Z 10, A 90}` is P2 composed with that frame (P2 · F, the
+    frame in P2's own axes), checked against scipy; a PTP to such a composition, different axis
+    speeds, or another WITH variable stay native."""
+    stmts, _ = _read(tmp_path, SPLINE_SRC, SPLINE_DAT)
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert (moves[0].kind, moves[0].joint_pct, moves[0].zone) == ("joint", 40.0, None)
+    assert (moves[1].kind, moves[1].speed, moves[1].zone) == ("linear", 250.0, 8.0)
+    assert moves[2].target.startswith("P2 * pose(") and moves[2].speed == 2000.0 and moves[2].zone is None
+    assert moves[3].target == "P2" and moves[3].zone == 1.0  # the modal $APO.CDIS after the WITH
+    natives = [s.text for s in stmts if isinstance(s, Native)]
+    assert natives == ["SPTP P1 WITH $VEL_AXIS[1]=40, $VEL_AXIS[2]=20", "SLIN P2 WITH $VEL.ORI1 = 100",
+                       "PTP P1:{X 0,Y 0,Z 10.0,A 0,B 0,C 0}"]
+    p2 = Rotation.from_euler("ZYX", [10.0, 20.0, 30.0], degrees=True)
+    frame = Rotation.from_euler("ZYX", [90.0, 0.0, 0.0], degrees=True)
+    position = np.array([0.6, 0.1, 0.4]) + p2.apply([0.0, 0.0, 0.010])
+    w, x, y, z = moves[2].pose.quaternion
+    assert np.allclose(moves[2].pose.position, position, atol=1e-12)
+    assert np.allclose(Rotation.from_quat([x, y, z, w]).as_matrix(), (p2 * frame).as_matrix(), atol=1e-12)
+    out = tmp_path / "weld.rmot"
+    assert CliRunner().invoke(cli, ["import", str(tmp_path / "mill.src"), "-o", str(out)]).exit_code == 0
+    assert "move linear P2 * pose(x=0mm, y=0mm, z=10mm, q=(" in out.read_text()
+    assert not parse_text(out.read_text(), str(out)).diagnostics
+
+
+def test_home_from_the_config_dat_beside_the_program(tmp_path: Path) -> None:
+    """`PTP HOME` reads XHOME of a $config.dat lying beside the .src (no shipped-value guess)."""
+    (tmp_path / "$config.dat").write_text(CONFIG)
+    (tmp_path / "go.src").write_text("DEF go( )\nPTP HOME\nEND\n")
+    doc = read_files([str(tmp_path / "go.src")])
+    assert next(t for t in doc.targets if t.name == "XHOME").joints == (10.0, -80.0, 70.0, 0.0, 20.0, 0.0)
+    assert not any(d.code.id == "W511" for d in doc.diagnostics)
