@@ -12,7 +12,7 @@ __all__ = [
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
     "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE", "PARAMETERS_NUMBER",
 ]
-__all__ += ["FOLD_DISABLED", "NAME_READ_AS_INPUT"]
+__all__ += ["FOLD_DISABLED", "NAME_READ_AS_INPUT", "MODULE_IS_PROC"]
 
 NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
                            "a file given to `rmot import` is not a program in the vendor language its name says")
@@ -51,3 +51,6 @@ FOLD_DISABLED = Code("W520", "fold-disabled",
 NAME_READ_AS_INPUT = Code("W521", "name-read-as-input",
                           "a KRL condition reads a name the program does not declare: it is read as the input "
                           "signal of that name (a SIGNAL of $config.dat, or a global BOOL another task sets)")
+MODULE_IS_PROC = Code("W522", "module-is-proc",
+                      "a KRL module whose DEF takes parameters is a routine other programs call: it is written as "
+                      "a proc with those parameters, and the program body is empty")

@@ -16,17 +16,20 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 from __future__ import annotations
 
 import re
-from copy import copy
 from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
-    Line, MotionState, aggregate, branch_of_status, fold_end, in_cond, krl_pose, lines,
+    Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
 )
-from rmot.backends.readers.krl_data import declared, data_list, home, keep_block, skip_function, with_values, named_loads, position, timed_wait
-from rmot.backends.readers.krl_names import config_near, declared_names, port_of, signals
+from rmot.backends.readers.krl_data import (
+    declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
+)
+from rmot.backends.readers.krl_names import (
+    call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
+)
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
@@ -52,6 +55,8 @@ class _Krl:
         self.variables = set().union(*(declared_names(text) for text in texts))
         self.config_read = config is not None
         self.inputs_named: set[str] = set()  # names read as inputs (W521 at the first use)
+        self.signatures = signatures(self.lines)
+        self.params: dict[str, tuple[str, str]] = {}  # the parameters of the routine being read
         # a data object the program assigns holds its .dat value only until then: no constant target
         self.assigned = {m.upper() for m in re.findall(r"(?im)^[ \t]*(\w+)[ \t]*(?:\[[^\]\n]*\])?[ \t]*(?:\.\w+)?"
                                                        r"[ \t]*=(?!=)", src[1])}
@@ -102,7 +107,7 @@ class _Krl:
     def _cond(self, text: str) -> Cond | Conds | None:
         """A condition over inputs (and names read as inputs, each warned at its first use)."""
         pending: list[str] = []
-        cond = in_cond(text, lambda name: self._named_input(name, pending))
+        cond = in_cond(text, lambda name: self._named_input(name, pending), lambda name: self.params.get(name.upper()))
         for name in pending if cond is not None else []:
             if name.upper() not in self.inputs_named:
                 self.inputs_named.add(name.upper())
@@ -134,8 +139,14 @@ class _Krl:
                     i += 1
             elif m:
                 self.state = MotionState()
+                params = self.signatures.get(m.group(1).upper())
+                if params and m.group(1).upper() == self.name.upper():
+                    self.tally.warn(codes.MODULE_IS_PROC, f"`{m.group(1)}` takes parameters: a routine other programs "
+                                    "call, written as a proc (import it after its caller; alone, nothing runs it)",
+                                    ln.where)
+                self.params = param_names(params)
                 body, i = self._block(i + 1, ("END",))
-                self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
+                self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
                 i = skip_function(self.lines, self.tally, i)
                 continue
@@ -173,6 +184,8 @@ class _Krl:
         if word == "LOOP" and not self.routines and self.tally.depth == 1 and not any(
                 ln.word == "EXIT" for ln in self.lines[i:]):
             return self._forever(i)
+        if word == "SWITCH" and switch_cases(self.lines, i, self.params) is not None:
+            return self._switch(i)
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
             return keep_block(self.lines, self.tally, i, word, end)
@@ -241,7 +254,7 @@ class _Krl:
             return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
         cond = self._cond(m.group(1)) if m else None
-        if cond is None:
+        if cond is None or (word == "WHILE" and has_test(cond)):  # a while on a test the compiler decides: native
             return keep_block(self.lines, self.tally, i, word, end)
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
         orelse: list[Stmt] = []
@@ -251,6 +264,21 @@ class _Krl:
         if word == "WHILE":
             return [While(cond, tuple(then), ln.where)], j + 1
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
+
+    def _switch(self, i: int) -> tuple[list[Stmt], int]:
+        """`SWITCH k` .. `CASE 1, 2` .. `DEFAULT` .. `ENDSWITCH` on a number parameter (KSS 8.x: the
+        first CASE with a value equal to k runs, else DEFAULT) → `if k == 1 or k == 2 { } else ..`."""
+        name = self.params[self.lines[i].text.split()[1].upper()][0]
+        arms = []
+        for j, values in switch_cases(self.lines, i, self.params) or []:
+            body, end = self._block(j + 1, ("CASE", "DEFAULT", "ENDSWITCH"))
+            arms.append((values, body, self.lines[j].where))
+        orelse: tuple[Stmt, ...] = tuple(arms.pop()[1]) if arms and not arms[-1][0] else ()
+        for values, body, where in reversed(arms):
+            test = " or ".join(f"{name} == {int(v)}" for v in values)
+            orelse = (If(Conds("expr", (), test), tuple(body), orelse, where),)
+        self.tally.imported += 1
+        return list(orelse), end + 1
 
     # ---------------------------------------------------------------- modal variables
 
@@ -295,7 +323,7 @@ class _Krl:
             if kind == "tool" and n == "0":
                 st.tool = "flange"
             else:
-                chosen = self._numbered(kind, n, None, self.at or Where(self.tally.path, 1))
+                chosen = numbered(self.tools, self.frames, self.tally, kind, n, None, self.at or Where(self.tally.path, 1))
                 st.tool, st.frame = (chosen, st.frame) if kind == "tool" else (st.tool, chosen)
             return True
         return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
@@ -397,9 +425,11 @@ class _Krl:
         if m:
             cond = self._cond(m.group(1))
             return WaitIn(cond, None, where) if cond else None
-        m = re.fullmatch(r"(\w+)\s*\(\s*\)", text)
-        if m and m.group(1).upper() not in ("HALT", "BAS"):
-            return Call(m.group(1), (), where)
+        m = re.fullmatch(r"(\w+)\s*\((.*)\)", text)
+        sig = (self.signatures.get(m.group(1).upper()) if m.group(2).strip() else ()) if m else None
+        args = call_args(m.group(2), sig, self.params) if m and sig is not None else None
+        if m and args is not None and m.group(1).upper() not in ("HALT", "BAS"):
+            return Call(m.group(1), args, where)
         return None
 
     def _target(self, text: str, at: Where | None = None) -> tuple[str, str | None, Target | None] | None:
@@ -498,16 +528,10 @@ class _Krl:
         """`SLIN P WITH $VEL.CP = v, $APO.CDIS = d C_SPL`, `SPTP P WITH $VEL_AXIS[1] = v, .., [6] = v`
         (all six equal): the motion with these values, the modal ones unchanged after it."""
         m = re.fullmatch(r"(?is)(\S.*?)\s+WITH\s+(.*?)\s*(C_DIS|C_SPL|C_PTP)?", rest)
-        values = with_values(m.group(2)) if m else None
-        axes = {v for k, v in (values or {}).items() if k.startswith("VEL_AXIS")}
-        if m is None or values is None or (axes and (len(axes) != 1 or len(values) - ("VEL.CP" in values)
-                                                      - ("APO.CDIS" in values) != 6)):
+        state = with_state(self.state, m.group(2)) if m else None
+        if m is None or state is None:
             return None
-        saved = self.state
-        self.state = copy(saved)
-        self.state.vel_cp = values["VEL.CP"] * 1000.0 if "VEL.CP" in values else saved.vel_cp
-        self.state.cdis = values.get("APO.CDIS", saved.cdis)
-        self.state.vel_ptp = axes.pop() if axes else saved.vel_ptp
+        saved, self.state = self.state, state
         try:
             return self._motion(word, f"{m.group(1)} {m.group(3) or ''}", where)
         finally:
@@ -557,8 +581,8 @@ class _Krl:
             if not isinstance(apo, float):
                 return None
             zone = apo
-        tool = self._numbered("tool", m.group(7), m.group(8), where)
-        frame = self._numbered("base", m.group(9), m.group(10), where)
+        tool = numbered(self.tools, self.frames, self.tally, "tool", m.group(7), m.group(8), where)
+        frame = numbered(self.tools, self.frames, self.tally, "base", m.group(9), m.group(10), where)
         expr, name, decl = found[-1]  # type: ignore[misc]
         config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
         speed = vel * 1000.0 if unit == "m/s" else vel
@@ -566,26 +590,6 @@ class _Krl:
                     speed=speed if kind != "joint" else None, joint_pct=vel if kind == "joint" else None,
                     zone=zone, tool=tool, frame=frame, config=config,
                     pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None)
-
-    def _numbered(self, what: str, n: str | None, name: str | None, at: Where) -> str | None:
-        """A tool or base selected by its controller number: a stub entry (its data lives in
-        $config.dat, not in the program: the stub puts it at the flange / robot base, W511)."""
-        if n is None:
-            return None
-        if what == "base" and n == "0":
-            return "base"
-        label = re.sub(r"\W", "_", name) if name else f"{what}{n}"
-        key = label.upper()
-        where = Where(self.tally.path, 1)
-        stored = "TOOL_DATA" if what == "tool" else "BASE_DATA"
-        if (what == "tool" and key not in self.tools) or (what == "base" and key not in self.frames):
-            self.tally.warn(codes.DECLARATION_KEPT, f"{what} {n} (`{label}`) is {stored}[{n}] in the controller's "
-                            "$config.dat, not in the program: a cell stub puts it at identity (give --cell)", at)
-        if what == "tool" and key not in self.tools:
-            self.tools[key] = ToolData(label, ir.Pose(), 0.0, where)
-        elif what == "base" and key not in self.frames:
-            self.frames[key] = FrameData(label, ir.Pose(), where)
-        return label
 
 
 def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:

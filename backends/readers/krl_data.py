@@ -10,13 +10,15 @@ KRL (KUKA KSS 8.x Operating and Programming Instructions for System Integrators)
 from __future__ import annotations
 
 import re
+from copy import copy
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, number, split_top
-from rmot.backends.readers.krl_text import Line, aggregate, branch_of_status, declarations, in_cond, krl_pose, lines
-from rmot.backends.readers.model import Move, Stmt, Target, WaitIn, Where
+from rmot.backends.readers.krl_text import Line, MotionState, aggregate, branch_of_status, declarations, in_cond, krl_pose, lines
+from rmot.backends.readers.model import FrameData, Move, Stmt, Target, ToolData, WaitIn, Where
+from rmot.lang import ir
 
-__all__ = ["Data", "data_list", "position", "declared", "named_loads", "timed_wait", "keep_block", "skip_function", "with_values", "home"]
+__all__ = ["Data", "data_list", "position", "declared", "named_loads", "timed_wait", "keep_block", "skip_function", "with_state", "home", "numbered"]
 
 Data = tuple[str, str, object, Where]  # type, name as written, value (aggregate or number), where
 
@@ -102,6 +104,20 @@ def skip_function(found: list[Line], tally: Tally, i: int) -> int:
     return i + 1
 
 
+def with_state(state: MotionState, text: str) -> MotionState | None:
+    """The motion state a spline motion's WITH list gives it (a copy of `state`; all six
+    $VEL_AXIS equal → the joint speed share); None where the list has no rmot form."""
+    values = with_values(text)
+    axes = {v for k, v in (values or {}).items() if k.startswith("VEL_AXIS")}
+    if values is None or (axes and (len(axes) != 1 or sum(k.startswith("VEL_AXIS") for k in values) != 6)):
+        return None
+    out = copy(state)
+    out.vel_cp = values["VEL.CP"] * 1000.0 if "VEL.CP" in values else state.vel_cp
+    out.cdis = values.get("APO.CDIS", state.cdis)
+    out.vel_ptp = axes.pop() if axes else state.vel_ptp
+    return out
+
+
 def with_values(text: str) -> dict[str, float] | None:
     """`$VEL.CP = 0.2, $APO.CDIS = 5, $VEL_AXIS[1] = 50, ..` of a spline motion's WITH (KSS 8.3
     System Integrators, SPTP/SLIN/SCIRC: the values hold for that motion only) as VEL.CP /
@@ -130,3 +146,25 @@ def home(targets: dict[str, Target], config: dict[str, Data], tally: Tally, wher
                    "or give its .dat)", where)
         targets["XHOME"] = Target("HOME", None, (0.0, -90.0, 90.0, 0.0, 0.0, 0.0), None, where)
     return targets["XHOME"]
+
+
+def numbered(tools: dict[str, ToolData], frames: dict[str, FrameData], tally: Tally, what: str, n: str | None,
+             name: str | None, at: Where) -> str | None:
+    """A tool or base selected by its controller number: a stub entry (its data lives in
+    $config.dat, not in the program: the stub puts it at the flange / robot base, W511)."""
+    if n is None:
+        return None
+    if what == "base" and n == "0":
+        return "base"
+    label = re.sub(r"\W", "_", name) if name else f"{what}{n}"
+    key = label.upper()
+    where = Where(tally.path, 1)
+    stored = "TOOL_DATA" if what == "tool" else "BASE_DATA"
+    if (what == "tool" and key not in tools) or (what == "base" and key not in frames):
+        tally.warn(codes.DECLARATION_KEPT, f"{what} {n} (`{label}`) is {stored}[{n}] in the controller's "
+                        "$config.dat, not in the program: a cell stub puts it at identity (give --cell)", at)
+    if what == "tool" and key not in tools:
+        tools[key] = ToolData(label, ir.Pose(), 0.0, where)
+    elif what == "base" and key not in frames:
+        frames[key] = FrameData(label, ir.Pose(), where)
+    return label

@@ -15,9 +15,13 @@ from __future__ import annotations
 import os
 import re
 
-from rmot.backends.readers.common import MAX_BYTES, read_text
+from rmot.backends.readers.common import MAX_BYTES, number, read_text, rmot_name, split_top
+from rmot.backends.readers.krl_text import Line
+from rmot.backends.readers.rapid import num_text
 
-__all__ = ["signals", "port_of", "declared_names", "config_near"]
+__all__ = ["signals", "port_of", "declared_names", "config_near", "Params", "signatures", "call_args", "param_names", "switch_cases"]
+
+Params = tuple[tuple[str, str], ...]  # (name as written, rmot type "number" or "bool")
 
 _TYPES = "INT|REAL|BOOL|CHAR|E6POS|POS|FRAME|E6AXIS|AXIS"
 
@@ -90,3 +94,72 @@ def _listdir(folder: str) -> list[str]:
         return sorted(os.listdir(folder))
     except OSError:
         return []
+
+
+def signatures(found: list[Line]) -> dict[str, Params | None]:
+    """ROUTINE -> its parameters where every one is `:IN` (by value) and declared INT or REAL
+    (`number`) or BOOL (`bool`) in the routine; None where one is not (an `:OUT`, a position)."""
+    out: dict[str, Params | None] = {}
+    for i, ln in enumerate(found):
+        m = re.fullmatch(r"(?i)(?:GLOBAL\s+)?DEF\s+(\w+)\s*\((.*)\)", ln.text)
+        if m is None:
+            continue
+        types: dict[str, str] = {}
+        for other in found[i + 1:]:
+            if other.word == "END":
+                break
+            d = re.fullmatch(r"(?i)(?:DECL\s+)?(INT|REAL|BOOL)\s+(\w+(?:\s*,\s*\w+)*)", other.text)
+            for name in re.split(r"\s*,\s*", d.group(2)) if d else []:
+                types[name.upper()] = "bool" if d.group(1).upper() == "BOOL" else "number"  # type: ignore[union-attr]
+        params = [re.fullmatch(r"(?i)(\w+)\s*:\s*IN", p.strip()) for p in m.group(2).split(",") if p.strip()]
+        known = all(p is not None and p.group(1).upper() in types for p in params)
+        out[m.group(1).upper()] = tuple((p.group(1), types[p.group(1).upper()]) for p in params  # type: ignore[union-attr]
+                                        ) if known else None
+    return out
+
+
+def call_args(text: str, params: Params, caller: dict[str, tuple[str, str]]) -> tuple[str, ...] | None:
+    """A call's arguments as rmot expressions: number literals, TRUE/FALSE, or the caller's own
+    parameters of the same type; None where one is anything else (a variable, an expression)."""
+    args = split_top(text) if text.strip() else []
+    if len(args) != len(params):
+        return None
+    out = []
+    for arg, (_, type_) in zip(args, params):
+        key, value = arg.strip().upper(), number(arg.strip())
+        if key in caller and caller[key][1] == type_:
+            out.append(caller[key][0])
+        elif type_ == "bool" and key in ("TRUE", "FALSE"):
+            out.append(key.lower())
+        elif type_ == "number" and value is not None:
+            out.append(num_text(value))
+        else:
+            return None
+    return tuple(out)
+
+
+def param_names(params: Params | None) -> dict[str, tuple[str, str]]:
+    """NAME -> (rmot name, type) of a routine's parameters, for its conditions and calls."""
+    return {n.upper(): (rmot_name(n), t) for n, t in params or ()}
+
+
+def switch_cases(found: list[Line], i: int, params: dict[str, tuple[str, str]]) -> list[tuple[int, list[str]]] | None:
+    """The CASE/DEFAULT lines of `SWITCH k` at `i` (index, values; DEFAULT: none) where k is a
+    number parameter of the routine and every value a whole number; None otherwise."""
+    m = re.fullmatch(r"(?i)SWITCH\s+(\w+)", found[i].text)
+    if m is None or params.get(m.group(1).upper(), ("", ""))[1] != "number":
+        return None
+    cases: list[tuple[int, list[str]]] = []
+    depth, j = 0, i + 1
+    while j < len(found) and (depth or found[j].word != "ENDSWITCH"):
+        ln = found[j]
+        depth += (ln.word == "SWITCH") - (ln.word == "ENDSWITCH")
+        values = re.fullmatch(r"(?i)CASE\s+(-?\d+(?:\s*,\s*-?\d+)*)", ln.text) if ln.word == "CASE" else None
+        if depth == 0 and ln.word in ("CASE", "DEFAULT"):
+            if ln.word == "CASE" and values is None:
+                return None
+            cases.append((j, re.split(r"\s*,\s*", values.group(1)) if values else []))
+        elif depth == 0 and not cases and (ln.text or ln.fold):
+            return None  # a statement before the first CASE
+        j += 1
+    return cases if j < len(found) and cases and all(v for _, v in cases[:-1]) else None

@@ -20,7 +20,7 @@ from rmot.backends.readers.model import Cond, Conds, Signal, Where
 from rmot.lang import ir
 from rmot.lang.record import record
 
-__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond", "MotionState",
+__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond", "has_test", "MotionState",
            "branch_of_status", "DEFAULT_VEL_CP"]
 
 
@@ -150,25 +150,29 @@ def fold_end(found: list[Line], i: int) -> int:
 
 
 Named = Callable[[str], "Signal | None"]
+Param = Callable[[str], "tuple[str, str] | None"]  # NAME -> (rmot name, "number" | "bool") of a parameter
+_OPS = {"==": "==", "<>": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
 
 
-def in_cond(text: str, named: Named | None = None) -> Cond | Conds | None:
+def in_cond(text: str, named: Named | None = None, param: Param | None = None) -> Cond | Conds | None:
     """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT`, `AND`, `OR` and parentheses (KSS 8.x operator
     priority: NOT before AND before OR); a name where `named` gives the input it stands for (a
-    SIGNAL), alone or `==TRUE|FALSE`; None for anything else (EXOR, variables, comparisons)."""
+    SIGNAL), alone or `==TRUE|FALSE`; a routine's parameter where `param` knows it (`k == 3`,
+    `k <> 2`, a BOOL alone): a test the compiler decides; None for anything else (EXOR,
+    variables, other comparisons)."""
     tokens = re.findall(r"(?i)\$IN\[\d+\]\s*(?:==\s*(?:TRUE|FALSE)\b)?|\(|\)|\bNOT\b|\bAND\b|\bOR\b"
-                        r"|[A-Za-z_]\w*\s*(?:==\s*(?:TRUE|FALSE)\b)?|\S+", text)
-    parsed = _or(tokens, 0, named or (lambda name: None))
+                        r"|[A-Za-z_]\w*\s*(?:(?:==|<>|<=|>=|<|>)\s*(?:TRUE\b|FALSE\b|[-+]?\d+(?:\.\d+)?))?|\S+", text)
+    parsed = _or(tokens, 0, named or (lambda name: None), param or (lambda name: None))
     return parsed[0] if parsed is not None and parsed[1] == len(tokens) else None
 
 
 _Parsed = tuple[Cond | Conds, int] | None
 
 
-def _or(tokens: list[str], i: int, named: Named, op: str = "OR") -> _Parsed:
+def _or(tokens: list[str], i: int, named: Named, param: Param, op: str = "OR") -> _Parsed:
     parts: list[Cond | Conds] = []
     while True:
-        parsed = _or(tokens, i, named, "AND") if op == "OR" else _unary(tokens, i, named)
+        parsed = _or(tokens, i, named, param, "AND") if op == "OR" else _unary(tokens, i, named, param)
         if parsed is None:
             return None
         parts.append(parsed[0])
@@ -178,25 +182,30 @@ def _or(tokens: list[str], i: int, named: Named, op: str = "OR") -> _Parsed:
         i += 1
 
 
-def _unary(tokens: list[str], i: int, named: Named) -> _Parsed:
+def _unary(tokens: list[str], i: int, named: Named, param: Param) -> _Parsed:
     if i >= len(tokens):
         return None
     word = tokens[i].upper()
     if word == "NOT":
-        inner = _unary(tokens, i + 1, named)
+        inner = _unary(tokens, i + 1, named, param)
         if inner is None:
             return None
         c = inner[0]
         return (Cond(c.signal, not c.on) if isinstance(c, Cond) else Conds("not", (c,))), inner[1]
     if word == "(":
-        inner = _or(tokens, i + 1, named)
+        inner = _or(tokens, i + 1, named, param)
         return (inner[0], inner[1] + 1) if inner and inner[1] < len(tokens) and tokens[inner[1]] == ")" else None
     m = re.fullmatch(r"(?i)\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", tokens[i])
-    name = re.fullmatch(r"(?i)([A-Za-z_]\w*)\s*(?:==\s*(TRUE|FALSE))?", tokens[i]) if m is None else None
+    name = re.fullmatch(r"(?i)([A-Za-z_]\w*)\s*(?:(==|<>|<=|>=|<|>)\s*(\S+))?", tokens[i]) if m is None else None
     signal: Signal | None = int(m.group(1)) if m else None
-    if name is not None and name.group(1).upper() not in ("TRUE", "FALSE", "NOT", "AND", "OR", "EXOR"):
-        signal, m = named(name.group(1)), name
-    if m is None or signal is None:
+    level = ((m.group(2) if m else None) or "TRUE").upper()
+    test = _param_test(param(name.group(1)), name.group(2), name.group(3)) if name else None
+    if name is not None and test is None and name.group(2) in (None, "==") and \
+            name.group(1).upper() not in ("TRUE", "FALSE", "NOT", "AND", "OR", "EXOR"):
+        signal, m, level = named(name.group(1)), name, (name.group(3) or "TRUE").upper()
+    if test is not None:
+        m = name
+    elif m is None or signal is None or level not in ("TRUE", "FALSE"):
         return None
     # `==` binds after AND/OR (KSS 8.x operator priority: NOT 1, AND 4, EXOR 5, OR 6, comparisons 7):
     # `$IN[1] AND $IN[2]==FALSE` compares the AND; a comparison is read only alone in its parentheses
@@ -206,7 +215,29 @@ def _unary(tokens: list[str], i: int, named: Named) -> _Parsed:
     alone = (start == 0 or tokens[start - 1] == "(") and (i + 1 == len(tokens) or tokens[i + 1] == ")")
     if m.group(2) and not alone:
         return None
-    return Cond(signal, (m.group(2) or "TRUE").upper() == "TRUE"), i + 1
+    if test is not None:
+        return test, i + 1
+    return Cond(signal, level == "TRUE"), i + 1  # type: ignore[arg-type]
+
+
+def has_test(c: Cond | Conds) -> bool:
+    """Whether a condition holds a test the compiler decides (a parameter's)."""
+    return isinstance(c, Conds) and (c.op == "expr" or any(has_test(p) for p in c.parts))
+
+
+def _param_test(found: tuple[str, str] | None, op: str | None, value: str | None) -> Conds | None:
+    """A routine parameter's test in rmot: `k == 3` (a number compared with a number), `flag` /
+    `not flag` (a BOOL alone or compared with TRUE/FALSE)."""
+    if found is None:
+        return None
+    name, type_ = found
+    literal = number(value) if value is not None else None
+    if type_ == "number" and op is not None and literal is not None:
+        return Conds("expr", (), f"{name} {_OPS[op]} {literal:g}")
+    level = None if op not in (None, "==", "<>") else (value or "TRUE").upper()
+    if type_ != "bool" or level not in ("TRUE", "FALSE"):
+        return None
+    return Conds("expr", (), name if (level == "TRUE") == (op != "<>") else f"not {name}")
 
 
 DEFAULT_VEL_CP = 2000.0  # mm/s: BAS(#INITMOV) sets $VEL.CP to DEF_VEL_CP = 2 m/s (KSS 8.x, BAS.SRC)

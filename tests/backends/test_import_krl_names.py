@@ -18,7 +18,7 @@ from click.testing import CliRunner
 from scipy.spatial.transform import Rotation
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import If, Move, Native, Pulse, SetOut, WaitIn, walk
+from rmot.backends.readers.model import Cond, Conds, If, Move, Native, Pulse, SetOut, WaitIn, walk
 from rmot.compiler.cli import cli
 from rmot.lang.parse import parse_text
 
@@ -216,3 +216,79 @@ def test_home_from_the_config_dat_beside_the_program(tmp_path: Path) -> None:
     doc = read_files([str(tmp_path / "go.src")])
     assert next(t for t in doc.targets if t.name == "XHOME").joints == (10.0, -80.0, 70.0, 0.0, 20.0, 0.0)
     assert not any(d.code.id == "W511" for d in doc.diagnostics)
+
+
+PARAMS_SRC = """DEF cell( )
+Grip(2, TRUE)
+Grip(nVar, TRUE)
+END
+
+DEF Grip(nStation:IN, bClose:IN)
+INT nStation
+BOOL bClose
+SWITCH nStation
+CASE 1, 2
+  $OUT[10] = TRUE
+CASE 3
+  $OUT[11] = TRUE
+DEFAULT
+  $OUT[12] = TRUE
+ENDSWITCH
+IF bClose THEN
+  $OUT[13] = TRUE
+ENDIF
+IF (nStation > 1) AND $IN[4] THEN
+  Place(nStation)
+ENDIF
+WHILE nStation == 1
+  WAIT SEC 1
+ENDWHILE
+END
+
+DEF Place(n:IN)
+REAL n
+WAIT SEC 0.5
+END
+"""
+
+
+def test_routine_parameters_switch_and_calls(tmp_path: Path) -> None:
+    """A DEF's `:IN` parameters declared INT/REAL (number) or BOOL are the proc's parameters;
+    `SWITCH` on one (KSS 8.x: the first CASE with a value equal to the selector runs, else
+    DEFAULT) is an `if`/`else` chain, tests on them are decided by the compiler; a call with
+    literal arguments (or the caller's parameters) is a call; a variable argument, or a WHILE on
+    a parameter, stays native. The expected structure is written by hand from the KRL above;
+    rmot's own parser accepts the imported text."""
+    (tmp_path / "cell.src").write_text(PARAMS_SRC)
+    doc = read_files([str(tmp_path / "cell.src")])
+    grip = next(r for r in doc.routines if r.name == "Grip")
+    assert grip.params == (("nStation", "number"), ("bClose", "bool"))
+    chain = grip.body[0]
+    assert isinstance(chain, If) and chain.cond.text == "nStation == 1 or nStation == 2"
+    inner = chain.orelse[0]
+    assert isinstance(inner, If) and inner.cond.text == "nStation == 3"
+    assert [s.signal for s in inner.orelse] == [12]
+    assert grip.body[1].cond.text == "bClose"
+    test, level = grip.body[2].cond.parts
+    assert isinstance(test, Conds) and test.text == "nStation > 1" and level == Cond(4, True)
+    natives = [s.text for r in doc.routines for s in walk(r.body) if isinstance(s, Native)]
+    assert natives == ["Grip(nVar, TRUE)", "WHILE nStation == 1", "WAIT SEC 1", "ENDWHILE"]
+    out = tmp_path / "cell.rmot"
+    assert CliRunner().invoke(cli, ["import", str(tmp_path / "cell.src"), "-o", str(out)]).exit_code == 0
+    text = out.read_text()
+    assert "proc Grip(nStation: number, bClose: bool) {" in text and "Grip(2, true)" in text
+    assert "Place(nStation)" in text
+    assert not parse_text(text, str(out)).diagnostics
+
+
+def test_a_module_taking_parameters_is_a_proc(tmp_path: Path) -> None:
+    """`DEF Job(nSt:IN)` as the module's own DEF: a routine other programs call (W522 at its
+    line); the program body is empty and the proc keeps its parameter."""
+    (tmp_path / "job.src").write_text("DEF Job(nSt:IN)\nINT nSt\nIF nSt == 2 THEN\n  $OUT[1] = TRUE\nENDIF\nEND\n")
+    doc = read_files([str(tmp_path / "job.src")])
+    assert doc.main == "" and doc.routines[0].params == (("nSt", "number"),)
+    assert [d.span.start.line for d in doc.diagnostics if d.code.id == "W522"] == [1]
+    out = tmp_path / "job.rmot"
+    assert CliRunner().invoke(cli, ["import", str(tmp_path / "job.src"), "-o", str(out)]).exit_code == 0
+    assert "proc Job(nSt: number) {" in out.read_text() and "if nSt == 2 {" in out.read_text()
+    assert not parse_text(out.read_text(), str(out)).diagnostics
