@@ -49,8 +49,9 @@ FOLD_DISABLED = Code("W520", "fold-disabled",
                      "a KRL inline form whose statements are commented out does nothing on the controller: "
                      "it is skipped")
 NAME_READ_AS_INPUT = Code("W521", "name-read-as-input",
-                          "a KRL condition reads a name the program does not declare: it is read as the input "
-                          "signal of that name (a SIGNAL of $config.dat, or a global BOOL another task sets)")
+                          "a KRL condition (or PULSE) names what the program does not declare: it is read as the "
+                          "input (output) signal of that name (a SIGNAL of $config.dat, or a global BOOL another "
+                          "task sets)")
 MODULE_IS_PROC = Code("W522", "module-is-proc",
                       "a KRL module whose DEF takes parameters is a routine other programs call: it is written as "
                       "a proc with those parameters, and the program body is empty")

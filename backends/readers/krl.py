@@ -25,7 +25,7 @@ from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
 )
 from rmot.backends.readers.krl_data import (
-    declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
+    data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
 )
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
@@ -60,11 +60,7 @@ class _Krl:
         # a data object the program assigns holds its .dat value only until then: no constant target
         self.assigned = {m.upper() for m in re.findall(r"(?im)^[ \t]*(\w+)[ \t]*(?:\[[^\]\n]*\])?[ \t]*(?:\.\w+)?"
                                                        r"[ \t]*=(?!=)", src[1])}
-        self.tool_names = {m.upper() for m in re.findall(r"(?im)^\s*\$TOOL\s*=\s*(\w+)", src[1])}
-        self.base_names = {m.upper() for m in re.findall(r"(?im)^\s*\$BASE\s*=\s*(\w+)", src[1])}
-        self.targets: dict[str, Target] = {}
-        self.tools: dict[str, ToolData] = {}
-        self.frames: dict[str, FrameData] = {}
+        self.tools, self.frames, self.targets = data_objects(self.data, src[1], self.assigned)
         self.routines: list[Routine] = []
         self.names: set[str] = set()
         self.work: dict[str, tuple[str, dict[str, str]]] = {}  # P_loop -> (P, axis offsets)
@@ -74,47 +70,33 @@ class _Krl:
         # starts or ends, or after a move not read): where a LIN_REL starts
         self.last: tuple[str, str | None, Target | None] | None = None
         self.at: Where | None = None  # the line being read
-        self._data_objects()
 
-    def _data_objects(self) -> None:
-        for key, (type_, name, value, where) in self.data.items():
-            if not isinstance(value, dict):
-                continue
-            pose = krl_pose(value)
-            if key in self.tool_names and pose is not None:
-                load = self.data.get(f"{key}_LOAD")
-                mass = load[2].get("M") if load and isinstance(load[2], dict) else 0.0
-                self.tools[key] = ToolData(name, pose, mass if isinstance(mass, float) else 0.0, where)
-            elif key in self.base_names and pose is not None:
-                self.frames[key] = FrameData(name, pose, where)
-            elif key.split("[")[0] not in self.assigned:
-                found = position(type_, name, value, where)
-                if found is not None:
-                    self.targets[key] = found
-
-    def _named_input(self, name: str, pending: list[str]) -> Signal | None:
-        """The input a name in a condition reads: its SIGNAL's `$IN[n]`; a name declared nowhere the
-        import can see (not in the program, its .dat or a $config.dat found) and never assigned
-        here is external state another task sets: the input of that name (W521 once read)."""
+    def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
+        """The input (kind "IN") a condition or the output ("OUT") a PULSE names: its SIGNAL's port;
+        a name declared nowhere the import sees (the program, its .dat, a $config.dat found) and never
+        assigned here is a signal of the controller's: that name (W521 at its first use)."""
         key = name.upper()
         if key in self.signals:
-            return port_of(self.signals, key, "IN")
+            return port_of(self.signals, key, kind)
         if key in self.variables or key in self.assigned or key in self.data or self.config_read:
             return None
         pending.append(name)
         return name
 
-    def _cond(self, text: str) -> Cond | Conds | None:
-        """A condition over inputs (and names read as inputs, each warned at its first use)."""
-        pending: list[str] = []
-        cond = in_cond(text, lambda name: self._named_input(name, pending), lambda name: self.params.get(name.upper()))
-        for name in pending if cond is not None else []:
+    def _warn_named(self, pending: list[str], kind: str) -> None:
+        for name in pending:
             if name.upper() not in self.inputs_named:
                 self.inputs_named.add(name.upper())
                 self.tally.warn(codes.NAME_READ_AS_INPUT, f"`{name}` is declared neither in the program nor in a "
-                                "$config.dat found beside it: read as the input signal of that name (a SIGNAL of "
+                                f"$config.dat found beside it: read as the {kind} signal of that name (a SIGNAL of "
                                 "$config.dat, or a global BOOL another task sets); give --cell to check it",
                                 self.at or Where(self.tally.path, 1))
+
+    def _cond(self, text: str) -> Cond | Conds | None:
+        """A condition over inputs (and names read as inputs, each warned at its first use)."""
+        pending: list[str] = []
+        cond = in_cond(text, lambda name: self._named(name, "IN", pending), lambda name: self.params.get(name.upper()))
+        self._warn_named(pending if cond is not None else [], "input")
         return cond
 
     # ---------------------------------------------------------------- structure
@@ -414,10 +396,13 @@ class _Krl:
         m = re.fullmatch(r"(?i)\$ANOUT\[(\d+)\]\s*=\s*(-?[\d.]+)", text)
         if m:
             return SetOut(int(m.group(1)), float(m.group(2)) * 10.0, where, analog=True)
+        # PULSE(signal, TRUE, t): the signal is an output, `$OUT[n]` or a SIGNAL's name (KSS 8.x, PULSE)
         m = re.fullmatch(r"(?i)PULSE\s*\(\s*(?:\$OUT\[(\d+)\]|(\w+))\s*,\s*TRUE\s*,\s*([\d.]+)\s*\)", text)
-        port = (int(m.group(1)) if m.group(1) else port_of(self.signals, m.group(2), "OUT")) if m else None
-        if m and port is not None:
-            return Pulse(port, float(m.group(3)), where)
+        pending: list[str] = []
+        pulsed = (int(m.group(1)) if m.group(1) else self._named(m.group(2), "OUT", pending)) if m else None
+        if m and pulsed is not None:
+            self._warn_named(pending, "output")
+            return Pulse(pulsed, float(m.group(3)), where)
         m = re.fullmatch(r"(?i)WAIT\s+SEC\s+([\d.]+)", text)
         if m:
             return Wait(float(m.group(1)), where)

@@ -18,7 +18,10 @@ from rmot.backends.readers.krl_text import Line, MotionState, aggregate, branch_
 from rmot.backends.readers.model import FrameData, Move, Stmt, Target, ToolData, WaitIn, Where
 from rmot.lang import ir
 
-__all__ = ["Data", "data_list", "position", "declared", "named_loads", "timed_wait", "keep_block", "skip_function", "with_state", "home", "numbered"]
+__all__ = [
+    "Data", "data_list", "position", "declared", "named_loads", "timed_wait", "keep_block",
+    "skip_function", "with_state", "home", "numbered", "data_objects",
+]
 
 Data = tuple[str, str, object, Where]  # type, name as written, value (aggregate or number), where
 
@@ -168,3 +171,27 @@ def numbered(tools: dict[str, ToolData], frames: dict[str, FrameData], tally: Ta
     elif what == "base" and key not in frames:
         frames[key] = FrameData(label, ir.Pose(), where)
     return label
+
+
+def data_objects(data: dict[str, Data], src: str, assigned: set[str]
+                 ) -> tuple[dict[str, ToolData], dict[str, FrameData], dict[str, Target]]:
+    """The tools (`$TOOL = name` in `src`, with `name_LOAD`'s mass), bases (`$BASE = name`) and
+    targets (positions `src` never assigns) of a data list, by NAME."""
+    tool_names = {m.upper() for m in re.findall(r"(?im)^\s*\$TOOL\s*=\s*(\w+)", src)}
+    base_names = {m.upper() for m in re.findall(r"(?im)^\s*\$BASE\s*=\s*(\w+)", src)}
+    tools: dict[str, ToolData] = {}
+    frames: dict[str, FrameData] = {}
+    targets: dict[str, Target] = {}
+    for key, (type_, name, value, where) in data.items():
+        pose = krl_pose(value) if isinstance(value, dict) else None
+        if key in tool_names and pose is not None:
+            load = data.get(f"{key}_LOAD")
+            mass = load[2].get("M") if load and isinstance(load[2], dict) else 0.0
+            tools[key] = ToolData(name, pose, mass if isinstance(mass, float) else 0.0, where)
+        elif key in base_names and pose is not None:
+            frames[key] = FrameData(name, pose, where)
+        elif key.split("[")[0] not in assigned:
+            found = position(type_, name, value, where)
+            if found is not None:
+                targets[key] = found
+    return tools, frames, targets

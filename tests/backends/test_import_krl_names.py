@@ -144,6 +144,8 @@ IF ((InPinzaAbierta==FALSE) OR (InPinza2Abierta==FALSE)) THEN
 ENDIF
 bDone = TRUE
 WAIT FOR bDone
+PULSE ( PaletCompleto, TRUE, 0.5 )
+PULSE ( bDone, TRUE, 0.5 )
 END
 """
     (tmp_path / "tend.src").write_text(src)
@@ -153,7 +155,10 @@ END
     branch = next(s for s in stmts if isinstance(s, If))
     assert [(c.signal, c.on) for c in branch.cond.parts] == [("InPinzaAbierta", False), ("InPinza2Abierta", False)]
     warned = [(d.span.start.line, d.message.split("`")[1]) for d in doc.diagnostics if d.code.id == "W521"]
-    assert warned == [(2, "InPinzaAbierta"), (3, "InPinza2Abierta")]
+    assert warned == [(2, "InPinzaAbierta"), (3, "InPinza2Abierta"), (8, "PaletCompleto")]
+    # PULSE's signal is always an output (KSS 8.x PULSE): an undeclared name there is the output
+    assert [(s.signal, s.seconds) for s in stmts if isinstance(s, Pulse)] == [("PaletCompleto", 0.5)]
+    assert "PULSE ( bDone, TRUE, 0.5 )" in [s.text for s in stmts if isinstance(s, Native)]
     assert "WAIT FOR bDone" in [s.text for s in stmts if isinstance(s, Native)]
     out = tmp_path / "tend.rmot"
     result = CliRunner().invoke(cli, ["import", str(tmp_path / "tend.src"), "-o", str(out)])
@@ -161,6 +166,7 @@ END
     assert not parse_text(out.read_text(), str(out)).diagnostics
     stub = (tmp_path / "tend_cell.rmot").read_text()
     assert 'io in[1] = "inpinzaabierta"' in stub and 'io in[2] = "inpinza2abierta"' in stub  # KRL names: any case
+    assert 'io out[1] = "paletcompleto"' in stub
 
 
 SPLINE_SRC = """DEF weld( )
