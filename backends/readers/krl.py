@@ -561,7 +561,8 @@ class _Krl:
         vel, unit = float(m.group(4)), m.group(5)
         zone = None
         if cont:
-            data = self.data.get(("P" if kind == "joint" else "L") + m.group(6).upper()) or self.data.get(m.group(6).upper())
+            key = ("P" if kind == "joint" else "L") + m.group(6).upper()  # PDEFAULT: $config.dat's
+            data = self.data.get(key) or self.data.get(m.group(6).upper()) or self.config.get(key)
             apo = data[2].get("APO_DIST") if data and isinstance(data[2], dict) else None
             if not isinstance(apo, float):
                 return None

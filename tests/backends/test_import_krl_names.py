@@ -298,3 +298,17 @@ def test_a_module_taking_parameters_is_a_proc(tmp_path: Path) -> None:
     assert CliRunner().invoke(cli, ["import", str(tmp_path / "job.src"), "-o", str(out)]).exit_code == 0
     assert "proc Job(nSt: number) {" in out.read_text() and "if nSt == 2 {" in out.read_text()
     assert not parse_text(out.read_text(), str(out)).diagnostics
+
+
+def test_inline_form_defaults_of_the_config_dat(tmp_path: Path) -> None:
+    """`;FOLD PTP HOME CONT Vel=100 % DEFAULT`: the target XHOME and the approximation distance of
+    PDEFAULT (APO_DIST 50 mm, typed below) are $config.dat's."""
+    config = CONFIG.replace("ENDDAT", "DECL PDAT PDEFAULT={VEL 100.0,ACC 100.0,APO_DIST 50.0}\nENDDAT")
+    (tmp_path / "$config.dat").write_text(config)
+    (tmp_path / "go.src").write_text(
+        "DEF go( )\n;FOLD PTP HOME CONT Vel=100 % DEFAULT;%{PE}\n$BWDSTART=FALSE\nPDAT_ACT=PDEFAULT\n"
+        "FDAT_ACT=FHOME\nBAS(#PTP_PARAMS,100)\n$H_POS=XHOME\nPTP XHOME C_PTP\n;ENDFOLD\nEND\n")
+    doc = read_files([str(tmp_path / "go.src")])
+    move = next(s for s in doc.routines[0].body if isinstance(s, Move))
+    assert (move.target_name, move.joints, move.zone, move.joint_pct) == (
+        "XHOME", (10.0, -80.0, 70.0, 0.0, 20.0, 0.0), 50.0, 100.0)
