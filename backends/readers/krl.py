@@ -438,11 +438,11 @@ class _Krl:
             return (rmot_name(decl.name), decl.name, decl)
         parts = split_top(text, ":")
         if len(parts) == 2:  # `P:{X .., C ..}` (KSS 8.x geometric operator: the frame in P's own frame)
-            base, agg = self._target(parts[0], at), aggregate(parts[1])
+            left, agg = self._target(parts[0], at), aggregate(parts[1])
             offset = krl_pose(agg) if agg is not None else None
-            if base is None or base[2] is None or base[2].pose is None or offset is None:
+            if left is None or left[2] is None or left[2].pose is None or offset is None:
                 return None
-            return (f"{base[0]} * {pose_expr(offset)}", base[1], Target("", base[2].pose * offset, None, None, base[2].where))
+            return (f"{left[0]} * {pose_expr(offset)}", left[1], Target("", left[2].pose * offset, None, None, left[2].where))
         agg = aggregate(text)  # a literal position: Cartesian where it has X..C, else axes A1..A6
         literal = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
         if literal is None:

@@ -57,8 +57,9 @@ def config_near(src_path: str) -> tuple[str, str] | None:
     """The robot's `$config.dat` for a program at `src_path`: beside it, or in the `System` folder
     of the tree it lies in (up to 5 folders up); None when there is none (or it is not text)."""
     folder = os.path.dirname(os.path.abspath(src_path))
-    for _ in range(6):
-        for candidate in (os.path.join(folder, "$config.dat"), os.path.join(folder, "System", "$config.dat")):
+    for level in range(6):
+        beside = [os.path.join(folder, "$config.dat")] if level == 0 else []
+        for candidate in beside + [os.path.join(folder, "System", "$config.dat")]:
             found = _existing(candidate)
             if found is not None:
                 try:

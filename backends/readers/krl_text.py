@@ -203,9 +203,8 @@ def _unary(tokens: list[str], i: int, named: Named, param: Param) -> _Parsed:
     if name is not None and test is None and name.group(2) in (None, "==") and \
             name.group(1).upper() not in ("TRUE", "FALSE", "NOT", "AND", "OR", "EXOR"):
         signal, m, level = named(name.group(1)), name, (name.group(3) or "TRUE").upper()
-    if test is not None:
-        m = name
-    elif m is None or signal is None or level not in ("TRUE", "FALSE"):
+    m = name if test is not None else m
+    if m is None or (test is None and (signal is None or level not in ("TRUE", "FALSE"))):
         return None
     # `==` binds after AND/OR (KSS 8.x operator priority: NOT 1, AND 4, EXOR 5, OR 6, comparisons 7):
     # `$IN[1] AND $IN[2]==FALSE` compares the AND; a comparison is read only alone in its parentheses
