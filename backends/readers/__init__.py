@@ -44,6 +44,7 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
                                       span_of(Where(path, 1))))
     m = read_krl((path, text), companion)
     main = next((r.name for r in m.routines if r.name.upper() == m.name.upper()), m.name)
+    main = "" if any(r.params for r in m.routines if r.name == main) else main  # a module taking parameters: a proc
     targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
     doc = Document("krl", m.name, main, targets, tuple(m.tools.values()),
                    tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),

@@ -12,6 +12,7 @@ __all__ = [
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
     "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE", "PARAMETERS_NUMBER",
 ]
+__all__ += ["FOLD_DISABLED", "NAME_READ_AS_INPUT", "MODULE_IS_PROC"]
 
 NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
                            "a file given to `rmot import` is not a program in the vendor language its name says")
@@ -44,6 +45,16 @@ LOOP_READ_ONCE = Code("W518", "loop-read-once",
 PARAMETERS_NUMBER = Code("W519", "parameters-number",
                          "a URScript function's parameters are untyped: they are declared `number` and the lines "
                          "that use them stay native")
+FOLD_DISABLED = Code("W520", "fold-disabled",
+                     "a KRL inline form whose statements are commented out does nothing on the controller: "
+                     "it is skipped")
+NAME_READ_AS_INPUT = Code("W521", "name-read-as-input",
+                          "a KRL condition (or PULSE) names what the program does not declare: it is read as the "
+                          "input (output) signal of that name (a SIGNAL of $config.dat, or a global BOOL another "
+                          "task sets)")
+MODULE_IS_PROC = Code("W522", "module-is-proc",
+                      "a KRL module whose DEF takes parameters is a routine other programs call: it is written as "
+                      "a proc with those parameters, and the program body is empty")
 
 # Fanuc TP, INFORM and RAPID as pendants and RobotStudio write them
 __all__ += ["ACCEL_SHARE_ON_PATH"]

@@ -98,6 +98,8 @@ def _inputs(c: Cond | Conds) -> str:
 def _levels(c: Cond | Conds) -> str:
     if isinstance(c, Cond):
         return "on" if c.on else "off"
+    if c.op == "expr":
+        return c.text
     parts = [_levels(p) if isinstance(p, Cond) else f"({_levels(p)})" for p in c.parts]
     return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 

@@ -20,12 +20,18 @@ from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
+from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
-    Line, MotionState, aggregate, branch_of_status, declarations, fold_end, in_cond, krl_pose, lines,
+    Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
+)
+from rmot.backends.readers.krl_data import (
+    data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
+)
+from rmot.backends.readers.krl_names import (
+    call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
 )
 from rmot.backends.readers.model import (
-    Call, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
+    Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
     Routine,
 )
 from rmot.backends.readers.rapid import mm, num_text, pose_expr
@@ -37,25 +43,24 @@ _MOTIONS = {"PTP": "joint", "SPTP": "joint", "LIN": "linear", "SLIN": "linear", 
             "SCIRC": "circular"}
 
 
-def _declared(move: Move) -> Target:
-    """The target a move went to, as a declaration (its pose; no name of its own)."""
-    return Target(move.target_name or "", move.pose, move.joints, move.config, move.where)
-
-
 class _Krl:
     def __init__(self, src: tuple[str, str], dat: tuple[str, str] | None) -> None:
         self.tally = Tally(src[0], src[1], "krl")
         self.lines = lines(*src)
-        self.data: dict[str, tuple[str, str, object, Where]] = {}
-        if dat is not None:
-            for d in declarations(lines(*dat)):
-                self.data[d.name.upper()] = (d.type, d.name, aggregate(d.value) if d.value else number(d.value or ""),
-                                             d.where)
-        self.tool_names = {m.upper() for m in re.findall(r"(?im)^\s*\$TOOL\s*=\s*(\w+)", src[1])}
-        self.base_names = {m.upper() for m in re.findall(r"(?im)^\s*\$BASE\s*=\s*(\w+)", src[1])}
-        self.targets: dict[str, Target] = {}
-        self.tools: dict[str, ToolData] = {}
-        self.frames: dict[str, FrameData] = {}
+        self.data = data_list(dat)
+        config = config_near(src[0])
+        self.config = data_list(config)  # the robot's global declarations (positions found there on use)
+        texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
+        self.signals = {k: v for text in texts for k, v in signals(text).items()}
+        self.variables = set().union(*(declared_names(text) for text in texts))
+        self.config_read = config is not None
+        self.inputs_named: set[str] = set()  # names read as inputs (W521 at the first use)
+        self.signatures = signatures(self.lines)
+        self.params: dict[str, tuple[str, str]] = {}  # the parameters of the routine being read
+        # a data object the program assigns holds its .dat value only until then: no constant target
+        self.assigned = {m.upper() for m in re.findall(r"(?im)^[ \t]*(\w+)[ \t]*(?:\[[^\]\n]*\])?[ \t]*(?:\.\w+)?"
+                                                       r"[ \t]*=(?!=)", src[1])}
+        self.tools, self.frames, self.targets = data_objects(self.data, src[1], self.assigned)
         self.routines: list[Routine] = []
         self.names: set[str] = set()
         self.work: dict[str, tuple[str, dict[str, str]]] = {}  # P_loop -> (P, axis offsets)
@@ -65,27 +70,34 @@ class _Krl:
         # starts or ends, or after a move not read): where a LIN_REL starts
         self.last: tuple[str, str | None, Target | None] | None = None
         self.at: Where | None = None  # the line being read
-        self._data_objects()
 
-    def _data_objects(self) -> None:
-        for key, (type_, name, value, where) in self.data.items():
-            if not isinstance(value, dict):
-                continue
-            pose = krl_pose(value)
-            if key in self.tool_names and pose is not None:
-                load = self.data.get(f"{key}_LOAD")
-                mass = load[2].get("M") if load and isinstance(load[2], dict) else 0.0
-                self.tools[key] = ToolData(name, pose, mass if isinstance(mass, float) else 0.0, where)
-            elif key in self.base_names and pose is not None:
-                self.frames[key] = FrameData(name, pose, where)
-            elif type_ in ("E6POS", "POS", "FRAME") and pose is not None:
-                s = value.get("S")
-                branch = branch_of_status(int(s)) if isinstance(s, float) else None
-                self.targets[key] = Target(name, pose, None, branch, where)
-            elif type_ in ("E6AXIS", "AXIS"):
-                joints = [value.get(f"A{i}") for i in range(1, 7)]
-                if all(isinstance(j, float) for j in joints):
-                    self.targets[key] = Target(name, None, tuple(joints), None, where)  # type: ignore[arg-type]
+    def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
+        """The input (kind "IN") a condition or the output ("OUT") a PULSE names: its SIGNAL's port;
+        a name declared nowhere the import sees (the program, its .dat, a $config.dat found) and never
+        assigned here is a signal of the controller's: that name (W521 at its first use)."""
+        key = name.upper()
+        if key in self.signals:
+            return port_of(self.signals, key, kind)
+        if key in self.variables or key in self.assigned or key in self.data or self.config_read:
+            return None
+        pending.append(name)
+        return name
+
+    def _warn_named(self, pending: list[str], kind: str) -> None:
+        for name in pending:
+            if name.upper() not in self.inputs_named:
+                self.inputs_named.add(name.upper())
+                self.tally.warn(codes.NAME_READ_AS_INPUT, f"`{name}` is declared neither in the program nor in a "
+                                f"$config.dat found beside it: read as the {kind} signal of that name (a SIGNAL of "
+                                "$config.dat, or a global BOOL another task sets); give --cell to check it",
+                                self.at or Where(self.tally.path, 1))
+
+    def _cond(self, text: str) -> Cond | Conds | None:
+        """A condition over inputs (and names read as inputs, each warned at its first use)."""
+        pending: list[str] = []
+        cond = in_cond(text, lambda name: self._named(name, "IN", pending), lambda name: self.params.get(name.upper()))
+        self._warn_named(pending if cond is not None else [], "input")
+        return cond
 
     # ---------------------------------------------------------------- structure
 
@@ -109,23 +121,18 @@ class _Krl:
                     i += 1
             elif m:
                 self.state = MotionState()
+                params = self.signatures.get(m.group(1).upper())
+                if params and m.group(1).upper() == self.name.upper():
+                    self.tally.warn(codes.MODULE_IS_PROC, f"`{m.group(1)}` takes parameters: a routine other programs "
+                                    "call, written as a proc (import it after its caller; alone, nothing runs it)",
+                                    ln.where)
+                self.params = param_names(params)
                 body, i = self._block(i + 1, ("END",))
-                self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
+                self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
-                i = self._skip_function(i)
+                i = skip_function(self.lines, self.tally, i)
                 continue
             i += 1
-
-    def _skip_function(self, i: int) -> int:
-        self.tally.warn(codes.DECLARATION_KEPT, "a KRL function (DEFFCT) has no rmot form: kept as a comment",
-                        self.lines[i].where)
-        while i < len(self.lines) and self.lines[i].word != "ENDFCT":
-            if self.lines[i].text:
-                self.tally.comment(self.lines[i].text, self.lines[i].where)
-            i += 1
-        if i < len(self.lines):
-            self.tally.comment(self.lines[i].text, self.lines[i].where)
-        return i + 1
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
@@ -159,9 +166,11 @@ class _Krl:
         if word == "LOOP" and not self.routines and self.tally.depth == 1 and not any(
                 ln.word == "EXIT" for ln in self.lines[i:]):
             return self._forever(i)
+        if word == "SWITCH" and switch_cases(self.lines, i, self.params) is not None:
+            return self._switch(i)
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
-            return self._keep_block(i, word, end)
+            return keep_block(self.lines, self.tally, i, word, end)
         if word in ("DECL", "INT", "REAL", "BOOL", "CHAR", "E6POS", "POS", "FRAME", "E6AXIS", "AXIS", "SIGNAL"):
             return [], i + 1
         if self._load_switch(i):
@@ -171,7 +180,7 @@ class _Krl:
         if self._work_copy(ln.text):
             return [], i + 1
         if i + 7 < len(self.lines):
-            timed = self._timed_wait(i)
+            timed = timed_wait(self.lines, i)
             if timed is not None:
                 self.tally.imported += 1
                 return [timed], i + 8
@@ -181,20 +190,6 @@ class _Krl:
         self.tally.imported += 1
         return [stmt], i + 1
 
-    def _keep_block(self, i: int, start: str, end: str) -> tuple[list[Stmt], int]:
-        out: list[Stmt] = []
-        depth = 0
-        while i < len(self.lines):
-            ln = self.lines[i]
-            depth += ln.word == start
-            depth -= ln.word == end
-            if ln.text:
-                out.append(self.tally.keep(ln.text, ln.where, f"{start} has no rmot form"))
-            i += 1
-            if depth <= 0:
-                break
-        return out, i
-
     def _spline(self, i: int) -> tuple[list[Stmt], int]:
         """A SPLINE block of SLIN/SCIRC segments only passes exactly through every point (KSS 8.3 System
         Integrators, spline block): linear/circular moves without zone, the last one blended by
@@ -202,7 +197,7 @@ class _Krl:
         j = next((k for k in range(i, len(self.lines)) if self.lines[k].word == "ENDSPLINE"), None)
         if j is None or not re.fullmatch(r"(?i)SPLINE", self.lines[i].text.strip()) or not re.fullmatch(
                 r"(?i)ENDSPLINE(\s+C_SPL)?", self.lines[j].text.strip()):
-            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+            return keep_block(self.lines, self.tally, i, "SPLINE", "ENDSPLINE")
         segments = [ln for ln in self.lines[i + 1:j] if ln.text.strip() or ln.fold or ln.endfold]
         moves = [self._motion(ln.word, ln.text.strip()[len(ln.word):].strip(), ln.where)
                  if ln.word in ("SLIN", "SCIRC") and ln.fold is None and not re.search(r"(?i)\bWITH\b|C_SPL", ln.text)
@@ -210,7 +205,7 @@ class _Krl:
         kept = [m for m in moves if m is not None]
         blended = self.lines[j].text.strip().upper() != "ENDSPLINE"
         if not kept or len(kept) != len(moves) or (blended and self.state.cdis is None):
-            return self._keep_block(i, "SPLINE", "ENDSPLINE")
+            return keep_block(self.lines, self.tally, i, "SPLINE", "ENDSPLINE")
         if blended:
             kept[-1] = replace(kept[-1], zone=self.state.cdis)
         self.tally.imported += len(kept)
@@ -232,7 +227,7 @@ class _Krl:
         if word == "FOR":
             m = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", ln.text)
             if m is None:
-                return self._keep_block(i, word, end)
+                return keep_block(self.lines, self.tally, i, word, end)
             saved = set(self.names)
             self.names.add(m.group(1))
             body, j = self._block(i + 1, (end,))
@@ -240,9 +235,9 @@ class _Krl:
             self.tally.imported += 1
             return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
-        cond = in_cond(m.group(1)) if m else None
-        if cond is None:
-            return self._keep_block(i, word, end)
+        cond = self._cond(m.group(1)) if m else None
+        if cond is None or (word == "WHILE" and has_test(cond)):  # a while on a test the compiler decides: native
+            return keep_block(self.lines, self.tally, i, word, end)
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
         orelse: list[Stmt] = []
         if self.lines[j].word == "ELSE":
@@ -251,6 +246,21 @@ class _Krl:
         if word == "WHILE":
             return [While(cond, tuple(then), ln.where)], j + 1
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
+
+    def _switch(self, i: int) -> tuple[list[Stmt], int]:
+        """`SWITCH k` .. `CASE 1, 2` .. `DEFAULT` .. `ENDSWITCH` on a number parameter (KSS 8.x: the
+        first CASE with a value equal to k runs, else DEFAULT) → `if k == 1 or k == 2 { } else ..`."""
+        name = self.params[self.lines[i].text.split()[1].upper()][0]
+        arms = []
+        for j, values in switch_cases(self.lines, i, self.params) or []:
+            body, end = self._block(j + 1, ("CASE", "DEFAULT", "ENDSWITCH"))
+            arms.append((values, body, self.lines[j].where))
+        orelse: tuple[Stmt, ...] = tuple(arms.pop()[1]) if arms and not arms[-1][0] else ()
+        for values, body, where in reversed(arms):
+            test = " or ".join(f"{name} == {int(v)}" for v in values)
+            orelse = (If(Conds("expr", (), test), tuple(body), orelse, where),)
+        self.tally.imported += 1
+        return list(orelse), end + 1
 
     # ---------------------------------------------------------------- modal variables
 
@@ -295,10 +305,14 @@ class _Krl:
             if kind == "tool" and n == "0":
                 st.tool = "flange"
             else:
-                chosen = self._numbered(kind, n, None, self.at or Where(self.tally.path, 1))
+                chosen = numbered(self.tools, self.frames, self.tally, kind, n, None, self.at or Where(self.tally.path, 1))
                 st.tool, st.frame = (chosen, st.frame) if kind == "tool" else (st.tool, chosen)
             return True
         return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
+
+    def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
+        """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
+        return named_loads(self.data)
 
     def _load_switch(self, i: int) -> bool:
         """`$LOAD=name` that is not the load of the tool the line before selects: a switch of the
@@ -307,16 +321,6 @@ class _Krl:
             return False
         before = next((ln.text for ln in reversed(self.lines[:i]) if ln.text), "")
         return re.match(r"(?i)\$TOOL\s*=", before) is None
-
-    def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
-        """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
-        out = []
-        for type_, name, value, _ in self.data.values():
-            cm = value.get("CM") if isinstance(value, dict) and type_.upper() == "LOAD" else None
-            mass = value.get("M") if isinstance(value, dict) else None
-            if isinstance(cm, dict) and isinstance(mass, float) and all(isinstance(cm.get(k), float) for k in "XYZ"):
-                out.append((name, mass, (float(cm["X"]), float(cm["Y"]), float(cm["Z"]))))
-        return tuple(out)
 
     def _tool_base(self, which: str, name: str) -> bool:
         key = name.upper()
@@ -375,79 +379,77 @@ class _Krl:
                 return True
         return False
 
-    def _timed_wait(self, i: int) -> WaitIn | None:
-        """The backend's 8-line timed wait: timer reset, WAIT FOR (c) OR ($TIMER[k]>=ms), and
-        HALT when c did not come."""
-        texts = [ln.text.replace(" ", "").upper() for ln in self.lines[i:i + 8]]
-        m = re.fullmatch(r"\$TIMER_STOP\[(\d+)\]=TRUE", texts[0])
-        if m is None:
-            return None
-        k = m.group(1)
-        w = re.fullmatch(rf"WAITFOR\((.*)\)OR\(\$TIMER\[{k}\]>=(\d+)\)", texts[3])
-        ok = (texts[1] == f"$TIMER[{k}]=0" and texts[2] == f"$TIMER_STOP[{k}]=FALSE" and w is not None
-              and texts[4] == f"$TIMER_STOP[{k}]=TRUE" and texts[6] == "HALT" and texts[7] == "ENDIF")
-        cond = in_cond(w.group(1)) if ok and w else None
-        if cond is None or texts[5] != f"IFNOT({w.group(1)})THEN":  # type: ignore[union-attr]
-            return None
-        return WaitIn(cond, int(w.group(2)) / 1000.0, self.lines[i + 3].where)  # type: ignore[union-attr]
-
     # ---------------------------------------------------------------- statements
 
     def _simple(self, ln: Line) -> Stmt | None:
         text, word, where = ln.text, ln.word, ln.where
         if word in _MOTIONS:
             move = self._motion(word, text[len(word):].strip(), where)
-            self.last = (move.target, move.target_name, _declared(move)) if move and move.pose else None
+            self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
             return move
         if word in ("LIN_REL", "PTP_REL"):
             return self._relative(word, text[len(word):].strip(), where)
-        m = re.fullmatch(r"(?i)\$OUT(?:_C)?\[(\d+)\]\s*=\s*(TRUE|FALSE)", text)
-        if m:
-            return SetOut(int(m.group(1)), 1.0 if m.group(2).upper() == "TRUE" else 0.0, where)
+        m = re.fullmatch(r"(?i)(?:\$OUT(?:_C)?\[(\d+)\]|(\w+))\s*=\s*(TRUE|FALSE)", text)
+        port = (int(m.group(1)) if m.group(1) else port_of(self.signals, m.group(2), "OUT")) if m else None
+        if m and port is not None:
+            return SetOut(port, 1.0 if m.group(3).upper() == "TRUE" else 0.0, where)
         m = re.fullmatch(r"(?i)\$ANOUT\[(\d+)\]\s*=\s*(-?[\d.]+)", text)
         if m:
             return SetOut(int(m.group(1)), float(m.group(2)) * 10.0, where, analog=True)
-        m = re.fullmatch(r"(?i)PULSE\s*\(\s*\$OUT\[(\d+)\]\s*,\s*TRUE\s*,\s*([\d.]+)\s*\)", text)
-        if m:
-            return Pulse(int(m.group(1)), float(m.group(2)), where)
+        # PULSE(signal, TRUE, t): the signal is an output, `$OUT[n]` or a SIGNAL's name (KSS 8.x, PULSE)
+        m = re.fullmatch(r"(?i)PULSE\s*\(\s*(?:\$OUT\[(\d+)\]|(\w+))\s*,\s*TRUE\s*,\s*([\d.]+)\s*\)", text)
+        pending: list[str] = []
+        pulsed = (int(m.group(1)) if m.group(1) else self._named(m.group(2), "OUT", pending)) if m else None
+        if m and pulsed is not None:
+            self._warn_named(pending, "output")
+            return Pulse(pulsed, float(m.group(3)), where)
         m = re.fullmatch(r"(?i)WAIT\s+SEC\s+([\d.]+)", text)
         if m:
             return Wait(float(m.group(1)), where)
         m = re.fullmatch(r"(?i)WAIT\s+FOR\s+(.+)", text)
         if m:
-            cond = in_cond(m.group(1))
+            cond = self._cond(m.group(1))
             return WaitIn(cond, None, where) if cond else None
-        m = re.fullmatch(r"(\w+)\s*\(\s*\)", text)
-        if m and m.group(1).upper() not in ("HALT", "BAS"):
-            return Call(m.group(1), (), where)
+        m = re.fullmatch(r"(\w+)\s*\((.*)\)", text)
+        sig = (self.signatures.get(m.group(1).upper()) if m.group(2).strip() else ()) if m else None
+        args = call_args(m.group(2), sig, self.params) if m and sig is not None else None
+        if m and args is not None and m.group(1).upper() not in ("HALT", "BAS"):
+            return Call(m.group(1), args, where)
         return None
 
     def _target(self, text: str, at: Where | None = None) -> tuple[str, str | None, Target | None] | None:
         text = text.strip()
-        key = text.upper()
+        key = re.sub(r"\s+", "", text).upper() if re.fullmatch(r"\w+\s*\[\s*\d+\s*\]", text) else text.upper()
         if key in self.work:
             base, offsets = self.work[key]
             decl = self.targets[base]
             terms = ", ".join(f"{axis}={mm(e)}" for axis, e in sorted(offsets.items()))
             named = rmot_name(decl.name)
             return (f"shift({named}, {terms})" if terms else named, decl.name, decl)
+        if key not in self.targets and key in self.config and key.split("[")[0] not in self.assigned:
+            found = position(*self.config[key])  # a global position of the robot's $config.dat
+            if found is not None:
+                self.targets[key] = found
         if key in self.targets:
             decl = self.targets[key]
             return (rmot_name(decl.name), decl.name, decl)
         if key in ("HOME", "XHOME") and at is not None:
-            return self._home(at)
-        agg = aggregate(text)
-        if agg is not None:
-            pose = krl_pose(agg)
-            if pose is not None:
-                s = agg.get("S")
-                branch = branch_of_status(int(s)) if isinstance(s, float) else None
-                return (pose_expr(pose), None, Target("", pose, None, branch, Where("", 0)))
-            joints = [agg.get(f"A{i}") for i in range(1, 7)]
-            if all(isinstance(j, float) for j in joints):
-                expr = f"joints({', '.join(num_text(j) for j in joints)}) deg"  # type: ignore[arg-type]
-                return (expr, None, Target("", None, tuple(joints), None, Where("", 0)))  # type: ignore[arg-type]
-        return None
+            decl = home(self.targets, self.config, self.tally, at)
+            return (rmot_name(decl.name), decl.name, decl)
+        parts = split_top(text, ":")
+        if len(parts) == 2:  # `P:{X .., C ..}` (KSS 8.x geometric operator: the frame in P's own frame)
+            left, agg = self._target(parts[0], at), aggregate(parts[1])
+            offset = krl_pose(agg) if agg is not None else None
+            if left is None or left[2] is None or left[2].pose is None or offset is None:
+                return None
+            return (f"{left[0]} * {pose_expr(offset)}", left[1], Target("", left[2].pose * offset, None, None, left[2].where))
+        agg = aggregate(text)  # a literal position: Cartesian where it has X..C, else axes A1..A6
+        literal = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
+        if literal is None:
+            return None
+        expr = pose_expr(literal.pose) if literal.pose is not None else \
+            f"joints({', '.join(num_text(j) for j in literal.joints or ())}) deg"
+        return (expr, None, literal)
 
     def _relative(self, word: str, rest: str, where: Where) -> Move | None:
         """`LIN_REL {X dx, Y dy, Z dz} [C_DIS] [#BASE|#TOOL]` (KSS 8.x, relative motions: the
@@ -468,25 +470,20 @@ class _Krl:
         self.last = (expr, last[1], None) if move is not None else None  # the next one starts here
         return move
 
-    def _home(self, where: Where) -> tuple[str, str | None, Target | None]:
-        """`PTP HOME` / `PTP XHOME`: the home position lives in the controller's $config.dat
-        (`DECL E6AXIS XHOME`), not in the program; read as KUKA's shipped value {A1 0, A2 -90,
-        A3 90, A4 0, A5 0, A6 0} (KSS 8.x $config.dat, BAS home) with W511 at the first use."""
-        if "XHOME" not in self.targets:
-            self.tally.warn(codes.DECLARATION_KEPT, "HOME is XHOME of the controller's $config.dat, not in the "
-                            "program: read as KUKA's shipped {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0} (check it "
-                            "against the controller, or give its .dat)", where)
-            self.targets["XHOME"] = Target("HOME", None, (0.0, -90.0, 90.0, 0.0, 0.0, 0.0), None, where)
-        decl = self.targets["XHOME"]
-        return (rmot_name(decl.name), decl.name, decl)
-
     def _motion(self, word: str, rest: str, where: Where,
                 point: tuple[str, str | None, Target | None] | None = None) -> Move | None:
         """A motion statement; `point`: its target already read (a relative move's)."""
+        if re.search(r"(?i)\bWITH\b", rest):
+            return self._with(word, rest, where)
         kind = _MOTIONS[word]
-        m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
+        m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_DIS\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
+        if kind == "joint" and any(len(split_top(p, ":")) > 1 for p in points):
+            return None  # a PTP to `P:{..}`: which Status the result takes is not read
         approx = " ".join((m.group(2) or "").upper().split()) if m else ""
+        # the KSS 8 inline form's own statement names the approximation twice, `LIN XP2 C_DIS C_DIS`
+        # (its header's `%P 3:C_DIS C_DIS`): one C_DIS
+        approx = "C_DIS" if approx == "C_DIS C_DIS" else approx
         # C_SPL on a SLIN/SCIRC single motion blends by $APO.CDIS as C_DIS does on LIN/CIRC (KSS 8.3
         # System Integrators, spline single motions); on SPTP (and on PTP/LIN/CIRC) it stays native
         if approx == "C_SPL" and word in ("SLIN", "SCIRC"):
@@ -512,6 +509,19 @@ class _Krl:
                     pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None,
                     accel=st.acc_cp if kind != "joint" else None, joint_accel=st.acc_ptp if kind == "joint" else None)
 
+    def _with(self, word: str, rest: str, where: Where) -> Move | None:
+        """`SLIN P WITH $VEL.CP = v, $APO.CDIS = d C_SPL`, `SPTP P WITH $VEL_AXIS[1] = v, .., [6] = v`
+        (all six equal): the motion with these values, the modal ones unchanged after it."""
+        m = re.fullmatch(r"(?is)(\S.*?)\s+WITH\s+(.*?)\s*(C_DIS|C_SPL|C_PTP)?", rest)
+        state = with_state(self.state, m.group(2)) if m else None
+        if m is None or state is None:
+            return None
+        saved, self.state = self.state, state
+        try:
+            return self._motion(word, f"{m.group(1)} {m.group(3) or ''}", where)
+        finally:
+            self.state = saved
+
     def _fold(self, i: int) -> tuple[list[Stmt], int]:
         """An inline form: a motion read from its header (its statements skipped), anything
         else read from the statements inside; the INI fold is set-up, kept as a comment."""
@@ -524,8 +534,12 @@ class _Krl:
         m = re.match(r"(?i)(S?PTP|S?LIN|S?CIRC)\s+(.*)", header)
         if m is None:
             return [], i + 1  # the statements inside are read as they come
+        if not any(ln.word in _MOTIONS for ln in self.lines[i + 1:end]):
+            self.tally.warn(codes.FOLD_DISABLED, f"the inline form `{header[:40]}` has its statements commented "
+                            "out: the controller skips it, and so does the import", self.lines[i].where)
+            return [], end + 1
         move = self._inline(m.group(1).upper(), m.group(2), self.lines[i].where)
-        self.last = (move.target, move.target_name, _declared(move)) if move and move.pose else None
+        self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
         if move is None:
             return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read")], end + 1
         self.tally.imported += 1
@@ -547,13 +561,14 @@ class _Krl:
         vel, unit = float(m.group(4)), m.group(5)
         zone = None
         if cont:
-            data = self.data.get(("P" if kind == "joint" else "L") + m.group(6).upper()) or self.data.get(m.group(6).upper())
+            key = ("P" if kind == "joint" else "L") + m.group(6).upper()  # PDEFAULT: $config.dat's
+            data = self.data.get(key) or self.data.get(m.group(6).upper()) or self.config.get(key)
             apo = data[2].get("APO_DIST") if data and isinstance(data[2], dict) else None
             if not isinstance(apo, float):
                 return None
             zone = apo
-        tool = self._numbered("tool", m.group(7), m.group(8), where)
-        frame = self._numbered("base", m.group(9), m.group(10), where)
+        tool = numbered(self.tools, self.frames, self.tally, "tool", m.group(7), m.group(8), where)
+        frame = numbered(self.tools, self.frames, self.tally, "base", m.group(9), m.group(10), where)
         expr, name, decl = found[-1]  # type: ignore[misc]
         config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
         speed = vel * 1000.0 if unit == "m/s" else vel
@@ -561,26 +576,6 @@ class _Krl:
                     speed=speed if kind != "joint" else None, joint_pct=vel if kind == "joint" else None,
                     zone=zone, tool=tool, frame=frame, config=config,
                     pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None)
-
-    def _numbered(self, what: str, n: str | None, name: str | None, at: Where) -> str | None:
-        """A tool or base selected by its controller number: a stub entry (its data lives in
-        $config.dat, not in the program: the stub puts it at the flange / robot base, W511)."""
-        if n is None:
-            return None
-        if what == "base" and n == "0":
-            return "base"
-        label = re.sub(r"\W", "_", name) if name else f"{what}{n}"
-        key = label.upper()
-        where = Where(self.tally.path, 1)
-        stored = "TOOL_DATA" if what == "tool" else "BASE_DATA"
-        if (what == "tool" and key not in self.tools) or (what == "base" and key not in self.frames):
-            self.tally.warn(codes.DECLARATION_KEPT, f"{what} {n} (`{label}`) is {stored}[{n}] in the controller's "
-                            "$config.dat, not in the program: a cell stub puts it at identity (give --cell)", at)
-        if what == "tool" and key not in self.tools:
-            self.tools[key] = ToolData(label, ir.Pose(), 0.0, where)
-        elif what == "base" and key not in self.frames:
-            self.frames[key] = FrameData(label, ir.Pose(), where)
-        return label
 
 
 def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:

@@ -11,16 +11,16 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from itertools import product
 
 from rmot.backends.krl_text import status_of
 from rmot.backends.readers.common import number, split_top
-from rmot.backends.readers.model import Cond, Conds, Where
+from rmot.backends.readers.model import Cond, Conds, Signal, Where
 from rmot.lang import ir
 from rmot.lang.record import record
 
-__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond", "MotionState",
+__all__ = ["Line", "lines", "aggregate", "Decl", "declarations", "krl_pose", "fold_end", "in_cond", "has_test", "MotionState",
            "branch_of_status", "DEFAULT_VEL_CP"]
 
 
@@ -105,12 +105,23 @@ class Decl:
 
 
 def declarations(found: list[Line]) -> list[Decl]:
-    """Every `[DECL] [GLOBAL] TYPE name[=value]` line of a data list."""
+    """Every `[DECL] [GLOBAL] TYPE name[=value]` line of a data list, and every element of an
+    array, `DECL TYPE name[n]` then `name[i]=value` (KSS 8.x, arrays in data lists: the pendant
+    writes each initialised element on its own line), as `name[i]`."""
     out = []
+    arrays: dict[str, str] = {}
     for ln in found:
         m = re.fullmatch(r"(?is)(?:DECL\s+)?(?:GLOBAL\s+)?([A-Za-z_]\w*)\s+([A-Za-z_]\w*)\s*(?:=\s*(.*))?", ln.text)
         if m and m.group(1).upper() not in ("DEFDAT", "ENDDAT", "EXT", "EXTFCT", "SIGNAL", "STRUC", "ENUM"):
             out.append(Decl(m.group(1).upper(), m.group(2), m.group(3), ln.where))
+            continue
+        m = re.fullmatch(r"(?i)(?:DECL\s+)?(?:GLOBAL\s+)?([A-Za-z_]\w*)\s+([A-Za-z_]\w*)\s*\[\s*\d+\s*\]", ln.text)
+        if m:
+            arrays[m.group(2).upper()] = m.group(1).upper()
+            continue
+        m = re.fullmatch(r"(?is)([A-Za-z_]\w*)\s*\[\s*(\d+)\s*\]\s*=\s*(.*)", ln.text)
+        if m and m.group(1).upper() in arrays:
+            out.append(Decl(arrays[m.group(1).upper()], f"{m.group(1)}[{int(m.group(2))}]", m.group(3), ln.where))
     return out
 
 
@@ -138,21 +149,30 @@ def fold_end(found: list[Line], i: int) -> int:
     return len(found) - 1
 
 
-def in_cond(text: str) -> Cond | Conds | None:
+Named = Callable[[str], "Signal | None"]
+Param = Callable[[str], "tuple[str, str] | None"]  # NAME -> (rmot name, "number" | "bool") of a parameter
+_OPS = {"==": "==", "<>": "!=", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+
+
+def in_cond(text: str, named: Named | None = None, param: Param | None = None) -> Cond | Conds | None:
     """`$IN[n]`, `$IN[n]==TRUE|FALSE`, `NOT`, `AND`, `OR` and parentheses (KSS 8.x operator
-    priority: NOT before AND before OR); None for anything else (EXOR, variables, comparisons)."""
-    tokens = re.findall(r"(?i)\$IN\[\d+\]\s*(?:==\s*(?:TRUE|FALSE)\b)?|\(|\)|\bNOT\b|\bAND\b|\bOR\b|\S+", text)
-    parsed = _or(tokens, 0)
+    priority: NOT before AND before OR); a name where `named` gives the input it stands for (a
+    SIGNAL), alone or `==TRUE|FALSE`; a routine's parameter where `param` knows it (`k == 3`,
+    `k <> 2`, a BOOL alone): a test the compiler decides; None for anything else (EXOR,
+    variables, other comparisons)."""
+    tokens = re.findall(r"(?i)\$IN\[\d+\]\s*(?:==\s*(?:TRUE|FALSE)\b)?|\(|\)|\bNOT\b|\bAND\b|\bOR\b"
+                        r"|[A-Za-z_]\w*\s*(?:(?:==|<>|<=|>=|<|>)\s*(?:TRUE\b|FALSE\b|[-+]?\d+(?:\.\d+)?))?|\S+", text)
+    parsed = _or(tokens, 0, named or (lambda name: None), param or (lambda name: None))
     return parsed[0] if parsed is not None and parsed[1] == len(tokens) else None
 
 
 _Parsed = tuple[Cond | Conds, int] | None
 
 
-def _or(tokens: list[str], i: int, op: str = "OR") -> _Parsed:
+def _or(tokens: list[str], i: int, named: Named, param: Param, op: str = "OR") -> _Parsed:
     parts: list[Cond | Conds] = []
     while True:
-        parsed = _or(tokens, i, "AND") if op == "OR" else _unary(tokens, i)
+        parsed = _or(tokens, i, named, param, "AND") if op == "OR" else _unary(tokens, i, named, param)
         if parsed is None:
             return None
         parts.append(parsed[0])
@@ -162,21 +182,29 @@ def _or(tokens: list[str], i: int, op: str = "OR") -> _Parsed:
         i += 1
 
 
-def _unary(tokens: list[str], i: int) -> _Parsed:
+def _unary(tokens: list[str], i: int, named: Named, param: Param) -> _Parsed:
     if i >= len(tokens):
         return None
     word = tokens[i].upper()
     if word == "NOT":
-        inner = _unary(tokens, i + 1)
+        inner = _unary(tokens, i + 1, named, param)
         if inner is None:
             return None
         c = inner[0]
         return (Cond(c.signal, not c.on) if isinstance(c, Cond) else Conds("not", (c,))), inner[1]
     if word == "(":
-        inner = _or(tokens, i + 1)
+        inner = _or(tokens, i + 1, named, param)
         return (inner[0], inner[1] + 1) if inner and inner[1] < len(tokens) and tokens[inner[1]] == ")" else None
     m = re.fullmatch(r"(?i)\$IN\[(\d+)\]\s*(?:==\s*(TRUE|FALSE))?", tokens[i])
-    if m is None:
+    name = re.fullmatch(r"(?i)([A-Za-z_]\w*)\s*(?:(==|<>|<=|>=|<|>)\s*(\S+))?", tokens[i]) if m is None else None
+    signal: Signal | None = int(m.group(1)) if m else None
+    level = ((m.group(2) if m else None) or "TRUE").upper()
+    test = _param_test(param(name.group(1)), name.group(2), name.group(3)) if name else None
+    if name is not None and test is None and name.group(2) in (None, "==") and \
+            name.group(1).upper() not in ("TRUE", "FALSE", "NOT", "AND", "OR", "EXOR"):
+        signal, m, level = named(name.group(1)), name, (name.group(3) or "TRUE").upper()
+    m = name if test is not None else m
+    if m is None or (test is None and (signal is None or level not in ("TRUE", "FALSE"))):
         return None
     # `==` binds after AND/OR (KSS 8.x operator priority: NOT 1, AND 4, EXOR 5, OR 6, comparisons 7):
     # `$IN[1] AND $IN[2]==FALSE` compares the AND; a comparison is read only alone in its parentheses
@@ -186,7 +214,29 @@ def _unary(tokens: list[str], i: int) -> _Parsed:
     alone = (start == 0 or tokens[start - 1] == "(") and (i + 1 == len(tokens) or tokens[i + 1] == ")")
     if m.group(2) and not alone:
         return None
-    return Cond(int(m.group(1)), (m.group(2) or "TRUE").upper() == "TRUE"), i + 1
+    if test is not None:
+        return test, i + 1
+    return Cond(signal, level == "TRUE"), i + 1  # type: ignore[arg-type]
+
+
+def has_test(c: Cond | Conds) -> bool:
+    """Whether a condition holds a test the compiler decides (a parameter's)."""
+    return isinstance(c, Conds) and (c.op == "expr" or any(has_test(p) for p in c.parts))
+
+
+def _param_test(found: tuple[str, str] | None, op: str | None, value: str | None) -> Conds | None:
+    """A routine parameter's test in rmot: `k == 3` (a number compared with a number), `flag` /
+    `not flag` (a BOOL alone or compared with TRUE/FALSE)."""
+    if found is None:
+        return None
+    name, type_ = found
+    literal = number(value) if value is not None else None
+    if type_ == "number" and op is not None and literal is not None:
+        return Conds("expr", (), f"{name} {_OPS[op]} {literal:g}")
+    level = None if op not in (None, "==", "<>") else (value or "TRUE").upper()
+    if type_ != "bool" or level not in ("TRUE", "FALSE"):
+        return None
+    return Conds("expr", (), name if (level == "TRUE") == (op != "<>") else f"not {name}")
 
 
 DEFAULT_VEL_CP = 2000.0  # mm/s: BAS(#INITMOV) sets $VEL.CP to DEF_VEL_CP = 2 m/s (KSS 8.x, BAS.SRC)

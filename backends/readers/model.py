@@ -116,10 +116,12 @@ class Cond:
 
 @record(slots=True)
 class Conds:
-    """Input conditions combined: `op` "and"/"or" over two or more parts, or "not" over one."""
+    """Input conditions combined: `op` "and"/"or" over two or more parts, or "not" over one; or
+    `op` "expr": a test the compiler decides, `text` in rmot (a proc parameter's `k == 3`), no parts."""
 
     op: str
     parts: tuple[Cond | Conds, ...]
+    text: str = ""
 
 
 def leaves(c: Cond | Conds) -> list[Cond]:

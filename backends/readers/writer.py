@@ -221,6 +221,8 @@ class _Printer:
     def cond(self, c: Cond | Conds) -> str:
         if isinstance(c, Cond):
             return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
+        if c.op == "expr":
+            return c.text
         parts = [self.cond(p) if isinstance(p, Cond) else f"({self.cond(p)})" for p in c.parts]
         return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 
