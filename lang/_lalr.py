@@ -26,7 +26,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders
 
 from rmot.lang._tables import LalrTables
-from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
+from rmot.lang.lexer import AXIS_CONTINUES, BLANKS, CONTINUES, TOKEN, TokenKinds, in_axis_declaration
 from rmot.lang.units import COMPOUND_CUT
 
 __all__ = ["LalrDriver", "PostLexState"]
@@ -50,6 +50,7 @@ class LalrDriver:
     def __init__(self, tables: LalrTables, callbacks: dict[Any, Any]) -> None:
         rules = tables.rules
         self.kinds = TokenKinds(tables.terminals)
+        self.axis_starts = frozenset(self.kinds.keywords[w] for w in ("track", "positioner"))
         self.start_state = tables.start
         self.end_state = tables.end
         # Per state: terminal or rule name -> next state (a shift or a goto), or a reduction
@@ -135,9 +136,10 @@ class LalrDriver:
                     line, line_start = end_line, start + last_nl + 1
                 else:
                     end_line, end_col = line, col + len(value)
-                if depth > 0 or continues(text, end) is not None:
+                if depth > 0 or continues(text, end) is not None or (
+                        AXIS_CONTINUES.match(text, end) is not None and in_axis_declaration(values, self.axis_starts)):
                     pos = end
-                    continue  # a newline inside ( ) or [ ], or before `to` / `else`
+                    continue  # a newline inside ( ) or [ ], before `to` / `else`, or in an axis declaration
                 ttype = "_NL"
             else:
                 if kind == "string":
