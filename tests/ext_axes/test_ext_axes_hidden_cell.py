@@ -40,7 +40,7 @@ CELL = """cell hidden {
                    at pose(x=1800mm, z=700mm)
   fixture jig = box(600mm, 400mm, 40mm) on pos at pose(z=20mm)
   frame work = pos * pose(z=40mm)          # rides on the positioner's flange
-  tool torch = cylinder(r=15mm, h=200mm) at pose(z=100mm) tcp pose(z=300mm) on r1
+  tool torch = cylinder(r=15mm, h=200mm) at pose(z=200mm) tcp pose(z=300mm) on r1
 }
 """
 HOME = "joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)"
@@ -54,7 +54,7 @@ def _plan(program: str, cell: str = CELL):  # type: ignore[no-untyped-def]
 
 
 def _errors(plan) -> list:  # type: ignore[no-untyped-def,type-arg]
-    return [d for d in (*plan.diagnostics, *verify(plan).diagnostics) if d.is_error]
+    return [d for d in verify(plan).diagnostics if d.is_error]  # the plan's own findings included
 
 
 def _record(plan, line: int):  # type: ignore[no-untyped-def]
@@ -138,3 +138,84 @@ def test_the_reference_example_checks_clean(tmp_path: Path) -> None:
     result = CliRunner().invoke(cli, ["check", str(path)])
     assert result.exit_code == 0, result.output
     assert re.findall(r"(?:error|warning)\[(\w+)\]", result.output) == []
+
+
+# ------------------------------------------------------------------ the numbers a user checks
+
+
+def test_a_track_move_lasts_the_hand_trapezoid_and_counts_in_the_cycle() -> None:
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move axes rail to 3000mm\n  move axes rail to 2500mm\n}\n")
+    first, second = _record(plan, 16), _record(plan, 17)
+    # 3000 mm at 1500 mm/s, 2000 mm/s^2: 0.75 s ramps of 562.5 mm and 1875 mm cruising: 2.75 s;
+    # 500 mm back is a triangle (500 mm * 2000 mm/s^2 < (1500 mm/s)^2): 2 sqrt(0.25 s^2) = 1.0 s
+    assert first.t_end - first.t_start == pytest.approx(trapezoid(3.0, 1.5, 2.0), abs=plan.step)
+    assert trapezoid(3.0, 1.5, 2.0) == pytest.approx(2.75) and trapezoid(0.5, 1.5, 2.0) == pytest.approx(1.0)
+    assert second.t_end - second.t_start == pytest.approx(trapezoid(0.5, 1.5, 2.0), abs=plan.step)
+    assert plan.cycle_time == pytest.approx(2.75 + 1.0, abs=2 * plan.step)  # the first move is not counted
+
+
+@pytest.mark.parametrize("move,line_text", [
+    ("move axes rail to 4200mm", "4200 mm"),
+    ("move joint " + HOME + " ext(rail=4500mm)", "4500 mm"),
+])
+def test_a_track_target_past_its_range_is_a_finding_naming_rail_at_its_line(move: str, line_text: str) -> None:
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move axes rail to -100mm\n  move joint " + HOME + " ext(rail=0mm)\n  " + move + "\n}\n")
+    found = [(d.span.start.line, d.message) for d in _errors(plan) if d.code.id == "E605"]
+    assert found == [(16, "axis 'rail' must stay within [0 mm, 4000 mm] (got -100 mm)"),
+                     (18, f"axis 'rail' must stay within [0 mm, 4000 mm] (got {line_text})")]
+
+
+def _jig(turn_deg: float) -> fcl.CollisionObject:
+    """The jig (600 x 400 x 40 mm box, 20 mm above the flange) with the positioner at (0, turn)."""
+    pose = at(1.8, 0.0, 0.7) @ rot("z", turn_deg) @ at(z=0.02)
+    return fcl.CollisionObject(fcl.Box(0.6, 0.4, 0.04), fcl.Transform(pose[:3, :3], pose[:3, 3]))
+
+
+def _torch(tip: tuple[float, float, float]) -> fcl.CollisionObject:
+    """The torch (15 mm radius, 200 mm long, ending at the TCP) pointing straight down at `tip`."""
+    centre = np.asarray(tip) + (0.0, 0.0, 0.1)
+    return fcl.CollisionObject(fcl.Cylinder(0.015, 0.2), fcl.Transform(np.eye(3), centre))
+
+
+def _gap(turn_deg: float, tip: tuple[float, float, float]) -> float:
+    return float(fcl.distance(_jig(turn_deg), _torch(tip), fcl.DistanceRequest(), fcl.DistanceResult()))
+
+
+def test_the_turning_jig_hits_the_torch_at_the_move_axes_line_and_the_fcl_time() -> None:
+    """The torch is held 250 mm out from the turntable axis, its tip 20 mm below the jig's top,
+    beside the jig's short half-width (200 mm at 90 deg); turning the jig back to 0 deg brings
+    its 300 mm half-length round into the torch. fcl finds the angle of first contact; the hand
+    trapezoid (90 deg at 180 deg/s and 360 deg/s^2: a triangle of 1 s) the instant."""
+    tip = (2.05, 0.0, 0.72)
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move axes pos to (0deg, 90deg)\n"
+                 "  move joint pose(x=2050mm, y=0mm, z=900mm, rx=180deg) frame world ext(rail=900mm)\n"
+                 "  move linear pose(x=2050mm, y=0mm, z=720mm, rx=180deg) frame world speed 100 mm/s\n"
+                 "  move axes pos to (0deg, 0deg)\n}\n")
+    hits = [d for d in _errors(plan) if d.code.id == "E300"]
+    assert [(d.span.start.line, set(d.bodies)) for d in hits] == [(19, {"torch", "jig"})]
+    assert _gap(90.0, tip) > 0.03 and _gap(0.0, tip) < 0  # clear where it starts, deep where it ends
+    lo, hi = 0.0, 90.0  # the turn at first contact: gap(hi) > 0 >= gap(lo)
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if _gap(mid, tip) > 0 else (mid, hi)
+    swept = math.radians(90.0 - hi)
+    accel = math.radians(360.0)
+    half = math.radians(45.0)
+    after = math.sqrt(2 * swept / accel) if swept <= half else 1.0 - math.sqrt(2 * (2 * half - swept) / accel)
+    rec = _record(plan, 19)
+    assert rec.t_end - rec.t_start == pytest.approx(1.0, abs=plan.step)
+    assert hits[0].time_s == pytest.approx(rec.t_start + after, abs=2 * plan.step)
+
+
+def test_the_same_hold_clear_of_the_jig_is_clean() -> None:
+    """350 mm out the torch is beyond the jig's corners (360 mm) only by less than its radius:
+    400 mm out it is clear all the way round."""
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move axes pos to (0deg, 90deg)\n"
+                 "  move joint pose(x=2200mm, y=0mm, z=900mm, rx=180deg) frame world ext(rail=900mm)\n"
+                 "  move linear pose(x=2200mm, y=0mm, z=720mm, rx=180deg) frame world speed 100 mm/s\n"
+                 "  move axes pos to (0deg, 0deg)\n}\n")
+    assert _errors(plan) == []
