@@ -358,7 +358,7 @@ def _compare_node(
             raise _Differs(
                 b.uid,
                 f"the {_kind(b)}'s {_field_words(name)} differs from the first "
-                f"iteration's ({_show(bv)} vs {_show(tv)})",
+                f"iteration's ({_show_difference(bv, tv)})",
                 b.span,
             )
     _compare_record(t, b, run)
@@ -520,12 +520,32 @@ def _field_words(name: str) -> str:
         "target": "target",
         "condition": "condition",
         "duration": "duration",
+        "min_duration": "time the external axes need (s)",
+        "ext": "external axis values",
     }.get(name, name.replace("_", " "))
 
 
 def _show(v: Any) -> str:
     text = repr(v)
     return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _show_difference(here: Any, first: Any) -> str:
+    """`here vs first`; of two records of one type only the fields that differ, by name (a
+    Motion that differs only in the time its external axes need says just that)."""
+    if type(here) is type(first) and is_dataclass(here) and not isinstance(here, type):
+        names = [f.name for f in fields(here) if f.name not in ("uid", "span")
+                 and _key(getattr(here, f.name)) != _key(getattr(first, f.name))]
+        if names:
+            return "; ".join(f"{_field_words(n)} {_show_value(getattr(here, n))} vs "
+                             f"{_show_value(getattr(first, n))}" for n in names)
+    return f"{_show(here)} vs {_show(first)}"
+
+
+def _show_value(v: Any) -> str:
+    if v is None:
+        return "none"
+    return f"{v:.6g}" if isinstance(v, float) else _show(v)
 
 
 def _show_key(k: Hashable) -> str:

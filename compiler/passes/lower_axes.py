@@ -210,8 +210,10 @@ class CellAxes:
         return mech.flange(mech.home()) * local
 
     def frame(self, name: str, value: ast.Expr, world: ir.Pose, span: Span) -> None:
-        """A frame whose value names a mechanism rides on it (at its place at home)."""
-        riding = sorted(names_in(value) & set(self.mechanisms)) if self.mechanisms else []
+        """A frame whose value names a mechanism, or a frame riding on one, rides on it (at its
+        place at home): `frame seam = work * pose(x=-150mm)` moves with `work`'s positioner."""
+        carried = {m.body: m.mechanism for m in self.mounts if m.kind == "frame"}
+        riding = sorted({carried.get(n, n) for n in names_in(value) if n in self.mechanisms or n in carried})
         if len(riding) > 1:
             self.rep.error(codes_axes.EXT_MOUNT, f"frame '{name}' must ride on one mechanism (got {', '.join(riding)})", value.span)
         elif riding:

@@ -19,8 +19,9 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from ext_axes_witness import at, rot
+from ext_axes_witness import at, positioner_flange, robot_base, rot
 
+from rmot.backends import BACKENDS
 from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_text
 from rmot.compiler.plan import plan_program
@@ -219,3 +220,41 @@ def test_the_same_hold_clear_of_the_jig_is_clean() -> None:
                  "  move linear pose(x=2200mm, y=0mm, z=720mm, rx=180deg) frame world speed 100 mm/s\n"
                  "  move axes pos to (0deg, 0deg)\n}\n")
     assert _errors(plan) == []
+
+
+# ------------------------------------------------------------------ frames and loops
+
+
+def test_a_frame_built_on_a_riding_frame_rides_with_it() -> None:
+    """`frame seam = work * pose(x=-150mm)` is on the part: with the turntable at 90 deg its
+    target turns with it (witness: numpy from the cell's numbers), and RAPID writes its work
+    object coordinated with the unit."""
+    cell = CELL.replace("  tool torch", "  frame seam = work * pose(x=-150mm)\n  tool torch")
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move joint pose(z=100mm, rx=180deg) frame seam ext(rail=900mm, pos=(0deg, 90deg))\n}\n", cell)
+    assert [(m.body, m.mechanism) for m in plan.program.cell.external.mounts if m.kind == "frame"] == [
+        ("work", "pos"), ("seam", "pos")]
+    rec = _record(plan, 17)
+    got = robot_base(900.0) @ rec.tcp_pose.matrix()
+    want = positioner_flange(0.0, 90.0) @ at(z=0.04) @ at(x=-0.15) @ at(z=0.1) @ rot("x", 180.0)
+    assert np.abs(got - want).max() < 1e-6
+    assert np.abs(want[:3, 3] - (1.8, -0.15, 0.84)).max() < 1e-9  # turned a quarter: -150 mm along y
+    (text,) = BACKENDS["rapid"]().emit(plan).files.values()
+    assert 'PERS wobjdata seam:=[FALSE,FALSE,"POS",[[-150.000,0.000,40.000]' in text
+
+
+def test_a_frame_on_two_mechanisms_through_a_riding_frame_is_e602() -> None:
+    cell = CELL.replace("  tool torch", "  frame odd = work * rail\n  tool torch")
+    front = load_text(cell + "program p on r1 with rail, pos {\n  move joint " + HOME + "\n}\n", "/tmp/t.rmot")
+    assert [(d.code.id, d.span.start.line) for d in front.diagnostics if d.is_error] == [("E602", 11)]
+    assert "must ride on one mechanism (got pos, rail)" in front.diagnostics[0].message
+
+
+def test_a_loop_unrolled_for_its_axes_says_so_in_words() -> None:
+    """The first round moves the track, the others do not: each vendor unrolls it (W420) and
+    says what differs by name, not as a record's repr."""
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  for i in 0 .. 2 {\n    move joint " + HOME + " ext(rail=500mm)\n    wait 100 ms\n  }\n}\n")
+    result = BACKENDS["krl"]().emit(plan)
+    (w420,) = [d.message for d in result.diagnostics if d.code.id == "W420"]
+    assert "Motion(" not in w420 and "time the external axes need (s) none vs " in w420
