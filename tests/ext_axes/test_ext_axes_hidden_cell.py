@@ -258,3 +258,25 @@ def test_a_loop_unrolled_for_its_axes_says_so_in_words() -> None:
     result = BACKENDS["krl"]().emit(plan)
     (w420,) = [d.message for d in result.diagnostics if d.code.id == "W420"]
     assert "Motion(" not in w420 and "time the external axes need (s) none vs " in w420
+
+
+# ------------------------------------------------------------------ plots
+
+
+def test_the_tcp_speed_plot_of_a_coordinated_seam_is_relative_to_the_part() -> None:
+    """A 60 mm seam at 20 mm/s in the part frame while the turntable turns 60 deg: the plotted
+    TCP speed cruises at the programmed 20 mm/s (the speed the program states, relative to the
+    part); in world the torch point also sweeps round the turntable axis, far faster."""
+    from rmot.sim.plots import plot_data
+
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move joint pose(x=-130mm, y=0mm, z=5mm, rx=180deg) frame work ext(rail=900mm)\n"
+                 "  move linear pose(x=-70mm, y=0mm, z=5mm, rx=180deg) frame work ext(pos=(0deg, 60deg)) speed 20 mm/s\n}\n")
+    assert _errors(plan) == []
+    rec = _record(plan, 17)
+    td = plot_data(plan).tasks[0]
+    middle = (td.t > rec.t_start + 0.25 * (rec.t_end - rec.t_start)) & (td.t < rec.t_end - 0.25 * (rec.t_end - rec.t_start))
+    assert middle.sum() > 100
+    np.testing.assert_allclose(td.tcp_speed[middle], 20.0, rtol=0.01)
+    # 60 mm at 20 mm/s: 3 s (the turntable's 60 deg alone would take 0.8 s)
+    assert rec.t_end - rec.t_start == pytest.approx(3.0, abs=0.2)
