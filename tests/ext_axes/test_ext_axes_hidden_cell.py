@@ -280,3 +280,43 @@ def test_the_tcp_speed_plot_of_a_coordinated_seam_is_relative_to_the_part() -> N
     np.testing.assert_allclose(td.tcp_speed[middle], 20.0, rtol=0.01)
     # 60 mm at 20 mm/s: 3 s (the turntable's 60 deg alone would take 0.8 s)
     assert rec.t_end - rec.t_start == pytest.approx(3.0, abs=0.2)
+
+
+# ------------------------------------------------------------------ slots in `with` order
+
+
+def _slot_program(with_clause: str, cell: str = CELL):  # type: ignore[no-untyped-def]
+    return _plan("program p on r1 with " + with_clause + " {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move joint pose(x=-100mm, y=50mm, z=120mm, rx=180deg) frame work ext(rail=900mm, pos=(30deg, 90deg))\n}\n", cell)
+
+
+@pytest.mark.parametrize("with_clause", ["rail, pos", "pos, rail"])
+def test_the_checklist_names_the_slot_each_value_is_written_in(with_clause: str) -> None:
+    """The header's `eax_b = pos.1` (RAPID) and `E2 = pos.1` (KRL) must name the axis whose value
+    that slot of the targets holds, whatever the `with` order; the values read back by the
+    checklist's names are the program's (900 mm, 30 deg, 90 deg)."""
+    plan = _slot_program(with_clause)
+    want = {"rail": 900.0, "pos.1": 30.0, "pos.2": 90.0}
+    (rapid,) = BACKENDS["rapid"]().emit(plan).files.values()
+    slots = {"abcdef".index(s): name for s, name in re.findall(r"!\s+eax_([a-f]) = ([\w.]+):", rapid)}
+    extax = re.search(r"CONST robtarget \w+:=\[.*,\[([^\]]*)\]\];", rapid)
+    assert extax is not None and len(slots) == 3
+    values = [float(v) for v in extax.group(1).split(",")]
+    assert {name: values[k] for k, name in slots.items()} == pytest.approx(want)
+    files = BACKENDS["krl"]().emit(plan).files
+    src, dat = (next(t for n, t in files.items() if n.endswith(ext)) for ext in (".src", ".dat"))
+    slots = {int(k): name for k, name in re.findall(r";\s+E(\d) = ([\w.]+):", src)}
+    e6pos = re.search(r"DECL E6POS \w+=\{(.*)\}", dat)
+    assert e6pos is not None and len(slots) == 3
+    e = {int(k): float(v) for k, v in re.findall(r"E(\d) (-?[\d.]+)", e6pos.group(1))}
+    assert {name: e[k] for k, name in slots.items()} == pytest.approx(want)
+
+
+def test_fanuc_numbers_the_rail_e1_when_the_positioner_is_declared_first() -> None:
+    track = "  track rail = linear(axis x, range(0mm, 4000mm))\n               speed 1500 mm/s accel 2000 mm/s^2\n               at pose(z=0mm)\n"
+    assert track in CELL
+    robot = "  robot r1 = kuka_kr16 on rail at pose(z=250mm)\n"
+    cell = CELL.replace(track, "").replace(robot, "").replace("  fixture jig", track + robot + "  fixture jig")
+    assert cell.index("positioner pos") < cell.index("track rail")
+    (text,) = BACKENDS["fanuc"]().emit(_slot_program("rail, pos", cell)).files.values()
+    assert re.findall(r"!\s*GP1 E(\d) = rail", text) == ["1"] and "E1=   900.000  mm" in text
