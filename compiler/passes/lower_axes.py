@@ -36,6 +36,7 @@ Program (`ProgramAxes`, used by the task lowering):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 
 from rmot.lang import codes_axes, ir
@@ -381,8 +382,19 @@ class ProgramAxes:
                            self.robot.base, tuple((a.name, self.values[a.name]) for a in self.axes), self.external,
                            None if carrier is not None else move.frame.world)
 
-    def move_axes(self, s: ast.MoveAxes, scope: Scope) -> ir.Move | None:
-        """`move axes M to VALUES`: the arm holds the joints of the last move."""
+    def move_axes(self, s: ast.MoveAxes, scope: Scope, timer: Callable[[ast.Expr, Scope, str], float | None]) -> ir.Move | None:
+        """`move axes M to VALUES`: the arm holds the joints of the last move. Its only modifier
+        is `time T` (`timer` evaluates it): the axes move at their own speed and acceleration,
+        so a speed, zone, tool or frame there would be silently meaningless (E611)."""
+        duration = None
+        for m in s.modifiers:
+            if m.kind != "time":
+                self.rep.error(codes_axes.EXT_AXES_MODIFIER, f"'move axes' takes no '{m.kind}' (its axes move at their own "
+                               "speed and acceleration, the arm holds its joints); only 'time' may slow it", m.span)
+                return None
+            duration = timer(m.value, scope, "move time")  # type: ignore[arg-type]
+            if duration is None:
+                return None
         if s.mechanism.name not in self.mechanisms:
             self.rep.unknown(s.mechanism.name, "mechanism this program drives", s.mechanism.span, list(self.mechanisms),
                              codes_axes.EXT_VALUES)
@@ -395,7 +407,7 @@ class ProgramAxes:
         if not self._assign(s.mechanism.name, s.values, scope, values):
             return None
         held = replace(self.last, axes_only=True, kind=ir.MotionKind.JOINT, via=None, span=s.span, uid=0, free=None, coordinated=None,
-                       motion=replace(self.last.motion, duration=None))
+                       motion=replace(self.last.motion, duration=duration))
         return self._timed(self._resolved(held, values, keep_base_pose=True), values)
 
     def _timed(self, move: ir.Move | None, values: dict[str, float]) -> ir.Move | None:
@@ -415,10 +427,15 @@ class ProgramAxes:
         return move
 
     def _ext(self, args: tuple[ast.Arg, ...], scope: Scope, values: dict[str, float]) -> bool:
+        named: set[str] = set()
         for arg in args:
             if arg.name is None:
                 self.rep.error(codes_axes.EXT_VALUES, "ext(...) must name each mechanism (`ext(rail=1200mm)`)", arg.span)
                 return False
+            if arg.name.name in named:
+                self.rep.error(codes_axes.EXT_VALUES, f"ext(...) must set '{arg.name.name}' once (got it twice)", arg.span)
+                return False
+            named.add(arg.name.name)
             if arg.name.name not in self.mechanisms:
                 self.rep.unknown(arg.name.name, "mechanism this program drives", arg.name.span, list(self.mechanisms),
                                  codes_axes.EXT_VALUES)

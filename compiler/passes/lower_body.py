@@ -134,7 +134,7 @@ class TaskLowering:
         if isinstance(s, ast.Move):
             return self.move(s, scope, modal)
         if isinstance(s, ast.MoveAxes):
-            return self.axes.move_axes(s, scope) if self.axes is not None else self._no_axes(s.span)
+            return self.axes.move_axes(s, scope, self._time) if self.axes is not None else self._no_axes(s.span)
         if isinstance(s, (ast.TargetDecl, ast.ConstDecl)):
             declare_value(s, scope, self.rep)
         elif isinstance(s, ast.FrameDecl):

@@ -320,3 +320,43 @@ def test_fanuc_numbers_the_rail_e1_when_the_positioner_is_declared_first() -> No
     assert cell.index("positioner pos") < cell.index("track rail")
     (text,) = BACKENDS["fanuc"]().emit(_slot_program("rail, pos", cell)).files.values()
     assert re.findall(r"!\s*GP1 E(\d) = rail", text) == ["1"] and "E1=   900.000  mm" in text
+
+
+# ------------------------------------------------------------------ modifiers that would be ignored
+
+
+def _diagnostics(program: str) -> list[tuple[str, int, int, str]]:
+    front = load_text(CELL + program, "/tmp/ext_axes_hidden.rmot")
+    found = list(front.diagnostics)
+    if front.program is not None and not [d for d in found if d.is_error]:
+        found = list(verify(plan_program(front.program)).diagnostics)
+    return [(d.code.id, d.span.start.line, d.span.start.col, d.message) for d in found if d.is_error]
+
+
+@pytest.mark.parametrize("modifier,col", [("speed 100 mm/s", 28), ("zone 10 mm", 28), ("frame work", 28)])
+def test_move_axes_refuses_a_modifier_it_would_ignore(modifier: str, col: int) -> None:
+    found = _diagnostics("program p on r1 with rail, pos {\n  move joint " + HOME + "\n  move axes rail to 1000mm "
+                         + modifier + "\n}\n")
+    assert [(c, line, column) for c, line, column, _ in found] == [("E611", 15, col)]
+    assert f"'move axes' takes no '{modifier.split()[0]}'" in found[0][3]
+
+
+def test_move_axes_keeps_its_time_or_says_it_cannot() -> None:
+    """`time 5 s` stretches the 1000 mm rail move (1.414 s at full acceleration: a triangle) to
+    5 s; `time 0.5 s` is shorter than the rail can go: E227 at the line, naming both times."""
+    plan = _plan("program p on r1 with rail, pos {\n  move joint " + HOME + "\n  move axes rail to 1000mm time 5 s\n}\n")
+    rec = _record(plan, 15)
+    assert rec.t_end - rec.t_start == pytest.approx(5.0, abs=plan.step) and _errors(plan) == []
+    assert trapezoid(1.0, 1.5, 2.0) == pytest.approx(math.sqrt(2.0))
+    found = _diagnostics("program p on r1 with rail, pos {\n  move joint " + HOME + "\n  move axes rail to 1000mm time 0.5 s\n}\n")
+    assert [(c, line) for c, line, _, _ in found] == [("E227", 15)]
+    assert "at least the 1.414 s the external axes need" in found[0][3] and "(got 0.500 s)" in found[0][3]
+    found = _diagnostics("program p on r1 with rail, pos {\n  move joint " + HOME + "\n  move joint " + HOME
+                         + " ext(rail=1000mm) time 0.5 s\n}\n")
+    assert [(c, line) for c, line, _, _ in found] == [("E227", 15)]
+
+
+def test_an_axis_set_twice_in_one_ext_is_e604() -> None:
+    found = _diagnostics("program p on r1 with rail, pos {\n  move joint " + HOME + " ext(rail=100mm, rail=200mm)\n}\n")
+    assert [(c, line) for c, line, _, _ in found] == [("E604", 14)]
+    assert "must set 'rail' once" in found[0][3]
