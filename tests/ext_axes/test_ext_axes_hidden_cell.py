@@ -360,3 +360,17 @@ def test_an_axis_set_twice_in_one_ext_is_e604() -> None:
     found = _diagnostics("program p on r1 with rail, pos {\n  move joint " + HOME + " ext(rail=100mm, rail=200mm)\n}\n")
     assert [(c, line) for c, line, _, _ in found] == [("E604", 14)]
     assert "must set 'rail' once" in found[0][3]
+
+
+def test_e605_runs_from_the_instant_the_rail_leaves_its_range_and_is_not_repeated() -> None:
+    """0 -> 4200 mm on the rail's trapezoid (1500 mm/s, 2000 mm/s^2): it passes 4000 mm 200 mm
+    before the end, in the braking ramp, sqrt(2 * 0.2 m / 2 m/s^2) = 0.447 s before the move
+    ends. The moves after it leave the rail there: the finding is the move that took it out."""
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n  move axes rail to 4200mm\n"
+                 "  move joint joints(10deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n  move axes pos to (10deg, 0deg)\n}\n")
+    found = [d for d in _errors(plan) if d.code.id == "E605"]
+    assert [d.span.start.line for d in found] == [16]
+    rec = _record(plan, 16)
+    assert rec.t_end - rec.t_start == pytest.approx(trapezoid(4.2, 1.5, 2.0), abs=plan.step)
+    assert found[0].time_s == pytest.approx(rec.t_end - math.sqrt(2 * 0.2 / 2.0), abs=plan.step)
+    assert found[0].end_time_s == pytest.approx(rec.t_end)
