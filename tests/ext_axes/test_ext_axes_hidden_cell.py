@@ -374,3 +374,36 @@ def test_e605_runs_from_the_instant_the_rail_leaves_its_range_and_is_not_repeate
     assert rec.t_end - rec.t_start == pytest.approx(trapezoid(4.2, 1.5, 2.0), abs=plan.step)
     assert found[0].time_s == pytest.approx(rec.t_end - math.sqrt(2 * 0.2 / 2.0), abs=plan.step)
     assert found[0].end_time_s == pytest.approx(rec.t_end)
+
+
+# ------------------------------------------------------------------ other arms on the track
+
+
+def test_an_arm_family_name_suggests_its_variants() -> None:
+    front = load_text(CELL.replace("kuka_kr16", "abb_irb2600") + "program p on r1 with rail, pos {\n}\n", "/tmp/t.rmot")
+    assert [(d.code.id, d.span.start.line) for d in front.diagnostics] == [("E111", 5)]
+    assert front.diagnostics[0].message == "unknown robot model 'abb_irb2600'; did you mean 'abb_irb2600_12_165'?"
+
+
+@pytest.mark.parametrize("arm,home", [("abb_irb2600_12_165", "joints(0deg, 0deg, 0deg, 0deg, 30deg, 0deg)"),
+                                      ("fanuc_m20ia", "joints(0deg, 0deg, 0deg, 0deg, -90deg, 0deg)")])
+def test_other_arms_on_the_track_re_expand_for_every_axis_vendor(arm: str, home: str) -> None:
+    """The emit test's program (coordinated work object, MoveExtJ, a world-fixed numbered frame)
+    with an ABB and a Fanuc arm on the carriage: each vendor's targets, read back by that test's
+    readers and placed through the witness' numpy mechanisms, reach the planned TCP within 0.01 mm."""
+    from test_ext_axes_emit import SOURCE, fanuc_targets, krl_targets, planned_tcp_world, rapid_targets
+
+    source = SOURCE.replace("kuka_kr16", arm).replace("joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)", home)
+    front = load_text(source, "/tmp/ext_axes_arms.rmot")
+    assert front.program is not None and not front.diagnostics, [d.message for d in front.diagnostics]
+    plan = plan_program(front.program)
+    assert not [d for d in plan.diagnostics if d.is_error]  # planned (the jig's collisions are not this test's)
+    outputs = {vendor: BACKENDS[vendor]().emit(plan).files for vendor in ("rapid", "krl", "fanuc")}
+    krl = {name.rsplit(".", 1)[1]: text for name, text in outputs["krl"].items()}
+    read = {"rapid": rapid_targets(*outputs["rapid"].values()), "krl": krl_targets(krl["src"], krl["dat"]),
+            "fanuc": fanuc_targets(*outputs["fanuc"].values())[0]}
+    for vendor, got in read.items():
+        want = planned_tcp_world(plan, axes_only=vendor == "fanuc")
+        assert len(got) == len(want) >= 4, vendor
+        for g, w in zip(got, want, strict=True):
+            assert np.abs(g[:3, 3] - w[:3, 3]).max() < 1e-5, vendor
