@@ -407,3 +407,13 @@ def test_other_arms_on_the_track_re_expand_for_every_axis_vendor(arm: str, home:
         assert len(got) == len(want) >= 4, vendor
         for g, w in zip(got, want, strict=True):
             assert np.abs(g[:3, 3] - w[:3, 3]).max() < 1e-5, vendor
+
+
+@pytest.mark.parametrize("vendor", ["urscript", "val3"])
+def test_urscript_and_val3_refuse_saying_where_the_task_can_go(vendor: str) -> None:
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + " ext(rail=500mm)\n}\n")
+    result = BACKENDS[vendor]().emit(plan)
+    assert [(d.code.id, d.span.start.line) for d in result.diagnostics if d.is_error] == [("E607", 15)]
+    assert result.has_errors  # the CLI writes nothing for the vendor then
+    message = next(d.message for d in result.diagnostics if d.is_error)
+    assert "drives external axes (rail, pos.1, pos.2)" in message and "rapid, krl, fanuc and inform only" in message
