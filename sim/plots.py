@@ -145,7 +145,7 @@ def _tcp_speed(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, tcp: np.n
     external = plan.program.cell.external
     riding = robot_bases(tp, external)  # a robot on a track: its base moves
     world = (base if riding is None else riding) @ np.asarray(robot.fk_batch(tp.trajectory.q)) @ tcp
-    out = np.linalg.norm(np.gradient(world[:, :3, 3], t, axis=0), axis=1) * 1000.0
+    out: np.ndarray = np.linalg.norm(np.gradient(world[:, :3, 3], t, axis=0), axis=1) * 1000.0
     for t0, t1, move in moves:
         if move.coordinated is None or not move.coordinated.relative():
             continue

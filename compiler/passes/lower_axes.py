@@ -310,8 +310,24 @@ class ProgramAxes:
             self.rep.error(codes_axes.EXT_MOTION, f"{what} (got {got}): every later move starts from them; "
                            "move the axes back inside it, or before or after it", span)
 
+    def read_at_home(self, e: ast.Expr, what: str) -> None:
+        """W607 where an expression reads, as a pose, a frame riding on a mechanism this program
+        moves (or the mechanism): that is its place with every axis at home, and a target built
+        from it stays there when the part moves; a pose given in the riding frame follows it."""
+        riding = {m.body: m.mechanism for m in self.external.mounts if m.kind == "frame" and m.mechanism in self.mechanisms}
+        riding |= {name: name for name in self.mechanisms}
+        named = sorted(names_in(e) & set(riding))
+        if named:
+            name = named[0]
+            how = f"`frame {name}`" if name != riding[name] else f"a frame riding on '{name}'"
+            self.rep.warning(codes_axes.EXT_VALUE_AT_HOME, f"{what} reads '{name}' as a pose: its place with the axes at "
+                             f"home, which stays there when '{riding[name]}' moves; give the pose in {how} to follow it", e.span)
+
     def move(self, move: ir.Move, s: ast.Move, scope: Scope) -> ir.Move | None:
         """`move` with the axis values at its target (its `ext(...)` over the values so far)."""
+        self.read_at_home(s.target, "the move's target")
+        if s.via is not None:
+            self.read_at_home(s.via, "the move's via point")
         values = dict(self.values)
         for m in s.modifiers:
             if m.kind == "ext" and not self._ext(m.value, scope, values):  # type: ignore[arg-type]

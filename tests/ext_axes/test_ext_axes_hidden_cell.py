@@ -417,3 +417,21 @@ def test_urscript_and_val3_refuse_saying_where_the_task_can_go(vendor: str) -> N
     assert result.has_errors  # the CLI writes nothing for the vendor then
     message = next(d.message for d in result.diagnostics if d.is_error)
     assert "drives external axes (rail, pos.1, pos.2)" in message and "rapid, krl, fanuc and inform only" in message
+
+
+def test_a_target_built_from_a_riding_frame_is_flagged_where_it_reads_it() -> None:
+    """`work * pose(...)` as a value is the part's place with the axes at home: with the turntable
+    at 90 deg the TCP goes there (the witness: work at home), not onto the turned part, and W607
+    says so at each expression; the same pose given in `frame work` follows the part, silently."""
+    front = load_text(CELL + "program p on r1 with rail, pos {\n  tool torch\n  target t = work * pose(x=-100mm, z=100mm, rx=180deg)\n"
+                      "  move joint " + HOME + "\n  move joint t frame world ext(rail=900mm, pos=(0deg, 90deg))\n"
+                      "  move joint work * pose(x=-100mm, z=100mm, rx=180deg) frame world\n"
+                      "  move joint pose(x=-100mm, z=100mm, rx=180deg) frame work\n}\n", "/tmp/t.rmot")
+    assert [(d.code.id, d.span.start.line, d.span.start.col) for d in front.diagnostics] == [("W607", 15, 14), ("W607", 18, 14)]
+    assert front.program is not None
+    plan = plan_program(front.program)
+    at_home = at(1.8, 0.0, 0.74) @ at(x=-0.1, z=0.1) @ rot("x", 180.0)
+    on_part = positioner_flange(0.0, 90.0) @ at(z=0.04) @ at(x=-0.1, z=0.1) @ rot("x", 180.0)
+    for line, want in ((17, at_home), (18, at_home), (19, on_part)):
+        got = robot_base(900.0) @ _record(plan, line).tcp_pose.matrix()
+        assert np.abs(got - want).max() < 1e-6, line
