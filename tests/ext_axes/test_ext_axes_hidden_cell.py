@@ -435,3 +435,40 @@ def test_a_target_built_from_a_riding_frame_is_flagged_where_it_reads_it() -> No
     for line, want in ((17, at_home), (18, at_home), (19, on_part)):
         got = robot_base(900.0) @ _record(plan, line).tcp_pose.matrix()
         assert np.abs(got - want).max() < 1e-6, line
+
+
+def test_fanuc_taught_frame_values_re_expand_within_0_01_mm_on_a_turned_track() -> None:
+    """A track along y turned -60 deg about z: the controller's world (the robot base with the
+    axes at home) is turned too, so the cell's numbered frame `table` has unround values there.
+    The header's `UFRAME[3] must hold` values (what a person teaches) are read back by the emit
+    test's reader: every position re-expands within 0.01 mm (to 0.1 mm they missed by 0.03 mm)."""
+    import test_ext_axes_emit as emit
+
+    def base(rail_mm: float) -> np.ndarray:
+        return at(x=0.2) @ rot("z", -60.0) @ at(y=rail_mm / 1000) @ at(z=0.25)
+
+    source = emit.SOURCE.replace("linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 at pose(z=0mm)",
+                                 "linear(axis y, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 at pose(x=200mm, rz=-60deg)")
+    front = load_text(source, "/tmp/ext_axes_turned.rmot")
+    assert front.program is not None and not front.diagnostics
+    plan = plan_program(front.program)
+    (text,) = BACKENDS["fanuc"]().emit(plan).files.values()
+    assert "!UFRAME[3] = table must hold: ;" in text
+    saved = emit.robot_base
+    emit.robot_base = base  # the readers place UFRAME 0 at the controller's world: this track's
+    try:
+        got, _ = emit.fanuc_targets(text)
+        want = emit.planned_tcp_world(plan, axes_only=True)
+    finally:
+        emit.robot_base = saved
+    assert len(got) == len(want) == 5
+    assert max(float(np.abs(g[:3, 3] - w[:3, 3]).max()) for g, w in zip(got, want, strict=True)) < 1e-5
+
+
+def test_fanuc_held_values_fit_a_comment_to_the_micrometre() -> None:
+    from rmot.backends.fanuc_tp_text import COMMENT_MAX, held_frame_values
+
+    assert held_frame_values(1279.4, 416.0, 350.0, 0.0, 0.0, 90.0) == ["X 1279.400 Y 416.000 Z 350.000", "W 0.000 P 0.000 R 90.000"]
+    rows = held_frame_values(-12345.678, -416.0, -350.25, -179.999, -89.5, 180.0)
+    assert rows == ["X -12345.678 Y -416.000", "Z -350.250", "W -179.999 P -89.500 R 180.000"]
+    assert all(len(r) <= COMMENT_MAX for r in rows)
