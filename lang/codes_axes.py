@@ -1,4 +1,4 @@
-"""Diagnostic codes of external axes: tracks and positioners (E601–E606, E608–E611, W601, W606, W607;
+"""Diagnostic codes of external axes: tracks and positioners (E601–E606, E608–E611, W601, W606–W608;
 compiler/passes/lower_axes.py, lang/axis_motion.py). E607, a vendor that cannot write them,
 is the backends' (backends/codes.py)."""
 
@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from rmot.lang.diagnostics import Code
 
-__all__ = ["EXT_AXES_MODIFIER", "EXT_VALUE_AT_HOME",
+__all__ = ["EXT_AXES_MODIFIER", "EXT_FRAME_NUMBER", "EXT_VALUE_AT_HOME",
            "EXT_AXIS_DEFINITION", "EXT_AXIS_LIMIT", "EXT_COORDINATED", "EXT_FRAME_UNDRIVEN", "EXT_INFORM_BINDING", "EXT_MOTION",
            "EXT_MOUNT", "EXT_PROGRAM_AXES", "EXT_SLOWDOWN", "EXT_STOPS", "EXT_VALUES"]
 
@@ -34,3 +34,5 @@ EXT_AXES_MODIFIER = Code("E611", "ext-axes-modifier", "a `move axes` modifier ot
                          "config, ext: its axes move at their own speed and acceleration, the arm holds its joints)")
 EXT_VALUE_AT_HOME = Code("W607", "ext-value-at-home", "a target built from a frame riding on a mechanism the program "
                          "moves (or the mechanism) as a pose: its place with the axes at home, which does not follow them")
+EXT_FRAME_NUMBER = Code("W608", "ext-frame-number", "a `number` on a frame riding on a mechanism: not used, the programs "
+                        "write that frame through the mechanism")

@@ -210,7 +210,7 @@ class CellAxes:
         self.mounts.append(Mount(body, kind, mech.name, local, span))
         return mech.flange(mech.home()) * local
 
-    def frame(self, name: str, value: ast.Expr, world: ir.Pose, span: Span) -> None:
+    def frame(self, name: str, value: ast.Expr, world: ir.Pose, span: Span, number: ast.Expr | None = None) -> None:
         """A frame whose value names a mechanism, or a frame riding on one, rides on it (at its
         place at home): `frame seam = work * pose(x=-150mm)` moves with `work`'s positioner."""
         carried = {m.body: m.mechanism for m in self.mounts if m.kind == "frame"}
@@ -220,6 +220,10 @@ class CellAxes:
         elif riding:
             mech = self.mechanisms[riding[0]]
             self.mounts.append(Mount(name, "frame", mech.name, mech.flange(mech.home()).inverse() * world, span))
+            if number is not None:
+                self.rep.warning(codes_axes.EXT_FRAME_NUMBER, f"frame '{name}' rides on '{mech.name}': its number is not "
+                                 "used (a program that moves it writes the frame through the mechanism: RAPID's "
+                                 "coordinated wobjdata, KRL's EK() base, Fanuc's UFRAME 0 at the axis values)", number.span)
 
 
 def _shown(x: float, dim: Dim) -> str:

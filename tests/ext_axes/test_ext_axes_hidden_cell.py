@@ -472,3 +472,14 @@ def test_fanuc_held_values_fit_a_comment_to_the_micrometre() -> None:
     rows = held_frame_values(-12345.678, -416.0, -350.25, -179.999, -89.5, 180.0)
     assert rows == ["X -12345.678 Y -416.000", "Z -350.250", "W -179.999 P -89.500 R 180.000"]
     assert all(len(r) <= COMMENT_MAX for r in rows)
+
+
+def test_a_number_on_a_riding_frame_is_flagged_as_unused() -> None:
+    cell = CELL.replace("frame work = pos * pose(z=40mm)          # rides on the positioner's flange",
+                        "frame work = pos * pose(z=40mm) number 2")
+    front = load_text(cell + "program p on r1 with rail, pos {\n  move joint " + HOME + "\n}\n", "/tmp/t.rmot")
+    assert [(d.code.id, d.span.start.line, d.span.start.col) for d in front.diagnostics] == [("W608", 10, 42)]
+    assert front.program is not None
+    plan = plan_program(front.program)
+    (text,) = BACKENDS["fanuc"]().emit(plan).files.values()
+    assert "UFRAME[2]" not in text  # indeed not used
