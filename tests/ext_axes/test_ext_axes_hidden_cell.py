@@ -91,6 +91,7 @@ def test_a_track_declaration_spans_lines_like_a_positioner() -> None:
 
 
 def test_every_axis_option_and_on_may_start_a_line() -> None:
+    """A track's options, and `on` in any declaration that takes it, may each start a line."""
     cell = """cell c {
   track rail = linear(axis x, range(0mm, 4000mm))
     speed 1500 mm/s
@@ -98,10 +99,16 @@ def test_every_axis_option_and_on_may_start_a_line() -> None:
     solid(box(600mm, 500mm, 100mm), at=pose(z=150mm))
     mass 250 kg
     at pose(z=0mm)
-  robot r1 = kuka_kr16 on rail at pose(z=250mm)
+  robot r1 = kuka_kr16
+    on rail
+    at pose(z=250mm)
   positioner turn = axes(revolute(axis z, range(-360deg, 360deg)) speed 180 deg/s accel 360 deg/s^2)
     on rail
     at pose(x=900mm, z=400mm)
+  fixture plate = cylinder(r=300mm, h=30mm)
+    on turn at pose(z=15mm)
+  tool torch = none tcp pose(z=300mm)
+    on r1
 }
 """
     front = load_text(cell + "program p on r1 with rail, turn {\n  move joint " + HOME + "\n}\n", "/tmp/t.rmot")
@@ -111,6 +118,8 @@ def test_every_axis_option_and_on_may_start_a_line() -> None:
     rail, turn = external.mechanisms
     assert (rail.axes[0].speed, rail.axes[0].accel, rail.axes[0].mass) == pytest.approx((1.5, 2.0, 250.0))
     assert "rail.solid1" in {f.name for f in front.program.cell.fixtures} and turn.on == "rail"
+    assert {(m.body, m.mechanism) for m in external.mounts} >= {("r1", "rail"), ("plate", "turn")}
+    assert front.program.cell.robots[0].base.position == pytest.approx((0.0, 0.0, 0.25))
 
 
 def test_a_speed_line_after_a_move_stays_a_speed_setting() -> None:
