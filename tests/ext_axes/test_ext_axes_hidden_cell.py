@@ -492,3 +492,43 @@ def test_a_number_on_a_riding_frame_is_flagged_as_unused() -> None:
     plan = plan_program(front.program)
     (text,) = BACKENDS["fanuc"]().emit(plan).files.values()
     assert "UFRAME[2]" not in text  # indeed not used
+
+
+def _synced(d: float, duration: float, accel: float, s: float) -> float:
+    """A rest-to-rest move of `d` over exactly `duration` at full `accel`, cruise lowered to fit
+    (v = (aT - sqrt(a^2 T^2 - 4 a d)) / 2): the distance done after `s`."""
+    v = (accel * duration - math.sqrt(max(accel * accel * duration * duration - 4 * accel * d, 0.0))) / 2
+    s, ramp = min(max(s, 0.0), duration), v / accel
+    if s < ramp:
+        return 0.5 * accel * s * s
+    if s > duration - ramp:
+        return d - 0.5 * accel * (duration - s) ** 2
+    return 0.5 * accel * ramp * ramp + v * (s - ramp)
+
+
+def test_the_jig_turning_while_the_arm_comes_down_is_hit_at_the_first_contact_fcl_finds() -> None:
+    """The arm lowers the torch beside the jig while the turntable turns it back from 90 to 0
+    deg, both in one joint move. Witness: at every planned sample, the torch placed by the
+    ROS-Industrial KR 16 chain (ext_axes_witness.kr16_flange) on the carriage, the jig turned
+    by the time-synchronised trapezoid computed here, their distance by python-fcl: the first
+    sample in contact is the reported instant (within a sample)."""
+    from ext_axes_witness import kr16_flange
+
+    plan = _plan("program p on r1 with rail, pos {\n  tool torch\n  move joint " + HOME + "\n"
+                 "  move axes pos to (0deg, 90deg)\n"
+                 "  move joint pose(x=2050mm, y=0mm, z=900mm, rx=180deg) frame world ext(rail=900mm)\n"
+                 "  move joint pose(x=2050mm, y=0mm, z=720mm, rx=180deg) frame world ext(pos=(0deg, 0deg))\n}\n")
+    hits = [d for d in _errors(plan) if d.code.id == "E300"]
+    assert [(d.span.start.line, set(d.bodies)) for d in hits] == [(18, {"torch", "jig"})]
+    rec, traj = _record(plan, 18), plan.tasks[0].trajectory
+    inside = np.flatnonzero((traj.t >= rec.t_start) & (traj.t <= rec.t_end))
+    first = None
+    for i in inside:
+        turn = 90.0 - _synced(90.0, rec.t_end - rec.t_start, 360.0, float(traj.t[i]) - rec.t_start)
+        torch = robot_base(900.0) @ kr16_flange(traj.q[i]) @ at(z=0.2)
+        body = fcl.CollisionObject(fcl.Cylinder(0.015, 0.2), fcl.Transform(torch[:3, :3], torch[:3, 3]))
+        if fcl.distance(_jig(turn), body, fcl.DistanceRequest(), fcl.DistanceResult()) < 0:
+            first = float(traj.t[i])
+            break
+    assert first is not None and rec.t_start < first < rec.t_end
+    assert hits[0].time_s == pytest.approx(first, abs=1.5 * plan.step)
