@@ -68,15 +68,15 @@ def axis_findings(tp: TaskPlan, external: ExternalAxes | None) -> list[Diagnosti
     again: the finding is the move that took it out)."""
     axes = {a.name: a for a in task_axes(tp.task, external)}
     found: list[Diagnostic] = []
-    before = {name: axis.home for name, axis in axes.items()}
     for instr in ir_tree.walk(tp.task.body):
         if not isinstance(instr, ir.Move):
             continue
         rec = tp.record(instr.uid)
         for name, value in instr.ext:
-            axis, start = axes[name], before[name]
-            before[name] = value
-            if axis.low - 1e-12 <= value <= axis.high + 1e-12 or value == start:
+            axis = axes[name]
+            if axis.low - 1e-12 <= value <= axis.high + 1e-12 or (
+                    rec is not None and rec.variant == 0  # on the main timeline: where the move starts is known
+                    and abs(float(axis_samples(tp, (axis,), np.array([rec.t_start]))[0, 0]) - value) <= 1e-12):
                 continue
             found.append(Diagnostic(
                 codes_axes.EXT_AXIS_LIMIT, Severity.ERROR,

@@ -532,3 +532,13 @@ def test_the_jig_turning_while_the_arm_comes_down_is_hit_at_the_first_contact_fc
             break
     assert first is not None and rec.t_start < first < rec.t_end
     assert hits[0].time_s == pytest.approx(first, abs=1.5 * plan.step)
+
+
+def test_e605_in_both_arms_of_an_if_is_reported_in_each() -> None:
+    cell = CELL.replace("}\n", "  io in[1] = \"ready\" on r1\n}\n", 1)
+    front = load_text(cell + "program p on r1 with rail, pos {\n  move joint " + HOME + "\n  if in[1] == on {\n"
+                      "    move axes rail to 4200mm\n  } else {\n    move axes rail to 4200mm\n  }\n"
+                      "  move joint joints(10deg, -90deg, 90deg, 0deg, 45deg, 0deg)\n}\n", "/tmp/t.rmot")
+    assert front.program is not None
+    found = [d.span.start.line for d in verify(plan_program(front.program)).diagnostics if d.code.id == "E605"]
+    assert found == [17, 19]
