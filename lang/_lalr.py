@@ -137,9 +137,9 @@ class LalrDriver:
                     line, line_start = end_line, start + last_nl + 1
                 else:
                     end_line, end_col = line, col + len(value)
-                if depth > 0 or continues(text, end) is not None or (
-                        AXIS_CONTINUES.match(text, end) is not None and in_statement_of(values, self.axis_starts)) or (
-                        MOUNT_CONTINUES.match(text, end) is not None and in_statement_of(values, self.mount_starts)):
+                if depth > 0 or continues(text, end) is not None or (value[0] != ";" and (  # `;` ends a declaration
+                        AXIS_CONTINUES.match(text, end) is not None and in_statement_of(values, self.axis_starts)
+                        or MOUNT_CONTINUES.match(text, end) is not None and in_statement_of(values, self.mount_starts))):
                     pos = end
                     continue  # a newline inside ( ) or [ ], before `to` / `else`, or inside a declaration
                 ttype = "_NL"

@@ -57,11 +57,11 @@ class RmotLexer(Lexer):
                 newlines = value.count("\n")
                 end_line = line + newlines
                 end_col = (end - (value.rfind("\n") + start)) if newlines else col + len(value)
-                skip = CONTINUES.match(text, end) is not None or (
+                skip = CONTINUES.match(text, end) is not None or (value[0] != ";" and (
                     AXIS_CONTINUES.match(text, end) is not None
-                    and in_statement_of(parser_state.value_stack, self._axis_starts)) or (
-                    MOUNT_CONTINUES.match(text, end) is not None
-                    and in_statement_of(parser_state.value_stack, self._mount_starts))
+                    and in_statement_of(parser_state.value_stack, self._axis_starts)
+                    or MOUNT_CONTINUES.match(text, end) is not None
+                    and in_statement_of(parser_state.value_stack, self._mount_starts)))
                 tok = None if skip else Token("_NL", value, start, line, col, end_line, end_col, end)
                 if newlines:
                     line, line_start = end_line, start + value.rfind("\n") + 1
