@@ -385,10 +385,11 @@ class Backend:
         if node.ext and (stacked or not self.EXTERNAL_AXES):
             if "external axes" not in ctx.warned:  # once per task: every move would say the same
                 ctx.warned.add("external axes")
+                why = (f", which rmot cannot write for this controller: a mechanism stacked on another ({stacked})"
+                       if stacked else ", which rmot writes for rapid, krl, fanuc and inform only: this controller's "
+                       "programs move the arm alone; compile the task for one of those")
                 self.unsupported(codes.EXT_AXES_UNSUPPORTED, f"task '{ctx.task.name}' drives external axes "
-                                 f"({', '.join(name for name, _ in node.ext)}), which rmot cannot write for this "
-                                 "controller" + (f": a mechanism stacked on another ({stacked})" if stacked else ""),
-                                 node.span)
+                                 f"({', '.join(name for name, _ in node.ext)}){why}", node.span)
             return [self.comment("move with external axes not emitted")]
         if self.SIX_AXIS_DATA is not None and ctx.robot.dof != 6:
             self.unsupported(codes.NOT_SIX_AXIS, f"robot '{ctx.robot.name}' must have 6 axes for "

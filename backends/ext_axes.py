@@ -132,8 +132,12 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
         return []
     world = robot.base.inverse()  # the controller's world: the arm's base with every axis at home
     lines = ["machine data assumed (check on the controller): world = the robot base with every axis at home"]
-    slot, group = 0, 1
-    for mech in cell.external.mechanisms:
+    slots = {a.name: k for k, a in enumerate(axes)}  # RAPID eax_*, KRL E*: the task's axes in `with` order
+    mechanisms = list(cell.external.mechanisms)
+    if vendor != "fanuc":  # Fanuc numbers groups and rail axes in cell order, as fanuc_groups writes them
+        mechanisms.sort(key=lambda m: min((slots[a.name] for a in m.axes if a.name in slots), default=len(slots)))
+    rail, group = 0, 1
+    for mech in mechanisms:
         mine = [a for a in mech.axes if a in axes]
         if not mine:
             continue
@@ -155,10 +159,11 @@ def machine_data(cell: ir.Cell, robot: ir.RobotInstance, axes: tuple[ExtAxis, ..
                 else f"$ETn external kinematic, EK() bases{coupled}"
             lines.append(f"{mech.name}: MACHINE_DEF[{index}], {kind}, {where}")
         for axis in mine:
-            slot += 1
+            slot = slots[axis.name] + 1
             name = f"eax_{'abcdef'[slot - 1]}" if vendor == "rapid" else f"E{slot}"
             if vendor == "fanuc":
-                name = f"GP1 E{slot}" if mech.kind == "track" else f"GP{group} J{mine.index(axis) + 1}"
+                rail += mech.kind == "track"
+                name = f"GP1 E{rail}" if mech.kind == "track" else f"GP{group} J{mine.index(axis) + 1}"
             direction = "xyz"[axis.direction.index(1.0)]
             lines.append(f"  {name} = {axis.name}: {'linear along' if axis.linear else 'revolute about'} {direction}, "
                          f"[{axis.shown(axis.low)}, {axis.shown(axis.high)}], {axis.shown(axis.speed)}/s, "

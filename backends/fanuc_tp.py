@@ -86,6 +86,7 @@ from rmot.backends.fanuc_tp_text import (
     FANUC_RULES,
     COMMENT_MAX,
     config_string,
+    held_frame_values,
     _TP_OP,
     _tp_number,
     _leaf,
@@ -249,8 +250,7 @@ class FanucBackend(Backend):
                                      f"1..{limit} for {kind} (got {index})", self._decl_span(ctx, kind, fname))
                 if given and not self.write_frames:
                     lines.append(self.comment(f"{label} must hold:"[:COMMENT_MAX]))
-                    lines.append(self.comment(f"X {fmt(x, 1)} Y {fmt(y, 1)} Z {fmt(z, 1)}"[:COMMENT_MAX]))
-                    lines.append(self.comment(f"W {fmt(w, 1)} P {fmt(p, 1)} R {fmt(r, 1)}"[:COMMENT_MAX]))
+                    lines += [self.comment(text) for text in held_frame_values(x, y, z, w, p, r)]
                     continue
                 k += 1
                 pr = ctx.regs.frame_prs[0] + k - 1

@@ -16,7 +16,7 @@ from rmot.lang import ir, ir_tree
 from rmot.backends.safe_text import tp_io_comment
 
 
-__all__ = ["FANUC_RULES", "COMMENT_MAX", "turn_number", "config_string"]
+__all__ = ["FANUC_RULES", "COMMENT_MAX", "turn_number", "config_string", "held_frame_values"]
 
 
 FANUC_RULES = NameRules(max_len=36, upper=True, reserved=frozenset({"MAIN"}), prefix="P")
@@ -117,3 +117,12 @@ def _loop_head(var: LoopVar) -> str:
     if var.name is None:
         return f"repeat {var.last - var.first + 1}"
     return f"for {var.name} = {var.first} .. {var.last}"
+
+
+def held_frame_values(x: float, y: float, z: float, w: float, p: float, r: float) -> list[str]:
+    """The comment lines giving a taught frame's X, Y, Z (mm) and W, P, R (deg) to 0.001, as the
+    pendant shows them: re-expanding a target through them stays within 0.01 mm. Each line fits
+    a TP comment (COMMENT_MAX characters); X Y Z go on two lines when one cannot hold them."""
+    xyz = f"X {fmt(x, 3)} Y {fmt(y, 3)} Z {fmt(z, 3)}"
+    rows = [xyz] if len(xyz) <= COMMENT_MAX else [f"X {fmt(x, 3)} Y {fmt(y, 3)}", f"Z {fmt(z, 3)}"]
+    return rows + [f"W {fmt(w, 3)} P {fmt(p, 3)} R {fmt(r, 3)}"]

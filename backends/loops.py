@@ -36,6 +36,8 @@ import numpy as np
 from rmot.lang import ir, ir_tree, plan_types
 from rmot.lang.record import record
 from rmot.lang.ir_tree import bind_loop_variable
+from rmot.backends.loop_words import field_words as _field_words, kind_words as _kind, show as _show
+from rmot.backends.loop_words import show_difference as _show_difference, show_key as _show_key
 
 __all__ = [
     "ConfigKey",
@@ -358,7 +360,7 @@ def _compare_node(
             raise _Differs(
                 b.uid,
                 f"the {_kind(b)}'s {_field_words(name)} differs from the first "
-                f"iteration's ({_show(bv)} vs {_show(tv)})",
+                f"iteration's ({_show_difference(bv, tv)})",
                 b.span,
             )
     _compare_record(t, b, run)
@@ -484,54 +486,6 @@ def _with_targets(
     choices = template.choices if choices is None else choices
     inner = {uid: _with_targets(sub, targets, choices) for uid, sub in template.inner.items()}
     return replace(template, targets=targets, inner=inner, choices=choices)
-
-
-# --------------------------------------------------------------------------- words
-
-
-def _kind(node: ir.Instr) -> str:
-    if isinstance(node, ir.Move):
-        return f"{node.kind.name.lower()} move"
-    return {
-        "SetDigital": "set",
-        "SetAnalog": "set analog",
-        "WaitTime": "wait",
-        "WaitInput": "wait until",
-        "WaitCondition": "wait until",
-        "If": "if",
-        "ProcCall": "call",
-        "VarDecl": "var",
-        "Assign": "assignment",
-        "Loop": "loop",
-        "While": "while",
-        "Stop": "stop",
-    }.get(type(node).__name__, type(node).__name__)
-
-
-def _field_words(name: str) -> str:
-    return {
-        "motion": "speed/zone",
-        "frame": "frame",
-        "tool": "tool",
-        "config": "config",
-        "port": "port",
-        "value": "value",
-        "kind": "motion kind",
-        "target": "target",
-        "condition": "condition",
-        "duration": "duration",
-    }.get(name, name.replace("_", " "))
-
-
-def _show(v: Any) -> str:
-    text = repr(v)
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
-def _show_key(k: Hashable) -> str:
-    if isinstance(k, tuple) and len(k) == 2 and isinstance(k[0], ir.Config):
-        return f"({k[0]}; turns {k[1]})"
-    return str(k)
 
 
 def _key(v: Any) -> Hashable:

@@ -26,7 +26,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders
 
 from rmot.lang._tables import LalrTables
-from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
+from rmot.lang.lexer import AXIS_CONTINUES, BLANKS, CONTINUES, MOUNT_CONTINUES, TOKEN, TokenKinds, in_statement_of
 from rmot.lang.units import COMPOUND_CUT
 
 __all__ = ["LalrDriver", "PostLexState"]
@@ -50,6 +50,8 @@ class LalrDriver:
     def __init__(self, tables: LalrTables, callbacks: dict[Any, Any]) -> None:
         rules = tables.rules
         self.kinds = TokenKinds(tables.terminals)
+        self.axis_starts = frozenset(self.kinds.keywords[w] for w in ("track", "positioner"))
+        self.mount_starts = frozenset(self.kinds.keywords[w] for w in ("robot", "fixture", "tool"))
         self.start_state = tables.start
         self.end_state = tables.end
         # Per state: terminal or rule name -> next state (a shift or a goto), or a reduction
@@ -135,9 +137,11 @@ class LalrDriver:
                     line, line_start = end_line, start + last_nl + 1
                 else:
                     end_line, end_col = line, col + len(value)
-                if depth > 0 or continues(text, end) is not None:
+                if depth > 0 or continues(text, end) is not None or (value[0] != ";" and (  # `;` ends a declaration
+                        AXIS_CONTINUES.match(text, end) is not None and in_statement_of(values, self.axis_starts)
+                        or MOUNT_CONTINUES.match(text, end) is not None and in_statement_of(values, self.mount_starts))):
                     pos = end
-                    continue  # a newline inside ( ) or [ ], or before `to` / `else`
+                    continue  # a newline inside ( ) or [ ], before `to` / `else`, or inside a declaration
                 ttype = "_NL"
             else:
                 if kind == "string":

@@ -63,7 +63,9 @@ def axis_samples(tp: TaskPlan, axes: tuple[ExtAxis, ...], t: np.ndarray | None =
 
 
 def axis_findings(tp: TaskPlan, external: ExternalAxes | None) -> list[Diagnostic]:
-    """E605 at each move that drives an axis outside its range, naming the axis."""
+    """E605 at each move that drives an axis outside its range, naming the axis, from the instant
+    it leaves the range to the move's end (a later move that leaves it there is not reported
+    again: the finding is the move that took it out)."""
     axes = {a.name: a for a in task_axes(tp.task, external)}
     found: list[Diagnostic] = []
     for instr in ir_tree.walk(tp.task.body):
@@ -72,10 +74,24 @@ def axis_findings(tp: TaskPlan, external: ExternalAxes | None) -> list[Diagnosti
         rec = tp.record(instr.uid)
         for name, value in instr.ext:
             axis = axes[name]
-            if axis.low - 1e-12 <= value <= axis.high + 1e-12:
+            if axis.low - 1e-12 <= value <= axis.high + 1e-12 or (
+                    rec is not None and rec.variant == 0  # on the main timeline: where the move starts is known
+                    and abs(float(axis_samples(tp, (axis,), np.array([rec.t_start]))[0, 0]) - value) <= 1e-12):
                 continue
             found.append(Diagnostic(
                 codes_axes.EXT_AXIS_LIMIT, Severity.ERROR,
                 f"axis '{name}' must stay within [{axis.shown(axis.low)}, {axis.shown(axis.high)}] (got {axis.shown(value)})",
-                instr.span, time_s=rec.t_end if rec is not None else None, task=tp.task.name))
+                instr.span, time_s=None if rec is None else _leaves_range(tp, axis, rec),
+                end_time_s=None if rec is None else rec.t_end, task=tp.task.name))
     return found
+
+
+def _leaves_range(tp: TaskPlan, axis: ExtAxis, rec: InstructionRecord) -> float:
+    """The first sample of `rec`'s move at which `axis` is outside its range (its end if none)."""
+    t = tp.trajectory.t
+    times = t[(t >= rec.t_start) & (t <= rec.t_end)]
+    if times.size == 0:
+        return rec.t_end
+    values = axis_samples(tp, (axis,), times)[:, 0]
+    outside = np.flatnonzero((values < axis.low - 1e-12) | (values > axis.high + 1e-12))
+    return float(times[outside[0]]) if outside.size else rec.t_end

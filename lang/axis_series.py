@@ -99,14 +99,20 @@ def move_values(node: ir.Instr | None, axes: tuple[ExtAxis, ...]) -> dict[str, f
 def robot_bases(tp: TaskPlan, external: ExternalAxes | None, t: np.ndarray | None = None) -> np.ndarray | None:
     """(N, 4, 4) world poses of the task's robot base at `t` (default: its samples) when it rides
     on a track the task drives; None when its base stands still."""
+    return riding_poses(tp, external, tp.robot, t)
+
+
+def riding_poses(tp: TaskPlan, external: ExternalAxes | None, body: str, t: np.ndarray | None = None) -> np.ndarray | None:
+    """(N, 4, 4) world poses at `t` (default: the task's samples) of `body` (a robot, fixture or
+    frame) riding on a mechanism the task drives; None when it stands still."""
     axes = task_axes(tp.task, external)
-    if external is None or external.mount(tp.robot) is None or not axes:
+    if external is None or external.mount(body) is None or not axes:
         return None
     times = tp.trajectory.t if t is None else np.asarray(t, dtype=float)
     values = axis_samples(tp, axes, times)
     out = np.empty((times.shape[0], 4, 4))
     for i, row in enumerate(values):
-        pose = external.world(tp.robot, {a.name: float(v) for a, v in zip(axes, row)})
+        pose = external.world(body, {a.name: float(v) for a, v in zip(axes, row)})
         assert pose is not None
         out[i] = pose.matrix()
     return out

@@ -7,7 +7,10 @@ parser state). It keeps the same contract:
     so `on`, `in`, `m`, `s` stay usable as names where no keyword fits;
   * a word the parser cannot take at all keeps its keyword type (better error messages);
   * `_NL` is a run of newlines, `;`, blank lines and comments; a newline before `to` or
-    `else` is whitespace, so a circular move and an if/else may span lines.
+    `else` is whitespace, so a circular move and an if/else may span lines; inside a `track`
+    or `positioner` declaration a newline before an axis option (`speed`, `accel`, `inform`,
+    `solid`, `mass`) or `on` is whitespace too, so a track spans lines as a positioner does,
+    and so is one before `on` in a `robot`, `fixture` or `tool` declaration.
 Errors: a character that starts no token raises lark's UnexpectedCharacters.
 
 `TOKEN` + `TokenKinds` are what lang/_lalr.py fuses into its parse loop (one match per
@@ -22,7 +25,7 @@ from typing import Any
 
 from rmot.lang.units import BASE_UNITS, COMPOUND_UNIT
 
-__all__ = ["BLANKS", "CONTINUES", "TOKEN", "TokenKinds"]
+__all__ = ["AXIS_CONTINUES", "BLANKS", "CONTINUES", "MOUNT_CONTINUES", "TOKEN", "TokenKinds", "in_statement_of"]
 
 _SIMPLE_UNITS = frozenset(BASE_UNITS)
 # The parse loop (lang/_lalr.py) takes the blanks and a comment before a token in the same
@@ -39,6 +42,12 @@ TOKEN = re.compile(r"""
 """, re.X)
 BLANKS = re.compile(r"[ \t\f\r]*+(?:\#[^\n]*+)?+")
 CONTINUES = re.compile(r"\s*(?:to|else|at)(?![A-Za-z0-9_])")
+# The words that continue a track or positioner declaration on the next line (only there: a
+# line starting with `speed` elsewhere is a speed setting).
+AXIS_CONTINUES = re.compile(r"\s*(?:speed|accel|inform|solid|mass|on)(?![A-Za-z0-9_])")
+# `on NAME` continues a robot, fixture or tool declaration on the next line (no statement starts with it).
+MOUNT_CONTINUES = re.compile(r"\s*on(?![A-Za-z0-9_])")
+_STATEMENT_BOUNDS = frozenset({"_NL", "LBRACE", "RBRACE"})
 _WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout"})))
 
 
@@ -68,3 +77,16 @@ class TokenKinds:
         if "NAME" in accepts or kw is None:
             return "NAME"
         return kw
+
+
+def in_statement_of(values: Any, starts: frozenset[str]) -> bool:
+    """Whether the parser's value stack is inside a statement that began with one of the token
+    types `starts` (e.g. the `track` and `positioner` keywords): the statement's tokens stay on the
+    stack until it ends, and the newline or brace before it bounds the search."""
+    for value in reversed(values):
+        kind = getattr(value, "type", None) if isinstance(value, str) else None
+        if kind in starts:
+            return True
+        if kind in _STATEMENT_BOUNDS:
+            return False
+    return False

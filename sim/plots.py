@@ -7,7 +7,9 @@
     torque    joint torques by inverse dynamics (sim.limits.joint_torques) against the
               model's effort limits, where the robot model has inertias
     tcp       TCP speed in world (a robot on a track: with its carriage) against the programmed
-              speed of each linear/circular move, with the planner's W221 slowdowns shaded
+              speed of each linear/circular move, with the planner's W221 slowdowns shaded; on a
+              coordinated move (its frame on a turning positioner) the speed relative to that
+              frame, which is what its programmed speed means
     timeline  each task's instructions side by side on one time axis: moves, waits, syncs, I/O
 
 matplotlib is imported inside the functions (Agg backend, no display), so importing this
@@ -28,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from rmot.lang import ir, ir_tree
-from rmot.lang.axis_series import AxisSeries, axis_series, robot_bases
+from rmot.lang.axis_series import AxisSeries, axis_series, riding_poses, robot_bases
 from rmot.lang.plan_types import Plan, TaskPlan
 
 __all__ = ["KINDS", "PlotData", "figure_bytes", "plot_data"]
@@ -109,13 +111,7 @@ def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: 
         which = np.clip(np.searchsorted(starts, traj.t, side="right") - 1, 0, len(moves) - 1)
         for k, (_, _, move) in enumerate(moves):
             tcp[which == k] = move.tool.tcp.matrix()
-    if traj.t.size > 1:
-        riding = robot_bases(tp, plan.program.cell.external)  # a robot on a track: its base moves
-        points = ((base if riding is None else riding) @ np.asarray(robot.fk_batch(traj.q)) @ tcp)[:, :3, 3]
-        speed = np.gradient(points, traj.t, axis=0)
-        tcp_speed = np.linalg.norm(speed, axis=1) * 1000.0
-    else:
-        tcp_speed = np.zeros(traj.t.size)
+    tcp_speed = _tcp_speed(plan, tp, robot, base, tcp, moves)
     programmed = [(t0, t1, m.motion.tcp_speed * 1000.0) for t0, t1, m in moves
                   if m.kind in (ir.MotionKind.LINEAR, ir.MotionKind.CIRCULAR) and t1 > t0]
     slowdowns = []
@@ -137,6 +133,32 @@ def _task_data(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, payload: 
                     np.asarray(robot.joint_limits) * f[:, None], np.asarray(robot.velocity_limits) * f,
                     np.asarray(robot.accel_limits) * f, tau, tau_lim, tcp_speed, programmed, slowdowns, bars,
                     tuple(t == "P" for t in robot.joint_types), axis_series(tp, plan.program.cell.external))
+
+
+def _tcp_speed(plan: Plan, tp: TaskPlan, robot: Any, base: np.ndarray, tcp: np.ndarray, moves: list[Any]) -> np.ndarray:
+    """(N,) mm/s: the TCP's speed in world (with the carriage of a robot on a track), and during
+    a coordinated move relative to its frame riding on the positioner (the programmed speed's
+    meaning), each differentiated in time over the samples of the move and one either side."""
+    t = tp.trajectory.t
+    if t.size < 2:
+        return np.zeros(t.size)
+    external = plan.program.cell.external
+    riding = robot_bases(tp, external)  # a robot on a track: its base moves
+    world = (base if riding is None else riding) @ np.asarray(robot.fk_batch(tp.trajectory.q)) @ tcp
+    out: np.ndarray = np.linalg.norm(np.gradient(world[:, :3, 3], t, axis=0), axis=1) * 1000.0
+    for t0, t1, move in moves:
+        if move.coordinated is None or not move.coordinated.relative():
+            continue
+        inside = np.flatnonzero((t >= t0) & (t <= t1))
+        if inside.size == 0:
+            continue
+        lo, hi = max(int(inside[0]) - 1, 0), min(int(inside[-1]) + 2, t.size)
+        frames = riding_poses(tp, external, move.coordinated.frame, t[lo:hi])
+        if frames is None or hi - lo < 2:
+            continue
+        relative = (np.linalg.inv(frames) @ world[lo:hi])[:, :3, 3]
+        out[inside] = (np.linalg.norm(np.gradient(relative, t[lo:hi], axis=0), axis=1) * 1000.0)[inside - lo]
+    return out
 
 
 def plot_data(plan: Plan) -> PlotData:

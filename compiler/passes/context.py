@@ -89,12 +89,15 @@ class Reporter:
         self.sink.add(Diagnostic(code, Severity.WARNING, message, span, notes))
 
     def unknown(self, name: str, what: str, span: Span | None, candidates: list[str], code: Code = codes.UNKNOWN_NAME) -> None:
-        """`unknown <what> 'x'; did you mean 'y'?` (difflib's closest candidate, if close enough);
-        nothing for a name whose declaration failed (its error is reported there)."""
+        """`unknown <what> 'x'; did you mean 'y'?` (the names that extend 'x' by `_...`, as a
+        family name does its variants: `abb_irb2600` -> 'abb_irb2600_12_165'; else difflib's
+        closest candidate, if close enough); nothing for a name whose declaration failed (its
+        error is reported there)."""
         if name in self.failed_declarations:
             return
-        near = difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)
-        hint = f"; did you mean '{near[0]}'?" if near else ""
+        near = [c for c in sorted(set(candidates)) if c.startswith(name + "_")][:3] \
+            or difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)
+        hint = f"; did you mean {' or '.join(repr(n) for n in near)}?" if near else ""
         self.error(code, f"unknown {what} '{name}'{hint}", span)
 
     @property

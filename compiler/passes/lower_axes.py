@@ -36,6 +36,7 @@ Program (`ProgramAxes`, used by the task lowering):
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
 
 from rmot.lang import codes_axes, ir
@@ -209,14 +210,20 @@ class CellAxes:
         self.mounts.append(Mount(body, kind, mech.name, local, span))
         return mech.flange(mech.home()) * local
 
-    def frame(self, name: str, value: ast.Expr, world: ir.Pose, span: Span) -> None:
-        """A frame whose value names a mechanism rides on it (at its place at home)."""
-        riding = sorted(names_in(value) & set(self.mechanisms)) if self.mechanisms else []
+    def frame(self, name: str, value: ast.Expr, world: ir.Pose, span: Span, number: ast.Expr | None = None) -> None:
+        """A frame whose value names a mechanism, or a frame riding on one, rides on it (at its
+        place at home): `frame seam = work * pose(x=-150mm)` moves with `work`'s positioner."""
+        carried = {m.body: m.mechanism for m in self.mounts if m.kind == "frame"}
+        riding = sorted({carried.get(n, n) for n in names_in(value) if n in self.mechanisms or n in carried})
         if len(riding) > 1:
             self.rep.error(codes_axes.EXT_MOUNT, f"frame '{name}' must ride on one mechanism (got {', '.join(riding)})", value.span)
         elif riding:
             mech = self.mechanisms[riding[0]]
             self.mounts.append(Mount(name, "frame", mech.name, mech.flange(mech.home()).inverse() * world, span))
+            if number is not None:
+                self.rep.warning(codes_axes.EXT_FRAME_NUMBER, f"frame '{name}' rides on '{mech.name}': its number is not "
+                                 "used (a program that moves it writes the frame through the mechanism: RAPID's "
+                                 "coordinated wobjdata, KRL's EK() base, Fanuc's UFRAME 0 at the axis values)", number.span)
 
 
 def _shown(x: float, dim: Dim) -> str:
@@ -307,8 +314,24 @@ class ProgramAxes:
             self.rep.error(codes_axes.EXT_MOTION, f"{what} (got {got}): every later move starts from them; "
                            "move the axes back inside it, or before or after it", span)
 
+    def read_at_home(self, e: ast.Expr, what: str) -> None:
+        """W607 where an expression reads, as a pose, a frame riding on a mechanism this program
+        moves (or the mechanism): that is its place with every axis at home, and a target built
+        from it stays there when the part moves; a pose given in the riding frame follows it."""
+        riding = {m.body: m.mechanism for m in self.external.mounts if m.kind == "frame" and m.mechanism in self.mechanisms}
+        riding |= {name: name for name in self.mechanisms}
+        named = sorted(names_in(e) & set(riding))
+        if named:
+            name = named[0]
+            how = f"`frame {name}`" if name != riding[name] else f"a frame riding on '{name}'"
+            self.rep.warning(codes_axes.EXT_VALUE_AT_HOME, f"{what} reads '{name}' as a pose: its place with the axes at "
+                             f"home, which stays there when '{riding[name]}' moves; give the pose in {how} to follow it", e.span)
+
     def move(self, move: ir.Move, s: ast.Move, scope: Scope) -> ir.Move | None:
         """`move` with the axis values at its target (its `ext(...)` over the values so far)."""
+        self.read_at_home(s.target, "the move's target")
+        if s.via is not None:
+            self.read_at_home(s.via, "the move's via point")
         values = dict(self.values)
         for m in s.modifiers:
             if m.kind == "ext" and not self._ext(m.value, scope, values):  # type: ignore[arg-type]
@@ -379,8 +402,19 @@ class ProgramAxes:
                            self.robot.base, tuple((a.name, self.values[a.name]) for a in self.axes), self.external,
                            None if carrier is not None else move.frame.world)
 
-    def move_axes(self, s: ast.MoveAxes, scope: Scope) -> ir.Move | None:
-        """`move axes M to VALUES`: the arm holds the joints of the last move."""
+    def move_axes(self, s: ast.MoveAxes, scope: Scope, timer: Callable[[ast.Expr, Scope, str], float | None]) -> ir.Move | None:
+        """`move axes M to VALUES`: the arm holds the joints of the last move. Its only modifier
+        is `time T` (`timer` evaluates it): the axes move at their own speed and acceleration,
+        so a speed, zone, tool or frame there would be silently meaningless (E611)."""
+        duration = None
+        for m in s.modifiers:
+            if m.kind != "time":
+                self.rep.error(codes_axes.EXT_AXES_MODIFIER, f"'move axes' takes no '{m.kind}' (its axes move at their own "
+                               "speed and acceleration, the arm holds its joints); only 'time' may slow it", m.span)
+                return None
+            duration = timer(m.value, scope, "move time")  # type: ignore[arg-type]
+            if duration is None:
+                return None
         if s.mechanism.name not in self.mechanisms:
             self.rep.unknown(s.mechanism.name, "mechanism this program drives", s.mechanism.span, list(self.mechanisms),
                              codes_axes.EXT_VALUES)
@@ -393,7 +427,7 @@ class ProgramAxes:
         if not self._assign(s.mechanism.name, s.values, scope, values):
             return None
         held = replace(self.last, axes_only=True, kind=ir.MotionKind.JOINT, via=None, span=s.span, uid=0, free=None, coordinated=None,
-                       motion=replace(self.last.motion, duration=None))
+                       motion=replace(self.last.motion, duration=duration))
         return self._timed(self._resolved(held, values, keep_base_pose=True), values)
 
     def _timed(self, move: ir.Move | None, values: dict[str, float]) -> ir.Move | None:
@@ -413,10 +447,15 @@ class ProgramAxes:
         return move
 
     def _ext(self, args: tuple[ast.Arg, ...], scope: Scope, values: dict[str, float]) -> bool:
+        named: set[str] = set()
         for arg in args:
             if arg.name is None:
                 self.rep.error(codes_axes.EXT_VALUES, "ext(...) must name each mechanism (`ext(rail=1200mm)`)", arg.span)
                 return False
+            if arg.name.name in named:
+                self.rep.error(codes_axes.EXT_VALUES, f"ext(...) must set '{arg.name.name}' once (got it twice)", arg.span)
+                return False
+            named.add(arg.name.name)
             if arg.name.name not in self.mechanisms:
                 self.rep.unknown(arg.name.name, "mechanism this program drives", arg.name.span, list(self.mechanisms),
                                  codes_axes.EXT_VALUES)

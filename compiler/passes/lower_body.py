@@ -134,7 +134,9 @@ class TaskLowering:
         if isinstance(s, ast.Move):
             return self.move(s, scope, modal)
         if isinstance(s, ast.MoveAxes):
-            return self.axes.move_axes(s, scope) if self.axes is not None else self._no_axes(s.span)
+            return self.axes.move_axes(s, scope, self._time) if self.axes is not None else self._no_axes(s.span)
+        if isinstance(s, (ast.TargetDecl, ast.ConstDecl, ast.FrameDecl)) and self.axes is not None:
+            self.axes.read_at_home(s.value, f"'{s.name.name}'")  # a program's frame rides on nothing
         if isinstance(s, (ast.TargetDecl, ast.ConstDecl)):
             declare_value(s, scope, self.rep)
         elif isinstance(s, ast.FrameDecl):

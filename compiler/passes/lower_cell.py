@@ -268,7 +268,7 @@ class _CellBuilder:
         if pose is not None and declare(self.scope, Entry("frame", s.name.name, PoseV(pose, s.name.name), s.name.span), self.rep):
             self.frames.append(ir.Frame(s.name.name, pose, span=s.span,
                                         number=self._number(s.number, f"frame '{s.name.name}'")))
-            self.axes.frame(s.name.name, s.value, pose, s.span)
+            self.axes.frame(s.name.name, s.value, pose, s.span, s.number)
 
     def _MechanismDecl(self, s: ast.MechanismDecl) -> None:
         flange = self.axes.mechanism(s, self._pose(s.at, f"placement of {s.kind} '{s.name.name}'"))

@@ -20,7 +20,7 @@ as the joint-space line through path_piece): the motion slows where the motors n
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -75,6 +75,10 @@ def time_chain(robot: RobotModel, segments: list[Segment],
         timed = _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, duration, torque)
         if floor is not None and timed.piece.duration < floor:
             timed = _joint_chain(segments[0], vmax * segments[0].speed_factor, amax, floor, torque)
+            if duration is not None and timed.error is None:  # the programmed time cannot hold: say so
+                error = (f"time must be at least the {floor:.3f} s the external axes need for their move "
+                         f"(got {duration:.3f} s)")
+                timed = replace(timed, error=error, error_is_time=True)
         return timed
     path = blend_chain(robot, segments)
     return _path_chain(path, segments, vmax, amax, duration, torque)

@@ -18,7 +18,7 @@ from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
 from rmot.lang import _build
 from rmot.lang._tables import GRAMMAR
-from rmot.lang.lexer import BLANKS, CONTINUES, TOKEN, TokenKinds
+from rmot.lang.lexer import AXIS_CONTINUES, BLANKS, CONTINUES, MOUNT_CONTINUES, TOKEN, TokenKinds, in_statement_of
 from rmot.lang.units import COMPOUND_CUT
 
 __all__ = ["PostLexer", "RmotLexer", "reference_parser"]
@@ -32,6 +32,8 @@ class RmotLexer(Lexer):
     def __init__(self, lexer_conf: Any) -> None:
         kinds = TokenKinds(lexer_conf.terminals)
         self.punct, self._word_type = kinds.punct, kinds.word_type
+        self._axis_starts = frozenset(kinds.keywords[w] for w in ("track", "positioner"))
+        self._mount_starts = frozenset(kinds.keywords[w] for w in ("robot", "fixture", "tool"))
 
     def lex(self, lexer_state: Any, parser_state: Any) -> Iterator[Token]:
         text = getattr(lexer_state.text, "text", lexer_state.text)
@@ -55,7 +57,11 @@ class RmotLexer(Lexer):
                 newlines = value.count("\n")
                 end_line = line + newlines
                 end_col = (end - (value.rfind("\n") + start)) if newlines else col + len(value)
-                skip = CONTINUES.match(text, end) is not None
+                skip = CONTINUES.match(text, end) is not None or (value[0] != ";" and (
+                    AXIS_CONTINUES.match(text, end) is not None
+                    and in_statement_of(parser_state.value_stack, self._axis_starts)
+                    or MOUNT_CONTINUES.match(text, end) is not None
+                    and in_statement_of(parser_state.value_stack, self._mount_starts)))
                 tok = None if skip else Token("_NL", value, start, line, col, end_line, end_col, end)
                 if newlines:
                     line, line_start = end_line, start + value.rfind("\n") + 1

@@ -118,6 +118,10 @@ def test_a_generated_program_parses_as_with_larks_loop() -> None:
     "move circular via a\n  to b\n", "if in[1] { wait 1 s }\n  else { wait 2 s }\n", "move joint f(1,\n 2)\n",
     "program p {\n  move linear p\n", "}\n", "move linear \"abc\n", "move @\n", "  # only a comment", "a\r\nb\r\n",
     "target t = pose(x=1mm) # end", "wait 1 s   ", "move linear p\t\f;;\n\n# c\n;move joint q", "set out[1] = on;",
+    "track r = linear(axis x, range(0mm, 1mm))\n  speed 1 mm/s\n  accel 2 mm/s^2 # c\n\n  mass 3 kg\n  on q\n  at pose()\nspeed 1 mm/s\n",
+    "positioner p = axes(revolute(axis z, range(0deg, 1deg)))\n  on r\n  at pose()\nmove linear p\n  speed 1 mm/s\n",
+    "fixture f = box(1mm, 1mm, 1mm)\n  on p\n  at pose()\ntool t = none\n  on r1\nrobot r = kuka_kr16\n  on q\ntool x\n  on\n",
+    "track r = linear(axis x, range(0mm, 1mm)); speed 1 mm/s\nfixture f = box(1mm, 1mm, 1mm) ;\n on p\n",
 ], ids=repr)
 def test_edge_cases_parse_as_with_larks_loop(text: str) -> None:
     """Units that do not fit, continued lines, unclosed braces, bad characters, trailing blanks."""
