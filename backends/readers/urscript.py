@@ -69,7 +69,9 @@ class _Script:
         for n, raw in enumerate(text.split("\n"), 1):
             code = raw.split("#")[0].strip() if '"' not in raw else _strip_hash(raw).strip()
             if code and not code.startswith("$"):
-                self.lines.append(_Line(code, Where(path, n, len(raw) - len(raw.lstrip()) + 1)))
+                indent = len(raw) - len(raw.lstrip())
+                for offset, part in _split_statements(code):
+                    self.lines.append(_Line(part, Where(path, n, indent + offset + 1)))
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
         self.limits = limits
         self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg
@@ -512,6 +514,46 @@ def _strip_hash(line: str) -> str:
         elif ch == "#" and not quote:
             return line[:i]
     return line
+
+
+_HEADER = re.compile(r"(?:if|elif|while|for|def|thread)\b|else\s*:")
+_OPERATORS = {"and", "or", "xor", "not", "True", "False"}
+
+
+def _split_statements(code: str) -> list[tuple[int, str]]:
+    """The statements of one line, each with its offset: URScript ends a statement at the line's
+    end or where the next begins (URScript manual, "The URScript Programming Language": no
+    separator is needed), so `if (c): movej(q) end` and `movel(p, a=1, v=0.1)  sleep(0.5)`
+    are three and two statements. A block header ends at its `:` outside brackets; a statement
+    ends after a closing bracket followed by a name that is not an operator, and before `end`."""
+    out: list[tuple[int, str]] = []
+    start, depth, quote, header = 0, 0, False, _HEADER.match(code) is not None
+    i = 0
+    while i < len(code):
+        ch = code[i]
+        if ch == '"':
+            quote = not quote
+        elif quote:
+            pass
+        elif ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        elif depth == 0 and ch == ":" and header:
+            out.append((start, code[start:i + 1]))
+            start, header = i + 1, False
+        elif depth == 0 and ch.isspace() and code[start:i].strip():
+            word = re.match(r"\s+([A-Za-z_]\w*)", code[i:])
+            closed = code[start:i].rstrip().endswith((")", "]"))
+            if word and (word.group(1) == "end" or closed and word.group(1) not in _OPERATORS):
+                out.append((start, code[start:i]))
+                start = i + len(word.group(0)) - len(word.group(1))
+                header = _HEADER.match(code[start:]) is not None
+                i = start
+                continue
+        i += 1
+    out.append((start, code[start:]))
+    return [(offset + len(part) - len(part.lstrip()), part.strip()) for offset, part in out if part.strip()]
 
 
 def _unwrap(text: str) -> str:
