@@ -104,37 +104,57 @@ class _Script:
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
             raise self.tally.fail("a URScript program must start with `def name():` or a statement "
                                   f"(got `{first.text[:40]}`)", first.where)
-        if m:
+        if m and not self._statements_follow(m.group(1)):
             self.name = self.main = m.group(1)
-            body, i = self._block(1, ("end",))
+            body, _ = self._block(1, ("end",))
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
-            for ln in self.lines[i + 1:]:
-                if not re.fullmatch(rf"{self.main}\s*\(\s*\)", ln.text):
-                    self.routines[-1] = Routine(self.main, (), self.routines[-1].body + (self.tally.keep(
-                        ln.text, ln.where, "a statement after the program's def"),), first.where)
-        else:
+        else:  # a script whose top-level statements run: its defs are functions it calls
             body, _ = self._block(0, ())
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
 
+    def _end_of(self, i: int) -> int:
+        """The index of the `end` that closes the block opened at line `i` (its ifs, loops and
+        functions end before it), or the last line's index + 1 when none does."""
+        j, depth = i + 1, 1
+        while j < len(self.lines):
+            depth += self.lines[j].head in ("if", "while", "for", "def", "thread")
+            depth -= self.lines[j].head == "end"
+            if depth == 0:
+                break
+            j += 1
+        return j
+
+    def _statements_follow(self, name: str) -> bool:
+        """Whether statements other than the call `name()` follow the first def's `end`: then
+        the script's top-level statements are what runs (the def a function they may call)."""
+        return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
+
     def _scan_numbers(self) -> None:
-        """Which names the file assigns, how often, and which inside a nested block (deeper than
-        the program's own body): a move reads such a variable only where its value is certain."""
-        body_col = self.lines[1].where.col if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) \
-            and len(self.lines) > 1 else self.lines[0].where.col
+        """Which names the file assigns (any value), how often, and which inside a nested block
+        (an if, loop, function or thread deeper than the program's own body, counted by its
+        `end`s, as PolyScope does not always indent): a move reads a variable, and a target
+        is declared, only where its value is certain."""
+        depth = 0
+        top = 1 if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) else 0
         for ln in self.lines:
-            m = _ASSIGN.fullmatch(ln.text)
+            m = _ANY_ASSIGN.match(ln.text)
             if m:
                 self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
-                if ln.where.col > body_col:
+                if depth > top:
                     self.nested_set.add(m.group(1))
+            depth += ln.head in ("if", "while", "for", "def", "thread")
+            depth -= ln.head == "end"
 
     def _number_set(self, text: str) -> None:
         """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =
-        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`)."""
-        m = _ASSIGN.fullmatch(text)
-        value = number(m.group(2)) if m else None
-        if m is not None and value is not None:
-            self.values[m.group(1)] = value
+        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`); any other value
+        forgets it."""
+        m = _ANY_ASSIGN.match(text)
+        value = _ASSIGN.fullmatch(text)
+        if m is not None:
+            self.values.pop(m.group(1), None)
+        if value is not None and number(value.group(2)) is not None:
+            self.values[value.group(1)] = number(value.group(2))  # type: ignore[assignment]
 
     def _value(self, text: str) -> float | None:
         """A move argument: a number, or a variable whose value at this move is certain (set once
@@ -220,13 +240,7 @@ class _Script:
         """A thread: the backend's pulse thread (out on, sleep, out off) is remembered as a
         pulse for the `run` that starts it; any other thread is kept native."""
         ln = self.lines[i]
-        j, depth = i + 1, 1
-        while j < len(self.lines):  # the thread's own `end` (its ifs and whiles end before it)
-            depth += self.lines[j].head in ("if", "while", "for", "def", "thread")
-            depth -= self.lines[j].head == "end"
-            if depth == 0:
-                break
-            j += 1
+        j = self._end_of(i)
         name = re.match(r"(?:def|thread)\s+(\w+)", ln.text).group(1)  # type: ignore[union-attr]
         inner = [x.text.replace(" ", "") for x in self.lines[i + 1:j]]
         m = re.fullmatch(r"set_(standard|configurable)_digital_out\((\d+),True\)", inner[0]) if len(inner) == 3 else None
@@ -366,16 +380,48 @@ class _Script:
         return None
 
     def _declare(self, ln: _Line) -> bool:
-        """`[global] name = p[...]` or `= [j1, ..]` once, at its first assignment: a target."""
-        m = re.fullmatch(r"(?:global\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
+        """`[global] name = p[...]`, `= [j1, ..]`, or `= pose_add(A, B)` / `pose_trans(A, B)` of
+        poses known here, assigned once in the file: a target."""
+        m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
         values = _numbers(m.group(3)) if m else None
-        if m is None or values is None or len(values) != 6 or m.group(1) in self.targets:
+        combined = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(pose_add|pose_trans)\((.*)\)", ln.text)
+        name = (m or combined).group(1) if m or combined else ""  # type: ignore[union-attr]
+        if self.assigned.get(name, 0) != 1 or name in self.targets:
+            return False
+        if combined:
+            pose = self._combined(combined.group(2), split_top(combined.group(3)))
+            if pose is not None:
+                self.targets[name] = Target(name, pose, None, None, ln.where)
+            return pose is not None
+        if m is None or values is None or len(values) != 6:
             return False
         if m.group(2):
-            self.targets[m.group(1)] = Target(m.group(1), ur_pose(values), None, None, ln.where)
+            self.targets[name] = Target(name, ur_pose(values), None, None, ln.where)
         else:
-            self.targets[m.group(1)] = Target(m.group(1), None, tuple(math.degrees(v) for v in values), None, ln.where)
+            self.targets[name] = Target(name, None, tuple(math.degrees(v) for v in values), None, ln.where)
         return True
+
+    def _known_pose(self, text: str) -> ir.Pose | None:
+        """A pose literal `p[..]` or a target declared with a pose."""
+        literal = re.fullmatch(r"p\[(.*)\]", text.replace(" ", ""))
+        values = _numbers(literal.group(1)) if literal else None
+        if values is not None and len(values) == 6:
+            return ur_pose(values)
+        target = self.targets.get(text.strip())
+        return target.pose if target is not None else None
+
+    def _combined(self, func: str, parts: list[str]) -> ir.Pose | None:
+        """URScript manual, module math: `pose_trans(A, B)` is B expressed in A's frame (A * B);
+        `pose_add(A, B)` adds the positions and turns A's orientation by B's (R_B R_A), both in
+        the base frame."""
+        poses = [self._known_pose(p) for p in parts] if len(parts) == 2 else []
+        if len(poses) != 2 or poses[0] is None or poses[1] is None:
+            return None
+        a, b = poses
+        if func == "pose_trans":
+            return a * b
+        turned = ir.Pose((0.0, 0.0, 0.0), b.quaternion) * ir.Pose((0.0, 0.0, 0.0), a.quaternion)
+        return ir.Pose(tuple(u + v for u, v in zip(a.position, b.position)), turned.quaternion)  # type: ignore[arg-type]
 
     def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
         """(rmot expression, declared name, declaration) of a URScript pose or joint list
@@ -496,7 +542,8 @@ class _Script:
                     accel=accel, joint_accel=jacc)
 
 
-_ASSIGN = re.compile(r"(?:global\s+)?(\w+)\s*=\s*([-+\d.eE]+)")
+_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=\s*([-+\d.eE]+)")
+_ANY_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)")
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
 
 
