@@ -82,6 +82,7 @@ class _Script:
         self.pulses: dict[str, tuple[int, float]] = {}
         self.routines: list[Routine] = []
         self.defs: set[str] = set()
+        self.current_domain: set[int] = set()  # analog outputs the file sets to current (mA)
         self.names: set[str] = set()
         self.name = "imported"
         self.main = "imported"
@@ -346,7 +347,13 @@ class _Script:
             t = self.tools[key]
             self.tools[key] = ToolData(t.name, t.tcp, float(m.group(1)), t.where)
             return True
-        return re.fullmatch(r"set_analog_outputdomain\(\d+,1\)", compact) is not None
+        # set_analog_outputdomain(n, 0|1): port n's output is a current (4..20 mA) or a voltage
+        # (0..10 V) (URScript manual, module interfaces); a port set to current keeps its
+        # set_standard_analog_out native (rmot's analog outputs are volts)
+        domain = re.fullmatch(r"set_analog_outputdomain\((\d+),([01])\)", compact)
+        if domain and domain.group(2) == "0":
+            self.current_domain.add(int(domain.group(1)))
+        return domain is not None and domain.group(2) == "1"
 
     def _simple(self, ln: _Line) -> Stmt | None:
         text, where = ln.text.replace(" ", ""), ln.where
@@ -354,20 +361,21 @@ class _Script:
         if m:
             return self._move(m.group(1), split_top(m.group(2)), where)
         # set_digital_out(n, b): the deprecated name of set_standard_digital_out for n in 0..7
-        # (URScript manual CB3, module interfaces); a higher n stays native
-        m = re.fullmatch(r"set_digital_out\(([0-7]),(True|False)\)", text)
-        if m:
-            return SetOut(int(m.group(1)), 1.0 if m.group(2) == "True" else 0.0, where)
-        m = re.fullmatch(r"set_(standard|configurable)_digital_out\((\d+),(True|False)\)", text)
-        if m:
-            return SetOut(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0),
+        # (URScript manual CB3, module interfaces); a higher n stays native. A port or a duration
+        # may be a numeric variable whose value here is certain (`LED = 3`, `sleep(dwell)`).
+        m = re.fullmatch(r"set_(digital|standard_digital|configurable_digital)_out\(([\w.+-]+),(True|False)\)", text)
+        port = self._port(m.group(2)) if m else None
+        if m and port is not None and (m.group(1) != "digital" or port <= 7):
+            return SetOut(port + (8 if m.group(1) == "configurable_digital" else 0),
                           1.0 if m.group(3) == "True" else 0.0, where)
-        m = re.fullmatch(r"set_standard_analog_out\((\d+),([\d.]+)\)", text)
-        if m:
-            return SetOut(int(m.group(1)), float(m.group(2)) * 10.0, where, analog=True)
-        m = re.fullmatch(r"sleep\(([\d.]+)\)", text)
-        if m:
-            return Wait(float(m.group(1)), where)
+        m = re.fullmatch(r"set_standard_analog_out\(([\w.+-]+),([\w.+-]+)\)", text)
+        port, share = (self._port(m.group(1)), self._value(m.group(2))) if m else (None, None)
+        if port is not None and share is not None and 0.0 <= share <= 1.0 and port not in self.current_domain:
+            return SetOut(port, share * 10.0, where, analog=True)
+        m = re.fullmatch(r"sleep\(([\w.+-]+)\)", text)
+        seconds = self._value(m.group(1)) if m else None
+        if seconds is not None and seconds >= 0.0:
+            return Wait(seconds, where)
         m = re.fullmatch(r"(?:\w+=)?run(\w+)\(\)", text)
         if m and m.group(1) in self.pulses:
             port, seconds = self.pulses[m.group(1)]
@@ -378,6 +386,11 @@ class _Script:
         if m and m.group(1) in self.defs:
             return Call(m.group(1), (), where)
         return None
+
+    def _port(self, text: str) -> int | None:
+        """A port number: a non-negative integer, written or held by a certain variable."""
+        value = self._value(text)
+        return int(value) if value is not None and value >= 0 and value == int(value) else None
 
     def _declare(self, ln: _Line) -> bool:
         """`[global] name = p[...]`, `= [j1, ..]`, or `= pose_add(A, B)` / `pose_trans(A, B)` of
