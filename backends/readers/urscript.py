@@ -19,7 +19,7 @@ import re
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, split_top
 from rmot.backends.readers.model import (
-    Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
+    Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
@@ -90,6 +90,7 @@ class _Script:
         self.in_sub = 0  # sub-routine bodies around the statement being read
         self.values: dict[str, float] = {}  # numeric variables as straight-line code has set them
         self.assigned: dict[str, int] = {}  # name -> how many assignments the file holds
+        self.constants: dict[str, float] = {}  # name -> the number its one assignment sets
         self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
 
     # ---------------------------------------------------------------- structure
@@ -139,8 +140,11 @@ class _Script:
         top = 1 if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) else 0
         for ln in self.lines:
             m = _ANY_ASSIGN.match(ln.text)
+            literal = _ASSIGN.fullmatch(ln.text)
             if m:
                 self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
+            if literal and number(literal.group(2)) is not None:
+                self.constants[literal.group(1)] = number(literal.group(2))  # type: ignore[assignment]
                 if depth > top:
                     self.nested_set.add(m.group(1))
             depth += ln.head in ("if", "while", "for", "def", "thread")
@@ -161,9 +165,11 @@ class _Script:
         """A move argument: a number, or a variable whose value at this move is certain (set once
         in the file; or, outside sub-routines, never set inside a nested block)."""
         value = number(text)
+        once = self.assigned.get(text, 0) == 1
+        if value is None and once and text in self.constants:
+            return self.constants[text]  # set once in the file: a function reading it runs after it
         if value is not None or text not in self.values:
             return value
-        once = self.assigned.get(text, 0) == 1
         return self.values[text] if once or (self.in_sub == 0 and text not in self.nested_set) else None
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
@@ -262,17 +268,18 @@ class _Script:
         ok = (w is not None and t[2] == "sync()" and t[3] == "rmot_waited=rmot_waited+get_steptime()"
               and t[4] == "end" and t[5] == f"ifnot({w.group(1)}):" and t[6].startswith("popup(")
               and t[7] == "halt" and t[8] == "end")
-        cond = _cond(w.group(1)) if ok and w else None
+        test = re.fullmatch(r"while\s*not\s*\((.*)\)\s*and\s*rmot_waited\s*<\s*[\d.]+\s*:", self.lines[i + 1].text)
+        cond = _cond(test.group(1)) if ok and test else None
         if cond is None:
             return None
         return [WaitIn(cond, float(w.group(2)), self.lines[i + 1].where)], i + 9  # type: ignore[union-attr]
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
         t = self._texts(i, 3)
-        w = re.fullmatch(r"while(.*):", t[0]) if len(t) == 3 else None
-        test = _unwrap(w.group(1)) if w else ""  # PolyScope: `while (not(get_standard_digital_in(0) == True)):`
-        looped = _cond(test) if t[1:] == ["sync()", "end"] else None
-        cond = Cond(looped.signal, not looped.on) if looped else None  # waits until the loop's test fails
+        w = re.fullmatch(r"while\b(.*):", self.lines[i].text) if len(t) == 3 else None
+        # PolyScope: `while (not(get_standard_digital_in(0) == True)):`; the wait ends when the test fails
+        looped = _cond(w.group(1)) if w and t[1:] == ["sync()", "end"] else None
+        cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,)) if looped else None
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
@@ -296,7 +303,7 @@ class _Script:
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
-        m = re.fullmatch(r"(if|elif|while)\s+(.*):", ln.text)
+        m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
         cond = _FOREVER if forever else _cond(m.group(2)) if m else None
@@ -616,14 +623,6 @@ def _split_statements(code: str) -> list[tuple[int, str]]:
     return [(offset + len(part) - len(part.lstrip()), part.strip()) for offset, part in out if part.strip()]
 
 
-def _unwrap(text: str) -> str:
-    """`text` without spaces and without parentheses that enclose all of it."""
-    text = text.replace(" ", "")
-    while text.startswith("(") and text.endswith(")") and _balanced(text[1:-1]):
-        text = text[1:-1]
-    return text
-
-
 def _balanced(text: str) -> bool:
     depth = 0
     for ch in text:
@@ -633,18 +632,51 @@ def _balanced(text: str) -> bool:
     return depth == 0
 
 
-def _cond(text: str) -> Cond | None:
-    """`get_standard_digital_in(n) == True|False`, bare, or `not ...`, each maybe in parentheses
-    (configurable: n + 8)."""
-    text = _unwrap(text)
-    neg = text.startswith("not")
-    if neg:
-        text = _unwrap(text[3:])
-    m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:==(True|False))?", text)
+def _cond(text: str) -> Cond | Conds | None:
+    """A condition on digital inputs: `get_standard_digital_in(n) == True|False` (or `!=`, or
+    bare), combined by `not`, `and`, `or` with URScript's (Python's) priority, `not` binding
+    tightest and `or` loosest, in any parentheses (configurable: n + 8)."""
+    text = _outer(text)
+    for op in ("or", "and"):
+        parts = _split_word(text, op)
+        if len(parts) > 1:
+            read = [_cond(part) for part in parts]
+            return None if any(c is None for c in read) else Conds(op, tuple(read))  # type: ignore[arg-type]
+    negated = re.fullmatch(r"not\b\s*(.*)", text, re.S)
+    if negated:
+        inner = _cond(negated.group(1))
+        if inner is None or isinstance(inner, Cond):
+            return Cond(inner.signal, not inner.on) if inner else None
+        return Conds("not", (inner,))
+    m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:(==|!=)(True|False))?", text.replace(" ", ""))
     if m is None:
         return None
-    on = (m.group(3) or "True") == "True"
-    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != neg)
+    on = (m.group(4) or "True") == "True"
+    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != (m.group(3) == "!="))
+
+
+def _outer(text: str) -> str:
+    """`text` stripped, without parentheses that enclose all of it."""
+    text = text.strip()
+    while text.startswith("(") and text.endswith(")") and _balanced(text[1:-1]):
+        text = text[1:-1].strip()
+    return text
+
+
+def _split_word(text: str, word: str) -> list[str]:
+    """`text` split at the operator `word` outside parentheses, brackets and strings."""
+    parts, depth, quote, start = [], 0, False, 0
+    for i, ch in enumerate(text):
+        if ch == '"':
+            quote = not quote
+        elif quote:
+            continue
+        depth += (ch in "([{") - (ch in ")]}")
+        if depth == 0 and text.startswith(word, i) and (i == 0 or not (text[i - 1].isalnum() or text[i - 1] == "_")) \
+                and not (i + len(word) < len(text) and (text[i + len(word)].isalnum() or text[i + len(word)] == "_")):
+            parts.append(text[start:i])
+            start = i + len(word)
+    return parts + [text[start:]]
 
 
 def read_urscript(path: str, text: str, model: str | None,

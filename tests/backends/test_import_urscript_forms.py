@@ -1,0 +1,130 @@
+"""URScript forms of hand-written and PolyScope programs, read back: several statements on one
+line, targets built by `pose_add` / `pose_trans`, variables whose value is certain (or not),
+scripts whose statements follow their first def, conditions combining inputs, analog output
+domains.
+
+Witnesses: the expectations are written by hand from the URScript manual (e-Series, modules
+math and interfaces: `pose_trans(A, B)` is B in A's frame, `pose_add(A, B)` adds positions and
+turns A's orientation by B's; `set_analog_outputdomain(n, 0)` is a current output), and every
+converted pose is compared with scipy's Rotation (rotation vectors, composition), which is not
+the code under test.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Conds, Cond, If, Move, Native, SetOut, Wait, WaitIn, walk
+
+A = [0.3, -0.2, 0.4, 0.5, -1.2, 2.0]  # p[x, y, z, rx, ry, rz]: m, rotation vector rad
+B = [0.01, 0.02, -0.05, 0.3, 0.2, -0.4]
+
+
+def _read(tmp_path: Path, text: str, name: str = "prog.script"):  # type: ignore[no-untyped-def]
+    path = tmp_path / name
+    path.write_text(text)
+    doc = read_files([str(path)])
+    return doc, [s for r in doc.routines for s in walk(r.body)]
+
+
+def _p(v: list[float]) -> str:
+    return "p[" + ", ".join(repr(x) for x in v) + "]"
+
+
+def _matrix(position: tuple[float, ...], quaternion: tuple[float, ...]) -> np.ndarray:
+    w, x, y, z = quaternion
+    m = np.eye(4)
+    m[:3, :3] = Rotation.from_quat([x, y, z, w]).as_matrix()
+    m[:3, 3] = position
+    return m
+
+
+def _scipy(v: list[float]) -> np.ndarray:
+    m = np.eye(4)
+    m[:3, :3] = Rotation.from_rotvec(v[3:]).as_matrix()
+    m[:3, 3] = v[:3]
+    return m
+
+
+def test_statements_on_one_line(tmp_path: Path) -> None:
+    """`if (c): movej(q) end` and `movel(..)   sleep(0.5)` are several statements (URScript needs
+    no separator); the second statement is located at its own column."""
+    line = "  movel(p[0.4, 0.1, 0.3, 0, 3.14159, 0], a=1.2, v=0.25)   sleep(0.5)"
+    doc, stmts = _read(tmp_path, "def prog():\n  q1 = [0, -1.5, 1.5, 0, 1.5, 0]\n"
+                       f"  if (get_standard_digital_in(2) == True): movej(q1, a=1.4, v=1.05) end\n{line}\nend\n")
+    branch = next(s for s in stmts if isinstance(s, If))
+    assert branch.cond == Cond(2, True) and [type(s).__name__ for s in branch.then] == ["Move"]
+    wait = next(s for s in stmts if isinstance(s, Wait))
+    assert wait.seconds == 0.5 and (wait.where.line, wait.where.col) == (4, line.index("sleep") + 1)
+    assert not any(isinstance(s, Native) for s in stmts)
+
+
+def test_pose_add_and_pose_trans_targets(tmp_path: Path) -> None:
+    """`global T = pose_trans(A, B)` is A * B; `pose_add(A, B)` is (pA + pB, R_B R_A): each
+    target's pose equals scipy's composition of the two rotation-vector poses."""
+    doc, stmts = _read(tmp_path, f"def prog():\n  global a_p = {_p(A)}\n  global t_p = pose_trans(a_p, {_p(B)})\n"
+                       f"  global s_p = pose_add(a_p, {_p(B)})\n  movel(t_p, a=1.2, v=0.25)\n"
+                       "  movel(s_p, a=1.2, v=0.25)\nend\n")
+    targets = {t.name: t for t in doc.targets}
+    trans = _scipy(A) @ _scipy(B)
+    added = np.eye(4)
+    added[:3, :3] = Rotation.from_rotvec(B[3:]).as_matrix() @ Rotation.from_rotvec(A[3:]).as_matrix()
+    added[:3, 3] = np.add(A[:3], B[:3])
+    for name, expected in (("t_p", trans), ("s_p", added)):
+        pose = targets[name].pose
+        assert pose is not None
+        assert np.allclose(_matrix(pose.position, pose.quaternion), expected, atol=1e-12), name
+    assert [m.target for m in stmts if isinstance(m, Move)] == ["t_p", "s_p"]
+
+
+def test_a_variable_assigned_twice_is_not_a_target(tmp_path: Path) -> None:
+    """A pose variable assigned again later (a value computed at run time) is no target: the
+    move that reads it stays native; a numeric variable set again by an expression no longer
+    gives a move's speed."""
+    doc, stmts = _read(tmp_path, "def prog():\n  global w_p = p[0.4, 0.1, 0.3, 0, 3.14159, 0]\n  speed = 0.25\n"
+                       "  movel(w_p, a=1.2, v=speed)\n  w_p = get_actual_tcp_pose()\n  speed = speed * 2\n"
+                       "  movel(w_p, a=1.2, v=speed)\nend\n")
+    assert not doc.targets
+    assert [s.text for s in stmts if isinstance(s, Native) and s.text.startswith("move")] == [
+        "movel(w_p, a=1.2, v=speed)", "movel(w_p, a=1.2, v=speed)"]
+
+
+def test_statements_after_the_first_def_run(tmp_path: Path) -> None:
+    """A script of a def and then statements: the statements run (the def is a proc they call);
+    the port and the duration may be numeric variables set once."""
+    doc, stmts = _read(tmp_path, "def blink():\n  set_standard_digital_out(LED, True)\n  sleep(dwell)\n"
+                       "  set_standard_digital_out(LED, False)\nend\nLED = 3\ndwell = 2.5E-1\nblink()\nblink()\n")
+    main = next(r for r in doc.routines if r.name == doc.main)
+    assert [type(s).__name__ for s in main.body] == ["Native", "Native", "Call", "Call"]  # the assignments
+    blink = next(r for r in doc.routines if r.name == "blink")
+    assert [(type(s).__name__, getattr(s, "signal", None)) for s in blink.body] == [
+        ("SetOut", 3), ("Wait", None), ("SetOut", 3)]
+    assert next(s for s in blink.body if isinstance(s, Wait)).seconds == 0.25
+
+
+def test_combined_input_conditions(tmp_path: Path) -> None:
+    """`and` binds tighter than `or`, `not` tightest; `!=` negates; a wait loop on a combined
+    test waits for it to fail."""
+    doc, stmts = _read(tmp_path, "def prog():\n"
+                       "  if get_standard_digital_in(0) == True or not get_standard_digital_in(1) and "
+                       "get_configurable_digital_in(2) != False:\n    set_standard_digital_out(1, True)\n  end\n"
+                       "  while (get_standard_digital_in(3) == False and get_standard_digital_in(4)):\n"
+                       "    sync()\n  end\nend\n")
+    branch = next(s for s in stmts if isinstance(s, If))
+    assert branch.cond == Conds("or", (Cond(0, True), Conds("and", (Cond(1, False), Cond(10, True)))))
+    wait = next(s for s in stmts if isinstance(s, WaitIn))
+    assert wait.cond == Conds("not", (Conds("and", (Cond(3, False), Cond(4, True))),))
+
+
+def test_analog_output_domain(tmp_path: Path) -> None:
+    """On a voltage port (domain 1) 0.25 of the range is 2.5 V; on a current port (domain 0) the
+    output stays native (rmot's analog outputs are volts)."""
+    doc, stmts = _read(tmp_path, "def prog():\n  set_analog_outputdomain(0, 1)\n  set_analog_outputdomain(1, 0)\n"
+                       "  set_standard_analog_out(0, 0.25)\n  set_standard_analog_out(1, 0.25)\nend\n")
+    outs = [s for s in stmts if isinstance(s, SetOut)]
+    assert [(s.signal, s.value, s.analog) for s in outs] == [(0, 2.5, True)]
+    assert any(isinstance(s, Native) and s.text == "set_standard_analog_out(1, 0.25)" for s in stmts)
