@@ -11,6 +11,7 @@ __all__ = [
     "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
     "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE", "PARAMETERS_NUMBER",
+    "URCAP_INSTALLATION",
 ]
 
 NOT_VENDOR_LANGUAGE = Code("E510", "not-vendor-language",
@@ -44,3 +45,6 @@ LOOP_READ_ONCE = Code("W518", "loop-read-once",
 PARAMETERS_NUMBER = Code("W519", "parameters-number",
                          "a URScript function's parameters are untyped: they are declared `number` and the lines "
                          "that use them stay native")
+URCAP_INSTALLATION = Code("W530", "urcap-installation-kept",
+                          "a PolyScope URCap installation node (a gripper's or device's functions, threads and "
+                          "start-up) belongs to the robot's installation: it is kept as a comment")

@@ -66,12 +66,18 @@ class _Script:
                  limits: tuple[tuple[float, ...], tuple[float, ...]] | None) -> None:
         self.tally = Tally(path, text, "urscript")
         self.lines: list[_Line] = []
+        # URCap installation nodes: (the URCap's name, where the node begins, its statements)
+        self.installation: list[tuple[str, Where, list[_Line]]] = []
+        nodes = _installation_nodes(text.split("\n"))
         for n, raw in enumerate(text.split("\n"), 1):
             code = raw.split("#")[0].strip() if '"' not in raw else _strip_hash(raw).strip()
+            if n in nodes and nodes[n][1] == n:
+                self.installation.append((nodes[n][0], Where(path, n, len(raw) - len(raw.lstrip()) + 1), []))
             if code and not code.startswith("$"):
                 indent = len(raw) - len(raw.lstrip())
+                lines = self.installation[-1][2] if n in nodes else self.lines
                 for offset, part in _split_statements(code):
-                    self.lines.append(_Line(part, Where(path, n, indent + offset + 1)))
+                    lines.append(_Line(part, Where(path, n, indent + offset + 1)))
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
         self.limits = limits
         self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg
@@ -96,6 +102,12 @@ class _Script:
     # ---------------------------------------------------------------- structure
 
     def read(self) -> None:
+        for source, where, lines in self.installation:
+            self.tally.warn(codes.URCAP_INSTALLATION, f"URCap installation code ({source}): the robot's installation, "
+                            "which PolyScope runs before every program; kept as a comment (a call of its functions "
+                            "stays native)", where)
+            for ln in lines:
+                self.tally.comment(ln.text, ln.where)
         if not self.lines:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
@@ -571,6 +583,29 @@ def _share(ratio: float) -> float | None:
     """A joint speed/acceleration ratio as rmot's %, None for 100 % (the default) or above."""
     pct = round(100.0 * ratio, 3)
     return None if pct >= 99.95 else max(pct, 1.0)
+
+
+def _installation_nodes(raw: list[str]) -> dict[int, tuple[str, int]]:
+    """Line number -> (URCap, first line) for the lines of PolyScope's URCap installation nodes:
+    from `# begin: URCap Installation Node` (its `#   Source: NAME, version, vendor` line names
+    the URCap) to the next `# end: URCap Installation Node`, where its blocks are closed in it
+    (every `if`, loop, def and thread ends before the node does)."""
+    out: dict[int, tuple[str, int]] = {}
+    first = None
+    for n, line in enumerate(raw, 1):
+        text = line.strip()
+        if text.startswith("# begin: URCap Installation Node"):
+            first = n
+        elif text.startswith("# end: URCap Installation Node") and first is not None:
+            span = range(first, n + 1)
+            heads = [re.match(r"(\w+)", raw[k - 1].split("#")[0].strip() or "#") for k in span]
+            words = [h.group(1) for h in heads if h]
+            if sum(w in ("if", "while", "for", "def", "thread") for w in words) == words.count("end"):
+                source = next((re.sub(r"^#\s*Source:\s*", "", raw[k - 1].strip()) for k in span
+                               if re.match(r"#\s*Source:", raw[k - 1].strip())), "unnamed")
+                out.update({k: (source, first) for k in span})
+            first = None
+    return out
 
 
 def _strip_hash(line: str) -> str:
