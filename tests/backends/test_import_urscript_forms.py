@@ -128,3 +128,22 @@ def test_analog_output_domain(tmp_path: Path) -> None:
     outs = [s for s in stmts if isinstance(s, SetOut)]
     assert [(s.signal, s.value, s.analog) for s in outs] == [(0, 2.5, True)]
     assert any(isinstance(s, Native) and s.text == "set_standard_analog_out(1, 0.25)" for s in stmts)
+
+
+def test_urcap_installation_node_is_kept_as_a_comment(tmp_path: Path) -> None:
+    """A URCap installation node is the robot's installation: its lines go to the comment block
+    (W530 at its first line, naming the URCap); the program's call of its function stays
+    native; a node whose blocks do not close inside it is read as program text."""
+    text = ("def prog():\n  set_tcp(p[0, 0, 0.1, 0, 0, 0])\n  # begin: URCap Installation Node\n"
+            "  #   Source: Robotiq_Grippers, 1.7.1.2, Robotiq Inc.\n  #   Type: Gripper\n"
+            "  def rq_open():\n    sleep(0.1)\n  end\n  rq_obj = 0\n  # end: URCap Installation Node\n"
+            "  $ 1 \"Robot Program\"\n  rq_open()\n  set_standard_digital_out(2, True)\nend\n")
+    doc, stmts = _read(tmp_path, text)
+    w530 = [d for d in doc.diagnostics if d.code.id == "W530"]
+    assert [(d.span.start.line, "Robotiq_Grippers, 1.7.1.2, Robotiq Inc." in d.message) for d in w530] == [(3, True)]
+    assert [k.text for k in doc.kept] == ["def rq_open():", "sleep(0.1)", "end", "rq_obj = 0"]
+    assert [type(s).__name__ for s in stmts] == ["Native", "SetOut"] and stmts[0].text == "rq_open()"
+    assert not any(r.name == "rq_open" for r in doc.routines)
+    unclosed = text.replace("  end\n  rq_obj = 0\n", "  rq_obj = 0\n").replace("rq_open()\n  set", "rq_open()\n  end\n  set")
+    doc, stmts = _read(tmp_path, unclosed, "unclosed.script")
+    assert not any(d.code.id == "W530" for d in doc.diagnostics) and not doc.kept
