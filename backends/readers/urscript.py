@@ -478,8 +478,15 @@ class _Script:
             return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
                     Target("", None, joints, None, Where("", 0)))
         trans = re.fullmatch(r"pose_trans\((.*)\)", text)
-        if trans:
-            return self._tool_offset(split_top(trans.group(1)), depth)
+        found = self._tool_offset(split_top(trans.group(1)), depth) if trans else self._base_offset(text, depth)
+        combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text) if found is None else None
+        pose = self._combined(combined.group(1), split_top(combined.group(2))) if combined else None
+        if pose is not None:  # two poses known here, composed (not a plain translation of a target)
+            return (pose_expr(pose), None, Target("", pose, None, None, Where("", 0)))
+        return found
+
+    def _base_offset(self, text: str, depth: int) -> tuple[str, str | None, Target | None] | None:
+        """`pose_add(P, p[dx, dy, dz, 0, 0, 0])`: P moved along the base axes = `shift(P, ..)`."""
         m = re.fullmatch(r"pose_add\((.*)\)", text)
         parts = split_top(m.group(1)) if m else []
         base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
@@ -627,9 +634,10 @@ def _split_statements(code: str) -> list[tuple[int, str]]:
     end or where the next begins (URScript manual, "The URScript Programming Language": no
     separator is needed), so `if (c): movej(q) end` and `movel(p, a=1, v=0.1)  sleep(0.5)`
     are three and two statements. A block header ends at its `:` outside brackets; a statement
-    ends after a closing bracket followed by a name that is not an operator, and before `end`."""
+    ends after a closing bracket followed by a name that is not an operator, and before `end`.
+    One pass over the line (a hostile long line costs its length)."""
     out: list[tuple[int, str]] = []
-    start, depth, quote, header = 0, 0, False, _HEADER.match(code) is not None
+    start, depth, quote, header, prev = 0, 0, False, _HEADER.match(code) is not None, ""
     i = 0
     while i < len(code):
         ch = code[i]
@@ -643,16 +651,17 @@ def _split_statements(code: str) -> list[tuple[int, str]]:
             depth -= 1
         elif depth == 0 and ch == ":" and header:
             out.append((start, code[start:i + 1]))
-            start, header = i + 1, False
-        elif depth == 0 and ch.isspace() and code[start:i].strip():
-            word = re.match(r"\s+([A-Za-z_]\w*)", code[i:])
-            closed = code[start:i].rstrip().endswith((")", "]"))
-            if word and (word.group(1) == "end" or closed and word.group(1) not in _OPERATORS):
+            start, header, prev, i = i + 1, False, "", i + 1
+            continue
+        elif depth == 0 and ch.isspace() and prev:
+            word = re.match(r"\s+([A-Za-z_]\w*)", code[i:i + 80])
+            if word and (word.group(1) == "end" or prev in ")]" and word.group(1) not in _OPERATORS):
                 out.append((start, code[start:i]))
                 start = i + len(word.group(0)) - len(word.group(1))
-                header = _HEADER.match(code[start:]) is not None
-                i = start
+                header, prev, i = _HEADER.match(code, start) is not None, "", start
                 continue
+        if not ch.isspace():
+            prev = ch
         i += 1
     out.append((start, code[start:]))
     return [(offset + len(part) - len(part.lstrip()), part.strip()) for offset, part in out if part.strip()]

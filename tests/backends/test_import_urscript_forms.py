@@ -147,3 +147,21 @@ def test_urcap_installation_node_is_kept_as_a_comment(tmp_path: Path) -> None:
     unclosed = text.replace("  end\n  rq_obj = 0\n", "  rq_obj = 0\n").replace("rq_open()\n  set", "rq_open()\n  end\n  set")
     doc, stmts = _read(tmp_path, unclosed, "unclosed.script")
     assert not any(d.code.id == "W530" for d in doc.diagnostics) and not doc.kept
+
+
+def test_composed_poses_in_a_move(tmp_path: Path) -> None:
+    """`movel(pose_trans(A, B))` with a rotating B (no `P * pose(..)` translation form) is the
+    composed pose itself: its position and rotation equal scipy's A @ B; `pose_add(A, B)` with a
+    rotating B likewise (positions added, R_B R_A)."""
+    doc, stmts = _read(tmp_path, f"def prog():\n  global a_p = {_p(A)}\n  movel(pose_trans(a_p, {_p(B)}), a=1.2, v=0.25)\n"
+                       f"  movel(pose_add({_p(A)}, {_p(B)}), a=1.2, v=0.25)\nend\n")
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert len(moves) == 2 and not any(isinstance(s, Native) for s in stmts)
+    expected = _scipy(A) @ _scipy(B)
+    pose = moves[0].pose
+    assert pose is not None and np.allclose(_matrix(pose.position, pose.quaternion), expected, atol=1e-12)
+    assert moves[0].target.startswith("pose(") and "x=" in moves[0].target
+    rotation = Rotation.from_rotvec(B[3:]) * Rotation.from_rotvec(A[3:])
+    pose = moves[1].pose
+    assert pose is not None and np.allclose(pose.position, np.add(A[:3], B[:3]), atol=1e-12)
+    assert np.allclose(_matrix(pose.position, pose.quaternion)[:3, :3], rotation.as_matrix(), atol=1e-12)
