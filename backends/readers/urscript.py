@@ -22,32 +22,15 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
+from rmot.backends.readers.urscript_text import (
+    input_cond, installation_nodes, pose_numbers, split_statements, strip_hash, ur_pose,
+)
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
 
 __all__ = ["read_urscript", "ur_pose"]
 
 DEFAULT_TCP_ACCEL = 2.0  # m/s^2: what the backend writes for rmot's default acceleration
-
-
-def ur_pose(values: list[float]) -> ir.Pose:
-    """p[x, y, z, rx, ry, rz] (m, rotation vector rad) as an ir.Pose."""
-    x, y, z, rx, ry, rz = values
-    angle = math.sqrt(rx * rx + ry * ry + rz * rz)
-    if angle < 1e-15:
-        return ir.Pose((x, y, z))
-    s = math.sin(angle / 2) / angle
-    q = [0.0 if abs(v) < 1e-12 else v for v in (math.cos(angle / 2), rx * s, ry * s, rz * s)]  # cos(pi/2) noise
-    n = math.sqrt(sum(v * v for v in q))
-    w, qx, qy, qz = (v / n for v in q)
-    if w < 0:
-        w, qx, qy, qz = -w, -qx, -qy, -qz
-    return ir.Pose((x, y, z), (w, qx, qy, qz))
-
-
-def _numbers(text: str) -> list[float] | None:
-    values = [number(v) for v in split_top(text)]
-    return None if any(v is None for v in values) else values  # type: ignore[return-value]
 
 
 class _Line:
@@ -68,15 +51,15 @@ class _Script:
         self.lines: list[_Line] = []
         # URCap installation nodes: (the URCap's name, where the node begins, its statements)
         self.installation: list[tuple[str, Where, list[_Line]]] = []
-        nodes = _installation_nodes(text.split("\n"))
+        nodes = installation_nodes(text.split("\n"))
         for n, raw in enumerate(text.split("\n"), 1):
-            code = raw.split("#")[0].strip() if '"' not in raw else _strip_hash(raw).strip()
+            code = raw.split("#")[0].strip() if '"' not in raw else strip_hash(raw).strip()
             if n in nodes and nodes[n][1] == n:
                 self.installation.append((nodes[n][0], Where(path, n, len(raw) - len(raw.lstrip()) + 1), []))
             if code and not code.startswith("$"):
                 indent = len(raw) - len(raw.lstrip())
                 lines = self.installation[-1][2] if n in nodes else self.lines
-                for offset, part in _split_statements(code):
+                for offset, part in split_statements(code):
                     lines.append(_Line(part, Where(path, n, indent + offset + 1)))
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
         self.limits = limits
@@ -112,7 +95,7 @@ class _Script:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
-        self._scan_numbers()
+        self._scanpose_numbers()
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
@@ -143,7 +126,7 @@ class _Script:
         the script's top-level statements are what runs (the def a function they may call)."""
         return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
 
-    def _scan_numbers(self) -> None:
+    def _scanpose_numbers(self) -> None:
         """Which names the file assigns (any value), how often, and which inside a nested block
         (an if, loop, function or thread deeper than the program's own body, counted by its
         `end`s, as PolyScope does not always indent): a move reads a variable, and a target
@@ -155,10 +138,11 @@ class _Script:
             literal = _ASSIGN.fullmatch(ln.text)
             if m:
                 self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
-            if literal and number(literal.group(2)) is not None:
-                self.constants[literal.group(1)] = number(literal.group(2))  # type: ignore[assignment]
                 if depth > top:
                     self.nested_set.add(m.group(1))
+            value = number(literal.group(2)) if literal else None
+            if literal and value is not None:
+                self.constants[literal.group(1)] = value
             depth += ln.head in ("if", "while", "for", "def", "thread")
             depth -= ln.head == "end"
 
@@ -281,7 +265,7 @@ class _Script:
               and t[4] == "end" and t[5] == f"ifnot({w.group(1)}):" and t[6].startswith("popup(")
               and t[7] == "halt" and t[8] == "end")
         test = re.fullmatch(r"while\s*not\s*\((.*)\)\s*and\s*rmot_waited\s*<\s*[\d.]+\s*:", self.lines[i + 1].text)
-        cond = _cond(test.group(1)) if ok and test else None
+        cond = input_cond(test.group(1)) if ok and test else None
         if cond is None:
             return None
         return [WaitIn(cond, float(w.group(2)), self.lines[i + 1].where)], i + 9  # type: ignore[union-attr]
@@ -290,7 +274,7 @@ class _Script:
         t = self._texts(i, 3)
         w = re.fullmatch(r"while\b(.*):", self.lines[i].text) if len(t) == 3 else None
         # PolyScope: `while (not(get_standard_digital_in(0) == True)):`; the wait ends when the test fails
-        looped = _cond(w.group(1)) if w and t[1:] == ["sync()", "end"] else None
+        looped = input_cond(w.group(1)) if w and t[1:] == ["sync()", "end"] else None
         cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,)) if looped else None
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
@@ -318,7 +302,7 @@ class _Script:
         m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        cond = _FOREVER if forever else _cond(m.group(2)) if m else None
+        cond = _FOREVER if forever else input_cond(m.group(2)) if m else None
         if cond is None:
             out, j, depth = [], i, 0
             while j < len(self.lines):
@@ -352,7 +336,7 @@ class _Script:
         compact = text.replace(" ", "")
         m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", compact)
         if m:
-            values = _numbers(m.group(1))
+            values = pose_numbers(m.group(1))
             if values is None or len(values) != 6:
                 return False
             key = tuple(round(v, 6) for v in values)
@@ -415,7 +399,7 @@ class _Script:
         """`[global] name = p[...]`, `= [j1, ..]`, or `= pose_add(A, B)` / `pose_trans(A, B)` of
         poses known here, assigned once in the file: a target."""
         m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
-        values = _numbers(m.group(3)) if m else None
+        values = pose_numbers(m.group(3)) if m else None
         combined = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(pose_add|pose_trans)\((.*)\)", ln.text)
         name = (m or combined).group(1) if m or combined else ""  # type: ignore[union-attr]
         if self.assigned.get(name, 0) != 1 or name in self.targets:
@@ -436,7 +420,7 @@ class _Script:
     def _known_pose(self, text: str) -> ir.Pose | None:
         """A pose literal `p[..]` or a target declared with a pose."""
         literal = re.fullmatch(r"p\[(.*)\]", text.replace(" ", ""))
-        values = _numbers(literal.group(1)) if literal else None
+        values = pose_numbers(literal.group(1)) if literal else None
         if values is not None and len(values) == 6:
             return ur_pose(values)
         target = self.targets.get(text.strip())
@@ -446,14 +430,14 @@ class _Script:
         """URScript manual, module math: `pose_trans(A, B)` is B expressed in A's frame (A * B);
         `pose_add(A, B)` adds the positions and turns A's orientation by B's (R_B R_A), both in
         the base frame."""
-        poses = [self._known_pose(p) for p in parts] if len(parts) == 2 else []
-        if len(poses) != 2 or poses[0] is None or poses[1] is None:
+        a, b = (self._known_pose(p) for p in parts) if len(parts) == 2 else (None, None)
+        if a is None or b is None:
             return None
-        a, b = poses
         if func == "pose_trans":
             return a * b
         turned = ir.Pose((0.0, 0.0, 0.0), b.quaternion) * ir.Pose((0.0, 0.0, 0.0), a.quaternion)
-        return ir.Pose(tuple(u + v for u, v in zip(a.position, b.position)), turned.quaternion)  # type: ignore[arg-type]
+        x, y, z = (u + v for u, v in zip(a.position, b.position))
+        return ir.Pose((x, y, z), turned.quaternion)
 
     def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
         """(rmot expression, declared name, declaration) of a URScript pose or joint list
@@ -468,7 +452,7 @@ class _Script:
             return self._target(m.group(1), depth + 1)
         m = re.fullmatch(r"(p?)\[(.*)\]", text)
         if m:
-            values = _numbers(m.group(2))
+            values = pose_numbers(m.group(2))
             if values is None or len(values) != 6:
                 return None
             if m.group(1):
@@ -480,9 +464,9 @@ class _Script:
         trans = re.fullmatch(r"pose_trans\((.*)\)", text)
         found = self._tool_offset(split_top(trans.group(1)), depth) if trans else self._base_offset(text, depth)
         combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text) if found is None else None
-        pose = self._combined(combined.group(1), split_top(combined.group(2))) if combined else None
-        if pose is not None:  # two poses known here, composed (not a plain translation of a target)
-            return (pose_expr(pose), None, Target("", pose, None, None, Where("", 0)))
+        composed = self._combined(combined.group(1), split_top(combined.group(2))) if combined else None
+        if composed is not None:  # two poses known here, composed (not a plain translation of a target)
+            return (pose_expr(composed), None, Target("", composed, None, None, Where("", 0)))
         return found
 
     def _base_offset(self, text: str, depth: int) -> tuple[str, str | None, Target | None] | None:
@@ -590,137 +574,6 @@ def _share(ratio: float) -> float | None:
     """A joint speed/acceleration ratio as rmot's %, None for 100 % (the default) or above."""
     pct = round(100.0 * ratio, 3)
     return None if pct >= 99.95 else max(pct, 1.0)
-
-
-def _installation_nodes(raw: list[str]) -> dict[int, tuple[str, int]]:
-    """Line number -> (URCap, first line) for the lines of PolyScope's URCap installation nodes:
-    from `# begin: URCap Installation Node` (its `#   Source: NAME, version, vendor` line names
-    the URCap) to the next `# end: URCap Installation Node`, where its blocks are closed in it
-    (every `if`, loop, def and thread ends before the node does)."""
-    out: dict[int, tuple[str, int]] = {}
-    first = None
-    for n, line in enumerate(raw, 1):
-        text = line.strip()
-        if text.startswith("# begin: URCap Installation Node"):
-            first = n
-        elif text.startswith("# end: URCap Installation Node") and first is not None:
-            span = range(first, n + 1)
-            heads = [re.match(r"(\w+)", raw[k - 1].split("#")[0].strip() or "#") for k in span]
-            words = [h.group(1) for h in heads if h]
-            if sum(w in ("if", "while", "for", "def", "thread") for w in words) == words.count("end"):
-                source = next((re.sub(r"^#\s*Source:\s*", "", raw[k - 1].strip()) for k in span
-                               if re.match(r"#\s*Source:", raw[k - 1].strip())), "unnamed")
-                out.update({k: (source, first) for k in span})
-            first = None
-    return out
-
-
-def _strip_hash(line: str) -> str:
-    quote = False
-    for i, ch in enumerate(line):
-        if ch == '"':
-            quote = not quote
-        elif ch == "#" and not quote:
-            return line[:i]
-    return line
-
-
-_HEADER = re.compile(r"(?:if|elif|while|for|def|thread)\b|else\s*:")
-_OPERATORS = {"and", "or", "xor", "not", "True", "False"}
-
-
-def _split_statements(code: str) -> list[tuple[int, str]]:
-    """The statements of one line, each with its offset: URScript ends a statement at the line's
-    end or where the next begins (URScript manual, "The URScript Programming Language": no
-    separator is needed), so `if (c): movej(q) end` and `movel(p, a=1, v=0.1)  sleep(0.5)`
-    are three and two statements. A block header ends at its `:` outside brackets; a statement
-    ends after a closing bracket followed by a name that is not an operator, and before `end`.
-    One pass over the line (a hostile long line costs its length)."""
-    out: list[tuple[int, str]] = []
-    start, depth, quote, header, prev = 0, 0, False, _HEADER.match(code) is not None, ""
-    i = 0
-    while i < len(code):
-        ch = code[i]
-        if ch == '"':
-            quote = not quote
-        elif quote:
-            pass
-        elif ch in "([{":
-            depth += 1
-        elif ch in ")]}":
-            depth -= 1
-        elif depth == 0 and ch == ":" and header:
-            out.append((start, code[start:i + 1]))
-            start, header, prev, i = i + 1, False, "", i + 1
-            continue
-        elif depth == 0 and ch.isspace() and prev:
-            word = re.match(r"\s+([A-Za-z_]\w*)", code[i:i + 80])
-            if word and (word.group(1) == "end" or prev in ")]" and word.group(1) not in _OPERATORS):
-                out.append((start, code[start:i]))
-                start = i + len(word.group(0)) - len(word.group(1))
-                header, prev, i = _HEADER.match(code, start) is not None, "", start
-                continue
-        if not ch.isspace():
-            prev = ch
-        i += 1
-    out.append((start, code[start:]))
-    return [(offset + len(part) - len(part.lstrip()), part.strip()) for offset, part in out if part.strip()]
-
-
-def _balanced(text: str) -> bool:
-    depth = 0
-    for ch in text:
-        depth += (ch == "(") - (ch == ")")
-        if depth < 0:
-            return False
-    return depth == 0
-
-
-def _cond(text: str) -> Cond | Conds | None:
-    """A condition on digital inputs: `get_standard_digital_in(n) == True|False` (or `!=`, or
-    bare), combined by `not`, `and`, `or` with URScript's (Python's) priority, `not` binding
-    tightest and `or` loosest, in any parentheses (configurable: n + 8)."""
-    text = _outer(text)
-    for op in ("or", "and"):
-        parts = _split_word(text, op)
-        if len(parts) > 1:
-            read = [_cond(part) for part in parts]
-            return None if any(c is None for c in read) else Conds(op, tuple(read))  # type: ignore[arg-type]
-    negated = re.fullmatch(r"not\b\s*(.*)", text, re.S)
-    if negated:
-        inner = _cond(negated.group(1))
-        if inner is None or isinstance(inner, Cond):
-            return Cond(inner.signal, not inner.on) if inner else None
-        return Conds("not", (inner,))
-    m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:(==|!=)(True|False))?", text.replace(" ", ""))
-    if m is None:
-        return None
-    on = (m.group(4) or "True") == "True"
-    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != (m.group(3) == "!="))
-
-
-def _outer(text: str) -> str:
-    """`text` stripped, without parentheses that enclose all of it."""
-    text = text.strip()
-    while text.startswith("(") and text.endswith(")") and _balanced(text[1:-1]):
-        text = text[1:-1].strip()
-    return text
-
-
-def _split_word(text: str, word: str) -> list[str]:
-    """`text` split at the operator `word` outside parentheses, brackets and strings."""
-    parts, depth, quote, start = [], 0, False, 0
-    for i, ch in enumerate(text):
-        if ch == '"':
-            quote = not quote
-        elif quote:
-            continue
-        depth += (ch in "([{") - (ch in ")]}")
-        if depth == 0 and text.startswith(word, i) and (i == 0 or not (text[i - 1].isalnum() or text[i - 1] == "_")) \
-                and not (i + len(word) < len(text) and (text[i + len(word)].isalnum() or text[i + len(word)] == "_")):
-            parts.append(text[start:i])
-            start = i + len(word)
-    return parts + [text[start:]]
 
 
 def read_urscript(path: str, text: str, model: str | None,
