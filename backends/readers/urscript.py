@@ -80,6 +80,9 @@ class _Script:
         self.values: dict[str, float] = {}  # numeric variables as straight-line code has set them
         self.assigned: dict[str, int] = {}  # name -> how many assignments the file holds
         self.constants: dict[str, float] = {}  # name -> the number its one assignment sets
+        self.scoped: dict[tuple[str, str], int] = {}  # (function or "", name) -> assignments there
+        self.scope: list[str] = []  # the functions around the statement being read
+        self.local_poses: dict[tuple[str, str], ir.Pose] = {}  # a function's own pose variables
         self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
 
     # ---------------------------------------------------------------- structure
@@ -95,7 +98,7 @@ class _Script:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
-        self._scanpose_numbers()
+        self._scan_numbers()
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
@@ -126,20 +129,28 @@ class _Script:
         the script's top-level statements are what runs (the def a function they may call)."""
         return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
 
-    def _scanpose_numbers(self) -> None:
+    def _scan_numbers(self) -> None:
         """Which names the file assigns (any value), how often, and which inside a nested block
         (an if, loop, function or thread deeper than the program's own body, counted by its
         `end`s, as PolyScope does not always indent): a move reads a variable, and a target
         is declared, only where its value is certain."""
         depth = 0
         top = 1 if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) else 0
+        functions: list[tuple[str, int]] = []  # the defs around the line: (name, depth inside it)
         for ln in self.lines:
             m = _ANY_ASSIGN.match(ln.text)
             literal = _ASSIGN.fullmatch(ln.text)
             if m:
                 self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
+                scope = functions[-1][0] if functions and not ln.text.startswith("global") else ""
+                self.scoped[(scope, m.group(1))] = self.scoped.get((scope, m.group(1)), 0) + 1
                 if depth > top:
                     self.nested_set.add(m.group(1))
+            function = re.match(r"def\s+(\w+)\s*\(", ln.text)
+            if function and (depth > 0 or not top):
+                functions.append((function.group(1), depth + 1))
+            if ln.head == "end" and functions and functions[-1][1] == depth:
+                functions.pop()
             value = number(literal.group(2)) if literal else None
             if literal and value is not None:
                 self.constants[literal.group(1)] = value
@@ -191,9 +202,7 @@ class _Script:
         ln = self.lines[i]
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", ln.text)
         if m:
-            self.in_sub += 1
-            body, j = self._enclosed(i + 1)
-            self.in_sub -= 1
+            body, j = self._function_body(m.group(1), i)
             self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             return [], j + 1
         params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
@@ -202,7 +211,7 @@ class _Script:
             names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
             self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
                             "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
-            body, j = self._enclosed(i + 1)
+            body, j = self._function_body(params.group(1), i)
             self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
             return [], j + 1
         if re.match(r"(def|thread)\s+\w+\s*\(", ln.text):
@@ -229,6 +238,17 @@ class _Script:
             return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
+
+    def _function_body(self, name: str, i: int) -> tuple[list[Stmt], int]:
+        """The body of the function defined at line `i`, read in its own scope (URScript manual,
+        "Scoping rules": a variable a function assigns without `global` is its own)."""
+        self.in_sub += 1
+        self.scope.append(name)
+        try:
+            return self._enclosed(i + 1)
+        finally:
+            self.scope.pop()
+            self.in_sub -= 1
 
     def _enclosed(self, i: int) -> tuple[list[Stmt], int]:
         """The body of a loop or of a sub-routine, up to its `end`: a `while True:` in it is not
@@ -402,6 +422,15 @@ class _Script:
         values = pose_numbers(m.group(3)) if m else None
         combined = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(pose_add|pose_trans)\((.*)\)", ln.text)
         name = (m or combined).group(1) if m or combined else ""  # type: ignore[union-attr]
+        scope = self.scope[-1] if self.scope and not ln.text.startswith("global") else ""
+        if scope and self.assigned.get(name, 0) > 1 and self.scoped.get((scope, name)) == 1:
+            # a function's own variable, assigned once there: its pose composes the moves that
+            # read it in that function (the assignment itself stays native)
+            local = self._combined(combined.group(2), split_top(combined.group(3))) if combined else \
+                ur_pose(values) if m and m.group(2) and values is not None and len(values) == 6 else None
+            if local is not None:
+                self.local_poses[(scope, name)] = local
+            return False
         if self.assigned.get(name, 0) != 1 or name in self.targets:
             return False
         if combined:
@@ -423,8 +452,9 @@ class _Script:
         values = pose_numbers(literal.group(1)) if literal else None
         if values is not None and len(values) == 6:
             return ur_pose(values)
+        local = self.local_poses.get((self.scope[-1] if self.scope else "", text.strip()))
         target = self.targets.get(text.strip())
-        return target.pose if target is not None else None
+        return local if local is not None else target.pose if target is not None else None
 
     def _combined(self, func: str, parts: list[str]) -> ir.Pose | None:
         """URScript manual, module math: `pose_trans(A, B)` is B expressed in A's frame (A * B);

@@ -165,3 +165,21 @@ def test_composed_poses_in_a_move(tmp_path: Path) -> None:
     pose = moves[1].pose
     assert pose is not None and np.allclose(pose.position, np.add(A[:3], B[:3]), atol=1e-12)
     assert np.allclose(_matrix(pose.position, pose.quaternion)[:3, :3], rotation.as_matrix(), atol=1e-12)
+
+
+def test_a_functions_own_frame_variable(tmp_path: Path) -> None:
+    """Two functions each assign their own `frame` (URScript scoping: a variable a function
+    assigns is local to it): each move composes with its own function's frame (scipy), the
+    assignments stay native, and a move to the bare name stays native (no single target)."""
+    c = [0.1, 0.5, -0.2, 0.0, 0.0, 1.0]
+    doc, stmts = _read(tmp_path, f"def prog():\n  def left():\n    frame = {_p(A)}\n    movel(pose_trans(frame, {_p(B)}), a=1, v=0.1)\n"
+                       f"  end\n  def right():\n    frame = {_p(c)}\n    movel(pose_trans(frame, {_p(B)}), a=1, v=0.1)\n"
+                       "    movel(frame, a=1, v=0.1)\n  end\n  left()\n  right()\nend\n")
+    procs = {r.name: [s for s in walk(r.body) if isinstance(s, Move)] for r in doc.routines}
+    for name, frame in (("left", A), ("right", c)):
+        pose = procs[name][0].pose
+        assert pose is not None
+        assert np.allclose(_matrix(pose.position, pose.quaternion), _scipy(frame) @ _scipy(B), atol=1e-12), name
+    assert not doc.targets and len(procs["right"]) == 1
+    assert [s.text for s in stmts if isinstance(s, Native)] == [
+        f"frame = {_p(A)}", f"frame = {_p(c)}", "movel(frame, a=1, v=0.1)"]
