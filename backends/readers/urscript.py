@@ -23,7 +23,7 @@ from rmot.backends.readers.model import (
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.urscript_text import (
-    input_cond, installation_nodes, pose_numbers, split_statements, strip_hash, ur_pose,
+    block_end, compose, input_cond, installation_nodes, pose_numbers, split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
@@ -113,16 +113,8 @@ class _Script:
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
 
     def _end_of(self, i: int) -> int:
-        """The index of the `end` that closes the block opened at line `i` (its ifs, loops and
-        functions end before it), or the last line's index + 1 when none does."""
-        j, depth = i + 1, 1
-        while j < len(self.lines):
-            depth += self.lines[j].head in ("if", "while", "for", "def", "thread")
-            depth -= self.lines[j].head == "end"
-            if depth == 0:
-                break
-            j += 1
-        return j
+        """The index of the `end` that closes the block opened at line `i`."""
+        return block_end([ln.head for ln in self.lines], i)
 
     def _statements_follow(self, name: str) -> bool:
         """Whether statements other than the call `name()` follow the first def's `end`: then
@@ -457,17 +449,9 @@ class _Script:
         return local if local is not None else target.pose if target is not None else None
 
     def _combined(self, func: str, parts: list[str]) -> ir.Pose | None:
-        """URScript manual, module math: `pose_trans(A, B)` is B expressed in A's frame (A * B);
-        `pose_add(A, B)` adds the positions and turns A's orientation by B's (R_B R_A), both in
-        the base frame."""
+        """`pose_trans(A, B)` / `pose_add(A, B)` of two poses known here."""
         a, b = (self._known_pose(p) for p in parts) if len(parts) == 2 else (None, None)
-        if a is None or b is None:
-            return None
-        if func == "pose_trans":
-            return a * b
-        turned = ir.Pose((0.0, 0.0, 0.0), b.quaternion) * ir.Pose((0.0, 0.0, 0.0), a.quaternion)
-        x, y, z = (u + v for u, v in zip(a.position, b.position))
-        return ir.Pose((x, y, z), turned.quaternion)
+        return compose(func, a, b) if a is not None and b is not None else None
 
     def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
         """(rmot expression, declared name, declaration) of a URScript pose or joint list

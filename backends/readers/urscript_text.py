@@ -16,7 +16,7 @@ from rmot.backends.readers.common import number, split_top
 from rmot.backends.readers.model import Cond, Conds
 from rmot.lang import ir
 
-__all__ = ["balanced", "input_cond", "installation_nodes", "outer", "pose_numbers", "split_statements", "split_word",
+__all__ = ["balanced", "block_end", "compose", "input_cond", "installation_nodes", "outer", "pose_numbers", "split_statements", "split_word",
            "strip_hash", "ur_pose"]
 
 
@@ -169,3 +169,27 @@ def split_word(text: str, word: str) -> list[str]:
             parts.append(text[start:i])
             start = i + len(word)
     return parts + [text[start:]]
+
+
+def block_end(heads: list[str], i: int) -> int:
+    """The index of the `end` that closes the block opened at statement `i` (given each
+    statement's first word; its ifs, loops and functions end before it), or len(heads)."""
+    j, depth = i + 1, 1
+    while j < len(heads):
+        depth += heads[j] in ("if", "while", "for", "def", "thread")
+        depth -= heads[j] == "end"
+        if depth == 0:
+            break
+        j += 1
+    return j
+
+
+def compose(func: str, a: ir.Pose, b: ir.Pose) -> ir.Pose:
+    """URScript manual, module math: `pose_trans(A, B)` is B expressed in A's frame (A * B);
+    `pose_add(A, B)` adds the positions and turns A's orientation by B's (R_B R_A), both in
+    the base frame."""
+    if func == "pose_trans":
+        return a * b
+    turned = ir.Pose((0.0, 0.0, 0.0), b.quaternion) * ir.Pose((0.0, 0.0, 0.0), a.quaternion)
+    x, y, z = (u + v for u, v in zip(a.position, b.position))
+    return ir.Pose((x, y, z), turned.quaternion)
