@@ -22,8 +22,12 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
+from rmot.backends.readers.urscript_motion import (
+    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, rest_to_rest_shares, share,
+)
 from rmot.backends.readers.urscript_text import (
-    block_end, compose, input_cond, installation_nodes, pose_numbers, split_statements, strip_hash, ur_pose,
+    ANY_ASSIGN, NUMBER_ASSIGN, block_end, compose, input_cond, installation_nodes, pose_numbers, scan_assignments,
+    split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
@@ -64,6 +68,8 @@ class _Script:
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
         self.limits = limits
         self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg
+        self.last_target: tuple[str, ir.Pose] | None = None  # the last move's target (get_target_waypoint)
+        self.resolved: dict[str, tuple[str, str | None, Target | None]] = {}  # a node's own target variable
         self.moved = False  # a move was read: the next one is not the task's first
         self.targets: dict[str, Target] = {}
         self.tools: dict[tuple[float, ...], ToolData] = {}
@@ -71,6 +77,7 @@ class _Script:
         self.pulses: dict[str, tuple[int, float]] = {}
         self.routines: list[Routine] = []
         self.defs: set[str] = set()
+        self.direction = False  # the file holds PolyScope's Direction helper as PolyScope writes it
         self.current_domain: set[int] = set()  # analog outputs the file sets to current (mA)
         self.names: set[str] = set()
         self.name = "imported"
@@ -99,6 +106,9 @@ class _Script:
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
         self._scan_numbers()
+        texts = [ln.text.replace(" ", "") for ln in self.lines]
+        self.direction = any(tuple(texts[k:k + len(DIRECTION_FUNCTION)]) == DIRECTION_FUNCTION
+                             for k, t in enumerate(texts) if t == DIRECTION_FUNCTION[0])
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
@@ -122,39 +132,16 @@ class _Script:
         return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
 
     def _scan_numbers(self) -> None:
-        """Which names the file assigns (any value), how often, and which inside a nested block
-        (an if, loop, function or thread deeper than the program's own body, counted by its
-        `end`s, as PolyScope does not always indent): a move reads a variable, and a target
-        is declared, only where its value is certain."""
-        depth = 0
-        top = 1 if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) else 0
-        functions: list[tuple[str, int]] = []  # the defs around the line: (name, depth inside it)
-        for ln in self.lines:
-            m = _ANY_ASSIGN.match(ln.text)
-            literal = _ASSIGN.fullmatch(ln.text)
-            if m:
-                self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
-                scope = functions[-1][0] if functions and not ln.text.startswith("global") else ""
-                self.scoped[(scope, m.group(1))] = self.scoped.get((scope, m.group(1)), 0) + 1
-                if depth > top:
-                    self.nested_set.add(m.group(1))
-            function = re.match(r"def\s+(\w+)\s*\(", ln.text)
-            if function and (depth > 0 or not top):
-                functions.append((function.group(1), depth + 1))
-            if ln.head == "end" and functions and functions[-1][1] == depth:
-                functions.pop()
-            value = number(literal.group(2)) if literal else None
-            if literal and value is not None:
-                self.constants[literal.group(1)] = value
-            depth += ln.head in ("if", "while", "for", "def", "thread")
-            depth -= ln.head == "end"
+        """Which names the file assigns, how often, where (urscript_text.scan_assignments)."""
+        self.assigned, self.scoped, self.nested_set, self.constants = scan_assignments(
+            [ln.text for ln in self.lines], [ln.head for ln in self.lines])
 
     def _number_set(self, text: str) -> None:
         """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =
         0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`); any other value
         forgets it."""
-        m = _ANY_ASSIGN.match(text)
-        value = _ASSIGN.fullmatch(text)
+        m = ANY_ASSIGN.match(text)
+        value = NUMBER_ASSIGN.fullmatch(text)
         if m is not None:
             self.values.pop(m.group(1), None)
         if value is not None and number(value.group(2)) is not None:
@@ -174,7 +161,7 @@ class _Script:
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
         block starts or ends, the joints the robot stands at are not known from the text."""
-        self.rest_joints = None
+        self.rest_joints, self.last_target = None, None
         return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
@@ -186,6 +173,8 @@ class _Script:
                 return body, i
             stmts, i = self._statement(i)
             body += stmts
+            if not all(isinstance(s, (Move, SetOut, Wait, WaitIn, Pulse)) for s in stmts):
+                self.last_target = None  # a native line, a call or a block may have moved the robot
         if ends:
             raise self.tally.fail(f"missing `{ends[0]}`", self.lines[-1].where)
         return body, i
@@ -212,7 +201,7 @@ class _Script:
         if step and step.group(1) == step.group(2) and step.group(1) in self.names and \
                 i + 1 < len(self.lines) and self.lines[i + 1].head == "end":
             return [], i + 1  # a loop's counter step: part of the `for` read by _loop
-        for pattern in (self._timed_wait, self._wait, self._loop):
+        for pattern in (self._timed_wait, self._wait, self._loop, self._direction):
             found = pattern(i)
             if found is not None:
                 self.tally.imported += 1
@@ -264,6 +253,18 @@ class _Script:
             self.pulses[name] = (int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), float(s.group(1)))
             return [], j + 1
         return [self.tally.keep(x.text, x.where, "a thread has no rmot form") for x in self.lines[i:j + 1]], j + 1
+
+    def _direction(self, i: int) -> tuple[list[Stmt], int] | None:
+        """PolyScope's Direction node moving "Until (distance)" right after a move whose target is
+        known: a linear move to that target shifted along the direction (urscript_motion)."""
+        node = direction_target(self._texts(i, DIRECTION_LINES), self.last_target, self._known_pose) \
+            if self.direction else None
+        if node is None:
+            return None
+        self.resolved["towardsPos"] = (node[0], None, Target("", node[1], None, None, Where("", 0)))
+        move = self._move("movel", ["towardsPos", *node[2]], self.lines[i + 5].where)
+        self.resolved.clear()
+        return ([move], i + DIRECTION_LINES) if move else None
 
     def _texts(self, i: int, n: int) -> list[str]:
         return [ln.text.replace(" ", "") for ln in self.lines[i:i + n]]
@@ -354,7 +355,7 @@ class _Script:
             key = tuple(round(v, 6) for v in values)
             if key not in self.tools:
                 self.tools[key] = ToolData(f"tcp_{len(self.tools) + 1}", ur_pose(values), 0.0, Where(self.tally.path, 1))
-            self.tool = self.tools[key].name
+            self.tool, self.last_target = self.tools[key].name, None
             return True
         m = re.fullmatch(r"set_(?:target_)?payload\(([\d.]+)(?:,.*)?\)", compact)  # set_target_payload: PolyScope 5.10+
         if m and self.tool is not None:
@@ -458,6 +459,8 @@ class _Script:
         (nested at most 8 deep)."""
         if depth > 8:
             return None
+        if text in self.resolved:
+            return self.resolved[text]
         if text in self.targets:
             t = self.targets[text]
             return (t.name, t.name, t)
@@ -523,23 +526,13 @@ class _Script:
         self.rest_joints = joints if zone == 0.0 else None
         self.moved = True
         if first and v is not None and a is not None:
-            return _share(v / self.vmax), _share(a / self.amax)
+            return share(v / self.vmax), share(a / self.amax)
         if v is None or a is None or joints is None or start is None or self.limits is None or zone != 0.0:
             if v is not None or a is not None:
                 self.tally.warn(codes.JOINT_RATES_READ, f"movej a={a}, v={v}: the plan's leading-axis peak "
                                 "rates, whose shares need the move's start; read as 100 %", where)
             return None, None
-        delta = [abs(math.radians(q - q0)) for q, q0 in zip(joints, start)]
-        lead = max(delta)
-        if lead < 1e-9:
-            return None, None
-        vmax, amax = self.limits
-        path_speed, path_accel = v / lead, a / lead  # of s in 0..1 along the joint-space line
-        moving = [i for i, d in enumerate(delta) if d > 1e-12]
-        accel = _share(path_accel / min(amax[i] / delta[i] for i in moving))
-        triangular = abs(path_speed * path_speed - path_accel) <= 1e-3 * path_accel
-        speed = None if triangular else _share(path_speed / min(vmax[i] / delta[i] for i in moving))
-        return speed, accel
+        return rest_to_rest_shares(start, joints, v, a, self.limits)
 
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
         # movep (URScript manual, module motion: "Move Process. Blend circular (in tool-space) and move
@@ -573,21 +566,15 @@ class _Script:
             speed = 1000.0 * v if v is not None else 250.0
             accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
             jpct, jacc = None, None
+        exact = decl is not None and decl.pose is not None and (name is None or expr == name)
+        self.last_target = (expr, decl.pose) if exact and decl and decl.pose else None  # shifts: decl is the base's
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t") or None, tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
                     accel=accel, joint_accel=jacc)
 
 
-_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=\s*([-+\d.eE]+)")
-_ANY_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)")
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
-
-
-def _share(ratio: float) -> float | None:
-    """A joint speed/acceleration ratio as rmot's %, None for 100 % (the default) or above."""
-    pct = round(100.0 * ratio, 3)
-    return None if pct >= 99.95 else max(pct, 1.0)
 
 
 def read_urscript(path: str, text: str, model: str | None,

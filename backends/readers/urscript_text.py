@@ -16,8 +16,10 @@ from rmot.backends.readers.common import number, split_top
 from rmot.backends.readers.model import Cond, Conds
 from rmot.lang import ir
 
-__all__ = ["balanced", "block_end", "compose", "input_cond", "installation_nodes", "outer", "pose_numbers", "split_statements", "split_word",
-           "strip_hash", "ur_pose"]
+__all__ = [
+    "ANY_ASSIGN", "NUMBER_ASSIGN", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
+    "outer", "pose_numbers", "scan_assignments", "split_statements", "split_word", "strip_hash", "ur_pose"
+]
 
 
 def ur_pose(values: list[float]) -> ir.Pose:
@@ -169,6 +171,47 @@ def split_word(text: str, word: str) -> list[str]:
             parts.append(text[start:i])
             start = i + len(word)
     return parts + [text[start:]]
+
+
+NUMBER_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=\s*([-+\d.eE]+)")  # `[global] x = 0.25`
+ANY_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)")  # any assignment's name
+
+
+def scan_assignments(texts: list[str], heads: list[str]) -> tuple[
+        dict[str, int], dict[tuple[str, str], int], set[str], dict[str, float]]:
+    """Of a file's statements (and their first words): how often each name is assigned (any
+    value), how often in each function's own scope (its name, "" outside functions or with
+    `global`), the names assigned inside a nested block (an if, loop, function or thread
+    deeper than the program's own body, counted by `end`s as PolyScope does not always
+    indent), and the number each numeric assignment sets: a move reads a variable, and a
+    target is declared, only where its value is certain."""
+    assigned: dict[str, int] = {}
+    scoped: dict[tuple[str, str], int] = {}
+    nested: set[str] = set()
+    constants: dict[str, float] = {}
+    depth = 0
+    top = 1 if texts and re.match(r"def\s+\w+\s*\(\s*\)\s*:", texts[0]) else 0
+    functions: list[tuple[str, int]] = []  # the defs around the statement: (name, depth inside it)
+    for text, head in zip(texts, heads):
+        m = ANY_ASSIGN.match(text)
+        if m:
+            assigned[m.group(1)] = assigned.get(m.group(1), 0) + 1
+            scope = functions[-1][0] if functions and not text.startswith("global") else ""
+            scoped[(scope, m.group(1))] = scoped.get((scope, m.group(1)), 0) + 1
+            if depth > top:
+                nested.add(m.group(1))
+        function = re.match(r"def\s+(\w+)\s*\(", text)
+        if function and (depth > 0 or not top):
+            functions.append((function.group(1), depth + 1))
+        if head == "end" and functions and functions[-1][1] == depth:
+            functions.pop()
+        literal = NUMBER_ASSIGN.fullmatch(text)
+        value = number(literal.group(2)) if literal else None
+        if literal and value is not None:
+            constants[literal.group(1)] = value
+        depth += head in ("if", "while", "for", "def", "thread")
+        depth -= head == "end"
+    return assigned, scoped, nested, constants
 
 
 def block_end(heads: list[str], i: int) -> int:

@@ -183,3 +183,64 @@ def test_a_functions_own_frame_variable(tmp_path: Path) -> None:
     assert not doc.targets and len(procs["right"]) == 1
     assert [s.text for s in stmts if isinstance(s, Native)] == [
         f"frame = {_p(A)}", f"frame = {_p(c)}", "movel(frame, a=1, v=0.1)"]
+
+
+HELPER = """  def calculate_point_to_move_towards(feature, direction, position_distance):
+    local posDir=[direction[0], direction[1], direction[2]]
+    if (norm(posDir) < 1e-6):
+      return get_target_waypoint()
+    end
+    local direction_vector_normalized=normalize(posDir)
+    local displacement_pose=p[direction_vector_normalized[0] * position_distance,direction_vector_normalized[1] * position_distance,direction_vector_normalized[2] * position_distance,0,0,0]
+    local wanted_displacement_in_base_frame=pose_sub(pose_trans(feature, displacement_pose), feature)
+    return pose_add(get_target_waypoint(), wanted_displacement_in_base_frame)
+  end
+"""
+
+
+def _direction_node(feature: list[float], direction: str, distance: float) -> str:
+    return f"""    global move_thread_flag_7=0
+    thread move_thread_7():
+      enter_critical
+      move_thread_flag_7 = 1
+      local towardsPos=calculate_point_to_move_towards({_p(feature)}, {direction}, {distance!r})
+      movel(towardsPos, a=1.2, v=0.05)
+      move_thread_flag_7 = 2
+      exit_critical
+    end
+    move_thread_flag_7 = 0
+    move_thread_han_7 = run move_thread_7()
+    while (True):
+      sleep(1.0E-10)
+      if (move_thread_flag_7 > 1):
+        join move_thread_han_7
+        $ 9 "Until (distance)"
+        break
+      end
+      sync()
+    end
+"""
+
+
+def test_polyscope_direction_until_distance(tmp_path: Path) -> None:
+    """PolyScope's Direction node ("Until (distance)") right after a move to a taught waypoint
+    is a linear move to the waypoint shifted by the distance along the direction turned by the
+    feature's rotation (scipy), orientation kept, at the node's speed; after a statement that
+    may move the robot (a native line) it stays native."""
+    feature = [0.1, 0.2, 0.0, 0.3, -0.2, 1.1]
+    waypoint = [0.4, -0.1, 0.3, 0.0, 3.14159, 0.0]
+    node = _direction_node(feature, "[1.0,2.0,-2.0]", 0.06)
+    text = (f"def prog():\n{HELPER}  global Waypoint_1_p={_p(waypoint)}\n  while (True):\n"
+            f"    movel(Waypoint_1_p, a=1.2, v=0.25)\n{node}    textmsg(\"x\")\n{node}  end\nend\n")
+    doc, stmts = _read(tmp_path, text)
+    line = text.split("\n").index("      movel(towardsPos, a=1.2, v=0.05)") + 1
+    main = next(r for r in doc.routines if r.name == doc.main)
+    moves = [s for s in main.body if isinstance(s, Move)]
+    assert len(moves) == 2 and moves[1].target.startswith("shift(Waypoint_1_p, ")
+    offset = Rotation.from_rotvec(feature[3:]).apply(np.array([1.0, 2.0, -2.0]) / 3.0 * 0.06)
+    pose = moves[1].pose
+    assert pose is not None and np.allclose(pose.position, np.add(waypoint[:3], offset), atol=1e-12)
+    assert np.allclose(_matrix(pose.position, pose.quaternion)[:3, :3], _scipy(waypoint)[:3, :3], atol=1e-12)
+    assert moves[1].speed == 50.0 and moves[1].where.line == line
+    natives = [s.text for s in main.body if isinstance(s, Native)]
+    assert 'textmsg("x")' in natives and "movel(towardsPos, a=1.2, v=0.05)" in natives
