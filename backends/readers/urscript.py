@@ -292,23 +292,25 @@ class _Script:
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
-        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`), body, `v = v + 1`, `end`:
+        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`; b a number or a variable
+        certain there), body, `v = v + 1`, `end`, the body neither assigning v nor breaking out:
         for v in a .. b + 1 (a .. b)."""
         t = self._texts(i, 2)
         m = re.fullmatch(r"(\w+)=(-?\d+)", t[0]) if len(t) == 2 else None
-        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\d+)\)?:", t[1]) if m else None
-        if m is None or w is None:
+        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\w+)\)?:", t[1]) if m else None
+        bound = self._value(w.group(2)) if w else None
+        end = self._end_of(i + 1)
+        inner = [ln.text.replace(" ", "") for ln in self.lines[i + 2:end]]
+        if m is None or w is None or bound is None or bound != int(bound) or not inner or \
+                inner[-1] != f"{m.group(1)}={m.group(1)}+1" or any(
+                    x in ("break", "continue") or (ANY_ASSIGN.match(x) or [None, None])[1] == m.group(1) for x in inner[:-1]):
             return None
         var = m.group(1)
         saved = set(self.names)
         self.names.add(var)
         body, j = self._enclosed(i + 2)
         self.names = saved
-        last = self.lines[j - 1].text.replace(" ", "") if j - 1 > i + 1 else ""
-        if last != f"{var}={var}+1":
-            return None
-        end = int(w.group(2)) + (w.group(1) == "<=")
-        return [For(var, int(m.group(2)), end, tuple(body), self.lines[i + 1].where)], j + 1
+        return [For(var, int(m.group(2)), int(bound) + (w.group(1) == "<="), tuple(body), self.lines[i + 1].where)], j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]

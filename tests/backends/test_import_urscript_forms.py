@@ -244,3 +244,15 @@ def test_polyscope_direction_until_distance(tmp_path: Path) -> None:
     assert moves[1].speed == 50.0 and moves[1].where.line == line
     natives = [s.text for s in main.body if isinstance(s, Native)]
     assert 'textmsg("x")' in natives and "movel(towardsPos, a=1.2, v=0.05)" in natives
+
+
+def test_counted_loop_with_a_variable_bound(tmp_path: Path) -> None:
+    """`i = 0`, `while i < n:` with n set once to 3 is `for i in 0 .. 3`; a loop that breaks out
+    or sets its counter in its body is no counted loop (it stays native, read once: one W510 per
+    line, no duplicate)."""
+    doc, stmts = _read(tmp_path, "def prog():\n  n = 3\n  i = 0\n  while i < n:\n    sleep(0.1)\n    i = i + 1\n  end\n"
+                       "  k = 0\n  while k < 4:\n    if get_standard_digital_in(1):\n      break\n    end\n    k = k + 1\n  end\nend\n")
+    loops = [s for s in stmts if type(s).__name__ == "For"]
+    assert [(f.var, f.first, f.stop) for f in loops] == [("i", 0, 3)]  # type: ignore[attr-defined]
+    lines = [d.span.start.line for d in doc.diagnostics if d.code.id == "W510"]
+    assert lines == sorted(set(lines)) and 9 in lines and 11 in lines
