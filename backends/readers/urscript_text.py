@@ -142,11 +142,12 @@ def input_cond(text: str) -> Cond | Conds | None:
         if inner is None or isinstance(inner, Cond):
             return Cond(inner.signal, not inner.on) if inner else None
         return Conds("not", (inner,))
-    m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:(==|!=)(True|False))?", text.replace(" ", ""))
-    if m is None:
+    # get_digital_in(n): the CB-Series name of get_standard_digital_in for n 0..7 (8, 9 are the tool's)
+    m = re.fullmatch(r"get_(standard_|configurable_|)digital_in\((\d+)\)(?:(==|!=)(True|False))?", text.replace(" ", ""))
+    if m is None or (m.group(1) == "" and int(m.group(2)) > 7):
         return None
     on = (m.group(4) or "True") == "True"
-    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != (m.group(3) == "!="))
+    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable_" else 0), on != (m.group(3) == "!="))
 
 
 def outer(text: str) -> str:

@@ -118,6 +118,9 @@ def test_combined_input_conditions(tmp_path: Path) -> None:
     assert branch.cond == Conds("or", (Cond(0, True), Conds("and", (Cond(1, False), Cond(10, True)))))
     wait = next(s for s in stmts if isinstance(s, WaitIn))
     assert wait.cond == Conds("not", (Conds("and", (Cond(3, False), Cond(4, True))),))
+    doc, stmts = _read(tmp_path, "def prog():\n  if get_digital_in(7):\n    sleep(1)\n  end\n  if get_digital_in(8):\n"
+                       "    sleep(1)\n  end\nend\n", "old.script")  # CB-Series name: 0..7 standard, 8..9 the tool's
+    assert [s.cond for s in stmts if isinstance(s, If)] == [Cond(7, True)]
 
 
 def test_analog_output_domain(tmp_path: Path) -> None:
