@@ -188,17 +188,19 @@ def test_a_functions_own_frame_variable(tmp_path: Path) -> None:
         f"frame = {_p(A)}", f"frame = {_p(c)}", "movel(frame, a=1, v=0.1)"]
 
 
-HELPER = """  def calculate_point_to_move_towards(feature, direction, position_distance):
-    local posDir=[direction[0], direction[1], direction[2]]
-    if (norm(posDir) < 1e-6):
-      return get_target_waypoint()
-    end
-    local direction_vector_normalized=normalize(posDir)
-    local displacement_pose=p[direction_vector_normalized[0] * position_distance,direction_vector_normalized[1] * position_distance,direction_vector_normalized[2] * position_distance,0,0,0]
-    local wanted_displacement_in_base_frame=pose_sub(pose_trans(feature, displacement_pose), feature)
-    return pose_add(get_target_waypoint(), wanted_displacement_in_base_frame)
-  end
-"""
+HELPER = "".join(f"  {line}\n" for line in (  # PolyScope's Direction helper, as PolyScope writes it
+    "def calculate_point_to_move_towards(feature, direction, position_distance):",
+    "  local posDir=[direction[0], direction[1], direction[2]]",
+    "  if (norm(posDir) < 1e-6):",
+    "    return get_target_waypoint()",
+    "  end",
+    "  local direction_vector_normalized=normalize(posDir)",
+    "  local displacement_pose=p[direction_vector_normalized[0] * position_distance,"
+    "direction_vector_normalized[1] * position_distance,direction_vector_normalized[2] * position_distance,0,0,0]",
+    "  local wanted_displacement_in_base_frame=pose_sub(pose_trans(feature, displacement_pose), feature)",
+    "  return pose_add(get_target_waypoint(), wanted_displacement_in_base_frame)",
+    "end",
+))
 
 
 def _direction_node(feature: list[float], direction: str, distance: float) -> str:
