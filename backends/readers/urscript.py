@@ -132,9 +132,11 @@ class _Script:
         return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
 
     def _scan_numbers(self) -> None:
-        """Which names the file assigns, how often, where (urscript_text.scan_assignments)."""
+        """Which names the file assigns, how often, where (urscript_text.scan_assignments); the
+        URCap installation nodes (inside the program's def, before its statements) count too."""
+        lines = self.lines[:1] + [ln for _, _, node in self.installation for ln in node] + self.lines[1:]
         self.assigned, self.scoped, self.nested_set, self.constants = scan_assignments(
-            [ln.text for ln in self.lines], [ln.head for ln in self.lines])
+            [ln.text for ln in lines], [ln.head for ln in lines])
 
     def _number_set(self, text: str) -> None:
         """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =

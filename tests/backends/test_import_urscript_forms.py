@@ -261,3 +261,11 @@ def test_counted_loop_with_a_variable_bound(tmp_path: Path) -> None:
     assert [(f.var, f.first, f.stop) for f in loops] == [("i", 0, 3)]  # type: ignore[attr-defined]
     lines = [d.span.start.line for d in doc.diagnostics if d.code.id == "W510"]
     assert lines == sorted(set(lines)) and 9 in lines and 11 in lines
+
+
+def test_an_installation_node_assignment_counts(tmp_path: Path) -> None:
+    """A variable a URCap installation node assigns too is assigned twice: no target."""
+    doc, _ = _read(tmp_path, "def prog():\n  # begin: URCap Installation Node\n  #   Source: X, 1.0, Y\n"
+                   "  home_p = get_actual_tcp_pose()\n  # end: URCap Installation Node\n"
+                   "  global home_p = p[0.4, 0.1, 0.3, 0, 3.14159, 0]\n  movel(home_p, a=1.2, v=0.25)\nend\n")
+    assert not doc.targets
