@@ -105,16 +105,17 @@ class _Script:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
-        self._scan_numbers()
+        m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
+        program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
+        self._scan_numbers(program)
         texts = [ln.text.replace(" ", "") for ln in self.lines]
         self.direction = any(tuple(texts[k:k + len(DIRECTION_FUNCTION)]) == DIRECTION_FUNCTION
                              for k, t in enumerate(texts) if t == DIRECTION_FUNCTION[0])
-        m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
             raise self.tally.fail("a URScript program must start with `def name():` or a statement "
                                   f"(got `{first.text[:40]}`)", first.where)
-        if m and not self._statements_follow(m.group(1)):
+        if m and program:
             self.name = self.main = m.group(1)
             body, _ = self._block(1, ("end",))
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
@@ -131,12 +132,12 @@ class _Script:
         the script's top-level statements are what runs (the def a function they may call)."""
         return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
 
-    def _scan_numbers(self) -> None:
+    def _scan_numbers(self, program: bool) -> None:
         """Which names the file assigns, how often, where (urscript_text.scan_assignments); the
         URCap installation nodes (inside the program's def, before its statements) count too."""
         lines = self.lines[:1] + [ln for _, _, node in self.installation for ln in node] + self.lines[1:]
         self.assigned, self.scoped, self.nested_set, self.constants = scan_assignments(
-            [ln.text for ln in lines], [ln.head for ln in lines])
+            [ln.text for ln in lines], [ln.head for ln in lines], program)
 
     def _number_set(self, text: str) -> None:
         """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =

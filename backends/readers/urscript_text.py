@@ -178,20 +178,21 @@ NUMBER_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=\s*([-+\d.eE]+)")  
 ANY_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)")  # any assignment's name
 
 
-def scan_assignments(texts: list[str], heads: list[str]) -> tuple[
+def scan_assignments(texts: list[str], heads: list[str], program: bool) -> tuple[
         dict[str, int], dict[tuple[str, str], int], set[str], dict[str, float]]:
     """Of a file's statements (and their first words): how often each name is assigned (any
     value), how often in each function's own scope (its name, "" outside functions or with
     `global`), the names assigned inside a nested block (an if, loop, function or thread
     deeper than the program's own body, counted by `end`s as PolyScope does not always
     indent), and the number each numeric assignment sets: a move reads a variable, and a
-    target is declared, only where its value is certain."""
+    target is declared, only where its value is certain. `program`: the first statement is the
+    program's own `def` (its body the program), not a function of a script."""
     assigned: dict[str, int] = {}
     scoped: dict[tuple[str, str], int] = {}
     nested: set[str] = set()
     constants: dict[str, float] = {}
     depth = 0
-    top = 1 if texts and re.match(r"def\s+\w+\s*\(\s*\)\s*:", texts[0]) else 0
+    top = 1 if program else 0
     functions: list[tuple[str, int]] = []  # the defs around the statement: (name, depth inside it)
     for text, head in zip(texts, heads):
         m = ANY_ASSIGN.match(text)
