@@ -11,6 +11,7 @@ __all__ = [
     "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
     "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE", "PARAMETERS_NUMBER",
+    "URCAP_INSTALLATION",
 ]
 __all__ += ["FOLD_DISABLED", "NAME_READ_AS_INPUT", "MODULE_IS_PROC"]
 
@@ -62,3 +63,6 @@ ACCEL_SHARE_ON_PATH = Code("W540", "accel-share-on-path",
                            "a TP linear or circular move's ACCn, an INFORM MOVL/MOVC's equal ACC=/DEC= (the motion's "
                            "acceleration override) is read as rmot's joint acceleration share on that move: its TCP "
                            "acceleration stays the default")
+URCAP_INSTALLATION = Code("W530", "urcap-installation-kept",
+                          "a PolyScope URCap installation node (a gripper's or device's functions, threads and "
+                          "start-up) belongs to the robot's installation: it is kept as a comment")

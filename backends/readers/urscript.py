@@ -19,35 +19,22 @@ import re
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, split_top
 from rmot.backends.readers.model import (
-    Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
+    Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
+from rmot.backends.readers.urscript_motion import (
+    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, rest_to_rest_shares, share,
+)
+from rmot.backends.readers.urscript_text import (
+    ANY_ASSIGN, NUMBER_ASSIGN, block_end, compose, input_cond, installation_nodes, pose_numbers, scan_assignments,
+    split_statements, strip_hash, ur_pose,
+)
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
 
 __all__ = ["read_urscript", "ur_pose"]
 
 DEFAULT_TCP_ACCEL = 2.0  # m/s^2: what the backend writes for rmot's default acceleration
-
-
-def ur_pose(values: list[float]) -> ir.Pose:
-    """p[x, y, z, rx, ry, rz] (m, rotation vector rad) as an ir.Pose."""
-    x, y, z, rx, ry, rz = values
-    angle = math.sqrt(rx * rx + ry * ry + rz * rz)
-    if angle < 1e-15:
-        return ir.Pose((x, y, z))
-    s = math.sin(angle / 2) / angle
-    q = [0.0 if abs(v) < 1e-12 else v for v in (math.cos(angle / 2), rx * s, ry * s, rz * s)]  # cos(pi/2) noise
-    n = math.sqrt(sum(v * v for v in q))
-    w, qx, qy, qz = (v / n for v in q)
-    if w < 0:
-        w, qx, qy, qz = -w, -qx, -qy, -qz
-    return ir.Pose((x, y, z), (w, qx, qy, qz))
-
-
-def _numbers(text: str) -> list[float] | None:
-    values = [number(v) for v in split_top(text)]
-    return None if any(v is None for v in values) else values  # type: ignore[return-value]
 
 
 class _Line:
@@ -66,13 +53,23 @@ class _Script:
                  limits: tuple[tuple[float, ...], tuple[float, ...]] | None) -> None:
         self.tally = Tally(path, text, "urscript")
         self.lines: list[_Line] = []
+        # URCap installation nodes: (the URCap's name, where the node begins, its statements)
+        self.installation: list[tuple[str, Where, list[_Line]]] = []
+        nodes = installation_nodes(text.split("\n"))
         for n, raw in enumerate(text.split("\n"), 1):
-            code = raw.split("#")[0].strip() if '"' not in raw else _strip_hash(raw).strip()
+            code = raw.split("#")[0].strip() if '"' not in raw else strip_hash(raw).strip()
+            if n in nodes and nodes[n][1] == n:
+                self.installation.append((nodes[n][0], Where(path, n, len(raw) - len(raw.lstrip()) + 1), []))
             if code and not code.startswith("$"):
-                self.lines.append(_Line(code, Where(path, n, len(raw) - len(raw.lstrip()) + 1)))
+                indent = len(raw) - len(raw.lstrip())
+                lines = self.installation[-1][2] if n in nodes else self.lines
+                for offset, part in split_statements(code):
+                    lines.append(_Line(part, Where(path, n, indent + offset + 1)))
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
         self.limits = limits
         self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg
+        self.last_target: tuple[str, ir.Pose] | None = None  # the last move's target (get_target_waypoint)
+        self.resolved: dict[str, tuple[str, str | None, Target | None]] = {}  # a node's own target variable
         self.moved = False  # a move was read: the next one is not the task's first
         self.targets: dict[str, Target] = {}
         self.tools: dict[tuple[float, ...], ToolData] = {}
@@ -80,6 +77,8 @@ class _Script:
         self.pulses: dict[str, tuple[int, float]] = {}
         self.routines: list[Routine] = []
         self.defs: set[str] = set()
+        self.direction = False  # the file holds PolyScope's Direction helper as PolyScope writes it
+        self.current_domain: set[int] = set()  # analog outputs the file sets to current (mA)
         self.names: set[str] = set()
         self.name = "imported"
         self.main = "imported"
@@ -87,66 +86,85 @@ class _Script:
         self.in_sub = 0  # sub-routine bodies around the statement being read
         self.values: dict[str, float] = {}  # numeric variables as straight-line code has set them
         self.assigned: dict[str, int] = {}  # name -> how many assignments the file holds
+        self.constants: dict[str, float] = {}  # name -> the number its one assignment sets
+        self.scoped: dict[tuple[str, str], int] = {}  # (function or "", name) -> assignments there
+        self.scope: list[str] = []  # the functions around the statement being read
+        self.local_poses: dict[tuple[str, str], ir.Pose] = {}  # a function's own pose variables
         self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
 
     # ---------------------------------------------------------------- structure
 
     def read(self) -> None:
+        for source, where, lines in self.installation:
+            self.tally.warn(codes.URCAP_INSTALLATION, f"URCap installation code ({source}): the robot's installation, "
+                            "which PolyScope runs before every program; kept as a comment (a call of its functions "
+                            "stays native)", where)
+            for ln in lines:
+                self.tally.comment(ln.text, ln.where)
         if not self.lines:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
         self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
         first = self.lines[0]
-        self._scan_numbers()
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
+        program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
+        self._scan_numbers(program)
+        texts = [ln.text.replace(" ", "") for ln in self.lines]
+        self.direction = any(tuple(texts[k:k + len(DIRECTION_FUNCTION)]) == DIRECTION_FUNCTION
+                             for k, t in enumerate(texts) if t == DIRECTION_FUNCTION[0])
         library = re.match(r"(def|thread)\s+\w+\s*\(.*\)\s*:$|global\s+\w+\s*=", first.text)  # a file of functions
         if m is None and not library and not re.match(r"[\w.\[\]]+\s*(=|\()", first.text):
             raise self.tally.fail("a URScript program must start with `def name():` or a statement "
                                   f"(got `{first.text[:40]}`)", first.where)
-        if m:
+        if m and program:
             self.name = self.main = m.group(1)
-            body, i = self._block(1, ("end",))
+            body, _ = self._block(1, ("end",))
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
-            for ln in self.lines[i + 1:]:
-                if not re.fullmatch(rf"{self.main}\s*\(\s*\)", ln.text):
-                    self.routines[-1] = Routine(self.main, (), self.routines[-1].body + (self.tally.keep(
-                        ln.text, ln.where, "a statement after the program's def"),), first.where)
-        else:
+        else:  # a script whose top-level statements run: its defs are functions it calls
             body, _ = self._block(0, ())
             self.routines.append(Routine(self.main, (), tuple(body), first.where))
 
-    def _scan_numbers(self) -> None:
-        """Which names the file assigns, how often, and which inside a nested block (deeper than
-        the program's own body): a move reads such a variable only where its value is certain."""
-        body_col = self.lines[1].where.col if re.match(r"def\s+\w+\s*\(\s*\)\s*:", self.lines[0].text) \
-            and len(self.lines) > 1 else self.lines[0].where.col
-        for ln in self.lines:
-            m = _ASSIGN.fullmatch(ln.text)
-            if m:
-                self.assigned[m.group(1)] = self.assigned.get(m.group(1), 0) + 1
-                if ln.where.col > body_col:
-                    self.nested_set.add(m.group(1))
+    def _end_of(self, i: int) -> int:
+        """The index of the `end` that closes the block opened at line `i`."""
+        return block_end([ln.head for ln in self.lines], i)
+
+    def _statements_follow(self, name: str) -> bool:
+        """Whether statements other than the call `name()` follow the first def's `end`: then
+        the script's top-level statements are what runs (the def a function they may call)."""
+        return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
+
+    def _scan_numbers(self, program: bool) -> None:
+        """Which names the file assigns, how often, where (urscript_text.scan_assignments); the
+        URCap installation nodes (inside the program's def, before its statements) count too."""
+        lines = self.lines[:1] + [ln for _, _, node in self.installation for ln in node] + self.lines[1:]
+        self.assigned, self.scoped, self.nested_set, self.constants = scan_assignments(
+            [ln.text for ln in lines], [ln.head for ln in lines], program)
 
     def _number_set(self, text: str) -> None:
         """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =
-        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`)."""
-        m = _ASSIGN.fullmatch(text)
-        value = number(m.group(2)) if m else None
-        if m is not None and value is not None:
-            self.values[m.group(1)] = value
+        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`); any other value
+        forgets it."""
+        m = ANY_ASSIGN.match(text)
+        value = NUMBER_ASSIGN.fullmatch(text)
+        if m is not None:
+            self.values.pop(m.group(1), None)
+        if value is not None and number(value.group(2)) is not None:
+            self.values[value.group(1)] = number(value.group(2))  # type: ignore[assignment]
 
     def _value(self, text: str) -> float | None:
         """A move argument: a number, or a variable whose value at this move is certain (set once
         in the file; or, outside sub-routines, never set inside a nested block)."""
         value = number(text)
+        once = self.assigned.get(text, 0) == 1
+        if value is None and once and text in self.constants:
+            return self.constants[text]  # set once in the file: a function reading it runs after it
         if value is not None or text not in self.values:
             return value
-        once = self.assigned.get(text, 0) == 1
         return self.values[text] if once or (self.in_sub == 0 and text not in self.nested_set) else None
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
         block starts or ends, the joints the robot stands at are not known from the text."""
-        self.rest_joints = None
+        self.rest_joints, self.last_target = None, None
         return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
@@ -158,6 +176,8 @@ class _Script:
                 return body, i
             stmts, i = self._statement(i)
             body += stmts
+            if not all(isinstance(s, (Move, SetOut, Wait, WaitIn, Pulse)) for s in stmts):
+                self.last_target = None  # a native line, a call or a block may have moved the robot
         if ends:
             raise self.tally.fail(f"missing `{ends[0]}`", self.lines[-1].where)
         return body, i
@@ -166,9 +186,7 @@ class _Script:
         ln = self.lines[i]
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", ln.text)
         if m:
-            self.in_sub += 1
-            body, j = self._enclosed(i + 1)
-            self.in_sub -= 1
+            body, j = self._function_body(m.group(1), i)
             self.routines.append(Routine(m.group(1), (), tuple(body), ln.where))
             return [], j + 1
         params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
@@ -177,7 +195,7 @@ class _Script:
             names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
             self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
                             "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
-            body, j = self._enclosed(i + 1)
+            body, j = self._function_body(params.group(1), i)
             self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
             return [], j + 1
         if re.match(r"(def|thread)\s+\w+\s*\(", ln.text):
@@ -186,7 +204,7 @@ class _Script:
         if step and step.group(1) == step.group(2) and step.group(1) in self.names and \
                 i + 1 < len(self.lines) and self.lines[i + 1].head == "end":
             return [], i + 1  # a loop's counter step: part of the `for` read by _loop
-        for pattern in (self._timed_wait, self._wait, self._loop):
+        for pattern in (self._timed_wait, self._wait, self._loop, self._direction):
             found = pattern(i)
             if found is not None:
                 self.tally.imported += 1
@@ -205,6 +223,17 @@ class _Script:
         self.tally.imported += 1
         return [stmt], i + 1
 
+    def _function_body(self, name: str, i: int) -> tuple[list[Stmt], int]:
+        """The body of the function defined at line `i`, read in its own scope (URScript manual,
+        "Scoping rules": a variable a function assigns without `global` is its own)."""
+        self.in_sub += 1
+        self.scope.append(name)
+        try:
+            return self._enclosed(i + 1)
+        finally:
+            self.scope.pop()
+            self.in_sub -= 1
+
     def _enclosed(self, i: int) -> tuple[list[Stmt], int]:
         """The body of a loop or of a sub-routine, up to its `end`: a `while True:` in it is not
         the program's outermost loop."""
@@ -218,13 +247,7 @@ class _Script:
         """A thread: the backend's pulse thread (out on, sleep, out off) is remembered as a
         pulse for the `run` that starts it; any other thread is kept native."""
         ln = self.lines[i]
-        j, depth = i + 1, 1
-        while j < len(self.lines):  # the thread's own `end` (its ifs and whiles end before it)
-            depth += self.lines[j].head in ("if", "while", "for", "def", "thread")
-            depth -= self.lines[j].head == "end"
-            if depth == 0:
-                break
-            j += 1
+        j = self._end_of(i)
         name = re.match(r"(?:def|thread)\s+(\w+)", ln.text).group(1)  # type: ignore[union-attr]
         inner = [x.text.replace(" ", "") for x in self.lines[i + 1:j]]
         m = re.fullmatch(r"set_(standard|configurable)_digital_out\((\d+),True\)", inner[0]) if len(inner) == 3 else None
@@ -233,6 +256,18 @@ class _Script:
             self.pulses[name] = (int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), float(s.group(1)))
             return [], j + 1
         return [self.tally.keep(x.text, x.where, "a thread has no rmot form") for x in self.lines[i:j + 1]], j + 1
+
+    def _direction(self, i: int) -> tuple[list[Stmt], int] | None:
+        """PolyScope's Direction node moving "Until (distance)" right after a move whose target is
+        known: a linear move to that target shifted along the direction (urscript_motion)."""
+        node = direction_target(self._texts(i, DIRECTION_LINES), self.last_target, self._known_pose) \
+            if self.direction else None
+        if node is None:
+            return None
+        self.resolved["towardsPos"] = (node[0], None, Target("", node[1], None, None, Where("", 0)))
+        move = self._move("movel", ["towardsPos", *node[2]], self.lines[i + 5].where)
+        self.resolved.clear()
+        return ([move], i + DIRECTION_LINES) if move else None
 
     def _texts(self, i: int, n: int) -> list[str]:
         return [ln.text.replace(" ", "") for ln in self.lines[i:i + n]]
@@ -245,44 +280,47 @@ class _Script:
         ok = (w is not None and t[2] == "sync()" and t[3] == "rmot_waited=rmot_waited+get_steptime()"
               and t[4] == "end" and t[5] == f"ifnot({w.group(1)}):" and t[6].startswith("popup(")
               and t[7] == "halt" and t[8] == "end")
-        cond = _cond(w.group(1)) if ok and w else None
+        test = re.fullmatch(r"while\s*not\s*\((.*)\)\s*and\s*rmot_waited\s*<\s*[\d.]+\s*:", self.lines[i + 1].text)
+        cond = input_cond(test.group(1)) if ok and test else None
         if cond is None:
             return None
         return [WaitIn(cond, float(w.group(2)), self.lines[i + 1].where)], i + 9  # type: ignore[union-attr]
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
         t = self._texts(i, 3)
-        w = re.fullmatch(r"while(.*):", t[0]) if len(t) == 3 else None
-        test = _unwrap(w.group(1)) if w else ""  # PolyScope: `while (not(get_standard_digital_in(0) == True)):`
-        looped = _cond(test) if t[1:] == ["sync()", "end"] else None
-        cond = Cond(looped.signal, not looped.on) if looped else None  # waits until the loop's test fails
+        w = re.fullmatch(r"while\b(.*):", self.lines[i].text) if len(t) == 3 else None
+        # PolyScope: `while (not(get_standard_digital_in(0) == True)):`; the wait ends when the test fails
+        looped = input_cond(w.group(1)) if w and t[1:] == ["sync()", "end"] else None
+        cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,)) if looped else None
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
-        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`), body, `v = v + 1`, `end`:
+        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`; b a number or a variable
+        certain there), body, `v = v + 1`, `end`, the body neither assigning v nor breaking out:
         for v in a .. b + 1 (a .. b)."""
         t = self._texts(i, 2)
         m = re.fullmatch(r"(\w+)=(-?\d+)", t[0]) if len(t) == 2 else None
-        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\d+)\)?:", t[1]) if m else None
-        if m is None or w is None:
+        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\w+)\)?:", t[1]) if m else None
+        bound = self._value(w.group(2)) if w else None
+        end = self._end_of(i + 1)
+        inner = [ln.text.replace(" ", "") for ln in self.lines[i + 2:end]]
+        if m is None or w is None or bound is None or bound != int(bound) or not inner or \
+                inner[-1] != f"{m.group(1)}={m.group(1)}+1" or any(
+                    x in ("break", "continue") or (ANY_ASSIGN.match(x) or [None, None])[1] == m.group(1) for x in inner[:-1]):
             return None
         var = m.group(1)
         saved = set(self.names)
         self.names.add(var)
         body, j = self._enclosed(i + 2)
         self.names = saved
-        last = self.lines[j - 1].text.replace(" ", "") if j - 1 > i + 1 else ""
-        if last != f"{var}={var}+1":
-            return None
-        end = int(w.group(2)) + (w.group(1) == "<=")
-        return [For(var, int(m.group(2)), end, tuple(body), self.lines[i + 1].where)], j + 1
+        return [For(var, int(m.group(2)), int(bound) + (w.group(1) == "<="), tuple(body), self.lines[i + 1].where)], j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
-        m = re.fullmatch(r"(if|elif|while)\s+(.*):", ln.text)
+        m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        cond = _FOREVER if forever else _cond(m.group(2)) if m else None
+        cond = _FOREVER if forever else input_cond(m.group(2)) if m else None
         if cond is None:
             out, j, depth = [], i, 0
             while j < len(self.lines):
@@ -316,13 +354,13 @@ class _Script:
         compact = text.replace(" ", "")
         m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", compact)
         if m:
-            values = _numbers(m.group(1))
+            values = pose_numbers(m.group(1))
             if values is None or len(values) != 6:
                 return False
             key = tuple(round(v, 6) for v in values)
             if key not in self.tools:
                 self.tools[key] = ToolData(f"tcp_{len(self.tools) + 1}", ur_pose(values), 0.0, Where(self.tally.path, 1))
-            self.tool = self.tools[key].name
+            self.tool, self.last_target = self.tools[key].name, None
             return True
         m = re.fullmatch(r"set_(?:target_)?payload\(([\d.]+)(?:,.*)?\)", compact)  # set_target_payload: PolyScope 5.10+
         if m and self.tool is not None:
@@ -330,7 +368,13 @@ class _Script:
             t = self.tools[key]
             self.tools[key] = ToolData(t.name, t.tcp, float(m.group(1)), t.where)
             return True
-        return re.fullmatch(r"set_analog_outputdomain\(\d+,1\)", compact) is not None
+        # set_analog_outputdomain(n, 0|1): port n's output is a current (4..20 mA) or a voltage
+        # (0..10 V) (URScript manual, module interfaces); a port set to current keeps its
+        # set_standard_analog_out native (rmot's analog outputs are volts)
+        domain = re.fullmatch(r"set_analog_outputdomain\((\d+),([01])\)", compact)
+        if domain and domain.group(2) == "0":
+            self.current_domain.add(int(domain.group(1)))
+        return domain is not None and domain.group(2) == "1"
 
     def _simple(self, ln: _Line) -> Stmt | None:
         text, where = ln.text.replace(" ", ""), ln.where
@@ -338,20 +382,21 @@ class _Script:
         if m:
             return self._move(m.group(1), split_top(m.group(2)), where)
         # set_digital_out(n, b): the deprecated name of set_standard_digital_out for n in 0..7
-        # (URScript manual CB3, module interfaces); a higher n stays native
-        m = re.fullmatch(r"set_digital_out\(([0-7]),(True|False)\)", text)
-        if m:
-            return SetOut(int(m.group(1)), 1.0 if m.group(2) == "True" else 0.0, where)
-        m = re.fullmatch(r"set_(standard|configurable)_digital_out\((\d+),(True|False)\)", text)
-        if m:
-            return SetOut(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0),
+        # (URScript manual CB3, module interfaces); a higher n stays native. A port or a duration
+        # may be a numeric variable whose value here is certain (`LED = 3`, `sleep(dwell)`).
+        m = re.fullmatch(r"set_(digital|standard_digital|configurable_digital)_out\(([\w.+-]+),(True|False)\)", text)
+        port = self._port(m.group(2)) if m else None
+        if m and port is not None and (m.group(1) != "digital" or port <= 7):
+            return SetOut(port + (8 if m.group(1) == "configurable_digital" else 0),
                           1.0 if m.group(3) == "True" else 0.0, where)
-        m = re.fullmatch(r"set_standard_analog_out\((\d+),([\d.]+)\)", text)
-        if m:
-            return SetOut(int(m.group(1)), float(m.group(2)) * 10.0, where, analog=True)
-        m = re.fullmatch(r"sleep\(([\d.]+)\)", text)
-        if m:
-            return Wait(float(m.group(1)), where)
+        m = re.fullmatch(r"set_standard_analog_out\(([\w.+-]+),([\w.+-]+)\)", text)
+        port, share = (self._port(m.group(1)), self._value(m.group(2))) if m else (None, None)
+        if port is not None and share is not None and 0.0 <= share <= 1.0 and port not in self.current_domain:
+            return SetOut(port, share * 10.0, where, analog=True)
+        m = re.fullmatch(r"sleep\(([\w.+-]+)\)", text)
+        seconds = self._value(m.group(1)) if m else None
+        if seconds is not None and seconds >= 0.0:
+            return Wait(seconds, where)
         m = re.fullmatch(r"(?:\w+=)?run(\w+)\(\)", text)
         if m and m.group(1) in self.pulses:
             port, seconds = self.pulses[m.group(1)]
@@ -363,23 +408,64 @@ class _Script:
             return Call(m.group(1), (), where)
         return None
 
+    def _port(self, text: str) -> int | None:
+        """A port number: a non-negative integer, written or held by a certain variable."""
+        value = self._value(text)
+        return int(value) if value is not None and value >= 0 and value == int(value) else None
+
     def _declare(self, ln: _Line) -> bool:
-        """`[global] name = p[...]` or `= [j1, ..]` once, at its first assignment: a target."""
-        m = re.fullmatch(r"(?:global\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
-        values = _numbers(m.group(3)) if m else None
-        if m is None or values is None or len(values) != 6 or m.group(1) in self.targets:
+        """`[global] name = p[...]`, `= [j1, ..]`, or `= pose_add(A, B)` / `pose_trans(A, B)` of
+        poses known here, assigned once in the file: a target."""
+        m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
+        values = pose_numbers(m.group(3)) if m else None
+        combined = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(pose_add|pose_trans)\((.*)\)", ln.text)
+        name = (m or combined).group(1) if m or combined else ""  # type: ignore[union-attr]
+        scope = self.scope[-1] if self.scope and not ln.text.startswith("global") else ""
+        if scope and self.assigned.get(name, 0) > 1 and self.scoped.get((scope, name)) == 1:
+            # a function's own variable, assigned once there: its pose composes the moves that
+            # read it in that function (the assignment itself stays native)
+            local = self._combined(combined.group(2), split_top(combined.group(3))) if combined else \
+                ur_pose(values) if m and m.group(2) and values is not None and len(values) == 6 else None
+            if local is not None:
+                self.local_poses[(scope, name)] = local
+            return False
+        if self.assigned.get(name, 0) != 1 or name in self.targets:
+            return False
+        if combined:
+            pose = self._combined(combined.group(2), split_top(combined.group(3)))
+            if pose is not None:
+                self.targets[name] = Target(name, pose, None, None, ln.where)
+            return pose is not None
+        if m is None or values is None or len(values) != 6:
             return False
         if m.group(2):
-            self.targets[m.group(1)] = Target(m.group(1), ur_pose(values), None, None, ln.where)
+            self.targets[name] = Target(name, ur_pose(values), None, None, ln.where)
         else:
-            self.targets[m.group(1)] = Target(m.group(1), None, tuple(math.degrees(v) for v in values), None, ln.where)
+            self.targets[name] = Target(name, None, tuple(math.degrees(v) for v in values), None, ln.where)
         return True
+
+    def _known_pose(self, text: str) -> ir.Pose | None:
+        """A pose literal `p[..]` or a target declared with a pose."""
+        literal = re.fullmatch(r"p\[(.*)\]", text.replace(" ", ""))
+        values = pose_numbers(literal.group(1)) if literal else None
+        if values is not None and len(values) == 6:
+            return ur_pose(values)
+        local = self.local_poses.get((self.scope[-1] if self.scope else "", text.strip()))
+        target = self.targets.get(text.strip())
+        return local if local is not None else target.pose if target is not None else None
+
+    def _combined(self, func: str, parts: list[str]) -> ir.Pose | None:
+        """`pose_trans(A, B)` / `pose_add(A, B)` of two poses known here."""
+        a, b = (self._known_pose(p) for p in parts) if len(parts) == 2 else (None, None)
+        return compose(func, a, b) if a is not None and b is not None else None
 
     def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
         """(rmot expression, declared name, declaration) of a URScript pose or joint list
         (nested at most 8 deep)."""
         if depth > 8:
             return None
+        if text in self.resolved:
+            return self.resolved[text]
         if text in self.targets:
             t = self.targets[text]
             return (t.name, t.name, t)
@@ -388,7 +474,7 @@ class _Script:
             return self._target(m.group(1), depth + 1)
         m = re.fullmatch(r"(p?)\[(.*)\]", text)
         if m:
-            values = _numbers(m.group(2))
+            values = pose_numbers(m.group(2))
             if values is None or len(values) != 6:
                 return None
             if m.group(1):
@@ -398,8 +484,15 @@ class _Script:
             return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
                     Target("", None, joints, None, Where("", 0)))
         trans = re.fullmatch(r"pose_trans\((.*)\)", text)
-        if trans:
-            return self._tool_offset(split_top(trans.group(1)), depth)
+        found = self._tool_offset(split_top(trans.group(1)), depth) if trans else self._base_offset(text, depth)
+        combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text) if found is None else None
+        composed = self._combined(combined.group(1), split_top(combined.group(2))) if combined else None
+        if composed is not None:  # two poses known here, composed (not a plain translation of a target)
+            return (pose_expr(composed), None, Target("", composed, None, None, Where("", 0)))
+        return found
+
+    def _base_offset(self, text: str, depth: int) -> tuple[str, str | None, Target | None] | None:
+        """`pose_add(P, p[dx, dy, dz, 0, 0, 0])`: P moved along the base axes = `shift(P, ..)`."""
         m = re.fullmatch(r"pose_add\((.*)\)", text)
         parts = split_top(m.group(1)) if m else []
         base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
@@ -438,23 +531,13 @@ class _Script:
         self.rest_joints = joints if zone == 0.0 else None
         self.moved = True
         if first and v is not None and a is not None:
-            return _share(v / self.vmax), _share(a / self.amax)
+            return share(v / self.vmax), share(a / self.amax)
         if v is None or a is None or joints is None or start is None or self.limits is None or zone != 0.0:
             if v is not None or a is not None:
                 self.tally.warn(codes.JOINT_RATES_READ, f"movej a={a}, v={v}: the plan's leading-axis peak "
                                 "rates, whose shares need the move's start; read as 100 %", where)
             return None, None
-        delta = [abs(math.radians(q - q0)) for q, q0 in zip(joints, start)]
-        lead = max(delta)
-        if lead < 1e-9:
-            return None, None
-        vmax, amax = self.limits
-        path_speed, path_accel = v / lead, a / lead  # of s in 0..1 along the joint-space line
-        moving = [i for i, d in enumerate(delta) if d > 1e-12]
-        accel = _share(path_accel / min(amax[i] / delta[i] for i in moving))
-        triangular = abs(path_speed * path_speed - path_accel) <= 1e-3 * path_accel
-        speed = None if triangular else _share(path_speed / min(vmax[i] / delta[i] for i in moving))
-        return speed, accel
+        return rest_to_rest_shares(start, joints, v, a, self.limits)
 
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
         # movep (URScript manual, module motion: "Move Process. Blend circular (in tool-space) and move
@@ -488,61 +571,15 @@ class _Script:
             speed = 1000.0 * v if v is not None else 250.0
             accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
             jpct, jacc = None, None
+        exact = decl is not None and decl.pose is not None and (name is None or expr == name)
+        self.last_target = (expr, decl.pose) if exact and decl and decl.pose else None  # shifts: decl is the base's
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t") or None, tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
                     accel=accel, joint_accel=jacc)
 
 
-_ASSIGN = re.compile(r"(?:global\s+)?(\w+)\s*=\s*([-+\d.eE]+)")
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
-
-
-def _share(ratio: float) -> float | None:
-    """A joint speed/acceleration ratio as rmot's %, None for 100 % (the default) or above."""
-    pct = round(100.0 * ratio, 3)
-    return None if pct >= 99.95 else max(pct, 1.0)
-
-
-def _strip_hash(line: str) -> str:
-    quote = False
-    for i, ch in enumerate(line):
-        if ch == '"':
-            quote = not quote
-        elif ch == "#" and not quote:
-            return line[:i]
-    return line
-
-
-def _unwrap(text: str) -> str:
-    """`text` without spaces and without parentheses that enclose all of it."""
-    text = text.replace(" ", "")
-    while text.startswith("(") and text.endswith(")") and _balanced(text[1:-1]):
-        text = text[1:-1]
-    return text
-
-
-def _balanced(text: str) -> bool:
-    depth = 0
-    for ch in text:
-        depth += (ch == "(") - (ch == ")")
-        if depth < 0:
-            return False
-    return depth == 0
-
-
-def _cond(text: str) -> Cond | None:
-    """`get_standard_digital_in(n) == True|False`, bare, or `not ...`, each maybe in parentheses
-    (configurable: n + 8)."""
-    text = _unwrap(text)
-    neg = text.startswith("not")
-    if neg:
-        text = _unwrap(text[3:])
-    m = re.fullmatch(r"get_(standard|configurable)_digital_in\((\d+)\)(?:==(True|False))?", text)
-    if m is None:
-        return None
-    on = (m.group(3) or "True") == "True"
-    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), on != neg)
 
 
 def read_urscript(path: str, text: str, model: str | None,
