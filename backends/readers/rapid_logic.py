@@ -1,10 +1,11 @@
 """RAPID task variables and the statements on them, read into rmot's runtime logic (§12).
 
-A `VAR`/`PERS` `num` or `bool` the module assigns (`:=`, `Incr`, `Decr`) is a task variable:
+A `VAR` `num` or `bool` the module assigns (`:=`, `Incr`, `Decr`) is a task variable:
 `var name: int|num|bool = value` at the top of the main routine (RAPID starts a num at 0 and a
 bool at FALSE where no value is given: Technical reference manual – RAPID overview, "Data
 declarations"). A num is an rmot `int` when its value and every value assigned to it are whole
-(RAPID's num holds both). rmot's procs do not see a task's variables, so only the main routine
+(RAPID's num holds both). A `PERS` keeps its value from one run to the next, which a task
+variable does not: it stays as it was read (a constant or a comment). rmot's procs do not see a task's variables, so only the main routine
 reads them; elsewhere their statements stay native. `WaitDI`/`WaitUntil ... \\TimeFlag:=f`
 followed by `IF f THEN ... ENDIF`, with `f` read nowhere else, is `wait until ... timeout T else
 { ... }` (RAPID Instructions, WaitDI: the flag is TRUE when the time ran out).
@@ -109,7 +110,7 @@ class RapidVars:
     def declare(self, kind: str, type_: str, name: str, value: str | None, where: Where) -> bool:
         """Read `VAR|PERS num|bool name [:= value]` as a task variable where it is one."""
         key = name.upper()
-        if kind.upper() == "CONST" or type_.lower() not in ("num", "bool") or key in self.vars:
+        if kind.upper() != "VAR" or type_.lower() not in ("num", "bool") or key in self.vars:
             return False
         if key in self.flags and type_.lower() == "bool":
             return True  # written by the wait's `timeout ... else`
