@@ -16,11 +16,12 @@ The result is a `Conds` of op "logic": rmot text with `{n}` where the n-th input
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from collections.abc import Callable, Mapping
 
-from rmot.backends.readers.model import Cond, Conds
+from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, VarDecl
 
-__all__ = ["translate", "RAPID", "KRL"]
+__all__ = ["translate", "RAPID", "KRL", "fits", "fold_first_values"]
 
 # binary operator -> (vendor priority, rmot operator); higher binds tighter
 RAPID = {"OR": (1, "or"), "AND": (2, "and"), "=": (3, "=="), "<>": (3, "!="), "<": (3, "<"), "<=": (3, "<="),
@@ -108,6 +109,8 @@ class _Parser:
         other = left if literal is right else right
         if literal is None or other[1] != "bool" or op not in ("==", "!="):
             raise _Refused("a comparison of two bool expressions")
+        if other[2] < 4:  # KRL's `$IN[1] AND $IN[2]==FALSE` compares the AND: rarely what was meant, refused
+            raise _Refused("a comparison of an and/or/not")
         return other if (op == "==") == (literal[0] == "on") else self.negate(other)
 
     def atom(self) -> _Node:
@@ -157,3 +160,25 @@ def translate(text: str, ops: Mapping[str, tuple[int, str]], names: Mapping[str,
     except (_Refused, RecursionError, ValueError):
         return None
     return Conds("logic", tuple(parser.parts), node[0]), node[1]
+
+
+def fits(var_type: str, value_type: str) -> bool:
+    """rmot's assignment rule (§12, E151): an int takes an int, a num an int or a num, a bool a
+    bool (KRL would round a REAL into an INT, RAPID has one num: neither is read otherwise)."""
+    return value_type == var_type or (var_type == "num" and value_type == "int")
+
+
+def fold_first_values(decls: list[VarDecl], body: tuple[Stmt, ...]) -> tuple[list[VarDecl], tuple[Stmt, ...]]:
+    """The declarations, each with the value the routine assigns it first thing (`x := 0;`
+    before any other statement, from constants only: nothing reads the declared value), and
+    the rest of the body."""
+    by_name = {d.name: d for d in decls}
+    k = 0
+    while k < len(body) and isinstance(body[k], Assign):
+        a = body[k]
+        assert isinstance(a, Assign)
+        if a.name not in by_name or a.value.parts or any(re.search(rf"\b{n}\b", a.value.text) for n in by_name):
+            break
+        by_name[a.name] = replace(by_name[a.name], init=a.value)
+        k += 1
+    return list(by_name.values()), body[k:]

@@ -14,9 +14,8 @@ followed by `IF f THEN ... ENDIF`, with `f` read nowhere else, is `wait until ..
 from __future__ import annotations
 
 import re
-from dataclasses import replace
 
-from rmot.backends.readers.logic import RAPID, translate
+from rmot.backends.readers.logic import RAPID, fits, fold_first_values, translate
 from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, VarDecl, Where
 from rmot.backends.readers.rapid_text import Statement
 
@@ -144,19 +143,8 @@ class RapidVars:
         return "int" if init == "int" and whole(key) else "num"
 
     def fold_first_values(self, body: tuple[Stmt, ...]) -> tuple[list[VarDecl], tuple[Stmt, ...]]:
-        """The declarations, each with the value the routine assigns it first thing (`x := 0;`
-        before any other statement: nothing reads the declared value), and the rest of the body."""
-        decls = {d.name: d for d in self.decls}
-        k = 0
-        while k < len(body) and isinstance(body[k], Assign):
-            a = body[k]
-            assert isinstance(a, Assign)
-            if a.name not in decls or a.value.parts or any(
-                    re.search(rf"\b{n}\b", a.value.text) for n, _ in self.vars.values()):
-                break
-            decls[a.name] = replace(decls[a.name], init=a.value)
-            k += 1
-        return list(decls.values()), body[k:]
+        """The declarations with the values the main routine starts by assigning (logic.py)."""
+        return fold_first_values(self.decls, body)
 
     def statement(self, st: Statement) -> Assign | None:
         """`x := e;`, `Incr x;`, `Decr x;` on a visible task variable."""
@@ -172,7 +160,7 @@ class RapidVars:
         else:
             text = f"{name} {'+' if st.word == 'INCR' else '-'} 1"
         found = translate(text, RAPID, self.visible, lambda tokens, i: _input(tokens, i, self.visible))
-        if found is None or not _fits(type_, found[1]):
+        if found is None or not fits(type_, found[1]):
             return None
         return Assign(name, found[0], st.where)
 
@@ -189,8 +177,3 @@ class _Both(dict[str, tuple[str, str]]):
 
     def __getitem__(self, key: str) -> tuple[str, str]:
         return self.variables[key] if key in self.variables else super().__getitem__(key)
-
-
-def _fits(var_type: str, value_type: str) -> bool:
-    """rmot's assignment rule (§12, E151): an int takes an int, a num an int or a num, a bool a bool."""
-    return value_type == var_type or (var_type == "num" and value_type == "int")

@@ -1,0 +1,166 @@
+"""`rmot import` of KRL task variables and the logic on them (lang/REFERENCE.md §12, §14).
+
+Witnesses: a hand-written program (KUKA System Software 8.x: DECL INT/REAL/BOOL, assignments,
+WHILE, IF, SWITCH, FOR) whose import must compile with `rmot compile` (the compiler's own type
+rules E150–E162), and a tiny KRL expression evaluator written here from the KSS manual's
+operator priorities (NOT, then `* /`, `+ -`, AND, OR, comparisons last), run against Python's
+evaluation of the imported rmot text (rmot's priorities are Python's) over every input level
+and a range of variable values.
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from rmot.backends.readers.krl_logic import KrlVars
+from rmot.compiler.cli import cli
+
+SRC = """DEF t( )
+  DECL INT count
+  DECL REAL lvl
+  BOOL late
+  INT i
+  count = 0
+  late = FALSE
+  PTP XHOME
+  WHILE (count < 3) AND $IN[1]
+    PTP XP1
+    count = count + 1
+    lvl = lvl * 2 / 3
+    IF (count == 2) OR NOT $IN[2] THEN
+      $OUT[1] = TRUE
+    ELSE
+      late = TRUE
+    ENDIF
+  ENDWHILE
+  SWITCH count
+  CASE 1, 2
+    $OUT[2] = TRUE
+  CASE 3
+    $OUT[3] = TRUE
+  DEFAULT
+    $OUT[4] = FALSE
+  ENDSWITCH
+  count = count / 2
+  IF late == FALSE AND $OUT[3] THEN
+    $OUT[5] = TRUE
+  ENDIF
+  FOR i = 1 TO 3
+    PTP XP1
+  ENDFOR
+  IF late THEN
+    RETURN
+  ENDIF
+END
+"""
+
+DAT = """DEFDAT t
+  DECL E6AXIS XHOME={A1 0.0,A2 -90.0,A3 90.0,A4 0.0,A5 0.0,A6 0.0}
+  DECL E6AXIS XP1={A1 10.0,A2 -90.0,A3 90.0,A4 0.0,A5 0.0,A6 0.0}
+  DECL REAL lvl=1.5
+ENDDAT
+"""
+
+
+def test_hand_written_logic(tmp_path: Path) -> None:
+    src = tmp_path / "t.src"
+    src.write_text(SRC)
+    (tmp_path / "t.dat").write_text(DAT)
+    out = tmp_path / "t.rmot"
+    result = CliRunner().invoke(cli, ["import", str(src), "-o", str(out), "--robot", "kuka_kr6_r900"])
+    assert result.exit_code == 0, result.output
+    body = [ln.strip() for ln in out.read_text().splitlines()]
+    for line in ["var count: int = 0", "var lvl: num = 1.5", "var late: bool = off",
+                 "while count < 3 and in[1] == on {", "count = count + 1", "lvl = lvl * 2 / 3",
+                 "if count == 2 or in[2] == off {", "late = on", "if count == 1 or count == 2 {",
+                 "if count == 3 {", "for i in 1 .. 4 {", "stop"]:
+        assert line in body, (line, out.read_text())
+    # no rmot form: an integer division; a comparison of an AND (KRL compares last) reading an output
+    assert re.search(rf"{src}:27:3: warning\[W510\].*count = count / 2", result.output)
+    assert re.search(rf"{src}:28:3: warning\[W510\].*IF late == FALSE AND \$OUT\[3\]", result.output)
+    compiled = CliRunner().invoke(cli, ["compile", str(out), "--cell", str(tmp_path / "t_cell.rmot"),
+                                        "--target", "krl", "-o", str(tmp_path / "o"), "--allow-findings"])
+    assert "error[" not in compiled.output, compiled.output
+
+
+# ---------------------------------------------------------------- an independent evaluator
+
+_PRIO = {"==": 1, "<>": 1, "<": 1, "<=": 1, ">": 1, ">=": 1, "OR": 2, "AND": 4, "+": 5, "-": 5, "*": 6, "/": 6}
+
+
+def _krl_eval(text: str, env: dict[str, float | bool], inputs: dict[int, bool]) -> float | bool:
+    """KRL's evaluation (priorities from the KSS 8.x manual), written for this test."""
+    tokens = re.findall(r"\$IN\[\d+\]|\d+\.?\d*|\w+|<>|<=|>=|==|[-+*/()<>]", text)
+    pos = [0]
+
+    def atom() -> float | bool:
+        t = tokens[pos[0]]
+        pos[0] += 1
+        if t == "(":
+            v = expr(0)
+            pos[0] += 1
+            return v
+        if t.upper() == "NOT":
+            return not atom()
+        if t.startswith("$IN["):
+            return inputs[int(t[4:-1])]
+        if t.upper() in ("TRUE", "FALSE"):
+            return t.upper() == "TRUE"
+        return float(t) if re.fullmatch(r"[\d.]+", t) else env[t]
+
+    def expr(floor: int) -> float | bool:
+        left = atom()
+        while pos[0] < len(tokens) and tokens[pos[0]].upper() in _PRIO and _PRIO[tokens[pos[0]].upper()] > floor:
+            op = tokens[pos[0]].upper()
+            pos[0] += 1
+            right = expr(_PRIO[op])
+            left = {"OR": lambda a, b: a or b, "AND": lambda a, b: a and b, "==": lambda a, b: a == b,
+                    "<>": lambda a, b: a != b, "<": lambda a, b: a < b, "<=": lambda a, b: a <= b,
+                    ">": lambda a, b: a > b, ">=": lambda a, b: a >= b, "+": lambda a, b: a + b,
+                    "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": lambda a, b: a / b}[op](left, right)
+        return left
+
+    return expr(0)
+
+
+CONDITIONS = [
+    "(n < 3) AND $IN[1]",
+    "(n >= 2) OR NOT $IN[2] AND ok",
+    "((n + 1) * 2 > m - 1) OR NOT ok",
+    "$IN[1] AND NOT ok OR (n == m)",
+    "(ok == FALSE) AND (n <> 2)",
+    "n * 2 + 1 < m / 2 + n",
+    "NOT ((n < 2) AND $IN[2])",
+    "$IN[2] == FALSE",
+]
+
+
+def _vars(text: str) -> KrlVars:
+    lines_src = f"DEF x( )\n  INT n\n  REAL m\n  BOOL ok\n  n = 0\n  m = 0\n  ok = FALSE\n  IF {text} THEN\n  ENDIF\nEND\n"
+    from rmot.backends.readers.krl_text import lines
+    found = KrlVars(lines("x.src", lines_src), "x", None, set(), lambda n: None)
+    found.visible = found.vars
+    return found
+
+
+@pytest.mark.parametrize("text", CONDITIONS)
+def test_condition_means_the_same(text: str) -> None:
+    conds = _vars(text).condition(text)
+    assert conds is not None, text
+    for i1, i2, ok, n, m in itertools.product((False, True), (False, True), (False, True), range(-1, 5), (0.5, 2.0, 3.0)):
+        inputs = {1: i1, 2: i2}
+        parts = [f"({inputs[int(c.signal)] == c.on})" for c in conds.parts]
+        rmot = conds.text.format(*parts)
+        mine = eval(rmot, {}, {"n": n, "m": m, "ok": ok, "on": True, "off": False})  # noqa: S307 - test's own text
+        assert mine == _krl_eval(text, {"n": n, "m": m, "ok": ok}, inputs), (text, rmot, i1, i2, ok, n, m)
+
+
+@pytest.mark.parametrize("text", ["n / 2 == 1", "n == 2 OR ok", "$OUT[1]", "$IN[1] AND $IN[2] == FALSE",
+                                  "n EXOR 1", "ok == (n < 2)", "n B_AND 2 == 0"])
+def test_no_rmot_form_is_refused(text: str) -> None:
+    assert _vars(text).condition(text) is None
