@@ -16,6 +16,7 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 from __future__ import annotations
 
 import re
+from functools import partial
 from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
@@ -132,7 +133,7 @@ class _Krl:
                                     "call, written as a proc (import it after its caller; alone, nothing runs it)",
                                     ln.where)
                 self.params = param_names(params)
-                body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), lambda at=i + 1: self._block(at, ("END",)))
+                body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), partial(self._block, i + 1, ("END",)))
                 self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
                 i = skip_function(self.lines, self.tally, i)
@@ -171,8 +172,12 @@ class _Krl:
         if word == "LOOP" and not self.routines and self.tally.depth == 1 and not any(
                 ln.word == "EXIT" for ln in self.lines[i:]):
             return self._forever(i)
-        if word == "SWITCH" and switch_cases(self.lines, i, self._switchable()) is not None:
+        if word == "SWITCH" and switch_cases(self.lines, i, self.logic.switchable(self.params)) is not None:
             return self._switch(i)
+        looped = self.logic.loop(self.lines, i, self._block, self._cond) if word in ("LOOP", "REPEAT") else None
+        if looped is not None:
+            self.tally.imported += 1
+            return looped
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
             return keep_block(self.lines, self.tally, i, word, end)
@@ -255,16 +260,12 @@ class _Krl:
             return [While(cond, tuple(then), ln.where)], j + 1
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
 
-    def _switchable(self) -> dict[str, tuple[str, str]]:
-        """The names a SWITCH may test: the routine's number parameters, the main DEF's INT variables."""
-        return {**self.params, **{k: (n, "number") for k, (n, t) in self.logic.visible.items() if t == "int"}}
-
     def _switch(self, i: int) -> tuple[list[Stmt], int]:
         """`SWITCH k` .. `CASE 1, 2` .. `DEFAULT` .. `ENDSWITCH` on a number parameter (KSS 8.x: the
         first CASE with a value equal to k runs, else DEFAULT) → `if k == 1 or k == 2 { } else ..`."""
-        name = self._switchable()[self.lines[i].text.split()[1].upper()][0]
+        name = self.logic.switchable(self.params)[self.lines[i].text.split()[1].upper()][0]
         arms = []
-        for j, values in switch_cases(self.lines, i, self._switchable()) or []:
+        for j, values in switch_cases(self.lines, i, self.logic.switchable(self.params)) or []:
             body, end = self._block(j + 1, ("CASE", "DEFAULT", "ENDSWITCH"))
             arms.append((values, body, self.lines[j].where))
         orelse: tuple[Stmt, ...] = tuple(arms.pop()[1]) if arms and not arms[-1][0] else ()

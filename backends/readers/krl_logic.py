@@ -20,13 +20,27 @@ from collections.abc import Callable
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.krl_text import Line, declarations, lines
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate
-from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, Stop, VarDecl, WaitIn
+from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, Stop, VarDecl, WaitIn, While
 
 __all__ = ["KrlVars"]
 
 _TYPES = {"INT": "int", "REAL": "num", "BOOL": "bool"}
 _LOCAL = re.compile(r"(?i)^(?:DECL\s+)?(INT|REAL|BOOL)\s+([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)$")
 _ASSIGN = re.compile(r"(?i)^([A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
+
+
+def _loop_end(found: list[Line], i: int) -> int | None:
+    """The index of the ENDLOOP/UNTIL closing the loop at `i`, None where an EXIT leaves it
+    (an EXIT leaves the innermost LOOP, FOR, WHILE or REPEAT)."""
+    depth = 0
+    for j in range(i, len(found)):
+        word = found[j].word if found[j].fold is None else ""
+        depth += (word in ("LOOP", "FOR", "WHILE", "REPEAT")) - (word in ("ENDLOOP", "ENDFOR", "ENDWHILE", "UNTIL"))
+        if word == "EXIT" and depth == 1:
+            return None
+        if depth == 0:
+            return j
+    return None
 
 
 def _main_lines(found: list[Line], name: str) -> list[Line]:
@@ -137,6 +151,29 @@ class KrlVars:
         if found is None or not fits(type_, found[1]):
             return None
         return Assign(name, found[0], ln.where)
+
+    def switchable(self, params: dict[str, tuple[str, str]]) -> dict[str, tuple[str, str]]:
+        """The names a SWITCH may test: the routine's number parameters, the main DEF's INT variables."""
+        return {**params, **{k: (n, "number") for k, (n, t) in self.visible.items() if t == "int"}}
+
+    def loop(self, found: list[Line], i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]],
+             cond_of: Callable[[str], Cond | Conds | None]) -> tuple[list[Stmt], int] | None:
+        """`LOOP` B `ENDLOOP` with no EXIT of its own → `while on { B }` (it never ends, KSS 8.x
+        "LOOP"); `REPEAT` B `UNTIL c` → B then `while not c { B }` (B runs once, then until c
+        holds, KSS 8.x "REPEAT"). None where an EXIT leaves it or c has no rmot form."""
+        word = found[i].word
+        end = _loop_end(found, i)
+        if end is None:
+            return None
+        until = re.fullmatch(r"(?i)UNTIL\s+(.+)", found[end].text) if word == "REPEAT" else None
+        cond = cond_of(until.group(1)) if until else None
+        if word == "REPEAT" and cond is None:
+            return None
+        body, j = block(i + 1, ("ENDLOOP",) if word == "LOOP" else ("UNTIL",))
+        if word == "LOOP":
+            return [While(Conds("logic", (), "on"), tuple(body), found[i].where)], j + 1
+        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else Cond(cond.signal, not cond.on)  # type: ignore[union-attr]
+        return [*body, While(again, tuple(body), found[j].where)], j + 1
 
     def switch_var(self, text: str) -> str | None:
         """The rmot name of the INT variable `SWITCH n` tests, where it is one."""
