@@ -20,7 +20,7 @@ from collections.abc import Callable
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.krl_text import Line, declarations, lines
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate
-from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, Stop, VarDecl, WaitIn, While
+from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, Stop, VarDecl, WaitIn, Where, While
 
 __all__ = ["KrlVars"]
 
@@ -41,6 +41,19 @@ def _loop_end(found: list[Line], i: int) -> int | None:
         if depth == 0:
             return j
     return None
+
+
+def _exits(found: list[Line], i: int) -> list[int]:
+    """The EXIT lines that leave the LOOP at `i`."""
+    depth, out = 0, []
+    for j in range(i, len(found)):
+        word = found[j].word if found[j].fold is None else ""
+        depth += (word in ("LOOP", "FOR", "WHILE", "REPEAT")) - (word in ("ENDLOOP", "ENDFOR", "ENDWHILE", "UNTIL"))
+        if word == "EXIT" and depth == 1:
+            out.append(j)
+        if depth == 0:
+            return out
+    return []
 
 
 def _main_lines(found: list[Line], name: str) -> list[Line]:
@@ -70,6 +83,7 @@ class KrlVars:
         self.signal = signal
         self.visible: dict[str, tuple[str, str]] = {}
         self.main = False  # reading the main DEF
+        self.exiting: Where | None = None  # the EXIT of the loop being read that becomes its condition
         found_decls = [(d.type, d.name, d.value, d.where) for d in declarations(lines(*dat))] if dat else []
         for ln in body:
             m = _LOCAL.match(ln.text)
@@ -143,6 +157,8 @@ class KrlVars:
         KSS 8.x "RETURN": back to the caller, and the main DEF has none)."""
         if self.main and re.fullmatch(r"(?i)RETURN", ln.text):
             return Stop(ln.where)
+        if ln.where == self.exiting:
+            return Stop(ln.where)  # the loop's own EXIT, read into the loop's condition (loop())
         m = _ASSIGN.match(ln.text)
         if m is None or m.group(1).upper() not in self.visible:
             return None
@@ -164,7 +180,7 @@ class KrlVars:
         word = found[i].word
         end = _loop_end(found, i)
         if end is None:
-            return None
+            return self._exit_at_edge(found, i, block, cond_of) if word == "LOOP" else None
         until = re.fullmatch(r"(?i)UNTIL\s+(.+)", found[end].text) if word == "REPEAT" else None
         cond = cond_of(until.group(1)) if until else None
         if word == "REPEAT" and cond is None:
@@ -174,6 +190,30 @@ class KrlVars:
             return [While(Conds("logic", (), "on"), tuple(body), found[i].where)], j + 1
         again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else Cond(cond.signal, not cond.on)  # type: ignore[union-attr]
         return [*body, While(again, tuple(body), found[j].where)], j + 1
+
+    def _exit_at_edge(self, found: list[Line], i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]],
+                      cond_of: Callable[[str], Cond | Conds | None]) -> tuple[list[Stmt], int] | None:
+        """`LOOP` `IF c THEN EXIT ENDIF` B `ENDLOOP` → `while not c { B }`; `LOOP` B `IF c THEN
+        EXIT ENDIF` `ENDLOOP` → B then `while not c { B }` (the loop's only EXIT)."""
+        exits = _exits(found, i)
+        if len(exits) != 1:
+            return None
+        k = exits[0]
+        near = [j for j in range(i + 1, len(found)) if found[j].text or found[j].fold is not None]
+        at = near.index(k) if k in near else -1
+        head = re.fullmatch(r"(?i)IF\s+(.*?)\s+THEN", found[near[at - 1]].text) if at > 0 else None
+        if head is None or at + 1 >= len(near) or found[near[at + 1]].word != "ENDIF":
+            return None
+        first, last = near[at - 1] == near[0], at + 2 < len(near) and found[near[at + 2]].word == "ENDLOOP"
+        cond = cond_of(head.group(1))
+        if cond is None or not (first or last):
+            return None
+        self.exiting = found[k].where
+        body, j = block(i + 1, ("ENDLOOP",))
+        self.exiting = None
+        rest = tuple(body[1:] if first else body[:-1])
+        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else Cond(cond.signal, not cond.on)
+        return [*(() if first else rest), While(again, rest, found[i].where)], j + 1
 
     def switch_var(self, text: str) -> str | None:
         """The rmot name of the INT variable `SWITCH n` tests, where it is one."""

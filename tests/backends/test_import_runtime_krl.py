@@ -164,3 +164,92 @@ def test_condition_means_the_same(text: str) -> None:
                                   "n EXOR 1", "ok == (n < 2)", "n B_AND 2 == 0"])
 def test_no_rmot_form_is_refused(text: str) -> None:
     assert _vars(text).condition(text) is None
+
+
+LOOPS = """DEF e( )
+  INT n
+  n = 0
+  REPEAT
+    $OUT[1] = TRUE
+    n = n + 1
+  UNTIL (n >= 3) OR $IN[4]
+  LOOP
+    $OUT[2] = TRUE
+    IF $IN[2] THEN
+      EXIT
+    ENDIF
+  ENDLOOP
+  LOOP
+    IF $IN[3] AND (n > 5) THEN
+      EXIT
+    ENDIF
+    $OUT[3] = TRUE
+    n = n + 1
+  ENDLOOP
+END
+"""
+
+
+def _reference(on_after: dict[int, int]) -> list[int]:
+    """LOOPS run as KSS 8.x says (REPEAT: the body, then until; LOOP: until an EXIT), written by
+    hand; input k reads TRUE once `on_after[k]` outputs were set."""
+    trace: list[int] = []
+
+    def inp(k: int) -> bool:
+        return len(trace) >= on_after[k]
+
+    n = 0
+    while True:
+        trace.append(1)
+        n += 1
+        if n >= 3 or inp(4):
+            break
+    while True:
+        trace.append(2)
+        if inp(2):
+            break
+    while True:
+        if inp(3) and n > 5:
+            break
+        trace.append(3)
+        n += 1
+    return trace
+
+
+def _run(body: tuple, env: dict, trace: list[int], on_after: dict[int, int]) -> None:
+    """The imported statements run: outputs set, assignments, while and if on their conditions."""
+    from rmot.backends.readers.model import Assign, If, SetOut, VarDecl, While
+
+    def value(c: object) -> object:
+        from rmot.backends.readers.model import Cond
+        if isinstance(c, Cond):
+            return (len(trace) >= on_after[int(c.signal)]) == c.on
+        parts = [f"({value(p)})" for p in c.parts]  # type: ignore[attr-defined]
+        return eval(c.text.format(*parts), {}, {**env, "on": True, "off": False})  # type: ignore[attr-defined]  # noqa: S307
+
+    for s in body:
+        assert len(trace) < 200
+        if isinstance(s, SetOut):
+            trace.append(int(s.signal))
+        elif isinstance(s, (VarDecl, Assign)):
+            env[s.name] = value(s.init if isinstance(s, VarDecl) else s.value)
+        elif isinstance(s, While):
+            while value(s.cond):
+                _run(s.body, env, trace, on_after)
+        elif isinstance(s, If):
+            _run(s.then if value(s.cond) else s.orelse, env, trace, on_after)
+        else:
+            raise AssertionError(s)
+
+
+def test_loops_run_as_the_controller_runs_them(tmp_path: Path) -> None:
+    from rmot.backends.readers import read_files
+    src = tmp_path / "e.src"
+    src.write_text(LOOPS)
+    doc = read_files([str(src)])
+    assert doc.counts[0].native == 0
+    for t2, t3, t4 in itertools.product(range(0, 6), range(0, 9), range(0, 4)):
+        on_after = {2: t2, 3: t3, 4: t4}
+        trace: list[int] = []
+        _run(doc.routines[0].body, {}, trace, on_after)
+        assert trace == _reference(on_after), on_after
