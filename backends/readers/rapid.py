@@ -95,7 +95,7 @@ class _Module:
         self.pose_params: set[str] = set()  # the current PROC's target parameters
         self.acc_pct: float | None = None  # the last `AccSet Acc, 100;` (modal), None = 100 %
         self.name = "imported"
-        self.logic = RapidVars(self.stmts)  # task variables (rapid_logic.py)
+        self.logic = RapidVars(self.stmts, self.tally)  # task variables (rapid_logic.py)
 
     # ---------------------------------------------------------------- module level
 
@@ -286,7 +286,7 @@ class _Module:
         if word in ("IF", "WHILE", "FOR") and re.search(r"(?i)\b(THEN|DO)\s*$", st.text):
             return self._compound(i)
         if word == "TEST":
-            return self._keep_block(i, "ENDTEST", "TEST/CASE has no rmot form")
+            return self.logic.test(i, self._block) or self._keep_block(i, "ENDTEST", "TEST/CASE has no rmot form")
         if re.match(r"(?i)^(LOCAL\s+|TASK\s+)*(CONST|PERS|VAR)\s", st.text):
             self._declaration(st)
             return [], i + 1

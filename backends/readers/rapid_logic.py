@@ -14,9 +14,11 @@ followed by `IF f THEN ... ENDIF`, with `f` read nowhere else, is `wait until ..
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
+from rmot.backends.readers.common import Tally
 from rmot.backends.readers.logic import RAPID, fits, fold_first_values, translate
-from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, VarDecl, Where
+from rmot.backends.readers.model import Assign, Cond, Conds, If, Stmt, VarDecl, Where
 from rmot.backends.readers.rapid_text import Statement
 
 __all__ = ["RapidVars", "assigned_names", "timeout_flags", "condition"]
@@ -72,7 +74,8 @@ def _input(tokens: list[str], i: int, names: dict[str, tuple[str, str]]) -> tupl
 class RapidVars:
     """The task variables of one module: declared, typed, and the statements on them."""
 
-    def __init__(self, stmts: list[Statement]) -> None:
+    def __init__(self, stmts: list[Statement], tally: Tally) -> None:
+        self.tally = tally
         self.assigned = assigned_names(stmts)
         self.flags = timeout_flags(stmts)
         self.vars: dict[str, tuple[str, str]] = {}  # upper -> (name, rmot type)
@@ -146,6 +149,27 @@ class RapidVars:
         """The declarations with the values the main routine starts by assigning (logic.py)."""
         return fold_first_values(self.decls, body)
 
+    def test(self, i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]]
+             ) -> tuple[list[Stmt], int] | None:
+        """`TEST n` `CASE 1, 2:` .. `DEFAULT:` .. `ENDTEST` on a whole-number variable or constant,
+        every CASE value a whole number → `if n == 1 or n == 2 { } else ..` (RAPID Instructions,
+        TEST: the first CASE equal to n runs, else DEFAULT)."""
+        m = re.fullmatch(r"(?i)TEST\s+(\w+)", self.stmts[i].text)
+        found = self.visible[m.group(1).upper()] if m and m.group(1).upper() in self.visible else None
+        cases = _cases(self.stmts, i) if found is not None and found[1] == "int" else None
+        if cases is None:
+            return None
+        arms, j = [], i
+        for k, values in cases:
+            body, j = block(k + 1, ("CASE", "DEFAULT", "ENDTEST"))
+            arms.append((values, body, self.stmts[k].where))
+        orelse: tuple[Stmt, ...] = tuple(arms.pop()[1]) if not arms[-1][0] else ()
+        for values, body, where in reversed(arms):
+            test = Conds("logic", (), " or ".join(f"{found[0]} == {v}" for v in values))  # type: ignore[index]
+            orelse = (If(test, tuple(body), orelse, where),)
+        self.tally.imported += 1
+        return list(orelse), j + 1
+
     def statement(self, st: Statement) -> Assign | None:
         """`x := e;`, `Incr x;`, `Decr x;` on a visible task variable."""
         m = _ASSIGNED.match(st.text)
@@ -163,6 +187,25 @@ class RapidVars:
         if found is None or not fits(type_, found[1]):
             return None
         return Assign(name, found[0], st.where)
+
+
+def _cases(stmts: list[Statement], i: int) -> list[tuple[int, list[str]]] | None:
+    """The CASE/DEFAULT statements of the TEST at `i` (index, whole values; DEFAULT: none, last),
+    None where a value is not a whole number or a statement comes before the first CASE."""
+    cases: list[tuple[int, list[str]]] = []
+    depth, j = 0, i + 1
+    while j < len(stmts) and (depth or stmts[j].word != "ENDTEST"):
+        st = stmts[j]
+        depth += (st.word == "TEST") - (st.word == "ENDTEST")
+        if depth == 0 and st.word in ("CASE", "DEFAULT"):
+            values = re.fullmatch(r"(?i)CASE\s+(-?\d+(?:\s*,\s*-?\d+)*)\s*:", st.text)
+            if (st.word == "CASE" and values is None) or (cases and not cases[-1][1]):
+                return None
+            cases.append((j, [str(int(v)) for v in re.split(r"\s*,\s*", values.group(1))] if values else []))
+        elif depth == 0 and not cases:
+            return None
+        j += 1
+    return cases if j < len(stmts) and cases else None
 
 
 class _Both(dict[str, tuple[str, str]]):

@@ -150,3 +150,51 @@ def test_condition_means_the_same(text: str) -> None:
 @pytest.mark.parametrize("text", ["n DIV 2 = 1", "NOT ok AND n < 2", "msg = \"x\"", "ok = (n < 2)", "n MOD 2 = 0"])
 def test_no_rmot_form_is_refused(text: str) -> None:
     assert condition(text, {"N": ("n", "int"), "OK": ("ok", "bool")}) is None
+
+
+TEST_CASE = """MODULE tc
+  VAR num k := 0;
+  PROC main()
+    k := 2;
+    TEST k
+    CASE 1, 2:
+      SetDO do1, 1;
+    CASE 3:
+      SetDO do3, 1;
+    DEFAULT:
+      SetDO do2, 0;
+    ENDTEST
+    TEST k
+    CASE 1:
+      SetDO do1, 0;
+    ENDTEST
+    Incr k;
+  ENDPROC
+ENDMODULE
+"""
+
+
+def _outputs(body: tuple, k: int) -> list[str]:
+    """The outputs the imported statements set for a value of k (if chains on `k == v`)."""
+    from rmot.backends.readers.model import If, SetOut
+    out: list[str] = []
+    for s in body:
+        if isinstance(s, SetOut):
+            out.append(f"{s.signal}={s.value:g}")
+        elif isinstance(s, If):
+            taken = eval(s.cond.text, {}, {"k": k})  # noqa: S307 - the test's own text
+            out += _outputs(s.then if taken else s.orelse, k)
+    return out
+
+
+def test_test_case_is_an_if_chain(tmp_path: Path) -> None:
+    """RAPID's TEST runs the first CASE equal to the value, else DEFAULT (RAPID Instructions, TEST)."""
+    from rmot.backends.readers import read_files
+    src = tmp_path / "tc.mod"
+    src.write_text(TEST_CASE)
+    doc = read_files([str(src)])
+    assert doc.counts[0].native == 0
+    body = tuple(s for s in doc.routines[0].body if type(s).__name__ == "If")
+    reference = {1: ["do1=1", "do1=0"], 2: ["do1=1"], 3: ["do3=1"]}
+    for k in range(-1, 6):
+        assert _outputs(body, k) == reference.get(k, ["do2=0"]), k
