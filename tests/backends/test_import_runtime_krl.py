@@ -19,6 +19,7 @@ from click.testing import CliRunner
 
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.compiler.cli import cli
+from vendor_expr_witness import KRL_PRIORITY, evaluate
 
 SRC = """DEF t( )
   DECL INT count
@@ -90,42 +91,10 @@ def test_hand_written_logic(tmp_path: Path) -> None:
 
 # ---------------------------------------------------------------- an independent evaluator
 
-_PRIO = {"==": 1, "<>": 1, "<": 1, "<=": 1, ">": 1, ">=": 1, "OR": 2, "AND": 4, "+": 5, "-": 5, "*": 6, "/": 6}
-
-
-def _krl_eval(text: str, env: dict[str, float | bool], inputs: dict[int, bool]) -> float | bool:
-    """KRL's evaluation (priorities from the KSS 8.x manual), written for this test."""
-    tokens = re.findall(r"\$IN\[\d+\]|\d+\.?\d*|\w+|<>|<=|>=|==|[-+*/()<>]", text)
-    pos = [0]
-
-    def atom() -> float | bool:
-        t = tokens[pos[0]]
-        pos[0] += 1
-        if t == "(":
-            v = expr(0)
-            pos[0] += 1
-            return v
-        if t.upper() == "NOT":
-            return not atom()
-        if t.startswith("$IN["):
-            return inputs[int(t[4:-1])]
-        if t.upper() in ("TRUE", "FALSE"):
-            return t.upper() == "TRUE"
-        return float(t) if re.fullmatch(r"[\d.]+", t) else env[t]
-
-    def expr(floor: int) -> float | bool:
-        left = atom()
-        while pos[0] < len(tokens) and tokens[pos[0]].upper() in _PRIO and _PRIO[tokens[pos[0]].upper()] > floor:
-            op = tokens[pos[0]].upper()
-            pos[0] += 1
-            right = expr(_PRIO[op])
-            left = {"OR": lambda a, b: a or b, "AND": lambda a, b: a and b, "==": lambda a, b: a == b,
-                    "<>": lambda a, b: a != b, "<": lambda a, b: a < b, "<=": lambda a, b: a <= b,
-                    ">": lambda a, b: a > b, ">=": lambda a, b: a >= b, "+": lambda a, b: a + b,
-                    "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": lambda a, b: a / b}[op](left, right)
-        return left
-
-    return expr(0)
+def _krl_eval(text: str, env: dict[str, object], inputs: dict[int, bool]) -> object:
+    """KRL's evaluation (vendor_expr_witness: the KSS 8.x priorities): `$IN[n]` and names."""
+    return evaluate(text, KRL_PRIORITY, lambda tokens, i: (inputs[int(tokens[i][4:-1])] if tokens[i].startswith("$IN[")
+                                                            else env[tokens[i]], 1))
 
 
 CONDITIONS = [

@@ -19,6 +19,7 @@ from click.testing import CliRunner
 
 from rmot.backends.readers.rapid_logic import condition
 from rmot.compiler.cli import cli
+from vendor_expr_witness import RAPID_PRIORITY, evaluate
 
 HAND = """MODULE Count
   ! written by hand from ABB's RAPID reference (VAR, :=, Incr, WHILE, IF, WaitDI \\TimeFlag)
@@ -80,46 +81,14 @@ def test_hand_written_logic(tmp_path: Path) -> None:
 
 # ---------------------------------------------------------------- an independent evaluator
 
-_PRIO = {"OR": 1, "AND": 2, "=": 3, "<>": 3, "<": 3, "<=": 3, ">": 3, ">=": 3, "+": 4, "-": 4, "*": 5, "/": 5}
+def _rapid_eval(text: str, env: dict[str, object], inputs: dict[str, int]) -> object:
+    """RAPID's evaluation (vendor_expr_witness: the RAPID kernel priorities): `DInput(s)`, names, signals."""
+    def leaf(tokens: list[str], i: int) -> tuple[object, int]:
+        if tokens[i].upper() == "DINPUT":
+            return float(inputs[tokens[i + 2]]), 4
+        return (env[tokens[i]] if tokens[i] in env else float(inputs[tokens[i]])), 1
 
-
-def _rapid_eval(text: str, env: dict[str, float | bool], inputs: dict[str, int]) -> float | bool:
-    """RAPID's evaluation (priorities from the RAPID kernel manual), written for this test."""
-    tokens = re.findall(r"\d+\.?\d*|\w+|<>|<=|>=|[-+*/()<>=]", text)
-    pos = [0]
-
-    def atom() -> float | bool:
-        t = tokens[pos[0]]
-        pos[0] += 1
-        if t == "(":
-            v = expr(0)
-            pos[0] += 1
-            return v
-        if t.upper() == "NOT":
-            return not atom()
-        if t.upper() == "DINPUT":
-            name = tokens[pos[0] + 1]
-            pos[0] += 3
-            return inputs[name]
-        if t.upper() in ("TRUE", "FALSE"):
-            return t.upper() == "TRUE"
-        if re.fullmatch(r"[\d.]+", t):
-            return float(t)
-        return env[t] if t in env else inputs[t]
-
-    def expr(floor: int) -> float | bool:
-        left = atom()
-        while pos[0] < len(tokens) and tokens[pos[0]].upper() in _PRIO and _PRIO[tokens[pos[0]].upper()] > floor:
-            op = tokens[pos[0]].upper()
-            pos[0] += 1
-            right = expr(_PRIO[op])
-            left = {"OR": lambda a, b: a or b, "AND": lambda a, b: a and b, "=": lambda a, b: a == b,
-                    "<>": lambda a, b: a != b, "<": lambda a, b: a < b, "<=": lambda a, b: a <= b,
-                    ">": lambda a, b: a > b, ">=": lambda a, b: a >= b, "+": lambda a, b: a + b,
-                    "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": lambda a, b: a / b}[op](left, right)
-        return left
-
-    return expr(0)
+    return evaluate(text, RAPID_PRIORITY, leaf)
 
 
 CONDITIONS = [
