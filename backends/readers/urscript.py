@@ -22,6 +22,7 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
+from rmot.backends.readers.urscript_logic import UrVars
 from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, rest_to_rest_shares, share,
 )
@@ -108,6 +109,7 @@ class _Script:
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
         self._scan_numbers(program)
+        self.logic = UrVars([ln.text for ln in self.lines], [ln.head for ln in self.lines], program, self.defs)
         texts = [ln.text.replace(" ", "") for ln in self.lines]
         self.direction = any(tuple(texts[k:k + len(DIRECTION_FUNCTION)]) == DIRECTION_FUNCTION
                              for k, t in enumerate(texts) if t == DIRECTION_FUNCTION[0])
@@ -118,10 +120,9 @@ class _Script:
         if m and program:
             self.name = self.main = m.group(1)
             body, _ = self._block(1, ("end",))
-            self.routines.append(Routine(self.main, (), tuple(body), first.where))
         else:  # a script whose top-level statements run: its defs are functions it calls
             body, _ = self._block(0, ())
-            self.routines.append(Routine(self.main, (), tuple(body), first.where))
+        self.routines.append(Routine(self.main, (), self.logic.hoist(tuple(body)), first.where))
 
     def _end_of(self, i: int) -> int:
         """The index of the `end` that closes the block opened at line `i`."""
@@ -217,7 +218,8 @@ class _Script:
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
         self._number_set(ln.text)  # remembered for the moves that read it, and kept native
-        stmt = self._simple(ln)
+        assign = self.logic.assign(ln.text, ln.where) if self.in_sub == 0 else None
+        stmt = assign or self._simple(ln)
         if stmt is None:
             return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
         self.tally.imported += 1
@@ -320,7 +322,7 @@ class _Script:
         m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        cond = _FOREVER if forever else input_cond(m.group(2)) if m else None
+        cond = _FOREVER if forever else (input_cond(m.group(2)) or self._logic_cond(m.group(2))) if m else None
         if cond is None:
             out, j, depth = [], i, 0
             while j < len(self.lines):
@@ -347,6 +349,10 @@ class _Script:
         if self.lines[j].text.startswith("else"):
             orelse, j = self._block(j + 1, ("end",))
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
+
+    def _logic_cond(self, text: str) -> Conds | None:
+        """A test on task variables (urscript_logic), in the program's own body only."""
+        return self.logic.condition(text) if self.in_sub == 0 else None
 
     # ---------------------------------------------------------------- statements
 
