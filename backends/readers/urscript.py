@@ -22,7 +22,7 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
-from rmot.backends.readers.urscript_logic import UrVars
+from rmot.backends.readers.urscript_logic import UrVars, timed_wait
 from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, rest_to_rest_shares, share,
 )
@@ -275,18 +275,17 @@ class _Script:
         return [ln.text.replace(" ", "") for ln in self.lines[i:i + n]]
 
     def _timed_wait(self, i: int) -> tuple[list[Stmt], int] | None:
-        t = self._texts(i, 9)
-        if len(t) < 9 or t[0] != "rmot_waited=0.0":
+        """The backend's timed wait (urscript_logic.timed_wait): popup + halt, or its else branch."""
+        found = timed_wait(self._texts(i, 9))
+        test = re.fullmatch(r"while\s*not\s*\((.*)\)\s*and\s*rmot_waited\s*<\s*[\d.]+\s*:", self.lines[i + 1].text) \
+            if found else None
+        cond = input_cond(test.group(1)) if found and test else None
+        if cond is None or found is None:
             return None
-        w = re.fullmatch(r"whilenot\((.*)\)andrmot_waited<([\d.]+):", t[1])
-        ok = (w is not None and t[2] == "sync()" and t[3] == "rmot_waited=rmot_waited+get_steptime()"
-              and t[4] == "end" and t[5] == f"ifnot({w.group(1)}):" and t[6].startswith("popup(")
-              and t[7] == "halt" and t[8] == "end")
-        test = re.fullmatch(r"while\s*not\s*\((.*)\)\s*and\s*rmot_waited\s*<\s*[\d.]+\s*:", self.lines[i + 1].text)
-        cond = input_cond(test.group(1)) if ok and test else None
-        if cond is None:
-            return None
-        return [WaitIn(cond, float(w.group(2)), self.lines[i + 1].where)], i + 9  # type: ignore[union-attr]
+        if found[1]:
+            return [WaitIn(cond, found[0], self.lines[i + 1].where)], i + 9
+        orelse, j = self._block(i + 6, ("end",))
+        return [WaitIn(cond, found[0], self.lines[i + 1].where, tuple(orelse))], j + 1
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
         t = self._texts(i, 3)

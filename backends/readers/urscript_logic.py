@@ -254,3 +254,14 @@ def forever_body(heads: list[str], texts: list[str], main: list[bool], program: 
         depth += head in ("if", "while", "for", "def", "thread")
         depth -= head == "end"
     return []
+
+
+def timed_wait(t: list[str]) -> tuple[float, bool] | None:
+    """(timeout s, whether it ends in popup + halt) of the backend's timed wait, its statements
+    `t` without spaces: `rmot_waited=0.0`, `whilenot(c)andrmot_waited<T:`, `sync()`, the step,
+    `end`, `ifnot(c):`, then popup + halt + `end` (no else branch) or the else branch's statements."""
+    w = re.fullmatch(r"whilenot\((.*)\)andrmot_waited<([\d.]+):", t[1]) if len(t) >= 6 and t[0] == "rmot_waited=0.0" else None
+    if w is None or t[2:5] != ["sync()", "rmot_waited=rmot_waited+get_steptime()", "end"] or t[5] != f"ifnot({w.group(1)}):":
+        return None
+    halts = len(t) >= 9 and t[6].startswith("popup(") and t[7:9] == ["halt", "end"]
+    return float(w.group(2)), halts
