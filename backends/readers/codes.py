@@ -62,3 +62,10 @@ ACCEL_SHARE_ON_PATH = Code("W540", "accel-share-on-path",
                            "a TP linear or circular move's ACCn, an INFORM MOVL/MOVC's equal ACC=/DEC= (the motion's "
                            "acceleration override) is read as rmot's joint acceleration share on that move: its TCP "
                            "acceleration stays the default")
+
+# runtime variables read back (RAPID, KRL)
+__all__ += ["PERSISTENT_VARIABLE"]
+PERSISTENT_VARIABLE = Code("W541", "persistent-variable",
+                           "a persistent variable (a KRL .dat variable, a RAPID PERS) the main routine does not set "
+                           "first thing is read as a task variable starting at the value the file stores; on the "
+                           "controller it starts where the previous run left it")

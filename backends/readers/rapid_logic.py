@@ -1,11 +1,11 @@
 """RAPID task variables and the statements on them, read into rmot's runtime logic (§12).
 
-A `VAR` `num` or `bool` the module assigns (`:=`, `Incr`, `Decr`) is a task variable:
+A `VAR` or `PERS` `num` or `bool` the module assigns (`:=`, `Incr`, `Decr`) is a task variable:
 `var name: int|num|bool = value` at the top of the main routine (RAPID starts a num at 0 and a
 bool at FALSE where no value is given: Technical reference manual – RAPID overview, "Data
 declarations"). A num is an rmot `int` when its value and every value assigned to it are whole
 (RAPID's num holds both). A `PERS` keeps its value from one run to the next, which a task
-variable does not: it stays as it was read (a constant or a comment). rmot's procs do not see a task's variables, so only the main routine
+variable does not: W541 where the main routine does not set it first thing. rmot's procs do not see a task's variables, so only the main routine
 reads them; elsewhere their statements stay native. `WaitDI`/`WaitUntil ... \\TimeFlag:=f`
 followed by `IF f THEN ... ENDIF`, with `f` read nowhere else, is `wait until ... timeout T else
 { ... }` (RAPID Instructions, WaitDI: the flag is TRUE when the time ran out).
@@ -17,7 +17,7 @@ import re
 from collections.abc import Callable
 
 from rmot.backends.readers.common import Tally
-from rmot.backends.readers.logic import RAPID, fits, fold_first_values, translate
+from rmot.backends.readers.logic import RAPID, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import Assign, Cond, Conds, If, Stmt, VarDecl, Where
 from rmot.backends.readers.rapid_text import Statement
 
@@ -76,6 +76,7 @@ class RapidVars:
 
     def __init__(self, stmts: list[Statement], tally: Tally) -> None:
         self.tally = tally
+        self.persistent: set[str] = set()  # the PERS variables
         self.assigned = assigned_names(stmts)
         self.flags = timeout_flags(stmts)
         self.vars: dict[str, tuple[str, str]] = {}  # upper -> (name, rmot type)
@@ -112,7 +113,7 @@ class RapidVars:
     def declare(self, kind: str, type_: str, name: str, value: str | None, where: Where) -> bool:
         """Read `VAR|PERS num|bool name [:= value]` as a task variable where it is one."""
         key = name.upper()
-        if kind.upper() != "VAR" or type_.lower() not in ("num", "bool") or key in self.vars:
+        if kind.upper() == "CONST" or type_.lower() not in ("num", "bool") or key in self.vars:
             return False
         if key in self.flags and type_.lower() == "bool":
             return True  # written by the wait's `timeout ... else`
@@ -124,6 +125,8 @@ class RapidVars:
             return False
         rtype = found[1] if found[1] == "bool" else self._num_type(key, found[1])
         self.vars[key] = (name, rtype)
+        if kind.upper() == "PERS":
+            self.persistent.add(name)
         self.decls.append(VarDecl(name, rtype, found[0], where))
         return True
 
@@ -147,7 +150,9 @@ class RapidVars:
 
     def fold_first_values(self, body: tuple[Stmt, ...]) -> tuple[list[VarDecl], tuple[Stmt, ...]]:
         """The declarations with the values the main routine starts by assigning (logic.py)."""
-        return fold_first_values(self.decls, body)
+        decls, rest = fold_first_values(self.decls, body)
+        warn_persistent(self.tally, self.decls, decls, self.persistent)
+        return decls, rest
 
     def test(self, i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]]
              ) -> tuple[list[Stmt], int] | None:
