@@ -45,7 +45,7 @@ def _loop_end(found: list[Line], i: int) -> int | None:
 
 
 def _exits(found: list[Line], i: int) -> list[int]:
-    """The EXIT lines that leave the LOOP at `i`."""
+    """The EXIT lines that leave the LOOP at `i`, then its ENDLOOP (none where it has no end)."""
     depth, out = 0, []
     for j in range(i, len(found)):
         word = found[j].word if found[j].fold is None else ""
@@ -53,7 +53,7 @@ def _exits(found: list[Line], i: int) -> list[int]:
         if word == "EXIT" and depth == 1:
             out.append(j)
         if depth == 0:
-            return out
+            return out + [j]
     return []
 
 
@@ -202,10 +202,10 @@ class KrlVars:
         """`LOOP` `IF c THEN EXIT ENDIF` B `ENDLOOP` → `while not c { B }`; `LOOP` B `IF c THEN
         EXIT ENDIF` `ENDLOOP` → B then `while not c { B }` (the loop's only EXIT)."""
         exits = _exits(found, i)
-        if len(exits) != 1:
+        if len(exits) != 2:
             return None
         k = exits[0]
-        near = [j for j in range(i + 1, len(found)) if found[j].text or found[j].fold is not None]
+        near = [j for j in range(i + 1, exits[1] + 1) if found[j].text or found[j].fold is not None]
         at = near.index(k) if k in near else -1
         head = re.fullmatch(r"(?i)IF\s+(.*?)\s+THEN", found[near[at - 1]].text) if at > 0 else None
         if head is None or at + 1 >= len(near) or found[near[at + 1]].word != "ENDIF":

@@ -14,6 +14,7 @@ followed by `IF f THEN ... ENDIF`, with `f` read nowhere else, is `wait until ..
 from __future__ import annotations
 
 import re
+from itertools import islice
 from collections.abc import Callable
 
 from rmot.backends.readers.common import Tally
@@ -40,9 +41,13 @@ def assigned_names(stmts: list[Statement]) -> dict[str, list[str]]:
 def timeout_flags(stmts: list[Statement]) -> set[str]:
     """Flags set by a wait's `\\TimeFlag` and read only by the `IF flag THEN` right after it."""
     flags = {m.upper() for st in stmts for m in re.findall(r"(?i)\\TimeFlag\s*:=\s*(\w+)", st.text)}
+    where_used: dict[str, list[int]] = {}
+    for i, st in enumerate(stmts):
+        for word in {w.upper() for w in re.findall(r"\w+", st.text)} & flags:
+            where_used.setdefault(word, []).append(i)
     out = set()
     for flag in flags:
-        uses = [i for i, st in enumerate(stmts) if re.search(rf"(?i)\b{flag}\b", st.text)]
+        uses = where_used.get(flag, [])
         waits = [i for i in uses if re.search(r"(?i)\\TimeFlag", stmts[i].text)]
         ifs = [i for i in uses if re.fullmatch(rf"(?i)IF\s+{flag}\s+THEN", stmts[i].text)]
         decls = [i for i in uses if re.match(r"(?i)^(?:LOCAL\s+|TASK\s+)*VAR\s+bool\s+", stmts[i].text)]
@@ -93,15 +98,14 @@ class RapidVars:
         if main:
             self.visible = _Both(self.visible, self.vars)
 
-    def flag_of(self, wait: Statement, after: Statement) -> bool:
-        """Whether `wait` sets a timeout flag only the `IF flag THEN` block right after it reads,
+    def flag_of(self, wait: Statement, start: int) -> bool:
+        """Whether `wait` sets a timeout flag only the `IF flag THEN` block at `start` reads,
         a block with no ELSE."""
         m = re.search(r"(?i)\\TimeFlag\s*:=\s*(\w+)$", wait.text)
-        if m is None or m.group(1).upper() not in self.flags or after.word != "IF":
+        if m is None or m.group(1).upper() not in self.flags or self.stmts[start].word != "IF":
             return False
-        start = next(k for k, st in enumerate(self.stmts) if st is after)
         depth = 0
-        for st in self.stmts[start:]:
+        for st in islice(self.stmts, start, None):
             opens = st.word == "IF" and re.search(r"(?i)\bTHEN\s*$", st.text) is not None
             depth += 1 if opens else -1 if st.word == "ENDIF" else 0
             if depth == 1 and st.word in ("ELSE", "ELSEIF"):
