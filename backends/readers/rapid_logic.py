@@ -136,7 +136,7 @@ class RapidVars:
 
     def _num_type(self, key: str, init: str) -> str:
         """int where the value and every assigned expression are whole numbers (no `/`, no
-        decimal point; names assigned from such expressions only)."""
+        decimal point, no name but variables assigned such expressions)."""
         seen: set[str] = set()
 
         def whole(k: str) -> bool:
@@ -146,7 +146,8 @@ class RapidVars:
             for expr in self.assigned.get(k, []):
                 if re.search(r"[./]|\d[eE]", expr):
                     return False
-                if any(not whole(n.upper()) for n in re.findall(r"[A-Za-z_]\w*", expr) if n.upper() in self.assigned):
+                names = [n.upper() for n in re.findall(r"[A-Za-z_]\w*", expr) if n.upper() not in ("DIV", "MOD")]
+                if any(n not in self.assigned or not whole(n) for n in names):  # another name: its value unknown here
                     return False
             return True
 
