@@ -117,7 +117,7 @@ class _Krl:
             raise self.tally.fail("a KRL .src must start with `DEF name( )` (after &ACCESS lines and folds)", where)
         self.name = head.group(1)
         taken = {*self.targets, *self.tools, *self.frames, *self.signals}
-        self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"))
+        self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally)
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]

@@ -3,7 +3,8 @@
 A scalar `INT`, `REAL` or `BOOL` (KSS 8.x, "Data types": INT whole, REAL floating point, BOOL
 TRUE/FALSE) declared in the main DEF (`DECL INT n`, `INT n, m`) or in its .dat (`DECL INT
 n=0`) that the main DEF assigns (`n = e`) is a task variable: `var n: int|num|bool = v` at the
-top of the task's body, with the .dat's value, else 0 / off (a KRL variable read before it is
+top of the task's body, with the .dat's value (W541 where the DEF does not set it first thing:
+a .dat keeps the value the last run left), else 0 / off (a KRL variable read before it is
 given a value stops the program; a `n = value` the DEF starts with becomes the declared value).
 Assignments `n = e` where the value's type fits (a REAL into an INT would be rounded by KRL:
 native), `IF`/`WHILE`/`WAIT FOR` on expressions over them and the digital inputs (`$IN[n]`, a
@@ -17,9 +18,9 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 
-from rmot.backends.readers.common import rmot_name
+from rmot.backends.readers.common import Tally, rmot_name
 from rmot.backends.readers.krl_text import Line, declarations, lines
-from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate
+from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, Stop, VarDecl, WaitIn, Where, While
 
 __all__ = ["KrlVars"]
@@ -44,7 +45,7 @@ def _loop_end(found: list[Line], i: int) -> int | None:
 
 
 def _exits(found: list[Line], i: int) -> list[int]:
-    """The EXIT lines that leave the LOOP at `i`."""
+    """The EXIT lines that leave the LOOP at `i`, then its ENDLOOP (none where it has no end)."""
     depth, out = 0, []
     for j in range(i, len(found)):
         word = found[j].word if found[j].fold is None else ""
@@ -52,7 +53,7 @@ def _exits(found: list[Line], i: int) -> list[int]:
         if word == "EXIT" and depth == 1:
             out.append(j)
         if depth == 0:
-            return out
+            return out + [j]
     return []
 
 
@@ -74,7 +75,9 @@ class KrlVars:
     """The task variables of one KRL program and the statements on them."""
 
     def __init__(self, found: list[Line], name: str, dat: tuple[str, str] | None, taken: set[str],
-                 signal: Callable[[str], int | None]) -> None:
+                 signal: Callable[[str], int | None], tally: Tally | None = None) -> None:
+        self.tally, self.dat = tally, dat
+        self.persistent: set[str] = set()  # the .dat's variables
         body = _main_lines(found, name)
         assigned = {m.group(1).upper() for ln in body for m in [_ASSIGN.match(ln.text)] if m and ln.fold is None}
         taken = taken | {m.group(1).upper() for ln in found for m in [re.match(r"(?i)FOR\s+(\w+)", ln.text)] if m}
@@ -85,6 +88,7 @@ class KrlVars:
         self.main = False  # reading the main DEF
         self.exiting: Where | None = None  # the EXIT of the loop being read that becomes its condition
         found_decls = [(d.type, d.name, d.value, d.where) for d in declarations(lines(*dat))] if dat else []
+        self.persistent = {rmot_name(d[1]) for d in found_decls}
         for ln in body:
             m = _LOCAL.match(ln.text)
             for n in re.split(r"\s*,\s*", m.group(2)) if m else []:
@@ -138,6 +142,8 @@ class KrlVars:
     def hoisted(self, body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
         """The main DEF's body with the declarations at its top."""
         decls, rest = fold_first_values(self.decls, body)
+        if self.tally is not None:
+            warn_persistent(self.tally, self.decls, decls, self.persistent, dict([self.dat] if self.dat else []))
         return (*decls, *rest)
 
     def _input(self, tokens: list[str], i: int) -> tuple[Cond, int] | None:
@@ -196,10 +202,10 @@ class KrlVars:
         """`LOOP` `IF c THEN EXIT ENDIF` B `ENDLOOP` → `while not c { B }`; `LOOP` B `IF c THEN
         EXIT ENDIF` `ENDLOOP` → B then `while not c { B }` (the loop's only EXIT)."""
         exits = _exits(found, i)
-        if len(exits) != 1:
+        if len(exits) != 2:
             return None
         k = exits[0]
-        near = [j for j in range(i + 1, len(found)) if found[j].text or found[j].fold is not None]
+        near = [j for j in range(i + 1, exits[1] + 1) if found[j].text or found[j].fold is not None]
         at = near.index(k) if k in near else -1
         head = re.fullmatch(r"(?i)IF\s+(.*?)\s+THEN", found[near[at - 1]].text) if at > 0 else None
         if head is None or at + 1 >= len(near) or found[near[at + 1]].word != "ENDIF":

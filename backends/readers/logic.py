@@ -19,9 +19,13 @@ import re
 from dataclasses import replace
 from collections.abc import Callable, Mapping
 
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally
 from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, VarDecl
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.source import Pos, SourceFile, Span
 
-__all__ = ["translate", "RAPID", "KRL", "fits", "fold_first_values"]
+__all__ = ["translate", "RAPID", "KRL", "fits", "fold_first_values", "warn_persistent"]
 
 # binary operator -> (vendor priority, rmot operator); higher binds tighter
 RAPID = {"OR": (1, "or"), "AND": (2, "and"), "=": (3, "=="), "<>": (3, "!="), "<": (3, "<"), "<=": (3, "<="),
@@ -182,3 +186,18 @@ def fold_first_values(decls: list[VarDecl], body: tuple[Stmt, ...]) -> tuple[lis
         by_name[a.name] = replace(by_name[a.name], init=a.value)
         k += 1
     return list(by_name.values()), body[k:]
+
+
+def warn_persistent(tally: Tally, declared: list[VarDecl], folded: list[VarDecl], persistent: set[str],
+                    texts: Mapping[str, str] | None = None) -> None:
+    """W541 at each persistent variable whose declared value the routine does not replace first
+    thing (located in its own file: `texts`, path -> text, holds the files other than the tally's)."""
+    for before, after in zip(declared, folded):
+        if before.name not in persistent or after.init is not before.init:
+            continue
+        w = before.where
+        source = tally.source if w.path == tally.path else SourceFile(w.path, (texts or {}).get(w.path, ""))
+        tally.diagnostics.append(Diagnostic(
+            codes.PERSISTENT_VARIABLE, Severity.WARNING, f"`{before.name}` keeps its value from one run to the next "
+            "on the controller: read as a task variable starting at the value the file stores",
+            Span(source, Pos(w.line, w.col), Pos(w.line, w.col))))

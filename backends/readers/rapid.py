@@ -293,7 +293,7 @@ class _Module:
         if self._acc_set(st):
             self.tally.imported += 1
             return [], i + 1
-        if word in ("WAITDI", "WAITUNTIL") and i + 1 < len(self.stmts) and self.logic.flag_of(st, self.stmts[i + 1]):
+        if word in ("WAITDI", "WAITUNTIL") and i + 1 < len(self.stmts) and self.logic.flag_of(st, i + 1):
             return self._timed_wait(i)
         assign = self.logic.statement(st)
         if assign is not None:

@@ -1,11 +1,11 @@
 """RAPID task variables and the statements on them, read into rmot's runtime logic (§12).
 
-A `VAR` `num` or `bool` the module assigns (`:=`, `Incr`, `Decr`) is a task variable:
+A `VAR` or `PERS` `num` or `bool` the module assigns (`:=`, `Incr`, `Decr`) is a task variable:
 `var name: int|num|bool = value` at the top of the main routine (RAPID starts a num at 0 and a
 bool at FALSE where no value is given: Technical reference manual – RAPID overview, "Data
 declarations"). A num is an rmot `int` when its value and every value assigned to it are whole
 (RAPID's num holds both). A `PERS` keeps its value from one run to the next, which a task
-variable does not: it stays as it was read (a constant or a comment). rmot's procs do not see a task's variables, so only the main routine
+variable does not: W541 where the main routine does not set it first thing. rmot's procs do not see a task's variables, so only the main routine
 reads them; elsewhere their statements stay native. `WaitDI`/`WaitUntil ... \\TimeFlag:=f`
 followed by `IF f THEN ... ENDIF`, with `f` read nowhere else, is `wait until ... timeout T else
 { ... }` (RAPID Instructions, WaitDI: the flag is TRUE when the time ran out).
@@ -14,10 +14,11 @@ followed by `IF f THEN ... ENDIF`, with `f` read nowhere else, is `wait until ..
 from __future__ import annotations
 
 import re
+from itertools import islice
 from collections.abc import Callable
 
 from rmot.backends.readers.common import Tally
-from rmot.backends.readers.logic import RAPID, fits, fold_first_values, translate
+from rmot.backends.readers.logic import RAPID, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import Assign, Cond, Conds, If, Stmt, VarDecl, Where
 from rmot.backends.readers.rapid_text import Statement
 
@@ -40,9 +41,13 @@ def assigned_names(stmts: list[Statement]) -> dict[str, list[str]]:
 def timeout_flags(stmts: list[Statement]) -> set[str]:
     """Flags set by a wait's `\\TimeFlag` and read only by the `IF flag THEN` right after it."""
     flags = {m.upper() for st in stmts for m in re.findall(r"(?i)\\TimeFlag\s*:=\s*(\w+)", st.text)}
+    where_used: dict[str, list[int]] = {}
+    for i, st in enumerate(stmts):
+        for word in {w.upper() for w in re.findall(r"\w+", st.text)} & flags:
+            where_used.setdefault(word, []).append(i)
     out = set()
     for flag in flags:
-        uses = [i for i, st in enumerate(stmts) if re.search(rf"(?i)\b{flag}\b", st.text)]
+        uses = where_used.get(flag, [])
         waits = [i for i in uses if re.search(r"(?i)\\TimeFlag", stmts[i].text)]
         ifs = [i for i in uses if re.fullmatch(rf"(?i)IF\s+{flag}\s+THEN", stmts[i].text)]
         decls = [i for i in uses if re.match(r"(?i)^(?:LOCAL\s+|TASK\s+)*VAR\s+bool\s+", stmts[i].text)]
@@ -76,6 +81,7 @@ class RapidVars:
 
     def __init__(self, stmts: list[Statement], tally: Tally) -> None:
         self.tally = tally
+        self.persistent: set[str] = set()  # the PERS variables
         self.assigned = assigned_names(stmts)
         self.flags = timeout_flags(stmts)
         self.vars: dict[str, tuple[str, str]] = {}  # upper -> (name, rmot type)
@@ -92,15 +98,14 @@ class RapidVars:
         if main:
             self.visible = _Both(self.visible, self.vars)
 
-    def flag_of(self, wait: Statement, after: Statement) -> bool:
-        """Whether `wait` sets a timeout flag only the `IF flag THEN` block right after it reads,
+    def flag_of(self, wait: Statement, start: int) -> bool:
+        """Whether `wait` sets a timeout flag only the `IF flag THEN` block at `start` reads,
         a block with no ELSE."""
         m = re.search(r"(?i)\\TimeFlag\s*:=\s*(\w+)$", wait.text)
-        if m is None or m.group(1).upper() not in self.flags or after.word != "IF":
+        if m is None or m.group(1).upper() not in self.flags or self.stmts[start].word != "IF":
             return False
-        start = next(k for k, st in enumerate(self.stmts) if st is after)
         depth = 0
-        for st in self.stmts[start:]:
+        for st in islice(self.stmts, start, None):
             opens = st.word == "IF" and re.search(r"(?i)\bTHEN\s*$", st.text) is not None
             depth += 1 if opens else -1 if st.word == "ENDIF" else 0
             if depth == 1 and st.word in ("ELSE", "ELSEIF"):
@@ -112,7 +117,7 @@ class RapidVars:
     def declare(self, kind: str, type_: str, name: str, value: str | None, where: Where) -> bool:
         """Read `VAR|PERS num|bool name [:= value]` as a task variable where it is one."""
         key = name.upper()
-        if kind.upper() != "VAR" or type_.lower() not in ("num", "bool") or key in self.vars:
+        if kind.upper() == "CONST" or type_.lower() not in ("num", "bool") or key in self.vars:
             return False
         if key in self.flags and type_.lower() == "bool":
             return True  # written by the wait's `timeout ... else`
@@ -124,12 +129,14 @@ class RapidVars:
             return False
         rtype = found[1] if found[1] == "bool" else self._num_type(key, found[1])
         self.vars[key] = (name, rtype)
+        if kind.upper() == "PERS":
+            self.persistent.add(name)
         self.decls.append(VarDecl(name, rtype, found[0], where))
         return True
 
     def _num_type(self, key: str, init: str) -> str:
         """int where the value and every assigned expression are whole numbers (no `/`, no
-        decimal point; names assigned from such expressions only)."""
+        decimal point, no name but variables assigned such expressions)."""
         seen: set[str] = set()
 
         def whole(k: str) -> bool:
@@ -139,7 +146,8 @@ class RapidVars:
             for expr in self.assigned.get(k, []):
                 if re.search(r"[./]|\d[eE]", expr):
                     return False
-                if any(not whole(n.upper()) for n in re.findall(r"[A-Za-z_]\w*", expr) if n.upper() in self.assigned):
+                names = [n.upper() for n in re.findall(r"[A-Za-z_]\w*", expr) if n.upper() not in ("DIV", "MOD")]
+                if any(n not in self.assigned or not whole(n) for n in names):  # another name: its value unknown here
                     return False
             return True
 
@@ -147,7 +155,9 @@ class RapidVars:
 
     def fold_first_values(self, body: tuple[Stmt, ...]) -> tuple[list[VarDecl], tuple[Stmt, ...]]:
         """The declarations with the values the main routine starts by assigning (logic.py)."""
-        return fold_first_values(self.decls, body)
+        decls, rest = fold_first_values(self.decls, body)
+        warn_persistent(self.tally, self.decls, decls, self.persistent)
+        return decls, rest
 
     def test(self, i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]]
              ) -> tuple[list[Stmt], int] | None:

@@ -222,3 +222,18 @@ def test_loops_run_as_the_controller_runs_them(tmp_path: Path) -> None:
         trace: list[int] = []
         _run(doc.routines[0].body, {}, trace, on_after)
         assert trace == _reference(on_after), on_after
+
+
+def test_dat_variable_is_persistent_w541(tmp_path: Path) -> None:
+    """A .dat variable keeps the value the last run left (KSS 8.x, data lists): W541 at the .dat's
+    declaration when the DEF reads it before setting it; not where the DEF sets it first thing."""
+    src = tmp_path / "pd.src"
+    src.write_text("DEF pd( )\n  n = n + 1\n  IF n > 3 THEN\n    $OUT[1] = TRUE\n  ENDIF\nEND\n")
+    (tmp_path / "pd.dat").write_text("DEFDAT pd\n  DECL INT n=2\nENDDAT\n")
+    result = CliRunner().invoke(cli, ["import", str(src), "-o", str(tmp_path / "pd.rmot")])
+    assert result.exit_code == 0, result.output
+    assert f"{tmp_path / 'pd.dat'}:2:3: warning[W541]" in result.output
+    assert "var n: int = 2" in (tmp_path / "pd.rmot").read_text()
+    src.write_text("DEF pd( )\n  n = 0\n  n = n + 1\nEND\n")
+    result = CliRunner().invoke(cli, ["import", str(src), "-o", str(tmp_path / "pd.rmot")])
+    assert "W541" not in result.output and "var n: int = 0" in (tmp_path / "pd.rmot").read_text()

@@ -167,3 +167,17 @@ def test_test_case_is_an_if_chain(tmp_path: Path) -> None:
     reference = {1: ["do1=1", "do1=0"], 2: ["do1=1"], 3: ["do3=1"]}
     for k in range(-1, 6):
         assert _outputs(body, k) == reference.get(k, ["do2=0"]), k
+
+
+def test_pers_is_a_variable_with_w541(tmp_path: Path) -> None:
+    """A PERS keeps its value between runs (RAPID overview, "Persistent data"): read as a task
+    variable at its stored value, W541 at its declaration unless main sets it first thing."""
+    src = tmp_path / "pe.mod"
+    src.write_text("MODULE pe\n  PERS num cnt := 4;\n  PERS bool seen := FALSE;\n  PROC main()\n    seen := TRUE;\n"
+                   "    Incr cnt;\n    IF cnt > 10 THEN\n      SetDO do1, 1;\n    ENDIF\n  ENDPROC\nENDMODULE\n")
+    out = tmp_path / "pe.rmot"
+    result = CliRunner().invoke(cli, ["import", str(src), "-o", str(out), "--robot", "abb_irb1600"])
+    assert result.exit_code == 0, result.output
+    assert f"{src}:2:3: warning[W541]" in result.output and result.output.count("W541") == 1  # seen: set first
+    body = [ln.strip() for ln in out.read_text().splitlines()]
+    assert ["var cnt: int = 4", "var seen: bool = on", "cnt = cnt + 1"] == [ln for ln in body if "cnt" in ln or "seen" in ln][:3]
