@@ -160,15 +160,19 @@ class UrVars:
             if new == types:
                 break
             types = new
-        types = {n: t for n, t in types.items()
-                 if all(_translate(e, {k.upper(): (k, v) for k, v in types.items()}) for e in assigned[n])}
-        used = {t.lower() for t in taken}
+        used = {t.lower() for t in taken} | {k.lower() for k in KEYWORDS}
+        types = {n: t for n, t in types.items() if n.lower() not in used}  # a clash stays native:
+        # a renamed variable would part from the native lines that read it by its URScript name
+        for _ in range(len(types) + 1):
+            kept = {n: t for n, t in types.items()
+                    if all(_translate(e, {k.upper(): (k, v) for k, v in types.items()}) for e in assigned[n])}
+            if kept == types:
+                break
+            types = kept
         for n in sorted(types):
-            rmot = n if n not in KEYWORDS and n.lower() not in used else f"{n}_var"
-            used.add(rmot.lower())
-            self.vars[n.upper()] = (rmot, types[n])
+            self.vars[n.upper()] = (n, types[n])
             default = "off" if types[n] == "bool" else "0" if types[n] == "int" else "0.0"
-            self.decls.append(VarDecl(rmot, types[n], Conds("logic", (), default), Where("", 0)))
+            self.decls.append(VarDecl(n, types[n], Conds("logic", (), default), Where("", 0)))
 
     def drop_carried(self, loop: list[str]) -> None:
         """The outermost `while True:` read as one cycle (its statements `loop`, its own level

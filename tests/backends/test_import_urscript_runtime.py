@@ -202,3 +202,16 @@ end
 """
     text, _ = _imported(tmp_path, script)
     assert "var n: int = 0\n" in text and "while n < 2 and in[0] == on {" in text and "n = n + 1" in text
+
+
+def test_a_keyword_name_stays_native(tmp_path: Path) -> None:
+    # `speed` is an rmot keyword: renaming it would part it from native lines reading `speed`
+    script = """speed = 0
+while speed < 2:
+  speed = speed + 0.5
+  sleep(0.1)
+end
+"""
+    text, output = _imported(tmp_path, script)
+    assert "var " not in text and 'native urscript "while speed < 2:"' in text
+    assert "W510" in output
