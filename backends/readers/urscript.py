@@ -109,7 +109,8 @@ class _Script:
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
         self._scan_numbers(program)
-        self.logic = UrVars([ln.text for ln in self.lines], [ln.head for ln in self.lines], program, self.defs)
+        self.logic = UrVars([ln.text for ln in self.lines], [ln.head for ln in self.lines], program, self.defs,
+                            [ln.text for _, _, node in self.installation for ln in node])
         texts = [ln.text.replace(" ", "") for ln in self.lines]
         self.direction = any(tuple(texts[k:k + len(DIRECTION_FUNCTION)]) == DIRECTION_FUNCTION
                              for k, t in enumerate(texts) if t == DIRECTION_FUNCTION[0])

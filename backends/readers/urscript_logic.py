@@ -106,14 +106,17 @@ def _words(text: str) -> set[str]:
 
 class UrVars:
     """The task variables of one script, found from its statements (text and first word; `program`:
-    the first is the program's own `def`), and the statements on them."""
+    the first is the program's own `def`; `installation`: the URCap installation nodes'
+    statements), and the statements on them."""
 
-    def __init__(self, texts: list[str], heads: list[str], program: bool, taken: set[str]) -> None:
+    def __init__(self, texts: list[str], heads: list[str], program: bool, taken: set[str],
+                 installation: list[str]) -> None:
         main = own_body(heads, texts, program)
         self.vars: dict[str, tuple[str, str]] = {}  # upper-case name -> (rmot name, type)
         self.decls: list[VarDecl] = []
         assigned: dict[str, list[str]] = {}
-        outside: set[str] = set()  # assigned in a function or thread
+        outside = {m.group(1) for t in installation for m in [_ASSIGN.fullmatch(t)] if m}  # a URCap's, a
+        # function's or a thread's (the installation's threads run beside the program)
         tested: set[str] = set()
         for text, own in zip(texts, main):
             m = _ASSIGN.fullmatch(text)

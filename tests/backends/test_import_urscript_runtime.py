@@ -215,3 +215,21 @@ end
     text, output = _imported(tmp_path, script)
     assert "var " not in text and 'native urscript "while speed < 2:"' in text
     assert "W510" in output
+
+
+def test_a_variable_a_urcap_installation_sets_stays_native(tmp_path: Path) -> None:
+    script = """def prog():
+  # begin: URCap Installation Node
+  #   Source: Gripper, 1.0.0, Vendor
+  thread grip_watch():
+    ready = True
+  end
+  # end: URCap Installation Node
+  ready = False
+  if (ready):
+    set_standard_digital_out(1, True)
+  end
+end
+"""
+    text, _ = _imported(tmp_path, script)
+    assert "var " not in text and 'native urscript "if (ready):"' in text
