@@ -33,6 +33,7 @@ _WORDS = {"true": "True", "false": "False", "and": "and", "or": "or", "not": "no
 _TOKENS = re.compile(r"\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+|\w+|==|!=|<=|>=|\S")
 _ASSIGN = re.compile(r"(?:global\s+|local\s+)?([A-Za-z_]\w*)\s*=(?!=)\s*(.*)")
 _HEADER = re.compile(r"(?:if|elif|while)\b\s*(.*):")
+_MAX_VARS = 200  # more task variables than any program the corpus holds (a few): the rest stay native
 _INPUT = {"get_standard_digital_in": 0, "get_configurable_digital_in": 8, "get_digital_in": 0}
 
 
@@ -61,8 +62,8 @@ def _python_shaped(text: str) -> bool:
 def _operand_ends_cleanly(tokens: list[str], k: int) -> bool:
     """After `not` at k-1: its operand (a parenthesised group, a name or call) is followed by the
     end, `and`, `or` or `)`, so Python's `not` (looser than comparisons) reads it as rmot's does."""
-    if k < len(tokens) and tokens[k] == "not":
-        return _operand_ends_cleanly(tokens, k + 1)
+    while k < len(tokens) and tokens[k] == "not":
+        k += 1
     if k < len(tokens) and re.fullmatch(r"\w+", tokens[k]):
         k += 1
     if k < len(tokens) and tokens[k] == "(":
@@ -128,6 +129,8 @@ class UrVars:
         uppers = [n.upper() for n in set(assigned) | outside]
         wanted = self._closure(tested, assigned)
         candidates = {n for n in wanted if n in assigned and n not in outside and uppers.count(n.upper()) == 1}
+        if len(candidates) > _MAX_VARS:  # typing is quadratic in their number: a hostile file's stay native
+            candidates = set()
         self._type(candidates - counters(texts), assigned, taken)
         self.drop_carried(forever_body(heads, texts, main, program))
 

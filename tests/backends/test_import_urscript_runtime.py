@@ -233,3 +233,10 @@ end
 """
     text, _ = _imported(tmp_path, script)
     assert "var " not in text and 'native urscript "if (ready):"' in text
+
+
+def test_hostile_conditions_stay_native(tmp_path: Path) -> None:
+    # thousands of nested `not (`: no internal error, the condition stays native (W510)
+    for test in ("not (" * 3000 + "b" + ")" * 3000, "not " * 5000 + "b"):
+        text, output = _imported(tmp_path, f"def p():\n  b = False\n  if {test}:\n    sleep(1)\n  end\nend\n")
+        assert "native urscript" in text and "W510" in output
