@@ -66,3 +66,10 @@ ACCEL_SHARE_ON_PATH = Code("W540", "accel-share-on-path",
 URCAP_INSTALLATION = Code("W530", "urcap-installation-kept",
                           "a PolyScope URCap installation node (a gripper's or device's functions, threads and "
                           "start-up) belongs to the robot's installation: it is kept as a comment")
+
+# runtime variables read back (RAPID, KRL)
+__all__ += ["PERSISTENT_VARIABLE"]
+PERSISTENT_VARIABLE = Code("W541", "persistent-variable",
+                           "a persistent variable (a KRL .dat variable, a RAPID PERS) the main routine does not set "
+                           "first thing is read as a task variable starting at the value the file stores; on the "
+                           "controller it starts where the previous run left it")

@@ -16,6 +16,7 @@ from difflib import SequenceMatcher
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, leaves, walk,
 )
+from rmot.backends.readers.model import Assign, VarDecl
 from rmot.lang import ir
 
 __all__ = ["diff_documents", "TOLERANCE_MM", "TOLERANCE_DEG"]
@@ -87,6 +88,8 @@ def describe(s: Stmt) -> str:
         return f"native {s.text}"
     if isinstance(s, Grip):
         return f"{'attach' if s.take else 'detach'} {s.part}"
+    if isinstance(s, (VarDecl, Assign)):
+        return f"{'var' if isinstance(s, VarDecl) else 'assign'} {s.name}"
     return "stop" if isinstance(s, Stop) else "wait"
 
 
@@ -100,6 +103,8 @@ def _levels(c: Cond | Conds) -> str:
         return "on" if c.on else "off"
     if c.op == "expr":
         return c.text
+    if c.op == "logic":
+        return c.text.format(*(_levels(p) for p in c.parts))
     parts = [_levels(p) if isinstance(p, Cond) else f"({_levels(p)})" for p in c.parts]
     return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 
@@ -121,6 +126,8 @@ def _details(s: Stmt) -> dict[str, str]:
         return {"level": _levels(s.cond), "timeout": "-" if timeout is None else f"{timeout:g} s"}
     if isinstance(s, For):
         return {"range": f"{s.first} .. {s.stop}"}
+    if isinstance(s, (VarDecl, Assign)):
+        return {"value": _levels(s.init if isinstance(s, VarDecl) else s.value)}
     return {}
 
 

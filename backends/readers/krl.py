@@ -16,6 +16,7 @@ Base[0]` (also SPTP/SLIN/SCIRC), are read from their header and the `.dat`'s XP1
 from __future__ import annotations
 
 import re
+from functools import partial
 from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
@@ -27,6 +28,7 @@ from rmot.backends.readers.krl_text import (
 from rmot.backends.readers.krl_data import (
     data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
 )
+from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
 )
@@ -48,6 +50,7 @@ class _Krl:
         self.tally = Tally(src[0], src[1], "krl")
         self.lines = lines(*src)
         self.data = data_list(dat)
+        self.dat = dat
         config = config_near(src[0])
         self.config = data_list(config)  # the robot's global declarations (positions found there on use)
         texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
@@ -70,6 +73,7 @@ class _Krl:
         # starts or ends, or after a move not read): where a LIN_REL starts
         self.last: tuple[str, str | None, Target | None] | None = None
         self.at: Where | None = None  # the line being read
+        self.logic = KrlVars([], "", None, set(), lambda n: None)  # task variables (krl_logic.py), set in read()
 
     def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
         """The input (kind "IN") a condition or the output ("OUT") a PULSE names: its SIGNAL's port;
@@ -97,7 +101,7 @@ class _Krl:
         pending: list[str] = []
         cond = in_cond(text, lambda name: self._named(name, "IN", pending), lambda name: self.params.get(name.upper()))
         self._warn_named(pending if cond is not None else [], "input")
-        return cond
+        return cond or self.logic.condition(text)
 
     # ---------------------------------------------------------------- structure
 
@@ -112,6 +116,8 @@ class _Krl:
             where = starts[0].where if starts else Where(self.tally.path, 1)
             raise self.tally.fail("a KRL .src must start with `DEF name( )` (after &ACCESS lines and folds)", where)
         self.name = head.group(1)
+        taken = {*self.targets, *self.tools, *self.frames, *self.signals}
+        self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally)
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]
@@ -127,7 +133,7 @@ class _Krl:
                                     "call, written as a proc (import it after its caller; alone, nothing runs it)",
                                     ln.where)
                 self.params = param_names(params)
-                body, i = self._block(i + 1, ("END",))
+                body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), partial(self._block, i + 1, ("END",)))
                 self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
                 i = skip_function(self.lines, self.tally, i)
@@ -166,24 +172,31 @@ class _Krl:
         if word == "LOOP" and not self.routines and self.tally.depth == 1 and not any(
                 ln.word == "EXIT" for ln in self.lines[i:]):
             return self._forever(i)
-        if word == "SWITCH" and switch_cases(self.lines, i, self.params) is not None:
+        if word == "SWITCH" and switch_cases(self.lines, i, self.logic.switchable(self.params)) is not None:
             return self._switch(i)
+        looped = self.logic.loop(self.lines, i, self._block, self._cond) if word in ("LOOP", "REPEAT") else None
+        if looped is not None:
+            self.tally.imported += 1
+            return looped
         if word in ("LOOP", "REPEAT", "SWITCH"):
             end = {"LOOP": "ENDLOOP", "REPEAT": "UNTIL", "SWITCH": "ENDSWITCH"}[word]
             return keep_block(self.lines, self.tally, i, word, end)
         if word in ("DECL", "INT", "REAL", "BOOL", "CHAR", "E6POS", "POS", "FRAME", "E6AXIS", "AXIS", "SIGNAL"):
             return [], i + 1
+        assign = self.logic.statement(ln)
+        if assign is not None:
+            self.tally.imported += 1
+            return [assign], i + 1
         if self._load_switch(i):
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text):
             return [], i + 1
         if self._work_copy(ln.text):
             return [], i + 1
-        if i + 7 < len(self.lines):
-            timed = timed_wait(self.lines, i)
-            if timed is not None:
-                self.tally.imported += 1
-                return [timed], i + 8
+        timed = timed_wait(self.lines, i) if i + 7 < len(self.lines) else None
+        if timed is not None or self.logic.timed_else(self.lines, i, self._cond):
+            self.tally.imported += 1
+            return self.logic.with_else(timed, self.lines, i, self._block, self._cond)
         stmt = self._simple(ln)
         if stmt is None:
             return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
@@ -250,15 +263,16 @@ class _Krl:
     def _switch(self, i: int) -> tuple[list[Stmt], int]:
         """`SWITCH k` .. `CASE 1, 2` .. `DEFAULT` .. `ENDSWITCH` on a number parameter (KSS 8.x: the
         first CASE with a value equal to k runs, else DEFAULT) → `if k == 1 or k == 2 { } else ..`."""
-        name = self.params[self.lines[i].text.split()[1].upper()][0]
+        name = self.logic.switchable(self.params)[self.lines[i].text.split()[1].upper()][0]
         arms = []
-        for j, values in switch_cases(self.lines, i, self.params) or []:
+        for j, values in switch_cases(self.lines, i, self.logic.switchable(self.params)) or []:
             body, end = self._block(j + 1, ("CASE", "DEFAULT", "ENDSWITCH"))
             arms.append((values, body, self.lines[j].where))
         orelse: tuple[Stmt, ...] = tuple(arms.pop()[1]) if arms and not arms[-1][0] else ()
         for values, body, where in reversed(arms):
             test = " or ".join(f"{name} == {int(v)}" for v in values)
-            orelse = (If(Conds("expr", (), test), tuple(body), orelse, where),)
+            orelse = (If(Conds("logic" if self.logic.switch_var(self.lines[i].text) else "expr", (), test),
+                         tuple(body), orelse, where),)
         self.tally.imported += 1
         return list(orelse), end + 1
 

@@ -18,6 +18,7 @@ __all__ = [
     "Cond", "Conds", "leaves", "If", "While", "For", "Call", "Native", "Stop", "Grip", "Stmt", "Routine", "FileCount",
     "Document", "Signal", "walk",
 ]
+__all__ += ["VarDecl", "Assign"]
 
 # a signal by its controller name (RAPID, INFORM names) or by its port number (KRL, TP, UR)
 Signal = str | int
@@ -117,7 +118,9 @@ class Cond:
 @record(slots=True)
 class Conds:
     """Input conditions combined: `op` "and"/"or" over two or more parts, or "not" over one; or
-    `op` "expr": a test the compiler decides, `text` in rmot (a proc parameter's `k == 3`), no parts."""
+    `op` "expr": a test the compiler decides, `text` in rmot (a proc parameter's `k == 3`), no parts;
+    or `op` "logic": a runtime expression over task variables and inputs, `text` in rmot with
+    `{0}`, `{1}`, ... where the input conditions `parts` are written (logic.py)."""
 
     op: str
     parts: tuple[Cond | Conds, ...]
@@ -134,6 +137,7 @@ class WaitIn:
     cond: Cond | Conds
     timeout: float | None
     where: Where
+    orelse: tuple[Stmt, ...] = ()  # what runs when the timeout passes first (`timeout T else { }`)
 
 
 @record(slots=True)
@@ -193,7 +197,27 @@ class Grip:
     where: Where
 
 
-Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop | Grip
+@record(slots=True)
+class VarDecl:
+    """`var name: type = init`: a task variable (type "int", "num" or "bool"), `init` an expression
+    (op "logic", logic.py) the reader checked has that type."""
+
+    name: str
+    type: str
+    init: Conds
+    where: Where
+
+
+@record(slots=True)
+class Assign:
+    """`name = value` on a task variable."""
+
+    name: str
+    value: Conds
+    where: Where
+
+
+Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop | Grip | VarDecl | Assign
 
 
 def walk(body: tuple[Stmt, ...]) -> list[Stmt]:
@@ -205,6 +229,8 @@ def walk(body: tuple[Stmt, ...]) -> list[Stmt]:
             out += walk(s.then) + walk(s.orelse)
         elif isinstance(s, (While, For)):
             out += walk(s.body)
+        elif isinstance(s, WaitIn):
+            out += walk(s.orelse)
     return out
 
 

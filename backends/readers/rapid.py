@@ -23,6 +23,7 @@ from rmot.backends.readers.model import (
     Call, Cond, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While,
     For, Routine,
 )
+from rmot.backends.readers.rapid_logic import RapidVars, condition
 from rmot.backends.readers.rapid_text import Statement, literal, statements
 from rmot.lang import ir
 
@@ -94,6 +95,7 @@ class _Module:
         self.pose_params: set[str] = set()  # the current PROC's target parameters
         self.acc_pct: float | None = None  # the last `AccSet Acc, 100;` (modal), None = 100 %
         self.name = "imported"
+        self.logic = RapidVars(self.stmts, self.tally)  # task variables (rapid_logic.py)
 
     # ---------------------------------------------------------------- module level
 
@@ -112,6 +114,7 @@ class _Module:
         while i < len(self.stmts):
             st = self.stmts[i]
             if st.word == "ENDMODULE":
+                self._hoist_vars()
                 return
             if re.match(r"(?i)^(?:LOCAL\s+)?PROC\b", st.text):
                 i = self._proc(i)
@@ -134,7 +137,7 @@ class _Module:
             if m is None or (not local and re.match(r"(?i)^LOCAL\b", st.text)):
                 continue
             _, type_, name, dims, value = m.groups()
-            if value and not dims:
+            if value and not dims and name.upper() not in self.logic.assigned:
                 self._data(type_.lower(), name, literal(value), st.where)
 
     def share(self, other: _Module) -> None:
@@ -153,7 +156,10 @@ class _Module:
                             st.where)
             self.tally.comment(st.text + ";", st.where)
             return
-        _, type_, name, dims, value = m.groups()
+        kind, type_, name, dims, value = m.groups()
+        if not dims and self.logic.main is not False and self.logic.declare(kind, type_, name, value, st.where):
+            self.tally.imported += 1
+            return
         lit = literal(value) if value and not dims else None
         if not self._data(type_.lower(), name, lit, st.where):
             self.tally.warn(codes.DECLARATION_KEPT, f"{type_} {name} has no rmot form here: kept as a comment",
@@ -235,8 +241,10 @@ class _Module:
         saved = set(self.names)
         self.names |= {p for p, t in params if t == "number"}
         self.pose_params = {p for p, t in params if t in ("pose", "joints")}
+        self.logic.enter(m.group(1) == self._main_name(), self.consts)
         body, i = self._block(i + 1, ("ENDPROC",))
         self.names, self.pose_params = saved, set()
+        self.logic.enter(None, self.consts)
         self.routines.append(Routine(m.group(1), tuple(params), tuple(body), st.where))
         return i + 1
 
@@ -278,13 +286,19 @@ class _Module:
         if word in ("IF", "WHILE", "FOR") and re.search(r"(?i)\b(THEN|DO)\s*$", st.text):
             return self._compound(i)
         if word == "TEST":
-            return self._keep_block(i, "ENDTEST", "TEST/CASE has no rmot form")
+            return self.logic.test(i, self._block) or self._keep_block(i, "ENDTEST", "TEST/CASE has no rmot form")
         if re.match(r"(?i)^(LOCAL\s+|TASK\s+)*(CONST|PERS|VAR)\s", st.text):
             self._declaration(st)
             return [], i + 1
         if self._acc_set(st):
             self.tally.imported += 1
             return [], i + 1
+        if word in ("WAITDI", "WAITUNTIL") and i + 1 < len(self.stmts) and self.logic.flag_of(st, i + 1):
+            return self._timed_wait(i)
+        assign = self.logic.statement(st)
+        if assign is not None:
+            self.tally.imported += 1
+            return [assign], i + 1
         converted = self._simple(st)
         if converted is None:
             return [self.tally.keep(st.text + ";", st.where, self._why_kept(st))], i + 1
@@ -350,6 +364,29 @@ class _Module:
             orelse, j = self._block(j + 1, (end,))
         return [If(head, tuple(then), tuple(orelse), st.where)], j + 1  # type: ignore[arg-type]
 
+    def _main_name(self) -> str:
+        """The routine that runs (as `rmot import` chooses it): `main`, else the first PROC."""
+        return next((n for n in self.proc_names.values() if n.lower() == "main"), next(iter(self.proc_names.values()), ""))
+
+    def _hoist_vars(self) -> None:
+        """The task variables, declared at the top of the main routine (rmot declares them in the task's body)."""
+        for k, r in enumerate(self.routines):
+            if r.name == self._main_name():
+                decls, body = self.logic.fold_first_values(r.body)
+                self.routines[k] = Routine(r.name, r.params, (*decls, *body), r.where)
+
+    def _timed_wait(self, i: int) -> tuple[list[Stmt], int]:
+        """`WaitDI ...\\MaxTime:=T\\TimeFlag:=f; IF f THEN B ENDIF` as `wait until ... timeout T else { B }`."""
+        st = self.stmts[i]
+        wait = self._simple(Statement(re.sub(r"(?i)\s*\\TimeFlag\s*:=\s*\w+", "", st.text), st.where))
+        if not isinstance(wait, WaitIn) or wait.timeout is None:
+            return [self.tally.keep(st.text + ";", st.where, "no rmot form")], i + 1
+        orelse, j = self._block(i + 2, ("ENDIF", "ELSE", "ELSEIF"))
+        if self.stmts[j].word != "ENDIF":
+            return [self.tally.keep(st.text + ";", st.where, "no rmot form")], i + 1
+        self.tally.imported += 2
+        return [WaitIn(wait.cond, wait.timeout, st.where, tuple(orelse))], j + 1
+
     def _acc_set(self, st: Statement) -> bool:
         """`AccSet Acc, 100;` read into the modal joint acceleration share of the moves after it
         (ABB RAPID reference, AccSet Acc, Ramp: Acc 20..100 % of the normal acceleration, Ramp 100 % = the
@@ -367,7 +404,7 @@ class _Module:
                 return None
             return (m.group(1), int(m.group(2)), int(m.group(3)) + 1)
         m = re.match(r"(?i)^(?:IF|WHILE)\s+(.*?)\s+(?:THEN|DO)$", st.text)
-        return _cond(m.group(1)) if m else None
+        return (_cond(m.group(1)) or condition(m.group(1), self.logic.visible)) if m else None  # type: ignore[return-value]
 
     def _simple(self, st: Statement) -> Stmt | None:
         word = st.word
@@ -398,7 +435,7 @@ class _Module:
             return None
         if word == "WAITUNTIL":
             m = re.match(r"(?i)^(.*?)\s*(?:\\MaxTime\s*:=\s*([0-9.]+))?$", args_text)
-            cond = _cond(m.group(1)) if m else None
+            cond = (_cond(m.group(1)) or condition(m.group(1), self.logic.visible)) if m else None
             return WaitIn(cond, float(m.group(2)) if m and m.group(2) else None, st.where) if cond else None
         if word == "EXIT" and not args:
             return Stop(st.where)

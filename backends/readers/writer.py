@@ -18,6 +18,7 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While, leaves, walk,
 )
+from rmot.backends.readers.model import Assign, VarDecl
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -56,6 +57,8 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
         return [("outputs", s.signal)]
     if isinstance(s, (WaitIn, If, While)):
         return [("inputs", c.signal) for c in leaves(s.cond)]
+    if isinstance(s, (VarDecl, Assign)):
+        return [("inputs", c.signal) for c in leaves(s.init if isinstance(s, VarDecl) else s.value)]
     return []
 
 
@@ -87,6 +90,8 @@ def map_leaves(body: tuple[Stmt, ...], fn: Callable[[Stmt], Stmt]) -> tuple[Stmt
             s = replace(s, then=map_leaves(s.then, fn), orelse=map_leaves(s.orelse, fn))
         elif isinstance(s, (While, For)) and fn(s) is s:
             s = replace(s, body=map_leaves(s.body, fn))
+        elif isinstance(s, WaitIn) and s.orelse and fn(s) is s:
+            s = replace(s, orelse=map_leaves(s.orelse, fn))
         else:
             s = fn(s)
         out.append(s)
@@ -190,7 +195,14 @@ class _Printer:
             self.emit(depth, f"wait {_num(s.seconds)} s")
         elif isinstance(s, WaitIn):
             timeout = f" timeout {_num(s.timeout)} s" if s.timeout is not None else ""
-            self.emit(depth, f"wait until {self.cond(s.cond)}{timeout}")
+            self.emit(depth, f"wait until {self.cond(s.cond)}{timeout}{' else {' if s.orelse else ''}")
+            if s.orelse:
+                self.body(s.orelse, depth + 1, state)
+                self.emit(depth, "}")
+        elif isinstance(s, VarDecl):
+            self.emit(depth, f"var {s.name}: {s.type} = {self.cond(s.init)}")
+        elif isinstance(s, Assign):
+            self.emit(depth, f"{s.name} = {self.cond(s.value)}")
         elif isinstance(s, Native):
             for n, line in enumerate(s.text.split("\n")):
                 self.emit(depth, f"native {s.vendor} {_quote(line)}   # {replace(s.where, line=s.where.line + n, col=1) if n else s.where}")
@@ -223,6 +235,8 @@ class _Printer:
             return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
         if c.op == "expr":
             return c.text
+        if c.op == "logic":
+            return c.text.format(*(self.cond(p) for p in c.parts))
         parts = [self.cond(p) if isinstance(p, Cond) else f"({self.cond(p)})" for p in c.parts]
         return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 

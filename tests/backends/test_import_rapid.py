@@ -46,9 +46,7 @@ def _cycle(path: Path, cell: Path) -> float:
     return float(m.group(1))
 
 
-ROUND_TRIP = ["pick_place", "palletizing", "weld_seam", "collision", "model_arm", "inspect",
-              pytest.param("machine_tending", marks=pytest.mark.xfail(
-                  strict=True, reason="runtime variables (VAR num/bool, :=, WHILE on them) are kept native"))]
+ROUND_TRIP = ["pick_place", "palletizing", "weld_seam", "collision", "model_arm", "inspect", "machine_tending"]
 
 
 @pytest.mark.parametrize("name", ROUND_TRIP)

@@ -422,15 +422,17 @@ ENDFCT
 def test_krl_outermost_loop_is_one_cycle_and_function_modules(tmp_path: Path) -> None:
     """A pendant program's main `LOOP .. ENDLOOP` (KSS 8.x: an endless loop, left only by EXIT)
     is the cycle the controller repeats: its body is read as one cycle of the program, W518 at
-    the LOOP line. A LOOP in a called routine, or one with an EXIT, stays native (the routine
-    would not return). A module of functions only (`DEFFCT`) imports (its functions kept as a
+    the LOOP line. A LOOP in a called routine is `while on` (neither ends); one with an EXIT
+    rmot cannot place stays native. A module of functions only (`DEFFCT`) imports (its functions kept as a
     comment) instead of being refused."""
     path = tmp_path / "cycle.src"
     path.write_text(KRC2_CELL_LOOP)
     doc = read_files([str(path)])
     main, sub = doc.routines
     assert [type(s).__name__ for s in main.body] == ["Native", "WaitIn", "SetOut", "Move", "Call"]  # BAS kept
-    assert [s.text for s in sub.body if isinstance(s, Native)] == ["LOOP", "$OUT[4]=TRUE", "ENDLOOP"]
+    # a LOOP in a called routine never ends, nor does the routine: `while on { }` says the same
+    assert [(type(s).__name__, s.cond.text, [type(b).__name__ for b in s.body]) for s in sub.body  # type: ignore[union-attr]
+            ] == [("While", "on", ["SetOut"])]
     assert any(d.code.id == "W518" and d.span.start.line == 3 for d in doc.diagnostics)
     exit_path = tmp_path / "exit.src"
     exit_path.write_text(KRC2_CELL_LOOP.replace("  sub()\n", "  EXIT\n"))

@@ -173,3 +173,12 @@ def test_inform_cartesian_targets(name: str, tmp_path: Path) -> None:
     for a, b in zip(pa, pb, strict=True):
         assert math.dist(a["position_mm"], b["position_mm"]) <= 0.001
         assert _angle_deg(a["quaternion_wxyz"], b["quaternion_wxyz"]) <= 0.001
+
+
+# runtime logic (task variables, while/if on them, a wait's timeout branch, stop): RAPID and KRL
+CASES_RUNTIME = [("rapid", "machine_tending"), ("krl", "machine_tending")]
+
+
+@pytest.mark.parametrize(("vendor", "name"), CASES_RUNTIME)
+def test_round_trip_runtime(vendor: str, name: str, tmp_path: Path) -> None:
+    test_round_trip(vendor, name, tmp_path)

@@ -1,0 +1,228 @@
+"""KRL task variables and the statements on them, read into rmot's runtime logic (§12).
+
+A scalar `INT`, `REAL` or `BOOL` (KSS 8.x, "Data types": INT whole, REAL floating point, BOOL
+TRUE/FALSE) declared in the main DEF (`DECL INT n`, `INT n, m`) or in its .dat (`DECL INT
+n=0`) that the main DEF assigns (`n = e`) is a task variable: `var n: int|num|bool = v` at the
+top of the task's body, with the .dat's value (W541 where the DEF does not set it first thing:
+a .dat keeps the value the last run left), else 0 / off (a KRL variable read before it is
+given a value stops the program; a `n = value` the DEF starts with becomes the declared value).
+Assignments `n = e` where the value's type fits (a REAL into an INT would be rounded by KRL:
+native), `IF`/`WHILE`/`WAIT FOR` on expressions over them and the digital inputs (`$IN[n]`, a
+SIGNAL's name of one input), and `SWITCH n` on an INT variable with whole CASE values. Only the
+main DEF reads them (rmot's procs do not see a task's variables); `$config.dat` globals, which
+other programs may set, are not variables here.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+
+from rmot.backends.readers.common import Tally, rmot_name
+from rmot.backends.readers.krl_text import Line, declarations, lines
+from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
+from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, Stop, VarDecl, WaitIn, Where, While
+
+__all__ = ["KrlVars"]
+
+_TYPES = {"INT": "int", "REAL": "num", "BOOL": "bool"}
+_LOCAL = re.compile(r"(?i)^(?:DECL\s+)?(INT|REAL|BOOL)\s+([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)$")
+_ASSIGN = re.compile(r"(?i)^([A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
+
+
+def _loop_end(found: list[Line], i: int) -> int | None:
+    """The index of the ENDLOOP/UNTIL closing the loop at `i`, None where an EXIT leaves it
+    (an EXIT leaves the innermost LOOP, FOR, WHILE or REPEAT)."""
+    depth = 0
+    for j in range(i, len(found)):
+        word = found[j].word if found[j].fold is None else ""
+        depth += (word in ("LOOP", "FOR", "WHILE", "REPEAT")) - (word in ("ENDLOOP", "ENDFOR", "ENDWHILE", "UNTIL"))
+        if word == "EXIT" and depth == 1:
+            return None
+        if depth == 0:
+            return j
+    return None
+
+
+def _exits(found: list[Line], i: int) -> list[int]:
+    """The EXIT lines that leave the LOOP at `i`, then its ENDLOOP (none where it has no end)."""
+    depth, out = 0, []
+    for j in range(i, len(found)):
+        word = found[j].word if found[j].fold is None else ""
+        depth += (word in ("LOOP", "FOR", "WHILE", "REPEAT")) - (word in ("ENDLOOP", "ENDFOR", "ENDWHILE", "UNTIL"))
+        if word == "EXIT" and depth == 1:
+            out.append(j)
+        if depth == 0:
+            return out + [j]
+    return []
+
+
+def _main_lines(found: list[Line], name: str) -> list[Line]:
+    """The lines of the DEF called `name` (the module's main routine)."""
+    out: list[Line] = []
+    inside = False
+    for ln in found:
+        if re.match(rf"(?i)^(?:GLOBAL\s+)?DEF\s+{re.escape(name)}\s*\(", ln.text):
+            inside = True
+        elif inside and ln.word == "END":
+            return out
+        elif inside:
+            out.append(ln)
+    return out
+
+
+class KrlVars:
+    """The task variables of one KRL program and the statements on them."""
+
+    def __init__(self, found: list[Line], name: str, dat: tuple[str, str] | None, taken: set[str],
+                 signal: Callable[[str], int | None], tally: Tally | None = None) -> None:
+        self.tally, self.dat = tally, dat
+        self.persistent: set[str] = set()  # the .dat's variables
+        body = _main_lines(found, name)
+        assigned = {m.group(1).upper() for ln in body for m in [_ASSIGN.match(ln.text)] if m and ln.fold is None}
+        taken = taken | {m.group(1).upper() for ln in found for m in [re.match(r"(?i)FOR\s+(\w+)", ln.text)] if m}
+        self.vars: dict[str, tuple[str, str]] = {}  # upper -> (rmot name, type)
+        self.decls: list[VarDecl] = []
+        self.signal = signal
+        self.visible: dict[str, tuple[str, str]] = {}
+        self.main = False  # reading the main DEF
+        self.exiting: Where | None = None  # the EXIT of the loop being read that becomes its condition
+        found_decls = [(d.type, d.name, d.value, d.where) for d in declarations(lines(*dat))] if dat else []
+        self.persistent = {rmot_name(d[1]) for d in found_decls}
+        for ln in body:
+            m = _LOCAL.match(ln.text)
+            for n in re.split(r"\s*,\s*", m.group(2)) if m else []:
+                found_decls.append((m.group(1).upper(), n, None, ln.where))  # type: ignore[union-attr]
+        for type_, var, value, where in found_decls:
+            key = var.upper()
+            if type_ not in _TYPES or key not in assigned or key in self.vars or key in taken or "[" in var:
+                continue
+            init = translate(value or ("FALSE" if type_ == "BOOL" else "0"), KRL, {}, lambda t, i: None)
+            if init is None or not fits(_TYPES[type_], init[1]):
+                continue
+            self.vars[key] = (rmot_name(var), _TYPES[type_])
+            self.decls.append(VarDecl(rmot_name(var), _TYPES[type_], init[0], where))
+
+    def timed_else(self, found: list[Line], i: int, cond_of: Callable[[str], Cond | Conds | None]) -> bool:
+        """Whether the lines at `i` are the backend's timed wait with a branch: timer reset, `WAIT FOR
+        (c) OR ($TIMER[k]>=ms)`, `IF NOT (c) THEN` B `ENDIF` (`wait until c timeout T else { B }`)."""
+        head = self._timed_head(found, i)
+        return head is not None and cond_of(head[0]) is not None
+
+    def _timed_head(self, found: list[Line], i: int) -> tuple[str, float] | None:
+        texts = [ln.text.replace(" ", "").upper() for ln in found[i:i + 6]]
+        m = re.fullmatch(r"\$TIMER_STOP\[(\d+)\]=TRUE", texts[0]) if len(texts) == 6 else None
+        k = m.group(1) if m else ""
+        w = re.fullmatch(rf"WAITFOR\((.*)\)OR\(\$TIMER\[{k}\]>=(\d+)\)", texts[3]) if m else None
+        ok = (w is not None and texts[1] == f"$TIMER[{k}]=0" and texts[2] == f"$TIMER_STOP[{k}]=FALSE"
+              and texts[4] == f"$TIMER_STOP[{k}]=TRUE" and texts[5] == f"IFNOT({w.group(1)})THEN")
+        if not ok or w is None:
+            return None
+        head = re.fullmatch(r"(?i)WAIT\s+FOR\s+\((.*)\)\s+OR\s+\(\s*\$TIMER\[\d+\]\s*>=\s*\d+\s*\)", found[i + 3].text)
+        return (head.group(1), int(w.group(2)) / 1000.0) if head else None
+
+    def with_else(self, timed: WaitIn | None, found: list[Line], i: int,
+                  block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]],
+                  cond_of: Callable[[str], Cond | Conds | None]) -> tuple[list[Stmt], int]:
+        """The timed wait at `i` (`timed`: the one that HALTs, read already) and where reading goes on."""
+        if timed is not None:
+            return [timed], i + 8
+        text, seconds = self._timed_head(found, i)  # type: ignore[misc]
+        cond = cond_of(text)
+        orelse, j = block(i + 6, ("ENDIF",))
+        return [WaitIn(cond, seconds, found[i + 3].where, tuple(orelse))], j + 1  # type: ignore[arg-type]
+
+    def routine(self, main: bool, read: Callable[[], tuple[list[Stmt], int]]) -> tuple[list[Stmt], int]:
+        """A DEF's body as `read` gives it: the main one sees the task variables and gets their
+        declarations at its top."""
+        self.visible, self.main = (self.vars if main else {}), main
+        body, end = read()
+        return (list(self.hoisted(tuple(body))) if main else body), end
+
+    def hoisted(self, body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
+        """The main DEF's body with the declarations at its top."""
+        decls, rest = fold_first_values(self.decls, body)
+        if self.tally is not None:
+            warn_persistent(self.tally, self.decls, decls, self.persistent, dict([self.dat] if self.dat else []))
+        return (*decls, *rest)
+
+    def _input(self, tokens: list[str], i: int) -> tuple[Cond, int] | None:
+        t = [x.upper() for x in tokens[i:i + 4]]
+        if len(t) == 4 and t[0] == "$IN" and t[1] == "[" and t[2].isdigit() and t[3] == "]":
+            return Cond(int(t[2]), True), 4
+        port = self.signal(t[0]) if t and t[0] not in self.visible else None
+        return (Cond(port, True), 1) if port is not None and (len(t) < 2 or t[1] != "[") else None
+
+    def condition(self, text: str) -> Conds | None:
+        """A KRL bool expression over the visible variables and inputs; None without an rmot form."""
+        found = translate(text, KRL, self.visible, self._input, int_division=True)
+        return found[0] if found is not None and found[1] == "bool" else None
+
+    def statement(self, ln: Line) -> Assign | Stop | None:
+        """`n = e` on a visible task variable; `RETURN` from the main DEF (it ends the program,
+        KSS 8.x "RETURN": back to the caller, and the main DEF has none)."""
+        if self.main and re.fullmatch(r"(?i)RETURN", ln.text):
+            return Stop(ln.where)
+        if ln.where == self.exiting:
+            return Stop(ln.where)  # the loop's own EXIT, read into the loop's condition (loop())
+        m = _ASSIGN.match(ln.text)
+        if m is None or m.group(1).upper() not in self.visible:
+            return None
+        name, type_ = self.visible[m.group(1).upper()]
+        found = translate(m.group(2), KRL, self.visible, self._input, int_division=True)
+        if found is None or not fits(type_, found[1]):
+            return None
+        return Assign(name, found[0], ln.where)
+
+    def switchable(self, params: dict[str, tuple[str, str]]) -> dict[str, tuple[str, str]]:
+        """The names a SWITCH may test: the routine's number parameters, the main DEF's INT variables."""
+        return {**params, **{k: (n, "number") for k, (n, t) in self.visible.items() if t == "int"}}
+
+    def loop(self, found: list[Line], i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]],
+             cond_of: Callable[[str], Cond | Conds | None]) -> tuple[list[Stmt], int] | None:
+        """`LOOP` B `ENDLOOP` with no EXIT of its own → `while on { B }` (it never ends, KSS 8.x
+        "LOOP"); `REPEAT` B `UNTIL c` → B then `while not c { B }` (B runs once, then until c
+        holds, KSS 8.x "REPEAT"). None where an EXIT leaves it or c has no rmot form."""
+        word = found[i].word
+        end = _loop_end(found, i)
+        if end is None:
+            return self._exit_at_edge(found, i, block, cond_of) if word == "LOOP" else None
+        until = re.fullmatch(r"(?i)UNTIL\s+(.+)", found[end].text) if word == "REPEAT" else None
+        cond = cond_of(until.group(1)) if until else None
+        if word == "REPEAT" and cond is None:
+            return None
+        body, j = block(i + 1, ("ENDLOOP",) if word == "LOOP" else ("UNTIL",))
+        if word == "LOOP":
+            return [While(Conds("logic", (), "on"), tuple(body), found[i].where)], j + 1
+        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else Cond(cond.signal, not cond.on)  # type: ignore[union-attr]
+        return [*body, While(again, tuple(body), found[j].where)], j + 1
+
+    def _exit_at_edge(self, found: list[Line], i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]],
+                      cond_of: Callable[[str], Cond | Conds | None]) -> tuple[list[Stmt], int] | None:
+        """`LOOP` `IF c THEN EXIT ENDIF` B `ENDLOOP` → `while not c { B }`; `LOOP` B `IF c THEN
+        EXIT ENDIF` `ENDLOOP` → B then `while not c { B }` (the loop's only EXIT)."""
+        exits = _exits(found, i)
+        if len(exits) != 2:
+            return None
+        k = exits[0]
+        near = [j for j in range(i + 1, exits[1] + 1) if found[j].text or found[j].fold is not None]
+        at = near.index(k) if k in near else -1
+        head = re.fullmatch(r"(?i)IF\s+(.*?)\s+THEN", found[near[at - 1]].text) if at > 0 else None
+        if head is None or at + 1 >= len(near) or found[near[at + 1]].word != "ENDIF":
+            return None
+        first, last = near[at - 1] == near[0], at + 2 < len(near) and found[near[at + 2]].word == "ENDLOOP"
+        cond = cond_of(head.group(1))
+        if cond is None or not (first or last):
+            return None
+        self.exiting = found[k].where
+        body, j = block(i + 1, ("ENDLOOP",))
+        self.exiting = None
+        rest = tuple(body[1:] if first else body[:-1])
+        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else Cond(cond.signal, not cond.on)
+        return [*(() if first else rest), While(again, rest, found[i].where)], j + 1
+
+    def switch_var(self, text: str) -> str | None:
+        """The rmot name of the INT variable `SWITCH n` tests, where it is one."""
+        m = re.fullmatch(r"(?i)SWITCH\s+(\w+)", text)
+        found = self.visible.get(m.group(1).upper()) if m else None
+        return found[0] if found is not None and found[1] == "int" else None
