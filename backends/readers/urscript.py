@@ -22,6 +22,7 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
+from rmot.backends.readers.urscript_logic import UrVars, timed_wait
 from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, rest_to_rest_shares, share,
 )
@@ -108,6 +109,8 @@ class _Script:
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
         self._scan_numbers(program)
+        self.logic = UrVars([ln.text for ln in self.lines], [ln.head for ln in self.lines], program, self.defs,
+                            [ln.text for _, _, node in self.installation for ln in node])
         texts = [ln.text.replace(" ", "") for ln in self.lines]
         self.direction = any(tuple(texts[k:k + len(DIRECTION_FUNCTION)]) == DIRECTION_FUNCTION
                              for k, t in enumerate(texts) if t == DIRECTION_FUNCTION[0])
@@ -118,10 +121,9 @@ class _Script:
         if m and program:
             self.name = self.main = m.group(1)
             body, _ = self._block(1, ("end",))
-            self.routines.append(Routine(self.main, (), tuple(body), first.where))
         else:  # a script whose top-level statements run: its defs are functions it calls
             body, _ = self._block(0, ())
-            self.routines.append(Routine(self.main, (), tuple(body), first.where))
+        self.routines.append(Routine(self.main, (), self.logic.hoist(tuple(body)), first.where))
 
     def _end_of(self, i: int) -> int:
         """The index of the `end` that closes the block opened at line `i`."""
@@ -217,7 +219,8 @@ class _Script:
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
         self._number_set(ln.text)  # remembered for the moves that read it, and kept native
-        stmt = self._simple(ln)
+        assign = self.logic.assign(ln.text, ln.where) if self.in_sub == 0 else None
+        stmt = assign or self._simple(ln)
         if stmt is None:
             return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
         self.tally.imported += 1
@@ -273,18 +276,17 @@ class _Script:
         return [ln.text.replace(" ", "") for ln in self.lines[i:i + n]]
 
     def _timed_wait(self, i: int) -> tuple[list[Stmt], int] | None:
-        t = self._texts(i, 9)
-        if len(t) < 9 or t[0] != "rmot_waited=0.0":
+        """The backend's timed wait (urscript_logic.timed_wait): popup + halt, or its else branch."""
+        found = timed_wait(self._texts(i, 9))
+        test = re.fullmatch(r"while\s*not\s*\((.*)\)\s*and\s*rmot_waited\s*<\s*[\d.]+\s*:", self.lines[i + 1].text) \
+            if found else None
+        cond = input_cond(test.group(1)) if found and test else None
+        if cond is None or found is None:
             return None
-        w = re.fullmatch(r"whilenot\((.*)\)andrmot_waited<([\d.]+):", t[1])
-        ok = (w is not None and t[2] == "sync()" and t[3] == "rmot_waited=rmot_waited+get_steptime()"
-              and t[4] == "end" and t[5] == f"ifnot({w.group(1)}):" and t[6].startswith("popup(")
-              and t[7] == "halt" and t[8] == "end")
-        test = re.fullmatch(r"while\s*not\s*\((.*)\)\s*and\s*rmot_waited\s*<\s*[\d.]+\s*:", self.lines[i + 1].text)
-        cond = input_cond(test.group(1)) if ok and test else None
-        if cond is None:
-            return None
-        return [WaitIn(cond, float(w.group(2)), self.lines[i + 1].where)], i + 9  # type: ignore[union-attr]
+        if found[1]:
+            return [WaitIn(cond, found[0], self.lines[i + 1].where)], i + 9
+        orelse, j = self._block(i + 6, ("end",))
+        return [WaitIn(cond, found[0], self.lines[i + 1].where, tuple(orelse))], j + 1
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
         t = self._texts(i, 3)
@@ -320,7 +322,7 @@ class _Script:
         m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        cond = _FOREVER if forever else input_cond(m.group(2)) if m else None
+        cond = _FOREVER if forever else (input_cond(m.group(2)) or self._logic_cond(m.group(2))) if m else None
         if cond is None:
             out, j, depth = [], i, 0
             while j < len(self.lines):
@@ -347,6 +349,10 @@ class _Script:
         if self.lines[j].text.startswith("else"):
             orelse, j = self._block(j + 1, ("end",))
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
+
+    def _logic_cond(self, text: str) -> Conds | None:
+        """A test on task variables (urscript_logic), in the program's own body only."""
+        return self.logic.condition(text) if self.in_sub == 0 else None
 
     # ---------------------------------------------------------------- statements
 

@@ -126,19 +126,25 @@ def balanced(text: str) -> bool:
     return depth == 0
 
 
-def input_cond(text: str) -> Cond | Conds | None:
+_MAX_DEPTH = 64  # operators nested in one condition: more than any program writes
+
+
+def input_cond(text: str, depth: int = 0) -> Cond | Conds | None:
     """A condition on digital inputs: `get_standard_digital_in(n) == True|False` (or `!=`, or
     bare), combined by `not`, `and`, `or` with URScript's (Python's) priority, `not` binding
-    tightest and `or` loosest, in any parentheses (configurable: n + 8)."""
+    tightest and `or` loosest, in any parentheses (configurable: n + 8); nested at most
+    _MAX_DEPTH deep (a hostile file's deeper condition stays native)."""
+    if depth > _MAX_DEPTH:
+        return None
     text = outer(text)
     for op in ("or", "and"):
         parts = split_word(text, op)
         if len(parts) > 1:
-            read = [input_cond(part) for part in parts]
+            read = [input_cond(part, depth + 1) for part in parts]
             return None if any(c is None for c in read) else Conds(op, tuple(read))  # type: ignore[arg-type]
     negated = re.fullmatch(r"not\b\s*(.*)", text, re.S)
     if negated:
-        inner = input_cond(negated.group(1))
+        inner = input_cond(negated.group(1), depth + 1)
         if inner is None or isinstance(inner, Cond):
             return Cond(inner.signal, not inner.on) if inner else None
         return Conds("not", (inner,))

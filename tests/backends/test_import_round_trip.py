@@ -175,8 +175,8 @@ def test_inform_cartesian_targets(name: str, tmp_path: Path) -> None:
         assert _angle_deg(a["quaternion_wxyz"], b["quaternion_wxyz"]) <= 0.001
 
 
-# runtime logic (task variables, while/if on them, a wait's timeout branch, stop): RAPID and KRL
-CASES_RUNTIME = [("rapid", "machine_tending"), ("krl", "machine_tending")]
+# runtime logic (task variables, while/if on them, a wait's timeout branch, stop): RAPID, KRL, URScript
+CASES_RUNTIME = [("rapid", "machine_tending"), ("krl", "machine_tending"), ("urscript", "machine_tending")]
 
 
 @pytest.mark.parametrize(("vendor", "name"), CASES_RUNTIME)
