@@ -64,5 +64,6 @@ def plot(program: str, output: str, what: str, cell: str | None, project_root: s
 
     fmt = os.path.splitext(output)[1].lower().lstrip(".")
     write_or_fail(output, figure_bytes(plot_data(plan), what, fmt))
+    click.echo(f"wrote {output}")  # a success says so, as compile, render and place do
     if any(d.is_error for d in plan.diagnostics):
         sys.exit(EXIT_FINDINGS)

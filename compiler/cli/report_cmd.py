@@ -61,6 +61,7 @@ def report(programs: tuple[str, ...], output: str, cell: str | None, project_roo
                                      machine_data=checklists(plan)))
     page, problems = render_report(results)
     write_or_fail(output, page.encode("utf-8"))
+    click.echo(f"wrote {output}")  # a success says so, as compile, render and place do
     shown = [d for r in results for d in r.diagnostics] + list(problems)
     if shown:
         click.echo(render_all(shown), err=True)

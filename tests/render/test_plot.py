@@ -88,6 +88,7 @@ def test_cli_writes_png_and_reports_bad_output(tmp_path: Path) -> None:
     result = runner.invoke(cli, ["plot", str(EXAMPLES / "handover.rmot"), "-o", str(out), "--what", "timeline"])
     assert result.exit_code == 0, result.output
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert f"wrote {out}" in result.output  # a success says so, as compile and render do
     bad = runner.invoke(cli, ["plot", str(EXAMPLES / "handover.rmot"), "-o", str(tmp_path / "t.jpg")])
     assert bad.exit_code == 2
     missing = runner.invoke(cli, ["plot", str(tmp_path / "none.rmot"), "-o", str(out)])

@@ -68,5 +68,6 @@ def test_cli_exit_codes_and_missing_input(tmp_path: Path) -> None:
     assert result.exit_code == 2  # an input error wins over findings
     page = out.read_text(encoding="utf-8")
     assert "not checked" in page and "E501" in page and "error[E300]" in page
+    assert f"wrote {out}" in result.output  # the page is written even when an input is missing
     bad = CliRunner().invoke(cli, ["report", str(EXAMPLES / "collision.rmot"), "-o", str(tmp_path / "r.pdf")])
     assert bad.exit_code == 2
