@@ -19,6 +19,7 @@ import re
 import numpy as np
 import pytest
 
+from ext_axes_plans import planned
 from ext_axes_witness import CELL_HEAD, at, kr16_flange, robot_base, work_frame
 from test_ext_axes_emit import fanuc_targets, krl_targets, rapid_targets
 
@@ -57,11 +58,7 @@ def in_work(q: np.ndarray, rail: float, tilt: float, turn: float) -> np.ndarray:
 
 @pytest.fixture(scope="module")
 def plan() -> Plan:
-    front = load_text(SOURCE, "/tmp/ext_axes_coordinated.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
-    return result
+    return planned(SOURCE, "/tmp/ext_axes_coordinated.rmot")
 
 
 def _moves(plan: Plan) -> list[ir.Move]:

@@ -18,6 +18,7 @@ import re
 import numpy as np
 import pytest
 
+from ext_axes_plans import planned
 from ext_axes_witness import CELL_HEAD, at, positioner_flange, robot_base, rot
 
 from rmot.backends import BACKENDS
@@ -46,11 +47,7 @@ TOL_M = 1e-5  # 0.01 mm
 
 @pytest.fixture(scope="module")
 def plan() -> Plan:
-    front = load_text(SOURCE, "/tmp/ext_axes_emit.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
-    return result
+    return planned(SOURCE, "/tmp/ext_axes_emit.rmot")
 
 
 # ------------------------------------------------------------------ the witness's kinematics

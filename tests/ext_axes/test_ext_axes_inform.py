@@ -16,13 +16,13 @@ import re
 
 import numpy as np
 import pytest
+from ext_axes_plans import planned as plan_text
 from ext_axes_witness import at, robot_base, rot, work_frame
 from test_ext_axes_emit import SOURCE
 
 from rmot.backends import BACKENDS
 from rmot.lang import ir
 from rmot.compiler.frontend import load_text
-from rmot.compiler.plan import plan_program
 from rmot.lang.plan_types import Plan
 
 RAIL_PER_MM, TILT_PER_DEG, TURN_PER_DEG = 200.0, 1019.6889, 500.0  # declared below, as machine data
@@ -40,11 +40,7 @@ def with_bindings(source: str, bindings: tuple[tuple[str, str], ...] = BINDINGS)
 
 
 def _plan(source: str) -> Plan:
-    front = load_text(source, "/tmp/ext_axes_inform.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
-    return result
+    return plan_text(source, "/tmp/ext_axes_inform.rmot")
 
 
 @pytest.fixture(scope="module")

@@ -17,12 +17,11 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from ext_axes_plans import planned
 from ext_axes_witness import CELL_HEAD
 
 from rmot.backends.neutral import CsvBackend, JsonBackend
 from rmot.compiler.cli import cli
-from rmot.compiler.frontend import load_text
-from rmot.compiler.plan import plan_program
 from rmot.lang import ir, ir_tree
 from rmot.lang.plan_types import Plan
 
@@ -42,14 +41,6 @@ LIMITS = {"rail": (0.0, 4000.0, 1500.0, 2000.0), "pos.1": (-90.0, 90.0, 90.0, 18
 UNITS = {"rail": "mm", "pos.1": "deg", "pos.2": "deg"}
 
 
-def planned(source: str, path: str) -> Plan:
-    """The plan of a program text that must check and plan without errors."""
-    front = load_text(source, path)
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    errors = [d.message for d in result.diagnostics if d.is_error]
-    assert not errors, errors
-    return result
 
 
 @pytest.fixture(scope="module")

@@ -15,6 +15,7 @@ import re
 
 import numpy as np
 import pytest
+from ext_axes_plans import planned
 from ext_axes_witness import CELL_HEAD
 
 from rmot.backends import BACKENDS
@@ -48,11 +49,7 @@ def trapezoid_s(delta_deg: float) -> float:
 @pytest.fixture(scope="module")
 def plan() -> Plan:
     assert SOURCE.count("range(-720deg, 720deg)") == 1
-    front = load_text(SOURCE, "/tmp/ext_axes_unwind.rmot")
-    assert front.program is not None, [d.message for d in front.diagnostics]
-    result = plan_program(front.program)
-    assert not [d for d in result.diagnostics if d.is_error], [d.message for d in result.diagnostics]
-    return result
+    return planned(SOURCE, "/tmp/ext_axes_unwind.rmot")
 
 
 def test_each_turn_is_planned_through_the_programmed_difference(plan: Plan) -> None:
