@@ -30,6 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
+from rmot.backends.readers.krl_why import Names, inline_why, motion_why
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
 )
@@ -199,7 +200,8 @@ class _Krl:
             return self.logic.with_else(timed, self.lines, i, self._block, self._cond)
         stmt = self._simple(ln)
         if stmt is None:
-            return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
+            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else None
+            return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
 
@@ -275,6 +277,10 @@ class _Krl:
                          tuple(body), orelse, where),)
         self.tally.imported += 1
         return list(orelse), end + 1
+
+    def _names(self) -> Names:
+        """What the program's names are, for saying why a motion stays native."""
+        return (self.targets, self.assigned, self.variables, {**self.config, **self.data})
 
     # ---------------------------------------------------------------- modal variables
 
@@ -556,7 +562,9 @@ class _Krl:
                            (self.data, self.config), (self.tools, self.frames), self.tally)
         self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
         if move is None:
-            return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read")], end + 1
+            why = inline_why(m.group(2), self._names(), [*self.data, *self.config])
+            return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read" +
+                                    (f": {why}" if why else ""))], end + 1
         self.tally.imported += 1
         return [move], end + 1
 

@@ -1,0 +1,87 @@
+"""Why a KRL motion stays native: the precise reason, for the import's W510 warning.
+
+A motion is read only where its target, speed and approximation are certain from the program and
+its data lists. Where one is not, the reason names it: a position the program assigns (KSS 8.x
+Operating and Programming Instructions for System Integrators: a data object holds its data-list
+value only until a statement assigns it), one declared without a value or in no data list found
+(the declarations of other modules' data lists are not read), an index computed at run time,
+`$POS_ACT` (the robot's current position, read when the line runs), an approximation whose system
+variable no line before sets, or an inline form whose velocity is a variable or whose motion data
+set is declared nowhere the import sees.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Collection, Mapping
+
+from rmot.backends.readers.common import split_top
+from rmot.backends.readers.krl_text import MotionState
+
+__all__ = ["Names", "motion_why", "inline_why"]
+
+Names = tuple[Collection[str], Collection[str], Collection[str], Mapping[str, object]]
+"""(positions read, names the program assigns, names declared anywhere seen, data lists' NAME ->
+declaration), all upper case."""
+
+
+def _point_why(point: str, names: Names) -> str | None:
+    """Why one target is not read, None when nothing certain can be said of it."""
+    targets, assigned, declared, data = names
+    text = re.sub(r"\s+", "", point).upper()
+    if text == "$POS_ACT":
+        return "`$POS_ACT` is where the robot stands when the line runs: known only at run time"
+    m = re.fullmatch(r"([A-Z_]\w*)(?:\[(\w+)\])?", text)
+    if m is None or text in targets:
+        return None
+    base = m.group(1)
+    if base in assigned:
+        return f"`{point.strip()}` is assigned in the program: its value is known only at run time"
+    if m.group(2) is not None and not m.group(2).isdigit():
+        return f"`{point.strip()}` is chosen by an index known only at run time"
+    if text not in data and (base in declared or base in data):
+        return f"`{point.strip()}` is declared without a value: it is set at run time"
+    if text not in data:
+        return f"`{point.strip()}` is declared in neither the program's .dat nor a $config.dat found"
+    return None
+
+
+def motion_why(rest: str, names: Names, state: MotionState) -> str | None:
+    """Why `PTP|LIN|CIRC rest` was not read (None: no more precise reason than "no rmot form")."""
+    with_ = re.match(r"(?is)(.*?)\s+WITH\b", rest)
+    if with_ is not None:  # the settings after WITH are the reader's; only the point is told here
+        return _point_why(split_top(with_.group(1), ":")[0], names)
+    m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_DIS\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest.strip())
+    if m is None:
+        return None
+    for point in split_top(m.group(1)):
+        why = _point_why(split_top(point, ":")[0], names)
+        if why is not None:
+            return why
+    approx = (m.group(2) or "").upper().split()
+    if approx[:1] == ["C_PTP"] and len(approx) == 1 and state.cptp is None:
+        return "C_PTP blends by $APO.CPTP, which no line before it sets (a routine or the run time does)"
+    if "C_DIS" in approx and state.cdis is None:
+        return "C_DIS blends by $APO.CDIS, which no line before it sets (a routine or the run time does)"
+    return None
+
+
+def inline_why(header: str, names: Names, data_lists: Collection[str]) -> str | None:
+    """Why the inline form `PTP P1 CONT Vel=100 % PDAT1 ..` (its header after the motion's name)
+    was not read; the form's point P1 is XP1 and its motion data PPDAT1/LCPDAT1 in a data list."""
+    m = re.match(r"(?i)(\w+)(?:\s+(\w+))?\s+(CONT\s+)?Vel\s*=\s*(\S+?)\s*(%|m/s|mm/s)\s+(\w+)", header)
+    if m is None:
+        return None
+    if re.fullmatch(r"[\d.]+", m.group(4)) is None:
+        return f"its velocity `{m.group(4)}` is a variable: known only at run time"
+    second = m.group(2) if m.group(2) and m.group(2).upper() != "CONT" else None
+    for point in [m.group(1)] + ([second] if second else []):
+        if point.upper() not in names[0] and ("X" + point).upper() not in names[0]:
+            why = _point_why(point if point[:1] in "xX" else "X" + point, names)
+            if why is not None:
+                return f"its point {why}"
+    cont = m.group(3) is not None or (m.group(2) or "").upper() == "CONT"
+    motion_data = m.group(6).upper()
+    if cont and not {motion_data, "P" + motion_data, "L" + motion_data} & set(data_lists):
+        return f"its motion data `{m.group(6)}` (the CONT's APO_DIST) is declared in no data list found"
+    return None
