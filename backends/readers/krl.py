@@ -30,7 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
-from rmot.backends.readers.krl_why import Names, inline_why, motion_why
+from rmot.backends.readers.krl_why import Names, inline_why, mode_why, motion_why
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
 )
@@ -252,7 +252,7 @@ class _Krl:
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
         cond = self._cond(m.group(1)) if m else None
         if cond is None or (word == "WHILE" and has_test(cond)):  # a while on a test the compiler decides: native
-            return keep_block(self.lines, self.tally, i, word, end)
+            return keep_block(self.lines, self.tally, i, word, end, mode_why(word, ln.text))
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
         orelse: list[Stmt] = []
         if self.lines[j].word == "ELSE":

@@ -18,7 +18,7 @@ from collections.abc import Collection, Mapping
 from rmot.backends.readers.common import split_top
 from rmot.backends.readers.krl_text import MotionState
 
-__all__ = ["Names", "motion_why", "inline_why"]
+__all__ = ["Names", "motion_why", "inline_why", "mode_why"]
 
 Names = tuple[Collection[str], Collection[str], Collection[str], Mapping[str, object]]
 """(positions read, names the program assigns, names declared anywhere seen, data lists' NAME ->
@@ -29,8 +29,8 @@ def _point_why(point: str, names: Names) -> str | None:
     """Why one target is not read, None when nothing certain can be said of it."""
     targets, assigned, declared, data = names
     text = re.sub(r"\s+", "", point).upper()
-    if text == "$POS_ACT":
-        return "`$POS_ACT` is where the robot stands when the line runs: known only at run time"
+    if text in ("$POS_ACT", "$AXIS_ACT"):
+        return f"`{point.strip()}` is where the robot stands when the line runs: known only at run time"
     m = re.fullmatch(r"([A-Z_]\w*)(?:\[(\w+)\])?", text)
     if m is None or text in targets:
         return None
@@ -85,3 +85,15 @@ def inline_why(header: str, names: Names, data_lists: Collection[str]) -> str | 
     if cont and not {motion_data, "P" + motion_data, "L" + motion_data} & set(data_lists):
         return f"its motion data `{m.group(6)}` (the CONT's APO_DIST) is declared in no data list found"
     return None
+
+
+# the controller's operating mode (KSS 8.x System Integrators, system variables: $T1, $T2, $AUT,
+# $EXT are TRUE in that mode; $MODE_OP is #T1, #T2, #AUT or #EX): a pendant switch, not a signal
+_MODE = re.compile(r"(?i)\$(?:T1|T2|AUT|EXT|MODE_OP)\b")
+
+
+def mode_why(word: str, text: str) -> str | None:
+    """Why the block `IF|WHILE cond` stays native when its condition reads the operating mode."""
+    if _MODE.search(text) is None:
+        return None
+    return f"this {word} tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting known only at run time"

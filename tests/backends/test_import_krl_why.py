@@ -1,16 +1,18 @@
 """Why a KRL motion stays native: the W510 warning names what is known only at run time.
 
-The module below imitates forms found in public KRL programs: `PTP $POS_ACT` after a mode check
-(HugoDanielson/KukaMiling, Main.src), a FRAME array declared in the .dat without values and a
-C_PTP with no `$APO.CPTP` set before it (KukaMiling Jobs/St1_Job1_Side1), a position the program
-assigns (`POS_A = PUNTO[n]`, ingeniado CAJA_G caja_g_m1), a point chosen by a loop variable
-(`xInsideWall[iWall]`, khrzysio Sub_MillLeaf), inline forms with a velocity variable
-(`Vel=ptpM % DEFAULT`, ingeniado), a motion data set declared nowhere (`DATWork`, KukaMiling
-Moves) and a KSS 8 point without its .dat entry (Bugaj32 podprogramy, `Tool[1]:TOOL_DATA[1]`).
+The module below imitates forms found in public KRL programs: `IF ($T1 OR $T2) THEN` and
+`PTP $POS_ACT` (HugoDanielson/KukaMiling, Main.src; `SPTP $AXIS_ACT`, Naqiu06 honai.src), a FRAME
+array declared in the .dat without values and a C_PTP with no `$APO.CPTP` set before it
+(KukaMiling Jobs/St1_Job1_Side1), a position the program assigns (`POS_A = PUNTO[n]`, ingeniado
+CAJA_G caja_g_m1), a point chosen by a loop variable (`xInsideWall[iWall]`, khrzysio
+Sub_MillLeaf), inline forms with a velocity variable (`Vel=ptpM % DEFAULT`, ingeniado), a motion
+data set declared nowhere (`DATWork`, KukaMiling Moves) and a KSS 8 point without its .dat entry
+(Bugaj32 podprogramy, `Tool[1]:TOOL_DATA[1]`).
 KUKA's meaning (KSS 8.x Operating and Programming Instructions for System Integrators): a data
-object keeps its data-list value only until a statement assigns it; `$POS_ACT` is the current
-position; C_PTP/C_DIS blend by `$APO.CPTP`/`$APO.CDIS`; an inline form's point P is XP in a data
-list, its motion data PDAT/LCPDAT there too.
+object keeps its data-list value only until a statement assigns it; `$POS_ACT`/`$AXIS_ACT` are
+the current position; `$T1`, `$T2`, `$AUT`, `$EXT`, `$MODE_OP` the operating mode; C_PTP/C_DIS
+blend by `$APO.CPTP`/`$APO.CDIS`; an inline form's point P is XP in a data list, its motion data
+PDAT/LCPDAT there too.
 
 Witness: the expected reason of each line is written by hand from the module's text, and its
 line number is found by searching the text, not from the reader.
@@ -31,6 +33,10 @@ SRC = """DEF cell( )
    IF $IN[1] THEN
       PTP $POS_ACT
    ENDIF
+   IF ($T1 OR $T2) THEN
+      BAS(#INITMOV,0)
+   ENDIF
+   SPTP $AXIS_ACT
    PTP lfPrePos[1] C_PTP
    LIN lfWorkPos[1]
    POS_A = PUNTO[n]
@@ -64,6 +70,9 @@ ENDDAT
 
 REASONS = {
     "PTP $POS_ACT": "`$POS_ACT` is where the robot stands when the line runs: known only at run time",
+    "IF ($T1 OR $T2) THEN": "this IF tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting",
+    "BAS(#INITMOV,0)": "this IF tests the operating mode",
+    "SPTP $AXIS_ACT": "`$AXIS_ACT` is where the robot stands when the line runs",
     "PTP lfPrePos[1] C_PTP": "C_PTP blends by $APO.CPTP, which no line before it sets",
     "LIN lfWorkPos[1]": "`lfWorkPos[1]` is declared without a value: it is set at run time",
     "LIN POS_A": "`POS_A` is assigned in the program: its value is known only at run time",
