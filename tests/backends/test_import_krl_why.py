@@ -1,13 +1,14 @@
 """Why a KRL motion stays native: the W510 warning names what is known only at run time.
 
 The module below imitates forms found in public KRL programs: `IF ($T1 OR $T2) THEN` and
-`PTP $POS_ACT` (HugoDanielson/KukaMiling, Main.src; `SPTP $AXIS_ACT`, Naqiu06 honai.src), a FRAME
-array declared in the .dat without values and a C_PTP with no `$APO.CPTP` set before it
-(KukaMiling Jobs/St1_Job1_Side1), a position the program assigns (`POS_A = PUNTO[n]`, ingeniado
-CAJA_G caja_g_m1), a point chosen by a loop variable (`xInsideWall[iWall]`, khrzysio
-Sub_MillLeaf), inline forms with a velocity variable (`Vel=ptpM % DEFAULT`, ingeniado), a motion
-data set declared nowhere (`DATWork`, KukaMiling Moves) and a KSS 8 point without its .dat entry
-(Bugaj32 podprogramy, `Tool[1]:TOOL_DATA[1]`).
+`PTP $POS_ACT` (HugoDanielson/KukaMiling, Main.src; `SPTP $AXIS_ACT`, Naqiu06 honai.src;
+`IF $OUT[99]==FALSE`, Aleynikovich Programas2Tornos m72x860.src), a FRAME array declared in the
+.dat without values and a C_PTP with no `$APO.CPTP` set before it (KukaMiling
+Jobs/St1_Job1_Side1), a position the program assigns (`POS_A = PUNTO[n]`, ingeniado CAJA_G
+caja_g_m1), a point chosen by a loop variable (`xInsideWall[iWall]`, khrzysio Sub_MillLeaf),
+inline forms with a velocity variable (`Vel=ptpM % DEFAULT`, ingeniado), a motion data set
+declared nowhere (`DATWork`, KukaMiling Moves) and a KSS 8 point without its .dat entry (Bugaj32
+podprogramy, `Tool[1]:TOOL_DATA[1]`).
 KUKA's meaning (KSS 8.x Operating and Programming Instructions for System Integrators): a data
 object keeps its data-list value only until a statement assigns it; `$POS_ACT`/`$AXIS_ACT` are
 the current position; `$T1`, `$T2`, `$AUT`, `$EXT`, `$MODE_OP` the operating mode; C_PTP/C_DIS
@@ -37,6 +38,9 @@ SRC = """DEF cell( )
       BAS(#INITMOV,0)
    ENDIF
    SPTP $AXIS_ACT
+   IF $OUT[99]==FALSE THEN
+      WAIT SEC 0.5
+   ENDIF
    PTP lfPrePos[1] C_PTP
    LIN lfWorkPos[1]
    POS_A = PUNTO[n]
@@ -72,6 +76,7 @@ REASONS = {
     "PTP $POS_ACT": "`$POS_ACT` is where the robot stands when the line runs: known only at run time",
     "IF ($T1 OR $T2) THEN": "this IF tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting",
     "BAS(#INITMOV,0)": "this IF tests the operating mode",
+    "IF $OUT[99]==FALSE THEN": "this IF tests an output ($OUT[n]); rmot conditions read inputs only",
     "SPTP $AXIS_ACT": "`$AXIS_ACT` is where the robot stands when the line runs",
     "PTP lfPrePos[1] C_PTP": "C_PTP blends by $APO.CPTP, which no line before it sets",
     "LIN lfWorkPos[1]": "`lfWorkPos[1]` is declared without a value: it is set at run time",
