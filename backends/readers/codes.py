@@ -73,3 +73,10 @@ PERSISTENT_VARIABLE = Code("W541", "persistent-variable",
                            "a persistent variable (a KRL .dat variable, a RAPID PERS) the main routine does not set "
                            "first thing is read as a task variable starting at the value the file stores; on the "
                            "controller it starts where the previous run left it")
+
+# KRL motion settings after a routine the import does not read
+__all__ += ["SETTINGS_AFTER_CALL"]
+SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",
+                           "a KRL motion after a call of a routine the import does not read (kept native) is read "
+                           "with the speed, approximation, tool and base set before the call; the routine may "
+                           "change them ($VEL, $APO, $TOOL, $BASE are global)")

@@ -30,7 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
-from rmot.backends.readers.krl_why import Names, inline_why, mode_why, motion_why
+from rmot.backends.readers.krl_why import Names, UnreadCalls, inline_why, mode_why, motion_why
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
 )
@@ -74,6 +74,7 @@ class _Krl:
         # starts or ends, or after a move not read): where a LIN_REL starts
         self.last: tuple[str, str | None, Target | None] | None = None
         self.at: Where | None = None  # the line being read
+        self.calls = UnreadCalls(self.tally)  # calls kept native, for W527 at the motion after one
         self.logic = KrlVars([], "", None, set(), lambda n: None)  # task variables (krl_logic.py), set in read()
 
     def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
@@ -128,6 +129,7 @@ class _Krl:
                     i += 1
             elif m:
                 self.state = MotionState()
+                self.calls.pending = None
                 params = self.signatures.get(m.group(1).upper())
                 if params and m.group(1).upper() == self.name.upper():
                     self.tally.warn(codes.MODULE_IS_PROC, f"`{m.group(1)}` takes parameters: a routine other programs "
@@ -201,8 +203,10 @@ class _Krl:
         stmt = self._simple(ln)
         if stmt is None:
             why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else None
+            self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
+        self.calls.moved(stmt)
         return [stmt], i + 1
 
     def _spline(self, i: int) -> tuple[list[Stmt], int]:
@@ -566,6 +570,7 @@ class _Krl:
             return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read" +
                                     (f": {why}" if why else ""))], end + 1
         self.tally.imported += 1
+        self.calls.moved(move)
         return [move], end + 1
 
 

@@ -15,10 +15,12 @@ from __future__ import annotations
 import re
 from collections.abc import Collection, Mapping
 
-from rmot.backends.readers.common import split_top
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally, split_top
 from rmot.backends.readers.krl_text import MotionState
+from rmot.backends.readers.model import Move, Stmt, Where
 
-__all__ = ["Names", "motion_why", "inline_why", "mode_why"]
+__all__ = ["Names", "motion_why", "inline_why", "mode_why", "UnreadCalls"]
 
 Names = tuple[Collection[str], Collection[str], Collection[str], Mapping[str, object]]
 """(positions read, names the program assigns, names declared anywhere seen, data lists' NAME ->
@@ -100,3 +102,34 @@ def mode_why(word: str, text: str) -> str | None:
     if _MODE.search(text) is None:
         return None
     return f"this {word} tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting known only at run time"
+
+
+class UnreadCalls:
+    """The calls of routines the import does not read (kept native): $VEL, $APO, $TOOL and $BASE are
+    global (KSS 8.x System Integrators, system variables), so such a routine may change what the
+    motions after it use. The first motion read after one gets W527, once per routine (whether it
+    changes them is a property of the routine)."""
+
+    def __init__(self, tally: Tally) -> None:
+        self.tally = tally
+        self.pending: tuple[str, Where] | None = None  # the last such call since the last motion read
+        self.warned: set[str] = set()
+
+    def called(self, text: str, where: Where) -> None:
+        """A line kept native: a call when it is `name(..)`."""
+        m = re.fullmatch(r"(\w+)\s*\(.*\)", text)
+        if m is not None:
+            self.pending = (m.group(1), where)
+
+    def moved(self, stmt: Stmt) -> None:
+        """A statement read: W527 when it is a motion after a pending call of a routine not yet named."""
+        if not isinstance(stmt, Move) or self.pending is None:
+            return
+        name, at = self.pending
+        self.pending = None
+        if name.upper() in self.warned:
+            return
+        self.warned.add(name.upper())
+        self.tally.warn(codes.SETTINGS_AFTER_CALL, f"this motion is read with the speed, approximation, tool and base "
+                        f"set before `{name}(..)` at line {at.line}, a routine the import does not read: check that "
+                        "it leaves $VEL, $APO, $TOOL and $BASE as they were", stmt.where)

@@ -104,3 +104,37 @@ def test_each_native_motion_says_why(tmp_path: Path) -> None:
     # the last line's target XP5 is declared in the .dat with a value: read, not kept
     n = lines.index("   LIN XP5") + 1
     assert f"cell.src:{n}:" not in result.output
+
+
+CALLS = """DEF job( )
+   $VEL.CP = 0.1
+   MoveSettings(lnUsedBase, lnUsedTool, 100, 200)
+   LIN P1
+   MoveSettings(lnUsedBase, lnUsedTool, 100, 2)
+   LIN P2
+   $OUT[3] = TRUE
+   LIN P1
+END
+"""
+
+CALLS_DAT = """DEFDAT job
+DECL E6POS P1={X 600.0,Y 0.0,Z 800.0,A 0.0,B 90.0,C 0.0,S 2,T 35}
+DECL E6POS P2={X 650.0,Y 0.0,Z 800.0,A 0.0,B 90.0,C 0.0,S 2,T 35}
+ENDDAT
+"""
+
+
+def test_a_motion_after_an_unread_call_is_warned_once_per_routine(tmp_path: Path) -> None:
+    """`MoveSettings(base, tool, vel, apo)` (HugoDanielson/KukaMiling Jobs, a routine in another
+    module setting $BASE, $TOOL, $VEL, $APO, which are global): the LIN after it is read with the
+    settings before the call, W527 at the first one (once per routine); the LIN after an output,
+    with no call between, is not warned."""
+    (tmp_path / "job.src").write_text(CALLS)
+    (tmp_path / "job.dat").write_text(CALLS_DAT)
+    result = CliRunner().invoke(cli, ["import", str(tmp_path / "job.src"), "-o", str(tmp_path / "job.rmot"),
+                                      "--robot", "kuka_kr16"])
+    assert result.exit_code == 0, result.output
+    warned = [w for w in result.output.split("\n") if "warning[W527]" in w]
+    first = CALLS.split("\n").index("   LIN P1") + 1
+    assert len(warned) == 1 and f"job.src:{first}:4:" in warned[0], warned
+    assert "`MoveSettings(..)` at line 3" in warned[0]
