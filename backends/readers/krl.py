@@ -202,7 +202,8 @@ class _Krl:
             return self.logic.with_else(timed, self.lines, i, self._block, self._cond)
         stmt = self._simple(ln)
         if stmt is None:
-            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else None
+            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else \
+                mode_why(word, ln.text) if word == "WAIT" else None
             self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1

@@ -95,8 +95,8 @@ _MODE = re.compile(r"(?i)\$(?:T1|T2|AUT|EXT|MODE_OP)\b")
 
 
 def mode_why(word: str, text: str) -> str | None:
-    """Why the block `IF|WHILE cond` stays native when its condition reads the operating mode or
-    an output (rmot's conditions read inputs: REFERENCE E161)."""
+    """Why the block `IF|WHILE cond` (or `WAIT FOR cond`) stays native when its condition reads the
+    operating mode or an output (rmot's conditions read inputs: REFERENCE E161)."""
     if re.search(r"(?i)\$OUT(?:_C)?\s*\[", text) and _MODE.search(text) is None:
         return f"this {word} tests an output ($OUT[n]); rmot conditions read inputs only"
     if _MODE.search(text) is None:
