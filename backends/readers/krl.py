@@ -30,7 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
-from rmot.backends.readers.krl_why import Names, UnreadCalls, inline_why, mode_why, motion_why
+from rmot.backends.readers.krl_why import Names, UnreadCalls, inline_why, mode_why, motion_why, other_why
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
 )
@@ -203,7 +203,7 @@ class _Krl:
         stmt = self._simple(ln)
         if stmt is None:
             why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else \
-                mode_why(word, ln.text) if word == "WAIT" else None
+                other_why(word, ln.text, self.last is not None)
             self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1

@@ -20,7 +20,7 @@ from rmot.backends.readers.common import Tally, split_top
 from rmot.backends.readers.krl_text import MotionState
 from rmot.backends.readers.model import Move, Stmt, Where
 
-__all__ = ["Names", "motion_why", "inline_why", "mode_why", "UnreadCalls"]
+__all__ = ["Names", "motion_why", "inline_why", "mode_why", "other_why", "UnreadCalls"]
 
 Names = tuple[Collection[str], Collection[str], Collection[str], Mapping[str, object]]
 """(positions read, names the program assigns, names declared anywhere seen, data lists' NAME ->
@@ -103,6 +103,17 @@ def mode_why(word: str, text: str) -> str | None:
         return None
     return f"this {word} tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting known only at run time"
 
+
+def other_why(word: str, text: str, started: bool) -> str | None:
+    """Why a WAIT or a relative motion stays native; `started`: whether the last move's target is
+    known here (where LIN_REL/PTP_REL start, KSS 8.x relative motions)."""
+    if word in ("LIN_REL", "PTP_REL") and not started:
+        return ("a relative motion starts where the last motion ended, not known here (the start of a block, "
+                "or after a motion not read)")
+    wait = re.fullmatch(r"(?i)WAIT\s+SEC\s+(.+)", text.strip())
+    if wait is not None and re.fullmatch(r"[\d.]+", wait.group(1).strip()) is None:
+        return f"the time `{wait.group(1).strip()}` is a variable: known only at run time"
+    return mode_why(word, text) if word == "WAIT" else None
 
 class UnreadCalls:
     """The calls of routines the import does not read (kept native): $VEL, $APO, $TOOL and $BASE are

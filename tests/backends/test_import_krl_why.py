@@ -3,7 +3,9 @@
 The module below imitates forms found in public KRL programs: `IF ($T1 OR $T2) THEN` and
 `PTP $POS_ACT` (HugoDanielson/KukaMiling, Main.src; `SPTP $AXIS_ACT`, Naqiu06 honai.src;
 `IF $OUT[99]==FALSE`, Aleynikovich Programas2Tornos m72x860.src; `WAIT FOR permission OR
-($MODE_OP == #T1)`, Aleynikovich Libraries IOLib.src), a FRAME array declared in the
+($MODE_OP == #T1)`, Aleynikovich Libraries IOLib.src; `WAIT SEC tiempoSecado`, Aleynikovich
+Work C2_CicloCompleto.src; `LIN_REL {X 150}#TOOL` after a move not read, KukaMiling
+getSearchPoint.src), a FRAME array declared in the
 .dat without values and a C_PTP with no `$APO.CPTP` set before it (KukaMiling
 Jobs/St1_Job1_Side1), a position the program assigns (`POS_A = PUNTO[n]`, ingeniado CAJA_G
 caja_g_m1), a point chosen by a loop variable (`xInsideWall[iWall]`, khrzysio Sub_MillLeaf),
@@ -43,6 +45,8 @@ SRC = """DEF cell( )
       WAIT SEC 0.5
    ENDIF
    WAIT FOR permission OR ($MODE_OP == #T1)
+   WAIT SEC tiempoSecado
+   LIN_REL {X 150} #TOOL
    PTP lfPrePos[1] C_PTP
    LIN lfWorkPos[1]
    POS_A = PUNTO[n]
@@ -80,6 +84,8 @@ REASONS = {
     "BAS(#INITMOV,0)": "this IF tests the operating mode",
     "IF $OUT[99]==FALSE THEN": "this IF tests an output ($OUT[n]); rmot conditions read inputs only",
     "WAIT FOR permission": "this WAIT tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP)",
+    "WAIT SEC tiempoSecado": "the time `tiempoSecado` is a variable: known only at run time",
+    "LIN_REL {X 150} #TOOL": "a relative motion starts where the last motion ended, not known here",
     "SPTP $AXIS_ACT": "`$AXIS_ACT` is where the robot stands when the line runs",
     "PTP lfPrePos[1] C_PTP": "C_PTP blends by $APO.CPTP, which no line before it sets",
     "LIN lfWorkPos[1]": "`lfWorkPos[1]` is declared without a value: it is set at run time",
