@@ -14,9 +14,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from click.testing import CliRunner
-
-from rmot.compiler.cli import cli
+from krl_imported import imported_krl
 
 SRC = """DEF pod( )
 ;FOLD SPTP P5 CONT Vel=100 % PDAT3 Tool[1]:TOOL_DATA[1] Base[1]:BASE_DATA[1] ;%{PE}
@@ -43,13 +41,8 @@ ENDDAT
 
 
 def test_kss8_spline_inline_forms_with_data_names(tmp_path: Path) -> None:
-    (tmp_path / "pod.src").write_text(SRC)
-    (tmp_path / "pod.dat").write_text(DAT)
-    out = tmp_path / "pod.rmot"
-    result = CliRunner().invoke(cli, ["import", str(tmp_path / "pod.src"), "-o", str(out), "--robot", "kuka_kr16"])
-    assert result.exit_code == 0, result.output
-    assert "motion and I/O: 2 imported, 0 kept native" in result.output
-    text = out.read_text()
+    output, text = imported_krl(tmp_path, "pod", SRC, DAT)
+    assert "motion and I/O: 2 imported, 0 kept native" in output
     # B 90 deg about y: q = (cos 45°, 0, sin 45°, 0); S 2 = elbow up, shoulder front, no flip
     assert "target XP5 = pose(x=600mm, y=0mm, z=800mm, q=(0.7071067812, 0, 0.7071067812, 0))" in text
     assert "move joint XP5 config(shoulder=front, elbow=up, wrist=noflip) speed 100 % zone 50 mm" in text

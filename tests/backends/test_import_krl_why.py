@@ -26,9 +26,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from click.testing import CliRunner
-
-from rmot.compiler.cli import cli
+from krl_imported import imported_krl
 
 SRC = """DEF cell( )
    DECL INT n, iWall
@@ -100,19 +98,15 @@ REASONS = {
 
 
 def test_each_native_motion_says_why(tmp_path: Path) -> None:
-    (tmp_path / "cell.src").write_text(SRC)
-    (tmp_path / "cell.dat").write_text(DAT)
-    result = CliRunner().invoke(cli, ["import", str(tmp_path / "cell.src"), "-o", str(tmp_path / "cell.rmot"),
-                                      "--robot", "kuka_kr16"])
-    assert result.exit_code == 0, result.output
+    output = imported_krl(tmp_path, "cell", SRC, DAT)[0]
     lines = SRC.split("\n")
     for start, reason in REASONS.items():
         n = next(i for i, text in enumerate(lines, 1) if text.strip().startswith(start))
-        warned = [w for w in result.output.split("\n") if f"cell.src:{n}:" in w and "W510" in w]
+        warned = [w for w in output.split("\n") if f"cell.src:{n}:" in w and "W510" in w]
         assert warned and reason in warned[0], (start, warned)
     # the last line's target XP5 is declared in the .dat with a value: read, not kept
     n = lines.index("   LIN XP5") + 1
-    assert f"cell.src:{n}:" not in result.output
+    assert f"cell.src:{n}:" not in output
 
 
 CALLS = """DEF job( )
@@ -138,12 +132,8 @@ def test_a_motion_after_an_unread_call_is_warned_once_per_routine(tmp_path: Path
     module setting $BASE, $TOOL, $VEL, $APO, which are global): the LIN after it is read with the
     settings before the call, W527 at the first one (once per routine); the LIN after an output,
     with no call between, is not warned."""
-    (tmp_path / "job.src").write_text(CALLS)
-    (tmp_path / "job.dat").write_text(CALLS_DAT)
-    result = CliRunner().invoke(cli, ["import", str(tmp_path / "job.src"), "-o", str(tmp_path / "job.rmot"),
-                                      "--robot", "kuka_kr16"])
-    assert result.exit_code == 0, result.output
-    warned = [w for w in result.output.split("\n") if "warning[W527]" in w]
+    output = imported_krl(tmp_path, "job", CALLS, CALLS_DAT)[0]
+    warned = [w for w in output.split("\n") if "warning[W527]" in w]
     first = CALLS.split("\n").index("   LIN P1") + 1
     assert len(warned) == 1 and f"job.src:{first}:4:" in warned[0], warned
     assert "`MoveSettings(..)` at line 3" in warned[0]
