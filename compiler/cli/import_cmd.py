@@ -29,6 +29,7 @@ if TYPE_CHECKING:
     from rmot.lang.ir import Pose
 
 __all__ = ["import_", "DEFAULT_MODELS"]
+__all__ += ["read_on_robot", "print_summary"]
 
 # the stub cell's robot when --robot is not given: a library arm of the vendor's maker
 DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "ur5e",
@@ -93,44 +94,82 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, objec
     return SignalMap(*(tuple(t) for t in tables)), chosen, result.cell
 
 
-@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP, INFORM or VAL3 programs back into .rmot.")
-@click.argument("files", nargs=-1, required=True, type=click.Path(dir_okay=False, exists=True))
-@click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False), help="The .rmot file to write.")
-@click.option("--robot", default=None, help="With --cell: the cell's robot; without: the library arm of the stub cell.")
-@click.option("--cell", "cell", type=click.Path(dir_okay=False, exists=True), default=None,
-              help="Run the imported program in this cell (else a stub cell is written beside OUT).")
-def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None) -> None:
-    from rmot.backends.readers import ImportError_, read_files, span_of  # late: loads numpy only when this runs
-    from rmot.backends.readers.counts import motion_io_counts  # late: loads numpy only when this runs
+def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, object] | None,
+                   model: str | None) -> Document:
+    """The files read for one robot: with a cell (`found`: its signals, robot, ir.Cell), named
+    signals resolved, tools and payloads matched to that robot's, INFORM configurations solved."""
+    from rmot.backends.readers import read_files, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
-    from rmot.backends.readers.writer import (  # late: loads numpy only when this runs
-        SignalMap, cell_stub, match_tools, program_text, rename_warnings, resolve_signals, stub_signals,
-    )
+    from rmot.backends.readers.writer import SignalMap, match_tools, resolve_signals  # late: loads numpy only when this runs
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
-    found = _cell_signals(cell, robot) if cell is not None else None
-    if isinstance(found, str):
-        click.echo(found, err=True)
-        sys.exit(EXIT_INPUT)
-    model = robot
     if found is not None:
         cell_ir = found[2]
         assert isinstance(cell_ir, ir.Cell)
         model = cell_ir.robot(found[1]).source.ref
+    doc = read_files(files, model=model, limits=_joint_limits(model))
+    if cell is None or found is None:
+        return doc
+    signals, robot_name, cell_ir = found
+    assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
+    doc = resolve_signals(doc, signals, span_of)
+    doc = match_tools(doc, tuple((t.name, t.tcp) for t in cell_ir.tools if t.robot == robot_name))
+    doc = match_payloads(doc, cell_parts(cell_ir),
+                         tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
+    return _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
+
+
+def print_summary(doc: Document) -> None:
+    """Per file: how many instructions were imported and kept native, all and motion and I/O."""
+    from rmot.backends.readers.counts import motion_io_counts  # late: loads numpy only when this runs
+
+    motion_io = motion_io_counts(doc)
+    for c in doc.counts:
+        total = c.imported + c.native
+        share = 100.0 * c.imported / total if total else 100.0
+        moved, kept = motion_io.get(c.path, (0, 0))
+        io_share = 100.0 * moved / (moved + kept) if moved + kept else 100.0
+        click.echo(f"{c.path}: {c.imported} imported, {c.native} kept native ({share:.1f} % imported); "
+                   f"motion and I/O: {moved} imported, {kept} kept native ({io_share:.1f} %)")
+
+
+@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP, INFORM or VAL3 programs back into .rmot. "
+               "Several robots' programs: one --task ROBOT=FILE per file (with --cell), read into one program "
+               "with a task per robot, RAPID WaitSyncTask and the other vendors' sync handshakes as `sync`.")
+@click.argument("files", nargs=-1, required=False, type=click.Path(dir_okay=False, exists=True))
+@click.option("-o", "--output", "output", required=True, type=click.Path(dir_okay=False), help="The .rmot file to write.")
+@click.option("--robot", default=None, help="With --cell: the cell's robot; without: the library arm of the stub cell.")
+@click.option("--cell", "cell", type=click.Path(dir_okay=False, exists=True), default=None,
+              help="Run the imported program in this cell (else a stub cell is written beside OUT).")
+@click.option("--task", "tasks", multiple=True, metavar="ROBOT=FILE",
+              help="A file of ROBOT's program (repeat: one task per robot, several files of one task in order; "
+                   "the k-th robot is RAPID task T_ROBk). Needs --cell, no FILES.")
+def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None, tasks: tuple[str, ...]) -> None:
+    from rmot.backends.readers import ImportError_, span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.writer import (  # late: loads numpy only when this runs
+        SignalMap, cell_stub, program_text, rename_warnings, stub_signals,
+    )
+
+    if tasks:
+        from rmot.compiler.cli.import_tasks import import_tasks  # late: loads numpy only when this runs
+
+        import_tasks(files, output, robot, cell, tasks)
+    if not files:
+        click.echo("rmot: import needs FILE... (one robot's program) or --task ROBOT=FILE (several robots)", err=True)
+        sys.exit(EXIT_INPUT)
+    found = _cell_signals(cell, robot) if cell is not None else None
+    if isinstance(found, str):
+        click.echo(found, err=True)
+        sys.exit(EXIT_INPUT)
     try:
-        doc = read_files(list(files), model=model, limits=_joint_limits(model))
+        doc = read_on_robot(list(files), cell, found, robot)
     except ImportError_ as exc:
         click.echo(render(exc.diagnostic), err=True)
         sys.exit(EXIT_INPUT)
     out_dir = os.path.dirname(os.path.abspath(output))
     if cell is not None and found is not None:
-        signals, robot_name, cell_ir = found
-        assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
-        doc = resolve_signals(doc, signals, span_of)
-        doc = match_tools(doc, tuple((t.name, t.tcp) for t in cell_ir.tools if t.robot == robot_name))
-        doc = match_payloads(doc, cell_parts(cell_ir),
-                             tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
-        doc = _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
+        signals, robot_name = found[0], found[1]
+        assert isinstance(signals, SignalMap)
         use = os.path.relpath(os.path.abspath(cell), out_dir)
     else:
         signals, robot_name = stub_signals(doc), "r1"
@@ -141,13 +180,6 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     for d in doc.diagnostics + rename_warnings(doc, span_of):
         click.echo(render(d), err=True)
     write_text(output, program_text(doc, signals, robot_name, use))
-    motion_io = motion_io_counts(doc)
-    for c in doc.counts:
-        total = c.imported + c.native
-        share = 100.0 * c.imported / total if total else 100.0
-        moved, kept = motion_io.get(c.path, (0, 0))
-        io_share = 100.0 * moved / (moved + kept) if moved + kept else 100.0
-        click.echo(f"{c.path}: {c.imported} imported, {c.native} kept native ({share:.1f} % imported); "
-                   f"motion and I/O: {moved} imported, {kept} kept native ({io_share:.1f} %)")
+    print_summary(doc)
     click.echo(f"wrote {output}")
     sys.exit(EXIT_OK)

@@ -1,0 +1,99 @@
+"""`rmot import --task r1=A.mod --task r2=B.mod -o OUT.rmot --cell CELL`: several robots'
+programs into one .rmot program with a task per robot.
+
+Each `--task ROBOT=FILE` gives a file of ROBOT's program (repeat one robot for its several
+files: a KRL .src and .dat, TP programs, RAPID modules of one task; its main file first). The
+robots keep the order of their first `--task`: the k-th is RAPID task T_ROBk. Each task's files
+are read as `rmot import --cell CELL --robot ROBOT` reads them; backends/readers/tasks.py then
+reads the barriers back as `sync`. Bad arguments are located errors (E523, exit 2): a robot
+that is not the cell's, a file given twice, --task without --cell or with FILE arguments.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+from rmot.lang.atomic import write_text
+from rmot.lang.diagnostics import Diagnostic, Severity, render
+
+__all__ = ["import_tasks"]
+
+
+def _fail(message: str, path: str | None) -> None:
+    """Print E523 (at line 1 of `path` where given) and exit 2."""
+    from rmot.backends.readers import codes, span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.model import Where  # late: loads numpy only when this runs
+
+    span = span_of(Where(path, 1)) if path is not None else None
+    click.echo(render(Diagnostic(codes.TASK_SPEC_INVALID, Severity.ERROR, message, span)), err=True)
+    sys.exit(EXIT_INPUT)
+
+
+def _task_files(specs: tuple[str, ...], robots: list[str]) -> dict[str, list[str]]:
+    """robot -> its files, robots in the order of their first --task; E523 on a bad spec."""
+    out: dict[str, list[str]] = {}
+    seen: dict[str, str] = {}
+    for spec in specs:
+        robot, eq, path = spec.partition("=")
+        robot, path = robot.strip(), path.strip()
+        if not eq or not robot or not path:
+            _fail(f"--task must be ROBOT=FILE (got `{spec}`)", None)
+        if not os.path.isfile(path):
+            _fail(f"--task {robot}=FILE must name an existing file (got `{path}`)", None)
+        if robot not in robots:
+            _fail(f"--task {robot}: the task's robot must be a robot of the cell ({', '.join(robots)}; "
+                  f"got `{robot}`)", path)
+        key = os.path.realpath(path)
+        if key in seen:
+            _fail(f"a file must be given once (`{path}` is given for {seen[key]} already)", path)
+        seen[key] = robot
+        out.setdefault(robot, []).append(path)
+    return out
+
+
+def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: str | None,
+                 specs: tuple[str, ...]) -> None:
+    """Read every task's files, their barriers as `sync`, write OUT; exits (0, or 2 on bad input)."""
+    from rmot.backends.readers import ImportError_, span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.tasks import TaskDoc, read_barriers, tasks_program_text  # late: loads numpy
+    from rmot.backends.readers.writer import SignalMap, rename_warnings  # late: loads numpy only when this runs
+    from rmot.backends.handshake import handshake_ports  # late: loads numpy only when this runs
+    from rmot.compiler.cli.import_cmd import _cell_signals, print_summary, read_on_robot
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
+
+    if files or robot is not None or cell is None:
+        _fail("--task ROBOT=FILE reads several robots' programs into one: give --cell CELL, and no FILE "
+              "arguments or --robot (each --task names its robot)", None)
+    assert cell is not None
+    first = _cell_signals(cell, None)
+    if isinstance(first, str):
+        click.echo(first, err=True)
+        sys.exit(EXIT_INPUT)
+    cell_ir = first[2]
+    assert isinstance(cell_ir, ir.Cell)
+    tasks = []
+    try:
+        for name, paths in _task_files(specs, [r.name for r in cell_ir.robots]).items():
+            found = _cell_signals(cell, name)
+            assert not isinstance(found, str) and isinstance(found[0], SignalMap)
+            doc = read_on_robot(paths, cell, found, None)
+            tasks.append(TaskDoc(name, doc, found[0], handshake_ports(cell_ir, name)))
+        tasks, warnings = read_barriers(tasks, span_of)
+    except ImportError_ as exc:
+        click.echo(render(exc.diagnostic), err=True)
+        sys.exit(EXIT_INPUT)
+    for t in tasks:
+        for d in t.doc.diagnostics + rename_warnings(t.doc, span_of):
+            click.echo(render(d), err=True)
+    for d in warnings:
+        click.echo(render(d), err=True)
+    use = os.path.relpath(os.path.abspath(cell), os.path.dirname(os.path.abspath(output)))
+    write_text(output, tasks_program_text(tasks, use))
+    for t in tasks:
+        print_summary(t.doc)
+    click.echo(f"wrote {output}")
+    sys.exit(EXIT_OK)
