@@ -13,12 +13,14 @@ from __future__ import annotations
 
 import os
 import sys
+from dataclasses import replace
 
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
 from rmot.lang.atomic import write_text
 from rmot.lang.diagnostics import Diagnostic, Severity, render
+from rmot.lang.source import SourceFile
 
 __all__ = ["import_tasks"]
 
@@ -28,9 +30,22 @@ def _fail(message: str, path: str | None) -> None:
     from rmot.backends.readers import codes, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.model import Where  # late: loads numpy only when this runs
 
-    span = span_of(Where(path, 1)) if path is not None else None
+    span = None
+    if path is not None:
+        span = span_of(Where(path, 1))
+        if not span.file.text:  # not read yet: its first line, to show under the message
+            span = replace(span, file=SourceFile(path, _first_line(path)))
     click.echo(render(Diagnostic(codes.TASK_SPEC_INVALID, Severity.ERROR, message, span)), err=True)
     sys.exit(EXIT_INPUT)
+
+
+def _first_line(path: str) -> str:
+    """The file's first line as text ('' where it does not read): for showing, not for parsing."""
+    try:
+        with open(path, "rb") as f:
+            return f.readline(200).decode("utf-8", errors="replace").rstrip("\r\n")
+    except OSError:
+        return ""
 
 
 def _task_files(specs: tuple[str, ...], robots: list[str]) -> dict[str, list[str]]:

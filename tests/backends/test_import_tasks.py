@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import pytest
@@ -106,3 +107,115 @@ def test_handover_round_trip(vendor: str, tmp_path: Path) -> None:
         assert abs(tb["cycle_time"] - ta["cycle_time"]) <= 0.005 * before["cycle_time"]
         for a, b in zip(ta["instructions"], tb["instructions"], strict=True):
             _same_instruction(a, b, before["cycle_time"])
+
+
+@pytest.fixture(scope="module")
+def compiled(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """handover compiled for RAPID and KRL (the files the bad-input tests edit copies of)."""
+    out = tmp_path_factory.mktemp("handover")
+    result = CliRunner().invoke(cli, ["compile", str(EXAMPLE), "--cell", str(CELL), "--target", "rapid",
+                                      "--target", "krl", "-o", str(out), "--allow-findings"], catch_exceptions=False)
+    assert result.exit_code in (0, 1), result.output
+    return out
+
+
+def _edited(source: Path, folder: Path, old: str, new: str, count: int = 1) -> Path:
+    """A copy of `source` in `folder` with `old` replaced by `new` (`count` times, checked)."""
+    text = source.read_text()
+    assert text.count(old) >= count, old
+    folder.mkdir(exist_ok=True)
+    copy = folder / source.name
+    copy.write_text(text.replace(old, new, count))
+    for extra in source.parent.glob(source.stem + ".dat"):  # a KRL .src's data list beside it
+        (folder / extra.name).write_text(extra.read_text())
+    return copy
+
+
+def _located(output: str, code: str, path: Path, line: int) -> bool:
+    return re.search(rf"{re.escape(str(path))}:{line}:\d+: (error|warning)\[{code}\]", output) is not None
+
+
+def test_robot_not_in_cell(compiled: Path, tmp_path: Path) -> None:
+    mod = compiled / "rapid" / "handover_r1.mod"
+    code, output = _import(["--task", f"r1={mod}", "--task", f"r9={compiled / 'rapid' / 'handover_r2.mod'}"],
+                           tmp_path / "x.rmot")
+    assert code == 2 and "Traceback" not in output
+    assert _located(output, "E523", compiled / "rapid" / "handover_r2.mod", 1) and "(r1, r2; got `r9`)" in output
+    assert not (tmp_path / "x.rmot").exists()
+
+
+def test_same_file_twice(compiled: Path, tmp_path: Path) -> None:
+    mod = compiled / "rapid" / "handover_r1.mod"
+    code, output = _import(["--task", f"r1={mod}", "--task", f"r2={mod}"], tmp_path / "x.rmot")
+    assert code == 2 and _located(output, "E523", mod, 1) and "given for r1 already" in output, output
+
+
+@pytest.mark.parametrize("args", [["--task", "r1"], ["--task", "r1=no_such.mod"]])
+def test_bad_task_option(args: list[str], tmp_path: Path) -> None:
+    code, output = _import(args, tmp_path / "x.rmot")
+    assert code == 2 and "error[E523]" in output and "Traceback" not in output, output
+
+
+def test_task_needs_cell_and_no_files(compiled: Path, tmp_path: Path) -> None:
+    mod = str(compiled / "rapid" / "handover_r1.mod")
+    result = CliRunner().invoke(cli, ["import", "--task", f"r1={mod}", "-o", str(tmp_path / "x.rmot")])
+    assert result.exit_code == 2 and "error[E523]" in result.output and "--cell" in result.output
+    code, output = _import([mod, "--task", f"r1={mod}"], tmp_path / "x.rmot")
+    assert code == 2 and "error[E523]" in output, output
+
+
+def test_wait_sync_task_names_a_task_not_given(compiled: Path, tmp_path: Path) -> None:
+    """r1's task list names T_ROB2; only r1 is imported: E524 at its first WaitSyncTask."""
+    mod = compiled / "rapid" / "handover_r1.mod"
+    line = next(n for n, text in enumerate(mod.read_text().splitlines(), 1) if "WaitSyncTask" in text)
+    code, output = _import(["--task", f"r1={mod}"], tmp_path / "x.rmot")
+    assert code == 2 and _located(output, "E524", mod, line) and "T_ROB2, which is not imported" in output, output
+
+
+def test_wait_sync_task_one_sided(compiled: Path, tmp_path: Path) -> None:
+    """r2's program lacks `gripped`: r1's WaitSyncTask gripped stays native (W531), the other
+    barriers come back in both tasks."""
+    r1 = compiled / "rapid" / "handover_r1.mod"
+    r2 = _edited(compiled / "rapid" / "handover_r2.mod", tmp_path / "e", "WaitSyncTask gripped, all_tasks;", "")
+    line = next(n for n, text in enumerate(r1.read_text().splitlines(), 1) if "WaitSyncTask gripped" in text)
+    code, output = _import(["--task", f"r1={r1}", "--task", f"r2={r2}"], tmp_path / "x.rmot")
+    assert code == 0 and _located(output, "W531", r1, line), output
+    text = (tmp_path / "x.rmot").read_text()
+    assert text.count("sync gripped") == 0 and 'native rapid "WaitSyncTask gripped, all_tasks;"' in text
+    assert text.count("sync ready") == text.count("sync clear") == 2
+
+
+def test_handshake_rounds_differ(compiled: Path, tmp_path: Path) -> None:
+    """r2's KRL program lost its last handshake round: no task's sync I/O is read as barriers (W531)."""
+    r1 = compiled / "krl" / "handover_r1.src"
+    src = compiled / "krl" / "handover_r2.src"
+    text = src.read_text()
+    last = text.rindex("$OUT[10]=FALSE")
+    r2 = _edited(src, tmp_path / "e", text[last:text.index("\n", text.index("WAIT FOR $IN[10]==FALSE", last))], "")
+    code, output = _import(["--task", f"r1={r1}", "--task", f"r2={r2}"], tmp_path / "x.rmot")
+    assert code == 0 and "warning[W531]" in output and "rounds read: r1: 4, r2: 3" in output, output
+    imported = (tmp_path / "x.rmot").read_text()
+    assert "sync " not in imported and imported.count("set out[10] = on") == 4
+
+
+def test_handshake_level_not_the_backends(compiled: Path, tmp_path: Path) -> None:
+    """r2's second round sets its output on again: not the level-toggling handshake (W533 at
+    that line), so no barrier is read in either task (W531)."""
+    src = compiled / "krl" / "handover_r2.src"
+    r2 = _edited(src, tmp_path / "e", "$OUT[10]=FALSE ; sync\n", "$OUT[10]=TRUE ; sync\n")
+    line = next(n for n, text in enumerate(r2.read_text().splitlines(), 1) if "handshake 2" in text) + 1
+    code, output = _import(["--task", f"r1={compiled / 'krl' / 'handover_r1.src'}", "--task", f"r2={r2}"],
+                           tmp_path / "x.rmot")
+    assert code == 0 and _located(output, "W533", r2, line) and "warning[W531]" in output, output
+    assert "sync " not in (tmp_path / "x.rmot").read_text()
+
+
+def test_handshake_names_differ(compiled: Path, tmp_path: Path) -> None:
+    """The comments name round 2 differently: r1's name is used, W532 at r2's round."""
+    src = compiled / "krl" / "handover_r2.src"
+    r2 = _edited(src, tmp_path / "e", "; sync gripped (handshake 2)", "; sync holding (handshake 2)")
+    line = next(n for n, text in enumerate(r2.read_text().splitlines(), 1) if "handshake 2" in text) + 1
+    code, output = _import(["--task", f"r1={compiled / 'krl' / 'handover_r1.src'}", "--task", f"r2={r2}"],
+                           tmp_path / "x.rmot")
+    assert code == 0 and _located(output, "W532", r2, line), output
+    assert _barriers(tmp_path / "x.rmot")["r2"] == ["ready", "gripped", "released", "clear"]
