@@ -86,7 +86,9 @@ def _rapid_waits(index: int, t: TaskDoc, robots: list[str],
     given = {rapid_task_name(k).upper(): k for k in range(len(robots))}
     for r in t.doc.routines:
         for s in walk(r.body):
-            m = WAIT_SYNC.fullmatch(s.text.strip()) if isinstance(s, Native) and s.vendor == "rapid" else None
+            if not (isinstance(s, Native) and s.vendor == "rapid"):
+                continue
+            m = WAIT_SYNC.fullmatch(s.text.strip())
             if m is None:
                 continue
             decl = re.search(TASK_LIST.format(re.escape(m.group(2))), span_of(s.where).file.text)
