@@ -79,7 +79,8 @@ __all__ += ["TASK_SPEC_INVALID", "BARRIER_TASK_UNKNOWN", "BARRIER_ONE_SIDED", "B
             "HANDSHAKE_KEPT_IO"]
 TASK_SPEC_INVALID = Code("E523", "task-spec-invalid",
                          "a `--task ROBOT=FILE` of `rmot import` names no robot of the cell, gives a file twice, or "
-                         "is given without --cell or with plain FILE arguments")
+                         "is given without --cell or with plain FILE arguments; or plain FILE arguments are several "
+                         "tasks' RAPID programs (two define PROC main)")
 BARRIER_TASK_UNKNOWN = Code("E524", "barrier-task-unknown",
                             "a RAPID WaitSyncTask's task list names a task that is not imported (the k-th robot of "
                             "--task is task T_ROBk), or leaves out the task that waits")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
@@ -133,6 +134,38 @@ def print_summary(doc: Document) -> None:
                    f"motion and I/O: {moved} imported, {kept} kept native ({io_share:.1f} %)")
 
 
+def _one_task(files: tuple[str, ...]) -> None:
+    """Refuse (E523) RAPID files of which two define `PROC main`: the modules of one task have
+    one main, so these are several robots' programs, whose barriers only --task reads (merged,
+    the second main would be lost)."""
+    from rmot.backends.readers import codes  # late: loads numpy only when this runs
+    from rmot.backends.readers.common import MAX_BYTES, read_text  # late: loads numpy only when this runs
+    from rmot.lang.diagnostics import Diagnostic, Severity
+    from rmot.lang.input_file import NotRegularFile, read_regular
+    from rmot.lang.source import Pos, SourceFile, Span
+
+    mains: list[tuple[str, str, int]] = []
+    for path in files:
+        if os.path.splitext(path)[1].lower() not in (".mod", ".modx", ".prg"):
+            continue
+        try:
+            text = read_text(read_regular(path, MAX_BYTES))
+        except (NotRegularFile, ValueError):
+            continue  # the reader reports it (E512)
+        m = re.search(r"(?im)^[ \t]*(?:LOCAL[ \t]+)?PROC[ \t]+main[ \t]*\(", text)
+        if m is not None:
+            mains.append((path, text, text.count("\n", 0, m.start()) + 1))
+    if len(mains) < 2:
+        return
+    (first, _, _), (path, text, line) = mains[:2]
+    pos = Pos(line, 1)
+    click.echo(render(Diagnostic(
+        codes.TASK_SPEC_INVALID, Severity.ERROR,
+        f"the modules of one task must have one PROC main (`{first}` has one too): several robots' programs "
+        "are read with one --task ROBOT=FILE each and --cell", Span(SourceFile(path, text), pos, pos))), err=True)
+    sys.exit(EXIT_INPUT)
+
+
 @click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP, INFORM or VAL3 programs back into .rmot. "
                "Several robots' programs: one --task ROBOT=FILE per file (with --cell), read into one program "
                "with a task per robot, RAPID WaitSyncTask and the other vendors' sync handshakes as `sync`.")
@@ -157,6 +190,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     if not files:
         click.echo("rmot: import needs FILE... (one robot's program) or --task ROBOT=FILE (several robots)", err=True)
         sys.exit(EXIT_INPUT)
+    _one_task(files)
     found = _cell_signals(cell, robot) if cell is not None else None
     if isinstance(found, str):
         click.echo(found, err=True)

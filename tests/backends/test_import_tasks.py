@@ -219,3 +219,12 @@ def test_handshake_names_differ(compiled: Path, tmp_path: Path) -> None:
                            tmp_path / "x.rmot")
     assert code == 0 and _located(output, "W532", r2, line), output
     assert _barriers(tmp_path / "x.rmot")["r2"] == ["ready", "gripped", "released", "clear"]
+
+
+def test_two_tasks_as_plain_files(compiled: Path, tmp_path: Path) -> None:
+    """Both robots' RAPID modules given as FILE arguments: one task cannot have two PROC main
+    (merged, r2's would be lost): E523 at the second one, pointing at --task."""
+    r1, r2 = compiled / "rapid" / "handover_r1.mod", compiled / "rapid" / "handover_r2.mod"
+    line = next(n for n, text in enumerate(r2.read_text().splitlines(), 1) if "PROC main()" in text)
+    code, output = _import([str(r1), str(r2)], tmp_path / "x.rmot")
+    assert code == 2 and _located(output, "E523", r2, line) and "--task ROBOT=FILE" in output, output
