@@ -83,7 +83,8 @@ TASK_SPEC_INVALID = Code("E523", "task-spec-invalid",
                          "tasks' RAPID programs (two define PROC main)")
 BARRIER_TASK_UNKNOWN = Code("E524", "barrier-task-unknown",
                             "a RAPID WaitSyncTask's task list names a task that is not imported (the k-th robot of "
-                            "--task is task T_ROBk), or leaves out the task that waits")
+                            "--task is task T_ROBk, or the name --task ROBOT:NAME=FILE gives), or leaves out the "
+                            "task that waits")
 BARRIER_ONE_SIDED = Code("W531", "barrier-one-sided",
                          "a barrier one task passes and a peer it waits for lacks (or passes a different number "
                          "of handshakes): it is not read as `sync` but kept as it is written")

@@ -7,7 +7,8 @@ module then finds the barriers rmot's backends write for `sync NAME` and reads t
 * RAPID (MultiMove): `WaitSyncTask NAME, LIST;` with `VAR syncident NAME;` and `PERS tasks
   LIST{n}:=[["T_ROB1"],...];` (Technical reference manual RAPID Instructions, WaitSyncTask;
   RAPID data types, syncident and tasks). The k-th robot given is task T_ROBk, as
-  backends/rapid.py numbers a program's tasks. A list naming a task that is not imported, or
+  backends/rapid.py numbers a program's tasks, unless its task's name is given
+  (`--task ROBOT:NAME=FILE`: a controller's own names, T_ROB_L). A list naming a task that is not imported, or
   leaving out the task that waits, is E524. A syncident the backend had to rename because its
   name is a RAPID word (`clear_`) gets its name back (`clear`).
 * every other vendor: the I/O handshake of backends/handshake.py on the robot's "sync" signals:
@@ -56,11 +57,13 @@ class TaskDoc:
     doc: Document
     signals: SignalMap
     ports: HandshakePorts | None
+    rapid_task: str = ""  # its RAPID task's name (`--task ROBOT:NAME=FILE`); "" = T_ROBk
 
 
-def rapid_task_name(index: int) -> str:
-    """The RAPID task of the `index`-th (0-based) task given, as backends/rapid.py names it."""
-    return f"T_ROB{index + 1}"
+def rapid_task_name(index: int, given: str = "") -> str:
+    """The RAPID task of the `index`-th (0-based) task: the name given, else T_ROBk as
+    backends/rapid.py names a program's tasks."""
+    return (given or f"T_ROB{index + 1}").upper()
 
 
 def _warn(code: Code, message: str, where: Where, span_of: SpanOf) -> Diagnostic:
@@ -79,11 +82,11 @@ def _barrier_name(name: str) -> str:
     return name
 
 
-def _rapid_waits(index: int, t: TaskDoc, robots: list[str],
+def _rapid_waits(index: int, t: TaskDoc, tasks: list[TaskDoc],
                  span_of: SpanOf) -> dict[int, tuple[Native, str, frozenset[int]]]:
     """id(native) -> (the WaitSyncTask, its syncident, the task indexes of its list)."""
     found: dict[int, tuple[Native, str, frozenset[int]]] = {}
-    given = {rapid_task_name(k).upper(): k for k in range(len(robots))}
+    given = {rapid_task_name(k, task.rapid_task): k for k, task in enumerate(tasks)}
     for r in t.doc.routines:
         for s in walk(r.body):
             if not (isinstance(s, Native) and s.vendor == "rapid"):
@@ -96,14 +99,15 @@ def _rapid_waits(index: int, t: TaskDoc, robots: list[str],
                 continue  # a list this file does not declare: the line stays native (W510)
             names = re.findall(r'"(\w+)"', decl.group(1))
             unknown = [n for n in names if n.upper() not in given]
-            if unknown or rapid_task_name(index) not in (n.upper() for n in names):
+            own = rapid_task_name(index, t.rapid_task)
+            if unknown or own not in (n.upper() for n in names):
                 why = (f"names task {unknown[0]}, which is not imported" if unknown
-                       else f"leaves out {rapid_task_name(index)}, the task that waits")
+                       else f"leaves out {own}, the task that waits")
                 raise ImportError_(Diagnostic(
                     codes.BARRIER_TASK_UNKNOWN, Severity.ERROR,
                     f"WaitSyncTask {m.group(1)}: its task list `{m.group(2)}` must name imported tasks only, "
                     f"the waiting one included ({why}; the tasks given are "
-                    f"{', '.join(f'{rapid_task_name(k)} = {robot}' for k, robot in enumerate(robots))})",
+                    f"{', '.join(f'{name} = {tasks[k].robot}' for name, k in given.items())})",
                     span_of(s.where)))
             found[id(s)] = (s, m.group(1), frozenset(given[n.upper()] for n in names))
     return found
@@ -111,8 +115,7 @@ def _rapid_waits(index: int, t: TaskDoc, robots: list[str],
 
 def _rapid_barriers(tasks: list[TaskDoc], span_of: SpanOf) -> tuple[list[TaskDoc], list[Diagnostic]]:
     """Each RAPID task's WaitSyncTask lines every task of their list passes as `sync`."""
-    robots = [t.robot for t in tasks]
-    waits = [_rapid_waits(k, t, robots, span_of) if t.doc.vendor == "rapid" else {} for k, t in enumerate(tasks)]
+    waits = [_rapid_waits(k, t, tasks, span_of) if t.doc.vendor == "rapid" else {} for k, t in enumerate(tasks)]
     names = [{ident.upper() for _, ident, _ in w.values()} for w in waits]
     diags: list[Diagnostic] = []
     out = []

@@ -174,9 +174,9 @@ def _one_task(files: tuple[str, ...]) -> None:
 @click.option("--robot", default=None, help="With --cell: the cell's robot; without: the library arm of the stub cell.")
 @click.option("--cell", "cell", type=click.Path(dir_okay=False, exists=True), default=None,
               help="Run the imported program in this cell (else a stub cell is written beside OUT).")
-@click.option("--task", "tasks", multiple=True, metavar="ROBOT=FILE",
+@click.option("--task", "tasks", multiple=True, metavar="ROBOT[:RAPIDTASK]=FILE",
               help="A file of ROBOT's program (repeat: one task per robot, several files of one task in order; "
-                   "the k-th robot is RAPID task T_ROBk). Needs --cell, no FILES.")
+                   "the k-th robot is RAPID task T_ROBk unless :RAPIDTASK names it). Needs --cell, no FILES.")
 def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None, tasks: tuple[str, ...]) -> None:
     from rmot.backends.readers import ImportError_, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import (  # late: loads numpy only when this runs

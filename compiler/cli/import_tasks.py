@@ -3,7 +3,8 @@ programs into one .rmot program with a task per robot.
 
 Each `--task ROBOT=FILE` gives a file of ROBOT's program (repeat one robot for its several
 files: a KRL .src and .dat, TP programs, RAPID modules of one task; its main file first). The
-robots keep the order of their first `--task`: the k-th is RAPID task T_ROBk. Each task's files
+robots keep the order of their first `--task`: the k-th is RAPID task T_ROBk, unless
+`--task ROBOT:NAME=FILE` names its task (the names a controller's WaitSyncTask lists use). Each task's files
 are read as `rmot import --cell CELL --robot ROBOT` reads them; backends/readers/tasks.py then
 reads the barriers back as `sync`. Bad arguments are located errors (E523, exit 2): a robot
 that is not the cell's, a file given twice, --task without --cell or with FILE arguments.
@@ -12,6 +13,7 @@ that is not the cell's, a file given twice, --task without --cell or with FILE a
 from __future__ import annotations
 
 import os
+import re
 import sys
 from dataclasses import replace
 
@@ -48,15 +50,17 @@ def _first_line(path: str) -> str:
         return ""
 
 
-def _task_files(specs: tuple[str, ...], robots: list[str]) -> dict[str, list[str]]:
-    """robot -> its files, robots in the order of their first --task; E523 on a bad spec."""
-    out: dict[str, list[str]] = {}
+def _task_files(specs: tuple[str, ...], robots: list[str]) -> dict[str, tuple[str, list[str]]]:
+    """robot -> (its RAPID task's name or "", its files), robots in the order of their first
+    --task; E523 on a bad spec."""
+    out: dict[str, tuple[str, list[str]]] = {}
     seen: dict[str, str] = {}
     for spec in specs:
-        robot, eq, path = spec.partition("=")
-        robot, path = robot.strip(), path.strip()
-        if not eq or not robot or not path:
-            _fail(f"--task must be ROBOT=FILE (got `{spec}`)", None)
+        head, eq, path = spec.partition("=")
+        robot, _, task = (x.strip() for x in head.partition(":"))
+        path = path.strip()
+        if not eq or not robot or not path or not re.fullmatch(r"\w*", task):
+            _fail(f"--task must be ROBOT=FILE or ROBOT:RAPIDTASK=FILE (got `{spec}`)", None)
         if not os.path.isfile(path):
             _fail(f"--task {robot}=FILE must name an existing file (got `{path}`)", None)
         if robot not in robots:
@@ -66,7 +70,10 @@ def _task_files(specs: tuple[str, ...], robots: list[str]) -> dict[str, list[str
         if key in seen:
             _fail(f"a file must be given once (`{path}` is given for {seen[key]} already)", path)
         seen[key] = robot
-        out.setdefault(robot, []).append(path)
+        named, files = out.setdefault(robot, (task, []))
+        if task and named and task.upper() != named.upper():
+            _fail(f"--task {robot}: a robot runs one RAPID task (got {named} and {task})", path)
+        out[robot] = (named or task, files + [path])
     return out
 
 
@@ -92,11 +99,11 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
     assert isinstance(cell_ir, ir.Cell)
     tasks = []
     try:
-        for name, paths in _task_files(specs, [r.name for r in cell_ir.robots]).items():
+        for name, (task, paths) in _task_files(specs, [r.name for r in cell_ir.robots]).items():
             found = _cell_signals(cell, name)
             assert not isinstance(found, str) and isinstance(found[0], SignalMap)
             doc = read_on_robot(paths, cell, found, None)
-            tasks.append(TaskDoc(name, doc, found[0], handshake_ports(cell_ir, name)))
+            tasks.append(TaskDoc(name, doc, found[0], handshake_ports(cell_ir, name), task))
         tasks, warnings = read_barriers(tasks, span_of)
     except ImportError_ as exc:
         click.echo(render(exc.diagnostic), err=True)

@@ -228,3 +228,17 @@ def test_two_tasks_as_plain_files(compiled: Path, tmp_path: Path) -> None:
     line = next(n for n, text in enumerate(r2.read_text().splitlines(), 1) if "PROC main()" in text)
     code, output = _import([str(r1), str(r2)], tmp_path / "x.rmot")
     assert code == 2 and _located(output, "E523", r2, line) and "--task ROBOT=FILE" in output, output
+
+
+def test_rapid_task_names_given(compiled: Path, tmp_path: Path) -> None:
+    """A controller's own task names (YuMi's T_ROB_L, T_ROB_R) in the task list: `--task
+    ROBOT:NAME=FILE` maps them; without the names the list names tasks not imported (E524)."""
+    r1 = _edited(compiled / "rapid" / "handover_r1.mod", tmp_path / "e1", '[["T_ROB1"],["T_ROB2"]]', '[["T_ROB_L"],["T_ROB_R"]]')
+    r2 = _edited(compiled / "rapid" / "handover_r2.mod", tmp_path / "e2", '[["T_ROB1"],["T_ROB2"]]', '[["T_ROB_L"],["T_ROB_R"]]')
+    code, output = _import(["--task", f"r1:T_ROB_L={r1}", "--task", f"r2:T_ROB_R={r2}"], tmp_path / "x.rmot")
+    assert code == 0, output
+    assert _barriers(tmp_path / "x.rmot") == _barriers(EXAMPLE)
+    code, output = _import(["--task", f"r1={r1}", "--task", f"r2={r2}"], tmp_path / "y.rmot")
+    assert code == 2 and "error[E524]" in output and "T_ROB_L, which is not imported" in output, output
+    code, output = _import(["--task", f"r1:T_ROB_L={r1}", "--task", f"r1:T_ROB_R={r2}"], tmp_path / "z.rmot")
+    assert code == 2 and "error[E523]" in output and "one RAPID task" in output, output
