@@ -30,7 +30,7 @@ if TYPE_CHECKING:
     from rmot.lang.ir import Pose
 
 __all__ = ["import_", "DEFAULT_MODELS"]
-__all__ += ["read_on_robot", "print_summary"]
+__all__ += ["read_on_robot", "print_summary", "write_output", "refuse_output_input"]
 
 # the stub cell's robot when --robot is not given: a library arm of the vendor's maker
 DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "ur5e",
@@ -120,6 +120,28 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
     return _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
 
 
+def refuse_output_input(path: str, inputs: tuple[str, ...]) -> None:
+    """Exit 2 (E564) before any work when OUT is one of the vendor files (it would be replaced)."""
+    from rmot.compiler.cli.oserrors import output_is_input  # late: optional, tried where used
+
+    same = output_is_input("program", path, inputs)
+    if same is not None:
+        click.echo(same, err=True)
+        sys.exit(EXIT_INPUT)
+
+
+def write_output(what: str, path: str, text: str, inputs: tuple[str, ...]) -> None:
+    """Write `path` atomically; one of the vendor files (E564) or unwritable (E520): exit 2."""
+    from rmot.compiler.cli.oserrors import output_failed  # late: optional, tried where used
+
+    refuse_output_input(path, inputs)
+    try:
+        write_text(path, text)
+    except OSError as exc:
+        click.echo(output_failed(what, path, exc), err=True)
+        sys.exit(EXIT_INPUT)
+
+
 def print_summary(doc: Document) -> None:
     """Per file: how many instructions were imported and kept native, all and motion and I/O."""
     from rmot.backends.readers.counts import motion_io_counts  # late: loads numpy only when this runs
@@ -190,6 +212,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     if not files:
         click.echo("rmot: import needs FILE... (one robot's program) or --task ROBOT=FILE (several robots)", err=True)
         sys.exit(EXIT_INPUT)
+    refuse_output_input(output, files)
     _one_task(files)
     found = _cell_signals(cell, robot) if cell is not None else None
     if isinstance(found, str):
@@ -210,10 +233,10 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         robot = robot or DEFAULT_MODELS[doc.vendor]
         stem = os.path.splitext(os.path.basename(output))[0]
         use = f"{stem}_cell.rmot"
-        write_text(os.path.join(out_dir, use), cell_stub(doc, signals, robot))
+        write_output("cell stub", os.path.join(out_dir, use), cell_stub(doc, signals, robot), files)
     for d in doc.diagnostics + rename_warnings(doc, span_of):
         click.echo(render(d), err=True)
-    write_text(output, program_text(doc, signals, robot_name, use))
+    write_output("program", output, program_text(doc, signals, robot_name, use), files)
     print_summary(doc)
     click.echo(f"wrote {output}")
     sys.exit(EXIT_OK)

@@ -20,7 +20,6 @@ from dataclasses import replace
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
-from rmot.lang.atomic import write_text
 from rmot.lang.diagnostics import Diagnostic, Severity, render
 from rmot.lang.source import SourceFile
 
@@ -84,7 +83,8 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
     from rmot.backends.readers.tasks import TaskDoc, read_barriers, tasks_program_text  # late: loads numpy
     from rmot.backends.readers.writer import SignalMap, rename_warnings  # late: loads numpy only when this runs
     from rmot.backends.handshake import handshake_ports  # late: loads numpy only when this runs
-    from rmot.compiler.cli.import_cmd import _cell_signals, print_summary, read_on_robot
+    from rmot.compiler.cli.import_cmd import _cell_signals, print_summary, read_on_robot, refuse_output_input
+    from rmot.compiler.cli.import_cmd import write_output
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
     if files or robot is not None or cell is None:
@@ -97,9 +97,11 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
         sys.exit(EXIT_INPUT)
     cell_ir = first[2]
     assert isinstance(cell_ir, ir.Cell)
+    given = _task_files(specs, [r.name for r in cell_ir.robots])
+    refuse_output_input(output, tuple(f for _, paths in given.values() for f in paths))
     tasks = []
     try:
-        for name, (task, paths) in _task_files(specs, [r.name for r in cell_ir.robots]).items():
+        for name, (task, paths) in given.items():
             found = _cell_signals(cell, name)
             assert not isinstance(found, str) and isinstance(found[0], SignalMap)
             doc = read_on_robot(paths, cell, found, None)
@@ -114,7 +116,7 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
     for d in warnings:
         click.echo(render(d), err=True)
     use = os.path.relpath(os.path.abspath(cell), os.path.dirname(os.path.abspath(output)))
-    write_text(output, tasks_program_text(tasks, use))
+    write_output("program", output, tasks_program_text(tasks, use), tuple(f for _, paths in given.values() for f in paths))
     for t in tasks:
         print_summary(t.doc)
     click.echo(f"wrote {output}")

@@ -242,3 +242,22 @@ def test_rapid_task_names_given(compiled: Path, tmp_path: Path) -> None:
     assert code == 2 and "error[E524]" in output and "T_ROB_L, which is not imported" in output, output
     code, output = _import(["--task", f"r1:T_ROB_L={r1}", "--task", f"r1:T_ROB_R={r2}"], tmp_path / "z.rmot")
     assert code == 2 and "error[E523]" in output and "one RAPID task" in output, output
+
+
+def test_output_is_an_input(compiled: Path, tmp_path: Path) -> None:
+    """-o naming one of the vendor files would replace it: E564, exit 2, the file unchanged,
+    for one robot's import as for --task."""
+    r1 = _edited(compiled / "rapid" / "handover_r1.mod", tmp_path / "e", "MODULE", "MODULE")
+    before = r1.read_text()
+    code, output = _import(["--task", f"r1={r1}", "--task", f"r2={compiled / 'rapid' / 'handover_r2.mod'}"], r1)
+    assert code == 2 and "error[E564]" in output and r1.read_text() == before, output
+    result = CliRunner().invoke(cli, ["import", str(r1), "-o", str(r1)])
+    assert result.exit_code == 2 and "error[E564]" in result.output and r1.read_text() == before, result.output
+    assert not list((tmp_path / "e").glob("*_cell.rmot"))  # refused before the stub cell is written
+
+
+def test_output_folder_missing(compiled: Path, tmp_path: Path) -> None:
+    """-o in a folder that does not exist: E520 naming it, exit 2, no traceback (E550)."""
+    args = ["--task", f"r1={compiled / 'rapid' / 'handover_r1.mod'}", "--task", f"r2={compiled / 'rapid' / 'handover_r2.mod'}"]
+    code, output = _import(args, tmp_path / "no" / "x.rmot")
+    assert code == 2 and "error[E520]" in output and "E550" not in output, output
