@@ -64,6 +64,15 @@ def _barriers(source: Path) -> dict[str, list[str]]:
     return {t.robot: [n.name for n in ir_tree.walk(t.body) if isinstance(n, ir.Sync)] for t in result.program.tasks}
 
 
+def _checked_cycle(source: Path) -> float:
+    """The cycle time `rmot check` prints for `source` in the cell (it must pass: exit 0)."""
+    result = CliRunner().invoke(cli, ["check", str(source), "--cell", str(CELL)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    m = re.search(r": ok: cycle time ([\d.]+) s", result.output)
+    assert m is not None, result.output
+    return float(m.group(1))
+
+
 def _task_args(vendor: str, folder: Path) -> list[str]:
     return [a for robot in ("r1", "r2") for a in
             ("--task", f"{robot}={folder / FILES[vendor].format(robot if vendor not in ('fanuc', 'inform') else robot.upper())}")]
@@ -93,6 +102,8 @@ def test_handover_round_trip(vendor: str, tmp_path: Path) -> None:
     assert "warning[W5" not in output.replace("warning[W515]", ""), output  # the URScript movej shares: W515
     assert _barriers(imported) == _barriers(EXAMPLE) == {
         "r1": ["ready", "gripped", "released", "clear"], "r2": ["ready", "gripped", "released", "clear"]}
+    checked = [_checked_cycle(source) for source in (EXAMPLE, imported)]  # what `rmot check` prints
+    assert abs(checked[1] - checked[0]) <= 0.005 * checked[0], checked
     if vendor == "inform":
         # r2 is a UR5e: the INFORM reader's RCONF resolution (inform_conf.py) does not bring back
         # its wrist and turns on three joint moves, which then plan to other joints (and the
