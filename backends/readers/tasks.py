@@ -83,9 +83,9 @@ def _barrier_name(name: str) -> str:
 
 
 def _rapid_waits(index: int, t: TaskDoc, tasks: list[TaskDoc],
-                 span_of: SpanOf) -> dict[int, tuple[Native, str, frozenset[int]]]:
-    """id(native) -> (the WaitSyncTask, its syncident, the task indexes of its list)."""
-    found: dict[int, tuple[Native, str, frozenset[int]]] = {}
+                 span_of: SpanOf) -> dict[int, tuple[Native, str, str, frozenset[int]]]:
+    """id(native) -> (the WaitSyncTask, its syncident, its task list, the task indexes in that list)."""
+    found: dict[int, tuple[Native, str, str, frozenset[int]]] = {}
     given = {rapid_task_name(k, task.rapid_task): k for k, task in enumerate(tasks)}
     for r in t.doc.routines:
         for s in walk(r.body):
@@ -109,40 +109,45 @@ def _rapid_waits(index: int, t: TaskDoc, tasks: list[TaskDoc],
                     f"the waiting one included ({why}; the tasks given are "
                     f"{', '.join(f'{name} = {tasks[k].robot}' for name, k in given.items())})",
                     span_of(s.where)))
-            found[id(s)] = (s, m.group(1), frozenset(given[n.upper()] for n in names))
+            found[id(s)] = (s, m.group(1), m.group(2), frozenset(given[n.upper()] for n in names))
     return found
 
 
 def _rapid_barriers(tasks: list[TaskDoc], span_of: SpanOf) -> tuple[list[TaskDoc], list[Diagnostic]]:
     """Each RAPID task's WaitSyncTask lines every task of their list passes as `sync`."""
     waits = [_rapid_waits(k, t, tasks, span_of) if t.doc.vendor == "rapid" else {} for k, t in enumerate(tasks)]
-    names = [{ident.upper() for _, ident, _ in w.values()} for w in waits]
+    names = [{ident.upper() for _, ident, _, _ in w.values()} for w in waits]
     diags: list[Diagnostic] = []
     out = []
     for k, t in enumerate(tasks):
         syncs: dict[int, Sync] = {}
-        for native, ident, peers in waits[k].values():
+        native_lists: set[str] = set()  # task lists a WaitSyncTask kept native still names
+        for native, ident, task_list, peers in waits[k].values():
             lacking = [tasks[j].robot for j in sorted(peers) if ident.upper() not in names[j]]
             if lacking:
+                native_lists.add(task_list.upper())
                 diags.append(_warn(codes.BARRIER_ONE_SIDED,
                                    f"WaitSyncTask {ident} waits for {', '.join(lacking)}, whose program has no "
                                    f"WaitSyncTask {ident}: kept native, not read as `sync`", native.where, span_of))
             else:
                 syncs[id(native)] = Sync(_barrier_name(ident), native.where)
-        out.append(_with_rapid_syncs(t, syncs, span_of) if syncs else t)
+        out.append(_with_rapid_syncs(t, syncs, native_lists, span_of) if syncs else t)
     return out, diags
 
 
-def _with_rapid_syncs(t: TaskDoc, syncs: dict[int, Sync], span_of: SpanOf) -> TaskDoc:
-    """`t` with the WaitSyncTask natives `syncs` replaced, their syncident and task list
-    declarations no longer kept as comments, and the file counts moved to imported."""
+def _with_rapid_syncs(t: TaskDoc, syncs: dict[int, Sync], native_lists: set[str], span_of: SpanOf) -> TaskDoc:
+    """`t` with the WaitSyncTask natives `syncs` replaced, their syncident and task list (unless
+    `native_lists`: a native WaitSyncTask still names it) declarations no longer kept as
+    comments, and the file counts moved to imported."""
     doc = t.doc
     lines = {(s.where.path, s.where.line) for s in syncs.values()}
     for s in syncs.values():
         text = span_of(s.where).file.text
-        ident = WAIT_SYNC.search(span_of(s.where).file.line_text(s.where.line))
-        for pattern in (SYNCIDENT, TASK_LIST):
-            line = _line_of(text, pattern.format(re.escape(ident.group(1 if pattern is SYNCIDENT else 2)))) if ident else None
+        wait = WAIT_SYNC.search(span_of(s.where).file.line_text(s.where.line))
+        names = [] if wait is None else [SYNCIDENT.format(re.escape(wait.group(1)))] + (
+            [] if wait.group(2).upper() in native_lists else [TASK_LIST.format(re.escape(wait.group(2)))])
+        for pattern in names:
+            line = _line_of(text, pattern)
             if line is not None:
                 lines.add((s.where.path, line))
     kept = tuple(k for k in doc.kept if (k.where.path, k.where.line) not in lines)

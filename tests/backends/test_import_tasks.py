@@ -193,6 +193,8 @@ def test_wait_sync_task_one_sided(compiled: Path, tmp_path: Path) -> None:
     assert code == 0 and _located(output, "W531", r1, line), output
     text = (tmp_path / "x.rmot").read_text()
     assert text.count("sync gripped") == 0 and 'native rapid "WaitSyncTask gripped, all_tasks;"' in text
+    assert "PERS tasks all_tasks" in text and "syncident gripped" in text  # still named by the native line
+    assert "syncident ready" not in text
     assert text.count("sync ready") == text.count("sync clear") == 2
 
 
