@@ -274,3 +274,27 @@ def test_output_folder_missing(compiled: Path, tmp_path: Path) -> None:
     args = ["--task", f"r1={compiled / 'rapid' / 'handover_r1.mod'}", "--task", f"r2={compiled / 'rapid' / 'handover_r2.mod'}"]
     code, output = _import(args, tmp_path / "no" / "x.rmot")
     assert code == 2 and "error[E520]" in output and "E550" not in output, output
+
+
+def test_handshake_without_comments(compiled: Path, tmp_path: Path) -> None:
+    """A handshake with no `sync NAME (handshake k)` comments (written by hand): the rounds are
+    barriers all the same, named barrier_1, barrier_2, ... in both tasks."""
+    folders = []
+    for robot in ("r1", "r2"):
+        src = compiled / "krl" / f"handover_{robot}.src"
+        text = re.sub(r"(?m)^\s*; sync \w+ \(handshake \d\)\n", "", src.read_text())
+        folders.append(_edited(src, tmp_path / robot, src.read_text(), text))
+    code, output = _import(["--task", f"r1={folders[0]}", "--task", f"r2={folders[1]}"], tmp_path / "x.rmot")
+    assert code == 0 and "warning[W53" not in output, output
+    names = [f"barrier_{k}" for k in range(1, 5)]
+    assert _barriers(tmp_path / "x.rmot") == {"r1": names, "r2": names}
+
+
+def test_task_list_leaves_out_the_waiting_task(compiled: Path, tmp_path: Path) -> None:
+    """r2's list names only T_ROB1: the controller would refuse it; E524 at r2's WaitSyncTask."""
+    r2 = _edited(compiled / "rapid" / "handover_r2.mod", tmp_path / "e", 'all_tasks{2}:=[["T_ROB1"],["T_ROB2"]]',
+                 'all_tasks{1}:=[["T_ROB1"]]')
+    line = next(n for n, text in enumerate(r2.read_text().splitlines(), 1) if "WaitSyncTask" in text)
+    code, output = _import(["--task", f"r1={compiled / 'rapid' / 'handover_r1.mod'}", "--task", f"r2={r2}"],
+                           tmp_path / "x.rmot")
+    assert code == 2 and _located(output, "E524", r2, line) and "leaves out T_ROB2" in output, output
