@@ -20,6 +20,7 @@ from dataclasses import replace
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
+from rmot.compiler.cli.import_read import cell_signals, print_summary, read_on_robot, refuse_output_input, write_output
 from rmot.lang.diagnostics import Diagnostic, Severity, render
 from rmot.lang.source import SourceFile
 
@@ -83,15 +84,13 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
     from rmot.backends.readers.tasks import TaskDoc, read_barriers, tasks_program_text  # late: loads numpy
     from rmot.backends.readers.writer import SignalMap, rename_warnings  # late: loads numpy only when this runs
     from rmot.backends.handshake import handshake_ports  # late: loads numpy only when this runs
-    from rmot.compiler.cli.import_cmd import _cell_signals, print_summary, read_on_robot, refuse_output_input
-    from rmot.compiler.cli.import_cmd import write_output
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
 
     if files or robot is not None or cell is None:
         _fail("--task ROBOT=FILE reads several robots' programs into one: give --cell CELL, and no FILE "
               "arguments or --robot (each --task names its robot)", None)
     assert cell is not None
-    first = _cell_signals(cell, None)
+    first = cell_signals(cell, None)
     if isinstance(first, str):
         click.echo(first, err=True)
         sys.exit(EXIT_INPUT)
@@ -102,7 +101,7 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
     tasks = []
     try:
         for name, (task, paths) in given.items():
-            found = _cell_signals(cell, name)
+            found = cell_signals(cell, name)
             assert not isinstance(found, str) and isinstance(found[0], SignalMap)
             doc = read_on_robot(paths, cell, found, None)
             tasks.append(TaskDoc(name, doc, found[0], handshake_ports(cell_ir, name), task))
