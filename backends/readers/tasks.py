@@ -70,9 +70,15 @@ def _warn(code: Code, message: str, where: Where, span_of: SpanOf) -> Diagnostic
     return Diagnostic(code, Severity.WARNING, message, span_of(where))
 
 
-def _line_of(text: str, pattern: str) -> int | None:
-    m = re.search(pattern, text)
-    return text.count("\n", 0, m.start()) + 1 if m else None
+def _declared(doc: Document, pattern: str, span_of: SpanOf) -> tuple[re.Match[str], Where] | None:
+    """The first declaration matching `pattern` in the task's files (a RAPID task's modules
+    share their global data), with its place."""
+    for c in doc.counts:
+        text = span_of(Where(c.path, 1)).file.text
+        m = re.search(pattern, text)
+        if m is not None:
+            return m, Where(c.path, text.count("\n", 0, m.start()) + 1)
+    return None
 
 
 def _barrier_name(name: str) -> str:
@@ -94,10 +100,10 @@ def _rapid_waits(index: int, t: TaskDoc, tasks: list[TaskDoc],
             m = WAIT_SYNC.fullmatch(s.text.strip())
             if m is None:
                 continue
-            decl = re.search(TASK_LIST.format(re.escape(m.group(2))), span_of(s.where).file.text)
+            decl = _declared(t.doc, TASK_LIST.format(re.escape(m.group(2))), span_of)
             if decl is None:
-                continue  # a list this file does not declare: the line stays native (W510)
-            names = re.findall(r'"(\w+)"', decl.group(1))
+                continue  # a list the task's files do not declare: the line stays native (W510)
+            names = re.findall(r'"(\w+)"', decl[0].group(1))
             unknown = [n for n in names if n.upper() not in given]
             own = rapid_task_name(index, t.rapid_task)
             if unknown or own not in (n.upper() for n in names):
@@ -142,14 +148,13 @@ def _with_rapid_syncs(t: TaskDoc, syncs: dict[int, Sync], native_lists: set[str]
     doc = t.doc
     lines = {(s.where.path, s.where.line) for s in syncs.values()}
     for s in syncs.values():
-        text = span_of(s.where).file.text
         wait = WAIT_SYNC.search(span_of(s.where).file.line_text(s.where.line))
         names = [] if wait is None else [SYNCIDENT.format(re.escape(wait.group(1)))] + (
             [] if wait.group(2).upper() in native_lists else [TASK_LIST.format(re.escape(wait.group(2)))])
         for pattern in names:
-            line = _line_of(text, pattern)
-            if line is not None:
-                lines.add((s.where.path, line))
+            decl = _declared(doc, pattern, span_of)
+            if decl is not None:
+                lines.add((decl[1].path, decl[1].line))
     kept = tuple(k for k in doc.kept if (k.where.path, k.where.line) not in lines)
     moved: dict[str, int] = {}
     for k in doc.kept:

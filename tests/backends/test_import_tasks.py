@@ -298,3 +298,22 @@ def test_task_list_leaves_out_the_waiting_task(compiled: Path, tmp_path: Path) -
     code, output = _import(["--task", f"r1={compiled / 'rapid' / 'handover_r1.mod'}", "--task", f"r2={r2}"],
                            tmp_path / "x.rmot")
     assert code == 2 and _located(output, "E524", r2, line) and "leaves out T_ROB2" in output, output
+
+
+def test_task_data_in_another_module(compiled: Path, tmp_path: Path) -> None:
+    """r1's syncidents and task list live in a data module of its task (given second): the
+    barriers come back all the same, and no declaration is left as a comment."""
+    mod = compiled / "rapid" / "handover_r1.mod"
+    text = mod.read_text()
+    decls = [ln for ln in text.splitlines() if re.match(r"\s*(VAR syncident|PERS tasks)", ln)]
+    assert len(decls) == 5
+    r1 = tmp_path / "e" / mod.name
+    r1.parent.mkdir()
+    r1.write_text("\n".join(ln for ln in text.splitlines() if ln not in decls) + "\n")
+    data = tmp_path / "e" / "sync_data.mod"
+    data.write_text("MODULE sync_data\n" + "\n".join(decls) + "\nENDMODULE\n")
+    code, output = _import(["--task", f"r1={r1}", "--task", f"r1={data}",
+                            "--task", f"r2={compiled / 'rapid' / 'handover_r2.mod'}"], tmp_path / "x.rmot")
+    assert code == 0 and "warning[W51" not in output, output
+    assert _barriers(tmp_path / "x.rmot") == _barriers(EXAMPLE)
+    assert "syncident" not in (tmp_path / "x.rmot").read_text()
