@@ -34,7 +34,7 @@ from rmot.backends.rapid_text import RAPID_RULES
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import ImportError_, rmot_name
 from rmot.backends.readers.model import Cond, Document, FileCount, Native, SetOut, Stmt, Sync, WaitIn, Where, walk
-from rmot.backends.readers.writer import SignalMap, _signal_uses, map_leaves, task_lines
+from rmot.backends.readers.writer import SignalMap, map_leaves, signal_uses, task_lines
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span
@@ -176,7 +176,7 @@ def _sync_io(t: TaskDoc, s: Stmt) -> bool:
     ports = t.ports
     if ports is None:
         return False
-    for kind, signal in _signal_uses(s):
+    for kind, signal in signal_uses(s):
         port = t.signals.port(kind, signal)
         if (kind, port) in (("outputs", ports.out), ("inputs", ports.inp)):
             return True

@@ -28,7 +28,7 @@ from rmot.lang.source import Span
 
 __all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools",
            "rename_warnings"]
-__all__ += ["task_lines"]
+__all__ += ["task_lines", "signal_uses"]
 
 INDENT = "  "
 
@@ -62,6 +62,9 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
     if isinstance(s, (VarDecl, Assign)):
         return [("inputs", c.signal) for c in leaves(s.init if isinstance(s, VarDecl) else s.value)]
     return []
+
+
+signal_uses = _signal_uses  # (kind, signal) of each signal a statement sets or reads
 
 
 def stub_signals(doc: Document) -> SignalMap:
