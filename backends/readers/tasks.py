@@ -14,8 +14,9 @@ module then finds the barriers rmot's backends write for `sync NAME` and reads t
 * every other vendor: the I/O handshake of backends/handshake.py on the robot's "sync" signals:
   round k sets the own sync output on (odd k) or off (even k), then waits for the own sync input
   at that level; the comment `sync NAME (handshake k)` the backends write above the set names
-  the barrier (`barrier_k` where it is missing). Any other use of the sync signals: the task's
-  sync I/O stays plain I/O (W533).
+  the barrier (`barrier_k` where it is missing). Rounds count in run order, into the routines
+  the main body calls (a proc's sync: the backend writes it in the routine). Any other use of
+  the sync signals: the task's sync I/O stays plain I/O (W533).
 
 A barrier is read only where the tasks agree (every task a RAPID list names waits at that
 syncident; every handshaking task passes the same number of rounds): otherwise it stays as it
@@ -33,7 +34,7 @@ from rmot.backends.handshake import HandshakePorts
 from rmot.backends.rapid_text import RAPID_RULES
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import ImportError_, rmot_name
-from rmot.backends.readers.model import Cond, Document, FileCount, Native, SetOut, Stmt, Sync, WaitIn, Where, walk
+from rmot.backends.readers.model import Call, Cond, Document, FileCount, Native, SetOut, Stmt, Sync, WaitIn, Where, walk
 from rmot.backends.readers.writer import SignalMap, map_leaves, signal_uses, task_lines
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.record import record
@@ -183,35 +184,49 @@ def _sync_io(t: TaskDoc, s: Stmt) -> bool:
     return False
 
 
+def _scan(t: TaskDoc, body: tuple[Stmt, ...], procs: dict[str, tuple[Stmt, ...]],
+          rounds: list[tuple[SetOut, WaitIn]], entered: set[str]) -> Stmt | None:
+    """Collect the handshake rounds of `body` in run order, into the routines it calls that use
+    the sync signals (each called once: a routine's levels are fixed); the statement where the
+    pattern breaks, or None."""
+    for i, a in enumerate(body):
+        if isinstance(a, Call) and a.name.upper() in procs:
+            if a.name.upper() in entered:
+                return a
+            entered.add(a.name.upper())
+            stop = _scan(t, procs[a.name.upper()], procs, rounds, entered)
+            if stop is not None:
+                return stop
+        elif isinstance(a, SetOut) and _sync_io(t, a) and t.ports is not None:
+            level = len(rounds) % 2 == 0
+            b = body[i + 1] if i + 1 < len(body) else None
+            if not (isinstance(b, WaitIn) and not b.orelse and b.timeout is None and isinstance(b.cond, Cond)
+                    and not a.analog and bool(a.value) == level and b.cond.on == level
+                    and t.signals.port("inputs", b.cond.signal) == t.ports.inp):
+                return a
+            rounds.append((a, b))
+    return None
+
+
 def _handshake(t: TaskDoc, span_of: SpanOf) -> tuple[list[tuple[SetOut, WaitIn]], Diagnostic | None]:
-    """The task's handshake rounds (set, wait) in its main body, or none and why (W533)."""
+    """The task's handshake rounds (set, wait) in run order, or none and why (W533)."""
     main = next((r for r in t.doc.routines if r.name == t.doc.main), None)
     uses = [s for r in t.doc.routines for s in walk(r.body) if _sync_io(t, s)]
     if main is None or t.ports is None or not uses:
         return [], None
-    body = main.body
+    procs = {r.name.upper(): r.body for r in t.doc.routines
+             if r is not main and any(_sync_io(t, s) for s in walk(r.body))}
     rounds: list[tuple[SetOut, WaitIn]] = []
-    for a, b in zip(body, body[1:]):
-        if not (isinstance(a, SetOut) and _sync_io(t, a)):
-            continue
-        level = len(rounds) % 2 == 0
-        wait = b if isinstance(b, WaitIn) and not b.orelse and b.timeout is None else None
-        cond = wait.cond if wait is not None else None
-        if (a.analog or bool(a.value) != level or not isinstance(cond, Cond) or cond.on != level
-                or t.signals.port("inputs", cond.signal) != t.ports.inp):
-            break
-        assert wait is not None
-        rounds.append((a, wait))
+    stop = _scan(t, main.body, procs, rounds, set())
     paired = {id(x) for pair in rounds for x in pair}
-    stray = next((s for s in uses if id(s) not in paired), None)
+    stray = stop or next((s for s in uses if id(s) not in paired), None)
     if stray is None:
         return rounds, None
     return [], _warn(codes.HANDSHAKE_KEPT_IO,
-                     f"this use of {t.robot}'s sync signals (out[{t.ports.out}], in[{t.ports.inp}]) must be round "
-                     f"{len(rounds) + 1} of the handshake rmot writes (set out[{t.ports.out}] = "
-                     f"{'on' if len(rounds) % 2 == 0 else 'off'} in the main body, then wait until in[{t.ports.inp}] "
-                     "at that level, no timeout) to be read as a barrier: the task's sync I/O is kept as I/O",
-                     stray.where, span_of)
+                     f"this line must be round {len(rounds) + 1} of the handshake rmot writes on {t.robot}'s sync "
+                     f"signals to be read as a barrier (set out[{t.ports.out}] = {'on' if len(rounds) % 2 == 0 else 'off'}, "
+                     f"then wait until in[{t.ports.inp}] at that level, no timeout; in the main body or a routine it "
+                     "calls once, not inside a block): the task's sync I/O is kept as I/O", stray.where, span_of)
 
 
 def _note(where: Where, k: int, span_of: SpanOf) -> str | None:
@@ -254,7 +269,7 @@ def _with_handshake_syncs(t: TaskDoc, rounds: list[tuple[SetOut, WaitIn]], names
     sets = {id(s): Sync(name, s.where) for (s, _), name in zip(rounds, names)}
     waits = {id(w) for _, w in rounds}
     routines = tuple(replace(r, body=tuple(sets.get(id(s), s) for s in r.body if id(s) not in waits))
-                     if r.name == t.doc.main else r for r in t.doc.routines)
+                     for r in t.doc.routines)
     return replace(t, doc=replace(t.doc, routines=routines))
 
 

@@ -317,3 +317,51 @@ def test_task_data_in_another_module(compiled: Path, tmp_path: Path) -> None:
     assert code == 0 and "warning[W51" not in output, output
     assert _barriers(tmp_path / "x.rmot") == _barriers(EXAMPLE)
     assert "syncident" not in (tmp_path / "x.rmot").read_text()
+
+
+SYNC_IN_PROC = """program p {
+  proc meet() {
+    sync a
+  }
+  task r1 {
+    tool gripper
+    move joint joints(0, -10, 10, 0, 90, 0) deg
+    meet()
+    move joint joints(10, -10, 10, 0, 90, 0) deg
+    meet()
+    sync b
+  }
+  task r2 {
+    tool gripper2
+    move joint joints(0, -90, 90, -90, -90, 0) deg
+    sync a
+    move joint joints(10, -90, 90, -90, -90, 0) deg
+    sync a
+    sync b
+  }
+}
+"""
+
+
+@pytest.mark.parametrize("vendor", ["krl", "urscript", "fanuc"])
+def test_sync_in_a_proc(vendor: str, tmp_path: Path) -> None:
+    """A proc's sync, called twice: the backend writes a routine per call (their levels differ);
+    the rounds are counted in run order into them, and the same plan comes back."""
+    source = tmp_path / "p.rmot"
+    source.write_text(SYNC_IN_PROC)
+    before = _compile(source, vendor, tmp_path / "a")
+    pattern = {"krl": "krl/p_{}.src", "urscript": "urscript/p_{}.script", "fanuc": "fanuc/P_{}.ls"}[vendor]
+    args = [a for robot in ("r1", "r2") for a in
+            ("--task", f"{robot}={tmp_path / 'a' / pattern.format(robot if vendor != 'fanuc' else robot.upper())}")]
+    if vendor == "fanuc":  # the routines are programs of their own: r1's files after its main
+        args[2:2] = [a for f in sorted((tmp_path / "a" / "fanuc").glob("P_R1_*.ls")) for a in ("--task", f"r1={f}")]
+    imported = tmp_path / "imported.rmot"
+    code, output = _import(args, imported)
+    assert code == 0 and "warning[W53" not in output, output
+    assert _barriers(imported) == _barriers(source) == {"r1": ["a", "a", "b"], "r2": ["a", "a", "b"]}
+    after = _compile(imported, vendor, tmp_path / "b")
+    assert abs(after["cycle_time"] - before["cycle_time"]) <= 0.005 * before["cycle_time"]
+    for ta, tb in zip(before["tasks"], after["tasks"], strict=True):
+        leaves = [[i for i in t["instructions"] if i["kind"] != "proc_call"] for t in (ta, tb)]
+        for a, b in zip(*leaves, strict=True):
+            _same_instruction(a, b, before["cycle_time"])
