@@ -343,14 +343,15 @@ SYNC_IN_PROC = """program p {
 """
 
 
-@pytest.mark.parametrize("vendor", ["krl", "urscript", "fanuc"])
+@pytest.mark.parametrize("vendor", ["rapid", "krl", "urscript", "fanuc", "val3"])
 def test_sync_in_a_proc(vendor: str, tmp_path: Path) -> None:
     """A proc's sync, called twice: the backend writes a routine per call (their levels differ);
     the rounds are counted in run order into them, and the same plan comes back."""
     source = tmp_path / "p.rmot"
     source.write_text(SYNC_IN_PROC)
     before = _compile(source, vendor, tmp_path / "a")
-    pattern = {"krl": "krl/p_{}.src", "urscript": "urscript/p_{}.script", "fanuc": "fanuc/P_{}.ls"}[vendor]
+    pattern = {"rapid": "rapid/p_{}.mod", "krl": "krl/p_{}.src", "urscript": "urscript/p_{}.script",
+               "fanuc": "fanuc/P_{}.ls", "val3": "val3/p_{0}/p_{0}.pjx"}[vendor]
     args = [a for robot in ("r1", "r2") for a in
             ("--task", f"{robot}={tmp_path / 'a' / pattern.format(robot if vendor != 'fanuc' else robot.upper())}")]
     if vendor == "fanuc":  # the routines are programs of their own: r1's files after its main
