@@ -19,6 +19,7 @@ __all__ = [
     "Document", "Signal", "walk",
 ]
 __all__ += ["VarDecl", "Assign"]
+__all__ += ["Sync"]
 
 # a signal by its controller name (RAPID, INFORM names) or by its port number (KRL, TP, UR)
 Signal = str | int
@@ -217,7 +218,16 @@ class Assign:
     where: Where
 
 
-Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop | Grip | VarDecl | Assign
+@record(slots=True)
+class Sync:
+    """`sync name`: a barrier of a multi-robot program (RAPID WaitSyncTask, or the I/O handshake
+    the other vendors' backends write), recognised across the tasks' files (tasks.py)."""
+
+    name: str
+    where: Where
+
+
+Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop | Grip | VarDecl | Assign | Sync
 
 
 def walk(body: tuple[Stmt, ...]) -> list[Stmt]:

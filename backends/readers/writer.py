@@ -19,6 +19,7 @@ from rmot.backends.readers.model import (
     Where, While, leaves, walk,
 )
 from rmot.backends.readers.model import Assign, VarDecl
+from rmot.backends.readers.model import Sync
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -27,6 +28,7 @@ from rmot.lang.source import Span
 
 __all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools",
            "rename_warnings"]
+__all__ += ["task_lines", "signal_uses"]
 
 INDENT = "  "
 
@@ -60,6 +62,9 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
     if isinstance(s, (VarDecl, Assign)):
         return [("inputs", c.signal) for c in leaves(s.init if isinstance(s, VarDecl) else s.value)]
     return []
+
+
+signal_uses = _signal_uses  # (kind, signal) of each signal a statement sets or reads
 
 
 def stub_signals(doc: Document) -> SignalMap:
@@ -208,6 +213,8 @@ class _Printer:
                 self.emit(depth, f"native {s.vendor} {_quote(line)}   # {replace(s.where, line=s.where.line + n, col=1) if n else s.where}")
         elif isinstance(s, Stop):
             self.emit(depth, "stop")
+        elif isinstance(s, Sync):
+            self.emit(depth, f"sync {rmot_name(s.name)}")
         elif isinstance(s, Grip):
             self.emit(depth, f"{'attach' if s.take else 'detach'} {s.part}")
         elif isinstance(s, Call):
@@ -281,21 +288,7 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
     if use_cell is not None:
         p.emit(0, f"use cell {_quote(use_cell)}")
     p.emit(0, f"program {rmot_name(doc.name)} on {robot} {{")
-    for name, value in doc.consts:
-        p.emit(1, f"const {name} = {_num(value)}")
-    for t in doc.targets:
-        p.emit(1, _target_line(rmot_name(t.name), t.pose, t.joints))
-    main = None
-    for r in doc.routines:
-        if r.name == doc.main:
-            main = r
-            continue
-        params = ", ".join(f"{rmot_name(n)}: {t}" for n, t in r.params)
-        p.emit(1, f"proc {rmot_name(r.name)}({params}) {{")
-        p.body(r.body, 2, {})
-        p.emit(1, "}")
-    if main is not None:
-        p.body(main.body, 1, {})
+    _declarations_and_body(p, doc, 1)
     p.emit(0, "}")
     if doc.kept:
         p.emit(0, "")
@@ -303,6 +296,35 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
         for k in doc.kept:
             p.emit(0, f"#   {k.where}: {k.text}")
     return "\n".join(p.lines) + "\n"
+
+
+def _declarations_and_body(p: _Printer, doc: Document, depth: int) -> None:
+    """`doc`'s consts, targets and procs, then its main routine's body, at `depth`."""
+    for name, value in doc.consts:
+        p.emit(depth, f"const {name} = {_num(value)}")
+    for t in doc.targets:
+        p.emit(depth, _target_line(rmot_name(t.name), t.pose, t.joints))
+    main = None
+    for r in doc.routines:
+        if r.name == doc.main:
+            main = r
+            continue
+        params = ", ".join(f"{rmot_name(n)}: {t}" for n, t in r.params)
+        p.emit(depth, f"proc {rmot_name(r.name)}({params}) {{")
+        p.body(r.body, depth + 1, {})
+        p.emit(depth, "}")
+    if main is not None:
+        p.body(main.body, depth, {})
+
+
+def task_lines(doc: Document, signals: SignalMap, robot: str) -> list[str]:
+    """`task ROBOT { ... }` of a multi-robot program: `doc`'s declarations and main body, indented
+    one level inside the program."""
+    p = _Printer(doc, signals)
+    p.emit(1, f"task {robot} {{")
+    _declarations_and_body(p, doc, 2)
+    p.emit(1, "}")
+    return p.lines
 
 
 def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") -> str:
