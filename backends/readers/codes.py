@@ -73,3 +73,10 @@ PERSISTENT_VARIABLE = Code("W541", "persistent-variable",
                            "a persistent variable (a KRL .dat variable, a RAPID PERS) the main routine does not set "
                            "first thing is read as a task variable starting at the value the file stores; on the "
                            "controller it starts where the previous run left it")
+
+# external axes read back (readers/axes.py)
+__all__ += ["AXES_KEPT"]
+AXES_KEPT = Code("W523", "axes-kept",
+                 "a move's external-axis values (RAPID extax, KRL E1..E6, TP E1/GP2, INFORM BC/EC) map to no "
+                 "axes of the cell (no --cell, no mechanism choice fills the slots, or more than one): it is "
+                 "kept native")

@@ -102,6 +102,7 @@ def _cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, objec
 def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None) -> None:
     from rmot.backends.readers import ImportError_, read_files, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.counts import motion_io_counts  # late: loads numpy only when this runs
+    from rmot.backends.readers.axes import resolve_axes  # late: loads numpy only when this runs
     from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import (  # late: loads numpy only when this runs
         SignalMap, cell_stub, match_tools, program_text, rename_warnings, resolve_signals, stub_signals,
@@ -131,9 +132,11 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         doc = match_payloads(doc, cell_parts(cell_ir),
                              tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
         doc = _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
+        doc = resolve_axes(doc, cell_ir, robot_name, span_of)
         use = os.path.relpath(os.path.abspath(cell), out_dir)
     else:
         signals, robot_name = stub_signals(doc), "r1"
+        doc = resolve_axes(doc, None, robot_name, span_of)  # a stub cell declares no mechanism: W523
         robot = robot or DEFAULT_MODELS[doc.vendor]
         stem = os.path.splitext(os.path.basename(output))[0]
         use = f"{stem}_cell.rmot"

@@ -1,0 +1,131 @@
+"""External axes read back: the slot values a vendor writes beside a target, mapped to the axes
+of the cell's track and positioners (`ext(rail=600mm, pos=(0deg, 90deg))`, `with rail, pos`).
+
+The readers record each target's slot values as written (`Target.slots`, `Move.slots`: RAPID
+robtarget/jointtarget `extax` eax_a..eax_f, 9E+09 for a slot no axis takes, ABB RAPID reference,
+"extjoint"). `resolve_axes` maps them with the cell by the backends' own slot rule
+(backends/ext_axes.py: the task's axes in `with` order, a mechanism's axes in their order, take
+the slots in turn; mm for a linear axis, degrees for a revolute one). The program drives the
+mechanisms of the cell in cell order whose axes fill exactly the slots the files use, the
+track carrying the robot always among them; where no such choice exists, or more than one, or
+where no cell is given (a stub cell cannot declare a track's or positioner's geometry), every
+move with axis values stays native with W523 naming why: an axis value is never guessed.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from dataclasses import replace
+from itertools import combinations
+
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import rmot_name
+from rmot.backends.readers.model import Document, FileCount, Move, Native, Stmt, Target, Where, walk
+from rmot.lang import ir
+from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.ir_axes import Mechanism
+from rmot.lang.source import Span
+
+__all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM"]
+
+# RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
+RAPID_UNUSED_FROM = 8.9e9
+SLOTS = 6  # RAPID eax_a..eax_f
+
+
+def rapid_slots(lit: object, index: int) -> tuple[float | None, ...] | None:
+    """The extax of a robtarget (`index` 3) or jointtarget (1) literal: six numbers, None for
+    9E+09; () where the literal has no extax; None where it is not six numbers (not read)."""
+    if not isinstance(lit, list) or len(lit) <= index:
+        return ()
+    extax = lit[index]
+    if not (isinstance(extax, list) and len(extax) == SLOTS and all(isinstance(v, float) for v in extax)):
+        return None
+    return tuple(None if v >= RAPID_UNUSED_FROM else float(v) for v in extax)
+
+
+def _value_text(mech: Mechanism, values: tuple[float, ...]) -> str:
+    from rmot.backends.readers.rapid import num_text  # late: the RAPID reader imports this module
+
+    texts = [f"{num_text(v, 6)}{'mm' if a.linear else 'deg'}" for a, v in zip(mech.axes, values)]
+    return texts[0] if len(texts) == 1 else f"({', '.join(texts)})"
+
+
+def _drivable(cell: ir.Cell, robot: str) -> tuple[list[Mechanism], Mechanism | None]:
+    """(the mechanisms a program on `robot` may drive, in cell order; the track carrying it)."""
+    external = cell.external
+    if external is None:
+        return [], None
+    mount = external.mount(robot)
+    track = external.mechanism(mount.mechanism) if mount is not None and mount.kind == "robot" else None
+    return [m for m in external.mechanisms if m.on is None and (m.kind != "track" or m is track)], track
+
+
+def _choose(cell: ir.Cell | None, robot: str, used: int) -> tuple[tuple[Mechanism, ...], str]:
+    """(the mechanisms whose axes take slots 1..`used`, or () with the reason why none can)."""
+    if cell is None or cell.external is None:
+        return (), "the cell declares no track or positioner (give --cell with the one that does)"
+    candidates, track = _drivable(cell, robot)
+    fits = [combo for n in range(1, len(candidates) + 1) for combo in combinations(candidates, n)
+            if sum(len(m.axes) for m in combo) == used and (track is None or track in combo)]
+    if len(fits) == 1:
+        return fits[0], ""
+    names = ", ".join(f"'{m.name}' ({len(m.axes)})" for m in candidates) or "none"
+    why = "no choice" if not fits else "more than one choice"
+    return (), f"{used} external-axis slot(s) written; of the cell's mechanisms {names} {why} fills them"
+
+
+def _used(doc: Document) -> int:
+    """How many slots the files use: the last slot any target gives a value."""
+    slots = [s.slots for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    return max((k + 1 for values in slots for k, v in enumerate(values) if v is not None), default=0)
+
+
+def _via_slots(doc: Document, via: str | None) -> tuple[float | None, ...] | None:
+    """The slots of the target a circular move's via names (its first word), None if unknown."""
+    m = re.match(r"\w+", via or "")
+    target: Target | None = {rmot_name(t.name): t for t in doc.targets}.get(m.group(0)) if m else None
+    return target.slots if target is not None else None
+
+
+def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Callable[[Where], Span]) -> Document:
+    """`doc` with each move's slot values as `ext(...)` on the cell's mechanisms, and `with`
+    naming them; a move whose values cannot be mapped stays native (W523)."""
+    used = _used(doc)
+    if used == 0:
+        return doc
+    chosen, why = _choose(cell, robot, used)
+    diags: list[Diagnostic] = []
+    moved: dict[str, int] = {}
+
+    def fix(s: Stmt) -> Stmt:
+        if not isinstance(s, Move) or not s.slots:
+            return s
+        values = s.slots[:used]
+        problem = why
+        if not problem and any(v is None or not math.isfinite(v) for v in values):
+            problem = f"the target leaves slot {values.index(None) + 1 if None in values else '?'} of {used} unset"
+        if not problem and s.kind == "circular" and _via_slots(doc, s.via) not in (s.slots, None):
+            problem = "the circular move's via point has other axis values than its target (rmot's via has none)"
+        if problem:
+            diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING,
+                                    f"external-axis values must map to the cell's axes: {problem}; kept native",
+                                    span_of(s.where)))
+            moved[s.where.path] = moved.get(s.where.path, 0) + 1
+            return Native(doc.vendor, span_of(s.where).file.line_text(s.where.line).strip() or "move", s.where)
+        ext, k = [], 0
+        for mech in chosen:
+            ext.append((mech.name, _value_text(mech, tuple(v for v in values[k:k + len(mech.axes)] if v is not None))))
+            k += len(mech.axes)
+        return replace(s, ext=tuple(ext))
+
+    from rmot.backends.readers.writer import map_leaves  # late: the writer imports the readers' modules
+
+    routines = tuple(replace(r, body=map_leaves(r.body, fix)) for r in doc.routines)
+    counts = tuple(FileCount(c.path, c.imported - moved.get(c.path, 0), c.native + moved.get(c.path, 0))
+                   for c in doc.counts)
+    mechanisms = tuple(m.name for m in chosen) if not why else ()
+    return replace(doc, routines=routines, counts=counts, diagnostics=doc.diagnostics + tuple(diags),
+                   mechanisms=mechanisms)
