@@ -16,19 +16,20 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from itertools import combinations
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import rmot_name
+from rmot.backends.readers.krl_text import MotionState, aggregate, krl_pose
 from rmot.backends.readers.model import Document, FileCount, Move, Native, Stmt, Target, Where, walk
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.ir_axes import Mechanism
 from rmot.lang.source import Span
 
-__all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM"]
+__all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM", "krl_slots", "krl_setting"]
 
 # RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
 RAPID_UNUSED_FROM = 8.9e9
@@ -44,6 +45,53 @@ def rapid_slots(lit: object, index: int) -> tuple[float | None, ...] | None:
     if not (isinstance(extax, list) and len(extax) == SLOTS and all(isinstance(v, float) for v in extax)):
         return None
     return tuple(None if v >= RAPID_UNUSED_FROM else float(v) for v in extax)
+
+
+def krl_slots(value: Mapping[str, object]) -> tuple[float | None, ...]:
+    """E1..E6 of an E6POS or E6AXIS aggregate (None where absent: a POS or AXIS has none)."""
+    found = [value.get(f"E{k}") for k in range(1, SLOTS + 1)]
+    return tuple(v if isinstance(v, float) else None for v in found)
+
+
+# the KRL base on an external kinematic the backend writes (ext_axes.py, KSS 8.5 "Configuration
+# of Kinematic Systems"): `$BASE=EK(MACHINE_DEF[n].ROOT,MACHINE_DEF[n].MECH_TYPE,{X .., C ..})`
+_EK = re.compile(r"(?is)\$BASE\s*=\s*EK\s*\(\s*MACHINE_DEF\[(\d+)\]\.ROOT\s*,\s*MACHINE_DEF\[(\d+)\]\.MECH_TYPE\s*,\s*(\{.*\})\s*\)")
+EK_FRAME = "@EK"  # Move.frame of a base on kinematic n until resolve_axes names the cell's frame
+
+
+def krl_setting(state: MotionState, text: str) -> bool:
+    """The KRL lines of external axes that set the motions after them: `$VEL_EXTAX[n]=100` and
+    `$ACC_EXTAX[n]=100` (each axis at its full speed and acceleration, as rmot moves it; KSS 8.x
+    System Variables) and a `$BASE=EK(..)` on kinematic n (True when the line is one of them)."""
+    if re.fullmatch(r"(?i)\$(VEL|ACC)_EXTAX\s*\[\s*[1-6]\s*\]\s*=\s*100(?:\.0*)?", text):
+        return True
+    m = _EK.fullmatch(text)
+    agg = aggregate(m.group(3)) if m and m.group(1) == m.group(2) else None
+    pose = krl_pose(agg) if agg is not None else None
+    if m is None or pose is None:
+        return False
+    state.frame = f"{EK_FRAME}{m.group(1)}@" + ",".join(repr(v) for v in (*pose.position, *pose.quaternion))
+    return True
+
+
+def _ek_frame(frame: str | None, cell: ir.Cell | None) -> str | None:
+    """The cell's frame a `$BASE=EK(..)` placeholder names: the frame riding on mechanism n - 2
+    (MACHINE_DEF[1] is the robot, mechanisms follow in cell order: ext_axes.mechanism_index) at
+    that offset (1 um, 1e-6 in each quaternion component); None where none does."""
+    head, _, numbers = (frame or "").removeprefix(EK_FRAME).partition("@")
+    if cell is None or cell.external is None or not head.isdigit():
+        return None
+    values = [float(v) for v in numbers.split(",")]
+    index = int(head) - 2
+    mechanisms = cell.external.mechanisms
+    if not 0 <= index < len(mechanisms):
+        return None
+    for mount in cell.external.mounts:
+        if mount.kind == "frame" and mount.mechanism == mechanisms[index].name:
+            near = all(abs(a - b) < 1e-6 for a, b in zip(mount.local.position, values))
+            if near and abs(sum(a * b for a, b in zip(mount.local.quaternion, values[3:]))) > 1 - 1e-10:
+                return mount.body
+    return None
 
 
 def _value_text(mech: Mechanism, values: tuple[float, ...]) -> str:
@@ -63,13 +111,16 @@ def _drivable(cell: ir.Cell, robot: str) -> tuple[list[Mechanism], Mechanism | N
     return [m for m in external.mechanisms if m.on is None and (m.kind != "track" or m is track)], track
 
 
-def _choose(cell: ir.Cell | None, robot: str, used: int) -> tuple[tuple[Mechanism, ...], str]:
+def _choose(cell: ir.Cell | None, robot: str, used: int, exact: bool) -> tuple[tuple[Mechanism, ...], str]:
     """(the mechanisms whose axes take slots 1..`used`, or () with the reason why none can)."""
     if cell is None or cell.external is None:
         return (), "the cell declares no track or positioner (give --cell with the one that does)"
     candidates, track = _drivable(cell, robot)
     fits = [combo for n in range(1, len(candidates) + 1) for combo in combinations(candidates, n)
-            if sum(len(m.axes) for m in combo) == used and (track is None or track in combo)]
+            if (sum(len(m.axes) for m in combo) == used or not exact and sum(len(m.axes) for m in combo) > used)
+            and (track is None or track in combo)]
+    if fits and not exact:  # KRL: the fewest axes that take every slot with a value not 0
+        fits = [f for f in fits if sum(len(m.axes) for m in f) == min(sum(len(m.axes) for m in g) for g in fits)]
     if len(fits) == 1:
         return fits[0], ""
     names = ", ".join(f"'{m.name}' ({len(m.axes)})" for m in candidates) or "none"
@@ -78,9 +129,11 @@ def _choose(cell: ir.Cell | None, robot: str, used: int) -> tuple[tuple[Mechanis
 
 
 def _used(doc: Document) -> int:
-    """How many slots the files use: the last slot any target gives a value."""
+    """How many slots the files use: the last slot any target gives a value (KRL declares all
+    six E1..E6, 0 where no axis takes the slot: the last one not 0)."""
     slots = [s.slots for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
-    return max((k + 1 for values in slots for k, v in enumerate(values) if v is not None), default=0)
+    return max((k + 1 for values in slots for k, v in enumerate(values)
+                if v is not None and (doc.vendor != "krl" or v != 0)), default=0)
 
 
 def _via_slots(doc: Document, via: str | None) -> tuple[float | None, ...] | None:
@@ -94,20 +147,28 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
     """`doc` with each move's slot values as `ext(...)` on the cell's mechanisms, and `with`
     naming them; a move whose values cannot be mapped stays native (W523)."""
     used = _used(doc)
-    if used == 0:
+    ek = any(isinstance(s, Move) and (s.frame or "").startswith(EK_FRAME) for r in doc.routines for s in walk(r.body))
+    if used == 0 and not ek:
         return doc
-    chosen, why = _choose(cell, robot, used)
+    chosen, why = _choose(cell, robot, used, doc.vendor != "krl") if used else ((), "")
+    named = {rmot_name(t.name): t.slots for t in doc.targets}
     diags: list[Diagnostic] = []
     moved: dict[str, int] = {}
 
     def fix(s: Stmt) -> Stmt:
-        if not isinstance(s, Move) or not s.slots:
+        if not isinstance(s, Move):
             return s
-        values = s.slots[:used]
-        problem = why
+        full = s.slots or named.get(s.target_name and rmot_name(s.target_name) or "", ())
+        values = full[:used]
+        frame = _ek_frame(s.frame, cell) if (s.frame or "").startswith(EK_FRAME) else s.frame
+        if all(v is None for v in values) and frame == s.frame:
+            return s  # no axis values: the axes stay where they are
+        problem = why if any(v is not None for v in values) else ""
+        if frame is None:
+            problem = "its base on an external kinematic (EK) is no frame of the cell riding on that mechanism"
         if not problem and any(v is None or not math.isfinite(v) for v in values):
             problem = f"the target leaves slot {values.index(None) + 1 if None in values else '?'} of {used} unset"
-        if not problem and s.kind == "circular" and _via_slots(doc, s.via) not in (s.slots, None):
+        if not problem and s.kind == "circular" and _via_slots(doc, s.via) not in (full, None):
             problem = "the circular move's via point has other axis values than its target (rmot's via has none)"
         if problem:
             diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING,
@@ -116,10 +177,10 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
             moved[s.where.path] = moved.get(s.where.path, 0) + 1
             return Native(doc.vendor, span_of(s.where).file.line_text(s.where.line).strip() or "move", s.where)
         ext, k = [], 0
-        for mech in chosen:
+        for mech in chosen if any(v is not None for v in values) else ():
             ext.append((mech.name, _value_text(mech, tuple(v for v in values[k:k + len(mech.axes)] if v is not None))))
             k += len(mech.axes)
-        return replace(s, ext=tuple(ext))
+        return replace(s, ext=tuple(ext), frame=frame)
 
     from rmot.backends.readers.writer import map_leaves  # late: the writer imports the readers' modules
 
