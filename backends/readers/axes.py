@@ -23,7 +23,9 @@ from itertools import combinations
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.krl_text import MotionState, aggregate, krl_pose
-from rmot.backends.readers.model import Document, FileCount, Move, Native, Stmt, Target, Where, walk
+from rmot.backends.readers.model import (
+    Document, FileCount, For, If, Move, Native, Stmt, Target, WaitIn, Where, While, walk,
+)
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.ir_axes import Mechanism
@@ -94,6 +96,18 @@ def _ek_frame(frame: str | None, cell: ir.Cell | None) -> str | None:
     return None
 
 
+def fanuc_slots(body: str) -> tuple[float | None, ...]:
+    """The external-axis values of a TP position (the text between its braces) in the backend's
+    slot order (ext_axes.fanuc_groups): the arm group's extended axes `E1= v mm` first, then
+    each further motion group `GP2:`, `GP3:` .. its `J1= v`, `J2= v` in turn; () for none."""
+    groups = re.split(r"\bGP(\d)\s*:", body)
+    values: list[float | None] = []
+    for number, text in zip(groups[1::2], groups[2::2]):
+        key = r"E\d" if number == "1" else r"J\d"
+        values += [float(v) for v in re.findall(rf"\b{key}\s*=\s*(-?\d+(?:\.\d*)?)", text)]
+    return tuple(values)
+
+
 def _value_text(mech: Mechanism, values: tuple[float, ...]) -> str:
     from rmot.backends.readers.rapid import num_text  # late: the RAPID reader imports this module
 
@@ -111,15 +125,17 @@ def _drivable(cell: ir.Cell, robot: str) -> tuple[list[Mechanism], Mechanism | N
     return [m for m in external.mechanisms if m.on is None and (m.kind != "track" or m is track)], track
 
 
-def _choose(cell: ir.Cell | None, robot: str, used: int, exact: bool) -> tuple[tuple[Mechanism, ...], str]:
+def _choose(cell: ir.Cell | None, robot: str, used: int, vendor: str) -> tuple[tuple[Mechanism, ...], str]:
     """(the mechanisms whose axes take slots 1..`used`, or () with the reason why none can)."""
     if cell is None or cell.external is None:
         return (), "the cell declares no track or positioner (give --cell with the one that does)"
     candidates, track = _drivable(cell, robot)
+    if vendor == "fanuc":  # the arm group's extended axes (tracks) first, then a group per positioner
+        candidates.sort(key=lambda m: m.kind != "track")
     fits = [combo for n in range(1, len(candidates) + 1) for combo in combinations(candidates, n)
-            if (sum(len(m.axes) for m in combo) == used or not exact and sum(len(m.axes) for m in combo) > used)
+            if (sum(len(m.axes) for m in combo) == used or vendor == "krl" and sum(len(m.axes) for m in combo) > used)
             and (track is None or track in combo)]
-    if fits and not exact:  # KRL: the fewest axes that take every slot with a value not 0
+    if fits and vendor == "krl":  # KRL: the fewest axes that take every slot with a value not 0
         fits = [f for f in fits if sum(len(m.axes) for m in f) == min(sum(len(m.axes) for m in g) for g in fits)]
     if len(fits) == 1:
         return fits[0], ""
@@ -128,10 +144,15 @@ def _choose(cell: ir.Cell | None, robot: str, used: int, exact: bool) -> tuple[t
     return (), f"{used} external-axis slot(s) written; of the cell's mechanisms {names} {why} fills them"
 
 
-def _used(doc: Document) -> int:
+def _slots_of(move: Move, named: Mapping[str, tuple[float | None, ...]]) -> tuple[float | None, ...]:
+    """A move's slot values: its own, else those of the declared target it names."""
+    return move.slots or named.get(rmot_name(move.target_name) if move.target_name else "", ())
+
+
+def _used(doc: Document, named: Mapping[str, tuple[float | None, ...]]) -> int:
     """How many slots the files use: the last slot any target gives a value (KRL declares all
     six E1..E6, 0 where no axis takes the slot: the last one not 0)."""
-    slots = [s.slots for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    slots = [_slots_of(s, named) for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
     return max((k + 1 for values in slots for k, v in enumerate(values)
                 if v is not None and (doc.vendor != "krl" or v != 0)), default=0)
 
@@ -143,22 +164,102 @@ def _via_slots(doc: Document, via: str | None) -> tuple[float | None, ...] | Non
     return target.slots if target is not None else None
 
 
+COORD_FRAME = "@COORD"  # Move.frame of a TP move in UFRAME 0 with COORD, until resolve_axes places it
+
+
+def _bodies(body: tuple[Stmt, ...], fn: Callable[[tuple[Stmt, ...]], tuple[Stmt, ...]]) -> tuple[Stmt, ...]:
+    """`body` with `fn` applied to it and to every block's body inside it."""
+    out: list[Stmt] = []
+    for s in fn(body):
+        if isinstance(s, If):
+            s = replace(s, then=_bodies(s.then, fn), orelse=_bodies(s.orelse, fn))
+        elif isinstance(s, (While, For)):
+            s = replace(s, body=_bodies(s.body, fn))
+        elif isinstance(s, WaitIn) and s.orelse:
+            s = replace(s, orelse=_bodies(s.orelse, fn))
+        out.append(s)
+    return tuple(out)
+
+
+def _absorb_coord(doc: Document) -> Document:
+    """A TP linear or circular move in UFRAME 0 followed by its `COORD` option (kept native by
+    the reader, W517): the move marked coordinated (its frame COORD_FRAME), the option dropped."""
+    taken: set[tuple[str, int]] = set()
+
+    def absorb(body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
+        out: list[Stmt] = []
+        for s in body:
+            prev = out[-1] if out else None
+            if (isinstance(s, Native) and s.text == "COORD" and isinstance(prev, Move) and prev.kind != "joint"
+                    and prev.frame == "base" and s.where == prev.where):
+                out[-1] = replace(prev, frame=COORD_FRAME)
+                taken.add((s.where.path, s.where.line))
+                continue
+            out.append(s)
+        return tuple(out)
+
+    if doc.vendor != "fanuc":
+        return doc
+    routines = tuple(replace(r, body=_bodies(r.body, absorb)) for r in doc.routines)
+    diags = tuple(d for d in doc.diagnostics if not (d.code == codes.MOTION_OPTION_KEPT and "`COORD`" in d.message
+                                                     and d.span is not None and (d.span.file.path, d.span.start.line) in taken))
+    counts = tuple(replace(c, native=c.native - sum(1 for path, _ in taken if path == c.path)) for c in doc.counts)
+    return replace(doc, routines=routines, diagnostics=diags, counts=counts)
+
+
+def _in_riding_frame(move: Move, doc: Document, chosen: tuple[Mechanism, ...], values: tuple[float | None, ...],
+                     cell: ir.Cell | None, robot: str) -> Move | str:
+    """A coordinated TP move (its targets in UFRAME 0, the controller's world: the robot base
+    with the axes at home, ext_axes.fanuc_in_world) as the move in the cell's first frame riding
+    on the positioner it drives, its target and via there at the move's axis values; or why not."""
+    from rmot.backends.readers.rapid import pose_expr  # late: the RAPID reader imports this module
+
+    riding = [(m, k) for m, k in _offsets(chosen) if m.kind == "positioner"]
+    external = cell.external if cell is not None else None
+    mount = next((x for x in external.mounts if x.kind == "frame" and len(riding) == 1
+                  and x.mechanism == riding[0][0].name), None) if external is not None else None
+    by_name = {rmot_name(t.name): t.pose for t in doc.targets}
+    points = [by_name.get(move.target)] + ([by_name.get(move.via or "")] if move.kind == "circular" else [])
+    if mount is None or cell is None or any(p is None for p in points):
+        return "a COORD move must name its positions and drive one positioner a frame of the cell rides on"
+    mech, first = riding[0]
+    si = tuple(_si(a.linear, values[first + j]) for j, a in enumerate(mech.axes))
+    to_frame = (mech.flange(si) * mount.local).inverse() * cell.robot(robot).base
+    exprs = [pose_expr(to_frame * p) for p in points]  # type: ignore[operator]
+    return replace(move, target=exprs[0], target_name=None, via=exprs[1] if len(exprs) > 1 else None,
+                   frame=mount.body, pose=None)
+
+
+def _offsets(chosen: tuple[Mechanism, ...]) -> list[tuple[Mechanism, int]]:
+    """Each chosen mechanism with the index of its first slot."""
+    out, k = [], 0
+    for mech in chosen:
+        out.append((mech, k))
+        k += len(mech.axes)
+    return out
+
+
+def _si(linear: bool, value: float | None) -> float:
+    return (value or 0.0) / 1000.0 if linear else math.radians(value or 0.0)
+
+
 def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Callable[[Where], Span]) -> Document:
     """`doc` with each move's slot values as `ext(...)` on the cell's mechanisms, and `with`
     naming them; a move whose values cannot be mapped stays native (W523)."""
-    used = _used(doc)
+    doc = _absorb_coord(doc)
+    named = {rmot_name(t.name): t.slots for t in doc.targets}
+    used = _used(doc, named)
     ek = any(isinstance(s, Move) and (s.frame or "").startswith(EK_FRAME) for r in doc.routines for s in walk(r.body))
     if used == 0 and not ek:
         return doc
-    chosen, why = _choose(cell, robot, used, doc.vendor != "krl") if used else ((), "")
-    named = {rmot_name(t.name): t.slots for t in doc.targets}
+    chosen, why = _choose(cell, robot, used, doc.vendor) if used else ((), "")
     diags: list[Diagnostic] = []
     moved: dict[str, int] = {}
 
     def fix(s: Stmt) -> Stmt:
         if not isinstance(s, Move):
             return s
-        full = s.slots or named.get(s.target_name and rmot_name(s.target_name) or "", ())
+        full = _slots_of(s, named)
         values = full[:used]
         frame = _ek_frame(s.frame, cell) if (s.frame or "").startswith(EK_FRAME) else s.frame
         if all(v is None for v in values) and frame == s.frame:
@@ -180,6 +281,12 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
         for mech in chosen if any(v is not None for v in values) else ():
             ext.append((mech.name, _value_text(mech, tuple(v for v in values[k:k + len(mech.axes)] if v is not None))))
             k += len(mech.axes)
+        if frame == COORD_FRAME:
+            placed = _in_riding_frame(s, doc, chosen, values, cell, robot)
+            if isinstance(placed, str):
+                diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING, f"{placed}; the move is read in UFRAME 0 "
+                                        "without COORD (not relative to the part)", span_of(s.where)))
+            s, frame = (s, "base") if isinstance(placed, str) else (placed, placed.frame)
         return replace(s, ext=tuple(ext), frame=frame)
 
     from rmot.backends.readers.writer import map_leaves  # late: the writer imports the readers' modules

@@ -23,7 +23,7 @@ from rmot.compiler.cli import cli
 
 ROOT = Path(__file__).resolve().parents[2]
 AXES_EXAMPLES = ["track_tending", "weld_positioner"]
-VENDORS = ["rapid", "krl"]
+VENDORS = ["rapid", "krl", "fanuc"]
 
 
 def _import(files: list[Path], out: Path, cell: Path | None) -> tuple[int, str]:
