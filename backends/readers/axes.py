@@ -265,7 +265,7 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
         if all(v is None for v in values) and frame == s.frame:
             return s  # no axis values: the axes stay where they are
         problem = why if any(v is not None for v in values) else ""
-        if frame is None:
+        if frame is None and s.frame is not None:
             problem = "its base on an external kinematic (EK) is no frame of the cell riding on that mechanism"
         if not problem and any(v is None or not math.isfinite(v) for v in values):
             problem = f"the target leaves slot {values.index(None) + 1 if None in values else '?'} of {used} unset"

@@ -73,3 +73,96 @@ def test_axes_round_trip(vendor: str, name: str, tmp_path: Path) -> None:
         assert a.keys() == b.keys(), (a, b)
         for axis, value in a.items():  # the plan's mm or deg
             assert abs(value - b[axis]) <= 0.001, (axis, value, b[axis])
+
+
+@pytest.mark.parametrize(("vendor", "name"), [(v, n) for v in ("urscript", "val3") for n in AXES_EXAMPLES])
+def test_no_axes_vendor_refuses(vendor: str, name: str, tmp_path: Path) -> None:
+    """URScript and VAL3 programs move the arm alone: compiling an example with external axes
+    for them is refused (E607) and writes nothing, so there is no file to read back."""
+    example = ROOT / "examples" / f"{name}.rmot"
+    result = CliRunner().invoke(cli, ["compile", str(example), "--target", vendor, "-o", str(tmp_path / "out")])
+    assert result.exit_code == 1, result.output
+    assert re.search(rf"error\[E607\]: {vendor}: task '{name}' drives external axes", result.output), result.output
+    assert not (tmp_path / "out" / vendor).exists()
+
+
+def _rapid_module(tmp_path: Path, extax: str, move: str = "MoveJ p, v100, fine, tool0;") -> Path:
+    path = tmp_path / "hand.mod"
+    path.write_text("MODULE hand\n"
+                    f"  CONST robtarget p:=[[500,0,600],[0,0,1,0],[0,0,0,0],{extax}];\n"
+                    f"  CONST jointtarget j:=[[0,0,0,0,30,0],{extax}];\n"
+                    "  PROC main()\n"
+                    f"    {move}\n"
+                    "  ENDPROC\n"
+                    "ENDMODULE\n")
+    return path
+
+
+TRACK_CELL = ROOT / "examples" / "track_tending.rmot"
+
+
+def test_rapid_extax_reads_on_the_cell_track(tmp_path: Path) -> None:
+    """A hand-written RAPID move to a robtarget with eax_a = 905 mm: `ext(rail=905mm)` on the
+    cell's track (its only mechanism), `with rail` on the program."""
+    code, output = _import([_rapid_module(tmp_path, "[905,9E+09,9E+09,9E+09,9E+09,9E+09]")],
+                           tmp_path / "out.rmot", TRACK_CELL)
+    assert code == 0, output
+    text = (tmp_path / "out.rmot").read_text()
+    assert "program hand on r1 with rail {" in text
+    assert re.search(r"move joint p ext\(rail=905mm\)", text), text
+
+
+@pytest.mark.parametrize(("extax", "why"), [
+    ("[905,10,9E+09,9E+09,9E+09,9E+09]", "2 external-axis slot(s) written"),  # the track has one axis
+    ("[9E+09,10,9E+09,9E+09,9E+09,9E+09]", "2 external-axis slot(s) written"),  # eax_a unset
+])
+def test_rapid_extax_that_maps_to_no_axes_stays_native(tmp_path: Path, extax: str, why: str) -> None:
+    code, output = _import([_rapid_module(tmp_path, extax)], tmp_path / "out.rmot", TRACK_CELL)
+    assert code == 0, output
+    assert re.search(r"hand\.mod:5:5: warning\[W523\]: external-axis values must map to the cell's axes: " + re.escape(why),
+                     output), output
+    text = (tmp_path / "out.rmot").read_text()
+    assert 'native rapid "MoveJ p, v100, fine, tool0;"' in text and " with " not in text, text
+
+
+def test_rapid_extax_without_cell_stays_native(tmp_path: Path) -> None:
+    """The stub cell declares the arm, tools, frames and I/O, never a track or positioner (their
+    geometry is not in the file): a move with axis values stays native."""
+    code, output = _import([_rapid_module(tmp_path, "[905,9E+09,9E+09,9E+09,9E+09,9E+09]")], tmp_path / "out.rmot", None)
+    assert code == 0, output
+    assert "warning[W523]" in output and "the cell declares no track or positioner" in output, output
+    assert "0 imported, 1 kept native" in output.replace("motion and I/O: ", ""), output
+
+
+def test_rapid_move_ext_j_stays_native(tmp_path: Path) -> None:
+    """MoveExtJ (the units alone, ABB RAPID reference) written by hand: kept native, W510."""
+    path = _rapid_module(tmp_path, "[905,9E+09,9E+09,9E+09,9E+09,9E+09]", "MoveExtJ j, v1000, fine;")
+    code, output = _import([path], tmp_path / "out.rmot", TRACK_CELL)
+    assert code == 0, output
+    assert re.search(r"hand\.mod:5:5: warning\[W510\]", output), output
+    assert 'native rapid "MoveExtJ j, v1000, fine;"' in (tmp_path / "out.rmot").read_text()
+
+
+def test_krl_inline_e6pos_e1_reads(tmp_path: Path) -> None:
+    """A PTP to an inline E6POS with E1 (KRL's first external axis) on a track cell."""
+    src = tmp_path / "hand.src"
+    src.write_text("DEF hand( )\n"
+                   "  PTP {X 500,Y 0,Z 600,A 0,B 90,C 0,S 2,T 35,E1 905,E2 0,E3 0,E4 0,E5 0,E6 0}\n"
+                   "END\n")
+    code, output = _import([src], tmp_path / "out.rmot", TRACK_CELL)
+    assert code == 0, output
+    assert re.search(r"move joint pose\([^)]*\)\) ext\(rail=905mm\)", (tmp_path / "out.rmot").read_text())
+
+
+def test_tp_second_group_of_unknown_axis_count_stays_native(tmp_path: Path) -> None:
+    """A TP position with a GP2 block of three axes where the cell's positioner has two: the
+    slots fill no choice of the cell's mechanisms, so the move stays native (W523)."""
+    ls = tmp_path / "HAND.ls"
+    ls.write_text("/PROG  HAND\n/ATTR\nDEFAULT_GROUP\t= 1,1,*,*,*;\n/MN\n   1:  J P[1] 100% FINE ;\n/POS\n"
+                  "P[1]{\n   GP1:\n\tUF : 0, UT : 0,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
+                  "\tX =   500.000  mm,\tY =     0.000  mm,\tZ =   600.000  mm,\n"
+                  "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg\n"
+                  "   GP2:\n\tUF : 0, UT : 0,\t\n\tJ1=     0.000  deg,\tJ2=    90.000  deg,\tJ3=    10.000  deg\n};\n/END\n")
+    code, output = _import([ls], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
+    assert code == 0, output
+    assert re.search(r"HAND\.ls:5:\d+: warning\[W523\]: .*3 external-axis slot\(s\) written", output), output
