@@ -31,7 +31,7 @@ from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.ir_axes import Mechanism
 from rmot.lang.source import Span
 
-__all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM", "krl_slots", "krl_setting"]
+__all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM", "krl_slots", "krl_setting", "fanuc_slots", "slot_change"]
 
 # RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
 RAPID_UNUSED_FROM = 8.9e9
@@ -108,9 +108,29 @@ def fanuc_slots(body: str) -> tuple[float | None, ...]:
     return tuple(values)
 
 
-def _value_text(mech: Mechanism, values: tuple[float, ...]) -> str:
-    from rmot.backends.readers.rapid import num_text  # late: the RAPID reader imports this module
+def num_text(value: float, decimals: int = 9) -> str:
+    from rmot.backends.readers.rapid import num_text as text  # late: the RAPID reader imports this module
 
+    return text(value, decimals)
+
+
+def _slot_name(vendor: str, k: int) -> str:
+    return {"rapid": f"eax_{'abcdef'[k]}" if k < SLOTS else "", "krl": f"E{k + 1}"}.get(vendor) or f"external axis {k + 1}"
+
+
+def slot_change(vendor: str, a: tuple[float | None, ...], b: tuple[float | None, ...]) -> str | None:
+    """What a touch-up changed in a target's external-axis values (`rmot diff`): each slot whose
+    value moved by more than 0.001 (mm or deg, what the vendors print), or was set or unset."""
+    changes = []
+    for k in range(max(len(a), len(b))):
+        x, y = (a[k] if k < len(a) else None), (b[k] if k < len(b) else None)
+        if (x is None) != (y is None) or x is not None and y is not None and abs(x - y) > 0.001:
+            shown = ["unset" if v is None else num_text(v, 6) for v in (x, y)]
+            changes.append(f"{_slot_name(vendor, k)} {shown[0]} -> {shown[1]}")
+    return f"external axes changed: {', '.join(changes)}" if changes else None
+
+
+def _value_text(mech: Mechanism, values: tuple[float, ...]) -> str:
     texts = [f"{num_text(v, 6)}{'mm' if a.linear else 'deg'}" for a, v in zip(mech.axes, values)]
     return texts[0] if len(texts) == 1 else f"({', '.join(texts)})"
 

@@ -166,3 +166,28 @@ def test_tp_second_group_of_unknown_axis_count_stays_native(tmp_path: Path) -> N
     code, output = _import([ls], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
     assert code == 0, output
     assert re.search(r"HAND\.ls:5:\d+: warning\[W523\]: .*3 external-axis slot\(s\) written", output), output
+
+
+@pytest.mark.parametrize(("vendor", "old", "new", "slot"), [
+    ("rapid", "[2000.000,9E+09", "[2005.000,9E+09", "eax_a 2000 -> 2005"),
+    ("krl", ",E1 2000.0000,", ",E1 2005.0000,", "E1 2000 -> 2005"),
+])
+def test_diff_names_a_touched_up_axis_value(vendor: str, old: str, new: str, slot: str, tmp_path: Path) -> None:
+    """A touch-up moving the track 5 mm at the buffer table (rmot's own file, edited as a pendant
+    would): `rmot diff` names each target and its slot, with the vendor file's line."""
+    _compile(TRACK_CELL, TRACK_CELL, vendor, tmp_path / "a")
+    folder = tmp_path / "a" / vendor
+    data = next(folder.glob("*.mod" if vendor == "rapid" else "*.dat"))
+    touched = tmp_path / "b"
+    touched.mkdir()
+    for f in folder.iterdir():
+        (touched / f.name).write_text(f.read_text().replace(old, new) if f == data else f.read_text())
+    main = MAIN_FILE[vendor]
+    result = CliRunner().invoke(cli, ["diff", str(next(folder.glob(main))), str(next(touched.glob(main)))])
+    assert result.exit_code == 1, result.output
+    lines = [ln for ln in result.output.splitlines() if "external axes changed" in ln]
+    edited = [n + 1 for n, ln in enumerate(data.read_text().splitlines()) if old in ln]
+    assert len(lines) == len(edited) == 2, result.output  # put and its approach (the retreat's target)
+    for line, n in zip(lines, edited):
+        assert re.search(rf"{data.name}:{n}:\d+ -> \S+{data.name}:{n}:\d+: target \w+ external axes changed: {slot}$",
+                         line), line
