@@ -273,47 +273,65 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
     if used == 0 and not ek:
         return doc
     chosen, why = _choose(cell, robot, used, doc.vendor) if used else ((), "")
-    diags: list[Diagnostic] = []
-    moved: dict[str, int] = {}
-
-    def fix(s: Stmt) -> Stmt:
-        if not isinstance(s, Move):
-            return s
-        full = _slots_of(s, named)
-        values = full[:used]
-        frame = _ek_frame(s.frame, cell) if (s.frame or "").startswith(EK_FRAME) else s.frame
-        if all(v is None for v in values) and frame == s.frame:
-            return s  # no axis values: the axes stay where they are
-        problem = why if any(v is not None for v in values) else ""
-        if frame is None and s.frame is not None:
-            problem = "its base on an external kinematic (EK) is no frame of the cell riding on that mechanism"
-        if not problem and any(v is None or not math.isfinite(v) for v in values):
-            problem = f"the target leaves slot {values.index(None) + 1 if None in values else '?'} of {used} unset"
-        if not problem and s.kind == "circular" and _via_slots(doc, s.via) not in (full, None):
-            problem = "the circular move's via point has other axis values than its target (rmot's via has none)"
-        if problem:
-            diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING,
-                                    f"external-axis values must map to the cell's axes: {problem}; kept native",
-                                    span_of(s.where)))
-            moved[s.where.path] = moved.get(s.where.path, 0) + 1
-            return Native(doc.vendor, span_of(s.where).file.line_text(s.where.line).strip() or "move", s.where)
-        ext, k = [], 0
-        for mech in chosen if any(v is not None for v in values) else ():
-            ext.append((mech.name, _value_text(mech, tuple(v for v in values[k:k + len(mech.axes)] if v is not None))))
-            k += len(mech.axes)
-        if frame == COORD_FRAME:
-            placed = _in_riding_frame(s, doc, chosen, values, cell, robot)
-            if isinstance(placed, str):
-                diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING, f"{placed}; the move is read in UFRAME 0 "
-                                        "without COORD (not relative to the part)", span_of(s.where)))
-            s, frame = (s, "base") if isinstance(placed, str) else (placed, placed.frame)
-        return replace(s, ext=tuple(ext), frame=frame)
+    mapper = _Mapper(doc, cell, robot, span_of, named, used, chosen, why)
 
     from rmot.backends.readers.writer import map_leaves  # late: the writer imports the readers' modules
 
-    routines = tuple(replace(r, body=map_leaves(r.body, fix)) for r in doc.routines)
-    counts = tuple(FileCount(c.path, c.imported - moved.get(c.path, 0), c.native + moved.get(c.path, 0))
+    routines = tuple(replace(r, body=map_leaves(r.body, mapper.move)) for r in doc.routines)
+    counts = tuple(FileCount(c.path, c.imported - mapper.moved.get(c.path, 0), c.native + mapper.moved.get(c.path, 0))
                    for c in doc.counts)
-    mechanisms = tuple(m.name for m in chosen) if not why else ()
-    return replace(doc, routines=routines, counts=counts, diagnostics=doc.diagnostics + tuple(diags),
-                   mechanisms=mechanisms)
+    return replace(doc, routines=routines, counts=counts, diagnostics=doc.diagnostics + tuple(mapper.diags),
+                   mechanisms=tuple(m.name for m in chosen) if not why else ())
+
+
+class _Mapper:
+    """Maps each move's slot values to the chosen mechanisms' `ext(...)` (`move`), collecting
+    the W523 warnings and how many moves per file it kept native."""
+
+    def __init__(self, doc: Document, cell: ir.Cell | None, robot: str, span_of: Callable[[Where], Span],
+                 named: Mapping[str, tuple[float | None, ...]], used: int, chosen: tuple[Mechanism, ...], why: str) -> None:
+        self.doc, self.cell, self.robot, self.span_of = doc, cell, robot, span_of
+        self.named, self.used, self.chosen, self.why = named, used, chosen, why
+        self.diags: list[Diagnostic] = []
+        self.moved: dict[str, int] = {}
+
+    def move(self, s: Stmt) -> Stmt:
+        if not isinstance(s, Move):
+            return s
+        full = _slots_of(s, self.named)
+        values = full[:self.used]
+        frame = _ek_frame(s.frame, self.cell) if (s.frame or "").startswith(EK_FRAME) else s.frame
+        if all(v is None for v in values) and frame == s.frame:
+            return s  # no axis values: the axes stay where they are
+        problem = self.problem(s, full, values, frame)
+        placed: Move | str = replace(s, frame=frame)
+        if not problem and frame == COORD_FRAME:
+            placed = _in_riding_frame(s, self.doc, self.chosen, values, self.cell, self.robot)
+            problem = placed if isinstance(placed, str) else ""
+        if problem or isinstance(placed, str):
+            return self.keep(s, problem)
+        ext, k = [], 0
+        for mech in self.chosen if any(v is not None for v in values) else ():
+            ext.append((mech.name, _value_text(mech, tuple(v for v in values[k:k + len(mech.axes)] if v is not None))))
+            k += len(mech.axes)
+        return replace(placed, ext=tuple(ext))
+
+    def problem(self, s: Move, full: tuple[float | None, ...], values: tuple[float | None, ...], frame: str | None) -> str:
+        """Why the move's values cannot be mapped, or ""."""
+        if frame is None and s.frame is not None:
+            return "its base on an external kinematic (EK) is no frame of the cell riding on that mechanism"
+        if self.why and any(v is not None for v in values):
+            return self.why
+        if any(v is None or not math.isfinite(v) for v in values):
+            return f"the target leaves slot {values.index(None) + 1 if None in values else '?'} of {self.used} unset"
+        if s.kind == "circular" and _via_slots(self.doc, s.via) not in (full, None):
+            return "the circular move's via point has other axis values than its target (rmot's via has none)"
+        return ""
+
+    def keep(self, s: Move, problem: str) -> Native:
+        """The move kept native, with W523 at its line."""
+        span = self.span_of(s.where)
+        self.diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING,
+                                     f"external-axis values must map to the cell's axes: {problem}; kept native", span))
+        self.moved[s.where.path] = self.moved.get(s.where.path, 0) + 1
+        return Native(self.doc.vendor, span.file.line_text(s.where.line).strip() or "move", s.where)
