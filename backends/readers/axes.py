@@ -32,6 +32,7 @@ from rmot.lang.ir_axes import Mechanism
 from rmot.lang.source import Span
 
 __all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM", "krl_slots", "krl_setting", "fanuc_slots", "slot_change"]
+__all__ += ["inform_base_position", "inform_base_operand"]
 
 # RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
 RAPID_UNUSED_FROM = 8.9e9
@@ -112,6 +113,24 @@ def num_text(value: float, decimals: int = 9) -> str:
     from rmot.backends.readers.rapid import num_text as text  # late: the RAPID reader imports this module
 
     return text(value, decimals)
+
+
+def inform_base_position(table: dict[str, tuple[tuple[float, ...], bool]], line: str, pulse: bool) -> bool:
+    """A `BCnnnnn=v[,v]` line of a job's //POS (its base axes' position: encoder pulses under
+    ///PULSE, else mm, backends/inform_axes.py) into `table`; True when the line is one."""
+    m = re.fullmatch(r"BC(\d+)\s*=\s*(-?\d+(?:\.\d*)?(?:\s*,\s*-?\d+(?:\.\d*)?)*)", line)
+    if m is not None:
+        table[f"BC{int(m.group(1))}"] = (tuple(float(v) for v in m.group(2).split(",")), pulse)
+    return m is not None or re.match(r"BC\d+\s*=", line) is not None  # a malformed one: no move reads it
+
+
+def inform_base_operand(table: Mapping[str, tuple[tuple[float, ...], bool]],
+                        rest: str) -> tuple[tuple[tuple[float, ...], bool] | None, str]:
+    """(the base position a move's `BCnnnnn` operand names, the operands after it); the operand
+    is left in place where the job declares no such position (the move is then not read)."""
+    m = re.match(r"BC(\d+)\s*", rest)
+    found = table.get(f"BC{int(m.group(1))}") if m else None
+    return (found, rest[m.end():]) if m and found else (None, rest)
 
 
 def _slot_name(vendor: str, k: int) -> str:
@@ -250,6 +269,21 @@ def _in_riding_frame(move: Move, doc: Document, chosen: tuple[Mechanism, ...], v
                    frame=mount.body, pose=None)
 
 
+def _from_pulses(values: tuple[float | None, ...], chosen: tuple[Mechanism, ...]) -> tuple[float | None, ...] | str:
+    """Encoder pulses (an INFORM job's ///PULSE BC, EC) in mm or deg at each axis' declared
+    `inform(pulses_per_...)`, a revolute axis without one at the backend's assumed scale
+    (backends/inform_axes.py); why not where a linear axis declares none."""
+    from rmot.backends.inform_axes import ASSUMED_PULSES_PER_DEG  # late: loads the backends only when this runs
+
+    axes = [a for m in chosen for a in m.axes]
+    out: list[float | None] = []
+    for axis, v in zip(axes, values):
+        if axis.pulses is None and axis.linear:
+            return f"'{axis.name}' is written in pulses but the cell declares no inform(pulses_per_mm=N) for it"
+        out.append(None if v is None else v / (axis.pulses or ASSUMED_PULSES_PER_DEG))
+    return tuple(out)
+
+
 def _offsets(chosen: tuple[Mechanism, ...]) -> list[tuple[Mechanism, int]]:
     """Each chosen mechanism with the index of its first slot."""
     out, k = [], 0
@@ -308,6 +342,9 @@ class _Mapper:
         if not problem and frame == COORD_FRAME:
             placed = _in_riding_frame(s, self.doc, self.chosen, values, self.cell, self.robot)
             problem = placed if isinstance(placed, str) else ""
+        if not problem and s.slot_pulses:
+            scaled = _from_pulses(values, self.chosen)
+            problem, values = (scaled, values) if isinstance(scaled, str) else ("", scaled)
         if problem or isinstance(placed, str):
             return self.keep(s, problem)
         ext, k = [], 0

@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers import codes
+from rmot.backends.readers import axes, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -61,6 +61,7 @@ class _Job:
         self.name = ""
         self.positions: dict[str, Target] = {}
         self.pulse_positions: set[str] = set()  # `///PULSE` positions: encoder counts of the arm's axes
+        self.base_positions: dict[str, tuple[tuple[float, ...], bool]] = {}  # BCnnnnn: values, in pulses (readers/axes.py)
         self.position_tool: dict[str, int] = {}
         self.position_user: dict[str, int | None] = {}
         self.tool_names: dict[int, str] = {}
@@ -110,6 +111,8 @@ class _Job:
         self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
+        if axes.inform_base_position(self.base_positions, s, pulse):
+            return
         m = re.fullmatch(r"([CP]\d+)\s*=\s*(.*)", s)
         if m is not None and pulse:
             self.pulse_positions.add(_key(m.group(1)))
@@ -239,6 +242,7 @@ class _Job:
 
     def _move(self, kind: str, names: list[str], rest: str, where: Where) -> Move | None:
         decls = [self.positions.get(n) for n in names]
+        base, rest = axes.inform_base_operand(self.base_positions, rest) if kind != "circular" else (None, rest)
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
@@ -269,7 +273,8 @@ class _Job:
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
                     tool=self._tool(self.position_tool[names[-1]]), frame="base" if user is None else f"user{user}",
                     config=decl.config if kind == "joint" else None, pose=decl.pose,
-                    joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None)
+                    joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None,
+                    slots=base[0] if base else (), slot_pulses=bool(base and base[1]))
 
     def _tool(self, n: int) -> str:
         if n not in self.tools:

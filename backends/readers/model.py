@@ -91,6 +91,7 @@ class Move:
     # the axis values in rmot, per mechanism: (name, `600mm` or `(0deg, 90deg)`), set by
     # readers/axes.py from `slots` and the cell; printed as `ext(name=value, ...)`
     ext: tuple[tuple[str, str], ...] = ()
+    slot_pulses: bool = False  # `slots` are encoder pulses (an INFORM BC under ///PULSE), not mm or deg
     axes_only: bool = False  # `move axes`: the mechanisms alone (RAPID MoveExtJ), `time` its duration
 
 
