@@ -32,7 +32,7 @@ from rmot.lang.ir_axes import Mechanism
 from rmot.lang.source import Span
 
 __all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM", "krl_slots", "krl_setting", "fanuc_slots", "slot_change"]
-__all__ += ["inform_base_position", "inform_base_operand"]
+__all__ += ["inform_base_position", "inform_operands", "inform_frame", "COORD_FRAME"]
 
 # RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
 RAPID_UNUSED_FROM = 8.9e9
@@ -60,6 +60,9 @@ def krl_slots(value: Mapping[str, object]) -> tuple[float | None, ...]:
 # of Kinematic Systems"): `$BASE=EK(MACHINE_DEF[n].ROOT,MACHINE_DEF[n].MECH_TYPE,{X .., C ..})`
 _EK = re.compile(r"(?is)\$BASE\s*=\s*EK\s*\(\s*MACHINE_DEF\[(\d+)\]\.ROOT\s*,\s*MACHINE_DEF\[(\d+)\]\.MECH_TYPE\s*,\s*(\{.*\})\s*\)")
 EK_FRAME = "@EK"  # Move.frame of a base on kinematic n until resolve_axes names the cell's frame
+# Move.frame of a coordinated move (TP COORD in UFRAME 0, INFORM SMOVL/SMOVC) until resolve_axes
+# places it in the frame riding on the positioner
+COORD_FRAME = "@COORD"
 
 
 def krl_setting(state: MotionState, text: str) -> bool:
@@ -116,21 +119,42 @@ def num_text(value: float, decimals: int = 9) -> str:
 
 
 def inform_base_position(table: dict[str, tuple[tuple[float, ...], bool]], line: str, pulse: bool) -> bool:
-    """A `BCnnnnn=v[,v]` line of a job's //POS (its base axes' position: encoder pulses under
-    ///PULSE, else mm, backends/inform_axes.py) into `table`; True when the line is one."""
-    m = re.fullmatch(r"BC(\d+)\s*=\s*(-?\d+(?:\.\d*)?(?:\s*,\s*-?\d+(?:\.\d*)?)*)", line)
+    """A `BCnnnnn=v[,v]` or `ECnnnnn=v[,v]` line of a job's //POS (its base or station axes'
+    position: encoder pulses under ///PULSE, else mm, backends/inform_axes.py) into `table`;
+    True when the line is one."""
+    m = re.fullmatch(r"([BE]C)(\d+)\s*=\s*(-?\d+(?:\.\d*)?(?:\s*,\s*-?\d+(?:\.\d*)?)*)", line)
     if m is not None:
-        table[f"BC{int(m.group(1))}"] = (tuple(float(v) for v in m.group(2).split(",")), pulse)
-    return m is not None or re.match(r"BC\d+\s*=", line) is not None  # a malformed one: no move reads it
+        table[f"{m.group(1)}{int(m.group(2))}"] = (tuple(float(v) for v in m.group(3).split(",")), pulse)
+    return m is not None or re.match(r"[BE]C\d+\s*=", line) is not None  # a malformed one: no move reads it
 
 
-def inform_base_operand(table: Mapping[str, tuple[tuple[float, ...], bool]],
-                        rest: str) -> tuple[tuple[tuple[float, ...], bool] | None, str]:
-    """(the base position a move's `BCnnnnn` operand names, the operands after it); the operand
-    is left in place where the job declares no such position (the move is then not read)."""
+def inform_operands(table: Mapping[str, tuple[tuple[float, ...], bool]], rest: str,
+                    sync: bool) -> tuple[tuple[tuple[float, ...], tuple[bool, ...]] | None, str]:
+    """((slot values, each in pulses or not), the operands left) of a move's `BCnnnnn` after its
+    position and the station's `+MOVJ ECnnnnn VJ=100.00` at its end (no VJ on a coordinated
+    SMOVL/SMOVC: the station is the master), as backends/inform_axes.py writes them. An operand
+    naming no position, or a station speed other than 100 %, is left in `rest` (the move is then
+    not read: rmot moves every axis at its own full speed)."""
+    values: tuple[float, ...] = ()
+    pulses: tuple[bool, ...] = ()
     m = re.match(r"BC(\d+)\s*", rest)
-    found = table.get(f"BC{int(m.group(1))}") if m else None
-    return (found, rest[m.end():]) if m and found else (None, rest)
+    if m and f"BC{int(m.group(1))}" in table:
+        found, pulse = table[f"BC{int(m.group(1))}"]
+        values, pulses, rest = found, (pulse,) * len(found), rest[m.end():]
+    vj = "" if sync else r"\s+VJ=100(?:\.0*)?"
+    m = re.search(rf"\s*\+MOVJ\s+EC(\d+){vj}\s*$", rest)
+    if m and f"EC{int(m.group(1))}" in table:
+        found, pulse = table[f"EC{int(m.group(1))}"]
+        values, pulses, rest = values + found, pulses + (pulse,) * len(found), rest[:m.start()]
+    return ((values, pulses) if values else None), rest
+
+
+def inform_frame(user: int | None, sync: bool) -> str:
+    """A job move's frame: ROBOT coordinates (the arm's base) or user frame n; a coordinated
+    SMOVL/SMOVC in ROBOT coordinates placed in the part's frame by resolve_axes."""
+    if sync:
+        return COORD_FRAME if user is None else f"{COORD_FRAME}user{user}"
+    return "base" if user is None else f"user{user}"
 
 
 def _slot_name(vendor: str, k: int) -> str:
@@ -203,9 +227,6 @@ def _via_slots(doc: Document, via: str | None) -> tuple[float | None, ...] | Non
     return target.slots if target is not None else None
 
 
-COORD_FRAME = "@COORD"  # Move.frame of a TP move in UFRAME 0 with COORD, until resolve_axes places it
-
-
 def _bodies(body: tuple[Stmt, ...], fn: Callable[[tuple[Stmt, ...]], tuple[Stmt, ...]]) -> tuple[Stmt, ...]:
     """`body` with `fn` applied to it and to every block's body inside it."""
     out: list[Stmt] = []
@@ -259,17 +280,25 @@ def _in_riding_frame(move: Move, doc: Document, chosen: tuple[Mechanism, ...], v
                   and x.mechanism == riding[0][0].name), None) if external is not None else None
     by_name = {rmot_name(t.name): t.pose for t in doc.targets}
     points = [by_name.get(move.target)] + ([by_name.get(move.via or "")] if move.kind == "circular" else [])
-    if mount is None or cell is None or any(p is None for p in points):
-        return "a COORD move must name its positions and drive one positioner a frame of the cell rides on"
-    mech, first = riding[0]
-    si = tuple(_si(a.linear, values[first + j]) for j, a in enumerate(mech.axes))
-    to_frame = (mech.flange(si) * mount.local).inverse() * cell.robot(robot).base
-    exprs = [pose_expr(to_frame * p) for p in points]  # type: ignore[operator]
+    if mount is None or cell is None or external is None or move.frame != COORD_FRAME or any(p is None for p in points):
+        return ("a coordinated move must name its positions in the robot's base coordinates and drive one "
+                "positioner a frame of the cell rides on")
+    at = [values] + ([_scaled_via(move, values, chosen)] if move.kind == "circular" else [])
+    exprs = []
+    for point, where in zip(points, at):
+        si = {a.name: _si(a.linear, v) for a, v in zip((a for m in chosen for a in m.axes), where)}
+        mech = riding[0][0]
+        frame = mech.flange(external.values_of(mech, si)) * mount.local
+        # the controller's world: TP UFRAME 0 the robot base with the axes at home, INFORM
+        # ROBOT coordinates the arm's base where its track stands
+        base = (external.world(robot, si) if doc.vendor == "inform" else None) or cell.robot(robot).base
+        exprs.append(pose_expr(frame.inverse() * base * point))  # type: ignore[operator]
     return replace(move, target=exprs[0], target_name=None, via=exprs[1] if len(exprs) > 1 else None,
                    frame=mount.body, pose=None)
 
 
-def _from_pulses(values: tuple[float | None, ...], chosen: tuple[Mechanism, ...]) -> tuple[float | None, ...] | str:
+def _from_pulses(values: tuple[float | None, ...], pulsed: tuple[bool, ...],
+                 chosen: tuple[Mechanism, ...]) -> tuple[float | None, ...] | str:
     """Encoder pulses (an INFORM job's ///PULSE BC, EC) in mm or deg at each axis' declared
     `inform(pulses_per_...)`, a revolute axis without one at the backend's assumed scale
     (backends/inform_axes.py); why not where a linear axis declares none."""
@@ -277,11 +306,23 @@ def _from_pulses(values: tuple[float | None, ...], chosen: tuple[Mechanism, ...]
 
     axes = [a for m in chosen for a in m.axes]
     out: list[float | None] = []
-    for axis, v in zip(axes, values):
+    for axis, v, pulse in zip(axes, values, pulsed):
+        if not pulse:
+            out.append(v)
+            continue
         if axis.pulses is None and axis.linear:
             return f"'{axis.name}' is written in pulses but the cell declares no inform(pulses_per_mm=N) for it"
         out.append(None if v is None else v / (axis.pulses or ASSUMED_PULSES_PER_DEG))
     return tuple(out)
+
+
+def _scaled_via(move: Move, values: tuple[float | None, ...], chosen: tuple[Mechanism, ...]) -> tuple[float | None, ...]:
+    """The axis values (mm, deg) where a coordinated arc's via is taught: its own where the job
+    writes them (INFORM's via line), else the target's."""
+    if not move.via_slots:
+        return values
+    scaled = _from_pulses(move.via_slots[:len(values)], move.slot_pulses, chosen)
+    return values if isinstance(scaled, str) else scaled
 
 
 def _offsets(chosen: tuple[Mechanism, ...]) -> list[tuple[Mechanism, int]]:
@@ -338,13 +379,13 @@ class _Mapper:
         if all(v is None for v in values) and frame == s.frame:
             return s  # no axis values: the axes stay where they are
         problem = self.problem(s, full, values, frame)
+        if not problem and any(s.slot_pulses):
+            scaled = _from_pulses(values, s.slot_pulses, self.chosen)
+            problem, values = (scaled, values) if isinstance(scaled, str) else ("", scaled)
         placed: Move | str = replace(s, frame=frame)
-        if not problem and frame == COORD_FRAME:
+        if not problem and (frame or "").startswith(COORD_FRAME):
             placed = _in_riding_frame(s, self.doc, self.chosen, values, self.cell, self.robot)
             problem = placed if isinstance(placed, str) else ""
-        if not problem and s.slot_pulses:
-            scaled = _from_pulses(values, self.chosen)
-            problem, values = (scaled, values) if isinstance(scaled, str) else ("", scaled)
         if problem or isinstance(placed, str):
             return self.keep(s, problem)
         ext, k = [], 0
@@ -361,7 +402,8 @@ class _Mapper:
             return self.why
         if any(v is None or not math.isfinite(v) for v in values):
             return f"the target leaves slot {values.index(None) + 1 if None in values else '?'} of {self.used} unset"
-        if s.kind == "circular" and _via_slots(self.doc, s.via) not in (full, None):
+        via = s.via_slots or _via_slots(self.doc, s.via)
+        if s.kind == "circular" and via not in (full, None, ()) and not (s.frame or "").startswith(COORD_FRAME):
             return "the circular move's via point has other axis values than its target (rmot's via has none)"
         return ""
 

@@ -91,7 +91,8 @@ class Move:
     # the axis values in rmot, per mechanism: (name, `600mm` or `(0deg, 90deg)`), set by
     # readers/axes.py from `slots` and the cell; printed as `ext(name=value, ...)`
     ext: tuple[tuple[str, str], ...] = ()
-    slot_pulses: bool = False  # `slots` are encoder pulses (an INFORM BC under ///PULSE), not mm or deg
+    slot_pulses: tuple[bool, ...] = ()  # per slot: encoder pulses (an INFORM BC/EC under ///PULSE), not mm or deg
+    via_slots: tuple[float | None, ...] = ()  # a circular via's own slot values where the vendor writes them (INFORM)
     axes_only: bool = False  # `move axes`: the mechanisms alone (RAPID MoveExtJ), `time` its duration
 
 

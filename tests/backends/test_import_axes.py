@@ -55,12 +55,7 @@ def _axis_values(plan: dict) -> list[dict]:
     return [i.get("ext") or {} for i in _leaves(plan)]
 
 
-# INFORM station positions (EC pulses, `+MOVJ ECn`, SMOVL/SMOVC) are not read back yet: their
-# moves stay native (test_inform_station_stays_native)
-ROUND_TRIPS = [(v, n) for v in VENDORS for n in AXES_EXAMPLES if (v, n) != ("inform", "weld_positioner")]
-
-
-@pytest.mark.parametrize(("vendor", "name"), ROUND_TRIPS)
+@pytest.mark.parametrize(("vendor", "name"), [(v, n) for v in VENDORS for n in AXES_EXAMPLES])
 def test_axes_round_trip(vendor: str, name: str, tmp_path: Path) -> None:
     example = ROOT / "examples" / f"{name}.rmot"
     before = _compile(example, example, vendor, tmp_path / "a")
@@ -196,17 +191,3 @@ def test_diff_names_a_touched_up_axis_value(vendor: str, old: str, new: str, slo
     for line, n in zip(lines, edited):
         assert re.search(rf"{data.name}:{n}:\d+ -> \S+{data.name}:{n}:\d+: target \w+ external axes changed: {slot}$",
                          line), line
-
-
-def test_inform_station_stays_native(tmp_path: Path) -> None:
-    """weld_positioner's INFORM job moves its station (`+MOVJ ECn`, SMOVC): each such move is
-    kept native with W510 at its line, none is read without its station values."""
-    example = ROOT / "examples" / "weld_positioner.rmot"
-    _compile(example, example, "inform", tmp_path / "a")
-    job = next((tmp_path / "a" / "inform").glob("*.JBI"))
-    code, output = _import([job], tmp_path / "out.rmot", example)
-    assert code == 0, output
-    station = [n + 1 for n, ln in enumerate(job.read_text().splitlines()) if "+MOVJ EC" in ln]
-    warned = [int(m) for m in re.findall(rf"{job.name}:(\d+):1: warning\[W510\]", output)]
-    assert station and set(station) <= set(warned), (station, warned)
-    assert "move " not in (tmp_path / "out.rmot").read_text()
