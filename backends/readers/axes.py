@@ -32,7 +32,7 @@ from rmot.lang.ir_axes import Mechanism
 from rmot.lang.source import Span
 
 __all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM", "krl_slots", "krl_setting", "fanuc_slots", "slot_change"]
-__all__ += ["inform_base_position", "inform_operands", "inform_frame", "COORD_FRAME"]
+__all__ += ["inform_base_position", "inform_operands", "inform_frame", "COORD_FRAME", "why_native"]
 
 # RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
 RAPID_UNUSED_FROM = 8.9e9
@@ -155,6 +155,23 @@ def inform_frame(user: int | None, sync: bool) -> str:
     if sync:
         return COORD_FRAME if user is None else f"{COORD_FRAME}user{user}"
     return "base" if user is None else f"user{user}"
+
+
+def why_native(text: str) -> str:
+    """Why a vendor line of external axes the readers do not read stays native, or "": RAPID
+    `MoveExtJ` (the units alone: rmot's `move axes` moves one mechanism at its own speed, or in
+    a given time, which the line's speed data and the jointtarget's other units do not say); an
+    INFORM station at its own speed (`+MOVJ ECn VJ=50`: rmot moves every axis
+    time-synchronously with the arm, at most at its own speed)."""
+    if re.match(r"(?i)MoveExtJ\b", text):
+        return "MoveExtJ (the external axes alone) is not read: `move axes` moves one mechanism at its own speed"
+    station = re.search(r"\+MOVJ\s+EC\d+\s+VJ=([\d.]+)", text)
+    if station and float(station.group(1)) != 100.0:
+        return (f"the station moves at its own VJ={station.group(1)} %: rmot moves every axis time-synchronously "
+                "with the arm at up to its full speed")
+    if re.search(r"\b[BE]C\d+\b", text):
+        return "its base (BC) or station (EC) position is not declared in the job's //POS"
+    return ""
 
 
 def _slot_name(vendor: str, k: int) -> str:

@@ -177,7 +177,7 @@ class _Job:
             why = (f"{', '.join(pulses)} is a pulse position (///PULSE, or no ///RECTAN before it): encoder "
                    "counts whose per-axis scales "
                    "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
-                   "no rmot form")
+                   axes.why_native(text) or "no rmot form")
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1

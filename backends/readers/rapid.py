@@ -309,7 +309,7 @@ class _Module:
         """Why a statement stays native: for a move, the data it names that the files given do
         not declare (a task's modules share their data: the module declaring them is needed)."""
         if st.word not in _MOVES:
-            return "no rmot form"
+            return axes.why_native(st.text) or "no rmot form"
         args = split_top(st.text[len(st.word):].strip())
         known = {*self.targets, *self.speeds, *self.zones, *self.tools, *self.frames, "VMAX", "TOOL0", "WOBJ0"}
         names = [m.group(1) for a in args for m in [re.fullmatch(r"(?i)(?:\\WObj\s*:=\s*)?(\w+)", b.strip())

@@ -139,7 +139,7 @@ def test_rapid_move_ext_j_stays_native(tmp_path: Path) -> None:
     path = _rapid_module(tmp_path, "[905,9E+09,9E+09,9E+09,9E+09,9E+09]", "MoveExtJ j, v1000, fine;")
     code, output = _import([path], tmp_path / "out.rmot", TRACK_CELL)
     assert code == 0, output
-    assert re.search(r"hand\.mod:5:5: warning\[W510\]", output), output
+    assert re.search(r"hand\.mod:5:5: warning\[W510\].*MoveExtJ \(the external axes alone\) is not read", output), output
     assert 'native rapid "MoveExtJ j, v1000, fine;"' in (tmp_path / "out.rmot").read_text()
 
 
@@ -191,3 +191,22 @@ def test_diff_names_a_touched_up_axis_value(vendor: str, old: str, new: str, slo
     for line, n in zip(lines, edited):
         assert re.search(rf"{data.name}:{n}:\d+ -> \S+{data.name}:{n}:\d+: target \w+ external axes changed: {slot}$",
                          line), line
+
+
+@pytest.mark.parametrize(("operand", "why"), [
+    ("+MOVJ EC00000 VJ=50.00", "the station moves at its own VJ=50.00 %"),
+    ("+MOVJ EC00007 VJ=100.00", "its base (BC) or station (EC) position is not declared"),
+])
+def test_inform_station_line_not_read_stays_native(operand: str, why: str, tmp_path: Path) -> None:
+    """A hand-written job line moving the station in a way rmot has no form for stays native
+    with W510 naming why; the line beside it (the station at VJ=100) is read."""
+    job = tmp_path / "HAND.JBI"
+    job.write_text("/JOB\n//NAME HAND\n//POS\n///NPOS 1,0,1,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
+                   "///RCONF 0,0,0,0,0,0,0,0\nC00000=1000.000,0.000,630.000,135.0000,0.0000,90.0000\n"
+                   "///POSTYPE PULSE\n///PULSE\nEC00000=0,90000\n//INST\n///DATE 2000/01/01 00:00\n"
+                   "///ATTR SC,RW\n///GROUP1 RB1\n///GROUP2 ST1\nNOP\n"
+                   f"MOVJ C00000 VJ=100.00 PL=0 {operand}\nMOVJ C00000 VJ=100.00 PL=0 +MOVJ EC00000 VJ=100.00\nEND\n")
+    code, output = _import([job], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
+    assert code == 0, output
+    assert re.search(rf"HAND\.JBI:19:1: warning\[W510\]: .*{re.escape(why)}", output), output
+    assert "ext(pos=(0deg, 90deg))" in (tmp_path / "out.rmot").read_text()
