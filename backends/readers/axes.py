@@ -37,6 +37,9 @@ __all__ += ["inform_base_position", "inform_operands", "inform_frame", "COORD_FR
 # RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
 RAPID_UNUSED_FROM = 8.9e9
 SLOTS = 6  # RAPID eax_a..eax_f
+# no axis value beyond this is data (mm, deg or encoder pulses: 1000 km, thousands of turns
+# even at 1000 pulses/deg); the language bounds an axis' range to +-1000 m or +-100 turns
+ABSURD = 1e9
 
 
 def rapid_slots(lit: object, index: int) -> tuple[float | None, ...] | None:
@@ -51,9 +54,10 @@ def rapid_slots(lit: object, index: int) -> tuple[float | None, ...] | None:
 
 
 def krl_slots(value: Mapping[str, object]) -> tuple[float | None, ...]:
-    """E1..E6 of an E6POS or E6AXIS aggregate (None where absent: a POS or AXIS has none)."""
+    """E1..E6 of an E6POS or E6AXIS aggregate (None where absent: a POS or AXIS has none; NaN
+    where present but no finite number, which resolve_axes refuses)."""
     found = [value.get(f"E{k}") for k in range(1, SLOTS + 1)]
-    return tuple(v if isinstance(v, float) else None for v in found)
+    return tuple(v if isinstance(v, float) else None if v is None else math.nan for v in found)
 
 
 # the KRL base on an external kinematic the backend writes (ext_axes.py, KSS 8.5 "Configuration
@@ -393,7 +397,7 @@ class _Mapper:
         full = _slots_of(s, self.named)
         values = full[:self.used]
         frame = _ek_frame(s.frame, self.cell) if (s.frame or "").startswith(EK_FRAME) else s.frame
-        if all(v is None for v in values) and frame == s.frame:
+        if all(v is None for v in values) and frame == s.frame and all(v is None or math.isfinite(v) for v in full):
             return s  # no axis values: the axes stay where they are
         problem = self.problem(s, full, values, frame)
         if not problem and any(s.slot_pulses):
@@ -417,8 +421,11 @@ class _Mapper:
             return "its base on an external kinematic (EK) is no frame of the cell riding on that mechanism"
         if self.why and any(v is not None for v in values):
             return self.why
-        if any(v is None or not math.isfinite(v) for v in values):
-            return f"the target leaves slot {values.index(None) + 1 if None in values else '?'} of {self.used} unset"
+        if None in values:
+            return f"the target leaves slot {values.index(None) + 1} of {self.used} unset"
+        absurd = [v for v in full if v is not None and not (math.isfinite(v) and abs(v) <= ABSURD)]
+        if absurd:
+            return f"a value must be a finite number within +-{ABSURD:g} (got {absurd[0]:g})"
         via = s.via_slots or _via_slots(self.doc, s.via)
         if s.kind == "circular" and via not in (full, None, ()) and not (s.frame or "").startswith(COORD_FRAME):
             return "the circular move's via point has other axis values than its target (rmot's via has none)"

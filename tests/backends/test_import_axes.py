@@ -210,3 +210,17 @@ def test_inform_station_line_not_read_stays_native(operand: str, why: str, tmp_p
     assert code == 0, output
     assert re.search(rf"HAND\.JBI:19:1: warning\[W510\]: .*{re.escape(why)}", output), output
     assert "ext(pos=(0deg, 90deg))" in (tmp_path / "out.rmot").read_text()
+
+
+@pytest.mark.parametrize("value", ["1E+300", "1" * 400])
+def test_absurd_axis_value_stays_native(value: str, tmp_path: Path) -> None:
+    """An axis value no machine has (1e300 mm, or 400 digits: infinite as a float) is no data:
+    the move stays native (W523), never an `ext(...)` the compiler would choke on."""
+    src = tmp_path / "hand.src"
+    src.write_text("DEF hand( )\n"
+                   f"  PTP {{X 500,Y 0,Z 600,A 0,B 90,C 0,S 2,T 35,E1 {value},E2 0,E3 0,E4 0,E5 0,E6 0}}\n"
+                   "END\n")
+    code, output = _import([src], tmp_path / "out.rmot", TRACK_CELL)
+    assert code == 0, output
+    assert re.search(r"hand\.src:2:3: warning\[W523\]: .*a value must be a finite number within", output), output
+    assert "ext(" not in (tmp_path / "out.rmot").read_text()
