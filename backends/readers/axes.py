@@ -337,6 +337,24 @@ def _from_pulses(values: tuple[float | None, ...], pulsed: tuple[bool, ...],
     return tuple(out)
 
 
+def _in_world(move: Move, doc: Document, cell: ir.Cell | None, robot: str) -> Move | str:
+    """A TP move in UFRAME 0 of a robot on its rail: the controller's world is the robot base
+    with every axis at home, fixed while the rail carries the arm (ext_axes.fanuc_in_world), so
+    the move is in rmot's `frame world` at that base's pose, not in the arm's moving base."""
+    from rmot.backends.readers.rapid import pose_expr  # late: the RAPID reader imports this module
+
+    if move.joints is not None and move.kind == "joint" and move.pose is None:
+        return move  # joint values: no frame
+    by_name = {rmot_name(t.name): t.pose for t in doc.targets}
+    points = [by_name.get(move.target)] + ([by_name.get(move.via or "")] if move.kind == "circular" else [])
+    if cell is None or any(p is None for p in points):
+        return "a UFRAME 0 position of a robot on its rail must be a position of the program (it is in the world)"
+    base = cell.robot(robot).base
+    exprs = [pose_expr(base * p) for p in points]  # type: ignore[operator]
+    return replace(move, target=exprs[0], target_name=None, via=exprs[1] if len(exprs) > 1 else None,
+                   frame="world", pose=None)
+
+
 def _scaled_via(move: Move, values: tuple[float | None, ...], chosen: tuple[Mechanism, ...]) -> tuple[float | None, ...]:
     """The axis values (mm, deg) where a coordinated arc's via is taught: its own where the job
     writes them (INFORM's via line), else the target's."""
@@ -406,6 +424,9 @@ class _Mapper:
         placed: Move | str = replace(s, frame=frame)
         if not problem and (frame or "").startswith(COORD_FRAME):
             placed = _in_riding_frame(s, self.doc, self.chosen, values, self.cell, self.robot)
+            problem = placed if isinstance(placed, str) else ""
+        elif not problem and self.doc.vendor == "fanuc" and frame == "base" and any(m.kind == "track" for m in self.chosen):
+            placed = _in_world(s, self.doc, self.cell, self.robot)
             problem = placed if isinstance(placed, str) else ""
         if problem or isinstance(placed, str):
             return self.keep(s, problem)

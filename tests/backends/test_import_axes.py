@@ -57,7 +57,43 @@ def _axis_values(plan: dict) -> list[dict]:
 
 @pytest.mark.parametrize(("vendor", "name"), [(v, n) for v in VENDORS for n in AXES_EXAMPLES])
 def test_axes_round_trip(vendor: str, name: str, tmp_path: Path) -> None:
-    example = ROOT / "examples" / f"{name}.rmot"
+    _round_trip(vendor, ROOT / "examples" / f"{name}.rmot", tmp_path)
+
+
+# a robot on a track and a positioner driven together (`with rail, pos`: the slots in that
+# order), with targets in the robot's moving base, in the world and on the positioner
+BOTH = """
+cell both {
+  track rail = linear(axis x, range(0mm, 4000mm)) speed 1500 mm/s accel 2000 mm/s^2 inform(pulses_per_mm=200) at pose()
+  robot r1 = kuka_kr16 on rail at pose(z=250mm)
+  positioner pos = axes(revolute(axis y, range(-90deg, 90deg)) speed 90 deg/s accel 180 deg/s^2 inform(pulses_per_deg=1000),
+                        revolute(axis z, range(-360deg, 360deg)) speed 180 deg/s accel 360 deg/s^2 inform(pulses_per_deg=1000))
+                   at pose(x=1800mm, z=700mm)
+  frame work = pos * pose(z=40mm)
+  tool torch = none tcp pose(z=300mm) on r1
+}
+program both on r1 with rail, pos {
+  tool torch
+  target home = joints(0deg, -90deg, 90deg, 0deg, 45deg, 0deg)
+  move joint home
+  move joint pose(x=600mm, z=400mm, rx=180deg) ext(rail=900mm, pos=(20deg, 90deg))
+  move linear pose(x=600mm, y=50mm, z=300mm, rx=180deg) speed 100 mm/s
+  move linear pose(x=1500mm, y=-50mm, z=550mm, rx=180deg) frame world speed 100 mm/s
+  move joint pose(z=50mm, rx=180deg) frame work ext(pos=(20deg, 100deg))
+  move joint home ext(rail=0mm)
+}
+"""
+
+
+@pytest.mark.parametrize("vendor", VENDORS)
+def test_track_and_positioner_round_trip(vendor: str, tmp_path: Path) -> None:
+    source = tmp_path / "both.rmot"
+    source.write_text(BOTH)
+    _round_trip(vendor, source, tmp_path)
+
+
+def _round_trip(vendor: str, example: Path, tmp_path: Path) -> None:
+    name = example.stem
     before = _compile(example, example, vendor, tmp_path / "a")
     files = sorted((tmp_path / "a" / vendor).glob(MAIN_FILE[vendor]))
     imported = tmp_path / f"{name}_imported.rmot"
