@@ -233,6 +233,28 @@ def _slots_of(move: Move, named: Mapping[str, tuple[float | None, ...]]) -> tupl
     return move.slots or named.get(rmot_name(move.target_name) if move.target_name else "", ())
 
 
+def _stated_order(doc: Document, cell: ir.Cell | None, chosen: tuple[Mechanism, ...],
+                  span_of: Callable[[Where], Span]) -> tuple[tuple[Mechanism, ...], str]:
+    """RAPID's eax_a.. and KRL's E1.. take the driven mechanisms' axes in the order the
+    controller's machine data gives them (rmot's: the program's `with` order), which the slots
+    do not show: the order the files' own header states (`eax_a = pos.1:`, `E1 = rail:`, as the
+    backends write their machine-data checklist), or none (W523)."""
+    pattern = r"(?m)^\s*!\s+eax_([a-f]) = ([\w.]+):" if doc.vendor == "rapid" else r"(?m)^\s*;\s+E([1-6]) = ([\w.]+):"
+    stated: dict[int, str] = {}
+    for c in doc.counts:
+        for slot, axis in re.findall(pattern, span_of(Where(c.path, 1)).file.text):
+            stated.setdefault("abcdef".index(slot) if doc.vendor == "rapid" else int(slot) - 1, axis)
+    by_axis = {a.name: m for m in chosen for a in m.axes}
+    order = [by_axis.get(stated[k]) for k in sorted(stated)]
+    mechanisms = tuple(dict.fromkeys(m for m in order if m is not None))
+    laid_out = [a.name for m in mechanisms for a in m.axes]
+    if set(mechanisms) == set(chosen) and laid_out == [stated[k] for k in sorted(stated)] and sorted(stated) == list(range(len(laid_out))):
+        return mechanisms, ""
+    names = ", ".join(f"'{m.name}'" for m in chosen)
+    return (), (f"the slots take the axes of {names} in an order the controller's machine data sets and the files "
+                "do not state (rmot writes it in the header: `eax_a = NAME:` / `E1 = NAME:`)")
+
+
 def _used(doc: Document, named: Mapping[str, tuple[float | None, ...]]) -> int:
     """How many slots the files use: the last slot any target gives a value (KRL declares all
     six E1..E6, 0 where no axis takes the slot: the last one not 0)."""
@@ -387,6 +409,8 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
     if used == 0 and not ek:
         return doc
     chosen, why = _choose(cell, robot, used, doc.vendor) if used else ((), "")
+    if doc.vendor in ("rapid", "krl") and len(chosen) > 1:  # the slots' order over mechanisms: machine data
+        chosen, why = _stated_order(doc, cell, chosen, span_of)
     mapper = _Mapper(doc, cell, robot, span_of, named, used, chosen, why)
 
     from rmot.backends.readers.writer import map_leaves  # late: the writer imports the readers' modules

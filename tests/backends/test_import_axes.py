@@ -260,3 +260,28 @@ def test_absurd_axis_value_stays_native(value: str, tmp_path: Path) -> None:
     assert code == 0, output
     assert re.search(r"hand\.src:2:3: warning\[W523\]: .*a value must be a finite number within", output), output
     assert "ext(" not in (tmp_path / "out.rmot").read_text()
+
+
+@pytest.mark.parametrize("vendor", ["rapid", "krl"])
+def test_slot_order_from_the_header(vendor: str, tmp_path: Path) -> None:
+    """`with pos, rail`: eax_a/E1, eax_b/E2 are the positioner's, eax_c/E3 the track's (the
+    backends' slot rule); the file's header states it, and the import follows it."""
+    source = tmp_path / "both.rmot"
+    source.write_text(BOTH.replace("with rail, pos", "with pos, rail"))
+    _round_trip(vendor, source, tmp_path)
+    assert "program both on r1 with pos, rail {" in (tmp_path / "both_imported.rmot").read_text()
+
+
+def test_slot_order_unstated_stays_native(tmp_path: Path) -> None:
+    """The same RAPID module without its header: which mechanism takes eax_a is machine data the
+    file does not hold, so every move with axis values stays native (W523), none guessed."""
+    source = tmp_path / "both.rmot"
+    source.write_text(BOTH)
+    _compile(source, source, "rapid", tmp_path / "a")
+    module = next((tmp_path / "a" / "rapid").glob("*.mod"))
+    bare = tmp_path / "bare.mod"
+    bare.write_text("\n".join(ln for ln in module.read_text().splitlines() if not ln.lstrip().startswith("!")) + "\n")
+    code, output = _import([bare], tmp_path / "out.rmot", source)
+    assert code == 0, output
+    assert output.count("warning[W523]") == 6 and "an order the controller's machine data sets" in output, output
+    assert "move " not in (tmp_path / "out.rmot").read_text()
