@@ -402,12 +402,13 @@ def _si(linear: bool, value: float | None) -> float:
 def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Callable[[Where], Span]) -> Document:
     """`doc` with each move's slot values as `ext(...)` on the cell's mechanisms, and `with`
     naming them; a move whose values cannot be mapped stays native (W523)."""
-    doc = _absorb_coord(doc)
     named = {rmot_name(t.name): t.slots for t in doc.targets}
     used = _used(doc, named)
-    ek = any(isinstance(s, Move) and (s.frame or "").startswith(EK_FRAME) for r in doc.routines for s in walk(r.body))
-    if used == 0 and not ek:
-        return doc
+    placeholder = any(isinstance(s, Move) and (s.frame or "").startswith((EK_FRAME, COORD_FRAME))
+                      for r in doc.routines for s in walk(r.body))
+    if used == 0 and not placeholder:
+        return doc  # no axis values: a TP COORD stays the native option it was read as (W517)
+    doc = _absorb_coord(doc)
     chosen, why = _choose(cell, robot, used, doc.vendor) if used else ((), "")
     if doc.vendor in ("rapid", "krl") and len(chosen) > 1:  # the slots' order over mechanisms: machine data
         chosen, why = _stated_order(doc, cell, chosen, span_of)
@@ -439,7 +440,8 @@ class _Mapper:
         full = _slots_of(s, self.named)
         values = full[:self.used]
         frame = _ek_frame(s.frame, self.cell) if (s.frame or "").startswith(EK_FRAME) else s.frame
-        if all(v is None for v in values) and frame == s.frame and all(v is None or math.isfinite(v) for v in full):
+        if all(v is None for v in values) and not (s.frame or "").startswith((EK_FRAME, COORD_FRAME)) \
+                and all(v is None or math.isfinite(v) for v in full):
             return s  # no axis values: the axes stay where they are
         problem = self.problem(s, full, values, frame)
         if not problem and any(s.slot_pulses):
@@ -464,6 +466,8 @@ class _Mapper:
         """Why the move's values cannot be mapped, or ""."""
         if frame is None and s.frame is not None:
             return "its base on an external kinematic (EK) is no frame of the cell riding on that mechanism"
+        if (frame or "").startswith(COORD_FRAME) and all(v is None for v in values):
+            return "a coordinated move must give the positioner's position (INFORM `+MOVJ ECn`)"
         if self.why and any(v is not None for v in values):
             return self.why
         if None in values:

@@ -285,3 +285,17 @@ def test_slot_order_unstated_stays_native(tmp_path: Path) -> None:
     assert code == 0, output
     assert output.count("warning[W523]") == 6 and "an order the controller's machine data sets" in output, output
     assert "move " not in (tmp_path / "out.rmot").read_text()
+
+
+def test_coordinated_without_station_position_stays_native(tmp_path: Path) -> None:
+    """A hand-written SMOVL naming no station position: the robot's path relative to a station
+    whose values the job does not give is kept native (W523), never read as a plain line."""
+    job = tmp_path / "HAND.JBI"
+    job.write_text("/JOB\n//NAME HAND\n//POS\n///NPOS 1,0,0,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
+                   "///RCONF 0,0,0,0,0,0,0,0\nC00000=1000.000,0.000,630.000,135.0000,0.0000,90.0000\n"
+                   "//INST\n///DATE 2000/01/01 00:00\n///ATTR SC,RW\n///GROUP1 RB1\nNOP\n"
+                   "SMOVL C00000 V=12.0\nEND\n")
+    code, output = _import([job], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
+    assert code == 0, output
+    assert re.search(r"HAND\.JBI:15:1: warning\[W523\]: .*a coordinated move must give the positioner's position", output), output
+    assert "@" not in (tmp_path / "out.rmot").read_text()
