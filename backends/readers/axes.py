@@ -32,7 +32,7 @@ from rmot.lang.ir_axes import Mechanism
 from rmot.lang.source import Span
 
 __all__ = ["rapid_slots", "resolve_axes", "RAPID_UNUSED_FROM", "krl_slots", "krl_setting", "fanuc_slots", "slot_change"]
-__all__ += ["inform_base_position", "inform_operands", "inform_frame", "COORD_FRAME", "why_native"]
+__all__ += ["robax_read", "inform_base_position", "inform_operands", "inform_frame", "COORD_FRAME", "why_native"]
 
 # RAPID's "no position defined" is 9E9 (the reference's extjoint); anything from 8.9E9 up is it
 RAPID_UNUSED_FROM = 8.9e9
@@ -51,6 +51,14 @@ def rapid_slots(lit: object, index: int) -> tuple[float | None, ...] | None:
     if not (isinstance(extax, list) and len(extax) == SLOTS and all(isinstance(v, float) for v in extax)):
         return None
     return tuple(None if v >= RAPID_UNUSED_FROM else float(v) for v in extax)
+
+
+def robax_read(lit: list[object]) -> bool:
+    """Whether a jointtarget literal is arm joints rmot reads: every robax value a number below
+    9E+09 (a MoveExtJ target leaves the arm's six at 9E+09: no joint values, the arm holds) and
+    its extax six numbers (rapid_slots)."""
+    robax = lit[0] if isinstance(lit[0], list) else []
+    return all(isinstance(v, float) and abs(v) < RAPID_UNUSED_FROM for v in robax) and rapid_slots(lit, 1) is not None
 
 
 def krl_slots(value: Mapping[str, object]) -> tuple[float | None, ...]:

@@ -176,7 +176,7 @@ class _Module:
             self.targets[name.upper()] = Target(name, pose, None, _branch(lit), where, slots=axes.rapid_slots(lit, 3) or ())
         elif type_ == "jointtarget":
             if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
-                    and all(isinstance(v, float) for v in lit[0]) and axes.rapid_slots(lit, 1) is not None):
+                    and all(isinstance(v, float) for v in lit[0]) and axes.robax_read(lit)):
                 return False
             self.targets[name.upper()] = Target(name, None, tuple(map(float, lit[0])), None, where, slots=axes.rapid_slots(lit, 1) or ())
         elif type_ == "tooldata":

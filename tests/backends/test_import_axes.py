@@ -299,3 +299,21 @@ def test_coordinated_without_station_position_stays_native(tmp_path: Path) -> No
     assert code == 0, output
     assert re.search(r"HAND\.JBI:15:1: warning\[W523\]: .*a coordinated move must give the positioner's position", output), output
     assert "@" not in (tmp_path / "out.rmot").read_text()
+
+
+def test_rapid_move_axes_kept_native_and_the_program_checks(tmp_path: Path) -> None:
+    """`move axes` is written as MoveExtJ to a jointtarget whose arm joints are 9E+09 (the arm
+    holds): that target is no joint values (a comment, W511), the MoveExtJ stays native (W510),
+    and the rest of the program imports and checks."""
+    source = tmp_path / "both.rmot"
+    source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n",
+                                   "  move axes pos to (0deg, 180deg)\n  move joint home ext(rail=0mm)\n"))
+    _compile(source, source, "rapid", tmp_path / "a")
+    module = next((tmp_path / "a" / "rapid").glob("*.mod"))
+    code, output = _import([module], tmp_path / "out.rmot", source)
+    assert code == 0, output
+    assert re.search(r"warning\[W511\]: jointtarget jext has no rmot form", output), output
+    assert re.search(r"warning\[W510\]: MoveExtJ \(the external axes alone\) is not read", output), output
+    assert "9000000000" not in (tmp_path / "out.rmot").read_text()
+    result = CliRunner().invoke(cli, ["check", str(tmp_path / "out.rmot"), "--cell", str(source)])
+    assert result.exit_code == 0, result.output
