@@ -412,6 +412,10 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
     naming them; a move whose values cannot be mapped stays native (W523)."""
     named = {rmot_name(t.name): t.slots for t in doc.targets}
     used = _used(doc, named)
+    track = _drivable(cell, robot)[1] if cell is not None else None
+    if doc.vendor == "krl" and track is not None and any(_slots_of(s, named) for r in doc.routines for s in walk(r.body)
+                                                          if isinstance(s, Move)):
+        used = max(used, len(track.axes))  # E1 0 everywhere: the track stands at 0, KRL writes 0 for no axis too
     placeholder = any(isinstance(s, Move) and (s.frame or "").startswith((EK_FRAME, COORD_FRAME))
                       for r in doc.routines for s in walk(r.body))
     if used == 0 and not placeholder:

@@ -317,3 +317,18 @@ def test_rapid_move_axes_kept_native_and_the_program_checks(tmp_path: Path) -> N
     assert "9000000000" not in (tmp_path / "out.rmot").read_text()
     result = CliRunner().invoke(cli, ["check", str(tmp_path / "out.rmot"), "--cell", str(source)])
     assert result.exit_code == 0, result.output
+
+
+def test_krl_track_at_zero_throughout(tmp_path: Path) -> None:
+    """KRL writes 0 in an unused E slot and for a track standing at 0: on a cell whose robot rides
+    a track (which its program must drive), E1 0 is the track at 0 mm."""
+    src = tmp_path / "hand.src"
+    src.write_text("DEF hand( )\n"
+                   "  PTP {A1 0,A2 -90,A3 90,A4 0,A5 45,A6 0,E1 0,E2 0,E3 0,E4 0,E5 0,E6 0}\n"
+                   "END\n")
+    code, output = _import([src], tmp_path / "out.rmot", TRACK_CELL)
+    assert code == 0, output
+    text = (tmp_path / "out.rmot").read_text()
+    assert "program hand on r1 with rail {" in text and "ext(rail=0mm)" in text, text
+    result = CliRunner().invoke(cli, ["check", str(tmp_path / "out.rmot"), "--cell", str(TRACK_CELL)])
+    assert result.exit_code == 0, result.output
