@@ -32,6 +32,14 @@ def _import(files: list[Path], out: Path, cell: Path | None) -> tuple[int, str]:
     return result.exit_code, result.output
 
 
+def _import_on_positioner(tmp_path: Path, name: str, text: str) -> str:
+    """The import's output of a hand-written file `name` on weld_positioner's cell (exit 0)."""
+    (tmp_path / name).write_text(text)
+    code, output = _import([tmp_path / name], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
+    assert code == 0, output
+    return output
+
+
 def _turn_deg(qa: list[float], qb: list[float]) -> float:
     """The rotation between two unit quaternions, from the chord (2 atan2(|a - b|, |a + b|),
     exact near 0 where acos of their dot product is only good to ~0.005 deg at 9 digits)."""
@@ -179,28 +187,29 @@ def test_rapid_move_ext_j_stays_native(tmp_path: Path) -> None:
     assert 'native rapid "MoveExtJ j, v1000, fine;"' in (tmp_path / "out.rmot").read_text()
 
 
-def test_krl_inline_e6pos_e1_reads(tmp_path: Path) -> None:
-    """A PTP to an inline E6POS with E1 (KRL's first external axis) on a track cell."""
+def _import_krl(tmp_path: Path, position: str) -> tuple[str, str]:
+    """(the import's output, the program) of a hand-written `PTP position` on the track cell."""
     src = tmp_path / "hand.src"
-    src.write_text("DEF hand( )\n"
-                   "  PTP {X 500,Y 0,Z 600,A 0,B 90,C 0,S 2,T 35,E1 905,E2 0,E3 0,E4 0,E5 0,E6 0}\n"
-                   "END\n")
+    src.write_text(f"DEF hand( )\n  PTP {position}\nEND\n")
     code, output = _import([src], tmp_path / "out.rmot", TRACK_CELL)
     assert code == 0, output
-    assert re.search(r"move joint pose\([^)]*\)\) ext\(rail=905mm\)", (tmp_path / "out.rmot").read_text())
+    return output, (tmp_path / "out.rmot").read_text()
+
+
+def test_krl_inline_e6pos_e1_reads(tmp_path: Path) -> None:
+    """A PTP to an inline E6POS with E1 (KRL's first external axis) on a track cell."""
+    _, text = _import_krl(tmp_path, "{X 500,Y 0,Z 600,A 0,B 90,C 0,S 2,T 35,E1 905,E2 0,E3 0,E4 0,E5 0,E6 0}")
+    assert re.search(r"move joint pose\([^)]*\)\) ext\(rail=905mm\)", text), text
 
 
 def test_tp_second_group_of_unknown_axis_count_stays_native(tmp_path: Path) -> None:
     """A TP position with a GP2 block of three axes where the cell's positioner has two: the
     slots fill no choice of the cell's mechanisms, so the move stays native (W523)."""
-    ls = tmp_path / "HAND.ls"
-    ls.write_text("/PROG  HAND\n/ATTR\nDEFAULT_GROUP\t= 1,1,*,*,*;\n/MN\n   1:  J P[1] 100% FINE ;\n/POS\n"
+    output = _import_on_positioner(tmp_path, "HAND.ls", "/PROG  HAND\n/ATTR\nDEFAULT_GROUP\t= 1,1,*,*,*;\n/MN\n   1:  J P[1] 100% FINE ;\n/POS\n"
                   "P[1]{\n   GP1:\n\tUF : 0, UT : 0,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
                   "\tX =   500.000  mm,\tY =     0.000  mm,\tZ =   600.000  mm,\n"
                   "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg\n"
                   "   GP2:\n\tUF : 0, UT : 0,\t\n\tJ1=     0.000  deg,\tJ2=    90.000  deg,\tJ3=    10.000  deg\n};\n/END\n")
-    code, output = _import([ls], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
-    assert code == 0, output
     assert re.search(r"HAND\.ls:5:\d+: warning\[W523\]: .*3 external-axis slot\(s\) written", output), output
 
 
@@ -236,14 +245,11 @@ def test_diff_names_a_touched_up_axis_value(vendor: str, old: str, new: str, slo
 def test_inform_station_line_not_read_stays_native(operand: str, why: str, tmp_path: Path) -> None:
     """A hand-written job line moving the station in a way rmot has no form for stays native
     with W510 naming why; the line beside it (the station at VJ=100) is read."""
-    job = tmp_path / "HAND.JBI"
-    job.write_text("/JOB\n//NAME HAND\n//POS\n///NPOS 1,0,1,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
+    output = _import_on_positioner(tmp_path, "HAND.JBI", "/JOB\n//NAME HAND\n//POS\n///NPOS 1,0,1,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
                    "///RCONF 0,0,0,0,0,0,0,0\nC00000=1000.000,0.000,630.000,135.0000,0.0000,90.0000\n"
                    "///POSTYPE PULSE\n///PULSE\nEC00000=0,90000\n//INST\n///DATE 2000/01/01 00:00\n"
                    "///ATTR SC,RW\n///GROUP1 RB1\n///GROUP2 ST1\nNOP\n"
                    f"MOVJ C00000 VJ=100.00 PL=0 {operand}\nMOVJ C00000 VJ=100.00 PL=0 +MOVJ EC00000 VJ=100.00\nEND\n")
-    code, output = _import([job], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
-    assert code == 0, output
     assert re.search(rf"HAND\.JBI:19:1: warning\[W510\]: .*{re.escape(why)}", output), output
     assert "ext(pos=(0deg, 90deg))" in (tmp_path / "out.rmot").read_text()
 
@@ -252,14 +258,9 @@ def test_inform_station_line_not_read_stays_native(operand: str, why: str, tmp_p
 def test_absurd_axis_value_stays_native(value: str, tmp_path: Path) -> None:
     """An axis value no machine has (1e300 mm, or 400 digits: infinite as a float) is no data:
     the move stays native (W523), never an `ext(...)` the compiler would choke on."""
-    src = tmp_path / "hand.src"
-    src.write_text("DEF hand( )\n"
-                   f"  PTP {{X 500,Y 0,Z 600,A 0,B 90,C 0,S 2,T 35,E1 {value},E2 0,E3 0,E4 0,E5 0,E6 0}}\n"
-                   "END\n")
-    code, output = _import([src], tmp_path / "out.rmot", TRACK_CELL)
-    assert code == 0, output
+    output, text = _import_krl(tmp_path, f"{{X 500,Y 0,Z 600,A 0,B 90,C 0,S 2,T 35,E1 {value},E2 0,E3 0,E4 0,E5 0,E6 0}}")
     assert re.search(r"hand\.src:2:3: warning\[W523\]: .*a value must be a finite number within", output), output
-    assert "ext(" not in (tmp_path / "out.rmot").read_text()
+    assert "ext(" not in text
 
 
 @pytest.mark.parametrize("vendor", ["rapid", "krl"])
@@ -290,13 +291,10 @@ def test_slot_order_unstated_stays_native(tmp_path: Path) -> None:
 def test_coordinated_without_station_position_stays_native(tmp_path: Path) -> None:
     """A hand-written SMOVL naming no station position: the robot's path relative to a station
     whose values the job does not give is kept native (W523), never read as a plain line."""
-    job = tmp_path / "HAND.JBI"
-    job.write_text("/JOB\n//NAME HAND\n//POS\n///NPOS 1,0,0,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
+    output = _import_on_positioner(tmp_path, "HAND.JBI", "/JOB\n//NAME HAND\n//POS\n///NPOS 1,0,0,0,0,0\n///TOOL 0\n///POSTYPE ROBOT\n///RECTAN\n"
                    "///RCONF 0,0,0,0,0,0,0,0\nC00000=1000.000,0.000,630.000,135.0000,0.0000,90.0000\n"
                    "//INST\n///DATE 2000/01/01 00:00\n///ATTR SC,RW\n///GROUP1 RB1\nNOP\n"
                    "SMOVL C00000 V=12.0\nEND\n")
-    code, output = _import([job], tmp_path / "out.rmot", ROOT / "examples" / "weld_positioner.rmot")
-    assert code == 0, output
     assert re.search(r"HAND\.JBI:15:1: warning\[W523\]: .*a coordinated move must give the positioner's position", output), output
     assert "@" not in (tmp_path / "out.rmot").read_text()
 
@@ -322,13 +320,7 @@ def test_rapid_move_axes_kept_native_and_the_program_checks(tmp_path: Path) -> N
 def test_krl_track_at_zero_throughout(tmp_path: Path) -> None:
     """KRL writes 0 in an unused E slot and for a track standing at 0: on a cell whose robot rides
     a track (which its program must drive), E1 0 is the track at 0 mm."""
-    src = tmp_path / "hand.src"
-    src.write_text("DEF hand( )\n"
-                   "  PTP {A1 0,A2 -90,A3 90,A4 0,A5 45,A6 0,E1 0,E2 0,E3 0,E4 0,E5 0,E6 0}\n"
-                   "END\n")
-    code, output = _import([src], tmp_path / "out.rmot", TRACK_CELL)
-    assert code == 0, output
-    text = (tmp_path / "out.rmot").read_text()
+    _, text = _import_krl(tmp_path, "{A1 0,A2 -90,A3 90,A4 0,A5 45,A6 0,E1 0,E2 0,E3 0,E4 0,E5 0,E6 0}")
     assert "program hand on r1 with rail {" in text and "ext(rail=0mm)" in text, text
     result = CliRunner().invoke(cli, ["check", str(tmp_path / "out.rmot"), "--cell", str(TRACK_CELL)])
     assert result.exit_code == 0, result.output
