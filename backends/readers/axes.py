@@ -1,15 +1,21 @@
 """External axes read back: the slot values a vendor writes beside a target, mapped to the axes
 of the cell's track and positioners (`ext(rail=600mm, pos=(0deg, 90deg))`, `with rail, pos`).
 
-The readers record each target's slot values as written (`Target.slots`, `Move.slots`: RAPID
-robtarget/jointtarget `extax` eax_a..eax_f, 9E+09 for a slot no axis takes, ABB RAPID reference,
-"extjoint"). `resolve_axes` maps them with the cell by the backends' own slot rule
-(backends/ext_axes.py: the task's axes in `with` order, a mechanism's axes in their order, take
-the slots in turn; mm for a linear axis, degrees for a revolute one). The program drives the
-mechanisms of the cell in cell order whose axes fill exactly the slots the files use, the
-track carrying the robot always among them; where no such choice exists, or more than one, or
-where no cell is given (a stub cell cannot declare a track's or positioner's geometry), every
-move with axis values stays native with W523 naming why: an axis value is never guessed.
+The readers record each target's slot values as written (`Target.slots`, `Move.slots`), as the
+backends write them (backends/ext_axes.py, inform_axes.py): RAPID robtarget/jointtarget `extax`
+eax_a..eax_f, 9E+09 for a slot no axis takes (ABB RAPID reference, "extjoint"); KRL E1..E6 of an
+E6POS/E6AXIS, 0 for a slot no axis takes; Fanuc TP the arm group's `E1=` (an integrated rail),
+then each further group's `J1=`.. (`GP2:`); INFORM a move's `BCn` and the station's `+MOVJ
+ECn`, encoder pulses or mm. `resolve_axes` maps them with the cell by the backends' own slot
+rule (the driven mechanisms' axes in turn, a mechanism's axes in their order; mm for a linear
+axis, degrees for a revolute one): the program drives the mechanisms of the cell whose axes
+fill exactly the slots the files use, the track carrying the robot always among them, in the
+order the vendor's own structure (TP, INFORM) or the file's machine-data header (RAPID, KRL)
+states. Where no such choice exists, or more than one, or where no cell is given (a stub cell
+cannot declare a track's or positioner's geometry), every move with axis values stays native
+with W523 naming why: an axis value is never guessed. Frames the backends write through a
+mechanism come back as the cell's frame riding on it (KRL `$BASE=EK(..)`, a TP COORD move, an
+INFORM SMOVL/SMOVC placed in it).
 """
 
 from __future__ import annotations
