@@ -93,10 +93,24 @@ program both on r1 with rail, pos {
 """
 
 
+MOVE_AXES = "  move axes pos to (0deg, 180deg)\n  move joint home ext(rail=0mm)\n"
+
+
 @pytest.mark.parametrize("vendor", VENDORS)
 def test_track_and_positioner_round_trip(vendor: str, tmp_path: Path) -> None:
     source = tmp_path / "both.rmot"
     source.write_text(BOTH)
+    _round_trip(vendor, source, tmp_path)
+
+
+@pytest.mark.parametrize("vendor", ["krl", "fanuc", "inform"])
+def test_move_axes_round_trip(vendor: str, tmp_path: Path) -> None:
+    """`move axes` is written as a joint move to the joints the arm holds with the new axis
+    values (KRL PTP to an E6AXIS, TP J, INFORM MOVJ with +MOVJ EC): it comes back as that
+    joint move, which plans the same (RAPID's MoveExtJ stays native:
+    test_rapid_move_axes_kept_native_and_the_program_checks)."""
+    source = tmp_path / "both.rmot"
+    source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n", MOVE_AXES))
     _round_trip(vendor, source, tmp_path)
 
 
@@ -304,8 +318,7 @@ def test_rapid_move_axes_kept_native_and_the_program_checks(tmp_path: Path) -> N
     holds): that target is no joint values (a comment, W511), the MoveExtJ stays native (W510),
     and the rest of the program imports and checks."""
     source = tmp_path / "both.rmot"
-    source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n",
-                                   "  move axes pos to (0deg, 180deg)\n  move joint home ext(rail=0mm)\n"))
+    source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n", MOVE_AXES))
     _compile(source, source, "rapid", tmp_path / "a")
     module = next((tmp_path / "a" / "rapid").glob("*.mod"))
     code, output = _import([module], tmp_path / "out.rmot", source)
