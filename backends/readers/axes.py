@@ -27,10 +27,11 @@ from dataclasses import replace
 from itertools import combinations
 
 from rmot.backends.readers import codes
+from rmot.backends.readers.axes_only import absorb_move_ext_j, one_mechanism
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.krl_text import MotionState, aggregate, krl_pose
 from rmot.backends.readers.model import (
-    Document, FileCount, For, If, Move, Native, Stmt, Target, WaitIn, Where, While, walk,
+    Document, FileCount, For, If, Move, Native, Routine, Stmt, Target, WaitIn, Where, While, walk,
 )
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -416,6 +417,7 @@ def _si(linear: bool, value: float | None) -> float:
 def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Callable[[Where], Span]) -> Document:
     """`doc` with each move's slot values as `ext(...)` on the cell's mechanisms, and `with`
     naming them; a move whose values cannot be mapped stays native (W523)."""
+    original, doc = doc, absorb_move_ext_j(doc, _bodies)
     named = {rmot_name(t.name): t.slots for t in doc.targets}
     used = _used(doc, named)
     track = _drivable(cell, robot)[1] if cell is not None else None
@@ -425,7 +427,7 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
     placeholder = any(isinstance(s, Move) and (s.frame or "").startswith((EK_FRAME, COORD_FRAME))
                       for r in doc.routines for s in walk(r.body))
     if used == 0 and not placeholder:
-        return doc  # no axis values: a TP COORD stays the native option it was read as (W517)
+        return original  # no axis values: a TP COORD stays the native option it was read as (W517)
     doc = _absorb_coord(doc)
     chosen, why = _choose(cell, robot, used, doc.vendor) if used else ((), "")
     if doc.vendor in ("rapid", "krl") and len(chosen) > 1:  # the slots' order over mechanisms: machine data
@@ -435,6 +437,8 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
     from rmot.backends.readers.writer import map_leaves  # late: the writer imports the readers' modules
 
     routines = tuple(replace(r, body=map_leaves(r.body, mapper.move)) for r in doc.routines)
+    if any(isinstance(x, Move) and x.axes_only for r in routines for x in walk(r.body)):
+        routines = mapper.axes_alone(routines)
     counts = tuple(FileCount(c.path, c.imported - mapper.moved.get(c.path, 0), c.native + mapper.moved.get(c.path, 0))
                    for c in doc.counts)
     return replace(doc, routines=routines, counts=counts, diagnostics=doc.diagnostics + tuple(mapper.diags),
@@ -497,6 +501,20 @@ class _Mapper:
         if s.kind == "circular" and via not in (full, None, ()) and not (s.frame or "").startswith(COORD_FRAME):
             return "the circular move's via point has other axis values than its target (rmot's via has none)"
         return ""
+
+    def axes_alone(self, routines: tuple[Routine, ...]) -> tuple[Routine, ...]:
+        """Each axes-only move (RAPID MoveExtJ) as `move axes` of the mechanism it moves (axes_only.py)."""
+        before = len(self.diags)
+
+        def values_of(m: Move) -> tuple[float | None, ...]:
+            return _slots_of(m, self.named)[:self.used]
+
+        out = tuple(replace(r, body=_bodies(r.body, lambda b: one_mechanism(b, self.chosen, values_of, self.span_of,
+                                                                             self.diags))) for r in routines)
+        for d in self.diags[before:]:
+            path = d.span.file.path if d.span is not None else ""
+            self.moved[path] = self.moved.get(path, 0) + 1
+        return out
 
     def keep(self, s: Move, problem: str) -> Native:
         """The move kept native, with W523 at its line."""

@@ -103,12 +103,12 @@ def test_track_and_positioner_round_trip(vendor: str, tmp_path: Path) -> None:
     _round_trip(vendor, source, tmp_path)
 
 
-@pytest.mark.parametrize("vendor", ["krl", "fanuc", "inform"])
+@pytest.mark.parametrize("vendor", VENDORS)
 def test_move_axes_round_trip(vendor: str, tmp_path: Path) -> None:
-    """`move axes` is written as a joint move to the joints the arm holds with the new axis
-    values (KRL PTP to an E6AXIS, TP J, INFORM MOVJ with +MOVJ EC): it comes back as that
-    joint move, which plans the same (RAPID's MoveExtJ stays native:
-    test_rapid_move_axes_kept_native_and_the_program_checks)."""
+    """`move axes` comes back: RAPID's `MoveExtJ jext, vmax\\T:=t, fine;` as `move axes` of the
+    mechanism it moves; KRL, TP and INFORM write a joint move to the joints the arm holds with
+    the new axis values (PTP to an E6AXIS, J, MOVJ with +MOVJ EC), which comes back as that joint
+    move and plans the same."""
     source = tmp_path / "both.rmot"
     source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n", MOVE_AXES))
     _round_trip(vendor, source, tmp_path)
@@ -313,18 +313,20 @@ def test_coordinated_without_station_position_stays_native(tmp_path: Path) -> No
     assert "@" not in (tmp_path / "out.rmot").read_text()
 
 
-def test_rapid_move_axes_kept_native_and_the_program_checks(tmp_path: Path) -> None:
-    """`move axes` is written as MoveExtJ to a jointtarget whose arm joints are 9E+09 (the arm
-    holds): that target is no joint values (a comment, W511), the MoveExtJ stays native (W510),
-    and the rest of the program imports and checks."""
+def test_rapid_move_ext_j_of_two_mechanisms_stays_native(tmp_path: Path) -> None:
+    """A MoveExtJ whose jointtarget changes the track and the positioner at once has no `move
+    axes` form (one mechanism): it stays native (W523), and the program still checks."""
     source = tmp_path / "both.rmot"
     source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n", MOVE_AXES))
     _compile(source, source, "rapid", tmp_path / "a")
     module = next((tmp_path / "a" / "rapid").glob("*.mod"))
+    text = module.read_text()
+    both = re.sub(r"(jointtarget jext:=\[\[[^\]]*\],\[)900\.000", r"\g<1>950.000", text)
+    assert both != text
+    module.write_text(both)
     code, output = _import([module], tmp_path / "out.rmot", source)
     assert code == 0, output
-    assert re.search(r"warning\[W511\]: jointtarget jext has no rmot form", output), output
-    assert re.search(r"warning\[W510\]: MoveExtJ \(the external axes alone\) is not read", output), output
+    assert re.search(r"warning\[W523\]: MoveExtJ must move one mechanism .*it moves 2 mechanisms", output), output
     assert "9000000000" not in (tmp_path / "out.rmot").read_text()
     result = CliRunner().invoke(cli, ["check", str(tmp_path / "out.rmot"), "--cell", str(source)])
     assert result.exit_code == 0, result.output
@@ -337,3 +339,13 @@ def test_krl_track_at_zero_throughout(tmp_path: Path) -> None:
     assert "program hand on r1 with rail {" in text and "ext(rail=0mm)" in text, text
     result = CliRunner().invoke(cli, ["check", str(tmp_path / "out.rmot"), "--cell", str(TRACK_CELL)])
     assert result.exit_code == 0, result.output
+
+
+def test_rapid_move_axes_with_time_round_trip(tmp_path: Path) -> None:
+    """`move axes .. time 3 s` (longer than the axes need): MoveExtJ's \\T:=3.000 comes back as
+    that time; without `time` (test_move_axes_round_trip) \\T is the axes' own shortest time and
+    comes back as none."""
+    source = tmp_path / "both.rmot"
+    source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n", MOVE_AXES.replace("180deg)", "180deg) time 3 s")))
+    _round_trip("rapid", source, tmp_path)
+    assert re.search(r"(?m)^  move axes pos to \(0deg, 180deg\) time 3 s$", (tmp_path / "both_imported.rmot").read_text())
