@@ -177,13 +177,14 @@ def inform_frame(user: int | None, sync: bool) -> str:
 
 
 def why_native(text: str) -> str:
-    """Why a vendor line of external axes the readers do not read stays native, or "": RAPID
-    `MoveExtJ` (the units alone: rmot's `move axes` moves one mechanism at its own speed, or in
-    a given time, which the line's speed data and the jointtarget's other units do not say); an
+    """Why a vendor line of external axes the readers do not read stays native, or "": a RAPID
+    `MoveExtJ` not in the form axes_only.py reads (another speed or zone, a jointtarget that
+    moves the arm too: rmot's `move axes` moves one mechanism at its own speed, the arm still); an
     INFORM station at its own speed (`+MOVJ ECn VJ=50`: rmot moves every axis
     time-synchronously with the arm, at most at its own speed)."""
     if re.match(r"(?i)MoveExtJ\b", text):
-        return "MoveExtJ (the external axes alone) is not read: `move axes` moves one mechanism at its own speed"
+        return ("MoveExtJ (the external axes alone) is read only as rmot writes `move axes` (`MoveExtJ T, vmax[\\T:=t], "
+                "fine;` to a jointtarget whose arm joints are 9E+09): its axes move at their own speed")
     station = re.search(r"\+MOVJ\s+EC\d+\s+VJ=([\d.]+)", text)
     if station and float(station.group(1)) != 100.0:
         return (f"the station moves at its own VJ={station.group(1)} %: rmot moves every axis time-synchronously "
