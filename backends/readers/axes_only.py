@@ -22,6 +22,7 @@ from collections.abc import Callable
 from dataclasses import replace
 
 from rmot.backends.readers import codes
+from rmot.backends.readers.axes_slots import RAPID_UNUSED_FROM
 from rmot.backends.readers.model import Document, Move, Native, Stmt, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.ir_axes import ExtAxis, Mechanism, axis_time
@@ -37,8 +38,6 @@ _LINE = re.compile(r"(?i)MoveExtJ\s+(\w+)\s*,\s*vmax\s*(?:\\T\s*:=\s*([0-9.]+))?
 def _held_targets(doc: Document) -> dict[str, tuple[tuple[float | None, ...], Where]]:
     """The kept jointtargets whose arm joints are all 9E+09: name (upper case) -> (extax slots,
     where the declaration is)."""
-    from rmot.backends.readers.axes import RAPID_UNUSED_FROM  # late: axes imports this module
-
     out: dict[str, tuple[tuple[float | None, ...], Where]] = {}
     for kept in doc.kept:
         m = _DECL.fullmatch(kept.text.strip())

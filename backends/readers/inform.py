@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers import axes, codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -61,7 +61,7 @@ class _Job:
         self.name = ""
         self.positions: dict[str, Target] = {}
         self.pulse_positions: set[str] = set()  # `///PULSE` positions: encoder counts of the arm's axes
-        self.base_positions: dict[str, tuple[tuple[float, ...], bool]] = {}  # BCn, ECn: values, in pulses (readers/axes.py)
+        self.base_positions: dict[str, tuple[tuple[float, ...], bool]] = {}  # BCn, ECn: values, in pulses (readers/axes_slots.py)
         self.position_tool: dict[str, int] = {}
         self.position_user: dict[str, int | None] = {}
         self.tool_names: dict[int, str] = {}
@@ -111,7 +111,7 @@ class _Job:
         self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
-        if axes.inform_base_position(self.base_positions, s, pulse):
+        if axes_slots.inform_base_position(self.base_positions, s, pulse):
             return
         m = re.fullmatch(r"([CP]\d+)\s*=\s*(.*)", s)
         if m is not None and pulse:
@@ -177,7 +177,7 @@ class _Job:
             why = (f"{', '.join(pulses)} is a pulse position (///PULSE, or no ///RECTAN before it): encoder "
                    "counts whose per-axis scales "
                    "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
-                   axes.why_native(text) or "no rmot form")
+                   axes_slots.why_native(text) or "no rmot form")
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -242,8 +242,8 @@ class _Job:
 
     def _move(self, kind: str, names: list[str], rest: str, where: Where, sync: bool = False, via_rest: str = "") -> Move | None:
         decls = [self.positions.get(n) for n in names]
-        base, rest = axes.inform_operands(self.base_positions, rest, sync)
-        via_base = axes.inform_operands(self.base_positions, via_rest, sync)[0] if via_rest else None
+        base, rest = axes_slots.inform_operands(self.base_positions, rest, sync)
+        via_base = axes_slots.inform_operands(self.base_positions, via_rest, sync)[0] if via_rest else None
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
@@ -272,7 +272,7 @@ class _Job:
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
-                    tool=self._tool(self.position_tool[names[-1]]), frame=axes.inform_frame(user, sync),
+                    tool=self._tool(self.position_tool[names[-1]]), frame=axes_slots.inform_frame(user, sync),
                     config=decl.config if kind == "joint" else None, pose=decl.pose,
                     joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None,
                     slots=base[0] if base else (), slot_pulses=base[1] if base else (), via_slots=via_base[0] if via_base else ())

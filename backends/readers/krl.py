@@ -20,7 +20,7 @@ from functools import partial
 from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
-from rmot.backends.readers import axes, codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
@@ -322,7 +322,7 @@ class _Krl:
                 chosen = numbered(self.tools, self.frames, self.tally, kind, n, None, self.at or Where(self.tally.path, 1))
                 st.tool, st.frame = (chosen, st.frame) if kind == "tool" else (st.tool, chosen)
             return True
-        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None or axes.krl_setting(st, text)
+        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None or axes_slots.krl_setting(st, text)
 
     def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
         """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""

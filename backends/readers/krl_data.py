@@ -13,7 +13,7 @@ import re
 from copy import copy
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.axes import krl_slots
+from rmot.backends.readers.axes_slots import krl_slots
 from rmot.backends.readers.common import Tally, number, split_top
 from rmot.backends.readers.krl_text import Line, MotionState, aggregate, branch_of_status, declarations, in_cond, krl_pose, lines
 from rmot.backends.readers.model import FrameData, Move, Stmt, Target, ToolData, WaitIn, Where
