@@ -98,7 +98,7 @@ def _choose(cell: ir.Cell | None, robot: str, used: int, vendor: str) -> tuple[t
     if cell is None or cell.external is None:
         return (), "the cell declares no track or positioner (give --cell with the one that does)"
     candidates, track = _drivable(cell, robot)
-    if vendor == "fanuc":  # the arm group's extended axes (tracks) first, then a group per positioner
+    if vendor in ("fanuc", "inform"):  # the arm group's axes (a track: TP E1, INFORM BC) first, then the positioners
         candidates.sort(key=lambda m: m.kind != "track")
     fits = [combo for n in range(1, len(candidates) + 1) for combo in combinations(candidates, n)
             if (sum(len(m.axes) for m in combo) == used or vendor == "krl" and sum(len(m.axes) for m in combo) > used)

@@ -349,3 +349,16 @@ def test_rapid_move_axes_with_time_round_trip(tmp_path: Path) -> None:
     source.write_text(BOTH.replace("  move joint home ext(rail=0mm)\n", MOVE_AXES.replace("180deg)", "180deg) time 3 s")))
     _round_trip("rapid", source, tmp_path)
     assert re.search(r"(?m)^  move axes pos to \(0deg, 180deg\) time 3 s$", (tmp_path / "both_imported.rmot").read_text())
+
+
+@pytest.mark.parametrize("vendor", ["fanuc", "inform"])
+def test_positioner_declared_before_the_track(vendor: str, tmp_path: Path) -> None:
+    """TP and INFORM write the track with the arm's group (E1, BC) and the positioner in its own
+    (GP2, EC) whatever the cell's order: a cell declaring the positioner first reads the same."""
+    lines = BOTH.splitlines(keepends=True)
+    track = next(k for k, ln in enumerate(lines) if ln.lstrip().startswith("track rail"))
+    robot = lines[track + 1]
+    positioner = lines[track + 2:track + 5]
+    source = tmp_path / "both.rmot"
+    source.write_text("".join(lines[:track] + positioner + [lines[track], robot] + lines[track + 5:]))
+    _round_trip(vendor, source, tmp_path)
