@@ -95,3 +95,9 @@ HANDSHAKE_KEPT_IO = Code("W533", "handshake-kept-io",
                          "a task's use of its \"sync\" signals is not the handshake rmot's backends write (set the "
                          "own output, then wait for the peer's input at the same level, on at odd rounds, off at "
                          "even ones): its sync I/O is kept as plain I/O, not read as barriers")
+# external axes read back (readers/axes.py)
+__all__ += ["AXES_KEPT"]
+AXES_KEPT = Code("W523", "axes-kept",
+                 "a move's external-axis values (RAPID extax, KRL E1..E6, TP E1/GP2, INFORM BC/EC) map to no "
+                 "axes of the cell (no --cell, no mechanism choice fills the slots, or more than one): it is "
+                 "kept native")

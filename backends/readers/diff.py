@@ -16,6 +16,7 @@ from difflib import SequenceMatcher
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, leaves, walk,
 )
+from rmot.backends.readers.axes import slot_change
 from rmot.backends.readers.model import Assign, VarDecl
 from rmot.lang import ir
 
@@ -62,6 +63,9 @@ def _targets(a: Document, b: Document) -> list[str]:
         change = _pose_change(t.pose, other.pose, t.joints, other.joints)
         if change:
             out.append(f"{t.where} -> {other.where}: target {t.name} {change}")
+        axes_change = slot_change(a.vendor, t.slots, other.slots)
+        if axes_change:
+            out.append(f"{t.where} -> {other.where}: target {t.name} {axes_change}")
         if t.config != other.config and t.config is not None and other.config is not None:
             out.append(f"{t.where} -> {other.where}: target {t.name} configuration {t.config} -> {other.config}")
     out += [f"{t.where}: target {t.name} added" for key, t in tb.items() if key not in ta]

@@ -20,7 +20,7 @@ import math
 import re
 
 from rmot.backends.fanuc_tp import FanucBackend
-from rmot.backends.readers import codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
 from rmot.backends.readers.fanuc_text import german_instruction, wait_condition
 from rmot.backends.readers.model import (
@@ -131,9 +131,10 @@ class _Ls:
                                             math.radians(values["W"]), math.radians(values["P"]), math.radians(values["R"]))
                 q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)  # cos(90 deg) noise
                 self.positions[n] = Target(name, ir.Pose(pose.position, q), None,  # type: ignore[arg-type]
-                                           _branch(conf.group(1)) if conf else None, where)
+                                           _branch(conf.group(1)) if conf else None, where, slots=axes_slots.fanuc_slots(m.group(3)))
             elif all(f"J{i}" in values for i in range(1, 7)):
-                self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where)
+                self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where,
+                                           slots=axes_slots.fanuc_slots(m.group(3)))
 
     # ---------------------------------------------------------------- instructions
 

@@ -20,7 +20,7 @@ from functools import partial
 from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
-from rmot.backends.readers import codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
@@ -322,7 +322,7 @@ class _Krl:
                 chosen = numbered(self.tools, self.frames, self.tally, kind, n, None, self.at or Where(self.tally.path, 1))
                 st.tool, st.frame = (chosen, st.frame) if kind == "tool" else (st.tool, chosen)
             return True
-        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
+        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None or axes_slots.krl_setting(st, text)
 
     def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
         """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
@@ -520,7 +520,7 @@ class _Krl:
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=st.vel_cp if kind != "joint" else None, joint_pct=st.vel_ptp if kind == "joint" else None,
                     zone=zone, tool=st.tool, frame=st.frame, config=config,
-                    pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None,
+                    pose=decl.pose if decl else None, joints=decl.joints if decl else None, slots=decl.slots if decl else (),
                     accel=st.acc_cp if kind != "joint" else None, joint_accel=st.acc_ptp if kind == "joint" else None)
 
     def _with(self, word: str, rest: str, where: Where) -> Move | None:
@@ -589,7 +589,7 @@ class _Krl:
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=speed if kind != "joint" else None, joint_pct=vel if kind == "joint" else None,
                     zone=zone, tool=tool, frame=frame, config=config,
-                    pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None)
+                    pose=decl.pose if decl else None, joints=decl.joints if decl else None, slots=decl.slots if decl else ())
 
 
 def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:

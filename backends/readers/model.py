@@ -47,6 +47,9 @@ class Target:
     config: ir.Config | None
     where: Where
     rconf: str | None = None  # an INFORM position's RCONF as written (resolved with the arm: inform_conf)
+    # the external-axis values the vendor writes beside the target, slot by slot (RAPID eax_a..,
+    # KRL E1.., TP E1/GP2 J1..) in mm or deg, None where the slot is unused (readers/axes.py)
+    slots: tuple[float | None, ...] = ()
 
 
 @record(slots=True)
@@ -85,6 +88,13 @@ class Move:
     joints: tuple[float, ...] | None = None
     accel: float | None = None  # mm/s^2, linear and circular moves; None = the controller's own
     joint_accel: float | None = None  # % of each joint's max acceleration (joint moves; TP ACC on any move)
+    slots: tuple[float | None, ...] = ()  # the target's external-axis slot values as written (Target.slots)
+    # the axis values in rmot, per mechanism: (name, `600mm` or `(0deg, 90deg)`), set by
+    # readers/axes.py from `slots` and the cell; printed as `ext(name=value, ...)`
+    ext: tuple[tuple[str, str], ...] = ()
+    slot_pulses: tuple[bool, ...] = ()  # per slot: encoder pulses (an INFORM BC/EC under ///PULSE), not mm or deg
+    via_slots: tuple[float | None, ...] = ()  # a circular via's own slot values where the vendor writes them (INFORM)
+    axes_only: bool = False  # `move axes`: the mechanisms alone (RAPID MoveExtJ), `time` its duration
 
 
 @record(slots=True)
@@ -276,3 +286,4 @@ class Document:
     kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments
     # named loads the files declare (KRL LOAD data): (name, mass kg, centre of mass mm in the flange frame)
     loads: tuple[tuple[str, float, tuple[float, float, float]], ...] = ()
+    mechanisms: tuple[str, ...] = ()  # the cell's track and positioners the program drives (`with`)

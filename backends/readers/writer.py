@@ -254,8 +254,12 @@ class _Printer:
             if value is not None and state.get(key) != value:
                 self.emit(depth, f"{key} {value}")
                 state[key] = value
+        if m.axes_only:
+            self.emit(depth, " ".join(f"move axes {name} to {value}" for name, value in m.ext)
+                      + (f" time {_num(m.time)} s" if m.time is not None else ""))
+            return
         head = f"move circular via {m.via} to {m.target}" if m.kind == "circular" else f"move {m.kind} {m.target}"
-        mods = []
+        mods = [f"ext({', '.join(f'{name}={value}' for name, value in m.ext)})"] if m.ext else []
         if m.config is not None and (m.config.shoulder or m.config.elbow or m.config.wrist or m.config.turns):
             mods.append(f"config({m.config})")
         if m.speed is not None:
@@ -287,7 +291,8 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
         p.emit(0, f"#   {c.path}: {c.imported} instructions imported, {c.native} kept native")
     if use_cell is not None:
         p.emit(0, f"use cell {_quote(use_cell)}")
-    p.emit(0, f"program {rmot_name(doc.name)} on {robot} {{")
+    driven = f" with {', '.join(doc.mechanisms)}" if doc.mechanisms else ""
+    p.emit(0, f"program {rmot_name(doc.name)} on {robot}{driven} {{")
     _declarations_and_body(p, doc, 1)
     p.emit(0, "}")
     if doc.kept:

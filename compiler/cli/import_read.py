@@ -89,6 +89,7 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
     """The files read for one robot: with a cell (`found`: its signals, robot, ir.Cell), named
     signals resolved, tools and payloads matched to that robot's, INFORM configurations solved."""
     from rmot.backends.readers import read_files, span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.axes import resolve_axes  # late: loads numpy only when this runs
     from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import SignalMap, match_tools, resolve_signals  # late: loads numpy only when this runs
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
@@ -99,14 +100,15 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
         model = cell_ir.robot(found[1]).source.ref
     doc = read_files(files, model=model, limits=_joint_limits(model))
     if cell is None or found is None:
-        return doc
+        return resolve_axes(doc, None, "r1", span_of)  # a stub cell declares no mechanism: W523
     signals, robot_name, cell_ir = found
     assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
     doc = resolve_signals(doc, signals, span_of)
     doc = match_tools(doc, tuple((t.name, t.tcp) for t in cell_ir.tools if t.robot == robot_name))
     doc = match_payloads(doc, cell_parts(cell_ir),
                          tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
-    return _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
+    doc = _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
+    return resolve_axes(doc, cell_ir, robot_name, span_of)
 
 
 def refuse_output_input(path: str, inputs: tuple[str, ...]) -> None:
