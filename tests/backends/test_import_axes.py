@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from test_import_round_trip import MAIN_FILE, _compile, _leaves, _same_instruction
+from test_import_round_trip import MAIN_FILE, _angle_deg, _compile, _leaves, _same_instruction
 
 from rmot.compiler.cli import cli
 
@@ -40,21 +40,13 @@ def _import_on_positioner(tmp_path: Path, name: str, text: str) -> str:
     return output
 
 
-def _turn_deg(qa: list[float], qb: list[float]) -> float:
-    """The rotation between two unit quaternions, from the chord (2 atan2(|a - b|, |a + b|),
-    exact near 0 where acos of their dot product is only good to ~0.005 deg at 9 digits)."""
-    sign = 1.0 if sum(x * y for x, y in zip(qa, qb)) >= 0 else -1.0
-    minus = math.sqrt(sum((x - sign * y) ** 2 for x, y in zip(qa, qb)))
-    plus = math.sqrt(sum((x + sign * y) ** 2 for x, y in zip(qa, qb)))
-    return math.degrees(2 * math.atan2(minus, plus))
-
 
 def _same_move(a: dict, b: dict, cycle: float) -> None:
-    """The round-trip harness' comparison, the TCP pose judged here (its orientation by `_turn_deg`)."""
+    """The round-trip harness' comparison, the TCP pose judged here (its orientation by `_angle_deg`)."""
     pa, pb = a["tcp_pose"], b["tcp_pose"]
     if pa is not None and a["kind"] != "move_joint":  # a joint move's target is its joints
         assert math.dist(pa["position_mm"], pb["position_mm"]) <= 0.001, (a["source"], pa, pb)
-        turn = _turn_deg(pa["quaternion_wxyz"], pb["quaternion_wxyz"])
+        turn = _angle_deg(pa["quaternion_wxyz"], pb["quaternion_wxyz"])
         assert turn <= 0.001, (a["source"], turn)
     _same_instruction({**a, "tcp_pose": None}, {**b, "tcp_pose": None}, cycle)
 

@@ -59,7 +59,17 @@ def _compile(source: Path, cell: Path, vendor: str, out: Path) -> dict:
 
 
 def _angle_deg(q1: list[float], q2: list[float]) -> float:
-    return math.degrees(2 * math.acos(min(1.0, abs(sum(a * b for a, b in zip(q1, q2))))))
+    """The rotation between two quaternions as the plan prints them (9 digits, so not quite unit):
+    normalised, then from the chord, 2 atan2(|a - b|, |a + b|) with b's sign taken towards a. The
+    acos of their dot product is good only to ~0.005 deg near 0 at 9 digits, over the 0.001 deg
+    tolerance for two equal orientations."""
+    na, nb = math.hypot(*q1), math.hypot(*q2)
+    a = [x / na for x in q1]
+    sign = 1.0 if sum(x * y for x, y in zip(q1, q2)) >= 0 else -1.0
+    b = [sign * y / nb for y in q2]
+    minus = math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b)))
+    plus = math.sqrt(sum((x + y) ** 2 for x, y in zip(a, b)))
+    return math.degrees(2 * math.atan2(minus, plus))
 
 
 def _same_instruction(a: dict, b: dict, cycle: float) -> None:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from test_import_round_trip import _angle_deg
 
 from rmot.compiler.cli import cli
 from rmot.compiler.frontend import load_program
@@ -34,14 +35,6 @@ def _compile(source: Path, vendor: str, out: Path) -> dict:
     assert result.exit_code in (0, 1), result.output
     return json.loads(next((out / "json").glob("*.json")).read_text())
 
-
-def _angle_deg(q1: list[float], q2: list[float]) -> float:
-    """The rotation between two quaternions (as the plan prints them, to 1e-9), normalised
-    first: acos of a dot product of unit-ish vectors near 1 would be off by ~0.004 deg."""
-    n1, n2 = math.hypot(*q1), math.hypot(*q2)
-    dot = abs(sum(a * b for a, b in zip(q1, q2))) / (n1 * n2)
-    cross = math.sqrt(max(0.0, 1.0 - dot * dot))
-    return math.degrees(2 * math.atan2(cross, dot))
 
 
 def _same_instruction(a: dict, b: dict, cycle: float) -> None:
