@@ -182,6 +182,10 @@ def pose_text(pose: ir.Pose) -> str:
 #   * AInput(Signal) (function AInput): the analog input's current logical value; rmot's
 #     `ain[n]` is in volts, so the signal (default name ai<n>) must be configured with its
 #     logical value in volts (the I/O configuration's default, logical = physical).
+#   * GInput(Signal) (function GInput, RAPID Instructions, Functions and Data types): "reads
+#     the value of a group of digital input signals", a signal of type GI configured as
+#     several inputs, its value the unsigned integer they form (num up to 23 bits, dnum
+#     beyond); rmot's `gin[n]` names the signal from the cell's io line (default gi<n>).
 #   * WaitDI / WaitUntil ...\MaxTime:=T\TimeFlag:=flag (instructions WaitDI, WaitUntil): with
 #     \TimeFlag, running out of time is not an error: the flag is TRUE and execution goes on,
 #     so `IF flag THEN <timeout branch> ENDIF` follows; without \TimeFlag an unhandled
@@ -215,6 +219,7 @@ def _dialect(self: RapidBackend, ctx: RapidContext, span: object) -> _rt.ExprDia
         digital=lambda c: (f"DInput({self._signal(ctx, 'di', c.port, c.signal, span)}) "
                            f"= {int(c.value)}"),
         analog=lambda a: f"AInput({self._signal(ctx, 'ai', a.port, a.signal, span)})",
+        group=lambda g: f"GInput({self._signal(ctx, 'gi', g.port, g.signal, span)})",
         number=lambda v: _rt.trimmed(fmt(v, 6)), compare_binds_tighter=True,
     )
 
