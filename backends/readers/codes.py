@@ -73,3 +73,8 @@ PERSISTENT_VARIABLE = Code("W541", "persistent-variable",
                            "a persistent variable (a KRL .dat variable, a RAPID PERS) the main routine does not set "
                            "first thing is read as a task variable starting at the value the file stores; on the "
                            "controller it starts where the previous run left it")
+__all__ += ["NAME_READ_AS_GROUP_INPUT"]
+NAME_READ_AS_GROUP_INPUT = Code("W534", "name-read-as-group-input",
+                                "a KRL SWITCH or comparison tests a whole number the program neither declares nor "
+                                "assigns (a SIGNAL group or an INT global of $config.dat the PLC or another task "
+                                "sets, such as PGNO): read as the group input gin[n] of that name")

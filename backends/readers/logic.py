@@ -21,7 +21,7 @@ from collections.abc import Callable, Mapping
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally
-from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, VarDecl
+from rmot.backends.readers.model import Assign, Cond, Conds, GroupIn, Stmt, VarDecl
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
@@ -48,10 +48,10 @@ class _Refused(Exception):
 
 class _Parser:
     def __init__(self, tokens: list[str], ops: Mapping[str, tuple[int, str]], names: Mapping[str, tuple[str, str]],
-                 signal: Callable[[list[str], int], tuple[Cond, int] | None], int_division: bool) -> None:
+                 signal: Callable[[list[str], int], tuple[Cond | GroupIn, int] | None], int_division: bool) -> None:
         self.tokens, self.i, self.ops, self.names = tokens, 0, ops, names
         self.signal, self.int_division = signal, int_division
-        self.parts: list[Cond] = []
+        self.parts: list[Cond | GroupIn] = []
 
     def peek(self) -> str:
         return self.tokens[self.i].upper() if self.i < len(self.tokens) else ""
@@ -88,6 +88,7 @@ class _Parser:
         m = re.fullmatch(r"\{(\d+)\}", node[0])
         if m:  # an input condition: its level flips
             cond = self.parts[int(m.group(1))]
+            assert isinstance(cond, Cond)  # a group input's node is an int, refused above
             self.parts[int(m.group(1))] = Cond(cond.signal, not cond.on)
             return node
         return (f"not {_wrap(node, 3)}", "bool", 3)
@@ -129,6 +130,8 @@ class _Parser:
             cond, used = found
             self.i += used
             self.parts.append(cond)
+            if isinstance(cond, GroupIn):  # a group input: an unsigned integer
+                return ("{%d}" % (len(self.parts) - 1), "int", 9)
             return ("{%d}" % (len(self.parts) - 1), "bool", 4)
         self.i += 1
         if token in ("TRUE", "FALSE"):
@@ -148,7 +151,7 @@ def _wrap(node: _Node, floor: int) -> str:
 
 
 def translate(text: str, ops: Mapping[str, tuple[int, str]], names: Mapping[str, tuple[str, str]],
-              signal: Callable[[list[str], int], tuple[Cond, int] | None],
+              signal: Callable[[list[str], int], tuple[Cond | GroupIn, int] | None],
               int_division: bool = False) -> tuple[Conds, str] | None:
     """(Conds "logic", rmot type) of a vendor expression, None when it has no rmot form. `names`:
     upper-case vendor name -> (rmot name, type) of the task variables and constants it may read;
