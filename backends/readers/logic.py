@@ -101,12 +101,30 @@ class _Parser:
             return (f"{_wrap(left, prio)} {op} {_wrap(right, prio + 1)}", "bool", prio)
         if left[1] == "bool" or right[1] == "bool":
             return self.bool_compare(op, left, right)
+        if self.is_group(left) or self.is_group(right):
+            return self.group_compare(op, left, right)
         if op in ("==", "!=", "<", "<=", ">", ">="):
             return (f"{_wrap(left, 5)} {op} {_wrap(right, 5)}", "bool", prio)
         if op == "/" and left[1] == right[1] == "int" and self.int_division:
             raise _Refused("an integer division")
         type_ = "int" if left[1] == right[1] == "int" and op != "/" else "num"
         return (f"{_wrap(left, prio)} {op} {_wrap(right, prio + 1)}", type_, prio)
+
+    def is_group(self, node: _Node) -> bool:
+        m = re.fullmatch(r"\{(\d+)\}", node[0])
+        return m is not None and isinstance(self.parts[int(m.group(1))], GroupIn)
+
+    def group_compare(self, op: str, left: _Node, right: _Node) -> _Node:
+        """A group input compared with a whole number or a variable, the input on the left (rmot
+        reads `gin[n] op value`; `3 < k` is `k > 3`); arithmetic on it, a comparison of two of
+        them or with a fraction (which never equals a whole number: E168) are refused."""
+        if self.is_group(right):
+            left, right, op = right, left, {"<": ">", ">": "<", "<=": ">=", ">=": "<="}.get(op, op)
+        if op not in ("==", "!=", "<", "<=", ">", ">=") or self.is_group(right):
+            raise _Refused("arithmetic on a group input")
+        if right[1] != "int" and re.fullmatch(r"-?[\d.]+(?:e[-+]?\d+)?", right[0]):
+            raise _Refused("a group input compared with a fraction")
+        return (f"{left[0]} {op} {_wrap(right, 5)}", "bool", _RMOT_PRIORITY[op])
 
     def bool_compare(self, op: str, left: _Node, right: _Node) -> _Node:
         """`b == TRUE` is b, `b == FALSE` (or `<> TRUE`) is not b; other comparisons of bools are refused."""
