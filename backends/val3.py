@@ -423,10 +423,8 @@ class Val3Backend(Backend):
                       f"aIn[{e.port}] is declared unlinked; link it to the controller's input in "
                       "the data file", node.span)
             return f"aioGet(aIn[{e.port}])"
-        if isinstance(e, ir.GroupInput):  # VAL3's dio is one bit; no standard type reads a group
-            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be a group of inputs VAL3 "
-                             "reads as one number (its dio reads one bit; a group needs the cell's own "
-                             "fieldbus mapping, which rmot does not write)", node.span)
+        if isinstance(e, ir.GroupInput):  # a group needs the cell's own fieldbus mapping, which rmot does not write
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be inputs VAL3 reads as one number (its dio reads one bit)", node.span)
             return "0"
         if isinstance(e, ir.Not):
             return f"!{self.expr(e.operand, node, ctx, True)}"

@@ -118,7 +118,7 @@ class _Krl:
         self.name = head.group(1)
         taken = {*self.targets, *self.tools, *self.frames, *self.signals}
         self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally,
-                             partial(is_group_input, config_groups=self.config_groups, known={*self.signals, *self.variables, *self.assigned, *self.data}))
+                             partial(is_group_input, self.config_groups, {*self.signals, *self.variables, *self.assigned, *self.data}))
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]

@@ -19,7 +19,8 @@ from rmot.backends.readers.common import MAX_BYTES, number, read_text, rmot_name
 from rmot.backends.readers.krl_text import Line
 from rmot.backends.readers.rapid import num_text
 
-__all__ = ["signals", "port_of", "declared_names", "group_globals", "is_group_input", "config_near", "Params", "signatures", "call_args", "param_names", "switch_cases"]
+__all__ = ["group_globals", "is_group_input"]
+__all__ += ["signals", "port_of", "declared_names", "config_near", "Params", "signatures", "call_args", "param_names", "switch_cases"]
 
 Params = tuple[tuple[str, str], ...]  # (name as written, rmot type "number" or "bool")
 
@@ -47,7 +48,7 @@ def group_globals(text: str) -> set[str]:
     return out
 
 
-def is_group_input(key: str, config_groups: set[str] | None, known: set[str]) -> bool:
+def is_group_input(config_groups: set[str] | None, known: set[str], key: str) -> bool:
     """Whether NAME `key` (upper case), tested as a number, is a group input: the `$config.dat`
     found declares it as one (group_globals), or none was found and the program's own files do
     not know it (`known`: their SIGNALs, declarations, data and the names it assigns)."""

@@ -58,7 +58,7 @@ def test_the_group_reads_as_the_ir_means(vendor: str, pattern: str, priority: di
     group_tokens, digital_tokens = group.split(), digital.split()
     for pgno in range(9):
         for di1 in (False, True):
-            def leaf(tokens: list[str], i: int) -> tuple[object, int]:
+            def leaf(tokens: list[str], i: int, pgno: int = pgno, di1: bool = di1) -> tuple[object, int]:
                 if tokens[i:i + len(digital_tokens)] == digital_tokens:
                     return di1, len(digital_tokens)
                 if tokens[i:i + len(group_tokens)] == group_tokens:
