@@ -145,3 +145,35 @@ def test_with_a_cell_that_does_not_declare_the_group_it_stays_native(tmp_path: P
     assert result.exit_code == 0, result.output
     assert "W513" in result.output and "signal `PGNO` must be declared in the cell" in result.output
     assert "if gin[4] == 2 and in[4] == on {" in out.read_text()
+
+
+RMOT = """cell c {
+  robot r1 = abb_irb1600 at pose(z=400mm)
+  io gin[1] = "pgno" bits 8
+}
+program p on r1 {
+  var n: int = gin[1]
+  if gin[1] == 3 and in[2] {
+    move joint joints(0deg, 0deg, 0deg, 0deg, 30deg, 0deg)
+  }
+  while gin[1] < 2 { wait 0.1s }
+}
+"""
+
+
+def test_rapid_ginput_round_trip(tmp_path: Path) -> None:
+    """rmot's gin[1] is written `GInput(pgno)` (function GInput on the GI signal the cell names)
+    and read back as the group input of that name, in the same conditions."""
+    (tmp_path / "p.rmot").write_text(RMOT)
+    result = CliRunner().invoke(cli, ["compile", str(tmp_path / "p.rmot"), "--target", "rapid", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    module = tmp_path / "out" / "rapid" / "p.mod"
+    assert "IF GInput(pgno) = 3 AND DInput(di2) = 1 THEN" in module.read_text()
+    back = tmp_path / "back.rmot"
+    result = CliRunner().invoke(cli, ["import", str(module), "-o", str(back)])
+    assert result.exit_code == 0, result.output
+    text = back.read_text()
+    assert "n = gin[1]" in text and "if gin[1] == 3 and in[2] == on {" in text and "while gin[1] < 2 {" in text
+    assert 'io gin[1] = "pgno" on r1' in (tmp_path / "back_cell.rmot").read_text()
+    check = CliRunner().invoke(cli, ["check", str(back)])
+    assert check.exit_code == 0, check.output
