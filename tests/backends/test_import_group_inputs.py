@@ -177,3 +177,37 @@ def test_rapid_ginput_round_trip(tmp_path: Path) -> None:
     assert 'io gin[1] = "pgno" on r1' in (tmp_path / "back_cell.rmot").read_text()
     check = CliRunner().invoke(cli, ["check", str(back)])
     assert check.exit_code == 0, check.output
+
+
+FANUC = """cell c {
+  robot r1 = fanuc_m10ia
+  io gin[1] = "pgno" bits 8
+}
+program p on r1 {
+  if gin[1] == 3 {
+    move joint joints(0deg, 0deg, 0deg, 0deg, 30deg, 0deg)
+  } else {
+    move joint joints(10deg, 0deg, 0deg, 0deg, 30deg, 0deg)
+  }
+  if gin[1] >= 5 { wait 1s }
+  wait until gin[1] > 0
+}
+"""
+
+
+def test_fanuc_gi_round_trip(tmp_path: Path) -> None:
+    """`IF GI[1:pgno]<>3,JMP LBL[a]` skips the then arm when the test holds: read back as the
+    negated test, `gin[1] == 3`; `WAIT GI[1:pgno]>0` as a wait on it."""
+    (tmp_path / "p.rmot").write_text(FANUC)
+    result = CliRunner().invoke(cli, ["compile", str(tmp_path / "p.rmot"), "--target", "fanuc", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    tp = tmp_path / "out" / "fanuc" / "P.ls"
+    assert "IF GI[1:pgno]<>3,JMP LBL[1]" in tp.read_text() and "IF GI[1:pgno]<5,JMP LBL[3]" in tp.read_text()
+    back = tmp_path / "back.rmot"
+    result = CliRunner().invoke(cli, ["import", str(tp), "-o", str(back)])
+    assert result.exit_code == 0, result.output
+    conditions = [line.strip() for line in back.read_text().splitlines() if "gin[" in line]
+    assert conditions == ["if gin[1] == 3 {", "if gin[1] >= 5 {", "wait until gin[1] > 0"]
+    assert "0 kept native" in result.output
+    check = CliRunner().invoke(cli, ["check", str(back)])
+    assert check.exit_code == 0, check.output
