@@ -101,3 +101,12 @@ def test_rapid_names_an_unnamed_group_gi_n() -> None:
     cond = ir.Compare(ir.CompareOp.EQ, ir.GroupInput(port=2), ir.Const(3, INT))
     text = "\n".join(_emit("rapid", cond).files.values())
     assert "IF GInput(gi2) = 3 THEN" in text
+
+
+@pytest.mark.parametrize(("bits", "refused"), [(23, False), (24, True), (None, False)])
+def test_rapid_refuses_a_group_wider_than_ginput_reads(bits: int | None, refused: bool) -> None:
+    """GInput reads up to 23 bits into a num (RAPID Instructions, Functions and Data types,
+    "GInput"; GInputDnum beyond, which rmot does not write)."""
+    cond = ir.Compare(ir.CompareOp.EQ, ir.GroupInput(port=1, signal="pgno", bits=bits), ir.Const(3, INT))
+    errors = [d for d in _emit("rapid", cond).diagnostics if d.is_error]
+    assert bool(errors) is refused and all(d.code.id == "E430" and "23 bits" in d.message for d in errors)
