@@ -30,7 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_names import (
-    call_args, config_near, declared_names, group_globals, is_group_input, param_names, port_of, signals, signatures, switch_cases,
+    call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases,
 )
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
@@ -56,7 +56,7 @@ class _Krl:
         texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
         self.signals = {k: v for text in texts for k, v in signals(text).items()}
         self.variables = set().union(*(declared_names(text) for text in texts))
-        self.config_groups = group_globals(config[1]) if config is not None else None  # None: no $config.dat read
+        self.config_groups = group_names(config, texts)  # None: no $config.dat read
         self.inputs_named: set[str] = set()  # names read as inputs (W521 at the first use)
         self.signatures = signatures(self.lines)
         self.params: dict[str, tuple[str, str]] = {}  # the parameters of the routine being read

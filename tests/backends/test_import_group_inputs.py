@@ -98,6 +98,14 @@ def test_a_signal_group_in_config_dat_is_a_group_input(tmp_path: Path) -> None:
     assert 'io gin[1] = "pgno" on r1' in cell and "gin[2]" not in cell
 
 
+def test_a_signal_group_of_the_program_itself_is_a_group_input(tmp_path: Path) -> None:
+    """A SIGNAL group the .src declares is read as the group input even where the $config.dat
+    found does not know it."""
+    src = SRC.replace("  INT i\n", "  INT i\n  SIGNAL nStation $IN[17] TO $IN[20]\n")
+    _, cell, _ = _program(tmp_path, src=src, config="DEFDAT $CONFIG\nDECL INT PGNO=0\nENDDAT\n")
+    assert 'io gin[1] = "pgno" on r1' in cell and 'io gin[2] = "nstation" on r1' in cell
+
+
 def test_what_has_no_gin_form_stays_native(tmp_path: Path) -> None:
     """A fraction never equals a whole number; arithmetic on a group input or two compared have
     no `gin[n] op value` form; a name the program declares is a variable, not an input."""
