@@ -101,3 +101,8 @@ AXES_KEPT = Code("W523", "axes-kept",
                  "a move's external-axis values (RAPID extax, KRL E1..E6, TP E1/GP2, INFORM BC/EC) map to no "
                  "axes of the cell (no --cell, no mechanism choice fills the slots, or more than one): it is "
                  "kept native")
+__all__ += ["NAME_READ_AS_GROUP_INPUT"]
+NAME_READ_AS_GROUP_INPUT = Code("W534", "name-read-as-group-input",
+                                "a KRL SWITCH or comparison tests a whole number the program neither declares nor "
+                                "assigns (a SIGNAL group or an INT global of $config.dat the PLC or another task "
+                                "sets, such as PGNO): read as the group input gin[n] of that name")

@@ -17,7 +17,7 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, leaves, walk,
 )
 from rmot.backends.readers.axes import slot_change
-from rmot.backends.readers.model import Assign, VarDecl
+from rmot.backends.readers.model import Assign, GroupIn, VarDecl
 from rmot.lang import ir
 
 __all__ = ["diff_documents", "TOLERANCE_MM", "TOLERANCE_DEG"]
@@ -102,7 +102,9 @@ def _inputs(c: Cond | Conds) -> str:
     return " ".join(str(leaf.signal) for leaf in leaves(c))
 
 
-def _levels(c: Cond | Conds) -> str:
+def _levels(c: Cond | Conds | GroupIn) -> str:
+    if isinstance(c, GroupIn):
+        return f"gin {c.signal}"
     if isinstance(c, Cond):
         return "on" if c.on else "off"
     if c.op == "expr":

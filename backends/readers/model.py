@@ -127,6 +127,13 @@ class Cond:
 
 
 @record(slots=True)
+class GroupIn:
+    """A group input read as one unsigned integer (`gin[n]`): a part of a "logic" Conds."""
+
+    signal: Signal
+
+
+@record(slots=True)
 class Conds:
     """Input conditions combined: `op` "and"/"or" over two or more parts, or "not" over one; or
     `op` "expr": a test the compiler decides, `text` in rmot (a proc parameter's `k == 3`), no parts;
@@ -134,13 +141,22 @@ class Conds:
     `{0}`, `{1}`, ... where the input conditions `parts` are written (logic.py)."""
 
     op: str
-    parts: tuple[Cond | Conds, ...]
+    parts: tuple[Cond | Conds | GroupIn, ...]
     text: str = ""
 
 
-def leaves(c: Cond | Conds) -> list[Cond]:
+def leaves(c: Cond | Conds | GroupIn) -> list[Cond]:
     """The input conditions a condition reads, left to right."""
+    if isinstance(c, GroupIn):
+        return []
     return [c] if isinstance(c, Cond) else [leaf for part in c.parts for leaf in leaves(part)]
+
+
+def group_reads(c: Cond | Conds | GroupIn) -> list[GroupIn]:
+    """The group inputs a condition or a value reads, left to right."""
+    if isinstance(c, Cond):
+        return []
+    return [c] if isinstance(c, GroupIn) else [g for part in c.parts for g in group_reads(part)]
 
 
 @record(slots=True)

@@ -18,7 +18,7 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While, leaves, walk,
 )
-from rmot.backends.readers.model import Assign, VarDecl
+from rmot.backends.readers.model import Assign, GroupIn, VarDecl, group_reads
 from rmot.backends.readers.model import Sync
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.lang import ir
@@ -40,6 +40,7 @@ class SignalMap:
     outputs: tuple[tuple[str, int], ...] = ()
     inputs: tuple[tuple[str, int], ...] = ()
     analog: tuple[tuple[str, int], ...] = ()
+    groups: tuple[tuple[str, int], ...] = ()  # group inputs gin[n]
 
     def port(self, kind: str, signal: Signal) -> int | None:
         if isinstance(signal, int):
@@ -47,7 +48,7 @@ class SignalMap:
         table = dict(getattr(self, kind))
         if signal.upper() in table:
             return int(table[signal.upper()])
-        prefix = {"outputs": "DO", "inputs": "DI", "analog": "AO"}[kind]
+        prefix = {"outputs": "DO", "inputs": "DI", "analog": "AO", "groups": "GI"}[kind]
         m = re.fullmatch(prefix + r"_?(\d+)", signal.upper())  # rmot's own generic names (do1, di2)
         return int(m.group(1)) if m else None
 
@@ -57,10 +58,9 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
         return [("analog" if s.analog else "outputs", s.signal)]
     if isinstance(s, Pulse):
         return [("outputs", s.signal)]
-    if isinstance(s, (WaitIn, If, While)):
-        return [("inputs", c.signal) for c in leaves(s.cond)]
-    if isinstance(s, (VarDecl, Assign)):
-        return [("inputs", c.signal) for c in leaves(s.init if isinstance(s, VarDecl) else s.value)]
+    if isinstance(s, (WaitIn, If, While, VarDecl, Assign)):
+        value = s.cond if isinstance(s, (WaitIn, If, While)) else s.init if isinstance(s, VarDecl) else s.value
+        return [("inputs", c.signal) for c in leaves(value)] + [("groups", g.signal) for g in group_reads(value)]
     return []
 
 
@@ -70,7 +70,7 @@ signal_uses = _signal_uses  # (kind, signal) of each signal a statement sets or 
 def stub_signals(doc: Document) -> SignalMap:
     """Ports for a cell stub: numbered signals keep their port; named ones take the free ports
     1, 2, ... of their kind in order of first use."""
-    named: dict[str, dict[str, int]] = {"outputs": {}, "inputs": {}, "analog": {}}
+    named: dict[str, dict[str, int]] = {"outputs": {}, "inputs": {}, "analog": {}, "groups": {}}
     used: dict[str, set[int]] = {k: set() for k in named}
     uses = [u for r in doc.routines for s in walk(r.body) for u in _signal_uses(s)]
     for kind, sig in uses:
@@ -83,7 +83,7 @@ def stub_signals(doc: Document) -> SignalMap:
                 n += 1
             used[kind].add(n)
             named[kind][sig.upper()] = n
-    return SignalMap(*(tuple(named[k].items()) for k in ("outputs", "inputs", "analog")))
+    return SignalMap(*(tuple(named[k].items()) for k in ("outputs", "inputs", "analog", "groups")))
 
 
 def map_leaves(body: tuple[Stmt, ...], fn: Callable[[Stmt], Stmt]) -> tuple[Stmt, ...]:
@@ -237,7 +237,9 @@ class _Printer:
                 self.body(s.orelse, depth + 1, state)
         self.emit(depth, "}")
 
-    def cond(self, c: Cond | Conds) -> str:
+    def cond(self, c: Cond | Conds | GroupIn) -> str:
+        if isinstance(c, GroupIn):
+            return f"gin[{self.signals.port('groups', c.signal)}]"
         if isinstance(c, Cond):
             return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
         if c.op == "expr":
@@ -341,7 +343,7 @@ def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") 
         lines.append(f"  tool {rmot_name(t.name)} = none tcp {pose_expr(t.tcp)} mass {_num(t.mass)} kg on {robot}")
     for f in doc.frames:
         lines.append(f"  frame {rmot_name(f.name)} = {pose_expr(f.pose)}")
-    for kind, word in (("outputs", "out"), ("inputs", "in"), ("analog", "aout")):
+    for kind, word in (("outputs", "out"), ("inputs", "in"), ("analog", "aout"), ("groups", "gin")):
         for name, port in getattr(signals, kind):
             lines.append(f"  io {word}[{port}] = {_quote(name.lower())} on {robot}")
     lines.append("}")

@@ -76,8 +76,9 @@ def cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object
     chosen = robot or names[0]
     if chosen not in names:
         return f"rmot: --robot must name a robot of the cell ({', '.join(names)}; got {chosen})"
-    kinds = {ir.IoDirection.DIGITAL_OUT: 0, ir.IoDirection.DIGITAL_IN: 1, ir.IoDirection.ANALOG_OUT: 2}
-    tables: list[list[tuple[str, int]]] = [[], [], []]
+    kinds = {ir.IoDirection.DIGITAL_OUT: 0, ir.IoDirection.DIGITAL_IN: 1, ir.IoDirection.ANALOG_OUT: 2,
+             ir.IoDirection.GROUP_IN: 3}
+    tables: list[list[tuple[str, int]]] = [[], [], [], []]
     for s in result.cell.io:
         if s.direction in kinds and s.robot in (None, chosen):
             tables[kinds[s.direction]].append((s.name.upper(), s.port))
