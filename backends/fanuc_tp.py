@@ -590,6 +590,11 @@ class FanucBackend(Backend):
                              "controller's raw A/D counts on Fanuc (AI[n] holds counts, not volts; got a "
                              "value in volts)", node.span)
             return [], f"AI[{e.port}{_sig(e.signal)}]"
+        if isinstance(e, ir.GroupInput):
+            # GI[n]: the group's inputs read as one unsigned integer, a value an IF compares
+            # and a register takes (FANUC B-83284EN §4.3 "Group I/O", §4.15 IF "(variable)
+            # (operator) (value)", variable: R[i] or an I/O such as GI[i])
+            return [], f"GI[{e.port}{_sig(e.signal)}]"
         if isinstance(e, ir.Arith):
             lines, a = self._operand(e.left, ctx, node)
             more, b = self._operand(e.right, ctx, node)
@@ -615,7 +620,7 @@ class FanucBackend(Backend):
         if isinstance(left, ir.Const) and not isinstance(right, ir.Const):  # register on the left
             op, left, right = op.mirrored(), right, left
         lines: list[str] = []
-        if isinstance(left, (ir.VarRef, ir.AnalogInput)):
+        if isinstance(left, (ir.VarRef, ir.AnalogInput, ir.GroupInput)):
             a = self._operand(left, ctx, node)[1]
         else:
             lines, value = self._operand(left, ctx, node)

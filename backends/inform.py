@@ -595,6 +595,10 @@ class InformBackend(Backend):
             more, b = self._value(e.right, ctx, node)
             t = self._temp(e.type, ctx, node.span)
             return lines + more + [f"SET {t} {a}", f"{_INFORM_OP[e.op]} {t} {b}"], t
+        if isinstance(e, ir.GroupInput):  # IN B<n> IG#(g) reads a byte; rmot does not write byte variables
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be read into a byte variable "
+                             "(INFORM IN B<n> IG#(g)), which rmot does not write", node.span)
+            return [], "0"
         if isinstance(e, ir.AnalogInput):
             self.unsupported(codes.LOGIC_UNSUPPORTED, f"analog input ain[{e.port}] must be "
                              "readable by a job (INFORM reads analog inputs only through the "

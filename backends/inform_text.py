@@ -125,6 +125,8 @@ def _value_type(e: ir.RtExpr) -> ir.ValueType:
         return e.type
     if isinstance(e, ir.AnalogInput):
         return ir.ValueType.NUM
+    if isinstance(e, ir.GroupInput):
+        return ir.ValueType.INT
     return ir.ValueType.BOOL
 
 

@@ -179,9 +179,21 @@ def _krl_dialect(self: KrlBackend, ctx: KrlContext, span: object) -> _rt.ExprDia
         self.port_ok(c.port, "digital input", span)  # type: ignore[arg-type]
         return f"$IN[{c.port}]=={self._level(c.value)}"
 
+    def group(g: ir.GroupInput) -> str:
+        # KRL reads a group of inputs by the name of a SIGNAL declaration (`SIGNAL PGNO_IN
+        # $IN[33] TO $IN[40]`, read as an INT: KSS 8.x Programming for System Integrators,
+        # "SIGNAL") or of an INT global the cell program fills from it (PGNO): either way a
+        # name the controller's $CONFIG.DAT declares, which only the cell's io line gives.
+        if g.signal is None:
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{g.port}] must be named by the cell "
+                             f"(io gin[{g.port}] = \"NAME\"): KRL reads a group of inputs by its "
+                             "SIGNAL name declared in $CONFIG.DAT", span)  # type: ignore[arg-type]
+            return "0"
+        return ctx.names.name(g.signal)
+
     return _rt.ExprDialect(
         true="TRUE", false="FALSE", and_="AND", or_="OR", not_="NOT ", compare=_KRL_COMPARE,
-        var=lambda v: ctx.names.name(v.name), digital=digital, analog=analog,
+        var=lambda v: ctx.names.name(v.name), digital=digital, analog=analog, group=group,
         real_division=lambda a, b: f"({a}*1.0)/{b}", number=lambda v: _rt.trimmed(fmt(v, 6)),
     )
 

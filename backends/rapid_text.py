@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from typing import Any, TYPE_CHECKING
 
-from rmot.backends import runtime as _rt
+from rmot.backends import codes, runtime as _rt
 from rmot.backends.base import axis_quadrant, fmt, fmt_list, position_mm
 from rmot.backends.names import NameRules
 from rmot.lang import ir
@@ -182,6 +182,11 @@ def pose_text(pose: ir.Pose) -> str:
 #   * AInput(Signal) (function AInput): the analog input's current logical value; rmot's
 #     `ain[n]` is in volts, so the signal (default name ai<n>) must be configured with its
 #     logical value in volts (the I/O configuration's default, logical = physical).
+#   * GInput(Signal) (function GInput, RAPID Instructions, Functions and Data types): "reads
+#     the value of a group of digital input signals", a signal of type GI configured as
+#     several inputs, its value the unsigned integer they form, a num for up to 23 bits
+#     (GInputDnum beyond, a dnum rmot does not write: a wider group is refused, E430);
+#     rmot's `gin[n]` names the signal from the cell's io line (default gi<n>).
 #   * WaitDI / WaitUntil ...\MaxTime:=T\TimeFlag:=flag (instructions WaitDI, WaitUntil): with
 #     \TimeFlag, running out of time is not an error: the flag is TRUE and execution goes on,
 #     so `IF flag THEN <timeout branch> ENDIF` follows; without \TimeFlag an unhandled
@@ -208,6 +213,16 @@ def _offs(ctx: RapidContext, node: ir.Move, role: str, name: str) -> str:
     return f"Offs({name},{','.join(terms)})"
 
 
+GINPUT_BITS = 23  # GInput reads a GI signal of up to 23 bits into a num (GInputDnum beyond)
+
+
+def _group(self: RapidBackend, ctx: RapidContext, g: ir.GroupInput, span: object) -> str:
+    if g.bits is not None and g.bits > GINPUT_BITS:
+        self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{g.port}] must be at most {GINPUT_BITS} bits for "
+                         f"GInput, a num (got {g.bits} bits)", span)  # type: ignore[arg-type]
+    return f"GInput({self._signal(ctx, 'gi', g.port, g.signal, span)})"
+
+
 def _dialect(self: RapidBackend, ctx: RapidContext, span: object) -> _rt.ExprDialect:
     return _rt.ExprDialect(
         true="TRUE", false="FALSE", and_="AND", or_="OR", not_="NOT ", compare=_RAPID_COMPARE,
@@ -215,6 +230,7 @@ def _dialect(self: RapidBackend, ctx: RapidContext, span: object) -> _rt.ExprDia
         digital=lambda c: (f"DInput({self._signal(ctx, 'di', c.port, c.signal, span)}) "
                            f"= {int(c.value)}"),
         analog=lambda a: f"AInput({self._signal(ctx, 'ai', a.port, a.signal, span)})",
+        group=lambda g: _group(self, ctx, g, span),
         number=lambda v: _rt.trimmed(fmt(v, 6)), compare_binds_tighter=True,
     )
 

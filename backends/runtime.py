@@ -53,6 +53,7 @@ class ExprDialect:
     var: Callable[[ir.VarRef], str]
     digital: Callable[[ir.InputCondition], str]  # the whole test `DInput(di1) = 1`
     analog: Callable[[ir.AnalogInput], str]  # the value in volts
+    group: Callable[[ir.GroupInput], str]  # the group's unsigned integer (or a refusal, then "0")
     real_division: Callable[[str, str], str] = lambda a, b: f"{a} / {b}"  # a/b of two INTs
     number: Callable[[float], str] = lambda v: repr(float(v))
     # comparisons bind tighter than and/or (RAPID, URScript): written bare inside and/or
@@ -78,6 +79,8 @@ def expr_text(e: Any, d: ExprDialect) -> str:
         return d.digital(e)
     if isinstance(e, ir.AnalogInput):
         return d.analog(e)
+    if isinstance(e, ir.GroupInput):
+        return d.group(e)
     if isinstance(e, ir.Arith):
         left, right = _operand(e.left, d), _operand(e.right, d)
         if e.op == "/" and is_int(e.left) and is_int(e.right):

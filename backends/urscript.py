@@ -511,9 +511,18 @@ def _ur_dialect(self: UrScriptBackend, ctx: UrContext, span: object) -> _rt.Expr
     def digital(c: ir.InputCondition) -> str:
         return self.condition(c, span) or "False"
 
+    def group(g: ir.GroupInput) -> str:
+        # URScript reads digital inputs one by one (get_standard_digital_in); its integer
+        # input registers (read_input_integer_register) are fieldbus/RTDE registers another
+        # device writes, not inputs wired as a group: neither is what gin[n] reads.
+        self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{g.port}] must be a group of digital inputs "
+                         "URScript can read as one integer (it has none: its integer input registers "
+                         "are fieldbus/RTDE registers, not wired inputs)", span)  # type: ignore[arg-type]
+        return "0"
+
     return _rt.ExprDialect(
         true="True", false="False", and_="and", or_="or", not_="not ", compare=_UR_COMPARE,
-        var=lambda v: _uname(ctx, v.name), digital=digital, analog=analog,
+        var=lambda v: _uname(ctx, v.name), digital=digital, analog=analog, group=group,
         real_division=lambda a, b: f"({a} * 1.0) / {b}", number=lambda v: _rt.trimmed(fmt(v, 6)),
     )
 

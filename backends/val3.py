@@ -423,6 +423,9 @@ class Val3Backend(Backend):
                       f"aIn[{e.port}] is declared unlinked; link it to the controller's input in "
                       "the data file", node.span)
             return f"aioGet(aIn[{e.port}])"
+        if isinstance(e, ir.GroupInput):  # a group needs the cell's own fieldbus mapping, which rmot does not write
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be inputs VAL3 reads as one number (its dio reads one bit)", node.span)
+            return "0"
         if isinstance(e, ir.Not):
             return f"!{self.expr(e.operand, node, ctx, True)}"
         if isinstance(e, ir.Arith):

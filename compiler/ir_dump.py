@@ -73,7 +73,8 @@ def dump_cell(cell: ir.Cell) -> str:
         lines.append(f"  frame {fr.name} {_pose(fr.pose)}" + (f" number={fr.number}" if fr.number is not None else ""))
     for s in cell.io:
         owner = f" on {s.robot}" if s.robot else ""
-        lines.append(f"  io {s.direction.name.lower()}[{s.port}] {json.dumps(s.name)}{owner}")
+        bits = f" bits={s.bits}" if s.bits is not None else ""
+        lines.append(f"  io {s.direction.name.lower()}[{s.port}] {json.dumps(s.name)}{bits}{owner}")
     return "\n".join(lines)
 
 
@@ -113,6 +114,8 @@ def rt_text(e: ir.RtExpr) -> str:
         return e.name
     if isinstance(e, ir.AnalogInput):
         return f"ain[{e.port}]"
+    if isinstance(e, ir.GroupInput):
+        return f"gin[{e.port}]"
     if isinstance(e, ir.InputCondition):
         return f"in[{e.port}] == {'on' if e.value else 'off'}"
     if isinstance(e, ir.Arith):

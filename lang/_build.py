@@ -214,8 +214,8 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
         return ast.FrameDecl(self._ident(c[1], "frame"), c[3], self._span(c), number)
 
     def io_decl(self, c: list[Any]) -> ast.IoDecl:
-        robot = self._ident(c[5]) if c[5] is not None else None
-        return ast.IoDecl(c[1], self._string(c[3]), robot, self._span(c))
+        robot = self._ident(c[7]) if c[7] is not None else None
+        return ast.IoDecl(c[1], self._string(c[3]), robot, self._span(c), c[5])
 
     # -- program declarations
     def target_decl(self, c: list[Any]) -> ast.TargetDecl:

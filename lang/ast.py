@@ -215,7 +215,7 @@ class FrameDecl:
 
 @record(slots=True)
 class IoRef:
-    kind: str  # in | out | ain | aout
+    kind: str  # in | out | ain | aout | gin
     index: Expr
     span: Span = _span()
 
@@ -226,6 +226,7 @@ class IoDecl:
     signal: String
     robot: Ident | None
     span: Span = _span()
+    bits: Expr | None = None  # `bits B`: a group input's width (gin[n] reads 0..2^B-1)
 
 
 @record(slots=True)

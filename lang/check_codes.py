@@ -227,3 +227,20 @@ ADD_ACCEL_ESTIMATED = Code(
 )
 
 __all__ += ["ADD_ACCEL_ESTIMATED", "ADD_BAD_FIELD", "ADD_NOT_OPW", "ADD_NO_SOURCE", "ADD_UNREADABLE"]
+
+# Group inputs: `gin[n]`, several digital inputs read as one unsigned integer.
+GROUP_INPUT_WIDTH = Code(
+    "E166", "group-input-width", "'bits B' on an io line: B must be an integer 1..32, on gin[n] only"
+)
+GROUP_INPUT_WRITTEN = Code(
+    "E167", "group-input-written", "set or pulse of gin[n]: a group input is read, never written"
+)
+GROUP_INPUT_NOT_INTEGER = Code(
+    "E168", "group-input-not-integer", "gin[n] compared with a number that is not a whole number"
+)
+GROUP_INPUT_RANGE = Code(
+    "W152", "group-input-range",
+    "gin[n] compared with a value outside 0..2^bits-1: the comparison never or always holds",
+)
+
+__all__ += ["GROUP_INPUT_WIDTH", "GROUP_INPUT_WRITTEN", "GROUP_INPUT_NOT_INTEGER", "GROUP_INPUT_RANGE"]

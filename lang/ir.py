@@ -47,7 +47,7 @@ __all__ = [
     "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
     "WaitTime", "Wrist", "Zone", "payload_cog",
     "Attach", "Detach", "Part",
-    "AnalogInput", "Arith", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
+    "AnalogInput", "Arith", "GroupInput", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
     "Loop", "LoopIteration", "Not", "RtExpr", "Stop", "ValueType", "VarDecl", "VarRef",
     "WaitCondition", "While",
     "FreeMotion",
@@ -306,6 +306,7 @@ class IoDirection(Enum):
     DIGITAL_IN = auto()
     ANALOG_OUT = auto()
     ANALOG_IN = auto()
+    GROUP_IN = auto()  # gin[n]: several digital inputs read as one unsigned integer
 
 
 @record(slots=True)
@@ -315,6 +316,7 @@ class IoSignal:
     name: str  # the controller's signal name, e.g. "gripper_close"
     robot: str | None
     span: Span | None = _span_field()
+    bits: int | None = None  # a group input's width (`bits B`): it reads 0..2^B-1
 
 
 @record(slots=True)
@@ -676,6 +678,16 @@ class AnalogInput:
 
 
 @record(slots=True)
+class GroupInput:
+    """`gin[port]`: a group of digital inputs read as one unsigned integer (INT), e.g. the
+    program number a PLC sends; `bits` is its width when the cell gives it."""
+
+    port: int
+    signal: str | None = None
+    bits: int | None = None
+
+
+@record(slots=True)
 class Arith:
     """`left op right`, op one of + - * / ; type INT unless an operand is NUM or op is '/'."""
 
@@ -707,7 +719,7 @@ class Not:
 
 # A value computed at runtime; `InputCondition` (a digital input tested against on/off) is the
 # BOOL leaf every backend already writes, so a plain `if in[1] == on` lowers exactly as before.
-RtExpr = Union[Const, VarRef, AnalogInput, Arith, Compare, Logic, Not, InputCondition]
+RtExpr = Union[Const, VarRef, AnalogInput, GroupInput, Arith, Compare, Logic, Not, InputCondition]
 Condition = Union[InputCondition, Compare, Logic, Not, VarRef, Const]
 
 

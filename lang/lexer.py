@@ -48,7 +48,7 @@ AXIS_CONTINUES = re.compile(r"\s*(?:speed|accel|inform|solid|mass|on)(?![A-Za-z0
 # `on NAME` continues a robot, fixture or tool declaration on the next line (no statement starts with it).
 MOUNT_CONTINUES = re.compile(r"\s*on(?![A-Za-z0-9_])")
 _STATEMENT_BOUNDS = frozenset({"_NL", "LBRACE", "RBRACE"})
-_WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout"})))
+_WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout", "gin"})))
 
 
 class TokenKinds:

@@ -74,6 +74,39 @@ PERSISTENT_VARIABLE = Code("W541", "persistent-variable",
                            "first thing is read as a task variable starting at the value the file stores; on the "
                            "controller it starts where the previous run left it")
 
+# several robots' programs read into one program with a task per robot (tasks.py)
+__all__ += ["TASK_SPEC_INVALID", "BARRIER_TASK_UNKNOWN", "BARRIER_ONE_SIDED", "BARRIER_NAMES_DIFFER",
+            "HANDSHAKE_KEPT_IO"]
+TASK_SPEC_INVALID = Code("E523", "task-spec-invalid",
+                         "a `--task ROBOT=FILE` of `rmot import` names no robot of the cell, gives a file twice, or "
+                         "is given without --cell or with plain FILE arguments; or plain FILE arguments are several "
+                         "tasks' RAPID programs (two define PROC main)")
+BARRIER_TASK_UNKNOWN = Code("E524", "barrier-task-unknown",
+                            "a RAPID WaitSyncTask's task list names a task that is not imported (the k-th robot of "
+                            "--task is task T_ROBk, or the name --task ROBOT:NAME=FILE gives), or leaves out the "
+                            "task that waits")
+BARRIER_ONE_SIDED = Code("W531", "barrier-one-sided",
+                         "a barrier one task passes and a peer it waits for lacks (or passes a different number "
+                         "of handshakes): it is not read as `sync` but kept as it is written")
+BARRIER_NAMES_DIFFER = Code("W532", "barrier-names-differ",
+                            "the tasks' files name the k-th handshake barrier differently: the first task's name "
+                            "is used")
+HANDSHAKE_KEPT_IO = Code("W533", "handshake-kept-io",
+                         "a task's use of its \"sync\" signals is not the handshake rmot's backends write (set the "
+                         "own output, then wait for the peer's input at the same level, on at odd rounds, off at "
+                         "even ones): its sync I/O is kept as plain I/O, not read as barriers")
+# external axes read back (readers/axes.py)
+__all__ += ["AXES_KEPT"]
+AXES_KEPT = Code("W523", "axes-kept",
+                 "a move's external-axis values (RAPID extax, KRL E1..E6, TP E1/GP2, INFORM BC/EC) map to no "
+                 "axes of the cell (no --cell, no mechanism choice fills the slots, or more than one): it is "
+                 "kept native")
+__all__ += ["NAME_READ_AS_GROUP_INPUT"]
+NAME_READ_AS_GROUP_INPUT = Code("W534", "name-read-as-group-input",
+                                "a KRL SWITCH or comparison tests a whole number the program neither declares nor "
+                                "assigns (a SIGNAL group or an INT global of $config.dat the PLC or another task "
+                                "sets, such as PGNO): read as the group input gin[n] of that name")
+
 # KRL motion settings after a routine the import does not read
 __all__ += ["SETTINGS_AFTER_CALL"]
 SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",

@@ -16,7 +16,8 @@ from difflib import SequenceMatcher
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, leaves, walk,
 )
-from rmot.backends.readers.model import Assign, VarDecl
+from rmot.backends.readers.axes import slot_change
+from rmot.backends.readers.model import Assign, GroupIn, VarDecl
 from rmot.lang import ir
 
 __all__ = ["diff_documents", "TOLERANCE_MM", "TOLERANCE_DEG"]
@@ -62,6 +63,9 @@ def _targets(a: Document, b: Document) -> list[str]:
         change = _pose_change(t.pose, other.pose, t.joints, other.joints)
         if change:
             out.append(f"{t.where} -> {other.where}: target {t.name} {change}")
+        axes_change = slot_change(a.vendor, t.slots, other.slots)
+        if axes_change:
+            out.append(f"{t.where} -> {other.where}: target {t.name} {axes_change}")
         if t.config != other.config and t.config is not None and other.config is not None:
             out.append(f"{t.where} -> {other.where}: target {t.name} configuration {t.config} -> {other.config}")
     out += [f"{t.where}: target {t.name} added" for key, t in tb.items() if key not in ta]
@@ -98,7 +102,9 @@ def _inputs(c: Cond | Conds) -> str:
     return " ".join(str(leaf.signal) for leaf in leaves(c))
 
 
-def _levels(c: Cond | Conds) -> str:
+def _levels(c: Cond | Conds | GroupIn) -> str:
+    if isinstance(c, GroupIn):
+        return f"gin {c.signal}"
     if isinstance(c, Cond):
         return "on" if c.on else "off"
     if c.op == "expr":

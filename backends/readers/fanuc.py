@@ -20,9 +20,9 @@ import math
 import re
 
 from rmot.backends.fanuc_tp import FanucBackend
-from rmot.backends.readers import codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
-from rmot.backends.readers.fanuc_text import german_instruction, wait_condition
+from rmot.backends.readers.fanuc_text import german_instruction, group_test, wait_condition
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Native, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
@@ -131,9 +131,10 @@ class _Ls:
                                             math.radians(values["W"]), math.radians(values["P"]), math.radians(values["R"]))
                 q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)  # cos(90 deg) noise
                 self.positions[n] = Target(name, ir.Pose(pose.position, q), None,  # type: ignore[arg-type]
-                                           _branch(conf.group(1)) if conf else None, where)
+                                           _branch(conf.group(1)) if conf else None, where, slots=axes_slots.fanuc_slots(m.group(3)))
             elif all(f"J{i}" in values for i in range(1, 7)):
-                self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where)
+                self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where,
+                                           slots=axes_slots.fanuc_slots(m.group(3)))
 
     # ---------------------------------------------------------------- instructions
 
@@ -255,19 +256,23 @@ class _Ls:
         return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`IF DI[n]<>ON,JMP LBL[a]`, then-body, [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
+        """`IF DI[n]<>ON,JMP LBL[a]` (or `IF GI[n]<>v,JMP LBL[a]`: a group input's test), then-body,
+        [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
         m = re.fullmatch(rf"IF DI{_SIG}\s*<>\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
-        if m is None:
+        g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i)) if m is None else None
+        group = group_test(g.group(1), negate=True) if g else None
+        if m is None and group is None:
             return None
-        arms = label_arms(self._text, i, end, f"LBL[{m.group(3)}]", _JMP, lambda n: f"LBL[{n}]")
+        label = m.group(3) if m else g.group(2)  # type: ignore[union-attr]
+        arms = label_arms(self._text, i, end, f"LBL[{label}]", _JMP, lambda n: f"LBL[{n}]")
         if arms is None:
             return None
         ja, jb = arms
         then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         self.tally.imported += 1
-        cond = Cond(int(m.group(1)), m.group(2) == "ON")
-        return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1
+        cond = Cond(int(m.group(1)), m.group(2) == "ON") if m else group
+        return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`WAIT DI[n]=ON TIMEOUT,LBL[a]`, `JMP LBL[b]`, `LBL[a]`, `ABORT`, `LBL[b]` (after $WAITTMOUT)."""

@@ -15,14 +15,29 @@ from __future__ import annotations
 
 import re
 
-from rmot.backends.readers.model import Cond, Conds, SetOut, Stmt, WaitIn, Where
+from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
 
-__all__ = ["wait_condition", "german_instruction"]
+__all__ = ["wait_condition", "german_instruction", "group_test"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
 
 _Parsed = tuple["Cond | Conds", int] | None
+
+
+# a TP comparison and the one that holds exactly when it does not (B-83284EN, IF / WAIT with a
+# register or I/O: `=`, `<>`, `<`, `>`, `<=`, `>=`)
+_TP_COMPARE = {"=": ("==", "!="), "<>": ("!=", "=="), "<": ("<", ">="), ">": (">", "<="), "<=": ("<=", ">"),
+               ">=": (">=", "<")}
+
+
+def group_test(text: str, negate: bool = False) -> Conds | None:
+    """`GI[n(:comment)] op v` (a group input compared with a whole number) as rmot's `gin[n] op v`
+    (its negation with `negate`: an `IF .. ,JMP` skips its arm when the test holds); None otherwise."""
+    m = re.fullmatch(r"GI\[(\d+)(?::[^\]]*)?\]\s*(<>|<=|>=|=|<|>)\s*(\d+)", text.strip())
+    if m is None:
+        return None
+    return Conds("logic", (GroupIn(int(m.group(1))),), f"{{0}} {_TP_COMPARE[m.group(2)][negate]} {int(m.group(3))}")
 
 
 def wait_condition(text: str) -> Cond | Conds | None:
@@ -31,6 +46,8 @@ def wait_condition(text: str) -> Cond | Conds | None:
     m = re.fullmatch(r"(?:WAIT|WARTE)\s*(.+?)\s*", text)
     if m is None:
         return None
+    if m.group(1).startswith("GI["):
+        return group_test(m.group(1))
     tokens: list[re.Match[str]] = []
     rest = m.group(1)
     while rest.strip():

@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers import codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -61,6 +61,7 @@ class _Job:
         self.name = ""
         self.positions: dict[str, Target] = {}
         self.pulse_positions: set[str] = set()  # `///PULSE` positions: encoder counts of the arm's axes
+        self.base_positions: dict[str, tuple[tuple[float, ...], bool]] = {}  # BCn, ECn: values, in pulses (readers/axes_slots.py)
         self.position_tool: dict[str, int] = {}
         self.position_user: dict[str, int | None] = {}
         self.tool_names: dict[int, str] = {}
@@ -110,6 +111,8 @@ class _Job:
         self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
+        if axes_slots.inform_base_position(self.base_positions, s, pulse):
+            return
         m = re.fullmatch(r"([CP]\d+)\s*=\s*(.*)", s)
         if m is not None and pulse:
             self.pulse_positions.add(_key(m.group(1)))
@@ -174,7 +177,7 @@ class _Job:
             why = (f"{', '.join(pulses)} is a pulse position (///PULSE, or no ///RECTAN before it): encoder "
                    "counts whose per-axis scales "
                    "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
-                   "no rmot form")
+                   axes_slots.why_native(text) or "no rmot form")
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -237,8 +240,10 @@ class _Job:
         self.inlined |= callee.inlined
         return callee.routine.body
 
-    def _move(self, kind: str, names: list[str], rest: str, where: Where) -> Move | None:
+    def _move(self, kind: str, names: list[str], rest: str, where: Where, sync: bool = False, via_rest: str = "") -> Move | None:
         decls = [self.positions.get(n) for n in names]
+        base, rest = axes_slots.inform_operands(self.base_positions, rest, sync)
+        via_base = axes_slots.inform_operands(self.base_positions, via_rest, sync)[0] if via_rest else None
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
@@ -267,9 +272,10 @@ class _Job:
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
-                    tool=self._tool(self.position_tool[names[-1]]), frame="base" if user is None else f"user{user}",
+                    tool=self._tool(self.position_tool[names[-1]]), frame=axes_slots.inform_frame(user, sync),
                     config=decl.config if kind == "joint" else None, pose=decl.pose,
-                    joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None)
+                    joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None,
+                    slots=base[0] if base else (), slot_pulses=base[1] if base else (), via_slots=via_base[0] if via_base else ())
 
     def _tool(self, n: int) -> str:
         if n not in self.tools:
@@ -279,14 +285,15 @@ class _Job:
     def _arc(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """MOVC start, via, end FPT: a circular move from where the robot stands; right after
         an arc, MOVC via, end FPT (the arc before ended at the start)."""
-        chained = re.fullmatch(r"MOVC\s+[CP]\d+.*\bFPT", self._text(i - 1)) is not None if i else False
+        chained = re.fullmatch(r"S?MOVC\s+[CP]\d+.*\bFPT\b.*", self._text(i - 1)) is not None if i else False
         n = 2 if chained else 3
         texts = [self._text(k) for k in range(i, min(i + n, end))]
-        ms = [re.fullmatch(r"MOVC\s+([CP]\d+)\s*(.*)", t) for t in texts]
-        if len(ms) < n or not all(ms) or "FPT" not in texts[-1] or any("FPT" in t for t in texts[:-1]):
+        ms = [re.fullmatch(r"(S?)MOVC\s+([CP]\d+)\s*(.*)", t) for t in texts]
+        if len(ms) < n or not all(ms) or "FPT" not in texts[-1] or any("FPT" in t for t in texts[:-1]) or \
+                len({m.group(1) for m in ms}) != 1:  # type: ignore[union-attr]
             return None
-        move = self._move("circular", [_key(ms[-2].group(1)), _key(ms[-1].group(1))], ms[-1].group(2),  # type: ignore[union-attr]
-                          self.inst[i + n - 2][1])
+        move = self._move("circular", [_key(ms[-2].group(2)), _key(ms[-1].group(2))], ms[-1].group(3),  # type: ignore[union-attr]
+                          self.inst[i + n - 2][1], ms[-1].group(1) == "S", ms[-2].group(3))  # type: ignore[union-attr]
         return ([move], i + n) if move else None
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
@@ -312,9 +319,10 @@ class _Job:
         return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
-        m = re.fullmatch(r"(MOVJ|MOVL)\s+([CP]\d+)\s*(.*)", text)
+        m = re.fullmatch(r"(MOVJ|S?MOVL)\s+([CP]\d+)\s*(.*)", text)
         if m:
-            return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where)
+            return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where,
+                              m.group(1) == "SMOVL")
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
 
 

@@ -20,7 +20,7 @@ from functools import partial
 from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
-from rmot.backends.readers import codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
@@ -32,7 +32,7 @@ from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_why import Names, UnreadCalls, inline_why, mode_why, motion_why, other_why
 from rmot.backends.readers.krl_names import (
-    call_args, config_near, declared_names, param_names, port_of, signals, signatures, switch_cases,
+    call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases,
 )
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
@@ -57,7 +57,7 @@ class _Krl:
         texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
         self.signals = {k: v for text in texts for k, v in signals(text).items()}
         self.variables = set().union(*(declared_names(text) for text in texts))
-        self.config_read = config is not None
+        self.config_groups = group_names(config, texts)  # None: no $config.dat read
         self.inputs_named: set[str] = set()  # names read as inputs (W521 at the first use)
         self.signatures = signatures(self.lines)
         self.params: dict[str, tuple[str, str]] = {}  # the parameters of the routine being read
@@ -84,7 +84,7 @@ class _Krl:
         key = name.upper()
         if key in self.signals:
             return port_of(self.signals, key, kind)
-        if key in self.variables or key in self.assigned or key in self.data or self.config_read:
+        if key in self.variables or key in self.assigned or key in self.data or self.config_groups is not None:
             return None
         pending.append(name)
         return name
@@ -103,7 +103,7 @@ class _Krl:
         pending: list[str] = []
         cond = in_cond(text, lambda name: self._named(name, "IN", pending), lambda name: self.params.get(name.upper()))
         self._warn_named(pending if cond is not None else [], "input")
-        return cond or self.logic.condition(text)
+        return cond or self.logic.condition(text, self.at)
 
     # ---------------------------------------------------------------- structure
 
@@ -119,7 +119,8 @@ class _Krl:
             raise self.tally.fail("a KRL .src must start with `DEF name( )` (after &ACCESS lines and folds)", where)
         self.name = head.group(1)
         taken = {*self.targets, *self.tools, *self.frames, *self.signals}
-        self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally)
+        self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally,
+                             partial(is_group_input, self.config_groups, {*self.signals, *self.variables, *self.assigned, *self.data}))
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]
@@ -175,7 +176,7 @@ class _Krl:
         if word == "LOOP" and not self.routines and self.tally.depth == 1 and not any(
                 ln.word == "EXIT" for ln in self.lines[i:]):
             return self._forever(i)
-        if word == "SWITCH" and switch_cases(self.lines, i, self.logic.switchable(self.params)) is not None:
+        if word == "SWITCH" and switch_cases(self.lines, i, self.logic.switchable(self.params, ln.text)) is not None:
             return self._switch(i)
         looped = self.logic.loop(self.lines, i, self._block, self._cond) if word in ("LOOP", "REPEAT") else None
         if looped is not None:
@@ -270,16 +271,15 @@ class _Krl:
     def _switch(self, i: int) -> tuple[list[Stmt], int]:
         """`SWITCH k` .. `CASE 1, 2` .. `DEFAULT` .. `ENDSWITCH` on a number parameter (KSS 8.x: the
         first CASE with a value equal to k runs, else DEFAULT) → `if k == 1 or k == 2 { } else ..`."""
-        name = self.logic.switchable(self.params)[self.lines[i].text.split()[1].upper()][0]
+        name, op, parts = self.logic.switch_head(self.lines[i], self.params)
         arms = []
-        for j, values in switch_cases(self.lines, i, self.logic.switchable(self.params)) or []:
+        for j, values in switch_cases(self.lines, i, self.logic.switchable(self.params, self.lines[i].text)) or []:
             body, end = self._block(j + 1, ("CASE", "DEFAULT", "ENDSWITCH"))
             arms.append((values, body, self.lines[j].where))
         orelse: tuple[Stmt, ...] = tuple(arms.pop()[1]) if arms and not arms[-1][0] else ()
         for values, body, where in reversed(arms):
             test = " or ".join(f"{name} == {int(v)}" for v in values)
-            orelse = (If(Conds("logic" if self.logic.switch_var(self.lines[i].text) else "expr", (), test),
-                         tuple(body), orelse, where),)
+            orelse = (If(Conds(op, parts, test), tuple(body), orelse, where),)
         self.tally.imported += 1
         return list(orelse), end + 1
 
@@ -333,7 +333,7 @@ class _Krl:
                 chosen = numbered(self.tools, self.frames, self.tally, kind, n, None, self.at or Where(self.tally.path, 1))
                 st.tool, st.frame = (chosen, st.frame) if kind == "tool" else (st.tool, chosen)
             return True
-        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None
+        return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None or axes_slots.krl_setting(st, text)
 
     def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
         """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
@@ -531,7 +531,7 @@ class _Krl:
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=st.vel_cp if kind != "joint" else None, joint_pct=st.vel_ptp if kind == "joint" else None,
                     zone=zone, tool=st.tool, frame=st.frame, config=config,
-                    pose=decl.pose if decl is not None else None, joints=decl.joints if decl is not None else None,
+                    pose=decl.pose if decl else None, joints=decl.joints if decl else None, slots=decl.slots if decl else (),
                     accel=st.acc_cp if kind != "joint" else None, joint_accel=st.acc_ptp if kind == "joint" else None)
 
     def _with(self, word: str, rest: str, where: Where) -> Move | None:

@@ -13,6 +13,7 @@ import re
 from copy import copy
 
 from rmot.backends.readers import codes
+from rmot.backends.readers.axes_slots import krl_slots
 from rmot.backends.readers.common import Tally, number, split_top
 from rmot.backends.readers.krl_text import Line, MotionState, aggregate, branch_of_status, declarations, in_cond, krl_pose, lines
 from rmot.backends.readers.model import FrameData, Move, Stmt, Target, ToolData, WaitIn, Where
@@ -39,10 +40,11 @@ def position(type_: str, name: str, value: object, where: Where) -> Target | Non
     pose = krl_pose(value)
     if type_ in ("E6POS", "POS", "FRAME") and pose is not None:
         s = value.get("S")
-        return Target(name, pose, None, branch_of_status(int(s)) if isinstance(s, float) else None, where)
+        return Target(name, pose, None, branch_of_status(int(s)) if isinstance(s, float) else None, where,
+                      slots=krl_slots(value))
     joints = [value.get(f"A{i}") for i in range(1, 7)]
     if type_ in ("E6AXIS", "AXIS") and all(isinstance(j, float) for j in joints):
-        return Target(name, None, tuple(joints), None, where)  # type: ignore[arg-type]
+        return Target(name, None, tuple(joints), None, where, slots=krl_slots(value))  # type: ignore[arg-type]
     return None
 
 

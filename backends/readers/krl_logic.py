@@ -11,6 +11,11 @@ native), `IF`/`WHILE`/`WAIT FOR` on expressions over them and the digital inputs
 SIGNAL's name of one input), and `SWITCH n` on an INT variable with whole CASE values. Only the
 main DEF reads them (rmot's procs do not see a task's variables); `$config.dat` globals, which
 other programs may set, are not variables here.
+
+A whole number the program tests but neither declares nor assigns (`SWITCH PGNO`, `IF
+(nStation == 2)`) is a global the PLC or another task sets: a group input `gin[k]` of that name
+(W534 at its first use), where no `$config.dat` is found or the one found declares it as a
+SIGNAL of a group of inputs or an INT (krl_names.group_globals); `SWITCH` on it is an if chain.
 """
 
 from __future__ import annotations
@@ -18,16 +23,21 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 
+from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
 from rmot.backends.readers.krl_text import Line, declarations, lines
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
-from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, Stop, VarDecl, WaitIn, Where, While
+from rmot.backends.readers.model import (
+    Assign, Cond, Conds, GroupIn, Stmt, Stop, VarDecl, WaitIn, Where, While, group_reads,
+)
 
 __all__ = ["KrlVars"]
 
 _TYPES = {"INT": "int", "REAL": "num", "BOOL": "bool"}
 _LOCAL = re.compile(r"(?i)^(?:DECL\s+)?(INT|REAL|BOOL)\s+([A-Za-z_]\w*(?:\s*,\s*[A-Za-z_]\w*)*)$")
 _ASSIGN = re.compile(r"(?i)^([A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
+# KRL's words an expression may hold that are never a name (KSS 8.x operators and literals)
+_KEYWORDS = frozenset({"TRUE", "FALSE", "NOT", "AND", "OR", "EXOR", "B_AND", "B_OR", "B_NOT", "B_EXOR"})
 
 
 def _loop_end(found: list[Line], i: int) -> int | None:
@@ -75,8 +85,10 @@ class KrlVars:
     """The task variables of one KRL program and the statements on them."""
 
     def __init__(self, found: list[Line], name: str, dat: tuple[str, str] | None, taken: set[str],
-                 signal: Callable[[str], int | None], tally: Tally | None = None) -> None:
-        self.tally, self.dat = tally, dat
+                 signal: Callable[[str], int | None], tally: Tally | None = None,
+                 group: Callable[[str], bool] = lambda name: False) -> None:
+        self.tally, self.dat, self.group = tally, dat, group
+        self.groups_warned: set[str] = set()  # group inputs warned at their first use (W534)
         self.persistent: set[str] = set()  # the .dat's variables
         body = _main_lines(found, name)
         assigned = {m.group(1).upper() for ln in body for m in [_ASSIGN.match(ln.text)] if m and ln.fold is None}
@@ -146,17 +158,37 @@ class KrlVars:
             warn_persistent(self.tally, self.decls, decls, self.persistent, dict([self.dat] if self.dat else []))
         return (*decls, *rest)
 
-    def _input(self, tokens: list[str], i: int) -> tuple[Cond, int] | None:
+    def _input(self, tokens: list[str], i: int) -> tuple[Cond | GroupIn, int] | None:
         t = [x.upper() for x in tokens[i:i + 4]]
         if len(t) == 4 and t[0] == "$IN" and t[1] == "[" and t[2].isdigit() and t[3] == "]":
             return Cond(int(t[2]), True), 4
         port = self.signal(t[0]) if t and t[0] not in self.visible else None
-        return (Cond(port, True), 1) if port is not None and (len(t) < 2 or t[1] != "[") else None
+        alone = len(t) < 2 or t[1] not in ("[", "(", ".")
+        if port is None and t and alone and self._group_name(t[0]):
+            return GroupIn(tokens[i]), 1
+        return (Cond(port, True), 1) if port is not None and alone else None
 
-    def condition(self, text: str) -> Conds | None:
+    def _group_name(self, key: str) -> bool:
+        return (re.fullmatch(r"[A-Z_]\w*", key) is not None and key not in _KEYWORDS and key not in self.visible
+                and self.group(key))
+
+    def condition(self, text: str, where: Where | None = None) -> Conds | None:
         """A KRL bool expression over the visible variables and inputs; None without an rmot form."""
         found = translate(text, KRL, self.visible, self._input, int_division=True)
-        return found[0] if found is not None and found[1] == "bool" else None
+        cond = found[0] if found is not None and found[1] == "bool" else None
+        if cond is not None and where is not None:
+            self.warn_groups(cond, where)
+        return cond
+
+    def warn_groups(self, value: Cond | Conds | GroupIn, where: Where) -> None:
+        """W534 at the first read of each group input `value` reads."""
+        for g in group_reads(value):
+            if str(g.signal).upper() in self.groups_warned or self.tally is None:
+                continue
+            self.groups_warned.add(str(g.signal).upper())
+            self.tally.warn(codes.NAME_READ_AS_GROUP_INPUT, f"`{g.signal}` is a whole number the program neither "
+                            "declares nor assigns: read as the group input of that name (a SIGNAL group or INT "
+                            "global of $config.dat the PLC or another task sets); give --cell to check it", where)
 
     def statement(self, ln: Line) -> Assign | Stop | None:
         """`n = e` on a visible task variable; `RETURN` from the main DEF (it ends the program,
@@ -172,11 +204,15 @@ class KrlVars:
         found = translate(m.group(2), KRL, self.visible, self._input, int_division=True)
         if found is None or not fits(type_, found[1]):
             return None
+        self.warn_groups(found[0], ln.where)
         return Assign(name, found[0], ln.where)
 
-    def switchable(self, params: dict[str, tuple[str, str]]) -> dict[str, tuple[str, str]]:
-        """The names a SWITCH may test: the routine's number parameters, the main DEF's INT variables."""
-        return {**params, **{k: (n, "number") for k, (n, t) in self.visible.items() if t == "int"}}
+    def switchable(self, params: dict[str, tuple[str, str]], text: str = "") -> dict[str, tuple[str, str]]:
+        """The names a SWITCH may test: the routine's number parameters, the main DEF's INT variables,
+        and the group input the SWITCH `text` tests (written `{0}`: the condition's part)."""
+        group = self.switch_group(text, params) if text else None
+        groups = {str(group.signal).upper(): ("{0}", "number")} if group is not None else {}
+        return {**params, **{k: (n, "number") for k, (n, t) in self.visible.items() if t == "int"}, **groups}
 
     def loop(self, found: list[Line], i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]],
              cond_of: Callable[[str], Cond | Conds | None]) -> tuple[list[Stmt], int] | None:
@@ -226,3 +262,20 @@ class KrlVars:
         m = re.fullmatch(r"(?i)SWITCH\s+(\w+)", text)
         found = self.visible.get(m.group(1).upper()) if m else None
         return found[0] if found is not None and found[1] == "int" else None
+
+    def switch_head(self, ln: Line, params: dict[str, tuple[str, str]]) -> tuple[str, str, tuple[GroupIn, ...]]:
+        """What the tests of `SWITCH k` at `ln` compare: (k's rmot name, the Conds op, its parts): a
+        parameter ("expr": the compiler decides), a task variable or a group input ("logic"; the
+        group is part {0}, warned W534 at its first use)."""
+        group = self.switch_group(ln.text, params)
+        if group is not None:
+            self.warn_groups(group, ln.where)
+            return "{0}", "logic", (group,)
+        name = self.switchable(params)[ln.text.split()[1].upper()][0]
+        return name, "logic" if self.switch_var(ln.text) else "expr", ()
+
+    def switch_group(self, text: str, params: dict[str, tuple[str, str]]) -> GroupIn | None:
+        """The group input `SWITCH name` tests, where the name is one (not a parameter or variable)."""
+        m = re.fullmatch(r"(?i)SWITCH\s+(\w+)", text)
+        key = m.group(1).upper() if m else ""
+        return GroupIn(m.group(1)) if m and key not in params and self._group_name(key) else None

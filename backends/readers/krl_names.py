@@ -19,7 +19,8 @@ from rmot.backends.readers.common import MAX_BYTES, number, read_text, rmot_name
 from rmot.backends.readers.krl_text import Line
 from rmot.backends.readers.rapid import num_text
 
-__all__ = ["signals", "port_of", "declared_names", "config_near", "Params", "signatures", "call_args", "param_names", "switch_cases"]
+__all__ = ["group_globals", "group_names", "is_group_input"]
+__all__ += ["signals", "port_of", "declared_names", "config_near", "Params", "signatures", "call_args", "param_names", "switch_cases"]
 
 Params = tuple[tuple[str, str], ...]  # (name as written, rmot type "number" or "bool")
 
@@ -34,6 +35,36 @@ def signals(text: str) -> dict[str, tuple[str, int]]:
         if not rest.strip():
             out[name.upper()] = (kind.upper(), int(n))
     return out
+
+
+def group_globals(text: str) -> set[str]:
+    """NAME of every whole number a `$config.dat` gives all programs: a SIGNAL of a group of
+    inputs (`SIGNAL name $IN[a] TO $IN[b]`, read as an INT, KSS 8.x "SIGNAL") and a scalar INT
+    global (`DECL INT name`, `INT a, b`: its declarations are global, such as PGNO, which the
+    cell program fills from the program-number inputs)."""
+    out = _group_signals(text)
+    for names in re.findall(r"(?im)^[ \t]*(?:DECL\s+)?(?:GLOBAL\s+)?INT\s+([^=;\n]+)", text):
+        out |= {n.upper() for n in re.findall(r"(?:^|,)\s*(\w+)\s*(?=,|$)", names.strip())}
+    return out
+
+
+def _group_signals(text: str) -> set[str]:
+    return {n.upper() for n in re.findall(r"(?im)^[ \t]*(?:GLOBAL\s+)?SIGNAL\s+(\w+)\s+\$IN\[\d+\]\s+TO\b", text)}
+
+
+def group_names(config: tuple[str, str] | None, texts: list[str]) -> set[str] | None:
+    """The group inputs a program may read where a `$config.dat` was found (None where not):
+    its INT globals and SIGNAL groups, and the SIGNAL groups of the program's own `texts`."""
+    if config is None:
+        return None
+    return group_globals(config[1]).union(*(_group_signals(text) for text in texts))
+
+
+def is_group_input(config_groups: set[str] | None, known: set[str], key: str) -> bool:
+    """Whether NAME `key` (upper case), tested as a number, is a group input: the `$config.dat`
+    found declares it as one (group_globals), or none was found and the program's own files do
+    not know it (`known`: their SIGNALs, declarations, data and the names it assigns)."""
+    return key in config_groups if config_groups is not None else key not in known
 
 
 def port_of(found: dict[str, tuple[str, int]], name: str, kind: str) -> int | None:

@@ -219,7 +219,7 @@ def _unary(tokens: list[str], i: int, named: Named, param: Param) -> _Parsed:
     return Cond(signal, level == "TRUE"), i + 1  # type: ignore[arg-type]
 
 
-def has_test(c: Cond | Conds) -> bool:
+def has_test(c: object) -> bool:
     """Whether a condition holds a test the compiler decides (a parameter's)."""
     return isinstance(c, Conds) and (c.op == "expr" or any(has_test(p) for p in c.parts))
 

@@ -21,7 +21,7 @@ from collections.abc import Callable, Mapping
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally
-from rmot.backends.readers.model import Assign, Cond, Conds, Stmt, VarDecl
+from rmot.backends.readers.model import Assign, Cond, Conds, GroupIn, Stmt, VarDecl
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
@@ -48,10 +48,10 @@ class _Refused(Exception):
 
 class _Parser:
     def __init__(self, tokens: list[str], ops: Mapping[str, tuple[int, str]], names: Mapping[str, tuple[str, str]],
-                 signal: Callable[[list[str], int], tuple[Cond, int] | None], int_division: bool) -> None:
+                 signal: Callable[[list[str], int], tuple[Cond | GroupIn, int] | None], int_division: bool) -> None:
         self.tokens, self.i, self.ops, self.names = tokens, 0, ops, names
         self.signal, self.int_division = signal, int_division
-        self.parts: list[Cond] = []
+        self.parts: list[Cond | GroupIn] = []
 
     def peek(self) -> str:
         return self.tokens[self.i].upper() if self.i < len(self.tokens) else ""
@@ -88,6 +88,7 @@ class _Parser:
         m = re.fullmatch(r"\{(\d+)\}", node[0])
         if m:  # an input condition: its level flips
             cond = self.parts[int(m.group(1))]
+            assert isinstance(cond, Cond)  # a group input's node is an int, refused above
             self.parts[int(m.group(1))] = Cond(cond.signal, not cond.on)
             return node
         return (f"not {_wrap(node, 3)}", "bool", 3)
@@ -100,12 +101,30 @@ class _Parser:
             return (f"{_wrap(left, prio)} {op} {_wrap(right, prio + 1)}", "bool", prio)
         if left[1] == "bool" or right[1] == "bool":
             return self.bool_compare(op, left, right)
+        if self.is_group(left) or self.is_group(right):
+            return self.group_compare(op, left, right)
         if op in ("==", "!=", "<", "<=", ">", ">="):
             return (f"{_wrap(left, 5)} {op} {_wrap(right, 5)}", "bool", prio)
         if op == "/" and left[1] == right[1] == "int" and self.int_division:
             raise _Refused("an integer division")
         type_ = "int" if left[1] == right[1] == "int" and op != "/" else "num"
         return (f"{_wrap(left, prio)} {op} {_wrap(right, prio + 1)}", type_, prio)
+
+    def is_group(self, node: _Node) -> bool:
+        m = re.fullmatch(r"\{(\d+)\}", node[0])
+        return m is not None and isinstance(self.parts[int(m.group(1))], GroupIn)
+
+    def group_compare(self, op: str, left: _Node, right: _Node) -> _Node:
+        """A group input compared with a whole number or a variable, the input on the left (rmot
+        reads `gin[n] op value`; `3 < k` is `k > 3`); arithmetic on it, a comparison of two of
+        them or with a fraction (which never equals a whole number: E168) are refused."""
+        if self.is_group(right):
+            left, right, op = right, left, {"<": ">", ">": "<", "<=": ">=", ">=": "<="}.get(op, op)
+        if op not in ("==", "!=", "<", "<=", ">", ">=") or self.is_group(right):
+            raise _Refused("arithmetic on a group input")
+        if right[1] != "int" and re.fullmatch(r"-?[\d.]+(?:e[-+]?\d+)?", right[0]):
+            raise _Refused("a group input compared with a fraction")
+        return (f"{left[0]} {op} {_wrap(right, 5)}", "bool", _RMOT_PRIORITY[op])
 
     def bool_compare(self, op: str, left: _Node, right: _Node) -> _Node:
         """`b == TRUE` is b, `b == FALSE` (or `<> TRUE`) is not b; other comparisons of bools are refused."""
@@ -129,6 +148,8 @@ class _Parser:
             cond, used = found
             self.i += used
             self.parts.append(cond)
+            if isinstance(cond, GroupIn):  # a group input: an unsigned integer
+                return ("{%d}" % (len(self.parts) - 1), "int", 9)
             return ("{%d}" % (len(self.parts) - 1), "bool", 4)
         self.i += 1
         if token in ("TRUE", "FALSE"):
@@ -148,7 +169,7 @@ def _wrap(node: _Node, floor: int) -> str:
 
 
 def translate(text: str, ops: Mapping[str, tuple[int, str]], names: Mapping[str, tuple[str, str]],
-              signal: Callable[[list[str], int], tuple[Cond, int] | None],
+              signal: Callable[[list[str], int], tuple[Cond | GroupIn, int] | None],
               int_division: bool = False) -> tuple[Conds, str] | None:
     """(Conds "logic", rmot type) of a vendor expression, None when it has no rmot form. `names`:
     upper-case vendor name -> (rmot name, type) of the task variables and constants it may read;

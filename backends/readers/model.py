@@ -19,6 +19,7 @@ __all__ = [
     "Document", "Signal", "walk",
 ]
 __all__ += ["VarDecl", "Assign"]
+__all__ += ["Sync"]
 
 # a signal by its controller name (RAPID, INFORM names) or by its port number (KRL, TP, UR)
 Signal = str | int
@@ -46,6 +47,9 @@ class Target:
     config: ir.Config | None
     where: Where
     rconf: str | None = None  # an INFORM position's RCONF as written (resolved with the arm: inform_conf)
+    # the external-axis values the vendor writes beside the target, slot by slot (RAPID eax_a..,
+    # KRL E1.., TP E1/GP2 J1..) in mm or deg, None where the slot is unused (readers/axes.py)
+    slots: tuple[float | None, ...] = ()
 
 
 @record(slots=True)
@@ -84,6 +88,13 @@ class Move:
     joints: tuple[float, ...] | None = None
     accel: float | None = None  # mm/s^2, linear and circular moves; None = the controller's own
     joint_accel: float | None = None  # % of each joint's max acceleration (joint moves; TP ACC on any move)
+    slots: tuple[float | None, ...] = ()  # the target's external-axis slot values as written (Target.slots)
+    # the axis values in rmot, per mechanism: (name, `600mm` or `(0deg, 90deg)`), set by
+    # readers/axes.py from `slots` and the cell; printed as `ext(name=value, ...)`
+    ext: tuple[tuple[str, str], ...] = ()
+    slot_pulses: tuple[bool, ...] = ()  # per slot: encoder pulses (an INFORM BC/EC under ///PULSE), not mm or deg
+    via_slots: tuple[float | None, ...] = ()  # a circular via's own slot values where the vendor writes them (INFORM)
+    axes_only: bool = False  # `move axes`: the mechanisms alone (RAPID MoveExtJ), `time` its duration
 
 
 @record(slots=True)
@@ -116,6 +127,13 @@ class Cond:
 
 
 @record(slots=True)
+class GroupIn:
+    """A group input read as one unsigned integer (`gin[n]`): a part of a "logic" Conds."""
+
+    signal: Signal
+
+
+@record(slots=True)
 class Conds:
     """Input conditions combined: `op` "and"/"or" over two or more parts, or "not" over one; or
     `op` "expr": a test the compiler decides, `text` in rmot (a proc parameter's `k == 3`), no parts;
@@ -123,13 +141,22 @@ class Conds:
     `{0}`, `{1}`, ... where the input conditions `parts` are written (logic.py)."""
 
     op: str
-    parts: tuple[Cond | Conds, ...]
+    parts: tuple[Cond | Conds | GroupIn, ...]
     text: str = ""
 
 
-def leaves(c: Cond | Conds) -> list[Cond]:
+def leaves(c: Cond | Conds | GroupIn) -> list[Cond]:
     """The input conditions a condition reads, left to right."""
+    if isinstance(c, GroupIn):
+        return []
     return [c] if isinstance(c, Cond) else [leaf for part in c.parts for leaf in leaves(part)]
+
+
+def group_reads(c: Cond | Conds | GroupIn) -> list[GroupIn]:
+    """The group inputs a condition or a value reads, left to right."""
+    if isinstance(c, Cond):
+        return []
+    return [c] if isinstance(c, GroupIn) else [g for part in c.parts for g in group_reads(part)]
 
 
 @record(slots=True)
@@ -217,7 +244,16 @@ class Assign:
     where: Where
 
 
-Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop | Grip | VarDecl | Assign
+@record(slots=True)
+class Sync:
+    """`sync name`: a barrier of a multi-robot program (RAPID WaitSyncTask, or the I/O handshake
+    the other vendors' backends write), recognised across the tasks' files (tasks.py)."""
+
+    name: str
+    where: Where
+
+
+Stmt = Move | SetOut | Pulse | Wait | WaitIn | If | While | For | Call | Native | Stop | Grip | VarDecl | Assign | Sync
 
 
 def walk(body: tuple[Stmt, ...]) -> list[Stmt]:
@@ -266,3 +302,4 @@ class Document:
     kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments
     # named loads the files declare (KRL LOAD data): (name, mass kg, centre of mass mm in the flange frame)
     loads: tuple[tuple[str, float, tuple[float, float, float]], ...] = ()
+    mechanisms: tuple[str, ...] = ()  # the cell's track and positioners the program drives (`with`)

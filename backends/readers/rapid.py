@@ -17,7 +17,7 @@ from collections.abc import Mapping
 from itertools import product
 
 from rmot.backends.rapid_text import SPEEDS_MM_S, cfx_of
-from rmot.backends.readers import codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
 from rmot.backends.readers.model import (
     Call, Cond, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While,
@@ -170,15 +170,15 @@ class _Module:
 
     def _data(self, type_: str, name: str, lit: object, where: Where) -> bool:
         if type_ == "robtarget":
-            pose = _pose(lit)
+            pose = _pose(lit) if axes_slots.rapid_slots(lit, 3) is not None else None
             if pose is None:
                 return False
-            self.targets[name.upper()] = Target(name, pose, None, _branch(lit), where)
+            self.targets[name.upper()] = Target(name, pose, None, _branch(lit), where, slots=axes_slots.rapid_slots(lit, 3) or ())
         elif type_ == "jointtarget":
             if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
-                    and all(isinstance(v, float) for v in lit[0])):
+                    and all(isinstance(v, float) for v in lit[0]) and axes_slots.robax_read(lit)):
                 return False
-            self.targets[name.upper()] = Target(name, None, tuple(float(v) for v in lit[0]), None, where)
+            self.targets[name.upper()] = Target(name, None, tuple(map(float, lit[0])), None, where, slots=axes_slots.rapid_slots(lit, 1) or ())
         elif type_ == "tooldata":
             return self._tool(name, lit, where)
         elif type_ == "wobjdata":
@@ -309,7 +309,7 @@ class _Module:
         """Why a statement stays native: for a move, the data it names that the files given do
         not declare (a task's modules share their data: the module declaring them is needed)."""
         if st.word not in _MOVES:
-            return "no rmot form"
+            return axes_slots.why_native(st.text) or "no rmot form"
         args = split_top(st.text[len(st.word):].strip())
         known = {*self.targets, *self.speeds, *self.zones, *self.tools, *self.frames, "VMAX", "TOOL0", "WOBJ0"}
         names = [m.group(1) for a in args for m in [re.fullmatch(r"(?i)(?:\\WObj\s*:=\s*)?(\w+)", b.strip())
@@ -485,7 +485,7 @@ class _Module:
                     joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
                     time=timing[1], tool=tool_name, frame=frame, config=config,
                     pose=decl.pose if decl and expr in (decl.name, pose_expr(decl.pose) if decl.pose else None) else None,
-                    joints=decl.joints if decl else None, joint_accel=self.acc_pct)
+                    joints=decl.joints if decl else None, joint_accel=self.acc_pct, slots=decl.slots if decl else ())
 
     def _speed(self, kind: str, speed: list[str]) -> tuple[float | None, float | None, bool] | None:
         """(TCP mm/s, duration s, joint speed read as 100 %) of a speed argument."""
@@ -533,9 +533,9 @@ class _Module:
                 args += [bits[0]] + ["\\" + b for b in bits[1:]]
             return self._offset(m.group(1).upper(), args, depth)
         lit = literal(text)
-        pose = _pose(lit)
+        pose = _pose(lit) if axes_slots.rapid_slots(lit, 3) is not None else None
         if pose is not None:
-            return (pose_expr(pose), None, Target("", pose, None, _branch(lit), Where("", 0)))
+            return (pose_expr(pose), None, Target("", pose, None, _branch(lit), Where("", 0), slots=axes_slots.rapid_slots(lit, 3) or ()))
         return None
 
     def _offset(self, func: str, args: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:

@@ -19,7 +19,7 @@ from collections.abc import Callable
 
 from rmot.backends.readers.common import Tally
 from rmot.backends.readers.logic import RAPID, fits, fold_first_values, translate, warn_persistent
-from rmot.backends.readers.model import Assign, Cond, Conds, If, Stmt, VarDecl, Where
+from rmot.backends.readers.model import Assign, Cond, Conds, GroupIn, If, Stmt, VarDecl, Where
 from rmot.backends.readers.rapid_text import Statement
 
 __all__ = ["RapidVars", "assigned_names", "timeout_flags", "condition"]
@@ -59,13 +59,16 @@ def timeout_flags(stmts: list[Statement]) -> set[str]:
 
 def condition(text: str, names: dict[str, tuple[str, str]]) -> Conds | None:
     """A RAPID bool expression over the names and digital inputs (`DInput(s) = 1`, `s = 0`,
-    `TestDI(s)`), None when it has no rmot form."""
+    `TestDI(s)`) and group inputs (`GInput(s) = 3`: function GInput, the unsigned integer of the
+    GI signal s), None when it has no rmot form."""
     found = translate(text, RAPID, names, lambda tokens, i: _input(tokens, i, names))
     return found[0] if found is not None and found[1] == "bool" else None
 
 
-def _input(tokens: list[str], i: int, names: dict[str, tuple[str, str]]) -> tuple[Cond, int] | None:
+def _input(tokens: list[str], i: int, names: dict[str, tuple[str, str]]) -> tuple[Cond | GroupIn, int] | None:
     t = [x.upper() for x in tokens[i:i + 6]]
+    if len(t) >= 4 and t[0] == "GINPUT" and t[1] == "(" and t[3] == ")":  # a GI signal's unsigned integer
+        return GroupIn(tokens[i + 2]), 4
     if len(t) >= 6 and t[0] == "DINPUT" and t[1] == "(" and t[3] == ")" and t[4] == "=" and t[5] in ("0", "1"):
         return Cond(tokens[i + 2], t[5] == "1"), 6
     if len(t) >= 4 and t[0] == "TESTDI" and t[1] == "(" and t[3] == ")":

@@ -18,7 +18,8 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While, leaves, walk,
 )
-from rmot.backends.readers.model import Assign, VarDecl
+from rmot.backends.readers.model import Assign, GroupIn, VarDecl, group_reads
+from rmot.backends.readers.model import Sync
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -27,6 +28,7 @@ from rmot.lang.source import Span
 
 __all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools",
            "rename_warnings"]
+__all__ += ["task_lines", "signal_uses"]
 
 INDENT = "  "
 
@@ -38,6 +40,7 @@ class SignalMap:
     outputs: tuple[tuple[str, int], ...] = ()
     inputs: tuple[tuple[str, int], ...] = ()
     analog: tuple[tuple[str, int], ...] = ()
+    groups: tuple[tuple[str, int], ...] = ()  # group inputs gin[n]
 
     def port(self, kind: str, signal: Signal) -> int | None:
         if isinstance(signal, int):
@@ -45,7 +48,7 @@ class SignalMap:
         table = dict(getattr(self, kind))
         if signal.upper() in table:
             return int(table[signal.upper()])
-        prefix = {"outputs": "DO", "inputs": "DI", "analog": "AO"}[kind]
+        prefix = {"outputs": "DO", "inputs": "DI", "analog": "AO", "groups": "GI"}[kind]
         m = re.fullmatch(prefix + r"_?(\d+)", signal.upper())  # rmot's own generic names (do1, di2)
         return int(m.group(1)) if m else None
 
@@ -55,17 +58,19 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
         return [("analog" if s.analog else "outputs", s.signal)]
     if isinstance(s, Pulse):
         return [("outputs", s.signal)]
-    if isinstance(s, (WaitIn, If, While)):
-        return [("inputs", c.signal) for c in leaves(s.cond)]
-    if isinstance(s, (VarDecl, Assign)):
-        return [("inputs", c.signal) for c in leaves(s.init if isinstance(s, VarDecl) else s.value)]
+    if isinstance(s, (WaitIn, If, While, VarDecl, Assign)):
+        value = s.cond if isinstance(s, (WaitIn, If, While)) else s.init if isinstance(s, VarDecl) else s.value
+        return [("inputs", c.signal) for c in leaves(value)] + [("groups", g.signal) for g in group_reads(value)]
     return []
+
+
+signal_uses = _signal_uses  # (kind, signal) of each signal a statement sets or reads
 
 
 def stub_signals(doc: Document) -> SignalMap:
     """Ports for a cell stub: numbered signals keep their port; named ones take the free ports
     1, 2, ... of their kind in order of first use."""
-    named: dict[str, dict[str, int]] = {"outputs": {}, "inputs": {}, "analog": {}}
+    named: dict[str, dict[str, int]] = {"outputs": {}, "inputs": {}, "analog": {}, "groups": {}}
     used: dict[str, set[int]] = {k: set() for k in named}
     uses = [u for r in doc.routines for s in walk(r.body) for u in _signal_uses(s)]
     for kind, sig in uses:
@@ -78,7 +83,7 @@ def stub_signals(doc: Document) -> SignalMap:
                 n += 1
             used[kind].add(n)
             named[kind][sig.upper()] = n
-    return SignalMap(*(tuple(named[k].items()) for k in ("outputs", "inputs", "analog")))
+    return SignalMap(*(tuple(named[k].items()) for k in ("outputs", "inputs", "analog", "groups")))
 
 
 def map_leaves(body: tuple[Stmt, ...], fn: Callable[[Stmt], Stmt]) -> tuple[Stmt, ...]:
@@ -208,6 +213,8 @@ class _Printer:
                 self.emit(depth, f"native {s.vendor} {_quote(line)}   # {replace(s.where, line=s.where.line + n, col=1) if n else s.where}")
         elif isinstance(s, Stop):
             self.emit(depth, "stop")
+        elif isinstance(s, Sync):
+            self.emit(depth, f"sync {rmot_name(s.name)}")
         elif isinstance(s, Grip):
             self.emit(depth, f"{'attach' if s.take else 'detach'} {s.part}")
         elif isinstance(s, Call):
@@ -230,7 +237,9 @@ class _Printer:
                 self.body(s.orelse, depth + 1, state)
         self.emit(depth, "}")
 
-    def cond(self, c: Cond | Conds) -> str:
+    def cond(self, c: Cond | Conds | GroupIn) -> str:
+        if isinstance(c, GroupIn):
+            return f"gin[{self.signals.port('groups', c.signal)}]"
         if isinstance(c, Cond):
             return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
         if c.op == "expr":
@@ -247,8 +256,12 @@ class _Printer:
             if value is not None and state.get(key) != value:
                 self.emit(depth, f"{key} {value}")
                 state[key] = value
+        if m.axes_only:
+            self.emit(depth, " ".join(f"move axes {name} to {value}" for name, value in m.ext)
+                      + (f" time {_num(m.time)} s" if m.time is not None else ""))
+            return
         head = f"move circular via {m.via} to {m.target}" if m.kind == "circular" else f"move {m.kind} {m.target}"
-        mods = []
+        mods = [f"ext({', '.join(f'{name}={value}' for name, value in m.ext)})"] if m.ext else []
         if m.config is not None and (m.config.shoulder or m.config.elbow or m.config.wrist or m.config.turns):
             mods.append(f"config({m.config})")
         if m.speed is not None:
@@ -280,22 +293,9 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
         p.emit(0, f"#   {c.path}: {c.imported} instructions imported, {c.native} kept native")
     if use_cell is not None:
         p.emit(0, f"use cell {_quote(use_cell)}")
-    p.emit(0, f"program {rmot_name(doc.name)} on {robot} {{")
-    for name, value in doc.consts:
-        p.emit(1, f"const {name} = {_num(value)}")
-    for t in doc.targets:
-        p.emit(1, _target_line(rmot_name(t.name), t.pose, t.joints))
-    main = None
-    for r in doc.routines:
-        if r.name == doc.main:
-            main = r
-            continue
-        params = ", ".join(f"{rmot_name(n)}: {t}" for n, t in r.params)
-        p.emit(1, f"proc {rmot_name(r.name)}({params}) {{")
-        p.body(r.body, 2, {})
-        p.emit(1, "}")
-    if main is not None:
-        p.body(main.body, 1, {})
+    driven = f" with {', '.join(doc.mechanisms)}" if doc.mechanisms else ""
+    p.emit(0, f"program {rmot_name(doc.name)} on {robot}{driven} {{")
+    _declarations_and_body(p, doc, 1)
     p.emit(0, "}")
     if doc.kept:
         p.emit(0, "")
@@ -303,6 +303,35 @@ def program_text(doc: Document, signals: SignalMap, robot: str, use_cell: str | 
         for k in doc.kept:
             p.emit(0, f"#   {k.where}: {k.text}")
     return "\n".join(p.lines) + "\n"
+
+
+def _declarations_and_body(p: _Printer, doc: Document, depth: int) -> None:
+    """`doc`'s consts, targets and procs, then its main routine's body, at `depth`."""
+    for name, value in doc.consts:
+        p.emit(depth, f"const {name} = {_num(value)}")
+    for t in doc.targets:
+        p.emit(depth, _target_line(rmot_name(t.name), t.pose, t.joints))
+    main = None
+    for r in doc.routines:
+        if r.name == doc.main:
+            main = r
+            continue
+        params = ", ".join(f"{rmot_name(n)}: {t}" for n, t in r.params)
+        p.emit(depth, f"proc {rmot_name(r.name)}({params}) {{")
+        p.body(r.body, depth + 1, {})
+        p.emit(depth, "}")
+    if main is not None:
+        p.body(main.body, depth, {})
+
+
+def task_lines(doc: Document, signals: SignalMap, robot: str) -> list[str]:
+    """`task ROBOT { ... }` of a multi-robot program: `doc`'s declarations and main body, indented
+    one level inside the program."""
+    p = _Printer(doc, signals)
+    p.emit(1, f"task {robot} {{")
+    _declarations_and_body(p, doc, 2)
+    p.emit(1, "}")
+    return p.lines
 
 
 def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") -> str:
@@ -314,7 +343,7 @@ def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") 
         lines.append(f"  tool {rmot_name(t.name)} = none tcp {pose_expr(t.tcp)} mass {_num(t.mass)} kg on {robot}")
     for f in doc.frames:
         lines.append(f"  frame {rmot_name(f.name)} = {pose_expr(f.pose)}")
-    for kind, word in (("outputs", "out"), ("inputs", "in"), ("analog", "aout")):
+    for kind, word in (("outputs", "out"), ("inputs", "in"), ("analog", "aout"), ("groups", "gin")):
         for name, port in getattr(signals, kind):
             lines.append(f"  io {word}[{port}] = {_quote(name.lower())} on {robot}")
     lines.append("}")

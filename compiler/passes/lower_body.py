@@ -330,6 +330,10 @@ class TaskLowering:
     def port(self, io: ast.IoRef, scope: Scope, allowed: tuple[str, ...], what: str) -> tuple[int, str | None] | None:
         if io.kind not in allowed:
             names = " or ".join(f"{k}[n]" for k in allowed)
+            if io.kind == "gin":  # an input the controller reads, never an output a program drives
+                self.rep.error(codes.GROUP_INPUT_WRITTEN, f"{what} must use {names} (got gin[...]: a group "
+                               "input is read in conditions and expressions, never written)", io.span)
+                return None
             self.rep.error(codes.WRONG_TYPE, f"{what} must use {names} (got {io.kind}[...])", io.span)
             return None
         port = expect_integer(eval_expr(io.index, scope, self.rep), "I/O port", io.index.span, self.rep)
@@ -340,6 +344,13 @@ class TaskLowering:
             if sig.direction is direction and sig.port == port and sig.robot in (self.robot, None):
                 return port, sig.name
         return port, None
+
+    def group_bits(self, port: int) -> int | None:
+        """The width the cell gives group input `port` (`io gin[n] = "name" bits B`), if any."""
+        for sig in self.cell.io:
+            if sig.direction is ir.IoDirection.GROUP_IN and sig.port == port and sig.robot in (self.robot, None):
+                return sig.bits
+        return None
 
     def set_io(self, s: ast.SetIo, scope: Scope) -> ir.Instr | None:
         p = self.port(s.io, scope, ("out", "aout"), "set")
@@ -404,7 +415,7 @@ class TaskLowering:
 
     def rt(self, scope: Scope) -> RtLowering:
         return RtLowering(
-            scope, self.rep, lambda io, allowed, what: self.port(io, scope, allowed, what)
+            scope, self.rep, lambda io, allowed, what: self.port(io, scope, allowed, what), self.group_bits
         )
 
     def any_condition(self, c: ast.RtCond, scope: Scope, what: str) -> ir.Condition | None:

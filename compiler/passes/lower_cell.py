@@ -36,7 +36,9 @@ from rmot.lang.model_spec import model_key
 __all__ = ["program_feeders", "lower_cell", "IO_DIRECTIONS"]
 
 IO_DIRECTIONS = {"out": ir.IoDirection.DIGITAL_OUT, "in": ir.IoDirection.DIGITAL_IN,
-                 "aout": ir.IoDirection.ANALOG_OUT, "ain": ir.IoDirection.ANALOG_IN}
+                 "aout": ir.IoDirection.ANALOG_OUT, "ain": ir.IoDirection.ANALOG_IN,
+                 "gin": ir.IoDirection.GROUP_IN}
+GROUP_MAX_BITS = 32  # a group input is read as one unsigned integer; 32 bits is the widest a controller's INT holds
 _GEOMETRY_ARGS = {"box": ("x", "y", "z"), "cylinder": ("r", "h"), "sphere": ("r",),
                   "capsule": ("r", "length"), "mesh": ("path", "unit", "scale")}
 
@@ -302,7 +304,22 @@ class _CellBuilder:
                            (("first declared here", self.io_seen[key].span),))
             return
         self.io_seen[key] = s
-        self.io.append(ir.IoSignal(direction, port, s.signal.value, robot, span=s.span))
+        self.io.append(ir.IoSignal(direction, port, s.signal.value, robot, span=s.span, bits=self._io_bits(s)))
+
+    def _io_bits(self, s: ast.IoDecl) -> int | None:
+        """The width of a group input (`io gin[n] = "name" bits B`), B in 1..32."""
+        if s.bits is None:
+            return None
+        if s.io.kind != "gin":
+            self.rep.error(codes.GROUP_INPUT_WIDTH, f"'bits' must be given on a group input gin[n] only "
+                           f"(got it on {s.io.kind}[...])", s.bits.span)
+            return None
+        bits = expect_integer(eval_expr(s.bits, self.scope, self.rep), "group input width", s.bits.span, self.rep)
+        if bits is not None and not 1 <= bits <= GROUP_MAX_BITS:
+            self.rep.error(codes.GROUP_INPUT_WIDTH, f"a group input's width must be 1..{GROUP_MAX_BITS} bits "
+                           f"(got {bits})", s.bits.span)
+            return None
+        return bits
 
     def _ModelDecl(self, s: ast.ModelDecl) -> None:
         from rmot.compiler.passes.lower_model import check_model_name, lower_model  # late: loads coal only when this runs

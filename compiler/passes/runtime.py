@@ -28,6 +28,7 @@ TYPE_NAMES = {"int": ir.ValueType.INT, "num": ir.ValueType.NUM, "bool": ir.Value
 _CMP = {op.value: op for op in ir.CompareOp}
 _ARITH = ("+", "-", "*", "/")
 Port = Callable[[ast.IoRef, tuple[str, ...], str], "tuple[int, str | None] | None"]
+Width = Callable[[int], "int | None"]  # a group input's port -> its width in bits (None: not given)
 
 
 def expr_type(e: ir.RtExpr) -> ir.ValueType:
@@ -35,6 +36,8 @@ def expr_type(e: ir.RtExpr) -> ir.ValueType:
         return e.type
     if isinstance(e, ir.AnalogInput):
         return ir.ValueType.NUM
+    if isinstance(e, ir.GroupInput):
+        return ir.ValueType.INT
     return ir.ValueType.BOOL  # Compare, Logic, Not, InputCondition
 
 
@@ -52,8 +55,8 @@ class RtLowering:
     """Lowers runtime expressions of one task; `port` resolves an I/O reference
     (TaskLowering.port)."""
 
-    def __init__(self, scope: Scope, rep: Reporter, port: Port) -> None:
-        self.scope, self.rep, self.port = scope, rep, port
+    def __init__(self, scope: Scope, rep: Reporter, port: Port, width: Width = lambda port: None) -> None:
+        self.scope, self.rep, self.port, self.width = scope, rep, port, width
 
     def _err(self, code: object, msg: str, span: Span | None) -> None:
         self.rep.error(code, msg, span)  # type: ignore[arg-type]
@@ -214,15 +217,17 @@ class RtLowering:
         if io.kind in ("out", "aout"):
             self._err(
                 codes.RT_BAD_IO,
-                f"a condition must read in[n] or ain[n] (got {io.kind}[...]: an output)",
+                f"a condition must read in[n], ain[n] or gin[n] (got {io.kind}[...]: an output)",
                 io.span,
             )
             return None
-        p = self.port(io, ("in", "ain"), "a condition")
+        p = self.port(io, ("in", "ain", "gin"), "a condition")
         if p is None:
             return None
         if io.kind == "ain":
             return ir.AnalogInput(p[0], p[1])
+        if io.kind == "gin":
+            return ir.GroupInput(p[0], p[1], self.width(p[0]))
         return ir.InputCondition(port=p[0], value=True, signal=p[1])
 
     def input_condition(self, c: ast.Condition) -> ir.RtExpr | None:
@@ -270,4 +275,25 @@ class RtLowering:
                 e.span,
             )
             return None
+        if isinstance(left, ir.GroupInput) and not self.group_value_fits(left, right, e.right):
+            return None
+        if isinstance(right, ir.GroupInput) and not self.group_value_fits(right, left, e.left):
+            return None
         return ir.Compare(op, left, right)
+
+    def group_value_fits(self, group: ir.GroupInput, value: ir.RtExpr, node: ast.RtCond) -> bool:
+        """A constant compared with gin[n]: a whole number (E168, else the comparison means
+        nothing on an integer input), and within 0..2^bits-1 when the width is known (W152)."""
+        if not isinstance(value, ir.Const) or isinstance(value.value, bool):
+            return True
+        number = float(value.value)
+        if not number.is_integer():
+            self._err(codes.GROUP_INPUT_NOT_INTEGER, f"gin[{group.port}] reads a whole number: it must be "
+                      f"compared with one (got {number:g})", node.span)
+            return False
+        top = None if group.bits is None else 2**group.bits - 1
+        if number < 0 or (top is not None and number > top):
+            reads = "0 or more (an unsigned integer)" if top is None else f"0..{top} ({group.bits} bits)"
+            self.rep.warning(codes.GROUP_INPUT_RANGE, f"gin[{group.port}] reads {reads}: a comparison "
+                             f"with {int(number)} never or always holds", node.span)
+        return True
