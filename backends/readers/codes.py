@@ -106,3 +106,10 @@ NAME_READ_AS_GROUP_INPUT = Code("W534", "name-read-as-group-input",
                                 "a KRL SWITCH or comparison tests a whole number the program neither declares nor "
                                 "assigns (a SIGNAL group or an INT global of $config.dat the PLC or another task "
                                 "sets, such as PGNO): read as the group input gin[n] of that name")
+
+# KRL motion settings after a routine the import does not read
+__all__ += ["SETTINGS_AFTER_CALL"]
+SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",
+                           "a KRL motion after a call of a routine the import does not read (kept native) is read "
+                           "with the speed, approximation, tool and base set before the call; the routine may "
+                           "change them ($VEL, $APO, $TOOL, $BASE are global)")

@@ -28,7 +28,9 @@ from rmot.backends.readers.krl_text import (
 from rmot.backends.readers.krl_data import (
     data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
 )
+from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
+from rmot.backends.readers.krl_why import Names, UnreadCalls, inline_why, mode_why, motion_why, other_why
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases,
 )
@@ -41,8 +43,7 @@ from rmot.lang import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
 
-_MOTIONS = {"PTP": "joint", "SPTP": "joint", "LIN": "linear", "SLIN": "linear", "CIRC": "circular",
-            "SCIRC": "circular"}
+_MOTIONS = MOTIONS
 
 
 class _Krl:
@@ -73,6 +74,7 @@ class _Krl:
         # starts or ends, or after a move not read): where a LIN_REL starts
         self.last: tuple[str, str | None, Target | None] | None = None
         self.at: Where | None = None  # the line being read
+        self.calls = UnreadCalls(self.tally)  # calls kept native, for W527 at the motion after one
         self.logic = KrlVars([], "", None, set(), lambda n: None)  # task variables (krl_logic.py), set in read()
 
     def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
@@ -128,6 +130,7 @@ class _Krl:
                     i += 1
             elif m:
                 self.state = MotionState()
+                self.calls.pending = None
                 params = self.signatures.get(m.group(1).upper())
                 if params and m.group(1).upper() == self.name.upper():
                     self.tally.warn(codes.MODULE_IS_PROC, f"`{m.group(1)}` takes parameters: a routine other programs "
@@ -200,8 +203,12 @@ class _Krl:
             return self.logic.with_else(timed, self.lines, i, self._block, self._cond)
         stmt = self._simple(ln)
         if stmt is None:
-            return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
+            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else \
+                other_why(word, ln.text, self.last is not None)
+            self.calls.called(ln.text, ln.where)
+            return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
+        self.calls.moved(stmt)
         return [stmt], i + 1
 
     def _spline(self, i: int) -> tuple[list[Stmt], int]:
@@ -251,7 +258,7 @@ class _Krl:
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
         cond = self._cond(m.group(1)) if m else None
         if cond is None or (word == "WHILE" and has_test(cond)):  # a while on a test the compiler decides: native
-            return keep_block(self.lines, self.tally, i, word, end)
+            return keep_block(self.lines, self.tally, i, word, end, mode_why(word, ln.text))
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
         orelse: list[Stmt] = []
         if self.lines[j].word == "ELSE":
@@ -275,6 +282,10 @@ class _Krl:
             orelse = (If(Conds(op, parts, test), tuple(body), orelse, where),)
         self.tally.imported += 1
         return list(orelse), end + 1
+
+    def _names(self) -> Names:
+        """What the program's names are, for saying why a motion stays native."""
+        return (self.targets, self.assigned, self.variables, {**self.config, **self.data})
 
     # ---------------------------------------------------------------- modal variables
 
@@ -552,44 +563,16 @@ class _Krl:
             self.tally.warn(codes.FOLD_DISABLED, f"the inline form `{header[:40]}` has its statements commented "
                             "out: the controller skips it, and so does the import", self.lines[i].where)
             return [], end + 1
-        move = self._inline(m.group(1).upper(), m.group(2), self.lines[i].where)
+        move = inline_move(m.group(1).upper(), m.group(2), self.lines[i].where, lambda p, at: self._target(p, at),
+                           (self.data, self.config), (self.tools, self.frames), self.tally)
         self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
         if move is None:
-            return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read")], end + 1
+            why = inline_why(m.group(2), self._names(), [*self.data, *self.config])
+            return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read" +
+                                    (f": {why}" if why else ""))], end + 1
         self.tally.imported += 1
+        self.calls.moved(move)
         return [move], end + 1
-
-    def _inline(self, word: str, text: str, where: Where) -> Move | None:
-        """`P1 [P2] [CONT] Vel=100 % PDAT1 Tool[1][:name] Base[0][:name]`."""
-        m = re.match(r"(?i)(\w+)(?:\s+(\w+))?\s+(CONT\s+)?Vel\s*=\s*([\d.]+)\s*(%|m/s|mm/s)\s+(\w+)"
-                     r"(?:\s+Tool\[(\d+)\](?::(\S+))?)?(?:\s+Base\[(\d+)\](?::(\S+))?)?", text)
-        kind = _MOTIONS[word]
-        second = m.group(2) if m and m.group(2) and m.group(2).upper() != "CONT" else None
-        cont = m is not None and (m.group(3) is not None or (m.group(2) or "").upper() == "CONT")
-        if m is None or (kind == "circular") != (second is not None):
-            return None
-        points = [m.group(1)] + ([second] if second else [])
-        found = [self._target("X" + p) or self._target(p, where) for p in points]
-        if any(f is None for f in found):
-            return None
-        vel, unit = float(m.group(4)), m.group(5)
-        zone = None
-        if cont:
-            key = ("P" if kind == "joint" else "L") + m.group(6).upper()  # PDEFAULT: $config.dat's
-            data = self.data.get(key) or self.data.get(m.group(6).upper()) or self.config.get(key)
-            apo = data[2].get("APO_DIST") if data and isinstance(data[2], dict) else None
-            if not isinstance(apo, float):
-                return None
-            zone = apo
-        tool = numbered(self.tools, self.frames, self.tally, "tool", m.group(7), m.group(8), where)
-        frame = numbered(self.tools, self.frames, self.tally, "base", m.group(9), m.group(10), where)
-        expr, name, decl = found[-1]  # type: ignore[misc]
-        config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
-        speed = vel * 1000.0 if unit == "m/s" else vel
-        return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
-                    speed=speed if kind != "joint" else None, joint_pct=vel if kind == "joint" else None,
-                    zone=zone, tool=tool, frame=frame, config=config,
-                    pose=decl.pose if decl else None, joints=decl.joints if decl else None, slots=decl.slots if decl else ())
 
 
 def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:

@@ -81,8 +81,10 @@ def timed_wait(found: list[Line], i: int) -> WaitIn | None:
     return WaitIn(cond, int(w.group(2)) / 1000.0, found[i + 3].where)  # type: ignore[union-attr]
 
 
-def keep_block(found: list[Line], tally: Tally, i: int, start: str, end: str) -> tuple[list[Stmt], int]:
-    """The block `start` .. `end` at `i` (nested ones included) kept native line by line."""
+def keep_block(found: list[Line], tally: Tally, i: int, start: str, end: str,
+               why: str | None = None) -> tuple[list[Stmt], int]:
+    """The block `start` .. `end` at `i` (nested ones included) kept native line by line (`why`:
+    the reason each line's warning gives, by default that `start` has no rmot form)."""
     out: list[Stmt] = []
     depth = 0
     while i < len(found):
@@ -90,7 +92,7 @@ def keep_block(found: list[Line], tally: Tally, i: int, start: str, end: str) ->
         depth += ln.word == start
         depth -= ln.word == end
         if ln.text:
-            out.append(tally.keep(ln.text, ln.where, f"{start} has no rmot form"))
+            out.append(tally.keep(ln.text, ln.where, why or f"{start} has no rmot form"))
         i += 1
         if depth <= 0:
             break

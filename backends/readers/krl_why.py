@@ -1,0 +1,146 @@
+"""Why a KRL motion stays native: the precise reason, for the import's W510 warning.
+
+A motion is read only where its target, speed and approximation are certain from the program and
+its data lists. Where one is not, the reason names it: a position the program assigns (KSS 8.x
+Operating and Programming Instructions for System Integrators: a data object holds its data-list
+value only until a statement assigns it), one declared without a value or in no data list found
+(the declarations of other modules' data lists are not read), an index computed at run time,
+`$POS_ACT` (the robot's current position, read when the line runs), an approximation whose system
+variable no line before sets, or an inline form whose velocity is a variable or whose motion data
+set is declared nowhere the import sees.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Collection, Mapping
+
+from rmot.backends.readers import codes
+from rmot.backends.readers.common import Tally, split_top
+from rmot.backends.readers.krl_text import MotionState
+from rmot.backends.readers.model import Move, Stmt, Where
+
+__all__ = ["Names", "motion_why", "inline_why", "mode_why", "other_why", "UnreadCalls"]
+
+Names = tuple[Collection[str], Collection[str], Collection[str], Mapping[str, object]]
+"""(positions read, names the program assigns, names declared anywhere seen, data lists' NAME ->
+declaration), all upper case."""
+
+
+def _point_why(point: str, names: Names) -> str | None:
+    """Why one target is not read, None when nothing certain can be said of it."""
+    targets, assigned, declared, data = names
+    text = re.sub(r"\s+", "", point).upper()
+    if text in ("$POS_ACT", "$AXIS_ACT"):
+        return f"`{point.strip()}` is where the robot stands when the line runs: known only at run time"
+    m = re.fullmatch(r"([A-Z_]\w*)(?:\[(\w+)\])?", text)
+    if m is None or text in targets:
+        return None
+    base = m.group(1)
+    if base in assigned:
+        return f"`{point.strip()}` is assigned in the program: its value is known only at run time"
+    if m.group(2) is not None and not m.group(2).isdigit():
+        return f"`{point.strip()}` is chosen by an index known only at run time"
+    if text not in data and (base in declared or base in data):
+        return f"`{point.strip()}` is declared without a value: it is set at run time"
+    if text not in data:
+        return f"`{point.strip()}` is declared in neither the program's .dat nor a $config.dat found"
+    return None
+
+
+def motion_why(rest: str, names: Names, state: MotionState) -> str | None:
+    """Why `PTP|LIN|CIRC rest` was not read (None: no more precise reason than "no rmot form")."""
+    with_ = re.match(r"(?is)(.*?)\s+WITH\b", rest)
+    if with_ is not None:  # the settings after WITH are the reader's; only the point is told here
+        return _point_why(split_top(with_.group(1), ":")[0], names)
+    m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_DIS\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest.strip())
+    if m is None:
+        return None
+    for point in split_top(m.group(1)):
+        why = _point_why(split_top(point, ":")[0], names)
+        if why is not None:
+            return why
+    approx = (m.group(2) or "").upper().split()
+    if approx[:1] == ["C_PTP"] and len(approx) == 1 and state.cptp is None:
+        return "C_PTP blends by $APO.CPTP, which no line before it sets (a routine or the run time does)"
+    if "C_DIS" in approx and state.cdis is None:
+        return "C_DIS blends by $APO.CDIS, which no line before it sets (a routine or the run time does)"
+    return None
+
+
+def inline_why(header: str, names: Names, data_lists: Collection[str]) -> str | None:
+    """Why the inline form `PTP P1 CONT Vel=100 % PDAT1 ..` (its header after the motion's name)
+    was not read; the form's point P1 is XP1 and its motion data PPDAT1/LCPDAT1 in a data list."""
+    m = re.match(r"(?i)(\w+)(?:\s+(\w+))?\s+(CONT\s+)?Vel\s*=\s*(\S+?)\s*(%|m/s|mm/s)\s+(\w+)", header)
+    if m is None:
+        return None
+    if re.fullmatch(r"[\d.]+", m.group(4)) is None:
+        return f"its velocity `{m.group(4)}` is a variable: known only at run time"
+    second = m.group(2) if m.group(2) and m.group(2).upper() != "CONT" else None
+    for point in [m.group(1)] + ([second] if second else []):
+        if point.upper() not in names[0] and ("X" + point).upper() not in names[0]:
+            why = _point_why(point if point[:1] in "xX" else "X" + point, names)
+            if why is not None:
+                return f"its point {why}"
+    cont = m.group(3) is not None or (m.group(2) or "").upper() == "CONT"
+    motion_data = m.group(6).upper()
+    if cont and not {motion_data, "P" + motion_data, "L" + motion_data} & set(data_lists):
+        return f"its motion data `{m.group(6)}` (the CONT's APO_DIST) is declared in no data list found"
+    return None
+
+
+# the controller's operating mode (KSS 8.x System Integrators, system variables: $T1, $T2, $AUT,
+# $EXT are TRUE in that mode; $MODE_OP is #T1, #T2, #AUT or #EX): a pendant switch, not a signal
+_MODE = re.compile(r"(?i)\$(?:T1|T2|AUT|EXT|MODE_OP)\b")
+
+
+def mode_why(word: str, text: str) -> str | None:
+    """Why the block `IF|WHILE cond` (or `WAIT FOR cond`) stays native when its condition reads the
+    operating mode or an output (rmot's conditions read inputs: REFERENCE E161)."""
+    if re.search(r"(?i)\$OUT(?:_C)?\s*\[", text) and _MODE.search(text) is None:
+        return f"this {word} tests an output ($OUT[n]); rmot conditions read inputs only"
+    if _MODE.search(text) is None:
+        return None
+    return f"this {word} tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting known only at run time"
+
+
+def other_why(word: str, text: str, started: bool) -> str | None:
+    """Why a WAIT or a relative motion stays native; `started`: whether the last move's target is
+    known here (where LIN_REL/PTP_REL start, KSS 8.x relative motions)."""
+    if word in ("LIN_REL", "PTP_REL") and not started:
+        return ("a relative motion starts where the last motion ended, not known here (the start of a block, "
+                "or after a motion not read)")
+    wait = re.fullmatch(r"(?i)WAIT\s+SEC\s+(.+)", text.strip())
+    if wait is not None and re.fullmatch(r"[\d.]+", wait.group(1).strip()) is None:
+        return f"the time `{wait.group(1).strip()}` is a variable: known only at run time"
+    return mode_why(word, text) if word == "WAIT" else None
+
+class UnreadCalls:
+    """The calls of routines the import does not read (kept native): $VEL, $APO, $TOOL and $BASE are
+    global (KSS 8.x System Integrators, system variables), so such a routine may change what the
+    motions after it use. The first motion read after one gets W527, once per routine (whether it
+    changes them is a property of the routine)."""
+
+    def __init__(self, tally: Tally) -> None:
+        self.tally = tally
+        self.pending: tuple[str, Where] | None = None  # the last such call since the last motion read
+        self.warned: set[str] = set()
+
+    def called(self, text: str, where: Where) -> None:
+        """A line kept native: a call when it is `name(..)`."""
+        m = re.fullmatch(r"(\w+)\s*\(.*\)", text)
+        if m is not None:
+            self.pending = (m.group(1), where)
+
+    def moved(self, stmt: Stmt) -> None:
+        """A statement read: W527 when it is a motion after a pending call of a routine not yet named."""
+        if not isinstance(stmt, Move) or self.pending is None:
+            return
+        name, at = self.pending
+        self.pending = None
+        if name.upper() in self.warned:
+            return
+        self.warned.add(name.upper())
+        self.tally.warn(codes.SETTINGS_AFTER_CALL, f"this motion is read with the speed, approximation, tool and base "
+                        f"set before `{name}(..)` at line {at.line}, a routine the import does not read: check that "
+                        "it leaves $VEL, $APO, $TOOL and $BASE as they were", stmt.where)
