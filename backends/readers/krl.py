@@ -30,7 +30,9 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
-from rmot.backends.readers.krl_why import Names, UnreadCalls, inline_why, mode_why, motion_why, other_why
+from rmot.backends.readers.krl_why import (
+    Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
+)
 from rmot.backends.readers.krl_names import (
     call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases,
 )
@@ -74,7 +76,8 @@ class _Krl:
         # starts or ends, or after a move not read): where a LIN_REL starts
         self.last: tuple[str, str | None, Target | None] | None = None
         self.at: Where | None = None  # the line being read
-        self.calls = UnreadCalls(self.tally)  # calls kept native, for W527 at the motion after one
+        # calls kept native or of routines that change the settings: W527 at the motion after one
+        self.calls = UnreadCalls(self.tally, routines_setting_motion(self.lines))
         self.logic = KrlVars([], "", None, set(), lambda n: None)  # task variables (krl_logic.py), set in read()
 
     def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
@@ -129,7 +132,7 @@ class _Krl:
                 while i < len(self.lines) and self.lines[i].word != "END":
                     i += 1
             elif m:
-                self.state = MotionState()
+                self.state = MotionState(inherited=m.group(1).upper() != self.name.upper())
                 self.calls.pending = None
                 params = self.signatures.get(m.group(1).upper())
                 if params and m.group(1).upper() == self.name.upper():

@@ -254,9 +254,11 @@ def branch_of_status(s: int) -> ir.Config:
 class MotionState:
     """The modal motion variables a plain KRL motion reads."""
 
-    def __init__(self) -> None:
-        self.vel_cp = DEFAULT_VEL_CP
-        self.vel_ptp = 100.0
+    def __init__(self, inherited: bool = False) -> None:
+        # a routine other than the module's own starts with its caller's settings ($VEL is global,
+        # KSS 8.x System Integrators): None, so its motions take the proc caller's in rmot too
+        self.vel_cp: float | None = None if inherited else DEFAULT_VEL_CP
+        self.vel_ptp: float | None = None if inherited else 100.0
         self.acc_cp: float | None = None  # mm/s^2; None = 2 m/s^2, rmot's default
         self.acc_ptp: float | None = None  # %; None = 100 %
         self.cdis: float | None = None

@@ -17,8 +17,8 @@ from collections.abc import Collection, Mapping
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, split_top
-from rmot.backends.readers.krl_text import MotionState
-from rmot.backends.readers.model import Move, Stmt, Where
+from rmot.backends.readers.krl_text import Line, MotionState
+from rmot.backends.readers.model import Call, Move, Stmt, Where
 
 __all__ = ["Names", "motion_why", "inline_why", "mode_why", "other_why", "UnreadCalls"]
 
@@ -115,32 +115,57 @@ def other_why(word: str, text: str, started: bool) -> str | None:
         return f"the time `{wait.group(1).strip()}` is a variable: known only at run time"
     return mode_why(word, text) if word == "WAIT" else None
 
-class UnreadCalls:
-    """The calls of routines the import does not read (kept native): $VEL, $APO, $TOOL and $BASE are
-    global (KSS 8.x System Integrators, system variables), so such a routine may change what the
-    motions after it use. The first motion read after one gets W527, once per routine (whether it
-    changes them is a property of the routine)."""
+# a line that changes the motion settings later motions use: an assignment to $VEL, $ACC, $APO,
+# $TOOL or $BASE (or a member of one), or BAS(..), which the inline forms' folds call to set them
+# (KSS 8.x System Integrators, system variables; BAS.SRC)
+_SETS_MOTION = re.compile(r"(?i)\s*(?:\$(?:VEL|ACC|APO|TOOL|BASE)(?:_\w+)?\b[^=]*=(?!=)|BAS\s*\()")
 
-    def __init__(self, tally: Tally) -> None:
+
+def routines_setting_motion(lines: list[Line]) -> frozenset[str]:
+    """The routines (upper-case names) of a module with a line that changes the motion settings."""
+    found: set[str] = set()
+    routine: str | None = None
+    for ln in lines:
+        head = re.match(r"(?i)\s*(?:GLOBAL\s+)?DEF\s+(\w+)\s*\(", ln.text)
+        if head is not None:
+            routine = head.group(1).upper()
+        elif routine is not None and _SETS_MOTION.match(ln.text):
+            found.add(routine)
+    return frozenset(found)
+
+
+class UnreadCalls:
+    """The calls after which the motion settings may not be the ones read before: routines the
+    import does not read (kept native), and read routines that change them. $VEL, $APO, $TOOL and
+    $BASE are global (KSS 8.x System Integrators, system variables), so a routine's settings hold
+    after it returns, while an rmot proc's settings end with the proc. The first motion read after
+    such a call gets W527, once per routine."""
+
+    def __init__(self, tally: Tally, setters: frozenset[str] = frozenset()) -> None:
         self.tally = tally
-        self.pending: tuple[str, Where] | None = None  # the last such call since the last motion read
+        self.setters = setters  # read routines that change the settings
+        self.pending: tuple[str, Where, bool] | None = None  # the last such call since the last motion read
         self.warned: set[str] = set()
 
     def called(self, text: str, where: Where) -> None:
         """A line kept native: a call when it is `name(..)`."""
         m = re.fullmatch(r"(\w+)\s*\(.*\)", text)
         if m is not None:
-            self.pending = (m.group(1), where)
+            self.pending = (m.group(1), where, False)
 
     def moved(self, stmt: Stmt) -> None:
         """A statement read: W527 when it is a motion after a pending call of a routine not yet named."""
+        if isinstance(stmt, Call) and stmt.name.upper() in self.setters:
+            self.pending = (stmt.name, stmt.where, True)
         if not isinstance(stmt, Move) or self.pending is None:
             return
-        name, at = self.pending
+        name, at, read = self.pending
         self.pending = None
         if name.upper() in self.warned:
             return
         self.warned.add(name.upper())
+        routine = ("a routine that sets them itself: KRL keeps its values after it returns, an rmot proc's end "
+                   "with the proc" if read else "a routine the import does not read")
         self.tally.warn(codes.SETTINGS_AFTER_CALL, f"this motion is read with the speed, approximation, tool and base "
-                        f"set before `{name}(..)` at line {at.line}, a routine the import does not read: check that "
+                        f"set before `{name}(..)` at line {at.line}, {routine}: check that "
                         "it leaves $VEL, $APO, $TOOL and $BASE as they were", stmt.where)

@@ -137,3 +137,38 @@ def test_a_motion_after_an_unread_call_is_warned_once_per_routine(tmp_path: Path
     first = CALLS.split("\n").index("   LIN P1") + 1
     assert len(warned) == 1 and f"job.src:{first}:4:" in warned[0], warned
     assert "`MoveSettings(..)` at line 3" in warned[0]
+
+
+ROUTINE_SETTINGS = """DEF caller()
+  $VEL.CP = 0.1
+  LIN {X 500, Y 0, Z 400, A 0, B 90, C 0}
+  keeps()
+  fast()
+  LIN {X 500, Y 100, Z 400, A 0, B 90, C 0}
+END
+
+DEF keeps()
+  LIN {X 500, Y 50, Z 400, A 0, B 90, C 0}
+END
+
+DEF fast()
+  $VEL.CP = 1.5
+  LIN {X 500, Y 200, Z 400, A 0, B 90, C 0}
+END
+"""
+
+
+def test_a_routine_moves_at_its_callers_speed_and_keeps_its_own_after_it_returns(tmp_path: Path) -> None:
+    """$VEL is global (KSS 8.x System Integrators, system variables): `keeps()` moves at the
+    caller's 0.1 m/s, so its proc's move names no speed (an rmot proc starts with the caller's
+    settings, REFERENCE §5), never KRL's 2 m/s default; `fast()` sets 1.5 m/s, which KRL keeps
+    after it returns while an rmot proc's settings end with it: the caller's next motion is W527."""
+    printed, text = imported_krl(tmp_path, "caller", ROUTINE_SETTINGS, "DEFDAT caller\nENDDAT\n")
+    keeps = text[text.index("proc keeps()"):text.index("proc fast()")]
+    assert "move linear" in keeps and "speed" not in keeps, keeps
+    fast = text[text.index("proc fast()"):text.index("  }", text.index("proc fast()"))]
+    assert "speed 1500 mm/s" in fast, fast
+    after_call = ROUTINE_SETTINGS.splitlines().index("  LIN {X 500, Y 100, Z 400, A 0, B 90, C 0}") + 1
+    warned = [ln for ln in printed.splitlines() if "W527" in ln]
+    assert len(warned) == 1 and warned[0].startswith(f"{tmp_path / 'caller.src'}:{after_call}:"), printed
+    assert "`fast(..)`" in warned[0] and "`keeps(..)`" not in printed
