@@ -213,16 +213,19 @@ UPDATE_GOLDEN = os.environ.get("RMOT_UPDATE_GOLDEN") == "1"
 
 
 def example_plans(names: Iterable[str]) -> dict[str, plan_types.Plan]:
-    """examples/<name>.rmot through the real front end and planner, per name."""
+    """examples/<name>.rmot through the real front end and planner, per name. The planner is
+    reached through the plan cache (the session's folder, tests/conftest.py), so an example the
+    command line already planned in this run (`rmot compile` of the same file) is read back
+    rather than planned again, and the other way round."""
     from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan_cache import cached_plan
 
     out = {}
     for name in names:
         if name not in _PLANNED:  # plans are immutable: each example is planned once per run
             front = load_program(str(ROOT / "examples" / f"{name}.rmot"))
             assert front.program is not None, [d.message for d in front.diagnostics]
-            _PLANNED[name] = plan_program(front.program)
+            _PLANNED[name] = cached_plan(front.program)
         out[name] = _PLANNED[name]
     return out
 

@@ -191,12 +191,14 @@ class TestCompile:
 
 
 def _plan(name: str):  # type: ignore[no-untyped-def]
+    """The example's cell and plan; the plan through the plan cache, which the `compiled`
+    fixture's `rmot compile` of the same file has filled in this run."""
     from rmot.compiler.frontend import load_program
-    from rmot.compiler.plan import plan_program
+    from rmot.compiler.plan_cache import cached_plan
 
     front = load_program(str(EXAMPLES / name))
     assert front.program is not None and front.cell is not None
-    return front.cell, plan_program(front.program)
+    return front.cell, cached_plan(front.program)
 
 
 def _tcp_in_world(cell, plan, tool_name: str, qs: np.ndarray) -> np.ndarray:  # type: ignore[no-untyped-def]

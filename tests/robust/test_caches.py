@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -42,10 +43,29 @@ def baseline(tmp_path_factory: pytest.TempPathFactory) -> subprocess.CompletedPr
     return rmot(tmp_path_factory.mktemp("nocache"), "check", str(COLLISION), "--no-cache")
 
 
-def test_an_edited_verify_entry_gives_the_uncached_verdict(tmp_path: Path, baseline: subprocess.CompletedProcess[str]) -> None:
+@pytest.fixture(scope="module")
+def filled(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, subprocess.CompletedProcess[str]]:
+    """A cache folder filled by one `rmot check` of the collision example (its secret and every
+    entry), and that run; each test attacks its own copy of the folder (`_filled_copy`)."""
+    cache = tmp_path_factory.mktemp("filled") / "cache"
+    return cache, rmot(cache, "check", str(COLLISION))
+
+
+def _filled_copy(filled: tuple[Path, subprocess.CompletedProcess[str]], cache: Path) -> subprocess.CompletedProcess[str]:
+    """`cache` made a byte-for-byte copy of the filled folder (modes kept: the secret stays
+    0600, as the run wrote it; entries are sealed by key and secret, not by folder), and the run
+    that filled it."""
+    template, run = filled
+    assert _entries(template, "verify") and (template / "secret").is_file()  # the run did fill it
+    shutil.copytree(template, cache, symlinks=True)
+    return run
+
+
+def test_an_edited_verify_entry_gives_the_uncached_verdict(tmp_path: Path, baseline: subprocess.CompletedProcess[str],
+                                                           filled: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
     """The entry's findings emptied and its cycle time made NaN (what faked a clean check)."""
     cache = tmp_path / "cache"
-    assert rmot(cache, "check", str(COLLISION)).returncode == baseline.returncode == 1
+    assert _filled_copy(filled, cache).returncode == baseline.returncode == 1
     for path in _entries(cache, "verify"):
         head, doc = _json_part(path.read_bytes())
         program_file, _, _, tasks = doc["doc"]["$t"]
@@ -56,14 +76,15 @@ def test_an_edited_verify_entry_gives_the_uncached_verdict(tmp_path: Path, basel
     assert "E300" in again.stdout
 
 
-def test_an_entry_sealed_by_another_cache_is_not_trusted(tmp_path: Path, baseline: subprocess.CompletedProcess[str]) -> None:
+def test_an_entry_sealed_by_another_cache_is_not_trusted(tmp_path: Path, baseline: subprocess.CompletedProcess[str],
+                                                         filled: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
     """A verify entry emptied and sealed again with the secret of the attacker's own cache (the
     HMAC computed here with the standard library), then copied into the victim's cache: a miss."""
     import hashlib
     import hmac
 
     victim = tmp_path / "victim"
-    rmot(victim, "check", str(COLLISION))
+    _filled_copy(filled, victim)
     forged_secret = os.urandom(32)
     for path in _entries(victim, "verify"):
         _, doc = _json_part(path.read_bytes())
@@ -76,12 +97,13 @@ def test_an_entry_sealed_by_another_cache_is_not_trusted(tmp_path: Path, baselin
 
 
 @pytest.mark.parametrize("kind", ["fifo", "dev_zero", "symlink_out", "huge"])
-def test_a_special_file_as_an_entry_is_a_miss(kind: str, tmp_path: Path, baseline: subprocess.CompletedProcess[str]) -> None:
+def test_a_special_file_as_an_entry_is_a_miss(kind: str, tmp_path: Path, baseline: subprocess.CompletedProcess[str],
+                                              filled: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
     """Every entry of every folder replaced by a FIFO (blocked forever before), a link to
     /dev/zero (read until memory ran out), a link to a file outside the cache, a sparse file
     of 4 GiB: each is a miss, rebuilt, and the verdict is the uncached one."""
     cache = tmp_path / "cache"
-    rmot(cache, "check", str(COLLISION))
+    _filled_copy(filled, cache)
     outside = tmp_path / "outside.json"
     outside.write_bytes(b"{}")
     for folder in ("lalr", "source", "plans", "verify", "load"):
@@ -124,10 +146,11 @@ def damage_lalr(path: Path) -> None:
     path.write_bytes(data[:start] + json.dumps(doc).encode())
 
 
-def test_an_untrustworthy_secret_is_replaced(tmp_path: Path, baseline: subprocess.CompletedProcess[str]) -> None:
+def test_an_untrustworthy_secret_is_replaced(tmp_path: Path, baseline: subprocess.CompletedProcess[str],
+                                             filled: tuple[Path, subprocess.CompletedProcess[str]]) -> None:
     """A secret readable by others (or a FIFO in its place) is not used: a new one is made."""
     cache = tmp_path / "cache"
-    rmot(cache, "check", str(COLLISION))
+    _filled_copy(filled, cache)
     secret = cache / "secret"
     secret.unlink()
     os.mkfifo(secret)

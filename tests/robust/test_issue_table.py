@@ -11,9 +11,11 @@ wrote; of the caption, the PNG's pixels."""
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import resource
+import shutil
 import subprocess
 import sys
 import time
@@ -75,15 +77,30 @@ COLLISION = ROOT / "examples" / "collision.rmot"
 
 
 def _cache_attack(attack: Callable[[Path, Path], None], program: Path = COLLISION, command: str = "check") -> Callable[[Path], None]:
-    """Run once with a cache, `attack(cache, d)` it, run again: the uncached verdict."""
+    """Run once with a cache, `attack(cache, d)` it, run again: the uncached verdict. The
+    uncached run and the filled cache are the same for every row of one program and command:
+    made once (`_filled_once`), and each row attacks its own byte copy of the cache."""
     def run(d: Path) -> None:
         cache = d / "cache"
-        baseline = rmot(d, command, str(program), "--no-cache", cache=d / "other")
-        rmot(d, command, str(program), cache=cache)
+        baseline, template = _filled_once(d.parent, program, command)
+        shutil.copytree(template, cache, symlinks=True)
         attack(cache, d)
         again = rmot(d, command, str(program), cache=cache)
         assert (again.returncode, again.stdout) == (baseline.returncode, baseline.stdout), _out(again)
     return run
+
+
+@functools.cache
+def _filled_once(session: Path, program: Path, command: str) -> tuple[subprocess.CompletedProcess[str], Path]:
+    """`rmot COMMAND PROGRAM --no-cache` and a cache folder filled by `rmot COMMAND PROGRAM`,
+    both under `session` (pytest's temporary folder of the run, the parent of every tmp_path);
+    entries are sealed by key and the folder's secret, so a copy is the same cache."""
+    d = session / f"issue-table-{command}-{program.stem}"
+    d.mkdir()
+    baseline = rmot(d, command, str(program), "--no-cache", cache=d / "other")
+    rmot(d, command, str(program), cache=d / "cache")
+    assert (d / "cache" / "secret").is_file(), "the run filled no cache"
+    return baseline, d / "cache"
 
 
 def _edit_verify(cache: Path, d: Path) -> None:
