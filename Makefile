@@ -25,9 +25,10 @@ demo: $(STAMP)
 	@echo "demo: vendor programs in $(OUT)/pick_place/, picture in $(OUT)/pick_place.png"
 
 # lint, types and the layer contract first (settings in pyproject.toml, how to fix:
-# lint19.md), then the tests
+# lint19.md), then the tests: one worker per core (pytest-xdist), each test module on one worker
+# so its module-scoped fixtures are computed once
 test: lint
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n auto --dist loadfile
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
