@@ -166,7 +166,7 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def urdf_packages(self, c: list[Any]) -> ast.Arg:
         """`packages={a: "dir", ...}`: an Arg whose value is a Vector of named String items."""
         items = tuple(c[1] or ())
-        return _Arg(self._ident(c[0]), _Vector(items, self._span([c[0], *items]) if items else self._span([c[0]])),
+        return _Arg(self._ident(c[0]), _Vector(items, None, self._span([c[0], *items]) if items else self._span([c[0]])),
                     self._span([c[0], *items]))
 
     def package_items(self, c: list[Any]) -> tuple[ast.Arg, ...]:
@@ -389,7 +389,8 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
 
     def vector(self, c: list[Any]) -> ast.Vector:
         first = _Arg(None, c[1], c[1].span)
-        return _Vector((first, *(c[3] or ())), self._span(c))
+        unit = self._unit(c[5]) if c[5] is not None else None
+        return _Vector((first, *(c[3] or ())), unit, self._span(c))
 
     def string(self, c: list[Any]) -> ast.String:
         return self._string(c[0])

@@ -88,7 +88,10 @@ class Joints:
 
 @record(slots=True)
 class Vector:
+    """`(a, b, ...)`, and `(30, 90) deg`: `unit` applies to the items written without one."""
+
     items: tuple[Arg, ...]
+    unit: str | None
     span: Span = _span()
 
 

@@ -70,8 +70,17 @@ def _neg(e: ast.Neg, scope: Scope, rep: Reporter) -> Value | None:
 
 
 def _vector(e: ast.Vector, scope: Scope, rep: Reporter) -> Value | None:
+    """`(a, b, ...)`; with a unit, `(30, 90) deg`, the unit applies to the plain numbers in it."""
     items = tuple(eval_expr(a.value, scope, rep) for a in e.items)
-    return None if any(i is None for i in items) else VectorV(items)  # type: ignore[arg-type]
+    if any(i is None for i in items):
+        return None
+    if e.unit is not None:
+        if e.unit not in UNIT_TABLE:  # reported by the parser (E007)
+            return None
+        factor, dim = UNIT_TABLE[e.unit]
+        items = tuple(Quantity(v.value * factor, dim, e.unit, v.value)
+                      if isinstance(v, Quantity) and v.unit is None and v.dim == DIMENSIONLESS else v for v in items)
+    return VectorV(items)  # type: ignore[arg-type]
 
 
 def _string(e: ast.String, scope: Scope, rep: Reporter) -> Value:

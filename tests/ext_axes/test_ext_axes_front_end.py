@@ -115,3 +115,23 @@ def test_a_robot_on_a_track_in_a_task_block_is_an_error() -> None:
     cell = CELL.replace("}\n", "  robot r2 = kuka_kr16 at pose(y=3000mm)\n}\n")
     _, codes = _load("program p {\n  task r1 {\n" + HOME + "  }\n  task r2 {\n" + HOME + "  }\n}\n", cell)
     assert ("E603", 13) in codes
+
+
+def test_a_unit_after_a_tuple_gives_it_to_each_plain_number() -> None:
+    """`pos=(30, 90) deg` is `pos=(30deg, 90deg)`, as `joints(..) deg` gives its unit to each
+    value; `move axes pos to (0, 180) deg` likewise; a value with its own unit keeps it."""
+    moves = []
+    for values in ("(30, 90) deg", "(30deg, 90deg)", "(30deg, 90) deg", "(0.5235987755982988, 90deg) rad"):
+        program, codes = _load("program p on r1 with rail, pos {\n  tool torch\n" + HOME +
+                               f"  move joint pose(x=100mm, z=50mm, rx=180deg) frame work ext(rail=1200mm, pos={values})\n"
+                               "  move axes pos to (0, 180) deg\n}\n")
+        assert codes == [] and program is not None, (values, codes)
+        moves.append([i for i in program.tasks[0].body if isinstance(i, ir.Move)])
+    want = np.linalg.inv(robot_base(1200)) @ work_frame(30, 90) @ at(0.1, 0.0, 0.05) @ rot("x", 180)
+    for found in moves:
+        assert isinstance(found[1].target, ir.CartesianTarget)
+        assert np.allclose(found[1].target.pose.matrix(), want, atol=1e-9)
+        assert dict(found[2].ext) == pytest.approx({"rail": 1.2, "pos.1": 0.0, "pos.2": math.pi})
+    bad = "program p on r1 with rail, pos {\n" + HOME + "  move axes pos to (0, 180) parsecs\n}\n"
+    _, codes = _load(bad)
+    assert codes and codes[0] == ("E001", (CELL + bad).splitlines().index("  move axes pos to (0, 180) parsecs") + 1), codes
