@@ -155,6 +155,20 @@ def _fail(code: codes.Code, path: str, message: str) -> ImportError_:  # type: i
     return ImportError_(Diagnostic(code, Severity.ERROR, message, span_of(Where(path, 1))))
 
 
+def _one_main(modules: dict[str, str]) -> None:
+    """Refuse (E523) RAPID modules of which two define `PROC main`: the modules of one task have
+    one main, so these are several robots' programs, whose barriers only `--task` reads (merged,
+    the second main would be lost)."""
+    mains = [(path, text.count("\n", 0, m.start()) + 1) for path, text in modules.items()
+             for m in [re.search(r"(?im)^[ \t]*(?:LOCAL[ \t]+)?PROC[ \t]+main[ \t]*\(", text)] if m is not None]
+    if len(mains) > 1:
+        (first, _), (path, line) = mains[:2]
+        raise ImportError_(Diagnostic(
+            codes.TASK_SPEC_INVALID, Severity.ERROR, f"the modules of one task must have one PROC main (`{first}` has "
+            "one too): several robots' programs are read with one --task ROBOT=FILE each and --cell",
+            span_of(Where(path, line))))
+
+
 def _load(path: str) -> str:
     try:
         data = read_regular(path, MAX_BYTES)
@@ -199,6 +213,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
             job = re.search(r"(?m)^//NAME\s+(\w+)", _load(path))
             if job:
                 _FANUC_PROGRAMS[job.group(1).upper()] = (path, _load(path))
+    _one_main(_RAPID_TASK)
     docs: list[Document] = []
     consumed = set()
     for path in paths:

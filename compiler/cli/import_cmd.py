@@ -10,51 +10,19 @@ error (exit 2); a line kept native is a located warning.
 from __future__ import annotations
 
 import os
-import re
 import sys
 
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
 from rmot.compiler.cli.import_read import cell_signals, print_summary, read_on_robot, refuse_output_input, write_output
-from rmot.lang.diagnostics import Diagnostic, Severity, render
-from rmot.lang.input_file import NotRegularFile, read_regular
-from rmot.lang.source import Pos, SourceFile, Span
+from rmot.lang.diagnostics import render
 
 __all__ = ["import_", "DEFAULT_MODELS"]
 
 # the stub cell's robot when --robot is not given: a library arm of the vendor's maker
 DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "ur5e",
                   "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8", "val3": "staubli_tx2_60"}
-
-
-def _one_task(files: tuple[str, ...]) -> None:
-    """Refuse (E523) RAPID files of which two define `PROC main`: the modules of one task have
-    one main, so these are several robots' programs, whose barriers only --task reads (merged,
-    the second main would be lost)."""
-    from rmot.backends.readers import codes  # late: loads numpy only when this runs
-    from rmot.backends.readers.common import MAX_BYTES, read_text  # late: loads numpy only when this runs
-
-    mains: list[tuple[str, str, int]] = []
-    for path in files:
-        if os.path.splitext(path)[1].lower() not in (".mod", ".modx", ".prg"):
-            continue
-        try:
-            text = read_text(read_regular(path, MAX_BYTES))
-        except (NotRegularFile, ValueError):
-            continue  # the reader reports it (E512)
-        m = re.search(r"(?im)^[ \t]*(?:LOCAL[ \t]+)?PROC[ \t]+main[ \t]*\(", text)
-        if m is not None:
-            mains.append((path, text, text.count("\n", 0, m.start()) + 1))
-    if len(mains) < 2:
-        return
-    (first, _, _), (path, text, line) = mains[:2]
-    pos = Pos(line, 1)
-    click.echo(render(Diagnostic(
-        codes.TASK_SPEC_INVALID, Severity.ERROR,
-        f"the modules of one task must have one PROC main (`{first}` has one too): several robots' programs "
-        "are read with one --task ROBOT=FILE each and --cell", Span(SourceFile(path, text), pos, pos))), err=True)
-    sys.exit(EXIT_INPUT)
 
 
 @click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP, INFORM or VAL3 programs back into .rmot. "
@@ -82,7 +50,6 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         click.echo("rmot: import needs FILE... (one robot's program) or --task ROBOT=FILE (several robots)", err=True)
         sys.exit(EXIT_INPUT)
     refuse_output_input(output, files)
-    _one_task(files)
     found = cell_signals(cell, robot) if cell is not None else None
     if isinstance(found, str):
         click.echo(found, err=True)

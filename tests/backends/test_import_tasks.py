@@ -359,3 +359,13 @@ def test_sync_in_a_proc(vendor: str, tmp_path: Path) -> None:
         leaves = [[i for i in t["instructions"] if i["kind"] != "proc_call"] for t in (ta, tb)]
         for a, b in zip(*leaves, strict=True):
             _same_instruction(a, b, before["cycle_time"])
+
+
+def test_two_robots_modules_given_as_one_task_are_refused(compiled: Path, tmp_path: Path) -> None:
+    """Both robots' RAPID programs as plain FILEs: each module has its own `PROC main`, so they are
+    not the modules of one task (merged, r2's main would be lost): E523 at r2's main, nothing written."""
+    r1, r2 = compiled / "rapid" / "handover_r1.mod", compiled / "rapid" / "handover_r2.mod"
+    line = next(n for n, text in enumerate(r2.read_text().splitlines(), 1) if re.match(r"\s*PROC main\(", text))
+    code, output = _import([str(r1), str(r2)], tmp_path / "x.rmot")
+    assert code == 2 and _located(output, "E523", r2, line) and "--task" in output, output
+    assert not (tmp_path / "x.rmot").exists()
