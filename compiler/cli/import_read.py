@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from rmot.lang import ir
     from rmot.lang.ir import Pose
 
-__all__ = ["cell_signals", "read_on_robot", "print_summary", "write_output", "refuse_output_input"]
+__all__ = ["cell_signals", "robot_signals", "read_on_robot", "print_summary", "write_output", "refuse_output_input"]
 
 
 def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
@@ -65,8 +65,6 @@ def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -
 
 def cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object] | str:
     """(SignalMap, robot name, ir.Cell) of a cell file, or the error text."""
-    from rmot.backends.readers.writer import SignalMap  # late: loads numpy only when this runs
-    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
     from rmot.compiler.frontend import load_program  # late: tests replace it (monkeypatch): read at call time
 
     result = load_program(cell_path)
@@ -76,13 +74,21 @@ def cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object
     chosen = robot or names[0]
     if chosen not in names:
         return f"rmot: --robot must name a robot of the cell ({', '.join(names)}; got {chosen})"
+    return robot_signals(result.cell, chosen)
+
+
+def robot_signals(cell: ir.Cell, robot: str) -> tuple[object, str, object]:
+    """(SignalMap, robot, cell): the named signals of the cell's `robot` (and the shared ones)."""
+    from rmot.backends.readers.writer import SignalMap  # late: loads numpy only when this runs
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
+
     kinds = {ir.IoDirection.DIGITAL_OUT: 0, ir.IoDirection.DIGITAL_IN: 1, ir.IoDirection.ANALOG_OUT: 2,
              ir.IoDirection.GROUP_IN: 3}
     tables: list[list[tuple[str, int]]] = [[], [], [], []]
-    for s in result.cell.io:
-        if s.direction in kinds and s.robot in (None, chosen):
+    for s in cell.io:
+        if s.direction in kinds and s.robot in (None, robot):
             tables[kinds[s.direction]].append((s.name.upper(), s.port))
-    return SignalMap(*(tuple(t) for t in tables)), chosen, result.cell
+    return SignalMap(*(tuple(t) for t in tables)), robot, cell
 
 
 def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, object] | None,

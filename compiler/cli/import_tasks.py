@@ -20,7 +20,9 @@ from dataclasses import replace
 import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
-from rmot.compiler.cli.import_read import cell_signals, print_summary, read_on_robot, refuse_output_input, write_output
+from rmot.compiler.cli.import_read import (
+    cell_signals, print_summary, read_on_robot, refuse_output_input, robot_signals, write_output,
+)
 from rmot.lang.diagnostics import Diagnostic, Severity, render
 from rmot.lang.source import SourceFile
 
@@ -101,8 +103,8 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
     tasks = []
     try:
         for name, (task, paths) in given.items():
-            found = cell_signals(cell, name)
-            assert not isinstance(found, str) and isinstance(found[0], SignalMap)
+            found = robot_signals(cell_ir, name)
+            assert isinstance(found[0], SignalMap)
             doc = read_on_robot(paths, cell, found, None)
             tasks.append(TaskDoc(name, doc, found[0], handshake_ports(cell_ir, name), task))
         tasks, warnings = read_barriers(tasks, span_of)
