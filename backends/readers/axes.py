@@ -27,7 +27,7 @@ from dataclasses import replace
 from itertools import combinations
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.axes_only import absorb_move_ext_j, one_mechanism
+from rmot.backends.readers.axes_only import absorb_move_ext_j, one_mechanism, si_value
 from rmot.backends.readers.common import rmot_name
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.writer import map_leaves
@@ -211,7 +211,7 @@ def _in_riding_frame(move: Move, doc: Document, chosen: tuple[Mechanism, ...], v
     at = [values] + ([_scaled_via(move, values, chosen)] if move.kind == "circular" else [])
     exprs = []
     for point, where in zip(points, at):
-        si = {a.name: _si(a.linear, v) for a, v in zip((a for m in chosen for a in m.axes), where)}
+        si = {a.name: si_value(a.linear, v) for a, v in zip((a for m in chosen for a in m.axes), where)}
         mech = riding[0][0]
         frame = mech.flange(external.values_of(mech, si)) * mount.local
         # the controller's world: TP UFRAME 0 the robot base with the axes at home, INFORM
@@ -273,10 +273,6 @@ def _offsets(chosen: tuple[Mechanism, ...]) -> list[tuple[Mechanism, int]]:
         out.append((mech, k))
         k += len(mech.axes)
     return out
-
-
-def _si(linear: bool, value: float | None) -> float:
-    return (value or 0.0) / 1000.0 if linear else math.radians(value or 0.0)
 
 
 def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Callable[[Where], Span]) -> Document:

@@ -25,7 +25,7 @@ from rmot.backends.readers import codes
 from rmot.backends.readers.axes_slots import RAPID_UNUSED_FROM
 from rmot.backends.readers.model import Document, Move, Native, Stmt, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
-from rmot.lang.ir_axes import ExtAxis, Mechanism, axis_time
+from rmot.lang.ir_axes import Mechanism, axis_time
 from rmot.lang.source import Span
 
 __all__ = ["absorb_move_ext_j", "one_mechanism"]
@@ -116,11 +116,12 @@ def _axes_move(move: Move, new: tuple[float | None, ...], old: tuple[float | Non
                                 f"of the arm (`move axes`): {why}; kept native", span_of(move.where)))
         return Native("rapid", span_of(move.where).file.line_text(move.where.line).strip(), move.where)
     mech, first = changed[0]
-    shortest = max(axis_time(_si(a, v) - _si(a, w), a.speed, a.accel)
+    shortest = max(axis_time(si_value(a.linear, v) - si_value(a.linear, w), a.speed, a.accel)
                    for a, v, w in zip(mech.axes, new[first:], old[first:]))
     time = None if move.time is None or abs(move.time - shortest) <= ROUNDED_S else move.time
     return replace(move, ext=tuple(e for e in move.ext if e[0] == mech.name), time=time)
 
 
-def _si(axis: ExtAxis, value: float | None) -> float:
-    return (value or 0.0) / 1000.0 if axis.linear else math.radians(value or 0.0)
+def si_value(linear: bool, value: float | None) -> float:
+    """An axis value as the vendor files write it (mm, deg; None: not set, 0) in SI units (m, rad)."""
+    return (value or 0.0) / 1000.0 if linear else math.radians(value or 0.0)
