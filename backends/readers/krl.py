@@ -28,6 +28,7 @@ from rmot.backends.readers.krl_text import (
 from rmot.backends.readers.krl_data import (
     data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
 )
+from rmot.backends.readers.krl_flow import KnownPositions, data_value, known_target, literal
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_why import (
@@ -79,6 +80,7 @@ class _Krl:
         # calls kept native or of routines that change the settings: W527 at the motion after one
         self.calls = UnreadCalls(self.tally, routines_setting_motion(self.lines))
         self.logic = KrlVars([], "", None, set(), lambda n: None)  # task variables (krl_logic.py), set in read()
+        self.flow = KnownPositions(re.search(r"(?im)^\s*(?:GLOBAL\s+)?INTERRUPT\s+DECL\b", src[1]) is not None)
 
     def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
         """The input (kind "IN") a condition or the output ("OUT") a PULSE names: its SIGNAL's port;
@@ -140,6 +142,7 @@ class _Krl:
                                     "call, written as a proc (import it after its caller; alone, nothing runs it)",
                                     ln.where)
                 self.params = param_names(params)
+                self.flow.routine(self.lines, i)
                 body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), partial(self._block, i + 1, ("END",)))
                 self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
@@ -165,6 +168,14 @@ class _Krl:
                               Where(self.tally.path, 1))
 
     def _statement(self, i: int) -> tuple[list[Stmt], int]:
+        """The statement at `i`, the positions known there observed first and forgotten after a block."""
+        self.flow.observe(self.lines, i, lambda key: data_value(key, (self.data, self.config), self.assigned))
+        out, j = self._statement_read(i)
+        if j > i + 1:
+            self.flow.disturb(self.lines[i:j])
+        return out, j
+
+    def _statement_read(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
         self.at = ln.where  # where a setting read from the line's text is located
         if ln.endfold:
@@ -454,6 +465,9 @@ class _Krl:
             terms = ", ".join(f"{axis}={mm(e)}" for axis, e in sorted(offsets.items()))
             named = rmot_name(decl.name)
             return (f"shift({named}, {terms})" if terms else named, decl.name, decl)
+        known = self.flow.get(key)
+        if known is not None:
+            return known_target(known, at or Where(self.tally.path, 1), self._target)
         if key not in self.targets and key in self.config and key.split("[")[0] not in self.assigned:
             found = position(*self.config[key])  # a global position of the robot's $config.dat
             if found is not None:
@@ -472,12 +486,10 @@ class _Krl:
                 return None
             return (f"{left[0]} * {pose_expr(offset)}", left[1], Target("", left[2].pose * offset, None, None, left[2].where))
         agg = aggregate(text)  # a literal position: Cartesian where it has X..C, else axes A1..A6
-        literal = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
-        if literal is None:
+        found = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
+        if found is None:
             return None
-        expr = pose_expr(literal.pose) if literal.pose is not None else \
-            f"joints({', '.join(num_text(j) for j in literal.joints or ())}) deg"
-        return (expr, None, literal)
+        return (literal(found), None, found)
 
     def _relative(self, word: str, rest: str, where: Where) -> Move | None:
         """`LIN_REL {X dx, Y dy, Z dz} [C_DIS] [#BASE|#TOOL]` (KSS 8.x, relative motions: the
