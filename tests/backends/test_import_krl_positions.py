@@ -1,0 +1,172 @@
+"""KRL positions computed in straight-line code, read as the rmot targets they are.
+
+The modules below imitate forms found in public KRL programs: the palletizing offsets
+`POS_A = PUNTO[n]`, `POS_A.Z = POS_A.Z + INC_Z + 400`, `POS_A.X = POS_A.X - 50` (ingeniado,
+CAJA_G caja_g_m1.src and SACO_5 saco_5_m1.src), positions derived from others and from
+`$NULLFRAME` (`xHole = $NULLFRAME`, `xHole.X = stHole.rX`, `xAboveTable = xProfile`,
+`xAboveTable.Z = grAboveHoldersZ`: khrzysio Sub_Drill DrillHole.src), an array element with a
+constant index (`lfWorkPos[1]`, HugoDanielson KukaMiling Jobs St1_Job2_Side1.src).
+KUKA's meaning (KSS 8.x Operating and Programming Instructions for System Integrators, structure
+variables): `P = Q` copies the whole structure, `P.Z = expr` changes one component and keeps the
+others (the Status too), E6POS `{X, Y, Z mm, A, B, C deg}` with R = Rz(A)·Ry(B)·Rx(C).
+
+Witnesses: the offsets are the file's own numbers added by hand; a literal pose's rotation is
+compared with numpy's product of the three elementary rotations; where a value may change (a call,
+a block, a label, a run-time value, an interrupt) the move stays native, its reason written by hand.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from krl_imported import imported_krl
+
+DAT = """DEFDAT pal
+DECL E6POS XP1={X 500.0,Y 100.0,Z 300.0,A 0.0,B 90.0,C 0.0,S 2,T 0}
+DECL E6POS PUNTO[3]
+PUNTO[1]={X 800.0,Y -200.0,Z 150.0,A 30.0,B 0.0,C 180.0,S 2,T 10}
+DECL E6POS PG={X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0,S 2,T 0}
+ENDDAT
+"""
+
+
+def _rotation(a: float, b: float, c: float) -> np.ndarray:
+    """Rz(A)·Ry(B)·Rx(C), angles in degrees (KUKA's ABC)."""
+    a, b, c = np.radians([a, b, c])
+    rz = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]])
+    ry = np.array([[np.cos(b), 0, np.sin(b)], [0, 1, 0], [-np.sin(b), 0, np.cos(b)]])
+    rx = np.array([[1, 0, 0], [0, np.cos(c), -np.sin(c)], [0, np.sin(c), np.cos(c)]])
+    return rz @ ry @ rx
+
+
+def _quaternion_matrix(w: float, x: float, y: float, z: float) -> np.ndarray:
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def _moves(rmot: str) -> list[str]:
+    return [ln.strip() for ln in rmot.splitlines() if ln.strip().startswith(("move ", "native krl"))]
+
+
+def test_component_offsets_of_a_known_position_are_a_shift(tmp_path: Path) -> None:
+    src = """DEF pal( )
+DECL E6POS POS_A
+DECL E6POS POS_B
+$VEL.CP = 0.2
+POS_A = XP1
+POS_A.Z = POS_A.Z + (400 / 2) + 30 * 2
+POS_A.X = POS_A.X - 50
+LIN POS_A
+POS_B = PUNTO[1]
+POS_B.Y = POS_B.Y + 80
+LIN POS_B
+POS_A.X = 100
+LIN POS_A
+END
+"""
+    _, rmot = imported_krl(tmp_path, "pal", src, DAT)
+    moves = [m for m in _moves(rmot) if m.startswith("move")]
+    # 300 + 200 + 60 = 560 (z + 260); 500 - 50 = 450 (x - 50); then x = 100: x - 400 from XP1
+    assert moves[0].startswith("move linear shift(XP1, x=-50mm, z=260mm) speed 200 mm/s"), moves
+    assert moves[1].startswith("move linear shift(PUNTO_1, y=80mm)") or moves[1].startswith("move linear shift(PUNTO"), moves
+    assert "y=80mm" in moves[1]
+    assert moves[2].startswith("move linear shift(XP1, x=-400mm, z=260mm)"), moves
+
+
+def test_a_rotated_or_computed_position_is_its_literal_pose(tmp_path: Path) -> None:
+    src = """DEF pal( )
+DECL E6POS POS_B
+DECL FRAME xHole
+$VEL.CP = 0.2
+POS_B = XP1
+POS_B.A = 90
+POS_B.C = POS_B.C - 45
+LIN POS_B
+xHole = $NULLFRAME
+xHole.X = 120.5
+xHole.Z = 7
+LIN xHole
+END
+"""
+    _, rmot = imported_krl(tmp_path, "pal", src, DAT)
+    moves = [m for m in _moves(rmot) if m.startswith("move")]
+    m = re.match(r"move linear pose\(x=(\S+)mm, y=(\S+)mm, z=(\S+)mm, q=\((\S+), (\S+), (\S+), (\S+)\)\)", moves[0])
+    assert m is not None, moves
+    assert [float(m.group(k)) for k in (1, 2, 3)] == [500.0, 100.0, 300.0]
+    q = [float(m.group(k)) for k in (4, 5, 6, 7)]
+    assert np.allclose(_quaternion_matrix(*q), _rotation(90.0, 90.0, -45.0), atol=1e-9)
+    assert moves[1].startswith("move linear pose(x=120.5mm, y=0mm, z=7mm, q=(1, 0, 0, 0))"), moves
+
+
+def test_a_value_that_may_change_keeps_the_move_native(tmp_path: Path) -> None:
+    src = """DEF pal( )
+DECL E6POS POS_A
+DECL E6POS POS_C
+DECL INT n
+$VEL.CP = 0.2
+POS_A = XP1
+POS_A.Z = POS_A.Z + INC_Z
+LIN POS_A
+POS_C = XP1
+Grip(POS_C)
+LIN POS_C
+PG = PUNTO[1]
+Grip(1)
+LIN PG
+POS_A = XP1
+FOR n = 1 TO 3
+   POS_A.Z = POS_A.Z + 10
+   LIN POS_A
+ENDFOR
+LIN POS_A
+POS_C = XP1
+IF $IN[1] THEN
+   POS_C.Z = 10
+ENDIF
+LIN POS_C
+POS_C = XP1
+AGAIN:
+LIN POS_C
+END
+"""
+    out, rmot = imported_krl(tmp_path, "pal", src, DAT)
+    natives = [m for m in _moves(rmot) if m.startswith("native krl \"LIN")]
+    # every LIN of this module has a value known only at run time (or after a change it cannot see)
+    assert len(natives) == 7, _moves(rmot)
+    assert "`POS_A` is assigned in the program" in out
+
+
+def test_an_interrupt_leaves_only_the_routine_s_own_positions_known(tmp_path: Path) -> None:
+    src = """DEF pal( )
+DECL E6POS POS_A
+INTERRUPT DECL 3 WHEN $IN[3] DO Stop( )
+$VEL.CP = 0.2
+POS_A = XP1
+PG = PUNTO[1]
+LIN POS_A
+LIN PG
+END
+"""
+    _, rmot = imported_krl(tmp_path, "pal", src, DAT)
+    assert "move linear XP1 speed 200 mm/s" in rmot
+    assert 'native krl "LIN PG"' in rmot
+
+
+def test_known_positions_carry_into_a_branch_that_does_not_change_them(tmp_path: Path) -> None:
+    src = """DEF pal( )
+DECL E6POS POS_A
+$VEL.CP = 0.2
+POS_A = XP1
+POS_A.Y = POS_A.Y + 25
+IF $IN[1] THEN
+   LIN POS_A
+ENDIF
+LIN POS_A
+END
+"""
+    _, rmot = imported_krl(tmp_path, "pal", src, DAT)
+    assert len([m for m in _moves(rmot) if m.startswith("move linear shift(XP1, y=25mm)")]) == 2, _moves(rmot)
