@@ -28,6 +28,7 @@ from rmot.backends.readers.krl_text import (
 from rmot.backends.readers.krl_data import (
     data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
 )
+from rmot.backends.readers.krl_globals import ASSIGNMENT, public_globals
 from rmot.backends.readers.krl_flow import KnownPositions, data_value, known_target, literal
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
@@ -56,7 +57,8 @@ class _Krl:
         self.data = data_list(dat)
         self.dat = dat
         config = config_near(src[0])
-        self.config = data_list(config)  # the robot's global declarations (positions found there on use)
+        # the robot's global declarations (positions found there on use), and other modules' public ones
+        self.config = {**public_globals(src[0], dat[0] if dat else None), **data_list(config)}
         texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
         self.signals = {k: v for text in texts for k, v in signals(text).items()}
         self.variables = set().union(*(declared_names(text) for text in texts))
@@ -65,8 +67,7 @@ class _Krl:
         self.signatures = signatures(self.lines)
         self.params: dict[str, tuple[str, str]] = {}  # the parameters of the routine being read
         # a data object the program assigns holds its .dat value only until then: no constant target
-        self.assigned = {m.upper() for m in re.findall(r"(?im)^[ \t]*(\w+)[ \t]*(?:\[[^\]\n]*\])?[ \t]*(?:\.\w+)?"
-                                                       r"[ \t]*=(?!=)", src[1])}
+        self.assigned = {m.upper() for m in ASSIGNMENT.findall(src[1])}
         self.tools, self.frames, self.targets = data_objects(self.data, src[1], self.assigned)
         self.routines: list[Routine] = []
         self.names: set[str] = set()

@@ -4,10 +4,10 @@ A motion is read only where its target, speed and approximation are certain from
 its data lists. Where one is not, the reason names it: a position the program assigns (KSS 8.x
 Operating and Programming Instructions for System Integrators: a data object holds its data-list
 value only until a statement assigns it), one declared without a value or in no data list found
-(the declarations of other modules' data lists are not read), an index computed at run time,
-`$POS_ACT` (the robot's current position, read when the line runs), an approximation whose system
-variable no line before sets, or an inline form whose velocity is a variable or whose motion data
-set is declared nowhere the import sees.
+(of other modules' data lists, only the GLOBAL declarations of public ones in the program's folder
+are read), an index computed at run time, `$POS_ACT` (the robot's current position, read when the
+line runs), an approximation whose system variable no line before sets, or an inline form whose
+velocity is a variable or whose motion data set is declared nowhere the import sees.
 """
 
 from __future__ import annotations
@@ -44,7 +44,8 @@ def _point_why(point: str, names: Names) -> str | None:
     if text not in data and (base in declared or base in data):
         return f"`{point.strip()}` is declared without a value: it is set at run time"
     if text not in data:
-        return f"`{point.strip()}` is declared in neither the program's .dat nor a $config.dat found"
+        return (f"`{point.strip()}` is declared in neither the program's .dat nor a $config.dat found, nor GLOBAL "
+                "in a public data list (DEFDAT .. PUBLIC) of its folder")
     return None
 
 

@@ -72,8 +72,7 @@ END
     moves = [m for m in _moves(rmot) if m.startswith("move")]
     # 300 + 200 + 60 = 560 (z + 260); 500 - 50 = 450 (x - 50); then x = 100: x - 400 from XP1
     assert moves[0].startswith("move linear shift(XP1, x=-50mm, z=260mm) speed 200 mm/s"), moves
-    assert moves[1].startswith("move linear shift(PUNTO_1, y=80mm)") or moves[1].startswith("move linear shift(PUNTO"), moves
-    assert "y=80mm" in moves[1]
+    assert moves[1].startswith("move linear shift(PUNTO_1_, y=80mm)"), moves
     assert moves[2].startswith("move linear shift(XP1, x=-400mm, z=260mm)"), moves
 
 
@@ -170,3 +169,39 @@ END
 """
     _, rmot = imported_krl(tmp_path, "pal", src, DAT)
     assert len([m for m in _moves(rmot) if m.startswith("move linear shift(XP1, y=25mm)")]) == 2, _moves(rmot)
+
+
+XPOINTS = """&ACCESS RV
+DEFDAT  XPOINTS PUBLIC
+DECL GLOBAL E6POS XST2={X 162.5,Y -1116.0,Z 504.0,A -23.0,B 86.0,C 67.0,S 6,T 26}
+DECL E6POS XLOCAL={X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0,S 6,T 26}
+DECL GLOBAL E6POS XMOVED={X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0,S 6,T 26}
+ENDDAT
+"""
+
+
+def test_a_global_of_a_public_data_list_in_the_folder_is_read(tmp_path: Path) -> None:
+    """`DEFDAT XPOINTS PUBLIC` with `DECL GLOBAL E6POS XST2=..` (HugoDanielson KukaMiling
+    Dat/xPoints.dat) used by another module (Moves/FromSt1/st1_st2.src); a non-GLOBAL one and a
+    GLOBAL one another .src of the folder assigns stay native."""
+    (tmp_path / "xPoints.dat").write_text(XPOINTS)
+    (tmp_path / "other.src").write_text("DEF other( )\nXMOVED = $POS_ACT\nEND\n")
+    src = "DEF st1( )\n$VEL.CP = 0.2\nPTP XST2\nLIN XLOCAL\nLIN XMOVED\nEND\n"
+    out, rmot = imported_krl(tmp_path, "st1", src, "DEFDAT st1\nENDDAT\n")
+    assert "target XST2 = pose(x=162.5mm, y=-1116mm, z=504mm" in rmot
+    assert "move joint XST2" in rmot
+    assert 'native krl "LIN XLOCAL"' in rmot and 'native krl "LIN XMOVED"' in rmot
+    assert "nor GLOBAL in a public data list" in out
+
+
+def test_a_data_list_that_is_not_public_keeps_its_globals(tmp_path: Path) -> None:
+    (tmp_path / "xPoints.dat").write_text(XPOINTS.replace(" PUBLIC", ""))
+    _, rmot = imported_krl(tmp_path, "st1", "DEF st1( )\nPTP XST2\nEND\n", "DEFDAT st1\nENDDAT\n")
+    assert 'native krl "PTP XST2"' in rmot
+
+
+def test_a_constant_of_the_data_list_is_a_position(tmp_path: Path) -> None:
+    """`DECL CONST POS xAboveMagazine={..}` (khrzysio Objects/ToolMagazine.dat)."""
+    dat = "DEFDAT mag\nDECL CONST POS xAboveMagazine={X 500.000,Y 200.000,Z 300.000,A 0.0,B 0.0,C 0.0}\nENDDAT\n"
+    _, rmot = imported_krl(tmp_path, "mag", "DEF mag( )\n$VEL.CP = 0.2\nLIN xAboveMagazine\nEND\n", dat)
+    assert "move linear xAboveMagazine speed 200 mm/s" in rmot
