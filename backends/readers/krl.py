@@ -300,7 +300,8 @@ class _Krl:
 
     def _names(self) -> Names:
         """What the program's names are, for saying why a motion stays native."""
-        return (self.targets, self.assigned, self.variables, {**self.config, **self.data})
+        return (self.targets, {name: self.flow.lost.get(name, "") for name in self.assigned}, self.variables,
+                {**self.config, **self.data})
 
     # ---------------------------------------------------------------- modal variables
 

@@ -118,11 +118,13 @@ class KnownPositions:
         self.interrupts = interrupts  # the module declares an interrupt: only the routine's own variables
         self.values: dict[str, Known] = {}
         self.locals: set[str] = set()
+        self.lost: dict[str, str] = {}  # NAME -> why its value is not known here (the line that made it so)
 
     def routine(self, lines: list[Line], i: int) -> None:
         """A routine starts at `i`: nothing is known; its own variables are the DECLs up to its END."""
         self.values = {}
         self.locals = set()
+        self.lost = {}
         for ln in lines[i + 1:]:
             if ln.word == "END":
                 break
@@ -137,25 +139,36 @@ class KnownPositions:
         """Line `i` is about to be read: learn what it assigns, or forget what it may change."""
         ln = lines[i]
         if ln.word in _BLOCKS:
-            self.disturb(lines[i:_block_end(lines, i) + 1])
+            self.disturb(lines[i:_block_end(lines, i) + 1], ln)
         elif not self._assign(ln.text, resolve):
             self.disturb([ln])
 
-    def disturb(self, lines: list[Line]) -> None:
-        """Forget what these lines may change (a block's, before and after it is read)."""
+    def disturb(self, lines: list[Line], block: Line | None = None) -> None:
+        """Forget what these lines may change (a block's, opened by `block`, before and after it is read)."""
         for ln in lines:
             text = ln.text
             if re.fullmatch(r"\w+\s*:", text):  # a label: a GOTO lands here from anywhere
-                self.values = {}
-            m = re.match(r"(\w+)\s*(\[[^\]]*\])?\s*(?:\.\w+)?\s*=(?!=)", text)
+                self._forget(list(self.values), f"unknown after the label at line {ln.where.line}, where a jump may land: its value is known only at run time")
+            m = re.match(r"(\w+)\s*(\[[^\]]*\])?\s*(\.\w+)?\s*=(?!=)", text)
             if m is not None:
                 name = m.group(1).upper()
-                self.values = {k: v for k, v in self.values.items() if k.split("[")[0] != name}
+                why = (f"assigned inside the block at line {block.where.line} (a loop repeats it, a branch may not run): "
+                       "its value is known only at run time" if block is not None else
+                       f"assigned at line {ln.where.line} (`{text[:40]}`) a value known only at run time")
+                if block is not None or m.group(3) is None or name not in self.lost:
+                    self.lost[name] = why
+                self._forget([k for k in self.values if k.split("[")[0] == name], why)
             call = re.fullmatch(r"(?i)(\w+)\s*\((.*)\)", text)
             if call is not None and call.group(1).upper() != "BAS":
                 args = {w.upper() for w in re.findall(r"\w+", call.group(2))}
-                self.values = {k: v for k, v in self.values.items()
-                               if k.split("[")[0] in self.locals and k.split("[")[0] not in args}
+                self._forget([k for k in self.values if k.split("[")[0] not in self.locals or k.split("[")[0] in args],
+                             f"known before `{call.group(1)}(..)` at line {ln.where.line}, which may change it: its value is known "
+                             "only at run time")
+
+    def _forget(self, keys: list[str], why: str) -> None:
+        for key in keys:
+            del self.values[key]
+            self.lost[key.split("[")[0]] = why
 
     def _assign(self, text: str, resolve: Resolve) -> bool:
         """`P = Q`, `P = {..}` or `P.C = expr` with a value known here: learnt (True)."""
@@ -172,15 +185,17 @@ class KnownPositions:
             if current is None or value is None or not isinstance(current[3].get(part), float):
                 return False
             self.values[name] = (current[0], current[1], current[2], {**current[3], part: value})
+            self.lost.pop(name.split("[")[0], None)
             return True
         source = m.group(3).strip()
         found = self.values.get(_key(source)) or resolve(_key(source))
         if _key(source) == "$NULLFRAME":
             found = ("FRAME", None, _NULLFRAME, dict(_NULLFRAME))
-        if found is not None:
-            self.values[name] = found
-            return True
-        return self._aggregate(name, current, source)
+        if found is None and not self._aggregate(name, current, source):
+            return False
+        self.values[name] = found or self.values[name]
+        self.lost.pop(name.split("[")[0], None)
+        return True
 
     def _aggregate(self, name: str, current: Known | None, source: str) -> bool:
         agg = aggregate(source)

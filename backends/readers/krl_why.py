@@ -38,6 +38,9 @@ def _point_why(point: str, names: Names) -> str | None:
         return None
     base = m.group(1)
     if base in assigned:
+        how = assigned.get(base) if isinstance(assigned, Mapping) else None
+        if how:  # the line that made its value one known only at run time (krl_flow.py)
+            return f"`{point.strip()}` is {how}"
         return f"`{point.strip()}` is assigned in the program: its value is known only at run time"
     if m.group(2) is not None and not m.group(2).isdigit():
         return f"`{point.strip()}` is chosen by an index known only at run time"

@@ -136,7 +136,17 @@ END
     natives = [m for m in _moves(rmot) if m.startswith("native krl \"LIN")]
     # every LIN of this module has a value known only at run time (or after a change it cannot see)
     assert len(natives) == 7, _moves(rmot)
-    assert "`POS_A` is assigned in the program" in out
+    reasons = {  # the line that made each value unknown, written by hand from the module above
+        8: "`POS_A` is assigned at line 7 (`POS_A.Z = POS_A.Z + INC_Z`) a value known only at run time",
+        11: "`POS_C` is known before `Grip(..)` at line 10, which may change it",
+        14: "`PG` is known before `Grip(..)` at line 13, which may change it",
+        18: "`POS_A` is assigned inside the block at line 16 (a loop repeats it, a branch may not run)",
+        20: "`POS_A` is assigned inside the block at line 16",
+        25: "`POS_C` is assigned inside the block at line 22",
+        28: "`POS_C` is unknown after the label at line 27, where a jump may land",
+    }
+    for line, why in reasons.items():
+        assert f"pal.src:{line}:" in out and why in out.split(f"pal.src:{line}:")[1].split("\n")[0], (line, out)
 
 
 def test_an_interrupt_leaves_only_the_routine_s_own_positions_known(tmp_path: Path) -> None:
