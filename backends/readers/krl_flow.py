@@ -36,7 +36,7 @@ Resolve = Callable[[str], "Known | None"]
 _BLOCKS = {"FOR": "ENDFOR", "IF": "ENDIF", "WHILE": "ENDWHILE", "LOOP": "ENDLOOP", "REPEAT": "UNTIL",
            "SWITCH": "ENDSWITCH", "SPLINE": "ENDSPLINE"}
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][-+]?\d+)?|\.\d+(?:[eE][-+]?\d+)?)|(\w+(?:\[\s*\d+\s*\])?)\.(\w+)|([-+*/()]))")
-_NULLFRAME = {k: 0.0 for k in ("X", "Y", "Z", "A", "B", "C")}
+_NULLFRAME: dict[str, object] = {k: 0.0 for k in ("X", "Y", "Z", "A", "B", "C")}
 
 
 def _key(text: str) -> str:
@@ -148,7 +148,8 @@ class KnownPositions:
         for ln in lines:
             text = ln.text
             if re.fullmatch(r"\w+\s*:", text):  # a label: a GOTO lands here from anywhere
-                self._forget(list(self.values), f"unknown after the label at line {ln.where.line}, where a jump may land: its value is known only at run time")
+                self._forget(list(self.values), f"unknown after the label at line {ln.where.line}, where a jump may "
+                             "land: its value is known only at run time")
             m = re.match(r"(\w+)\s*(\[[^\]]*\])?\s*(\.\w+)?\s*=(?!=)", text)
             if m is not None:
                 name = m.group(1).upper()
@@ -205,7 +206,7 @@ class KnownPositions:
             self.values[name] = (current[0], current[1], current[2], {**current[3], **agg})
             return True
         if {"X", "Y", "Z", "A", "B", "C"} <= set(agg):
-            self.values[name] = ("POS", None, agg, dict(agg))
+            self.values[name] = ("POS", None, dict(agg), dict(agg))
             return True
         return False
 
