@@ -31,6 +31,7 @@ from rmot.backends.readers.krl_data import (
 from rmot.backends.readers.krl_globals import ASSIGNMENT, public_globals
 from rmot.backends.readers.krl_flow import KnownPositions, data_value, known_target, literal
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
+from rmot.backends.readers.krl_unroll import unrolled_for
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_why import (
     Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
@@ -46,9 +47,6 @@ from rmot.backends.readers.rapid import mm, num_text, pose_expr
 from rmot.lang import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
-
-_MOTIONS = MOTIONS
-
 
 class _Krl:
     def __init__(self, src: tuple[str, str], dat: tuple[str, str] | None) -> None:
@@ -218,7 +216,7 @@ class _Krl:
             return self.logic.with_else(timed, self.lines, i, self._block, self._cond)
         stmt = self._simple(ln)
         if stmt is None:
-            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else \
+            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in MOTIONS else \
                 other_why(word, ln.text, self.last is not None)
             self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
@@ -264,6 +262,9 @@ class _Krl:
             m = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", ln.text)
             if m is None:
                 return keep_block(self.lines, self.tally, i, word, end)
+            flat = unrolled_for(self, i, m.group(1), int(m.group(2)), int(m.group(3)))
+            if flat is not None:
+                return flat
             saved = set(self.names)
             self.names.add(m.group(1))
             body, j = self._block(i + 1, (end,))
@@ -300,8 +301,7 @@ class _Krl:
 
     def _names(self) -> Names:
         """What the program's names are, for saying why a motion stays native."""
-        return (self.targets, {name: self.flow.lost.get(name, "") for name in self.assigned}, self.variables,
-                {**self.config, **self.data})
+        return (self.targets, {n: self.flow.lost.get(n, "") for n in self.assigned}, self.variables, {**self.config, **self.data})
 
     # ---------------------------------------------------------------- modal variables
 
@@ -424,7 +424,7 @@ class _Krl:
 
     def _simple(self, ln: Line) -> Stmt | None:
         text, word, where = ln.text, ln.word, ln.where
-        if word in _MOTIONS:
+        if word in MOTIONS:
             move = self._motion(word, text[len(word):].strip(), where)
             self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
             return move
@@ -517,7 +517,7 @@ class _Krl:
         """A motion statement; `point`: its target already read (a relative move's)."""
         if re.search(r"(?i)\bWITH\b", rest):
             return self._with(word, rest, where)
-        kind = _MOTIONS[word]
+        kind = MOTIONS[word]
         m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_DIS\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
         if kind == "joint" and any(len(split_top(p, ":")) > 1 for p in points):
@@ -576,7 +576,7 @@ class _Krl:
         m = re.match(r"(?i)(S?PTP|S?LIN|S?CIRC)\s+(.*)", header)
         if m is None:
             return [], i + 1  # the statements inside are read as they come
-        if not any(ln.word in _MOTIONS for ln in self.lines[i + 1:end]):
+        if not any(ln.word in MOTIONS for ln in self.lines[i + 1:end]):
             self.tally.warn(codes.FOLD_DISABLED, f"the inline form `{header[:40]}` has its statements commented "
                             "out: the controller skips it, and so does the import", self.lines[i].where)
             return [], end + 1

@@ -25,7 +25,7 @@ from rmot.backends.readers.krl_text import Line, aggregate
 from rmot.backends.readers.model import Target, Where
 from rmot.backends.readers.rapid import num_text, pose_expr
 
-__all__ = ["Known", "KnownPositions", "evaluate", "shift_terms", "data_value", "known_target", "literal"]
+__all__ = ["block_end", "Known", "KnownPositions", "evaluate", "shift_terms", "data_value", "known_target", "literal"]
 
 Known = tuple[str, str | None, dict[str, object], dict[str, object]]
 """(the declared type, the data-list position it was copied from (None: computed), that position's
@@ -99,7 +99,7 @@ def _factor(tokens: list[tuple[str, object]], i: int, depth: int = 0) -> tuple[f
     return None, i
 
 
-def _block_end(lines: list[Line], i: int) -> int:
+def block_end(lines: list[Line], i: int) -> int:
     """The index of the line that ends the block opened at `i` (nested ones included)."""
     start, end = lines[i].word, _BLOCKS[lines[i].word]
     depth = 0
@@ -139,7 +139,7 @@ class KnownPositions:
         """Line `i` is about to be read: learn what it assigns, or forget what it may change."""
         ln = lines[i]
         if ln.word in _BLOCKS:
-            self.disturb(lines[i:_block_end(lines, i) + 1], ln)
+            self.disturb(lines[i:block_end(lines, i) + 1], ln)
         elif not self._assign(ln.text, resolve):
             self.disturb([ln])
 

@@ -215,3 +215,50 @@ def test_a_constant_of_the_data_list_is_a_position(tmp_path: Path) -> None:
     dat = "DEFDAT mag\nDECL CONST POS xAboveMagazine={X 500.000,Y 200.000,Z 300.000,A 0.0,B 0.0,C 0.0}\nENDDAT\n"
     _, rmot = imported_krl(tmp_path, "mag", "DEF mag( )\n$VEL.CP = 0.2\nLIN xAboveMagazine\nEND\n", dat)
     assert "move linear xAboveMagazine speed 200 mm/s" in rmot
+
+
+WALLS = """DEFDAT wall
+DECL E6POS xInsideWall[4]
+xInsideWall[1]={X 100.0,Y 0.0,Z 300.0,A 0.0,B 90.0,C 0.0,S 2,T 0}
+xInsideWall[2]={X 200.0,Y 0.0,Z 300.0,A 0.0,B 90.0,C 0.0,S 2,T 0}
+xInsideWall[3]={X 300.0,Y 0.0,Z 300.0,A 0.0,B 90.0,C 0.0,S 2,T 0}
+ENDDAT
+"""
+
+
+def test_a_for_over_known_array_elements_is_written_out(tmp_path: Path) -> None:
+    """`FOR iWall = 1 TO 4` .. `LIN xInsideWall[iWall] C_DIS` (khrzysio Sub_MillLeaf
+    LeafMillHandle.src): KRL's FOR includes both bounds, so 1 TO 3 is three moves in order."""
+    src = """DEF wall( )
+DECL INT iWall
+$VEL.CP = 0.2
+$APO.CDIS = 5
+FOR iWall = 1 TO 3
+   LIN xInsideWall[iWall] C_DIS
+   WAIT SEC 0.5
+ENDFOR
+FOR iWall = 1 TO 4
+   LIN xInsideWall[iWall] C_DIS
+ENDFOR
+END
+"""
+    out, rmot = imported_krl(tmp_path, "wall", src, WALLS)
+    moves = [m.split(" speed")[0] for m in _moves(rmot)]
+    assert moves[:3] == [f"move linear xInsideWall_{k}_" for k in (1, 2, 3)], moves
+    assert rmot.count("wait 0.5 s") == 3
+    assert "warning[W538]" in out and "xInsideWall[1..3]" in out
+    # element 4 has no value: that loop stays a loop, its move native
+    assert 'native krl "LIN xInsideWall[iWall] C_DIS"' in rmot and "for iWall in 1 .. 5" in rmot
+
+
+def test_a_for_beyond_the_bound_stays_a_loop(tmp_path: Path) -> None:
+    src = "DEF wall( )\nDECL INT i\n$VEL.CP = 0.2\nFOR i = 1 TO 65\n   LIN xInsideWall[i]\nENDFOR\nEND\n"
+    out, rmot = imported_krl(tmp_path, "wall", src, WALLS)
+    assert "wall.src:4:1: warning[W537]" in out and "65 iterations" in out
+    assert "for i in 1 .. 66" in rmot
+
+
+def test_a_counter_used_elsewhere_keeps_the_loop(tmp_path: Path) -> None:
+    src = "DEF wall( )\nDECL INT i\n$VEL.CP = 0.2\nFOR i = 1 TO 3\n   LIN xInsideWall[i]\n   $OUT[i] = TRUE\nENDFOR\nEND\n"
+    out, rmot = imported_krl(tmp_path, "wall", src, WALLS)
+    assert "W538" not in out and "for i in 1 .. 4" in rmot
