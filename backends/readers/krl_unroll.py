@@ -63,7 +63,7 @@ def unrolled_for(reader: _Reader, i: int, var: str, first: int, last: int) -> tu
     out: list[Stmt] = []
     try:
         for k in range(first, last + 1):
-            reader.lines = lines[:i + 1] + [replace(ln, text=index.sub(lambda m, k=k: f"{m.group(1)}[{k}]", ln.text))
+            reader.lines = lines[:i + 1] + [replace(ln, text=index.sub(rf"\g<1>[{k}]", ln.text))
                                            for ln in body] + lines[end:]
             stmts, _ = reader._block(i + 1, ("ENDFOR",))
             out += stmts
