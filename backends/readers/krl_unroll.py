@@ -6,7 +6,8 @@ included, STEP 1) moves to xInsideWall[1] .. [4] in turn. An rmot `for` binds it
 each iteration, but a target cannot be chosen by it (REFERENCE §12: targets are names, not arrays),
 so where every element the loop reaches is a known position and the variable is used nowhere else,
 the loop is written out once per iteration (W538), bounded: beyond MAX_ITERATIONS iterations or
-MAX_LINES lines written out it stays the loop it is (W537), its moves native.
+MAX_LINES lines written out it stays the loop it is (W537), its moves native; a loop with a loop
+inside stays a loop (written-out loops never nest).
 """
 
 from __future__ import annotations
@@ -45,7 +46,8 @@ def unrolled_for(reader: _Reader, i: int, var: str, first: int, last: int) -> tu
     body = lines[i + 1:end]
     index = re.compile(rf"(?i)(\w+)\s*\[\s*{re.escape(var)}\s*\]")
     uses = [ln for ln in body if re.search(rf"(?i)\b{re.escape(var)}\b", ln.text + (ln.fold or ""))]
-    if not uses or any(ln.word not in MOTIONS or ln.fold is not None or
+    # a loop inside stays a loop: written-out loops never nest, so what is written out stays bounded
+    if not uses or any(ln.word in ("FOR", "WHILE", "LOOP", "REPEAT") for ln in body) or any(ln.word not in MOTIONS or ln.fold is not None or
                        re.search(rf"(?i)\b{re.escape(var)}\b", index.sub("", ln.text)) for ln in uses):
         return None
     count = last - first + 1

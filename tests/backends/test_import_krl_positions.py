@@ -262,3 +262,11 @@ def test_a_counter_used_elsewhere_keeps_the_loop(tmp_path: Path) -> None:
     src = "DEF wall( )\nDECL INT i\n$VEL.CP = 0.2\nFOR i = 1 TO 3\n   LIN xInsideWall[i]\n   $OUT[i] = TRUE\nENDFOR\nEND\n"
     out, rmot = imported_krl(tmp_path, "wall", src, WALLS)
     assert "W538" not in out and "for i in 1 .. 4" in rmot
+
+
+def test_a_for_with_a_loop_inside_stays_a_loop(tmp_path: Path) -> None:
+    """Written-out loops never nest: a hostile file cannot multiply its lines 64 times per level."""
+    src = ("DEF wall( )\nDECL INT i, j\n$VEL.CP = 0.2\nFOR i = 1 TO 3\n   LIN xInsideWall[i]\n   FOR j = 1 TO 2\n"
+           "      WAIT SEC 0.1\n   ENDFOR\nENDFOR\nEND\n")
+    out, rmot = imported_krl(tmp_path, "wall", src, WALLS)
+    assert "W538" not in out and "for i in 1 .. 4" in rmot
