@@ -24,6 +24,9 @@ import numpy as np
 
 from krl_imported import imported_krl
 
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Move, walk
+
 DAT = """DEFDAT pal
 DECL E6POS XP1={X 500.0,Y 100.0,Z 300.0,A 0.0,B 90.0,C 0.0,S 2,T 0}
 DECL E6POS PUNTO[3]
@@ -270,3 +273,17 @@ def test_a_for_with_a_loop_inside_stays_a_loop(tmp_path: Path) -> None:
            "      WAIT SEC 0.1\n   ENDFOR\nENDFOR\nEND\n")
     out, rmot = imported_krl(tmp_path, "wall", src, WALLS)
     assert "W538" not in out and "for i in 1 .. 4" in rmot
+
+
+def test_the_shifted_value_is_the_data_list_pose_moved_in_its_base(tmp_path: Path) -> None:
+    """The pose a shifted move goes to, against numpy: XP1's {X 500, Y 100, Z 300} plus the offsets
+    (x - 50, z + 260) and XP1's rotation Rz(0)·Ry(90)·Rx(0), unchanged by X/Y/Z assignments."""
+    (tmp_path / "pal.src").write_text("DEF pal( )\nDECL E6POS POS_A\n$VEL.CP = 0.2\nPOS_A = XP1\n"
+                                      "POS_A.Z = POS_A.Z + (400 / 2) + 30 * 2\nPOS_A.X = POS_A.X - 50\nLIN POS_A\nEND\n")
+    (tmp_path / "pal.dat").write_text(DAT)
+    doc = read_files([str(tmp_path / "pal.src")])
+    moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    assert len(moves) == 1 and moves[0].pose is not None
+    matrix = np.array(moves[0].pose.matrix())
+    assert np.allclose(matrix[:3, 3], np.array([450.0, 100.0, 560.0]) / 1000.0, atol=1e-12)
+    assert np.allclose(matrix[:3, :3], _rotation(0.0, 90.0, 0.0), atol=1e-12)
