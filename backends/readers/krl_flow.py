@@ -48,6 +48,8 @@ def evaluate(text: str, component: Callable[[str, str], float | None]) -> float 
     knows) as a finite number; None where a term is anything else (a variable, a function)."""
     tokens: list[tuple[str, object]] = []
     pos, text = 0, text.strip()
+    if text.count("(") > 32:  # nesting bounded: a hostile line cannot exhaust the stack
+        return None
     while pos < len(text):
         m = _TOKEN.match(text, pos)
         if m is None or m.end() == pos:

@@ -25,6 +25,7 @@ import numpy as np
 from krl_imported import imported_krl
 
 from rmot.backends.readers import read_files
+from rmot.backends.readers.krl_flow import evaluate
 from rmot.backends.readers.model import Move, walk
 
 DAT = """DEFDAT pal
@@ -287,3 +288,18 @@ def test_the_shifted_value_is_the_data_list_pose_moved_in_its_base(tmp_path: Pat
     matrix = np.array(moves[0].pose.matrix())
     assert np.allclose(matrix[:3, 3], np.array([450.0, 100.0, 560.0]) / 1000.0, atol=1e-12)
     assert np.allclose(matrix[:3, :3], _rotation(0.0, 90.0, 0.0), atol=1e-12)
+
+
+def test_only_constant_arithmetic_is_evaluated() -> None:
+    """KRL's arithmetic (`* /` before `+ -`, unary minus), values worked out by hand; a variable, a
+    division by zero, an overflow and a hostile nesting are not constants (None), never an error."""
+    known = {"P": {"Z": 300.0}}
+
+    def component(name: str, part: str) -> float | None:
+        return known.get(name, {}).get(part)
+
+    assert evaluate("P.Z + (400 / 2) + 30 * 2", component) == 560.0
+    assert evaluate("-(2 + 3) * 2", component) == -10.0
+    assert evaluate("2 * -3", component) == -6.0
+    for text in ("INC_Z + 1", "1 / 0", "1e400", "(" * 5000 + "1" + ")" * 5000, "-" * 5000 + "1", "Q.Z", "2 +"):
+        assert evaluate(text, component) is None, text
