@@ -56,6 +56,7 @@ class _Krl:
         self.dat = dat
         config = config_near(src[0])
         self.config = data_list(config)  # the robot's global declarations (positions found there on use)
+        self.config_file = config  # its path and text (globals the program sets: krl_vars.py)
         texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
         self.signals = {k: v for text in texts for k, v in signals(text).items()}
         self.variables = set().union(*(declared_names(text) for text in texts))
@@ -123,7 +124,8 @@ class _Krl:
         self.name = head.group(1)
         taken = {*self.targets, *self.tools, *self.frames, *self.signals}
         self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally,
-                             partial(is_group_input, self.config_groups, {*self.signals, *self.variables, *self.assigned, *self.data}))
+                             partial(is_group_input, self.config_groups, {*self.signals, *self.variables, *self.assigned, *self.data}),
+                             self.config_file)
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]

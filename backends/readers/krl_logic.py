@@ -25,7 +25,9 @@ from collections.abc import Callable
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
+from rmot.backends.readers.krl_names import declared_names
 from rmot.backends.readers.krl_text import Line, declarations, lines
+from rmot.backends.readers.krl_vars import Global, global_note, global_vars
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import (
     Assign, Cond, Conds, GroupIn, Stmt, Stop, VarDecl, WaitIn, Where, While, group_reads,
@@ -86,7 +88,7 @@ class KrlVars:
 
     def __init__(self, found: list[Line], name: str, dat: tuple[str, str] | None, taken: set[str],
                  signal: Callable[[str], int | None], tally: Tally | None = None,
-                 group: Callable[[str], bool] = lambda name: False) -> None:
+                 group: Callable[[str], bool] = lambda name: False, config: tuple[str, str] | None = None) -> None:
         self.tally, self.dat, self.group = tally, dat, group
         self.groups_warned: set[str] = set()  # group inputs warned at their first use (W534)
         self.persistent: set[str] = set()  # the .dat's variables
@@ -105,6 +107,11 @@ class KrlVars:
             m = _LOCAL.match(ln.text)
             for n in re.split(r"\s*,\s*", m.group(2)) if m else []:
                 found_decls.append((m.group(1).upper(), n, None, ln.where))  # type: ignore[union-attr]
+        inside = {id(ln) for ln in body}
+        known = {d[1].upper() for d in found_decls} | taken | declared_names("\n".join(ln.text for ln in found))
+        self.globals: dict[str, Global] = {rmot_name(g.name): g for g in global_vars(body, [ln for ln in found if id(ln) not in inside],
+                                                                  known, config)}
+        found_decls += [(g.type, g.name, g.value, g.where) for g in self.globals.values()]
         for type_, var, value, where in found_decls:
             key = var.upper()
             if type_ not in _TYPES or key not in assigned or key in self.vars or key in taken or "[" in var:
@@ -156,6 +163,11 @@ class KrlVars:
         decls, rest = fold_first_values(self.decls, body)
         if self.tally is not None:
             warn_persistent(self.tally, self.decls, decls, self.persistent, dict([self.dat] if self.dat else []))
+            for before, after in zip(self.decls, decls):
+                found = self.globals.get(before.name)
+                if found is not None:
+                    self.tally.warn(codes.GLOBAL_READ_AS_VARIABLE, global_note(found, before.init.text,
+                                                                               after.init is not before.init), found.where)
         return (*decls, *rest)
 
     def _input(self, tokens: list[str], i: int) -> tuple[Cond | GroupIn, int] | None:

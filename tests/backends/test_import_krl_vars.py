@@ -1,0 +1,142 @@
+"""`rmot import` of KRL globals the program sets and tests, read as task variables (REFERENCE §14,
+"KRL globals and flags"; backends/readers/krl_vars.py).
+
+The programs imitate real forms: a bag-drop flag a palletising program raises and clears and tests
+at the top of each box (ingeniado CAJA_G caja_g_m1.src: `IF (ERROR_SACO_CAIDO == TRUE ) THEN`
+.. `ERROR_SACO_CAIDO = FALSE`, later `ERROR_SACO_CAIDO = TRUE`; Aleynikovich cnc5916.src:
+`DESCARGACNC1=TRUE`, `IF DESCARGACNC1 THEN DESCARGACNC1=FALSE`), next to an exit request only a
+PLC raises (`IF SALIR == TRUE THEN`, the program only sets `SALIR=FALSE`) and a pump output it
+sets and never tests (`BOMBA =TRUE`). KRL semantics: KSS 8.x Operating and Programming
+Instructions for System Integrators, "Variables and declarations" ($config.dat globals keep their
+value between runs). Witnesses: rmot's own compiler (the imported program compiles), the KRL it
+writes read back and written again (the same KRL statements), and the text of the .src written here.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from krl_imported import imported_krl
+from rmot.compiler.cli import cli
+
+DAT = """DEFDAT caja
+  DECL E6AXIS XHOME={A1 0.0,A2 -90.0,A3 90.0,A4 0.0,A5 0.0,A6 0.0}
+  DECL E6AXIS XP1={A1 10.0,A2 -90.0,A3 90.0,A4 0.0,A5 0.0,A6 0.0}
+ENDDAT
+"""
+
+SRC = """DEF caja( )
+  DECL INT n
+  PTP XHOME
+  FOR n = 1 TO 3
+    IF (ERROR_SACO_CAIDO == TRUE) THEN
+      WAIT FOR $IN[3]
+      ERROR_SACO_CAIDO = FALSE
+    ENDIF
+    IF SALIR == TRUE THEN
+      $OUT[2] = TRUE
+    ENDIF
+    BOMBA = TRUE
+    PTP XP1
+    IF NOT $IN[4] THEN
+      ERROR_SACO_CAIDO = TRUE
+    ENDIF
+    BOMBA = FALSE
+  ENDFOR
+  SALIR = FALSE
+END
+"""
+
+
+def _body(rmot: str) -> list[str]:
+    return [ln.strip() for ln in rmot.splitlines()]
+
+
+def test_global_bool_the_program_raises_and_clears(tmp_path: Path) -> None:
+    """No $config.dat: a name assigned TRUE and FALSE and tested is a BOOL global (W542 at its
+    first assignment, starting off); one only reset (SALIR) or never tested (BOMBA) stays native."""
+    output, rmot = imported_krl(tmp_path, "caja", SRC, DAT)
+    body = _body(rmot)
+    for line in ["var ERROR_SACO_CAIDO: bool = off", "if ERROR_SACO_CAIDO {", "ERROR_SACO_CAIDO = off",
+                 "ERROR_SACO_CAIDO = on", "wait until in[3] == on"]:
+        assert line in body, (line, rmot)
+    src = tmp_path / "caja.src"
+    w542 = re.findall(rf"{re.escape(str(src))}:(\d+):(\d+): warning\[W542\]: (.*)", output)
+    assert [(a, b) for a, b, _ in w542] == [("7", "7")], output  # ERROR_SACO_CAIDO = FALSE, its first assignment
+    assert "starting at off" in w542[0][2] and "output SIGNAL" in w542[0][2]
+    for line in ["IF SALIR == TRUE THEN", "BOMBA = TRUE", "SALIR = FALSE"]:
+        assert f'native krl "{line}"' in rmot, (line, rmot)
+
+
+def test_global_round_trips_through_krl(tmp_path: Path) -> None:
+    """Compiled to KRL, the variable is the program's own (`DECL BOOL` in its .dat, set at the
+    start); read back and compiled again, the KRL statements are the same."""
+    _, rmot = imported_krl(tmp_path, "caja", SRC, DAT)
+    written = []
+    for k, source in enumerate([tmp_path / "caja.rmot", tmp_path / "again" / "caja.rmot"]):
+        out = tmp_path / f"o{k}"
+        result = CliRunner().invoke(cli, ["compile", str(source), "--target", "krl", "-o", str(out),
+                                          "--allow-findings"])
+        assert "error[" not in result.output, result.output
+        krl = (out / "krl" / "caja.src").read_text()
+        written.append([ln.strip() for ln in krl.splitlines() if ln.strip() and not ln.strip().startswith(";")])
+        if k == 0:
+            assert "DECL BOOL ERROR_SACO_CAIDO=FALSE" in (out / "krl" / "caja.dat").read_text()
+            (tmp_path / "again").mkdir()
+            result = CliRunner().invoke(cli, ["import", str(out / "krl" / "caja.src"), "-o",
+                                              str(tmp_path / "again" / "caja.rmot"), "--robot", "kuka_kr16"])
+            assert result.exit_code == 0 and "W542" not in result.output, result.output
+    assert written[0] == written[1]
+    assert "IF ERROR_SACO_CAIDO THEN" in written[0] and "ERROR_SACO_CAIDO=TRUE" in written[0]
+
+
+CONFIG = """DEFDAT $CONFIG PUBLIC
+  DECL INT N_SACO=2
+  DECL BOOL DESCARGACNC1=TRUE
+  SIGNAL BOMBA $OUT[5]
+  DECL REAL ALTURA
+ENDDAT
+"""
+
+COUNTED = """DEF cnt( )
+  ALTURA = 0
+  N_SACO = N_SACO + 1
+  IF N_SACO >= 4 THEN
+    DESCARGACNC1 = TRUE
+  ENDIF
+  BOMBA = TRUE
+  IF DESCARGACNC1 THEN
+    DESCARGACNC1 = FALSE
+    PTP XHOME
+  ENDIF
+  ALTURA = ALTURA + 2.5
+END
+"""
+
+
+def test_globals_typed_by_the_config_found(tmp_path: Path) -> None:
+    """A $config.dat beside the program gives the type and start value (INT, REAL, BOOL); its
+    SIGNAL stays an output; a REAL the program sets first thing gets no start-value warning."""
+    (tmp_path / "$config.dat").write_text(CONFIG)
+    output, rmot = imported_krl(tmp_path, "cnt", COUNTED, DAT.replace("caja", "cnt"))
+    body = _body(rmot)
+    for line in ["var N_SACO: int = 2", "var DESCARGACNC1: bool = on", "var ALTURA: num = 0", "N_SACO = N_SACO + 1",
+                 "if N_SACO >= 4 {", "DESCARGACNC1 = on", "if DESCARGACNC1 {", "DESCARGACNC1 = off",
+                 "ALTURA = ALTURA + 2.5", "set out[5] = on"]:
+        assert line in body, (line, rmot)
+    notes = re.findall(r"cnt\.src:(\d+):\d+: warning\[W542\]: `(\w+)`([^\n]*)", output)
+    assert [(line, name) for line, name, _ in notes] == [("2", "ALTURA"), ("3", "N_SACO"), ("5", "DESCARGACNC1")]
+    assert "starting at 2 (the value the file stores" in notes[1][2] and str(tmp_path / "$config.dat") in notes[1][2]
+    assert "sets it before it reads it" in notes[0][2] and "give the $config.dat" not in notes[0][2]
+
+
+def test_global_another_routine_sets_stays_native(tmp_path: Path) -> None:
+    """A global a called routine of the file also assigns is not a task variable (rmot's procs do not
+    see one): the test on it stays native."""
+    src = SRC.replace("END\n", "END\n", 1) + "DEF sub( )\n  ERROR_SACO_CAIDO = TRUE\nEND\n"
+    output, rmot = imported_krl(tmp_path, "caja", src, DAT)
+    assert "W542" not in output and "var ERROR_SACO_CAIDO" not in rmot
+    assert 'native krl "IF (ERROR_SACO_CAIDO == TRUE) THEN"' in rmot
