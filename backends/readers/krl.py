@@ -209,7 +209,7 @@ class _Krl:
         stmt = self._simple(ln)
         if stmt is None:
             why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else \
-                other_why(word, ln.text, self.last is not None)
+                other_why(word, ln.text, self.last is not None) or self.logic.why(ln.text)
             self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
@@ -263,7 +263,7 @@ class _Krl:
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
         cond = self._cond(m.group(1)) if m else None
         if cond is None or (word == "WHILE" and has_test(cond)):  # a while on a test the compiler decides: native
-            return keep_block(self.lines, self.tally, i, word, end, mode_why(word, ln.text))
+            return keep_block(self.lines, self.tally, i, word, end, mode_why(word, ln.text) or self.logic.why(ln.text))
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
         orelse: list[Stmt] = []
         if self.lines[j].word == "ELSE":

@@ -27,7 +27,7 @@ from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
 from rmot.backends.readers.krl_names import declared_names
 from rmot.backends.readers.krl_text import Line, declarations, lines
-from rmot.backends.readers.krl_vars import Global, global_note, global_vars
+from rmot.backends.readers.krl_vars import Global, flag_names, global_note, global_vars, raised_elsewhere, raised_why
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import (
     Assign, Cond, Conds, GroupIn, Stmt, Stop, VarDecl, WaitIn, Where, While, group_reads,
@@ -112,6 +112,7 @@ class KrlVars:
         self.globals: dict[str, Global] = {rmot_name(g.name): g for g in global_vars(body, [ln for ln in found if id(ln) not in inside],
                                                                   known, config)}
         found_decls += [(g.type, g.name, g.value, g.where) for g in self.globals.values()]
+        assigned |= {g.name.upper() for g in self.globals.values()}
         for type_, var, value, where in found_decls:
             key = var.upper()
             if type_ not in _TYPES or key not in assigned or key in self.vars or key in taken or "[" in var:
@@ -121,6 +122,7 @@ class KrlVars:
                 continue
             self.vars[key] = (rmot_name(var), _TYPES[type_])
             self.decls.append(VarDecl(rmot_name(var), _TYPES[type_], init[0], where))
+        self.raised = raised_elsewhere(found, known | set(self.vars))  # handshake flags another program raises
 
     def timed_else(self, found: list[Line], i: int, cond_of: Callable[[str], Cond | Conds | None]) -> bool:
         """Whether the lines at `i` are the backend's timed wait with a branch: timer reset, `WAIT FOR
@@ -186,7 +188,7 @@ class KrlVars:
 
     def condition(self, text: str, where: Where | None = None) -> Conds | None:
         """A KRL bool expression over the visible variables and inputs; None without an rmot form."""
-        found = translate(text, KRL, self.visible, self._input, int_division=True)
+        found = translate(self._spelled(text), KRL, self.visible, self._input, int_division=True)
         cond = found[0] if found is not None and found[1] == "bool" else None
         if cond is not None and where is not None:
             self.warn_groups(cond, where)
@@ -209,7 +211,7 @@ class KrlVars:
             return Stop(ln.where)
         if ln.where == self.exiting:
             return Stop(ln.where)  # the loop's own EXIT, read into the loop's condition (loop())
-        m = _ASSIGN.match(ln.text)
+        m = _ASSIGN.match(self._spelled(ln.text))
         if m is None or m.group(1).upper() not in self.visible:
             return None
         name, type_ = self.visible[m.group(1).upper()]
@@ -218,6 +220,14 @@ class KrlVars:
             return None
         self.warn_groups(found[0], ln.where)
         return Assign(name, found[0], ln.where)
+
+    def why(self, text: str) -> str | None:
+        """Why a line on a flag another program raises (or a cyclic flag) stays native, if it does."""
+        return raised_why(text, self.raised)
+
+    def _spelled(self, text: str) -> str:
+        """`text` with the `$FLAG[n]` read as task variables written as their names (`FLAG_n`)."""
+        return flag_names(text) if any(g.flag for g in self.globals.values()) and "$" in text else text
 
     def switchable(self, params: dict[str, tuple[str, str]], text: str = "") -> dict[str, tuple[str, str]]:
         """The names a SWITCH may test: the routine's number parameters, the main DEF's INT variables,

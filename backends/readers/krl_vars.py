@@ -27,22 +27,28 @@ from rmot.backends.readers.krl_text import Decl, Line, declarations, lines
 from rmot.backends.readers.model import Where
 from rmot.lang.record import record
 
-__all__ = ["Global", "global_vars", "global_note"]
+__all__ = ["Global", "global_vars", "global_note", "flag_names", "FLAG", "raised_elsewhere", "raised_why"]
 
 _TYPES = ("INT", "REAL", "BOOL")
-_ASSIGN = re.compile(r"(?i)^([A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
+_ASSIGN = re.compile(r"(?i)^(\$FLAG\s*\[\s*\d+\s*\]|[A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
+# the controller's flags (KSS 8.x System Integrators, "Flags": $FLAG[1..1024], BOOL, global, set
+# by any program or an interrupt; $CYCFLAG[n], a cyclic flag the controller re-evaluates from the
+# expression last assigned to it, all the time)
+FLAG = re.compile(r"(?i)\$FLAG\s*\[\s*(\d+)\s*\]")
 
 
 @record(slots=True)
 class Global:
-    """A `$config.dat` global read as a task variable: its KRL type, name and declared value, its
-    first assignment, and the path of the `$config.dat` that declares it (None: none found)."""
+    """A `$config.dat` global or a `$FLAG[n]` (named `FLAG_n`) read as a task variable: its KRL
+    type, name and declared value, its first assignment, and the path of the `$config.dat` that
+    declares it (None: none found)."""
 
     type: str  # INT, REAL or BOOL
     name: str
     value: str | None
     where: Where
     config: str | None
+    flag: bool = False
 
 
 def _assignments(found: list[Line]) -> dict[str, list[tuple[str, str, Where]]]:
@@ -51,8 +57,14 @@ def _assignments(found: list[Line]) -> dict[str, list[tuple[str, str, Where]]]:
     for ln in found:
         m = _ASSIGN.match(ln.text) if ln.fold is None else None
         if m:
-            out.setdefault(m.group(1).upper(), []).append((m.group(1), m.group(2).strip(), ln.where))
+            name = flag_names(m.group(1))
+            out.setdefault(name.upper(), []).append((name, m.group(2).strip(), ln.where))
     return out
+
+
+def flag_names(text: str) -> str:
+    """`text` with each `$FLAG[n]` written as the task variable's name `FLAG_n`."""
+    return FLAG.sub(lambda m: f"FLAG_{int(m.group(1))}", text)
 
 
 def _bool_type(values: list[str]) -> bool:
@@ -64,8 +76,8 @@ def _bool_type(values: list[str]) -> bool:
 def _tested(found: list[Line], key: str) -> bool:
     """Whether a condition of `found` (IF, ELSE IF, WHILE, UNTIL, WAIT FOR) names `key`."""
     word = re.compile(rf"(?i)(?<![\w$]){re.escape(key)}(?!\w)")
-    return any(re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b", ln.text) and word.search(ln.text) for ln in found
-               if ln.fold is None)
+    return any(re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b", ln.text) and word.search(flag_names(ln.text))
+               for ln in found if ln.fold is None)
 
 
 def global_vars(main: list[Line], others: list[Line], known: set[str],
@@ -74,16 +86,20 @@ def global_vars(main: list[Line], others: list[Line], known: set[str],
     declared neither in the program nor its .dat (`known`, upper case: their declarations,
     signals, data), whose type is certain (module docstring), in the order first assigned."""
     assigned, elsewhere = _assignments(main), _assignments(others)
+    flagged = {flag_names(m.group(0)).upper() for ln in main for m in FLAG.finditer(ln.text)}
     declared: dict[str, Decl] = {}
     for d in declarations(lines(*config)) if config is not None else []:
         declared.setdefault(d.name.upper(), d)
     out: list[Global] = []
     for key, found in assigned.items():
-        if key in known or key in elsewhere or key.startswith("$"):
+        flag = key in flagged
+        if key in known or key in elsewhere or (key in flagged and key in declared):
             continue
         values = [v for _, v, _ in found]
         decl = declared.get(key)
-        if config is None:
+        if flag:
+            type_ = "BOOL" if _bool_type(values) else None
+        elif config is None:
             type_ = "BOOL" if _bool_type(values) and _tested(main, key) else None
         else:
             type_ = decl.type if decl is not None and decl.type in _TYPES else None
@@ -91,7 +107,7 @@ def global_vars(main: list[Line], others: list[Line], known: set[str],
             continue
         value = decl.value.strip() if decl is not None and decl.value else None
         name = decl.name if decl is not None else found[0][0]
-        out.append(Global(type_, name, value, found[0][2], config[0] if decl is not None and config else None))
+        out.append(Global(type_, name, value, found[0][2], config[0] if decl is not None and config else None, flag))
     return out
 
 
@@ -99,6 +115,12 @@ def global_note(found: Global, init: str, folded: bool) -> str:
     """W542's message for the global `found` starting at `init` (rmot text; `folded`: the program
     sets it before it reads it)."""
     name = rmot_name(found.name)
+    if found.flag:
+        where = "a controller flag (KSS 8.x \"Flags\": global, any program or interrupt may set it) the program sets"
+        start = ("(the program sets it before it reads it)" if folded else f"starting at {init} (on the controller "
+                 "it starts where the last run or another program left it)")
+        return (f"`$FLAG[{name[5:]}]` is {where}: read as the task variable `{name}` {start}; another program "
+                "writing it while this one runs is not seen")
     where = (f"declared in {found.config}" if found.config is not None else
              "no $config.dat found: a BOOL by its TRUE/FALSE assignments, unless it is an output SIGNAL there")
     stored = "the value the file stores" if found.value is not None else "no declaration found gives it a value"
@@ -108,3 +130,39 @@ def global_note(found: Global, init: str, folded: bool) -> str:
     return (f"`{name}` is a global of $config.dat ({where}) the program sets: read as a task variable {start}; "
             "another program (the submit interpreter, another task) writing it while this one runs is not seen"
             + ("" if found.config is not None else "; give the $config.dat beside the program to check it"))
+
+
+def raised_elsewhere(found: list[Line], skip: set[str]) -> dict[str, str]:
+    """NAME (or `$FLAG[n]`, upper case) -> the one value (TRUE or FALSE) the file ever assigns it,
+    for the names it tests but sets only to that value (a handshake: another program raises what
+    this one resets), and -> "" for a `$FLAG[n]` it tests and never sets; `skip`: the task
+    variables, signals and declared names (upper case)."""
+    assigned = _assignments(found)
+    out: dict[str, str] = {}
+    for key, values in assigned.items():
+        words = {v.upper() for _, v, _ in values}
+        if key not in skip and len(words) == 1 and words <= {"TRUE", "FALSE"} and _tested(found, values[0][0]):
+            out[key] = words.pop()
+    for ln in found:
+        for m in FLAG.finditer(ln.text) if ln.fold is None else ():
+            key = flag_names(m.group(0)).upper()
+            if key not in assigned and key not in skip and re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b", ln.text):
+                out[key] = ""
+    return out
+
+
+def raised_why(text: str, raised: dict[str, str]) -> str | None:
+    """Why a line reading or resetting a handshake flag (`raised`, raised_elsewhere) stays native."""
+    if re.search(r"(?i)\$CYCFLAG\s*\[", text):
+        return ("it reads a cyclic flag ($CYCFLAG[n]: the controller re-evaluates the expression last assigned to it "
+                "all the time, KSS 8.x \"Cyclic flags\"), which no rmot variable does")
+    for m in re.finditer(r"(?i)\$FLAG\s*\[\s*\d+\s*\]|(?<![\w$])[A-Za-z_]\w*", text):
+        key = flag_names(m.group(0)).upper()
+        value = raised.get(key)
+        if value is None:
+            continue
+        shown = m.group(0) if key.startswith("FLAG_") and m.group(0).startswith("$") else key
+        what = "only sets to " + value if value else "never sets"
+        return (f"`{shown}` is a global flag the program {what}: another program (the submit interpreter, a PLC, "
+                "an interrupt, Ethernet KRL for $FLAG) raises it, which no rmot variable sees")
+    return None

@@ -140,3 +140,48 @@ def test_global_another_routine_sets_stays_native(tmp_path: Path) -> None:
     output, rmot = imported_krl(tmp_path, "caja", src, DAT)
     assert "W542" not in output and "var ERROR_SACO_CAIDO" not in rmot
     assert 'native krl "IF (ERROR_SACO_CAIDO == TRUE) THEN"' in rmot
+
+
+FLAGS = """DEF fl( )
+  $FLAG[3] = FALSE
+  PTP XHOME
+  WAIT FOR $FLAG[1]
+  $FLAG[1] = FALSE
+  IF $IN[2] THEN
+    $FLAG[3] = TRUE
+  ENDIF
+  IF $FLAG[3] AND $IN[5] THEN
+    PTP XP1
+  ENDIF
+  WAIT FOR $FLAG[7]
+  WAIT FOR $CYCFLAG[2]
+END
+"""
+
+
+def test_controller_flags(tmp_path: Path) -> None:
+    """`$FLAG[n]` the main DEF sets TRUE and FALSE is the bool variable FLAG_n (W542, set first thing:
+    no start-value note); the Ethernet KRL handshake `WAIT FOR $FLAG[1]` `$FLAG[1]=FALSE` (KamWisa
+    binarystream.src, Shangmc BinaryFixed.src: the EKI driver raises the flag when data arrives), a
+    flag the program never sets, and a cyclic flag stay native, each W510 saying why."""
+    output, rmot = imported_krl(tmp_path, "fl", FLAGS, DAT.replace("caja", "fl"))
+    body = _body(rmot)
+    for line in ["var FLAG_3: bool = off", "FLAG_3 = on", "if FLAG_3 and in[5] == on {"]:
+        assert line in body, (line, rmot)
+    assert "FLAG_3 = off" not in body  # the first assignment is the start value
+    notes = re.findall(r"fl\.src:(\d+):(\d+): warning\[W542\]: ([^\n]*)", output)
+    assert [(a, b) for a, b, _ in notes] == [("2", "3")] and "`$FLAG[3]`" in notes[0][2]
+    assert "sets it before it reads it" in notes[0][2]
+    why = dict(re.findall(r"fl\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
+    assert why["4"].startswith("`$FLAG[1]` is a global flag the program only sets to FALSE"), why
+    assert why["5"].startswith("`$FLAG[1]` is a global flag the program only sets to FALSE"), why
+    assert why["12"].startswith("`$FLAG[7]` is a global flag the program never sets"), why
+    assert why["13"].startswith("it reads a cyclic flag ($CYCFLAG[n]"), why
+
+
+def test_reset_only_flag_says_why(tmp_path: Path) -> None:
+    """The exit request a PLC raises and the program only clears: each of its lines' W510 names it."""
+    output, _ = imported_krl(tmp_path, "caja", SRC, DAT)
+    why = dict(re.findall(r"caja\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
+    for line in ("9", "19"):
+        assert why[line].startswith("`SALIR` is a global flag the program only sets to FALSE: another program"), why
