@@ -101,6 +101,7 @@ class KrlVars:
         self.visible: dict[str, tuple[str, str]] = {}
         self.main = False  # reading the main DEF
         self.exiting: Where | None = None  # the EXIT of the loop being read that becomes its condition
+        self.end_label: str | None = None
         found_decls = [(d.type, d.name, d.value, d.where) for d in declarations(lines(*dat))] if dat else []
         self.persistent = {rmot_name(d[1]) for d in found_decls}
         for ln in body:
@@ -123,6 +124,9 @@ class KrlVars:
             self.vars[key] = (rmot_name(var), _TYPES[type_])
             self.decls.append(VarDecl(rmot_name(var), _TYPES[type_], init[0], where))
         self.raised = raised_elsewhere(found, known | set(self.vars))  # handshake flags another program raises
+        statements = [ln for ln in body if ln.text and ln.fold is None and not ln.endfold]
+        last = re.fullmatch(r"([A-Za-z_]\w*)\s*:", statements[-1].text) if statements else None
+        self.end_label = last.group(1).upper() if last else None  # a label right before the main DEF's END
 
     def timed_else(self, found: list[Line], i: int, cond_of: Callable[[str], Cond | Conds | None]) -> bool:
         """Whether the lines at `i` are the backend's timed wait with a branch: timer reset, `WAIT FOR
@@ -206,9 +210,13 @@ class KrlVars:
 
     def statement(self, ln: Line) -> Assign | Stop | None:
         """`n = e` on a visible task variable; `RETURN` from the main DEF (it ends the program,
-        KSS 8.x "RETURN": back to the caller, and the main DEF has none)."""
+        KSS 8.x "RETURN": back to the caller, and the main DEF has none), and `GOTO L` there where
+        the label `L:` is its last statement (KSS 8.x "GOTO": the jump reaches END, as RETURN)."""
         if self.main and re.fullmatch(r"(?i)RETURN", ln.text):
             return Stop(ln.where)
+        jump = re.fullmatch(r"(?i)GOTO\s+(\w+)", ln.text)
+        if self.main and jump and jump.group(1).upper() == self.end_label:
+            return Stop(ln.where)  # a jump to the main DEF's END is its RETURN
         if ln.where == self.exiting:
             return Stop(ln.where)  # the loop's own EXIT, read into the loop's condition (loop())
         m = _ASSIGN.match(self._spelled(ln.text))

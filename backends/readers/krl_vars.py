@@ -161,7 +161,7 @@ def raised_why(text: str, raised: dict[str, str]) -> str | None:
         value = raised.get(key)
         if value is None:
             continue
-        shown = m.group(0) if key.startswith("FLAG_") and m.group(0).startswith("$") else key
+        shown = m.group(0)
         what = "only sets to " + value if value else "never sets"
         return (f"`{shown}` is a global flag the program {what}: another program (the submit interpreter, a PLC, "
                 "an interrupt, Ethernet KRL for $FLAG) raises it, which no rmot variable sees")
