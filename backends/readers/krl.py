@@ -30,6 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
+from rmot.backends.readers.krl_vars import axis_speed_loop, counter_assigned
 from rmot.backends.readers.krl_why import (
     Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
 )
@@ -250,14 +251,20 @@ class _Krl:
         ln = self.lines[i]
         word = ln.word
         end = {"FOR": "ENDFOR", "IF": "ENDIF", "WHILE": "ENDWHILE"}[word]
+        speeds = axis_speed_loop(self.lines, i) if word == "FOR" else None
+        if speeds is not None and self._setting(speeds[0]):  # every axis's speed set by a loop
+            return [], speeds[1]
         if word == "FOR":
             m = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", ln.text)
-            if m is None:
-                return keep_block(self.lines, self.tally, i, word, end)
-            saved = set(self.names)
+            counter = counter_assigned(self.lines, i)
+            if m is None or counter:
+                return keep_block(self.lines, self.tally, i, word, end, counter and f"the loop's counter `{counter}` is "
+                                  "assigned in its body (KRL then skips iterations)")
+            saved, params = set(self.names), self.params
             self.names.add(m.group(1))
+            self.params = {**params, m.group(1).upper(): (m.group(1), "number")}  # known at each iteration
             body, j = self._block(i + 1, (end,))
-            self.names = saved
+            self.names, self.params = saved, params
             self.tally.imported += 1
             return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)

@@ -28,6 +28,7 @@ from rmot.backends.readers.model import Where
 from rmot.lang.record import record
 
 __all__ = ["Global", "global_vars", "global_note", "flag_names", "FLAG", "raised_elsewhere", "raised_why"]
+__all__ += ["axis_speed_loop", "counter_assigned"]
 
 _TYPES = ("INT", "REAL", "BOOL")
 _ASSIGN = re.compile(r"(?i)^(\$FLAG\s*\[\s*\d+\s*\]|[A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
@@ -165,4 +166,51 @@ def raised_why(text: str, raised: dict[str, str]) -> str | None:
         what = "only sets to " + value if value else "never sets"
         return (f"`{shown}` is a global flag the program {what}: another program (the submit interpreter, a PLC, "
                 "an interrupt, Ethernet KRL for $FLAG) raises it, which no rmot variable sees")
+    return None
+
+
+def axis_speed_loop(found: list[Line], i: int) -> tuple[str, int] | None:
+    """`FOR X=1 TO 6` `$VEL_AXIS[X]=v` [`$ACC_AXIS[X]=a`] `ENDFOR` with number values (ingeniado
+    saco_20_m2.src, Shangmc main.src): every axis's speed (and acceleration) v % of its maximum
+    (KSS 8.x System Integrators, $VEL_AXIS/$ACC_AXIS), as rmot's own helper sets them (RMOT_PTP(v,
+    a): the same loop) or `BAS(#VEL_PTP,v)` without the acceleration: that text and the index after
+    ENDFOR. None where it is another loop, or X is read anywhere else in the file than its
+    declaration and such loops (after the loop KRL leaves it at 7)."""
+    head = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*1\s+TO\s+6", found[i].text)
+    near = [k for k in range(i + 1, min(i + 5, len(found))) if found[k].text or found[k].fold is not None]
+    end = next((n for n, k in enumerate(near) if found[k].word == "ENDFOR"), None)
+    if head is None or end not in (1, 2):
+        return None
+    index = re.escape(head.group(1))
+    values: dict[str, str] = {}
+    for k in near[:end]:
+        m = re.fullmatch(rf"(?i)\$(VEL|ACC)_AXIS\s*\[\s*{index}\s*\]\s*=\s*(\d+(?:\.\d*)?)", found[k].text)
+        if m is None or m.group(1).upper() in values or not 0 < float(m.group(2)) <= 100:
+            return None
+        values[m.group(1).upper()] = m.group(2)
+    word = re.compile(rf"(?i)(?<![\w$]){index}(?!\w)")
+    loop_only = re.compile(rf"(?i)FOR\s+{index}\s*=.*|\$(?:VEL|ACC)_AXIS\s*\[\s*{index}\s*\]\s*=.*|(?:DECL\s+)?INT\s+[\w\s,]+")
+    if "VEL" not in values or any(word.search(ln.text) and not loop_only.fullmatch(ln.text) for ln in found):
+        return None
+    text = f"RMOT_PTP({values['VEL']},{values['ACC']})" if "ACC" in values else f"BAS(#VEL_PTP,{values['VEL']})"
+    return text, near[end] + 1
+
+
+def counter_assigned(found: list[Line], i: int) -> str | None:
+    """The name of the counter of `FOR k = ..` at `i` where its body assigns it (`PLANTA = PLANTA +
+    1` inside `FOR PLANTA=1 TO 5`, ingeniado caja_g_m1.src: KRL then skips iterations, so the loop
+    runs other than its bounds say) or a nested FOR counts with it; None otherwise."""
+    head = re.match(r"(?i)FOR\s+(\w+)\s*=", found[i].text)
+    if head is None:
+        return None
+    key, depth = head.group(1).upper(), 0
+    for ln in found[i + 1:]:
+        if ln.fold is not None:
+            continue
+        depth += (ln.word == "FOR") - (ln.word == "ENDFOR")
+        if depth < 0:
+            return None
+        m = _ASSIGN.match(ln.text) or re.match(r"(?i)FOR\s+(\w+)\s*=", ln.text)
+        if m and m.group(1).upper() == key:
+            return head.group(1)
     return None

@@ -199,3 +199,50 @@ def test_goto_to_the_end_is_stop(tmp_path: Path) -> None:
     assert body[at + 1:at + 4] == ["set out[1] = on", "stop", "}"], rmot
     assert re.search(r"cg\.src:8:5: warning\[W510\].*GOTO OTRO", output), output
     assert "GOTO FINAL" not in rmot
+
+
+LOOPS = """DEF lp( )
+  DECL INT n, x, planta
+  FOR x=1 TO 6
+  $VEL_AXIS[x]=85
+  $ACC_AXIS[x]=40
+  ENDFOR
+  PTP XHOME
+  FOR x=1 TO 6
+    $VEL_AXIS[x]=20
+  ENDFOR
+  PTP XP1
+  FOR n = 1 TO 3
+    IF (n == 2) THEN
+      $OUT[1] = TRUE
+    ENDIF
+    PTP XHOME
+  ENDFOR
+  FOR planta = 1 TO 5
+    PTP XP1
+    planta = planta + 1
+  ENDFOR
+END
+"""
+
+
+def test_loops_over_axes_and_counters(tmp_path: Path) -> None:
+    """`FOR x=1 TO 6 $VEL_AXIS[x]=85 $ACC_AXIS[x]=40 ENDFOR` (Shangmc main.src, ingeniado
+    saco_20_m2.src) sets every axis's speed: the next PTP's `speed 85 %` (its acceleration 40 %
+    as rmot's own RMOT_PTP loop writes it); `IF (n == 2)` in `FOR n` is a test the compiler decides at
+    each iteration; a FOR whose body assigns its counter (`PLANTA = PLANTA + 1`, caja_g_m1.src: KRL
+    runs it for 1, 3, 5) stays native."""
+    output, rmot = imported_krl(tmp_path, "lp", LOOPS, DAT.replace("caja", "lp"))
+    body = _body(rmot)
+    assert "move joint XHOME speed 85 % accel 40 % zone fine" in body, rmot
+    assert "move joint XP1 speed 20 % accel 40 % zone fine" in body, rmot
+    at = body.index("for n in 1 .. 4 {")
+    assert body[at + 1:at + 4] == ["if n == 2 {", "set out[1] = on", "}"], rmot
+    why = dict(re.findall(r"lp\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
+    assert sorted(why, key=int) == ["18", "19", "20", "21"], why
+    assert why["18"].startswith("the loop's counter `planta` is assigned in its body"), why
+    result = CliRunner().invoke(cli, ["compile", str(tmp_path / "lp.rmot"), "--target", "krl", "-o",
+                                      str(tmp_path / "o"), "--allow-findings"])
+    assert "error[" not in result.output, result.output
+    krl = (tmp_path / "o" / "krl" / "lp.src").read_text()
+    assert "RMOT_PTP(85.000,40.000)" in krl and "IF n == 2 THEN" in krl
