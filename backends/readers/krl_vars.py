@@ -199,7 +199,8 @@ def axis_speed_loop(found: list[Line], i: int) -> tuple[str, int] | None:
 def counter_assigned(found: list[Line], i: int) -> str | None:
     """The name of the counter of `FOR k = ..` at `i` where its body assigns it (`PLANTA = PLANTA +
     1` inside `FOR PLANTA=1 TO 5`, ingeniado caja_g_m1.src: KRL then skips iterations, so the loop
-    runs other than its bounds say) or a nested FOR counts with it; None otherwise."""
+    runs other than its bounds say); None otherwise. A nested FOR on the same counter is not
+    caught here."""
     head = re.match(r"(?i)FOR\s+(\w+)\s*=", found[i].text)
     if head is None:
         return None
@@ -210,7 +211,7 @@ def counter_assigned(found: list[Line], i: int) -> str | None:
         depth += (ln.word == "FOR") - (ln.word == "ENDFOR")
         if depth < 0:
             return None
-        m = _ASSIGN.match(ln.text) or re.match(r"(?i)FOR\s+(\w+)\s*=", ln.text)
+        m = _ASSIGN.match(ln.text)
         if m and m.group(1).upper() == key:
             return head.group(1)
     return None

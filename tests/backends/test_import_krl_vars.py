@@ -246,3 +246,9 @@ def test_loops_over_axes_and_counters(tmp_path: Path) -> None:
     assert "error[" not in result.output, result.output
     krl = (tmp_path / "o" / "krl" / "lp.src").read_text()
     assert "RMOT_PTP(85.000,40.000)" in krl and "IF n == 2 THEN" in krl
+    again = CliRunner().invoke(cli, ["import", str(tmp_path / "o" / "krl" / "lp.src"), "-o", str(tmp_path / "a.rmot"),
+                                     "--robot", "kuka_kr16"])
+    assert again.exit_code == 0, again.output
+    back = _body((tmp_path / "a.rmot").read_text())
+    at = back.index("for n in 1 .. 4 {")
+    assert back[at + 1:at + 4] == ["if n == 2 {", "set out[1] = on", "}"], back
