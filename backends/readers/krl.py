@@ -126,7 +126,7 @@ class _Krl:
         taken = {*self.targets, *self.tools, *self.frames, *self.signals}
         self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally,
                              partial(is_group_input, self.config_groups, {*self.signals, *self.variables, *self.assigned, *self.data}),
-                             self.config_file)
+                             self.config_file, lambda n: port_of(self.signals, n, "OUT"))
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]

@@ -88,7 +88,8 @@ class KrlVars:
 
     def __init__(self, found: list[Line], name: str, dat: tuple[str, str] | None, taken: set[str],
                  signal: Callable[[str], int | None], tally: Tally | None = None,
-                 group: Callable[[str], bool] = lambda name: False, config: tuple[str, str] | None = None) -> None:
+                 group: Callable[[str], bool] = lambda name: False, config: tuple[str, str] | None = None,
+                 output: Callable[[str], int | None] = lambda name: None) -> None:
         self.tally, self.dat, self.group = tally, dat, group
         self.groups_warned: set[str] = set()  # group inputs warned at their first use (W534)
         self.persistent: set[str] = set()  # the .dat's variables
@@ -97,7 +98,7 @@ class KrlVars:
         taken = taken | {m.group(1).upper() for ln in found for m in [re.match(r"(?i)FOR\s+(\w+)", ln.text)] if m}
         self.vars: dict[str, tuple[str, str]] = {}  # upper -> (rmot name, type)
         self.decls: list[VarDecl] = []
-        self.signal = signal
+        self.signal, self.output = signal, output
         self.visible: dict[str, tuple[str, str]] = {}
         self.main = False  # reading the main DEF
         self.exiting: Where | None = None  # the EXIT of the loop being read that becomes its condition
@@ -230,8 +231,15 @@ class KrlVars:
         return Assign(name, found[0], ln.where)
 
     def why(self, text: str) -> str | None:
-        """Why a line on a flag another program raises (or a cyclic flag) stays native, if it does."""
-        return raised_why(text, self.raised)
+        """Why a line on a flag another program raises (or a cyclic flag), or a condition on an
+        output's SIGNAL, stays native, if it does."""
+        found = raised_why(text, self.raised)
+        test = re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b(.*)", text)
+        for name in re.findall(r"(?<![\w$])[A-Za-z_]\w*", test.group(2)) if test and found is None else []:
+            port = self.output(name) if name.upper() not in _KEYWORDS else None
+            if port is not None:
+                return f"it tests `{name}`, the output $OUT[{port}] (its SIGNAL); rmot conditions read inputs only"
+        return found
 
     def _spelled(self, text: str) -> str:
         """`text` with the `$FLAG[n]` read as task variables written as their names (`FLAG_n`)."""
