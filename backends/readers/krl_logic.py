@@ -124,7 +124,7 @@ class KrlVars:
                 continue
             self.vars[key] = (rmot_name(var), _TYPES[type_])
             self.decls.append(VarDecl(rmot_name(var), _TYPES[type_], init[0], where))
-        self.raised = raised_elsewhere(found, known | set(self.vars))  # handshake flags another program raises
+        self.raised = raised_elsewhere(found, known | set(self.vars), config)  # handshake flags another program raises
         statements = [ln for ln in body if ln.text and ln.fold is None and not ln.endfold]
         last = re.fullmatch(r"([A-Za-z_]\w*)\s*:", statements[-1].text) if statements else None
         self.end_label = last.group(1).upper() if last else None  # a label right before the main DEF's END

@@ -133,12 +133,13 @@ def global_note(found: Global, init: str, folded: bool) -> str:
             + ("" if found.config is not None else "; give the $config.dat beside the program to check it"))
 
 
-def raised_elsewhere(found: list[Line], skip: set[str]) -> dict[str, str]:
+def raised_elsewhere(found: list[Line], skip: set[str], config: tuple[str, str] | None) -> dict[str, str]:
     """NAME (or `$FLAG[n]`, upper case) -> the one value (TRUE or FALSE) the file ever assigns it,
     for the names it tests but sets only to that value (a handshake: another program raises what
-    this one resets), and -> "" for a `$FLAG[n]` it tests and never sets; `skip`: the task
-    variables, signals and declared names (upper case)."""
+    this one resets), and -> "" for a `$FLAG[n]` or a BOOL global of the `$config.dat` found that
+    it tests and never sets; `skip`: the task variables, signals and declared names (upper case)."""
     assigned = _assignments(found)
+    bools = {d.name.upper() for d in declarations(lines(*config)) if d.type == "BOOL"} if config else set()
     out: dict[str, str] = {}
     for key, values in assigned.items():
         words = {v.upper() for _, v, _ in values}
@@ -149,6 +150,10 @@ def raised_elsewhere(found: list[Line], skip: set[str]) -> dict[str, str]:
             key = flag_names(m.group(0)).upper()
             if key not in assigned and key not in skip and re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b", ln.text):
                 out[key] = ""
+        test = re.match(r"(?i)(?:IF|WHILE|UNTIL|WAIT\s+FOR)\b(.*)", ln.text) if ln.fold is None else None
+        for name in re.findall(r"(?<![\w$])[A-Za-z_]\w*", test.group(1)) if test else []:
+            if name.upper() in bools and name.upper() not in assigned and name.upper() not in skip:
+                out[name.upper()] = ""
     return out
 
 

@@ -266,3 +266,15 @@ def test_condition_on_an_output_signal_says_why(tmp_path: Path) -> None:
     for line in ("3", "6"):
         assert why[line].startswith("it tests `OutMarchaCinta`, the output $OUT[5] (its SIGNAL)"), why
     assert "set out[5] = on" in _body(rmot)
+
+
+def test_config_bool_the_program_never_sets(tmp_path: Path) -> None:
+    """A BOOL global of the $config.dat found that the program only tests (`WAIT FOR REPITE_SACO`,
+    ingeniado caja_g_m1.src, a flag the PLC's program sets) has no rmot form: W510 says another
+    program sets it (it is neither an input nor a task variable)."""
+    (tmp_path / "$config.dat").write_text("DEFDAT $CONFIG PUBLIC\n  DECL BOOL REPITE_SACO=FALSE\nENDDAT\n")
+    src = "DEF rs( )\n  PTP XHOME\n  WAIT FOR REPITE_SACO\n  PTP XP1\nEND\n"
+    output, rmot = imported_krl(tmp_path, "rs", src, DAT.replace("caja", "rs"))
+    why = dict(re.findall(r"rs\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
+    assert why["3"].startswith("`REPITE_SACO` is a global flag the program never sets: another program"), why
+    assert "W542" not in output and "var REPITE_SACO" not in rmot
