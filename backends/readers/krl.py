@@ -30,7 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
-from rmot.backends.readers.krl_vars import axis_speed_loop, counter_assigned
+from rmot.backends.readers.krl_vars import SETUP_FOLD, axis_speed_loop, counter_assigned
 from rmot.backends.readers.krl_why import (
     Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
 )
@@ -564,7 +564,7 @@ class _Krl:
         else read from the statements inside; the INI fold is set-up, kept as a comment."""
         header = self.lines[i].fold or ""
         end = fold_end(self.lines, i)
-        if re.match(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO", header):
+        if SETUP_FOLD.match(header):
             self.tally.warn(codes.DECLARATION_KEPT, f"the `{header[:30]}` fold is controller set-up: kept as a "
                             "comment", self.lines[i].where)
             return [], end + 1

@@ -27,7 +27,7 @@ from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
 from rmot.backends.readers.krl_names import declared_names
 from rmot.backends.readers.krl_text import Line, declarations, lines
-from rmot.backends.readers.krl_vars import Global, flag_names, global_note, global_vars, raised_elsewhere, raised_why
+from rmot.backends.readers.krl_vars import Global, flag_names, outside_setup, global_note, global_vars, raised_elsewhere, raised_why
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import (
     Assign, Cond, Conds, GroupIn, Stmt, Stop, VarDecl, WaitIn, Where, While, group_reads,
@@ -93,7 +93,7 @@ class KrlVars:
         self.tally, self.dat, self.group = tally, dat, group
         self.groups_warned: set[str] = set()  # group inputs warned at their first use (W534)
         self.persistent: set[str] = set()  # the .dat's variables
-        body = _main_lines(found, name)
+        body = outside_setup(_main_lines(found, name))  # what the set-up folds assign is not read
         assigned = {m.group(1).upper() for ln in body for m in [_ASSIGN.match(ln.text)] if m and ln.fold is None}
         taken = taken | {m.group(1).upper() for ln in found for m in [re.match(r"(?i)FOR\s+(\w+)", ln.text)] if m}
         self.vars: dict[str, tuple[str, str]] = {}  # upper -> (rmot name, type)

@@ -28,7 +28,7 @@ from rmot.backends.readers.model import Where
 from rmot.lang.record import record
 
 __all__ = ["Global", "global_vars", "global_note", "flag_names", "FLAG", "raised_elsewhere", "raised_why"]
-__all__ += ["axis_speed_loop", "counter_assigned"]
+__all__ += ["axis_speed_loop", "counter_assigned", "SETUP_FOLD", "outside_setup"]
 
 _TYPES = ("INT", "REAL", "BOOL")
 _ASSIGN = re.compile(r"(?i)^(\$FLAG\s*\[\s*\d+\s*\]|[A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
@@ -36,6 +36,9 @@ _ASSIGN = re.compile(r"(?i)^(\$FLAG\s*\[\s*\d+\s*\]|[A-Za-z_]\w*)\s*=(?!=)\s*(.+
 # by any program or an interrupt; $CYCFLAG[n], a cyclic flag the controller re-evaluates from the
 # expression last assigned to it, all the time)
 FLAG = re.compile(r"(?i)\$FLAG\s*\[\s*(\d+)\s*\]")
+# the folds of controller set-up the import keeps as a comment (the template's INI, BASISTECH,
+# USER INI, SPSMAKRO): what they assign never reaches the rmot program
+SETUP_FOLD = re.compile(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO")
 
 
 @record(slots=True)
@@ -220,3 +223,17 @@ def counter_assigned(found: list[Line], i: int) -> str | None:
         if m and m.group(1).upper() == key:
             return head.group(1)
     return None
+
+
+def outside_setup(found: list[Line]) -> list[Line]:
+    """`found` without the lines of its set-up folds (SETUP_FOLD), which the import does not read."""
+    out: list[Line] = []
+    depth = 0  # inside a set-up fold: its nesting depth
+    for ln in found:
+        if depth:
+            depth += (ln.fold is not None) - ln.endfold
+        elif ln.fold is not None and SETUP_FOLD.match(ln.fold):
+            depth = 1 - ln.endfold
+        else:
+            out.append(ln)
+    return out

@@ -278,3 +278,15 @@ def test_config_bool_the_program_never_sets(tmp_path: Path) -> None:
     why = dict(re.findall(r"rs\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
     assert why["3"].startswith("`REPITE_SACO` is a global flag the program never sets: another program"), why
     assert "W542" not in output and "var REPITE_SACO" not in rmot
+
+
+def test_assignments_in_the_set_up_fold_make_no_variable(tmp_path: Path) -> None:
+    """`bTornillo=$IN[139]` in the template's USER INI fold (Aleynikovich C2_CicloCompleto.src), which
+    the import keeps as a comment: the variable would start off and never get that value, so
+    neither it nor a global set there is a task variable; the tests on them stay native."""
+    src = ("DEF ini( )\n  BOOL b\n  ;FOLD INI;%{PE}\n    ;FOLD USER INI\n      b = $IN[3]\n      G_FLAG = TRUE\n"
+           "    ;ENDFOLD (USER INI)\n  ;ENDFOLD (INI)\n  PTP XHOME\n  IF b THEN\n    PTP XP1\n  ENDIF\n"
+           "  IF G_FLAG THEN\n    G_FLAG = FALSE\n  ENDIF\nEND\n")
+    output, rmot = imported_krl(tmp_path, "ini", src, DAT.replace("caja", "ini"))
+    assert "var " not in rmot and "W542" not in output
+    assert 'native krl "IF b THEN"' in rmot and 'native krl "IF G_FLAG THEN"' in rmot
