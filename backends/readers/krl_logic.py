@@ -93,8 +93,10 @@ class KrlVars:
         self.tally, self.dat, self.group = tally, dat, group
         self.groups_warned: set[str] = set()  # group inputs warned at their first use (W534)
         self.persistent: set[str] = set()  # the .dat's variables
-        body = outside_setup(_main_lines(found, name))  # what the set-up folds assign is not read
+        whole = _main_lines(found, name)
+        body = outside_setup(whole)  # what the set-up folds assign is not read
         assigned = {m.group(1).upper() for ln in body for m in [_ASSIGN.match(ln.text)] if m and ln.fold is None}
+        self.set_up_only: set[str] = {m.group(1).upper() for ln in whole for m in [_ASSIGN.match(ln.text)] if m} - assigned
         taken = taken | {m.group(1).upper() for ln in found for m in [re.match(r"(?i)FOR\s+(\w+)", ln.text)] if m}
         self.vars: dict[str, tuple[str, str]] = {}  # upper -> (rmot name, type)
         self.decls: list[VarDecl] = []
@@ -232,13 +234,16 @@ class KrlVars:
 
     def why(self, text: str) -> str | None:
         """Why a line on a flag another program raises (or a cyclic flag), or a condition on an
-        output's SIGNAL, stays native, if it does."""
+        output's SIGNAL or on a name only the set-up fold assigns, stays native, if it does."""
         found = raised_why(text, self.raised)
         test = re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b(.*)", text)
         for name in re.findall(r"(?<![\w$])[A-Za-z_]\w*", test.group(2)) if test and found is None else []:
             port = self.output(name) if name.upper() not in _KEYWORDS else None
             if port is not None:
                 return f"it tests `{name}`, the output $OUT[{port}] (its SIGNAL); rmot conditions read inputs only"
+            if name.upper() in self.set_up_only:
+                return (f"it tests `{name}`, which only the set-up fold (INI, USER INI) assigns: the import keeps "
+                        "that fold as a comment")
         return found
 
     def _spelled(self, text: str) -> str:

@@ -290,3 +290,5 @@ def test_assignments_in_the_set_up_fold_make_no_variable(tmp_path: Path) -> None
     output, rmot = imported_krl(tmp_path, "ini", src, DAT.replace("caja", "ini"))
     assert "var " not in rmot and "W542" not in output
     assert 'native krl "IF b THEN"' in rmot and 'native krl "IF G_FLAG THEN"' in rmot
+    why = dict(re.findall(r"ini\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
+    assert why["10"].startswith("it tests `b`, which only the set-up fold (INI, USER INI) assigns"), why
