@@ -292,3 +292,20 @@ def test_assignments_in_the_set_up_fold_make_no_variable(tmp_path: Path) -> None
     assert 'native krl "IF b THEN"' in rmot and 'native krl "IF G_FLAG THEN"' in rmot
     why = dict(re.findall(r"ini\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
     assert why["10"].startswith("it tests `b`, which only the set-up fold (INI, USER INI) assigns"), why
+
+
+def test_switch_and_repeat_on_a_config_int(tmp_path: Path) -> None:
+    """A state machine on an INT global of the $config.dat found (`SWITCH EstadoActual`, luciagumbau228
+    RSR0001.src): set first thing, it is the start value; SWITCH → an if chain, REPEAT .. UNTIL →
+    the body then `while not`; KRL's REPEAT runs its body once before testing (KSS 8.x "REPEAT")."""
+    (tmp_path / "$config.dat").write_text("DEFDAT $CONFIG PUBLIC\n  DECL INT ESTADO=0\nENDDAT\n")
+    src = ("DEF sw( )\n  ESTADO = 1\n  PTP XHOME\n  SWITCH ESTADO\n  CASE 1\n    PTP XP1\n    ESTADO = 2\n"
+           "  DEFAULT\n    PTP XHOME\n  ENDSWITCH\n  REPEAT\n    ESTADO = ESTADO + 1\n  UNTIL ESTADO >= 3\nEND\n")
+    output, rmot = imported_krl(tmp_path, "sw", src, DAT.replace("caja", "sw"))
+    body = _body(rmot)
+    at = body.index("var ESTADO: int = 1")
+    assert body[at + 1:] == ["move joint XHOME speed 100 % zone fine", "if ESTADO == 1 {",
+                             "move joint XP1 speed 100 % zone fine", "ESTADO = 2", "} else {",
+                             "move joint XHOME speed 100 % zone fine", "}", "ESTADO = ESTADO + 1",
+                             "while not (ESTADO >= 3) {", "ESTADO = ESTADO + 1", "}", "}"], rmot
+    assert "W510" not in output and "sets it before it reads it" in output
