@@ -30,7 +30,7 @@ from rmot.backends.readers.krl_data import (
 )
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_logic import KrlVars
-from rmot.backends.readers.krl_vars import SETUP_FOLD, axis_speed_loop, counter_assigned
+from rmot.backends.readers.krl_vars import SETUP_FOLD, axis_speed_loop, counted_loop
 from rmot.backends.readers.krl_why import (
     Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
 )
@@ -193,6 +193,8 @@ class _Krl:
             return keep_block(self.lines, self.tally, i, word, end)
         if word in ("DECL", "INT", "REAL", "BOOL", "CHAR", "E6POS", "POS", "FRAME", "E6AXIS", "AXIS", "SIGNAL"):
             return [], i + 1
+        if ln.where in self.logic.skipped:  # a stepped loop's own increment (counted_loop)
+            return [], i + 1
         assign = self.logic.statement(ln)
         if assign is not None:
             self.tally.imported += 1
@@ -255,18 +257,17 @@ class _Krl:
         if speeds is not None and self._setting(speeds[0]):  # every axis's speed set by a loop
             return [], speeds[1]
         if word == "FOR":
-            m = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", ln.text)
-            counter = counter_assigned(self.lines, i)
-            if m is None or counter:
-                return keep_block(self.lines, self.tally, i, word, end, counter and f"the loop's counter `{counter}` is "
-                                  "assigned in its body (KRL then skips iterations)")
+            loop = counted_loop(self.lines, i)  # (counter, first, stop, its increment to leave out) or why not
+            if not isinstance(loop, tuple):
+                return keep_block(self.lines, self.tally, i, word, end, loop)
+            name, first, stop, self.logic.skipped = loop[0], loop[1], loop[2], {*self.logic.skipped, loop[3]}
             saved, params = set(self.names), self.params
-            self.names.add(m.group(1))
-            self.params = {**params, m.group(1).upper(): (m.group(1), "number")}  # known at each iteration
+            self.names.add(name)
+            self.params = {**params, name.upper(): (name, "number")}  # known at each iteration
             body, j = self._block(i + 1, (end,))
             self.names, self.params = saved, params
             self.tally.imported += 1
-            return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
+            return [For(name, first, stop, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
         cond = self._cond(m.group(1)) if m else None
         if cond is None or (word == "WHILE" and has_test(cond)):  # a while on a test the compiler decides: native

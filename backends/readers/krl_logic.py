@@ -105,6 +105,7 @@ class KrlVars:
         self.main = False  # reading the main DEF
         self.exiting: Where | None = None  # the EXIT of the loop being read that becomes its condition
         self.end_label: str | None = None
+        self.skipped: set[Where | None] = set()  # the increments of stepped FOR loops, read into their count
         found_decls = [(d.type, d.name, d.value, d.where) for d in declarations(lines(*dat))] if dat else []
         self.persistent = {rmot_name(d[1]) for d in found_decls}
         for ln in body:

@@ -28,7 +28,7 @@ from rmot.backends.readers.model import Where
 from rmot.lang.record import record
 
 __all__ = ["Global", "global_vars", "global_note", "flag_names", "FLAG", "raised_elsewhere", "raised_why"]
-__all__ += ["axis_speed_loop", "counter_assigned", "SETUP_FOLD", "outside_setup"]
+__all__ += ["axis_speed_loop", "counted_loop", "SETUP_FOLD", "outside_setup"]
 
 _TYPES = ("INT", "REAL", "BOOL")
 _ASSIGN = re.compile(r"(?i)^(\$FLAG\s*\[\s*\d+\s*\]|[A-Za-z_]\w*)\s*=(?!=)\s*(.+)$")
@@ -38,6 +38,9 @@ _ASSIGN = re.compile(r"(?i)^(\$FLAG\s*\[\s*\d+\s*\]|[A-Za-z_]\w*)\s*=(?!=)\s*(.+
 FLAG = re.compile(r"(?i)\$FLAG\s*\[\s*(\d+)\s*\]")
 # the folds of controller set-up the import keeps as a comment (the template's INI, BASISTECH,
 # USER INI, SPSMAKRO): what they assign never reaches the rmot program
+# the words that open and close KRL's blocks (KSS 8.x program flow control)
+_OPENS = frozenset({"FOR", "IF", "WHILE", "LOOP", "REPEAT", "SWITCH"})
+_CLOSES = frozenset({"ENDFOR", "ENDIF", "ENDWHILE", "ENDLOOP", "UNTIL", "ENDSWITCH"})
 SETUP_FOLD = re.compile(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO")
 
 
@@ -204,25 +207,46 @@ def axis_speed_loop(found: list[Line], i: int) -> tuple[str, int] | None:
     return text, near[end] + 1
 
 
-def counter_assigned(found: list[Line], i: int) -> str | None:
-    """The name of the counter of `FOR k = ..` at `i` where its body assigns it (`PLANTA = PLANTA +
-    1` inside `FOR PLANTA=1 TO 5`, ingeniado caja_g_m1.src: KRL then skips iterations, so the loop
-    runs other than its bounds say); None otherwise. A nested FOR on the same counter is not
-    caught here."""
-    head = re.match(r"(?i)FOR\s+(\w+)\s*=", found[i].text)
+def counted_loop(found: list[Line], i: int) -> tuple[str, int, int, Where | None] | str | None:
+    """How `FOR k = a TO b` at `i` reads (KSS 8.x "FOR": k = a, the body, k + 1, while k <= b):
+    (k, a, the rmot loop's stop, None) where its body leaves k alone; where the body assigns k
+    once, `k = k + c` (c a whole number > 0) outside its inner blocks with no GOTO or label after
+    it (so it runs once in every iteration that ends; ingeniado caja_g_m1.src `PLANTA = PLANTA +
+    1` inside `FOR PLANTA=1 TO 5`, which runs for 1, 3, 5), and k is read nowhere else in the body
+    or after the loop: (k, a, a + the number of iterations, where that increment is: not read).
+    Else the reason it stays native; None where it is not a FOR with number bounds and step 1."""
+    head = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", found[i].text)
     if head is None:
         return None
-    key, depth = head.group(1).upper(), 0
-    for ln in found[i + 1:]:
-        if ln.fold is not None:
-            continue
-        depth += (ln.word == "FOR") - (ln.word == "ENDFOR")
+    name, first, last = head.group(1), int(head.group(2)), int(head.group(3))
+    word = re.compile(rf"(?i)(?<![\w$.]){re.escape(name)}(?!\w)")
+    k, depth, body, sets = i + 1, 0, [], []  # the body's statements (depth, line), the assignments to k
+    while k < len(found) and found[k].word != "END":
+        ln = found[k]
+        depth += (ln.word in _OPENS) - (ln.word in _CLOSES)
         if depth < 0:
-            return None
-        m = _ASSIGN.match(ln.text)
-        if m and m.group(1).upper() == key:
-            return head.group(1)
-    return None
+            break
+        body += [(depth, ln)] if ln.text and ln.fold is None else []
+        m = _ASSIGN.match(ln.text) if ln.fold is None else None
+        sets += [ln] if m and m.group(1).upper() == name.upper() else []
+        k += 1
+    if not sets:
+        return name, first, last + 1, None
+    later = []  # the routine's lines after the loop
+    for ln in found[k + 1:]:
+        if ln.word == "END":
+            break
+        later.append(ln)
+    step = re.fullmatch(rf"(?i){re.escape(name)}\s*=\s*{re.escape(name)}\s*\+\s*(\d+)", sets[0].text)
+    read = [ln for _, ln in body if ln is not sets[0] and word.search(ln.text)] + [
+        ln for ln in later if word.search(ln.text)]
+    top = (0, sets[0]) in body  # outside the body's inner blocks: it runs in every iteration that ends
+    after = body[body.index((0, sets[0])) + 1:] if top else []
+    jumps = [ln for _, ln in after if re.fullmatch(r"(?i)GOTO\s+\w+|\w+\s*:", ln.text)]
+    if len(sets) > 1 or step is None or not top or jumps or read or int(step.group(1)) < 1:
+        return f"the loop's counter `{name}` is assigned in its body (KRL then skips iterations)"
+    count = (last - first) // (int(step.group(1)) + 1) + 1 if last >= first else 0
+    return name, first, first + count, sets[0].where
 
 
 def outside_setup(found: list[Line]) -> list[Line]:

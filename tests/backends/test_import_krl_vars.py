@@ -17,6 +17,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from krl_imported import imported_krl
@@ -221,6 +222,11 @@ LOOPS = """DEF lp( )
   FOR planta = 1 TO 5
     PTP XP1
     planta = planta + 1
+    $OUT[3] = TRUE
+  ENDFOR
+  FOR n = 1 TO 8
+    n = n * 2
+    PTP XP1
   ENDFOR
 END
 """
@@ -230,17 +236,20 @@ def test_loops_over_axes_and_counters(tmp_path: Path) -> None:
     """`FOR x=1 TO 6 $VEL_AXIS[x]=85 $ACC_AXIS[x]=40 ENDFOR` (Shangmc main.src, ingeniado
     saco_20_m2.src) sets every axis's speed: the next PTP's `speed 85 %` (its acceleration 40 %
     as rmot's own RMOT_PTP loop writes it); `IF (n == 2)` in `FOR n` is a test the compiler decides at
-    each iteration; a FOR whose body assigns its counter (`PLANTA = PLANTA + 1`, caja_g_m1.src: KRL
-    runs it for 1, 3, 5) stays native."""
+    each iteration; `FOR planta = 1 TO 5` whose body adds 1 to its counter once (`PLANTA = PLANTA +
+    1`, caja_g_m1.src: KRL runs it for 1, 3, 5, counted by hand here) is a loop of 3 iterations; a
+    counter the body sets otherwise stays native."""
     output, rmot = imported_krl(tmp_path, "lp", LOOPS, DAT.replace("caja", "lp"))
     body = _body(rmot)
     assert "move joint XHOME speed 85 % accel 40 % zone fine" in body, rmot
     assert "move joint XP1 speed 20 % accel 40 % zone fine" in body, rmot
     at = body.index("for n in 1 .. 4 {")
     assert body[at + 1:at + 4] == ["if n == 2 {", "set out[1] = on", "}"], rmot
+    at = body.index("for planta in 1 .. 4 {")
+    assert body[at + 1:at + 4] == ["move joint XP1 speed 20 % accel 40 % zone fine", "set out[3] = on", "}"], rmot
     why = dict(re.findall(r"lp\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
-    assert sorted(why, key=int) == ["18", "19", "20", "21"], why
-    assert why["18"].startswith("the loop's counter `planta` is assigned in its body"), why
+    assert sorted(why, key=int) == ["23", "24", "25", "26"], why
+    assert why["23"].startswith("the loop's counter `n` is assigned in its body"), why
     result = CliRunner().invoke(cli, ["compile", str(tmp_path / "lp.rmot"), "--target", "krl", "-o",
                                       str(tmp_path / "o"), "--allow-findings"])
     assert "error[" not in result.output, result.output
@@ -309,3 +318,36 @@ def test_switch_and_repeat_on_a_config_int(tmp_path: Path) -> None:
                              "move joint XHOME speed 100 % zone fine", "}", "ESTADO = ESTADO + 1",
                              "while not (ESTADO >= 3) {", "ESTADO = ESTADO + 1", "}", "}"], rmot
     assert "W510" not in output and "sets it before it reads it" in output
+
+
+def _krl_for_runs(first: int, last: int, step: int) -> int:
+    """How often KSS 8.x runs `FOR k = first TO last` whose body ends `k = k + step`: k = first;
+    while k <= last: body (k + step), then k + 1 (the manual's FOR, simulated)."""
+    k, runs = first, 0
+    while k <= last:
+        runs, k = runs + 1, k + step + 1
+    return runs
+
+
+@pytest.mark.parametrize("first,last,step", [(1, 5, 1), (1, 10, 2), (0, 0, 3), (3, 2, 1), (-4, 7, 4)])
+def test_stepped_loop_counts_as_krl_runs_it(first: int, last: int, step: int) -> None:
+    from rmot.backends.readers.krl_text import lines
+    from rmot.backends.readers.krl_vars import counted_loop
+    found = lines("s.src", f"FOR k = {first} TO {last}\n  PTP XP1\n  k = k + {step}\n  $OUT[1] = TRUE\nENDFOR\n")
+    loop = counted_loop(found, 0)
+    assert isinstance(loop, tuple) and loop[3] == found[2].where
+    assert loop[2] - loop[1] == _krl_for_runs(first, last, step)
+
+
+@pytest.mark.parametrize("text", [
+    "FOR k = 1 TO 5\n  k = k + 1\n  L1:\nENDFOR\n",                       # a label after the increment
+    "FOR k = 1 TO 5\n  k = k + 1\n  IF $IN[1] THEN\n    GOTO L1\n  ENDIF\nENDFOR\n",  # a jump after it
+    "FOR k = 1 TO 5\n  IF $IN[1] THEN\n    k = k + 1\n  ENDIF\nENDFOR\n",  # not in every iteration
+    "FOR k = 1 TO 5\n  $OUT[k] = TRUE\n  k = k + 1\nENDFOR\n",              # read in the body
+    "FOR k = 1 TO 5\n  k = k + 1\nENDFOR\nn = k\n",                         # read after the loop
+    "FOR k = 1 TO 5\n  k = k - 1\nENDFOR\n",                                # not an increment
+])
+def test_counter_set_otherwise_stays_native(text: str) -> None:
+    from rmot.backends.readers.krl_text import lines
+    from rmot.backends.readers.krl_vars import counted_loop
+    assert counted_loop(lines("s.src", text), 0) == "the loop's counter `k` is assigned in its body (KRL then skips iterations)"
