@@ -113,3 +113,10 @@ SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",
                            "a KRL motion after a call of a routine the import does not read (kept native) is read "
                            "with the speed, approximation, tool and base set before the call; the routine may "
                            "change them ($VEL, $APO, $TOOL, $BASE are global)")
+
+# KRL globals and controller flags read as task variables (krl_vars.py)
+__all__ += ["GLOBAL_READ_AS_VARIABLE"]
+GLOBAL_READ_AS_VARIABLE = Code("W542", "global-read-as-variable",
+                               "a KRL global (of $config.dat, or $FLAG[n]) that the main routine sets is read as a "
+                               "task variable: on the controller it starts where the last run or another program "
+                               "left it, and another program writing it while this one runs is not seen")
