@@ -36,11 +36,11 @@ _ASSIGN = re.compile(r"(?i)^(\$FLAG\s*\[\s*\d+\s*\]|[A-Za-z_]\w*)\s*=(?!=)\s*(.+
 # by any program or an interrupt; $CYCFLAG[n], a cyclic flag the controller re-evaluates from the
 # expression last assigned to it, all the time)
 FLAG = re.compile(r"(?i)\$FLAG\s*\[\s*(\d+)\s*\]")
-# the folds of controller set-up the import keeps as a comment (the template's INI, BASISTECH,
-# USER INI, SPSMAKRO): what they assign never reaches the rmot program
 # the words that open and close KRL's blocks (KSS 8.x program flow control)
 _OPENS = frozenset({"FOR", "IF", "WHILE", "LOOP", "REPEAT", "SWITCH"})
 _CLOSES = frozenset({"ENDFOR", "ENDIF", "ENDWHILE", "ENDLOOP", "UNTIL", "ENDSWITCH"})
+# the folds of controller set-up the import keeps as a comment (the template's INI, BASISTECH,
+# USER INI, SPSMAKRO): what they assign never reaches the rmot program
 SETUP_FOLD = re.compile(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO")
 
 
