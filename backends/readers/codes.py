@@ -113,3 +113,9 @@ SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",
                            "a KRL motion after a call of a routine the import does not read (kept native) is read "
                            "with the speed, approximation, tool and base set before the call; the routine may "
                            "change them ($VEL, $APO, $TOOL, $BASE are global)")
+
+# INFORM pulse positions read with the arm's scales (readers/inform.py)
+__all__ += ["PULSE_SCALES_INVALID"]
+PULSE_SCALES_INVALID = Code("E525", "pulse-scales-invalid",
+                            "`rmot import --pulses-per-degree` is not one finite, non-zero number of encoder pulses "
+                            "per degree for each axis (1 to 8, separated by commas)")

@@ -11,7 +11,12 @@ ON|OFF`, `PULSE OT#(n) T=`, `AOUT AO#(n) v`, `TIMER T=`, `WAIT IN#(n)=.. [T=]` (
 backend's JUMP/MSG/PAUSE: `timeout`), `JUMP *La IF IN#(n)=..` .. `*La` as `if`, `CALL JOB:`,
 the tool named by the `'TOOL n = name` comment. Position variables (`P00100=` in //POS, `MOVJ
 P100`) are read as the C positions are. Pulse positions (`///PULSE`, or any position before a
-`///RECTAN`) are robot specific: their moves stay native.
+`///RECTAN`) are encoder counts: with the arm's pulses per degree (`rmot import
+--pulses-per-degree S,L,U,R,B,T`, the controller's own values) they are read as joint targets,
+degrees = pulses / scale (the ROS-Industrial motoman_driver's Ros_CtrlGroup_ConvertToRosPos,
+radians = pulses / pulses-per-radian with no offset: 0 pulses is the axis's zero; the job holds
+command positions, which the controller already corrects for axis coupling, CtrlGroup.c
+Ros_CtrlGroup_GetFBPulsePos); without them their moves stay native.
 """
 
 from __future__ import annotations
@@ -27,7 +32,7 @@ from rmot.backends.readers.model import (
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
 
-__all__ = ["read_inform", "PL_MM"]
+__all__ = ["read_inform", "PL_MM", "pulse_scales"]
 
 _JUMP = re.compile(r"JUMP \*(L\w+)")
 # INFORM instructions (the forms backends/inform.py writes): outputs, pulses, analog outputs,
@@ -48,8 +53,10 @@ PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/info
 
 
 class _Job:
-    def __init__(self, path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> None:
+    def __init__(self, path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None,
+                 pulses_per_degree: tuple[float, ...] | None = None) -> None:
         self.tally = Tally(path, text, "inform")
+        self.pulses_per_degree = pulses_per_degree  # the arm's scales, S, L, U, R, B, T (None: not given)
         self.jobs = jobs or {}  # the import's jobs by name (a job called in a shifting loop is inlined)
         self.inlined: set[str] = set()
         self.var_names: dict[str, str] = {}  # `'D050 = row`: the loop counters' names
@@ -60,7 +67,7 @@ class _Job:
         self.raw = text.split("\n")
         self.name = ""
         self.positions: dict[str, Target] = {}
-        self.pulse_positions: set[str] = set()  # `///PULSE` positions: encoder counts of the arm's axes
+        self.pulse_positions: dict[str, str] = {}  # `///PULSE` positions not read: why (encoder counts of the arm's axes)
         self.base_positions: dict[str, tuple[tuple[float, ...], bool]] = {}  # BCn, ECn: values, in pulses (readers/axes_slots.py)
         self.position_tool: dict[str, int] = {}
         self.position_user: dict[str, int | None] = {}
@@ -115,7 +122,7 @@ class _Job:
             return
         m = re.fullmatch(r"([CP]\d+)\s*=\s*(.*)", s)
         if m is not None and pulse:
-            self.pulse_positions.add(_key(m.group(1)))
+            self._pulse_position(_key(m.group(1)), m.group(2), n, tool)
         if m is None or pulse:
             return
         try:
@@ -137,6 +144,24 @@ class _Job:
                                             Where(self.path, n), ",".join(b.strip() for b in bits))
         self.position_tool[key] = tool
         self.position_user[key] = user
+
+    def _pulse_position(self, key: str, values: str, n: int, tool: int) -> None:
+        """A pulse position: a joint target where the arm's pulses per degree are given and
+        its count is theirs; else the reason its moves stay native."""
+        scales = self.pulses_per_degree
+        counts = [int(x) for x in values.split(",") if re.fullmatch(r"\s*-?\d+\s*", x)]
+        if scales is None:
+            self.pulse_positions[key] = ("is a pulse position (///PULSE, or no ///RECTAN before it): encoder counts "
+                                         "whose per-axis scales are the arm's controller's; pass them as `rmot import "
+                                         "--pulses-per-degree S,L,U,R,B,T` (its pulses per degree) to read it")
+        elif len(counts) != len(values.split(",")) or len(counts) != len(scales):
+            self.pulse_positions[key] = (f"is a pulse position of {len(values.split(','))} values, not the "
+                                         f"{len(scales)} whole pulse counts --pulses-per-degree gives scales for")
+        else:
+            joints = tuple(c / k for c, k in zip(counts, scales))
+            self.positions[key] = Target(f"{self.name.lower()}_{key.lower()}", None, joints, None, Where(self.path, n))
+            self.position_tool[key] = tool
+            self.position_user[key] = None
 
     # ---------------------------------------------------------------- instructions
 
@@ -173,10 +198,8 @@ class _Job:
                 return found
         stmt = self._simple(text, where)
         if stmt is None:
-            pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & self.pulse_positions)
-            why = (f"{', '.join(pulses)} is a pulse position (///PULSE, or no ///RECTAN before it): encoder "
-                   "counts whose per-axis scales "
-                   "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
+            pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & set(self.pulse_positions))
+            why = (f"{pulses[0]} {self.pulse_positions[pulses[0]]}" if pulses else
                    axes_slots.why_native(text) or "no rmot form")
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
@@ -230,7 +253,7 @@ class _Job:
         if source is None or not self.counters or not reaches(
                 self.jobs, name, lambda text: any(re.search(p, text) for p in shifted), r"(?m)^CALL JOB:(\w+)"):
             return None
-        callee = _Job(source[0], source[1], self.jobs)
+        callee = _Job(source[0], source[1], self.jobs, self.pulses_per_degree)
         callee.counters, callee.shifts = self.counters, self.shifts
         callee.tools, callee.tool_names = self.tools, {**self.tool_names}
         callee.read()
@@ -273,7 +296,7 @@ class _Job:
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
                     tool=self._tool(self.position_tool[names[-1]]), frame=axes_slots.inform_frame(user, sync),
-                    config=decl.config if kind == "joint" else None, pose=decl.pose,
+                    config=decl.config if kind == "joint" else None, pose=decl.pose, joints=decl.joints,
                     joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None,
                     slots=base[0] if base else (), slot_pulses=base[1] if base else (), via_slots=via_base[0] if via_base else ())
 
@@ -341,9 +364,28 @@ def _uncommented(line: str) -> str:
     return m.group(1) if m and '"' not in line else line
 
 
-def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> _Job:
+def pulse_scales(text: str) -> tuple[float, ...] | str:
+    """`--pulses-per-degree S,L,U,R,B,T`: the arm's encoder pulses per degree of each axis, as
+    its controller's parameters give them (one finite, non-zero number per axis, 1 to 8 axes: an
+    INFORM position holds at most 8, DX100/YRC1000 INFORM manual, //POS); else the error text."""
+    bits = text.split(",")
+    try:
+        scales = tuple(float(b) for b in bits)
+    except ValueError:
+        return f"--pulses-per-degree takes numbers separated by commas (got `{text}`)"
+    if not 1 <= len(scales) <= 8:
+        return f"--pulses-per-degree takes one number per axis, 1 to 8 axes (got {len(scales)})"
+    bad = [b.strip() for b, k in zip(bits, scales) if not math.isfinite(k) or k == 0.0]
+    if bad:
+        return f"--pulses-per-degree: `{bad[0]}` is not a finite, non-zero number of pulses per degree"
+    return scales
+
+
+def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None,
+                pulses_per_degree: tuple[float, ...] | None = None) -> _Job:
     """Read one INFORM job; raises ImportError_ (E510) when it is not one. `jobs`: the import's
-    files by job name (a job called inside a loop whose shift it switches on is inlined)."""
-    job = _Job(path, text, jobs)
+    files by job name (a job called inside a loop whose shift it switches on is inlined);
+    `pulses_per_degree`: the arm's scales, to read pulse positions as joint targets."""
+    job = _Job(path, text, jobs, pulses_per_degree)
     job.read()
     return job

@@ -92,9 +92,10 @@ def robot_signals(cell: ir.Cell, robot: str) -> tuple[object, str, object]:
 
 
 def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, object] | None,
-                   model: str | None) -> Document:
+                   model: str | None, pulses_per_degree: tuple[float, ...] | None = None) -> Document:
     """The files read for one robot: with a cell (`found`: its signals, robot, ir.Cell), named
-    signals resolved, tools and payloads matched to that robot's, INFORM configurations solved."""
+    signals resolved, tools and payloads matched to that robot's, INFORM configurations solved;
+    `pulses_per_degree`: the arm's scales (INFORM pulse positions read as joints)."""
     from rmot.backends.readers import read_files, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.axes import resolve_axes  # late: loads numpy only when this runs
     from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
@@ -105,7 +106,7 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
         cell_ir = found[2]
         assert isinstance(cell_ir, ir.Cell)
         model = cell_ir.robot(found[1]).source.ref
-    doc = read_files(files, model=model, limits=_joint_limits(model))
+    doc = read_files(files, model=model, limits=_joint_limits(model), pulses_per_degree=pulses_per_degree)
     if cell is None or found is None:
         return resolve_axes(doc, None, "r1", span_of)  # a stub cell declares no mechanism: W523
     signals, robot_name, cell_ir = found

@@ -1,0 +1,97 @@
+"""INFORM pulse positions read as joint targets with the arm's pulses per degree
+(`rmot import --pulses-per-degree S,L,U,R,B,T`), native with the reason without them.
+
+Witnesses: the conversion is MotoROS2's own test of it (Yaskawa-Global/motoros2
+src/Tests_CtrlGroup.c, Ros_Testing_CtrlGroup_PosConverters: a 6-axis group with pulses per
+radian 9, 8, 7, 6, 5, 4 turns pulses 2000..7000 into 2000/9, 3000/8, .. 7000/4 rad), its
+vectors typed in here and turned into degrees with math.degrees, not with the reader's code; the
+job's shape is a pendant-saved pulse job by another author (icors2's Yaskawa-Job-Helper
+TCP_CHECK.JBI: `///POSTYPE PULSE`, `///PULSE`, `Cnnnnn=` counts, MOVJ and MOVL to them).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Move, Native, walk
+from rmot.compiler.cli import cli
+
+# MotoROS2's fake 6-axis group: pulses per radian of S, L, U, R, B, T, and the pulses it converts
+PULSES_PER_RADIAN = (9.0, 8.0, 7.0, 6.0, 5.0, 4.0)
+PULSES = (2000, 3000, 4000, 5000, 6000, 7000)
+EXPECTED_RAD = (2000.0 / 9.0, 3000.0 / 8.0, 4000.0 / 7.0, 5000.0 / 6.0, 6000.0 / 5.0, 7000.0 / 4.0)
+
+JOB = f"""/JOB
+//NAME TCP_CHECK
+//POS
+///NPOS 2,0,0,0,0,0
+///TOOL 0
+///POSTYPE PULSE
+///PULSE
+C00000={",".join(map(str, PULSES))}
+C00001=-204317,-84436,-64683,-41499,-71625,29263
+//INST
+///DATE 2025/06/18 13:27
+///ATTR SC,RW
+///GROUP1 RB1
+NOP
+MOVJ C00000 VJ=30.00
+MOVL C00001 V=211.7
+END
+"""
+
+
+def _scales() -> tuple[float, ...]:
+    """Pulses per degree from the pulses per radian (a degree is pi/180 rad)."""
+    return tuple(k * math.pi / 180.0 for k in PULSES_PER_RADIAN)
+
+
+def _read(tmp_path: Path, scales: tuple[float, ...] | None) -> tuple[list[object], list[str]]:
+    path = tmp_path / "TCP_CHECK.JBI"
+    path.write_text(JOB)
+    doc = read_files([str(path)], pulses_per_degree=scales)
+    return [s for r in doc.routines for s in walk(r.body)], [d.message for d in doc.diagnostics if d.code.id == "W510"]
+
+
+def test_pulse_positions_become_joint_targets_with_the_arms_scales(tmp_path: Path) -> None:
+    stmts, why = _read(tmp_path, _scales())
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert not why and not any(isinstance(s, Native) for s in stmts)
+    assert [(m.kind, m.target, m.joint_pct, m.speed) for m in moves] == [
+        ("joint", "tcp_check_c00000", 30.0, None), ("linear", "tcp_check_c00001", None, 211.7)]
+    assert moves[0].joints is not None and moves[0].pose is None
+    assert all(math.isclose(got, math.degrees(rad), rel_tol=1e-12)
+               for got, rad in zip(moves[0].joints, EXPECTED_RAD, strict=True))
+
+
+def test_without_scales_the_moves_stay_native_and_say_what_to_pass(tmp_path: Path) -> None:
+    stmts, why = _read(tmp_path, None)
+    assert [s.text for s in stmts if isinstance(s, Native)] == ["MOVJ C00000 VJ=30.00", "MOVL C00001 V=211.7"]
+    assert len(why) == 2 and all("is a pulse position" in w and "--pulses-per-degree S,L,U,R,B,T" in w for w in why)
+
+
+def test_scales_for_another_number_of_axes_convert_nothing(tmp_path: Path) -> None:
+    """Five scales for six counts: never a guess for the sixth axis."""
+    stmts, why = _read(tmp_path, _scales()[:5])
+    assert not any(isinstance(s, Move) for s in stmts)
+    assert len(why) == 2 and "not the 5 whole pulse counts" in why[0]
+
+
+def test_the_cli_reads_pulse_jobs_and_refuses_bad_scales(tmp_path: Path) -> None:
+    path = tmp_path / "TCP_CHECK.JBI"
+    path.write_text(JOB)
+    out = tmp_path / "tcp.rmot"
+    scales = ",".join(f"{k!r}" for k in _scales())
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out), "--pulses-per-degree", scales],
+                                catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    text = out.read_text()
+    assert "target tcp_check_c00000 = joints(" in text and "native inform" not in text
+    for bad, said in (("1,2,x", "numbers separated by commas"), ("100,0,100", "`0` is not a finite, non-zero"),
+                      ("100,inf", "`inf` is not a finite"), ("1,2,3,4,5,6,7,8,9", "1 to 8 axes (got 9)")):
+        result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out), "--pulses-per-degree", bad])
+        assert result.exit_code == 2 and "error[E525]" in result.output and said in result.output, result.output
