@@ -70,6 +70,7 @@ class _Job:
         self.pulse_positions: dict[str, str] = {}  # `///PULSE` positions not read: why (encoder counts of the arm's axes)
         self.base_positions: dict[str, tuple[tuple[float, ...], bool]] = {}  # BCn, ECn: values, in pulses (readers/axes_slots.py)
         self.position_tool: dict[str, int] = {}
+        self.station_in_group = False  # `///GROUP1 RB1,ST1`: the station moves in the robot's own moves
         self.position_user: dict[str, int | None] = {}
         self.tool_names: dict[int, str] = {}
         self.tools: dict[int, ToolData] = {}
@@ -100,6 +101,7 @@ class _Job:
                 postype = rest.strip() if key == "POSTYPE" else postype  # ROBOT, BASE (no base axis: the same), USER
                 user = int(rest) if key == "USER" and rest.isdigit() else user
                 rectan = key == "RECTAN" or (rectan and key not in ("PULSE", "ANGLE"))
+                self.station_in_group |= key.startswith("GROUP") and bool(re.search(r"\bRB\d.*\bST\d|\bST\d.*\bRB\d", rest))
                 continue
             if section == "//POS":
                 self._position(s, n, conf, tool, user if postype == "USER" else None, not rectan)
@@ -265,8 +267,9 @@ class _Job:
 
     def _move(self, kind: str, names: list[str], rest: str, where: Where, sync: bool = False, via_rest: str = "") -> Move | None:
         decls = [self.positions.get(n) for n in names]
-        base, rest = axes_slots.inform_operands(self.base_positions, rest, sync)
-        via_base = axes_slots.inform_operands(self.base_positions, via_rest, sync)[0] if via_rest else None
+        base, rest = axes_slots.inform_operands(self.base_positions, rest, sync, self.station_in_group)
+        via_base = axes_slots.inform_operands(self.base_positions, via_rest, sync, self.station_in_group)[0] \
+            if via_rest else None
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
