@@ -202,7 +202,7 @@ class _Job:
         if stmt is None:
             pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & set(self.pulse_positions))
             why = (f"{pulses[0]} {self.pulse_positions[pulses[0]]}" if pulses else
-                   axes_slots.why_native(text) or "no rmot form")
+                   axes_slots.why_native(text) or _why_native(text))
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -357,6 +357,29 @@ def _key(ref: str) -> str:
     instruction names it with (`MOVJ P100`: the position variable P100, DX100/YRC1000 INFORM
     manual, "position variable P")."""
     return f"{ref[0]}{int(ref[1:]):05d}"
+
+
+# variables of a job (DX100/YRC1000 INFORM manual, "variables": byte, integer, double, real,
+# position; L local): a value the job only has at run time
+_VARIABLE = r"L?[BIDRP]\d+"
+
+
+def _why_native(text: str) -> str:
+    """Why an INFORM line with no rmot form stays native, as precisely as the line says."""
+    indirect = re.search(rf"\bIN#\(({_VARIABLE})\)", text)
+    timer = re.fullmatch(rf"TIMER T=({_VARIABLE})", text)
+    if re.match(r"IMOV\b", text):
+        return ("IMOV moves by an increment from wherever the robot stands (its position variable's value at "
+                "run time): rmot's moves go to targets the compiler knows")
+    if indirect:
+        return (f"the input's number is variable {indirect.group(1)}'s value at run time: rmot's `in[n]` "
+                "names its input in the program")
+    if timer:
+        return f"the time is variable {timer.group(1)}'s value at run time: rmot's `wait T` is a number the compiler knows"
+    if re.match(r"MOVJ EX\d+", text):
+        return ("moves the station alone to its position variable EXn: rmot reads `move axes` back only from "
+                "RAPID's MoveExtJ")
+    return "no rmot form"
 
 
 def _uncommented(line: str) -> str:
