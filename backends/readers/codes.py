@@ -118,4 +118,4 @@ SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",
 __all__ += ["PULSE_SCALES_INVALID"]
 PULSE_SCALES_INVALID = Code("E525", "pulse-scales-invalid",
                             "`rmot import --pulses-per-degree` is not one finite, non-zero number of encoder pulses "
-                            "per degree for each axis (1 to 8, separated by commas)")
+                            "per degree for each axis (1 to 8, separated by commas), or is given with --task")

@@ -46,6 +46,8 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         SignalMap, cell_stub, program_text, rename_warnings, stub_signals,
     )
 
+    if tasks and pulses is not None:  # one arm's scales: which of the tasks' arms is theirs is not said
+        _pulse_scales(pulses, "--pulses-per-degree is one arm's scales and cannot be given with --task")
     if tasks:
         from rmot.compiler.cli.import_tasks import import_tasks  # late: loads numpy only when this runs
 
@@ -54,7 +56,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         click.echo("rmot: import needs FILE... (one robot's program) or --task ROBOT=FILE (several robots)", err=True)
         sys.exit(EXIT_INPUT)
     refuse_output_input(output, files)
-    scales = _pulse_scales(pulses)
+    scales = _pulse_scales(pulses) if pulses is not None else None
     found = cell_signals(cell, robot) if cell is not None else None
     if isinstance(found, str):
         click.echo(found, err=True)
@@ -83,15 +85,13 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     sys.exit(EXIT_OK)
 
 
-def _pulse_scales(text: str | None) -> tuple[float, ...] | None:
-    """--pulses-per-degree read (None where not given); E525 and exit 2 where it is not valid."""
+def _pulse_scales(text: str, refused: str = "") -> tuple[float, ...]:
+    """--pulses-per-degree read; E525 and exit 2 where it is not valid or `refused` says why not."""
     from rmot.backends.readers import codes  # late: loads numpy only when this runs
     from rmot.backends.readers.inform import pulse_scales  # late: loads numpy only when this runs
     from rmot.lang.diagnostics import Diagnostic, Severity
 
-    if text is None:
-        return None
-    scales = pulse_scales(text)
+    scales = refused or pulse_scales(text)
     if isinstance(scales, str):
         click.echo(render(Diagnostic(codes.PULSE_SCALES_INVALID, Severity.ERROR, scales, None)), err=True)
         sys.exit(EXIT_INPUT)

@@ -95,3 +95,13 @@ def test_the_cli_reads_pulse_jobs_and_refuses_bad_scales(tmp_path: Path) -> None
                       ("100,inf", "`inf` is not a finite"), ("1,2,3,4,5,6,7,8,9", "1 to 8 axes (got 9)")):
         result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out), "--pulses-per-degree", bad])
         assert result.exit_code == 2 and "error[E525]" in result.output and said in result.output, result.output
+
+
+def test_scales_with_task_are_refused(tmp_path: Path) -> None:
+    """One arm's scales given to an import of several robots' tasks: whose they are is not said."""
+    path = tmp_path / "TCP_CHECK.JBI"
+    path.write_text(JOB)
+    result = CliRunner().invoke(cli, ["import", "--task", f"r1={path}", "-o", str(tmp_path / "t.rmot"),
+                                      "--pulses-per-degree", "100,100,100,100,100,100"])
+    assert result.exit_code == 2 and "error[E525]" in result.output and "with --task" in result.output, result.output
+    assert not (tmp_path / "t.rmot").exists()
