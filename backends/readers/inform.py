@@ -376,6 +376,10 @@ def _why_native(text: str) -> str:
                 "names its input in the program")
     if timer:
         return f"the time is variable {timer.group(1)}'s value at run time: rmot's `wait T` is a number the compiler knows"
+    level = re.search(r"\bPL=([5-8])\b", text) if re.match(r"S?MOV[JLC]\b", text) else None
+    if level:
+        return (f"PL={level.group(1)}: rmot knows the distances of positioning levels 0..4 only (the factory "
+                "0 / 12.5 / 25 / 50 / 100 mm of parameters S1CxG033-036, backends/inform_text.py)")
     if re.match(r"MOVJ EX\d+", text):
         return ("moves the station alone to its position variable EXn: rmot reads `move axes` back only from "
                 "RAPID's MoveExtJ")
