@@ -16,7 +16,8 @@ P100`) are read as the C positions are. Pulse positions (`///PULSE`, or any posi
 degrees = pulses / scale (the ROS-Industrial motoman_driver's Ros_CtrlGroup_ConvertToRosPos,
 radians = pulses / pulses-per-radian with no offset: 0 pulses is the axis's zero; the job holds
 command positions, which the controller already corrects for axis coupling, CtrlGroup.c
-Ros_CtrlGroup_GetFBPulsePos); without them their moves stay native.
+Ros_CtrlGroup_GetFBPulsePos) for MOVJ (a MOVL or MOVC to one needs its TCP pose: native); without
+them their moves stay native.
 """
 
 from __future__ import annotations
@@ -200,8 +201,13 @@ class _Job:
                 return found
         stmt = self._simple(text, where)
         if stmt is None:
-            pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & set(self.pulse_positions))
+            named = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)})
+            pulses = [k for k in named if k in self.pulse_positions]
+            joints = [k for k in named if k in self.positions and self.positions[k].pose is None]
             why = (f"{pulses[0]} {self.pulse_positions[pulses[0]]}" if pulses else
+                   f"{joints[0]} is a pulse position, read as joints: a linear or circular move to it needs its TCP "
+                   "pose (the arm's forward kinematics and the job's tool), and rmot's linear and circular moves go "
+                   "to poses" if joints and not text.startswith("MOVJ") else
                    axes_slots.why_native(text) or _why_native(text))
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
@@ -278,7 +284,7 @@ class _Job:
         acc = re.search(r"\bACC=(\d+)\s+DEC=(\d+)\b", rest)
         extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+|NWAIT)\b", "", rest).strip()
 
-        if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
+        if any(d is None or (kind != "joint" and d.pose is None) for d in decls) or extra or (vj is None) != (kind != "joint") or \
                 (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
             return None
         if acc is not None and (acc.group(1) != acc.group(2) or not 20 <= int(acc.group(1)) <= 100):

@@ -11,6 +11,7 @@ TCP_CHECK.JBI: `///POSTYPE PULSE`, `///PULSE`, `Cnnnnn=` counts, MOVJ and MOVL t
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -19,6 +20,10 @@ from click.testing import CliRunner
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import Move, Native, walk
 from rmot.compiler.cli import cli
+
+# a job for the stub cell's arm: joint values in degrees written as pulses at scales S..T
+E2E_DEGREES = ((10.0, 20.0, -15.0, 30.0, -40.0, 50.0), (-20.0, 5.0, 10.0, -30.0, 45.0, -60.0))
+E2E_SCALES = (1100.5, 1300.25, 900.0, 700.0, 650.0, 400.0)
 
 # MotoROS2's fake 6-axis group: pulses per radian of S, L, U, R, B, T, and the pulses it converts
 PULSES_PER_RADIAN = (9.0, 8.0, 7.0, 6.0, 5.0, 4.0)
@@ -58,11 +63,13 @@ def _read(tmp_path: Path, scales: tuple[float, ...] | None) -> tuple[list[object
 
 
 def test_pulse_positions_become_joint_targets_with_the_arms_scales(tmp_path: Path) -> None:
+    """MOVJ to a pulse position is a joint move to its joints; MOVL to one stays native: its TCP
+    pose needs the arm's forward kinematics and the tool, and rmot's linear moves go to poses."""
     stmts, why = _read(tmp_path, _scales())
     moves = [s for s in stmts if isinstance(s, Move)]
-    assert not why and not any(isinstance(s, Native) for s in stmts)
-    assert [(m.kind, m.target, m.joint_pct, m.speed) for m in moves] == [
-        ("joint", "tcp_check_c00000", 30.0, None), ("linear", "tcp_check_c00001", None, 211.7)]
+    assert [(m.kind, m.target, m.joint_pct) for m in moves] == [("joint", "tcp_check_c00000", 30.0)]
+    assert [s.text for s in stmts if isinstance(s, Native)] == ["MOVL C00001 V=211.7"]
+    assert len(why) == 1 and "C00001 is a pulse position, read as joints: a linear or circular move" in why[0]
     assert moves[0].joints is not None and moves[0].pose is None
     assert all(math.isclose(got, math.degrees(rad), rel_tol=1e-12)
                for got, rad in zip(moves[0].joints, EXPECTED_RAD, strict=True))
@@ -90,7 +97,7 @@ def test_the_cli_reads_pulse_jobs_and_refuses_bad_scales(tmp_path: Path) -> None
                                 catch_exceptions=False)
     assert result.exit_code == 0, result.output
     text = out.read_text()
-    assert "target tcp_check_c00000 = joints(" in text and "native inform" not in text
+    assert "target tcp_check_c00000 = joints(" in text and "move joint tcp_check_c00000 speed 30 %" in text
     for bad, said in (("1,2,x", "numbers separated by commas"), ("100,0,100", "`0` is not a finite, non-zero"),
                       ("100,inf", "`inf` is not a finite"), ("1,2,3,4,5,6,7,8,9", "1 to 8 axes (got 9)")):
         result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out), "--pulses-per-degree", bad])
@@ -105,3 +112,28 @@ def test_scales_with_task_are_refused(tmp_path: Path) -> None:
                                       "--pulses-per-degree", "100,100,100,100,100,100"])
     assert result.exit_code == 2 and "error[E525]" in result.output and "with --task" in result.output, result.output
     assert not (tmp_path / "t.rmot").exists()
+
+
+def test_an_imported_pulse_job_plans_to_its_joints(tmp_path: Path) -> None:
+    """End to end: a pulse job (counts = degrees x scale, rounded to whole pulses as a job holds
+    them) imported with its scales plans, on the stub cell's Yaskawa arm, to those joints within
+    half a pulse; the witness is the planner's own JSON plan (q_target, radians)."""
+    lines = [f"C{n:05d}=" + ",".join(str(round(d * k)) for d, k in zip(q, E2E_SCALES, strict=True))
+             for n, q in enumerate(E2E_DEGREES)]
+    job = tmp_path / "E2E.JBI"
+    job.write_text("/JOB\n//NAME E2E\n//POS\n///NPOS 2,0,0,0,0,0\n///TOOL 0\n///POSTYPE PULSE\n///PULSE\n"
+                   + "\n".join(lines) + "\n//INST\n///DATE 2025/06/18 13:27\n///ATTR SC,RW\n///GROUP1 RB1\nNOP\n"
+                   "MOVJ C00000 VJ=30.00\nMOVJ C00001 VJ=50.00\nEND\n")
+    out = tmp_path / "e2e.rmot"
+    result = CliRunner().invoke(cli, ["import", str(job), "-o", str(out), "--pulses-per-degree",
+                                      ",".join(map(str, E2E_SCALES))], catch_exceptions=False)
+    assert result.exit_code == 0 and "0 kept native" in result.output, result.output
+    result = CliRunner().invoke(cli, ["compile", str(out), "--target", "json", "-o", str(tmp_path / "plan"),
+                                      "--allow-findings"], catch_exceptions=False)
+    assert result.exit_code in (0, 1), result.output
+    plan = json.loads(next((tmp_path / "plan" / "json").glob("*.json")).read_text())
+    planned = [i["q_target"] for i in plan["tasks"][0]["instructions"] if i["kind"] == "move_joint"]
+    assert len(planned) == 2
+    for q, degrees in zip(planned, E2E_DEGREES, strict=True):
+        for got, want, k in zip(q, degrees, E2E_SCALES, strict=True):
+            assert abs(math.degrees(got) - want) <= 0.5 / k + 1e-6, (q, degrees)
