@@ -16,8 +16,9 @@ P100`) are read as the C positions are. Pulse positions (`///PULSE`, or any posi
 degrees = pulses / scale (the ROS-Industrial motoman_driver's Ros_CtrlGroup_ConvertToRosPos,
 radians = pulses / pulses-per-radian with no offset: 0 pulses is the axis's zero; the job holds
 command positions, which the controller already corrects for axis coupling, CtrlGroup.c
-Ros_CtrlGroup_GetFBPulsePos) for MOVJ (a MOVL or MOVC to one needs its TCP pose: native); without
-them their moves stay native.
+Ros_CtrlGroup_GetFBPulsePos); a MOVL or MOVC to one goes to its TCP pose where the CLI hands in
+the cell arm's forward kinematics and tools (`pulse_pose`), else stays native; without the
+scales their moves stay native.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers import axes_slots, codes
+from rmot.backends.readers import PulsePose, axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -55,9 +56,10 @@ PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/info
 
 class _Job:
     def __init__(self, path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None,
-                 pulses_per_degree: tuple[float, ...] | None = None) -> None:
+                 pulses_per_degree: tuple[float, ...] | None = None, pulse_pose: PulsePose | None = None) -> None:
         self.tally = Tally(path, text, "inform")
         self.pulses_per_degree = pulses_per_degree  # the arm's scales, S, L, U, R, B, T (None: not given)
+        self.pulse_pose = pulse_pose  # (joints deg, tool name) -> the TCP pose in the base (the cell's arm)
         self.jobs = jobs or {}  # the import's jobs by name (a job called in a shifting loop is inlined)
         self.inlined: set[str] = set()
         self.var_names: dict[str, str] = {}  # `'D050 = row`: the loop counters' names
@@ -205,9 +207,9 @@ class _Job:
             pulses = [k for k in named if k in self.pulse_positions]
             joints = [k for k in named if k in self.positions and self.positions[k].pose is None]
             why = (f"{pulses[0]} {self.pulse_positions[pulses[0]]}" if pulses else
-                   f"{joints[0]} is a pulse position, read as joints: a linear or circular move to it needs its TCP "
-                   "pose (the arm's forward kinematics and the job's tool), and rmot's linear and circular moves go "
-                   "to poses" if joints and not text.startswith("MOVJ") else
+                   f"{joints[0]} is a pulse position, read as joints: a linear or circular move to it goes to its TCP "
+                   "pose, which the arm's forward kinematics and the job's tool give (`--cell` with the robot and a "
+                   "tool of that name)" if joints and not text.startswith("MOVJ") else
                    axes_slots.why_native(text) or _why_native(text))
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
@@ -261,7 +263,7 @@ class _Job:
         if source is None or not self.counters or not reaches(
                 self.jobs, name, lambda text: any(re.search(p, text) for p in shifted), r"(?m)^CALL JOB:(\w+)"):
             return None
-        callee = _Job(source[0], source[1], self.jobs, self.pulses_per_degree)
+        callee = _Job(source[0], source[1], self.jobs, self.pulses_per_degree, self.pulse_pose)
         callee.counters, callee.shifts = self.counters, self.shifts
         callee.tools, callee.tool_names = self.tools, {**self.tool_names}
         callee.read()
@@ -271,7 +273,24 @@ class _Job:
         self.inlined |= callee.inlined
         return callee.routine.body
 
+    def _path_key(self, key: str) -> str:
+        """The position a linear or circular move to `key` goes to: `key` itself, or for a pulse
+        position whose TCP pose the cell's arm and the job's tool give, `key_TCP` (a pose target
+        of its own, `<name>_tcp`); `key` where they do not (its move then stays native)."""
+        decl = self.positions.get(key)
+        if decl is None or decl.pose is not None or decl.joints is None or self.pulse_pose is None:
+            return key
+        if f"{key}_TCP" not in self.positions:
+            tool = self.position_tool[key]
+            pose = self.pulse_pose(decl.joints, self.tool_names.get(tool, f"tool{tool}"))
+            if pose is None:
+                return key
+            self.positions[f"{key}_TCP"] = Target(f"{decl.name}_tcp", pose, None, None, decl.where)
+            self.position_tool[f"{key}_TCP"], self.position_user[f"{key}_TCP"] = tool, None
+        return f"{key}_TCP"
+
     def _move(self, kind: str, names: list[str], rest: str, where: Where, sync: bool = False, via_rest: str = "") -> Move | None:
+        names = names if kind == "joint" else [self._path_key(n) for n in names]
         decls = [self.positions.get(n) for n in names]
         base, rest = axes_slots.inform_operands(self.base_positions, rest, sync, self.station_in_group)
         via_base = axes_slots.inform_operands(self.base_positions, via_rest, sync, self.station_in_group)[0] \
@@ -418,10 +437,11 @@ def pulse_scales(text: str) -> tuple[float, ...] | str:
 
 
 def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None,
-                pulses_per_degree: tuple[float, ...] | None = None) -> _Job:
+                pulses_per_degree: tuple[float, ...] | None = None, pulse_pose: PulsePose | None = None) -> _Job:
     """Read one INFORM job; raises ImportError_ (E510) when it is not one. `jobs`: the import's
     files by job name (a job called inside a loop whose shift it switches on is inlined);
-    `pulses_per_degree`: the arm's scales, to read pulse positions as joint targets."""
-    job = _Job(path, text, jobs, pulses_per_degree)
+    `pulses_per_degree`: the arm's scales, to read pulse positions as joint targets; `pulse_pose`:
+    their TCP poses (the cell's arm and tools), for linear and circular moves to them."""
+    job = _Job(path, text, jobs, pulses_per_degree, pulse_pose)
     job.read()
     return job

@@ -63,13 +63,13 @@ def _read(tmp_path: Path, scales: tuple[float, ...] | None) -> tuple[list[object
 
 
 def test_pulse_positions_become_joint_targets_with_the_arms_scales(tmp_path: Path) -> None:
-    """MOVJ to a pulse position is a joint move to its joints; MOVL to one stays native: its TCP
-    pose needs the arm's forward kinematics and the tool, and rmot's linear moves go to poses."""
+    """MOVJ to a pulse position is a joint move to its joints; MOVL to one stays native without
+    the cell: its TCP pose needs the arm's forward kinematics and the tool."""
     stmts, why = _read(tmp_path, _scales())
     moves = [s for s in stmts if isinstance(s, Move)]
     assert [(m.kind, m.target, m.joint_pct) for m in moves] == [("joint", "tcp_check_c00000", 30.0)]
     assert [s.text for s in stmts if isinstance(s, Native)] == ["MOVL C00001 V=211.7"]
-    assert len(why) == 1 and "C00001 is a pulse position, read as joints: a linear or circular move" in why[0]
+    assert len(why) == 1 and "C00001 is a pulse position, read as joints: a linear or circular move to it goes to its TCP pose" in why[0]
     assert moves[0].joints is not None and moves[0].pose is None
     assert all(math.isclose(got, math.degrees(rad), rel_tol=1e-12)
                for got, rad in zip(moves[0].joints, EXPECTED_RAD, strict=True))
@@ -137,3 +137,32 @@ def test_an_imported_pulse_job_plans_to_its_joints(tmp_path: Path) -> None:
     for q, degrees in zip(planned, E2E_DEGREES, strict=True):
         for got, want, k in zip(q, degrees, E2E_SCALES, strict=True):
             assert abs(math.degrees(got) - want) <= 0.5 / k + 1e-6, (q, degrees)
+
+
+def test_a_linear_move_to_a_pulse_position_goes_to_its_tcp_pose_in_the_cell(tmp_path: Path) -> None:
+    """With --cell (the arm and the tool the job names), MOVL to a pulse position goes to its TCP
+    pose: the arm's forward kinematics times the tool's TCP. Witness: the planner's own IK ends
+    the imported linear move at the joints the pulses give (q_target, to 0.001 deg)."""
+    degrees = ((10.0, 20.0, -15.0, 30.0, -40.0, 50.0), (15.0, 25.0, -10.0, 25.0, -45.0, 55.0))
+    cell = tmp_path / "cell.rmot"
+    cell.write_text("cell fk_cell {\n  robot r1 = yaskawa_gp8\n  tool torch = none tcp pose(x=0mm, y=0mm, z=150mm, "
+                    "q=(1, 0, 0, 0)) mass 1 kg on r1\n}\n")
+    lines = [f"C{n:05d}=" + ",".join(str(round(d * k)) for d, k in zip(q, E2E_SCALES, strict=True))
+             for n, q in enumerate(degrees)]
+    job = tmp_path / "FK.JBI"
+    job.write_text("/JOB\n//NAME FK\n//POS\n///NPOS 2,0,0,0,0,0\n///TOOL 0\n///POSTYPE PULSE\n///PULSE\n"
+                   + "\n".join(lines) + "\n//INST\n///DATE 2025/06/18 13:27\n///ATTR SC,RW\n///GROUP1 RB1\nNOP\n"
+                   "'TOOL 0 = torch\nMOVJ C00000 VJ=30.00\nMOVL C00001 V=100.0\nEND\n")
+    out = tmp_path / "fk.rmot"
+    result = CliRunner().invoke(cli, ["import", str(job), "-o", str(out), "--cell", str(cell), "--pulses-per-degree",
+                                      ",".join(map(str, E2E_SCALES))], catch_exceptions=False)
+    assert result.exit_code == 0 and "0 kept native" in result.output, result.output
+    assert "move linear fk_c00001_tcp speed 100 mm/s" in out.read_text()
+    result = CliRunner().invoke(cli, ["compile", str(out), "--cell", str(cell), "--target", "json", "-o",
+                                      str(tmp_path / "plan"), "--allow-findings"], catch_exceptions=False)
+    assert result.exit_code in (0, 1), result.output
+    plan = json.loads(next((tmp_path / "plan" / "json").glob("*.json")).read_text())
+    planned = [i["q_target"] for i in plan["tasks"][0]["instructions"] if i["kind"] in ("move_joint", "move_linear")]
+    assert [i["kind"] for i in plan["tasks"][0]["instructions"] if "q_target" in i] == ["move_joint", "move_linear"]
+    for got, want, k in zip(planned[1], degrees[1], E2E_SCALES, strict=True):
+        assert abs(math.degrees(got) - want) <= 0.5 / k + 1e-3, (planned[1], degrees[1])
