@@ -114,29 +114,39 @@ def test_scales_with_task_are_refused(tmp_path: Path) -> None:
     assert not (tmp_path / "t.rmot").exists()
 
 
-def test_an_imported_pulse_job_plans_to_its_joints(tmp_path: Path) -> None:
-    """End to end: a pulse job (counts = degrees x scale, rounded to whole pulses as a job holds
-    them) imported with its scales plans, on the stub cell's Yaskawa arm, to those joints within
-    half a pulse; the witness is the planner's own JSON plan (q_target, radians)."""
+def _imported_plan(tmp_path: Path, name: str, degrees: tuple[tuple[float, ...], ...], moves: str,
+                   cell: Path | None = None) -> tuple[str, list[dict]]:
+    """A pulse job `name` (counts = degrees x E2E_SCALES, rounded to whole pulses as a job holds
+    them) with the instructions `moves`, imported with those scales (on `cell`, else the stub),
+    then planned: (the .rmot written, the plan's move instructions)."""
     lines = [f"C{n:05d}=" + ",".join(str(round(d * k)) for d, k in zip(q, E2E_SCALES, strict=True))
-             for n, q in enumerate(E2E_DEGREES)]
-    job = tmp_path / "E2E.JBI"
-    job.write_text("/JOB\n//NAME E2E\n//POS\n///NPOS 2,0,0,0,0,0\n///TOOL 0\n///POSTYPE PULSE\n///PULSE\n"
-                   + "\n".join(lines) + "\n//INST\n///DATE 2025/06/18 13:27\n///ATTR SC,RW\n///GROUP1 RB1\nNOP\n"
-                   "MOVJ C00000 VJ=30.00\nMOVJ C00001 VJ=50.00\nEND\n")
-    out = tmp_path / "e2e.rmot"
-    result = CliRunner().invoke(cli, ["import", str(job), "-o", str(out), "--pulses-per-degree",
+             for n, q in enumerate(degrees)]
+    job = tmp_path / f"{name}.JBI"
+    job.write_text(f"/JOB\n//NAME {name}\n//POS\n///NPOS {len(lines)},0,0,0,0,0\n///TOOL 0\n///POSTYPE PULSE\n"
+                   "///PULSE\n" + "\n".join(lines) + "\n//INST\n///DATE 2025/06/18 13:27\n///ATTR SC,RW\n"
+                   f"///GROUP1 RB1\nNOP\n{moves}END\n")
+    out = tmp_path / f"{name.lower()}.rmot"
+    on_cell = ["--cell", str(cell)] if cell else []
+    result = CliRunner().invoke(cli, ["import", str(job), "-o", str(out), *on_cell, "--pulses-per-degree",
                                       ",".join(map(str, E2E_SCALES))], catch_exceptions=False)
     assert result.exit_code == 0 and "0 kept native" in result.output, result.output
-    result = CliRunner().invoke(cli, ["compile", str(out), "--target", "json", "-o", str(tmp_path / "plan"),
+    result = CliRunner().invoke(cli, ["compile", str(out), *on_cell, "--target", "json", "-o", str(tmp_path / "plan"),
                                       "--allow-findings"], catch_exceptions=False)
     assert result.exit_code in (0, 1), result.output
     plan = json.loads(next((tmp_path / "plan" / "json").glob("*.json")).read_text())
-    planned = [i["q_target"] for i in plan["tasks"][0]["instructions"] if i["kind"] == "move_joint"]
-    assert len(planned) == 2
-    for q, degrees in zip(planned, E2E_DEGREES, strict=True):
-        for got, want, k in zip(q, degrees, E2E_SCALES, strict=True):
-            assert abs(math.degrees(got) - want) <= 0.5 / k + 1e-6, (q, degrees)
+    return out.read_text(), [i for i in plan["tasks"][0]["instructions"] if "q_target" in i]
+
+
+def _within_half_a_pulse(q: list[float], degrees: tuple[float, ...], slack: float) -> bool:
+    return all(abs(math.degrees(got) - want) <= 0.5 / k + slack for got, want, k in zip(q, degrees, E2E_SCALES, strict=True))
+
+
+def test_an_imported_pulse_job_plans_to_its_joints(tmp_path: Path) -> None:
+    """End to end: a pulse job imported with its scales plans, on the stub cell's Yaskawa arm, to
+    its joints within half a pulse; the witness is the planner's own JSON plan (q_target, rad)."""
+    _, planned = _imported_plan(tmp_path, "E2E", E2E_DEGREES, "MOVJ C00000 VJ=30.00\nMOVJ C00001 VJ=50.00\n")
+    assert [i["kind"] for i in planned] == ["move_joint", "move_joint"]
+    assert all(_within_half_a_pulse(i["q_target"], q, 1e-6) for i, q in zip(planned, E2E_DEGREES, strict=True))
 
 
 def test_a_linear_move_to_a_pulse_position_goes_to_its_tcp_pose_in_the_cell(tmp_path: Path) -> None:
@@ -147,22 +157,8 @@ def test_a_linear_move_to_a_pulse_position_goes_to_its_tcp_pose_in_the_cell(tmp_
     cell = tmp_path / "cell.rmot"
     cell.write_text("cell fk_cell {\n  robot r1 = yaskawa_gp8\n  tool torch = none tcp pose(x=0mm, y=0mm, z=150mm, "
                     "q=(1, 0, 0, 0)) mass 1 kg on r1\n}\n")
-    lines = [f"C{n:05d}=" + ",".join(str(round(d * k)) for d, k in zip(q, E2E_SCALES, strict=True))
-             for n, q in enumerate(degrees)]
-    job = tmp_path / "FK.JBI"
-    job.write_text("/JOB\n//NAME FK\n//POS\n///NPOS 2,0,0,0,0,0\n///TOOL 0\n///POSTYPE PULSE\n///PULSE\n"
-                   + "\n".join(lines) + "\n//INST\n///DATE 2025/06/18 13:27\n///ATTR SC,RW\n///GROUP1 RB1\nNOP\n"
-                   "'TOOL 0 = torch\nMOVJ C00000 VJ=30.00\nMOVL C00001 V=100.0\nEND\n")
-    out = tmp_path / "fk.rmot"
-    result = CliRunner().invoke(cli, ["import", str(job), "-o", str(out), "--cell", str(cell), "--pulses-per-degree",
-                                      ",".join(map(str, E2E_SCALES))], catch_exceptions=False)
-    assert result.exit_code == 0 and "0 kept native" in result.output, result.output
-    assert "move linear fk_c00001_tcp speed 100 mm/s" in out.read_text()
-    result = CliRunner().invoke(cli, ["compile", str(out), "--cell", str(cell), "--target", "json", "-o",
-                                      str(tmp_path / "plan"), "--allow-findings"], catch_exceptions=False)
-    assert result.exit_code in (0, 1), result.output
-    plan = json.loads(next((tmp_path / "plan" / "json").glob("*.json")).read_text())
-    planned = [i["q_target"] for i in plan["tasks"][0]["instructions"] if i["kind"] in ("move_joint", "move_linear")]
-    assert [i["kind"] for i in plan["tasks"][0]["instructions"] if "q_target" in i] == ["move_joint", "move_linear"]
-    for got, want, k in zip(planned[1], degrees[1], E2E_SCALES, strict=True):
-        assert abs(math.degrees(got) - want) <= 0.5 / k + 1e-3, (planned[1], degrees[1])
+    text, planned = _imported_plan(tmp_path, "FK", degrees, "'TOOL 0 = torch\nMOVJ C00000 VJ=30.00\n"
+                                   "MOVL C00001 V=100.0\n", cell)
+    assert "move linear fk_c00001_tcp speed 100 mm/s" in text
+    assert [i["kind"] for i in planned] == ["move_joint", "move_linear"]
+    assert _within_half_a_pulse(planned[1]["q_target"], degrees[1], 1e-3), (planned[1]["q_target"], degrees[1])
