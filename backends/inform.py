@@ -56,7 +56,8 @@ Runtime logic (the block at the end of the class): D/R/B variables from 050 with
 SET/ADD/SUB/MUL/DIV/INC/DEC, one-comparison `JUMP *L IF` chains, while loops with labels, the
 timeout branch by testing the input again after `WAIT ... T=`, polled waits (W431), `stop` =
 PAUSE (+ the job's end in the main job; W432 in a called job), `for` loops with INC and SFTON
-shifts set by SETE in P variables from P050, or unrolled (W420); analog inputs refused (E430).
+shifts set by SETE in P variables from P050, or unrolled (W420); analog inputs refused (E430);
+a group input read into a byte temporary, `IN Bnnn IG#(n)` (at most 8 bits, else E430).
 
 Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we keep jobs below
 `MAX_INSTRUCTIONS` (300) top-level IR instructions (~1800 INFORM lines); a longer main body is
@@ -172,6 +173,9 @@ class InformContext(TaskContext):
     main: str = ""  # the main job's name (where `stop` can end the program)
     vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic
     axes: InformAxes | None = None  # the external axes the task drives (backends/inform_axes.py)
+
+
+GROUP_INPUT_BITS = 8  # IG#(n): one group of 8 general inputs, read into a byte variable
 
 
 class InformBackend(Backend):
@@ -595,10 +599,8 @@ class InformBackend(Backend):
             more, b = self._value(e.right, ctx, node)
             t = self._temp(e.type, ctx, node.span)
             return lines + more + [f"SET {t} {a}", f"{_INFORM_OP[e.op]} {t} {b}"], t
-        if isinstance(e, ir.GroupInput):  # IN B<n> IG#(g) reads a byte; rmot does not write byte variables
-            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be read into a byte variable "
-                             "(INFORM IN B<n> IG#(g)), which rmot does not write", node.span)
-            return [], "0"
+        if isinstance(e, ir.GroupInput):
+            return self._group_input(e, ctx, node)
         if isinstance(e, ir.AnalogInput):
             self.unsupported(codes.LOGIC_UNSUPPORTED, f"analog input ain[{e.port}] must be "
                              "readable by a job (INFORM reads analog inputs only through the "
@@ -606,6 +608,19 @@ class InformBackend(Backend):
             return [], "0"
         t, skip = self._temp(ir.ValueType.BOOL, ctx, node.span), self.label(ctx)
         return [f"SET {t} 0", *self._jump(e, skip, False, ctx, node), f"SET {t} 1", skip], t
+
+    def _group_input(self, e: ir.GroupInput, ctx: InformContext, node: ir.Instr) -> tuple[list[str], str]:
+        """`IN Bt IG#(n)`: group input n (8 general inputs) read into a byte variable, 0..255
+        (DX100/YRC1000 INFORM manual, I/O instructions: IN <byte variable> IG#(n)); a byte is
+        what a job compares. A group the cell does not declare at most 8 bits wide could hold
+        more than IG# reads: refused."""
+        if e.bits is None or e.bits > GROUP_INPUT_BITS:
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be declared at most {GROUP_INPUT_BITS} "
+                             f"bits wide (`bits B` on its io line) for INFORM, whose IG#(n) reads 8 inputs into a byte "
+                             f"(got {'no width' if e.bits is None else f'{e.bits} bits'})", node.span)
+            return [], "0"
+        t = self._temp(ir.ValueType.BOOL, ctx, node.span)  # a B variable: the byte IG# fills
+        return [f"IN {t} IG#({e.port})"], t
 
     def _test(self, c: ir.Condition | ir.RtExpr, negate: bool, ctx: InformContext,
               node: ir.Instr) -> tuple[list[str], str] | None:

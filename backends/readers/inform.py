@@ -27,6 +27,7 @@ import math
 import re
 
 from rmot.backends.readers import PulsePose, axes_slots, codes
+from rmot.backends.readers.fanuc_text import group_test
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -356,18 +357,26 @@ class _Job:
         return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), float(m.group(3)), self.inst[i][1])], i + 5
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`JUMP *La IF IN#(n)=X`, then, [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when not X)."""
+        """`JUMP *La IF IN#(n)=X`, then, [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when not X);
+        or a group input read into a byte and tested, `IN Bt IG#(n)`, `JUMP *La IF Bt<op>v` (the
+        backend's form: then runs when the test fails)."""
         m = re.fullmatch(r"JUMP \*(L\w+) IF IN#\((\d+)\)=(ON|OFF)", self._text(i))
-        if m is None:
+        read = re.fullmatch(r"IN (B\d+) IG#\((\d+)\)", self._text(i)) if m is None else None
+        test = re.fullmatch(rf"JUMP \*(L\w+) IF {read.group(1)}(<>|<=|>=|=|<|>)(\d+)", self._text(i + 1)) if read else None
+        if m is None and test is None:
             return None
-        arms = label_arms(self._text, i, end, f"*{m.group(1)}", _JUMP, lambda n: f"*{n}")
+        jump = i if m is not None else i + 1
+        label = m.group(1) if m is not None else test.group(1)  # type: ignore[union-attr]
+        arms = label_arms(self._text, jump, end, f"*{label}", _JUMP, lambda n: f"*{n}")
         if arms is None:
             return None
         ja, jb = arms
-        then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
+        then, _ = self._block(jump + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
-        cond = Cond(int(m.group(2)), m.group(3) == "OFF")
-        return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
+        # INFORM compares with TP's operators (=, <>, <, >, <=, >=): the TP reader's group test
+        cond = Cond(int(m.group(2)), m.group(3) == "OFF") if m is not None else \
+            group_test(f"GI[{read.group(2)}]{test.group(2)}{test.group(3)}", negate=True)  # type: ignore[union-attr]
+        return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
         m = re.fullmatch(r"(MOVJ|S?MOVL)\s+([CP]\d+)\s*(.*)", text)
