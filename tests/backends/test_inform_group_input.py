@@ -17,31 +17,21 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from backend_fixtures import BRAND_ROBOT, FRONT_UP_NOFLIP, Q, hand_plan, span_at
+from test_group_input_backends import COND, INT, PGNO
+from test_group_input_backends import _emit as emit_if
 
-from rmot.backends import BACKENDS
 from rmot.backends.base import EmitResult
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import If, walk
 from rmot.backends.readers.writer import SignalMap, program_text
 from rmot.compiler.cli import cli
-from rmot.lang import ir, ir_tree
+from rmot.lang import ir
 
-INT = ir.ValueType.INT
-PGNO = ir.GroupInput(port=1, signal="pgno", bits=8)
-# gin[1] >= 2 and (gin[1] < 5 or in[1] == on), and gin[1] != 3
-COND = ir.Logic("and", (
-    ir.Compare(ir.CompareOp.GE, PGNO, ir.Const(2, INT)),
-    ir.Logic("or", (ir.Compare(ir.CompareOp.LT, PGNO, ir.Const(5, INT)), ir.InputCondition(port=1, value=True))),
-    ir.Compare(ir.CompareOp.NE, PGNO, ir.Const(3, INT)),
-))
 _OPS = {"=": operator.eq, "<>": operator.ne, "<": operator.lt, ">": operator.gt, "<=": operator.le, ">=": operator.ge}
 
 
 def _emit(cond: ir.Condition) -> EmitResult:
-    body = (ir.If(uid=1, condition=cond, then=(ir.WaitTime(uid=2, duration=1.0),), span=span_at(3)),)
-    records = {n.uid: (Q, FRONT_UP_NOFLIP) for n in ir_tree.walk(body) if isinstance(n, ir.Move)}
-    return BACKENDS["inform"]().emit(hand_plan(body, records, robot=BRAND_ROBOT["inform"]))
+    return emit_if("inform", cond)
 
 
 def _then_runs(job: str, group: int, di1: bool) -> bool:
