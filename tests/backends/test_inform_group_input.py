@@ -17,9 +17,11 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from backend_fixtures import hand_plan, span_at
 from test_group_input_backends import COND, INT, PGNO
 from test_group_input_backends import _emit as emit_if
 
+from rmot.backends import BACKENDS
 from rmot.backends.base import EmitResult
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import If, walk
@@ -104,3 +106,10 @@ def test_round_trip_through_a_job(tmp_path: Path) -> None:
                                       str(tmp_path / "cell.rmot")], catch_exceptions=False)
     assert result.exit_code == 0 and "0 kept native" in result.output, result.output
     assert "  if gin[1] == 3 {\n    wait 1 s\n  } else {\n    wait 2 s\n  }\n" in (tmp_path / "back.rmot").read_text()
+
+
+def test_a_group_input_stored_in_a_variable_is_refused() -> None:
+    """INFORM compares the byte IG# fills; rmot writes no conversion of it into a D variable."""
+    body = (ir.VarDecl(uid=1, name="p", type=INT, init=PGNO, span=span_at(3)),)
+    errors = [d for d in BACKENDS["inform"]().emit(hand_plan(body, {}, robot="yaskawa_gp8")).diagnostics if d.is_error]
+    assert [d.code.id for d in errors] == ["E430"] and "must be compared with a value" in errors[0].message
