@@ -120,3 +120,9 @@ GLOBAL_READ_AS_VARIABLE = Code("W542", "global-read-as-variable",
                                "a KRL global (of $config.dat, or $FLAG[n]) that the main routine sets is read as a "
                                "task variable: on the controller it starts where the last run or another program "
                                "left it, and another program writing it while this one runs is not seen")
+
+# INFORM pulse positions read with the arm's scales (readers/inform.py)
+__all__ += ["PULSE_SCALES_INVALID"]
+PULSE_SCALES_INVALID = Code("E525", "pulse-scales-invalid",
+                            "`rmot import --pulses-per-degree` is not one finite, non-zero number of encoder pulses "
+                            "per degree for each axis (1 to 8, separated by commas), or is given with --task")
