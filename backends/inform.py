@@ -56,7 +56,9 @@ Runtime logic (the block at the end of the class): D/R/B variables from 050 with
 SET/ADD/SUB/MUL/DIV/INC/DEC, one-comparison `JUMP *L IF` chains, while loops with labels, the
 timeout branch by testing the input again after `WAIT ... T=`, polled waits (W431), `stop` =
 PAUSE (+ the job's end in the main job; W432 in a called job), `for` loops with INC and SFTON
-shifts set by SETE in P variables from P050, or unrolled (W420); analog inputs refused (E430).
+shifts set by SETE in P variables from P050, or unrolled (W420); analog inputs refused (E430);
+a group input read into a byte temporary, `IN Bnnn IG#(n)`, and compared (at most 8 bits; stored or
+computed with: E430).
 
 Size limits: a job holds at most `MAX_POSITIONS` (999) taught positions and we keep jobs below
 `MAX_INSTRUCTIONS` (300) top-level IR instructions (~1800 INFORM lines); a longer main body is
@@ -172,6 +174,9 @@ class InformContext(TaskContext):
     main: str = ""  # the main job's name (where `stop` can end the program)
     vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic
     axes: InformAxes | None = None  # the external axes the task drives (backends/inform_axes.py)
+
+
+GROUP_INPUT_BITS = 8  # IG#(n): one group of 8 general inputs, read into a byte variable
 
 
 class InformBackend(Backend):
@@ -595,9 +600,9 @@ class InformBackend(Backend):
             more, b = self._value(e.right, ctx, node)
             t = self._temp(e.type, ctx, node.span)
             return lines + more + [f"SET {t} {a}", f"{_INFORM_OP[e.op]} {t} {b}"], t
-        if isinstance(e, ir.GroupInput):  # IN B<n> IG#(g) reads a byte; rmot does not write byte variables
-            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be read into a byte variable "
-                             "(INFORM IN B<n> IG#(g)), which rmot does not write", node.span)
+        if isinstance(e, ir.GroupInput):  # a byte IG# fills: compared (`_test`), not computed with
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be compared with a value on INFORM "
+                             "(a job tests the byte IN ... IG# fills; rmot does not store or compute with it)", node.span)
             return [], "0"
         if isinstance(e, ir.AnalogInput):
             self.unsupported(codes.LOGIC_UNSUPPORTED, f"analog input ain[{e.port}] must be "
@@ -606,6 +611,23 @@ class InformBackend(Backend):
             return [], "0"
         t, skip = self._temp(ir.ValueType.BOOL, ctx, node.span), self.label(ctx)
         return [f"SET {t} 0", *self._jump(e, skip, False, ctx, node), f"SET {t} 1", skip], t
+
+    def _operand(self, e: ir.RtExpr, ctx: InformContext, node: ir.Instr) -> tuple[list[str], str]:
+        """A comparison's operand: a group input's byte, or any value (`_value`)."""
+        return self._group_input(e, ctx, node) if isinstance(e, ir.GroupInput) else self._value(e, ctx, node)
+
+    def _group_input(self, e: ir.GroupInput, ctx: InformContext, node: ir.Instr) -> tuple[list[str], str]:
+        """`IN Bt IG#(n)`: group input n (8 general inputs) read into a byte variable, 0..255
+        (DX100/YRC1000 INFORM manual, I/O instructions: IN <byte variable> IG#(n)); a byte is
+        what a job compares. A group the cell does not declare at most 8 bits wide could hold
+        more than IG# reads: refused."""
+        if e.bits is None or e.bits > GROUP_INPUT_BITS:
+            self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be declared at most {GROUP_INPUT_BITS} "
+                             f"bits wide (`bits B` on its io line) for INFORM, whose IG#(n) reads 8 inputs into a byte "
+                             f"(got {'no width' if e.bits is None else f'{e.bits} bits'})", node.span)
+            return [], "0"
+        t = self._temp(ir.ValueType.BOOL, ctx, node.span)  # a B variable: the byte IG# fills
+        return [f"IN {t} IG#({e.port})"], t
 
     def _test(self, c: ir.Condition | ir.RtExpr, negate: bool, ctx: InformContext,
               node: ir.Instr) -> tuple[list[str], str] | None:
@@ -622,11 +644,11 @@ class InformBackend(Backend):
         op, left, right = c.op, c.left, c.right
         if isinstance(left, ir.Const) and not isinstance(right, ir.Const):
             op, left, right = op.mirrored(), right, left
-        lines, a = self._value(left, ctx, node)
+        lines, a = self._operand(left, ctx, node)
         if not isinstance(left, ir.VarRef) and not a.startswith(("D", "R", "B")):
             t = self._temp(_value_type(left), ctx, node.span)
             lines, a = lines + [f"SET {t} {a}"], t
-        more, b = self._value(right, ctx, node)
+        more, b = self._operand(right, ctx, node)
         return lines + more, f"{a}{_INFORM_CMP[op.negated() if negate else op]}{b}"
 
     def _jump(self, c: ir.Condition | ir.RtExpr, label: str, when: bool, ctx: InformContext,

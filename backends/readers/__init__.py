@@ -75,7 +75,7 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
 def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.inform import read_inform  # late: loads numpy only when this runs
 
-    m = read_inform(path, text, _FANUC_PROGRAMS)
+    m = read_inform(path, text, _FANUC_PROGRAMS, _PULSES[0], _PULSE_POSE[0])
     _FANUC_INLINED.update(m.inlined)
     doc = Document("inform", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
@@ -115,7 +115,10 @@ def _project(paths: list[str]) -> list[str]:
 
 _MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
 JointLimits = tuple[tuple[float, ...], tuple[float, ...]]  # each joint's speed rad/s, acceleration rad/s^2
+PulsePose = Callable[[tuple[float, ...], str], Pose | None]  # (joints deg, tool name) -> TCP in the base, or None
 _LIMITS: list[JointLimits | None] = [None]  # that model's joint limits (URScript movej rates)
+_PULSES: list[tuple[float, ...] | None] = [None]  # the arm's pulses per degree, axis by axis (INFORM pulse positions)
+_PULSE_POSE: list[PulsePose | None] = [None]  # the TCP pose of joints (deg) with a named tool, from the cell's arm
 # Fanuc tool and frame numbers are the controller's, shared by every program: the names the
 # files give them (`!UTOOL[1] = gripper`), collected from all the files before any is read
 _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
@@ -183,7 +186,8 @@ def _load(path: str) -> str:
     return text
 
 
-def read_files(paths: list[str], model: str | None = None, limits: JointLimits | None = None) -> Document:
+def read_files(paths: list[str], model: str | None = None, limits: JointLimits | None = None,
+               pulses_per_degree: tuple[float, ...] | None = None, pulse_pose: PulsePose | None = None) -> Document:
     """Read and merge the files (one vendor): the first file's main routine runs. A KRL .src
     reads its .dat (given too, or beside it). `model`: the robot library name the program runs
     on, where a vendor writes speeds relative to the arm (URScript movej); `limits`: its joint
@@ -191,6 +195,8 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     paths = _project(paths)
     _MODEL[0] = model
     _LIMITS[0] = limits
+    _PULSES[0] = pulses_per_degree  # INFORM pulse positions read as joints (readers/inform.py)
+    _PULSE_POSE[0] = pulse_pose  # and as TCP poses for linear and circular moves to them
     _FANUC_LABELS["UTOOL"].clear()
     _FANUC_LABELS["UFRAME"].clear()
     _FANUC_PROGRAMS.clear()

@@ -96,19 +96,25 @@ def inform_base_position(table: dict[str, tuple[tuple[float, ...], bool]], line:
     return m is not None or re.match(r"[BE]C\d+\s*=", line) is not None  # a malformed one: no move reads it
 
 
-def inform_operands(table: Mapping[str, tuple[tuple[float, ...], bool]], rest: str,
-                    sync: bool) -> tuple[tuple[tuple[float, ...], tuple[bool, ...]] | None, str]:
+def inform_operands(table: Mapping[str, tuple[tuple[float, ...], bool]], rest: str, sync: bool,
+                    station_in_group: bool = False) -> tuple[tuple[tuple[float, ...], tuple[bool, ...]] | None, str]:
     """((slot values, each in pulses or not), the operands left) of a move's `BCnnnnn` after its
     position and the station's `+MOVJ ECnnnnn VJ=100.00` at its end (no VJ on a coordinated
     SMOVL/SMOVC: the station is the master), as backends/inform_axes.py writes them. An operand
     naming no position, or a station speed other than 100 %, is left in `rest` (the move is then
-    not read: rmot moves every axis at its own full speed)."""
+    not read: rmot moves every axis at its own full speed). `station_in_group`: the job's group
+    holds the robot and its station (`///GROUP1 RB1,ST1`): one interpolation, the station's
+    `ECnnnnn` right after the robot's position (and base's), as a base axis' BC is."""
     values: tuple[float, ...] = ()
     pulses: tuple[bool, ...] = ()
     m = re.match(r"BC(\d+)\s*", rest)
     if m and f"BC{int(m.group(1))}" in table:
         found, pulse = table[f"BC{int(m.group(1))}"]
         values, pulses, rest = found, (pulse,) * len(found), rest[m.end():]
+    m = re.match(r"EC(\d+)\s*", rest) if station_in_group else None
+    if m and f"EC{int(m.group(1))}" in table:
+        found, pulse = table[f"EC{int(m.group(1))}"]
+        values, pulses, rest = values + found, pulses + (pulse,) * len(found), rest[m.end():]
     vj = "" if sync else r"\s+VJ=100(?:\.0*)?"
     m = re.search(rf"\s*\+MOVJ\s+EC(\d+){vj}\s*$", rest)
     if m and f"EC{int(m.group(1))}" in table:

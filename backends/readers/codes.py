@@ -122,3 +122,16 @@ LOOP_NOT_UNROLLED = Code("W537", "krl-loop-not-written-out",
 LOOP_UNROLLED = Code("W538", "krl-loop-written-out",
                      "a KRL FOR moves to known array elements its counter selects, which an rmot target cannot: "
                      "written out as its iterations")
+
+# KRL globals and controller flags read as task variables (krl_vars.py)
+__all__ += ["GLOBAL_READ_AS_VARIABLE"]
+GLOBAL_READ_AS_VARIABLE = Code("W542", "global-read-as-variable",
+                               "a KRL global (of $config.dat, or $FLAG[n]) that the main routine sets is read as a "
+                               "task variable: on the controller it starts where the last run or another program "
+                               "left it, and another program writing it while this one runs is not seen")
+
+# INFORM pulse positions read with the arm's scales (readers/inform.py)
+__all__ += ["PULSE_SCALES_INVALID"]
+PULSE_SCALES_INVALID = Code("E525", "pulse-scales-invalid",
+                            "`rmot import --pulses-per-degree` is not one finite, non-zero number of encoder pulses "
+                            "per degree for each axis (1 to 8, separated by commas), or is given with --task")

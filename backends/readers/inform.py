@@ -11,7 +11,14 @@ ON|OFF`, `PULSE OT#(n) T=`, `AOUT AO#(n) v`, `TIMER T=`, `WAIT IN#(n)=.. [T=]` (
 backend's JUMP/MSG/PAUSE: `timeout`), `JUMP *La IF IN#(n)=..` .. `*La` as `if`, `CALL JOB:`,
 the tool named by the `'TOOL n = name` comment. Position variables (`P00100=` in //POS, `MOVJ
 P100`) are read as the C positions are. Pulse positions (`///PULSE`, or any position before a
-`///RECTAN`) are robot specific: their moves stay native.
+`///RECTAN`) are encoder counts: with the arm's pulses per degree (`rmot import
+--pulses-per-degree S,L,U,R,B,T`, the controller's own values) they are read as joint targets,
+degrees = pulses / scale (the ROS-Industrial motoman_driver's Ros_CtrlGroup_ConvertToRosPos,
+radians = pulses / pulses-per-radian with no offset: 0 pulses is the axis's zero; the job holds
+command positions, which the controller already corrects for axis coupling, CtrlGroup.c
+Ros_CtrlGroup_GetFBPulsePos); a MOVL or MOVC to one goes to its TCP pose where the CLI hands in
+the cell arm's forward kinematics and tools (`pulse_pose`), else stays native; without the
+scales their moves stay native.
 """
 
 from __future__ import annotations
@@ -19,7 +26,8 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers import axes_slots, codes
+from rmot.backends.readers import PulsePose, axes_slots, codes
+from rmot.backends.readers.fanuc_text import group_test
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -27,7 +35,7 @@ from rmot.backends.readers.model import (
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
 
-__all__ = ["read_inform", "PL_MM"]
+__all__ = ["read_inform", "PL_MM", "pulse_scales"]
 
 _JUMP = re.compile(r"JUMP \*(L\w+)")
 # INFORM instructions (the forms backends/inform.py writes): outputs, pulses, analog outputs,
@@ -48,8 +56,11 @@ PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/info
 
 
 class _Job:
-    def __init__(self, path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> None:
+    def __init__(self, path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None,
+                 pulses_per_degree: tuple[float, ...] | None = None, pulse_pose: PulsePose | None = None) -> None:
         self.tally = Tally(path, text, "inform")
+        self.pulses_per_degree = pulses_per_degree  # the arm's scales, S, L, U, R, B, T (None: not given)
+        self.pulse_pose = pulse_pose  # (joints deg, tool name) -> the TCP pose in the base (the cell's arm)
         self.jobs = jobs or {}  # the import's jobs by name (a job called in a shifting loop is inlined)
         self.inlined: set[str] = set()
         self.var_names: dict[str, str] = {}  # `'D050 = row`: the loop counters' names
@@ -60,9 +71,10 @@ class _Job:
         self.raw = text.split("\n")
         self.name = ""
         self.positions: dict[str, Target] = {}
-        self.pulse_positions: set[str] = set()  # `///PULSE` positions: encoder counts of the arm's axes
+        self.pulse_positions: dict[str, str] = {}  # `///PULSE` positions not read: why (encoder counts of the arm's axes)
         self.base_positions: dict[str, tuple[tuple[float, ...], bool]] = {}  # BCn, ECn: values, in pulses (readers/axes_slots.py)
         self.position_tool: dict[str, int] = {}
+        self.station_in_group = False  # `///GROUP1 RB1,ST1`: the station moves in the robot's own moves
         self.position_user: dict[str, int | None] = {}
         self.tool_names: dict[int, str] = {}
         self.tools: dict[int, ToolData] = {}
@@ -93,6 +105,7 @@ class _Job:
                 postype = rest.strip() if key == "POSTYPE" else postype  # ROBOT, BASE (no base axis: the same), USER
                 user = int(rest) if key == "USER" and rest.isdigit() else user
                 rectan = key == "RECTAN" or (rectan and key not in ("PULSE", "ANGLE"))
+                self.station_in_group |= key.startswith("GROUP") and bool(re.search(r"\bRB\d.*\bST\d|\bST\d.*\bRB\d", rest))
                 continue
             if section == "//POS":
                 self._position(s, n, conf, tool, user if postype == "USER" else None, not rectan)
@@ -115,7 +128,7 @@ class _Job:
             return
         m = re.fullmatch(r"([CP]\d+)\s*=\s*(.*)", s)
         if m is not None and pulse:
-            self.pulse_positions.add(_key(m.group(1)))
+            self._pulse_position(_key(m.group(1)), m.group(2), n, tool)
         if m is None or pulse:
             return
         try:
@@ -137,6 +150,24 @@ class _Job:
                                             Where(self.path, n), ",".join(b.strip() for b in bits))
         self.position_tool[key] = tool
         self.position_user[key] = user
+
+    def _pulse_position(self, key: str, values: str, n: int, tool: int) -> None:
+        """A pulse position: a joint target where the arm's pulses per degree are given and
+        its count is theirs; else the reason its moves stay native."""
+        scales = self.pulses_per_degree
+        counts = [int(x) for x in values.split(",") if re.fullmatch(r"\s*-?\d+\s*", x)]
+        if scales is None:
+            self.pulse_positions[key] = ("is a pulse position (///PULSE, or no ///RECTAN before it): encoder counts "
+                                         "whose per-axis scales are the arm's controller's; pass them as `rmot import "
+                                         "--pulses-per-degree S,L,U,R,B,T` (its pulses per degree) to read it")
+        elif len(counts) != len(values.split(",")) or len(counts) != len(scales):
+            self.pulse_positions[key] = (f"is a pulse position of {len(values.split(','))} values, not the "
+                                         f"{len(scales)} whole pulse counts --pulses-per-degree gives scales for")
+        else:
+            joints = tuple(c / k for c, k in zip(counts, scales))
+            self.positions[key] = Target(f"{self.name.lower()}_{key.lower()}", None, joints, None, Where(self.path, n))
+            self.position_tool[key] = tool
+            self.position_user[key] = None
 
     # ---------------------------------------------------------------- instructions
 
@@ -173,11 +204,14 @@ class _Job:
                 return found
         stmt = self._simple(text, where)
         if stmt is None:
-            pulses = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)} & self.pulse_positions)
-            why = (f"{', '.join(pulses)} is a pulse position (///PULSE, or no ///RECTAN before it): encoder "
-                   "counts whose per-axis scales "
-                   "and zero offsets are the arm's, which rmot's robot library does not hold" if pulses else
-                   axes_slots.why_native(text) or "no rmot form")
+            named = sorted({_key(r) for r in re.findall(r"\b[CP]\d+\b", text)})
+            pulses = [k for k in named if k in self.pulse_positions]
+            joints = [k for k in named if k in self.positions and self.positions[k].pose is None]
+            why = (f"{pulses[0]} {self.pulse_positions[pulses[0]]}" if pulses else
+                   f"{joints[0]} is a pulse position, read as joints: a linear or circular move to it goes to its TCP "
+                   "pose, which the arm's forward kinematics and the job's tool give (`--cell` with the robot and a "
+                   "tool of that name)" if joints and not text.startswith("MOVJ") else
+                   axes_slots.why_native(text) or _why_native(text))
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -230,7 +264,7 @@ class _Job:
         if source is None or not self.counters or not reaches(
                 self.jobs, name, lambda text: any(re.search(p, text) for p in shifted), r"(?m)^CALL JOB:(\w+)"):
             return None
-        callee = _Job(source[0], source[1], self.jobs)
+        callee = _Job(source[0], source[1], self.jobs, self.pulses_per_degree, self.pulse_pose)
         callee.counters, callee.shifts = self.counters, self.shifts
         callee.tools, callee.tool_names = self.tools, {**self.tool_names}
         callee.read()
@@ -240,10 +274,28 @@ class _Job:
         self.inlined |= callee.inlined
         return callee.routine.body
 
+    def _path_key(self, key: str) -> str:
+        """The position a linear or circular move to `key` goes to: `key` itself, or for a pulse
+        position whose TCP pose the cell's arm and the job's tool give, `key_TCP` (a pose target
+        of its own, `<name>_tcp`); `key` where they do not (its move then stays native)."""
+        decl = self.positions.get(key)
+        if decl is None or decl.pose is not None or decl.joints is None or self.pulse_pose is None:
+            return key
+        if f"{key}_TCP" not in self.positions:
+            tool = self.position_tool[key]
+            pose = self.pulse_pose(decl.joints, self.tool_names.get(tool, f"tool{tool}"))
+            if pose is None:
+                return key
+            self.positions[f"{key}_TCP"] = Target(f"{decl.name}_tcp", pose, None, None, decl.where)
+            self.position_tool[f"{key}_TCP"], self.position_user[f"{key}_TCP"] = tool, None
+        return f"{key}_TCP"
+
     def _move(self, kind: str, names: list[str], rest: str, where: Where, sync: bool = False, via_rest: str = "") -> Move | None:
+        names = names if kind == "joint" else [self._path_key(n) for n in names]
         decls = [self.positions.get(n) for n in names]
-        base, rest = axes_slots.inform_operands(self.base_positions, rest, sync)
-        via_base = axes_slots.inform_operands(self.base_positions, via_rest, sync)[0] if via_rest else None
+        base, rest = axes_slots.inform_operands(self.base_positions, rest, sync, self.station_in_group)
+        via_base = axes_slots.inform_operands(self.base_positions, via_rest, sync, self.station_in_group)[0] \
+            if via_rest else None
         speed = re.search(r"\bV=([\d.]+)", rest)
         vj = re.search(r"\bVJ=([\d.]+)", rest)
         pl = re.search(r"\bPL=(\d)", rest)
@@ -252,7 +304,7 @@ class _Job:
         acc = re.search(r"\bACC=(\d+)\s+DEC=(\d+)\b", rest)
         extra = re.sub(r"\b(VJ?=[\d.]+|PL=\d|FPT|ACC=\d+\s+DEC=\d+|NWAIT)\b", "", rest).strip()
 
-        if any(d is None for d in decls) or extra or (vj is None) != (kind != "joint") or \
+        if any(d is None or (kind != "joint" and d.pose is None) for d in decls) or extra or (vj is None) != (kind != "joint") or \
                 (kind != "joint" and speed is None) or (pl and int(pl.group(1)) > 4):
             return None
         if acc is not None and (acc.group(1) != acc.group(2) or not 20 <= int(acc.group(1)) <= 100):
@@ -273,7 +325,7 @@ class _Job:
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
                     tool=self._tool(self.position_tool[names[-1]]), frame=axes_slots.inform_frame(user, sync),
-                    config=decl.config if kind == "joint" else None, pose=decl.pose,
+                    config=decl.config if kind == "joint" else None, pose=decl.pose, joints=decl.joints,
                     joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None,
                     slots=base[0] if base else (), slot_pulses=base[1] if base else (), via_slots=via_base[0] if via_base else ())
 
@@ -305,18 +357,26 @@ class _Job:
         return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), float(m.group(3)), self.inst[i][1])], i + 5
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`JUMP *La IF IN#(n)=X`, then, [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when not X)."""
+        """`JUMP *La IF IN#(n)=X`, then, [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when not X);
+        or a group input read into a byte and tested, `IN Bt IG#(n)`, `JUMP *La IF Bt<op>v` (the
+        backend's form: then runs when the test fails)."""
         m = re.fullmatch(r"JUMP \*(L\w+) IF IN#\((\d+)\)=(ON|OFF)", self._text(i))
-        if m is None:
+        read = re.fullmatch(r"IN (B\d+) IG#\((\d+)\)", self._text(i)) if m is None else None
+        test = re.fullmatch(rf"JUMP \*(L\w+) IF {read.group(1)}(<>|<=|>=|=|<|>)(\d+)", self._text(i + 1)) if read else None
+        if m is None and test is None:
             return None
-        arms = label_arms(self._text, i, end, f"*{m.group(1)}", _JUMP, lambda n: f"*{n}")
+        jump = i if m is not None else i + 1
+        label = m.group(1) if m is not None else test.group(1)  # type: ignore[union-attr]
+        arms = label_arms(self._text, jump, end, f"*{label}", _JUMP, lambda n: f"*{n}")
         if arms is None:
             return None
         ja, jb = arms
-        then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
+        then, _ = self._block(jump + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
-        cond = Cond(int(m.group(2)), m.group(3) == "OFF")
-        return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
+        # INFORM compares with TP's operators (=, <>, <, >, <=, >=): the TP reader's group test
+        cond = Cond(int(m.group(2)), m.group(3) == "OFF") if m is not None else \
+            group_test(f"GI[{read.group(2)}]{test.group(2)}{test.group(3)}", negate=True)  # type: ignore[union-attr]
+        return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
         m = re.fullmatch(r"(MOVJ|S?MOVL)\s+([CP]\d+)\s*(.*)", text)
@@ -333,6 +393,33 @@ def _key(ref: str) -> str:
     return f"{ref[0]}{int(ref[1:]):05d}"
 
 
+# variables of a job (DX100/YRC1000 INFORM manual, "variables": byte, integer, double, real,
+# position; L local): a value the job only has at run time
+_VARIABLE = r"L?[BIDRP]\d+"
+
+
+def _why_native(text: str) -> str:
+    """Why an INFORM line with no rmot form stays native, as precisely as the line says."""
+    indirect = re.search(rf"\bIN#\(({_VARIABLE})\)", text)
+    timer = re.fullmatch(rf"TIMER T=({_VARIABLE})", text)
+    if re.match(r"IMOV\b", text):
+        return ("IMOV moves by an increment from wherever the robot stands (its position variable's value at "
+                "run time): rmot's moves go to targets the compiler knows")
+    if indirect:
+        return (f"the input's number is variable {indirect.group(1)}'s value at run time: rmot's `in[n]` "
+                "names its input in the program")
+    if timer:
+        return f"the time is variable {timer.group(1)}'s value at run time: rmot's `wait T` is a number the compiler knows"
+    level = re.search(r"\bPL=([5-8])\b", text) if re.match(r"S?MOV[JLC]\b", text) else None
+    if level:
+        return (f"PL={level.group(1)}: rmot knows the distances of positioning levels 0..4 only (the factory "
+                "0 / 12.5 / 25 / 50 / 100 mm of parameters S1CxG033-036, backends/inform_text.py)")
+    if re.match(r"MOVJ EX\d+", text):
+        return ("moves the station alone to its position variable EXn: rmot reads `move axes` back only from "
+                "RAPID's MoveExtJ")
+    return "no rmot form"
+
+
 def _uncommented(line: str) -> str:
     """An instruction without the comment the pendant appends after `//` (`MOVL P106 V=150.0
     PL=0  //CUT PRE-SLIDE`: YRC1000 INFORM manual, the line comment of an instruction); a
@@ -341,9 +428,29 @@ def _uncommented(line: str) -> str:
     return m.group(1) if m and '"' not in line else line
 
 
-def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None) -> _Job:
+def pulse_scales(text: str) -> tuple[float, ...] | str:
+    """`--pulses-per-degree S,L,U,R,B,T`: the arm's encoder pulses per degree of each axis, as
+    its controller's parameters give them (one finite, non-zero number per axis, 1 to 8 axes: an
+    INFORM position holds at most 8, DX100/YRC1000 INFORM manual, //POS); else the error text."""
+    bits = text.split(",")
+    try:
+        scales = tuple(float(b) for b in bits)
+    except ValueError:
+        return f"--pulses-per-degree takes numbers separated by commas (got `{text}`)"
+    if not 1 <= len(scales) <= 8:
+        return f"--pulses-per-degree takes one number per axis, 1 to 8 axes (got {len(scales)})"
+    bad = [b.strip() for b, k in zip(bits, scales) if not math.isfinite(k) or k == 0.0]
+    if bad:
+        return f"--pulses-per-degree: `{bad[0]}` is not a finite, non-zero number of pulses per degree"
+    return scales
+
+
+def read_inform(path: str, text: str, jobs: dict[str, tuple[str, str]] | None = None,
+                pulses_per_degree: tuple[float, ...] | None = None, pulse_pose: PulsePose | None = None) -> _Job:
     """Read one INFORM job; raises ImportError_ (E510) when it is not one. `jobs`: the import's
-    files by job name (a job called inside a loop whose shift it switches on is inlined)."""
-    job = _Job(path, text, jobs)
+    files by job name (a job called inside a loop whose shift it switches on is inlined);
+    `pulses_per_degree`: the arm's scales, to read pulse positions as joint targets; `pulse_pose`:
+    their TCP poses (the cell's arm and tools), for linear and circular moves to them."""
+    job = _Job(path, text, jobs, pulses_per_degree, pulse_pose)
     job.read()
     return job

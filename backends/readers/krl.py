@@ -26,13 +26,14 @@ from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
 )
 from rmot.backends.readers.krl_data import (
-    data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
+    data_objects, declared, data_list, home, numbered, keep_block, load_switch, skip_function, with_state, named_loads, position, timed_wait,
 )
 from rmot.backends.readers.krl_globals import ASSIGNMENT, public_globals
 from rmot.backends.readers.krl_flow import KnownPositions, data_value, known_target, literal
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_unroll import unrolled_for
 from rmot.backends.readers.krl_logic import KrlVars
+from rmot.backends.readers.krl_vars import SETUP_FOLD, axis_speed_loop, counted_loop
 from rmot.backends.readers.krl_why import (
     Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
 )
@@ -55,8 +56,8 @@ class _Krl:
         self.data = data_list(dat)
         self.dat = dat
         config = config_near(src[0])
-        # the robot's global declarations (positions found there on use), and other modules' public ones
-        self.config = {**public_globals(src[0], dat[0] if dat else None), **data_list(config)}
+        self.config = {**public_globals(src[0], dat[0] if dat else None), **data_list(config)}  # $config.dat's, public ones
+        self.config_file = config  # its path and text (globals the program sets: krl_vars.py)
         texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
         self.signals = {k: v for text in texts for k, v in signals(text).items()}
         self.variables = set().union(*(declared_names(text) for text in texts))
@@ -124,7 +125,8 @@ class _Krl:
         self.name = head.group(1)
         taken = {*self.targets, *self.tools, *self.frames, *self.signals}
         self.logic = KrlVars(self.lines, self.name, self.dat, taken, lambda n: port_of(self.signals, n, "IN"), self.tally,
-                             partial(is_group_input, self.config_groups, {*self.signals, *self.variables, *self.assigned, *self.data}))
+                             partial(is_group_input, self.config_groups, {*self.signals, *self.variables, *self.assigned, *self.data}),
+                             self.config_file, lambda n: port_of(self.signals, n, "OUT"))
         i = 0
         while i < len(self.lines):
             ln = self.lines[i]
@@ -200,11 +202,13 @@ class _Krl:
             return keep_block(self.lines, self.tally, i, word, end)
         if word in ("DECL", "INT", "REAL", "BOOL", "CHAR", "E6POS", "POS", "FRAME", "E6AXIS", "AXIS", "SIGNAL"):
             return [], i + 1
+        if ln.where in self.logic.skipped:  # a stepped loop's own increment (counted_loop)
+            return [], i + 1
         assign = self.logic.statement(ln)
         if assign is not None:
             self.tally.imported += 1
             return [assign], i + 1
-        if self._load_switch(i):
+        if load_switch(self.lines, i):
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text):
             return [], i + 1
@@ -217,7 +221,7 @@ class _Krl:
         stmt = self._simple(ln)
         if stmt is None:
             why = motion_why(ln.text[len(word):], self._names(), self.state) if word in MOTIONS else \
-                other_why(word, ln.text, self.last is not None)
+                other_why(word, ln.text, self.last is not None) or self.logic.why(ln.text)
             self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
@@ -258,23 +262,28 @@ class _Krl:
         ln = self.lines[i]
         word = ln.word
         end = {"FOR": "ENDFOR", "IF": "ENDIF", "WHILE": "ENDWHILE"}[word]
+        speeds = axis_speed_loop(self.lines, i) if word == "FOR" else None
+        if speeds is not None and self._setting(speeds[0]):  # every axis's speed set by a loop
+            return [], speeds[1]
         if word == "FOR":
-            m = re.fullmatch(r"(?i)FOR\s+(\w+)\s*=\s*(-?\d+)\s+TO\s+(-?\d+)(?:\s+STEP\s+1)?", ln.text)
-            if m is None:
-                return keep_block(self.lines, self.tally, i, word, end)
-            flat = unrolled_for(self, i, m.group(1), int(m.group(2)), int(m.group(3)))
+            loop = counted_loop(self.lines, i)  # (counter, first, stop, its increment to leave out) or why not
+            if not isinstance(loop, tuple):
+                return keep_block(self.lines, self.tally, i, word, end, loop)
+            flat = unrolled_for(self, i, loop[0], loop[1], loop[2] - 1) if loop[3] is None else None
             if flat is not None:
                 return flat
-            saved = set(self.names)
-            self.names.add(m.group(1))
+            name, first, stop, self.logic.skipped = loop[0], loop[1], loop[2], {*self.logic.skipped, loop[3]}
+            saved, params = set(self.names), self.params
+            self.names.add(name)
+            self.params = {**params, name.upper(): (name, "number")}  # known at each iteration
             body, j = self._block(i + 1, (end,))
-            self.names = saved
+            self.names, self.params = saved, params
             self.tally.imported += 1
-            return [For(m.group(1), int(m.group(2)), int(m.group(3)) + 1, tuple(body), ln.where)], j + 1
+            return [For(name, first, stop, tuple(body), ln.where)], j + 1
         m = re.fullmatch(r"(?i)(?:IF|WHILE)\s+(.*?)(?:\s+THEN)?", ln.text)
         cond = self._cond(m.group(1)) if m else None
         if cond is None or (word == "WHILE" and has_test(cond)):  # a while on a test the compiler decides: native
-            return keep_block(self.lines, self.tally, i, word, end, mode_why(word, ln.text))
+            return keep_block(self.lines, self.tally, i, word, end, mode_why(word, ln.text) or self.logic.why(ln.text))
         then, j = self._block(i + 1, (end, "ELSE") if word == "IF" else (end,))
         orelse: list[Stmt] = []
         if self.lines[j].word == "ELSE":
@@ -354,14 +363,6 @@ class _Krl:
     def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
         """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
         return named_loads(self.data)
-
-    def _load_switch(self, i: int) -> bool:
-        """`$LOAD=name` that is not the load of the tool the line before selects: a switch of the
-        held load (an attach or detach)."""
-        if re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", self.lines[i].text) is None:
-            return False
-        before = next((ln.text for ln in reversed(self.lines[:i]) if ln.text), "")
-        return re.match(r"(?i)\$TOOL\s*=", before) is None
 
     def _tool_base(self, which: str, name: str) -> bool:
         key = name.upper()
@@ -569,7 +570,7 @@ class _Krl:
         else read from the statements inside; the INI fold is set-up, kept as a comment."""
         header = self.lines[i].fold or ""
         end = fold_end(self.lines, i)
-        if re.match(r"(?i)INI\b|BASISTECH|USER\s+INI|SPSMAKRO", header):
+        if SETUP_FOLD.match(header):
             self.tally.warn(codes.DECLARATION_KEPT, f"the `{header[:30]}` fold is controller set-up: kept as a "
                             "comment", self.lines[i].where)
             return [], end + 1

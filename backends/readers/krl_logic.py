@@ -25,7 +25,9 @@ from collections.abc import Callable
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
+from rmot.backends.readers.krl_names import declared_names
 from rmot.backends.readers.krl_text import Line, declarations, lines
+from rmot.backends.readers.krl_vars import Global, flag_names, outside_setup, global_note, global_vars, raised_elsewhere, raised_why
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import (
     Assign, Cond, Conds, GroupIn, Stmt, Stop, VarDecl, WaitIn, Where, While, group_reads,
@@ -86,25 +88,36 @@ class KrlVars:
 
     def __init__(self, found: list[Line], name: str, dat: tuple[str, str] | None, taken: set[str],
                  signal: Callable[[str], int | None], tally: Tally | None = None,
-                 group: Callable[[str], bool] = lambda name: False) -> None:
+                 group: Callable[[str], bool] = lambda name: False, config: tuple[str, str] | None = None,
+                 output: Callable[[str], int | None] = lambda name: None) -> None:
         self.tally, self.dat, self.group = tally, dat, group
         self.groups_warned: set[str] = set()  # group inputs warned at their first use (W534)
         self.persistent: set[str] = set()  # the .dat's variables
-        body = _main_lines(found, name)
+        whole = _main_lines(found, name)
+        body = outside_setup(whole)  # what the set-up folds assign is not read
         assigned = {m.group(1).upper() for ln in body for m in [_ASSIGN.match(ln.text)] if m and ln.fold is None}
+        self.set_up_only: set[str] = {m.group(1).upper() for ln in whole for m in [_ASSIGN.match(ln.text)] if m} - assigned
         taken = taken | {m.group(1).upper() for ln in found for m in [re.match(r"(?i)FOR\s+(\w+)", ln.text)] if m}
         self.vars: dict[str, tuple[str, str]] = {}  # upper -> (rmot name, type)
         self.decls: list[VarDecl] = []
-        self.signal = signal
+        self.signal, self.output = signal, output
         self.visible: dict[str, tuple[str, str]] = {}
         self.main = False  # reading the main DEF
         self.exiting: Where | None = None  # the EXIT of the loop being read that becomes its condition
+        self.end_label: str | None = None
+        self.skipped: set[Where | None] = set()  # the increments of stepped FOR loops, read into their count
         found_decls = [(d.type, d.name, d.value, d.where) for d in declarations(lines(*dat))] if dat else []
         self.persistent = {rmot_name(d[1]) for d in found_decls}
         for ln in body:
             m = _LOCAL.match(ln.text)
             for n in re.split(r"\s*,\s*", m.group(2)) if m else []:
                 found_decls.append((m.group(1).upper(), n, None, ln.where))  # type: ignore[union-attr]
+        inside = {id(ln) for ln in body}
+        known = {d[1].upper() for d in found_decls} | taken | declared_names("\n".join(ln.text for ln in found))
+        self.globals: dict[str, Global] = {rmot_name(g.name): g for g in global_vars(body, [ln for ln in found if id(ln) not in inside],
+                                                                  known, config)}
+        found_decls += [(g.type, g.name, g.value, g.where) for g in self.globals.values()]
+        assigned |= {g.name.upper() for g in self.globals.values()}
         for type_, var, value, where in found_decls:
             key = var.upper()
             if type_ not in _TYPES or key not in assigned or key in self.vars or key in taken or "[" in var:
@@ -114,6 +127,10 @@ class KrlVars:
                 continue
             self.vars[key] = (rmot_name(var), _TYPES[type_])
             self.decls.append(VarDecl(rmot_name(var), _TYPES[type_], init[0], where))
+        self.raised = raised_elsewhere(found, known | set(self.vars), config)  # handshake flags another program raises
+        statements = [ln for ln in body if ln.text and ln.fold is None and not ln.endfold]
+        last = re.fullmatch(r"([A-Za-z_]\w*)\s*:", statements[-1].text) if statements else None
+        self.end_label = last.group(1).upper() if last else None  # a label right before the main DEF's END
 
     def timed_else(self, found: list[Line], i: int, cond_of: Callable[[str], Cond | Conds | None]) -> bool:
         """Whether the lines at `i` are the backend's timed wait with a branch: timer reset, `WAIT FOR
@@ -156,6 +173,11 @@ class KrlVars:
         decls, rest = fold_first_values(self.decls, body)
         if self.tally is not None:
             warn_persistent(self.tally, self.decls, decls, self.persistent, dict([self.dat] if self.dat else []))
+            for before, after in zip(self.decls, decls):
+                found = self.globals.get(before.name)
+                if found is not None:
+                    self.tally.warn(codes.GLOBAL_READ_AS_VARIABLE, global_note(found, before.init.text,
+                                                                               after.init is not before.init), found.where)
         return (*decls, *rest)
 
     def _input(self, tokens: list[str], i: int) -> tuple[Cond | GroupIn, int] | None:
@@ -174,7 +196,7 @@ class KrlVars:
 
     def condition(self, text: str, where: Where | None = None) -> Conds | None:
         """A KRL bool expression over the visible variables and inputs; None without an rmot form."""
-        found = translate(text, KRL, self.visible, self._input, int_division=True)
+        found = translate(self._spelled(text), KRL, self.visible, self._input, int_division=True)
         cond = found[0] if found is not None and found[1] == "bool" else None
         if cond is not None and where is not None:
             self.warn_groups(cond, where)
@@ -192,12 +214,16 @@ class KrlVars:
 
     def statement(self, ln: Line) -> Assign | Stop | None:
         """`n = e` on a visible task variable; `RETURN` from the main DEF (it ends the program,
-        KSS 8.x "RETURN": back to the caller, and the main DEF has none)."""
+        KSS 8.x "RETURN": back to the caller, and the main DEF has none), and `GOTO L` there where
+        the label `L:` is its last statement (KSS 8.x "GOTO": the jump reaches END, as RETURN)."""
         if self.main and re.fullmatch(r"(?i)RETURN", ln.text):
             return Stop(ln.where)
+        jump = re.fullmatch(r"(?i)GOTO\s+(\w+)", ln.text)
+        if self.main and jump and jump.group(1).upper() == self.end_label:
+            return Stop(ln.where)  # a jump to the main DEF's END is its RETURN
         if ln.where == self.exiting:
             return Stop(ln.where)  # the loop's own EXIT, read into the loop's condition (loop())
-        m = _ASSIGN.match(ln.text)
+        m = _ASSIGN.match(self._spelled(ln.text))
         if m is None or m.group(1).upper() not in self.visible:
             return None
         name, type_ = self.visible[m.group(1).upper()]
@@ -206,6 +232,24 @@ class KrlVars:
             return None
         self.warn_groups(found[0], ln.where)
         return Assign(name, found[0], ln.where)
+
+    def why(self, text: str) -> str | None:
+        """Why a line on a flag another program raises (or a cyclic flag), or a condition on an
+        output's SIGNAL or on a name only the set-up fold assigns, stays native, if it does."""
+        found = raised_why(text, self.raised)
+        test = re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b(.*)", text)
+        for name in re.findall(r"(?<![\w$])[A-Za-z_]\w*", test.group(2)) if test and found is None else []:
+            port = self.output(name) if name.upper() not in _KEYWORDS else None
+            if port is not None:
+                return f"it tests `{name}`, the output $OUT[{port}] (its SIGNAL); rmot conditions read inputs only"
+            if name.upper() in self.set_up_only:
+                return (f"it tests `{name}`, which only the set-up fold (INI, USER INI) assigns: the import keeps "
+                        "that fold as a comment")
+        return found
+
+    def _spelled(self, text: str) -> str:
+        """`text` with the `$FLAG[n]` read as task variables written as their names (`FLAG_n`)."""
+        return flag_names(text) if any(g.flag for g in self.globals.values()) and "$" in text else text
 
     def switchable(self, params: dict[str, tuple[str, str]], text: str = "") -> dict[str, tuple[str, str]]:
         """The names a SWITCH may test: the routine's number parameters, the main DEF's INT variables,

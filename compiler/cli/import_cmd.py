@@ -36,12 +36,18 @@ DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "u
 @click.option("--task", "tasks", multiple=True, metavar="ROBOT[:RAPIDTASK]=FILE",
               help="A file of ROBOT's program (repeat: one task per robot, several files of one task in order; "
                    "the k-th robot is RAPID task T_ROBk unless :RAPIDTASK names it). Needs --cell, no FILES.")
-def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None, tasks: tuple[str, ...]) -> None:
+@click.option("--pulses-per-degree", "pulses", default=None, metavar="S,L,U,R,B,T",
+              help="INFORM: the arm's encoder pulses per degree, axis by axis (the controller's parameters): "
+                   "pulse positions are read as joint targets, else their moves stay native.")
+def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None, tasks: tuple[str, ...],
+            pulses: str | None) -> None:
     from rmot.backends.readers import ImportError_, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import (  # late: loads numpy only when this runs
         SignalMap, cell_stub, program_text, rename_warnings, stub_signals,
     )
 
+    if tasks and pulses is not None:  # one arm's scales: which of the tasks' arms is theirs is not said
+        _pulse_scales(pulses, "--pulses-per-degree is one arm's scales and cannot be given with --task")
     if tasks:
         from rmot.compiler.cli.import_tasks import import_tasks  # late: loads numpy only when this runs
 
@@ -50,12 +56,13 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         click.echo("rmot: import needs FILE... (one robot's program) or --task ROBOT=FILE (several robots)", err=True)
         sys.exit(EXIT_INPUT)
     refuse_output_input(output, files)
+    scales = _pulse_scales(pulses) if pulses is not None else None
     found = cell_signals(cell, robot) if cell is not None else None
     if isinstance(found, str):
         click.echo(found, err=True)
         sys.exit(EXIT_INPUT)
     try:
-        doc = read_on_robot(list(files), cell, found, robot)
+        doc = read_on_robot(list(files), cell, found, robot, scales)
     except ImportError_ as exc:
         click.echo(render(exc.diagnostic), err=True)
         sys.exit(EXIT_INPUT)
@@ -76,3 +83,16 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
     print_summary(doc)
     click.echo(f"wrote {output}")
     sys.exit(EXIT_OK)
+
+
+def _pulse_scales(text: str, refused: str = "") -> tuple[float, ...]:
+    """--pulses-per-degree read; E525 and exit 2 where it is not valid or `refused` says why not."""
+    from rmot.backends.readers import codes  # late: loads numpy only when this runs
+    from rmot.backends.readers.inform import pulse_scales  # late: loads numpy only when this runs
+    from rmot.lang.diagnostics import Diagnostic, Severity
+
+    scales = refused or pulse_scales(text)
+    if isinstance(scales, str):
+        click.echo(render(Diagnostic(codes.PULSE_SCALES_INVALID, Severity.ERROR, scales, None)), err=True)
+        sys.exit(EXIT_INPUT)
+    return scales

@@ -19,6 +19,8 @@ from rmot.lang.diagnostics import render_all
 if TYPE_CHECKING:
     import numpy as np
 
+    from rmot.backends.readers import PulsePose
+
     from rmot.backends.readers.model import Document
     from rmot.lang import ir
     from rmot.lang.ir import Pose
@@ -63,6 +65,33 @@ def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -
     return resolve_rconf(doc, ik, tcp_of, wide)
 
 
+def _pulse_pose(model: str | None, found: tuple[object, str, object]) -> PulsePose | None:
+    """The TCP pose in the arm's base of joint values (deg) with one of the cell robot's tools,
+    by name (None for another name): the arm's forward kinematics times the tool's TCP. None
+    where the arm does not load."""
+    import numpy as np  # late: loads numpy only when this runs
+    from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
+    from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
+    from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
+
+    cell, robot_name = found[2], found[1]
+    assert isinstance(cell, ir.Cell)
+    try:
+        arm = load_robot(model) if model else None
+    except RobotError:
+        return None
+    if arm is None:
+        return None
+    tcp_of = {t.name: t.tcp for t in cell.tools if t.robot == robot_name}
+
+    def pose(joints: tuple[float, ...], tool: str) -> ir.Pose | None:
+        if tool not in tcp_of or len(joints) != arm.dof:
+            return None
+        return ir.Pose.from_matrix(arm.fk(np.radians(joints))) * tcp_of[tool]
+
+    return pose
+
+
 def cell_signals(cell_path: str, robot: str | None) -> tuple[object, str, object] | str:
     """(SignalMap, robot name, ir.Cell) of a cell file, or the error text."""
     from rmot.compiler.frontend import load_program  # late: tests replace it (monkeypatch): read at call time
@@ -92,9 +121,10 @@ def robot_signals(cell: ir.Cell, robot: str) -> tuple[object, str, object]:
 
 
 def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, object] | None,
-                   model: str | None) -> Document:
+                   model: str | None, pulses_per_degree: tuple[float, ...] | None = None) -> Document:
     """The files read for one robot: with a cell (`found`: its signals, robot, ir.Cell), named
-    signals resolved, tools and payloads matched to that robot's, INFORM configurations solved."""
+    signals resolved, tools and payloads matched to that robot's, INFORM configurations solved;
+    `pulses_per_degree`: the arm's scales (INFORM pulse positions read as joints)."""
     from rmot.backends.readers import read_files, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.axes import resolve_axes  # late: loads numpy only when this runs
     from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
@@ -105,7 +135,9 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
         cell_ir = found[2]
         assert isinstance(cell_ir, ir.Cell)
         model = cell_ir.robot(found[1]).source.ref
-    doc = read_files(files, model=model, limits=_joint_limits(model))
+    pulse_pose = _pulse_pose(model, found) if pulses_per_degree is not None and found is not None else None
+    doc = read_files(files, model=model, limits=_joint_limits(model), pulses_per_degree=pulses_per_degree,
+                     pulse_pose=pulse_pose)
     if cell is None or found is None:
         return resolve_axes(doc, None, "r1", span_of)  # a stub cell declares no mechanism: W523
     signals, robot_name, cell_ir = found

@@ -82,7 +82,7 @@ def test_fanuc_compares_gi_with_the_signal_comment() -> None:
         assert (not jumps_past) == (pgno == 3)
 
 
-@pytest.mark.parametrize("vendor", ["urscript", "inform", "val3"])
+@pytest.mark.parametrize("vendor", ["urscript", "val3"])
 def test_vendors_without_a_group_input_refuse_it(vendor: str) -> None:
     result = _emit(vendor)
     errors = [d for d in result.diagnostics if d.is_error]
