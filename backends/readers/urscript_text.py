@@ -13,13 +13,26 @@ import math
 import re
 
 from rmot.backends.readers.common import number, split_top
-from rmot.backends.readers.model import Cond, Conds
+from rmot.backends.readers.model import Cond, Conds, Where
 from rmot.lang import ir
 
 __all__ = [
-    "ANY_ASSIGN", "NUMBER_ASSIGN", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
+    "ANY_ASSIGN", "NUMBER_ASSIGN", "Line", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
     "outer", "pose_numbers", "scan_assignments", "split_statements", "split_word", "strip_hash", "ur_pose"
 ]
+
+
+class Line:
+    """One statement of the script and where it begins."""
+
+    def __init__(self, text: str, where: Where) -> None:
+        self.text = text
+        self.where = where
+
+    @property
+    def head(self) -> str:
+        m = re.match(r"\s*(\w+)", self.text)
+        return m.group(1) if m else ""
 
 
 def ur_pose(values: list[float]) -> ir.Pose:
@@ -181,6 +194,7 @@ def split_word(text: str, word: str) -> list[str]:
 
 
 NUMBER_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=\s*([-+\d.eE]+)")  # `[global] x = 0.25`
+_ELEMENT_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*\[[^=]*\]\s*=(?!=)")  # `offset[2] = e`
 ANY_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)")  # any assignment's name
 
 
@@ -190,7 +204,8 @@ def scan_assignments(texts: list[str], heads: list[str], program: bool) -> tuple
     value), how often in each function's own scope (its name, "" outside functions or with
     `global`), the names assigned inside a nested block (an if, loop, function or thread
     deeper than the program's own body, counted by `end`s as PolyScope does not always
-    indent), and the number each numeric assignment sets: a move reads a variable, and a
+    indent; a list or pose changed element by element, `offset[2] = e`, counts as nested
+    anywhere), and the number each numeric assignment sets: a move reads a variable, and a
     target is declared, only where its value is certain. `program`: the first statement is the
     program's own `def` (its body the program), not a function of a script."""
     assigned: dict[str, int] = {}
@@ -208,6 +223,9 @@ def scan_assignments(texts: list[str], heads: list[str], program: bool) -> tuple
             scoped[(scope, m.group(1))] = scoped.get((scope, m.group(1)), 0) + 1
             if depth > top:
                 nested.add(m.group(1))
+        element = _ELEMENT_ASSIGN.match(text)
+        if element:
+            nested.add(element.group(1))
         function = re.match(r"def\s+(\w+)\s*\(", text)
         if function and (depth > 0 or not top):
             functions.append((function.group(1), depth + 1))
