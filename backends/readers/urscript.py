@@ -24,7 +24,7 @@ from rmot.backends.readers.model import (
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.urscript_logic import UrVars, timed_wait
 from rmot.backends.readers.urscript_motion import (
-    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, rest_to_rest_shares, share,
+    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
     ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, pose_numbers, scan_assignments,
@@ -260,7 +260,9 @@ class _Script:
         if m and s and inner[2] == inner[0].replace("True", "False"):
             self.pulses[name] = (int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), float(s.group(1)))
             return [], j + 1
-        return [self.tally.keep(x.text, x.where, "a thread has no rmot form") for x in self.lines[i:j + 1]], j + 1
+        node = kept_direction([x.text.replace(" ", "") for x in self.lines], [x.head for x in self.lines], i)
+        reason, j = node if node else ("a thread runs beside the program (rmot has no concurrent thread)", j + 1)
+        return [self.tally.keep(x.text, x.where, reason) for x in self.lines[i:j]], j
 
     def _direction(self, i: int) -> tuple[list[Stmt], int] | None:
         """PolyScope's Direction node moving "Until (distance)" right after a move whose target is
@@ -324,7 +326,8 @@ class _Script:
         m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        cond = _FOREVER if forever else (input_cond(m.group(2)) or self._logic_cond(m.group(2))) if m else None
+        logic = self.logic.condition(m.group(2)) if m and self.in_sub == 0 else None  # the program's own body
+        cond = _FOREVER if forever else (input_cond(m.group(2)) or logic) if m else None
         if cond is None:
             out, j, depth = [], i, 0
             while j < len(self.lines):
@@ -351,10 +354,6 @@ class _Script:
         if self.lines[j].text.startswith("else"):
             orelse, j = self._block(j + 1, ("end",))
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
-
-    def _logic_cond(self, text: str) -> Conds | None:
-        """A test on task variables (urscript_logic), in the program's own body only."""
-        return self.logic.condition(text) if self.in_sub == 0 else None
 
     # ---------------------------------------------------------------- statements
 
