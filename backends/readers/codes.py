@@ -113,3 +113,9 @@ SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",
                            "a KRL motion after a call of a routine the import does not read (kept native) is read "
                            "with the speed, approximation, tool and base set before the call; the routine may "
                            "change them ($VEL, $APO, $TOOL, $BASE are global)")
+
+# URScript waits read back
+__all__ += ["POLLED_WAIT"]
+POLLED_WAIT = Code("W528", "polled-wait",
+                   "a URScript loop that sleeps T s between tests of digital inputs is read as `wait until`: the "
+                   "controller goes on up to T s after the condition holds, rmot's wait as soon as it holds")

@@ -19,7 +19,7 @@ import re
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, split_top
 from rmot.backends.readers.model import (
-    Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
+    Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.urscript_logic import UrVars, timed_wait
@@ -27,7 +27,8 @@ from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
-    ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, pose_numbers, scan_assignments,
+    ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, polled_wait, pose_numbers,
+    scan_assignments,
     split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
@@ -293,12 +294,12 @@ class _Script:
         return [WaitIn(cond, found[0], self.lines[i + 1].where, tuple(orelse))], j + 1
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
-        t = self._texts(i, 3)
-        w = re.fullmatch(r"while\b(.*):", self.lines[i].text) if len(t) == 3 else None
-        # PolyScope: `while (not(get_standard_digital_in(0) == True)):`; the wait ends when the test fails
-        looped = input_cond(w.group(1)) if w and t[1:] == ["sync()", "end"] else None
-        cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,)) if looped else None
-        return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
+        found = polled_wait(self.lines[i].text, self._texts(i + 1, 3))
+        if found is not None and found[1] > 0.0:
+            self.tally.warn(codes.POLLED_WAIT, f"a wait testing its condition every {num_text(found[1])} s, read as "
+                            f"`wait until`: the controller goes on up to {num_text(found[1])} s after the condition "
+                            "holds", self.lines[i].where)
+        return ([WaitIn(found[0], None, self.lines[i].where)], i + found[2]) if found else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
         """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`; b a number or a variable

@@ -18,7 +18,7 @@ from rmot.lang import ir
 
 __all__ = [
     "ANY_ASSIGN", "NUMBER_ASSIGN", "Line", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
-    "outer", "pose_numbers", "scan_assignments", "split_statements", "split_word", "strip_hash", "ur_pose"
+    "outer", "polled_wait", "pose_numbers", "scan_assignments", "split_statements", "split_word", "strip_hash", "ur_pose"
 ]
 
 
@@ -167,6 +167,26 @@ def input_cond(text: str, depth: int = 0) -> Cond | Conds | None:
         return None
     on = (m.group(4) or "True") == "True"
     return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable_" else 0), on != (m.group(3) == "!="))
+
+
+def polled_wait(header: str, body: list[str]) -> tuple[Cond | Conds, float, int] | None:
+    """(the condition waited for, the test's interval in s, the statements it spans) of a wait
+    loop on digital inputs: `while TEST:` (PolyScope: `while (not(get_standard_digital_in(0) ==
+    True)):`), whose body (statements without spaces, then `end`) only waits, `sync()` (one
+    controller step), `sleep(T)` or both (a hand-written poll); the wait ends when TEST fails."""
+    w = re.fullmatch(r"while\b(.*):", header)
+    end = next((k for k in (1, 2) if k < len(body) and body[k] == "end"), 0)
+    sleeps = [re.fullmatch(r"sleep\(([\d.]+(?:[eE][+-]?\d+)?)\)", t) for t in body[:end]]
+    syncs = [t == "sync()" for t in body[:end]]
+    seconds = [number(m.group(1)) for m in sleeps if m]
+    if w is None or not end or not all(m or sync for m, sync in zip(sleeps, syncs)) or sum(syncs) > 1 or \
+            len(seconds) > 1 or any(v is None or not math.isfinite(v) for v in seconds):
+        return None
+    looped = input_cond(w.group(1))
+    if looped is None:
+        return None
+    cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,))
+    return cond, (seconds[0] or 0.0) if seconds else 0.0, end + 2
 
 
 def outer(text: str) -> str:

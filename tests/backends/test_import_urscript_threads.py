@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from rmot.backends.readers.model import Move, Native
+from rmot.backends.readers.model import Cond, Move, Native, WaitIn, While
 from tests.backends.test_import_urscript_forms import HELPER, _direction_node, _read
 
 _CONTACT = """    global move_thread_flag_81=0
@@ -67,7 +67,7 @@ def test_direction_until_tool_contact(tmp_path: Path) -> None:
     assert native == list(range(first, last + 1))
     assert _reasons(doc, range(first, last + 1)) == {
         "a PolyScope Direction node moving until tool contact: a motion that ends on a condition has no rmot form"}
-    assert not any(d.code == "W518" for d in doc.diagnostics)  # its `while (True)` is not the program's loop
+    assert not any(d.code.id == "W518" for d in doc.diagnostics)  # its `while (True)` is not the program's loop
 
 
 def test_direction_until_distance_with_no_known_start(tmp_path: Path) -> None:
@@ -81,7 +81,7 @@ def test_direction_until_distance_with_no_known_start(tmp_path: Path) -> None:
     reasons = _reasons(doc, range(first, first + node.count("\n") - 1))
     assert len(reasons) == 1 and reasons.pop().startswith(
         "a PolyScope Direction node: it moves from the last move's target (`get_target_waypoint()`), not known here")
-    assert not any(d.code == "W518" for d in doc.diagnostics)
+    assert not any(d.code.id == "W518" for d in doc.diagnostics)
     assert not any(isinstance(s, Move) for s in stmts)
 
 
@@ -94,3 +94,20 @@ def test_a_concurrent_thread(tmp_path: Path) -> None:
     doc, stmts = _read(tmp_path, text)
     assert [s.where.line for s in stmts if isinstance(s, Move)] == [10]
     assert _reasons(doc, range(2, 9)) == {"a thread runs beside the program (rmot has no concurrent thread)"}
+
+
+def test_polled_input_waits(tmp_path: Path) -> None:
+    """Hand-written polls (MustafaImran287's Robotiq scripts poll with `sleep(0.01)`; here on an
+    input): `while (not get_standard_digital_in(1)): sleep(0.01) end` waits for in[1] on, with
+    W528 naming the interval; `sleep` then `sync()` too; PolyScope's `sync()` alone is a plain
+    wait (no W528); a body that does anything else is a `while` loop, not a wait."""
+    text = ("def prog():\n  while (not get_standard_digital_in(1)):\n    sleep(0.01)\n  end\n"
+            "  while get_digital_in(2) == True:\n    sleep(0.5)\n    sync()\n  end\n"
+            "  while (not(get_standard_digital_in(3) == True)):\n    sync()\n  end\n"
+            "  while (not get_standard_digital_in(4)):\n    textmsg(\"waiting\")\n    sleep(0.01)\n  end\nend\n")
+    doc, stmts = _read(tmp_path, text)
+    waits = [(s.cond, s.where.line) for s in stmts if isinstance(s, WaitIn)]
+    assert waits == [(Cond(1, True), 2), (Cond(2, False), 5), (Cond(3, True), 9)]
+    polled = [(d.span.start.line, d.message) for d in doc.diagnostics if d.code.id == "W528"]
+    assert [line for line, _ in polled] == [2, 5] and "every 0.01 s" in polled[0][1] and "0.5 s" in polled[1][1]
+    assert [s.where.line for s in stmts if isinstance(s, While)] == [12]
