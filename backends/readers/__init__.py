@@ -15,7 +15,7 @@ from collections.abc import Callable
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
 from rmot.lang.ir import Pose
-from rmot.backends.readers.model import Document, Routine, Stmt, Target, Where
+from rmot.backends.readers.model import Document, PulsePose, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.input_file import NotRegularFile, read_regular
 from rmot.lang.source import Pos, SourceFile, Span
@@ -115,7 +115,6 @@ def _project(paths: list[str]) -> list[str]:
 
 _MODEL: list[str | None] = [None]  # the robot model read_files was given (URScript joint speeds)
 JointLimits = tuple[tuple[float, ...], tuple[float, ...]]  # each joint's speed rad/s, acceleration rad/s^2
-PulsePose = Callable[[tuple[float, ...], str], Pose | None]  # (joints deg, tool name) -> TCP in the base, or None
 _LIMITS: list[JointLimits | None] = [None]  # that model's joint limits (URScript movej rates)
 _PULSES: list[tuple[float, ...] | None] = [None]  # the arm's pulses per degree, axis by axis (INFORM pulse positions)
 _PULSE_POSE: list[PulsePose | None] = [None]  # the TCP pose of joints (deg) with a named tool, from the cell's arm

@@ -135,3 +135,9 @@ __all__ += ["PULSE_SCALES_INVALID"]
 PULSE_SCALES_INVALID = Code("E525", "pulse-scales-invalid",
                             "`rmot import --pulses-per-degree` is not one finite, non-zero number of encoder pulses "
                             "per degree for each axis (1 to 8, separated by commas), or is given with --task")
+
+# URScript waits read back
+__all__ += ["POLLED_WAIT"]
+POLLED_WAIT = Code("W528", "polled-wait",
+                   "a URScript loop that sleeps T s between tests of digital inputs is read as `wait until`: the "
+                   "controller goes on up to T s after the condition holds, rmot's wait as soon as it holds")

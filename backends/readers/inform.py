@@ -26,11 +26,11 @@ from __future__ import annotations
 import math
 import re
 
-from rmot.backends.readers import PulsePose, axes_slots, codes
+from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.fanuc_text import group_test
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.model import (
-    Cond, For, FrameData, If, Move, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
+    Cond, For, FrameData, If, Move, PulsePose, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir

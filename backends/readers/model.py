@@ -9,6 +9,8 @@ are `ir.Pose` (metres and a w-first quaternion, the IR's own form).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic
 from rmot.lang.record import record
@@ -20,6 +22,11 @@ __all__ = [
 ]
 __all__ += ["VarDecl", "Assign"]
 __all__ += ["Sync"]
+__all__ += ["PulsePose"]
+
+# the TCP pose (in the arm's base) of joints in degrees with a named tool, or None where the
+# tool is not known: what a caller that loaded the arm gives a reader of joint-only positions
+PulsePose = Callable[[tuple[float, ...], str], "ir.Pose | None"]
 
 # a signal by its controller name (RAPID, INFORM names) or by its port number (KRL, TP, UR)
 Signal = str | int

@@ -19,15 +19,16 @@ import re
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, num_expr, number, split_top
 from rmot.backends.readers.model import (
-    Call, Cond, Conds, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
+    Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.urscript_logic import UrVars, timed_wait
 from rmot.backends.readers.urscript_motion import (
-    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, rest_to_rest_shares, share,
+    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
-    ANY_ASSIGN, NUMBER_ASSIGN, block_end, compose, input_cond, installation_nodes, pose_numbers, scan_assignments,
+    ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, polled_wait, pose_numbers,
+    scan_assignments,
     split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
@@ -38,24 +39,13 @@ __all__ = ["read_urscript", "ur_pose"]
 DEFAULT_TCP_ACCEL = 2.0  # m/s^2: what the backend writes for rmot's default acceleration
 
 
-class _Line:
-    def __init__(self, text: str, where: Where) -> None:
-        self.text = text
-        self.where = where
-
-    @property
-    def head(self) -> str:
-        m = re.match(r"\s*(\w+)", self.text)
-        return m.group(1) if m else ""
-
-
 class _Script:
     def __init__(self, path: str, text: str, model: str | None,
                  limits: tuple[tuple[float, ...], tuple[float, ...]] | None) -> None:
         self.tally = Tally(path, text, "urscript")
-        self.lines: list[_Line] = []
+        self.lines: list[Line] = []
         # URCap installation nodes: (the URCap's name, where the node begins, its statements)
-        self.installation: list[tuple[str, Where, list[_Line]]] = []
+        self.installation: list[tuple[str, Where, list[Line]]] = []
         nodes = installation_nodes(text.split("\n"))
         for n, raw in enumerate(text.split("\n"), 1):
             code = raw.split("#")[0].strip() if '"' not in raw else strip_hash(raw).strip()
@@ -65,7 +55,7 @@ class _Script:
                 indent = len(raw) - len(raw.lstrip())
                 lines = self.installation[-1][2] if n in nodes else self.lines
                 for offset, part in split_statements(code):
-                    lines.append(_Line(part, Where(path, n, indent + offset + 1)))
+                    lines.append(Line(part, Where(path, n, indent + offset + 1)))
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
         self.limits = limits
         self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg
@@ -92,6 +82,7 @@ class _Script:
         self.scope: list[str] = []  # the functions around the statement being read
         self.local_poses: dict[tuple[str, str], ir.Pose] = {}  # a function's own pose variables
         self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
+        self.pose_values: dict[str, tuple[str, str | None, Target | None]] = {}  # see _pose_set
 
     # ---------------------------------------------------------------- structure
 
@@ -151,6 +142,17 @@ class _Script:
             self.values.pop(m.group(1), None)
         if value is not None and number(value.group(2)) is not None:
             self.values[value.group(1)] = number(value.group(2))  # type: ignore[assignment]
+
+    def _pose_set(self, text: str) -> None:
+        """`[global] name = POSE` assigned more than once (`p_5 = p[..]`, `global p_5=p_5`): a pose
+        or joint list known here (literal, known target or variable, composition of known poses)
+        is its value for the moves after it, read only where certain (as a number, `_value`)."""
+        m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)\s*(.*)", text)
+        found = self._target(m.group(2).replace(" ", "")) if m and self.in_sub == 0 else None
+        if m is not None:
+            self.pose_values.pop(m.group(1), None)
+        if m is not None and found is not None:
+            self.pose_values[m.group(1)] = found
 
     def _value(self, text: str) -> float | None:
         """A move argument: a number, or a variable whose value at this move is certain (set once
@@ -219,6 +221,7 @@ class _Script:
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
         self._number_set(ln.text)  # remembered for the moves that read it, and kept native
+        self._pose_set(ln.text)
         assign = self.logic.assign(ln.text, ln.where) if self.in_sub == 0 else None
         stmt = assign or self._simple(ln)
         if stmt is None:
@@ -258,7 +261,9 @@ class _Script:
         if m and s and inner[2] == inner[0].replace("True", "False"):
             self.pulses[name] = (int(m.group(2)) + (8 if m.group(1) == "configurable" else 0), float(s.group(1)))
             return [], j + 1
-        return [self.tally.keep(x.text, x.where, "a thread has no rmot form") for x in self.lines[i:j + 1]], j + 1
+        node = kept_direction([x.text.replace(" ", "") for x in self.lines], [x.head for x in self.lines], i)
+        reason, j = node if node else ("a thread runs beside the program (rmot has no concurrent thread)", j + 1)
+        return [self.tally.keep(x.text, x.where, reason) for x in self.lines[i:j]], j
 
     def _direction(self, i: int) -> tuple[list[Stmt], int] | None:
         """PolyScope's Direction node moving "Until (distance)" right after a move whose target is
@@ -289,12 +294,12 @@ class _Script:
         return [WaitIn(cond, found[0], self.lines[i + 1].where, tuple(orelse))], j + 1
 
     def _wait(self, i: int) -> tuple[list[Stmt], int] | None:
-        t = self._texts(i, 3)
-        w = re.fullmatch(r"while\b(.*):", self.lines[i].text) if len(t) == 3 else None
-        # PolyScope: `while (not(get_standard_digital_in(0) == True)):`; the wait ends when the test fails
-        looped = input_cond(w.group(1)) if w and t[1:] == ["sync()", "end"] else None
-        cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,)) if looped else None
-        return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
+        found = polled_wait(self.lines[i].text, self._texts(i + 1, 3))
+        if found is not None and found[1] > 0.0:
+            self.tally.warn(codes.POLLED_WAIT, f"a wait testing its condition every {num_text(found[1])} s, read as "
+                            f"`wait until`: the controller goes on up to {num_text(found[1])} s after the condition "
+                            "holds", self.lines[i].where)
+        return ([WaitIn(found[0], None, self.lines[i].where)], i + found[2]) if found else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
         """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`; b a number or a variable
@@ -322,7 +327,8 @@ class _Script:
         m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        cond = _FOREVER if forever else (input_cond(m.group(2)) or self._logic_cond(m.group(2))) if m else None
+        logic = self.logic.condition(m.group(2)) if m and self.in_sub == 0 else None  # the program's own body
+        cond = _FOREVER if forever else (input_cond(m.group(2)) or logic) if m else None
         if cond is None:
             out, j, depth = [], i, 0
             while j < len(self.lines):
@@ -349,10 +355,6 @@ class _Script:
         if self.lines[j].text.startswith("else"):
             orelse, j = self._block(j + 1, ("end",))
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
-
-    def _logic_cond(self, text: str) -> Conds | None:
-        """A test on task variables (urscript_logic), in the program's own body only."""
-        return self.logic.condition(text) if self.in_sub == 0 else None
 
     # ---------------------------------------------------------------- statements
 
@@ -382,7 +384,7 @@ class _Script:
             self.current_domain.add(int(domain.group(1)))
         return domain is not None and domain.group(2) == "1"
 
-    def _simple(self, ln: _Line) -> Stmt | None:
+    def _simple(self, ln: Line) -> Stmt | None:
         text, where = ln.text.replace(" ", ""), ln.where
         m = re.fullmatch(r"(movej|movel|movec|movep)\((.*)\)", text)
         if m:
@@ -419,7 +421,7 @@ class _Script:
         value = self._value(text)
         return int(value) if value is not None and value >= 0 and value == int(value) else None
 
-    def _declare(self, ln: _Line) -> bool:
+    def _declare(self, ln: Line) -> bool:
         """`[global] name = p[...]`, `= [j1, ..]`, or `= pose_add(A, B)` / `pose_trans(A, B)` of
         poses known here, assigned once in the file: a target."""
         m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
@@ -475,6 +477,8 @@ class _Script:
         if text in self.targets:
             t = self.targets[text]
             return (t.name, t.name, t)
+        if text in self.pose_values and self.in_sub == 0 and text not in self.nested_set:
+            return self.pose_values[text]
         m = re.fullmatch(r"get_inverse_kin\((.*),qnear=(?:\[.*\]|\w+)\)", text)  # PolyScope: `qnear=Waypoint_q`
         if m:
             return self._target(m.group(1), depth + 1)

@@ -15,9 +15,12 @@ from collections.abc import Callable
 
 from rmot.backends.readers.common import number, split_top
 from rmot.backends.readers.rapid import num_text
+from rmot.backends.readers.urscript_text import block_end
 from rmot.lang import ir
 
-__all__ = ["DIRECTION_FUNCTION", "DIRECTION_LINES", "direction_target", "rest_to_rest_shares", "share"]
+__all__ = [
+    "DIRECTION_FUNCTION", "DIRECTION_LINES", "direction_target", "kept_direction", "rest_to_rest_shares", "share",
+]
 
 
 def share(ratio: float) -> float | None:
@@ -103,3 +106,32 @@ def direction_target(texts: list[str], last: tuple[str, ir.Pose] | None,
     x, y, z = (p + o for p, o in zip(pose.position, offset))
     terms = ", ".join(f"{axis}={num_text(1000.0 * o)}mm" for axis, o in zip("xyz", offset) if abs(o) > 1e-12)
     return (f"shift({expr}, {terms})" if terms else expr), ir.Pose((x, y, z), pose.quaternion), split_top(move.group("move"))
+
+
+def kept_direction(texts: list[str], heads: list[str], i: int) -> tuple[str, int] | None:
+    """(why it stays native, the index after it) of a PolyScope Direction node whose thread
+    `thread move_thread_N():` is statement i (statements without spaces, their first words):
+    the thread, the `run`, and the program's `while (True):` that waits for it (its end). A node
+    moving "Until" tool contact or another condition ends its motion when that holds (no rmot
+    form); one moving until a distance, not read by direction_target, starts from the last move's
+    target (`get_target_waypoint()`), unknown here (after a block, a call, a native line)."""
+    m = re.fullmatch(r"threadmove_thread_(\d+)\(\):", texts[i]) if 0 < i < len(texts) else None
+    n = m.group(1) if m else ""
+    if m is None or texts[i - 1] != f"globalmove_thread_flag_{n}=0":
+        return None
+    j = block_end(heads, i)
+    if texts[j + 1:j + 4] != [f"move_thread_flag_{n}=0", f"move_thread_han_{n}=runmove_thread_{n}()", "while(True):"]:
+        return None
+    k = block_end(heads, j + 3)
+    waits = texts[j + 4:k]
+    if k < len(texts) and any("tool_contact(" in t for t in waits):
+        return "a PolyScope Direction node moving until tool contact: a motion that ends on a condition " \
+               "has no rmot form", k + 1
+    if k >= len(texts) or not any(t == f"if(move_thread_flag_{n}>1):" for t in waits):
+        return None
+    if sum(t.startswith("if(") for t in waits) > 1:
+        return "a PolyScope Direction node moving until a condition: a motion that ends on a condition " \
+               "has no rmot form", k + 1
+    return "a PolyScope Direction node: it moves from the last move's target (`get_target_waypoint()`), " \
+           "not known here (after a block, a call or a native line), or along a feature or direction " \
+           "not known here", k + 1

@@ -13,13 +13,26 @@ import math
 import re
 
 from rmot.backends.readers.common import number, split_top
-from rmot.backends.readers.model import Cond, Conds
+from rmot.backends.readers.model import Cond, Conds, Where
 from rmot.lang import ir
 
 __all__ = [
-    "ANY_ASSIGN", "NUMBER_ASSIGN", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
-    "outer", "pose_numbers", "scan_assignments", "split_statements", "split_word", "strip_hash", "ur_pose"
+    "ANY_ASSIGN", "NUMBER_ASSIGN", "Line", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
+    "outer", "polled_wait", "pose_numbers", "scan_assignments", "split_statements", "split_word", "strip_hash", "ur_pose"
 ]
+
+
+class Line:
+    """One statement of the script and where it begins."""
+
+    def __init__(self, text: str, where: Where) -> None:
+        self.text = text
+        self.where = where
+
+    @property
+    def head(self) -> str:
+        m = re.match(r"\s*(\w+)", self.text)
+        return m.group(1) if m else ""
 
 
 def ur_pose(values: list[float]) -> ir.Pose:
@@ -156,6 +169,26 @@ def input_cond(text: str, depth: int = 0) -> Cond | Conds | None:
     return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable_" else 0), on != (m.group(3) == "!="))
 
 
+def polled_wait(header: str, body: list[str]) -> tuple[Cond | Conds, float, int] | None:
+    """(the condition waited for, the test's interval in s, the statements it spans) of a wait
+    loop on digital inputs: `while TEST:` (PolyScope: `while (not(get_standard_digital_in(0) ==
+    True)):`), whose body (statements without spaces, then `end`) only waits, `sync()` (one
+    controller step), `sleep(T)` or both (a hand-written poll); the wait ends when TEST fails."""
+    w = re.fullmatch(r"while\b(.*):", header)
+    end = next((k for k in (1, 2) if k < len(body) and body[k] == "end"), 0)
+    sleeps = [re.fullmatch(r"sleep\(([\d.]+(?:[eE][+-]?\d+)?)\)", t) for t in body[:end]]
+    syncs = [t == "sync()" for t in body[:end]]
+    seconds = [number(m.group(1)) for m in sleeps if m]
+    if w is None or not end or not all(m or sync for m, sync in zip(sleeps, syncs)) or sum(syncs) > 1 or \
+            len(seconds) > 1 or any(v is None or not math.isfinite(v) for v in seconds):
+        return None
+    looped = input_cond(w.group(1))
+    if looped is None:
+        return None
+    cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,))
+    return cond, (seconds[0] or 0.0) if seconds else 0.0, end + 2
+
+
 def outer(text: str) -> str:
     """`text` stripped, without parentheses that enclose all of it."""
     text = text.strip()
@@ -181,6 +214,7 @@ def split_word(text: str, word: str) -> list[str]:
 
 
 NUMBER_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=\s*([-+\d.eE]+)")  # `[global] x = 0.25`
+_ELEMENT_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*\[[^=]*\]\s*=(?!=)")  # `offset[2] = e`
 ANY_ASSIGN = re.compile(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)")  # any assignment's name
 
 
@@ -190,7 +224,8 @@ def scan_assignments(texts: list[str], heads: list[str], program: bool) -> tuple
     value), how often in each function's own scope (its name, "" outside functions or with
     `global`), the names assigned inside a nested block (an if, loop, function or thread
     deeper than the program's own body, counted by `end`s as PolyScope does not always
-    indent), and the number each numeric assignment sets: a move reads a variable, and a
+    indent; a list or pose changed element by element, `offset[2] = e`, counts as nested
+    anywhere), and the number each numeric assignment sets: a move reads a variable, and a
     target is declared, only where its value is certain. `program`: the first statement is the
     program's own `def` (its body the program), not a function of a script."""
     assigned: dict[str, int] = {}
@@ -208,6 +243,9 @@ def scan_assignments(texts: list[str], heads: list[str], program: bool) -> tuple
             scoped[(scope, m.group(1))] = scoped.get((scope, m.group(1)), 0) + 1
             if depth > top:
                 nested.add(m.group(1))
+        element = _ELEMENT_ASSIGN.match(text)
+        if element:
+            nested.add(element.group(1))
         function = re.match(r"def\s+(\w+)\s*\(", text)
         if function and (depth > 0 or not top):
             functions.append((function.group(1), depth + 1))

@@ -16,7 +16,7 @@ import click
 
 from rmot.compiler.cli import EXIT_INPUT, EXIT_OK
 from rmot.compiler.cli.import_read import cell_signals, print_summary, read_on_robot, refuse_output_input, write_output
-from rmot.lang.diagnostics import render
+from rmot.lang.diagnostics import Diagnostic, Severity, render
 
 __all__ = ["import_", "DEFAULT_MODELS"]
 
@@ -89,7 +89,6 @@ def _pulse_scales(text: str, refused: str = "") -> tuple[float, ...]:
     """--pulses-per-degree read; E525 and exit 2 where it is not valid or `refused` says why not."""
     from rmot.backends.readers import codes  # late: loads numpy only when this runs
     from rmot.backends.readers.inform import pulse_scales  # late: loads numpy only when this runs
-    from rmot.lang.diagnostics import Diagnostic, Severity
 
     scales = refused or pulse_scales(text)
     if isinstance(scales, str):

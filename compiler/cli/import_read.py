@@ -19,9 +19,7 @@ from rmot.lang.diagnostics import render_all
 if TYPE_CHECKING:
     import numpy as np
 
-    from rmot.backends.readers import PulsePose
-
-    from rmot.backends.readers.model import Document
+    from rmot.backends.readers.model import Document, PulsePose
     from rmot.lang import ir
     from rmot.lang.ir import Pose
 

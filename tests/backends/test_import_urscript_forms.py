@@ -83,14 +83,16 @@ def test_pose_add_and_pose_trans_targets(tmp_path: Path) -> None:
 
 def test_a_variable_assigned_twice_is_not_a_target(tmp_path: Path) -> None:
     """A pose variable assigned again later (a value computed at run time) is no target: the
-    move that reads it stays native; a numeric variable set again by an expression no longer
-    gives a move's speed."""
+    move before the new value goes to the literal (its value there is certain), the move after it
+    stays native; a numeric variable set again by an expression no longer gives a move's speed."""
     doc, stmts = _read(tmp_path, "def prog():\n  global w_p = p[0.4, 0.1, 0.3, 0, 3.14159, 0]\n  speed = 0.25\n"
                        "  movel(w_p, a=1.2, v=speed)\n  w_p = get_actual_tcp_pose()\n  speed = speed * 2\n"
                        "  movel(w_p, a=1.2, v=speed)\nend\n")
     assert not doc.targets
     assert [s.text for s in stmts if isinstance(s, Native) and s.text.startswith("move")] == [
-        "movel(w_p, a=1.2, v=speed)", "movel(w_p, a=1.2, v=speed)"]
+        "movel(w_p, a=1.2, v=speed)"]
+    first = next(s for s in stmts if isinstance(s, Move))
+    assert first.target_name is None and first.speed == 250.0 and first.where.line == 4
 
 
 def test_statements_after_the_first_def_run(tmp_path: Path) -> None:

@@ -1,0 +1,79 @@
+"""URScript pose and joint variables assigned more than once, read where their value is certain.
+
+The scripts imitate PolyScope exports (Unitedplastic's `ExtendTest.script`: a Script node sets
+`p_5 = p[..]`, then an Assignment node `global p_5=p_5`, then a MoveL to `p_5`) and hand-written
+programs that reuse one pose variable for several points.
+
+Witnesses: the expectations are written by hand from the URScript manual (e-Series, "Scoping
+rules", module math: `pose_trans(A, B)` is B in A's frame), and every pose read is compared
+with scipy's Rotation of the rotation vector (and its composition), not the code under test.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rmot.backends.readers.model import Move, Native
+from tests.backends.test_import_urscript_forms import A, B, _matrix, _p, _read, _scipy
+
+_MOVE_OPTIONS = "a=1.2, v=0.25"
+
+
+def _poses(stmts: list[object]) -> list[np.ndarray]:
+    out = []
+    for s in stmts:
+        if isinstance(s, Move):
+            assert s.pose is not None and s.target_name is None
+            out.append(_matrix(s.pose.position, s.pose.quaternion))
+    return out
+
+
+def _native_moves(stmts: list[object]) -> list[str]:
+    return [s.text for s in stmts if isinstance(s, Native) and s.text.startswith("move")]
+
+
+def test_polyscope_script_node_then_assignment_node(tmp_path: Path) -> None:
+    """`p_5 = p[..]` then `global p_5=p_5` (the same value) then `movel(p_5)`: the move goes
+    to the literal's pose; `movej` of the other variable too."""
+    doc, stmts = _read(tmp_path, f"def prog():\n  p_5 = {_p(A)}\n  p_4 = {_p(B)}\n  global p_4=p_4\n"
+                       f"  global p_5=p_5\n  movej(p_4, a=1.4, v=1.05)\n  movel(p_5, {_MOVE_OPTIONS})\nend\n")
+    assert not _native_moves(stmts)
+    got = _poses(stmts)
+    assert len(got) == 2 and not doc.targets
+    assert np.allclose(got[0], _scipy(B), atol=1e-12) and np.allclose(got[1], _scipy(A), atol=1e-12)
+
+
+def test_a_variable_reused_for_several_points(tmp_path: Path) -> None:
+    """One variable set to a literal, moved to, set to another (a composition of known poses),
+    moved to: each move reads the value set last before it."""
+    text = (f"def prog():\n  pt = {_p(A)}\n  movel(pt, {_MOVE_OPTIONS})\n  pt = pose_trans({_p(A)}, {_p(B)})\n"
+            f"  movel(pt, {_MOVE_OPTIONS})\n  q = pt\n  pt = {_p(B)}\n  movel(q, {_MOVE_OPTIONS})\n"
+            f"  movel(pt, {_MOVE_OPTIONS})\nend\n")
+    _, stmts = _read(tmp_path, text)
+    expected = [_scipy(A), _scipy(A) @ _scipy(B), _scipy(A) @ _scipy(B), _scipy(B)]
+    got = _poses(stmts)
+    assert not _native_moves(stmts) and len(got) == 4
+    assert all(np.allclose(g, e, atol=1e-12) for g, e in zip(got, expected))
+
+
+def test_joint_list_variable(tmp_path: Path) -> None:
+    """`q = [..]` twice (rad): each movej reads the joints set last, in degrees."""
+    _, stmts = _read(tmp_path, "def prog():\n  q = [0, -1.5, 1.5, 0, 1.5, 0]\n  movej(q, a=1.4, v=1.05)\n"
+                     "  q = [0.5, -1.5, 1.5, 0, 1.5, 0]\n  movej(q, a=1.4, v=1.05)\nend\n")
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [m.joints[0] if m.joints else None for m in moves] == [0.0, np.degrees(0.5)]
+
+
+def test_uncertain_values_stay_native(tmp_path: Path) -> None:
+    """A value computed at run time, one set inside a branch, one changed element by element,
+    and one read inside a function (which may run after any assignment) leave their moves
+    native."""
+    text = (f"def prog():\n  def go():\n    movel(c, {_MOVE_OPTIONS})\n  end\n"
+            f"  a = {_p(A)}\n  a = get_actual_tcp_pose()\n  movel(a, {_MOVE_OPTIONS})\n"
+            f"  b = {_p(A)}\n  if get_standard_digital_in(1):\n    b = {_p(B)}\n  end\n  movel(b, {_MOVE_OPTIONS})\n"
+            f"  c = {_p(A)}\n  c = {_p(B)}\n  c[2] = 0.5\n  movel(c, {_MOVE_OPTIONS})\n  go()\nend\n")
+    _, stmts = _read(tmp_path, text)
+    assert _native_moves(stmts) == [f"movel(c, {_MOVE_OPTIONS})", f"movel(a, {_MOVE_OPTIONS})",
+                                    f"movel(b, {_MOVE_OPTIONS})", f"movel(c, {_MOVE_OPTIONS})"]
