@@ -114,6 +114,15 @@ SETTINGS_AFTER_CALL = Code("W527", "settings-after-call",
                            "with the speed, approximation, tool and base set before the call; the routine may "
                            "change them ($VEL, $APO, $TOOL, $BASE are global)")
 
+# KRL FOR loops over array elements (readers/krl_unroll.py)
+__all__ += ["LOOP_NOT_UNROLLED", "LOOP_UNROLLED"]
+LOOP_NOT_UNROLLED = Code("W537", "krl-loop-not-written-out",
+                         "a KRL FOR moves to array elements its counter selects over more iterations (or lines) than "
+                         "the import writes out: it stays a loop, its moves native")
+LOOP_UNROLLED = Code("W538", "krl-loop-written-out",
+                     "a KRL FOR moves to known array elements its counter selects, which an rmot target cannot: "
+                     "written out as its iterations")
+
 # KRL globals and controller flags read as task variables (krl_vars.py)
 __all__ += ["GLOBAL_READ_AS_VARIABLE"]
 GLOBAL_READ_AS_VARIABLE = Code("W542", "global-read-as-variable",

@@ -26,9 +26,12 @@ from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
 )
 from rmot.backends.readers.krl_data import (
-    data_objects, declared, data_list, home, numbered, keep_block, skip_function, with_state, named_loads, position, timed_wait,
+    data_objects, declared, data_list, home, numbered, keep_block, load_switch, skip_function, with_state, named_loads, position, timed_wait,
 )
+from rmot.backends.readers.krl_globals import ASSIGNMENT, public_globals
+from rmot.backends.readers.krl_flow import KnownPositions, data_value, known_target, literal
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
+from rmot.backends.readers.krl_unroll import unrolled_for
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_vars import SETUP_FOLD, axis_speed_loop, counted_loop
 from rmot.backends.readers.krl_why import (
@@ -46,9 +49,6 @@ from rmot.lang import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
 
-_MOTIONS = MOTIONS
-
-
 class _Krl:
     def __init__(self, src: tuple[str, str], dat: tuple[str, str] | None) -> None:
         self.tally = Tally(src[0], src[1], "krl")
@@ -56,7 +56,7 @@ class _Krl:
         self.data = data_list(dat)
         self.dat = dat
         config = config_near(src[0])
-        self.config = data_list(config)  # the robot's global declarations (positions found there on use)
+        self.config = {**public_globals(src[0], dat[0] if dat else None), **data_list(config)}  # $config.dat's, public ones
         self.config_file = config  # its path and text (globals the program sets: krl_vars.py)
         texts = [src[1]] + [t[1] for t in (dat, config) if t is not None]
         self.signals = {k: v for text in texts for k, v in signals(text).items()}
@@ -66,8 +66,7 @@ class _Krl:
         self.signatures = signatures(self.lines)
         self.params: dict[str, tuple[str, str]] = {}  # the parameters of the routine being read
         # a data object the program assigns holds its .dat value only until then: no constant target
-        self.assigned = {m.upper() for m in re.findall(r"(?im)^[ \t]*(\w+)[ \t]*(?:\[[^\]\n]*\])?[ \t]*(?:\.\w+)?"
-                                                       r"[ \t]*=(?!=)", src[1])}
+        self.assigned = {m.upper() for m in ASSIGNMENT.findall(src[1])}
         self.tools, self.frames, self.targets = data_objects(self.data, src[1], self.assigned)
         self.routines: list[Routine] = []
         self.names: set[str] = set()
@@ -81,6 +80,7 @@ class _Krl:
         # calls kept native or of routines that change the settings: W527 at the motion after one
         self.calls = UnreadCalls(self.tally, routines_setting_motion(self.lines))
         self.logic = KrlVars([], "", None, set(), lambda n: None)  # task variables (krl_logic.py), set in read()
+        self.flow = KnownPositions(re.search(r"(?im)^\s*(?:GLOBAL\s+)?INTERRUPT\s+DECL\b", src[1]) is not None)
 
     def _named(self, name: str, kind: str, pending: list[str]) -> Signal | None:
         """The input (kind "IN") a condition or the output ("OUT") a PULSE names: its SIGNAL's port;
@@ -143,6 +143,7 @@ class _Krl:
                                     "call, written as a proc (import it after its caller; alone, nothing runs it)",
                                     ln.where)
                 self.params = param_names(params)
+                self.flow.routine(self.lines, i)
                 body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), partial(self._block, i + 1, ("END",)))
                 self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
@@ -168,6 +169,14 @@ class _Krl:
                               Where(self.tally.path, 1))
 
     def _statement(self, i: int) -> tuple[list[Stmt], int]:
+        """The statement at `i`, the positions known there observed first and forgotten after a block."""
+        self.flow.observe(self.lines, i, lambda key: data_value(key, (self.data, self.config), self.assigned))
+        out, j = self._statement_read(i)
+        if j > i + 1:
+            self.flow.disturb(self.lines[i:j])
+        return out, j
+
+    def _statement_read(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
         self.at = ln.where  # where a setting read from the line's text is located
         if ln.endfold:
@@ -199,7 +208,7 @@ class _Krl:
         if assign is not None:
             self.tally.imported += 1
             return [assign], i + 1
-        if self._load_switch(i):
+        if load_switch(self.lines, i):
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text):
             return [], i + 1
@@ -211,7 +220,7 @@ class _Krl:
             return self.logic.with_else(timed, self.lines, i, self._block, self._cond)
         stmt = self._simple(ln)
         if stmt is None:
-            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in _MOTIONS else \
+            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in MOTIONS else \
                 other_why(word, ln.text, self.last is not None) or self.logic.why(ln.text)
             self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
@@ -260,6 +269,9 @@ class _Krl:
             loop = counted_loop(self.lines, i)  # (counter, first, stop, its increment to leave out) or why not
             if not isinstance(loop, tuple):
                 return keep_block(self.lines, self.tally, i, word, end, loop)
+            flat = unrolled_for(self, i, loop[0], loop[1], loop[2] - 1) if loop[3] is None else None
+            if flat is not None:
+                return flat
             name, first, stop, self.logic.skipped = loop[0], loop[1], loop[2], {*self.logic.skipped, loop[3]}
             saved, params = set(self.names), self.params
             self.names.add(name)
@@ -298,7 +310,7 @@ class _Krl:
 
     def _names(self) -> Names:
         """What the program's names are, for saying why a motion stays native."""
-        return (self.targets, self.assigned, self.variables, {**self.config, **self.data})
+        return (self.targets, {n: self.flow.lost.get(n, "") for n in self.assigned}, self.variables, {**self.config, **self.data})
 
     # ---------------------------------------------------------------- modal variables
 
@@ -351,14 +363,6 @@ class _Krl:
     def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
         """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
         return named_loads(self.data)
-
-    def _load_switch(self, i: int) -> bool:
-        """`$LOAD=name` that is not the load of the tool the line before selects: a switch of the
-        held load (an attach or detach)."""
-        if re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", self.lines[i].text) is None:
-            return False
-        before = next((ln.text for ln in reversed(self.lines[:i]) if ln.text), "")
-        return re.match(r"(?i)\$TOOL\s*=", before) is None
 
     def _tool_base(self, which: str, name: str) -> bool:
         key = name.upper()
@@ -421,7 +425,7 @@ class _Krl:
 
     def _simple(self, ln: Line) -> Stmt | None:
         text, word, where = ln.text, ln.word, ln.where
-        if word in _MOTIONS:
+        if word in MOTIONS:
             move = self._motion(word, text[len(word):].strip(), where)
             self.last = (move.target, move.target_name, declared(move)) if move and move.pose else None
             return move
@@ -464,6 +468,9 @@ class _Krl:
             terms = ", ".join(f"{axis}={mm(e)}" for axis, e in sorted(offsets.items()))
             named = rmot_name(decl.name)
             return (f"shift({named}, {terms})" if terms else named, decl.name, decl)
+        known = self.flow.get(key)
+        if known is not None:
+            return known_target(known, at or Where(self.tally.path, 1), self._target)
         if key not in self.targets and key in self.config and key.split("[")[0] not in self.assigned:
             found = position(*self.config[key])  # a global position of the robot's $config.dat
             if found is not None:
@@ -482,12 +489,10 @@ class _Krl:
                 return None
             return (f"{left[0]} * {pose_expr(offset)}", left[1], Target("", left[2].pose * offset, None, None, left[2].where))
         agg = aggregate(text)  # a literal position: Cartesian where it has X..C, else axes A1..A6
-        literal = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
-        if literal is None:
+        found = position("E6POS" if krl_pose(agg) else "E6AXIS", "", agg, Where("", 0)) if agg is not None else None
+        if found is None:
             return None
-        expr = pose_expr(literal.pose) if literal.pose is not None else \
-            f"joints({', '.join(num_text(j) for j in literal.joints or ())}) deg"
-        return (expr, None, literal)
+        return (literal(found), None, found)
 
     def _relative(self, word: str, rest: str, where: Where) -> Move | None:
         """`LIN_REL {X dx, Y dy, Z dz} [C_DIS] [#BASE|#TOOL]` (KSS 8.x, relative motions: the
@@ -513,7 +518,7 @@ class _Krl:
         """A motion statement; `point`: its target already read (a relative move's)."""
         if re.search(r"(?i)\bWITH\b", rest):
             return self._with(word, rest, where)
-        kind = _MOTIONS[word]
+        kind = MOTIONS[word]
         m = re.fullmatch(r"(?is)(.*?)\s*(C_PTP\s+C_DIS|C_DIS\s+C_DIS|C_PTP|C_DIS|C_VEL|C_ORI|C_SPL)?", rest)
         points = split_top(m.group(1)) if m else []
         if kind == "joint" and any(len(split_top(p, ":")) > 1 for p in points):
@@ -572,7 +577,7 @@ class _Krl:
         m = re.match(r"(?i)(S?PTP|S?LIN|S?CIRC)\s+(.*)", header)
         if m is None:
             return [], i + 1  # the statements inside are read as they come
-        if not any(ln.word in _MOTIONS for ln in self.lines[i + 1:end]):
+        if not any(ln.word in MOTIONS for ln in self.lines[i + 1:end]):
             self.tally.warn(codes.FOLD_DISABLED, f"the inline form `{header[:40]}` has its statements commented "
                             "out: the controller skips it, and so does the import", self.lines[i].where)
             return [], end + 1

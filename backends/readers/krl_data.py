@@ -21,7 +21,7 @@ from rmot.lang import ir
 
 __all__ = [
     "Data", "data_list", "position", "declared", "named_loads", "timed_wait", "keep_block",
-    "skip_function", "with_state", "home", "numbered", "data_objects",
+    "skip_function", "with_state", "home", "numbered", "data_objects", "load_switch",
 ]
 
 Data = tuple[str, str, object, Where]  # type, name as written, value (aggregate or number), where
@@ -199,3 +199,12 @@ def data_objects(data: dict[str, Data], src: str, assigned: set[str]
             if found is not None:
                 targets[key] = found
     return tools, frames, targets
+
+
+def load_switch(found: list[Line], i: int) -> bool:
+    """`$LOAD=name` that is not the load of the tool the line before selects: a switch of the
+    held load (an attach or detach)."""
+    if re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", found[i].text) is None:
+        return False
+    before = next((ln.text for ln in reversed(found[:i]) if ln.text), "")
+    return re.match(r"(?i)\$TOOL\s*=", before) is None

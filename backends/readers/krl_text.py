@@ -105,13 +105,13 @@ class Decl:
 
 
 def declarations(found: list[Line]) -> list[Decl]:
-    """Every `[DECL] [GLOBAL] TYPE name[=value]` line of a data list, and every element of an
+    """Every `[DECL] [GLOBAL] [CONST] TYPE name[=value]` line of a data list, and every element of an
     array, `DECL TYPE name[n]` then `name[i]=value` (KSS 8.x, arrays in data lists: the pendant
     writes each initialised element on its own line), as `name[i]`."""
     out = []
     arrays: dict[str, str] = {}
     for ln in found:
-        m = re.fullmatch(r"(?is)(?:DECL\s+)?(?:GLOBAL\s+)?([A-Za-z_]\w*)\s+([A-Za-z_]\w*)\s*(?:=\s*(.*))?", ln.text)
+        m = re.fullmatch(r"(?is)(?:DECL\s+)?(?:GLOBAL\s+)?(?:CONST\s+)?([A-Za-z_]\w*)\s+([A-Za-z_]\w*)\s*(?:=\s*(.*))?", ln.text)
         if m and m.group(1).upper() not in ("DEFDAT", "ENDDAT", "EXT", "EXTFCT", "SIGNAL", "STRUC", "ENUM"):
             out.append(Decl(m.group(1).upper(), m.group(2), m.group(3), ln.where))
             continue

@@ -4,10 +4,10 @@ A motion is read only where its target, speed and approximation are certain from
 its data lists. Where one is not, the reason names it: a position the program assigns (KSS 8.x
 Operating and Programming Instructions for System Integrators: a data object holds its data-list
 value only until a statement assigns it), one declared without a value or in no data list found
-(the declarations of other modules' data lists are not read), an index computed at run time,
-`$POS_ACT` (the robot's current position, read when the line runs), an approximation whose system
-variable no line before sets, or an inline form whose velocity is a variable or whose motion data
-set is declared nowhere the import sees.
+(of other modules' data lists, only the GLOBAL declarations of public ones in the program's folder
+are read), an index computed at run time, `$POS_ACT` (the robot's current position, read when the
+line runs), an approximation whose system variable no line before sets, or an inline form whose
+velocity is a variable or whose motion data set is declared nowhere the import sees.
 """
 
 from __future__ import annotations
@@ -38,13 +38,17 @@ def _point_why(point: str, names: Names) -> str | None:
         return None
     base = m.group(1)
     if base in assigned:
+        how = assigned.get(base) if isinstance(assigned, Mapping) else None
+        if how:  # the line that made its value one known only at run time (krl_flow.py)
+            return f"`{point.strip()}` is {how}"
         return f"`{point.strip()}` is assigned in the program: its value is known only at run time"
     if m.group(2) is not None and not m.group(2).isdigit():
         return f"`{point.strip()}` is chosen by an index known only at run time"
     if text not in data and (base in declared or base in data):
         return f"`{point.strip()}` is declared without a value: it is set at run time"
     if text not in data:
-        return f"`{point.strip()}` is declared in neither the program's .dat nor a $config.dat found"
+        return (f"`{point.strip()}` is declared in neither the program's .dat nor a $config.dat found, nor GLOBAL "
+                "in a public data list (DEFDAT .. PUBLIC) of its folder")
     return None
 
 

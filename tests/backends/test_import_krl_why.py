@@ -87,7 +87,7 @@ REASONS = {
     "SPTP $AXIS_ACT": "`$AXIS_ACT` is where the robot stands when the line runs",
     "PTP lfPrePos[1] C_PTP": "C_PTP blends by $APO.CPTP, which no line before it sets",
     "LIN lfWorkPos[1]": "`lfWorkPos[1]` is declared without a value: it is set at run time",
-    "LIN POS_A": "`POS_A` is assigned in the program: its value is known only at run time",
+    "LIN POS_A": "`POS_A` is assigned at line 20 (`POS_A = PUNTO[n]`) a value known only at run time",
     "LIN xInsideWall[iWall]": "`xInsideWall[iWall]` is chosen by an index known only at run time",
     "LIN xNowhere": "`xNowhere` is declared in neither the program's .dat nor a $config.dat found",
     ";FOLD PTP HOME": "an inline form rmot cannot read: its velocity `ptpM` is a variable",
