@@ -615,6 +615,12 @@ class InformBackend(Backend):
         if isinstance(c, ir.InputCondition):
             test = self.condition(c, node.span, negate)
             return ([], test) if test is not None else None
+        if isinstance(c, ir.OutputRead):
+            # OT#(n) is the general output's state, tested as IN#(n) is in JUMP ... IF and
+            # WAIT (YRC1000 INFORM Language manual, "JUMP", "WAIT": OT#(n)=ON/OFF)
+            if not self.port_ok(c.port, "digital output", node.span):
+                return None
+            return [], f"OT#({c.port})={'OFF' if negate else 'ON'}"
         if isinstance(c, ir.VarRef):
             return [], f"{self._var(c.name, ctx, node.span)}{'=' if negate else '<>'}0"
         if not isinstance(c, ir.Compare):
