@@ -293,7 +293,7 @@ class _Script:
         w = re.fullmatch(r"while\b(.*):", self.lines[i].text) if len(t) == 3 else None
         # PolyScope: `while (not(get_standard_digital_in(0) == True)):`; the wait ends when the test fails
         looped = input_cond(w.group(1)) if w and t[1:] == ["sync()", "end"] else None
-        cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,)) if looped else None
+        cond = looped.negated() if isinstance(looped, Cond) else Conds("not", (looped,)) if looped else None
         return ([WaitIn(cond, None, self.lines[i].where)], i + 3) if cond else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:

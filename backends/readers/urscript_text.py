@@ -146,7 +146,7 @@ def input_cond(text: str, depth: int = 0) -> Cond | Conds | None:
     if negated:
         inner = input_cond(negated.group(1), depth + 1)
         if inner is None or isinstance(inner, Cond):
-            return Cond(inner.signal, not inner.on) if inner else None
+            return inner.negated() if inner else None
         return Conds("not", (inner,))
     # get_digital_in(n): the CB-Series name of get_standard_digital_in for n 0..7 (8, 9 are the tool's)
     m = re.fullmatch(r"get_(standard_|configurable_|)digital_in\((\d+)\)(?:(==|!=)(True|False))?", text.replace(" ", ""))
