@@ -38,6 +38,7 @@ _SIMPLE = (
     ("aout", re.compile(r"AOUT AO#\((\d+)\) (-?[\d.]+)")),
     ("wait", re.compile(r"TIMER T=([\d.]+)")),
     ("wait_in", re.compile(r"WAIT IN#\((\d+)\)=(ON|OFF)")),
+    ("wait_out", re.compile(r"WAIT OT#\((\d+)\)=(ON|OFF)")),  # the general output's state
     ("call_renamed", re.compile(r"CALL JOB:(\w+)")),
 )
 
@@ -306,7 +307,7 @@ class _Job:
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`JUMP *La IF IN#(n)=X`, then, [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when not X)."""
-        m = re.fullmatch(r"JUMP \*(L\w+) IF IN#\((\d+)\)=(ON|OFF)", self._text(i))
+        m = re.fullmatch(r"JUMP \*(L\w+) IF (IN|OT)#\((\d+)\)=(ON|OFF)", self._text(i))
         if m is None:
             return None
         arms = label_arms(self._text, i, end, f"*{m.group(1)}", _JUMP, lambda n: f"*{n}")
@@ -315,7 +316,7 @@ class _Job:
         ja, jb = arms
         then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
-        cond = Cond(int(m.group(2)), m.group(3) == "OFF")
+        cond = Cond(int(m.group(3)), m.group(4) == "OFF", m.group(2) == "OT")
         return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
