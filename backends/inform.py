@@ -687,8 +687,13 @@ class InformBackend(Backend):
 
     def wait_condition(self, node: ir.WaitCondition, ctx: InformContext) -> list[str]:
         """A condition other than one input: polled (`TIMER T=0.01` per test, W431); the timeout
-        counts the polls in a D temporary (each poll lasts at least POLL_STEP)."""
+        counts the polls in a D temporary (each poll lasts at least POLL_STEP). One output's
+        state without a timeout is INFORM's own `WAIT OT#(n)=ON|OFF` (INFORM manual, "WAIT")."""
         ctx.vars.reset()
+        read = node.condition.operand if isinstance(node.condition, ir.Not) else node.condition
+        if node.timeout is None and isinstance(read, ir.OutputRead):
+            one = self._test(node.condition, False, ctx, node)
+            return [f"WAIT {one[1]}"] if one is not None else []
         counted = (" and its timeout counted in polls (the wait lasts at least the timeout)"
                    if node.timeout is not None else "")
         self.warn(codes.WAIT_POLLED, "INFORM's WAIT must test one signal; this condition "

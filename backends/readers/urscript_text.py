@@ -149,11 +149,14 @@ def input_cond(text: str, depth: int = 0) -> Cond | Conds | None:
             return inner.negated() if inner else None
         return Conds("not", (inner,))
     # get_digital_in(n): the CB-Series name of get_standard_digital_in for n 0..7 (8, 9 are the tool's)
-    m = re.fullmatch(r"get_(standard_|configurable_|)digital_in\((\d+)\)(?:(==|!=)(True|False))?", text.replace(" ", ""))
-    if m is None or (m.group(1) == "" and int(m.group(2)) > 7):
+    # get_*_digital_out(n): the output's state, read as out[n]
+    m = re.fullmatch(r"get_(standard_|configurable_|)digital_(in|out)\((\d+)\)(?:(==|!=)(True|False))?",
+                     text.replace(" ", ""))
+    if m is None or (m.group(1) == "" and int(m.group(3)) > 7):
         return None
-    on = (m.group(4) or "True") == "True"
-    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable_" else 0), on != (m.group(3) == "!="))
+    on = (m.group(5) or "True") == "True"
+    return Cond(int(m.group(3)) + (8 if m.group(1) == "configurable_" else 0), on != (m.group(4) == "!="),
+                m.group(2) == "out")
 
 
 def outer(text: str) -> str:
