@@ -5,9 +5,9 @@ Witnesses, none of them the backends' code:
 - RAPID and KRL: vendor_expr_witness.evaluate, written from each vendor's operator priorities,
   with DOutput(sig) read as 0/1 (RAPID Instructions, Functions and Data types, "DOutput") and
   $OUT[n] as a BOOL (KSS 8.x, "System variables");
-- URScript: Python's own `ast` walked by hand here (URScript's not/and/or and comparisons read
-  as Python's: URScript Programming Language manual, "Operators"), with get_standard_digital_out(n)
-  bound to the output's state;
+- URScript: Python's own `ast` walked by the URScript import tests' evaluator (URScript's
+  not/and/or and comparisons read as Python's: URScript Programming Language manual,
+  "Operators"), with get_standard_digital_out(n) bound to the output's state;
 - Fanuc TP and INFORM: the `IF DO[n]=ON/OFF,JMP LBL[k]` / `JUMP *L IF OT#(n)=ON/OFF` line read
   here by hand: the jump skips the `then` arm exactly when the IR's condition is false.
 """
@@ -20,6 +20,7 @@ import re
 
 import pytest
 from backend_fixtures import BRAND_ROBOT, FRONT_UP_NOFLIP, Q, hand_plan, span_at
+from test_import_urscript_runtime import _eval as python_meaning
 from vendor_expr_witness import KRL_PRIORITY, RAPID_PRIORITY, evaluate
 
 from rmot.backends import BACKENDS
@@ -78,34 +79,13 @@ def test_rapid_and_krl_read_the_output_as_the_ir_means(vendor: str, priority: di
         assert evaluate(text, priority, leaf) == _python(out2, out3, in1), (text, state)
 
 
-def _python_bool(node: ast.AST, reads: dict[str, bool]) -> object:
-    """A URScript condition of not/and/or, == and the vendor's read calls (no eval)."""
-    if isinstance(node, ast.Expression):
-        return _python_bool(node.body, reads)
-    if isinstance(node, ast.BoolOp):
-        values = [_python_bool(v, reads) for v in node.values]
-        return all(values) if isinstance(node.op, ast.And) else any(values)
-    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.Not):
-        return not _python_bool(node.operand, reads)
-    if isinstance(node, ast.Compare) and len(node.ops) == 1 and isinstance(node.ops[0], (ast.Eq, ast.NotEq)):
-        equal = _python_bool(node.left, reads) == _python_bool(node.comparators[0], reads)
-        return equal if isinstance(node.ops[0], ast.Eq) else not equal
-    if isinstance(node, ast.Constant) and isinstance(node.value, bool):
-        return node.value
-    if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and len(node.args) == 1:
-        arg = node.args[0]
-        assert isinstance(arg, ast.Constant)
-        return reads[f"{node.func.id}({arg.value})"]
-    raise AssertionError(f"no URScript meaning for {ast.dump(node)}")
-
-
 def test_urscript_reads_get_standard_digital_out() -> None:
     text = _condition("urscript", r"\n\s*if (.*):")
     assert "get_standard_digital_out(2)" in text and "get_standard_digital_out(3)" in text
     for out2, out3, in1 in STATES:
         reads = {"get_standard_digital_out(2)": out2, "get_standard_digital_out(3)": out3,
                  "get_standard_digital_in(1)": in1}
-        assert _python_bool(ast.parse(text, mode="eval"), reads) == _python(out2, out3, in1), (text, reads)
+        assert python_meaning(ast.parse(text, mode="eval"), dict(reads)) == _python(out2, out3, in1), (text, reads)
 
 
 @pytest.mark.parametrize(
