@@ -612,6 +612,11 @@ class FanucBackend(Backend):
         if isinstance(c, ir.InputCondition):
             self.port_ok(c.port, "digital input", node.span)
             return [], f"DI[{c.port}{_sig(c.signal)}]={self._level(c.value != negate)}"
+        if isinstance(c, ir.OutputRead):
+            # IF and WAIT compare DO[i] with ON/OFF as they do DI[i] (FANUC B-83284EN §4.15
+            # IF "(variable) (operator) (value)", variable: I/O such as DO[i]; §4.16 WAIT)
+            self.port_ok(c.port, "digital output", node.span)
+            return [], f"DO[{c.port}{_sig(c.signal)}]={self._level(not negate)}"
         if isinstance(c, ir.VarRef):
             return [], f"{self._reg(c.name, ctx, node.span)}{'=' if negate else '<>'}0"
         if not isinstance(c, ir.Compare):

@@ -61,7 +61,7 @@ def _tp_number(value: float | int | bool) -> str:
 
 
 def _leaf(c: object) -> bool:
-    return isinstance(c, (ir.InputCondition, ir.VarRef, ir.Compare)) or (
+    return isinstance(c, (ir.InputCondition, ir.OutputRead, ir.VarRef, ir.Compare)) or (
         isinstance(c, ir.Not) and _leaf(c.operand))
 
 

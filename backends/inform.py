@@ -637,6 +637,12 @@ class InformBackend(Backend):
         if isinstance(c, ir.InputCondition):
             test = self.condition(c, node.span, negate)
             return ([], test) if test is not None else None
+        if isinstance(c, ir.OutputRead):
+            # OT#(n) is the general output's state, tested as IN#(n) is in JUMP ... IF and
+            # WAIT (YRC1000 INFORM Language manual, "JUMP", "WAIT": OT#(n)=ON/OFF)
+            if not self.port_ok(c.port, "digital output", node.span):
+                return None
+            return [], f"OT#({c.port})={'OFF' if negate else 'ON'}"
         if isinstance(c, ir.VarRef):
             return [], f"{self._var(c.name, ctx, node.span)}{'=' if negate else '<>'}0"
         if not isinstance(c, ir.Compare):
@@ -703,8 +709,13 @@ class InformBackend(Backend):
 
     def wait_condition(self, node: ir.WaitCondition, ctx: InformContext) -> list[str]:
         """A condition other than one input: polled (`TIMER T=0.01` per test, W431); the timeout
-        counts the polls in a D temporary (each poll lasts at least POLL_STEP)."""
+        counts the polls in a D temporary (each poll lasts at least POLL_STEP). One output's
+        state without a timeout is INFORM's own `WAIT OT#(n)=ON|OFF` (INFORM manual, "WAIT")."""
         ctx.vars.reset()
+        read = node.condition.operand if isinstance(node.condition, ir.Not) else node.condition
+        if node.timeout is None and isinstance(read, ir.OutputRead):
+            one = self._test(node.condition, False, ctx, node)
+            return [f"WAIT {one[1]}"] if one is not None else []
         counted = (" and its timeout counted in polls (the wait lasts at least the timeout)"
                    if node.timeout is not None else "")
         self.warn(codes.WAIT_POLLED, "INFORM's WAIT must test one signal; this condition "

@@ -179,6 +179,12 @@ def _krl_dialect(self: KrlBackend, ctx: KrlContext, span: object) -> _rt.ExprDia
         self.port_ok(c.port, "digital input", span)  # type: ignore[arg-type]
         return f"$IN[{c.port}]=={self._level(c.value)}"
 
+    def output(o: ir.OutputRead) -> str:
+        # $OUT[n] is readable as a BOOL in any expression (KSS 8.x Programming for System
+        # Integrators, "System variables": $OUT, "digital outputs ... read and written").
+        self.port_ok(o.port, "digital output", span)  # type: ignore[arg-type]
+        return f"$OUT[{o.port}]"
+
     def group(g: ir.GroupInput) -> str:
         # KRL reads a group of inputs by the name of a SIGNAL declaration (`SIGNAL PGNO_IN
         # $IN[33] TO $IN[40]`, read as an INT: KSS 8.x Programming for System Integrators,
@@ -194,7 +200,7 @@ def _krl_dialect(self: KrlBackend, ctx: KrlContext, span: object) -> _rt.ExprDia
     return _rt.ExprDialect(
         true="TRUE", false="FALSE", and_="AND", or_="OR", not_="NOT ", compare=_KRL_COMPARE,
         var=lambda v: ctx.names.name(v.name), digital=digital, analog=analog, group=group,
-        real_division=lambda a, b: f"({a}*1.0)/{b}", number=lambda v: _rt.trimmed(fmt(v, 6)),
+        output=output, real_division=lambda a, b: f"({a}*1.0)/{b}", number=lambda v: _rt.trimmed(fmt(v, 6)),
     )
 
 

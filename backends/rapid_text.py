@@ -231,6 +231,9 @@ def _dialect(self: RapidBackend, ctx: RapidContext, span: object) -> _rt.ExprDia
                            f"= {int(c.value)}"),
         analog=lambda a: f"AInput({self._signal(ctx, 'ai', a.port, a.signal, span)})",
         group=lambda g: _group(self, ctx, g, span),
+        # DOutput reads the value of a digital output signal, 0 or 1 (RAPID Instructions,
+        # Functions and Data types, "DOutput - Reads the value of a digital output signal")
+        output=lambda o: f"DOutput({self._signal(ctx, 'do', o.port, o.signal, span)}) = 1",
         number=lambda v: _rt.trimmed(fmt(v, 6)), compare_binds_tighter=True,
     )
 

@@ -54,6 +54,7 @@ class ExprDialect:
     digital: Callable[[ir.InputCondition], str]  # the whole test `DInput(di1) = 1`
     analog: Callable[[ir.AnalogInput], str]  # the value in volts
     group: Callable[[ir.GroupInput], str]  # the group's unsigned integer (or a refusal, then "0")
+    output: Callable[[ir.OutputRead], str]  # the whole test "the output is on" `DOutput(do1) = 1`
     real_division: Callable[[str, str], str] = lambda a, b: f"{a} / {b}"  # a/b of two INTs
     number: Callable[[float], str] = lambda v: repr(float(v))
     # comparisons bind tighter than and/or (RAPID, URScript): written bare inside and/or
@@ -81,6 +82,8 @@ def expr_text(e: Any, d: ExprDialect) -> str:
         return d.analog(e)
     if isinstance(e, ir.GroupInput):
         return d.group(e)
+    if isinstance(e, ir.OutputRead):
+        return d.output(e)
     if isinstance(e, ir.Arith):
         left, right = _operand(e.left, d), _operand(e.right, d)
         if e.op == "/" and is_int(e.left) and is_int(e.right):
@@ -90,7 +93,7 @@ def expr_text(e: Any, d: ExprDialect) -> str:
         return f"{_operand(e.left, d)} {d.compare[e.op]} {_operand(e.right, d)}"
     if isinstance(e, ir.Logic):
         word = d.and_ if e.op == "and" else d.or_
-        bare = (ir.Compare, ir.InputCondition) if d.compare_binds_tighter else ()
+        bare = (ir.Compare, ir.InputCondition, ir.OutputRead) if d.compare_binds_tighter else ()
         return f" {word} ".join(
             expr_text(o, d) if isinstance(o, bare) else _operand(o, d) for o in e.operands
         )
@@ -101,7 +104,7 @@ def expr_text(e: Any, d: ExprDialect) -> str:
 
 def _operand(e: Any, d: ExprDialect) -> str:
     text = expr_text(e, d)
-    compound = isinstance(e, (ir.Arith, ir.Compare, ir.Logic, ir.Not, ir.InputCondition))
+    compound = isinstance(e, (ir.Arith, ir.Compare, ir.Logic, ir.Not, ir.InputCondition, ir.OutputRead))
     if isinstance(e, ir.Const) and not isinstance(e.value, bool) and float(e.value) < 0:
         compound = True
     return f"({text})" if compound else text

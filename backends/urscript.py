@@ -511,6 +511,12 @@ def _ur_dialect(self: UrScriptBackend, ctx: UrContext, span: object) -> _rt.Expr
     def digital(c: ir.InputCondition) -> str:
         return self.condition(c, span) or "False"
 
+    def output(o: ir.OutputRead) -> str:
+        # get_standard_digital_out(n) / get_configurable_digital_out(n) return the output's
+        # bool state (URScript Programming Language manual, "Interfaces" module)
+        sig = self.digital(o.port, span, "out")
+        return f"get_{sig})" if sig else "False"
+
     def group(g: ir.GroupInput) -> str:
         # URScript reads digital inputs one by one (get_standard_digital_in); its integer
         # input registers (read_input_integer_register) are fieldbus/RTDE registers another
@@ -522,7 +528,7 @@ def _ur_dialect(self: UrScriptBackend, ctx: UrContext, span: object) -> _rt.Expr
 
     return _rt.ExprDialect(
         true="True", false="False", and_="and", or_="or", not_="not ", compare=_UR_COMPARE,
-        var=lambda v: _uname(ctx, v.name), digital=digital, analog=analog, group=group,
+        var=lambda v: _uname(ctx, v.name), digital=digital, analog=analog, group=group, output=output,
         real_division=lambda a, b: f"({a} * 1.0) / {b}", number=lambda v: _rt.trimmed(fmt(v, 6)),
     )
 

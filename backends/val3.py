@@ -415,6 +415,10 @@ class Val3Backend(Backend):
         if isinstance(e, ir.InputCondition):
             test = self.condition(e, node.span, ctx) or "false"
             return f"({test})" if nested else test
+        if isinstance(e, ir.OutputRead):  # a dio linked to an output reads its state (VAL3 manual, "dio")
+            sig = self.port(e.port, node.span, True, ctx)
+            test = f"{sig} == true" if sig else "false"
+            return f"({test})" if nested else test
         if isinstance(e, ir.AnalogInput):
             if not self.port_ok(e.port, "analog input", node.span):
                 return "0"

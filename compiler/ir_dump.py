@@ -116,6 +116,8 @@ def rt_text(e: ir.RtExpr) -> str:
         return f"ain[{e.port}]"
     if isinstance(e, ir.GroupInput):
         return f"gin[{e.port}]"
+    if isinstance(e, ir.OutputRead):
+        return f"out[{e.port}]"
     if isinstance(e, ir.InputCondition):
         return f"in[{e.port}] == {'on' if e.value else 'off'}"
     if isinstance(e, ir.Arith):

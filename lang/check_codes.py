@@ -151,7 +151,7 @@ WHILE_PARTS_DIFFER = Code(
 RT_BAD_IO = Code(
     "E161",
     "runtime-bad-io",
-    "a condition reads an output (out[n]/aout[n]); conditions read in[n] and ain[n]",
+    "a condition reads an analog output (aout[n]); conditions read in[n], out[n], ain[n] and gin[n]",
 )
 RT_DIVISION_BY_ZERO = Code(
     "E162", "division-by-zero", "a runtime expression divides by the constant 0"

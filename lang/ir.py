@@ -47,7 +47,7 @@ __all__ = [
     "SetDigital", "Shoulder", "Sphere", "Sync", "Task", "Tool", "ToolRef", "WaitInput",
     "WaitTime", "Wrist", "Zone", "payload_cog",
     "Attach", "Detach", "Part",
-    "AnalogInput", "Arith", "GroupInput", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
+    "AnalogInput", "Arith", "GroupInput", "OutputRead", "Assign", "Compare", "CompareOp", "Condition", "Const", "Logic",
     "Loop", "LoopIteration", "Not", "RtExpr", "Stop", "ValueType", "VarDecl", "VarRef",
     "WaitCondition", "While",
     "FreeMotion",
@@ -688,6 +688,16 @@ class GroupInput:
 
 
 @record(slots=True)
+class OutputRead:
+    """`out[port]`: the state the controller holds for its own digital output (BOOL). At
+    program start it is whatever the last program left, so both arms of a branch on it are
+    planned and verified, as for an input."""
+
+    port: int
+    signal: str | None = None
+
+
+@record(slots=True)
 class Arith:
     """`left op right`, op one of + - * / ; type INT unless an operand is NUM or op is '/'."""
 
@@ -719,8 +729,8 @@ class Not:
 
 # A value computed at runtime; `InputCondition` (a digital input tested against on/off) is the
 # BOOL leaf every backend already writes, so a plain `if in[1] == on` lowers exactly as before.
-RtExpr = Union[Const, VarRef, AnalogInput, GroupInput, Arith, Compare, Logic, Not, InputCondition]
-Condition = Union[InputCondition, Compare, Logic, Not, VarRef, Const]
+RtExpr = Union[Const, VarRef, AnalogInput, GroupInput, OutputRead, Arith, Compare, Logic, Not, InputCondition]
+Condition = Union[InputCondition, Compare, Logic, Not, VarRef, Const, OutputRead]
 
 
 @record(slots=True, kw_only=True)

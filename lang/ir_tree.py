@@ -216,7 +216,7 @@ def bind_loop_variable(body: tuple[ir.Instr, ...], name: str, value: int) -> tup
             return dataclasses.replace(e, operands=operands)  # type: ignore[arg-type]
         if isinstance(e, ir.Not):
             return ir.Not(expr(e.operand))  # type: ignore[arg-type]
-        return e  # Const, AnalogInput, GroupInput, InputCondition
+        return e  # Const, AnalogInput, GroupInput, OutputRead, InputCondition
 
     def instr(i: ir.Instr) -> ir.Instr:
         changes: dict[str, object] = {}

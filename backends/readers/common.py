@@ -179,6 +179,7 @@ SIMPLE_FORMS: dict[str, Callable[[re.Match[str], Where], Stmt]] = {
     "aout": lambda m, w: SetOut(int(m.group(1)), float(m.group(2)), w, analog=True),
     "wait": lambda m, w: Wait(float(m.group(1)), w),
     "wait_in": lambda m, w: WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), None, w),
+    "wait_out": lambda m, w: WaitIn(Cond(int(m.group(1)), m.group(2) == "ON", output=True), None, w),
     "wait_true": lambda m, w: WaitIn(Cond(int(m.group("sig")), not m.group("neg")), None, w),  # WAIT (!DI[n])
     "call": lambda m, w: Call(m.group(1), (), w),  # the routine keeps the name it has in its file
     "call_renamed": lambda m, w: Call(rmot_name(m.group(1)), (), w),  # a routine named as rmot names it

@@ -258,12 +258,12 @@ class _Ls:
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`IF DI[n]<>ON,JMP LBL[a]` (or `IF GI[n]<>v,JMP LBL[a]`: a group input's test), then-body,
         [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
-        m = re.fullmatch(rf"IF DI{_SIG}\s*<>\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
+        m = re.fullmatch(rf"IF (DI|DO){_SIG}\s*(<>|=)\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
         g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i)) if m is None else None
         group = group_test(g.group(1), negate=True) if g else None
         if m is None and group is None:
             return None
-        label = m.group(3) if m else g.group(2)  # type: ignore[union-attr]
+        label = m.group(5) if m else g.group(2)  # type: ignore[union-attr]
         arms = label_arms(self._text, i, end, f"LBL[{label}]", _JMP, lambda n: f"LBL[{n}]")
         if arms is None:
             return None
@@ -271,7 +271,8 @@ class _Ls:
         then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         self.tally.imported += 1
-        cond = Cond(int(m.group(1)), m.group(2) == "ON") if m else group
+        # the arm runs when the jump is not taken: `<>ON` and `=OFF` both mean "runs when on"
+        cond = Cond(int(m.group(2)), (m.group(4) == "ON") == (m.group(3) == "<>"), m.group(1) == "DO") if m else group
         return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:

@@ -19,7 +19,7 @@ from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, Wait
 
 __all__ = ["wait_condition", "german_instruction", "group_test"]
 
-_TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
+_TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
 
 _Parsed = tuple["Cond | Conds", int] | None
@@ -89,7 +89,8 @@ def _term(tokens: list[re.Match[str]], i: int) -> _Parsed:
     if t.group(2) is None:
         return None
     on = (t.group(3) or "ON") in _ON
-    return Cond(int(t.group(2)), on != bool(t.group(1))), i + 1
+    output = t.group(0).lstrip(" !").startswith(("DO", "A"))  # DO[n] / A[n]: the output's state
+    return Cond(int(t.group(2)), on != bool(t.group(1)), output), i + 1
 
 
 def german_instruction(text: str, where: Where) -> Stmt | None:

@@ -46,6 +46,7 @@ _SIMPLE = (
     ("aout", re.compile(r"AOUT AO#\((\d+)\) (-?[\d.]+)")),
     ("wait", re.compile(r"TIMER T=([\d.]+)")),
     ("wait_in", re.compile(r"WAIT IN#\((\d+)\)=(ON|OFF)")),
+    ("wait_out", re.compile(r"WAIT OT#\((\d+)\)=(ON|OFF)")),  # the general output's state
     ("call_renamed", re.compile(r"CALL JOB:(\w+)")),
 )
 
@@ -357,10 +358,11 @@ class _Job:
         return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), float(m.group(3)), self.inst[i][1])], i + 5
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`JUMP *La IF IN#(n)=X`, then, [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when not X);
+        """`JUMP *La IF IN#(n)=X` (or an output, `OT#(n)`), then, [`JUMP *Lb`, `*La`, else, `*Lb`]
+        (then runs when not X);
         or a group input read into a byte and tested, `IN Bt IG#(n)`, `JUMP *La IF Bt<op>v` (the
         backend's form: then runs when the test fails)."""
-        m = re.fullmatch(r"JUMP \*(L\w+) IF IN#\((\d+)\)=(ON|OFF)", self._text(i))
+        m = re.fullmatch(r"JUMP \*(L\w+) IF (IN|OT)#\((\d+)\)=(ON|OFF)", self._text(i))
         read = re.fullmatch(r"IN (B\d+) IG#\((\d+)\)", self._text(i)) if m is None else None
         test = re.fullmatch(rf"JUMP \*(L\w+) IF {read.group(1)}(<>|<=|>=|=|<|>)(\d+)", self._text(i + 1)) if read else None
         if m is None and test is None:
@@ -374,7 +376,7 @@ class _Job:
         then, _ = self._block(jump + 1, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         # INFORM compares with TP's operators (=, <>, <, >, <=, >=): the TP reader's group test
-        cond = Cond(int(m.group(2)), m.group(3) == "OFF") if m is not None else \
+        cond = Cond(int(m.group(3)), m.group(4) == "OFF", m.group(2) == "OT") if m is not None else \
             group_test(f"GI[{read.group(2)}]{test.group(2)}{test.group(3)}", negate=True)  # type: ignore[union-attr]
         return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
 

@@ -184,6 +184,8 @@ class KrlVars:
         t = [x.upper() for x in tokens[i:i + 4]]
         if len(t) == 4 and t[0] == "$IN" and t[1] == "[" and t[2].isdigit() and t[3] == "]":
             return Cond(int(t[2]), True), 4
+        if len(t) == 4 and t[0] == "$OUT" and t[1] == "[" and t[2].isdigit() and t[3] == "]":  # the output's state
+            return Cond(int(t[2]), True, output=True), 4
         port = self.signal(t[0]) if t and t[0] not in self.visible else None
         alone = len(t) < 2 or t[1] not in ("[", "(", ".")
         if port is None and t and alone and self._group_name(t[0]):
@@ -274,7 +276,7 @@ class KrlVars:
         body, j = block(i + 1, ("ENDLOOP",) if word == "LOOP" else ("UNTIL",))
         if word == "LOOP":
             return [While(Conds("logic", (), "on"), tuple(body), found[i].where)], j + 1
-        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else Cond(cond.signal, not cond.on)  # type: ignore[union-attr]
+        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else cond.negated()  # type: ignore[union-attr]
         return [*body, While(again, tuple(body), found[j].where)], j + 1
 
     def _exit_at_edge(self, found: list[Line], i: int, block: Callable[[int, tuple[str, ...]], tuple[list[Stmt], int]],
@@ -298,7 +300,7 @@ class KrlVars:
         body, j = block(i + 1, ("ENDLOOP",))
         self.exiting = None
         rest = tuple(body[1:] if first else body[:-1])
-        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else Cond(cond.signal, not cond.on)
+        again = Conds("logic", (cond,), "not ({0})") if isinstance(cond, Conds) else cond.negated()
         return [*(() if first else rest), While(again, rest, found[i].where)], j + 1
 
     def switch_var(self, text: str) -> str | None:

@@ -191,7 +191,7 @@ def _unary(tokens: list[str], i: int, named: Named, param: Param) -> _Parsed:
         if inner is None:
             return None
         c = inner[0]
-        return (Cond(c.signal, not c.on) if isinstance(c, Cond) else Conds("not", (c,))), inner[1]
+        return (c.negated() if isinstance(c, Cond) else Conds("not", (c,))), inner[1]
     if word == "(":
         inner = _or(tokens, i + 1, named, param)
         return (inner[0], inner[1] + 1) if inner and inner[1] < len(tokens) and tokens[inner[1]] == ")" else None

@@ -100,9 +100,10 @@ _MODE = re.compile(r"(?i)\$(?:T1|T2|AUT|EXT|MODE_OP)\b")
 
 def mode_why(word: str, text: str) -> str | None:
     """Why the block `IF|WHILE cond` (or `WAIT FOR cond`) stays native when its condition reads the
-    operating mode or an output (rmot's conditions read inputs: REFERENCE E161)."""
-    if re.search(r"(?i)\$OUT(?:_C)?\s*\[", text) and _MODE.search(text) is None:
-        return f"this {word} tests an output ($OUT[n]); rmot conditions read inputs only"
+    operating mode or an output switched with the motion ($OUT_C[n]: set at the motion's
+    start point; rmot reads the output's state, out[n], which is $OUT[n])."""
+    if re.search(r"(?i)\$OUT_C\s*\[", text) and _MODE.search(text) is None:
+        return f"this {word} tests an output switched with the motion ($OUT_C[n]); rmot reads $OUT[n] only"
     if _MODE.search(text) is None:
         return None
     return f"this {word} tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting known only at run time"

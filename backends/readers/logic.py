@@ -89,7 +89,7 @@ class _Parser:
         if m:  # an input condition: its level flips
             cond = self.parts[int(m.group(1))]
             assert isinstance(cond, Cond)  # a group input's node is an int, refused above
-            self.parts[int(m.group(1))] = Cond(cond.signal, not cond.on)
+            self.parts[int(m.group(1))] = cond.negated()
             return node
         return (f"not {_wrap(node, 3)}", "bool", 3)
 

@@ -127,10 +127,16 @@ class Wait:
 
 @record(slots=True)
 class Cond:
-    """A digital input at a level: the condition every vendor's IF/WAIT reads."""
+    """A digital input at a level: the condition every vendor's IF/WAIT reads; with `output`,
+    the state of the controller's own digital output at that level (`out[n] == on`)."""
 
     signal: Signal
     on: bool
+    output: bool = False
+
+    def negated(self) -> Cond:
+        """The same signal tested at the other level."""
+        return Cond(self.signal, not self.on, self.output)
 
 
 @record(slots=True)

@@ -71,6 +71,8 @@ def _input(tokens: list[str], i: int, names: dict[str, tuple[str, str]]) -> tupl
         return GroupIn(tokens[i + 2]), 4
     if len(t) >= 6 and t[0] == "DINPUT" and t[1] == "(" and t[3] == ")" and t[4] == "=" and t[5] in ("0", "1"):
         return Cond(tokens[i + 2], t[5] == "1"), 6
+    if len(t) >= 6 and t[0] == "DOUTPUT" and t[1] == "(" and t[3] == ")" and t[4] == "=" and t[5] in ("0", "1"):
+        return Cond(tokens[i + 2], t[5] == "1", output=True), 6  # the DO signal's state (function DOutput)
     if len(t) >= 4 and t[0] == "TESTDI" and t[1] == "(" and t[3] == ")":
         return Cond(tokens[i + 2], True), 4
     if len(t) >= 3 and re.fullmatch(r"[A-Z_]\w*", t[0]) and t[0] not in names and t[0] not in ("TRUE", "FALSE", "NOT") \

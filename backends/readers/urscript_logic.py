@@ -35,6 +35,7 @@ _ASSIGN = re.compile(r"(?:global\s+|local\s+)?([A-Za-z_]\w*)\s*=(?!=)\s*(.*)")
 _HEADER = re.compile(r"(?:if|elif|while)\b\s*(.*):")
 _MAX_VARS = 200  # more task variables than any program the corpus holds (a few): the rest stay native
 _INPUT = {"get_standard_digital_in": 0, "get_configurable_digital_in": 8, "get_digital_in": 0}
+_OUTPUT = {"get_standard_digital_out": 0, "get_configurable_digital_out": 8, "get_digital_out": 0}
 
 
 def _python_shaped(text: str) -> bool:
@@ -85,6 +86,11 @@ def _input(tokens: list[str], i: int) -> tuple[Cond, int] | None:
         if t[0] == "get_digital_in" and n > 7:
             return None
         return Cond(n + _INPUT[t[0]], True), 4
+    if len(t) == 4 and t[0] in _OUTPUT and t[1] == "(" and re.fullmatch(r"\d+", t[2]) and t[3] == ")":
+        n = int(t[2])
+        if t[0] == "get_digital_out" and n > 7:
+            return None
+        return Cond(n + _OUTPUT[t[0]], True, output=True), 4  # the output's state
     return None
 
 

@@ -159,14 +159,17 @@ def input_cond(text: str, depth: int = 0) -> Cond | Conds | None:
     if negated:
         inner = input_cond(negated.group(1), depth + 1)
         if inner is None or isinstance(inner, Cond):
-            return Cond(inner.signal, not inner.on) if inner else None
+            return inner.negated() if inner else None
         return Conds("not", (inner,))
     # get_digital_in(n): the CB-Series name of get_standard_digital_in for n 0..7 (8, 9 are the tool's)
-    m = re.fullmatch(r"get_(standard_|configurable_|)digital_in\((\d+)\)(?:(==|!=)(True|False))?", text.replace(" ", ""))
-    if m is None or (m.group(1) == "" and int(m.group(2)) > 7):
+    # get_*_digital_out(n): the output's state, read as out[n]
+    m = re.fullmatch(r"get_(standard_|configurable_|)digital_(in|out)\((\d+)\)(?:(==|!=)(True|False))?",
+                     text.replace(" ", ""))
+    if m is None or (m.group(1) == "" and int(m.group(3)) > 7):
         return None
-    on = (m.group(4) or "True") == "True"
-    return Cond(int(m.group(2)) + (8 if m.group(1) == "configurable_" else 0), on != (m.group(3) == "!="))
+    on = (m.group(5) or "True") == "True"
+    return Cond(int(m.group(3)) + (8 if m.group(1) == "configurable_" else 0), on != (m.group(4) == "!="),
+                m.group(2) == "out")
 
 
 def polled_wait(header: str, body: list[str]) -> tuple[Cond | Conds, float, int] | None:
@@ -185,7 +188,7 @@ def polled_wait(header: str, body: list[str]) -> tuple[Cond | Conds, float, int]
     looped = input_cond(w.group(1))
     if looped is None:
         return None
-    cond = Cond(looped.signal, not looped.on) if isinstance(looped, Cond) else Conds("not", (looped,))
+    cond = looped.negated() if isinstance(looped, Cond) else Conds("not", (looped,))
     return cond, (seconds[0] or 0.0) if seconds else 0.0, end + 2
 
 

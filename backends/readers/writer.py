@@ -60,7 +60,7 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
         return [("outputs", s.signal)]
     if isinstance(s, (WaitIn, If, While, VarDecl, Assign)):
         value = s.cond if isinstance(s, (WaitIn, If, While)) else s.init if isinstance(s, VarDecl) else s.value
-        return [("inputs", c.signal) for c in leaves(value)] + [("groups", g.signal) for g in group_reads(value)]
+        return [("outputs" if c.output else "inputs", c.signal) for c in leaves(value)] + [("groups", g.signal) for g in group_reads(value)]
     return []
 
 
@@ -241,7 +241,8 @@ class _Printer:
         if isinstance(c, GroupIn):
             return f"gin[{self.signals.port('groups', c.signal)}]"
         if isinstance(c, Cond):
-            return f"in[{self.signals.port('inputs', c.signal)}] == {'on' if c.on else 'off'}"
+            kind, io = ("outputs", "out") if c.output else ("inputs", "in")
+            return f"{io}[{self.signals.port(kind, c.signal)}] == {'on' if c.on else 'off'}"
         if c.op == "expr":
             return c.text
         if c.op == "logic":

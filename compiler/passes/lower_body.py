@@ -421,7 +421,7 @@ class TaskLowering:
     def any_condition(self, c: ast.RtCond, scope: Scope, what: str) -> ir.Condition | None:
         """`in[n] == on|off` lowers as it always has (an InputCondition); anything else through
         compiler/passes/runtime.py (and/or/not, ain[n], variables, comparisons)."""
-        if isinstance(c, ast.Condition) and not self._reads_runtime(c.value, scope):
+        if isinstance(c, ast.Condition) and c.io.kind == "in" and not self._reads_runtime(c.value, scope):
             return self.condition(c, scope)
         return self.rt(scope).condition(c, what)
 

@@ -214,20 +214,23 @@ class RtLowering:
         return ir.Arith(e.op, left, right, t)
 
     def io_read(self, io: ast.IoRef) -> ir.RtExpr | None:
-        if io.kind in ("out", "aout"):
+        if io.kind == "aout":
             self._err(
                 codes.RT_BAD_IO,
-                f"a condition must read in[n], ain[n] or gin[n] (got {io.kind}[...]: an output)",
+                "a condition must read in[n], out[n], ain[n] or gin[n] (got aout[...]: an analog "
+                "output, which not every controller reads back)",
                 io.span,
             )
             return None
-        p = self.port(io, ("in", "ain", "gin"), "a condition")
+        p = self.port(io, ("in", "out", "ain", "gin"), "a condition")
         if p is None:
             return None
         if io.kind == "ain":
             return ir.AnalogInput(p[0], p[1])
         if io.kind == "gin":
             return ir.GroupInput(p[0], p[1], self.width(p[0]))
+        if io.kind == "out":
+            return ir.OutputRead(p[0], p[1])
         return ir.InputCondition(port=p[0], value=True, signal=p[1])
 
     def input_condition(self, c: ast.Condition) -> ir.RtExpr | None:
@@ -248,6 +251,8 @@ class RtLowering:
                 c.value.span,
             )
             return None
+        if isinstance(level, ir.Const) and isinstance(read, ir.OutputRead):  # `out[n] == off` is `not out[n]`
+            return read if bool(level.value) == (c.op == "==") else ir.Not(read)
         if isinstance(level, ir.Const) and isinstance(read, ir.InputCondition):
             return ir.InputCondition(
                 port=read.port, value=bool(level.value) == (c.op == "=="), signal=read.signal
@@ -275,6 +280,8 @@ class RtLowering:
                 e.span,
             )
             return None
+        if isinstance(left, ir.OutputRead) and isinstance(right, ir.Const):  # `out[n] == off`: `not out[n]`
+            return left if bool(right.value) == (op is ir.CompareOp.EQ) else ir.Not(left)
         if isinstance(left, ir.GroupInput) and not self.group_value_fits(left, right, e.right):
             return None
         if isinstance(right, ir.GroupInput) and not self.group_value_fits(right, left, e.left):

@@ -80,7 +80,6 @@ REASONS = {
     "PTP $POS_ACT": "`$POS_ACT` is where the robot stands when the line runs: known only at run time",
     "IF ($T1 OR $T2) THEN": "this IF tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP): a pendant setting",
     "BAS(#INITMOV,0)": "this IF tests the operating mode",
-    "IF $OUT[99]==FALSE THEN": "this IF tests an output ($OUT[n]); rmot conditions read inputs only",
     "WAIT FOR permission": "this WAIT tests the operating mode ($T1, $T2, $AUT, $EXT, $MODE_OP)",
     "WAIT SEC tiempoSecado": "the time `tiempoSecado` is a variable: known only at run time",
     "LIN_REL {X 150} #TOOL": "a relative motion starts where the last motion ended, not known here",
@@ -104,6 +103,9 @@ def test_each_native_motion_says_why(tmp_path: Path) -> None:
         n = next(i for i, text in enumerate(lines, 1) if text.strip().startswith(start))
         warned = [w for w in output.split("\n") if f"cell.src:{n}:" in w and "W510" in w]
         assert warned and reason in warned[0], (start, warned)
+    # an IF on an output's state reads as `if out[99] == off`: no reason to give
+    n = next(i for i, text in enumerate(lines, 1) if text.strip().startswith("IF $OUT[99]==FALSE THEN"))
+    assert f"cell.src:{n}:" not in output
     # the last line's target XP5 is declared in the .dat with a value: read, not kept
     n = lines.index("   LIN XP5") + 1
     assert f"cell.src:{n}:" not in output

@@ -129,7 +129,7 @@ def test_condition_means_the_same(text: str) -> None:
         assert mine == _krl_eval(text, {"n": n, "m": m, "ok": ok}, inputs), (text, rmot, i1, i2, ok, n, m)
 
 
-@pytest.mark.parametrize("text", ["n / 2 == 1", "n == 2 OR ok", "$OUT[1]", "$IN[1] AND $IN[2] == FALSE",
+@pytest.mark.parametrize("text", ["n / 2 == 1", "n == 2 OR ok", "$OUT_C[1]", "$IN[1] AND $IN[2] == FALSE",
                                   "n EXOR 1", "ok == (n < 2)", "n B_AND 2 == 0"])
 def test_no_rmot_form_is_refused(text: str) -> None:
     assert _vars(text).condition(text) is None
