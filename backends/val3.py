@@ -407,25 +407,21 @@ class Val3Backend(Backend):
         if isinstance(e, ir.Const):
             if isinstance(e.value, bool):
                 return "true" if e.value else "false"
-            if isinstance(e.value, int):
-                return str(e.value)
-            return fmt(e.value, 6).rstrip("0").rstrip(".")
+            return str(e.value) if isinstance(e.value, int) else fmt(e.value, 6).rstrip("0").rstrip(".")
         if isinstance(e, ir.VarRef):
             return self._ref(e.name, ctx)
         if isinstance(e, ir.InputCondition):
             test = self.condition(e, node.span, ctx) or "false"
             return f"({test})" if nested else test
         if isinstance(e, ir.OutputRead):  # a dio linked to an output reads its state (VAL3 manual, "dio")
-            sig = self.port(e.port, node.span, True, ctx)
-            test = f"{sig} == true" if sig else "false"
+            test = f"{sig} == true" if (sig := self.port(e.port, node.span, True, ctx)) else "false"
             return f"({test})" if nested else test
         if isinstance(e, ir.AnalogInput):
             if not self.port_ok(e.port, "analog input", node.span):
                 return "0"
             ctx.data.analog_in = max(ctx.data.analog_in, e.port + 1)
-            self.warn(codes.ANALOG_LINK, "analog inputs have no standard VAL3 name: "
-                      f"aIn[{e.port}] is declared unlinked; link it to the controller's input in "
-                      "the data file", node.span)
+            self.warn(codes.ANALOG_LINK, f"analog inputs have no standard VAL3 name: aIn[{e.port}] is declared "
+                      "unlinked; link it to the controller's input in the data file", node.span)
             return f"aioGet(aIn[{e.port}])"
         if isinstance(e, ir.GroupInput):  # a group needs the cell's own fieldbus mapping, which rmot does not write
             self.unsupported(codes.LOGIC_UNSUPPORTED, f"gin[{e.port}] must be inputs VAL3 reads as one number (its dio reads one bit)", node.span)
