@@ -188,6 +188,9 @@ class KrlVars:
             return Cond(int(t[2]), True, output=True), 4
         port = self.signal(t[0]) if t and t[0] not in self.visible else None
         alone = len(t) < 2 or t[1] not in ("[", "(", ".")
+        out = self.output(t[0]) if t and port is None and t[0] not in self.visible else None
+        if out is not None and alone:  # an output's SIGNAL reads the output's state, as $OUT[n] does
+            return Cond(out, True, output=True), 1
         if port is None and t and alone and self._group_name(t[0]):
             return GroupIn(tokens[i]), 1
         return (Cond(port, True), 1) if port is not None and alone else None
@@ -236,14 +239,11 @@ class KrlVars:
         return Assign(name, found[0], ln.where)
 
     def why(self, text: str) -> str | None:
-        """Why a line on a flag another program raises (or a cyclic flag), or a condition on an
-        output's SIGNAL or on a name only the set-up fold assigns, stays native, if it does."""
+        """Why a line on a flag another program raises (or a cyclic flag), or a condition on a
+        name only the set-up fold assigns, stays native, if it does."""
         found = raised_why(text, self.raised)
         test = re.match(r"(?i)(IF|WHILE|UNTIL|WAIT\s+FOR)\b(.*)", text)
         for name in re.findall(r"(?<![\w$])[A-Za-z_]\w*", test.group(2)) if test and found is None else []:
-            port = self.output(name) if name.upper() not in _KEYWORDS else None
-            if port is not None:
-                return f"it tests `{name}`, the output $OUT[{port}] (its SIGNAL); rmot conditions read inputs only"
             if name.upper() in self.set_up_only:
                 return (f"it tests `{name}`, which only the set-up fold (INI, USER INI) assigns: the import keeps "
                         "that fold as a comment")

@@ -263,18 +263,19 @@ def test_loops_over_axes_and_counters(tmp_path: Path) -> None:
     assert back[at + 1:at + 4] == ["if n == 2 {", "set out[1] = on", "}"], back
 
 
-def test_condition_on_an_output_signal_says_why(tmp_path: Path) -> None:
+def test_condition_on_an_output_signal_reads_the_output(tmp_path: Path) -> None:
     """`SIGNAL OutMarchaCinta $OUT[..]` of a $config.dat, tested (Aleynikovich bto.src `IF OutMarchaCinta
-    THEN`): W510 names the output; the same name set is still the output instruction."""
+    THEN`): the condition reads the output's state, `out[5]` (KSS 8.x "SIGNAL": the name is the
+    output, read and written); the same name set is still the output instruction."""
     (tmp_path / "$config.dat").write_text("DEFDAT $CONFIG PUBLIC\n  SIGNAL OutMarchaCinta $OUT[5]\n"
                                           "  SIGNAL InListo $IN[7]\nENDDAT\n")
     src = ("DEF sg( )\n  PTP XHOME\n  IF OutMarchaCinta THEN\n    PTP XP1\n  ENDIF\n"
            "  WAIT FOR InListo AND NOT OutMarchaCinta\n  OutMarchaCinta = TRUE\nEND\n")
     output, rmot = imported_krl(tmp_path, "sg", src, DAT.replace("caja", "sg"))
-    why = dict(re.findall(r"sg\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
-    for line in ("3", "6"):
-        assert why[line].startswith("it tests `OutMarchaCinta`, the output $OUT[5] (its SIGNAL)"), why
-    assert "set out[5] = on" in _body(rmot)
+    assert "W510" not in output, output
+    body = _body(rmot)
+    assert "if out[5] == on {" in body and "wait until in[7] == on and out[5] == off" in body, body
+    assert "set out[5] = on" in body
 
 
 def test_config_bool_the_program_never_sets(tmp_path: Path) -> None:
