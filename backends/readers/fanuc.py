@@ -23,6 +23,7 @@ from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
 from rmot.backends.readers.fanuc_text import german_instruction, group_test, wait_condition
+from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Native, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
@@ -45,6 +46,11 @@ _SIMPLE = (
     ("wait_true", re.compile(r"WAIT\s*\(\s*(?P<neg>!?)DI\[(?P<sig>\d+)(?::[^\]]*)?\]\s*\)")),
     ("call", re.compile(r"CALL\s+(\w+)")),
 )
+
+
+def _names_label(text: str, label: str) -> bool:
+    """Whether a TP instruction is label LBL[label] or jumps to it (`JMP LBL[n]`, `TIMEOUT,LBL[n]`)."""
+    return re.search(rf"\bLBL\[{label}(?::[^\]]*)?\]", text) is not None
 
 
 def _branch(text: str) -> ir.Config | None:
@@ -255,25 +261,40 @@ class _Ls:
         self.tally.imported += 1
         return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
 
-    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`IF DI[n]<>ON,JMP LBL[a]` (or `IF GI[n]<>v,JMP LBL[a]`: a group input's test), then-body,
-        [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
+    def _jump_at(self, i: int) -> Jump | None:
+        """`IF DI[n]<>ON,JMP LBL[a]` (or an output, `DO[n]`; or `IF GI[n]<>v,JMP LBL[a]`: a group
+        input's test): its label, when it is taken and when not."""
         m = re.fullmatch(rf"IF (DI|DO){_SIG}\s*(<>|=)\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
-        g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i)) if m is None else None
-        group = group_test(g.group(1), negate=True) if g else None
-        if m is None and group is None:
+        if m is not None:
+            # taken when the signal is at the level `=` names, or at the other one with `<>`
+            taken = Cond(int(m.group(2)), (m.group(4) == "ON") == (m.group(3) == "="), m.group(1) == "DO")
+            return m.group(5), taken, taken.negated(), i + 1
+        g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i))
+        taken_group, falls = (group_test(g.group(1)), group_test(g.group(1), negate=True)) if g else (None, None)
+        if g is None or taken_group is None or falls is None:
             return None
-        label = m.group(5) if m else g.group(2)  # type: ignore[union-attr]
-        arms = label_arms(self._text, i, end, f"LBL[{label}]", _JMP, lambda n: f"LBL[{n}]")
+        return g.group(2), taken_group, falls, i + 1
+
+    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """Conditional jumps to `LBL[a]` (`_jump_at`: all of them, `and`; or a chain to `LBL[s]`
+        and one to `LBL[a]` then `LBL[s]`, `or`: readers/jumps.py), then-body, [`JMP LBL[b]`,
+        `LBL[a]`, else-body,] `LBL[b]`."""
+        chain = jump_chain(self._jump_at, self._text, i, lambda n: f"LBL[{n}]")
+        if chain is None:
+            return None
+        label, cond, start, more = chain
+        arms = label_arms(self._text, start - 1, end, f"LBL[{label}]", _JMP, lambda n: f"LBL[{n}]")
         if arms is None:
             return None
         ja, jb = arms
-        then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
+        labels = (label, *more) + ((_JMP.fullmatch(self._text(ja - 1)).group(1),) if jb is not None else ())  # type: ignore[union-attr]
+        consumed = set(range(i, start)) | {ja} | ({ja - 1, jb} if jb is not None else set())
+        if jumped_to_elsewhere(self._text, len(self.instructions), labels, _names_label, consumed):
+            return None
+        then, _ = self._block(start, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         self.tally.imported += 1
-        # the arm runs when the jump is not taken: `<>ON` and `=OFF` both mean "runs when on"
-        cond = Cond(int(m.group(2)), (m.group(4) == "ON") == (m.group(3) == "<>"), m.group(1) == "DO") if m else group
-        return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
+        return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`WAIT DI[n]=ON TIMEOUT,LBL[a]`, `JMP LBL[b]`, `LBL[a]`, `ABORT`, `LBL[b]` (after $WAITTMOUT)."""
