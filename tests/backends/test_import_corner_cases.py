@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from krl_imported import imported_krl
+
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import Cond, Conds, GroupIn, If, Native, SetOut, walk
 
@@ -87,3 +89,95 @@ def test_a_chain_whose_label_another_line_jumps_to_stays_native(tmp_path: Path) 
     natives = [s.text for s in walk(doc.routines[0].body) if isinstance(s, Native)]
     assert not [s for s in walk(doc.routines[0].body) if isinstance(s, If)]
     assert natives == [ln for ln in lines if not ln.startswith("DOUT")], natives
+
+
+def _tp_runs(lines: list[str], inputs: dict[int, bool]) -> list[str]:
+    """The outputs a TP program's lines set, in order (B-83284EN, IF ..,JMP LBL[n]: the program
+    continues at the label when the comparison holds; JMP LBL[n]; LBL[n])."""
+    labels = {ln: k for k, ln in enumerate(lines) if re.fullmatch(r"LBL\[\d+\]", ln)}
+    k, done = 0, []
+    while k < len(lines):
+        ln, k = lines[k], k + 1
+        if m := re.fullmatch(r"IF DI\[(\d+)\](=|<>)(ON|OFF),JMP (LBL\[\d+\])", ln):
+            at = inputs[int(m.group(1))] == (m.group(3) == "ON")
+            k = labels[m.group(4)] if at == (m.group(2) == "=") else k
+        elif m := re.fullmatch(r"JMP (LBL\[\d+\])", ln):
+            k = labels[m.group(1)]
+        elif m := re.fullmatch(r"DO\[(\d+)\]=ON", ln):
+            done.append(m.group(1))
+        else:
+            assert ln in labels, ln
+    return done
+
+
+def _tp(lines: list[str], tmp_path: Path) -> str:
+    path = tmp_path / "CHAIN.LS"
+    path.write_text("/PROG  CHAIN\n/ATTR\n/MN\n" + "".join(f"  {k}:  {ln} ;\n" for k, ln in enumerate(lines, 1))
+                    + "/POS\n/END\n")
+    return str(path)
+
+
+@pytest.mark.parametrize("lines", [
+    ["IF DI[1]=ON,JMP LBL[4]", "IF DI[2]<>OFF,JMP LBL[4]", "DO[5]=ON", "LBL[4]"],
+    ["IF DI[1]<>ON,JMP LBL[1]", "IF DI[2]=ON,JMP LBL[1]", "IF DI[3]=OFF,JMP LBL[1]", "DO[5]=ON",
+     "JMP LBL[2]", "LBL[1]", "DO[6]=ON", "LBL[2]"],
+    ["IF DI[1]=ON,JMP LBL[7]", "IF DI[2]<>ON,JMP LBL[8]", "LBL[7]", "DO[5]=ON", "LBL[8]"],
+])
+def test_a_tp_jump_chain_reads_as_one_condition(lines: list[str], tmp_path: Path) -> None:
+    doc = read_files([_tp(lines, tmp_path)])
+    body = doc.routines[0].body
+    assert not [d for d in doc.diagnostics if d.code.id == "W510"], doc.diagnostics
+    assert len(body) == 1 and isinstance(body[0], If), body
+    for levels in itertools.product((False, True), repeat=3):
+        inputs = dict(enumerate(levels, 1))
+        assert _imported_runs(body[0], inputs) == _tp_runs(lines, inputs), (inputs, body[0].cond)
+
+
+def test_a_tp_chain_whose_label_another_line_jumps_to_stays_native(tmp_path: Path) -> None:
+    lines = ["IF DI[1]=ON,JMP LBL[4]", "DO[5]=ON", "LBL[4]", "DO[6]=ON", "IF DI[3]=ON,JMP LBL[4]"]
+    doc = read_files([_tp(lines, tmp_path)])
+    assert not [s for s in walk(doc.routines[0].body) if isinstance(s, If)]
+    natives = [s.text for s in walk(doc.routines[0].body) if isinstance(s, Native)]
+    assert natives == [f"{ln} ;" for ln in lines if not ln.startswith("DO")], natives
+
+
+# KRL work copies: KSS 8.x Operating and Programming Instructions for System Integrators, data
+# lists: a variable declared in the module's .dat is the module's (every routine of it reads and
+# writes the same one), so a called routine may change it; a label is where a GOTO lands.
+_KRL_DAT = """DEFDAT cell
+DECL E6POS XP1={X 500.0,Y 100.0,Z 300.0,A 0.0,B 90.0,C 0.0,S 2,T 0}
+DECL E6POS PG={X 1.0,Y 2.0,Z 3.0,A 0.0,B 0.0,C 0.0,S 2,T 0}
+DECL INT I
+ENDDAT
+"""
+
+
+def _krl_moves(tmp_path: Path, body: str) -> tuple[list[str], str]:
+    """The moves of the imported main routine (`move` or kept native) and what the import printed."""
+    src = f"DEF cell( )\n$VEL.CP = 0.2\n{body}END\n\nDEF Shift( )\nPG.Y = 0\nEND\n"
+    printed, rmot = imported_krl(tmp_path, "cell", src, _KRL_DAT)
+    return [ln.strip() for ln in rmot.splitlines() if ln.strip().startswith(("move ", "native krl \"LIN"))], printed
+
+
+@pytest.mark.parametrize(("body", "why"), [
+    ("PG = XP1\nShift()\nLIN PG\n", "known before `Shift(..)` at line 4"),
+    ("PG = XP1\nnext:\nLIN PG\n", "the label at line 4"),
+    ("PG = XP1\nPG.Y = $POS_ACT.Y\nLIN PG\n", "assigned at line 4"),
+    ("PG = XP1\nIF $IN[1] THEN\nPG = $POS_ACT\nENDIF\nLIN PG\n", "assigned at line 5"),
+    ("PG = XP1\nFOR I = 1 TO 3\nPG.X = XP1.X + I * 10\nShift()\nLIN PG\nENDFOR\n", "assigned inside the block at line 4"),
+    ("PG = XP1\nIF $IN[1] THEN\nPG.X = XP1.X + 5\nENDIF\nLIN PG\n", "assigned inside the block at line 4"),
+    ("PG = XP1\nFOR I = 1 TO 3\nLIN PG\nPG.X = XP1.X + I * 10\nENDFOR\n", "assigned inside the block at line 4"),
+    ("PG = XP1\nFOR I = 1 TO 3\nPG.X = XP1.X + I * 10\nENDFOR\nLIN PG\n", "assigned inside the block at line 4"),
+    ("PG = XP1\nPG.X = XP1.X + Offset(3)\nLIN PG\n", "assigned at line 4"),
+])
+def test_a_krl_work_copy_a_line_may_change_is_not_its_target(body: str, why: str, tmp_path: Path) -> None:
+    moves, printed = _krl_moves(tmp_path, body)
+    assert not [m for m in moves if "XP1" in m], moves
+    assert moves and moves[-1].startswith('native krl "LIN PG"'), moves
+    warned = [ln for ln in printed.splitlines() if "warning[W510]" in ln and "LIN PG" in ln]
+    assert len(warned) == 1 and why in warned[0], printed
+
+
+def test_a_krl_work_copy_reads_as_its_shift_while_nothing_changes_it(tmp_path: Path) -> None:
+    moves, _ = _krl_moves(tmp_path, "PG = XP1\nFOR I = 1 TO 3\nPG.X = XP1.X + I * 10\nLIN PG\nENDFOR\n")
+    assert [m for m in moves if m.startswith("move linear shift(XP1, x=")], moves
