@@ -181,3 +181,19 @@ def test_a_krl_work_copy_a_line_may_change_is_not_its_target(body: str, why: str
 def test_a_krl_work_copy_reads_as_its_shift_while_nothing_changes_it(tmp_path: Path) -> None:
     moves, _ = _krl_moves(tmp_path, "PG = XP1\nFOR I = 1 TO 3\nPG.X = XP1.X + I * 10\nLIN PG\nENDFOR\n")
     assert [m for m in moves if m.startswith("move linear shift(XP1, x=")], moves
+
+
+@pytest.mark.parametrize(("name", "said"), [
+    ("xInsideWall[1]", "`xInsideWall[1]` is an array element, and an rmot name has no index: written as `xInsideWall_1_`"),
+    ("fixture", "`fixture` must not be an rmot keyword"),
+])
+def test_a_renamed_krl_name_says_why(name: str, said: str, tmp_path: Path) -> None:
+    """The KRL array element `xInsideWall[1]` (khrzysio Sub_Drill's form) and a keyword; `fixture`
+    is rmot's keyword (lang/REFERENCE.md), the bracket KRL's array index (KSS 8.x, arrays)."""
+    dat = (f"DEFDAT wall\nDECL E6POS {name.split('[')[0]}{'[2]' if '[' in name else ''}\n"
+           f"{'' if '[' in name else 'DECL E6POS '}{name}={{X 800.0,Y -200.0,Z 150.0,A 30.0,B 0.0,C 180.0,S 2,T 10}}\n"
+           "ENDDAT\n")
+    printed, rmot = imported_krl(tmp_path, "wall", f"DEF wall( )\n$VEL.CP = 0.2\nLIN {name}\nEND\n", dat)
+    warned = [ln for ln in printed.splitlines() if "warning[W514]" in ln]
+    assert len(warned) == 1 and said in warned[0], printed
+    assert "move linear" in rmot, rmot
