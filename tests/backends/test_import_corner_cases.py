@@ -10,15 +10,20 @@ separate evaluation of the condition the import reads.
 from __future__ import annotations
 
 import itertools
+import json
+import math
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
 
 from krl_imported import imported_krl
 
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import Cond, Conds, GroupIn, If, Native, SetOut, walk
+from rmot.compiler.cli import cli
 
 _JOB_HEAD = ("/JOB\n//NAME CHAIN\n//POS\n///NPOS 0,0,0,0,0,0\n//INST\n///DATE 2020/11/19 13:27\n"
              "///ATTR SC,RW\n///GROUP1 RB1\nNOP\n")
@@ -73,13 +78,18 @@ def _imported_runs(s: If, inputs: dict[int, bool]) -> list[str]:
      "JUMP *L9", "*L8", "DOUT OT#(6) ON", "*L9"],
 ])
 def test_an_inform_jump_chain_reads_as_one_condition(lines: list[str], tmp_path: Path) -> None:
-    doc = read_files([_job(lines, tmp_path)])
+    _read_as_the_program_runs(_job(lines, tmp_path), lambda inputs: _runs(lines, inputs))
+
+
+def _read_as_the_program_runs(path: str, runs: Callable[[dict[int, bool]], list[str]]) -> None:
+    """The file reads as one `if` whose arms set the outputs the program sets, inputs 1..3 at every level."""
+    doc = read_files([path])
     body = doc.routines[0].body
     assert not [d for d in doc.diagnostics if d.code.id == "W510"], doc.diagnostics
     assert len(body) == 1 and isinstance(body[0], If), body
     for levels in itertools.product((False, True), repeat=3):
         inputs = dict(enumerate(levels, 1))
-        assert _imported_runs(body[0], inputs) == _runs(lines, inputs), (inputs, body[0].cond)
+        assert _imported_runs(body[0], inputs) == runs(inputs), (inputs, body[0].cond)
 
 
 def test_a_chain_whose_label_another_line_jumps_to_stays_native(tmp_path: Path) -> None:
@@ -124,13 +134,7 @@ def _tp(lines: list[str], tmp_path: Path) -> str:
     ["IF DI[1]=ON,JMP LBL[7]", "IF DI[2]<>ON,JMP LBL[8]", "LBL[7]", "DO[5]=ON", "LBL[8]"],
 ])
 def test_a_tp_jump_chain_reads_as_one_condition(lines: list[str], tmp_path: Path) -> None:
-    doc = read_files([_tp(lines, tmp_path)])
-    body = doc.routines[0].body
-    assert not [d for d in doc.diagnostics if d.code.id == "W510"], doc.diagnostics
-    assert len(body) == 1 and isinstance(body[0], If), body
-    for levels in itertools.product((False, True), repeat=3):
-        inputs = dict(enumerate(levels, 1))
-        assert _imported_runs(body[0], inputs) == _tp_runs(lines, inputs), (inputs, body[0].cond)
+    _read_as_the_program_runs(_tp(lines, tmp_path), lambda inputs: _tp_runs(lines, inputs))
 
 
 def test_a_tp_chain_whose_label_another_line_jumps_to_stays_native(tmp_path: Path) -> None:
@@ -197,3 +201,45 @@ def test_a_renamed_krl_name_says_why(name: str, said: str, tmp_path: Path) -> No
     warned = [ln for ln in printed.splitlines() if "warning[W514]" in ln]
     assert len(warned) == 1 and said in warned[0], printed
     assert "move linear" in rmot, rmot
+
+
+_TP_JOINTS = ((10.0, 20.0, -15.0, 30.0, -40.0, 50.0), (15.0, 25.0, -10.0, 25.0, -45.0, 55.0))
+
+
+def _tp_joint_form(tmp_path: Path) -> Path:
+    """A TP program whose positions are stored in joint form (`J1= .. deg`, R-30iB Operator's
+    Manual, position data), the second reached by a linear move with tool 1 (named `torch`)."""
+    points = "".join(f"P[{n}]{{\n   GP1:\n\tUF : 0, UT : 1,\n\t" + ",\t".join(
+        f"J{k}= {v:.3f} deg" for k, v in enumerate(q, 1)) + "\n};\n" for n, q in enumerate(_TP_JOINTS, 1))
+    path = tmp_path / "JFORM.LS"
+    path.write_text("/PROG  JFORM\n/ATTR\n/MN\n   1:  ! UTOOL[1] = torch ;\n   2:  UTOOL_NUM=1 ;\n"
+                    "   3:  J P[1] 30% FINE ;\n   4:  L P[2] 100mm/sec FINE ;\n/POS\n" + points + "/END\n")
+    return path
+
+
+def test_a_tp_linear_move_to_a_joint_form_position_without_a_cell_stays_native(tmp_path: Path) -> None:
+    out = tmp_path / "jform.rmot"
+    result = CliRunner().invoke(cli, ["import", str(_tp_joint_form(tmp_path)), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert 'native fanuc "L P[2] 100mm/sec FINE ;"' in out.read_text() and "move linear" not in out.read_text()
+    assert "JFORM.LS:7:4: warning[W510]: jform_p2 is stored in joint form" in result.output, result.output
+
+
+def test_a_tp_linear_move_to_a_joint_form_position_goes_to_its_tcp_pose(tmp_path: Path) -> None:
+    """With --cell (the arm and the program's tool), L P[2] goes to the TCP pose of P[2]'s joints:
+    the arm's forward kinematics times the tool's TCP. Witness: the planner's own IK ends the
+    imported linear move at P[2]'s joints (its JSON plan's q_target, to 0.001 deg)."""
+    cell = tmp_path / "cell.rmot"
+    cell.write_text("cell fk_cell {\n  robot r1 = fanuc_lrmate200ib\n  tool torch = none tcp pose(x=0mm, y=0mm, "
+                    "z=150mm, q=(1, 0, 0, 0)) mass 1 kg on r1\n}\n")
+    out = tmp_path / "jform.rmot"
+    result = CliRunner().invoke(cli, ["import", str(_tp_joint_form(tmp_path)), "-o", str(out), "--cell", str(cell)])
+    assert result.exit_code == 0 and "0 kept native" in result.output, result.output
+    assert "move linear jform_p2_tcp speed 100 mm/s" in out.read_text(), out.read_text()
+    result = CliRunner().invoke(cli, ["compile", str(out), "--cell", str(cell), "--target", "json", "-o",
+                                      str(tmp_path / "plan"), "--allow-findings"])
+    assert result.exit_code in (0, 1), result.output
+    plan = json.loads(next((tmp_path / "plan" / "json").glob("*.json")).read_text())
+    moves = [i for i in plan["tasks"][0]["instructions"] if "q_target" in i]
+    assert [i["kind"] for i in moves] == ["move_joint", "move_linear"], moves
+    assert all(abs(math.degrees(got) - want) < 1e-3 for got, want in zip(moves[1]["q_target"], _TP_JOINTS[1], strict=True))
