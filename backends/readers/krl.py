@@ -214,7 +214,7 @@ class _Krl:
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text):
             return [], i + 1
-        if self.work.read(self.lines, i, self.flow, self.targets, self.data, self.names, self.tally.depth == 1):
+        if self.work.read(self.lines, i, self.flow, self.targets, self.data, self.names):
             return [], i + 1
         timed = timed_wait(self.lines, i) if i + 7 < len(self.lines) else None
         if timed is not None or self.logic.timed_else(self.lines, i, self._cond):

@@ -25,7 +25,7 @@ from rmot.backends.readers.krl_text import Line, aggregate
 from rmot.backends.readers.model import Target, Where
 from rmot.backends.readers.rapid import num_text, pose_expr
 
-__all__ = ["block_end", "is_block", "Known", "KnownPositions", "evaluate", "shift_terms", "data_value", "known_target", "literal"]
+__all__ = ["block_end", "is_block", "is_label", "Known", "KnownPositions", "evaluate", "shift_terms", "data_value", "known_target", "literal"]
 
 Known = tuple[str, str | None, dict[str, object], dict[str, object]]
 """(the declared type, the data-list position it was copied from (None: computed), that position's
@@ -104,9 +104,26 @@ def _factor(tokens: list[tuple[str, object]], i: int, depth: int = 0) -> tuple[f
     return None, i
 
 
+def is_label(ln: Line) -> bool:
+    """Whether a line is a label (`name:`), where a GOTO lands from anywhere."""
+    return _LABEL.fullmatch(ln.text) is not None
+
+
 def is_block(ln: Line) -> bool:
     """Whether a line opens a block (FOR, IF, WHILE, LOOP, REPEAT, SWITCH, SPLINE)."""
     return ln.word in _BLOCKS
+
+
+def _opener(lines: list[Line], i: int) -> int:
+    """The index of the line that opens the block line `i` (an ELSE, a CASE) is a branch of."""
+    depth = 0
+    for j in range(i - 1, -1, -1):
+        depth += lines[j].word in _BLOCKS.values()
+        if lines[j].word in _BLOCKS:
+            if depth == 0:
+                return j
+            depth -= 1
+    return 0
 
 
 def block_end(lines: list[Line], i: int) -> int:
@@ -148,6 +165,9 @@ class KnownPositions:
     def observe(self, lines: list[Line], i: int, resolve: Resolve) -> None:
         """Line `i` is about to be read: learn what it assigns, or forget what it may change."""
         ln = lines[i]
+        if i > 0 and lines[i - 1].word in ("ELSE", "CASE", "DEFAULT"):  # a branch: the ones before it did not run
+            opener = _opener(lines, i - 1)
+            self.disturb(lines[opener + 1:i - 1], lines[opener])
         if ln.word in _BLOCKS:
             self.disturb(lines[i:block_end(lines, i) + 1], ln)
         elif not self._assign(ln.text, resolve):
@@ -157,7 +177,7 @@ class KnownPositions:
         """Forget what these lines may change (a block's, opened by `block`, before and after it is read)."""
         for ln in lines:
             text = ln.text
-            if _LABEL.fullmatch(text):
+            if is_label(ln):
                 self._forget(list(self.values), f"unknown after the label at line {ln.where.line}, where a jump may "
                              "land: its value is known only at run time")
             m = _ASSIGNS.match(text)

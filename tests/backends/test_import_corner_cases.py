@@ -173,6 +173,8 @@ def _krl_moves(tmp_path: Path, body: str) -> tuple[list[str], str]:
     ("PG = XP1\nFOR I = 1 TO 3\nLIN PG\nPG.X = XP1.X + I * 10\nENDFOR\n", "assigned inside the block at line 4"),
     ("PG = XP1\nFOR I = 1 TO 3\nPG.X = XP1.X + I * 10\nENDFOR\nLIN PG\n", "assigned inside the block at line 4"),
     ("PG = XP1\nPG.X = XP1.X + Offset(3)\nLIN PG\n", "assigned at line 4"),
+    ("IF $IN[1] THEN\nPG = XP1\nELSE\nLIN PG\nENDIF\n", "assigned inside the block at line 3"),
+    ("FOR I = 1 TO 3\nLIN PG\nPG = XP1\nENDFOR\n", "assigned inside the block at line 3"),
 ])
 def test_a_krl_work_copy_a_line_may_change_is_not_its_target(body: str, why: str, tmp_path: Path) -> None:
     moves, printed = _krl_moves(tmp_path, body)
@@ -182,9 +184,15 @@ def test_a_krl_work_copy_a_line_may_change_is_not_its_target(body: str, why: str
     assert len(warned) == 1 and why in warned[0], printed
 
 
-def test_a_krl_work_copy_reads_as_its_shift_while_nothing_changes_it(tmp_path: Path) -> None:
-    moves, _ = _krl_moves(tmp_path, "PG = XP1\nFOR I = 1 TO 3\nPG.X = XP1.X + I * 10\nLIN PG\nENDFOR\n")
-    assert [m for m in moves if m.startswith("move linear shift(XP1, x=")], moves
+@pytest.mark.parametrize("body", [
+    "PG = XP1\nFOR I = 1 TO 3\nPG.X = XP1.X + I * 10\nLIN PG\nENDFOR\n",
+    # the KRL backend's form: the copy made afresh in the loop, right before its moves
+    "FOR I = 1 TO 3\nShift()\nPG = XP1\nPG.X = XP1.X + I * 10\nLIN PG\nPG = XP1\nPG.X = XP1.X + I * 5\nLIN PG\n"
+    "ENDFOR\nShift()\n",
+])
+def test_a_krl_work_copy_reads_as_its_shift_while_nothing_changes_it(body: str, tmp_path: Path) -> None:
+    moves, _ = _krl_moves(tmp_path, body)
+    assert moves and all(m.startswith("move linear shift(XP1, x=") for m in moves), moves
 
 
 @pytest.mark.parametrize(("name", "said"), [
