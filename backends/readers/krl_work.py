@@ -82,8 +82,9 @@ class WorkCopies:
         if m and m.group(1).upper() == key and m.group(2).upper() == base:
             return "copy"
         c = _COMPONENT.fullmatch(text)
-        own = c and c.group(1).upper() == key and c.group(3).upper() == base and c.group(2).upper() == c.group(4).upper()
-        return "component" if own and num_expr(c.group(5), names) is not None else ""
+        if c is None or c.group(1).upper() != key or c.group(3).upper() != base or c.group(2).upper() != c.group(4).upper():
+            return ""
+        return "component" if num_expr(c.group(5), names) is not None else ""
 
     def _holds(self, lines: list[Line], i: int, copy: tuple[str, str], flow: KnownPositions, names: set[str]) -> bool:
         """Whether copy `key` of `base`, set at line `i`, holds base shifted by its own component

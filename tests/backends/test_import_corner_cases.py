@@ -35,17 +35,30 @@ def _job(lines: list[str], tmp_path: Path) -> str:
     return str(path)
 
 
-def _runs(lines: list[str], inputs: dict[int, bool]) -> list[str]:
-    """The outputs an INFORM job's lines set, in order, with inputs at the given levels."""
-    labels = {ln: k for k, ln in enumerate(lines) if re.fullmatch(r"\*L\w+", ln)}
+# a vendor's jumps, as its manual gives them: (a label line, a conditional jump (named groups n,
+# op, level, label) and whether it jumps at the input's level and that operator, a jump, an
+# output set on (group: its number))
+Grammar = tuple[str, str, Callable[[bool, str, str], bool], str, str]
+# INFORM (DX100/YRC1000 INFORM manual, JUMP: `JUMP *L IF IN#(n)=X` jumps when the input is at X)
+INFORM = (r"\*L\w+", r"JUMP (?P<label>\*L\w+) IF IN#\((?P<n>\d+)\)(?P<op>=)(?P<level>ON|OFF)", lambda on, op, level: on == (level == "ON"),
+          r"JUMP (\*L\w+)", r"DOUT OT#\((\d+)\) ON")
+# TP (B-83284EN, IF ..,JMP LBL[n]: the program continues at the label when the comparison holds)
+TP = (r"LBL\[\d+\]", r"IF DI\[(?P<n>\d+)\](?P<op>=|<>)(?P<level>ON|OFF),JMP (?P<label>LBL\[\d+\])",
+      lambda on, op, level: (on == (level == "ON")) == (op == "="), r"JMP (LBL\[\d+\])", r"DO\[(\d+)\]=ON")
+
+
+def _runs(lines: list[str], inputs: dict[int, bool], grammar: Grammar = INFORM) -> list[str]:
+    """The outputs a program's lines set, in order, with inputs at the given levels."""
+    label, cond_jump, jumps_when, jump, out = grammar
+    labels = {ln: k for k, ln in enumerate(lines) if re.fullmatch(label, ln)}
     k, done = 0, []
     while k < len(lines):
         ln, k = lines[k], k + 1
-        if m := re.fullmatch(r"JUMP (\*L\w+) IF IN#\((\d+)\)=(ON|OFF)", ln):
-            k = labels[m.group(1)] if inputs[int(m.group(2))] == (m.group(3) == "ON") else k
-        elif m := re.fullmatch(r"JUMP (\*L\w+)", ln):
+        if m := re.fullmatch(cond_jump, ln):
+            k = labels[m["label"]] if jumps_when(inputs[int(m["n"])], m["op"], m["level"]) else k
+        elif m := re.fullmatch(jump, ln):
             k = labels[m.group(1)]
-        elif m := re.fullmatch(r"DOUT OT#\((\d+)\) ON", ln):
+        elif m := re.fullmatch(out, ln):
             done.append(m.group(1))
         else:
             assert ln in labels, ln
@@ -101,25 +114,6 @@ def test_a_chain_whose_label_another_line_jumps_to_stays_native(tmp_path: Path) 
     assert natives == [ln for ln in lines if not ln.startswith("DOUT")], natives
 
 
-def _tp_runs(lines: list[str], inputs: dict[int, bool]) -> list[str]:
-    """The outputs a TP program's lines set, in order (B-83284EN, IF ..,JMP LBL[n]: the program
-    continues at the label when the comparison holds; JMP LBL[n]; LBL[n])."""
-    labels = {ln: k for k, ln in enumerate(lines) if re.fullmatch(r"LBL\[\d+\]", ln)}
-    k, done = 0, []
-    while k < len(lines):
-        ln, k = lines[k], k + 1
-        if m := re.fullmatch(r"IF DI\[(\d+)\](=|<>)(ON|OFF),JMP (LBL\[\d+\])", ln):
-            at = inputs[int(m.group(1))] == (m.group(3) == "ON")
-            k = labels[m.group(4)] if at == (m.group(2) == "=") else k
-        elif m := re.fullmatch(r"JMP (LBL\[\d+\])", ln):
-            k = labels[m.group(1)]
-        elif m := re.fullmatch(r"DO\[(\d+)\]=ON", ln):
-            done.append(m.group(1))
-        else:
-            assert ln in labels, ln
-    return done
-
-
 def _tp(lines: list[str], tmp_path: Path) -> str:
     path = tmp_path / "CHAIN.LS"
     path.write_text("/PROG  CHAIN\n/ATTR\n/MN\n" + "".join(f"  {k}:  {ln} ;\n" for k, ln in enumerate(lines, 1))
@@ -134,7 +128,7 @@ def _tp(lines: list[str], tmp_path: Path) -> str:
     ["IF DI[1]=ON,JMP LBL[7]", "IF DI[2]<>ON,JMP LBL[8]", "LBL[7]", "DO[5]=ON", "LBL[8]"],
 ])
 def test_a_tp_jump_chain_reads_as_one_condition(lines: list[str], tmp_path: Path) -> None:
-    _read_as_the_program_runs(_tp(lines, tmp_path), lambda inputs: _tp_runs(lines, inputs))
+    _read_as_the_program_runs(_tp(lines, tmp_path), lambda inputs: _runs(lines, inputs, TP))
 
 
 def test_a_tp_chain_whose_label_another_line_jumps_to_stays_native(tmp_path: Path) -> None:
