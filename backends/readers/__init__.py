@@ -64,7 +64,7 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.fanuc import read_fanuc  # late: loads numpy only when this runs
 
-    m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS)
+    m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS, _PULSE_POSE[0])
     _FANUC_INLINED.update(m.inlined)
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),

@@ -23,8 +23,9 @@ from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
 from rmot.backends.readers.fanuc_text import german_instruction, group_test, wait_condition
+from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
-    Cond, For, FrameData, If, Move, Native, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
+    Cond, For, FrameData, If, Move, Native, PulsePose, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
@@ -47,6 +48,11 @@ _SIMPLE = (
 )
 
 
+def _names_label(text: str, label: str) -> bool:
+    """Whether a TP instruction is label LBL[label] or jumps to it (`JMP LBL[n]`, `TIMEOUT,LBL[n]`)."""
+    return re.search(rf"\bLBL\[{label}(?::[^\]]*)?\]", text) is not None
+
+
 def _branch(text: str) -> ir.Config | None:
     m = re.match(r"\s*([FN])\s*([UD])\s*([TB])", text.upper())
     if m is None:
@@ -58,7 +64,7 @@ def _branch(text: str) -> ir.Config | None:
 
 class _Ls:
     def __init__(self, path: str, text: str, labels: dict[str, dict[int, str]],
-                 programs: dict[str, tuple[str, str]] | None = None) -> None:
+                 programs: dict[str, tuple[str, str]] | None = None, pulse_pose: PulsePose | None = None) -> None:
         self.tally = Tally(path, text, "fanuc")
         self.path = path
         self.raw = text.split("\n")
@@ -79,6 +85,8 @@ class _Ls:
         # PAYLOAD[i] schedules with the mass a remark right before the line gives (the schedule's
         # data lives on the controller): (name, mass kg, centre unknown)
         self.loads: list[tuple[str, float, tuple[float, float, float]]] = []
+        self.pulse_pose = pulse_pose  # (joints deg, tool name) -> the TCP pose in the base (the cell's arm)
+        self.tcp: dict[tuple[str, str], Target] = {}  # (joint-form position, tool) -> its TCP pose target
 
     # ---------------------------------------------------------------- sections
 
@@ -183,7 +191,8 @@ class _Ls:
             nan = float("nan")
             self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (nan, nan, nan)))  # type: ignore[union-attr]
         if stmt is None:
-            return [self.tally.keep(text + " ;", where, "no rmot form")], i + 1
+            joint_form = [why for why in map(self._tcp_of, _path_points(text)) if isinstance(why, str)]
+            return [self.tally.keep(text + " ;", where, joint_form[0] if joint_form else "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
 
@@ -255,25 +264,40 @@ class _Ls:
         self.tally.imported += 1
         return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
 
-    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`IF DI[n]<>ON,JMP LBL[a]` (or `IF GI[n]<>v,JMP LBL[a]`: a group input's test), then-body,
-        [`JMP LBL[b]`, `LBL[a]`, else-body,] `LBL[b]`."""
+    def _jump_at(self, i: int) -> Jump | None:
+        """`IF DI[n]<>ON,JMP LBL[a]` (or an output, `DO[n]`; or `IF GI[n]<>v,JMP LBL[a]`: a group
+        input's test): its label, when it is taken and when not."""
         m = re.fullmatch(rf"IF (DI|DO){_SIG}\s*(<>|=)\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
-        g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i)) if m is None else None
-        group = group_test(g.group(1), negate=True) if g else None
-        if m is None and group is None:
+        if m is not None:
+            # taken when the signal is at the level `=` names, or at the other one with `<>`
+            taken = Cond(int(m.group(2)), (m.group(4) == "ON") == (m.group(3) == "="), m.group(1) == "DO")
+            return m.group(5), taken, taken.negated(), i + 1
+        g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i))
+        taken_group, falls = (group_test(g.group(1)), group_test(g.group(1), negate=True)) if g else (None, None)
+        if g is None or taken_group is None or falls is None:
             return None
-        label = m.group(5) if m else g.group(2)  # type: ignore[union-attr]
-        arms = label_arms(self._text, i, end, f"LBL[{label}]", _JMP, lambda n: f"LBL[{n}]")
+        return g.group(2), taken_group, falls, i + 1
+
+    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """Conditional jumps to `LBL[a]` (`_jump_at`: all of them, `and`; or a chain to `LBL[s]`
+        and one to `LBL[a]` then `LBL[s]`, `or`: readers/jumps.py), then-body, [`JMP LBL[b]`,
+        `LBL[a]`, else-body,] `LBL[b]`."""
+        chain = jump_chain(self._jump_at, self._text, i, lambda n: f"LBL[{n}]")
+        if chain is None:
+            return None
+        label, cond, start, more = chain
+        arms = label_arms(self._text, start - 1, end, f"LBL[{label}]", _JMP, lambda n: f"LBL[{n}]")
         if arms is None:
             return None
         ja, jb = arms
-        then, _ = self._block(i + 1, ja - 1 if jb is not None else ja)
+        labels = (label, *more) + ((_JMP.fullmatch(self._text(ja - 1)).group(1),) if jb is not None else ())  # type: ignore[union-attr]
+        consumed = set(range(i, start)) | {ja} | ({ja - 1, jb} if jb is not None else set())
+        if jumped_to_elsewhere(self._text, len(self.instructions), labels, _names_label, consumed):
+            return None
+        then, _ = self._block(start, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         self.tally.imported += 1
-        # the arm runs when the jump is not taken: `<>ON` and `=OFF` both mean "runs when on"
-        cond = Cond(int(m.group(2)), (m.group(4) == "ON") == (m.group(3) == "<>"), m.group(1) == "DO") if m else group
-        return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
+        return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`WAIT DI[n]=ON TIMEOUT,LBL[a]`, `JMP LBL[b]`, `LBL[a]`, `ABORT`, `LBL[b]` (after $WAITTMOUT)."""
@@ -310,6 +334,11 @@ class _Ls:
         else:
             return None
         decls = [self.positions.get(p) for p in points]
+        if kind != "joint":  # a point stored in joint form: the move goes to its TCP pose
+            tcps = [self._tcp_of(p) for p in points]
+            decls = [t if isinstance(t, Target) else d for t, d in zip(tcps, decls)]
+            if any(isinstance(t, str) for t in tcps):
+                return None
         options = _options(rest)
         if options is None or any(d is None for d in decls):
             return None
@@ -337,10 +366,33 @@ class _Ls:
         move = Move(kind, exprs[-1], decl.name, where, via=exprs[0] if kind == "circular" else None,
                     speed=timing[0], joint_pct=timing[1], time=timing[2],
                     zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
-                    tool=self._named("UTOOL"), frame=self._named("UFRAME"),
+                    tool=self._named("UTOOL"), frame="base" if decl.name in self._tcp_names() else self._named("UFRAME"),
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
                     pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
+
+    def _tcp_of(self, n: int) -> Target | str | None:
+        """P[n] of a linear or circular move where it is stored in joint form: its TCP pose in the
+        robot's base, a target `<name>_tcp` of its own (the cell arm's forward kinematics times the
+        active tool's TCP: a joint-form position is no frame's, R-30iB Operator's Manual, position
+        data "joint coordinates"), or why the move stays native; None where P[n] is Cartesian."""
+        decl = self.positions.get(n)
+        if decl is None or decl.pose is not None or decl.joints is None:
+            return None
+        tool = self._named("UTOOL")
+        if (decl.name, tool) not in self.tcp:
+            pose = self.pulse_pose(decl.joints, tool) if self.pulse_pose is not None else None
+            if pose is None:
+                return (f"{decl.name} is stored in joint form: a linear or circular move to it goes to its TCP pose, "
+                        f"which the arm's forward kinematics and the program's tool give (`--cell` with the robot "
+                        f"and a tool named `{tool}`)")
+            name = f"{decl.name}_tcp" + (f"_{tool}" if any(k[0] == decl.name for k in self.tcp) else "")
+            self.tcp[(decl.name, tool)] = Target(name, pose, None, None, decl.where)
+            self.positions[-(len(self.positions) + 1)] = self.tcp[(decl.name, tool)]
+        return self.tcp[(decl.name, tool)]
+
+    def _tcp_names(self) -> set[str]:
+        return {t.name for t in self.tcp.values()}
 
     def _option(self, text: str, where: Where) -> Stmt:
         """A motion option kept after its move: an action (`DO[n]=ON`, `CALL p`) read as its
@@ -403,6 +455,11 @@ def _options(rest: str) -> tuple[int | None, int | None, list[str]] | None:
     return acc, offset, kept
 
 
+def _path_points(text: str) -> list[int]:
+    """The points of a linear or circular motion line (`L P[n] ..`, `C P[a] : P[b] ..`)."""
+    return [int(n) for n in re.findall(r"P\[(\d+)", text)] if re.match(r"(?i)[LC]\s", text) else []
+
+
 def _speed(kind: str, text: str) -> tuple[float | None, float | None, float | None] | None:
     """(TCP mm/s, joint %, fixed time s) of a TP speed."""
     m = re.fullmatch(r"([\d.]+)(%|mm/sec|cm/min|inch/min|sec|msec)", text)
@@ -420,10 +477,10 @@ def _speed(kind: str, text: str) -> tuple[float | None, float | None, float | No
 
 
 def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = None,
-               programs: dict[str, tuple[str, str]] | None = None) -> _Ls:
+               programs: dict[str, tuple[str, str]] | None = None, pulse_pose: PulsePose | None = None) -> _Ls:
     """Read one TP program; raises ImportError_ (E510) when it is not one. `labels`: tool and
     frame names by number, from all the program's files; `programs`: those files by program
     name (a program called inside a loop that moves its targets is inlined at the call)."""
-    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs)
+    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose)
     ls.read()
     return ls

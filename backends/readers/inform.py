@@ -29,6 +29,7 @@ import re
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.fanuc_text import group_test
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
+from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, PulsePose, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
@@ -357,28 +358,40 @@ class _Job:
             return None
         return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), float(m.group(3)), self.inst[i][1])], i + 5
 
-    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`JUMP *La IF IN#(n)=X` (or an output, `OT#(n)`), then, [`JUMP *Lb`, `*La`, else, `*Lb`]
-        (then runs when not X);
-        or a group input read into a byte and tested, `IN Bt IG#(n)`, `JUMP *La IF Bt<op>v` (the
-        backend's form: then runs when the test fails)."""
+    def _jump_at(self, i: int) -> Jump | None:
+        """`JUMP *La IF IN#(n)=X` (or an output, `OT#(n)`); or a group input read into a byte and
+        tested, `IN Bt IG#(n)`, `JUMP *La IF Bt<op>v`: its label, when it is taken and when not."""
         m = re.fullmatch(r"JUMP \*(L\w+) IF (IN|OT)#\((\d+)\)=(ON|OFF)", self._text(i))
-        read = re.fullmatch(r"IN (B\d+) IG#\((\d+)\)", self._text(i)) if m is None else None
+        if m is not None:
+            taken = Cond(int(m.group(3)), m.group(4) == "ON", m.group(2) == "OT")
+            return m.group(1), taken, taken.negated(), i + 1
+        read = re.fullmatch(r"IN (B\d+) IG#\((\d+)\)", self._text(i))
         test = re.fullmatch(rf"JUMP \*(L\w+) IF {read.group(1)}(<>|<=|>=|=|<|>)(\d+)", self._text(i + 1)) if read else None
-        if m is None and test is None:
+        if read is None or test is None:
             return None
-        jump = i if m is not None else i + 1
-        label = m.group(1) if m is not None else test.group(1)  # type: ignore[union-attr]
-        arms = label_arms(self._text, jump, end, f"*{label}", _JUMP, lambda n: f"*{n}")
+        # INFORM compares with TP's operators (=, <>, <, >, <=, >=): the TP reader's group test
+        compare = f"GI[{read.group(2)}]{test.group(2)}{test.group(3)}"
+        return test.group(1), group_test(compare), group_test(compare, negate=True), i + 2  # type: ignore[return-value]
+
+    def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """An if as the backend writes it: conditional jumps (`_jump_at`) to `*La`, all of them
+        (`and`) or a chain to `*Ls` and one to `*La` then `*Ls` (`or`, readers/jumps.py), then,
+        [`JUMP *Lb`, `*La`, else, `*Lb`] (then runs when no jump to `*La` is taken)."""
+        chain = jump_chain(self._jump_at, self._text, i, lambda n: f"*{n}")
+        if chain is None:
+            return None
+        label, cond, start, more = chain
+        arms = label_arms(self._text, start - 1, end, f"*{label}", _JUMP, lambda n: f"*{n}")
         if arms is None:
             return None
         ja, jb = arms
-        then, _ = self._block(jump + 1, ja - 1 if jb is not None else ja)
+        labels = (label, *more) + ((_JUMP.fullmatch(self._text(ja - 1)).group(1),) if jb is not None else ())  # type: ignore[union-attr]
+        consumed = set(range(i, start)) | {ja} | ({ja - 1, jb} if jb is not None else set())
+        if jumped_to_elsewhere(self._text, len(self.inst), labels, _names_label, consumed):
+            return None
+        then, _ = self._block(start, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
-        # INFORM compares with TP's operators (=, <>, <, >, <=, >=): the TP reader's group test
-        cond = Cond(int(m.group(3)), m.group(4) == "OFF", m.group(2) == "OT") if m is not None else \
-            group_test(f"GI[{read.group(2)}]{test.group(2)}{test.group(3)}", negate=True)  # type: ignore[union-attr]
-        return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1  # type: ignore[arg-type]
+        return [If(cond, tuple(then), tuple(orelse), self.inst[i][1])], (jb if jb is not None else ja) + 1
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
         m = re.fullmatch(r"(MOVJ|S?MOVL)\s+([CP]\d+)\s*(.*)", text)
@@ -386,6 +399,11 @@ class _Job:
             return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where,
                               m.group(1) == "SMOVL")
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
+
+
+def _names_label(text: str, label: str) -> bool:
+    """Whether an instruction is label `*label` or jumps to it."""
+    return re.search(rf"\*{label}\b", text) is not None
 
 
 def _key(ref: str) -> str:

@@ -21,7 +21,7 @@ from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
 from rmot.backends.readers import axes_slots, codes
-from rmot.backends.readers.common import Tally, num_expr, rmot_name, split_top
+from rmot.backends.readers.common import Tally, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
 )
@@ -32,6 +32,7 @@ from rmot.backends.readers.krl_globals import ASSIGNMENT, public_globals
 from rmot.backends.readers.krl_flow import KnownPositions, data_value, known_target, literal
 from rmot.backends.readers.krl_inline import MOTIONS, inline_move
 from rmot.backends.readers.krl_unroll import unrolled_for
+from rmot.backends.readers.krl_work import WorkCopies
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_vars import SETUP_FOLD, axis_speed_loop, counted_loop
 from rmot.backends.readers.krl_why import (
@@ -70,7 +71,7 @@ class _Krl:
         self.tools, self.frames, self.targets = data_objects(self.data, src[1], self.assigned)
         self.routines: list[Routine] = []
         self.names: set[str] = set()
-        self.work: dict[str, tuple[str, dict[str, str]]] = {}  # P_loop -> (P, axis offsets)
+        self.work = WorkCopies()  # P_loop -> (P, axis offsets)
         self.state = MotionState()
         self.name = "imported"
         # the Cartesian target the last move went to, in straight-line code (None where a block
@@ -144,6 +145,7 @@ class _Krl:
                                     ln.where)
                 self.params = param_names(params)
                 self.flow.routine(self.lines, i)
+                self.work.routine()
                 body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), partial(self._block, i + 1, ("END",)))
                 self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
@@ -212,7 +214,7 @@ class _Krl:
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text):
             return [], i + 1
-        if self._work_copy(ln.text):
+        if self.work.read(self.lines, i, self.flow, self.targets, self.data, self.names):
             return [], i + 1
         timed = timed_wait(self.lines, i) if i + 7 < len(self.lines) else None
         if timed is not None or self.logic.timed_else(self.lines, i, self._cond):
@@ -407,20 +409,6 @@ class _Krl:
             self.state.frame = same
         return True
 
-    def _work_copy(self, text: str) -> bool:
-        """`P_loop=P` then `P_loop.X=P.X+expr`: the loop's work copy of a target (shift)."""
-        m = re.fullmatch(r"(\w+)\s*=\s*(\w+)", text)
-        if m and m.group(2).upper() in self.targets and m.group(1).upper() in self.data:
-            self.work[m.group(1).upper()] = (m.group(2).upper(), {})
-            return True
-        m = re.fullmatch(r"(?i)(\w+)\.([XYZ])\s*=\s*(\w+)\.([XYZ])\s*\+\s*(.+)", text)
-        if m and m.group(1).upper() in self.work and m.group(2).upper() == m.group(4).upper():
-            expr = num_expr(m.group(5), self.names)
-            if expr is not None and self.work[m.group(1).upper()][0] == m.group(3).upper():
-                self.work[m.group(1).upper()][1][m.group(2).lower()] = expr
-                return True
-        return False
-
     # ---------------------------------------------------------------- statements
 
     def _simple(self, ln: Line) -> Stmt | None:
@@ -462,8 +450,8 @@ class _Krl:
     def _target(self, text: str, at: Where | None = None) -> tuple[str, str | None, Target | None] | None:
         text = text.strip()
         key = re.sub(r"\s+", "", text).upper() if re.fullmatch(r"\w+\s*\[\s*\d+\s*\]", text) else text.upper()
-        if key in self.work:
-            base, offsets = self.work[key]
+        if key in self.work.copies:
+            base, offsets = self.work.copies[key]
             decl = self.targets[base]
             terms = ", ".join(f"{axis}={mm(e)}" for axis, e in sorted(offsets.items()))
             named = rmot_name(decl.name)

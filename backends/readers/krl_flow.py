@@ -25,7 +25,7 @@ from rmot.backends.readers.krl_text import Line, aggregate
 from rmot.backends.readers.model import Target, Where
 from rmot.backends.readers.rapid import num_text, pose_expr
 
-__all__ = ["block_end", "Known", "KnownPositions", "evaluate", "shift_terms", "data_value", "known_target", "literal"]
+__all__ = ["block_end", "is_block", "is_label", "Known", "KnownPositions", "evaluate", "shift_terms", "data_value", "known_target", "literal"]
 
 Known = tuple[str, str | None, dict[str, object], dict[str, object]]
 """(the declared type, the data-list position it was copied from (None: computed), that position's
@@ -37,6 +37,9 @@ _BLOCKS = {"FOR": "ENDFOR", "IF": "ENDIF", "WHILE": "ENDWHILE", "LOOP": "ENDLOOP
            "SWITCH": "ENDSWITCH", "SPLINE": "ENDSPLINE"}
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][-+]?\d+)?|\.\d+(?:[eE][-+]?\d+)?)|(\w+(?:\[\s*\d+\s*\])?)\.(\w+)|([-+*/()]))")
 _NULLFRAME: dict[str, object] = {k: 0.0 for k in ("X", "Y", "Z", "A", "B", "C")}
+_LABEL = re.compile(r"\w+\s*:")  # a label: a GOTO lands here from anywhere
+_ASSIGNS = re.compile(r"(\w+)\s*(\[[^\]]*\])?\s*(\.\w+)?\s*=(?!=)")
+_CALL = re.compile(r"(?i)(\w+)\s*\((.*)\)")
 
 
 def _key(text: str) -> str:
@@ -101,6 +104,28 @@ def _factor(tokens: list[tuple[str, object]], i: int, depth: int = 0) -> tuple[f
     return None, i
 
 
+def is_label(ln: Line) -> bool:
+    """Whether a line is a label (`name:`), where a GOTO lands from anywhere."""
+    return _LABEL.fullmatch(ln.text) is not None
+
+
+def is_block(ln: Line) -> bool:
+    """Whether a line opens a block (FOR, IF, WHILE, LOOP, REPEAT, SWITCH, SPLINE)."""
+    return ln.word in _BLOCKS
+
+
+def _opener(lines: list[Line], i: int) -> int:
+    """The index of the line that opens the block line `i` (an ELSE, a CASE) is a branch of."""
+    depth = 0
+    for j in range(i - 1, -1, -1):
+        depth += lines[j].word in _BLOCKS.values()
+        if lines[j].word in _BLOCKS:
+            if depth == 0:
+                return j
+            depth -= 1
+    return 0
+
+
 def block_end(lines: list[Line], i: int) -> int:
     """The index of the line that ends the block opened at `i` (nested ones included)."""
     start, end = lines[i].word, _BLOCKS[lines[i].word]
@@ -140,6 +165,9 @@ class KnownPositions:
     def observe(self, lines: list[Line], i: int, resolve: Resolve) -> None:
         """Line `i` is about to be read: learn what it assigns, or forget what it may change."""
         ln = lines[i]
+        if i > 0 and lines[i - 1].word in ("ELSE", "CASE", "DEFAULT"):  # a branch: the ones before it did not run
+            opener = _opener(lines, i - 1)
+            self.disturb(lines[opener + 1:i - 1], lines[opener])
         if ln.word in _BLOCKS:
             self.disturb(lines[i:block_end(lines, i) + 1], ln)
         elif not self._assign(ln.text, resolve):
@@ -149,10 +177,10 @@ class KnownPositions:
         """Forget what these lines may change (a block's, opened by `block`, before and after it is read)."""
         for ln in lines:
             text = ln.text
-            if re.fullmatch(r"\w+\s*:", text):  # a label: a GOTO lands here from anywhere
+            if is_label(ln):
                 self._forget(list(self.values), f"unknown after the label at line {ln.where.line}, where a jump may "
                              "land: its value is known only at run time")
-            m = re.match(r"(\w+)\s*(\[[^\]]*\])?\s*(\.\w+)?\s*=(?!=)", text)
+            m = _ASSIGNS.match(text)
             if m is not None:
                 name = m.group(1).upper()
                 why = (f"assigned inside the block at line {block.where.line} (a loop repeats it, a branch may not run): "
@@ -161,12 +189,34 @@ class KnownPositions:
                 if block is not None or m.group(3) is None or name not in self.lost:
                     self.lost[name] = why
                 self._forget([k for k in self.values if k.split("[")[0] == name], why)
-            call = re.fullmatch(r"(?i)(\w+)\s*\((.*)\)", text)
+            call = _CALL.fullmatch(text)
             if call is not None and call.group(1).upper() != "BAS":
-                args = {w.upper() for w in re.findall(r"\w+", call.group(2))}
-                self._forget([k for k in self.values if k.split("[")[0] not in self.locals or k.split("[")[0] in args],
+                self._forget([k for k in self.values if self._call_writes(call, k.split("[")[0])],
                              f"known before `{call.group(1)}(..)` at line {ln.where.line}, which may change it: its value is known "
                              "only at run time")
+
+    def _call_writes(self, call: re.Match[str], name: str) -> bool:
+        """Whether a call may write variable `name`: a global one (not the routine's own), or one
+        passed to it (an OUT parameter)."""
+        return name not in self.locals or name in {w.upper() for w in re.findall(r"\w+", call.group(2))}
+
+    def may_change(self, ln: Line, name: str) -> str | None:
+        """Why line `ln` may change variable `name` (upper case) by the rules above (a label, an
+        assignment to it, a call that may write it, an interrupt routine where the module declares
+        one and it is not the routine's own), as its value's reason to be known only at run time;
+        None where it cannot."""
+        text = ln.text
+        if self.interrupts and name not in self.locals:
+            return "a global variable an interrupt routine may change at any time: its value is known only at run time"
+        if _LABEL.fullmatch(text):
+            return f"unknown after the label at line {ln.where.line}, where a jump may land"
+        m = _ASSIGNS.match(text)
+        if m is not None and m.group(1).upper() == name:
+            return f"assigned at line {ln.where.line} (`{text[:40]}`) a value known only at run time"
+        call = _CALL.fullmatch(text)
+        if call is not None and call.group(1).upper() != "BAS" and self._call_writes(call, name):
+            return f"known before `{call.group(1)}(..)` at line {ln.where.line}, which may change it"
+        return None
 
     def _forget(self, keys: list[str], why: str) -> None:
         for key in keys:

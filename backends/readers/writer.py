@@ -136,9 +136,18 @@ def rename_warnings(doc: Document, span_of: Callable[[Where], Span]) -> tuple[Di
     """W514 at each declared name the program writes under another name (an rmot keyword)."""
     named = [(t.name, t.where) for t in doc.targets] + [(t.name, t.where) for t in doc.tools] + \
         [(f.name, f.where) for f in doc.frames] + [(r.name, r.where) for r in doc.routines]
-    return tuple(Diagnostic(codes.NAME_RENAMED, Severity.WARNING,
-                            f"`{name}` must not be an rmot keyword in a .rmot program: written as `{rmot_name(name)}`",
+    return tuple(Diagnostic(codes.NAME_RENAMED, Severity.WARNING, f"`{name}` {_why_renamed(name)}: written as `{rmot_name(name)}`",
                             span_of(where)) for name, where in named if rmot_name(name) != name)
+
+
+def _why_renamed(name: str) -> str:
+    """Why a vendor name is not its rmot name (common.rmot_name): an array element (`P[1]`: a
+    target per element), a keyword, or characters an rmot name has not."""
+    if re.fullmatch(r"\w+\s*\[[\s\d,]+\]", name):
+        return "is an array element, and an rmot name has no index"
+    if re.fullmatch(r"[A-Za-z_]\w*", name):
+        return "must not be an rmot keyword in a .rmot program"
+    return "is not an rmot name (a letter or `_`, then letters, digits and `_`)"
 
 
 def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:

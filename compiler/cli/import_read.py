@@ -133,7 +133,9 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
         cell_ir = found[2]
         assert isinstance(cell_ir, ir.Cell)
         model = cell_ir.robot(found[1]).source.ref
-    pulse_pose = _pulse_pose(model, found) if pulses_per_degree is not None and found is not None else None
+    # TCP poses of joint positions: INFORM pulse positions read with scales, TP joint-form positions
+    joint_form = pulses_per_degree is not None or any(f.lower().endswith(".ls") for f in files)
+    pulse_pose = _pulse_pose(model, found) if joint_form and found is not None else None
     doc = read_files(files, model=model, limits=_joint_limits(model), pulses_per_degree=pulses_per_degree,
                      pulse_pose=pulse_pose)
     if cell is None or found is None:
