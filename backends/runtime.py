@@ -62,8 +62,8 @@ class ExprDialect:
 
 
 def is_int(e: Any) -> bool:
-    """True when `e` is an INT-valued expression."""
-    return getattr(e, "type", None) is ir.ValueType.INT
+    """True when `e` is an INT-valued expression (a group input reads an unsigned integer)."""
+    return isinstance(e, ir.GroupInput) or getattr(e, "type", None) is ir.ValueType.INT
 
 
 def expr_text(e: Any, d: ExprDialect) -> str:
