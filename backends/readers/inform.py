@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 import re
 
+from rmot.backends.inform_text import PL_DISTANCES_MM
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.fanuc_text import group_test
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
@@ -54,7 +55,7 @@ _SIMPLE = (
 # the remark the backend writes where the program attaches or detaches a part (INFORM selects
 # loads only as tool files: backends/inform.py, W460): the tool and parts' mass
 _PAYLOAD_REMARK = re.compile(r"'(?:attach|detach) \w+: payload \d+(?:\.\d+)? kg")
-PL_MM = (0.0, 12.5, 25.0, 50.0, 100.0)  # the backend's PL levels (backends/inform.py)
+PL_MM = PL_DISTANCES_MM  # the PL levels the backend writes (one table: backends/inform_text.py)
 
 
 class _Job:
