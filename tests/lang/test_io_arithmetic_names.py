@@ -1,0 +1,84 @@
+"""`out`, `ain`, `gin` and `aout` are I/O reads only right before `[`: elsewhere they stay the
+names they always were, so a target, var, proc or const called so keeps working beside a read
+of the port of the same word (`var k = gin * gin[1]`). Each program's IR is checked against
+the tree written here by hand from the language's rules (REFERENCE §12); `in` is a keyword
+(`for i in`) and stays refused as a name (E008), as it always was.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from rmot.compiler.frontend import load_text
+from rmot.lang import ir, ir_tree
+
+CELL = """cell c {
+  robot r1 = abb_irb1600 at pose(z=400mm)
+  io gin[1] = "pgno" bits 4
+  io ain[1] = "ai1"
+  io in[2] = "ready"
+  io out[3] = "lamp"
+}
+"""
+INT, NUM = ir.ValueType.INT, ir.ValueType.NUM
+AIN, GIN = ir.AnalogInput(1, "ai1"), ir.GroupInput(1, "pgno", 4)
+LAMP = ir.OutputRead(port=3, signal="lamp")
+READY = ir.InputCondition(port=2, value=True, signal="ready")
+NAMES = ["out", "ain", "gin", "aout"]
+
+
+def _body(text: str, tmp_path: Path) -> tuple[ir.Instr, ...]:
+    result = load_text(CELL + text, str(tmp_path / "p.rmot"))
+    assert result.program is not None and not result.diagnostics, [str(d) for d in result.diagnostics]
+    return result.program.tasks[0].body
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_a_const_named_like_a_port_beside_a_read(name: str, tmp_path: Path) -> None:
+    body = _body(f"const {name} = 3\nprogram p on r1 {{\n  var k = {name} * gin[1]\n"
+                 f"  if {name} < ain [1] and out[3] {{ stop }}\n}}\n", tmp_path)
+    three = ir.Const(3, INT)
+    assert body[0] == ir.VarDecl(uid=1, name="k", type=INT, init=ir.Arith("*", three, GIN, INT))
+    assert isinstance(body[1], ir.If)
+    assert body[1].condition == ir.Logic("and", (ir.Compare(ir.CompareOp.LT, three, AIN), LAMP))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_a_var_named_like_a_port_beside_a_read(name: str, tmp_path: Path) -> None:
+    body = _body(f"program p on r1 {{\n  var {name}: num = 2\n  {name} = {name} + ain[1] * 2\n"
+                 f"  while {name} > gin[1] or in[2] {{ {name} = {name} - 1 }}\n}}\n", tmp_path)
+    mine = ir.VarRef(name, NUM)
+    assert isinstance(body[1], ir.Assign)
+    assert body[1].value == ir.Arith("+", mine, ir.Arith("*", AIN, ir.Const(2, INT), NUM), NUM)
+    assert isinstance(body[2], ir.While)
+    assert body[2].condition == ir.Logic("or", (ir.Compare(ir.CompareOp.GT, mine, GIN), READY))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_a_target_named_like_a_port(name: str, tmp_path: Path) -> None:
+    body = _body(f"target {name} = joints(0, 90, 0, 0, 0, 0) deg\nprogram p on r1 {{\n"
+                 f"  move joint {name}\n  if gin[1] == 1 {{ move joint {name} }}\n}}\n", tmp_path)
+    assert isinstance(body[0], ir.Move) and isinstance(body[0].target, ir.JointTarget)
+    assert body[0].target.name == name
+    assert body[0].target.values == pytest.approx((0.0, math.radians(90), 0.0, 0.0, 0.0, 0.0))
+    assert isinstance(body[1], ir.If) and body[1].condition == ir.Compare(ir.CompareOp.EQ, GIN, ir.Const(1, INT))
+    assert isinstance(body[1].then[0], ir.Move) and body[1].then[0].target == body[0].target
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_a_proc_named_like_a_port(name: str, tmp_path: Path) -> None:
+    body = _body(f"program p on r1 {{\n  proc {name}() {{ wait 1 s }}\n  {name}()\n"
+                 f"  if ain[1] * 2 > 3 {{ {name}() }}\n}}\n", tmp_path)
+    waits = [n for n in ir_tree.walk(body) if isinstance(n, ir.WaitTime)]
+    assert [w.duration for w in waits] == [1.0, 1.0]
+    branch = next(n for n in body if isinstance(n, ir.If))
+    assert branch.condition == ir.Compare(ir.CompareOp.GT, ir.Arith("*", AIN, ir.Const(2, INT), NUM), ir.Const(3, INT))
+
+
+@pytest.mark.parametrize("text", ["var in = 1", "target in = joints(0, 0, 0, 0, 0, 0) deg"])
+def test_in_stays_a_keyword(text: str, tmp_path: Path) -> None:
+    result = load_text(f"{CELL}program p on r1 {{\n  {text}\n}}\n", str(tmp_path / "p.rmot"))
+    assert [(d.code.id, d.span.start.line if d.span else 0) for d in result.diagnostics if d.is_error][:1] == [("E008", 9)]
