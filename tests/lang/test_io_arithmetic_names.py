@@ -82,3 +82,27 @@ def test_a_proc_named_like_a_port(name: str, tmp_path: Path) -> None:
 def test_in_stays_a_keyword(text: str, tmp_path: Path) -> None:
     result = load_text(f"{CELL}program p on r1 {{\n  {text}\n}}\n", str(tmp_path / "p.rmot"))
     assert [(d.code.id, d.span.start.line if d.span else 0) for d in result.diagnostics if d.is_error][:1] == [("E008", 9)]
+
+
+@pytest.mark.parametrize(
+    ("text", "tree"),
+    [("in[2] == out[3]", ir.Compare(ir.CompareOp.EQ, READY, LAMP)),
+     ("out[3] != in[2]", ir.Compare(ir.CompareOp.NE, READY, LAMP)),  # == and != are symmetric: the input first
+     ("in[2] != (gin[1] > 3)", None)],
+)
+def test_an_input_compared_with_another_read_is_a_runtime_comparison(text: str, tree: ir.Condition | None,
+                                                                     tmp_path: Path) -> None:
+    """The level an input is compared with may itself be read while the program runs: the
+    comparison is the controller's (never a value rmot computes first, E169)."""
+    result = load_text(f"{CELL}program p on r1 {{\n  if {text} {{ stop }}\n}}\n", str(tmp_path / "p.rmot"))
+    if tree is None:  # a condition in parentheses is no operand of `==`: a syntax error, as before
+        assert [d.code.id for d in result.diagnostics] == ["E001"]
+        return
+    assert result.program is not None and not result.diagnostics, [str(d) for d in result.diagnostics]
+    branch = result.program.tasks[0].body[0]
+    assert isinstance(branch, ir.If) and branch.condition == tree
+
+
+def test_an_input_compared_with_a_number_read_is_e151(tmp_path: Path) -> None:
+    result = load_text(f"{CELL}program p on r1 {{\n  if in[2] == ain[1] + 1 {{ stop }}\n}}\n", str(tmp_path / "p.rmot"))
+    assert [(d.code.id, d.span.start.line, d.span.start.col) for d in result.diagnostics if d.span] == [("E151", 9, 15)]
