@@ -10,7 +10,8 @@ Witnesses, none of them the backends' code:
   its INT / INT division that drops the fraction, and $ANIN[n] read as volts / 10 (-1..1 for
   -10..10 V: KSS 8.x System Variables, "$ANIN");
 - URScript: the same Python evaluator on the written text (URScript's operators read as
-  Python's: URScript Programming Language manual, "Operators");
+  Python's: URScript Programming Language manual, "Operators"); VAL3 likewise (its `+ - * /`
+  and comparisons: VAL3 Reference Manual s7, "Simple types");
 - Fanuc TP: the register lines `R[k]=a op b` and the `IF R[k] op c,JMP LBL[n]` read here by
   hand (TP register arithmetic is real: B-83284EN §4.4 "Register instructions").
 """
@@ -118,6 +119,18 @@ def test_urscript_writes_the_expression_as_rmot_means_it(text: str, tmp_path: Pa
     for volts, group in _grid(text):
         reads: dict[str, object] = {"get_standard_analog_in(1)": volts}
         got = python_meaning(ast.parse(written.group(1), mode="eval"), reads)
+        assert got == _rmot_meaning(text, volts, group), (written.group(1), volts)
+
+
+@pytest.mark.parametrize("text", ANALOG)
+def test_val3_writes_the_expression_as_rmot_means_it(text: str, tmp_path: Path) -> None:
+    """VAL3's `aioGet(aIn[n])` is the input's value (VAL3 Reference Manual, "aio"); its
+    operators `+ - * /` and comparisons read as Python's (manual s7, "Simple types": num)."""
+    written = re.search(r"\n\s*if (.*)\n", _text("val3", _condition(text, tmp_path)))
+    assert written is not None
+    python = written.group(1).replace("aioGet(aIn[1])", "A")
+    for volts, group in _grid(text):
+        got = python_meaning(ast.parse(python, mode="eval"), {"A": volts})
         assert got == _rmot_meaning(text, volts, group), (written.group(1), volts)
 
 
