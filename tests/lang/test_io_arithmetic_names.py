@@ -106,3 +106,17 @@ def test_an_input_compared_with_another_read_is_a_runtime_comparison(text: str, 
 def test_an_input_compared_with_a_number_read_is_e151(tmp_path: Path) -> None:
     result = load_text(f"{CELL}program p on r1 {{\n  if in[2] == ain[1] + 1 {{ stop }}\n}}\n", str(tmp_path / "p.rmot"))
     assert [(d.code.id, d.span.start.line, d.span.start.col) for d in result.diagnostics if d.span] == [("E151", 9, 15)]
+
+
+def test_a_param_and_a_loop_variable_named_like_ports(tmp_path: Path) -> None:
+    """A proc's parameters `gin` and `out` (a number, a target) and a loop variable `ain`,
+    each read beside the port of the same word."""
+    body = _body("target home = joints(0, 90, 0, 0, 0, 0) deg\nprogram p on r1 {\n"
+                 "  proc f(gin: number, out: target) {\n    move joint out\n    if gin[1] > gin { stop }\n  }\n"
+                 "  f(2, home)\n  for ain in 1..2 { if ain[1] > ain { stop } }\n}\n", tmp_path)
+    conditions = [n.condition for n in ir_tree.walk(body) if isinstance(n, ir.If)]
+    assert conditions[0] == ir.Compare(ir.CompareOp.GT, GIN, ir.Const(2, INT))
+    counter = ir.VarRef("ain", INT)
+    assert {c for c in conditions[1:]} == {ir.Compare(ir.CompareOp.GT, AIN, counter)}, conditions
+    moves = [n for n in ir_tree.walk(body) if isinstance(n, ir.Move)]
+    assert len(moves) == 1 and isinstance(moves[0].target, ir.JointTarget) and moves[0].target.name == "home"
