@@ -20,6 +20,7 @@ from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import BOOL_NAMES
 from rmot.compiler.passes.values import DIMENSIONLESS, BoolV, Quantity, article, type_name
 from rmot.lang import ast
+from rmot.lang.lexer import IO_WORDS
 from rmot.lang.source import Span
 
 __all__ = ["TYPE_NAMES", "RtLowering", "expr_type", "fits", "reads_runtime"]
@@ -173,7 +174,8 @@ class RtLowering:
                 if (x := self.scope.lookup(n)) is not None
                 and x.kind in ("rtvar", "var", "const", "param")
             ]
-            self.rep.unknown(e.name, "variable", e.span, known, codes.RT_UNKNOWN_VAR)
+            port = f"a read of an I/O port is written {e.name}[n]" if e.name in IO_WORDS else ""  # `if ain > 3`
+            self.rep.unknown(e.name, "variable", e.span, known, codes.RT_UNKNOWN_VAR, port)
             return None
         if entry.kind == "rtvar":
             return ir.VarRef(e.name, entry.value)

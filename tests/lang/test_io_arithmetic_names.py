@@ -95,7 +95,7 @@ def test_an_input_compared_with_another_read_is_a_runtime_comparison(text: str, 
     """The level an input is compared with may itself be read while the program runs: the
     comparison is the controller's (never a value rmot computes first, E169)."""
     result = load_text(f"{CELL}program p on r1 {{\n  if {text} {{ stop }}\n}}\n", str(tmp_path / "p.rmot"))
-    if tree is None:  # a condition in parentheses is no operand of `==`: a syntax error, as before
+    if tree is None:  # a condition in parentheses is no operand of `==`: a syntax error
         assert [d.code.id for d in result.diagnostics] == ["E001"]
         return
     assert result.program is not None and not result.diagnostics, [str(d) for d in result.diagnostics]
@@ -120,3 +120,11 @@ def test_a_param_and_a_loop_variable_named_like_ports(tmp_path: Path) -> None:
     assert {c for c in conditions[1:]} == {ir.Compare(ir.CompareOp.GT, AIN, counter)}, conditions
     moves = [n for n in ir_tree.walk(body) if isinstance(n, ir.Move)]
     assert len(moves) == 1 and isinstance(moves[0].target, ir.JointTarget) and moves[0].target.name == "home"
+
+
+def test_a_port_word_without_its_index_says_how_a_read_is_written(tmp_path: Path) -> None:
+    """`if ain > 3` with no var `ain`: `ain` away from `[` is a name, unknown here, and the
+    message shows the read's form."""
+    result = load_text(f"{CELL}program p on r1 {{\n  if ain > 3 {{ stop }}\n}}\n", str(tmp_path / "p.rmot"))
+    found = [(d.code.id, d.span.start.line, d.span.start.col, d.message) for d in result.diagnostics if d.span]
+    assert found == [("E150", 9, 6, "unknown variable 'ain'; a read of an I/O port is written ain[n]")]
