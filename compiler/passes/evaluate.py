@@ -42,7 +42,9 @@ def eval_expr(e: ast.Expr, scope: Scope, rep: Reporter) -> Value | None:
     handler = _EVAL.get(type(e))
     if handler is None and isinstance(e, (ast.IoRef, ast.Condition)):
         io = e if isinstance(e, ast.IoRef) else e.io
-        rep.error(codes.IO_READ_NOT_CONSTANT, f"{io.kind}[...] is read by the controller while the program "
+        index = io.index.value if isinstance(io.index, ast.Number) and io.index.unit is None else None
+        port = f"{int(index)}" if index is not None and float(index).is_integer() else "..."
+        rep.error(codes.IO_READ_NOT_CONSTANT, f"{io.kind}[{port}] is read by the controller while the program "
                   "runs: it must be used in a runtime expression (var, if, while, wait until), not in a "
                   "value rmot computes before the program runs", e.span)
         return None
