@@ -1,8 +1,8 @@
-"""`out`, `ain`, `gin` and `aout` are I/O reads only right before `[`: elsewhere they stay the
-names they always were, so a target, var, proc or const called so keeps working beside a read
-of the port of the same word (`var k = gin * gin[1]`). Each program's IR is checked against
-the tree written here by hand from the language's rules (REFERENCE §12); `in` is a keyword
-(`for i in`) and stays refused as a name (E008), as it always was.
+"""`out`, `ain`, `gin` and `aout` are I/O reads only right before `[`: elsewhere they are
+names, so a target, var, proc, param, loop variable or const called so works beside a read of
+the port of the same word (`var k = gin * gin[1]`). Each program's IR is checked against the
+tree written here by hand from the language's rules (REFERENCE §12); `in` is a keyword
+(`for i in`), refused as a declared name (E008).
 """
 
 from __future__ import annotations
