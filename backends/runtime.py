@@ -62,8 +62,8 @@ class ExprDialect:
 
 
 def is_int(e: Any) -> bool:
-    """True when `e` is an INT-valued expression."""
-    return getattr(e, "type", None) is ir.ValueType.INT
+    """True when `e` is an INT-valued expression (a group input reads an unsigned integer)."""
+    return isinstance(e, ir.GroupInput) or getattr(e, "type", None) is ir.ValueType.INT
 
 
 def expr_text(e: Any, d: ExprDialect) -> str:
@@ -85,7 +85,7 @@ def expr_text(e: Any, d: ExprDialect) -> str:
     if isinstance(e, ir.OutputRead):
         return d.output(e)
     if isinstance(e, ir.Arith):
-        left, right = _operand(e.left, d), _operand(e.right, d)
+        left, right = _arith_operand(e.left, d), _arith_operand(e.right, d)
         if e.op == "/" and is_int(e.left) and is_int(e.right):
             return d.real_division(left, right)
         return f"{left} {e.op} {right}"
@@ -108,6 +108,16 @@ def _operand(e: Any, d: ExprDialect) -> str:
     if isinstance(e, ir.Const) and not isinstance(e.value, bool) and float(e.value) < 0:
         compound = True
     return f"({text})" if compound else text
+
+
+def _arith_operand(e: Any, d: ExprDialect) -> str:
+    """An operand of + - * /: an input read that a vendor writes as a computation (KRL's
+    `$ANIN[n]*10`, volts from the -1..1 value) is parenthesised too, so `2 / ain[1]` stays
+    2 divided by the volts and never `(2 / $ANIN[n])*10`."""
+    text = _operand(e, d)
+    if isinstance(e, (ir.AnalogInput, ir.GroupInput)) and any(ch in text for ch in " +-*/"):
+        return f"({text})"
+    return text
 
 
 # --------------------------------------------------------------------------- loops

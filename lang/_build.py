@@ -63,6 +63,11 @@ from rmot.lang._build_nodes import (
 __all__ = ["AstBuilder"]
 
 
+def _bare_input(node: Any) -> bool:
+    """A bare `in[n]` read (the atom, not yet compared with a level)."""
+    return isinstance(node, ast.Condition) and node.value is None
+
+
 class Block(tuple):  # type: ignore[type-arg]
     """A block's statements plus the span of its braces (nodes store a plain tuple)."""
 
@@ -498,18 +503,20 @@ class AstBuilder(Transformer):  # type: ignore[type-arg]
     def logic_not(self, c: list[Any]) -> ast.NotCond:
         return _NotCond(c[1], self._span(c))
 
-    def compare(self, c: list[Any]) -> ast.Compare:
-        return _Compare(str(c[1]), c[0], c[2], self._span(c))
+    def compare(self, c: list[Any]) -> Any:
+        op, left, right = str(c[1]), c[0], c[2]
+        if op in ("==", "!="):  # `in[n] == on` (either side): the level test every backend writes
+            if _bare_input(left):
+                return _Condition(left.io, op, right, self._span(c))
+            if _bare_input(right):
+                return _Condition(right.io, op, left, self._span(c))
+        return _Compare(op, left, right, self._span(c))
 
     def io_read(self, c: list[Any]) -> Any:
+        """An I/O read as an expression atom: `in[n]` is the condition `in[n] == on`; the other
+        kinds stay a reference the compiler types (ain num, gin int, out bool)."""
         io = c[0]
         return _Condition(io, "==", None, io.span) if io.kind == "in" else io
-
-    def compare_io(self, c: list[Any]) -> Any:
-        op = str(c[1])
-        if c[0].kind == "in" and op in ("==", "!="):  # `in[n] == on`: what every backend writes
-            return _Condition(c[0], op, c[2], self._span(c))
-        return _Compare(op, c[0], c[2], self._span(c))
 
     def r_cmp(self, c: list[Any]) -> Any:  # `( cond )`
         return c[1]

@@ -26,7 +26,8 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedToken
 from lark.parse_tree_builder import ChildFilterLALR, ChildFilterLALR_NoPlaceholders
 
 from rmot.lang._tables import LalrTables
-from rmot.lang.lexer import AXIS_CONTINUES, BLANKS, CONTINUES, MOUNT_CONTINUES, TOKEN, TokenKinds, in_statement_of
+from rmot.lang.lexer import (AXIS_CONTINUES, BLANKS, CONTINUES, INDEXED, IO_WORDS, MOUNT_CONTINUES, TOKEN, TokenKinds,
+                             in_statement_of)
 from rmot.lang.units import COMPOUND_CUT
 
 __all__ = ["LalrDriver", "PostLexState"]
@@ -108,9 +109,12 @@ class LalrDriver:
             if kind == "word":
                 state = states[-1]
                 cache = word_cache[state]
-                ttype = cache.get(value)
+                # `ain[` may be a port read where `ain` alone is a name: cached apart
+                indexed = value in IO_WORDS and INDEXED.match(text, end) is not None
+                key = value + "[" if indexed else value
+                ttype = cache.get(key)
                 if ttype is None:
-                    ttype = cache[value] = kinds.word_type(value, accepts[state])
+                    ttype = cache[key] = kinds.word_type(value, accepts[state], indexed)
                 start_line = end_line = line
                 end_col = col + (end - start)
             elif kind == "punct":

@@ -244,3 +244,11 @@ GROUP_INPUT_RANGE = Code(
 )
 
 __all__ += ["GROUP_INPUT_WIDTH", "GROUP_INPUT_WRITTEN", "GROUP_INPUT_NOT_INTEGER", "GROUP_INPUT_RANGE"]
+
+# I/O reads are runtime values: the controller reads them while the program runs.
+IO_READ_NOT_CONSTANT = Code(
+    "E169", "io-read-not-constant",
+    "in[n], out[n], ain[n] or gin[n] in a compile-time expression (a const, a target, a speed, ...)",
+)
+
+__all__ += ["IO_READ_NOT_CONSTANT"]

@@ -4,7 +4,10 @@ A faster stand-in for lark's contextual lexer (which tries one regex per termina
 parser state). It keeps the same contract:
   * a word is a keyword where the parser accepts that keyword, else a unit where a unit is
     accepted (`150 mm`), else a move kind / I/O kind where one is accepted, else a NAME —
-    so `on`, `in`, `m`, `s` stay usable as names where no keyword fits;
+    so `on`, `in`, `m`, `s` stay usable as names where no keyword fits; `in`, `out`, `ain`,
+    `aout`, `gin` are an I/O kind only right before `[` (`ain[1] * 2`) where a name fits
+    too, so a target, var, proc or const with one of those names stays usable in an
+    expression (`move joint out`, `x = gin + 1`): no name is ever indexed;
   * a word the parser cannot take at all keeps its keyword type (better error messages);
   * `_NL` is a run of newlines, `;`, blank lines and comments; a newline before `to` or
     `else` is whitespace, so a circular move and an if/else may span lines; inside a `track`
@@ -25,7 +28,8 @@ from typing import Any
 
 from rmot.lang.units import BASE_UNITS, COMPOUND_UNIT
 
-__all__ = ["AXIS_CONTINUES", "BLANKS", "CONTINUES", "MOUNT_CONTINUES", "TOKEN", "TokenKinds", "in_statement_of"]
+__all__ = ["AXIS_CONTINUES", "BLANKS", "CONTINUES", "INDEXED", "IO_WORDS", "MOUNT_CONTINUES", "TOKEN", "TokenKinds",
+           "in_statement_of"]
 
 _SIMPLE_UNITS = frozenset(BASE_UNITS)
 # The parse loop (lang/_lalr.py) takes the blanks and a comment before a token in the same
@@ -48,7 +52,10 @@ AXIS_CONTINUES = re.compile(r"\s*(?:speed|accel|inform|solid|mass|on)(?![A-Za-z0
 # `on NAME` continues a robot, fixture or tool declaration on the next line (no statement starts with it).
 MOUNT_CONTINUES = re.compile(r"\s*on(?![A-Za-z0-9_])")
 _STATEMENT_BOUNDS = frozenset({"_NL", "LBRACE", "RBRACE"})
-_WORD_KINDS = (("MOVE_KIND", frozenset({"joint", "linear"})), ("IO_KIND", frozenset({"in", "out", "ain", "aout", "gin"})))
+_MOVE_WORDS = frozenset({"joint", "linear"})
+IO_WORDS = frozenset({"in", "out", "ain", "aout", "gin"})
+# An I/O word right before `[` (blanks between allowed, as in `in [1]`) is a port read.
+INDEXED = re.compile(r"[ \t\f\r]*\[")
 
 
 class TokenKinds:
@@ -64,16 +71,18 @@ class TokenKinds:
             target = self.keywords if t.pattern.value.isidentifier() else self.punct
             target.setdefault(t.pattern.value, t.name)
 
-    def word_type(self, word: str, accepts: Any) -> str:
-        """`accepts`: the terminal names the parser's current state takes (a set or a dict)."""
+    def word_type(self, word: str, accepts: Any, indexed: bool = False) -> str:
+        """`accepts`: the terminal names the parser's current state takes (a set or a dict);
+        `indexed`: the word's next non-blank character is `[` (only I/O words ask)."""
         kw = self.keywords.get(word)
         if kw is not None and kw in accepts:
             return kw
         if word in _SIMPLE_UNITS and "UNIT" in accepts:
             return "UNIT"
-        for kind, words in _WORD_KINDS:
-            if word in words and kind in accepts:
-                return kind
+        if word in _MOVE_WORDS and "MOVE_KIND" in accepts:
+            return "MOVE_KIND"
+        if word in IO_WORDS and "IO_KIND" in accepts and (indexed or "NAME" not in accepts):
+            return "IO_KIND"
         if "NAME" in accepts or kw is None:
             return "NAME"
         return kw

@@ -195,7 +195,7 @@ _WORDS = {
     "_NL": "a new line or ';'", "$END": "the end of the file", "MOVE_KIND": "'joint', 'linear' or 'circular'",
     "IO_KIND": "an I/O port such as in[1] or out[2]", "COMPARE": "a comparison (== != < <= > >=)",
 }
-_EXPR_START = {"NAME", "NUMBER", "STRING", "LPAR", "MINUS", "PLUS", "JOINTS"}
+_EXPR_START = {"NAME", "NUMBER", "STRING", "LPAR", "MINUS", "PLUS", "JOINTS", "IO_KIND"}  # in[1]: a read
 _STMT_START = {"MOVE", "SET", "WAIT", "PULSE", "FOR", "REPEAT", "IF", "SYNC", "NATIVE", "SPEED",
                "ACCEL", "ZONE", "TOOL", "FRAME", "TARGET", "CONST", "PROC", "JOINT_SPEED",
                "VAR", "WHILE", "STOP"}

@@ -88,16 +88,19 @@ class Reporter:
         self._seen.add(key)
         self.sink.add(Diagnostic(code, Severity.WARNING, message, span, notes))
 
-    def unknown(self, name: str, what: str, span: Span | None, candidates: list[str], code: Code = codes.UNKNOWN_NAME) -> None:
+    def unknown(self, name: str, what: str, span: Span | None, candidates: list[str], code: Code = codes.UNKNOWN_NAME,
+                otherwise: str = "") -> None:
         """`unknown <what> 'x'; did you mean 'y'?` (the names that extend 'x' by `_...`, as a
         family name does its variants: `abb_irb2600` -> 'abb_irb2600_12_165'; else difflib's
-        closest candidate, if close enough); nothing for a name whose declaration failed (its
-        error is reported there)."""
+        closest candidate, if close enough; else the hint `otherwise`); nothing for a name whose
+        declaration failed (its error is reported there)."""
         if name in self.failed_declarations:
             return
         near = [c for c in sorted(set(candidates)) if c.startswith(name + "_")][:3] \
             or difflib.get_close_matches(name, sorted(set(candidates)), n=1, cutoff=0.6)
         hint = f"; did you mean {' or '.join(repr(n) for n in near)}?" if near else ""
+        if not near and otherwise:
+            hint = f"; {otherwise}"
         self.error(code, f"unknown {what} '{name}'{hint}", span)
 
     @property

@@ -40,6 +40,14 @@ _POSE_FIELDS = ("x", "y", "z", "rx", "ry", "rz")
 def eval_expr(e: ast.Expr, scope: Scope, rep: Reporter) -> Value | None:
     """The value of `e` in SI units, or None after reporting why it has none."""
     handler = _EVAL.get(type(e))
+    if handler is None and isinstance(e, (ast.IoRef, ast.Condition)):
+        io = e if isinstance(e, ast.IoRef) else e.io
+        index = io.index.value if isinstance(io.index, ast.Number) and io.index.unit is None else None
+        port = f"{int(index)}" if index is not None and float(index).is_integer() else "..."
+        rep.error(codes.IO_READ_NOT_CONSTANT, f"{io.kind}[{port}] is read by the controller while the program "
+                  "runs: it must be used in a runtime expression (var, if, while, wait until), not in a "
+                  "value rmot computes before the program runs", e.span)
+        return None
     if handler is None:
         rep.error(codes.WRONG_TYPE, f"expression must be a value (got {type(e).__name__})", getattr(e, "span", None))
         return None

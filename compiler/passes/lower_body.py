@@ -33,7 +33,7 @@ from rmot.compiler.passes.limits import MAX_DURATION_S, MAX_ITERATIONS, MAX_PORT
 from rmot.compiler.passes.modal import Modal, apply_setting, speed_modifier_warnings
 from rmot.compiler.passes.lower_axes import ProgramAxes
 from rmot.compiler.passes.procs import bind_call
-from rmot.compiler.passes.runtime import TYPE_NAMES, RtLowering, expr_type, fits
+from rmot.compiler.passes.runtime import TYPE_NAMES, RtLowering, expr_type, fits, reads_runtime
 from rmot.lang.source import Span
 from rmot.compiler.passes.scopes import declare, declare_procs, declare_value, misplaced
 from rmot.compiler.passes.turns import TURN_KEY, turn_arg
@@ -421,16 +421,9 @@ class TaskLowering:
     def any_condition(self, c: ast.RtCond, scope: Scope, what: str) -> ir.Condition | None:
         """`in[n] == on|off` lowers as it always has (an InputCondition); anything else through
         compiler/passes/runtime.py (and/or/not, ain[n], variables, comparisons)."""
-        if isinstance(c, ast.Condition) and c.io.kind == "in" and not self._reads_runtime(c.value, scope):
+        if isinstance(c, ast.Condition) and c.io.kind == "in" and not reads_runtime(c.value, scope):
             return self.condition(c, scope)
         return self.rt(scope).condition(c, what)
-
-    @staticmethod
-    def _reads_runtime(e: ast.Expr | None, scope: Scope) -> bool:
-        if not isinstance(e, ast.Name):
-            return False
-        entry = scope.lookup(e.name)
-        return entry is not None and entry.kind in ("rtvar", "var")
 
     def var_decl(self, s: ast.VarDecl, scope: Scope) -> ir.Instr | None:
         name = s.name.name

@@ -20,9 +20,10 @@ from rmot.compiler.passes.context import Reporter, Scope
 from rmot.compiler.passes.evaluate import BOOL_NAMES
 from rmot.compiler.passes.values import DIMENSIONLESS, BoolV, Quantity, article, type_name
 from rmot.lang import ast
+from rmot.lang.lexer import IO_WORDS
 from rmot.lang.source import Span
 
-__all__ = ["TYPE_NAMES", "RtLowering", "expr_type", "fits"]
+__all__ = ["TYPE_NAMES", "RtLowering", "expr_type", "fits", "reads_runtime"]
 
 TYPE_NAMES = {"int": ir.ValueType.INT, "num": ir.ValueType.NUM, "bool": ir.ValueType.BOOL}
 _CMP = {op.value: op for op in ir.CompareOp}
@@ -44,6 +45,21 @@ def expr_type(e: ir.RtExpr) -> ir.ValueType:
 def fits(value: ir.ValueType, wanted: ir.ValueType) -> bool:
     """Can a value of type `value` be used where `wanted` is? (int widens to num)"""
     return value is wanted or (value is ir.ValueType.INT and wanted is ir.ValueType.NUM)
+
+
+def reads_runtime(e: ast.Expr | None, scope: Scope) -> bool:
+    """Whether `e` has a value only while the program runs: it reads a task or loop variable or
+    an I/O port (`in[2] == out[3]`, `in[2] == flag`), itself or inside arithmetic."""
+    if isinstance(e, (ast.IoRef, ast.Condition)):
+        return True
+    if isinstance(e, ast.BinOp):
+        return reads_runtime(e.left, scope) or reads_runtime(e.right, scope)
+    if isinstance(e, ast.Neg):
+        return reads_runtime(e.operand, scope)
+    if not isinstance(e, ast.Name):
+        return False
+    entry = scope.lookup(e.name)
+    return entry is not None and entry.kind in ("rtvar", "var")
 
 
 def _literal_is_int(e: ast.Number) -> bool:
@@ -158,7 +174,8 @@ class RtLowering:
                 if (x := self.scope.lookup(n)) is not None
                 and x.kind in ("rtvar", "var", "const", "param")
             ]
-            self.rep.unknown(e.name, "variable", e.span, known, codes.RT_UNKNOWN_VAR)
+            port = f"a read of an I/O port is written {e.name}[n]" if e.name in IO_WORDS else ""  # `if ain > 3`
+            self.rep.unknown(e.name, "variable", e.span, known, codes.RT_UNKNOWN_VAR, port)
             return None
         if entry.kind == "rtvar":
             return ir.VarRef(e.name, entry.value)

@@ -19,8 +19,12 @@ _APPLY: dict[str, Callable[[object, object], object]] = {
     "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": lambda a, b: a / b}  # type: ignore[operator]
 
 
-def evaluate(text: str, priority: dict[str, int], leaf: Callable[[list[str], int], tuple[object, int]]) -> object:
-    """The value of `text`; `leaf(tokens, i)`: a name or read's value and how many tokens it takes."""
+def evaluate(text: str, priority: dict[str, int], leaf: Callable[[list[str], int], tuple[object, int]],
+             *, int_division: bool = False) -> object:
+    """The value of `text`; `leaf(tokens, i)`: a name or read's value and how many tokens it takes.
+    `int_division`: a number without a point is an INT and INT / INT drops the fraction (KRL:
+    KSS 8.x Programming for System Integrators, "Arithmetic operators": both operands INT, the
+    result is INT, its decimal places cut off)."""
     tokens = re.findall(r"\$IN\[\d+\]|\d+\.?\d*|\w+|<>|<=|>=|==|[-+*/()<>=]", text)
     pos = [0]
 
@@ -39,7 +43,7 @@ def evaluate(text: str, priority: dict[str, int], leaf: Callable[[list[str], int
             return t.upper() == "TRUE"
         if re.fullmatch(r"[\d.]+", t):
             pos[0] += 1
-            return float(t)
+            return int(t) if int_division and "." not in t else float(t)
         value, used = leaf(tokens, pos[0])
         pos[0] += used
         return value
@@ -49,7 +53,9 @@ def evaluate(text: str, priority: dict[str, int], leaf: Callable[[list[str], int
         while pos[0] < len(tokens) and priority.get(tokens[pos[0]].upper(), 0) > floor:
             op = tokens[pos[0]].upper()
             pos[0] += 1
-            left = _APPLY[op](left, expr(priority[op]))
+            right = expr(priority[op])
+            whole = int_division and op == "/" and isinstance(left, int) and isinstance(right, int)
+            left = int(left / right) if whole else _APPLY[op](left, right)  # type: ignore[operator]
         return left
 
     return expr(0)

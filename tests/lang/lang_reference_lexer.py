@@ -18,7 +18,8 @@ from lark.exceptions import UnexpectedCharacters
 from lark.lexer import Lexer
 from rmot.lang import _build
 from rmot.lang._tables import GRAMMAR
-from rmot.lang.lexer import AXIS_CONTINUES, BLANKS, CONTINUES, MOUNT_CONTINUES, TOKEN, TokenKinds, in_statement_of
+from rmot.lang.lexer import (AXIS_CONTINUES, BLANKS, CONTINUES, INDEXED, MOUNT_CONTINUES, TOKEN, TokenKinds,
+                             in_statement_of)
 from rmot.lang.units import COMPOUND_CUT
 
 __all__ = ["PostLexer", "RmotLexer", "reference_parser"]
@@ -71,7 +72,7 @@ class RmotLexer(Lexer):
                 continue
             accepts = states[parser_state.position]
             if kind == "word":
-                ttype = self._word_type(value, accepts)
+                ttype = self._word_type(value, accepts, INDEXED.match(text, end) is not None)
             elif kind == "number":
                 ttype = "NUMBER"
             elif kind == "string":

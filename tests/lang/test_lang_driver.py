@@ -122,6 +122,8 @@ def test_a_generated_program_parses_as_with_larks_loop() -> None:
     "positioner p = axes(revolute(axis z, range(0deg, 1deg)))\n  on r\n  at pose()\nmove linear p\n  speed 1 mm/s\n",
     "fixture f = box(1mm, 1mm, 1mm)\n  on p\n  at pose()\ntool t = none\n  on r1\nrobot r = kuka_kr16\n  on q\ntool x\n  on\n",
     "track r = linear(axis x, range(0mm, 1mm)); speed 1 mm/s\nfixture f = box(1mm, 1mm, 1mm) ;\n on p\n",
+    "move joint out\nif ain [1] * 2 > ain { x = gin[1] + gin }\nvar v = 2 / aout\nout()\nin = 1\n",
+    "if in\t[2] and out[3] == on { wait 1 s }\nset out [1] = on\nio gin = \"x\"\nvar w = 2 in\n",
 ], ids=repr)
 def test_edge_cases_parse_as_with_larks_loop(text: str) -> None:
     """Units that do not fit, continued lines, unclosed braces, bad characters, trailing blanks."""
@@ -130,7 +132,8 @@ def test_edge_cases_parse_as_with_larks_loop(text: str) -> None:
 
 _WORDS = ["move", "linear", "joint", "circular", "via", "to", "p", "pose", "(", ")", "x", "=", "1", "mm", "m/s", ",", "{",
           "}", "[", "]", "\n", ";", "if", "in", "else", "wait", "until", "set", "out", "on", "#c\n", "\"s\"", "speed", "fine",
-          "zone", "joints", "deg", "%", "-", "*", ".", "..", "for", "program", "task", "cell", "@", "\t", "  "]
+          "zone", "joints", "deg", "%", "-", "*", ".", "..", "for", "program", "task", "cell", "@", "\t", "  ",
+          "ain", "gin", "aout", "var", "+", "<"]
 
 
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -18,6 +18,7 @@ from typing import Any
 import pytest
 
 from rmot.compiler.lsp.features import statement_keywords
+from rmot.lang.lexer import IO_WORDS
 from rmot.lang.parse import KEYWORDS
 from rmot.lang.units import UNIT_NAMES
 
@@ -94,3 +95,10 @@ def test_the_extension_names_files_that_exist() -> None:
     config = _json("language-configuration.json")
     assert config["comments"] == {"lineComment": "#"}  # the lexer's comment (lang/lexer.py)
     assert ["{", "}"] in config["brackets"] and ["(", ")"] in config["brackets"]
+
+
+@pytest.mark.parametrize("word", sorted(IO_WORDS))
+def test_an_io_word_is_a_read_only_before_a_bracket(word: str) -> None:
+    """As the lexer types it (lang/lexer.py IO_WORDS): `gin[1]` a port read, `gin` alone a name."""
+    assert (word, "support.variable.io.rmot") in _scopes(f"if {word} [1] > 2")
+    assert (word, "support.variable.io.rmot") not in _scopes(f"var k = {word} + 1")
