@@ -17,7 +17,7 @@ import math
 import re
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import Tally, num_expr, number, split_top
+from rmot.backends.readers.common import Tally, number, split_top
 from rmot.backends.readers.model import (
     Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
@@ -27,10 +27,10 @@ from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
-    ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, polled_wait, pose_numbers,
-    scan_assignments,
+    ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments,
     split_statements, strip_hash, ur_pose,
 )
+from rmot.backends.readers.urscript_values import arithmetic, base_offset, tool_offset
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
 
@@ -155,9 +155,12 @@ class _Script:
             self.pose_values[m.group(1)] = found
 
     def _value(self, text: str) -> float | None:
-        """A move argument: a number, or a variable whose value at this move is certain (set once
-        in the file; or, outside sub-routines, never set inside a nested block)."""
+        """A move argument: a number, a variable whose value at this move is certain (set once
+        in the file; or, outside sub-routines, never set inside a nested block), or arithmetic
+        over them (urscript_values)."""
         value = number(text)
+        if value is None and not re.fullmatch(r"[A-Za-z_]\w*", text):
+            return arithmetic(text, self._value)  # `0.001*t`, `-(width+gap)`, `d2r(90)`
         once = self.assigned.get(text, 0) == 1
         if value is None and once and text in self.constants:
             return self.constants[text]  # set once in the file: a function reading it runs after it
@@ -362,7 +365,7 @@ class _Script:
         compact = text.replace(" ", "")
         m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", compact)
         if m:
-            values = pose_numbers(m.group(1))
+            values = self._numbers(m.group(1))
             if values is None or len(values) != 6:
                 return False
             key = tuple(round(v, 6) for v in values)
@@ -401,7 +404,7 @@ class _Script:
         port, share = (self._port(m.group(1)), self._value(m.group(2))) if m else (None, None)
         if port is not None and share is not None and 0.0 <= share <= 1.0 and port not in self.current_domain:
             return SetOut(port, share * 10.0, where, analog=True)
-        m = re.fullmatch(r"sleep\(([\w.+-]+)\)", text)
+        m = re.fullmatch(r"sleep\((.+)\)", text)
         seconds = self._value(m.group(1)) if m else None
         if seconds is not None and seconds >= 0.0:
             return Wait(seconds, where)
@@ -425,7 +428,7 @@ class _Script:
         """`[global] name = p[...]`, `= [j1, ..]`, or `= pose_add(A, B)` / `pose_trans(A, B)` of
         poses known here, assigned once in the file: a target."""
         m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
-        values = pose_numbers(m.group(3)) if m else None
+        values = self._numbers(m.group(3)) if m else None
         combined = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(pose_add|pose_trans)\((.*)\)", ln.text)
         name = (m or combined).group(1) if m or combined else ""  # type: ignore[union-attr]
         scope = self.scope[-1] if self.scope and not ln.text.startswith("global") else ""
@@ -455,7 +458,7 @@ class _Script:
     def _known_pose(self, text: str) -> ir.Pose | None:
         """A pose literal `p[..]` or a target declared with a pose."""
         literal = re.fullmatch(r"p\[(.*)\]", text.replace(" ", ""))
-        values = pose_numbers(literal.group(1)) if literal else None
+        values = self._numbers(literal.group(1)) if literal else None
         if values is not None and len(values) == 6:
             return ur_pose(values)
         local = self.local_poses.get((self.scope[-1] if self.scope else "", text.strip()))
@@ -484,7 +487,7 @@ class _Script:
             return self._target(m.group(1), depth + 1)
         m = re.fullmatch(r"(p?)\[(.*)\]", text)
         if m:
-            values = pose_numbers(m.group(2))
+            values = self._numbers(m.group(2))
             if values is None or len(values) != 6:
                 return None
             if m.group(1):
@@ -493,40 +496,28 @@ class _Script:
             joints = tuple(math.degrees(v) for v in values)
             return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
                     Target("", None, joints, None, Where("", 0)))
-        trans = re.fullmatch(r"pose_trans\((.*)\)", text)
-        found = self._tool_offset(split_top(trans.group(1)), depth) if trans else self._base_offset(text, depth)
-        combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text) if found is None else None
-        composed = self._combined(combined.group(1), split_top(combined.group(2))) if combined else None
+        combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text)
+        parts = split_top(combined.group(2)) if combined else []
+        found = None if combined is None else \
+            tool_offset(parts, lambda t: self._target(t, depth + 1), self._offset) if combined.group(1) == "pose_trans" \
+            else base_offset(parts, lambda t: self._target(t, depth + 1), self.names)
+        composed = self._combined(combined.group(1), parts) if combined and found is None else None
         if composed is not None:  # two poses known here, composed (not a plain translation of a target)
             return (pose_expr(composed), None, Target("", composed, None, None, Where("", 0)))
         return found
 
-    def _base_offset(self, text: str, depth: int) -> tuple[str, str | None, Target | None] | None:
-        """`pose_add(P, p[dx, dy, dz, 0, 0, 0])`: P moved along the base axes = `shift(P, ..)`."""
-        m = re.fullmatch(r"pose_add\((.*)\)", text)
-        parts = split_top(m.group(1)) if m else []
-        base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
-        shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
-        offs = split_top(shift.group(1)) if shift else []
-        if base is None or len(offs) != 6 or any(number(o) != 0.0 for o in offs[3:]):
-            return None
-        exprs = [num_expr(o, self.names) for o in offs[:3]]
-        if any(e is None for e in exprs):
-            return None
-        terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"  # type: ignore[arg-type]
-                          for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
-        return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
+    def _numbers(self, text: str) -> list[float] | None:
+        """The elements of a pose or joint list: numbers, or values certain here (`_value`)."""
+        values = [self._value(v) for v in split_top(text)]
+        return None if any(v is None for v in values) else values  # type: ignore[return-value]
 
-    def _tool_offset(self, parts: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
-        """`pose_trans(P, p[dx, dy, dz, 0, 0, 0])`: P moved along its own (tool) axes (URScript
-        manual, pose_trans: the second pose is expressed in the first's frame) = `P * pose(..)`."""
-        base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
-        shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
-        offs = [number(o) for o in split_top(shift.group(1))] if shift else []
-        if base is None or len(offs) != 6 or any(o is None for o in offs) or any(o != 0.0 for o in offs[3:]):
-            return None
-        terms = ", ".join(f"{a}={num_text(1000.0 * o)}mm" for a, o in zip("xyz", offs[:3]) if o != 0.0)  # type: ignore[operator]
-        return (f"{base[0]} * pose({terms})" if terms else base[0], base[1], base[2])
+    def _offset(self, text: str) -> list[float] | None:
+        """A pose written `p[..]`, or a pose known here without rotation, as its six numbers."""
+        literal = re.fullmatch(r"p\[(.*)\]", text)
+        if literal:
+            return self._numbers(literal.group(1))
+        pose = self._known_pose(text)
+        return None if pose is None or pose.quaternion != (1.0, 0.0, 0.0, 0.0) else [*pose.position, 0.0, 0.0, 0.0]
 
     def _joint_shares(self, joints: tuple[float, ...] | None, v: float | None, a: float | None,
                       zone: float, where: Where) -> tuple[float | None, float | None]:

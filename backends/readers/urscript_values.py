@@ -1,0 +1,144 @@
+"""URScript values computed from the text: arithmetic over numbers and variables whose value is
+certain, and targets moved by an offset (`pose_add` along the base, `pose_trans` along the tool).
+
+URScript manual ("The URScript Programming Language", e-Series): the arithmetic operators
+`+ - * /` bind as Python's (`*` `/` tighter than `+` `-`, unary minus tightest); module urmath:
+`d2r(d)` "Returns the radian value of 'd' degrees" ((d / 180) * pi) and `r2d(r)` its inverse.
+A division whose two operands may both be integers is not computed (URScript's integer
+division would differ from rmot's), nor a name whose value is not certain where it is read: the
+caller's `value_of` says which names are.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+
+from rmot.backends.readers.common import num_expr, number, split_top
+from rmot.backends.readers.model import Target
+from rmot.backends.readers.rapid import num_text
+
+__all__ = ["arithmetic", "base_offset", "tool_offset"]
+
+_TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)|([A-Za-z_]\w*)|([-+*/(),]))")
+_MAX_DEPTH = 32  # parentheses and signs nested in one value: more than any program writes
+_FUNCTIONS = {"d2r": math.radians, "r2d": math.degrees}
+
+Resolved = tuple[str, str | None, Target | None]
+
+
+class _Parser:
+    """One arithmetic expression read by recursive descent: each value is (number, whether it
+    may be an integer), None where a part is unknown or the text is not arithmetic."""
+
+    def __init__(self, tokens: list[tuple[str, str]], value_of: Callable[[str], float | None]) -> None:
+        self.tokens = tokens
+        self.k = 0
+        self.value_of = value_of
+
+    def peek(self) -> tuple[str, str]:
+        return self.tokens[self.k] if self.k < len(self.tokens) else ("", "")
+
+    def sum(self, depth: int) -> tuple[float, bool] | None:
+        left = self.product(depth)
+        while left is not None and self.peek()[1] in ("+", "-"):
+            op = self.tokens[self.k][1]
+            self.k += 1
+            right = self.product(depth)
+            if right is None:
+                return None
+            left = (left[0] + right[0] if op == "+" else left[0] - right[0], left[1] and right[1])
+        return left
+
+    def product(self, depth: int) -> tuple[float, bool] | None:
+        left = self.unary(depth)
+        while left is not None and self.peek()[1] in ("*", "/"):
+            op = self.tokens[self.k][1]
+            self.k += 1
+            right = self.unary(depth)
+            if right is None or (op == "/" and (right[0] == 0.0 or (left[1] and right[1]))):
+                return None
+            left = (left[0] * right[0] if op == "*" else left[0] / right[0], op == "*" and left[1] and right[1])
+        return left
+
+    def unary(self, depth: int) -> tuple[float, bool] | None:
+        if depth > _MAX_DEPTH:
+            return None
+        kind, text = self.peek()
+        if kind == "op" and text in ("-", "+"):
+            self.k += 1
+            inner = self.unary(depth + 1)
+            return None if inner is None else (-inner[0] if text == "-" else inner[0], inner[1])
+        return self.atom(depth)
+
+    def atom(self, depth: int) -> tuple[float, bool] | None:
+        kind, text = self.peek()
+        self.k += 1
+        if kind == "num":
+            return float(text), re.fullmatch(r"\d+", text) is not None
+        if kind == "op" and text == "(":
+            inner = self.sum(depth + 1)
+            return inner if inner is not None and self.close() else None
+        if kind != "name":
+            return None
+        if self.peek()[1] == "(":  # d2r(..) / r2d(..): a float in radians or degrees
+            self.k += 1
+            inner = self.sum(depth + 1) if text in _FUNCTIONS else None
+            return (_FUNCTIONS[text](inner[0]), False) if inner is not None and self.close() else None
+        value = self.value_of(text)
+        return None if value is None else (value, value == int(value))
+
+    def close(self) -> bool:
+        if self.peek()[1] != ")":
+            return False
+        self.k += 1
+        return True
+
+
+def arithmetic(text: str, value_of: Callable[[str], float | None]) -> float | None:
+    """The number `text` computes (`0.001*t`, `-(width+gap)`, `d2r(90)`), names read through
+    `value_of`; None when a part is unknown or `text` is not plain arithmetic."""
+    tokens: list[tuple[str, str]] = []
+    pos, text = 0, text.strip()
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if m is None or m.end() == pos:
+            return None
+        num, name, op = m.groups()
+        tokens.append(("num", num) if num else ("name", name) if name else ("op", op))
+        pos = m.end()
+    parser = _Parser(tokens, value_of)
+    found = parser.sum(0) if tokens else None
+    if found is None or parser.k != len(tokens) or not math.isfinite(found[0]):
+        return None
+    return found[0]
+
+
+def base_offset(parts: list[str], target_of: Callable[[str], Resolved | None], names: set[str]) -> Resolved | None:
+    """`pose_add(P, p[dx, dy, dz, 0, 0, 0])`: P moved along the base axes = `shift(P, ..)` (the
+    offsets numbers or arithmetic over the loop counters in `names`)."""
+    base = target_of(parts[0]) if len(parts) == 2 else None
+    shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
+    offs = split_top(shift.group(1)) if shift else []
+    if base is None or len(offs) != 6 or any(number(o) != 0.0 for o in offs[3:]):
+        return None
+    exprs = [num_expr(o, names) for o in offs[:3]]
+    if any(e is None for e in exprs):
+        return None
+    terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"  # type: ignore[arg-type]
+                      for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
+    return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
+
+
+def tool_offset(parts: list[str], target_of: Callable[[str], Resolved | None],
+                offset_of: Callable[[str], list[float] | None]) -> Resolved | None:
+    """`pose_trans(P, D)`, D a translation `p[dx, dy, dz, 0, 0, 0]` (written, or a pose known
+    here): P moved along its own (tool) axes (URScript manual, pose_trans: the second pose is
+    expressed in the first's frame) = `P * pose(..)`."""
+    base = target_of(parts[0]) if len(parts) == 2 else None
+    offs = offset_of(parts[1]) if base else None
+    if base is None or offs is None or len(offs) != 6 or any(o != 0.0 for o in offs[3:]):
+        return None
+    terms = ", ".join(f"{a}={num_text(1000.0 * o)}mm" for a, o in zip("xyz", offs[:3]) if o != 0.0)
+    return (f"{base[0]} * pose({terms})" if terms else base[0], base[1], base[2])
