@@ -27,10 +27,12 @@ from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
-    ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments,
+    Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments,
     split_statements, strip_hash, ur_pose,
 )
-from rmot.backends.readers.urscript_values import arithmetic, base_offset, tool_offset
+from rmot.backends.readers.urscript_values import (
+    arithmetic, base_offset, calls_of, counted_loop, thread_assigned, tool_offset,
+)
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
 
@@ -82,7 +84,8 @@ class _Script:
         self.scope: list[str] = []  # the functions around the statement being read
         self.local_poses: dict[tuple[str, str], ir.Pose] = {}  # a function's own pose variables
         self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
-        self.pose_values: dict[str, tuple[str, str | None, Target | None]] = {}  # see _pose_set
+        self.pose_values: dict[str, tuple[str, str | None, Target | None]] = {}  # see _remember
+        self.fresh: dict[str, float | tuple[str, str | None, Target | None]] = {}  # see _remember
 
     # ---------------------------------------------------------------- structure
 
@@ -100,6 +103,9 @@ class _Script:
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
         self._scan_numbers(program)
+        every = self.lines + [ln for _, _, node in self.installation for ln in node]
+        self.threaded = thread_assigned([ln.text for ln in every], [ln.head for ln in every])
+        self.calls = calls_of({m.group(1) for ln in every for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m})
         self.logic = UrVars([ln.text for ln in self.lines], [ln.head for ln in self.lines], program, self.defs,
                             [ln.text for _, _, node in self.installation for ln in node])
         texts = [ln.text.replace(" ", "") for ln in self.lines]
@@ -132,27 +138,26 @@ class _Script:
         self.assigned, self.scoped, self.nested_set, self.constants = scan_assignments(
             [ln.text for ln in lines], [ln.head for ln in lines], program)
 
-    def _number_set(self, text: str) -> None:
-        """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =
-        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`); any other value
-        forgets it."""
-        m = ANY_ASSIGN.match(text)
-        value = NUMBER_ASSIGN.fullmatch(text)
-        if m is not None:
-            self.values.pop(m.group(1), None)
-        if value is not None and number(value.group(2)) is not None:
-            self.values[value.group(1)] = number(value.group(2))  # type: ignore[assignment]
-
-    def _pose_set(self, text: str) -> None:
-        """`[global] name = POSE` assigned more than once (`p_5 = p[..]`, `global p_5=p_5`): a pose
-        or joint list known here (literal, known target or variable, composition of known poses)
-        is its value for the moves after it, read only where certain (as a number, `_value`)."""
-        m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)\s*(.*)", text)
-        found = self._target(m.group(2).replace(" ", "")) if m and self.in_sub == 0 else None
-        if m is not None:
-            self.pose_values.pop(m.group(1), None)
-        if m is not None and found is not None:
-            self.pose_values[m.group(1)] = found
+    def _remember(self, text: str) -> None:
+        """`[global] name = VALUE` read for the statements after it: a number (RoboDK's `speed_ms =
+        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`) or a pose or joint list
+        known here (literal, known target or variable, composition of known poses: `p_5 = p[..]`,
+        `global p_5=p_5`), read where certain (`_value`, `_target`): in the program's own body
+        where no nested block sets the name, or up to the next block boundary, call or thread
+        start where no thread sets it (`fresh`). Any other value, or a changed element, forgets it."""
+        m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*(\[[^=]*\])?\s*=(?!=)\s*(.*)", text)
+        if m is None:
+            return
+        value = self._value(m.group(3).replace(" ", "")) if m.group(2) is None else None
+        pose = self._target(m.group(3).replace(" ", "")) if m.group(2) is None and value is None else None
+        for known in (self.values, self.pose_values, self.fresh):
+            known.pop(m.group(1), None)
+        if value is not None:
+            self.values[m.group(1)] = self.fresh[m.group(1)] = value
+        if pose is not None and self.in_sub == 0:
+            self.pose_values[m.group(1)] = pose
+        if pose is not None:
+            self.fresh[m.group(1)] = pose
 
     def _value(self, text: str) -> float | None:
         """A move argument: a number, a variable whose value at this move is certain (set once
@@ -161,6 +166,9 @@ class _Script:
         value = number(text)
         if value is None and not re.fullmatch(r"[A-Za-z_]\w*", text):
             return arithmetic(text, self._value)  # `0.001*t`, `-(width+gap)`, `d2r(90)`
+        fresh = self.fresh.get(text)
+        if isinstance(fresh, float) and text not in self.threaded:
+            return fresh
         once = self.assigned.get(text, 0) == 1
         if value is None and once and text in self.constants:
             return self.constants[text]  # set once in the file: a function reading it runs after it
@@ -171,8 +179,10 @@ class _Script:
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
         block starts or ends, the joints the robot stands at are not known from the text."""
-        self.rest_joints, self.last_target = None, None
-        return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+        self.rest_joints, self.last_target, self.fresh = None, None, {}
+        found = self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+        self.fresh = {}
+        return found
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
@@ -183,6 +193,8 @@ class _Script:
                 return body, i
             stmts, i = self._statement(i)
             body += stmts
+            if ln.head in ("if", "while", "for") or self.calls.search(ln.text):
+                self.fresh = {}  # a block, a call or a thread may have set any variable
             if not all(isinstance(s, (Move, SetOut, Wait, WaitIn, Pulse)) for s in stmts):
                 self.last_target = None  # a native line, a call or a block may have moved the robot
         if ends:
@@ -223,8 +235,7 @@ class _Script:
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
-        self._number_set(ln.text)  # remembered for the moves that read it, and kept native
-        self._pose_set(ln.text)
+        self._remember(ln.text)  # for the moves that read it; the assignment is kept native
         assign = self.logic.assign(ln.text, ln.where) if self.in_sub == 0 else None
         stmt = assign or self._simple(ln)
         if stmt is None:
@@ -305,25 +316,16 @@ class _Script:
         return ([WaitIn(found[0], None, self.lines[i].where)], i + found[2]) if found else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
-        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`; b a number or a variable
-        certain there), body, `v = v + 1`, `end`, the body neither assigning v nor breaking out:
-        for v in a .. b + 1 (a .. b)."""
-        t = self._texts(i, 2)
-        m = re.fullmatch(r"(\w+)=(-?\d+)", t[0]) if len(t) == 2 else None
-        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\w+)\)?:", t[1]) if m else None
-        bound = self._value(w.group(2)) if w else None
-        end = self._end_of(i + 1)
-        inner = [ln.text.replace(" ", "") for ln in self.lines[i + 2:end]]
-        if m is None or w is None or bound is None or bound != int(bound) or not inner or \
-                inner[-1] != f"{m.group(1)}={m.group(1)}+1" or any(
-                    x in ("break", "continue") or (ANY_ASSIGN.match(x) or [None, None])[1] == m.group(1) for x in inner[:-1]):
+        """A counted loop (urscript_values.counted_loop) as a `for`."""
+        inner = [ln.text.replace(" ", "") for ln in self.lines[i + 2:self._end_of(i + 1)]]
+        found = counted_loop(self._texts(i, 2), inner, self._value)
+        if found is None:
             return None
-        var = m.group(1)
         saved = set(self.names)
-        self.names.add(var)
+        self.names.add(found[0])
         body, j = self._enclosed(i + 2)
         self.names = saved
-        return [For(var, int(m.group(2)), int(bound) + (w.group(1) == "<="), tuple(body), self.lines[i + 1].where)], j + 1
+        return [For(*found, tuple(body), self.lines[i + 1].where)], j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
@@ -480,6 +482,9 @@ class _Script:
         if text in self.targets:
             t = self.targets[text]
             return (t.name, t.name, t)
+        fresh = self.fresh.get(text)
+        if isinstance(fresh, tuple) and text not in self.threaded:
+            return fresh
         if text in self.pose_values and self.in_sub == 0 and text not in self.nested_set:
             return self.pose_values[text]
         m = re.fullmatch(r"get_inverse_kin\((.*),qnear=(?:\[.*\]|\w+)\)", text)  # PolyScope: `qnear=Waypoint_q`

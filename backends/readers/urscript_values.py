@@ -18,8 +18,9 @@ from collections.abc import Callable
 from rmot.backends.readers.common import num_expr, number, split_top
 from rmot.backends.readers.model import Target
 from rmot.backends.readers.rapid import num_text
+from rmot.backends.readers.urscript_text import ANY_ASSIGN
 
-__all__ = ["arithmetic", "base_offset", "tool_offset"]
+__all__ = ["arithmetic", "base_offset", "calls_of", "counted_loop", "thread_assigned", "tool_offset"]
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)|([A-Za-z_]\w*)|([-+*/(),]))")
 _MAX_DEPTH = 32  # parentheses and signs nested in one value: more than any program writes
@@ -142,3 +143,41 @@ def tool_offset(parts: list[str], target_of: Callable[[str], Resolved | None],
         return None
     terms = ", ".join(f"{a}={num_text(1000.0 * o)}mm" for a, o in zip("xyz", offs[:3]) if o != 0.0)
     return (f"{base[0]} * pose({terms})" if terms else base[0], base[1], base[2])
+
+
+def calls_of(functions: set[str]) -> re.Pattern[str]:
+    """A statement that may set a variable it does not name: a call of one of the file's
+    `functions`, or a thread's `run`, `join` or `kill` (URScript manual, "Threads")."""
+    called = "|".join(sorted(re.escape(f) for f in functions)) or "(?!x)x"
+    return re.compile(rf"\b(?:run|join|kill)\b|\b(?:{called})\s*\(")
+
+
+def thread_assigned(texts: list[str], heads: list[str]) -> set[str]:
+    """The names a thread's body sets, whole or an element (`p[2] = ..`): a thread runs beside
+    the program (URScript manual, "Threads"), so their value is never certain in between."""
+    out: set[str] = set()
+    stack: list[bool] = []  # each open block: whether it is a thread
+    for text, head in zip(texts, heads):
+        m = ANY_ASSIGN.match(text) or re.match(r"(?:global\s+|local\s+)?(\w+)\s*\[", text)
+        if m and any(stack):
+            out.add(m.group(1))
+        if head in ("if", "while", "for", "def", "thread"):
+            stack.append(head == "thread")
+        elif head == "end" and stack:
+            stack.pop()
+    return out
+
+
+def counted_loop(head: list[str], inner: list[str], value_of: Callable[[str], float | None]) -> tuple[str, int, int] | None:
+    """(v, a, the bound past the last turn) of `v = a`, `while v <= b:` (or PolyScope's `while (v
+    < b):`; b a number or a variable `value_of` knows), body, `v = v + 1`, `end` (statements
+    without spaces; `inner` the body's with the step), the body neither assigning v nor
+    breaking out: for v in a .. b + 1 (a .. b)."""
+    m = re.fullmatch(r"(\w+)=(-?\d+)", head[0]) if len(head) == 2 else None
+    w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\w+)\)?:", head[1]) if m else None
+    bound = value_of(w.group(2)) if w else None
+    if m is None or w is None or bound is None or bound != int(bound) or not inner or \
+            inner[-1] != f"{m.group(1)}={m.group(1)}+1" or any(
+                x in ("break", "continue") or (ANY_ASSIGN.match(x) or [None, None])[1] == m.group(1) for x in inner[:-1]):
+        return None
+    return m.group(1), int(m.group(2)), int(bound) + (w.group(1) == "<=")
