@@ -31,7 +31,7 @@ from rmot.backends.readers.urscript_text import (
     split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.readers.urscript_values import (
-    arithmetic, base_offset, calls_of, counted_loop, thread_assigned, tool_offset,
+    arithmetic, base_offset, calls_of, counted_loop, thread_assigned, tool_offset, unknown_value,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
@@ -73,6 +73,7 @@ class _Script:
         self.direction = False  # the file holds PolyScope's Direction helper as PolyScope writes it
         self.current_domain: set[int] = set()  # analog outputs the file sets to current (mA)
         self.names: set[str] = set()
+        self.parameters: dict[str, tuple[str, ...]] = {}  # a function's parameters
         self.name = "imported"
         self.main = "imported"
         self.enclosing = 0  # loops and sub-routine bodies around the statement being read
@@ -211,7 +212,7 @@ class _Script:
         params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
                               ln.text)
         if params:  # a function with parameters: a proc; the lines that use a parameter stay native
-            names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
+            names = self.parameters[params.group(1)] = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
             self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
                             "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
             body, j = self._function_body(params.group(1), i)
@@ -238,8 +239,11 @@ class _Script:
         self._remember(ln.text)  # for the moves that read it; the assignment is kept native
         assign = self.logic.assign(ln.text, ln.where) if self.in_sub == 0 else None
         stmt = assign or self._simple(ln)
+        why = unknown_value(ln.text, self.assigned, self.parameters.get(self.scope[-1] if self.scope else "", ()),
+                            lambda n: self._value(n) is not None or self._target(n) is not None) \
+            if stmt is None and ln.head in ("movej", "movel", "movep", "movec") else None
         if stmt is None:
-            return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
+            return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
 

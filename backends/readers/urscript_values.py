@@ -20,7 +20,7 @@ from rmot.backends.readers.model import Target
 from rmot.backends.readers.rapid import num_text
 from rmot.backends.readers.urscript_text import ANY_ASSIGN
 
-__all__ = ["arithmetic", "base_offset", "calls_of", "counted_loop", "thread_assigned", "tool_offset"]
+__all__ = ["arithmetic", "base_offset", "calls_of", "counted_loop", "thread_assigned", "tool_offset", "unknown_value"]
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)|([A-Za-z_]\w*)|([-+*/(),]))")
 _MAX_DEPTH = 32  # parentheses and signs nested in one value: more than any program writes
@@ -181,3 +181,30 @@ def counted_loop(head: list[str], inner: list[str], value_of: Callable[[str], fl
                 x in ("break", "continue") or (ANY_ASSIGN.match(x) or [None, None])[1] == m.group(1) for x in inner[:-1]):
         return None
     return m.group(1), int(m.group(2)), int(bound) + (w.group(1) == "<=")
+
+
+_NOT_VALUES = {"True", "False", "and", "or", "not", "p"}
+
+
+def unknown_value(text: str, assigned: dict[str, int], parameters: tuple[str, ...],
+                  known: Callable[[str], bool]) -> str | None:
+    """Why the arguments of the call `text` (a move) are not known here: a value computed at run
+    time (`get_actual_tcp_pose()`, a function of the file, ..; not the pose functions read),
+    a function's parameter, a name the file never sets (another file or the robot's installation
+    does), or one whose value here is not certain; None when each name is known (another form
+    kept the line native)."""
+    inner = text[text.find("(") + 1:text.rfind(")")]
+    read = re.search(r"\b(?!(?:pose_trans|pose_add|get_inverse_kin|d2r|r2d)\b)([A-Za-z_]\w*)\s*\(", inner)
+    if read:
+        return f"`{read.group(1)}(..)` is computed at run time"
+    for m in re.finditer(r"\b([A-Za-z_]\w*)\b(?!\s*[(=\[])", inner):
+        name = m.group(1)
+        if name in _NOT_VALUES or known(name):
+            continue
+        if name in parameters:
+            return f"`{name}` is a parameter of the function: its value is the caller's"
+        count = assigned.get(name, 0)
+        if count == 0:
+            return f"`{name}` is not set in this file (another file or the robot's installation sets it)"
+        return f"`{name}`'s value here is not known for certain (the file sets it at {count} places)"
+    return None

@@ -115,3 +115,20 @@ def test_a_name_a_thread_sets_is_never_certain(tmp_path: Path) -> None:
             f"  while get_standard_digital_in(1):\n    movel(q, {_MOVE_OPTIONS})\n  end\nend\nscan()\n")
     _, stmts = _read(tmp_path, text)
     assert _native_moves(stmts) == [f"movel(pt, {_MOVE_OPTIONS})", f"movel(q, {_MOVE_OPTIONS})"]
+
+
+def test_a_native_move_says_which_value_is_not_known(tmp_path: Path) -> None:
+    """W510 of a move kept native names its unknown value: read at run time, a function of the
+    file, a parameter, a name the file never sets (akingse's `URtest2` reads speeds its other
+    file sets), one set in two branches."""
+    text = ("def shift(q):\n  return q\nend\ndef go(x):\n  movel(p[x, 0.1, 0.2, 0, 3.1, 0], a=1.2, v=0.25)\nend\n"
+            "def prog():\n  movel(get_actual_tcp_pose(), a=1.2, v=0.25)\n  movel(shift(p[0.5, 0.1, 0.2, 0, 3.1, 0]), a=1.2, v=0.25)\n"
+            f"  movel({_p(A)}, a=acce, v=0.25)\n  if get_standard_digital_in(1):\n    b = {_p(A)}\n  else:\n"
+            f"    b = {_p(B)}\n  end\n  movel(b, a=1.2, v=0.25)\n  go(0.3)\nend\nprog()\n")
+    doc, _ = _read(tmp_path, text)
+    why = {d.span.start.line: d.message for d in doc.diagnostics if d.code.id == "W510"}
+    assert why[5].startswith("`x` is a parameter of the function")
+    assert why[8].startswith("`get_actual_tcp_pose(..)` is computed at run time")
+    assert why[9].startswith("`shift(..)` is computed at run time")
+    assert why[10].startswith("`acce` is not set in this file")
+    assert why[16].startswith("`b`'s value here is not known for certain (the file sets it at 2 places)")
