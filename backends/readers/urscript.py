@@ -31,7 +31,7 @@ from rmot.backends.readers.urscript_text import (
     split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.readers.urscript_values import (
-    arithmetic, base_offset, calls_of, counted_loop, thread_assigned, tool_offset, unknown_value,
+    arithmetic, base_offset, calls_of, counted_loop, parameter_test, thread_assigned, tool_offset, unknown_value,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
@@ -336,7 +336,8 @@ class _Script:
         m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        logic = self.logic.condition(m.group(2)) if m and self.in_sub == 0 else None  # the program's own body
+        logic = self.logic.condition(m.group(2)) if m and self.in_sub == 0 else \
+            parameter_test(m.group(2), self.parameters.get(self.scope[-1], ())) if m and self.scope else None
         cond = _FOREVER if forever else (input_cond(m.group(2)) or logic) if m else None
         if cond is None:
             out, j, depth = [], i, 0
@@ -420,9 +421,10 @@ class _Script:
             return Pulse(port, seconds, where)
         if text == "halt":
             return Stop(where)
-        m = re.fullmatch(r"(\w+)\(\)", text)
-        if m and m.group(1) in self.defs:
-            return Call(m.group(1), (), where)
+        m = re.fullmatch(r"(\w+)\((.*)\)", text)  # a call: its arguments numbers certain here (RoboDK's `SprayOn(1)`)
+        args = [self._value(a) for a in split_top(m.group(2))] if m and m.group(2) else []
+        if m and m.group(1) in self.defs and len(args) == len(self.parameters.get(m.group(1), ())) and None not in args:
+            return Call(m.group(1), tuple(num_text(a) for a in args), where)  # type: ignore[arg-type]
         return None
 
     def _port(self, text: str) -> int | None:
@@ -461,19 +463,15 @@ class _Script:
             self.targets[name] = Target(name, None, tuple(math.degrees(v) for v in values), None, ln.where)
         return True
 
-    def _known_pose(self, text: str) -> ir.Pose | None:
-        """A pose literal `p[..]` or a target declared with a pose."""
-        literal = re.fullmatch(r"p\[(.*)\]", text.replace(" ", ""))
-        values = self._numbers(literal.group(1)) if literal else None
-        if values is not None and len(values) == 6:
-            return ur_pose(values)
+    def _known_pose(self, text: str, depth: int = 0) -> ir.Pose | None:
+        """A pose known here: a function's own pose variable, or a pose `_target` reads whole."""
         local = self.local_poses.get((self.scope[-1] if self.scope else "", text.strip()))
-        target = self.targets.get(text.strip())
-        return local if local is not None else target.pose if target is not None else None
+        found = self._target(text.replace(" ", ""), depth + 1) if local is None else None
+        return local if local is not None else found[2].pose if found and found[2] else None
 
-    def _combined(self, func: str, parts: list[str]) -> ir.Pose | None:
+    def _combined(self, func: str, parts: list[str], depth: int = 0) -> ir.Pose | None:
         """`pose_trans(A, B)` / `pose_add(A, B)` of two poses known here."""
-        a, b = (self._known_pose(p) for p in parts) if len(parts) == 2 else (None, None)
+        a, b = (self._known_pose(p, depth) for p in parts) if len(parts) == 2 else (None, None)
         return compose(func, a, b) if a is not None and b is not None else None
 
     def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
@@ -507,10 +505,9 @@ class _Script:
                     Target("", None, joints, None, Where("", 0)))
         combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text)
         parts = split_top(combined.group(2)) if combined else []
-        found = None if combined is None else \
-            tool_offset(parts, lambda t: self._target(t, depth + 1), self._offset) if combined.group(1) == "pose_trans" \
-            else base_offset(parts, lambda t: self._target(t, depth + 1), self.names)
-        composed = self._combined(combined.group(1), parts) if combined and found is None else None
+        found = None if combined is None else tool_offset(parts, lambda t: self._target(t, depth + 1), lambda t: self._offset(
+            t, depth + 1)) if combined.group(1) == "pose_trans" else base_offset(parts, lambda t: self._target(t, depth + 1), self.names)
+        composed = self._combined(combined.group(1), parts, depth) if combined and found is None else None
         if composed is not None:  # two poses known here, composed (not a plain translation of a target)
             return (pose_expr(composed), None, Target("", composed, None, None, Where("", 0)))
         return found
@@ -520,12 +517,12 @@ class _Script:
         values = [self._value(v) for v in split_top(text)]
         return None if any(v is None for v in values) else values  # type: ignore[return-value]
 
-    def _offset(self, text: str) -> list[float] | None:
+    def _offset(self, text: str, depth: int) -> list[float] | None:
         """A pose written `p[..]`, or a pose known here without rotation, as its six numbers."""
         literal = re.fullmatch(r"p\[(.*)\]", text)
         if literal:
             return self._numbers(literal.group(1))
-        pose = self._known_pose(text)
+        pose = self._known_pose(text, depth)
         return None if pose is None or pose.quaternion != (1.0, 0.0, 0.0, 0.0) else [*pose.position, 0.0, 0.0, 0.0]
 
     def _joint_shares(self, joints: tuple[float, ...] | None, v: float | None, a: float | None,
@@ -581,8 +578,7 @@ class _Script:
             speed = 1000.0 * v if v is not None else 250.0
             accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
             jpct, jacc = None, None
-        exact = decl is not None and decl.pose is not None and (name is None or expr == name)
-        self.last_target = (expr, decl.pose) if exact and decl and decl.pose else None  # shifts: decl is the base's
+        self.last_target = (expr, decl.pose) if decl and decl.pose else None  # decl: the target's own pose
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t") or None, tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,

@@ -16,11 +16,12 @@ import re
 from collections.abc import Callable
 
 from rmot.backends.readers.common import num_expr, number, split_top
-from rmot.backends.readers.model import Target
+from rmot.backends.readers.model import Conds, Target, Where
 from rmot.backends.readers.rapid import num_text
 from rmot.backends.readers.urscript_text import ANY_ASSIGN
+from rmot.lang import ir
 
-__all__ = ["arithmetic", "base_offset", "calls_of", "counted_loop", "thread_assigned", "tool_offset", "unknown_value"]
+__all__ = ["arithmetic", "base_offset", "calls_of", "counted_loop", "parameter_test", "thread_assigned", "tool_offset", "unknown_value"]
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)|([A-Za-z_]\w*)|([-+*/(),]))")
 _MAX_DEPTH = 32  # parentheses and signs nested in one value: more than any program writes
@@ -129,7 +130,10 @@ def base_offset(parts: list[str], target_of: Callable[[str], Resolved | None], n
         return None
     terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"  # type: ignore[arg-type]
                       for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
-    return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
+    values = [number(e) for e in exprs]  # type: ignore[arg-type]
+    pose = base[2].pose if base[2] and None not in values else None  # a loop counter's offset: no one pose
+    moved = ir.Pose(tuple(p + v for p, v in zip(pose.position, values)), pose.quaternion) if pose else None  # type: ignore[operator,arg-type]
+    return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], _pose(moved))
 
 
 def tool_offset(parts: list[str], target_of: Callable[[str], Resolved | None],
@@ -142,7 +146,14 @@ def tool_offset(parts: list[str], target_of: Callable[[str], Resolved | None],
     if base is None or offs is None or len(offs) != 6 or any(o != 0.0 for o in offs[3:]):
         return None
     terms = ", ".join(f"{a}={num_text(1000.0 * o)}mm" for a, o in zip("xyz", offs[:3]) if o != 0.0)
-    return (f"{base[0]} * pose({terms})" if terms else base[0], base[1], base[2])
+    pose = base[2].pose if base[2] else None
+    return (f"{base[0]} * pose({terms})" if terms else base[0], base[1],
+            _pose(pose * ir.Pose((offs[0], offs[1], offs[2])) if pose else None))
+
+
+def _pose(pose: ir.Pose | None) -> Target | None:
+    """The declaration a resolved target carries: its own pose (never its base's)."""
+    return Target("", pose, None, None, Where("", 0)) if pose is not None else None
 
 
 def calls_of(functions: set[str]) -> re.Pattern[str]:
@@ -208,3 +219,12 @@ def unknown_value(text: str, assigned: dict[str, int], parameters: tuple[str, ..
             return f"`{name}` is not set in this file (another file or the robot's installation sets it)"
         return f"`{name}`'s value here is not known for certain (the file sets it at {count} places)"
     return None
+
+
+def parameter_test(text: str, parameters: tuple[str, ...]) -> Conds | None:
+    """A function's parameter compared with a number (RoboDK's `if value == 0:` in `SprayOn(value)`):
+    a test the compiler decides at each call (`value == 0` in rmot; URScript's comparison
+    operators are rmot's)."""
+    m = re.fullmatch(r"\(?\s*(\w+)\s*(==|!=|<=|>=|<|>)\s*([-+\d.eE]+)\s*\)?", text.strip())
+    value = number(m.group(3)) if m and m.group(1) in parameters else None
+    return Conds("expr", (), f"{m.group(1)} {m.group(2)} {num_text(value)}") if m and value is not None else None
