@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from rmot.backends.readers.model import Move, Native, Wait
+from rmot.backends.readers.urscript_values import arithmetic
 from tests.backends.test_import_urscript_forms import _matrix, _read, _scipy
 
 _INIT = ("def SubP_initialize():\n\tglobal pi=3.14159265\n\tglobal width=0.300\n\tglobal gap=0.005\n"
@@ -92,3 +93,14 @@ def test_uncertain_or_unsupported_values_stay_native(tmp_path: Path, value: str)
     _, stmts = _read(tmp_path, text)
     assert not _moves(stmts)
     assert len([s for s in stmts if isinstance(s, Native) and s.text.startswith("movel")]) == 2
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("2+3*4", 2 + 3 * 4), ("-(2-5)*2", -(2 - 5) * 2), ("2*-3", 2 * -3), ("1.0/4", 1.0 / 4), ("--2", 2),
+    ("a/b*2", 2.5 / 0.5 * 2), ("a-b-1", 2.5 - 0.5 - 1), ("d2r(90)/2", math.radians(90) / 2), ("r2d(a)", math.degrees(2.5)),
+    ("1e-3*(10-8)", 1e-3 * (10 - 8)), (".5+a", 0.5 + 2.5),
+])
+def test_arithmetic_binds_as_python(text: str, expected: float) -> None:
+    """The evaluator's priorities and signs are Python's (URScript manual: the operators bind as
+    Python's): each value equals Python's own arithmetic on the same numbers."""
+    assert arithmetic(text, {"a": 2.5, "b": 0.5}.get) == pytest.approx(expected, rel=1e-15)
