@@ -43,25 +43,25 @@ class _Parser:
         return self.tokens[self.k] if self.k < len(self.tokens) else ("", "")
 
     def sum(self, depth: int) -> tuple[float, bool] | None:
-        left = self.product(depth)
-        while left is not None and self.peek()[1] in ("+", "-"):
-            op = self.tokens[self.k][1]
-            self.k += 1
-            right = self.product(depth)
-            if right is None:
-                return None
-            left = (left[0] + right[0] if op == "+" else left[0] - right[0], left[1] and right[1])
-        return left
+        return self.binary(depth, ("+", "-"), self.product)
 
     def product(self, depth: int) -> tuple[float, bool] | None:
-        left = self.unary(depth)
-        while left is not None and self.peek()[1] in ("*", "/"):
+        return self.binary(depth, ("*", "/"), self.unary)
+
+    def binary(self, depth: int, ops: tuple[str, str],
+               operand: Callable[[int], tuple[float, bool] | None]) -> tuple[float, bool] | None:
+        """Operands joined left to right by `ops`; a division by zero, or of two values that may
+        both be integers, is unknown."""
+        left = operand(depth)
+        while left is not None and self.peek()[1] in ops:
             op = self.tokens[self.k][1]
             self.k += 1
-            right = self.unary(depth)
+            right = operand(depth)
             if right is None or (op == "/" and (right[0] == 0.0 or (left[1] and right[1]))):
                 return None
-            left = (left[0] * right[0] if op == "*" else left[0] / right[0], op == "*" and left[1] and right[1])
+            a, b = left[0], right[0]
+            value = a + b if op == "+" else a - b if op == "-" else a * b if op == "*" else a / b
+            left = (value, op != "/" and left[1] and right[1])
         return left
 
     def unary(self, depth: int) -> tuple[float, bool] | None:
