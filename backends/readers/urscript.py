@@ -31,7 +31,7 @@ from rmot.backends.readers.urscript_text import (
     split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.readers.urscript_values import (
-    arithmetic, base_offset, calls_of, counted_loop, parameter_test, thread_assigned, tool_offset, unknown_value,
+    arithmetic, base_offset, counted_loop, may_change, parameter_test, thread_assigned, tool_offset, unknown_value,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
@@ -106,7 +106,6 @@ class _Script:
         self._scan_numbers(program)
         every = self.lines + [ln for _, _, node in self.installation for ln in node]
         self.threaded = thread_assigned([ln.text for ln in every], [ln.head for ln in every])
-        self.calls = calls_of({m.group(1) for ln in every for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m})
         self.logic = UrVars([ln.text for ln in self.lines], [ln.head for ln in self.lines], program, self.defs,
                             [ln.text for _, _, node in self.installation for ln in node])
         texts = [ln.text.replace(" ", "") for ln in self.lines]
@@ -194,7 +193,7 @@ class _Script:
                 return body, i
             stmts, i = self._statement(i)
             body += stmts
-            if ln.head in ("if", "while", "for") or self.calls.search(ln.text):
+            if ln.head in ("if", "while", "for") or may_change(ln.text):
                 self.fresh = {}  # a block, a call or a thread may have set any variable
             if not all(isinstance(s, (Move, SetOut, Wait, WaitIn, Pulse)) for s in stmts):
                 self.last_target = None  # a native line, a call or a block may have moved the robot

@@ -21,7 +21,7 @@ from rmot.backends.readers.rapid import num_text
 from rmot.backends.readers.urscript_text import ANY_ASSIGN
 from rmot.lang import ir
 
-__all__ = ["arithmetic", "base_offset", "calls_of", "counted_loop", "parameter_test", "thread_assigned", "tool_offset", "unknown_value"]
+__all__ = ["arithmetic", "base_offset", "counted_loop", "may_change", "parameter_test", "thread_assigned", "tool_offset", "unknown_value"]
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)|([A-Za-z_]\w*)|([-+*/(),]))")
 _MAX_DEPTH = 32  # parentheses and signs nested in one value: more than any program writes
@@ -156,11 +156,20 @@ def _pose(pose: ir.Pose | None) -> Target | None:
     return Target("", pose, None, None, Where("", 0)) if pose is not None else None
 
 
-def calls_of(functions: set[str]) -> re.Pattern[str]:
-    """A statement that may set a variable it does not name: a call of one of the file's
-    `functions`, or a thread's `run`, `join` or `kill` (URScript manual, "Threads")."""
-    called = "|".join(sorted(re.escape(f) for f in functions)) or "(?!x)x"
-    return re.compile(rf"\b(?:run|join|kill)\b|\b(?:{called})\s*\(")
+# URScript's built-in functions that set no variable of the program (URScript manual, modules
+# motion, interfaces, math, urmath, internals: they return a value or act on the robot)
+_BUILT_IN = re.compile(r"move[jlpc]|servo[jc]|speed[jl]|stop[jl]|sleep|sync|textmsg|popup|set_\w+|get_\w+|pose_\w+|"
+                       r"d2r|r2d|sqrt|sin|cos|tan|asin|acos|atan|atan2|norm|floor|ceil|pow|log|interpolate_pose|"
+                       r"point_dist|length|to_str|str_\w+|write_\w+|read_\w+|is_\w+|if|elif|while|not|and|or")
+
+
+def may_change(text: str) -> bool:
+    """Whether the statement `text` may set a variable it does not name: a thread's `run`, `join`
+    or `kill` (URScript manual, "Threads"), or a call of anything but URScript's built-in
+    functions above (a function of the file, of the robot's installation, of another file)."""
+    if re.search(r"\b(?:run|join|kill)\b", text):
+        return True
+    return any(not _BUILT_IN.fullmatch(m.group(1)) for m in re.finditer(r"\b([A-Za-z_]\w*)\s*\(", text))
 
 
 def thread_assigned(texts: list[str], heads: list[str]) -> set[str]:

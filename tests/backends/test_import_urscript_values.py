@@ -96,6 +96,8 @@ def test_a_functions_variable_set_then_moved_to(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("between", [
     "  other()\n",  # a call: the function may set any global
+    "  SubP_initialize()\n",  # a function another file of the program defines (akingse's files)
+    "  x = rq_current_pos()\n",  # a URCap's function, in an assignment
     "  th = run other_thread()\n",  # a thread started
     "  if get_standard_digital_in(1):\n    sleep(0.1)\n  end\n",  # a block
     "  pt[2] = 0.5\n",  # an element changed
