@@ -1,5 +1,7 @@
 """URScript values computed from the text: arithmetic over numbers and variables whose value is
-certain, and targets moved by an offset (`pose_add` along the base, `pose_trans` along the tool).
+certain, targets moved by an offset (`pose_add` along the base, `pose_trans` along the tool),
+and what tells whether a value is certain: the statements that may change a variable they do not
+name, the names threads set, counted loops, a parameter's test, why a move's value is unknown.
 
 URScript manual ("The URScript Programming Language", e-Series): the arithmetic operators
 `+ - * /` bind as Python's (`*` `/` tighter than `+` `-`, unary minus tightest); module urmath:
@@ -21,7 +23,10 @@ from rmot.backends.readers.rapid import num_text
 from rmot.backends.readers.urscript_text import ANY_ASSIGN
 from rmot.lang import ir
 
-__all__ = ["arithmetic", "base_offset", "counted_loop", "may_change", "parameter_test", "thread_assigned", "tool_offset", "unknown_value"]
+__all__ = [
+    "arithmetic", "base_offset", "counted_loop", "may_change", "parameter_test", "thread_assigned", "tool_offset",
+    "unknown_value",
+]
 
 _TOKEN = re.compile(r"\s*(?:(\d+\.?\d*(?:[eE][+-]?\d+)?|\.\d+(?:[eE][+-]?\d+)?)|([A-Za-z_]\w*)|([-+*/(),]))")
 _MAX_DEPTH = 32  # parentheses and signs nested in one value: more than any program writes
@@ -125,14 +130,17 @@ def base_offset(parts: list[str], target_of: Callable[[str], Resolved | None], n
     offs = split_top(shift.group(1)) if shift else []
     if base is None or len(offs) != 6 or any(number(o) != 0.0 for o in offs[3:]):
         return None
-    exprs = [num_expr(o, names) for o in offs[:3]]
-    if any(e is None for e in exprs):
+    exprs = [e for e in (num_expr(o, names) for o in offs[:3]) if e is not None]
+    if len(exprs) != 3:
         return None
-    terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"  # type: ignore[arg-type]
-                      for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
-    values = [number(e) for e in exprs]  # type: ignore[arg-type]
-    pose = base[2].pose if base[2] and None not in values else None  # a loop counter's offset: no one pose
-    moved = ir.Pose(tuple(p + v for p, v in zip(pose.position, values)), pose.quaternion) if pose else None  # type: ignore[operator,arg-type]
+    terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"
+                      for a, e in zip("xyz", exprs) if number(e) != 0.0)
+    values = [number(e) for e in exprs]
+    pose = base[2].pose if base[2] is not None else None
+    moved = None
+    if pose is not None and all(v is not None for v in values):  # a loop counter's offset: no one pose
+        x, y, z = (p + (v or 0.0) for p, v in zip(pose.position, values))
+        moved = ir.Pose((x, y, z), pose.quaternion)
     return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], _pose(moved))
 
 

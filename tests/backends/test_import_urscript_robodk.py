@@ -81,12 +81,19 @@ def test_a_robodk_program_reads_whole(tmp_path: Path) -> None:
 
 
 def test_a_tool_offset_of_a_written_pose_carries_its_own_pose(tmp_path: Path) -> None:
-    """`pose_trans(p[A], p[0, 0, 0.1, 0, 0, 0])`: the move's pose is A · T(0.1 m along z), not A."""
-    _, stmts = _read(tmp_path, f"def prog():\n  movel(pose_trans({_p(A)}, p[0, 0, 0.1, 0, 0, 0]), a=1.2, v=0.25)\nend\n")
-    (move,) = [s for s in stmts if isinstance(s, Move)]
-    assert move.pose is not None and move.target.endswith("* pose(z=100mm)")
-    assert np.allclose(_matrix(move.pose.position, move.pose.quaternion),
+    """`pose_trans(p[A], p[0, 0, 0.1, 0, 0, 0])`: the move's pose is A · T(0.1 m along z), not A;
+    `pose_add(p[A], p[dx, dy, dz, 0, 0, 0])` (URScript manual, pose_add: positions added) is A
+    with its position moved by d in the base, its rotation A's."""
+    _, stmts = _read(tmp_path, f"def prog():\n  movel(pose_trans({_p(A)}, p[0, 0, 0.1, 0, 0, 0]), a=1.2, v=0.25)\n"
+                     f"  movel(pose_add({_p(A)}, p[0.01, 0.02, 0.03, 0, 0, 0]), a=1.2, v=0.25)\nend\n")
+    tool, base = [s for s in stmts if isinstance(s, Move)]
+    assert tool.pose is not None and tool.target.endswith("* pose(z=100mm)")
+    assert np.allclose(_matrix(tool.pose.position, tool.pose.quaternion),
                        _scipy(A) @ _scipy([0, 0, 0.1, 0, 0, 0]), atol=1e-12)
+    moved = _scipy(A)
+    moved[:3, 3] += [0.01, 0.02, 0.03]
+    assert base.pose is not None and base.target.startswith("shift(")
+    assert np.allclose(_matrix(base.pose.position, base.pose.quaternion), moved, atol=1e-12)
 
 
 def test_deeply_nested_pose_functions_stay_native(tmp_path: Path) -> None:
