@@ -320,6 +320,8 @@ class _Script:
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
         """A counted loop (urscript_values.counted_loop) as a `for`."""
+        if i + 1 >= len(self.lines) or self.lines[i + 1].head != "while":
+            return None  # (finding a block's end costs the file's length: only for a loop)
         inner = [ln.text.replace(" ", "") for ln in self.lines[i + 2:self._end_of(i + 1)]]
         found = counted_loop(self._texts(i, 2), inner, self._value)
         if found is None:

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import rmot.backends.readers.urscript as reader
 from rmot.backends.readers.model import Move, Native
 from tests.backends.test_import_urscript_forms import A, B, _matrix, _p, _read, _scipy
 
@@ -134,3 +135,14 @@ def test_a_native_move_says_which_value_is_not_known(tmp_path: Path) -> None:
     assert why[9].startswith("`shift(..)` is computed at run time")
     assert why[10].startswith("`acce` is not set in this file")
     assert why[16].startswith("`b`'s value here is not known for certain (the file sets it at 2 places)")
+
+
+def test_straight_line_code_does_not_look_for_block_ends(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Finding a block's end scans to it: done for loops only, so a long straight-line program
+    (here 400 statements) is read in time proportional to its length, not its square."""
+    calls: list[int] = []
+    real = reader.block_end
+    monkeypatch.setattr(reader, "block_end", lambda heads, i: calls.append(i) or real(heads, i))
+    body = "".join(f"  pt = p[0.{k % 90 + 10}, 0.1, 0.2, 0, 3.1, 0]\n  movel(pt, {_MOVE_OPTIONS})\n" for k in range(200))
+    _, stmts = _read(tmp_path, f"def prog():\n{body}end\n")
+    assert len(_poses(stmts)) == 200 and len(calls) <= 2
