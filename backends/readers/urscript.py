@@ -213,7 +213,8 @@ class _Script:
         if params:  # a function with parameters: a proc; the lines that use a parameter stay native
             names = self.parameters[params.group(1)] = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
             self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
-                            "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
+                            "untyped in URScript: declared `number`; the lines that use them stay native but "
+                            "for an `if` comparing one with a number", ln.where)
             body, j = self._function_body(params.group(1), i)
             self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
             return [], j + 1
