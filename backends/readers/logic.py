@@ -193,16 +193,18 @@ def fits(var_type: str, value_type: str) -> bool:
     return value_type == var_type or (var_type == "num" and value_type == "int")
 
 
-def fold_first_values(decls: list[VarDecl], body: tuple[Stmt, ...]) -> tuple[list[VarDecl], tuple[Stmt, ...]]:
+def fold_first_values(decls: list[VarDecl], body: tuple[Stmt, ...],
+                      reads: bool = False) -> tuple[list[VarDecl], tuple[Stmt, ...]]:
     """The declarations, each with the value the routine assigns it first thing (`x := 0;`
-    before any other statement, from constants only: nothing reads the declared value), and
-    the rest of the body."""
+    before any other statement, from constants only, or with `reads` also from I/O reads where
+    the declarations stand at the routine's top: nothing reads the declared value), and the
+    rest of the body."""
     by_name = {d.name: d for d in decls}
     k = 0
     while k < len(body) and isinstance(body[k], Assign):
         a = body[k]
         assert isinstance(a, Assign)
-        if a.name not in by_name or a.value.parts or any(re.search(rf"\b{n}\b", a.value.text) for n in by_name):
+        if a.name not in by_name or (a.value.parts and not reads) or any(re.search(rf"\b{n}\b", a.value.text) for n in by_name):
             break
         by_name[a.name] = replace(by_name[a.name], init=a.value)
         k += 1

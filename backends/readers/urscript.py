@@ -17,7 +17,7 @@ import math
 import re
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import Tally, num_expr, number, split_top
+from rmot.backends.readers.common import Tally, number, split_top
 from rmot.backends.readers.model import (
     Call, Cond, For, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While, Routine,
 )
@@ -27,9 +27,11 @@ from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
-    ANY_ASSIGN, NUMBER_ASSIGN, Line, block_end, compose, input_cond, installation_nodes, polled_wait, pose_numbers,
-    scan_assignments,
+    Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments,
     split_statements, strip_hash, ur_pose,
+)
+from rmot.backends.readers.urscript_values import (
+    arithmetic, base_offset, counted_loop, may_change, parameter_test, thread_assigned, tool_offset, unknown_value,
 )
 from rmot.backends.urscript import DEFAULT_LIMITS, JOINT_LIMITS
 from rmot.lang import ir
@@ -71,6 +73,7 @@ class _Script:
         self.direction = False  # the file holds PolyScope's Direction helper as PolyScope writes it
         self.current_domain: set[int] = set()  # analog outputs the file sets to current (mA)
         self.names: set[str] = set()
+        self.parameters: dict[str, tuple[str, ...]] = {}  # a function's parameters
         self.name = "imported"
         self.main = "imported"
         self.enclosing = 0  # loops and sub-routine bodies around the statement being read
@@ -82,7 +85,8 @@ class _Script:
         self.scope: list[str] = []  # the functions around the statement being read
         self.local_poses: dict[tuple[str, str], ir.Pose] = {}  # a function's own pose variables
         self.nested_set: set[str] = set()  # names assigned inside a loop, branch or sub-routine
-        self.pose_values: dict[str, tuple[str, str | None, Target | None]] = {}  # see _pose_set
+        self.pose_values: dict[str, tuple[str, str | None, Target | None]] = {}  # see _remember
+        self.fresh: dict[str, float | tuple[str, str | None, Target | None]] = {}  # see _remember
 
     # ---------------------------------------------------------------- structure
 
@@ -100,6 +104,8 @@ class _Script:
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
         program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
         self._scan_numbers(program)
+        every = self.lines + [ln for _, _, node in self.installation for ln in node]
+        self.threaded = thread_assigned([ln.text for ln in every], [ln.head for ln in every])
         self.logic = UrVars([ln.text for ln in self.lines], [ln.head for ln in self.lines], program, self.defs,
                             [ln.text for _, _, node in self.installation for ln in node])
         texts = [ln.text.replace(" ", "") for ln in self.lines]
@@ -132,32 +138,37 @@ class _Script:
         self.assigned, self.scoped, self.nested_set, self.constants = scan_assignments(
             [ln.text for ln in lines], [ln.head for ln in lines], program)
 
-    def _number_set(self, text: str) -> None:
-        """`[global] name = number`: remembered for the moves after it (RoboDK's `speed_ms =
-        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`); any other value
-        forgets it."""
-        m = ANY_ASSIGN.match(text)
-        value = NUMBER_ASSIGN.fullmatch(text)
-        if m is not None:
-            self.values.pop(m.group(1), None)
-        if value is not None and number(value.group(2)) is not None:
-            self.values[value.group(1)] = number(value.group(2))  # type: ignore[assignment]
-
-    def _pose_set(self, text: str) -> None:
-        """`[global] name = POSE` assigned more than once (`p_5 = p[..]`, `global p_5=p_5`): a pose
-        or joint list known here (literal, known target or variable, composition of known poses)
-        is its value for the moves after it, read only where certain (as a number, `_value`)."""
-        m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=(?!=)\s*(.*)", text)
-        found = self._target(m.group(2).replace(" ", "")) if m and self.in_sub == 0 else None
-        if m is not None:
-            self.pose_values.pop(m.group(1), None)
-        if m is not None and found is not None:
-            self.pose_values[m.group(1)] = found
+    def _remember(self, text: str) -> None:
+        """`[global] name = VALUE` read for the statements after it: a number (RoboDK's `speed_ms =
+        0.250`, then `movel(p[..],accel_mss,speed_ms,0,blend_radius_m)`) or a pose or joint list
+        known here (literal, known target or variable, composition of known poses: `p_5 = p[..]`,
+        `global p_5=p_5`), read where certain (`_value`, `_target`): in the program's own body
+        where no nested block sets the name, or up to the next block boundary, call or thread
+        start where no thread sets it (`fresh`). Any other value, or a changed element, forgets it."""
+        m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*(\[[^=]*\])?\s*=(?!=)\s*(.*)", text)
+        if m is None:
+            return
+        value = self._value(m.group(3).replace(" ", "")) if m.group(2) is None else None
+        pose = self._target(m.group(3).replace(" ", "")) if m.group(2) is None and value is None else None
+        for known in (self.values, self.pose_values, self.fresh):
+            known.pop(m.group(1), None)
+        if value is not None:
+            self.values[m.group(1)] = self.fresh[m.group(1)] = value
+        if pose is not None and self.in_sub == 0:
+            self.pose_values[m.group(1)] = pose
+        if pose is not None:
+            self.fresh[m.group(1)] = pose
 
     def _value(self, text: str) -> float | None:
-        """A move argument: a number, or a variable whose value at this move is certain (set once
-        in the file; or, outside sub-routines, never set inside a nested block)."""
+        """A move argument: a number, a variable whose value at this move is certain (set once
+        in the file; or, outside sub-routines, never set inside a nested block), or arithmetic
+        over them (urscript_values)."""
         value = number(text)
+        if value is None and not re.fullmatch(r"[A-Za-z_]\w*", text):
+            return arithmetic(text, self._value)  # `0.001*t`, `-(width+gap)`, `d2r(90)`
+        fresh = self.fresh.get(text)
+        if isinstance(fresh, float) and text not in self.threaded:
+            return fresh
         once = self.assigned.get(text, 0) == 1
         if value is None and once and text in self.constants:
             return self.constants[text]  # set once in the file: a function reading it runs after it
@@ -168,8 +179,10 @@ class _Script:
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
         block starts or ends, the joints the robot stands at are not known from the text."""
-        self.rest_joints, self.last_target = None, None
-        return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+        self.rest_joints, self.last_target, self.fresh = None, None, {}
+        found = self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+        self.fresh = {}
+        return found
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
@@ -180,6 +193,8 @@ class _Script:
                 return body, i
             stmts, i = self._statement(i)
             body += stmts
+            if ln.head in ("if", "while", "for") or may_change(ln.text):
+                self.fresh = {}  # a block, a call or a thread may have set any variable
             if not all(isinstance(s, (Move, SetOut, Wait, WaitIn, Pulse)) for s in stmts):
                 self.last_target = None  # a native line, a call or a block may have moved the robot
         if ends:
@@ -196,9 +211,10 @@ class _Script:
         params = re.fullmatch(r"def\s+(\w+)\s*\(\s*(\w+(?:\s*=\s*[^,()]+)?(?:\s*,\s*\w+(?:\s*=\s*[^,()]+)?)*)\s*\)\s*:",
                               ln.text)
         if params:  # a function with parameters: a proc; the lines that use a parameter stay native
-            names = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
+            names = self.parameters[params.group(1)] = tuple(p.split("=")[0].strip() for p in params.group(2).split(","))
             self.tally.warn(codes.PARAMETERS_NUMBER, f"`{params.group(1)}`'s parameters ({', '.join(names)}) are "
-                            "untyped in URScript: declared `number`; the lines that use them stay native", ln.where)
+                            "untyped in URScript: declared `number`; the lines that use them stay native but "
+                            "for an `if` comparing one with a number", ln.where)
             body, j = self._function_body(params.group(1), i)
             self.routines.append(Routine(params.group(1), tuple((n, "number") for n in names), tuple(body), ln.where))
             return [], j + 1
@@ -220,12 +236,14 @@ class _Script:
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
         if self._setting(ln.text) or self._declare(ln):
             return [], i + 1
-        self._number_set(ln.text)  # remembered for the moves that read it, and kept native
-        self._pose_set(ln.text)
+        self._remember(ln.text)  # for the moves that read it; the assignment is kept native
         assign = self.logic.assign(ln.text, ln.where) if self.in_sub == 0 else None
         stmt = assign or self._simple(ln)
+        why = unknown_value(ln.text, self.assigned, self.parameters.get(self.scope[-1] if self.scope else "", ()),
+                            lambda n: self._value(n) is not None or self._target(n) is not None) \
+            if stmt is None and ln.head in ("movej", "movel", "movep", "movec") else None
         if stmt is None:
-            return [self.tally.keep(ln.text, ln.where, "no rmot form")], i + 1
+            return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
 
@@ -302,32 +320,26 @@ class _Script:
         return ([WaitIn(found[0], None, self.lines[i].where)], i + found[2]) if found else None
 
     def _loop(self, i: int) -> tuple[list[Stmt], int] | None:
-        """`v = a`, `while v <= b:` (or PolyScope's `while (v < b):`; b a number or a variable
-        certain there), body, `v = v + 1`, `end`, the body neither assigning v nor breaking out:
-        for v in a .. b + 1 (a .. b)."""
-        t = self._texts(i, 2)
-        m = re.fullmatch(r"(\w+)=(-?\d+)", t[0]) if len(t) == 2 else None
-        w = re.fullmatch(rf"while\(?{m.group(1)}(<=|<)(-?\w+)\)?:", t[1]) if m else None
-        bound = self._value(w.group(2)) if w else None
-        end = self._end_of(i + 1)
-        inner = [ln.text.replace(" ", "") for ln in self.lines[i + 2:end]]
-        if m is None or w is None or bound is None or bound != int(bound) or not inner or \
-                inner[-1] != f"{m.group(1)}={m.group(1)}+1" or any(
-                    x in ("break", "continue") or (ANY_ASSIGN.match(x) or [None, None])[1] == m.group(1) for x in inner[:-1]):
+        """A counted loop (urscript_values.counted_loop) as a `for`."""
+        if i + 1 >= len(self.lines) or self.lines[i + 1].head != "while":
+            return None  # (finding a block's end costs the file's length: only for a loop)
+        inner = [ln.text.replace(" ", "") for ln in self.lines[i + 2:self._end_of(i + 1)]]
+        found = counted_loop(self._texts(i, 2), inner, self._value)
+        if found is None:
             return None
-        var = m.group(1)
         saved = set(self.names)
-        self.names.add(var)
+        self.names.add(found[0])
         body, j = self._enclosed(i + 2)
         self.names = saved
-        return [For(var, int(m.group(2)), int(bound) + (w.group(1) == "<="), tuple(body), self.lines[i + 1].where)], j + 1
+        return [For(*found, tuple(body), self.lines[i + 1].where)], j + 1
 
     def _compound(self, i: int) -> tuple[list[Stmt], int]:
         ln = self.lines[i]
         m = re.fullmatch(r"(if|elif|while)\b\s*(.*):", ln.text)
         forever = m is not None and m.group(1) == "while" and re.fullmatch(r"\(?\s*True\s*\)?", m.group(2)) \
             and self.enclosing == 0
-        logic = self.logic.condition(m.group(2)) if m and self.in_sub == 0 else None  # the program's own body
+        logic = self.logic.condition(m.group(2)) if m and self.in_sub == 0 else \
+            parameter_test(m.group(2), self.parameters.get(self.scope[-1], ())) if m and self.scope else None
         cond = _FOREVER if forever else (input_cond(m.group(2)) or logic) if m else None
         if cond is None:
             out, j, depth = [], i, 0
@@ -362,7 +374,7 @@ class _Script:
         compact = text.replace(" ", "")
         m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", compact)
         if m:
-            values = pose_numbers(m.group(1))
+            values = self._numbers(m.group(1))
             if values is None or len(values) != 6:
                 return False
             key = tuple(round(v, 6) for v in values)
@@ -401,7 +413,7 @@ class _Script:
         port, share = (self._port(m.group(1)), self._value(m.group(2))) if m else (None, None)
         if port is not None and share is not None and 0.0 <= share <= 1.0 and port not in self.current_domain:
             return SetOut(port, share * 10.0, where, analog=True)
-        m = re.fullmatch(r"sleep\(([\w.+-]+)\)", text)
+        m = re.fullmatch(r"sleep\((.+)\)", text)
         seconds = self._value(m.group(1)) if m else None
         if seconds is not None and seconds >= 0.0:
             return Wait(seconds, where)
@@ -411,9 +423,10 @@ class _Script:
             return Pulse(port, seconds, where)
         if text == "halt":
             return Stop(where)
-        m = re.fullmatch(r"(\w+)\(\)", text)
-        if m and m.group(1) in self.defs:
-            return Call(m.group(1), (), where)
+        m = re.fullmatch(r"(\w+)\((.*)\)", text)  # a call: its arguments numbers certain here (RoboDK's `SprayOn(1)`)
+        args = [self._value(a) for a in split_top(m.group(2))] if m and m.group(2) else []
+        if m and m.group(1) in self.defs and len(args) == len(self.parameters.get(m.group(1), ())) and None not in args:
+            return Call(m.group(1), tuple(num_text(a) for a in args), where)  # type: ignore[arg-type]
         return None
 
     def _port(self, text: str) -> int | None:
@@ -425,7 +438,7 @@ class _Script:
         """`[global] name = p[...]`, `= [j1, ..]`, or `= pose_add(A, B)` / `pose_trans(A, B)` of
         poses known here, assigned once in the file: a target."""
         m = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(p?)\[(.*)\]", ln.text)
-        values = pose_numbers(m.group(3)) if m else None
+        values = self._numbers(m.group(3)) if m else None
         combined = re.fullmatch(r"(?:global\s+|local\s+)?(\w+)\s*=\s*(pose_add|pose_trans)\((.*)\)", ln.text)
         name = (m or combined).group(1) if m or combined else ""  # type: ignore[union-attr]
         scope = self.scope[-1] if self.scope and not ln.text.startswith("global") else ""
@@ -452,19 +465,15 @@ class _Script:
             self.targets[name] = Target(name, None, tuple(math.degrees(v) for v in values), None, ln.where)
         return True
 
-    def _known_pose(self, text: str) -> ir.Pose | None:
-        """A pose literal `p[..]` or a target declared with a pose."""
-        literal = re.fullmatch(r"p\[(.*)\]", text.replace(" ", ""))
-        values = pose_numbers(literal.group(1)) if literal else None
-        if values is not None and len(values) == 6:
-            return ur_pose(values)
+    def _known_pose(self, text: str, depth: int = 0) -> ir.Pose | None:
+        """A pose known here: a function's own pose variable, or a pose `_target` reads whole."""
         local = self.local_poses.get((self.scope[-1] if self.scope else "", text.strip()))
-        target = self.targets.get(text.strip())
-        return local if local is not None else target.pose if target is not None else None
+        found = self._target(text.replace(" ", ""), depth + 1) if local is None else None
+        return local if local is not None else found[2].pose if found and found[2] else None
 
-    def _combined(self, func: str, parts: list[str]) -> ir.Pose | None:
+    def _combined(self, func: str, parts: list[str], depth: int = 0) -> ir.Pose | None:
         """`pose_trans(A, B)` / `pose_add(A, B)` of two poses known here."""
-        a, b = (self._known_pose(p) for p in parts) if len(parts) == 2 else (None, None)
+        a, b = (self._known_pose(p, depth) for p in parts) if len(parts) == 2 else (None, None)
         return compose(func, a, b) if a is not None and b is not None else None
 
     def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
@@ -477,6 +486,9 @@ class _Script:
         if text in self.targets:
             t = self.targets[text]
             return (t.name, t.name, t)
+        fresh = self.fresh.get(text)
+        if isinstance(fresh, tuple) and text not in self.threaded:
+            return fresh
         if text in self.pose_values and self.in_sub == 0 and text not in self.nested_set:
             return self.pose_values[text]
         m = re.fullmatch(r"get_inverse_kin\((.*),qnear=(?:\[.*\]|\w+)\)", text)  # PolyScope: `qnear=Waypoint_q`
@@ -484,7 +496,7 @@ class _Script:
             return self._target(m.group(1), depth + 1)
         m = re.fullmatch(r"(p?)\[(.*)\]", text)
         if m:
-            values = pose_numbers(m.group(2))
+            values = self._numbers(m.group(2))
             if values is None or len(values) != 6:
                 return None
             if m.group(1):
@@ -493,40 +505,27 @@ class _Script:
             joints = tuple(math.degrees(v) for v in values)
             return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
                     Target("", None, joints, None, Where("", 0)))
-        trans = re.fullmatch(r"pose_trans\((.*)\)", text)
-        found = self._tool_offset(split_top(trans.group(1)), depth) if trans else self._base_offset(text, depth)
-        combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text) if found is None else None
-        composed = self._combined(combined.group(1), split_top(combined.group(2))) if combined else None
+        combined = re.fullmatch(r"(pose_trans|pose_add)\((.*)\)", text)
+        parts = split_top(combined.group(2)) if combined else []
+        found = None if combined is None else tool_offset(parts, lambda t: self._target(t, depth + 1), lambda t: self._offset(
+            t, depth + 1)) if combined.group(1) == "pose_trans" else base_offset(parts, lambda t: self._target(t, depth + 1), self.names)
+        composed = self._combined(combined.group(1), parts, depth) if combined and found is None else None
         if composed is not None:  # two poses known here, composed (not a plain translation of a target)
             return (pose_expr(composed), None, Target("", composed, None, None, Where("", 0)))
         return found
 
-    def _base_offset(self, text: str, depth: int) -> tuple[str, str | None, Target | None] | None:
-        """`pose_add(P, p[dx, dy, dz, 0, 0, 0])`: P moved along the base axes = `shift(P, ..)`."""
-        m = re.fullmatch(r"pose_add\((.*)\)", text)
-        parts = split_top(m.group(1)) if m else []
-        base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
-        shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
-        offs = split_top(shift.group(1)) if shift else []
-        if base is None or len(offs) != 6 or any(number(o) != 0.0 for o in offs[3:]):
-            return None
-        exprs = [num_expr(o, self.names) for o in offs[:3]]
-        if any(e is None for e in exprs):
-            return None
-        terms = ", ".join(f"{a}={e} m" if number(e) is not None else f"{a}=({e}) * 1 m"  # type: ignore[arg-type]
-                          for a, e in zip("xyz", exprs) if number(e) != 0.0)  # type: ignore[arg-type]
-        return (f"shift({base[0]}, {terms})" if terms else base[0], base[1], base[2])
+    def _numbers(self, text: str) -> list[float] | None:
+        """The elements of a pose or joint list: numbers, or values certain here (`_value`)."""
+        values = [self._value(v) for v in split_top(text)]
+        return None if any(v is None for v in values) else values  # type: ignore[return-value]
 
-    def _tool_offset(self, parts: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
-        """`pose_trans(P, p[dx, dy, dz, 0, 0, 0])`: P moved along its own (tool) axes (URScript
-        manual, pose_trans: the second pose is expressed in the first's frame) = `P * pose(..)`."""
-        base = self._target(parts[0], depth + 1) if len(parts) == 2 else None
-        shift = re.fullmatch(r"p\[(.*)\]", parts[1]) if base else None
-        offs = [number(o) for o in split_top(shift.group(1))] if shift else []
-        if base is None or len(offs) != 6 or any(o is None for o in offs) or any(o != 0.0 for o in offs[3:]):
-            return None
-        terms = ", ".join(f"{a}={num_text(1000.0 * o)}mm" for a, o in zip("xyz", offs[:3]) if o != 0.0)  # type: ignore[operator]
-        return (f"{base[0]} * pose({terms})" if terms else base[0], base[1], base[2])
+    def _offset(self, text: str, depth: int) -> list[float] | None:
+        """A pose written `p[..]`, or a pose known here without rotation, as its six numbers."""
+        literal = re.fullmatch(r"p\[(.*)\]", text)
+        if literal:
+            return self._numbers(literal.group(1))
+        pose = self._known_pose(text, depth)
+        return None if pose is None or pose.quaternion != (1.0, 0.0, 0.0, 0.0) else [*pose.position, 0.0, 0.0, 0.0]
 
     def _joint_shares(self, joints: tuple[float, ...] | None, v: float | None, a: float | None,
                       zone: float, where: Where) -> tuple[float | None, float | None]:
@@ -581,8 +580,7 @@ class _Script:
             speed = 1000.0 * v if v is not None else 250.0
             accel = None if a is None or a == DEFAULT_TCP_ACCEL else 1000.0 * a
             jpct, jacc = None, None
-        exact = decl is not None and decl.pose is not None and (name is None or expr == name)
-        self.last_target = (expr, decl.pose) if exact and decl and decl.pose else None  # shifts: decl is the base's
+        self.last_target = (expr, decl.pose) if decl and decl.pose else None  # decl: the target's own pose
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t") or None, tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,

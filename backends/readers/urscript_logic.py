@@ -220,10 +220,12 @@ class UrVars:
 
     def hoist(self, body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
         """The main routine's body with the task variables declared at its top (logic.py folds the
-        values it starts by assigning)."""
+        values it starts by assigning, an I/O read too: the backend writes `var b: bool = out[1]`
+        as `global b = False` among the program's globals and `b = get_standard_digital_out(1)`
+        where the declaration stands)."""
         if not self.decls:
             return body
-        decls, rest = fold_first_values(self.decls, body)
+        decls, rest = fold_first_values(self.decls, body, reads=True)
         return (*decls, *rest)
 
 

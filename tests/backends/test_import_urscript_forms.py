@@ -175,7 +175,8 @@ def test_composed_poses_in_a_move(tmp_path: Path) -> None:
 def test_a_functions_own_frame_variable(tmp_path: Path) -> None:
     """Two functions each assign their own `frame` (URScript scoping: a variable a function
     assigns is local to it): each move composes with its own function's frame (scipy), the
-    assignments stay native, and a move to the bare name stays native (no single target)."""
+    assignments stay native (no single target), and a move to the bare name right after its
+    assignment goes to the value just set (scipy)."""
     c = [0.1, 0.5, -0.2, 0.0, 0.0, 1.0]
     doc, stmts = _read(tmp_path, f"def prog():\n  def left():\n    frame = {_p(A)}\n    movel(pose_trans(frame, {_p(B)}), a=1, v=0.1)\n"
                        f"  end\n  def right():\n    frame = {_p(c)}\n    movel(pose_trans(frame, {_p(B)}), a=1, v=0.1)\n"
@@ -185,9 +186,10 @@ def test_a_functions_own_frame_variable(tmp_path: Path) -> None:
         pose = procs[name][0].pose
         assert pose is not None
         assert np.allclose(_matrix(pose.position, pose.quaternion), _scipy(frame) @ _scipy(B), atol=1e-12), name
-    assert not doc.targets and len(procs["right"]) == 1
-    assert [s.text for s in stmts if isinstance(s, Native)] == [
-        f"frame = {_p(A)}", f"frame = {_p(c)}", "movel(frame, a=1, v=0.1)"]
+    assert not doc.targets and len(procs["right"]) == 2
+    pose = procs["right"][1].pose
+    assert pose is not None and np.allclose(_matrix(pose.position, pose.quaternion), _scipy(c), atol=1e-12)
+    assert [s.text for s in stmts if isinstance(s, Native)] == [f"frame = {_p(A)}", f"frame = {_p(c)}"]
 
 
 HELPER = "".join(f"  {line}\n" for line in (  # PolyScope's Direction helper, as PolyScope writes it

@@ -14,7 +14,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
+import rmot.backends.readers.urscript as reader
 from rmot.backends.readers.model import Move, Native
 from tests.backends.test_import_urscript_forms import A, B, _matrix, _p, _read, _scipy
 
@@ -77,3 +79,70 @@ def test_uncertain_values_stay_native(tmp_path: Path) -> None:
     _, stmts = _read(tmp_path, text)
     assert _native_moves(stmts) == [f"movel(c, {_MOVE_OPTIONS})", f"movel(a, {_MOVE_OPTIONS})",
                                     f"movel(b, {_MOVE_OPTIONS})", f"movel(c, {_MOVE_OPTIONS})"]
+
+
+def test_a_functions_variable_set_then_moved_to(tmp_path: Path) -> None:
+    """A hand-written function sets one variable to a point, moves to it, sets it to the next
+    point, moves again (akingse/UR_PolyScope_test `URtest2`: `global point_scan=p[..]`,
+    `movej(point_scan, ..)`, `point_scan=p[..]`, `movej(point_scan, ..)`), a speed variable
+    likewise: each move reads the value set right before it (scipy)."""
+    text = (f"def scan():\n  global pt = {_p(A)}\n  speed = 0.1\n  movej(pt, a=1.4, v=1.05)\n"
+            f"  pt = {_p(B)}\n  speed = speed * 2\n  movel(pt, a=1.2, v=speed)\nend\nscan()\n")
+    _, stmts = _read(tmp_path, text)
+    assert not _native_moves(stmts)
+    got = _poses(stmts)
+    assert len(got) == 2 and np.allclose(got[0], _scipy(A), atol=1e-12) and np.allclose(got[1], _scipy(B), atol=1e-12)
+    assert [s.speed for s in stmts if isinstance(s, Move)][1] == 0.1 * 2 * 1000.0
+
+
+@pytest.mark.parametrize("between", [
+    "  other()\n",  # a call: the function may set any global
+    "  SubP_initialize()\n",  # a function another file of the program defines (akingse's files)
+    "  x = rq_current_pos()\n",  # a URCap's function, in an assignment
+    "  th = run other_thread()\n",  # a thread started
+    "  if get_standard_digital_in(1):\n    sleep(0.1)\n  end\n",  # a block
+    "  pt[2] = 0.5\n",  # an element changed
+])
+def test_a_value_is_forgotten_where_something_may_change_it(tmp_path: Path, between: str) -> None:
+    text = (f"def other():\n  sleep(0.1)\nend\nthread other_thread():\n  sleep(0.1)\nend\n"
+            f"def scan():\n  pt = {_p(A)}\n  pt = {_p(B)}\n{between}  movel(pt, {_MOVE_OPTIONS})\nend\nscan()\n")
+    _, stmts = _read(tmp_path, text)
+    assert _native_moves(stmts) == [f"movel(pt, {_MOVE_OPTIONS})"]
+
+
+def test_a_name_a_thread_sets_is_never_certain(tmp_path: Path) -> None:
+    """A thread may set the name between any two statements: even right after the function
+    assigns it, the move stays native; a read inside a block stays native too."""
+    text = (f"thread watch():\n  pt = get_actual_tcp_pose()\nend\n"
+            f"def scan():\n  pt = {_p(A)}\n  pt = {_p(B)}\n  movel(pt, {_MOVE_OPTIONS})\n  q = {_p(A)}\n  q = {_p(B)}\n"
+            f"  while get_standard_digital_in(1):\n    movel(q, {_MOVE_OPTIONS})\n  end\nend\nscan()\n")
+    _, stmts = _read(tmp_path, text)
+    assert _native_moves(stmts) == [f"movel(pt, {_MOVE_OPTIONS})", f"movel(q, {_MOVE_OPTIONS})"]
+
+
+def test_a_native_move_says_which_value_is_not_known(tmp_path: Path) -> None:
+    """W510 of a move kept native names its unknown value: read at run time, a function of the
+    file, a parameter, a name the file never sets (akingse's `URtest2` reads speeds its other
+    file sets), one set in two branches."""
+    text = ("def shift(q):\n  return q\nend\ndef go(x):\n  movel(p[x, 0.1, 0.2, 0, 3.1, 0], a=1.2, v=0.25)\nend\n"
+            "def prog():\n  movel(get_actual_tcp_pose(), a=1.2, v=0.25)\n  movel(shift(p[0.5, 0.1, 0.2, 0, 3.1, 0]), a=1.2, v=0.25)\n"
+            f"  movel({_p(A)}, a=acce, v=0.25)\n  if get_standard_digital_in(1):\n    b = {_p(A)}\n  else:\n"
+            f"    b = {_p(B)}\n  end\n  movel(b, a=1.2, v=0.25)\n  go(0.3)\nend\nprog()\n")
+    doc, _ = _read(tmp_path, text)
+    why = {d.span.start.line: d.message for d in doc.diagnostics if d.code.id == "W510"}
+    assert why[5].startswith("`x` is a parameter of the function")
+    assert why[8].startswith("`get_actual_tcp_pose(..)` is computed at run time")
+    assert why[9].startswith("`shift(..)` is computed at run time")
+    assert why[10].startswith("`acce` is not set in this file")
+    assert why[16].startswith("`b`'s value here is not known for certain (the file sets it at 2 places)")
+
+
+def test_straight_line_code_does_not_look_for_block_ends(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Finding a block's end scans to it: done for loops only, so a long straight-line program
+    (here 400 statements) is read in time proportional to its length, not its square."""
+    calls: list[int] = []
+    real = reader.block_end
+    monkeypatch.setattr(reader, "block_end", lambda heads, i: calls.append(i) or real(heads, i))
+    body = "".join(f"  pt = p[0.{k % 90 + 10}, 0.1, 0.2, 0, 3.1, 0]\n  movel(pt, {_MOVE_OPTIONS})\n" for k in range(200))
+    _, stmts = _read(tmp_path, f"def prog():\n{body}end\n")
+    assert len(_poses(stmts)) == 200 and len(calls) <= 2
