@@ -7,6 +7,7 @@ character at column 5 has start col 5 and end col 6). Offsets are 0-based indexe
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 from rmot.lang.record import record
@@ -27,14 +28,10 @@ class SourceFile:
         Lines end at LF only (a CRLF's CR is dropped), exactly as the lexer and `pos_at` count
         them: `str.splitlines` would also break at form feed, CR, U+2028 and five more, and
         then `file:line:col` and the quoted line would disagree."""
-        if line < 1:
+        starts = _line_starts(self.text)
+        if not 1 <= line <= len(starts):
             return ""
-        start = 0
-        for _ in range(line - 1):
-            nl = self.text.find("\n", start)
-            if nl < 0:
-                return ""
-            start = nl + 1
+        start = starts[line - 1]
         end = self.text.find("\n", start)
         text = self.text[start:] if end < 0 else self.text[start:end]
         return text[:-1] if text.endswith("\r") else text
@@ -97,3 +94,16 @@ class Span:
     @staticmethod
     def from_offsets(file: SourceFile, start: int, end: int) -> Span:
         return Span(file, file.pos_at(start), file.pos_at(max(start, end)))
+
+
+@functools.lru_cache(maxsize=8)
+def _line_starts(text: str) -> tuple[int, ...]:
+    """The offset where each LF-ended line of `text` starts, computed once per text: a file
+    with many diagnostics quotes many lines, and rescanning from the top for each made
+    rendering them quadratic."""
+    starts = [0]
+    nl = text.find("\n")
+    while nl >= 0:
+        starts.append(nl + 1)
+        nl = text.find("\n", nl + 1)
+    return tuple(starts)
