@@ -586,9 +586,9 @@ class FanucBackend(Backend):
         if isinstance(e, ir.AnalogInput):
             # AI[n] is the raw A/D count of the input (FANUC B-63943EN/02 §8.4.14), whose
             # scale (counts per volt) depends on the I/O module: volts have no TP form
-            self.unsupported(codes.ANALOG_RAW_COUNTS, f"analog input {e.port} must be compared in the "
-                             "controller's raw A/D counts on Fanuc (AI[n] holds counts, not volts; got a "
-                             "value in volts)", node.span)
+            self.unsupported(codes.ANALOG_RAW_COUNTS, f"analog input {e.port} is a value in volts in "
+                             "rmot, but Fanuc's AI[n] holds the controller's raw A/D counts (counts per volt "
+                             "depend on the I/O module): no TP form reads it in volts", node.span)
             return [], f"AI[{e.port}{_sig(e.signal)}]"
         if isinstance(e, ir.GroupInput):
             # GI[n]: the group's inputs read as one unsigned integer, a value an IF compares
