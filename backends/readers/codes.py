@@ -141,3 +141,10 @@ __all__ += ["POLLED_WAIT"]
 POLLED_WAIT = Code("W528", "polled-wait",
                    "a URScript loop that sleeps T s between tests of digital inputs is read as `wait until`: the "
                    "controller goes on up to T s after the condition holds, rmot's wait as soon as it holds")
+
+# URScript get_inverse_kin(P, qnear=Q) (urscript_qnear.py)
+__all__ += ["QNEAR_NOT_READ"]
+QNEAR_NOT_READ = Code("W529", "qnear-not-read",
+                      "a URScript joint move to `get_inverse_kin(P, qnear=Q)` goes on the controller to the solution of "
+                      "P nearest Q; where the import cannot read that branch (no --cell, Q or the tool not known) "
+                      "rmot's move takes the solution nearest the current joints, which may differ")

@@ -101,6 +101,9 @@ class Move:
     ext: tuple[tuple[str, str], ...] = ()
     slot_pulses: tuple[bool, ...] = ()  # per slot: encoder pulses (an INFORM BC/EC under ///PULSE), not mm or deg
     via_slots: tuple[float | None, ...] = ()  # a circular via's own slot values where the vendor writes them (INFORM)
+    # URScript `get_inverse_kin(P, qnear=Q)`: (Q as written, Q's joints in deg where known here);
+    # the controller goes to the solution of P nearest Q (readers/urscript_qnear.py)
+    near: tuple[str, tuple[float, ...] | None] | None = None
     axes_only: bool = False  # `move axes`: the mechanisms alone (RAPID MoveExtJ), `time` its duration
 
 

@@ -23,6 +23,7 @@ from rmot.backends.readers.model import (
 )
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.urscript_logic import UrVars, timed_wait
+from rmot.backends.readers.urscript_qnear import qnear_of
 from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
@@ -584,7 +585,7 @@ class _Script:
         return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                     speed=speed, joint_pct=jpct, zone=zone or None, time=values.get("t") or None, tool=self.tool,
                     frame="base", pose=decl.pose if decl else None, joints=decl.joints if decl else None,
-                    accel=accel, joint_accel=jacc)
+                    accel=accel, joint_accel=jacc, near=qnear_of(points[-1], self._target) if kind == "joint" else None)
 
 
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)

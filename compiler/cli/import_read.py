@@ -63,6 +63,32 @@ def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -
     return resolve_rconf(doc, ik, tcp_of, wide)
 
 
+def _ur_qnear(doc: Document, model: str | None, tcp_of: dict[str, Pose] | None) -> Document:
+    """URScript joint moves to `get_inverse_kin(P, qnear=Q)` configured from the arm's solution
+    nearest Q (readers/urscript_qnear.py); without the arm (`tcp_of` None: neither a cell nor
+    --robot) they keep rmot's rule and say so (W529)."""
+    if doc.vendor != "urscript":
+        return doc
+    from rmot.backends.readers import span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.urscript_qnear import resolve_qnear  # late: loads numpy only when this runs
+    from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
+    from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
+
+    try:
+        robot = load_robot(model) if model and tcp_of is not None else None
+    except RobotError:
+        robot = None
+    if robot is None:
+        return resolve_qnear(doc, None, {}, (), span_of)
+    wide = tuple(j for j, (lo, hi) in enumerate(robot.joint_limits.tolist()) if hi - lo > 2 * math.pi + 1e-9)
+
+    def ik(flange: np.ndarray, seed: np.ndarray) -> tuple[Sequence[np.ndarray], Sequence[ir.Config]]:
+        result = robot.ik(flange, seed=seed)
+        return result.solutions, result.branches
+
+    return resolve_qnear(doc, ik, tcp_of or {}, wide, span_of)
+
+
 def _pulse_pose(model: str | None, found: tuple[object, str, object]) -> PulsePose | None:
     """The TCP pose in the arm's base of joint values (deg) with one of the cell robot's tools,
     by name (None for another name): the arm's forward kinematics times the tool's TCP. None
@@ -139,7 +165,8 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
     doc = read_files(files, model=model, limits=_joint_limits(model), pulses_per_degree=pulses_per_degree,
                      pulse_pose=pulse_pose)
     if cell is None or found is None:
-        return resolve_axes(doc, None, "r1", span_of)  # a stub cell declares no mechanism: W523
+        tools = {t.name: t.tcp for t in doc.tools} if model else None  # the stub cell's tools: the files' own
+        return resolve_axes(_ur_qnear(doc, model, tools), None, "r1", span_of)  # a stub cell declares no mechanism: W523
     signals, robot_name, cell_ir = found
     assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
     doc = resolve_signals(doc, signals, span_of)
@@ -147,6 +174,7 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
     doc = match_payloads(doc, cell_parts(cell_ir),
                          tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
     doc = _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
+    doc = _ur_qnear(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
     return resolve_axes(doc, cell_ir, robot_name, span_of)
 
 
