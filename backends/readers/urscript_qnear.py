@@ -64,42 +64,43 @@ def resolve_qnear(doc: Document, ik: NearIk | None, tcp_of: dict[str, ir.Pose], 
         if not isinstance(s, Move) or s.near is None:
             return s
         tcp = tcp_of.get(s.tool) if s.tool is not None else ir.Pose.identity() if flange_only else None
-        config = _nearest(s, ik, tcp, wide) if ik is not None and tcp is not None else None
-        if config is None:
-            diags.append(_warning(s, ik is not None, tcp is not None, span_of))
+        found = _nearest(s, ik, tcp, wide) if ik is not None and tcp is not None else None
+        if not isinstance(found, ir.Config):
+            why = "the arm is not known (give --cell or --robot)" if ik is None else (
+                "the active tool is not known here" if tcp is None else found or "")
+            diags.append(_warning(s, why, span_of))
             return s
-        return replace(s, config=config)
+        return replace(s, config=found)
 
     routines = tuple(replace(r, body=map_leaves(r.body, fix)) for r in doc.routines)
     return replace(doc, routines=routines, diagnostics=doc.diagnostics + tuple(diags))
 
 
-def _nearest(move: Move, ik: NearIk, tcp: ir.Pose, wide: tuple[int, ...]) -> ir.Config | None:
-    """The branch and turns of the arm's solution of the move's pose nearest its qnear; None where
-    the pose or qnear is not known, no solution is within limits, or two are equally near."""
+def _nearest(move: Move, ik: NearIk, tcp: ir.Pose, wide: tuple[int, ...]) -> ir.Config | str:
+    """The branch and turns of the arm's solution of the move's pose nearest its qnear, or why
+    it cannot be read: the pose or qnear not known, no solution within the limits, two equally
+    near."""
     assert move.near is not None
-    near = move.near[1]
-    if move.pose is None or near is None or move.frame != "base":
-        return None
+    written, near = move.near
+    if near is None:
+        return f"`{written}` is not known here"
+    if move.pose is None or move.frame != "base":
+        return f"`{move.target}` is not a pose known here"
     seed = np.radians(np.asarray(near, dtype=float))
     solutions, branches = ik((move.pose * tcp.inverse()).matrix(), seed)
     if not solutions or branches[0].shoulder is None:
-        return None
+        return "the arm has no solution of the pose within its limits (is it the program's arm?)"
     distances = sorted(float(np.linalg.norm(np.asarray(q) - seed)) for q in solutions)
     if len(distances) > 1 and distances[1] - distances[0] < _TIE:
-        return None
+        return f"two solutions are equally near `{written}`"
     q, b = solutions[0], branches[0]
     turns = tuple((j, ir.turn_of(float(q[j]))) for j in wide)
     return ir.Config(b.shoulder, b.elbow, b.wrist, turns)
 
 
-def _warning(move: Move, arm: bool, tool: bool, span_of: Callable[[Where], Span]) -> Diagnostic:
+def _warning(move: Move, why: str, span_of: Callable[[Where], Span]) -> Diagnostic:
     assert move.near is not None
-    written, near = move.near
-    why = ("the arm is not known (give --cell or --robot)" if not arm else "the active tool is not known here" if not tool
-           else f"`{written}` is not known here" if near is None
-           else "the pose has no solution within the limits, or two equally near")
     return Diagnostic(codes.QNEAR_NOT_READ, Severity.WARNING,
-                      f"the controller moves to the solution of `{move.target}` nearest qnear `{written}`; rmot "
-                      f"takes the one nearest the current joints, as the branch could not be read: {why}",
+                      f"the controller moves to the solution of `{move.target}` nearest qnear `{move.near[0]}`; "
+                      f"rmot takes the one nearest the current joints, as the branch could not be read: {why}",
                       span_of(move.where))
