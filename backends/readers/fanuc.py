@@ -35,6 +35,8 @@ __all__ = ["read_fanuc"]
 _MOTION = re.compile(r"(?i)^(J|L)\s+P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _CIRC = re.compile(r"(?i)^C\s+P\[(\d+)(?::[^\]]*)?\]\s*:\s*P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _SIG = r"\[(\d+)(?::[^\]]*)?\]"
+_THEN = re.compile(r"IF\s*(\(.*\))\s*THEN")
+_FOR = re.compile(r"FOR\s+\S.*")
 _JMP = re.compile(r"JMP LBL\[(\d+)\]")
 # TP standard instructions (B-83284EN): outputs, pulses, analog outputs, timed and input waits, calls
 _SIMPLE = (
@@ -176,7 +178,7 @@ class _Ls:
         if inlined is not None:
             self.tally.imported += 1
             return list(inlined), i + 1
-        for pattern in (self._data, self._loop, self._timed_wait, self._if):
+        for pattern in (self._data, self._loop, self._timed_wait, self._if, self._structured):
             found = pattern(i, end)
             if found is not None:
                 return found
@@ -298,6 +300,35 @@ class _Ls:
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)
         self.tally.imported += 1
         return [If(cond, tuple(then), tuple(orelse), self.instructions[i][1])], (jb if jb is not None else ja) + 1
+
+    def _structured(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`IF (cond) THEN` .. [`ELSE` ..] `ENDIF` and `FOR R[i]=a TO b` .. `ENDFOR` (B-83284EN,
+        "IF ... THEN" and "FOR/ENDFOR"). An I/O condition (as `WAIT` reads it) is an rmot `if`;
+        a block on a register, flag or counter, and a FOR loop, is kept native whole: its body runs
+        at run time zero, once or many times, and reading it as straight-line code would plan and
+        verify one run of it as if it always happened."""
+        text, where = self.instructions[i]
+        test = _THEN.fullmatch(text)
+        if test is None and not _FOR.fullmatch(text):
+            return None
+        close, depth, j, split = "ENDIF" if test else "ENDFOR", 0, i + 1, None
+        while j < end and not (depth == 0 and self._text(j) in ("ENDIF", "ENDFOR")):
+            t = self._text(j)
+            depth += 1 if _THEN.fullmatch(t) or _FOR.fullmatch(t) else -1 if t in ("ENDIF", "ENDFOR") else 0
+            split = j if test and depth == 0 and t == "ELSE" else split
+            j += 1
+        if j >= end or self._text(j) != close:
+            return None  # not closed before the routine ends: read line by line
+        cond = wait_condition(f"WAIT {test.group(1)}") if test else None
+        if cond is not None:
+            then, _ = self._block(i + 1, split if split is not None else j)
+            orelse, _ = self._block(split + 1, j) if split is not None else ([], j)
+            self.tally.imported += 1
+            return [If(cond, tuple(then), tuple(orelse), where)], j + 1
+        why = (f"inside `{text}` at line {where.line}, a block whose body runs as a value known only at run time "
+               "decides (zero, once or many times); the block is kept native whole")
+        return [self.tally.keep(self._text(k) + " ;", self.instructions[k][1], why)
+                for k in range(i, j + 1) if self._text(k) and not self._text(k).startswith("!")], j + 1
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`WAIT DI[n]=ON TIMEOUT,LBL[a]`, `JMP LBL[b]`, `LBL[a]`, `ABORT`, `LBL[b]` (after $WAITTMOUT)."""
