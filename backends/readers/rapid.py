@@ -16,7 +16,7 @@ import re
 from collections.abc import Mapping
 from itertools import product
 
-from rmot.backends.rapid_text import SPEEDS_MM_S, cfx_of
+from rmot.backends.rapid_text import SPEEDS_MM_S, ZONES_MM, cfx_of
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
 from rmot.backends.readers.model import (
@@ -86,8 +86,8 @@ class _Module:
         self.tools: dict[str, ToolData] = {}
         self.frames: dict[str, FrameData] = {}
         self.speeds: dict[str, float] = {f"V{s}": float(s) for s in SPEEDS_MM_S}
-        self.zones: dict[str, float | None] = {"FINE": None, **{f"Z{z}": float(z) for z in (
-            1, 5, 10, 15, 20, 30, 40, 50, 60, 80, 100, 150, 200)}, "Z0": 0.3}
+        self.zones: dict[str, float | None] = {"FINE": None, **{f"Z{z}": float(z) for z in ZONES_MM[1:]}, "Z0": 0.3}
+        self.data = {d.group(3).upper() for st in self.stmts if (d := _DECL.match(st.text))}  # never a signal
         self.consts: dict[str, float] = {}
         self.routines: list[Routine] = []
         self.proc_names: dict[str, str] = {}  # upper -> as written
@@ -404,7 +404,7 @@ class _Module:
                 return None
             return (m.group(1), int(m.group(2)), int(m.group(3)) + 1)
         m = re.match(r"(?i)^(?:IF|WHILE)\s+(.*?)\s+(?:THEN|DO)$", st.text)
-        return (_cond(m.group(1)) or condition(m.group(1), self.logic.visible)) if m else None  # type: ignore[return-value]
+        return (_cond(m.group(1), self.data) or condition(m.group(1), self.logic.visible)) if m else None  # type: ignore[return-value]
 
     def _simple(self, st: Statement) -> Stmt | None:
         word = st.word
@@ -435,7 +435,7 @@ class _Module:
             return None
         if word == "WAITUNTIL":
             m = re.match(r"(?i)^(.*?)\s*(?:\\MaxTime\s*:=\s*([0-9.]+))?$", args_text)
-            cond = (_cond(m.group(1)) or condition(m.group(1), self.logic.visible)) if m else None
+            cond = (_cond(m.group(1), self.data) or condition(m.group(1), self.logic.visible)) if m else None
             return WaitIn(cond, float(m.group(2)) if m and m.group(2) else None, st.where) if cond else None
         if word == "EXIT" and not args:
             return Stop(st.where)
@@ -571,11 +571,11 @@ def num_text(value: float, decimals: int = 9) -> str:
     return f"{round(value, decimals) + 0.0:.15g}"
 
 
-def _cond(text: str) -> Cond | None:
-    """`DInput(sig) = 1`, `sig = 1`, `TestDI(sig)`, `NOT TestDI(sig)` as a digital condition."""
+def _cond(text: str, data: set[str]) -> Cond | None:
+    """`DInput(s) = 1`, `s = 1`, `[NOT] TestDI(s)` as a digital condition; declared data (`data`) is no signal."""
     text = text.strip()
     m = re.fullmatch(r"(?i)(?:DInput\s*\(\s*(\w+)\s*\)|(\w+))\s*=\s*([01]|high|low)", text)
-    if m:
+    if m and not (m.group(2) and m.group(2).upper() in data):
         return Cond(m.group(1) or m.group(2), m.group(3).lower() in ("1", "high"))
     m = re.fullmatch(r"(?i)(NOT\s+)?TestDI\s*\(\s*(\w+)\s*\)", text)
     if m:

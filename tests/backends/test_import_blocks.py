@@ -1,4 +1,4 @@
-"""Fanuc TP structured blocks (B-83284EN, "IF ... THEN / ELSE / ENDIF" and "FOR / ENDFOR"):
+"""Blocks and conditions a reader must not flatten. Fanuc TP structured blocks (B-83284EN, "IF ... THEN / ELSE / ENDIF" and "FOR / ENDFOR"):
 an I/O condition is read as an rmot `if`; a block on a register or a FOR loop is kept native
 whole, because reading its body as straight-line code would plan and verify one run of it as if
 it always happened (found in a pendant backup, kamilkozdro/FanucProgramAnalyze `gratowanie.ls`:
@@ -74,3 +74,19 @@ def test_a_for_loop_and_the_blocks_inside_it_are_kept_native_whole(tmp_path: Pat
 def test_a_block_not_closed_is_read_line_by_line(tmp_path: Path) -> None:
     program, output = _import(tmp_path, ["IF (R[1]=1) THEN", "DO[1]=ON"])
     assert "set out[1] = on" in program and "IF (R[1]=1) THEN" in output
+
+
+def test_a_rapid_if_on_a_declared_num_is_not_read_as_an_input(tmp_path: Path) -> None:
+    """RAPID's `IF sig = 1 THEN` tests a digital input signal, but `IF reg1 = 1 THEN` on a `PERS num
+    reg1` the module declares is a test of that data: it must not become `if in[1] == on` with a
+    signal named reg1 in the stub cell."""
+    path = tmp_path / "m.mod"
+    path.write_text("MODULE M\n  CONST robtarget p1:=[[500,0,500],[0,1,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n"
+                    "  PERS num reg1:=0;\n  PROC main()\n    IF reg1 = 1 THEN\n      MoveL p1, v100, fine, tool0;\n"
+                    "    ENDIF\n    IF di1 = 1 THEN\n      MoveL p1, v100, fine, tool0;\n    ENDIF\n  ENDPROC\nENDMODULE\n")
+    out = tmp_path / "m.rmot"
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    program, cell = out.read_text(), (tmp_path / "m_cell.rmot").read_text()
+    assert "if reg1 == 1 {" in program and "if in[1] == on {" in program
+    assert 'io in[1] = "di1"' in cell and '"reg1"' not in cell
