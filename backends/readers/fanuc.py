@@ -23,6 +23,7 @@ from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
 from rmot.backends.readers.fanuc_text import german_instruction, group_test, wait_condition
+from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Native, PulsePose, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
@@ -35,6 +36,7 @@ __all__ = ["read_fanuc"]
 _MOTION = re.compile(r"(?i)^(J|L)\s+P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _CIRC = re.compile(r"(?i)^C\s+P\[(\d+)(?::[^\]]*)?\]\s*:\s*P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _SIG = r"\[(\d+)(?::[^\]]*)?\]"
+_NATIVE_JMP = re.compile(r"\bJMP\s+LBL\[(\d+)")  # a jump kept native (not TIMEOUT,LBL: the wait's error exit)
 _THEN = re.compile(r"IF\s*(\(.*\))\s*THEN")
 _FOR = re.compile(r"FOR\s+\S.*")
 _JMP = re.compile(r"JMP LBL\[(\d+)\]")
@@ -48,6 +50,10 @@ _SIMPLE = (
     ("wait_true", re.compile(r"WAIT\s*\(\s*(?P<neg>!?)DI\[(?P<sig>\d+)(?::[^\]]*)?\]\s*\)")),
     ("call", re.compile(r"CALL\s+(\w+)")),
 )
+
+
+def _is_label(text: str, n: str) -> bool:
+    return re.fullmatch(rf"LBL\[{n}(?::[^\]]*)?\]\s*;?", text.strip()) is not None
 
 
 def _names_label(text: str, label: str) -> bool:
@@ -108,7 +114,8 @@ class _Ls:
                 self._mn_line(line, n)
         self._positions()
         body, _ = self._block(0, None)
-        self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
+        kept = keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _is_label, self.instructions, lambda t: t + " ;")
+        self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))
         return self.routine
 
     def _mn_line(self, line: str, n: int) -> None:
@@ -274,6 +281,10 @@ class _Ls:
             # taken when the signal is at the level `=` names, or at the other one with `<>`
             taken = Cond(int(m.group(2)), (m.group(4) == "ON") == (m.group(3) == "="), m.group(1) == "DO")
             return m.group(5), taken, taken.negated(), i + 1
+        p = re.fullmatch(r"IF\s*(\(.*\)),\s*JMP LBL\[(\d+)\]", self._text(i))  # `IF (DI[1]),JMP`, `IF (!DO[2])..`
+        single = wait_condition(f"WAIT {p.group(1)}") if p else None
+        if p is not None and isinstance(single, Cond):
+            return p.group(2), single, single.negated(), i + 1
         g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i))
         taken_group, falls = (group_test(g.group(1)), group_test(g.group(1), negate=True)) if g else (None, None)
         if g is None or taken_group is None or falls is None:

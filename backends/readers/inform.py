@@ -30,6 +30,7 @@ from rmot.backends.inform_text import PL_DISTANCES_MM
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.fanuc_text import group_test
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
+from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, PulsePose, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
@@ -40,6 +41,7 @@ from rmot.lang import ir
 __all__ = ["read_inform", "PL_MM", "pulse_scales"]
 
 _JUMP = re.compile(r"JUMP \*(L\w+)")
+_NATIVE_JUMP = re.compile(r"\bJUMP\s+\*(\w+)")  # a jump to a label kept native (JUMP JOB: is a call)
 # INFORM instructions (the forms backends/inform.py writes): outputs, pulses, analog outputs,
 # timers, input waits, job calls
 _SIMPLE = (
@@ -124,7 +126,9 @@ class _Job:
         if not self.name:
             raise self.tally.fail("an INFORM job must name itself (`//NAME NAME`)", Where(self.path, first[0]))
         body, _ = self._block(0, len(self.inst))
-        self.routine = Routine(self.name, (), tuple(body), Where(self.path, first[0]))
+        kept = keep_jumped_spans(tuple(body), self.tally, _NATIVE_JUMP, lambda t, n: t.strip() == f"*{n}", self.inst,
+                                 lambda t: t)
+        self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
         if axes_slots.inform_base_position(self.base_positions, s, pulse):

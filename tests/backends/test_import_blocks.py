@@ -90,3 +90,84 @@ def test_a_rapid_if_on_a_declared_num_is_not_read_as_an_input(tmp_path: Path) ->
     program, cell = out.read_text(), (tmp_path / "m_cell.rmot").read_text()
     assert "if reg1 == 1 {" in program and "if in[1] == on {" in program
     assert 'io in[1] = "di1"' in cell and '"reg1"' not in cell
+
+
+INFORM_JOB = """/JOB
+//NAME J1
+//POS
+///NPOS 2,0,0,0,0,0
+///TOOL 0
+///POSTYPE ROBOT
+///RECTAN
+///RCONF 0,0,0,0,0,0,0,0
+C00000=500.000,0.000,500.000,180.0000,0.0000,0.0000
+C00001=500.000,100.000,500.000,180.0000,0.0000,0.0000
+//INST
+///DATE 2025/01/01 00:00
+///ATTR SC,RW
+///GROUP1 RB1
+NOP
+MOVJ C00000 VJ=50.00
+{body}
+MOVJ C00000 VJ=50.00
+END
+"""
+
+
+def _inform(tmp_path: Path, body: str) -> tuple[str, str]:
+    path = tmp_path / "J1.JBI"
+    path.write_text(INFORM_JOB.replace("{body}", body))
+    out = tmp_path / "j1.rmot"
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    program = out.read_text()
+    return program[program.index("program"):], result.output
+
+
+def test_what_an_inform_jump_on_a_variable_skips_is_kept_native(tmp_path: Path) -> None:
+    """`JUMP *SKIP IF I000<>1` over a move and an output: the controller runs them or not as I000
+    decides; read as straight-line code they would be planned as always run."""
+    program, output = _inform(tmp_path, "JUMP *SKIP IF I000<>1\nMOVL C00001 V=100.0\nDOUT OT#(3) ON\n*SKIP")
+    assert "move linear" not in program and "set out[3]" not in program
+    assert 'native inform "MOVL C00001 V=100.0"' in program and 'native inform "DOUT OT#(3) ON"' in program
+    assert program.count("move joint") == 2
+    assert "`JUMP *SKIP IF I000<>1` at line 17 jumps over this" in output
+
+
+def test_what_an_inform_backward_jump_repeats_is_kept_native(tmp_path: Path) -> None:
+    program, output = _inform(tmp_path, "*AGAIN\nMOVL C00001 V=100.0\nJUMP *AGAIN IF I001<5")
+    assert "move linear" not in program and "jumps back over this" in output
+
+
+def test_an_input_jump_is_still_read_as_an_if(tmp_path: Path) -> None:
+    program, output = _inform(tmp_path, "JUMP *L1 IF IN#(2)=OFF\nMOVL C00001 V=100.0\n*L1")
+    assert "if in[2] == on {" in program and "move linear" in program and "W510" not in output
+
+
+def test_what_a_tp_jump_on_a_register_skips_is_kept_native(tmp_path: Path) -> None:
+    program, output = _import(tmp_path, ["DO[1]=ON", "IF R[1]<>1,JMP LBL[2]", "L P[2] 100mm/sec FINE",
+                                         "DO[3]=ON", "LBL[2:skip]", "DO[4]=ON"])
+    assert "move linear" not in program and "set out[3]" not in program
+    assert "set out[1] = on" in program and "set out[4] = on" in program
+    assert "motion and I/O: 2 imported, 2 kept native" in output
+
+
+def test_a_tp_jump_on_one_parenthesised_input_is_an_if(tmp_path: Path) -> None:
+    """`IF (DI[7]),JMP LBL[2]` (the pendant's expression form) skips DO[3] when DI[7] is on."""
+    program, output = _import(tmp_path, ["IF (DI[7]),JMP LBL[2]", "DO[3]=ON", "LBL[2]"])
+    assert "  if in[7] == off {\n    set out[3] = on\n  }\n" in program and "W510" not in output
+
+
+def test_a_tp_program_that_jumps_back_to_its_first_line_is_one_cycle(tmp_path: Path) -> None:
+    """`LBL[1]` .. `JMP LBL[1]`: the controller repeats it forever; rmot reads one cycle (W518), as an
+    outermost KRL `LOOP`, while a conditional jump inside still keeps what it skips native."""
+    program, output = _import(tmp_path, ["LBL[1]", "DO[3]=ON", "IF R[2]=1,JMP LBL[5]", "DO[4]=ON", "LBL[5]",
+                                         "JMP LBL[1]"])
+    assert "warning[W518]" in output and "set out[3] = on" in program
+    assert 'native fanuc "DO[4]=ON ;"' in program
+
+
+def test_what_an_unconditional_jump_skips_says_so(tmp_path: Path) -> None:
+    program, output = _import(tmp_path, ["DO[1]=ON", "JMP LBL[9]", "DO[2]=ON", "LBL[9]", "DO[3]=ON"])
+    assert 'native fanuc "DO[2]=ON ;"' in program and "set out[3] = on" in program
+    assert "`JMP LBL[9]` at line 5 jumps over this every time" in output
