@@ -16,14 +16,16 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable, Sequence
+from typing import Protocol
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally
 from rmot.backends.readers.model import Native, Stmt, Where, walk
 
-__all__ = ["keep_jumped_spans"]
+__all__ = ["keep_jumped_spans", "goto_spans"]
 
 _CONDITIONAL = re.compile(r"(?i)\bIF\b")
+_GOTO = re.compile(r"(?i)\bGOTO\s+(\w+)")  # RAPID `GOTO l;` / `IF c GOTO l;`, KRL `GOTO l`
 
 
 def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str], is_label: Callable[[str, str], bool],
@@ -79,3 +81,34 @@ def _is_cycle(body: list[Stmt], jump: re.Pattern[str], is_label: Callable[[str, 
         return False
     m = jump.search(body[-1].text)
     return m is not None and not _CONDITIONAL.search(body[-1].text) and is_label(body[0].text, m.group(1))
+
+
+class _Line(Protocol):
+    """A reader's statement: RAPID's `Statement`, KRL's `Line`."""
+
+    @property
+    def text(self) -> str: ...
+
+    @property
+    def where(self) -> Where: ...
+
+
+def goto_spans(body: Sequence[Stmt], tally: Tally, lines: Sequence[_Line]) -> tuple[Stmt, ...]:
+    """RAPID and KRL: what a `GOTO label` the reader kept native can skip or repeat, kept native
+    (as `keep_jumped_spans`); `lines`: the routine's statements (text, place), its header and end
+    excluded."""
+    return keep_jumped_spans(tuple(body), tally, _GOTO, _is_goto_label, [(ln.text, ln.where) for ln in lines if ln.text.strip()],
+                             _rapid_native if tally.vendor == "rapid" else str.strip)
+
+
+def _rapid_native(text: str) -> str:
+    """A RAPID statement as its native line: with its `;` (the reader's statements carry none),
+    except a block's own line (`IF .. THEN`, `ENDIF`, ..) and a label."""
+    text = text.strip()
+    block = re.match(r"(?i)^(IF\b.*\bTHEN|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST)\b", text)
+    return text if block or text.endswith(":") else text + ";"
+
+
+def _is_goto_label(text: str, name: str) -> bool:
+    """`name:` starting the line (RAPID joins a label with the statement after it), not `:=`."""
+    return re.match(rf"(?i){re.escape(name)}\s*:(?!=)", text.strip()) is not None

@@ -21,6 +21,7 @@ from dataclasses import replace
 
 from rmot.backends.krl import KrlBackend
 from rmot.backends.readers import axes_slots, codes
+from rmot.backends.readers.jump_spans import goto_spans
 from rmot.backends.readers.common import Tally, rmot_name, split_top
 from rmot.backends.readers.krl_text import (
     Line, MotionState, aggregate, branch_of_status, fold_end, has_test, in_cond, krl_pose, lines,
@@ -146,7 +147,9 @@ class _Krl:
                 self.params = param_names(params)
                 self.flow.routine(self.lines, i)
                 self.work.routine()
+                start = i
                 body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), partial(self._block, i + 1, ("END",)))
+                body = list(goto_spans(body, self.tally, self.lines[start + 1:i]))
                 self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):
                 i = skip_function(self.lines, self.tally, i)

@@ -17,7 +17,7 @@ from collections.abc import Mapping
 from itertools import product
 
 from rmot.backends.rapid_text import SPEEDS_MM_S, ZONES_MM, cfx_of
-from rmot.backends.readers import axes_slots, codes
+from rmot.backends.readers import axes_slots, codes, jump_spans
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
 from rmot.backends.readers.model import (
     Call, Cond, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While,
@@ -229,8 +229,8 @@ class _Module:
 
     # ---------------------------------------------------------------- routines
 
-    def _proc(self, i: int) -> int:
-        st = self.stmts[i]
+    def _proc(self, start: int) -> int:
+        i, st = start, self.stmts[start]
         m = re.match(r"(?i)^(?:LOCAL\s+)?PROC\s+(\w+)\s*\((.*)\)\s*$", st.text)
         if m is None:
             raise self.tally.fail(f"a PROC header must be `PROC name(params)` (got `{st.text[:40]}`)", st.where)
@@ -245,7 +245,7 @@ class _Module:
         body, i = self._block(i + 1, ("ENDPROC",))
         self.names, self.pose_params = saved, set()
         self.logic.enter(None, self.consts)
-        self.routines.append(Routine(m.group(1), tuple(params), tuple(body), st.where))
+        self.routines.append(Routine(m.group(1), tuple(params), jump_spans.goto_spans(body, self.tally, self.stmts[start + 1:i]), st.where))
         return i + 1
 
     @staticmethod

@@ -171,3 +171,27 @@ def test_what_an_unconditional_jump_skips_says_so(tmp_path: Path) -> None:
     program, output = _import(tmp_path, ["DO[1]=ON", "JMP LBL[9]", "DO[2]=ON", "LBL[9]", "DO[3]=ON"])
     assert 'native fanuc "DO[2]=ON ;"' in program and "set out[3] = on" in program
     assert "`JMP LBL[9]` at line 5 jumps over this every time" in output
+
+
+def _read(tmp_path: Path, name: str, text: str) -> tuple[str, str]:
+    path = tmp_path / name
+    path.write_text(text)
+    out = tmp_path / "g.rmot"
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    return out.read_text(), result.output
+
+
+def test_what_a_rapid_goto_skips_is_kept_native(tmp_path: Path) -> None:
+    program, output = _read(tmp_path, "g.mod", "MODULE G\n  CONST robtarget p1:=[[500,0,500],[0,1,0,0],[0,0,0,0],"
+                            "[9E9,9E9,9E9,9E9,9E9,9E9]];\n  VAR num n:=0;\n  PROC main()\n    IF n > 2 GOTO skip;\n"
+                            "    MoveL p1, v100, fine, tool0;\n    skip:\n    SetDO do1, 1;\n  ENDPROC\nENDMODULE\n")
+    assert "move linear" not in program and 'native rapid "MoveL p1, v100, fine, tool0;"' in program
+    assert "`IF n > 2 GOTO skip` at line 5 jumps over this" in output
+
+
+def test_what_a_krl_goto_skips_is_kept_native(tmp_path: Path) -> None:
+    program, _ = _read(tmp_path, "g.src", "DEF g()\n  DECL INT n\n  IF n > 2 THEN\n    GOTO skip\n  ENDIF\n"
+                       "  LIN {X 500, Y 0, Z 500, A 0, B 90, C 0}\n  skip:\n  $OUT[1] = TRUE\nEND\n")
+    assert "move linear" not in program and 'native krl "LIN {X 500, Y 0, Z 500, A 0, B 90, C 0}"' in program
+    assert "set out[1] = on" in program
