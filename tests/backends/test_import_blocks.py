@@ -31,9 +31,15 @@ P[2]{
 
 def _import(tmp_path: Path, body: list[str]) -> tuple[str, str]:
     lines = "".join(f"{n:4d}:  {text} ;\n" for n, text in enumerate(body, 1))
-    path = tmp_path / "blk.ls"
-    path.write_text(f"/PROG  BLK\n/ATTR\n/MN\n{lines}{POS}")
-    out = tmp_path / "blk.rmot"
+    return _read(tmp_path, "blk.ls", f"/PROG  BLK\n/ATTR\n/MN\n{lines}{POS}")
+
+
+def _read(tmp_path: Path, name: str, text: str) -> tuple[str, str]:
+    """The program `rmot import` writes for a file `name` holding `text` (from `program` on), and
+    what it prints."""
+    path = tmp_path / name
+    path.write_text(text)
+    out = tmp_path / "imported.rmot"
     result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
     assert result.exit_code == 0, result.output
     program = out.read_text()
@@ -115,13 +121,7 @@ END
 
 
 def _inform(tmp_path: Path, body: str) -> tuple[str, str]:
-    path = tmp_path / "J1.JBI"
-    path.write_text(INFORM_JOB.replace("{body}", body))
-    out = tmp_path / "j1.rmot"
-    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
-    assert result.exit_code == 0, result.output
-    program = out.read_text()
-    return program[program.index("program"):], result.output
+    return _read(tmp_path, "J1.JBI", INFORM_JOB.replace("{body}", body))
 
 
 def test_what_an_inform_jump_on_a_variable_skips_is_kept_native(tmp_path: Path) -> None:
@@ -171,15 +171,6 @@ def test_what_an_unconditional_jump_skips_says_so(tmp_path: Path) -> None:
     program, output = _import(tmp_path, ["DO[1]=ON", "JMP LBL[9]", "DO[2]=ON", "LBL[9]", "DO[3]=ON"])
     assert 'native fanuc "DO[2]=ON ;"' in program and "set out[3] = on" in program
     assert "`JMP LBL[9]` at line 5 jumps over this every time" in output
-
-
-def _read(tmp_path: Path, name: str, text: str) -> tuple[str, str]:
-    path = tmp_path / name
-    path.write_text(text)
-    out = tmp_path / "g.rmot"
-    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
-    assert result.exit_code == 0, result.output
-    return out.read_text(), result.output
 
 
 def test_what_a_rapid_goto_skips_is_kept_native(tmp_path: Path) -> None:
