@@ -22,45 +22,50 @@ if TYPE_CHECKING:
     from rmot.backends.readers.model import Document, PulsePose
     from rmot.lang import ir
     from rmot.lang.ir import Pose
+    from rmot.sim.robots.robot import Robot
 
 __all__ = ["cell_signals", "robot_signals", "read_on_robot", "print_summary", "write_output", "refuse_output_input"]
 
 
-def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
-    """(speed rad/s, acceleration rad/s^2) of each joint of the arm `model` (the cell's robot or
-    --robot), None where it does not load: a reader then keeps the joint shares it cannot derive."""
+def _arm(model: str | None) -> Robot | None:
+    """The library arm or URDF `model` (the cell's robot or --robot), None where there is none or
+    it does not load: a reader then keeps what it would derive from the arm."""
     if not model:
         return None
     from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
     from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
 
     try:
-        robot = load_robot(model)
+        return load_robot(model)
     except RobotError:
         return None
-    return tuple(map(float, robot.velocity_limits)), tuple(map(float, robot.accel_limits))
+
+
+def _wide_joints(robot: Robot) -> tuple[int, ...]:
+    """The joints (0-based) whose range spans more than 360°: only those take a turn."""
+    return tuple(j for j, (lo, hi) in enumerate(robot.joint_limits.tolist()) if hi - lo > 2 * math.pi + 1e-9)
+
+
+def _joint_limits(model: str | None) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+    """(speed rad/s, acceleration rad/s^2) of each joint of the arm `model`, None where it does not
+    load: a reader then keeps the joint shares it cannot derive."""
+    robot = _arm(model)
+    return None if robot is None else (tuple(map(float, robot.velocity_limits)), tuple(map(float, robot.accel_limits)))
 
 
 def _inform_configs(doc: Document, model: str | None, tcp_of: dict[str, Pose]) -> Document:
     """INFORM joint moves configured from their RCONF with the arm's IK (readers/inform_conf.py);
     `doc` as it is for other vendors or where the arm does not load."""
-    if doc.vendor != "inform" or not model:
+    robot = _arm(model) if doc.vendor == "inform" else None
+    if robot is None:
         return doc
     from rmot.backends.readers.inform_conf import resolve_rconf  # late: loads numpy only when this runs
-    from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
-    from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
-
-    try:
-        robot = load_robot(model)
-    except RobotError:
-        return doc
-    wide = tuple(j for j, (lo, hi) in enumerate(robot.joint_limits.tolist()) if hi - lo > 2 * math.pi + 1e-9)
 
     def ik(flange: np.ndarray) -> tuple[Sequence[np.ndarray], Sequence[ir.Config]]:
         result = robot.ik(flange)
         return result.solutions, result.branches
 
-    return resolve_rconf(doc, ik, tcp_of, wide)
+    return resolve_rconf(doc, ik, tcp_of, _wide_joints(robot))
 
 
 def _ur_qnear(doc: Document, model: str | None, tcp_of: dict[str, Pose] | None) -> Document:
@@ -71,22 +76,16 @@ def _ur_qnear(doc: Document, model: str | None, tcp_of: dict[str, Pose] | None) 
         return doc
     from rmot.backends.readers import span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.urscript_qnear import resolve_qnear  # late: loads numpy only when this runs
-    from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
-    from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
 
-    try:
-        robot = load_robot(model) if model and tcp_of is not None else None
-    except RobotError:
-        robot = None
+    robot = _arm(model) if tcp_of is not None else None
     if robot is None:
         return resolve_qnear(doc, None, {}, (), span_of)
-    wide = tuple(j for j, (lo, hi) in enumerate(robot.joint_limits.tolist()) if hi - lo > 2 * math.pi + 1e-9)
 
     def ik(flange: np.ndarray, seed: np.ndarray) -> tuple[Sequence[np.ndarray], Sequence[ir.Config]]:
         result = robot.ik(flange, seed=seed)
         return result.solutions, result.branches
 
-    return resolve_qnear(doc, ik, tcp_of or {}, wide, span_of)
+    return resolve_qnear(doc, ik, tcp_of or {}, _wide_joints(robot), span_of)
 
 
 def _pulse_pose(model: str | None, found: tuple[object, str, object]) -> PulsePose | None:
@@ -95,15 +94,10 @@ def _pulse_pose(model: str | None, found: tuple[object, str, object]) -> PulsePo
     where the arm does not load."""
     import numpy as np  # late: loads numpy only when this runs
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
-    from rmot.sim.robots.errors import RobotError  # late: loads coal only when this runs
-    from rmot.sim.robots.loader import load_robot  # late: loads coal only when this runs
 
     cell, robot_name = found[2], found[1]
     assert isinstance(cell, ir.Cell)
-    try:
-        arm = load_robot(model) if model else None
-    except RobotError:
-        return None
+    arm = _arm(model)
     if arm is None:
         return None
     tcp_of = {t.name: t.tcp for t in cell.tools if t.robot == robot_name}
