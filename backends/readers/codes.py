@@ -148,3 +148,14 @@ QNEAR_NOT_READ = Code("W529", "qnear-not-read",
                       "a URScript joint move to `get_inverse_kin(P, qnear=Q)` goes on the controller to the solution of "
                       "P nearest Q; where the import cannot read that branch (no --cell, Q or the tool not known) "
                       "rmot's move takes the solution nearest the current joints, which may differ")
+
+# Fanuc TP registers read as state set elsewhere or as task variables (fanuc_regs.py)
+__all__ += ["REGISTER_READ_AS_GROUP_INPUT", "REGISTER_READ_AS_VARIABLE"]
+REGISTER_READ_AS_GROUP_INPUT = Code("W535", "register-read-as-group-input",
+                                    "a Fanuc TP program tests a numeric register it never sets (a called program, "
+                                    "another task or the PLC sets it): read as the group input gin[n] named after "
+                                    "the register, so every arm of a branch on it is planned and verified")
+REGISTER_READ_AS_VARIABLE = Code("W536", "register-read-as-variable",
+                                 "a Fanuc TP register or flag the running program sets before it reads it is read "
+                                 "as a task variable: on the controller it keeps its value between runs and another "
+                                 "program writing it while this one runs is not seen")

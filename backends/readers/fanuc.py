@@ -22,11 +22,12 @@ import re
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
+from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_text import german_instruction, group_test, wait_condition
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
-    Cond, For, FrameData, If, Move, Native, PulsePose, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
+    Cond, Conds, For, FrameData, If, Move, Native, PulsePose, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
@@ -95,6 +96,7 @@ class _Ls:
         self.loads: list[tuple[str, float, tuple[float, float, float]]] = []
         self.pulse_pose = pulse_pose  # (joints deg, tool name) -> the TCP pose in the base (the cell's arm)
         self.tcp: dict[tuple[str, str], Target] = {}  # (joint-form position, tool) -> its TCP pose target
+        self.regs: Registers | None = None  # the registers and flags read as variables or group inputs
 
     # ---------------------------------------------------------------- sections
 
@@ -113,8 +115,14 @@ class _Ls:
             if section == "/MN" and stripped:
                 self._mn_line(line, n)
         self._positions()
+        main = not self.programs or next(iter(self.programs)) == self.name.upper()  # the job's first program runs
+        others = [text for name, (_, text) in self.programs.items() if name != self.name.upper()]
+        taken = [t.name for t in self.positions.values()] + [n for names in self.labels.values() for n in names.values()]
+        self.regs = Registers(self.tally, self.instructions, others, main, taken)
         body, _ = self._block(0, None)
-        kept = keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _is_label, self.instructions, lambda t: t + " ;")
+        kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _is_label, self.instructions,
+                                                     lambda t: t + " ;"))
+        self.regs.warn_reads(kept)
         self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))
         return self.routine
 
@@ -185,7 +193,7 @@ class _Ls:
         if inlined is not None:
             self.tally.imported += 1
             return list(inlined), i + 1
-        for pattern in (self._data, self._loop, self._timed_wait, self._if, self._structured):
+        for pattern in (self._data, self._loop, self._timed_wait, self._if, self._structured, self._register):
             found = pattern(i, end)
             if found is not None:
                 return found
@@ -273,6 +281,19 @@ class _Ls:
         self.tally.imported += 1
         return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
 
+    def _register(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`R[i]=value` / `F[i]=(ON)` on a register or flag read as a task variable (fanuc_regs.py)."""
+        stmt = self.regs.assignment(*self.instructions[i]) if self.regs is not None else None
+        if stmt is None:
+            return None
+        self.tally.imported += 1
+        return [stmt], i + 1
+
+    def _condition(self, text: str) -> Cond | Conds | None:
+        """A TP condition on inputs and outputs (as `WAIT` reads it), or on registers and flags."""
+        found = wait_condition(f"WAIT {text}")
+        return found if found is not None or self.regs is None else self.regs.condition(text)
+
     def _jump_at(self, i: int) -> Jump | None:
         """`IF DI[n]<>ON,JMP LBL[a]` (or an output, `DO[n]`; or `IF GI[n]<>v,JMP LBL[a]`: a group
         input's test): its label, when it is taken and when not."""
@@ -287,9 +308,13 @@ class _Ls:
             return p.group(2), single, single.negated(), i + 1
         g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i))
         taken_group, falls = (group_test(g.group(1)), group_test(g.group(1), negate=True)) if g else (None, None)
-        if g is None or taken_group is None or falls is None:
+        if g is not None and taken_group is not None and falls is not None:
+            return g.group(2), taken_group, falls, i + 1
+        r = re.fullmatch(r"IF\s*(.+?),\s*JMP LBL\[(\d+)\]", self._text(i))  # registers and flags
+        test = self._condition(r.group(1)) if r else None
+        if r is None or test is None:
             return None
-        return g.group(2), taken_group, falls, i + 1
+        return r.group(2), test, negated(test), i + 1
 
     def _if(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """Conditional jumps to `LBL[a]` (`_jump_at`: all of them, `and`; or a chain to `LBL[s]`
@@ -330,7 +355,7 @@ class _Ls:
             j += 1
         if j >= end or self._text(j) != close:
             return None  # not closed before the routine ends: read line by line
-        cond = wait_condition(f"WAIT {test.group(1)}") if test else None
+        cond = self._condition(test.group(1)) if test else None
         if cond is not None:
             then, _ = self._block(i + 1, split if split is not None else j)
             orelse, _ = self._block(split + 1, j) if split is not None else ([], j)
@@ -361,7 +386,7 @@ class _Ls:
         if text.startswith(("J ", "L ", "C ")):
             return None  # a move this reader could not read (`_motion`)
         stmt = match_simple(text, _SIMPLE, where) or (Stop(where) if text == "ABORT" else None)
-        cond = wait_condition(text) if stmt is None and text.startswith("WAIT") else None
+        cond = self._condition(text[4:].strip()) if stmt is None and text.startswith("WAIT") else None
         return stmt or (WaitIn(cond, None, where) if cond is not None else german_instruction(text, where))
 
     def _motion(self, text: str, where: Where) -> tuple[Move, list[Stmt]] | None:
