@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import re
+from collections import Counter
 from collections.abc import Callable
 
 from rmot.backends.readers import codes
@@ -242,7 +243,36 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     vendors = {d.vendor for d in docs}
     if len(vendors) > 1:
         raise _fail(codes.DIFF_VENDORS_DIFFER, paths[-1], f"the files must be of one vendor (got {', '.join(sorted(vendors))})")
-    return _merge(docs)
+    return _unknown_calls_kept(_merge(docs))
+
+
+def _unknown_calls_kept(doc: Document) -> Document:
+    """A call of a routine none of the files given defines stays native with W510: the controller
+    runs a program rmot does not see (what it moves is not planned), and a call of a proc the
+    imported program lacks would not compile (E101)."""
+    from rmot.backends.readers.model import Call, FileCount, Native  # late: loads numpy only when this runs
+    from rmot.backends.readers.writer import map_leaves
+
+    known = {r.name.upper() for r in doc.routines}
+    kept: list[Diagnostic] = []
+
+    def keep(s: Stmt) -> Stmt:
+        if not isinstance(s, Call) or s.name.upper() in known:
+            return s
+        source = _SOURCES.get(s.where.path)
+        line = source.line_text(s.where.line) if source is not None else f"{s.name}()"
+        text = re.sub(r"^\s*\d+:\s*", "", line).strip() if doc.vendor == "fanuc" else line.strip()
+        kept.append(Diagnostic(codes.KEPT_NATIVE, Severity.WARNING, f"`{s.name}` is a routine none of the files "
+                               f"given defines (give its file too); kept as `native {doc.vendor}`: {text[:60]}",
+                               span_of(s.where)))
+        return Native(doc.vendor, text, s.where)
+
+    routines = tuple(replace(r, body=map_leaves(r.body, keep)) for r in doc.routines)
+    if not kept:
+        return doc
+    moved = Counter(str(d.span.file.path) for d in kept if d.span is not None)
+    counts = tuple(FileCount(c.path, c.imported - moved[c.path], c.native + moved[c.path]) for c in doc.counts)
+    return replace(doc, routines=routines, counts=counts, diagnostics=doc.diagnostics + tuple(kept))
 
 
 def _without_inlined(docs: list[Document]) -> list[Document]:

@@ -27,7 +27,7 @@ from rmot.backends.readers.fanuc_text import german_instruction, group_test, wai
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
-    Cond, Conds, For, FrameData, If, Move, Native, PulsePose, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
+    Call, Cond, Conds, For, FrameData, If, Move, Native, PulsePose, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
@@ -193,7 +193,8 @@ class _Ls:
         if inlined is not None:
             self.tally.imported += 1
             return list(inlined), i + 1
-        for pattern in (self._data, self._loop, self._timed_wait, self._if, self._structured, self._register):
+        for pattern in (self._data, self._loop, self._timed_wait, self._if, self._structured, self._register,
+                        self._if_call):
             found = pattern(i, end)
             if found is not None:
                 return found
@@ -288,6 +289,16 @@ class _Ls:
             return None
         self.tally.imported += 1
         return [stmt], i + 1
+
+    def _if_call(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """`IF (cond),CALL PROG` (B-83284EN, IF with a CALL action) where PROG is a program of the job."""
+        text, where = self.instructions[i]
+        m = re.fullmatch(r"IF\s*(.+?),\s*CALL\s+(\w+)", text)
+        cond = self._condition(m.group(1)) if m and m.group(2).upper() in self.programs else None
+        if m is None or cond is None:
+            return None
+        self.tally.imported += 1
+        return [If(cond, (Call(m.group(2), (), where),), (), where)], i + 1
 
     def _condition(self, text: str) -> Cond | Conds | None:
         """A TP condition on inputs and outputs (as `WAIT` reads it), or on registers and flags."""
