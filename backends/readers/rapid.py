@@ -301,7 +301,7 @@ class _Module:
             return [assign], i + 1
         converted = self._simple(st)
         if converted is None:
-            return [self.tally.keep(st.text + ";", st.where, self._why_kept(st))], i + 1
+            return [self.tally.keep(st.text + ("" if st.text.endswith(":") else ";"), st.where, self._why_kept(st))], i + 1
         self.tally.imported += 1
         return [converted], i + 1
 
@@ -584,7 +584,7 @@ def _cond(text: str, data: set[str]) -> Cond | None:
 
 
 def _no_semicolon(text: str) -> bool:
-    return re.match(r"(?i)^(IF|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST)\b", text) is not None
+    return re.match(r"(?i)^(IF|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST)\b|^\w+\s*:$", text) is not None
 
 
 def read_rapid(path: str, text: str, task: Mapping[str, str] | None = None) -> _Module:

@@ -22,6 +22,11 @@ _BLOCK = re.compile(
     r"|UNDO\b\s*$|BACKWARD\b\s*$|(?:IF|ELSEIF)\b.*\bTHEN\s*$|(?:FOR|WHILE)\b.*\bDO\s*$)")
 
 
+# a label (RAPID Technical reference manual, "GOTO" and labels: `name:` before a statement or on
+# a line of its own), not an assignment `x := ..` nor a TEST's `DEFAULT:`
+_LABEL = re.compile(r"(\s*(?!DEFAULT\b)[A-Za-z_]\w*\s*:)(?!=)", re.I)
+
+
 @record(slots=True)
 class Statement:
     text: str
@@ -64,6 +69,11 @@ def statements(path: str, text: str) -> list[Statement]:
                     break
                 start = Where(path, n, len(line) - len(stripped) + 1)
                 buf = ""
+                label = _LABEL.match(line, pos)
+                if label is not None:  # `skip:` is a statement of its own, the one after it another
+                    out.append(Statement(label.group(1).strip(), start))
+                    pos = label.end()
+                    continue
             semi = _find_semicolon(line, pos)
             if semi < 0:
                 buf += line[pos:] + " "

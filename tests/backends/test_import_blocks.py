@@ -189,3 +189,20 @@ def test_what_a_krl_goto_skips_is_kept_native(tmp_path: Path) -> None:
                        "  LIN {X 500, Y 0, Z 500, A 0, B 90, C 0}\n  skip:\n  $OUT[1] = TRUE\nEND\n")
     assert "move linear" not in program and 'native krl "LIN {X 500, Y 0, Z 500, A 0, B 90, C 0}"' in program
     assert "set out[1] = on" in program
+
+
+def test_a_rapid_label_is_a_statement_of_its_own(tmp_path: Path) -> None:
+    """`skip:     SetDO do1, 1;` and `back:` on a line of its own (RAPID Technical reference manual,
+    labels): the instruction after a label is read, the label stays native where GOTOs find it."""
+    path = tmp_path / "m.mod"
+    path.write_text("MODULE M\n  CONST robtarget p1:=[[500,0,500],[0,1,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n"
+                    "  PROC main()\n    IF DInput(di1) = 1 GOTO skip;\n    SetDO do2, 1;\n    skip:     SetDO do3, 1;\n"
+                    "    back:\n    MoveL p1, v100, fine, tool0;\n    x := 1;\n  ENDPROC\nENDMODULE\n")
+    out = tmp_path / "m.rmot"
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    program = out.read_text()
+    assert 'native rapid "SetDO do2, 1;"' in program  # what the GOTO skips
+    assert 'native rapid "skip:"' in program and 'native rapid "back:"' in program
+    assert "  set out[3] = on\n" in program and "  move linear p1 speed 100 mm/s zone fine\n" in program
+    assert 'native rapid "x := 1;"' in program  # an assignment, not a label
