@@ -204,7 +204,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     _RAPID_TASK.clear()
     for path in paths:
         if path.lower().endswith(".ls"):
-            prog = re.match(r"\s*/PROG\s+(\w+)", _load(path))
+            prog = re.match(r"\s*/PROG\s+([\w-]+)", _load(path))
             if prog:
                 _FANUC_PROGRAMS[prog.group(1).upper()] = (path, _load(path))
             for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):

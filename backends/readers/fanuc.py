@@ -102,7 +102,7 @@ class _Ls:
 
     def read(self) -> Routine:
         first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
-        m = re.match(r"\s*/PROG\s+(\w+)", first[1])
+        m = re.match(r"\s*/PROG\s+([\w-]+)", first[1])  # the pendant names its background-edit copies -BCKEDT-
         if m is None:
             raise self.tally.fail("a Fanuc TP .ls program must start with `/PROG NAME`", Where(self.path, first[0]))
         self.name = m.group(1)

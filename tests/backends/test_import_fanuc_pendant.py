@@ -98,3 +98,12 @@ def test_german_pendant_words(tmp_path: Path) -> None:
     assert [(s.signal, s.value) for s in stmts if isinstance(s, SetOut)] == [(15, 1.0), (17, 0.0)]
     assert [s.cond for s in stmts if isinstance(s, WaitIn)] == [
         Cond(9, True), Conds("and", (Cond(9, False), Cond(10, True)))]
+
+
+def test_a_background_edit_copy_is_read_as_the_program_it_is(tmp_path: Path) -> None:
+    """kamilkozdro/FanucProgramAnalyze keeps the pendant's `/PROG  -BCKED8-` (OWNER = BACKGRND, no
+    instructions): a file that starts with `/PROG` is read, never refused as not being TP."""
+    path = tmp_path / "-bcked8-.ls"
+    path.write_text("/PROG  -BCKED8-\n/ATTR\nOWNER\t\t= BACKGRND;\nCOMMENT\t\t= \"\";\n/MN\n/POS\n/END\n")
+    doc = read_files([str(path)])
+    assert doc.name == "-BCKED8-" and [len(r.body) for r in doc.routines] == [0]
