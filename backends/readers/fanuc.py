@@ -73,8 +73,10 @@ def _branch(text: str) -> ir.Config | None:
 
 class _Ls:
     def __init__(self, path: str, text: str, labels: dict[str, dict[int, str]],
-                 programs: dict[str, tuple[str, str]] | None = None, pulse_pose: PulsePose | None = None) -> None:
+                 programs: dict[str, tuple[str, str]] | None = None, pulse_pose: PulsePose | None = None,
+                 not_vars: frozenset[tuple[str, int]] = frozenset()) -> None:
         self.tally = Tally(path, text, "fanuc")
+        self.not_vars = not_vars  # registers and flags not read as task variables (read_fanuc)
         self.path = path
         self.raw = text.split("\n")
         self.name = ""
@@ -118,7 +120,7 @@ class _Ls:
         main = not self.programs or next(iter(self.programs)) == self.name.upper()  # the job's first program runs
         others = [text for name, (_, text) in self.programs.items() if name != self.name.upper()]
         taken = [t.name for t in self.positions.values()] + [n for names in self.labels.values() for n in names.values()]
-        self.regs = Registers(self.tally, self.instructions, others, main, taken)
+        self.regs = Registers(self.tally, self.instructions, others, main, taken, self.not_vars)
         body, _ = self._block(0, None)
         kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _is_label, self.instructions,
                                                      lambda t: t + " ;"))
@@ -559,6 +561,15 @@ def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = 
     """Read one TP program; raises ImportError_ (E510) when it is not one. `labels`: tool and
     frame names by number, from all the program's files; `programs`: those files by program
     name (a program called inside a loop that moves its targets is inlined at the call)."""
-    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose)
-    ls.read()
+    not_vars: frozenset[tuple[str, int]] = frozenset()
+    for _ in range(3):  # a native line using a register read as a variable: read it again without
+        ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose, not_vars)
+        ls.read()
+        touched = ls.regs.used_natively(ls.routine.body) if ls.regs is not None else set()
+        if not touched:
+            return ls
+        not_vars |= touched
+    vars_left = frozenset(ls.regs.vars) if ls.regs is not None else frozenset()
+    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose, not_vars | vars_left)
+    ls.read()  # no variables are left: the reading of what remains only shrinks as more are excluded
     return ls

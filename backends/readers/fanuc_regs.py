@@ -39,7 +39,7 @@ from collections.abc import Iterable, Sequence
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
 from rmot.backends.readers.model import (
-    Assign, Cond, Conds, GroupIn, If, Stmt, VarDecl, WaitIn, Where, While, group_reads, walk,
+    Assign, Cond, Conds, GroupIn, If, Native, Stmt, VarDecl, WaitIn, Where, While, group_reads, walk,
 )
 
 __all__ = ["Registers", "plain", "negated"]
@@ -74,8 +74,9 @@ class Registers:
     """The registers and flags one TP program reads as task variables or as group inputs."""
 
     def __init__(self, tally: Tally, instructions: Sequence[tuple[str, Where]], others: Iterable[str], main: bool,
-                 taken: Iterable[str] = ()) -> None:
+                 taken: Iterable[str] = (), not_vars: Iterable[_Key] = ()) -> None:
         self.tally = tally
+        self.not_vars = set(not_vars)
         self.taken = {t.lower() for t in taken}  # the program's other names (targets, tools, frames)
         self.texts = [(plain(t), w) for t, w in instructions if not t.startswith(("!", "//"))]
         self.labels: dict[_Key, str] = {}
@@ -121,7 +122,7 @@ class Registers:
     def _choose_vars(self, sets: dict[_Key, list[tuple[int, str]]]) -> None:
         first, clear = self._first_mentions()
         candidates = {k: found for k, found in sets.items() if found[0][0] == first[k] and clear[first[k]]
-                      and self._starts_set(found)}
+                      and k not in self.not_vars and self._starts_set(found)}
         types = {k: "bool" if k[0] == "F" else "int" for k in candidates}
         for _ in range(_MAX_PASSES):  # each pass drops candidates or widens types
             self.vars = {k: (self._var_name(k), types[k]) for k in candidates}
@@ -229,6 +230,11 @@ class Registers:
         want = self.vars[key][1] if key in self.vars and fit else type_
         fits = type_ == want or (want == "num" and type_ == "int")
         return (value, type_) if fits else None
+
+    def used_natively(self, body: tuple[Stmt, ...]) -> set[_Key]:
+        """The variables a native line of `body` reads or writes: compiled back, the line would use
+        the vendor's register while the variable is another one the backend numbers."""
+        return {k for s in walk(body) if isinstance(s, Native) for k in self._mentions(plain(s.text)) if k in self.vars}
 
     def warn_reads(self, body: tuple[Stmt, ...]) -> None:
         """W535 at the first statement of `body` (the program as read) reading each register as a

@@ -106,6 +106,18 @@ def test_forms_whose_register_reading_is_not_certain_stay_native(tmp_path: Path,
         assert "W535" not in output and "W536" not in output, why
 
 
+def test_a_register_a_native_line_uses_is_no_task_variable(tmp_path: Path) -> None:
+    """The backward jump keeps `R[1]=R[1]+1` native: compiled back it would count in R[1] while
+    the variable is the register the backend numbers, so R[1] is read as no variable at all."""
+    program, _, output = _import(tmp_path, {"LOOPED": [
+        "R[1:count]=0", "R[3:other]=0", "LBL[1]", "R[1:count]=R[1:count]+1", "IF R[2]<5,JMP LBL[1]",
+        "IF (R[1:count]=5) THEN", "DO[1]=ON", "ENDIF", "R[3:other]=1", "IF (R[3:other]=1) THEN", "DO[2]=ON", "ENDIF"]})
+    assert "var count" not in program and "set out[1]" not in program
+    assert 'native fanuc "R[1:count]=R[1:count]+1 ;"' in program and 'native fanuc "IF (R[1:count]=5) THEN ;"' in program
+    assert "var other: int = 0" in program and "  if other == 1 {\n    set out[2] = on\n  }\n" in program
+    assert output.count("W536") == 1
+
+
 def test_a_register_another_program_of_the_job_mentions_is_no_task_variable(tmp_path: Path) -> None:
     """rmot's procs do not see a task's variables: SUB setting R[1] keeps MAIN's tests native;
     SUB's own test of R[2], which nothing of it sets, is a group input in the proc."""
