@@ -53,8 +53,10 @@ _SIMPLE = (
 )
 
 
-def _is_label(text: str, n: str) -> bool:
-    return re.fullmatch(rf"LBL\[{n}(?::[^\]]*)?\]\s*;?", text.strip()) is not None
+def _label_of(text: str) -> str | None:
+    """The label number of a `LBL[n]` line (with its comment, `LBL[2:skip]`)."""
+    m = re.fullmatch(r"LBL\[(\d+)(?::[^\]]*)?\]\s*;?", text.strip())
+    return m.group(1) if m else None
 
 
 def _names_label(text: str, label: str) -> bool:
@@ -122,7 +124,7 @@ class _Ls:
         taken = [t.name for t in self.positions.values()] + [n for names in self.labels.values() for n in names.values()]
         self.regs = Registers(self.tally, self.instructions, others, main, taken, self.not_vars)
         body, _ = self._block(0, None)
-        kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _is_label, self.instructions,
+        kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _label_of, self.instructions,
                                                      lambda t: t + " ;"))
         self.regs.warn_reads(kept)
         self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))

@@ -42,6 +42,14 @@ __all__ = ["read_inform", "PL_MM", "pulse_scales"]
 
 _JUMP = re.compile(r"JUMP \*(L\w+)")
 _NATIVE_JUMP = re.compile(r"\bJUMP\s+\*(\w+)")  # a jump to a label kept native (JUMP JOB: is a call)
+
+
+def _label_of(text: str) -> str | None:
+    """The label of a `*NAME` line."""
+    m = re.fullmatch(r"\*(\w+)", text.strip())
+    return m.group(1) if m else None
+
+
 # INFORM instructions (the forms backends/inform.py writes): outputs, pulses, analog outputs,
 # timers, input waits, job calls
 _SIMPLE = (
@@ -126,7 +134,7 @@ class _Job:
         if not self.name:
             raise self.tally.fail("an INFORM job must name itself (`//NAME NAME`)", Where(self.path, first[0]))
         body, _ = self._block(0, len(self.inst))
-        kept = keep_jumped_spans(tuple(body), self.tally, _NATIVE_JUMP, lambda t, n: t.strip() == f"*{n}", self.inst,
+        kept = keep_jumped_spans(tuple(body), self.tally, _NATIVE_JUMP, _label_of, self.inst,
                                  lambda t: t)
         self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))
 
