@@ -226,6 +226,23 @@ def label_loop(text_at: Callable[[int], str], i: int, end: int, start: str, labe
     return m.group(1), int(m.group(2)), int(re.fullmatch(back, text_at(j)).group(1)), j  # type: ignore[union-attr]
 
 
+def counter_alone(text_at: Callable[[int], str], lines: int, i: int, j: int, counter: str,
+                  inside: tuple[str, ...], outside: tuple[str, ...]) -> bool:
+    """Whether a counted loop (label_loop: lines `i` to `j`) is all the program does with its
+    counter (the pattern `counter`): inside the body it appears only in the forms `inside` (the
+    offsets it builds), elsewhere only in those and `outside` (setting it, counting another loop
+    with it and building that loop's offsets).
+    A write in the body would skip iterations the rmot `for` runs; a read after the loop would see
+    the value the loop left, which the `for` has not."""
+    for k in range(lines):
+        text = text_at(k)
+        if k in (i, j - 1, j) or not re.search(counter, text):
+            continue
+        if not any(re.fullmatch(form, text) for form in (inside if i < k < j else inside + outside)):
+            return False
+    return True
+
+
 def reaches(sources: dict[str, tuple[str, str]], name: str, uses: Callable[[str], bool], call: str,
             depth: int = 0) -> bool:
     """Whether program `name` (its (path, text) in `sources`, by upper-case name), or one it

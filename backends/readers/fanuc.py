@@ -21,7 +21,9 @@ import re
 
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
-from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, number, reaches, rmot_name
+from rmot.backends.readers.common import (
+    Tally, counter_alone, label_arms, label_loop, match_simple, number, reaches, rmot_name,
+)
 from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_text import german_instruction, group_test, wait_condition
 from rmot.backends.readers.jump_spans import keep_jumped_spans
@@ -275,7 +277,7 @@ class _Ls:
         found = label_loop(self._text, i, end, r"R\[(\d+)(?::[^\]]*)?\]\s*=\s*(-?\d+)", r"LBL\[(\d+)\]",
                            lambda r, k: rf"IF R\[{r}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{k}\]",
                            lambda r: rf"R\[{r}(?::[^\]]*)?\]=R\[{r}(?::[^\]]*)?\]\+1")
-        if found is None:
+        if found is None or not self._counter_alone(found[0], i, found[3]):
             return None
         reg, first, last, j = found
         label = re.match(r"R\[\d+:([^\]]*)\]", self._text(i))
@@ -285,6 +287,17 @@ class _Ls:
         del self.loop_vars[reg]
         self.tally.imported += 1
         return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
+
+    def _counter_alone(self, reg: str, i: int, j: int) -> bool:
+        """Whether nothing jumps into the loop from line `i` to `j`, no register is written through
+        another, and its counter R[reg] is the loop's alone (common.counter_alone)."""
+        label = re.fullmatch(r"LBL\[(\d+)\]", self._text(i + 1))
+        if label is None or jumped_to_elsewhere(self._text, len(self.instructions), (label.group(1),), _names_label, {i + 1, j}):
+            return False
+        c = rf"R\[{reg}(?::[^\]]*)?\]"
+        return not any(re.search(r"\b[RF]\[\s*A?R\[", t) for t, _ in self.instructions) and counter_alone(
+            self._text, len(self.instructions), i, j, rf"\b{c}", (rf"PR\[\d+,[123]\]\s*=\s*{c}\*-?[\d.]+",),
+            (rf"{c}\s*=\s*-?\d+", rf"{c}={c}\+1", rf"IF {c}<=-?\d+,JMP LBL\[\d+\]"))
 
     def _register(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`R[i]=value` / `F[i]=(ON)` on a register or flag read as a task variable (fanuc_regs.py)."""

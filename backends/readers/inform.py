@@ -29,7 +29,7 @@ import re
 from rmot.backends.inform_text import PL_DISTANCES_MM
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.fanuc_text import group_test
-from rmot.backends.readers.common import Tally, label_arms, label_loop, match_simple, reaches, rmot_name
+from rmot.backends.readers.common import Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
@@ -235,8 +235,11 @@ class _Job:
         """`SET Dv a`, `*Lk`, body, `INC Dv`, `JUMP *Lk IF Dv<=b` (the backend's counted loop)."""
         found = label_loop(self._text, i, end, r"SET (D\d+) (\d+)", r"\*(L\w+)",
                            lambda v, k: rf"JUMP \*{k} IF {v}<=(\d+)", lambda v: f"INC {v}")
-        if found is None:
+        if found is None or jumped_to_elsewhere(self._text, len(self.inst), (self._text(i + 1)[1:],), _names_label, {i + 1, found[3]}):
             return None
+        if not counter_alone(self._text, len(self.inst), i, found[3], rf"\b{found[0]}\b", (rf"SET D\d+ {found[0]}",),
+                             (rf"SET {found[0]} \d+", f"INC {found[0]}", rf"JUMP \*L\w+ IF {found[0]}<=\d+")):
+            return None  # the counter written in the body, read after the loop, or a jump into it
         var, first, last, j = found
         name = rmot_name(self.var_names.get(var, var.lower()))
         self.counters[var] = name

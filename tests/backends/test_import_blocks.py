@@ -206,3 +206,25 @@ def test_a_rapid_label_is_a_statement_of_its_own(tmp_path: Path) -> None:
     assert 'native rapid "skip:"' in program and 'native rapid "back:"' in program
     assert "  set out[3] = on\n" in program and "  move linear p1 speed 100 mm/s zone fine\n" in program
     assert 'native rapid "x := 1;"' in program  # an assignment, not a label
+
+
+def test_a_tp_counting_loop_whose_counter_is_not_its_own_stays_native(tmp_path: Path) -> None:
+    """`R[1]=1`, `LBL[1]`, .., `R[1]=R[1]+1`, `IF R[1]<=4,JMP LBL[1]` is rmot's `for` only where
+    nothing else uses R[1]: a second increment in the body (the controller runs 2 iterations, not
+    4), a jump into the loop, or a read after it (the value the loop left) keep it native."""
+    loop = ["R[1]=1", "LBL[1]", "DO[1]=ON", "R[1]=R[1]+1", "IF R[1]<=4,JMP LBL[1]"]
+    read, _ = _import(tmp_path, loop)
+    assert "for r1 in 1 .. 5 {\n    set out[1] = on\n  }" in read
+    for body in (loop[:3] + ["R[1]=R[1]+1"] + loop[3:], loop + ["IF R[1]=5,JMP LBL[1]"], loop + ["IF (R[1]=5) THEN",
+                                                                                                   "DO[2]=ON", "ENDIF"]):
+        program, _ = _import(tmp_path, body)
+        assert "for r1" not in program and 'native fanuc "DO[1]=ON ;"' in program, body
+    again, _ = _import(tmp_path, loop + ["R[1]=1", "LBL[2]", "DO[3]=ON", "R[1]=R[1]+1", "IF R[1]<=2,JMP LBL[2]"])
+    assert again.count("for r1 in") == 2  # the counter counting a second loop is still each loop's own
+
+
+def test_an_inform_counting_loop_whose_counter_is_not_its_own_stays_native(tmp_path: Path) -> None:
+    read, _ = _inform(tmp_path, "SET D001 1\n*L1\nDOUT OT#(3) ON\nINC D001\nJUMP *L1 IF D001<=3")
+    assert "for d001 in 1 .. 4 {" in read
+    program, _ = _inform(tmp_path, "SET D001 1\n*L1\nDOUT OT#(3) ON\nINC D001\nINC D001\nJUMP *L1 IF D001<=3")
+    assert "for d001" not in program and 'native inform "DOUT OT#(3) ON"' in program
