@@ -251,7 +251,7 @@ def _unknown_calls_kept(doc: Document) -> Document:
     runs a program rmot does not see (what it moves is not planned), and a call of a proc the
     imported program lacks would not compile (E101)."""
     from rmot.backends.readers.model import Call, FileCount, Native  # late: loads numpy only when this runs
-    from rmot.backends.readers.writer import map_leaves
+    from rmot.backends.readers.writer import map_leaves  # late: loads numpy only when this runs
 
     known = {r.name.upper() for r in doc.routines}
     kept: list[Diagnostic] = []

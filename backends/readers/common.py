@@ -227,8 +227,9 @@ def label_loop(text_at: Callable[[int], str], i: int, end: int, start: str, labe
 
 
 def counter_alone(text_at: Callable[[int], str], lines: int, i: int, j: int, counter: str,
-                  inside: tuple[str, ...], outside: tuple[str, ...]) -> bool:
-    """Whether a counted loop (label_loop: lines `i` to `j`) is all the program does with its
+                  inside: tuple[str, ...], outside: tuple[str, ...], own: tuple[int, ...] = ()) -> bool:
+    """Whether a counted loop (lines `i` to `j`; its own lines that set, step and test the counter
+    `own`, else those of label_loop: i, j - 1 and j) is all the program does with its
     counter (the pattern `counter`): inside the body it appears only in the forms `inside` (the
     offsets it builds), elsewhere only in those and `outside` (setting it, counting another loop
     with it and building that loop's offsets).
@@ -236,7 +237,7 @@ def counter_alone(text_at: Callable[[int], str], lines: int, i: int, j: int, cou
     the value the loop left, which the `for` has not."""
     for k in range(lines):
         text = text_at(k)
-        if k in (i, j - 1, j) or not re.search(counter, text):
+        if k in (own or (i, j - 1, j)) or not re.search(counter, text):
             continue
         if not any(re.fullmatch(form, text) for form in (inside if i < k < j else inside + outside)):
             return False

@@ -277,27 +277,36 @@ class _Ls:
         found = label_loop(self._text, i, end, r"R\[(\d+)(?::[^\]]*)?\]\s*=\s*(-?\d+)", r"LBL\[(\d+)\]",
                            lambda r, k: rf"IF R\[{r}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{k}\]",
                            lambda r: rf"R\[{r}(?::[^\]]*)?\]=R\[{r}(?::[^\]]*)?\]\+1")
-        if found is None or not self._counter_alone(found[0], i, found[3]):
-            return None
+        if found is None or not self._counter_alone(found[0], i, found[3]) or jumped_to_elsewhere(
+                self._text, len(self.instructions), (self._text(i + 1)[4:-1],), _names_label, {i + 1, found[3]}):
+            return None  # the counter not the loop's alone, or a jump into the loop
         reg, first, last, j = found
         label = re.match(r"R\[\d+:([^\]]*)\]", self._text(i))
-        var = rmot_name((label.group(1) if label else f"r{reg}").replace(" ", "_"))
-        self.loop_vars[reg] = var
+        self.loop_vars[reg] = var = rmot_name((label.group(1) if label else f"r{reg}").replace(" ", "_"))
         body, _ = self._block(i + 2, j - 1)
         del self.loop_vars[reg]
         self.tally.imported += 1
         return [For(var, first, last + 1, tuple(body), self.instructions[i][1])], j + 1
 
-    def _counter_alone(self, reg: str, i: int, j: int) -> bool:
-        """Whether nothing jumps into the loop from line `i` to `j`, no register is written through
-        another, and its counter R[reg] is the loop's alone (common.counter_alone)."""
-        label = re.fullmatch(r"LBL\[(\d+)\]", self._text(i + 1))
-        if label is None or jumped_to_elsewhere(self._text, len(self.instructions), (label.group(1),), _names_label, {i + 1, j}):
-            return False
+    def _counter_alone(self, reg: str, i: int, j: int, own: tuple[int, ...] = ()) -> bool:
+        """Whether no register is written through another and R[reg] is the loop's (lines `i` to
+        `j`) alone (common.counter_alone): counted by labels, or by FOR .. ENDFOR (`own` = (i, j))."""
         c = rf"R\[{reg}(?::[^\]]*)?\]"
         return not any(re.search(r"\b[RF]\[\s*A?R\[", t) for t, _ in self.instructions) and counter_alone(
             self._text, len(self.instructions), i, j, rf"\b{c}", (rf"PR\[\d+,[123]\]\s*=\s*{c}\*-?[\d.]+",),
-            (rf"{c}\s*=\s*-?\d+", rf"{c}={c}\+1", rf"IF {c}<=-?\d+,JMP LBL\[\d+\]"))
+            (rf"{c}\s*=\s*-?\d+", rf"{c}={c}\+1", rf"IF {c}<=-?\d+,JMP LBL\[\d+\]", rf"FOR {c}=-?\d+ TO -?\d+"), own)
+
+    def _for(self, i: int, j: int) -> tuple[list[Stmt], int] | None:
+        """`FOR R[v]=a TO b` .. `ENDFOR` with whole numbers a <= b (B-83284EN "FOR/ENDFOR": R[v]
+        from a while it is at most b, one up at ENDFOR) where R[v] is the loop's alone: `for`."""
+        m = re.fullmatch(r"FOR R\[(\d+)(?::([^\]]*))?\]=(-?\d+) TO (-?\d+)", self._text(i))
+        if m is None or int(m.group(3)) > int(m.group(4)) or not self._counter_alone(m.group(1), i, j, (i, j)):
+            return None
+        self.loop_vars[m.group(1)] = var = rmot_name((m.group(2) or f"r{m.group(1)}").replace(" ", "_"))
+        body, _ = self._block(i + 1, j)
+        del self.loop_vars[m.group(1)]
+        self.tally.imported += 1
+        return [For(var, int(m.group(3)), int(m.group(4)) + 1, tuple(body), self.instructions[i][1])], j + 1
 
     def _register(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`R[i]=value` / `F[i]=(ON)` on a register or flag read as a task variable (fanuc_regs.py)."""
@@ -367,10 +376,9 @@ class _Ls:
 
     def _structured(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         """`IF (cond) THEN` .. [`ELSE` ..] `ENDIF` and `FOR R[i]=a TO b` .. `ENDFOR` (B-83284EN,
-        "IF ... THEN" and "FOR/ENDFOR"). An I/O condition (as `WAIT` reads it) is an rmot `if`;
-        a block on a register, flag or counter, and a FOR loop, is kept native whole: its body runs
-        at run time zero, once or many times, and reading it as straight-line code would plan and
-        verify one run of it as if it always happened."""
+        "IF ... THEN" and "FOR/ENDFOR"): an `if` on a condition `_condition` reads, a `for` (`_for`);
+        any other block is kept native whole: its body runs zero, once or many times as a run-time
+        value decides, and read as straight-line code one run would be planned as always happening."""
         text, where = self.instructions[i]
         test = _THEN.fullmatch(text)
         if test is None and not _FOR.fullmatch(text):
@@ -384,6 +392,9 @@ class _Ls:
         if j >= end or self._text(j) != close:
             return None  # not closed before the routine ends: read line by line
         cond = self._condition(test.group(1)) if test else None
+        counted = self._for(i, j) if test is None else None
+        if counted is not None:
+            return counted
         if cond is not None:
             then, _ = self._block(i + 1, split if split is not None else j)
             orelse, _ = self._block(split + 1, j) if split is not None else ([], j)
@@ -461,7 +472,7 @@ class _Ls:
         move = Move(kind, exprs[-1], decl.name, where, via=exprs[0] if kind == "circular" else None,
                     speed=timing[0], joint_pct=timing[1], time=timing[2],
                     zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
-                    tool=self._named("UTOOL"), frame="base" if decl.name in self._tcp_names() else self._named("UFRAME"),
+                    tool=self._named("UTOOL"), frame="base" if decl.name in {t.name for t in self.tcp.values()} else self._named("UFRAME"),
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
                     pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
@@ -485,9 +496,6 @@ class _Ls:
             self.tcp[(decl.name, tool)] = Target(name, pose, None, None, decl.where)
             self.positions[-(len(self.positions) + 1)] = self.tcp[(decl.name, tool)]
         return self.tcp[(decl.name, tool)]
-
-    def _tcp_names(self) -> set[str]:
-        return {t.name for t in self.tcp.values()}
 
     def _option(self, text: str, where: Where) -> Stmt:
         """A motion option kept after its move: an action (`DO[n]=ON`, `CALL p`) read as its

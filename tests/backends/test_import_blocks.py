@@ -66,8 +66,8 @@ def test_an_input_block_is_an_if_with_its_else(tmp_path: Path) -> None:
             "    set out[108] = on\n  } else {\n    set out[2] = on\n  }\n") in program
 
 
-def test_a_for_loop_and_the_blocks_inside_it_are_kept_native_whole(tmp_path: Path) -> None:
-    program, _ = _import(tmp_path, ["FOR R[1]=1 TO 3", "IF (DI[1]=ON) THEN", "DO[1]=ON", "ENDIF", "ENDFOR",
+def test_a_for_loop_whose_counter_the_body_writes_is_kept_native_whole(tmp_path: Path) -> None:
+    program, _ = _import(tmp_path, ["FOR R[1]=1 TO 3", "IF (DI[1]=ON) THEN", "DO[1]=ON", "ENDIF", "R[1]=R[1]+1", "ENDFOR",
                                     "DO[2]=ON"])
     lines = [ln.strip() for ln in program.splitlines() if ln.startswith("  native") or "set out" in ln]
     assert lines == [
@@ -75,8 +75,23 @@ def test_a_for_loop_and_the_blocks_inside_it_are_kept_native_whole(tmp_path: Pat
         'native fanuc "IF (DI[1]=ON) THEN ;"   # ' + str(tmp_path / "blk.ls") + ":5:4",
         'native fanuc "DO[1]=ON ;"   # ' + str(tmp_path / "blk.ls") + ":6:4",
         'native fanuc "ENDIF ;"   # ' + str(tmp_path / "blk.ls") + ":7:4",
-        'native fanuc "ENDFOR ;"   # ' + str(tmp_path / "blk.ls") + ":8:4",
+        'native fanuc "R[1]=R[1]+1 ;"   # ' + str(tmp_path / "blk.ls") + ":8:4",
+        'native fanuc "ENDFOR ;"   # ' + str(tmp_path / "blk.ls") + ":9:4",
         "set out[2] = on"]
+
+
+def test_a_for_loop_on_its_own_counter_is_an_rmot_for(tmp_path: Path) -> None:
+    """B-83284EN "FOR/ENDFOR": R[4] runs 1, 2, 3 (at most the TO value, one up at ENDFOR); the
+    offset register the body builds from it moves the target 20, 40, 60 mm up."""
+    program, output = _import(tmp_path, ["PR[5]=LPOS-LPOS", "FOR R[4:k]=1 TO 3", "PR[5,3]=R[4:k]*20",
+                                         "J P[1] 50% FINE Offset,PR[5]", "IF (DI[1]=ON) THEN", "DO[1]=ON", "ENDIF",
+                                         "ENDFOR", "FOR R[4:k]=0 TO 1", "DO[2]=ON", "ENDFOR", "FOR R[6]=3 DOWNTO 1",
+                                         "DO[3]=ON", "ENDFOR"])
+    assert ("  for k in 1 .. 4 {\n" in program and "move joint shift(blk_p1, z=(k * 20) * 1 mm)" in program
+            and "    if in[1] == on {\n      set out[1] = on\n    }\n  }\n  for k in 0 .. 2 {\n    set out[2] = on\n  }\n"
+            in program)
+    assert 'native fanuc "FOR R[6]=3 DOWNTO 1 ;"' in program  # counting down: no rmot for
+    assert "W510" in output and output.count("W510") == 3
 
 
 def test_a_block_not_closed_is_read_line_by_line(tmp_path: Path) -> None:
@@ -84,18 +99,19 @@ def test_a_block_not_closed_is_read_line_by_line(tmp_path: Path) -> None:
     assert "set out[1] = on" in program and "IF (R[1]=1) THEN" in output
 
 
+def _rapid(tmp_path: Path, routines: str) -> tuple[str, str]:
+    """The program `rmot import` writes for a module M with a target p1 and `routines`."""
+    return _read(tmp_path, "m.mod", "MODULE M\n  CONST robtarget p1:=[[500,0,500],[0,1,0,0],[0,0,0,0],"
+                 f"[9E9,9E9,9E9,9E9,9E9,9E9]];\n{routines}ENDMODULE\n")
+
+
 def test_a_rapid_if_on_a_declared_num_is_not_read_as_an_input(tmp_path: Path) -> None:
     """RAPID's `IF sig = 1 THEN` tests a digital input signal, but `IF reg1 = 1 THEN` on a `PERS num
     reg1` the module declares is a test of that data: it must not become `if in[1] == on` with a
     signal named reg1 in the stub cell."""
-    path = tmp_path / "m.mod"
-    path.write_text("MODULE M\n  CONST robtarget p1:=[[500,0,500],[0,1,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n"
-                    "  PERS num reg1:=0;\n  PROC main()\n    IF reg1 = 1 THEN\n      MoveL p1, v100, fine, tool0;\n"
-                    "    ENDIF\n    IF di1 = 1 THEN\n      MoveL p1, v100, fine, tool0;\n    ENDIF\n  ENDPROC\nENDMODULE\n")
-    out = tmp_path / "m.rmot"
-    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
-    assert result.exit_code == 0, result.output
-    program, cell = out.read_text(), (tmp_path / "m_cell.rmot").read_text()
+    program, _ = _rapid(tmp_path, "  PERS num reg1:=0;\n  PROC main()\n    IF reg1 = 1 THEN\n      MoveL p1, v100, fine, tool0;\n"
+                              "    ENDIF\n    IF di1 = 1 THEN\n      MoveL p1, v100, fine, tool0;\n    ENDIF\n  ENDPROC\n")
+    cell = (tmp_path / "imported_cell.rmot").read_text()
     assert "if reg1 == 1 {" in program and "if in[1] == on {" in program
     assert 'io in[1] = "di1"' in cell and '"reg1"' not in cell
 
@@ -194,14 +210,9 @@ def test_what_a_krl_goto_skips_is_kept_native(tmp_path: Path) -> None:
 def test_a_rapid_label_is_a_statement_of_its_own(tmp_path: Path) -> None:
     """`skip:     SetDO do1, 1;` and `back:` on a line of its own (RAPID Technical reference manual,
     labels): the instruction after a label is read, the label stays native where GOTOs find it."""
-    path = tmp_path / "m.mod"
-    path.write_text("MODULE M\n  CONST robtarget p1:=[[500,0,500],[0,1,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\n"
-                    "  PROC main()\n    IF DInput(di1) = 1 GOTO skip;\n    SetDO do2, 1;\n    skip:     SetDO do3, 1;\n"
-                    "    back:\n    MoveL p1, v100, fine, tool0;\n    x := 1;\n  ENDPROC\nENDMODULE\n")
-    out = tmp_path / "m.rmot"
-    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
-    assert result.exit_code == 0, result.output
-    program = out.read_text()
+    program, _ = _rapid(tmp_path, "  PROC main()\n    IF DInput(di1) = 1 GOTO skip;\n    SetDO do2, 1;\n"
+                              "    skip:     SetDO do3, 1;\n    back:\n    MoveL p1, v100, fine, tool0;\n    x := 1;\n"
+                              "  ENDPROC\n")
     assert 'native rapid "SetDO do2, 1;"' in program  # what the GOTO skips
     assert 'native rapid "skip:"' in program and 'native rapid "back:"' in program
     assert "  set out[3] = on\n" in program and "  move linear p1 speed 100 mm/s zone fine\n" in program
