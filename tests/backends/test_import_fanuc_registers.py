@@ -218,3 +218,13 @@ def test_registers_whose_typing_does_not_settle_in_a_few_passes_stay_native(tmp_
     assert "var " not in program and "set out[1]" not in program and "W536" not in output
     short, _, _ = _import(tmp_path, {"CHAIN": body[:3] + body[n:n + 3] + body[-3:]})  # R[4]: set elsewhere
     assert short.count("  var ") == 3 and "r3 = {} + 1" not in short and "if r1 == 1 {" in short
+
+
+def test_conditions_beyond_the_bound_stay_native(tmp_path: Path) -> None:
+    """150 nested parentheses, 400 terms: more tokens than fanuc_regs reads (its work is bounded)."""
+    deep = "(" * 150 + "R[1]=1" + ")" * 150
+    wide = "(" + " AND ".join(f"R[{k}]=1" for k in range(1, 400)) + ")"
+    program, _, _ = _import(tmp_path, {"DEEP": [f"IF {deep} THEN", "DO[1]=ON", "ENDIF", f"IF {wide} THEN", "DO[2]=ON",
+                                                "ENDIF", "IF (R[1]=1) THEN", "DO[3]=ON", "ENDIF"]})
+    assert "set out[1]" not in program and "set out[2]" not in program
+    assert "  if gin[1] == 1 {\n    set out[3] = on\n  }\n" in program  # a short one beside them is read
