@@ -124,6 +124,7 @@ class _Ls:
         main = not self.programs or next(iter(self.programs)) == self.name.upper()  # the job's first program runs
         others = [text for name, (_, text) in self.programs.items() if name != self.name.upper()]
         taken = [t.name for t in self.positions.values()] + [n for names in self.labels.values() for n in names.values()]
+        taken += [rmot_name(name) for name in self.programs]  # the procs
         self.regs = Registers(self.tally, self.instructions, others, main, taken, self.not_vars)
         body, _ = self._block(0, None)
         kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _label_of, self.instructions,

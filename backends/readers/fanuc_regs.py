@@ -178,7 +178,8 @@ class Registers:
         `r11_comment`, `r11` without a comment."""
         label = self.labels.get(key)
         own = rmot_name(re.sub(r"[^A-Za-z0-9]", "_", label)) if label else ""
-        if label and own.lower() not in self.taken and self.label_uses[label] == 1:
+        fallback_like = re.fullmatch(r"[rf]\d+(?:_\w*)?", own.lower()) is not None  # another register's name
+        if label and not fallback_like and own.lower() not in self.taken and self.label_uses[label] == 1:
             return own
         return rmot_name(re.sub(r"[^A-Za-z0-9]", "_", f"{key[0].lower()}{key[1]}" + (f"_{label}" if label else ""))).lower()
 

@@ -228,3 +228,14 @@ def test_conditions_beyond_the_bound_stay_native(tmp_path: Path) -> None:
                                                 "ENDIF", "IF (R[1]=1) THEN", "DO[3]=ON", "ENDIF"]})
     assert "set out[1]" not in program and "set out[2]" not in program
     assert "  if gin[1] == 1 {\n    set out[3] = on\n  }\n" in program  # a short one beside them is read
+
+
+def test_a_register_comment_naming_another_register_or_a_program_is_not_its_name(tmp_path: Path) -> None:
+    """R[3:r5] beside R[5] (named r5), and R[4:sub] beside program SUB: each variable keeps a name
+    of its own (a second `var r5` would be E153, a var named like a proc ambiguous)."""
+    program, _, _ = _import(tmp_path, {"MAIN": ["R[3:r5]=0", "R[5]=0", "R[4:sub]=0", "CALL SUB", "R[3:r5]=1", "R[5]=1",
+                                                "R[4:sub]=1", "IF (R[3:r5]=1 AND R[5]=1 AND R[4:sub]=1) THEN",
+                                                "DO[1]=ON", "ENDIF"],
+                                       "SUB": ["DO[2]=ON"]})
+    decls = sorted(ln.strip() for ln in program.splitlines() if ln.strip().startswith("var "))
+    assert decls == ["var r3_r5: int = 0", "var r4_sub: int = 0", "var r5: int = 0"]
