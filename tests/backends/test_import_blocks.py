@@ -6,9 +6,12 @@ it always happened (found in a pendant backup, kamilkozdro/FanucProgramAnalyze `
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from click.testing import CliRunner
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from rmot.compiler.cli import cli
 
@@ -225,7 +228,7 @@ def test_a_tp_counting_loop_whose_counter_is_not_its_own_stays_native(tmp_path: 
     4), a jump into the loop, or a read after it (the value the loop left) keep it native."""
     loop = ["R[1]=1", "LBL[1]", "DO[1]=ON", "R[1]=R[1]+1", "IF R[1]<=4,JMP LBL[1]"]
     read, _ = _import(tmp_path, loop)
-    assert "for r1 in 1 .. 5 {\n    set out[1] = on\n  }" in read
+    assert "for r1 in 1 .. 5 {\n    set out[1] = on\n  }" in read and "var " not in read  # the counter is the for's
     for body in (loop[:3] + ["R[1]=R[1]+1"] + loop[3:], loop + ["IF R[1]=5,JMP LBL[1]"], loop + ["IF (R[1]=5) THEN",
                                                                                                    "DO[2]=ON", "ENDIF"]):
         program, _ = _import(tmp_path, body)
@@ -239,3 +242,40 @@ def test_an_inform_counting_loop_whose_counter_is_not_its_own_stays_native(tmp_p
     assert "for d001 in 1 .. 4 {" in read
     program, _ = _inform(tmp_path, "SET D001 1\n*L1\nDOUT OT#(3) ON\nINC D001\nINC D001\nJUMP *L1 IF D001<=3")
     assert "for d001" not in program and 'native inform "DOUT OT#(3) ON"' in program
+
+
+def _lines_read(program: str) -> list[str]:
+    """Each `set out[n]` / native DO line of the program, in order, as `DO[n]`."""
+    found = re.findall(r'^\s*(?:set out\[(\d+)\] = on|native fanuc "DO\[(\d+)\]=ON ;")', program, re.M)
+    return [f"DO[{a or b}]" for a, b in found]
+
+
+def test_overlapping_jump_spans_keep_each_instruction_once(tmp_path: Path) -> None:
+    """The second jump sits inside the first one's span and reaches past it: kept in a later
+    pass, every instruction stays exactly once and in order."""
+    program, _ = _import(tmp_path, ["IF TIMER[1]>1,JMP LBL[1]", "IF TIMER[2]>1,JMP LBL[2]", "IF (DI[1]=ON) THEN",
+                                    "DO[1]=ON", "ENDIF", "LBL[1]", "DO[3]=ON", "LBL[2]", "DO[4]=ON"])
+    assert _lines_read(program) == ["DO[1]", "DO[3]", "DO[4]"]  # the IF block's lines once
+    assert 'native fanuc "DO[3]=ON ;"' in program and "  set out[4] = on\n" in program
+
+
+def test_a_jump_to_a_label_inside_a_block_waits_for_the_block_to_be_kept(tmp_path: Path) -> None:
+    """LBL[2] is inside an IF the first jump's span keeps native: the backward jump to it then
+    repeats only what lies between them, and DO[9] after it is read (not everything to the end)."""
+    program, _ = _import(tmp_path, ["IF TIMER[1]>1,JMP LBL[1]", "IF (DI[1]=ON) THEN", "DO[1]=ON", "LBL[2]", "DO[2]=ON",
+                                    "ENDIF", "LBL[1]", "DO[3]=ON", "IF TIMER[2]>1,JMP LBL[2]", "DO[9]=ON"])
+    assert 'native fanuc "DO[3]=ON ;"' in program and "  set out[9] = on\n" in program
+    assert _lines_read(program) == ["DO[1]", "DO[2]", "DO[3]", "DO[9]"]
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(st.lists(st.tuples(st.integers(0, 11), st.integers(1, 4), st.booleans()), min_size=1, max_size=5))
+def test_jump_spans_keep_every_instruction_once_in_order(tmp_path: Path, jumps: list[tuple[int, int, bool]]) -> None:
+    """Random jumps (conditional or not, forward or back) among 12 outputs and 4 labels."""
+    body = [f"DO[{k + 1}]=ON" for k in range(12)]
+    for n, at in enumerate((3, 6, 9, 11), 1):
+        body.insert(at + n - 1, f"LBL[{n}]")
+    for at, label, conditional in sorted(jumps, reverse=True):
+        body.insert(at, f"IF TIMER[1]>1,JMP LBL[{label}]" if conditional else f"JMP LBL[{label}]")
+    program, _ = _import(tmp_path, body)
+    assert _lines_read(program) == [f"DO[{k + 1}]" for k in range(12)], body

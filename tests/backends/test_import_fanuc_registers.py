@@ -159,8 +159,8 @@ def test_variables_and_group_inputs_round_trip_through_the_fanuc_backend(tmp_pat
 _ATOMS = st.one_of(
     st.tuples(st.sampled_from(["DI", "DO"]), st.integers(1, 3), st.sampled_from(["", "=ON", "=OFF", "!"])).map(
         lambda t: f"!{t[0]}[{t[1]}]" if t[2] == "!" else f"{t[0]}[{t[1]}]{t[2]}"),
-    st.tuples(st.integers(1, 2), st.sampled_from(["=", "<>", "<", ">", "<=", ">="]), st.integers(0, 3)).map(
-        lambda t: f"R[{t[0]}:r{t[0]}]{t[1]}{t[2]}"),
+    st.tuples(st.integers(1, 2), st.sampled_from(["=", "<>", "<", ">", "<=", ">="]), st.integers(0, 3), st.booleans()).map(
+        lambda t: f"{t[2]}{t[1]}R[{t[0]}:r{t[0]}]" if t[3] else f"R[{t[0]}:r{t[0]}]{t[1]}{t[2]}"),  # either side
 )
 
 
