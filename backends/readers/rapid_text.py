@@ -23,8 +23,8 @@ _BLOCK = re.compile(
 
 
 # a label (RAPID Technical reference manual, "GOTO" and labels: `name:` before a statement or on
-# a line of its own), not an assignment `x := ..` nor a TEST's `DEFAULT:`
-_LABEL = re.compile(r"(\s*(?!DEFAULT\b)[A-Za-z_]\w*\s*:)(?!=)", re.I)
+# a line of its own), not an assignment `x := ..`; a TEST's `DEFAULT:` is split off the same way
+_LABEL = re.compile(r"(\s*[A-Za-z_]\w*\s*:)(?!=)")
 
 
 @record(slots=True)

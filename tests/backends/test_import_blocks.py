@@ -89,12 +89,13 @@ def test_a_for_loop_on_its_own_counter_is_an_rmot_for(tmp_path: Path) -> None:
     program, output = _import(tmp_path, ["PR[5]=LPOS-LPOS", "FOR R[4:k]=1 TO 3", "PR[5,3]=R[4:k]*20",
                                          "J P[1] 50% FINE Offset,PR[5]", "IF (DI[1]=ON) THEN", "DO[1]=ON", "ENDIF",
                                          "ENDFOR", "FOR R[4:k]=0 TO 1", "DO[2]=ON", "ENDFOR", "FOR R[6]=3 DOWNTO 1",
-                                         "DO[3]=ON", "ENDFOR"])
+                                         "DO[3]=ON", "ENDFOR", "FOR R[7]=3 TO 1", "DO[4]=ON", "ENDFOR"])
     assert ("  for k in 1 .. 4 {\n" in program and "move joint shift(blk_p1, z=(k * 20) * 1 mm)" in program
             and "    if in[1] == on {\n      set out[1] = on\n    }\n  }\n  for k in 0 .. 2 {\n    set out[2] = on\n  }\n"
             in program)
     assert 'native fanuc "FOR R[6]=3 DOWNTO 1 ;"' in program  # counting down: no rmot for
-    assert "W510" in output and output.count("W510") == 3
+    assert 'native fanuc "FOR R[7]=3 TO 1 ;"' in program  # runs no time: no rmot for
+    assert output.count("W510") == 6
 
 
 def test_a_block_not_closed_is_read_line_by_line(tmp_path: Path) -> None:
@@ -220,6 +221,9 @@ def test_a_rapid_label_is_a_statement_of_its_own(tmp_path: Path) -> None:
     assert 'native rapid "skip:"' in program and 'native rapid "back:"' in program
     assert "  set out[3] = on\n" in program and "  move linear p1 speed 100 mm/s zone fine\n" in program
     assert 'native rapid "x := 1;"' in program  # an assignment, not a label
+    test, _ = _rapid(tmp_path, "  VAR num n := 1;\n  PROC main()\n    n := 2;\n    TEST n\n    CASE 1:\n      SetDO do1, 1;\n"
+                               "    DEFAULT:  SetDO do2, 1;\n    ENDTEST\n  ENDPROC\n")
+    assert "  if n == 1 {\n    set out[1] = on\n  } else {\n    set out[2] = on\n  }\n" in test  # DEFAULT: no label
 
 
 def test_a_tp_counting_loop_whose_counter_is_not_its_own_stays_native(tmp_path: Path) -> None:

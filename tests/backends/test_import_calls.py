@@ -39,6 +39,7 @@ def test_a_call_of_a_routine_not_given_stays_native_and_the_program_checks(tmp_p
     program, output = _import(tmp_path, {name: text})
     assert native in program, program
     assert "routine none of the files given defines (give its file too)" in output
+    assert "1 kept native" in output.split("imported,")[1]  # the call is counted native, not imported
     result = CliRunner().invoke(cli, ["check", str(tmp_path / "imported.rmot")], catch_exceptions=False)
     assert result.exit_code == 0, result.output  # without the native line: E101 unknown proc
 
@@ -57,6 +58,7 @@ def test_a_tp_conditional_call_of_a_program_of_the_job_is_an_if(tmp_path: Path) 
                      "   3:  IF (DI[1]),CALL NOTGIVEN ;\n/POS\n/END\n",
         "subp.ls": "/PROG  SUBP\n/ATTR\n/MN\n   1:  DO[5]=ON ;\n/POS\n/END\n"})
     assert "  if out[3] == on {\n    SUBP()\n  }\n  if gin[1] != 1 {\n    SUBP()\n  }\n" in program
-    assert 'native fanuc "IF (DI[1]),CALL NOTGIVEN ;"' in program  # not a program of the job
+    assert '\n  native fanuc "IF (DI[1]),CALL NOTGIVEN ;"' in program  # not a program of the job: the line whole
+    assert "if in[1] == on" not in program
     result = CliRunner().invoke(cli, ["check", str(tmp_path / "imported.rmot")], catch_exceptions=False)
     assert result.exit_code == 0, result.output
