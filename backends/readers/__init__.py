@@ -14,7 +14,7 @@ from collections import Counter
 from collections.abc import Callable
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
+from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, native_line, read_text
 from rmot.lang.ir import Pose
 from rmot.backends.readers.model import Document, PulsePose, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -261,7 +261,7 @@ def _unknown_calls_kept(doc: Document) -> Document:
             return s
         source = _SOURCES.get(s.where.path)
         line = source.line_text(s.where.line) if source is not None else f"{s.name}()"
-        text = re.sub(r"^\s*\d+:\s*", "", line).strip() if doc.vendor == "fanuc" else line.strip()
+        text = native_line(doc.vendor, line)
         kept.append(Diagnostic(codes.KEPT_NATIVE, Severity.WARNING, f"`{s.name}` is a routine none of the files "
                                f"given defines (give its file too); kept as `native {doc.vendor}`: {text[:60]}",
                                span_of(s.where)))

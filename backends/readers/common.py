@@ -226,6 +226,15 @@ def label_loop(text_at: Callable[[int], str], i: int, end: int, start: str, labe
     return m.group(1), int(m.group(2)), int(re.fullmatch(back, text_at(j)).group(1)), j  # type: ignore[union-attr]
 
 
+def native_line(vendor: str, raw: str) -> str:
+    """A source line as the text of its native statement: TP's without its line number and with
+    its `;` as the reader writes it (`IF R[2]<>3,JMP LBL[1] ;`), the others stripped."""
+    if vendor != "fanuc":
+        return raw.strip()
+    m = re.fullmatch(r"\s*\d*:\s*(.*?)\s*;?\s*", raw)
+    return f"{m.group(1)} ;" if m and m.group(1) else raw.strip()
+
+
 def counter_alone(text_at: Callable[[int], str], lines: int, i: int, j: int, counter: str,
                   inside: tuple[str, ...], outside: tuple[str, ...], own: tuple[int, ...] = ()) -> bool:
     """Whether a counted loop (lines `i` to `j`; its own lines that set, step and test the counter

@@ -13,7 +13,7 @@ from collections.abc import Callable
 from dataclasses import replace
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import rmot_name
+from rmot.backends.readers.common import native_line, rmot_name
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While, leaves, walk,
@@ -91,14 +91,15 @@ def map_leaves(body: tuple[Stmt, ...], fn: Callable[[Stmt], Stmt]) -> tuple[Stmt
     block whose condition `fn` replaces is replaced whole)."""
     out: list[Stmt] = []
     for s in body:
-        if isinstance(s, If) and fn(s) is s:
+        mapped = fn(s)  # once: `fn` may record what it replaced
+        if isinstance(s, If) and mapped is s:
             s = replace(s, then=map_leaves(s.then, fn), orelse=map_leaves(s.orelse, fn))
-        elif isinstance(s, (While, For)) and fn(s) is s:
+        elif isinstance(s, (While, For)) and mapped is s:
             s = replace(s, body=map_leaves(s.body, fn))
-        elif isinstance(s, WaitIn) and s.orelse and fn(s) is s:
+        elif isinstance(s, WaitIn) and s.orelse and mapped is s:
             s = replace(s, orelse=map_leaves(s.orelse, fn))
         else:
-            s = fn(s)
+            s = mapped
         out.append(s)
     return tuple(out)
 
@@ -122,7 +123,7 @@ def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where]
         diags.append(Diagnostic(codes.SIGNAL_UNKNOWN, Severity.WARNING,
                                 f"signal `{missing[0]}` must be declared in the cell (it is not): kept native", span))
         last = max([w.line] + [x.where.line + 1 for x in walk((s,)) if x is not s])
-        text = "\n".join(span.file.line_text(n).strip() for n in range(w.line, last + 1))
+        text = "\n".join(native_line(doc.vendor, span.file.line_text(n)) for n in range(w.line, last + 1))
         moved[w.path] = moved.get(w.path, 0) + 1
         return Native(doc.vendor, text or f"signal {missing[0]}", w)
 

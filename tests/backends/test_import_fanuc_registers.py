@@ -40,7 +40,8 @@ def _import(folder: Path, files: dict[str, list[str]], args: tuple[str, ...] = (
     result = CliRunner().invoke(cli, ["import", *paths, "-o", str(out), *args], catch_exceptions=False)
     assert result.exit_code == 0, result.output
     program = out.read_text()
-    return program[program.index("\nprogram ") + 1:], (folder / "imported_cell.rmot").read_text(), result.output
+    stub = folder / "imported_cell.rmot"  # none with --cell
+    return program[program.index("\nprogram ") + 1:], stub.read_text() if stub.exists() else "", result.output
 
 
 def _checks(folder: Path) -> None:
@@ -239,3 +240,17 @@ def test_a_register_comment_naming_another_register_or_a_program_is_not_its_name
                                        "SUB": ["DO[2]=ON"]})
     decls = sorted(ln.strip() for ln in program.splitlines() if ln.strip().startswith("var "))
     assert decls == ["var r3_r5: int = 0", "var r4_sub: int = 0", "var r5: int = 0"]
+
+
+def test_with_a_cell_a_register_it_does_not_declare_keeps_its_lines_native(tmp_path: Path) -> None:
+    """--cell declares R[1] (gin[3]) but not R[2]: the jump on R[2] stays native as TP wrote it
+    (no line numbers), with one W513; R[1]'s reads take the cell's port."""
+    (tmp_path / "cell.rmot").write_text('cell c {\n  robot r1 = fanuc_m20ia\n  io gin[3] = "R[1]" on r1\n}\n')
+    program, _, output = _import(tmp_path, {"CELLREG": ["IF (R[1]=1) THEN", "DO[1]=ON", "ENDIF", "IF R[2]<>3,JMP LBL[1]",
+                                                        "J P[1] 100% FINE", "LBL[1]"]},
+                                 ("--cell", str(tmp_path / "cell.rmot")))
+    assert "  if gin[3] == 1 {\n    set out[1] = on\n  }\n" in program
+    natives = [ln.strip().split("   #")[0] for ln in program.splitlines() if "native fanuc" in ln]
+    assert natives == ['native fanuc "IF R[2]<>3,JMP LBL[1] ;"', 'native fanuc "J P[1] 100% FINE ;"',
+                       'native fanuc "LBL[1] ;"']
+    assert output.count("warning[W513]") == 1
