@@ -10,11 +10,10 @@ from __future__ import annotations
 
 import os
 import re
-from collections import Counter
 from collections.abc import Callable
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, native_line, read_text
+from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
 from rmot.lang.ir import Pose
 from rmot.backends.readers.model import Document, PulsePose, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -250,29 +249,18 @@ def _unknown_calls_kept(doc: Document) -> Document:
     """A call of a routine none of the files given defines stays native with W510: the controller
     runs a program rmot does not see (what it moves is not planned), and a call of a proc the
     imported program lacks would not compile (E101)."""
-    from rmot.backends.readers.model import Call, FileCount, Native  # late: loads numpy only when this runs
-    from rmot.backends.readers.writer import map_leaves  # late: loads numpy only when this runs
+    from rmot.backends.readers.model import Call  # late: loads numpy only when this runs
+    from rmot.backends.readers.writer import Keep, kept_native  # late: loads numpy only when this runs
 
     known = {r.name.upper() for r in doc.routines}
-    kept: list[Diagnostic] = []
 
-    def keep(s: Stmt) -> Stmt:
+    def unknown(s: Stmt) -> Keep | None:
         if not isinstance(s, Call) or s.name.upper() in known:
-            return s
-        source = _SOURCES.get(s.where.path)
-        line = source.line_text(s.where.line) if source is not None else f"{s.name}()"
-        text = native_line(doc.vendor, line)
-        kept.append(Diagnostic(codes.KEPT_NATIVE, Severity.WARNING, f"`{s.name}` is a routine none of the files "
-                               f"given defines (give its file too); kept as `native {doc.vendor}`: {text[:60]}",
-                               span_of(s.where)))
-        return Native(doc.vendor, text, s.where)
+            return None
+        return (codes.KEPT_NATIVE, lambda text: f"`{s.name}` is a routine none of the files given defines (give its "
+                f"file too); kept as `native {doc.vendor}`: {text[:60]}", f"{s.name}()")
 
-    routines = tuple(replace(r, body=map_leaves(r.body, keep)) for r in doc.routines)
-    if not kept:
-        return doc
-    moved = Counter(str(d.span.file.path) for d in kept if d.span is not None)
-    counts = tuple(FileCount(c.path, c.imported - moved[c.path], c.native + moved[c.path]) for c in doc.counts)
-    return replace(doc, routines=routines, counts=counts, diagnostics=doc.diagnostics + tuple(kept))
+    return kept_native(doc, unknown, span_of)
 
 
 def _without_inlined(docs: list[Document]) -> list[Document]:

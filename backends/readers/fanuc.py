@@ -25,7 +25,7 @@ from rmot.backends.readers.common import (
     Tally, counter_alone, label_arms, label_loop, match_simple, number, reaches, rmot_name,
 )
 from rmot.backends.readers.fanuc_regs import Registers, negated
-from rmot.backends.readers.fanuc_text import german_instruction, group_test, wait_condition
+from rmot.backends.readers.fanuc_text import german_instruction, wait_condition
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
@@ -279,7 +279,7 @@ class _Ls:
                            lambda r, k: rf"IF R\[{r}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{k}\]",
                            lambda r: rf"R\[{r}(?::[^\]]*)?\]=R\[{r}(?::[^\]]*)?\]\+1")
         if found is None or not self._counter_alone(found[0], i, found[3]) or jumped_to_elsewhere(
-                self._text, len(self.instructions), (self._text(i + 1)[4:-1],), _names_label, {i + 1, found[3]}):
+                self._text, len(self.instructions), (_label_of(self._text(i + 1)) or "",), _names_label, {i + 1, found[3]}):
             return None  # the counter not the loop's alone, or a jump into the loop
         reg, first, last, j = found
         label = re.match(r"R\[\d+:([^\]]*)\]", self._text(i))
@@ -293,7 +293,7 @@ class _Ls:
         """Whether no register is written through another and R[reg] is the loop's (lines `i` to
         `j`) alone (common.counter_alone): counted by labels, or by FOR .. ENDFOR (`own` = (i, j))."""
         c = rf"R\[{reg}(?::[^\]]*)?\]"
-        return not any(re.search(r"\b[RF]\[\s*A?R\[", t) for t, _ in self.instructions) and counter_alone(
+        return self.regs is not None and not self.regs.indirect and counter_alone(
             self._text, len(self.instructions), i, j, rf"\b{c}", (rf"PR\[\d+,[123]\]\s*=\s*{c}\*-?[\d.]+",),
             (rf"{c}\s*=\s*-?\d+", rf"{c}={c}\+1", rf"IF {c}<=-?\d+,JMP LBL\[\d+\]", rf"FOR {c}=-?\d+ TO -?\d+"), own)
 
@@ -333,22 +333,16 @@ class _Ls:
         return found if found is not None or self.regs is None else self.regs.condition(text)
 
     def _jump_at(self, i: int) -> Jump | None:
-        """`IF DI[n]<>ON,JMP LBL[a]` (or an output, `DO[n]`; or `IF GI[n]<>v,JMP LBL[a]`: a group
-        input's test): its label, when it is taken and when not."""
+        """`IF DI[n]<>ON,JMP LBL[a]` (or an output, `DO[n]`), or a jump on any condition
+        `_condition` reads (a group input's test `IF GI[n]<>v,JMP`, registers, flags): its label,
+        when it is taken and when not."""
         m = re.fullmatch(rf"IF (DI|DO){_SIG}\s*(<>|=)\s*(ON|OFF),\s*JMP LBL\[(\d+)\]", self._text(i))
         if m is not None:
             # taken when the signal is at the level `=` names, or at the other one with `<>`
             taken = Cond(int(m.group(2)), (m.group(4) == "ON") == (m.group(3) == "="), m.group(1) == "DO")
             return m.group(5), taken, taken.negated(), i + 1
-        p = re.fullmatch(r"IF\s*(\(.*\)),\s*JMP LBL\[(\d+)\]", self._text(i))  # `IF (DI[1]),JMP`, `IF (!DO[2])..`
-        single = wait_condition(f"WAIT {p.group(1)}") if p else None
-        if p is not None and isinstance(single, Cond):
-            return p.group(2), single, single.negated(), i + 1
-        g = re.fullmatch(r"IF (GI\[.*?),\s*JMP LBL\[(\d+)\]", self._text(i))
-        taken_group, falls = (group_test(g.group(1)), group_test(g.group(1), negate=True)) if g else (None, None)
-        if g is not None and taken_group is not None and falls is not None:
-            return g.group(2), taken_group, falls, i + 1
-        r = re.fullmatch(r"IF\s*(.+?),\s*JMP LBL\[(\d+)\]", self._text(i))  # registers and flags
+        # any other condition `_condition` reads: `IF (DI[1]),JMP`, `IF GI[1]<>3,JMP`, registers, flags
+        r = re.fullmatch(r"IF\s*(.+?),\s*JMP LBL\[(\d+)\]", self._text(i))
         test = self._condition(r.group(1)) if r else None
         if r is None or test is None:
             return None
@@ -586,14 +580,13 @@ def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = 
     frame names by number, from all the program's files; `programs`: those files by program
     name (a program called inside a loop that moves its targets is inlined at the call)."""
     not_vars: frozenset[tuple[str, int]] = frozenset()
-    for _ in range(3):  # a native line using a register read as a variable: read it again without
+    for attempt in range(4):  # a native line using a register read as a variable: read it again without
         ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose, not_vars)
         ls.read()
-        touched = ls.regs.used_natively(ls.routine.body) if ls.regs is not None else set()
+        assert ls.regs is not None
+        touched = ls.regs.used_natively(ls.routine.body)
         if not touched:
-            return ls
-        not_vars |= touched
-    vars_left = frozenset(ls.regs.vars) if ls.regs is not None else frozenset()
-    ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose, not_vars | vars_left)
-    ls.read()  # no variables are left: the reading of what remains only shrinks as more are excluded
+            break
+        # after three tries, none at all: what is read only shrinks as more are excluded
+        not_vars |= touched if attempt < 2 else frozenset(ls.regs.vars)
     return ls

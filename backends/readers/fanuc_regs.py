@@ -86,13 +86,14 @@ class Registers:
                     self.labels.setdefault((kind, int(n)), label.strip())
         self.label_uses = Counter(self.labels.values())
         sets = self._sets()
-        indirect = any(_INDIRECT.search(t) for t, _ in self.texts)
+        # a register or flag written through another (`R[R[2]]=`): any of them may change
+        self.indirect = any(_INDIRECT.search(t) for t, _ in self.texts)
         tested = {k for t, _ in self.texts for k in self._mentions(t)} - set(sets)
-        self.external: set[int] = set() if indirect else {n for kind, n in tested if kind == "R"}
+        self.external: set[int] = set() if self.indirect else {n for kind, n in tested if kind == "R"}
         self.vars: dict[_Key, tuple[str, str]] = {}
         self.decls: list[VarDecl] = []
         self.warned: set[_Key] = set()
-        if main and not indirect:
+        if main and not self.indirect:
             mentioned_elsewhere = {k for text in others for k in self._mentions(plain(text))}
             self._choose_vars({k: v for k, v in sets.items() if k not in mentioned_elsewhere})
 

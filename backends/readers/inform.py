@@ -235,7 +235,7 @@ class _Job:
         """`SET Dv a`, `*Lk`, body, `INC Dv`, `JUMP *Lk IF Dv<=b` (the backend's counted loop)."""
         found = label_loop(self._text, i, end, r"SET (D\d+) (\d+)", r"\*(L\w+)",
                            lambda v, k: rf"JUMP \*{k} IF {v}<=(\d+)", lambda v: f"INC {v}")
-        if found is None or jumped_to_elsewhere(self._text, len(self.inst), (self._text(i + 1)[1:],), _names_label, {i + 1, found[3]}):
+        if found is None or jumped_to_elsewhere(self._text, len(self.inst), (_label_of(self._text(i + 1)) or "",), _names_label, {i + 1, found[3]}):
             return None
         if not counter_alone(self._text, len(self.inst), i, found[3], rf"\b{found[0]}\b", (rf"SET D\d+ {found[0]}",),
                              (rf"SET {found[0]} \d+", f"INC {found[0]}", rf"JUMP \*L\w+ IF {found[0]}<=\d+")):

@@ -9,6 +9,7 @@ times are each move's own modifiers, exactly as the vendor wrote them on that mo
 from __future__ import annotations
 
 import re
+from collections import Counter
 from collections.abc import Callable
 from dataclasses import replace
 
@@ -22,13 +23,13 @@ from rmot.backends.readers.model import Assign, GroupIn, VarDecl, group_reads
 from rmot.backends.readers.model import Sync
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.lang import ir
-from rmot.lang.diagnostics import Diagnostic, Severity
+from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
 __all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools",
            "rename_warnings"]
-__all__ += ["task_lines", "signal_uses"]
+__all__ += ["task_lines", "signal_uses", "kept_native", "Keep"]
 
 INDENT = "  "
 
@@ -109,28 +110,48 @@ def _with_routines(doc: Document, fn: Callable[[Stmt], Stmt], **changes: object)
     return replace(doc, routines=routines, **changes)  # type: ignore[arg-type]
 
 
-def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where], Span]) -> Document:
-    """Every named signal the cell does not declare: its instruction is kept native (W513)."""
-    diags: list[Diagnostic] = []
-    moved: dict[str, int] = {}
+# why a statement is kept native: (the code, its message given the native text, the text where
+# the source line is not known)
+Keep = tuple[Code, Callable[[str], str], str]
 
-    def fix(s: Stmt) -> Stmt:
-        missing = [sig for kind, sig in _signal_uses(s) if signals.port(kind, sig) is None]
-        if not missing:
+
+def kept_native(doc: Document, why: Callable[[Stmt], Keep | None], span_of: Callable[[Where], Span]) -> Document:
+    """`doc` with every statement `why` names kept native: the source lines it was read from as the
+    vendor wrote them (a block with its body), a warning there, and its file's count moved from
+    imported to native."""
+    diags: list[Diagnostic] = []
+    moved: Counter[str] = Counter()
+
+    def keep(s: Stmt) -> Stmt:
+        found = why(s)
+        if found is None:
             return s
+        code, message, fallback = found
         w = s.where
         span = span_of(w)
-        diags.append(Diagnostic(codes.SIGNAL_UNKNOWN, Severity.WARNING,
-                                f"signal `{missing[0]}` must be declared in the cell (it is not): kept native", span))
         last = max([w.line] + [x.where.line + 1 for x in walk((s,)) if x is not s])
         text = "\n".join(native_line(doc.vendor, span.file.line_text(n)) for n in range(w.line, last + 1))
-        moved[w.path] = moved.get(w.path, 0) + 1
-        return Native(doc.vendor, text or f"signal {missing[0]}", w)
+        diags.append(Diagnostic(code, Severity.WARNING, message(text or fallback), span))
+        moved[w.path] += 1
+        return Native(doc.vendor, text or fallback, w)
 
-    fixed = _with_routines(doc, fix)
-    counts = tuple(FileCount(c.path, c.imported - moved.get(c.path, 0), c.native + moved.get(c.path, 0))
-                   for c in doc.counts)
+    fixed = _with_routines(doc, keep)
+    if not diags:
+        return doc
+    counts = tuple(FileCount(c.path, c.imported - moved[c.path], c.native + moved[c.path]) for c in doc.counts)
     return replace(fixed, counts=counts, diagnostics=doc.diagnostics + tuple(diags))
+
+
+def resolve_signals(doc: Document, signals: SignalMap, span_of: Callable[[Where], Span]) -> Document:
+    """Every named signal the cell does not declare: its instruction is kept native (W513)."""
+
+    def undeclared(s: Stmt) -> Keep | None:
+        missing = [sig for kind, sig in _signal_uses(s) if signals.port(kind, sig) is None]
+        return None if not missing else (
+            codes.SIGNAL_UNKNOWN, lambda _: f"signal `{missing[0]}` must be declared in the cell (it is not): kept native",
+            f"signal {missing[0]}")
+
+    return kept_native(doc, undeclared, span_of)
 
 
 def rename_warnings(doc: Document, span_of: Callable[[Where], Span]) -> tuple[Diagnostic, ...]:
