@@ -136,11 +136,13 @@ class _Ls:
     def _mn_line(self, line: str, n: int) -> None:
         if re.fullmatch(r"\s*-+\s*;?\s*", line):  # the end of a move's point-logic lines (its own
             return  # numbered lines, listed after the move, run at the point: read in sequence)
-        m = re.match(r"\s*(\d+)?\s*:\s*(.*?)\s*;?\s*$", line)
+        m = re.match(r"\s*(\d+)?\s*:\s*(.*?)\s*;?\s*$", line) or (  # `C P[a]` on its line, `P[b] ..` on the next
+            re.match(r"()\s*(P\[.*?)\s*;?\s*$", line) if self.instructions and re.fullmatch(
+                r"C\s+PR?\[[^\]]*\]", self.instructions[-1][0]) else None)  # (as RoboDK's post writes it, without `:`)
         if m is None:
             raise self.tally.fail(f"a /MN line must be `N:  instruction ;` (got `{line.strip()[:40]}`)", Where(self.path, n))
         text = m.group(2)
-        if m.group(1) is None and self.instructions and re.match(r"P\[", text):  # `: P[b] ..` continues C P[a]
+        if not m.group(1) and self.instructions and re.match(r"P\[", text):  # `: P[b] ..` continues C P[a]
             prev, where = self.instructions[-1]
             self.instructions[-1] = (f"{prev} : {text}", where)
         else:

@@ -14,61 +14,27 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping
-from itertools import product
+from typing import TypeVar
 
-from rmot.backends.rapid_text import SPEEDS_MM_S, ZONES_MM, cfx_of
+from rmot.backends.rapid_text import SPEEDS_MM_S, ZONES_MM
 from rmot.backends.readers import axes_slots, codes, jump_spans
 from rmot.backends.readers.common import Tally, num_expr, number, rmot_name, split_top
 from rmot.backends.readers.model import (
     Call, Cond, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While,
     For, Routine,
 )
+from rmot.backends.readers.rapid_data import DataFlow, branch_of, changed_data, frame_of, in_document, pose_of, tool_of
 from rmot.backends.readers.rapid_logic import RapidVars, condition
 from rmot.backends.readers.rapid_text import Statement, literal, statements
 from rmot.lang import ir
 
-__all__ = ["read_rapid", "branch_of_cfx", "pose_expr", "num_text", "mm"]
+__all__ = ["read_rapid", "pose_expr", "num_text", "mm"]
 
 PULSE_DEFAULT_S = 0.2  # PulseDO without \PLength: 0.2 s (RAPID Instructions, PulseDO)
 _PARAM_TYPES = {"robtarget": "pose", "jointtarget": "joints", "num": "number", "bool": "bool"}
 _DECL = re.compile(r"(?i)^(?:(?:LOCAL|TASK)\s+)*(CONST|PERS|VAR)\s+(\w+)\s+(\w+)\s*(\{[^}]*\})?\s*(?::=\s*(.*))?$")
+T = TypeVar("T")
 _MOVES = {"MOVEJ": "joint", "MOVEL": "linear", "MOVEC": "circular", "MOVEABSJ": "joint"}
-
-
-def _branch(lit: object) -> ir.Config | None:
-    """The branch of a robtarget literal's confdata [cf1, cf4, cf6, cfx] (its cfx), named or
-    inline (`MoveJ [[x,y,z],[q..],[0,-1,-1,0],[..]], ..` as RobotStudio and hand-written
-    modules write it)."""
-    conf = lit[2] if isinstance(lit, list) and len(lit) > 2 and isinstance(lit[2], list) else None
-    cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
-    return branch_of_cfx(int(cfx)) if cfx is not None else None
-
-
-def branch_of_cfx(cfx: int) -> ir.Config | None:
-    """The branch whose cfx (the backend's `cfx_of`) is `cfx`; None outside 0..7."""
-    for s, e, w in product(ir.Shoulder, ir.Elbow, ir.Wrist):
-        branch = ir.Config(s, e, w)
-        if cfx_of(branch) == cfx:
-            return branch
-    return None
-
-
-def _pose(lit: object) -> ir.Pose | None:
-    """[[x,y,z],[q1,q2,q3,q4], ...] in mm -> ir.Pose (metres), None if malformed."""
-    if not (isinstance(lit, list) and len(lit) >= 2 and isinstance(lit[0], list) and isinstance(lit[1], list)):
-        return None
-    xyz, q = lit[0], lit[1]
-    if len(xyz) != 3 or len(q) != 4 or not all(isinstance(v, float) for v in xyz + q):
-        return None
-    qf = [float(v) for v in q]
-    norm = sum(v * v for v in qf) ** 0.5
-    if norm < 1e-9:
-        return None
-    w, x, y, z = (v / norm for v in qf)
-    if w < 0:
-        w, x, y, z = -w, -x, -y, -z
-    px, py, pz = (float(v) / 1000 for v in xyz)
-    return ir.Pose((px, py, pz), (w, x, y, z))
 
 
 def mm(expr: str) -> str:
@@ -96,6 +62,10 @@ class _Module:
         self.acc_pct: float | None = None  # the last `AccSet Acc, 100;` (modal), None = 100 %
         self.name = "imported"
         self.logic = RapidVars(self.stmts, self.tally)  # task variables (rapid_logic.py)
+        self.changed = changed_data(self.stmts)  # data some statement assigns: not constant (rapid_data.py)
+        declared = {d.group(3).upper(): (d.group(2).lower(), d.group(3), literal(d.group(5)))
+                    for st in self.stmts if (d := _DECL.match(st.text)) and d.group(5) and not d.group(4)}
+        self.flow = DataFlow(self.stmts, declared, self.data)
 
     # ---------------------------------------------------------------- module level
 
@@ -137,16 +107,19 @@ class _Module:
             if m is None or (not local and re.match(r"(?i)^LOCAL\b", st.text)):
                 continue
             _, type_, name, dims, value = m.groups()
-            if value and not dims and name.upper() not in self.logic.assigned:
+            if value and not dims and name.upper() not in self.logic.assigned and name.upper() not in self.changed:
                 self._data(type_.lower(), name, literal(value), st.where)
 
     def share(self, other: _Module) -> None:
-        """The global data of another module of the task, where this one declares no such name."""
-        self.targets = {**other.targets, **self.targets}
-        self.tools = {**other.tools, **self.tools}
-        self.frames = {**other.frames, **self.frames}
-        self.speeds = {**other.speeds, **self.speeds}
-        self.zones = {**other.zones, **self.zones}
+        """The global data of another module of the task, where this one declares no such name
+        and no statement of this module assigns it."""
+        def constant(data: dict[str, T]) -> dict[str, T]:
+            return {k: v for k, v in data.items() if k not in self.changed}
+        self.targets = {**constant(other.targets), **self.targets}
+        self.tools = {**constant(other.tools), **self.tools}
+        self.frames = {**constant(other.frames), **self.frames}
+        self.speeds = {**constant(other.speeds), **self.speeds}
+        self.zones = {**constant(other.zones), **self.zones}
         self.names |= other.names  # its numbers may be used here (declared by its own module)
 
     def _declaration(self, st: Statement) -> None:
@@ -161,7 +134,12 @@ class _Module:
             self.tally.imported += 1
             return
         lit = literal(value) if value and not dims else None
-        if not self._data(type_.lower(), name, lit, st.where):
+        first = self.changed.get(name.upper())
+        if first is not None:
+            self.tally.warn(codes.DECLARATION_KEPT, f"`{name}` is assigned at {self._place(first)} (`{first.text[:50]}`): "
+                            "its declared value is not its value where a move reads it; kept as a comment", st.where)
+            self.tally.comment(st.text + ";", st.where)
+        elif not self._data(type_.lower(), name, lit, st.where):
             self.tally.warn(codes.DECLARATION_KEPT, f"{type_} {name} has no rmot form here: kept as a comment",
                             st.where)
             self.tally.comment(st.text + ";", st.where)
@@ -170,10 +148,10 @@ class _Module:
 
     def _data(self, type_: str, name: str, lit: object, where: Where) -> bool:
         if type_ == "robtarget":
-            pose = _pose(lit) if axes_slots.rapid_slots(lit, 3) is not None else None
+            pose = pose_of(lit) if axes_slots.rapid_slots(lit, 3) is not None else None
             if pose is None:
                 return False
-            self.targets[name.upper()] = Target(name, pose, None, _branch(lit), where, slots=axes_slots.rapid_slots(lit, 3) or ())
+            self.targets[name.upper()] = Target(name, pose, None, branch_of(lit), where, slots=axes_slots.rapid_slots(lit, 3) or ())
         elif type_ == "jointtarget":
             if not (isinstance(lit, list) and lit and isinstance(lit[0], list)
                     and all(isinstance(v, float) for v in lit[0]) and axes_slots.robax_read(lit)):
@@ -195,23 +173,16 @@ class _Module:
         return True
 
     def _tool(self, name: str, lit: object, where: Where) -> bool:
-        if not (isinstance(lit, list) and len(lit) >= 3 and lit[0] == "TRUE"):
-            return False  # a stationary tool (robhold FALSE) has no rmot form
-        tcp = _pose(lit[1])
-        load = lit[2]
-        if tcp is None or not (isinstance(load, list) and load and isinstance(load[0], float)):
-            return False
-        self.tools[name.upper()] = ToolData(name, tcp, load[0], where)
-        return True
+        tool = tool_of(name, lit, where)
+        if tool is not None:
+            self.tools[name.upper()] = tool
+        return tool is not None
 
     def _wobj(self, name: str, lit: object, where: Where) -> bool:
-        if not (isinstance(lit, list) and len(lit) >= 5 and lit[0] == "FALSE"):
-            return False  # a work object moved by the robot or a mechanical unit has no rmot form
-        uframe, oframe = _pose(lit[3]), _pose(lit[4])
-        if uframe is None or oframe is None:
-            return False
-        self.frames[name.upper()] = FrameData(name, uframe * oframe, where)
-        return True
+        frame = frame_of(name, lit, where)
+        if frame is not None:
+            self.frames[name.upper()] = frame
+        return frame is not None
 
     def _skip_routine(self, i: int) -> int:
         """FUNC and TRAP routines: kept as comments (rmot has neither functions nor interrupts)."""
@@ -242,6 +213,7 @@ class _Module:
         self.names |= {p for p, t in params if t == "number"}
         self.pose_params = {p for p, t in params if t in ("pose", "joints")}
         self.logic.enter(m.group(1) == self._main_name(), self.consts)
+        self.flow.restart()
         body, i = self._block(i + 1, ("ENDPROC",))
         self.names, self.pose_params = saved, set()
         self.logic.enter(None, self.consts)
@@ -261,8 +233,12 @@ class _Module:
         return out
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
-        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
-        return self.tally.nested(self.stmts[min(i, len(self.stmts) - 1)].where, lambda: self._block_body(i, ends))
+        """The statements from `i` to the block's end (nesting bounded by Tally.nested); the data
+        it assigns are not known on entry nor after it (rapid_data.DataFlow)."""
+        before = self.flow.enter(i)
+        found = self.tally.nested(self.stmts[min(i, len(self.stmts) - 1)].where, lambda: self._block_body(i, ends))
+        self.flow.leave(before, i, found[1])
+        return found
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
@@ -295,6 +271,11 @@ class _Module:
             return [], i + 1
         if word in ("WAITDI", "WAITUNTIL") and i + 1 < len(self.stmts) and self.logic.flag_of(st, i + 1):
             return self._timed_wait(i)
+        if word in self.proc_names or re.match(r"(?i)^(\w+\s*:$|%|CallByVar\b)", st.text):
+            self.flow.restart()  # a routine of the files may set the data; a jump may arrive here
+        if self.flow.assign(st):
+            self.tally.imported += 1
+            return [], i + 1
         assign = self.logic.statement(st)
         if assign is not None:
             self.tally.imported += 1
@@ -316,13 +297,22 @@ class _Module:
                                                       for b in split_top(a, "\\")] if m]
         unknown = sorted({n for n in names if n.upper() not in known and not re.fullmatch(r"[\d.]+", n)},
                          key=names.index)
+        changed = [n for n in unknown if n.upper() in self.changed]
+        if changed:
+            first = self.changed[changed[0].upper()]
+            return (f"`{changed[0]}` is assigned at {self._place(first)} (`{first.text[:50]}`): its value here is "
+                    "known only at run time")
         if not unknown:
             return "no rmot form"
         return (f"{', '.join(unknown)} {'is' if len(unknown) == 1 else 'are'} not declared in the files given "
                 "(another module of the task? give it too) or not constant data")
 
+    def _place(self, st: Statement) -> str:
+        return f"line {st.where.line}" if st.where.path == self.tally.path else f"{st.where.path}:{st.where.line}"
+
     def _keep_block(self, i: int, end: str, why: str) -> tuple[list[Stmt], int]:
         out: list[Stmt] = []
+        self.flow.skip(i)
         depth = 0
         while i < len(self.stmts):
             st = self.stmts[i]
@@ -409,7 +399,9 @@ class _Module:
     def _simple(self, st: Statement) -> Stmt | None:
         word = st.word
         args_text = st.text[len(word):].strip() if st.text[:len(word)].upper() == word else ""
-        args = split_top(args_text) if args_text else []
+        args: list[str] = []
+        for a in split_top(args_text) if args_text else []:  # `tool1, \WObj:=w` (as RoboDK writes) is `tool1\WObj:=w`
+            args += [args.pop() + a.strip()] if a.strip().startswith("\\") and args else [a]
         if word in _MOVES:
             return self._move(word, args, st.where)
         if word == "SETDO" and len(args) == 2 and args[1] in ("0", "1"):
@@ -472,14 +464,16 @@ class _Module:
         if (word == "MOVEABSJ") != (decl is not None and decl.joints is not None):
             return None
         timing = self._speed(kind, speed)
-        zone_mm = self.zones.get(zone[0].upper(), "bad") if len(zone) == 1 else "bad"
-        frame = self._wobj_of(tool[1:])
-        if timing is None or zone_mm == "bad" or tool[0].upper() not in {*self.tools, "TOOL0"} or frame is None:
+        zone_mm = "bad" if len(zone) != 1 else self.zones[zone[0].upper()] if zone[0].upper() in self.zones \
+            else self.flow.zone(zone[0])
+        frame = self._wobj_of(tool[1:], where)
+        held = self.tools.get(tool[0].upper()) or self.flow.tool(tool[0], where)
+        if timing is None or zone_mm == "bad" or (held is None and tool[0].upper() != "TOOL0") or frame is None:
             return None
         if timing[2]:
             self.tally.warn(codes.JOINT_SPEED_READ, f"{word} at {speed[0]}: rmot times a joint move by its joint "
                             "share; read as 100 %", where)
-        tool_name = self.tools[tool[0].upper()].name if tool[0].upper() in self.tools else "flange"
+        tool_name = in_document(held, self.tools).name if held is not None else "flange"
         config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
         return Move(kind, expr, name, where, via=via, speed=timing[0] if kind != "joint" else None,
                     joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
@@ -498,20 +492,22 @@ class _Module:
             duration = float(m.group(1))
         if name == "VMAX":
             return (5000.0 if kind != "joint" else None, duration, False)
-        if name not in self.speeds:
+        v_tcp = self.speeds.get(name) or self.flow.v_tcp(speed[0])
+        if v_tcp is None:
             return None
-        return (self.speeds[name], duration, kind == "joint" and duration is None)
+        return (v_tcp, duration, kind == "joint" and duration is None)
 
-    def _wobj_of(self, switches: list[str]) -> str | None:
+    def _wobj_of(self, switches: list[str], where: Where) -> str | None:
         frame = "base"
         for s in switches:
             m = re.fullmatch(r"(?i)WObj\s*:=\s*(\w+)", s)
             if m is None:
                 return None
             if m.group(1).upper() != "WOBJ0":
-                if m.group(1).upper() not in self.frames:
+                found = self.frames.get(m.group(1).upper()) or self.flow.frame(m.group(1), where)
+                if found is None:
                     return None
-                frame = self.frames[m.group(1).upper()].name
+                frame = in_document(found, self.frames).name
         return frame
 
     def _target(self, text: str, depth: int = 0) -> tuple[str, str | None, Target | None] | None:
@@ -533,9 +529,14 @@ class _Module:
                 args += [bits[0]] + ["\\" + b for b in bits[1:]]
             return self._offset(m.group(1).upper(), args, depth)
         lit = literal(text)
-        pose = _pose(lit) if axes_slots.rapid_slots(lit, 3) is not None else None
+        pose = pose_of(lit) if axes_slots.rapid_slots(lit, 3) is not None else None
         if pose is not None:
-            return (pose_expr(pose), None, Target("", pose, None, _branch(lit), Where("", 0), slots=axes_slots.rapid_slots(lit, 3) or ()))
+            return (pose_expr(pose), None, Target("", pose, None, branch_of(lit), Where("", 0), slots=axes_slots.rapid_slots(lit, 3) or ()))
+        robax = lit[0] if isinstance(lit, list) and len(lit) == 2 and isinstance(lit[0], list) else []
+        joints = tuple(v for v in robax if isinstance(v, float))  # a jointtarget [[robax], [extax]] in place (MoveAbsJ)
+        if len(joints) == len(robax) == 6 and axes_slots.robax_read([*lit]):  # type: ignore[misc]
+            return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
+                    Target("", None, joints, None, Where("", 0), slots=axes_slots.rapid_slots(lit, 1) or ()))
         return None
 
     def _offset(self, func: str, args: list[str], depth: int) -> tuple[str, str | None, Target | None] | None:
@@ -594,7 +595,9 @@ def read_rapid(path: str, text: str, task: Mapping[str, str] | None = None) -> _
     for other_path, other_text in (task or {}).items():
         other = _Module(other_path, other_text)
         if other_path != path and other.stmts and other.stmts[0].word == "MODULE":
+            other.changed = {**module.changed, **other.changed}  # data this module assigns is not the other's constant
             other.predeclare(local=False)
+            module.changed = {**other.changed, **module.changed}  # data another module assigns is not constant here
             module.share(other)
     module.read()
     return module

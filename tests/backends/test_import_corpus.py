@@ -19,7 +19,7 @@ from click.testing import CliRunner
 from rmot.compiler.cli import cli
 
 CORPUS = Path(__file__).resolve().parents[1] / "data" / "vendor_programs"
-FILES = sorted(p for p in CORPUS.glob("*/*") if p.suffix.lower() in (".mod", ".src", ".urscript", ".script", ".ls", ".jbi"))
+FILES = sorted(p for p in CORPUS.glob("*/*") if p.suffix.lower() in (".mod", ".prg", ".src", ".urscript", ".script", ".ls", ".jbi"))
 NOT_THE_LANGUAGE = {"external_control.urscript"}  # a driver template: `{{...}}` placeholders
 
 

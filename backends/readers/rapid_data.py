@@ -1,0 +1,286 @@
+"""RAPID data the program changes, and what a move may read of it.
+
+A datum assigned anywhere in the files given, whole (`tool1 := [..]`), by a component
+(`tool1.tframe.trans.z := 100`) or by an element (`p{2} := ..`), is not constant: its
+declaration is not its value at a move. For a PERS the declaration shows the value the last run
+left (ABB RAPID Overview, 3HAC050947-001, "Data types": "Persistent data objects": "the value is
+kept when the program is restarted"), so a routine starts with every part the files assign
+unknown; the parts no statement assigns keep the declared value.
+
+`DataFlow` follows the tool, work-object, speed and zone data that straight-line code sets with
+a literal (RoboDK writes `rdkTool.tframe := [[..],[..]];`, `rdkWObj.uframe := ..`, `rdkSpeed :=
+[200,500,5000,1000];` before its moves): a move reads such a datum where every part is known.
+What may set it in between forgets it:
+  * a block: its assignments are forgotten on entry (a loop's second turn, an arm not taken)
+    and after it;
+  * a label (a jump may arrive from where the datum differed), a call of a routine of the files
+    (it may assign it): every datum is back at its start-of-routine state.
+A routine of no file given is taken not to assign them, as the reader takes every datum no file
+assigns to be constant.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from itertools import product
+from typing import TypeVar
+
+from rmot.backends.rapid_text import cfx_of
+from rmot.backends.readers.model import FrameData, ToolData, Where
+from rmot.backends.readers.rapid_text import Statement, literal
+from rmot.lang import ir
+
+__all__ = ["DataFlow", "branch_of", "changed_data", "frame_of", "in_document", "pose_of", "tool_of"]
+
+D = TypeVar("D", ToolData, FrameData)
+
+# The components of the data a move names (RAPID Instructions, Functions and Data types,
+# 3HAC050917-001: tooldata, wobjdata, speeddata, zonedata, pose, pos, orient, loaddata), in
+# their order in the aggregate; a component with its own structure names its type.
+_PARTS: dict[str, tuple[tuple[str, str | None], ...]] = {
+    "tooldata": (("robhold", None), ("tframe", "pose"), ("tload", "loaddata")),
+    "wobjdata": (("robhold", None), ("ufprog", None), ("ufmec", None), ("uframe", "pose"), ("oframe", "pose")),
+    "speeddata": (("v_tcp", None), ("v_ori", None), ("v_leax", None), ("v_reax", None)),
+    "zonedata": tuple((n, None) for n in ("finep", "pzone_tcp", "pzone_ori", "pzone_eax", "zone_ori", "zone_leax",
+                                         "zone_reax")),
+    "pose": (("trans", "pos"), ("rot", "orient")),
+    "pos": (("x", None), ("y", None), ("z", None)),
+    "orient": (("q1", None), ("q2", None), ("q3", None), ("q4", None)),
+    "loaddata": (("mass", None), ("cog", "pos"), ("aom", "orient"), ("ix", None), ("iy", None), ("iz", None)),
+}
+FOLLOWED = ("tooldata", "wobjdata", "speeddata", "zonedata")
+_ASSIGN = re.compile(r"(?i)^(\w+)((?:\s*\.\s*\w+|\s*\{[^}]*\})*)\s*:=\s*(.*)$")
+_OPENS = re.compile(r"(?i)^(IF\b.*\bTHEN|WHILE\b.*\bDO|FOR\b.*\bDO|TEST\b.*)$")
+_CLOSES = ("ENDIF", "ENDWHILE", "ENDFOR", "ENDTEST")
+
+
+class _Unknown:
+    """A part whose value the text does not fix here."""
+
+    def __repr__(self) -> str:
+        return "?"
+
+
+UNKNOWN = _Unknown()
+
+
+def _path(type_: str, parts: str) -> tuple[int, ...] | None:
+    """The index path of `.tframe.trans.z` in a `type_` aggregate; () for the whole; None
+    where a part is an element (`{..}`) or not a component rmot knows."""
+    path: list[int] = []
+    for name in re.findall(r"\.\s*(\w+)|\{", parts):
+        names = [n for n, _ in _PARTS.get(type_, ())]
+        if not name or name.lower() not in names:
+            return None
+        k = names.index(name.lower())
+        path.append(k)
+        type_ = _PARTS[type_][k][1] or ""
+    return tuple(path)
+
+
+def changed_data(stmts: list[Statement]) -> dict[str, Statement]:
+    """Upper-case name -> the first statement assigning it (whole, a component or an element)."""
+    out: dict[str, Statement] = {}
+    for st in stmts:
+        m = _ASSIGN.match(st.text)
+        if m:
+            out.setdefault(m.group(1).upper(), st)
+    return out
+
+
+def _known(value: object) -> bool:
+    return value is not UNKNOWN and (not isinstance(value, list) or all(_known(v) for v in value))
+
+
+def _with(value: object, path: tuple[int, ...], part: object) -> object:
+    """`value` with the part at `path` replaced (UNKNOWN where the path does not fit it)."""
+    if not path:
+        return part
+    if not isinstance(value, list) or path[0] >= len(value):
+        return UNKNOWN
+    return [_with(v, path[1:], part) if k == path[0] else v for k, v in enumerate(value)]
+
+
+def pose_of(lit: object) -> ir.Pose | None:
+    """[[x,y,z],[q1,q2,q3,q4], ...] in mm -> ir.Pose (metres), None if malformed."""
+    if not (isinstance(lit, list) and len(lit) >= 2 and isinstance(lit[0], list) and isinstance(lit[1], list)):
+        return None
+    xyz, q = lit[0], lit[1]
+    if len(xyz) != 3 or len(q) != 4 or not all(isinstance(v, float) for v in xyz + q):
+        return None
+    qf = [float(v) for v in q]
+    norm = sum(v * v for v in qf) ** 0.5
+    if norm < 1e-9:
+        return None
+    w, x, y, z = (v / norm for v in qf)
+    if w < 0:
+        w, x, y, z = -w, -x, -y, -z
+    px, py, pz = (float(v) / 1000 for v in xyz)
+    return ir.Pose((px, py, pz), (w, x, y, z))
+
+
+def branch_of(lit: object) -> ir.Config | None:
+    """The branch of a robtarget literal's confdata [cf1, cf4, cf6, cfx] (its cfx), named or
+    inline (`MoveJ [[x,y,z],[q..],[0,-1,-1,0],[..]], ..` as RobotStudio and hand-written
+    modules write it): the branch whose cfx (the backend's `cfx_of`) it is; None outside 0..7."""
+    conf = lit[2] if isinstance(lit, list) and len(lit) > 2 and isinstance(lit[2], list) else None
+    cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
+    return next((ir.Config(s, e, w) for s, e, w in product(ir.Shoulder, ir.Elbow, ir.Wrist)
+                 if cfx is not None and cfx_of(ir.Config(s, e, w)) == int(cfx)), None)
+
+
+def in_document(datum: D, data: dict[str, D]) -> D:
+    """`datum`, among `data` (the module's tools or frames, which the document lists) also where
+    straight-line code set it: under its name and `#`, which no RAPID name has, so that no move
+    finds it by the datum's name."""
+    if data.get(datum.name.upper()) is not datum:
+        data.setdefault(f"{datum.name.upper()}#", datum)
+    return datum
+
+
+def tool_of(name: str, lit: object, where: Where) -> ToolData | None:
+    """A tooldata literal held by the robot (robhold TRUE) as a tool; None otherwise (a
+    stationary tool has no rmot form)."""
+    if not (isinstance(lit, list) and len(lit) >= 3 and lit[0] == "TRUE"):
+        return None
+    tcp, load = pose_of(lit[1]), lit[2]
+    if tcp is None or not (isinstance(load, list) and load and isinstance(load[0], float)):
+        return None
+    return ToolData(name, tcp, load[0], where)
+
+
+def frame_of(name: str, lit: object, where: Where) -> FrameData | None:
+    """A wobjdata literal not moved by the robot or a mechanical unit (robhold FALSE) as its
+    object frame in the base (uframe · oframe); None otherwise."""
+    if not (isinstance(lit, list) and len(lit) >= 5 and lit[0] == "FALSE"):
+        return None
+    uframe, oframe = pose_of(lit[3]), pose_of(lit[4])
+    return FrameData(name, uframe * oframe, where) if uframe is not None and oframe is not None else None
+
+
+class DataFlow:
+    """The followed data's values where the statement being read runs (see the module's text)."""
+
+    def __init__(self, stmts: list[Statement], declared: Mapping[str, tuple[str, str, object]], taken: set[str]) -> None:
+        self.stmts = stmts
+        self.declared = declared  # upper name -> (type, name as written, literal)
+        self.taken = taken  # names the module declares: a renamed value's name avoids them
+        self.where: dict[str, list[tuple[int, tuple[int, ...] | None]]] = {}
+        for k, st in enumerate(stmts):
+            m = _ASSIGN.match(st.text)
+            decl = declared.get(m.group(1).upper()) if m else None
+            if m and decl:
+                self.where.setdefault(m.group(1).upper(), []).append((k, _path(decl[0], m.group(2))))
+        self.start = {name: self._at_start(name) for name in self.where}
+        self.now = dict(self.start)
+        self.made: dict[tuple[str, str], ToolData | FrameData] = {}  # (name, value) -> the datum it became
+
+    def _at_start(self, name: str) -> object:
+        """The declared value with every part the files assign unknown."""
+        value = self.declared[name][2]
+        for _, path in self.where[name]:
+            value = _with(value, path, UNKNOWN) if path is not None else UNKNOWN
+        return value
+
+    def restart(self) -> None:
+        """A routine's start, a label, a call of a routine of the files."""
+        self.now = dict(self.start)
+
+    def enter(self, i: int) -> dict[str, object]:
+        """Entering the block whose statements start at `i`: its own assignments are forgotten;
+        the state before it is returned for `leave`."""
+        before = dict(self.now)
+        self._forget(i, self.end_of(i))
+        return before
+
+    def leave(self, before: dict[str, object], i: int, j: int) -> None:
+        """After the block `i`..`j`: the state before it, less what the block assigns."""
+        self.now = before
+        self._forget(i, j)
+
+    def skip(self, i: int) -> None:
+        """After the block opened at `i`, kept native whole: what it assigns is not known."""
+        self._forget(i, self.end_of(i + 1) + 1)
+
+    def _forget(self, i: int, j: int) -> None:
+        for name, places in self.where.items():
+            if any(i <= k < j for k, _ in places):
+                self.now[name] = self.start[name]
+
+    def end_of(self, i: int) -> int:
+        """The index of the statement closing the block that starts at `i`."""
+        depth = 0
+        for k in range(i, len(self.stmts)):
+            st = self.stmts[k]
+            if st.word in _CLOSES or st.word == "ENDPROC":
+                if depth == 0:
+                    return k
+                depth -= 1
+            elif _OPENS.match(st.text):
+                depth += 1
+        return len(self.stmts)
+
+    def assign(self, st: Statement) -> bool | None:
+        """Follow `st` when it assigns a followed datum: True where a literal sets a part of a
+        value known but for it (the statement is read), False where the datum becomes unknown
+        (kept native), None where `st` assigns no followed datum."""
+        m = _ASSIGN.match(st.text)
+        decl = self.declared.get(m.group(1).upper()) if m else None
+        if m is None or decl is None or decl[0] not in FOLLOWED:
+            return None
+        name, path, part = m.group(1).upper(), _path(decl[0], m.group(2)), literal(m.group(3))
+        base = self.now.get(name, UNKNOWN)
+        if path is None or part is None or (path and not isinstance(base, list)):
+            self.now[name] = UNKNOWN if path is None or not path else _with(base, path, UNKNOWN)
+            return False
+        self.now[name] = _with(base, path, part)
+        return True
+
+    def value(self, name: str) -> object | None:
+        """The followed datum's value here, None where a part of it is not known."""
+        value = self.now.get(name.upper(), UNKNOWN)
+        return value if _known(value) else None
+
+    def v_tcp(self, text: str) -> float | None:
+        """The TCP speed (mm/s) of a speeddata literal written in place (`[200,500,5000,1000]`) or
+        of the datum `text` where it is known here; None otherwise."""
+        value = literal(text) if text.strip().startswith("[") else self.value(text)
+        speed = value[0] if isinstance(value, list) and value else None
+        return speed if isinstance(speed, float) and speed > 0 else None
+
+    def zone(self, text: str) -> float | None | str:
+        """A zonedata literal's or known datum's radius in mm (None: `finep` TRUE, a stop
+        point); "bad" where it is not known here."""
+        lit = literal(text) if text.strip().startswith("[") else self.value(text)
+        if isinstance(lit, list) and len(lit) > 1 and isinstance(lit[1], float) and lit[1] >= 0 and lit[0] in ("TRUE", "FALSE"):
+            return None if lit[0] == "TRUE" else lit[1]
+        return "bad"
+
+    def tool(self, name: str, where: Where) -> ToolData | None:
+        """The tool `name` holds here (`datum`)."""
+        found = self._datum(name, where, "tooldata")
+        return found if isinstance(found, ToolData) else None
+
+    def frame(self, name: str, where: Where) -> FrameData | None:
+        """The work object `name` holds here (`datum`)."""
+        found = self._datum(name, where, "wobjdata")
+        return found if isinstance(found, FrameData) else None
+
+    def _datum(self, name: str, where: Where, type_: str) -> ToolData | FrameData | None:
+        """The tool or work object `name` holds here, named `name` for its first value and
+        `name_2`, `name_3`, .. for the others."""
+        decl, value = self.declared.get(name.upper()), self.value(name)
+        if decl is None or value is None or decl[0] != type_:
+            return None
+        key = (name.upper(), repr(value))
+        if key not in self.made:
+            count = sum(1 for n, _ in self.made if n == key[0])
+            label = decl[1] if count == 0 else next((f"{decl[1]}_{k}" for k in range(count + 1, count + 1000)
+                                                    if f"{decl[1]}_{k}".upper() not in self.taken), None)
+            made = None if label is None else tool_of(label, value, where) if decl[0] == "tooldata" else \
+                frame_of(label, value, where)
+            if made is None:
+                return None
+            self.made[key] = made
+        return self.made[key]

@@ -1,0 +1,202 @@
+"""RAPID data a program changes (backends/readers/rapid_data.py): a tool, work object, speed,
+zone or target that a statement assigns is not its declaration at a move. Before, the reader
+took every declaration for the datum's value: a tool whose `tframe` the routine set, a work
+object whose `uframe` it set, a speed it set and a target it moved were verified at the values
+declared, without a word.
+
+Witnesses: RAPID's data semantics (ABB RAPID Overview, "Data types"; RAPID Instructions,
+Functions and Data types: tooldata, wobjdata, speeddata, zonedata) evaluated here by hand or by
+a small interpreter of straight-line code written in this file; frame arithmetic by numpy
+homogeneous matrices; and the programs RoboDK's own ABB and Fanuc post-processors wrote
+(tests/data/vendor_programs/ROBODK.md).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Move, Native, walk
+from rmot.compiler.cli import cli
+
+VENDOR = Path(__file__).resolve().parents[1] / "data" / "vendor_programs"
+P = "[[300,0,400],[0,0,1,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]]"
+TOOL = "[TRUE,[[0,0,0],[1,0,0,0]],[2,[0,0,15],[1,0,0,0],0,0,0.005]]"
+WOBJ = "[FALSE,TRUE,\"\",[[0,0,0],[1,0,0,0]],[[100,0,0],[1,0,0,0]]]"
+
+
+def _read(tmp_path: Path, body: str, data: str = "", extra: str = "", name: str = "m.mod"):  # type: ignore[no-untyped-def]
+    path = tmp_path / name
+    path.write_text(f"MODULE M\n  PERS tooldata t := {TOOL};\n  PERS wobjdata w := {WOBJ};\n"
+                    f"  VAR speeddata s := [100,500,5000,1000];\n  VAR robtarget p := {P};\n{data}"
+                    f"  PROC main()\n{body}  ENDPROC\n{extra}ENDMODULE\n")
+    return read_files([str(path)])
+
+
+def _moves(doc) -> list[Move]:  # type: ignore[no-untyped-def]
+    return [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+
+
+def _natives(doc) -> list[Native]:  # type: ignore[no-untyped-def]
+    return [s for r in doc.routines for s in walk(r.body) if isinstance(s, Native)]
+
+
+def _matrix(xyz: tuple[float, float, float], q: tuple[float, float, float, float]) -> np.ndarray:
+    """A homogeneous transform from a RAPID pose (mm, w-first unit quaternion)."""
+    w, x, y, z = q
+    rot = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                    [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                    [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = rot, np.array(xyz) / 1000.0
+    return out
+
+
+def test_a_tool_the_routine_sets_is_read_with_the_value_it_sets(tmp_path: Path) -> None:
+    doc = _read(tmp_path, "    t.tframe := [[0,0,100],[1,0,0,0]];\n    MoveL p0, v100, fine, t;\n",
+                data=f"  CONST robtarget p0 := {P};\n")
+    (tool,) = doc.tools
+    assert tool.tcp.position == pytest.approx((0.0, 0.0, 0.1)) and tool.mass == 2.0  # tload: the declared 2 kg
+    assert [m.tool for m in _moves(doc)] == [tool.name]
+
+
+def test_a_whole_tool_assigned_and_a_second_value_is_a_second_tool(tmp_path: Path) -> None:
+    doc = _read(tmp_path, "    t := [TRUE,[[0,0,50],[1,0,0,0]],[3,[0,0,10],[1,0,0,0],0,0,0]];\n    MoveL p0, v100, fine, t;\n"
+                          "    t.tframe.trans.z := 80;\n    MoveL p0, v100, fine, t;\n",
+                data=f"  CONST robtarget p0 := {P};\n")
+    tools = {t.name: t for t in doc.tools}
+    assert set(tools) == {"t", "t_2"}
+    assert tools["t"].tcp.position[2] == pytest.approx(0.05) and tools["t_2"].tcp.position[2] == pytest.approx(0.08)
+    assert tools["t_2"].mass == 3.0
+    assert [m.tool for m in _moves(doc)] == ["t", "t_2"]
+
+
+def test_a_work_object_the_routine_sets_is_uframe_times_the_declared_oframe(tmp_path: Path) -> None:
+    c = math.sqrt(0.5)
+    doc = _read(tmp_path, f"    w.uframe := [[500,0,0],[{c},0,0,{c}]];\n    MoveL p0, v100, fine, tool0\\WObj:=w;\n",
+                data=f"  CONST robtarget p0 := {P};\n")
+    (frame,) = doc.frames
+    expected = _matrix((500, 0, 0), (c, 0, 0, c)) @ _matrix((100, 0, 0), (1, 0, 0, 0))
+    assert frame.pose.position == pytest.approx(tuple(expected[:3, 3]), abs=1e-9)  # (0.5, 0.1, 0)
+    assert [m.frame for m in _moves(doc)] == [frame.name]
+
+
+def test_a_speed_set_by_the_routine_and_one_written_in_place(tmp_path: Path) -> None:
+    doc = _read(tmp_path, "    s := [300,500,5000,1000];\n    MoveL p0, s, z10, tool0;\n"
+                          "    MoveL p0, [42,500,5000,1000], [FALSE,7,10,10,1,10,1], tool0, \\WObj:=wobj0;\n",
+                data=f"  CONST robtarget p0 := {P};\n")
+    assert [(m.speed, m.zone) for m in _moves(doc)] == [(300.0, 10.0), (42.0, 7.0)]  # not the declared 100 mm/s
+
+
+def test_a_target_the_routine_changes_stays_native_with_where_it_is_set(tmp_path: Path, ) -> None:
+    path = tmp_path / "m.mod"
+    path.write_text(f"MODULE M\n  VAR robtarget p := {P};\n  PROC main()\n    p := Offs(p, 0, 0, 10);\n"
+                    "    MoveL p, v100, fine, tool0;\n  ENDPROC\nENDMODULE\n")
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "out.rmot")], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    assert "`p` is assigned at line 4 (`p := Offs(p, 0, 0, 10)`): its value here is known only at run time" in result.output
+    assert 'native rapid "MoveL p, v100, fine, tool0;"' in (tmp_path / "out.rmot").read_text()
+    assert "target p =" not in (tmp_path / "out.rmot").read_text()  # its declaration is a comment (W511)
+
+
+@pytest.mark.parametrize("body", [
+    "    IF DInput(di1) = 1 THEN\n      s := [300,500,5000,1000];\n    ENDIF\n    MoveL p0, s, fine, tool0;\n",
+    "    s := [300,500,5000,1000];\n    WHILE DInput(di1) = 1 DO\n      MoveL p0, s, fine, tool0;\n"
+    "      s := [50,500,5000,1000];\n    ENDWHILE\n",
+    "    s := [300,500,5000,1000];\n    other;\n    MoveL p0, s, fine, tool0;\n",
+    "    s := [300,500,5000,1000];\n  again:\n    MoveL p0, s, fine, tool0;\n",
+], ids=["set-in-an-if", "set-later-in-the-loop", "after-a-call", "after-a-label"])
+def test_where_the_value_may_differ_the_move_stays_native(tmp_path: Path, body: str) -> None:
+    doc = _read(tmp_path, body, data=f"  CONST robtarget p0 := {P};\n",
+                extra="  PROC other()\n    s := [999,500,5000,1000];\n  ENDPROC\n")
+    assert not _moves(doc)
+    assert any(n.text.startswith("MoveL p0, s") for n in _natives(doc))
+
+
+def test_set_inside_the_block_before_the_move_is_known(tmp_path: Path) -> None:
+    doc = _read(tmp_path, "    WHILE DInput(di1) = 1 DO\n      s := [300,500,5000,1000];\n      MoveL p0, s, fine, tool0;\n"
+                          "    ENDWHILE\n", data=f"  CONST robtarget p0 := {P};\n")
+    assert [m.speed for m in _moves(doc)] == [300.0]
+
+
+def test_data_another_module_of_the_task_sets_is_not_constant(tmp_path: Path) -> None:
+    (tmp_path / "a.mod").write_text(f"MODULE A\n  PERS tooldata gun := {TOOL};\n  CONST robtarget p0 := {P};\n"
+                                    "  PROC main()\n    MoveL p0, v100, fine, gun;\n  ENDPROC\nENDMODULE\n")
+    (tmp_path / "b.mod").write_text("MODULE B\n  PROC setgun()\n    gun.tframe.trans.z := 120;\n  ENDPROC\nENDMODULE\n")
+    doc = read_files([str(tmp_path / "a.mod"), str(tmp_path / "b.mod")])
+    assert not _moves(doc) and not doc.tools
+
+
+# Straight-line code and blocks, random: the speed each move reads, by an interpreter of the
+# statements written here (a value set in an IF, or before a call of a routine of the file, is
+# not certain; one set in straight line is the last one set), against the import.
+_STEP = st.one_of(st.tuples(st.just("set"), st.integers(1, 9)), st.tuples(st.just("if"), st.integers(1, 9)),
+                  st.just(("call", 0)), st.just(("move", 0)))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(_STEP, min_size=1, max_size=12))
+def test_the_speed_each_move_reads_is_the_last_one_set_where_certain(tmp_path_factory: pytest.TempPathFactory,
+                                                                    steps: list[tuple[str, int]]) -> None:
+    lines, expected, known = [], [], None
+    for kind, v in steps:
+        if kind == "set":
+            lines.append(f"    s := [{v * 10},500,5000,1000];\n")
+            known = v * 10
+        elif kind == "if":
+            lines.append(f"    IF DInput(di1) = 1 THEN\n      s := [{v * 10},500,5000,1000];\n    ENDIF\n")
+            known = None
+        elif kind == "call":
+            lines.append("    other;\n")
+            known = None
+        else:
+            lines.append("    MoveL p0, s, fine, tool0;\n")
+            expected.append(known)
+    doc = _read(tmp_path_factory.mktemp("flow"), "".join(lines), data=f"  CONST robtarget p0 := {P};\n",
+                extra="  PROC other()\n    s := [5,500,5000,1000];\n  ENDPROC\n")
+    main = next(r for r in doc.routines if r.name == "main")
+    read = [s.speed if isinstance(s, Move) else None for s in walk(main.body)
+            if isinstance(s, Move) or (isinstance(s, Native) and s.text.startswith("MoveL"))]
+    assert read == [float(e) if e is not None else None for e in expected]
+
+
+@pytest.mark.parametrize("name", ["robodk_irc5.mod", "robodk_irc5_simplified.mod", "robodk_s4c.prg"])
+def test_robodk_rapid_moves_are_read(name: str) -> None:
+    """RoboDK's IRC5 post sets `rdkTool.tframe`, `rdkWObj.uframe` and `rdkSpeed` before its moves
+    and writes `tool, \\WObj:=wobj` after a comma; its S4C post writes speeds in place: every move
+    is read, with the tool, frame and speeds the program sets (the post's program: 200 mm/s, then
+    50 mm/s; tool (62.5, -108.253, 100) mm; frame (807.767, -963.7, 41.479) mm where it sets one)."""
+    doc = read_files([str(VENDOR / "rapid" / name)])
+    moves = _moves(doc)
+    assert [m.kind for m in moves] == ["joint", "linear", "linear", "circular", "linear", "joint"]
+    assert [m.speed for m in moves if m.kind != "joint"] == [200.0, 200.0, 200.0, 50.0]
+    assert moves[0].joints == pytest.approx((-46.18419, -6.77518, -20.54925, 71.38674, 49.58727, -302.54752))
+    (tool,) = doc.tools
+    assert tool.tcp.position == pytest.approx((0.0625, -0.108253, 0.1))
+    if name == "robodk_irc5.mod":
+        (frame,) = doc.frames
+        assert frame.pose.position == pytest.approx((0.807767, -0.9637, 0.041479))
+
+
+def test_robodk_fanuc_circular_move_with_its_second_point_on_a_line_without_colon() -> None:
+    """RoboDK's R-30iA post writes `16:C P[4]` and, on the next line, `P[5] 200mm/sec FINE ;`
+    without the `:` the pendant writes: one circular move (was refused whole, E510)."""
+    doc = read_files([str(VENDOR / "fanuc" / "robodk_r30ia.ls")])
+    moves = _moves(doc)
+    arc = next(m for m in moves if m.kind == "circular")
+    assert (arc.via, arc.target, arc.speed) == ("program_p4", "program_p5", 200.0)
+    assert [m.kind for m in moves] == ["joint", "linear", "linear", "circular", "linear", "joint"]
+
+
+def test_a_line_without_colon_elsewhere_is_still_refused(tmp_path: Path) -> None:
+    path = tmp_path / "bad.ls"
+    path.write_text("/PROG  BAD\n/ATTR\n/MN\n   1:L P[1] 100mm/sec FINE ;\n   P[2] 100mm/sec FINE ;\n/POS\n/END\n")
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "o.rmot")], catch_exceptions=False)
+    assert result.exit_code == 2 and "error[E510]: a /MN line must be `N:  instruction ;`" in result.output
