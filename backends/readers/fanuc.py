@@ -218,7 +218,7 @@ class _Ls:
             nan = float("nan")
             self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (nan, nan, nan)))  # type: ignore[union-attr]
         if stmt is None:
-            joint_form = [why for why in map(self._tcp_of, _path_points(text)) if isinstance(why, str)]
+            joint_form = [why for why in (self._tcp_of(p, where) for p in _path_points(text)) if isinstance(why, str)]
             return [self.tally.keep(text + " ;", where, joint_form[0] if joint_form else "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -262,18 +262,17 @@ class _Ls:
         else:
             self.frames[n] = FrameData(name, pose, where)
 
-    def _named(self, kind: str) -> str:
+    def _named(self, kind: str, at: Where) -> str:
         n = self.state[kind]
         if kind == "UFRAME" and n == 0:
             return "base"
         table = self.tools if kind == "UTOOL" else self.frames
         if n not in table:
             label = self.labels[kind].get(n, f"{kind.lower()}{n}")
-            where = Where(self.path, 1)
             if kind == "UTOOL":
-                self.tools[n] = ToolData(label, ir.Pose(), 0.0, where)
+                self.tools[n] = ToolData(label, ir.Pose(), 0.0, at, f"UTOOL[{n}]")
             else:
-                self.frames[n] = FrameData(label, ir.Pose(), where)
+                self.frames[n] = FrameData(label, ir.Pose(), at, f"UFRAME[{n}]")
         return table[n].name
 
     def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
@@ -438,7 +437,7 @@ class _Ls:
             return None
         decls = [self.positions.get(p) for p in points]
         if kind != "joint":  # a point stored in joint form: the move goes to its TCP pose
-            tcps = [self._tcp_of(p) for p in points]
+            tcps = [self._tcp_of(p, where) for p in points]
             decls = [t if isinstance(t, Target) else d for t, d in zip(tcps, decls)]
             if any(isinstance(t, str) for t in tcps):
                 return None
@@ -469,12 +468,13 @@ class _Ls:
         move = Move(kind, exprs[-1], decl.name, where, via=exprs[0] if kind == "circular" else None,
                     speed=timing[0], joint_pct=timing[1], time=timing[2],
                     zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
-                    tool=self._named("UTOOL"), frame="base" if decl.name in {t.name for t in self.tcp.values()} else self._named("UFRAME"),
+                    tool=self._named("UTOOL", where),
+                    frame="base" if decl.name in {t.name for t in self.tcp.values()} else self._named("UFRAME", where),
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
                     pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
 
-    def _tcp_of(self, n: int) -> Target | str | None:
+    def _tcp_of(self, n: int, where: Where) -> Target | str | None:
         """P[n] of a linear or circular move where it is stored in joint form: its TCP pose in the
         robot's base, a target `<name>_tcp` of its own (the cell arm's forward kinematics times the
         active tool's TCP: a joint-form position is no frame's, R-30iB Operator's Manual, position
@@ -482,7 +482,7 @@ class _Ls:
         decl = self.positions.get(n)
         if decl is None or decl.pose is not None or decl.joints is None:
             return None
-        tool = self._named("UTOOL")
+        tool = self._named("UTOOL", where)
         if (decl.name, tool) not in self.tcp:
             pose = self.pulse_pose(decl.joints, tool) if self.pulse_pose is not None else None
             if pose is None:

@@ -227,6 +227,9 @@ class _Job:
                    "pose, which the arm's forward kinematics and the job's tool give (`--cell` with the robot and a "
                    "tool of that name)" if joints and not text.startswith("MOVJ") else
                    axes_slots.why_native(text) or _why_native(text))
+            if why == "no rmot form" and re.match(r"S?MOVC\b", text):
+                why = ("an arc is read where its first MOVC is where the move before it ended (no call, jump or "
+                       "label between) and its three MOVC stand alone or the last has FPT")
             return [self.tally.keep(text, where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -342,29 +345,48 @@ class _Job:
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,
                     joint_pct=float(vj.group(1)) if vj else None,
                     zone=PL_MM[int(pl.group(1))] if pl and int(pl.group(1)) > 0 else None,
-                    tool=self._tool(self.position_tool[names[-1]]), frame=axes_slots.inform_frame(user, sync),
+                    tool=self._tool(self.position_tool[names[-1]], where), frame=axes_slots.inform_frame(user, sync),
                     config=decl.config if kind == "joint" else None, pose=decl.pose, joints=decl.joints,
                     joint_accel=float(acc.group(1)) if acc is not None and acc.group(1) != "100" else None,
                     slots=base[0] if base else (), slot_pulses=base[1] if base else (), via_slots=via_base[0] if via_base else ())
 
-    def _tool(self, n: int) -> str:
+    def _tool(self, n: int, where: Where) -> str:
         if n not in self.tools:
-            self.tools[n] = ToolData(self.tool_names.get(n, f"tool{n}"), ir.Pose(), 0.0, Where(self.path, 1))
+            self.tools[n] = ToolData(self.tool_names.get(n, f"tool{n}"), ir.Pose(), 0.0, where, f"tool file entry {n}")
         return self.tools[n].name
 
     def _arc(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """MOVC start, via, end FPT: a circular move from where the robot stands; right after
-        an arc, MOVC via, end FPT (the arc before ended at the start)."""
+        """MOVC start, via, end FPT: a circular move from the start, where the move before it
+        ended; right after an arc, MOVC via, end FPT (the arc before ended at the start). Three
+        MOVC alone (no MOVC before or after them, as RoboDK's post writes an arc) are one arc
+        without FPT (DX100 INFORM manual, MOVC: three points make the arc; FPT only separates
+        continuous arcs). An arc whose start is not where the move before it ended (the robot
+        first goes to the start) stays native."""
         chained = re.fullmatch(r"S?MOVC\s+[CP]\d+.*\bFPT\b.*", self._text(i - 1)) is not None if i else False
         n = 2 if chained else 3
         texts = [self._text(k) for k in range(i, min(i + n, end))]
         ms = [re.fullmatch(r"(S?)MOVC\s+([CP]\d+)\s*(.*)", t) for t in texts]
-        if len(ms) < n or not all(ms) or "FPT" not in texts[-1] or any("FPT" in t for t in texts[:-1]) or \
-                len({m.group(1) for m in ms}) != 1:  # type: ignore[union-attr]
+        alone = not any(re.match(r"S?MOVC\b", self._text(k)) for k in (i - 1, i + n)) and not any("FPT" in t for t in texts)
+        if len(ms) < n or not all(ms) or not (alone or "FPT" in texts[-1]) or any("FPT" in t for t in texts[:-1]) or \
+                len({m.group(1) for m in ms}) != 1 or not (chained or self._stands_at(i, _key(ms[0].group(2)))):  # type: ignore[union-attr]
             return None
         move = self._move("circular", [_key(ms[-2].group(2)), _key(ms[-1].group(2))], ms[-1].group(3),  # type: ignore[union-attr]
                           self.inst[i + n - 2][1], ms[-1].group(1) == "S", ms[-2].group(3))  # type: ignore[union-attr]
         return ([move], i + n) if move else None
+
+    def _stands_at(self, i: int, key: str) -> bool:
+        """Whether the last move before instruction `i` (over outputs, waits and timers) ended at
+        position `key`: the same position, or one with the same pose, tool and user frame."""
+        k = i - 1
+        while k >= 0 and re.match(r"(DOUT|PULSE|AOUT|TIMER|WAIT)\b|'", self._text(k)):
+            k -= 1
+        m = re.fullmatch(r"S?MOV[JL]\s+([CP]\d+).*", self._text(k)) if k >= 0 else None
+        a, b = (self.positions.get(_key(m.group(1))), self.positions.get(key)) if m else (None, None)
+        same = m is not None and _key(m.group(1)) == key
+        return same or (a is not None and b is not None and a.pose is not None and b.pose is not None and
+                        self.position_tool.get(_key(m.group(1))) == self.position_tool.get(key) and  # type: ignore[union-attr]
+                        self.position_user.get(_key(m.group(1))) == self.position_user.get(key) and  # type: ignore[union-attr]
+                        _same_pose(a.pose, b.pose))
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         m = re.fullmatch(r"WAIT IN#\((\d+)\)=(ON|OFF) T=([\d.]+)", self._text(i))
@@ -415,6 +437,13 @@ class _Job:
             return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where,
                               m.group(1) == "SMOVL")
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
+
+
+def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:
+    """Within 1 µm and the same rotation (a quaternion and its negative are one rotation)."""
+    close = max(abs(x - y) for x, y in zip(a.position, b.position)) < 1e-6
+    return close and min(max(abs(x - y) for x, y in zip(a.quaternion, b.quaternion)),
+                         max(abs(x + y) for x, y in zip(a.quaternion, b.quaternion))) < 1e-9
 
 
 def _names_label(text: str, label: str) -> bool:

@@ -165,15 +165,11 @@ def numbered(tools: dict[str, ToolData], frames: dict[str, FrameData], tally: Ta
         return "base"
     label = re.sub(r"\W", "_", name) if name else f"{what}{n}"
     key = label.upper()
-    where = Where(tally.path, 1)
-    stored = "TOOL_DATA" if what == "tool" else "BASE_DATA"
-    if (what == "tool" and key not in tools) or (what == "base" and key not in frames):
-        tally.warn(codes.DECLARATION_KEPT, f"{what} {n} (`{label}`) is {stored}[{n}] in the controller's "
-                        "$config.dat, not in the program: a cell stub puts it at identity (give --cell)", at)
+    stored = f"{'TOOL_DATA' if what == 'tool' else 'BASE_DATA'}[{n}] of $config.dat"
     if what == "tool" and key not in tools:
-        tools[key] = ToolData(label, ir.Pose(), 0.0, where)
+        tools[key] = ToolData(label, ir.Pose(), 0.0, at, stored)
     elif what == "base" and key not in frames:
-        frames[key] = FrameData(label, ir.Pose(), where)
+        frames[key] = FrameData(label, ir.Pose(), at, stored)
     return label
 
 

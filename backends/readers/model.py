@@ -65,6 +65,7 @@ class ToolData:
     tcp: ir.Pose  # in the flange frame
     mass: float  # kg
     where: Where
+    controller: str = ""  # used but not set in the files: the controller's own (`UTOOL[1]`); identity here
 
 
 @record(slots=True)
@@ -72,6 +73,7 @@ class FrameData:
     name: str
     pose: ir.Pose  # in the robot base
     where: Where
+    controller: str = ""  # used but not set in the files: the controller's own (`UFRAME[1]`); identity here
 
 
 @record(slots=True)

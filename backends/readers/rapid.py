@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping
-from typing import TypeVar
 
 from rmot.backends.rapid_text import SPEEDS_MM_S, ZONES_MM
 from rmot.backends.readers import axes_slots, codes, jump_spans
@@ -23,7 +22,9 @@ from rmot.backends.readers.model import (
     Call, Cond, FrameData, If, Move, Pulse, SetOut, Stmt, Stop, Target, ToolData, Wait, WaitIn, Where, While,
     For, Routine,
 )
-from rmot.backends.readers.rapid_data import DataFlow, branch_of, changed_data, frame_of, in_document, pose_of, tool_of
+from rmot.backends.readers.rapid_data import (
+    DataFlow, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
+)
 from rmot.backends.readers.rapid_logic import RapidVars, condition
 from rmot.backends.readers.rapid_text import Statement, literal, statements
 from rmot.lang import ir
@@ -33,7 +34,6 @@ __all__ = ["read_rapid", "pose_expr", "num_text", "mm"]
 PULSE_DEFAULT_S = 0.2  # PulseDO without \PLength: 0.2 s (RAPID Instructions, PulseDO)
 _PARAM_TYPES = {"robtarget": "pose", "jointtarget": "joints", "num": "number", "bool": "bool"}
 _DECL = re.compile(r"(?i)^(?:(?:LOCAL|TASK)\s+)*(CONST|PERS|VAR)\s+(\w+)\s+(\w+)\s*(\{[^}]*\})?\s*(?::=\s*(.*))?$")
-T = TypeVar("T")
 _MOVES = {"MOVEJ": "joint", "MOVEL": "linear", "MOVEC": "circular", "MOVEABSJ": "joint"}
 
 
@@ -112,14 +112,12 @@ class _Module:
 
     def share(self, other: _Module) -> None:
         """The global data of another module of the task, where this one declares no such name
-        and no statement of this module assigns it."""
-        def constant(data: dict[str, T]) -> dict[str, T]:
-            return {k: v for k, v in data.items() if k not in self.changed}
-        self.targets = {**constant(other.targets), **self.targets}
-        self.tools = {**constant(other.tools), **self.tools}
-        self.frames = {**constant(other.frames), **self.frames}
-        self.speeds = {**constant(other.speeds), **self.speeds}
-        self.zones = {**constant(other.zones), **self.zones}
+        (`other` has read none that a module of the task assigns: read_rapid)."""
+        self.targets = {**other.targets, **self.targets}
+        self.tools = {**other.tools, **self.tools}
+        self.frames = {**other.frames, **self.frames}
+        self.speeds = {**other.speeds, **self.speeds}
+        self.zones = {**other.zones, **self.zones}
         self.names |= other.names  # its numbers may be used here (declared by its own module)
 
     def _declaration(self, st: Statement) -> None:
@@ -532,9 +530,8 @@ class _Module:
         pose = pose_of(lit) if axes_slots.rapid_slots(lit, 3) is not None else None
         if pose is not None:
             return (pose_expr(pose), None, Target("", pose, None, branch_of(lit), Where("", 0), slots=axes_slots.rapid_slots(lit, 3) or ()))
-        robax = lit[0] if isinstance(lit, list) and len(lit) == 2 and isinstance(lit[0], list) else []
-        joints = tuple(v for v in robax if isinstance(v, float))  # a jointtarget [[robax], [extax]] in place (MoveAbsJ)
-        if len(joints) == len(robax) == 6 and axes_slots.robax_read([*lit]):  # type: ignore[misc]
+        joints = joints_of(lit)
+        if joints is not None:
             return (f"joints({', '.join(num_text(j) for j in joints)}) deg", None,
                     Target("", None, joints, None, Where("", 0), slots=axes_slots.rapid_slots(lit, 1) or ()))
         return None

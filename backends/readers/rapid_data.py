@@ -27,11 +27,12 @@ from itertools import product
 from typing import TypeVar
 
 from rmot.backends.rapid_text import cfx_of
+from rmot.backends.readers import axes_slots
 from rmot.backends.readers.model import FrameData, ToolData, Where
 from rmot.backends.readers.rapid_text import Statement, literal
 from rmot.lang import ir
 
-__all__ = ["DataFlow", "branch_of", "changed_data", "frame_of", "in_document", "pose_of", "tool_of"]
+__all__ = ["DataFlow", "branch_of", "changed_data", "frame_of", "in_document", "joints_of", "pose_of", "tool_of"]
 
 D = TypeVar("D", ToolData, FrameData)
 
@@ -128,6 +129,14 @@ def branch_of(lit: object) -> ir.Config | None:
     cfx = conf[3] if conf and len(conf) == 4 and isinstance(conf[3], float) else None
     return next((ir.Config(s, e, w) for s, e, w in product(ir.Shoulder, ir.Elbow, ir.Wrist)
                  if cfx is not None and cfx_of(ir.Config(s, e, w)) == int(cfx)), None)
+
+
+def joints_of(lit: object) -> tuple[float, ...] | None:
+    """The six joint values (deg) of a jointtarget `[[robax], [extax]]` written in place
+    (`MoveAbsJ [[..],[..]], ..`) that rmot reads (axes_slots.robax_read), else None."""
+    robax = lit[0] if isinstance(lit, list) and len(lit) == 2 and isinstance(lit[0], list) else []
+    joints = tuple(v for v in robax if isinstance(v, float))
+    return joints if len(joints) == len(robax) == 6 and axes_slots.robax_read([*lit]) else None  # type: ignore[misc]
 
 
 def in_document(datum: D, data: dict[str, D]) -> D:

@@ -27,7 +27,7 @@ from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.record import record
 from rmot.lang.source import Span
 
-__all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "match_tools",
+__all__ = ["SignalMap", "resolve_signals", "program_text", "cell_stub", "stub_signals", "stub_warnings", "match_tools",
            "rename_warnings"]
 __all__ += ["task_lines", "signal_uses", "kept_native", "Keep"]
 
@@ -160,6 +160,16 @@ def rename_warnings(doc: Document, span_of: Callable[[Where], Span]) -> tuple[Di
         [(f.name, f.where) for f in doc.frames] + [(r.name, r.where) for r in doc.routines]
     return tuple(Diagnostic(codes.NAME_RENAMED, Severity.WARNING, f"`{name}` {_why_renamed(name)}: written as `{rmot_name(name)}`",
                             span_of(where)) for name, where in named if rmot_name(name) != name)
+
+
+def stub_warnings(doc: Document, span_of: Callable[[Where], Span]) -> tuple[Diagnostic, ...]:
+    """W511 at the first use of each tool and frame the program uses but no file sets (the
+    controller's own): the cell stub puts it at identity, which `rmot check` would verify."""
+    found = [("tool", t.name, t.controller, t.where, "flange") for t in doc.tools if t.controller] + \
+        [("frame", f.name, f.controller, f.where, "robot base") for f in doc.frames if f.controller]
+    return tuple(Diagnostic(codes.DECLARATION_KEPT, Severity.WARNING, f"{kind} `{name}` is the controller's {what}, "
+                            f"not set in the files given: the cell stub puts it at the {at} (give --cell with its data)",
+                            span_of(where)) for kind, name, what, where, at in found)
 
 
 def _why_renamed(name: str) -> str:
@@ -372,9 +382,11 @@ def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") 
     lines = [f"# cell stub written by `rmot import` for {doc.name} ({doc.vendor})",
              f"cell {rmot_name(doc.name)}_cell {{", f"  robot {robot} = {model}"]
     for t in doc.tools:
-        lines.append(f"  tool {rmot_name(t.name)} = none tcp {pose_expr(t.tcp)} mass {_num(t.mass)} kg on {robot}")
+        lines.append(f"  tool {rmot_name(t.name)} = none tcp {pose_expr(t.tcp)} mass {_num(t.mass)} kg on {robot}"
+                     + (f"  # the controller's {t.controller}: not in the files, put at the flange" if t.controller else ""))
     for f in doc.frames:
-        lines.append(f"  frame {rmot_name(f.name)} = {pose_expr(f.pose)}")
+        lines.append(f"  frame {rmot_name(f.name)} = {pose_expr(f.pose)}"
+                     + (f"  # the controller's {f.controller}: not in the files, put at the base" if f.controller else ""))
     for kind, word in (("outputs", "out"), ("inputs", "in"), ("analog", "aout"), ("groups", "gin")):
         for name, port in getattr(signals, kind):
             lines.append(f"  io {word}[{port}] = {_quote(name.lower())} on {robot}")

@@ -43,7 +43,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
             pulses: str | None) -> None:
     from rmot.backends.readers import ImportError_, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import (  # late: loads numpy only when this runs
-        SignalMap, cell_stub, program_text, rename_warnings, stub_signals,
+        SignalMap, cell_stub, program_text, rename_warnings, stub_signals, stub_warnings,
     )
 
     if tasks and pulses is not None:  # one arm's scales: which of the tasks' arms is theirs is not said
@@ -67,6 +67,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         click.echo(render(exc.diagnostic), err=True)
         sys.exit(EXIT_INPUT)
     out_dir = os.path.dirname(os.path.abspath(output))
+    stubbed: tuple[Diagnostic, ...] = ()
     if cell is not None and found is not None:
         signals, robot_name = found[0], found[1]
         assert isinstance(signals, SignalMap)
@@ -77,7 +78,8 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         stem = os.path.splitext(os.path.basename(output))[0]
         use = f"{stem}_cell.rmot"
         write_output("cell stub", os.path.join(out_dir, use), cell_stub(doc, signals, robot), files)
-    for d in doc.diagnostics + rename_warnings(doc, span_of):
+        stubbed = stub_warnings(doc, span_of)
+    for d in doc.diagnostics + rename_warnings(doc, span_of) + stubbed:
         click.echo(render(d), err=True)
     write_output("program", output, program_text(doc, signals, robot_name, use), files)
     print_summary(doc)

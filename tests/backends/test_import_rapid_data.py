@@ -200,3 +200,17 @@ def test_a_line_without_colon_elsewhere_is_still_refused(tmp_path: Path) -> None
     path.write_text("/PROG  BAD\n/ATTR\n/MN\n   1:L P[1] 100mm/sec FINE ;\n   P[2] 100mm/sec FINE ;\n/POS\n/END\n")
     result = CliRunner().invoke(cli, ["import", str(path), "-o", str(tmp_path / "o.rmot")], catch_exceptions=False)
     assert result.exit_code == 2 and "error[E510]: a /MN line must be `N:  instruction ;`" in result.output
+
+
+def test_a_tool_and_frame_the_program_only_selects_are_marked_in_the_stub(tmp_path: Path) -> None:
+    """RoboDK's TP program selects `UTOOL_NUM=1` / `UFRAME_NUM=1` and sets neither (its `! UT1:..`
+    comments are no data): the stub puts them at identity and says so, W511 at the first move."""
+    out = tmp_path / "p.rmot"
+    result = CliRunner().invoke(cli, ["import", str(VENDOR / "fanuc" / "robodk_r30ia.ls"), "-o", str(out)],
+                                catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    assert "robodk_r30ia.ls:30:4: warning[W511]: tool `utool1` is the controller's UTOOL[1], not set in the files " \
+           "given: the cell stub puts it at the flange (give --cell with its data)" in result.output
+    stub = (tmp_path / "p_cell.rmot").read_text()
+    assert "tool utool1 = none tcp pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0)) mass 0 kg on r1  # the controller's UTOOL[1]" in stub
+    assert "frame uframe1 = pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0))  # the controller's UFRAME[1]" in stub

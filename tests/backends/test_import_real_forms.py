@@ -14,8 +14,9 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from rmot.backends.readers import read_files
+from rmot.backends.readers import read_files, span_of
 from rmot.backends.readers.model import For, If, Move, Native, SetOut, WaitIn, walk
+from rmot.backends.readers.writer import stub_warnings
 from rmot.compiler.cli import cli
 from rmot.lang.parse import parse_text
 
@@ -166,14 +167,18 @@ def test_urscript_function_with_parameters(tmp_path: Path) -> None:
 
 def test_krl_bas_tool_and_base(tmp_path: Path) -> None:
     """KSS BAS.SRC: `BAS(#TOOL, n)` / `BAS(#BASE, n)` select TOOL_DATA[n] / BASE_DATA[n] (data of
-    $config.dat: W511 at the line), BASE 0 the robot base."""
+    $config.dat: the stub puts them at identity, W511 at the line where it is written), BASE 0 the
+    robot base."""
     path = tmp_path / "bas.src"
     path.write_text("DEF bas( )\nBAS (#TOOL,2)\nBAS (#BASE,0)\nPTP {A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\n"
                     "BAS (#BASE,3)\nPTP {A1 5,A2 -90,A3 90,A4 0,A5 0,A6 0}\nEND\n")
     doc = read_files([str(path)])
     moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
     assert [(m.tool, m.frame) for m in moves] == [("tool2", "base"), ("tool2", "base3")]
-    assert {d.span.start.line for d in doc.diagnostics if d.code.id == "W511"} == {2, 5}
+    assert {t.controller for t in doc.tools} | {f.controller for f in doc.frames} == {
+        "TOOL_DATA[2] of $config.dat", "BASE_DATA[3] of $config.dat"}
+    stubbed = stub_warnings(doc, span_of)
+    assert {d.span.start.line for d in stubbed if d.code.id == "W511" and d.span is not None} == {2, 5}
     assert not any(isinstance(s, Native) for r in doc.routines for s in walk(r.body))
 
 
