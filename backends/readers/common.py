@@ -14,12 +14,13 @@ from typing import TypeVar
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.model import Call, Cond, FileCount, Native, Pulse, SetOut, Stmt, Wait, WaitIn, Where
+from rmot.lang import ir
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
 
 __all__ = ["SIMPLE_FORMS", "label_arms", "label_loop", "reaches",
            "match_simple", "Tally", "ImportError_", "read_text", "split_top", "number", "NUMBER_RE", "MAX_BYTES",
-           "num_expr", "rmot_name", "RMOT_RESERVED"]
+           "num_expr", "rmot_name", "RMOT_RESERVED", "same_pose"]
 
 T = TypeVar("T")
 MAX_BYTES = 4 * 1024 * 1024  # the largest vendor file read (a pendant job is far smaller)
@@ -162,13 +163,21 @@ def num_expr(text: str, names: frozenset[str] | set[str]) -> str | None:
 
 
 def rmot_name(name: str, taken: set[str] | None = None) -> str:
-    """A vendor identifier as a legal rmot name (keywords get a trailing `_`)."""
+    """A vendor identifier as a legal rmot name (keywords get a trailing `_`; idempotent, so that
+    rmot's own output reads back under the names it was written with)."""
     clean = re.sub(r"\W", "_", name)
     if not clean or clean[0].isdigit():
         clean = "n_" + clean
     if clean in RMOT_RESERVED:
         clean += "_"
     return clean
+
+
+def same_pose(a: ir.Pose, b: ir.Pose) -> bool:
+    """Equal to what the vendors print: 1 um and 1e-6 in each quaternion component (up to sign)."""
+    near = all(abs(x - y) < 1e-6 for x, y in zip(a.position, b.position))
+    dot = abs(sum(x * y for x, y in zip(a.quaternion, b.quaternion)))
+    return near and dot > 1 - 1e-9
 
 
 # The I/O, wait and call statements every vendor writes in one line, built from a match whose

@@ -29,7 +29,9 @@ import re
 from rmot.backends.inform_text import PL_DISTANCES_MM
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.fanuc_text import group_test
-from rmot.backends.readers.common import Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name
+from rmot.backends.readers.common import (
+    Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name, same_pose,
+)
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
@@ -386,7 +388,7 @@ class _Job:
         return same or (a is not None and b is not None and a.pose is not None and b.pose is not None and
                         self.position_tool.get(_key(m.group(1))) == self.position_tool.get(key) and  # type: ignore[union-attr]
                         self.position_user.get(_key(m.group(1))) == self.position_user.get(key) and  # type: ignore[union-attr]
-                        _same_pose(a.pose, b.pose))
+                        same_pose(a.pose, b.pose))
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         m = re.fullmatch(r"WAIT IN#\((\d+)\)=(ON|OFF) T=([\d.]+)", self._text(i))
@@ -437,13 +439,6 @@ class _Job:
             return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where,
                               m.group(1) == "SMOVL")
         return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
-
-
-def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:
-    """Within 1 µm and the same rotation (a quaternion and its negative are one rotation)."""
-    close = max(abs(x - y) for x, y in zip(a.position, b.position)) < 1e-6
-    return close and min(max(abs(x - y) for x, y in zip(a.quaternion, b.quaternion)),
-                         max(abs(x + y) for x, y in zip(a.quaternion, b.quaternion))) < 1e-9
 
 
 def _names_label(text: str, label: str) -> bool:

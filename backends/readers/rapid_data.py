@@ -240,7 +240,7 @@ class DataFlow:
             return None
         name, path, part = m.group(1).upper(), _path(decl[0], m.group(2)), literal(m.group(3))
         base = self.now.get(name, UNKNOWN)
-        if path is None or part is None or (path and not isinstance(base, list)):
+        if path is None or not isinstance(part, (list, float)) or (path and not isinstance(base, list)):  # a name: its value
             self.now[name] = UNKNOWN if path is None or not path else _with(base, path, UNKNOWN)
             return False
         self.now[name] = _with(base, path, part)

@@ -14,7 +14,7 @@ from collections.abc import Callable
 from dataclasses import replace
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import native_line, rmot_name
+from rmot.backends.readers.common import native_line, rmot_name, same_pose
 from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, FileCount, For, Grip, If, Move, Native, Pulse, SetOut, Signal, Stmt, Stop, Wait, WaitIn,
     Where, While, leaves, walk,
@@ -182,19 +182,12 @@ def _why_renamed(name: str) -> str:
     return "is not an rmot name (a letter or `_`, then letters, digits and `_`)"
 
 
-def _same_pose(a: ir.Pose, b: ir.Pose) -> bool:
-    """Equal to what the vendors print: 1 um and 1e-6 in each quaternion component (up to sign)."""
-    near = all(abs(x - y) < 1e-6 for x, y in zip(a.position, b.position))
-    dot = abs(sum(x * y for x, y in zip(a.quaternion, b.quaternion)))
-    return near and dot > 1 - 1e-9
-
-
 def match_tools(doc: Document, cell_tools: tuple[tuple[str, ir.Pose], ...]) -> Document:
     """A vendor that selects tools by TCP value only (URScript set_tcp): name each tool after the
     cell's tool with the same TCP, where there is one."""
     names = {}
     for t in doc.tools:
-        match = next((name for name, tcp in cell_tools if _same_pose(tcp, t.tcp)), None)
+        match = next((name for name, tcp in cell_tools if same_pose(tcp, t.tcp)), None)
         if match is not None and t.name != match:
             names[t.name] = match
     if not names:

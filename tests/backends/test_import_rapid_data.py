@@ -112,12 +112,15 @@ def test_a_target_the_routine_changes_stays_native_with_where_it_is_set(tmp_path
     "      s := [50,500,5000,1000];\n    ENDWHILE\n",
     "    s := [300,500,5000,1000];\n    other;\n    MoveL p0, s, fine, tool0;\n",
     "    s := [300,500,5000,1000];\n  again:\n    MoveL p0, s, fine, tool0;\n",
-], ids=["set-in-an-if", "set-later-in-the-loop", "after-a-call", "after-a-label"])
+    "    s := v300;\n    MoveL p0, s, fine, tool0;\n",
+], ids=["set-in-an-if", "set-later-in-the-loop", "after-a-call", "after-a-label", "set-to-a-name"])
 def test_where_the_value_may_differ_the_move_stays_native(tmp_path: Path, body: str) -> None:
     doc = _read(tmp_path, body, data=f"  CONST robtarget p0 := {P};\n",
                 extra="  PROC other()\n    s := [999,500,5000,1000];\n  ENDPROC\n")
     assert not _moves(doc)
     assert any(n.text.startswith("MoveL p0, s") for n in _natives(doc))
+    if "v300" in body:  # an assignment not followed stays in the program, where the native move reads it
+        assert "s := v300;" in [n.text for n in _natives(doc)]
 
 
 def test_set_inside_the_block_before_the_move_is_known(tmp_path: Path) -> None:
