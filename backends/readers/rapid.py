@@ -23,7 +23,7 @@ from rmot.backends.readers.model import (
     For, Routine,
 )
 from rmot.backends.readers.rapid_data import (
-    DataFlow, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
+    DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
 )
 from rmot.backends.readers.rapid_logic import RapidVars, condition
 from rmot.backends.readers.rapid_text import Statement, literal, statements
@@ -134,8 +134,8 @@ class _Module:
         lit = literal(value) if value and not dims else None
         first = self.changed.get(name.upper())
         if first is not None:
-            self.tally.warn(codes.DECLARATION_KEPT, f"`{name}` is assigned at {self._place(first)} (`{first.text[:50]}`): "
-                            "its declared value is not its value where a move reads it; kept as a comment", st.where)
+            self.tally.warn(codes.DECLARATION_KEPT, f"{assigned_at(name, first, self.tally.path)}: its declared value "
+                            "is not its value where a move reads it; kept as a comment", st.where)
             self.tally.comment(st.text + ";", st.where)
         elif not self._data(type_.lower(), name, lit, st.where):
             self.tally.warn(codes.DECLARATION_KEPT, f"{type_} {name} has no rmot form here: kept as a comment",
@@ -269,8 +269,10 @@ class _Module:
             return [], i + 1
         if word in ("WAITDI", "WAITUNTIL") and i + 1 < len(self.stmts) and self.logic.flag_of(st, i + 1):
             return self._timed_wait(i)
-        if word in self.proc_names or re.match(r"(?i)^(\w+\s*:$|%|CallByVar\b)", st.text):
-            self.flow.restart()  # a routine of the files may set the data; a jump may arrive here
+        if word in self.proc_names:
+            self.flow.called(word)  # the routine may set data (rapid_data.DataFlow)
+        elif re.match(r"(?i)^(\w+\s*:$|%|CallByVar\b)", st.text):
+            self.flow.restart()  # a jump may arrive here; a call by name may run any routine
         if self.flow.assign(st):
             self.tally.imported += 1
             return [], i + 1
@@ -295,18 +297,14 @@ class _Module:
                                                       for b in split_top(a, "\\")] if m]
         unknown = sorted({n for n in names if n.upper() not in known and not re.fullmatch(r"[\d.]+", n)},
                          key=names.index)
-        changed = [n for n in unknown if n.upper() in self.changed]
+        changed = [n for n in unknown if n.upper() in self.changed and self.flow.value(n) is None]
         if changed:
             first = self.changed[changed[0].upper()]
-            return (f"`{changed[0]}` is assigned at {self._place(first)} (`{first.text[:50]}`): its value here is "
-                    "known only at run time")
+            return f"{assigned_at(changed[0], first, self.tally.path)}: its value here is known only at run time"
         if not unknown:
             return "no rmot form"
         return (f"{', '.join(unknown)} {'is' if len(unknown) == 1 else 'are'} not declared in the files given "
                 "(another module of the task? give it too) or not constant data")
-
-    def _place(self, st: Statement) -> str:
-        return f"line {st.where.line}" if st.where.path == self.tally.path else f"{st.where.path}:{st.where.line}"
 
     def _keep_block(self, i: int, end: str, why: str) -> tuple[list[Stmt], int]:
         out: list[Stmt] = []
@@ -400,6 +398,7 @@ class _Module:
         args: list[str] = []
         for a in split_top(args_text) if args_text else []:  # `tool1, \WObj:=w` (as RoboDK writes) is `tool1\WObj:=w`
             args += [args.pop() + a.strip()] if a.strip().startswith("\\") and args else [a]
+        args_text = ", ".join(a.strip() for a in args)  # `WaitDI di1, 1, \MaxTime:=2` too
         if word in _MOVES:
             return self._move(word, args, st.where)
         if word == "SETDO" and len(args) == 2 and args[1] in ("0", "1"):

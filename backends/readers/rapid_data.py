@@ -32,7 +32,7 @@ from rmot.backends.readers.model import FrameData, ToolData, Where
 from rmot.backends.readers.rapid_text import Statement, literal
 from rmot.lang import ir
 
-__all__ = ["DataFlow", "branch_of", "changed_data", "frame_of", "in_document", "joints_of", "pose_of", "tool_of"]
+__all__ = ["DataFlow", "assigned_at", "branch_of", "changed_data", "frame_of", "in_document", "joints_of", "pose_of", "tool_of"]
 
 D = TypeVar("D", ToolData, FrameData)
 
@@ -88,6 +88,13 @@ def changed_data(stmts: list[Statement]) -> dict[str, Statement]:
         if m:
             out.setdefault(m.group(1).upper(), st)
     return out
+
+
+def assigned_at(name: str, first: Statement, path: str) -> str:
+    """Where the datum `name` is first set: "`p` is assigned at line 4 (`p := Offs(..)`)" (the
+    file named where it is not `path`)."""
+    place = f"line {first.where.line}" if first.where.path == path else f"{first.where.path}:{first.where.line}"
+    return f"`{name}` is assigned at {place} (`{first.text[:50]}`)"
 
 
 def _known(value: object) -> bool:
@@ -176,11 +183,15 @@ class DataFlow:
         self.declared = declared  # upper name -> (type, name as written, literal)
         self.taken = taken  # names the module declares: a renamed value's name avoids them
         self.where: dict[str, list[tuple[int, tuple[int, ...] | None]]] = {}
+        self.trapped: set[str] = set()
+        self.bodies: dict[str, int] = {}  # routine (upper) -> the index of its first statement
+        self.leaving: dict[str, dict[str, object]] = {}  # routine -> what it leaves known (left_by)
         for k, st in enumerate(stmts):
             m = _ASSIGN.match(st.text)
             decl = declared.get(m.group(1).upper()) if m else None
             if m and decl:
                 self.where.setdefault(m.group(1).upper(), []).append((k, _path(decl[0], m.group(2))))
+        self.sets = self._routine_sets()
         self.start = {name: self._at_start(name) for name in self.where}
         self.now = dict(self.start)
         self.made: dict[tuple[str, str], ToolData | FrameData] = {}  # (name, value) -> the datum it became
@@ -191,6 +202,68 @@ class DataFlow:
         for _, path in self.where[name]:
             value = _with(value, path, UNKNOWN) if path is not None else UNKNOWN
         return value
+
+    def _routine_sets(self) -> dict[str, set[str]]:
+        """Routine (upper) -> the followed data it or a routine it calls may assign; a TRAP's
+        (it runs on an interrupt, between any two statements) are never known (`trapped`)."""
+        own: dict[str, set[str]] = {}
+        calls: dict[str, set[str]] = {}
+        routine, kind = "", ""
+        for k, st in enumerate(self.stmts):
+            m = re.match(r"(?i)^(?:LOCAL\s+)?(PROC|FUNC|TRAP)\s+(?:\w+\s+)??(\w+)\s*(?:\(|$)", st.text)
+            if m:
+                routine, kind = m.group(2).upper(), m.group(1).upper()
+                own.setdefault(routine, set()), calls.setdefault(routine, set())
+                self.bodies[routine] = k + 1
+            elif routine:
+                own[routine] |= {n for n, places in self.where.items() if any(i == k for i, _ in places)}
+                calls[routine] |= {st.word} | ({"*"} if re.match(r"(?i)^(%|CallByVar\b)", st.text) else set())
+                if kind == "TRAP":
+                    self.trapped |= own[routine]
+        out: dict[str, set[str]] = {}
+        for name in own:  # the routines it reaches through calls (a late-binding call: any)
+            seen, todo = {name}, [name]
+            while todo:
+                for callee in calls.get(todo.pop(), set()):
+                    reach = set(own) if callee == "*" else {callee} & set(own)
+                    todo += list(reach - seen)
+                    seen |= reach
+            out[name] = set().union(*(own[r] for r in seen))
+        return out
+
+    def called(self, routine: str) -> None:
+        """After a call of a routine of the files: what it may assign is what its straight-line
+        end leaves (`left_by`), or back at its start state."""
+        left = self.left_by(routine.upper())
+        for name in self.sets.get(routine.upper(), set(self.where)):
+            self.now[name] = left.get(name, self.start[name])
+
+    def left_by(self, routine: str) -> dict[str, object]:
+        """The followed data a routine leaves known whatever its caller held: those its own
+        outermost statements set last, read as the routine's body is (blocks forget what they
+        assign, calls what their routine leaves unknown); none where it has a label, a jump or
+        a return (it may end elsewhere) or calls itself."""
+        if routine in self.leaving or routine not in self.bodies:
+            return self.leaving.get(routine, {})
+        self.leaving[routine] = {}  # a recursive call: nothing known
+        saved, k = dict(self.now), self.bodies[routine]
+        self.now = dict(self.start)
+        while k < len(self.stmts) and self.stmts[k].word != "ENDPROC":
+            st = self.stmts[k]
+            if re.match(r"(?i)^(\w+\s*:$|%|CallByVar\b|GOTO\b|RETURN\b|EXIT\b|RAISE\b|ERROR\b)", st.text):
+                self.now, k = dict(self.start), len(self.stmts)
+                break
+            if _OPENS.match(st.text):
+                self.skip(k)
+                k = self.end_of(k + 1)
+            elif st.word in self.bodies:
+                self.called(st.word)
+            else:
+                self.assign(st)
+            k += 1
+        left = {n: v for n, v in self.now.items() if n in self.sets.get(routine, set()) and _known(v)}
+        self.leaving[routine], self.now = left, saved
+        return left
 
     def restart(self) -> None:
         """A routine's start, a label, a call of a routine of the files."""
@@ -249,7 +322,7 @@ class DataFlow:
     def value(self, name: str) -> object | None:
         """The followed datum's value here, None where a part of it is not known."""
         value = self.now.get(name.upper(), UNKNOWN)
-        return value if _known(value) else None
+        return value if _known(value) and name.upper() not in self.trapped else None
 
     def v_tcp(self, text: str) -> float | None:
         """The TCP speed (mm/s) of a speeddata literal written in place (`[200,500,5000,1000]`) or

@@ -23,7 +23,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import Move, Native, walk
+from rmot.backends.readers.model import Move, Native, WaitIn, walk
 from rmot.compiler.cli import cli
 
 VENDOR = Path(__file__).resolve().parents[1] / "data" / "vendor_programs"
@@ -116,7 +116,7 @@ def test_a_target_the_routine_changes_stays_native_with_where_it_is_set(tmp_path
 ], ids=["set-in-an-if", "set-later-in-the-loop", "after-a-call", "after-a-label", "set-to-a-name"])
 def test_where_the_value_may_differ_the_move_stays_native(tmp_path: Path, body: str) -> None:
     doc = _read(tmp_path, body, data=f"  CONST robtarget p0 := {P};\n",
-                extra="  PROC other()\n    s := [999,500,5000,1000];\n  ENDPROC\n")
+                extra="  PROC other()\n    IF DInput(di9) = 1 THEN\n      s := [999,500,5000,1000];\n    ENDIF\n  ENDPROC\n")
     assert not _moves(doc)
     assert any(n.text.startswith("MoveL p0, s") for n in _natives(doc))
     if "v300" in body:  # an assignment not followed stays in the program, where the native move reads it
@@ -137,11 +137,23 @@ def test_data_another_module_of_the_task_sets_is_not_constant(tmp_path: Path) ->
     assert not _moves(doc) and not doc.tools
 
 
-# Straight-line code and blocks, random: the speed each move reads, by an interpreter of the
-# statements written here (a value set in an IF, or before a call of a routine of the file, is
-# not certain; one set in straight line is the last one set), against the import.
+def test_after_a_call_the_value_the_routine_leaves(tmp_path: Path) -> None:
+    """A routine whose last statements set the speed leaves it known (RoboDK's `Pick;` sets
+    `rdkSpeed` for the moves after the call); one that does not touch it leaves it as it was."""
+    doc = _read(tmp_path, "    s := [300,500,5000,1000];\n    keep;\n    MoveL p0, s, fine, tool0;\n    slow;\n"
+                          "    MoveL p0, s, fine, tool0;\n", data=f"  CONST robtarget p0 := {P};\n",
+                extra="  PROC keep()\n    SetDO do1, 1;\n  ENDPROC\n  PROC slow()\n    s := [300,500,5000,1000];\n"
+                      "    IF DInput(di1) = 1 THEN\n      SetDO do1, 0;\n    ENDIF\n    s := [25,500,5000,1000];\n  ENDPROC\n")
+    main = next(r for r in doc.routines if r.name == "main")
+    assert [s.speed for s in walk(main.body) if isinstance(s, Move)] == [300.0, 25.0]
+
+
+# Straight-line code, blocks and calls, random: the speed each move reads, by an interpreter of
+# the statements written here (a value set in an IF is not certain; a call of `other`, which sets
+# 5 mm/s last, leaves 5; of `maybe`, which sets it in an IF, leaves it uncertain; of `keep`, which
+# does not set it, leaves it as it was; else the last one set), against the import.
 _STEP = st.one_of(st.tuples(st.just("set"), st.integers(1, 9)), st.tuples(st.just("if"), st.integers(1, 9)),
-                  st.just(("call", 0)), st.just(("move", 0)))
+                  st.just(("other", 0)), st.just(("maybe", 0)), st.just(("keep", 0)), st.just(("move", 0)))
 
 
 @settings(max_examples=40, deadline=None)
@@ -156,14 +168,15 @@ def test_the_speed_each_move_reads_is_the_last_one_set_where_certain(tmp_path_fa
         elif kind == "if":
             lines.append(f"    IF DInput(di1) = 1 THEN\n      s := [{v * 10},500,5000,1000];\n    ENDIF\n")
             known = None
-        elif kind == "call":
-            lines.append("    other;\n")
-            known = None
+        elif kind in ("other", "maybe", "keep"):
+            lines.append(f"    {kind};\n")
+            known = 5 if kind == "other" else None if kind == "maybe" else known
         else:
             lines.append("    MoveL p0, s, fine, tool0;\n")
             expected.append(known)
     doc = _read(tmp_path_factory.mktemp("flow"), "".join(lines), data=f"  CONST robtarget p0 := {P};\n",
-                extra="  PROC other()\n    s := [5,500,5000,1000];\n  ENDPROC\n")
+                extra="  PROC other()\n    s := [5,500,5000,1000];\n  ENDPROC\n  PROC maybe()\n    IF DInput(di1) = 1 "
+                      "THEN\n      s := [7,500,5000,1000];\n    ENDIF\n  ENDPROC\n  PROC keep()\n    WaitTime 1;\n  ENDPROC\n")
     main = next(r for r in doc.routines if r.name == "main")
     read = [s.speed if isinstance(s, Move) else None for s in walk(main.body)
             if isinstance(s, Move) or (isinstance(s, Native) and s.text.startswith("MoveL"))]
@@ -217,3 +230,20 @@ def test_a_tool_and_frame_the_program_only_selects_are_marked_in_the_stub(tmp_pa
     stub = (tmp_path / "p_cell.rmot").read_text()
     assert "tool utool1 = none tcp pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0)) mass 0 kg on r1  # the controller's UTOOL[1]" in stub
     assert "frame uframe1 = pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0))  # the controller's UFRAME[1]" in stub
+
+
+def test_robodk_main_calling_its_subprograms() -> None:
+    """RoboDK's IRC5 post with a main program calling `Pick` (which sets `rdkSpeed` to 100 mm/s)
+    and `Place`: main's moves after `Pick;` run at the 100 mm/s Pick leaves; `WaitDI D_IN_3, 1,
+    \\MaxTime:=2.0` (the optional argument after a comma) is a wait with a time-out; the
+    subprograms' own moves stay native, as the tool and work object they use are set by their
+    caller (a routine is read without its callers' values)."""
+    doc = read_files([str(VENDOR / "rapid" / "robodk_irc5_calls.mod")])
+    main = next(r for r in doc.routines if r.name == "Main")
+    moves = [s for s in walk(main.body) if isinstance(s, Move)]
+    assert [(m.kind, m.speed) for m in moves] == [("joint", None), ("linear", 100.0), ("joint", None)]
+    assert [s.timeout for s in walk(main.body) if isinstance(s, WaitIn)] == [2.0]
+    for name in ("Pick", "Place"):
+        sub = next(r for r in doc.routines if r.name == name)
+        assert not [s for s in walk(sub.body) if isinstance(s, Move)]
+        assert any("is assigned at line 26 (`rdkTool.tframe" in d.message for d in doc.diagnostics)
