@@ -211,7 +211,7 @@ class _Module:
         self.names |= {p for p, t in params if t == "number"}
         self.pose_params = {p for p, t in params if t in ("pose", "joints")}
         self.logic.enter(m.group(1) == self._main_name(), self.consts)
-        self.flow.restart()
+        self.flow.enter_routine(m.group(1), m.group(1) == self._main_name())
         body, i = self._block(i + 1, ("ENDPROC",))
         self.names, self.pose_params = saved, set()
         self.logic.enter(None, self.consts)
@@ -594,6 +594,7 @@ def read_rapid(path: str, text: str, task: Mapping[str, str] | None = None) -> _
             other.changed = {**module.changed, **other.changed}  # data this module assigns is not the other's constant
             other.predeclare(local=False)
             module.changed = {**other.changed, **module.changed}  # data another module assigns is not constant here
+            module.flow.foreign |= {s.word for s in other.stmts}
             module.share(other)
     module.read()
     return module

@@ -185,6 +185,9 @@ class DataFlow:
         self.where: dict[str, list[tuple[int, tuple[int, ...] | None]]] = {}
         self.trapped: set[str] = set()
         self.bodies: dict[str, int] = {}  # routine (upper) -> the index of its first statement
+        self.at_calls: dict[str, list[dict[str, object]]] = {}  # routine -> the values at each call read
+        self.foreign: set[str] = set()  # words another module of the task writes as statements (calls)
+        self.late = any(re.match(r"(?i)^(%|CallByVar\b)", st.text) for st in stmts)  # a call by a name computed
         self.leaving: dict[str, dict[str, object]] = {}  # routine -> what it leaves known (left_by)
         for k, st in enumerate(stmts):
             m = _ASSIGN.match(st.text)
@@ -231,9 +234,12 @@ class DataFlow:
             out[name] = set().union(*(own[r] for r in seen))
         return out
 
-    def called(self, routine: str) -> None:
+    def called(self, routine: str, record: bool = True) -> None:
         """After a call of a routine of the files: what it may assign is what its straight-line
-        end leaves (`left_by`), or back at its start state."""
+        end leaves (`left_by`), or back at its start state. The values at the call are kept for
+        the routine's own start (`enter_routine`)."""
+        if record:
+            self.at_calls.setdefault(routine.upper(), []).append(dict(self.now))
         left = self.left_by(routine.upper())
         for name in self.sets.get(routine.upper(), set(self.where)):
             self.now[name] = left.get(name, self.start[name])
@@ -257,13 +263,28 @@ class DataFlow:
                 self.skip(k)
                 k = self.end_of(k + 1)
             elif st.word in self.bodies:
-                self.called(st.word)
+                self.called(st.word, record=False)
             else:
                 self.assign(st)
             k += 1
         left = {n: v for n, v in self.now.items() if n in self.sets.get(routine, set()) and _known(v)}
         self.leaving[routine], self.now = left, saved
         return left
+
+    def enter_routine(self, routine: str, main: bool) -> None:
+        """A routine's start: a datum every call of it gives the same known value has it, where
+        every mention of the routine in the module is a call read before it (a caller later in
+        the file, a call another module, an interrupt or a late-binding call may make leaves
+        its start state); the routine that runs first starts from the start state."""
+        self.now, name = dict(self.start), routine.upper()
+        seen = self.at_calls.get(name, [])
+        mentions = sum(1 for st in self.stmts if re.search(rf"(?i)\b{re.escape(routine)}\b", st.text)) - 1
+        if main or name in self.foreign or not seen or len(seen) != mentions or self.late:
+            return
+        for datum in self.where:
+            values = [state.get(datum, UNKNOWN) for state in seen]
+            if all(_known(v) and v == values[0] for v in values):
+                self.now[datum] = values[0]
 
     def restart(self) -> None:
         """A routine's start, a label, a call of a routine of the files."""

@@ -233,17 +233,48 @@ def test_a_tool_and_frame_the_program_only_selects_are_marked_in_the_stub(tmp_pa
 
 
 def test_robodk_main_calling_its_subprograms() -> None:
-    """RoboDK's IRC5 post with a main program calling `Pick` (which sets `rdkSpeed` to 100 mm/s)
-    and `Place`: main's moves after `Pick;` run at the 100 mm/s Pick leaves; `WaitDI D_IN_3, 1,
-    \\MaxTime:=2.0` (the optional argument after a comma) is a wait with a time-out; the
-    subprograms' own moves stay native, as the tool and work object they use are set by their
-    caller (a routine is read without its callers' values)."""
+    """RoboDK's IRC5 post with a main program that sets the tool, work object and speed, then
+    calls `Pick` (which sets `rdkSpeed` to 100 mm/s) and `Place`: main's moves after `Pick;` run
+    at the 100 mm/s Pick leaves; the subprograms start with the values main holds at their one
+    call each (Place's speed: the 100 mm/s Pick left); `WaitDI D_IN_3, 1, \\MaxTime:=2.0` (the
+    optional argument after a comma) is a wait with a time-out."""
     doc = read_files([str(VENDOR / "rapid" / "robodk_irc5_calls.mod")])
+    speeds = {r.name: [(m.kind, m.speed, m.tool, m.frame) for m in walk(r.body) if isinstance(m, Move)]
+              for r in doc.routines}
+    assert speeds == {"Main": [("joint", None, "rdkTool", "rdkWObj"), ("linear", 100.0, "rdkTool", "rdkWObj"),
+                               ("joint", None, "rdkTool", "rdkWObj")],
+                      "Pick": [("linear", 100.0, "rdkTool", "rdkWObj")] * 2,
+                      "Place": [("linear", 100.0, "rdkTool", "rdkWObj")]}
     main = next(r for r in doc.routines if r.name == "Main")
-    moves = [s for s in walk(main.body) if isinstance(s, Move)]
-    assert [(m.kind, m.speed) for m in moves] == [("joint", None), ("linear", 100.0), ("joint", None)]
     assert [s.timeout for s in walk(main.body) if isinstance(s, WaitIn)] == [2.0]
-    for name in ("Pick", "Place"):
-        sub = next(r for r in doc.routines if r.name == name)
-        assert not [s for s in walk(sub.body) if isinstance(s, Move)]
-        assert any("is assigned at line 26 (`rdkTool.tframe" in d.message for d in doc.diagnostics)
+    (tool,) = doc.tools
+    assert tool.tcp.position == pytest.approx((0.0, 0.0, 0.15))
+
+
+_SUB = "  PROC sub()\n    MoveL p0, s, fine, tool0;\n  ENDPROC\n"
+
+
+@pytest.mark.parametrize(("before", "body", "after"), [
+    ("", "    s := [300,500,5000,1000];\n    sub;\n    s := [50,500,5000,1000];\n    sub;\n", _SUB),
+    (_SUB, "    s := [300,500,5000,1000];\n    sub;\n", ""),
+    ("", "    s := [300,500,5000,1000];\n    sub;\n    TPWrite \"sub\";\n", _SUB),
+    ("", "    s := [300,500,5000,1000];\n    sub;\n    s := [50,500,5000,1000];\n    %\"s\" + \"ub\"%;\n", _SUB),
+], ids=["two-calls-two-values", "routine-before-its-caller", "a-mention-not-read-as-a-call", "late-binding-call"])
+def test_a_routine_starts_unknown_unless_every_call_gives_one_value(tmp_path: Path, before: str, body: str,
+                                                                    after: str) -> None:
+    path = tmp_path / "m.mod"
+    path.write_text(f"MODULE M\n  VAR speeddata s := [100,500,5000,1000];\n  CONST robtarget p0 := {P};\n{before}"
+                    f"  PROC main()\n{body}  ENDPROC\n{after}ENDMODULE\n")
+    doc = read_files([str(path)])
+    sub = next(r for r in doc.routines if r.name == "sub")
+    assert not [m for m in walk(sub.body) if isinstance(m, Move)]
+
+
+def test_a_routine_another_module_calls_starts_unknown(tmp_path: Path) -> None:
+    (tmp_path / "a.mod").write_text(f"MODULE A\n  VAR speeddata s := [100,500,5000,1000];\n  CONST robtarget p0 := {P};\n"
+                                    f"  PROC main()\n    s := [300,500,5000,1000];\n    sub;\n  ENDPROC\n{_SUB}ENDMODULE\n")
+    (tmp_path / "b.mod").write_text("MODULE B\n  PROC other()\n    sub;\n  ENDPROC\nENDMODULE\n")
+    alone = read_files([str(tmp_path / "a.mod")])
+    assert [m.speed for r in alone.routines if r.name == "sub" for m in walk(r.body) if isinstance(m, Move)] == [300.0]
+    task = read_files([str(tmp_path / "a.mod"), str(tmp_path / "b.mod")])
+    assert not [m for r in task.routines if r.name == "sub" for m in walk(r.body) if isinstance(m, Move)]
