@@ -70,11 +70,11 @@ class _Module:
     # ---------------------------------------------------------------- module level
 
     def read(self) -> None:
-        if not self.stmts or self.stmts[0].word != "MODULE":
-            where = self.stmts[0].where if self.stmts else Where(self.tally.path, 1)
-            raise self.tally.fail("a RAPID module must start with `MODULE name` (after an optional "
-                                  "%%% header)", where)
-        self.name = self.stmts[0].text.split()[1].split("(")[0]
+        header = re.match(r"(?i)MODULE\s+(\w+)", self.stmts[0].text) if self.stmts else None
+        if header is None:
+            raise self.tally.fail("a RAPID module must start with `MODULE name` (after an optional %%% header)",
+                                  self.stmts[0].where if self.stmts else Where(self.tally.path, 1))
+        self.name = header.group(1)
         self.predeclare(local=True)  # data declared below the PROCs that use them
         for st in self.stmts:
             m = re.match(r"(?i)^(?:LOCAL\s+)?PROC\s+(\w+)", st.text)

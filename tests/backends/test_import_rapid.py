@@ -97,6 +97,16 @@ def test_not_rapid_is_a_located_error(tmp_path: Path) -> None:
     assert "Traceback" not in result.output
 
 
+@pytest.mark.parametrize("header", ["MODULE", "MODULE;", "MODULE (SYSMODULE)"])
+def test_a_module_without_its_name_is_a_located_error(tmp_path: Path, header: str) -> None:
+    """A damaged header (the name lost) was an IndexError; now E510 at the header, exit 2."""
+    bad = tmp_path / "m.mod"
+    bad.write_text(f"{header}\n  PROC main()\n    WaitTime 1;\n  ENDPROC\nENDMODULE\n")
+    result = CliRunner().invoke(cli, ["import", str(bad), "-o", str(tmp_path / "x.rmot")])
+    assert result.exit_code == 2 and "Traceback" not in result.output, result.output
+    assert f"{bad}:1:1: error[E510]: a RAPID module must start with `MODULE name`" in result.output
+
+
 def test_unknown_extension(tmp_path: Path) -> None:
     bad = tmp_path / "robot.txt"
     bad.write_text("MODULE x\nENDMODULE\n")
