@@ -156,7 +156,7 @@ class _Parser:
             return ("on" if token == "TRUE" else "off", "bool", 9)
         if re.fullmatch(r"\d+", token):
             return (str(int(token)), "int", 9)
-        if re.fullmatch(r"\d*\.?\d*(?:E[+-]?\d+)?", token) and token[0] in "0123456789.":
+        if re.fullmatch(r"(?:\d+\.?\d*|\.\d+)(?:E[+-]?\d+)?", token):  # a number (not `.` or the end: "")
             return (f"{float(token)!r}", "num", 9)
         if token in self.names and self.peek() not in ("(", "["):
             name, type_ = self.names[token]

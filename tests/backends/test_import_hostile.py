@@ -31,6 +31,9 @@ CASES = {
                         " v100, fine, tool0;\n ENDPROC\nENDMODULE\n", "W510"),
     "unterminated.src": ("DEF x( )\n FOR i=1 TO 3\n  WAIT SEC 1\nEND\n", "E510"),
     "garbage.ls": ("garbage\n", "E510"),
+    # a condition cut short (an IndexError before), a module header without its name (one too)
+    "cut_condition.src": ("DEF x( )\n WAIT FOR $IN[1] OR\n IF $IN[2] AND THEN\n  $OUT[1]=TRUE\n ENDIF\nEND\n", "W510"),
+    "module_no_name.mod": ("MODULE\n PROC main()\n  WaitTime 1;\n ENDPROC\nENDMODULE\n", "E510"),
 }
 
 
