@@ -255,10 +255,12 @@ def _unknown_calls_kept(doc: Document) -> Document:
     known = {r.name.upper() for r in doc.routines}
 
     def unknown(s: Stmt) -> Keep | None:
-        if not isinstance(s, Call) or s.name.upper() in known:
+        if not isinstance(s, Call) or (s.name.upper() in known and s.name.upper() != doc.main.upper()):
             return None
-        return (codes.KEPT_NATIVE, lambda text: f"`{s.name}` is a routine none of the files given defines (give its "
-                f"file too); kept as `native {doc.vendor}`: {text[:60]}", f"{s.name}()")
+        why = (f"`{s.name}` is the routine that runs first, the program's own body in rmot: a call back to it has "
+               "no rmot form" if s.name.upper() == doc.main.upper() else
+               f"`{s.name}` is a routine none of the files given defines (give its file too)")
+        return (codes.KEPT_NATIVE, lambda text: f"{why}; kept as `native {doc.vendor}`: {text[:60]}", f"{s.name}()")
 
     return kept_native(doc, unknown, span_of)
 

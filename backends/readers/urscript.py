@@ -28,7 +28,7 @@ from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
-    Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments,
+    Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments, scoped_defs,
     split_statements, strip_hash, ur_pose,
 )
 from rmot.backends.readers.urscript_values import (
@@ -59,6 +59,7 @@ class _Script:
                 lines = self.installation[-1][2] if n in nodes else self.lines
                 for offset, part in split_statements(code):
                     lines.append(Line(part, Where(path, n, indent + offset + 1)))
+        self.lines = scoped_defs(self.lines)  # a function local to another, renamed where its name is taken
         self.vmax, self.amax = JOINT_LIMITS.get(model or "", DEFAULT_LIMITS)
         self.limits = limits
         self.rest_joints: tuple[float, ...] | None = None  # where the last exact-stop movej ended, deg

@@ -18,7 +18,8 @@ from rmot.lang import ir
 
 __all__ = [
     "ANY_ASSIGN", "NUMBER_ASSIGN", "Line", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
-    "outer", "polled_wait", "pose_numbers", "scan_assignments", "split_statements", "split_word", "strip_hash", "ur_pose"
+    "outer", "polled_wait", "pose_numbers", "scan_assignments", "scoped_defs", "split_statements", "split_word",
+    "strip_hash", "ur_pose",
 ]
 
 
@@ -285,3 +286,38 @@ def compose(func: str, a: ir.Pose, b: ir.Pose) -> ir.Pose:
     turned = ir.Pose((0.0, 0.0, 0.0), b.quaternion) * ir.Pose((0.0, 0.0, 0.0), a.quaternion)
     x, y, z = (u + v for u, v in zip(a.position, b.position))
     return ir.Pose((x, y, z), turned.quaternion)
+
+
+def scoped_defs(lines: list[Line]) -> list[Line]:
+    """Lines where a function defined inside another, whose name a function less deeply nested
+    also has, is renamed `<enclosing>_<name>` with every call inside the enclosing function
+    (URScript manual, "Scoping rules": the inner one is the enclosing function's own; rmot's
+    procs share one scope, where two procs of one name are E102)."""
+    found: list[tuple[int, str, int, int]] = []  # (line, name, enclosing def's line, depth)
+    ends: dict[int, int] = {}
+    stack: list[tuple[int, bool]] = []  # open blocks: (line, whether a def)
+    for k, ln in enumerate(lines):
+        if ln.head in ("if", "while", "for", "def", "thread"):
+            m = re.match(r"def\s+(\w+)\s*\(", ln.text)
+            if m:
+                around = [j for j, is_def in stack if is_def]
+                found.append((k, m.group(1), around[-1] if around else -1, len(around)))
+            stack.append((k, ln.head == "def"))
+        elif ln.head == "end" and stack:
+            ends[stack.pop()[0]] = k
+    shallowest: dict[str, int] = {}
+    for _, name, _, depth in found:
+        shallowest[name] = min(depth, shallowest.get(name, depth))
+    taken = {name for _, name, _, _ in found}
+    out = list(lines)
+    for _, name, outer, depth in found:
+        if depth == shallowest[name] or outer < 0 or sum(1 for f in found if f[1] == name) < 2:
+            continue
+        enclosing = re.match(r"def\s+(\w+)", lines[outer].text)
+        new = f"{enclosing.group(1) if enclosing else 'local'}_{name}"
+        while new in taken:
+            new += "_"
+        taken.add(new)
+        for i in range(outer, ends.get(outer, len(out) - 1) + 1):
+            out[i] = Line(re.sub(rf"\b{name}(\s*\()", rf"{new}\1", out[i].text), out[i].where)
+    return out

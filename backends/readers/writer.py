@@ -251,8 +251,10 @@ class _Printer:
             self.emit(depth, f"sync {rmot_name(s.name)}")
         elif isinstance(s, Grip):
             self.emit(depth, f"{'attach' if s.take else 'detach'} {s.part}")
-        elif isinstance(s, Call):
-            self.emit(depth, f"{rmot_name(s.name)}({', '.join(s.args)})")
+        elif isinstance(s, Call):  # as the routine is spelt where it is defined (KRL, TP: names in any case)
+            names = [r.name for r in self.doc.routines]
+            name = s.name if s.name in names else next((n for n in names if n.upper() == s.name.upper()), s.name)
+            self.emit(depth, f"{rmot_name(name)}({', '.join(s.args)})")
         else:
             self.block(s, depth, state)
 

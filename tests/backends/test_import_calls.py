@@ -62,3 +62,26 @@ def test_a_tp_conditional_call_of_a_program_of_the_job_is_an_if(tmp_path: Path) 
     assert "if in[1] == on" not in program
     result = CliRunner().invoke(cli, ["check", str(tmp_path / "imported.rmot")], catch_exceptions=False)
     assert result.exit_code == 0, result.output
+
+
+def test_a_krl_call_spelt_in_another_case_calls_the_routine(tmp_path: Path) -> None:
+    """KRL names are case-insensitive (KSS 8.x, "Names"): `calculatepickpos(..)` calls `DEF
+    calculatePickPos(..)`. The import wrote the call as spelt and `rmot check` refused it (E101,
+    exit 2) on a real milling program (HugoDanielson/KukaMiling); it is written as the DEF spells it."""
+    program, _ = _import(tmp_path, {"job.src": "DEF job( )\n  calculatepickpos(2)\nEND\n"
+                                               "DEF calculatePickPos(nTool :IN)\n  DECL INT nTool\n"
+                                               "  PTP {A1 0,A2 -90,A3 90,A4 0,A5 30,A6 0}\nEND\n"})
+    assert "calculatePickPos(2)" in program and "calculatepickpos(" not in program, program
+    result = CliRunner().invoke(cli, ["check", str(tmp_path / "imported.rmot")], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+
+
+def test_a_call_back_to_the_main_routine_stays_native(tmp_path: Path) -> None:
+    """A RAPID PROC that ends with `main;` (TheNameXDD's vision cell loops so): rmot's main routine
+    is the program's body, not a proc, so the call was `main()` and `rmot check` refused it (E101)."""
+    program, output = _import(tmp_path, {"cell.mod": "MODULE cell\n  PROC main()\n    put;\n  ENDPROC\n"
+                                                     "  PROC put()\n    SetDO do1, 1;\n    main;\n  ENDPROC\nENDMODULE\n"})
+    assert 'native rapid "main;"' in program
+    assert "`main` is the routine that runs first, the program's own body in rmot" in output
+    result = CliRunner().invoke(cli, ["check", str(tmp_path / "imported.rmot")], catch_exceptions=False)
+    assert result.exit_code == 0, result.output

@@ -15,10 +15,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from click.testing import CliRunner
 from scipy.spatial.transform import Rotation
 
 from rmot.backends.readers import read_files
 from rmot.backends.readers.model import Conds, Cond, If, Move, Native, SetOut, Wait, WaitIn, walk
+from rmot.compiler.cli import cli
 
 A = [0.3, -0.2, 0.4, 0.5, -1.2, 2.0]  # p[x, y, z, rx, ry, rz]: m, rotation vector rad
 B = [0.01, 0.02, -0.05, 0.3, 0.2, -0.4]
@@ -273,3 +275,22 @@ def test_an_installation_node_assignment_counts(tmp_path: Path) -> None:
                    "  home_p = get_actual_tcp_pose()\n  # end: URCap Installation Node\n"
                    "  global home_p = p[0.4, 0.1, 0.3, 0, 3.14159, 0]\n  movel(home_p, a=1.2, v=0.25)\nend\n")
     assert not doc.targets
+
+
+def test_a_function_local_to_another_with_a_name_taken_is_renamed(tmp_path: Path) -> None:
+    """URScript scoping: `def calc(x)` inside `def homing()` is homing's own; a `def calc(x)` of
+    the program is another function. rmot's procs share one scope: both were `proc calc` and
+    `rmot check` refused the import (E102, exit 2; Unitedplastic's PolyScope programs). The inner
+    one is `homing_calc`, and so are the calls inside `homing`."""
+    path = tmp_path / "prog.script"
+    path.write_text("def prog():\n  def homing():\n    def calc(x):\n      set_standard_digital_out(1, True)\n    end\n"
+                    "    calc(1)\n  end\n  def calc(x):\n    set_standard_digital_out(2, True)\n  end\n"
+                    "  homing()\n  calc(2)\nend\n")
+    out = tmp_path / "prog.rmot"
+    result = CliRunner().invoke(cli, ["import", str(path), "-o", str(out)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    text = out.read_text()
+    assert "proc homing_calc(x: number) {\n    set out[1] = on" in text and "proc calc(x: number) {\n    set out[2] = on" in text
+    assert "homing_calc(1)" in text and "\n  calc(2)" in text
+    checked = CliRunner().invoke(cli, ["check", str(out)], catch_exceptions=False)
+    assert checked.exit_code == 0, checked.output
