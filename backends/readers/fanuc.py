@@ -156,7 +156,7 @@ class _Ls:
             line = text[:max(start, 0) + m.start()].count("\n") + 1
             values = {k.upper(): float(v) for k, v in re.findall(r"\b([XYZWPR]|J\d)\s*=\s*(-?[\d.]+)", body)}
             conf = re.search(r"CONFIG\s*:\s*'([^']*)'", body)
-            name = rmot_name(label) if label else f"{self.name.lower()}_p{n}"
+            name = rmot_name(label) if label else rmot_name(f"{self.name.lower()}_p{n}")  # `-BCKED8-`: a name
             if any(t.name == name for t in self.positions.values()):
                 name = f"{name}_{n}"  # the same label on another P[n] (the moves name it by number)
             where = Where(self.path, line)
@@ -270,7 +270,7 @@ class _Ls:
         if n not in table:
             label = self.labels[kind].get(n, f"{kind.lower()}{n}")
             if kind == "UTOOL":
-                self.tools[n] = ToolData(label, ir.Pose(), 0.0, at, f"UTOOL[{n}]")
+                self.tools[n] = ToolData(label, ir.Pose(), 0.0, at, f"UTOOL[{n}]" if n else "")  # 0: the faceplate
             else:
                 self.frames[n] = FrameData(label, ir.Pose(), at, f"UFRAME[{n}]")
         return table[n].name

@@ -162,7 +162,7 @@ class _Job:
             branch = ir.Config(ir.Shoulder.FRONT if bits[2].strip() == "0" else ir.Shoulder.BACK,
                                ir.Elbow.UP if bits[1].strip() == "0" else ir.Elbow.DOWN, None)
         key = _key(m.group(1))
-        name = f"{self.name.lower()}_{key.lower()}"
+        name = rmot_name(f"{self.name.lower()}_{key.lower()}")  # a job `001-R1-HOME`: an rmot name
         self.positions[key] = Target(name, ir.Pose(pose.position, q), None, branch,  # type: ignore[arg-type]
                                             Where(self.path, n), ",".join(b.strip() for b in bits))
         self.position_tool[key] = tool
@@ -182,7 +182,7 @@ class _Job:
                                          f"{len(scales)} whole pulse counts --pulses-per-degree gives scales for")
         else:
             joints = tuple(c / k for c, k in zip(counts, scales))
-            self.positions[key] = Target(f"{self.name.lower()}_{key.lower()}", None, joints, None, Where(self.path, n))
+            self.positions[key] = Target(rmot_name(f"{self.name.lower()}_{key.lower()}"), None, joints, None, Where(self.path, n))
             self.position_tool[key] = tool
             self.position_user[key] = None
 
@@ -342,6 +342,8 @@ class _Job:
         if re.search(r"\bNWAIT\b", rest):  # the next instructions run during the move
             self.tally.warn(codes.MOTION_OPTION_KEPT, "NWAIT is not read: the instructions after this move "
                             "run once it ends, not while it runs", where)
+        if user is not None and not sync and user not in self.frames:  # the controller's user frame: a stub entry
+            self.frames[user] = FrameData(f"user{user}", ir.Pose(), where, f"user frame {user}")
         return Move(kind, self._shifted(decl.name), decl.name, where,
                     via=self._shifted(decls[0].name) if kind == "circular" else None,  # type: ignore[union-attr]
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,
