@@ -270,7 +270,7 @@ class _Ls:
         if n not in table:
             label = self.labels[kind].get(n, f"{kind.lower()}{n}")
             if kind == "UTOOL":
-                self.tools[n] = ToolData(label, ir.Pose(), 0.0, at, f"UTOOL[{n}]" if n else "")  # 0: the faceplate
+                self.tools[n] = ToolData(label, ir.Pose(), 0.0, at, f"UTOOL[{n}]" if n else "")  # UTOOL 0: the faceplate (B-83284EN, tool frame)
             else:
                 self.frames[n] = FrameData(label, ir.Pose(), at, f"UFRAME[{n}]")
         return table[n].name

@@ -385,12 +385,11 @@ class _Job:
         while k >= 0 and re.match(r"(DOUT|PULSE|AOUT|TIMER|WAIT)\b|'", self._text(k)):
             k -= 1
         m = re.fullmatch(r"S?MOV[JL]\s+([CP]\d+).*", self._text(k)) if k >= 0 else None
-        a, b = (self.positions.get(_key(m.group(1))), self.positions.get(key)) if m else (None, None)
-        same = m is not None and _key(m.group(1)) == key
-        return same or (a is not None and b is not None and a.pose is not None and b.pose is not None and
-                        self.position_tool.get(_key(m.group(1))) == self.position_tool.get(key) and  # type: ignore[union-attr]
-                        self.position_user.get(_key(m.group(1))) == self.position_user.get(key) and  # type: ignore[union-attr]
-                        same_pose(a.pose, b.pose))
+        last = _key(m.group(1)) if m else ""
+        a, b = self.positions.get(last), self.positions.get(key)
+        return last == key or (a is not None and b is not None and a.pose is not None and b.pose is not None and
+                               self.position_tool.get(last) == self.position_tool.get(key) and
+                               self.position_user.get(last) == self.position_user.get(key) and same_pose(a.pose, b.pose))
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
         m = re.fullmatch(r"WAIT IN#\((\d+)\)=(ON|OFF) T=([\d.]+)", self._text(i))

@@ -23,7 +23,7 @@ from rmot.backends.readers.model import (
     For, Routine,
 )
 from rmot.backends.readers.rapid_data import (
-    DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
+    LATE_CALL, DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
 )
 from rmot.backends.readers.rapid_logic import RapidVars, condition
 from rmot.backends.readers.rapid_text import Statement, literal, statements
@@ -271,7 +271,7 @@ class _Module:
             return self._timed_wait(i)
         if word in self.proc_names:
             self.flow.called(word)  # the routine may set data (rapid_data.DataFlow)
-        elif re.match(r"(?i)^(\w+\s*:$|%|CallByVar\b)", st.text):
+        elif re.match(rf"(?i)^(\w+\s*:$|{LATE_CALL})", st.text):
             self.flow.restart()  # a jump may arrive here; a call by name may run any routine
         if self.flow.assign(st):
             self.tally.imported += 1

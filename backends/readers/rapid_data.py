@@ -22,6 +22,7 @@ assigns to be constant.
 from __future__ import annotations
 
 import re
+from collections import Counter
 from collections.abc import Mapping
 from itertools import product
 from typing import TypeVar
@@ -32,7 +33,7 @@ from rmot.backends.readers.model import FrameData, ToolData, Where
 from rmot.backends.readers.rapid_text import Statement, literal
 from rmot.lang import ir
 
-__all__ = ["DataFlow", "assigned_at", "branch_of", "changed_data", "frame_of", "in_document", "joints_of", "pose_of", "tool_of"]
+__all__ = ["DataFlow", "LATE_CALL", "assigned_at", "branch_of", "changed_data", "frame_of", "in_document", "joints_of", "pose_of", "tool_of"]
 
 D = TypeVar("D", ToolData, FrameData)
 
@@ -54,6 +55,7 @@ FOLLOWED = ("tooldata", "wobjdata", "speeddata", "zonedata")
 _ASSIGN = re.compile(r"(?i)^(\w+)((?:\s*\.\s*\w+|\s*\{[^}]*\})*)\s*:=\s*(.*)$")
 _OPENS = re.compile(r"(?i)^(IF\b.*\bTHEN|WHILE\b.*\bDO|FOR\b.*\bDO|TEST\b.*)$")
 _CLOSES = ("ENDIF", "ENDWHILE", "ENDFOR", "ENDTEST")
+LATE_CALL = r"%|CallByVar\b"  # a call of a routine by a name computed at run time (RAPID Overview, "late binding")
 
 
 class _Unknown:
@@ -187,7 +189,8 @@ class DataFlow:
         self.bodies: dict[str, int] = {}  # routine (upper) -> the index of its first statement
         self.at_calls: dict[str, list[dict[str, object]]] = {}  # routine -> the values at each call read
         self.foreign: set[str] = set()  # words another module of the task writes as statements (calls)
-        self.late = any(re.match(r"(?i)^(%|CallByVar\b)", st.text) for st in stmts)  # a call by a name computed
+        self.late = any(re.match(rf"(?i)^({LATE_CALL})", st.text) for st in stmts)
+        self.mentions = Counter(w for st in stmts for w in set(re.findall(r"\w+", st.text.upper())))  # word -> statements
         self.leaving: dict[str, dict[str, object]] = {}  # routine -> what it leaves known (left_by)
         for k, st in enumerate(stmts):
             m = _ASSIGN.match(st.text)
@@ -212,6 +215,7 @@ class DataFlow:
         own: dict[str, set[str]] = {}
         calls: dict[str, set[str]] = {}
         routine, kind = "", ""
+        assigning = {k: name for name, places in self.where.items() for k, _ in places}  # statement -> its datum
         for k, st in enumerate(self.stmts):
             m = re.match(r"(?i)^(?:LOCAL\s+)?(PROC|FUNC|TRAP)\s+(?:\w+\s+)??(\w+)\s*(?:\(|$)", st.text)
             if m:
@@ -219,8 +223,8 @@ class DataFlow:
                 own.setdefault(routine, set()), calls.setdefault(routine, set())
                 self.bodies[routine] = k + 1
             elif routine:
-                own[routine] |= {n for n, places in self.where.items() if any(i == k for i, _ in places)}
-                calls[routine] |= {st.word} | ({"*"} if re.match(r"(?i)^(%|CallByVar\b)", st.text) else set())
+                own[routine] |= {assigning[k]} if k in assigning else set()
+                calls[routine] |= {st.word} | ({"*"} if re.match(rf"(?i)^({LATE_CALL})", st.text) else set())
                 if kind == "TRAP":
                     self.trapped |= own[routine]
         out: dict[str, set[str]] = {}
@@ -256,7 +260,7 @@ class DataFlow:
         self.now = dict(self.start)
         while k < len(self.stmts) and self.stmts[k].word != "ENDPROC":
             st = self.stmts[k]
-            if re.match(r"(?i)^(\w+\s*:$|%|CallByVar\b|GOTO\b|RETURN\b|EXIT\b|RAISE\b|ERROR\b)", st.text):
+            if re.match(rf"(?i)^(\w+\s*:$|{LATE_CALL}|GOTO\b|RETURN\b|EXIT\b|RAISE\b|ERROR\b)", st.text):
                 self.now, k = dict(self.start), len(self.stmts)
                 break
             if _OPENS.match(st.text):
@@ -278,8 +282,7 @@ class DataFlow:
         its start state); the routine that runs first starts from the start state."""
         self.now, name = dict(self.start), routine.upper()
         seen = self.at_calls.get(name, [])
-        mentions = sum(1 for st in self.stmts if re.search(rf"(?i)\b{re.escape(routine)}\b", st.text)) - 1
-        if main or name in self.foreign or not seen or len(seen) != mentions or self.late:
+        if main or name in self.foreign or not seen or len(seen) != self.mentions[name] - 1 or self.late:  # - its PROC line
             return
         for datum in self.where:
             values = [state.get(datum, UNKNOWN) for state in seen]
@@ -287,7 +290,7 @@ class DataFlow:
                 self.now[datum] = values[0]
 
     def restart(self) -> None:
-        """A routine's start, a label, a call of a routine of the files."""
+        """A label (a jump may arrive from where the data differed) or a late-binding call."""
         self.now = dict(self.start)
 
     def enter(self, i: int) -> dict[str, object]:

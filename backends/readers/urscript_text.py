@@ -311,7 +311,7 @@ def scoped_defs(lines: list[Line]) -> list[Line]:
     taken = {name for _, name, _, _ in found}
     out = list(lines)
     for _, name, outer, depth in found:
-        if depth == shallowest[name] or outer < 0 or sum(1 for f in found if f[1] == name) < 2:
+        if depth == shallowest[name] or outer < 0:  # the outermost of a name (a name defined once) keeps it
             continue
         enclosing = re.match(r"def\s+(\w+)", lines[outer].text)
         new = f"{enclosing.group(1) if enclosing else 'local'}_{name}"

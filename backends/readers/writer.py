@@ -212,6 +212,8 @@ class _Printer:
         self.doc = doc
         self.signals = signals
         self.lines: list[str] = []
+        self.defined = {r.name for r in doc.routines}
+        self.spelt = {r.name.upper(): r.name for r in reversed(doc.routines)}  # a call's routine as defined
 
     def emit(self, depth: int, text: str) -> None:
         self.lines.append(INDENT * depth + text)
@@ -252,8 +254,7 @@ class _Printer:
         elif isinstance(s, Grip):
             self.emit(depth, f"{'attach' if s.take else 'detach'} {s.part}")
         elif isinstance(s, Call):  # as the routine is spelt where it is defined (KRL, TP: names in any case)
-            names = [r.name for r in self.doc.routines]
-            name = s.name if s.name in names else next((n for n in names if n.upper() == s.name.upper()), s.name)
+            name = s.name if s.name in self.defined else self.spelt.get(s.name.upper(), s.name)
             self.emit(depth, f"{rmot_name(name)}({', '.join(s.args)})")
         else:
             self.block(s, depth, state)
