@@ -20,6 +20,10 @@ from rmot.lang.diagnostics import Diagnostic, Severity
 from rmot.lang.input_file import NotRegularFile, read_regular
 from rmot.lang.source import Pos, SourceFile, Span
 from dataclasses import replace
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from rmot.backends.readers.fanuc_va import Controller
 
 __all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "companions"]
 
@@ -64,7 +68,7 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.fanuc import read_fanuc  # late: loads numpy only when this runs
 
-    m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS, _PULSE_POSE[0])
+    m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS, _PULSE_POSE[0], _FANUC_SAVED[0])
     _FANUC_INLINED.update(m.inlined)
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
@@ -127,6 +131,8 @@ _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
 _FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
 _FANUC_INLINED: set[str] = set()  # the programs some caller inlined
 _RAPID_TASK: dict[str, str] = {}  # the RAPID modules given: one task, their global data shared
+# a Fanuc backup's saved registers and frames (NUMREG.VA, POSREG.VA, SYSFRAME.VA) given with its programs
+_FANUC_SAVED: list[Controller | None] = [None]
 
 Reader = Callable[[str, str, "tuple[str, str] | None"], "tuple[Document, Tally]"]
 
@@ -135,7 +141,7 @@ READERS: dict[str, tuple[str, Reader]] = {
     ".mod": ("rapid", _rapid), ".modx": ("rapid", _rapid), ".prg": ("rapid", _rapid),
     ".src": ("krl", _krl), ".dat": ("krl", _krl), ".script": ("urscript", _urscript),
     ".urscript": ("urscript", _urscript), ".ls": ("fanuc", _fanuc),
-    ".jbi": ("inform", _inform), ".pgx": ("val3", _val3), ".pjx": ("val3", _val3),
+    ".jbi": ("inform", _inform), ".pgx": ("val3", _val3), ".pjx": ("val3", _val3), ".va": ("fanuc", _fanuc),
 }
 
 _SOURCES: dict[str, SourceFile] = {}
@@ -201,6 +207,41 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     _FANUC_PROGRAMS.clear()
     _FANUC_INLINED.clear()
     _RAPID_TASK.clear()
+    _FANUC_SAVED[0] = _saved_data(paths)
+    _index(paths)
+    _one_main(_RAPID_TASK)
+    docs: list[Document] = []
+    consumed = set()
+    for path in paths:
+        if path in consumed or path.lower().endswith(".va"):
+            continue
+        entry = READERS.get(os.path.splitext(path)[1].lower())
+        if entry is None:
+            known = ", ".join(sorted(READERS))
+            raise _fail(codes.UNKNOWN_FORMAT, path, f"`rmot import` reads {known} files (got `{os.path.basename(path)}`)")
+        companion = None
+        if entry[0] == "krl" and path.lower().endswith(".src"):
+            stem = os.path.splitext(path)[0]
+            dat = next((p for p in paths if os.path.splitext(p)[0] == stem and p.lower().endswith(".dat")), None)
+            dat = dat or next((c for c in companions(path)[1:]), None)
+            if dat is not None:
+                consumed.add(dat)
+                companion = (dat, _load(dat))
+        doc, _ = entry[1](path, _load(path), companion)
+        docs.append(doc)
+    if not docs:
+        raise _fail(codes.NOT_VENDOR_LANGUAGE, paths[0], "a Fanuc .VA file is read with the TP programs that use "
+                    "its registers and frames (give the .ls too)")
+    docs = _without_inlined(docs)
+    vendors = {d.vendor for d in docs}
+    if len(vendors) > 1:
+        raise _fail(codes.DIFF_VENDORS_DIFFER, paths[-1], f"the files must be of one vendor (got {', '.join(sorted(vendors))})")
+    return _unknown_calls_kept(_merge(docs))
+
+
+def _index(paths: list[str]) -> None:
+    """The programs of one import by name, and the tool and frame names and RAPID modules they
+    share, collected from every file before any is read."""
     for path in paths:
         if path.lower().endswith(".ls"):
             prog = re.match(r"\s*/PROG\s+([\w-]+)", _load(path))
@@ -218,31 +259,20 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
             job = re.search(r"(?m)^//NAME\s+(\w+)", _load(path))
             if job:
                 _FANUC_PROGRAMS[job.group(1).upper()] = (path, _load(path))
-    _one_main(_RAPID_TASK)
-    docs: list[Document] = []
-    consumed = set()
-    for path in paths:
-        if path in consumed:
-            continue
-        entry = READERS.get(os.path.splitext(path)[1].lower())
-        if entry is None:
-            known = ", ".join(sorted(READERS))
-            raise _fail(codes.UNKNOWN_FORMAT, path, f"`rmot import` reads {known} files (got `{os.path.basename(path)}`)")
-        companion = None
-        if entry[0] == "krl" and path.lower().endswith(".src"):
-            stem = os.path.splitext(path)[0]
-            dat = next((p for p in paths if os.path.splitext(p)[0] == stem and p.lower().endswith(".dat")), None)
-            dat = dat or next((c for c in companions(path)[1:]), None)
-            if dat is not None:
-                consumed.add(dat)
-                companion = (dat, _load(dat))
-        doc, _ = entry[1](path, _load(path), companion)
-        docs.append(doc)
-    docs = _without_inlined(docs)
-    vendors = {d.vendor for d in docs}
-    if len(vendors) > 1:
-        raise _fail(codes.DIFF_VENDORS_DIFFER, paths[-1], f"the files must be of one vendor (got {', '.join(sorted(vendors))})")
-    return _unknown_calls_kept(_merge(docs))
+
+
+def _saved_data(paths: list[str]) -> Controller | None:
+    """The registers and frames the .VA files among `paths` saved, with what the TP programs
+    among them write (fanuc_va); None without a .VA file."""
+    from rmot.backends.readers.fanuc_va import Controller, empty, read_va  # late: loads numpy only when this runs
+
+    saved = [p for p in paths if p.lower().endswith(".va")]
+    if not saved:
+        return None
+    data = empty()
+    for path in saved:
+        read_va(path, _load(path), data)
+    return Controller(data, [_load(p) for p in paths if p.lower().endswith(".ls")])
 
 
 def _unknown_calls_kept(doc: Document) -> Document:

@@ -159,3 +159,10 @@ REGISTER_READ_AS_VARIABLE = Code("W536", "register-read-as-variable",
                                  "a Fanuc TP register or flag the running program sets before it reads it is read "
                                  "as a task variable: on the controller it keeps its value between runs and another "
                                  "program writing it while this one runs is not seen")
+
+# Fanuc registers read at the value a controller backup saved (fanuc_va.py)
+__all__ += ["CONTROLLER_VALUE_READ"]
+CONTROLLER_VALUE_READ = Code("W543", "controller-value-read",
+                             "a Fanuc TP register no program given writes is read at the value the backup's "
+                             "NUMREG.VA or POSREG.VA saved: another program or the PLC may change it before "
+                             "this one runs")

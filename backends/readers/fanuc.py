@@ -16,16 +16,16 @@ with `$WAITTMOUT` (1/100 s) and the ABORT label; the counting loop `R[v]=a`, `LB
 
 from __future__ import annotations
 
-import math
 import re
 
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import (
-    Tally, counter_alone, label_arms, label_loop, match_simple, number, reaches, rmot_name,
+    Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name,
 )
 from rmot.backends.readers.fanuc_regs import Registers, negated
-from rmot.backends.readers.fanuc_text import german_instruction, wait_condition
+from rmot.backends.readers.fanuc_va import Controller, Saved, empty
+from rmot.backends.readers.fanuc_text import german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
@@ -36,7 +36,7 @@ from rmot.lang import ir
 
 __all__ = ["read_fanuc"]
 
-_MOTION = re.compile(r"(?i)^(J|L)\s+P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
+_MOTION = re.compile(r"(?i)^(J|L)\s+(PR?)\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _CIRC = re.compile(r"(?i)^C\s+P\[(\d+)(?::[^\]]*)?\]\s*:\s*P\[(\d+)(?::[^\]]*)?\]\s+(.*?)\s+(FINE|CNT\s*\d+)\s*(.*)$")
 _SIG = r"\[(\d+)(?::[^\]]*)?\]"
 _NATIVE_JMP = re.compile(r"\bJMP\s+LBL\[(\d+)")  # a jump kept native (not TIMEOUT,LBL: the wait's error exit)
@@ -66,20 +66,14 @@ def _names_label(text: str, label: str) -> bool:
     return re.search(rf"\bLBL\[{label}(?::[^\]]*)?\]", text) is not None
 
 
-def _branch(text: str) -> ir.Config | None:
-    m = re.match(r"\s*([FN])\s*([UD])\s*([TB])", text.upper())
-    if m is None:
-        return None
-    return ir.Config(ir.Shoulder.FRONT if m.group(3) == "T" else ir.Shoulder.BACK,
-                     ir.Elbow.UP if m.group(2) == "U" else ir.Elbow.DOWN,
-                     ir.Wrist.FLIP if m.group(1) == "N" else ir.Wrist.NOFLIP)
-
-
 class _Ls:
     def __init__(self, path: str, text: str, labels: dict[str, dict[int, str]],
                  programs: dict[str, tuple[str, str]] | None = None, pulse_pose: PulsePose | None = None,
-                 not_vars: frozenset[tuple[str, int]] = frozenset()) -> None:
+                 not_vars: frozenset[tuple[str, int]] = frozenset(), controller: Controller | None = None) -> None:
         self.tally = Tally(path, text, "fanuc")
+        self.controller = controller or Controller(empty(), [text])  # the registers and frames a backup's .VA files saved
+        self.unread: str | None = None  # why the last motion line read is not (a register's value)
+        self.saved_used: list[tuple[str, int]] = []  # the saved registers the motion line being read uses
         self.not_vars = not_vars  # registers and flags not read as task variables (read_fanuc)
         self.path = path
         self.raw = text.split("\n")
@@ -161,11 +155,8 @@ class _Ls:
                 name = f"{name}_{n}"  # the same label on another P[n] (the moves name it by number)
             where = Where(self.path, line)
             if all(k in values for k in "XYZWPR"):
-                pose = ir.Pose.from_xyz_rpy(values["X"] / 1000, values["Y"] / 1000, values["Z"] / 1000,
-                                            math.radians(values["W"]), math.radians(values["P"]), math.radians(values["R"]))
-                q = tuple(0.0 if abs(v) < 1e-12 else v for v in pose.quaternion)  # cos(90 deg) noise
-                self.positions[n] = Target(name, ir.Pose(pose.position, q), None,  # type: ignore[arg-type]
-                                           _branch(conf.group(1)) if conf else None, where, slots=axes_slots.fanuc_slots(m.group(3)))
+                self.positions[n] = Target(name, tp_pose([values[k] for k in "XYZWPR"]), None,
+                                           tp_branch(conf.group(1)) if conf else None, where, slots=axes_slots.fanuc_slots(m.group(3)))
             elif all(f"J{i}" in values for i in range(1, 7)):
                 self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where,
                                            slots=axes_slots.fanuc_slots(m.group(3)))
@@ -207,8 +198,11 @@ class _Ls:
             found = pattern(i, end)
             if found is not None:
                 return found
+        self.unread, self.saved_used = None, []
         moved = self._motion(text, where) if text.startswith(("J ", "L ", "C ")) else None
         if moved is not None:
+            for kind, n in self.saved_used:  # W543: the move is read with a value the backup saved
+                self.controller.note(self.tally, where, kind, n)
             self.tally.imported += 1
             return [moved[0], *moved[1]], i + 1
         stmt = self._simple(text, where)
@@ -218,8 +212,9 @@ class _Ls:
             nan = float("nan")
             self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (nan, nan, nan)))  # type: ignore[union-attr]
         if stmt is None:
-            joint_form = [why for why in (self._tcp_of(p, where) for p in _path_points(text)) if isinstance(why, str)]
-            return [self.tally.keep(text + " ;", where, joint_form[0] if joint_form else "no rmot form")], i + 1
+            joint_form = [why for why in (self._tcp_of(p, where) for p in path_points(text)) if isinstance(why, str)]
+            why = joint_form[0] if joint_form else self.unread or "no rmot form"
+            return [self.tally.keep(text + " ;", where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
 
@@ -254,8 +249,8 @@ class _Ls:
             return [], i + 1
         return None
 
-    def _define(self, kind: str, n: int, v: list[float], where: Where) -> None:
-        pose = ir.Pose.from_xyz_rpy(v[0] / 1000, v[1] / 1000, v[2] / 1000, *(math.radians(a) for a in v[3:]))
+    def _define(self, kind: str, n: int, v: list[float] | tuple[float, ...], where: Where) -> None:
+        pose = tp_pose(v)
         name = self.labels[kind].get(n, f"{kind.lower()}{n}")
         if kind == "UTOOL":
             self.tools[n] = ToolData(name, pose, 0.0, where)
@@ -267,6 +262,9 @@ class _Ls:
         if kind == "UFRAME" and n == 0:
             return "base"
         table = self.tools if kind == "UTOOL" else self.frames
+        saved = self.controller.data.utool if kind == "UTOOL" else self.controller.data.uframe
+        if n not in table and n in saved and saved[n].xyzwpr is not None:
+            self._define(kind, n, saved[n].xyzwpr or [], saved[n].where)  # SYSFRAME.VA's $MNUTOOL/$MNUFRAME
         if n not in table:
             label = self.labels[kind].get(n, f"{kind.lower()}{n}")
             if kind == "UTOOL":
@@ -432,7 +430,10 @@ class _Ls:
             kind, points, speed, zone, rest = "circular", [int(circ.group(1)), int(circ.group(2))], *circ.group(3, 4, 5)
         elif lin:
             kind = "joint" if lin.group(1).upper() == "J" else "linear"
-            points, speed, zone, rest = [int(lin.group(2))], *lin.group(3, 4, 5)
+            point = int(lin.group(3)) if lin.group(2).upper() == "P" else self._register_point(int(lin.group(3)), where)
+            if point is None:
+                return None
+            points, speed, zone, rest = [point], *lin.group(4, 5, 6)
         else:
             return None
         decls = [self.positions.get(p) for p in points]
@@ -441,7 +442,7 @@ class _Ls:
             decls = [t if isinstance(t, Target) else d for t, d in zip(tcps, decls)]
             if any(isinstance(t, str) for t in tcps):
                 return None
-        options = _options(rest)
+        options = motion_options(rest)
         if options is None or any(d is None for d in decls):
             return None
         acc, offset, kept = options
@@ -453,13 +454,15 @@ class _Ls:
             # linear move's joints by the same share (compiler/plan/move_chain.py)
             self.tally.warn(codes.ACCEL_SHARE_ON_PATH, f"ACC{acc} on a {kind} move is read as `accel {acc} %` "
                             "(the joint acceleration share); its TCP acceleration stays the default", where)
-        if offset is not None and offset not in self.offsets:
+        shifts = self.offsets.get(offset) if offset is not None else {}
+        shifts = self._saved_offset(offset, where) if shifts is None and offset is not None else shifts
+        if shifts is None:
             return None
         exprs = [d.name for d in decls]  # type: ignore[union-attr]
         if offset is not None:
-            terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(self.offsets[offset].items()))
+            terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(shifts.items()))
             exprs = [f"shift({e}, {terms})" if terms else e for e in exprs]
-        timing = _speed(kind, speed.replace(" ", ""))
+        timing = tp_speed(kind, self._register_speed(speed, where).replace(" ", ""))
         if timing is None:
             return None
         cnt = re.fullmatch(r"(?i)CNT\s*(\d+)", zone)
@@ -473,6 +476,50 @@ class _Ls:
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
                     pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
+
+    # ---------------------------------------------------------------- the controller's saved registers
+
+    def _register_speed(self, speed: str, where: Where) -> str:
+        """A speed `R[k]mm/sec` (`R[k]%`, ..) with R[k]'s saved value in place where it is read
+        (fanuc_va), else as written (then not read, `unread` says why)."""
+        m = re.match(r"R\[(\d+)(?::[^\]]*)?\]\s*(.*)", speed.strip())
+        if m is None:
+            return speed
+        value = self.controller.register(int(m.group(1)))
+        if isinstance(value, str):
+            self.unread = f"its speed {value}"
+            return speed
+        self.saved_used.append(("R", int(m.group(1))))
+        return f"{value:g}{m.group(2)}"
+
+    def _saved_offset(self, n: int, where: Where) -> dict[str, str] | None:
+        """`Offset,PR[n]` by PR[n]'s saved value: a shift in the user frame (R-30iB Operator's
+        Manual, position offset "Offset,PR[i]"), read where it only shifts (W, P, R all 0)."""
+        saved = self._saved(n, where)
+        if saved is None:
+            return None
+        if saved.xyzwpr is None or any(abs(a) > 1e-9 for a in saved.xyzwpr[3:]):
+            self.unread = f"`Offset,PR[{n}]` by a saved {'rotation' if saved.xyzwpr else 'joint position'}: no rmot form"
+            return None
+        return {a: f"{v:g}" for a, v in zip("xyz", saved.xyzwpr[:3]) if v}
+
+    def _register_point(self, n: int, where: Where) -> int | None:
+        """The position key of a move to PR[n] at its saved value (a target `pr<n>` or its comment's name)."""
+        saved, key = self._saved(n, where), -1_000_000 - n
+        if saved is not None and key not in self.positions:
+            name = rmot_name(saved.comment.replace(" ", "_") or f"pr{n}")
+            name = f"{name}_pr{n}" if any(t.name == name for t in self.positions.values()) else name
+            self.positions[key] = Target(name, tp_pose(saved.xyzwpr) if saved.xyzwpr else None, saved.joints,
+                                         tp_branch(saved.config or ""), saved.where)
+        return None if saved is None else key
+
+    def _saved(self, n: int, where: Where) -> Saved | None:
+        found = self.controller.position(n)
+        if isinstance(found, str):
+            self.unread = found
+            return None
+        self.saved_used.append(("PR", n))
+        return found
 
     def _tcp_of(self, n: int, where: Where) -> Target | str | None:
         """P[n] of a linear or circular move where it is stored in joint form: its TCP pose in the
@@ -514,7 +561,7 @@ class _Ls:
         if source is None or not self.loop_vars or not reaches(
                 self.programs, name, lambda text: any(re.search(p, text) for p in offsets), r"CALL\s+(\w+)"):
             return None
-        callee = _Ls(source[0], source[1], self.labels, self.programs)
+        callee = _Ls(source[0], source[1], self.labels, self.programs, controller=self.controller)
         callee.offsets, callee.loop_vars = self.offsets, self.loop_vars
         callee.state = dict(self.state)
         callee.tools, callee.frames = self.tools, self.frames
@@ -526,64 +573,16 @@ class _Ls:
 
 
 
-# Motion options (R-30iB Operator's Manual, "Motion option instructions"): the path is the
-# move's with or without them; kept native after the move (W517). ACCn and Offset,PR[k] are read.
-_KEPT_OPTION = re.compile(r"(?i)(PTH|COORD|(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*,\s*.+$"
-                          r"|Arc\s+(?:Start|End)\s*\[[^\]]*\]|Weave\s*(?:\w+\s*)?\[[^\]]*\]|Weave\s+End)")
-
-
-def _options(rest: str) -> tuple[int | None, int | None, list[str]] | None:
-    """(ACCn, Offset,PR[k] register, options kept native) of a motion line's options, or None
-    where one has no reading (the whole move is kept native)."""
-    acc: int | None = None
-    offset: int | None = None
-    kept: list[str] = []
-    rest = rest.strip().lstrip(":").strip()
-    while rest:
-        m = re.match(r"(?i)ACC\s*(\d+)\b", rest)
-        o = None if m else re.match(r"(?i)Offset,\s*PR\[(\d+)(?::[^\]]*)?\]", rest)
-        k = None if m or o else _KEPT_OPTION.match(rest)
-        if m:
-            acc = int(m.group(1))
-        elif o:
-            offset = int(o.group(1))
-        elif k:
-            kept.append(re.sub(r"\s+", " ", k.group(0).strip()))
-        else:
-            return None
-        rest = rest[(m or o or k).end():].strip().lstrip(":").strip()  # type: ignore[union-attr]
-    return acc, offset, kept
-
-
-def _path_points(text: str) -> list[int]:
-    """The points of a linear or circular motion line (`L P[n] ..`, `C P[a] : P[b] ..`)."""
-    return [int(n) for n in re.findall(r"P\[(\d+)", text)] if re.match(r"(?i)[LC]\s", text) else []
-
-
-def _speed(kind: str, text: str) -> tuple[float | None, float | None, float | None] | None:
-    """(TCP mm/s, joint %, fixed time s) of a TP speed."""
-    m = re.fullmatch(r"([\d.]+)(%|mm/sec|cm/min|inch/min|sec|msec)", text)
-    if m is None or number(m.group(1)) is None:
-        return None
-    value = float(m.group(1))
-    if m.group(2) in ("sec", "msec"):
-        return (None, None, value / 1000 if m.group(2) == "msec" else value)
-    if m.group(2) in ("cm/min", "inch/min"):  # the TP feedrate units (R-30iB manual, motion speed)
-        value *= (10.0 if m.group(2) == "cm/min" else 25.4) / 60.0
-        return (value, None, None) if kind != "joint" else None
-    if (m.group(2) == "%") != (kind == "joint"):
-        return None
-    return (value, None, None) if m.group(2) == "mm/sec" else (None, value, None)
-
-
 def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = None,
-               programs: dict[str, tuple[str, str]] | None = None, pulse_pose: PulsePose | None = None) -> _Ls:
+               programs: dict[str, tuple[str, str]] | None = None, pulse_pose: PulsePose | None = None,
+               controller: Controller | None = None) -> _Ls:
     """Read one TP program; raises ImportError_ (E510) when it is not one. `labels`: tool and
     frame names by number, from all the program's files; `programs`: those files by program
-    name (a program called inside a loop that moves its targets is inlined at the call)."""
+    name (a program called inside a loop that moves its targets is inlined at the call);
+    `controller`: the registers and frames of the backup's .VA files given (fanuc_va)."""
     not_vars: frozenset[tuple[str, int]] = frozenset()
     for attempt in range(4):  # a native line using a register read as a variable: read it again without
-        ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose, not_vars)
+        ls = _Ls(path, text, labels or {"UTOOL": {}, "UFRAME": {}}, programs, pulse_pose, not_vars, controller)
         ls.read()
         assert ls.regs is not None
         touched = ls.regs.used_natively(ls.routine.body)

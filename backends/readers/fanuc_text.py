@@ -13,11 +13,14 @@ program headers `KOMMENTAR`, `WKZ_NUM`): read as the English ones.
 
 from __future__ import annotations
 
+import math
 import re
 
+from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
+from rmot.lang import ir
 
-__all__ = ["wait_condition", "german_instruction", "group_test"]
+__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
@@ -100,3 +103,68 @@ def german_instruction(text: str, where: Where) -> Stmt | None:
         return SetOut(int(m.group(1)), 1.0 if m.group(2) == "AN" else 0.0, where)
     cond = wait_condition(text) if text.startswith("WARTE") else None
     return WaitIn(cond, None, where) if cond is not None else None
+
+
+# Motion options (R-30iB Operator's Manual, "Motion option instructions"): the path is the
+# move's with or without them; kept native after the move (W517). ACCn and Offset,PR[k] are read.
+_KEPT_OPTION = re.compile(r"(?i)(PTH|COORD|(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*,\s*.+$"
+                          r"|Arc\s+(?:Start|End)\s*\[[^\]]*\]|Weave\s*(?:\w+\s*)?\[[^\]]*\]|Weave\s+End)")
+
+
+def motion_options(rest: str) -> tuple[int | None, int | None, list[str]] | None:
+    """(ACCn, Offset,PR[k] register, options kept native) of a motion line's options, or None
+    where one has no reading (the whole move is kept native)."""
+    acc: int | None = None
+    offset: int | None = None
+    kept: list[str] = []
+    rest = rest.strip().lstrip(":").strip()
+    while rest:
+        m = re.match(r"(?i)ACC\s*(\d+)\b", rest)
+        o = None if m else re.match(r"(?i)Offset,\s*PR\[(\d+)(?::[^\]]*)?\]", rest)
+        k = None if m or o else _KEPT_OPTION.match(rest)
+        if m:
+            acc = int(m.group(1))
+        elif o:
+            offset = int(o.group(1))
+        elif k:
+            kept.append(re.sub(r"\s+", " ", k.group(0).strip()))
+        else:
+            return None
+        rest = rest[(m or o or k).end():].strip().lstrip(":").strip()  # type: ignore[union-attr]
+    return acc, offset, kept
+
+
+def path_points(text: str) -> list[int]:
+    """The points of a linear or circular motion line (`L P[n] ..`, `C P[a] : P[b] ..`)."""
+    return [int(n) for n in re.findall(r"P\[(\d+)", text)] if re.match(r"(?i)[LC]\s", text) else []
+
+
+def tp_speed(kind: str, text: str) -> tuple[float | None, float | None, float | None] | None:
+    """(TCP mm/s, joint %, fixed time s) of a TP speed."""
+    m = re.fullmatch(r"([\d.]+)(%|mm/sec|cm/min|inch/min|sec|msec)", text)
+    if m is None or number(m.group(1)) is None:
+        return None
+    value = float(m.group(1))
+    if m.group(2) in ("sec", "msec"):
+        return (None, None, value / 1000 if m.group(2) == "msec" else value)
+    if m.group(2) in ("cm/min", "inch/min"):  # the TP feedrate units (R-30iB manual, motion speed)
+        value *= (10.0 if m.group(2) == "cm/min" else 25.4) / 60.0
+        return (value, None, None) if kind != "joint" else None
+    if (m.group(2) == "%") != (kind == "joint"):
+        return None
+    return (value, None, None) if m.group(2) == "mm/sec" else (None, value, None)
+
+
+def tp_pose(v: list[float] | tuple[float, ...]) -> ir.Pose:
+    """A TP X Y Z (mm) W P R (deg) as a pose (R = Rz(R)·Ry(P)·Rx(W))."""
+    pose = ir.Pose.from_xyz_rpy(v[0] / 1000, v[1] / 1000, v[2] / 1000, *(math.radians(a) for a in v[3:]))
+    return ir.Pose(pose.position, tuple(0.0 if abs(q) < 1e-12 else q for q in pose.quaternion))  # type: ignore[arg-type]  # cos(90 deg) noise
+
+
+def tp_branch(text: str) -> ir.Config | None:
+    m = re.match(r"\s*([FN])\s*([UD])\s*([TB])", text.upper())
+    if m is None:
+        return None
+    return ir.Config(ir.Shoulder.FRONT if m.group(3) == "T" else ir.Shoulder.BACK,
+                     ir.Elbow.UP if m.group(2) == "U" else ir.Elbow.DOWN,
+                     ir.Wrist.FLIP if m.group(1) == "N" else ir.Wrist.NOFLIP)

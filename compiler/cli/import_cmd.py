@@ -25,7 +25,8 @@ DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "u
                   "fanuc": "fanuc_m20ia", "inform": "yaskawa_gp8", "val3": "staubli_tx2_60"}
 
 
-@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP, INFORM or VAL3 programs back into .rmot. "
+@click.command(name="import", help="Read RAPID, KRL, URScript, Fanuc TP (with a backup's NUMREG.VA, POSREG.VA, SYSFRAME.VA), "
+               "INFORM or VAL3 programs back into .rmot. "
                "Several robots' programs: one --task ROBOT=FILE per file (with --cell), read into one program "
                "with a task per robot, RAPID WaitSyncTask and the other vendors' sync handshakes as `sync`.")
 @click.argument("files", nargs=-1, required=False, type=click.Path(dir_okay=False, exists=True))
