@@ -214,7 +214,9 @@ class _Job:
             return list(inlined), i + 1
         if _PAYLOAD_REMARK.fullmatch(text):  # INFORM has no load instruction: the backend's remark
             return [self.tally.keep(text, where, "a payload remark (`rmot import --cell` reads an attach or detach)")], i + 1
-        for pattern in (self._loop, self._arc, self._timed_wait, self._if):
+        if _label_of(text) is not None and self._stop_label(_label_of(text) or ""):
+            return [], i + 1  # the label the backend's stop jumps to, before END: nothing runs there
+        for pattern in (self._stop, self._loop, self._arc, self._timed_wait, self._if):
             found = pattern(i, end)
             if found is not None:
                 self.tally.imported += 1
@@ -399,6 +401,23 @@ class _Job:
             return None
         return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), float(m.group(3)), self.inst[i][1])], i + 5
 
+    def _stop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
+        """The backend's `stop`: `MSG "STOP"`, `PAUSE`, in the main job a `JUMP *Lk` to the label
+        before END (a restart ends the job); in a called job those two alone (W432)."""
+        if self._text(i) != 'MSG "STOP"' or self._text(i + 1) != "PAUSE":
+            return None
+        jump = re.fullmatch(r"JUMP \*(\w+)", self._text(i + 2))
+        ends = jump is not None and self._stop_label(jump.group(1))
+        return [Stop(self.inst[i][1])], i + (3 if ends else 2)
+
+    def _stop_label(self, label: str) -> bool:
+        """Whether `*label` is the job's last line and every jump to it follows the backend's
+        `MSG "STOP"`, `PAUSE` (so reading those as `stop` leaves the label nothing to do)."""
+        jumps = [k for k, (t, _) in enumerate(self.inst) if _names_label(t, label) and t != f"*{label}"]
+        return self._text(len(self.inst) - 1) == f"*{label}" and bool(jumps) and all(
+            re.fullmatch(rf"JUMP \*{label}", self._text(k)) and self._text(k - 1) == "PAUSE"
+            and self._text(k - 2) == 'MSG "STOP"' for k in jumps)
+
     def _jump_at(self, i: int) -> Jump | None:
         """`JUMP *La IF IN#(n)=X` (or an output, `OT#(n)`); or a group input read into a byte and
         tested, `IN Bt IG#(n)`, `JUMP *La IF Bt<op>v`: its label, when it is taken and when not."""
@@ -439,7 +458,7 @@ class _Job:
         if m:
             return self._move("joint" if m.group(1) == "MOVJ" else "linear", [_key(m.group(2))], m.group(3), where,
                               m.group(1) == "SMOVL")
-        return match_simple(text, _SIMPLE, where) or (Stop(where) if text == "PAUSE" else None)
+        return match_simple(text, _SIMPLE, where)
 
 
 def _names_label(text: str, label: str) -> bool:
@@ -475,6 +494,9 @@ def _why_native(text: str) -> str:
     if level:
         return (f"PL={level.group(1)}: rmot knows the distances of positioning levels 0..4 only (the factory "
                 "0 / 12.5 / 25 / 50 / 100 mm of parameters S1CxG033-036, backends/inform_text.py)")
+    if text == "PAUSE":
+        return ("PAUSE holds the job until the operator starts it again, and it runs on from there (YRC1000 "
+                "INSTRUCTIONS, PAUSE): rmot's `stop` would end the task")
     if re.match(r"MOVJ EX\d+", text):
         return ("moves the station alone to its position variable EXn: rmot reads `move axes` back only from "
                 "RAPID's MoveExtJ")
