@@ -25,7 +25,9 @@ from rmot.backends.readers.common import (
 )
 from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, Saved, empty
-from rmot.backends.readers.fanuc_text import german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition
+from rmot.backends.readers.fanuc_text import (
+    built_offset, german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition,
+)
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
@@ -430,7 +432,7 @@ class _Ls:
             kind, points, speed, zone, rest = "circular", [int(circ.group(1)), int(circ.group(2))], *circ.group(3, 4, 5)
         elif lin:
             kind = "joint" if lin.group(1).upper() == "J" else "linear"
-            point = int(lin.group(3)) if lin.group(2).upper() == "P" else self._register_point(int(lin.group(3)), where)
+            point = int(lin.group(3)) if lin.group(2).upper() == "P" else self._register_point(int(lin.group(3)))
             if point is None:
                 return None
             points, speed, zone, rest = [point], *lin.group(4, 5, 6)
@@ -445,7 +447,8 @@ class _Ls:
         options = motion_options(rest)
         if options is None or any(d is None for d in decls):
             return None
-        acc, offset, kept = options
+        acc, offset_of, kept = options
+        offset, in_tool = offset_of or (None, False)
         if acc is not None and not 1 <= acc <= 100:
             return None  # rmot's joint acceleration share takes 1..100 %
         if acc is not None and acc != 100 and kind != "joint":
@@ -454,14 +457,15 @@ class _Ls:
             # linear move's joints by the same share (compiler/plan/move_chain.py)
             self.tally.warn(codes.ACCEL_SHARE_ON_PATH, f"ACC{acc} on a {kind} move is read as `accel {acc} %` "
                             "(the joint acceleration share); its TCP acceleration stays the default", where)
-        shifts = self.offsets.get(offset) if offset is not None else {}
-        shifts = self._saved_offset(offset, where) if shifts is None and offset is not None else shifts
+        shifts = {} if offset is None else self._built_offset(offset, where) if offset in self.offsets else \
+            self._saved_offset(offset, where)
         if shifts is None:
             return None
         exprs = [d.name for d in decls]  # type: ignore[union-attr]
-        if offset is not None:
-            terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(shifts.items()))
-            exprs = [f"shift({e}, {terms})" if terms else e for e in exprs]
+        # Offset,PR[k] moves along the user frame (`shift`), Tool_Offset,PR[k] along the tool at the
+        # target (`p * pose(..)`, as RelTool): R-30iB Operator's Manual, offset and tool offset instructions
+        terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(shifts.items()))
+        exprs = [e if not terms else f"{e} * pose({terms})" if in_tool else f"shift({e}, {terms})" for e in exprs]
         timing = tp_speed(kind, self._register_speed(speed, where).replace(" ", ""))
         if timing is None:
             return None
@@ -480,8 +484,7 @@ class _Ls:
     # ---------------------------------------------------------------- the controller's saved registers
 
     def _register_speed(self, speed: str, where: Where) -> str:
-        """A speed `R[k]mm/sec` (`R[k]%`, ..) with R[k]'s saved value in place where it is read
-        (fanuc_va), else as written (then not read, `unread` says why)."""
+        """A speed `R[k]mm/sec` (`R[k]%`, ..) with R[k]'s saved value (fanuc_va), else as written."""
         m = re.match(r"R\[(\d+)(?::[^\]]*)?\]\s*(.*)", speed.strip())
         if m is None:
             return speed
@@ -492,20 +495,27 @@ class _Ls:
         self.saved_used.append(("R", int(m.group(1))))
         return f"{value:g}{m.group(2)}"
 
+    def _built_offset(self, n: int, where: Where) -> dict[str, str] | None:
+        """`Offset,PR[n]` by what this program builds in PR[n] (fanuc_text.built_offset) and its
+        counting loop's terms; None (with why) where that is not followed or turns."""
+        at = next((k for k, (_, w) in enumerate(self.instructions) if w == where), len(self.instructions))
+        built = built_offset([t for t, _ in self.instructions], at, n, bool(self.offsets[n]))
+        if isinstance(built, str) or any(built.get(a) for a in "wpr") or set(built) & set(self.offsets[n]):
+            self.unread = built if isinstance(built, str) else f"the offset PR[{n}] turns, or a loop and a number set one element"
+            return None
+        return {**{a: f"{v:g}" for a, v in built.items() if v}, **self.offsets[n]}
+
     def _saved_offset(self, n: int, where: Where) -> dict[str, str] | None:
         """`Offset,PR[n]` by PR[n]'s saved value: a shift in the user frame (R-30iB Operator's
         Manual, position offset "Offset,PR[i]"), read where it only shifts (W, P, R all 0)."""
-        saved = self._saved(n, where)
-        if saved is None:
-            return None
-        if saved.xyzwpr is None or any(abs(a) > 1e-9 for a in saved.xyzwpr[3:]):
-            self.unread = f"`Offset,PR[{n}]` by a saved {'rotation' if saved.xyzwpr else 'joint position'}: no rmot form"
-            return None
-        return {a: f"{v:g}" for a, v in zip("xyz", saved.xyzwpr[:3]) if v}
+        saved = self._saved(n)
+        if saved is not None and (saved.xyzwpr is None or any(abs(a) > 1e-9 for a in saved.xyzwpr[3:])):
+            self.unread, saved = f"the offset PR[{n}] holds a saved {'rotation' if saved.xyzwpr else 'joint position'}: no rmot form", None
+        return None if saved is None or saved.xyzwpr is None else {a: f"{v:g}" for a, v in zip("xyz", saved.xyzwpr[:3]) if v}
 
-    def _register_point(self, n: int, where: Where) -> int | None:
+    def _register_point(self, n: int) -> int | None:
         """The position key of a move to PR[n] at its saved value (a target `pr<n>` or its comment's name)."""
-        saved, key = self._saved(n, where), -1_000_000 - n
+        saved, key = self._saved(n), -1_000_000 - n
         if saved is not None and key not in self.positions:
             name = rmot_name(saved.comment.replace(" ", "_") or f"pr{n}")
             name = f"{name}_pr{n}" if any(t.name == name for t in self.positions.values()) else name
@@ -513,13 +523,11 @@ class _Ls:
                                          tp_branch(saved.config or ""), saved.where)
         return None if saved is None else key
 
-    def _saved(self, n: int, where: Where) -> Saved | None:
+    def _saved(self, n: int) -> Saved | None:
         found = self.controller.position(n)
-        if isinstance(found, str):
-            self.unread = found
-            return None
-        self.saved_used.append(("PR", n))
-        return found
+        self.unread = found if isinstance(found, str) else self.unread
+        self.saved_used += [] if isinstance(found, str) else [("PR", n)]
+        return None if isinstance(found, str) else found
 
     def _tcp_of(self, n: int, where: Where) -> Target | str | None:
         """P[n] of a linear or circular move where it is stored in joint form: its TCP pose in the
@@ -570,7 +578,6 @@ class _Ls:
         self.inlined.add(name.upper())
         self.inlined |= callee.inlined
         return callee.routine.body
-
 
 
 def read_fanuc(path: str, text: str, labels: dict[str, dict[int, str]] | None = None,

@@ -20,7 +20,7 @@ from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch"]
+__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch", "built_offset"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
@@ -111,21 +111,24 @@ _KEPT_OPTION = re.compile(r"(?i)(PTH|COORD|(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*
                           r"|Arc\s+(?:Start|End)\s*\[[^\]]*\]|Weave\s*(?:\w+\s*)?\[[^\]]*\]|Weave\s+End)")
 
 
-def motion_options(rest: str) -> tuple[int | None, int | None, list[str]] | None:
-    """(ACCn, Offset,PR[k] register, options kept native) of a motion line's options, or None
-    where one has no reading (the whole move is kept native)."""
+def motion_options(rest: str) -> tuple[int | None, tuple[int, bool] | None, list[str]] | None:
+    """(ACCn, the offset register with whether it is a tool offset (`Offset,PR[k]`,
+    `Tool_Offset,PR[k]`), options kept native) of a motion line's options, or None where one has
+    no reading (the whole move is kept native; so is a move with two offsets)."""
     acc: int | None = None
-    offset: int | None = None
+    offset: tuple[int, bool] | None = None
     kept: list[str] = []
     rest = rest.strip().lstrip(":").strip()
     while rest:
         m = re.match(r"(?i)ACC\s*(\d+)\b", rest)
-        o = None if m else re.match(r"(?i)Offset,\s*PR\[(\d+)(?::[^\]]*)?\]", rest)
+        o = None if m else re.match(r"(?i)(Tool_)?Offset,\s*PR\[(\d+)(?::[^\]]*)?\]", rest)
         k = None if m or o else _KEPT_OPTION.match(rest)
         if m:
             acc = int(m.group(1))
+        elif o and offset is None:
+            offset = (int(o.group(2)), o.group(1) is not None)
         elif o:
-            offset = int(o.group(1))
+            return None
         elif k:
             kept.append(re.sub(r"\s+", " ", k.group(0).strip()))
         else:
@@ -168,3 +171,33 @@ def tp_branch(text: str) -> ir.Config | None:
     return ir.Config(ir.Shoulder.FRONT if m.group(3) == "T" else ir.Shoulder.BACK,
                      ir.Elbow.UP if m.group(2) == "U" else ir.Elbow.DOWN,
                      ir.Wrist.FLIP if m.group(1) == "N" else ir.Wrist.NOFLIP)
+
+
+# what ends straight-line code between an offset register's clear and its use: a label or jump
+# (another path), a block's line, a call (the callee may write the register), an indirect write
+_NOT_STRAIGHT = re.compile(r"^(LBL\[|JMP\b|IF\b|ELSE\b|ENDIF\b|FOR\b|ENDFOR\b|SELECT\b|CALL\b|RUN\b)|\bPR\[\s*A?R\[")
+
+
+def built_offset(texts: list[str], use: int, k: int, counted: bool) -> dict[str, float] | str:
+    """What PR[k] holds at instruction `use` where the program builds it (B-83284EN, position
+    register instructions: `PR[k]=LPOS-LPOS` is a Cartesian zero, `PR[k,i]=v` sets element i of
+    X Y Z W P R): the elements set since the clear (the last write of each wins) where only
+    straight-line code lies between, or {} where `counted` (a counting loop's `PR[k,i]=R[v]*d`
+    builds it) and no line writes PR[k] otherwise; else why its value is not followed."""
+    write = re.compile(rf"PR\[{k}(?:,\s*(\d))?(?::[^\]]*)?\]\s*=\s*(.+)")
+    counter = re.compile(r"R\[\d+(?::[^\]]*)?\]\*-?[\d.]+")
+    values: dict[str, float] = {}
+    for j in range(use - 1, -1, -1):
+        m = write.fullmatch(texts[j])
+        value = number(m.group(2).strip().strip("()")) if m and m.group(1) else None
+        if m and m.group(1) is None and re.fullmatch(r"LPOS\s*-\s*LPOS", m.group(2).strip()):
+            return values
+        if m and value is not None and 1 <= int(m.group(1)) <= 6:
+            values.setdefault("xyzwpr"[int(m.group(1)) - 1], value)
+        elif m or _NOT_STRAIGHT.search(texts[j]):
+            break
+    others = [t for t in texts if (m := write.fullmatch(t)) and not (
+        m.group(1) is None and re.fullmatch(r"LPOS\s*-\s*LPOS", m.group(2).strip())) and not counter.fullmatch(m.group(2))]
+    if counted and not others:
+        return {}
+    return f"the offset PR[{k}]: the program sets PR[{k}] where the import does not follow its value (after a label, a block or a call)"

@@ -187,7 +187,7 @@ def test_what_a_backup_cannot_give_stays_native_with_its_reason(tmp_path: Path) 
             "L P[1] R[26]mm/sec FINE", "L P[1] 100mm/sec FINE Offset,PR[40]"]
     program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": body}, {"NUMREG.VA": NUMREG, "POSREG.VA": POSREG}))
     assert program.count("native fanuc") == 4
-    assert "`Offset,PR[18]` by a saved rotation: no rmot form" in output
+    assert "the offset PR[18] holds a saved rotation: no rmot form" in output
     assert "`PR[19]` is saved as Uninitialized" in output
     assert "`R[26]` is the controller's register and no file given holds its value" in output
     assert "`PR[40]` is the controller's register" in output
@@ -251,3 +251,59 @@ def test_truncated_va_files_are_read_or_refused_never_a_traceback(tmp_path: Path
                 read_va("X.VA", text[:cut], empty())
             except ImportError_ as exc:
                 assert exc.diagnostic.code.id == "E510"
+
+
+def _moves(program: str) -> list[str]:
+    lines = [ln.split("   #")[0].strip() for ln in program.splitlines()]
+    return [ln for ln in lines if ln.startswith(("move ", 'native fanuc "L', 'native fanuc "J'))]
+
+
+def test_an_offset_the_program_builds_in_straight_line_code_is_read(tmp_path: Path) -> None:
+    """`PR[k]=LPOS-LPOS` (a Cartesian zero), element writes of numbers (the pendant writes
+    `PR[100,3:Offset]=(-100)`), the move with `Offset,PR[k]`, then a reset: each move shifted by
+    what PR[k] holds at its line (it was read unshifted, the offset lost without a word)."""
+    body = ["PR[100:Offset]=LPOS-LPOS", "PR[100,3:Offset]=(-100)", "PR[100,2]=20", "J P[1] 100% FINE",
+            "L P[1] 200mm/sec FINE Offset,PR[100:Offset]", "PR[100,3:Offset]=0", "L P[1] 200mm/sec FINE Offset,PR[100]"]
+    program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": body}, {}))
+    assert _moves(program)[1:] == ["move linear shift(pick_p1, y=20 mm, z=-100 mm) speed 200 mm/s zone fine",
+                                   "move linear shift(pick_p1, y=20 mm) speed 200 mm/s zone fine"]
+    assert "W543" not in output  # the program's own value, not a backup's
+
+
+def test_an_offset_built_where_the_import_cannot_follow_it_stays_native(tmp_path: Path) -> None:
+    """A clear inside a branch, a call between the clear and the move, a turning element, and a
+    value from a register: the move stays native with the reason."""
+    for body, why in [
+        (["IF DI[1]=ON,JMP LBL[1]", "PR[9]=LPOS-LPOS", "LBL[1]", "L P[1] 200mm/sec FINE Offset,PR[9]"],
+         "the program sets PR[9] where the import does not follow its value"),
+        (["PR[9]=LPOS-LPOS", "PR[9,3]=50", "CALL OTHER", "L P[1] 200mm/sec FINE Offset,PR[9]"],
+         "the program sets PR[9] where the import does not follow its value"),
+        (["PR[9]=LPOS-LPOS", "PR[9,6]=90", "L P[1] 200mm/sec FINE Offset,PR[9]"], "the offset PR[9] turns"),
+        (["PR[9]=LPOS-LPOS", "PR[9,3]=R[4]", "L P[1] 200mm/sec FINE Offset,PR[9]"],
+         "the program sets PR[9] where the import does not follow its value"),
+    ]:
+        program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": ["J P[1] 100% FINE", *body]}, {}))
+        assert _moves(program)[-1] == 'native fanuc "L P[1] 200mm/sec FINE Offset,PR[9] ;"', program
+        assert why in output, output
+
+
+def test_a_tool_offset_moves_along_the_tool_at_the_target(tmp_path: Path) -> None:
+    """`Tool_Offset,PR[k]` shifts the position along the tool frame at the target, `Offset,PR[k]`
+    along the user frame (B-83284EN, tool offset and offset instructions): the compiler's resolved
+    targets (`rmot ir`) against p + R(W, P, R)·d and p + d computed here."""
+    tilted = POS.replace("X =   500.000  mm,\tY =     0.000  mm,\tZ =   300.000  mm,",
+                         "X =   900.000  mm,\tY =   100.000  mm,\tZ =   700.000  mm,").replace(
+        "W =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg", "W =   150.000 deg,\tP =    20.000 deg,\tR =    10.000 deg")
+    assert tilted != POS
+    body = ["PR[100:Offset]=LPOS-LPOS", "PR[100,3:Offset]=(-100)", "PR[100,1]=30", "J P[1] 100% FINE",
+            "L P[1] 200mm/sec FINE Tool_Offset,PR[100:Offset]", "L P[1] 200mm/sec FINE Offset,PR[100:Offset]"]
+    lines = "".join(f"{n:4d}:  {text} ;\n" for n, text in enumerate(body, 1))
+    (tmp_path / "tofs.ls").write_text(f"/PROG  TOFS\n/ATTR\n/MN\n{lines}{tilted}")
+    program, _, _ = _import(tmp_path, [str(tmp_path / "tofs.ls")])
+    assert "move linear tofs_p1 * pose(x=30 mm, z=-100 mm) speed 200 mm/s" in program
+    result = CliRunner().invoke(cli, ["ir", str(tmp_path / "imported.rmot")], catch_exceptions=False)
+    reached = [np.array([float(v) for v in m.group(1).split()]) * 1000
+               for m in re.finditer(r"move linear to \[([-\d.e ]+) \|", result.output)]
+    p, d = np.array([900.0, 100.0, 700.0]), np.array([30.0, 0.0, -100.0])
+    assert np.allclose(reached[0], p + _rotation(150, 20, 10) @ d, atol=1e-3)
+    assert np.allclose(reached[1], p + d, atol=1e-3)
