@@ -24,9 +24,10 @@ from rmot.backends.readers.common import (
     Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name,
 )
 from rmot.backends.readers.fanuc_regs import Registers, negated
-from rmot.backends.readers.fanuc_va import Controller, Saved, empty
+from rmot.backends.readers.fanuc_va import Controller, empty
+from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    built_offset, german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition,
+    german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
@@ -74,8 +75,7 @@ class _Ls:
                  not_vars: frozenset[tuple[str, int]] = frozenset(), controller: Controller | None = None) -> None:
         self.tally = Tally(path, text, "fanuc")
         self.controller = controller or Controller(empty(), [text])  # the registers and frames a backup's .VA files saved
-        self.unread: str | None = None  # why the last motion line read is not (a register's value)
-        self.saved_used: list[tuple[str, int]] = []  # the saved registers the motion line being read uses
+        self.values = RegisterValues(self.controller, [])  # the register values its motion lines read (once read)
         self.not_vars = not_vars  # registers and flags not read as task variables (read_fanuc)
         self.path = path
         self.raw = text.split("\n")
@@ -122,6 +122,7 @@ class _Ls:
         taken = [t.name for t in self.positions.values()] + [n for names in self.labels.values() for n in names.values()]
         taken += [rmot_name(name) for name in self.programs]  # the procs
         self.regs = Registers(self.tally, self.instructions, others, main, taken, self.not_vars)
+        self.values = RegisterValues(self.controller, [t for t, _ in self.instructions])
         body, _ = self._block(0, None)
         kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _label_of, self.instructions,
                                                      lambda t: t + " ;"))
@@ -200,11 +201,10 @@ class _Ls:
             found = pattern(i, end)
             if found is not None:
                 return found
-        self.unread, self.saved_used = None, []
+        self.values.start(i)
         moved = self._motion(text, where) if text.startswith(("J ", "L ", "C ")) else None
         if moved is not None:
-            for kind, n in self.saved_used:  # W543: the move is read with a value the backup saved
-                self.controller.note(self.tally, where, kind, n)
+            self.values.note(self.tally, where)  # W543: the move is read with a value a backup saved
             self.tally.imported += 1
             return [moved[0], *moved[1]], i + 1
         stmt = self._simple(text, where)
@@ -215,7 +215,7 @@ class _Ls:
             self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (nan, nan, nan)))  # type: ignore[union-attr]
         if stmt is None:
             joint_form = [why for why in (self._tcp_of(p, where) for p in path_points(text)) if isinstance(why, str)]
-            why = joint_form[0] if joint_form else self.unread or "no rmot form"
+            why = joint_form[0] if joint_form else self.values.unread or "no rmot form"
             return [self.tally.keep(text + " ;", where, why)], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -457,8 +457,7 @@ class _Ls:
             # linear move's joints by the same share (compiler/plan/move_chain.py)
             self.tally.warn(codes.ACCEL_SHARE_ON_PATH, f"ACC{acc} on a {kind} move is read as `accel {acc} %` "
                             "(the joint acceleration share); its TCP acceleration stays the default", where)
-        shifts = {} if offset is None else self._built_offset(offset, where) if offset in self.offsets else \
-            self._saved_offset(offset, where)
+        shifts = {} if offset is None else self.values.offset(offset, self.offsets.get(offset))
         if shifts is None:
             return None
         exprs = [d.name for d in decls]  # type: ignore[union-attr]
@@ -466,7 +465,7 @@ class _Ls:
         # target (`p * pose(..)`, as RelTool): R-30iB Operator's Manual, offset and tool offset instructions
         terms = ", ".join(f"{a}={mm(e)}" for a, e in sorted(shifts.items()))
         exprs = [e if not terms else f"{e} * pose({terms})" if in_tool else f"shift({e}, {terms})" for e in exprs]
-        timing = tp_speed(kind, self._register_speed(speed, where).replace(" ", ""))
+        timing = tp_speed(kind, self.values.speed(speed).replace(" ", ""))
         if timing is None:
             return None
         cnt = re.fullmatch(r"(?i)CNT\s*(\d+)", zone)
@@ -481,53 +480,17 @@ class _Ls:
                     pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
 
-    # ---------------------------------------------------------------- the controller's saved registers
-
-    def _register_speed(self, speed: str, where: Where) -> str:
-        """A speed `R[k]mm/sec` (`R[k]%`, ..) with R[k]'s saved value (fanuc_va), else as written."""
-        m = re.match(r"R\[(\d+)(?::[^\]]*)?\]\s*(.*)", speed.strip())
-        if m is None:
-            return speed
-        value = self.controller.register(int(m.group(1)))
-        if isinstance(value, str):
-            self.unread = f"its speed {value}"
-            return speed
-        self.saved_used.append(("R", int(m.group(1))))
-        return f"{value:g}{m.group(2)}"
-
-    def _built_offset(self, n: int, where: Where) -> dict[str, str] | None:
-        """`Offset,PR[n]` by what this program builds in PR[n] (fanuc_text.built_offset) and its
-        counting loop's terms; None (with why) where that is not followed or turns."""
-        at = next((k for k, (_, w) in enumerate(self.instructions) if w == where), len(self.instructions))
-        built = built_offset([t for t, _ in self.instructions], at, n, bool(self.offsets[n]))
-        if isinstance(built, str) or any(built.get(a) for a in "wpr") or set(built) & set(self.offsets[n]):
-            self.unread = built if isinstance(built, str) else f"the offset PR[{n}] turns, or a loop and a number set one element"
-            return None
-        return {**{a: f"{v:g}" for a, v in built.items() if v}, **self.offsets[n]}
-
-    def _saved_offset(self, n: int, where: Where) -> dict[str, str] | None:
-        """`Offset,PR[n]` by PR[n]'s saved value: a shift in the user frame (R-30iB Operator's
-        Manual, position offset "Offset,PR[i]"), read where it only shifts (W, P, R all 0)."""
-        saved = self._saved(n)
-        if saved is not None and (saved.xyzwpr is None or any(abs(a) > 1e-9 for a in saved.xyzwpr[3:])):
-            self.unread, saved = f"the offset PR[{n}] holds a saved {'rotation' if saved.xyzwpr else 'joint position'}: no rmot form", None
-        return None if saved is None or saved.xyzwpr is None else {a: f"{v:g}" for a, v in zip("xyz", saved.xyzwpr[:3]) if v}
+    # ---------------------------------------------------------------- a position register as a target
 
     def _register_point(self, n: int) -> int | None:
         """The position key of a move to PR[n] at its saved value (a target `pr<n>` or its comment's name)."""
-        saved, key = self._saved(n), -1_000_000 - n
+        saved, key = self.values.position(n), -1_000_000 - n
         if saved is not None and key not in self.positions:
             name = rmot_name(saved.comment.replace(" ", "_") or f"pr{n}")
             name = f"{name}_pr{n}" if any(t.name == name for t in self.positions.values()) else name
             self.positions[key] = Target(name, tp_pose(saved.xyzwpr) if saved.xyzwpr else None, saved.joints,
                                          tp_branch(saved.config or ""), saved.where)
         return None if saved is None else key
-
-    def _saved(self, n: int) -> Saved | None:
-        found = self.controller.position(n)
-        self.unread = found if isinstance(found, str) else self.unread
-        self.saved_used += [] if isinstance(found, str) else [("PR", n)]
-        return None if isinstance(found, str) else found
 
     def _tcp_of(self, n: int, where: Where) -> Target | str | None:
         """P[n] of a linear or circular move where it is stored in joint form: its TCP pose in the

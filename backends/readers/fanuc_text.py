@@ -20,7 +20,7 @@ from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch", "built_offset"]
+__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
@@ -171,33 +171,3 @@ def tp_branch(text: str) -> ir.Config | None:
     return ir.Config(ir.Shoulder.FRONT if m.group(3) == "T" else ir.Shoulder.BACK,
                      ir.Elbow.UP if m.group(2) == "U" else ir.Elbow.DOWN,
                      ir.Wrist.FLIP if m.group(1) == "N" else ir.Wrist.NOFLIP)
-
-
-# what ends straight-line code between an offset register's clear and its use: a label or jump
-# (another path), a block's line, a call (the callee may write the register), an indirect write
-_NOT_STRAIGHT = re.compile(r"^(LBL\[|JMP\b|IF\b|ELSE\b|ENDIF\b|FOR\b|ENDFOR\b|SELECT\b|CALL\b|RUN\b)|\bPR\[\s*A?R\[")
-
-
-def built_offset(texts: list[str], use: int, k: int, counted: bool) -> dict[str, float] | str:
-    """What PR[k] holds at instruction `use` where the program builds it (B-83284EN, position
-    register instructions: `PR[k]=LPOS-LPOS` is a Cartesian zero, `PR[k,i]=v` sets element i of
-    X Y Z W P R): the elements set since the clear (the last write of each wins) where only
-    straight-line code lies between, or {} where `counted` (a counting loop's `PR[k,i]=R[v]*d`
-    builds it) and no line writes PR[k] otherwise; else why its value is not followed."""
-    write = re.compile(rf"PR\[{k}(?:,\s*(\d))?(?::[^\]]*)?\]\s*=\s*(.+)")
-    counter = re.compile(r"R\[\d+(?::[^\]]*)?\]\*-?[\d.]+")
-    values: dict[str, float] = {}
-    for j in range(use - 1, -1, -1):
-        m = write.fullmatch(texts[j])
-        value = number(m.group(2).strip().strip("()")) if m and m.group(1) else None
-        if m and m.group(1) is None and re.fullmatch(r"LPOS\s*-\s*LPOS", m.group(2).strip()):
-            return values
-        if m and value is not None and 1 <= int(m.group(1)) <= 6:
-            values.setdefault("xyzwpr"[int(m.group(1)) - 1], value)
-        elif m or _NOT_STRAIGHT.search(texts[j]):
-            break
-    others = [t for t in texts if (m := write.fullmatch(t)) and not (
-        m.group(1) is None and re.fullmatch(r"LPOS\s*-\s*LPOS", m.group(2).strip())) and not counter.fullmatch(m.group(2))]
-    if counted and not others:
-        return {}
-    return f"the offset PR[{k}]: the program sets PR[{k}] where the import does not follow its value (after a label, a block or a call)"

@@ -187,7 +187,7 @@ def test_what_a_backup_cannot_give_stays_native_with_its_reason(tmp_path: Path) 
             "L P[1] R[26]mm/sec FINE", "L P[1] 100mm/sec FINE Offset,PR[40]"]
     program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": body}, {"NUMREG.VA": NUMREG, "POSREG.VA": POSREG}))
     assert program.count("native fanuc") == 4
-    assert "the offset PR[18] holds a saved rotation: no rmot form" in output
+    assert "the offset PR[18] holds a saved rotation" in output
     assert "`PR[19]` is saved as Uninitialized" in output
     assert "`R[26]` is the controller's register and no file given holds its value" in output
     assert "`PR[40]` is the controller's register" in output
@@ -307,3 +307,20 @@ def test_a_tool_offset_moves_along_the_tool_at_the_target(tmp_path: Path) -> Non
     p, d = np.array([900.0, 100.0, 700.0]), np.array([30.0, 0.0, -100.0])
     assert np.allclose(reached[0], p + _rotation(150, 20, 10) @ d, atol=1e-3)
     assert np.allclose(reached[1], p + d, atol=1e-3)
+
+
+def test_values_the_program_sets_in_straight_line_code_are_read(tmp_path: Path) -> None:
+    """A generated program (tab-numbered lines) that sets its speed register and all six elements
+    of its offset register with numbers before its moves: both are known there, without a
+    backup; after a call the speed register is the callee's to change."""
+    body = ["R[10]=200", "PR[15,1]=0", "PR[15,2]=0", "PR[15,3]=-5", "PR[15,4]=0", "PR[15,5]=0", "PR[15,6]=0",
+            "J P[1] 100% CNT60 Tool_Offset,PR[15]", "L P[1] R[10]mm/sec CNT60 Tool_Offset,PR[15]",
+            "CALL OTHER", "L P[1] R[10]mm/sec CNT60"]
+    lines = "".join(f"\t{n}:  {text} \t;\n" for n, text in enumerate(body, 1))
+    (tmp_path / "gen.ls").write_text(f"/PROG GEN\n/ATTR\n/MN\n{lines}{POS}")
+    program, _, output = _import(tmp_path, [str(tmp_path / "gen.ls")])
+    assert _moves(program) == [
+        "move joint gen_p1 * pose(z=-5 mm) config(shoulder=front, elbow=up, wrist=flip) speed 100 % zone 60 mm",
+        "move linear gen_p1 * pose(z=-5 mm) speed 200 mm/s zone 60 mm",
+        'native fanuc "L P[1] R[10]mm/sec CNT60 ;"']
+    assert "`R[10]` is set at run time by a program given" in output
