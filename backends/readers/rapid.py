@@ -23,7 +23,7 @@ from rmot.backends.readers.model import (
     For, Routine,
 )
 from rmot.backends.readers.rapid_data import (
-    LATE_CALL, DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
+    LATE_CALL, VELSET, DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
 )
 from rmot.backends.readers.rapid_logic import RapidVars, condition
 from rmot.backends.readers.rapid_text import Statement, literal, statements
@@ -212,7 +212,7 @@ class _Module:
         self.pose_params = {p for p, t in params if t in ("pose", "joints")}
         self.logic.enter(m.group(1) == self._main_name(), self.consts)
         self.flow.enter_routine(m.group(1), m.group(1) == self._main_name())
-        body, i = self._block(i + 1, ("ENDPROC",))
+        body, i = self._block(i + 1, ("ENDPROC",), routine=True)
         self.names, self.pose_params = saved, set()
         self.logic.enter(None, self.consts)
         self.routines.append(Routine(m.group(1), tuple(params), jump_spans.goto_spans(body, self.tally, self.stmts[start + 1:i]), st.where))
@@ -230,10 +230,11 @@ class _Module:
             out.append((words[1], _PARAM_TYPES[words[0].lower()]))
         return out
 
-    def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
+    def _block(self, i: int, ends: tuple[str, ...], routine: bool = False) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested); the data
-        it assigns are not known on entry nor after it (rapid_data.DataFlow)."""
-        before = self.flow.enter(i)
+        it assigns are not known on entry (a routine's body runs once from its start) nor after
+        it (rapid_data.DataFlow)."""
+        before = self.flow.enter(i, forget=not routine)
         found = self.tally.nested(self.stmts[min(i, len(self.stmts) - 1)].where, lambda: self._block_body(i, ends))
         self.flow.leave(before, i, found[1])
         return found
@@ -297,6 +298,10 @@ class _Module:
                                                       for b in split_top(a, "\\")] if m]
         unknown = sorted({n for n in names if n.upper() not in known and not re.fullmatch(r"[\d.]+", n)},
                          key=names.index)
+        velset = self.flow.velset_at()
+        if velset is not None and self.flow.value(VELSET) is None and not unknown:
+            return (f"its speed follows `VelSet` (line {self.stmts[velset].where.line}: `{self.stmts[velset].text[:40]}`), "
+                    "whose values here are known only at run time (set in a block, by a call or from a variable)")
         changed = [n for n in unknown if n.upper() in self.changed and self.flow.value(n) is None]
         if changed:
             first = self.changed[changed[0].upper()]
@@ -460,39 +465,23 @@ class _Module:
         expr, name, decl = target
         if (word == "MOVEABSJ") != (decl is not None and decl.joints is not None):
             return None
-        timing = self._speed(kind, speed)
+        timing = self.flow.speed(kind, speed, self.speeds)
         zone_mm = "bad" if len(zone) != 1 else self.zones[zone[0].upper()] if zone[0].upper() in self.zones \
             else self.flow.zone(zone[0])
         frame = self._wobj_of(tool[1:], where)
         held = self.tools.get(tool[0].upper()) or self.flow.tool(tool[0], where)
         if timing is None or zone_mm == "bad" or (held is None and tool[0].upper() != "TOOL0") or frame is None:
             return None
-        if timing[2]:
-            self.tally.warn(codes.JOINT_SPEED_READ, f"{word} at {speed[0]}: rmot times a joint move by its joint "
-                            "share; read as 100 %", where)
+        if kind == "joint" and timing[1] is None and (speed[0].upper() != "VMAX" or timing[2] != 100):
+            self.tally.warn(codes.JOINT_SPEED_READ, f"{word} at {speed[0]}: rmot times a joint move by its joint share; "
+                            f"read as {timing[2]:g} %" + (" (the VelSet override)" if timing[2] != 100 else ""), where)
         tool_name = in_document(held, self.tools).name if held is not None else "flange"
         config = decl.config if kind == "joint" and decl is not None and decl.pose is not None else None
         return Move(kind, expr, name, where, via=via, speed=timing[0] if kind != "joint" else None,
-                    joint_pct=100.0 if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
+                    joint_pct=timing[2] if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
                     time=timing[1], tool=tool_name, frame=frame, config=config,
                     pose=decl.pose if decl and expr in (decl.name, pose_expr(decl.pose) if decl.pose else None) else None,
                     joints=decl.joints if decl else None, joint_accel=self.acc_pct, slots=decl.slots if decl else ())
-
-    def _speed(self, kind: str, speed: list[str]) -> tuple[float | None, float | None, bool] | None:
-        """(TCP mm/s, duration s, joint speed read as 100 %) of a speed argument."""
-        name = speed[0].upper()
-        duration = None
-        for switch in speed[1:]:
-            m = re.fullmatch(r"(?i)T\s*:=\s*([0-9.]+)", switch)
-            if m is None:
-                return None
-            duration = float(m.group(1))
-        if name == "VMAX":
-            return (5000.0 if kind != "joint" else None, duration, False)
-        v_tcp = self.speeds.get(name) or self.flow.v_tcp(speed[0])
-        if v_tcp is None:
-            return None
-        return (v_tcp, duration, kind == "joint" and duration is None)
 
     def _wobj_of(self, switches: list[str], where: Where) -> str | None:
         frame = "base"

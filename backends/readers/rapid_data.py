@@ -33,7 +33,8 @@ from rmot.backends.readers.model import FrameData, ToolData, Where
 from rmot.backends.readers.rapid_text import Statement, literal
 from rmot.lang import ir
 
-__all__ = ["DataFlow", "LATE_CALL", "assigned_at", "branch_of", "changed_data", "frame_of", "in_document", "joints_of", "pose_of", "tool_of"]
+__all__ = ["DataFlow", "LATE_CALL", "VELSET", "VELSET_AT_START", "assigned_at", "branch_of", "changed_data", "frame_of",
+           "in_document", "joints_of", "pose_of", "tool_of"]
 
 D = TypeVar("D", ToolData, FrameData)
 
@@ -56,6 +57,11 @@ _ASSIGN = re.compile(r"(?i)^(\w+)((?:\s*\.\s*\w+|\s*\{[^}]*\})*)\s*:=\s*(.*)$")
 _OPENS = re.compile(r"(?i)^(IF\b.*\bTHEN|WHILE\b.*\bDO|FOR\b.*\bDO|TEST\b.*)$")
 _CLOSES = ("ENDIF", "ENDWHILE", "ENDFOR", "ENDTEST")
 LATE_CALL = r"%|CallByVar\b"  # a call of a routine by a name computed at run time (RAPID Overview, "late binding")
+# VelSet Override, Max (RAPID Instructions, VelSet: the programmed speed of every later move scaled
+# by Override %, its TCP speed at most Max mm/s; 100, 5000 when a program starts from the
+# beginning), followed as a datum of its own: VelSet writes it as an assignment would
+VELSET = "<VELSET>"
+VELSET_AT_START = [100.0, 5000.0]
 
 
 class _Unknown:
@@ -182,7 +188,7 @@ class DataFlow:
 
     def __init__(self, stmts: list[Statement], declared: Mapping[str, tuple[str, str, object]], taken: set[str]) -> None:
         self.stmts = stmts
-        self.declared = declared  # upper name -> (type, name as written, literal)
+        self.declared = {**declared, VELSET: ("velset", "VelSet", VELSET_AT_START)}  # upper name -> (type, name, literal)
         self.taken = taken  # names the module declares: a renamed value's name avoids them
         self.where: dict[str, list[tuple[int, tuple[int, ...] | None]]] = {}
         self.trapped: set[str] = set()
@@ -197,6 +203,8 @@ class DataFlow:
             decl = declared.get(m.group(1).upper()) if m else None
             if m and decl:
                 self.where.setdefault(m.group(1).upper(), []).append((k, _path(decl[0], m.group(2))))
+            if st.word == "VELSET":
+                self.where.setdefault(VELSET, []).append((k, ()))
         self.sets = self._routine_sets()
         self.start = {name: self._at_start(name) for name in self.where}
         self.now = dict(self.start)
@@ -281,6 +289,7 @@ class DataFlow:
         the file, a call another module, an interrupt or a late-binding call may make leaves
         its start state); the routine that runs first starts from the start state."""
         self.now, name = dict(self.start), routine.upper()
+        self.now.update({VELSET: VELSET_AT_START} if main and VELSET in self.where else {})
         seen = self.at_calls.get(name, [])
         if main or name in self.foreign or not seen or len(seen) != self.mentions[name] - 1 or self.late:  # - its PROC line
             return
@@ -293,11 +302,12 @@ class DataFlow:
         """A label (a jump may arrive from where the data differed) or a late-binding call."""
         self.now = dict(self.start)
 
-    def enter(self, i: int) -> dict[str, object]:
-        """Entering the block whose statements start at `i`: its own assignments are forgotten;
-        the state before it is returned for `leave`."""
+    def enter(self, i: int, forget: bool = True) -> dict[str, object]:
+        """Entering the block whose statements start at `i`: its own assignments are forgotten
+        (not a routine's body: it runs once); the state before it is returned for `leave`."""
         before = dict(self.now)
-        self._forget(i, self.end_of(i))
+        if forget:
+            self._forget(i, self.end_of(i))
         return before
 
     def leave(self, before: dict[str, object], i: int, j: int) -> None:
@@ -331,6 +341,12 @@ class DataFlow:
         """Follow `st` when it assigns a followed datum: True where a literal sets a part of a
         value known but for it (the statement is read), False where the datum becomes unknown
         (kept native), None where `st` assigns no followed datum."""
+        if st.word == "VELSET":
+            m = re.fullmatch(r"(?i)VelSet\s+([^,]+),\s*(.+)", st.text)
+            values = [literal(v) for v in m.groups()] if m else []
+            known = len(values) == 2 and all(isinstance(v, float) and v > 0 for v in values)
+            self.now[VELSET] = values if known else UNKNOWN
+            return known
         m = _ASSIGN.match(st.text)
         decl = self.declared.get(m.group(1).upper()) if m else None
         if m is None or decl is None or decl[0] not in FOLLOWED:
@@ -347,6 +363,28 @@ class DataFlow:
         """The followed datum's value here, None where a part of it is not known."""
         value = self.now.get(name.upper(), UNKNOWN)
         return value if _known(value) and name.upper() not in self.trapped else None
+
+    def speed(self, kind: str, speed: list[str], speeds: Mapping[str, float]) -> tuple[float | None, float | None, float] | None:
+        r"""(TCP mm/s, duration s, joint share %) of a move's speed argument (`v200`, a datum of
+        `speeds` or followed here, `[200,500,5000,1000]`, `\T:=2`), with the VelSet here: its
+        TCP speed at most Max and by Override %, a joint move's share the Override (its TCP
+        Max has no joint form: W512 says it); None where a part is not known, or a time under
+        a VelSet that changes speeds (what it makes of \T is not read)."""
+        duration = None
+        for switch in speed[1:]:
+            m = re.fullmatch(r"(?i)T\s*:=\s*([0-9.]+)", switch)
+            if m is None:
+                return None
+            duration = float(m.group(1))
+        v_tcp = 5000.0 if speed[0].upper() == "VMAX" else speeds.get(speed[0].upper()) or self.v_tcp(speed[0])
+        override = self.value(VELSET) if VELSET in self.where else VELSET_AT_START
+        if v_tcp is None or not isinstance(override, list) or (duration is not None and override != VELSET_AT_START):
+            return None
+        return min(v_tcp * override[0] / 100.0, override[1]), duration, override[0]
+
+    def velset_at(self) -> int | None:
+        """The index of the first VelSet statement the files hold, None where none does."""
+        return self.where[VELSET][0][0] if VELSET in self.where else None
 
     def v_tcp(self, text: str) -> float | None:
         """The TCP speed (mm/s) of a speeddata literal written in place (`[200,500,5000,1000]`) or
