@@ -298,6 +298,10 @@ class _Module:
                                                       for b in split_top(a, "\\")] if m]
         unknown = sorted({n for n in names if n.upper() not in known and not re.fullmatch(r"[\d.]+", n)},
                          key=names.index)
+        displaced = self.flow.displaced()
+        if displaced is not None and st.word != "MOVEABSJ":
+            return (f"a program displacement may be on here (`{self.stmts[displaced].text[:40]}` at line "
+                    f"{self.stmts[displaced].where.line}): the controller moves the position by a frame the import does not read")
         velset = self.flow.velset_at()
         if velset is not None and self.flow.value(VELSET) is None and not unknown:
             return (f"its speed follows `VelSet` (line {self.stmts[velset].where.line}: `{self.stmts[velset].text[:40]}`), "
@@ -465,6 +469,8 @@ class _Module:
         expr, name, decl = target
         if (word == "MOVEABSJ") != (decl is not None and decl.joints is not None):
             return None
+        if word != "MOVEABSJ" and self.flow.displaced() is not None:
+            return None  # a program displacement moves the robtarget (a jointtarget it does not)
         timing = self.flow.speed(kind, speed, self.speeds)
         zone_mm = "bad" if len(zone) != 1 else self.zones[zone[0].upper()] if zone[0].upper() in self.zones \
             else self.flow.zone(zone[0])

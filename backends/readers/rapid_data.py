@@ -62,6 +62,12 @@ LATE_CALL = r"%|CallByVar\b"  # a call of a routine by a name computed at run ti
 # beginning), followed as a datum of its own: VelSet writes it as an assignment would
 VELSET = "<VELSET>"
 VELSET_AT_START = [100.0, 5000.0]
+# Program displacement (RAPID Instructions, PDispOn / PDispSet / PDispAdd: every later robtarget
+# is moved by a frame, until PDispOff; off when a program starts from the beginning): followed
+# as a datum that is known only where it is off
+PDISP = "<PDISP>"
+_MODAL = {"VELSET": VELSET, "PDISPON": PDISP, "PDISPSET": PDISP, "PDISPADD": PDISP, "PDISPOFF": PDISP}
+_OFF = [0.0]
 
 
 class _Unknown:
@@ -188,7 +194,8 @@ class DataFlow:
 
     def __init__(self, stmts: list[Statement], declared: Mapping[str, tuple[str, str, object]], taken: set[str]) -> None:
         self.stmts = stmts
-        self.declared = {**declared, VELSET: ("velset", "VelSet", VELSET_AT_START)}  # upper name -> (type, name, literal)
+        self.declared = {**declared, VELSET: ("velset", "VelSet", VELSET_AT_START),  # upper name -> (type, name, literal)
+                         PDISP: ("pdisp", "PDispOff", _OFF)}
         self.taken = taken  # names the module declares: a renamed value's name avoids them
         self.where: dict[str, list[tuple[int, tuple[int, ...] | None]]] = {}
         self.trapped: set[str] = set()
@@ -203,8 +210,8 @@ class DataFlow:
             decl = declared.get(m.group(1).upper()) if m else None
             if m and decl:
                 self.where.setdefault(m.group(1).upper(), []).append((k, _path(decl[0], m.group(2))))
-            if st.word == "VELSET":
-                self.where.setdefault(VELSET, []).append((k, ()))
+            if st.word in _MODAL:
+                self.where.setdefault(_MODAL[st.word], []).append((k, ()))
         self.sets = self._routine_sets()
         self.start = {name: self._at_start(name) for name in self.where}
         self.now = dict(self.start)
@@ -289,7 +296,7 @@ class DataFlow:
         the file, a call another module, an interrupt or a late-binding call may make leaves
         its start state); the routine that runs first starts from the start state."""
         self.now, name = dict(self.start), routine.upper()
-        self.now.update({VELSET: VELSET_AT_START} if main and VELSET in self.where else {})
+        self.now.update({n: v for n, v in ((VELSET, VELSET_AT_START), (PDISP, _OFF)) if main and n in self.where})
         seen = self.at_calls.get(name, [])
         if main or name in self.foreign or not seen or len(seen) != self.mentions[name] - 1 or self.late:  # - its PROC line
             return
@@ -341,6 +348,9 @@ class DataFlow:
         """Follow `st` when it assigns a followed datum: True where a literal sets a part of a
         value known but for it (the statement is read), False where the datum becomes unknown
         (kept native), None where `st` assigns no followed datum."""
+        if _MODAL.get(st.word) == PDISP:  # followed, and the instruction stays in the program
+            self.now[PDISP] = _OFF if st.word == "PDISPOFF" else UNKNOWN
+            return None
         if st.word == "VELSET":
             m = re.fullmatch(r"(?i)VelSet\s+([^,]+),\s*(.+)", st.text)
             values = [literal(v) for v in m.groups()] if m else []
@@ -385,6 +395,12 @@ class DataFlow:
     def velset_at(self) -> int | None:
         """The index of the first VelSet statement the files hold, None where none does."""
         return self.where[VELSET][0][0] if VELSET in self.where else None
+
+    def displaced(self) -> int | None:
+        """Where a program displacement may be on here: the index of the first statement that
+        switches one on; None where it is off."""
+        on = [k for k, _ in self.where.get(PDISP, []) if self.stmts[k].word != "PDISPOFF"]
+        return on[0] if on and self.value(PDISP) != _OFF else None
 
     def v_tcp(self, text: str) -> float | None:
         """The TCP speed (mm/s) of a speeddata literal written in place (`[200,500,5000,1000]`) or

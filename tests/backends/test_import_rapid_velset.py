@@ -1,4 +1,5 @@
-"""RAPID `VelSet Override, Max` read into the speeds of the moves after it (rapid_data.DataFlow).
+"""RAPID `VelSet Override, Max` read into the speeds of the moves after it, and a program
+displacement (`PDispSet`, `PDispOn`) keeping the moves it moves native (rapid_data.DataFlow).
 
 `VelSet 100, 200;` at the top of `main` is how many real programs cap their speed (found in
 public modules: `VelSet 100, 200; AccSet 50, 50;` before the moves, `VelSet 100, 750;`,
@@ -10,6 +11,8 @@ Witness: RAPID Instructions, Functions and Data types (3HAC050917-001), VelSet: 
 desired velocity as a percentage of programmed velocity", "Max: maximum TCP velocity in mm/s";
 the values are reset to 100, 5000 when the program starts from the beginning. The effective
 TCP speed min(v · Override / 100, Max) is computed here from the numbers of each case.
+PDispOn / PDispSet / PDispAdd (same reference): "all subsequent robtargets are displaced" by the
+displacement frame until PDispOff; a jointtarget is not.
 """
 
 from __future__ import annotations
@@ -78,3 +81,23 @@ def test_a_velset_the_import_cannot_follow_keeps_the_moves_native(tmp_path: Path
 def test_without_velset_the_speeds_are_the_programmed_ones(tmp_path: Path) -> None:
     moves, _ = _read(tmp_path, "    MoveL p1, v1000, fine, tool0;\n    MoveL p1, vmax, fine, tool0;\n")
     assert [m.speed for m in moves] == [1000, 5000]  # type: ignore[union-attr]
+
+
+def test_moves_under_a_program_displacement_stay_native(tmp_path: Path) -> None:
+    """Between `PDispSet` and `PDispOff` the controller moves every robtarget by a frame: those
+    moves were read at their robtargets without a word. Now they stay native with the reason; a
+    MoveAbsJ (a jointtarget, not displaced) and the moves after PDispOff are read."""
+    main = ("    MoveL p1, v100, fine, tool0;\n    PDispSet [[0,0,50],[1,0,0,0]];\n    MoveL p1, v100, fine, tool0;\n"
+            "    MoveAbsJ [[0,0,0,0,90,0],[9E9,9E9,9E9,9E9,9E9,9E9]], v100, fine, tool0;\n    PDispOff;\n"
+            "    MoveL p1, v100, fine, tool0;\n")
+    moves, messages = _read(tmp_path, main)
+    assert [type(m).__name__ for m in moves] == ["Move", "Native", "Native", "Move", "Native", "Move"]
+    assert [m.text for m in moves if isinstance(m, Native)] == [
+        "PDispSet [[0,0,50],[1,0,0,0]];", "MoveL p1, v100, fine, tool0;", "PDispOff;"]
+    assert any("a program displacement may be on here (`PDispSet [[0,0,50],[1,0,0,0]]` at line 6)" in m for m in messages)
+
+
+def test_a_displacement_a_routine_switches_on_reaches_the_moves_after_its_call(tmp_path: Path) -> None:
+    procs = "  PROC shiftit()\n    PDispOn \\ExeP:=p1, p1, tool0;\n  ENDPROC\n"
+    moves, _ = _read(tmp_path, "    MoveL p1, v100, fine, tool0;\n    shiftit;\n    MoveL p1, v100, fine, tool0;\n", procs)
+    assert [type(m).__name__ for m in moves if m.where.line in (5, 7)] == ["Move", "Native"]
