@@ -241,10 +241,10 @@ class _Ls:
         if m and int(m.group(3)) in self.pr:
             self._define(m.group(1), int(m.group(2)), self.pr[int(m.group(3))], self.instructions[i][1])
             return [], i + 1
-        m = re.fullmatch(r"(UTOOL|UFRAME)_NUM\s*=\s*(\d+)", text)
-        if m:
-            self.state[m.group(1)] = int(m.group(2))
-            return [], i + 1
+        m = re.fullmatch(r"(UTOOL|UFRAME)_NUM\s*=\s*(.+)", text)
+        if m:  # a number selects the frame; anything else (`UFRAME_NUM=R[5]`) leaves it to run time
+            self.state[m.group(1)] = int(m.group(2)) if m.group(2).isdigit() else -1 - i
+            return ([], i + 1) if m.group(2).isdigit() else None
         m = re.fullmatch(r"\$WAITTMOUT\s*=\s*(\d+)", text)
         if m:
             self.timeout = int(m.group(1)) / 100.0
@@ -437,6 +437,10 @@ class _Ls:
                 return None
             points, speed, zone, rest = [point], *lin.group(4, 5, 6)
         else:
+            return None
+        chosen = [self._text(-1 - n) for n in self.state.values() if n < 0]
+        if chosen:
+            self.values.unread = f"`{chosen[0]}` selects the frame or tool by a value known only at run time"
             return None
         decls = [self.positions.get(p) for p in points]
         if kind != "joint":  # a point stored in joint form: the move goes to its TCP pose

@@ -324,3 +324,14 @@ def test_values_the_program_sets_in_straight_line_code_are_read(tmp_path: Path) 
         "move linear gen_p1 * pose(z=-5 mm) speed 200 mm/s zone 60 mm",
         'native fanuc "L P[1] R[10]mm/sec CNT60 ;"']
     assert "`R[10]` is set at run time by a program given" in output
+
+
+def test_a_frame_a_register_selects_keeps_the_moves_after_it_native(tmp_path: Path) -> None:
+    """`UFRAME_NUM=R[5]` (a frame chosen at run time): the moves after it were read in the frame
+    selected before (the robot base), without a word; now they stay native until a number
+    selects the frame again."""
+    body = ["UFRAME_NUM=R[5:frame]", "UTOOL_NUM=1", "J P[1] 100% FINE", "UFRAME_NUM=1", "L P[1] 100mm/sec FINE"]
+    program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": body}, {}))
+    assert _moves(program) == ['native fanuc "J P[1] 100% FINE ;"', "move linear pick_p1 speed 100 mm/s zone fine"]
+    assert "`UFRAME_NUM=R[5:frame]` selects the frame or tool by a value known only at run time" in output
+    assert "\n  frame uframe1\n" in program
