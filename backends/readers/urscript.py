@@ -25,7 +25,7 @@ from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.urscript_logic import UrVars, timed_wait
 from rmot.backends.readers.urscript_qnear import qnear_of
 from rmot.backends.readers.urscript_motion import (
-    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, rest_to_rest_shares, share,
+    DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, move_arguments, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
     Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments, scoped_defs,
@@ -179,12 +179,20 @@ class _Script:
         return self.values[text] if once or (self.in_sub == 0 and text not in self.nested_set) else None
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
-        """The statements from `i` to the block's end (nesting bounded by Tally.nested); where a
-        block starts or ends, the joints the robot stands at are not known from the text."""
+        """The statements from `i` to the block's end; where a block starts or ends, the joints are not known."""
         self.rest_joints, self.last_target, self.fresh = None, None, {}
+        tool, head = self.tool, self.lines[i - 1].head if i > 0 else ""  # a function's body: its own
+        if head in ("while", "for") and self._sets_another_tcp(i, tool):
+            self.tool = _TCP_UNKNOWN  # a later turn starts with the TCP the body set
         found = self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
-        self.fresh = {}
+        self.fresh, self.tool = {}, _TCP_UNKNOWN if head in _RUNS_MAYBE and self.tool != tool else self.tool
         return found
+
+    def _sets_another_tcp(self, i: int, tool: str | None) -> bool:
+        """Whether the block from `i` sets a TCP other than `tool` (the backend sets the same one again at each block)."""
+        sets = [re.fullmatch(r"set_tcp\(p\[(.*)\]\)", x.text.replace(" ", "")) for x in self.lines[i:block_end([x.head for x in self.lines], i - 1)]]
+        keys = {tuple(round(v, 6) for v in self._numbers(m.group(1)) or [math.nan]) for m in sets if m}  # nan: unread
+        return any(tool is None or k not in self.tools or self.tools[k].name != tool for k in keys)
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
@@ -245,6 +253,8 @@ class _Script:
                             lambda n: self._value(n) is not None or self._target(n) is not None) \
             if stmt is None and ln.head in ("movej", "movel", "movep", "movec") else None
         if stmt is None:
+            why = why or ("a block before it may set the TCP (set_tcp): which one holds here is known only at run time"
+                          if self.tool == _TCP_UNKNOWN and ln.head in ("movej", "movel", "movep", "movec") else None)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -369,8 +379,6 @@ class _Script:
         if self.lines[j].text.startswith("else"):
             orelse, j = self._block(j + 1, ("end",))
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
-
-    # ---------------------------------------------------------------- statements
 
     def _setting(self, text: str) -> bool:
         compact = text.replace(" ", "")
@@ -551,22 +559,11 @@ class _Script:
         return rest_to_rest_shares(start, joints, v, a, self.limits)
 
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
-        # movep (URScript manual, module motion: "Move Process. Blend circular (in tool-space) and move
-        # linear (in tool-space) to position", movep(pose, a, v, r)): a straight line at the tool speed v
-        # with a blend of radius r, which is rmot's linear move with speed and zone; the constant-speed
-        # timing through the blend is the controller's, rmot plans its own
         kind = {"movej": "joint", "movel": "linear", "movec": "circular", "movep": "linear"}[func]
-        named = dict(a.split("=", 1) for a in args if re.match(r"\w+=", a) and not a.startswith("get_"))
-        given = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
-        npoints = 2 if kind == "circular" else 1
-        points, positional = given[:npoints], given[npoints:]
-        # positional arguments in the manual's order: movej/movel(q, a, v, t, r), movec(via, to, a, v, r, mode)
-        order = ("a", "v", "r", "mode") if kind == "circular" else ("a", "v", "r") if func == "movep" else ("a", "v", "t", "r")
-        if len(points) != npoints or len(positional) > len(order) or set(named) & set(order[:len(positional)]):
+        parsed = move_arguments(func, kind, args)
+        if parsed is None or self.tool == _TCP_UNKNOWN:
             return None
-        named.update(zip(order, positional))
-        if set(named) - {"a", "v", "r", "t", "mode"} or named.get("mode", "0") != "0":
-            return None
+        points, named = parsed
         found = [self._target(p) for p in points]
         values = {k: self._value(v) for k, v in named.items()}
         if any(f is None for f in found) or any(v is None for v in values.values()):
@@ -590,6 +587,8 @@ class _Script:
 
 
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
+_TCP_UNKNOWN = "?"  # the TCP after a block that may have set it: which one holds is the run time's
+_RUNS_MAYBE = ("if", "elif", "else", "while", "for")  # an arm or a loop body: it may not run
 
 
 def read_urscript(path: str, text: str, model: str | None,

@@ -19,7 +19,8 @@ from rmot.backends.readers.urscript_text import block_end
 from rmot.lang import ir
 
 __all__ = [
-    "DIRECTION_FUNCTION", "DIRECTION_LINES", "direction_target", "kept_direction", "rest_to_rest_shares", "share",
+    "DIRECTION_FUNCTION", "DIRECTION_LINES", "direction_target", "kept_direction", "move_arguments", "rest_to_rest_shares",
+    "share",
 ]
 
 
@@ -135,3 +136,23 @@ def kept_direction(texts: list[str], heads: list[str], i: int) -> tuple[str, int
     return "a PolyScope Direction node: it moves from the last move's target (`get_target_waypoint()`), " \
            "not known here (after a block, a call or a native line), or along a feature or direction " \
            "not known here", k + 1
+
+
+def move_arguments(func: str, kind: str, args: list[str]) -> tuple[list[str], dict[str, str]] | None:
+    """(the points, the named arguments a v r t mode) of a move's arguments, positional ones in the
+    manual's order (URScript manual, module motion: movej/movel(q, a, v, t, r), movep(pose, a, v, r),
+    movec(via, to, a, v, r, mode)); None for another form or a mode other than 0. movep ("Move
+    Process. Blend circular (in tool-space) and move linear (in tool-space) to position") is a
+    straight line at the tool speed v with a blend of radius r: rmot's linear move with speed and
+    zone (the constant-speed timing through the blend is the controller's, rmot plans its own)."""
+    named = dict(a.split("=", 1) for a in args if re.match(r"\w+=", a) and not a.startswith("get_"))
+    given = [a for a in args if not (re.match(r"\w+=", a) and not a.startswith("get_"))]
+    npoints = 2 if kind == "circular" else 1
+    points, positional = given[:npoints], given[npoints:]
+    order = ("a", "v", "r", "mode") if kind == "circular" else ("a", "v", "r") if func == "movep" else ("a", "v", "t", "r")
+    if len(points) != npoints or len(positional) > len(order) or set(named) & set(order[:len(positional)]):
+        return None
+    named.update(zip(order, positional))
+    if set(named) - {"a", "v", "r", "t", "mode"} or named.get("mode", "0") != "0":
+        return None
+    return points, named
