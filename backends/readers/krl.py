@@ -157,8 +157,12 @@ class _Krl:
             i += 1
 
     def _block(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
-        """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
-        return self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+        """The statements from `i` to the block's end; a setting it changes is unsure after it (MotionState.unsure)."""
+        before = {name: getattr(self.state, name) for name in MotionState.SETTINGS}
+        found = self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
+        at = f"in the block at line {self.lines[max(i - 1, 0)].where.line}, which may not run (or runs more than once)"
+        self.state.unsure.update({n: (at, getattr(self.state, n)) for n, v in before.items() if getattr(self.state, n) != v})
+        return found
 
     def _block_body(self, i: int, ends: tuple[str, ...]) -> tuple[list[Stmt], int]:
         body: list[Stmt] = []
@@ -215,7 +219,7 @@ class _Krl:
             return [assign], i + 1
         if load_switch(self.lines, i):
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
-        if self._setting(ln.text):
+        if self.state.setting(lambda: self._setting(ln.text)):
             return [], i + 1
         if self.work.read(self.lines, i, self.flow, self.targets, self.data, self.names):
             return [], i + 1
@@ -225,7 +229,8 @@ class _Krl:
             return self.logic.with_else(timed, self.lines, i, self._block, self._cond)
         stmt = self._simple(ln)
         if stmt is None:
-            why = motion_why(ln.text[len(word):], self._names(), self.state) if word in MOTIONS else \
+            why = self.state.unsure_of(word in ("PTP", "SPTP"), ln.text) or motion_why(ln.text[len(word):], self._names(), self.state) \
+                if word in MOTIONS else \
                 other_why(word, ln.text, self.last is not None) or self.logic.why(ln.text)
             self.calls.called(ln.text, ln.where)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
@@ -350,13 +355,17 @@ class _Krl:
             return True
         m = re.fullmatch(r"(?i)\$(TOOL|BASE)\s*=\s*(\$NULLFRAME|\w+)", text)
         if m:
-            return self._tool_base(m.group(1).upper(), m.group(2))
+            read = self._tool_base(m.group(1).upper(), m.group(2))
+            if not read:  # kept native: a motion after it reads a value the import does not know
+                name = "tool" if m.group(1).upper() == "TOOL" else "frame"
+                st.unsure[name] = (f"at line {self.at.line if self.at else 0} to a value the import does not read", getattr(st, name))
+            return read
         m = re.fullmatch(r"(?is)\$(TOOL|BASE)\s*=\s*(\{.*\})", text)
         if m:
             return self._inline_frame(m.group(1).upper(), m.group(2))
-        m = re.fullmatch(r"(?i)BAS\s*\(\s*#(TOOL|BASE)\s*,\s*(\d+)\s*\)", text)
+        m = re.fullmatch(r"(?i)BAS\s*\(\s*#(TOOL|BASE)\s*,\s*(\d+)\s*\)|\$(TOOL)\s*=\s*TOOL_DATA\[(\d+)\]|\$(BASE)\s*=\s*BASE_DATA\[(\d+)\]", text)
         if m:  # KSS BAS.SRC: $TOOL = TOOL_DATA[n] / $BASE = BASE_DATA[n] (n 0: the flange / robot base)
-            kind, n = m.group(1).lower(), m.group(2)
+            kind, n = [g for g in m.groups() if g is not None][0].lower(), [g for g in m.groups() if g is not None][1]
             if kind == "tool" and n == "0":
                 st.tool = "flange"
             else:
@@ -401,18 +410,15 @@ class _Krl:
         same = next((v.name for v in table.values() if (v.tcp if isinstance(v, ToolData) else v.pose) == pose), None)
         if same is None:
             same = f"{which.lower()}_{len(table) + 1}"
-            where = Where(self.tally.path, 1)
             if which == "TOOL":
-                self.tools[same.upper()] = ToolData(same, pose, 0.0, where)
+                self.tools[same.upper()] = ToolData(same, pose, 0.0, Where(self.tally.path, 1))
             else:
-                self.frames[same.upper()] = FrameData(same, pose, where)
+                self.frames[same.upper()] = FrameData(same, pose, Where(self.tally.path, 1))
         if which == "TOOL":
             self.state.tool = same
         else:
             self.state.frame = same
         return True
-
-    # ---------------------------------------------------------------- statements
 
     def _simple(self, ln: Line) -> Stmt | None:
         text, word, where = ln.text, ln.word, ln.where
@@ -528,6 +534,8 @@ class _Krl:
         if any(f is None for f in found):
             return None
         st = self.state
+        if st.unsure_of(kind == "joint", approx) is not None:
+            return None
         if kind == "joint":  # a PTP blended into a LIN/CIRC: `C_PTP C_DIS`, its radius $APO.CDIS
             zone = (st.cptp * KrlBackend.CPTP_MM if approx == "C_PTP" and st.cptp is not None else
                     st.cdis if approx in ("C_DIS", "C_PTP C_DIS") else None)

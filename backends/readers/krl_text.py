@@ -251,6 +251,9 @@ def branch_of_status(s: int) -> ir.Config:
     raise AssertionError("status_of covers 0..7")
 
 
+_UNSET = object()  # a setting's value while a line that may set it is read (MotionState.setting)
+
+
 class MotionState:
     """The modal motion variables a plain KRL motion reads."""
 
@@ -265,3 +268,36 @@ class MotionState:
         self.cptp: float | None = None
         self.tool: str | None = None
         self.frame: str | None = None
+        # a setting a block changed (an arm may not run, a loop may not turn) or a line set to a value
+        # not read: where, and the value it had then; a motion reading it while it has that value is native
+        self.unsure: dict[str, tuple[str, object]] = {}
+
+    SETTINGS = {"vel_cp": "$VEL.CP", "vel_ptp": "$VEL_AXIS", "acc_cp": "$ACC.CP", "acc_ptp": "$ACC_AXIS",
+                "cdis": "$APO.CDIS", "cptp": "$APO.CPTP", "tool": "$TOOL", "frame": "$BASE"}
+
+    def setting(self, read: Callable[[], bool]) -> bool:
+        """`read()` a line that may set motion settings: one it sets is no longer unsure (even to
+        the value it had after the block); what `read` marks unsure holds the value before it."""
+        held = {n: getattr(self, n) for n in self.unsure}
+        for n in held:
+            setattr(self, n, _UNSET)
+        found = read()
+        for n, v in held.items():
+            if getattr(self, n) is _UNSET:
+                setattr(self, n, v)
+                self.unsure[n] = (self.unsure[n][0], v) if self.unsure[n][1] is _UNSET else self.unsure[n]
+            else:
+                del self.unsure[n]
+        return found
+
+    def unsure_of(self, joint: bool, text: str) -> str | None:
+        """Why a PTP (`joint`) or CP motion `text` here cannot be read: a setting it reads (the
+        blend distances only where it blends) that is unsure; None where there is none."""
+        blends = {"cdis": re.search(r"(?i)\bC_(DIS|SPL)\b", text), "cptp": re.search(r"(?i)\bC_PTP\b", text)}
+        reads = [n for n in (("vel_ptp", "acc_ptp") if joint else ("vel_cp", "acc_cp")) + ("cptp", "cdis", "tool", "frame")
+                 if blends.get(n, True)]
+        for name in reads:
+            where, value = self.unsure.get(name, ("", None))
+            if where and getattr(self, name) == value:
+                return f"its {self.SETTINGS[name]} is set {where}: which value holds here is known only at run time"
+        return None
