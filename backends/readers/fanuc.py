@@ -169,7 +169,11 @@ class _Ls:
     def _block(self, i: int, stop: int | None) -> tuple[list[Stmt], int]:
         """The statements from `i` to the block's end (nesting bounded by Tally.nested)."""
         where = self.instructions[min(i, len(self.instructions) - 1)][1] if self.instructions else Where(self.path, 1)
-        return self.tally.nested(where, lambda: self._block_body(i, stop))
+        before = dict(self.state)
+        found = self.tally.nested(where, lambda: self._block_body(i, stop))
+        if i > 0:  # a tool or frame the block selects: after it, the block's line decides (it may not run)
+            self.state.update({k: -i for k, v in before.items() if self.state[k] != v})
+        return found
 
     def _block_body(self, i: int, stop: int | None) -> tuple[list[Stmt], int]:
         end = len(self.instructions) if stop is None else stop
@@ -440,7 +444,7 @@ class _Ls:
             return None
         chosen = [self._text(-1 - n) for n in self.state.values() if n < 0]
         if chosen:
-            self.values.unread = f"`{chosen[0]}` selects the frame or tool by a value known only at run time"
+            self.values.unread = f"the frame or tool here depends on `{chosen[0]}`: which one is known only at run time"
             return None
         decls = [self.positions.get(p) for p in points]
         if kind != "joint":  # a point stored in joint form: the move goes to its TCP pose

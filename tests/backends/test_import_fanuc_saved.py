@@ -333,5 +333,16 @@ def test_a_frame_a_register_selects_keeps_the_moves_after_it_native(tmp_path: Pa
     body = ["UFRAME_NUM=R[5:frame]", "UTOOL_NUM=1", "J P[1] 100% FINE", "UFRAME_NUM=1", "L P[1] 100mm/sec FINE"]
     program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": body}, {}))
     assert _moves(program) == ['native fanuc "J P[1] 100% FINE ;"', "move linear pick_p1 speed 100 mm/s zone fine"]
-    assert "`UFRAME_NUM=R[5:frame]` selects the frame or tool by a value known only at run time" in output
+    assert "the frame or tool here depends on `UFRAME_NUM=R[5:frame]`: which one is known only at run time" in output
     assert "\n  frame uframe1\n" in program
+
+
+def test_a_tool_a_branch_selects_keeps_the_moves_after_it_native(tmp_path: Path) -> None:
+    """`IF (DI[1]=ON) THEN UTOOL_NUM=2 ENDIF`: after the IF the tool is 2 only where the arm ran
+    (it was read as 2 for every later move); a number selecting it again makes it known."""
+    body = ["UTOOL_NUM=1", "J P[1] 100% FINE", "IF (DI[1]=ON) THEN", "UTOOL_NUM=2", "ENDIF", "L P[1] 100mm/sec FINE",
+            "UTOOL_NUM=2", "L P[1] 100mm/sec FINE"]
+    program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": body}, {}))
+    assert _moves(program) == ["move joint pick_p1 config(shoulder=front, elbow=up, wrist=flip) speed 100 % zone fine",
+                               'native fanuc "L P[1] 100mm/sec FINE ;"', "move linear pick_p1 speed 100 mm/s zone fine"]
+    assert "the frame or tool here depends on `IF (DI[1]=ON) THEN`" in output
