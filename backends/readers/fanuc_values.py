@@ -11,13 +11,14 @@ backup's .VA file saved it (fanuc_va.py, W543). Everywhere else the line stays n
 
 from __future__ import annotations
 
+import bisect
 import re
 
 from rmot.backends.readers.common import Tally, number
 from rmot.backends.readers.fanuc_va import Controller, Saved
 from rmot.backends.readers.model import Where
 
-__all__ = ["RegisterValues", "built_offset", "set_before"]
+__all__ = ["RegisterValues", "built_offset"]
 
 # what ends straight-line code: a label or jump (another path), a block's line, a call (the
 # callee may write the register), an indirect write (any register may change)
@@ -26,53 +27,56 @@ _CLEAR = re.compile(r"LPOS\s*-\s*LPOS")
 _COUNTER = re.compile(r"R\[\d+(?::[^\]]*)?\]\*-?[\d.]+")
 
 
-def built_offset(texts: list[str], use: int, k: int, counted: bool) -> dict[str, float] | str | None:
-    """What PR[k] holds at instruction `use` where the program builds it: the elements set since
-    `PR[k]=LPOS-LPOS`, or all six set with numbers, in straight-line code (the last write of each
-    wins); {} where `counted` (a counting loop's `PR[k,i]=R[v]*d` builds it) and nothing else
-    here writes PR[k]; None where no line writes PR[k] (the controller's); else why not followed."""
-    write = re.compile(rf"PR\[{k}(?:,\s*(\d))?(?::[^\]]*)?\]\s*=\s*(.+)")
+def built_offset(writes: list[tuple[int, re.Match[str]]], since: int, use: int, counted: bool) -> dict[str, float] | str | None:
+    """What PR[k] holds at instruction `use` where the program builds it, from `writes` (each
+    line writing PR[k]: its index, its match) and `since` (the last line before `use` that ends
+    straight-line code): the elements set since `PR[k]=LPOS-LPOS`, or all six set with numbers,
+    after `since` (the last write of each wins); {} where `counted` (a counting loop's
+    `PR[k,i]=R[v]*d` builds it) and nothing else here writes PR[k]; None where no line writes
+    PR[k] (the controller's); else why not followed."""
     values: dict[str, float] = {}
-    for j in range(use - 1, -1, -1):
-        m = write.fullmatch(texts[j])
-        value = number(m.group(2).strip().strip("()")) if m and m.group(1) else None
-        if m and m.group(1) is None and _CLEAR.fullmatch(m.group(2).strip()):
+    for _, m in reversed([w for w in writes if since < w[0] < use]):
+        value = number(m.group(2).strip().strip("()")) if m.group(1) else None
+        if m.group(1) is None and _CLEAR.fullmatch(m.group(2).strip()):
             return values
-        if m and value is not None and 1 <= int(m.group(1)) <= 6:
-            values.setdefault("xyzwpr"[int(m.group(1)) - 1], value)
-            if len(values) == 6:
-                return values
-        elif m or _NOT_STRAIGHT.search(texts[j]):
+        if value is None or not 1 <= int(m.group(1)) <= 6:
             break
-    writes = [m for t in texts if (m := write.fullmatch(t))]
+        values.setdefault("xyzwpr"[int(m.group(1)) - 1], value)
+        if len(values) == 6:
+            return values
     if counted and all((m.group(1) is None and _CLEAR.fullmatch(m.group(2).strip())) or _COUNTER.fullmatch(m.group(2))
-                       for m in writes):
+                       for _, m in writes):
         return {}  # (in a program the loop's caller inlines, too: it writes none)
     if not writes:
         return None
-    return f"the program sets PR[{k}] where the import does not follow its value (after a label, a block or a call)"
-
-
-def set_before(texts: list[str], use: int, k: int) -> float | None:
-    """R[k]'s value at instruction `use` where the program sets it to a number in straight-line
-    code before it (`R[10]=200`); None otherwise."""
-    write = re.compile(rf"R\[{k}(?::[^\]]*)?\]\s*=\s*(.+)")
-    for j in range(use - 1, -1, -1):
-        m = write.fullmatch(texts[j])
-        if m or _NOT_STRAIGHT.search(texts[j]) or re.search(rf"\bFOR\s+R\[{k}\b", texts[j]):
-            return number(m.group(1).strip().strip("()")) if m else None
-    return None
+    k = re.match(r"PR\[(\d+)", writes[0][1].group(0))
+    return f"the program sets PR[{k.group(1) if k else ''}] where the import does not follow its value (after a label, a block or a call)"
 
 
 class RegisterValues:
-    """The register values of one program's motion lines, read one line at a time (`start`)."""
+    """The register values of one program's motion lines, read one line at a time (`start`);
+    each register's writes and the lines that end straight-line code are found once."""
 
     def __init__(self, controller: Controller, texts: list[str]) -> None:
         self.controller = controller
         self.texts = texts  # the program's instructions, in order
+        self.breaks = [j for j, t in enumerate(texts) if _NOT_STRAIGHT.search(t)]
+        self.writes: dict[tuple[str, int], list[tuple[int, re.Match[str]]]] = {}
         self.at = 0  # the instruction being read
         self.unread: str | None = None  # why its value is not known
         self.used: list[tuple[str, int]] = []  # the saved registers it reads
+
+    def _writes(self, kind: str, k: int) -> list[tuple[int, re.Match[str]]]:
+        """The lines writing R[k] (a FOR counter too) or PR[k]: (index, match of the value)."""
+        if (kind, k) not in self.writes:
+            write = re.compile(rf"(?:FOR\s+)?{kind}\[{k}(?:,\s*(\d))?(?::[^\]]*)?\]\s*=\s*(.+)")
+            self.writes[(kind, k)] = [(j, m) for j, t in enumerate(self.texts) if (m := write.fullmatch(t))]
+        return self.writes[(kind, k)]
+
+    def _since(self) -> int:
+        """The last line before the one being read that ends straight-line code (-1: none)."""
+        k = bisect.bisect_left(self.breaks, self.at)
+        return self.breaks[k - 1] if k else -1
 
     def start(self, at: int) -> None:
         self.at, self.unread, self.used = at, None, []
@@ -88,7 +92,9 @@ class RegisterValues:
         if m is None:
             return speed
         n = int(m.group(1))
-        value: float | str | None = set_before(self.texts, self.at, n)
+        last = [(j, w) for j, w in self._writes("R", n) if self._since() < j < self.at][-1:]
+        value: float | str | None = number(last[0][1].group(2).strip().strip("()")) if last and \
+            not last[0][1].group(0).startswith("FOR") else None
         if value is None:
             value = self.controller.register(n)
             self.used += [] if isinstance(value, str) else [("R", n)]
@@ -100,7 +106,7 @@ class RegisterValues:
     def offset(self, n: int, counted: dict[str, str] | None) -> dict[str, str] | None:
         """The shift terms (mm per axis) of an offset by PR[n], the counting loop's `counted` terms
         merged; None (with why) where its value is not known or it turns."""
-        built = built_offset(self.texts, self.at, n, bool(counted))
+        built = built_offset(self._writes("PR", n), self._since(), self.at, bool(counted))
         if built is None:
             saved = self.position(n)
             if saved is not None and (saved.xyzwpr is None or any(abs(a) > 1e-9 for a in saved.xyzwpr[3:])):
