@@ -13,7 +13,9 @@ fill exactly the slots the files use, the track carrying the robot always among 
 order the vendor's own structure (TP, INFORM) or the file's machine-data header (RAPID, KRL)
 states. Where no such choice exists, or more than one, or where no cell is given (a stub cell
 cannot declare a track's or positioner's geometry), every move with axis values stays native
-with W523 naming why: an axis value is never guessed. Frames the backends write through a
+with W523 naming why, the whole statement as the reader keeps one (`Move.source`): an axis
+value is never guessed. The one reading without a mechanism is RAPID's 0 in every slot on a cell
+without axes, which the controller ignores (W544, `_not_connected`). Frames the backends write through a
 mechanism come back as the cell's frame riding on it (KRL `$BASE=EK(..)`, a TP COORD move, an
 INFORM SMOVL/SMOVC placed in it).
 """
@@ -28,7 +30,7 @@ from itertools import combinations
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.axes_only import absorb_move_ext_j, one_mechanism, si_value
-from rmot.backends.readers.common import rmot_name
+from rmot.backends.readers.common import native_line, rmot_name
 from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.writer import map_leaves
 from rmot.backends.readers.axes_slots import ABSURD, COORD_FRAME, EK_FRAME, SLOTS
@@ -289,6 +291,9 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
                       for r in doc.routines for s in walk(r.body))
     if used == 0 and not placeholder:
         return original  # no axis values: a TP COORD stays the native option it was read as (W517)
+    unconnected = _not_connected(doc, cell, robot, named, span_of)
+    if unconnected is not None:
+        return unconnected
     doc = _absorb_coord(doc)
     chosen, why = _choose(cell, robot, used, doc.vendor) if used else ((), "")
     if doc.vendor in ("rapid", "krl") and len(chosen) > 1:  # the slots' order over mechanisms: machine data
@@ -302,6 +307,33 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
                    for c in doc.counts)
     return replace(doc, routines=routines, counts=counts, diagnostics=doc.diagnostics + tuple(mapper.diags),
                    mechanisms=tuple(m.name for m in chosen) if not why else ())
+
+
+def _not_connected(doc: Document, cell: ir.Cell | None, robot: str, named: Mapping[str, tuple[float | None, ...]],
+                   span_of: Callable[[Where], Span]) -> Document | None:
+    """A RAPID program on a cell that declares no track or positioner (the stub cell included)
+    whose every external-axis value is 0 (a generator's `[0,9E9,..]` for an arm alone, as KRL
+    writes 0 for a slot no axis takes): the controller ignores the value of an axis not
+    connected ("If the position is defined in the position data, although the axis is not
+    connected, the value will be ignored": RAPID reference, extjoint), so the moves are read
+    without them, W544 once per file at its first move with values. None otherwise: a value
+    other than 0 places an axis the cell lacks (W523), and MoveExtJ moves axes that exist."""
+    if doc.vendor != "rapid" or (cell is not None and _drivable(cell, robot)[0]):
+        return None
+    moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    given = [(m, values) for m in moves for values in (_slots_of(m, named), _via_slots(doc, m.via) or ())
+             if any(v is not None for v in values)]
+    if not given or any(m.axes_only for m in moves) or any(v not in (None, 0.0) for _, vs in given for v in vs):
+        return None
+    used = sorted({k for _, values in given for k, v in enumerate(values) if v is not None})
+    slots = ", ".join(f"eax_{'abcdef'[k]}" for k in used)
+    firsts = {m.where.path: m.where for m, _ in reversed(given)}
+    diags = tuple(Diagnostic(codes.AXES_NOT_CONNECTED, Severity.WARNING,
+                             f"every external-axis value the moves give is 0 ({slots}), which the controller ignores where no axis is connected "
+                             "(RAPID reference, extjoint): the cell declares no track or positioner, so the moves are "
+                             "read without them (give --cell with the track or positioner if the robot has one)",
+                             span_of(w)) for w in sorted(firsts.values(), key=lambda w: (w.path, w.line)))
+    return replace(doc, diagnostics=doc.diagnostics + diags)
 
 
 class _Mapper:
@@ -381,4 +413,5 @@ class _Mapper:
         self.diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING,
                                      f"external-axis values must map to the cell's axes: {problem}; kept native", span))
         self.moved[s.where.path] = self.moved.get(s.where.path, 0) + 1
-        return Native(self.doc.vendor, span.file.line_text(s.where.line).strip() or "move", s.where)
+        return Native(self.doc.vendor, s.source or native_line(self.doc.vendor, span.file.line_text(s.where.line)) or "move",
+                      s.where)

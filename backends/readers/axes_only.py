@@ -69,7 +69,7 @@ def absorb_move_ext_j(doc: Document, bodies: Callable[..., tuple[Stmt, ...]]) ->
                 taken.append(s.where)
                 declared.add(where)
                 s = Move("joint", "", None, s.where, time=float(m.group(2)) if m.group(2) else None,
-                         slots=slots, axes_only=True)
+                         slots=slots, axes_only=True, source=m.string)
             out.append(s)
         return tuple(out)
 
@@ -114,7 +114,7 @@ def _axes_move(move: Move, new: tuple[float | None, ...], old: tuple[float | Non
         why = "no move with axis values before it in its block" if old is None else f"it moves {len(changed)} mechanisms"
         diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING, "MoveExtJ must move one mechanism after a move "
                                 f"of the arm (`move axes`): {why}; kept native", span_of(move.where)))
-        return Native("rapid", span_of(move.where).file.line_text(move.where.line).strip(), move.where)
+        return Native("rapid", move.source, move.where)
     mech, first = changed[0]
     shortest = max(axis_time(si_value(a.linear, v) - si_value(a.linear, w), a.speed, a.accel)
                    for a, v, w in zip(mech.axes, new[first:], old[first:]))

@@ -166,3 +166,10 @@ CONTROLLER_VALUE_READ = Code("W543", "controller-value-read",
                              "a Fanuc TP register no program given writes is read at the value the backup's "
                              "NUMREG.VA or POSREG.VA saved: another program or the PLC may change it before "
                              "this one runs")
+
+# RAPID external-axis values the controller ignores on a cell without the axes (axes.py)
+__all__ += ["AXES_NOT_CONNECTED"]
+AXES_NOT_CONNECTED = Code("W544", "axes-not-connected",
+                          "every external-axis value of a RAPID file is 0 and the cell declares no track or "
+                          "positioner: the controller ignores the value of an axis not connected, so the moves are "
+                          "read without them")

@@ -17,6 +17,7 @@ with `$WAITTMOUT` (1/100 s) and the ABORT label; the counting loop `R[v]=a`, `LB
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
@@ -210,7 +211,7 @@ class _Ls:
         if moved is not None:
             self.values.note(self.tally, where)  # W543: the move is read with a value a backup saved
             self.tally.imported += 1
-            return [moved[0], *moved[1]], i + 1
+            return [replace(moved[0], source=f"{text} ;"), *moved[1]], i + 1
         stmt = self._simple(text, where)
         payload = re.fullmatch(r"PAYLOAD\[(\d+)\]", text)
         remark = re.fullmatch(r"!.*:\s*(\d+(?:\.\d+)?)\s*kg", self._text(i - 1)) if payload and i > 0 else None

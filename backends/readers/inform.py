@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import replace
 
 from rmot.backends.inform_text import PL_DISTANCES_MM
 from rmot.backends.readers import axes_slots, codes
@@ -378,7 +379,7 @@ class _Job:
             return None
         move = self._move("circular", [_key(ms[-2].group(2)), _key(ms[-1].group(2))], ms[-1].group(3),  # type: ignore[union-attr]
                           self.inst[i + n - 2][1], ms[-1].group(1) == "S", ms[-2].group(3))  # type: ignore[union-attr]
-        return ([move], i + n) if move else None
+        return ([replace(move, source="\n".join(texts))], i + n) if move else None
 
     def _stands_at(self, i: int, key: str) -> bool:
         """Whether the last move before instruction `i` (over outputs, waits and timers) ended at

@@ -60,4 +60,5 @@ def inline_move(word: str, text: str, where: Where, target: Targets, tables: tup
     return Move(kind, expr, name, where, via=found[0][0] if kind == "circular" else None,  # type: ignore[index]
                 speed=speed if kind != "joint" else None, joint_pct=vel if kind == "joint" else None,
                 zone=zone, tool=tool, frame=frame, config=config_,
-                pose=decl.pose if decl else None, joints=decl.joints if decl else None, slots=decl.slots if decl else ())
+                pose=decl.pose if decl else None, joints=decl.joints if decl else None, slots=decl.slots if decl else (),
+                source=f"{word} {text.strip()}")  # the header, as the reader keeps a form it cannot read

@@ -107,6 +107,10 @@ class Move:
     # the controller goes to the solution of P nearest Q (readers/urscript_qnear.py)
     near: tuple[str, tuple[float, ...] | None] | None = None
     axes_only: bool = False  # `move axes`: the mechanisms alone (RAPID MoveExtJ), `time` its duration
+    # the statement as the reader would keep it native (every line of it: a RAPID statement over
+    # several lines, a KRL inline form's header, an INFORM arc's MOVC lines), for a later stage
+    # that keeps the move native (readers/axes.py); "" where the reader did not record it
+    source: str = ""
 
 
 @record(slots=True)

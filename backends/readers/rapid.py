@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import re
 from collections.abc import Mapping
+from dataclasses import replace
 
 from rmot.backends.rapid_text import SPEEDS_MM_S, ZONES_MM
 from rmot.backends.readers import axes_slots, codes, jump_spans
@@ -409,7 +410,8 @@ class _Module:
             args += [args.pop() + a.strip()] if a.strip().startswith("\\") and args else [a]
         args_text = ", ".join(a.strip() for a in args)  # `WaitDI di1, 1, \MaxTime:=2` too
         if word in _MOVES:
-            return self._move(word, args, st.where)
+            move = self._move(word, args, st.where)
+            return replace(move, source=st.text + ";") if move is not None else None
         if word == "SETDO" and len(args) == 2 and args[1] in ("0", "1"):
             return SetOut(args[0], float(args[1]), st.where)
         if word in ("SET", "RESET") and len(args) == 1:

@@ -21,8 +21,9 @@ from __future__ import annotations
 from pathlib import Path
 
 
-from rmot.backends.readers import ImportError_, read_files
+from rmot.backends.readers import ImportError_
 from rmot.backends.readers.counts import motion_io_counts
+from rmot.compiler.cli.import_read import read_on_robot
 
 CORPUS = Path(__file__).resolve().parents[1] / "data" / "vendor_programs"
 PROGRAMS = (".mod", ".prg", ".modx", ".src", ".ls", ".script", ".urscript", ".jbi")
@@ -39,7 +40,7 @@ def _shares(root: Path) -> dict[str, tuple[int, int]]:
         imported = total = 0
         for path in sorted(p for p in folder.iterdir() if p.suffix.lower() in PROGRAMS):
             try:
-                doc = read_files([str(path)])
+                doc = read_on_robot([str(path)], None, None, None)  # as `rmot import FILE` reads it
             except ImportError_:
                 continue  # a file that is not the language: a located E510 (test_import_corpus)
             for kept, native in motion_io_counts(doc).values():
