@@ -173,3 +173,9 @@ AXES_NOT_CONNECTED = Code("W544", "axes-not-connected",
                           "every external-axis value of a RAPID file is 0 and the cell declares no track or "
                           "positioner: the controller ignores the value of an axis not connected, so the moves are "
                           "read without them")
+
+# Fanuc TP moves in a program that selects no tool or frame: read in the numbers the positions record
+__all__ += ["CALLERS_SELECTION_READ"]
+CALLERS_SELECTION_READ = Code("W545", "callers-selection-read",
+                              "a Fanuc TP program moves before it selects UTOOL_NUM or UFRAME_NUM: its moves are read "
+                              "in the tool and user frame their positions were taught in, which its caller must select")

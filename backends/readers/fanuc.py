@@ -28,7 +28,7 @@ from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition,
+    CALLERS, caller_selection, german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
@@ -89,7 +89,9 @@ class _Ls:
         self.pr: dict[int, list[float]] = {}
         self.offsets: dict[int, dict[str, str]] = {}
         self.loop_vars: dict[str, str] = {}
-        self.state: dict[str, int] = {"UTOOL": 0, "UFRAME": 0}
+        self.state: dict[str, int] = {"UTOOL": CALLERS, "UFRAME": CALLERS}  # until the program selects one
+        self.taught: dict[int, dict[str, int]] = {}  # position -> the UFRAME and UTOOL numbers it records
+        self.inherited: dict[str, int] = {}  # the caller's UFRAME/UTOOL numbers, read from the first move's position
         self.timeout: float | None = None
         self.routine = Routine("", (), (), Where(path, 1))  # the program, once read
         self.programs = programs or {}
@@ -158,6 +160,8 @@ class _Ls:
             if any(t.name == name for t in self.positions.values()):
                 name = f"{name}_{n}"  # the same label on another P[n] (the moves name it by number)
             where = Where(self.path, line)
+            taught = re.search(r"\bUF\s*:\s*(\d+)\s*,\s*UT\s*:\s*(\d+)", body)
+            self.taught.update({n: {"UFRAME": int(taught.group(1)), "UTOOL": int(taught.group(2))}} if taught else {})
             if all(k in values for k in "XYZWPR"):
                 self.positions[n] = Target(name, tp_pose([values[k] for k in "XYZWPR"]), None,
                                            tp_branch(conf.group(1)) if conf else None, where, slots=axes_slots.fanuc_slots(m.group(3)))
@@ -219,7 +223,9 @@ class _Ls:
             nan = float("nan")
             self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (nan, nan, nan)))  # type: ignore[union-attr]
         if stmt is None:
-            joint_form = [why for why in (self._tcp_of(p, where) for p in path_points(text)) if isinstance(why, str)]
+            selected = caller_selection(self.state, [self.taught.get(p) for p in path_points(text)], self.inherited)
+            joint_form = [why for why in (self._tcp_of(p, where, selected["UTOOL"]) for p in path_points(text))
+                          if isinstance(why, str)] if isinstance(selected, dict) else []
             why = joint_form[0] if joint_form else self.values.unread or "no rmot form"
             return [self.tally.keep(text + " ;", where, why)], i + 1
         self.tally.imported += 1
@@ -264,8 +270,7 @@ class _Ls:
         else:
             self.frames[n] = FrameData(name, pose, where)
 
-    def _named(self, kind: str, at: Where) -> str:
-        n = self.state[kind]
+    def _named(self, kind: str, at: Where, n: int) -> str:
         if kind == "UFRAME" and n == 0:
             return "base"
         table = self.tools if kind == "UTOOL" else self.frames
@@ -447,9 +452,20 @@ class _Ls:
         if chosen:
             self.values.unread = f"the frame or tool here depends on `{chosen[0]}`: which one is known only at run time"
             return None
+        selected = caller_selection(self.state, [self.taught.get(p) for p in points], self.inherited)
+        if isinstance(selected, str):
+            self.values.unread = selected
+            return None
+        taken = {k: selected[k] for k, n in self.state.items() if n == CALLERS}
+        if taken and not self.inherited:  # once per program
+            self.tally.warn(codes.CALLERS_SELECTION_READ, f"the program selects no {' or '.join(k + '_NUM' for k in taken)} "
+                            "before this move: read in the numbers its position was taught in ("
+                            + ", ".join(f"{'UT' if k == 'UTOOL' else 'UF'} {n}" for k, n in taken.items())
+                            + "), which the caller must select", where)
+        self.inherited.update(taken)
         decls = [self.positions.get(p) for p in points]
         if kind != "joint":  # a point stored in joint form: the move goes to its TCP pose
-            tcps = [self._tcp_of(p, where) for p in points]
+            tcps = [self._tcp_of(p, where, selected["UTOOL"]) for p in points]
             decls = [t if isinstance(t, Target) else d for t, d in zip(tcps, decls)]
             if any(isinstance(t, str) for t in tcps):
                 return None
@@ -483,8 +499,9 @@ class _Ls:
         move = Move(kind, exprs[-1], decl.name, where, via=exprs[0] if kind == "circular" else None,
                     speed=timing[0], joint_pct=timing[1], time=timing[2],
                     zone=float(cnt.group(1)) * FanucBackend.CNT_MM if cnt else None,
-                    tool=self._named("UTOOL", where),
-                    frame="base" if decl.name in {t.name for t in self.tcp.values()} else self._named("UFRAME", where),
+                    tool=self._named("UTOOL", where, selected["UTOOL"]),
+                    frame="base" if decl.name in {t.name for t in self.tcp.values()} else self._named("UFRAME", where,
+                                                                                                    selected["UFRAME"]),
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
                     pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
@@ -501,7 +518,7 @@ class _Ls:
                                          tp_branch(saved.config or ""), saved.where)
         return None if saved is None else key
 
-    def _tcp_of(self, n: int, where: Where) -> Target | str | None:
+    def _tcp_of(self, n: int, where: Where, tool_no: int) -> Target | str | None:
         """P[n] of a linear or circular move where it is stored in joint form: its TCP pose in the
         robot's base, a target `<name>_tcp` of its own (the cell arm's forward kinematics times the
         active tool's TCP: a joint-form position is no frame's, R-30iB Operator's Manual, position
@@ -509,7 +526,7 @@ class _Ls:
         decl = self.positions.get(n)
         if decl is None or decl.pose is not None or decl.joints is None:
             return None
-        tool = self._named("UTOOL", where)
+        tool = self._named("UTOOL", where, tool_no)
         if (decl.name, tool) not in self.tcp:
             pose = self.pulse_pose(decl.joints, tool) if self.pulse_pose is not None else None
             if pose is None:

@@ -20,7 +20,8 @@ from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch"]
+__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch",
+           "CALLERS", "caller_selection"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
@@ -171,3 +172,32 @@ def tp_branch(text: str) -> ir.Config | None:
     return ir.Config(ir.Shoulder.FRONT if m.group(3) == "T" else ir.Shoulder.BACK,
                      ir.Elbow.UP if m.group(2) == "U" else ir.Elbow.DOWN,
                      ir.Wrist.FLIP if m.group(1) == "N" else ir.Wrist.NOFLIP)
+
+
+# a UTOOL_NUM or UFRAME_NUM the program has not selected: its caller's selection holds
+CALLERS = 1 << 30
+
+
+def caller_selection(state: dict[str, int], taught: list[dict[str, int] | None],
+                     inherited: dict[str, int]) -> dict[str, int] | str:
+    """The UFRAME and UTOOL numbers a move runs with: the program's selection, or where it has
+    made none (CALLERS) the numbers its positions record (`UF : 1, UT : 2`, those selected when
+    the position was taught: B-83284EN, position data), which the caller must have selected; one
+    caller's selection holds until the program selects, so a move before it whose positions record
+    other numbers than `inherited` (the earlier moves') is the reason it is not known, as is a
+    position that records none or a move whose positions differ."""
+    out = dict(state)
+    for kind, short in (("UFRAME", "UF"), ("UTOOL", "UT")):
+        if out[kind] == CALLERS:
+            what = "frame" if short == "UF" else "tool"
+            numbers = {t.get(kind) if t else None for t in taught}
+            if len(numbers) != 1 or None in numbers:
+                return (f"the program selects no {kind}_NUM before this move and its position records no single "
+                        f"{short} number: the {what} is the caller's, known only at run time")
+            n = numbers.pop()
+            if kind in inherited and inherited[kind] != n:
+                return (f"its position was taught in {short} {n}, but a move before it in this program was taught in "
+                        f"{short} {inherited[kind]} with no {kind}_NUM between: which {what} the caller selected "
+                        "is known only at run time")
+            out[kind] = n  # type: ignore[assignment]
+    return out
