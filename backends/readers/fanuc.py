@@ -448,21 +448,9 @@ class _Ls:
             points, speed, zone, rest = [point], *lin.group(4, 5, 6)
         else:
             return None
-        chosen = [self._text(-1 - n) for n in self.state.values() if n < 0]
-        if chosen:
-            self.values.unread = f"the frame or tool here depends on `{chosen[0]}`: which one is known only at run time"
+        selected = self._selection(points, where)
+        if selected is None:
             return None
-        selected = caller_selection(self.state, [self.taught.get(p) for p in points], self.inherited)
-        if isinstance(selected, str):
-            self.values.unread = selected
-            return None
-        taken = {k: selected[k] for k, n in self.state.items() if n == CALLERS}
-        if taken and not self.inherited:  # once per program
-            self.tally.warn(codes.CALLERS_SELECTION_READ, f"the program selects no {' or '.join(k + '_NUM' for k in taken)} "
-                            "before this move: read in the numbers its position was taught in ("
-                            + ", ".join(f"{'UT' if k == 'UTOOL' else 'UF'} {n}" for k, n in taken.items())
-                            + "), which the caller must select", where)
-        self.inherited.update(taken)
         decls = [self.positions.get(p) for p in points]
         if kind != "joint":  # a point stored in joint form: the move goes to its TCP pose
             tcps = [self._tcp_of(p, where, selected["UTOOL"]) for p in points]
@@ -505,6 +493,27 @@ class _Ls:
                     config=decl.config if kind == "joint" and decl.pose is not None else None,
                     pose=decl.pose, joints=decl.joints, joint_accel=float(acc) if acc is not None and acc != 100 else None)
         return move, [self._option(text, where) for text in kept]
+
+    def _selection(self, points: list[int], where: Where) -> dict[str, int] | None:
+        """The UFRAME and UTOOL numbers a move to `points` runs with: the program's selection, or
+        its caller's (fanuc_text.caller_selection; W545 at the first move that takes it); None,
+        the reason in `values.unread`, where the selection is known only at run time."""
+        chosen = [self._text(-1 - n) for n in self.state.values() if n < 0]
+        if chosen:
+            self.values.unread = f"the frame or tool here depends on `{chosen[0]}`: which one is known only at run time"
+            return None
+        selected = caller_selection(self.state, [self.taught.get(p) for p in points], self.inherited)
+        if isinstance(selected, str):
+            self.values.unread = selected
+            return None
+        taken = {k: selected[k] for k, n in self.state.items() if n == CALLERS}
+        if taken and not self.inherited:  # once per program
+            self.tally.warn(codes.CALLERS_SELECTION_READ, f"the program selects no {' or '.join(k + '_NUM' for k in taken)} "
+                            "before this move: read in the numbers its position was taught in ("
+                            + ", ".join(f"{'UT' if k == 'UTOOL' else 'UF'} {n}" for k, n in taken.items())
+                            + "), which the caller must select", where)
+        self.inherited.update(taken)
+        return selected
 
     # ---------------------------------------------------------------- a position register as a target
 
