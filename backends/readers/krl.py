@@ -148,7 +148,8 @@ class _Krl:
                 self.flow.routine(self.lines, i)
                 self.work.routine()
                 start = i
-                body, i = self.logic.routine(m.group(1).upper() == self.name.upper(), partial(self._block, i + 1, ("END",)))
+                body, i = self.logic.routine(m.group(1).upper() == self.name.upper() and not params,  # a proc has no vars
+                                             partial(self._block, i + 1, ("END",)))
                 body = list(goto_spans(body, self.tally, self.lines[start + 1:i]))
                 self.routines.append(Routine(m.group(1), params or (), tuple(body), ln.where))
             elif ln.text and re.match(r"(?i)(GLOBAL\s+)?DEFFCT\b", ln.text):

@@ -312,3 +312,20 @@ def test_inline_form_defaults_of_the_config_dat(tmp_path: Path) -> None:
     move = next(s for s in doc.routines[0].body if isinstance(s, Move))
     assert (move.target_name, move.joints, move.zone, move.joint_pct) == (
         "XHOME", (10.0, -80.0, 70.0, 0.0, 20.0, 0.0), 50.0, 100.0)
+
+
+def test_a_proc_keeps_its_local_variables_native(tmp_path: Path) -> None:
+    """`DEF Job(n:IN)` with a local `INT k` it computes and tests: a proc has no variables in rmot
+    (a `var` lives in the task's own body, E157), so the lines using `k` stay native and the
+    imported proc compiles once something calls it (rmot's own checker is the witness)."""
+    (tmp_path / "job.src").write_text("DEF Job(n:IN)\nINT n, k\nk = n + 1\nLIN {X 600, Y 0, Z 800, A 0, B 90, C 0}\n"
+                                      "IF k > 2 THEN\n  $OUT[1] = TRUE\nENDIF\nEND\n")
+    out = tmp_path / "job.rmot"
+    assert CliRunner().invoke(cli, ["import", str(tmp_path / "job.src"), "-o", str(out)]).exit_code == 0
+    text = out.read_text()
+    assert "var " not in text and 'native krl "IF k > 2 THEN"' in text, text
+    called = text.replace("\n}\n", "\n  move joint joints(0, -90, 90, 0, 0, 0) deg\n  Job(3)\n}\n", 1)
+    assert called != text
+    out.write_text(called)
+    result = CliRunner().invoke(cli, ["check", str(out)])
+    assert result.exit_code in (0, 1) and "error[" not in result.output, result.output
