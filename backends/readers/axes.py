@@ -35,7 +35,7 @@ from rmot.backends.readers.rapid import num_text, pose_expr
 from rmot.backends.readers.writer import map_leaves
 from rmot.backends.readers.axes_slots import ABSURD, COORD_FRAME, EK_FRAME, SLOTS
 from rmot.backends.readers.model import (
-    Document, FileCount, For, If, Move, Native, Routine, Stmt, Target, WaitIn, Where, While, walk,
+    Document, FileCount, For, If, Move, Native, Pulse, Routine, SetOut, Stmt, Target, Wait, WaitIn, Where, While, walk,
 )
 from rmot.lang import ir
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -170,30 +170,65 @@ def _bodies(body: tuple[Stmt, ...], fn: Callable[[tuple[Stmt, ...]], tuple[Stmt,
     return tuple(out)
 
 
-def _absorb_coord(doc: Document) -> Document:
-    """A TP linear or circular move in UFRAME 0 followed by its `COORD` option (kept native by
-    the reader, W517): the move marked coordinated (its frame COORD_FRAME), the option dropped."""
+def _absorb_coord(doc: Document, named: Mapping[str, tuple[float | None, ...]],
+                  span_of: Callable[[Where], Span]) -> Document:
+    """A TP linear or circular move followed by its `COORD` option (kept native by the reader,
+    W517), the option dropped: in UFRAME 0 the move marked coordinated (its frame COORD_FRAME);
+    in a user frame, where the positioner stands still during the move (its values those of the
+    move before it in the block), the plain move, which follows the same path relative to a part
+    that does not move; else the move kept native (W523): its path relative to a moving part is
+    not one rmot reads in a user frame."""
     taken: set[tuple[str, int]] = set()
+    diags: list[Diagnostic] = []
+    kept: list[Where] = []
+    was: dict[int, Move] = {}  # a move kept native here, by the native's id
 
     def absorb(body: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
         out: list[Stmt] = []
         for s in body:
             prev = out[-1] if out else None
-            if (isinstance(s, Native) and s.text == "COORD" and isinstance(prev, Move) and prev.kind != "joint"
-                    and prev.frame == "base" and s.where == prev.where):
-                out[-1] = replace(prev, frame=COORD_FRAME)
-                taken.add((s.where.path, s.where.line))
+            if not (isinstance(s, Native) and s.text == "COORD" and isinstance(prev, Move) and prev.kind != "joint"
+                    and s.where == prev.where):
+                out.append(s)
                 continue
-            out.append(s)
+            taken.add((s.where.path, s.where.line))
+            before = _move_before(out[:-1], was)
+            if prev.frame == "base":
+                out[-1] = replace(prev, frame=COORD_FRAME)
+            elif not (before is not None and _slots_of(before, named) and
+                      _slots_of(before, named) == _slots_of(prev, named)):
+                span = span_of(prev.where)
+                diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING, "external-axis values must map to the cell's "
+                                        "axes: a coordinated move (COORD) in a user frame, its positioner not known to "
+                                        "stand still during it, follows a path relative to the moving part, which rmot "
+                                        "reads only in UFRAME 0; kept native", span))
+                kept.append(prev.where)
+                out[-1] = Native("fanuc", prev.source or native_line("fanuc", span.file.line_text(prev.where.line)),
+                                 prev.where)
+                was[id(out[-1])] = prev  # its axis values still end where the next move starts
         return tuple(out)
 
     if doc.vendor != "fanuc":
         return doc
     routines = tuple(replace(r, body=_bodies(r.body, absorb)) for r in doc.routines)
-    diags = tuple(d for d in doc.diagnostics if not (d.code == codes.MOTION_OPTION_KEPT and "`COORD`" in d.message
-                                                     and d.span is not None and (d.span.file.path, d.span.start.line) in taken))
-    counts = tuple(replace(c, native=c.native - sum(1 for path, _ in taken if path == c.path)) for c in doc.counts)
-    return replace(doc, routines=routines, diagnostics=diags, counts=counts)
+    others = tuple(d for d in doc.diagnostics if not (d.code == codes.MOTION_OPTION_KEPT and "`COORD`" in d.message
+                                                      and d.span is not None and (d.span.file.path, d.span.start.line) in taken))
+    counts = tuple(replace(c, imported=c.imported - sum(1 for w in kept if w.path == c.path),
+                           native=c.native - sum(1 for path, _ in taken if path == c.path) + sum(1 for w in kept if w.path == c.path))
+                   for c in doc.counts)
+    return replace(doc, routines=routines, diagnostics=others + tuple(diags), counts=counts)
+
+
+def _move_before(body: list[Stmt], was: Mapping[int, Move]) -> Move | None:
+    """The last move of `body` (or one `was` kept native) where nothing after it can move the
+    axes: outputs, waits and native lines that are no TP motion or call may stand between."""
+    for s in reversed(body):
+        if isinstance(s, Move) or id(s) in was:
+            return s if isinstance(s, Move) else was[id(s)]
+        if not isinstance(s, (SetOut, Pulse, Wait, WaitIn, Native)) or (
+                isinstance(s, Native) and re.match(r"(?i)\s*(?:[JLCA]\s|CALL\b|RUN\b)", s.text)):
+            return None
+    return None
 
 
 def _in_riding_frame(move: Move, doc: Document, chosen: tuple[Mechanism, ...], values: tuple[float | None, ...],
@@ -294,7 +329,7 @@ def resolve_axes(doc: Document, cell: ir.Cell | None, robot: str, span_of: Calla
     unconnected = _not_connected(doc, cell, robot, named, span_of)
     if unconnected is not None:
         return unconnected
-    doc = _absorb_coord(doc)
+    doc = _absorb_coord(doc, named, span_of)
     chosen, why = _choose(cell, robot, used, doc.vendor) if used else ((), "")
     if doc.vendor in ("rapid", "krl") and len(chosen) > 1:  # the slots' order over mechanisms: machine data
         chosen, why = _stated_order(doc, cell, chosen, span_of)

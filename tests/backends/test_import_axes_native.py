@@ -192,3 +192,35 @@ def test_corpus_share_counts_what_the_command_keeps(tmp_path: Path) -> None:
     (tmp_path / "rapid").mkdir()
     (tmp_path / "rapid" / "gen.mod").write_text(_rapid_zeros(tmp_path, "[5,9E9,9E9,9E9,9E9,9E9]").read_text())
     assert _shares(tmp_path) == {"rapid": (0, 2)}
+
+
+def _tp_coord(positions: list[tuple[float, float]]) -> str:
+    """A TP program in user frame 1 moving linearly, COORD, to P[1..n], the positioner (GP2, two
+    axes as weld_positioner's) at the given values."""
+    moves = "".join(f"{4 + n:4d}:  L P[{n}] 100mm/sec FINE COORD ;\n" for n in range(1, len(positions) + 1))
+    pos = "".join(f"P[{n}]{{\n   GP1:\n\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
+                  f"\tX =   {100 + 10 * n}.000  mm,\tY =     0.000  mm,\tZ =   200.000  mm,\n"
+                  "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg\n"
+                  f"   GP2:\n\tUF : 1, UT : 1,\t\n\tJ1=     {a:.3f} deg,\tJ2=    {b:.3f} deg\n}};\n"
+                  for n, (a, b) in enumerate(positions, 1))
+    return f"/PROG  HAND\n/ATTR\nDEFAULT_GROUP\t= 1,1,*,*,*;\n/MN\n   1:  UFRAME_NUM=1 ;\n   2:  UTOOL_NUM=1 ;\n" \
+           f"   3:  WAIT   0.10(sec) ;\n   4:  WAIT   0.10(sec) ;\n{moves}/POS\n{pos}/END\n"
+
+
+def test_tp_coord_in_a_user_frame_reads_only_where_the_positioner_stands_still(tmp_path: Path) -> None:
+    """COORD (the path relative to the part the positioner carries) in user frame 1 on the weld
+    positioner's cell: a move whose positioner values are the move's before it follows the same
+    path as a plain move (the part stands still), read as one; the first move (where it starts is
+    not in the program) and a move that turns the positioner stay native whole (W523), never a
+    plain move with a `COORD` line after it."""
+    (tmp_path / "HAND.ls").write_text(_tp_coord([(0, 0), (0, 0), (0, 90)]))
+    cell = tmp_path / "cell.rmot"
+    cell.write_text((Path(__file__).resolve().parents[2] / "examples" / "weld_positioner.rmot").read_text())
+    output = _import([tmp_path / "HAND.ls"], tmp_path / "out.rmot", cell)
+    text = (tmp_path / "out.rmot").read_text()
+    assert re.findall(r"HAND\.ls:(\d+):\d+: warning\[W523\]: .*a coordinated move \(COORD\) in a user frame", output) == \
+        ["9", "11"], output  # the file lines of TP lines 5 and 7
+    assert 'native fanuc "L P[1] 100mm/sec FINE COORD ;"' in text and 'native fanuc "L P[3] 100mm/sec FINE COORD ;"' in text
+    assert re.search(r"move linear hand_p2 ext\(pos=\(0deg, 0deg\)\) speed 100 mm/s zone fine", text), text
+    assert 'native fanuc "COORD"' not in text and "`COORD` is kept after the move" not in output, (text, output)
+    assert _motion_summary(output, "HAND.ls") == (3, 2), output  # the two WAITs and P[2]
