@@ -236,7 +236,9 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     vendors = {d.vendor for d in docs}
     if len(vendors) > 1:
         raise _fail(codes.DIFF_VENDORS_DIFFER, paths[-1], f"the files must be of one vendor (got {', '.join(sorted(vendors))})")
-    return _unknown_calls_kept(_merge(docs))
+    from rmot.backends.readers.start_state import tool_not_set  # late: loads numpy only when this runs
+
+    return tool_not_set(_unknown_calls_kept(_merge(docs)), span_of)
 
 
 def _index(paths: list[str]) -> None:

@@ -179,3 +179,10 @@ __all__ += ["CALLERS_SELECTION_READ"]
 CALLERS_SELECTION_READ = Code("W545", "callers-selection-read",
                               "a Fanuc TP program moves before it selects UTOOL_NUM or UFRAME_NUM: its moves are read "
                               "in the tool and user frame their positions were taught in, which its caller must select")
+
+# KRL and URScript moves before the program sets its tool or base (start_state.py)
+__all__ += ["START_TOOL_UNKNOWN"]
+START_TOOL_UNKNOWN = Code("W546", "start-tool-unknown",
+                          "a KRL or URScript program moves (Cartesian) before it sets its tool or base: the move is "
+                          "read with the bare flange and the robot base, while the controller runs it with the ones "
+                          "set before the program")

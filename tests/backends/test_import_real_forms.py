@@ -99,8 +99,8 @@ def test_polyscope_program(tmp_path: Path) -> None:
     moves = [s for s in stmts if isinstance(s, Move)]
     assert moves[0].target == "W1_p" and moves[0].kind == "joint"
     assert moves[1].target == "W1_p * pose(z=-50mm)"  # along the pose's own z (pose_trans)
-    assert [d.code.id for d in doc.diagnostics] == ["W518"]
-    assert doc.diagnostics[0].span.start.line == 4
+    assert [d.code.id for d in doc.diagnostics] == ["W518", "W546"]  # W546: no set_tcp before the first move
+    assert doc.diagnostics[0].span.start.line == 4 and doc.diagnostics[1].span.start.line == 5
 
 
 KRL = """DEF demo( )
