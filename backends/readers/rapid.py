@@ -295,8 +295,10 @@ class _Module:
             return axes_slots.why_native(st.text) or "no rmot form"
         args = split_top(st.text[len(st.word):].strip())
         known = {*self.targets, *self.speeds, *self.zones, *self.tools, *self.frames, "VMAX", "TOOL0", "WOBJ0"}
-        names = [m.group(1) for a in args for m in [re.fullmatch(r"(?i)(?:\\WObj\s*:=\s*)?(\w+)", b.strip())
-                                                      for b in split_top(a, "\\")] if m]
+        parts = [split_top(a, "\\") for a in args]  # a datum, then its optional arguments (`\WObj:=w`, `\Conc`)
+        names = [m.group(1) for p in parts for b in p[:1] + [x for x in p[1:] if re.match(r"(?i)WObj\b", x.strip())]
+                 for m in [re.fullmatch(r"(?i)(?:WObj\s*:=\s*)?(\w+)", b.strip())] if m]
+        switch = next((x.split(":=")[0].strip() for p in parts for x in p[1:] if not re.match(r"(?i)(WObj|T|V|Z)\b", x.strip())), None)
         unknown = sorted({n for n in names if n.upper() not in known and not re.fullmatch(r"[\d.]+", n)},
                          key=names.index)
         displaced = self.flow.displaced()
@@ -312,7 +314,9 @@ class _Module:
             first = self.changed[changed[0].upper()]
             return f"{assigned_at(changed[0], first, self.tally.path)}: its value here is known only at run time"
         if not unknown:
-            return "no rmot form"
+            return f"its optional argument `\\{switch}` has no rmot form" + (
+                " (the statements after the move run while the robot moves)" if switch.upper() == "CONC" else "") \
+                if switch else "no rmot form"
         return (f"{', '.join(unknown)} {'is' if len(unknown) == 1 else 'are'} not declared in the files given "
                 "(another module of the task? give it too) or not constant data")
 
@@ -474,8 +478,7 @@ class _Module:
         if word != "MOVEABSJ" and self.flow.displaced() is not None:
             return None  # a program displacement moves the robtarget (a jointtarget it does not)
         timing = self.flow.speed(kind, speed, self.speeds)
-        zone_mm = "bad" if len(zone) != 1 else self.zones[zone[0].upper()] if zone[0].upper() in self.zones \
-            else self.flow.zone(zone[0])
+        zone_mm = self.flow.zone_of(zone, self.zones)
         frame = self._wobj_of(tool[1:], where)
         held = self.tools.get(tool[0].upper()) or self.flow.tool(tool[0], where)
         if timing is None or zone_mm == "bad" or (held is None and tool[0].upper() != "TOOL0") or frame is None:

@@ -376,17 +376,19 @@ class DataFlow:
 
     def speed(self, kind: str, speed: list[str], speeds: Mapping[str, float]) -> tuple[float | None, float | None, float] | None:
         r"""(TCP mm/s, duration s, joint share %) of a move's speed argument (`v200`, a datum of
-        `speeds` or followed here, `[200,500,5000,1000]`, `\T:=2`), with the VelSet here: its
+        `speeds` or followed here, `[200,500,5000,1000]`, `\T:=2`, `v1000\V:=50`: \V replaces
+        the datum's TCP speed, RAPID Instructions, MoveL "[\V]"), with the VelSet here: its
         TCP speed at most Max and by Override %, a joint move's share the Override (its TCP
         Max has no joint form: W512 says it); None where a part is not known, or a time under
         a VelSet that changes speeds (what it makes of \T is not read)."""
-        duration = None
+        given: dict[str, float] = {}  # \T:=s, the move's duration; \V:=mm/s, its TCP speed in place of the datum's
         for switch in speed[1:]:
-            m = re.fullmatch(r"(?i)T\s*:=\s*([0-9.]+)", switch)
-            if m is None:
+            m = re.fullmatch(r"(?i)(T|V)\s*:=\s*([0-9]+(?:\.[0-9]*)?)", switch)
+            if m is None or m.group(1).upper() in given or float(m.group(2)) <= 0:
                 return None
-            duration = float(m.group(1))
-        v_tcp = 5000.0 if speed[0].upper() == "VMAX" else speeds.get(speed[0].upper()) or self.v_tcp(speed[0])
+            given[m.group(1).upper()] = float(m.group(2))
+        duration = given.get("T")
+        v_tcp = given.get("V") or (5000.0 if speed[0].upper() == "VMAX" else speeds.get(speed[0].upper()) or self.v_tcp(speed[0]))
         override = self.value(VELSET) if VELSET in self.where else VELSET_AT_START
         if v_tcp is None or not isinstance(override, list) or (duration is not None and override != VELSET_AT_START):
             return None
@@ -408,6 +410,14 @@ class DataFlow:
         value = literal(text) if text.strip().startswith("[") else self.value(text)
         speed = value[0] if isinstance(value, list) and value else None
         return speed if isinstance(speed, float) and speed > 0 else None
+
+    def zone_of(self, zone: list[str], zones: Mapping[str, float | None]) -> float | None | str:
+        r"""A move's zone argument in mm (`z10`, a datum of `zones` or followed here, `z10\Z:=3`:
+        \Z replaces the zone's TCP corner path, RAPID Instructions, MoveL "[\Z]"); None a stop
+        point; "bad" where it is not known here (or \Z on a stop point, which stays one)."""
+        base = zones[zone[0].upper()] if zone[0].upper() in zones else self.zone(zone[0])
+        z = re.fullmatch(r"(?i)Z\s*:=\s*([0-9]+(?:\.[0-9]*)?)", zone[1]) if len(zone) == 2 else None
+        return base if len(zone) == 1 else float(z.group(1)) if z and isinstance(base, float) else "bad"
 
     def zone(self, text: str) -> float | None | str:
         """A zonedata literal's or known datum's radius in mm (None: `finep` TRUE, a stop
