@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from rmot.backends.readers.fanuc_va import Controller
+    from rmot.backends.readers.krl_names import Params
 
 __all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "companions"]
 
@@ -46,7 +47,7 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
         raise ImportError_(Diagnostic(codes.NOT_VENDOR_LANGUAGE, Severity.ERROR,
                                       "a KRL .dat is read with its .src (give the .src, or both)",
                                       span_of(Where(path, 1))))
-    m = read_krl((path, text), companion)
+    m = read_krl((path, text), companion, _KRL_ROUTINES)
     main = next((r.name for r in m.routines if r.name.upper() == m.name.upper()), m.name)
     main = "" if any(r.params for r in m.routines if r.name == main) else main  # a module taking parameters: a proc
     targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
@@ -130,6 +131,7 @@ _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
 # the loop's counter
 _FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
 _FANUC_INLINED: set[str] = set()  # the programs some caller inlined
+_KRL_ROUTINES: dict[str, Params | None] = {}  # ROUTINE -> its parameters (krl_names.signatures), over every .src given
 _RAPID_TASK: dict[str, str] = {}  # the RAPID modules given: one task, their global data shared
 # a Fanuc backup's saved registers and frames (NUMREG.VA, POSREG.VA, SYSFRAME.VA) given with its programs
 _FANUC_SAVED: list[Controller | None] = [None]
@@ -207,6 +209,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     _FANUC_PROGRAMS.clear()
     _FANUC_INLINED.clear()
     _RAPID_TASK.clear()
+    _KRL_ROUTINES.clear()
     _FANUC_SAVED[0] = _saved_data(paths)
     _index(paths)
     _one_main(_RAPID_TASK)
@@ -255,6 +258,10 @@ def _index(paths: list[str]) -> None:
             program = re.search(r'<Program\s+name="(\w+)"', _load(path))
             if program:
                 _FANUC_PROGRAMS[program.group(1).upper()] = (path, _load(path))
+        if path.lower().endswith(".src"):  # KRL routines another file calls with arguments
+            from rmot.backends.readers.krl_names import file_signatures  # late: loads the KRL reader only for .src files
+
+            _KRL_ROUTINES.update(file_signatures(path, _load(path)))
         if path.lower().endswith((".mod", ".modx", ".prg")):  # RAPID modules of one task share their global data
             _RAPID_TASK[path] = _load(path)
         if path.lower().endswith(".jbi"):  # INFORM jobs by name, as TP programs: inlined in a shifting loop

@@ -40,19 +40,16 @@ from rmot.backends.readers.krl_why import (
     Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
 )
 from rmot.backends.readers.krl_names import (
-    call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases,
-)
+    Params, call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases)
 from rmot.backends.readers.model import (
-    Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While,
-    Routine,
-)
+    Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While, Routine)
 from rmot.backends.readers.rapid import mm, num_text, pose_expr
 from rmot.lang import ir
 
 __all__ = ["read_krl", "branch_of_status", "krl_pose"]
 
 class _Krl:
-    def __init__(self, src: tuple[str, str], dat: tuple[str, str] | None) -> None:
+    def __init__(self, src: tuple[str, str], dat: tuple[str, str] | None, others: dict[str, Params | None]) -> None:
         self.tally = Tally(src[0], src[1], "krl")
         self.lines = lines(*src)
         self.data = data_list(dat)
@@ -65,7 +62,7 @@ class _Krl:
         self.variables = set().union(*(declared_names(text) for text in texts))
         self.config_groups = group_names(config, texts)  # None: no $config.dat read
         self.inputs_named: set[str] = set()  # names read as inputs (W521 at the first use)
-        self.signatures = signatures(self.lines)
+        self.signatures = {**others, **signatures(self.lines)}  # the other files' routines, this one's own first
         self.params: dict[str, tuple[str, str]] = {}  # the parameters of the routine being read
         # a data object the program assigns holds its .dat value only until then: no constant target
         self.assigned = {m.upper() for m in ASSIGNMENT.findall(src[1])}
@@ -137,9 +134,9 @@ class _Krl:
                 while i < len(self.lines) and self.lines[i].word != "END":
                     i += 1
             elif m:
-                self.state = MotionState(inherited=m.group(1).upper() != self.name.upper())
-                self.calls.pending = None
                 params = self.signatures.get(m.group(1).upper())
+                self.state = MotionState(inherited=m.group(1).upper() != self.name.upper() or bool(params))  # a proc: its caller's
+                self.calls.pending = None
                 if params and m.group(1).upper() == self.name.upper():
                     self.tally.warn(codes.MODULE_IS_PROC, f"`{m.group(1)}` takes parameters: a routine other programs "
                                     "call, written as a proc (import it after its caller; alone, nothing runs it)",
@@ -593,8 +590,9 @@ class _Krl:
         return [move], end + 1
 
 
-def read_krl(src: tuple[str, str], dat: tuple[str, str] | None) -> _Krl:
-    """Read a KRL .src (and its .dat); raises ImportError_ (E510) when it is not KRL."""
-    module = _Krl(src, dat)
+def read_krl(src: tuple[str, str], dat: tuple[str, str] | None, others: dict[str, Params | None] | None = None) -> _Krl:
+    """Read a KRL .src (and its .dat; `others`: the routines of the other files given, by name
+    with their parameters); raises ImportError_ (E510) when it is not KRL."""
+    module = _Krl(src, dat, others or {})
     module.read()
     return module

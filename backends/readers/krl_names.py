@@ -16,11 +16,12 @@ import os
 import re
 
 from rmot.backends.readers.common import MAX_BYTES, number, read_text, rmot_name, split_top
-from rmot.backends.readers.krl_text import Line
+from rmot.backends.readers.krl_text import Line, lines
 from rmot.backends.readers.rapid import num_text
 
 __all__ = ["group_globals", "group_names", "is_group_input"]
-__all__ += ["signals", "port_of", "declared_names", "config_near", "Params", "signatures", "call_args", "param_names", "switch_cases"]
+__all__ += ["signals", "port_of", "declared_names", "config_near", "Params", "signatures", "file_signatures", "call_args",
+            "param_names", "switch_cases"]
 
 Params = tuple[tuple[str, str], ...]  # (name as written, rmot type "number" or "bool")
 
@@ -148,6 +149,12 @@ def signatures(found: list[Line]) -> dict[str, Params | None]:
         out[m.group(1).upper()] = tuple((p.group(1), types[p.group(1).upper()]) for p in params  # type: ignore[union-attr]
                                         ) if known else None
     return out
+
+
+def file_signatures(path: str, text: str) -> dict[str, Params | None]:
+    """The routines a KRL .src defines with their parameters (`signatures`), for the other files
+    of one import to call them with arguments."""
+    return signatures(lines(path, text))
 
 
 def call_args(text: str, params: Params, caller: dict[str, tuple[str, str]]) -> tuple[str, ...] | None:

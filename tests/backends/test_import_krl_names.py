@@ -329,3 +329,23 @@ def test_a_proc_keeps_its_local_variables_native(tmp_path: Path) -> None:
     out.write_text(called)
     result = CliRunner().invoke(cli, ["check", str(out)])
     assert result.exit_code in (0, 1) and "error[" not in result.output, result.output
+
+
+def test_a_routine_of_another_file_is_called_with_its_arguments(tmp_path: Path) -> None:
+    """`job(3)` in main.src calls `DEF job(n:IN)` of job.src, given with it: the call is read with
+    its argument (the proc runs, so its move is planned and verified), and the proc's motion takes
+    its caller's `$VEL.CP` (a routine runs with the settings its caller left, KSS 8.x system
+    variables), never the 2 m/s a program starts with after BAS(#INITMOV)."""
+    (tmp_path / "main.src").write_text("DEF main( )\n$VEL.CP = 0.5\n$TOOL = $NULLFRAME\n$BASE = $NULLFRAME\n"
+                                       "PTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}\nLIN {X 500, Y 0, Z 800, A 0, B 90, C 0}\n"
+                                       "job(3)\nEND\n")
+    (tmp_path / "job.src").write_text("DEF job(n:IN)\nINT n\nLIN {X 600, Y 0, Z 800, A 0, B 90, C 0}\nEND\n")
+    out = tmp_path / "main.rmot"
+    result = CliRunner().invoke(cli, ["import", str(tmp_path / "main.src"), str(tmp_path / "job.src"), "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    text = out.read_text()
+    assert "\n  job(3)\n" in text and 'native krl "job(3)"' not in text, text
+    proc_move = next(ln for ln in text.splitlines() if "x=600mm" in ln)
+    assert "speed" not in proc_move, proc_move  # the caller's speed, not 2000 mm/s
+    result = CliRunner().invoke(cli, ["check", str(out)])
+    assert result.exit_code in (0, 1) and "error[" not in result.output, result.output
