@@ -125,7 +125,7 @@ def _stated_order(doc: Document, cell: ir.Cell | None, chosen: tuple[Mechanism, 
     controller's machine data gives them (rmot's: the program's `with` order), which the slots
     do not show: the order the files' own header states (`eax_a = pos.1:`, `E1 = rail:`, as the
     backends write their machine-data checklist), or none (W523)."""
-    pattern = r"(?m)^\s*!\s+eax_([a-f]) = ([\w.]+):" if doc.vendor == "rapid" else r"(?m)^\s*;\s+E([1-6]) = ([\w.]+):"
+    pattern = r"(?m)^[ \t]*![ \t]+eax_([a-f]) = ([\w.]+):" if doc.vendor == "rapid" else r"(?m)^[ \t]*;[ \t]+E([1-6]) = ([\w.]+):"
     stated: dict[int, str] = {}
     for c in doc.counts:
         for slot, axis in re.findall(pattern, span_of(Where(c.path, 1)).file.text):

@@ -146,8 +146,12 @@ def _close(tally: Tally, section: str | None, entry: tuple[int, int, str, int] |
         (into.utool if section == "utool" else into.uframe)[index] = saved
 
 
-_WRITE = re.compile(r"^\s*\d*\s*:?\s*(?:FOR\s+)?(PR|R)\[\s*(\d+)\s*(?:,\s*\d+\s*)?(?::[^\]]*)?\]\s*=", re.M)
-_INDIRECT = re.compile(r"^\s*\d*\s*:?\s*(?:FOR\s+)?(?:PR|R)\[\s*A?R\[", re.M)
+# a line's own register write (`  12:  R[5:count]=..`, `PR[3,2]=..`, `FOR R[1]=..`): every part within the
+# line ([ \t], never \s, and no `]` or newline inside the comment), so a long text that is no
+# program (a controller's logbook saved as .LS) is scanned in linear time
+_WRITE = re.compile(r"^[ \t]*(?:\d*[ \t]*:)?[ \t]*(?:FOR[ \t]+)?(PR|R)\[[ \t]*(\d+)[ \t]*(?:,[ \t]*\d+[ \t]*)?"
+                    r"(?::[^\]\n]*)?\][ \t]*=", re.M)
+_INDIRECT = re.compile(r"^[ \t]*(?:\d*[ \t]*:)?[ \t]*(?:FOR[ \t]+)?(?:PR|R)\[[ \t]*A?R\[", re.M)
 
 
 def written_registers(programs: list[str]) -> tuple[set[int], set[int], bool]:

@@ -19,7 +19,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from rmot.backends.readers import read_files
+from rmot.backends.readers import ImportError_, read_files
 
 SIZES = (100, 800)
 TARGET_RATIO = 12.0
@@ -53,6 +53,47 @@ def test_import_cost_grows_linearly(benchmark) -> None:  # type: ignore[no-untyp
     benchmark.pedantic(lambda: None, rounds=1, iterations=1)
     print(f"\nimport: {SIZES[0]} blocks {small:.3f} s, {SIZES[1]} blocks {large:.3f} s, ratio {large / small:.1f} "
           f"(target <= {TARGET_RATIO:g})")
+    assert large <= TARGET_RATIO * small
+
+
+# a controller's logbook saved as .LS beside the programs (VASC's backups hold one per robot):
+# no TP program, refused at its first line (E510), after the register scan every .ls gets
+LOG_SIZES = (20, 160)
+
+
+def logbook(entries: int) -> str:
+    """A controller logbook of `entries` alarm records, each with a pendant screen image: lines
+    padded with spaces as the controller writes them, runs of blank ones among them."""
+    screen = "--Screen image--------------------------\n" + (" " * 60 + "\n") * 24 + "   I 718" + " " * 52 + "\n"
+    record = ("========================================\nINTP-440 (FOLGE011) Stopped by TC_ONLIN\n"
+              "E                                      \nSTOP.L                        00000110 \n"
+              "15-JUL-24 17:27 :18\n" + screen + "SHIFT,F4( Close  ) is pressed          \n")
+    return "LOGBOOK.LS     Robot Name R01 15-JUL-24 17:30:52  \n\n" + record * entries
+
+
+def logbook_seconds(entries: int, rounds: int = 5) -> float:
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "LOGBOOK.LS"
+        path.write_text(logbook(entries), encoding="utf-8")
+        times = []
+        for _ in range(rounds):
+            t0 = time.perf_counter()
+            try:
+                read_files([str(path)])
+            except ImportError_:
+                pass  # E510: not a TP program, as expected
+            times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def test_a_logbook_is_refused_in_linear_time(benchmark) -> None:  # type: ignore[no-untyped-def]
+    """Measured: 20 entries 0.064 s, 160 entries 0.51 s (ratio 7.9). The register scan's patterns
+    crossed lines (`\\s*`, `[^\\]]*`): 2 entries took more than a minute, VASC's 13,699-line LOGBOOK.LS more than
+    ten minutes."""
+    small, large = (logbook_seconds(n) for n in LOG_SIZES)
+    benchmark.pedantic(lambda: None, rounds=1, iterations=1)
+    print(f"\nlogbook: {LOG_SIZES[0]} entries {small:.4f} s, {LOG_SIZES[1]} entries {large:.4f} s, "
+          f"ratio {large / small:.1f} (target <= {TARGET_RATIO:g})")
     assert large <= TARGET_RATIO * small
 
 
