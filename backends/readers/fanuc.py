@@ -28,7 +28,8 @@ from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    CALLERS, caller_selection, german_instruction, motion_options, path_points, tp_branch, tp_pose, tp_speed, wait_condition,
+    CALLERS, caller_selection, german_instruction, motion_options, path_points, position_blocks, tp_branch, tp_pose, tp_speed,
+    wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
@@ -149,11 +150,8 @@ class _Ls:
             self.instructions.append((text, Where(self.path, n, len(line) - len(line.lstrip()) + 1)))
 
     def _positions(self) -> None:
-        text = "\n".join(self.raw)
-        start = text.find("/POS")
-        for m in re.finditer(r"P\[(\d+)(?::\"([^\"]*)\")?\]\s*\{(.*?)\};", text[max(start, 0):], re.S):
-            n, label, body = int(m.group(1)), m.group(2), re.split(r"\bGP[2-9]\s*:", m.group(3))[0]  # the arm's group
-            line = text[:max(start, 0) + m.start()].count("\n") + 1
+        for n, label, whole, line in position_blocks("\n".join(self.raw)):
+            body = re.split(r"\bGP[2-9]\s*:", whole)[0]  # the arm's group
             values = {k.upper(): float(v) for k, v in re.findall(r"\b([XYZWPR]|J\d)\s*=\s*(-?[\d.]+)", body)}
             conf = re.search(r"CONFIG\s*:\s*'([^']*)'", body)
             name = rmot_name(label) if label else rmot_name(f"{self.name.lower()}_p{n}")  # `-BCKED8-`: a name
@@ -164,10 +162,10 @@ class _Ls:
             self.taught.update({n: {"UFRAME": int(taught.group(1)), "UTOOL": int(taught.group(2))}} if taught else {})
             if all(k in values for k in "XYZWPR"):
                 self.positions[n] = Target(name, tp_pose([values[k] for k in "XYZWPR"]), None,
-                                           tp_branch(conf.group(1)) if conf else None, where, slots=axes_slots.fanuc_slots(m.group(3)))
+                                           tp_branch(conf.group(1)) if conf else None, where, slots=axes_slots.fanuc_slots(whole))
             elif all(f"J{i}" in values for i in range(1, 7)):
                 self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where,
-                                           slots=axes_slots.fanuc_slots(m.group(3)))
+                                           slots=axes_slots.fanuc_slots(whole))
 
     # ---------------------------------------------------------------- instructions
 

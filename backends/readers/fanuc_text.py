@@ -15,13 +15,14 @@ from __future__ import annotations
 
 import math
 import re
+from bisect import bisect_left
 
 from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
 from rmot.lang import ir
 
 __all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch",
-           "CALLERS", "caller_selection"]
+           "CALLERS", "caller_selection", "position_blocks"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
@@ -200,4 +201,24 @@ def caller_selection(state: dict[str, int], taught: list[dict[str, int] | None],
                         f"{short} {inherited[kind]} with no {kind}_NUM between: which {what} the caller selected "
                         "is known only at run time")
             out[kind] = n  # type: ignore[assignment]
+    return out
+
+
+def position_blocks(text: str) -> list[tuple[int, str | None, str, int]]:
+    """The /POS section's `P[n:"label"]{ .. };` blocks of a TP program: (n, label, body, line of
+    its header); a block with no `};` before the next header (a damaged file) is left out. Linear
+    in the text: each block ends at the first `};` after its header, found among all of them in
+    one pass (a lazy match to `};` from every header rescanned a damaged file's tail each time)."""
+    start = max(text.find("/POS"), 0)
+    pos = text[start:]
+    heads = list(re.finditer(r"P\[(\d+)(?::\"([^\"\n]*)\")?\][ \t\r\n]*\{", pos))
+    ends = [m.start() for m in re.finditer(r"\};", pos)]
+    out: list[tuple[int, str | None, str, int]] = []
+    line, at = text.count("\n", 0, start) + 1, 0
+    for k, m in enumerate(heads):
+        line, at = line + pos.count("\n", at, m.start()), m.start()
+        i = bisect_left(ends, m.end())
+        stop = heads[k + 1].start() if k + 1 < len(heads) else len(pos)
+        if i < len(ends) and ends[i] <= stop:
+            out.append((int(m.group(1)), m.group(2), pos[m.end():ends[i]], line))
     return out
