@@ -203,8 +203,7 @@ def _absorb_coord(doc: Document, named: Mapping[str, tuple[float | None, ...]],
                                         "stand still during it, follows a path relative to the moving part, which rmot "
                                         "reads only in UFRAME 0; kept native", span))
                 kept.append(prev.where)
-                out[-1] = Native("fanuc", prev.source or native_line("fanuc", span.file.line_text(prev.where.line)),
-                                 prev.where)
+                out[-1] = _native(prev, "fanuc", span)
                 was[id(out[-1])] = prev  # its axis values still end where the next move starts
         return tuple(out)
 
@@ -217,6 +216,12 @@ def _absorb_coord(doc: Document, named: Mapping[str, tuple[float | None, ...]],
                            native=c.native - sum(1 for path, _ in taken if path == c.path) + sum(1 for w in kept if w.path == c.path))
                    for c in doc.counts)
     return replace(doc, routines=routines, diagnostics=others + tuple(diags), counts=counts)
+
+
+def _native(move: Move, vendor: str, span: Span) -> Native:
+    """The move as a native statement: the statement as its reader keeps one (`Move.source`), else
+    its source line (TP's without the line number)."""
+    return Native(vendor, move.source or native_line(vendor, span.file.line_text(move.where.line)) or "move", move.where)
 
 
 def _move_before(body: list[Stmt], was: Mapping[int, Move]) -> Move | None:
@@ -448,5 +453,4 @@ class _Mapper:
         self.diags.append(Diagnostic(codes.AXES_KEPT, Severity.WARNING,
                                      f"external-axis values must map to the cell's axes: {problem}; kept native", span))
         self.moved[s.where.path] = self.moved.get(s.where.path, 0) + 1
-        return Native(self.doc.vendor, s.source or native_line(self.doc.vendor, span.file.line_text(s.where.line)) or "move",
-                      s.where)
+        return _native(s, self.doc.vendor, span)
