@@ -160,6 +160,12 @@ REGISTER_READ_AS_VARIABLE = Code("W536", "register-read-as-variable",
                                  "as a task variable: on the controller it keeps its value between runs and another "
                                  "program writing it while this one runs is not seen")
 
+__all__ += ["BIT_READ_AS_INPUT"]
+BIT_READ_AS_INPUT = Code("W549", "bit-read-as-input",
+                         "a program tests a flag it never sets (a Fanuc TP flag or marker, a KRL $FLAG or BOOL "
+                         "global): another program, the background logic or the PLC sets it; it is read as the "
+                         "digital input named after it, so every arm of a branch on it is planned and verified")
+
 # Fanuc registers read at the value a controller backup saved (fanuc_va.py)
 __all__ += ["CONTROLLER_VALUE_READ"]
 CONTROLLER_VALUE_READ = Code("W543", "controller-value-read",

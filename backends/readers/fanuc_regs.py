@@ -16,16 +16,21 @@ PLC interface may read and write them. The import reads them in `IF`, `WAIT` and
 * **State set elsewhere** (W535): a register a program tests but never sets, compared with a
   whole number of 0 or more (`IF (R[1:stan chwytaka 1]=1) THEN`): a program it calls, another
   task or the PLC sets it. It is read as the group input `gin[k]` named after the register, so
-  every arm of a branch on it is planned and verified (§7); on the controller it stays the
-  register. A flag only tested stays native (as a KRL flag: no rmot input is a flag another
-  program raises).
+  every arm of a branch on it is planned and verified (§7); compiled back, it is that group
+  input, not the register.
+* **Bits set elsewhere** (W549): a flag the program tests but never sets (another program, the
+  background logic or the PLC sets it), and a marker it does not assign (the background logic
+  sets a marker, again and again, to the expression a program assigned it: FANUC R-30iB mixed
+  logic, "Marker"), are read as the digital inputs named after them (`F[525]`, `M[3]`), as a KRL
+  flag or BOOL global the program never sets is. A flag the program resets (a handshake another
+  program raises) and a marker it assigns (background logic it defines) stay native.
 * Nothing is read in a program that writes a register or flag through another (`R[R[1]]=`,
   `R[AR[1]]=`): any of them may change there.
 
 A condition is read where each parenthesised level joins its terms with one of AND or OR (which
 binds first when a level mixes them is not read), `!` negates, a comparison (`= <> < > <= >=`)
 has a register, a group input or a number on each side, and a bool term is a digital input or
-output (`DI[n]`, `DO[n]`, optionally `=ON|OFF`) or a flag variable. An assignment's value is
+output (`DI[n]`, `DO[n]`, optionally `=ON|OFF`), a flag variable or a bit set elsewhere. An assignment's value is
 one term or two joined by `+ - * /` (the TP standard form `R[i]=(value) (operator) (value)`): a
 longer one would need TP's operator priorities, which the import does not assume.
 """
@@ -39,7 +44,7 @@ from collections.abc import Iterable, Sequence
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
 from rmot.backends.readers.model import (
-    Assign, Cond, Conds, GroupIn, If, Native, Stmt, VarDecl, WaitIn, Where, While, group_reads, walk,
+    Assign, Cond, Conds, GroupIn, If, Native, Stmt, VarDecl, WaitIn, Where, While, group_reads, leaves, walk,
 )
 
 __all__ = ["Registers", "plain", "negated"]
@@ -47,6 +52,7 @@ __all__ = ["Registers", "plain", "negated"]
 _REF = re.compile(r"\b([RF])\[(\d+)(?::([^\]]*))?\]")
 _SET = re.compile(r"([RF])\[(\d+)(?::[^\]]*)?\]\s*=\s*(.+)")
 _FOR = re.compile(r"FOR\s+R\[(\d+)")
+_MARKER_SET = re.compile(r"M\[(\d+)\]\s*=")
 _INDIRECT = re.compile(r"\b[RF]\[\s*A?R\[")
 _JUMP = re.compile(r"\bJMP\b|TIMEOUT\s*,\s*LBL")
 _COUNTER = re.compile(r"IF R\[(\d+)\]<=-?\d+,JMP LBL\[\d+\]")  # the counting loop fanuc.py reads as `for`
@@ -57,7 +63,7 @@ _COMPARE = {"=": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", ">=": ">="}
 _MIRROR = {"<": ">", ">": "<", "<=": ">=", ">=": "<="}
 _MAX_TOKENS = 200
 
-_Key = tuple[str, int]  # ("R" | "F", index)
+_Key = tuple[str, int]  # ("R" | "F" | "M", index)
 _Term = tuple[str, str, "Cond | GroupIn | None"]  # (rmot text or "{}", type, the I/O read it is)
 
 
@@ -90,6 +96,10 @@ class Registers:
         self.indirect = any(_INDIRECT.search(t) for t, _ in self.texts)
         tested = {k for t, _ in self.texts for k in self._mentions(t)} - set(sets)
         self.external: set[int] = set() if self.indirect else {n for kind, n in tested if kind == "R"}
+        self.external_flags: set[int] = set() if self.indirect else {n for kind, n in tested if kind == "F"}
+        # a marker the program assigns is background logic it defines (kept native); one it only
+        # reads is another program's or the background's
+        self.markers_set = {int(m.group(1)) for t, _ in self.texts for m in [_MARKER_SET.match(t)] if m}
         self.vars: dict[_Key, tuple[str, str]] = {}
         self.decls: list[VarDecl] = []
         self.warned: set[_Key] = set()
@@ -238,9 +248,15 @@ class Registers:
         the vendor's register while the variable is another one the backend numbers."""
         return {k for s in walk(body) if isinstance(s, Native) for k in self._mentions(plain(s.text)) if k in self.vars}
 
+    def set_elsewhere(self, kind: str, n: int) -> bool:
+        """Whether flag or marker `kind`[n] is one this program reads but never sets: another
+        program, the background logic or the PLC sets it (read as an input, W549)."""
+        return (kind == "F" and n in self.external_flags) or (kind == "M" and not self.indirect
+                                                                and n not in self.markers_set)
+
     def warn_reads(self, body: tuple[Stmt, ...]) -> None:
         """W535 at the first statement of `body` (the program as read) reading each register as a
-        group input."""
+        group input, W549 at the first reading each flag or marker as an input."""
         for s in walk(body):
             value = s.cond if isinstance(s, (If, WaitIn, While)) else s.value if isinstance(s, Assign) else None
             for g in group_reads(value) if value is not None else ():
@@ -252,6 +268,22 @@ class Registers:
                                 "register this program tests but never sets (a program it calls, another task or the "
                                 f"PLC sets it): read as the group input `{g.signal}`, so each arm is planned and "
                                 "verified; give --cell to wire it", s.where)
+            for c in leaves(value) if value is not None else ():
+                self._warn_bit(c, s.where)
+
+    def _warn_bit(self, c: Cond, where: Where) -> None:
+        """W549 the first time flag or marker `c` is read as an input."""
+        m = re.fullmatch(r"([FM])\[(\d+)\]", str(c.signal))
+        if m is None or (m.group(1), int(m.group(2))) in self.warned:
+            return
+        key = (m.group(1), int(m.group(2)))
+        self.warned.add(key)
+        what = ("a flag this program tests but never sets (another program, the background logic or the PLC sets it)"
+                if key[0] == "F" else "a marker: the background logic sets it, again and again, to the expression a "
+                "program assigned it")
+        self.tally.warn(codes.BIT_READ_AS_INPUT, f"`{self._spelled(key)}` is {what}: read as the input `{c.signal}`, "
+                        "so each arm is planned and verified; compiled back, it is that input, not the "
+                        f"{'flag' if key[0] == 'F' else 'marker'}: give --cell to wire it", where)
 
 
 def _tokens(text: str) -> list[str] | None:
@@ -357,6 +389,8 @@ class _Parser:
         if kind in ("DI", "DO"):
             return Cond(n, on, kind == "DO")
         var = self.regs.vars.get(("F", n)) if kind == "F" else None
+        if var is None and self.regs.set_elsewhere(kind, n):
+            return Cond(f"{kind}[{n}]", on)
         if var is None:
             raise _Refused(f"{kind}[{n}]")
         return Conds("logic", (), var[0] if on else f"not {var[0]}")

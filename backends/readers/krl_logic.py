@@ -16,6 +16,9 @@ A whole number the program tests but neither declares nor assigns (`SWITCH PGNO`
 (nStation == 2)`) is a global the PLC or another task sets: a group input `gin[k]` of that name
 (W534 at its first use), where no `$config.dat` is found or the one found declares it as a
 SIGNAL of a group of inputs or an INT (krl_names.group_globals); `SWITCH` on it is an if chain.
+Likewise a `$FLAG[n]` or a BOOL global of the `$config.dat` found that the program tests and never
+sets is another program's (the submit interpreter, the PLC, an interrupt): the input of that name
+(W549 at its first read). One it only resets is a handshake and stays native (krl_vars.raised_why).
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ from rmot.backends.readers.krl_text import Line, declarations, lines
 from rmot.backends.readers.krl_vars import Global, flag_names, outside_setup, global_note, global_vars, raised_elsewhere, raised_why
 from rmot.backends.readers.logic import KRL, fits, fold_first_values, translate, warn_persistent
 from rmot.backends.readers.model import (
-    Assign, Cond, Conds, GroupIn, Stmt, Stop, VarDecl, WaitIn, Where, While, group_reads,
+    Assign, Cond, Conds, GroupIn, Stmt, Stop, VarDecl, WaitIn, Where, While, group_reads, leaves,
 )
 
 __all__ = ["KrlVars"]
@@ -186,6 +189,12 @@ class KrlVars:
             return Cond(int(t[2]), True), 4
         if len(t) == 4 and t[0] == "$OUT" and t[1] == "[" and t[2].isdigit() and t[3] == "]":  # the output's state
             return Cond(int(t[2]), True, output=True), 4
+        if len(t) == 4 and t[0] == "$FLAG" and t[1] == "[" and t[2].isdigit() and t[3] == "]" \
+                and self.raised.get(f"FLAG_{int(t[2])}") == "":  # a flag another program raises: an input
+            return Cond(f"$FLAG[{int(t[2])}]", True), 4
+        if t and (len(t) < 2 or t[1] not in ("[", "(", ".")) and self.raised.get(t[0]) == "" and t[0] not in self.visible:
+            flag = re.fullmatch(r"FLAG_(\d+)", t[0])  # (`$FLAG[n]` spelled as a task variable's name)
+            return Cond(f"$FLAG[{flag.group(1)}]" if flag else tokens[i], True), 1  # or a BOOL global never set
         port = self.signal(t[0]) if t and t[0] not in self.visible else None
         alone = len(t) < 2 or t[1] not in ("[", "(", ".")
         out = self.output(t[0]) if t and port is None and t[0] not in self.visible else None
@@ -208,7 +217,16 @@ class KrlVars:
         return cond
 
     def warn_groups(self, value: Cond | Conds | GroupIn, where: Where) -> None:
-        """W534 at the first read of each group input `value` reads."""
+        """W534 at the first read of each group input `value` reads; W549 at the first read of
+        each flag or BOOL global another program raises, read as an input."""
+        for c in leaves(value):
+            key = flag_names(str(c.signal)).upper()
+            if self.raised.get(key) == "" and key not in self.groups_warned and self.tally is not None:
+                self.groups_warned.add(key)
+                self.tally.warn(codes.BIT_READ_AS_INPUT, f"`{c.signal}` is a global flag the program tests but never "
+                                "sets (another program, the submit interpreter, the PLC or an interrupt raises it): "
+                                "read as the input of that name, so each arm is planned and verified; compiled "
+                                "back, it is that input, not the flag: give --cell to wire it", where)
         for g in group_reads(value):
             if str(g.signal).upper() in self.groups_warned or self.tally is None:
                 continue

@@ -68,15 +68,30 @@ def _signal_uses(s: Stmt) -> list[tuple[str, Signal]]:
 signal_uses = _signal_uses  # (kind, signal) of each signal a statement sets or reads
 
 
+# the vendors' numbered signals as a native line writes them (RAPID names its signals): Fanuc
+# DI[n]/DO[n]/GI[n]/AO[n], KRL $IN[n]/$OUT[n]/$ANOUT[n], INFORM IN#(n)/OT#(n)/IG#(n)/AOUT AO#(n),
+# URScript ..digital_in(n)/..digital_out(n)/..analog_out(n)
+_NATIVE_PORTS = {
+    "inputs": re.compile(r"(?i)(?:\bDI\[|\$IN\[|\bIN#\(|digital_in\()\s*(\d+)"),
+    "outputs": re.compile(r"(?i)(?:\bDO\[|\$OUT\[|\bOT#\(|digital_out\()\s*(\d+)"),
+    "groups": re.compile(r"(?i)(?:\bGI\[|\bIG#\()\s*(\d+)"),
+    "analog": re.compile(r"(?i)(?:\bAO\[|\$ANOUT\[|\bAO#\(|analog_out\()\s*(\d+)"),
+}
+
+
 def stub_signals(doc: Document) -> SignalMap:
     """Ports for a cell stub: numbered signals keep their port; named ones take the free ports
-    1, 2, ... of their kind in order of first use."""
+    1, 2, ... of their kind in order of first use, skipping every port a native line names (compiled
+    back, that line still uses the vendor's signal of that number)."""
     named: dict[str, dict[str, int]] = {"outputs": {}, "inputs": {}, "analog": {}, "groups": {}}
     used: dict[str, set[int]] = {k: set() for k in named}
     uses = [u for r in doc.routines for s in walk(r.body) for u in _signal_uses(s)]
     for kind, sig in uses:
         if isinstance(sig, int):
             used[kind].add(sig)
+    natives = [s.text for r in doc.routines for s in walk(r.body) if isinstance(s, Native)]
+    for kind, pattern in _NATIVE_PORTS.items():
+        used[kind] |= {int(n) for text in natives for n in pattern.findall(text) if len(n) < 7}
     for kind, sig in uses:
         if isinstance(sig, str) and sig.upper() not in named[kind]:
             n = SignalMap().port(kind, sig) or 1

@@ -70,7 +70,8 @@ def _read(tmp_path: Path, lines: list[str]) -> list[object]:
 
 def test_wait_on_several_inputs(tmp_path: Path) -> None:
     """Each parenthesised level joins its terms with one operator: read as and/or/not; a level
-    mixing AND and OR, or a flag or timer, stays native (lines from the VASC backups)."""
+    mixing AND and OR, or a timer, stays native; a flag the program never sets is the input named
+    after it (W549) (lines from the VASC backups)."""
     stmts = _read(tmp_path, [
         "WAIT (!DI[33] AND !DI[34] AND !DI[35] AND !DI[36])",
         "WAIT (!DI[129] OR DI[26])",
@@ -86,9 +87,10 @@ def test_wait_on_several_inputs(tmp_path: Path) -> None:
         Conds("or", (Cond(129, False), Cond(26, True))),
         Conds("or", (Conds("and", (Cond(718, True), Cond(772, False))), Cond(26, True), Cond(27, True))),
         Conds("and", (Cond(1, True), Cond(2, False))),
+        Conds("or", (Cond("F[329]", False), Cond(26, True))),
     ]
     assert [s.text for s in stmts if isinstance(s, Native)] == [
-        "WAIT (DI[1] AND DI[2] OR DI[3]) ;", "WAIT (!F[329] OR DI[26]) ;", "WAIT (DI[757] OR (TIMER[10]>=0)) ;"]
+        "WAIT (DI[1] AND DI[2] OR DI[3]) ;", "WAIT (DI[757] OR (TIMER[10]>=0)) ;"]
 
 
 def test_german_pendant_words(tmp_path: Path) -> None:

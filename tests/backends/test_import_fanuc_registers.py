@@ -89,7 +89,7 @@ def test_registers_and_flags_the_program_sets_first_are_task_variables(tmp_path:
     (["IF (R[1]=1.5) THEN", "DO[1]=ON", "ENDIF"], "a group input never holds a fraction"),
     (["IF (R[1]>-1) THEN", "DO[1]=ON", "ENDIF"], "a group input is never negative, a register may be"),
     (["IF (R[1]=1 AND DI[2] OR DI[3]) THEN", "DO[1]=ON", "ENDIF"], "AND and OR on one level"),
-    (["IF (F[1]) THEN", "DO[1]=ON", "ENDIF"], "a flag another program raises"),
+    (["F[1]=(OFF)", "IF (F[1]) THEN", "DO[1]=ON", "ENDIF"], "a flag only reset: a handshake another program raises"),
     (["IF (R[1]=R[2]) THEN", "DO[1]=ON", "ENDIF"], "two registers set elsewhere compared"),
     (["JMP LBL[1]", "R[1]=0", "LBL[1]", "R[1]=2", "IF (R[1]=1) THEN", "DO[1]=ON", "ENDIF"], "a jump skips the set"),
     (["IF (DI[1]=ON) THEN", "R[1]=1", "ENDIF", "R[1]=2", "IF (R[1]=1) THEN", "DO[1]=ON", "ENDIF"],

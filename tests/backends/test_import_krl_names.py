@@ -18,7 +18,7 @@ from click.testing import CliRunner
 from scipy.spatial.transform import Rotation
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import Cond, Conds, If, Move, Native, Pulse, SetOut, WaitIn, walk
+from rmot.backends.readers.model import Cond, Conds, If, Move, Native, Pulse, SetOut, WaitIn, leaves, walk
 from rmot.compiler.cli import cli
 from rmot.lang.parse import parse_text
 
@@ -116,8 +116,8 @@ END
 
 def test_config_dat_of_the_robot_tree(tmp_path: Path) -> None:
     """R1/Program/cell.src reads R1/System/$config.dat: its XHOME (no W511 guess), its SIGNALs,
-    and its global BOOL (a variable: native); with the config read, a name declared nowhere is
-    another module's variable, not an input."""
+    and its global BOOL the program never sets (another program's: the input of its name, W549);
+    with the config read, a name declared nowhere is another module's variable, not an input."""
     program = tmp_path / "R1" / "Program"
     program.mkdir(parents=True)
     (tmp_path / "R1" / "System").mkdir()
@@ -128,9 +128,9 @@ def test_config_dat_of_the_robot_tree(tmp_path: Path) -> None:
     home = next(t for t in doc.targets if t.name == "XHOME")
     assert home.joints == (10.0, -80.0, 70.0, 0.0, 20.0, 0.0)
     assert not any(d.code.id == "W511" for d in doc.diagnostics)
-    assert [s.cond.signal for s in stmts if isinstance(s, WaitIn)] == [21]
+    assert [[c.signal for c in leaves(s.cond)] for s in stmts if isinstance(s, WaitIn)] == [[21], ["bAutoRun"]]
     assert [s.signal for s in stmts if isinstance(s, SetOut)] == [22]
-    assert [s.text for s in stmts if isinstance(s, Native)] == ["WAIT FOR bAutoRun", "WAIT FOR bUnknownFlag"]
+    assert [s.text for s in stmts if isinstance(s, Native)] == ["WAIT FOR bUnknownFlag"]
 
 
 def test_a_name_declared_nowhere_is_read_as_a_named_input(tmp_path: Path) -> None:

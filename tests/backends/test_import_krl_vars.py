@@ -163,8 +163,9 @@ END
 def test_controller_flags(tmp_path: Path) -> None:
     """`$FLAG[n]` the main DEF sets TRUE and FALSE is the bool variable FLAG_n (W542, set first thing:
     no start-value note); the Ethernet KRL handshake `WAIT FOR $FLAG[1]` `$FLAG[1]=FALSE` (KamWisa
-    binarystream.src, Shangmc BinaryFixed.src: the EKI driver raises the flag when data arrives), a
-    flag the program never sets, and a cyclic flag stay native, each W510 saying why."""
+    binarystream.src, Shangmc BinaryFixed.src: the EKI driver raises the flag when data arrives) and
+    a cyclic flag stay native, each W510 saying why; a flag the program never sets is the input of
+    its name (W549)."""
     output, rmot = imported_krl(tmp_path, "fl", FLAGS, DAT.replace("caja", "fl"))
     body = _body(rmot)
     for line in ["var FLAG_3: bool = off", "FLAG_3 = on", "if FLAG_3 and in[5] == on {"]:
@@ -176,7 +177,9 @@ def test_controller_flags(tmp_path: Path) -> None:
     why = dict(re.findall(r"fl\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
     assert why["4"].startswith("`$FLAG[1]` is a global flag the program only sets to FALSE"), why
     assert why["5"].startswith("`$FLAG[1]` is a global flag the program only sets to FALSE"), why
-    assert why["12"].startswith("`$FLAG[7]` is a global flag the program never sets"), why
+    assert "12" not in why and "wait until in[1] == on" in body, rmot
+    assert re.search(r"fl\.src:12:\d+: warning\[W549\]: `\$FLAG\[7\]` is a global flag the program tests but never sets",
+                     output), output
     assert why["13"].startswith("it reads a cyclic flag ($CYCFLAG[n]"), why
 
 
@@ -280,13 +283,15 @@ def test_condition_on_an_output_signal_reads_the_output(tmp_path: Path) -> None:
 
 def test_config_bool_the_program_never_sets(tmp_path: Path) -> None:
     """A BOOL global of the $config.dat found that the program only tests (`WAIT FOR REPITE_SACO`,
-    ingeniado caja_g_m1.src, a flag the PLC's program sets) has no rmot form: W510 says another
-    program sets it (it is neither an input nor a task variable)."""
+    ingeniado caja_g_m1.src, a flag the PLC's program sets) is state another program sets, as a
+    whole number it only tests is a group input (W534): the input of its name, W549 once (not a
+    task variable)."""
     (tmp_path / "$config.dat").write_text("DEFDAT $CONFIG PUBLIC\n  DECL BOOL REPITE_SACO=FALSE\nENDDAT\n")
     src = "DEF rs( )\n  PTP XHOME\n  WAIT FOR REPITE_SACO\n  PTP XP1\nEND\n"
     output, rmot = imported_krl(tmp_path, "rs", src, DAT.replace("caja", "rs"))
-    why = dict(re.findall(r"rs\.src:(\d+):\d+: warning\[W510\]: ([^\n]*)", output))
-    assert why["3"].startswith("`REPITE_SACO` is a global flag the program never sets: another program"), why
+    assert "W510" not in output and "wait until in[1] == on" in _body(rmot), (output, rmot)
+    assert re.findall(r"rs\.src:(\d+):\d+: warning\[W549\]: `REPITE_SACO`", output) == ["3"], output
+    assert 'io in[1] = "repite_saco"' in (tmp_path / "rs_cell.rmot").read_text().lower()
     assert "W542" not in output and "var REPITE_SACO" not in rmot
 
 

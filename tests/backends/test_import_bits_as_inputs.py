@@ -1,0 +1,124 @@
+"""Flags and markers a program tests but never sets, read as the inputs named after them (W549).
+
+A Fanuc flag F[n] the program only tests is set by another program, the background logic or the
+PLC; a marker M[n] is set by the background logic, again and again, to the expression a program
+assigned it (FANUC R-30iB mixed logic, "Marker"). From the program's side both are state it does
+not control, as an input is: read so, every arm of a branch on them is planned and verified. A
+flag the program resets (a handshake) and a marker it assigns (background logic it defines) stay
+native. The stub cell gives each a port no native line of the program names, so compiled back
+the input is not a signal a kept line still uses. rmot's own checker and compiler are the
+witnesses that the result is a program.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from click.testing import CliRunner
+
+from rmot.compiler.cli import cli
+
+PROGRAM = """/PROG  BITS
+/ATTR
+DEFAULT_GROUP	= 1,*,*,*,*;
+/MN
+   1:  UFRAME_NUM=0 ;
+   2:  UTOOL_NUM=1 ;
+   3:J P[1] 100% FINE ;
+   4:  WAIT (!F[525]) ;
+   5:  WAIT (M[3] AND DI[4]) ;
+   6:  IF (F[525:part ready] OR M[3]) THEN ;
+   7:  DO[2]=ON ;
+   8:  ELSE ;
+   9:  DO[2]=OFF ;
+  10:  ENDIF ;
+  11:  WAIT (F[7]) ;
+  12:  F[7]=(OFF) ;
+  13:  M[9]=(DI[1] AND DI[2]) ;
+  14:  WAIT (M[9]) ;
+  15:L P[1] 100mm/sec FINE ;
+/POS
+P[1]{
+   GP1:
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X =   500.000  mm,	Y =     0.000  mm,	Z =   500.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+/END
+"""
+
+
+def _rmot(*args: str | Path) -> tuple[int, str]:
+    result = CliRunner().invoke(cli, [str(a) for a in args], catch_exceptions=False)
+    return result.exit_code, result.output
+
+
+def _imported(tmp_path: Path) -> tuple[str, str, str]:
+    (tmp_path / "bits.ls").write_text(PROGRAM)
+    code, output = _rmot("import", tmp_path / "bits.ls", "-o", tmp_path / "bits.rmot")
+    assert code == 0, output
+    return (tmp_path / "bits.rmot").read_text(), (tmp_path / "bits_cell.rmot").read_text(), output
+
+
+def test_flags_and_markers_set_elsewhere_are_inputs(tmp_path: Path) -> None:
+    program, cell, output = _imported(tmp_path)
+    ports = dict(re.findall(r'io in\[(\d+)\] = "([^"]+)"', cell))
+    flag = next(k for k, v in ports.items() if v == "f[525]")
+    marker = next(k for k, v in ports.items() if v == "m[3]")
+    assert f"wait until in[{flag}] == off" in program
+    assert f"wait until in[{marker}] == on and in[4] == on" in program
+    assert f"if in[{flag}] == on or in[{marker}] == on {{" in program
+    # W549 once per flag or marker, at its first use, naming it as the program writes it
+    assert re.findall(r"bits\.ls:(\d+):\d+: warning\[W549\]: `([^`]+)`", output) == [("8", "F[525:part ready]"),
+                                                                                  ("9", "M[3]")]
+
+
+def test_a_handshake_flag_and_a_marker_the_program_assigns_stay_native(tmp_path: Path) -> None:
+    program, _, output = _imported(tmp_path)
+    for line in ("WAIT (F[7]) ;", "F[7]=(OFF) ;", "M[9]=(DI[1] AND DI[2]) ;", "WAIT (M[9]) ;"):
+        assert f'native fanuc "{line}"' in program, line
+    assert "`F[7]`" not in output and "`M[9]`" not in output
+
+
+def test_the_inputs_take_ports_no_native_line_names(tmp_path: Path) -> None:
+    """DI[1] and DI[2] stay in the kept marker line and DI[4] is read: the two named inputs take
+    3 and 5, so the compiled program's DI[3] and DI[5] are theirs alone."""
+    _, cell, _ = _imported(tmp_path)
+    assert sorted(re.findall(r'io in\[(\d+)\] = "([fm]\[\d+\])"', cell)) == [("3", "f[525]"), ("5", "m[3]")]
+
+
+def test_the_imported_program_checks_and_compiles(tmp_path: Path) -> None:
+    _imported(tmp_path)
+    assert _rmot("check", tmp_path / "bits.rmot")[0] == 0
+    code, output = _rmot("compile", tmp_path / "bits.rmot", "--target", "fanuc", "-o", tmp_path / "out")
+    assert code == 0, output
+    tp = (tmp_path / "out" / "fanuc" / "BITS.ls").read_text()
+    assert re.search(r"WAIT DI\[3:f_525_\]=OFF ;", tp) and re.search(r"WAIT DI\[5:m_3_\]=ON AND DI\[4\]=ON ;", tp), tp
+    assert "M[9]=(DI[1] AND DI[2]) ;" in tp  # the kept line, on the signals it named
+
+
+KRL = """DEF flag()
+$TOOL = {X 0, Y 0, Z 100, A 0, B 0, C 0}
+$BASE = $NULLFRAME
+PTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}
+WAIT FOR $FLAG[3]
+IF $FLAG[3] AND $IN[2] THEN
+  $OUT[5] = TRUE
+ENDIF
+WAIT FOR $FLAG[4]
+$FLAG[4] = FALSE
+END
+"""
+
+
+def test_a_krl_flag_the_program_never_sets_is_an_input(tmp_path: Path) -> None:
+    """KRL alike: `$FLAG[3]`, only tested, is the input `$flag[3]` (W549 once); `$FLAG[4]`, which
+    the program resets after waiting for it, is a handshake and stays native."""
+    (tmp_path / "flag.src").write_text(KRL)
+    code, output = _rmot("import", tmp_path / "flag.src", "-o", tmp_path / "flag.rmot")
+    program, cell = (tmp_path / "flag.rmot").read_text(), (tmp_path / "flag_cell.rmot").read_text()
+    assert code == 0 and 'io in[1] = "$flag[3]"' in cell, (output, cell)
+    assert "wait until in[1] == on" in program and "if in[1] == on and in[2] == on {" in program
+    assert re.findall(r"flag\.src:(\d+):\d+: warning\[W549\]: `([^`]+)`", output) == [("5", "$FLAG[3]")]
+    assert 'native krl "WAIT FOR $FLAG[4]"' in program and 'native krl "$FLAG[4] = FALSE"' in program
