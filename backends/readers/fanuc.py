@@ -28,7 +28,7 @@ from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    CALLERS, caller_selection, german_instruction, motion_options, path_points, position_blocks, tp_branch, tp_pose, tp_speed,
+    CALLERS, caller_selection, german_instruction, kept_option, motion_options, path_points, position_blocks, tp_branch, tp_pose, tp_speed,
     wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
@@ -547,15 +547,17 @@ class _Ls:
 
     def _option(self, text: str, where: Where) -> Stmt:
         """A motion option kept after its move: an action (`DO[n]=ON`, `CALL p`) read as its
-        statement, anything else native; W517 says the option was the move's."""
-        self.tally.warn(codes.MOTION_OPTION_KEPT, f"the move's option `{text[:50]}` is kept after the move "
-                        "(an action timed before or after arrival runs once the move ends)", where)
+        statement, else kept (fanuc_text.kept_option); W517 says the option was the move's."""
         action = re.fullmatch(r"(?i)(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*,\s*(.+)", text)
         stmt = match_simple(action.group(1).strip(), _SIMPLE, where) if action else None
+        kept = kept_option(text) if stmt is None else ""
+        self.tally.warn(codes.MOTION_OPTION_KEPT, f"the move's option `{text[:50]}` is kept after the move"
+                        + (" as a comment (a TP motion option cannot stand on its own line)" if kept[:1] == "!" else "")
+                        + (" (an action timed before or after arrival runs once the move ends)" if action else ""), where)
         if stmt is not None:
             return stmt
         self.tally.native += 1
-        return Native("fanuc", text, where)
+        return Native("fanuc", kept, where)
 
     def _inline_body(self, name: str) -> tuple[Stmt, ...] | None:
         """The body of program `name` read with this program's loop counters and offset

@@ -17,11 +17,12 @@ import math
 import re
 from bisect import bisect_left
 
+from rmot.backends.fanuc_tp_text import COMMENT_MAX
 from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "path_points", "tp_speed", "tp_pose", "tp_branch",
+__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch",
            "CALLERS", "caller_selection", "position_blocks"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
@@ -111,6 +112,16 @@ def german_instruction(text: str, where: Where) -> Stmt | None:
 # move's with or without them; kept native after the move (W517). ACCn and Offset,PR[k] are read.
 _KEPT_OPTION = re.compile(r"(?i)(PTH|COORD|(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*,\s*.+$"
                           r"|Arc\s+(?:Start|End)\s*\[[^\]]*\]|Weave\s*(?:\w+\s*)?\[[^\]]*\]|Weave\s+End)")
+
+
+def kept_option(text: str) -> str:
+    """The line a motion option not read keeps after its move: Arc and Weave instructions, which
+    TP also writes on their own line, and COORD (axes.py reads it with the move) as they are;
+    anything else (PTH, an action TB/TA/DB times: `TB .10sec,P-SPS`, the point logic below it) as
+    TP comments of at most 32 characters, since a motion option cannot stand on its own line."""
+    if re.match(r"(?i)(?:Arc|Weave|COORD)\b", text):
+        return text
+    return "\n".join(f"!{text[k:k + COMMENT_MAX]} ;" for k in range(0, len(text), COMMENT_MAX))
 
 
 def motion_options(rest: str) -> tuple[int | None, tuple[int, bool] | None, list[str]] | None:

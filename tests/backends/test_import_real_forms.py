@@ -10,6 +10,7 @@ offset is in the first pose's frame); expected values are computed here from tho
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from click.testing import CliRunner
@@ -67,7 +68,8 @@ def test_fanuc_pendant_forms(tmp_path: Path) -> None:
     assert abs(moves[1].speed - 60 * 25.4 / 60) < 1e-9
     assert moves[0].pose is not None and abs(moves[0].pose.position[2] - 0.3) < 1e-12  # GP1, not GP2's J1
     natives = [s.text for s in stmts if isinstance(s, Native)]
-    assert natives[:2] == ["COORD", "PTH"] and natives[-1].startswith("L P[1] 100mm/sec")
+    # COORD stays the instruction axes.py reads with the move; PTH cannot stand on its own line
+    assert natives[:2] == ["COORD", "!PTH ;"] and natives[-1].startswith("L P[1] 100mm/sec")
 
 
 def test_fanuc_option_warnings_are_located(tmp_path: Path) -> None:
@@ -502,3 +504,46 @@ def test_inform_pulse_position_move_names_why_it_stays_native(tmp_path: Path) ->
     assert [s.text for s in doc.routines[0].body if isinstance(s, Native)] == ["MOVJ C00000 VJ=50.00"]
     w510 = [d for d in doc.diagnostics if d.code.id == "W510"]
     assert len(w510) == 1 and w510[0].span.start.line == 14 and "C00000 is a pulse position" in w510[0].message
+
+
+POINT_LOGIC = """/PROG  PSPS
+/ATTR
+DEFAULT_GROUP\t= 1,*,*,*,*;
+/MN
+   1:  UFRAME_NUM=0 ;
+   2:  UTOOL_NUM=1 ;
+   3:J P[1] 100% CNT0 ACC100 TB    .10sec,P-SPS    ;
+      1:  DO[23]=OFF ;
+      2:  WAIT (DI[23])    ;
+       ------ ;
+   4:L P[1] 100mm/sec FINE PTH ;
+/POS
+P[1]{
+   GP1:
+\tUF : 0, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',
+\tX =   500.000  mm,\tY =     0.000  mm,\tZ =   500.000  mm,
+\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg
+};
+/END
+"""
+
+
+def test_a_timed_point_logic_option_compiles_back_as_a_comment(tmp_path: Path) -> None:
+    """A TP motion option is part of its motion instruction (R-30iB Operator's Manual, "Motion
+    option instructions"): `TB .10sec,P-SPS` (a VASS point-logic block) or `PTH` written alone
+    on a line would not load. Kept after the move as a TP comment, the compiled program carries
+    it as one; the point logic's lines are read after the move."""
+    (tmp_path / "psps.ls").write_text(POINT_LOGIC)
+    result = CliRunner().invoke(cli, ["import", str(tmp_path / "psps.ls"), "-o", str(tmp_path / "psps.rmot")],
+                                catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    program = (tmp_path / "psps.rmot").read_text()
+    assert 'native fanuc "!TB .10sec,P-SPS ;"' in program and 'native fanuc "!PTH ;"' in program
+    assert program.index("!TB .10sec") < program.index("set out[23] = off") < program.index("wait until in[23]")
+    assert "as a comment (a TP motion option cannot stand on its own line)" in result.output
+    result = CliRunner().invoke(cli, ["compile", str(tmp_path / "psps.rmot"), "--target", "fanuc", "-o",
+                                      str(tmp_path / "out")], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    main = (tmp_path / "out" / "fanuc" / "PSPS.ls").read_text().split("/MN")[1].split("/POS")[0]
+    assert re.search(r"^\s*\d+:\s*!TB \.10sec,P-SPS ;$", main, re.M) and re.search(r"^\s*\d+:\s*!PTH ;$", main, re.M)
+    assert not re.search(r"^\s*\d+:\s*(?:TB|TA|DB|PTH)\b", main, re.M), main
