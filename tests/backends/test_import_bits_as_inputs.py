@@ -102,6 +102,7 @@ KRL = """DEF flag()
 $TOOL = {X 0, Y 0, Z 100, A 0, B 0, C 0}
 $BASE = $NULLFRAME
 PTP {A1 0, A2 -90, A3 90, A4 0, A5 0, A6 0}
+$OUT[1] = $IN[1] AND $IN[3]
 WAIT FOR $FLAG[3]
 IF $FLAG[3] AND $IN[2] THEN
   $OUT[5] = TRUE
@@ -113,12 +114,14 @@ END
 
 
 def test_a_krl_flag_the_program_never_sets_is_an_input(tmp_path: Path) -> None:
-    """KRL alike: `$FLAG[3]`, only tested, is the input `$flag[3]` (W549 once); `$FLAG[4]`, which
-    the program resets after waiting for it, is a handshake and stays native."""
+    """KRL alike: `$FLAG[3]`, only tested, is the input `$flag[3]` (W549 once), on port 4: the
+    kept `$OUT[1] = $IN[1] AND $IN[3]` names 1 and 3, and 2 is read; `$FLAG[4]`, which the
+    program resets after waiting for it, is a handshake and stays native."""
     (tmp_path / "flag.src").write_text(KRL)
     code, output = _rmot("import", tmp_path / "flag.src", "-o", tmp_path / "flag.rmot")
     program, cell = (tmp_path / "flag.rmot").read_text(), (tmp_path / "flag_cell.rmot").read_text()
-    assert code == 0 and 'io in[1] = "$flag[3]"' in cell, (output, cell)
-    assert "wait until in[1] == on" in program and "if in[1] == on and in[2] == on {" in program
-    assert re.findall(r"flag\.src:(\d+):\d+: warning\[W549\]: `([^`]+)`", output) == [("5", "$FLAG[3]")]
+    assert code == 0 and 'io in[4] = "$flag[3]"' in cell, (output, cell)
+    assert 'native krl "$OUT[1] = $IN[1] AND $IN[3]"' in program
+    assert "wait until in[4] == on" in program and "if in[4] == on and in[2] == on {" in program
+    assert re.findall(r"flag\.src:(\d+):\d+: warning\[W549\]: `([^`]+)`", output) == [("6", "$FLAG[3]")]
     assert 'native krl "WAIT FOR $FLAG[4]"' in program and 'native krl "$FLAG[4] = FALSE"' in program
