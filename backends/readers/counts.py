@@ -30,14 +30,18 @@ MOTION_IO_WORDS = {
 
 
 def motion_io_counts(doc: Document) -> dict[str, tuple[int, int]]:
-    """path -> (motion and I/O instructions imported, kept native)."""
+    """path -> (motion and I/O instructions imported, kept native). An instruction imported is
+    counted once however many rmot statements it became (a move and its output, RAPID MoveLDO; an
+    output set to an expression, both arms of its `if`; a loop written out per iteration)."""
     words = MOTION_IO_WORDS.get(doc.vendor, set())
     counts: dict[str, list[int]] = {c.path: [0, 0] for c in doc.counts}
+    seen: set[tuple[str, int, int]] = set()
     for r in doc.routines:
         for s in walk(r.body):
             slot = counts.setdefault(s.where.path, [0, 0])
             if isinstance(s, (Move, SetOut, Pulse, Wait, WaitIn)):
-                slot[0] += 1
+                slot[0] += (s.where.path, s.where.line, s.where.col) not in seen
+                seen.add((s.where.path, s.where.line, s.where.col))
             elif isinstance(s, Native):
                 m = re.match(r"\s*(\$?\w+)", s.text)
                 slot[1] += bool(m and m.group(1).upper() in words)

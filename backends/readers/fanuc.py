@@ -11,8 +11,7 @@ shoulder front (turn numbers are not read: the planner takes the nearest, as the
 tool/frame written through `PR[k]=LPOS`, `PR[k,i]=v`, `UTOOL[n]=PR[k]` and named by the
 `!UTOOL[n] = name` comment; `DO[n]=ON|OFF|PULSE,t sec`, `AO[n]=`, `WAIT t(sec)`, `WAIT DI[n]=..`
 with `$WAITTMOUT` (1/100 s) and the ABORT label; the counting loop `R[v]=a`, `LBL[t]`, ..,
-`R[v]=R[v]+1`, `IF R[v]<=b,JMP LBL[t]` with `Offset,PR[k]`, `PR[k,i]=R[v]*d` as `shift`.
-"""
+`R[v]=R[v]+1`, `IF R[v]<=b,JMP LBL[t]` with `Offset,PR[k]`, `PR[k,i]=R[v]*d` as `shift`."""
 
 from __future__ import annotations
 
@@ -21,20 +20,19 @@ from dataclasses import replace
 
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
-from rmot.backends.readers.common import (
-    Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name,
-)
+from rmot.backends.readers.common import Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name
 from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    CALLERS, caller_selection, german_instruction, kept_option, motion_options, path_points, position_blocks, tp_branch, tp_pose, tp_speed,
-    wait_condition,
+    CALLERS, caller_selection, german_instruction, kept_option, motion_options, output_expression, path_points,
+    position_blocks, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
-    Call, Cond, Conds, For, FrameData, If, Move, Native, PulsePose, Stmt, Stop, Target, ToolData, WaitIn, Where, Routine,
+    Call, Cond, Conds, For, FrameData, If, Move, Native, PulsePose, SetOut, Stmt, Stop, Target, ToolData, WaitIn, Where,
+    Routine,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
@@ -319,8 +317,12 @@ class _Ls:
         return [For(var, int(m.group(3)), int(m.group(4)) + 1, tuple(body), self.instructions[i][1])], j + 1
 
     def _register(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`R[i]=value` / `F[i]=(ON)` on a register or flag read as a task variable (fanuc_regs.py)."""
-        stmt = self.regs.assignment(*self.instructions[i]) if self.regs is not None else None
+        """`R[i]=v`, `F[i]=(ON)` on a task variable (fanuc_regs.py); `DO[n]=(cond)` as an if setting on or off."""
+        text, where = self.instructions[i]
+        out = output_expression(text)  # (an output's line: never a register's)
+        cond = self._condition(out[1]) if out is not None else None
+        stmt = If(cond, (SetOut(out[0], 1.0, where),), (SetOut(out[0], 0.0, where),), where) if out and cond else (
+            self.regs.assignment(text, where) if self.regs is not None else None)
         if stmt is None:
             return None
         self.tally.imported += 1

@@ -22,8 +22,9 @@ from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "german_instruction", "group_test", "motion_options", "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch",
-           "CALLERS", "caller_selection", "position_blocks"]
+__all__ = ["wait_condition", "german_instruction", "output_expression", "group_test", "motion_options",
+           "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch", "CALLERS", "caller_selection",
+           "position_blocks"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
 _ON = ("ON", "AN")
@@ -97,6 +98,19 @@ def _term(tokens: list[re.Match[str]], i: int) -> _Parsed:
     on = (t.group(3) or "ON") in _ON
     output = t.group(0).lstrip(" !").startswith(("DO", "A"))  # DO[n] / A[n]: the output's state
     return Cond(int(t.group(2)), on != bool(t.group(1)), output), i + 1
+
+
+def output_expression(text: str) -> tuple[int, str] | None:
+    """`DO[n]=(cond)` (B-83284EN, mixed logic: the output takes the expression's value once, as
+    the line runs; a German pendant writes `A[n]=(!E[m])`) as (n, the condition in English
+    terms, parenthesised); None for any other line and for `DO[n]=(ON)`."""
+    m = re.fullmatch(r"(DO|A)\[(\d+)(?::[^\]]*)?\]\s*=\s*(\(.+\))", text)
+    if m is None or re.fullmatch(r"\(\s*(?:ON|OFF|AN|AUS)\s*\)", m.group(3)):
+        return None
+    cond = m.group(3)
+    if m.group(1) == "A":  # German words: E[n] is DI[n], A[n] DO[n], AN ON, AUS OFF
+        cond = re.sub(r"\bAUS\b", "OFF", re.sub(r"\bAN\b", "ON", re.sub(r"\bA\[", "DO[", re.sub(r"\bE\[", "DI[", cond))))
+    return int(m.group(2)), cond
 
 
 def german_instruction(text: str, where: Where) -> Stmt | None:

@@ -12,11 +12,16 @@ witnesses that the result is a program.
 
 from __future__ import annotations
 
+import ast
+import itertools
 import re
 from pathlib import Path
 
 from click.testing import CliRunner
+from test_import_urscript_runtime import _eval as python_meaning
 
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Cond, Conds, If, SetOut, walk
 from rmot.compiler.cli import cli
 
 PROGRAM = """/PROG  BITS
@@ -125,3 +130,43 @@ def test_a_krl_flag_the_program_never_sets_is_an_input(tmp_path: Path) -> None:
     assert "wait until in[4] == on" in program and "if in[4] == on and in[2] == on {" in program
     assert re.findall(r"flag\.src:(\d+):\d+: warning\[W549\]: `([^`]+)`", output) == [("6", "$FLAG[3]")]
     assert 'native krl "WAIT FOR $FLAG[4]"' in program and 'native krl "$FLAG[4] = FALSE"' in program
+
+
+# outputs set to a condition's value (VASC pendant programs), and the German pendant's spelling
+EXPRESSIONS = ["!DI[3]", "DI[1] AND !DO[5]", "F[12]", "(DI[1] AND !DI[2]) OR F[12]", "!F[12] AND (DI[1] OR DO[5])"]
+
+
+def _meaning(cond: object, state: dict[str, bool]) -> bool:
+    """What the read condition means for one state of the signals (the model's and/or/not)."""
+    if isinstance(cond, Cond):
+        key = f"{'DO' if cond.output else 'DI'}{cond.signal}" if isinstance(cond.signal, int) else cond.signal
+        return state[key.replace("[", "").replace("]", "")] == cond.on
+    assert isinstance(cond, Conds), cond
+    if cond.op == "logic" and cond.text == "{0}":
+        return _meaning(cond.parts[0], state)
+    values = [_meaning(p, state) for p in cond.parts]
+    return not values[0] if cond.op == "not" else all(values) if cond.op == "and" else any(values)
+
+
+def test_an_output_set_to_a_condition_is_an_if_setting_it_on_or_off(tmp_path: Path) -> None:
+    """`DO[n]=(expr)` gives the output the expression's value once, as the line runs (B-83284EN,
+    mixed logic): read as `if expr { set out[n] = on } else { set out[n] = off }`. Witness: the
+    TP expression evaluated by Python's own parser for every state of its signals."""
+    lines = [f"  {k + 4:3d}:  DO[9]=({e}) ;" for k, e in enumerate(EXPRESSIONS)]
+    lines.append(f"  {len(EXPRESSIONS) + 4:3d}:  A[10]=(!E[4] AND F[12]) ;")
+    path = tmp_path / "outs.ls"
+    path.write_text(PROGRAM.replace("   4:  WAIT (!F[525]) ;\n", "\n".join(lines) + "\n"))
+    ifs = [s for r in read_files([str(path)]).routines for s in walk(r.body) if isinstance(s, If)]
+    for expr, found in zip([*EXPRESSIONS, "!DI[4] AND F[12]"], ifs[:len(EXPRESSIONS) + 1]):
+        out = 10 if expr.startswith("!DI[4]") else 9
+        assert found.then == (SetOut(out, 1.0, found.where),) and found.orelse == (SetOut(out, 0.0, found.where),)
+        names = sorted(set(re.findall(r"[A-Z]+\[\d+\]", expr)))
+        python = ast.parse(re.sub(r"([A-Z]+)\[(\d+)\]", r"\1\2", expr.replace("!", " not ").replace("AND", "and")
+                                  .replace("OR", "or")).strip(), mode="eval")
+        for values in itertools.product((False, True), repeat=len(names)):
+            state = {n.replace("[", "").replace("]", ""): v for n, v in zip(names, values)}
+            assert _meaning(found.cond, state) == python_meaning(python, state), (expr, state)
+    assert len(ifs) == len(EXPRESSIONS) + 2  # and the IF .. THEN of the program itself
+    # each such line is one instruction imported, not the two outputs its arms set
+    code, output = _rmot("import", path, "-o", tmp_path / "outs.rmot")
+    assert code == 0 and "motion and I/O: 11 imported, 2 kept native" in output, output
