@@ -172,8 +172,9 @@ def _bodies(body: tuple[Stmt, ...], fn: Callable[[tuple[Stmt, ...]], tuple[Stmt,
 
 def _absorb_coord(doc: Document, named: Mapping[str, tuple[float | None, ...]],
                   span_of: Callable[[Where], Span]) -> Document:
-    """A TP linear or circular move followed by its `COORD` option (kept native by the reader,
-    W517), the option dropped: in UFRAME 0 the move marked coordinated (its frame COORD_FRAME);
+    """A TP linear or circular move followed by its `COORD` option (kept by the reader as the
+    comment `!COORD ;`, W517), the option dropped: in UFRAME 0 the move marked coordinated (its
+    frame COORD_FRAME);
     in a user frame, where the positioner stands still during the move (its values those of the
     move before it in the block), the plain move, which follows the same path relative to a part
     that does not move; else the move kept native (W523): its path relative to a moving part is
@@ -187,7 +188,7 @@ def _absorb_coord(doc: Document, named: Mapping[str, tuple[float | None, ...]],
         out: list[Stmt] = []
         for s in body:
             prev = out[-1] if out else None
-            if not (isinstance(s, Native) and s.text == "COORD" and isinstance(prev, Move) and prev.kind != "joint"
+            if not (isinstance(s, Native) and s.text == "!COORD ;" and isinstance(prev, Move) and prev.kind != "joint"
                     and s.where == prev.where):
                 out.append(s)
                 continue

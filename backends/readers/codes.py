@@ -39,7 +39,7 @@ PAYLOAD_UNMATCHED = Code("W516", "payload-unmatched",
 MOTION_OPTION_KEPT = Code("W517", "motion-option-kept",
                           "a motion option rmot's move has no form for (TP PTH, COORD, a TB/TA/DB action, Arc "
                           "Start/End, Weave; INFORM NWAIT): the move is imported and the option kept native right "
-                          "after it, as a TP comment where TP cannot write it on its own line (PTH, TB/TA/DB) "
+                          "after it, as a TP comment where TP cannot write it on its own line (PTH, COORD, TB/TA/DB) "
                           "(NWAIT: dropped, the next instructions run once the move ends)")
 LOOP_READ_ONCE = Code("W518", "loop-read-once",
                       "a program's outermost endless loop (URScript `while True:`) is read as one cycle: "

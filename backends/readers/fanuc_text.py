@@ -130,10 +130,10 @@ _KEPT_OPTION = re.compile(r"(?i)(PTH|COORD|(?:TB|TA|DB)\s+[\d.]+\s*(?:sec|mm)\s*
 
 def kept_option(text: str) -> str:
     """The line a motion option not read keeps after its move: Arc and Weave instructions, which
-    TP also writes on their own line, and COORD (axes.py reads it with the move) as they are;
-    anything else (PTH, an action TB/TA/DB times: `TB .10sec,P-SPS`, the point logic below it) as
-    TP comments of at most 32 characters, since a motion option cannot stand on its own line."""
-    if re.match(r"(?i)(?:Arc|Weave|COORD)\b", text):
+    TP also writes on their own line, as they are; anything else (PTH, COORD, which axes.py reads
+    with its move where it can, an action TB/TA/DB times: `TB .10sec,P-SPS`, the point logic below
+    it) as TP comments of at most 32 characters, since a motion option cannot stand on its own line."""
+    if re.match(r"(?i)(?:Arc|Weave)\b", text):
         return text
     return "\n".join(f"!{text[k:k + COMMENT_MAX]} ;" for k in range(0, len(text), COMMENT_MAX))
 

@@ -222,5 +222,5 @@ def test_tp_coord_in_a_user_frame_reads_only_where_the_positioner_stands_still(t
         ["9", "11"], output  # the file lines of TP lines 5 and 7
     assert 'native fanuc "L P[1] 100mm/sec FINE COORD ;"' in text and 'native fanuc "L P[3] 100mm/sec FINE COORD ;"' in text
     assert re.search(r"move linear hand_p2 ext\(pos=\(0deg, 0deg\)\) speed 100 mm/s zone fine", text), text
-    assert 'native fanuc "COORD"' not in text and "`COORD` is kept after the move" not in output, (text, output)
+    assert 'native fanuc "!COORD ;"' not in text and "`COORD` is kept after the move" not in output, (text, output)
     assert _motion_summary(output, "HAND.ls") == (3, 2), output  # the two WAITs and P[2]

@@ -68,8 +68,8 @@ def test_fanuc_pendant_forms(tmp_path: Path) -> None:
     assert abs(moves[1].speed - 60 * 25.4 / 60) < 1e-9
     assert moves[0].pose is not None and abs(moves[0].pose.position[2] - 0.3) < 1e-12  # GP1, not GP2's J1
     natives = [s.text for s in stmts if isinstance(s, Native)]
-    # COORD stays the instruction axes.py reads with the move; PTH cannot stand on its own line
-    assert natives[:2] == ["COORD", "!PTH ;"] and natives[-1].startswith("L P[1] 100mm/sec")
+    # neither option can stand on its own line (axes.py reads COORD with the move where it can)
+    assert natives[:2] == ["!COORD ;", "!PTH ;"] and natives[-1].startswith("L P[1] 100mm/sec")
 
 
 def test_fanuc_option_warnings_are_located(tmp_path: Path) -> None:
