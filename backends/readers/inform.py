@@ -18,7 +18,8 @@ radians = pulses / pulses-per-radian with no offset: 0 pulses is the axis's zero
 command positions, which the controller already corrects for axis coupling, CtrlGroup.c
 Ros_CtrlGroup_GetFBPulsePos); a MOVL or MOVC to one goes to its TCP pose where the CLI hands in
 the cell arm's forward kinematics and tools (`pulse_pose`), else stays native; without the
-scales their moves stay native.
+scales their moves stay native, but for a position with every axis at 0 pulses (a generator's
+home), which is every axis at its zero whatever the scales.
 """
 
 from __future__ import annotations
@@ -172,13 +173,15 @@ class _Job:
     def _pulse_position(self, key: str, values: str, n: int, tool: int) -> None:
         """A pulse position: a joint target where the arm's pulses per degree are given and
         its count is theirs; else the reason its moves stay native."""
-        scales = self.pulses_per_degree
         counts = [int(x) for x in values.split(",") if re.fullmatch(r"\s*-?\d+\s*", x)]
+        whole = len(counts) == len(values.split(","))
+        # every axis at 0 pulses is every axis at its zero, whatever the scales (a generator's home)
+        scales = self.pulses_per_degree or ((1.0,) * len(counts) if whole and counts and not any(counts) else None)
         if scales is None:
             self.pulse_positions[key] = ("is a pulse position (///PULSE, or no ///RECTAN before it): encoder counts "
                                          "whose per-axis scales are the arm's controller's; pass them as `rmot import "
                                          "--pulses-per-degree S,L,U,R,B,T` (its pulses per degree) to read it")
-        elif len(counts) != len(values.split(",")) or len(counts) != len(scales):
+        elif not whole or len(counts) != len(scales):
             self.pulse_positions[key] = (f"is a pulse position of {len(values.split(','))} values, not the "
                                          f"{len(scales)} whole pulse counts --pulses-per-degree gives scales for")
         else:

@@ -81,6 +81,25 @@ def test_without_scales_the_moves_stay_native_and_say_what_to_pass(tmp_path: Pat
     assert len(why) == 2 and all("is a pulse position" in w and "--pulses-per-degree S,L,U,R,B,T" in w for w in why)
 
 
+def test_every_axis_at_zero_pulses_is_the_zero_joint_target_without_scales(tmp_path: Path) -> None:
+    """0 pulses is the axis's zero whatever its scale (MotoROS2's conversion has no offset: its
+    test's vectors, divided by any scale, give 0 for 0): a generator's home `C00002=0,0,0,0,0,0`
+    reads without --pulses-per-degree, the other positions still need the scales; a position
+    with a value that is not a whole count stays native."""
+    path = tmp_path / "HOMED.JBI"
+    path.write_text(JOB.replace("///NPOS 2,", "///NPOS 4,").replace(
+        "C00001=-204317", "C00002=0,0,0,0,0,0\nC00003=0,0,0,0,0.5,0\nC00001=-204317").replace(
+        "MOVL C00001 V=211.7", "MOVL C00001 V=211.7\nMOVJ C00002 VJ=10.00\nMOVJ C00003 VJ=10.00"))
+    doc = read_files([str(path)])
+    stmts = [s for r in doc.routines for s in walk(r.body)]
+    moves = [s for s in stmts if isinstance(s, Move)]
+    assert [(m.kind, m.target, m.joints) for m in moves] == [("joint", "tcp_check_c00002", (0.0,) * 6)]
+    assert [s.text for s in stmts if isinstance(s, Native)] == [
+        "MOVJ C00000 VJ=30.00", "MOVL C00001 V=211.7", "MOVJ C00003 VJ=10.00"]
+    why = [d.message for d in doc.diagnostics if d.code.id == "W510" and "C00003" in d.message]
+    assert len(why) == 1 and "pass them as `rmot import --pulses-per-degree" in why[0], why
+
+
 def test_scales_for_another_number_of_axes_convert_nothing(tmp_path: Path) -> None:
     """Five scales for six counts: never a guess for the sixth axis."""
     stmts, why = _read(tmp_path, _scales()[:5])
