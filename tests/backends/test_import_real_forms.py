@@ -483,7 +483,7 @@ PULSE_JOB = """/JOB
 ///TOOL 0
 ///POSTYPE PULSE
 ///PULSE
-C00000=0,0,0,0,0,0
+C00000=1000,0,0,0,0,0
 //INST
 ///DATE 2020/01/01 00:00
 ///ATTR SC,RW
@@ -495,8 +495,8 @@ END
 
 
 def test_inform_pulse_position_move_names_why_it_stays_native(tmp_path: Path) -> None:
-    """A move to a `///PULSE` position (encoder counts: INFORM manual, position data) needs the
-    arm's pulses per degree and zero offsets, which the library does not hold: the move stays
+    """A move to a `///PULSE` position (encoder counts: INFORM manual, position data) off the
+    zero needs the arm's pulses per degree, which the library does not hold: the move stays
     native, W510 at its line names the position and why."""
     path = tmp_path / "P1.JBI"
     path.write_text(PULSE_JOB)
