@@ -14,6 +14,7 @@ from collections.abc import Callable
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import MAX_BYTES, ImportError_, Tally, read_text
+from rmot.backends.readers.fanuc_german import english, is_german
 from rmot.lang.ir import Pose
 from rmot.backends.readers.model import Document, PulsePose, Routine, Stmt, Target, Where
 from rmot.lang.diagnostics import Diagnostic, Severity
@@ -71,6 +72,10 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
 
     m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS, _PULSE_POSE[0], _FANUC_SAVED[0])
     _FANUC_INLINED.update(m.inlined)
+    if path in _GERMAN:
+        m.tally.warn(codes.GERMAN_EXPORT_READ, "a German-language pendant wrote this program: it is read in the "
+                     "English words the same program's English export has (WARTE is WAIT, E[n] DI[n], [&] AND); its "
+                     "lines show and its native lines are kept in those words", Where(path, 1))
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments), tuple(m.loads))
@@ -131,6 +136,7 @@ _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
 # the loop's counter
 _FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
 _FANUC_INLINED: set[str] = set()  # the programs some caller inlined
+_GERMAN: set[str] = set()  # the TP files a German pendant wrote, read in English words (W551)
 _KRL_ROUTINES: dict[str, Params | None] = {}  # ROUTINE -> its parameters (krl_names.signatures), over every .src given
 _RAPID_TASK: dict[str, str] = {}  # the RAPID modules given: one task, their global data shared
 # a Fanuc backup's saved registers and frames (NUMREG.VA, POSREG.VA, SYSFRAME.VA) given with its programs
@@ -189,6 +195,9 @@ def _load(path: str) -> str:
         text = read_text(data)
     except ValueError as exc:
         raise _fail(codes.IMPORT_UNREADABLE, path, f"a vendor file must be text ({exc})") from None
+    if path.lower().endswith(".ls") and is_german(text):  # a German pendant's TP, in English words
+        text = english(text)
+        _GERMAN.add(path)
     _SOURCES[path] = SourceFile(path, text)
     return text
 
@@ -208,6 +217,7 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     _FANUC_LABELS["UFRAME"].clear()
     _FANUC_PROGRAMS.clear()
     _FANUC_INLINED.clear()
+    _GERMAN.clear()
     _RAPID_TASK.clear()
     _KRL_ROUTINES.clear()
     _FANUC_SAVED[0] = _saved_data(paths)

@@ -167,6 +167,12 @@ BIT_READ_AS_INPUT = Code("W549", "bit-read-as-input",
                          "global): another program, the background logic or the PLC sets it; it is read as the "
                          "digital input named after it, so every arm of a branch on it is planned and verified")
 
+__all__ += ["GERMAN_EXPORT_READ"]
+GERMAN_EXPORT_READ = Code("W551", "german-export-read",
+                          "a Fanuc TP program a German-language pendant exported is read in the English words of the "
+                          "same program's English export (fanuc_german.py); its lines show, and its native lines "
+                          "are kept, in those words")
+
 # Fanuc registers read at the value a controller backup saved (fanuc_va.py)
 __all__ += ["CONTROLLER_VALUE_READ"]
 CONTROLLER_VALUE_READ = Code("W543", "controller-value-read",

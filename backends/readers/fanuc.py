@@ -25,7 +25,7 @@ from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    CALLERS, caller_selection, german_instruction, kept_option, motion_options, output_expression, path_points,
+    CALLERS, caller_selection, kept_option, motion_options, output_expression, path_points,
     position_blocks, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
@@ -432,7 +432,7 @@ class _Ls:
             return None  # a move this reader could not read (`_motion`)
         stmt = match_simple(text, _SIMPLE, where) or (Stop(where) if text == "ABORT" else None)
         cond = self._condition(text[4:].strip()) if stmt is None and text.startswith("WAIT") else None
-        return stmt or (WaitIn(cond, None, where) if cond is not None else german_instruction(text, where))
+        return stmt or (WaitIn(cond, None, where) if cond is not None else None)
 
     def _motion(self, text: str, where: Where) -> tuple[Move, list[Stmt]] | None:
         """The move of a motion line and the options kept native after it (W517), or None."""

@@ -19,15 +19,14 @@ from bisect import bisect_left
 
 from rmot.backends.fanuc_tp_text import COMMENT_MAX
 from rmot.backends.readers.common import number
-from rmot.backends.readers.model import Cond, Conds, GroupIn, SetOut, Stmt, WaitIn, Where
+from rmot.backends.readers.model import Cond, Conds, GroupIn
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "german_instruction", "output_expression", "group_test", "motion_options",
+__all__ = ["wait_condition", "output_expression", "group_test", "motion_options",
            "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch", "CALLERS", "caller_selection",
            "position_blocks"]
 
-_TOKEN = re.compile(r"\s*(?:(!?)(?:DI|E|DO|A)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF|AN|AUS))?|(\()|(\))|(AND|OR)\b)")
-_ON = ("ON", "AN")
+_TOKEN = re.compile(r"\s*(?:(!?)(DI|DO)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF))?|(\()|(\))|(AND|OR)\b)")
 
 _Parsed = tuple["Cond | Conds", int] | None
 
@@ -48,9 +47,9 @@ def group_test(text: str, negate: bool = False) -> Conds | None:
 
 
 def wait_condition(text: str) -> Cond | Conds | None:
-    """The input condition of `WAIT cond` (or `WARTE cond`), or None where it reads anything
-    else or mixes AND and OR on one level."""
-    m = re.fullmatch(r"(?:WAIT|WARTE)\s*(.+?)\s*", text)
+    """The input condition of `WAIT cond`, or None where it reads anything else or mixes AND and
+    OR on one level (a German pendant's words are read in English: fanuc_german)."""
+    m = re.fullmatch(r"WAIT\s*(.+?)\s*", text)
     if m is None:
         return None
     if m.group(1).startswith("GI["):
@@ -76,10 +75,10 @@ def _level(tokens: list[re.Match[str]], i: int) -> _Parsed:
             return None
         parts.append(parsed[0])
         i = parsed[1]
-        if i < len(tokens) and tokens[i].group(6):
-            if op not in (None, tokens[i].group(6)):
+        if i < len(tokens) and tokens[i].group(7):
+            if op not in (None, tokens[i].group(7)):
                 return None  # AND and OR on one level: which binds first is not read
-            op, i = tokens[i].group(6), i + 1
+            op, i = tokens[i].group(7), i + 1
             continue
         return (parts[0] if op is None else Conds(op.lower(), tuple(parts))), i
 
@@ -88,38 +87,25 @@ def _term(tokens: list[re.Match[str]], i: int) -> _Parsed:
     if i >= len(tokens):
         return None
     t = tokens[i]
-    if t.group(4):
+    if t.group(5):
         inner = _level(tokens, i + 1)
-        if inner is None or inner[1] >= len(tokens) or not tokens[inner[1]].group(5):
+        if inner is None or inner[1] >= len(tokens) or not tokens[inner[1]].group(6):
             return None
         return inner[0], inner[1] + 1
-    if t.group(2) is None:
+    if t.group(3) is None:
         return None
-    on = (t.group(3) or "ON") in _ON
-    output = t.group(0).lstrip(" !").startswith(("DO", "A"))  # DO[n] / A[n]: the output's state
-    return Cond(int(t.group(2)), on != bool(t.group(1)), output), i + 1
+    on = (t.group(4) or "ON") == "ON"
+    return Cond(int(t.group(3)), on != bool(t.group(1)), t.group(2) == "DO"), i + 1  # DO[n]: the output's state
 
 
 def output_expression(text: str) -> tuple[int, str] | None:
     """`DO[n]=(cond)` (B-83284EN, mixed logic: the output takes the expression's value once, as
-    the line runs; a German pendant writes `A[n]=(!E[m])`) as (n, the condition in English
-    terms, parenthesised); None for any other line and for `DO[n]=(ON)`."""
-    m = re.fullmatch(r"(DO|A)\[(\d+)(?::[^\]]*)?\]\s*=\s*(\(.+\))", text)
-    if m is None or re.fullmatch(r"\(\s*(?:ON|OFF|AN|AUS)\s*\)", m.group(3)):
+    the line runs) as (n, the condition, parenthesised); None for any other line and for
+    `DO[n]=(ON)`."""
+    m = re.fullmatch(r"DO\[(\d+)(?::[^\]]*)?\]\s*=\s*(\(.+\))", text)
+    if m is None or re.fullmatch(r"\(\s*(?:ON|OFF)\s*\)", m.group(2)):
         return None
-    cond = m.group(3)
-    if m.group(1) == "A":  # German words: E[n] is DI[n], A[n] DO[n], AN ON, AUS OFF
-        cond = re.sub(r"\bAUS\b", "OFF", re.sub(r"\bAN\b", "ON", re.sub(r"\bA\[", "DO[", re.sub(r"\bE\[", "DI[", cond))))
-    return int(m.group(2)), cond
-
-
-def german_instruction(text: str, where: Where) -> Stmt | None:
-    """`A[n]=AN|AUS` (the pendant also writes `(AN)`) and `WARTE (E[n])` as DO and WAIT DI."""
-    m = re.fullmatch(r"A\[(\d+)(?::[^\]]*)?\]\s*=\s*\(?(AN|AUS)\)?", text)
-    if m:
-        return SetOut(int(m.group(1)), 1.0 if m.group(2) == "AN" else 0.0, where)
-    cond = wait_condition(text) if text.startswith("WARTE") else None
-    return WaitIn(cond, None, where) if cond is not None else None
+    return int(m.group(1)), m.group(2)
 
 
 # Motion options (R-30iB Operator's Manual, "Motion option instructions"): the path is the

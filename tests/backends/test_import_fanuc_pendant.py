@@ -94,7 +94,8 @@ def test_wait_on_several_inputs(tmp_path: Path) -> None:
 
 
 def test_german_pendant_words(tmp_path: Path) -> None:
-    """A German controller's `A[n]=AN|AUS` is DO[n]=ON|OFF and `WARTE (E[n])` WAIT (DI[n])."""
+    """A German controller's `A[n]=AN|AUS` is DO[n]=ON|OFF and `WARTE (E[n])` WAIT (DI[n]) (the
+    export is read in English words: fanuc_german)."""
     stmts = _read(tmp_path, ["A[15:PF0 Robot (Punto Cero)]=AN", "A[17:Rob.En Mantenimiento]=(AUS)",
                              "WARTE (E[9])", "WARTE (!E[9] AND E[10])"])
     assert [(s.signal, s.value) for s in stmts if isinstance(s, SetOut)] == [(15, 1.0), (17, 0.0)]
