@@ -2,8 +2,8 @@
 the share a user of `rmot import` cares about (set-up, sockets and bookkeeping lines of a
 vendor program are not motion).
 
-A native line counts as motion or I/O when its first word is one of the vendor's motion or
-I/O instructions (RAPID Instructions reference; KSS 8.x motion and I/O statements; R-30iB
+A native line counts as motion or I/O when its first word (a TP `IF (..),action`: its action's)
+is one of the vendor's motion or I/O instructions (RAPID Instructions reference; KSS 8.x motion and I/O statements; R-30iB
 Operator's Manual motion and I/O instructions; URScript manual, modules motion and interfaces).
 """
 
@@ -29,6 +29,10 @@ MOTION_IO_WORDS = {
 }
 
 
+# a TP line `IF (cond),DO[n]=ON` is the I/O instruction its action is (B-83284EN, IF with an action)
+_ACTION = re.compile(r"\s*(?:IF\s*\(.*\)\s*,\s*)?(\w+)")
+
+
 def motion_io_counts(doc: Document) -> dict[str, tuple[int, int]]:
     """path -> (motion and I/O instructions imported, kept native). An instruction imported is
     counted once however many rmot statements it became (a move and its output, RAPID MoveLDO; an
@@ -43,6 +47,6 @@ def motion_io_counts(doc: Document) -> dict[str, tuple[int, int]]:
                 slot[0] += (s.where.path, s.where.line, s.where.col) not in seen
                 seen.add((s.where.path, s.where.line, s.where.col))
             elif isinstance(s, Native):
-                m = re.match(r"\s*(\$?\w+)", s.text)
+                m = re.match(_ACTION if doc.vendor == "fanuc" else r"\s*(\$?\w+)", s.text)
                 slot[1] += bool(m and m.group(1).upper() in words)
     return {path: (a, b) for path, (a, b) in counts.items()}

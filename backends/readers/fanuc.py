@@ -26,13 +26,13 @@ from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
     CALLERS, caller_selection, kept_option, motion_options, output_expression, path_points,
-    position_blocks, tp_branch, tp_pose, tp_speed, wait_condition,
+    position_blocks, timed_wait, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
-    Call, Cond, Conds, For, FrameData, If, Move, Native, PulsePose, SetOut, Stmt, Stop, Target, ToolData, WaitIn, Where,
-    Routine,
+    Call, Cond, Conds, For, FrameData, If, Move, Native, Pulse, PulsePose, SetOut, Stmt, Stop, Target, ToolData, WaitIn,
+    Where, Routine,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
@@ -329,14 +329,20 @@ class _Ls:
         return [stmt], i + 1
 
     def _if_call(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`IF (cond),CALL PROG` (B-83284EN, IF with a CALL action) where PROG is a program of the job."""
+        """`IF (cond),action` (B-83284EN, IF with an action): a CALL of a program of the job, an
+        output set or pulsed (`DO[n]=ON`, `DO[n]=PULSE,3.0sec`) or a task variable's assignment."""
         text, where = self.instructions[i]
-        m = re.fullmatch(r"IF\s*(.+?),\s*CALL\s+(\w+)", text)
-        cond = self._condition(m.group(1)) if m and m.group(2).upper() in self.programs else None
-        if m is None or cond is None:
+        m = re.fullmatch(r"IF\s*(.+?),\s*(.+)", text)
+        call = re.fullmatch(r"CALL\s+(\w+)", m.group(2)) if m else None
+        simple = match_simple(m.group(2), _SIMPLE, where) if m and not call else None
+        act: Stmt | None = (Call(call.group(1), (), where) if call.group(1).upper() in self.programs else None) if call else (
+            simple if isinstance(simple, (SetOut, Pulse)) else self.regs.assignment(m.group(2), where)
+            if m and self.regs is not None else None)
+        cond = self._condition(m.group(1)) if m and act is not None else None
+        if cond is None or act is None:
             return None
         self.tally.imported += 1
-        return [If(cond, (Call(m.group(2), (), where),), (), where)], i + 1
+        return [If(cond, (act,), (), where)], i + 1
 
     def _condition(self, text: str) -> Cond | Conds | None:
         """A TP condition on inputs and outputs (as `WAIT` reads it), or on registers and flags."""
@@ -412,20 +418,12 @@ class _Ls:
                 for k in range(i, j + 1) if self._text(k) and not self._text(k).startswith("!")], j + 1
 
     def _timed_wait(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`WAIT DI[n]=ON TIMEOUT,LBL[a]`, `JMP LBL[b]`, `LBL[a]`, `ABORT`, `LBL[b]` (after $WAITTMOUT)."""
-        m = re.fullmatch(rf"WAIT DI{_SIG}\s*=\s*(ON|OFF) TIMEOUT,LBL\[(\d+)\]", self._text(i))
-        if m is None or self.timeout is None:
+        """The backend's wait with a timeout (fanuc_text.timed_wait), after `$WAITTMOUT`."""
+        found = timed_wait(self._text, i, end) if self.timeout is not None else None
+        if found is None:
             return None
-        texts = [t for t in (self._text(k) for k in range(i + 1, min(i + 7, end))) if not t.startswith("!")]
-        jmp = re.fullmatch(r"JMP LBL\[(\d+)\]", texts[0]) if texts else None
-        if not (jmp and len(texts) >= 4 and texts[1] == f"LBL[{m.group(3)}]" and texts[2] == "ABORT"
-                and texts[3] == f"LBL[{jmp.group(1)}]"):
-            return None
-        k = i + 1
-        while self._text(k) != f"LBL[{jmp.group(1)}]":
-            k += 1
         self.tally.imported += 1
-        return [WaitIn(Cond(int(m.group(1)), m.group(2) == "ON"), self.timeout, self.instructions[i][1])], k + 1
+        return [WaitIn(found[0], self.timeout, self.instructions[i][1])], found[1]
 
     def _simple(self, text: str, where: Where) -> Stmt | None:
         if text.startswith(("J ", "L ", "C ")):

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Callable
 from bisect import bisect_left
 
 from rmot.backends.fanuc_tp_text import COMMENT_MAX
@@ -22,7 +23,7 @@ from rmot.backends.readers.common import number
 from rmot.backends.readers.model import Cond, Conds, GroupIn
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "output_expression", "group_test", "motion_options",
+__all__ = ["wait_condition", "output_expression", "timed_wait", "group_test", "motion_options",
            "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch", "CALLERS", "caller_selection",
            "position_blocks"]
 
@@ -96,6 +97,20 @@ def _term(tokens: list[re.Match[str]], i: int) -> _Parsed:
         return None
     on = (t.group(4) or "ON") == "ON"
     return Cond(int(t.group(3)), on != bool(t.group(1)), t.group(2) == "DO"), i + 1  # DO[n]: the output's state
+
+
+def timed_wait(text_at: Callable[[int], str], i: int, end: int) -> tuple[Cond, int] | None:
+    """The backend's wait with a timeout at line `i` (`text_at` gives each instruction's text):
+    `WAIT DI[n]=ON TIMEOUT,LBL[a]`, `JMP LBL[b]`, `LBL[a]`, `ABORT`, `LBL[b]` (comments between
+    them allowed) as (the input's condition, the index after `LBL[b]`); None otherwise."""
+    m = re.fullmatch(r"WAIT DI\[(\d+)(?::[^\]]*)?\]\s*=\s*(ON|OFF) TIMEOUT,LBL\[(\d+)\]", text_at(i))
+    texts = [t for t in (text_at(k) for k in range(i + 1, min(i + 7, end))) if not t.startswith("!")] if m else []
+    jmp = re.fullmatch(r"JMP LBL\[(\d+)\]", texts[0]) if texts else None
+    if m is None or not (jmp and len(texts) >= 4 and texts[1] == f"LBL[{m.group(3)}]" and texts[2] == "ABORT"
+                         and texts[3] == f"LBL[{jmp.group(1)}]"):
+        return None
+    end_label = next(k for k in range(i + 1, end) if text_at(k) == f"LBL[{jmp.group(1)}]")
+    return Cond(int(m.group(1)), m.group(2) == "ON"), end_label + 1
 
 
 def output_expression(text: str) -> tuple[int, str] | None:

@@ -13,7 +13,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import Cond, Conds, Move, Native, SetOut, WaitIn, walk
+from rmot.backends.readers.counts import motion_io_counts
+from rmot.backends.readers.model import Cond, Conds, If, Move, Native, Pulse, SetOut, WaitIn, walk
 
 TP = """/PROG  JOB_DBL_SAFE_1
 /ATTR
@@ -110,3 +111,19 @@ def test_a_background_edit_copy_is_read_as_the_program_it_is(tmp_path: Path) -> 
     path.write_text("/PROG  -BCKED8-\n/ATTR\nOWNER\t\t= BACKGRND;\nCOMMENT\t\t= \"\";\n/MN\n/POS\n/END\n")
     doc = read_files([str(path)])
     assert doc.name == "-BCKED8-" and [len(r.body) for r in doc.routines] == [0]
+
+
+def test_an_if_with_an_output_action(tmp_path: Path) -> None:
+    """`IF (cond),DO[n]=..` (B-83284EN, IF with an action) is `if cond { set/pulse }`; an action
+    rmot has no form for (a group output, a robot output) keeps the line native, and the import
+    summary counts it as the I/O instruction its action is."""
+    stmts = _read(tmp_path, ["IF (DI[5]),DO[3]=PULSE,3.0sec", "IF (!DI[2] AND DI[9]),DO[7]=(OFF)",
+                             "IF (DI[1]),GO[1]=31", "IF (DI[1] OR DO[4]),DO[8]=ON", "IF (DI[1]),RO[2]=ON"])
+    ifs = [s for s in stmts if isinstance(s, If)]
+    assert [(i.cond, i.then) for i in ifs] == [
+        (Cond(5, True), (Pulse(3, 3.0, ifs[0].where),)),
+        (Conds("and", (Cond(2, False), Cond(9, True))), (SetOut(7, 0.0, ifs[1].where),)),
+        (Conds("or", (Cond(1, True), Cond(4, True, True))), (SetOut(8, 1.0, ifs[2].where),))]
+    assert [s.text for s in stmts if isinstance(s, Native)] == ["IF (DI[1]),GO[1]=31 ;", "IF (DI[1]),RO[2]=ON ;"]
+    doc = read_files([str(tmp_path / "waits.ls")])
+    assert list(motion_io_counts(doc).values()) == [(3, 1)]  # the RO line is I/O kept native; GO is no rmot I/O word
