@@ -106,8 +106,8 @@ ENGLISH = dict(header="/PROG  DE\n/ATTR\nOWNER\t\t= MNEDITOR;\n/MN\n", tool="UTO
 def test_a_german_program_reads_as_its_english_export(tmp_path: Path) -> None:
     """Read through `rmot import`'s reading, the German file gives the statements the English
     one does (the moves, the outputs, the wait on two inputs, the if a jump builds), located at
-    the German file's lines, and W551 says once that it was read in English words. Before, the
-    German jump stayed a native line while the output it skips was read as always set."""
+    the German file's lines, and W551 says once that it was read in English words: the German
+    jump skips the output it jumps over, as the English one does."""
     docs = []
     for name, words in (("de", GERMAN), ("en", ENGLISH)):
         path = tmp_path / name / "DE.ls"
