@@ -137,6 +137,7 @@ _FANUC_LABELS: dict[str, dict[int, str]] = {"UTOOL": {}, "UFRAME": {}}
 _FANUC_PROGRAMS: dict[str, tuple[str, str]] = {}
 _FANUC_INLINED: set[str] = set()  # the programs some caller inlined
 _GERMAN: set[str] = set()  # the TP files a German pendant wrote, read in English words (W551)
+_LOADED: dict[str, str] = {}  # the files of the import being read, by path
 _KRL_ROUTINES: dict[str, Params | None] = {}  # ROUTINE -> its parameters (krl_names.signatures), over every .src given
 _RAPID_TASK: dict[str, str] = {}  # the RAPID modules given: one task, their global data shared
 # a Fanuc backup's saved registers and frames (NUMREG.VA, POSREG.VA, SYSFRAME.VA) given with its programs
@@ -186,6 +187,10 @@ def _one_main(modules: dict[str, str]) -> None:
 
 
 def _load(path: str) -> str:
+    """The text of a file given, read once per import (the index, the saved data and the reader
+    all ask for it); a German pendant's TP in English words (fanuc_german)."""
+    if path in _LOADED:
+        return _LOADED[path]
     try:
         data = read_regular(path, MAX_BYTES)
     except NotRegularFile as exc:
@@ -199,6 +204,7 @@ def _load(path: str) -> str:
         text = english(text)
         _GERMAN.add(path)
     _SOURCES[path] = SourceFile(path, text)
+    _LOADED[path] = text
     return text
 
 
@@ -208,6 +214,8 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     reads its .dat (given too, or beside it). `model`: the robot library name the program runs
     on, where a vendor writes speeds relative to the arm (URScript movej); `limits`: its joint
     speed and acceleration limits (the caller loads the arm: a reader only reads text)."""
+    _LOADED.clear()  # a file changed since the last import is read again
+    _GERMAN.clear()
     paths = _project(paths)
     _MODEL[0] = model
     _LIMITS[0] = limits
@@ -217,7 +225,6 @@ def read_files(paths: list[str], model: str | None = None, limits: JointLimits |
     _FANUC_LABELS["UFRAME"].clear()
     _FANUC_PROGRAMS.clear()
     _FANUC_INLINED.clear()
-    _GERMAN.clear()
     _RAPID_TASK.clear()
     _KRL_ROUTINES.clear()
     _FANUC_SAVED[0] = _saved_data(paths)
@@ -259,10 +266,11 @@ def _index(paths: list[str]) -> None:
     share, collected from every file before any is read."""
     for path in paths:
         if path.lower().endswith(".ls"):
-            prog = re.match(r"\s*/PROG\s+([\w-]+)", _load(path))
+            text = _load(path)
+            prog = re.match(r"\s*/PROG\s+([\w-]+)", text)
             if prog:
-                _FANUC_PROGRAMS[prog.group(1).upper()] = (path, _load(path))
-            for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", _load(path)):
+                _FANUC_PROGRAMS[prog.group(1).upper()] = (path, text)
+            for kind, n, name in re.findall(r"!\s*(UTOOL|UFRAME)\[(\d+)\]\s*=\s*(\w+)", text):
                 _FANUC_LABELS[kind][int(n)] = name
         if path.lower().endswith(".pgx"):  # VAL3 programs by name, the same way
             program = re.search(r'<Program\s+name="(\w+)"', _load(path))

@@ -32,8 +32,7 @@ from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
     Call, Cond, Conds, For, FrameData, If, Move, Native, Pulse, PulsePose, SetOut, Stmt, Stop, Target, ToolData, WaitIn,
-    Where, Routine,
-)
+    Where, Routine)
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
 
@@ -215,9 +214,8 @@ class _Ls:
         stmt = self._simple(text, where)
         payload = re.fullmatch(r"PAYLOAD\[(\d+)\]", text)
         remark = re.fullmatch(r"!.*:\s*(\d+(?:\.\d+)?)\s*kg", self._text(i - 1)) if payload and i > 0 else None
-        if remark:
-            nan = float("nan")
-            self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (nan, nan, nan)))  # type: ignore[union-attr]
+        if remark:  # (its centre is not known)
+            self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (float("nan"),) * 3))  # type: ignore[union-attr]
         if stmt is None:
             selected = caller_selection(self.state, [self.taught.get(p) for p in path_points(text)], self.inherited)
             joint_form = [why for why in (self._tcp_of(p, where, selected["UTOOL"]) for p in path_points(text))
@@ -329,20 +327,24 @@ class _Ls:
         return [stmt], i + 1
 
     def _if_call(self, i: int, end: int) -> tuple[list[Stmt], int] | None:
-        """`IF (cond),action` (B-83284EN, IF with an action): a CALL of a program of the job, an
-        output set or pulsed (`DO[n]=ON`, `DO[n]=PULSE,3.0sec`) or a task variable's assignment."""
+        """`IF (cond),action` (B-83284EN, IF with an action) where `_action` reads the action."""
         text, where = self.instructions[i]
         m = re.fullmatch(r"IF\s*(.+?),\s*(.+)", text)
-        call = re.fullmatch(r"CALL\s+(\w+)", m.group(2)) if m else None
-        simple = match_simple(m.group(2), _SIMPLE, where) if m and not call else None
-        act: Stmt | None = (Call(call.group(1), (), where) if call.group(1).upper() in self.programs else None) if call else (
-            simple if isinstance(simple, (SetOut, Pulse)) else self.regs.assignment(m.group(2), where)
-            if m and self.regs is not None else None)
+        act = self._action(m.group(2), where) if m else None
         cond = self._condition(m.group(1)) if m and act is not None else None
         if cond is None or act is None:
             return None
         self.tally.imported += 1
         return [If(cond, (act,), (), where)], i + 1
+
+    def _action(self, text: str, where: Where) -> Stmt | None:
+        """An IF's action: a CALL of a program of the job, an output set or pulsed (`DO[n]=ON`,
+        `DO[n]=PULSE,3.0sec`) or a task variable's assignment; None for any other."""
+        call = re.fullmatch(r"CALL\s+(\w+)", text)
+        if call:
+            return Call(call.group(1), (), where) if call.group(1).upper() in self.programs else None
+        simple = match_simple(text, _SIMPLE, where)
+        return simple if isinstance(simple, (SetOut, Pulse)) else self.regs.assignment(text, where) if self.regs else None
 
     def _condition(self, text: str) -> Cond | Conds | None:
         """A TP condition on inputs and outputs (as `WAIT` reads it), or on registers and flags."""

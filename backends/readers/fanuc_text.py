@@ -234,7 +234,7 @@ def position_blocks(text: str) -> list[tuple[int, str | None, str, int]]:
     """The /POS section's `P[n:"label"]{ .. };` blocks of a TP program: (n, label, body, line of
     its header); a block with no `};` before the next header (a damaged file) is left out. Linear
     in the text: each block ends at the first `};` after its header, found among all of them in
-    one pass (a lazy match to `};` from every header rescanned a damaged file's tail each time)."""
+    one pass (a lazy match from each header would rescan a damaged file's tail for every block)."""
     start = max(text.find("/POS"), 0)
     pos = text[start:]
     heads = list(re.finditer(r"P\[(\d+)(?::\"([^\"\n]*)\")?\][ \t\r\n]*\{", pos))

@@ -213,10 +213,10 @@ class KrlVars:
         found = translate(self._spelled(text), KRL, self.visible, self._input, int_division=True)
         cond = found[0] if found is not None and found[1] == "bool" else None
         if cond is not None and where is not None:
-            self.warn_groups(cond, where)
+            self.warn_external(cond, where)
         return cond
 
-    def warn_groups(self, value: Cond | Conds | GroupIn, where: Where) -> None:
+    def warn_external(self, value: Cond | Conds | GroupIn, where: Where) -> None:
         """W534 at the first read of each group input `value` reads; W549 at the first read of
         each flag or BOOL global another program raises, read as an input."""
         for c in leaves(value):
@@ -253,7 +253,7 @@ class KrlVars:
         found = translate(m.group(2), KRL, self.visible, self._input, int_division=True)
         if found is None or not fits(type_, found[1]):
             return None
-        self.warn_groups(found[0], ln.where)
+        self.warn_external(found[0], ln.where)
         return Assign(name, found[0], ln.where)
 
     def why(self, text: str) -> str | None:
@@ -333,7 +333,7 @@ class KrlVars:
         group is part {0}, warned W534 at its first use)."""
         group = self.switch_group(ln.text, params)
         if group is not None:
-            self.warn_groups(group, ln.where)
+            self.warn_external(group, ln.where)
             return "{0}", "logic", (group,)
         name = self.switchable(params)[ln.text.split()[1].upper()][0]
         return name, "logic" if self.switch_var(ln.text) else "expr", ()

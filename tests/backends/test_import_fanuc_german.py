@@ -120,3 +120,17 @@ def test_a_german_program_reads_as_its_english_export(tmp_path: Path) -> None:
     (kinds_de, stmts_de), (kinds_en, stmts_en) = docs
     assert kinds_de == kinds_en == ["Move", "SetOut", "WaitIn", "If", "SetOut", "Move"]
     assert [str(s).replace("/de/", "/en/") for s in stmts_de] == [str(s) for s in stmts_en]
+
+
+def test_each_import_reads_the_files_as_they_are_now(tmp_path: Path) -> None:
+    """A file is read once per import and again by the next: an edit between two imports (a
+    German export replaced by an English one with another output) is seen, and W551 follows it."""
+    path = tmp_path / "DE.ls"
+    path.write_text(PROGRAM.format(**GERMAN))
+    first = read_files([str(path)])
+    path.write_text(PROGRAM.format(**{**ENGLISH, "out": "DO[131]=(ON)"}))
+    second = read_files([str(path)])
+    assert [d.code.id for d in first.diagnostics].count("W551") == 1
+    assert "W551" not in [d.code.id for d in second.diagnostics]
+    outs = [[s.signal for r in d.routines for s in walk(r.body) if type(s).__name__ == "SetOut"] for d in (first, second)]
+    assert outs == [[129, 130], [131, 130]]
