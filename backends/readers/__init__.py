@@ -36,7 +36,7 @@ def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
     m = read_rapid(path, text, _RAPID_TASK)
     main = next((r.name for r in m.routines if r.name.lower() == "main"), m.routines[0].name if m.routines else "main")
     doc = Document("rapid", m.name, main, tuple(m.targets.values()), tuple(m.tools.values()),
-                   tuple(m.frames.values()), tuple(m.routines), tuple(m.consts.items()), (m.tally.count(),),
+                   tuple(m.frames.values()), (*m.routines, *m.tally.unreached), tuple(m.consts.items()), (m.tally.count(),),
                    tuple(m.tally.diagnostics), tuple(m.tally.comments))
     return doc, m.tally
 
@@ -53,7 +53,7 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
     main = "" if any(r.params for r in m.routines if r.name == main) else main  # a module taking parameters: a proc
     targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
     doc = Document("krl", m.name, main, targets, tuple(m.tools.values()),
-                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.frames.values()), (*m.routines, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments), m.named_loads())
     return doc, m.tally
 
@@ -63,7 +63,7 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 
     m = read_urscript(path, text, _MODEL[0], _LIMITS[0])
     doc = Document("urscript", m.name, m.main, tuple(m.targets.values()), tuple(m.tools.values()), (),
-                   tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics), tuple(m.tally.comments))
+                   (*m.routines, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics), tuple(m.tally.comments))
     return doc, m.tally
 
 
@@ -77,7 +77,7 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
                      "English words the same program's English export has (WARTE is WAIT, E[n] DI[n], [&] AND); its "
                      "lines show and its native lines are kept in those words", Where(path, 1))
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
-                   tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.frames.values()), (m.routine, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments), tuple(m.loads))
     return doc, m.tally
 
@@ -88,7 +88,7 @@ def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Do
     m = read_inform(path, text, _FANUC_PROGRAMS, _PULSES[0], _PULSE_POSE[0])
     _FANUC_INLINED.update(m.inlined)
     doc = Document("inform", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
-                   tuple(m.frames.values()), (m.routine,), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.frames.values()), (m.routine, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments))
     return doc, m.tally
 
@@ -103,7 +103,7 @@ def _val3(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docu
     main = m.routines[0].name if m.routines else "start"
     name = os.path.basename(folder) if main == "start" else main  # the application is its folder
     doc = Document("val3", name, main, tuple(m.targets.values()), tuple(m.tools.values()),
-                   tuple(m.frames.values()), tuple(m.routines), (), (m.tally.count(),), tuple(m.tally.diagnostics),
+                   tuple(m.frames.values()), (*m.routines, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
                    tuple(m.tally.comments))
     return doc, m.tally
 

@@ -199,3 +199,10 @@ START_TOOL_UNKNOWN = Code("W546", "start-tool-unknown",
                           "a KRL or URScript program moves (Cartesian) before it sets its tool or base: the move is "
                           "read with the bare flange and the robot base, while the controller runs it with the ones "
                           "set before the program")
+
+# what an unconditional jump skips every time, read into a proc nothing calls (jump_spans.py)
+__all__ += ["UNREACHED_READ_AS_PROC"]
+UNREACHED_READ_AS_PROC = Code("W552", "unreached-read-as-proc",
+                              "an unconditional forward jump skips lines every time and no line names a label "
+                              "among them: they never run, and are read into a proc nothing calls (their moves "
+                              "and targets kept, not planned, verified or compiled)")

@@ -13,7 +13,9 @@ from collections.abc import Callable
 from typing import TypeVar
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.model import Call, Cond, FileCount, Native, Pulse, SetOut, Stmt, Wait, WaitIn, Where
+from rmot.backends.readers.model import (
+    Call, Cond, FileCount, Native, Pulse, Routine, SetOut, Stmt, Wait, WaitIn, Where,
+)
 from rmot.lang import ir
 from rmot.lang.diagnostics import Code, Diagnostic, Severity
 from rmot.lang.source import Pos, SourceFile, Span
@@ -53,6 +55,7 @@ class Tally:
         self.imported = 0
         self.native = 0
         self.comments: list[Native] = []  # declarations and routines kept as a comment block
+        self.unreached: list[Routine] = []  # what a jump skips every time, as procs nothing calls (jump_spans.py)
         self.depth = 0  # blocks open while reading (bounded: a hostile file cannot exhaust the stack)
 
     def span(self, where: Where) -> Span:

@@ -10,23 +10,43 @@ for a backward jump, from the label to the jump) is kept native with the reason,
 label is not in the same block, everything after the jump in that block is. A program that is
 one endless cycle (its first line a label, its last an unconditional jump back to it) is read as
 one cycle, W518, as the other readers read an outermost `LOOP` / `while True:`.
+
+What an unconditional forward jump (`GOTO FINAL`, `JMP LBL[9]`, `JUMP *END`) skips, where no
+line of the routine names a label among it (by any jump, wait exit or SELECT arm) and no native
+block line (`ENDIF`, `CASE`, `ELSE`, ..) among it says the jump sits in a block that ends
+there, never runs: programs keep teach points there (a KUKA palletizing program's section of
+inline forms after `GOTO FINAL`) or switch code off. It is read, not kept native: into a proc
+no line calls (W552), so its moves and targets are rmot's while nothing plans, verifies or
+compiles them, as the controller never runs them. Where it declares, assigns or tests a
+variable or passes an argument (a proc sees no task variable), it stays native as above.
 """
 
 from __future__ import annotations
 
 import bisect
+import os
 import re
 from collections.abc import Callable, Sequence
 from typing import Protocol
 
 from rmot.backends.readers import codes
-from rmot.backends.readers.common import Tally
-from rmot.backends.readers.model import Native, Stmt, Where, walk
+from rmot.backends.readers.common import Tally, rmot_name
+from rmot.backends.readers.model import Assign, Call, Cond, Conds, GroupIn, Native, Routine, Stmt, Sync, VarDecl, Where, walk
 
 __all__ = ["keep_jumped_spans", "goto_spans"]
 
 _CONDITIONAL = re.compile(r"(?i)\bIF\b")
 _GOTO = re.compile(r"(?i)\bGOTO\s+(\w+)")  # RAPID `GOTO l;` / `IF c GOTO l;`, KRL `GOTO l`
+# every way a line names a label it may go to (group 1: the label as written; a name no label
+# has, as `LBL[R[1]]`'s, is a jump rmot cannot follow: then nothing of the routine is unreached)
+_REFERENCE = {
+    "fanuc": re.compile(r"LBL\[([^\]:]*)"),  # JMP LBL[n], TIMEOUT,LBL[n], Skip,LBL[n], SELECT arms
+    "inform": re.compile(r"(?i)\bJUMP\s+(?!JOB:)\*?(\S+)"),
+    "krl": _GOTO,
+    "rapid": _GOTO,
+}
+# a native line that closes or divides a block: the jump before it may sit inside that block
+_BLOCK_LINE = re.compile(r"(?i)^\s*(?:=|(?:END\w*|ELSE\w*|CASE|DEFAULT|UNTIL)\b)")
 
 
 def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
@@ -39,6 +59,8 @@ def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str
     if _is_cycle(out, jump, label_of):
         tally.warn(codes.LOOP_READ_ONCE, "a jump from the program's end back to its first line is read as one cycle "
                    "of the program (the controller repeats an rmot program)", out[-1].where)
+    gone = _read_unreached(out, tally, jump, label_of, instructions)
+    instructions = [(text, w) for text, w in instructions if w.line not in gone]
     lines = [w.line for _, w in instructions]  # in source order
     for _ in range(len(body) + 1):  # each pass keeps every disjoint open span; bounded by the jumps there are
         spans = _open_spans(out, jump, label_of)
@@ -86,6 +108,78 @@ def _open_spans(body: list[Stmt], jump: re.Pattern[str], label_of: Callable[[str
         spans.append((lo, hi, first, last, _why(s, b is None or b > a)))
         reached = len(body) if b is None else max(a, b)
     return spans
+
+
+def _named_labels(instructions: Sequence[tuple[str, Where]], label_of: Callable[[str], str | None],
+                  reference: re.Pattern[str]) -> set[str] | None:
+    """The labels (upper case) some line of the routine names, or None where a line names one
+    the routine lacks (a jump to a computed label: any line may be its target)."""
+    labels = {name.upper() for text, _ in instructions if (name := label_of(text)) is not None}
+    named = {m.group(1).upper() for text, _ in instructions if label_of(text) is None
+             for m in reference.finditer(text)}
+    return named if named <= labels else None
+
+
+def _unreached(span: list[Stmt], inside: Sequence[tuple[str, Where]], label_of: Callable[[str], str | None],
+               named: set[str]) -> bool:
+    """Whether what an unconditional forward jump skips (`span`, its statements; `inside`, its
+    instruction lines at any depth) never runs and can stand in a proc no line calls."""
+    if any((name := label_of(text)) is not None and name.upper() in named for text, _ in inside):
+        return False  # a jump lands among it
+    if any(isinstance(s, Native) and _BLOCK_LINE.match(s.text) for s in span):
+        return False  # the jump sits in a native block that ends or divides here
+    for s in walk(tuple(span)):
+        if isinstance(s, (VarDecl, Assign, Sync)) or (isinstance(s, Call) and s.args):
+            return False  # a proc sees no task variable, and a sync in a proc counts as run
+        cond = getattr(s, "cond", None)
+        if cond is not None and _tests_variable(cond):
+            return False
+    return True
+
+
+def _tests_variable(cond: Cond | Conds | GroupIn) -> bool:
+    """Whether a condition holds a variable's test (an expression), not only signals."""
+    return isinstance(cond, Conds) and (cond.op in ("logic", "expr") or any(_tests_variable(p) for p in cond.parts))
+
+
+def _read_unreached(out: list[Stmt], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
+                    instructions: Sequence[tuple[str, Where]]) -> set[int]:
+    """Take out of `out` what its unconditional forward jumps skip where it never runs (see the
+    module docstring), each into a proc nothing calls (`tally.unreached`), W552 at the jump;
+    the lines of the instructions taken."""
+    gone: set[int] = set()
+    named = _named_labels(instructions, label_of, _REFERENCE[tally.vendor])
+    lines = [w.line for _, w in instructions]
+    for a, s in enumerate(out):
+        m = jump.match(s.text.strip()) if isinstance(s, Native) and not _CONDITIONAL.search(s.text) else None
+        b = _label_after(out, a, m.group(1), label_of) if m is not None and named is not None else None
+        if b is None or not isinstance(s, Native):
+            continue
+        span, label = out[a + 1:b], out[b]
+        inside = instructions[bisect.bisect_right(lines, s.where.line):bisect.bisect_left(lines, label.where.line)]
+        if any(not isinstance(t, Native) for t in span) and _unreached(span, inside, label_of, named or set()):
+            out[a + 1:b] = []  # after place a: the loop goes on at the label
+            _as_proc(tally, span, s)
+            gone.update(w.line for _, w in inside)
+    return gone
+
+
+def _label_after(out: list[Stmt], a: int, name: str, label_of: Callable[[str], str | None]) -> int | None:
+    """The place of the first native label line `name` after place `a` in `out`."""
+    return next((k for k in range(a + 1, len(out)) if isinstance(t := out[k], Native)
+                 and (label_of(t.text) or "").upper() == name.upper()), None)
+
+
+def _as_proc(tally: Tally, span: list[Stmt], jump: Native) -> None:
+    """`span` (what `jump` skips) as a proc no line calls, W552 at the jump."""
+    first, last = span[0].where.line, max(s.where.line for s in walk(tuple(span)))
+    name = rmot_name(f"{os.path.splitext(os.path.basename(tally.path))[0]}_unreached_{first}")
+    tally.unreached.append(Routine(name, (), tuple(span), span[0].where))
+    lines, them = (f"line {first} never runs", "it") if first == last else (f"lines {first}-{last} never run", "them")
+    tally.warn(codes.UNREACHED_READ_AS_PROC, f"{lines}: `{jump.text.rstrip(' ;')}` jumps over {them} every time and "
+               f"no line names a label among {them} (teach points kept there, or code switched off); read into "
+               f"`proc {name}`, which nothing calls: the moves and targets are kept, "
+               "not planned, verified or compiled", jump.where)
 
 
 def _why(s: Native, forward: bool) -> str:

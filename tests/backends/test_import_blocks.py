@@ -191,9 +191,11 @@ def test_a_tp_program_that_jumps_back_to_its_first_line_is_one_cycle(tmp_path: P
 
 
 def test_what_an_unconditional_jump_skips_says_so(tmp_path: Path) -> None:
+    """Nothing lands among what it skips: it never runs, and is read into a proc nothing calls
+    (test_import_unreached.py has where something may land)."""
     program, output = _import(tmp_path, ["DO[1]=ON", "JMP LBL[9]", "DO[2]=ON", "LBL[9]", "DO[3]=ON"])
-    assert 'native fanuc "DO[2]=ON ;"' in program and "set out[3] = on" in program
-    assert "`JMP LBL[9]` at line 5 jumps over this every time" in output
+    assert "proc blk_unreached_6() {\n    set out[2] = on\n  }" in program and "set out[3] = on" in program
+    assert "blk.ls:5:4: warning[W552]: line 6 never runs: `JMP LBL[9]` jumps over it every time" in output
 
 
 def test_what_a_rapid_goto_skips_is_kept_native(tmp_path: Path) -> None:
@@ -275,11 +277,16 @@ def test_a_jump_to_a_label_inside_a_block_waits_for_the_block_to_be_kept(tmp_pat
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(st.lists(st.tuples(st.integers(0, 11), st.integers(1, 4), st.booleans()), min_size=1, max_size=5))
 def test_jump_spans_keep_every_instruction_once_in_order(tmp_path: Path, jumps: list[tuple[int, int, bool]]) -> None:
-    """Random jumps (conditional or not, forward or back) among 12 outputs and 4 labels."""
+    """Random jumps (conditional or not, forward or back) among 12 outputs and 4 labels: each
+    output is read or kept once, in order (the main body, and apart each proc of what never runs)."""
     body = [f"DO[{k + 1}]=ON" for k in range(12)]
     for n, at in enumerate((3, 6, 9, 11), 1):
         body.insert(at + n - 1, f"LBL[{n}]")
     for at, label, conditional in sorted(jumps, reverse=True):
         body.insert(at, f"IF TIMER[1]>1,JMP LBL[{label}]" if conditional else f"JMP LBL[{label}]")
     program, _ = _import(tmp_path, body)
-    assert _lines_read(program) == [f"DO[{k + 1}]" for k in range(12)], body
+    procs = re.findall(r"  proc \w+_unreached_\d+\(\) \{\n.*?\n  \}\n", program, re.S)  # what never runs (W552)
+    main = re.sub(r"  proc \w+_unreached_\d+\(\) \{\n.*?\n  \}\n", "", program, flags=re.S)
+    parts = [_lines_read(main), *(_lines_read(p) for p in procs)]
+    assert all(part == sorted(part, key=lambda d: int(d[3:-1])) for part in parts), body  # each in order
+    assert sorted(sum(parts, []), key=lambda d: int(d[3:-1])) == [f"DO[{k + 1}]" for k in range(12)], body  # once
