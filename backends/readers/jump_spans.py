@@ -1,4 +1,5 @@
-"""Instructions a jump the reader kept native can skip or repeat are kept native too.
+"""Instructions a jump the reader kept native can skip or repeat are kept native too; those it
+skips every time, where nothing else reaches them, are read into a proc nothing calls.
 
 INFORM and Fanuc TP branch and loop with jumps to labels (`JUMP *L IF ..`, `IF R[1]<>1,JMP
 LBL[2]`). The readers turn the jump forms they understand into rmot `if`/`for`/`while`; a jump
@@ -35,7 +36,9 @@ from rmot.backends.readers.model import Assign, Call, Cond, Conds, GroupIn, Nati
 
 __all__ = ["keep_jumped_spans", "goto_spans"]
 
-_CONDITIONAL = re.compile(r"(?i)\bIF\b")
+# a jump taken only as a value decides: on a condition, or an arm of a TP SELECT (`SELECT R[1]=1,JMP
+# LBL[10]`, `=2,JMP LBL[20]`, `ELSE,JMP LBL[99]`)
+_CONDITIONAL = re.compile(r"(?i)\bIF\b|^\s*(?:SELECT\b|ELSE\s*,|=)")
 _GOTO = re.compile(r"(?i)\bGOTO\s+(\w+)")  # RAPID `GOTO l;` / `IF c GOTO l;`, KRL `GOTO l`
 # every way a line names a label it may go to (group 1: the label as written; a name no label
 # has, as `LBL[R[1]]`'s, is a jump rmot cannot follow: then nothing of the routine is unreached)

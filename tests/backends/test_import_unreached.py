@@ -220,3 +220,13 @@ def test_nothing_a_tp_path_reaches_is_read_as_unreached(tmp_path: Path, body: li
                                          r"(IF .*,JMP|WAIT .*TIMEOUT,)\s*LBL\[(?P<l>\d+)\]", r"LBL\[(?P<l>\d+)\]")}
     assert not unreached & reached, (body, unreached)  # /MN's first instruction is the file's line 4
     assert not unreached & native
+
+
+def test_the_arms_of_a_tp_select_are_jumps_a_value_decides(tmp_path: Path) -> None:
+    """`SELECT R[1]=1,JMP LBL[10]`, `=2,..`, `ELSE,JMP LBL[99]` (B-83284EN, SELECT): each arm jumps
+    as R[1] decides, never every time; what they skip stays native, and none of it is unreached."""
+    lines = ["SELECT R[1]=1,JMP LBL[10]", "=2,JMP LBL[20]", "ELSE,JMP LBL[99]", "LBL[10]", "DO[1]=ON", "JMP LBL[99]",
+             "LBL[20]", "DO[2]=ON", "LBL[99]", "DO[3]=ON"]
+    program, output = _import(tmp_path, "t.ls", _tp(lines))
+    assert "`ELSE,JMP LBL[99]` at line 6 jumps over this as a run-time value decides" in output
+    assert "every time" not in output and "W552" not in output and "set out[3] = on" in program
