@@ -27,12 +27,16 @@ from __future__ import annotations
 import bisect
 import os
 import re
+from dataclasses import replace
 from collections.abc import Callable, Sequence
 from typing import Protocol
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, rmot_name
-from rmot.backends.readers.model import Assign, Call, Cond, Conds, GroupIn, Native, Routine, Stmt, Sync, VarDecl, Where, walk
+from rmot.backends.readers.rapid_text import native_line
+from rmot.backends.readers.model import (
+    Assign, Call, Cond, Conds, For, GroupIn, If, Native, Routine, Stmt, Sync, VarDecl, WaitIn, Where, While, walk,
+)
 
 __all__ = ["keep_jumped_spans", "goto_spans"]
 
@@ -48,8 +52,9 @@ _REFERENCE = {
     "krl": _GOTO,
     "rapid": _GOTO,
 }
-# a native line that closes or divides a block: the jump before it may sit inside that block
-_BLOCK_LINE = re.compile(r"(?i)^\s*(?:=|(?:END\w*|ELSE\w*|CASE|DEFAULT|UNTIL)\b)")
+# a native line that closes or divides a block, or starts a RAPID routine's handler (an error, a
+# backward run or an undo runs it): the jump before it may sit inside that block, or reach it
+_BLOCK_LINE = re.compile(r"(?i)^\s*(?:=|(?:END\w*|ELSE\w*|CASE|DEFAULT|UNTIL|ERROR|BACKWARD|UNDO)\b)")
 
 
 def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
@@ -58,15 +63,23 @@ def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str
     module docstring). `jump` finds the label a native line jumps to (group 1); `label_of(text)`
     the label a native line is (None: none; compared without case); `instructions` the routine's
     (text, place) in order; `native_text` the text a native line of an instruction carries."""
-    out = list(body)
-    if _is_cycle(out, jump, label_of):
+    if _is_cycle(list(body), jump, label_of):
         tally.warn(codes.LOOP_READ_ONCE, "a jump from the program's end back to its first line is read as one cycle "
-                   "of the program (the controller repeats an rmot program)", out[-1].where)
-    gone = _read_unreached(out, tally, jump, label_of, instructions)
+                   "of the program (the controller repeats an rmot program)", body[-1].where)
+    return _spans(body, tally, jump, label_of, instructions, native_text)
+
+
+def _spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
+           instructions: Sequence[tuple[str, Where]], native_text: Callable[[str], str]) -> tuple[Stmt, ...]:
+    """`body` (a routine's, or a block's inside it) with its jumps' spans kept native or read as
+    unreached, its blocks' first (keep_jumped_spans)."""
+    inner: set[int] = set()  # the lines of jumps a block held
+    out = _blocks_with_jumps(body, tally, jump, label_of, instructions, native_text, inner)
+    gone = _read_unreached(out, tally, jump, label_of, instructions, inner)
     instructions = [(text, w) for text, w in instructions if w.line not in gone]
     lines = [w.line for _, w in instructions]  # in source order
     for _ in range(len(body) + 1):  # each pass keeps every disjoint open span; bounded by the jumps there are
-        spans = _open_spans(out, jump, label_of)
+        spans = _open_spans(out, jump, label_of, inner)
         if not spans:
             break
         shift = 0  # how far the spans kept before this one moved the places after them
@@ -80,13 +93,77 @@ def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str
     return tuple(out)
 
 
+def _blocks_with_jumps(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str],
+                      label_of: Callable[[str], str | None], instructions: Sequence[tuple[str, Where]],
+                      native_text: Callable[[str], str], inner: set[int]) -> list[Stmt]:
+    """`body` with each read block (an if, a loop, a wait's timeout branch) that holds a native
+    jump: where every such jump lands in its own body, that body's spans kept as a routine's are;
+    where one leaves its body, the whole block kept native, for which of its lines run is then
+    known only at run time (the jump, now on the body's level, spans what follows as any other,
+    as a jump a value decides: its line goes into `inner`)."""
+    out: list[Stmt] = []
+    for k, s in enumerate(body):
+        leaving = _jump_leaving(s, jump, label_of)
+        if leaving is not None:
+            end = body[k + 1].where.line if k + 1 < len(body) else float("inf")
+            kept = {t.where.line: t for t in walk((s,)) if isinstance(t, Native)}
+            tally.imported -= sum(not isinstance(t, Native) for t in walk((s,)))
+            inner.update(t.where.line for t in kept.values() if jump.search(t.text))
+            why = (f"`{leaving.text.rstrip(' ;')}` at line {leaving.where.line} inside this block jumps out of it: "
+                   "which of its lines run is known only at run time")
+            out += [kept.get(w.line) or tally.keep(native_text(text), w, why)
+                    for text, w in instructions if s.where.line <= w.line < end]
+        else:
+            out.append(_with_spans_inside(s, tally, jump, label_of, instructions, native_text))
+    return out
+
+
+def _with_spans_inside(s: Stmt, tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
+                       instructions: Sequence[tuple[str, Where]], native_text: Callable[[str], str]) -> Stmt:
+    """Block `s` with the spans of the jumps in its bodies kept (each lands in its own body)."""
+    def spans(inside: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
+        return _spans(inside, tally, jump, label_of, instructions, native_text)
+
+    if isinstance(s, If):
+        return replace(s, then=spans(s.then), orelse=spans(s.orelse))
+    if isinstance(s, (While, For)):
+        return replace(s, body=spans(s.body))
+    if isinstance(s, WaitIn):
+        return replace(s, orelse=spans(s.orelse))
+    return s
+
+
+def _bodies(s: Stmt) -> tuple[tuple[Stmt, ...], ...]:
+    """The bodies of a block statement (none for any other)."""
+    if isinstance(s, If):
+        return s.then, s.orelse
+    if isinstance(s, (While, For)):
+        return (s.body,)
+    return (s.orelse,) if isinstance(s, WaitIn) else ()
+
+
+def _jump_leaving(s: Stmt, jump: re.Pattern[str], label_of: Callable[[str], str | None]) -> Native | None:
+    """A native jump inside block `s` (at any depth) whose label is not in its own body, if any."""
+    for block_body in _bodies(s):
+        labels = {(label_of(t.text) or "").upper() for t in block_body if isinstance(t, Native)}
+        for t in block_body:
+            m = jump.search(t.text) if isinstance(t, Native) else None
+            if isinstance(t, Native) and m is not None and m.group(1).upper() not in labels:
+                return t
+            found = _jump_leaving(t, jump, label_of)
+            if found is not None:
+                return found
+    return None
+
+
 def _open_spans(body: list[Stmt], jump: re.Pattern[str], label_of: Callable[[str], str | None],
-                ) -> list[tuple[int, int, int, float, str]]:
+                inner: set[int]) -> list[tuple[int, int, int, float, str]]:
     """(first and end index in `body`, the source lines strictly between which everything is
     kept, the reason) of the native jumps whose spans still hold a read instruction: the first
     one, then those after it that overlap none before and whose label is in the body (one with
     none reaches the end: it waits for the next pass, where keeping other spans may bring its
-    label out of a block). Processed together they give what one at a time would."""
+    label out of a block). Processed together they give what one at a time would. A jump on an
+    `inner` line (a block held it) is one a value decides."""
     labels: dict[str, int] = {}  # each label's first place in the body, found in one scan
     reads = [0]  # how many statements before each place are read (not native)
     for k, t in enumerate(body):
@@ -108,7 +185,7 @@ def _open_spans(body: list[Stmt], jump: re.Pattern[str], label_of: Callable[[str
             break
         first = s.where.line if b is None else body[min(a, b)].where.line
         last = float("inf") if b is None else body[max(a, b)].where.line
-        spans.append((lo, hi, first, last, _why(s, b is None or b > a)))
+        spans.append((lo, hi, first, last, _why(s, b is None or b > a, s.where.line in inner)))
         reached = len(body) if b is None else max(a, b)
     return spans
 
@@ -146,15 +223,16 @@ def _tests_variable(cond: Cond | Conds | GroupIn) -> bool:
 
 
 def _read_unreached(out: list[Stmt], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
-                    instructions: Sequence[tuple[str, Where]]) -> set[int]:
-    """Take out of `out` what its unconditional forward jumps skip where it never runs (see the
-    module docstring), each into a proc nothing calls (`tally.unreached`), W552 at the jump;
-    the lines of the instructions taken."""
+                    instructions: Sequence[tuple[str, Where]], inner: set[int]) -> set[int]:
+    """Take out of `out` what its unconditional forward jumps (not on the `inner` lines, which a
+    block held) skip where it never runs (see the module docstring), each into a proc nothing
+    calls (`tally.unreached`), W552 at the jump; the lines of the instructions taken."""
     gone: set[int] = set()
     named = _named_labels(instructions, label_of, _REFERENCE[tally.vendor])
     lines = [w.line for _, w in instructions]
     for a, s in enumerate(out):
-        m = jump.match(s.text.strip()) if isinstance(s, Native) and not _CONDITIONAL.search(s.text) else None
+        m = (jump.match(s.text.strip()) if isinstance(s, Native) and not _CONDITIONAL.search(s.text)
+             and s.where.line not in inner else None)
         b = _label_after(out, a, m.group(1), label_of) if m is not None and named is not None else None
         if b is None or not isinstance(s, Native):
             continue
@@ -185,9 +263,9 @@ def _as_proc(tally: Tally, span: list[Stmt], jump: Native) -> None:
                "not planned, verified or compiled", jump.where)
 
 
-def _why(s: Native, forward: bool) -> str:
+def _why(s: Native, forward: bool, in_block: bool) -> str:
     text = s.text.rstrip(" ;")
-    when = ("as a run-time value decides (it runs zero, once or many times)" if _CONDITIONAL.search(text)
+    when = ("as a run-time value decides (it runs zero, once or many times)" if in_block or _CONDITIONAL.search(text)
             else "every time (it runs only where another jump lands in it, or again and again)")
     return f"`{text}` at line {s.where.line} jumps {'over' if forward else 'back over'} this {when}"
 
@@ -218,15 +296,7 @@ def goto_spans(body: Sequence[Stmt], tally: Tally, lines: Sequence[_Line]) -> tu
     (as `keep_jumped_spans`); `lines`: the routine's statements (text, place), its header and end
     excluded."""
     return keep_jumped_spans(tuple(body), tally, _GOTO, _goto_label, [(ln.text, ln.where) for ln in lines if ln.text.strip()],
-                             _rapid_native if tally.vendor == "rapid" else str.strip)
-
-
-def _rapid_native(text: str) -> str:
-    """A RAPID statement as its native line: with its `;` (the reader's statements carry none),
-    except a block's own line (`IF .. THEN`, `ENDIF`, ..) and a label."""
-    text = text.strip()
-    block = re.match(r"(?i)^(IF\b.*\bTHEN|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST)\b", text)
-    return text if block or text.endswith(":") else text + ";"
+                             native_line if tally.vendor == "rapid" else str.strip)
 
 
 def _goto_label(text: str) -> str | None:

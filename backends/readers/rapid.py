@@ -27,7 +27,7 @@ from rmot.backends.readers.rapid_data import (
     LATE_CALL, VELSET, DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
 )
 from rmot.backends.readers.rapid_logic import RapidVars, condition
-from rmot.backends.readers.rapid_text import Statement, literal, statements
+from rmot.backends.readers.rapid_text import Statement, literal, native_line, statements
 from rmot.lang import ir
 
 __all__ = ["read_rapid", "pose_expr", "num_text", "mm"]
@@ -191,7 +191,7 @@ class _Module:
                         "interrupt routine or a parameter rmot has no type for): kept as a comment", start.where)
         while i < len(self.stmts) and self.stmts[i].word != end:
             st = self.stmts[i]
-            self.tally.comment(st.text if _no_semicolon(st.text) or i == start_i else st.text + ";", st.where)
+            self.tally.comment(st.text if i == start_i else native_line(st.text), st.where)
             i += 1
         if i < len(self.stmts):
             self.tally.comment(self.stmts[i].text, self.stmts[i].where)
@@ -249,7 +249,7 @@ class _Module:
             if st.word in ("ERROR", "UNDO", "BACKWARD") and "ENDPROC" in ends:
                 j = i
                 while j < len(self.stmts) and self.stmts[j].word != "ENDPROC":
-                    body.append(self.tally.keep(self.stmts[j].text, self.stmts[j].where, "an error handler"))
+                    body.append(self.tally.keep(native_line(self.stmts[j].text), self.stmts[j].where, "an error handler"))
                     j += 1
                 return body, j
             stmt, i = self._statement(i)
@@ -328,8 +328,7 @@ class _Module:
             st = self.stmts[i]
             depth += st.word == end[3:]
             depth -= st.word == end
-            text = st.text if _no_semicolon(st.text) else st.text + ";"
-            out.append(self.tally.keep(text, st.where, why))
+            out.append(self.tally.keep(native_line(st.text), st.where, why))
             i += 1
             if depth <= 0:
                 break
@@ -578,10 +577,6 @@ def _cond(text: str, data: set[str]) -> Cond | None:
     if m:
         return Cond(m.group(2), not m.group(1))
     return None
-
-
-def _no_semicolon(text: str) -> bool:
-    return re.match(r"(?i)^(IF|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST)\b|^\w+\s*:$", text) is not None
 
 
 def read_rapid(path: str, text: str, task: Mapping[str, str] | None = None) -> _Module:

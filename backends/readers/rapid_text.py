@@ -14,7 +14,7 @@ from rmot.backends.readers.common import number, split_top
 from rmot.backends.readers.model import Where
 from rmot.lang.record import record
 
-__all__ = ["Statement", "statements", "literal", "Literal"]
+__all__ = ["Statement", "statements", "literal", "Literal", "native_line"]
 
 _BLOCK = re.compile(
     r"(?i)^\s*(?:(?:LOCAL|SYSMODULE)\s+)?(?:MODULE\b|ENDMODULE\b|PROC\b|ENDPROC\b|FUNC\b|ENDFUNC\b|TRAP\b|ENDTRAP\b"
@@ -121,3 +121,15 @@ def literal(text: str, depth: int = 0) -> Literal | None:
     if re.fullmatch(r"[A-Za-z_]\w*|\"[^\"]*\"", text):
         return text
     return None
+
+
+# the lines RAPID writes without `;`: a block's own lines, a label, a routine's handler keywords
+_NO_SEMICOLON = re.compile(r"(?i)^(IF\b.*\bTHEN|ELSEIF|ELSE|ENDIF|FOR|ENDFOR|WHILE|ENDWHILE|TEST|CASE|DEFAULT|ENDTEST"
+                           r"|ERROR|UNDO|BACKWARD)\b|^\w+\s*:$")
+
+
+def native_line(text: str) -> str:
+    """A statement (as `statements` gives it, without its `;`) as the RAPID line a native
+    statement keeps: with its `;`, except a block's own line, a label and a handler keyword."""
+    text = text.strip()
+    return text if _NO_SEMICOLON.match(text) else text + ";"

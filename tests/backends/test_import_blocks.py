@@ -290,3 +290,22 @@ def test_jump_spans_keep_every_instruction_once_in_order(tmp_path: Path, jumps: 
     parts = [_lines_read(main), *(_lines_read(p) for p in procs)]
     assert all(part == sorted(part, key=lambda d: int(d[3:-1])) for part in parts), body  # each in order
     assert sorted(sum(parts, []), key=lambda d: int(d[3:-1])) == [f"DO[{k + 1}]" for k in range(12)], body  # once
+
+
+def test_a_krl_goto_out_of_a_loop_keeps_the_loop_and_what_it_skips_native(tmp_path: Path) -> None:
+    """`GOTO skip` inside an IF inside a WHILE leaves both: which of the loop's lines run, and
+    whether `$OUT[4]` after it does, is known only at run time. Read as rmot's while, `set out[2]`
+    would be planned on every pass and `set out[4]` always."""
+    program, output = _read(tmp_path, "n.src", "DEF n()\n  DECL INT n\n  n = 0\n  WHILE n < 3\n    n = n + 1\n"
+                            "    IF $IN[1] THEN\n      GOTO skip\n    ENDIF\n    $OUT[2] = TRUE\n  ENDWHILE\n"
+                            "  $OUT[4] = TRUE\n  skip:\n  $OUT[3] = TRUE\nEND\n")
+    assert "while" not in program and 'native krl "$OUT[2] = TRUE"' in program and 'native krl "WHILE n < 3"' in program
+    assert 'native krl "$OUT[4] = TRUE"' in program and "  set out[3] = on\n" in program
+    assert "`GOTO skip` at line 7 inside this block jumps out of it" in output
+    assert "`GOTO skip` at line 7 jumps over this as a run-time value decides" in output
+
+
+def test_a_tp_jump_out_of_an_if_block_keeps_what_it_skips_native(tmp_path: Path) -> None:
+    program, output = _import(tmp_path, ["IF (DI[1]=ON) THEN", "JMP LBL[5]", "ENDIF", "DO[2]=ON", "LBL[5]", "DO[3]=ON"])
+    assert 'native fanuc "DO[2]=ON ;"' in program and "set out[3] = on" in program and "if in[1]" not in program
+    assert "W552" not in output and "`JMP LBL[5]` at line 5 jumps over this as a run-time value decides" in output

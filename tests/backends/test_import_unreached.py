@@ -230,3 +230,46 @@ def test_the_arms_of_a_tp_select_are_jumps_a_value_decides(tmp_path: Path) -> No
     program, output = _import(tmp_path, "t.ls", _tp(lines))
     assert "`ELSE,JMP LBL[99]` at line 6 jumps over this as a run-time value decides" in output
     assert "every time" not in output and "W552" not in output and "set out[3] = on" in program
+
+
+RAPID_HANDLER = """MODULE H
+  CONST robtarget p1:=[[500,0,500],[0,1,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];
+  VAR num n := 0;
+  PROC main()
+    MoveJ p1, v100, fine, tool0;
+    n := n + 1;
+    WHILE n < 3 DO
+      IF n > 2 GOTO skip;
+      n := n + 1;
+      skip:
+    ENDWHILE
+    GOTO done;
+    MoveL p1, v200, z10, tool0;
+  ERROR
+    SetDO do1, 1;
+    done:
+    TRYNEXT;
+  ENDPROC
+ENDMODULE
+"""
+
+
+def test_rapid_lines_kept_native_keep_their_semicolons_and_a_handler_is_not_unreached(tmp_path: Path) -> None:
+    """A RAPID statement ends with `;`; a block's own line, a label and a handler keyword do not
+    (ABB Technical reference manual RAPID overview, basic elements). The error handler runs on an
+    error, so what the GOTO skips up to it stays native; compiled back, the routine's lines are
+    RAPID's."""
+    program, output = _import(tmp_path, "h.mod", RAPID_HANDLER)
+    assert "W552" not in output
+    for line in ['native rapid "ERROR"', 'native rapid "SetDO do1, 1;"', 'native rapid "TRYNEXT;"',
+                 'native rapid "IF n > 2 GOTO skip;"', 'native rapid "n := n + 1;"', 'native rapid "skip:"']:
+        assert line in program, line
+    rmot_file = tmp_path / "imported.rmot"
+    compiled = CliRunner().invoke(cli, ["compile", str(rmot_file), "--target", "rapid", "-o", str(tmp_path / "out")],
+                                  catch_exceptions=False)
+    assert compiled.exit_code == 0, compiled.output
+    text = next((tmp_path / "out").rglob("*.mod")).read_text()
+    body = text[text.index("PROC main()") + len("PROC main()"):text.index("ENDPROC")]
+    statements = [ln.strip() for ln in body.splitlines() if ln.strip() and not ln.strip().startswith("!")]
+    unended = [s for s in statements if not s.endswith(";")]
+    assert unended == ["WHILE n < 3 DO", "skip:", "ENDWHILE", "ERROR", "done:"], unended
