@@ -74,6 +74,15 @@ class Tally:
         self.warn(codes.KEPT_NATIVE, f"{why}; kept as `native {self.vendor}`: {text.strip()[:60]}", where)
         return Native(self.vendor, text.strip(), where)
 
+    def unkeep(self, where: Where) -> None:
+        """The native line at `where` is read after all (a jump that is an if's structure): its
+        count and its W510 are taken back."""
+        self.native -= 1
+        self.imported += 1
+        self.diagnostics = [d for d in self.diagnostics if not (
+            d.code is codes.KEPT_NATIVE and d.span is not None and (d.span.start.line, d.span.start.col)
+            == (where.line, where.col))]
+
     MAX_NESTING = 64
 
     def enter(self, where: Where) -> None:

@@ -26,7 +26,7 @@ from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
     CALLERS, caller_selection, kept_option, motion_options, output_expression, path_points,
-    position_blocks, timed_wait, tp_branch, tp_pose, tp_speed, wait_condition,
+    position_blocks, position_values, timed_wait, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
@@ -149,12 +149,12 @@ class _Ls:
     def _positions(self) -> None:
         for n, label, whole, line in position_blocks("\n".join(self.raw)):
             body = re.split(r"\bGP[2-9]\s*:", whole)[0]  # the arm's group
-            values = {k.upper(): float(v) for k, v in re.findall(r"\b([XYZWPR]|J\d)\s*=\s*(-?[\d.]+)", body)}
+            where = Where(self.path, line)
+            values = position_values(body, f"P[{n}]", where, self.tally.fail)
             conf = re.search(r"CONFIG\s*:\s*'([^']*)'", body)
             name = rmot_name(label) if label else rmot_name(f"{self.name.lower()}_p{n}")  # `-BCKED8-`: a name
             if any(t.name == name for t in self.positions.values()):
                 name = f"{name}_{n}"  # the same label on another P[n] (the moves name it by number)
-            where = Where(self.path, line)
             taught = re.search(r"\bUF\s*:\s*(\d+)\s*,\s*UT\s*:\s*(\d+)", body)
             self.taught.update({n: {"UFRAME": int(taught.group(1)), "UTOOL": int(taught.group(2))}} if taught else {})
             if all(k in values for k in "XYZWPR"):

@@ -20,10 +20,10 @@ from bisect import bisect_left
 
 from rmot.backends.fanuc_tp_text import COMMENT_MAX
 from rmot.backends.readers.common import number
-from rmot.backends.readers.model import Cond, Conds, GroupIn
+from rmot.backends.readers.model import Cond, Conds, GroupIn, Where
 from rmot.lang import ir
 
-__all__ = ["wait_condition", "output_expression", "timed_wait", "group_test", "motion_options",
+__all__ = ["position_values", "wait_condition", "output_expression", "timed_wait", "group_test", "motion_options",
            "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch", "CALLERS", "caller_selection",
            "position_blocks"]
 
@@ -248,3 +248,19 @@ def position_blocks(text: str) -> list[tuple[int, str | None, str, int]]:
         if i < len(ends) and ends[i] <= stop:
             out.append((int(m.group(1)), m.group(2), pos[m.end():ends[i]], line))
     return out
+
+
+def position_values(body: str, point: str, where: Where, fail: Callable[[str, Where], Exception]) -> dict[str, float]:
+    """The arm's coordinates of `point`'s /POS block body, `X = 500.000 mm` .. `J6 = 0.000 deg`
+    (upper case names); none where a value is `********`, the pendant's mark of a position never
+    taught. Any other value that is not a finite number as written (`X = .4.965`, a damaged file)
+    raises `fail(message, where)` rather than be read as a nearby number."""
+    values: dict[str, float] = {}
+    for name, text in re.findall(r"\b([XYZWPR]|J\d)\s*=\s*([^\s,;]+)", body):
+        value = number(text)
+        if re.fullmatch(r"\*+", text):
+            return {}
+        if value is None:
+            raise fail(f"{point}'s `{name} = {text}` must be a number", where)
+        values[name.upper()] = value
+    return values

@@ -12,6 +12,14 @@ label is not in the same block, everything after the jump in that block is. A pr
 one endless cycle (its first line a label, its last an unconditional jump back to it) is read as
 one cycle, W518, as the other readers read an outermost `LOOP` / `while True:`.
 
+A line that leaves the routine (TP `END`, INFORM `RET`, RAPID `RETURN`/`RAISE`, KRL `RETURN`) is
+such a jump, past the routine's last line. A jump inside a block the reader read (an if's arm,
+a loop) whose label is in its own body keeps its span native there; one that leaves its body
+keeps the whole block native (which of its lines run is then known only at run time), and then
+spans what follows. An if whose arm ends in an unconditional jump forward to a label of its body
+(or in an exit, where that body ends the routine) is read as the if/else it is: what the jump
+skips is the other arm, where no line names a label among it.
+
 What an unconditional forward jump (`GOTO FINAL`, `JMP LBL[9]`, `JUMP *END`) skips, where no
 line of the routine names a label among it (by any jump, wait exit or SELECT arm) and no native
 block line (`ENDIF`, `CASE`, `ELSE`, ..) among it says the jump sits in a block that ends
@@ -55,6 +63,32 @@ _REFERENCE = {
 # a native line that closes or divides a block, or starts a RAPID routine's handler (an error, a
 # backward run or an undo runs it): the jump before it may sit inside that block, or reach it
 _BLOCK_LINE = re.compile(r"(?i)^\s*(?:=|(?:END\w*|ELSE\w*|CASE|DEFAULT|UNTIL|ERROR|BACKWARD|UNDO)\b)")
+# a native line that leaves the routine (a jump past its end; group 1: the word, a name no label has)
+_EXITS = {
+    "rapid": re.compile(r"(?i)^\s*(?:IF\b.*?\s)?(RETURN|RAISE|EXIT|EXITCYCLE)\b"),  # to the caller or the handler
+    "krl": re.compile(r"(?i)^\s*(RETURN|EXIT)\b"),  # (RETURN in the main routine is read as `stop`)
+    "fanuc": re.compile(r"(?i)^\s*(END|ABORT)\s*;?\s*$"),  # (END returns to a caller, ends a program)
+    "inform": re.compile(r"(?i)^\s*(RET|END)\b"),  # `RET IF IN#(1)=ON` too
+}
+
+
+class _Jump:
+    """Where a native line goes: `jump` finds the label a line jumps to (group 1), or the vendor's
+    exit (RETURN, END, RET) that leaves the routine, a jump past its last line."""
+
+    def __init__(self, jump: re.Pattern[str], vendor: str) -> None:
+        self.jump = jump
+        self.exit = _EXITS.get(vendor, re.compile(r"(?!)"))
+
+    def search(self, text: str) -> re.Match[str] | None:
+        return self.jump.search(text) or self.exit.search(text)
+
+    def match(self, text: str) -> re.Match[str] | None:
+        return self.jump.match(text) or self.exit.match(text)
+
+    def leaves(self, text: str) -> bool:
+        """Whether the line leaves the routine (no label is its target)."""
+        return self.jump.search(text) is None and self.exit.search(text) is not None
 
 
 def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
@@ -63,74 +97,145 @@ def keep_jumped_spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str
     module docstring). `jump` finds the label a native line jumps to (group 1); `label_of(text)`
     the label a native line is (None: none; compared without case); `instructions` the routine's
     (text, place) in order; `native_text` the text a native line of an instruction carries."""
-    if _is_cycle(list(body), jump, label_of):
+    jumps = _Jump(jump, tally.vendor)
+    if _is_cycle(list(body), jumps, label_of):
         tally.warn(codes.LOOP_READ_ONCE, "a jump from the program's end back to its first line is read as one cycle "
                    "of the program (the controller repeats an rmot program)", body[-1].where)
-    return _spans(body, tally, jump, label_of, instructions, native_text)
+    return _Routine(tally, jumps, label_of, instructions, native_text).spans(body, ends_routine=True)
 
 
-def _spans(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
-           instructions: Sequence[tuple[str, Where]], native_text: Callable[[str], str]) -> tuple[Stmt, ...]:
-    """`body` (a routine's, or a block's inside it) with its jumps' spans kept native or read as
-    unreached, its blocks' first (keep_jumped_spans)."""
-    inner: set[int] = set()  # the lines of jumps a block held
-    out = _blocks_with_jumps(body, tally, jump, label_of, instructions, native_text, inner)
-    gone = _read_unreached(out, tally, jump, label_of, instructions, inner)
-    instructions = [(text, w) for text, w in instructions if w.line not in gone]
-    lines = [w.line for _, w in instructions]  # in source order
-    for _ in range(len(body) + 1):  # each pass keeps every disjoint open span; bounded by the jumps there are
-        spans = _open_spans(out, jump, label_of, inner)
-        if not spans:
-            break
-        shift = 0  # how far the spans kept before this one moved the places after them
-        for lo, hi, first, last, why in spans:
-            lo, hi = lo + shift, hi + shift
-            kept = {s.where.line: s for s in out[lo:hi] if isinstance(s, Native)}
-            tally.imported -= sum(not isinstance(s, Native) for s in walk(tuple(out[lo:hi])))
-            inside = instructions[bisect.bisect_right(lines, first):bisect.bisect_left(lines, last)]
-            out[lo:hi] = [kept.get(w.line) or tally.keep(native_text(text), w, why) for text, w in inside]
-            shift += len(inside) - (hi - lo)
-    return tuple(out)
+class _Routine:
+    """One routine's native jumps, and what each skips or repeats: kept native, read as the
+    if/else it is, or read into a proc nothing calls."""
 
+    def __init__(self, tally: Tally, jump: _Jump, label_of: Callable[[str], str | None],
+                 instructions: Sequence[tuple[str, Where]], native_text: Callable[[str], str]) -> None:
+        self.tally = tally
+        self.jump = jump
+        self.label_of = label_of
+        self.instructions = instructions
+        self.native_text = native_text
+        self.named = _named_labels(instructions, label_of, _REFERENCE[tally.vendor])
 
-def _blocks_with_jumps(body: tuple[Stmt, ...], tally: Tally, jump: re.Pattern[str],
-                      label_of: Callable[[str], str | None], instructions: Sequence[tuple[str, Where]],
-                      native_text: Callable[[str], str], inner: set[int]) -> list[Stmt]:
-    """`body` with each read block (an if, a loop, a wait's timeout branch) that holds a native
-    jump: where every such jump lands in its own body, that body's spans kept as a routine's are;
-    where one leaves its body, the whole block kept native, for which of its lines run is then
-    known only at run time (the jump, now on the body's level, spans what follows as any other,
-    as a jump a value decides: its line goes into `inner`)."""
-    out: list[Stmt] = []
-    for k, s in enumerate(body):
-        leaving = _jump_leaving(s, jump, label_of)
-        if leaving is not None:
+    def spans(self, body: tuple[Stmt, ...], ends_routine: bool) -> tuple[Stmt, ...]:
+        """`body` (the routine's, or a block's inside it; `ends_routine`: whether its end is the
+        routine's) with its jumps' spans kept native, read as if/else or as unreached, its
+        blocks' first."""
+        inner: set[int] = set()  # the lines of jumps a block held
+        out = self.blocks_with_jumps(self.early_exits(body, ends_routine), inner, ends_routine)
+        gone = self.read_unreached(out, inner)
+        instructions = [(text, w) for text, w in self.instructions if w.line not in gone]
+        lines = [w.line for _, w in instructions]  # in source order
+        for _ in range(len(body) + 1):  # each pass keeps every disjoint open span; bounded by the jumps there are
+            spans = _open_spans(out, self.jump, self.label_of, inner)
+            if not spans:
+                break
+            shift = 0  # how far the spans kept before this one moved the places after them
+            for lo, hi, first, last, why in spans:
+                lo, hi = lo + shift, hi + shift
+                kept = {s.where.line: s for s in out[lo:hi] if isinstance(s, Native)}
+                self.tally.imported -= sum(not isinstance(s, Native) for s in walk(tuple(out[lo:hi])))
+                inside = instructions[bisect.bisect_right(lines, first):bisect.bisect_left(lines, last)]
+                out[lo:hi] = [kept.get(w.line) or self.tally.keep(self.native_text(text), w, why) for text, w in inside]
+                shift += len(inside) - (hi - lo)
+        return tuple(out)
+
+    def early_exits(self, body: tuple[Stmt, ...], ends_routine: bool) -> tuple[Stmt, ...]:
+        """`body` with each if whose arm ends in an unconditional jump forward to a label of
+        `body`, or in a routine exit where `body` ends the routine (`IF stop THEN .. RETURN ENDIF`,
+        lines, the end), read as the if/else it is: the lines up to the label (the end) become the
+        other arm's last (they run exactly when that arm does not), where no line names a label
+        among them. The last such if first: an earlier one's lines then hold it, read."""
+        out = list(body)
+        for k in range(len(out) - 1, -1, -1):
+            s = out[k]
+            if not isinstance(s, If) or self.named is None:
+                continue
+            for arm, other in (("then", "orelse"), ("orelse", "then")):
+                end = self._exit_end(out, k, getattr(s, arm), ends_routine)
+                if end is None or any(isinstance(t, Native) and (self.label_of(t.text) or "").upper() in self.named
+                                      for t in walk(tuple(out[k + 1:end]))):
+                    continue
+                rest = tuple(out[k + 1:end])
+                kept, grown = getattr(s, arm)[:-1], (*getattr(s, other), *rest)
+                out[k:end] = [replace(s, **{arm: kept, other: grown}) if kept or arm == "orelse"
+                              else replace(s, cond=Conds("not", (s.cond,)), then=grown, orelse=())]
+                self.tally.unkeep(getattr(s, arm)[-1].where)  # the jump is the if's own structure now
+                break
+        return tuple(out)
+
+    def _exit_end(self, out: list[Stmt], k: int, arm: tuple[Stmt, ...], ends_routine: bool) -> int | None:
+        """Where the lines an arm's last line skips end in `out` (the if at place `k`): the place
+        of the label it jumps to, or the end where it leaves the routine and `out` ends it."""
+        last = arm[-1] if arm else None
+        if not isinstance(last, Native) or _CONDITIONAL.search(last.text):
+            return None
+        m = self.jump.match(last.text.strip())
+        if m is None:
+            return None
+        if self.jump.leaves(last.text):
+            return len(out) if ends_routine else None
+        return _label_after(out, k, m.group(1), self.label_of)
+
+    def blocks_with_jumps(self, body: tuple[Stmt, ...], inner: set[int], ends_routine: bool) -> list[Stmt]:
+        """`body` with each read block (an if, a loop, a wait's timeout branch) that holds a
+        native jump: where every such jump lands in its own body (a routine exit in a body that
+        ends the routine: an if's arm, where the if ends a body that does), that body's spans
+        kept as a routine's are; where one leaves its body, the whole block kept native, for
+        which of its lines run is then known only at run time (the jump, now on the body's
+        level, spans what follows as any other, as a jump a value decides: its line goes into
+        `inner`)."""
+        out: list[Stmt] = []
+        for k, s in enumerate(body):
+            last = ends_routine and k == len(body) - 1 and isinstance(s, If)  # its arms end the routine
+            leaving = _jump_leaving(s, self.jump, self.label_of, last)
+            if leaving is None:
+                out.append(self._with_spans_inside(s, last))
+                continue
             end = body[k + 1].where.line if k + 1 < len(body) else float("inf")
             kept = {t.where.line: t for t in walk((s,)) if isinstance(t, Native)}
-            tally.imported -= sum(not isinstance(t, Native) for t in walk((s,)))
-            inner.update(t.where.line for t in kept.values() if jump.search(t.text))
-            why = (f"`{leaving.text.rstrip(' ;')}` at line {leaving.where.line} inside this block jumps out of it: "
-                   "which of its lines run is known only at run time")
-            out += [kept.get(w.line) or tally.keep(native_text(text), w, why)
-                    for text, w in instructions if s.where.line <= w.line < end]
-        else:
-            out.append(_with_spans_inside(s, tally, jump, label_of, instructions, native_text))
-    return out
+            self.tally.imported -= sum(not isinstance(t, Native) for t in walk((s,)))
+            inner.update(t.where.line for t in kept.values() if self.jump.search(t.text))
+            why = (f"`{leaving.text.rstrip(' ;')}` at line {leaving.where.line} inside this block "
+                   f"{'leaves the routine' if self.jump.leaves(leaving.text) else 'jumps out of it'}: which of its "
+                   "lines run is known only at run time")
+            out += [kept.get(w.line) or self.tally.keep(self.native_text(text), w, why)
+                    for text, w in self.instructions if s.where.line <= w.line < end]
+        return out
 
+    def _with_spans_inside(self, s: Stmt, ends_routine: bool) -> Stmt:
+        """Block `s` with the spans of the jumps in its bodies kept (each lands in its own body;
+        `ends_routine`: an if whose arms end the routine)."""
+        if isinstance(s, If):
+            return replace(s, then=self.spans(s.then, ends_routine), orelse=self.spans(s.orelse, ends_routine))
+        if isinstance(s, (While, For)):
+            return replace(s, body=self.spans(s.body, False))
+        if isinstance(s, WaitIn):
+            return replace(s, orelse=self.spans(s.orelse, False))
+        return s
 
-def _with_spans_inside(s: Stmt, tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
-                       instructions: Sequence[tuple[str, Where]], native_text: Callable[[str], str]) -> Stmt:
-    """Block `s` with the spans of the jumps in its bodies kept (each lands in its own body)."""
-    def spans(inside: tuple[Stmt, ...]) -> tuple[Stmt, ...]:
-        return _spans(inside, tally, jump, label_of, instructions, native_text)
-
-    if isinstance(s, If):
-        return replace(s, then=spans(s.then), orelse=spans(s.orelse))
-    if isinstance(s, (While, For)):
-        return replace(s, body=spans(s.body))
-    if isinstance(s, WaitIn):
-        return replace(s, orelse=spans(s.orelse))
-    return s
+    def read_unreached(self, out: list[Stmt], inner: set[int]) -> set[int]:
+        """Take out of `out` what its unconditional forward jumps (not on the `inner` lines,
+        which a block held) skip where it never runs (see the module docstring), each into a
+        proc nothing calls (`tally.unreached`), W552 at the jump; the lines of the instructions
+        taken."""
+        gone: set[int] = set()
+        lines = [w.line for _, w in self.instructions]
+        for a, s in enumerate(out):
+            m = (self.jump.match(s.text.strip()) if isinstance(s, Native) and not _CONDITIONAL.search(s.text)
+                 and s.where.line not in inner else None)
+            b = _label_after(out, a, m.group(1), self.label_of) if m is not None and self.named is not None else None
+            if b is None or not isinstance(s, Native):
+                continue
+            span, label = out[a + 1:b], out[b]
+            inside = self.instructions[bisect.bisect_right(lines, s.where.line):
+                                       bisect.bisect_left(lines, label.where.line)]
+            if any(not isinstance(t, Native) for t in span) and _unreached(span, inside, self.label_of,
+                                                                            self.named or set()):
+                out[a + 1:b] = []  # after place a: the loop goes on at the label
+                _as_proc(self.tally, span, s)
+                gone.update(w.line for _, w in inside)
+        return gone
 
 
 def _bodies(s: Stmt) -> tuple[tuple[Stmt, ...], ...]:
@@ -142,21 +247,25 @@ def _bodies(s: Stmt) -> tuple[tuple[Stmt, ...], ...]:
     return (s.orelse,) if isinstance(s, WaitIn) else ()
 
 
-def _jump_leaving(s: Stmt, jump: re.Pattern[str], label_of: Callable[[str], str | None]) -> Native | None:
-    """A native jump inside block `s` (at any depth) whose label is not in its own body, if any."""
+def _jump_leaving(s: Stmt, jump: _Jump, label_of: Callable[[str], str | None], ends_routine: bool) -> Native | None:
+    """A native jump inside block `s` (at any depth) whose label is not in its own body, or a
+    routine exit in a body that does not end the routine (`ends_routine`: `s` is an if whose arms
+    do), if any."""
     for block_body in _bodies(s):
         labels = {(label_of(t.text) or "").upper() for t in block_body if isinstance(t, Native)}
-        for t in block_body:
+        for k, t in enumerate(block_body):
             m = jump.search(t.text) if isinstance(t, Native) else None
-            if isinstance(t, Native) and m is not None and m.group(1).upper() not in labels:
+            if (isinstance(t, Native) and m is not None and m.group(1).upper() not in labels
+                    and not (ends_routine and jump.leaves(t.text))):
                 return t
-            found = _jump_leaving(t, jump, label_of)
+            last = ends_routine and k == len(block_body) - 1 and isinstance(t, If)
+            found = _jump_leaving(t, jump, label_of, last)
             if found is not None:
                 return found
     return None
 
 
-def _open_spans(body: list[Stmt], jump: re.Pattern[str], label_of: Callable[[str], str | None],
+def _open_spans(body: list[Stmt], jump: _Jump, label_of: Callable[[str], str | None],
                 inner: set[int]) -> list[tuple[int, int, int, float, str]]:
     """(first and end index in `body`, the source lines strictly between which everything is
     kept, the reason) of the native jumps whose spans still hold a read instruction: the first
@@ -185,7 +294,7 @@ def _open_spans(body: list[Stmt], jump: re.Pattern[str], label_of: Callable[[str
             break
         first = s.where.line if b is None else body[min(a, b)].where.line
         last = float("inf") if b is None else body[max(a, b)].where.line
-        spans.append((lo, hi, first, last, _why(s, b is None or b > a, s.where.line in inner)))
+        spans.append((lo, hi, first, last, _why(s, b is None or b > a, s.where.line in inner, jump.leaves(s.text))))
         reached = len(body) if b is None else max(a, b)
     return spans
 
@@ -222,29 +331,6 @@ def _tests_variable(cond: Cond | Conds | GroupIn) -> bool:
     return isinstance(cond, Conds) and (cond.op in ("logic", "expr") or any(_tests_variable(p) for p in cond.parts))
 
 
-def _read_unreached(out: list[Stmt], tally: Tally, jump: re.Pattern[str], label_of: Callable[[str], str | None],
-                    instructions: Sequence[tuple[str, Where]], inner: set[int]) -> set[int]:
-    """Take out of `out` what its unconditional forward jumps (not on the `inner` lines, which a
-    block held) skip where it never runs (see the module docstring), each into a proc nothing
-    calls (`tally.unreached`), W552 at the jump; the lines of the instructions taken."""
-    gone: set[int] = set()
-    named = _named_labels(instructions, label_of, _REFERENCE[tally.vendor])
-    lines = [w.line for _, w in instructions]
-    for a, s in enumerate(out):
-        m = (jump.match(s.text.strip()) if isinstance(s, Native) and not _CONDITIONAL.search(s.text)
-             and s.where.line not in inner else None)
-        b = _label_after(out, a, m.group(1), label_of) if m is not None and named is not None else None
-        if b is None or not isinstance(s, Native):
-            continue
-        span, label = out[a + 1:b], out[b]
-        inside = instructions[bisect.bisect_right(lines, s.where.line):bisect.bisect_left(lines, label.where.line)]
-        if any(not isinstance(t, Native) for t in span) and _unreached(span, inside, label_of, named or set()):
-            out[a + 1:b] = []  # after place a: the loop goes on at the label
-            _as_proc(tally, span, s)
-            gone.update(w.line for _, w in inside)
-    return gone
-
-
 def _label_after(out: list[Stmt], a: int, name: str, label_of: Callable[[str], str | None]) -> int | None:
     """The place of the first native label line `name` after place `a` in `out`."""
     return next((k for k in range(a + 1, len(out)) if isinstance(t := out[k], Native)
@@ -263,14 +349,15 @@ def _as_proc(tally: Tally, span: list[Stmt], jump: Native) -> None:
                "not planned, verified or compiled", jump.where)
 
 
-def _why(s: Native, forward: bool, in_block: bool) -> str:
+def _why(s: Native, forward: bool, in_block: bool, leaves: bool) -> str:
     text = s.text.rstrip(" ;")
     when = ("as a run-time value decides (it runs zero, once or many times)" if in_block or _CONDITIONAL.search(text)
             else "every time (it runs only where another jump lands in it, or again and again)")
-    return f"`{text}` at line {s.where.line} jumps {'over' if forward else 'back over'} this {when}"
+    goes = "leaves the routine before" if leaves else "jumps over" if forward else "jumps back over"
+    return f"`{text}` at line {s.where.line} {goes} this {when}"
 
 
-def _is_cycle(body: list[Stmt], jump: re.Pattern[str], label_of: Callable[[str], str | None]) -> bool:
+def _is_cycle(body: list[Stmt], jump: _Jump, label_of: Callable[[str], str | None]) -> bool:
     """Whether the body is one endless cycle: its first line a label, its last an unconditional
     jump back to it (TP `LBL[1]` .. `JMP LBL[1]`, INFORM `*L1` .. `JUMP *L1`)."""
     if len(body) < 2 or not isinstance(body[-1], Native) or not isinstance(body[0], Native):

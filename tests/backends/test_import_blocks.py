@@ -306,6 +306,16 @@ def test_a_krl_goto_out_of_a_loop_keeps_the_loop_and_what_it_skips_native(tmp_pa
 
 
 def test_a_tp_jump_out_of_an_if_block_keeps_what_it_skips_native(tmp_path: Path) -> None:
+    """The jump ends an inner IF's arm: its label is outside the outer IF, whose lines then run
+    as DI[2] decides; the whole block and DO[2] after it are native."""
+    program, output = _import(tmp_path, ["IF (DI[1]=ON) THEN", "IF (DI[2]=ON) THEN", "JMP LBL[5]", "ENDIF", "DO[4]=ON",
+                                         "ENDIF", "DO[2]=ON", "LBL[5]", "DO[3]=ON"])
+    assert 'native fanuc "DO[2]=ON ;"' in program and 'native fanuc "DO[4]=ON ;"' in program and "if in[" not in program
+    assert "set out[3] = on" in program and "W552" not in output
+    assert "`JMP LBL[5]` at line 6 jumps over this as a run-time value decides" in output
+
+
+def test_a_tp_jump_ending_an_if_arm_makes_what_it_skips_the_else(tmp_path: Path) -> None:
     program, output = _import(tmp_path, ["IF (DI[1]=ON) THEN", "JMP LBL[5]", "ENDIF", "DO[2]=ON", "LBL[5]", "DO[3]=ON"])
-    assert 'native fanuc "DO[2]=ON ;"' in program and "set out[3] = on" in program and "if in[1]" not in program
-    assert "W552" not in output and "`JMP LBL[5]` at line 5 jumps over this as a run-time value decides" in output
+    assert "  if not in[1] == on {\n    set out[2] = on\n  }\n" in program and "set out[3] = on" in program
+    assert "JMP" not in program and "JMP" not in output  # the jump is the if's structure: no W510 for it

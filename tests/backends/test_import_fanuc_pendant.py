@@ -12,9 +12,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from click.testing import CliRunner
+
 from rmot.backends.readers import read_files
 from rmot.backends.readers.counts import motion_io_counts
 from rmot.backends.readers.model import Cond, Conds, If, Move, Native, Pulse, SetOut, WaitIn, walk
+from rmot.compiler.cli import cli
 
 TP = """/PROG  JOB_DBL_SAFE_1
 /ATTR
@@ -127,3 +130,16 @@ def test_an_if_with_an_output_action(tmp_path: Path) -> None:
     assert [s.text for s in stmts if isinstance(s, Native)] == ["IF (DI[1]),GO[1]=31 ;", "IF (DI[1]),RO[2]=ON ;"]
     doc = read_files([str(tmp_path / "waits.ls")])
     assert list(motion_io_counts(doc).values()) == [(3, 1)]  # the RO line is I/O kept native; GO is no rmot I/O word
+
+
+def test_a_damaged_position_value_is_refused_and_an_untaught_one_is_no_target(tmp_path: Path) -> None:
+    """`X = .4.965` (a damaged file) is E510 at its position, not read as 0.4 mm; `X = ********`
+    is how the pendant writes a position never taught (VASC MOTN011.LS): no target, as before."""
+    damaged = tmp_path / "damaged.ls"
+    damaged.write_text(TP.replace("X =      .044  mm", "X =      .4.965  mm"))
+    result = CliRunner().invoke(cli, ["import", str(damaged), "-o", str(tmp_path / "d.rmot")], catch_exceptions=False)
+    assert result.exit_code == 2 and "damaged.ls:14:1: error[E510]: P[1]'s `X = .4.965` must be a number" in result.output
+    untaught = tmp_path / "untaught.ls"
+    untaught.write_text(TP.replace("X =      .044  mm", "X =   ********  mm"))
+    doc = read_files([str(untaught)])
+    assert [t.name for t in doc.targets] == ["job_dbl_safe_1_p2"]

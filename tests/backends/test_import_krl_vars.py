@@ -193,16 +193,17 @@ def test_reset_only_flag_says_why(tmp_path: Path) -> None:
 
 def test_goto_to_the_end_is_stop(tmp_path: Path) -> None:
     """`GOTO FINAL` out of an IF where `FINAL:` is the main DEF's last statement (ingeniado CAJA_G
-    coge_g.src) reaches END: `stop`, as RETURN there; a GOTO to a label with statements after it
-    (caja_g_m1.src `GOTO SALIRPROG`) stays native."""
+    coge_g.src) reaches END: `stop`, as RETURN there; a GOTO ending an IF's arm, to a label with
+    statements after it, makes what it skips the IF's other arm."""
     src = ("DEF cg( )\n  PTP XHOME\n  IF $IN[2] THEN\n    $OUT[1] = TRUE\n    GOTO FINAL\n  ENDIF\n"
            "  IF $IN[3] THEN\n    GOTO OTRO\n  ENDIF\n  PTP XP1\n  OTRO:\n  PTP XHOME\n  FINAL:\nEND\n")
     output, rmot = imported_krl(tmp_path, "cg", src, DAT.replace("caja", "cg"))
     body = _body(rmot)
     at = body.index("if in[2] == on {")
     assert body[at + 1:at + 4] == ["set out[1] = on", "stop", "}"], rmot
-    assert re.search(r"cg\.src:8:5: warning\[W510\].*GOTO OTRO", output), output
-    assert "GOTO FINAL" not in rmot
+    at = body.index("if not in[3] == on {")
+    assert body[at + 1].startswith("move joint XP1") and body[at + 2] == "}", rmot
+    assert "GOTO FINAL" not in rmot and "GOTO OTRO" not in rmot and "GOTO OTRO" not in output
 
 
 LOOPS = """DEF lp( )
