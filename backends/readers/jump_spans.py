@@ -13,7 +13,8 @@ one endless cycle (its first line a label, its last an unconditional jump back t
 one cycle, W518, as the other readers read an outermost `LOOP` / `while True:`.
 
 A line that leaves the routine (TP `END`, INFORM `RET`, RAPID `RETURN`/`RAISE`, KRL `RETURN`) is
-such a jump, past the routine's last line. A jump inside a block the reader read (an if's arm,
+such a jump, past the routine's last line; a KRL `EXIT` leaves its loop, so a block the reader
+read around it is kept native. A jump inside a block the reader read (an if's arm,
 a loop) whose label is in its own body keeps its span native there; one that leaves its body
 keeps the whole block native (which of its lines run is then known only at run time), and then
 spans what follows. An if whose arm ends in an unconditional jump forward to a label of its body
@@ -46,7 +47,7 @@ from rmot.backends.readers.model import (
     Assign, Call, Cond, Conds, For, GroupIn, If, Native, Routine, Stmt, Sync, VarDecl, WaitIn, Where, While, walk,
 )
 
-__all__ = ["keep_jumped_spans", "goto_spans"]
+__all__ = ["keep_jumped_spans", "goto_spans", "exit_spans"]
 
 # a jump taken only as a value decides: on a condition, or an arm of a TP SELECT (`SELECT R[1]=1,JMP
 # LBL[10]`, `=2,JMP LBL[20]`, `ELSE,JMP LBL[99]`)
@@ -59,6 +60,7 @@ _REFERENCE = {
     "inform": re.compile(r"(?i)\bJUMP\s+(?!JOB:)\*?(\S+)"),
     "krl": _GOTO,
     "rapid": _GOTO,
+    "urscript": re.compile(r"(?!)"),  # URScript has no labels
 }
 # a native line that closes or divides a block, or starts a RAPID routine's handler (an error, a
 # backward run or an undo runs it): the jump before it may sit inside that block, or reach it
@@ -66,10 +68,15 @@ _BLOCK_LINE = re.compile(r"(?i)^\s*(?:=|(?:END\w*|ELSE\w*|CASE|DEFAULT|UNTIL|ERR
 # a native line that leaves the routine (a jump past its end; group 1: the word, a name no label has)
 _EXITS = {
     "rapid": re.compile(r"(?i)^\s*(?:IF\b.*?\s)?(RETURN|RAISE|EXIT|EXITCYCLE)\b"),  # to the caller or the handler
-    "krl": re.compile(r"(?i)^\s*(RETURN|EXIT)\b"),  # (RETURN in the main routine is read as `stop`)
+    "krl": re.compile(r"(?i)^\s*(RETURN)\b"),  # (RETURN in the main routine is read as `stop`)
     "fanuc": re.compile(r"(?i)^\s*(END|ABORT)\s*;?\s*$"),  # (END returns to a caller, ends a program)
     "inform": re.compile(r"(?i)^\s*(RET|END)\b"),  # `RET IF IN#(1)=ON` too
+    "urscript": re.compile(r"^\s*(return)\b"),  # (a function's; `halt` is read as `stop`)
 }
+
+# a native line that leaves the loop it is in (KRL EXIT): out of any block the reader read
+# around it, as a jump out of them; in a loop kept native it goes on after that loop's lines
+_LOOP_EXITS = {"krl": re.compile(r"(?i)^\s*EXIT\b"), "urscript": re.compile(r"^\s*(break|continue)\b")}
 
 
 class _Jump:
@@ -79,6 +86,7 @@ class _Jump:
     def __init__(self, jump: re.Pattern[str], vendor: str) -> None:
         self.jump = jump
         self.exit = _EXITS.get(vendor, re.compile(r"(?!)"))
+        self.loop_exit = _LOOP_EXITS.get(vendor, re.compile(r"(?!)"))
 
     def search(self, text: str) -> re.Match[str] | None:
         return self.jump.search(text) or self.exit.search(text)
@@ -255,8 +263,8 @@ def _jump_leaving(s: Stmt, jump: _Jump, label_of: Callable[[str], str | None], e
         labels = {(label_of(t.text) or "").upper() for t in block_body if isinstance(t, Native)}
         for k, t in enumerate(block_body):
             m = jump.search(t.text) if isinstance(t, Native) else None
-            if (isinstance(t, Native) and m is not None and m.group(1).upper() not in labels
-                    and not (ends_routine and jump.leaves(t.text))):
+            if isinstance(t, Native) and (jump.loop_exit.match(t.text) or m is not None and m.group(
+                    1).upper() not in labels and not (ends_routine and jump.leaves(t.text))):
                 return t
             last = ends_routine and k == len(block_body) - 1 and isinstance(t, If)
             found = _jump_leaving(t, jump, label_of, last)
@@ -384,6 +392,14 @@ def goto_spans(body: Sequence[Stmt], tally: Tally, lines: Sequence[_Line]) -> tu
     excluded."""
     return keep_jumped_spans(tuple(body), tally, _GOTO, _goto_label, [(ln.text, ln.where) for ln in lines if ln.text.strip()],
                              native_line if tally.vendor == "rapid" else str.strip)
+
+
+def exit_spans(body: tuple[Stmt, ...], tally: Tally, lines: Sequence[_Line]) -> tuple[Stmt, ...]:
+    """URScript: a function's body with what a native `return` (or a `break`, `continue` in a
+    loop read around it) can skip kept native, or read as the if/else it is (as
+    `keep_jumped_spans`); `lines`: the function's lines between its `def` and its `end`."""
+    return keep_jumped_spans(body, tally, re.compile(r"(?!)"), lambda text: None,
+                             [(ln.text, ln.where) for ln in lines], str.strip)
 
 
 def _goto_label(text: str) -> str | None:

@@ -31,6 +31,7 @@ from rmot.backends.readers.urscript_text import (
     Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments, scoped_defs,
     split_statements, strip_hash, ur_pose,
 )
+from rmot.backends.readers.jump_spans import exit_spans
 from rmot.backends.readers.urscript_values import (
     arithmetic, base_offset, counted_loop, may_change, parameter_test, thread_assigned, tool_offset, unknown_value,
 )
@@ -265,7 +266,8 @@ class _Script:
         self.in_sub += 1
         self.scope.append(name)
         try:
-            return self._enclosed(i + 1)
+            body, j = self._enclosed(i + 1)
+            return list(exit_spans(tuple(body), self.tally, self.lines[i + 1:j])), j
         finally:
             self.scope.pop()
             self.in_sub -= 1
@@ -398,9 +400,8 @@ class _Script:
             t = self.tools[key]
             self.tools[key] = ToolData(t.name, t.tcp, float(m.group(1)), t.where)
             return True
-        # set_analog_outputdomain(n, 0|1): port n's output is a current (4..20 mA) or a voltage
-        # (0..10 V) (URScript manual, module interfaces); a port set to current keeps its
-        # set_standard_analog_out native (rmot's analog outputs are volts)
+        # set_analog_outputdomain(n, 0|1): port n's output is a current (4..20 mA) or a voltage (0..10 V)
+        # (URScript manual, module interfaces); at current, set_standard_analog_out stays native (volts)
         domain = re.fullmatch(r"set_analog_outputdomain\((\d+),([01])\)", compact)
         if domain and domain.group(2) == "0":
             self.current_domain.add(int(domain.group(1)))

@@ -186,3 +186,31 @@ def test_lines_another_jump_lands_in_are_no_else(tmp_path: Path) -> None:
                          "  IF $IN[1] THEN\n    GOTO done\n  ENDIF\n  $OUT[2] = TRUE\n  back:\n  $OUT[3] = TRUE\n"
                          "  done:\n  $OUT[4] = TRUE\nEND\n")
     assert 'native krl "$OUT[3] = TRUE"' in program and "set out[3]" not in program and "set out[4] = on" in program
+
+
+def test_a_krl_exit_leaves_its_loop_not_the_routine(tmp_path: Path) -> None:
+    """EXIT inside an IF inside a WHILE: the loop is kept native (its passes end as $IN[2] decides),
+    and what follows the loop runs either way, read. In a loop kept native it changes nothing."""
+    program, output = _import(tmp_path, "k.src", "DEF k()\n  s()\nEND\nDEF s()\n  WHILE $IN[1]\n    $OUT[1] = TRUE\n"
+                              "    IF $IN[2] THEN\n      EXIT\n    ENDIF\n    $OUT[3] = TRUE\n  ENDWHILE\n"
+                              "  $OUT[4] = TRUE\nEND\n")
+    assert 'native krl "WHILE $IN[1]"' in program and 'native krl "$OUT[3] = TRUE"' in program
+    assert "    set out[4] = on\n" in program and "`EXIT` at line 8 inside this block jumps out of it" in output
+    native_loop, _ = _import(tmp_path, "k.src", "DEF k()\n  s()\nEND\nDEF s()\n  LOOP\n    $OUT[1] = TRUE\n"
+                             "    IF $IN[2] THEN\n      EXIT\n    ENDIF\n    $OUT[3] = TRUE\n  ENDLOOP\n"
+                             "  $OUT[4] = TRUE\nEND\n")
+    assert "    set out[4] = on\n" in native_loop
+
+
+def test_a_urscript_function_return_is_an_exit(tmp_path: Path) -> None:
+    """`return` inside an if of a function: what follows is the if's else; a `break` inside an if
+    of a loop read as rmot's while keeps that loop native, and what follows it is read."""
+    script = ("def main():\n  def sub():\n    if get_standard_digital_in(1):\n      set_standard_digital_out(1, True)\n"
+              "      return None\n    end\n    set_standard_digital_out(2, True)\n  end\n"
+              "  def loop():\n    while get_standard_digital_in(3):\n      if get_standard_digital_in(4):\n"
+              "        break\n      end\n      set_standard_digital_out(5, True)\n    end\n"
+              "    set_standard_digital_out(6, True)\n  end\n  sub()\n  loop()\nend\nmain()\n")
+    program, output = _import(tmp_path, "u.script", script)
+    assert "  proc sub() {\n    if in[1] == on {\n      set out[1] = on\n    } else {\n      set out[2] = on\n" in program
+    assert 'native urscript "set_standard_digital_out(5, True)"' in program and "    set out[6] = on\n" in program
+    assert "`break` at line 12 inside this block jumps out of it" in output
