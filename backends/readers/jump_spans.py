@@ -168,7 +168,7 @@ class _Routine:
                 kept, grown = getattr(s, arm)[:-1], (*getattr(s, other), *rest)
                 out[k:end] = [replace(s, **{arm: kept, other: grown}) if kept or arm == "orelse"
                               else replace(s, cond=Conds("not", (s.cond,)), then=grown, orelse=())]
-                self.tally.unkeep(getattr(s, arm)[-1].where)  # the jump is the if's own structure now
+                self.tally.unkeep(getattr(s, arm)[-1].where)  # the jump is the if's own structure
                 break
         return tuple(out)
 
@@ -190,9 +190,9 @@ class _Routine:
         native jump: where every such jump lands in its own body (a routine exit in a body that
         ends the routine: an if's arm, where the if ends a body that does), that body's spans
         kept as a routine's are; where one leaves its body, the whole block kept native, for
-        which of its lines run is then known only at run time (the jump, now on the body's
-        level, spans what follows as any other, as a jump a value decides: its line goes into
-        `inner`)."""
+        which of its lines run is known only at run time; the jump, a native line of the body
+        itself from there on, spans what follows as any other, as a jump a value decides (its
+        line goes into `inner`)."""
         out: list[Stmt] = []
         for k, s in enumerate(body):
             last = ends_routine and k == len(body) - 1 and isinstance(s, If)  # its arms end the routine

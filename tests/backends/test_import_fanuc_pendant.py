@@ -134,7 +134,7 @@ def test_an_if_with_an_output_action(tmp_path: Path) -> None:
 
 def test_a_damaged_position_value_is_refused_and_an_untaught_one_is_no_target(tmp_path: Path) -> None:
     """`X = .4.965` (a damaged file) is E510 at its position, not read as 0.4 mm; `X = ********`
-    is how the pendant writes a position never taught (VASC MOTN011.LS): no target, as before."""
+    is how the pendant writes a position never taught (VASC MOTN011.LS): no target."""
     damaged = tmp_path / "damaged.ls"
     damaged.write_text(TP.replace("X =      .044  mm", "X =      .4.965  mm"))
     result = CliRunner().invoke(cli, ["import", str(damaged), "-o", str(tmp_path / "d.rmot")], catch_exceptions=False)
