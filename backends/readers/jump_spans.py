@@ -124,6 +124,13 @@ class _Routine:
         self.instructions = instructions
         self.native_text = native_text
         self.named = _named_labels(instructions, label_of, _REFERENCE[tally.vendor])
+        self.lines = [w.line for _, w in instructions]  # in source order
+        self.gone: set[int] = set()  # the lines read into procs nothing calls, at any depth
+
+    def _between(self, first: float, last: float) -> list[tuple[str, Where]]:
+        """The instructions strictly between lines `first` and `last`, but those read as unreached."""
+        inside = self.instructions[bisect.bisect_right(self.lines, first):bisect.bisect_left(self.lines, last)]
+        return [(text, w) for text, w in inside if w.line not in self.gone]
 
     def spans(self, body: tuple[Stmt, ...], ends_routine: bool) -> tuple[Stmt, ...]:
         """`body` (the routine's, or a block's inside it; `ends_routine`: whether its end is the
@@ -131,9 +138,7 @@ class _Routine:
         blocks' first."""
         inner: set[int] = set()  # the lines of jumps a block held
         out = self.blocks_with_jumps(self.early_exits(body, ends_routine), inner, ends_routine)
-        gone = self.read_unreached(out, inner)
-        instructions = [(text, w) for text, w in self.instructions if w.line not in gone]
-        lines = [w.line for _, w in instructions]  # in source order
+        self.read_unreached(out, inner)
         for _ in range(len(body) + 1):  # each pass keeps every disjoint open span; bounded by the jumps there are
             spans = _open_spans(out, self.jump, self.label_of, inner)
             if not spans:
@@ -143,7 +148,7 @@ class _Routine:
                 lo, hi = lo + shift, hi + shift
                 kept = {s.where.line: s for s in out[lo:hi] if isinstance(s, Native)}
                 self.tally.imported -= sum(not isinstance(s, Native) for s in walk(tuple(out[lo:hi])))
-                inside = instructions[bisect.bisect_right(lines, first):bisect.bisect_left(lines, last)]
+                inside = self._between(first, last)
                 out[lo:hi] = [kept.get(w.line) or self.tally.keep(self.native_text(text), w, why) for text, w in inside]
                 shift += len(inside) - (hi - lo)
         return tuple(out)
@@ -155,13 +160,13 @@ class _Routine:
         other arm's last (they run exactly when that arm does not), where no line names a label
         among them. The last such if first: an earlier one's lines then hold it, read."""
         out = list(body)
-        for k in range(len(out) - 1, -1, -1):
+        for k in range(len(out) - 1, -1, -1) if self.named is not None else ():
             s = out[k]
-            if not isinstance(s, If) or self.named is None:
+            if not isinstance(s, If):
                 continue
             for arm, other in (("then", "orelse"), ("orelse", "then")):
                 end = self._exit_end(out, k, getattr(s, arm), ends_routine)
-                if end is None or any(isinstance(t, Native) and (self.label_of(t.text) or "").upper() in self.named
+                if end is None or any(isinstance(t, Native) and (self.label_of(t.text) or "").upper() in (self.named or ())
                                       for t in walk(tuple(out[k + 1:end]))):
                     continue
                 rest = tuple(out[k + 1:end])
@@ -208,7 +213,7 @@ class _Routine:
                    f"{'leaves the routine' if self.jump.leaves(leaving.text) else 'jumps out of it'}: which of its "
                    "lines run is known only at run time")
             out += [kept.get(w.line) or self.tally.keep(self.native_text(text), w, why)
-                    for text, w in self.instructions if s.where.line <= w.line < end]
+                    for text, w in self._between(s.where.line - 1, end)]
         return out
 
     def _with_spans_inside(self, s: Stmt, ends_routine: bool) -> Stmt:
@@ -222,28 +227,23 @@ class _Routine:
             return replace(s, orelse=self.spans(s.orelse, False))
         return s
 
-    def read_unreached(self, out: list[Stmt], inner: set[int]) -> set[int]:
+    def read_unreached(self, out: list[Stmt], inner: set[int]) -> None:
         """Take out of `out` what its unconditional forward jumps (not on the `inner` lines,
         which a block held) skip where it never runs (see the module docstring), each into a
-        proc nothing calls (`tally.unreached`), W552 at the jump; the lines of the instructions
-        taken."""
-        gone: set[int] = set()
-        lines = [w.line for _, w in self.instructions]
+        proc nothing calls (`tally.unreached`), W552 at the jump; their lines go into `gone`."""
+        if self.named is None:
+            return  # a jump to a computed label may land anywhere
         for a, s in enumerate(out):
             m = (self.jump.match(s.text.strip()) if isinstance(s, Native) and not _CONDITIONAL.search(s.text)
                  and s.where.line not in inner else None)
-            b = _label_after(out, a, m.group(1), self.label_of) if m is not None and self.named is not None else None
+            b = _label_after(out, a, m.group(1), self.label_of) if m is not None else None
             if b is None or not isinstance(s, Native):
                 continue
-            span, label = out[a + 1:b], out[b]
-            inside = self.instructions[bisect.bisect_right(lines, s.where.line):
-                                       bisect.bisect_left(lines, label.where.line)]
-            if any(not isinstance(t, Native) for t in span) and _unreached(span, inside, self.label_of,
-                                                                            self.named or set()):
+            span, inside = out[a + 1:b], self._between(s.where.line, out[b].where.line)
+            if any(not isinstance(t, Native) for t in span) and _unreached(span, inside, self.label_of, self.named):
                 out[a + 1:b] = []  # after place a: the loop goes on at the label
                 _as_proc(self.tally, span, s)
-                gone.update(w.line for _, w in inside)
-        return gone
+                self.gone.update(w.line for _, w in inside)
 
 
 def _bodies(s: Stmt) -> tuple[tuple[Stmt, ...], ...]:

@@ -273,3 +273,13 @@ def test_rapid_lines_kept_native_keep_their_semicolons_and_a_handler_is_not_unre
     statements = [ln.strip() for ln in body.splitlines() if ln.strip() and not ln.strip().startswith("!")]
     unended = [s for s in statements if not s.endswith(";")]
     assert unended == ["WHILE n < 3 DO", "skip:", "ENDWHILE", "ERROR", "done:"], unended
+
+
+def test_an_unreached_span_inside_a_block_an_outer_span_keeps_is_read_once(tmp_path: Path) -> None:
+    """DO[1] never runs (the IF's own `JMP LBL[5]` skips it) and lies in the span the run-time jump
+    to LBL[9] keeps native: it is in the proc alone, not also kept native there."""
+    lines = ["R[1]=R[1]+1", "IF R[1]<>1,JMP LBL[9]", "IF (DI[1]=ON) THEN", "JMP LBL[5]", "DO[1]=ON", "LBL[5]", "DO[2]=ON",
+             "ENDIF", "LBL[9]", "DO[3]=ON"]
+    program, output = _import(tmp_path, "t.ls", _tp(lines))
+    assert "proc t_unreached_8() {\n    set out[1] = on\n  }" in program and 'native fanuc "DO[1]=ON ;"' not in program
+    assert "motion and I/O: 2 imported, 1 kept native" in output
