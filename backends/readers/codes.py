@@ -8,7 +8,7 @@ from __future__ import annotations
 from rmot.lang.diagnostics import Code
 
 __all__ = [
-    "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER",
+    "NOT_VENDOR_LANGUAGE", "UNKNOWN_FORMAT", "IMPORT_UNREADABLE", "DIFF_VENDORS_DIFFER", "DIFF_NO_COUNTERPART",
     "KEPT_NATIVE", "DECLARATION_KEPT", "JOINT_SPEED_READ", "SIGNAL_UNKNOWN", "NAME_RENAMED",
     "JOINT_RATES_READ", "PAYLOAD_UNMATCHED", "MOTION_OPTION_KEPT", "LOOP_READ_ONCE", "PARAMETERS_NUMBER",
     "URCAP_INSTALLATION",
@@ -21,6 +21,8 @@ UNKNOWN_FORMAT = Code("E511", "unknown-vendor-format",
                       "a file's extension names no vendor language `rmot import` reads")
 IMPORT_UNREADABLE = Code("E512", "import-unreadable", "a vendor file is not UTF-8/Latin-1 text or too large")
 DIFF_VENDORS_DIFFER = Code("E513", "diff-vendors-differ", "`rmot diff` was given programs of two different vendors")
+DIFF_NO_COUNTERPART = Code("E514", "diff-no-counterpart",
+                           "the .rmot side of `rmot diff` compiles to no file named like the vendor file (nor like the program)")
 
 KEPT_NATIVE = Code("W510", "kept-native",
                    "a vendor instruction has no rmot form: it is kept as a `native` statement at its place")

@@ -4,8 +4,10 @@ Targets are matched by name and compared by position (mm), orientation (the angl
 relative rotation, deg), joint values (deg) and configuration; instructions are aligned per
 routine (difflib's longest matching blocks over each instruction's kind and target, so an
 inserted line does not shift every later comparison) and compared by speed, zone, time,
-tool, frame and I/O value; a line kept native on both sides by the words that changed. Every
-item names both places, `file:line`.
+tool, frame and I/O value; a line kept native on both sides by the words that changed. The
+data the moves use is compared too: each tool's TCP and mass, each frame's pose and each named
+load by name, and the declarations kept as comments by their text (a re-taught TCP or user
+frame moves every point the robot reaches). Every item names both places, `file:line`.
 """
 
 from __future__ import annotations
@@ -17,13 +19,14 @@ from rmot.backends.readers.model import (
     Call, Cond, Conds, Document, For, Grip, If, Move, Native, Pulse, SetOut, Stmt, Stop, Wait, WaitIn, While, leaves, walk,
 )
 from rmot.backends.readers.axes import slot_change
-from rmot.backends.readers.model import Assign, GroupIn, VarDecl
+from rmot.backends.readers.model import Assign, FrameData, GroupIn, ToolData, VarDecl
 from rmot.lang import ir
 
 __all__ = ["diff_documents", "TOLERANCE_MM", "TOLERANCE_DEG"]
 
 TOLERANCE_MM = 0.001  # what the vendors print (RAPID, KRL 3 decimals of a mm)
 TOLERANCE_DEG = 0.001
+TOLERANCE_KG = 0.0006  # the backends print masses to 3 decimals of a kg
 
 
 def _angle_deg(a: ir.Pose, b: ir.Pose) -> float:
@@ -69,6 +72,81 @@ def _targets(a: Document, b: Document) -> list[str]:
         if t.config != other.config and t.config is not None and other.config is not None:
             out.append(f"{t.where} -> {other.where}: target {t.name} configuration {t.config} -> {other.config}")
     out += [f"{t.where}: target {t.name} added" for key, t in tb.items() if key not in ta]
+    return out
+
+
+def _tools(a: Document, b: Document) -> list[str]:
+    """Each tool's TCP (in the flange frame) and mass, by name."""
+    tb = {t.name.upper(): t for t in b.tools}
+    out = []
+    for t in a.tools:
+        other = tb.get(t.name.upper())
+        if other is None:
+            out.append(f"{t.where}: tool {t.name} removed")
+            continue
+        out += _data_change("tool", t, other)
+        if abs(t.mass - other.mass) > TOLERANCE_KG:
+            out.append(f"{t.where} -> {other.where}: tool {t.name} mass {t.mass:g} kg -> {other.mass:g} kg")
+    known = {t.name.upper() for t in a.tools}
+    return out + [f"{t.where}: tool {t.name} added" for t in b.tools if t.name.upper() not in known]
+
+
+def _frames(a: Document, b: Document) -> list[str]:
+    """Each frame's pose (in the robot base), by name."""
+    fb = {f.name.upper(): f for f in b.frames}
+    out = []
+    for f in a.frames:
+        other = fb.get(f.name.upper())
+        out += [f"{f.where}: frame {f.name} removed"] if other is None else _data_change("frame", f, other)
+    known = {f.name.upper() for f in a.frames}
+    return out + [f"{f.where}: frame {f.name} added" for f in b.frames if f.name.upper() not in known]
+
+
+def _data_change(kind: str, x: ToolData | FrameData, y: ToolData | FrameData) -> list[str]:
+    """A tool's or frame's place changed, or it is set in one file and the controller's own in
+    the other (whose value the files do not hold)."""
+    where = f"{x.where} -> {y.where}: {kind} {x.name}"
+    if x.controller != y.controller:
+        own = [f"the controller's {c}" if c else "set in the file" for c in (x.controller, y.controller)]
+        return [f"{where} {own[0]} -> {own[1]}"]
+    change = _pose_change(x.tcp if isinstance(x, ToolData) else x.pose,
+                          y.tcp if isinstance(y, ToolData) else y.pose, None, None)
+    return [f"{where} {change}"] if change else []
+
+
+def _loads(a: Document, b: Document) -> list[str]:
+    """Each named load's mass and centre of mass (mm in the flange frame), by name."""
+    lb = {name.upper(): (mass, cm, where) for name, mass, cm, where in b.loads}
+    out = []
+    for name, mass, cm, where in a.loads:
+        other = lb.get(name.upper())
+        if other is None:
+            out.append(f"{where}: load {name} removed")
+            continue
+        moved = math.dist(cm, other[1])  # NaN where a TP schedule's centre is the controller's
+        at = f"{where} -> {other[2]}: load {name}"
+        if abs(mass - other[0]) > TOLERANCE_KG:
+            out.append(f"{at} mass {mass:g} kg -> {other[0]:g} kg")
+        if moved > TOLERANCE_MM:
+            out.append(f"{at} centre of mass moved {moved:.3f} mm")
+    known = {name.upper() for name, _, _, _ in a.loads}
+    return out + [f"{where}: load {name} added" for name, _, _, where in b.loads if name.upper() not in known]
+
+
+def _kept(a: Document, b: Document) -> list[str]:
+    """The declarations and routines kept as comments, aligned by their text: one rmot does not
+    read (a RAPID loaddata, a PERS num) still changes what the program does."""
+    ka, kb = a.kept, b.kept
+    out: list[str] = []
+    matcher = SequenceMatcher(a=[k.text.split("=")[0] for k in ka], b=[k.text.split("=")[0] for k in kb],
+                              autojunk=False)
+    for op, i1, i2, j1, j2 in matcher.get_opcodes():
+        if op == "equal" or (op == "replace" and i2 - i1 == j2 - j1):
+            for i, j in zip(range(i1, i2), range(j1, j2)):
+                out += _native_change(ka[i], kb[j], "kept line")
+            continue
+        out += [f"{ka[i].where}: removed kept line {ka[i].text}" for i in range(i1, i2)]
+        out += [f"{kb[j].where}: added kept line {kb[j].text}" for j in range(j1, j2)]
     return out
 
 
@@ -137,7 +215,7 @@ def _details(s: Stmt) -> dict[str, str]:
     return {}
 
 
-def _native_change(x: Native, y: Native) -> list[str]:
+def _native_change(x: Native, y: Native, what: str = "native line") -> list[str]:
     """A line kept native on both sides whose text changed: the words that differ, then the
     line (a touch-up of a move rmot cannot read, such as `CNT60` -> `CNT20`, is still named)."""
     if x.text == y.text:
@@ -145,7 +223,7 @@ def _native_change(x: Native, y: Native) -> list[str]:
     wa, wb = x.text.split(), y.text.split()
     words = [f"{' '.join(wa[i1:i2]) or '-'} -> {' '.join(wb[j1:j2]) or '-'}"
              for op, i1, i2, j1, j2 in SequenceMatcher(a=wa, b=wb, autojunk=False).get_opcodes() if op != "equal"]
-    return [f"{x.where} -> {y.where}: native line changed ({'; '.join(words)}): {y.text}"]
+    return [f"{x.where} -> {y.where}: {what} changed ({'; '.join(words)}): {y.text}"]
 
 
 def _compare(x: Stmt, y: Stmt) -> list[str]:
@@ -180,7 +258,7 @@ def _routine(ra: tuple[Stmt, ...], rb: tuple[Stmt, ...]) -> list[str]:
 
 def diff_documents(a: Document, b: Document) -> list[str]:
     """Every difference, one line each (empty when the programs mean the same)."""
-    out = _targets(a, b)
+    out = _targets(a, b) + _tools(a, b) + _frames(a, b) + _loads(a, b) + _kept(a, b)
     rb = {r.name.upper(): r for r in b.routines}
     ra = {r.name.upper(): r for r in a.routines}
     for key, r in ra.items():

@@ -31,7 +31,7 @@ from rmot.backends.readers.fanuc_text import (
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
-    Call, Cond, Conds, For, FrameData, If, Move, Native, Pulse, PulsePose, SetOut, Stmt, Stop, Target, ToolData, WaitIn,
+    Call, Cond, Conds, For, FrameData, If, Move, NamedLoad, Native, Pulse, PulsePose, SetOut, Stmt, Stop, Target, ToolData, WaitIn,
     Where, Routine)
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
@@ -96,7 +96,7 @@ class _Ls:
         self.inlined: set[str] = set()  # programs read again at a call inside a loop
         # PAYLOAD[i] schedules with the mass a remark right before the line gives (the schedule's
         # data lives on the controller): (name, mass kg, centre unknown)
-        self.loads: list[tuple[str, float, tuple[float, float, float]]] = []
+        self.loads: list[NamedLoad] = []
         self.pulse_pose = pulse_pose  # (joints deg, tool name) -> the TCP pose in the base (the cell's arm)
         self.tcp: dict[tuple[str, str], Target] = {}  # (joint-form position, tool) -> its TCP pose target
         self.regs: Registers | None = None  # the registers and flags read as variables or group inputs
@@ -148,13 +148,11 @@ class _Ls:
 
     def _positions(self) -> None:
         for n, label, whole, line in position_blocks("\n".join(self.raw)):
-            body = re.split(r"\bGP[2-9]\s*:", whole)[0]  # the arm's group
-            where = Where(self.path, line)
+            body, where = re.split(r"\bGP[2-9]\s*:", whole)[0], Where(self.path, line)  # the arm's group
             values = position_values(body, f"P[{n}]", where, self.tally.fail)
             conf = re.search(r"CONFIG\s*:\s*'([^']*)'", body)
             name = rmot_name(label) if label else rmot_name(f"{self.name.lower()}_p{n}")  # `-BCKED8-`: a name
-            if any(t.name == name for t in self.positions.values()):
-                name = f"{name}_{n}"  # the same label on another P[n] (the moves name it by number)
+            name = f"{name}_{n}" if any(t.name == name for t in self.positions.values()) else name  # a label twice
             taught = re.search(r"\bUF\s*:\s*(\d+)\s*,\s*UT\s*:\s*(\d+)", body)
             self.taught.update({n: {"UFRAME": int(taught.group(1)), "UTOOL": int(taught.group(2))}} if taught else {})
             if all(k in values for k in "XYZWPR"):
@@ -163,6 +161,8 @@ class _Ls:
             elif all(f"J{i}" in values for i in range(1, 7)):
                 self.positions[n] = Target(name, None, tuple(values[f"J{i}"] for i in range(1, 7)), None, where,
                                            slots=axes_slots.fanuc_slots(whole))
+            else:  # coordinates rmot does not read (`RX =` ..): kept as a comment, so `rmot diff` sees a touch-up
+                self.tally.comments.append(Native("fanuc", f"P[{n}]{{{' '.join(whole.split())}}}", where))
 
     # ---------------------------------------------------------------- instructions
 
@@ -215,7 +215,7 @@ class _Ls:
         payload = re.fullmatch(r"PAYLOAD\[(\d+)\]", text)
         remark = re.fullmatch(r"!.*:\s*(\d+(?:\.\d+)?)\s*kg", self._text(i - 1)) if payload and i > 0 else None
         if remark:  # (its centre is not known)
-            self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (float("nan"),) * 3))  # type: ignore[union-attr]
+            self.loads.append((f"PAYLOAD[{payload.group(1)}]", float(remark.group(1)), (float("nan"),) * 3, where))  # type: ignore[union-attr]
         if stmt is None:
             selected = caller_selection(self.state, [self.taught.get(p) for p in path_points(text)], self.inherited)
             joint_form = [why for why in (self._tcp_of(p, where, selected["UTOOL"]) for p in path_points(text))

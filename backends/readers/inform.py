@@ -37,7 +37,7 @@ from rmot.backends.readers.common import (
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
 from rmot.backends.readers.model import (
-    Cond, For, FrameData, If, Move, PulsePose, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
+    Cond, For, FrameData, If, Move, Native, PulsePose, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
 from rmot.backends.readers.rapid import mm
 from rmot.lang import ir
@@ -153,8 +153,9 @@ class _Job:
         try:
             v = [float(x) for x in m.group(2).split(",")]
         except ValueError:
-            return
+            v = []
         if len(v) < 6 or not all(math.isfinite(x) for x in v):
+            self.tally.comments.append(Native("inform", s, Where(self.path, n)))  # kept, so `rmot diff` sees a touch-up
             return
         pose = ir.Pose.from_xyz_rpy(v[0] / 1000, v[1] / 1000, v[2] / 1000, *(math.radians(a) for a in v[3:6]))
         q = tuple(0.0 if abs(c) < 1e-12 else c for c in pose.quaternion)  # cos(90 deg) noise
@@ -177,6 +178,9 @@ class _Job:
         whole = len(counts) == len(values.split(","))
         # every axis at 0 pulses is every axis at its zero, whatever the scales (a generator's home)
         scales = self.pulses_per_degree or ((1.0,) * len(counts) if whole and counts and not any(counts) else None)
+        if scales is None or not whole or len(counts) != len(scales):
+            # its data is kept as a comment (nothing lost; `rmot diff` names a touch-up of it)
+            self.tally.comments.append(Native("inform", f"{key}={values}", Where(self.path, n)))
         if scales is None:
             self.pulse_positions[key] = ("is a pulse position (///PULSE, or no ///RECTAN before it): encoder counts "
                                          "whose per-axis scales are the arm's controller's; pass them as `rmot import "

@@ -42,7 +42,7 @@ from rmot.backends.readers.krl_why import (
 from rmot.backends.readers.krl_names import (
     Params, call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases)
 from rmot.backends.readers.model import (
-    Call, Cond, Conds, Signal, For, FrameData, If, Move, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While, Routine)
+    Call, Cond, Conds, Signal, For, FrameData, If, Move, NamedLoad, Pulse, SetOut, Stmt, Target, ToolData, Wait, WaitIn, Where, While, Routine)
 from rmot.backends.readers.rapid import mm, num_text, pose_expr
 from rmot.lang import ir
 
@@ -372,7 +372,7 @@ class _Krl:
             return True
         return re.fullmatch(r"(?i)\$LOAD\s*=\s*\w+", text) is not None or axes_slots.krl_setting(st, text)
 
-    def named_loads(self) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
+    def named_loads(self) -> tuple[NamedLoad, ...]:
         """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
         return named_loads(self.data)
 
@@ -408,10 +408,11 @@ class _Krl:
         same = next((v.name for v in table.values() if (v.tcp if isinstance(v, ToolData) else v.pose) == pose), None)
         if same is None:
             same = f"{which.lower()}_{len(table) + 1}"
+            at = self.at or Where(self.tally.path, 1)
             if which == "TOOL":
-                self.tools[same.upper()] = ToolData(same, pose, 0.0, Where(self.tally.path, 1))
+                self.tools[same.upper()] = ToolData(same, pose, 0.0, at)
             else:
-                self.frames[same.upper()] = FrameData(same, pose, Where(self.tally.path, 1))
+                self.frames[same.upper()] = FrameData(same, pose, at)
         if which == "TOOL":
             self.state.tool = same
         else:

@@ -16,7 +16,7 @@ from rmot.backends.readers import codes
 from rmot.backends.readers.axes_slots import krl_slots
 from rmot.backends.readers.common import Tally, number, split_top
 from rmot.backends.readers.krl_text import Line, MotionState, aggregate, branch_of_status, declarations, in_cond, krl_pose, lines
-from rmot.backends.readers.model import FrameData, Move, Stmt, Target, ToolData, WaitIn, Where
+from rmot.backends.readers.model import FrameData, Move, NamedLoad, Stmt, Target, ToolData, WaitIn, Where
 from rmot.lang import ir
 
 __all__ = [
@@ -53,14 +53,14 @@ def declared(move: Move) -> Target:
     return Target(move.target_name or "", move.pose, move.joints, move.config, move.where)
 
 
-def named_loads(data: dict[str, Data]) -> tuple[tuple[str, float, tuple[float, float, float]], ...]:
+def named_loads(data: dict[str, Data]) -> tuple[NamedLoad, ...]:
     """The .dat's LOAD data: (name, mass kg, centre of mass mm in the flange frame)."""
     out = []
-    for type_, name, value, _ in data.values():
+    for type_, name, value, where in data.values():
         cm = value.get("CM") if isinstance(value, dict) and type_.upper() == "LOAD" else None
         mass = value.get("M") if isinstance(value, dict) else None
         if isinstance(cm, dict) and isinstance(mass, float) and all(isinstance(cm.get(k), float) for k in "XYZ"):
-            out.append((name, mass, (float(cm["X"]), float(cm["Y"]), float(cm["Z"]))))
+            out.append((name, mass, (float(cm["X"]), float(cm["Y"]), float(cm["Z"])), where))
     return tuple(out)
 
 

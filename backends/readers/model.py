@@ -22,7 +22,7 @@ __all__ = [
 ]
 __all__ += ["VarDecl", "Assign"]
 __all__ += ["Sync"]
-__all__ += ["PulsePose"]
+__all__ += ["PulsePose", "NamedLoad"]
 
 # the TCP pose (in the arm's base) of joints in degrees with a named tool, or None where the
 # tool is not known: what a caller that loaded the arm gives a reader of joint-only positions
@@ -309,6 +309,11 @@ class FileCount:
     native: int
 
 
+# a named load: (name, mass kg, centre of mass mm in the flange frame, NaN where the controller
+# holds it; where it is declared)
+NamedLoad = tuple[str, float, tuple[float, float, float], Where]
+
+
 @record(slots=True)
 class Document:
     vendor: str
@@ -322,6 +327,5 @@ class Document:
     counts: tuple[FileCount, ...]
     diagnostics: tuple[Diagnostic, ...]
     kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments
-    # named loads the files declare (KRL LOAD data): (name, mass kg, centre of mass mm in the flange frame)
-    loads: tuple[tuple[str, float, tuple[float, float, float]], ...] = ()
+    loads: tuple[NamedLoad, ...] = ()  # named loads the files declare (KRL LOAD data, TP payload schedules)
     mechanisms: tuple[str, ...] = ()  # the cell's track and positioners the program drives (`with`)

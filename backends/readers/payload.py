@@ -113,7 +113,7 @@ def _switch(doc: Document, s: Native, loads: dict[str, Load]) -> tuple[bool, Loa
         # on the flange; TP PAYLOAD[i]: schedule i, its mass from a remark before it (centre unknown)
         m = re.fullmatch(r"(?i)\$LOAD\s*=\s*(\w+)|(PAYLOAD\[\d+\])\s*;", s.text)
         named = {name.lower(): (mass, (cm[0] / 1000.0, cm[1] / 1000.0, cm[2] / 1000.0))
-                 for name, mass, cm in doc.loads}
+                 for name, mass, cm, _ in doc.loads}
         entry = named.get((m.group(1) or m.group(2)).lower()) if m else None
         return None if entry is None else (True, (entry[0], entry[1], None))
     if doc.vendor in ("inform", "val3"):  # the backend's remark `'attach P: payload M kg` (tool + parts; no centre)

@@ -245,7 +245,7 @@ class _Script:
         if ln.head in ("set_payload", "set_target_payload") and not (i > 0 and self.lines[i - 1].head == "set_tcp"):
             # not the load of a tool just selected: a switch of the held load (an attach/detach)
             return [self.tally.keep(ln.text, ln.where, "a payload switch (`rmot import --cell` reads an attach or detach)")], i + 1
-        if self._setting(ln.text) or self._declare(ln):
+        if self._setting(ln.text, ln.where) or self._declare(ln):
             return [], i + 1
         self._remember(ln.text)  # for the moves that read it; the assignment is kept native
         assign = self.logic.assign(ln.text, ln.where) if self.in_sub == 0 else None
@@ -382,7 +382,7 @@ class _Script:
             orelse, j = self._block(j + 1, ("end",))
         return [If(cond, tuple(then), tuple(orelse), ln.where)], j + 1
 
-    def _setting(self, text: str) -> bool:
+    def _setting(self, text: str, where: Where) -> bool:
         compact = text.replace(" ", "")
         m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", compact)
         if m:
@@ -391,7 +391,7 @@ class _Script:
                 return False
             key = tuple(round(v, 6) for v in values)
             if key not in self.tools:
-                self.tools[key] = ToolData(f"tcp_{len(self.tools) + 1}", ur_pose(values), 0.0, Where(self.tally.path, 1))
+                self.tools[key] = ToolData(f"tcp_{len(self.tools) + 1}", ur_pose(values), 0.0, where)
             self.tool, self.last_target = self.tools[key].name, None
             return True
         m = re.fullmatch(r"set_(?:target_)?payload\(([\d.]+)(?:,.*)?\)", compact)  # set_target_payload: PolyScope 5.10+

@@ -23,20 +23,21 @@ from rmot.lang.atomic import write_text
 
 __all__ = ["diff"]
 
-# the file of a compiled program that runs (the others are its routines, read with it)
-_MAIN_EXT = {"rapid": ".mod", "krl": ".src", "urscript": ".script", "fanuc": ".ls"}
-
-
-def _fail(message: str, path: str) -> None:
+def _fail(message: str, path: str, no_counterpart: bool = False) -> None:
     from rmot.backends.readers import codes, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.model import Where  # late: loads numpy only when this runs
 
-    click.echo(render(Diagnostic(codes.DIFF_VENDORS_DIFFER, Severity.ERROR, message, span_of(Where(path, 1)))), err=True)
+    code = codes.DIFF_NO_COUNTERPART if no_counterpart else codes.DIFF_VENDORS_DIFFER
+    click.echo(render(Diagnostic(code, Severity.ERROR, message, span_of(Where(path, 1)))), err=True)
     sys.exit(EXIT_INPUT)
 
 
-def _compiled(source: str, vendor: str, cell: str | None, workdir: str) -> tuple[list[str], dict[str, str]]:
-    """Compile `source` for `vendor` into `workdir`: (files to read, temp path -> shown name)."""
+def _compiled(source: str, vendor: str, cell: str | None, workdir: str,
+              other: list[str]) -> tuple[list[str], dict[str, str], int]:
+    """Compile `source` for `vendor` into `workdir`: (the files to read, temp path -> shown
+    name, how many compiled files are left out). The files read are those named like the other
+    side's (`handover_r1.mod` of a program of two tasks, a TP job's `MAIN.ls` without the
+    programs it calls), so both sides hold the same programs."""
     from rmot.compiler.cli.compile_cmd import compile_program  # late: loads coal only when this runs
 
     outcome = compile_program(source, (vendor,), cell=cell, allow_findings=True)
@@ -45,17 +46,23 @@ def _compiled(source: str, vendor: str, cell: str | None, workdir: str) -> tuple
             if d.is_error:
                 click.echo(render(d), err=True)
         sys.exit(EXIT_INPUT)
-    shown: dict[str, str] = {}
-    read: list[tuple[bool, str]] = []
     stem = os.path.splitext(os.path.basename(source))[0].lower()
+    named = [os.path.basename(path).lower() for path in other]
+    program = [stem + os.path.splitext(name)[1] for name in named]  # a vendor file renamed: the program's own
+    shown: dict[str, str] = {}
+    by_name: dict[str, str] = {}
     for name, text in sorted(outcome.files.items()):
         path = os.path.join(workdir, name.replace("/", "_"))
         write_text(path, text)
         shown[path] = f"{source}[{name}]"
-        own = os.path.splitext(name.split("/", 1)[-1])[0].lower()
-        if name.endswith(_MAIN_EXT[vendor]) and (vendor == "fanuc" or own == stem):
-            read.append((own != stem, path))  # the program's own file first: its main runs
-    return [path for _, path in sorted(read)], shown
+        by_name[os.path.basename(name).lower()] = path
+    read = {k: by_name[n] for k, n in enumerate(named) if n in by_name} or \
+        {k: by_name[n] for k, n in enumerate(program) if n in by_name}
+    if not read:
+        names = ", ".join(sorted(os.path.basename(n) for n in outcome.files))
+        _fail(f"{source} compiles for {vendor} to {names}: none is named like {os.path.basename(other[0])} "
+              "(give the vendor file of the same name)", other[0], no_counterpart=True)
+    return [read[k] for k in sorted(read)], shown, len(outcome.files) - len(read)
 
 
 @click.command(name="diff", help="The semantic difference of two programs of one vendor (or of one and its .rmot).")
@@ -75,14 +82,13 @@ def diff(a: str, b: str, cell: str | None) -> None:
     vendor = va or vb
     assert vendor is not None
     with tempfile.TemporaryDirectory(prefix="rmot-diff-") as workdir:
-        sides, shown = [], {}
-        for path, v in ((a, va), (b, vb)):
-            if v is None:
-                files, names = _compiled(path, vendor, cell, workdir)
-                sides.append(files)
+        sides: list[list[str]] = [companions(a) if va else [], companions(b) if vb else []]
+        shown: dict[str, str] = {}
+        left_out = 0
+        for k, path in ((0, a), (1, b)):
+            if not sides[k]:
+                sides[k], names, left_out = _compiled(path, vendor, cell, workdir, sides[1 - k])
                 shown.update(names)
-            else:
-                sides.append(companions(path))
         try:
             left, right = read_files(sides[0]), read_files(sides[1])
         except ImportError_ as exc:
@@ -94,4 +100,8 @@ def diff(a: str, b: str, cell: str | None) -> None:
             line = line.replace(temp, name)
         click.echo(line)
     click.echo(f"{len(lines)} difference{'s' if len(lines) != 1 else ''}")
+    if left_out:
+        click.echo(f"note: the .rmot compiles to {left_out} more {vendor} file{'s' if left_out != 1 else ''} "
+                   "(other tasks' programs, routines in files of their own), not compared: "
+                   "diff each against the vendor file of its name", err=True)
     sys.exit(EXIT_FINDINGS if lines else EXIT_OK)
