@@ -17,7 +17,7 @@ __all__ = [
     "PROGRAM_SPLIT", "NATIVE_SKIPPED", "ACCEL_IGNORED", "DURATION_IGNORED", "SYNC_OUTPUT_LEFT_ON",
     "TIME_ROUNDED", "MASS_RAISED", "PAYLOAD_NOT_EXPRESSED",
     # vendor programs that load on the controller: E410-E419 / W414-W419
-    "RESERVED_RENAMED", "OTHER_BRAND", "STORED_DATA_WRITTEN", "LIMIT_CLAMPED", "NUMBER_OUT_OF_RANGE",
+    "RESERVED_RENAMED", "OTHER_BRAND", "STORED_DATA_WRITTEN", "LIMIT_CLAMPED", "NUMBER_OUT_OF_RANGE", "NATIVE_CLASH",
 ]
 
 # errors: the program cannot be expressed faithfully for this vendor
@@ -59,6 +59,9 @@ OTHER_BRAND = Code("W415", "robot-other-brand",
 STORED_DATA_WRITTEN = Code("W416", "stored-frame-unnumbered",
                            "a tool or frame has no controller number: the program writes (or assumes) "
                            "the controller's stored tool or frame data at a number it chose")
+NATIVE_CLASH = Code("E411", "native-names-backend-data",
+                    "a native line names a position the backend numbers itself (it would be another point, "
+                    "or none) or a register, variable, timer or tool/frame datum the backend's own lines use")
 NUMBER_OUT_OF_RANGE = Code("E410", "frame-number-out-of-range",
                            "a tool or frame number is outside the numbers the vendor's controller has")
 LIMIT_CLAMPED = Code("W417", "limit-clamped",

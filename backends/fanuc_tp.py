@@ -62,12 +62,13 @@ Over 600 lines: the FanucBackend class alone is 686 lines, and a class is writte
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes
+from rmot.backends import codes, native_refs
 from rmot.backends.ext_axes import coordinated, driven_axes, fanuc_coord, fanuc_default_group, fanuc_groups, fanuc_in_world, machine_data
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm
 from rmot.backends.part_load import held_load
@@ -104,13 +105,18 @@ __all__ = ["FanucBackend"]
 
 @dataclass
 class _Program:
-    """One .ls program being printed: its numbered positions and labels."""
+    """One .ls program being printed: its numbered positions and labels (skipping the labels
+    its native lines name), and the lines those native lines were written as."""
 
     positions: list[str] = field(default_factory=list)
     labels: int = 0
+    reserved: frozenset[str] = frozenset()
+    native: list[str] = field(default_factory=list)
 
     def label(self) -> int:
         self.labels += 1
+        while str(self.labels) in self.reserved:
+            self.labels += 1
         return self.labels
 
 
@@ -145,6 +151,8 @@ class FanucContext(TaskContext):
     program: _Program = field(default_factory=_Program)
     regs: _Registers = field(default_factory=lambda: _Registers({}))  # runtime logic
     axes: tuple[ExtAxis, ...] = ()  # the external axes the task drives (backends/ext_axes.py)
+    natives: list[tuple[ir.Native, list[str]]] = field(default_factory=list)  # the task's, as written
+    own: list[str] = field(default_factory=list)  # the task's lines the backend wrote itself
 
 
 class FanucBackend(Backend):
@@ -187,11 +195,15 @@ class FanucBackend(Backend):
                 routine_of[part.uid] = names.name(part.proc)
             body = parts
         main = self._program(main_name, body, ctx, is_main=True)
+        for node, name in native_refs.clashes(native_refs.FANUC, ctx.natives, ctx.own):
+            self.unsupported(codes.NATIVE_CLASH, f"native line names {name}, which this task's program also uses "
+                             "(rmot's variables, loops, waits, tools and frames): it would read or change rmot's "
+                             "value; use another number", node.span)
         self.extend(names.diagnostics)
         return {f"{main_name}.ls": main, **dict(sorted(ctx.files.items()))}
 
     def _program(self, name: str, body: tuple[ir.Instr, ...], task: FanucContext, *, is_main: bool) -> str:
-        ctx = replace(task, program=_Program())
+        ctx = replace(task, program=_Program(reserved=native_refs.reserved_labels(native_refs.FANUC, body)))
         head = header_lines(ctx.plan, self.name, self.findings_header)
         head += machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "fanuc", coordinated(ctx.task)) if is_main else []
         lines = [self.comment(piece) for text in head for piece in _pieces(text)]
@@ -199,6 +211,7 @@ class FanucBackend(Backend):
         if is_main:
             lines += self._frame_setup(ctx)
         lines += main
+        ctx.own.extend((Counter(lines) - Counter(ctx.program.native)).elements())
         groups = fanuc_default_group(ctx.axes, ctx.plan.program.cell) if ctx.axes else "1,*,*,*,*"
         return self._ls(name, lines, ctx.program.positions, groups)
 
@@ -495,7 +508,15 @@ class FanucBackend(Backend):
     def native(self, node: ir.Native, ctx: FanucContext) -> list[str]:  # type: ignore[override]
         if node.vendor.lower() != self.name:
             return self.native_other(node)
-        return [line.strip().rstrip(";").rstrip() for line in node.text.splitlines() if line.strip()]
+        lines = [line.strip().rstrip(";").rstrip() for line in node.text.splitlines() if line.strip()]
+        named = native_refs.positions_named(native_refs.FANUC, lines)
+        if named:
+            self.unsupported(codes.NATIVE_CLASH, f"native line names {named[0]}, a position of the program it came "
+                             "from: this backend numbers the program's positions for rmot's moves, so "
+                             f"{named[0]} here is another point or none (write the move as an rmot `move`)", node.span)
+        ctx.program.native.extend(lines)
+        ctx.natives.append((node, lines))
+        return lines
 
     def native_other(self, node: ir.Native) -> list[str]:
         super().native_other(node)

@@ -91,13 +91,14 @@ Over 600 lines: the InformBackend class alone is 625 lines, and a class is writt
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Hashable
 from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, turns
+from rmot.backends import codes, native_refs, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.inform_axes import InformAxes, task_axes, warn_pulse_rounding
@@ -146,11 +147,14 @@ class _Position:
 
 @dataclass
 class _Job:
-    """One job being printed: its taught positions, its label counter, its lines."""
+    """One job being printed: its taught positions, its label counter (skipping the labels its
+    native lines name), its lines."""
 
     name: str
     positions: list[_Position] = field(default_factory=list)
     labels: int = 0
+    reserved: frozenset[str] = frozenset()
+    native: list[str] = field(default_factory=list)  # the lines its native statements were written as
     shifts: list[int] = field(default_factory=list)  # P variables the job declares
     stop_label: str | None = None  # `*Lnnn` before END, where a main job's `stop` jumps
     axes: InformAxes | None = None  # base / station positions (backends/inform_axes.py)
@@ -173,6 +177,8 @@ class InformContext(TaskContext):
     job: _Job = field(default_factory=lambda: _Job(""))
     main: str = ""  # the main job's name (where `stop` can end the program)
     vars: _Variables = field(default_factory=lambda: _Variables({}))  # runtime logic
+    natives: list[tuple[ir.Native, list[str]]] = field(default_factory=list)  # the task's, as written
+    own: list[str] = field(default_factory=list)  # the task's lines the backend wrote itself
     axes: InformAxes | None = None  # the external axes the task drives (backends/inform_axes.py)
 
 
@@ -216,11 +222,16 @@ class InformBackend(Backend):
         ctx.routine_of.update({uid: names.name(r if uid in parts else f"{main}_{r}")
                                for uid, r in table.items()})
         self.job(main, split, ctx)
+        for node, var in native_refs.clashes(native_refs.INFORM, ctx.natives, ctx.own):
+            self.unsupported(codes.NATIVE_CLASH, f"native line names {var}, which this task's jobs also use "
+                             "(rmot's variables and loop shifts): it would read or change rmot's value; use "
+                             "another number", node.span)
         self.extend(names.diagnostics)
         return dict(sorted(ctx.files.items()))
 
     def job(self, name: str, body: tuple[ir.Instr, ...], task: InformContext) -> None:
-        ctx = replace(task, job=_Job(name, axes=task.axes.fresh() if task.axes else None))
+        ctx = replace(task, job=_Job(name, axes=task.axes.fresh() if task.axes else None,
+                                     reserved=native_refs.reserved_labels(native_refs.INFORM, body)))
         job = ctx.job
         inst = self.body(body, ctx)
         if len(job.positions) > MAX_POSITIONS:
@@ -234,6 +245,7 @@ class InformBackend(Backend):
                 ["//INST", f"///DATE {DATE}", f"///COMM {ctx.plan.program.name[:32]}",
                  "///ATTR SC,RW", *(job.axes.groups() if job.axes else ["///GROUP1 RB1"]), "NOP"]
                 + head + ctx.vars.comments() + inst + ["END"])
+        ctx.own.extend((Counter(text) - Counter(job.native)).elements())
         ctx.files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
 
     @staticmethod
@@ -498,7 +510,22 @@ class InformBackend(Backend):
     def label(ctx: InformContext) -> str:
         job = ctx.job
         job.labels += 1
+        while f"L{job.labels:03d}" in job.reserved:
+            job.labels += 1
         return f"*L{job.labels:03d}"
+
+    def native(self, node: ir.Native, ctx: InformContext) -> list[str]:  # type: ignore[override]
+        lines = super().native(node, ctx)
+        if node.vendor.lower() != self.name:
+            return lines
+        named = native_refs.positions_named(native_refs.INFORM, lines)
+        if named:
+            self.unsupported(codes.NATIVE_CLASH, f"native line names {named[0]}, a position of the job it came "
+                             f"from: this backend numbers the job's positions for rmot's moves, so {named[0]} "
+                             "here is another point or none (write the move as an rmot `move`)", node.span)
+        ctx.job.native.extend(lines)
+        ctx.natives.append((node, lines))
+        return lines
 
     def if_(self, node: ir.If, ctx: InformContext) -> list[str]:
         if not isinstance(node.condition, ir.InputCondition):  # any condition
