@@ -6,8 +6,9 @@ Vendor conventions (URScript Programming Language manual, e-series / PolyScope 5
   * a pose is `p[x, y, z, rx, ry, rz]`: position in metres and a rotation vector (axis * angle,
     rad), always in the robot *base* frame — URScript has no work object, so targets are the
     IR's `CartesianTarget.pose` (TCP in base, frames already composed);
-  * the tool is `set_tcp(p[...])` (TCP in the flange frame), set at the start of every block
-    and again wherever the move's tool changes within that block;
+  * the tool is `set_tcp(p[...])` (TCP in the flange frame), set at the start of every block,
+    wherever the move's tool changes within that block, and after a call, a block or a native
+    line that may leave another TCP (set_tcp sets the controller's TCP: a function's outlives it);
   * `movej([q1..q6], a, v, t, r)` for joint moves, always to the *planned* joint values (a pose
     target of a joint move is never re-solved on the controller), `movel(p, a, v, t, r)`,
     `movec(p_via, p_to, a, v, r, mode=0)` (mode 0: orientation interpolated to the target, as
@@ -167,14 +168,16 @@ class UrScriptBackend(Backend):
         return {f"{prog}{self.file_ext}": "\n".join(lines) + "\n"}
 
     def block(self, nodes: tuple[ir.Instr, ...], ctx: UrContext) -> list[str]:
-        """A body with `set_tcp` at its first move and wherever the tool changes, with the
-        payload the move carries: the tool and the parts it holds there (the state after the
+        """A body with `set_tcp` at its first move and wherever the tool may have changed, with
+        the payload the move carries: the tool and the parts it holds there (the state after the
         last attach/detach on the move's path, part_load.state_at_moves, as KRL's $LOAD), so a
-        loop body, an `if` arm or a proc never sets the tool alone while a part is held."""
-
+        loop body, an `if` arm or a proc never sets the tool alone while a part is held. After a
+        call, a block or a native line the TCP is the one they left, so the next move sets its own."""
         out: list[str] = []
         current: ir.ToolRef | None = None
         for node in nodes:
+            if not isinstance(node, ir.Move) and self.may_change_tcp(node, current):
+                current = None  # whatever TCP it leaves, the next move states its own
             if isinstance(node, ir.Move) and node.tool != current:
                 current = node.tool
                 out.append(f"set_tcp({pose_text(node.tool.tcp)})")
@@ -186,6 +189,11 @@ class UrScriptBackend(Backend):
                     out.append(f"set_payload({fmt(node.tool.mass, 3)}, [{cog}])")
             out.extend(self.instr(node, ctx))
         return out
+
+    def may_change_tcp(self, node: ir.Instr, current: ir.ToolRef | None) -> bool:
+        """Whether `node` (a call's or block's moves, a native URScript line) may leave another TCP."""
+        return any((isinstance(n, ir.Move) and n.tool != current)
+                   or (isinstance(n, ir.Native) and n.vendor.lower() == self.name) for n in ir_tree.walk((node,)))
 
     # ------------------------------------------------------------------ motion
 

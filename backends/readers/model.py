@@ -220,6 +220,7 @@ class Call:
     name: str
     args: tuple[str, ...]  # rmot expressions
     where: Where
+    tool: str | None = None  # the tool active at the call, for the callee's moves that set none (URScript)
 
 
 @record(slots=True)

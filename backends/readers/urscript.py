@@ -28,8 +28,8 @@ from rmot.backends.readers.urscript_motion import (
     DIRECTION_FUNCTION, DIRECTION_LINES, direction_target, kept_direction, move_arguments, rest_to_rest_shares, share,
 )
 from rmot.backends.readers.urscript_text import (
-    Line, block_end, compose, input_cond, installation_nodes, polled_wait, scan_assignments, scoped_defs,
-    split_statements, strip_hash, ur_pose,
+    TCP_UNKNOWN, Line, block_end, compose, functions, input_cond, installation_nodes, polled_wait, scan_assignments,
+    scoped_defs, split_statements, statements_follow, strip_hash, tcp_after_call, ur_pose,
 )
 from rmot.backends.readers.jump_spans import exit_spans
 from rmot.backends.readers.urscript_values import (
@@ -77,8 +77,7 @@ class _Script:
         self.current_domain: set[int] = set()  # analog outputs the file sets to current (mA)
         self.names: set[str] = set()
         self.parameters: dict[str, tuple[str, ...]] = {}  # a function's parameters
-        self.name = "imported"
-        self.main = "imported"
+        self.name = self.main = "imported"
         self.enclosing = 0  # loops and sub-routine bodies around the statement being read
         self.in_sub = 0  # sub-routine bodies around the statement being read
         self.values: dict[str, float] = {}  # numeric variables as straight-line code has set them
@@ -102,10 +101,10 @@ class _Script:
                 self.tally.comment(ln.text, ln.where)
         if not self.lines:
             raise self.tally.fail("a URScript program must hold statements (got an empty file)", Where(self.tally.path, 1))
-        self.defs = {m.group(1) for ln in self.lines for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
+        self.defs, self.tcp_setters = functions(self.lines)
         first = self.lines[0]
         m = re.fullmatch(r"def\s+(\w+)\s*\(\s*\)\s*:", first.text)
-        program = m is not None and not self._statements_follow(m.group(1))  # else: its top-level statements run
+        program = m is not None and not statements_follow(self.lines, m.group(1))  # else: its top-level statements run
         self._scan_numbers(program)
         every = self.lines + [ln for _, _, node in self.installation for ln in node]
         self.threaded = thread_assigned([ln.text for ln in every], [ln.head for ln in every])
@@ -128,11 +127,6 @@ class _Script:
     def _end_of(self, i: int) -> int:
         """The index of the `end` that closes the block opened at line `i`."""
         return block_end([ln.head for ln in self.lines], i)
-
-    def _statements_follow(self, name: str) -> bool:
-        """Whether statements other than the call `name()` follow the first def's `end`: then
-        the script's top-level statements are what runs (the def a function they may call)."""
-        return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in self.lines[self._end_of(0) + 1:])
 
     def _scan_numbers(self, program: bool) -> None:
         """Which names the file assigns, how often, where (urscript_text.scan_assignments); the
@@ -184,9 +178,9 @@ class _Script:
         self.rest_joints, self.last_target, self.fresh = None, None, {}
         tool, head = self.tool, self.lines[i - 1].head if i > 0 else ""  # a function's body: its own
         if head in ("while", "for") and self._sets_another_tcp(i, tool):
-            self.tool = _TCP_UNKNOWN  # a later turn starts with the TCP the body set
+            self.tool = TCP_UNKNOWN  # a later turn starts with the TCP the body set
         found = self.tally.nested(self.lines[min(i, len(self.lines) - 1)].where, lambda: self._block_body(i, ends))
-        self.fresh, self.tool = {}, _TCP_UNKNOWN if head in _RUNS_MAYBE and self.tool != tool else self.tool
+        self.fresh, self.tool = {}, TCP_UNKNOWN if head in _RUNS_MAYBE and self.tool != tool else self.tool
         return found
 
     def _sets_another_tcp(self, i: int, tool: str | None) -> bool:
@@ -206,6 +200,7 @@ class _Script:
             body += stmts
             if ln.head in ("if", "while", "for") or may_change(ln.text):
                 self.fresh = {}  # a block, a call or a thread may have set any variable
+            self.tool = tcp_after_call(ln, self.tcp_setters, {k: t.name for k, t in self.tools.items()}) or self.tool
             if not all(isinstance(s, (Move, SetOut, Wait, WaitIn, Pulse)) for s in stmts):
                 self.last_target = None  # a native line, a call or a block may have moved the robot
         if ends:
@@ -254,8 +249,9 @@ class _Script:
                             lambda n: self._value(n) is not None or self._target(n) is not None) \
             if stmt is None and ln.head in ("movej", "movel", "movep", "movec") else None
         if stmt is None:
-            why = why or ("a block before it may set the TCP (set_tcp): which one holds here is known only at run time"
-                          if self.tool == _TCP_UNKNOWN and ln.head in ("movej", "movel", "movep", "movec") else None)
+            why = why or ("a block or call before it may set the TCP (set_tcp): which one holds here is known only at run time"
+                          if self.tool == TCP_UNKNOWN and (ln.head in ("movej", "movel", "movep", "movec") or
+                                                           ln.head in self.defs) else None)
             return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
         self.tally.imported += 1
         return [stmt], i + 1
@@ -263,14 +259,15 @@ class _Script:
     def _function_body(self, name: str, i: int) -> tuple[list[Stmt], int]:
         """The body of the function defined at line `i`, read in its own scope (URScript manual,
         "Scoping rules": a variable a function assigns without `global` is its own)."""
-        self.in_sub += 1
+        # its moves before a set_tcp of its own run with its caller's TCP: no tool of their own
+        self.in_sub, tool, self.tool = self.in_sub + 1, self.tool, None
         self.scope.append(name)
         try:
             body, j = self._enclosed(i + 1)
             return list(exit_spans(tuple(body), self.tally, self.lines[i + 1:j])), j
         finally:
             self.scope.pop()
-            self.in_sub -= 1
+            self.in_sub, self.tool = self.in_sub - 1, tool  # a definition runs nothing: the TCP before it holds
 
     def _enclosed(self, i: int) -> tuple[list[Stmt], int]:
         """The body of a loop or of a sub-routine, up to its `end`: a `while True:` in it is not
@@ -436,8 +433,9 @@ class _Script:
             return Stop(where)
         m = re.fullmatch(r"(\w+)\((.*)\)", text)  # a call: its arguments numbers certain here (RoboDK's `SprayOn(1)`)
         args = [self._value(a) for a in split_top(m.group(2))] if m and m.group(2) else []
-        if m and m.group(1) in self.defs and len(args) == len(self.parameters.get(m.group(1), ())) and None not in args:
-            return Call(m.group(1), tuple(num_text(a) for a in args), where)  # type: ignore[arg-type]
+        if m and m.group(1) in self.defs and len(args) == len(self.parameters.get(m.group(1), ())) and None not in args \
+                and self.tool != TCP_UNKNOWN:  # its moves without a set_tcp of their own run with the TCP here
+            return Call(m.group(1), tuple(num_text(a) for a in args), where, self.tool)  # type: ignore[arg-type]
         return None
 
     def _port(self, text: str) -> int | None:
@@ -562,7 +560,7 @@ class _Script:
     def _move(self, func: str, args: list[str], where: Where) -> Move | None:
         kind = {"movej": "joint", "movel": "linear", "movec": "circular", "movep": "linear"}[func]
         parsed = move_arguments(func, kind, args)
-        if parsed is None or self.tool == _TCP_UNKNOWN:
+        if parsed is None or self.tool == TCP_UNKNOWN:
             return None
         points, named = parsed
         found = [self._target(p) for p in points]
@@ -588,7 +586,6 @@ class _Script:
 
 
 _FOREVER = Cond(-1, True)  # the condition of an outermost `while True:` (read as one cycle)
-_TCP_UNKNOWN = "?"  # the TCP after a block that may have set it: which one holds is the run time's
 _RUNS_MAYBE = ("if", "elif", "else", "while", "for")  # an arm or a loop body: it may not run
 
 

@@ -19,7 +19,7 @@ from rmot.lang import ir
 __all__ = [
     "ANY_ASSIGN", "NUMBER_ASSIGN", "Line", "balanced", "block_end", "compose", "input_cond", "installation_nodes",
     "outer", "polled_wait", "pose_numbers", "scan_assignments", "scoped_defs", "split_statements", "split_word",
-    "strip_hash", "ur_pose",
+    "strip_hash", "ur_pose", "TCP_UNKNOWN", "functions", "tcp_after_call", "statements_follow",
 ]
 
 
@@ -275,6 +275,74 @@ def block_end(heads: list[str], i: int) -> int:
             break
         j += 1
     return j
+
+
+def statements_follow(lines: list[Line], name: str) -> bool:
+    """Whether statements other than the call `name()` follow the first def's `end`: then the
+    script's top-level statements are what runs (the def a function they may call)."""
+    end = block_end([ln.head for ln in lines], 0)
+    return any(not re.fullmatch(rf"{name}\s*\(\s*\)", x.text) for x in lines[end + 1:])
+
+
+TCP_UNKNOWN = "?"  # the TCP after a block or call that may have set it: which one holds is the run time's
+
+
+def functions(lines: list[Line]) -> tuple[set[str], dict[str, str | None]]:
+    """The functions the lines define, and those that set a TCP when called (by a `set_tcp` of
+    their own or in a function they call: the TCP is the controller's, URScript manual,
+    set_tcp "Sets the active tcp offset", so a call leaves the one the function set) with the
+    `set_tcp` line each ends with, None where that is not one line at its outermost level
+    after every other setting."""
+    heads = [ln.head for ln in lines]
+    bodies = {m.group(1): (k + 1, block_end(heads, k)) for k, ln in enumerate(lines)
+              for m in [re.match(r"def\s+(\w+)\s*\(", ln.text)] if m}
+    setters: dict[str, str | None] = {}
+    for _ in range(len(bodies) + 1):  # a function calling a setter sets the TCP too (a chain is that long at most)
+        found = {name: _exit_tcp(lines[a:b], setters) for name, (a, b) in bodies.items()
+                 if "set_tcp" in heads[a:b] or calls(lines[a:b], setters)}
+        if found == setters:
+            break
+        setters = found
+    return set(bodies), setters
+
+
+def _exit_tcp(body: list[Line], setters: dict[str, str | None]) -> str | None:
+    """The `set_tcp` line a function body ends with: the last TCP setting at its outermost
+    level, where no block or call after it may set another."""
+    last: str | None = None
+    depth = 0
+    for ln in body:
+        if depth == 0 and ln.head == "set_tcp":
+            last = ln.text
+        elif ln.head == "set_tcp" or calls([ln], setters):
+            last = None if depth > 0 else setters.get(_called(ln, setters) or "")
+        depth += ln.head in ("if", "while", "for", "def", "thread")
+        depth -= ln.head == "end"
+    return last
+
+
+def _called(line: Line, names: dict[str, str | None] | set[str]) -> str | None:
+    """The last function of `names` a line (not a def) calls."""
+    found = [m.group(1) for m in re.finditer(r"\b(\w+)\s*\(", line.text) if m.group(1) in names]
+    return None if line.text.startswith("def ") or not found else found[-1]
+
+
+def calls(lines: list[Line], names: dict[str, str | None] | set[str]) -> bool:
+    """Whether a line (not a def) calls one of the functions `names`."""
+    return any(_called(ln, names) is not None for ln in lines)
+
+
+def tcp_after_call(line: Line, setters: dict[str, str | None], tools: dict[tuple[float, ...], str]) -> str | None:
+    """The tool a line leaves when it calls a function that sets a TCP: the one (`tools`: the
+    TCP's six numbers, rounded to 1e-6 -> tool name) whose `set_tcp(p[..])` of numbers that
+    function ends with, else TCP_UNKNOWN; None where the line calls no such function."""
+    name = _called(line, setters)
+    if name is None:
+        return None
+    m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", (setters[name] or "").replace(" ", ""))
+    values = [number(v) for v in m.group(1).split(",")] if m else []
+    key = tuple(round(v, 6) for v in values if v is not None)
+    return tools.get(key, TCP_UNKNOWN) if len(key) == 6 else TCP_UNKNOWN
 
 
 def compose(func: str, a: ir.Pose, b: ir.Pose) -> ir.Pose:

@@ -209,7 +209,7 @@ def match_tools(doc: Document, cell_tools: tuple[tuple[str, ir.Pose], ...]) -> D
         return doc
 
     def fix(s: Stmt) -> Stmt:
-        return replace(s, tool=names[s.tool]) if isinstance(s, Move) and s.tool in names else s
+        return replace(s, tool=names[s.tool]) if isinstance(s, (Move, Call)) and s.tool in names else s
 
     return _with_routines(doc, fix, tools=tuple(t for t in doc.tools if t.name not in names))
 
@@ -270,6 +270,7 @@ class _Printer:
             self.emit(depth, f"{'attach' if s.take else 'detach'} {s.part}")
         elif isinstance(s, Call):  # as the routine is spelt where it is defined (KRL, TP: names in any case)
             name = s.name if s.name in self.defined else self.spelt.get(s.name.upper(), s.name)
+            self.settings(s, depth, state)
             self.emit(depth, f"{rmot_name(name)}({', '.join(s.args)})")
         else:
             self.block(s, depth, state)
@@ -302,13 +303,17 @@ class _Printer:
         parts = [self.cond(p) if isinstance(p, Cond) else f"({self.cond(p)})" for p in c.parts]
         return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 
-    def move(self, m: Move, depth: int, state: dict[str, str | None]) -> None:
+    def settings(self, m: Move | Call, depth: int, state: dict[str, str | None]) -> None:
+        """`tool` and `frame` where the move (or the moves of a called proc) need others."""
         for key in ("tool", "frame"):
-            value = getattr(m, key)
-            value = value if value in (None, "flange", "base", "world") else rmot_name(value)
+            value: str | None = getattr(m, key, None)
+            value = value if value is None or value in ("flange", "base", "world") else rmot_name(value)
             if value is not None and state.get(key) != value:
                 self.emit(depth, f"{key} {value}")
                 state[key] = value
+
+    def move(self, m: Move, depth: int, state: dict[str, str | None]) -> None:
+        self.settings(m, depth, state)
         if m.axes_only:
             self.emit(depth, " ".join(f"move axes {name} to {value}" for name, value in m.ext)
                       + (f" time {_num(m.time)} s" if m.time is not None else ""))

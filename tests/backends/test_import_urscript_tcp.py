@@ -32,7 +32,7 @@ def test_a_tcp_set_in_an_if_arm_leaves_the_tcp_after_it_unknown(tmp_path: Path) 
     moves, messages = _read(tmp_path, f"  {A}  {MOVE}  if get_standard_digital_in(1):\n    {B}  end\n  {MOVE}  {B}  {MOVE}")
     assert [type(m).__name__ for m in moves] == ["Move", "Native", "Move"]
     assert [m.tool for m in moves if isinstance(m, Move)] == ["tcp_1", "tcp_2"]
-    assert any("a block before it may set the TCP (set_tcp)" in m for m in messages)
+    assert any("a block or call before it may set the TCP (set_tcp)" in m for m in messages)
 
 
 def test_a_tcp_set_in_a_loop_body_reaches_its_later_turns(tmp_path: Path) -> None:
