@@ -24,7 +24,7 @@ from rmot.backends.readers.model import (
     For, Routine,
 )
 from rmot.backends.readers.rapid_data import (
-    LATE_CALL, VELSET, DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
+    ACCSET, LATE_CALL, VELSET, DataFlow, assigned_at, branch_of, changed_data, frame_of, in_document, joints_of, pose_of, tool_of,
 )
 from rmot.backends.readers.rapid_logic import RapidVars, condition
 from rmot.backends.readers.rapid_text import Statement, literal, native_line, statements
@@ -60,7 +60,6 @@ class _Module:
         self.proc_names: dict[str, str] = {}  # upper -> as written
         self.names: set[str] = set()  # numeric names an expression may use
         self.pose_params: set[str] = set()  # the current PROC's target parameters
-        self.acc_pct: float | None = None  # the last `AccSet Acc, 100;` (modal), None = 100 %
         self.name = "imported"
         self.logic = RapidVars(self.stmts, self.tally)  # task variables (rapid_logic.py)
         self.changed = changed_data(self.stmts)  # data some statement assigns: not constant (rapid_data.py)
@@ -266,9 +265,6 @@ class _Module:
         if re.match(r"(?i)^(LOCAL\s+|TASK\s+)*(CONST|PERS|VAR)\s", st.text):
             self._declaration(st)
             return [], i + 1
-        if self._acc_set(st):
-            self.tally.imported += 1
-            return [], i + 1
         if word in ("WAITDI", "WAITUNTIL") and i + 1 < len(self.stmts) and self.logic.flag_of(st, i + 1):
             return self._timed_wait(i)
         if word in self.proc_names:
@@ -309,6 +305,11 @@ class _Module:
         if velset is not None and self.flow.value(VELSET) is None and not unknown:
             return (f"its speed follows `VelSet` (line {self.stmts[velset].where.line}: `{self.stmts[velset].text[:40]}`), "
                     "whose values here are known only at run time (set in a block, by a call or from a variable)")
+        accset = self.flow.where.get(ACCSET, [(None, ())])[0][0]
+        if accset is not None and not self.flow.accel()[0] and not unknown:
+            return (f"its acceleration follows `AccSet` (line {self.stmts[accset].where.line}: `{self.stmts[accset].text[:40]}`), "
+                    "whose values here are known only at run time or have no rmot form (a Ramp other than 100, "
+                    "an Acc outside 20..100 %)")
         changed = [n for n in unknown if n.upper() in self.changed and self.flow.value(n) is None]
         if changed:
             first = self.changed[changed[0].upper()]
@@ -385,16 +386,6 @@ class _Module:
             return [self.tally.keep(st.text + ";", st.where, "no rmot form")], i + 1
         self.tally.imported += 2
         return [WaitIn(wait.cond, wait.timeout, st.where, tuple(orelse))], j + 1
-
-    def _acc_set(self, st: Statement) -> bool:
-        """`AccSet Acc, 100;` read into the modal joint acceleration share of the moves after it
-        (ABB RAPID reference, AccSet Acc, Ramp: Acc 20..100 % of the normal acceleration, Ramp 100 % = the
-        normal jerk); another Ramp has no rmot form and stays native."""
-        m = re.fullmatch(r"(?i)AccSet\s+(\d+(?:\.\d+)?)\s*,\s*100(?:\.0*)?", st.text)
-        if m is None or not 20 <= float(m.group(1)) <= 100:
-            return False
-        self.acc_pct = None if float(m.group(1)) == 100 else float(m.group(1))
-        return True
 
     def _head(self, st: Statement) -> Cond | tuple[str, int, int] | None:
         if st.word == "FOR":
@@ -480,7 +471,8 @@ class _Module:
         zone_mm = self.flow.zone_of(zone, self.zones)
         frame = self._wobj_of(tool[1:], where)
         held = self.tools.get(tool[0].upper()) or self.flow.tool(tool[0], where)
-        if timing is None or zone_mm == "bad" or (held is None and tool[0].upper() != "TOOL0") or frame is None:
+        if timing is None or zone_mm == "bad" or (held is None and tool[0].upper() != "TOOL0") or frame is None \
+                or not self.flow.accel()[0]:
             return None
         if kind == "joint" and timing[1] is None and (speed[0].upper() != "VMAX" or timing[2] != 100):
             self.tally.warn(codes.JOINT_SPEED_READ, f"{word} at {speed[0]}: rmot times a joint move by its joint share; "
@@ -491,7 +483,7 @@ class _Module:
                     joint_pct=timing[2] if kind == "joint" and timing[1] is None else None, zone=zone_mm,  # type: ignore[arg-type]
                     time=timing[1], tool=tool_name, frame=frame, config=config,
                     pose=decl.pose if decl and expr in (decl.name, pose_expr(decl.pose) if decl.pose else None) else None,
-                    joints=decl.joints if decl else None, joint_accel=self.acc_pct, slots=decl.slots if decl else ())
+                    joints=decl.joints if decl else None, joint_accel=self.flow.accel()[1], slots=decl.slots if decl else ())
 
     def _wobj_of(self, switches: list[str], where: Where) -> str | None:
         frame = "base"

@@ -33,7 +33,7 @@ from rmot.backends.readers.model import FrameData, ToolData, Where
 from rmot.backends.readers.rapid_text import Statement, literal
 from rmot.lang import ir
 
-__all__ = ["DataFlow", "LATE_CALL", "VELSET", "VELSET_AT_START", "assigned_at", "branch_of", "changed_data", "frame_of",
+__all__ = ["DataFlow", "LATE_CALL", "VELSET", "VELSET_AT_START", "ACCSET", "assigned_at", "branch_of", "changed_data", "frame_of",
            "in_document", "joints_of", "pose_of", "tool_of"]
 
 D = TypeVar("D", ToolData, FrameData)
@@ -62,11 +62,15 @@ LATE_CALL = r"%|CallByVar\b"  # a call of a routine by a name computed at run ti
 # beginning), followed as a datum of its own: VelSet writes it as an assignment would
 VELSET = "<VELSET>"
 VELSET_AT_START = [100.0, 5000.0]
+# AccSet Acc, Ramp (RAPID Instructions, AccSet: acceleration and its ramp in % of normal, for
+# every later move; 100, 100 when a program starts from the beginning), followed the same way
+ACCSET = "<ACCSET>"
+ACCSET_AT_START = [100.0, 100.0]
 # Program displacement (RAPID Instructions, PDispOn / PDispSet / PDispAdd: every later robtarget
 # is moved by a frame, until PDispOff; off when a program starts from the beginning): followed
 # as a datum that is known only where it is off
 PDISP = "<PDISP>"
-_MODAL = {"VELSET": VELSET, "PDISPON": PDISP, "PDISPSET": PDISP, "PDISPADD": PDISP, "PDISPOFF": PDISP}
+_MODAL = {"VELSET": VELSET, "ACCSET": ACCSET, "PDISPON": PDISP, "PDISPSET": PDISP, "PDISPADD": PDISP, "PDISPOFF": PDISP}
 _OFF = [0.0]
 
 
@@ -195,7 +199,7 @@ class DataFlow:
     def __init__(self, stmts: list[Statement], declared: Mapping[str, tuple[str, str, object]], taken: set[str]) -> None:
         self.stmts = stmts
         self.declared = {**declared, VELSET: ("velset", "VelSet", VELSET_AT_START),  # upper name -> (type, name, literal)
-                         PDISP: ("pdisp", "PDispOff", _OFF)}
+                         ACCSET: ("accset", "AccSet", ACCSET_AT_START), PDISP: ("pdisp", "PDispOff", _OFF)}
         self.taken = taken  # names the module declares: a renamed value's name avoids them
         self.where: dict[str, list[tuple[int, tuple[int, ...] | None]]] = {}
         self.trapped: set[str] = set()
@@ -296,7 +300,8 @@ class DataFlow:
         the file, a call another module, an interrupt or a late-binding call may make leaves
         its start state); the routine that runs first starts from the start state."""
         self.now, name = dict(self.start), routine.upper()
-        self.now.update({n: v for n, v in ((VELSET, VELSET_AT_START), (PDISP, _OFF)) if main and n in self.where})
+        self.now.update({n: v for n, v in ((VELSET, VELSET_AT_START), (ACCSET, ACCSET_AT_START), (PDISP, _OFF))
+                         if main and n in self.where})
         seen = self.at_calls.get(name, [])
         if main or name in self.foreign or not seen or len(seen) != self.mentions[name] - 1 or self.late:  # - its PROC line
             return
@@ -351,11 +356,13 @@ class DataFlow:
         if _MODAL.get(st.word) == PDISP:  # followed, and the instruction stays in the program
             self.now[PDISP] = _OFF if st.word == "PDISPOFF" else UNKNOWN
             return None
-        if st.word == "VELSET":
-            m = re.fullmatch(r"(?i)VelSet\s+([^,]+),\s*(.+)", st.text)
+        if st.word in ("VELSET", "ACCSET"):
+            m = re.fullmatch(r"(?i)\w+\s+([^,]+),\s*(.+)", st.text)
             values = [literal(v) for v in m.groups()] if m else []
             known = len(values) == 2 and all(isinstance(v, float) and v > 0 for v in values)
-            self.now[VELSET] = values if known else UNKNOWN
+            if st.word == "ACCSET":  # rmot's form: the joint share, Acc 20..100 % at the normal ramp
+                known = known and values[1] == 100.0 and 20.0 <= values[0] <= 100.0  # type: ignore[operator]
+            self.now[_MODAL[st.word]] = values if known else UNKNOWN
             return known
         m = _ASSIGN.match(st.text)
         decl = self.declared.get(m.group(1).upper()) if m else None
@@ -393,6 +400,14 @@ class DataFlow:
         if v_tcp is None or not isinstance(override, list) or (duration is not None and override != VELSET_AT_START):
             return None
         return min(v_tcp * override[0] / 100.0, override[1]), duration, override[0]
+
+    def accel(self) -> tuple[bool, float | None]:
+        """(whether the AccSet here is known and has rmot's form, Ramp 100 and Acc 20..100 %;
+        the joint acceleration share it gives the moves, None for 100 %)."""
+        value = self.value(ACCSET) if ACCSET in self.where else ACCSET_AT_START
+        if not isinstance(value, list) or value[1] != 100.0 or not 20.0 <= value[0] <= 100.0:
+            return False, None
+        return True, None if value[0] == 100.0 else value[0]
 
     def velset_at(self) -> int | None:
         """The index of the first VelSet statement the files hold, None where none does."""
