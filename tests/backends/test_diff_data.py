@@ -210,7 +210,7 @@ def test_a_task_of_several_against_the_rmot_is_that_task(handover: Path, vendor:
 
 def test_a_job_file_against_the_rmot_says_what_it_leaves_out(tmp_path: Path) -> None:
     """A TP job compiles to the main program and one program per routine: `MAIN.ls` against the
-    .rmot compares MAIN.ls (before, every routine was reported as added), and the note says how
+    .rmot compares MAIN.ls (not the routines' programs, which it does not hold), and the note says how
     many files it did not compare."""
     result = CliRunner().invoke(cli, ["compile", str(ROOT / "examples" / "pick_place.rmot"), "--target", "fanuc",
                                       "-o", str(tmp_path)], catch_exceptions=False)
@@ -234,7 +234,7 @@ def test_a_file_named_like_no_task_is_a_located_error(handover: Path, tmp_path: 
 
 def test_a_renamed_vendor_file_is_compared_with_the_program_it_came_from(tmp_path: Path) -> None:
     """A backup copy under another name (`INSPECT_BACKUP.JBI`) against the .rmot: the program's
-    own file is compared (an INFORM job against its .rmot was an internal error before)."""
+    own file is compared."""
     result = CliRunner().invoke(cli, ["compile", str(ROOT / "examples" / "inspect.rmot"), "--target", "inform",
                                       "-o", str(tmp_path)], catch_exceptions=False)
     assert result.exit_code == 0, result.output

@@ -1,9 +1,9 @@
 """RAPID's `AccSet Acc, Ramp` holds for every later move, whichever routine set it (RAPID
 Instructions, AccSet; 100, 100 when the program starts from the beginning). `rmot import`
-reads a move's joint acceleration share from the AccSet in force where the move runs: not the
-last one in file order (a routine's AccSet, read before main, applied to main's first move),
-after a call the one the routine leaves, and where only the run time knows it (set in an IF
-arm) the move stays native.
+reads a move's joint acceleration share from the AccSet in force where the move runs, not the
+last one in file order (a routine declared above main does not set main's first moves): after
+a call the one the routine leaves, and where only the run time knows it (set in an IF arm) the
+move stays native.
 
 Witness: a small interpreter written here runs the module (PROC calls, IF on a digital input at
 a given level, AccSet, MoveL) and records the AccSet in force at each move; every move the
