@@ -37,7 +37,7 @@ from rmot.backends.readers.krl_work import WorkCopies
 from rmot.backends.readers.krl_logic import KrlVars
 from rmot.backends.readers.krl_vars import SETUP_FOLD, axis_speed_loop, counted_loop
 from rmot.backends.readers.krl_why import (
-    Names, UnreadCalls, inline_why, mode_why, motion_why, other_why, routines_setting_motion,
+    Names, UnreadCalls, inline_why, mode_why, motion_why, other_why,
 )
 from rmot.backends.readers.krl_names import (
     Params, call_args, config_near, declared_names, group_names, is_group_input, param_names, port_of, signals, signatures, switch_cases)
@@ -77,7 +77,7 @@ class _Krl:
         self.last: tuple[str, str | None, Target | None] | None = None
         self.at: Where | None = None  # the line being read
         # calls kept native or of routines that change the settings: W527 at the motion after one
-        self.calls = UnreadCalls(self.tally, routines_setting_motion(self.lines))
+        self.calls = UnreadCalls(self.tally, self.lines)
         self.logic = KrlVars([], "", None, set(), lambda n: None)  # task variables (krl_logic.py), set in read()
         self.flow = KnownPositions(re.search(r"(?im)^\s*(?:GLOBAL\s+)?INTERRUPT\s+DECL\b", src[1]) is not None)
 
@@ -229,11 +229,12 @@ class _Krl:
         if stmt is None:
             why = self.state.unsure_of(word in ("PTP", "SPTP"), ln.text) or motion_why(ln.text[len(word):], self._names(), self.state) \
                 if word in MOTIONS else \
-                other_why(word, ln.text, self.last is not None) or self.logic.why(ln.text)
+                other_why(word, ln.text, self.last is not None) or self.logic.why(ln.text) or self.calls.why_call(ln.text, self.state)
             self.calls.called(ln.text, ln.where)
-            return [self.tally.keep(ln.text, ln.where, why or "no rmot form")], i + 1
+            kept = self.tally.keep(ln.text, ln.where, why or "no rmot form")
+            return [*(self.state.restate(ln.text, ln.where) if word in MOTIONS else []), kept], i + 1
         self.tally.imported += 1
-        self.calls.moved(stmt)
+        self.calls.moved(stmt, self.state)
         return [stmt], i + 1
 
     def _spline(self, i: int) -> tuple[list[Stmt], int]:
@@ -451,8 +452,8 @@ class _Krl:
         m = re.fullmatch(r"(\w+)\s*\((.*)\)", text)
         sig = (self.signatures.get(m.group(1).upper()) if m.group(2).strip() else ()) if m else None
         args = call_args(m.group(2), sig, self.params) if m and sig is not None else None
-        if m and args is not None and m.group(1).upper() not in ("HALT", "BAS"):
-            return Call(m.group(1), args, where)
+        if m and args is not None and m.group(1).upper() not in ("HALT", "BAS") and (at := self.calls.at_call(text, self.state)) is not None:
+            return Call(m.group(1), args, where, **at)  # type: ignore[arg-type]
         return None
 
     def _target(self, text: str, at: Where | None = None) -> tuple[str, str | None, Target | None] | None:
@@ -587,7 +588,7 @@ class _Krl:
             return [self.tally.keep(header, self.lines[i].where, "an inline form rmot cannot read" +
                                     (f": {why}" if why else ""))], end + 1
         self.tally.imported += 1
-        self.calls.moved(move)
+        self.calls.moved(move, self.state)
         return [move], end + 1
 
 

@@ -16,7 +16,7 @@ from itertools import product
 
 from rmot.backends.krl_text import status_of
 from rmot.backends.readers.common import number, split_top
-from rmot.backends.readers.model import Cond, Conds, Signal, Where
+from rmot.backends.readers.model import Cond, Conds, Native, Signal, Where
 from rmot.lang import ir
 from rmot.lang.record import record
 
@@ -271,6 +271,13 @@ class MotionState:
         # a setting a block changed (an arm may not run, a loop may not turn) or a line set to a value
         # not read: where, and the value it had then; a motion reading it while it has that value is native
         self.unsure: dict[str, tuple[str, object]] = {}
+        self.written: dict[str, object] = {}
+        self.wrote()
+
+    def wrote(self) -> None:
+        """A motion was read: the compiled program writes its settings before it (what a native
+        motion after it finds on the controller, restate); at a routine's start, its assumed values."""
+        self.written = {n: getattr(self, n) for n in self.SETTINGS}
 
     SETTINGS = {"vel_cp": "$VEL.CP", "vel_ptp": "$VEL_AXIS", "acc_cp": "$ACC.CP", "acc_ptp": "$ACC_AXIS",
                 "cdis": "$APO.CDIS", "cptp": "$APO.CPTP", "tool": "$TOOL", "frame": "$BASE"}
@@ -289,6 +296,30 @@ class MotionState:
             else:
                 del self.unsure[n]
         return found
+
+    def restate(self, text: str, where: Where) -> list[Native]:
+        """A motion kept native reads $VEL.CP, $ACC.CP and its blend distance from the controller,
+        where the compiled program writes them only before rmot's own motions: the values known
+        here and set by a line since the last motion read, restated as KRL lines before it, so a
+        setting line the import read (and so left out) still reaches it."""
+        joint = re.match(r"(?i)S?PTP\b", text) is not None
+        known = {n: getattr(self, n) for n in (("cptp", "cdis") if joint else ("vel_cp", "acc_cp", "cptp", "cdis"))
+                 if getattr(self, n) is not None and n not in self.unsure and getattr(self, n) != self.written[n]}
+        lines = {"vel_cp": "$VEL.CP={:.4f}", "acc_cp": "$ACC.CP={:.4f}", "cdis": "$APO.CDIS={:.3f}", "cptp": "$APO.CPTP={:g}"}
+        scale = {"vel_cp": 1000.0, "acc_cp": 1000.0}  # mm/s, mm/s^2 here; m/s, m/s^2 in KRL
+        return [Native("krl", lines[n].format(v / scale.get(n, 1.0)), where) for n, v in known.items()]
+
+    def set_by_call(self, name: str, where: Where) -> None:
+        """After a call of a routine that sets motion settings ($VEL, $ACC, $APO, $TOOL, $BASE are
+        global: they keep its values after it returns): each is known only at run time, so the
+        motions reading one stay native until a line sets it again."""
+        for n in self.SETTINGS:
+            self.unsure[n] = (f"by `{name}(..)` at line {where.line}", getattr(self, n))
+
+    def at_call(self) -> dict[str, float | None]:
+        """The speeds and accelerations in force here, which a called routine's motions run with
+        where they set none (rmot's proc takes them from the call)."""
+        return {"speed": self.vel_cp, "joint_pct": self.vel_ptp, "accel": self.acc_cp, "joint_accel": self.acc_ptp}
 
     def unsure_of(self, joint: bool, text: str) -> str | None:
         """Why a PTP (`joint`) or CP motion `text` here cannot be read: a setting it reads (the

@@ -126,6 +126,26 @@ def other_why(word: str, text: str, started: bool) -> str | None:
 _SETS_MOTION = re.compile(r"(?i)\s*(?:\$(?:VEL|ACC|APO|TOOL|BASE)(?:_\w+)?\b[^=]*=(?!=)|BAS\s*\()")
 
 
+_MOTION = re.compile(r"(?i)\s*S?(?:PTP|LIN|CIRC)\b")
+
+
+def routines_inheriting_motion(lines: list[Line]) -> frozenset[str]:
+    """The routines (upper-case names) of a module with a motion before any line that changes the
+    motion settings: it runs with its caller's."""
+    found: set[str] = set()
+    routine: str | None = None
+    for ln in lines:
+        head = re.match(r"(?i)\s*(?:GLOBAL\s+)?DEF\s+(\w+)\s*\(", ln.text)
+        if head is not None:
+            routine = head.group(1).upper()
+        elif routine is not None and _SETS_MOTION.match(ln.text):
+            routine = None
+        elif routine is not None and _MOTION.match(ln.text):
+            found.add(routine)
+            routine = None
+    return frozenset(found)
+
+
 def routines_setting_motion(lines: list[Line]) -> frozenset[str]:
     """The routines (upper-case names) of a module with a line that changes the motion settings."""
     found: set[str] = set()
@@ -140,37 +160,57 @@ def routines_setting_motion(lines: list[Line]) -> frozenset[str]:
 
 
 class UnreadCalls:
-    """The calls after which the motion settings may not be the ones read before: routines the
-    import does not read (kept native), and read routines that change them. $VEL, $APO, $TOOL and
-    $BASE are global (KSS 8.x System Integrators, system variables), so a routine's settings hold
-    after it returns, while an rmot proc's settings end with the proc. The first motion read after
-    such a call gets W527, once per routine."""
+    """The calls after which the motion settings may not be the ones read before. $VEL, $APO,
+    $TOOL and $BASE are global (KSS 8.x System Integrators, system variables), so a routine's
+    settings hold after it returns, while an rmot proc's settings end with the proc: after a
+    call of a read routine that changes them, each is known only at run time
+    (MotionState.set_by_call); after a call of a routine the import does not read (kept native)
+    the first motion read gets W527, once per routine."""
 
-    def __init__(self, tally: Tally, setters: frozenset[str] = frozenset()) -> None:
+    def __init__(self, tally: Tally, lines: list[Line]) -> None:
         self.tally = tally
-        self.setters = setters  # read routines that change the settings
-        self.pending: tuple[str, Where, bool] | None = None  # the last such call since the last motion read
+        self.setters = routines_setting_motion(lines)  # read routines that change the settings
+        self.inheriting = routines_inheriting_motion(lines)  # routines with a motion that reads its caller's
+        self.pending: tuple[str, Where] | None = None  # the last unread call since the last motion read
         self.warned: set[str] = set()
+
+    def at_call(self, text: str, state: MotionState) -> dict[str, float | None] | None:
+        """The settings a call carries where its routine runs motions with its caller's
+        (MotionState.at_call; none for another routine), None where one of them is known only
+        at run time here (`why_call`)."""
+        if not self._inherits(text):
+            return {}
+        return None if self.why_call(text, state) else state.at_call()
+
+    def why_call(self, text: str, state: MotionState) -> str | None:
+        """Why a call of a routine that runs motions with its caller's settings cannot be read:
+        one of them is unsure here."""
+        return state.unsure_of(False, text) or state.unsure_of(True, text) if self._inherits(text) else None
+
+    def _inherits(self, text: str) -> bool:
+        m = re.fullmatch(r"(\w+)\s*\(.*\)", text)
+        return m is not None and m.group(1).upper() in self.inheriting
 
     def called(self, text: str, where: Where) -> None:
         """A line kept native: a call when it is `name(..)`."""
         m = re.fullmatch(r"(\w+)\s*\(.*\)", text)
         if m is not None:
-            self.pending = (m.group(1), where, False)
+            self.pending = (m.group(1), where)
 
-    def moved(self, stmt: Stmt) -> None:
-        """A statement read: W527 when it is a motion after a pending call of a routine not yet named."""
+    def moved(self, stmt: Stmt, state: MotionState) -> None:
+        """A statement read: after a call of a setter its settings are unsure; W527 when it is a
+        motion after a pending call of a routine not read and not yet named."""
         if isinstance(stmt, Call) and stmt.name.upper() in self.setters:
-            self.pending = (stmt.name, stmt.where, True)
+            state.set_by_call(stmt.name, stmt.where)
+        if isinstance(stmt, Move):
+            state.wrote()
         if not isinstance(stmt, Move) or self.pending is None:
             return
-        name, at, read = self.pending
+        name, at = self.pending
         self.pending = None
         if name.upper() in self.warned:
             return
         self.warned.add(name.upper())
-        routine = ("a routine that sets them itself: KRL keeps its values after it returns, an rmot proc's end "
-                   "with the proc" if read else "a routine the import does not read")
         self.tally.warn(codes.SETTINGS_AFTER_CALL, f"this motion is read with the speed, approximation, tool and base "
-                        f"set before `{name}(..)` at line {at.line}, {routine}: check that "
+                        f"set before `{name}(..)` at line {at.line}, a routine the import does not read: check that "
                         "it leaves $VEL, $APO, $TOOL and $BASE as they were", stmt.where)

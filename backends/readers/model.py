@@ -220,7 +220,13 @@ class Call:
     name: str
     args: tuple[str, ...]  # rmot expressions
     where: Where
-    tool: str | None = None  # the tool active at the call, for the callee's moves that set none (URScript)
+    # the settings in force at the call, for the callee's moves that set none of their own (KRL's
+    # $VEL/$ACC and URScript's TCP are the controller's: a routine's motions run with its caller's)
+    tool: str | None = None
+    speed: float | None = None  # mm/s
+    joint_pct: float | None = None
+    accel: float | None = None  # mm/s^2
+    joint_accel: float | None = None
 
 
 @record(slots=True)

@@ -304,13 +304,21 @@ class _Printer:
         return f"not {parts[0]}" if c.op == "not" else f" {c.op} ".join(parts)
 
     def settings(self, m: Move | Call, depth: int, state: dict[str, str | None]) -> None:
-        """`tool` and `frame` where the move (or the moves of a called proc) need others."""
+        """`tool` and `frame` where the move needs others; before a call, also the speeds and
+        accelerations in force there, which the proc's moves that set none take."""
         for key in ("tool", "frame"):
             value: str | None = getattr(m, key, None)
             value = value if value is None or value in ("flange", "base", "world") else rmot_name(value)
             if value is not None and state.get(key) != value:
                 self.emit(depth, f"{key} {value}")
                 state[key] = value
+        modal = {"speed": "mm/s", "joint_pct": "%", "accel": "mm/s^2", "joint_accel": "%"} if isinstance(m, Call) else {}
+        for key, unit in modal.items():
+            number = getattr(m, key)
+            setting = f"{'accel' if 'accel' in key else 'speed'} {_num(number)} {unit}" if number is not None else None
+            if setting is not None and state.get(key) != setting:
+                self.emit(depth, setting)
+                state[key] = setting
 
     def move(self, m: Move, depth: int, state: dict[str, str | None]) -> None:
         self.settings(m, depth, state)

@@ -163,15 +163,19 @@ END
 
 def test_a_routine_moves_at_its_callers_speed_and_keeps_its_own_after_it_returns(tmp_path: Path) -> None:
     """$VEL is global (KSS 8.x System Integrators, system variables): `keeps()` moves at the
-    caller's 0.1 m/s, so its proc's move names no speed (an rmot proc starts with the caller's
-    settings, REFERENCE §5), never KRL's 2 m/s default; `fast()` sets 1.5 m/s, which KRL keeps
-    after it returns while an rmot proc's settings end with it: the caller's next motion is W527."""
+    caller's 0.1 m/s, so its proc's move names no speed and the call carries the caller's (`speed
+    100 mm/s` before `keeps()`: an rmot proc starts with the caller's settings, REFERENCE §5),
+    never KRL's 2 m/s default; `fast()` sets 1.5 m/s, which KRL keeps after it returns while an
+    rmot proc's settings end with it: the caller's next motion stays native, its reason naming
+    the call."""
     printed, text = imported_krl(tmp_path, "caller", ROUTINE_SETTINGS, "DEFDAT caller\nENDDAT\n")
     keeps = text[text.index("proc keeps()"):text.index("proc fast()")]
     assert "move linear" in keeps and "speed" not in keeps, keeps
     fast = text[text.index("proc fast()"):text.index("  }", text.index("proc fast()"))]
     assert "speed 1500 mm/s" in fast, fast
+    main = text[text.index("  }", text.index("proc fast()")):]
+    assert main.index("speed 100 mm/s\n") < main.index("keeps()"), main
     after_call = ROUTINE_SETTINGS.splitlines().index("  LIN {X 500, Y 100, Z 400, A 0, B 90, C 0}") + 1
-    warned = [ln for ln in printed.splitlines() if "W527" in ln]
-    assert len(warned) == 1 and warned[0].startswith(f"{tmp_path / 'caller.src'}:{after_call}:"), printed
-    assert "`fast(..)`" in warned[0] and "`keeps(..)`" not in printed
+    kept = [ln for ln in printed.splitlines() if ln.startswith(f"{tmp_path / 'caller.src'}:{after_call}:")]
+    assert len(kept) == 1 and "W510" in kept[0] and "is set by `fast(..)` at line 5" in kept[0], printed
+    assert "W527" not in printed
