@@ -13,7 +13,7 @@ velocity is a variable or whose motion data set is declared nowhere the import s
 from __future__ import annotations
 
 import re
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Iterator, Mapping
 
 from rmot.backends.readers import codes
 from rmot.backends.readers.common import Tally, split_top
@@ -124,39 +124,33 @@ def other_why(word: str, text: str, started: bool) -> str | None:
 # $TOOL or $BASE (or a member of one), or BAS(..), which the inline forms' folds call to set them
 # (KSS 8.x System Integrators, system variables; BAS.SRC)
 _SETS_MOTION = re.compile(r"(?i)\s*(?:\$(?:VEL|ACC|APO|TOOL|BASE)(?:_\w+)?\b[^=]*=(?!=)|BAS\s*\()")
-
-
 _MOTION = re.compile(r"(?i)\s*S?(?:PTP|LIN|CIRC)\b")
+
+
+def _by_routine(lines: list[Line]) -> Iterator[tuple[str, Line]]:
+    """(the routine's upper-case name, line) for each line inside a DEF."""
+    routine: str | None = None
+    for ln in lines:
+        head = re.match(r"(?i)\s*(?:GLOBAL\s+)?DEF\s+(\w+)\s*\(", ln.text)
+        if head is not None:
+            routine = head.group(1).upper()
+        elif routine is not None:
+            yield routine, ln
+
+
+def routines_setting_motion(lines: list[Line]) -> frozenset[str]:
+    """The routines (upper-case names) of a module with a line that changes the motion settings."""
+    return frozenset(routine for routine, ln in _by_routine(lines) if _SETS_MOTION.match(ln.text))
 
 
 def routines_inheriting_motion(lines: list[Line]) -> frozenset[str]:
     """The routines (upper-case names) of a module with a motion before any line that changes the
     motion settings: it runs with its caller's."""
-    found: set[str] = set()
-    routine: str | None = None
-    for ln in lines:
-        head = re.match(r"(?i)\s*(?:GLOBAL\s+)?DEF\s+(\w+)\s*\(", ln.text)
-        if head is not None:
-            routine = head.group(1).upper()
-        elif routine is not None and _SETS_MOTION.match(ln.text):
-            routine = None
-        elif routine is not None and _MOTION.match(ln.text):
-            found.add(routine)
-            routine = None
-    return frozenset(found)
-
-
-def routines_setting_motion(lines: list[Line]) -> frozenset[str]:
-    """The routines (upper-case names) of a module with a line that changes the motion settings."""
-    found: set[str] = set()
-    routine: str | None = None
-    for ln in lines:
-        head = re.match(r"(?i)\s*(?:GLOBAL\s+)?DEF\s+(\w+)\s*\(", ln.text)
-        if head is not None:
-            routine = head.group(1).upper()
-        elif routine is not None and _SETS_MOTION.match(ln.text):
-            found.add(routine)
-    return frozenset(found)
+    first: dict[str, bool] = {}  # routine -> whether its first setting or motion line is a motion
+    for routine, ln in _by_routine(lines):
+        if routine not in first and (_SETS_MOTION.match(ln.text) or _MOTION.match(ln.text)):
+            first[routine] = _SETS_MOTION.match(ln.text) is None
+    return frozenset(routine for routine, motion in first.items() if motion)
 
 
 class UnreadCalls:
