@@ -25,7 +25,7 @@ from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    CALLERS, caller_selection, kept_option, motion_options, output_expression, path_points,
+    CALLERS, caller_selection, kept_option, selected_by_call, motion_options, output_expression, path_points,
     position_blocks, position_values, timed_wait, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
@@ -94,9 +94,7 @@ class _Ls:
         self.routine = Routine("", (), (), Where(path, 1))  # the program, once read
         self.programs = programs or {}
         self.inlined: set[str] = set()  # programs read again at a call inside a loop
-        # PAYLOAD[i] schedules with the mass a remark right before the line gives (the schedule's
-        # data lives on the controller): (name, mass kg, centre unknown)
-        self.loads: list[NamedLoad] = []
+        self.loads: list[NamedLoad] = []  # PAYLOAD[i] schedules, the mass a remark before the line gives
         self.pulse_pose = pulse_pose  # (joints deg, tool name) -> the TCP pose in the base (the cell's arm)
         self.tcp: dict[tuple[str, str], Target] = {}  # (joint-form position, tool) -> its TCP pose target
         self.regs: Registers | None = None  # the registers and flags read as variables or group inputs
@@ -195,6 +193,7 @@ class _Ls:
             return [], i + 1
         if not text:
             return [], i + 1
+        self.state.update({k: -1 - i for k in selected_by_call(self.programs, text)})  # after the call: its selection
         call = re.fullmatch(r"CALL\s+(\w+)", text)
         inlined = self._inline_body(call.group(1)) if call else None
         if inlined is not None:

@@ -19,11 +19,11 @@ from collections.abc import Callable
 from bisect import bisect_left
 
 from rmot.backends.fanuc_tp_text import COMMENT_MAX
-from rmot.backends.readers.common import number
+from rmot.backends.readers.common import number, reaches
 from rmot.backends.readers.model import Cond, Conds, GroupIn, Where
 from rmot.lang import ir
 
-__all__ = ["position_values", "wait_condition", "output_expression", "timed_wait", "group_test", "motion_options",
+__all__ = ["selected_by_call", "position_values", "wait_condition", "output_expression", "timed_wait", "group_test", "motion_options",
            "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch", "CALLERS", "caller_selection",
            "position_blocks"]
 
@@ -203,6 +203,19 @@ def tp_branch(text: str) -> ir.Config | None:
 
 # a UTOOL_NUM or UFRAME_NUM the program has not selected: its caller's selection holds
 CALLERS = 1 << 30
+
+
+def selected_by_call(programs: dict[str, tuple[str, str]], text: str) -> list[str]:
+    """The selections (UTOOL, UFRAME) a line's `CALL PROG` may change: PROG, or a program it
+    calls, of the job's files selects one (`UTOOL_NUM=2`), and the selection is the controller's,
+    so it holds after the call returns (B-83284EN, UTOOL_NUM / UFRAME_NUM)."""
+    called = re.search(r"\bCALL\s+(\w+)", text)
+
+    def selects(kind: str) -> Callable[[str], bool]:
+        return lambda program: re.search(rf"\b{kind}_NUM\s*=", program) is not None
+
+    return [] if called is None else [kind for kind in ("UTOOL", "UFRAME")
+                                      if reaches(programs, called.group(1), selects(kind), r"CALL\s+(\w+)")]
 
 
 def caller_selection(state: dict[str, int], taught: list[dict[str, int] | None],

@@ -230,7 +230,7 @@ class _Krl:
             why = self.state.unsure_of(word in ("PTP", "SPTP"), ln.text) or motion_why(ln.text[len(word):], self._names(), self.state) \
                 if word in MOTIONS else \
                 other_why(word, ln.text, self.last is not None) or self.logic.why(ln.text) or self.calls.why_call(ln.text, self.state)
-            self.calls.called(ln.text, ln.where)
+            self.calls.called(ln.text, ln.where, self.state)
             kept = self.tally.keep(ln.text, ln.where, why or "no rmot form")
             return [*(self.state.restate(ln.text, ln.where) if word in MOTIONS else []), kept], i + 1
         self.tally.imported += 1

@@ -315,6 +315,12 @@ class MotionState:
         motions reading one stay native until a line sets it again."""
         for n in self.SETTINGS:
             self.unsure[n] = (f"by `{name}(..)` at line {where.line}", getattr(self, n))
+        self.forget_written()
+
+    def forget_written(self) -> None:
+        """A routine ran that writes settings of its own: what the controller holds is not what
+        the last motion read here wrote (restate then restates every value known)."""
+        self.written = {n: _UNSET for n in self.SETTINGS}
 
     def at_call(self) -> dict[str, float | None]:
         """The speeds and accelerations in force here, which a called routine's motions run with

@@ -185,11 +185,12 @@ class UnreadCalls:
         m = re.fullmatch(r"(\w+)\s*\(.*\)", text)
         return m is not None and m.group(1).upper() in self.inheriting
 
-    def called(self, text: str, where: Where) -> None:
-        """A line kept native: a call when it is `name(..)`."""
+    def called(self, text: str, where: Where, state: MotionState) -> None:
+        """A line kept native: a call when it is `name(..)` (its routine may write any setting)."""
         m = re.fullmatch(r"(\w+)\s*\(.*\)", text)
         if m is not None:
             self.pending = (m.group(1), where)
+            state.forget_written()
 
     def moved(self, stmt: Stmt, state: MotionState) -> None:
         """A statement read: after a call of a setter its settings are unsure; W527 when it is a

@@ -100,6 +100,17 @@ def test_a_call_where_the_speed_is_known_only_at_run_time_stays_native(tmp_path:
     assert 'native krl "sub()"' in text and 'native krl "LIN XP2"' in text, text
 
 
+def test_a_native_motion_after_a_routine_that_wrote_the_speed_gets_the_one_set_since(tmp_path: Path) -> None:
+    """After `sub()` wrote 0.2 m/s, the caller sets 0.1 again, the value its last motion read
+    had: the next motion is native (sub may have changed the tool), and the compiled program
+    must restate 0.1 before it, or it would run at sub's 0.2."""
+    src = "\n".join(["DEF k()", "  $TOOL = {X 0, Y 0, Z 150, A 0, B 0, C 0}", "  $BASE = $NULLFRAME", "  PTP XP1",
+                     "  $VEL.CP = 0.1", "  LIN XP2", "  sub()", "  $VEL.CP = 0.1", "  LIN XP2", "END", "",
+                     "DEF sub()", "  LIN XP1", "  $VEL.CP = 0.2", "  LIN XP2", "END", ""])
+    assert lin_speeds(src) == [0.1, 0.1, 0.2, 0.1]
+    assert lin_speeds(_round_trip(tmp_path, src)) == lin_speeds(src)
+
+
 STEP = st.sampled_from(["lin", "vel1", "vel5", "call"])
 
 

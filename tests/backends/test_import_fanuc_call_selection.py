@@ -1,0 +1,90 @@
+"""UTOOL_NUM and UFRAME_NUM select the controller's tool and user frame: a program's selection
+holds after it returns to its caller (B-83284EN, UTOOL_NUM / UFRAME_NUM). `rmot import` reads a
+caller's move after `CALL SUB`, where SUB (or a program it calls) of the job's files selects one,
+as known only at run time: it stays native, its reason naming the call, until the caller selects
+again. Witness: the expected reading is worked out by hand from that rule for each program.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from rmot.backends.readers import read_files
+from rmot.backends.readers.model import Move, Native
+
+MAIN = """/PROG  MAIN
+/ATTR
+DEFAULT_GROUP	= 1,*,*,*,*;
+/MN
+   1:  !UTOOL[1] = gripper ;
+   2:  !UTOOL[2] = probe ;
+   3:  UFRAME_NUM=0 ;
+   4:  UTOOL_NUM=1 ;
+   5:J P[1] 50% FINE ;
+   6:  CALL SUB ;
+   7:J P[2] 50% FINE ;
+/POS
+P[1]{
+   GP1:
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X =   500.000  mm,	Y =     0.000  mm,	Z =   600.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+P[2]{
+   GP1:
+	UF : 0, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	X =   500.000  mm,	Y =   100.000  mm,	Z =   600.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+/END
+"""
+SUB = """/PROG  SUB
+/ATTR
+DEFAULT_GROUP	= 1,*,*,*,*;
+/MN
+   1:  UTOOL_NUM=2 ;
+   2:J P[1] 50% FINE ;
+/POS
+P[1]{
+   GP1:
+	UF : 0, UT : 2,		CONFIG : 'N U T, 0, 0, 0',
+	X =   500.000  mm,	Y =    50.000  mm,	Z =   600.000  mm,
+	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
+};
+/END
+"""
+
+
+def _main_body(tmp_path: Path, main: str, sub: str) -> list[object]:
+    (tmp_path / "MAIN.ls").write_text(main)
+    (tmp_path / "SUB.ls").write_text(sub)
+    doc = read_files([str(tmp_path / "MAIN.ls"), str(tmp_path / "SUB.ls")])
+    return list(next(r for r in doc.routines if r.name == "MAIN").body)
+
+
+def test_a_move_after_a_call_that_selects_a_tool_is_the_run_times(tmp_path: Path) -> None:
+    body = _main_body(tmp_path, MAIN, SUB)
+    last = body[-1]
+    assert isinstance(last, Native) and last.text.startswith("J P[2]"), body
+    doc = read_files([str(tmp_path / "MAIN.ls"), str(tmp_path / "SUB.ls")])
+    assert any("depends on `CALL SUB`" in d.message and d.span is not None and d.span.start.line == 11
+               for d in doc.diagnostics)
+
+
+@pytest.mark.parametrize("main, sub, tool", [
+    (MAIN.replace("   7:J P[2] 50% FINE ;", "   7:  UTOOL_NUM=1 ;\n   8:J P[2] 50% FINE ;"), SUB, "gripper"),
+    (MAIN, SUB.replace("   1:  UTOOL_NUM=2 ;\n", ""), "gripper"),
+])
+def test_a_move_after_a_call_is_read_where_the_selection_is_known(tmp_path: Path, main: str, sub: str,
+                                                                  tool: str) -> None:
+    """The caller selects again after the call, or the called program selects nothing."""
+    last = _main_body(tmp_path, main, sub)[-1]
+    assert isinstance(last, Move) and last.tool == tool and last.target_name == "main_p2"
+
+
+def test_a_call_in_an_if_action_leaves_the_selection_to_the_run_time(tmp_path: Path) -> None:
+    main = MAIN.replace("   6:  CALL SUB ;", "   6:  IF (DI[1]),CALL SUB ;")
+    last = _main_body(tmp_path, main, SUB)[-1]
+    assert isinstance(last, Native) and last.text.startswith("J P[2]")
