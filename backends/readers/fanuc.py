@@ -177,8 +177,9 @@ class _Ls:
         end = len(self.instructions) if stop is None else stop
         body: list[Stmt] = []
         while i < end:
-            stmts, i = self._statement(i, end)
-            body += stmts
+            stmts, after = self._statement(i, end)  # then what a program the line calls selects holds
+            self.state.update({k: -1 - i for k in selected_by_call(self.programs, self._text(i))})
+            body, i = body + stmts, after
         return body, i
 
     def _text(self, i: int) -> str:
@@ -193,7 +194,6 @@ class _Ls:
             return [], i + 1
         if not text:
             return [], i + 1
-        self.state.update({k: -1 - i for k in selected_by_call(self.programs, text)})  # after the call: its selection
         call = re.fullmatch(r"CALL\s+(\w+)", text)
         inlined = self._inline_body(call.group(1)) if call else None
         if inlined is not None:
