@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from rmot.backends.readers import read_files
-from rmot.backends.readers.model import Move, Native
+from rmot.backends.readers.model import Move, Native, walk
 
 MAIN = """/PROG  MAIN
 /ATTR
@@ -88,3 +88,31 @@ def test_a_call_in_an_if_action_leaves_the_selection_to_the_run_time(tmp_path: P
     main = MAIN.replace("   6:  CALL SUB ;", "   6:  IF (DI[1]),CALL SUB ;")
     last = _main_body(tmp_path, main, SUB)[-1]
     assert isinstance(last, Native) and last.text.startswith("J P[2]")
+
+
+def test_a_program_inlined_at_the_call_starts_with_the_callers_selection(tmp_path: Path) -> None:
+    """A program that moves by a loop's offset is read inlined at its call. The caller selects
+    UFRAME 2 and UTOOL 1 right before `CALL PALLETIZING_DOWN_TO_2_L1`, whose first move selects
+    nothing of its own: it runs with that selection, so it is read. The selection the called
+    program makes holds only from the line after the call."""
+    from click.testing import CliRunner  # late: only this test compiles
+
+    from rmot.compiler.cli import cli
+
+    root = Path(__file__).resolve().parents[2]
+    result = CliRunner().invoke(cli, ["compile", str(root / "examples" / "palletizing.rmot"), "--target", "fanuc",
+                                      "-o", str(tmp_path)], catch_exceptions=False)
+    assert result.exit_code == 0, result.output
+    folder = tmp_path / "fanuc"
+    callee = folder / "PALLETIZING_DOWN_TO_2_L1.ls"
+    text = callee.read_text()
+    assert "   8:  UFRAME_NUM=2 ;\n   9:  UTOOL_NUM=1 ;\n" in text
+    callee.write_text(text.replace("   8:  UFRAME_NUM=2 ;\n   9:  UTOOL_NUM=1 ;\n", "", 1))
+    main = folder / "PALLETIZING.ls"
+    call = "  74:  CALL PALLETIZING_DOWN_TO_2_L1 ;"
+    assert call in main.read_text()
+    main.write_text(main.read_text().replace(call, "  74:  UFRAME_NUM=2 ;\n  74:  UTOOL_NUM=1 ;\n" + call, 1))
+    files = [main] + sorted(p for p in folder.glob("*.ls") if p != main)
+    doc = read_files([str(p) for p in files])
+    moves = [s for r in doc.routines for s in walk(r.body) if isinstance(s, Move)]
+    assert any(m.target.startswith("shift(palletizing_down_to_2_l1_p1") for m in moves), moves
