@@ -75,31 +75,22 @@ def _targets(a: Document, b: Document) -> list[str]:
     return out
 
 
-def _tools(a: Document, b: Document) -> list[str]:
-    """Each tool's TCP (in the flange frame) and mass, by name."""
-    tb = {t.name.upper(): t for t in b.tools}
+def _named_data(kind: str, xs: tuple[ToolData, ...] | tuple[FrameData, ...],
+                ys: tuple[ToolData, ...] | tuple[FrameData, ...]) -> list[str]:
+    """Each tool's TCP (in the flange frame) and mass, or each frame's pose (in the robot base),
+    by name."""
+    by_name = {y.name.upper(): y for y in ys}
     out = []
-    for t in a.tools:
-        other = tb.get(t.name.upper())
-        if other is None:
-            out.append(f"{t.where}: tool {t.name} removed")
+    for x in xs:
+        y = by_name.get(x.name.upper())
+        if y is None:
+            out.append(f"{x.where}: {kind} {x.name} removed")
             continue
-        out += _data_change("tool", t, other)
-        if abs(t.mass - other.mass) > TOLERANCE_KG:
-            out.append(f"{t.where} -> {other.where}: tool {t.name} mass {t.mass:g} kg -> {other.mass:g} kg")
-    known = {t.name.upper() for t in a.tools}
-    return out + [f"{t.where}: tool {t.name} added" for t in b.tools if t.name.upper() not in known]
-
-
-def _frames(a: Document, b: Document) -> list[str]:
-    """Each frame's pose (in the robot base), by name."""
-    fb = {f.name.upper(): f for f in b.frames}
-    out = []
-    for f in a.frames:
-        other = fb.get(f.name.upper())
-        out += [f"{f.where}: frame {f.name} removed"] if other is None else _data_change("frame", f, other)
-    known = {f.name.upper() for f in a.frames}
-    return out + [f"{f.where}: frame {f.name} added" for f in b.frames if f.name.upper() not in known]
+        out += _data_change(kind, x, y)
+        if isinstance(x, ToolData) and isinstance(y, ToolData) and abs(x.mass - y.mass) > TOLERANCE_KG:
+            out.append(f"{x.where} -> {y.where}: tool {x.name} mass {x.mass:g} kg -> {y.mass:g} kg")
+    known = {x.name.upper() for x in xs}
+    return out + [f"{y.where}: {kind} {y.name} added" for y in ys if y.name.upper() not in known]
 
 
 def _data_change(kind: str, x: ToolData | FrameData, y: ToolData | FrameData) -> list[str]:
@@ -258,7 +249,8 @@ def _routine(ra: tuple[Stmt, ...], rb: tuple[Stmt, ...]) -> list[str]:
 
 def diff_documents(a: Document, b: Document) -> list[str]:
     """Every difference, one line each (empty when the programs mean the same)."""
-    out = _targets(a, b) + _tools(a, b) + _frames(a, b) + _loads(a, b) + _kept(a, b)
+    out = _targets(a, b) + _named_data("tool", a.tools, b.tools) + _named_data("frame", a.frames, b.frames)
+    out += _loads(a, b) + _kept(a, b)
     rb = {r.name.upper(): r for r in b.routines}
     ra = {r.name.upper(): r for r in a.routines}
     for key, r in ra.items():

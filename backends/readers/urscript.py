@@ -200,7 +200,7 @@ class _Script:
             body += stmts
             if ln.head in ("if", "while", "for") or may_change(ln.text):
                 self.fresh = {}  # a block, a call or a thread may have set any variable
-            self.tool = tcp_after_call(ln, self.tcp_setters, {k: t.name for k, t in self.tools.items()}) or self.tool
+            self.tool = tcp_after_call(ln, self.tcp_setters, self.tools) or self.tool
             if not all(isinstance(s, (Move, SetOut, Wait, WaitIn, Pulse)) for s in stmts):
                 self.last_target = None  # a native line, a call or a block may have moved the robot
         if ends:

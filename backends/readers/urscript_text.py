@@ -13,7 +13,7 @@ import math
 import re
 
 from rmot.backends.readers.common import number, split_top
-from rmot.backends.readers.model import Cond, Conds, Where
+from rmot.backends.readers.model import Cond, Conds, ToolData, Where
 from rmot.lang import ir
 
 __all__ = [
@@ -332,17 +332,18 @@ def calls(lines: list[Line], names: dict[str, str | None] | set[str]) -> bool:
     return any(_called(ln, names) is not None for ln in lines)
 
 
-def tcp_after_call(line: Line, setters: dict[str, str | None], tools: dict[tuple[float, ...], str]) -> str | None:
-    """The tool a line leaves when it calls a function that sets a TCP: the one (`tools`: the
-    TCP's six numbers, rounded to 1e-6 -> tool name) whose `set_tcp(p[..])` of numbers that
-    function ends with, else TCP_UNKNOWN; None where the line calls no such function."""
+def tcp_after_call(line: Line, setters: dict[str, str | None], tools: dict[tuple[float, ...], ToolData]) -> str | None:
+    """The tool a line leaves when it calls a function that sets a TCP: the one (`tools`: by the
+    TCP's six numbers, rounded to 1e-6) whose `set_tcp(p[..])` of numbers that function ends
+    with, else TCP_UNKNOWN; None where the line calls no such function."""
     name = _called(line, setters)
     if name is None:
         return None
     m = re.fullmatch(r"set_tcp\(p\[(.*)\]\)", (setters[name] or "").replace(" ", ""))
     values = [number(v) for v in m.group(1).split(",")] if m else []
     key = tuple(round(v, 6) for v in values if v is not None)
-    return tools.get(key, TCP_UNKNOWN) if len(key) == 6 else TCP_UNKNOWN
+    tool = tools.get(key) if len(key) == 6 else None
+    return TCP_UNKNOWN if tool is None else tool.name
 
 
 def compose(func: str, a: ir.Pose, b: ir.Pose) -> ir.Pose:
