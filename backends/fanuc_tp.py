@@ -68,7 +68,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, native_refs
+from rmot.backends import codes, fanuc_records, native_refs
 from rmot.backends.ext_axes import coordinated, driven_axes, fanuc_coord, fanuc_default_group, fanuc_groups, fanuc_in_world, machine_data
 from rmot.backends.base import Backend, TaskContext, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm
 from rmot.backends.part_load import held_load
@@ -106,12 +106,15 @@ __all__ = ["FanucBackend"]
 @dataclass
 class _Program:
     """One .ls program being printed: its numbered positions and labels (skipping the labels
-    its native lines name), and the lines those native lines were written as."""
+    its native lines name), the lines those native lines were written as, and the position
+    records they move to (fanuc_records: the number they name -> the number, UFRAME and UTOOL
+    written, or why the record cannot be)."""
 
     positions: list[str] = field(default_factory=list)
     labels: int = 0
     reserved: frozenset[str] = frozenset()
     native: list[str] = field(default_factory=list)
+    records: dict[int, tuple[int, int, int] | str] = field(default_factory=dict)
 
     def label(self) -> int:
         self.labels += 1
@@ -204,6 +207,7 @@ class FanucBackend(Backend):
 
     def _program(self, name: str, body: tuple[ir.Instr, ...], task: FanucContext, *, is_main: bool) -> str:
         ctx = replace(task, program=_Program(reserved=native_refs.reserved_labels(native_refs.FANUC, body)))
+        self._place_records(body, ctx)
         head = header_lines(ctx.plan, self.name, self.findings_header)
         head += machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "fanuc", coordinated(ctx.task)) if is_main else []
         lines = [self.comment(piece) for text in head for piece in _pieces(text)]
@@ -214,6 +218,22 @@ class FanucBackend(Backend):
         ctx.own.extend((Counter(lines) - Counter(ctx.program.native)).elements())
         groups = fanuc_default_group(ctx.axes, ctx.plan.program.cell) if ctx.axes else "1,*,*,*,*"
         return self._ls(name, lines, ctx.program.positions, groups)
+
+    @staticmethod
+    def _place_records(body: tuple[ir.Instr, ...], ctx: FanucContext) -> None:
+        """The program's native position records first in /POS, at the numbers, frames and
+        tools of the compiled program (fanuc_records)."""
+        cell, robot = ctx.plan.program.cell, ctx.robot.name
+        for n, rec in fanuc_records.records_of(body, bool(ctx.axes)).items():
+            frame, tool = fanuc_records.frame_ref(cell, robot, rec.frame), fanuc_records.tool_ref(cell, robot, rec.tool)
+            if rec.problem or frame is None or tool is None:
+                ctx.program.records[n] = rec.problem or (f"its UF `{rec.frame}` names no frame of the cell (base, world or a "
+                                                         "cell frame)" if frame is None else
+                                                         f"its UT `{rec.tool}` names no tool of robot '{robot}' (or flange)")
+                continue
+            uf, ut, k = ctx.frames.uframe(frame), ctx.frames.utool(tool), len(ctx.program.positions) + 1
+            ctx.program.positions.append(fanuc_records.layout(rec, k, uf, ut))
+            ctx.program.records[n] = (k, uf, ut)
 
     def _ls(self, name: str, lines: list[str], positions: list[str], groups: str = "1,*,*,*,*") -> str:
         out = [f"/PROG  {name}", "/ATTR", "OWNER\t\t= MNEDITOR;", 'COMMENT\t\t= "rmot";',
@@ -508,15 +528,32 @@ class FanucBackend(Backend):
     def native(self, node: ir.Native, ctx: FanucContext) -> list[str]:  # type: ignore[override]
         if node.vendor.lower() != self.name:
             return self.native_other(node)
+        if fanuc_records.number_of(node.text) is not None:  # a position record: in /POS (_place_records), refused at
+            return []  # the lines that move to it
         lines = [line.strip().rstrip(";").rstrip() for line in node.text.splitlines() if line.strip()]
-        named = native_refs.positions_named(native_refs.FANUC, lines)
-        if named:
-            self.unsupported(codes.NATIVE_CLASH, f"native line names {named[0]}, a position of the program it came "
-                             "from: this backend numbers the program's positions for rmot's moves, so "
-                             f"{named[0]} here is another point or none (write the move as an rmot `move`)", node.span)
+        lines, selection = self._to_records(node, lines, ctx)
         ctx.program.native.extend(lines)
         ctx.natives.append((node, lines))
-        return lines
+        return selection + lines
+
+    def _to_records(self, node: ir.Native, lines: list[str], ctx: FanucContext) -> tuple[list[str], list[str]]:
+        """Native lines moving to positions of their program: renamed to where their records
+        were written, and the records' frame and tool selected before them (fanuc_records)."""
+        named = fanuc_records.named(lines)
+        placed = {n: ctx.program.records.get(n) for n in named}
+        written = {n: p for n, p in placed.items() if isinstance(p, tuple)}
+        why = next((f"P[{n}], whose record cannot be written: {p}" for n, p in placed.items() if isinstance(p, str)), None)
+        why = why or next((f"P[{n}], a position of the program it came from with no native position record `P[{n}]{{GP1: ..}}` "
+                           f"in this program: this backend numbers the program's positions for rmot's moves, so P[{n}] here "
+                           "is another point or none (write the move as an rmot `move`)" for n, p in placed.items() if p is None), None)
+        if why is None and len({p[1:] for p in written.values()}) > 1:
+            why = f"positions taught in different frames or tools ({', '.join(f'P[{n}]' for n in written)})"
+        if why is not None:
+            self.unsupported(codes.NATIVE_CLASH, f"native line names {why}", node.span)
+        if why is not None or not written:
+            return lines, []
+        (_, uf, ut), numbers = next(iter(written.values())), {n: p[0] for n, p in written.items()}
+        return [fanuc_records.renamed(line, numbers) for line in lines], [f"UFRAME_NUM={uf}", f"UTOOL_NUM={ut}"]
 
     def native_other(self, node: ir.Native) -> list[str]:
         super().native_other(node)

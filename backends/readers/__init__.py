@@ -69,6 +69,7 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 
 def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.fanuc import read_fanuc  # late: loads numpy only when this runs
+    from rmot.backends.readers.fanuc_pos import position_records  # late: with the reader it serves
 
     m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS, _PULSE_POSE[0], _FANUC_SAVED[0])
     _FANUC_INLINED.update(m.inlined)
@@ -78,7 +79,7 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
                      "lines show and its native lines are kept in those words", Where(path, 1))
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
-                   tuple(m.tally.comments), tuple(m.loads))
+                   tuple(m.tally.comments), tuple(m.loads), records=position_records(path, text, m.tools, m.frames))
     return doc, m.tally
 
 
@@ -390,7 +391,7 @@ def _merge(docs: list[Document]) -> Document:
                     tuple(tools.values()), tuple(frames.values()), tuple(routines),
                     sum((d.consts for d in docs), ()), sum((d.counts for d in docs), ()),
                     sum((d.diagnostics for d in docs), ()), sum((d.kept for d in docs), ()),
-                    sum((d.loads for d in docs), ()))
+                    sum((d.loads for d in docs), ()), records=sum((d.records for d in docs), ()))
 
 
 def companions(path: str) -> list[str]:

@@ -21,11 +21,12 @@ from dataclasses import replace
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name
+from rmot.backends.readers.fanuc_pos import native_positions
 from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
 from rmot.backends.readers.fanuc_text import (
-    CALLERS, caller_selection, kept_option, selected_by_call, motion_options, output_expression, path_points,
+    CALLERS, caller_selection, kept_option, label_of, names_label, selected_by_call, motion_options, output_expression, path_points,
     position_blocks, position_values, timed_wait, tp_branch, tp_pose, tp_speed, wait_condition,
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
@@ -55,17 +56,6 @@ _SIMPLE = (
     ("wait_true", re.compile(r"WAIT\s*\(\s*(?P<neg>!?)DI\[(?P<sig>\d+)(?::[^\]]*)?\]\s*\)")),
     ("call", re.compile(r"CALL\s+(\w+)")),
 )
-
-
-def _label_of(text: str) -> str | None:
-    """The label number of a `LBL[n]` line (with its comment, `LBL[2:skip]`)."""
-    m = re.fullmatch(r"LBL\[(\d+)(?::[^\]]*)?\]\s*;?", text.strip())
-    return m.group(1) if m else None
-
-
-def _names_label(text: str, label: str) -> bool:
-    """Whether a TP instruction is label LBL[label] or jumps to it (`JMP LBL[n]`, `TIMEOUT,LBL[n]`)."""
-    return re.search(rf"\bLBL\[{label}(?::[^\]]*)?\]", text) is not None
 
 
 class _Ls:
@@ -123,9 +113,12 @@ class _Ls:
         self.regs = Registers(self.tally, self.instructions, others, main, taken, self.not_vars)
         self.values = RegisterValues(self.controller, [t for t, _ in self.instructions])
         body, _ = self._block(0, None)
-        kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, _label_of, self.instructions,
+        kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, label_of, self.instructions,
                                                      lambda t: t + " ;"))
         self.regs.warn_reads(kept)
+        for n in native_positions(kept, self.path):  # the frame and tool its record names (fanuc_pos): in the stub too
+            for kind, number in self.taught.get(n, {}).items():
+                self._named(kind, self.positions[n].where if n in self.positions else Where(self.path, 1), number)
         self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))
         return self.routine
 
@@ -283,7 +276,7 @@ class _Ls:
                            lambda r, k: rf"IF R\[{r}(?::[^\]]*)?\]<=(-?\d+),JMP LBL\[{k}\]",
                            lambda r: rf"R\[{r}(?::[^\]]*)?\]=R\[{r}(?::[^\]]*)?\]\+1")
         if found is None or not self._counter_alone(found[0], i, found[3]) or jumped_to_elsewhere(
-                self._text, len(self.instructions), (_label_of(self._text(i + 1)) or "",), _names_label, {i + 1, found[3]}):
+                self._text, len(self.instructions), (label_of(self._text(i + 1)) or "",), names_label, {i + 1, found[3]}):
             return None  # the counter not the loop's alone, or a jump into the loop
         reg, first, last, j = found
         label = re.match(r"R\[\d+:([^\]]*)\]", self._text(i))
@@ -380,7 +373,7 @@ class _Ls:
         ja, jb = arms
         labels = (label, *more) + ((_JMP.fullmatch(self._text(ja - 1)).group(1),) if jb is not None else ())  # type: ignore[union-attr]
         consumed = set(range(i, start)) | {ja} | ({ja - 1, jb} if jb is not None else set())
-        if jumped_to_elsewhere(self._text, len(self.instructions), labels, _names_label, consumed):
+        if jumped_to_elsewhere(self._text, len(self.instructions), labels, names_label, consumed):
             return None
         then, _ = self._block(start, ja - 1 if jb is not None else ja)
         orelse, _ = self._block(ja + 1, jb) if jb is not None else ([], ja)

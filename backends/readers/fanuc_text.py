@@ -25,7 +25,7 @@ from rmot.lang import ir
 
 __all__ = ["selected_by_call", "position_values", "wait_condition", "output_expression", "timed_wait", "group_test", "motion_options",
            "kept_option", "path_points", "tp_speed", "tp_pose", "tp_branch", "CALLERS", "caller_selection",
-           "position_blocks"]
+           "position_blocks", "label_of", "names_label"]
 
 _TOKEN = re.compile(r"\s*(?:(!?)(DI|DO)\[(\d+)(?::[^\]]*)?\](?:\s*=\s*(ON|OFF))?|(\()|(\))|(AND|OR)\b)")
 
@@ -277,3 +277,14 @@ def position_values(body: str, point: str, where: Where, fail: Callable[[str, Wh
             raise fail(f"{point}'s `{name} = {text}` must be a number", where)
         values[name.upper()] = value
     return values
+
+
+def label_of(text: str) -> str | None:
+    """The label number of a `LBL[n]` line (with its comment, `LBL[2:skip]`)."""
+    m = re.fullmatch(r"LBL\[(\d+)(?::[^\]]*)?\]\s*;?", text.strip())
+    return m.group(1) if m else None
+
+
+def names_label(text: str, label: str) -> bool:
+    """Whether a TP instruction is label LBL[label] or jumps to it (`JMP LBL[n]`, `TIMEOUT,LBL[n]`)."""
+    return re.search(rf"\bLBL\[{label}(?::[^\]]*)?\]", text) is not None

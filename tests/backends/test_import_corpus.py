@@ -16,6 +16,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from rmot.backends.fanuc_records import number_of
 from rmot.compiler.cli import cli
 
 CORPUS = Path(__file__).resolve().parents[1] / "data" / "vendor_programs"
@@ -50,4 +51,5 @@ def test_imports_without_traceback(path: Path, tmp_path: Path) -> None:
         source_line = lines[int(line) - 1]
         unescaped = body.replace('\\"', '"').replace("\\\\", "\\")
         assert unescaped.split()[0].rstrip(";") in source_line, (line, unescaped, source_line)  # its `;` added
-        assert line in warned, f"native line {line} has no located warning"
+        if number_of(unescaped) is None:  # a TP position record is the data of the native lines that move to it
+            assert line in warned, f"native line {line} has no located warning"

@@ -251,6 +251,7 @@ def test_with_a_cell_a_register_it_does_not_declare_keeps_its_lines_native(tmp_p
                                  ("--cell", str(tmp_path / "cell.rmot")))
     assert "  if gin[3] == 1 {\n    set out[1] = on\n  }\n" in program
     natives = [ln.strip().split("   #")[0] for ln in program.splitlines() if "native fanuc" in ln]
-    assert natives == ['native fanuc "IF R[2]<>3,JMP LBL[1] ;"', 'native fanuc "J P[1] 100% FINE ;"',
-                       'native fanuc "LBL[1] ;"']
+    assert natives[1:] == ['native fanuc "IF R[2]<>3,JMP LBL[1] ;"', 'native fanuc "J P[1] 100% FINE ;"',
+                           'native fanuc "LBL[1] ;"']
+    assert natives[0].startswith('native fanuc "P[1]{ GP1: UF : base, UT : ')  # the record the native move needs
     assert output.count("warning[W513]") == 1

@@ -186,7 +186,7 @@ def test_what_a_backup_cannot_give_stays_native_with_its_reason(tmp_path: Path) 
     body = ["J P[1] 100% FINE", "L P[1] 100mm/sec FINE Offset,PR[18:tilt]", "L PR[19] 100mm/sec FINE",
             "L P[1] R[26]mm/sec FINE", "L P[1] 100mm/sec FINE Offset,PR[40]"]
     program, _, output = _import(tmp_path, _files(tmp_path, {"PICK": body}, {"NUMREG.VA": NUMREG, "POSREG.VA": POSREG}))
-    assert program.count("native fanuc") == 4
+    assert program.count("native fanuc") == 5 and program.count('native fanuc "P[1]{ GP1:') == 1  # 4 lines, P[1]'s record
     assert "the offset PR[18] holds a saved rotation" in output
     assert "`PR[19]` is saved as Uninitialized" in output
     assert "`R[26]` is the controller's register and no file given holds its value" in output
@@ -195,7 +195,7 @@ def test_what_a_backup_cannot_give_stays_native_with_its_reason(tmp_path: Path) 
 
 def test_without_a_backup_the_reason_names_the_file_that_holds_the_register(tmp_path: Path) -> None:
     program, cell, output = _import(tmp_path, _files(tmp_path, {"PICK": MOVES}, {}))
-    assert program.count("native fanuc") == 5
+    assert program.count("native fanuc") == 6 and program.count('native fanuc "P[1]{ GP1:') == 1  # 5 lines, P[1]'s record
     assert "give the backup's NUMREG.VA too" in output and "give the backup's POSREG.VA too" in output
     assert "the controller's UTOOL[2]: not in the files" in cell  # the placeholder SYSFRAME.VA would fill
 
