@@ -265,10 +265,10 @@ class _Ls:
             self._define(kind, n, saved[n].xyzwpr or [], saved[n].where)  # SYSFRAME.VA's $MNUTOOL/$MNUFRAME
         if n not in table:
             label = self.labels[kind].get(n, f"{kind.lower()}{n}")
-            if kind == "UTOOL":
-                self.tools[n] = ToolData(label, ir.Pose(), 0.0, at, f"UTOOL[{n}]" if n else "")  # UTOOL 0: the faceplate (B-83284EN, tool frame)
+            if kind == "UTOOL":  # UTOOL 0: the faceplate (B-83284EN, tool frame), no controller data
+                self.tools[n] = ToolData(label, ir.Pose(), 0.0, at, f"UTOOL[{n}]" if n else "", n or None)
             else:
-                self.frames[n] = FrameData(label, ir.Pose(), at, f"UFRAME[{n}]")
+                self.frames[n] = FrameData(label, ir.Pose(), at, f"UFRAME[{n}]", n)
         return table[n].name
 
     def _loop(self, i: int, end: int) -> tuple[list[Stmt], int] | None:

@@ -353,7 +353,7 @@ class _Job:
             self.tally.warn(codes.MOTION_OPTION_KEPT, "NWAIT is not read: the instructions after this move "
                             "run once it ends, not while it runs", where)
         if user is not None and not sync and user not in self.frames:  # the controller's user frame: a stub entry
-            self.frames[user] = FrameData(f"user{user}", ir.Pose(), where, f"user frame {user}")
+            self.frames[user] = FrameData(f"user{user}", ir.Pose(), where, f"user frame {user}", user)
         return Move(kind, self._shifted(decl.name), decl.name, where,
                     via=self._shifted(decls[0].name) if kind == "circular" else None,  # type: ignore[union-attr]
                     speed=float(speed.group(1)) if speed and kind != "joint" else None,
@@ -366,7 +366,7 @@ class _Job:
 
     def _tool(self, n: int, where: Where) -> str:
         if n not in self.tools:
-            self.tools[n] = ToolData(self.tool_names.get(n, f"tool{n}"), ir.Pose(), 0.0, where, f"tool file entry {n}")
+            self.tools[n] = ToolData(self.tool_names.get(n, f"tool{n}"), ir.Pose(), 0.0, where, f"tool file entry {n}", n)
         return self.tools[n].name
 
     def _arc(self, i: int, end: int) -> tuple[list[Stmt], int] | None:

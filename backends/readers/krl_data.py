@@ -167,9 +167,9 @@ def numbered(tools: dict[str, ToolData], frames: dict[str, FrameData], tally: Ta
     key = label.upper()
     stored = f"{'TOOL_DATA' if what == 'tool' else 'BASE_DATA'}[{n}] of $config.dat"
     if what == "tool" and key not in tools:
-        tools[key] = ToolData(label, ir.Pose(), 0.0, at, stored)
+        tools[key] = ToolData(label, ir.Pose(), 0.0, at, stored, int(n))
     elif what == "base" and key not in frames:
-        frames[key] = FrameData(label, ir.Pose(), at, stored)
+        frames[key] = FrameData(label, ir.Pose(), at, stored, int(n))
     return label
 
 

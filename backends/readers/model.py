@@ -66,6 +66,7 @@ class ToolData:
     mass: float  # kg
     where: Where
     controller: str = ""  # used but not set in the files: the controller's own (`UTOOL[1]`); identity here
+    number: int | None = None  # that controller's number of it: the stub cell gives it (`number n`)
 
 
 @record(slots=True)
@@ -74,6 +75,7 @@ class FrameData:
     pose: ir.Pose  # in the robot base
     where: Where
     controller: str = ""  # used but not set in the files: the controller's own (`UFRAME[1]`); identity here
+    number: int | None = None  # that controller's number of it: the stub cell gives it (`number n`)
 
 
 @record(slots=True)

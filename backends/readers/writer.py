@@ -406,10 +406,11 @@ def cell_stub(doc: Document, signals: SignalMap, model: str, robot: str = "r1") 
     lines = [f"# cell stub written by `rmot import` for {doc.name} ({doc.vendor})",
              f"cell {rmot_name(doc.name)}_cell {{", f"  robot {robot} = {model}"]
     for t in doc.tools:
-        lines.append(f"  tool {rmot_name(t.name)} = none tcp {pose_expr(t.tcp)} mass {_num(t.mass)} kg on {robot}"
+        lines.append(f"  tool {rmot_name(t.name)} = none tcp {pose_expr(t.tcp)} mass {_num(t.mass)} kg"
+                     + (f" number {t.number}" if t.number is not None else "") + f" on {robot}"
                      + (f"  # the controller's {t.controller}: not in the files, put at the flange" if t.controller else ""))
     for f in doc.frames:
-        lines.append(f"  frame {rmot_name(f.name)} = {pose_expr(f.pose)}"
+        lines.append(f"  frame {rmot_name(f.name)} = {pose_expr(f.pose)}" + (f" number {f.number}" if f.number is not None else "")
                      + (f"  # the controller's {f.controller}: not in the files, put at the base" if f.controller else ""))
     for kind, word in (("outputs", "out"), ("inputs", "in"), ("analog", "aout"), ("groups", "gin")):
         for name, port in getattr(signals, kind):

@@ -250,3 +250,20 @@ def test_with_a_cell_the_record_takes_the_cells_numbers(tmp_path: Path) -> None:
     records = _records(ls)
     natives = [m for m in _native_moves(ls) if "Offset,PR[40]" in m[0] or "R[26]" in m[0]]
     assert [(records[k][1:], uf, ut) for _, k, uf, ut in natives] == [((1, 2, POINTS[2]), 1, 2), ((0, 2, POINTS[3]), 0, 2)]
+
+
+def test_compiled_back_the_controllers_tools_and_frames_keep_their_numbers(tmp_path: Path) -> None:
+    """A program that selects UFRAME 1 and UTOOL 2 and sets neither: the stub gives them their
+    numbers (`number 1`, `number 2`), so the program compiled back selects the slots the source
+    selected and writes none of them. Without the numbers it selected the first free slots and
+    wrote the stub's placeholders into them (W416), over the controller's own data. The witness
+    is the source file's own selections."""
+    source = _ls("PICK", MAIN[16:], POINTS)
+    _, compiled = _round_trip(tmp_path, {"main.ls": source})
+    stub = (tmp_path / "p_cell.rmot").read_text()
+    assert " number 2 on r1  # the controller's UTOOL[2]" in stub and " number 1  # the controller's UFRAME[1]" in stub
+    ls = compiled["PICK.ls"]
+    selections = r"\b(UTOOL_NUM|UFRAME_NUM)=(\d+)"
+    assert set(re.findall(selections, ls)) == set(re.findall(selections, source)) == {
+        ("UFRAME_NUM", "1"), ("UFRAME_NUM", "0"), ("UTOOL_NUM", "2")}
+    assert not [line for line in _instructions(ls) if re.match(r"(UTOOL|UFRAME)\[\d+\]\s*=", line)]  # comments aside

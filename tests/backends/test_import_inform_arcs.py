@@ -93,7 +93,7 @@ def test_a_job_named_like_icors2s_and_a_user_frame_make_a_program_that_checks(tm
                                 "C00001=100.000,0.000,50.000,180.00,0.00,0.00\n//INST\n///DATE 2020/01/01 00:00\n"
                                 "///ATTR SC,RW\n///GROUP1 RB1\nNOP\nMOVJ C00000 VJ=10.00\nMOVL C00001 V=50.0\nEND\n")
     assert "target n_001_r1_home_c00000 = " in text and "move joint n_001_r1_home_c00000 " in text
-    assert "frame user1 = pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0))  # the controller's user frame 1" in text
+    assert "frame user1 = pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0)) number 1  # the controller's user frame 1" in text
     assert "warning[W511]: frame `user1` is the controller's user frame 1" in output
     assert code in (0, 1)  # findings at most: the program compiles
 

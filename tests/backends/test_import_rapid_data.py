@@ -228,8 +228,9 @@ def test_a_tool_and_frame_the_program_only_selects_are_marked_in_the_stub(tmp_pa
     assert "robodk_r30ia.ls:30:4: warning[W511]: tool `utool1` is the controller's UTOOL[1], not set in the files " \
            "given: the cell stub puts it at the flange (give --cell with its data)" in result.output
     stub = (tmp_path / "p_cell.rmot").read_text()
-    assert "tool utool1 = none tcp pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0)) mass 0 kg on r1  # the controller's UTOOL[1]" in stub
-    assert "frame uframe1 = pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0))  # the controller's UFRAME[1]" in stub
+    assert "tool utool1 = none tcp pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0)) mass 0 kg number 1 on r1  # the controller's UTOOL[1]" \
+        in stub
+    assert "frame uframe1 = pose(x=0mm, y=0mm, z=0mm, q=(1, 0, 0, 0)) number 1  # the controller's UFRAME[1]" in stub
 
 
 def test_robodk_main_calling_its_subprograms() -> None:
