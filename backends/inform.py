@@ -98,7 +98,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, native_refs, turns
+from rmot.backends import codes, inform_records, native_refs, turns
 from rmot.backends.base import Backend, TaskContext, key_value, euler_zyx_deg, fmt, fmt_list, header_lines, position_mm, tool_cog
 from rmot.backends.controller_data import NumberedData, frame_number
 from rmot.backends.inform_axes import InformAxes, task_axes, warn_pulse_rounding
@@ -143,6 +143,7 @@ class _Position:
     conf: str
     values: str
     user: int | None = None  # user frame number (`///USER n`, POSTYPE USER); None: ROBOT
+    kind: str = ""  # a native record's POSTYPE (PULSE, ROBOT, BASE, USER: inform_records); "": rmot's own
 
 
 @dataclass
@@ -158,6 +159,7 @@ class _Job:
     shifts: list[int] = field(default_factory=list)  # P variables the job declares
     stop_label: str | None = None  # `*Lnnn` before END, where a main job's `stop` jumps
     axes: InformAxes | None = None  # base / station positions (backends/inform_axes.py)
+    records: dict[int, int | str] = field(default_factory=dict)  # native records: number named -> written, or why not
 
     def add(self, pos: _Position) -> str:
         self.positions.append(pos)
@@ -233,6 +235,7 @@ class InformBackend(Backend):
         ctx = replace(task, job=_Job(name, axes=task.axes.fresh() if task.axes else None,
                                      reserved=native_refs.reserved_labels(native_refs.INFORM, body)))
         job = ctx.job
+        self._place_records(body, ctx)
         inst = self.body(body, ctx)
         if len(job.positions) > MAX_POSITIONS:
             self.unsupported(codes.PROGRAM_TOO_LONG, f"job '{name}' must hold at most "
@@ -249,24 +252,50 @@ class InformBackend(Backend):
         ctx.files[f"{name}{self.file_ext}"] = "\n".join(text) + "\n"
 
     @staticmethod
+    def _place_records(body: tuple[ir.Instr, ...], ctx: InformContext) -> None:
+        """The job's native position records first in //POS, with the tool file and user frame
+        numbers of the compiled job (inform_records)."""
+        cell, robot = ctx.plan.program.cell, ctx.robot.name
+        for n, rec in inform_records.records_of(body).items():
+            tool = next((t for t in cell.tools if t.name == rec.tool and t.robot == robot), None)
+            frame = next((f for f in cell.frames if f.name == rec.user), None)
+            why = rec.problem
+            if not why and ctx.axes:
+                why = "the job drives a base axis or a station: its BC/EC positions pair with the C ones"
+            elif not why and tool is None and rec.tool != "flange":
+                why = f"its TOOL `{rec.tool}` names no tool of robot '{robot}' (or flange)"
+            elif not why and rec.user and (frame is None or frame.number is None):
+                why = f"its USER `{rec.user}` names no frame the cell numbers (`number n`)"
+            if why:
+                ctx.job.records[n] = why
+                continue
+            user = frame.number if frame is not None else None
+            if frame is not None and user is not None:
+                ctx.user_frames[user] = (frame.name, cell.robot(robot).base.inverse() * frame.pose)
+            position = _Position(ctx.tools.get(tool.name if tool else None, 0), rec.conf, rec.values, user, rec.postype)
+            ctx.job.records[n] = int(ctx.job.add(position)[1:])
+
+    @staticmethod
     def pos_section(job: _Job) -> list[str]:
         lines = ["//POS", job.axes.npos(len(job.positions), len(job.shifts)) if job.axes
                  else f"///NPOS {len(job.positions)},0,0,{len(job.shifts)},0,0"]
         tool: int | None = None
         conf: str | None = None
         user: int | None = None
+        kind = ""
         for k, pos in enumerate(job.positions):
-            if k > 0 and pos.user != user:  # another coordinate system: restate it all
+            if k > 0 and (pos.user, pos.kind) != (user, kind):  # another coordinate system: restate it all
                 tool = conf = None
-            if pos.user is not None and (k == 0 or pos.user != user):
+            if pos.user is not None and (k == 0 or (pos.user, pos.kind) != (user, kind)):
                 lines.append(f"///USER {pos.user}")
             if pos.tool != tool:
                 lines.append(f"///TOOL {pos.tool}")
                 tool = pos.tool
-            if k == 0 or pos.user != user:
-                lines += [f"///POSTYPE {'ROBOT' if pos.user is None else 'USER'}", "///RECTAN"]
-                user = pos.user
-            if pos.conf != conf:
+            if k == 0 or (pos.user, pos.kind) != (user, kind):
+                postype = pos.kind or ("ROBOT" if pos.user is None else "USER")
+                lines += [f"///POSTYPE {postype}", "///PULSE" if postype == "PULSE" else "///RECTAN"]
+                user, kind = pos.user, pos.kind
+            if pos.conf != conf and pos.kind != "PULSE":
                 lines.append(f"///RCONF {pos.conf}")
                 conf = pos.conf
             lines.append(f"C{k:05d}={pos.values}")
@@ -515,17 +544,30 @@ class InformBackend(Backend):
         return f"*L{job.labels:03d}"
 
     def native(self, node: ir.Native, ctx: InformContext) -> list[str]:  # type: ignore[override]
+        if node.vendor.lower() == self.name and inform_records.number_of(node.text) is not None:
+            return []  # a position record: in //POS (_place_records), refused at the lines that move to it
         lines = super().native(node, ctx)
         if node.vendor.lower() != self.name:
             return lines
-        named = native_refs.positions_named(native_refs.INFORM, lines)
-        if named:
-            self.unsupported(codes.NATIVE_CLASH, f"native line names {named[0]}, a position of the job it came "
-                             f"from: this backend numbers the job's positions for rmot's moves, so {named[0]} "
-                             "here is another point or none (write the move as an rmot `move`)", node.span)
+        lines = self._to_records(node, lines, ctx)
         ctx.job.native.extend(lines)
         ctx.natives.append((node, lines))
         return lines
+
+    def _to_records(self, node: ir.Native, lines: list[str], ctx: InformContext) -> list[str]:
+        """Native lines moving to robot positions of their job, renamed to where the records
+        were written (inform_records); a position with no record written is refused."""
+        named = native_refs.positions_named(native_refs.INFORM, lines)
+        placed = {p: ctx.job.records.get(int(p[1:])) if p.startswith("C") else None for p in named}
+        why = next((f"{p}, whose record cannot be written: {w}" for p, w in placed.items() if isinstance(w, str)), None)
+        why = why or next((f"{p}, a position of the job it came from with no native position record `{p}{{..}}` in this "
+                           f"job: this backend numbers the job's positions for rmot's moves, so {p} here is another "
+                           "point or none (write the move as an rmot `move`)" for p, w in placed.items() if w is None), None)
+        if why is not None:
+            self.unsupported(codes.NATIVE_CLASH, f"native line names {why}", node.span)
+            return lines
+        numbers = {int(p[1:]): w for p, w in placed.items() if isinstance(w, int)}
+        return [inform_records.renamed(line, numbers) for line in lines]
 
     def if_(self, node: ir.If, ctx: InformContext) -> list[str]:
         if not isinstance(node.condition, ir.InputCondition):  # any condition

@@ -69,7 +69,7 @@ def _urscript(path: str, text: str, companion: tuple[str, str] | None) -> tuple[
 
 def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.fanuc import read_fanuc  # late: loads numpy only when this runs
-    from rmot.backends.readers.fanuc_pos import position_records  # late: with the reader it serves
+    from rmot.backends.readers.position_records import tp_records  # late: with the reader it serves
 
     m = read_fanuc(path, text, _FANUC_LABELS, _FANUC_PROGRAMS, _PULSE_POSE[0], _FANUC_SAVED[0])
     _FANUC_INLINED.update(m.inlined)
@@ -79,7 +79,7 @@ def _fanuc(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
                      "lines show and its native lines are kept in those words", Where(path, 1))
     doc = Document("fanuc", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
-                   tuple(m.tally.comments), tuple(m.loads), records=position_records(path, text, m.tools, m.frames))
+                   tuple(m.tally.comments), tuple(m.loads), records=tp_records(path, text, m.tools, m.frames))
     return doc, m.tally
 
 
@@ -90,7 +90,7 @@ def _inform(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Do
     _FANUC_INLINED.update(m.inlined)
     doc = Document("inform", m.name, m.name, tuple(m.positions.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (m.routine, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
-                   tuple(m.tally.comments))
+                   tuple(m.tally.comments), records=m.records)
     return doc, m.tally
 
 

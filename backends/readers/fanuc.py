@@ -21,7 +21,7 @@ from dataclasses import replace
 from rmot.backends.fanuc_tp import FanucBackend
 from rmot.backends.readers import axes_slots, codes
 from rmot.backends.readers.common import Tally, counter_alone, label_arms, label_loop, match_simple, reaches, rmot_name
-from rmot.backends.readers.fanuc_pos import native_positions
+from rmot.backends.readers.position_records import native_positions
 from rmot.backends.readers.fanuc_regs import Registers, negated
 from rmot.backends.readers.fanuc_va import Controller, empty
 from rmot.backends.readers.fanuc_values import RegisterValues
@@ -116,7 +116,7 @@ class _Ls:
         kept = (*self.regs.decls, *keep_jumped_spans(tuple(body), self.tally, _NATIVE_JMP, label_of, self.instructions,
                                                      lambda t: t + " ;"))
         self.regs.warn_reads(kept)
-        for n in native_positions(kept, self.path):  # the frame and tool its record names (fanuc_pos): in the stub too
+        for n in native_positions(kept, self.path, "fanuc"):  # the frame and tool its record names: in the stub too
             for kind, number in self.taught.get(n, {}).items():
                 self._named(kind, self.positions[n].where if n in self.positions else Where(self.path, 1), number)
         self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))

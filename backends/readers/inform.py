@@ -36,6 +36,7 @@ from rmot.backends.readers.common import (
 )
 from rmot.backends.readers.jump_spans import keep_jumped_spans
 from rmot.backends.readers.jumps import Jump, jump_chain, jumped_to_elsewhere
+from rmot.backends.readers.position_records import inform_record, native_positions
 from rmot.backends.readers.model import (
     Cond, For, FrameData, If, Move, Native, PulsePose, Routine, Stmt, Stop, Target, ToolData, WaitIn, Where,
 )
@@ -98,6 +99,9 @@ class _Job:
         self.frames: dict[int, FrameData] = {}
         self.inst: list[tuple[str, Where]] = []
         self.routine = Routine("", (), (), Where(path, 1))
+        # each robot position's data as //POS gives it: tool, POSTYPE, user frame, RCONF, values, line
+        self.raw_positions: dict[str, tuple[int, str, int | None, str, str, int]] = {}
+        self.records: tuple[Native, ...] = ()  # those its native lines move to (position_records)
 
     def read(self) -> None:
         first = next(((n, ln) for n, ln in enumerate(self.raw, 1) if ln.strip()), (1, ""))
@@ -125,6 +129,10 @@ class _Job:
                 self.station_in_group |= key.startswith("GROUP") and bool(re.search(r"\bRB\d.*\bST\d|\bST\d.*\bRB\d", rest))
                 continue
             if section == "//POS":
+                raw = re.fullmatch(r"(C\d+)\s*=\s*(.*)", s)
+                if raw:
+                    self.raw_positions[_key(raw.group(1))] = (tool, "PULSE" if not rectan else postype,
+                                                              user if postype == "USER" else None, conf, raw.group(2), n)
                 self._position(s, n, conf, tool, user if postype == "USER" else None, not rectan)
             elif section == "//INST" and s and not s.startswith("//"):
                 m = re.match(r"'\s*TOOL\s+(\d+)\s*=\s*(\w+)", s)
@@ -140,7 +148,19 @@ class _Job:
         body, _ = self._block(0, len(self.inst))
         kept = keep_jumped_spans(tuple(body), self.tally, _NATIVE_JUMP, _label_of, self.inst,
                                  lambda t: t)
+        self.records = tuple(self._record(f"C{n:05d}") for n in native_positions(kept, self.path, "inform")
+                             if f"C{n:05d}" in self.raw_positions)
         self.routine = Routine(self.name, (), kept, Where(self.path, first[0]))
+
+    def _record(self, key: str) -> Native:
+        """The record of a position a native line moves to, its tool and user frame named as the
+        job's moves name them (stub entries for the controller's)."""
+        tool, postype, user, conf, values, line = self.raw_positions[key]
+        where = Where(self.path, line)
+        if user is not None and user not in self.frames:
+            self.frames[user] = FrameData(f"user{user}", ir.Pose(), where, f"user frame {user}", user)
+        return inform_record(key, self._tool(tool, where), postype, self.frames[user].name if user is not None else "",
+                             conf.strip(), values.strip(), where)
 
     def _position(self, s: str, n: int, conf: str, tool: int, user: int | None, pulse: bool) -> None:
         if axes_slots.inform_base_position(self.base_positions, s, pulse):

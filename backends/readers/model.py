@@ -338,4 +338,4 @@ class Document:
     kept: tuple[Native, ...] = ()  # declarations and routines with no rmot form, as comments
     loads: tuple[NamedLoad, ...] = ()  # named loads the files declare (KRL LOAD data, TP payload schedules)
     mechanisms: tuple[str, ...] = ()  # the cell's track and positioners the program drives (`with`)
-    records: tuple[Native, ...] = ()  # TP position records a native line may move to (fanuc_pos)
+    records: tuple[Native, ...] = ()  # TP position records a native line may move to (position_records)

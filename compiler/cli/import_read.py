@@ -145,7 +145,7 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
     `pulses_per_degree`: the arm's scales (INFORM pulse positions read as joints)."""
     from rmot.backends.readers import read_files, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.axes import resolve_axes  # late: loads numpy only when this runs
-    from rmot.backends.readers.fanuc_pos import with_position_records  # late: loads numpy only when this runs
+    from rmot.backends.readers.position_records import with_position_records  # late: loads numpy only when this runs
     from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import SignalMap, match_tools, resolve_signals  # late: loads numpy only when this runs
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time

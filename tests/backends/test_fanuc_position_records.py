@@ -1,5 +1,5 @@
 """A TP line `rmot import` keeps native that moves to a position of its program compiles back
-for Fanuc with that position's record (readers/fanuc_pos.py, backends/fanuc_records.py,
+for Fanuc with that position's record (readers/position_records.py, backends/fanuc_records.py,
 lang/REFERENCE.md §5 `native`, §14).
 
 Witness: the compiled .ls is read here with plain regular expressions, and the flange pose each

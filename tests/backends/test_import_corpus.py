@@ -17,6 +17,7 @@ import pytest
 from click.testing import CliRunner
 
 from rmot.backends.fanuc_records import number_of
+from rmot.backends.inform_records import number_of as inform_number_of
 from rmot.compiler.cli import cli
 
 CORPUS = Path(__file__).resolve().parents[1] / "data" / "vendor_programs"
@@ -50,6 +51,8 @@ def test_imports_without_traceback(path: Path, tmp_path: Path) -> None:
         assert file == str(path)
         source_line = lines[int(line) - 1]
         unescaped = body.replace('\\"', '"').replace("\\\\", "\\")
-        assert unescaped.split()[0].rstrip(";") in source_line, (line, unescaped, source_line)  # its `;` added
-        if number_of(unescaped) is None:  # a TP position record is the data of the native lines that move to it
+        record = number_of(unescaped) is not None or inform_number_of(unescaped) is not None
+        first = re.match(r"P\[\d+|C\d+", unescaped).group() if record else unescaped.split()[0].rstrip(";")  # type: ignore[union-attr]
+        assert first in source_line, (line, unescaped, source_line)  # its `;` added
+        if not record:  # a position record is the data of the native lines that move to it
             assert line in warned, f"native line {line} has no located warning"

@@ -1,0 +1,87 @@
+"""The position records a TP program's or INFORM job's native lines move to, kept with them.
+
+A line kept native that moves to a position of its program (`L P[2] 100mm/sec FINE Offset,
+PR[4]`, `MOVL C00001 V=211.7`) needs that position's data, which lives in the program's /POS
+(TP) or //POS (INFORM) section, not in the line. Each such position is kept as a native
+statement holding its record at the top of the routine the program became (after its
+variables), once, in the order first named, located at the position's line, with the tool and
+frame numbers it records turned into the names the import gives them (a number the program
+never selects is declared in the stub as the controller's, as a selected one is):
+
+  * TP: `P[2:"label"]{ GP1: UF : base, UT : gripper, CONFIG : 'N U T, 0, 0, 0', X = .. mm, .. }`,
+    the /POS block with its whitespace collapsed (backends/fanuc_records.py writes it back);
+  * INFORM: `C00001{ TOOL : gripper; PULSE : -204317,-90930,.. }` or `C00002{ TOOL : gripper;
+    POSTYPE : USER; USER : table; RCONF : 0,0,0,..; RECTAN : 10,0,5,180,0,0 }`, the values of
+    the `Cnnnnn=` line and the pseudo-instructions in force there (backends/inform_records.py).
+
+A routine holding a native line read from another program (one inlined at its call) gets none:
+one program's records serve all its lines, and the inlined line's numbers are the other
+program's.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+from dataclasses import replace
+
+from rmot.backends.readers.fanuc_text import position_blocks
+from rmot.backends.readers.model import Document, FrameData, Native, Routine, Stmt, ToolData, VarDecl, Where, walk
+
+__all__ = ["native_positions", "tp_records", "inform_record", "with_position_records"]
+
+# how each vendor's lines name a position of their program, and how a comment line starts
+_NAMED = {"fanuc": (re.compile(r"\bP\[(\d+)"), "!"), "inform": (re.compile(r"\bC(\d{4,5})\b"), "'")}
+_SELECTION = re.compile(r"\bUF\s*:\s*(\d+)\s*,\s*UT\s*:\s*(\d+)")
+
+
+def tp_records(path: str, text: str, tools: Mapping[int, ToolData], frames: Mapping[int, FrameData]) -> tuple[Native, ...]:
+    """Every position of a TP program as the record a native line may need, its frame and tool
+    named as the program's moves name them."""
+    def named(m: re.Match[str]) -> str:
+        uf, ut = int(m.group(1)), int(m.group(2))
+        frame = "base" if uf == 0 else frames[uf].name if uf in frames else str(uf)
+        return f"UF : {frame}, UT : {tools[ut].name if ut in tools else ut}"
+
+    return tuple(Native("fanuc", f"P[{n}" + (f':"{label}"' if label else "") + "]{ "
+                        + _SELECTION.sub(named, " ".join(whole.split()), count=1) + " }", Where(path, line))
+                 for n, label, whole, line in position_blocks(text))
+
+
+def inform_record(key: str, tool: str, postype: str, user: str, conf: str, values: str, where: Where) -> Native:
+    """An INFORM position as the record a native line may need (postype PULSE: encoder counts)."""
+    items = [f"TOOL : {tool}"] + ([f"PULSE : {values}"] if postype == "PULSE" else
+                                  [f"POSTYPE : {postype}"] + ([f"USER : {user}"] if user else [])
+                                  + [f"RCONF : {conf}", f"RECTAN : {values}"])
+    return Native("inform", f"{key}{{ {'; '.join(items)} }}", where)
+
+
+def _named(natives: list[Native], vendor: str) -> list[int]:
+    pattern, comment = _NAMED[vendor]
+    return list(dict.fromkeys(int(m.group(1)) for s in natives for line in s.text.split("\n")
+                              if not line.lstrip().startswith(comment) for m in pattern.finditer(line)))
+
+
+def native_positions(body: tuple[Stmt, ...], path: str, vendor: str) -> list[int]:
+    """The positions the native lines of `body` read from `path` move to, in order."""
+    return _named([s for s in walk(body) if isinstance(s, Native) and s.where.path == path], vendor)
+
+
+def _with_records(routine: Routine, records: Mapping[tuple[str, int], Native], vendor: str) -> Routine:
+    natives = [s for s in walk(routine.body) if isinstance(s, Native)]
+    if any(s.where.path != routine.where.path for s in natives if _named([s], vendor)):
+        return routine
+    kept = [records[routine.where.path, n] for n in _named(natives, vendor) if (routine.where.path, n) in records]
+    if not kept:
+        return routine
+    top = next((k for k, s in enumerate(routine.body) if not isinstance(s, VarDecl)), len(routine.body))
+    return replace(routine, body=(*routine.body[:top], *kept, *routine.body[top:]))
+
+
+def with_position_records(doc: Document) -> Document:
+    """`doc` with the records of the positions each routine's native lines move to at its top."""
+    if doc.vendor not in _NAMED or not doc.records:
+        return doc
+    pattern = _NAMED[doc.vendor][0]
+    records = {(r.where.path, int(m.group(1))): r for r in doc.records if (m := pattern.match(r.text))}
+    return replace(doc, routines=tuple(_with_records(r, records, doc.vendor) for r in doc.routines))
