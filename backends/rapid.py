@@ -34,6 +34,12 @@ Conventions (ABB "Technical reference manual – RAPID Instructions, Functions a
     so any non-negative n is accepted (DIGITAL_PORTS; E404 below 0).
   * identifiers: at most 32 characters, a letter first, letters, digits and '_'.
   * Program size: RAPID has no line limit (program memory is the limit); nothing is split.
+  * native data: a native statement that is a data declaration (`CONST robtarget p10:=[..];`,
+    what `rmot import` keeps beside the native lines naming p10) is declared at module level,
+    where RAPID data lives, unless the backend declares data of that rmot name itself (the same
+    datum: the import names rmot's targets, tools, variables and syncidents after the file's).
+    Two such declarations of one name that differ, and one whose name the backend gave other
+    data, are E411.
 """
 
 from __future__ import annotations
@@ -77,9 +83,13 @@ from rmot.backends.rapid_text import (
     rapid_conf_match,
 )
 import math
+import re
 from rmot.backends.part_load import held_load
 
 __all__ = ["RapidBackend"]
+
+# a RAPID data declaration (RAPID Overview, "Data declarations"): its name in group 1
+_NATIVE_DATA = re.compile(r"(?i)^\s*(?:(?:LOCAL|TASK)\s+)*(?:CONST|PERS|VAR)\s+\w+\s+(\w+)\b")
 
 
 @record
@@ -95,6 +105,7 @@ class RapidContext(TaskContext):
     massless_tools: set[str] = field(default_factory=set)
     axes: tuple[ExtAxis, ...] = ()  # the external axes the task drives, in eax_a.. order
     loops: LoopState = field(default_factory=LoopState)  # the vendor loop being written
+    native_data: dict[str, tuple[str, ir.Native]] = field(default_factory=dict)  # NAME -> a native declaration, its node
 
 
 class RapidBackend(Backend):
@@ -120,6 +131,7 @@ class RapidBackend(Backend):
         lines = [f"MODULE {module}"] + self.indent(self.header(ctx), self.INDENT)
         lines += self.indent([self.comment(line) for line in machine_data(ctx.plan.program.cell, ctx.robot, ctx.axes, "rapid")],
                              self.INDENT)
+        lines += self.indent(self._native_data(ctx), self.INDENT)
         for kind in ("tooldata", "wobjdata", "loaddata", "sync", "var"):
             lines += self.indent(ctx.decls.get(kind, []), self.INDENT)
         lines += self.indent(self._data_lines(ctx), self.INDENT)
@@ -139,6 +151,34 @@ class RapidBackend(Backend):
         rows = [(value.split(":", 1), name) for name, value in ctx.data.items]
         return [f"CONST {kind} {name}:={literal};" for kind in DATA_ORDER
                 for (k, literal), name in rows if k == kind]
+
+    def native(self, node: ir.Native, ctx: RapidContext) -> list[str]:  # type: ignore[override]
+        declared = _NATIVE_DATA.match(node.text) if node.vendor.lower() == self.name else None
+        if declared is None:
+            return super().native(node, ctx)
+        text = node.text.strip()
+        seen = ctx.native_data.setdefault(declared.group(1).upper(), (text, node))
+        if seen[0] != text:
+            self.unsupported(codes.NATIVE_CLASH, f"native declaration of {declared.group(1)} must be the only one of "
+                             "that name in the task (another declares it differently)", node.span)
+        return []  # declared at module level (emit_task)
+
+    def _native_data(self, ctx: RapidContext) -> list[str]:
+        """The native declarations to write: those of data the backend does not declare itself.
+        Data it declares under the same rmot name is the same datum (the import names rmot's
+        data after the file's); under a name it gave other data, the native lines would read
+        that data: refused."""
+        own = {m.group(1).upper() for line in [*(d for ds in ctx.decls.values() for d in ds), *self._data_lines(ctx)]
+               if (m := _NATIVE_DATA.match(line))}
+        out = []
+        for key, (text, node) in ctx.native_data.items():
+            source = ctx.names.taken.get(key)
+            if key not in own and source is None:
+                out.append(text)
+            elif source is not None and source.upper() != key:
+                self.unsupported(codes.NATIVE_CLASH, f"native declaration of {key.lower()} names data this backend "
+                                 f"declares for '{source}': the native lines would read that; rename it", node.span)
+        return out
 
     @staticmethod
     def _declare(ctx: RapidContext, kind: str, line: str) -> None:

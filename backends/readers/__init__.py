@@ -31,13 +31,14 @@ __all__ = ["READERS", "vendor_of", "read_files", "ImportError_", "span_of", "com
 
 
 def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
+    from rmot.backends.readers.position_records import rapid_records  # late: with the reader it serves
     from rmot.backends.readers.rapid import read_rapid  # late: loads numpy only when this runs
 
     m = read_rapid(path, text, _RAPID_TASK)
     main = next((r.name for r in m.routines if r.name.lower() == "main"), m.routines[0].name if m.routines else "main")
     doc = Document("rapid", m.name, main, tuple(m.targets.values()), tuple(m.tools.values()),
                    tuple(m.frames.values()), (*m.routines, *m.tally.unreached), tuple(m.consts.items()), (m.tally.count(),),
-                   tuple(m.tally.diagnostics), tuple(m.tally.comments))
+                   tuple(m.tally.diagnostics), tuple(m.tally.comments), records=rapid_records(m.module_data()))
     return doc, m.tally
 
 

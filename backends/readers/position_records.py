@@ -17,6 +17,13 @@ never selects is declared in the stub as the controller's, as a selected one is)
 A routine holding a native line read from another program (one inlined at its call) gets none:
 one program's records serve all its lines, and the inlined line's numbers are the other
 program's.
+
+RAPID names its data instead of numbering it, so a native line there (`MoveL PontoPega, v1000,
+z50, tool0;`) needs the declarations of the data it names: each module-level data declaration
+of the files (`CONST robtarget PontoPega:=[..];`, its lines joined) is such a record, and a
+routine gets, at its top, those its native lines name and those they name in turn, in the
+files' order (a LOCAL one only from its own file). The RAPID backend declares them at module
+level under their own names (backends/rapid.py).
 """
 
 from __future__ import annotations
@@ -28,11 +35,13 @@ from dataclasses import replace
 from rmot.backends.readers.fanuc_text import position_blocks
 from rmot.backends.readers.model import Document, FrameData, Native, Routine, Stmt, ToolData, VarDecl, Where, walk
 
-__all__ = ["native_positions", "tp_records", "inform_record", "with_position_records"]
+__all__ = ["native_positions", "tp_records", "inform_record", "rapid_records", "with_position_records"]
 
 # how each vendor's lines name a position of their program, and how a comment line starts
 _NAMED = {"fanuc": (re.compile(r"\bP\[(\d+)"), "!"), "inform": (re.compile(r"\bC(\d{4,5})\b"), "'")}
 _SELECTION = re.compile(r"\bUF\s*:\s*(\d+)\s*,\s*UT\s*:\s*(\d+)")
+_RAPID_DECL = re.compile(r"(?i)^\s*((?:LOCAL|TASK)\s+)*(?:CONST|PERS|VAR)\s+\w+\s+(\w+)")
+_RAPID_WORD = re.compile(r"\b[A-Za-z]\w*\b")
 
 
 def tp_records(path: str, text: str, tools: Mapping[int, ToolData], frames: Mapping[int, FrameData]) -> tuple[Native, ...]:
@@ -56,6 +65,47 @@ def inform_record(key: str, tool: str, postype: str, user: str, conf: str, value
     return Native("inform", f"{key}{{ {'; '.join(items)} }}", where)
 
 
+def rapid_records(texts: list[tuple[str, Where]]) -> tuple[Native, ...]:
+    """The module-level data declarations of a RAPID module (statement text, where) as records."""
+    return tuple(Native("rapid", " ".join(text.split("\n")) + ";", where) for text, where in texts if _RAPID_DECL.match(text))
+
+
+def _rapid_words(text: str) -> set[str]:
+    """The names a RAPID line uses (upper case), its strings and comment aside."""
+    code = re.sub(r'"[^"]*"', "", text).split("!")[0]
+    return {w.upper() for w in _RAPID_WORD.findall(code)}
+
+
+def _with_declarations(routine: Routine, records: list[Native], variables: set[str]) -> Routine:
+    """A RAPID routine with the declarations of the data its native lines name, transitively,
+    but not of the import's task `variables` (upper case): rmot declares those itself, and a
+    native line must read and write the same variable as rmot's lines do."""
+    by_name: dict[str, Native] = {}
+    for r in records:  # a LOCAL declaration serves its own file only; the routine's file's first
+        m = _RAPID_DECL.match(r.text)
+        local = m is not None and "LOCAL" in (m.group(1) or "").upper()
+        if m is not None and m.group(2).upper() not in variables and (not local or r.where.path == routine.where.path):
+            key = m.group(2).upper()
+            if key not in by_name or r.where.path == routine.where.path != by_name[key].where.path:
+                by_name[key] = r
+    wanted: set[str] = set()
+    todo = [w for s in walk(routine.body) if isinstance(s, Native) for w in _rapid_words(s.text)]
+    while todo:
+        name = todo.pop()
+        if name in by_name and name not in wanted:
+            wanted.add(name)
+            todo += _rapid_words(by_name[name].text.split(":=", 1)[-1])
+    kept = sorted((by_name[n] for n in wanted), key=lambda r: (r.where.path, r.where.line, r.where.col))
+    return _at_top(routine, kept)
+
+
+def _at_top(routine: Routine, kept: list[Native]) -> Routine:
+    if not kept:
+        return routine
+    top = next((k for k, s in enumerate(routine.body) if not isinstance(s, VarDecl)), len(routine.body))
+    return replace(routine, body=(*routine.body[:top], *kept, *routine.body[top:]))
+
+
 def _named(natives: list[Native], vendor: str) -> list[int]:
     pattern, comment = _NAMED[vendor]
     return list(dict.fromkeys(int(m.group(1)) for s in natives for line in s.text.split("\n")
@@ -71,15 +121,14 @@ def _with_records(routine: Routine, records: Mapping[tuple[str, int], Native], v
     natives = [s for s in walk(routine.body) if isinstance(s, Native)]
     if any(s.where.path != routine.where.path for s in natives if _named([s], vendor)):
         return routine
-    kept = [records[routine.where.path, n] for n in _named(natives, vendor) if (routine.where.path, n) in records]
-    if not kept:
-        return routine
-    top = next((k for k, s in enumerate(routine.body) if not isinstance(s, VarDecl)), len(routine.body))
-    return replace(routine, body=(*routine.body[:top], *kept, *routine.body[top:]))
+    return _at_top(routine, [records[routine.where.path, n] for n in _named(natives, vendor) if (routine.where.path, n) in records])
 
 
 def with_position_records(doc: Document) -> Document:
     """`doc` with the records of the positions each routine's native lines move to at its top."""
+    if doc.vendor == "rapid" and doc.records:
+        variables = {s.name.upper() for r in doc.routines for s in walk(r.body) if isinstance(s, VarDecl)}
+        return replace(doc, routines=tuple(_with_declarations(r, list(doc.records), variables) for r in doc.routines))
     if doc.vendor not in _NAMED or not doc.records:
         return doc
     pattern = _NAMED[doc.vendor][0]

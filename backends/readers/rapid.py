@@ -95,15 +95,26 @@ class _Module:
                 i += 1
         raise self.tally.fail("the module has no ENDMODULE", self.stmts[-1].where)
 
+    def module_data(self) -> list[tuple[str, Where]]:
+        """The module-level data declarations, as written (text, where)."""
+        return [(st.text, st.where) for st, depth in zip(self.stmts[1:], self._depths()) if depth == 0 and _DECL.match(st.text)]
+
+    def _depths(self) -> list[int]:
+        """Each statement's routine nesting (0: module level; a routine's own line counts inside)."""
+        depth, out = 0, []
+        for st in self.stmts[1:]:
+            opens = re.match(r"(?i)^(?:LOCAL\s+)?(PROC|FUNC|TRAP)\b", st.text)
+            depth += 1 if opens else 0
+            out.append(depth)
+            depth -= 1 if st.word in ("ENDPROC", "ENDFUNC", "ENDTRAP") else 0
+        return out
+
     def predeclare(self, local: bool) -> None:
         """Every module-level data declaration, read ahead without counting (the module's own,
         `local`, so a PROC may use data declared after it; another module's, without its LOCAL
         data: the task's other modules see its global data, RAPID Overview, "Scope of data")."""
-        depth = 0
-        for st in self.stmts[1:]:
-            opens = re.match(r"(?i)^(?:LOCAL\s+)?(PROC|FUNC|TRAP)\b", st.text)
-            depth += 1 if opens else -1 if st.word in ("ENDPROC", "ENDFUNC", "ENDTRAP") else 0
-            m = _DECL.match(st.text) if depth == 0 and not opens else None
+        for st, depth in zip(self.stmts[1:], self._depths()):
+            m = _DECL.match(st.text) if depth == 0 else None
             if m is None or (not local and re.match(r"(?i)^LOCAL\b", st.text)):
                 continue
             _, type_, name, dims, value = m.groups()

@@ -43,6 +43,7 @@ DEFAULT_MODELS = {"rapid": "abb_irb1600", "krl": "kuka_kr6_r900", "urscript": "u
 def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | None, tasks: tuple[str, ...],
             pulses: str | None) -> None:
     from rmot.backends.readers import ImportError_, span_of  # late: loads numpy only when this runs
+    from rmot.backends.readers.position_records import with_position_records  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import (  # late: loads numpy only when this runs
         SignalMap, cell_stub, program_text, rename_warnings, stub_signals, stub_warnings,
     )
@@ -63,7 +64,7 @@ def import_(files: tuple[str, ...], output: str, robot: str | None, cell: str | 
         click.echo(found, err=True)
         sys.exit(EXIT_INPUT)
     try:
-        doc = read_on_robot(list(files), cell, found, robot, scales)
+        doc = with_position_records(read_on_robot(list(files), cell, found, robot, scales))  # the data natives name
     except ImportError_ as exc:
         click.echo(render(exc.diagnostic), err=True)
         sys.exit(EXIT_INPUT)

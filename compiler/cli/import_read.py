@@ -145,7 +145,6 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
     `pulses_per_degree`: the arm's scales (INFORM pulse positions read as joints)."""
     from rmot.backends.readers import read_files, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.axes import resolve_axes  # late: loads numpy only when this runs
-    from rmot.backends.readers.position_records import with_position_records  # late: loads numpy only when this runs
     from rmot.backends.readers.payload import cell_parts, match_payloads  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import SignalMap, match_tools, resolve_signals  # late: loads numpy only when this runs
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
@@ -161,7 +160,7 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
                      pulse_pose=pulse_pose)
     if cell is None or found is None:
         tools = {t.name: t.tcp for t in doc.tools} if model else None  # the stub cell's tools: the files' own
-        return with_position_records(resolve_axes(_ur_qnear(doc, model, tools), None, "r1", span_of))  # a stub: no mechanism (W523)
+        return resolve_axes(_ur_qnear(doc, model, tools), None, "r1", span_of)  # a stub cell declares no mechanism: W523
     signals, robot_name, cell_ir = found
     assert isinstance(signals, SignalMap) and isinstance(cell_ir, ir.Cell)
     doc = resolve_signals(doc, signals, span_of)
@@ -170,7 +169,7 @@ def read_on_robot(files: list[str], cell: str | None, found: tuple[object, str, 
                          tuple((t.tcp, t.mass) for t in cell_ir.tools if t.robot == robot_name), span_of)
     doc = _inform_configs(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
     doc = _ur_qnear(doc, model, {t.name: t.tcp for t in cell_ir.tools if t.robot == robot_name})
-    return with_position_records(resolve_axes(doc, cell_ir, robot_name, span_of))
+    return resolve_axes(doc, cell_ir, robot_name, span_of)
 
 
 def refuse_output_input(path: str, inputs: tuple[str, ...]) -> None:

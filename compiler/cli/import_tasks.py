@@ -84,6 +84,7 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
     """Read every task's files, their barriers as `sync`, write OUT; exits (0, or 2 on bad input)."""
     from rmot.backends.readers import ImportError_, span_of  # late: loads numpy only when this runs
     from rmot.backends.readers.tasks import TaskDoc, read_barriers, tasks_program_text  # late: loads numpy
+    from rmot.backends.readers.position_records import with_position_records  # late: loads numpy only when this runs
     from rmot.backends.readers.writer import SignalMap, rename_warnings  # late: loads numpy only when this runs
     from rmot.backends.handshake import handshake_ports  # late: loads numpy only when this runs
     from rmot.lang import ir  # late: tests replace it (monkeypatch): read at call time
@@ -108,6 +109,7 @@ def import_tasks(files: tuple[str, ...], output: str, robot: str | None, cell: s
             doc = read_on_robot(paths, cell, found, None)
             tasks.append(TaskDoc(name, doc, found[0], handshake_ports(cell_ir, name), task))
         tasks, warnings = read_barriers(tasks, span_of)
+        tasks = [replace(t, doc=with_position_records(t.doc)) for t in tasks]  # the data natives name, barriers read
     except ImportError_ as exc:
         click.echo(render(exc.diagnostic), err=True)
         sys.exit(EXIT_INPUT)
