@@ -252,3 +252,10 @@ IO_READ_NOT_CONSTANT = Code(
 )
 
 __all__ += ["IO_READ_NOT_CONSTANT"]
+
+PROC_NEVER_CALLED = Code(
+    "W153", "proc-never-called",
+    "a proc no task calls: checked for names, but not planned, verified or written to the controller files",
+)
+
+__all__ += ["PROC_NEVER_CALLED"]

@@ -210,14 +210,23 @@ def _check_exprs(exprs: list[object], known: set[str], scope: Scope, rep: Report
 
 
 def check_uncalled_procs(state: FrontendState) -> FrontendState:
-    """Names in the bodies of procs no task called (called ones were checked by lowering)."""
+    """Names in the bodies of procs no task called (called ones were checked by lowering), and
+    W153 at each one the program's own file declares: nothing plans, verifies or writes it (a
+    vendor file holds the routines its program calls), so an imported library of routines with
+    no main of its own compiles to none of them, which the user is told. A library file's procs
+    are for the programs that import it: none is warned of."""
     called = state.called_procs
     seen: set[int] = set()
+    main = state.main
+    own = main.path if main is not None and any(isinstance(s, ast.ProgramDecl) for s in main.module.body) else None
     for entry in state.procs:
         decl: ast.ProcDecl = entry.value
         if id(decl) in called or id(decl) in seen or entry.closure is None:
             continue
         seen.add(id(decl))
+        if decl.span.path == own:
+            state.reporter.warning(codes.PROC_NEVER_CALLED, f"proc '{decl.name.name}' is never called: it is checked, but "
+                                   "not planned, verified or written to the controller files", decl.name.span)
         for p in decl.params:
             if p.type.name not in PARAM_TYPES:
                 state.reporter.unknown(p.type.name, "parameter type", p.type.span, list(PARAM_TYPES))
