@@ -29,7 +29,8 @@ import math
 import re
 from collections.abc import Iterable, Iterator
 
-from rmot.lang import ir, ir_tree
+from rmot.backends.native_refs import program_natives
+from rmot.lang import ir
 from rmot.lang.record import record
 
 __all__ = ["Record", "number_of", "records_of", "layout", "renamed", "named", "frame_ref", "tool_ref"]
@@ -97,22 +98,11 @@ def _parse(text: str, drives_axes: bool) -> Record:
     return Record(number, label, settings["UF"], settings["UT"], settings.get("CONFIG", ""), tuple(values))
 
 
-def _natives(body: Iterable[ir.Instr]) -> Iterator[ir.Native]:
-    """The Fanuc native statements of one program's body: not those of the procs it calls,
-    which are programs of their own."""
-    for instr in body:
-        if isinstance(instr, ir.Native) and instr.vendor.lower() == "fanuc":
-            yield instr
-        runs, bodies = ir_tree.flow(instr)
-        for sub in bodies if runs is not ir_tree.Runs.CALL else ():
-            yield from _natives(sub)
-
-
 def records_of(body: Iterable[ir.Instr], drives_axes: bool) -> dict[int, Record]:
     """The position records of one program, by the number its lines name; two that differ
     under one number are refused."""
     out: dict[int, Record] = {}
-    for node in _natives(body):
+    for node in program_natives(body, "fanuc"):
         if number_of(node.text) is None:
             continue
         rec = _parse(node.text, drives_axes)

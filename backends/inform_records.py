@@ -28,9 +28,10 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable
 
-from rmot.lang import ir, ir_tree
+from rmot.backends.native_refs import program_natives
+from rmot.lang import ir
 from rmot.lang.record import record
 
 __all__ = ["Record", "number_of", "records_of", "renamed"]
@@ -94,21 +95,10 @@ def _parse(text: str) -> Record:
                   (pulse or rectan or "").replace(" ", ""))
 
 
-def _natives(body: Iterable[ir.Instr]) -> Iterator[ir.Native]:
-    """The INFORM native statements of one job's body: not those of the procs it calls, which
-    are jobs of their own."""
-    for instr in body:
-        if isinstance(instr, ir.Native) and instr.vendor.lower() == "inform":
-            yield instr
-        runs, bodies = ir_tree.flow(instr)
-        for sub in bodies if runs is not ir_tree.Runs.CALL else ():
-            yield from _natives(sub)
-
-
 def records_of(body: Iterable[ir.Instr]) -> dict[int, Record]:
     """The position records of one job, by number; two that differ under one number are refused."""
     out: dict[int, Record] = {}
-    for node in _natives(body):
+    for node in program_natives(body, "inform"):
         if number_of(node.text) is None:
             continue
         rec = _parse(node.text)

@@ -21,12 +21,12 @@ the controller's).
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 
 from rmot.lang import ir, ir_tree
 from rmot.lang.record import record
 
-__all__ = ["Scheme", "FANUC", "INFORM", "reserved_labels", "positions_named", "clashes"]
+__all__ = ["Scheme", "FANUC", "INFORM", "program_natives", "reserved_labels", "positions_named", "clashes"]
 
 
 @record(slots=True)
@@ -78,6 +78,17 @@ def _code(scheme: Scheme, lines: Iterable[str]) -> list[str]:
 
 def _natives(body: Iterable[ir.Instr], vendor: str) -> Iterable[ir.Native]:
     return (n for n in ir_tree.walk(body) if isinstance(n, ir.Native) and n.vendor.lower() == vendor)
+
+
+def program_natives(body: Iterable[ir.Instr], vendor: str) -> Iterator[ir.Native]:
+    """The native statements of one program's body for `vendor`: not those of the procs it calls,
+    which are programs (TP) or jobs (INFORM) of their own."""
+    for instr in body:
+        if isinstance(instr, ir.Native) and instr.vendor.lower() == vendor:
+            yield instr
+        runs, bodies = ir_tree.flow(instr)
+        for sub in bodies if runs is not ir_tree.Runs.CALL else ():
+            yield from program_natives(sub, vendor)
 
 
 def reserved_labels(scheme: Scheme, body: Iterable[ir.Instr]) -> frozenset[str]:
