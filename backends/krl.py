@@ -52,12 +52,13 @@ Conventions (KUKA "KSS 8.x Operating and Programming Instructions for System Int
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field, replace
 from typing import ClassVar
 
 import numpy as np
 
-from rmot.backends import codes, turns
+from rmot.backends import codes, native_refs, turns
 from rmot.backends import loops as _loops
 from rmot.backends import runtime as _rt
 from rmot.backends.controller_data import frame_number, tool_number
@@ -91,6 +92,11 @@ from rmot.backends.part_load import state_at_moves
 
 __all__ = ["KrlBackend"]
 
+# a .dat data declaration (KUKA System Software 8, "DECL"; DECL optional for the predefined types):
+# its name in group 1
+_NATIVE_DATA = re.compile(r"(?i)^\s*(?:DECL\s+(?:GLOBAL\s+)?\w+|(?:GLOBAL\s+)?(?:E6POS|E6AXIS|POS|AXIS|FRAME|FDAT|PDAT|LDAT|INT|REAL|BOOL))"
+                          r"\s+(\w+)\s*=")
+
 
 @dataclass
 class _Module:
@@ -102,6 +108,7 @@ class _Module:
     # numbered tools/frames used: (array, n) -> (rmot name, value text); selected by number,
     # written into the controller's arrays only with --write-frames
     stored: dict[tuple[str, int], tuple[str, str]] = field(default_factory=dict)
+    native_data: dict[str, tuple[str, ir.Native]] = field(default_factory=dict)  # NAME -> a native declaration, its node
 
 
 @record
@@ -180,8 +187,31 @@ class KrlBackend(Backend):
         dat = ["&ACCESS RVP", f"DEFDAT {name}"] + self.indent(head, "  ")
         dat += [f"  DECL {value.split(':', 1)[0]} {dname}={value.split(':', 1)[1]}"
                 for dname, value in ctx.module.data.items]
+        dat += ["  " + text for text in self._native_data(ctx)]
         dat.append("ENDDAT")
         return {f"{name}.src": "\n".join(src) + "\n", f"{name}.dat": "\n".join(dat) + "\n"}
+
+    def native(self, node: ir.Native, ctx: KrlContext) -> list[str]:  # type: ignore[override]
+        """A native data declaration (`DECL E6POS XP1={..}`, what `rmot import` keeps beside the
+        native lines naming XP1) goes into the module's .dat, where KRL data lives."""
+        declared = _NATIVE_DATA.match(node.text) if node.vendor.lower() == self.name else None
+        if declared is None:
+            return super().native(node, ctx)
+        text = node.text.strip()
+        seen = ctx.module.native_data.setdefault(declared.group(1).upper(), (text, node))
+        if seen[0] != text:
+            self.unsupported(codes.NATIVE_CLASH, f"native declaration of {declared.group(1)} must be the only one of "
+                             "that name in the module (another declares it differently)", node.span)
+        return []
+
+    def _native_data(self, ctx: KrlContext) -> list[str]:
+        """The module's native declarations to write (native_refs.native_data)."""
+        own = {name.upper() for name, _ in ctx.module.data.items}
+        write, clash = native_refs.native_data(ctx.module.native_data, own, ctx.names.taken)
+        for node, source in clash:
+            self.unsupported(codes.NATIVE_CLASH, f"native declaration of {_NATIVE_DATA.match(node.text).group(1)} names "  # type: ignore[union-attr]
+                             f"data this backend declares for '{source}': the native lines would read that; rename it", node.span)
+        return write
 
     # ------------------------------------------------------------------ motion
 

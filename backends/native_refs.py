@@ -26,7 +26,7 @@ from collections.abc import Iterable, Iterator
 from rmot.lang import ir, ir_tree
 from rmot.lang.record import record
 
-__all__ = ["Scheme", "FANUC", "INFORM", "program_natives", "reserved_labels", "positions_named", "clashes"]
+__all__ = ["Scheme", "FANUC", "INFORM", "program_natives", "reserved_labels", "positions_named", "clashes", "native_data"]
 
 
 @record(slots=True)
@@ -114,3 +114,20 @@ def clashes(scheme: Scheme, natives: Iterable[tuple[ir.Native, list[str]]], own:
         if hit is not None:
             out.append((node, hit))
     return out
+
+
+def native_data(declared: dict[str, tuple[str, ir.Native]], own: set[str],
+                taken: dict[str, str]) -> tuple[list[str], list[tuple[ir.Native, str]]]:
+    """RAPID and KRL name their data: of the data declarations native statements hold (`NAME` ->
+    (text, statement)), (those to write, those naming data the backend gave other data: each with
+    the rmot name it gave it). Data the backend declares under the same rmot name (`own`, upper
+    case; `taken`: the NameTable's legal -> source names) is the same datum, written once: the
+    import names rmot's targets, tools and variables after the file's."""
+    write, clash = [], []
+    for key, (text, node) in declared.items():
+        source = taken.get(key)
+        if key not in own and source is None:
+            write.append(text)
+        elif source is not None and source.upper() != key:
+            clash.append((node, source))
+    return write, clash

@@ -47,7 +47,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from dataclasses import field
 
-from rmot.backends import codes
+from rmot.backends import codes, native_refs
 from rmot.backends import loops as _loops
 from rmot.backends import runtime as _rt
 from rmot.backends.ext_axes import RAPID_UNUSED, driven_axes, machine_data, rapid_extax, rapid_wobj
@@ -164,21 +164,14 @@ class RapidBackend(Backend):
         return []  # declared at module level (emit_task)
 
     def _native_data(self, ctx: RapidContext) -> list[str]:
-        """The native declarations to write: those of data the backend does not declare itself.
-        Data it declares under the same rmot name is the same datum (the import names rmot's
-        data after the file's); under a name it gave other data, the native lines would read
-        that data: refused."""
+        """The native declarations to write (native_refs.native_data)."""
         own = {m.group(1).upper() for line in [*(d for ds in ctx.decls.values() for d in ds), *self._data_lines(ctx)]
                if (m := _NATIVE_DATA.match(line))}
-        out = []
-        for key, (text, node) in ctx.native_data.items():
-            source = ctx.names.taken.get(key)
-            if key not in own and source is None:
-                out.append(text)
-            elif source is not None and source.upper() != key:
-                self.unsupported(codes.NATIVE_CLASH, f"native declaration of {key.lower()} names data this backend "
-                                 f"declares for '{source}': the native lines would read that; rename it", node.span)
-        return out
+        write, clash = native_refs.native_data(ctx.native_data, own, ctx.names.taken)
+        for node, source in clash:
+            self.unsupported(codes.NATIVE_CLASH, f"native declaration of {_NATIVE_DATA.match(node.text).group(1)} names "  # type: ignore[union-attr]
+                             f"data this backend declares for '{source}': the native lines would read that; rename it", node.span)
+        return write
 
     @staticmethod
     def _declare(ctx: RapidContext, kind: str, line: str) -> None:

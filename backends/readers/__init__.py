@@ -44,6 +44,7 @@ def _rapid(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Doc
 
 def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Document, Tally]:
     from rmot.backends.readers.krl import read_krl  # late: loads numpy only when this runs
+    from rmot.backends.readers.position_records import krl_records  # late: with the reader it serves
 
     if path.lower().endswith(".dat"):
         raise ImportError_(Diagnostic(codes.NOT_VENDOR_LANGUAGE, Severity.ERROR,
@@ -55,7 +56,7 @@ def _krl(path: str, text: str, companion: tuple[str, str] | None) -> tuple[Docum
     targets = tuple(t for key, t in m.targets.items() if key not in m.work)  # loop work copies: shift
     doc = Document("krl", m.name, main, targets, tuple(m.tools.values()),
                    tuple(m.frames.values()), (*m.routines, *m.tally.unreached), (), (m.tally.count(),), tuple(m.tally.diagnostics),
-                   tuple(m.tally.comments), m.named_loads())
+                   tuple(m.tally.comments), m.named_loads(), records=krl_records(*companion) if companion else ())
     return doc, m.tally
 
 

@@ -35,7 +35,7 @@ from dataclasses import replace
 from rmot.backends.readers.fanuc_text import position_blocks
 from rmot.backends.readers.model import Document, FrameData, Native, Routine, Stmt, ToolData, VarDecl, Where, walk
 
-__all__ = ["native_positions", "tp_records", "inform_record", "rapid_records", "with_position_records"]
+__all__ = ["native_positions", "tp_records", "inform_record", "rapid_records", "krl_records", "with_position_records"]
 
 # how each vendor's lines name a position of their program, and how a comment line starts
 _NAMED = {"fanuc": (re.compile(r"\bP\[(\d+)"), "!"), "inform": (re.compile(r"\bC(\d{4,5})\b"), "'")}
@@ -70,31 +70,55 @@ def rapid_records(texts: list[tuple[str, Where]]) -> tuple[Native, ...]:
     return tuple(Native("rapid", " ".join(text.split("\n")) + ";", where) for text, where in texts if _RAPID_DECL.match(text))
 
 
-def _rapid_words(text: str) -> set[str]:
-    """The names a RAPID line uses (upper case), its strings and comment aside."""
-    code = re.sub(r'"[^"]*"', "", text).split("!")[0]
+def krl_records(path: str, text: str) -> tuple[Native, ...]:
+    """The data declarations of a KRL `.dat`, one per line (an array's, whose elements its later
+    lines set, is left out: a line naming it stays undeclared, as before) as records."""
+    return tuple(Native("krl", line.strip(), Where(path, n)) for n, line in enumerate(text.split("\n"), 1)
+                 if _DECLARATION["krl"][0].match(line))
+
+
+# a data declaration (group 2: its name) and the comment mark, per vendor (RAPID Overview, "Data
+# declarations"; KUKA System Software 8, "DECL": a .dat's `DECL [GLOBAL] TYPE NAME=value`, DECL
+# optional for the predefined types)
+_DECLARATION = {
+    "rapid": (_RAPID_DECL, "!"),
+    "krl": (re.compile(r"(?i)^\s*(?:DECL\s+(GLOBAL\s+)?\w+|(GLOBAL\s+)?(?:E6POS|E6AXIS|POS|AXIS|FRAME|FDAT|PDAT|LDAT|INT|REAL|BOOL))"
+                       r"\s+(\w+)\s*="), ";"),
+}
+
+
+def _declared_name(vendor: str, text: str) -> tuple[str, bool] | None:
+    """(the name a declaration record declares, upper case; whether it is LOCAL), or None."""
+    m = _DECLARATION[vendor][0].match(text)
+    if m is None:
+        return None
+    return m.group(m.lastindex or 0).upper(), vendor == "rapid" and "LOCAL" in (m.group(1) or "").upper()
+
+
+def _words(text: str, comment: str) -> set[str]:
+    """The names a line uses (upper case), its strings and comment aside."""
+    code = re.sub(r'"[^"]*"', "", text).split(comment)[0]
     return {w.upper() for w in _RAPID_WORD.findall(code)}
 
 
-def _with_declarations(routine: Routine, records: list[Native], variables: set[str]) -> Routine:
-    """A RAPID routine with the declarations of the data its native lines name, transitively,
-    but not of the import's task `variables` (upper case): rmot declares those itself, and a
-    native line must read and write the same variable as rmot's lines do."""
+def _with_declarations(routine: Routine, records: list[Native], variables: set[str], vendor: str) -> Routine:
+    """A routine with the declarations of the data its native lines name, transitively, but not
+    of the import's task `variables` (upper case): rmot declares those itself, and a native line
+    must read and write the same variable as rmot's lines do."""
     by_name: dict[str, Native] = {}
     for r in records:  # a LOCAL declaration serves its own file only; the routine's file's first
-        m = _RAPID_DECL.match(r.text)
-        local = m is not None and "LOCAL" in (m.group(1) or "").upper()
-        if m is not None and m.group(2).upper() not in variables and (not local or r.where.path == routine.where.path):
-            key = m.group(2).upper()
-            if key not in by_name or r.where.path == routine.where.path != by_name[key].where.path:
-                by_name[key] = r
+        found = _declared_name(vendor, r.text)
+        if found is not None and found[0] not in variables and (not found[1] or r.where.path == routine.where.path):
+            if found[0] not in by_name or r.where.path == routine.where.path != by_name[found[0]].where.path:
+                by_name[found[0]] = r
+    comment = _DECLARATION[vendor][1]
     wanted: set[str] = set()
-    todo = [w for s in walk(routine.body) if isinstance(s, Native) for w in _rapid_words(s.text)]
+    todo = [w for s in walk(routine.body) if isinstance(s, Native) for w in _words(s.text, comment)]
     while todo:
         name = todo.pop()
         if name in by_name and name not in wanted:
             wanted.add(name)
-            todo += _rapid_words(by_name[name].text.split(":=", 1)[-1])
+            todo += _words(re.split(r":?=", by_name[name].text, maxsplit=1)[-1], comment)
     kept = sorted((by_name[n] for n in wanted), key=lambda r: (r.where.path, r.where.line, r.where.col))
     return _at_top(routine, kept)
 
@@ -126,9 +150,9 @@ def _with_records(routine: Routine, records: Mapping[tuple[str, int], Native], v
 
 def with_position_records(doc: Document) -> Document:
     """`doc` with the records of the positions each routine's native lines move to at its top."""
-    if doc.vendor == "rapid" and doc.records:
+    if doc.vendor in _DECLARATION and doc.records:
         variables = {s.name.upper() for r in doc.routines for s in walk(r.body) if isinstance(s, VarDecl)}
-        return replace(doc, routines=tuple(_with_declarations(r, list(doc.records), variables) for r in doc.routines))
+        return replace(doc, routines=tuple(_with_declarations(r, list(doc.records), variables, doc.vendor) for r in doc.routines))
     if doc.vendor not in _NAMED or not doc.records:
         return doc
     pattern = _NAMED[doc.vendor][0]
