@@ -95,7 +95,7 @@ __all__ = ["KrlBackend"]
 # a .dat data declaration (KUKA System Software 8, "DECL"; DECL optional for the predefined types):
 # its name in group 1
 _NATIVE_DATA = re.compile(r"(?i)^\s*(?:DECL\s+(?:GLOBAL\s+)?\w+|(?:GLOBAL\s+)?(?:E6POS|E6AXIS|POS|AXIS|FRAME|FDAT|PDAT|LDAT|INT|REAL|BOOL))"
-                          r"\s+(\w+)\s*=")
+                          r"\s+(\w+)\s*(?:=|;|$)")
 
 
 @dataclass

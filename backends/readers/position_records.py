@@ -71,8 +71,8 @@ def rapid_records(texts: list[tuple[str, Where]]) -> tuple[Native, ...]:
 
 
 def krl_records(path: str, text: str) -> tuple[Native, ...]:
-    """The data declarations of a KRL `.dat`, one per line (an array's, whose elements its later
-    lines set, is left out: a line naming it stays undeclared, as before) as records."""
+    """The data declarations of a KRL `.dat`, one per line, with or without a value (an array's,
+    whose elements its later lines set, is left out: a line naming it stays undeclared) as records."""
     return tuple(Native("krl", line.strip(), Where(path, n)) for n, line in enumerate(text.split("\n"), 1)
                  if _DECLARATION["krl"][0].match(line))
 
@@ -83,7 +83,7 @@ def krl_records(path: str, text: str) -> tuple[Native, ...]:
 _DECLARATION = {
     "rapid": (_RAPID_DECL, "!"),
     "krl": (re.compile(r"(?i)^\s*(?:DECL\s+(GLOBAL\s+)?\w+|(GLOBAL\s+)?(?:E6POS|E6AXIS|POS|AXIS|FRAME|FDAT|PDAT|LDAT|INT|REAL|BOOL))"
-                       r"\s+(\w+)\s*="), ";"),
+                       r"\s+(\w+)\s*(?:=|;|$)"), ";"),
 }
 
 

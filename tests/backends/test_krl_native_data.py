@@ -26,6 +26,7 @@ SRC = """DEF pick()
   XTMP=XP1
   XTMP.Z=XTMP.Z+nLift
   LIN XTMP
+  XSPARE=XTMP
   PTP XHOME
 END
 """
@@ -36,6 +37,7 @@ DAT = """DEFDAT pick
   DECL REAL nBase=20.0
   DECL REAL nLift=nBase+5.0
   DECL REAL nUnused=1.0
+  E6POS XSPARE
 ENDDAT
 """
 
@@ -57,8 +59,10 @@ def test_native_lines_name_the_data_they_were_written_with(tmp_path: Path) -> No
     assert "error[" not in result.output, result.output
     files = {p.name: p.read_text() for p in (tmp_path / "out" / "krl").iterdir()}
     source, written = _declared(DAT), _declared(files["pick.dat"])
-    natives = [ln.strip() for ln in files["pick.src"].splitlines() if ln.strip() in ("XTMP=XP1", "XTMP.Z=XTMP.Z+nLift", "LIN XTMP")]
-    assert len(natives) == 3
+    natives = [ln.strip() for ln in files["pick.src"].splitlines()
+               if ln.strip() in ("XTMP=XP1", "XTMP.Z=XTMP.Z+nLift", "LIN XTMP", "XSPARE=XTMP")]
+    assert len(natives) == 4
+    assert re.search(r"(?m)^\s*E6POS XSPARE\s*$", files["pick.dat"])  # declared without a value, as in the source
     for name in ("XTMP", "NLIFT", "NBASE"):  # named by the native lines, and nLift's value names nBase
         assert written[name] == source[name], name
     assert len(written["XP1"]) == 1  # rmot's own moves use it too: one declaration
