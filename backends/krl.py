@@ -197,9 +197,7 @@ class KrlBackend(Backend):
         declared = _NATIVE_DATA.match(node.text) if node.vendor.lower() == self.name else None
         if declared is None:
             return super().native(node, ctx)
-        text = node.text.strip()
-        seen = ctx.module.native_data.setdefault(declared.group(1).upper(), (text, node))
-        if seen[0] != text:
+        if not native_refs.keep_declaration(ctx.module.native_data, declared.group(1), node):
             self.unsupported(codes.NATIVE_CLASH, f"native declaration of {declared.group(1)} must be the only one of "
                              "that name in the module (another declares it differently)", node.span)
         return []

@@ -26,7 +26,7 @@ from collections.abc import Iterable, Iterator
 from rmot.lang import ir, ir_tree
 from rmot.lang.record import record
 
-__all__ = ["Scheme", "FANUC", "INFORM", "program_natives", "reserved_labels", "positions_named", "clashes", "native_data"]
+__all__ = ["Scheme", "FANUC", "INFORM", "program_natives", "reserved_labels", "positions_named", "clashes", "native_data", "keep_declaration"]
 
 
 @record(slots=True)
@@ -131,3 +131,10 @@ def native_data(declared: dict[str, tuple[str, ir.Native]], own: set[str],
         elif source is not None and source.upper() != key:
             clash.append((node, source))
     return write, clash
+
+
+def keep_declaration(declared: dict[str, tuple[str, ir.Native]], name: str, node: ir.Native) -> bool:
+    """Record a native data declaration of `name` (case-insensitive); False where another of that
+    name declares it differently (E411 at the caller)."""
+    text = node.text.strip()
+    return declared.setdefault(name.upper(), (text, node))[0] == text

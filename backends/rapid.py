@@ -156,9 +156,7 @@ class RapidBackend(Backend):
         declared = _NATIVE_DATA.match(node.text) if node.vendor.lower() == self.name else None
         if declared is None:
             return super().native(node, ctx)
-        text = node.text.strip()
-        seen = ctx.native_data.setdefault(declared.group(1).upper(), (text, node))
-        if seen[0] != text:
+        if not native_refs.keep_declaration(ctx.native_data, declared.group(1), node):
             self.unsupported(codes.NATIVE_CLASH, f"native declaration of {declared.group(1)} must be the only one of "
                              "that name in the task (another declares it differently)", node.span)
         return []  # declared at module level (emit_task)

@@ -41,7 +41,7 @@ __all__ = ["native_positions", "tp_records", "inform_record", "rapid_records", "
 _NAMED = {"fanuc": (re.compile(r"\bP\[(\d+)"), "!"), "inform": (re.compile(r"\bC(\d{4,5})\b"), "'")}
 _SELECTION = re.compile(r"\bUF\s*:\s*(\d+)\s*,\s*UT\s*:\s*(\d+)")
 _RAPID_DECL = re.compile(r"(?i)^\s*((?:LOCAL|TASK)\s+)*(?:CONST|PERS|VAR)\s+\w+\s+(\w+)")
-_RAPID_WORD = re.compile(r"\b[A-Za-z]\w*\b")
+_WORD = re.compile(r"\b[A-Za-z]\w*\b")
 
 
 def tp_records(path: str, text: str, tools: Mapping[int, ToolData], frames: Mapping[int, FrameData]) -> tuple[Native, ...]:
@@ -98,7 +98,7 @@ def _declared_name(vendor: str, text: str) -> tuple[str, bool] | None:
 def _words(text: str, comment: str) -> set[str]:
     """The names a line uses (upper case), its strings and comment aside."""
     code = re.sub(r'"[^"]*"', "", text).split(comment)[0]
-    return {w.upper() for w in _RAPID_WORD.findall(code)}
+    return {w.upper() for w in _WORD.findall(code)}
 
 
 def _with_declarations(routine: Routine, records: list[Native], variables: set[str], vendor: str) -> Routine:
